@@ -29,6 +29,14 @@
  * exactly in real numbers, and round-off must not turn that into a rejection. */
 #define DMP_MONOTONE_REL_TOL 1e-9
 
+/* The same tolerance in the core's own type: float cannot resolve 1e-9, so the float build
+ * allows a few ulp (a skill accepted in double must stay accepted after rounding to float). */
+#ifdef FS_REAL_FLOAT
+#define DMP_MONOTONE_REL_TOL_REAL 1e-6f
+#else
+#define DMP_MONOTONE_REL_TOL_REAL DMP_MONOTONE_REL_TOL
+#endif
+
 /** DMP parameters derived from gains and nominal stiffness (SPEC 2, corrected eq. 14). */
 typedef struct {
     fs_real_t alpha;
@@ -36,8 +44,12 @@ typedef struct {
     fs_real_t gamma;
 } dmp_params_t;
 
-/** alpha = k_d/m_d - 1, gamma = k*k_i/(m_d*alpha), beta = (k_p + k*k_f - m_d*gamma)/(m_d*alpha) - 1;
- *  validates k_d > m_d, beta > 0, beta <= alpha/4; never writes NaN into *out. */
+/** alpha = k_d/m_d - 1, gamma = k*k_i/(m_d*alpha), beta = (k_p + k*k_f - m_d*gamma)/(m_d*alpha) - 1
+ *  (evaluated as (k_p + k*(k_f - k_i/alpha))/(m_d*alpha) - 1, the same in real numbers).
+ *  Checks, first failure reported: NULL (100); any input not finite (101); m_d <= 0 (102);
+ *  k <= 0 (106); k_d, k_p, k_f or k_i < 0 (107); k_d <= m_d (103); a derived value not finite (101);
+ *  beta <= 0 (104); beta > alpha/4*(1 + DMP_MONOTONE_REL_TOL_REAL) (105).
+ *  On error *out is zeroed (never NaN). */
 fs_status_t dmp_params_from_gains(const pfc_axis_gains_t *gains, fs_real_t stiffness_Npm,
                                   dmp_params_t *out);
 
@@ -64,7 +76,11 @@ typedef struct {
     fs_real_t env_lo[DMP_MAX_KERNELS];         /* suffix min of c_i - r*sigma_i (non-decreasing) */
 } dmp_model_t;
 
-/** Fill derived arrays after centre/width/weight and scalars are set; validates ranges. */
+/** Validate the model and fill the derived arrays (after centre/width/weight and scalars are set).
+ *  Checks in skill-image order: NULL (100); 1 <= N <= DMP_MAX_KERNELS (205); every value finite
+ *  (206); 0 < dt <= 0.1, tau > 0, 0 < T <= 3600, k > 0, g > 0, sigma_i > 0 and 1/(2 sigma_i^2)
+ *  finite (207); centres strictly increasing in [0, 1] (208); alpha > 0, beta > 0, gamma >= 0,
+ *  beta <= alpha/4*(1 + DMP_MONOTONE_REL_TOL_REAL) (209). */
 fs_status_t dmp_model_init(dmp_model_t *m);
 
 /** DMP state, DMP time: normalised phase u~, v~, the position integral I, x, z. */
@@ -89,23 +105,33 @@ typedef struct {
     fs_real_t phase_slowdown;
 } dmp_coupling_t;
 
+/** Validate run-time modulation: both scales finite, time_scale > 0 (109). goal_scale may be
+ *  zero or negative (it scales the force linearly). */
+fs_status_t dmp_run_validate(const dmp_run_t *run);
+
 /** Zero initial conditions. */
 void dmp_state_reset(dmp_state_t *s);
 
-/** Forcing term h at phase (u~, v~) and goal g, summing only kernels within the cutoff. */
+/** Forcing term h at phase (u~, v~) and goal g, summing only kernels with
+ *  e_i = (u~ - c_i)^2/(2 sigma_i^2) <= DMP_KERNEL_CUTOFF_EXP (found by binary search on the
+ *  envelopes); if none qualifies, the kernel with the smallest e_i alone (an O(N) scan of e_i that
+ *  only happens when the phase is outside every kernel, e.g. past the last centre). */
 fs_real_t dmp_forcing(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_real_t goal_m);
 
 /** Forcing term h over all N kernels (reference for tests; not for the tick). */
 fs_real_t dmp_forcing_full(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_real_t goal_m);
 
-/** Number of kernels dmp_forcing evaluates at phase u~ (for tests and benchmarks). */
+/** Number of kernels dmp_forcing sums at phase u~ (1 in the nearest-kernel fallback). */
 uint16_t dmp_active_kernels(const dmp_model_t *m, fs_real_t u);
 
-/** Phase slow-down for phase stopping: gain * err^2 (err = force tracking error, N). */
+/** Phase slow-down for phase stopping: gain * err^2 (err = force tracking error, N); 0 if that is
+ *  negative, +inf (phase frozen) if it is NaN. */
 fs_real_t dmp_phase_stop_factor(fs_real_t force_err_N, fs_real_t gain_per_N2);
 
 /** Advance the state by one step of dt_s (forward Euler, all right-hand sides at the old
- *  state); coupling may be NULL. Returns f_hat = k*x after the step. */
+ *  state, docs/math.md section 2). run NULL means scales 1; coupling may be NULL (none); a
+ *  phase_slowdown that is negative or NaN counts as 0, +inf freezes every state.
+ *  Returns f_hat = k*x after the step. The caller validates run with dmp_run_validate. */
 fs_real_t dmp_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
                    const dmp_coupling_t *coupling);
 

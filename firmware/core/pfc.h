@@ -55,16 +55,20 @@ typedef struct {
     fs_real_t force_N;
 } pfc_axis_meas_t;
 
-/** Default gains (SPEC 2): m_d 40, k_d 400, k_p 1170, k_i 27, k_f 3 (x); y has k_f = k_i = 0. */
+/** Default gains (SPEC 2): m_d 40, k_d 400, k_p 1170, k_i 27, k_f 3 (x); y has k_f = k_i = 0.
+ *  force_max 50 N (SPEC 5), x integral_max = 4*force_max/k_i (7.4 Ns), dt 1 ms. */
 void pfc_default_config(pfc_config_t *cfg);
 
-/** Validate a configuration: finite, m_d > 0, k_d > m_d, gains >= 0, limits > 0, dt > 0. */
+/** Validate a configuration, per axis then dt: NULL (100), not finite (101), m_d <= 0 (102),
+ *  a gain < 0 (107), k_d <= m_d (103), a limit <= 0 (110); dt not finite or <= 0 (108). */
 fs_status_t pfc_config_validate(const pfc_config_t *cfg);
 
 /** Zero the integral state. */
 void pfc_reset(pfc_state_t *st);
 
-/** One control tick: compute the saturated commanded force per axis into force_cmd_N[2]. */
+/** One control tick: compute the saturated commanded force per axis into force_cmd_N[2]
+ *  (output from the integral of the previous tick, then the integral advances by dt*(f_d - f));
+ *  an axis whose command evaluates to NaN gets 0 and its integral is left unchanged. */
 void pfc_step(const pfc_config_t *cfg, pfc_state_t *st, const pfc_axis_ref_t ref[PFC_AXES],
               const pfc_axis_meas_t meas[PFC_AXES], fs_real_t force_cmd_N[PFC_AXES]);
 

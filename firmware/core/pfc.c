@@ -1,0 +1,118 @@
+/* Parallel force/position control law (paper eqs. 2-5), 2 DOF, diagonal gains, with output
+ * saturation and anti-windup on the force integral. See pfc.h. */
+#include "pfc.h"
+
+#include <stddef.h>
+
+/* Default output limit: SPEC 5, |force| <= F_max = 50 N. */
+#define PFC_DEFAULT_FORCE_MAX_N FS_R(50.0)
+/* Default integral clamp, as a multiple of F_max/k_i (see pfc_default_config). */
+#define PFC_DEFAULT_INTEGRAL_FORCE_RATIO FS_R(4.0)
+/* Unconstrained axis (k_i = 0): the integral is never used; its bound only has to be > 0.
+ * One second of full-scale force error. */
+#define PFC_DEFAULT_Y_INTEGRAL_MAX_NS FS_R(50.0)
+
+void pfc_default_config(pfc_config_t *cfg)
+{
+    /* SPEC 2 default gains: alpha = k_d/m_d - 1 = 9, k_f = k_i/alpha = 3, beta = alpha/4. */
+    const pfc_axis_gains_t x = {FS_R(40.0), FS_R(400.0), FS_R(1170.0), FS_R(3.0), FS_R(27.0)};
+    const pfc_axis_gains_t y = {FS_R(40.0), FS_R(400.0), FS_R(1170.0), FS_R(0.0), FS_R(0.0)};
+    cfg->gains[0] = x;
+    cfg->gains[1] = y;
+    /* x: conditional integration (pfc_step) is the anti-windup; this clamp is the backstop.
+     * At equilibrium on an object the integral balances the position term,
+     * k_i*I_f = k_p*(x - x_d), so it must cover a position reference that is off because the
+     * object is softer than the skill's nominal k: reusing a 280 N/m skill at 20 N on a 100 N/m
+     * object needs k_i*I_f = 1170*20*(1/100 - 1/280) = 150 N. |k_i*I_f| <= 4*F_max = 200 N
+     * covers that (I_f <= 7.4 Ns with the default k_i). */
+    cfg->limits[0].force_max_N = PFC_DEFAULT_FORCE_MAX_N;
+    cfg->limits[0].integral_max_Ns = PFC_DEFAULT_INTEGRAL_FORCE_RATIO * PFC_DEFAULT_FORCE_MAX_N /
+                                     x.k_i_per_s;
+    cfg->limits[1].force_max_N = PFC_DEFAULT_FORCE_MAX_N;
+    cfg->limits[1].integral_max_Ns = PFC_DEFAULT_Y_INTEGRAL_MAX_NS;
+    cfg->dt_s = FS_R(0.001);
+}
+
+fs_status_t pfc_config_validate(const pfc_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return FS_ERR_NULL_ARG;
+    }
+    for (uint32_t a = 0u; a < PFC_AXES; a++) {
+        const pfc_axis_gains_t *g = &cfg->gains[a];
+        const pfc_axis_limits_t *l = &cfg->limits[a];
+        if (!fs_isfinite(g->m_d_kg) || !fs_isfinite(g->k_d_Nspm) || !fs_isfinite(g->k_p_Npm) ||
+            !fs_isfinite(g->k_f) || !fs_isfinite(g->k_i_per_s) || !fs_isfinite(l->force_max_N) ||
+            !fs_isfinite(l->integral_max_Ns)) {
+            return FS_ERR_NOT_FINITE;
+        }
+        if (!(g->m_d_kg > FS_R(0.0))) {
+            return FS_ERR_MASS_NONPOSITIVE;
+        }
+        if (g->k_d_Nspm < FS_R(0.0) || g->k_p_Npm < FS_R(0.0) || g->k_f < FS_R(0.0) ||
+            g->k_i_per_s < FS_R(0.0)) {
+            return FS_ERR_GAIN_NEGATIVE;
+        }
+        if (!(g->k_d_Nspm > g->m_d_kg)) {
+            return FS_ERR_KD_LE_MD;
+        }
+        if (!(l->force_max_N > FS_R(0.0)) || !(l->integral_max_Ns > FS_R(0.0))) {
+            return FS_ERR_LIMIT_INVALID;
+        }
+    }
+    if (!fs_isfinite(cfg->dt_s) || !(cfg->dt_s > FS_R(0.0))) {
+        return FS_ERR_DT_INVALID;
+    }
+    return FS_OK;
+}
+
+void pfc_reset(pfc_state_t *st)
+{
+    for (uint32_t a = 0u; a < PFC_AXES; a++) {
+        st->force_err_integral_Ns[a] = FS_R(0.0);
+    }
+}
+
+static fs_real_t pfc_clamp(fs_real_t v, fs_real_t lim)
+{
+    if (v > lim) {
+        return lim;
+    }
+    if (v < -lim) {
+        return -lim;
+    }
+    return v;
+}
+
+void pfc_step(const pfc_config_t *cfg, pfc_state_t *st, const pfc_axis_ref_t ref[PFC_AXES],
+              const pfc_axis_meas_t meas[PFC_AXES], fs_real_t force_cmd_N[PFC_AXES])
+{
+    for (uint32_t a = 0u; a < PFC_AXES; a++) {
+        const pfc_axis_gains_t *g = &cfg->gains[a];
+        const pfc_axis_limits_t *l = &cfg->limits[a];
+        const fs_real_t force_err_N = ref[a].force_N - meas[a].force_N;
+        const fs_real_t i_f = st->force_err_integral_Ns[a];
+        /* Forward Euler like the DMP: the output uses the integral up to the previous tick. */
+        const fs_real_t unsat = g->m_d_kg * ref[a].acc_mps2 +
+                                g->k_d_Nspm * (ref[a].vel_mps - meas[a].vel_mps) +
+                                g->k_p_Npm * (ref[a].pos_m - meas[a].pos_m) +
+                                g->k_f * force_err_N + g->k_i_per_s * i_f;
+        if (unsat != unsat) {
+            /* A NaN input: command nothing and keep the integral finite. Detecting the bad
+             * sensor and faulting is the safety layer's job (issue 6). */
+            force_cmd_N[a] = FS_R(0.0);
+            continue;
+        }
+        force_cmd_N[a] = pfc_clamp(unsat, l->force_max_N);
+
+        /* Conditional integration: hold the integral while the output is saturated and this
+         * error would drive it further into saturation (k_i >= 0, so the sign of the error is
+         * the sign of the integral's contribution). Axes with k_i = 0 keep it at zero. */
+        const int windup = (unsat > l->force_max_N && force_err_N > FS_R(0.0)) ||
+                           (unsat < -l->force_max_N && force_err_N < FS_R(0.0));
+        if (g->k_i_per_s > FS_R(0.0) && !windup) {
+            st->force_err_integral_Ns[a] =
+                pfc_clamp(i_f + cfg->dt_s * force_err_N, l->integral_max_Ns);
+        }
+    }
+}

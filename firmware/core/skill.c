@@ -1,0 +1,237 @@
+/* Skill image v1 parser (docs/skill_format.md). Every check runs on the stored float64 values in
+ * double, in the documented order, so the double and float builds accept and reject the same
+ * images as the Python reader; the float build then rounds the values to float. */
+#include "skill.h"
+
+#include <float.h>
+#include <stddef.h>
+
+/* Header field offsets (docs/skill_format.md). */
+#define OFF_MAGIC 0u
+#define OFF_VERSION 4u
+#define OFF_HEADER_SIZE 6u
+#define OFF_TOTAL_LENGTH 8u
+#define OFF_N_KERNELS 12u
+#define OFF_FLAGS 14u
+#define OFF_DT 16u
+#define OFF_TAU 24u
+#define OFF_ALPHA 32u
+#define OFF_BETA 40u
+#define OFF_GAMMA 48u
+#define OFF_STIFFNESS 56u
+#define OFF_GOAL 64u
+#define OFF_DURATION 72u
+#define OFF_M_D 80u
+#define OFF_K_D 88u
+#define OFF_K_P 96u
+#define OFF_K_F 104u
+#define OFF_K_I 112u
+#define OFF_SURFACE 120u
+#define SKILL_N_HEADER_F64 14u
+
+/* alpha/beta/gamma stored vs derived from the stored gains: relative agreement required. */
+#define SKILL_GAINS_REL_TOL 1e-9
+
+uint32_t skill_image_size(uint16_t n_kernels)
+{
+    return SKILL_HEADER_SIZE + 24u * (uint32_t)n_kernels + SKILL_CRC_SIZE;
+}
+
+/* Reflected polynomial 0xEDB88320 (zlib), processed a nibble at a time: 16-entry table. */
+static const uint32_t crc_nibble[16] = {
+    0x00000000u, 0x1DB71064u, 0x3B6E20C8u, 0x26D930ACu, 0x76DC4190u, 0x6B6B51F4u,
+    0x4DB26158u, 0x5005713Cu, 0xEDB88320u, 0xF00F9344u, 0xD6D6A3E8u, 0xCB61B38Cu,
+    0x9B64C2B0u, 0x86D3D2D4u, 0xA00AE278u, 0xBDBDF21Cu,
+};
+
+uint32_t skill_crc32(uint32_t crc, const uint8_t *data, uint32_t len)
+{
+    crc = ~crc;
+    for (uint32_t i = 0u; i < len; i++) {
+        crc ^= data[i];
+        crc = (crc >> 4) ^ crc_nibble[crc & 0x0Fu];
+        crc = (crc >> 4) ^ crc_nibble[crc & 0x0Fu];
+    }
+    return ~crc;
+}
+
+static uint16_t rd_u16(const uint8_t *b, uint32_t off)
+{
+    return (uint16_t)((uint16_t)b[off] | (uint16_t)((uint16_t)b[off + 1u] << 8));
+}
+
+static uint32_t rd_u32(const uint8_t *b, uint32_t off)
+{
+    return (uint32_t)b[off] | ((uint32_t)b[off + 1u] << 8) | ((uint32_t)b[off + 2u] << 16) |
+           ((uint32_t)b[off + 3u] << 24);
+}
+
+/* IEEE-754 binary64, little-endian in the image; reinterpreted through a union (no memcpy). */
+static double rd_f64(const uint8_t *b, uint32_t off)
+{
+    union {
+        uint64_t u;
+        double d;
+    } v;
+    v.u = 0u;
+    for (uint32_t i = 8u; i > 0u; i--) {
+        v.u = (v.u << 8) | (uint64_t)b[off + i - 1u];
+    }
+    return v.d;
+}
+
+static int rel_close(double a, double b, double rel)
+{
+    const double fa = fabs(a);
+    const double fb = fabs(b);
+    return fabs(a - b) <= rel * ((fa > fb) ? fa : fb);
+}
+
+/* dmp_params_from_gains in double (the image stores float64): same formula and checks, returns
+ * nonzero when the gains are valid and fills abg[] = {alpha, beta, gamma}. */
+static int skill_derive(const double gain[5], double k, double abg[3])
+{
+    const double m_d = gain[0];
+    const double k_d = gain[1];
+    const double k_p = gain[2];
+    const double k_f = gain[3];
+    const double k_i = gain[4];
+    if (!(m_d > 0.0) || !(k > 0.0) || k_d < 0.0 || k_p < 0.0 || k_f < 0.0 || k_i < 0.0 ||
+        !(k_d > m_d)) {
+        return 0;
+    }
+    const double alpha = k_d / m_d - 1.0;
+    if (!(alpha > 0.0)) {
+        return 0;
+    }
+    const double gamma = k * k_i / (m_d * alpha);
+    const double beta = (k_p + k * (k_f - k_i / alpha)) / (m_d * alpha) - 1.0;
+    if (!isfinite(alpha) || !isfinite(beta) || !isfinite(gamma) || !(beta > 0.0) ||
+        beta > alpha / 4.0 * (1.0 + DMP_MONOTONE_REL_TOL)) {
+        return 0;
+    }
+    abg[0] = alpha;
+    abg[1] = beta;
+    abg[2] = gamma;
+    return 1;
+}
+
+#ifdef FS_REAL_FLOAT
+/* Round a validated double to the float core: nonzero if it fits the float range. */
+static int to_real(double d, fs_real_t *out)
+{
+    if (fabs(d) > (double)FLT_MAX) {
+        return 0;
+    }
+    *out = (fs_real_t)d;
+    return 1;
+}
+#else
+static int to_real(double d, fs_real_t *out)
+{
+    *out = d;
+    return 1;
+}
+#endif
+
+fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
+{
+    if (buf == NULL || out == NULL) {
+        return FS_ERR_NULL_ARG;
+    }
+    if (len < SKILL_HEADER_SIZE) {
+        return FS_ERR_SKILL_TOO_SHORT;
+    }
+    if (rd_u32(buf, OFF_MAGIC) != SKILL_MAGIC) {
+        return FS_ERR_SKILL_MAGIC;
+    }
+    if (rd_u16(buf, OFF_VERSION) != SKILL_FORMAT_VERSION) {
+        return FS_ERR_SKILL_VERSION;
+    }
+    if (rd_u16(buf, OFF_HEADER_SIZE) != SKILL_HEADER_SIZE) {
+        return FS_ERR_SKILL_HEADER_SIZE;
+    }
+    const uint16_t n = rd_u16(buf, OFF_N_KERNELS);
+    const uint32_t total = rd_u32(buf, OFF_TOTAL_LENGTH);
+    if (total != len || total != skill_image_size(n)) {
+        return FS_ERR_SKILL_LENGTH;
+    }
+    const uint32_t body = total - SKILL_CRC_SIZE;
+    if (rd_u32(buf, body) != skill_crc32(0u, buf, body)) {
+        return FS_ERR_SKILL_CRC;
+    }
+    if (n == 0u || n > DMP_MAX_KERNELS) {
+        return FS_ERR_SKILL_KERNELS;
+    }
+    /* Every float64 field: 14 in the header from OFF_DT, then 3N array entries, contiguous. */
+    const uint32_t n_f64 = SKILL_N_HEADER_F64 + 3u * (uint32_t)n;
+    for (uint32_t i = 0u; i < n_f64; i++) {
+        if (!isfinite(rd_f64(buf, OFF_DT + 8u * i))) {
+            return FS_ERR_SKILL_NOT_FINITE;
+        }
+    }
+    const double dt = rd_f64(buf, OFF_DT);
+    const double tau = rd_f64(buf, OFF_TAU);
+    const double duration = rd_f64(buf, OFF_DURATION);
+    const double k = rd_f64(buf, OFF_STIFFNESS);
+    const double goal = rd_f64(buf, OFF_GOAL);
+    const uint32_t off_c = SKILL_HEADER_SIZE;
+    const uint32_t off_s = SKILL_HEADER_SIZE + 8u * (uint32_t)n;
+    const uint32_t off_w = SKILL_HEADER_SIZE + 16u * (uint32_t)n;
+    if (!(dt > 0.0) || dt > 0.1 || !(tau > 0.0) || !(duration > 0.0) || duration > 3600.0 ||
+        !(k > 0.0) || !(goal > 0.0)) {
+        return FS_ERR_SKILL_RANGE;
+    }
+    for (uint32_t i = 0u; i < n; i++) {
+        if (!(rd_f64(buf, off_s + 8u * i) > 0.0)) {
+            return FS_ERR_SKILL_RANGE;
+        }
+    }
+    double prev = 0.0;
+    for (uint32_t i = 0u; i < n; i++) {
+        const double c = rd_f64(buf, off_c + 8u * i);
+        if (c < 0.0 || c > 1.0 || (i > 0u && !(c > prev))) {
+            return FS_ERR_SKILL_CENTRES;
+        }
+        prev = c;
+    }
+    const double gain[5] = {rd_f64(buf, OFF_M_D), rd_f64(buf, OFF_K_D), rd_f64(buf, OFF_K_P),
+                            rd_f64(buf, OFF_K_F), rd_f64(buf, OFF_K_I)};
+    const double stored[3] = {rd_f64(buf, OFF_ALPHA), rd_f64(buf, OFF_BETA),
+                              rd_f64(buf, OFF_GAMMA)};
+    double derived[3];
+    if (!skill_derive(gain, k, derived) ||
+        !rel_close(stored[0], derived[0], SKILL_GAINS_REL_TOL) ||
+        !rel_close(stored[1], derived[1], SKILL_GAINS_REL_TOL) ||
+        !rel_close(stored[2], derived[2], SKILL_GAINS_REL_TOL) ||
+        stored[1] > stored[0] / 4.0 * (1.0 + DMP_MONOTONE_REL_TOL)) {
+        return FS_ERR_SKILL_GAINS;
+    }
+    const uint16_t flags = rd_u16(buf, OFF_FLAGS);
+    if ((flags & (uint16_t)~SKILL_FLAG_END_RELEASE) != 0u) {
+        return FS_ERR_SKILL_UNSUPPORTED;
+    }
+
+    /* Valid in double: fill the model in the core's type. The float build can still refuse a
+     * value beyond the float range (207) or one that rounding made invalid (dmp_model_init). */
+    dmp_model_t *m = &out->dmp;
+    m->n_kernels = n;
+    int ok = to_real(stored[0], &m->p.alpha) && to_real(stored[1], &m->p.beta) &&
+             to_real(stored[2], &m->p.gamma) && to_real(dt, &m->dt_s) &&
+             to_real(tau, &m->tau_s) && to_real(goal, &m->goal_m) &&
+             to_real(k, &m->stiffness_Npm) && to_real(duration, &m->duration_s) &&
+             to_real(gain[0], &out->gains.m_d_kg) && to_real(gain[1], &out->gains.k_d_Nspm) &&
+             to_real(gain[2], &out->gains.k_p_Npm) && to_real(gain[3], &out->gains.k_f) &&
+             to_real(gain[4], &out->gains.k_i_per_s) &&
+             to_real(rd_f64(buf, OFF_SURFACE), &out->surface_m);
+    for (uint32_t i = 0u; ok && i < n; i++) {
+        ok = to_real(rd_f64(buf, off_c + 8u * i), &m->centre[i]) &&
+             to_real(rd_f64(buf, off_s + 8u * i), &m->width[i]) &&
+             to_real(rd_f64(buf, off_w + 8u * i), &m->weight[i]);
+    }
+    if (!ok) {
+        return FS_ERR_SKILL_RANGE;
+    }
+    out->end_policy = ((flags & SKILL_FLAG_END_RELEASE) != 0u) ? SKILL_END_RELEASE : SKILL_END_HOLD;
+    return dmp_model_init(m);
+}

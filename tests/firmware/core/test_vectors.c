@@ -1,0 +1,231 @@
+/* Golden vectors written by the Python reference (host/forceskill) into tests/vectors/:
+ *  manifest.txt      lines "<skill file> <goal_scale> <time_scale> <rollout csv>" (paths relative
+ *                    to tests/vectors, '#' comments): parse the image, roll it out as
+ *                    docs/math.md section 2 says, compare with the CSV ("t,f_hat" header) within
+ *                    1e-6 of max|f| (double build) or 1e-4 (float build);
+ *  bad/manifest.txt  lines "<file> <expected code>" (paths relative to tests/vectors/bad):
+ *                    skill_parse must return exactly that code.
+ * A missing manifest is a failure, not a skip. FS_VECTORS_DIR comes from CMake. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "skill.h"
+
+#ifndef FS_VECTORS_DIR
+#error "FS_VECTORS_DIR must be defined"
+#endif
+
+#ifdef FS_REAL_FLOAT
+#define BUILD_NAME "float"
+#define REL_TOL 1e-4
+#define T_REL_TOL 1e-6 /* dt rounded to float */
+#else
+#define BUILD_NAME "double"
+#define REL_TOL 1e-6
+#define T_REL_TOL 1e-12
+#endif
+
+#define MAX_IMAGE 65536u
+#define MAX_ROWS 4000000L
+
+static uint8_t image[MAX_IMAGE];
+static skill_t sk;
+
+static long read_file(const char *path, uint8_t *buf, size_t cap)
+{
+    FILE *f = fopen(path, "rb");
+    if (f == NULL) {
+        return -1;
+    }
+    const size_t n = fread(buf, 1, cap, f);
+    const int more = (fgetc(f) != EOF);
+    fclose(f);
+    return more ? -2 : (long)n;
+}
+
+/* Split a manifest line into whitespace-separated fields; returns the count (0 for blank or
+ * comment lines). */
+static int split(char *line, char **field, int max)
+{
+    char *hash = strchr(line, '#');
+    if (hash != NULL) {
+        *hash = '\0';
+    }
+    int n = 0;
+    char *p = line;
+    for (;;) {
+        while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n') {
+            *p++ = '\0';
+        }
+        if (*p == '\0') {
+            return n;
+        }
+        if (n == max) {
+            return max + 1;
+        }
+        field[n++] = p;
+        while (*p != '\0' && *p != ' ' && *p != '\t' && *p != '\r' && *p != '\n') {
+            p++;
+        }
+    }
+}
+
+static double check_rollout(const char *dir, const char *skill_file, double goal_scale,
+                            double time_scale, const char *csv_file)
+{
+    char path[1024];
+    snprintf(path, sizeof(path), "%s/%s", dir, skill_file);
+    const long len = read_file(path, image, MAX_IMAGE);
+    if (len < 0) {
+        fail_msg("cannot read skill %s", path);
+    }
+    const fs_status_t st = skill_parse(image, (uint32_t)len, &sk);
+    if (st != FS_OK) {
+        fail_msg("%s: skill_parse (%s) returned %d", path, BUILD_NAME, (int)st);
+    }
+    snprintf(path, sizeof(path), "%s/%s", dir, csv_file);
+    FILE *f = fopen(path, "r");
+    if (f == NULL) {
+        fail_msg("cannot read rollout %s", path);
+    }
+    char line[256];
+    if (fgets(line, sizeof(line), f) == NULL || strncmp(line, "t,f_hat", 7) != 0) {
+        fclose(f);
+        fail_msg("%s: header is not 't,f_hat'", path);
+    }
+    const dmp_run_t run = {(fs_real_t)goal_scale, (fs_real_t)time_scale};
+    assert_int_equal(dmp_run_validate(&run), FS_OK);
+    const double dt = (double)sk.dmp.dt_s;
+    const long n_steps = lround((double)sk.dmp.duration_s * time_scale / dt);
+    dmp_state_t s;
+    dmp_state_reset(&s);
+    long row = 0;
+    double err_max = 0.0, f_max = 0.0;
+    while (fgets(line, sizeof(line), f) != NULL) {
+        char *end = NULL;
+        const double t = strtod(line, &end);
+        if (end == line || *end != ',') {
+            fclose(f);
+            fail_msg("%s: bad row %ld", path, row);
+        }
+        const double f_ref = strtod(end + 1, NULL);
+        if (row > n_steps) {
+            fclose(f);
+            fail_msg("%s: more than %ld rows", path, n_steps + 1);
+        }
+        if (fabs(t - (double)row * dt) > T_REL_TOL * (1.0 + t)) {
+            fclose(f);
+            fail_msg("%s: row %ld has t = %.17g, expected %.17g", path, row, t, (double)row * dt);
+        }
+        const double f_c = (row == 0) ? 0.0 : (double)dmp_step(&sk.dmp, &s, &run, NULL);
+        err_max = fmax(err_max, fabs(f_c - f_ref));
+        f_max = fmax(f_max, fabs(f_ref));
+        row++;
+    }
+    fclose(f);
+    if (row != n_steps + 1) {
+        fail_msg("%s: %ld rows, expected %ld", path, row, n_steps + 1);
+    }
+    assert_true(f_max > 0.0);
+    const double rel = err_max / f_max;
+    printf("[%s] %s gs=%g ts=%g: %ld rows, max|f| %.4f N, max err %.3g of max|f|\n", BUILD_NAME,
+           skill_file, goal_scale, time_scale, row, f_max, rel);
+    if (!(rel <= REL_TOL)) {
+        fail_msg("%s (%s): max error %.3g of max|f| exceeds %.1g", csv_file, BUILD_NAME, rel,
+                 REL_TOL);
+    }
+    return rel;
+}
+
+static void test_golden_rollouts(void **state)
+{
+    (void)state;
+    const char *dir = FS_VECTORS_DIR;
+    char path[1024];
+    snprintf(path, sizeof(path), "%s/manifest.txt", dir);
+    FILE *m = fopen(path, "r");
+    if (m == NULL) {
+        fail_msg("missing %s (the Python side writes the golden vectors)", path);
+    }
+    char line[1024];
+    int count = 0;
+    double worst = 0.0;
+    while (fgets(line, sizeof(line), m) != NULL) {
+        char *fld[4];
+        const int n = split(line, fld, 4);
+        if (n == 0) {
+            continue;
+        }
+        if (n != 4) {
+            fclose(m);
+            fail_msg("%s: malformed line (%d fields)", path, n);
+        }
+        worst = fmax(worst, check_rollout(dir, fld[0], strtod(fld[1], NULL),
+                                          strtod(fld[2], NULL), fld[3]));
+        count++;
+    }
+    fclose(m);
+    printf("[%s] %d golden rollouts, worst error %.3g of max|f| (tolerance %.0g)\n", BUILD_NAME,
+           count, worst, REL_TOL);
+    assert_true(count > 0);
+}
+
+static void test_golden_bad_images(void **state)
+{
+    (void)state;
+    char dir[1024];
+    snprintf(dir, sizeof(dir), "%s/bad", FS_VECTORS_DIR);
+    char path[1100];
+    snprintf(path, sizeof(path), "%s/manifest.txt", dir);
+    FILE *m = fopen(path, "r");
+    if (m == NULL) {
+        fail_msg("missing %s (the Python side writes the bad-image vectors)", path);
+    }
+    char line[1024];
+    int count = 0;
+    while (fgets(line, sizeof(line), m) != NULL) {
+        char *fld[2];
+        const int n = split(line, fld, 2);
+        if (n == 0) {
+            continue;
+        }
+        if (n != 2) {
+            fclose(m);
+            fail_msg("%s: malformed line (%d fields)", path, n);
+        }
+        char file[1200];
+        snprintf(file, sizeof(file), "%s/%s", dir, fld[0]);
+        const long len = read_file(file, image, MAX_IMAGE);
+        if (len < 0) {
+            fclose(m);
+            fail_msg("cannot read %s", file);
+        }
+        const int want = atoi(fld[1]);
+        const fs_status_t got = skill_parse(image, (uint32_t)len, &sk);
+        if ((int)got != want) {
+            fclose(m);
+            fail_msg("%s (%s): skill_parse returned %d, expected %d", fld[0], BUILD_NAME,
+                     (int)got, want);
+        }
+        count++;
+    }
+    fclose(m);
+    printf("[%s] %d bad images rejected with the expected codes\n", BUILD_NAME, count);
+    assert_true(count > 0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_golden_rollouts),
+        cmocka_unit_test(test_golden_bad_images),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
