@@ -1,0 +1,300 @@
+"""The learned force DMP in numpy: the reference the C core (firmware/core/dmp.c) is checked against.
+
+docs/math.md section 2 is the algorithm, step for step. State ``[u, v, I, x, z]`` (u = u~, v = v~,
+the normalised phase), zero at t = 0; forward Euler with every right-hand side at the old state:
+
+    h  = g_e * v * S(u)
+    x' = x + dt/tau_e * (z - x - gamma*I + h + c_x)
+    z' = z + dt/tau_e * alpha*(beta*(g_e - x) - z)
+    I' = I + dt/tau_e * x
+    v' = v + dt/tau_e * alpha*(beta*(1 - u) - v)
+    u' = u + dt/tau_e * v
+    f_hat = k * x'
+
+``rollout`` runs that loop literally (one Python step per tick, kernels vectorised over all ticks,
+since the phase does not depend on x). ``linear_scan`` is the same recursion evaluated in blocks,
+used by the fit for speed and checked against the loop in tests/host/test_dmp.py.
+"""
+from __future__ import annotations
+
+from typing import Optional
+
+import numpy as np
+
+from .errors import ERR_SCALE_INVALID, ParamError
+from .skill import Skill
+
+#: Kernels with (u - c_i)^2/(2 sigma_i^2) above this are skipped (DMP_KERNEL_CUTOFF_EXP, dmp.h).
+KERNEL_CUTOFF_EXP = 23.0
+_ROW_CHUNK = 4096
+
+
+def kernel_exponents(u: np.ndarray, centres: np.ndarray, widths: np.ndarray) -> np.ndarray:
+    """e[n, i] = (u_n - c_i)^2 / (2 sigma_i^2), computed as d*d*half_inv_var like the C core."""
+    half_inv_var = 1.0 / (2.0 * widths * widths)
+    d = np.asarray(u, dtype=float)[:, None] - centres[None, :]
+    return d * d * half_inv_var[None, :]
+
+
+def normalised_kernels(u: np.ndarray, centres: np.ndarray, widths: np.ndarray) -> np.ndarray:
+    """Matrix K[n, i] = psi_i(u_n)/sum_j psi_j(u_n) with the cutoff rule of docs/math.md section 2.
+
+    Kernels with e_i > 23 get 0; psi_i = exp(-(e_i - e_min)) over the rest; a row with no kernel
+    within the cutoff puts 1 on the nearest kernel (smallest e_i, the first on a tie).
+    S(u_n) = K[n] @ w. A non-decreasing u (every rollout and fit) is evaluated only inside each
+    kernel's band of rows, the same numbers as the dense evaluation (tested).
+    """
+    u = np.asarray(u, dtype=float).reshape(-1)
+    if u.size > 1 and np.all(np.diff(u) >= 0.0):
+        return _normalised_kernels_banded(u, centres, widths).T
+    return _normalised_kernels_dense(u, centres, widths)
+
+
+def _normalised_kernels_dense(u: np.ndarray, centres: np.ndarray, widths: np.ndarray) -> np.ndarray:
+    out = np.empty((u.size, centres.size))
+    for r0 in range(0, u.size, _ROW_CHUNK):
+        e = kernel_exponents(u[r0:r0 + _ROW_CHUNK], centres, widths)
+        e_act = np.where(e <= KERNEL_CUTOFF_EXP, e, np.inf)
+        e_min = e_act.min(axis=1)
+        none = ~np.isfinite(e_min)
+        e_min[none] = 0.0
+        psi = np.exp(-(e_act - e_min[:, None]))  # exp(-inf) = 0 for skipped kernels
+        if none.any():
+            rows = np.flatnonzero(none)
+            psi[rows] = 0.0
+            psi[rows, np.argmin(e[rows], axis=1)] = 1.0
+        out[r0:r0 + psi.shape[0]] = psi / psi.sum(axis=1, keepdims=True)
+    return out
+
+
+def _normalised_kernels_banded(u: np.ndarray, centres: np.ndarray, widths: np.ndarray) -> np.ndarray:
+    """Transposed kernel matrix (N, n) for non-decreasing u; each kernel touches only its band."""
+    n_k = centres.size
+    half_inv_var = 1.0 / (2.0 * widths * widths)
+    radius = np.sqrt(KERNEL_CUTOFF_EXP / half_inv_var) * (1.0 + 1e-6) + 1e-300
+    lo = np.searchsorted(u, centres - radius, side="left")
+    hi = np.searchsorted(u, centres + radius, side="right")
+    e_t = np.full((n_k, u.size), np.inf)
+    for i in range(n_k):
+        if hi[i] > lo[i]:
+            d = u[lo[i]:hi[i]] - centres[i]
+            e = d * d * half_inv_var[i]
+            e_t[i, lo[i]:hi[i]] = np.where(e <= KERNEL_CUTOFF_EXP, e, np.inf)
+    e_min = e_t.min(axis=0)
+    psi_t = np.zeros((n_k, u.size))
+    for i in range(n_k):
+        if hi[i] > lo[i]:
+            sl = slice(lo[i], hi[i])
+            psi_t[i, sl] = np.exp(-(e_t[i, sl] - e_min[sl]))
+    none = np.flatnonzero(~np.isfinite(e_min))
+    if none.size:
+        e_full = kernel_exponents(u[none], centres, widths)
+        psi_t[:, none] = 0.0
+        psi_t[np.argmin(e_full, axis=1), none] = 1.0
+    psi_t /= psi_t.sum(axis=0, keepdims=True)
+    return psi_t
+
+
+def forcing_scale(u: np.ndarray, skill: Skill) -> np.ndarray:
+    """S(u) = sum psi_i w_i / sum psi_i for every u (the kernel part of h = g*v*S(u))."""
+    return normalised_kernels(u, skill.centres, skill.widths) @ skill.weights
+
+
+def phase_loop(alpha: float, beta: float, a: float, n_steps: int) -> tuple[np.ndarray, np.ndarray]:
+    """u~_n, v~_n for n = 0..n_steps, a = dt/tau_e; the literal forward-Euler loop."""
+    u = np.empty(n_steps + 1)
+    v = np.empty(n_steps + 1)
+    uu = vv = 0.0
+    u[0] = v[0] = 0.0
+    for n in range(1, n_steps + 1):
+        uu, vv = uu + a * vv, vv + a * alpha * (beta * (1.0 - uu) - vv)
+        u[n] = uu
+        v[n] = vv
+    return u, v
+
+
+def transform_loop(alpha: float, beta: float, gamma: float, a: float, goal: "float | np.ndarray",
+                   h: np.ndarray, c_x: Optional[np.ndarray] = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """x_n, z_n, I_n for n = 0..len(h) from zero state, forcing h_n and goal g_n (scalar or per step).
+
+    The literal loop of docs/math.md section 2 (x, z, I part); ``c_x`` is the coupling term.
+    """
+    m = len(h)
+    g = np.broadcast_to(np.asarray(goal, dtype=float), (m,))
+    cx = np.zeros(m) if c_x is None else np.asarray(c_x, dtype=float)
+    x = np.empty(m + 1)
+    z = np.empty(m + 1)
+    big_i = np.empty(m + 1)
+    xx = zz = ii = 0.0
+    x[0] = z[0] = big_i[0] = 0.0
+    hl = h.tolist()
+    gl = g.tolist()
+    cl = cx.tolist()
+    for n in range(m):
+        xx, zz, ii = (xx + a * (zz - xx - gamma * ii + hl[n] + cl[n]),
+                      zz + a * alpha * (beta * (gl[n] - xx) - zz),
+                      ii + a * xx)
+        x[n + 1] = xx
+        z[n + 1] = zz
+        big_i[n + 1] = ii
+    return x, z, big_i
+
+
+def _powers(a_mat: np.ndarray, count: int) -> np.ndarray:
+    """A^0 .. A^count as an array (count+1, d, d)."""
+    d = a_mat.shape[0]
+    p = np.empty((count + 1, d, d))
+    p[0] = np.eye(d)
+    for k in range(1, count + 1):
+        p[k] = a_mat @ p[k - 1]
+    return p
+
+
+def linear_scan(a_mat: np.ndarray, b: np.ndarray, s0: Optional[np.ndarray] = None,
+                block: int = 64) -> np.ndarray:
+    """States s_0..s_M of s_{n+1} = A s_n + b_n (b: (M, d)) evaluated in blocks.
+
+    Within a block the response to b is one matrix product with a block-Toeplitz matrix of
+    powers of A; only the block boundaries are propagated sequentially. Equal to the sequential
+    loop within round-off (tests: 1e-12 relative on the fit's recursions).
+    """
+    a_mat = np.atleast_2d(np.asarray(a_mat, dtype=float))
+    d = a_mat.shape[0]
+    b = np.asarray(b, dtype=float).reshape(-1, d)
+    m = b.shape[0]
+    s0v = np.zeros(d) if s0 is None else np.asarray(s0, dtype=float).reshape(d)
+    out = np.empty((m + 1, d))
+    out[0] = s0v
+    if m == 0:
+        return out
+    L = max(1, min(block, m))
+    nb = -(-m // L)
+    p = _powers(a_mat, L)
+    # Toeplitz: y_k = sum_{j<k} A^(k-1-j) b_j for k = 1..L  ->  Y[(k-1)*d + r] = T[...] @ bflat
+    kk = np.arange(L)[:, None]            # row block k-1
+    jj = np.arange(L)[None, :]            # column block j
+    lag = kk - jj                         # power k-1-j, valid for j <= k-1
+    t4 = np.where((lag >= 0)[:, :, None, None], p[np.clip(lag, 0, L)], 0.0)   # (L, L, d, d)
+    t = t4.transpose(0, 2, 1, 3).reshape(L * d, L * d)
+    bp = np.zeros((nb * L, d))
+    bp[:m] = b
+    y = (bp.reshape(nb, L * d) @ t.T).reshape(nb, L, d)   # y[mb, k-1] = local state at k
+    a_l = p[L]
+    if nb > 64:   # the block boundaries are the same kind of recursion (A^L, y_L): scan it too
+        starts = linear_scan(a_l, y[:, L - 1], s0v, block=16)[:-1]
+    else:
+        starts = np.empty((nb, d))
+        s = s0v.copy()
+        for mb in range(nb):
+            starts[mb] = s
+            s = a_l @ s + y[mb, L - 1]
+    # s_{mb*L + k} = A^k s_start + y_k, k = 1..L
+    full = (starts @ p[1:].reshape(L * d, d).T).reshape(nb, L, d) + y
+    out[1:] = full.reshape(nb * L, d)[:m]
+    return out
+
+
+class KernelBands:
+    """Kernels over a non-decreasing phase sequence, stored per kernel as the band of rows where
+    e_i <= 23 (the fit's fast path; a few kernels per row instead of all N).
+
+    psi[i] = exp(-e_i) on rows lo[i]:hi[i] (no e_min shift: e_i <= 23 cannot underflow, and the
+    normalised weights are shift-invariant, so they equal ``normalised_kernels`` to round-off).
+    """
+
+    def __init__(self, u: np.ndarray, centres: np.ndarray, widths: np.ndarray) -> None:
+        self.n_rows = u.size
+        half_inv_var = 1.0 / (2.0 * widths * widths)
+        radius = np.sqrt(KERNEL_CUTOFF_EXP / half_inv_var) * (1.0 + 1e-6)
+        self.lo = np.searchsorted(u, centres - radius, side="left")
+        self.hi = np.searchsorted(u, centres + radius, side="right")
+        self.psi: list[np.ndarray] = []
+        rowsum = np.zeros(u.size)
+        for i in range(centres.size):
+            d = u[self.lo[i]:self.hi[i]] - centres[i]
+            e = d * d * half_inv_var[i]
+            p = np.where(e <= KERNEL_CUTOFF_EXP, np.exp(-np.minimum(e, KERNEL_CUTOFF_EXP + 1.0)), 0.0)
+            self.psi.append(p)
+            rowsum[self.lo[i]:self.hi[i]] += p
+        self.rowsum = rowsum
+        self.complete = bool(np.all(rowsum > 0.0))   # False: a row needs the nearest-kernel fallback
+        inv = 1.0 / np.where(rowsum > 0.0, rowsum, 1.0)
+        self.norm = [p * inv[self.lo[i]:self.hi[i]] for i, p in enumerate(self.psi)]
+
+    def sum_weighted(self, w: np.ndarray) -> np.ndarray:
+        """S_n = sum_i w_i psi_i/sum psi (the normalised mixture) for every row."""
+        out = np.zeros(self.n_rows)
+        for i, k in enumerate(self.norm):
+            out[self.lo[i]:self.hi[i]] += w[i] * k
+        return out
+
+    def gram(self, s2: np.ndarray) -> np.ndarray:
+        """G_ij = sum_n K_in K_jn s2_n for the normalised kernels (banded, symmetric)."""
+        n_k = len(self.norm)
+        g = np.zeros((n_k, n_k))
+        for i in range(n_k):
+            ki = self.norm[i] * s2[self.lo[i]:self.hi[i]]
+            for j in range(i, n_k):
+                if self.lo[j] >= self.hi[i]:
+                    break
+                a, b = max(self.lo[i], self.lo[j]), min(self.hi[i], self.hi[j])
+                if b > a:
+                    g[i, j] = g[j, i] = float(ki[a - self.lo[i]:b - self.lo[i]] @ self.norm[j][a - self.lo[j]:b - self.lo[j]])
+        return g
+
+    def project(self, y: np.ndarray, normalised: bool = True) -> np.ndarray:
+        """sum_n K_in y_n for every kernel (normalised or raw psi)."""
+        ks = self.norm if normalised else self.psi
+        return np.array([float(k @ y[self.lo[i]:self.hi[i]]) for i, k in enumerate(ks)])
+
+
+def phase_scan(alpha: float, beta: float, a: float, n_steps: int) -> tuple[np.ndarray, np.ndarray]:
+    """Same as ``phase_loop`` via ``linear_scan`` (fast; round-off level differences)."""
+    a_mat = np.array([[1.0, a], [-a * alpha * beta, 1.0 - a * alpha]])
+    b = np.tile([0.0, a * alpha * beta], (n_steps, 1))
+    s = linear_scan(a_mat, b)
+    return s[:, 0], s[:, 1]
+
+
+def transform_scan(alpha: float, beta: float, gamma: float, a: float, goal: float,
+                   h: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Same as ``transform_loop`` (constant goal) via ``linear_scan``."""
+    a_mat = np.array([[1.0 - a, a, -a * gamma],
+                      [-a * alpha * beta, 1.0 - a * alpha, 0.0],
+                      [a, 0.0, 1.0]])
+    b = np.zeros((len(h), 3))
+    b[:, 0] = a * np.asarray(h, dtype=float)
+    b[:, 1] = a * alpha * beta * goal
+    s = linear_scan(a_mat, b)
+    return s[:, 0], s[:, 1], s[:, 2]
+
+
+def check_scales(goal_scale: float, time_scale: float) -> None:
+    """Goal scale finite, time scale finite and > 0 (code 109, as the firmware)."""
+    if not np.isfinite(goal_scale) or not np.isfinite(time_scale) or not time_scale > 0.0:
+        raise ParamError(ERR_SCALE_INVALID, f"goal scale must be finite and time scale finite and > 0: "
+                         f"goal_scale = {goal_scale:g}, time_scale = {time_scale:g}")
+
+
+def default_steps(skill: Skill, time_scale: float = 1.0) -> int:
+    """round(T*time_scale/dt): the rollout writes rows 0..this."""
+    return int(round(skill.duration_s * time_scale / skill.dt_s))
+
+
+def rollout(skill: Skill, goal_scale: float = 1.0, time_scale: float = 1.0,
+            n_steps: Optional[int] = None) -> tuple[np.ndarray, np.ndarray]:
+    """t_n = n*dt and f_hat_n = k*x_n for n = 0..n_steps (default round(T*time_scale/dt)).
+
+    The DMP alone (docs/math.md section 2): the end policy after T is applied by the executor.
+    """
+    check_scales(goal_scale, time_scale)
+    n = default_steps(skill, time_scale) if n_steps is None else int(n_steps)
+    if n < 0:
+        raise ParamError(ERR_SCALE_INVALID, f"n_steps must be >= 0: {n}")
+    tau_e = skill.tau_s * time_scale
+    a = skill.dt_s / tau_e
+    g_e = skill.goal_m * goal_scale
+    u, v = phase_loop(skill.alpha, skill.beta, a, n)
+    h = g_e * v[:n] * forcing_scale(u[:n], skill)
+    x, _, _ = transform_loop(skill.alpha, skill.beta, skill.gamma, a, g_e, h)
+    return np.arange(n + 1) * skill.dt_s, skill.stiffness_Npm * x

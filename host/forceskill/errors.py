@@ -1,0 +1,71 @@
+"""Errors of the host package, each with a stable number.
+
+Codes 1xx and 2xx are the firmware's (firmware/core/fs_status.h): a skill refused here is refused
+there with the same number. Codes 6xx are host-only (demonstration files and fitting); the firmware
+never sees a demonstration.
+"""
+from __future__ import annotations
+
+# 1xx: gains and parameters (fs_status.h)
+ERR_NULL_ARG = 100
+ERR_NOT_FINITE = 101
+ERR_MASS_NONPOSITIVE = 102
+ERR_KD_LE_MD = 103
+ERR_BETA_NONPOSITIVE = 104
+ERR_PHASE_NOT_MONOTONE = 105
+ERR_STIFFNESS_NONPOSITIVE = 106
+ERR_GAIN_NEGATIVE = 107
+ERR_DT_INVALID = 108
+ERR_SCALE_INVALID = 109
+
+# 2xx: skill image (fs_status.h)
+ERR_SKILL_TOO_SHORT = 200
+ERR_SKILL_MAGIC = 201
+ERR_SKILL_VERSION = 202
+ERR_SKILL_LENGTH = 203
+ERR_SKILL_CRC = 204
+ERR_SKILL_KERNELS = 205
+ERR_SKILL_NOT_FINITE = 206
+ERR_SKILL_RANGE = 207
+ERR_SKILL_CENTRES = 208
+ERR_SKILL_GAINS = 209
+ERR_SKILL_UNSUPPORTED = 210
+ERR_SKILL_HEADER_SIZE = 211
+
+# 6xx: host only -- demonstrations and fitting
+ERR_DEMO_FILE = 600          # file missing, unreadable, or no reader for its suffix
+ERR_DEMO_FORMAT = 601        # no header row, a non-numeric cell, ragged rows
+ERR_DEMO_COLUMN = 602        # a requested column is not in the file
+ERR_DEMO_TOO_SHORT = 603     # shorter than 0.5 s or fewer than 100 samples
+ERR_DEMO_NOT_FINITE = 604    # NaN or infinite sample
+ERR_DEMO_TIME = 605          # time not strictly increasing
+ERR_DEMO_GAP = 606           # a sampling gap above 1.5x the median step
+ERR_DEMO_ZERO_FORCE = 607    # the learned force is constant zero
+ERR_FIT_ARGS = 610           # kernels, method, end policy or dt out of range
+ERR_FIT_GOAL = 611           # g <= 0 or tiny: no net push to phase-normalise
+ERR_FIT_NUMERIC = 612        # the regression produced a non-finite weight
+ERR_IO = 620                 # an output file could not be written
+
+
+class FsError(Exception):
+    """A refusal with a stable number (``code``) and a one-line message naming the problem and value."""
+
+    def __init__(self, code: int, message: str) -> None:
+        super().__init__(message)
+        self.code = int(code)
+        self.message = " ".join(str(message).split())
+
+    def __str__(self) -> str:
+        return self.message
+
+
+class ParamError(FsError):
+    """Gains, stiffness, scales or fit options that give an invalid or unstable system (1xx, 610)."""
+
+
+class SkillError(FsError):
+    """A corrupt or inconsistent skill image (2xx)."""
+
+
+class DemoError(FsError):
+    """A demonstration that cannot be learned from (60x, 611)."""

@@ -1,0 +1,195 @@
+"""Fitting a force skill from one demonstration (docs/math.md section 3).
+
+Steps: resample to dt; learning target x* = f/k; goal g = g'(T) with the force integral by the
+left rectangle rule (the forward-Euler sum the control law's integrator uses); tau by a bracketing
+search so the discrete phase gives u~(T) = 0.99; centres uniform in time mapped to phase; h_d from
+the same discrete recursion as the rollout; regression of h_d on g*v~*S(u~) by ``ridge`` (joint
+Tikhonov-regularised least squares, the default) or ``lwr`` (the paper's per-kernel weighted LS);
+then the learned force is rolled out and compared with the demonstration.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Optional
+
+import numpy as np
+
+from . import dmp
+from .demo import Demo, resample, validate
+from .errors import ERR_FIT_ARGS, ERR_FIT_GOAL, ERR_FIT_NUMERIC, DemoError, FsError, ParamError
+from .params import Gains, derive, goal_prime
+from .skill import FLAG_END_RELEASE, MAX_KERNELS, Skill
+
+PHASE_AT_END = 0.99
+#: g must exceed this fraction of max|x*|: below, the phase-normalised forcing needs huge weights.
+GOAL_MIN_REL = 1e-3
+#: Tikhonov term of the ridge fit, relative to the mean diagonal of the normal matrix
+#: (measured on the synthetic tasks, docs/math.md section 3).
+RIDGE_LAMBDA_REL = 1e-6
+METHODS = ("ridge", "lwr")
+END_POLICIES = ("hold", "release")
+
+
+@dataclass
+class FitResult:
+    """The skill and how well it reproduces the demonstration (errors in % of max |force|)."""
+
+    skill: Skill
+    t_s: np.ndarray
+    target_N: np.ndarray
+    f_hat_N: np.ndarray
+    err_max_pct: float
+    err_rms_pct: float
+    pos_m: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    method: str = "ridge"
+    h_d: np.ndarray = field(default_factory=lambda: np.zeros(0))
+
+
+def _phase_end(alpha: float, beta: float, a: float, n: int) -> float:
+    """u~ after n forward-Euler steps of the phase from rest, via powers of its 2x2 matrix."""
+    m = np.array([[1.0, a], [-a * alpha * beta, 1.0 - a * alpha]])
+    e_n = np.linalg.matrix_power(m, n) @ np.array([-1.0, 0.0])   # error state (u - 1, v)
+    return 1.0 + float(e_n[0])
+
+
+def solve_tau(alpha: float, beta: float, dt_s: float, n_steps: int, target: float = PHASE_AT_END) -> float:
+    """tau with u~_{n_steps} = target for the discrete phase (bracketing: regula falsi, Illinois).
+
+    u~_n decreases monotonically with tau; the bracket is widened until it holds the root.
+    """
+    if n_steps < 1:
+        raise ParamError(ERR_FIT_ARGS, f"need at least one step to fit tau: {n_steps}")
+    T = n_steps * dt_s
+
+    def r(tau: float) -> float:
+        return _phase_end(alpha, beta, dt_s / tau, n_steps) - target
+
+    lo, hi = 0.2 * T, 2.0 * T
+    lo = max(lo, 2.0 * alpha * dt_s)   # keep dt/tau*alpha < 0.5: stable, monotone Euler phase
+    r_lo, r_hi = r(lo), r(hi)
+    for _ in range(60):
+        if r_hi < 0.0:
+            break
+        hi *= 2.0
+        r_hi = r(hi)
+    if not (r_lo > 0.0 > r_hi):
+        raise ParamError(ERR_FIT_ARGS, f"cannot place the phase: u~(T) = {target} unreachable for "
+                         f"T = {T:g} s (alpha = {alpha:g}, beta = {beta:g})")
+    side = 0
+    tau = lo
+    for _ in range(200):
+        tau = (lo * r_hi - hi * r_lo) / (r_hi - r_lo)
+        if not lo < tau < hi:
+            tau = 0.5 * (lo + hi)
+        rt = r(tau)
+        if rt == 0.0 or (hi - lo) <= 1e-14 * hi:
+            break
+        if rt > 0.0:
+            lo, r_lo = tau, rt
+            if side == 1:
+                r_hi *= 0.5
+            side = 1
+        else:
+            hi, r_hi = tau, rt
+            if side == -1:
+                r_lo *= 0.5
+            side = -1
+        if abs(rt) < 1e-15:
+            break
+    return tau
+
+
+def kernel_layout(u: np.ndarray, dt_s: float, duration_s: float, n_kernels: int) -> tuple[np.ndarray, np.ndarray]:
+    """Centres c_i = u~(t_i), t_i = linspace(0, T, N) (linear interpolation of the discrete phase);
+    widths sigma_i = 0.5*(c_{i+1} - c_i), sigma_N = sigma_{N-1}."""
+    t_i = np.linspace(0.0, duration_s, n_kernels)
+    centres = np.interp(t_i / dt_s, np.arange(u.size, dtype=float), u)
+    widths = 0.5 * np.diff(centres)
+    widths = np.append(widths, widths[-1])
+    return centres, widths
+
+
+def desired_forcing(x_star: np.ndarray, alpha: float, beta: float, gamma: float, a: float,
+                    goal: float) -> np.ndarray:
+    """h_d,n = (x*_{n+1} - x*_n)/a - (z_n - x*_n - gamma*I_n), n = 0..M-1, z and I driven by x*.
+
+    The forward-Euler x-update solved for h, so replaying h_d reproduces x* to round-off.
+    """
+    m = x_star.size - 1
+    big_i = np.empty(m + 1)
+    big_i[0] = 0.0
+    np.cumsum(a * x_star[:-1], out=big_i[1:])
+    b = a * alpha * (beta * (goal - x_star[:-1]))
+    z = dmp.linear_scan(np.array([[1.0 - a * alpha]]), b[:, None])[:, 0]
+    return (x_star[1:] - x_star[:-1]) / a - (z[:-1] - x_star[:-1] - gamma * big_i[:-1])
+
+
+def fit(demo: Demo, stiffness_Npm: float, n_kernels: int = 50, method: str = "ridge",
+        gains: Gains = Gains(), surface_m: float = 0.0, end_policy: str = "hold",
+        dt_s: float = 0.001, ridge_lambda_rel: Optional[float] = None) -> FitResult:
+    """Learn a skill from one demonstration; raises ParamError/DemoError (one-line, numbered)."""
+    if method not in METHODS:
+        raise ParamError(ERR_FIT_ARGS, f"method must be one of {', '.join(METHODS)}: {method!r}")
+    if end_policy not in END_POLICIES:
+        raise ParamError(ERR_FIT_ARGS, f"end policy must be one of {', '.join(END_POLICIES)}: {end_policy!r}")
+    if not (isinstance(n_kernels, (int, np.integer)) and 2 <= n_kernels <= MAX_KERNELS):
+        raise ParamError(ERR_FIT_ARGS, f"number of kernels must be in 2..{MAX_KERNELS}: {n_kernels}")
+    if not math.isfinite(surface_m):
+        raise ParamError(ERR_FIT_ARGS, f"surface position must be finite: {surface_m}")
+    lam_rel = RIDGE_LAMBDA_REL if ridge_lambda_rel is None else float(ridge_lambda_rel)
+    p = derive(gains, stiffness_Npm)
+    validate(demo)
+    d = resample(demo, dt_s)
+    n_t = d.t_s.size - 1
+    duration = n_t * dt_s
+    f = d.force_N
+    x_d = d.pos_m - surface_m
+    x_star = f / stiffness_Npm
+    # goal: g = g'(T), int f by the left rectangle rule (what the integrator of the law accumulates)
+    f_int = dt_s * float(np.sum(f[:-1]))
+    goal = goal_prime(p, gains, float(x_d[-1]), float(f[-1]), f_int)
+    x_scale = float(np.max(np.abs(x_star)))
+    if not (goal > GOAL_MIN_REL * x_scale):
+        raise DemoError(ERR_FIT_GOAL, f"goal g = {goal:.4g} m is not > {GOAL_MIN_REL:g} x max|f/k| = "
+                        f"{GOAL_MIN_REL * x_scale:.4g} m: the demonstration has no net push to learn")
+    tau = solve_tau(p.alpha, p.beta, dt_s, n_t)
+    a = dt_s / tau
+    u, v = dmp.phase_scan(p.alpha, p.beta, a, n_t)
+    centres, widths = kernel_layout(u, dt_s, duration, int(n_kernels))
+    if not (np.all(np.diff(centres) > 0.0) and centres[0] >= 0.0 and centres[-1] <= 1.0):
+        raise ParamError(ERR_FIT_ARGS, f"{n_kernels} kernels do not fit a {duration:g} s demonstration "
+                         f"at dt = {dt_s:g} s (centres collide)")
+    h_d = desired_forcing(x_star, p.alpha, p.beta, p.gamma, a, goal)
+    s = goal * v[:-1]                                  # h = s_n * S(u_n)
+    bands = dmp.KernelBands(u[:-1], centres, widths)
+    if method == "ridge":
+        gram = bands.gram(s * s)
+        lam = lam_rel * float(np.trace(gram)) / gram.shape[0]
+        weights = np.linalg.solve(gram + lam * np.eye(gram.shape[0]), bands.project(s * h_d))
+    else:
+        # the paper's LWR: per-kernel weighted LS with the raw local weights psi_i (cut at e_i > 23,
+        # below 1e-10 of the peak)
+        num = bands.project(s * h_d, normalised=False)
+        den = bands.project(s * s, normalised=False)
+        weights = np.where(den > 0.0, num / np.where(den > 0.0, den, 1.0), 0.0)
+    if not np.all(np.isfinite(weights)):
+        raise FsError(ERR_FIT_NUMERIC, f"regression gave a non-finite weight ({method}, N = {n_kernels})")
+    skill = Skill(dt_s=dt_s, tau_s=tau, alpha=p.alpha, beta=p.beta, gamma=p.gamma, stiffness_Npm=stiffness_Npm,
+                  goal_m=goal, duration_s=duration, m_d_kg=gains.m_d_kg, k_d_Nspm=gains.k_d_Nspm,
+                  k_p_Npm=gains.k_p_Npm, k_f=gains.k_f, k_i_per_s=gains.k_i_per_s, surface_m=surface_m,
+                  centres=centres, widths=widths, weights=weights,
+                  flags=FLAG_END_RELEASE if end_policy == "release" else 0)
+    skill.to_bytes()   # validates exactly as the firmware will
+    if bands.complete:
+        h = s * bands.sum_weighted(weights)
+    else:
+        h = s * dmp.forcing_scale(u[:-1], skill)
+    x, _, _ = dmp.transform_scan(p.alpha, p.beta, p.gamma, a, goal, h)
+    f_hat = stiffness_Npm * x
+    f_max = float(np.max(np.abs(f)))
+    err = f - f_hat
+    return FitResult(skill=skill, t_s=d.t_s, target_N=f, f_hat_N=f_hat,
+                     err_max_pct=100.0 * float(np.max(np.abs(err))) / f_max,
+                     err_rms_pct=100.0 * float(np.sqrt(np.mean(err * err))) / f_max,
+                     pos_m=d.pos_m, method=method, h_d=h_d)

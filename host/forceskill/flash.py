@@ -1,0 +1,414 @@
+"""``forceskill flash IMAGE`` and ``forceskill image build|show`` (docs/update.md).
+
+Flash: read the device's update status (DID 0xF1A0), show image and device version and target,
+refuse a wrong target or a downgrade here already (the device refuses them too), then over
+udsoncan + can-isotp: programming session, SecurityAccess level 3, RequestDownload at
+0xF0000000 (the inactive slot), TransferData with a progress bar, RequestTransferExit (device
+checks hash and tag; its CRC-32 is compared with ours), RoutineControl 0x0F01 (mark for a test
+boot; option bit 0 = allow downgrade), ECUReset, then read back the running version until the
+new image has confirmed itself (or the device reports it reverted).
+"""
+from __future__ import annotations
+
+import argparse
+import hashlib
+import hmac
+import os
+import struct
+import sys
+import time
+import zlib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Callable, Optional
+
+from . import fwimage as fw
+from .errors import ERR_IO, FsError
+
+DOWNLOAD_ADDRESS = 0xF0000000
+RID_MARK_TEST = 0x0F01
+RID_CONFIRM = 0x0F02
+DID_STATUS = 0xF1A0
+STATUS_LEN = 17
+SEC_LEVEL_FIRMWARE = 0x03
+SESSION_PROGRAMMING = 0x02
+UDS_REQUEST_BASE = 0x600      # + node (firmware/proto/proto_ids.h)
+UDS_RESPONSE_BASE = 0x680
+SECRET_ENV = "FORCESKILL_DEVICE_SECRET"
+
+ERR_LINK = 740         # host only: no bus, no response, unexpected answer
+ERR_REFUSED_HOST = 741  # host only: refused before writing (target / downgrade)
+ERR_NOT_CONFIRMED = 742  # host only: after the reset the device did not run the new image
+
+PATHS = {0: "none", 1: "active", 2: "test boot (must confirm)", 3: "reverted (test image did not confirm)",
+         4: "active (test image refused)", 5: "recovered (other slot)", 6: "first boot"}
+PHASES = {0: "idle", 1: "receiving", 2: "received", 3: "marked for test"}
+
+
+@dataclass
+class DeviceStatus:
+    """Decoded DID 0xF1A0 (firmware/boot/fwu.h, fwu_status)."""
+
+    running_version: int
+    running_slot: int
+    on_test: bool
+    active_slot: int
+    test_slot: int
+    path: int
+    target_id: int
+    last_refusal: int
+    received_version: int
+    phase: int
+
+    @classmethod
+    def decode(cls, b: bytes) -> "DeviceStatus":
+        if len(b) < STATUS_LEN:
+            raise FsError(ERR_LINK, f"update status record is {len(b)} bytes, expected {STATUS_LEN}")
+        rv, rs, ot, a, t, p, tg, lr, recv, ph = struct.unpack(">IBBBBBBHIB", b[:STATUS_LEN])
+        return cls(rv, rs, bool(ot), a, t, p, tg, lr, recv, ph)
+
+    @property
+    def version(self) -> str:
+        return fw.unpack_version(self.running_version)
+
+    @property
+    def target(self) -> str:
+        return fw.TARGET_NAMES.get(self.target_id, f"unknown({self.target_id})")
+
+    def describe(self) -> str:
+        slot = "AB"[self.running_slot] if self.running_slot < 2 else "-"
+        s = (f"device: firmware {self.version} on {self.target}, slot {slot}, "
+             f"{PATHS.get(self.path, self.path)}")
+        if self.last_refusal:
+            s += f", last refusal {self.last_refusal}"
+        return s
+
+
+def nrc_error(code: int, step: str) -> FsError:
+    """The FsError for a negative response code of the update path."""
+    err, text = fw.NRC.get(code, (ERR_LINK, f"negative response 0x{code:02X}"))
+    return FsError(err, f"{step}: device refused (NRC 0x{code:02X}): {text}")
+
+
+def security_key(seed: bytes, secret: bytes) -> bytes:
+    """SecurityAccess key of firmware/security/sec_access.h: HMAC-SHA256(secret, seed)[:16]."""
+    return hmac.new(secret, seed, hashlib.sha256).digest()[:16]
+
+
+def load_secret(path: Optional[str]) -> bytes:
+    """Device secret for SecurityAccess: hex text from PATH or $FORCESKILL_DEVICE_SECRET."""
+    text = None
+    if path:
+        try:
+            text = Path(path).read_text()
+        except OSError as e:
+            raise FsError(fw.ERR_KEY, f"secret file {path}: {e.strerror}") from None
+    elif os.environ.get(SECRET_ENV):
+        text = os.environ[SECRET_ENV]
+    if text is None:
+        raise FsError(fw.ERR_KEY, f"no device secret: give --secret FILE or set {SECRET_ENV}")
+    try:
+        secret = bytes.fromhex("".join(text.split()))
+    except ValueError:
+        raise FsError(fw.ERR_KEY, "device secret is not hex") from None
+    if not 16 <= len(secret) <= 64:
+        raise FsError(fw.ERR_KEY, f"device secret is {len(secret)} bytes, need 16..64")
+    return secret
+
+
+def check_plan(img: fw.FwImage, dev: Optional[DeviceStatus], allow_downgrade: bool) -> list[str]:
+    """Lines shown before writing; raises FsError for what the device would refuse anyway."""
+    lines = [f"image:  firmware {img.version} for {img.target}, build '{img.build_id or '-'}', "
+             f"{len(img.to_bytes())} bytes"]
+    if dev is None:
+        return lines
+    lines.append(dev.describe())
+    if dev.on_test:
+        raise FsError(fw.ERR_TEST_PENDING, f"device runs {dev.version} on test (not confirmed yet): "
+                      "wait for it to confirm or reset it, then flash again")
+    if dev.target_id != img.target_id:
+        raise FsError(fw.ERR_TARGET, f"image is for {img.target}, device is {dev.target}")
+    if img.fw_version < dev.running_version:
+        if not allow_downgrade:
+            raise FsError(fw.ERR_DOWNGRADE, f"image {img.version} is older than the running "
+                          f"{dev.version}: refused (use --allow-downgrade)")
+        lines.append(f"downgrade {dev.version} -> {img.version} allowed by --allow-downgrade")
+    return lines
+
+
+class _StatusCodec:
+    """udsoncan DidCodec for DID 0xF1A0."""
+
+    def encode(self, *args: Any) -> bytes:  # pragma: no cover - read-only DID
+        raise FsError(ERR_LINK, "DID 0xF1A0 is read-only")
+
+    def decode(self, payload: bytes) -> DeviceStatus:
+        return DeviceStatus.decode(payload)
+
+    def __len__(self) -> int:
+        return STATUS_LEN
+
+
+def client_config(secret: Optional[bytes], timeout_s: float) -> dict:
+    import udsoncan
+    cfg = dict(udsoncan.configs.default_client_config)
+    cfg["data_identifiers"] = {DID_STATUS: _StatusCodec()}
+    cfg["request_timeout"] = timeout_s
+    cfg["p2_timeout"] = timeout_s
+    cfg["server_address_format"] = 32
+    cfg["server_memorysize_format"] = 32
+    if secret is not None:
+        def algo(level: int, seed: bytes, params: Any = None) -> bytes:
+            return security_key(bytes(seed), secret)
+        cfg["security_algo"] = algo
+    return cfg
+
+
+def read_status(client: Any) -> DeviceStatus:
+    resp = client.read_data_by_identifier(DID_STATUS)
+    return resp.service_data.values[DID_STATUS]
+
+
+def _call(step: str, fn: Callable, *a: Any) -> Any:
+    """Run one UDS request; negative responses and timeouts become FsError."""
+    from udsoncan.exceptions import NegativeResponseException, TimeoutException
+    try:
+        return fn(*a)
+    except NegativeResponseException as e:
+        raise nrc_error(e.response.code, step) from None
+    except TimeoutException:
+        raise FsError(ERR_LINK, f"{step}: no response from the device") from None
+
+
+def flash_image(client: Any, image: bytes, allow_downgrade: bool = False,
+                progress: Optional[Callable[[int], None]] = None) -> int:
+    """Write image into the inactive slot and mark it for a test boot; returns the blocks sent.
+    The caller then resets the device (ECUReset) and reads the status back."""
+    from udsoncan import MemoryLocation
+    _call("DiagnosticSessionControl(programming)", client.change_session, SESSION_PROGRAMMING)
+    _call("SecurityAccess(level 3)", client.unlock_security_access, SEC_LEVEL_FIRMWARE)
+    resp = _call("RequestDownload", client.request_download,
+                 MemoryLocation(DOWNLOAD_ADDRESS, len(image), 32, 32))
+    block = int(resp.service_data.max_length) - 2
+    if block < 1:
+        raise FsError(ERR_LINK, f"device announced a block length of {block + 2}")
+    seq, n_blocks = 1, 0
+    for off in range(0, len(image), block):
+        chunk = image[off:off + block]
+        _call(f"TransferData(block {n_blocks + 1}, offset {off})", client.transfer_data, seq, chunk)
+        seq = (seq + 1) & 0xFF
+        n_blocks += 1
+        if progress:
+            progress(len(chunk))
+    resp = _call("RequestTransferExit", client.request_transfer_exit)
+    rec = bytes(resp.service_data.parameter_records or b"")
+    if len(rec) >= 4:
+        crc = int.from_bytes(rec[:4], "big")
+        if crc != zlib.crc32(image):
+            raise FsError(ERR_LINK, f"device CRC-32 0x{crc:08X} differs from the image's "
+                          f"0x{zlib.crc32(image):08X}")
+    _call("RoutineControl(mark test)", client.start_routine, RID_MARK_TEST,
+          bytes([1 if allow_downgrade else 0]))
+    return n_blocks
+
+
+def wait_confirmed(client: Any, version: int, timeout_s: float) -> DeviceStatus:
+    """After ECUReset: poll the status until the new image runs and has confirmed itself."""
+    from udsoncan.exceptions import NegativeResponseException, TimeoutException
+    deadline = time.monotonic() + timeout_s
+    last: Optional[DeviceStatus] = None
+    while time.monotonic() < deadline:
+        try:
+            last = read_status(client)
+        except (TimeoutException, NegativeResponseException):
+            time.sleep(0.05)
+            continue
+        if last.running_version == version and not last.on_test:
+            return last
+        if last.running_version != version and last.path in (3, 4):
+            raise FsError(ERR_NOT_CONFIRMED, f"device reverted to {last.version}: the new image "
+                          f"{fw.unpack_version(version)} did not confirm itself ({PATHS[last.path]})")
+        time.sleep(0.05)
+    got = last.describe() if last else "no status"
+    raise FsError(ERR_NOT_CONFIRMED, f"new image not confirmed within {timeout_s:g} s ({got})")
+
+
+# ---- connection ------------------------------------------------------------------------------
+
+def _bus_kwargs(items: Optional[list[str]]) -> dict:
+    out: dict = {}
+    for it in items or []:
+        if "=" not in it:
+            raise FsError(ERR_LINK, f"--bus-kwargs item {it!r} is not KEY=VALUE")
+        k, v = it.split("=", 1)
+        out[k] = int(v) if v.isdigit() else v
+    return out
+
+
+class Link:
+    """python-can bus + can-isotp stack + udsoncan client for one node (context manager)."""
+
+    def __init__(self, args: argparse.Namespace, secret: Optional[bytes]) -> None:
+        import can
+        import isotp
+        import udsoncan.connections
+        from udsoncan.client import Client
+        kwargs = _bus_kwargs(args.bus_kwargs)
+        if args.bitrate:
+            kwargs["bitrate"] = args.bitrate
+        try:
+            self.bus = can.Bus(interface=args.interface, channel=args.channel, **kwargs)
+        except Exception as e:  # python-can raises many types for a bad interface/channel
+            raise FsError(ERR_LINK, f"cannot open CAN interface {args.interface!r} channel "
+                          f"{args.channel!r}: {e}") from None
+        self.notifier = can.Notifier(self.bus, [])
+        addr = isotp.Address(isotp.AddressingMode.Normal_11bits, txid=UDS_REQUEST_BASE + args.node,
+                             rxid=UDS_RESPONSE_BASE + args.node)
+        self.stack = isotp.NotifierBasedCanStack(self.bus, self.notifier, address=addr, params={
+            "tx_padding": 0xCC, "blocking_send": False, "stmin": 0, "blocksize": 0,
+            "max_frame_size": 4095})
+        self.conn = udsoncan.connections.PythonIsoTpConnection(self.stack)
+        self.client = Client(self.conn, config=client_config(secret, args.timeout))
+        self.node = args.node
+        self.channel = args.channel
+
+    def __enter__(self) -> Any:
+        self.client.open()
+        return self.client
+
+    def __exit__(self, *exc: Any) -> None:
+        try:
+            self.client.close()
+        finally:
+            self.notifier.stop()
+            self.bus.shutdown()
+
+
+# ---- commands --------------------------------------------------------------------------------
+
+def _read_image(path: str, key_path: Optional[str], verify: bool) -> fw.FwImage:
+    try:
+        data = Path(path).read_bytes()
+    except OSError as e:
+        raise FsError(fw.ERR_ARGS, f"image {path}: {e.strerror}") from None
+    return fw.parse_image(data, fw.load_key(key_path) if verify else None)
+
+
+def _cmd_flash(args: argparse.Namespace) -> int:
+    img = _read_image(args.image, args.key, verify=args.key is not None or bool(os.environ.get(fw.KEY_ENV)))
+    data = img.to_bytes()
+    if args.interface is None:
+        if not args.dry_run:
+            raise FsError(ERR_LINK, "no CAN interface: give -i/--interface and -c/--channel "
+                          "(e.g. -i socketcand -c can0 --bus-kwargs host=127.0.0.1 port=29536)")
+        for line in check_plan(img, None, args.allow_downgrade):
+            print(line)
+        print("dry run: no device contacted, nothing written")
+        return 0
+    secret = None if args.dry_run else load_secret(args.secret)
+    with Link(args, secret) as client:
+        from udsoncan.exceptions import TimeoutException
+        try:
+            dev = read_status(client)
+        except TimeoutException:
+            raise FsError(ERR_LINK, f"no response from node {args.node} on {args.channel}") from None
+        except Exception as e:
+            from udsoncan.exceptions import NegativeResponseException
+            if isinstance(e, NegativeResponseException):
+                raise nrc_error(e.response.code, "ReadDataByIdentifier(0xF1A0)") from None
+            raise
+        for line in check_plan(img, dev, args.allow_downgrade):
+            print(line)
+        if args.dry_run:
+            print(f"dry run: would write {len(data)} bytes into slot {'BA'[dev.running_slot] if dev.running_slot < 2 else 'A'}; "
+                  "nothing written")
+            return 0
+        from tqdm import tqdm
+        t0 = time.monotonic()
+        with tqdm(total=len(data), unit="B", unit_scale=True, desc="flash", disable=args.quiet,
+                  file=sys.stderr) as bar:
+            n = flash_image(client, data, args.allow_downgrade, progress=bar.update)
+        dt = time.monotonic() - t0
+        print(f"written and verified by the device: {len(data)} bytes in {n} blocks, {dt:.2f} s "
+              f"({len(data) / max(dt, 1e-9) / 1024:.1f} KiB/s); marked for a test boot")
+        _call("ECUReset(hard)", client.ecu_reset, 1)
+        st = wait_confirmed(client, img.fw_version, args.confirm_timeout)
+        print(f"after reset: {st.describe()}: new image confirmed")
+    return 0
+
+
+def _cmd_image_build(args: argparse.Namespace) -> int:
+    try:
+        payload = Path(args.binary).read_bytes()
+    except OSError as e:
+        raise FsError(fw.ERR_ARGS, f"binary {args.binary}: {e.strerror}") from None
+
+    def fmt(s: str, name: str) -> tuple[int, int]:
+        try:
+            parts = [int(p) for p in s.split(":")]
+        except ValueError:
+            raise FsError(fw.ERR_ARGS, f"--{name}-format {s!r} is not N or N:OLDEST") from None
+        return (parts[0], parts[-1]) if len(parts) in (1, 2) else (0, 0)
+
+    img = fw.build_image(payload, args.version, args.target, fw.load_key(args.key), args.build_id,
+                         fmt(args.skill_format, "skill"), fmt(args.config_format, "config"),
+                         int(args.entry_offset, 0))
+    out = Path(args.output)
+    tmp = out.with_name(out.name + ".tmp")
+    try:
+        tmp.write_bytes(img)
+        os.replace(tmp, out)
+    except OSError as e:
+        raise FsError(ERR_IO, f"cannot write {out}: {e.strerror}") from None
+    print(fw.describe(fw.parse_image(img, fw.load_key(args.key))))
+    print(f"written: {out} ({len(img)} bytes)")
+    return 0
+
+
+def _cmd_image_show(args: argparse.Namespace) -> int:
+    print(fw.describe(_read_image(args.image, args.key, verify=args.key is not None
+                                  or bool(os.environ.get(fw.KEY_ENV)) or args.dev_key)))
+    return 0
+
+
+def add_bus_args(p: argparse.ArgumentParser) -> None:
+    """python-can's own CLI bus options (python -m can.logger), node id and timeout."""
+    p.add_argument("-i", "--interface", help="python-can interface (socketcand, socketcan, virtual, ...)")
+    p.add_argument("-c", "--channel", default="can0", help="channel (default can0)")
+    p.add_argument("-b", "--bitrate", type=int, help="bitrate in bit/s")
+    p.add_argument("--bus-kwargs", nargs="*", metavar="KEY=VALUE", help="extra can.Bus arguments, e.g. host=127.0.0.1 port=29536")
+    p.add_argument("--node", type=int, default=0, choices=range(16), metavar="0..15", help="device node id (default 0)")
+    p.add_argument("--timeout", type=float, default=2.0, help="UDS response timeout in s (default 2)")
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("flash", help="flash a signed firmware image over CAN (UDS), test-boot it, read back")
+    p.add_argument("image", help="signed image (forceskill image build)")
+    add_bus_args(p)
+    p.add_argument("--secret", help="device secret for SecurityAccess, hex file (or $FORCESKILL_DEVICE_SECRET)")
+    p.add_argument("--key", help="image key, hex file, to check the tag before sending (or $FORCESKILL_FW_KEY)")
+    p.add_argument("--allow-downgrade", action="store_true", help="accept an image older than the running one")
+    p.add_argument("--dry-run", action="store_true", help="show image and device, check, write nothing")
+    p.add_argument("--confirm-timeout", type=float, default=15.0, help="s to wait for the new image to confirm")
+    p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(func=_cmd_flash)
+
+    img = sub.add_parser("image", help="build or inspect a signed firmware image")
+    isub = img.add_subparsers(dest="image_command", metavar="ACTION", parser_class=sub._parser_class)
+    img.set_defaults(func=lambda a: (img.print_help(), 2)[1])
+    b = isub.add_parser("build", help="wrap a firmware binary into a signed image")
+    b.add_argument("binary", help="raw payload (objcopy -O binary output, or a host build)")
+    b.add_argument("-o", "--output", required=True, help="image file to write")
+    b.add_argument("--version", required=True, help="firmware version MAJOR.MINOR.PATCH")
+    b.add_argument("--target", required=True, choices=sorted(fw.TARGETS), help="device target")
+    b.add_argument("--key", help="device key, hex file (or $FORCESKILL_FW_KEY; default: the development key)")
+    b.add_argument("--build-id", default="", help="free text, <= 31 ASCII bytes (e.g. git describe)")
+    b.add_argument("--skill-format", default=str(fw.SKILL_FORMAT), help="N or N:OLDEST skill format read/migrated")
+    b.add_argument("--config-format", default=str(fw.CONFIG_FORMAT), help="N or N:OLDEST configuration format")
+    b.add_argument("--entry-offset", default="0", help="vector table offset in the payload (Cortex-M: 0x180)")
+    b.set_defaults(func=_cmd_image_build)
+    s = isub.add_parser("show", help="print an image's header; with a key, check its tag")
+    s.add_argument("image")
+    s.add_argument("--key", help="device key, hex file (or $FORCESKILL_FW_KEY)")
+    s.add_argument("--dev-key", action="store_true", help="check the tag with the development key")
+    s.set_defaults(func=_cmd_image_show)

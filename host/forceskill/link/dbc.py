@@ -1,0 +1,75 @@
+"""The DBC of the device (the single source of truth, firmware/proto/forceskill.dbc, installed
+as forceskill/data/forceskill.dbc) and the E2E protection of safety frames.
+
+Identifiers in the DBC are for node 0; node n uses id + n. Safety frames (Emergency,
+HostCommand, HostHeartbeat, DeviceStatus) carry a 4-bit rolling counter in bits 48..51 and a
+CRC-8 SAE J1850 (poly 0x1D, init 0xFF, xorout 0xFF) in byte 7 over the identifier (low byte,
+high byte) and data bytes 0..6 (docs/protocol.md).
+"""
+from __future__ import annotations
+
+import copy
+import functools
+from pathlib import Path
+
+import cantools
+
+SAFETY_FRAMES = ("Emergency", "HostCommand", "HostHeartbeat", "DeviceStatus")
+UDS_REQUEST_BASE = 0x600
+UDS_RESPONSE_BASE = 0x680
+STATES = {0: "BOOT", 1: "IDLE", 2: "TEACH", 3: "EXECUTE", 4: "FAULT"}
+MODES = {"none": 0, "idle": 1, "teach": 2, "execute": 3, "clear_fault": 4}
+END_POLICIES = {"skill": 0, "hold": 1, "release": 2}
+
+
+def dbc_path() -> Path:
+    """Path of the DBC: the packaged copy, else the firmware's."""
+    here = Path(__file__).resolve().parent.parent / "data" / "forceskill.dbc"
+    if here.is_file():
+        return here
+    return Path(__file__).resolve().parents[3] / "firmware" / "proto" / "forceskill.dbc"
+
+
+@functools.lru_cache(maxsize=None)
+def _base_db() -> cantools.database.can.Database:
+    return cantools.database.load_file(str(dbc_path()), strict=True)
+
+
+@functools.lru_cache(maxsize=None)
+def load_db(node: int = 0) -> cantools.database.can.Database:
+    """The DBC with every frame id moved to node ``node`` (0..15)."""
+    if not 0 <= node <= 15:
+        raise ValueError(f"node must be 0..15: {node}")
+    db = copy.deepcopy(_base_db())
+    for m in db.messages:
+        m.frame_id = m.frame_id + node
+    db.refresh()
+    return db
+
+
+def crc8_j1850(data: bytes) -> int:
+    """CRC-8 SAE J1850: poly 0x1D, init 0xFF, xorout 0xFF (check "123456789" -> 0x4B)."""
+    crc = 0xFF
+    for b in data:
+        crc ^= b
+        for _ in range(8):
+            crc = ((crc << 1) ^ 0x1D) & 0xFF if crc & 0x80 else (crc << 1) & 0xFF
+    return crc ^ 0xFF
+
+
+def frame_crc(frame_id: int, data: bytes) -> int:
+    """CRC byte of a safety frame: over id (LE, 2 bytes) then data[0..6]."""
+    return crc8_j1850(bytes([frame_id & 0xFF, (frame_id >> 8) & 0x07]) + bytes(data[:7]))
+
+
+def protect(frame_id: int, data: bytes, counter: int) -> bytes:
+    """Put counter (low nibble of byte 6) and the CRC (byte 7) into an 8-byte safety frame."""
+    b = bytearray(data)
+    b[6] = (b[6] & 0xF0) | (counter & 0x0F)
+    b[7] = frame_crc(frame_id, b)
+    return bytes(b)
+
+
+def check(frame_id: int, data: bytes) -> bool:
+    """True if a safety frame's CRC is right."""
+    return len(data) == 8 and frame_crc(frame_id, data) == data[7]

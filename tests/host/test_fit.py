@@ -1,0 +1,131 @@
+"""Fitting on smooth synthetic demonstrations shaped like the paper's four tasks (8-9 s, 1 kHz).
+
+Bounds on both sides: the default fit must be accurate, and a too-small model must be visibly
+worse (so the error measure is not vacuous). Figures measured at the time of writing are in
+docs/math.md section 3.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from forceskill import dmp, synthetic
+from forceskill.demo import Demo
+from forceskill.errors import DemoError, ParamError
+from forceskill.fit import FitResult, fit, solve_tau
+from forceskill.params import Gains, derive
+
+TASKS = {
+    "press_100_180": (lambda s: synthetic.pressing(s, 8.0, 100.0, 180.0), 100.0, "pressing"),
+    "press_500_600": (lambda s: synthetic.pressing(s, 8.0, 500.0, 600.0), 500.0, "pressing"),
+    "engrave_100": (lambda s: synthetic.engraving(s, 8.0, 100.0, 6.0), 100.0, "engraving"),
+    "engrave_280": (lambda s: synthetic.engraving(s, 9.0, 280.0, 10.0), 280.0, "engraving"),
+}
+PAPER_BOUND = {"pressing": 4.0, "engraving": 6.0}
+
+
+def independent_error(res: FitResult) -> tuple[float, float]:
+    """max and RMS |f - f_hat| in % of max |f|, from dmp.rollout of the written image."""
+    from forceskill.skill import Skill
+    sk = Skill.from_bytes(res.skill.to_bytes())
+    _, f_hat = dmp.rollout(sk)
+    e = res.target_N - f_hat
+    m = np.max(np.abs(res.target_N))
+    return 100 * np.max(np.abs(e)) / m, 100 * np.sqrt(np.mean(e * e)) / m
+
+
+@pytest.mark.parametrize("task", TASKS)
+@pytest.mark.parametrize("seed", [0, 1])
+def test_default_fit_n50_is_within_1_2_percent(task: str, seed: int) -> None:
+    make, k, _ = TASKS[task]
+    res = fit(make(seed), k, surface_m=synthetic.SURFACE_M)
+    assert res.skill.n_kernels == 50 and res.method == "ridge"
+    e_max, e_rms = independent_error(res)
+    assert res.err_max_pct == pytest.approx(e_max, rel=1e-6)
+    assert res.err_rms_pct == pytest.approx(e_rms, rel=1e-6)
+    assert 0.05 < res.err_max_pct <= 1.2
+    assert 0.01 < res.err_rms_pct <= 0.3
+
+
+@pytest.mark.parametrize("task", TASKS)
+def test_ten_kernels_are_clearly_not_enough(task: str) -> None:
+    make, k, _ = TASKS[task]
+    res = fit(make(0), k, n_kernels=10)
+    assert res.err_max_pct >= 5.0
+
+
+@pytest.mark.parametrize("task", TASKS)
+def test_lwr_with_100_kernels_is_within_the_paper_bounds(task: str) -> None:
+    make, k, kind = TASKS[task]
+    res = fit(make(1), k, n_kernels=100, method="lwr")
+    assert 0.3 < res.err_max_pct <= PAPER_BOUND[kind]
+    res50 = fit(make(1), k, n_kernels=50, method="lwr")
+    ridge50 = fit(make(1), k, n_kernels=50)
+    assert res50.err_max_pct > res.err_max_pct              # more kernels help LWR
+    assert res50.err_max_pct > 2.0 * ridge50.err_max_pct    # ridge is the more accurate method
+
+
+def test_noisy_sensor_fit_is_limited_by_the_noise() -> None:
+    clean = synthetic.engraving(4, 8.0, 100.0, 6.0)
+    noisy = synthetic.engraving(4, 8.0, 100.0, 6.0, noise_N=0.02)
+    res = fit(noisy, 100.0)
+    # against the clean force the learned profile is better than the noise amplitude suggests
+    e_clean = 100 * np.max(np.abs(clean.force_N - res.f_hat_N)) / np.max(clean.force_N)
+    assert e_clean < 1.0
+    assert res.err_max_pct <= 2.5
+
+
+def test_tau_centres_widths_goal(press_fit: FitResult) -> None:
+    sk = press_fit.skill
+    # continuous critically damped phase: 1 - u = (1 + s) e^-s = 0.01 at s = alpha T/(2 tau) = 6.638
+    assert sk.tau_s / sk.duration_s == pytest.approx(9.0 / (2 * 6.6384), rel=2e-3)
+    u, _ = dmp.phase_loop(sk.alpha, sk.beta, sk.dt_s / sk.tau_s, dmp.default_steps(sk))
+    assert u[-1] == pytest.approx(0.99, abs=1e-12)
+    assert sk.centres[0] == 0.0 and sk.centres[-1] == pytest.approx(0.99, abs=1e-12)
+    t_i = np.linspace(0, sk.duration_s, sk.n_kernels)
+    np.testing.assert_allclose(sk.centres, np.interp(t_i, np.arange(u.size) * sk.dt_s, u), atol=1e-12)
+    np.testing.assert_allclose(sk.widths[:-1], 0.5 * np.diff(sk.centres), rtol=1e-15)
+    assert sk.widths[-1] == sk.widths[-2]
+    # g = g'(T), int f by the left rectangle rule
+    f = press_fit.target_N
+    x_d = press_fit.pos_m - sk.surface_m
+    g = Gains()
+    c = (g.k_p_Npm * x_d[-1] + g.k_f * f[-1] + g.k_i_per_s * 0.001 * np.sum(f[:-1])) / g.m_d_kg
+    assert sk.goal_m == pytest.approx(c / (9.0 * 2.25), rel=1e-12)
+
+
+@pytest.mark.parametrize("beta_frac", [0.25, 0.2, 0.1])
+def test_solve_tau_hits_the_phase_target_for_other_gains(beta_frac: float) -> None:
+    alpha = 12.0
+    beta = beta_frac * alpha
+    for n in (500, 3000, 17000):
+        tau = solve_tau(alpha, beta, 0.001, n)
+        u, _ = dmp.phase_loop(alpha, beta, 0.001 / tau, n)
+        assert u[-1] == pytest.approx(0.99, abs=1e-11)
+
+
+def test_demo_without_net_push_is_refused() -> None:
+    t = np.arange(3000) * 0.001
+    f = np.sin(2 * np.pi * t / 3.0)             # pushes, then pulls back: no net impulse
+    d = Demo(t, np.zeros_like(t), f)
+    with pytest.raises(DemoError) as e:
+        fit(d, 100.0)
+    assert e.value.code == 611 and "no net push" in str(e.value)
+
+
+def test_unstable_or_non_monotone_gains_are_refused() -> None:
+    d = synthetic.pressing(0, 2.0)
+    with pytest.raises(ParamError) as e:
+        fit(d, 100.0, gains=Gains(k_p_Npm=1500.0))
+    assert e.value.code == 105
+    with pytest.raises(ParamError) as e:
+        fit(d, 100.0, gains=Gains(k_d_Nspm=20.0))
+    assert e.value.code == 103
+
+
+def test_fit_with_other_valid_gains_is_consistent() -> None:
+    gains = Gains(m_d_kg=10.0, k_d_Nspm=150.0, k_p_Npm=400.0, k_f=1.0, k_i_per_s=5.0)
+    res = fit(synthetic.engraving(2, 6.0), 100.0, gains=gains)
+    p = derive(gains, 100.0)
+    assert (res.skill.alpha, res.skill.beta, res.skill.gamma) == (p.alpha, p.beta, p.gamma)
+    assert res.err_max_pct < 1.5

@@ -1,0 +1,87 @@
+"""The golden vectors are current: regenerated in memory they equal the files, and dmp.rollout of
+every image reproduces its CSV (the C tests read the same files)."""
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from forceskill import dmp
+from forceskill.errors import SkillError
+from forceskill.skill import Skill
+
+VECTORS = Path(__file__).resolve().parents[1] / "vectors"
+sys.path.insert(0, str(VECTORS))
+import generate  # noqa: E402  (tests/vectors/generate.py)
+
+
+def manifest() -> list[tuple[str, float, float, str]]:
+    out = []
+    for ln in (VECTORS / "manifest.txt").read_text().split("\n"):
+        if ln.strip():
+            s, g, t, c = ln.split()
+            out.append((s, float(g), float(t), c))
+    return out
+
+
+def test_manifest_covers_the_brief() -> None:
+    m = manifest()
+    skills = [Skill.read(VECTORS / s) for s, *_ in m]
+    assert len({s for s, *_ in m}) == 12
+    ns = {Skill.read(VECTORS / s).n_kernels for s, *_ in m}
+    assert ns == {10, 50, 100}
+    assert {s.end_policy for s in skills} == {"hold", "release"}
+    assert {(g, t) for _, g, t, _ in m} == {(1.0, 1.0), (1.5, 1.0), (1.0, 1.3), (1.5, 1.3)}
+    total = sum(p.stat().st_size for p in VECTORS.rglob("*") if p.is_file())
+    assert total < 2_000_000
+
+
+@pytest.mark.parametrize("skill,gs,ts,csv", manifest())
+def test_rollout_of_each_image_reproduces_its_csv(skill: str, gs: float, ts: float, csv: str) -> None:
+    sk = Skill.read(VECTORS / skill)
+    t, f = dmp.rollout(sk, goal_scale=gs, time_scale=ts)
+    ref = np.loadtxt(VECTORS / csv, delimiter=",", skiprows=1)
+    assert (VECTORS / csv).read_text().split("\n", 1)[0] == "t,f_hat"
+    assert ref.shape == (t.size, 2)
+    assert t.size - 1 == round(sk.duration_s * ts / sk.dt_s)
+    np.testing.assert_array_equal(ref[:, 0], t)
+    assert np.max(np.abs(ref[:, 1] - f)) <= 1e-12 * np.max(np.abs(f))
+
+
+def test_regenerated_skills_equal_the_files() -> None:
+    skills = generate.fitted_skills()
+    files, lines = generate.golden(skills)
+    assert lines == (VECTORS / "manifest.txt").read_text().split("\n")[:-1]
+    for name, sk in skills.items():
+        disk = Skill.read(VECTORS / (name + ".skill"))
+        assert (disk.n_kernels, disk.flags) == (sk.n_kernels, sk.flags)
+        for k in ("dt_s", "alpha", "beta", "gamma", "stiffness_Npm", "duration_s", "surface_m", "m_d_kg",
+                  "k_d_Nspm", "k_p_Npm", "k_f", "k_i_per_s"):
+            assert getattr(disk, k) == getattr(sk, k), k
+        for k in ("tau_s", "goal_m"):
+            assert getattr(disk, k) == pytest.approx(getattr(sk, k), rel=1e-12), k
+        np.testing.assert_allclose(disk.centres, sk.centres, rtol=1e-12, atol=1e-15)
+        np.testing.assert_allclose(disk.widths, sk.widths, rtol=1e-9)
+        np.testing.assert_allclose(disk.weights, sk.weights, rtol=1e-7, atol=1e-9 * np.max(np.abs(sk.weights)))
+        j = json.loads((VECTORS / (name + ".skill.json")).read_text())
+        assert Skill.from_json_dict(j).to_bytes() == disk.to_bytes()
+    for csv_name, data in files.items():
+        if csv_name.endswith(".csv"):
+            new = np.loadtxt(data.decode().split("\n")[1:-1], delimiter=",")
+            old = np.loadtxt(VECTORS / csv_name, delimiter=",", skiprows=1)
+            assert new.shape == old.shape
+            assert np.max(np.abs(new[:, 1] - old[:, 1])) <= 1e-7 * np.max(np.abs(old[:, 1]))
+
+
+def test_regenerated_bad_images_match_the_manifest() -> None:
+    base = Skill.read(VECTORS / (generate.skill_name("press", 10, "ridge", "release") + ".skill"))
+    lines = [f"{n} {c}" for n, _, c in generate.bad_images(base)]
+    assert lines == (VECTORS / "bad" / "manifest.txt").read_text().split("\n")[:-1]
+    for name, data, code in generate.bad_images(base):
+        assert data == (VECTORS / "bad" / name).read_bytes(), name
+        with pytest.raises(SkillError) as e:
+            Skill.from_bytes(data)
+        assert e.value.code == code

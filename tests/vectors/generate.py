@@ -1,0 +1,217 @@
+#!/usr/bin/env python3
+"""Golden vectors shared by the Python reference and the C core (deterministic, seeded).
+
+Writes, next to this script:
+  <name>.skill, <name>.skill.json   skills fitted from two analytic demonstrations
+                                    (pressing-like, engraving-like), N in {10, 50, 100}, ridge and lwr,
+                                    hold and release
+  <name>_g<G>_t<T>.csv              dmp.rollout of the image: header ``t,f_hat``, %.17g, rows
+                                    n = 0..round(T_skill*time_scale/dt)
+  manifest.txt                      ``<skill> <goal_scale> <time_scale> <rollout csv>`` per line
+  bad/*.skill, bad/manifest.txt     corrupt images, one per rejection of docs/skill_format.md:
+                                    ``<file> <expected code>``; images that must fail after the CRC
+                                    check carry a correct CRC.
+Run: .venv/bin/python tests/vectors/generate.py   (tests/host/test_vectors.py checks the files are current)
+"""
+from __future__ import annotations
+
+import struct
+import sys
+import zlib
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from forceskill import dmp, synthetic
+from forceskill.fit import fit
+from forceskill.params import Gains, derive
+from forceskill.skill import HEADER_SIZE, MAGIC, Skill
+
+HERE = Path(__file__).resolve().parent
+
+# Short demonstrations keep the rollouts (and tests/vectors) well under 2 MB.
+DEMOS = {
+    "press": (lambda: synthetic.pressing(seed=11, duration_s=1.5, k_v1=100.0, k_v2=180.0), 100.0),
+    "engrave": (lambda: synthetic.engraving(seed=12, duration_s=2.0, k_v=280.0, f_max_N=8.0), 280.0),
+}
+KERNELS = (10, 50, 100)
+METHODS = ("ridge", "lwr")
+# (goal_scale, time_scale): every skill at (1, 1); N = 50 skills also scaled.
+SCALES_ALL = ((1.0, 1.0),)
+SCALES_N50 = ((1.5, 1.0), (1.0, 1.3), (1.5, 1.3))
+
+
+def skill_name(demo: str, n: int, method: str, end: str) -> str:
+    return f"{demo}_n{n}_{method}_{end}"
+
+
+def rollout_csv(skill: Skill, goal_scale: float, time_scale: float) -> bytes:
+    t, f = dmp.rollout(skill, goal_scale=goal_scale, time_scale=time_scale)
+    lines = ["t,f_hat"] + ["%.17g,%.17g" % (a, b) for a, b in zip(t.tolist(), f.tolist())]
+    return ("\n".join(lines) + "\n").encode()
+
+
+def fitted_skills() -> dict[str, Skill]:
+    """The skills of the golden set, fitted afresh."""
+    out: dict[str, Skill] = {}
+    for dname, (make, k) in DEMOS.items():
+        demo = make()
+        for n in KERNELS:
+            for i, method in enumerate(METHODS):
+                end = "release" if (n // 10 + i) % 2 else "hold"   # both policies for each method
+                res = fit(demo, k, n_kernels=n, method=method, end_policy=end,
+                          surface_m=synthetic.SURFACE_M)
+                out[skill_name(dname, n, method, end)] = res.skill
+    return out
+
+
+def scale_tag(x: float) -> str:
+    return f"{x:g}".replace(".", "p")
+
+
+def golden(skills: dict[str, Skill]) -> tuple[dict[str, bytes], list[str]]:
+    """Files (name -> bytes) and manifest lines for the given skills (rollouts of their images)."""
+    files: dict[str, bytes] = {}
+    manifest: list[str] = []
+    for name, sk in skills.items():
+        image = sk.to_bytes()
+        files[name + ".skill"] = image
+        files[name + ".skill.json"] = sk.to_json().encode()
+        parsed = Skill.from_bytes(image)   # roll out exactly what the file holds
+        scales = SCALES_ALL + (SCALES_N50 if sk.n_kernels == 50 else ())
+        for gs, ts in scales:
+            csv_name = f"{name}_g{scale_tag(gs)}_t{scale_tag(ts)}.csv"
+            files[csv_name] = rollout_csv(parsed, gs, ts)
+            manifest.append(f"{name}.skill {gs:g} {ts:g} {csv_name}")
+    return files, manifest
+
+
+# ---- corrupt images ------------------------------------------------------------------------
+
+_HDR = struct.Struct("<IHHIHH14d")
+_F64 = ("dt_s", "tau_s", "alpha", "beta", "gamma", "stiffness_Npm", "goal_m", "duration_s",
+        "m_d_kg", "k_d_Nspm", "k_p_Npm", "k_f", "k_i_per_s", "surface_m")
+
+
+def pack(fields: dict[str, Any], centres: np.ndarray, widths: np.ndarray, weights: np.ndarray,
+         fix_crc: bool = True) -> bytes:
+    """An image from raw fields (magic, version, header_size, total_length, n, flags, f64s)."""
+    head = _HDR.pack(fields["magic"], fields["version"], fields["header_size"], fields["total_length"],
+                     fields["n"], fields["flags"], *(float(fields[k]) for k in _F64))
+    body = head + np.asarray(centres, "<f8").tobytes() + np.asarray(widths, "<f8").tobytes() \
+        + np.asarray(weights, "<f8").tobytes()
+    crc = zlib.crc32(body) & 0xFFFFFFFF if fix_crc else fields.get("crc", 0)
+    return body + struct.pack("<I", crc)
+
+
+def bad_images(base: Skill) -> list[tuple[str, bytes, int]]:
+    """(file name, bytes, expected code) for every rejection, from a valid N = 10 skill."""
+    n = base.n_kernels
+    f0: dict[str, Any] = {"magic": MAGIC, "version": 1, "header_size": HEADER_SIZE,
+                          "total_length": HEADER_SIZE + 24 * n + 4, "n": n, "flags": base.flags}
+    f0.update({k: getattr(base, k) for k in _F64})
+    c, w, wt = base.centres.copy(), base.widths.copy(), base.weights.copy()
+    good = pack(f0, c, w, wt)
+    assert good == base.to_bytes()
+
+    def mod(**kw: Any) -> bytes:
+        f = dict(f0)
+        f.update(kw)
+        return pack(f, c, w, wt)
+
+    def arr(centres: np.ndarray = c, widths: np.ndarray = w, weights: np.ndarray = wt) -> bytes:
+        return pack(f0, centres, widths, weights)
+
+    out: list[tuple[str, bytes, int]] = []
+    out.append(("short_header.skill", good[:100], 200))
+    out.append(("empty.skill", b"", 200))
+    out.append(("magic.skill", mod(magic=0x4C4B5347), 201))
+    out.append(("version_2.skill", mod(version=2), 202))
+    out.append(("version_0.skill", mod(version=0), 202))
+    out.append(("header_size.skill", mod(header_size=120), 211))
+    out.append(("length_field.skill", mod(total_length=f0["total_length"] + 24), 203))
+    out.append(("length_truncated.skill", good[:-8], 203))
+    out.append(("length_trailing.skill", good + b"\0\0\0\0", 203))
+    bad_crc = bytearray(good)
+    bad_crc[HEADER_SIZE + 16 * n + 3] ^= 0x40   # a weight byte
+    out.append(("crc.skill", bytes(bad_crc), 204))
+    e = np.zeros(0)
+    out.append(("kernels_0.skill", pack(dict(f0, n=0, total_length=HEADER_SIZE + 4), e, e, e), 205))
+    n2 = 257
+    c2 = np.linspace(0.0, 0.99, n2)
+    w2 = np.full(n2, 0.5 * (c2[1] - c2[0]))
+    out.append(("kernels_257.skill", pack(dict(f0, n=n2, total_length=HEADER_SIZE + 24 * n2 + 4), c2, w2,
+                                          np.zeros(n2)), 205))
+    wt_nan = wt.copy()
+    wt_nan[3] = np.nan
+    out.append(("nan_weight.skill", arr(weights=wt_nan), 206))
+    out.append(("inf_tau.skill", mod(tau_s=np.inf), 206))
+    out.append(("nan_surface.skill", mod(surface_m=np.nan), 206))
+    c_nan = c.copy()
+    c_nan[0] = np.nan
+    out.append(("nan_centre.skill", arr(centres=c_nan), 206))
+    out.append(("range_dt_zero.skill", mod(dt_s=0.0), 207))
+    out.append(("range_dt_big.skill", mod(dt_s=0.2), 207))
+    out.append(("range_tau.skill", mod(tau_s=-1.0), 207))
+    out.append(("range_duration_zero.skill", mod(duration_s=0.0), 207))
+    out.append(("range_duration_big.skill", mod(duration_s=3601.0), 207))
+    out.append(("range_stiffness.skill", mod(stiffness_Npm=0.0), 207))
+    out.append(("range_goal.skill", mod(goal_m=-0.5), 207))
+    w_zero = w.copy()
+    w_zero[4] = 0.0
+    out.append(("range_width.skill", arr(widths=w_zero), 207))
+    c_dec = c.copy()
+    c_dec[5], c_dec[6] = c[6], c[5]
+    out.append(("centres_order.skill", arr(centres=c_dec), 208))
+    c_eq = c.copy()
+    c_eq[2] = c_eq[1]
+    out.append(("centres_equal.skill", arr(centres=c_eq), 208))
+    c_hi = c.copy()
+    c_hi[-1] = 1.0 + 1e-9
+    out.append(("centres_above_1.skill", arr(centres=c_hi), 208))
+    c_lo = c.copy()
+    c_lo[0] = -1e-12
+    out.append(("centres_below_0.skill", arr(centres=c_lo), 208))
+    out.append(("gains_alpha.skill", mod(alpha=base.alpha * (1.0 + 1e-6)), 209))
+    out.append(("gains_gamma.skill", mod(gamma=base.gamma * (1.0 - 1e-6)), 209))
+    out.append(("gains_kd_le_md.skill", mod(k_d_Nspm=base.m_d_kg), 209))
+    # beta > alpha/4 with alpha/beta/gamma consistent with the stored gains (phase overshoots)
+    g_hi = Gains(base.m_d_kg, base.k_d_Nspm, 1500.0, base.k_f, base.k_i_per_s)
+    alpha, gamma = base.alpha, base.gamma
+    beta = (g_hi.k_p_Npm + base.stiffness_Npm * g_hi.k_f - g_hi.m_d_kg * gamma) / (g_hi.m_d_kg * alpha) - 1.0
+    assert beta > alpha / 4
+    out.append(("gains_beta_gt_alpha_4.skill", mod(k_p_Npm=1500.0, beta=beta), 209))
+    out.append(("flag_y_axis.skill", mod(flags=0x0002), 210))
+    out.append(("flag_unknown.skill", mod(flags=0x0100), 210))
+    return out
+
+
+def main() -> int:
+    skills = fitted_skills()
+    files, manifest = golden(skills)
+    for old in HERE.glob("*.skill*"):
+        old.unlink()
+    for old in HERE.glob("*.csv"):
+        old.unlink()
+    for name, data in files.items():
+        (HERE / name).write_bytes(data)
+    (HERE / "manifest.txt").write_text("\n".join(manifest) + "\n")
+    bad_dir = HERE / "bad"
+    bad_dir.mkdir(exist_ok=True)
+    for old in bad_dir.glob("*.skill"):
+        old.unlink()
+    base = skills[skill_name("press", 10, "ridge", "release")]
+    lines = []
+    for name, data, code in bad_images(base):
+        (bad_dir / name).write_bytes(data)
+        lines.append(f"{name} {code}")
+    (bad_dir / "manifest.txt").write_text("\n".join(lines) + "\n")
+    total = sum(p.stat().st_size for p in HERE.rglob("*") if p.is_file())
+    print(f"wrote {len(files)} files, {len(manifest)} rollouts, {len(lines)} bad images; "
+          f"tests/vectors is {total / 1e6:.2f} MB")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
