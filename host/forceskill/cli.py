@@ -24,6 +24,11 @@ from .errors import FsError
 #: status, monitor, ...): append "forceskill.<module>" here.
 COMMAND_MODULES: list[str] = [
     "forceskill.report",
+    "forceskill.commands.record",
+    "forceskill.commands.upload",
+    "forceskill.commands.run",
+    "forceskill.commands.status",
+    "forceskill.commands.monitor",
     "forceskill.flash",
 ]
 
@@ -94,7 +99,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
 def _register_fit(sub: "argparse._SubParsersAction[_Parser]") -> None:
     p = sub.add_parser("fit", help="learn a force skill from one demonstration",
                        description="Learn a force skill from one demonstration (CSV with a header row: "
-                       "t [s], position [m], force [N]). Prints the approximation error in %% of the "
+                       "t [s], position [m], force [N]). Prints the approximation error in % of the "
                        "maximum demonstrated force; writes SKILL and SKILL.json.")
     p.add_argument("demo", metavar="DEMO", help="demonstration file (.csv, or a registered log format)")
     p.add_argument("--stiffness", "-k", type=_float, required=True, metavar="K",

@@ -1,6 +1,6 @@
 """``forceskill flash IMAGE`` and ``forceskill image build|show`` (docs/update.md).
 
-Flash: read the device's update status (DID 0xF1A0), show image and device version and target,
+Flash: read the device's update status (DID 0xF1B0), show image and device version and target,
 refuse a wrong target or a downgrade here already (the device refuses them too), then over
 udsoncan + can-isotp: programming session, SecurityAccess level 3, RequestDownload at
 0xF0000000 (the inactive slot), TransferData with a progress bar, RequestTransferExit (device
@@ -28,16 +28,15 @@ from .errors import ERR_IO, FsError
 DOWNLOAD_ADDRESS = 0xF0000000
 RID_MARK_TEST = 0x0F01
 RID_CONFIRM = 0x0F02
-DID_STATUS = 0xF1A0
+DID_STATUS = 0xF1B0
 STATUS_LEN = 17
 SEC_LEVEL_FIRMWARE = 0x03
 SESSION_PROGRAMMING = 0x02
 UDS_REQUEST_BASE = 0x600      # + node (firmware/proto/proto_ids.h)
 UDS_RESPONSE_BASE = 0x680
-SECRET_ENV = "FORCESKILL_DEVICE_SECRET"
 
-ERR_LINK = 740         # host only: no bus, no response, unexpected answer
-ERR_REFUSED_HOST = 741  # host only: refused before writing (target / downgrade)
+# link failures use the CAN link's codes (forceskill/link/__init__.py, 63x)
+ERR_LINK_BUS, ERR_LINK_NO_RESPONSE, ERR_LINK_NEGATIVE, ERR_LINK_TIMEOUT = 630, 631, 632, 635
 ERR_NOT_CONFIRMED = 742  # host only: after the reset the device did not run the new image
 
 PATHS = {0: "none", 1: "active", 2: "test boot (must confirm)", 3: "reverted (test image did not confirm)",
@@ -47,7 +46,7 @@ PHASES = {0: "idle", 1: "receiving", 2: "received", 3: "marked for test"}
 
 @dataclass
 class DeviceStatus:
-    """Decoded DID 0xF1A0 (firmware/boot/fwu.h, fwu_status)."""
+    """Decoded DID 0xF1B0 (firmware/boot/fwu.h, fwu_status)."""
 
     running_version: int
     running_slot: int
@@ -63,7 +62,7 @@ class DeviceStatus:
     @classmethod
     def decode(cls, b: bytes) -> "DeviceStatus":
         if len(b) < STATUS_LEN:
-            raise FsError(ERR_LINK, f"update status record is {len(b)} bytes, expected {STATUS_LEN}")
+            raise FsError(ERR_LINK_NEGATIVE, f"update status record is {len(b)} bytes, expected {STATUS_LEN}")
         rv, rs, ot, a, t, p, tg, lr, recv, ph = struct.unpack(">IBBBBBBHIB", b[:STATUS_LEN])
         return cls(rv, rs, bool(ot), a, t, p, tg, lr, recv, ph)
 
@@ -77,8 +76,10 @@ class DeviceStatus:
 
     def describe(self) -> str:
         slot = "AB"[self.running_slot] if self.running_slot < 2 else "-"
-        s = (f"device: firmware {self.version} on {self.target}, slot {slot}, "
-             f"{PATHS.get(self.path, self.path)}")
+        path = PATHS.get(self.path, str(self.path))
+        if self.path == 2 and not self.on_test:
+            path = "test boot, confirmed"
+        s = f"device: firmware {self.version} on {self.target}, slot {slot}, {path}"
         if self.last_refusal:
             s += f", last refusal {self.last_refusal}"
         return s
@@ -86,7 +87,7 @@ class DeviceStatus:
 
 def nrc_error(code: int, step: str) -> FsError:
     """The FsError for a negative response code of the update path."""
-    err, text = fw.NRC.get(code, (ERR_LINK, f"negative response 0x{code:02X}"))
+    err, text = fw.NRC.get(code, (ERR_LINK_NEGATIVE, f"negative response 0x{code:02X}"))
     return FsError(err, f"{step}: device refused (NRC 0x{code:02X}): {text}")
 
 
@@ -96,21 +97,19 @@ def security_key(seed: bytes, secret: bytes) -> bytes:
 
 
 def load_secret(path: Optional[str]) -> bytes:
-    """Device secret for SecurityAccess: hex text from PATH or $FORCESKILL_DEVICE_SECRET."""
-    text = None
-    if path:
-        try:
-            text = Path(path).read_text()
-        except OSError as e:
-            raise FsError(fw.ERR_KEY, f"secret file {path}: {e.strerror}") from None
-    elif os.environ.get(SECRET_ENV):
-        text = os.environ[SECRET_ENV]
-    if text is None:
-        raise FsError(fw.ERR_KEY, f"no device secret: give --secret FILE or set {SECRET_ENV}")
+    """Device secret for SecurityAccess: hex text from PATH, else link.uds.device_secret()
+    ($FORCESKILL_SECRET, or the simulator's documented secret)."""
+    if not path:
+        from .link.uds import device_secret
+        return device_secret()
+    try:
+        text = Path(path).read_text()
+    except OSError as e:
+        raise FsError(fw.ERR_KEY, f"secret file {path}: {e.strerror}") from None
     try:
         secret = bytes.fromhex("".join(text.split()))
     except ValueError:
-        raise FsError(fw.ERR_KEY, "device secret is not hex") from None
+        raise FsError(fw.ERR_KEY, f"secret file {path} is not hex") from None
     if not 16 <= len(secret) <= 64:
         raise FsError(fw.ERR_KEY, f"device secret is {len(secret)} bytes, need 16..64")
     return secret
@@ -136,25 +135,25 @@ def check_plan(img: fw.FwImage, dev: Optional[DeviceStatus], allow_downgrade: bo
     return lines
 
 
-class _StatusCodec:
-    """udsoncan DidCodec for DID 0xF1A0."""
-
-    def encode(self, *args: Any) -> bytes:  # pragma: no cover - read-only DID
-        raise FsError(ERR_LINK, "DID 0xF1A0 is read-only")
-
-    def decode(self, payload: bytes) -> DeviceStatus:
-        return DeviceStatus.decode(payload)
-
-    def __len__(self) -> int:
-        return STATUS_LEN
-
-
 def client_config(secret: Optional[bytes], timeout_s: float) -> dict:
     import udsoncan
+
+    class StatusCodec(udsoncan.DidCodec):
+        """DID 0xF1B0, read-only."""
+
+        def decode(self, payload: bytes) -> DeviceStatus:
+            return DeviceStatus.decode(payload)
+
+        def __len__(self) -> int:
+            return STATUS_LEN
+
     cfg = dict(udsoncan.configs.default_client_config)
-    cfg["data_identifiers"] = {DID_STATUS: _StatusCodec()}
+    cfg["data_identifiers"] = {DID_STATUS: StatusCodec()}
     cfg["request_timeout"] = timeout_s
     cfg["p2_timeout"] = timeout_s
+    # a 4 KiB request takes longer than the server's P2 (50 ms) to cross a slow or simulated bus,
+    # and the P2 timer starts when the request is queued: use our own timeout throughout
+    cfg["use_server_timing"] = False
     cfg["server_address_format"] = 32
     cfg["server_memorysize_format"] = 32
     if secret is not None:
@@ -177,7 +176,7 @@ def _call(step: str, fn: Callable, *a: Any) -> Any:
     except NegativeResponseException as e:
         raise nrc_error(e.response.code, step) from None
     except TimeoutException:
-        raise FsError(ERR_LINK, f"{step}: no response from the device") from None
+        raise FsError(ERR_LINK_TIMEOUT, f"{step}: no response from the device") from None
 
 
 def flash_image(client: Any, image: bytes, allow_downgrade: bool = False,
@@ -191,7 +190,7 @@ def flash_image(client: Any, image: bytes, allow_downgrade: bool = False,
                  MemoryLocation(DOWNLOAD_ADDRESS, len(image), 32, 32))
     block = int(resp.service_data.max_length) - 2
     if block < 1:
-        raise FsError(ERR_LINK, f"device announced a block length of {block + 2}")
+        raise FsError(ERR_LINK_NEGATIVE, f"device announced a block length of {block + 2}")
     seq, n_blocks = 1, 0
     for off in range(0, len(image), block):
         chunk = image[off:off + block]
@@ -205,7 +204,7 @@ def flash_image(client: Any, image: bytes, allow_downgrade: bool = False,
     if len(rec) >= 4:
         crc = int.from_bytes(rec[:4], "big")
         if crc != zlib.crc32(image):
-            raise FsError(ERR_LINK, f"device CRC-32 0x{crc:08X} differs from the image's "
+            raise FsError(ERR_LINK_NEGATIVE, f"device CRC-32 0x{crc:08X} differs from the image's "
                           f"0x{zlib.crc32(image):08X}")
     _call("RoutineControl(mark test)", client.start_routine, RID_MARK_TEST,
           bytes([1 if allow_downgrade else 0]))
@@ -235,42 +234,27 @@ def wait_confirmed(client: Any, version: int, timeout_s: float) -> DeviceStatus:
 
 # ---- connection ------------------------------------------------------------------------------
 
-def _bus_kwargs(items: Optional[list[str]]) -> dict:
-    out: dict = {}
-    for it in items or []:
-        if "=" not in it:
-            raise FsError(ERR_LINK, f"--bus-kwargs item {it!r} is not KEY=VALUE")
-        k, v = it.split("=", 1)
-        out[k] = int(v) if v.isdigit() else v
-    return out
-
-
 class Link:
-    """python-can bus + can-isotp stack + udsoncan client for one node (context manager)."""
+    """Bus (link.bus.open_bus: python-can options, one-line errors) + can-isotp stack +
+    udsoncan client for one node; a context manager yielding the client."""
 
     def __init__(self, args: argparse.Namespace, secret: Optional[bytes]) -> None:
         import can
         import isotp
         import udsoncan.connections
         from udsoncan.client import Client
-        kwargs = _bus_kwargs(args.bus_kwargs)
-        if args.bitrate:
-            kwargs["bitrate"] = args.bitrate
-        try:
-            self.bus = can.Bus(interface=args.interface, channel=args.channel, **kwargs)
-        except Exception as e:  # python-can raises many types for a bad interface/channel
-            raise FsError(ERR_LINK, f"cannot open CAN interface {args.interface!r} channel "
-                          f"{args.channel!r}: {e}") from None
-        self.notifier = can.Notifier(self.bus, [])
+        from .link.bus import describe, open_bus
+        from .link.uds import isotp_params
+        self.bus, cfg = open_bus(args)
+        self.channel = describe(cfg)
+        self.node = args.node
+        self.notifier = can.Notifier(self.bus, [], timeout=0.1)
         addr = isotp.Address(isotp.AddressingMode.Normal_11bits, txid=UDS_REQUEST_BASE + args.node,
                              rxid=UDS_RESPONSE_BASE + args.node)
-        self.stack = isotp.NotifierBasedCanStack(self.bus, self.notifier, address=addr, params={
-            "tx_padding": 0xCC, "blocking_send": False, "stmin": 0, "blocksize": 0,
-            "max_frame_size": 4095})
+        self.stack = isotp.NotifierBasedCanStack(self.bus, self.notifier, address=addr,
+                                                 params=isotp_params())
         self.conn = udsoncan.connections.PythonIsoTpConnection(self.stack)
         self.client = Client(self.conn, config=client_config(secret, args.timeout))
-        self.node = args.node
-        self.channel = args.channel
 
     def __enter__(self) -> Any:
         self.client.open()
@@ -297,31 +281,38 @@ def _read_image(path: str, key_path: Optional[str], verify: bool) -> fw.FwImage:
 def _cmd_flash(args: argparse.Namespace) -> int:
     img = _read_image(args.image, args.key, verify=args.key is not None or bool(os.environ.get(fw.KEY_ENV)))
     data = img.to_bytes()
-    if args.interface is None:
+    from .link.bus import bus_config
+    try:
+        bus_config(args)
+        have_bus = True
+    except FsError:
         if not args.dry_run:
-            raise FsError(ERR_LINK, "no CAN interface: give -i/--interface and -c/--channel "
-                          "(e.g. -i socketcand -c can0 --bus-kwargs host=127.0.0.1 port=29536)")
+            raise
+        have_bus = False
+    if not have_bus:
         for line in check_plan(img, None, args.allow_downgrade):
             print(line)
         print("dry run: no device contacted, nothing written")
         return 0
     secret = None if args.dry_run else load_secret(args.secret)
-    with Link(args, secret) as client:
-        from udsoncan.exceptions import TimeoutException
+    link = Link(args, secret)
+    with link as client:
+        from udsoncan.exceptions import NegativeResponseException, TimeoutException
         try:
             dev = read_status(client)
         except TimeoutException:
-            raise FsError(ERR_LINK, f"no response from node {args.node} on {args.channel}") from None
-        except Exception as e:
-            from udsoncan.exceptions import NegativeResponseException
-            if isinstance(e, NegativeResponseException):
-                raise nrc_error(e.response.code, "ReadDataByIdentifier(0xF1A0)") from None
-            raise
+            raise FsError(ERR_LINK_NO_RESPONSE, f"no response from node {args.node} on "
+                          f"{link.channel}") from None
+        except NegativeResponseException as e:
+            if e.response.code == 0x31:
+                raise FsError(ERR_LINK_NEGATIVE, f"node {args.node} does not know DID 0xF1B0: its "
+                              "firmware has no update support (docs/update.md, Integration)") from None
+            raise nrc_error(e.response.code, "ReadDataByIdentifier(0xF1B0)") from None
         for line in check_plan(img, dev, args.allow_downgrade):
             print(line)
         if args.dry_run:
-            print(f"dry run: would write {len(data)} bytes into slot {'BA'[dev.running_slot] if dev.running_slot < 2 else 'A'}; "
-                  "nothing written")
+            slot = "BA"[dev.running_slot] if dev.running_slot < 2 else "A"
+            print(f"dry run: would write {len(data)} bytes into slot {slot}; nothing written")
             return 0
         from tqdm import tqdm
         t0 = time.monotonic()
@@ -371,21 +362,13 @@ def _cmd_image_show(args: argparse.Namespace) -> int:
     return 0
 
 
-def add_bus_args(p: argparse.ArgumentParser) -> None:
-    """python-can's own CLI bus options (python -m can.logger), node id and timeout."""
-    p.add_argument("-i", "--interface", help="python-can interface (socketcand, socketcan, virtual, ...)")
-    p.add_argument("-c", "--channel", default="can0", help="channel (default can0)")
-    p.add_argument("-b", "--bitrate", type=int, help="bitrate in bit/s")
-    p.add_argument("--bus-kwargs", nargs="*", metavar="KEY=VALUE", help="extra can.Bus arguments, e.g. host=127.0.0.1 port=29536")
-    p.add_argument("--node", type=int, default=0, choices=range(16), metavar="0..15", help="device node id (default 0)")
-    p.add_argument("--timeout", type=float, default=2.0, help="UDS response timeout in s (default 2)")
-
-
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("flash", help="flash a signed firmware image over CAN (UDS), test-boot it, read back")
     p.add_argument("image", help="signed image (forceskill image build)")
+    from .link.bus import add_bus_args
     add_bus_args(p)
-    p.add_argument("--secret", help="device secret for SecurityAccess, hex file (or $FORCESKILL_DEVICE_SECRET)")
+    p.add_argument("--secret", help="device secret for SecurityAccess, hex file (default: $FORCESKILL_SECRET "
+                   "or the simulator's secret, as the other CAN commands)")
     p.add_argument("--key", help="image key, hex file, to check the tag before sending (or $FORCESKILL_FW_KEY)")
     p.add_argument("--allow-downgrade", action="store_true", help="accept an image older than the running one")
     p.add_argument("--dry-run", action="store_true", help="show image and device, check, write nothing")

@@ -1,0 +1,461 @@
+/* Device application: state machine, 1 kHz tick, cyclic frames (see app.h). */
+#include "app.h"
+
+#include <string.h>
+
+#include "fs_dbc.h"
+#include "proto_ids.h"
+
+/* ---------------------------------------------------------------- configuration */
+
+void app_config_default(app_config_t *cfg)
+{
+    memset(cfg, 0, sizeof(*cfg));
+    cfg->node = PROTO_DEFAULT_NODE;
+    cfg->render_carriage = 0u;
+    pfc_config_t pfc;
+    pfc_default_config(&pfc);
+    cfg->gains[0] = pfc.gains[0];
+    cfg->gains[1] = pfc.gains[1];
+    exec_config_default(&cfg->exec);
+    exec_render_default(&cfg->render);
+    saf_default_config(&cfg->saf);
+    cfg->vel_cutoff_Hz = FS_R(50.0);
+    cfg->telemetry_period_ms = 1u;
+}
+
+/* ---------------------------------------------------------------- CAN helpers */
+
+static bool app_send(app_t *app, const can_frame_t *f)
+{
+    if (!hal_can_send(f)) {
+        app->tx_dropped++;
+        return false;
+    }
+    return true;
+}
+
+static bool tp_send(void *ctx, const can_frame_t *f)
+{
+    (void)ctx;
+    return hal_can_send(f);
+}
+
+static int32_t clamp_i32(fs_real_t v, fs_real_t scale, int32_t lo, int32_t hi)
+{
+    if (!fs_isfinite(v)) {
+        return 0;
+    }
+    const fs_real_t r = v / scale;
+    if (r >= (fs_real_t)hi) {
+        return hi;
+    }
+    if (r <= (fs_real_t)lo) {
+        return lo;
+    }
+    /* round half away from zero, as cantools --use-round (roundf) does */
+    return (int32_t)(r < FS_R(0.0) ? r - FS_R(0.5) : r + FS_R(0.5));
+}
+
+static void send_status(app_t *app)
+{
+    struct fs_dbc_device_status_t s;
+    memset(&s, 0, sizeof(s));
+    s.state = (uint8_t)app->state;
+    s.slot = (uint8_t)(app->state == APP_EXECUTE ? app->active_slot : 0u);
+    s.fault_code = app->saf_out.fault_code;
+    s.tick = app->tick & 0xFFFFFFu;
+    s.actuator_enabled = app->actuator_enabled ? 1u : 0u;
+    s.host_alive = (app->saf.wdg.armed != 0u) ? 1u : 0u;
+    s.sequence_step = (uint8_t)(app->seq_step & 0x3u);
+    can_frame_t f;
+    memset(&f, 0, sizeof(f));
+    f.id = PROTO_ID_STATUS(app->cfg.node);
+    (void)fs_dbc_device_status_pack(f.data, &s, sizeof(f.data));
+    e2e_protect(&f, app->tx_counter_status++);
+    (void)app_send(app, &f);
+}
+
+static void send_emergency(app_t *app, const flt_emcy_t *e)
+{
+    struct fs_dbc_emergency_t m;
+    memset(&m, 0, sizeof(m));
+    m.fault_code = e->code;
+    m.state = (uint8_t)app->state;
+    m.n_latched = (uint8_t)(e->n_latched > 15u ? 15u : e->n_latched);
+    m.tick = e->tick & 0xFFFFFFu;
+    can_frame_t f;
+    memset(&f, 0, sizeof(f));
+    f.id = PROTO_ID_EMERGENCY(app->cfg.node);
+    (void)fs_dbc_emergency_pack(f.data, &m, sizeof(f.data));
+    e2e_protect(&f, app->tx_counter_emcy++);
+    (void)app_send(app, &f);
+}
+
+static void send_telemetry(app_t *app)
+{
+    struct fs_dbc_telemetry_position_t p;
+    p.pos_x = clamp_i32(app->sens.pos_m[0], FS_R(1e-6), -8388608, 8388607);
+    p.pos_y = clamp_i32(app->sens.pos_m[1], FS_R(1e-6), -8388608, 8388607);
+    p.tick = (uint16_t)(app->tick & 0xFFFFu);
+    can_frame_t f;
+    memset(&f, 0, sizeof(f));
+    f.id = PROTO_ID_TELEM_POS(app->cfg.node);
+    f.dlc = 8u;
+    (void)fs_dbc_telemetry_position_pack(f.data, &p, sizeof(f.data));
+    (void)app_send(app, &f);
+
+    struct fs_dbc_telemetry_force_t q;
+    q.force_contact = (int16_t)clamp_i32(app->sens.force_contact_N[0], FS_R(0.01), -32768, 32767);
+    q.force_operator = (int16_t)clamp_i32(app->sens.force_operator_N[0], FS_R(0.01), -32768, 32767);
+    q.force_cmd = (int16_t)clamp_i32(app->force_out_N[0], FS_R(0.01), -32768, 32767);
+    q.force_ref = (int16_t)clamp_i32(app->force_hat_N, FS_R(0.01), -32768, 32767);
+    f.id = PROTO_ID_TELEM_FORCE(app->cfg.node);
+    (void)fs_dbc_telemetry_force_pack(f.data, &q, sizeof(f.data));
+    (void)app_send(app, &f);
+}
+
+/* ---------------------------------------------------------------- state machine */
+
+static void enter_idle(app_t *app)
+{
+    app->state = APP_IDLE;
+    app->force_hat_N = FS_R(0.0);
+    app->seq_step = 0u;
+    app->exec_done = false;
+    wdg_disarm(&app->saf.wdg);
+}
+
+static void enter_active(app_t *app, app_state_t st)
+{
+    app->state = st;
+    /* the host must keep its heartbeat from now on: silence in TEACH/EXECUTE stops safely */
+    wdg_kick(&app->saf.wdg, app->now_ms);
+    for (unsigned a = 0; a < PFC_AXES; a++) {
+        exec_render_reset(&app->rend[a], app->sens.pos_m[a]);
+    }
+}
+
+static fs_real_t milli(uint32_t v)
+{
+    return (fs_real_t)v * FS_R(0.001);
+}
+
+uint8_t app_start_sequence(app_t *app, const uint8_t *slots, const fs_real_t *goal_scale,
+                           const fs_real_t *time_scale, const fs_real_t *duration_s,
+                           uint8_t n_steps, uint8_t end)
+{
+    if (n_steps == 0u || n_steps > EXEC_MAX_STEPS || end > 2u) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    if (app->state != APP_IDLE) {
+        return UDS_NRC_CONDITIONS_NOT_CORRECT;
+    }
+    exec_step_t steps[EXEC_MAX_STEPS];
+    for (uint8_t i = 0; i < n_steps; i++) {
+        const uint8_t s = slots[i];
+        if (s < 1u || s > APP_N_SLOTS || !app->slot_valid[s - 1u]) {
+            return UDS_NRC_REQUEST_OUT_OF_RANGE;
+        }
+        if (!(goal_scale[i] >= FS_R(0.0)) || !(time_scale[i] > FS_R(0.0)) ||
+            !fs_isfinite(goal_scale[i]) || !fs_isfinite(time_scale[i])) {
+            return UDS_NRC_REQUEST_OUT_OF_RANGE;
+        }
+        steps[i].skill = &app->slot_skill[s - 1u];
+        steps[i].goal_scale = goal_scale[i];
+        steps[i].time_scale = time_scale[i];
+        steps[i].duration_s = duration_s[i];
+        steps[i].end_policy = (end == 0u) ? app->slot_skill[s - 1u].end_policy
+                                          : (end == 1u ? SKILL_END_HOLD : SKILL_END_RELEASE);
+    }
+    /* execution uses the gains the (first) skill was fitted with; the y axis keeps the device's */
+    app->exec_run_cfg = app->cfg.exec;
+    app->exec_run_cfg.pfc.gains[0] = steps[0].skill->gains;
+    app->exec_run_cfg.pfc.gains[1] = app->cfg.gains[1];
+    app->exec_run_cfg.pfc.gains[1].m_d_kg = steps[0].skill->gains.m_d_kg;
+    for (unsigned a = 0; a < PFC_AXES; a++) {
+        app->exec_run_cfg.pfc.limits[a].force_max_N = app->cfg.saf.lim.axis[a].force_max_N;
+    }
+    app->exec_run_cfg.pfc.dt_s = FS_R(0.001);
+    if (exec_start(&app->exec_run_cfg, &app->exec, steps, n_steps, app->sens.pos_m[1]) != FS_OK) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    app->active_slot = slots[0];
+    app->seq_step = 0u;
+    app->exec_done = false;
+    enter_active(app, APP_EXECUTE);
+    return UDS_NRC_OK;
+}
+
+static void handle_command(app_t *app, const can_frame_t *f)
+{
+    struct fs_dbc_host_command_t c;
+    if (fs_dbc_host_command_unpack(&c, f->data, f->dlc) != 0) {
+        return;
+    }
+    switch ((app_cmd_mode_t)c.mode) {
+    case APP_CMD_IDLE:
+        if (app->state == APP_TEACH || app->state == APP_EXECUTE) {
+            enter_idle(app);
+        }
+        break;
+    case APP_CMD_TEACH:
+        if (app->state == APP_IDLE) {
+            app->teach_ticks = 0u;
+            enter_active(app, APP_TEACH);
+        }
+        break;
+    case APP_CMD_EXECUTE: {
+        const uint8_t slot = c.slot;
+        const fs_real_t g = milli(c.goal_scale);
+        const fs_real_t ts = milli(c.time_scale);
+        const fs_real_t d = FS_R(0.0);
+        (void)app_start_sequence(app, &slot, &g, &ts, &d, 1u, c.end_policy);
+        break;
+    }
+    case APP_CMD_CLEAR_FAULT:
+        if (app->state == APP_FAULT &&
+            saf_clear_request(&app->saf_cfg, &app->saf, app->now_ms) == FLT_NONE) {
+            enter_idle(app);
+        }
+        break;
+    case APP_CMD_NONE:
+    default:
+        break;
+    }
+}
+
+static void handle_heartbeat(app_t *app, const can_frame_t *f)
+{
+    struct fs_dbc_host_heartbeat_t h;
+    if (fs_dbc_host_heartbeat_unpack(&h, f->data, f->dlc) == 0 && h.telemetry_period != 0u) {
+        app->host_period_ms = h.telemetry_period;
+    }
+}
+
+static void can_receive(app_t *app)
+{
+    can_frame_t f;
+    for (unsigned i = 0; i < APP_RX_FRAMES_PER_TICK && hal_can_receive(&f); i++) {
+        const uint32_t node = app->cfg.node;
+        if (f.id == PROTO_ID_HOST_COMMAND(node)) {
+            if (e2e_check(&app->rx_command, &f) == PROTO_OK) {
+                app->host_frame = true;
+                handle_command(app, &f);
+            } else {
+                app->e2e_errors++;
+            }
+        } else if (f.id == PROTO_ID_HOST_HEARTBEAT(node)) {
+            if (e2e_check(&app->rx_heartbeat, &f) == PROTO_OK) {
+                app->host_frame = true;
+                handle_heartbeat(app, &f);
+            } else {
+                app->e2e_errors++;
+            }
+        } else if (f.id == PROTO_ID_UDS_REQUEST(node)) {
+            isotp_on_frame(&app->tp, &f, app->now_us);
+        }
+    }
+}
+
+static void uds_service(app_t *app)
+{
+    const uint8_t *req = NULL;
+    const uint16_t len = isotp_rx_peek(&app->tp, &req);
+    if (len != 0u && !isotp_tx_busy(&app->tp)) {
+        const uint16_t n = uds_server_handle(&app->uds, req, len, app->uds_resp,
+                                             (uint16_t)sizeof(app->uds_resp), app->now_ms);
+        isotp_rx_release(&app->tp);
+        if (n != 0u) {
+            (void)isotp_send(&app->tp, app->uds_resp, n, app->now_us);
+        }
+        uds_server_after_response(&app->uds);
+    }
+    uds_server_poll(&app->uds, app->now_ms);
+    if (app->uds.session == UDS_SESSION_DEFAULT) {
+        sec_lock(&app->sec);
+    }
+    isotp_poll(&app->tp, app->now_us);
+}
+
+/* ---------------------------------------------------------------- init and tick */
+
+void app_slots_reload(app_t *app)
+{
+    for (uint16_t s = 0; s < APP_N_SLOTS; s++) {
+        app->slot_valid[s] = false;
+        if (!app->nvm_ok) {
+            continue;
+        }
+        uint32_t len = 0u;
+        if (nvm_read(&app->nvm, s, app->image, sizeof(app->image), &len) == NVM_OK &&
+            skill_parse(app->image, len, &app->slot_skill[s]) == FS_OK) {
+            app->slot_valid[s] = true;
+            app->slot_crc[s] = skill_crc32(0u, app->image, len - SKILL_CRC_SIZE);
+            app->slot_len[s] = len;
+        }
+    }
+}
+
+static int rng_adapter(void *ctx, uint8_t *buf, uint32_t len)
+{
+    (void)ctx;
+    return hal_random(buf, len);
+}
+
+void app_init(app_t *app, const app_config_t *cfg)
+{
+    memset(app, 0, sizeof(*app));
+    app->cfg = *cfg;
+    app->state = APP_BOOT;
+    app->now_us = hal_time_us();
+    app->now_ms = (uint32_t)(app->now_us / 1000u);
+    e2e_rx_reset(&app->rx_command);
+    e2e_rx_reset(&app->rx_heartbeat);
+
+    isotp_config_t tpc;
+    isotp_config_default(&tpc, PROTO_ID_UDS_RESPONSE(cfg->node), PROTO_ID_UDS_REQUEST(cfg->node));
+    isotp_init(&app->tp, &tpc, tp_send, app);
+    uds_app_t hooks;
+    app_uds_bind(app, &hooks);
+    uds_server_init(&app->uds, &hooks);
+
+    sec_default_config(&app->sec_cfg);
+    uint8_t secret_len = 0u;
+    const uint8_t *secret = hal_device_secret(&secret_len);
+    if (secret_len > SEC_SECRET_MAX) {
+        secret_len = SEC_SECRET_MAX;
+    }
+    memcpy(app->sec_cfg.secret, secret, secret_len);
+    app->sec_cfg.secret_len = secret_len;
+    app->sec_cfg.rng = rng_adapter;
+    app->sec_cfg.rng_ctx = app;
+    sec_init(&app->sec_cfg, &app->sec, app->now_ms);
+
+    app->nvm_ok = (nvm_init(&app->nvm, hal_flash()) == NVM_OK);
+    app_slots_reload(app);
+
+    app->saf_cfg = cfg->saf;
+    saf_init(&app->saf);
+    for (unsigned a = 0; a < PFC_AXES; a++) {
+        exec_vel_init(&app->vel[a], cfg->vel_cutoff_Hz, FS_R(0.001));
+    }
+    hal_actuator_enable(false);
+}
+
+static void control(app_t *app)
+{
+    app->force_req_N[0] = FS_R(0.0);
+    app->force_req_N[1] = FS_R(0.0);
+    const fs_real_t dt = FS_R(0.001);
+    if (app->state == APP_TEACH) {
+        app->teach_ticks++;
+        if (app->cfg.render_carriage != 0u) {
+            /* render the handle m_d: the carriage follows (operator - contact)/m_d */
+            const fs_real_t tot_x = app->sens.force_operator_N[0] - app->sens.force_contact_N[0];
+            const fs_real_t tot_y = app->sens.force_operator_N[1];
+            app->force_req_N[0] = exec_render_step(&app->cfg.render, &app->rend[0], tot_x,
+                                                   app->cfg.gains[0].m_d_kg, tot_x,
+                                                   app->sens.pos_m[0], app->vel_mps[0], dt);
+            app->force_req_N[1] = exec_render_step(&app->cfg.render, &app->rend[1], tot_y,
+                                                   app->cfg.gains[1].m_d_kg, tot_y,
+                                                   app->sens.pos_m[1], app->vel_mps[1], dt);
+        }
+        /* ideal (dynamics-compensated) drive: the device is m_d with zero command */
+    } else if (app->state == APP_EXECUTE) {
+        exec_meas_t m;
+        m.pos_m[0] = app->sens.pos_m[0];
+        m.pos_m[1] = app->sens.pos_m[1];
+        m.vel_mps[0] = app->vel_mps[0];
+        m.vel_mps[1] = app->vel_mps[1];
+        m.force_contact_N = app->sens.force_contact_N[0];
+        exec_out_t out;
+        (void)exec_tick(&app->exec_run_cfg, &app->exec, &m, &out);   /* non-finite: 0 N, sen faults */
+        app->force_hat_N = out.force_hat_N;
+        app->seq_step = out.step;
+        if (app->cfg.render_carriage != 0u) {
+            const fs_real_t m_d = app->exec_run_cfg.pfc.gains[0].m_d_kg;
+            app->force_req_N[0] = exec_render_step(&app->cfg.render, &app->rend[0], out.force_cmd_N[0],
+                                                   m_d, -app->sens.force_contact_N[0],
+                                                   app->sens.pos_m[0], app->vel_mps[0], dt);
+            app->force_req_N[1] = exec_render_step(&app->cfg.render, &app->rend[1], out.force_cmd_N[1],
+                                                   m_d, FS_R(0.0), app->sens.pos_m[1],
+                                                   app->vel_mps[1], dt);
+        } else {
+            app->force_req_N[0] = out.force_cmd_N[0];
+            app->force_req_N[1] = out.force_cmd_N[1];
+        }
+        if (out.done != 0u) {
+            app->exec_done = true;
+            enter_idle(app);                          /* release finished: back to IDLE */
+            app->force_req_N[0] = FS_R(0.0);
+            app->force_req_N[1] = FS_R(0.0);
+        }
+    }
+}
+
+void app_tick(app_t *app, bool overrun)
+{
+    app->now_us = hal_time_us();
+    app->now_ms = (uint32_t)(app->now_us / 1000u);
+    app->tick++;
+    app->host_frame = false;
+    app->overrun = overrun;
+
+    /* sensors first: commands that start a motion start from this sample */
+    hal_sensors_read(&app->sens);
+    for (unsigned a = 0; a < PFC_AXES; a++) {
+        app->vel_mps[a] = exec_vel_update(&app->vel[a], app->sens.pos_m[a], FS_R(0.001));
+    }
+    if (app->state == APP_BOOT) {
+        enter_idle(app);
+    }
+    can_receive(app);
+    uds_service(app);
+    if (app->state == APP_IDLE || app->state == APP_FAULT) {
+        wdg_disarm(&app->saf.wdg);          /* silence matters only while the device acts */
+    }
+    control(app);
+
+    saf_input_t in;
+    memset(&in, 0, sizeof(in));
+    in.tick = app->tick;
+    in.now_ms = app->now_ms;
+    in.host_frame = app->host_frame && (app->state == APP_TEACH || app->state == APP_EXECUTE);
+    in.bus_off = hal_can_bus_off();
+    in.tick_overrun = overrun;
+    for (unsigned a = 0; a < PFC_AXES; a++) {
+        in.meas[a].pos_m = app->sens.pos_m[a];
+        in.meas[a].vel_mps = app->vel_mps[a];
+        in.meas[a].force_N = app->sens.force_contact_N[a];
+        in.force_req_N[a] = app->force_req_N[a];
+    }
+    saf_step(&app->saf_cfg, &app->saf, &in, &app->saf_out);
+    if (app->saf_out.stopping && app->state != APP_FAULT) {
+        app->state = APP_FAULT;             /* latched; a skill never resumes by itself */
+        app->force_hat_N = FS_R(0.0);
+    }
+    app->force_out_N[0] = app->saf_out.force_cmd_N[0];
+    app->force_out_N[1] = app->saf_out.force_cmd_N[1];
+    const bool enable = app->saf_out.actuator_enable && app->state != APP_BOOT;
+    if (enable != app->actuator_enabled) {
+        hal_actuator_enable(enable);
+        app->actuator_enabled = enable;
+    }
+    hal_actuator_force(app->force_out_N);
+
+    flt_emcy_t e;
+    while (flt_emcy_pop(&app->saf.flt, &e)) {
+        send_emergency(app, &e);
+    }
+    if (app->tick % APP_STATUS_PERIOD_MS == 0u) {
+        send_status(app);
+    }
+    uint32_t period = APP_IDLE_TELEMETRY_PERIOD_MS;
+    if (app->state == APP_TEACH || app->state == APP_EXECUTE) {
+        period = (app->host_period_ms != 0u) ? app->host_period_ms : app->cfg.telemetry_period_ms;
+    }
+    if (period == 0u || app->tick % period == 0u) {
+        send_telemetry(app);
+    }
+}

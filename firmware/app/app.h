@@ -1,0 +1,142 @@
+/* The device application (SPEC 5): state machine BOOT -> IDLE -> TEACH | EXECUTE -> FAULT
+ * (latched), the 1 kHz tick, the cyclic frames of forceskill.dbc (status, telemetry, emergency;
+ * host command and heartbeat with E2E checks) and the UDS server on ISO-TP with its device hooks
+ * (app_uds.c: data identifiers, routines, skill download/upload into slots).
+ * Hardware only through hal.h. No heap; everything lives in app_t (one static instance).
+ *
+ * Per tick (app_tick): CAN rx (bounded) -> UDS -> sensors -> commands/state -> control
+ * (TEACH: render m_d; EXECUTE: fs_exec sequence) -> safety supervisor (limits, faults, safe
+ * stop) -> actuator -> emergency/status/telemetry frames. */
+#ifndef APP_H
+#define APP_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include "e2e.h"
+#include "fs_exec.h"
+#include "hal.h"
+#include "isotp.h"
+#include "nvm.h"
+#include "saf.h"
+#include "sec_access.h"
+#include "skill.h"
+#include "uds.h"
+
+#define APP_TICK_US 1000u
+#define APP_N_SLOTS NVM_MAX_SLOTS       /* UDS/CAN slot numbers 1..APP_N_SLOTS */
+#define APP_RX_FRAMES_PER_TICK 64u      /* bounded CAN drain per tick */
+#define APP_STATUS_PERIOD_MS 10u
+#define APP_IDLE_TELEMETRY_PERIOD_MS 100u
+#define APP_IMAGE_MAX (SKILL_HEADER_SIZE + 24u * DMP_MAX_KERNELS + SKILL_CRC_SIZE)
+#define APP_SW_VERSION "forceskill-fw 0.1.0"
+#define APP_PROTO_VERSION_MAJOR 1u
+#define APP_PROTO_VERSION_MINOR 0u
+
+/** Device states (DeviceStatus.State in the DBC). */
+typedef enum {
+    APP_BOOT = 0,
+    APP_IDLE = 1,
+    APP_TEACH = 2,
+    APP_EXECUTE = 3,
+    APP_FAULT = 4
+} app_state_t;
+
+/** HostCommand.Mode values. */
+typedef enum {
+    APP_CMD_NONE = 0,
+    APP_CMD_IDLE = 1,
+    APP_CMD_TEACH = 2,
+    APP_CMD_EXECUTE = 3,
+    APP_CMD_CLEAR_FAULT = 4
+} app_cmd_mode_t;
+
+/** Device configuration (factory defaults from app_config_default, changed by UDS writes). */
+typedef struct {
+    uint8_t node;                      /* 0..PROTO_NODE_MAX: ids = base + node */
+    uint8_t render_carriage;           /* 1: render m_d by admittance (real carriage); 0: the
+                                          drive is dynamics-compensated (ideal plant) */
+    pfc_axis_gains_t gains[PFC_AXES];  /* TEACH rendering (m_d) and the y axis */
+    exec_config_t exec;                /* object model, phase stopping (gains come from the skill) */
+    exec_render_cfg_t render;
+    saf_config_t saf;
+    fs_real_t vel_cutoff_Hz;
+    uint8_t telemetry_period_ms;       /* in TEACH/EXECUTE, 1..255 */
+} app_config_t;
+
+/** The whole device. */
+typedef struct {
+    app_config_t cfg;
+    app_state_t state;
+    uint32_t tick;
+    uint64_t now_us;
+    uint32_t now_ms;
+    /* CAN */
+    e2e_rx_t rx_command;
+    e2e_rx_t rx_heartbeat;
+    uint8_t tx_counter_status;
+    uint8_t tx_counter_emcy;
+    uint8_t host_period_ms;            /* telemetry period requested by the host heartbeat */
+    bool host_frame;                   /* a valid host frame this tick */
+    uint32_t e2e_errors;
+    uint32_t tx_dropped;
+    /* UDS on ISO-TP */
+    isotp_link_t tp;
+    uds_server_t uds;
+    uint8_t uds_resp[ISOTP_MAX_PAYLOAD];
+    sec_config_t sec_cfg;
+    sec_state_t sec;
+    /* storage */
+    nvm_t nvm;
+    bool nvm_ok;
+    skill_t slot_skill[APP_N_SLOTS];   /* parsed copy of each valid slot */
+    bool slot_valid[APP_N_SLOTS];
+    uint32_t slot_crc[APP_N_SLOTS];    /* CRC-32 field of each valid image */
+    uint32_t slot_len[APP_N_SLOTS];
+    uint8_t image[APP_IMAGE_MAX];      /* transfer scratch (download staging / upload) */
+    uint32_t xfer_slot;
+    uint32_t xfer_size;
+    uint16_t last_transfer_status;     /* fs_status / nvm status of the last download */
+    skill_t staging;                   /* validation target of a download */
+    /* control */
+    exec_state_t exec;
+    exec_config_t exec_run_cfg;
+    exec_render_t rend[PFC_AXES];
+    exec_vel_t vel[PFC_AXES];
+    hal_sensors_t sens;
+    fs_real_t vel_mps[PFC_AXES];
+    fs_real_t force_req_N[PFC_AXES];
+    fs_real_t force_out_N[PFC_AXES];
+    fs_real_t force_hat_N;
+    uint8_t active_slot;
+    uint8_t seq_step;
+    bool exec_done;
+    saf_config_t saf_cfg;
+    saf_state_t saf;
+    saf_output_t saf_out;
+    bool actuator_enabled;
+    bool overrun;
+    uint32_t teach_ticks;              /* ticks since TEACH started */
+} app_t;
+
+/** Factory defaults: node 0, default gains/limits/safety, ideal drive, telemetry 1 ms. */
+void app_config_default(app_config_t *cfg);
+
+/** Boot: state BOOT, storage scan, UDS/ISO-TP/security set up; the first tick goes to IDLE. */
+void app_init(app_t *app, const app_config_t *cfg);
+
+/** One 1 kHz tick. overrun: the previous tick did not finish in time (latches a fault). */
+void app_tick(app_t *app, bool overrun);
+
+/** Start a sequence (1..EXEC_MAX_STEPS steps); slots 1..APP_N_SLOTS, end 0 = skill's own,
+ *  1 hold, 2 release; duration_s <= 0: the skill's T*time_scale. Returns a UDS NRC (0 ok). */
+uint8_t app_start_sequence(app_t *app, const uint8_t *slots, const fs_real_t *goal_scale,
+                           const fs_real_t *time_scale, const fs_real_t *duration_s,
+                           uint8_t n_steps, uint8_t end);
+
+/** Handle the UDS hooks (app_uds.c): fills an uds_app_t bound to app. */
+void app_uds_bind(app_t *app, uds_app_t *out);
+
+/** Reload slot caches from storage (boot, after a download or erase). */
+void app_slots_reload(app_t *app);
+
+#endif /* APP_H */

@@ -1,0 +1,548 @@
+/* UDS device hooks of the application (see uds.h for the server, docs/protocol.md for the
+ * identifiers): data identifiers, routines, SecurityAccess via sec_access, skill download into a
+ * slot (validated by skill_parse, written by nvm, the old skill kept on any failure) and upload. */
+#include <string.h>
+
+#include "app.h"
+
+/* Data identifiers (big-endian values, IEEE-754 float32 for real numbers) */
+#define DID_SW_VERSION 0xF189u
+#define DID_VERSIONS 0xF1A0u      /* proto major, minor, skill format, max kernels u16, slots u8 */
+#define DID_GAINS_X 0x0100u       /* m_d, k_d, k_p, k_f, k_i (f32 x5) */
+#define DID_GAINS_Y 0x0101u
+#define DID_LIMITS_X 0x0110u      /* force_max, slew_max, pos_min, pos_max, vel_max, contact_max */
+#define DID_LIMITS_Y 0x0111u
+#define DID_COMM 0x0120u          /* telemetry period ms u8, host timeout ms u16 */
+#define DID_OBJECT 0x0130u        /* use_model u8, m_v, d_v, k1, k2, layer, surface (f32 x6) */
+#define DID_SLOT_DIR 0x0200u      /* n u8; per slot: valid u8, length u32, crc u32, N u16, T f32, end u8 */
+#define DID_LAST_TRANSFER 0x0201u /* status code u16 of the last download (0 ok) */
+#define DID_DEVICE_STATE 0x0300u  /* state u8, fault u16, slot u8, step u8, tick u32 */
+
+#define SLOT_DIR_ENTRY 16u
+
+static void put_u16(uint8_t *p, uint16_t v)
+{
+    p[0] = (uint8_t)(v >> 8);
+    p[1] = (uint8_t)v;
+}
+
+static void put_u32(uint8_t *p, uint32_t v)
+{
+    p[0] = (uint8_t)(v >> 24);
+    p[1] = (uint8_t)(v >> 16);
+    p[2] = (uint8_t)(v >> 8);
+    p[3] = (uint8_t)v;
+}
+
+static void put_f32(uint8_t *p, fs_real_t v)
+{
+    const float f = (float)v;
+    uint32_t u;
+    memcpy(&u, &f, sizeof(u));
+    put_u32(p, u);
+}
+
+static uint16_t get_u16(const uint8_t *p)
+{
+    return (uint16_t)(((uint16_t)p[0] << 8) | p[1]);
+}
+
+static uint32_t get_u32(const uint8_t *p)
+{
+    return ((uint32_t)p[0] << 24) | ((uint32_t)p[1] << 16) | ((uint32_t)p[2] << 8) | p[3];
+}
+
+static fs_real_t get_f32(const uint8_t *p)
+{
+    const uint32_t u = get_u32(p);
+    float f;
+    memcpy(&f, &u, sizeof(f));
+    return (fs_real_t)f;
+}
+
+/* ---------------------------------------------------------------- data identifiers */
+
+static uint8_t read_did(void *ctx, uint16_t did, uint8_t *out, uint16_t cap, uint16_t *len)
+{
+    app_t *app = ctx;
+    uint8_t buf[8u + APP_N_SLOTS * SLOT_DIR_ENTRY];
+    uint16_t n = 0u;
+    switch (did) {
+    case DID_SW_VERSION:
+        n = (uint16_t)strlen(APP_SW_VERSION);
+        memcpy(buf, APP_SW_VERSION, n);
+        break;
+    case DID_VERSIONS:
+        buf[0] = APP_PROTO_VERSION_MAJOR;
+        buf[1] = APP_PROTO_VERSION_MINOR;
+        buf[2] = SKILL_FORMAT_VERSION;
+        put_u16(&buf[3], DMP_MAX_KERNELS);
+        buf[5] = APP_N_SLOTS;
+        n = 6u;
+        break;
+    case DID_GAINS_X:
+    case DID_GAINS_Y: {
+        const pfc_axis_gains_t *g = &app->cfg.gains[did - DID_GAINS_X];
+        put_f32(&buf[0], g->m_d_kg);
+        put_f32(&buf[4], g->k_d_Nspm);
+        put_f32(&buf[8], g->k_p_Npm);
+        put_f32(&buf[12], g->k_f);
+        put_f32(&buf[16], g->k_i_per_s);
+        n = 20u;
+        break;
+    }
+    case DID_LIMITS_X:
+    case DID_LIMITS_Y: {
+        const lim_axis_t *l = &app->saf_cfg.lim.axis[did - DID_LIMITS_X];
+        put_f32(&buf[0], l->force_max_N);
+        put_f32(&buf[4], l->slew_max_N);
+        put_f32(&buf[8], l->pos_min_m);
+        put_f32(&buf[12], l->pos_max_m);
+        put_f32(&buf[16], l->vel_max_mps);
+        put_f32(&buf[20], l->contact_force_max_N);
+        n = 24u;
+        break;
+    }
+    case DID_COMM:
+        buf[0] = app->cfg.telemetry_period_ms;
+        put_u16(&buf[1], app->saf_cfg.wdg.timeout_ms);
+        n = 3u;
+        break;
+    case DID_OBJECT: {
+        const exec_object_t *o = &app->cfg.exec.object;
+        buf[0] = app->cfg.exec.use_model;
+        put_f32(&buf[1], o->m_v_kg);
+        put_f32(&buf[5], o->d_v_Nspm);
+        put_f32(&buf[9], o->k1_Npm);
+        put_f32(&buf[13], o->k2_Npm);
+        put_f32(&buf[17], o->layer_depth_m);
+        put_f32(&buf[21], o->surface_m);
+        n = 25u;
+        break;
+    }
+    case DID_SLOT_DIR:
+        buf[0] = APP_N_SLOTS;
+        n = 1u;
+        for (uint16_t s = 0; s < APP_N_SLOTS; s++) {
+            uint8_t *e = &buf[n];
+            memset(e, 0, SLOT_DIR_ENTRY);
+            if (app->slot_valid[s]) {
+                const skill_t *sk = &app->slot_skill[s];
+                e[0] = 1u;
+                put_u32(&e[1], app->slot_len[s]);
+                put_u32(&e[5], app->slot_crc[s]);   /* the image's own CRC-32 field */
+                put_u16(&e[9], sk->dmp.n_kernels);
+                put_f32(&e[11], sk->dmp.duration_s);
+                e[15] = (uint8_t)sk->end_policy;
+            }
+            n = (uint16_t)(n + SLOT_DIR_ENTRY);
+        }
+        break;
+    case DID_LAST_TRANSFER:
+        put_u16(buf, app->last_transfer_status);
+        n = 2u;
+        break;
+    case DID_DEVICE_STATE:
+        buf[0] = (uint8_t)app->state;
+        put_u16(&buf[1], app->saf_out.fault_code);
+        buf[3] = app->active_slot;
+        buf[4] = app->seq_step;
+        put_u32(&buf[5], app->tick);
+        n = 9u;
+        break;
+    default:
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    if (n > cap) {
+        return UDS_NRC_RESPONSE_TOO_LONG;
+    }
+    memcpy(out, buf, n);
+    *len = n;
+    return UDS_NRC_OK;
+}
+
+static bool finite_all(const fs_real_t *v, unsigned n)
+{
+    for (unsigned i = 0; i < n; i++) {
+        if (!fs_isfinite(v[i])) {
+            return false;
+        }
+    }
+    return true;
+}
+
+static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len)
+{
+    app_t *app = ctx;
+    if (app->state != APP_IDLE) {
+        return UDS_NRC_CONDITIONS_NOT_CORRECT;   /* configuration changes only while idle */
+    }
+    switch (did) {
+    case DID_GAINS_X:
+    case DID_GAINS_Y: {
+        if (len != 20u) {
+            return UDS_NRC_INCORRECT_LENGTH;
+        }
+        pfc_config_t pc;
+        pfc_default_config(&pc);
+        pc.gains[0] = app->cfg.gains[0];
+        pc.gains[1] = app->cfg.gains[1];
+        pfc_axis_gains_t *g = &pc.gains[did - DID_GAINS_X];
+        g->m_d_kg = get_f32(&d[0]);
+        g->k_d_Nspm = get_f32(&d[4]);
+        g->k_p_Npm = get_f32(&d[8]);
+        g->k_f = get_f32(&d[12]);
+        g->k_i_per_s = get_f32(&d[16]);
+        if (pfc_config_validate(&pc) != FS_OK) {
+            return UDS_NRC_REQUEST_OUT_OF_RANGE;
+        }
+        app->cfg.gains[did - DID_GAINS_X] = *g;
+        return UDS_NRC_OK;
+    }
+    case DID_LIMITS_X:
+    case DID_LIMITS_Y: {
+        if (len != 24u) {
+            return UDS_NRC_INCORRECT_LENGTH;
+        }
+        saf_config_t sc = app->saf_cfg;
+        lim_axis_t *l = &sc.lim.axis[did - DID_LIMITS_X];
+        fs_real_t v[6];
+        for (unsigned i = 0; i < 6u; i++) {
+            v[i] = get_f32(&d[4u * i]);
+        }
+        if (!finite_all(v, 6u)) {
+            return UDS_NRC_REQUEST_OUT_OF_RANGE;
+        }
+        l->force_max_N = v[0];
+        l->slew_max_N = v[1];
+        l->pos_min_m = v[2];
+        l->pos_max_m = v[3];
+        l->vel_max_mps = v[4];
+        l->contact_force_max_N = v[5];
+        if (saf_config_validate(&sc) != SAF_OK) {
+            return UDS_NRC_REQUEST_OUT_OF_RANGE;
+        }
+        app->saf_cfg = sc;
+        app->cfg.saf = sc;
+        return UDS_NRC_OK;
+    }
+    case DID_COMM: {
+        if (len != 3u) {
+            return UDS_NRC_INCORRECT_LENGTH;
+        }
+        saf_config_t sc = app->saf_cfg;
+        sc.wdg.timeout_ms = get_u16(&d[1]);
+        if (d[0] == 0u || saf_config_validate(&sc) != SAF_OK) {
+            return UDS_NRC_REQUEST_OUT_OF_RANGE;
+        }
+        app->cfg.telemetry_period_ms = d[0];
+        app->saf_cfg = sc;
+        app->cfg.saf = sc;
+        return UDS_NRC_OK;
+    }
+    case DID_OBJECT: {
+        if (len != 25u || d[0] > 1u) {
+            return len != 25u ? UDS_NRC_INCORRECT_LENGTH : UDS_NRC_REQUEST_OUT_OF_RANGE;
+        }
+        fs_real_t v[6];
+        for (unsigned i = 0; i < 6u; i++) {
+            v[i] = get_f32(&d[1u + 4u * i]);
+        }
+        if (!finite_all(v, 6u) || v[0] < FS_R(0.0) || v[1] < FS_R(0.0) || v[2] <= FS_R(0.0) ||
+            v[3] <= FS_R(0.0) || v[4] < FS_R(0.0)) {
+            return UDS_NRC_REQUEST_OUT_OF_RANGE;
+        }
+        exec_object_t *o = &app->cfg.exec.object;
+        app->cfg.exec.use_model = d[0];
+        o->m_v_kg = v[0];
+        o->d_v_Nspm = v[1];
+        o->k1_Npm = v[2];
+        o->k2_Npm = v[3];
+        o->layer_depth_m = v[4];
+        o->surface_m = v[5];
+        return UDS_NRC_OK;
+    }
+    case DID_SW_VERSION:
+    case DID_VERSIONS:
+    case DID_SLOT_DIR:
+    case DID_LAST_TRANSFER:
+    case DID_DEVICE_STATE:
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;     /* read-only */
+    default:
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+}
+
+/* ---------------------------------------------------------------- routines */
+
+static uint8_t routine(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *d, uint16_t len,
+                       uint8_t *out, uint16_t cap, uint16_t *out_len)
+{
+    app_t *app = ctx;
+    *out_len = 0u;
+    if (cap < 8u) {
+        return UDS_NRC_RESPONSE_TOO_LONG;
+    }
+    switch (rid) {
+    case UDS_RID_RUN_SKILL:
+    case UDS_RID_RUN_SEQUENCE:
+        if (sub == UDS_ROUTINE_START) {
+            uint8_t slots[EXEC_MAX_STEPS];
+            fs_real_t g[EXEC_MAX_STEPS], ts[EXEC_MAX_STEPS], dur[EXEC_MAX_STEPS];
+            uint8_t n = 0u;
+            uint8_t end = 0u;
+            if (rid == UDS_RID_RUN_SKILL) {
+                if (len != 6u) {
+                    return UDS_NRC_INCORRECT_LENGTH;
+                }
+                slots[0] = d[0];
+                g[0] = (fs_real_t)get_u16(&d[1]) * FS_R(0.001);
+                ts[0] = (fs_real_t)get_u16(&d[3]) * FS_R(0.001);
+                dur[0] = FS_R(0.0);
+                end = d[5];
+                n = 1u;
+            } else {
+                if (len < 10u || (len - 1u) % 9u != 0u || (len - 1u) / 9u > EXEC_MAX_STEPS) {
+                    return UDS_NRC_INCORRECT_LENGTH;
+                }
+                end = d[0];
+                n = (uint8_t)((len - 1u) / 9u);
+                for (uint8_t i = 0; i < n; i++) {
+                    const uint8_t *s = &d[1u + 9u * i];
+                    slots[i] = s[0];
+                    g[i] = (fs_real_t)get_u16(&s[1]) * FS_R(0.001);
+                    ts[i] = (fs_real_t)get_u16(&s[3]) * FS_R(0.001);
+                    dur[i] = (fs_real_t)get_u32(&s[5]) * FS_R(0.001);
+                }
+            }
+            return app_start_sequence(app, slots, g, ts, dur, n, end);
+        }
+        if (sub == UDS_ROUTINE_STOP) {
+            if (app->state != APP_EXECUTE) {
+                return UDS_NRC_REQUEST_SEQUENCE_ERROR;
+            }
+            app->state = APP_IDLE;
+            app->force_hat_N = FS_R(0.0);
+            return UDS_NRC_OK;
+        }
+        out[0] = (uint8_t)app->state;
+        out[1] = app->seq_step;
+        out[2] = app->exec_done ? 1u : 0u;
+        put_u16(&out[3], app->saf_out.fault_code);
+        *out_len = 5u;
+        return UDS_NRC_OK;
+    case UDS_RID_SELF_TEST: {
+        if (sub == UDS_ROUTINE_STOP) {
+            return UDS_NRC_SUBFUNCTION_NOT_SUPPORTED;
+        }
+        uint16_t code = 0u;
+        pfc_config_t pc;
+        pfc_default_config(&pc);
+        pc.gains[0] = app->cfg.gains[0];
+        pc.gains[1] = app->cfg.gains[1];
+        if (saf_config_validate(&app->saf_cfg) != SAF_OK) {
+            code = 1u;
+        } else if (pfc_config_validate(&pc) != FS_OK) {
+            code = (uint16_t)pfc_config_validate(&pc);
+        } else if (!app->nvm_ok) {
+            code = NVM_ERR_GEOMETRY;
+        } else if (!fs_isfinite(app->sens.pos_m[0]) || !fs_isfinite(app->sens.pos_m[1]) ||
+                   !fs_isfinite(app->sens.force_contact_N[0])) {
+            code = FLT_SENSOR_NAN;
+        }
+        out[0] = (uint8_t)(code == 0u ? 0u : 1u);
+        put_u16(&out[1], code);
+        *out_len = 3u;
+        return UDS_NRC_OK;
+    }
+    case UDS_RID_CLEAR_FAULTS:
+        if (sub != UDS_ROUTINE_START) {
+            return UDS_NRC_SUBFUNCTION_NOT_SUPPORTED;
+        }
+        if (app->state != APP_FAULT) {
+            return UDS_NRC_REQUEST_SEQUENCE_ERROR;
+        }
+        if (saf_clear_request(&app->saf_cfg, &app->saf, app->now_ms) != FLT_NONE) {
+            return UDS_NRC_CONDITIONS_NOT_CORRECT;   /* a cause persists */
+        }
+        app->state = APP_IDLE;
+        wdg_disarm(&app->saf.wdg);
+        return UDS_NRC_OK;
+    case UDS_RID_ERASE_SLOT:
+        if (sub != UDS_ROUTINE_START) {
+            return UDS_NRC_SUBFUNCTION_NOT_SUPPORTED;
+        }
+        if (len != 1u) {
+            return UDS_NRC_INCORRECT_LENGTH;
+        }
+        if (d[0] < 1u || d[0] > APP_N_SLOTS) {
+            return UDS_NRC_REQUEST_OUT_OF_RANGE;
+        }
+        if (app->state == APP_EXECUTE || !app->nvm_ok) {
+            return UDS_NRC_CONDITIONS_NOT_CORRECT;
+        }
+        if (nvm_erase_slot(&app->nvm, (uint16_t)(d[0] - 1u)) != NVM_OK) {
+            return UDS_NRC_PROGRAMMING_FAILURE;
+        }
+        app->slot_valid[d[0] - 1u] = false;
+        return UDS_NRC_OK;
+    default:
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+}
+
+/* ---------------------------------------------------------------- session, reset, security */
+
+static uint8_t session_allowed(void *ctx, uint8_t session)
+{
+    app_t *app = ctx;
+    if (session == UDS_SESSION_PROGRAMMING && app->state != APP_IDLE) {
+        return UDS_NRC_CONDITIONS_NOT_CORRECT;
+    }
+    return UDS_NRC_OK;
+}
+
+static uint8_t ecu_reset(void *ctx, uint8_t type)
+{
+    app_t *app = ctx;
+    (void)type;
+    return (app->state == APP_TEACH || app->state == APP_EXECUTE) ? UDS_NRC_CONDITIONS_NOT_CORRECT
+                                                                  : UDS_NRC_OK;
+}
+
+static void reset_now(void *ctx, uint8_t type)
+{
+    (void)ctx;
+    hal_request_reset(type);
+}
+
+static uint8_t security_seed(void *ctx, uint8_t level, uint8_t *seed, uint16_t cap, uint16_t *len)
+{
+    app_t *app = ctx;
+    (void)level;
+    if (cap < SEC_SEED_LEN) {
+        return UDS_NRC_RESPONSE_TOO_LONG;
+    }
+    const sec_nrc_t nrc = sec_request_seed(&app->sec_cfg, &app->sec, app->now_ms, seed);
+    if (nrc != SEC_NRC_NONE) {
+        return (uint8_t)nrc;
+    }
+    *len = SEC_SEED_LEN;
+    return UDS_NRC_OK;
+}
+
+static uint8_t security_key(void *ctx, uint8_t level, const uint8_t *key, uint16_t len)
+{
+    app_t *app = ctx;
+    (void)level;
+    return (uint8_t)sec_send_key(&app->sec_cfg, &app->sec, app->now_ms, key, len);
+}
+
+/* ---------------------------------------------------------------- transfers */
+
+static uint8_t download_begin(void *ctx, uint32_t addr, uint32_t size)
+{
+    app_t *app = ctx;
+    if (addr < 1u || addr > APP_N_SLOTS || size < SKILL_HEADER_SIZE + SKILL_CRC_SIZE ||
+        size > APP_IMAGE_MAX) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    if (app->state != APP_IDLE || !app->nvm_ok) {
+        return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED;
+    }
+    app->xfer_slot = addr;
+    app->xfer_size = size;
+    app->last_transfer_status = 0xFFFFu;           /* in progress */
+    return UDS_NRC_OK;
+}
+
+static uint8_t download_data(void *ctx, uint32_t offset, const uint8_t *d, uint16_t len)
+{
+    app_t *app = ctx;
+    if (offset + len > app->xfer_size) {
+        return UDS_NRC_TRANSFER_SUSPENDED;
+    }
+    memcpy(&app->image[offset], d, len);
+    return UDS_NRC_OK;
+}
+
+static uint8_t download_end(void *ctx, uint32_t *crc_out)
+{
+    app_t *app = ctx;
+    const uint16_t slot = (uint16_t)(app->xfer_slot - 1u);
+    const fs_status_t st = skill_parse(app->image, app->xfer_size, &app->staging);
+    if (st != FS_OK) {
+        app->last_transfer_status = (uint16_t)st;   /* e.g. 204 CRC: the old skill stays */
+        return UDS_NRC_PROGRAMMING_FAILURE;
+    }
+    const nvm_status_t ns = nvm_write(&app->nvm, slot, app->image, app->xfer_size);
+    if (ns != NVM_OK) {
+        app->last_transfer_status = (uint16_t)ns;
+        app_slots_reload(app);                       /* whatever storage holds now */
+        return UDS_NRC_PROGRAMMING_FAILURE;
+    }
+    /* swap into the slot cache: UDS runs at the start of a tick and downloads only in IDLE */
+    app->slot_skill[slot] = app->staging;
+    app->slot_valid[slot] = true;
+    app->last_transfer_status = 0u;
+    *crc_out = skill_crc32(0u, app->image, app->xfer_size - SKILL_CRC_SIZE);
+    app->slot_crc[slot] = *crc_out;
+    app->slot_len[slot] = app->xfer_size;
+    return UDS_NRC_OK;
+}
+
+static void transfer_abort(void *ctx)
+{
+    app_t *app = ctx;
+    if (app->last_transfer_status == 0xFFFFu) {
+        app->last_transfer_status = 0xFFFEu;         /* interrupted: nothing was written */
+    }
+    app->xfer_size = 0u;
+}
+
+static uint8_t upload_begin(void *ctx, uint32_t addr, uint32_t size)
+{
+    app_t *app = ctx;
+    if (addr < 1u || addr > APP_N_SLOTS || !app->nvm_ok) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    uint32_t len = 0u;
+    if (nvm_read(&app->nvm, (uint16_t)(addr - 1u), app->image, sizeof(app->image), &len) != NVM_OK) {
+        return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED;  /* empty slot */
+    }
+    if (size != len) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    app->xfer_size = len;
+    return UDS_NRC_OK;
+}
+
+static uint8_t upload_data(void *ctx, uint32_t offset, uint8_t *out, uint16_t len)
+{
+    app_t *app = ctx;
+    if (offset + len > app->xfer_size) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    memcpy(out, &app->image[offset], len);
+    return UDS_NRC_OK;
+}
+
+void app_uds_bind(app_t *app, uds_app_t *out)
+{
+    memset(out, 0, sizeof(*out));
+    out->ctx = app;
+    out->read_did = read_did;
+    out->write_did = write_did;
+    out->routine = routine;
+    out->session_allowed = session_allowed;
+    out->ecu_reset = ecu_reset;
+    out->reset_now = reset_now;
+    out->security_seed = security_seed;
+    out->security_key = security_key;
+    out->download_begin = download_begin;
+    out->download_data = download_data;
+    out->download_end = download_end;
+    out->transfer_abort = transfer_abort;
+    out->upload_begin = upload_begin;
+    out->upload_data = upload_data;
+}

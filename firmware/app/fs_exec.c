@@ -1,0 +1,312 @@
+/* Skill execution: see fs_exec.h for the algorithm and the continuity/end-policy decisions. */
+#include "fs_exec.h"
+
+#define EXEC_PI FS_R(3.14159265358979323846)
+/* Coulomb compensation uses v/(|v| + this): smooth through zero so encoder noise at rest does
+ * not chatter the motor between +-coulomb_N. */
+#define EXEC_COULOMB_SMOOTH_MPS FS_R(1e-3)
+
+void exec_config_default(exec_config_t *cfg)
+{
+    pfc_default_config(&cfg->pfc);
+    cfg->use_model = 0u;
+    cfg->object.m_v_kg = FS_R(10.0);
+    cfg->object.d_v_Nspm = FS_R(50.0);
+    cfg->object.k1_Npm = FS_R(100.0);
+    cfg->object.k2_Npm = FS_R(100.0);
+    cfg->object.layer_depth_m = FS_R(0.019);
+    cfg->object.surface_m = FS_R(0.0);
+    cfg->phase_stop_gain_per_N2 = FS_R(0.0);
+}
+
+static uint32_t exec_ticks(fs_real_t t_s, fs_real_t dt_s)
+{
+    fs_real_t n = t_s / dt_s + FS_R(0.5);
+    if (!(n > FS_R(0.0))) {
+        return 0u;
+    }
+    if (n > FS_R(4.0e9)) {
+        return 4000000000u;
+    }
+    return (uint32_t)n;
+}
+
+static fs_real_t exec_step_duration(const exec_step_t *s)
+{
+    if (s->duration_s > FS_R(0.0)) {
+        return s->duration_s;
+    }
+    return s->skill->dmp.duration_s * s->time_scale;
+}
+
+static void exec_begin_step(exec_state_t *st)
+{
+    const exec_step_t *s = &st->steps[st->step];
+    dmp_state_reset(&st->dmp);
+    st->run.goal_scale = s->goal_scale;
+    st->run.time_scale = s->time_scale;
+    st->t_step_s = FS_R(0.0);
+    st->force_dmp_N = FS_R(0.0);
+}
+
+fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
+                       uint8_t n_steps, fs_real_t y_hold_m)
+{
+    if (cfg == 0 || st == 0 || steps == 0) {
+        return FS_ERR_NULL_ARG;
+    }
+    if (n_steps == 0u || n_steps > EXEC_MAX_STEPS) {
+        return FS_ERR_SCALE_INVALID;
+    }
+    fs_status_t rc = pfc_config_validate(&cfg->pfc);
+    if (rc != FS_OK) {
+        return rc;
+    }
+    if (!fs_isfinite(y_hold_m) || !fs_isfinite(cfg->object.surface_m) ||
+        !fs_isfinite(cfg->phase_stop_gain_per_N2)) {
+        return FS_ERR_NOT_FINITE;
+    }
+    if (cfg->phase_stop_gain_per_N2 < FS_R(0.0)) {
+        return FS_ERR_GAIN_NEGATIVE;
+    }
+    if (cfg->use_model != 0u) {
+        const exec_object_t *o = &cfg->object;
+        if (!fs_isfinite(o->m_v_kg) || !fs_isfinite(o->d_v_Nspm) || !fs_isfinite(o->k1_Npm) ||
+            !fs_isfinite(o->k2_Npm) || !fs_isfinite(o->layer_depth_m)) {
+            return FS_ERR_NOT_FINITE;
+        }
+        if (o->m_v_kg <= FS_R(0.0)) {
+            return FS_ERR_MASS_NONPOSITIVE;
+        }
+        if (o->k1_Npm <= FS_R(0.0) || o->k2_Npm <= FS_R(0.0)) {
+            return FS_ERR_STIFFNESS_NONPOSITIVE;
+        }
+        if (o->d_v_Nspm < FS_R(0.0) || o->layer_depth_m < FS_R(0.0)) {
+            return FS_ERR_GAIN_NEGATIVE;
+        }
+    }
+    for (uint8_t i = 0u; i < n_steps; i++) {
+        const exec_step_t *s = &steps[i];
+        if (s->skill == 0) {
+            return FS_ERR_NULL_ARG;
+        }
+        if (!fs_isfinite(s->goal_scale) || !fs_isfinite(s->time_scale) ||
+            !fs_isfinite(s->duration_s) || s->time_scale <= FS_R(0.0)) {
+            return FS_ERR_SCALE_INVALID;
+        }
+        st->steps[i] = *s;
+    }
+    st->n_steps = n_steps;
+    st->step = 0u;
+    st->ending = 0u;
+    st->done = 0u;
+    st->t_end_s = FS_R(0.0);
+    st->force_hat_N = FS_R(0.0);
+    st->force_carry_N = FS_R(0.0);
+    st->force_end_N = FS_R(0.0);
+    st->ref_p_m = FS_R(0.0);
+    st->ref_pd_mps = FS_R(0.0);
+    st->ref_pdd_mps2 = FS_R(0.0);
+    st->ref_prev_pos_m = cfg->object.surface_m;
+    st->y_hold_m = y_hold_m;
+    pfc_reset(&st->pfc);
+    exec_begin_step(st);
+    return FS_OK;
+}
+
+fs_real_t exec_object_force(const exec_object_t *obj, fs_real_t p_m)
+{
+    if (p_m <= FS_R(0.0)) {
+        return FS_R(0.0);
+    }
+    if (p_m <= obj->layer_depth_m) {
+        return obj->k1_Npm * p_m;
+    }
+    return obj->k1_Npm * obj->layer_depth_m + obj->k2_Npm * (p_m - obj->layer_depth_m);
+}
+
+/* 1 at t = 0 falling smoothly (smoothstep) to 0 at EXEC_BLEND_S. */
+static fs_real_t exec_blend(fs_real_t t_s)
+{
+    fs_real_t r = t_s / ((fs_real_t)EXEC_BLEND_S);
+    if (r >= FS_R(1.0)) {
+        return FS_R(0.0);
+    }
+    return FS_R(1.0) - r * r * (FS_R(3.0) - FS_R(2.0) * r);
+}
+
+static fs_real_t exec_reference_force(const exec_config_t *cfg, exec_state_t *st,
+                                      const exec_meas_t *meas)
+{
+    const fs_real_t dt = cfg->pfc.dt_s;
+    if (st->ending != 0u) {
+        const exec_step_t *last = &st->steps[st->n_steps - 1u];
+        if (last->end_policy == SKILL_END_HOLD) {
+            return st->force_end_N;
+        }
+        st->t_end_s += dt;
+        fs_real_t r = FS_R(1.0) - st->t_end_s / ((fs_real_t)SKILL_RELEASE_TIME_S);
+        if (r <= FS_R(0.0)) {
+            st->done = 1u;
+            return FS_R(0.0);
+        }
+        return st->force_end_N * r;
+    }
+    const exec_step_t *s = &st->steps[st->step];
+    dmp_coupling_t coupling = {FS_R(0.0), FS_R(0.0)};
+    const dmp_coupling_t *cp = 0;
+    if (cfg->phase_stop_gain_per_N2 > FS_R(0.0)) {
+        coupling.phase_slowdown =
+            dmp_phase_stop_factor(meas->force_contact_N - st->force_hat_N,
+                                  cfg->phase_stop_gain_per_N2);
+        cp = &coupling;
+    }
+    st->force_dmp_N = dmp_step(&s->skill->dmp, &st->dmp, &st->run, cp);
+    st->t_step_s += dt;
+    fs_real_t f = st->force_dmp_N + st->force_carry_N * exec_blend(st->t_step_s);
+
+    if (exec_ticks(st->t_step_s, dt) >= exec_ticks(exec_step_duration(s), dt)) {
+        if ((uint8_t)(st->step + 1u) < st->n_steps) {
+            st->force_carry_N = f;
+            st->step++;
+            exec_begin_step(st);
+        } else {
+            st->ending = 1u;
+            st->force_end_N = f;
+            st->t_end_s = FS_R(0.0);
+        }
+    }
+    return f;
+}
+
+fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_meas_t *meas,
+                      exec_out_t *out)
+{
+    out->step = st->step;
+    out->done = st->done;
+    if (!fs_isfinite(meas->pos_m[0]) || !fs_isfinite(meas->pos_m[1]) ||
+        !fs_isfinite(meas->vel_mps[0]) || !fs_isfinite(meas->vel_mps[1]) ||
+        !fs_isfinite(meas->force_contact_N)) {
+        out->force_cmd_N[0] = FS_R(0.0);
+        out->force_cmd_N[1] = FS_R(0.0);
+        out->force_hat_N = st->force_hat_N;
+        out->pos_ref_m = cfg->object.surface_m + st->ref_p_m;
+        return FS_ERR_NOT_FINITE;
+    }
+    const fs_real_t dt = cfg->pfc.dt_s;
+    const fs_real_t f_hat = exec_reference_force(cfg, st, meas);
+    st->force_hat_N = f_hat;
+
+    pfc_axis_ref_t ref[PFC_AXES];
+    if (cfg->use_model != 0u) {
+        const exec_object_t *o = &cfg->object;
+        fs_real_t pdd = (f_hat - o->d_v_Nspm * st->ref_pd_mps - exec_object_force(o, st->ref_p_m)) /
+                        o->m_v_kg;
+        fs_real_t pd = st->ref_pd_mps + pdd * dt;
+        fs_real_t p = st->ref_p_m + pd * dt;
+        if (p < FS_R(0.0)) {   /* unilateral: the reference cannot pull the surface out */
+            p = FS_R(0.0);
+            pd = FS_R(0.0);
+            pdd = FS_R(0.0);
+        }
+        st->ref_p_m = p;
+        st->ref_pd_mps = pd;
+        st->ref_pdd_mps2 = pdd;
+        ref[0].pos_m = o->surface_m + p;
+        ref[0].vel_mps = pd;
+        ref[0].acc_mps2 = pdd;
+    } else {
+        const fs_real_t k = st->steps[st->step].skill->dmp.stiffness_Npm;
+        fs_real_t p = f_hat / k;
+        if (p < FS_R(0.0)) {
+            p = FS_R(0.0);
+        }
+        const fs_real_t x_d = cfg->object.surface_m + p;
+        st->ref_p_m = p;
+        ref[0].pos_m = x_d;
+        ref[0].vel_mps = (x_d - st->ref_prev_pos_m) / dt;
+        ref[0].acc_mps2 = FS_R(0.0);
+        st->ref_prev_pos_m = x_d;
+    }
+    ref[0].force_N = f_hat;
+    ref[1].pos_m = st->y_hold_m;
+    ref[1].vel_mps = FS_R(0.0);
+    ref[1].acc_mps2 = FS_R(0.0);
+    ref[1].force_N = FS_R(0.0);
+
+    pfc_axis_meas_t m[PFC_AXES];
+    m[0].pos_m = meas->pos_m[0];
+    m[0].vel_mps = meas->vel_mps[0];
+    m[0].force_N = meas->force_contact_N;
+    m[1].pos_m = meas->pos_m[1];
+    m[1].vel_mps = meas->vel_mps[1];
+    m[1].force_N = FS_R(0.0);
+    pfc_step(&cfg->pfc, &st->pfc, ref, m, out->force_cmd_N);
+
+    out->force_hat_N = f_hat;
+    out->pos_ref_m = ref[0].pos_m;
+    out->step = st->step;
+    out->done = st->done;
+    return FS_OK;
+}
+
+void exec_vel_init(exec_vel_t *v, fs_real_t cutoff_Hz, fs_real_t dt_s)
+{
+    v->prev_pos_m = FS_R(0.0);
+    v->vel_mps = FS_R(0.0);
+    v->alpha = dt_s / (dt_s + FS_R(1.0) / (FS_R(2.0) * EXEC_PI * cutoff_Hz));
+    v->primed = 0u;
+}
+
+fs_real_t exec_vel_update(exec_vel_t *v, fs_real_t pos_m, fs_real_t dt_s)
+{
+    if (v->primed == 0u) {
+        v->prev_pos_m = pos_m;
+        v->primed = 1u;
+        return v->vel_mps;
+    }
+    const fs_real_t raw = (pos_m - v->prev_pos_m) / dt_s;
+    v->prev_pos_m = pos_m;
+    v->vel_mps += v->alpha * (raw - v->vel_mps);
+    return v->vel_mps;
+}
+
+void exec_render_default(exec_render_cfg_t *cfg)
+{
+    cfg->carriage_kg = FS_R(2.0);
+    cfg->viscous_Nspm = FS_R(5.0);
+    cfg->coulomb_N = FS_R(1.0);
+    cfg->kp_Npm = FS_R(60000.0);
+    cfg->kd_Nspm = FS_R(1200.0);
+    cfg->ext_ff = FS_R(1.0);
+    cfg->ext_cutoff_Hz = FS_R(20.0);
+    cfg->motor_max_N = FS_R(200.0);
+}
+
+void exec_render_reset(exec_render_t *r, fs_real_t pos_m)
+{
+    r->pos_m = pos_m;
+    r->vel_mps = FS_R(0.0);
+    r->ext_lp_N = FS_R(0.0);
+}
+
+fs_real_t exec_render_step(const exec_render_cfg_t *cfg, exec_render_t *r, fs_real_t force_total_N,
+                           fs_real_t m_d_kg, fs_real_t force_ext_meas_N, fs_real_t pos_m,
+                           fs_real_t vel_mps, fs_real_t dt_s)
+{
+    const fs_real_t acc = force_total_N / m_d_kg;
+    const fs_real_t lp = dt_s / (dt_s + FS_R(1.0) / (FS_R(2.0) * EXEC_PI * cfg->ext_cutoff_Hz));
+    r->ext_lp_N += lp * (force_ext_meas_N - r->ext_lp_N);
+    r->vel_mps += acc * dt_s;
+    r->pos_m += r->vel_mps * dt_s;
+    fs_real_t f = cfg->carriage_kg * acc + cfg->kp_Npm * (r->pos_m - pos_m) +
+                  cfg->kd_Nspm * (r->vel_mps - vel_mps) - cfg->ext_ff * r->ext_lp_N +
+                  cfg->viscous_Nspm * vel_mps +
+                  cfg->coulomb_N * vel_mps / (fs_fabs(vel_mps) + EXEC_COULOMB_SMOOTH_MPS);
+    if (f > cfg->motor_max_N) {
+        f = cfg->motor_max_N;
+    } else if (f < -cfg->motor_max_N) {
+        f = -cfg->motor_max_N;
+    }
+    return f;
+}

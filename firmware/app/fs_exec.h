@@ -1,0 +1,170 @@
+/* Skill execution on the device (SPEC 2 and 5): a sequence of up to EXEC_MAX_STEPS learned force
+ * skills evaluated at 1 kHz, the position reference from the known object model, the parallel
+ * force/position law for both axes, end policy (hold/release), and the rendering of the law's
+ * force command on a real carriage (admittance: the same code renders m_d in TEACH).
+ * Pure functions over explicit state structs: no heap, no I/O, bounded work per tick.
+ *
+ * Per tick (exec_tick), step k of the sequence:
+ *   f_dmp  = dmp_step(skill_k, goal_scale_k, time_scale_k, coupling)       (0 after the duration)
+ *   f_hat  = f_dmp + f_carry * blend(t)        (sequence continuity, see below)
+ *   x_d, xd_d, xdd_d from f_hat: the object model m_v*pdd + d_v*pd + F(p) = f_hat integrated
+ *            forward (semi-implicit Euler, unilateral p >= 0), x_d = surface + p;
+ *            without a model x_d = surface + f_hat/k (k of the skill), xd_d by difference.
+ *   f_cmd  = pfc_step(ref = {x_d, xd_d, xdd_d, f_hat}, y holds its start position)
+ * Continuity between steps: the next skill's DMP starts from zero state (its force starts at 0);
+ * the last f_hat of the previous step, f_carry, is added and faded out with a raised cosine over
+ * EXEC_BLEND_S. The force is therefore continuous at the switch (jump = one DMP step of the new
+ * skill) and equals the new skill's own profile after EXEC_BLEND_S.
+ * End of the sequence: hold keeps the last f_hat; release ramps it linearly to 0 in
+ * SKILL_RELEASE_TIME_S, then the sequence is done (f_hat stays 0). */
+#ifndef FS_EXEC_H
+#define FS_EXEC_H
+
+#include <stdint.h>
+#include "dmp.h"
+#include "fs_real.h"
+#include "fs_status.h"
+#include "pfc.h"
+#include "skill.h"
+
+#define EXEC_MAX_STEPS 8u
+/* Fade-out time of the previous step's force at a switch. 1 s spans a demonstration's ramp-up,
+ * so the sum neither dips nor jumps; measured on the reuse experiment (8 seeds, deformation
+ * difference 300 N/m @1.5x vs 200 N/m @1x): 0.5 s 8.9-11.8 %, 1.0 s 6.6-10.0 %, 1.5 s 5.9-10.0 %
+ * (longer blends keep the new skill off its own profile for longer). */
+#define EXEC_BLEND_S 1.0
+
+/** One step of a sequence: which skill, how it is modulated, for how long, what happens after. */
+typedef struct {
+    const skill_t *skill;      /* parsed, validated skill (not owned) */
+    fs_real_t goal_scale;      /* g -> goal_scale*g: scales the force */
+    fs_real_t time_scale;      /* tau -> time_scale*tau: stretches the profile */
+    fs_real_t duration_s;      /* how long the step runs; <= 0 means the skill's T*time_scale */
+    skill_end_t end_policy;    /* used after the last step: hold or release */
+} exec_step_t;
+
+/** Known object model for the position reference (SPEC 2 last decision): f = m_v*pdd + d_v*pd
+ *  + F(p), F piecewise linear (k1 up to layer_depth_m, k2 beyond), p = x - surface_m >= 0. */
+typedef struct {
+    fs_real_t m_v_kg;
+    fs_real_t d_v_Nspm;
+    fs_real_t k1_Npm;
+    fs_real_t k2_Npm;
+    fs_real_t layer_depth_m;
+    fs_real_t surface_m;
+} exec_object_t;
+
+/** Execution configuration: controller gains/limits, optional object model, phase stopping. */
+typedef struct {
+    pfc_config_t pfc;
+    uint8_t use_model;               /* 1: invert the object model; 0: x_d = surface + f_hat/k */
+    exec_object_t object;            /* used when use_model; surface_m is used in both cases */
+    fs_real_t phase_stop_gain_per_N2;/* 0 disables phase stopping (dmp coupling) */
+} exec_config_t;
+
+/** Measurements of one tick (already delayed/filtered as the firmware sees them). */
+typedef struct {
+    fs_real_t pos_m[PFC_AXES];
+    fs_real_t vel_mps[PFC_AXES];
+    fs_real_t force_contact_N;       /* x-axis tip force, pushing positive */
+} exec_meas_t;
+
+/** Output of one tick. */
+typedef struct {
+    fs_real_t force_cmd_N[PFC_AXES]; /* saturated law output ("m_d*xdd") per axis */
+    fs_real_t force_hat_N;           /* reference force f_hat */
+    fs_real_t pos_ref_m;             /* x_d */
+    uint8_t step;                    /* index of the running step */
+    uint8_t done;                    /* 1 once the sequence (and any release) has ended */
+} exec_out_t;
+
+/** Execution state (sequence, DMP, reference model, controller integral). */
+typedef struct {
+    exec_step_t steps[EXEC_MAX_STEPS];
+    uint8_t n_steps;
+    uint8_t step;
+    uint8_t ending;                  /* 1 after the last step's duration: end policy active */
+    uint8_t done;
+    dmp_state_t dmp;
+    dmp_run_t run;
+    fs_real_t t_step_s;              /* time since the running step started */
+    fs_real_t t_end_s;               /* time since the end policy started */
+    fs_real_t force_dmp_N;           /* last DMP output of the running step */
+    fs_real_t force_hat_N;           /* last f_hat */
+    fs_real_t force_carry_N;         /* previous step's last f_hat, faded out over EXEC_BLEND_S */
+    fs_real_t force_end_N;           /* f_hat when the end policy started */
+    fs_real_t ref_p_m;               /* reference deformation p_d */
+    fs_real_t ref_pd_mps;
+    fs_real_t ref_pdd_mps2;
+    fs_real_t ref_prev_pos_m;        /* model-free reference: previous x_d (for xd_d) */
+    fs_real_t y_hold_m;
+    pfc_state_t pfc;
+} exec_state_t;
+
+/** Default configuration: pfc_default_config, 50 N limit, no model, no phase stopping. */
+void exec_config_default(exec_config_t *cfg);
+
+/** Load a sequence (1..EXEC_MAX_STEPS steps) and reset the state; y_hold_m is the y position to
+ *  hold. Validates skills (non-NULL), finite scales, time_scale > 0 and the configuration. */
+fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
+                       uint8_t n_steps, fs_real_t y_hold_m);
+
+/** Force of the object model at deformation p (0 for p <= 0). */
+fs_real_t exec_object_force(const exec_object_t *obj, fs_real_t p_m);
+
+/** One 1 kHz tick. Returns FS_ERR_NOT_FINITE (commanding 0 N) when a measurement is not finite. */
+fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_meas_t *meas,
+                      exec_out_t *out);
+
+/* ---- Velocity estimation (encoder difference + first-order low-pass) ---- */
+
+/** Velocity estimator state of one axis. */
+typedef struct {
+    fs_real_t prev_pos_m;
+    fs_real_t vel_mps;
+    fs_real_t alpha;     /* low-pass coefficient dt/(dt + 1/(2 pi fc)) */
+    uint8_t primed;
+} exec_vel_t;
+
+/** Initialise with a cut-off frequency (Hz) and the tick dt. */
+void exec_vel_init(exec_vel_t *v, fs_real_t cutoff_Hz, fs_real_t dt_s);
+
+/** Feed one encoder sample; returns the filtered velocity. */
+fs_real_t exec_vel_update(exec_vel_t *v, fs_real_t pos_m, fs_real_t dt_s);
+
+/* ---- Rendering on a real carriage (admittance control) ---- */
+
+/** Carriage model and inner loop gains used to render a desired acceleration. */
+typedef struct {
+    fs_real_t carriage_kg;       /* moving mass of the carriage */
+    fs_real_t viscous_Nspm;      /* friction compensation, viscous part */
+    fs_real_t coulomb_N;         /* friction compensation, Coulomb part */
+    fs_real_t kp_Npm;            /* inner loop: virtual position - measured position */
+    fs_real_t kd_Nspm;           /* inner loop: virtual velocity - measured velocity */
+    fs_real_t ext_ff;            /* fraction of the measured external force fed forward, 0..1 */
+    fs_real_t ext_cutoff_Hz;     /* low-pass on that feedforward: the measured contact force
+                                  * carries the object's inertia one sample late, and feeding it
+                                  * back unfiltered oscillates at fs/4 (measured) */
+    fs_real_t motor_max_N;       /* actuator limit */
+} exec_render_cfg_t;
+
+/** Virtual (admittance) state of one axis. */
+typedef struct {
+    fs_real_t pos_m;
+    fs_real_t vel_mps;
+    fs_real_t ext_lp_N;          /* low-passed external force */
+} exec_render_t;
+
+/** Defaults for the realistic HIL carriage (2 kg, 5 Ns/m, 1 N, +-200 N). */
+void exec_render_default(exec_render_cfg_t *cfg);
+
+/** Start the virtual state at the measured position, at rest. */
+void exec_render_reset(exec_render_t *r, fs_real_t pos_m);
+
+/** Motor force that makes the carriage follow acc = force_total_N/m_d_kg (the admittance), given
+ *  the measured external force on the carriage (operator - contact) and its measured motion. */
+fs_real_t exec_render_step(const exec_render_cfg_t *cfg, exec_render_t *r, fs_real_t force_total_N,
+                           fs_real_t m_d_kg, fs_real_t force_ext_meas_N, fs_real_t pos_m,
+                           fs_real_t vel_mps, fs_real_t dt_s);
+
+#endif /* FS_EXEC_H */

@@ -1,0 +1,288 @@
+/* Firmware update receiver (fwu.h). */
+#include "fwu.h"
+
+#include <stddef.h>
+#include <string.h>
+
+void fwu_init(fwu_t *f, boot_t *boot)
+{
+    memset(f, 0, sizeof *f);
+    f->boot = boot;
+    f->phase = FWU_IDLE;
+}
+
+static boot_status_t refuse(fwu_t *f, boot_status_t st)
+{
+    f->last = st;
+    if (f->phase == FWU_RECEIVING) {
+        f->phase = FWU_IDLE;
+    }
+    return st;
+}
+
+/* Program n bytes at slot offset off (n a multiple of the write unit, inside one sector),
+ * erasing the sector first if this is its first byte. */
+static boot_status_t program(fwu_t *f, uint32_t off, const uint8_t *p, uint32_t n)
+{
+    const boot_config_t *cfg = f->boot->cfg;
+    const fls_dev_t *dev = cfg->app_dev;
+    const uint32_t base = cfg->slot_addr[f->slot];
+    while (off + n > f->erased) {
+        if (dev->erase(dev->ctx, (base + f->erased) / dev->sector_size) != 0) {
+            return BOOT_ERR_FLASH;
+        }
+        f->erased += dev->sector_size;
+    }
+    return dev->program(dev->ctx, base + off, p, n) == 0 ? BOOT_OK : BOOT_ERR_FLASH;
+}
+
+/* Stage len bytes: full write units go to flash, at most one unit waits in tail. */
+static boot_status_t put(fwu_t *f, const uint8_t *p, uint32_t len)
+{
+    const fls_dev_t *dev = f->boot->cfg->app_dev;
+    const uint32_t wu = dev->write_unit;
+    while (len > 0u) {
+        if (f->tail_len > 0u || len < wu) {
+            uint32_t n = wu - f->tail_len;
+            if (n > len) {
+                n = len;
+            }
+            memcpy(&f->tail[f->tail_len], p, n);
+            f->tail_len += n;
+            p += n;
+            len -= n;
+            if (f->tail_len == wu) {
+                boot_status_t st = program(f, f->programmed, f->tail, wu);
+                if (st != BOOT_OK) {
+                    return st;
+                }
+                f->programmed += wu;
+                f->tail_len = 0u;
+            }
+            continue;
+        }
+        const uint32_t to_sector_end = dev->sector_size - (f->programmed % dev->sector_size);
+        uint32_t n = len - (len % wu);
+        if (n > to_sector_end) {
+            n = to_sector_end;
+        }
+        boot_status_t st = program(f, f->programmed, p, n);
+        if (st != BOOT_OK) {
+            return st;
+        }
+        f->programmed += n;
+        p += n;
+        len -= n;
+    }
+    return BOOT_OK;
+}
+
+boot_status_t fwu_begin(fwu_t *f, bool authorised, uint32_t size)
+{
+    if (!authorised) {
+        return refuse(f, FWU_ERR_LOCKED);
+    }
+    boot_t *b = f->boot;
+    const boot_config_t *cfg = b->cfg;
+    if (b->test_boot) {
+        return refuse(f, FWU_ERR_TEST_PENDING);   /* the other slot is our fallback */
+    }
+    if (size < BOOT_IMAGE_OVERHEAD + 1u) {
+        return refuse(f, FWU_ERR_RANGE);
+    }
+    if (size > cfg->slot_size) {
+        return refuse(f, BOOT_ERR_TOO_LARGE);
+    }
+    const uint8_t slot = boot_inactive_slot(b);
+    if (b->state.test_slot == slot) {
+        /* a test marked earlier (no reset since): cancel it before its slot is overwritten */
+        boot_state_t s = b->state;
+        s.test_slot = BOOT_SLOT_NONE;
+        s.test_attempts = 0u;
+        s.test_flags = 0u;
+        if (boot_state_store(cfg, &s) != BOOT_OK) {
+            return refuse(f, BOOT_ERR_FLASH);
+        }
+        b->state = s;
+    }
+    f->phase = FWU_RECEIVING;
+    f->slot = slot;
+    f->size = size;
+    f->received = 0u;
+    f->programmed = 0u;
+    f->erased = 0u;
+    f->tail_len = 0u;
+    f->crc32 = 0u;
+    f->image_version = 0u;
+    f->last = BOOT_OK;
+    return BOOT_OK;
+}
+
+static boot_status_t check_header(fwu_t *f)
+{
+    boot_image_header_t h;
+    boot_status_t st = boot_image_parse_header(f->hdr, f->boot->cfg->target_id, &h);
+    if (st != BOOT_OK) {
+        return st;
+    }
+    const uint32_t total = boot_image_total_len(&h);
+    if (f->size < total) {
+        return BOOT_ERR_TRUNCATED;
+    }
+    if (f->size > total) {
+        return BOOT_ERR_FORMAT;     /* trailing bytes after the tag */
+    }
+    f->image_version = h.fw_version;
+    return BOOT_OK;
+}
+
+boot_status_t fwu_data(fwu_t *f, bool authorised, uint32_t offset, const uint8_t *data,
+                       uint32_t len)
+{
+    if (!authorised) {
+        return refuse(f, FWU_ERR_LOCKED);
+    }
+    if (f->phase != FWU_RECEIVING || offset != f->received || data == NULL) {
+        return refuse(f, FWU_ERR_SEQUENCE);
+    }
+    if (len > f->size - f->received) {
+        return refuse(f, FWU_ERR_OVERRUN);
+    }
+    /* Keep a copy of the header to check it before anything of the payload is written. */
+    if (f->received < BOOT_IMAGE_HEADER_SIZE) {
+        uint32_t n = BOOT_IMAGE_HEADER_SIZE - f->received;
+        if (n > len) {
+            n = len;
+        }
+        memcpy(&f->hdr[f->received], data, n);
+        if (f->received + n == BOOT_IMAGE_HEADER_SIZE) {
+            boot_status_t st = check_header(f);
+            if (st != BOOT_OK) {
+                return refuse(f, st);
+            }
+        }
+    }
+    boot_status_t st = put(f, data, len);
+    if (st != BOOT_OK) {
+        return refuse(f, st);
+    }
+    f->crc32 = nvm_crc32(f->crc32, data, len);
+    f->received += len;
+    return BOOT_OK;
+}
+
+boot_status_t fwu_end(fwu_t *f, bool authorised, uint32_t *crc32_out)
+{
+    if (!authorised) {
+        return refuse(f, FWU_ERR_LOCKED);
+    }
+    if (f->phase != FWU_RECEIVING || f->received != f->size) {
+        return refuse(f, FWU_ERR_SEQUENCE);
+    }
+    if (f->tail_len > 0u) {
+        const uint32_t wu = f->boot->cfg->app_dev->write_unit;
+        memset(&f->tail[f->tail_len], 0xFF, wu - f->tail_len);
+        boot_status_t st = program(f, f->programmed, f->tail, wu);
+        if (st != BOOT_OK) {
+            return refuse(f, st);
+        }
+        f->programmed += wu;
+        f->tail_len = 0u;
+    }
+    boot_image_header_t h;
+    boot_status_t st = boot_slot_verify(f->boot->cfg, f->slot, &h);
+    if (st != BOOT_OK) {
+        return refuse(f, st);
+    }
+    if (crc32_out != NULL) {
+        *crc32_out = f->crc32;
+    }
+    f->phase = FWU_RECEIVED;
+    return BOOT_OK;
+}
+
+void fwu_abort(fwu_t *f)
+{
+    if (f->phase == FWU_RECEIVING) {
+        f->phase = FWU_IDLE;
+    }
+}
+
+boot_status_t fwu_mark_test(fwu_t *f, bool authorised, uint8_t options)
+{
+    if (!authorised) {
+        return refuse(f, FWU_ERR_LOCKED);
+    }
+    if (f->phase != FWU_RECEIVED && f->phase != FWU_MARKED) {
+        return refuse(f, FWU_ERR_SEQUENCE);
+    }
+    boot_status_t st = boot_mark_test(f->boot, f->slot, options);
+    if (st != BOOT_OK) {
+        return refuse(f, st);
+    }
+    f->phase = FWU_MARKED;
+    return BOOT_OK;
+}
+
+boot_status_t fwu_confirm(fwu_t *f)
+{
+    boot_status_t st = boot_confirm(f->boot);
+    return st == BOOT_OK ? BOOT_OK : refuse(f, st);
+}
+
+static void be32(uint8_t *p, uint32_t v)
+{
+    p[0] = (uint8_t)(v >> 24);
+    p[1] = (uint8_t)(v >> 16);
+    p[2] = (uint8_t)(v >> 8);
+    p[3] = (uint8_t)v;
+}
+
+uint16_t fwu_status(const fwu_t *f, uint8_t *out, uint16_t cap)
+{
+    if (out == NULL || cap < FWU_STATUS_LEN) {
+        return 0u;
+    }
+    const boot_t *b = f->boot;
+    const bool running = b->running_slot < BOOT_SLOT_COUNT;
+    be32(&out[0], running ? b->running.fw_version : 0u);
+    out[4] = b->running_slot;
+    out[5] = b->test_boot;
+    out[6] = b->state.active_slot;
+    out[7] = b->state.test_slot;
+    out[8] = (uint8_t)b->path;
+    out[9] = (uint8_t)b->cfg->target_id;
+    const uint16_t last = (uint16_t)(f->last != BOOT_OK ? f->last : b->refusal);
+    out[10] = (uint8_t)(last >> 8);
+    out[11] = (uint8_t)last;
+    be32(&out[12], f->image_version);
+    out[16] = (uint8_t)f->phase;
+    return FWU_STATUS_LEN;
+}
+
+uint8_t fwu_nrc(boot_status_t st)
+{
+    switch (st) {
+    case BOOT_OK: return 0x00u;
+    case BOOT_ERR_MAGIC:
+    case BOOT_ERR_FORMAT: return 0xF0u;
+    case BOOT_ERR_TARGET: return 0xF1u;
+    case BOOT_ERR_TRUNCATED: return 0xF2u;
+    case BOOT_ERR_HASH: return 0xF3u;
+    case BOOT_ERR_TAG: return 0xF4u;
+    case BOOT_ERR_DOWNGRADE: return 0xF5u;
+    case BOOT_ERR_SKILL_FORMAT: return 0xF6u;
+    case BOOT_ERR_CONFIG_FORMAT: return 0xF7u;
+    case BOOT_ERR_TOO_LARGE: return 0x70u;      /* uploadDownloadNotAccepted */
+    case BOOT_ERR_FLASH: return 0x72u;          /* generalProgrammingFailure */
+    case FWU_ERR_LOCKED: return 0x33u;          /* securityAccessDenied */
+    case FWU_ERR_SEQUENCE: return 0x24u;        /* requestSequenceError */
+    case FWU_ERR_BLOCK_COUNTER: return 0x73u;   /* wrongBlockSequenceCounter */
+    case FWU_ERR_OVERRUN: return 0x71u;         /* transferDataSuspended */
+    case FWU_ERR_TEST_PENDING: return 0x22u;    /* conditionsNotCorrect */
+    case FWU_ERR_RANGE: return 0x31u;           /* requestOutOfRange */
+    case BOOT_ERR_NO_IMAGE:
+    case BOOT_ERR_ARG:
+    default: return 0x10u;                      /* generalReject */
+    }
+}

@@ -1,0 +1,107 @@
+/* The force DMP in fixed point (SPEC 2 "Fixed point", issue 5): the same discrete algorithm as
+ * docs/math.md section 2 (forward Euler, kernel window, e_min shift, nearest-kernel fallback),
+ * in the formats of fx.h, for a Cortex-M3 without FPU. A skill is parsed in double (skill_parse)
+ * and converted once by dmpfx_from_model, which rejects values that do not fit (3xx codes).
+ * docs/cortex-m.md describes the formats, bounds and measured accuracy. */
+#ifndef DMPFX_H
+#define DMPFX_H
+
+#include <stdint.h>
+#include "dmp.h"
+#include "fx.h"
+
+/* Kernels with e_i = (u - c_i)^2/(2 sigma_i^2) above 16 are skipped: exp(-16) = 1.1e-7 of the
+ * largest activation (the float core uses 23; the difference is below Q8.24 resolution of S). */
+#define DMPFX_CUTOFF_Q27 FX_EXP_ARG_MAX_Q27
+/* Most kernels that may be evaluated in one tick (the candidate window): bounded at conversion
+ * so the tick has a fixed worst case. The default fit (sigma = half spacing) needs 6. */
+#ifndef DMPFX_MAX_WINDOW
+#define DMPFX_MAX_WINDOW 32u
+#endif
+/* Largest magnitude accepted for a Q8.24 quantity known at conversion (weights, goal, bounds
+ * on h and I): 64 = half the Q8.24 range, one bit of headroom for the states. */
+#define DMPFX_Q24_HEADROOM 64.0
+/* Largest phase velocity v~ accepted (Q2.30 holds |v| < 2). */
+#define DMPFX_V_MAX 1.9
+
+/** A skill in fixed point (what dmpfx_from_model fills). */
+typedef struct {
+    uint16_t n_kernels;
+    int32_t centre_q30[DMP_MAX_KERNELS];
+    int32_t inv_sigma_q19[DMP_MAX_KERNELS];
+    int32_t weight_q24[DMP_MAX_KERNELS];
+    int32_t env_lo_q30[DMP_MAX_KERNELS];  /* suffix min of c_i - r sigma_i, r = sqrt(32) */
+    int32_t env_hi_q30[DMP_MAX_KERNELS];  /* prefix max of c_i + r sigma_i */
+    int32_t stiffness_q12;                /* k, N/m, Q20.12 */
+    /* scalars kept in double for dmpfx_run_init (run set-up, not the tick) */
+    double dt_s;
+    double tau_s;
+    double alpha;
+    double beta;
+    double gamma;
+    double goal_m;
+    double max_abs_weight;
+} dmpfx_model_t;
+
+/** Per-run constants: dt/tau_e * {1, alpha, alpha*beta, gamma} in Q1.31 and g_e in Q8.24. */
+typedef struct {
+    int32_t k1_q31;
+    int32_t k_alpha_q31;
+    int32_t k_alphabeta_q31;
+    int32_t k_gamma_q31;
+    int32_t goal_q24;
+} dmpfx_run_t;
+
+/** Fixed-point DMP state. Each state is kept as the exact 64-bit sum of its Euler increments
+ *  (Q1.31 constant * Q8.24 or Q2.30 value = Q.55 / Q.61, i.e. the value << 31); products use the
+ *  value rounded to Q8.24 / Q2.30 (dmpfx_view). Rounding every step instead drifts by up to
+ *  0.5 LSB per tick while an increment is nearly constant (a force plateau): measured 0.13 %
+ *  of max force on engrave_n50 at time scale 1.3 (docs/cortex-m.md). sat_events counts
+ *  saturations (0 in a valid run: values never wrap). */
+typedef struct {
+    int64_t u_acc;
+    int64_t v_acc;
+    int64_t integral_x_acc;
+    int64_t x_acc;
+    int64_t z_acc;
+    uint32_t sat_events;
+} dmpfx_state_t;
+
+/** A state's value in its working format (Q2.30 for u~, v~; Q8.24 for I, x, z). */
+static inline int32_t dmpfx_view(int64_t acc)
+{
+    return (int32_t)fx_rshift_round(acc, 31u);
+}
+
+/** Coupling: term_x added to tau*xd (Q8.24) and rate = 1/(1 + phase_slowdown) in Q1.31
+ *  (unsigned, 1.0 = 2^31 means no slow-down). */
+typedef struct {
+    int32_t term_x_q24;
+    uint32_t rate_q31;
+} dmpfx_coupling_t;
+
+/** Convert a validated double model (dmp_model_init done) into fixed point. Errors:
+ *  FS_ERR_FIXED_OVERFLOW (300) a value or bound does not fit its format (1/sigma >= 4096, |w|,
+ *  g, stiffness, peak v~, bound on h or I), FS_ERR_FIXED_WINDOW (301) too many overlapping
+ *  kernels, FS_ERR_NULL_ARG. */
+fs_status_t dmpfx_from_model(const dmp_model_t *m, dmpfx_model_t *out);
+
+/** Per-tick constants for a goal and time scale; FS_ERR_SCALE_INVALID for a bad scale,
+ *  FS_ERR_FIXED_STEP (302) if dt/tau_e is below 2^-24 or a constant is >= 0.5, FS_ERR_FIXED_OVERFLOW if
+ *  the scaled goal or the bounds that depend on it leave the Q8.24 headroom. */
+fs_status_t dmpfx_run_init(const dmpfx_model_t *m, double goal_scale, double time_scale,
+                           dmpfx_run_t *run);
+
+/** Zero initial conditions. */
+void dmpfx_state_reset(dmpfx_state_t *s);
+
+/** S(u) = sum psi_i w_i / sum psi_i in Q8.24 at phase u (Q2.30), window + cutoff + e_min shift;
+ *  *count (may be NULL) receives the number of kernels summed. */
+int32_t dmpfx_blend(const dmpfx_model_t *m, int32_t u_q30, uint16_t *count);
+
+/** One forward-Euler step (all right-hand sides at the old state); coupling may be NULL.
+ *  Returns f_hat = k*x after the step in Q16.16 N. */
+int32_t dmpfx_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s,
+                   const dmpfx_coupling_t *coupling);
+
+#endif /* DMPFX_H */

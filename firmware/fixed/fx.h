@@ -1,0 +1,131 @@
+/* Saturating Q-format arithmetic for the fixed-point build (SPEC 2 "Fixed point", issue 5).
+ * Every helper works on int32 values with 64-bit intermediates; results that do not fit are
+ * saturated to the int32 range, never wrapped, and no helper has signed-overflow UB.
+ * Right shifts of negative values rely on arithmetic shift (GCC and Clang define it).
+ * Rounding: round half up (floor(x + 0.5)) wherever precision is dropped.
+ * Formats used (Qm.n = m integer bits incl. sign, n fraction bits):
+ *   phase u~, v~, centres c_i    Q2.30      1/sigma_i        Q13.19
+ *   kernel exponent e_i          Q5.27 (unsigned, clipped at 16)
+ *   kernel activation psi_i      Q1.31 (unsigned, 1.0 = 2^31)
+ *   w_i, x, z, I, h, g           Q8.24      per-tick constants  Q1.31
+ *   forces                       Q16.16 N   stiffness           Q20.12 N/m */
+#ifndef FX_H
+#define FX_H
+
+#include <stdint.h>
+#include "fs_status.h"
+
+/* 3xx codes beyond fs_status.h's FS_ERR_FIXED_OVERFLOW (300), defined by this module. */
+#define FS_ERR_FIXED_WINDOW ((fs_status_t)301) /* more than DMPFX_MAX_WINDOW kernels overlap */
+#define FS_ERR_FIXED_STEP ((fs_status_t)302)   /* dt/tau too small or too large for Q1.31 */
+#define FS_ERR_FIXED_CONFIG ((fs_status_t)303) /* a controller gain/limit does not fit Q16.16 */
+
+#define FX_Q30_ONE ((int32_t)1 << 30)
+#define FX_Q31_ONE_U ((uint32_t)1u << 31)
+#define FX_Q24_ONE ((int32_t)1 << 24)
+#define FX_Q16_ONE ((int32_t)1 << 16)
+/* exp argument clip: 16 in Q5.27 = 2^31 (unsigned). */
+#define FX_EXP_ARG_MAX_Q27 ((uint32_t)16u << 27)
+/* Table resolution of 2^-f, f in [0, 1): 2^FX_EXP_TABLE_BITS intervals, linear interpolation.
+ * Interpolation error <= (ln2 * 2^-bits)^2 / 8 relative = 9.2e-7 for 8 bits. */
+#define FX_EXP_TABLE_BITS 8u
+
+/** Clamp a 64-bit value into int32 (saturation, never wrap). */
+static inline int32_t fx_sat32(int64_t v)
+{
+    if (v > (int64_t)INT32_MAX) {
+        return INT32_MAX;
+    }
+    if (v < (int64_t)INT32_MIN) {
+        return INT32_MIN;
+    }
+    return (int32_t)v;
+}
+
+/** Saturating a + b. */
+static inline int32_t fx_add_sat(int32_t a, int32_t b)
+{
+    return fx_sat32((int64_t)a + (int64_t)b);
+}
+
+/** Saturating a - b. */
+static inline int32_t fx_sub_sat(int32_t a, int32_t b)
+{
+    return fx_sat32((int64_t)a - (int64_t)b);
+}
+
+/** v / 2^s rounded half up, 1 <= s <= 62, |v| < 2^62 (no overflow in the rounding add). */
+static inline int64_t fx_rshift_round(int64_t v, unsigned s)
+{
+    return (v + ((int64_t)1 << (s - 1u))) >> s;
+}
+
+/** Saturating product a*b / 2^s rounded half up (1 <= s <= 62): e.g. Q1.31 * Q8.24 with s = 31
+ *  gives Q8.24. */
+static inline int32_t fx_mul_sat(int32_t a, int32_t b, unsigned s)
+{
+    return fx_sat32(fx_rshift_round((int64_t)a * (int64_t)b, s));
+}
+
+/** Absolute value saturated: |INT32_MIN| -> INT32_MAX. */
+static inline int32_t fx_abs_sat(int32_t a)
+{
+    return (a == INT32_MIN) ? INT32_MAX : ((a < 0) ? -a : a);
+}
+
+/** Clamp a to [-lim, lim] (lim >= 0). */
+static inline int32_t fx_clamp_sym(int32_t a, int32_t lim)
+{
+    if (a > lim) {
+        return lim;
+    }
+    if (a < -lim) {
+        return -lim;
+    }
+    return a;
+}
+
+/** 2^(-k/2^FX_EXP_TABLE_BITS) in Q1.31 (unsigned), k = 0..2^FX_EXP_TABLE_BITS (fx.c). */
+extern const uint32_t fx_exp2_table[(1u << FX_EXP_TABLE_BITS) + 1u];
+
+/** exp(-a) for a in Q5.27 (values above 16 are clipped to 16), result Q1.31 unsigned in
+ *  [0, 2^31]. 2^-(a*log2 e): integer part by shift, fraction by a 257-entry table of 2^-k/256
+ *  with linear interpolation. Error <= 9.3e-7 relative + 2 LSB (tests/firmware/fixed).
+ *  Inline: it is the inner loop of the kernel blend. */
+/* log2(e) in Q1.31 (unsigned): round(1.4426950408889634 * 2^31). */
+#define FX_LOG2E_Q31 3098164009u
+
+static inline uint32_t fx_exp_neg_q27(uint32_t a_q27)
+{
+    const uint32_t a = (a_q27 > FX_EXP_ARG_MAX_Q27) ? FX_EXP_ARG_MAX_Q27 : a_q27;
+    /* y = a*log2(e) in Q.58, < 23.09 * 2^58 < 2^63: exact product, no rounding of the exponent */
+    const uint64_t y = (uint64_t)a * FX_LOG2E_Q31;
+    const uint32_t n = (uint32_t)(y >> 58);          /* integer part, 0..23 */
+    const uint32_t f = (uint32_t)(y >> 26);          /* fraction, Q.32 */
+    const uint32_t frac_bits = 32u - FX_EXP_TABLE_BITS;
+    const uint32_t k = f >> frac_bits;
+    const uint32_t r = f & ((1u << frac_bits) - 1u);
+    const uint32_t t0 = fx_exp2_table[k];
+    const uint32_t t1 = fx_exp2_table[k + 1u];
+    /* t0 - t1 < 2^23 and r < 2^24: the product needs 47 bits */
+    const uint32_t drop =
+        (uint32_t)(((uint64_t)(t0 - t1) * r + (1u << (frac_bits - 1u))) >> frac_bits);
+    const uint32_t m = t0 - drop;
+    if (n == 0u) {
+        return m;
+    }
+    return (m + (1u << (n - 1u))) >> n;
+}
+
+/** Unsigned 64/32 division rounded to nearest, n / d, for d > 0 and n < d * 2^32 - d/2 (the
+ *  quotient fits 32 bits). Uses only 32-bit divides (Hacker's Delight divlu): no libgcc call. */
+uint32_t fx_udiv64_32_round(uint64_t n, uint32_t d);
+
+/** Double -> fixed with frac_bits fraction bits, rounded to nearest; FS_ERR_FIXED_OVERFLOW if
+ *  |v| * 2^frac_bits does not fit [-limit, limit] (limit <= INT32_MAX) or v is not finite. */
+fs_status_t fx_from_double(double v, unsigned frac_bits, int32_t limit, int32_t *out);
+
+/** Fixed -> double (exact). */
+double fx_to_double(int64_t v, unsigned frac_bits);
+
+#endif /* FX_H */

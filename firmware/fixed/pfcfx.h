@@ -1,0 +1,60 @@
+/* Parallel force/position law (paper eqs. 2-5, firmware/core/pfc.h) in fixed point for the
+ * Cortex-M3 build: same structure, saturation and anti-windup rule as pfc_step.
+ * Formats: gains Q16.16 (kg, N*s/m, N/m, 1, 1/s), positions/velocities/accelerations Q8.24
+ * (m, m/s, m/s^2), forces Q16.16 N, force integral Q8.24 N*s, dt Q1.31 s. */
+#ifndef PFCFX_H
+#define PFCFX_H
+
+#include <stdint.h>
+#include "fx.h"
+#include "pfc.h"
+
+/** Gains and limits of one axis in fixed point. */
+typedef struct {
+    int32_t m_d_q16;
+    int32_t k_d_q16;
+    int32_t k_p_q16;
+    int32_t k_f_q16;
+    int32_t k_i_q16;
+    int32_t force_max_q16;
+    int32_t integral_max_q24;
+} pfcfx_axis_t;
+
+/** Complete fixed-point controller configuration. */
+typedef struct {
+    pfcfx_axis_t axis[PFC_AXES];
+    int32_t dt_q31;
+} pfcfx_config_t;
+
+/** Force-error integral per axis, Q8.24 N*s. */
+typedef struct {
+    int32_t force_err_integral_q24[PFC_AXES];
+} pfcfx_state_t;
+
+/** Reference of one axis (Q8.24 m, m/s, m/s^2; Q16.16 N). */
+typedef struct {
+    int32_t pos_q24;
+    int32_t vel_q24;
+    int32_t acc_q24;
+    int32_t force_q16;
+} pfcfx_ref_t;
+
+/** Measurement of one axis (Q8.24 m, m/s; Q16.16 N). */
+typedef struct {
+    int32_t pos_q24;
+    int32_t vel_q24;
+    int32_t force_q16;
+} pfcfx_meas_t;
+
+/** Convert a validated double configuration; FS_ERR_FIXED_CONFIG (303) if a gain or limit
+ *  does not fit (gains and force_max < 32768, integral_max < 128, dt < 1 s). */
+fs_status_t pfcfx_from_config(const pfc_config_t *cfg, pfcfx_config_t *out);
+
+/** Zero the integral state. */
+void pfcfx_reset(pfcfx_state_t *st);
+
+/** One control tick: saturated force command per axis (Q16.16 N) into force_cmd_q16[2]. */
+void pfcfx_step(const pfcfx_config_t *cfg, pfcfx_state_t *st, const pfcfx_ref_t ref[PFC_AXES],
+                const pfcfx_meas_t meas[PFC_AXES], int32_t force_cmd_q16[PFC_AXES]);
+
+#endif /* PFCFX_H */

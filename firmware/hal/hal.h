@@ -1,0 +1,67 @@
+/* The hardware contract of the forceskill firmware (what every port implements, like
+ * CANopenNode's CO_driver.h). The application (firmware/app) reaches hardware only through
+ * these functions; a port (firmware/ports/<target>) implements them over its drivers or over the
+ * simulator. All functions are non-blocking and called from the 1 kHz tick context only, so a
+ * port needs no locking unless its drivers run in interrupts (then CAN queues are the boundary).
+ *
+ * Units: positions m, forces N, time us. Axis 0 is x (constrained, into the object), axis 1 y. */
+#ifndef HAL_H
+#define HAL_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include "can_frame.h"
+#include "fls.h"
+#include "fs_real.h"
+
+#define HAL_AXES 2u
+
+/** One sample of every sensor, as the tick sees it (the port applies calibration). */
+typedef struct {
+    fs_real_t pos_m[HAL_AXES];             /* encoders */
+    fs_real_t force_contact_N[HAL_AXES];   /* tip sensor (x; y reads 0 where absent) */
+    fs_real_t force_operator_N[HAL_AXES];  /* handle sensor */
+} hal_sensors_t;
+
+/* ---- CAN (classic, 11-bit ids) ---- */
+
+/** Queue a frame for transmission; false if the transmit queue is full (retry next tick). */
+bool hal_can_send(const can_frame_t *frame);
+
+/** Take the next received frame; false if none. Frames arrive in bus order. */
+bool hal_can_receive(can_frame_t *frame);
+
+/** True while the CAN controller is bus-off. */
+bool hal_can_bus_off(void);
+
+/* ---- time ---- */
+
+/** Monotonic time in microseconds since power-up (wraps after 584,000 years). */
+uint64_t hal_time_us(void);
+
+/* ---- sensors and actuator ---- */
+
+/** Read all sensors (the latest samples). */
+void hal_sensors_read(hal_sensors_t *out);
+
+/** Enable (true) or disable (false) the actuator power stage. */
+void hal_actuator_enable(bool enable);
+
+/** Command the actuator force per axis; ignored while disabled. The caller has applied the limits. */
+void hal_actuator_force(const fs_real_t force_N[HAL_AXES]);
+
+/* ---- platform ---- */
+
+/** Fill buf with len unpredictable bytes (security seeds); 0 on success. */
+int hal_random(uint8_t *buf, uint32_t len);
+
+/** The flash region that holds the skill slots. */
+const fls_dev_t *hal_flash(void);
+
+/** The per-device secret of SecurityAccess (from protected storage); *len gets its length. */
+const uint8_t *hal_device_secret(uint8_t *len);
+
+/** Request a reset (ECUReset): the port restarts the firmware after the current tick. */
+void hal_request_reset(uint8_t type);
+
+#endif /* HAL_H */

@@ -1,0 +1,77 @@
+/* Semihosting calls: r0 = operation, r1 = argument, bkpt 0xAB. */
+#include "semihost.h"
+
+#define SH_SYS_WRITE0 0x04u
+#define SH_SYS_EXIT 0x18u
+#define SH_ADP_APPLICATION_EXIT 0x20026u
+#define SH_ADP_RUNTIME_ERROR 0x20023u
+#define SH_BUF_SIZE 1024u
+
+static char sh_buf[SH_BUF_SIZE + 1u];
+static uint32_t sh_len;
+
+static uint32_t sh_call(uint32_t op, uint32_t arg)
+{
+    register uint32_t r0 __asm__("r0") = op;
+    register uint32_t r1 __asm__("r1") = arg;
+    __asm__ volatile("bkpt 0xAB" : "+r"(r0) : "r"(r1) : "memory");
+    return r0;
+}
+
+void sh_puts(const char *s)
+{
+    (void)sh_call(SH_SYS_WRITE0, (uint32_t)(uintptr_t)s);
+}
+
+void sh_flush(void)
+{
+    if (sh_len > 0u) {
+        sh_buf[sh_len] = '\0';
+        sh_puts(sh_buf);
+        sh_len = 0u;
+    }
+}
+
+static void sh_putc(char c)
+{
+    if (sh_len >= SH_BUF_SIZE) {
+        sh_flush();
+    }
+    sh_buf[sh_len++] = c;
+}
+
+void sh_buf_str(const char *s)
+{
+    while (*s != '\0') {
+        sh_putc(*s++);
+    }
+}
+
+void sh_buf_u32(uint32_t v)
+{
+    char tmp[10];
+    uint32_t n = 0u;
+    do {
+        tmp[n++] = (char)('0' + (v % 10u));
+        v /= 10u;
+    } while (v != 0u);
+    while (n > 0u) {
+        sh_putc(tmp[--n]);
+    }
+}
+
+void sh_buf_hex32(uint32_t v)
+{
+    static const char digits[] = "0123456789abcdef";
+    for (int shift = 28; shift >= 0; shift -= 4) {
+        sh_putc(digits[(v >> (uint32_t)shift) & 0xFu]);
+    }
+}
+
+void sh_exit(int ok)
+{
+    sh_flush();
+    (void)sh_call(SH_SYS_EXIT, ok ? SH_ADP_APPLICATION_EXIT : SH_ADP_RUNTIME_ERROR);
+    for (;;) {
+    }
+}

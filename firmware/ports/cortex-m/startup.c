@@ -1,0 +1,65 @@
+/* Startup for Cortex-M3/M4F on qemu mps2-an385/an386: vector table, .data/.bss set-up, FPU
+ * enable (M4F), then main. Symbols from the linker scripts (mps2-an38x.ld). No libc start-up
+ * code (-nostartfiles): no heap, no constructors, no argv. */
+#include <stdint.h>
+
+#include "cm_bench.h"
+#include "semihost.h"
+
+extern uint32_t __data_load, __data_start, __data_end, __bss_start, __bss_end, __stack_top;
+int main(void);
+void Reset_Handler(void);
+void Default_Handler(void);
+void HardFault_Handler(void);
+void SysTick_Handler(void) __attribute__((weak, alias("Default_Handler")));
+
+
+#define SCB_CPACR (*(volatile uint32_t *)0xE000ED88u)
+
+void Reset_Handler(void)
+{
+    const uint32_t *src = &__data_load;
+    for (uint32_t *dst = &__data_start; dst < &__data_end;) {
+        *dst++ = *src++;
+    }
+    for (uint32_t *dst = &__bss_start; dst < &__bss_end;) {
+        *dst++ = 0u;
+    }
+#if defined(__ARM_FP)
+    SCB_CPACR |= (0xFu << 20); /* CP10, CP11 full access */
+    __asm__ volatile("dsb\n\tisb" ::: "memory");
+#endif
+    const int rc = main();
+    sh_exit(rc == 0);
+}
+
+void Default_Handler(void)
+{
+    sh_puts("fault: unexpected exception\n");
+    sh_exit(0);
+}
+
+void HardFault_Handler(void)
+{
+    sh_puts("fault: HardFault\n");
+    sh_exit(0);
+}
+
+typedef void (*cm_vector_t)(void);
+
+/* Cortex-M core vectors (16 entries); no external interrupt is enabled by these images. */
+__attribute__((section(".vectors"), used)) static const cm_vector_t cm_vectors[16] = {
+    (cm_vector_t)(uintptr_t)&__stack_top, /* initial main stack pointer */
+    Reset_Handler,
+    Default_Handler,   /* NMI */
+    HardFault_Handler, /* HardFault */
+    Default_Handler,   /* MemManage */
+    Default_Handler,   /* BusFault */
+    Default_Handler,   /* UsageFault */
+    0, 0, 0, 0,        /* reserved */
+    Default_Handler,   /* SVCall */
+    Default_Handler,   /* DebugMonitor */
+    0,                 /* reserved */
+    Default_Handler,   /* PendSV */
+    SysTick_Handler,   /* SysTick */
+};

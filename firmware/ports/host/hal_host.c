@@ -1,0 +1,145 @@
+/* Host port, common part (see hal_host.h). */
+#define _GNU_SOURCE
+#include "hal_host.h"
+
+#include <string.h>
+#include <sys/random.h>
+#include <time.h>
+
+#include "fls_ram.h"
+
+static struct {
+    bool manual_time;
+    uint64_t t_us;
+    hal_sensors_t sens;
+    bool act_enable;
+    fs_real_t act_force_N[HAL_AXES];
+    uint8_t secret[64];
+    uint8_t secret_len;
+    bool reset_requested;
+    uint8_t reset_type;
+} g;
+
+static fls_ram_t g_fls;
+static fls_dev_t g_dev;
+static uint8_t g_flash_mem[HAL_HOST_FLASH_SECTOR * HAL_HOST_FLASH_SECTORS];
+static bool g_flash_ready;
+
+void hal_host_init(void)
+{
+    memset(&g, 0, sizeof(g));
+    g.secret_len = (uint8_t)strlen(HAL_HOST_SECRET_DEFAULT);
+    memcpy(g.secret, HAL_HOST_SECRET_DEFAULT, g.secret_len);
+    if (!g_flash_ready) {
+        hal_host_flash_erase();
+    }
+}
+
+void hal_host_flash_erase(void)
+{
+    memset(g_flash_mem, 0xFF, sizeof(g_flash_mem));
+    fls_ram_init(&g_fls, &g_dev, g_flash_mem, HAL_HOST_FLASH_SECTOR, HAL_HOST_FLASH_SECTORS, 4u);
+    g_flash_ready = true;
+}
+
+void hal_host_set_time_us(uint64_t t_us)
+{
+    g.manual_time = true;
+    g.t_us = t_us;
+}
+
+uint64_t hal_time_us(void)
+{
+    if (g.manual_time) {
+        return g.t_us;
+    }
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (uint64_t)ts.tv_sec * 1000000u + (uint64_t)ts.tv_nsec / 1000u;
+}
+
+void hal_host_set_sensors(const hal_sensors_t *s)
+{
+    g.sens = *s;
+}
+
+void hal_sensors_read(hal_sensors_t *out)
+{
+    *out = g.sens;
+}
+
+void hal_actuator_enable(bool enable)
+{
+    g.act_enable = enable;
+    if (!enable) {
+        g.act_force_N[0] = FS_R(0.0);
+        g.act_force_N[1] = FS_R(0.0);
+    }
+}
+
+void hal_actuator_force(const fs_real_t force_N[HAL_AXES])
+{
+    if (g.act_enable) {
+        g.act_force_N[0] = force_N[0];
+        g.act_force_N[1] = force_N[1];
+    }
+}
+
+void hal_host_get_actuator(bool *enable, fs_real_t force_N[HAL_AXES])
+{
+    *enable = g.act_enable;
+    force_N[0] = g.act_force_N[0];
+    force_N[1] = g.act_force_N[1];
+}
+
+int hal_random(uint8_t *buf, uint32_t len)
+{
+    uint32_t done = 0u;
+    while (done < len) {
+        const ssize_t n = getrandom(buf + done, len - done, 0);
+        if (n <= 0) {
+            return -1;
+        }
+        done += (uint32_t)n;
+    }
+    return 0;
+}
+
+const fls_dev_t *hal_flash(void)
+{
+    if (!g_flash_ready) {
+        hal_host_flash_erase();
+    }
+    return &g_dev;
+}
+
+void hal_host_set_secret(const uint8_t *secret, uint8_t len)
+{
+    if (len > sizeof(g.secret)) {
+        len = (uint8_t)sizeof(g.secret);
+    }
+    memcpy(g.secret, secret, len);
+    g.secret_len = len;
+}
+
+const uint8_t *hal_device_secret(uint8_t *len)
+{
+    *len = g.secret_len;
+    return g.secret;
+}
+
+void hal_request_reset(uint8_t type)
+{
+    g.reset_requested = true;
+    g.reset_type = type;
+}
+
+bool hal_host_take_reset(uint8_t *type)
+{
+    if (!g.reset_requested) {
+        return false;
+    }
+    g.reset_requested = false;
+    *type = g.reset_type;
+    return true;
+}

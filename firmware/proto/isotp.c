@@ -1,0 +1,342 @@
+/* ISO-TP (ISO 15765-2), classic CAN, normal addressing (see isotp.h). */
+#include "isotp.h"
+
+#include <string.h>
+
+#define PCI_SF 0x0u
+#define PCI_FF 0x1u
+#define PCI_CF 0x2u
+#define PCI_FC 0x3u
+#define FC_CTS 0x0u
+#define FC_WAIT 0x1u
+#define FC_OVFLW 0x2u
+#define SF_MAX 7u
+#define FF_DATA 6u
+#define CF_DATA 7u
+
+void isotp_config_default(isotp_config_t *cfg, uint32_t tx_id, uint32_t rx_id)
+{
+    cfg->tx_id = tx_id;
+    cfg->rx_id = rx_id;
+    cfg->block_size = 0u;
+    cfg->st_min = 0u;
+    cfg->n_bs_us = ISOTP_DEFAULT_N_BS_US;
+    cfg->n_cr_us = ISOTP_DEFAULT_N_CR_US;
+    cfg->wft_max = ISOTP_DEFAULT_WFT_MAX;
+}
+
+void isotp_init(isotp_link_t *link, const isotp_config_t *cfg, isotp_send_fn send, void *send_ctx)
+{
+    memset(link, 0, sizeof(*link));
+    link->cfg = *cfg;
+    link->send = send;
+    link->send_ctx = send_ctx;
+}
+
+uint32_t isotp_stmin_to_us(uint8_t st_min)
+{
+    if (st_min <= 0x7Fu) {
+        return (uint32_t)st_min * 1000u;
+    }
+    if (st_min >= 0xF1u && st_min <= 0xF9u) {
+        return (uint32_t)(st_min - 0xF0u) * 100u;
+    }
+    return 127000u;
+}
+
+static void fail(isotp_link_t *link, proto_status_t err)
+{
+    link->last_error = err;
+    link->error_count++;
+}
+
+static bool emit(isotp_link_t *link, const uint8_t *payload, uint8_t n)
+{
+    can_frame_t f;
+    f.id = link->cfg.tx_id;
+    f.dlc = 8u;
+    memset(f.data, ISOTP_PADDING, sizeof(f.data));
+    memcpy(f.data, payload, n);
+    return link->send(link->send_ctx, &f);
+}
+
+static bool send_fc(isotp_link_t *link, uint8_t status)
+{
+    const uint8_t fc[3] = {(uint8_t)((PCI_FC << 4) | status), link->cfg.block_size, link->cfg.st_min};
+    return emit(link, fc, 3u);
+}
+
+/* ---- reception ---- */
+
+static void rx_single(isotp_link_t *link, const can_frame_t *f)
+{
+    const uint8_t len = (uint8_t)(f->data[0] & 0x0Fu);
+    if (len == 0u || len > SF_MAX || (uint8_t)(len + 1u) > f->dlc) {
+        fail(link, PROTO_ERR_ISOTP_FORMAT);
+        return;
+    }
+    if (link->rx_state == ISOTP_RX_RECEIVING) {
+        fail(link, PROTO_ERR_ISOTP_UNEXPECTED);   /* ISO 15765-2: a new SF aborts a reception */
+    }
+    memcpy(link->rx_buf, &f->data[1], len);
+    link->rx_len = len;
+    link->rx_pos = len;
+    link->rx_state = ISOTP_RX_DONE;
+}
+
+static void rx_first(isotp_link_t *link, const can_frame_t *f, uint64_t now_us)
+{
+    if (f->dlc < 8u) {
+        fail(link, PROTO_ERR_ISOTP_FORMAT);
+        return;
+    }
+    const uint16_t len = (uint16_t)(((uint16_t)(f->data[0] & 0x0Fu) << 8) | f->data[1]);
+    if (len == 0u) {
+        /* 32-bit escape length: longer than any buffer here */
+        fail(link, PROTO_ERR_ISOTP_OVERFLOW);
+        link->rx_state = ISOTP_RX_IDLE;
+        (void)send_fc(link, FC_OVFLW);
+        return;
+    }
+    if (len <= SF_MAX) {
+        fail(link, PROTO_ERR_ISOTP_FORMAT);       /* would have fitted a single frame */
+        return;
+    }
+    if (len > ISOTP_MAX_PAYLOAD) {
+        fail(link, PROTO_ERR_ISOTP_OVERFLOW);
+        link->rx_state = ISOTP_RX_IDLE;
+        (void)send_fc(link, FC_OVFLW);
+        return;
+    }
+    if (link->rx_state == ISOTP_RX_RECEIVING) {
+        fail(link, PROTO_ERR_ISOTP_UNEXPECTED);   /* a new FF aborts a reception */
+    }
+    memcpy(link->rx_buf, &f->data[2], FF_DATA);
+    link->rx_len = len;
+    link->rx_pos = FF_DATA;
+    link->rx_sn = 1u;
+    link->rx_bs_left = link->cfg.block_size;
+    link->rx_state = ISOTP_RX_RECEIVING;
+    link->rx_deadline_us = now_us + link->cfg.n_cr_us;
+    link->rx_fc_status = FC_CTS;
+    link->rx_fc_pending = !send_fc(link, FC_CTS);
+}
+
+static void rx_consecutive(isotp_link_t *link, const can_frame_t *f, uint64_t now_us)
+{
+    if (link->rx_state != ISOTP_RX_RECEIVING) {
+        return;                                   /* not for a reception in progress: ignore */
+    }
+    const uint8_t sn = (uint8_t)(f->data[0] & 0x0Fu);
+    if (sn != link->rx_sn) {
+        fail(link, PROTO_ERR_ISOTP_WRONG_SN);
+        link->rx_state = ISOTP_RX_IDLE;
+        return;
+    }
+    const uint16_t remaining = (uint16_t)(link->rx_len - link->rx_pos);
+    const uint8_t n = (uint8_t)(remaining < CF_DATA ? remaining : CF_DATA);
+    if ((uint8_t)(n + 1u) > f->dlc) {
+        fail(link, PROTO_ERR_ISOTP_FORMAT);
+        link->rx_state = ISOTP_RX_IDLE;
+        return;
+    }
+    memcpy(&link->rx_buf[link->rx_pos], &f->data[1], n);
+    link->rx_pos = (uint16_t)(link->rx_pos + n);
+    link->rx_sn = (uint8_t)((link->rx_sn + 1u) & 0x0Fu);
+    link->rx_deadline_us = now_us + link->cfg.n_cr_us;
+    if (link->rx_pos >= link->rx_len) {
+        link->rx_state = ISOTP_RX_DONE;
+        return;
+    }
+    if (link->cfg.block_size != 0u) {
+        link->rx_bs_left--;
+        if (link->rx_bs_left == 0u) {
+            link->rx_bs_left = link->cfg.block_size;
+            link->rx_fc_status = FC_CTS;
+            link->rx_fc_pending = !send_fc(link, FC_CTS);
+        }
+    }
+}
+
+/* ---- transmission ---- */
+
+static void tx_flow_control(isotp_link_t *link, const can_frame_t *f, uint64_t now_us)
+{
+    if (link->tx_state != ISOTP_TX_WAIT_FC) {
+        fail(link, PROTO_ERR_ISOTP_UNEXPECTED);   /* unexpected FC: ignored */
+        return;
+    }
+    if (f->dlc < 3u) {
+        fail(link, PROTO_ERR_ISOTP_FORMAT);
+        link->tx_state = ISOTP_TX_IDLE;
+        return;
+    }
+    const uint8_t status = (uint8_t)(f->data[0] & 0x0Fu);
+    if (status == FC_CTS) {
+        link->tx_bs = f->data[1];
+        link->tx_bs_left = f->data[1];
+        link->tx_stmin_us = isotp_stmin_to_us(f->data[2]);
+        link->tx_wft = 0u;
+        link->tx_state = ISOTP_TX_SENDING;
+        link->tx_next_us = now_us;                /* the first CF may follow the FC at once */
+    } else if (status == FC_WAIT) {
+        link->tx_wft++;
+        if (link->tx_wft > link->cfg.wft_max) {
+            fail(link, PROTO_ERR_ISOTP_WFT);
+            link->tx_state = ISOTP_TX_IDLE;
+        } else {
+            link->tx_deadline_us = now_us + link->cfg.n_bs_us;
+        }
+    } else if (status == FC_OVFLW) {
+        fail(link, PROTO_ERR_ISOTP_OVERFLOW);
+        link->tx_state = ISOTP_TX_IDLE;
+    } else {
+        fail(link, PROTO_ERR_ISOTP_FORMAT);       /* reserved flow status: abort */
+        link->tx_state = ISOTP_TX_IDLE;
+    }
+}
+
+void isotp_on_frame(isotp_link_t *link, const can_frame_t *frame, uint64_t now_us)
+{
+    if (frame->id != link->cfg.rx_id || frame->dlc == 0u || frame->dlc > CAN_MAX_DLC) {
+        return;
+    }
+    switch ((uint8_t)(frame->data[0] >> 4)) {
+    case PCI_SF:
+        if (link->rx_state == ISOTP_RX_DONE) {
+            fail(link, PROTO_ERR_ISOTP_UNEXPECTED);   /* previous message not consumed yet */
+        } else {
+            rx_single(link, frame);
+        }
+        break;
+    case PCI_FF:
+        if (link->rx_state == ISOTP_RX_DONE) {
+            fail(link, PROTO_ERR_ISOTP_UNEXPECTED);
+        } else {
+            rx_first(link, frame, now_us);
+        }
+        break;
+    case PCI_CF:
+        rx_consecutive(link, frame, now_us);
+        break;
+    case PCI_FC:
+        tx_flow_control(link, frame, now_us);
+        break;
+    default:
+        fail(link, PROTO_ERR_ISOTP_FORMAT);           /* reserved PCI type: ignored */
+        break;
+    }
+}
+
+static void tx_run(isotp_link_t *link, uint64_t now_us)
+{
+    if (link->tx_state == ISOTP_TX_SEND_FIRST && link->tx_len <= SF_MAX) {
+        uint8_t sf[8];
+        sf[0] = (uint8_t)((PCI_SF << 4) | link->tx_len);
+        memcpy(&sf[1], link->tx_buf, link->tx_len);
+        if (emit(link, sf, (uint8_t)(link->tx_len + 1u))) {
+            link->tx_state = ISOTP_TX_IDLE;      /* else: driver full, retried on the next poll */
+        }
+        return;
+    }
+    if (link->tx_state == ISOTP_TX_SEND_FIRST) {
+        uint8_t ff[8];
+        ff[0] = (uint8_t)((PCI_FF << 4) | ((link->tx_len >> 8) & 0x0Fu));
+        ff[1] = (uint8_t)(link->tx_len & 0xFFu);
+        memcpy(&ff[2], link->tx_buf, FF_DATA);
+        if (emit(link, ff, 8u)) {
+            link->tx_pos = FF_DATA;
+            link->tx_sn = 1u;
+            link->tx_wft = 0u;
+            link->tx_state = ISOTP_TX_WAIT_FC;
+            link->tx_deadline_us = now_us + link->cfg.n_bs_us;
+        }
+        return;
+    }
+    /* Consecutive frames: as many as STmin allows now, up to the block size, while the driver
+     * accepts them. Bounded by the message length. */
+    while (link->tx_state == ISOTP_TX_SENDING && now_us >= link->tx_next_us) {
+        uint8_t cf[8];
+        const uint16_t remaining = (uint16_t)(link->tx_len - link->tx_pos);
+        const uint8_t n = (uint8_t)(remaining < CF_DATA ? remaining : CF_DATA);
+        cf[0] = (uint8_t)((PCI_CF << 4) | link->tx_sn);
+        memcpy(&cf[1], &link->tx_buf[link->tx_pos], n);
+        if (!emit(link, cf, (uint8_t)(n + 1u))) {
+            return;                                  /* driver full: retry on the next poll */
+        }
+        link->tx_pos = (uint16_t)(link->tx_pos + n);
+        link->tx_sn = (uint8_t)((link->tx_sn + 1u) & 0x0Fu);
+        link->tx_next_us = now_us + link->tx_stmin_us;
+        if (link->tx_pos >= link->tx_len) {
+            link->tx_state = ISOTP_TX_IDLE;
+            return;
+        }
+        if (link->tx_bs != 0u) {
+            link->tx_bs_left--;
+            if (link->tx_bs_left == 0u) {
+                link->tx_state = ISOTP_TX_WAIT_FC;
+                link->tx_deadline_us = now_us + link->cfg.n_bs_us;
+                return;
+            }
+        }
+        if (link->tx_stmin_us != 0u) {
+            return;                                  /* next CF after STmin: a later poll */
+        }
+    }
+}
+
+void isotp_poll(isotp_link_t *link, uint64_t now_us)
+{
+    if (link->rx_state == ISOTP_RX_RECEIVING) {
+        if (link->rx_fc_pending) {
+            link->rx_fc_pending = !send_fc(link, link->rx_fc_status);
+        }
+        if (now_us > link->rx_deadline_us) {
+            fail(link, PROTO_ERR_ISOTP_TIMEOUT_CR);
+            link->rx_state = ISOTP_RX_IDLE;
+        }
+    }
+    if (link->tx_state == ISOTP_TX_WAIT_FC && now_us > link->tx_deadline_us) {
+        fail(link, PROTO_ERR_ISOTP_TIMEOUT_BS);
+        link->tx_state = ISOTP_TX_IDLE;
+    }
+    if (link->tx_state == ISOTP_TX_SEND_FIRST || link->tx_state == ISOTP_TX_SENDING) {
+        tx_run(link, now_us);
+    }
+}
+
+proto_status_t isotp_send(isotp_link_t *link, const uint8_t *data, uint16_t len, uint64_t now_us)
+{
+    if (link->tx_state != ISOTP_TX_IDLE) {
+        return PROTO_ERR_ISOTP_BUSY;
+    }
+    if (len == 0u || len > ISOTP_MAX_PAYLOAD) {
+        return PROTO_ERR_ISOTP_OVERFLOW;
+    }
+    memcpy(link->tx_buf, data, len);
+    link->tx_len = len;
+    link->tx_state = ISOTP_TX_SEND_FIRST;
+    tx_run(link, now_us);
+    return PROTO_OK;
+}
+
+bool isotp_tx_busy(const isotp_link_t *link)
+{
+    return link->tx_state != ISOTP_TX_IDLE;
+}
+
+uint16_t isotp_rx_peek(const isotp_link_t *link, const uint8_t **data)
+{
+    if (link->rx_state != ISOTP_RX_DONE) {
+        return 0u;
+    }
+    *data = link->rx_buf;
+    return link->rx_len;
+}
+
+void isotp_rx_release(isotp_link_t *link)
+{
+    if (link->rx_state == ISOTP_RX_DONE) {
+        link->rx_state = ISOTP_RX_IDLE;
+    }
+}

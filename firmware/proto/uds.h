@@ -1,0 +1,143 @@
+/* UDS server (ISO 14229-1) over one ISO-TP link. The server checks sessions, security, lengths
+ * and transfer sequencing; everything device-specific (data identifiers, routines, slot
+ * storage, seed/key, reset) is delegated to the application through uds_app_t, which answers
+ * with 0 (positive) or a negative response code. Every refusal is a specific NRC, never silence
+ * (except when the request suppresses the positive response, ISO 14229 bit 0x80).
+ *
+ * Services: 0x10 DiagnosticSessionControl, 0x11 ECUReset, 0x27 SecurityAccess,
+ * 0x22/0x2E Read/WriteDataByIdentifier, 0x31 RoutineControl, 0x34 RequestDownload,
+ * 0x35 RequestUpload, 0x36 TransferData, 0x37 RequestTransferExit, 0x3E TesterPresent.
+ * Session rules (docs/protocol.md): 0x2E, 0x27 need a non-default session; 0x34-0x37 need the
+ * programming session; writes and downloads need security unlocked. */
+#ifndef UDS_H
+#define UDS_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+/* Service identifiers */
+#define UDS_SID_DSC 0x10u
+#define UDS_SID_ECU_RESET 0x11u
+#define UDS_SID_SECURITY 0x27u
+#define UDS_SID_RDBI 0x22u
+#define UDS_SID_WDBI 0x2Eu
+#define UDS_SID_ROUTINE 0x31u
+#define UDS_SID_REQ_DOWNLOAD 0x34u
+#define UDS_SID_REQ_UPLOAD 0x35u
+#define UDS_SID_TRANSFER_DATA 0x36u
+#define UDS_SID_TRANSFER_EXIT 0x37u
+#define UDS_SID_TESTER_PRESENT 0x3Eu
+#define UDS_NEGATIVE_RESPONSE 0x7Fu
+#define UDS_SUPPRESS_POS 0x80u
+
+/* Negative response codes used by this server */
+#define UDS_NRC_OK 0x00u
+#define UDS_NRC_SERVICE_NOT_SUPPORTED 0x11u
+#define UDS_NRC_SUBFUNCTION_NOT_SUPPORTED 0x12u
+#define UDS_NRC_INCORRECT_LENGTH 0x13u
+#define UDS_NRC_RESPONSE_TOO_LONG 0x14u
+#define UDS_NRC_CONDITIONS_NOT_CORRECT 0x22u
+#define UDS_NRC_REQUEST_SEQUENCE_ERROR 0x24u
+#define UDS_NRC_REQUEST_OUT_OF_RANGE 0x31u
+#define UDS_NRC_SECURITY_ACCESS_DENIED 0x33u
+#define UDS_NRC_INVALID_KEY 0x35u
+#define UDS_NRC_EXCEEDED_ATTEMPTS 0x36u
+#define UDS_NRC_DELAY_NOT_EXPIRED 0x37u
+#define UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED 0x70u
+#define UDS_NRC_TRANSFER_SUSPENDED 0x71u
+#define UDS_NRC_PROGRAMMING_FAILURE 0x72u
+#define UDS_NRC_WRONG_BLOCK_COUNTER 0x73u
+#define UDS_NRC_SUBFUNCTION_NOT_IN_SESSION 0x7Eu
+#define UDS_NRC_SERVICE_NOT_IN_SESSION 0x7Fu
+
+/* Sessions */
+#define UDS_SESSION_DEFAULT 0x01u
+#define UDS_SESSION_PROGRAMMING 0x02u
+#define UDS_SESSION_EXTENDED 0x03u
+
+/* Security levels (requestSeed sub-function; sendKey is level + 1) */
+#define UDS_SEC_LEVEL_WRITE 0x01u      /* skills, gains, limits: extended or programming session */
+#define UDS_SEC_LEVEL_FIRMWARE 0x03u   /* firmware images: programming session only */
+
+/* Routine identifiers (0x31) */
+#define UDS_RID_RUN_SKILL 0x0201u      /* start: slot u8, goal_scale u16 (1e-3), time_scale u16 (1e-3), end u8 */
+#define UDS_RID_RUN_SEQUENCE 0x0202u   /* start: end u8, then per step slot u8, goal u16, time u16, duration_ms u32 */
+#define UDS_RID_SELF_TEST 0x0203u      /* start: runs the checks; results: status u8, code u16 */
+#define UDS_RID_CLEAR_FAULTS 0x0204u   /* start: clear latched faults (refused while a cause persists) */
+#define UDS_RID_ERASE_SLOT 0xFF00u     /* start: slot u8 (security level 1) */
+#define UDS_ROUTINE_START 0x01u
+#define UDS_ROUTINE_STOP 0x02u
+#define UDS_ROUTINE_RESULTS 0x03u
+
+/* Timing reported in the DSC response and enforced by the server */
+#define UDS_P2_MS 50u
+#define UDS_P2_STAR_MS 5000u
+#define UDS_S3_MS 5000u                /* non-default session falls back after this silence */
+
+/* Transfer block size announced in 0x74/0x75 responses: bytes per 0x36 request incl. SID and
+ * counter; fits one ISO-TP message. */
+#define UDS_MAX_BLOCK_LENGTH 4095u
+
+/** Device hooks. Each returns UDS_NRC_OK or a negative response code. Output buffers have the
+ *  capacity given; *out_len receives the bytes written. */
+typedef struct {
+    void *ctx;
+    uint8_t (*read_did)(void *ctx, uint16_t did, uint8_t *out, uint16_t cap, uint16_t *out_len);
+    /** Write a DID; called only in a non-default session with security unlocked. */
+    uint8_t (*write_did)(void *ctx, uint16_t did, const uint8_t *data, uint16_t len);
+    /** RoutineControl; sub is 1 start, 2 stop, 3 results. */
+    uint8_t (*routine)(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *data, uint16_t len,
+                       uint8_t *out, uint16_t cap, uint16_t *out_len);
+    /** May the session change now (e.g. refused while executing)? */
+    uint8_t (*session_allowed)(void *ctx, uint8_t session);
+    /** Check an ECU reset (1 hard, 3 soft); the reset itself happens in reset_now after the
+     *  positive response has been sent. */
+    uint8_t (*ecu_reset)(void *ctx, uint8_t type);
+    void (*reset_now)(void *ctx, uint8_t type);
+    /** Security: produce a seed for level, then check a key (the module keeps attempt counters
+     *  and delays; it answers 0x35, 0x36 or 0x37). */
+    uint8_t (*security_seed)(void *ctx, uint8_t level, uint8_t *seed, uint16_t cap, uint16_t *len);
+    uint8_t (*security_key)(void *ctx, uint8_t level, const uint8_t *key, uint16_t len);
+    /** Download of size bytes into memory/slot address addr (0x34): accept or refuse. */
+    uint8_t (*download_begin)(void *ctx, uint32_t addr, uint32_t size);
+    uint8_t (*download_data)(void *ctx, uint32_t offset, const uint8_t *data, uint16_t len);
+    /** End of transfer: validate (e.g. skill_parse) and commit; on refusal keep the old data. */
+    uint8_t (*download_end)(void *ctx, uint32_t *crc32_out);
+    void (*transfer_abort)(void *ctx);
+    /** Upload of size bytes from addr (0x35). */
+    uint8_t (*upload_begin)(void *ctx, uint32_t addr, uint32_t size);
+    uint8_t (*upload_data)(void *ctx, uint32_t offset, uint8_t *out, uint16_t len);
+} uds_app_t;
+
+typedef enum { UDS_XFER_NONE = 0, UDS_XFER_DOWNLOAD = 1, UDS_XFER_UPLOAD = 2 } uds_xfer_t;
+
+/** Server state. */
+typedef struct {
+    uds_app_t app;
+    uint8_t session;
+    uint8_t unlocked_level;      /* 0: locked, else the level unlocked */
+    uint8_t seed_level;          /* level whose seed was sent and awaits a key, 0 if none */
+    uint32_t last_request_ms;
+    uds_xfer_t xfer;
+    uint32_t xfer_size;
+    uint32_t xfer_pos;
+    uint8_t xfer_counter;        /* counter expected next */
+    uint16_t xfer_last_len;      /* length of the last accepted block (for a repeated counter) */
+    uint8_t pending_reset;       /* reset type to perform after the response, 0 if none */
+} uds_server_t;
+
+/** Initialise in the default session, locked, no transfer. */
+void uds_server_init(uds_server_t *srv, const uds_app_t *app);
+
+/** Handle one request; writes the response (positive or 7F SID NRC) into resp and returns its
+ *  length (0: no response, suppressed). resp_cap must be >= 3. */
+uint16_t uds_server_handle(uds_server_t *srv, const uint8_t *req, uint16_t len, uint8_t *resp,
+                           uint16_t resp_cap, uint32_t now_ms);
+
+/** Call after the response has been handed to the transport: performs a pending ECU reset. */
+void uds_server_after_response(uds_server_t *srv);
+
+/** Session timeout (S3): back to default, locked, transfer aborted. Call every tick. */
+void uds_server_poll(uds_server_t *srv, uint32_t now_ms);
+
+#endif /* UDS_H */

@@ -1,0 +1,166 @@
+/* Limits at the last stage before the actuator: see lim.h. */
+#include "lim.h"
+
+#include <stddef.h>
+
+void lim_default_config(lim_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return;
+    }
+    for (uint32_t i = 0u; i < LIM_AXES; i++) {
+        cfg->axis[i].force_max_N = FS_R(50.0);
+        cfg->axis[i].slew_max_N = FS_R(2.0);
+        cfg->axis[i].pos_min_m = FS_R(-0.5);
+        cfg->axis[i].pos_max_m = FS_R(0.5);
+        cfg->axis[i].vel_max_mps = FS_R(1.0);
+        cfg->axis[i].contact_force_max_N = FS_R(60.0);
+    }
+    cfg->slew_fault_ticks = 50u;
+}
+
+saf_status_t lim_config_validate(const lim_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return SAF_ERR_NULL_ARG;
+    }
+    for (uint32_t i = 0u; i < LIM_AXES; i++) {
+        const lim_axis_t *a = &cfg->axis[i];
+        const fs_real_t v[6] = {a->force_max_N, a->slew_max_N, a->pos_min_m,
+                                a->pos_max_m,   a->vel_max_mps, a->contact_force_max_N};
+        for (uint32_t j = 0u; j < 6u; j++) {
+            if (!fs_isfinite(v[j])) {
+                return SAF_ERR_NOT_FINITE;
+            }
+        }
+        if (!(a->force_max_N > FS_R(0.0)) || !(a->slew_max_N > FS_R(0.0)) ||
+            !(a->vel_max_mps > FS_R(0.0)) || !(a->contact_force_max_N > FS_R(0.0))) {
+            return SAF_ERR_NONPOSITIVE;
+        }
+        if (!(a->pos_min_m < a->pos_max_m)) {
+            return SAF_ERR_WORKSPACE;
+        }
+        if (a->force_max_N > (fs_real_t)LIM_FORCE_CEILING_N) {
+            return SAF_ERR_FORCE_MAX;
+        }
+    }
+    return SAF_OK;
+}
+
+void lim_reset(lim_state_t *st)
+{
+    if (st == NULL) {
+        return;
+    }
+    for (uint32_t i = 0u; i < LIM_AXES; i++) {
+        st->out_N[i] = FS_R(0.0);
+        st->slew_run[i] = 0u;
+    }
+}
+
+/* A usable positive bound from a configuration value: NaN, inf or <= 0 give 0, so a corrupted
+ * configuration can only make the output smaller, never non-finite. */
+static fs_real_t safe_bound(fs_real_t b)
+{
+    return (fs_isfinite(b) && b > FS_R(0.0)) ? b : FS_R(0.0);
+}
+
+static fs_real_t clamp_sym(fs_real_t x, fs_real_t b)
+{
+    if (x > b) {
+        return b;
+    }
+    if (x < -b) {
+        return -b;
+    }
+    return x;
+}
+
+lim_result_t lim_apply(const lim_config_t *cfg, lim_state_t *st, const fs_real_t req_N[LIM_AXES],
+                       const pfc_axis_meas_t meas[LIM_AXES], fs_real_t out_N[LIM_AXES])
+{
+    lim_result_t r = {0u, 0u};
+    if (out_N == NULL) {
+        return r;
+    }
+    if (cfg == NULL || st == NULL || req_N == NULL) {
+        for (uint32_t i = 0u; i < LIM_AXES; i++) {
+            out_N[i] = FS_R(0.0);
+        }
+        return r;
+    }
+    for (uint32_t i = 0u; i < LIM_AXES; i++) {
+        const lim_axis_t *a = &cfg->axis[i];
+        const fs_real_t fmax = safe_bound(a->force_max_N);
+        const fs_real_t slew = safe_bound(a->slew_max_N);
+        fs_real_t target = req_N[i];
+        if (!fs_isfinite(target)) {
+            r.flags |= LIM_F_NOT_FINITE;
+            r.cause_mask |= FLT_BIT(FLT_CMD_NOT_FINITE);
+            target = FS_R(0.0);
+        }
+        if (target > fmax || target < -fmax) {
+            r.flags |= LIM_F_FORCE;
+            target = clamp_sym(target, fmax);
+        }
+        if (meas != NULL) {
+            const fs_real_t pos = meas[i].pos_m;
+            const fs_real_t vel = meas[i].vel_mps;
+            const fs_real_t f = meas[i].force_N;
+            /* Comparisons with NaN are false: a NaN reading never gates here (sen_check
+             * latches FLT_SENSOR_NAN and the stop ramp takes over). */
+            if (pos > a->pos_max_m || pos < a->pos_min_m) {
+                r.cause_mask |= FLT_BIT(FLT_WORKSPACE);
+                if ((pos > a->pos_max_m && target > FS_R(0.0)) ||
+                    (pos < a->pos_min_m && target < FS_R(0.0))) {
+                    r.flags |= LIM_F_WORKSPACE;
+                    target = FS_R(0.0);
+                }
+            }
+            if (vel > a->vel_max_mps || vel < -a->vel_max_mps) {
+                r.cause_mask |= FLT_BIT(FLT_VELOCITY);
+                if ((vel > FS_R(0.0) && target > FS_R(0.0)) ||
+                    (vel < FS_R(0.0) && target < FS_R(0.0))) {
+                    r.flags |= LIM_F_VELOCITY;
+                    target = FS_R(0.0);
+                }
+            }
+            if (f > a->contact_force_max_N || f < -a->contact_force_max_N) {
+                r.cause_mask |= FLT_BIT(FLT_FORCE_LIMIT);
+            }
+        }
+        /* Slew relative to the last output (sanitised: it is this module's own state, but a
+         * corrupted value must not propagate). */
+        fs_real_t prev = st->out_N[i];
+        if (!fs_isfinite(prev)) {
+            prev = FS_R(0.0);
+        }
+        prev = clamp_sym(prev, fmax);
+        fs_real_t out = target;
+        if (target - prev > slew) {
+            out = prev + slew;
+            r.flags |= LIM_F_SLEW;
+        } else if (target - prev < -slew) {
+            out = prev - slew;
+            r.flags |= LIM_F_SLEW;
+        }
+        /* Leaky bucket: +2 when the slew limit binds, -1 otherwise. Binding every tick trips
+         * after slew_fault_ticks; an oscillation binding every other tick after about
+         * 4*slew_fault_ticks; a single large step (e.g. 0 -> 50 N, 25 ticks) never. */
+        if ((r.flags & LIM_F_SLEW) != 0u &&
+            (target - prev > slew || target - prev < -slew)) {
+            st->slew_run[i] = (uint16_t)((st->slew_run[i] <= UINT16_MAX - 2u) ? st->slew_run[i] + 2u
+                                                                             : UINT16_MAX);
+        } else if (st->slew_run[i] > 0u) {
+            st->slew_run[i]--;
+        }
+        if (cfg->slew_fault_ticks != 0u &&
+            (uint32_t)st->slew_run[i] >= 2u * (uint32_t)cfg->slew_fault_ticks) {
+            r.cause_mask |= FLT_BIT(FLT_SLEW_LIMIT);
+        }
+        out = clamp_sym(out, fmax);
+        st->out_N[i] = out;
+        out_N[i] = out;
+    }
+    return r;
+}

@@ -1,0 +1,213 @@
+/* Safety supervisor: see saf.h. */
+#include "saf.h"
+
+#include <stddef.h>
+
+void saf_default_config(saf_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return;
+    }
+    lim_default_config(&cfg->lim);
+    sen_default_config(&cfg->sen);
+    wdg_default_config(&cfg->wdg);
+}
+
+saf_status_t saf_config_validate(const saf_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return SAF_ERR_NULL_ARG;
+    }
+    saf_status_t s = lim_config_validate(&cfg->lim);
+    if (s != SAF_OK) {
+        return s;
+    }
+    s = sen_config_validate(&cfg->sen);
+    if (s != SAF_OK) {
+        return s;
+    }
+    s = wdg_config_validate(&cfg->wdg);
+    if (s != SAF_OK) {
+        return s;
+    }
+    /* The stop ramp must not be slower than the slew limit allows in the other direction: a
+     * restart after a clear climbs at slew_max, and the ramp from force_max takes
+     * force_max/n per tick; both are bounded by slew_max so the actuator never sees a step
+     * larger than the configured slew. */
+    const fs_real_t n = (fs_real_t)wdg_ramp_ticks(&cfg->wdg);
+    for (uint32_t i = 0u; i < LIM_AXES; i++) {
+        if (cfg->lim.axis[i].slew_max_N * n < cfg->lim.axis[i].force_max_N) {
+            return SAF_ERR_RAMP;
+        }
+    }
+    return SAF_OK;
+}
+
+void saf_init(saf_state_t *st)
+{
+    if (st == NULL) {
+        return;
+    }
+    flt_init(&st->flt);
+    lim_reset(&st->lim);
+    sen_reset(&st->sen);
+    wdg_init(&st->wdg);
+    st->ramp.active = 0u;
+    st->ramp.k = 0u;
+    st->ramp.n_ticks = 1u;
+    for (uint32_t i = 0u; i < PFC_AXES; i++) {
+        st->ramp.from_N[i] = FS_R(0.0);
+        st->ramp.out_N[i] = FS_R(0.0);
+        st->last_cmd_N[i] = FS_R(0.0);
+    }
+    st->cause_mask = 0u;
+    st->actuator_enabled = true;
+    st->hold_zero = false;
+}
+
+static void latch_causes(flt_state_t *flt, uint32_t cause, uint32_t tick)
+{
+    for (uint32_t i = 0u; i < FLT_COUNT; i++) {
+        if ((cause & (1u << i)) != 0u) {
+            (void)flt_raise(flt, (flt_code_t)(FLT_CODE_FIRST + i), tick);
+        }
+    }
+}
+
+void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, saf_output_t *out)
+{
+    if (out == NULL) {
+        return;
+    }
+    if (cfg == NULL || st == NULL || in == NULL) {
+        for (uint32_t i = 0u; i < PFC_AXES; i++) {
+            out->force_cmd_N[i] = FS_R(0.0);
+        }
+        out->actuator_enable = false;
+        out->stopping = true;
+        out->fault_code = 0u;
+        out->cause_mask = 0u;
+        out->lim_flags = 0u;
+        return;
+    }
+    uint32_t cause = 0u;
+    if (in->host_frame) {
+        wdg_kick(&st->wdg, in->now_ms);
+    }
+    if (wdg_expired(&cfg->wdg, &st->wdg, in->now_ms)) {
+        cause |= FLT_BIT(FLT_HOST_SILENCE);
+    }
+    if (in->bus_off) {
+        cause |= FLT_BIT(FLT_BUS_OFF);
+    }
+    if (in->tick_overrun) {
+        cause |= FLT_BIT(FLT_TICK_OVERRUN);
+    }
+    if (in->skill_invalid) {
+        cause |= FLT_BIT(FLT_SKILL_INVALID);
+    }
+    if (in->storage_error) {
+        cause |= FLT_BIT(FLT_STORAGE);
+    }
+    cause |= sen_check(&cfg->sen, &st->sen, in->meas);
+
+    fs_real_t req[PFC_AXES];
+    bool req_zero = true;
+    for (uint32_t i = 0u; i < PFC_AXES; i++) {
+        req[i] = in->force_req_N[i];
+        if (!(req[i] <= (fs_real_t)SAF_REARM_N && req[i] >= -(fs_real_t)SAF_REARM_N)) {
+            req_zero = false;
+        }
+    }
+    if (st->hold_zero) {
+        if (req_zero) {
+            st->hold_zero = false;
+        } else {
+            for (uint32_t i = 0u; i < PFC_AXES; i++) {
+                req[i] = FS_R(0.0);
+            }
+        }
+    }
+    /* While stopping (a fault latched or a cause seen this tick) the request is ignored: the
+     * limiter still runs for its measurement checks (workspace, velocity, contact force), but
+     * sees a zero request, and its slew-binding bucket is not charged by the ramp. */
+    const bool stopping = flt_active(&st->flt) || cause != 0u;
+    if (stopping) {
+        for (uint32_t i = 0u; i < PFC_AXES; i++) {
+            req[i] = FS_R(0.0);
+        }
+    }
+    fs_real_t lim_out[PFC_AXES];
+    const lim_result_t lr = lim_apply(&cfg->lim, &st->lim, req, in->meas, lim_out);
+    if (stopping) {
+        for (uint32_t i = 0u; i < LIM_AXES; i++) {
+            st->lim.slew_run[i] = 0u;
+        }
+        cause |= lr.cause_mask & ~FLT_BIT(FLT_SLEW_LIMIT);
+    } else {
+        cause |= lr.cause_mask;
+    }
+    st->cause_mask = cause;
+    latch_causes(&st->flt, cause, in->tick);
+
+    fs_real_t cmd[PFC_AXES];
+    if (flt_active(&st->flt)) {
+        if (st->actuator_enabled) {
+            if (st->ramp.active == 0u) {
+                wdg_ramp_start(&st->ramp, &cfg->wdg, st->last_cmd_N);
+            }
+            if (wdg_ramp_step(&st->ramp, cmd)) {
+                st->actuator_enabled = false;
+            }
+        } else {
+            for (uint32_t i = 0u; i < PFC_AXES; i++) {
+                cmd[i] = FS_R(0.0);
+            }
+        }
+        /* Keep the limiter's slew reference on what the actuator really got. */
+        for (uint32_t i = 0u; i < PFC_AXES; i++) {
+            st->lim.out_N[i] = cmd[i];
+        }
+    } else {
+        for (uint32_t i = 0u; i < PFC_AXES; i++) {
+            cmd[i] = lim_out[i];
+        }
+    }
+    for (uint32_t i = 0u; i < PFC_AXES; i++) {
+        st->last_cmd_N[i] = cmd[i];
+        out->force_cmd_N[i] = cmd[i];
+    }
+    out->actuator_enable = st->actuator_enabled;
+    out->stopping = flt_active(&st->flt);
+    out->fault_code = flt_active_code(&st->flt);
+    out->cause_mask = cause;
+    out->lim_flags = lr.flags;
+}
+
+flt_code_t saf_clear_request(const saf_config_t *cfg, saf_state_t *st, uint32_t now_ms)
+{
+    if (cfg == NULL || st == NULL) {
+        return FLT_NONE;
+    }
+    wdg_kick(&st->wdg, now_ms);
+    uint32_t present = st->cause_mask & ~FLT_BIT(FLT_HOST_SILENCE);
+    if (wdg_expired(&cfg->wdg, &st->wdg, now_ms)) {
+        present |= FLT_BIT(FLT_HOST_SILENCE);
+    }
+    const bool was_active = flt_active(&st->flt);
+    const flt_code_t r = flt_clear_request(&st->flt, present);
+    if (r == FLT_NONE && was_active) {
+        /* The limiter keeps its slew reference (the last output), so leaving a half-done ramp
+         * steps down at most slew_max per tick, never jumps. */
+        for (uint32_t i = 0u; i < LIM_AXES; i++) {
+            st->lim.out_N[i] = st->last_cmd_N[i];
+            st->lim.slew_run[i] = 0u;
+        }
+        st->ramp.active = 0u;
+        st->ramp.k = 0u;
+        st->actuator_enabled = true;
+        st->hold_zero = true;
+        st->cause_mask = present;
+    }
+    return r;
+}

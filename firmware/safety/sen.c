@@ -1,0 +1,120 @@
+/* Sensor plausibility: see sen.h. */
+#include "sen.h"
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <string.h>
+
+void sen_default_config(sen_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return;
+    }
+    for (uint32_t i = 0u; i < PFC_AXES; i++) {
+        cfg->axis[i].force_range_N = FS_R(200.0);
+        cfg->axis[i].pos_min_m = FS_R(-1.0);
+        cfg->axis[i].pos_max_m = FS_R(1.0);
+        cfg->axis[i].vel_range_mps = FS_R(10.0);
+        cfg->axis[i].spike_N = FS_R(20.0);
+        cfg->axis[i].jump_m = FS_R(0.005);
+        cfg->axis[i].stuck_min_N = FS_R(0.5);
+        cfg->axis[i].stuck_ticks = 500u;
+    }
+}
+
+saf_status_t sen_config_validate(const sen_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return SAF_ERR_NULL_ARG;
+    }
+    for (uint32_t i = 0u; i < PFC_AXES; i++) {
+        const sen_axis_t *a = &cfg->axis[i];
+        const fs_real_t v[7] = {a->force_range_N, a->pos_min_m, a->pos_max_m, a->vel_range_mps,
+                                a->spike_N,       a->jump_m,    a->stuck_min_N};
+        for (uint32_t j = 0u; j < 7u; j++) {
+            if (!fs_isfinite(v[j])) {
+                return SAF_ERR_NOT_FINITE;
+            }
+        }
+        if (!(a->force_range_N > FS_R(0.0)) || !(a->vel_range_mps > FS_R(0.0)) ||
+            !(a->spike_N > FS_R(0.0)) || !(a->jump_m > FS_R(0.0)) ||
+            !(a->stuck_min_N >= FS_R(0.0))) {
+            return SAF_ERR_NONPOSITIVE;
+        }
+        if (!(a->pos_min_m < a->pos_max_m)) {
+            return SAF_ERR_WORKSPACE;
+        }
+    }
+    return SAF_OK;
+}
+
+void sen_reset(sen_state_t *st)
+{
+    if (st == NULL) {
+        return;
+    }
+    for (uint32_t i = 0u; i < PFC_AXES; i++) {
+        st->prev[i].pos_m = FS_R(0.0);
+        st->prev[i].vel_mps = FS_R(0.0);
+        st->prev[i].force_N = FS_R(0.0);
+        st->same_count[i] = 0u;
+    }
+    st->have_prev = 0u;
+}
+
+static fs_real_t absr(fs_real_t x)
+{
+    return (x < FS_R(0.0)) ? -x : x;
+}
+
+uint32_t sen_check(const sen_config_t *cfg, sen_state_t *st, const pfc_axis_meas_t meas[PFC_AXES])
+{
+    if (cfg == NULL || st == NULL || meas == NULL) {
+        return FLT_BIT(FLT_SENSOR_NAN);
+    }
+    uint32_t cause = 0u;
+    bool all_finite = true;
+    for (uint32_t i = 0u; i < PFC_AXES; i++) {
+        const sen_axis_t *a = &cfg->axis[i];
+        const pfc_axis_meas_t *m = &meas[i];
+        if (!fs_isfinite(m->pos_m) || !fs_isfinite(m->vel_mps) || !fs_isfinite(m->force_N)) {
+            cause |= FLT_BIT(FLT_SENSOR_NAN);
+            all_finite = false;
+            continue;
+        }
+        if (absr(m->force_N) > a->force_range_N || m->pos_m < a->pos_min_m ||
+            m->pos_m > a->pos_max_m || absr(m->vel_mps) > a->vel_range_mps) {
+            cause |= FLT_BIT(FLT_SENSOR_RANGE);
+        }
+        if (st->have_prev != 0u) {
+            const pfc_axis_meas_t *p = &st->prev[i];
+            if (absr(m->force_N - p->force_N) > a->spike_N) {
+                cause |= FLT_BIT(FLT_SENSOR_SPIKE);
+            }
+            if (absr(m->pos_m - p->pos_m) > a->jump_m) {
+                cause |= FLT_BIT(FLT_ENCODER_JUMP);
+            }
+            /* Stuck: bit-identical non-zero force. Compare the bytes, so -0.0/+0.0 and
+             * rounding cannot hide a frozen ADC word. */
+            if (a->stuck_ticks != 0u && absr(m->force_N) > a->stuck_min_N &&
+                memcmp(&m->force_N, &p->force_N, sizeof m->force_N) == 0) {
+                if (st->same_count[i] < UINT16_MAX) {
+                    st->same_count[i]++;
+                }
+            } else {
+                st->same_count[i] = 0u;
+            }
+            /* same_count counts repeats: stuck_ticks identical readings = stuck_ticks - 1 */
+            if (a->stuck_ticks != 0u && (uint32_t)st->same_count[i] + 1u >= a->stuck_ticks) {
+                cause |= FLT_BIT(FLT_SENSOR_STUCK);
+            }
+        }
+    }
+    if (all_finite) {
+        for (uint32_t i = 0u; i < PFC_AXES; i++) {
+            st->prev[i] = meas[i];
+        }
+        st->have_prev = 1u;
+    }
+    return cause;
+}

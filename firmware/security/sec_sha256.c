@@ -1,0 +1,210 @@
+/* SHA-256 (FIPS 180-4 section 6.2) and HMAC-SHA256 (FIPS 198-1): see sec_sha256.h. */
+#include "sec_sha256.h"
+
+#include <stddef.h>
+#include <string.h>
+
+static const uint32_t K256[64] = {
+    0x428a2f98u, 0x71374491u, 0xb5c0fbcfu, 0xe9b5dba5u, 0x3956c25bu, 0x59f111f1u, 0x923f82a4u,
+    0xab1c5ed5u, 0xd807aa98u, 0x12835b01u, 0x243185beu, 0x550c7dc3u, 0x72be5d74u, 0x80deb1feu,
+    0x9bdc06a7u, 0xc19bf174u, 0xe49b69c1u, 0xefbe4786u, 0x0fc19dc6u, 0x240ca1ccu, 0x2de92c6fu,
+    0x4a7484aau, 0x5cb0a9dcu, 0x76f988dau, 0x983e5152u, 0xa831c66du, 0xb00327c8u, 0xbf597fc7u,
+    0xc6e00bf3u, 0xd5a79147u, 0x06ca6351u, 0x14292967u, 0x27b70a85u, 0x2e1b2138u, 0x4d2c6dfcu,
+    0x53380d13u, 0x650a7354u, 0x766a0abbu, 0x81c2c92eu, 0x92722c85u, 0xa2bfe8a1u, 0xa81a664bu,
+    0xc24b8b70u, 0xc76c51a3u, 0xd192e819u, 0xd6990624u, 0xf40e3585u, 0x106aa070u, 0x19a4c116u,
+    0x1e376c08u, 0x2748774cu, 0x34b0bcb5u, 0x391c0cb3u, 0x4ed8aa4au, 0x5b9cca4fu, 0x682e6ff3u,
+    0x748f82eeu, 0x78a5636fu, 0x84c87814u, 0x8cc70208u, 0x90befffau, 0xa4506cebu, 0xbef9a3f7u,
+    0xc67178f2u,
+};
+
+static uint32_t rotr(uint32_t x, uint32_t n)
+{
+    return (x >> n) | (x << (32u - n));
+}
+
+static void compress(uint32_t h[8], const uint8_t blk[SEC_SHA256_BLOCK])
+{
+    uint32_t w[64];
+    for (uint32_t t = 0u; t < 16u; t++) {
+        w[t] = ((uint32_t)blk[4u * t] << 24) | ((uint32_t)blk[4u * t + 1u] << 16) |
+               ((uint32_t)blk[4u * t + 2u] << 8) | (uint32_t)blk[4u * t + 3u];
+    }
+    for (uint32_t t = 16u; t < 64u; t++) {
+        const uint32_t s0 = rotr(w[t - 15u], 7u) ^ rotr(w[t - 15u], 18u) ^ (w[t - 15u] >> 3);
+        const uint32_t s1 = rotr(w[t - 2u], 17u) ^ rotr(w[t - 2u], 19u) ^ (w[t - 2u] >> 10);
+        w[t] = w[t - 16u] + s0 + w[t - 7u] + s1;
+    }
+    uint32_t a = h[0], b = h[1], c = h[2], d = h[3], e = h[4], f = h[5], g = h[6], hh = h[7];
+    for (uint32_t t = 0u; t < 64u; t++) {
+        const uint32_t S1 = rotr(e, 6u) ^ rotr(e, 11u) ^ rotr(e, 25u);
+        const uint32_t ch = (e & f) ^ (~e & g);
+        const uint32_t t1 = hh + S1 + ch + K256[t] + w[t];
+        const uint32_t S0 = rotr(a, 2u) ^ rotr(a, 13u) ^ rotr(a, 22u);
+        const uint32_t maj = (a & b) ^ (a & c) ^ (b & c);
+        const uint32_t t2 = S0 + maj;
+        hh = g;
+        g = f;
+        f = e;
+        e = d + t1;
+        d = c;
+        c = b;
+        b = a;
+        a = t1 + t2;
+    }
+    h[0] += a;
+    h[1] += b;
+    h[2] += c;
+    h[3] += d;
+    h[4] += e;
+    h[5] += f;
+    h[6] += g;
+    h[7] += hh;
+    sec_wipe(w, sizeof w);
+}
+
+void sec_sha256_init(sec_sha256_t *s)
+{
+    static const uint32_t h0[8] = {0x6a09e667u, 0xbb67ae85u, 0x3c6ef372u, 0xa54ff53au,
+                                   0x510e527fu, 0x9b05688cu, 0x1f83d9abu, 0x5be0cd19u};
+    if (s == NULL) {
+        return;
+    }
+    (void)memcpy(s->h, h0, sizeof h0);
+    s->total_len = 0u;
+    s->block_len = 0u;
+}
+
+void sec_sha256_update(sec_sha256_t *s, const uint8_t *data, uint32_t len)
+{
+    if (s == NULL || (data == NULL && len != 0u)) {
+        return;
+    }
+    s->total_len += len;
+    uint32_t i = 0u;
+    while (i < len) {
+        uint32_t k = SEC_SHA256_BLOCK - s->block_len;
+        if (k > len - i) {
+            k = len - i;
+        }
+        (void)memcpy(s->block + s->block_len, data + i, k);
+        s->block_len += k;
+        i += k;
+        if (s->block_len == SEC_SHA256_BLOCK) {
+            compress(s->h, s->block);
+            s->block_len = 0u;
+        }
+    }
+}
+
+void sec_sha256_final(sec_sha256_t *s, uint8_t out[SEC_SHA256_LEN])
+{
+    if (s == NULL || out == NULL) {
+        return;
+    }
+    const uint64_t bits = s->total_len * 8u;
+    s->block[s->block_len++] = 0x80u;
+    if (s->block_len > SEC_SHA256_BLOCK - 8u) {
+        (void)memset(s->block + s->block_len, 0, SEC_SHA256_BLOCK - s->block_len);
+        compress(s->h, s->block);
+        s->block_len = 0u;
+    }
+    (void)memset(s->block + s->block_len, 0, SEC_SHA256_BLOCK - 8u - s->block_len);
+    for (uint32_t i = 0u; i < 8u; i++) {
+        s->block[SEC_SHA256_BLOCK - 1u - i] = (uint8_t)(bits >> (8u * i));
+    }
+    compress(s->h, s->block);
+    for (uint32_t i = 0u; i < 8u; i++) {
+        out[4u * i] = (uint8_t)(s->h[i] >> 24);
+        out[4u * i + 1u] = (uint8_t)(s->h[i] >> 16);
+        out[4u * i + 2u] = (uint8_t)(s->h[i] >> 8);
+        out[4u * i + 3u] = (uint8_t)s->h[i];
+    }
+    sec_wipe(s, sizeof *s);
+}
+
+void sec_sha256(const uint8_t *data, uint32_t len, uint8_t out[SEC_SHA256_LEN])
+{
+    sec_sha256_t s;
+    sec_sha256_init(&s);
+    sec_sha256_update(&s, data, len);
+    sec_sha256_final(&s, out);
+}
+
+void sec_hmac_init(sec_hmac_t *h, const uint8_t *key, uint32_t key_len)
+{
+    if (h == NULL || (key == NULL && key_len != 0u)) {
+        return;
+    }
+    uint8_t k0[SEC_SHA256_BLOCK];
+    (void)memset(k0, 0, sizeof k0);
+    if (key_len > SEC_SHA256_BLOCK) {
+        sec_sha256(key, key_len, k0);
+    } else if (key_len != 0u) {
+        (void)memcpy(k0, key, key_len);
+    }
+    uint8_t ipad[SEC_SHA256_BLOCK];
+    for (uint32_t i = 0u; i < SEC_SHA256_BLOCK; i++) {
+        ipad[i] = (uint8_t)(k0[i] ^ 0x36u);
+        h->okey[i] = (uint8_t)(k0[i] ^ 0x5Cu);
+    }
+    sec_sha256_init(&h->inner);
+    sec_sha256_update(&h->inner, ipad, SEC_SHA256_BLOCK);
+    sec_wipe(k0, sizeof k0);
+    sec_wipe(ipad, sizeof ipad);
+}
+
+void sec_hmac_update(sec_hmac_t *h, const uint8_t *data, uint32_t len)
+{
+    if (h != NULL) {
+        sec_sha256_update(&h->inner, data, len);
+    }
+}
+
+void sec_hmac_final(sec_hmac_t *h, uint8_t out[SEC_SHA256_LEN])
+{
+    if (h == NULL || out == NULL) {
+        return;
+    }
+    uint8_t ih[SEC_SHA256_LEN];
+    sec_sha256_final(&h->inner, ih);
+    sec_sha256_t o;
+    sec_sha256_init(&o);
+    sec_sha256_update(&o, h->okey, SEC_SHA256_BLOCK);
+    sec_sha256_update(&o, ih, SEC_SHA256_LEN);
+    sec_sha256_final(&o, out);
+    sec_wipe(ih, sizeof ih);
+    sec_wipe(h, sizeof *h);
+}
+
+void sec_hmac_sha256(const uint8_t *key, uint32_t key_len, const uint8_t *msg, uint32_t msg_len,
+                     uint8_t out[SEC_SHA256_LEN])
+{
+    sec_hmac_t h;
+    sec_hmac_init(&h, key, key_len);
+    sec_hmac_update(&h, msg, msg_len);
+    sec_hmac_final(&h, out);
+}
+
+int sec_ct_equal(const uint8_t *a, const uint8_t *b, uint32_t len)
+{
+    if (a == NULL || b == NULL) {
+        return 0;
+    }
+    volatile uint8_t diff = 0u;
+    for (uint32_t i = 0u; i < len; i++) {
+        diff = (uint8_t)(diff | (uint8_t)(a[i] ^ b[i]));
+    }
+    /* 1 iff diff == 0, without a data-dependent branch */
+    return (int)(1u & (((uint32_t)diff - 1u) >> 8));
+}
+
+void sec_wipe(void *p, uint32_t len)
+{
+    volatile uint8_t *v = (volatile uint8_t *)p;
+    if (v == NULL) {
+        return;
+    }
+    for (uint32_t i = 0u; i < len; i++) {
+        v[i] = 0u;
+    }
+}

@@ -1,0 +1,58 @@
+/* SHA-256 (FIPS 180-4) and HMAC-SHA256 (RFC 2104 / FIPS 198-1), checked against the FIPS 180-4
+ * examples and every RFC 4231 test case (tests/firmware/security). No heap, bounded work per
+ * byte, no data-dependent branches on message or key contents. */
+#ifndef SEC_SHA256_H
+#define SEC_SHA256_H
+
+#include <stdint.h>
+
+#define SEC_SHA256_LEN 32u
+#define SEC_SHA256_BLOCK 64u
+
+/** Incremental SHA-256 state. */
+typedef struct {
+    uint32_t h[8];
+    uint64_t total_len;         /* bytes hashed so far */
+    uint8_t block[SEC_SHA256_BLOCK];
+    uint32_t block_len;
+} sec_sha256_t;
+
+/** Start a hash. */
+void sec_sha256_init(sec_sha256_t *s);
+
+/** Add len bytes. */
+void sec_sha256_update(sec_sha256_t *s, const uint8_t *data, uint32_t len);
+
+/** Finish into out[32]; the state must be re-initialised before reuse. */
+void sec_sha256_final(sec_sha256_t *s, uint8_t out[SEC_SHA256_LEN]);
+
+/** One-shot SHA-256 of data. */
+void sec_sha256(const uint8_t *data, uint32_t len, uint8_t out[SEC_SHA256_LEN]);
+
+/** Incremental HMAC-SHA256 state. */
+typedef struct {
+    sec_sha256_t inner;
+    uint8_t okey[SEC_SHA256_BLOCK];   /* key XOR opad */
+} sec_hmac_t;
+
+/** Start an HMAC with key (any length; keys longer than 64 bytes are hashed first). */
+void sec_hmac_init(sec_hmac_t *h, const uint8_t *key, uint32_t key_len);
+
+/** Add message bytes. */
+void sec_hmac_update(sec_hmac_t *h, const uint8_t *data, uint32_t len);
+
+/** Finish into out[32] and wipe the key material from *h. */
+void sec_hmac_final(sec_hmac_t *h, uint8_t out[SEC_SHA256_LEN]);
+
+/** One-shot HMAC-SHA256. */
+void sec_hmac_sha256(const uint8_t *key, uint32_t key_len, const uint8_t *msg, uint32_t msg_len,
+                     uint8_t out[SEC_SHA256_LEN]);
+
+/** Constant-time comparison: 1 if the len bytes are equal, 0 otherwise; the time depends on
+ *  len only. */
+int sec_ct_equal(const uint8_t *a, const uint8_t *b, uint32_t len);
+
+/** Overwrite len bytes with zeros in a way the compiler does not remove. */
+void sec_wipe(void *p, uint32_t len);
+
+#endif /* SEC_SHA256_H */

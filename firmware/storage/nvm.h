@@ -1,0 +1,98 @@
+/* Slot storage: double-buffered, versioned, CRC-checked records in (simulated) flash, used
+ * ping-pong like ODrive's stm32_nvm.c. Every slot owns two sectors (copies A and B). A record:
+ *
+ *   offset size field
+ *   0      4    magic    0x524D564E ("NVMR")
+ *   4      2    format   NVM_RECORD_VERSION
+ *   6      2    slot     slot index (a copy found under another slot is invalid)
+ *   8      4    seq      sequence number, +1 per write of this slot (serial-number compare)
+ *   12     4    length   payload bytes (<= NVM_PAYLOAD_MAX for the geometry)
+ *   16     4    crc32    zlib CRC-32 over bytes [0,16) and the payload
+ *   20     12   reserved 0xFF
+ *   32     L    payload
+ *   32+L'  4    commit   0x00C0FFEE, programmed last (L' = L rounded up to write_unit, min 4)
+ *
+ * A copy is valid iff magic, version, slot, length, commit and CRC all check; the valid copy
+ * with the newest seq wins. A write erases the copy that does not hold the newest record,
+ * programs header+payload, then the commit word, then reads back and verifies. The newest
+ * record is never touched, and the new one becomes valid only with its last program; so a
+ * power loss at any erase or program leaves either the old record or the complete new one.
+ * Not for use inside the control tick (erase takes milliseconds on real flash); the tick only
+ * swaps pointers (nvm_bank_*). */
+#ifndef NVM_H
+#define NVM_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include "flt_codes.h"
+#include "fls.h"
+
+#define NVM_RECORD_MAGIC 0x524D564Eu
+#define NVM_RECORD_VERSION 1u
+#define NVM_COMMIT_WORD 0x00C0FFEEu
+#define NVM_HEADER_SIZE 32u
+#define NVM_COMMIT_SIZE 4u
+#define NVM_MAX_SLOTS 8u
+
+/** Information about one parsed record. */
+typedef struct {
+    uint16_t slot;
+    uint32_t seq;
+    uint32_t length;          /* payload bytes */
+    uint32_t crc32;           /* the stored CRC (covers header bytes 0..15 and the payload) */
+    uint32_t payload_offset;  /* offset of the payload from the record start */
+} nvm_record_info_t;
+
+/** Directory entry of one slot (what the slot-directory data identifier reports). */
+typedef struct {
+    uint8_t valid;            /* a valid record exists */
+    uint8_t copy;             /* 0 = A, 1 = B: which copy holds it */
+    uint8_t both_valid;       /* the other copy is valid too (an older version) */
+    uint32_t seq;
+    uint32_t length;
+    uint32_t crc32;
+} nvm_dir_entry_t;
+
+/** Storage handle. */
+typedef struct {
+    const fls_dev_t *dev;
+    uint16_t n_slots;              /* min(NVM_MAX_SLOTS, sector_count / 2) */
+    nvm_dir_entry_t dir[NVM_MAX_SLOTS];
+} nvm_t;
+
+/** zlib-compatible CRC-32 continuing from crc (start with 0); equal to skill_crc32 (tested),
+ *  kept here so the storage does not depend on the numeric layer of the core. */
+uint32_t nvm_crc32(uint32_t crc, const uint8_t *data, uint32_t len);
+
+/** Parse and check one record image held in memory (pure; the fuzz harness and tests use it;
+ *  nvm_init checks flash with the same header checks, streaming). buf holds the start of a
+ *  sector (len bytes) laid out for a write unit <= 4; expected_slot 0xFFFF accepts any slot.
+ *  Order of checks: magic, version, slot, length, commit, CRC. */
+nvm_status_t nvm_record_parse(const uint8_t *buf, uint32_t len, uint16_t expected_slot,
+                              nvm_record_info_t *out);
+
+/** Build a record image for payload into out (out_cap bytes); *out_len gets its length. */
+nvm_status_t nvm_record_build(uint16_t slot, uint32_t seq, const uint8_t *payload, uint32_t len,
+                              uint32_t write_unit, uint8_t *out, uint32_t out_cap,
+                              uint32_t *out_len);
+
+/** Largest payload a slot can hold on this geometry. */
+uint32_t nvm_payload_max(const fls_dev_t *dev);
+
+/** Attach to flash and scan every slot's two copies (builds the directory). */
+nvm_status_t nvm_init(nvm_t *n, const fls_dev_t *dev);
+
+/** Directory entry of a slot (NULL if slot is out of range). */
+const nvm_dir_entry_t *nvm_dir(const nvm_t *n, uint16_t slot);
+
+/** Write payload as the slot's new record (erase inactive copy, program, commit, verify). */
+nvm_status_t nvm_write(nvm_t *n, uint16_t slot, const uint8_t *payload, uint32_t len);
+
+/** Read the newest valid record of a slot into buf (cap bytes); *len gets the payload length.
+ *  The CRC is re-checked on the data read. */
+nvm_status_t nvm_read(const nvm_t *n, uint16_t slot, uint8_t *buf, uint32_t cap, uint32_t *len);
+
+/** Erase both copies of a slot (the slot becomes empty). */
+nvm_status_t nvm_erase_slot(nvm_t *n, uint16_t slot);
+
+#endif /* NVM_H */

@@ -1,0 +1,92 @@
+#!/usr/bin/env python3
+"""Write the seed corpus of every fuzz harness into fuzz/corpus/<harness>/ (deterministic;
+re-run after a format change). Skill images come from tests/vectors (written by the Python
+package); storage records are built here with zlib's CRC-32, following docs/safety.md."""
+import pathlib
+import shutil
+import struct
+import zlib
+
+HERE = pathlib.Path(__file__).resolve().parent
+VEC = HERE.parent / "tests" / "vectors"
+C = HERE / "corpus"
+
+
+def out(harness, name, data):
+    d = C / harness
+    d.mkdir(parents=True, exist_ok=True)
+    (d / name).write_bytes(bytes(data))
+
+
+# skill_parse: small golden images (valid) and the rejected ones of tests/vectors/bad
+for name in ["press_n10_lwr_hold.skill", "engrave_n10_ridge_release.skill",
+             "press_n50_lwr_hold.skill"]:
+    out("skill_parse", name, (VEC / name).read_bytes())
+for p in sorted((VEC / "bad").glob("*.skill")):
+    if p.stat().st_size <= 2000:
+        out("skill_parse", "bad_" + p.name, p.read_bytes())
+
+# nvm_record: records as nvm.c writes them (write unit 4)
+MAGIC, VERSION, COMMIT = 0x524D564E, 1, 0x00C0FFEE
+
+
+def record(slot, seq, payload, commit=True):
+    hdr = struct.pack("<IHHII", MAGIC, VERSION, slot, seq, len(payload))
+    crc = zlib.crc32(payload, zlib.crc32(hdr)) & 0xFFFFFFFF
+    hdr += struct.pack("<I", crc) + b"\xff" * 12
+    pad = (-len(payload)) % 4
+    body = hdr + payload + b"\xff" * pad
+    return body + (struct.pack("<I", COMMIT) if commit else b"\xff" * 4)
+
+
+SECTOR = 512
+small = (VEC / "press_n10_lwr_hold.skill").read_bytes()
+out("nvm_record", "valid_small", record(0, 1, b"hello, slot"))
+out("nvm_record", "valid_skill", record(0, 7, small))
+out("nvm_record", "uncommitted", record(0, 2, b"interrupted", commit=False))
+out("nvm_record", "empty_payload", record(0, 3, b""))
+img = bytearray(b"\xff" * (4 * SECTOR))
+a = record(0, 5, b"older copy A")
+b = record(0, 6, b"newer copy B")
+c = record(1, 1, small[:200])
+img[0:len(a)] = a
+img[SECTOR:SECTOR + len(b)] = b
+img[2 * SECTOR:2 * SECTOR + len(c)] = c
+out("nvm_record", "flash_two_slots", img)
+
+# isotp: [bs, stmin] then steps: ctl byte (low 3 bits: 0/1 frame for us, 2 foreign, 3 read,
+# 4 send, else poll; high 5 bits: time step), frame = dlc + bytes
+def frame(ctl, data):
+    return bytes([ctl, len(data)]) + bytes(data)
+
+
+sf = b"\x00\x00" + frame(0x08, [0x02, 0x10, 0x03, 0xCC, 0xCC, 0xCC, 0xCC, 0xCC]) + b"\x03"
+out("isotp", "single_frame", sf)
+ff = [0x10, 0x14] + list(range(6))
+seq = b"\x00\x00" + frame(0x08, ff)
+for sn in range(1, 3):
+    seq += frame(0x08, [0x20 | sn] + list(range(7)))
+seq += b"\x03"
+out("isotp", "multi_frame", seq)
+tx = b"\x08\x01" + bytes([0x0C, 0x01, 0x00]) + frame(0x08, [0x30, 0x02, 0x00, 0, 0, 0, 0, 0]) + b"\x0d\x0d\x0d"
+out("isotp", "send_with_fc", tx)
+
+# uds: length-prefixed requests
+def reqs(*rs):
+    return b"".join(bytes([len(r)]) + bytes(r) for r in rs)
+
+
+out("uds", "session_seed_key", reqs([0x10, 0x03], [0x27, 0x01], [0x27, 0x02] + [0x42] * 16))
+out("uds", "read_did", reqs([0x22, 0xF1, 0x90], [0x3E, 0x00], [0x3E, 0x80]))
+out("uds", "routine", reqs([0x10, 0x03], [0x31, 0x01, 0x02, 0x03], [0x31, 0x03, 0x02, 0x03]))
+out("uds", "download", reqs([0x10, 0x02], [0x27, 0x01], [0x27, 0x02] + [0x42] * 16,
+                              [0x34, 0x00, 0x44, 0, 0, 0, 1, 0, 0, 0, 0x10],
+                              [0x36, 0x01] + [0xAB] * 16, [0x37]))
+out("uds", "upload", reqs([0x10, 0x02], [0x35, 0x00, 0x44, 0, 0, 0, 1, 0, 0, 0, 0x20],
+                          [0x36, 0x01], [0x36, 0x02], [0x37], [0x11, 0x01]))
+
+# frames: protected 8-byte frames and a short one
+out("frames", "heartbeat", bytes([0x10, 0x81, 1, 2, 3, 4, 5, 6, 0x05, 0x00]))
+out("frames", "command", bytes([0x00, 0x81, 0x02, 0x01, 0xE8, 0x03, 0xE8, 0x03, 0x01, 0x00]) * 2)
+out("frames", "short", bytes([0x01, 0x02, 0x03]))
+print("corpus written to", C)

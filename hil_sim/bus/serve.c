@@ -1,0 +1,437 @@
+/* hil_sim serve (see serve.h). One thread: ppoll() on the sockets with a timeout up to the next
+ * 1 kHz firmware tick or bus event; simulated time = wall time x speed. */
+#define _GNU_SOURCE
+#include "serve.h"
+
+#include <errno.h>
+#include <math.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "app.h"
+#include "bus_model.h"
+#include "hal_host.h"
+#include "scand.h"
+#include "sim_model.h"
+#include "sim_rng.h"
+#include "sim_scenario.h"
+
+#define TICK_NS 1000000ull
+#define MAX_LAG_NS 100000000ull     /* fall further behind than this: slip (count it) */
+#define RING 8u
+#define PARK_TAU_S 0.05          /* IDLE: the simulated drive parks the handle (see sim_tick) */
+
+static const char SERVE_USAGE[] =
+    "usage: hil_sim serve [--port PORT] [--host ADDR] [--speed S] [--scenario FILE]\n"
+    "                     [--node N] [--channel NAME] [--bitrate BPS] [--duration S] [--verbose]\n"
+    "Run the device firmware against the simulated plant in real time (x S) and serve its CAN bus\n"
+    "with the socketcand protocol: python-can connects with\n"
+    "  can.Bus(interface=\"socketcand\", host=ADDR, port=PORT, channel=NAME)\n"
+    "  --port PORT      TCP port (default 29536; 0 = any free port, printed on the first line)\n"
+    "  --host ADDR      listen address (default 127.0.0.1)\n"
+    "  --speed S        simulated seconds per wall second (default 1)\n"
+    "  --scenario FILE  plant, object, operator and sensors (hil_sim/scenarios/*.toml); the\n"
+    "                   operator demonstrates whenever the device enters TEACH\n"
+    "  --node N         device node id 0..15 (default 0): CAN ids = base + N\n"
+    "  --channel NAME   socketcand channel name (default can0)\n"
+    "  --bitrate BPS    simulated bus bitrate (default 1000000)\n"
+    "  --duration S     exit after S simulated seconds (default: run until SIGINT/SIGTERM)\n"
+    "  --host-timeout MS  device's host-silence timeout, 20..500 ms (default 100; raise it when\n"
+    "                   the host tools share a heavily loaded machine)\n";
+
+static volatile sig_atomic_t g_stop;
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    g_stop = 1;
+}
+
+typedef struct {
+    double x, y, fc, fop_x, fop_y;
+} sample_t;
+
+typedef struct {
+    sim_scenario_t sc;
+    bool have_scenario;
+    double speed;
+    uint8_t node;
+    sim_axis_t ax[2];
+    sim_drive_t drv[2];
+    sim_operator_t op;
+    sim_rng_t rng_sens;
+    uint64_t teach_count;
+    uint32_t teach_start_tick;
+    bool teaching;
+    sample_t ring[RING];
+    uint64_t n_tick;
+    bus_t bus;
+    scand_t sd;
+    app_t app;
+    app_config_t app_cfg;
+    uint64_t sim_ns;
+    uint64_t slips;
+    uint64_t wall0;
+    uint64_t next_tick_ns;
+} serve_t;
+
+static serve_t S;   /* large (bus FIFOs, app): static storage */
+
+static uint64_t mono_ns(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (uint64_t)ts.tv_sec * 1000000000ull + (uint64_t)ts.tv_nsec;
+}
+
+static void deliver(void *ctx, const bus_item_t *it, uint64_t t_end_ns)
+{
+    serve_t *s = ctx;
+    if (it->src != 0u && !it->extended) {
+        (void)hal_sim_can_deliver(&it->f);
+    }
+    scand_broadcast(&s->sd, it->src == 0u ? -1 : (int)it->src - 1, &it->f, it->extended, t_end_ns,
+                    mono_ns() / 1000000ull);
+}
+
+static void on_client_frame(void *ctx, unsigned client, const can_frame_t *f, bool extended)
+{
+    serve_t *s = ctx;
+    (void)bus_enqueue(&s->bus, (uint8_t)(client + 1u), f, extended, s->sim_ns);
+}
+
+static void device_boot(serve_t *s)
+{
+    hal_sim_can_reset();
+    hal_host_set_time_us(s->n_tick * 1000u);
+    app_init(&s->app, &s->app_cfg);
+}
+
+static void plant_init(serve_t *s)
+{
+    const sim_scenario_t *sc = &s->sc;
+    memset(s->ax, 0, sizeof(s->ax));
+    s->ax[0].pos_m = sc->start_x_m;
+    s->ax[1].pos_m = sc->start_y_m;
+    const double h = sc->dt_s / (double)sc->substeps;
+    for (int a = 0; a < 2; a++) {
+        sim_drive_t *d = &s->drv[a];
+        memset(d, 0, sizeof(*d));
+        d->kind = sc->plant;
+        d->mass_kg = sc->plant == SIM_PLANT_REALISTIC ? sc->carriage.carriage_kg : sc->m_d_kg;
+        d->carriage = &sc->carriage;
+        d->object = (a == 0) ? &sc->object : NULL;
+        d->act_limit_N = sc->carriage.act_max_N;
+        d->act_alpha = 1.0 - exp(-h / sc->carriage.act_lag_s);
+        sim_drive_prepare(d);
+    }
+    sim_rng_seed(&s->rng_sens, sc->seed ^ 0x5EB5C0DEDA7A5EEDull);
+    memset(s->ring, 0, sizeof(s->ring));
+}
+
+/* One 1 ms step: sensors at t, firmware tick, actuator, plant over the tick. */
+static void sim_tick(serve_t *s)
+{
+    const sim_scenario_t *sc = &s->sc;
+    const double dt = sc->dt_s;
+    hal_host_set_time_us(s->n_tick * 1000u);
+
+    /* operator: demonstrates from the moment the device enters TEACH */
+    const bool teach = s->app.state == APP_TEACH;
+    if (teach && !s->teaching) {
+        sim_operator_cfg_t opc = sc->op;
+        opc.duration_s = sc->duration_s;
+        sim_rng_t rng_op;
+        sim_rng_seed(&rng_op, sc->seed + s->teach_count);   /* first demonstration: the scenario seed */
+        sim_operator_init(&s->op, &opc, &rng_op);
+        s->teach_start_tick = s->app.tick;
+        s->teach_count++;
+    }
+    s->teaching = teach;
+    double fprof[2] = {0.0, 0.0};
+    const double p_true = s->ax[0].pos_m - sc->object.surface_m;
+    if (teach && sc->op.task != SIM_TASK_NONE) {
+        const double t = (double)(s->app.tick - s->teach_start_tick) * dt;
+        sim_operator_force(&s->op, t, p_true, sc->object.layer_depth_m, fprof);
+    }
+    for (int a = 0; a < 2; a++) {
+        s->drv[a].force_ext_N = fprof[a];
+        s->drv[a].hand_damping_Nspm = teach ? sc->op.hand_damping_Nspm : 0.0;
+    }
+
+    sample_t smp;
+    smp.x = sim_encoder_read(s->ax[0].pos_m, sc->encoder_m);
+    smp.y = sim_encoder_read(s->ax[1].pos_m, sc->encoder_m);
+    smp.fc = sim_force_read(&sc->tip, s->ax[0].contact_N, &s->rng_sens);
+    smp.fop_x = sim_force_read(&sc->handle, sim_operator_handle_N(&s->drv[0], &s->ax[0]), &s->rng_sens);
+    smp.fop_y = sim_force_read(&sc->handle, sim_operator_handle_N(&s->drv[1], &s->ax[1]), &s->rng_sens);
+    s->ring[s->n_tick % RING] = smp;
+    const uint64_t d = (uint64_t)sc->delay_samples > s->n_tick ? s->n_tick : (uint64_t)sc->delay_samples;
+    const sample_t *m = &s->ring[(s->n_tick - d) % RING];
+    hal_sensors_t hs;
+    hs.pos_m[0] = m->x;
+    hs.pos_m[1] = m->y;
+    hs.force_contact_N[0] = m->fc;
+    hs.force_contact_N[1] = 0.0;
+    hs.force_operator_N[0] = m->fop_x;
+    hs.force_operator_N[1] = m->fop_y;
+    hal_host_set_sensors(&hs);
+
+    app_tick(&s->app, false);
+    uint8_t reset_type = 0u;
+    if (hal_host_take_reset(&reset_type)) {
+        device_boot(s);                     /* ECUReset: firmware restarts, flash keeps the slots */
+    }
+
+    bool enable = false;
+    fs_real_t f[2];
+    hal_host_get_actuator(&enable, f);
+    const bool ideal = sc->plant == SIM_PLANT_IDEAL;
+    for (int a = 0; a < 2; a++) {
+        s->drv[a].force_cmd_N = enable ? f[a] : 0.0;
+        /* the ideal drive is dynamics-compensated while the law runs (as hil_sim run) */
+        s->drv[a].prescribed = (uint8_t)(ideal && s->app.state == APP_EXECUTE);
+    }
+    const double h = dt / (double)sc->substeps;
+    if (s->app.state == APP_IDLE || s->app.state == APP_BOOT) {
+        /* a parked device: in IDLE the simulated drive brings the handle back to the scenario's
+         * start position (time constant PARK_TAU_S) and holds it at rest, so every TEACH or
+         * EXECUTE starts where `hil_sim run` starts (in contact with the surface, unloaded) */
+        const double start[2] = {sc->start_x_m, sc->start_y_m};
+        for (int a = 0; a < 2; a++) {
+            s->ax[a].pos_m += (start[a] - s->ax[a].pos_m) * (dt / PARK_TAU_S > 1.0 ? 1.0 : dt / PARK_TAU_S);
+            s->ax[a].vel_mps = 0.0;
+            s->ax[a].acc_mps2 = 0.0;
+            s->ax[a].act_N = 0.0;
+        }
+        s->ax[0].contact_N = 0.0;
+        if (s->ax[0].pos_m > sc->object.surface_m) {
+            s->ax[0].contact_N = sim_object_spring_N(&sc->object, s->ax[0].pos_m - sc->object.surface_m);
+        }
+    } else {
+        for (int k = 0; k < sc->substeps; k++) {
+            sim_axis_substep(&s->ax[0], &s->drv[0], h);
+            sim_axis_substep(&s->ax[1], &s->drv[1], h);
+        }
+    }
+    s->n_tick++;
+}
+
+static void device_tx_to_bus(serve_t *s, uint64_t t_ns)
+{
+    can_frame_t f;
+    while (bus_room(&s->bus, 0u) > 0u && hal_sim_can_tx_peek(&f)) {
+        (void)bus_enqueue(&s->bus, 0u, &f, false, t_ns);
+        hal_sim_can_tx_pop();
+    }
+}
+
+/* Wait up to wait_ns for socket activity and handle it. Frames read are stamped with s->sim_ns,
+ * or with the current simulated time when s->sim_ns is UINT64_MAX. */
+static void poll_clients(serve_t *s, struct pollfd *fds, uint64_t wait_ns)
+{
+    const unsigned nfds = scand_pollfds(&s->sd, fds, SCAND_MAX_CLIENTS + 1u);
+    struct timespec to = {(time_t)(wait_ns / 1000000000ull), (long)(wait_ns % 1000000000ull)};
+    const int r = ppoll(fds, nfds, &to, NULL);
+    if (r <= 0) {
+        return;
+    }
+    if (s->sim_ns == UINT64_MAX) {
+        uint64_t now = (uint64_t)((double)(mono_ns() - s->wall0) * s->speed);
+        if (now + TICK_NS < s->next_tick_ns) {
+            now = s->next_tick_ns - TICK_NS;
+        }
+        s->sim_ns = now;
+    }
+    scand_handle(&s->sd, fds, nfds, mono_ns() / 1000000ull);
+    for (unsigned i = 0; i < SCAND_MAX_CLIENTS; i++) {
+        if (s->sd.clients[i].fd < 0) {
+            bus_flush_source(&s->bus, (uint8_t)(i + 1u));
+        }
+    }
+}
+
+static int parse_double(const char *opt, const char *v, double *out)
+{
+    char *end = NULL;
+    errno = 0;
+    const double d = strtod(v, &end);
+    if (end == v || *end != '\0' || errno != 0 || !isfinite(d)) {
+        fprintf(stderr, "hil_sim serve: %s needs a number, got '%s'\n", opt, v);
+        return -1;
+    }
+    *out = d;
+    return 0;
+}
+
+int bus_cmd_serve(int argc, char **argv)
+{
+    const char *host = "127.0.0.1";
+    const char *channel = "can0";
+    const char *scenario = NULL;
+    double port = 29536.0, speed = 1.0, node = 0.0, bitrate = 1e6, duration = 0.0, host_timeout = 100.0;
+    bool verbose = false;
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
+        if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            fputs(SERVE_USAGE, stdout);
+            return 0;
+        }
+        if (strcmp(a, "--verbose") == 0) {
+            verbose = true;
+            continue;
+        }
+        if (v == NULL) {
+            fprintf(stderr, "hil_sim serve: %s needs a value (or unknown option)\n", a);
+            return 2;
+        }
+        int rc = 0;
+        if (strcmp(a, "--port") == 0) rc = parse_double(a, v, &port);
+        else if (strcmp(a, "--host") == 0) host = v;
+        else if (strcmp(a, "--speed") == 0) rc = parse_double(a, v, &speed);
+        else if (strcmp(a, "--scenario") == 0) scenario = v;
+        else if (strcmp(a, "--node") == 0) rc = parse_double(a, v, &node);
+        else if (strcmp(a, "--channel") == 0) channel = v;
+        else if (strcmp(a, "--bitrate") == 0) rc = parse_double(a, v, &bitrate);
+        else if (strcmp(a, "--duration") == 0) rc = parse_double(a, v, &duration);
+        else if (strcmp(a, "--host-timeout") == 0) rc = parse_double(a, v, &host_timeout);
+        else {
+            fprintf(stderr, "hil_sim serve: unknown option '%s'\n%s", a, SERVE_USAGE);
+            return 2;
+        }
+        if (rc != 0) {
+            return 2;
+        }
+        i++;
+    }
+    if (!(port >= 0.0 && port <= 65535.0) || port != floor(port)) {
+        fprintf(stderr, "hil_sim serve: --port must be 0..65535, got %g\n", port);
+        return 2;
+    }
+    if (!(speed > 0.0 && speed <= 1000.0)) {
+        fprintf(stderr, "hil_sim serve: --speed must be in (0, 1000], got %g\n", speed);
+        return 2;
+    }
+    if (!(node >= 0.0 && node <= (double)PROTO_NODE_MAX) || node != floor(node)) {
+        fprintf(stderr, "hil_sim serve: --node must be 0..%u, got %g\n", PROTO_NODE_MAX, node);
+        return 2;
+    }
+    if (!(bitrate >= 10000.0 && bitrate <= 1e6)) {
+        fprintf(stderr, "hil_sim serve: --bitrate must be 10000..1000000, got %g\n", bitrate);
+        return 2;
+    }
+    if (!(host_timeout >= (double)WDG_TIMEOUT_MIN_MS && host_timeout <= (double)WDG_TIMEOUT_MAX_MS)) {
+        fprintf(stderr, "hil_sim serve: --host-timeout must be %u..%u ms, got %g\n", WDG_TIMEOUT_MIN_MS,
+                WDG_TIMEOUT_MAX_MS, host_timeout);
+        return 2;
+    }
+    serve_t *s = &S;
+    memset(s, 0, sizeof(*s));
+    s->speed = speed;
+    s->node = (uint8_t)node;
+    char err[SIM_ERR_MAX];
+    sim_scenario_defaults(&s->sc);
+    if (scenario != NULL && sim_scenario_load(&s->sc, scenario, err) != 0) {
+        fprintf(stderr, "hil_sim serve: %s\n", err);
+        return 2;
+    }
+
+    /* the device, configured as the scenario's controller */
+    app_config_default(&s->app_cfg);
+    s->app_cfg.node = s->node;
+    s->app_cfg.render_carriage = (uint8_t)(s->sc.plant == SIM_PLANT_REALISTIC);
+    s->app_cfg.gains[0].m_d_kg = s->sc.m_d_kg;
+    s->app_cfg.gains[1].m_d_kg = s->sc.m_d_kg;
+    s->app_cfg.vel_cutoff_Hz = s->sc.vel_cutoff_Hz;
+    s->app_cfg.exec.use_model = (uint8_t)(s->sc.use_model != 0);
+    s->app_cfg.exec.object.m_v_kg = s->sc.object.m_v_kg;
+    s->app_cfg.exec.object.d_v_Nspm = s->sc.object.d_v_Nspm;
+    s->app_cfg.exec.object.k1_Npm = s->sc.object.k1_Npm;
+    s->app_cfg.exec.object.k2_Npm = s->sc.object.k2_Npm;
+    s->app_cfg.exec.object.layer_depth_m = s->sc.object.layer_depth_m;
+    s->app_cfg.exec.object.surface_m = s->sc.object.surface_m;
+    s->app_cfg.exec.phase_stop_gain_per_N2 = s->sc.phase_stop_gain_per_N2;
+    s->app_cfg.render.carriage_kg = s->sc.carriage.carriage_kg;
+    s->app_cfg.render.viscous_Nspm = s->sc.carriage.viscous_Nspm;
+    s->app_cfg.render.coulomb_N = s->sc.carriage.coulomb_N;
+    s->app_cfg.render.motor_max_N = s->sc.carriage.act_max_N;
+    for (unsigned a = 0; a < PFC_AXES; a++) {
+        s->app_cfg.saf.lim.axis[a].force_max_N = s->sc.force_max_N;
+    }
+    s->app_cfg.saf.wdg.timeout_ms = (uint16_t)host_timeout;
+    hal_host_init();
+    plant_init(s);
+    device_boot(s);
+    bus_init(&s->bus, (uint32_t)bitrate);
+
+    if (scand_listen(&s->sd, host, (uint16_t)port, channel, on_client_frame, s, err, sizeof(err)) != 0) {
+        fprintf(stderr, "hil_sim serve: %s\n", err);
+        return 1;
+    }
+    s->sd.verbose = verbose;
+    signal(SIGINT, on_signal);
+    signal(SIGTERM, on_signal);
+    signal(SIGPIPE, SIG_IGN);
+    printf("hil_sim serve: listening on %s:%u channel %s node %u speed %g bitrate %u%s%s\n", host,
+           (unsigned)s->sd.port, channel, (unsigned)s->node, speed, (unsigned)bitrate,
+           scenario != NULL ? " scenario " : "", scenario != NULL ? scenario : "");
+    fflush(stdout);
+
+    uint64_t wall0 = mono_ns();
+    uint64_t next_tick_ns = 0u;
+    const uint64_t end_ns = duration > 0.0 ? (uint64_t)(duration * 1e9) : UINT64_MAX;
+    struct pollfd fds[SCAND_MAX_CLIENTS + 1u];
+    while (!g_stop && next_tick_ns < end_ns) {
+        uint64_t target = (uint64_t)((double)(mono_ns() - wall0) * speed);
+        if (target > next_tick_ns + MAX_LAG_NS) {
+            /* cannot keep up (machine busy): slip the clock rather than burst ticks */
+            wall0 += (uint64_t)((double)(target - next_tick_ns) / speed);
+            target = next_tick_ns;
+            s->slips++;
+        }
+        while (next_tick_ns <= target && next_tick_ns < end_ns) {
+            if (target - next_tick_ns >= TICK_NS) {
+                /* catching up (the process was descheduled): take what clients sent meanwhile
+                 * before each tick, so a late burst of ticks does not look like host silence */
+                s->sim_ns = next_tick_ns;
+                poll_clients(s, fds, 0u);
+            }
+            bus_run(&s->bus, next_tick_ns, deliver, s);
+            s->sim_ns = next_tick_ns;
+            sim_tick(s);
+            device_tx_to_bus(s, next_tick_ns);
+            next_tick_ns += TICK_NS;
+        }
+        bus_run(&s->bus, target, deliver, s);
+        device_tx_to_bus(s, target);
+        s->sim_ns = target;
+        scand_flush(&s->sd);
+
+        uint64_t next_ev = bus_next_event_ns(&s->bus);
+        if (next_ev > next_tick_ns) {
+            next_ev = next_tick_ns;
+        }
+        const uint64_t now_sim = (uint64_t)((double)(mono_ns() - wall0) * speed);
+        uint64_t wait_ns = next_ev > now_sim ? (uint64_t)((double)(next_ev - now_sim) / speed) : 0u;
+        if (wait_ns > 20000000ull) {
+            wait_ns = 20000000ull;
+        }
+        s->sim_ns = UINT64_MAX;   /* poll_clients stamps frames with the time they are read */
+        s->wall0 = wall0;
+        s->next_tick_ns = next_tick_ns;
+        poll_clients(s, fds, wait_ns);
+    }
+    scand_close(&s->sd);
+    fprintf(stderr,
+            "hil_sim serve: stopped at %.3f s simulated; bus %llu frames, load %.1f %%; %llu clock slips; "
+            "device rx overflows %u, tx dropped %u\n",
+            (double)next_tick_ns * 1e-9, (unsigned long long)s->bus.frames,
+            next_tick_ns > 0u ? 100.0 * (double)s->bus.bits * (double)s->bus.bit_ns / (double)next_tick_ns : 0.0,
+            (unsigned long long)s->slips, hal_sim_can_rx_overflows(), s->app.tx_dropped);
+    return 0;
+}

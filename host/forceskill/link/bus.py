@@ -1,0 +1,103 @@
+"""Bus options exactly as python-can's own command line tools take them (``can.cli``:
+``-i/--interface``, ``-c/--channel``, ``-b/--bitrate``, ``--bus-kwargs key=value ...``), with
+python-can's configuration files and environment (``can.util.load_config``) supplying what is
+not given. Opening the bus turns every failure into one ``FsError`` line naming the culprit."""
+from __future__ import annotations
+
+import argparse
+import logging
+import socket
+from typing import Any
+
+import can
+import can.cli
+
+from ..errors import FsError
+from . import ERR_LINK_ARGS, ERR_LINK_BUS
+
+DEFAULT_TIMEOUT_S = 2.0
+
+# python-can's socketcand reader warns whenever a TCP read ends inside a frame (normal streaming)
+logging.getLogger("can.interfaces.socketcand.socketcand").setLevel(logging.ERROR)
+
+
+def add_bus_args(parser: argparse.ArgumentParser) -> None:
+    """python-can's bus options plus the device's node id and the response timeout."""
+    can.cli.add_bus_arguments(parser)
+    g = parser.add_argument_group("device")
+    g.add_argument("--node", type=int, default=0, metavar="N",
+                   help="device node id 0..15 (CAN ids = base + N; default 0)")
+    g.add_argument("--timeout", type=float, default=DEFAULT_TIMEOUT_S, metavar="S",
+                   help=f"seconds to wait for the device before giving up ({DEFAULT_TIMEOUT_S:g})")
+
+
+def bus_config(ns: argparse.Namespace) -> dict[str, Any]:
+    """The keyword arguments for can.Bus: command line over python-can's config files/env."""
+    given: dict[str, Any] = {}
+    for key in ("interface", "channel", "bitrate", "fd", "data_bitrate", "timing"):
+        if key in ns:
+            given[key] = getattr(ns, key)
+    given.update(getattr(ns, "bus_kwargs", {}) or {})
+    try:
+        cfg = can.util.load_config(config={k: v for k, v in given.items()})
+    except Exception as e:  # load_config raises on an unknown interface from the config file
+        raise FsError(ERR_LINK_BUS, f"CAN configuration unusable: {e}") from None
+    cfg.update(given)
+    if not cfg.get("interface"):
+        raise FsError(ERR_LINK_BUS, "no CAN interface given: use -i/--interface (or set one in "
+                      "python-can's configuration file ~/.canrc or $CAN_INTERFACE)")
+    return cfg
+
+
+def describe(cfg: dict[str, Any]) -> str:
+    """Short name of the bus for messages: 'can0' or 'can0 (socketcand 127.0.0.1:29536)'."""
+    ch = cfg.get("channel")
+    if cfg.get("interface") == "socketcand":
+        return f"{ch} (socketcand {cfg.get('host')}:{cfg.get('port')})"
+    return f"{ch} ({cfg.get('interface')})"
+
+
+def _precheck_socketcand(cfg: dict[str, Any]) -> None:
+    host = cfg.get("host")
+    port = cfg.get("port")
+    if host is None or port is None:
+        raise FsError(ERR_LINK_BUS, "the socketcand interface needs --bus-kwargs host=ADDR port=PORT")
+    try:
+        port_i = int(port)
+    except (TypeError, ValueError):
+        raise FsError(ERR_LINK_BUS, f"socketcand port is not a number: {port!r}") from None
+    cfg["port"] = port_i
+    # python-can retries a refused connection for 10 s; check once, quickly, to name the problem
+    try:
+        with socket.create_connection((str(host), port_i), timeout=2.0):
+            pass
+    except OSError as e:
+        raise FsError(ERR_LINK_BUS, f"cannot connect to socketcand at {host}:{port_i}: "
+                      f"{e.strerror or e}") from None
+
+
+def open_bus(ns: argparse.Namespace) -> tuple[can.BusABC, dict[str, Any]]:
+    """Open the bus the options describe; FsError(630) with one line on any failure."""
+    node = getattr(ns, "node", 0)
+    if not 0 <= node <= 15:
+        raise FsError(ERR_LINK_ARGS, f"--node must be 0..15: {node}")
+    cfg = bus_config(ns)
+    iface = cfg["interface"]
+    if iface not in can.VALID_INTERFACES:
+        raise FsError(ERR_LINK_BUS, f"unknown CAN interface {iface!r}")
+    if iface == "socketcand":
+        _precheck_socketcand(cfg)
+        if not cfg.get("channel"):
+            cfg["channel"] = "can0"
+    try:
+        bus = can.Bus(**cfg)
+    except can.CanInterfaceNotImplementedError as e:
+        raise FsError(ERR_LINK_BUS, f"CAN interface {iface!r} not available here: {e}") from None
+    except (can.CanError, OSError, ValueError, TypeError, ImportError) as e:
+        msg = str(e).splitlines()[0] if str(e) else type(e).__name__
+        if iface == "socketcand" and "Expected '< ok >'" in msg:
+            msg = f"channel {cfg.get('channel')!r} not served by socketcand at {cfg.get('host')}:{cfg.get('port')}"
+            raise FsError(ERR_LINK_BUS, msg) from None
+        raise FsError(ERR_LINK_BUS, f"cannot open CAN interface {iface!r} channel "
+                      f"{cfg.get('channel')!r}: {msg}") from None
+    return bus, cfg

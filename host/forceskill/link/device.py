@@ -1,0 +1,200 @@
+"""The device's cyclic frames on a python-can bus: presence (judged by frames received, never by
+a send succeeding), the host heartbeat, commands, and the status/telemetry/emergency streams,
+all encoded and decoded through the DBC."""
+from __future__ import annotations
+
+import threading
+import time
+from dataclasses import dataclass, field
+from typing import Callable, Optional
+
+import can
+
+from ..errors import FsError
+from . import ERR_LINK_NO_RESPONSE, ERR_LINK_TIMEOUT
+from .dbc import END_POLICIES, MODES, STATES, check, load_db, protect
+
+HEARTBEAT_PERIOD_S = 0.010   # well inside the device's 100 ms silence timeout, at any speed factor
+
+
+@dataclass
+class Status:
+    state: str
+    fault_code: int
+    slot: int
+    tick: int
+    actuator_enabled: bool
+    host_alive: bool
+    sequence_step: int
+    t_s: float
+
+
+@dataclass
+class Sample:
+    tick: int
+    x_m: float
+    y_m: float
+    f_contact_N: float
+    f_operator_N: float
+    f_cmd_N: float
+    f_ref_N: float
+
+
+@dataclass
+class Telemetry:
+    """Telemetry samples in arrival order; tick is the device's 1 kHz tick, unwrapped."""
+    samples: list[Sample] = field(default_factory=list)
+    _last_raw: int = -1
+    _wraps: int = 0
+
+    def unwrap(self, tick16: int) -> int:
+        if self._last_raw >= 0 and tick16 < self._last_raw - 32768:
+            self._wraps += 1
+        self._last_raw = tick16
+        return tick16 + 65536 * self._wraps
+
+
+class Device(can.Listener):
+    """One node on a bus. Use as a context manager: starts a Notifier (shared with ISO-TP)."""
+
+    def __init__(self, bus: can.BusABC, node: int = 0, channel: str = "can0", timeout_s: float = 2.0):
+        self.bus = bus
+        self.node = node
+        self.channel = channel
+        self.timeout_s = timeout_s
+        self.db = load_db(node)
+        self._m = {m.name: m for m in self.db.messages}
+        self._ids = {m.frame_id: m for m in self.db.messages}
+        self.status: Optional[Status] = None
+        self.status_event = threading.Event()
+        self.emergencies: list[tuple[float, dict]] = []
+        self.telemetry: Optional[Telemetry] = None
+        self.frames_seen = 0
+        self.bad_crc = 0
+        self._pending_pos: Optional[tuple[int, float, float]] = None
+        self._lock = threading.Lock()
+        self._counter = {"HostCommand": 0, "HostHeartbeat": 0}
+        self._hb_stop = threading.Event()
+        self._hb_thread: Optional[threading.Thread] = None
+        self.telemetry_period_ms = 0
+        self.notifier: Optional[can.Notifier] = None
+        self.on_status: Optional[Callable[[Status], None]] = None
+
+    # -- lifecycle ------------------------------------------------------------------------------
+    def __enter__(self) -> "Device":
+        self.notifier = can.Notifier(self.bus, [self], timeout=0.05)
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.stop_heartbeat()
+        if self.notifier is not None:
+            self.notifier.stop()
+
+    # -- receiving ------------------------------------------------------------------------------
+    def on_message_received(self, msg: can.Message) -> None:
+        m = self._ids.get(msg.arbitration_id)
+        if m is None or msg.is_extended_id or msg.is_error_frame:
+            return
+        if m.name in ("DeviceStatus", "Emergency") and not check(msg.arbitration_id, bytes(msg.data)):
+            self.bad_crc += 1
+            return
+        try:
+            sig = m.decode(bytes(msg.data), decode_choices=False)
+        except Exception:
+            return
+        self.frames_seen += 1
+        if m.name == "DeviceStatus":
+            st = Status(STATES.get(int(sig["State"]), str(sig["State"])), int(sig["FaultCode"]),
+                        int(sig["Slot"]), int(sig["Tick"]), bool(sig["ActuatorEnabled"]),
+                        bool(sig["HostAlive"]), int(sig["SequenceStep"]), float(msg.timestamp))
+            self.status = st
+            self.status_event.set()
+            if self.on_status is not None:
+                self.on_status(st)
+        elif m.name == "Emergency":
+            self.emergencies.append((float(msg.timestamp), dict(sig)))
+        elif m.name == "TelemetryPosition":
+            self._pending_pos = (int(sig["Tick"]), float(sig["PosX"]), float(sig["PosY"]))
+        elif m.name == "TelemetryForce":
+            pos = self._pending_pos
+            self._pending_pos = None
+            tel = self.telemetry
+            if pos is not None and tel is not None:
+                with self._lock:
+                    tel.samples.append(Sample(tel.unwrap(pos[0]), pos[1], pos[2], float(sig["ForceContact"]),
+                                              float(sig["ForceOperator"]), float(sig["ForceCmd"]),
+                                              float(sig["ForceRef"])))
+
+    # -- presence -------------------------------------------------------------------------------
+    def wait_present(self) -> Status:
+        """The next status frame of this node, or FsError 'no response from node N on CHANNEL'."""
+        self.status_event.clear()
+        if not self.status_event.wait(self.timeout_s):
+            raise FsError(ERR_LINK_NO_RESPONSE, f"no response from node {self.node} on {self.channel} "
+                          f"(no status frame 0x{self._m['DeviceStatus'].frame_id:03X} within {self.timeout_s:g} s)")
+        assert self.status is not None
+        return self.status
+
+    def wait_state(self, states: set[str], timeout_s: float) -> Status:
+        """Wait until the status reports one of states."""
+        end = time.monotonic() + timeout_s
+        while time.monotonic() < end:
+            st = self.status
+            if st is not None and st.state in states:
+                return st
+            self.status_event.clear()
+            if not self.status_event.wait(min(self.timeout_s, max(0.0, end - time.monotonic()))):
+                raise FsError(ERR_LINK_TIMEOUT, f"node {self.node} on {self.channel} stopped sending status")
+        st = self.status
+        raise FsError(ERR_LINK_TIMEOUT, f"node {self.node} did not reach {'/'.join(sorted(states))} "
+                      f"within {timeout_s:g} s (state {st.state if st else '?'})")
+
+    # -- sending --------------------------------------------------------------------------------
+    def _send_safety(self, name: str, signals: dict) -> None:
+        m = self._m[name]
+        full = {s.name: 0 for s in m.signals}
+        full.update(signals)
+        data = m.encode(full, strict=True)
+        with self._lock:
+            c = self._counter[name] = (self._counter[name] + 1) & 0x0F
+        self.bus.send(can.Message(arbitration_id=m.frame_id, data=protect(m.frame_id, data, c),
+                                  is_extended_id=False))
+
+    def heartbeat(self) -> None:
+        self._send_safety("HostHeartbeat", {"TelemetryPeriod": self.telemetry_period_ms})
+
+    def start_heartbeat(self, telemetry_period_ms: int = 0) -> None:
+        """Send the host heartbeat every HEARTBEAT_PERIOD_S from a thread."""
+        self.telemetry_period_ms = telemetry_period_ms
+        if self._hb_thread is not None:
+            return
+        self._hb_stop.clear()
+
+        def run() -> None:
+            nxt = time.monotonic()
+            while not self._hb_stop.is_set():
+                try:
+                    self.heartbeat()
+                except Exception:
+                    pass
+                nxt += HEARTBEAT_PERIOD_S
+                self._hb_stop.wait(max(0.0, nxt - time.monotonic()))
+
+        self._hb_thread = threading.Thread(target=run, name="forceskill-heartbeat", daemon=True)
+        self._hb_thread.start()
+
+    def stop_heartbeat(self) -> None:
+        if self._hb_thread is not None:
+            self._hb_stop.set()
+            self._hb_thread.join()
+            self._hb_thread = None
+
+    def command(self, mode: str, slot: int = 0, goal_scale: float = 1.0, time_scale: float = 1.0,
+                end: str = "skill") -> None:
+        """One HostCommand frame (each valid frame is one command)."""
+        self._send_safety("HostCommand", {"Mode": MODES[mode], "Slot": slot, "GoalScale": goal_scale,
+                                          "TimeScale": time_scale, "EndPolicy": END_POLICIES[end]})
+
+    def start_telemetry(self) -> Telemetry:
+        self.telemetry = Telemetry()
+        return self.telemetry

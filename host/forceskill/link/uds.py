@@ -1,0 +1,224 @@
+"""UDS client of the device: udsoncan over can-isotp (sharing the Device's python-can Notifier),
+configured here, not re-implemented. Padding 0xCC to 8 bytes, BS 0, STmin 0 (docs/protocol.md).
+
+SecurityAccess key = first 16 bytes of HMAC-SHA256(device secret, seed). The secret comes from
+$FORCESKILL_SECRET (hex) or, by default, the simulator's documented secret."""
+from __future__ import annotations
+
+import hashlib
+import hmac
+import logging
+import os
+import struct
+import time
+from contextlib import contextmanager
+from typing import Any, Callable, Iterator, Optional
+
+import isotp
+import udsoncan
+from udsoncan.client import Client
+from udsoncan.connections import PythonIsoTpConnection
+from udsoncan.exceptions import NegativeResponseException, TimeoutException, UnexpectedResponseException
+
+from ..errors import FsError
+from . import ERR_LINK_NEGATIVE, ERR_LINK_TIMEOUT, ERR_LINK_VERIFY
+from .dbc import UDS_REQUEST_BASE, UDS_RESPONSE_BASE
+from .device import Device
+
+SIM_SECRET = b"forceskill-simulator-secret-0001"
+
+# udsoncan logs every negative response; the commands report them as one line themselves
+logging.getLogger("UdsClient").setLevel(logging.CRITICAL)
+logging.getLogger("isotp").setLevel(logging.CRITICAL)
+SEC_LEVEL_WRITE = 0x01
+
+DID_SW_VERSION = 0xF189
+DID_VERSIONS = 0xF1A0
+DID_GAINS_X = 0x0100
+DID_GAINS_Y = 0x0101
+DID_LIMITS_X = 0x0110
+DID_LIMITS_Y = 0x0111
+DID_COMM = 0x0120
+DID_OBJECT = 0x0130
+DID_SLOT_DIR = 0x0200
+DID_LAST_TRANSFER = 0x0201
+DID_DEVICE_STATE = 0x0300
+
+RID_RUN_SKILL = 0x0201
+RID_RUN_SEQUENCE = 0x0202
+RID_SELF_TEST = 0x0203
+RID_CLEAR_FAULTS = 0x0204
+RID_ERASE_SLOT = 0xFF00
+
+N_SLOTS = 8
+SLOT_ENTRY = 16
+
+STATUS_NAMES = {0xFFFF: "transfer in progress", 0xFFFE: "transfer interrupted", 0: "ok",
+                200: "image too short", 201: "bad magic", 202: "unsupported format version",
+                203: "length mismatch", 204: "CRC-32 mismatch", 205: "bad kernel count",
+                206: "non-finite value", 207: "value out of range", 208: "bad centres",
+                209: "gains inconsistent with alpha/beta/gamma", 210: "unsupported flag",
+                211: "bad header size"}
+
+
+class Raw(udsoncan.DidCodec):
+    """Bytes as they are, of a fixed length."""
+
+    def __init__(self, n: int) -> None:
+        self.n = n
+
+    def encode(self, value: Any) -> bytes:
+        return bytes(value)
+
+    def decode(self, payload: bytes) -> bytes:
+        return bytes(payload)
+
+    def __len__(self) -> int:
+        return self.n
+
+
+DID_CODECS = {DID_SW_VERSION: Raw(19), DID_VERSIONS: Raw(6), DID_GAINS_X: Raw(20), DID_GAINS_Y: Raw(20),
+              DID_LIMITS_X: Raw(24), DID_LIMITS_Y: Raw(24), DID_COMM: Raw(3), DID_OBJECT: Raw(25),
+              DID_SLOT_DIR: Raw(1 + N_SLOTS * SLOT_ENTRY), DID_LAST_TRANSFER: Raw(2),
+              DID_DEVICE_STATE: Raw(9)}
+
+
+def device_secret() -> bytes:
+    env = os.environ.get("FORCESKILL_SECRET")
+    if env:
+        try:
+            return bytes.fromhex(env)
+        except ValueError:
+            raise FsError(ERR_LINK_NEGATIVE, "FORCESKILL_SECRET is not hex") from None
+    return SIM_SECRET
+
+
+def security_key(seed: bytes, secret: Optional[bytes] = None) -> bytes:
+    """The SecurityAccess key for a seed: HMAC-SHA256(secret, seed)[:16]."""
+    return hmac.new(secret if secret is not None else device_secret(), bytes(seed), hashlib.sha256).digest()[:16]
+
+
+def isotp_params() -> dict:
+    return {"tx_padding": 0xCC, "tx_data_min_length": 8, "stmin": 0, "blocksize": 0,
+            "rx_flowcontrol_timeout": 1000, "rx_consecutive_frame_timeout": 1000,
+            "max_frame_size": 4095, "can_fd": False, "blocking_send": False, "wftmax": 0}
+
+
+@contextmanager
+def uds_client(dev: Device, request_timeout_s: float = 5.0) -> Iterator[Client]:
+    """A connected udsoncan Client for dev (whose Notifier must be running)."""
+    assert dev.notifier is not None
+    addr = isotp.Address(isotp.AddressingMode.Normal_11bits, txid=UDS_REQUEST_BASE + dev.node,
+                         rxid=UDS_RESPONSE_BASE + dev.node)
+    stack = isotp.NotifierBasedCanStack(dev.bus, dev.notifier, address=addr, params=isotp_params())
+    conn = PythonIsoTpConnection(stack)
+    cfg = dict(udsoncan.configs.default_client_config)
+    cfg.update({"security_algo": lambda level, seed, params=None: security_key(seed),
+                "data_identifiers": DID_CODECS, "request_timeout": request_timeout_s,
+                "p2_timeout": request_timeout_s, "p2_star_timeout": request_timeout_s,
+                "use_server_timing": False, "server_address_format": 8,
+                "server_memorysize_format": 16, "exception_on_negative_response": True})
+    with Client(conn, config=cfg) as client:
+        yield client
+
+
+def describe_nrc(e: NegativeResponseException) -> str:
+    r = e.response
+    return f"{r.service.get_name() if r.service else 'request'} refused: {r.code_name} (0x{r.code:02X})"
+
+
+def call(what: str, fn: Callable[[], Any], node: int) -> Any:
+    """Run a udsoncan call; negative responses and timeouts become one-line FsErrors."""
+    try:
+        return fn()
+    except NegativeResponseException as e:
+        raise FsError(ERR_LINK_NEGATIVE, f"{what}: node {node} {describe_nrc(e)}") from None
+    except TimeoutException:
+        raise FsError(ERR_LINK_TIMEOUT, f"{what}: no UDS response from node {node}") from None
+    except UnexpectedResponseException as e:
+        raise FsError(ERR_LINK_NEGATIVE, f"{what}: unexpected response from node {node}: {e}") from None
+
+
+def unlock(client: Client, node: int, session: int) -> None:
+    """Enter session and unlock level 1; waits out the device's power-up/failed-key delay (0x37)."""
+    call("session change", lambda: client.change_session(session), node)
+    end = time.monotonic() + 15.0
+    while True:
+        try:
+            client.unlock_security_access(SEC_LEVEL_WRITE)
+            return
+        except NegativeResponseException as e:
+            if e.response.code == 0x37 and time.monotonic() < end:
+                time.sleep(0.2)
+                continue
+            raise FsError(ERR_LINK_NEGATIVE, f"security access: node {node} {describe_nrc(e)}") from None
+        except TimeoutException:
+            raise FsError(ERR_LINK_TIMEOUT, f"security access: no UDS response from node {node}") from None
+
+
+def read_did(client: Client, did: int, node: int) -> bytes:
+    r = call(f"read 0x{did:04X}", lambda: client.read_data_by_identifier(did), node)
+    return bytes(r.service_data.values[did])
+
+
+def slot_directory(client: Client, node: int) -> list[dict]:
+    raw = read_did(client, DID_SLOT_DIR, node)
+    out = []
+    for i in range(raw[0]):
+        e = raw[1 + SLOT_ENTRY * i: 1 + SLOT_ENTRY * (i + 1)]
+        valid, length, crc, n, dur, end = struct.unpack(">BIIHfB", e)
+        out.append({"slot": i + 1, "valid": bool(valid), "length": length, "crc32": crc, "n_kernels": n,
+                    "duration_s": dur, "end": "release" if end else "hold"})
+    return out
+
+
+def last_transfer_status(client: Client, node: int) -> int:
+    return struct.unpack(">H", read_did(client, DID_LAST_TRANSFER, node))[0]
+
+
+def download(client: Client, node: int, slot: int, image: bytes,
+             progress: Optional[Callable[[int], None]] = None) -> int:
+    """RequestDownload + TransferData + RequestTransferExit of image into slot; returns the CRC-32
+    the device reports. On refusal the device keeps the slot's previous skill."""
+    loc = udsoncan.MemoryLocation(address=slot, memorysize=len(image), address_format=8, memorysize_format=16)
+    r = call("request download", lambda: client.request_download(loc), node)
+    block = int(r.service_data.max_length) - 2
+    seq = 1
+    for off in range(0, len(image), block):
+        chunk = image[off:off + block]
+        call("transfer data", lambda: client.transfer_data(seq & 0xFF, chunk), node)
+        seq += 1
+        if progress:
+            progress(len(chunk))
+    try:
+        r = client.request_transfer_exit()
+    except NegativeResponseException as e:
+        code = last_transfer_status(client, node)
+        raise FsError(ERR_LINK_NEGATIVE, f"node {node} rejected the skill at transfer exit "
+                      f"({describe_nrc(e)}; device status {code}: {STATUS_NAMES.get(code, 'storage error')}); "
+                      f"slot {slot} keeps its previous skill") from None
+    except TimeoutException:
+        raise FsError(ERR_LINK_TIMEOUT, f"transfer exit: no UDS response from node {node}") from None
+    params = bytes(r.service_data.parameter_records or b"")
+    return struct.unpack(">I", params[:4])[0] if len(params) >= 4 else -1
+
+
+def upload(client: Client, node: int, slot: int, size: int) -> bytes:
+    """RequestUpload + TransferData until size bytes + RequestTransferExit: read a slot back."""
+    loc = udsoncan.MemoryLocation(address=slot, memorysize=size, address_format=8, memorysize_format=16)
+    call("request upload", lambda: client.request_upload(loc), node)
+    data = bytearray()
+    seq = 1
+    while len(data) < size:
+        r = call("transfer data", lambda: client.transfer_data(seq & 0xFF), node)
+        data += bytes(r.service_data.parameter_records or b"")
+        seq += 1
+    call("transfer exit", lambda: client.request_transfer_exit(), node)
+    return bytes(data)
+
+
+def verify(node: int, slot: int, sent: bytes, read: bytes) -> None:
+    if sent != read:
+        first = next((i for i, (a, b) in enumerate(zip(sent, read)) if a != b), min(len(sent), len(read)))
+        raise FsError(ERR_LINK_VERIFY, f"read-back of slot {slot} on node {node} differs from the file "
+                      f"at byte {first} ({len(read)} of {len(sent)} bytes read)")

@@ -1,0 +1,132 @@
+"""The user's day over CAN against the simulator, through python-can's socketcand interface only:
+record a pressing demonstration (TEACH) to .blf, fit it, upload it with udsoncan (read-back
+verified), run it at 1x and 1.5x, and check the HIL issue's figures on the recorded telemetry.
+Also: a log written by `python -m can.logger` is accepted by `forceskill fit`, and cantools decodes
+every cyclic frame the device sends."""
+from __future__ import annotations
+
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import can
+import cantools
+import numpy as np
+import pytest
+
+from forceskill import cli
+from forceskill.demo import load_demo
+from forceskill.link import logs  # noqa: F401  (registers the CAN log readers)
+from forceskill.link.dbc import dbc_path
+from forceskill.skill import Skill
+
+K_NPM = 100.0          # pressing task 1, outer layer (hil_sim/scenarios/pressing_task1_demo.toml)
+SURFACE_M = 0.001
+
+
+def forceskill(capsys, *argv: str) -> str:
+    rc = cli.main(list(argv))
+    out, err = capsys.readouterr()
+    assert rc == 0, f"forceskill {' '.join(argv)} failed ({rc}): {err}"
+    return out
+
+
+@pytest.fixture(scope="module")
+def journey(server, tmp_path_factory):
+    d = tmp_path_factory.mktemp("journey")
+    return {"dir": d, "server": server}
+
+
+def test_record_fit_upload_run(journey, capsys):
+    d, srv = journey["dir"], journey["server"]
+    bus = srv.bus_args()
+    out = forceskill(capsys, "record", "-o", str(d / "demo.blf"), "--duration", "6", *bus)
+    assert "in TEACH" in out
+    demo = load_demo(d / "demo.blf")
+    assert 5.9 <= demo.t_s[-1] <= 6.1 and np.allclose(np.diff(demo.t_s), 1e-3)
+    assert 3.5 < demo.force_N.max() < 6.0            # the seeded operator's high level (4.5 N +- 10 %)
+    out = forceskill(capsys, "fit", str(d / "demo.blf"), "--stiffness", str(K_NPM), "--surface-m",
+                     str(SURFACE_M), "--end", "release", "-o", str(d / "press.skill"))
+    err_max = float(out.split("approximation error: max ")[1].split(" %")[0])
+    assert err_max <= 2.5                             # SPEC 7: default fit <= 2.5 %
+    out = forceskill(capsys, "upload", str(d / "press.skill"), "--slot", "1", "-q", *bus)
+    assert "verified by read-back" in out
+    status = forceskill(capsys, "status", *bus)
+    sk = Skill.read(d / "press.skill")
+    assert f"slot 1: {len(sk.to_bytes())} bytes" in status
+    results = {}
+    for g in ("1", "1.5"):
+        csv = d / f"run_{g}.csv"
+        out = forceskill(capsys, "run", "--slot", "1", "--goal-scale", g, "--csv", str(csv),
+                         "-o", str(d / f"run_{g}.blf"), *bus)
+        results[g] = load_csv(csv)
+    journey["results"] = results
+    journey["skill"] = sk
+
+
+def load_csv(path: Path) -> dict[str, np.ndarray]:
+    a = np.genfromtxt(path, delimiter=",", names=True)
+    return {n: np.asarray(a[n]) for n in a.dtype.names}
+
+
+def tracking(cols):
+    peak = cols["f_hat"].max()
+    e = cols["f_contact"] - cols["f_hat"]
+    return 100 * np.abs(e).max() / peak, 100 * np.sqrt(np.mean(e * e)) / peak
+
+
+def test_tracking_figures_1x_and_1_5x(journey):
+    res = journey["results"]
+    for g, cols in res.items():
+        mx, rms = tracking(cols)
+        # HIL issue: execution force tracking RMS <= 3 % of max force (ideal plant)
+        assert rms <= 3.0, f"goal x{g}: tracking RMS {rms:.2f} %"
+        assert mx <= 15.0, f"goal x{g}: tracking max {mx:.2f} %"
+        assert np.all(np.abs(cols["f_cmd"]) <= 50.0 + 1e-9)   # F_max at the last stage
+    # goal scaling scales the force by 1.5 (reference exactly, measured within 3 %)
+    r_ref = res["1.5"]["f_hat"].max() / res["1"]["f_hat"].max()
+    r_meas = res["1.5"]["f_contact"].max() / res["1"]["f_contact"].max()
+    assert abs(r_ref - 1.5) < 0.01 and abs(r_meas - 1.5) < 0.045
+    # executed for the skill's duration, then the release (0.5 s) and back to IDLE (1 kHz stream ends)
+    assert abs(res["1"]["t"][-1] - (journey["skill"].duration_s + 0.5)) < 0.01
+    assert res["1"]["f_hat"][-1] < 0.05 * res["1"]["f_hat"].max()
+
+
+def test_cantools_decodes_every_device_frame(journey):
+    db = cantools.database.load_file(str(dbc_path()))
+    device_ids = {m.frame_id for m in db.messages if m.senders == ["Device"]}
+    seen: dict[int, int] = {}
+    for log in sorted(journey["dir"].glob("*.blf")):
+        for msg in can.LogReader(str(log)):
+            if msg.arbitration_id in device_ids:
+                decoded = db.decode_message(msg.arbitration_id, msg.data, decode_choices=False)
+                assert all(np.isfinite(float(v)) for v in decoded.values() if not isinstance(v, str))
+                seen[msg.arbitration_id] = seen.get(msg.arbitration_id, 0) + 1
+            elif msg.arbitration_id == 0x680:           # UDS responses: ISO-TP, not DBC frames
+                assert msg.dlc == 8 and (msg.data[0] >> 4) in (0, 1, 2, 3)
+    names = {db.get_message_by_frame_id(i).name for i in seen}
+    assert {"DeviceStatus", "TelemetryPosition", "TelemetryForce"} <= names
+    assert seen[0x190] > 15000 and seen[0x1A0] > 15000
+
+
+def test_can_logger_log_accepted_by_fit(server, tmp_path, capsys):
+    log = tmp_path / "logger.asc"
+    p = subprocess.Popen([sys.executable, "-m", "can.logger", "-i", "socketcand", "-c", "can0",
+                          "--bus-kwargs", "host=127.0.0.1", f"port={server.port}", "-f", str(log)],
+                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        time.sleep(1.5)
+        forceskill(capsys, "record", "-o", str(tmp_path / "driver.log"), "--duration", "5", *server.bus_args())
+        time.sleep(0.3)
+    finally:
+        p.send_signal(signal.SIGINT)
+        p.wait(timeout=20)
+    out = forceskill(capsys, "fit", str(log), "--stiffness", str(K_NPM), "--surface-m", str(SURFACE_M),
+                     "-o", str(tmp_path / "from_logger.skill"))
+    assert "logger.asc:f_contact" in out and "T = 5.0" in out
+    # the python-can logger's copy and forceskill's own .log record the same demonstration
+    a, b = load_demo(log), load_demo(tmp_path / "driver.log")
+    n = min(a.t_s.size, b.t_s.size)
+    assert n > 4900 and np.array_equal(a.force_N[:n], b.force_N[:n])

@@ -1,0 +1,403 @@
+/* Tests of firmware/app/fs_exec (skill execution). References: the Python rollouts of the golden
+ * vectors (tests/vectors, written by host/forceskill), the analytic static deformation of the
+ * two-layer object, the control law's y-axis expression with the default gains, and exact
+ * linearity of goal scaling. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "fs_exec.h"
+
+#ifndef FS_VECTORS_DIR
+#error "FS_VECTORS_DIR must be defined"
+#endif
+
+#define DT 0.001
+
+static skill_t g_press;   /* press_n50_ridge_release.skill */
+static skill_t g_engrave; /* engrave_n50_lwr_hold.skill */
+
+static void load_skill(const char *name, skill_t *out)
+{
+    char path[512];
+    static uint8_t buf[16384];
+    snprintf(path, sizeof path, "%s/%s", FS_VECTORS_DIR, name);
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    size_t n = fread(buf, 1, sizeof buf, f);
+    fclose(f);
+    assert_int_equal(skill_parse(buf, (uint32_t)n, out), FS_OK);
+}
+
+/* the golden rollout t,f_hat; returns rows */
+static size_t load_rollout(const char *name, double *f, size_t cap)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", FS_VECTORS_DIR, name);
+    FILE *fp = fopen(path, "r");
+    assert_non_null(fp);
+    char line[256];
+    size_t n = 0;
+    assert_non_null(fgets(line, sizeof line, fp)); /* header */
+    while (fgets(line, sizeof line, fp) != NULL && n < cap) {
+        double t = 0.0, v = 0.0;
+        assert_int_equal(sscanf(line, "%lf,%lf", &t, &v), 2);
+        f[n++] = v;
+    }
+    fclose(fp);
+    return n;
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    load_skill("press_n50_ridge_release.skill", &g_press);
+    load_skill("engrave_n50_lwr_hold.skill", &g_engrave);
+    return 0;
+}
+
+static exec_meas_t zero_meas(void)
+{
+    exec_meas_t m;
+    memset(&m, 0, sizeof m);
+    return m;
+}
+
+static exec_step_t step_of(const skill_t *s, double goal, double ts, double dur, skill_end_t end)
+{
+    exec_step_t st = {s, goal, ts, dur, end};
+    return st;
+}
+
+/* Open loop (measurements held at 0), no model: f_hat equals the Python reference rollout. */
+static void run_golden(const skill_t *sk, const char *csv, double goal, double ts)
+{
+    static double ref[40000];
+    size_t rows = load_rollout(csv, ref, 40000);
+    assert_true(rows > 100);
+    exec_config_t cfg;
+    exec_config_default(&cfg);
+    static exec_state_t st;
+    exec_step_t s = step_of(sk, goal, ts, 0.0, SKILL_END_HOLD);
+    assert_int_equal(exec_start(&cfg, &st, &s, 1, 0.0), FS_OK);
+    double fmax = 0.0;
+    for (size_t i = 0; i < rows; i++) {
+        fmax = fmax > fabs(ref[i]) ? fmax : fabs(ref[i]);
+    }
+    exec_meas_t m = zero_meas();
+    double worst = 0.0;
+    for (size_t n = 1; n < rows; n++) {
+        exec_out_t o;
+        assert_int_equal(exec_tick(&cfg, &st, &m, &o), FS_OK);
+        double e = fabs(o.force_hat_N - ref[n]);
+        worst = e > worst ? e : worst;
+    }
+    assert_true(worst <= 1e-6 * fmax);
+}
+
+static void test_open_loop_matches_python_rollouts(void **state)
+{
+    (void)state;
+    run_golden(&g_press, "press_n50_ridge_release_g1_t1.csv", 1.0, 1.0);
+    run_golden(&g_press, "press_n50_ridge_release_g1p5_t1.csv", 1.5, 1.0);
+    run_golden(&g_press, "press_n50_ridge_release_g1_t1p3.csv", 1.0, 1.3);
+    run_golden(&g_engrave, "engrave_n50_lwr_hold_g1p5_t1p3.csv", 1.5, 1.3);
+}
+
+static void test_goal_scaling_is_exact(void **state)
+{
+    (void)state;
+    exec_config_t cfg;
+    exec_config_default(&cfg);
+    static exec_state_t a, b;
+    exec_step_t s1 = step_of(&g_engrave, 1.0, 1.0, 0.0, SKILL_END_HOLD);
+    exec_step_t s2 = step_of(&g_engrave, 1.5, 1.0, 0.0, SKILL_END_HOLD);
+    assert_int_equal(exec_start(&cfg, &a, &s1, 1, 0.0), FS_OK);
+    assert_int_equal(exec_start(&cfg, &b, &s2, 1, 0.0), FS_OK);
+    exec_meas_t m = zero_meas();
+    for (int n = 0; n < 6000; n++) {
+        exec_out_t oa, ob;
+        exec_tick(&cfg, &a, &m, &oa);
+        exec_tick(&cfg, &b, &m, &ob);
+        assert_true(fabs(ob.force_hat_N - 1.5 * oa.force_hat_N) <= 1e-9 * (1.0 + fabs(ob.force_hat_N)));
+    }
+}
+
+/* hold keeps the last force; release ramps linearly to 0 in 0.5 s, then done */
+static void test_end_policies(void **state)
+{
+    (void)state;
+    exec_config_t cfg;
+    exec_config_default(&cfg);
+    static exec_state_t st;
+    exec_meas_t m = zero_meas();
+    exec_out_t o;
+    const int n_dur = 2000; /* 2 s step */
+    for (int pol = 0; pol < 2; pol++) {
+        exec_step_t s = step_of(&g_press, 1.0, 1.0, 2.0, pol ? SKILL_END_RELEASE : SKILL_END_HOLD);
+        assert_int_equal(exec_start(&cfg, &st, &s, 1, 0.0), FS_OK);
+        double f_end = 0.0;
+        for (int n = 0; n < n_dur; n++) {
+            exec_tick(&cfg, &st, &m, &o);
+            f_end = o.force_hat_N;
+        }
+        assert_true(f_end > 0.5);
+        for (int n = 1; n <= 1000; n++) {
+            exec_tick(&cfg, &st, &m, &o);
+            if (pol == 0) {
+                assert_true(o.force_hat_N == f_end);
+                assert_int_equal(o.done, 0);
+            } else if (n < 500) {
+                assert_true(fabs(o.force_hat_N - f_end * (1.0 - n * DT / 0.5)) < 1e-9 * f_end);
+            } else {
+                assert_true(o.force_hat_N == 0.0);
+                assert_int_equal(o.done, 1);
+            }
+        }
+    }
+}
+
+/* Sequence A (1.2 s of a 1.5 s skill) then B: no jump at the switch, and B's own profile after EXEC_BLEND_S. */
+static void test_sequence_continuity(void **state)
+{
+    (void)state;
+    exec_config_t cfg;
+    exec_config_default(&cfg);
+    static exec_state_t seq, solo;
+    exec_step_t steps[2] = {step_of(&g_press, 1.0, 1.0, 1.2, SKILL_END_HOLD),
+                            step_of(&g_engrave, 1.0, 1.0, 0.0, SKILL_END_HOLD)};
+    assert_int_equal(exec_start(&cfg, &seq, steps, 2, 0.0), FS_OK);
+    assert_int_equal(exec_start(&cfg, &solo, &steps[1], 1, 0.0), FS_OK);
+    exec_meas_t m = zero_meas();
+    exec_out_t o, os;
+    double prev = 0.0, max_step_a = 0.0, f_switch = 0.0;
+    for (int n = 0; n < 1200; n++) {
+        exec_tick(&cfg, &seq, &m, &o);
+        if (n > 0) {
+            max_step_a = fmax(max_step_a, fabs(o.force_hat_N - prev));
+        }
+        prev = o.force_hat_N;
+        f_switch = prev;
+    }
+    assert_int_equal(o.step, 1);
+    assert_true(f_switch > 1.0);                 /* a naive restart would drop by this much */
+    exec_tick(&cfg, &seq, &m, &o);               /* first tick of B */
+    exec_tick(&cfg, &solo, &m, &os);
+    assert_true(fabs(o.force_hat_N - f_switch) <= 2.0 * max_step_a);
+    assert_true(fabs(o.force_hat_N - f_switch) < 0.01 * f_switch);
+    const int n_blend = (int)(EXEC_BLEND_S / DT + 0.5);
+    for (int n = 1; n < n_blend + 1000; n++) {
+        exec_tick(&cfg, &seq, &m, &o);
+        exec_tick(&cfg, &solo, &m, &os);
+        if (n >= n_blend) {
+            assert_true(o.force_hat_N == os.force_hat_N);
+        }
+    }
+}
+
+/* With the object model the reference settles where F(p) = f_hat (held): analytic two-layer inverse. */
+static void test_model_reference_static_inverse(void **state)
+{
+    (void)state;
+    exec_config_t cfg;
+    exec_config_default(&cfg);
+    cfg.use_model = 1;
+    cfg.object = (exec_object_t){10.0, 50.0, 100.0, 180.0, 0.019, 0.001};
+    static exec_state_t st;
+    exec_step_t s = step_of(&g_press, 1.0, 1.0, 2.0, SKILL_END_HOLD);
+    assert_int_equal(exec_start(&cfg, &st, &s, 1, 0.0), FS_OK);
+    exec_meas_t m = zero_meas();
+    exec_out_t o;
+    double p_prev = 0.0, pd_prev = 0.0;
+    for (int n = 0; n < 30000; n++) {
+        exec_tick(&cfg, &st, &m, &o);
+        /* every tick: the object's equation holds for the reference it produced */
+        const double lhs = 10.0 * st.ref_pdd_mps2 + 50.0 * pd_prev + exec_object_force(&cfg.object, p_prev);
+        if (st.ref_p_m > 0.0) {
+            assert_true(fabs(lhs - o.force_hat_N) < 1e-9 * (1.0 + fabs(o.force_hat_N)));
+        }
+        p_prev = st.ref_p_m;
+        pd_prev = st.ref_pd_mps;
+    }
+    const double f = o.force_hat_N;
+    const double f1 = 100.0 * 0.019;
+    const double p_exp = (f <= f1) ? f / 100.0 : 0.019 + (f - f1) / 180.0;
+    assert_true(fabs((o.pos_ref_m - 0.001) - p_exp) < 1e-6);
+}
+
+static void test_nonfinite_measurement_commands_zero(void **state)
+{
+    (void)state;
+    exec_config_t cfg;
+    exec_config_default(&cfg);
+    static exec_state_t st;
+    exec_step_t s = step_of(&g_press, 1.0, 1.0, 0.0, SKILL_END_HOLD);
+    assert_int_equal(exec_start(&cfg, &st, &s, 1, 0.0), FS_OK);
+    exec_meas_t m = zero_meas();
+    m.force_contact_N = NAN;
+    exec_out_t o;
+    assert_int_equal(exec_tick(&cfg, &st, &m, &o), FS_ERR_NOT_FINITE);
+    assert_true(o.force_cmd_N[0] == 0.0 && o.force_cmd_N[1] == 0.0);
+    m = zero_meas();
+    m.pos_m[1] = INFINITY;
+    assert_int_equal(exec_tick(&cfg, &st, &m, &o), FS_ERR_NOT_FINITE);
+}
+
+static void test_start_validation(void **state)
+{
+    (void)state;
+    exec_config_t cfg;
+    exec_config_default(&cfg);
+    static exec_state_t st;
+    exec_step_t s[9];
+    for (int i = 0; i < 9; i++) {
+        s[i] = step_of(&g_press, 1.0, 1.0, 0.0, SKILL_END_HOLD);
+    }
+    assert_int_equal(exec_start(&cfg, &st, s, 0, 0.0), FS_ERR_SCALE_INVALID);
+    assert_int_equal(exec_start(&cfg, &st, s, 9, 0.0), FS_ERR_SCALE_INVALID);
+    assert_int_equal(exec_start(&cfg, &st, s, 8, 0.0), FS_OK);
+    s[3].skill = NULL;
+    assert_int_equal(exec_start(&cfg, &st, s, 8, 0.0), FS_ERR_NULL_ARG);
+    s[3].skill = &g_press;
+    s[2].time_scale = 0.0;
+    assert_int_equal(exec_start(&cfg, &st, s, 8, 0.0), FS_ERR_SCALE_INVALID);
+    s[2].time_scale = 1.0;
+    s[1].goal_scale = NAN;
+    assert_int_equal(exec_start(&cfg, &st, s, 8, 0.0), FS_ERR_SCALE_INVALID);
+    s[1].goal_scale = 1.0;
+    cfg.use_model = 1;
+    cfg.object.m_v_kg = 0.0;
+    assert_int_equal(exec_start(&cfg, &st, s, 1, 0.0), FS_ERR_MASS_NONPOSITIVE);
+    cfg.object.m_v_kg = 10.0;
+    cfg.object.k2_Npm = -1.0;
+    assert_int_equal(exec_start(&cfg, &st, s, 1, 0.0), FS_ERR_STIFFNESS_NONPOSITIVE);
+    exec_config_default(&cfg);
+    cfg.phase_stop_gain_per_N2 = -1.0;
+    assert_int_equal(exec_start(&cfg, &st, s, 1, 0.0), FS_ERR_GAIN_NEGATIVE);
+    exec_config_default(&cfg);
+    cfg.pfc.gains[0].k_d_Nspm = 10.0; /* k_d <= m_d */
+    assert_int_not_equal(exec_start(&cfg, &st, s, 1, 0.0), FS_OK);
+}
+
+/* y holds its start position: the law with k_f = k_i = 0, f = k_p*(y0 - y) - k_d*vy. */
+static void test_y_axis_holds_position(void **state)
+{
+    (void)state;
+    exec_config_t cfg;
+    exec_config_default(&cfg);
+    static exec_state_t st;
+    exec_step_t s = step_of(&g_press, 1.0, 1.0, 0.0, SKILL_END_HOLD);
+    assert_int_equal(exec_start(&cfg, &st, &s, 1, 0.002), FS_OK);
+    exec_meas_t m = zero_meas();
+    m.pos_m[1] = 0.0015;
+    m.vel_mps[1] = 0.01;
+    exec_out_t o;
+    exec_tick(&cfg, &st, &m, &o);
+    const double expect = 1170.0 * (0.002 - 0.0015) - 400.0 * 0.01;
+    assert_true(fabs(o.force_cmd_N[1] - expect) < 1e-9);
+}
+
+/* Saturation: whatever the error, |f_cmd| <= the configured limit. */
+static void test_output_saturated(void **state)
+{
+    (void)state;
+    exec_config_t cfg;
+    exec_config_default(&cfg);
+    cfg.pfc.limits[0].force_max_N = 5.0;
+    cfg.pfc.limits[1].force_max_N = 5.0;
+    static exec_state_t st;
+    exec_step_t s = step_of(&g_press, 20.0, 1.0, 0.0, SKILL_END_HOLD);
+    assert_int_equal(exec_start(&cfg, &st, &s, 1, 0.0), FS_OK);
+    exec_meas_t m = zero_meas();
+    m.pos_m[0] = -0.5;
+    m.pos_m[1] = 0.3;
+    exec_out_t o;
+    for (int n = 0; n < 3000; n++) {
+        exec_tick(&cfg, &st, &m, &o);
+        assert_true(fabs(o.force_cmd_N[0]) <= 5.0 && fabs(o.force_cmd_N[1]) <= 5.0);
+    }
+}
+
+/* Phase stopping: a persistent force error slows the phase, so f_hat rises later. */
+static void test_phase_stopping_slows_the_skill(void **state)
+{
+    (void)state;
+    exec_config_t a, b;
+    exec_config_default(&a);
+    exec_config_default(&b);
+    b.phase_stop_gain_per_N2 = 1.0;
+    static exec_state_t sa, sb;
+    exec_step_t s = step_of(&g_press, 1.0, 1.0, 0.0, SKILL_END_HOLD);
+    assert_int_equal(exec_start(&a, &sa, &s, 1, 0.0), FS_OK);
+    assert_int_equal(exec_start(&b, &sb, &s, 1, 0.0), FS_OK);
+    exec_meas_t m = zero_meas(); /* no contact force: the error equals f_hat */
+    exec_out_t oa, ob;
+    for (int n = 0; n < 1500; n++) {
+        exec_tick(&a, &sa, &m, &oa);
+        exec_tick(&b, &sb, &m, &ob);
+    }
+    assert_true(sb.dmp.u < sa.dmp.u);
+    assert_true(ob.force_hat_N < oa.force_hat_N);
+}
+
+static void test_velocity_filter(void **state)
+{
+    (void)state;
+    exec_vel_t v;
+    exec_vel_init(&v, 50.0, DT);
+    double est = 0.0;
+    for (int n = 0; n < 500; n++) {
+        est = exec_vel_update(&v, 0.02 * n * DT, DT); /* 0.02 m/s ramp */
+    }
+    assert_true(fabs(est - 0.02) < 1e-9);
+    for (int n = 0; n < 500; n++) {
+        est = exec_vel_update(&v, 0.01, DT);
+    }
+    assert_true(fabs(est) < 1e-9);
+}
+
+/* Rendering: with the virtual and real carriage together, the motor force is m_c*acc minus the
+ * (low-passed) external force plus friction compensation; and it is limited. */
+static void test_render(void **state)
+{
+    (void)state;
+    exec_render_cfg_t c;
+    exec_render_default(&c);
+    exec_render_t r;
+    exec_render_reset(&r, 0.0);
+    /* first tick from rest: virtual state moves by acc*dt, dt*acc*dt */
+    const double acc = 10.0 / 40.0;
+    double f = exec_render_step(&c, &r, 10.0, 40.0, 3.0, 0.0, 0.0, DT);
+    const double lp = DT / (DT + 1.0 / (2.0 * 3.14159265358979323846 * c.ext_cutoff_Hz));
+    double expect = 2.0 * acc + c.kp_Npm * (acc * DT * DT) + c.kd_Nspm * (acc * DT) - lp * 3.0;
+    assert_true(fabs(f - expect) < 1e-9);
+    exec_render_reset(&r, 0.0);
+    f = exec_render_step(&c, &r, 1e6, 40.0, 0.0, 0.0, 0.0, DT);
+    assert_true(f == c.motor_max_N);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_open_loop_matches_python_rollouts),
+        cmocka_unit_test(test_goal_scaling_is_exact),
+        cmocka_unit_test(test_end_policies),
+        cmocka_unit_test(test_sequence_continuity),
+        cmocka_unit_test(test_model_reference_static_inverse),
+        cmocka_unit_test(test_nonfinite_measurement_commands_zero),
+        cmocka_unit_test(test_start_validation),
+        cmocka_unit_test(test_y_axis_holds_position),
+        cmocka_unit_test(test_output_saturated),
+        cmocka_unit_test(test_phase_stopping_slows_the_skill),
+        cmocka_unit_test(test_velocity_filter),
+        cmocka_unit_test(test_render),
+    };
+    return cmocka_run_group_tests(tests, setup, NULL);
+}

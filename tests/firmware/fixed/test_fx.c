@@ -1,0 +1,179 @@
+/* fx_ helpers at boundary values against a double reference: exact rounding (0 LSB) for the
+ * arithmetic helpers, the documented table bound for exp, saturation instead of wrap-around.
+ * Built under ASan+UBSan in Debug, so a signed overflow anywhere here fails the test. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+
+#include "fx.h"
+
+static const int32_t k_edges[] = {INT32_MIN, INT32_MIN + 1, -(1 << 30), -(1 << 24), -65537, -2,
+                                  -1, 0, 1, 2, 65537, 1 << 24, 1 << 30, INT32_MAX - 1, INT32_MAX,
+                                  123456789, -987654321};
+#define N_EDGES (sizeof(k_edges) / sizeof(k_edges[0]))
+
+static uint64_t rng_state = 0x9E3779B97F4A7C15ull;
+static uint64_t rng_next(void)
+{
+    rng_state ^= rng_state >> 12;
+    rng_state ^= rng_state << 25;
+    rng_state ^= rng_state >> 27;
+    return rng_state * 2685821657736338717ull;
+}
+
+/* Reference: clamp(floor(x + 0.5)) in long double (64-bit mantissa: exact for these sizes). */
+static int32_t ref_round_sat(long double x)
+{
+    const long double r = floorl(x + 0.5L);
+    if (r > (long double)INT32_MAX) {
+        return INT32_MAX;
+    }
+    if (r < (long double)INT32_MIN) {
+        return INT32_MIN;
+    }
+    return (int32_t)r;
+}
+
+static void test_sat_add_sub(void **state)
+{
+    (void)state;
+    for (size_t i = 0; i < N_EDGES; i++) {
+        for (size_t j = 0; j < N_EDGES; j++) {
+            const int32_t a = k_edges[i];
+            const int32_t b = k_edges[j];
+            assert_int_equal(fx_add_sat(a, b), ref_round_sat((long double)a + (long double)b));
+            assert_int_equal(fx_sub_sat(a, b), ref_round_sat((long double)a - (long double)b));
+        }
+    }
+    assert_int_equal(fx_sat32((int64_t)INT32_MAX + 1), INT32_MAX);
+    assert_int_equal(fx_sat32((int64_t)INT32_MIN - 1), INT32_MIN);
+    assert_int_equal(fx_sat32(INT64_MAX), INT32_MAX);
+    assert_int_equal(fx_sat32(INT64_MIN), INT32_MIN);
+    assert_int_equal(fx_abs_sat(INT32_MIN), INT32_MAX);
+    assert_int_equal(fx_abs_sat(-5), 5);
+    assert_int_equal(fx_clamp_sym(100, 7), 7);
+    assert_int_equal(fx_clamp_sym(-100, 7), -7);
+    assert_int_equal(fx_clamp_sym(INT32_MIN, INT32_MAX), -INT32_MAX);
+}
+
+static void test_mul_round_exact(void **state)
+{
+    (void)state;
+    const unsigned shifts[] = {1u, 16u, 19u, 20u, 23u, 24u, 30u, 31u};
+    for (size_t s = 0; s < sizeof(shifts) / sizeof(shifts[0]); s++) {
+        for (size_t i = 0; i < N_EDGES; i++) {
+            for (size_t j = 0; j < N_EDGES; j++) {
+                const int32_t a = k_edges[i];
+                const int32_t b = k_edges[j];
+                const long double ref = ldexpl((long double)a * (long double)b, -(int)shifts[s]);
+                assert_int_equal(fx_mul_sat(a, b, shifts[s]), ref_round_sat(ref));
+            }
+        }
+        for (int k = 0; k < 20000; k++) {
+            const int32_t a = (int32_t)(uint32_t)rng_next();
+            const int32_t b = (int32_t)(uint32_t)rng_next();
+            const long double ref = ldexpl((long double)a * (long double)b, -(int)shifts[s]);
+            assert_int_equal(fx_mul_sat(a, b, shifts[s]), ref_round_sat(ref));
+        }
+    }
+    /* rshift_round: half rounds up, negative values floor(x + 0.5) too */
+    assert_int_equal(fx_rshift_round(3, 1u), 2);
+    assert_int_equal(fx_rshift_round(-3, 1u), -1);
+    assert_int_equal(fx_rshift_round(-5, 2u), -1);
+    assert_int_equal(fx_rshift_round(((int64_t)1 << 62) - 1, 31u), (int64_t)1 << 31);
+}
+
+/* exp(-a) by table: error <= (ln2/256)^2/8 relative (linear interpolation of 2^-f) plus the
+ * rounding of the table entries, interpolation product and final shift (<= 2 LSB). */
+static void test_exp_table(void **state)
+{
+    (void)state;
+    const double interp_rel = pow(log(2.0) / 256.0, 2.0) / 8.0;
+    double worst_lsb = 0.0;
+    double worst_rel = 0.0;
+    uint32_t prev = UINT32_MAX;
+    const uint32_t max = FX_EXP_ARG_MAX_Q27;
+    for (uint64_t a = 0; a <= max; a += 4099u) {
+        const uint32_t got = fx_exp_neg_q27((uint32_t)a);
+        const double ref = ldexp(exp(-ldexp((double)a, -27)), 31);
+        const double err = fabs((double)got - ref);
+        assert_true(err <= interp_rel * ref + 2.0);
+        worst_lsb = fmax(worst_lsb, err);
+        worst_rel = fmax(worst_rel, err / ref);
+        assert_true(got <= prev); /* monotone non-increasing */
+        prev = got;
+    }
+    const uint32_t edges[] = {0u, 1u, 2u, (1u << 27) - 1u, 1u << 27, max - 1u, max};
+    for (size_t i = 0; i < sizeof(edges) / sizeof(edges[0]); i++) {
+        const double ref = ldexp(exp(-ldexp((double)edges[i], -27)), 31);
+        const double got = (double)fx_exp_neg_q27(edges[i]);
+        assert_true(fabs(got - ref) <= interp_rel * ref + 2.0);
+    }
+    assert_int_equal(fx_exp_neg_q27(0u), FX_Q31_ONE_U);
+    /* clipped at 16: larger arguments give exp(-16), never wrap to large values */
+    assert_int_equal(fx_exp_neg_q27(max + 1u), fx_exp_neg_q27(max));
+    assert_int_equal(fx_exp_neg_q27(UINT32_MAX), fx_exp_neg_q27(max));
+    print_message("fx_exp_neg_q27: worst %.1f LSB, %.2e relative (bound %.2e)\n", worst_lsb,
+                  worst_rel, interp_rel);
+}
+
+static void test_udiv(void **state)
+{
+    (void)state;
+    const uint32_t ds[] = {1u, 2u, 3u, 0xFFFFu, 0x10000u, 0x10001u, 0x7FFFFFFFu, 0x80000000u,
+                           0x80000001u, 0xFFFFFFFEu, 0xFFFFFFFFu};
+    for (size_t i = 0; i < sizeof(ds) / sizeof(ds[0]); i++) {
+        const uint32_t d = ds[i];
+        /* largest n with the quotient in 32 bits after rounding: d*2^32 - d/2 - 1 */
+        const uint64_t nmax = (uint64_t)d * 0xFFFFFFFFull + (uint64_t)(d - 1u) - (d >> 1) ;
+        const uint64_t ns[] = {0u, 1u, d, (uint64_t)d * 2u + 1u, nmax / 2u, nmax};
+        for (size_t j = 0; j < sizeof(ns) / sizeof(ns[0]); j++) {
+            const uint64_t n = ns[j];
+            const uint64_t ref = (n + (d >> 1)) / d;
+            assert_int_equal(fx_udiv64_32_round(n, d), (uint32_t)ref);
+        }
+    }
+    for (int k = 0; k < 200000; k++) {
+        uint32_t d = (uint32_t)rng_next() >> (rng_next() % 31u);
+        d = (d == 0u) ? 1u : d;
+        const uint64_t n = rng_next() % ((uint64_t)d << 31); /* quotient < 2^31 */
+        const uint64_t ref = (n + (d >> 1)) / d;
+        assert_int_equal(fx_udiv64_32_round(n, d), (uint32_t)ref);
+    }
+}
+
+static void test_from_double(void **state)
+{
+    (void)state;
+    int32_t out = 0;
+    assert_int_equal(fx_from_double(1.0, 24u, INT32_MAX, &out), FS_OK);
+    assert_int_equal(out, FX_Q24_ONE);
+    assert_int_equal(fx_from_double(-0.5, 31u, INT32_MAX, &out), FS_OK);
+    assert_int_equal(out, -(1 << 30));
+    assert_int_equal(fx_from_double(1.0, 31u, INT32_MAX, &out), FS_ERR_FIXED_OVERFLOW);
+    assert_int_equal(fx_from_double(128.0, 24u, INT32_MAX, &out), FS_ERR_FIXED_OVERFLOW);
+    assert_int_equal(fx_from_double(127.99999994, 24u, INT32_MAX, &out), FS_OK);
+    assert_int_equal(out, INT32_MAX);
+    assert_int_equal(fx_from_double(-128.0, 24u, INT32_MAX, &out), FS_ERR_FIXED_OVERFLOW);
+    assert_int_equal(fx_from_double(NAN, 24u, INT32_MAX, &out), FS_ERR_FIXED_OVERFLOW);
+    assert_int_equal(fx_from_double(INFINITY, 24u, INT32_MAX, &out), FS_ERR_FIXED_OVERFLOW);
+    assert_int_equal(fx_from_double(65.0, 24u, 64 << 24, &out), FS_ERR_FIXED_OVERFLOW);
+    /* round to nearest: within 1/2 LSB */
+    assert_int_equal(fx_from_double(0.1, 24u, INT32_MAX, &out), FS_OK);
+    assert_true(fabs(fx_to_double(out, 24u) - 0.1) <= ldexp(0.5, -24));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_sat_add_sub), cmocka_unit_test(test_mul_round_exact),
+        cmocka_unit_test(test_exp_table),   cmocka_unit_test(test_udiv),
+        cmocka_unit_test(test_from_double),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,253 @@
+/* SecurityAccess seed/key: the key scheme against an independent HMAC (Python's hmac module,
+ * value quoted below), sequence rules, the NRCs 0x13/0x24/0x35/0x36/0x37/0x22, the delay after
+ * a wrong key, lockout after max_attempts, boot delay, relock, and time wrap-around. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "sec_access.h"
+#include "sec_sha256.h"
+
+/* Deterministic test RNG (xorshift32), or a fixed seed, or failure. */
+typedef struct {
+    uint32_t x;
+    int mode;   /* 0 xorshift, 1 fixed pattern, 2 fail, 3 all zeros */
+} test_rng_t;
+
+static int rng_fill(void *ctx, uint8_t *buf, uint32_t len)
+{
+    test_rng_t *r = (test_rng_t *)ctx;
+    for (uint32_t i = 0; i < len; i++) {
+        switch (r->mode) {
+        case 1: buf[i] = (uint8_t)(0xA0u + i); break;
+        case 2: return -1;
+        case 3: buf[i] = 0; break;
+        default:
+            r->x ^= r->x << 13;
+            r->x ^= r->x >> 17;
+            r->x ^= r->x << 5;
+            buf[i] = (uint8_t)r->x;
+            break;
+        }
+    }
+    return 0;
+}
+
+static test_rng_t g_rng;
+
+static void setup_cfg(sec_config_t *cfg)
+{
+    sec_default_config(cfg);
+    for (uint32_t i = 0; i < 32; i++) {
+        cfg->secret[i] = (uint8_t)i;
+    }
+    cfg->secret_len = 32;
+    g_rng.x = 0x12345678u;
+    g_rng.mode = 0;
+    cfg->rng = rng_fill;
+    cfg->rng_ctx = &g_rng;
+    assert_int_equal(sec_config_validate(cfg), SEC_OK);
+}
+
+static void test_key_matches_independent_hmac(void **state)
+{
+    (void)state;
+    sec_config_t cfg;
+    setup_cfg(&cfg);
+    uint8_t seed[SEC_SEED_LEN], key[SEC_KEY_LEN];
+    for (uint32_t i = 0; i < SEC_SEED_LEN; i++) {
+        seed[i] = (uint8_t)(0xA0u + i);
+    }
+    sec_compute_key(&cfg, seed, key);
+    /* python3: hmac.new(bytes(range(32)), bytes(range(0xA0,0xB0)), hashlib.sha256).hexdigest()[:32] */
+    static const uint8_t want[16] = {0xb1, 0x48, 0x97, 0x27, 0xb2, 0x60, 0x2a, 0x0e,
+                                     0x04, 0x7c, 0xb2, 0x37, 0x58, 0x0a, 0x4c, 0x79};
+    assert_memory_equal(key, want, 16);
+}
+
+static void test_unlock_flow(void **state)
+{
+    (void)state;
+    sec_config_t cfg;
+    setup_cfg(&cfg);
+    sec_state_t st;
+    sec_init(&cfg, &st, 0);
+    uint8_t seed[SEC_SEED_LEN], key[SEC_KEY_LEN];
+    /* boot delay */
+    assert_int_equal(sec_request_seed(&cfg, &st, 999, seed), SEC_NRC_DELAY_NOT_EXPIRED);
+    assert_int_equal(sec_request_seed(&cfg, &st, 1000, seed), SEC_NRC_NONE);
+    assert_false(sec_is_unlocked(&st));
+    sec_compute_key(&cfg, seed, key);
+    assert_int_equal(sec_send_key(&cfg, &st, 1001, key, SEC_KEY_LEN), SEC_NRC_NONE);
+    assert_true(sec_is_unlocked(&st));
+    /* already unlocked: zero seed; a key now is out of sequence */
+    uint8_t zero[SEC_SEED_LEN] = {0};
+    assert_int_equal(sec_request_seed(&cfg, &st, 1002, seed), SEC_NRC_NONE);
+    assert_memory_equal(seed, zero, SEC_SEED_LEN);
+    assert_int_equal(sec_send_key(&cfg, &st, 1003, key, SEC_KEY_LEN), SEC_NRC_SEQUENCE_ERROR);
+    /* relock: the old key does not work for a new seed */
+    sec_lock(&st);
+    assert_false(sec_is_unlocked(&st));
+    assert_int_equal(sec_request_seed(&cfg, &st, 1004, seed), SEC_NRC_NONE);
+    assert_int_equal(sec_send_key(&cfg, &st, 1005, key, SEC_KEY_LEN), SEC_NRC_INVALID_KEY);
+    assert_false(sec_is_unlocked(&st));
+}
+
+static void test_sequence_and_length(void **state)
+{
+    (void)state;
+    sec_config_t cfg;
+    setup_cfg(&cfg);
+    cfg.boot_delay_ms = 0;
+    sec_state_t st;
+    sec_init(&cfg, &st, 0);
+    uint8_t seed[SEC_SEED_LEN], key[SEC_KEY_LEN];
+    assert_int_equal(sec_send_key(&cfg, &st, 0, key, SEC_KEY_LEN), SEC_NRC_SEQUENCE_ERROR);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0, seed), SEC_NRC_NONE);
+    sec_compute_key(&cfg, seed, key);
+    assert_int_equal(sec_send_key(&cfg, &st, 0, key, SEC_KEY_LEN - 1), SEC_NRC_INCORRECT_LENGTH);
+    /* the seed was consumed by that answer: the right key is now out of sequence */
+    assert_int_equal(sec_send_key(&cfg, &st, 0, key, SEC_KEY_LEN), SEC_NRC_SEQUENCE_ERROR);
+    assert_false(sec_is_unlocked(&st));
+    /* every seed is fresh */
+    uint8_t s2[SEC_SEED_LEN];
+    assert_int_equal(sec_request_seed(&cfg, &st, 0, seed), SEC_NRC_NONE);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0, s2), SEC_NRC_NONE);
+    assert_memory_not_equal(seed, s2, SEC_SEED_LEN);
+    /* only the latest seed's key is accepted */
+    sec_compute_key(&cfg, seed, key);
+    assert_int_equal(sec_send_key(&cfg, &st, 0, key, SEC_KEY_LEN), SEC_NRC_INVALID_KEY);
+}
+
+static void test_every_bit_flip_rejected(void **state)
+{
+    (void)state;
+    sec_config_t cfg;
+    setup_cfg(&cfg);
+    cfg.boot_delay_ms = 0;
+    cfg.delay_ms = 0;
+    cfg.max_attempts = 255;
+    sec_state_t st;
+    sec_init(&cfg, &st, 0);
+    uint8_t seed[SEC_SEED_LEN], key[SEC_KEY_LEN];
+    for (uint32_t bit = 0; bit < 8u * SEC_KEY_LEN; bit++) {
+        assert_int_equal(sec_request_seed(&cfg, &st, 0, seed), SEC_NRC_NONE);
+        sec_compute_key(&cfg, seed, key);
+        key[bit / 8u] ^= (uint8_t)(1u << (bit % 8u));
+        const sec_nrc_t r = sec_send_key(&cfg, &st, 0, key, SEC_KEY_LEN);
+        assert_true(r == SEC_NRC_INVALID_KEY || r == SEC_NRC_EXCEEDED_ATTEMPTS);
+        assert_false(sec_is_unlocked(&st));
+        if (r == SEC_NRC_EXCEEDED_ATTEMPTS) {
+            break;
+        }
+    }
+}
+
+static void test_delay_and_lockout(void **state)
+{
+    (void)state;
+    sec_config_t cfg;
+    setup_cfg(&cfg);
+    cfg.boot_delay_ms = 0;
+    sec_state_t st;
+    sec_init(&cfg, &st, 0);
+    uint8_t seed[SEC_SEED_LEN], key[SEC_KEY_LEN];
+    uint8_t wrong[SEC_KEY_LEN];
+    memset(wrong, 0x55, sizeof wrong);
+    uint32_t t = 100;
+    /* attempt 1: invalid key, then the delay */
+    assert_int_equal(sec_request_seed(&cfg, &st, t, seed), SEC_NRC_NONE);
+    assert_int_equal(sec_send_key(&cfg, &st, t, wrong, SEC_KEY_LEN), SEC_NRC_INVALID_KEY);
+    assert_int_equal(sec_request_seed(&cfg, &st, t + 999, seed), SEC_NRC_DELAY_NOT_EXPIRED);
+    t += 1000;
+    /* attempt 2 */
+    assert_int_equal(sec_request_seed(&cfg, &st, t, seed), SEC_NRC_NONE);
+    assert_int_equal(sec_send_key(&cfg, &st, t, wrong, SEC_KEY_LEN), SEC_NRC_INVALID_KEY);
+    t += 1000;
+    /* attempt 3 reaches max_attempts: 0x36 and the lockout */
+    assert_int_equal(sec_request_seed(&cfg, &st, t, seed), SEC_NRC_NONE);
+    assert_int_equal(sec_send_key(&cfg, &st, t, wrong, SEC_KEY_LEN), SEC_NRC_EXCEEDED_ATTEMPTS);
+    assert_true(st.locked_out != 0u);
+    assert_int_equal(sec_send_key(&cfg, &st, t, wrong, SEC_KEY_LEN), SEC_NRC_SEQUENCE_ERROR);
+    assert_int_equal(sec_request_seed(&cfg, &st, t + 1000, seed), SEC_NRC_DELAY_NOT_EXPIRED);
+    assert_int_equal(sec_request_seed(&cfg, &st, t + 9999, seed), SEC_NRC_DELAY_NOT_EXPIRED);
+    /* relock (session change) does not reset the lockout */
+    sec_lock(&st);
+    assert_int_equal(sec_request_seed(&cfg, &st, t + 9999, seed), SEC_NRC_DELAY_NOT_EXPIRED);
+    /* lockout over: counter reset, the right key unlocks */
+    t += 10000;
+    assert_int_equal(sec_request_seed(&cfg, &st, t, seed), SEC_NRC_NONE);
+    assert_int_equal(st.failed, 0);
+    sec_compute_key(&cfg, seed, key);
+    assert_int_equal(sec_send_key(&cfg, &st, t, key, SEC_KEY_LEN), SEC_NRC_NONE);
+    assert_true(sec_is_unlocked(&st));
+}
+
+static void test_configurable_attempts_and_wrap(void **state)
+{
+    (void)state;
+    sec_config_t cfg;
+    setup_cfg(&cfg);
+    cfg.boot_delay_ms = 0;
+    cfg.max_attempts = 5;
+    sec_state_t st;
+    /* time close to the 32-bit wrap of the millisecond clock */
+    uint32_t t = 0xFFFFFF00u;
+    sec_init(&cfg, &st, t);
+    uint8_t seed[SEC_SEED_LEN], wrong[SEC_KEY_LEN];
+    memset(wrong, 0, sizeof wrong);
+    for (int i = 1; i <= 5; i++) {
+        assert_int_equal(sec_request_seed(&cfg, &st, t, seed), SEC_NRC_NONE);
+        const sec_nrc_t r = sec_send_key(&cfg, &st, t, wrong, SEC_KEY_LEN);
+        assert_int_equal(r, i < 5 ? SEC_NRC_INVALID_KEY : SEC_NRC_EXCEEDED_ATTEMPTS);
+        assert_int_equal(sec_request_seed(&cfg, &st, t + 1, seed), SEC_NRC_DELAY_NOT_EXPIRED);
+        t += (i < 5) ? cfg.delay_ms : 0u;   /* crosses 2^32 here */
+    }
+    assert_int_equal(sec_request_seed(&cfg, &st, t + cfg.lockout_ms - 1u, seed),
+                     SEC_NRC_DELAY_NOT_EXPIRED);
+    assert_int_equal(sec_request_seed(&cfg, &st, t + cfg.lockout_ms, seed), SEC_NRC_NONE);
+}
+
+static void test_rng_failures_and_config(void **state)
+{
+    (void)state;
+    sec_config_t cfg;
+    setup_cfg(&cfg);
+    cfg.boot_delay_ms = 0;
+    sec_state_t st;
+    sec_init(&cfg, &st, 0);
+    uint8_t seed[SEC_SEED_LEN], key[SEC_KEY_LEN];
+    g_rng.mode = 2;
+    assert_int_equal(sec_request_seed(&cfg, &st, 0, seed), SEC_NRC_CONDITIONS);
+    g_rng.mode = 3;
+    assert_int_equal(sec_request_seed(&cfg, &st, 0, seed), SEC_NRC_CONDITIONS);
+    assert_int_equal(sec_send_key(&cfg, &st, 0, key, SEC_KEY_LEN), SEC_NRC_SEQUENCE_ERROR);
+    g_rng.mode = 0;
+    sec_config_t bad = cfg;
+    bad.secret_len = 8;
+    assert_int_equal(sec_config_validate(&bad), SEC_ERR_CONFIG);
+    bad = cfg;
+    bad.max_attempts = 0;
+    assert_int_equal(sec_config_validate(&bad), SEC_ERR_CONFIG);
+    bad = cfg;
+    bad.rng = NULL;
+    assert_int_equal(sec_config_validate(&bad), SEC_ERR_NULL_ARG);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_key_matches_independent_hmac),
+        cmocka_unit_test(test_unlock_flow),
+        cmocka_unit_test(test_sequence_and_length),
+        cmocka_unit_test(test_every_bit_flip_rejected),
+        cmocka_unit_test(test_delay_and_lockout),
+        cmocka_unit_test(test_configurable_attempts_and_wrap),
+        cmocka_unit_test(test_rng_failures_and_config),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

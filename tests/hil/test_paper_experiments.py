@@ -1,0 +1,107 @@
+"""The paper's experiments reproduced end to end on the HIL simulator (issue 3 "Done when").
+
+`forceskill report` runs for two operator seeds: demonstrate (TEACH), fit (ridge N=50 and LWR),
+execute (ideal plant), reuse with and without goal scaling. Bounds on both sides where meaningful:
+an error that is suspiciously small (e.g. 0 because nothing ran) fails too.
+"""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from forceskill.report import TASKS, read_log, run_report
+
+SEEDS = (1, 2)
+LEARN = [t.name for t in TASKS]
+
+
+@pytest.fixture(scope="module", params=SEEDS, ids=[f"seed{s}" for s in SEEDS])
+def report(request, tmp_path_factory, hil_sim: Path, scenarios: Path) -> dict:
+    out = tmp_path_factory.mktemp(f"report_seed{request.param}")
+    summary = run_report(out, hil_sim, scenarios, seed=request.param, plots=(request.param == 1),
+                         progress=False)
+    summary["_dir"] = out
+    return summary
+
+
+def _exp(report: dict, name: str) -> dict:
+    return next(e for e in report["experiments"] if e["name"] == name)
+
+
+def test_report_files(report: dict) -> None:
+    out: Path = report["_dir"]
+    data = json.loads((out / "summary.json").read_text())
+    names = [e["name"] for e in data["experiments"]]
+    assert names == LEARN + ["reuse_200_1x", "reuse_300_1_5x", "reuse_300_1x_unscaled"]
+    for e in data["experiments"]:
+        for key in ("name", "approx_max_pct", "approx_max_pct_lwr", "tracking_rms_pct", "tracking_max_pct",
+                    "max_force_N"):
+            assert key in e
+    md = (out / "report.md").read_text()
+    for n in names:
+        assert f"| {n} |" in md
+    if report["seed"] == 1:
+        for f in ["fig_reuse.png"] + [f"fig_{n}.png" for n in LEARN]:
+            png = out / f
+            assert png.stat().st_size > 20000 and png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.mark.parametrize("name", LEARN)
+def test_default_fit_within_2_5_pct(report: dict, name: str) -> None:
+    e = _exp(report, name)
+    # lower bound: the recorded force carries 0.02 N sensor noise, so a few max-noise samples
+    # alone are > 0.3 % of a <= 20 N profile: a smaller error means the comparison is broken
+    assert 0.3 <= e["approx_max_pct"] <= 2.5
+    assert 0.05 <= e["approx_rms_pct"] <= 1.0
+
+
+@pytest.mark.parametrize("name", LEARN)
+def test_lwr_within_paper_bounds(report: dict, name: str) -> None:
+    e = _exp(report, name)
+    bound = 4.0 if name.startswith("pressing") else 6.0
+    assert e["lwr_kernels_needed"] is not None and e["lwr_kernels_needed"] <= 100, (
+        f"{name}: LWR needs more than 100 kernels (N=50: {e['approx_max_pct_lwr']:.2f} %)")
+    assert 0.3 <= e["approx_max_pct_lwr_needed"] <= bound
+    # LWR at N = 50 is worse than the default fit at N = 50 (SPEC 2: ridge is 2-5x more accurate)
+    assert e["approx_max_pct_lwr"] >= e["approx_max_pct"]
+
+
+@pytest.mark.parametrize("name", LEARN + ["reuse_200_1x", "reuse_300_1_5x"])
+def test_execution_tracking(report: dict, name: str) -> None:
+    e = _exp(report, name)
+    assert 0.05 <= e["tracking_rms_pct"] <= 3.0
+    assert e["tracking_max_pct"] <= 10.0
+
+
+@pytest.mark.parametrize("name", LEARN + ["reuse_200_1x", "reuse_300_1_5x", "reuse_300_1x_unscaled"])
+def test_force_never_exceeds_the_limit(report: dict, name: str) -> None:
+    e = _exp(report, name)
+    assert e["force_limit_N"] == 50.0
+    assert e["limit_violations"] == 0
+    assert 0.5 < e["max_cmd_abs_N"] <= 50.0
+    assert 1.0 < e["max_force_N"] < 50.0
+    log = read_log(Path(e["exec_log"]))
+    assert np.all(np.abs(log["f_cmd"]) <= 50.0)
+
+
+def test_pressing_demonstrations_reach_the_inner_layer(report: dict) -> None:
+    for name in ("pressing_task1", "pressing_task2"):
+        e = _exp(report, name)
+        assert e["layer_reached_s"] is not None and 0.3 < e["layer_reached_s"] < 3.0
+        assert 0.020 < e["deformation_max_m"] + 0.001 < 0.05   # beyond x = 0.020 m, not through
+
+
+def test_reuse_deformation(report: dict) -> None:
+    scaled = _exp(report, "reuse_300_1_5x")
+    d, du = scaled["deformation_diff_pct"], scaled["deformation_diff_unscaled_pct"]
+    assert 1.0 <= d <= 12.0
+    assert du >= 2.0 * d
+    # without scaling the stiffer object deforms ~1/3 less (200/300): the comparison is real
+    assert 25.0 <= du <= 45.0
+    # scaling multiplies the commanded reference force by 1.5
+    a = read_log(Path(_exp(report, "reuse_200_1x")["exec_log"]))
+    b = read_log(Path(scaled["exec_log"]))
+    assert np.max(np.abs(b["f_hat"] - 1.5 * a["f_hat"])) <= 1e-5 * np.max(b["f_hat"]) + 2e-6
