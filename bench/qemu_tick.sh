@@ -84,6 +84,24 @@ run_counted() { # ELF OUTFILE COUNTFILE
   rm -f "$WORK/trace.fifo"
 }
 
+echo "== heap poison check"
+# The images link with malloc & co. wrapped to undefined symbols (ports/cortex-m/CMakeLists.txt):
+# a program that calls malloc must fail to link with exactly those flags.
+WRAP=$(grep -o -- '-Wl,--wrap=[A-Za-z_]*' "$BUILD/build.ninja" | sed 's/.*=//' | sort -u | tr '\n' ' ')
+printf '#include <stdlib.h>\nint main(void);\nint main(void) { return malloc(4) != 0; }\nvoid Reset_Handler(void) { (void)main(); }\n' > "$WORK/heap.c"
+WRAP_FLAGS=()
+for s in $WRAP; do WRAP_FLAGS+=("-Wl,--wrap=$s"); done
+if arm-none-eabi-gcc -mcpu=$CPU -mthumb -nostartfiles --specs=nano.specs "${WRAP_FLAGS[@]}" \
+     -L"$ROOT/firmware/ports/cortex-m" -T"$ROOT/firmware/ports/cortex-m/$MACHINE.ld" \
+     "$WORK/heap.c" -o "$WORK/heap.elf" 2> "$WORK/heap.err"; then
+  echo "heap poison check FAILED: a malloc call linked"; exit 1
+fi
+if grep -q "undefined reference to \`__wrap_malloc'" "$WORK/heap.err"; then
+  echo "heap poison check ok: malloc -> undefined __wrap_malloc (wrapped: $WRAP)"
+else
+  echo "heap poison check FAILED: link failed for another reason:"; cat "$WORK/heap.err"; exit 1
+fi
+
 echo "== counter check ($MACHINE, ${ONE_INSN[*]})"
 run_counted "$IMG/cm_count_check.elf" "$WORK/cc.out" "$WORK/cc.counts"
 CC=$(tr '\n' ' ' < "$WORK/cc.counts")

@@ -55,6 +55,9 @@ def _exe(bld: Any, rel: str, part: str) -> tuple[Optional[Path], str]:
     p = bld.exe(rel)
     if p is not None:
         return p, ""
+    failed = getattr(bld, "failed", {})
+    if rel in failed:
+        return None, failed[rel]
     why = f"{rel} was not built"
     if getattr(bld, "why_not_all", ""):
         why += f" ({bld.why_not_all})"
@@ -92,10 +95,45 @@ def hil_speed(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
 
 
 def can_upload(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
-    folder = root / "bench" / "can_upload"
-    if not folder.is_dir() or not any(folder.iterdir()):
+    script = root / "bench" / "can_upload" / "can_upload.py"
+    if not script.is_file():
         return _na("bench/can_upload has not landed (CAN issue 4)")
-    return _na("bench/can_upload exists but run_all does not know how to run it yet")
+    sim, why = _exe(bld, "hil_sim/hil_sim", "hil")
+    if sim is None:
+        return _na(why)
+    repeat = "3" if cfg.get("quick") else "9"
+    try:
+        p = _run([sys.executable, str(script), "--hil-sim", str(sim), "--repeat", repeat], root, timeout=600)
+    except subprocess.TimeoutExpired:
+        return _na("can_upload.py did not finish within 600 s")
+    line = next((ln for ln in p.stdout.splitlines() if ln.startswith("can_upload")), None)
+    if line is None:
+        err = [ln for ln in (p.stdout + p.stderr).splitlines() if ln.strip()]
+        return _na(f"can_upload.py exited {p.returncode}: {(err[-1] if err else 'no output')[:200]}")
+    kv = _kv(line)
+    limit = _num(kv["bus_limited_ms"])
+    med = _num(kv["measured_median_ms"])
+    best = _num(kv["measured_best_ms"])
+    span = _num(kv["bus_span_median_ms"]) if "bus_span_median_ms" in kv else None
+    ratio = med / limit
+    load = limit / med
+    data = {k: v for k, v in kv.items()}
+    data.update({"ratio": ratio, "bus_load": load, "exit": p.returncode})
+    rows = [[kv.get("kernels", "?"), kv.get("bytes", "?"), kv.get("frames", "?"), f"{limit:.2f}", f"{med:.2f}",
+             f"{best:.2f}", f"{span:.2f}" if span is not None else "n/a", f"{ratio:.2f}x", f"{100 * load:.0f} %"]]
+    body = _table(["N", "image bytes", "frames on the bus", "bus-limited ms", "measured ms (median)",
+                   "measured ms (best)", "first to last frame on the bus, ms", "measured / bus-limited",
+                   "bus load during the upload"], rows)
+    body += (f"\n\nbench/can_upload/can_upload.py (the CAN part's program, {repeat} uploads): the product's "
+             "udsoncan + can-isotp client uploads the skill (RequestDownload, TransferData, RequestTransferExit) to "
+             "`hil_sim serve` in real time over the socketcand bus; bus-limited time = the wire time of every frame "
+             "of the exchange (both directions, flow control included) at 1 Mbit/s with its actual bit stuffing. "
+             "Bus load = bus-limited time / measured time: the share of the bus the transfer kept busy.")
+    if p.returncode != 0:
+        body += f"\n\n- can_upload.py exited {p.returncode} (it fails when the median exceeds 2x the bus-limited time)."
+    targets = [["skill upload, N = 50, simulated 1 Mbit/s bus (measured / bus-limited)", "<= 2x", "<= 1.2x",
+                f"{ratio:.2f}x", _verdict(ratio, 2.0, 1.2, False)]]
+    return body, targets, data
 
 
 QEMU_TARGETS = [("cortex-m4f", "float32", 1500, 1000), ("cortex-m3", "fixed point", 3000, 1000)]

@@ -272,8 +272,8 @@ static void uds_service(app_t *app)
         uds_server_after_response(&app->uds);
     }
     uds_server_poll(&app->uds, app->now_ms);
-    if (app->uds.session == UDS_SESSION_DEFAULT) {
-        sec_lock(&app->sec);
+    if (app->uds.unlocked_level == 0u && sec_is_unlocked(&app->sec)) {
+        sec_lock(&app->sec);   /* the server locked (session change, S3 timeout, reset): relock too */
     }
     isotp_poll(&app->tp, app->now_us);
 }
@@ -332,6 +332,7 @@ void app_init(app_t *app, const app_config_t *cfg)
     app->sec_cfg.rng_ctx = app;
     sec_init(&app->sec_cfg, &app->sec, app->now_ms);
 
+    app->last_transfer_status = APP_TRANSFER_NONE;
     app->nvm_ok = (nvm_init(&app->nvm, hal_flash()) == NVM_OK);
     app_slots_reload(app);
 
@@ -341,6 +342,19 @@ void app_init(app_t *app, const app_config_t *cfg)
         exec_vel_init(&app->vel[a], cfg->vel_cutoff_Hz, FS_R(0.001));
     }
     hal_actuator_enable(false);
+    app->next_tick_us = app->now_us + APP_TICK_US;
+}
+
+bool app_poll(app_t *app)
+{
+    const uint64_t now = hal_time_us();
+    if (now < app->next_tick_us) {
+        return false;
+    }
+    const bool late = now >= app->next_tick_us + APP_TICK_US;
+    app->next_tick_us = late ? now + APP_TICK_US : app->next_tick_us + APP_TICK_US;
+    app_tick(app, late);
+    return true;
 }
 
 static void control(app_t *app)

@@ -29,6 +29,7 @@
 #define APP_IDLE_TELEMETRY_PERIOD_MS 100u
 #define APP_IMAGE_MAX (SKILL_HEADER_SIZE + 24u * DMP_MAX_KERNELS + SKILL_CRC_SIZE)
 #define APP_SW_VERSION "forceskill-fw 0.1.0"
+#define APP_TRANSFER_NONE 0xFFFDu        /* DID 0x0201: no download since power-up */
 #define APP_PROTO_VERSION_MAJOR 1u
 #define APP_PROTO_VERSION_MINOR 0u
 
@@ -116,6 +117,7 @@ typedef struct {
     bool actuator_enabled;
     bool overrun;
     uint32_t teach_ticks;              /* ticks since TEACH started */
+    uint64_t next_tick_us;             /* app_poll: when the next tick is due */
 } app_t;
 
 /** Factory defaults: node 0, default gains/limits/safety, ideal drive, telemetry 1 ms. */
@@ -126,6 +128,12 @@ void app_init(app_t *app, const app_config_t *cfg);
 
 /** One 1 kHz tick. overrun: the previous tick did not finish in time (latches a fault). */
 void app_tick(app_t *app, bool overrun);
+
+/** 1 kHz scheduler for ports with a free-running clock (hal_time_us): runs app_tick when the
+ *  next 1 ms boundary is due and returns true. A tick that starts a whole period or more late
+ *  (the previous one overran) is flagged as an overrun, which latches FLT_TICK_OVERRUN; the
+ *  schedule then restarts from now (no burst of catch-up ticks). */
+bool app_poll(app_t *app);
 
 /** Start a sequence (1..EXEC_MAX_STEPS steps); slots 1..APP_N_SLOTS, end 0 = skill's own,
  *  1 hold, 2 release; duration_s <= 0: the skill's T*time_scale. Returns a UDS NRC (0 ok). */

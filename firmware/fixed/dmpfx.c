@@ -9,8 +9,9 @@
  * envelopes are widened by 1e-4 so rounding never drops a kernel; the e_i test decides. */
 #define DMPFX_R_CUT 5.656854249492381
 #define DMPFX_ENVELOPE_MARGIN 1.0001
-/* |u - c_i|/sigma_i above 6 (Q.49) gives e_i > 16 and is skipped before squaring. */
-#define DMPFX_R_SKIP_Q49 ((int64_t)6 << 49)
+/* |u - c_i|/sigma_i >= 6 gives e_i > 16 and is skipped before squaring: in Q.49 that is a high
+ * word >= 6 << 17. */
+#define DMPFX_R_SKIP_HI ((uint32_t)6u << 17)
 
 static int32_t dmpfx_env_clamp_q30(double v)
 {
@@ -47,6 +48,8 @@ static void dmpfx_window(const dmpfx_model_t *m, int32_t u, uint32_t *lo, uint32
     *hi = a;
 }
 
+static fs_status_t dmpfx_measure_peaks(dmpfx_model_t *m, double duration_s);
+
 fs_status_t dmpfx_from_model(const dmp_model_t *m, dmpfx_model_t *out)
 {
     if (m == NULL || out == NULL) {
@@ -57,7 +60,6 @@ fs_status_t dmpfx_from_model(const dmp_model_t *m, dmpfx_model_t *out)
         return FS_ERR_SKILL_KERNELS;
     }
     out->n_kernels = n;
-    double max_w = 0.0;
     const int32_t q24_lim = (int32_t)(DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE);
     for (uint16_t i = 0u; i < n; i++) {
         const double c = (double)m->centre[i];
@@ -73,7 +75,6 @@ fs_status_t dmpfx_from_model(const dmp_model_t *m, dmpfx_model_t *out)
         if (st != FS_OK) {
             return st;
         }
-        max_w = (fabs(w) > max_w) ? fabs(w) : max_w;
         const double r = DMPFX_R_CUT * DMPFX_ENVELOPE_MARGIN * s;
         out->env_hi_q30[i] = dmpfx_env_clamp_q30(c + r);
         out->env_lo_q30[i] = dmpfx_env_clamp_q30(c - r);
@@ -102,21 +103,15 @@ fs_status_t dmpfx_from_model(const dmp_model_t *m, dmpfx_model_t *out)
     if (st != FS_OK) {
         return st;
     }
-    const double alpha = (double)m->p.alpha;
-    const double beta = (double)m->p.beta;
-    /* Peak of v~ for the (critically or over-damped) phase: sqrt(alpha*beta)/e. */
-    if (!(sqrt(alpha * beta) / exp(1.0) <= DMPFX_V_MAX)) {
-        return FS_ERR_FIXED_OVERFLOW;
-    }
     out->dt_s = (double)m->dt_s;
     out->tau_s = (double)m->tau_s;
-    out->alpha = alpha;
-    out->beta = beta;
+    out->alpha = (double)m->p.alpha;
+    out->beta = (double)m->p.beta;
     out->gamma = (double)m->p.gamma;
     out->goal_m = (double)m->goal_m;
-    out->max_abs_weight = max_w;
-    dmpfx_run_t run;
-    return dmpfx_run_init(out, 1.0, 1.0, &run);
+    out->peak_q24 = 0.0;
+    out->peak_v_q30 = 0.0;
+    return dmpfx_measure_peaks(out, (double)m->duration_s);
 }
 
 fs_status_t dmpfx_run_init(const dmpfx_model_t *m, double goal_scale, double time_scale,
@@ -150,15 +145,11 @@ fs_status_t dmpfx_run_init(const dmpfx_model_t *m, double goal_scale, double tim
         return FS_ERR_FIXED_STEP;
     }
     const double g = m->goal_m * goal_scale;
-    const double v_peak = sqrt(m->alpha * m->beta) / exp(1.0);
-    /* Bounds on the states that depend on g: |h| <= |g| v_peak max|w|; I settles at
-     * beta*g/gamma (x -> 0, z = gamma*I), doubled for the transient. */
-    if (fabs(g) * v_peak * m->max_abs_weight > DMPFX_Q24_HEADROOM ||
-        (m->gamma > 0.0 && 2.0 * m->beta * fabs(g) / m->gamma > DMPFX_Q24_HEADROOM)) {
+    const double lim_q24 = DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE;
+    if (fabs(goal_scale) * m->peak_q24 > lim_q24) {
         return FS_ERR_FIXED_OVERFLOW;
     }
-    return fx_from_double(g, 24u, (int32_t)(DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE),
-                          &run->goal_q24);
+    return fx_from_double(g, 24u, (int32_t)lim_q24, &run->goal_q24);
 }
 
 void dmpfx_state_reset(dmpfx_state_t *s)
@@ -221,9 +212,9 @@ int32_t dmpfx_blend(const dmpfx_model_t *m, int32_t u_q30, uint16_t *count)
         const uint32_t uu = (uint32_t)u_q30;
         const uint32_t cc = (uint32_t)m->centre_q30[i];
         const uint32_t ad = (u_q30 >= m->centre_q30[i]) ? uu - cc : cc - uu;
-        /* r = |u - c_i|/sigma_i in Q.49; r >= 6 (high word >= 6*2^17) means e_i > 16 */
+        /* r = |u - c_i|/sigma_i in Q.49 */
         const uint64_t r = (uint64_t)ad * (uint32_t)m->inv_sigma_q19[i];
-        if ((uint32_t)(r >> 32) >= (6u << 17)) {
+        if ((uint32_t)(r >> 32) >= DMPFX_R_SKIP_HI) {
             continue;
         }
         const uint32_t r27 = (uint32_t)(r >> 22);                      /* Q.27, < 6*2^27 */
@@ -279,19 +270,42 @@ static int32_t dmpfx_sat(int64_t v, uint32_t *events)
     return r;
 }
 
-/* acc + inc clamped to the int32 range << 31 (|acc| <= 2^62 and |inc| < 2^62: no overflow). */
-#define DMPFX_ACC_MAX ((int64_t)INT32_MAX << 31)
-#define DMPFX_ACC_MIN (-DMPFX_ACC_MAX)
+/* Saturating 32-bit add/sub that count saturations. */
+static int32_t dmpfx_add(int32_t a, int32_t b, uint32_t *events)
+{
+    int32_t r;
+    if (__builtin_add_overflow(a, b, &r)) {
+        (*events)++;
+        return (a < 0) ? INT32_MIN : INT32_MAX;
+    }
+    return r;
+}
+
+static int32_t dmpfx_sub(int32_t a, int32_t b, uint32_t *events)
+{
+    int32_t r;
+    if (__builtin_sub_overflow(a, b, &r)) {
+        (*events)++;
+        return (a < 0) ? INT32_MIN : INT32_MAX;
+    }
+    return r;
+}
+
+/* acc + inc with acc kept within +-(2^30 - 1)*2^32 (its view, acc/2^31 rounded, then fits
+ * int32 with a margin of 2): the bound is checked on the high word only. |acc| < 2^62 and
+ * |inc| < 2^62 (constants < 0.5), so the sum cannot overflow int64. */
+#define DMPFX_ACC_HI_MAX 0x3FFFFFFF
 static int64_t dmpfx_acc_add(int64_t acc, int64_t inc, uint32_t *events)
 {
     const int64_t r = acc + inc;
-    if (r > DMPFX_ACC_MAX) {
+    const int32_t hi = (int32_t)(r >> 32);
+    if (hi >= DMPFX_ACC_HI_MAX) {
         (*events)++;
-        return DMPFX_ACC_MAX;
+        return (int64_t)DMPFX_ACC_HI_MAX * 4294967296;
     }
-    if (r < DMPFX_ACC_MIN) {
+    if (hi < -DMPFX_ACC_HI_MAX) {
         (*events)++;
-        return DMPFX_ACC_MIN;
+        return -(int64_t)DMPFX_ACC_HI_MAX * 4294967296;
     }
     return r;
 }
@@ -332,9 +346,9 @@ int32_t dmpfx_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t
     const int32_t h = dmpfx_sat(fx_rshift_round((int64_t)gv * sw, 24u), &ev);
 
     /* Increments in Q.55 (x, z, I) and Q.61 (u, v): Q1.31 constants times the views, exact. */
-    const int32_t sx = dmpfx_sat((int64_t)z - x + h + term_x, &ev);
-    const int32_t gx = dmpfx_sat((int64_t)g - x, &ev);
-    const int32_t one_u = dmpfx_sat((int64_t)FX_Q30_ONE - u, &ev);
+    const int32_t sx = dmpfx_add(dmpfx_add(dmpfx_sub(z, x, &ev), h, &ev), term_x, &ev);
+    const int32_t gx = dmpfx_sub(g, x, &ev);
+    const int32_t one_u = dmpfx_sub(FX_Q30_ONE, u, &ev);
     s->x_acc = dmpfx_acc_add(s->x_acc, (int64_t)k1 * sx - (int64_t)kg * i_x, &ev);
     s->z_acc = dmpfx_acc_add(s->z_acc, (int64_t)kab * gx - (int64_t)ka * z, &ev);
     s->integral_x_acc = dmpfx_acc_add(s->integral_x_acc, (int64_t)k1 * x, &ev);
@@ -344,4 +358,47 @@ int32_t dmpfx_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t
     const int32_t f = dmpfx_sat(fx_rshift_round((int64_t)m->stiffness_q12 * x_new, 20u), &ev);
     s->sat_events = ev;
     return f;
+}
+
+static double dmpfx_absd(int32_t v)
+{
+    return fabs((double)v);
+}
+
+/* The nominal run (goal 1, time 1), T/dt steps: peaks of h, x, z, I (Q8.24 units) and v~ (Q2.30
+ * units) into the model; any saturation, a peak above the headroom or |v~| > DMPFX_V_MAX -> 300.
+ * The phase variable checks alpha, beta as the run will see them (v~ peaks at sqrt(alpha beta)/e
+ * for the critically damped phase: 1.66 for the default gains). */
+static fs_status_t dmpfx_measure_peaks(dmpfx_model_t *m, double duration_s)
+{
+    m->peak_q24 = 0.0;
+    m->peak_v_q30 = 0.0;
+    dmpfx_run_t run;
+    const fs_status_t st = dmpfx_run_init(m, 1.0, 1.0, &run);
+    if (st != FS_OK) {
+        return st;
+    }
+    dmpfx_state_t s;
+    dmpfx_state_reset(&s);
+    const long rows = lround(duration_s / m->dt_s);
+    double peak = 0.0;
+    double peak_v = 0.0;
+    for (long n = 0; n < rows; n++) {
+        const int32_t u = dmpfx_view(s.u_acc);
+        const int32_t v = dmpfx_view(s.v_acc);
+        const int32_t sw = dmpfx_blend(m, u, NULL);
+        const double h = (double)run.goal_q24 * ldexp((double)v, -30) * ldexp((double)sw, -24);
+        (void)dmpfx_step(m, &run, &s, NULL);
+        peak = fmax(peak, fmax(fabs(h), fmax(dmpfx_absd(dmpfx_view(s.x_acc)),
+                                             fmax(dmpfx_absd(dmpfx_view(s.z_acc)),
+                                                  dmpfx_absd(dmpfx_view(s.integral_x_acc))))));
+        peak_v = fmax(peak_v, dmpfx_absd(dmpfx_view(s.v_acc)));
+    }
+    m->peak_q24 = fmax(peak, dmpfx_absd(run.goal_q24));
+    m->peak_v_q30 = peak_v;
+    if (s.sat_events != 0u || m->peak_q24 > DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE ||
+        peak_v > DMPFX_V_MAX * (double)FX_Q30_ONE) {
+        return FS_ERR_FIXED_OVERFLOW;
+    }
+    return FS_OK;
 }

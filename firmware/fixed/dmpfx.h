@@ -18,8 +18,8 @@
 #ifndef DMPFX_MAX_WINDOW
 #define DMPFX_MAX_WINDOW 32u
 #endif
-/* Largest magnitude accepted for a Q8.24 quantity known at conversion (weights, goal, bounds
- * on h and I): 64 = half the Q8.24 range, one bit of headroom for the states. */
+/* Largest magnitude accepted for a Q8.24 quantity (weights, goal, and the peaks of h, x, z, I
+ * over the run): 64 = half the Q8.24 range, one bit of headroom for coupling and disturbances. */
 #define DMPFX_Q24_HEADROOM 64.0
 /* Largest phase velocity v~ accepted (Q2.30 holds |v| < 2). */
 #define DMPFX_V_MAX 1.9
@@ -40,7 +40,10 @@ typedef struct {
     double beta;
     double gamma;
     double goal_m;
-    double max_abs_weight;
+    /* peaks of the nominal run (goal 1, time 1, no coupling), for dmpfx_run_init's check:
+     * max |h|, |x|, |z|, |I| in Q8.24 units and max |v~| in Q2.30 units */
+    double peak_q24;
+    double peak_v_q30;
 } dmpfx_model_t;
 
 /** Per-run constants: dt/tau_e * {1, alpha, alpha*beta, gamma} in Q1.31 and g_e in Q8.24. */
@@ -56,8 +59,9 @@ typedef struct {
  *  (Q1.31 constant * Q8.24 or Q2.30 value = Q.55 / Q.61, i.e. the value << 31); products use the
  *  value rounded to Q8.24 / Q2.30 (dmpfx_view). Rounding every step instead drifts by up to
  *  0.5 LSB per tick while an increment is nearly constant (a force plateau): measured 0.13 %
- *  of max force on engrave_n50 at time scale 1.3 (docs/cortex-m.md). sat_events counts
- *  saturations (0 in a valid run: values never wrap). */
+ *  of max force on engrave_n50 at time scale 1.3 (docs/cortex-m.md). Each sum is kept within
+ *  +-(2^30 - 1)*2^32 so its view fits int32. sat_events counts saturations (0 in a valid run:
+ *  values never wrap). */
 typedef struct {
     int64_t u_acc;
     int64_t v_acc;
@@ -80,15 +84,18 @@ typedef struct {
     uint32_t rate_q31;
 } dmpfx_coupling_t;
 
-/** Convert a validated double model (dmp_model_init done) into fixed point. Errors:
- *  FS_ERR_FIXED_OVERFLOW (300) a value or bound does not fit its format (1/sigma >= 4096, |w|,
- *  g, stiffness, peak v~, bound on h or I), FS_ERR_FIXED_WINDOW (301) too many overlapping
- *  kernels, FS_ERR_NULL_ARG. */
+/** Convert a validated double model (dmp_model_init done) into fixed point, then roll the
+ *  nominal run (goal 1, time 1) out once in fixed point to measure the peaks of h, x, z, I and
+ *  v~ (the system is linear in g with zero initial conditions, so a goal scale s scales them by
+ *  |s| exactly; the time scale changes them only by O(dt/tau)). Cost: one rollout, T/dt steps.
+ *  Errors: FS_ERR_FIXED_OVERFLOW (300) a value does not fit its format (1/sigma >= 4096, |w| or
+ *  g > 64, stiffness, a peak > 64 or |v~| > 1.9, or a saturation in the nominal run),
+ *  FS_ERR_FIXED_WINDOW (301) too many overlapping kernels, FS_ERR_FIXED_STEP, FS_ERR_NULL_ARG. */
 fs_status_t dmpfx_from_model(const dmp_model_t *m, dmpfx_model_t *out);
 
 /** Per-tick constants for a goal and time scale; FS_ERR_SCALE_INVALID for a bad scale,
- *  FS_ERR_FIXED_STEP (302) if dt/tau_e is below 2^-24 or a constant is >= 0.5, FS_ERR_FIXED_OVERFLOW if
- *  the scaled goal or the bounds that depend on it leave the Q8.24 headroom. */
+ *  FS_ERR_FIXED_STEP (302) if dt/tau_e is below 2^-24 or a constant is >= 0.5,
+ *  FS_ERR_FIXED_OVERFLOW if |goal_scale| times the nominal peaks leaves the Q8.24 headroom. */
 fs_status_t dmpfx_run_init(const dmpfx_model_t *m, double goal_scale, double time_scale,
                            dmpfx_run_t *run);
 

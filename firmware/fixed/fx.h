@@ -42,16 +42,34 @@ static inline int32_t fx_sat32(int64_t v)
     return (int32_t)v;
 }
 
-/** Saturating a + b. */
+/** Saturating a + b (overflow detected by the compiler builtin: adds + bvs on ARM). */
 static inline int32_t fx_add_sat(int32_t a, int32_t b)
 {
-    return fx_sat32((int64_t)a + (int64_t)b);
+    int32_t r;
+    if (__builtin_add_overflow(a, b, &r)) {
+        return (a < 0) ? INT32_MIN : INT32_MAX;
+    }
+    return r;
 }
 
 /** Saturating a - b. */
 static inline int32_t fx_sub_sat(int32_t a, int32_t b)
 {
-    return fx_sat32((int64_t)a - (int64_t)b);
+    int32_t r;
+    if (__builtin_sub_overflow(a, b, &r)) {
+        return (a < 0) ? INT32_MIN : INT32_MAX;
+    }
+    return r;
+}
+
+/** Saturating a * k for an integer k (e.g. a unit scale or 1/dt). */
+static inline int32_t fx_mul_int_sat(int32_t a, int32_t k)
+{
+    int32_t r;
+    if (__builtin_mul_overflow(a, k, &r)) {
+        return ((a < 0) != (k < 0)) ? INT32_MIN : INT32_MAX;
+    }
+    return r;
 }
 
 /** v / 2^s rounded half up, 1 <= s <= 62, |v| < 2^62 (no overflow in the rounding add). */

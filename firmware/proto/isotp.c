@@ -198,7 +198,7 @@ static void tx_flow_control(isotp_link_t *link, const can_frame_t *f, uint64_t n
 
 void isotp_on_frame(isotp_link_t *link, const can_frame_t *frame, uint64_t now_us)
 {
-    if (frame->id != link->cfg.rx_id || frame->dlc == 0u || frame->dlc > CAN_MAX_DLC) {
+    if (frame->id != link->cfg.rx_id || frame->dlc == 0u || frame->dlc > CAN_FRAME_MAX_DLC) {
         return;
     }
     switch ((uint8_t)(frame->data[0] >> 4)) {

@@ -4,5 +4,5 @@
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 bin=${1:-$here/../../.venv/bin}
-"$bin/cantools" generate_c_source --database-name fs_dbc --use-float --use-round \
+"$bin/cantools" generate_c_source --database-name fs_dbc --use-round \
     -o "$here/generated" "$here/forceskill.dbc"

@@ -41,7 +41,12 @@ static const char SERVE_USAGE[] =
     "  --bitrate BPS    simulated bus bitrate (default 1000000)\n"
     "  --duration S     exit after S simulated seconds (default: run until SIGINT/SIGTERM)\n"
     "  --host-timeout MS  device's host-silence timeout, 20..500 ms (default 100; raise it when\n"
-    "                   the host tools share a heavily loaded machine)\n";
+    "                   the host tools share a heavily loaded machine)\n"
+    "fault injection (seeded by the scenario's seed), on frames from clients to the device:\n"
+    "  --drop P         lose each frame with probability P\n"
+    "  --corrupt P      flip one random data bit of each frame with probability P (E2E/ISO-TP see it)\n"
+    "  --bus-off-at S   the device's controller goes bus-off at S simulated seconds\n"
+    "  --bus-off-for S  ... for S seconds (default 0.5)\n";
 
 static volatile sig_atomic_t g_stop;
 
@@ -77,6 +82,10 @@ typedef struct {
     uint64_t slips;
     uint64_t wall0;
     uint64_t next_tick_ns;
+    double drop_p, corrupt_p;
+    uint64_t bus_off_from_ns, bus_off_until_ns;
+    sim_rng_t rng_faults;
+    uint64_t dropped, corrupted;
 } serve_t;
 
 static serve_t S;   /* large (bus FIFOs, app): static storage */
@@ -92,7 +101,17 @@ static void deliver(void *ctx, const bus_item_t *it, uint64_t t_end_ns)
 {
     serve_t *s = ctx;
     if (it->src != 0u && !it->extended) {
-        (void)hal_sim_can_deliver(&it->f);
+        can_frame_t f = it->f;
+        if (s->drop_p > 0.0 && sim_rng_uniform(&s->rng_faults) < s->drop_p) {
+            s->dropped++;
+        } else {
+            if (s->corrupt_p > 0.0 && f.dlc > 0u && sim_rng_uniform(&s->rng_faults) < s->corrupt_p) {
+                const unsigned bit = (unsigned)(sim_rng_uniform(&s->rng_faults) * 8.0 * (double)f.dlc);
+                f.data[(bit / 8u) % f.dlc] ^= (uint8_t)(1u << (bit % 8u));
+                s->corrupted++;
+            }
+            (void)hal_sim_can_deliver(&f);
+        }
     }
     scand_broadcast(&s->sd, it->src == 0u ? -1 : (int)it->src - 1, &it->f, it->extended, t_end_ns,
                     mono_ns() / 1000000ull);
@@ -139,6 +158,8 @@ static void sim_tick(serve_t *s)
     const sim_scenario_t *sc = &s->sc;
     const double dt = sc->dt_s;
     hal_host_set_time_us(s->n_tick * 1000u);
+    const uint64_t t_ns = s->n_tick * TICK_NS;
+    hal_sim_can_set_bus_off(t_ns >= s->bus_off_from_ns && t_ns < s->bus_off_until_ns);
 
     /* operator: demonstrates from the moment the device enters TEACH */
     const bool teach = s->app.state == APP_TEACH;
@@ -274,6 +295,7 @@ int bus_cmd_serve(int argc, char **argv)
     const char *channel = "can0";
     const char *scenario = NULL;
     double port = 29536.0, speed = 1.0, node = 0.0, bitrate = 1e6, duration = 0.0, host_timeout = 100.0;
+    double drop = 0.0, corrupt = 0.0, bus_off_at = -1.0, bus_off_for = 0.5;
     bool verbose = false;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
@@ -300,6 +322,10 @@ int bus_cmd_serve(int argc, char **argv)
         else if (strcmp(a, "--bitrate") == 0) rc = parse_double(a, v, &bitrate);
         else if (strcmp(a, "--duration") == 0) rc = parse_double(a, v, &duration);
         else if (strcmp(a, "--host-timeout") == 0) rc = parse_double(a, v, &host_timeout);
+        else if (strcmp(a, "--drop") == 0) rc = parse_double(a, v, &drop);
+        else if (strcmp(a, "--corrupt") == 0) rc = parse_double(a, v, &corrupt);
+        else if (strcmp(a, "--bus-off-at") == 0) rc = parse_double(a, v, &bus_off_at);
+        else if (strcmp(a, "--bus-off-for") == 0) rc = parse_double(a, v, &bus_off_for);
         else {
             fprintf(stderr, "hil_sim serve: unknown option '%s'\n%s", a, SERVE_USAGE);
             return 2;
@@ -330,8 +356,16 @@ int bus_cmd_serve(int argc, char **argv)
                 WDG_TIMEOUT_MAX_MS, host_timeout);
         return 2;
     }
+    if (!(drop >= 0.0 && drop <= 1.0) || !(corrupt >= 0.0 && corrupt <= 1.0) || !(bus_off_for >= 0.0)) {
+        fprintf(stderr, "hil_sim serve: --drop/--corrupt must be probabilities 0..1, --bus-off-for >= 0\n");
+        return 2;
+    }
     serve_t *s = &S;
     memset(s, 0, sizeof(*s));
+    s->drop_p = drop;
+    s->corrupt_p = corrupt;
+    s->bus_off_from_ns = bus_off_at >= 0.0 ? (uint64_t)(bus_off_at * 1e9) : UINT64_MAX;
+    s->bus_off_until_ns = bus_off_at >= 0.0 ? (uint64_t)((bus_off_at + bus_off_for) * 1e9) : UINT64_MAX;
     s->speed = speed;
     s->node = (uint8_t)node;
     char err[SIM_ERR_MAX];
@@ -364,6 +398,7 @@ int bus_cmd_serve(int argc, char **argv)
         s->app_cfg.saf.lim.axis[a].force_max_N = s->sc.force_max_N;
     }
     s->app_cfg.saf.wdg.timeout_ms = (uint16_t)host_timeout;
+    sim_rng_seed(&s->rng_faults, s->sc.seed ^ 0xFA17FA17FA17FA17ull);
     hal_host_init();
     plant_init(s);
     device_boot(s);
@@ -429,9 +464,10 @@ int bus_cmd_serve(int argc, char **argv)
     scand_close(&s->sd);
     fprintf(stderr,
             "hil_sim serve: stopped at %.3f s simulated; bus %llu frames, load %.1f %%; %llu clock slips; "
-            "device rx overflows %u, tx dropped %u\n",
+            "device rx overflows %u, tx dropped %u; injected: %llu lost, %llu corrupted\n",
             (double)next_tick_ns * 1e-9, (unsigned long long)s->bus.frames,
             next_tick_ns > 0u ? 100.0 * (double)s->bus.bits * (double)s->bus.bit_ns / (double)next_tick_ns : 0.0,
-            (unsigned long long)s->slips, hal_sim_can_rx_overflows(), s->app.tx_dropped);
+            (unsigned long long)s->slips, hal_sim_can_rx_overflows(), s->app.tx_dropped,
+            (unsigned long long)s->dropped, (unsigned long long)s->corrupted);
     return 0;
 }

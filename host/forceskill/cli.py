@@ -29,6 +29,7 @@ COMMAND_MODULES: list[str] = [
     "forceskill.commands.run",
     "forceskill.commands.status",
     "forceskill.commands.monitor",
+    "forceskill.commands.journey",
     "forceskill.flash",
 ]
 

@@ -2,8 +2,9 @@
 
 Steps: resample to dt; learning target x* = f/k; goal g = g'(T) with the force integral by the
 left rectangle rule (the forward-Euler sum the control law's integrator uses); tau by a bracketing
-search so the discrete phase gives u~(T) = 0.99; centres uniform in time mapped to phase; h_d from
-the same discrete recursion as the rollout; regression of h_d on g*v~*S(u~) by ``ridge`` (joint
+search so the discrete phase gives u~(T) = 0.99 (``lwr``: 0.95); centres uniform in time mapped to
+phase, widths sigma_i = 0.5*(c_{i+1} - c_i) (``lwr``: 0.35*(c_{i+1} - c_i)); h_d from the same
+discrete recursion as the rollout; regression of h_d on g*v~*S(u~) by ``ridge`` (joint
 Tikhonov-regularised least squares, the default) or ``lwr`` (the paper's per-kernel weighted LS);
 then the learned force is rolled out and compared with the demonstration.
 """
@@ -22,6 +23,13 @@ from .params import Gains, derive, goal_prime
 from .skill import FLAG_END_RELEASE, MAX_KERNELS, Skill
 
 PHASE_AT_END = 0.99
+#: sigma_i = WIDTH_FACTOR * (c_{i+1} - c_i)
+WIDTH_FACTOR = 0.5
+#: The paper's LWR (local constants) uses its own phase end and narrower kernels: its bias grows
+#: with the kernel width and with the 1/v~ growth of h_d/(g*v~) near the end of the phase, times
+#: g/max|x*| (measured on the HIL demonstrations, docs/math.md section 3).
+LWR_PHASE_AT_END = 0.95
+LWR_WIDTH_FACTOR = 0.35
 #: g must exceed this fraction of max|x*|: below, the phase-normalised forcing needs huge weights.
 GOAL_MIN_REL = 1e-3
 #: Tikhonov term of the ridge fit, relative to the mean diagonal of the normal matrix
@@ -100,12 +108,13 @@ def solve_tau(alpha: float, beta: float, dt_s: float, n_steps: int, target: floa
     return tau
 
 
-def kernel_layout(u: np.ndarray, dt_s: float, duration_s: float, n_kernels: int) -> tuple[np.ndarray, np.ndarray]:
+def kernel_layout(u: np.ndarray, dt_s: float, duration_s: float, n_kernels: int,
+                  width_factor: float = WIDTH_FACTOR) -> tuple[np.ndarray, np.ndarray]:
     """Centres c_i = u~(t_i), t_i = linspace(0, T, N) (linear interpolation of the discrete phase);
-    widths sigma_i = 0.5*(c_{i+1} - c_i), sigma_N = sigma_{N-1}."""
+    widths sigma_i = width_factor*(c_{i+1} - c_i), sigma_N = sigma_{N-1}."""
     t_i = np.linspace(0.0, duration_s, n_kernels)
     centres = np.interp(t_i / dt_s, np.arange(u.size, dtype=float), u)
-    widths = 0.5 * np.diff(centres)
+    widths = width_factor * np.diff(centres)
     widths = np.append(widths, widths[-1])
     return centres, widths
 
@@ -153,23 +162,25 @@ def fit(demo: Demo, stiffness_Npm: float, n_kernels: int = 50, method: str = "ri
     if not (goal > GOAL_MIN_REL * x_scale):
         raise DemoError(ERR_FIT_GOAL, f"goal g = {goal:.4g} m is not > {GOAL_MIN_REL:g} x max|f/k| = "
                         f"{GOAL_MIN_REL * x_scale:.4g} m: the demonstration has no net push to learn")
-    tau = solve_tau(p.alpha, p.beta, dt_s, n_t)
+    lwr = method == "lwr"
+    tau = solve_tau(p.alpha, p.beta, dt_s, n_t, LWR_PHASE_AT_END if lwr else PHASE_AT_END)
     a = dt_s / tau
     u, v = dmp.phase_scan(p.alpha, p.beta, a, n_t)
-    centres, widths = kernel_layout(u, dt_s, duration, int(n_kernels))
+    centres, widths = kernel_layout(u, dt_s, duration, int(n_kernels),
+                                    LWR_WIDTH_FACTOR if lwr else WIDTH_FACTOR)
     if not (np.all(np.diff(centres) > 0.0) and centres[0] >= 0.0 and centres[-1] <= 1.0):
         raise ParamError(ERR_FIT_ARGS, f"{n_kernels} kernels do not fit a {duration:g} s demonstration "
                          f"at dt = {dt_s:g} s (centres collide)")
     h_d = desired_forcing(x_star, p.alpha, p.beta, p.gamma, a, goal)
     s = goal * v[:-1]                                  # h = s_n * S(u_n)
     bands = dmp.KernelBands(u[:-1], centres, widths)
-    if method == "ridge":
+    if not lwr:
         gram = bands.gram(s * s)
         lam = lam_rel * float(np.trace(gram)) / gram.shape[0]
         weights = np.linalg.solve(gram + lam * np.eye(gram.shape[0]), bands.project(s * h_d))
     else:
         # the paper's LWR: per-kernel weighted LS with the raw local weights psi_i (cut at e_i > 23,
-        # below 1e-10 of the peak)
+        # below 1e-10 of the peak); w_i = sum psi_i s h_d / sum psi_i s^2
         num = bands.project(s * h_d, normalised=False)
         den = bands.project(s * s, normalised=False)
         weights = np.where(den > 0.0, num / np.where(den > 0.0, den, 1.0), 0.0)

@@ -59,7 +59,8 @@ ERR_ARGS = 731      # host only: bad version string, target name, build id
 
 # Negative response codes of the device's update path (firmware/boot/fwu.h, docs/update.md).
 NRC = {
-    0x22: (ERR_TEST_PENDING, "conditions not correct: the running image is still on test (not confirmed)"),
+    0x22: (ERR_TEST_PENDING, "conditions not correct: the running image is still on test (not "
+                             "confirmed), or the device is busy (not idle, a transfer open)"),
     0x24: (ERR_SEQUENCE, "request sequence error"),
     0x31: (ERR_RANGE, "request out of range (address, size or data format)"),
     0x33: (ERR_LOCKED, "security access denied: programming session and unlock required"),

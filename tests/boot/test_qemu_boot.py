@@ -1,4 +1,5 @@
-"""The Cortex-M bootloader under qemu-system-arm (mps2-an385, Cortex-M3, semihosting).
+"""The Cortex-M bootloader under qemu-system-arm (mps2-an385 Cortex-M3 and mps2-an386 Cortex-M4F,
+semihosting).
 
 Builds firmware/boot/cortex-m with arm-none-eabi-gcc, wraps the test application into signed
 images with the host tool (forceskill.fwimage), loads bootloader + slot images (+ an optional
@@ -25,31 +26,45 @@ ENTRY_OFFSET = 0x180
 OTHER_KEY = bytes(range(32))
 
 
-def _cross_args() -> list[str]:
+def _cross_args(target: str) -> list[str]:
     tc = ROOT / "cmake" / "arm-none-eabi.cmake"
     if tc.exists():
-        return [f"-DCMAKE_TOOLCHAIN_FILE={tc}", "-DFS_CORTEX_TARGET=cortex-m3"]
-    # the shared toolchain file not there yet: the same settings on the command line
-    return ["-DCMAKE_SYSTEM_NAME=Generic", "-DCMAKE_SYSTEM_PROCESSOR=arm",
+        return [f"-DCMAKE_TOOLCHAIN_FILE={tc}", f"-DFS_CORTEX_TARGET={target}"]
+    # the shared toolchain file not there: the same settings on the command line
+    return ["-DCMAKE_SYSTEM_NAME=Generic", "-DCMAKE_SYSTEM_PROCESSOR=arm", f"-DFS_CORTEX_TARGET={target}",
             "-DCMAKE_C_COMPILER=arm-none-eabi-gcc", "-DCMAKE_TRY_COMPILE_TARGET_TYPE=STATIC_LIBRARY"]
 
 
-@pytest.fixture(scope="module")
-def build(tmp_path_factory) -> Path:
+class Build:
+    """Bootloader + test application built for one target, and the qemu machine to run it."""
+
+    def __init__(self, out: Path, target: str, machine: str, other: str) -> None:
+        self.out, self.target, self.machine, self.other_target = out, target, machine, other
+
+    def __truediv__(self, name: str) -> Path:
+        return self.out / name
+
+
+# Cortex-M3 on mps2-an385 (the issue's target) and Cortex-M4F on mps2-an386
+@pytest.fixture(scope="module", params=[("cortex-m3", "mps2-an385", "cortex-m4f"),
+                                        ("cortex-m4f", "mps2-an386", "cortex-m3")],
+                ids=["cortex-m3", "cortex-m4f"])
+def build(request, tmp_path_factory) -> Build:
+    target, machine, other = request.param
     for tool in ("arm-none-eabi-gcc", "qemu-system-arm", "cmake", "ninja"):
         assert shutil.which(tool), f"{tool} not installed (scripts/setup.sh installs it)"
-    out = tmp_path_factory.mktemp("boot-qemu")
-    subprocess.run(["cmake", "-S", str(SRC), "-B", str(out), "-G", "Ninja", *_cross_args()],
+    out = tmp_path_factory.mktemp(f"boot-qemu-{target}")
+    subprocess.run(["cmake", "-S", str(SRC), "-B", str(out), "-G", "Ninja", *_cross_args(target)],
                    check=True, capture_output=True)
     subprocess.run(["ninja", "-C", str(out), "-j2"], check=True, capture_output=True)
-    return out
+    return Build(out, target, machine, other)
 
 
-def app_image(build: Path, slot: str, version: str, key: bytes = fw.DEV_KEY,
-              target: str = "cortex-m3") -> bytes:
+def app_image(build: Build, slot: str, version: str, key: bytes = fw.DEV_KEY,
+              target: str | None = None) -> bytes:
     payload = (build / f"fs_test_app_{slot}.bin").read_bytes()
-    return fw.build_image(payload, version, target, key, build_id=f"qemu-{slot}-{version}",
-                          entry_offset=ENTRY_OFFSET)
+    return fw.build_image(payload, version, target or build.target, key,
+                          build_id=f"qemu-{slot}-{version}", entry_offset=ENTRY_OFFSET)
 
 
 def state_record(active: int, test: int = 0xFF, attempts: int = 0, flags: int = 0,
@@ -62,9 +77,9 @@ def state_record(active: int, test: int = 0xFF, attempts: int = 0, flags: int = 
     return head + struct.pack("<I", crc) + b"\xff" * 12 + payload + struct.pack("<I", 0x00C0FFEE)
 
 
-def run_qemu(build: Path, tmp_path: Path, slot_a: bytes | None = None, slot_b: bytes | None = None,
+def run_qemu(build: Build, tmp_path: Path, slot_a: bytes | None = None, slot_b: bytes | None = None,
              state: bytes | None = None) -> tuple[int, str]:
-    cmd = ["qemu-system-arm", "-M", "mps2-an385", "-nographic", "-monitor", "none",
+    cmd = ["qemu-system-arm", "-M", build.machine, "-nographic", "-monitor", "none",
            "-serial", "none", "-semihosting-config", "enable=on,target=native",
            "-kernel", str(build / "fs_bootloader.elf")]
     for name, data, addr in (("a", slot_a, SLOT_A), ("b", slot_b, SLOT_B), ("state", state, STATE)):
@@ -102,7 +117,7 @@ def test_bootloader_refuses_an_image_signed_with_another_key(build, tmp_path):
 
 
 def test_bootloader_refuses_an_image_for_another_target(build, tmp_path):
-    rc, out = run_qemu(build, tmp_path, slot_a=app_image(build, "a", "1.4.0", target="cortex-m4f"))
+    rc, out = run_qemu(build, tmp_path, slot_a=app_image(build, "a", "1.4.0", target=build.other_target))
     assert "boot: slot A: refused: wrong target (703)" in out, out
     assert "app:" not in out and rc == 3, out
 

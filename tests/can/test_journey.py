@@ -94,6 +94,22 @@ def test_tracking_figures_1x_and_1_5x(journey):
     assert res["1"]["f_hat"][-1] < 0.05 * res["1"]["f_hat"].max()
 
 
+def test_sequence_in_series(journey, capsys):
+    """run --sequence: two steps of the uploaded skill in series; the force is continuous at the
+    switch and the second step starts the profile again (SPEC 1, step 4)."""
+    d, srv = journey["dir"], journey["server"]
+    csv = d / "seq.csv"
+    out = forceskill(capsys, "run", "--sequence", "1:2s,1:2.5s", "--csv", str(csv), *srv.bus_args())
+    assert "sequence 1:2s,1:2.5s" in out
+    cols = load_csv(csv)
+    t, ref = cols["t"], cols["f_hat"]
+    assert abs(t[-1] - (4.5 + 0.5)) < 0.01                       # both steps, then the release
+    i_switch = int(round(2.0 / 1e-3))
+    assert abs(ref[i_switch + 1] - ref[i_switch - 1]) < 0.05 * ref.max()   # continuous at the switch
+    mx, rms = tracking(cols)
+    assert rms <= 3.0
+
+
 def test_cantools_decodes_every_device_frame(journey):
     db = cantools.database.load_file(str(dbc_path()))
     device_ids = {m.frame_id for m in db.messages if m.senders == ["Device"]}
@@ -130,3 +146,17 @@ def test_can_logger_log_accepted_by_fit(server, tmp_path, capsys):
     a, b = load_demo(log), load_demo(tmp_path / "driver.log")
     n = min(a.t_s.size, b.t_s.size)
     assert n > 4900 and np.array_equal(a.force_N[:n], b.force_N[:n])
+
+
+@pytest.mark.parametrize("suffix", [".asc", ".log", ".trc", ".csv"])
+def test_every_log_format_reads_the_same_demo(journey, suffix):
+    """The recorded .blf rewritten by python-can's writer for each suffix gives the same
+    demonstration through the DBC (record -o accepts all of them)."""
+    src = journey["dir"] / "demo.blf"
+    dst = journey["dir"] / f"demo_copy{suffix}"
+    with can.Logger(str(dst)) as w:
+        for m in can.LogReader(str(src)):
+            w.on_message_received(m)
+    a, b = load_demo(src), load_demo(dst)
+    assert a.t_s.size == b.t_s.size and np.array_equal(a.force_N, b.force_N)
+    assert np.allclose(a.pos_m, b.pos_m, atol=1e-12)

@@ -55,11 +55,13 @@ def test_ten_kernels_are_clearly_not_enough(task: str) -> None:
 
 
 @pytest.mark.parametrize("task", TASKS)
-def test_lwr_with_100_kernels_is_within_the_paper_bounds(task: str) -> None:
+def test_lwr_is_within_the_paper_bounds_at_50_kernels(task: str) -> None:
     make, k, kind = TASKS[task]
-    res = fit(make(1), k, n_kernels=100, method="lwr")
-    assert 0.3 < res.err_max_pct <= PAPER_BOUND[kind]
     res50 = fit(make(1), k, n_kernels=50, method="lwr")
+    # measured 1.1-3.1 % (docs/math.md section 3); the paper's N = 50 bound must hold
+    assert 0.5 < res50.err_max_pct <= PAPER_BOUND[kind]
+    res = fit(make(1), k, n_kernels=100, method="lwr")
+    assert 0.1 < res.err_max_pct <= PAPER_BOUND[kind]
     ridge50 = fit(make(1), k, n_kernels=50)
     assert res50.err_max_pct > res.err_max_pct              # more kernels help LWR
     assert res50.err_max_pct > 2.0 * ridge50.err_max_pct    # ridge is the more accurate method

@@ -99,10 +99,10 @@ uint32_t cm_tick(void)
     cm_hal_sensors_read(&raw);
     pfcfx_meas_t meas[PFC_AXES];
     for (uint32_t a = 0u; a < PFC_AXES; a++) {
-        const int32_t pos = fx_sat32((int64_t)raw.enc_count[a] * (1 << ENC_TO_Q24_SHIFT));
+        const int32_t pos = fx_mul_int_sat(raw.enc_count[a], 1 << ENC_TO_Q24_SHIFT);
         meas[a].pos_q24 = pos;
-        meas[a].vel_q24 = fx_sat32(((int64_t)pos - cm_prev_pos_q24[a]) * INV_DT);
-        meas[a].force_q16 = fx_sat32((int64_t)raw.force_count[a] * (1 << FORCE_TO_Q16_SHIFT));
+        meas[a].vel_q24 = fx_mul_int_sat(fx_sub_sat(pos, cm_prev_pos_q24[a]), INV_DT);
+        meas[a].force_q16 = fx_mul_int_sat(raw.force_count[a], 1 << FORCE_TO_Q16_SHIFT);
         cm_prev_pos_q24[a] = pos;
     }
     /* 2. DMP */
@@ -111,7 +111,7 @@ uint32_t cm_tick(void)
     pfcfx_ref_t ref[PFC_AXES];
     const int32_t pos_d = fx_add_sat(cm_surface_q24, dmpfx_view(cm_dmp.x_acc));
     ref[0].pos_q24 = pos_d;
-    ref[0].vel_q24 = fx_sat32(((int64_t)pos_d - cm_prev_pos_d_q24) * INV_DT);
+    ref[0].vel_q24 = fx_mul_int_sat(fx_sub_sat(pos_d, cm_prev_pos_d_q24), INV_DT);
     ref[0].acc_q24 = 0;
     ref[0].force_q16 = f_hat;
     cm_prev_pos_d_q24 = pos_d;
@@ -133,6 +133,7 @@ uint32_t cm_tick(void)
         }
         int32_t c = (cm_faults != 0u) ? 0 : cmd[a];
         c = fx_clamp_sym(c, cm_force_max_q16);
+        /* |last| <= force_max and slew < 2^31 - force_max: no overflow */
         const int32_t last = cm_last_cmd_q16[a];
         if (c > last + cm_slew_q16) {
             c = last + cm_slew_q16;

@@ -19,7 +19,7 @@ void hal_sim_can_reset(void)
 
 bool hal_can_send(const can_frame_t *frame)
 {
-    if (q.bus_off || q.tx_len >= HAL_SIM_TX_QUEUE || frame->dlc > CAN_MAX_DLC) {
+    if (q.bus_off || q.tx_len >= HAL_SIM_TX_QUEUE || frame->dlc > CAN_FRAME_MAX_DLC) {
         return false;
     }
     q.tx[(q.tx_head + q.tx_len) % HAL_SIM_TX_QUEUE] = *frame;

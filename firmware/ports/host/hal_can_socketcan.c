@@ -79,7 +79,7 @@ void hal_socketcan_close(void)
 
 bool hal_can_send(const can_frame_t *frame)
 {
-    if (g_sock < 0 || frame->dlc > CAN_MAX_DLC) {
+    if (g_sock < 0 || frame->dlc > CAN_FRAME_MAX_DLC) {
         return false;
     }
     struct can_frame f;
@@ -113,7 +113,7 @@ bool hal_can_receive(can_frame_t *frame)
         }
         frame->id = f.can_id & CAN_SFF_MASK;
         frame->dlc = f.can_dlc;
-        memcpy(frame->data, f.data, CAN_MAX_DLC);
+        memcpy(frame->data, f.data, CAN_FRAME_MAX_DLC);
         return true;
     }
     return false;

@@ -37,8 +37,7 @@ def _cmd(args: argparse.Namespace) -> int:
         try:
             dev.start_heartbeat(telemetry_period_ms=1)
             if args.teach:
-                dev.command("teach")
-                st = dev.wait_state({"TEACH"}, 2.0 * args.timeout)
+                st = dev.command_until("teach", {"TEACH"}, 2.0 * args.timeout)
             start_tick = st.tick
             print(f"recording node {dev.node} on {dev.channel} to {out}"
                   f"{' in TEACH' if args.teach else ''}; "
@@ -54,8 +53,7 @@ def _cmd(args: argparse.Namespace) -> int:
                 if args.duration and ((cur.tick - start_tick) & 0xFFFFFF) >= args.duration * 1000.0:
                     break
             if args.teach:
-                dev.command("idle")
-                dev.wait_state({"IDLE"}, 2.0 * args.timeout)
+                dev.command_until("idle", {"IDLE"}, 2.0 * args.timeout)
         finally:
             signal.signal(signal.SIGINT, old)
             dev.stop_heartbeat()

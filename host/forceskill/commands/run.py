@@ -15,6 +15,7 @@ from ..demo import write_csv
 from ..errors import FsError
 from ..link import ERR_LINK_ARGS, ERR_LINK_STATE
 from ..link import uds as U
+from ..link.device import Device
 from ._common import add_common, columns, connect, tracking
 
 _STEP = re.compile(r"^\s*(\d+)\s*:\s*([0-9.]+)\s*(ms|s)?\s*$")
@@ -42,7 +43,7 @@ def _scale(v: float, name: str) -> int:
     return int(round(v * 1000.0))
 
 
-def run_on_device(dev, args: argparse.Namespace, log_path: str | None = None) -> dict:
+def run_on_device(dev: Device, args: argparse.Namespace, log_path: str | None = None) -> dict:
     """Start, watch and stop one execution; returns the telemetry columns and figures."""
     st = dev.status
     if st is not None and st.state != "IDLE":
@@ -74,9 +75,11 @@ def run_on_device(dev, args: argparse.Namespace, log_path: str | None = None) ->
             last_end = e["end"]
         end_policy = args.end if args.end != "skill" else last_end
         tail = args.hold_for if end_policy == "hold" else 0.5 + 0.05
+        notifier = dev.notifier
+        assert notifier is not None
         if log_path:
             writer = can.Logger(log_path)
-            dev.notifier.add_listener(writer)
+            notifier.add_listener(writer)
         tel = dev.start_telemetry()
         dev.start_heartbeat(telemetry_period_ms=1)
         try:
@@ -91,20 +94,20 @@ def run_on_device(dev, args: argparse.Namespace, log_path: str | None = None) ->
             while True:
                 time.sleep(0.02)
                 cur = dev.status
+                assert cur is not None
                 if cur.state == "FAULT":
                     raise FsError(ERR_LINK_STATE, f"node {dev.node} faulted during execution: fault "
                                   f"{cur.fault_code} at {((cur.tick - start_tick) & 0xFFFFFF) / 1000:.3f} s")
                 if cur.state != "EXECUTE":
                     break
                 if ((cur.tick - start_tick) & 0xFFFFFF) >= total * 1000.0:
-                    dev.command("idle")
-                    dev.wait_state({"IDLE", "FAULT"}, 2.0 * args.timeout)
+                    dev.command_until("idle", {"IDLE", "FAULT"}, 2.0 * args.timeout)
                     break
             time.sleep(0.05)
         finally:
             dev.stop_heartbeat()
             if writer is not None:
-                dev.notifier.remove_listener(writer)
+                notifier.remove_listener(writer)
                 writer.stop()
     samples = list(tel.samples)
     ticks = np.array([s.tick for s in samples], float)

@@ -11,6 +11,7 @@ from ._common import add_common, connect
 def _cmd(args: argparse.Namespace) -> int:
     with connect(args) as dev:
         st = dev.status
+        assert st is not None
         print(f"node {dev.node} on {dev.channel}: {st.state}, fault {st.fault_code or 'none'}, "
               f"actuator {'on' if st.actuator_enabled else 'off'}, tick {st.tick}")
         with U.uds_client(dev) as client:

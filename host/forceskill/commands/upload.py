@@ -11,11 +11,12 @@ from tqdm import tqdm
 from ..errors import FsError
 from ..link import ERR_LINK_ARGS, ERR_LINK_STATE
 from ..link import uds as U
+from ..link.device import Device
 from ..skill import Skill
 from ._common import add_common, connect
 
 
-def upload_skill(dev, image: bytes, slot: int, progress: bool = True, verify: bool = True) -> dict:
+def upload_skill(dev: Device, image: bytes, slot: int, progress: bool = True, verify: bool = True) -> dict:
     """Download image into slot and verify; returns timing figures. Old skill kept on failure."""
     st = dev.status
     if st is not None and st.state != "IDLE":

@@ -32,7 +32,9 @@ def dbc_path() -> Path:
 
 @functools.lru_cache(maxsize=None)
 def _base_db() -> cantools.database.can.Database:
-    return cantools.database.load_file(str(dbc_path()), strict=True)
+    db = cantools.database.load_file(str(dbc_path()), strict=True)
+    assert isinstance(db, cantools.database.can.Database)
+    return db
 
 
 @functools.lru_cache(maxsize=None)
@@ -57,7 +59,7 @@ def crc8_j1850(data: bytes) -> int:
     return crc ^ 0xFF
 
 
-def frame_crc(frame_id: int, data: bytes) -> int:
+def frame_crc(frame_id: int, data: bytes | bytearray) -> int:
     """CRC byte of a safety frame: over id (LE, 2 bytes) then data[0..6]."""
     return crc8_j1850(bytes([frame_id & 0xFF, (frame_id >> 8) & 0x07]) + bytes(data[:7]))
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 import threading
 import time
 from dataclasses import dataclass, field
-from typing import Callable, Optional
+from typing import Any, Callable, Optional
 
 import can
 
@@ -99,7 +99,7 @@ class Device(can.Listener):
             self.bad_crc += 1
             return
         try:
-            sig = m.decode(bytes(msg.data), decode_choices=False)
+            sig: Any = m.decode(bytes(msg.data), decode_choices=False)
         except Exception:
             return
         self.frames_seen += 1
@@ -138,12 +138,16 @@ class Device(can.Listener):
     def wait_state(self, states: set[str], timeout_s: float) -> Status:
         """Wait until the status reports one of states."""
         end = time.monotonic() + timeout_s
-        while time.monotonic() < end:
+        while True:
             st = self.status
             if st is not None and st.state in states:
                 return st
+            remaining = end - time.monotonic()
+            if remaining <= 0.0:
+                break
             self.status_event.clear()
-            if not self.status_event.wait(min(self.timeout_s, max(0.0, end - time.monotonic()))):
+            w = min(self.timeout_s, remaining)
+            if not self.status_event.wait(w) and w >= self.timeout_s:
                 raise FsError(ERR_LINK_TIMEOUT, f"node {self.node} on {self.channel} stopped sending status")
         st = self.status
         raise FsError(ERR_LINK_TIMEOUT, f"node {self.node} did not reach {'/'.join(sorted(states))} "
@@ -194,6 +198,18 @@ class Device(can.Listener):
         """One HostCommand frame (each valid frame is one command)."""
         self._send_safety("HostCommand", {"Mode": MODES[mode], "Slot": slot, "GoalScale": goal_scale,
                                           "TimeScale": time_scale, "EndPolicy": END_POLICIES[end]})
+
+    def command_until(self, mode: str, states: set[str], timeout_s: float, retry_s: float = 0.2) -> Status:
+        """Send a mode command and repeat it (each with a new counter) until the status shows one
+        of states: a command frame lost or corrupted on the bus is simply sent again."""
+        end = time.monotonic() + timeout_s
+        while True:
+            self.command(mode)
+            try:
+                return self.wait_state(states, min(retry_s, max(0.0, end - time.monotonic())))
+            except FsError:
+                if time.monotonic() >= end:
+                    raise
 
     def start_telemetry(self) -> Telemetry:
         self.telemetry = Telemetry()

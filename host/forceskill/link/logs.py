@@ -7,6 +7,7 @@ The demonstration is the longest stretch of telemetry sampled every tick (1 kHz,
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import can
 import numpy as np
@@ -49,14 +50,14 @@ def read_can_log(path: Path, node: int | None = None) -> dict[str, np.ndarray]:
     wraps, last = 0, -1
     for m in msgs:
         if m.arbitration_id == mpos.frame_id and len(m.data) == 8:
-            s = mpos.decode(bytes(m.data))
+            s: Any = mpos.decode(bytes(m.data))
             raw = int(s["Tick"])
             if last >= 0 and raw < last - 32768:
                 wraps += 1
             last = raw
             pending = (raw + 65536 * wraps, float(s["PosX"]), float(s["PosY"]))
         elif m.arbitration_id == mforce.frame_id and len(m.data) == 8 and pending is not None:
-            s = mforce.decode(bytes(m.data))
+            s = mforce.decode(bytes(m.data))  # type: ignore[assignment]
             rows.append((pending[0], pending[1], pending[2], float(s["ForceContact"]),
                          float(s["ForceOperator"]), float(s["ForceCmd"]), float(s["ForceRef"])))
             pending = None

@@ -53,7 +53,8 @@ RID_ERASE_SLOT = 0xFF00
 N_SLOTS = 8
 SLOT_ENTRY = 16
 
-STATUS_NAMES = {0xFFFF: "transfer in progress", 0xFFFE: "transfer interrupted", 0: "ok",
+STATUS_NAMES = {0xFFFF: "transfer in progress", 0xFFFE: "transfer interrupted",
+                0xFFFD: "none since power-up", 0: "ok",
                 200: "image too short", 201: "bad magic", 202: "unsupported format version",
                 203: "length mismatch", 204: "CRC-32 mismatch", 205: "bad kernel count",
                 206: "non-finite value", 207: "value out of range", 208: "bad centres",
@@ -112,7 +113,7 @@ def uds_client(dev: Device, request_timeout_s: float = 5.0) -> Iterator[Client]:
                          rxid=UDS_RESPONSE_BASE + dev.node)
     stack = isotp.NotifierBasedCanStack(dev.bus, dev.notifier, address=addr, params=isotp_params())
     conn = PythonIsoTpConnection(stack)
-    cfg = dict(udsoncan.configs.default_client_config)
+    cfg: Any = dict(udsoncan.configs.default_client_config)
     cfg.update({"security_algo": lambda level, seed, params=None: security_key(seed),
                 "data_identifiers": DID_CODECS, "request_timeout": request_timeout_s,
                 "p2_timeout": request_timeout_s, "p2_star_timeout": request_timeout_s,

@@ -278,12 +278,46 @@ static void test_coupling(void **state)
     assert_true(fabs(fx_to_double(dmpfx_view(sf.u_acc), 30u) - sd.u) < 1e-5);
 }
 
+/* Forced far outside the validated range (bypassing dmpfx_run_init): every state saturates,
+ * nothing wraps (UBSan would abort on signed overflow), and the saturations are counted. */
+static void test_saturation_never_wraps(void **state)
+{
+    (void)state;
+    const uint32_t len = read_file("press_n50_ridge_release.skill", image, sizeof(image));
+    assert_int_equal(skill_parse(image, len, &skill), FS_OK);
+    assert_int_equal(dmpfx_from_model(&skill.dmp, &fxm), FS_OK);
+    dmpfx_run_t run;
+    assert_int_equal(dmpfx_run_init(&fxm, 1.0, 1.0, &run), FS_OK);
+    const int32_t goals[] = {INT32_MAX, INT32_MIN};
+    for (size_t k = 0; k < 2; k++) {
+        run.goal_q24 = goals[k];
+        run.k1_q31 = run.k_alpha_q31 = run.k_alphabeta_q31 = run.k_gamma_q31 = INT32_MAX / 2;
+        dmpfx_state_t s;
+        dmpfx_state_reset(&s);
+        int32_t x_abs_max = 0;
+        for (int i = 0; i < 5000; i++) {
+            (void)dmpfx_step(&fxm, &run, &s, NULL);
+            const int64_t accs[] = {s.u_acc, s.v_acc, s.integral_x_acc, s.x_acc, s.z_acc};
+            for (size_t j = 0; j < 5; j++) {
+                const int32_t a = fx_abs_sat(dmpfx_view(accs[j]));
+                x_abs_max = (a > x_abs_max) ? a : x_abs_max;
+            }
+        }
+        printf("forced saturation (g = %s): %u events, max |state| %d LSB\n",
+               k == 0 ? "max" : "min", s.sat_events, x_abs_max);
+        assert_true(s.sat_events > 0u);
+        /* the accumulators are clamped to +-(2^30 - 1)*2^32: the views reach the rail, never wrap */
+        assert_true(x_abs_max >= INT32_MAX - 2);
+        assert_true(x_abs_max <= INT32_MAX - 1);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_golden_vectors), cmocka_unit_test(test_long_skill),
         cmocka_unit_test(test_blend),          cmocka_unit_test(test_rejects),
-        cmocka_unit_test(test_coupling),
+        cmocka_unit_test(test_coupling),       cmocka_unit_test(test_saturation_never_wraps),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -50,6 +50,13 @@ static void test_sat_add_sub(void **state)
             assert_int_equal(fx_sub_sat(a, b), ref_round_sat((long double)a - (long double)b));
         }
     }
+    const int32_t ks[] = {0, 1, -1, 16, 64, 1000, -1000, INT32_MAX, INT32_MIN};
+    for (size_t i = 0; i < N_EDGES; i++) {
+        for (size_t j = 0; j < sizeof(ks) / sizeof(ks[0]); j++) {
+            assert_int_equal(fx_mul_int_sat(k_edges[i], ks[j]),
+                             ref_round_sat((long double)k_edges[i] * (long double)ks[j]));
+        }
+    }
     assert_int_equal(fx_sat32((int64_t)INT32_MAX + 1), INT32_MAX);
     assert_int_equal(fx_sat32((int64_t)INT32_MIN - 1), INT32_MIN);
     assert_int_equal(fx_sat32(INT64_MAX), INT32_MAX);

@@ -53,8 +53,8 @@ def main(harness: str, dbc_path: str) -> int:
                 assert int(v) == raw_py[n], f"{msg.name}.{n}: C raw {v} != cantools {raw_py[n]}"
             for n, v in zip(signals, phys_c.split()):
                 ref = float(phys_py[n])
-                # decode functions compute in float32 (--use-float): agree to float32 precision
-                assert abs(float(v) - ref) <= 1e-6 * max(1.0, abs(ref)), \
+                # decode functions compute in double; printed with 9 significant digits
+                assert abs(float(v) - ref) <= 1e-8 * max(1.0, abs(ref)), \
                     f"{msg.name}.{n}: C phys {v} != cantools {ref}"
             checked += 1
     proc.stdin.close()

@@ -17,7 +17,7 @@ def normalise(text: str) -> list[str]:
 def main(cantools_exe: str, proto_dir: str) -> int:
     proto = pathlib.Path(proto_dir)
     with tempfile.TemporaryDirectory() as tmp:
-        subprocess.run([cantools_exe, "generate_c_source", "--database-name", "fs_dbc", "--use-float",
+        subprocess.run([cantools_exe, "generate_c_source", "--database-name", "fs_dbc",
                         "--use-round", "-o", tmp, str(proto / "forceskill.dbc")],
                        check=True, capture_output=True)
         for name in ("fs_dbc.h", "fs_dbc.c"):

@@ -1,0 +1,373 @@
+/* The device application through its CAN interface only (host port, simulator backend): boot to
+ * IDLE, E2E-checked commands, TEACH, host silence (default 100 ms) -> FAULT with an emergency
+ * frame and the force ramped to zero within 50 ms, no auto-resume, guarded clearing; UDS over
+ * ISO-TP: skill download into a slot (golden vector), corrupted and interrupted downloads keep
+ * the old skill, refusals while executing. */
+#define _POSIX_C_SOURCE 200809L
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "app.h"
+#include "fs_dbc.h"
+#include "hal_host.h"
+
+static app_t app;
+static app_config_t cfg;
+static uint64_t t_us;
+static uint8_t e2e_cmd_counter;
+static uint8_t e2e_hb_counter;
+
+/* frames the device sent, collected per tick */
+#define OUTCAP 4096u
+static can_frame_t out[OUTCAP];
+static unsigned n_out;
+
+static void tick(void)
+{
+    t_us += 1000u;
+    hal_host_set_time_us(t_us);
+    app_tick(&app, false);
+    can_frame_t f;
+    while (hal_sim_can_tx_peek(&f)) {
+        if (n_out < OUTCAP) {
+            out[n_out++] = f;
+        }
+        hal_sim_can_tx_pop();
+    }
+}
+
+static void ticks(unsigned n)
+{
+    for (unsigned i = 0; i < n; i++) {
+        tick();
+    }
+}
+
+static void send_command(uint8_t mode, uint8_t slot)
+{
+    struct fs_dbc_host_command_t c;
+    memset(&c, 0, sizeof(c));
+    c.mode = mode;
+    c.slot = slot;
+    c.goal_scale = 1000u;
+    c.time_scale = 1000u;
+    can_frame_t f = {.id = PROTO_ID_HOST_COMMAND(0), .dlc = 8};
+    (void)fs_dbc_host_command_pack(f.data, &c, 8);
+    e2e_protect(&f, ++e2e_cmd_counter);
+    assert_true(hal_sim_can_deliver(&f));
+}
+
+static void send_heartbeat(void)
+{
+    can_frame_t f = {.id = PROTO_ID_HOST_HEARTBEAT(0), .dlc = 8};
+    memset(f.data, 0, 8);
+    e2e_protect(&f, ++e2e_hb_counter);
+    assert_true(hal_sim_can_deliver(&f));
+}
+
+static struct fs_dbc_device_status_t last_status(void)
+{
+    struct fs_dbc_device_status_t s;
+    memset(&s, 0xFF, sizeof(s));
+    for (unsigned i = n_out; i-- > 0;) {
+        if (out[i].id == PROTO_ID_STATUS(0)) {
+            e2e_rx_t rx;
+            e2e_rx_reset(&rx);
+            assert_int_equal(e2e_check(&rx, &out[i]), PROTO_OK);
+            assert_int_equal(fs_dbc_device_status_unpack(&s, out[i].data, 8), 0);
+            break;
+        }
+    }
+    return s;
+}
+
+/* A minimal ISO-TP/UDS tester over the sim queues (the isotp module acting as the tester side;
+ * can-isotp/udsoncan play this role in tests/can). */
+static isotp_link_t tester;
+static bool tester_send(void *ctx, const can_frame_t *f)
+{
+    (void)ctx;
+    return hal_sim_can_deliver(f);
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    hal_host_init();
+    hal_host_flash_erase();
+    hal_sim_can_reset();
+    t_us = 0u;
+    n_out = 0u;
+    hal_sensors_t s;
+    memset(&s, 0, sizeof(s));
+    s.pos_m[0] = 0.001;
+    hal_host_set_sensors(&s);
+    app_config_default(&cfg);
+    hal_host_set_time_us(0u);
+    app_init(&app, &cfg);
+    isotp_config_t c;
+    isotp_config_default(&c, PROTO_ID_UDS_REQUEST(0), PROTO_ID_UDS_RESPONSE(0));
+    isotp_init(&tester, &c, tester_send, NULL);
+    return 0;
+}
+
+
+static uint16_t uds(const uint8_t *req, uint16_t len, uint8_t *resp, uint16_t cap)
+{
+    assert_int_equal(isotp_send(&tester, req, len, t_us), PROTO_OK);
+    for (unsigned k = 0; k < 2000u; k++) {
+        isotp_poll(&tester, t_us);
+        unsigned before = n_out;
+        tick();
+        for (unsigned i = before; i < n_out; i++) {
+            isotp_on_frame(&tester, &out[i], t_us);
+        }
+        const uint8_t *r = NULL;
+        const uint16_t n = isotp_rx_peek(&tester, &r);
+        if (n != 0u) {
+            if (n >= 3u && r[0] == 0x7F && r[2] == 0x78) {   /* response pending: keep waiting */
+                isotp_rx_release(&tester);
+                continue;
+            }
+            assert_true(n <= cap);
+            memcpy(resp, r, n);
+            isotp_rx_release(&tester);
+            return n;
+        }
+    }
+    fail_msg("no UDS response");
+    return 0;
+}
+
+static void unlock(uint8_t session)
+{
+    uint8_t r[64];
+    const uint8_t dsc[2] = {0x10, session};
+    assert_int_equal(uds(dsc, 2, r, sizeof(r)), 6);
+    ticks(1100);                                       /* SecurityAccess boot delay (1 s) */
+    const uint8_t seed_req[2] = {0x27, 0x01};
+    assert_int_equal(uds(seed_req, 2, r, sizeof(r)), 2 + SEC_SEED_LEN);
+    uint8_t key[2 + SEC_KEY_LEN] = {0x27, 0x02};
+    /* HMAC-SHA256 (checked against RFC 4231 vectors in the security tests), secret of the port */
+    sec_compute_key(&app.sec_cfg, &r[2], &key[2]);
+    assert_int_equal(uds(key, sizeof(key), r, sizeof(r)), 2);
+    assert_int_equal(r[0], 0x67);
+}
+
+static uint8_t image_a[APP_IMAGE_MAX], image_b[APP_IMAGE_MAX];
+static uint32_t len_a, len_b;
+
+static uint32_t load(const char *name, uint8_t *buf)
+{
+    char path[512];
+    snprintf(path, sizeof(path), "%s/%s", FS_VECTORS_DIR, name);
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    const size_t n = fread(buf, 1, APP_IMAGE_MAX, f);
+    fclose(f);
+    return (uint32_t)n;
+}
+
+static uint8_t download(uint8_t slot, const uint8_t *img, uint32_t len, uint32_t stop_after)
+{
+    uint8_t r[64];
+    uint8_t rd[7] = {0x34, 0x00, 0x21, slot, (uint8_t)(len >> 8), (uint8_t)len};
+    uint16_t n = uds(rd, 6, r, sizeof(r));
+    if (r[0] == 0x7F) {
+        return r[2];
+    }
+    assert_int_equal(n, 4);
+    static uint8_t td[4096];
+    td[0] = 0x36;
+    td[1] = 0x01;
+    const uint32_t send = stop_after < len ? stop_after : len;
+    memcpy(&td[2], img, send);
+    n = uds(td, (uint16_t)(send + 2u), r, sizeof(r));
+    if (r[0] == 0x7F) {
+        return r[2];
+    }
+    if (stop_after < len) {
+        return 0xFF;                                   /* the tester goes away here */
+    }
+    const uint8_t exit_req[1] = {0x37};
+    n = uds(exit_req, 1, r, sizeof(r));
+    return r[0] == 0x7F ? r[2] : 0x00;
+}
+
+static void test_boot_status_and_e2e(void **state)
+{
+    (void)state;
+    ticks(20);
+    struct fs_dbc_device_status_t s = last_status();
+    assert_int_equal(s.state, APP_IDLE);
+    assert_int_equal(s.fault_code, 0);
+    unsigned n_status = 0;
+    for (unsigned i = 0; i < n_out; i++) {
+        n_status += out[i].id == PROTO_ID_STATUS(0);
+    }
+    assert_int_equal(n_status, 2);                    /* every 10 ms */
+    /* a command with a bad CRC is ignored */
+    struct fs_dbc_host_command_t c = {.mode = APP_CMD_TEACH};
+    can_frame_t f = {.id = PROTO_ID_HOST_COMMAND(0), .dlc = 8};
+    (void)fs_dbc_host_command_pack(f.data, &c, 8);
+    e2e_protect(&f, 3);
+    f.data[7] ^= 0x5A;
+    assert_true(hal_sim_can_deliver(&f));
+    ticks(20);
+    assert_int_equal(last_status().state, APP_IDLE);
+    assert_int_equal(app.e2e_errors, 1);
+}
+
+static void test_host_silence_faults_and_ramps(void **state)
+{
+    (void)state;
+    ticks(5);
+    send_command(APP_CMD_TEACH, 0);
+    for (unsigned i = 0; i < 50; i++) {
+        if (i % 10 == 0) {
+            send_heartbeat();
+        }
+        tick();
+    }
+    assert_int_equal(app.state, APP_TEACH);
+    /* silence: the last heartbeat was at tick 40 of the loop above */
+    unsigned fault_tick = 0;
+    for (unsigned i = 0; i < 200 && fault_tick == 0; i++) {
+        tick();
+        if (app.state == APP_FAULT) {
+            fault_tick = i + 1u + 10u;                 /* ms since the last heartbeat */
+        }
+    }
+    assert_int_equal(app.saf_out.fault_code, FLT_HOST_SILENCE);
+    assert_true(fault_tick >= WDG_TIMEOUT_DEFAULT_MS && fault_tick <= WDG_TIMEOUT_DEFAULT_MS + 2u);
+    /* an emergency frame with the code */
+    bool emcy = false;
+    for (unsigned i = 0; i < n_out; i++) {
+        if (out[i].id == PROTO_ID_EMERGENCY(0)) {
+            struct fs_dbc_emergency_t e;
+            assert_int_equal(fs_dbc_emergency_unpack(&e, out[i].data, 8), 0);
+            assert_int_equal(e.fault_code, FLT_HOST_SILENCE);
+            emcy = true;
+        }
+    }
+    assert_true(emcy);
+    ticks(60);
+    bool en = true;
+    fs_real_t f[2];
+    hal_host_get_actuator(&en, f);
+    assert_false(en);                                  /* ramped and disabled within 50 ms */
+    /* stays in FAULT; a TEACH command is ignored; clearing (with the host back) goes to IDLE */
+    send_command(APP_CMD_TEACH, 0);
+    ticks(10);
+    assert_int_equal(app.state, APP_FAULT);
+    send_heartbeat();
+    send_command(APP_CMD_CLEAR_FAULT, 0);
+    ticks(10);
+    assert_int_equal(app.state, APP_IDLE);
+    assert_int_equal(last_status().fault_code, 0);
+}
+
+static void test_download_corrupt_interrupted(void **state)
+{
+    (void)state;
+    len_a = load("press_n50_ridge_release.skill", image_a);
+    len_b = load("press_n10_ridge_release.skill", image_b);
+    unlock(UDS_SESSION_PROGRAMMING);
+    assert_int_equal(download(1, image_a, len_a, UINT32_MAX), 0x00);
+    assert_true(app.slot_valid[0]);
+    assert_int_equal(app.slot_skill[0].dmp.n_kernels, 50);
+    /* corrupted: one flipped byte -> CRC fails at exit, slot 1 keeps the N = 50 skill */
+    static uint8_t bad[APP_IMAGE_MAX];
+    memcpy(bad, image_b, len_b);
+    bad[150] ^= 0x10;
+    assert_int_equal(download(1, bad, len_b, UINT32_MAX), UDS_NRC_PROGRAMMING_FAILURE);
+    assert_int_equal(app.last_transfer_status, FS_ERR_SKILL_CRC);
+    assert_int_equal(app.slot_skill[0].dmp.n_kernels, 50);
+    /* interrupted: half of the data, then the tester leaves (S3 timeout) */
+    assert_int_equal(download(1, image_b, len_b, len_b / 2u), 0xFF);
+    ticks(UDS_S3_MS + 10u);
+    assert_int_equal(app.uds.session, UDS_SESSION_DEFAULT);
+    assert_int_equal(app.last_transfer_status, 0xFFFEu);
+    /* after a reboot (flash kept) slot 1 still holds the N = 50 skill */
+    app_init(&app, &cfg);
+    ticks(2);
+    assert_true(app.slot_valid[0]);
+    assert_int_equal(app.slot_skill[0].dmp.n_kernels, 50);
+    assert_int_equal(app.slot_len[0], len_a);
+}
+
+static void test_execute_and_refusals(void **state)
+{
+    (void)state;
+    len_a = load("press_n10_ridge_release.skill", image_a);
+    unlock(UDS_SESSION_PROGRAMMING);
+    assert_int_equal(download(2, image_a, len_a, UINT32_MAX), 0x00);
+    uint8_t r[64];
+    const uint8_t dflt[2] = {0x10, 0x01};
+    assert_int_equal(uds(dflt, 2, r, sizeof(r)), 6);
+    /* empty slot -> out of range; valid slot -> EXECUTE */
+    const uint8_t run_empty[10] = {0x31, 0x01, 0x02, 0x01, 5, 0x03, 0xE8, 0x03, 0xE8, 0};
+    assert_int_equal(uds(run_empty, 10, r, sizeof(r)), 3);
+    assert_int_equal(r[2], UDS_NRC_REQUEST_OUT_OF_RANGE);
+    send_heartbeat();
+    const uint8_t run2[10] = {0x31, 0x01, 0x02, 0x01, 2, 0x03, 0xE8, 0x03, 0xE8, 0};
+    assert_int_equal(uds(run2, 10, r, sizeof(r)), 4);
+    assert_int_equal(app.state, APP_EXECUTE);
+    /* while executing: programming session and configuration writes refused (0x22) */
+    send_heartbeat();
+    const uint8_t prog[2] = {0x10, 0x02};
+    assert_int_equal(uds(prog, 2, r, sizeof(r)), 3);
+    assert_int_equal(r[2], UDS_NRC_CONDITIONS_NOT_CORRECT);
+    /* stop -> IDLE; stop again -> sequence error */
+    send_heartbeat();
+    const uint8_t stop[4] = {0x31, 0x02, 0x02, 0x01};
+    assert_int_equal(uds(stop, 4, r, sizeof(r)), 4);
+    assert_int_equal(app.state, APP_IDLE);
+    assert_int_equal(uds(stop, 4, r, sizeof(r)), 3);
+    assert_int_equal(r[2], UDS_NRC_REQUEST_SEQUENCE_ERROR);
+    /* unknown DID and routine */
+    const uint8_t rd[3] = {0x22, 0x12, 0x34};
+    assert_int_equal(uds(rd, 3, r, sizeof(r)), 3);
+    assert_int_equal(r[2], UDS_NRC_REQUEST_OUT_OF_RANGE);
+    const uint8_t ver[3] = {0x22, 0xF1, 0x89};
+    const uint16_t n = uds(ver, 3, r, sizeof(r));
+    assert_int_equal(n, 3u + strlen(APP_SW_VERSION));
+    assert_memory_equal(&r[3], APP_SW_VERSION, strlen(APP_SW_VERSION));
+}
+
+static void test_scheduler_overrun(void **state)
+{
+    (void)state;
+    /* on time: one tick per millisecond boundary */
+    unsigned ran = 0;
+    for (uint64_t t = 100u; t <= 20000u; t += 100u) {
+        hal_host_set_time_us(t);
+        ran += app_poll(&app) ? 1u : 0u;
+    }
+    assert_int_equal(ran, 20);
+    assert_int_equal(app.state, APP_IDLE);
+    /* a tick that starts 2.5 ms late: overrun latched */
+    hal_host_set_time_us(22500u);
+    assert_true(app_poll(&app));
+    hal_host_set_time_us(23500u);
+    assert_true(app_poll(&app));
+    assert_int_equal(app.state, APP_FAULT);
+    assert_int_equal(app.saf_out.fault_code, FLT_TICK_OVERRUN);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup(test_boot_status_and_e2e, setup),
+        cmocka_unit_test_setup(test_host_silence_faults_and_ramps, setup),
+        cmocka_unit_test_setup(test_download_corrupt_interrupted, setup),
+        cmocka_unit_test_setup(test_execute_and_refusals, setup),
+        cmocka_unit_test_setup(test_scheduler_overrun, setup),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
