@@ -97,6 +97,17 @@ def _is_number(s: str) -> bool:
 
 register_reader(".csv", read_csv_columns)
 
+_log_readers_loaded = False
+
+
+def _load_log_readers() -> None:
+    """CAN log formats (.blf, .asc, ...) live in forceskill.link (python-can, cantools): import
+    it on first use, so ``load_demo`` reads them whether or not the CLI was built first."""
+    global _log_readers_loaded
+    if not _log_readers_loaded:
+        _log_readers_loaded = True
+        import forceskill.link.logs  # noqa: F401  (registers its readers on import)
+
 
 def load_demo(path: Union[str, Path], position_column: str = "x", force_column: Optional[str] = None,
               learn: str = "contact") -> Demo:
@@ -104,6 +115,7 @@ def load_demo(path: Union[str, Path], position_column: str = "x", force_column: 
     if learn not in LEARN_COLUMNS:
         raise ParamError(ERR_FIT_ARGS, f"learn must be one of {', '.join(LEARN_COLUMNS)}: {learn!r}")
     p = Path(path)
+    _load_log_readers()
     reader = _READERS.get(p.suffix.lower())
     if reader is None:
         raise DemoError(ERR_DEMO_FILE, f"no reader for demonstration suffix {p.suffix or '(none)'!r} "

@@ -45,6 +45,16 @@ ERR_FIT_ARGS = 610           # kernels, method, end policy or dt out of range
 ERR_FIT_GOAL = 611           # g <= 0 or tiny: no net push to phase-normalise
 ERR_FIT_NUMERIC = 612        # the regression produced a non-finite weight
 ERR_IO = 620                 # an output file could not be written
+ERR_REPORT = 621             # a step of `forceskill report` failed (simulator, fit, execution)
+# 63x: the CAN link (forceskill.link and the commands on it)
+ERR_LINK_BUS = 630           # interface, channel, port or bus options unusable
+ERR_LINK_NO_RESPONSE = 631   # the node sent nothing within the timeout
+ERR_LINK_NEGATIVE = 632      # the device refused a request (UDS negative response)
+ERR_LINK_VERIFY = 633        # read-back after upload differs
+ERR_LINK_LOG = 634           # a CAN log without the device's telemetry
+ERR_LINK_TIMEOUT = 635       # the device stopped answering during an operation
+ERR_LINK_STATE = 636         # the device is not in the state the operation needs (e.g. FAULT)
+ERR_LINK_ARGS = 637          # a bad option value (slot, sequence, scale)
 
 
 class FsError(Exception):

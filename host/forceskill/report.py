@@ -24,7 +24,7 @@ from typing import Any, Optional
 
 import numpy as np
 
-from .errors import FsError
+from .errors import ERR_REPORT, FsError
 
 REPO = Path(__file__).resolve().parents[2]
 #: Paper bounds on the LWR approximation error (% of max force): pressing <= 4, engraving <= 6.
@@ -32,7 +32,6 @@ LWR_BOUND_PCT = {"pressing": 4.0, "engraving": 6.0}
 LWR_KERNELS = (50, 60, 70, 80, 90, 100)
 SURFACE_M = 0.001
 LAYER_X_M = 0.020
-ERR_REPORT = 630   # host-side run-time failure of a report step (same family as the CLI's 6xx)
 
 
 @dataclass(frozen=True)

@@ -10,11 +10,7 @@ Errors are ``FsError`` with codes 630-649 (host side of the CAN link), listed he
 """
 from __future__ import annotations
 
-ERR_LINK_BUS = 630          # interface, channel, port or bus options unusable
-ERR_LINK_NO_RESPONSE = 631  # the node sent nothing within the timeout
-ERR_LINK_NEGATIVE = 632     # the device refused a request (UDS negative response)
-ERR_LINK_VERIFY = 633       # read-back after upload differs
-ERR_LINK_LOG = 634          # a CAN log without the device's telemetry
-ERR_LINK_TIMEOUT = 635      # the device stopped answering during an operation
-ERR_LINK_STATE = 636        # the device is not in the state the operation needs (e.g. FAULT)
-ERR_LINK_ARGS = 637         # a bad option value (slot, sequence, scale)
+# The link's error codes live with every other host code in forceskill.errors (63x).
+from forceskill.errors import (ERR_LINK_ARGS, ERR_LINK_BUS, ERR_LINK_LOG,  # noqa: F401
+                               ERR_LINK_NEGATIVE, ERR_LINK_NO_RESPONSE, ERR_LINK_STATE,
+                               ERR_LINK_TIMEOUT, ERR_LINK_VERIFY)
