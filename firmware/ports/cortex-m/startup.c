@@ -6,7 +6,9 @@
 #include "cm_bench.h"
 #include "semihost.h"
 
-extern uint32_t __data_load, __data_start, __data_end, __bss_start, __bss_end, __stack_top;
+/* Linker-script symbols: addresses only (sections are word aligned). */
+extern uint32_t __data_load[], __data_start[], __data_end[], __bss_start[], __bss_end[];
+extern uint32_t __stack_top[];
 int main(void);
 void Reset_Handler(void);
 void Default_Handler(void);
@@ -18,12 +20,13 @@ void SysTick_Handler(void) __attribute__((weak, alias("Default_Handler")));
 
 void Reset_Handler(void)
 {
-    const uint32_t *src = &__data_load;
-    for (uint32_t *dst = &__data_start; dst < &__data_end;) {
-        *dst++ = *src++;
+    const uint32_t n_data = (uint32_t)((uintptr_t)__data_end - (uintptr_t)__data_start) / 4u;
+    for (uint32_t i = 0u; i < n_data; i++) {
+        __data_start[i] = __data_load[i];
     }
-    for (uint32_t *dst = &__bss_start; dst < &__bss_end;) {
-        *dst++ = 0u;
+    const uint32_t n_bss = (uint32_t)((uintptr_t)__bss_end - (uintptr_t)__bss_start) / 4u;
+    for (uint32_t i = 0u; i < n_bss; i++) {
+        __bss_start[i] = 0u;
     }
 #if defined(__ARM_FP)
     SCB_CPACR |= (0xFu << 20); /* CP10, CP11 full access */
@@ -49,7 +52,7 @@ typedef void (*cm_vector_t)(void);
 
 /* Cortex-M core vectors (16 entries); no external interrupt is enabled by these images. */
 __attribute__((section(".vectors"), used)) static const cm_vector_t cm_vectors[16] = {
-    (cm_vector_t)(uintptr_t)&__stack_top, /* initial main stack pointer */
+    (cm_vector_t)(uintptr_t)__stack_top, /* initial main stack pointer */
     Reset_Handler,
     Default_Handler,   /* NMI */
     HardFault_Handler, /* HardFault */
