@@ -172,10 +172,9 @@ void dmp_state_reset(dmp_state_t *s)
     s->z = FS_R(0.0);
 }
 
-/* Index window [*lo, *hi) that holds every kernel with e_i <= cutoff at phase u:
- * lo = first i with env_hi[i] >= u (every j < lo ends before u), hi = first i with
- * env_lo[i] > u (every j >= hi starts after u). Both envelopes are non-decreasing. */
-static void dmp_window(const dmp_model_t *m, fs_real_t u, uint16_t *lo, uint16_t *hi)
+/* First kernel whose cutoff interval can reach u: lo = first i with env_hi[i] >= u (every j < lo
+ * ends before u). env_hi is non-decreasing, so a binary search finds it. */
+static uint16_t dmp_window_start(const dmp_model_t *m, fs_real_t u)
 {
     uint16_t a = 0u;
     uint16_t b = m->n_kernels;
@@ -187,18 +186,7 @@ static void dmp_window(const dmp_model_t *m, fs_real_t u, uint16_t *lo, uint16_t
             b = mid;
         }
     }
-    *lo = a;
-    a = 0u;
-    b = m->n_kernels;
-    while (a < b) {
-        const uint16_t mid = (uint16_t)((a + b) / 2u);
-        if (m->env_lo[mid] <= u) {
-            a = (uint16_t)(mid + 1u);
-        } else {
-            b = mid;
-        }
-    }
-    *hi = a;
+    return a;
 }
 
 static fs_real_t dmp_kernel_exponent(const dmp_model_t *m, uint16_t i, fs_real_t u)
@@ -222,61 +210,68 @@ static fs_real_t dmp_nearest_weight(const dmp_model_t *m, fs_real_t u)
     return m->weight[best];
 }
 
-/* S(u) = sum psi_i w_i / sum psi_i over kernels [lo, hi) with e_i <= cutoff (all of [lo, hi)
- * when use_cutoff is 0), psi_i = exp(-(e_i - e_min)). *count receives the number summed. */
-static fs_real_t dmp_blend(const dmp_model_t *m, fs_real_t u, uint16_t lo, uint16_t hi,
-                           int use_cutoff, uint16_t *count)
+/* S(u) = sum psi_i w_i / sum psi_i over the kernels with e_i <= cutoff, in one pass: from the
+ * window start while env_lo[i] <= u (env_lo is non-decreasing, so every later kernel starts after
+ * u). Within the cutoff psi_i = exp(-e_i) >= exp(-23), a normal number in float and double, so
+ * the e_min shift of docs/math.md changes nothing but round-off and is not needed here. With no
+ * kernel within the cutoff, the nearest kernel alone. *count receives the number summed. */
+static fs_real_t dmp_blend_window(const dmp_model_t *m, fs_real_t u, uint16_t *count)
 {
     const fs_real_t cutoff = (fs_real_t)DMP_KERNEL_CUTOFF_EXP;
-    fs_real_t e_min = FS_REAL_INF;
+    fs_real_t num = FS_R(0.0);
+    fs_real_t den = FS_R(0.0);
     uint16_t n = 0u;
-    for (uint16_t i = lo; i < hi; i++) {
+    for (uint16_t i = dmp_window_start(m, u); i < m->n_kernels && m->env_lo[i] <= u; i++) {
         const fs_real_t e = dmp_kernel_exponent(m, i, u);
-        if (!use_cutoff || e <= cutoff) {
+        if (e <= cutoff) {
+            const fs_real_t psi = fs_exp(-e);
+            num += psi * m->weight[i];
+            den += psi;
             n++;
-            e_min = (e < e_min) ? e : e_min;
         }
     }
-    *count = n;
     if (n == 0u) {
         *count = 1u;
         return dmp_nearest_weight(m, u);
     }
+    *count = n;
+    return num / den;
+}
+
+/* S(u) over all N kernels with psi_i = exp(-(e_i - e_min)) (the test reference: the shift keeps
+ * sum psi >= 1 however far u is from every centre). */
+static fs_real_t dmp_blend_all(const dmp_model_t *m, fs_real_t u)
+{
+    fs_real_t e_min = FS_REAL_INF;
+    for (uint16_t i = 0u; i < m->n_kernels; i++) {
+        const fs_real_t e = dmp_kernel_exponent(m, i, u);
+        e_min = (e < e_min) ? e : e_min;
+    }
     fs_real_t num = FS_R(0.0);
     fs_real_t den = FS_R(0.0);
-    for (uint16_t i = lo; i < hi; i++) {
-        const fs_real_t e = dmp_kernel_exponent(m, i, u);
-        if (!use_cutoff || e <= cutoff) {
-            const fs_real_t psi = fs_exp(-(e - e_min));
-            num += psi * m->weight[i];
-            den += psi;
-        }
+    for (uint16_t i = 0u; i < m->n_kernels; i++) {
+        const fs_real_t psi = fs_exp(-(dmp_kernel_exponent(m, i, u) - e_min));
+        num += psi * m->weight[i];
+        den += psi;
     }
     return num / den;
 }
 
 fs_real_t dmp_forcing(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_real_t goal_m)
 {
-    uint16_t lo;
-    uint16_t hi;
     uint16_t count;
-    dmp_window(m, u, &lo, &hi);
-    return goal_m * v * dmp_blend(m, u, lo, hi, 1, &count);
+    return goal_m * v * dmp_blend_window(m, u, &count);
 }
 
 fs_real_t dmp_forcing_full(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_real_t goal_m)
 {
-    uint16_t count;
-    return goal_m * v * dmp_blend(m, u, 0u, m->n_kernels, 0, &count);
+    return goal_m * v * dmp_blend_all(m, u);
 }
 
 uint16_t dmp_active_kernels(const dmp_model_t *m, fs_real_t u)
 {
-    uint16_t lo;
-    uint16_t hi;
     uint16_t count;
-    dmp_window(m, u, &lo, &hi);
-    (void)dmp_blend(m, u, lo, hi, 1, &count);
+    (void)dmp_blend_window(m, u, &count);
     return count;
 }
 

@@ -30,7 +30,9 @@
 
 typedef float fs_real_t;
 #define FS_R(x) ((fs_real_t)(x##f))
+#ifndef fs_exp /* a port may supply a faster exp (e.g. -Dfs_exp=cm_expf) */
 #define fs_exp expf
+#endif
 #define fs_sqrt sqrtf
 #define fs_fabs fabsf
 #define fs_isfinite(x) isfinite(x)
@@ -38,7 +40,9 @@ typedef float fs_real_t;
 #else
 typedef double fs_real_t;
 #define FS_R(x) ((fs_real_t)(x))
+#ifndef fs_exp
 #define fs_exp exp
+#endif
 #define fs_sqrt sqrt
 #define fs_fabs fabs
 #define fs_isfinite(x) isfinite(x)

@@ -37,8 +37,12 @@ typedef enum {
 
     /* 3xx: fixed-point conversion (issue 5) */
     FS_ERR_FIXED_OVERFLOW = 300,    /* a value does not fit its fixed-point format */
+    FS_ERR_FIXED_WINDOW = 301,      /* more kernels overlap than the fixed build evaluates */
+    FS_ERR_FIXED_STEP = 302,        /* dt/tau too small or too large for Q1.31 */
+    FS_ERR_FIXED_CONFIG = 303,      /* a controller gain/limit does not fit Q16.16 */
 
-    /* 4xx: protocol (issue 4) and 5xx: safety faults (issue 6) are defined in their modules. */
+    /* 4xx: protocol (firmware/proto), 5xx: safety faults (firmware/safety/flt_codes.h), 6xx: host
+     * only (host/forceskill/errors.py), 7xx: firmware update (firmware/boot/boot_status.h). */
 } fs_status_t;
 
 #endif /* FS_STATUS_H */

@@ -15,10 +15,7 @@
 #include <stdint.h>
 #include "fs_status.h"
 
-/* 3xx codes beyond fs_status.h's FS_ERR_FIXED_OVERFLOW (300), defined by this module. */
-#define FS_ERR_FIXED_WINDOW ((fs_status_t)301) /* more than DMPFX_MAX_WINDOW kernels overlap */
-#define FS_ERR_FIXED_STEP ((fs_status_t)302)   /* dt/tau too small or too large for Q1.31 */
-#define FS_ERR_FIXED_CONFIG ((fs_status_t)303) /* a controller gain/limit does not fit Q16.16 */
+/* 3xx codes (FS_ERR_FIXED_*) are in fs_status.h with the other numbered codes. */
 
 #define FX_Q30_ONE ((int32_t)1 << 30)
 #define FX_Q31_ONE_U ((uint32_t)1u << 31)
