@@ -32,6 +32,42 @@ ERR_SKILL_GAINS = 209
 ERR_SKILL_UNSUPPORTED = 210
 ERR_SKILL_HEADER_SIZE = 211
 
+ERR_LIMIT_INVALID = 110
+
+# 3xx: fixed-point conversion (fs_status.h)
+ERR_FIXED_OVERFLOW = 300
+ERR_FIXED_WINDOW = 301
+ERR_FIXED_STEP = 302
+ERR_FIXED_CONFIG = 303
+
+#: 5xx: latched device faults (firmware/safety/flt_codes.h), as the status and emergency frames
+#: report them. tests/host/test_error_codes.py checks this table against the C header.
+DEVICE_FAULTS: dict[int, str] = {
+    500: "host silence",
+    501: "bus-off",
+    502: "sensor reading not finite",
+    503: "sensor reading out of range",
+    504: "force sensor stuck",
+    505: "force sensor spike",
+    506: "encoder jump",
+    507: "contact force above limit",
+    508: "force slew limit held",
+    509: "outside workspace",
+    510: "velocity above limit",
+    511: "tick overrun",
+    512: "skill invalid",
+    513: "force command not finite",
+    514: "storage error",
+}
+
+
+def fault_text(code: int) -> str:
+    """'500 (host silence)' for a device fault code, 'none' for 0."""
+    if code == 0:
+        return "none"
+    return f"{code} ({DEVICE_FAULTS.get(code, 'unknown fault')})"
+
+
 # 6xx: host only -- demonstrations and fitting
 ERR_DEMO_FILE = 600          # file missing, unreadable, or no reader for its suffix
 ERR_DEMO_FORMAT = 601        # no header row, a non-numeric cell, ragged rows

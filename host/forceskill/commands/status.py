@@ -4,6 +4,7 @@ from __future__ import annotations
 import argparse
 import struct
 
+from ..errors import fault_text
 from ..link import uds as U
 from ._common import add_common, connect
 
@@ -12,7 +13,7 @@ def _cmd(args: argparse.Namespace) -> int:
     with connect(args) as dev:
         st = dev.status
         assert st is not None
-        print(f"node {dev.node} on {dev.channel}: {st.state}, fault {st.fault_code or 'none'}, "
+        print(f"node {dev.node} on {dev.channel}: {st.state}, fault {fault_text(st.fault_code)}, "
               f"actuator {'on' if st.actuator_enabled else 'off'}, tick {st.tick}")
         with U.uds_client(dev) as client:
             if args.clear:
