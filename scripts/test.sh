@@ -11,6 +11,9 @@ cmake -S . -B build-debug -G Ninja -DCMAKE_BUILD_TYPE=Debug -DPython3_EXECUTABLE
 cmake --build build-debug -j "$(nproc)"
 ctest --test-dir build-debug --output-on-failure -j "$(nproc)"
 
+echo "== static checks (cppcheck; MISRA addon findings counted, not fatal)"
+tools/static_check.sh build-debug/static
+
 echo "== Python, HIL and CAN tests"
 export FORCESKILL_HIL_SIM="$ROOT/build/hil_sim/hil_sim"
 .venv/bin/python -m pytest -q tests
