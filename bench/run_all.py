@@ -365,33 +365,31 @@ def bench_step(rep: Report, bld: Build, demo: Any, image50: Path, cfg: dict[str,
                                 ">= 20x", "", f"{ratio:.0f}x", verdict(ratio, 20.0, None, True)])
 
 
+def fixed_facts(image: Path) -> str:
+    """The skill's values that the fixed-point formats must hold (Q8.24 below 64, 1/sigma in Q13.19
+    below 4096), for a message on a refusal; the checks themselves are firmware/fixed/dmpfx.c's."""
+    try:
+        import numpy as np
+        from forceskill import dmp as fsdmp
+        from forceskill.skill import Skill
+        sk = Skill.from_bytes(image.read_bytes())
+        n = int(round(sk.duration_s / sk.dt_s))
+        u, v = fsdmp.phase_scan(sk.alpha, sk.beta, sk.dt_s / sk.tau_s, n)
+        h = sk.goal_m * v * (fsdmp.normalised_kernels(u, sk.centres, sk.widths) @ sk.weights)
+        return (f"g = {sk.goal_m:.2f}, max abs(w) = {float(np.max(np.abs(sk.weights))):.1f}, "
+                f"max 1/sigma = {float(np.max(1.0 / sk.widths)):.0f}, largest abs(h) on the nominal phase path "
+                f"= {float(np.max(np.abs(h))):.1f}")
+    except Exception as e:   # the message is a courtesy; the refusal itself is the figure
+        return f"(values not available: {type(e).__name__})"
+
+
 def fixed_why(rejected: dict[str, int], image: Path) -> str:
     """Why there is no fixed-point step figure on the benchmark skill."""
     if "fixed" not in rejected:
         return "firmware/fixed (fs_fixed) is not in this build"
-    why = (f"the fixed-point core refuses this skill with status {rejected['fixed']} "
-           "(fs_status.h 3xx: a value or bound does not fit its Q format)")
-    try:   # the bound dmpfx_run_init checks (firmware/fixed/dmpfx.c), recomputed for the message
-        from forceskill.skill import Skill
-        sk = Skill.from_bytes(image.read_bytes())
-        h_bound = abs(sk.goal_m) * math.sqrt(sk.alpha * sk.beta) / math.e * float(max(abs(sk.weights)))
-        why += (f": worst-case bound on the forcing term g·v_peak·max(abs w) = {sk.goal_m:.2f} x "
-                f"{math.sqrt(sk.alpha * sk.beta) / math.e:.2f} x {float(max(abs(sk.weights))):.1f} = "
-                f"{h_bound:.0f} > 64 (DMPFX_Q24_HEADROOM); the goal g grows with the force impulse "
-                f"of the demonstration")
-    except Exception:
-        return why
-    try:   # what h actually reaches on the nominal phase path (forceskill.dmp, the Python reference)
-        import numpy as np
-        from forceskill import dmp as fsdmp
-        n = int(round(sk.duration_s / sk.dt_s))
-        u, v = fsdmp.phase_scan(sk.alpha, sk.beta, sk.dt_s / sk.tau_s, n)
-        h = sk.goal_m * v * (fsdmp.normalised_kernels(u, sk.centres, sk.widths) @ sk.weights)
-        why += (f"; the largest abs(h) on the skill's own phase path is {float(np.max(np.abs(h))):.1f}, "
-                f"{h_bound / float(np.max(np.abs(h))):.0f}x below that bound (v~ peaks early, where S is small)")
-    except Exception:
-        pass
-    return why
+    return (f"the fixed-point core refuses this skill with status {rejected['fixed']} (fs_status.h 3xx: a value "
+            f"does not fit its Q format; Q8.24 holds values below 64, Q13.19 1/sigma below 4096): "
+            + fixed_facts(image))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -507,6 +505,8 @@ def bench_scaling(rep: Report, bld: Build, demo: Any, images: dict[int, Path], c
              "the peers evaluate all N kernels every step, but at these N their step cost is mostly Python and numpy "
              "call overhead. "
              "\"refused\": the fixed-point core rejects that skill (fs_status.h code).")
+    for n in sorted(rejected):
+        body += f"\n- fixed point refuses N = {n} (status {rejected[n]}): {fixed_facts(images[n])}"
     rep.add("Scaling with the number of kernels N", body)
     rep.data["scaling_kernels"] = {"median": med, "slope": slopes}
 
