@@ -11,6 +11,7 @@ Usage: can_upload.py [--hil-sim PATH] [--repeat N]"""
 from __future__ import annotations
 
 import argparse
+import logging
 import statistics
 import subprocess
 import sys
@@ -29,6 +30,8 @@ from forceskill.link.device import Device  # noqa: E402
 from forceskill.synthetic import pressing  # noqa: E402
 
 BITRATE = 1_000_000
+# python-can's socketcand reader warns whenever a TCP read ends inside a frame (normal streaming)
+logging.getLogger("can.interfaces.socketcand.socketcand").setLevel(logging.ERROR)
 
 
 def crc15(bits: list[int]) -> int:

@@ -260,6 +260,17 @@ static void can_receive(app_t *app)
 
 static void uds_service(app_t *app)
 {
+    if (app->uds.pending_reset != 0u) {
+        /* ECUReset accepted (ISO 14229-1): its positive response leaves the bus first, then the
+         * reset (at the first tick that finds the transport and the CAN queue empty; bounded by
+         * APP_RESET_TX_WAIT_MS, e.g. bus-off). No request is served meanwhile. */
+        if ((!isotp_tx_busy(&app->tp) && hal_can_tx_idle()) ||
+            (uint32_t)(app->now_ms - app->reset_since_ms) >= APP_RESET_TX_WAIT_MS) {
+            uds_server_after_response(&app->uds);
+        }
+        isotp_poll(&app->tp, app->now_us);
+        return;
+    }
     const uint8_t *req = NULL;
     const uint16_t len = isotp_rx_peek(&app->tp, &req);
     if (len != 0u && !isotp_tx_busy(&app->tp)) {
@@ -269,7 +280,7 @@ static void uds_service(app_t *app)
         if (n != 0u) {
             (void)isotp_send(&app->tp, app->uds_resp, n, app->now_us);
         }
-        uds_server_after_response(&app->uds);
+        app->reset_since_ms = app->now_ms;      /* used only if this was an accepted ECUReset */
     }
     uds_server_poll(&app->uds, app->now_ms);
     if (app->uds.unlocked_level == 0u && sec_is_unlocked(&app->sec)) {
@@ -335,6 +346,35 @@ void app_init(app_t *app, const app_config_t *cfg)
     app->last_transfer_status = APP_TRANSFER_NONE;
     app->nvm_ok = (nvm_init(&app->nvm, hal_flash()) == NVM_OK);
     app_slots_reload(app);
+
+    /* firmware update: the bootloader's decision runs here on the host port (flash kept across
+     * ECUReset); the image confirms itself once its self-test has passed (first tick) */
+    const fls_dev_t *fw = hal_fw_flash();
+    const uint32_t slot_sectors = hal_fw_slot_sectors();
+    (void)boot_fls_window_init(&app->fw_w_state, &app->fw_state_dev, fw, 0u, 2u);
+    (void)boot_fls_window_init(&app->fw_w_slots, &app->fw_slots_dev, fw, 2u, 2u * slot_sectors);
+    (void)nvm_init(&app->fw_state_nvm, &app->fw_state_dev);
+    boot_config_t *bc = &app->boot_cfg;
+    bc->app_dev = &app->fw_slots_dev;
+    bc->slot_addr[0] = 0u;
+    bc->slot_addr[1] = slot_sectors * fw->sector_size;
+    bc->slot_size = slot_sectors * fw->sector_size;
+    bc->state_nvm = &app->fw_state_nvm;
+    bc->state_slot = 0u;
+    bc->target_id = BOOT_TARGET_HOST;
+    uint8_t key_len = 0u;
+    bc->key = hal_fw_key(&key_len);
+    bc->key_len = key_len;
+    bool any_skill = false;
+    for (unsigned i = 0; i < APP_N_SLOTS; i++) {
+        any_skill = any_skill || app->slot_valid[i];
+    }
+    bc->skill_min = any_skill ? (uint16_t)SKILL_FORMAT_VERSION : 0u;
+    bc->skill_max = bc->skill_min;
+    bc->config_min = 0u;    /* gains/limits are not persisted yet */
+    bc->config_max = 0u;
+    (void)boot_select(&app->boot, bc);
+    fwu_init(&app->fwu, &app->boot);
 
     app->saf_cfg = cfg->saf;
     saf_init(&app->saf);
@@ -422,6 +462,9 @@ void app_tick(app_t *app, bool overrun)
         app->vel_mps[a] = exec_vel_update(&app->vel[a], app->sens.pos_m[a], FS_R(0.001));
     }
     if (app->state == APP_BOOT) {
+        if (!app_fw_self_test_and_confirm(app)) {
+            hal_request_reset(1u);          /* unconfirmed: the next boot reverts */
+        }
         enter_idle(app);
     }
     can_receive(app);
@@ -472,4 +515,27 @@ void app_tick(app_t *app, bool overrun)
     if (period == 0u || app->tick % period == 0u) {
         send_telemetry(app);
     }
+}
+
+bool app_fw_self_test_and_confirm(app_t *app)
+{
+    if (!app->boot.test_boot) {
+        return true;
+    }
+    /* self-test of a new image: configuration valid and storage readable */
+    if (saf_config_validate(&app->saf_cfg) != SAF_OK || !app->nvm_ok) {
+        return false;
+    }
+    /* simulator only: a host-target payload starting with this marker stands for a build whose
+     * self-test fails (HIL test of the revert path, docs/update.md) */
+    static const char fail_marker[] = "FSHOST-SELFTEST-FAIL";
+    uint8_t head[sizeof fail_marker - 1u];
+    const boot_config_t *bc = &app->boot_cfg;
+    if (bc->app_dev->read(bc->app_dev->ctx,
+                          bc->slot_addr[app->boot.running_slot] + BOOT_IMAGE_HEADER_SIZE, head,
+                          (uint32_t)sizeof head) == 0 &&
+        memcmp(head, fail_marker, sizeof head) == 0) {
+        return false;
+    }
+    return boot_confirm(&app->boot) == BOOT_OK;
 }

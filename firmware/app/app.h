@@ -17,6 +17,8 @@
 #include "hal.h"
 #include "isotp.h"
 #include "nvm.h"
+#include "boot_fls_window.h"
+#include "fwu.h"
 #include "saf.h"
 #include "sec_access.h"
 #include "skill.h"
@@ -25,6 +27,7 @@
 #define APP_TICK_US 1000u
 #define APP_N_SLOTS NVM_MAX_SLOTS       /* UDS/CAN slot numbers 1..APP_N_SLOTS */
 #define APP_RX_FRAMES_PER_TICK 64u      /* bounded CAN drain per tick */
+#define APP_RESET_TX_WAIT_MS 100u       /* ECUReset: longest wait for the response to leave */
 #define APP_STATUS_PERIOD_MS 10u
 #define APP_IDLE_TELEMETRY_PERIOD_MS 100u
 #define APP_IMAGE_MAX (SKILL_HEADER_SIZE + 24u * DMP_MAX_KERNELS + SKILL_CRC_SIZE)
@@ -84,6 +87,7 @@ typedef struct {
     isotp_link_t tp;
     uds_server_t uds;
     uint8_t uds_resp[ISOTP_MAX_PAYLOAD];
+    uint32_t reset_since_ms;           /* ECUReset accepted at (its response leaves first) */
     sec_config_t sec_cfg;
     sec_state_t sec;
     /* storage */
@@ -98,6 +102,14 @@ typedef struct {
     uint32_t xfer_size;
     uint16_t last_transfer_status;     /* fs_status / nvm status of the last download */
     skill_t staging;                   /* validation target of a download */
+    /* firmware update (firmware/boot, docs/update.md) */
+    boot_fls_window_t fw_w_state, fw_w_slots;
+    fls_dev_t fw_state_dev, fw_slots_dev;
+    nvm_t fw_state_nvm;
+    boot_config_t boot_cfg;
+    boot_t boot;
+    fwu_t fwu;
+    bool fw_xfer;                      /* the active download is a firmware image */
     /* control */
     exec_state_t exec;
     exec_config_t exec_run_cfg;
@@ -122,6 +134,10 @@ typedef struct {
 
 /** Factory defaults: node 0, default gains/limits/safety, ideal drive, telemetry 1 ms. */
 void app_config_default(app_config_t *cfg);
+
+/** A new firmware image on its test boot: run the self-test and confirm it (boot_confirm);
+ *  true if confirmed or not on test. Called once, on the first tick. */
+bool app_fw_self_test_and_confirm(app_t *app);
 
 /** Boot: state BOOT, storage scan, UDS/ISO-TP/security set up; the first tick goes to IDLE. */
 void app_init(app_t *app, const app_config_t *cfg);

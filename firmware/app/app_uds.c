@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "app.h"
+#include "fwu_uds.h"
 
 /* Data identifiers (big-endian values, IEEE-754 float32 for real numbers) */
 #define DID_SW_VERSION 0xF189u
@@ -67,6 +68,9 @@ static uint8_t read_did(void *ctx, uint16_t did, uint8_t *out, uint16_t cap, uin
     app_t *app = ctx;
     uint8_t buf[8u + APP_N_SLOTS * SLOT_DIR_ENTRY];
     uint16_t n = 0u;
+    if (did == FWU_DID_STATUS) {
+        return fwu_uds_read_did(&app->fwu, out, cap, len);
+    }
     switch (did) {
     case DID_SW_VERSION:
         n = (uint16_t)strlen(APP_SW_VERSION);
@@ -279,6 +283,9 @@ static uint8_t routine(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *d, u
                        uint8_t *out, uint16_t cap, uint16_t *out_len)
 {
     app_t *app = ctx;
+    if (fwu_uds_owns_rid(rid)) {
+        return fwu_uds_routine(&app->fwu, &app->uds, sub, rid, d, len, out, cap, out_len);
+    }
     *out_len = 0u;
     if (cap < 8u) {
         return UDS_NRC_RESPONSE_TOO_LONG;
@@ -443,6 +450,11 @@ static uint8_t security_key(void *ctx, uint8_t level, const uint8_t *key, uint16
 static uint8_t download_begin(void *ctx, uint32_t addr, uint32_t size)
 {
     app_t *app = ctx;
+    app->fw_xfer = addr == FWU_DOWNLOAD_ADDRESS;
+    if (app->fw_xfer) {
+        return app->state == APP_IDLE ? fwu_uds_download_begin(&app->fwu, &app->uds, size)
+                                      : UDS_NRC_CONDITIONS_NOT_CORRECT;
+    }
     if (addr < 1u || addr > APP_N_SLOTS || size < SKILL_HEADER_SIZE + SKILL_CRC_SIZE ||
         size > APP_IMAGE_MAX) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
@@ -459,6 +471,9 @@ static uint8_t download_begin(void *ctx, uint32_t addr, uint32_t size)
 static uint8_t download_data(void *ctx, uint32_t offset, const uint8_t *d, uint16_t len)
 {
     app_t *app = ctx;
+    if (app->fw_xfer) {
+        return fwu_uds_download_data(&app->fwu, &app->uds, offset, d, len);
+    }
     if (offset + len > app->xfer_size) {
         return UDS_NRC_TRANSFER_SUSPENDED;
     }
@@ -469,6 +484,9 @@ static uint8_t download_data(void *ctx, uint32_t offset, const uint8_t *d, uint1
 static uint8_t download_end(void *ctx, uint32_t *crc_out)
 {
     app_t *app = ctx;
+    if (app->fw_xfer) {
+        return fwu_uds_download_end(&app->fwu, &app->uds, crc_out);
+    }
     const uint16_t slot = (uint16_t)(app->xfer_slot - 1u);
     const fs_status_t st = skill_parse(app->image, app->xfer_size, &app->staging);
     if (st != FS_OK) {
@@ -494,6 +512,9 @@ static uint8_t download_end(void *ctx, uint32_t *crc_out)
 static void transfer_abort(void *ctx)
 {
     app_t *app = ctx;
+    if (app->fw_xfer) {
+        fwu_abort(&app->fwu);
+    }
     if (app->last_transfer_status == 0xFFFFu) {
         app->last_transfer_status = 0xFFFEu;         /* interrupted: nothing was written */
     }

@@ -34,6 +34,10 @@ bool hal_can_receive(can_frame_t *frame);
 /** True while the CAN controller is bus-off. */
 bool hal_can_bus_off(void);
 
+/** True when every frame queued with hal_can_send has left the transmit queue for the bus
+ *  (e.g. a response that must go out before an ECUReset). */
+bool hal_can_tx_idle(void);
+
 /* ---- time ---- */
 
 /** Monotonic time in microseconds since power-up (wraps after 584,000 years). */
@@ -57,6 +61,16 @@ int hal_random(uint8_t *buf, uint32_t len);
 
 /** The flash region that holds the skill slots. */
 const fls_dev_t *hal_flash(void);
+
+/** The flash region of the firmware update (firmware/boot, docs/update.md): sectors 0-1 the
+ *  boot state record, then application slot A, then slot B (hal_fw_slot_sectors() each). */
+const fls_dev_t *hal_fw_flash(void);
+
+/** Sectors per application slot in hal_fw_flash(). */
+uint32_t hal_fw_slot_sectors(void);
+
+/** The device key of the firmware image tag (HMAC-SHA256, from protected storage). */
+const uint8_t *hal_fw_key(uint8_t *len);
 
 /** The per-device secret of SecurityAccess (from protected storage); *len gets its length. */
 const uint8_t *hal_device_secret(uint8_t *len);

@@ -134,7 +134,9 @@ void uds_server_init(uds_server_t *srv, const uds_app_t *app);
 uint16_t uds_server_handle(uds_server_t *srv, const uint8_t *req, uint16_t len, uint8_t *resp,
                            uint16_t resp_cap, uint32_t now_ms);
 
-/** Call after the response has been handed to the transport: performs a pending ECU reset. */
+/** Call once the response has been transmitted (ISO 14229-1: the positive response of ECUReset
+ *  precedes the reset; the application waits until its transport and CAN queue are empty):
+ *  performs a pending ECU reset. srv->pending_reset != 0 tells that one is waiting. */
 void uds_server_after_response(uds_server_t *srv);
 
 /** Session timeout (S3): back to default, locked, transfer aborted. Call every tick. */

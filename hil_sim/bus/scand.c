@@ -72,7 +72,7 @@ unsigned scand_pollfds(const scand_t *s, struct pollfd *fds, unsigned max)
             continue;
         }
         fds[n].fd = c->fd;
-        fds[n].events = (short)(POLLIN | (c->out_len > 0u ? POLLOUT : 0));
+        fds[n].events = (short)(POLLIN | (c->out_len > 0u && !c->hold ? POLLOUT : 0));
         fds[n].revents = 0;
         n++;
     }
@@ -82,13 +82,15 @@ unsigned scand_pollfds(const scand_t *s, struct pollfd *fds, unsigned max)
 static void drop_client(scand_t *s, scand_client_t *c)
 {
     if (s->verbose) {
-        fprintf(stderr, "hil_sim serve: client %d left (%llu frames in, %llu out, %llu dropped)\n",
-                (int)(c - s->clients), (unsigned long long)c->frames_in,
-                (unsigned long long)c->frames_out, (unsigned long long)c->dropped);
+        fprintf(stderr, "hil_sim serve: client %d left (%llu frames in, %llu out, %llu dropped, "
+                "%llu input bytes discarded)\n", (int)(c - s->clients), (unsigned long long)c->frames_in,
+                (unsigned long long)c->frames_out, (unsigned long long)c->dropped,
+                (unsigned long long)c->garbage);
     }
     close(c->fd);
     c->fd = -1;
     c->state = SCAND_FREE;
+    c->hold = false;
     c->in_len = 0u;
     c->out_len = 0u;
     c->out_head = 0u;
@@ -184,6 +186,7 @@ static void handle_command(scand_t *s, scand_client_t *c, char *cmd, uint64_t no
     if (c->state == SCAND_OPEN) {
         if (strcmp(word, "rawmode") == 0) {
             c->state = SCAND_RAW;
+            c->hold = true;                        /* frames queue from now on (see scand.h) */
             c->frames_from_ms = now_ms + SCAND_FRAME_HOLDOFF_MS;
             reply(s, c, "< ok >");
             return;
@@ -191,6 +194,7 @@ static void handle_command(scand_t *s, scand_client_t *c, char *cmd, uint64_t no
         reply(s, c, "< error unknown command >");
         return;
     }
+    c->hold = false;                               /* it read "< ok >": frames may flow */
     if (strcmp(word, "send") == 0) {
         can_frame_t f;
         bool ext = false;
@@ -215,26 +219,9 @@ static void handle_command(scand_t *s, scand_client_t *c, char *cmd, uint64_t no
     /* other commands of socketcand's raw mode are ignored */
 }
 
-static void read_client(scand_t *s, scand_client_t *c, uint64_t now_ms)
+/* Handle every complete "< ... >" command in the input buffer and keep the incomplete rest. */
+static void parse_client(scand_t *s, scand_client_t *c, uint64_t now_ms)
 {
-    for (;;) {
-        if (c->in_len >= SCAND_IN_BUF - 1u) {
-            c->in_len = 0u;                        /* garbage without '>': discard */
-        }
-        const ssize_t n = recv(c->fd, c->in + c->in_len, SCAND_IN_BUF - 1u - c->in_len, 0);
-        if (n == 0) {
-            drop_client(s, c);
-            return;
-        }
-        if (n < 0) {
-            if (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) {
-                drop_client(s, c);
-            }
-            break;
-        }
-        c->in_len += (uint32_t)n;
-    }
-    /* parse complete "< ... >" commands */
     uint32_t pos = 0u;
     for (;;) {
         char *lt = memchr(c->in + pos, '<', c->in_len - pos);
@@ -262,9 +249,38 @@ static void read_client(scand_t *s, scand_client_t *c, uint64_t now_ms)
     c->in_len -= pos;
 }
 
+/* Read what the client sent, parsing after every read: a burst larger than the input buffer
+ * (a 4 KB ISO-TP message is ~590 "< send >" commands, ~24 KB) is handled piece by piece. Only a
+ * buffer full of one unterminated command is discarded (garbage). */
+static void read_client(scand_t *s, scand_client_t *c, uint64_t now_ms)
+{
+    for (;;) {
+        if (c->in_len >= SCAND_IN_BUF - 1u) {
+            c->garbage += c->in_len;               /* one "command" longer than the buffer */
+            c->in_len = 0u;
+        }
+        const ssize_t n = recv(c->fd, c->in + c->in_len, SCAND_IN_BUF - 1u - c->in_len, 0);
+        if (n == 0) {
+            drop_client(s, c);
+            return;
+        }
+        if (n < 0) {
+            if (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) {
+                drop_client(s, c);
+            }
+            return;
+        }
+        c->in_len += (uint32_t)n;
+        parse_client(s, c, now_ms);
+        if (c->fd < 0) {
+            return;
+        }
+    }
+}
+
 static void write_client(scand_t *s, scand_client_t *c)
 {
-    while (c->out_len > 0u) {
+    while (c->out_len > 0u && !c->hold) {
         uint32_t chunk = SCAND_OUT_BUF - c->out_head;
         if (chunk > c->out_len) {
             chunk = c->out_len;
@@ -314,10 +330,11 @@ void scand_handle(scand_t *s, const struct pollfd *fds, unsigned n, uint64_t now
                 (void)fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK);
                 c->fd = fd;
                 c->state = SCAND_HELLO;
+                c->hold = false;
                 c->in_len = 0u;
                 c->out_len = 0u;
                 c->out_head = 0u;
-                c->frames_in = c->frames_out = c->dropped = 0u;
+                c->frames_in = c->frames_out = c->dropped = c->garbage = 0u;
                 if (s->verbose) {
                     fprintf(stderr, "hil_sim serve: client %d connected\n", (int)(c - s->clients));
                 }
@@ -346,7 +363,7 @@ void scand_handle(scand_t *s, const struct pollfd *fds, unsigned n, uint64_t now
 }
 
 void scand_broadcast(scand_t *s, int skip_client, const can_frame_t *f, bool extended,
-                     uint64_t t_ns, uint64_t now_ms)
+                     uint64_t t_ns)
 {
     char msg[64];
     int n = 0;
@@ -367,7 +384,7 @@ void scand_broadcast(scand_t *s, int skip_client, const can_frame_t *f, bool ext
     msg[n++] = '>';
     for (unsigned i = 0; i < SCAND_MAX_CLIENTS; i++) {
         scand_client_t *c = &s->clients[i];
-        if (c->fd < 0 || c->state != SCAND_RAW || (int)i == skip_client || now_ms < c->frames_from_ms) {
+        if (c->fd < 0 || c->state != SCAND_RAW || (int)i == skip_client) {
             continue;
         }
         if (c->out_len + (uint32_t)n > SCAND_OUT_BUF) {
@@ -382,9 +399,13 @@ void scand_broadcast(scand_t *s, int skip_client, const can_frame_t *f, bool ext
     }
 }
 
-void scand_flush(scand_t *s)
+void scand_flush(scand_t *s, uint64_t now_ms)
 {
     for (unsigned i = 0; i < SCAND_MAX_CLIENTS; i++) {
+        scand_client_t *c = &s->clients[i];
+        if (c->hold && now_ms >= c->frames_from_ms) {
+            c->hold = false;
+        }
         if (s->clients[i].fd >= 0 && s->clients[i].out_len > 0u) {
             write_client(s, &s->clients[i]);
         }

@@ -2,8 +2,11 @@
  *   server: "< hi >" on connect; client "< open CHANNEL >" -> "< ok >"; client "< rawmode >" ->
  *   "< ok >"; then client "< send ID DLC B0 B1 ... >" (hex) and server
  *   "< frame ID SEC.USEC HEXDATA >" (%03X standard / %08X extended id, uppercase, no spaces).
- * Each handshake reply is written alone, and no frame is sent to a client until
- * SCAND_FRAME_HOLDOFF_MS after its last "< ok >" (python-can reads each reply with one recv).
+ * Each handshake reply is written alone (python-can reads each reply with one recv): the frames
+ * of the bus from the moment a client enters raw mode are queued for it, but written only once
+ * it has sent its first command in raw mode (it has read the "< ok >" then) or
+ * SCAND_FRAME_HOLDOFF_MS after that "< ok >", whichever comes first. No frame is lost meanwhile,
+ * so the answer to a request sent right after the handshake reaches the client.
  * Non-blocking sockets, poll() driven by the caller; no threads. Per-client output buffers;
  * a client that does not read fast enough loses frames (counted), like a full CAN rx FIFO. */
 #ifndef SCAND_H
@@ -29,10 +32,12 @@ typedef struct {
     char *out;                 /* SCAND_OUT_BUF bytes (static storage per slot) */
     uint32_t out_head;
     uint32_t out_len;
-    uint64_t frames_from_ms;   /* wall ms after which frames may be sent */
+    uint64_t frames_from_ms;   /* wall ms after which queued frames are written anyway */
+    bool hold;                 /* raw mode entered, frames queued but not written yet */
     uint64_t frames_in;
     uint64_t frames_out;
     uint64_t dropped;
+    uint64_t garbage;          /* input discarded: a command longer than SCAND_IN_BUF */
 } scand_client_t;
 
 /** A frame a client sent: client index 0..SCAND_MAX_CLIENTS-1. */
@@ -61,10 +66,11 @@ void scand_handle(scand_t *s, const struct pollfd *fds, unsigned n, uint64_t now
 /** Queue a frame for every client in raw mode except skip_client (-1: none); t_ns is its
  *  timestamp (simulated bus time). */
 void scand_broadcast(scand_t *s, int skip_client, const can_frame_t *f, bool extended,
-                     uint64_t t_ns, uint64_t now_ms);
+                     uint64_t t_ns);
 
-/** Try to write pending output to every client (non-blocking). */
-void scand_flush(scand_t *s);
+/** Try to write pending output to every client (non-blocking); now_ms is wall time (ends the
+ *  hold-off after the handshake). */
+void scand_flush(scand_t *s, uint64_t now_ms);
 
 /** Number of connected clients. */
 unsigned scand_clients(const scand_t *s);

@@ -16,14 +16,13 @@
 #include "bus_model.h"
 #include "hal_host.h"
 #include "scand.h"
+#include "sim_couple.h"
 #include "sim_model.h"
 #include "sim_rng.h"
 #include "sim_scenario.h"
 
 #define TICK_NS 1000000ull
 #define MAX_LAG_NS 100000000ull     /* fall further behind than this: slip (count it) */
-#define RING 8u
-#define PARK_TAU_S 0.05          /* IDLE: the simulated drive parks the handle (see sim_tick) */
 
 static const char SERVE_USAGE[] =
     "usage: hil_sim serve [--port PORT] [--host ADDR] [--speed S] [--scenario FILE]\n"
@@ -57,10 +56,6 @@ static void on_signal(int sig)
 }
 
 typedef struct {
-    double x, y, fc, fop_x, fop_y;
-} sample_t;
-
-typedef struct {
     sim_scenario_t sc;
     bool have_scenario;
     double speed;
@@ -72,7 +67,7 @@ typedef struct {
     uint64_t teach_count;
     uint32_t teach_start_tick;
     bool teaching;
-    sample_t ring[RING];
+    sim_sample_t ring[SIM_COUPLE_RING];
     uint64_t n_tick;
     bus_t bus;
     scand_t sd;
@@ -113,8 +108,7 @@ static void deliver(void *ctx, const bus_item_t *it, uint64_t t_end_ns)
             (void)hal_sim_can_deliver(&f);
         }
     }
-    scand_broadcast(&s->sd, it->src == 0u ? -1 : (int)it->src - 1, &it->f, it->extended, t_end_ns,
-                    mono_ns() / 1000000ull);
+    scand_broadcast(&s->sd, it->src == 0u ? -1 : (int)it->src - 1, &it->f, it->extended, t_end_ns);
 }
 
 static void on_client_frame(void *ctx, unsigned client, const can_frame_t *f, bool extended)
@@ -184,22 +178,10 @@ static void sim_tick(serve_t *s)
         s->drv[a].hand_damping_Nspm = teach ? sc->op.hand_damping_Nspm : 0.0;
     }
 
-    sample_t smp;
-    smp.x = sim_encoder_read(s->ax[0].pos_m, sc->encoder_m);
-    smp.y = sim_encoder_read(s->ax[1].pos_m, sc->encoder_m);
-    smp.fc = sim_force_read(&sc->tip, s->ax[0].contact_N, &s->rng_sens);
-    smp.fop_x = sim_force_read(&sc->handle, sim_operator_handle_N(&s->drv[0], &s->ax[0]), &s->rng_sens);
-    smp.fop_y = sim_force_read(&sc->handle, sim_operator_handle_N(&s->drv[1], &s->ax[1]), &s->rng_sens);
-    s->ring[s->n_tick % RING] = smp;
-    const uint64_t d = (uint64_t)sc->delay_samples > s->n_tick ? s->n_tick : (uint64_t)sc->delay_samples;
-    const sample_t *m = &s->ring[(s->n_tick - d) % RING];
+    sim_sample_t smp;
+    sim_couple_sample(sc, s->ax, s->drv, &s->rng_sens, &smp);
     hal_sensors_t hs;
-    hs.pos_m[0] = m->x;
-    hs.pos_m[1] = m->y;
-    hs.force_contact_N[0] = m->fc;
-    hs.force_contact_N[1] = 0.0;
-    hs.force_operator_N[0] = m->fop_x;
-    hs.force_operator_N[1] = m->fop_y;
+    sim_couple_to_hal(sim_couple_delay(s->ring, s->n_tick, sc->delay_samples, &smp), &hs);
     hal_host_set_sensors(&hs);
 
     app_tick(&s->app, false);
@@ -217,28 +199,9 @@ static void sim_tick(serve_t *s)
         /* the ideal drive is dynamics-compensated while the law runs (as hil_sim run) */
         s->drv[a].prescribed = (uint8_t)(ideal && s->app.state == APP_EXECUTE);
     }
-    const double h = dt / (double)sc->substeps;
-    if (s->app.state == APP_IDLE || s->app.state == APP_BOOT) {
-        /* a parked device: in IDLE the simulated drive brings the handle back to the scenario's
-         * start position (time constant PARK_TAU_S) and holds it at rest, so every TEACH or
-         * EXECUTE starts where `hil_sim run` starts (in contact with the surface, unloaded) */
-        const double start[2] = {sc->start_x_m, sc->start_y_m};
-        for (int a = 0; a < 2; a++) {
-            s->ax[a].pos_m += (start[a] - s->ax[a].pos_m) * (dt / PARK_TAU_S > 1.0 ? 1.0 : dt / PARK_TAU_S);
-            s->ax[a].vel_mps = 0.0;
-            s->ax[a].acc_mps2 = 0.0;
-            s->ax[a].act_N = 0.0;
-        }
-        s->ax[0].contact_N = 0.0;
-        if (s->ax[0].pos_m > sc->object.surface_m) {
-            s->ax[0].contact_N = sim_object_spring_N(&sc->object, s->ax[0].pos_m - sc->object.surface_m);
-        }
-    } else {
-        for (int k = 0; k < sc->substeps; k++) {
-            sim_axis_substep(&s->ax[0], &s->drv[0], h);
-            sim_axis_substep(&s->ax[1], &s->drv[1], h);
-        }
-    }
+    /* a parked device: in IDLE the simulated drive brings the handle back to the scenario's start
+     * position and holds it at rest, so every TEACH or EXECUTE starts where `hil_sim run` starts */
+    sim_couple_advance(sc, s->ax, s->drv, s->app.state == APP_IDLE || s->app.state == APP_BOOT);
     s->n_tick++;
 }
 
@@ -445,7 +408,7 @@ int bus_cmd_serve(int argc, char **argv)
         bus_run(&s->bus, target, deliver, s);
         device_tx_to_bus(s, target);
         s->sim_ns = target;
-        scand_flush(&s->sd);
+        scand_flush(&s->sd, mono_ns() / 1000000ull);
 
         uint64_t next_ev = bus_next_event_ns(&s->bus);
         if (next_ev > next_tick_ns) {

@@ -168,19 +168,6 @@ def read_status(client: Any) -> DeviceStatus:
     return resp.service_data.values[DID_STATUS]
 
 
-def first_status(client: Any, attempts: int = 3) -> DeviceStatus:
-    """The first status read of a session, retried: a request sent while a freshly opened bus
-    (socketcand) is still settling can be lost; presence is judged by the device's answer."""
-    from udsoncan.exceptions import TimeoutException
-    for i in range(attempts):
-        try:
-            return read_status(client)
-        except TimeoutException:
-            if i == attempts - 1:
-                raise
-    raise AssertionError("unreachable")
-
-
 def _call(step: str, fn: Callable, *a: Any) -> Any:
     """Run one UDS request; negative responses and timeouts become FsError."""
     from udsoncan.exceptions import NegativeResponseException, TimeoutException
@@ -192,6 +179,25 @@ def _call(step: str, fn: Callable, *a: Any) -> Any:
         raise FsError(ERR_LINK_TIMEOUT, f"{step}: no response from the device") from None
 
 
+def unlock_firmware(client: Any, wait_s: float = 15.0) -> None:
+    """SecurityAccess level 3, waiting out the device's delay (NRC 0x37: the 1 s after power-up,
+    e.g. right after a previous update's reset, or after a wrong key) as link.uds.unlock does."""
+    from udsoncan.exceptions import NegativeResponseException, TimeoutException
+    step = "SecurityAccess(level 3)"
+    end = time.monotonic() + wait_s
+    while True:
+        try:
+            client.unlock_security_access(SEC_LEVEL_FIRMWARE)
+            return
+        except NegativeResponseException as e:
+            if e.response.code == 0x37 and time.monotonic() < end:
+                time.sleep(0.2)
+                continue
+            raise nrc_error(e.response.code, step) from None
+        except TimeoutException:
+            raise FsError(ERR_LINK_TIMEOUT, f"{step}: no response from the device") from None
+
+
 def flash_image(client: Any, image: bytes, allow_downgrade: bool = False,
                 progress: Optional[Callable[[int], None]] = None, block_size: int = 0) -> int:
     """Write image into the inactive slot and mark it for a test boot; returns the blocks sent.
@@ -200,7 +206,7 @@ def flash_image(client: Any, image: bytes, allow_downgrade: bool = False,
     # through the default session: ends any transfer a previous, interrupted run left open
     _call("DiagnosticSessionControl(default)", client.change_session, 0x01)
     _call("DiagnosticSessionControl(programming)", client.change_session, SESSION_PROGRAMMING)
-    _call("SecurityAccess(level 3)", client.unlock_security_access, SEC_LEVEL_FIRMWARE)
+    unlock_firmware(client)
     resp = _call("RequestDownload", client.request_download,
                  MemoryLocation(DOWNLOAD_ADDRESS, len(image), 32, 32))
     block = int(resp.service_data.max_length) - 2
@@ -316,7 +322,7 @@ def _cmd_flash(args: argparse.Namespace) -> int:
     with link as client:
         from udsoncan.exceptions import NegativeResponseException, TimeoutException
         try:
-            dev = first_status(client)
+            dev = read_status(client)          # presence = the device's answer
         except TimeoutException:
             raise FsError(ERR_LINK_NO_RESPONSE, f"no response from node {args.node} on "
                           f"{link.channel}") from None
@@ -340,14 +346,8 @@ def _cmd_flash(args: argparse.Namespace) -> int:
         dt = time.monotonic() - t0
         print(f"written and verified by the device: {len(data)} bytes in {n} blocks, {dt:.2f} s "
               f"({len(data) / max(dt, 1e-9) / 1024:.1f} KiB/s); marked for a test boot")
-        try:
-            _call("ECUReset(hard)", client.ecu_reset, 1)
-        except FsError as e:
-            if e.code != ERR_LINK_TIMEOUT:
-                raise
-            # a device may restart before its positive response leaves the bus; the read-back
-            # below is the real check
-            print("ECUReset: no positive response (device restarted before answering)")
+        # ISO 14229-1: the device answers before it resets (the response is not suppressed here)
+        _call("ECUReset(hard)", client.ecu_reset, 1)
         st = wait_confirmed(client, img.fw_version, args.confirm_timeout)
         print(f"after reset: {st.describe()}: new image confirmed")
     return 0

@@ -94,3 +94,31 @@ def test_bus_time_paced_by_bitrate(server):
     finally:
         a.shutdown()
         b.shutdown()
+
+
+def test_burst_larger_than_server_input_buffer(server):
+    """600 frames written in one go (~24 KB of '< send >' commands, about three times the
+    server's 8 KB input buffer, as can-isotp sends a 4095-byte message with BS 0 / STmin 0): every frame
+    reaches the bus, in order."""
+    a = socket.create_connection(("127.0.0.1", server.port), timeout=2)
+    b = open_bus(server)
+    try:
+        assert a.recv(256) == b"< hi >"
+        a.sendall(b"< open can0 >")
+        assert a.recv(256) == b"< ok >"
+        a.sendall(b"< rawmode >")
+        assert a.recv(256) == b"< ok >"
+        time.sleep(0.2)
+        burst = "".join(f"< send 7C1 8 {i >> 8:x} {i & 0xFF:x} aa bb cc dd ee ff >" for i in range(600))
+        assert len(burst) > 2 * 8192
+        a.sendall(burst.encode())
+        got = []
+        end = time.monotonic() + 10
+        while len(got) < 600 and time.monotonic() < end:
+            m = b.recv(0.2)
+            if m is not None and m.arbitration_id == 0x7C1:
+                got.append((m.data[0] << 8) | m.data[1])
+        assert got == list(range(600))
+    finally:
+        a.close()
+        b.shutdown()

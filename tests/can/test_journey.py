@@ -16,6 +16,7 @@ import cantools
 import numpy as np
 import pytest
 
+from conftest import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS, Server
 from forceskill import cli
 from forceskill.demo import load_demo
 from forceskill.link import logs  # noqa: F401  (registers the CAN log readers)
@@ -31,6 +32,15 @@ def forceskill(capsys, *argv: str) -> str:
     out, err = capsys.readouterr()
     assert rc == 0, f"forceskill {' '.join(argv)} failed ({rc}): {err}"
     return out
+
+
+@pytest.fixture(scope="module")
+def server():
+    """The journey's simulator: the device's default host-silence timeout (100 ms)."""
+    s = Server(SCENARIOS / "pressing_task1_demo.toml", host_timeout_ms=JOURNEY_HOST_TIMEOUT_MS)
+    time.sleep(0.2)
+    yield s
+    s.stop()
 
 
 @pytest.fixture(scope="module")
@@ -64,6 +74,15 @@ def test_record_fit_upload_run(journey, capsys):
         results[g] = load_csv(csv)
     journey["results"] = results
     journey["skill"] = sk
+    # the whole journey ran under the device's host-silence supervision of JOURNEY_HOST_TIMEOUT_MS
+    import argparse
+    from forceskill.commands._common import connect
+    from forceskill.link import uds as U
+    ns = argparse.Namespace(interface="socketcand", channel="can0",
+                            bus_kwargs={"host": "127.0.0.1", "port": srv.port}, node=0, timeout=3.0)
+    with connect(ns) as dev, U.uds_client(dev) as client:
+        comm = U.read_did(client, U.DID_COMM, 0)
+    assert int.from_bytes(comm[1:3], "big") == srv.host_timeout_ms == JOURNEY_HOST_TIMEOUT_MS
 
 
 def load_csv(path: Path) -> dict[str, np.ndarray]:

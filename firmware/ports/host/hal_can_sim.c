@@ -43,6 +43,11 @@ bool hal_can_bus_off(void)
     return q.bus_off;
 }
 
+bool hal_can_tx_idle(void)
+{
+    return q.tx_len == 0u;
+}
+
 bool hal_sim_can_deliver(const can_frame_t *f)
 {
     if (q.rx_len >= HAL_SIM_RX_QUEUE) {

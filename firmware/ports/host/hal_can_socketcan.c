@@ -8,6 +8,7 @@
 #include <linux/can.h>
 #include <linux/can/error.h>
 #include <linux/can/raw.h>
+#include <linux/sockios.h>
 #include <net/if.h>
 #include <stdio.h>
 #include <string.h>
@@ -122,4 +123,14 @@ bool hal_can_receive(can_frame_t *frame)
 bool hal_can_bus_off(void)
 {
     return g_bus_off;
+}
+
+bool hal_can_tx_idle(void)
+{
+    /* bytes of frames written to the socket that the driver has not sent yet */
+    int pending = 0;
+    if (g_sock < 0 || ioctl(g_sock, SIOCOUTQ, &pending) != 0) {
+        return true;
+    }
+    return pending == 0;
 }

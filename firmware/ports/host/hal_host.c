@@ -24,6 +24,14 @@ static fls_ram_t g_fls;
 static fls_dev_t g_dev;
 static uint8_t g_flash_mem[HAL_HOST_FLASH_SECTOR * HAL_HOST_FLASH_SECTORS];
 static bool g_flash_ready;
+static fls_ram_t g_fw_fls;
+static fls_dev_t g_fw_dev;
+static uint8_t g_fw_mem[HAL_HOST_FW_SECTOR * HAL_HOST_FW_SECTORS];
+static bool g_fw_ready;
+/* development key of the image tag (host/forceskill/fwimage.py DEV_KEY, docs/update.md) */
+static const uint8_t g_fw_key[32] = {
+    0x40, 0x41, 0x42, 0x43, 0x44, 0x45, 0x46, 0x47, 0x48, 0x49, 0x4a, 0x4b, 0x4c, 0x4d, 0x4e, 0x4f,
+    0x50, 0x51, 0x52, 0x53, 0x54, 0x55, 0x56, 0x57, 0x58, 0x59, 0x5a, 0x5b, 0x5c, 0x5d, 0x5e, 0x5f};
 
 void hal_host_init(void)
 {
@@ -111,6 +119,27 @@ const fls_dev_t *hal_flash(void)
         hal_host_flash_erase();
     }
     return &g_dev;
+}
+
+const fls_dev_t *hal_fw_flash(void)
+{
+    if (!g_fw_ready) {
+        memset(g_fw_mem, 0xFF, sizeof(g_fw_mem));
+        fls_ram_init(&g_fw_fls, &g_fw_dev, g_fw_mem, HAL_HOST_FW_SECTOR, HAL_HOST_FW_SECTORS, 4u);
+        g_fw_ready = true;
+    }
+    return &g_fw_dev;
+}
+
+uint32_t hal_fw_slot_sectors(void)
+{
+    return HAL_HOST_FW_SLOT_SECTORS;
+}
+
+const uint8_t *hal_fw_key(uint8_t *len)
+{
+    *len = (uint8_t)sizeof(g_fw_key);
+    return g_fw_key;
 }
 
 void hal_host_set_secret(const uint8_t *secret, uint8_t len)

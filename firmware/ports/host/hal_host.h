@@ -14,6 +14,9 @@
 
 #define HAL_HOST_FLASH_SECTOR 8192u     /* one skill record of N = 256 (6,276 B + 36 B) fits */
 #define HAL_HOST_FLASH_SECTORS 16u      /* 2 copies x 8 slots */
+#define HAL_HOST_FW_SECTOR 4096u       /* firmware flash: boot state + 2 slots of 64 sectors */
+#define HAL_HOST_FW_SLOT_SECTORS 64u
+#define HAL_HOST_FW_SECTORS (2u + 2u * HAL_HOST_FW_SLOT_SECTORS)
 #define HAL_HOST_SECRET_DEFAULT "forceskill-simulator-secret-0001"   /* 32 bytes, docs/protocol.md */
 
 /** Reset the port: erase nothing, clear mailboxes and the reset request; time back to the clock. */
@@ -51,7 +54,8 @@ bool hal_sim_can_deliver(const can_frame_t *f);
 /** Oldest frame the device queued for transmission (not removed); false if none. */
 bool hal_sim_can_tx_peek(can_frame_t *f);
 
-/** Remove the oldest queued frame (after the bus transmitted it). */
+/** Remove the oldest queued frame: the bus has it (hal_can_tx_idle is true once all are taken;
+ *  frames the bus holds survive a device reset, as a controller's last frame on the wire). */
 void hal_sim_can_tx_pop(void);
 
 /** Set or clear the bus-off condition (fault injection). */

@@ -74,8 +74,8 @@ class Device(can.Listener):
         self._pending_pos: Optional[tuple[int, float, float]] = None
         self._lock = threading.Lock()
         self._counter = {"HostCommand": 0, "HostHeartbeat": 0}
-        self._hb_stop = threading.Event()
-        self._hb_thread: Optional[threading.Thread] = None
+        self._hb_task: Optional[can.broadcastmanager.CyclicSendTaskABC] = None
+        self.heartbeat_sent: list[float] = []     # monotonic send times (diagnostics)
         self.telemetry_period_ms = 0
         self.notifier: Optional[can.Notifier] = None
         self.on_status: Optional[Callable[[Status], None]] = None
@@ -167,31 +167,34 @@ class Device(can.Listener):
     def heartbeat(self) -> None:
         self._send_safety("HostHeartbeat", {"TelemetryPeriod": self.telemetry_period_ms})
 
+    def _heartbeat_update(self, msg: can.Message) -> None:
+        """Cyclic task callback: the next heartbeat's content (telemetry period, counter, CRC)."""
+        m = self._m["HostHeartbeat"]
+        full = {s.name: 0 for s in m.signals}
+        full["TelemetryPeriod"] = self.telemetry_period_ms
+        with self._lock:
+            c = self._counter["HostHeartbeat"] = (self._counter["HostHeartbeat"] + 1) & 0x0F
+        msg.data[:] = protect(m.frame_id, m.encode(full, strict=True), c)
+        self.heartbeat_sent.append(time.monotonic())
+        if len(self.heartbeat_sent) > 100000:
+            del self.heartbeat_sent[:50000]
+
     def start_heartbeat(self, telemetry_period_ms: int = 0) -> None:
-        """Send the host heartbeat every HEARTBEAT_PERIOD_S from a thread."""
+        """Send the host heartbeat every HEARTBEAT_PERIOD_S with python-can's cyclic task
+        (bus.send_periodic), each frame with its own counter and CRC (modifier_callback; with a
+        per-frame change python-can runs its timer thread, deadline-based, for every interface)."""
         self.telemetry_period_ms = telemetry_period_ms
-        if self._hb_thread is not None:
+        if self._hb_task is not None:
             return
-        self._hb_stop.clear()
-
-        def run() -> None:
-            nxt = time.monotonic()
-            while not self._hb_stop.is_set():
-                try:
-                    self.heartbeat()
-                except Exception:
-                    pass
-                nxt += HEARTBEAT_PERIOD_S
-                self._hb_stop.wait(max(0.0, nxt - time.monotonic()))
-
-        self._hb_thread = threading.Thread(target=run, name="forceskill-heartbeat", daemon=True)
-        self._hb_thread.start()
+        m = self._m["HostHeartbeat"]
+        msg = can.Message(arbitration_id=m.frame_id, data=bytearray(8), is_extended_id=False)
+        self._hb_task = self.bus.send_periodic(msg, HEARTBEAT_PERIOD_S, store_task=False,
+                                               modifier_callback=self._heartbeat_update)
 
     def stop_heartbeat(self) -> None:
-        if self._hb_thread is not None:
-            self._hb_stop.set()
-            self._hb_thread.join()
-            self._hb_thread = None
+        if self._hb_task is not None:
+            self._hb_task.stop()
+            self._hb_task = None
 
     def command(self, mode: str, slot: int = 0, goal_scale: float = 1.0, time_scale: float = 1.0,
                 end: str = "skill") -> None:

@@ -2,7 +2,7 @@
  * IDLE, E2E-checked commands, TEACH, host silence (default 100 ms) -> FAULT with an emergency
  * frame and the force ramped to zero within 50 ms, no auto-resume, guarded clearing; UDS over
  * ISO-TP: skill download into a slot (golden vector), corrupted and interrupted downloads keep
- * the old skill, refusals while executing. */
+ * the old skill, refusals while executing; ECUReset answered before the device restarts. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -340,6 +340,101 @@ static void test_execute_and_refusals(void **state)
     assert_memory_equal(&r[3], APP_SW_VERSION, strlen(APP_SW_VERSION));
 }
 
+/* One tick of a port that restarts the firmware when it asks (as hil_sim serve does: flash kept,
+ * CAN queues cleared, so frames still queued at the reset are lost with it), then the bus takes
+ * what the device queued. True if the device restarted in this tick. */
+static bool tick_port(void)
+{
+    t_us += 1000u;
+    hal_host_set_time_us(t_us);
+    app_tick(&app, false);
+    uint8_t type = 0u;
+    const bool restarted = hal_host_take_reset(&type);
+    if (restarted) {
+        hal_sim_can_reset();
+        app_init(&app, &cfg);
+    }
+    can_frame_t f;
+    while (hal_sim_can_tx_peek(&f)) {
+        if (n_out < OUTCAP) {
+            out[n_out++] = f;
+        }
+        hal_sim_can_tx_pop();
+    }
+    return restarted;
+}
+
+/* ECUReset request; returns the response length (0: none) and the ticks at which the response
+ * reached the bus and the device restarted (UINT32_MAX: never, within 500 ticks). */
+static uint16_t ecu_reset(uint8_t sub, uint8_t *resp, uint32_t *t_resp, uint32_t *t_reset)
+{
+    const uint8_t req[2] = {0x11, sub};
+    assert_int_equal(isotp_send(&tester, req, 2, t_us), PROTO_OK);
+    uint16_t n = 0u;
+    *t_resp = *t_reset = UINT32_MAX;
+    for (uint32_t k = 0; k < 500u && (*t_reset == UINT32_MAX || k < *t_reset + 20u); k++) {
+        isotp_poll(&tester, t_us);
+        const unsigned before = n_out;
+        if (tick_port() && *t_reset == UINT32_MAX) {
+            *t_reset = k;
+        }
+        for (unsigned i = before; i < n_out; i++) {
+            isotp_on_frame(&tester, &out[i], t_us);
+        }
+        const uint8_t *r = NULL;
+        const uint16_t m = isotp_rx_peek(&tester, &r);
+        if (m != 0u) {
+            assert_int_equal(n, 0u);                  /* one response only */
+            n = m;
+            memcpy(resp, r, m < 8u ? m : 8u);
+            *t_resp = k;
+            isotp_rx_release(&tester);
+        }
+    }
+    return n;
+}
+
+static void test_ecu_reset_responds_then_resets(void **state)
+{
+    (void)state;
+    len_a = load("press_n10_ridge_release.skill", image_a);
+    unlock(UDS_SESSION_PROGRAMMING);
+    assert_int_equal(download(1, image_a, len_a, UINT32_MAX), 0x00);
+    /* hard reset: the positive response 51 01 reaches the bus, then the device restarts at the
+     * next tick (ISO 14229-1: response before reset), in the default session, skill kept */
+    uint8_t r[8];
+    uint32_t t_resp = 0u, t_reset = 0u;
+    assert_int_equal(ecu_reset(0x01, r, &t_resp, &t_reset), 2);
+    assert_int_equal(r[0], 0x51);
+    assert_int_equal(r[1], 0x01);
+    assert_int_not_equal(t_reset, UINT32_MAX);
+    assert_true(t_resp < t_reset);
+    assert_true(t_reset - t_resp <= 2u);
+    assert_int_equal(app.uds.session, UDS_SESSION_DEFAULT);
+    assert_true(app.slot_valid[0]);
+    assert_int_equal(app.slot_len[0], len_a);
+    ticks(2);
+    assert_int_equal(app.state, APP_IDLE);
+    /* soft reset with the positive response suppressed (bit 7): no answer, reset all the same */
+    assert_int_equal(ecu_reset(0x83, r, &t_resp, &t_reset), 0);
+    assert_int_not_equal(t_reset, UINT32_MAX);
+    assert_true(t_reset <= 2u);
+    /* refused while executing: 7F 11 22 and no reset */
+    unlock(UDS_SESSION_PROGRAMMING);
+    uint8_t rr[64];
+    const uint8_t dflt[2] = {0x10, 0x01};
+    assert_int_equal(uds(dflt, 2, rr, sizeof(rr)), 6);
+    send_heartbeat();
+    const uint8_t run1[10] = {0x31, 0x01, 0x02, 0x01, 1, 0x03, 0xE8, 0x03, 0xE8, 0};
+    assert_int_equal(uds(run1, 10, rr, sizeof(rr)), 4);
+    assert_int_equal(app.state, APP_EXECUTE);
+    send_heartbeat();
+    assert_int_equal(ecu_reset(0x01, r, &t_resp, &t_reset), 3);
+    assert_int_equal(r[0], 0x7F);
+    assert_int_equal(r[2], UDS_NRC_CONDITIONS_NOT_CORRECT);
+    assert_int_equal(t_reset, UINT32_MAX);
+}
+
 static void test_scheduler_overrun(void **state)
 {
     (void)state;
@@ -367,6 +462,7 @@ int main(void)
         cmocka_unit_test_setup(test_host_silence_faults_and_ramps, setup),
         cmocka_unit_test_setup(test_download_corrupt_interrupted, setup),
         cmocka_unit_test_setup(test_execute_and_refusals, setup),
+        cmocka_unit_test_setup(test_ecu_reset_responds_then_resets, setup),
         cmocka_unit_test_setup(test_scheduler_overrun, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

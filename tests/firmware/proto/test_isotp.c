@@ -169,6 +169,17 @@ static void test_multi_frame_block_size(void **state)
     check_multi(1334, 8, 0);
 }
 
+static void test_multi_block_max_length(void **state)
+{
+    (void)state;
+    /* 4095 bytes (585 CFs) received in blocks: FC after every block, the sender waits for it and
+     * keeps STmin between CFs (1 ms; 300 us), the receiver reassembles every byte */
+    check_multi(ISOTP_MAX_PAYLOAD, 8, 0x01);
+    check_multi(ISOTP_MAX_PAYLOAD, 0x20, 0xF3);
+    check_multi(ISOTP_MAX_PAYLOAD, 0xFF, 0x00);
+    check_multi(ISOTP_MAX_PAYLOAD, 1, 0x00);
+}
+
 static void test_stmin(void **state)
 {
     (void)state;
@@ -310,6 +321,7 @@ int main(void)
         cmocka_unit_test_setup(test_unpadded_single_frame_accepted_short_dlc_refused, setup),
         cmocka_unit_test_setup(test_multi_frame_max_length, setup),
         cmocka_unit_test_setup(test_multi_frame_block_size, setup),
+        cmocka_unit_test_setup(test_multi_block_max_length, setup),
         cmocka_unit_test_setup(test_stmin, setup),
         cmocka_unit_test_setup(test_wrong_sequence_number_aborts, setup),
         cmocka_unit_test_setup(test_timeout_n_cr, setup),

@@ -1,0 +1,377 @@
+/* Lockstep fault-injection rig (see fault_rig.h). The device <-> plant coupling is
+ * sim_couple.h, the steps of hil_sim/bus/serve.c's sim_tick: sensors sampled at t with the
+ * pipeline delay, the device's tick, the actuator held over the plant substeps; in IDLE/BOOT
+ * and once a fault has disabled the actuator the simulated drive parks the handle. */
+#include "fault_rig.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "e2e.h"
+#include "fls_ram.h"
+#include "fs_dbc.h"
+#include "hal_host.h"
+#include "nvm.h"
+#include "proto_ids.h"
+#include "sec_sha256.h"
+
+
+static bool tester_send(void *ctx, const can_frame_t *f)
+{
+    (void)ctx;
+    return hal_sim_can_deliver(f);   /* UDS frames do not feed the host-silence watchdog */
+}
+
+void rig_init(rig_t *r, const sim_scenario_t *sc)
+{
+    memset(r, 0, sizeof(*r));
+    r->sc = *sc;
+    hal_host_init();
+    hal_host_flash_erase();
+    hal_sim_can_reset();
+    hal_host_set_time_us(0u);
+
+    r->ax[0].pos_m = sc->start_x_m;
+    r->ax[1].pos_m = sc->start_y_m;
+    const double h = sc->dt_s / (double)sc->substeps;
+    for (int a = 0; a < 2; a++) {
+        sim_drive_t *d = &r->drv[a];
+        d->kind = sc->plant;
+        d->mass_kg = sc->plant == SIM_PLANT_REALISTIC ? sc->carriage.carriage_kg : sc->m_d_kg;
+        d->carriage = &r->sc.carriage;
+        d->object = (a == 0) ? &r->sc.object : NULL;
+        d->act_limit_N = sc->carriage.act_max_N;
+        d->act_alpha = 1.0 - exp(-h / sc->carriage.act_lag_s);
+        sim_drive_prepare(d);
+    }
+    sim_rng_seed(&r->rng_sens, sc->seed ^ 0x5EB5C0DEDA7A5EEDull);
+    sim_rng_seed(&r->rng_faults, sc->seed ^ 0xFA17FA17FA17FA17ull);
+
+    /* the device configured as the scenario's controller (as hil_sim serve does) */
+    app_config_default(&r->cfg);
+    r->cfg.render_carriage = (uint8_t)(sc->plant == SIM_PLANT_REALISTIC);
+    r->cfg.gains[0].m_d_kg = sc->m_d_kg;
+    r->cfg.gains[1].m_d_kg = sc->m_d_kg;
+    r->cfg.vel_cutoff_Hz = sc->vel_cutoff_Hz;
+    r->cfg.exec.use_model = (uint8_t)(sc->use_model != 0);
+    r->cfg.exec.object.m_v_kg = sc->object.m_v_kg;
+    r->cfg.exec.object.d_v_Nspm = sc->object.d_v_Nspm;
+    r->cfg.exec.object.k1_Npm = sc->object.k1_Npm;
+    r->cfg.exec.object.k2_Npm = sc->object.k2_Npm;
+    r->cfg.exec.object.layer_depth_m = sc->object.layer_depth_m;
+    r->cfg.exec.object.surface_m = sc->object.surface_m;
+    r->cfg.render.carriage_kg = sc->carriage.carriage_kg;
+    r->cfg.render.viscous_Nspm = sc->carriage.viscous_Nspm;
+    r->cfg.render.coulomb_N = sc->carriage.coulomb_N;
+    r->cfg.render.motor_max_N = sc->carriage.act_max_N;
+    for (unsigned a = 0; a < PFC_AXES; a++) {
+        r->cfg.saf.lim.axis[a].force_max_N = sc->force_max_N;
+    }
+
+    isotp_config_t tc;
+    isotp_config_default(&tc, PROTO_ID_UDS_REQUEST(r->cfg.node), PROTO_ID_UDS_RESPONSE(r->cfg.node));
+    isotp_init(&r->tester, &tc, tester_send, r);
+}
+
+int rig_flash_skill(rig_t *r, uint16_t slot, const uint8_t *img, uint32_t len)
+{
+    (void)r;
+    nvm_t n;
+    if (nvm_init(&n, hal_flash()) != NVM_OK) {
+        return -1;
+    }
+    return nvm_write(&n, slot, img, len) == NVM_OK ? 0 : -1;
+}
+
+void rig_boot(rig_t *r)
+{
+    hal_sim_can_reset();
+    hal_host_set_time_us(r->n_tick * 1000u);
+    app_init(&r->app, &r->cfg);
+}
+
+static void deliver_host(rig_t *r, can_frame_t *f)
+{
+    if (r->inj.drop_p > 0.0 && sim_rng_uniform(&r->rng_faults) < r->inj.drop_p) {
+        r->host_dropped++;
+        return;
+    }
+    if (r->inj.corrupt_host) {
+        f->data[2] ^= 0x10u;   /* a bit error the CAN CRC missed: the E2E CRC-8 catches it */
+    }
+    (void)hal_sim_can_deliver(f);
+    if (!r->inj.corrupt_host) {
+        r->last_host_tick = r->n_tick;
+    }
+}
+
+static void send_heartbeat(rig_t *r)
+{
+    struct fs_dbc_host_heartbeat_t h;
+    memset(&h, 0, sizeof(h));
+    h.telemetry_period = 10u;
+    can_frame_t f;
+    memset(&f, 0, sizeof(f));
+    f.id = PROTO_ID_HOST_HEARTBEAT(r->cfg.node);
+    f.dlc = FS_DBC_HOST_HEARTBEAT_LENGTH;
+    (void)fs_dbc_host_heartbeat_pack(f.data, &h, sizeof(f.data));
+    e2e_protect(&f, r->hb_counter++);
+    deliver_host(r, &f);
+}
+
+void rig_command(rig_t *r, uint8_t mode, uint8_t slot, double goal_scale, double time_scale,
+                 uint8_t end)
+{
+    struct fs_dbc_host_command_t c;
+    memset(&c, 0, sizeof(c));
+    c.mode = mode;
+    c.slot = slot;
+    c.goal_scale = (uint16_t)lround(goal_scale * 1000.0);
+    c.time_scale = (uint16_t)lround(time_scale * 1000.0);
+    c.end_policy = end;
+    can_frame_t f;
+    memset(&f, 0, sizeof(f));
+    f.id = PROTO_ID_HOST_COMMAND(r->cfg.node);
+    f.dlc = FS_DBC_HOST_COMMAND_LENGTH;
+    (void)fs_dbc_host_command_pack(f.data, &c, sizeof(f.data));
+    e2e_protect(&f, r->cmd_counter++);
+    deliver_host(r, &f);
+}
+
+static void host_receive(rig_t *r)
+{
+    can_frame_t f;
+    const uint64_t now_us = r->n_tick * 1000u;
+    while (hal_sim_can_tx_peek(&f)) {
+        hal_sim_can_tx_pop();
+        const uint32_t node = r->cfg.node;
+        if (f.id == PROTO_ID_UDS_RESPONSE(node)) {
+            isotp_on_frame(&r->tester, &f, now_us);
+        } else if (f.id == PROTO_ID_EMERGENCY(node) || f.id == PROTO_ID_STATUS(node)) {
+            e2e_rx_t rx;   /* the counter is not followed here; the CRC is checked */
+            e2e_rx_reset(&rx);
+            if (e2e_check(&rx, &f) != PROTO_OK) {
+                r->e2e_bad_rx++;
+                continue;
+            }
+            if (f.id == PROTO_ID_EMERGENCY(node)) {
+                struct fs_dbc_emergency_t m;
+                if (fs_dbc_emergency_unpack(&m, f.data, f.dlc) == 0 && r->n_emcy < RIG_MAX_EMCY) {
+                    r->emcy[r->n_emcy].code = m.fault_code;
+                    r->emcy[r->n_emcy].dev_tick = m.tick;
+                    r->emcy[r->n_emcy].rx_tick = r->n_tick;
+                    r->n_emcy++;
+                }
+            } else {
+                struct fs_dbc_device_status_t s;
+                if (fs_dbc_device_status_unpack(&s, f.data, f.dlc) == 0) {
+                    r->status_fault = s.fault_code;
+                    r->status_state = s.state;
+                }
+            }
+        }
+    }
+}
+
+void rig_step(rig_t *r)
+{
+    const sim_scenario_t *sc = &r->sc;
+    const uint64_t now_us = r->n_tick * 1000u;
+    hal_host_set_time_us(now_us);
+
+    /* host: heartbeat due, UDS client */
+    if (r->heartbeat_on && r->n_tick % RIG_HB_PERIOD_MS == 0u) {
+        send_heartbeat(r);
+    }
+    isotp_poll(&r->tester, now_us);
+
+    /* sensors sampled now (injections act on the physical sensor), seen delay_samples later */
+    sim_sample_t smp;
+    sim_couple_sample(sc, r->ax, r->drv, &r->rng_sens, &smp);
+    smp.x_m += r->inj.encoder_add_m;
+    smp.contact_N += r->inj.force_add_N;
+    if (r->inj.force_stuck) {
+        smp.contact_N = r->inj.stuck_value_N;
+    }
+    if (r->inj.force_nan) {
+        smp.contact_N = NAN;
+    }
+    hal_sensors_t hs;
+    sim_couple_to_hal(sim_couple_delay(r->ring, r->n_tick, sc->delay_samples, &smp), &hs);
+    hal_host_set_sensors(&hs);
+
+    /* the device: its scheduler on the HAL clock (a stalled CPU misses ticks) */
+    r->ran = false;
+    if (r->inj.stall_ticks > 0u) {
+        r->inj.stall_ticks--;
+    } else {
+        r->ran = app_poll(&r->app);
+    }
+    uint8_t reset_type = 0u;
+    if (hal_host_take_reset(&reset_type)) {
+        rig_boot(r);
+    }
+    host_receive(r);
+
+    /* actuator */
+    bool enable = false;
+    fs_real_t f[2];
+    hal_host_get_actuator(&enable, f);
+    r->act_enable = enable;
+    const bool ideal = sc->plant == SIM_PLANT_IDEAL;
+    for (int a = 0; a < 2; a++) {
+        r->cmd_N[a] = enable ? (double)f[a] : 0.0;
+        double fa = r->cmd_N[a];
+        if (r->inj.act_limit_N > 0.0) {
+            fa = fa > r->inj.act_limit_N ? r->inj.act_limit_N
+                                         : (fa < -r->inj.act_limit_N ? -r->inj.act_limit_N : fa);
+        }
+        r->drv[a].force_cmd_N = fa;
+        r->drv[a].prescribed = (uint8_t)(ideal && r->app.state == APP_EXECUTE);
+        r->drv[a].force_ext_N = 0.0;
+        r->drv[a].hand_damping_Nspm = 0.0;
+    }
+    const bool parked = r->app.state == APP_IDLE || r->app.state == APP_BOOT ||
+                        (r->app.state == APP_FAULT && !enable);
+    sim_couple_advance(sc, r->ax, r->drv, parked);   /* as serve.c: parked while idle */
+    if (r->ax[0].contact_N > r->contact_max_N) {
+        r->contact_max_N = r->ax[0].contact_N;
+    }
+    r->n_tick++;
+}
+
+void rig_run(rig_t *r, uint32_t n)
+{
+    for (uint32_t i = 0; i < n; i++) {
+        rig_step(r);
+    }
+}
+
+uint16_t rig_uds(rig_t *r, const uint8_t *req, uint16_t len, uint8_t *resp, uint16_t cap,
+                 uint32_t timeout_ms)
+{
+    if (isotp_send(&r->tester, req, len, r->n_tick * 1000u) != PROTO_OK) {
+        return 0u;
+    }
+    for (uint32_t i = 0; i < timeout_ms; i++) {
+        rig_step(r);
+        const uint8_t *data = NULL;
+        const uint16_t n = isotp_rx_peek(&r->tester, &data);
+        if (n == 0u) {
+            continue;
+        }
+        const bool pending = n >= 3u && data[0] == UDS_NEGATIVE_RESPONSE && data[2] == 0x78u;
+        uint16_t out = 0u;
+        if (!pending) {
+            out = n > cap ? cap : n;
+            memcpy(resp, data, out);
+        }
+        isotp_rx_release(&r->tester);
+        if (!pending) {
+            return out;
+        }
+    }
+    return 0u;
+}
+
+int rig_uds_unlock(rig_t *r)
+{
+    uint8_t resp[64];
+    const uint8_t dsc[2] = {UDS_SID_DSC, UDS_SESSION_PROGRAMMING};
+    if (rig_uds(r, dsc, 2u, resp, sizeof resp, 200u) < 2u || resp[0] != 0x50u) {
+        return -1;
+    }
+    for (int attempt = 0; attempt < 40; attempt++) {
+        const uint8_t rs[2] = {UDS_SID_SECURITY, 0x01u};
+        const uint16_t n = rig_uds(r, rs, 2u, resp, sizeof resp, 200u);
+        if (n == 3u && resp[0] == UDS_NEGATIVE_RESPONSE && resp[2] == UDS_NRC_DELAY_NOT_EXPIRED) {
+            rig_run(r, 100u);   /* power-up delay of SecurityAccess */
+            continue;
+        }
+        if (n != 2u + SEC_SEED_LEN || resp[0] != 0x67u) {
+            return -2;
+        }
+        uint8_t secret_len = 0u;
+        const uint8_t *secret = hal_device_secret(&secret_len);
+        uint8_t mac[SEC_SHA256_LEN];
+        sec_hmac_sha256(secret, secret_len, &resp[2], SEC_SEED_LEN, mac);
+        uint8_t sk[2u + SEC_KEY_LEN];
+        sk[0] = UDS_SID_SECURITY;
+        sk[1] = 0x02u;
+        memcpy(&sk[2], mac, SEC_KEY_LEN);
+        const uint16_t k = rig_uds(r, sk, (uint16_t)sizeof sk, resp, sizeof resp, 200u);
+        return (k >= 2u && resp[0] == 0x67u) ? 0 : -3;
+    }
+    return -4;
+}
+
+uint8_t rig_uds_download(rig_t *r, uint8_t slot, const uint8_t *img, uint32_t len)
+{
+    static uint8_t buf[ISOTP_MAX_PAYLOAD];
+    uint8_t resp[64];
+    uint8_t rd[11] = {UDS_SID_REQ_DOWNLOAD, 0x00u, 0x44u, 0u, 0u, 0u, slot,
+                      (uint8_t)(len >> 24), (uint8_t)(len >> 16), (uint8_t)(len >> 8), (uint8_t)len};
+    uint16_t n = rig_uds(r, rd, (uint16_t)sizeof rd, resp, sizeof resp, 500u);
+    if (n == 0u) {
+        return 0xFFu;
+    }
+    if (resp[0] != 0x74u) {
+        return n >= 3u ? resp[2] : 0xFEu;
+    }
+    uint32_t pos = 0u;
+    uint8_t counter = 1u;
+    while (pos < len) {
+        uint32_t chunk = len - pos;
+        if (chunk > 1024u) {
+            chunk = 1024u;
+        }
+        buf[0] = UDS_SID_TRANSFER_DATA;
+        buf[1] = counter;
+        memcpy(&buf[2], &img[pos], chunk);
+        n = rig_uds(r, buf, (uint16_t)(2u + chunk), resp, sizeof resp, 1000u);
+        if (n == 0u) {
+            return 0xFFu;
+        }
+        if (resp[0] != 0x76u) {
+            return n >= 3u ? resp[2] : 0xFEu;
+        }
+        pos += chunk;
+        counter++;
+    }
+    const uint8_t te[1] = {UDS_SID_TRANSFER_EXIT};
+    n = rig_uds(r, te, 1u, resp, sizeof resp, 2000u);
+    if (n == 0u) {
+        return 0xFFu;
+    }
+    return resp[0] == 0x77u ? 0u : (n >= 3u ? resp[2] : 0xFEu);
+}
+
+uint32_t rig_flash_crc(void)
+{
+    const fls_dev_t *dev = hal_flash();
+    uint8_t buf[512];
+    uint32_t crc = 0u;
+    const uint32_t total = dev->sector_size * dev->sector_count;
+    for (uint32_t a = 0u; a < total; a += (uint32_t)sizeof buf) {
+        if (dev->read(dev->ctx, a, buf, (uint32_t)sizeof buf) != 0) {
+            return 0u;
+        }
+        crc = nvm_crc32(crc, buf, (uint32_t)sizeof buf);
+    }
+    return crc;
+}
+
+int rig_read_slot(uint16_t slot, uint8_t *buf, uint32_t cap, uint32_t *len)
+{
+    nvm_t n;
+    *len = 0u;
+    if (nvm_init(&n, hal_flash()) != NVM_OK) {
+        return -1;
+    }
+    const nvm_status_t st = nvm_read(&n, slot, buf, cap, len);
+    if (st == NVM_ERR_EMPTY) {
+        *len = 0u;
+        return 0;
+    }
+    return st == NVM_OK ? 0 : -1;
+}

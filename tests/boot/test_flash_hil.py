@@ -1,0 +1,99 @@
+"""Firmware update over the simulator's socketcand bus with udsoncan (issue 8, HIL), through the
+app integration of docs/update.md section 8 in hil_sim.
+
+`forceskill flash` against `hil_sim serve`: full update in 4,093-byte blocks (the device's
+maximum), ECUReset answered before the restart, the first request of each connection answered,
+revert when the new image fails its self-test, each refusal with its own NRC, skills kept byte
+for byte across updates."""
+from __future__ import annotations
+
+import argparse
+import os
+import subprocess
+from pathlib import Path
+
+import pytest
+
+from forceskill import cli, flash as fl
+from forceskill import fwimage as fw
+from forceskill.errors import FsError
+
+REPO = Path(__file__).resolve().parents[2]
+SKILL = REPO / "tests" / "vectors" / "engrave_n10_lwr_hold.skill"
+
+
+def hil_sim() -> Path:
+    p = Path(os.environ.get("FORCESKILL_HIL_SIM", str(REPO / "build" / "hil_sim" / "hil_sim")))
+    assert p.is_file(), f"hil_sim not built at {p} (set FORCESKILL_HIL_SIM)"
+    return p
+
+
+@pytest.fixture(scope="module")
+def sim():
+    proc = subprocess.Popen([str(hil_sim()), "serve", "--port", "0", "--host-timeout", "500"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    line = proc.stdout.readline()
+    assert "listening on 127.0.0.1:" in line, line
+    port = int(line.split("127.0.0.1:")[1].split()[0])
+    yield ["-i", "socketcand", "-c", "can0", "--bus-kwargs", "host=127.0.0.1", f"port={port}",
+           "--timeout", "3"]
+    proc.terminate()
+    proc.communicate(timeout=10)
+
+
+def image(tmp: Path, name: str, version: str, payload: bytes, key: bytes = fw.DEV_KEY) -> str:
+    p = tmp / f"{name}.fwimg"
+    p.write_bytes(fw.build_image(payload, version, "host", key, build_id=name))
+    return str(p)
+
+
+def flash(capsys, path: str, bus: list[str], *extra: str) -> tuple[int, str, str]:
+    # the device's maximum block: 4,093 bytes per TransferData (4,095-byte ISO-TP requests)
+    rc = cli.main(["flash", path, *bus, "-q", *extra])
+    out = capsys.readouterr()
+    return rc, out.out, out.err
+
+
+def slot1(capsys, bus) -> str:
+    assert cli.main(["status", *bus]) == 0
+    return [ln for ln in capsys.readouterr().out.splitlines() if ln.strip().startswith("slot 1:")][0]
+
+
+def test_update_revert_refusals_and_skills_kept(sim, tmp_path, capsys):
+    payload = os.urandom(50000)
+    assert cli.main(["upload", str(SKILL), "--slot", "1", "-q", *sim]) == 0
+    capsys.readouterr()
+    before = slot1(capsys, sim)
+    assert "empty" not in before
+
+    rc, out, err = flash(capsys, image(tmp_path, "v1", "1.0.0", payload), sim)
+    assert rc == 0, err
+    assert "after reset: device: firmware 1.0.0 on host, slot A" in out
+    rc, out, err = flash(capsys, image(tmp_path, "v11", "1.1.0", payload[::-1]), sim)
+    assert rc == 0, err
+    assert "after reset: device: firmware 1.1.0 on host, slot B" in out
+    assert slot1(capsys, sim) == before                 # the skill survived both updates
+
+    # a build whose self-test fails: booted once, not confirmed, reverted
+    bad = b"FSHOST-SELFTEST-FAIL" + payload[:20000]
+    rc, out, err = flash(capsys, image(tmp_path, "bad", "1.2.0", bad), sim)
+    assert rc == 2 and "device reverted to 1.1.0" in err and "[742]" in err, err
+
+    # refusals, each with its own code, straight to the device
+    ns = argparse.Namespace(interface="socketcand", channel="can0",
+                            bus_kwargs={"host": "127.0.0.1", "port": int(sim[6].split("=")[1])},
+                            node=0, timeout=3.0)
+    from forceskill.link.uds import device_secret
+    cases = [(fw.build_image(payload, "1.3.0", "host", bytes(32)), 0xF4),
+             (fw.build_image(payload, "1.3.0", "cortex-m4f", fw.DEV_KEY), 0xF1),
+             (fw.build_image(payload, "1.3.0", "host", fw.DEV_KEY)[:-1000], 0xF2),
+             (fw.build_image(payload, "0.9.0", "host", fw.DEV_KEY), 0xF5)]
+    for img, nrc in cases:
+        with fl.Link(ns, device_secret()) as client:
+            assert fl.read_status(client).version == "1.1.0"    # the first request is answered
+            with pytest.raises(FsError) as e:
+                fl.flash_image(client, img)
+            assert f"NRC 0x{nrc:02X}" in str(e.value), str(e.value)
+            st = fl.read_status(client)
+            assert st.version == "1.1.0" and not st.on_test
+    assert slot1(capsys, sim) == before
