@@ -76,7 +76,9 @@ static void send_status(app_t *app)
     (void)app_send(app, &f);
 }
 
-static void send_emergency(app_t *app, const flt_emcy_t *e)
+/* True if the controller took the frame. Not counted in tx_dropped: an emergency frame that
+ * could not leave stays queued (app_tick) and is sent again. */
+static bool send_emergency(app_t *app, const flt_emcy_t *e)
 {
     struct fs_dbc_emergency_t m;
     memset(&m, 0, sizeof(m));
@@ -88,8 +90,12 @@ static void send_emergency(app_t *app, const flt_emcy_t *e)
     memset(&f, 0, sizeof(f));
     f.id = PROTO_ID_EMERGENCY(app->cfg.node);
     (void)fs_dbc_emergency_pack(f.data, &m, sizeof(f.data));
-    e2e_protect(&f, app->tx_counter_emcy++);
-    (void)app_send(app, &f);
+    e2e_protect(&f, app->tx_counter_emcy);
+    if (!hal_can_send(&f)) {
+        return false;
+    }
+    app->tx_counter_emcy++;
+    return true;
 }
 
 static void send_telemetry(app_t *app)
@@ -501,9 +507,12 @@ void app_tick(app_t *app, bool overrun)
     }
     hal_actuator_force(app->force_out_N);
 
+    /* Emergency frames leave in the tick that latched the fault; one that cannot leave (bus-off,
+     * transmit queue full) stays queued and goes out once the controller takes frames again, so
+     * the host learns every fault code from its own frame. */
     flt_emcy_t e;
-    while (flt_emcy_pop(&app->saf.flt, &e)) {
-        send_emergency(app, &e);
+    while (!hal_can_bus_off() && flt_emcy_peek(&app->saf.flt, &e) && send_emergency(app, &e)) {
+        (void)flt_emcy_pop(&app->saf.flt, &e);
     }
     if (app->tick % APP_STATUS_PERIOD_MS == 0u) {
         send_status(app);

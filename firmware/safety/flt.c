@@ -95,6 +95,15 @@ flt_code_t flt_clear_request(flt_state_t *st, uint32_t cause_present_mask)
     return FLT_NONE;
 }
 
+bool flt_emcy_peek(const flt_state_t *st, flt_emcy_t *out)
+{
+    if (st == NULL || out == NULL || st->emcy_len == 0u) {
+        return false;
+    }
+    *out = st->emcy[st->emcy_head];
+    return true;
+}
+
 bool flt_emcy_pop(flt_state_t *st, flt_emcy_t *out)
 {
     if (st == NULL || out == NULL || st->emcy_len == 0u) {

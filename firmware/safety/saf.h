@@ -8,7 +8,8 @@
  *   saf_input_t in = {tick, now_ms, host_frame, bus_off, tick_overrun, ..., meas, force_req_N};
  *   saf_step(&cfg, &st, &in, &out);
  *   actuator_write(out.force_cmd_N, out.actuator_enable);   status frame: out.fault_code
- *   while (flt_emcy_pop(&st.flt, &e)) send the emergency frame with e.            */
+ *   while (flt_emcy_peek(&st.flt, &e) && the emergency frame with e was sent)
+ *       flt_emcy_pop(&st.flt, &e);      (unsent frames wait in the queue, e.g. bus-off)   */
 #ifndef SAF_H
 #define SAF_H
 

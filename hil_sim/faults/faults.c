@@ -470,9 +470,11 @@ static void run_fault(const fscen_t *fs, const sim_scenario_t *sc, frow_t *row)
     row->pass = was_exec && row->code == fs->expect_code && row->detect_ms <= fs->detect_bound_ms &&
                 row->zero_ms >= 0.0 && row->zero_ms <= (double)ZERO_BOUND_MS &&
                 row->worst_N <= row->f_max_N && row->monotone && row->latched && row->cleared &&
-                !row->lost && (row->emcy_seen || strcmp(fs->kind, "bus_off") == 0);
+                !row->lost && row->emcy_seen;
     snprintf(row->note, sizeof row->note, "%s%s%s", was_exec ? "" : "not executing at injection; ",
-             row->emcy_seen ? "emergency frame" : "no emergency frame (bus off)",
+             !row->emcy_seen ? "no emergency frame"
+             : strcmp(fs->kind, "bus_off") == 0 ? "emergency frame after bus recovery"
+                                               : "emergency frame",
              row->status_seen ? ", status frame" : "");
 }
 

@@ -272,6 +272,46 @@ static void test_host_silence_faults_and_ramps(void **state)
     assert_int_equal(last_status().fault_code, 0);
 }
 
+/* Bus-off: BUS_OFF latches in the same tick; its emergency frame cannot leave while the controller
+ * is off the bus, stays queued, and is the first frame sent after recovery (E2E counter intact). */
+static void test_bus_off_emergency_sent_after_recovery(void **state)
+{
+    (void)state;
+    ticks(5);
+    send_heartbeat();
+    tick();
+    hal_sim_can_set_bus_off(true);
+    tick();
+    assert_int_equal(app.state, APP_FAULT);
+    assert_int_equal(app.saf_out.fault_code, FLT_BUS_OFF);
+    for (unsigned i = 0; i < 30; i++) {
+        if (i % 10 == 0) {
+            send_heartbeat();
+        }
+        tick();
+    }
+    const unsigned before = n_out;
+    hal_sim_can_set_bus_off(false);
+    tick();
+    assert_true(n_out > before);
+    assert_int_equal(out[before].id, PROTO_ID_EMERGENCY(0));
+    e2e_rx_t rx;
+    e2e_rx_reset(&rx);
+    assert_int_equal(e2e_check(&rx, &out[before]), PROTO_OK);
+    struct fs_dbc_emergency_t e;
+    assert_int_equal(fs_dbc_emergency_unpack(&e, out[before].data, 8), 0);
+    assert_int_equal(e.fault_code, FLT_BUS_OFF);
+    unsigned n_emcy = 0;
+    for (unsigned i = 0; i < n_out; i++) {
+        n_emcy += out[i].id == PROTO_ID_EMERGENCY(0) ? 1u : 0u;
+    }
+    assert_int_equal(n_emcy, 1);                       /* once, not repeated */
+    ticks(20);
+    for (unsigned i = before + 1u; i < n_out; i++) {
+        assert_int_not_equal(out[i].id, PROTO_ID_EMERGENCY(0));
+    }
+}
+
 static void test_download_corrupt_interrupted(void **state)
 {
     (void)state;
@@ -460,6 +500,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(test_boot_status_and_e2e, setup),
         cmocka_unit_test_setup(test_host_silence_faults_and_ramps, setup),
+        cmocka_unit_test_setup(test_bus_off_emergency_sent_after_recovery, setup),
         cmocka_unit_test_setup(test_download_corrupt_interrupted, setup),
         cmocka_unit_test_setup(test_execute_and_refusals, setup),
         cmocka_unit_test_setup(test_ecu_reset_responds_then_resets, setup),

@@ -32,6 +32,10 @@ static void test_latch_and_first_fault(void **state)
     assert_false(flt_is_latched(&f, FLT_HOST_SILENCE));
     /* emergency frames: one per newly latched fault, in order */
     flt_emcy_t e;
+    assert_true(flt_emcy_peek(&f, &e));                         /* peek keeps it queued */
+    assert_int_equal(e.code, FLT_SENSOR_SPIKE);
+    assert_true(flt_emcy_peek(&f, &e));
+    assert_int_equal(e.code, FLT_SENSOR_SPIKE);
     assert_true(flt_emcy_pop(&f, &e));
     assert_int_equal(e.code, FLT_SENSOR_SPIKE);
     assert_int_equal(e.tick, 10);
@@ -41,6 +45,7 @@ static void test_latch_and_first_fault(void **state)
     assert_int_equal(e.n_latched, 2);
     assert_int_equal(e.latched_mask, FLT_BIT(FLT_SENSOR_SPIKE) | FLT_BIT(FLT_BUS_OFF));
     assert_false(flt_emcy_pop(&f, &e));
+    assert_false(flt_emcy_peek(&f, &e));
     /* clearing refused while a latched fault's cause is present; nothing is cleared */
     assert_int_equal(flt_clear_request(&f, FLT_BIT(FLT_BUS_OFF)), FLT_BUS_OFF);
     assert_true(flt_active(&f));
