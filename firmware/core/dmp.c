@@ -1,8 +1,14 @@
-/* The force DMP: parameters from gains, kernel evaluation and one forward-Euler step.
- * docs/math.md sections 1-2 give the derivation and the exact discrete algorithm. */
+/* The force DMP: parameters from gains, model validation, the per-tick coefficients and the
+ * public evaluation functions. The kernel blend and the Euler step are dmp_tick.h, shared with
+ * the fixed-point build (dmpfx.c). docs/math.md sections 1-2 give the derivation and the exact
+ * discrete algorithm. */
 #include "dmp.h"
 
 #include <stddef.h>
+
+#include "fs_num.h"
+#define DMP_TICK_MODEL dmp_model_t
+#include "dmp_tick.h"
 
 /* Kernel i is relevant at phase u iff |u - c_i| <= r_i, r_i = sqrt(2*cutoff)*sigma_i. The
  * envelopes use r_i widened by this factor, so the window found by binary search always contains
@@ -136,7 +142,7 @@ fs_status_t dmp_model_init(dmp_model_t *m)
     fs_real_t run_max = -FS_REAL_INF;
     for (uint16_t i = 0u; i < n; i++) {
         const fs_real_t s = m->width[i];
-        m->half_inv_var[i] = FS_R(1.0) / (FS_R(2.0) * s * s);
+        m->kernel_scale[i] = FS_R(1.0) / (FS_R(2.0) * s * s);
         const fs_real_t hi = m->centre[i] + r_per_sigma * s;
         run_max = (hi > run_max) ? hi : run_max;
         m->env_hi[i] = run_max;
@@ -172,85 +178,20 @@ void dmp_state_reset(dmp_state_t *s)
     s->z = FS_R(0.0);
 }
 
-/* First kernel whose cutoff interval can reach u: lo = first i with env_hi[i] >= u (every j < lo
- * ends before u). env_hi is non-decreasing, so a binary search finds it. */
-static uint16_t dmp_window_start(const dmp_model_t *m, fs_real_t u)
-{
-    uint16_t a = 0u;
-    uint16_t b = m->n_kernels;
-    while (a < b) {
-        const uint16_t mid = (uint16_t)((a + b) / 2u);
-        if (m->env_hi[mid] < u) {
-            a = (uint16_t)(mid + 1u);
-        } else {
-            b = mid;
-        }
-    }
-    return a;
-}
-
-static fs_real_t dmp_kernel_exponent(const dmp_model_t *m, uint16_t i, fs_real_t u)
-{
-    const fs_real_t d = u - m->centre[i];
-    return d * d * m->half_inv_var[i];
-}
-
-/* Weight of the kernel with the smallest e_i (the fallback when no kernel is within the cutoff). */
-static fs_real_t dmp_nearest_weight(const dmp_model_t *m, fs_real_t u)
-{
-    uint16_t best = 0u;
-    fs_real_t e_best = dmp_kernel_exponent(m, 0u, u);
-    for (uint16_t i = 1u; i < m->n_kernels; i++) {
-        const fs_real_t e = dmp_kernel_exponent(m, i, u);
-        if (e < e_best) {
-            e_best = e;
-            best = i;
-        }
-    }
-    return m->weight[best];
-}
-
-/* S(u) = sum psi_i w_i / sum psi_i over the kernels with e_i <= cutoff, in one pass: from the
- * window start while env_lo[i] <= u (env_lo is non-decreasing, so every later kernel starts after
- * u). Within the cutoff psi_i = exp(-e_i) >= exp(-23), a normal number in float and double, so
- * the e_min shift of docs/math.md changes nothing but round-off and is not needed here. With no
- * kernel within the cutoff, the nearest kernel alone. *count receives the number summed. */
-static fs_real_t dmp_blend_window(const dmp_model_t *m, fs_real_t u, uint16_t *count)
-{
-    const fs_real_t cutoff = (fs_real_t)DMP_KERNEL_CUTOFF_EXP;
-    fs_real_t num = FS_R(0.0);
-    fs_real_t den = FS_R(0.0);
-    uint16_t n = 0u;
-    for (uint16_t i = dmp_window_start(m, u); i < m->n_kernels && m->env_lo[i] <= u; i++) {
-        const fs_real_t e = dmp_kernel_exponent(m, i, u);
-        if (e <= cutoff) {
-            const fs_real_t psi = fs_exp(-e);
-            num += psi * m->weight[i];
-            den += psi;
-            n++;
-        }
-    }
-    if (n == 0u) {
-        *count = 1u;
-        return dmp_nearest_weight(m, u);
-    }
-    *count = n;
-    return num / den;
-}
-
 /* S(u) over all N kernels with psi_i = exp(-(e_i - e_min)) (the test reference: the shift keeps
  * sum psi >= 1 however far u is from every centre). */
 static fs_real_t dmp_blend_all(const dmp_model_t *m, fs_real_t u)
 {
     fs_real_t e_min = FS_REAL_INF;
     for (uint16_t i = 0u; i < m->n_kernels; i++) {
-        const fs_real_t e = dmp_kernel_exponent(m, i, u);
+        const fs_real_t e = fs_num_kernel_expo(u, m->centre[i], m->kernel_scale[i]);
         e_min = (e < e_min) ? e : e_min;
     }
     fs_real_t num = FS_R(0.0);
     fs_real_t den = FS_R(0.0);
     for (uint16_t i = 0u; i < m->n_kernels; i++) {
-        const fs_real_t psi = fs_exp(-(dmp_kernel_exponent(m, i, u) - e_min));
+        const fs_real_t psi =
+            fs_exp(-(fs_num_kernel_expo(u, m->centre[i], m->kernel_scale[i]) - e_min));
         num += psi * m->weight[i];
         den += psi;
     }
@@ -259,8 +200,7 @@ static fs_real_t dmp_blend_all(const dmp_model_t *m, fs_real_t u)
 
 fs_real_t dmp_forcing(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_real_t goal_m)
 {
-    uint16_t count;
-    return goal_m * v * dmp_blend_window(m, u, &count);
+    return goal_m * v * dmp_tick_blend(m, u, NULL);
 }
 
 fs_real_t dmp_forcing_full(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_real_t goal_m)
@@ -271,7 +211,7 @@ fs_real_t dmp_forcing_full(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_re
 uint16_t dmp_active_kernels(const dmp_model_t *m, fs_real_t u)
 {
     uint16_t count;
-    (void)dmp_blend_window(m, u, &count);
+    (void)dmp_tick_blend(m, u, &count);
     return count;
 }
 
@@ -296,22 +236,15 @@ fs_real_t dmp_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
         slowdown = (coupling->phase_slowdown > FS_R(0.0)) ? coupling->phase_slowdown : FS_R(0.0);
     }
     const fs_real_t tau_e = m->tau_s * time_scale * (FS_R(1.0) + slowdown);
-    const fs_real_t g_e = m->goal_m * goal_scale;
     const fs_real_t k = m->dt_s / tau_e;
-    const fs_real_t alpha = m->p.alpha;
-    const fs_real_t beta = m->p.beta;
-
-    const fs_real_t u = s->u;
-    const fs_real_t v = s->v;
-    const fs_real_t i_x = s->integral_x;
-    const fs_real_t x = s->x_m;
-    const fs_real_t z = s->z;
-
-    const fs_real_t h = dmp_forcing(m, u, v, g_e);
-    s->x_m = x + k * (z - x - m->p.gamma * i_x + h + term_x);
-    s->z = z + k * alpha * (beta * (g_e - x) - z);
-    s->integral_x = i_x + k * x;
-    s->v = v + k * alpha * (beta * (FS_R(1.0) - u) - v);
-    s->u = u + k * v;
-    return m->stiffness_Npm * s->x_m;
+    const fs_real_t k_alpha = k * m->p.alpha;
+    const dmp_tick_coef_t c = {.k1 = k,
+                               .k_alpha = k_alpha,
+                               .k_alphabeta = k_alpha * m->p.beta,
+                               .k_gamma = k * m->p.gamma,
+                               .goal = m->goal_m * goal_scale,
+                               .stiffness = m->stiffness_Npm,
+                               .term_x = term_x};
+    const dmp_tick_state_t st = {&s->u, &s->v, &s->integral_x, &s->x_m, &s->z};
+    return dmp_tick_step(m, &c, &st, NULL);
 }

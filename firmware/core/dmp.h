@@ -71,7 +71,7 @@ typedef struct {
     fs_real_t width[DMP_MAX_KERNELS];          /* sigma_i */
     fs_real_t weight[DMP_MAX_KERNELS];
     /* derived by dmp_model_init */
-    fs_real_t half_inv_var[DMP_MAX_KERNELS];   /* 1/(2 sigma_i^2) */
+    fs_real_t kernel_scale[DMP_MAX_KERNELS];   /* 1/(2 sigma_i^2): e_i = (u~ - c_i)^2 * this */
     fs_real_t env_hi[DMP_MAX_KERNELS];         /* prefix max of c_i + r*sigma_i (non-decreasing) */
     fs_real_t env_lo[DMP_MAX_KERNELS];         /* suffix min of c_i - r*sigma_i (non-decreasing) */
 } dmp_model_t;
@@ -113,9 +113,9 @@ fs_status_t dmp_run_validate(const dmp_run_t *run);
 void dmp_state_reset(dmp_state_t *s);
 
 /** Forcing term h at phase (u~, v~) and goal g, summing only kernels with
- *  e_i = (u~ - c_i)^2/(2 sigma_i^2) <= DMP_KERNEL_CUTOFF_EXP (found by binary search on the
- *  envelopes); if none qualifies, the kernel with the smallest e_i alone (an O(N) scan of e_i that
- *  only happens when the phase is outside every kernel, e.g. past the last centre). */
+ *  e_i = (u~ - c_i)^2/(2 sigma_i^2) <= DMP_KERNEL_CUTOFF_EXP (found by binary search on the envelopes),
+ *  psi_i = exp(-(e_i - e_min)) (dmp_tick.h); if none qualifies, the kernel with the smallest e_i
+ *  alone (an O(N) scan that only happens when the phase is outside every kernel). */
 fs_real_t dmp_forcing(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_real_t goal_m);
 
 /** Forcing term h over all N kernels (reference for tests; not for the tick). */
@@ -129,7 +129,7 @@ uint16_t dmp_active_kernels(const dmp_model_t *m, fs_real_t u);
 fs_real_t dmp_phase_stop_factor(fs_real_t force_err_N, fs_real_t gain_per_N2);
 
 /** Advance the state by one step of dt_s (forward Euler, all right-hand sides at the old
- *  state, docs/math.md section 2). run NULL means scales 1; coupling may be NULL (none); a
+ *  state, docs/math.md section 2; the step is dmp_tick.h, shared with dmpfx_step). run NULL means scales 1; coupling may be NULL (none); a
  *  phase_slowdown that is negative or NaN counts as 0, +inf freezes every state.
  *  Returns f_hat = k*x after the step. The caller validates run with dmp_run_validate. */
 fs_real_t dmp_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,

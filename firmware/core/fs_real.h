@@ -1,6 +1,10 @@
 /* The scalar type of the floating-point core, chosen at build time:
  * FS_REAL_FLOAT defined -> float32 (Cortex-M4F, the "float" build), otherwise double (host
- * reference). The fixed-point build has its own types (fx_*.h, issue 5). */
+ * reference). Parsing, validation and parameter derivation are written in fs_real_t; the
+ * per-tick DMP and control law (dmp_tick.h, pfc_tick.h) are written over the numeric layer
+ * fs_num.h, whose real half (fs_num_real.h) is fs_real_t and whose fixed-point half
+ * (firmware/fixed/fs_num_fixed.h, FS_NUMERIC_FIXED) compiles the same tick code in Q formats
+ * (issue 5). */
 #ifndef FS_REAL_H
 #define FS_REAL_H
 

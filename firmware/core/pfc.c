@@ -1,8 +1,16 @@
 /* Parallel force/position control law (paper eqs. 2-5), 2 DOF, diagonal gains, with output
- * saturation and anti-windup on the force integral. See pfc.h. */
+ * saturation and anti-windup on the force integral. See pfc.h. The tick itself is pfc_tick.h,
+ * shared with the fixed-point build (pfcfx.c); configuration and validation are here. */
 #include "pfc.h"
 
 #include <stddef.h>
+
+#include "fs_num.h"
+#define PFC_TICK_CONFIG pfc_config_t
+#define PFC_TICK_STATE pfc_state_t
+#define PFC_TICK_REF pfc_axis_ref_t
+#define PFC_TICK_MEAS pfc_axis_meas_t
+#include "pfc_tick.h"
 
 /* Default output limit: SPEC 5, |force| <= F_max = 50 N. */
 #define PFC_DEFAULT_FORCE_MAX_N FS_R(50.0)
@@ -73,46 +81,8 @@ void pfc_reset(pfc_state_t *st)
     }
 }
 
-static fs_real_t pfc_clamp(fs_real_t v, fs_real_t lim)
-{
-    if (v > lim) {
-        return lim;
-    }
-    if (v < -lim) {
-        return -lim;
-    }
-    return v;
-}
-
 void pfc_step(const pfc_config_t *cfg, pfc_state_t *st, const pfc_axis_ref_t ref[PFC_AXES],
               const pfc_axis_meas_t meas[PFC_AXES], fs_real_t force_cmd_N[PFC_AXES])
 {
-    for (uint32_t a = 0u; a < PFC_AXES; a++) {
-        const pfc_axis_gains_t *g = &cfg->gains[a];
-        const pfc_axis_limits_t *l = &cfg->limits[a];
-        const fs_real_t force_err_N = ref[a].force_N - meas[a].force_N;
-        const fs_real_t i_f = st->force_err_integral_Ns[a];
-        /* Forward Euler like the DMP: the output uses the integral up to the previous tick. */
-        const fs_real_t unsat = g->m_d_kg * ref[a].acc_mps2 +
-                                g->k_d_Nspm * (ref[a].vel_mps - meas[a].vel_mps) +
-                                g->k_p_Npm * (ref[a].pos_m - meas[a].pos_m) +
-                                g->k_f * force_err_N + g->k_i_per_s * i_f;
-        if (unsat != unsat) {
-            /* A NaN input: command nothing and keep the integral finite. Detecting the bad
-             * sensor and faulting is the safety layer's job (issue 6). */
-            force_cmd_N[a] = FS_R(0.0);
-            continue;
-        }
-        force_cmd_N[a] = pfc_clamp(unsat, l->force_max_N);
-
-        /* Conditional integration: hold the integral while the output is saturated and this
-         * error would drive it further into saturation (k_i >= 0, so the sign of the error is
-         * the sign of the integral's contribution). Axes with k_i = 0 keep it at zero. */
-        const int windup = (unsat > l->force_max_N && force_err_N > FS_R(0.0)) ||
-                           (unsat < -l->force_max_N && force_err_N < FS_R(0.0));
-        if (g->k_i_per_s > FS_R(0.0) && !windup) {
-            st->force_err_integral_Ns[a] =
-                pfc_clamp(i_f + cfg->dt_s * force_err_N, l->integral_max_Ns);
-        }
-    }
+    pfc_tick_step(cfg, st, ref, meas, force_cmd_N);
 }

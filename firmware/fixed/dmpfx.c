@@ -1,17 +1,19 @@
-/* Fixed-point force DMP: conversion with range validation, kernel blend and one Euler step.
- * Same discrete algorithm as firmware/core/dmp.c (docs/math.md section 2); formats in fx.h. */
+/* Fixed-point force DMP: conversion with range validation and the per-run constants; the
+ * kernel blend and the Euler step are firmware/core/dmp_tick.h over the fixed numeric layer,
+ * the same source as dmp_step (docs/math.md section 2); formats in fx.h and fs_num.h. */
 #include "dmpfx.h"
 
 #include <math.h>
 #include <stddef.h>
 
+#include "fs_num.h"
+#define DMP_TICK_MODEL dmpfx_model_t
+#include "dmp_tick.h"
+
 /* sqrt(2*16): kernel i can pass the cutoff only if |u - c_i| <= DMPFX_R_CUT * sigma_i. The
  * envelopes are widened by 1e-4 so rounding never drops a kernel; the e_i test decides. */
 #define DMPFX_R_CUT 5.656854249492381
 #define DMPFX_ENVELOPE_MARGIN 1.0001
-/* |u - c_i|/sigma_i >= 6 gives e_i > 16 and is skipped before squaring: in Q.49 that is a high
- * word >= 6 << 17. */
-#define DMPFX_R_SKIP_HI ((uint32_t)6u << 17)
 
 static int32_t dmpfx_env_clamp_q30(double v)
 {
@@ -24,22 +26,12 @@ static int32_t dmpfx_env_clamp_q30(double v)
  * (both envelopes non-decreasing), as in dmp.c. */
 static void dmpfx_window(const dmpfx_model_t *m, int32_t u, uint32_t *lo, uint32_t *hi)
 {
+    *lo = dmp_tick_window_start(m, u);
     uint32_t a = 0u;
     uint32_t b = m->n_kernels;
     while (a < b) {
         const uint32_t mid = (a + b) >> 1;
-        if (m->env_hi_q30[mid] < u) {
-            a = mid + 1u;
-        } else {
-            b = mid;
-        }
-    }
-    *lo = a;
-    a = 0u;
-    b = m->n_kernels;
-    while (a < b) {
-        const uint32_t mid = (a + b) >> 1;
-        if (m->env_lo_q30[mid] <= u) {
+        if (m->env_lo[mid] <= u) {
             a = mid + 1u;
         } else {
             b = mid;
@@ -65,28 +57,28 @@ fs_status_t dmpfx_from_model(const dmp_model_t *m, dmpfx_model_t *out)
         const double c = (double)m->centre[i];
         const double s = (double)m->width[i];
         const double w = (double)m->weight[i];
-        fs_status_t st = fx_from_double(c, 30u, INT32_MAX, &out->centre_q30[i]);
+        fs_status_t st = fx_from_double(c, 30u, INT32_MAX, &out->centre[i]);
         if (st == FS_OK) {
-            st = fx_from_double(1.0 / s, 19u, INT32_MAX, &out->inv_sigma_q19[i]);
+            st = fx_from_double(1.0 / s, 19u, INT32_MAX, &out->kernel_scale[i]);
         }
         if (st == FS_OK) {
-            st = fx_from_double(w, 24u, q24_lim, &out->weight_q24[i]);
+            st = fx_from_double(w, 24u, q24_lim, &out->weight[i]);
         }
         if (st != FS_OK) {
             return st;
         }
         const double r = DMPFX_R_CUT * DMPFX_ENVELOPE_MARGIN * s;
-        out->env_hi_q30[i] = dmpfx_env_clamp_q30(c + r);
-        out->env_lo_q30[i] = dmpfx_env_clamp_q30(c - r);
+        out->env_hi[i] = dmpfx_env_clamp_q30(c + r);
+        out->env_lo[i] = dmpfx_env_clamp_q30(c - r);
     }
     for (uint16_t i = 1u; i < n; i++) {
-        if (out->env_hi_q30[i] < out->env_hi_q30[i - 1u]) {
-            out->env_hi_q30[i] = out->env_hi_q30[i - 1u];
+        if (out->env_hi[i] < out->env_hi[i - 1u]) {
+            out->env_hi[i] = out->env_hi[i - 1u];
         }
     }
     for (uint16_t j = (uint16_t)(n - 1u); j > 0u; j--) {
-        if (out->env_lo_q30[j - 1u] > out->env_lo_q30[j]) {
-            out->env_lo_q30[j - 1u] = out->env_lo_q30[j];
+        if (out->env_lo[j - 1u] > out->env_lo[j]) {
+            out->env_lo[j - 1u] = out->env_lo[j];
         }
     }
     /* Largest candidate window: hi(u) only grows at u = env_lo[j], so the maximum of
@@ -94,7 +86,7 @@ fs_status_t dmpfx_from_model(const dmp_model_t *m, dmpfx_model_t *out)
     for (uint16_t j = 0u; j < n; j++) {
         uint32_t lo;
         uint32_t hi;
-        dmpfx_window(out, out->env_lo_q30[j], &lo, &hi);
+        dmpfx_window(out, out->env_lo[j], &lo, &hi);
         if (hi > lo && hi - lo > DMPFX_MAX_WINDOW) {
             return FS_ERR_FIXED_WINDOW;
         }
@@ -162,152 +154,9 @@ void dmpfx_state_reset(dmpfx_state_t *s)
     s->sat_events = 0u;
 }
 
-/* |u - c_i| / sigma_i in Q.49 (64-bit; |d| < 2^31, 1/sigma < 2^31). */
-static int64_t dmpfx_r_abs_q49(const dmpfx_model_t *m, uint32_t i, int32_t u)
-{
-    const int64_t d = (int64_t)u - (int64_t)m->centre_q30[i];
-    const int64_t r = (d < 0 ? -d : d) * (int64_t)m->inv_sigma_q19[i];
-    return r;
-}
-
-/* Weight of the kernel with the smallest e_i = smallest |u - c_i|/sigma_i (first on ties). */
-static int32_t dmpfx_nearest_weight(const dmpfx_model_t *m, int32_t u)
-{
-    uint32_t best = 0u;
-    int64_t r_best = dmpfx_r_abs_q49(m, 0u, u);
-    for (uint32_t i = 1u; i < m->n_kernels; i++) {
-        const int64_t r = dmpfx_r_abs_q49(m, i, u);
-        if (r < r_best) {
-            r_best = r;
-            best = i;
-        }
-    }
-    return m->weight_q24[best];
-}
-
 int32_t dmpfx_blend(const dmpfx_model_t *m, int32_t u_q30, uint16_t *count)
 {
-    /* lo = first i with env_hi[i] >= u (binary search); the window then runs while
-     * env_lo[i] <= u (env_lo is non-decreasing), as dmp.c's [lo, hi), at most
-     * DMPFX_MAX_WINDOW kernels (guaranteed at conversion, enforced here). */
-    uint32_t a = 0u;
-    uint32_t b = m->n_kernels;
-    while (a < b) {
-        const uint32_t mid = (a + b) >> 1;
-        if (m->env_hi_q30[mid] < u_q30) {
-            a = mid + 1u;
-        } else {
-            b = mid;
-        }
-    }
-    const uint32_t lo = a;
-    uint32_t end = lo + DMPFX_MAX_WINDOW;
-    end = (end < m->n_kernels) ? end : m->n_kernels;
-    uint32_t e_q27[DMPFX_MAX_WINDOW];
-    uint32_t idx[DMPFX_MAX_WINDOW];
-    uint32_t n = 0u;
-    uint32_t e_min = UINT32_MAX;
-    for (uint32_t i = lo; i < end && m->env_lo_q30[i] <= u_q30; i++) {
-        /* |u - c_i| exactly in uint32 (< 2^32 for any int32 pair; no signed overflow) */
-        const uint32_t uu = (uint32_t)u_q30;
-        const uint32_t cc = (uint32_t)m->centre_q30[i];
-        const uint32_t ad = (u_q30 >= m->centre_q30[i]) ? uu - cc : cc - uu;
-        /* r = |u - c_i|/sigma_i in Q.49 */
-        const uint64_t r = (uint64_t)ad * (uint32_t)m->inv_sigma_q19[i];
-        if ((uint32_t)(r >> 32) >= DMPFX_R_SKIP_HI) {
-            continue;
-        }
-        const uint32_t r27 = (uint32_t)(r >> 22);                      /* Q.27, < 6*2^27 */
-        const uint32_t e = (uint32_t)(((uint64_t)r27 * r27) >> 28);   /* r^2/2, Q5.27 */
-        if (e > DMPFX_CUTOFF_Q27) {
-            continue;
-        }
-        e_q27[n] = e;
-        idx[n] = i;
-        n++;
-        e_min = (e < e_min) ? e : e_min;
-    }
-    if (count != NULL) {
-        *count = (uint16_t)((n == 0u) ? 1u : n);
-    }
-    if (n == 0u) {
-        return dmpfx_nearest_weight(m, u_q30);
-    }
-    /* psi in Q.30 (psi_Q31 / 2, so the product with w is one signed 32x32 multiply):
-     * num = sum psi*w / 2^3 in Q.51 (< 32 * 2^60 / 8 = 2^62), den = sum psi in Q.30 >= 2^30. */
-    int64_t num = 0;
-    uint64_t den = 0u;
-    for (uint32_t j = 0u; j < n; j++) {
-        const int32_t psi = (int32_t)(fx_exp_neg_q27(e_q27[j] - e_min) >> 1);
-        num += ((int64_t)m->weight_q24[idx[j]] * psi) >> 3;
-        den += (uint32_t)psi;
-    }
-    /* S = num*2^3/den in Q.24. |S| <= max|w| <= 2^30, so the quotient fits; bring den to 32 bits
-     * (it is >= 2^30, so it keeps >= 30 significant bits) and shift num to match. */
-    const int neg = num < 0;
-    const uint64_t mag = (uint64_t)(neg ? -num : num);
-    uint64_t nn;
-    uint32_t dd;
-    if ((den >> 32) == 0u) {
-        nn = mag << 3;
-        dd = (uint32_t)den;
-    } else {
-        const unsigned s = 32u - (unsigned)__builtin_clz((uint32_t)(den >> 32)); /* 1..3 */
-        dd = (uint32_t)(den >> s);
-        nn = mag << (3u - s);
-    }
-    const uint32_t q = fx_udiv64_32_round(nn, dd);
-    return neg ? -(int32_t)q : (int32_t)q;
-}
-
-/* Saturate and count: the states never wrap, and a run that saturates is visible. */
-static int32_t dmpfx_sat(int64_t v, uint32_t *events)
-{
-    const int32_t r = fx_sat32(v);
-    if ((int64_t)r != v) {
-        (*events)++;
-    }
-    return r;
-}
-
-/* Saturating 32-bit add/sub that count saturations. */
-static int32_t dmpfx_add(int32_t a, int32_t b, uint32_t *events)
-{
-    int32_t r;
-    if (__builtin_add_overflow(a, b, &r)) {
-        (*events)++;
-        return (a < 0) ? INT32_MIN : INT32_MAX;
-    }
-    return r;
-}
-
-static int32_t dmpfx_sub(int32_t a, int32_t b, uint32_t *events)
-{
-    int32_t r;
-    if (__builtin_sub_overflow(a, b, &r)) {
-        (*events)++;
-        return (a < 0) ? INT32_MIN : INT32_MAX;
-    }
-    return r;
-}
-
-/* acc + inc with acc kept within +-(2^30 - 1)*2^32 (its view, acc/2^31 rounded, then fits
- * int32 with a margin of 2): the bound is checked on the high word only. |acc| < 2^62 and
- * |inc| < 2^62 (constants < 0.5), so the sum cannot overflow int64. */
-#define DMPFX_ACC_HI_MAX 0x3FFFFFFF
-static int64_t dmpfx_acc_add(int64_t acc, int64_t inc, uint32_t *events)
-{
-    const int64_t r = acc + inc;
-    const int32_t hi = (int32_t)(r >> 32);
-    if (hi >= DMPFX_ACC_HI_MAX) {
-        (*events)++;
-        return (int64_t)DMPFX_ACC_HI_MAX * 4294967296;
-    }
-    if (hi < -DMPFX_ACC_HI_MAX) {
-        (*events)++;
-        return -(int64_t)DMPFX_ACC_HI_MAX * 4294967296;
-    }
-    return r;
+    return dmp_tick_blend(m, u_q30, count);
 }
 
 static int32_t dmpfx_scale_q31(int32_t k_q31, uint32_t rate_q31)
@@ -318,46 +167,25 @@ static int32_t dmpfx_scale_q31(int32_t k_q31, uint32_t rate_q31)
 int32_t dmpfx_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s,
                    const dmpfx_coupling_t *coupling)
 {
-    int32_t k1 = run->k1_q31;
-    int32_t ka = run->k_alpha_q31;
-    int32_t kab = run->k_alphabeta_q31;
-    int32_t kg = run->k_gamma_q31;
-    int32_t term_x = 0;
+    dmp_tick_coef_t c = {.k1 = run->k1_q31,
+                         .k_alpha = run->k_alpha_q31,
+                         .k_alphabeta = run->k_alphabeta_q31,
+                         .k_gamma = run->k_gamma_q31,
+                         .goal = run->goal_q24,
+                         .stiffness = m->stiffness_q12,
+                         .term_x = 0};
     if (coupling != NULL) {
-        term_x = coupling->term_x_q24;
+        c.term_x = coupling->term_x_q24;
         const uint32_t rate = (coupling->rate_q31 > FX_Q31_ONE_U) ? FX_Q31_ONE_U : coupling->rate_q31;
         if (rate != FX_Q31_ONE_U) {
-            k1 = dmpfx_scale_q31(k1, rate);
-            ka = dmpfx_scale_q31(ka, rate);
-            kab = dmpfx_scale_q31(kab, rate);
-            kg = dmpfx_scale_q31(kg, rate);
+            c.k1 = dmpfx_scale_q31(c.k1, rate);
+            c.k_alpha = dmpfx_scale_q31(c.k_alpha, rate);
+            c.k_alphabeta = dmpfx_scale_q31(c.k_alphabeta, rate);
+            c.k_gamma = dmpfx_scale_q31(c.k_gamma, rate);
         }
     }
-    const int32_t g = run->goal_q24;
-    const int32_t u = dmpfx_view(s->u_acc);
-    const int32_t v = dmpfx_view(s->v_acc);
-    const int32_t i_x = dmpfx_view(s->integral_x_acc);
-    const int32_t x = dmpfx_view(s->x_acc);
-    const int32_t z = dmpfx_view(s->z_acc);
-    uint32_t ev = s->sat_events;
-
-    const int32_t sw = dmpfx_blend(m, u, NULL);
-    const int32_t gv = dmpfx_sat(fx_rshift_round((int64_t)g * v, 30u), &ev);
-    const int32_t h = dmpfx_sat(fx_rshift_round((int64_t)gv * sw, 24u), &ev);
-
-    /* Increments in Q.55 (x, z, I) and Q.61 (u, v): Q1.31 constants times the views, exact. */
-    const int32_t sx = dmpfx_add(dmpfx_add(dmpfx_sub(z, x, &ev), h, &ev), term_x, &ev);
-    const int32_t gx = dmpfx_sub(g, x, &ev);
-    const int32_t one_u = dmpfx_sub(FX_Q30_ONE, u, &ev);
-    s->x_acc = dmpfx_acc_add(s->x_acc, (int64_t)k1 * sx - (int64_t)kg * i_x, &ev);
-    s->z_acc = dmpfx_acc_add(s->z_acc, (int64_t)kab * gx - (int64_t)ka * z, &ev);
-    s->integral_x_acc = dmpfx_acc_add(s->integral_x_acc, (int64_t)k1 * x, &ev);
-    s->v_acc = dmpfx_acc_add(s->v_acc, (int64_t)kab * one_u - (int64_t)ka * v, &ev);
-    s->u_acc = dmpfx_acc_add(s->u_acc, (int64_t)k1 * v, &ev);
-    const int32_t x_new = dmpfx_view(s->x_acc);
-    const int32_t f = dmpfx_sat(fx_rshift_round((int64_t)m->stiffness_q12 * x_new, 20u), &ev);
-    s->sat_events = ev;
-    return f;
+    const dmp_tick_state_t st = {&s->u_acc, &s->v_acc, &s->integral_x_acc, &s->x_acc, &s->z_acc};
+    return dmp_tick_step(m, &c, &st, &s->sat_events);
 }
 
 static double dmpfx_absd(int32_t v)

@@ -1,6 +1,7 @@
-/* The force DMP in fixed point (SPEC 2 "Fixed point", issue 5): the same discrete algorithm as
- * docs/math.md section 2 (forward Euler, kernel window, e_min shift, nearest-kernel fallback),
- * in the formats of fx.h, for a Cortex-M3 without FPU. A skill is parsed in double (skill_parse)
+/* The force DMP in fixed point (SPEC 2 "Fixed point", issue 5), for a Cortex-M3 without FPU:
+ * the blend and the Euler step are firmware/core/dmp_tick.h (the same source as dmp_step)
+ * compiled over the fixed numeric layer (fs_num.h, formats in fx.h); this module converts a
+ * skill, derives the per-tick constants and wraps the step. A skill is parsed in double (skill_parse)
  * and converted once by dmpfx_from_model, which rejects values that do not fit (3xx codes).
  * docs/cortex-m.md describes the formats, bounds and measured accuracy. */
 #ifndef DMPFX_H
@@ -10,9 +11,6 @@
 #include "dmp.h"
 #include "fx.h"
 
-/* Kernels with e_i = (u - c_i)^2/(2 sigma_i^2) above 16 are skipped: exp(-16) = 1.1e-7 of the
- * largest activation (the float core uses 23; the difference is below Q8.24 resolution of S). */
-#define DMPFX_CUTOFF_Q27 FX_EXP_ARG_MAX_Q27
 /* Most kernels that may be evaluated in one tick (the candidate window): bounded at conversion
  * so the tick has a fixed worst case. The default fit (sigma = half spacing) needs 6. */
 #ifndef DMPFX_MAX_WINDOW
@@ -24,14 +22,15 @@
 /* Largest phase velocity v~ accepted (Q2.30 holds |v| < 2). */
 #define DMPFX_V_MAX 1.9
 
-/** A skill in fixed point (what dmpfx_from_model fills). */
+/** A skill in fixed point (what dmpfx_from_model fills); the kernel fields have dmp_model_t's
+ *  names (dmp_tick.h reads both). */
 typedef struct {
     uint16_t n_kernels;
-    int32_t centre_q30[DMP_MAX_KERNELS];
-    int32_t inv_sigma_q19[DMP_MAX_KERNELS];
-    int32_t weight_q24[DMP_MAX_KERNELS];
-    int32_t env_lo_q30[DMP_MAX_KERNELS];  /* suffix min of c_i - r sigma_i, r = sqrt(32) */
-    int32_t env_hi_q30[DMP_MAX_KERNELS];  /* prefix max of c_i + r sigma_i */
+    int32_t centre[DMP_MAX_KERNELS];        /* Q2.30 */
+    int32_t kernel_scale[DMP_MAX_KERNELS];  /* 1/sigma_i, Q13.19 */
+    int32_t weight[DMP_MAX_KERNELS];        /* Q8.24 */
+    int32_t env_lo[DMP_MAX_KERNELS];  /* Q2.30 suffix min of c_i - r sigma_i, r = sqrt(32) */
+    int32_t env_hi[DMP_MAX_KERNELS];  /* Q2.30 prefix max of c_i + r sigma_i */
     int32_t stiffness_q12;                /* k, N/m, Q20.12 */
     /* scalars kept in double for dmpfx_run_init (run set-up, not the tick) */
     double dt_s;
@@ -74,7 +73,7 @@ typedef struct {
 /** A state's value in its working format (Q2.30 for u~, v~; Q8.24 for I, x, z). */
 static inline int32_t dmpfx_view(int64_t acc)
 {
-    return (int32_t)fx_rshift_round(acc, 31u);
+    return fx_acc_view(acc);
 }
 
 /** Coupling: term_x added to tau*xd (Q8.24) and rate = 1/(1 + phase_slowdown) in Q1.31
@@ -102,12 +101,12 @@ fs_status_t dmpfx_run_init(const dmpfx_model_t *m, double goal_scale, double tim
 /** Zero initial conditions. */
 void dmpfx_state_reset(dmpfx_state_t *s);
 
-/** S(u) = sum psi_i w_i / sum psi_i in Q8.24 at phase u (Q2.30), window + cutoff + e_min shift;
- *  *count (may be NULL) receives the number of kernels summed. */
+/** S(u) = sum psi_i w_i / sum psi_i in Q8.24 at phase u (Q2.30), window + cutoff 16 + e_min
+ *  shift (dmp_tick_blend); *count (may be NULL) receives the number of kernels summed. */
 int32_t dmpfx_blend(const dmpfx_model_t *m, int32_t u_q30, uint16_t *count);
 
-/** One forward-Euler step (all right-hand sides at the old state); coupling may be NULL.
- *  Returns f_hat = k*x after the step in Q16.16 N. */
+/** One forward-Euler step (dmp_tick_step, all right-hand sides at the old state); coupling may
+ *  be NULL. Returns f_hat = k*x after the step in Q16.16 N. */
 int32_t dmpfx_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s,
                    const dmpfx_coupling_t *coupling);
 

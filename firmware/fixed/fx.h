@@ -1,4 +1,5 @@
-/* Saturating Q-format arithmetic for the fixed-point build (SPEC 2 "Fixed point", issue 5).
+/* Saturating Q-format arithmetic for the fixed-point build (SPEC 2 "Fixed point", issue 5): the
+ * helpers of the fixed half of the numeric layer (fs_num_fixed.h, fs_num.h).
  * Every helper works on int32 values with 64-bit intermediates; results that do not fit are
  * saturated to the int32 range, never wrapped, and no helper has signed-overflow UB.
  * Right shifts of negative values rely on arithmetic shift (GCC and Clang define it).
@@ -98,6 +99,34 @@ static inline int32_t fx_clamp_sym(int32_t a, int32_t lim)
         return -lim;
     }
     return a;
+}
+
+/* A DMP state accumulator (value * 2^31, the exact sum of its Euler increments) is kept within
+ * +-(2^30 - 1)*2^32, so its view fits int32 with a margin of 2; the bound is checked on the high
+ * word only. */
+#define FX_ACC_HI_MAX 0x3FFFFFFF
+
+/** A state accumulator's value in its working format (acc / 2^31 rounded: Q8.24 or Q2.30). */
+static inline int32_t fx_acc_view(int64_t acc)
+{
+    return (int32_t)fx_rshift_round(acc, 31u);
+}
+
+/** acc + inc held within +-FX_ACC_HI_MAX*2^32, counting a saturation in *events; needs
+ *  |acc|, |inc| < 2^62 (Euler constants < 0.5), so the sum cannot overflow int64. */
+static inline int64_t fx_acc_add(int64_t acc, int64_t inc, uint32_t *events)
+{
+    const int64_t r = acc + inc;
+    const int32_t hi = (int32_t)(r >> 32);
+    if (hi >= FX_ACC_HI_MAX) {
+        (*events)++;
+        return (int64_t)FX_ACC_HI_MAX * 4294967296;
+    }
+    if (hi < -FX_ACC_HI_MAX) {
+        (*events)++;
+        return -(int64_t)FX_ACC_HI_MAX * 4294967296;
+    }
+    return r;
 }
 
 /** 2^(-k/2^FX_EXP_TABLE_BITS) in Q1.31 (unsigned), k = 0..2^FX_EXP_TABLE_BITS (fx.c). */

@@ -30,7 +30,8 @@ _ROW_CHUNK = 4096
 
 
 def kernel_exponents(u: np.ndarray, centres: np.ndarray, widths: np.ndarray) -> np.ndarray:
-    """e[n, i] = (u_n - c_i)^2 / (2 sigma_i^2), computed as d*d*half_inv_var like the C core."""
+    """e[n, i] = (u_n - c_i)^2 / (2 sigma_i^2), computed as d*d*half_inv_var like the C core's
+    float/double layer (fs_num_real.h, kernel_scale = 1/(2 sigma^2))."""
     half_inv_var = 1.0 / (2.0 * widths * widths)
     d = np.asarray(u, dtype=float)[:, None] - centres[None, :]
     return d * d * half_inv_var[None, :]

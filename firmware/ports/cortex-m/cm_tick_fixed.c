@@ -100,9 +100,9 @@ uint32_t cm_tick(void)
     pfcfx_meas_t meas[PFC_AXES];
     for (uint32_t a = 0u; a < PFC_AXES; a++) {
         const int32_t pos = fx_mul_int_sat(raw.enc_count[a], 1 << ENC_TO_Q24_SHIFT);
-        meas[a].pos_q24 = pos;
-        meas[a].vel_q24 = fx_mul_int_sat(fx_sub_sat(pos, cm_prev_pos_q24[a]), INV_DT);
-        meas[a].force_q16 = fx_mul_int_sat(raw.force_count[a], 1 << FORCE_TO_Q16_SHIFT);
+        meas[a].pos_m = pos;
+        meas[a].vel_mps = fx_mul_int_sat(fx_sub_sat(pos, cm_prev_pos_q24[a]), INV_DT);
+        meas[a].force_N = fx_mul_int_sat(raw.force_count[a], 1 << FORCE_TO_Q16_SHIFT);
         cm_prev_pos_q24[a] = pos;
     }
     /* 2. DMP */
@@ -110,25 +110,25 @@ uint32_t cm_tick(void)
     /* 3. reference */
     pfcfx_ref_t ref[PFC_AXES];
     const int32_t pos_d = fx_add_sat(cm_surface_q24, dmpfx_view(cm_dmp.x_acc));
-    ref[0].pos_q24 = pos_d;
-    ref[0].vel_q24 = fx_mul_int_sat(fx_sub_sat(pos_d, cm_prev_pos_d_q24), INV_DT);
-    ref[0].acc_q24 = 0;
-    ref[0].force_q16 = f_hat;
+    ref[0].pos_m = pos_d;
+    ref[0].vel_mps = fx_mul_int_sat(fx_sub_sat(pos_d, cm_prev_pos_d_q24), INV_DT);
+    ref[0].acc_mps2 = 0;
+    ref[0].force_N = f_hat;
     cm_prev_pos_d_q24 = pos_d;
-    ref[1].pos_q24 = cm_hold_y_q24;
-    ref[1].vel_q24 = 0;
-    ref[1].acc_q24 = 0;
-    ref[1].force_q16 = 0;
+    ref[1].pos_m = cm_hold_y_q24;
+    ref[1].vel_mps = 0;
+    ref[1].acc_mps2 = 0;
+    ref[1].force_N = 0;
     /* 4. control law */
     int32_t cmd[PFC_AXES];
     pfcfx_step(&cm_pfc, &cm_pfc_state, ref, meas, cmd);
     /* 5. safety limits */
     int32_t out[PFC_AXES];
     for (uint32_t a = 0u; a < PFC_AXES; a++) {
-        if (meas[a].pos_q24 < cm_ws_min_q24 || meas[a].pos_q24 > cm_ws_max_q24) {
+        if (meas[a].pos_m < cm_ws_min_q24 || meas[a].pos_m > cm_ws_max_q24) {
             cm_faults |= CM_FAULT_WORKSPACE;
         }
-        if (fx_abs_sat(meas[a].vel_q24) > cm_speed_max_q24) {
+        if (fx_abs_sat(meas[a].vel_mps) > cm_speed_max_q24) {
             cm_faults |= CM_FAULT_SPEED;
         }
         int32_t c = (cm_faults != 0u) ? 0 : cmd[a];

@@ -49,7 +49,7 @@ static void sweep(uint16_t n, int random_weights)
         uint16_t brute = 0;
         for (uint16_t i = 0; i < n; i++) {
             const double d = u - model.centre[i];
-            if (d * d * model.half_inv_var[i] <= DMP_KERNEL_CUTOFF_EXP) {
+            if (d * d * model.kernel_scale[i] <= DMP_KERNEL_CUTOFF_EXP) {
                 brute++;
             }
         }
@@ -105,7 +105,7 @@ static void test_nearest_fallback(void **state)
     double e_best = INFINITY;
     for (uint16_t i = 0; i < 200; i++) {
         const double d = u - model.centre[i];
-        const double e = d * d * model.half_inv_var[i];
+        const double e = d * d * model.kernel_scale[i];
         assert_true(e > DMP_KERNEL_CUTOFF_EXP);
         if (e < e_best) {
             e_best = e;

@@ -99,7 +99,7 @@ static void test_valid_round_trip(void **state)
             assert_true(m->width[i] == (fs_real_t)desc.width[i]);
             assert_true(m->weight[i] == (fs_real_t)desc.weight[i]);
             /* dmp_model_init ran */
-            assert_true(m->half_inv_var[i] > FS_R(0.0));
+            assert_true(m->kernel_scale[i] > FS_R(0.0));
         }
     }
     /* hold policy */

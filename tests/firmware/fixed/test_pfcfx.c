@@ -52,20 +52,20 @@ static void test_against_double(void **state)
             md[a].vel_mps = rd[a].vel_mps + tu_uniform(&rng, -0.01, 0.01);
             md[a].force_N = 5.0 + 4.0 * sin(0.3 * t) + tu_uniform(&rng, -0.6, 0.5);
             /* quantise the double inputs exactly like the fixed ones, so only the law differs */
-            rf[a].pos_q24 = q(rd[a].pos_m, 24u);
-            rf[a].vel_q24 = q(rd[a].vel_mps, 24u);
-            rf[a].acc_q24 = q(rd[a].acc_mps2, 24u);
-            rf[a].force_q16 = q(rd[a].force_N, 16u);
-            mf[a].pos_q24 = q(md[a].pos_m, 24u);
-            mf[a].vel_q24 = q(md[a].vel_mps, 24u);
-            mf[a].force_q16 = q(md[a].force_N, 16u);
-            rd[a].pos_m = fx_to_double(rf[a].pos_q24, 24u);
-            rd[a].vel_mps = fx_to_double(rf[a].vel_q24, 24u);
-            rd[a].acc_mps2 = fx_to_double(rf[a].acc_q24, 24u);
-            rd[a].force_N = fx_to_double(rf[a].force_q16, 16u);
-            md[a].pos_m = fx_to_double(mf[a].pos_q24, 24u);
-            md[a].vel_mps = fx_to_double(mf[a].vel_q24, 24u);
-            md[a].force_N = fx_to_double(mf[a].force_q16, 16u);
+            rf[a].pos_m = q(rd[a].pos_m, 24u);
+            rf[a].vel_mps = q(rd[a].vel_mps, 24u);
+            rf[a].acc_mps2 = q(rd[a].acc_mps2, 24u);
+            rf[a].force_N = q(rd[a].force_N, 16u);
+            mf[a].pos_m = q(md[a].pos_m, 24u);
+            mf[a].vel_mps = q(md[a].vel_mps, 24u);
+            mf[a].force_N = q(md[a].force_N, 16u);
+            rd[a].pos_m = fx_to_double(rf[a].pos_m, 24u);
+            rd[a].vel_mps = fx_to_double(rf[a].vel_mps, 24u);
+            rd[a].acc_mps2 = fx_to_double(rf[a].acc_mps2, 24u);
+            rd[a].force_N = fx_to_double(rf[a].force_N, 16u);
+            md[a].pos_m = fx_to_double(mf[a].pos_m, 24u);
+            md[a].vel_mps = fx_to_double(mf[a].vel_mps, 24u);
+            md[a].force_N = fx_to_double(mf[a].force_N, 16u);
         }
         double cd[PFC_AXES];
         int32_t cf[PFC_AXES];
@@ -78,7 +78,7 @@ static void test_against_double(void **state)
         }
         for (uint32_t a = 0; a < PFC_AXES; a++) {
             worst_cmd = fmax(worst_cmd, fabs(fx_to_double(cf[a], 16u) - cd[a]));
-            worst_int = fmax(worst_int, fabs(fx_to_double(sf.force_err_integral_q24[a], 24u) -
+            worst_int = fmax(worst_int, fabs(fx_to_double(sf.force_err_integral_Ns[a], 24u) -
                                              sd.force_err_integral_Ns[a]));
         }
     }

@@ -1,0 +1,49 @@
+/* The numeric layer (issue 5): the types and operations the per-tick algorithms of the DMP
+ * (dmp_tick.h) and of the control law (pfc_tick.h) are written in, so each is written once and
+ * compiled three ways. The build selects the layer:
+ *   FS_NUMERIC_FIXED defined  -> fs_num_fixed.h (firmware/fixed; Q formats over fx.h), fs_fixed
+ *   otherwise                 -> fs_num_real.h  (fs_real_t: double, or float32 with FS_REAL_FLOAT)
+ * Types, one per quantity (real layer: all fs_real_t; fixed layer: the format given):
+ *   fs_phase_t  phase u~, v~, centres c_i, envelopes      Q2.30
+ *   fs_kscale_t kernel scale s_i: real 1/(2 sigma_i^2), fixed 1/sigma_i  Q13.19
+ *   fs_expo_t   kernel exponent e_i = (u - c_i)^2/(2 sigma_i^2)  Q5.27 unsigned (far: > cutoff)
+ *   fs_kdist_t  nearest-kernel key, monotone in e_i        Q.49 unsigned |u - c_i| s_i
+ *   fs_act_t    kernel activation psi_i = exp(-e)          Q1.30 (psi_Q31 / 2)
+ *   fs_bnum_t, fs_bden_t  blend sums sum psi w, sum psi   int64 Q.51, uint64 Q.30
+ *   fs_val_t    x, z, I, h, w_i, g, term_x, positions, velocities, accelerations, force integral
+ *                                                          Q8.24
+ *   fs_coef_t   Euler coefficients dt/tau_e*{1, alpha, alpha*beta, gamma}, control dt  Q1.31
+ *   fs_acc_t    a DMP state: exact sum of its Euler increments (value * 2^31)  int64
+ *   fs_force_t  forces (N)                                 Q16.16
+ *   fs_gain_t   control gains                              Q16.16
+ *   fs_stiff_t  stiffness k (N/m)                          Q20.12
+ *   fs_wide_t   sum of control-law terms (N)               int64 Q.32
+ * Operations (trivial inline functions over fs_real_t in the real layer; in the fixed layer
+ * rounding half up, saturation and not wrapping; the _ev variants count saturations in *ev):
+ *   fs_num_view(acc)                  a state's value (fs_val_t / fs_phase_t)
+ *   fs_num_acc_mac1(acc, k, a, ev)    acc + k*a           (state update, one term)
+ *   fs_num_acc_mac2(acc, ka, a, kb, b, ev)  acc + ka*a - kb*b
+ *   fs_num_add_ev / fs_num_sub_ev     saturating a +- b, counted
+ *   fs_num_sub / fs_num_add           saturating a +- b (control law)
+ *   fs_num_mul_vp(val, phase, ev)     val * phase -> val    fs_num_mul_vv(val, val, ev) -> val
+ *   fs_num_force(stiff, x, ev)        k * x -> force
+ *   fs_num_kernel_expo(u, c, s)       e_i: real d*d*s, fixed (|d| s)^2/2 (d = u - c)
+ *   fs_num_kernel_dist(u, c, s)       a key monotone in e_i (nearest-kernel fallback)
+ *   fs_num_exp_neg(e)                 exp(-e) for e >= 0 -> activation
+ *   fs_num_blend_acc(&num, &den, psi, w)  fs_num_blend_div(num, den) -> S = num/den (val)
+ *   fs_num_gain_val(g, v), fs_num_gain_force(g, f) -> wide   fs_num_wide_force(w) -> force
+ *   fs_num_dt_force(dt, f) -> val     fs_num_clamp(a, lim)  fs_num_is_nan(w)
+ * Constants: FS_NUM_ZERO, FS_NUM_PHASE_ONE, FS_NUM_CUTOFF (kernel exponent cutoff),
+ * FS_NUM_EXPO_INF, FS_NUM_MAX_WINDOW (most kernels one blend looks at).
+ * Only implementation files include this header (after their public headers): the public
+ * headers of the double, float and fixed builds stay includable together in one file. */
+#ifndef FS_NUM_H
+#define FS_NUM_H
+
+#ifdef FS_NUMERIC_FIXED
+#include "fs_num_fixed.h"
+#else
+#include "fs_num_real.h"
+#endif
+
+#endif /* FS_NUM_H */

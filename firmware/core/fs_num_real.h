@@ -1,0 +1,120 @@
+/* The real half of the numeric layer (fs_num.h): every quantity is fs_real_t (double, or
+ * float32 with FS_REAL_FLOAT) and every operation is the plain arithmetic, inline, so the shared
+ * per-tick code costs nothing over writing it in fs_real_t directly. Saturation counters (ev)
+ * are ignored: real arithmetic does not saturate. The kernel scale is s_i = 1/(2 sigma_i^2) and
+ * e_i = d*d*s_i (two multiplies; the fixed layer's (|d|/sigma)^2/2 costs one more here).
+ * fs_num.h documents each operation. */
+#ifndef FS_NUM_REAL_H
+#define FS_NUM_REAL_H
+
+#include <stdint.h>
+#include "fs_real.h"
+
+typedef fs_real_t fs_phase_t;
+typedef fs_real_t fs_kscale_t;
+typedef fs_real_t fs_expo_t;
+typedef fs_real_t fs_kdist_t;
+typedef fs_real_t fs_act_t;
+typedef fs_real_t fs_bnum_t;
+typedef fs_real_t fs_bden_t;
+typedef fs_real_t fs_val_t;
+typedef fs_real_t fs_coef_t;
+typedef fs_real_t fs_acc_t;
+typedef fs_real_t fs_force_t;
+typedef fs_real_t fs_gain_t;
+typedef fs_real_t fs_stiff_t;
+typedef fs_real_t fs_wide_t;
+
+#define FS_NUM_ZERO FS_R(0.0)
+#define FS_NUM_PHASE_ONE FS_R(1.0)
+#define FS_NUM_CUTOFF ((fs_real_t)DMP_KERNEL_CUTOFF_EXP)
+#define FS_NUM_EXPO_INF FS_REAL_INF
+#define FS_NUM_MAX_WINDOW DMP_MAX_KERNELS
+
+static inline fs_val_t fs_num_view(fs_acc_t acc) { return acc; }
+
+static inline fs_acc_t fs_num_acc_mac1(fs_acc_t acc, fs_coef_t k, fs_val_t a, uint32_t *ev)
+{
+    (void)ev;
+    return acc + k * a;
+}
+
+static inline fs_acc_t fs_num_acc_mac2(fs_acc_t acc, fs_coef_t ka, fs_val_t a, fs_coef_t kb,
+                                       fs_val_t b, uint32_t *ev)
+{
+    (void)ev;
+    return acc + (ka * a - kb * b);
+}
+
+static inline fs_val_t fs_num_add_ev(fs_val_t a, fs_val_t b, uint32_t *ev)
+{
+    (void)ev;
+    return a + b;
+}
+
+static inline fs_val_t fs_num_sub_ev(fs_val_t a, fs_val_t b, uint32_t *ev)
+{
+    (void)ev;
+    return a - b;
+}
+
+static inline fs_val_t fs_num_add(fs_val_t a, fs_val_t b) { return a + b; }
+static inline fs_val_t fs_num_sub(fs_val_t a, fs_val_t b) { return a - b; }
+
+static inline fs_val_t fs_num_mul_vp(fs_val_t a, fs_phase_t p, uint32_t *ev)
+{
+    (void)ev;
+    return a * p;
+}
+
+static inline fs_val_t fs_num_mul_vv(fs_val_t a, fs_val_t b, uint32_t *ev)
+{
+    (void)ev;
+    return a * b;
+}
+
+static inline fs_force_t fs_num_force(fs_stiff_t k, fs_val_t x, uint32_t *ev)
+{
+    (void)ev;
+    return k * x;
+}
+
+static inline fs_expo_t fs_num_kernel_expo(fs_phase_t u, fs_phase_t c, fs_kscale_t s)
+{
+    const fs_real_t d = u - c;
+    return d * d * s;
+}
+
+static inline fs_kdist_t fs_num_kernel_dist(fs_phase_t u, fs_phase_t c, fs_kscale_t s)
+{
+    return fs_num_kernel_expo(u, c, s);
+}
+
+static inline fs_act_t fs_num_exp_neg(fs_expo_t e) { return fs_exp(-e); }
+
+static inline void fs_num_blend_acc(fs_bnum_t *num, fs_bden_t *den, fs_act_t psi, fs_val_t w)
+{
+    *num += psi * w;
+    *den += psi;
+}
+
+static inline fs_val_t fs_num_blend_div(fs_bnum_t num, fs_bden_t den) { return num / den; }
+
+static inline fs_wide_t fs_num_gain_val(fs_gain_t g, fs_val_t v) { return g * v; }
+static inline fs_wide_t fs_num_gain_force(fs_gain_t g, fs_force_t f) { return g * f; }
+static inline fs_force_t fs_num_wide_force(fs_wide_t w) { return w; }
+static inline fs_val_t fs_num_dt_force(fs_coef_t dt, fs_force_t f) { return dt * f; }
+static inline int fs_num_is_nan(fs_wide_t w) { return w != w; }
+
+static inline fs_real_t fs_num_clamp(fs_real_t v, fs_real_t lim)
+{
+    if (v > lim) {
+        return lim;
+    }
+    if (v < -lim) {
+        return -lim;
+    }
+    return v;
+}
+
+#endif /* FS_NUM_REAL_H */

@@ -1,0 +1,176 @@
+/* The fixed-point half of the numeric layer (fs_num.h), over the Q-format helpers of fx.h:
+ * int32 values in the formats listed in fs_num.h, 64-bit exact intermediates, rounding half up,
+ * saturation (never wrap). The _ev operations and the DMP state updates count every saturation
+ * in *ev (0 in a validated run). Selected by FS_NUMERIC_FIXED (fs_fixed); fs_num.h documents
+ * each operation, the comments here give the formats. */
+#ifndef FS_NUM_FIXED_H
+#define FS_NUM_FIXED_H
+
+#include <stdint.h>
+#include "fx.h"
+
+typedef int32_t fs_phase_t;   /* Q2.30 */
+typedef int32_t fs_kscale_t;  /* Q13.19 1/sigma */
+typedef uint32_t fs_expo_t;   /* Q5.27 unsigned */
+typedef uint64_t fs_kdist_t;  /* Q.49 unsigned */
+typedef int32_t fs_act_t;     /* Q1.30, in [0, 2^30] */
+typedef int64_t fs_bnum_t;    /* Q.51 */
+typedef uint64_t fs_bden_t;   /* Q.30 */
+typedef int32_t fs_val_t;     /* Q8.24 */
+typedef int32_t fs_coef_t;    /* Q1.31, in [0, 0.5) for the DMP */
+typedef int64_t fs_acc_t;     /* value * 2^31 */
+typedef int32_t fs_force_t;   /* Q16.16 N */
+typedef int32_t fs_gain_t;    /* Q16.16 */
+typedef int32_t fs_stiff_t;   /* Q20.12 N/m */
+typedef int64_t fs_wide_t;    /* Q.32 N */
+
+#define FS_NUM_ZERO 0
+#define FS_NUM_PHASE_ONE FX_Q30_ONE
+/* Kernels with e_i above 16 are skipped: exp(-16) = 1.1e-7 of the largest activation, below
+ * Q8.24 resolution of S (the real layer uses DMP_KERNEL_CUTOFF_EXP, 23). */
+#define FS_NUM_CUTOFF FX_EXP_ARG_MAX_Q27
+#define FS_NUM_EXPO_INF UINT32_MAX
+/* Most kernels one blend looks at: DMPFX_MAX_WINDOW (dmpfx.h, checked at conversion). */
+#define FS_NUM_MAX_WINDOW DMPFX_MAX_WINDOW
+/* |u - c_i|/sigma_i >= 6 (e_i >= 18 > 16) is skipped before squaring: in Q.49 that is a high
+ * word >= 6 << 17, and below it r^2/2 fits uint32 in Q5.27. */
+#define FS_NUM_R_SKIP_HI ((uint32_t)6u << 17)
+
+static inline fs_val_t fs_num_view(fs_acc_t acc) { return fx_acc_view(acc); }
+
+static inline fs_acc_t fs_num_acc_mac1(fs_acc_t acc, fs_coef_t k, fs_val_t a, uint32_t *ev)
+{
+    return fx_acc_add(acc, (int64_t)k * a, ev);
+}
+
+static inline fs_acc_t fs_num_acc_mac2(fs_acc_t acc, fs_coef_t ka, fs_val_t a, fs_coef_t kb,
+                                       fs_val_t b, uint32_t *ev)
+{
+    return fx_acc_add(acc, (int64_t)ka * a - (int64_t)kb * b, ev);
+}
+
+/* The result of a 32-bit add/sub whose overflow flag is ovf: r, or saturated toward a's sign
+ * (the overflowing direction for a + b and a - b alike) and counted. */
+static inline fs_val_t fs_num_ovf_ev(int ovf, int32_t r, int32_t a, uint32_t *ev)
+{
+    if (ovf) {
+        (*ev)++;
+        return (a < 0) ? INT32_MIN : INT32_MAX;
+    }
+    return r;
+}
+
+static inline fs_val_t fs_num_add_ev(fs_val_t a, fs_val_t b, uint32_t *ev)
+{
+    int32_t r;
+    const int ovf = __builtin_add_overflow(a, b, &r);
+    return fs_num_ovf_ev(ovf, r, a, ev);
+}
+
+static inline fs_val_t fs_num_sub_ev(fs_val_t a, fs_val_t b, uint32_t *ev)
+{
+    int32_t r;
+    const int ovf = __builtin_sub_overflow(a, b, &r);
+    return fs_num_ovf_ev(ovf, r, a, ev);
+}
+
+static inline fs_val_t fs_num_add(fs_val_t a, fs_val_t b) { return fx_add_sat(a, b); }
+static inline fs_val_t fs_num_sub(fs_val_t a, fs_val_t b) { return fx_sub_sat(a, b); }
+
+/* Saturate a 64-bit value into int32 and count. */
+static inline int32_t fs_num_sat_ev(int64_t v, uint32_t *ev)
+{
+    const int32_t r = fx_sat32(v);
+    if ((int64_t)r != v) {
+        (*ev)++;
+    }
+    return r;
+}
+
+/* Q8.24 * Q2.30 -> Q8.24 */
+static inline fs_val_t fs_num_mul_vp(fs_val_t a, fs_phase_t p, uint32_t *ev)
+{
+    return fs_num_sat_ev(fx_rshift_round((int64_t)a * p, 30u), ev);
+}
+
+/* Q8.24 * Q8.24 -> Q8.24 */
+static inline fs_val_t fs_num_mul_vv(fs_val_t a, fs_val_t b, uint32_t *ev)
+{
+    return fs_num_sat_ev(fx_rshift_round((int64_t)a * b, 24u), ev);
+}
+
+/* Q20.12 N/m * Q8.24 m -> Q16.16 N */
+static inline fs_force_t fs_num_force(fs_stiff_t k, fs_val_t x, uint32_t *ev)
+{
+    return fs_num_sat_ev(fx_rshift_round((int64_t)k * x, 20u), ev);
+}
+
+/* r = |u - c| s in Q.49 (s = 1/sigma): |u - c| exactly in uint32 (< 2^32 for any int32 pair),
+ * s < 2^31. */
+static inline fs_kdist_t fs_num_kernel_dist(fs_phase_t u, fs_phase_t c, fs_kscale_t s)
+{
+    const uint32_t ad = (u >= c) ? (uint32_t)u - (uint32_t)c : (uint32_t)c - (uint32_t)u;
+    return (uint64_t)ad * (uint32_t)s;
+}
+
+/* e = r^2/2 in Q5.27 (r truncated to Q.27 first); FS_NUM_EXPO_INF when r >= 6. */
+static inline fs_expo_t fs_num_kernel_expo(fs_phase_t u, fs_phase_t c, fs_kscale_t s)
+{
+    const uint64_t r = fs_num_kernel_dist(u, c, s);
+    if ((uint32_t)(r >> 32) >= FS_NUM_R_SKIP_HI) {
+        return FS_NUM_EXPO_INF;
+    }
+    const uint32_t r27 = (uint32_t)(r >> 22);
+    return (uint32_t)(((uint64_t)r27 * r27) >> 28);
+}
+
+/* exp(-e) in Q1.30: the Q1.31 table exp halved, so psi*w is one signed 32x32 product. */
+static inline fs_act_t fs_num_exp_neg(fs_expo_t e) { return (int32_t)(fx_exp_neg_q27(e) >> 1); }
+
+/* num += psi*w / 2^3 (Q.51; < 32 * 2^60 / 8 = 2^62 over a window), den += psi (Q.30). */
+static inline void fs_num_blend_acc(fs_bnum_t *num, fs_bden_t *den, fs_act_t psi, fs_val_t w)
+{
+    *num += ((int64_t)w * psi) >> 3;
+    *den += (uint32_t)psi;
+}
+
+/* S = num * 2^3 / den in Q8.24, den >= 2^30 (the e_min kernel has psi = 1). |S| <= max |w_i|,
+ * so the quotient fits; den is brought to 32 bits (keeping >= 30 significant bits) and num
+ * shifted to match. */
+static inline fs_val_t fs_num_blend_div(fs_bnum_t num, fs_bden_t den)
+{
+    const int neg = num < 0;
+    const uint64_t mag = (uint64_t)(neg ? -num : num);
+    uint64_t nn;
+    uint32_t dd;
+    if ((den >> 32) == 0u) {
+        nn = mag << 3;
+        dd = (uint32_t)den;
+    } else {
+        const unsigned sh = 32u - (unsigned)__builtin_clz((uint32_t)(den >> 32)); /* 1..3 */
+        dd = (uint32_t)(den >> sh);
+        nn = mag << (3u - sh);
+    }
+    const uint32_t q = fx_udiv64_32_round(nn, dd);
+    return neg ? -(int32_t)q : (int32_t)q;
+}
+
+/* Q16.16 gain * Q8.24 -> Q.32 (N); < 2^54 for int32 operands. */
+static inline fs_wide_t fs_num_gain_val(fs_gain_t g, fs_val_t v) { return ((int64_t)g * v) >> 8; }
+/* Q16.16 gain * Q16.16 N -> Q.32 (N); < 2^62. */
+static inline fs_wide_t fs_num_gain_force(fs_gain_t g, fs_force_t f) { return (int64_t)g * f; }
+/* Q.32 -> Q16.16 N, rounded, saturated. */
+static inline fs_force_t fs_num_wide_force(fs_wide_t w) { return fx_sat32(fx_rshift_round(w, 16u)); }
+/* Q1.31 s * Q16.16 N -> Q8.24 N*s */
+static inline fs_val_t fs_num_dt_force(fs_coef_t dt, fs_force_t f)
+{
+    return fx_sat32(fx_rshift_round((int64_t)dt * f, 23u));
+}
+static inline int fs_num_is_nan(fs_wide_t w)
+{
+    (void)w;
+    return 0;
+}
+static inline int32_t fs_num_clamp(int32_t v, int32_t lim) { return fx_clamp_sym(v, lim); }
+
+#endif /* FS_NUM_FIXED_H */
