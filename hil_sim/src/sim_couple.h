@@ -13,8 +13,10 @@
 #include "sim_scenario.h"
 
 #define SIM_PARK_TAU_S 0.05   /* idle: the drive brings the handle back to the start position */
-#define SIM_PARK_VMAX_MPS 0.1 /* ... at most this fast (an uncapped first-order park moved a handle
-                                 0.29 m away by 5.8 mm in one tick: an encoder jump to the device) */
+#define SIM_PARK_VMAX_MPS 0.5 /* ... at most this fast: 0.5 mm per tick, 1/10 of the device's
+                                 encoder-jump limit (an uncapped first-order park moved a handle
+                                 0.29 m away by 5.8 mm in one tick: an encoder jump to the device;
+                                 0.1 m/s left the handle still moving when the next run started) */
 
 /** One sample of the sensors: x, y encoders (m), tip (contact) force x, handle force x, y (N). */
 typedef struct {

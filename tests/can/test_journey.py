@@ -102,7 +102,9 @@ def test_tracking_figures_1x_and_1_5x(journey):
         mx, rms = tracking(cols)
         # HIL issue: execution force tracking RMS <= 3 % of max force (ideal plant)
         assert rms <= 3.0, f"goal x{g}: tracking RMS {rms:.2f} %"
-        assert mx <= 15.0, f"goal x{g}: tracking max {mx:.2f} %"
+        # max: 2.7 % (1x) and 1.7 % (1.5x) measured; 6 % catches a run that starts before the
+        # handle is parked (a too slow simulated park gave 6.9 % at 1.5x, the start transient)
+        assert mx <= 6.0, f"goal x{g}: tracking max {mx:.2f} %"
         assert np.all(np.abs(cols["f_cmd"]) <= 50.0 + 1e-9)   # F_max at the last stage
     # goal scaling scales the force by 1.5 (reference exactly, measured within 3 %)
     r_ref = res["1.5"]["f_hat"].max() / res["1"]["f_hat"].max()
