@@ -18,11 +18,11 @@ FW="$ROOT/firmware"
 
 sources_for() {
     case "$1" in
-        skill_parse) echo "-I$FW/core $FW/core/skill.c $FW/core/dmp.c $FW/core/pfc.c" ;;
-        nvm_record)  echo "-I$FW/storage -I$FW/safety $FW/storage/nvm.c $FW/storage/fls_ram.c" ;;
-        isotp)       echo "-I$FW/proto -I$FW/proto/generated $FW/proto/isotp.c" ;;
-        uds)         echo "-I$FW/proto -I$FW/proto/generated $FW/proto/uds.c" ;;
-        frames)      echo "-I$FW/proto -I$FW/proto/generated $FW/proto/generated/fs_dbc.c $FW/proto/e2e.c" ;;
+        skill_parse) echo "-I$FW/base -I$FW/core $FW/core/skill.c $FW/core/dmp.c $FW/core/pfc.c" ;;
+        nvm_record)  echo "-I$FW/base -I$FW/storage $FW/storage/nvm.c $FW/storage/fls_ram.c" ;;
+        isotp)       echo "-I$FW/base -I$FW/proto -I$FW/proto/generated $FW/proto/isotp.c" ;;
+        uds)         echo "-I$FW/base -I$FW/proto -I$FW/proto/generated $FW/proto/uds.c" ;;
+        frames)      echo "-I$FW/base -I$FW/proto -I$FW/proto/generated $FW/proto/generated/fs_dbc.c $FW/proto/e2e.c" ;;
     esac
 }
 needs_for() {

@@ -10,7 +10,7 @@ OUT="${1:-$ROOT/build-static}"
 mkdir -p "$OUT"
 cd "$ROOT"
 TEMPLATE='{file}:{line}:{severity}:{id}:{message}'
-INC=(-I firmware/core -I firmware/safety -I firmware/storage -I firmware/security
+INC=(-I firmware/base -I firmware/core -I firmware/safety -I firmware/storage -I firmware/security
      -I firmware/proto -I firmware/proto/generated)
 fatal=0
 

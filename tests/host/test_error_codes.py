@@ -15,7 +15,7 @@ def _c_enum(path: Path, prefix: str) -> dict[str, int]:
 
 
 def test_fs_status_codes_are_mirrored() -> None:
-    c = _c_enum(ROOT / "firmware/core/fs_status.h", "FS_ERR_")
+    c = _c_enum(ROOT / "firmware/base/fs_status.h", "FS_ERR_")
     assert len(c) > 20
     for name, value in c.items():
         py = getattr(errors, name.replace("FS_ERR_", "ERR_"), None)
@@ -23,7 +23,7 @@ def test_fs_status_codes_are_mirrored() -> None:
 
 
 def test_device_fault_table_matches_flt_codes() -> None:
-    c = _c_enum(ROOT / "firmware/safety/flt_codes.h", "FLT_")
+    c = _c_enum(ROOT / "firmware/base/flt_codes.h", "FLT_")
     faults = {v for k, v in c.items() if k != "FLT_NONE" and 500 <= v < 520}
     assert faults == set(errors.DEVICE_FAULTS), "errors.DEVICE_FAULTS differs from flt_codes.h"
     assert errors.fault_text(0) == "none"
