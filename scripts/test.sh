@@ -8,6 +8,9 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$ROOT/scripts/setup.sh"
 cd "$ROOT"
 
+echo "== generated files agree with their sources (codes.toml -> headers, codes.py, docs/codes.md)"
+.venv/bin/python tools/gen_codes.py --check
+
 echo "== C tests (Debug: ASan + UBSan)"
 cmake -S . -B build-debug -G Ninja -DCMAKE_BUILD_TYPE=Debug -DPython3_EXECUTABLE="$ROOT/.venv/bin/python" >/dev/null
 cmake --build build-debug -j "$(nproc)"

@@ -6,19 +6,7 @@
 #include "app.h"
 #include "fwu_uds.h"
 
-/* Data identifiers (big-endian values, IEEE-754 float32 for real numbers) */
-#define DID_SW_VERSION 0xF189u
-#define DID_VERSIONS 0xF1A0u      /* proto major, minor, skill format, max kernels u16, slots u8 */
-#define DID_GAINS_X 0x0100u       /* m_d, k_d, k_p, k_f, k_i (f32 x5) */
-#define DID_GAINS_Y 0x0101u
-#define DID_LIMITS_X 0x0110u      /* force_max, slew_max, pos_min, pos_max, vel_max, contact_max */
-#define DID_LIMITS_Y 0x0111u
-#define DID_COMM 0x0120u          /* telemetry period ms u8, host timeout ms u16 */
-#define DID_OBJECT 0x0130u        /* use_model u8, m_v, d_v, k1, k2, layer, surface (f32 x6) */
-#define DID_SLOT_DIR 0x0200u      /* n u8; per slot: valid u8, length u32, crc u32, N u16, T f32, end u8 */
-#define DID_LAST_TRANSFER 0x0201u /* status code u16 of the last download (0 ok) */
-#define DID_DEVICE_STATE 0x0300u  /* state u8, fault u16, slot u8, step u8, tick u32 */
-
+/* Data identifiers (DID_*, fs_uds_ids.h): big-endian values, IEEE-754 float32 for reals. */
 #define SLOT_DIR_ENTRY 16u
 
 static void put_u16(uint8_t *p, uint16_t v)

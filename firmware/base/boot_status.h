@@ -1,9 +1,9 @@
-/* Status codes of the firmware image and update path (firmware/boot), range 7xx. The host mirrors
- * them in host/forceskill/fwimage.py; fwu_nrc() maps each to its UDS negative response code
- * (table in docs/update.md). Stable: never renumber, only append. */
+/* Status codes: Firmware image and update.
+ * generated from firmware/base/codes.toml by tools/gen_codes.py; do not edit. */
 #ifndef BOOT_STATUS_H
 #define BOOT_STATUS_H
 
+/** Firmware image and update (700-729, firmware/boot). */
 typedef enum {
     BOOT_OK = 0,
     BOOT_ERR_TRUNCATED = 700,     /* fewer bytes than header + payload_length + tag */
@@ -14,17 +14,19 @@ typedef enum {
     BOOT_ERR_HASH = 705,          /* SHA-256 of the payload differs from the header's */
     BOOT_ERR_TAG = 706,           /* HMAC-SHA256 tag wrong: not authorised for this device */
     BOOT_ERR_DOWNGRADE = 707,     /* older than the running image and not forced */
-    BOOT_ERR_SKILL_FORMAT = 708,  /* stored skills in a format the image can neither read nor migrate */
+    /* stored skills in a format the image can neither read nor migrate */
+    BOOT_ERR_SKILL_FORMAT = 708,
     BOOT_ERR_CONFIG_FORMAT = 709, /* stored configuration likewise */
     BOOT_ERR_NO_IMAGE = 710,      /* no slot holds a bootable, authorised image */
     BOOT_ERR_FLASH = 711,         /* the flash HAL refused a read, erase or write */
     BOOT_ERR_ARG = 712,           /* NULL pointer or slot index out of range */
-
     FWU_ERR_LOCKED = 720,         /* not in the programming session with SecurityAccess unlocked */
-    FWU_ERR_SEQUENCE = 722,       /* service out of order (no download active, exit too early, ...) */
+    /* service out of order (no download active, exit too early, ...) */
+    FWU_ERR_SEQUENCE = 722,
     FWU_ERR_BLOCK_COUNTER = 723,  /* TransferData block sequence counter not the expected one */
     FWU_ERR_OVERRUN = 724,        /* more data than announced in RequestDownload */
-    FWU_ERR_TEST_PENDING = 725,   /* running image not yet confirmed: its fallback must not be overwritten */
+    /* running image not yet confirmed: its fallback must not be overwritten */
+    FWU_ERR_TEST_PENDING = 725,
     FWU_ERR_RANGE = 726,          /* address, size or data format of RequestDownload not accepted */
 } boot_status_t;
 

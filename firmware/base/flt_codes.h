@@ -1,13 +1,11 @@
-/* The 5xx range of fs_status.h: safety faults (500-529), storage status (530-549) and security
- * status (550-569). Every number is documented in docs/safety.md and mirrored in the host package
- * (host/forceskill/errors.py). Codes are stable: never renumber, only append. */
+/* Status codes: Safety: latched device faults; Safety configuration.
+ * generated from firmware/base/codes.toml by tools/gen_codes.py; do not edit. */
 #ifndef FLT_CODES_H
 #define FLT_CODES_H
 
 #include <stdint.h>
 
-/** Latched faults. Each one drives the safe stop (ramp to zero, then actuator off), shows in the
- *  status frame and produces one emergency frame when it latches. */
+/** Safety: latched device faults (500-519). */
 typedef enum {
     FLT_NONE = 0,
     FLT_HOST_SILENCE = 500,   /* no host heartbeat/command for wdg timeout (default 100 ms) */
@@ -28,52 +26,25 @@ typedef enum {
 } flt_code_t;
 
 #define FLT_CODE_FIRST 500u
-#define FLT_COUNT 15u          /* codes FLT_CODE_FIRST .. FLT_CODE_FIRST + FLT_COUNT - 1 */
+#define FLT_COUNT 15u /* codes FLT_CODE_FIRST .. FLT_CODE_FIRST + FLT_COUNT - 1 */
 
-/** Bit of a fault code in a cause/latched mask (0 for FLT_NONE or an unknown code). */
+/** Bit of a code in a cause/latched mask (0 for FLT_NONE or an unknown code). */
 #define FLT_BIT(code) \
     (((uint32_t)(code) >= FLT_CODE_FIRST && (uint32_t)(code) < FLT_CODE_FIRST + FLT_COUNT) \
          ? (1u << ((uint32_t)(code) - FLT_CODE_FIRST)) : 0u)
 
-
-/** Safety configuration results (saf_config_validate and the modules' *_config_validate). */
+/** Safety configuration (520-529: saf_config_validate and the modules' *_config_validate). */
 typedef enum {
     SAF_OK = 0,
-    SAF_ERR_NULL_ARG = 520,     /* a required pointer was NULL */
-    SAF_ERR_NOT_FINITE = 521,   /* a limit is NaN or infinite */
-    SAF_ERR_NONPOSITIVE = 522,  /* a limit that must be > 0 is <= 0 */
-    SAF_ERR_WORKSPACE = 523,    /* workspace or sensor range with min >= max */
-    SAF_ERR_TIMEOUT = 524,      /* host-silence timeout outside 20..500 ms */
-    SAF_ERR_RAMP = 525,         /* ramp longer than 50 ms, shorter than one tick, or the slew
-                                   limit cannot reach zero from force_max within the ramp */
-    SAF_ERR_FORCE_MAX = 526,    /* force_max above the hardware ceiling LIM_FORCE_CEILING_N */
+    SAF_ERR_NULL_ARG = 520,    /* a required pointer was NULL */
+    SAF_ERR_NOT_FINITE = 521,  /* a limit is NaN or infinite */
+    SAF_ERR_NONPOSITIVE = 522, /* a limit that must be > 0 is <= 0 */
+    SAF_ERR_WORKSPACE = 523,   /* workspace or sensor range with min >= max */
+    SAF_ERR_TIMEOUT = 524,     /* host-silence timeout outside 20..500 ms */
+    /* ramp longer than 50 ms, shorter than one tick, or the slew limit cannot reach zero from
+     * force_max within the ramp */
+    SAF_ERR_RAMP = 525,
+    SAF_ERR_FORCE_MAX = 526,   /* force_max above the hardware ceiling LIM_FORCE_CEILING_N */
 } saf_status_t;
-
-/** Storage (firmware/storage, nvm_*) results. */
-typedef enum {
-    NVM_OK = 0,
-    NVM_ERR_NULL_ARG = 530,     /* a required pointer was NULL */
-    NVM_ERR_SLOT = 531,         /* slot index out of range */
-    NVM_ERR_TOO_LARGE = 532,    /* payload larger than a slot holds */
-    NVM_ERR_EMPTY = 533,        /* the slot holds no valid record */
-    NVM_ERR_FLASH = 534,        /* the flash HAL reported an erase/program/read failure */
-    NVM_ERR_VERIFY = 535,       /* read-back after programming differs from what was written */
-    NVM_ERR_REC_MAGIC = 536,    /* record magic wrong (or erased flash) */
-    NVM_ERR_REC_VERSION = 537,  /* unsupported record format version */
-    NVM_ERR_REC_LENGTH = 538,   /* record length field impossible for the buffer/sector */
-    NVM_ERR_REC_CRC = 539,      /* record CRC-32 mismatch */
-    NVM_ERR_REC_UNCOMMITTED = 540, /* commit word not written: an interrupted write */
-    NVM_ERR_GEOMETRY = 541,     /* flash geometry unusable (sector too small, too few sectors) */
-    NVM_ERR_BUFFER = 542,       /* caller's buffer too small for the record */
-    NVM_ERR_PAYLOAD = 543,      /* payload rejected by the content check (e.g. skill_parse) */
-} nvm_status_t;
-
-/** Security (firmware/security, sec_*) results that are not UDS negative response codes. */
-typedef enum {
-    SEC_OK = 0,
-    SEC_ERR_NULL_ARG = 550,     /* a required pointer was NULL */
-    SEC_ERR_RNG = 551,          /* the random source failed or returned a degenerate seed */
-    SEC_ERR_CONFIG = 552,       /* configuration invalid (secret length, attempts, delays) */
-} sec_status_t;
 
 #endif /* FLT_CODES_H */

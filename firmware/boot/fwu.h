@@ -16,11 +16,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 #include "boot.h"
+#include "fs_uds_ids.h" /* FWU_DOWNLOAD_ADDRESS, FWU_RID_*, FWU_DID_STATUS */
 
-#define FWU_DOWNLOAD_ADDRESS 0xF0000000u  /* RequestDownload memoryAddress of "the inactive slot" */
-#define FWU_RID_MARK_TEST 0x0F01u         /* start; option u8: bit 0 allow downgrade */
-#define FWU_RID_CONFIRM 0x0F02u           /* start; the running image confirms itself */
-#define FWU_DID_STATUS 0xF1B0u            /* read: FWU_STATUS_LEN bytes, see fwu_status() */
 #define FWU_STATUS_LEN 17u
 #define FWU_OPT_ALLOW_DOWNGRADE BOOT_FLAG_ALLOW_DOWNGRADE
 

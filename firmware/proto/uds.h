@@ -14,6 +14,7 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+#include "fs_uds_ids.h"
 
 /* Service identifiers */
 #define UDS_SID_DSC 0x10u
@@ -55,16 +56,8 @@
 #define UDS_SESSION_PROGRAMMING 0x02u
 #define UDS_SESSION_EXTENDED 0x03u
 
-/* Security levels (requestSeed sub-function; sendKey is level + 1) */
-#define UDS_SEC_LEVEL_WRITE 0x01u      /* skills, gains, limits: extended or programming session */
-#define UDS_SEC_LEVEL_FIRMWARE 0x03u   /* firmware images: programming session only */
-
-/* Routine identifiers (0x31) */
-#define UDS_RID_RUN_SKILL 0x0201u      /* start: slot u8, goal_scale u16 (1e-3), time_scale u16 (1e-3), end u8 */
-#define UDS_RID_RUN_SEQUENCE 0x0202u   /* start: end u8, then per step slot u8, goal u16, time u16, duration_ms u32 */
-#define UDS_RID_SELF_TEST 0x0203u      /* start: runs the checks; results: status u8, code u16 */
-#define UDS_RID_CLEAR_FAULTS 0x0204u   /* start: clear latched faults (refused while a cause persists) */
-#define UDS_RID_ERASE_SLOT 0xFF00u     /* start: slot u8 (security level 1) */
+/* Routine control sub-functions. The device's security levels (requestSeed sub-function; sendKey
+ * is level + 1) and routine identifiers are in fs_uds_ids.h. */
 #define UDS_ROUTINE_START 0x01u
 #define UDS_ROUTINE_STOP 0x02u
 #define UDS_ROUTINE_RESULTS 0x03u

@@ -17,7 +17,7 @@
 
 #include <stdbool.h>
 #include <stdint.h>
-#include "flt_codes.h"
+#include "sec_status.h"
 
 #define SEC_SEED_LEN 16u
 #define SEC_KEY_LEN 16u

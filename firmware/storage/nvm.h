@@ -24,7 +24,7 @@
 
 #include <stdbool.h>
 #include <stdint.h>
-#include "flt_codes.h"
+#include "nvm_status.h"
 #include "fls.h"
 
 #define NVM_RECORD_MAGIC 0x524D564Eu

@@ -23,21 +23,15 @@ from pathlib import Path
 from typing import Any, Callable, Optional
 
 from . import fwimage as fw
-from .errors import ERR_IO, FsError
+from .codes import DID_FWU_STATUS as DID_STATUS
+from .codes import (DOWNLOAD_ADDRESS, RID_CONFIRM, RID_MARK_TEST,  # noqa: F401
+                    SEC_LEVEL_FIRMWARE, UDS_REQUEST_BASE, UDS_RESPONSE_BASE)
+from .errors import ERR_FLASH_NOT_CONFIRMED as ERR_NOT_CONFIRMED
+from .errors import (ERR_IO, ERR_LINK_BUS, ERR_LINK_NEGATIVE,  # noqa: F401
+                     ERR_LINK_NO_RESPONSE, ERR_LINK_TIMEOUT, FsError)
 
-DOWNLOAD_ADDRESS = 0xF0000000
-RID_MARK_TEST = 0x0F01
-RID_CONFIRM = 0x0F02
-DID_STATUS = 0xF1B0
 STATUS_LEN = 17
-SEC_LEVEL_FIRMWARE = 0x03
 SESSION_PROGRAMMING = 0x02
-UDS_REQUEST_BASE = 0x600      # + node (firmware/proto/proto_ids.h)
-UDS_RESPONSE_BASE = 0x680
-
-# link failures use the CAN link's codes (forceskill/link/__init__.py, 63x)
-ERR_LINK_BUS, ERR_LINK_NO_RESPONSE, ERR_LINK_NEGATIVE, ERR_LINK_TIMEOUT = 630, 631, 632, 635
-ERR_NOT_CONFIRMED = 742  # host only: after the reset the device did not run the new image
 
 PATHS = {0: "none", 1: "active", 2: "test boot (must confirm)", 3: "reverted (test image did not confirm)",
          4: "active (test image refused)", 5: "recovered (other slot)", 6: "first boot"}

@@ -3,7 +3,7 @@
 An image is ``header (128 bytes) || payload || tag (32 bytes)``, little-endian. The tag is
 HMAC-SHA256(device key, header || payload) from Python's standard library (``hmac``, ``hashlib``);
 the firmware checks it with firmware/security's SHA-256/HMAC (tested against FIPS 180-4 and
-RFC 4231 vectors) in firmware/boot/boot_image.c. Codes 7xx are the firmware's (boot_status.h).
+RFC 4231 vectors) in firmware/boot/boot_image.c. Codes 7xx are the firmware's (firmware/base/boot_status.h).
 """
 from __future__ import annotations
 
@@ -35,27 +35,17 @@ CONFIG_FORMAT = 1
 DEV_KEY = bytes(range(0x40, 0x60))
 KEY_ENV = "FORCESKILL_FW_KEY"
 
-# 7xx: firmware image and update (firmware/boot/boot_status.h)
-ERR_TRUNCATED = 700
-ERR_MAGIC = 701
-ERR_FORMAT = 702
-ERR_TARGET = 703
-ERR_TOO_LARGE = 704
-ERR_HASH = 705
-ERR_TAG = 706
-ERR_DOWNGRADE = 707
-ERR_SKILL_FORMAT = 708
-ERR_CONFIG_FORMAT = 709
-ERR_NO_IMAGE = 710
-ERR_FLASH = 711
-ERR_LOCKED = 720
-ERR_SEQUENCE = 722
-ERR_BLOCK_COUNTER = 723
-ERR_OVERRUN = 724
-ERR_TEST_PENDING = 725
-ERR_RANGE = 726
-ERR_KEY = 730       # host only: key file missing or not 32..64 bytes of hex
-ERR_ARGS = 731      # host only: bad version string, target name, build id
+# 7xx: firmware image and update, the firmware's boot_status.h; 73x host only (codes.py)
+from .codes import (  # noqa: E402
+    BOOT_ERR_CONFIG_FORMAT as ERR_CONFIG_FORMAT, BOOT_ERR_DOWNGRADE as ERR_DOWNGRADE,
+    BOOT_ERR_FLASH as ERR_FLASH, BOOT_ERR_FORMAT as ERR_FORMAT, BOOT_ERR_HASH as ERR_HASH,
+    BOOT_ERR_MAGIC as ERR_MAGIC, BOOT_ERR_NO_IMAGE as ERR_NO_IMAGE,
+    BOOT_ERR_SKILL_FORMAT as ERR_SKILL_FORMAT, BOOT_ERR_TAG as ERR_TAG,
+    BOOT_ERR_TARGET as ERR_TARGET, BOOT_ERR_TOO_LARGE as ERR_TOO_LARGE,
+    BOOT_ERR_TRUNCATED as ERR_TRUNCATED, ERR_IMAGE_ARGS as ERR_ARGS, ERR_IMAGE_KEY as ERR_KEY,
+    FWU_ERR_BLOCK_COUNTER as ERR_BLOCK_COUNTER, FWU_ERR_LOCKED as ERR_LOCKED,
+    FWU_ERR_OVERRUN as ERR_OVERRUN, FWU_ERR_RANGE as ERR_RANGE, FWU_ERR_SEQUENCE as ERR_SEQUENCE,
+    FWU_ERR_TEST_PENDING as ERR_TEST_PENDING)
 
 # Negative response codes of the device's update path (firmware/boot/fwu.h, docs/update.md).
 NRC = {

@@ -77,7 +77,7 @@ def test_update_revert_refusals_and_skills_kept(sim, tmp_path, capsys):
     # a build whose self-test fails: booted once, not confirmed, reverted
     bad = b"FSHOST-SELFTEST-FAIL" + payload[:20000]
     rc, out, err = flash(capsys, image(tmp_path, "bad", "1.2.0", bad), sim)
-    assert rc == 2 and "device reverted to 1.1.0" in err and "[742]" in err, err
+    assert rc == 2 and "device reverted to 1.1.0" in err and "[638]" in err, err
 
     # refusals, each with its own code, straight to the device
     ns = argparse.Namespace(interface="socketcand", channel="can0",

@@ -36,7 +36,7 @@ _channels = itertools.count()
 @pytest.fixture(scope="module")
 def lib(tmp_path_factory) -> ctypes.CDLL:
     out = tmp_path_factory.mktemp("fsdev") / "libfsdev.so"
-    inc = [f"-I{FW / d}" for d in ("boot", "proto", "security", "storage", "safety")]
+    inc = [f"-I{FW / d}" for d in ("base", "boot", "proto", "security", "storage")]
     subprocess.run(["cc", "-std=c11", "-O1", "-shared", "-fPIC", "-Wall", "-Wextra", "-Werror", *inc,
                     str(Path(__file__).parent / "uds_device.c"), *[str(FW / s) for s in SOURCES],
                     "-o", str(out)], check=True)
@@ -141,7 +141,7 @@ def test_revert_when_the_new_image_fails_its_self_test(lib, device, tmp_path, ca
     assert run_cli(tmp_path, device, image("1.1.0")) == 2
     err = capsys.readouterr().err
     assert "device reverted to 1.0.0: the new image 1.1.0 did not confirm itself" in err, err
-    assert "[742]" in err
+    assert "[638]" in err
     assert lib.dev_running_version() == fw.pack_version("1.0.0")
     assert lib.dev_path() == 3   # BOOT_PATH_REVERTED
 

@@ -14,9 +14,9 @@ from pathlib import Path
 
 import cantools
 
+from ..codes import UDS_REQUEST_BASE, UDS_RESPONSE_BASE  # noqa: F401
+
 SAFETY_FRAMES = ("Emergency", "HostCommand", "HostHeartbeat", "DeviceStatus")
-UDS_REQUEST_BASE = 0x600
-UDS_RESPONSE_BASE = 0x680
 STATES = {0: "BOOT", 1: "IDLE", 2: "TEACH", 3: "EXECUTE", 4: "FAULT"}
 MODES = {"none": 0, "idle": 1, "teach": 2, "execute": 3, "clear_fault": 4}
 END_POLICIES = {"skill": 0, "hold": 1, "release": 2}

@@ -20,6 +20,11 @@ from udsoncan.client import Client
 from udsoncan.connections import PythonIsoTpConnection
 from udsoncan.exceptions import NegativeResponseException, TimeoutException, UnexpectedResponseException
 
+from ..codes import (DID_COMM, DID_DEVICE_STATE, DID_GAINS_X, DID_GAINS_Y,  # noqa: F401
+                     DID_LAST_TRANSFER, DID_LIMITS_X, DID_LIMITS_Y, DID_OBJECT, DID_SLOT_DIR,
+                     DID_SW_VERSION, DID_VERSIONS, RID_CLEAR_FAULTS, RID_ERASE_SLOT,
+                     RID_RUN_SEQUENCE, RID_RUN_SKILL, RID_SELF_TEST, SEC_LEVEL_WRITE,
+                     SKILL_STATUS_TEXT)
 from ..errors import FsError
 from . import ERR_LINK_NEGATIVE, ERR_LINK_TIMEOUT, ERR_LINK_VERIFY
 from .dbc import UDS_REQUEST_BASE, UDS_RESPONSE_BASE
@@ -30,36 +35,12 @@ SIM_SECRET = b"forceskill-simulator-secret-0001"
 # udsoncan logs every negative response; the commands report them as one line themselves
 logging.getLogger("UdsClient").setLevel(logging.CRITICAL)
 logging.getLogger("isotp").setLevel(logging.CRITICAL)
-SEC_LEVEL_WRITE = 0x01
-
-DID_SW_VERSION = 0xF189
-DID_VERSIONS = 0xF1A0
-DID_GAINS_X = 0x0100
-DID_GAINS_Y = 0x0101
-DID_LIMITS_X = 0x0110
-DID_LIMITS_Y = 0x0111
-DID_COMM = 0x0120
-DID_OBJECT = 0x0130
-DID_SLOT_DIR = 0x0200
-DID_LAST_TRANSFER = 0x0201
-DID_DEVICE_STATE = 0x0300
-
-RID_RUN_SKILL = 0x0201
-RID_RUN_SEQUENCE = 0x0202
-RID_SELF_TEST = 0x0203
-RID_CLEAR_FAULTS = 0x0204
-RID_ERASE_SLOT = 0xFF00
 
 N_SLOTS = 8
 SLOT_ENTRY = 16
 
 STATUS_NAMES = {0xFFFF: "transfer in progress", 0xFFFE: "transfer interrupted",
-                0xFFFD: "none since power-up", 0: "ok",
-                200: "image too short", 201: "bad magic", 202: "unsupported format version",
-                203: "length mismatch", 204: "CRC-32 mismatch", 205: "bad kernel count",
-                206: "non-finite value", 207: "value out of range", 208: "bad centres",
-                209: "gains inconsistent with alpha/beta/gamma", 210: "unsupported flag",
-                211: "bad header size"}
+                0xFFFD: "none since power-up", 0: "ok", **SKILL_STATUS_TEXT}
 
 
 class Raw(udsoncan.DidCodec):
