@@ -1,7 +1,9 @@
-/* The numeric layer (issue 5): the types and operations the per-tick algorithms of the DMP
- * (dmp_tick.h) and of the control law (pfc_tick.h) are written in, so each is written once and
- * compiled three ways. The build selects the layer:
- *   FS_NUMERIC_FIXED defined  -> fs_num_fixed.h (firmware/fixed; Q formats over fx.h), fs_fixed
+/* The numeric layer: the types and operations the per-tick algorithms of the DMP (dmp_tick.h)
+ * and of the control law (pfc_tick.h) are written in, so each is written once and compiled
+ * three ways. The build selects the layer; the core names no other layer:
+ *   FS_NUM_LAYER="header.h"   -> that header, plugged in by the library that compiles the tick
+ *                                code over it (fs_fixed: "fs_num_fixed.h", Q formats over fx.h,
+ *                                with FS_NUMERIC_FIXED for the few fixed-only branches)
  *   otherwise                 -> fs_num_real.h  (fs_real_t: double, or float32 with FS_REAL_FLOAT)
  * Types, one per quantity (real layer: all fs_real_t; fixed layer: the format given):
  *   fs_phase_t  phase u~, v~, centres c_i, envelopes      Q2.30
@@ -40,8 +42,10 @@
 #ifndef FS_NUM_H
 #define FS_NUM_H
 
-#ifdef FS_NUMERIC_FIXED
-#include "fs_num_fixed.h"
+#if defined(FS_NUM_LAYER)
+#include FS_NUM_LAYER
+#elif defined(FS_NUMERIC_FIXED)
+#error "FS_NUMERIC_FIXED needs FS_NUM_LAYER, the header of the numeric layer it plugs in"
 #else
 #include "fs_num_real.h"
 #endif
