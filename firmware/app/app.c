@@ -6,6 +6,8 @@
 #include "fs_dbc.h"
 #include "proto_ids.h"
 
+_Static_assert(SAF_AXES == PFC_AXES && SAF_AXES == HAL_AXES, "safety, control law and HAL axes differ");
+
 /* ---------------------------------------------------------------- configuration */
 
 void app_config_default(app_config_t *cfg)

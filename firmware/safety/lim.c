@@ -77,7 +77,7 @@ static fs_real_t clamp_sym(fs_real_t x, fs_real_t b)
 }
 
 lim_result_t lim_apply(const lim_config_t *cfg, lim_state_t *st, const fs_real_t req_N[LIM_AXES],
-                       const pfc_axis_meas_t meas[LIM_AXES], fs_real_t out_N[LIM_AXES])
+                       const saf_meas_t meas[LIM_AXES], fs_real_t out_N[LIM_AXES])
 {
     lim_result_t r = {0u, 0u};
     if (out_N == NULL) {

@@ -11,9 +11,8 @@
 #include "flt_codes.h"
 #include "fs_real.h"
 #include "saf_real.h"
-#include "pfc.h"
 
-#define LIM_AXES PFC_AXES
+#define LIM_AXES SAF_AXES
 #define LIM_FORCE_CEILING_N 200.0   /* no configuration may set force_max_N above this */
 
 /** Limits of one axis. */
@@ -67,6 +66,6 @@ void lim_reset(lim_state_t *st);
 /** Limit req_N into out_N (may alias). meas may be NULL (no workspace/velocity/contact check;
  *  non-finite measurements never gate the force here, sen_check reports them). */
 lim_result_t lim_apply(const lim_config_t *cfg, lim_state_t *st, const fs_real_t req_N[LIM_AXES],
-                       const pfc_axis_meas_t meas[LIM_AXES], fs_real_t out_N[LIM_AXES]);
+                       const saf_meas_t meas[LIM_AXES], fs_real_t out_N[LIM_AXES]);
 
 #endif /* LIM_H */

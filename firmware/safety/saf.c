@@ -55,7 +55,7 @@ void saf_init(saf_state_t *st)
     st->ramp.active = 0u;
     st->ramp.k = 0u;
     st->ramp.n_ticks = 1u;
-    for (uint32_t i = 0u; i < PFC_AXES; i++) {
+    for (uint32_t i = 0u; i < SAF_AXES; i++) {
         st->ramp.from_N[i] = FS_R(0.0);
         st->ramp.out_N[i] = FS_R(0.0);
         st->last_cmd_N[i] = FS_R(0.0);
@@ -80,7 +80,7 @@ void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, s
         return;
     }
     if (cfg == NULL || st == NULL || in == NULL) {
-        for (uint32_t i = 0u; i < PFC_AXES; i++) {
+        for (uint32_t i = 0u; i < SAF_AXES; i++) {
             out->force_cmd_N[i] = FS_R(0.0);
         }
         out->actuator_enable = false;
@@ -111,9 +111,9 @@ void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, s
     }
     cause |= sen_check(&cfg->sen, &st->sen, in->meas);
 
-    fs_real_t req[PFC_AXES];
+    fs_real_t req[SAF_AXES];
     bool req_zero = true;
-    for (uint32_t i = 0u; i < PFC_AXES; i++) {
+    for (uint32_t i = 0u; i < SAF_AXES; i++) {
         req[i] = in->force_req_N[i];
         if (!(req[i] <= (fs_real_t)SAF_REARM_N && req[i] >= -(fs_real_t)SAF_REARM_N)) {
             req_zero = false;
@@ -123,7 +123,7 @@ void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, s
         if (req_zero) {
             st->hold_zero = false;
         } else {
-            for (uint32_t i = 0u; i < PFC_AXES; i++) {
+            for (uint32_t i = 0u; i < SAF_AXES; i++) {
                 req[i] = FS_R(0.0);
             }
         }
@@ -133,11 +133,11 @@ void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, s
      * sees a zero request, and its slew-binding bucket is not charged by the ramp. */
     const bool stopping = flt_active(&st->flt) || cause != 0u;
     if (stopping) {
-        for (uint32_t i = 0u; i < PFC_AXES; i++) {
+        for (uint32_t i = 0u; i < SAF_AXES; i++) {
             req[i] = FS_R(0.0);
         }
     }
-    fs_real_t lim_out[PFC_AXES];
+    fs_real_t lim_out[SAF_AXES];
     const lim_result_t lr = lim_apply(&cfg->lim, &st->lim, req, in->meas, lim_out);
     if (stopping) {
         for (uint32_t i = 0u; i < LIM_AXES; i++) {
@@ -150,7 +150,7 @@ void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, s
     st->cause_mask = cause;
     latch_causes(&st->flt, cause, in->tick);
 
-    fs_real_t cmd[PFC_AXES];
+    fs_real_t cmd[SAF_AXES];
     if (flt_active(&st->flt)) {
         if (st->actuator_enabled) {
             if (st->ramp.active == 0u) {
@@ -160,20 +160,20 @@ void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, s
                 st->actuator_enabled = false;
             }
         } else {
-            for (uint32_t i = 0u; i < PFC_AXES; i++) {
+            for (uint32_t i = 0u; i < SAF_AXES; i++) {
                 cmd[i] = FS_R(0.0);
             }
         }
         /* Keep the limiter's slew reference on what the actuator really got. */
-        for (uint32_t i = 0u; i < PFC_AXES; i++) {
+        for (uint32_t i = 0u; i < SAF_AXES; i++) {
             st->lim.out_N[i] = cmd[i];
         }
     } else {
-        for (uint32_t i = 0u; i < PFC_AXES; i++) {
+        for (uint32_t i = 0u; i < SAF_AXES; i++) {
             cmd[i] = lim_out[i];
         }
     }
-    for (uint32_t i = 0u; i < PFC_AXES; i++) {
+    for (uint32_t i = 0u; i < SAF_AXES; i++) {
         st->last_cmd_N[i] = cmd[i];
         out->force_cmd_N[i] = cmd[i];
     }

@@ -36,13 +36,13 @@ typedef struct {
     bool tick_overrun;                    /* the previous tick overran its period */
     bool skill_invalid;                   /* the active skill is invalid / failed to load */
     bool storage_error;                   /* a flash operation failed */
-    pfc_axis_meas_t meas[PFC_AXES];       /* raw measurements of this tick */
-    fs_real_t force_req_N[PFC_AXES];      /* the control law's request (any value) */
+    saf_meas_t meas[SAF_AXES];       /* raw measurements of this tick */
+    fs_real_t force_req_N[SAF_AXES];      /* the control law's request (any value) */
 } saf_input_t;
 
 /** Outputs of one tick. */
 typedef struct {
-    fs_real_t force_cmd_N[PFC_AXES];  /* to the actuator: always finite and within the limits */
+    fs_real_t force_cmd_N[SAF_AXES];  /* to the actuator: always finite and within the limits */
     bool actuator_enable;             /* false once the stop ramp has reached zero */
     bool stopping;                    /* a fault is latched (ramping or disabled) */
     uint16_t fault_code;              /* status frame: first latched fault, 0 if none */
@@ -58,7 +58,7 @@ typedef struct {
     wdg_state_t wdg;
     wdg_ramp_t ramp;
     uint32_t cause_mask;      /* causes seen at the last saf_step (for clearing) */
-    fs_real_t last_cmd_N[PFC_AXES];
+    fs_real_t last_cmd_N[SAF_AXES];
     bool actuator_enabled;
     bool hold_zero;           /* after a clear: output 0 until a zero request is seen */
 } saf_state_t;

@@ -6,6 +6,16 @@
 
 #include "fs_real.h"
 
+#define SAF_AXES 2u
+
+/** One axis's measurement as the safety layer checks it (the application fills it from the
+ *  sensors; the safety layer depends on no control-law type). */
+typedef struct {
+    fs_real_t pos_m;
+    fs_real_t vel_mps;
+    fs_real_t force_N;
+} saf_meas_t;
+
 #ifdef FS_REAL_FLOAT
 #define lim_default_config lim_default_config_f32
 #define lim_config_validate lim_config_validate_f32

@@ -10,7 +10,7 @@ void sen_default_config(sen_config_t *cfg)
     if (cfg == NULL) {
         return;
     }
-    for (uint32_t i = 0u; i < PFC_AXES; i++) {
+    for (uint32_t i = 0u; i < SAF_AXES; i++) {
         cfg->axis[i].force_range_N = FS_R(200.0);
         cfg->axis[i].pos_min_m = FS_R(-1.0);
         cfg->axis[i].pos_max_m = FS_R(1.0);
@@ -27,7 +27,7 @@ saf_status_t sen_config_validate(const sen_config_t *cfg)
     if (cfg == NULL) {
         return SAF_ERR_NULL_ARG;
     }
-    for (uint32_t i = 0u; i < PFC_AXES; i++) {
+    for (uint32_t i = 0u; i < SAF_AXES; i++) {
         const sen_axis_t *a = &cfg->axis[i];
         const fs_real_t v[7] = {a->force_range_N, a->pos_min_m, a->pos_max_m, a->vel_range_mps,
                                 a->spike_N,       a->jump_m,    a->stuck_min_N};
@@ -53,7 +53,7 @@ void sen_reset(sen_state_t *st)
     if (st == NULL) {
         return;
     }
-    for (uint32_t i = 0u; i < PFC_AXES; i++) {
+    for (uint32_t i = 0u; i < SAF_AXES; i++) {
         st->prev[i].pos_m = FS_R(0.0);
         st->prev[i].vel_mps = FS_R(0.0);
         st->prev[i].force_N = FS_R(0.0);
@@ -67,16 +67,16 @@ static fs_real_t absr(fs_real_t x)
     return (x < FS_R(0.0)) ? -x : x;
 }
 
-uint32_t sen_check(const sen_config_t *cfg, sen_state_t *st, const pfc_axis_meas_t meas[PFC_AXES])
+uint32_t sen_check(const sen_config_t *cfg, sen_state_t *st, const saf_meas_t meas[SAF_AXES])
 {
     if (cfg == NULL || st == NULL || meas == NULL) {
         return FLT_BIT(FLT_SENSOR_NAN);
     }
     uint32_t cause = 0u;
     bool all_finite = true;
-    for (uint32_t i = 0u; i < PFC_AXES; i++) {
+    for (uint32_t i = 0u; i < SAF_AXES; i++) {
         const sen_axis_t *a = &cfg->axis[i];
-        const pfc_axis_meas_t *m = &meas[i];
+        const saf_meas_t *m = &meas[i];
         if (!fs_isfinite(m->pos_m) || !fs_isfinite(m->vel_mps) || !fs_isfinite(m->force_N)) {
             cause |= FLT_BIT(FLT_SENSOR_NAN);
             all_finite = false;
@@ -87,7 +87,7 @@ uint32_t sen_check(const sen_config_t *cfg, sen_state_t *st, const pfc_axis_meas
             cause |= FLT_BIT(FLT_SENSOR_RANGE);
         }
         if (st->have_prev != 0u) {
-            const pfc_axis_meas_t *p = &st->prev[i];
+            const saf_meas_t *p = &st->prev[i];
             if (absr(m->force_N - p->force_N) > a->spike_N) {
                 cause |= FLT_BIT(FLT_SENSOR_SPIKE);
             }
@@ -111,7 +111,7 @@ uint32_t sen_check(const sen_config_t *cfg, sen_state_t *st, const pfc_axis_meas
         }
     }
     if (all_finite) {
-        for (uint32_t i = 0u; i < PFC_AXES; i++) {
+        for (uint32_t i = 0u; i < SAF_AXES; i++) {
             st->prev[i] = meas[i];
         }
         st->have_prev = 1u;

@@ -7,7 +7,6 @@
 #include "flt_codes.h"
 #include "fs_real.h"
 #include "saf_real.h"
-#include "pfc.h"
 
 /** Plausibility bounds of one axis. */
 typedef struct {
@@ -24,13 +23,13 @@ typedef struct {
 
 /** Plausibility bounds of the device. */
 typedef struct {
-    sen_axis_t axis[PFC_AXES];
+    sen_axis_t axis[SAF_AXES];
 } sen_config_t;
 
 /** Previous accepted reading and stuck counters. */
 typedef struct {
-    pfc_axis_meas_t prev[PFC_AXES];
-    uint16_t same_count[PFC_AXES];
+    saf_meas_t prev[SAF_AXES];
+    uint16_t same_count[SAF_AXES];
     uint8_t have_prev;
 } sen_state_t;
 
@@ -45,6 +44,6 @@ void sen_reset(sen_state_t *st);
 
 /** Check one tick's readings; returns the FLT_BIT mask of causes present. Non-finite readings
  *  are not stored as the previous reading. */
-uint32_t sen_check(const sen_config_t *cfg, sen_state_t *st, const pfc_axis_meas_t meas[PFC_AXES]);
+uint32_t sen_check(const sen_config_t *cfg, sen_state_t *st, const saf_meas_t meas[SAF_AXES]);
 
 #endif /* SEN_H */

@@ -68,7 +68,7 @@ static void test_latch_and_first_fault(void **state)
     assert_false(flt_emcy_pop(&f, &e));
 }
 
-static void meas_ok(pfc_axis_meas_t m[2], uint32_t k)
+static void meas_ok(saf_meas_t m[2], uint32_t k)
 {
     /* a plausible, slightly noisy reading */
     m[0].pos_m = FS_R(0.01) + (fs_real_t)(k % 7u) * FS_R(1e-6);
@@ -87,7 +87,7 @@ static void test_sensor_checks(void **state)
     assert_int_equal(sen_config_validate(&cfg), SAF_OK);
     sen_state_t st;
     sen_reset(&st);
-    pfc_axis_meas_t m[2];
+    saf_meas_t m[2];
     for (uint32_t k = 0; k < 1000; k++) {
         meas_ok(m, k);
         assert_int_equal(sen_check(&cfg, &st, m), 0);

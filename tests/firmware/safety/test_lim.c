@@ -107,7 +107,7 @@ static void test_random_hostile_requests(void **state)
         lim_reset(&st);
         for (uint32_t k = 0; k < 1000u; k++) {
             fs_real_t req[LIM_AXES], out[LIM_AXES], prev[LIM_AXES];
-            pfc_axis_meas_t meas[LIM_AXES];
+            saf_meas_t meas[LIM_AXES];
             for (uint32_t i = 0; i < LIM_AXES; i++) {
                 req[i] = (fs_real_t)hostile(100.0);
                 meas[i].pos_m = (fs_real_t)hostile(0.5);
@@ -150,7 +150,7 @@ static void test_hostile_skills_and_goal_scales(void **state)
     pfc_config_t pcfg;
     pfc_default_config(&pcfg);
     /* a misconfigured controller: its own saturation is effectively off, lim is the only guard */
-    for (uint32_t i = 0; i < PFC_AXES; i++) {
+    for (uint32_t i = 0; i < SAF_AXES; i++) {
         pcfg.limits[i].force_max_N = (fs_real_t)1e30;
         pcfg.limits[i].integral_max_Ns = (fs_real_t)1e30;
     }
@@ -185,12 +185,14 @@ static void test_hostile_skills_and_goal_scales(void **state)
         const fs_real_t k_env = (fs_real_t)uniform(100.0, 5000.0);
         for (uint32_t k = 0; k < 2000u && s.n < 1000000u; k++) {
             const fs_real_t f_hat = dmp_step(m, &ds, &run, NULL);
-            pfc_axis_ref_t ref[PFC_AXES] = {{ds.x_m, FS_R(0.0), FS_R(0.0), f_hat},
+            pfc_axis_ref_t ref[SAF_AXES] = {{ds.x_m, FS_R(0.0), FS_R(0.0), f_hat},
                                             {FS_R(0.0), FS_R(0.0), FS_R(0.0), FS_R(0.0)}};
-            pfc_axis_meas_t meas[PFC_AXES] = {{plant_x, plant_v, k_env * plant_x},
-                                              {FS_R(0.0), FS_R(0.0), FS_R(0.0)}};
-            fs_real_t req[PFC_AXES], out[PFC_AXES], prev[PFC_AXES];
-            pfc_step(&pcfg, &ps, ref, meas, req);
+            saf_meas_t meas[SAF_AXES] = {{plant_x, plant_v, k_env * plant_x},
+                                         {FS_R(0.0), FS_R(0.0), FS_R(0.0)}};
+            pfc_axis_meas_t pfc_meas[SAF_AXES] = {{plant_x, plant_v, k_env * plant_x},
+                                                  {FS_R(0.0), FS_R(0.0), FS_R(0.0)}};
+            fs_real_t req[SAF_AXES], out[SAF_AXES], prev[SAF_AXES];
+            pfc_step(&pcfg, &ps, ref, pfc_meas, req);
             prev[0] = ls.out_N[0];
             prev[1] = ls.out_N[1];
             (void)lim_apply(&lcfg, &ls, req, meas, out);
@@ -220,12 +222,12 @@ static void test_workspace_velocity_contact(void **state)
     lim_state_t st;
     lim_reset(&st);
     fs_real_t req[2] = {FS_R(30.0), FS_R(-30.0)}, out[2];
-    pfc_axis_meas_t in_ws[2] = {{FS_R(0.1), FS_R(0.0), FS_R(5.0)}, {FS_R(0.0), FS_R(0.0), FS_R(0.0)}};
+    saf_meas_t in_ws[2] = {{FS_R(0.1), FS_R(0.0), FS_R(5.0)}, {FS_R(0.0), FS_R(0.0), FS_R(0.0)}};
     lim_result_t r = lim_apply(&cfg, &st, req, in_ws, out);
     assert_int_equal(r.cause_mask, 0);
     assert_true(out[0] == FS_R(30.0) && out[1] == FS_R(-30.0));
     /* x beyond pos_max: outward (+) force cut, inward allowed */
-    pfc_axis_meas_t out_ws[2] = {{FS_R(0.6), FS_R(0.0), FS_R(5.0)}, {FS_R(-0.6), FS_R(0.0), FS_R(0.0)}};
+    saf_meas_t out_ws[2] = {{FS_R(0.6), FS_R(0.0), FS_R(5.0)}, {FS_R(-0.6), FS_R(0.0), FS_R(0.0)}};
     r = lim_apply(&cfg, &st, req, out_ws, out);
     assert_true(r.cause_mask & FLT_BIT(FLT_WORKSPACE));
     assert_true(r.flags & LIM_F_WORKSPACE);
@@ -234,7 +236,7 @@ static void test_workspace_velocity_contact(void **state)
     r = lim_apply(&cfg, &st, inward, out_ws, out);
     assert_true(out[0] == FS_R(-10.0) && out[1] == FS_R(10.0));
     /* over speed: force along the velocity cut, against it allowed */
-    pfc_axis_meas_t fast[2] = {{FS_R(0.0), FS_R(2.0), FS_R(0.0)}, {FS_R(0.0), FS_R(-2.0), FS_R(0.0)}};
+    saf_meas_t fast[2] = {{FS_R(0.0), FS_R(2.0), FS_R(0.0)}, {FS_R(0.0), FS_R(-2.0), FS_R(0.0)}};
     r = lim_apply(&cfg, &st, req, fast, out);
     assert_true(r.cause_mask & FLT_BIT(FLT_VELOCITY));
     assert_true(out[0] == FS_R(0.0) && out[1] == FS_R(0.0));
@@ -242,7 +244,7 @@ static void test_workspace_velocity_contact(void **state)
     r = lim_apply(&cfg, &st, brake, fast, out);
     assert_true(out[0] == FS_R(-5.0) && out[1] == FS_R(5.0));
     /* contact force above its limit is a fault cause (the command is not what exceeded) */
-    pfc_axis_meas_t hard[2] = {{FS_R(0.0), FS_R(0.0), FS_R(61.0)}, {FS_R(0.0), FS_R(0.0), FS_R(0.0)}};
+    saf_meas_t hard[2] = {{FS_R(0.0), FS_R(0.0), FS_R(61.0)}, {FS_R(0.0), FS_R(0.0), FS_R(0.0)}};
     r = lim_apply(&cfg, &st, req, hard, out);
     assert_true(r.cause_mask & FLT_BIT(FLT_FORCE_LIMIT));
     /* NaN request */

@@ -47,7 +47,7 @@ static fs_real_t request(const profile_t *p, uint32_t k, int axis)
     return (fs_real_t)(p->amp_y * cos(TWO_PI * p->freq * t));
 }
 
-static void measure(pfc_axis_meas_t m[2], const fs_real_t cmd[2], uint32_t k)
+static void measure(saf_meas_t m[2], const fs_real_t cmd[2], uint32_t k)
 {
     for (int i = 0; i < 2; i++) {
         const double noise = uniform(-0.02, 0.02);
