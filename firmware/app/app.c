@@ -125,23 +125,52 @@ static void send_telemetry(app_t *app)
 
 /* ---------------------------------------------------------------- state machine */
 
-static void enter_idle(app_t *app)
+bool app_event(app_t *app, app_event_t ev)
 {
-    app->state = APP_IDLE;
-    app->force_hat_N = FS_R(0.0);
-    app->seq_step = 0u;
-    app->exec_done = false;
-    wdg_disarm(&app->saf.wdg);
+    const app_state_t next = app_sm_next(app->state, ev);
+    if (next == app->state) {
+        return false;
+    }
+    app->state = next;
+    switch (next) {
+    case APP_TEACH:
+    case APP_EXECUTE:
+        if (next == APP_TEACH) {
+            app->teach_ticks = 0u;
+        }
+        /* the host must keep its heartbeat from now on: silence in TEACH/EXECUTE stops safely */
+        wdg_kick(&app->saf.wdg, app->now_ms);
+        for (unsigned a = 0; a < PFC_AXES; a++) {
+            exec_render_reset(&app->rend[a], app->sens.pos_m[a]);
+        }
+        break;
+    case APP_IDLE:
+    case APP_FAULT:
+        if (next == APP_IDLE) {
+            app->seq_step = 0u;
+            app->exec_done = false;
+        }
+        app->force_hat_N = FS_R(0.0);
+        wdg_disarm(&app->saf.wdg);          /* host silence matters only while the device acts */
+        break;
+    case APP_BOOT:
+    default:
+        break;
+    }
+    return true;
 }
 
-static void enter_active(app_t *app, app_state_t st)
+flt_code_t app_clear_faults(app_t *app)
 {
-    app->state = st;
-    /* the host must keep its heartbeat from now on: silence in TEACH/EXECUTE stops safely */
-    wdg_kick(&app->saf.wdg, app->now_ms);
-    for (unsigned a = 0; a < PFC_AXES; a++) {
-        exec_render_reset(&app->rend[a], app->sens.pos_m[a]);
+    const flt_code_t r = saf_clear_request(&app->saf_cfg, &app->saf, app->now_ms);
+    if (r == FLT_NONE) {
+        (void)app_event(app, APP_EV_CLEARED);
+    } else {
+        /* the request counts as a host frame (it arms the watchdog); in FAULT silence does not
+         * matter, so disarm it again */
+        wdg_disarm(&app->saf.wdg);
     }
+    return r;
 }
 
 static fs_real_t milli(uint32_t v)
@@ -191,7 +220,7 @@ uint8_t app_start_sequence(app_t *app, const uint8_t *slots, const fs_real_t *go
     app->active_slot = slots[0];
     app->seq_step = 0u;
     app->exec_done = false;
-    enter_active(app, APP_EXECUTE);
+    (void)app_event(app, APP_EV_EXECUTE);
     return UDS_NRC_OK;
 }
 
@@ -203,15 +232,10 @@ static void handle_command(app_t *app, const can_frame_t *f)
     }
     switch ((app_cmd_mode_t)c.mode) {
     case APP_CMD_IDLE:
-        if (app->state == APP_TEACH || app->state == APP_EXECUTE) {
-            enter_idle(app);
-        }
+        (void)app_event(app, APP_EV_STOP);
         break;
     case APP_CMD_TEACH:
-        if (app->state == APP_IDLE) {
-            app->teach_ticks = 0u;
-            enter_active(app, APP_TEACH);
-        }
+        (void)app_event(app, APP_EV_TEACH);
         break;
     case APP_CMD_EXECUTE: {
         const uint8_t slot = c.slot;
@@ -222,9 +246,8 @@ static void handle_command(app_t *app, const can_frame_t *f)
         break;
     }
     case APP_CMD_CLEAR_FAULT:
-        if (app->state == APP_FAULT &&
-            saf_clear_request(&app->saf_cfg, &app->saf, app->now_ms) == FLT_NONE) {
-            enter_idle(app);
+        if (app->state == APP_FAULT) {
+            (void)app_clear_faults(app);
         }
         break;
     case APP_CMD_NONE:
@@ -449,7 +472,7 @@ static void control(app_t *app)
         }
         if (out.done != 0u) {
             app->exec_done = true;
-            enter_idle(app);                          /* release finished: back to IDLE */
+            (void)app_event(app, APP_EV_STOP);        /* release finished: back to IDLE */
             app->force_req_N[0] = FS_R(0.0);
             app->force_req_N[1] = FS_R(0.0);
         }
@@ -473,13 +496,10 @@ void app_tick(app_t *app, bool overrun)
         if (!app_fw_self_test_and_confirm(app)) {
             hal_request_reset(1u);          /* unconfirmed: the next boot reverts */
         }
-        enter_idle(app);
+        (void)app_event(app, APP_EV_BOOTED);
     }
     can_receive(app);
     uds_service(app);
-    if (app->state == APP_IDLE || app->state == APP_FAULT) {
-        wdg_disarm(&app->saf.wdg);          /* silence matters only while the device acts */
-    }
     control(app);
 
     saf_input_t in;
@@ -496,9 +516,8 @@ void app_tick(app_t *app, bool overrun)
         in.force_req_N[a] = app->force_req_N[a];
     }
     saf_step(&app->saf_cfg, &app->saf, &in, &app->saf_out);
-    if (app->saf_out.stopping && app->state != APP_FAULT) {
-        app->state = APP_FAULT;             /* latched; a skill never resumes by itself */
-        app->force_hat_N = FS_R(0.0);
+    if (app->saf_out.stopping) {
+        (void)app_event(app, APP_EV_FAULT); /* latched; a skill never resumes by itself */
     }
     app->force_out_N[0] = app->saf_out.force_cmd_N[0];
     app->force_out_N[1] = app->saf_out.force_cmd_N[1];

@@ -12,6 +12,7 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+#include "app_sm.h"
 #include "e2e.h"
 #include "fs_exec.h"
 #include "hal.h"
@@ -30,20 +31,12 @@
 #define APP_RESET_TX_WAIT_MS 100u       /* ECUReset: longest wait for the response to leave */
 #define APP_STATUS_PERIOD_MS 10u
 #define APP_IDLE_TELEMETRY_PERIOD_MS 100u
-#define APP_IMAGE_MAX (SKILL_HEADER_SIZE + 24u * DMP_MAX_KERNELS + SKILL_CRC_SIZE)
+#define APP_IMAGE_MAX SKILL_IMAGE_MAX
 #define APP_SW_VERSION "forceskill-fw 0.1.0"
 #define APP_TRANSFER_NONE 0xFFFDu        /* DID 0x0201: no download since power-up */
 #define APP_PROTO_VERSION_MAJOR 1u
 #define APP_PROTO_VERSION_MINOR 0u
 
-/** Device states (DeviceStatus.State in the DBC). */
-typedef enum {
-    APP_BOOT = 0,
-    APP_IDLE = 1,
-    APP_TEACH = 2,
-    APP_EXECUTE = 3,
-    APP_FAULT = 4
-} app_state_t;
 
 /** HostCommand.Mode values. */
 typedef enum {
@@ -159,6 +152,14 @@ uint8_t app_start_sequence(app_t *app, const uint8_t *slots, const fs_real_t *go
 
 /** Handle the UDS hooks (app_uds.c): fills an uds_app_t bound to app. */
 void app_uds_bind(app_t *app, uds_app_t *out);
+
+/** Apply a state machine event (app_sm_next): the only place the device state changes; runs the
+ *  entry actions of the new state. Returns true if the state changed. */
+bool app_event(app_t *app, app_event_t ev);
+
+/** Clear the latched faults (host command or RoutineControl): FLT_NONE and IDLE when cleared,
+ *  else the first fault whose cause persists (the device stays in FAULT). */
+flt_code_t app_clear_faults(app_t *app);
 
 /** Reload slot caches from storage (boot, after a download or erase). */
 void app_slots_reload(app_t *app);

@@ -316,8 +316,7 @@ static uint8_t routine(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *d, u
             if (app->state != APP_EXECUTE) {
                 return UDS_NRC_REQUEST_SEQUENCE_ERROR;
             }
-            app->state = APP_IDLE;
-            app->force_hat_N = FS_R(0.0);
+            (void)app_event(app, APP_EV_STOP);
             return UDS_NRC_OK;
         }
         out[0] = (uint8_t)app->state;
@@ -357,11 +356,9 @@ static uint8_t routine(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *d, u
         if (app->state != APP_FAULT) {
             return UDS_NRC_REQUEST_SEQUENCE_ERROR;
         }
-        if (saf_clear_request(&app->saf_cfg, &app->saf, app->now_ms) != FLT_NONE) {
+        if (app_clear_faults(app) != FLT_NONE) {
             return UDS_NRC_CONDITIONS_NOT_CORRECT;   /* a cause persists */
         }
-        app->state = APP_IDLE;
-        wdg_disarm(&app->saf.wdg);
         return UDS_NRC_OK;
     case UDS_RID_ERASE_SLOT:
         if (sub != UDS_ROUTINE_START) {
