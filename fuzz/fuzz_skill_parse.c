@@ -42,7 +42,7 @@ static void check_one(const uint8_t *data, size_t size)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    static uint8_t fixed[SKILL_HEADER_SIZE + 24u * DMP_MAX_KERNELS + SKILL_CRC_SIZE + 64u];
+    static uint8_t fixed[SKILL_IMAGE_MAX + 64u];
     check_one(data, size);
     if (size >= SKILL_HEADER_SIZE + SKILL_CRC_SIZE && size <= sizeof fixed) {
         memcpy(fixed, data, size);

@@ -8,7 +8,7 @@
 #include "dmpfx.h"
 #include "skill.h"
 
-static uint8_t image[SKILL_HEADER_SIZE + 24u * DMP_MAX_KERNELS + SKILL_CRC_SIZE];
+static uint8_t image[SKILL_IMAGE_MAX];
 static skill_t skill;
 static dmpfx_model_t model;
 

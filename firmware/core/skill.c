@@ -34,7 +34,7 @@
 
 uint32_t skill_image_size(uint16_t n_kernels)
 {
-    return SKILL_HEADER_SIZE + 24u * (uint32_t)n_kernels + SKILL_CRC_SIZE;
+    return SKILL_IMAGE_SIZE(n_kernels);
 }
 
 /* Reflected polynomial 0xEDB88320 (zlib), processed a nibble at a time: 16-entry table. */

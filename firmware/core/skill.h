@@ -13,6 +13,11 @@
 #define SKILL_FORMAT_VERSION 1u
 #define SKILL_HEADER_SIZE 128u
 #define SKILL_CRC_SIZE 4u
+#define SKILL_KERNEL_BYTES 24u          /* per kernel: centre, width, weight (f64 each) */
+/** Bytes of an image with n kernels, and of the largest image this firmware accepts. */
+#define SKILL_IMAGE_SIZE(n) \
+    (SKILL_HEADER_SIZE + SKILL_KERNEL_BYTES * (uint32_t)(n) + SKILL_CRC_SIZE)
+#define SKILL_IMAGE_MAX SKILL_IMAGE_SIZE(DMP_MAX_KERNELS)
 #define SKILL_FLAG_END_RELEASE 0x0001u  /* end policy: 0 hold, 1 release (ramp to 0 in 0.5 s) */
 #define SKILL_FLAG_Y_AXIS 0x0002u       /* reserved: y-axis position DMP (refused in v1) */
 #define SKILL_RELEASE_TIME_S 0.5

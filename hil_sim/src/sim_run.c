@@ -17,7 +17,7 @@
 
 int sim_load_skills(const sim_scenario_t *sc, skill_t *skills, char err[SIM_ERR_MAX])
 {
-    static uint8_t buf[SKILL_HEADER_SIZE + 24u * DMP_MAX_KERNELS + SKILL_CRC_SIZE + 1u];
+    static uint8_t buf[SKILL_IMAGE_MAX + 1u];
     for (int i = 0; i < sc->n_skills; i++) {
         const char *path = sc->skill_path[i];
         FILE *f = fopen(path, "rb");

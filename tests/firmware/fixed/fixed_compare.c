@@ -11,7 +11,7 @@
 
 #define LIMIT_REL 2e-4
 
-static uint8_t image[SKILL_HEADER_SIZE + 24u * DMP_MAX_KERNELS + SKILL_CRC_SIZE];
+static uint8_t image[SKILL_IMAGE_MAX];
 static skill_t skill;
 static dmpfx_model_t model;
 

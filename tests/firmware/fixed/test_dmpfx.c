@@ -27,7 +27,7 @@
 
 static skill_t skill;
 static dmpfx_model_t fxm;
-static uint8_t image[SKILL_HEADER_SIZE + 24u * DMP_MAX_KERNELS + SKILL_CRC_SIZE];
+static uint8_t image[SKILL_IMAGE_MAX];
 static double f_ref[MAX_ROWS + 1];
 static double f_fx[MAX_ROWS + 1];
 
