@@ -10,6 +10,8 @@ cd "$ROOT"
 
 echo "== generated files agree with their sources (codes.toml -> headers, codes.py, docs/codes.md)"
 .venv/bin/python tools/gen_codes.py --check
+echo "== layers: no upward or sideways include, no include cycle (tools/check_layers.py)"
+.venv/bin/python tools/check_layers.py
 
 echo "== C tests (Debug: ASan + UBSan)"
 cmake -S . -B build-debug -G Ninja -DCMAKE_BUILD_TYPE=Debug -DPython3_EXECUTABLE="$ROOT/.venv/bin/python" >/dev/null
