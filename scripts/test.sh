@@ -18,6 +18,9 @@ cmake -S . -B build-debug -G Ninja -DCMAKE_BUILD_TYPE=Debug -DPython3_EXECUTABLE
 cmake --build build-debug -j "$(nproc)"
 ctest --test-dir build-debug --output-on-failure -j "$(nproc)"
 
+echo "== the firmware libraries as a consumer sees them: cmake --install, find_package, add_subdirectory, pkg-config"
+tests/consumer/run.sh build/consumer
+
 echo "== static checks (cppcheck; MISRA addon findings counted, not fatal)"
 tools/static_check.sh build-debug/static
 
