@@ -6,7 +6,7 @@
 
 Run it after the README's set-up (scripts/setup.sh). It installs the peer libraries into the venv
 it runs in if they are missing (movement-primitives with its Cython step, pydmps), builds the
-benchmark programs in a Release tree of its own (build-bench/), measures, prints one report and
+benchmark programs in a Release tree of its own (build/bench/, preset bench), measures, prints one report and
 writes it below the marker line of docs/performance.md (the hand-written method section above
 the marker is kept). Figures of a part that has not landed, or whose program fails, read
 "not available: <why>"; nothing is ever filled in by hand.
@@ -638,7 +638,8 @@ def main(argv: Optional[list[str]] = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="CI smoke: small repeat counts (< 60 s)")
-    ap.add_argument("--build-dir", default=str(ROOT / "build-bench"), help="Release build tree (default build-bench/)")
+    ap.add_argument("--build-dir", default=str(ROOT / "build" / "bench"),
+                    help="Release build tree (default build/bench/, the bench preset's)")
     ap.add_argument("--jobs", type=int, default=min(2, os.cpu_count() or 1), help="build jobs (default 2)")
     ap.add_argument("--no-install", action="store_true", help="do not pip-install missing peers")
     ap.add_argument("--no-write", action="store_true", help="print only; leave docs/performance.md alone")

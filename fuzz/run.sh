@@ -5,12 +5,12 @@
 #   fuzz HARNESS runs=N time_s=T exec_per_s=R crashes=C corpus=K
 # and exits non-zero if any harness crashed (artifacts in $OUT/artifacts).
 # usage: fuzz/run.sh [RUNS=100000] [HARNESS ...]   (default: every harness whose sources exist)
-# env:   FS_FUZZ_BUILD (default build-fuzz), CLANG (default clang), FS_FUZZ_JOBS unused: one core.
+# env:   FS_FUZZ_BUILD (default build/fuzz), CLANG (default clang), FS_FUZZ_JOBS unused: one core.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 RUNS="${1:-100000}"
 shift || true
-OUT="${FS_FUZZ_BUILD:-$ROOT/build-fuzz}"
+OUT="${FS_FUZZ_BUILD:-$ROOT/build/fuzz}"
 CC="${CLANG:-clang}"
 CFLAGS=(-g -O1 -std=c11 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all
         -fno-omit-frame-pointer -Wall -Wextra -Werror)

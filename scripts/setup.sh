@@ -34,6 +34,6 @@ if ! .venv/bin/python -c "import forceskill" 2>/dev/null || [ host/pyproject.tom
   touch .venv/.forceskill-installed
 fi
 
-echo "== building (Release) in build/"
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE="$ROOT/.venv/bin/python" >/dev/null
-cmake --build build -j "$(nproc)"
+echo "== building (Release) in build/ (preset host-release)"
+cmake --preset host-release >/dev/null
+cmake --build --preset host-release -j "$(nproc)"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Every test: C unit tests under ASan+UBSan (Debug build), the static checks, the Cortex-M images
+# Every test: C unit tests under ASan+UBSan (Debug build, preset host-debug), the static checks, the Cortex-M images
 # under qemu (bench/qemu_tick.sh: budgets, qemu vs host, no heap/recursion, stack per entry point),
 # then the Python, HIL and CAN tests against the Release build. Exit status is non-zero if
 # anything fails.
@@ -13,16 +13,16 @@ echo "== generated files agree with their sources (codes.toml -> headers, codes.
 echo "== layers: no upward or sideways include, no include cycle (tools/check_layers.py)"
 .venv/bin/python tools/check_layers.py
 
-echo "== C tests (Debug: ASan + UBSan)"
-cmake -S . -B build-debug -G Ninja -DCMAKE_BUILD_TYPE=Debug -DPython3_EXECUTABLE="$ROOT/.venv/bin/python" >/dev/null
-cmake --build build-debug -j "$(nproc)"
-ctest --test-dir build-debug --output-on-failure -j "$(nproc)"
+echo "== C tests (Debug: ASan + UBSan; preset host-debug, build/host-debug)"
+cmake --preset host-debug >/dev/null
+cmake --build --preset host-debug -j "$(nproc)"
+ctest --preset host-debug -j "$(nproc)"
 
 echo "== the firmware libraries as a consumer sees them: cmake --install, find_package, add_subdirectory, pkg-config"
 tests/consumer/run.sh build/consumer
 
 echo "== static checks (cppcheck; MISRA addon findings counted, not fatal)"
-tools/static_check.sh build-debug/static
+tools/static_check.sh build/host-debug/static
 
 echo "== Cortex-M images under qemu (M4F float, M3 fixed): instructions per tick within budget,"
 echo "   qemu output vs the host build, no heap, no recursion, worst stack per entry point"
