@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Exact instruction count of the full control tick on Cortex-M under qemu (SPEC 6, issue 5).
+# Exact instruction count of the full control tick on Cortex-M under qemu.
 #   bench/qemu_tick.sh TARGET [--build-dir DIR] [--host-ref-float EXE] [--host-ref-fixed EXE]
 # TARGET: cortex-m4f (float32, mps2-an386) or cortex-m3 (fixed point, mps2-an385).
 # 1. builds the images (toolchain cmake/arm-none-eabi.cmake, Release) and the host references;

@@ -615,7 +615,7 @@ def render(rep: Report, info: list[list[str]], started: float, argv: list[str]) 
     out = [MARKER, "", f"## Figures ({now}, mode: {mode})", "",
            f"Produced by `{' '.join(['.venv/bin/python', 'bench/run_all.py', *argv])}` in "
            f"{time.time() - started:.0f} s.", "", "### Machine and versions", "",
-           table(["", ""], info), "", "### Targets (SPEC section 7 and issue 7)", "",
+           table(["", ""], info), "", "### Targets", "",
            table(["figure", "must", "aim", "measured", "verdict"], rep.targets)]
     for title, body in rep.sections:
         out += ["", f"### {title}", "", body]

@@ -10,6 +10,8 @@ cd "$ROOT"
 
 echo "== generated files agree with their sources (codes.toml -> headers, codes.py, docs/codes.md)"
 .venv/bin/python tools/gen_codes.py --check
+echo "== comments and docs cite no SPEC or issue numbers"
+tools/check_no_tracker_refs.sh
 echo "== layers: no upward or sideways include, no include cycle (tools/check_layers.py)"
 .venv/bin/python tools/check_layers.py
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Static checks (issue 6): cppcheck over the firmware, and cppcheck's MISRA C:2012 addon over
+# Static checks: cppcheck over the firmware, and cppcheck's MISRA C:2012 addon over
 # firmware/core (plus the safety/storage/security layers for information). Findings are counted
 # and printed per folder and per MISRA rule. Exit status: non-zero only if plain cppcheck reports
 # an `error`-severity finding (MISRA findings are counted, not fatal).

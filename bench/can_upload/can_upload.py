@@ -5,7 +5,7 @@ Bus-limited time = the sum of the wire times of every frame of the transfer (Req
 TransferData, RequestTransferExit: requests, flow controls and responses, as captured on the bus)
 at 1 Mbit/s, bit stuffing included (computed here from each frame's bits and CRC-15, independently
 of the simulator's C model). Measured time = wall time from the RequestDownload request to the
-RequestTransferExit response, best and median of --repeat uploads. SPEC 7: measured <= 2x bus-limited.
+RequestTransferExit response, best and median of --repeat uploads. Target: measured <= 2x bus-limited.
 
 Usage: can_upload.py [--hil-sim PATH] [--repeat N]"""
 from __future__ import annotations

@@ -1,6 +1,6 @@
 /* One half of the dmp_step benchmark, compiled twice: against the double core (defines
  * BENCH_ENTRY bench_core_step_double) and the float core (FS_REAL_FLOAT, BENCH_ENTRY
- * bench_core_step_float). Builds a realistic skill (SPEC 2 default gains, k = 280 N/m, T = 17 s,
+ * bench_core_step_float). Builds a realistic skill (default gains, k = 280 N/m, T = 17 s,
  * centres uniform in time through the discrete phase, sigma = half the gap, smooth weights) and
  * times full 17 000-step rollouts. */
 #define _POSIX_C_SOURCE 199309L

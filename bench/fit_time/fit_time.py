@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Fit time of a 17 s, 1 kHz demonstration with N = 50 (SPEC 7: <= 50 ms, aim 10 ms).
+"""Fit time of a 17 s, 1 kHz demonstration with N = 50 (target <= 50 ms, aim 10 ms).
 
 Prints one line per method:
   fit_ms method=ridge N=50 T=17s median=... min=... runs=... err_max=...%

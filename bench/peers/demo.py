@@ -1,6 +1,6 @@
 """The benchmark demonstration: a deterministic force-like profile every library fits.
 
-One 1-D contact-force profile sampled at 1 kHz, shaped like the paper's tasks (SPEC 3): a smooth
+One 1-D contact-force profile sampled at 1 kHz, shaped like the paper's tasks: a smooth
 ramp to a low force, a hold, a ramp to a higher force, engraving-like level changes every
 0.6-1.4 s with smooth 0.7 s transitions, a release over the last 0.8 s, and 1 % tremor. The
 random parts come from numpy's PCG64 with a fixed seed, so every run and every machine gets the

@@ -67,7 +67,7 @@ def _exe(bld: Any, rel: str, part: str) -> tuple[Optional[Path], str]:
 def hil_speed(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
     folder = root / "bench" / "hil_speed"
     if not (folder / "CMakeLists.txt").is_file():
-        return _na("bench/hil_speed has not landed (HIL issue 3)")
+        return _na("bench/hil_speed has not landed (no bench/hil_speed)")
     exe, why = _exe(bld, "bench/hil_speed/bench_hil_speed", "hil")
     if exe is None:
         return _na(why)
@@ -97,7 +97,7 @@ def hil_speed(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
 def can_upload(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
     script = root / "bench" / "can_upload" / "can_upload.py"
     if not script.is_file():
-        return _na("bench/can_upload has not landed (CAN issue 4)")
+        return _na("bench/can_upload has not landed (no bench/can_upload)")
     sim, why = _exe(bld, "hil_sim/hil_sim", "hil")
     if sim is None:
         return _na(why)
@@ -161,7 +161,7 @@ def _elf_size(elf: Path) -> Optional[tuple[int, int]]:
 def qemu_tick(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
     script = root / "bench" / "qemu_tick.sh"
     if not script.is_file():
-        return _na("bench/qemu_tick.sh has not landed (Cortex-M issue 5)")
+        return _na("bench/qemu_tick.sh has not landed (no bench/qemu_tick.sh)")
     rows, size_rows, notes, targets = [], [], [], []
     data: dict[str, Any] = {}
     for target, numeric, must, aim in QEMU_TARGETS:
@@ -235,7 +235,7 @@ def own_benchmarks(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
     data: dict[str, Any] = {}
     mine = cfg.get("rep_data", {}).get("scaling_kernels", {}).get("median", {})
     if not (root / "bench" / "core_step" / "CMakeLists.txt").is_file():
-        parts.append("bench/core_step: not available: it has not landed (core issue 2)")
+        parts.append("bench/core_step: not available: it has not landed")
     else:
         exe, why = _exe(bld, "bench/core_step/bench_core_step", "core-c")
         if exe is None:
@@ -265,7 +265,7 @@ def own_benchmarks(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
                                "with the Release libraries.")
     script = root / "bench" / "fit_time" / "fit_time.py"
     if not script.is_file():
-        parts.append("bench/fit_time: not available: it has not landed (core issue 2)")
+        parts.append("bench/fit_time: not available: it has not landed")
     else:
         runs = "5" if cfg.get("quick") else "15"
         p = _run([sys.executable, str(script), "--runs", runs], root, timeout=600)

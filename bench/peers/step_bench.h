@@ -1,4 +1,4 @@
-/* Benchmark driver for one force-DMP step of the C core (bench/peers, issue 7): the same skill
+/* Benchmark driver for one force-DMP step of the C core (bench/peers): the same skill
  * image stepped by the double core (fs_core) and the float core (fs_core_f32). Each core is
  * compiled in its own translation unit (step_impl.c, twice) because both define dmp_model_t. */
 #ifndef STEP_BENCH_H

@@ -1,4 +1,4 @@
-/* The fixed-point core's step benchmark (firmware/fixed, issue 5): the skill is parsed by the
+/* The fixed-point core's step benchmark (firmware/fixed): the skill is parsed by the
  * double core and converted once by dmpfx_from_model, as on the Cortex-M3; the tick is dmpfx_step. */
 #include <math.h>
 #include <stddef.h>

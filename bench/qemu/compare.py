@@ -52,7 +52,7 @@ def main():
             return 1
         gmax = max(abs(v) for v in g)
         grel = max(abs(a - b) for a, b in zip(qf, g)) / gmax
-        # SPEC 7 / issue 5: float32 within 0.02 % of max force of float64, fixed within 0.1 %
+        # float32 within 0.02 % of max force of float64, fixed within 0.1 %
         limit = 2e-4 if numeric == "float" else 1e-3
         gok = grel <= limit
         print(f"qemu_vs_float64 target={target} numeric={numeric} golden={golden.split('/')[-1]} "

@@ -1,4 +1,4 @@
-/* The device application (SPEC 5): state machine BOOT -> IDLE -> TEACH | EXECUTE -> FAULT
+/* The device application: state machine BOOT -> IDLE -> TEACH | EXECUTE -> FAULT
  * (latched), the 1 kHz tick, the cyclic frames of forceskill.dbc (status, telemetry, emergency;
  * host command and heartbeat with E2E checks) and the UDS server on ISO-TP with its device hooks
  * (app_uds.c: data identifiers, routines, skill download/upload into slots).

@@ -1,4 +1,4 @@
-/* Skill execution on the device (SPEC 2 and 5): a sequence of up to EXEC_MAX_STEPS learned force
+/* Skill execution on the device: a sequence of up to EXEC_MAX_STEPS learned force
  * skills evaluated at 1 kHz, the position reference from the known object model, the parallel
  * force/position law for both axes, end policy (hold/release), and the rendering of the law's
  * force command on a real carriage (admittance: the same code renders m_d in TEACH).
@@ -43,7 +43,7 @@ typedef struct {
     skill_end_t end_policy;    /* used after the last step: hold or release */
 } exec_step_t;
 
-/** Known object model for the position reference (SPEC 2 last decision): f = m_v*pdd + d_v*pd
+/** Known object model for the position reference (docs/math.md): f = m_v*pdd + d_v*pd
  *  + F(p), F piecewise linear (k1 up to layer_depth_m, k2 beyond), p = x - surface_m >= 0. */
 typedef struct {
     fs_real_t m_v_kg;

@@ -1,5 +1,5 @@
 /* One classic CAN frame as every firmware layer passes it (HAL, ISO-TP, frame codecs).
- * 11-bit identifiers only on this product (SPEC 4); dlc 0..8, unused data bytes undefined. */
+ * 11-bit identifiers only on this product; dlc 0..8, unused data bytes undefined. */
 #ifndef CAN_FRAME_H
 #define CAN_FRAME_H
 

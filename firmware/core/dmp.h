@@ -1,4 +1,4 @@
-/* The force DMP (SPEC 2, the paper's eqs. 11-17 corrected): parameters from gains, the learned
+/* The force DMP (the paper's eqs. 11-17 corrected, docs/math.md): parameters from gains, the learned
  * system with its phase, and one forward-Euler step per tick. Pure functions over explicit
  * structs: no heap, no I/O, bounded work per step. See docs/math.md for the derivation.
  *
@@ -37,7 +37,7 @@
 #define DMP_MONOTONE_REL_TOL_REAL DMP_MONOTONE_REL_TOL
 #endif
 
-/** DMP parameters derived from gains and nominal stiffness (SPEC 2, corrected eq. 14). */
+/** DMP parameters derived from gains and nominal stiffness (corrected eq. 14). */
 typedef struct {
     fs_real_t alpha;
     fs_real_t beta;

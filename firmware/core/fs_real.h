@@ -3,8 +3,7 @@
  * reference). Parsing, validation and parameter derivation are written in fs_real_t; the
  * per-tick DMP and control law (dmp_tick.h, pfc_tick.h) are written over the numeric layer
  * fs_num.h, whose real half (fs_num_real.h) is fs_real_t and whose fixed-point half
- * (firmware/fixed/fs_num_fixed.h, FS_NUMERIC_FIXED) compiles the same tick code in Q formats
- * (issue 5). */
+ * (firmware/fixed/fs_num_fixed.h, FS_NUMERIC_FIXED) compiles the same tick code in Q formats. */
 #ifndef FS_REAL_H
 #define FS_REAL_H
 

@@ -12,7 +12,7 @@
 #define PFC_TICK_MEAS pfc_axis_meas_t
 #include "pfc_tick.h"
 
-/* Default output limit: SPEC 5, |force| <= F_max = 50 N. */
+/* Default output limit: |force| <= F_max = 50 N (docs/safety.md). */
 #define PFC_DEFAULT_FORCE_MAX_N FS_R(50.0)
 /* Default integral clamp, as a multiple of F_max/k_i (see pfc_default_config). */
 #define PFC_DEFAULT_INTEGRAL_FORCE_RATIO FS_R(4.0)
@@ -22,7 +22,7 @@
 
 void pfc_default_config(pfc_config_t *cfg)
 {
-    /* SPEC 2 default gains: alpha = k_d/m_d - 1 = 9, k_f = k_i/alpha = 3, beta = alpha/4. */
+    /* Default gains: alpha = k_d/m_d - 1 = 9, k_f = k_i/alpha = 3, beta = alpha/4. */
     const pfc_axis_gains_t x = {FS_R(40.0), FS_R(400.0), FS_R(1170.0), FS_R(3.0), FS_R(27.0)};
     const pfc_axis_gains_t y = {FS_R(40.0), FS_R(400.0), FS_R(1170.0), FS_R(0.0), FS_R(0.0)};
     cfg->gains[0] = x;

@@ -55,8 +55,8 @@ typedef struct {
     fs_real_t force_N;
 } pfc_axis_meas_t;
 
-/** Default gains (SPEC 2): m_d 40, k_d 400, k_p 1170, k_i 27, k_f 3 (x); y has k_f = k_i = 0.
- *  force_max 50 N (SPEC 5), x integral_max = 4*force_max/k_i (7.4 Ns), dt 1 ms. */
+/** Default gains: m_d 40, k_d 400, k_p 1170, k_i 27, k_f 3 (x); y has k_f = k_i = 0.
+ *  force_max 50 N, x integral_max = 4*force_max/k_i (7.4 Ns), dt 1 ms. */
 void pfc_default_config(pfc_config_t *cfg);
 
 /** Validate a configuration, per axis then dt: NULL (100), not finite (101), m_d <= 0 (102),

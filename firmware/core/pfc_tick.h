@@ -40,7 +40,7 @@ static inline void pfc_tick_step(const PFC_TICK_CONFIG *cfg, PFC_TICK_STATE *st,
                               fs_num_gain_force(k_f, force_err) + fs_num_gain_val(k_i, i_f);
         if (fs_num_is_nan(sum)) {
             /* A NaN input: command nothing and keep the integral finite. Detecting the bad
-             * sensor and faulting is the safety layer's job (issue 6). */
+             * sensor and faulting is the safety layer's job (firmware/safety). */
             force_cmd[a] = FS_NUM_ZERO;
             continue;
         }

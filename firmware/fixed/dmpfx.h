@@ -1,4 +1,4 @@
-/* The force DMP in fixed point (SPEC 2 "Fixed point", issue 5), for a Cortex-M3 without FPU:
+/* The force DMP in fixed point (docs/cortex-m.md), for a Cortex-M3 without FPU:
  * the blend and the Euler step are firmware/core/dmp_tick.h (the same source as dmp_step)
  * compiled over the fixed numeric layer (fs_num.h, formats in fx.h); this module converts a
  * skill, derives the per-tick constants and wraps the step. A skill is parsed in double (skill_parse)

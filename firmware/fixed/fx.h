@@ -1,4 +1,4 @@
-/* Saturating Q-format arithmetic for the fixed-point build (SPEC 2 "Fixed point", issue 5): the
+/* Saturating Q-format arithmetic for the fixed-point build (docs/cortex-m.md): the
  * helpers of the fixed half of the numeric layer (fs_num_fixed.h, fs_num.h).
  * Every helper works on int32 values with 64-bit intermediates; results that do not fit are
  * saturated to the int32 range, never wrapped, and no helper has signed-overflow UB.

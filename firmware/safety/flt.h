@@ -1,7 +1,7 @@
 /* Fault list: latching, first-fault reporting, emergency-frame queue and guarded clearing.
  * A fault latches on flt_raise and stays latched until flt_clear_request succeeds, which it
  * does only while none of the latched faults' causes is present. Clearing never resumes a
- * skill: the state machine goes to IDLE and waits for a new command (SPEC 5).
+ * skill: the state machine goes to IDLE and waits for a new command.
  * Pure state over an explicit struct: no I/O, bounded work. */
 #ifndef FLT_H
 #define FLT_H

@@ -1,4 +1,4 @@
-/* Limits at the last stage before the actuator (SPEC 5): |force| <= force_max_N, force slew per
+/* Limits at the last stage before the actuator (docs/safety.md): |force| <= force_max_N, force slew per
  * tick, workspace and velocity. A pure function over explicit structs: whatever the request
  * (NaN, inf, huge), the output is finite, |out| <= force_max_N and |out - previous out| <=
  * slew_max_N, given a configuration that passed lim_config_validate.

@@ -1,4 +1,4 @@
-/* Sensor plausibility (SPEC 5 "sensor fault"): NaN/inf, out of range, stuck, spike, encoder jump.
+/* Sensor plausibility: NaN/inf, out of range, stuck, spike, encoder jump.
  * Run once per tick on the raw measurements before they reach the control law. */
 #ifndef SEN_H
 #define SEN_H

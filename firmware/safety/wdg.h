@@ -1,4 +1,4 @@
-/* Host-silence watchdog and the safe-stop ramp (SPEC 5).
+/* Host-silence watchdog and the safe-stop ramp (docs/safety.md).
  * Watchdog: armed by the first host frame; expires when no host frame was seen for timeout_ms
  * (default 100, configurable 20..500). With frames taken at the next 1 ms tick, the fault is
  * detected at most timeout + 1 tick after the last frame really arrived.

@@ -1,4 +1,4 @@
-/* Skill bank: the active skill and a staged one, swapped at a tick boundary (SPEC 5, moteus-style
+/* Skill bank: the active skill and a staged one, swapped at a tick boundary (moteus-style
  * pointer swap). Loading (flash read + skill_parse) happens outside the tick; the tick only
  * calls nvm_bank_tick, which is constant time. Built twice like the core (double / float). */
 #ifndef NVM_BANK_H

@@ -1,4 +1,4 @@
-/* socketcand-protocol TCP server (the subset python-can's "socketcand" interface uses; SPEC 4):
+/* socketcand-protocol TCP server (the subset python-can's "socketcand" interface uses):
  *   server: "< hi >" on connect; client "< open CHANNEL >" -> "< ok >"; client "< rawmode >" ->
  *   "< ok >"; then client "< send ID DLC B0 B1 ... >" (hex) and server
  *   "< frame ID SEC.USEC HEXDATA >" (%03X standard / %08X extended id, uppercase, no spaces).

@@ -22,7 +22,7 @@
 #define MAX_SCEN 24
 #define IMG_MAX 8192u
 #define HOLD_MS 1000u            /* latched and zero for this long after detection */
-#define ZERO_BOUND_MS 50u        /* SPEC 5: force at zero within 50 ms of detection */
+#define ZERO_BOUND_MS 50u        /* force at zero within 50 ms of detection (docs/safety.md) */
 
 static const char FAULT_USAGE[] =
     "usage: hil_sim faults [--seed N] [--dir DIR] [-o TABLE.md] [--json OUT.json] [--only NAME]\n"

@@ -1,4 +1,4 @@
-/* HIL simulator models (SPEC 3): per-axis plant (ideal / realistic), compliant object with
+/* HIL simulator models (docs/hil.md): per-axis plant (ideal / realistic), compliant object with
  * stiffness layers, seeded operator, force and position sensors. All in SI units, double.
  * See docs/hil.md for the equations and every parameter choice. */
 #ifndef SIM_MODEL_H

@@ -31,7 +31,7 @@ typedef struct {
     double duration_s;
 } sim_fault_t;
 
-/** Everything a run needs. Defaults are SPEC 3's figures (sim_scenario_defaults). */
+/** Everything a run needs. Defaults: the figures of docs/hil.md (sim_scenario_defaults). */
 typedef struct {
     char name[64];
     char path[SIM_PATH_MAX];
@@ -66,7 +66,7 @@ typedef struct {
     sim_fault_t fault;
 } sim_scenario_t;
 
-/** Fill the SPEC 3 defaults. */
+/** Fill the defaults (docs/hil.md). */
 void sim_scenario_defaults(sim_scenario_t *sc);
 
 /** Parse a scenario file over the defaults; on error returns -1 with "file:line: message" in err. */

@@ -1,6 +1,6 @@
 """Demonstrations: reading, validating and resampling a recorded task.
 
-A demonstration is time ``t`` (s), the demonstrated position ``x`` (m, into the object, SPEC 2) and
+A demonstration is time ``t`` (s), the demonstrated position ``x`` (m, into the object) and
 one force (N, pushing positive): the contact (tip) force ``f_contact`` by default, the operator's
 (handle) force ``f_operator`` with ``learn="operator"``. CSV files have a header row; the HIL log
 columns are ``t,x,y,f_contact,f_operator,f_cmd,f_hat`` in SI units. Readers are chosen by file

@@ -1,6 +1,6 @@
 """Gains of the parallel force/position law and the DMP parameters derived from them.
 
-SPEC section 2 (the paper's eq. 14, corrected for the stiffness k):
+The paper's eq. 14, corrected for the stiffness k (docs/math.md):
 ``alpha = k_d/m_d - 1``, ``gamma = k*k_i/(m_d*alpha)``,
 ``beta = (k_p + k*k_f - m_d*gamma)/(m_d*alpha) - 1``; valid only if alpha > 0, beta > 0 and
 ``beta <= alpha/4`` (the phase is then monotone). Mirrors ``dmp_params_from_gains`` in
@@ -23,7 +23,7 @@ MONOTONE_REL_TOL = 1e-9
 class Gains:
     """Gains of one axis. Units: m_d kg, k_d N*s/m, k_p N/m, k_f dimensionless, k_i 1/s.
 
-    Defaults (SPEC 2; the paper gives none): alpha = 9, beta = 2.25 = alpha/4 for every k.
+    Defaults (the paper gives none): alpha = 9, beta = 2.25 = alpha/4 for every k.
     """
 
     m_d_kg: float = 40.0
@@ -73,6 +73,6 @@ def derive(gains: Gains, stiffness_Npm: float) -> DmpParams:
 
 def goal_prime(p: DmpParams, gains: Gains, pos_d_m: float, force_d_N: float,
                force_d_integral_Ns: float) -> float:
-    """g'(t) = c/(alpha*beta), c = (k_p*x_d + k_f*f_d + k_i*int f_d)/m_d (SPEC 2)."""
+    """g'(t) = c/(alpha*beta), c = (k_p*x_d + k_f*f_d + k_i*int f_d)/m_d."""
     c = (gains.k_p_Npm * pos_d_m + gains.k_f * force_d_N + gains.k_i_per_s * force_d_integral_Ns) / gains.m_d_kg
     return c / (p.alpha * p.beta)

@@ -1,4 +1,4 @@
-"""Analytic, seeded demonstrations shaped like the paper's tasks (SPEC section 3 operator profiles).
+"""Analytic, seeded demonstrations shaped like the paper's tasks (the operator profiles of docs/hil.md).
 
 Smooth force profiles with positions from a static two-layer spring object (surface at 1 mm,
 inner layer at 20 mm). Used by the golden-vector generator, the tests and the benchmark; the HIL

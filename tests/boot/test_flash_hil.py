@@ -1,4 +1,4 @@
-"""Firmware update over the simulator's socketcand bus with udsoncan (issue 8, HIL), through the
+"""Firmware update over the simulator's socketcand bus with udsoncan (HIL), through the
 app integration of docs/update.md section 8 in hil_sim.
 
 `forceskill flash` against `hil_sim serve`: full update in 4,093-byte blocks (the device's

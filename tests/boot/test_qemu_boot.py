@@ -45,7 +45,7 @@ class Build:
         return self.out / name
 
 
-# Cortex-M3 on mps2-an385 (the target) and Cortex-M4F on mps2-an386
+# Cortex-M3 on mps2-an385 (the fixed-point target) and Cortex-M4F on mps2-an386
 @pytest.fixture(scope="module", params=[("cortex-m3", "mps2-an385", "cortex-m4f"),
                                         ("cortex-m4f", "mps2-an386", "cortex-m3")],
                 ids=["cortex-m3", "cortex-m4f"])

@@ -1,6 +1,6 @@
 """The user's day over CAN against the simulator, through python-can's socketcand interface only:
 record a pressing demonstration (TEACH) to .blf, fit it, upload it with udsoncan (read-back
-verified), run it at 1x and 1.5x, and check the HIL issue's figures on the recorded telemetry.
+verified), run it at 1x and 1.5x, and check the tracking figures of docs/hil.md on the recorded telemetry.
 Also: a log written by `python -m can.logger` is accepted by `forceskill fit`, and cantools decodes
 every cyclic frame the device sends."""
 from __future__ import annotations
@@ -60,7 +60,7 @@ def test_record_fit_upload_run(journey, capsys):
     out = forceskill(capsys, "fit", str(d / "demo.blf"), "--stiffness", str(K_NPM), "--surface-m",
                      str(SURFACE_M), "--end", "release", "-o", str(d / "press.skill"))
     err_max = float(out.split("approximation error: max ")[1].split(" %")[0])
-    assert err_max <= 2.5                             # SPEC 7: default fit <= 2.5 %
+    assert err_max <= 2.5                             # the default fit's bound (docs/performance.md)
     out = forceskill(capsys, "upload", str(d / "press.skill"), "--slot", "1", "-q", *bus)
     assert "verified by read-back" in out
     status = forceskill(capsys, "status", *bus)
@@ -100,7 +100,7 @@ def test_tracking_figures_1x_and_1_5x(journey):
     res = journey["results"]
     for g, cols in res.items():
         mx, rms = tracking(cols)
-        # HIL issue: execution force tracking RMS <= 3 % of max force (ideal plant)
+        # execution force tracking RMS <= 3 % of max force (ideal plant)
         assert rms <= 3.0, f"goal x{g}: tracking RMS {rms:.2f} %"
         # max: 2.7 % (1x) and 1.7 % (1.5x) measured; 6 % catches a run that starts before the
         # handle is parked (a too slow simulated park gave 6.9 % at 1.5x, the start transient)
@@ -117,7 +117,7 @@ def test_tracking_figures_1x_and_1_5x(journey):
 
 def test_sequence_in_series(journey, capsys):
     """run --sequence: two steps of the uploaded skill in series; the force is continuous at the
-    switch and the second step starts the profile again (SPEC 1, step 4)."""
+    switch and the second step starts the profile again."""
     d, srv = journey["dir"], journey["server"]
     csv = d / "seq.csv"
     out = forceskill(capsys, "run", "--sequence", "1:2s,1:2.5s", "--csv", str(csv), *srv.bus_args())

@@ -1,6 +1,6 @@
-"""HIL fault injection (issue 6): `hil_sim faults` runs every scenario of
+"""HIL fault injection: `hil_sim faults` runs every scenario of
 hil_sim/scenarios/faults against the full device application in lockstep. Each row is re-checked
-here from the JSON figures against SPEC 5 and docs/safety.md (not only the binary's own pass
+here from the JSON figures against the bounds of docs/safety.md (not only the binary's own pass
 flag), the markdown table is written to the build directory, and the checker is shown to fail
 when a bound is violated."""
 from __future__ import annotations
@@ -15,10 +15,10 @@ import pytest
 REPO = Path(__file__).resolve().parents[2]
 FAULTS = REPO / "hil_sim" / "scenarios" / "faults"
 DOC = REPO / "docs" / "safety.md"
-ZERO_BOUND_MS = 50          # SPEC 5: force at zero within 50 ms of detection
+ZERO_BOUND_MS = 50          # force at zero within 50 ms of detection (docs/safety.md)
 HOST_TIMEOUT_MS = 100       # default host-silence timeout
 F_MAX_N = 50.0
-EXPECTED = {                # every fault of SPEC 3/5 that the rig injects -> its code
+EXPECTED = {                # every fault the rig injects -> its code
     "host_silence": 500, "host_frames_corrupt": 500, "bus_off": 501, "force_spike": 505,
     "force_nan": 502, "force_stuck": 504, "encoder_jump": 506, "actuator_saturation": 0,
     "force_limit": 507, "tick_overrun": 511, "power_loss_upload": 0, "host_frame_loss": 0,

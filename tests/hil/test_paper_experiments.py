@@ -1,4 +1,4 @@
-"""The paper's experiments reproduced end to end on the HIL simulator (issue 3 "Done when").
+"""The paper's experiments reproduced end to end on the HIL simulator.
 
 `forceskill report` runs for two operator seeds: demonstrate (TEACH), fit (ridge N=50 and LWR),
 execute (ideal plant), reuse with and without goal scaling. Bounds on both sides where meaningful:
@@ -67,7 +67,7 @@ def test_lwr_within_paper_bounds(report: dict, name: str) -> None:
     assert e["lwr_kernels_needed"] is not None and e["lwr_kernels_needed"] <= 100, (
         f"{name}: LWR needs more than 100 kernels (N=50: {e['approx_max_pct_lwr']:.2f} %)")
     assert 0.3 <= e["approx_max_pct_lwr_needed"] <= bound
-    # LWR at N = 50 is worse than the default fit at N = 50 (SPEC 2: ridge is 2-5x more accurate)
+    # LWR at N = 50 is worse than the default fit at N = 50 (ridge is 2-5x more accurate, docs/math.md)
     assert e["approx_max_pct_lwr"] >= e["approx_max_pct"]
 
 

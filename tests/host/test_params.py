@@ -1,4 +1,4 @@
-"""Parameter derivation (SPEC 2, corrected eq. 14) and its refusals."""
+"""Parameter derivation (corrected eq. 14, docs/math.md) and its refusals."""
 from __future__ import annotations
 
 import math

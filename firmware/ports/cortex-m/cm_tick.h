@@ -14,7 +14,7 @@
 #include <stdint.h>
 #include "fs_status.h"
 
-#define CM_FORCE_MAX_N 50.0          /* SPEC 5 default F_max */
+#define CM_FORCE_MAX_N 50.0          /* default F_max (pfc_default_config) */
 #define CM_SLEW_N_PER_TICK 2.0       /* force slew limit per 1 ms tick */
 #define CM_WORKSPACE_MIN_M (-0.05)   /* position workspace of both axes */
 #define CM_WORKSPACE_MAX_M 0.25

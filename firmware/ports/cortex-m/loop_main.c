@@ -1,6 +1,6 @@
 /* The 1 kHz loop image: SysTick at 1 kHz (25 MHz core clock on mps2) raises a flag, the main
  * loop sleeps (wfi) until it, then runs one control tick. A tick still running when the next
- * SysTick fires is an overrun (counted; the application latches a fault on it, SPEC 5). Runs the
+ * SysTick fires is an overrun (counted; the application latches a fault on it). Runs the
  * embedded skill once and prints a summary. */
 #include <stdint.h>
 

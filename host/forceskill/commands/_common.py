@@ -42,7 +42,7 @@ def columns(samples: list[Sample]) -> dict[str, np.ndarray]:
 
 
 def tracking(cols: dict[str, np.ndarray]) -> dict[str, float]:
-    """Force tracking figures (HIL issue): max/RMS |f_contact - f_hat| in % of max f_hat."""
+    """Force tracking figures (docs/hil.md): max/RMS |f_contact - f_hat| in % of max f_hat."""
     f, ref = cols["f_contact"], cols["f_hat"]
     peak = float(np.max(ref)) if ref.size else 0.0
     if peak <= 0.0:

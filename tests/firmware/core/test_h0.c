@@ -1,4 +1,4 @@
-/* SPEC 2 check: with h = 0 the DMP (corrected eq. 14, time-varying goal g'(t), tau = 1)
+/* With h = 0 the DMP (corrected eq. 14, time-varying goal g'(t), tau = 1)
  * reproduces the closed-loop parallel force/position law on a spring f = k*x, both integrated by
  * forward Euler with the same dt, to round-off (1e-10 relative) for random stable gain sets; the
  * paper's printed beta does not. The closed-loop integrator below is written independently of
@@ -122,7 +122,7 @@ static void test_h0_matches_closed_loop(void **state)
     double worst = 0.0;
     pfc_config_t cfg;
     pfc_default_config(&cfg);
-    /* SPEC defaults on the paper's stiffnesses, then random stable sets. */
+    /* Default gains on the paper's stiffnesses, then random stable sets. */
     const double ks[] = {100.0, 280.0, 600.0};
     for (size_t i = 0; i < 3; i++) {
         worst = fmax(worst, h0_error(&cfg.gains[0], ks[i], -1.0));

@@ -1,4 +1,4 @@
-/* dmp_params_from_gains: SPEC 2 defaults and every validation code (built double and float). */
+/* dmp_params_from_gains: default gains and every validation code (built double and float). */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>

@@ -17,7 +17,7 @@
 #include "pfc.h"
 
 #define SUBSTEPS 20
-#define D_V 50.0 /* object damping, Ns/m (SPEC 3 paper objects) */
+#define D_V 50.0 /* object damping, Ns/m (the paper's objects, docs/hil.md) */
 
 static void ref_zero(pfc_axis_ref_t ref[PFC_AXES])
 {
@@ -281,7 +281,7 @@ static void test_config_validate(void **state)
     assert_int_equal(pfc_config_validate(&c), FS_ERR_LIMIT_INVALID);
     c = c0; c.dt_s = 0.0;
     assert_int_equal(pfc_config_validate(&c), FS_ERR_DT_INVALID);
-    /* SPEC defaults */
+    /* pfc_default_config */
     assert_true(c0.gains[0].m_d_kg == 40.0 && c0.gains[0].k_d_Nspm == 400.0 &&
                 c0.gains[0].k_p_Npm == 1170.0 && c0.gains[0].k_f == 3.0 &&
                 c0.gains[0].k_i_per_s == 27.0 && c0.gains[1].k_f == 0.0 &&

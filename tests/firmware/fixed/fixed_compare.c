@@ -1,6 +1,6 @@
 /* fixed_compare SKILL GOAL_SCALE TIME_SCALE: roll a skill image out with the fixed-point DMP and
  * with the float64 core, print the max difference in % of max force, exit 1 above 0.02 % (the
- * aim; SPEC 7's limit is 0.1 %) or on a saturation. Used by paper_tasks_fixed.py on the skills
+ * aim; the limit is 0.1 %) or on a saturation. Used by paper_tasks_fixed.py on the skills
  * fitted from the HIL simulator's demonstrations of the four paper tasks. */
 #include <math.h>
 #include <stdio.h>

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Fixed point vs float64 on the four paper tasks (issue 5 "Done when": every paper task, goal
+"""Fixed point vs float64 on the four paper tasks (every paper task, goal
 1x and 1.5x). Each task's demonstration is recorded by the HIL simulator (scenario
 hil_sim/scenarios/<task>_demo.toml, seed 1), fitted with the default method (ridge, N = 50) as
 `forceskill report` does, and the skill image is rolled out by fixed_compare at goal 1x and 1.5x.

@@ -21,7 +21,7 @@
 #error "FS_VECTORS_DIR must point at tests/vectors"
 #endif
 
-/* SPEC 7: fixed-point rollout within 0.1 % of max force of float64; asserted at the aim, 0.02 %. */
+/* Fixed-point rollout within 0.1 % of max force of float64 (docs/cortex-m.md); asserted at the aim, 0.02 %. */
 #define FIXED_TOL_REL 2e-4
 #define MAX_ROWS 40000
 
