@@ -9,7 +9,7 @@ cd "$ROOT"
 APT_PACKAGES=(build-essential cmake ninja-build python3-venv python3-dev
   libcmocka-dev libsocketcan-dev
   gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
-  clang libclang-rt-14-dev cppcheck)
+  clang libclang-rt-14-dev clang-format cppcheck)
 
 missing=()
 for p in "${APT_PACKAGES[@]}"; do
