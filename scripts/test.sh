@@ -8,8 +8,10 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$ROOT/scripts/setup.sh"
 cd "$ROOT"
 
-echo "== generated files agree with their sources (codes.toml -> headers, codes.py, docs/codes.md)"
+echo "== generated files agree with their sources (codes.toml -> headers, codes.py, docs/codes.md;"
+echo "   public headers -> the _f32 rename headers)"
 .venv/bin/python tools/gen_codes.py --check
+.venv/bin/python tools/gen_f32_names.py --check
 echo "== comments and docs cite no SPEC or issue numbers"
 tools/check_no_tracker_refs.sh
 echo "== layers: no upward or sideways include, no include cycle (tools/check_layers.py)"

@@ -1,0 +1,25 @@
+/* The _f32 names of the float32 build of dmp.h, pfc.h, skill.h
+ * (FS_REAL_FLOAT): generated from their declarations by tools/gen_f32_names.py;
+ * do not edit. */
+#ifndef FS_F32_NAMES_H
+#define FS_F32_NAMES_H
+
+#define dmp_params_from_gains dmp_params_from_gains_f32
+#define dmp_goal_prime dmp_goal_prime_f32
+#define dmp_model_init dmp_model_init_f32
+#define dmp_run_validate dmp_run_validate_f32
+#define dmp_state_reset dmp_state_reset_f32
+#define dmp_forcing dmp_forcing_f32
+#define dmp_forcing_full dmp_forcing_full_f32
+#define dmp_active_kernels dmp_active_kernels_f32
+#define dmp_phase_stop_factor dmp_phase_stop_factor_f32
+#define dmp_step dmp_step_f32
+#define pfc_default_config pfc_default_config_f32
+#define pfc_config_validate pfc_config_validate_f32
+#define pfc_reset pfc_reset_f32
+#define pfc_step pfc_step_f32
+#define skill_image_size skill_image_size_f32
+#define skill_crc32 skill_crc32_f32
+#define skill_parse skill_parse_f32
+
+#endif /* FS_F32_NAMES_H */
