@@ -3,26 +3,17 @@ host's constants and docs/codes.md agree with it, and the C headers read back in
 regex over the enums and macros, not the generator) give the same numbers as the host."""
 from __future__ import annotations
 
-import importlib.util
 import re
-import sys
 import tomllib
 from pathlib import Path
 from types import ModuleType
+from typing import Callable
 
 from forceskill import codes, errors
 
 ROOT = Path(__file__).resolve().parents[2]
 BASE = ROOT / "firmware/base"
 
-
-def _gen() -> ModuleType:
-    spec = importlib.util.spec_from_file_location("gen_codes", ROOT / "tools/gen_codes.py")
-    assert spec and spec.loader
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules["gen_codes"] = mod
-    spec.loader.exec_module(mod)
-    return mod
 
 
 def _c_enum(path: Path, prefix: str) -> dict[str, int]:
@@ -36,11 +27,11 @@ def _c_defines(path: Path) -> dict[str, int]:
             for m in re.finditer(r"#define (\w+)(?:\(node\))? \(?0x([0-9A-F]+)u", text)}
 
 
-def test_generated_files_are_up_to_date() -> None:
-    assert _gen().check(ROOT) == []
+def test_generated_files_are_up_to_date(tool: Callable[[str], ModuleType]) -> None:
+    assert tool("gen_codes").check(ROOT) == []
 
 
-def test_fs_status_codes_are_mirrored() -> None:
+def test_fs_status_codes_are_mirrored(tool: Callable[[str], ModuleType]) -> None:
     c = _c_enum(BASE / "fs_status.h", "FS_ERR_")
     assert len(c) > 20
     for name, value in c.items():
@@ -48,9 +39,10 @@ def test_fs_status_codes_are_mirrored() -> None:
         assert py == value, f"{name} = {value} in fs_status.h, errors.py has {py}"
 
 
-def test_every_c_status_code_is_in_the_host() -> None:
-    headers = {"flt_codes.h": "(?:FLT|SAF)_", "nvm_status.h": "NVM_ERR_", "sec_status.h": "SEC_ERR_",
-               "proto_status.h": "PROTO_ERR_", "boot_status.h": "(?:BOOT|FWU)_ERR_"}
+def test_every_c_status_code_is_in_the_host(tool: Callable[[str], ModuleType]) -> None:
+    headers = {"flt_codes.h": "(?:FLT|SAF)_", "nvm_status.h": "NVM_ERR_",
+               "sec_status.h": "SEC_ERR_", "proto_status.h": "PROTO_ERR_",
+               "boot_status.h": "(?:BOOT|FWU)_ERR_"}
     for header, prefix in headers.items():
         c = {k: v for k, v in _c_enum(BASE / header, prefix).items() if v}
         assert c, header
@@ -58,7 +50,7 @@ def test_every_c_status_code_is_in_the_host() -> None:
             assert getattr(codes, name) == value, f"{name} in {header}"
 
 
-def test_codes_are_unique_and_ranges_hold() -> None:
+def test_codes_are_unique_and_ranges_hold(tool: Callable[[str], ModuleType]) -> None:
     table = tomllib.loads((BASE / "codes.toml").read_text())
     values = [row[0] for g in table["status"] for row in g["codes"]]
     assert len(values) == len(set(values))
@@ -68,7 +60,7 @@ def test_codes_are_unique_and_ranges_hold() -> None:
     assert all(v < 600 or 700 <= v < 730 for v in firmware)
 
 
-def test_device_fault_table_matches_flt_codes() -> None:
+def test_device_fault_table_matches_flt_codes(tool: Callable[[str], ModuleType]) -> None:
     c = _c_enum(BASE / "flt_codes.h", "FLT_")
     faults = {v for k, v in c.items() if k != "FLT_NONE" and 500 <= v < 520}
     assert faults == set(errors.DEVICE_FAULTS), "errors.DEVICE_FAULTS differs from flt_codes.h"
@@ -76,7 +68,7 @@ def test_device_fault_table_matches_flt_codes() -> None:
     assert errors.fault_text(500) == "500 (host silence)"
 
 
-def test_uds_and_can_identifiers_match_the_c_headers() -> None:
+def test_uds_and_can_identifiers_match_the_c_headers(tool: Callable[[str], ModuleType]) -> None:
     c = _c_defines(BASE / "fs_uds_ids.h")
     assert c["DID_GAINS_X"] == codes.DID_GAINS_X == 0x0100
     assert c["FWU_DID_STATUS"] == codes.DID_FWU_STATUS
@@ -88,7 +80,7 @@ def test_uds_and_can_identifiers_match_the_c_headers() -> None:
     assert ids["PROTO_ID_STATUS"] == codes.CAN_ID_STATUS
 
 
-def test_dbc_frame_ids_match_the_table() -> None:
+def test_dbc_frame_ids_match_the_table(tool: Callable[[str], ModuleType]) -> None:
     import cantools
 
     db = cantools.database.load_file(str(ROOT / "firmware/proto/forceskill.dbc"))
@@ -97,8 +89,8 @@ def test_dbc_frame_ids_match_the_table() -> None:
     assert db.get_message_by_name("Emergency").frame_id == codes.CAN_ID_EMERGENCY
 
 
-def test_check_reports_a_stale_file(tmp_path: Path) -> None:
-    gen = _gen()
+def test_check_reports_a_stale_file(tmp_path: Path, tool: Callable[[str], ModuleType]) -> None:
+    gen = tool("gen_codes")
     for rel in ["firmware/base/codes.toml", "firmware/proto/forceskill.dbc",
                 *gen.outputs(gen.load(ROOT))]:
         (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)

@@ -2,22 +2,13 @@
 layer used beyond its opening and an include cycle are each reported."""
 from __future__ import annotations
 
-import importlib.util
 import shutil
-import sys
 from pathlib import Path
 from types import ModuleType
+from typing import Callable
 
 ROOT = Path(__file__).resolve().parents[2]
 
-
-def _tool() -> ModuleType:
-    spec = importlib.util.spec_from_file_location("check_layers", ROOT / "tools/check_layers.py")
-    assert spec and spec.loader
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules["check_layers"] = mod
-    spec.loader.exec_module(mod)
-    return mod
 
 
 def _copy(tmp: Path) -> Path:
@@ -30,21 +21,21 @@ def _add_include(path: Path, header: str) -> None:
     path.write_text(f'#include "{header}"\n' + path.read_text())
 
 
-def test_the_tree_has_no_upward_include_and_no_cycle() -> None:
-    problems, graph = _tool().check(ROOT)
+def test_the_tree_has_no_upward_include_and_no_cycle(tool: Callable[[str], ModuleType]) -> None:
+    problems, graph = tool("check_layers").check(ROOT)
     assert problems == []
     assert ("app", "core") in graph and ("core", "fixed") not in graph
 
 
-def test_violations_are_reported(tmp_path: Path) -> None:
-    tool = _tool()
+def test_violations_are_reported(tmp_path: Path, tool: Callable[[str], ModuleType]) -> None:
+    mod = tool("check_layers")
     root = _copy(tmp_path)
     _add_include(root / "firmware/core/fs_num.h", "fs_num_fixed.h")        # upward
     _add_include(root / "firmware/storage/nvm.h", "flt_codes.h")           # fine: base
     _add_include(root / "firmware/security/sec_access.h", "nvm.h")         # sideways
     _add_include(root / "firmware/safety/lim.h", "pfc.h")                  # beyond fs_real.h
     _add_include(root / "firmware/core/dmp.h", "skill.h")                  # skill.h -> dmp.h: cycle
-    problems, _ = tool.check(root)
+    problems, _ = mod.check(root)
     text = "\n".join(problems)
     assert "upward include of firmware/fixed/fs_num_fixed.h (core -> fixed)" in text
     assert "sideways include of firmware/storage/nvm.h (security -> storage)" in text
