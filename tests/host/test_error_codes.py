@@ -84,6 +84,7 @@ def test_dbc_frame_ids_match_the_table(tool: Callable[[str], ModuleType]) -> Non
     import cantools
 
     db = cantools.database.load_file(str(ROOT / "firmware/proto/forceskill.dbc"))
+    assert isinstance(db, cantools.database.can.Database)
     assert db.get_message_by_name("DeviceStatus").frame_id == codes.CAN_ID_STATUS
     assert db.get_message_by_name("HostCommand").frame_id == codes.CAN_ID_HOST_COMMAND
     assert db.get_message_by_name("Emergency").frame_id == codes.CAN_ID_EMERGENCY
