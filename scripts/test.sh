@@ -41,3 +41,6 @@ done
 echo "== Python, HIL and CAN tests"
 export FORCESKILL_HIL_SIM="$ROOT/build/hil_sim/hil_sim"
 .venv/bin/python -m pytest -q tests
+
+echo "== clang-format: firmware/ and hil_sim/ match .clang-format (generated code excluded)"
+tools/check_format.sh
