@@ -5,7 +5,7 @@
 # usage: tests/consumer/run.sh [OUT=build/consumer]
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
-OUT="${1:-$ROOT/build/consumer}"
+OUT="$(realpath -m "${1:-$ROOT/build/consumer}")"
 HERE="$ROOT/tests/consumer"
 SKILL="$ROOT/tests/vectors/press_n50_lwr_hold.skill"
 rm -rf "$OUT"
