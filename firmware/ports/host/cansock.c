@@ -20,9 +20,7 @@ void cansock_init(cansock_t *c)
     c->fd = -1;
 }
 
-/* Linux's rule for interface names (dev_valid_name): 1..15 bytes, not "." or "..", no '/', ':'
- * or white space. */
-static bool valid_ifname(const char *name)
+bool cansock_valid_ifname(const char *name)
 {
     const size_t n = strlen(name);
     if (n == 0u || n >= CANSOCK_IFNAME_MAX || strcmp(name, ".") == 0 || strcmp(name, "..") == 0) {
@@ -42,7 +40,7 @@ int cansock_open(cansock_t *c, const cansock_ops_t *ops, const char *ifname, cha
 {
     cansock_init(c);
     c->ops = ops != NULL ? ops : &cansock_linux_ops;
-    if (!valid_ifname(ifname)) {
+    if (!cansock_valid_ifname(ifname)) {
         snprintf(err, err_len, "invalid interface name '%.40s' (1..%u characters, no '/', ':' or spaces)",
                  ifname, CANSOCK_IFNAME_MAX - 1u);
         return -EINVAL;
@@ -84,7 +82,7 @@ int cansock_set_bitrate(cansock_t *c, uint32_t bitrate_bps, char *err, uint32_t 
     }
     if (r == -EPERM || r == -EACCES) {
         snprintf(err, err_len, "setting %s to %u bit/s needs CAP_NET_ADMIN (root, or setcap "
-                 "cap_net_admin+ep on hil_sim); %s left as configured (%s)", c->ifname, bitrate_bps,
+                 "cap_net_admin+ep on the program); %s left as configured (%s)", c->ifname, bitrate_bps,
                  c->ifname, was);
     } else {
         snprintf(err, err_len, "cannot set %s to %u bit/s: %s (was %s)", c->ifname, bitrate_bps,

@@ -79,6 +79,10 @@ typedef struct cansock {
     cansock_stats_t st;
 } cansock_t;
 
+/** Linux's rule for interface names (dev_valid_name): 1..15 bytes, not "." or "..", no '/',
+ *  ':' or white space. */
+bool cansock_valid_ifname(const char *name);
+
 /** A closed driver (fd -1, counters zero). */
 void cansock_init(cansock_t *c);
 
