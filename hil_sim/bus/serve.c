@@ -263,17 +263,7 @@ static int parse_double(const char *opt, const char *v, double *out)
 #ifdef HIL_SIM_HAVE_SOCKETCAN
 static int serve_check_socketcan(const char *ifname, int argc, char **argv)
 {
-    if (!cansock_valid_ifname(ifname)) {
-        fprintf(stderr, "hil_sim serve: --socketcan needs an interface name of 1..%u characters without "
-                "'/', ':' or spaces, got '%.40s'\n", CANSOCK_IFNAME_MAX - 1u, ifname);
-        return -1;
-    }
-    const char *conflict = serve_socketcan_conflict(argc, argv);
-    if (conflict != NULL) {
-        fprintf(stderr, "hil_sim serve: %s applies to the simulated bus, not with --socketcan\n", conflict);
-        return -1;
-    }
-    return 0;
+    return serve_socketcan_check(ifname, argc, argv);
 }
 
 static void socketcan_tick(void *ctx)
@@ -285,17 +275,13 @@ static void socketcan_tick(void *ctx)
 static int serve_run_socketcan(serve_t *s, const char *ifname, int argc, char **argv, uint32_t bitrate,
                                double duration, const char *scenario)
 {
-    bool bitrate_given = false;
-    for (int i = 0; i < argc; i++) {
-        bitrate_given = bitrate_given || strcmp(argv[i], "--bitrate") == 0;
-    }
     signal(SIGINT, on_signal);
     signal(SIGTERM, on_signal);
     const serve_socketcan_cfg_t cfg = {
-        .ifname = ifname, .ops = NULL, .bitrate_bps = bitrate_given ? bitrate : 0u, .speed = s->speed,
-        .end_ns = duration > 0.0 ? (uint64_t)(duration * 1e9) : UINT64_MAX, .node = s->node,
-        .scenario = scenario, .tick = socketcan_tick, .ctx = NULL, .device_tx_dropped = &s->app.tx_dropped,
-        .stop = &g_stop};
+        .ifname = ifname, .ops = NULL, .bitrate_bps = serve_socketcan_bitrate_given(argc, argv) ? bitrate : 0u,
+        .speed = s->speed, .end_ns = duration > 0.0 ? (uint64_t)(duration * 1e9) : UINT64_MAX,
+        .node = s->node, .scenario = scenario, .tick = socketcan_tick, .ctx = NULL,
+        .device_tx_dropped = &s->app.tx_dropped, .stop = &g_stop};
     return serve_socketcan_run(&cfg);
 }
 #else

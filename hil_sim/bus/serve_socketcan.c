@@ -17,16 +17,36 @@
 static const char *const TCP_BUS_OPTIONS[] = {"--port", "--host", "--channel", "--drop", "--corrupt",
                                               "--bus-off-at", "--bus-off-for"};
 
-const char *serve_socketcan_conflict(int argc, char *const *argv)
+static bool has_option(int argc, char *const *argv, const char *opt)
 {
     for (int i = 0; i < argc; i++) {
-        for (size_t k = 0; k < sizeof(TCP_BUS_OPTIONS) / sizeof(TCP_BUS_OPTIONS[0]); k++) {
-            if (strcmp(argv[i], TCP_BUS_OPTIONS[k]) == 0) {
-                return TCP_BUS_OPTIONS[k];
-            }
+        if (strcmp(argv[i], opt) == 0) {
+            return true;
         }
     }
-    return NULL;
+    return false;
+}
+
+int serve_socketcan_check(const char *ifname, int argc, char *const *argv)
+{
+    if (!cansock_valid_ifname(ifname)) {
+        fprintf(stderr, "hil_sim serve: --socketcan needs an interface name of 1..%u characters without "
+                "'/', ':' or spaces, got '%.40s'\n", CANSOCK_IFNAME_MAX - 1u, ifname);
+        return -1;
+    }
+    for (size_t k = 0; k < sizeof(TCP_BUS_OPTIONS) / sizeof(TCP_BUS_OPTIONS[0]); k++) {
+        if (has_option(argc, argv, TCP_BUS_OPTIONS[k])) {
+            fprintf(stderr, "hil_sim serve: %s applies to the simulated bus, not with --socketcan\n",
+                    TCP_BUS_OPTIONS[k]);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+bool serve_socketcan_bitrate_given(int argc, char *const *argv)
+{
+    return has_option(argc, argv, "--bitrate");
 }
 
 void serve_socketcan_rx(cansock_t *c, uint64_t now_us)

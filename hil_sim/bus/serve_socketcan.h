@@ -38,8 +38,12 @@ typedef struct {
  *  such interface). A refused bit rate is one line on stderr, and the run goes on. */
 int serve_socketcan_run(const serve_socketcan_cfg_t *cfg);
 
-/** The first option of argv that has no meaning with --socketcan (NULL if none). */
-const char *serve_socketcan_conflict(int argc, char *const *argv);
+/** Check the command line of `serve --socketcan ifname`: 0, or -1 with one line on stderr (an
+ *  invalid interface name, an option of the simulated bus). */
+int serve_socketcan_check(const char *ifname, int argc, char *const *argv);
+
+/** True if argv sets --bitrate (without it the interface keeps its rate). */
+bool serve_socketcan_bitrate_given(int argc, char *const *argv);
 
 /** Bridge, before the tick: frames from the interface into the device's receive queue, the
  *  driver's bus-off state to the device's controller (now_us: simulated time). */
