@@ -20,6 +20,9 @@
 #include "sim_model.h"
 #include "sim_rng.h"
 #include "sim_scenario.h"
+#ifdef HIL_SIM_HAVE_SOCKETCAN
+#include "serve_socketcan.h"
+#endif
 
 #define TICK_NS 1000000ull
 #define MAX_LAG_NS 100000000ull     /* fall further behind than this: slip (count it) */
@@ -45,7 +48,13 @@ static const char SERVE_USAGE[] =
     "  --drop P         lose each frame with probability P\n"
     "  --corrupt P      flip one random data bit of each frame with probability P (E2E/ISO-TP see it)\n"
     "  --bus-off-at S   the device's controller goes bus-off at S simulated seconds\n"
-    "  --bus-off-for S  ... for S seconds (default 0.5)\n";
+    "  --bus-off-for S  ... for S seconds (default 0.5)\n"
+    "on a real bus instead (docs/hil.md):\n"
+    "  --socketcan IFACE  the device on a SocketCAN interface (can0 on an adapter, vcan0): no TCP\n"
+    "                   server and no bus model, hosts use python-can's socketcan interface;\n"
+    "                   --bitrate then sets the interface's rate with libsocketcan (needs\n"
+    "                   CAP_NET_ADMIN; default: as configured); --port, --host, --channel and the\n"
+    "                   fault injection options do not apply\n";
 
 static volatile sig_atomic_t g_stop;
 
@@ -152,8 +161,6 @@ static void sim_tick(serve_t *s)
     const sim_scenario_t *sc = &s->sc;
     const double dt = sc->dt_s;
     hal_host_set_time_us(s->n_tick * 1000u);
-    const uint64_t t_ns = s->n_tick * TICK_NS;
-    hal_sim_can_set_bus_off(t_ns >= s->bus_off_from_ns && t_ns < s->bus_off_until_ns);
 
     /* operator: demonstrates from the moment the device enters TEACH */
     const bool teach = s->app.state == APP_TEACH;
@@ -252,11 +259,55 @@ static int parse_double(const char *opt, const char *v, double *out)
     return 0;
 }
 
+/* --socketcan: the same device and plant on a SocketCAN interface (serve_socketcan.h) */
+#ifdef HIL_SIM_HAVE_SOCKETCAN
+static int serve_check_socketcan(const char *ifname, int argc, char **argv)
+{
+    return serve_socketcan_check(ifname, argc, argv);
+}
+
+static void socketcan_tick(void *ctx)
+{
+    (void)ctx;
+    sim_tick(&S);   /* the one serve_t: passed through ctx, GCC -O2 -fsanitize misreports an overread */
+}
+
+static int serve_run_socketcan(serve_t *s, const char *ifname, int argc, char **argv, uint32_t bitrate,
+                               double duration, const char *scenario)
+{
+    signal(SIGINT, on_signal);
+    signal(SIGTERM, on_signal);
+    const serve_socketcan_cfg_t cfg = {
+        .ifname = ifname, .ops = NULL, .bitrate_bps = serve_socketcan_bitrate_given(argc, argv) ? bitrate : 0u,
+        .speed = s->speed, .end_ns = duration > 0.0 ? (uint64_t)(duration * 1e9) : UINT64_MAX,
+        .node = s->node, .scenario = scenario, .tick = socketcan_tick, .ctx = NULL,
+        .device_tx_dropped = &s->app.tx_dropped, .stop = &g_stop};
+    return serve_socketcan_run(&cfg);
+}
+#else
+static int serve_check_socketcan(const char *ifname, int argc, char **argv)
+{
+    (void)ifname;
+    (void)argc;
+    (void)argv;
+    fprintf(stderr, "hil_sim serve: --socketcan needs a build with libsocketcan (apt install libsocketcan-dev)\n");
+    return -1;
+}
+
+static int serve_run_socketcan(serve_t *s, const char *ifname, int argc, char **argv, uint32_t bitrate,
+                               double duration, const char *scenario)
+{
+    (void)s, (void)ifname, (void)argc, (void)argv, (void)bitrate, (void)duration, (void)scenario;
+    return 2;
+}
+#endif
+
 int bus_cmd_serve(int argc, char **argv)
 {
     const char *host = "127.0.0.1";
     const char *channel = "can0";
     const char *scenario = NULL;
+    const char *socketcan = NULL;
     double port = 29536.0, speed = 1.0, node = 0.0, bitrate = 1e6, duration = 0.0, host_timeout = 100.0;
     double drop = 0.0, corrupt = 0.0, bus_off_at = -1.0, bus_off_for = 0.5;
     bool verbose = false;
@@ -280,6 +331,7 @@ int bus_cmd_serve(int argc, char **argv)
         else if (strcmp(a, "--host") == 0) host = v;
         else if (strcmp(a, "--speed") == 0) rc = parse_double(a, v, &speed);
         else if (strcmp(a, "--scenario") == 0) scenario = v;
+        else if (strcmp(a, "--socketcan") == 0) socketcan = v;
         else if (strcmp(a, "--node") == 0) rc = parse_double(a, v, &node);
         else if (strcmp(a, "--channel") == 0) channel = v;
         else if (strcmp(a, "--bitrate") == 0) rc = parse_double(a, v, &bitrate);
@@ -321,6 +373,9 @@ int bus_cmd_serve(int argc, char **argv)
     }
     if (!(drop >= 0.0 && drop <= 1.0) || !(corrupt >= 0.0 && corrupt <= 1.0) || !(bus_off_for >= 0.0)) {
         fprintf(stderr, "hil_sim serve: --drop/--corrupt must be probabilities 0..1, --bus-off-for >= 0\n");
+        return 2;
+    }
+    if (socketcan != NULL && serve_check_socketcan(socketcan, argc, argv) != 0) {
         return 2;
     }
     serve_t *s = &S;
@@ -365,6 +420,9 @@ int bus_cmd_serve(int argc, char **argv)
     hal_host_init();
     plant_init(s);
     device_boot(s);
+    if (socketcan != NULL) {
+        return serve_run_socketcan(s, socketcan, argc, argv, (uint32_t)bitrate, duration, scenario);
+    }
     bus_init(&s->bus, (uint32_t)bitrate);
 
     if (scand_listen(&s->sd, host, (uint16_t)port, channel, on_client_frame, s, err, sizeof(err)) != 0) {
@@ -401,6 +459,7 @@ int bus_cmd_serve(int argc, char **argv)
             }
             bus_run(&s->bus, next_tick_ns, deliver, s);
             s->sim_ns = next_tick_ns;
+            hal_sim_can_set_bus_off(next_tick_ns >= s->bus_off_from_ns && next_tick_ns < s->bus_off_until_ns);
             sim_tick(s);
             device_tx_to_bus(s, next_tick_ns);
             next_tick_ns += TICK_NS;

@@ -78,8 +78,10 @@ def test_record_fit_upload_run(journey, capsys):
     import argparse
     from forceskill.commands._common import connect
     from forceskill.link import uds as U
-    ns = argparse.Namespace(interface="socketcand", channel="can0",
-                            bus_kwargs={"host": "127.0.0.1", "port": srv.port}, node=0, timeout=3.0)
+    from forceskill.link.bus import add_bus_args
+    parser = argparse.ArgumentParser()
+    add_bus_args(parser)
+    ns = parser.parse_args(bus)                       # the server's bus, whatever its interface
     with connect(ns) as dev, U.uds_client(dev) as client:
         comm = U.read_did(client, U.DID_COMM, 0)
     assert int.from_bytes(comm[1:3], "big") == srv.host_timeout_ms == JOURNEY_HOST_TIMEOUT_MS

@@ -4,7 +4,8 @@
  * mailboxes filled/read by whoever owns the hardware or the plant, and the reset request.
  * CAN backends, one per library:
  *   hal_can_sim.c        queues exchanged with the simulator's bus (hil_sim/bus)
- *   hal_can_socketcan.c  Linux SocketCAN raw socket, libsocketcan for bitrate/restart */
+ *   hal_can_socketcan.c  Linux SocketCAN raw socket (driver cansock.h), libsocketcan for
+ *                        bitrate/restart */
 #ifndef HAL_HOST_H
 #define HAL_HOST_H
 
@@ -66,11 +67,22 @@ uint32_t hal_sim_can_rx_overflows(void);
 
 /* ---- SocketCAN backend (hal_can_socketcan.c) ---- */
 
-/** Open ifname (e.g. "can0"); bitrate > 0 configures it with libsocketcan first (needs
- *  CAP_NET_ADMIN and the interface down). Returns 0, or -errno with a message in err. */
+/** Open ifname (e.g. "can0"); bitrate > 0 then sets that rate with libsocketcan unless the
+ *  interface has it (link down and up; needs CAP_NET_ADMIN). Returns 0, or -errno with a
+ *  message in err (closed again if the rate could not be set). */
 int hal_socketcan_open(const char *ifname, uint32_t bitrate, char *err, uint32_t err_len);
 
 /** Close the socket. */
 void hal_socketcan_close(void);
+
+struct cansock_ops;
+struct cansock;
+
+/** hal_socketcan_open through other operating-system calls (cansock.h; tests: a socket pair). */
+int hal_socketcan_open_with(const struct cansock_ops *ops, const char *ifname, uint32_t bitrate,
+                            char *err, uint32_t err_len);
+
+/** The driver behind the HAL functions (bus-off state, counters). */
+const struct cansock *hal_socketcan_driver(void);
 
 #endif /* HAL_HOST_H */
