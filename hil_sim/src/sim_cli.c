@@ -46,7 +46,7 @@ static int parse_num(const char *opt, const char *s, double *out)
 int sim_cmd_run(int argc, char **argv)
 {
     static sim_scenario_t sc;
-    static skill_t skills[SIM_MAX_SKILLS];
+    static sim_skill_image_t skills[SIM_MAX_SKILLS];
     char err[SIM_ERR_MAX];
     const char *scenario = NULL;
     const char *out = NULL;
