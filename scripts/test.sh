@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Every test: C unit tests under ASan+UBSan (Debug build), the static checks, the Cortex-M images
+# Every test: one tick implementation (scripts/check_one_tick.sh), C unit tests under ASan+UBSan
+# (Debug build), the static checks, the Cortex-M images
 # under qemu (bench/qemu_tick.sh: budgets, qemu vs host, no heap/recursion, stack per entry point),
 # then the Python, HIL and CAN tests against the Release build. Exit status is non-zero if
 # anything fails.
@@ -7,6 +8,9 @@ set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$ROOT/scripts/setup.sh"
 cd "$ROOT"
+
+echo "== one implementation of the control tick (scripts/check_one_tick.sh)"
+scripts/check_one_tick.sh
 
 echo "== C tests (Debug: ASan + UBSan)"
 cmake -S . -B build-debug -G Ninja -DCMAKE_BUILD_TYPE=Debug -DPython3_EXECUTABLE="$ROOT/.venv/bin/python" >/dev/null
