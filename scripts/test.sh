@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Every test: C unit tests under ASan+UBSan (Debug build, preset host-debug), the static checks, the Cortex-M images
+# Every test: one tick implementation (scripts/check_one_tick.sh), C unit tests under ASan+UBSan (Debug build, preset host-debug), the static checks, the Cortex-M images
 # under qemu (bench/qemu_tick.sh: budgets, qemu vs host, no heap/recursion, stack per entry point),
 # then the Python, HIL and CAN tests against the Release build. Exit status is non-zero if
 # anything fails.
@@ -14,6 +14,8 @@ echo "   public headers -> the _f32 rename headers)"
 .venv/bin/python tools/gen_f32_names.py --check
 echo "== comments and docs cite no SPEC or issue numbers"
 tools/check_no_tracker_refs.sh
+echo "== one implementation of the control tick (scripts/check_one_tick.sh)"
+scripts/check_one_tick.sh
 echo "== layers: no upward or sideways include, no include cycle (tools/check_layers.py)"
 .venv/bin/python tools/check_layers.py
 

@@ -42,7 +42,7 @@ static double cpu_s(void)
 }
 
 static sim_scenario_t sc;
-static skill_t skills[SIM_MAX_SKILLS];
+static sim_skill_image_t skills[SIM_MAX_SKILLS];
 
 int main(int argc, char **argv)
 {

@@ -171,6 +171,8 @@ fs_status_t dmp_run_validate(const dmp_run_t *run)
 
 void dmp_state_reset(dmp_state_t *s)
 {
+    s->window[0] = 0u;
+    s->window[1] = 0u;
     s->u = FS_R(0.0);
     s->v = FS_R(0.0);
     s->integral_x = FS_R(0.0);
@@ -200,7 +202,7 @@ static fs_real_t dmp_blend_all(const dmp_model_t *m, fs_real_t u)
 
 fs_real_t dmp_forcing(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_real_t goal_m)
 {
-    return goal_m * v * dmp_tick_blend(m, u, NULL);
+    return goal_m * v * dmp_tick_blend(m, u, dmp_tick_window_start(m, u), dmp_tick_window_end(m, u), NULL);
 }
 
 fs_real_t dmp_forcing_full(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_real_t goal_m)
@@ -211,7 +213,7 @@ fs_real_t dmp_forcing_full(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_re
 uint16_t dmp_active_kernels(const dmp_model_t *m, fs_real_t u)
 {
     uint16_t count;
-    (void)dmp_tick_blend(m, u, &count);
+    (void)dmp_tick_blend(m, u, dmp_tick_window_start(m, u), dmp_tick_window_end(m, u), &count);
     return count;
 }
 
@@ -227,6 +229,8 @@ fs_real_t dmp_phase_stop_factor(fs_real_t force_err_N, fs_real_t gain_per_N2)
 fs_real_t dmp_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
                    const dmp_coupling_t *coupling)
 {
+    const dmp_tick_state_t st = {s->window, &s->u, &s->v, &s->integral_x, &s->x_m, &s->z};
+    const fs_real_t s_blend = dmp_tick_state_blend(m, &st);
     const fs_real_t goal_scale = (run != NULL) ? run->goal_scale : FS_R(1.0);
     const fs_real_t time_scale = (run != NULL) ? run->time_scale : FS_R(1.0);
     fs_real_t slowdown = FS_R(0.0);
@@ -245,6 +249,5 @@ fs_real_t dmp_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
                                .goal = m->goal_m * goal_scale,
                                .stiffness = m->stiffness_Npm,
                                .term_x = term_x};
-    const dmp_tick_state_t st = {&s->u, &s->v, &s->integral_x, &s->x_m, &s->z};
-    return dmp_tick_step(m, &c, &st, NULL);
+    return dmp_tick_step(&c, &st, s_blend, NULL);
 }

@@ -83,8 +83,10 @@ typedef struct {
  *  beta <= alpha/4*(1 + DMP_MONOTONE_REL_TOL_REAL) (209). */
 fs_status_t dmp_model_init(dmp_model_t *m);
 
-/** DMP state, DMP time: normalised phase u~, v~, the position integral I, x, z. */
+/** DMP state, DMP time: normalised phase u~, v~, the position integral I, x, z; window is the
+ *  last step's kernel window [start, end) (a hint for the next: the result never depends on it). */
 typedef struct {
+    uint16_t window[2];
     fs_real_t u;
     fs_real_t v;
     fs_real_t integral_x;
@@ -114,7 +116,7 @@ void dmp_state_reset(dmp_state_t *s);
 
 /** Forcing term h at phase (u~, v~) and goal g, summing only kernels with
  *  e_i = (u~ - c_i)^2/(2 sigma_i^2) <= DMP_KERNEL_CUTOFF_EXP (found by binary search on the envelopes),
- *  psi_i = exp(-(e_i - e_min)) (dmp_tick.h); if none qualifies, the kernel with the smallest e_i
+ *  psi_i = exp(-e_i) (dmp_tick.h); if none qualifies, the kernel with the smallest e_i
  *  alone (an O(N) scan that only happens when the phase is outside every kernel). */
 fs_real_t dmp_forcing(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_real_t goal_m);
 

@@ -1,16 +1,21 @@
 /* The DMP's per-tick algorithm, written once over the numeric layer (fs_num.h) and compiled
  * three ways: by dmp.c into fs_core (double) and fs_core_f32 (float32), and by
  * firmware/fixed/dmpfx.c into fs_fixed (fixed point). docs/math.md section 2 is the algorithm:
- *   kernel window   binary search on the envelopes, at most FS_NUM_MAX_WINDOW kernels
- *   kernel blend    two passes: e_min over the kernels with e_i = (u - c_i)^2/(2 sigma_i^2) <= cutoff,
- *                   then S = sum psi_i w_i / sum psi_i with psi_i = exp(-(e_i - e_min));
+ *   kernel window   [first i with env_hi[i] >= u, first i with env_lo[i] > u), both ends walked
+ *                   from the previous tick's (the phase is monotone: an end moves every few
+ *                   ticks; any previous window gives the same one), at most FS_NUM_MAX_WINDOW
+ *   kernel blend    S = sum psi_i w_i / sum psi_i over the kernels with e_i = (u - c_i)^2/(2 sigma_i^2)
+ *                   <= cutoff; real layer: one pass, psi_i = exp(-e_i) (>= exp(-cutoff), a normal
+ *                   number); fixed layer: e_i stored in one pass, then psi_i = exp(-(e_i - e_min))
+ *                   (the shift keeps sum psi >= 1.0 in Q1.30: full resolution);
  *                   no kernel within the cutoff -> the nearest kernel's weight
  *   Euler step      all right-hand sides at the old state, in coefficient form
  *                   x += k1*(z - x + h + term_x) - k_gamma*I     z += k_ab*(g - x) - k_a*z
  *                   I += k1*x    v += k_ab*(1 - u) - k_a*v       u += k1*v     f = k*x
  * The including file includes its public header, fs_num.h, then defines DMP_TICK_MODEL (its
  * model type, with fields n_kernels, centre[], kernel_scale[], weight[], env_lo[], env_hi[] in
- * the layer's types) and includes this file once. Building the coefficients from the run
+ * the layer's types) and includes this file once. The window of the last step is kept in the
+ * caller's state (dmp_tick_state_t.window). Building the coefficients from the run
  * (scales, slow-down) is the caller's: dmp_step (real) and dmpfx_step (fixed). */
 #ifndef DMP_TICK_H
 #define DMP_TICK_H
@@ -19,6 +24,17 @@
 
 #ifndef DMP_TICK_MODEL
 #error "define DMP_TICK_MODEL (the model type) before including dmp_tick.h"
+#endif
+
+/* 1: psi_i = exp(-(e_i - e_min)), the exponents stored for a second pass (fixed point, where
+ * exp(-16) would be 120 LSB of Q1.30); 0: psi_i = exp(-e_i) in one pass (float and double, where
+ * exp(-cutoff) is a normal number and the shift only changes round-off). */
+#ifndef DMP_TICK_BLEND_SHIFT
+#ifdef FS_NUMERIC_FIXED
+#define DMP_TICK_BLEND_SHIFT 1
+#else
+#define DMP_TICK_BLEND_SHIFT 0
+#endif
 #endif
 
 /** Per-tick constants of one Euler step: dt/tau_e*{1, alpha, alpha*beta, gamma}, g_e, k and
@@ -33,8 +49,10 @@ typedef struct {
     fs_val_t term_x;
 } dmp_tick_coef_t;
 
-/** The DMP state as the step sees it: the layer's accumulators (fs_acc_t) of u~, v~, I, x, z. */
+/** The DMP state as the step sees it: the layer's accumulators (fs_acc_t) of u~, v~, I, x, z,
+ *  and the kernel window [start, end) of the last step (a hint: any value gives the same result). */
 typedef struct {
+    uint16_t *window;
     fs_acc_t *u;
     fs_acc_t *v;
     fs_acc_t *integral_x;
@@ -75,48 +93,114 @@ static inline fs_val_t dmp_tick_nearest_weight(const DMP_TICK_MODEL *m, fs_phase
     return m->weight[best];
 }
 
-/** S(u) = sum psi_i w_i / sum psi_i over the kernels with e_i <= FS_NUM_CUTOFF, psi_i =
- *  exp(-(e_i - e_min)) (the shift keeps sum psi >= 1: no underflow in float, full resolution
- *  in fixed). The window runs from dmp_tick_window_start while env_lo[i] <= u (env_lo is
- *  non-decreasing). *count (may be NULL) receives the number summed (1 in the fallback). */
-static inline fs_val_t dmp_tick_blend(const DMP_TICK_MODEL *m, fs_phase_t u, uint16_t *count)
+/** End of the kernel window at u: the first i with env_lo[i] > u (env_lo is non-decreasing,
+ *  every later kernel starts after u), by binary search. */
+static inline uint32_t dmp_tick_window_end(const DMP_TICK_MODEL *m, fs_phase_t u)
 {
-    const uint32_t lo = dmp_tick_window_start(m, u);
-    uint32_t end = lo + FS_NUM_MAX_WINDOW;
-    end = (end < m->n_kernels) ? end : m->n_kernels;
-    /* pass 1: e_min, the number within the cutoff and the end of the window */
-    fs_expo_t e_min = FS_NUM_EXPO_INF;
-    uint32_t n = 0u;
-    uint32_t hi = lo;
-    for (; hi < end && m->env_lo[hi] <= u; hi++) {
-        const fs_expo_t e = fs_num_kernel_expo(u, m->centre[hi], m->kernel_scale[hi]);
-        if (e <= FS_NUM_CUTOFF) {
-            n++;
-            e_min = (e < e_min) ? e : e_min;
+    uint32_t a = 0u;
+    uint32_t b = m->n_kernels;
+    while (a < b) {
+        const uint32_t mid = (a + b) >> 1;
+        if (m->env_lo[mid] <= u) {
+            a = mid + 1u;
+        } else {
+            b = mid;
         }
     }
+    return a;
+}
+
+/** The window at u, walked from win (the previous step's window) and stored back into it: the
+ *  start is dmp_tick_window_start's for any hint, the end dmp_tick_window_end's or later (a later
+ *  end holds only kernels beyond the cutoff: the blend is the same). A monotone phase moves each
+ *  end by one kernel every few ticks; a hint on the wrong side costs a longer walk. */
+static inline void dmp_tick_window_walk(const DMP_TICK_MODEL *m, fs_phase_t u, uint16_t win[2])
+{
+    const uint32_t n = m->n_kernels;
+    uint32_t lo = (win[0] < n) ? win[0] : n;
+    uint32_t hi = (win[1] < n) ? win[1] : n;
+    while (lo > 0u && m->env_hi[lo - 1u] >= u) {
+        lo--;
+    }
+    while (lo < n && m->env_hi[lo] < u) {
+        lo++;
+    }
+    /* an end past the first env_lo[i] > u only adds kernels beyond the cutoff (skipped by the
+     * e_i test), so the end is walked forward only */
+    while (hi < n && m->env_lo[hi] <= u) {
+        hi++;
+    }
+    win[0] = (uint16_t)lo;
+    win[1] = (uint16_t)hi;
+}
+
+/** S(u) = sum psi_i w_i / sum psi_i over the kernels with e_i <= FS_NUM_CUTOFF in the window
+ *  [lo, hi) (dmp_tick_window_*; empty when hi <= lo), at most FS_NUM_MAX_WINDOW kernels from lo;
+ *  psi_i as DMP_TICK_BLEND_SHIFT says. *count (may be NULL) receives the number summed (1 in
+ *  the nearest-kernel fallback). */
+static inline fs_val_t dmp_tick_blend(const DMP_TICK_MODEL *m, fs_phase_t u, uint32_t lo,
+                                      uint32_t hi, uint16_t *count)
+{
+    const uint32_t end = (hi > lo + FS_NUM_MAX_WINDOW) ? lo + FS_NUM_MAX_WINDOW : hi;
+    fs_bnum_t num = 0;
+    fs_bden_t den = 0;
+    uint32_t n = 0u;
+#if DMP_TICK_BLEND_SHIFT
+    /* pass 1: every exponent of the window once, e_min and the number within the cutoff */
+    fs_expo_t e[FS_NUM_MAX_WINDOW];
+    fs_expo_t e_min = FS_NUM_EXPO_INF;
+    for (uint32_t i = lo; i < end; i++) {
+        const fs_expo_t ei = fs_num_kernel_expo(u, m->centre[i], m->kernel_scale[i]);
+        e[i - lo] = ei;
+        if (ei <= FS_NUM_CUTOFF) {
+            n++;
+            e_min = (ei < e_min) ? ei : e_min;
+        }
+    }
+    /* pass 2: the shifted activations of the stored exponents */
+    if (n != 0u) {
+        for (uint32_t i = lo; i < end; i++) {
+            if (e[i - lo] <= FS_NUM_CUTOFF) {
+                fs_num_blend_acc(&num, &den, fs_num_exp_neg(e[i - lo] - e_min), m->weight[i]);
+            }
+        }
+    }
+#else
+    /* psi_i >= exp(-cutoff) > 0: den > 0 tells that a kernel was summed (n only for *count) */
+    for (uint32_t i = lo; i < end; i++) {
+        const fs_expo_t ei = fs_num_kernel_expo(u, m->centre[i], m->kernel_scale[i]);
+        if (ei <= FS_NUM_CUTOFF) {
+            if (count != NULL) {
+                n++;
+            }
+            fs_num_blend_acc(&num, &den, fs_num_exp_neg(ei), m->weight[i]);
+        }
+    }
+    n = (den > FS_NUM_ZERO) ? ((n == 0u) ? 1u : n) : 0u;
+#endif
     if (count != NULL) {
         *count = (uint16_t)((n == 0u) ? 1u : n);
     }
     if (n == 0u) {
         return dmp_tick_nearest_weight(m, u);
     }
-    /* pass 2: the shifted activations */
-    fs_bnum_t num = 0;
-    fs_bden_t den = 0;
-    for (uint32_t i = lo; i < hi; i++) {
-        const fs_expo_t e = fs_num_kernel_expo(u, m->centre[i], m->kernel_scale[i]);
-        if (e <= FS_NUM_CUTOFF) {
-            fs_num_blend_acc(&num, &den, fs_num_exp_neg(e - e_min), m->weight[i]);
-        }
-    }
     return fs_num_blend_div(num, den);
 }
 
-/** One forward-Euler step (every right-hand side at the old state) with constants c; the
- *  layer's saturations are counted in *ev. Returns f_hat = k*x after the step. */
-static inline fs_force_t dmp_tick_step(const DMP_TICK_MODEL *m, const dmp_tick_coef_t *c,
-                                       const dmp_tick_state_t *s, uint32_t *ev)
+/** The blend S at the state's phase, the state's window walked there first. Callers take it
+ *  before building the step's constants: fewer values live across the exp calls. */
+static inline fs_val_t dmp_tick_state_blend(const DMP_TICK_MODEL *m, const dmp_tick_state_t *s)
+{
+    const fs_phase_t u = fs_num_view(*s->u);
+    dmp_tick_window_walk(m, u, s->window);
+    return dmp_tick_blend(m, u, s->window[0], s->window[1], NULL);
+}
+
+/** One forward-Euler step (every right-hand side at the old state) with constants c and the
+ *  blend s_blend = dmp_tick_state_blend of the same state; the layer's saturations are counted
+ *  in *ev. Returns f_hat = k*x after the step. */
+static inline fs_force_t dmp_tick_step(const dmp_tick_coef_t *c, const dmp_tick_state_t *s,
+                                       fs_val_t s_blend, uint32_t *ev)
 {
     const fs_phase_t u = fs_num_view(*s->u);
     const fs_phase_t v = fs_num_view(*s->v);
@@ -124,7 +208,7 @@ static inline fs_force_t dmp_tick_step(const DMP_TICK_MODEL *m, const dmp_tick_c
     const fs_val_t x = fs_num_view(*s->x);
     const fs_val_t z = fs_num_view(*s->z);
 
-    const fs_val_t h = fs_num_mul_vv(fs_num_mul_vp(c->goal, v, ev), dmp_tick_blend(m, u, NULL), ev);
+    const fs_val_t h = fs_num_mul_vv(fs_num_mul_vp(c->goal, v, ev), s_blend, ev);
     const fs_val_t sx =
         fs_num_add_ev(fs_num_add_ev(fs_num_sub_ev(z, x, ev), h, ev), c->term_x, ev);
     const fs_val_t gx = fs_num_sub_ev(c->goal, x, ev);

@@ -27,17 +27,7 @@ static int32_t dmpfx_env_clamp_q30(double v)
 static void dmpfx_window(const dmpfx_model_t *m, int32_t u, uint32_t *lo, uint32_t *hi)
 {
     *lo = dmp_tick_window_start(m, u);
-    uint32_t a = 0u;
-    uint32_t b = m->n_kernels;
-    while (a < b) {
-        const uint32_t mid = (a + b) >> 1;
-        if (m->env_lo[mid] <= u) {
-            a = mid + 1u;
-        } else {
-            b = mid;
-        }
-    }
-    *hi = a;
+    *hi = dmp_tick_window_end(m, u);
 }
 
 static fs_status_t dmpfx_measure_peaks(dmpfx_model_t *m, double duration_s);
@@ -146,6 +136,8 @@ fs_status_t dmpfx_run_init(const dmpfx_model_t *m, double goal_scale, double tim
 
 void dmpfx_state_reset(dmpfx_state_t *s)
 {
+    s->window[0] = 0u;
+    s->window[1] = 0u;
     s->u_acc = 0;
     s->v_acc = 0;
     s->integral_x_acc = 0;
@@ -156,7 +148,8 @@ void dmpfx_state_reset(dmpfx_state_t *s)
 
 int32_t dmpfx_blend(const dmpfx_model_t *m, int32_t u_q30, uint16_t *count)
 {
-    return dmp_tick_blend(m, u_q30, count);
+    return dmp_tick_blend(m, u_q30, dmp_tick_window_start(m, u_q30), dmp_tick_window_end(m, u_q30),
+                          count);
 }
 
 static int32_t dmpfx_scale_q31(int32_t k_q31, uint32_t rate_q31)
@@ -184,8 +177,9 @@ int32_t dmpfx_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t
             c.k_gamma = dmpfx_scale_q31(c.k_gamma, rate);
         }
     }
-    const dmp_tick_state_t st = {&s->u_acc, &s->v_acc, &s->integral_x_acc, &s->x_acc, &s->z_acc};
-    return dmp_tick_step(m, &c, &st, &s->sat_events);
+    const dmp_tick_state_t st = {s->window, &s->u_acc, &s->v_acc, &s->integral_x_acc, &s->x_acc,
+                                 &s->z_acc};
+    return dmp_tick_step(&c, &st, dmp_tick_state_blend(m, &st), &s->sat_events);
 }
 
 static double dmpfx_absd(int32_t v)

@@ -60,8 +60,9 @@ typedef struct {
  *  0.5 LSB per tick while an increment is nearly constant (a force plateau): measured 0.13 %
  *  of max force on engrave_n50 at time scale 1.3 (docs/cortex-m.md). Each sum is kept within
  *  +-(2^30 - 1)*2^32 so its view fits int32. sat_events counts saturations (0 in a valid run:
- *  values never wrap). */
+ *  values never wrap). window: the last step's kernel window (a hint, as dmp_state_t's). */
 typedef struct {
+    uint16_t window[2];
     int64_t u_acc;
     int64_t v_acc;
     int64_t integral_x_acc;

@@ -135,23 +135,8 @@ static void device_boot(serve_t *s)
 
 static void plant_init(serve_t *s)
 {
-    const sim_scenario_t *sc = &s->sc;
-    memset(s->ax, 0, sizeof(s->ax));
-    s->ax[0].pos_m = sc->start_x_m;
-    s->ax[1].pos_m = sc->start_y_m;
-    const double h = sc->dt_s / (double)sc->substeps;
-    for (int a = 0; a < 2; a++) {
-        sim_drive_t *d = &s->drv[a];
-        memset(d, 0, sizeof(*d));
-        d->kind = sc->plant;
-        d->mass_kg = sc->plant == SIM_PLANT_REALISTIC ? sc->carriage.carriage_kg : sc->m_d_kg;
-        d->carriage = &sc->carriage;
-        d->object = (a == 0) ? &sc->object : NULL;
-        d->act_limit_N = sc->carriage.act_max_N;
-        d->act_alpha = 1.0 - exp(-h / sc->carriage.act_lag_s);
-        sim_drive_prepare(d);
-    }
-    sim_rng_seed(&s->rng_sens, sc->seed ^ 0x5EB5C0DEDA7A5EEDull);
+    sim_couple_plant_init(&s->sc, s->ax, s->drv);
+    sim_rng_seed(&s->rng_sens, s->sc.seed ^ 0x5EB5C0DEDA7A5EEDull);
     memset(s->ring, 0, sizeof(s->ring));
 }
 
@@ -197,15 +182,7 @@ static void sim_tick(serve_t *s)
         device_boot(s);                     /* ECUReset: firmware restarts, flash keeps the slots */
     }
 
-    bool enable = false;
-    fs_real_t f[2];
-    hal_host_get_actuator(&enable, f);
-    const bool ideal = sc->plant == SIM_PLANT_IDEAL;
-    for (int a = 0; a < 2; a++) {
-        s->drv[a].force_cmd_N = enable ? f[a] : 0.0;
-        /* the ideal drive is dynamics-compensated while the law runs (as hil_sim run) */
-        s->drv[a].prescribed = (uint8_t)(ideal && s->app.state == APP_EXECUTE);
-    }
+    (void)sim_couple_actuate(sc, &s->app, s->drv, NULL);   /* ideal drive: compensated in EXECUTE */
     /* a parked device: in IDLE the simulated drive brings the handle back to the scenario's start
      * position and holds it at rest, so every TEACH or EXECUTE starts where `hil_sim run` starts */
     sim_couple_advance(sc, s->ax, s->drv, s->app.state == APP_IDLE || s->app.state == APP_BOOT);
@@ -394,27 +371,8 @@ int bus_cmd_serve(int argc, char **argv)
     }
 
     /* the device, configured as the scenario's controller */
-    app_config_default(&s->app_cfg);
+    sim_couple_device_config(&s->sc, &s->app_cfg);
     s->app_cfg.node = s->node;
-    s->app_cfg.render_carriage = (uint8_t)(s->sc.plant == SIM_PLANT_REALISTIC);
-    s->app_cfg.gains[0].m_d_kg = s->sc.m_d_kg;
-    s->app_cfg.gains[1].m_d_kg = s->sc.m_d_kg;
-    s->app_cfg.vel_cutoff_Hz = s->sc.vel_cutoff_Hz;
-    s->app_cfg.exec.use_model = (uint8_t)(s->sc.use_model != 0);
-    s->app_cfg.exec.object.m_v_kg = s->sc.object.m_v_kg;
-    s->app_cfg.exec.object.d_v_Nspm = s->sc.object.d_v_Nspm;
-    s->app_cfg.exec.object.k1_Npm = s->sc.object.k1_Npm;
-    s->app_cfg.exec.object.k2_Npm = s->sc.object.k2_Npm;
-    s->app_cfg.exec.object.layer_depth_m = s->sc.object.layer_depth_m;
-    s->app_cfg.exec.object.surface_m = s->sc.object.surface_m;
-    s->app_cfg.exec.phase_stop_gain_per_N2 = s->sc.phase_stop_gain_per_N2;
-    s->app_cfg.render.carriage_kg = s->sc.carriage.carriage_kg;
-    s->app_cfg.render.viscous_Nspm = s->sc.carriage.viscous_Nspm;
-    s->app_cfg.render.coulomb_N = s->sc.carriage.coulomb_N;
-    s->app_cfg.render.motor_max_N = s->sc.carriage.act_max_N;
-    for (unsigned a = 0; a < PFC_AXES; a++) {
-        s->app_cfg.saf.lim.axis[a].force_max_N = s->sc.force_max_N;
-    }
     s->app_cfg.saf.wdg.timeout_ms = (uint16_t)host_timeout;
     sim_rng_seed(&s->rng_faults, s->sc.seed ^ 0xFA17FA17FA17FA17ull);
     hal_host_init();

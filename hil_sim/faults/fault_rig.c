@@ -31,42 +31,10 @@ void rig_init(rig_t *r, const sim_scenario_t *sc)
     hal_sim_can_reset();
     hal_host_set_time_us(0u);
 
-    r->ax[0].pos_m = sc->start_x_m;
-    r->ax[1].pos_m = sc->start_y_m;
-    const double h = sc->dt_s / (double)sc->substeps;
-    for (int a = 0; a < 2; a++) {
-        sim_drive_t *d = &r->drv[a];
-        d->kind = sc->plant;
-        d->mass_kg = sc->plant == SIM_PLANT_REALISTIC ? sc->carriage.carriage_kg : sc->m_d_kg;
-        d->carriage = &r->sc.carriage;
-        d->object = (a == 0) ? &r->sc.object : NULL;
-        d->act_limit_N = sc->carriage.act_max_N;
-        d->act_alpha = 1.0 - exp(-h / sc->carriage.act_lag_s);
-        sim_drive_prepare(d);
-    }
+    sim_couple_plant_init(&r->sc, r->ax, r->drv);
     sim_rng_seed(&r->rng_sens, sc->seed ^ 0x5EB5C0DEDA7A5EEDull);
     sim_rng_seed(&r->rng_faults, sc->seed ^ 0xFA17FA17FA17FA17ull);
-
-    /* the device configured as the scenario's controller (as hil_sim serve does) */
-    app_config_default(&r->cfg);
-    r->cfg.render_carriage = (uint8_t)(sc->plant == SIM_PLANT_REALISTIC);
-    r->cfg.gains[0].m_d_kg = sc->m_d_kg;
-    r->cfg.gains[1].m_d_kg = sc->m_d_kg;
-    r->cfg.vel_cutoff_Hz = sc->vel_cutoff_Hz;
-    r->cfg.exec.use_model = (uint8_t)(sc->use_model != 0);
-    r->cfg.exec.object.m_v_kg = sc->object.m_v_kg;
-    r->cfg.exec.object.d_v_Nspm = sc->object.d_v_Nspm;
-    r->cfg.exec.object.k1_Npm = sc->object.k1_Npm;
-    r->cfg.exec.object.k2_Npm = sc->object.k2_Npm;
-    r->cfg.exec.object.layer_depth_m = sc->object.layer_depth_m;
-    r->cfg.exec.object.surface_m = sc->object.surface_m;
-    r->cfg.render.carriage_kg = sc->carriage.carriage_kg;
-    r->cfg.render.viscous_Nspm = sc->carriage.viscous_Nspm;
-    r->cfg.render.coulomb_N = sc->carriage.coulomb_N;
-    r->cfg.render.motor_max_N = sc->carriage.act_max_N;
-    for (unsigned a = 0; a < PFC_AXES; a++) {
-        r->cfg.saf.lim.axis[a].force_max_N = sc->force_max_N;
-    }
+    sim_couple_device_config(sc, &r->cfg);   /* the scenario's controller, as hil_sim serve */
 
     isotp_config_t tc;
     isotp_config_default(&tc, PROTO_ID_UDS_REQUEST(r->cfg.node), PROTO_ID_UDS_RESPONSE(r->cfg.node));
@@ -107,34 +75,17 @@ static void deliver_host(rig_t *r, can_frame_t *f)
 
 static void send_heartbeat(rig_t *r)
 {
-    struct fs_dbc_host_heartbeat_t h;
-    memset(&h, 0, sizeof(h));
-    h.telemetry_period = 10u;
     can_frame_t f;
-    memset(&f, 0, sizeof(f));
-    f.id = PROTO_ID_HOST_HEARTBEAT(r->cfg.node);
-    f.dlc = FS_DBC_HOST_HEARTBEAT_LENGTH;
-    (void)fs_dbc_host_heartbeat_pack(f.data, &h, sizeof(f.data));
-    e2e_protect(&f, r->hb_counter++);
+    sim_couple_heartbeat_frame(r->cfg.node, r->hb_counter++, 10u, &f);
     deliver_host(r, &f);
 }
 
 void rig_command(rig_t *r, uint8_t mode, uint8_t slot, double goal_scale, double time_scale,
                  uint8_t end)
 {
-    struct fs_dbc_host_command_t c;
-    memset(&c, 0, sizeof(c));
-    c.mode = mode;
-    c.slot = slot;
-    c.goal_scale = (uint16_t)lround(goal_scale * 1000.0);
-    c.time_scale = (uint16_t)lround(time_scale * 1000.0);
-    c.end_policy = end;
     can_frame_t f;
-    memset(&f, 0, sizeof(f));
-    f.id = PROTO_ID_HOST_COMMAND(r->cfg.node);
-    f.dlc = FS_DBC_HOST_COMMAND_LENGTH;
-    (void)fs_dbc_host_command_pack(f.data, &c, sizeof(f.data));
-    e2e_protect(&f, r->cmd_counter++);
+    sim_couple_command_frame(r->cfg.node, r->cmd_counter++, mode, slot, goal_scale, time_scale,
+                             end, &f);
     deliver_host(r, &f);
 }
 
@@ -214,20 +165,14 @@ void rig_step(rig_t *r)
     host_receive(r);
 
     /* actuator */
-    bool enable = false;
-    fs_real_t f[2];
-    hal_host_get_actuator(&enable, f);
+    const bool enable = sim_couple_actuate(sc, &r->app, r->drv, r->cmd_N);
     r->act_enable = enable;
-    const bool ideal = sc->plant == SIM_PLANT_IDEAL;
     for (int a = 0; a < 2; a++) {
-        r->cmd_N[a] = enable ? (double)f[a] : 0.0;
-        double fa = r->cmd_N[a];
         if (r->inj.act_limit_N > 0.0) {
-            fa = fa > r->inj.act_limit_N ? r->inj.act_limit_N
-                                         : (fa < -r->inj.act_limit_N ? -r->inj.act_limit_N : fa);
+            const double lim = r->inj.act_limit_N;
+            const double fa = r->drv[a].force_cmd_N;
+            r->drv[a].force_cmd_N = fa > lim ? lim : (fa < -lim ? -lim : fa);
         }
-        r->drv[a].force_cmd_N = fa;
-        r->drv[a].prescribed = (uint8_t)(ideal && r->app.state == APP_EXECUTE);
         r->drv[a].force_ext_N = 0.0;
         r->drv[a].hand_damping_Nspm = 0.0;
     }

@@ -20,7 +20,9 @@ static const char RUN_USAGE[] =
     "  --time-scale S          time scale for every step (default 1)\n"
     "  --step-duration S [..]  duration of each step in s (default: each skill's T)\n"
     "  --plant ideal|realistic override the scenario's plant\n"
-    "  --duration S            override the run length in s\n";
+    "  --duration S            override the run length in s\n"
+    "The device application runs the scenario (app_tick through the host port of hal.h): the\n"
+    "skills go into its flash slots 1..n; the summary reports its first fault and final state.\n";
 
 static int usage_error(const char *fmt, const char *arg)
 {
@@ -46,7 +48,7 @@ static int parse_num(const char *opt, const char *s, double *out)
 int sim_cmd_run(int argc, char **argv)
 {
     static sim_scenario_t sc;
-    static skill_t skills[SIM_MAX_SKILLS];
+    static sim_skill_image_t skills[SIM_MAX_SKILLS];
     char err[SIM_ERR_MAX];
     const char *scenario = NULL;
     const char *out = NULL;

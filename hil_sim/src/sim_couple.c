@@ -1,6 +1,14 @@
 /* Device <-> plant coupling of one tick (see sim_couple.h). */
 #include "sim_couple.h"
 
+#include <math.h>
+#include <string.h>
+
+#include "e2e.h"
+#include "fs_dbc.h"
+#include "hal_host.h"
+#include "proto_ids.h"
+
 void sim_couple_sample(const sim_scenario_t *sc, const sim_axis_t ax[2], const sim_drive_t drv[2],
                        sim_rng_t *rng, sim_sample_t *out)
 {
@@ -56,4 +64,93 @@ void sim_couple_advance(const sim_scenario_t *sc, sim_axis_t ax[2], const sim_dr
         sim_axis_substep(&ax[0], &drv[0], h);
         sim_axis_substep(&ax[1], &drv[1], h);
     }
+}
+
+void sim_couple_device_config(const sim_scenario_t *sc, app_config_t *cfg)
+{
+    app_config_default(cfg);
+    cfg->render_carriage = (uint8_t)(sc->plant == SIM_PLANT_REALISTIC);
+    cfg->gains[0].m_d_kg = sc->m_d_kg;
+    cfg->gains[1].m_d_kg = sc->m_d_kg;
+    cfg->vel_cutoff_Hz = sc->vel_cutoff_Hz;
+    cfg->exec.use_model = (uint8_t)(sc->use_model != 0);
+    cfg->exec.object.m_v_kg = sc->object.m_v_kg;
+    cfg->exec.object.d_v_Nspm = sc->object.d_v_Nspm;
+    cfg->exec.object.k1_Npm = sc->object.k1_Npm;
+    cfg->exec.object.k2_Npm = sc->object.k2_Npm;
+    cfg->exec.object.layer_depth_m = sc->object.layer_depth_m;
+    cfg->exec.object.surface_m = sc->object.surface_m;
+    cfg->exec.phase_stop_gain_per_N2 = sc->phase_stop_gain_per_N2;
+    cfg->render.carriage_kg = sc->carriage.carriage_kg;
+    cfg->render.viscous_Nspm = sc->carriage.viscous_Nspm;
+    cfg->render.coulomb_N = sc->carriage.coulomb_N;
+    cfg->render.motor_max_N = sc->carriage.act_max_N;
+    for (unsigned a = 0; a < PFC_AXES; a++) {
+        cfg->saf.lim.axis[a].force_max_N = sc->force_max_N;
+    }
+}
+
+void sim_couple_plant_init(const sim_scenario_t *sc, sim_axis_t ax[2], sim_drive_t drv[2])
+{
+    memset(ax, 0, 2u * sizeof(ax[0]));
+    ax[0].pos_m = sc->start_x_m;
+    ax[1].pos_m = sc->start_y_m;
+    const double h = sc->dt_s / (double)sc->substeps;
+    for (int a = 0; a < 2; a++) {
+        sim_drive_t *d = &drv[a];
+        memset(d, 0, sizeof(*d));
+        d->kind = sc->plant;
+        d->mass_kg = sc->plant == SIM_PLANT_REALISTIC ? sc->carriage.carriage_kg : sc->m_d_kg;
+        d->carriage = &sc->carriage;
+        d->object = (a == 0) ? &sc->object : NULL;
+        d->act_limit_N = sc->carriage.act_max_N;
+        d->act_alpha = 1.0 - exp(-h / sc->carriage.act_lag_s);
+        sim_drive_prepare(d);
+    }
+}
+
+bool sim_couple_actuate(const sim_scenario_t *sc, const app_t *app, sim_drive_t drv[2], double cmd_N[2])
+{
+    bool enable = false;
+    fs_real_t f[2];
+    hal_host_get_actuator(&enable, f);
+    const bool ideal = sc->plant == SIM_PLANT_IDEAL;
+    for (int a = 0; a < 2; a++) {
+        drv[a].force_cmd_N = enable ? (double)f[a] : 0.0;
+        drv[a].prescribed = (uint8_t)(ideal && app->state == APP_EXECUTE);
+        if (cmd_N != NULL) {
+            cmd_N[a] = drv[a].force_cmd_N;
+        }
+    }
+    return enable;
+}
+
+void sim_couple_heartbeat_frame(uint8_t node, uint8_t counter, uint8_t telemetry_period_ms,
+                                can_frame_t *f)
+{
+    struct fs_dbc_host_heartbeat_t h;
+    memset(&h, 0, sizeof(h));
+    h.telemetry_period = telemetry_period_ms;
+    memset(f, 0, sizeof(*f));
+    f->id = PROTO_ID_HOST_HEARTBEAT(node);
+    f->dlc = FS_DBC_HOST_HEARTBEAT_LENGTH;
+    (void)fs_dbc_host_heartbeat_pack(f->data, &h, sizeof(f->data));
+    e2e_protect(f, counter);
+}
+
+void sim_couple_command_frame(uint8_t node, uint8_t counter, uint8_t mode, uint8_t slot,
+                              double goal_scale, double time_scale, uint8_t end, can_frame_t *f)
+{
+    struct fs_dbc_host_command_t c;
+    memset(&c, 0, sizeof(c));
+    c.mode = mode;
+    c.slot = slot;
+    c.goal_scale = (uint16_t)lround(goal_scale * 1000.0);
+    c.time_scale = (uint16_t)lround(time_scale * 1000.0);
+    c.end_policy = end;
+    memset(f, 0, sizeof(*f));
+    f->id = PROTO_ID_HOST_COMMAND(node);
+    f->dlc = FS_DBC_HOST_COMMAND_LENGTH;
+    (void)fs_dbc_host_command_pack(f->data, &c, sizeof(f->data));
+    e2e_protect(f, counter);
 }

@@ -1,12 +1,17 @@
-/* Device <-> plant coupling of one 1 ms firmware tick, shared by the simulators that run the
- * device application against the plant (hil_sim/bus/serve.c and hil_sim/faults): sample every
- * sensor of the plant, then advance the plant over the tick with the actuator command held, or
+/* Device <-> plant coupling of one 1 ms firmware tick, shared by the three simulators that run
+ * the device application (firmware/app app_tick, through the host port of hal.h) against the
+ * plant: the paper experiments (sim_run.c), the fault rig (hil_sim/faults) and the bus simulator
+ * (hil_sim/bus/serve.c). The device configured as the scenario's controller, the plant at its
+ * start, the host's cyclic frames; per tick: sample every sensor of the plant, hand the device's
+ * actuator output to the drives, then advance the plant over the tick with the command held, or
  * park it while the device is idle. */
 #ifndef SIM_COUPLE_H
 #define SIM_COUPLE_H
 
 #include <stdbool.h>
 #include <stdint.h>
+#include "app.h"
+#include "can_frame.h"
 #include "hal.h"
 #include "sim_model.h"
 #include "sim_rng.h"
@@ -43,5 +48,28 @@ void sim_couple_to_hal(const sim_sample_t *m, hal_sensors_t *hs);
  *  drv[].force_cmd_N held. */
 void sim_couple_advance(const sim_scenario_t *sc, sim_axis_t ax[2], const sim_drive_t drv[2],
                         bool parked);
+
+/** The device configured as the scenario's controller: app_config_default, then the plant
+ *  (carriage rendering on the realistic plant), m_d, velocity filter, object model, phase
+ *  stopping, carriage compensation and the force limit from sc. */
+void sim_couple_device_config(const sim_scenario_t *sc, app_config_t *cfg);
+
+/** The plant at the scenario's start: both axes at rest at start_x_m / start_y_m, each drive
+ *  prepared for sc's plant (its carriage and, on x, its object). */
+void sim_couple_plant_init(const sim_scenario_t *sc, sim_axis_t ax[2], sim_drive_t drv[2]);
+
+/** The device's actuator output (hal_host_get_actuator) into the drives: the command while
+ *  enabled, else 0; the ideal drive is dynamics-compensated while executing. Returns the enable
+ *  flag; cmd_N (may be NULL) receives the commands. */
+bool sim_couple_actuate(const sim_scenario_t *sc, const app_t *app, sim_drive_t drv[2], double cmd_N[2]);
+
+/** The host's heartbeat frame for node (E2E counter, telemetry period in ms, 0 = the device's). */
+void sim_couple_heartbeat_frame(uint8_t node, uint8_t counter, uint8_t telemetry_period_ms,
+                                can_frame_t *f);
+
+/** The host's command frame for node (mode APP_CMD_*, slot 1.., goal and time scale, end 0 skill /
+ *  1 hold / 2 release). */
+void sim_couple_command_frame(uint8_t node, uint8_t counter, uint8_t mode, uint8_t slot,
+                              double goal_scale, double time_scale, uint8_t end, can_frame_t *f);
 
 #endif /* SIM_COUPLE_H */

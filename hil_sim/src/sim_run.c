@@ -8,30 +8,35 @@
 #include <string.h>
 #include <time.h>
 
-#include "fs_exec.h"
+#include "app.h"
+#include "fs_dbc.h"
+#include "hal_host.h"
+#include "nvm.h"
+#include "proto_ids.h"
+#include "sim_couple.h"
 #include "sim_rng.h"
-
-#define SIM_RING 8 /* >= max delay_samples + 1 */
 
 /* ---------------- skills ---------------- */
 
-int sim_load_skills(const sim_scenario_t *sc, skill_t *skills, char err[SIM_ERR_MAX])
+int sim_load_skills(const sim_scenario_t *sc, sim_skill_image_t *images, char err[SIM_ERR_MAX])
 {
-    static uint8_t buf[SKILL_IMAGE_MAX + 1u];
+    static skill_t check;
     for (int i = 0; i < sc->n_skills; i++) {
         const char *path = sc->skill_path[i];
+        sim_skill_image_t *img = &images[i];
         FILE *f = fopen(path, "rb");
         if (f == NULL) {
             snprintf(err, SIM_ERR_MAX, "%s: cannot open skill: %s", path, strerror(errno));
             return -1;
         }
-        size_t n = fread(buf, 1, sizeof buf, f);
+        size_t n = fread(img->data, 1, sizeof img->data, f);
         fclose(f);
-        if (n == sizeof buf) {
+        if (n == sizeof img->data) {
             snprintf(err, SIM_ERR_MAX, "%s: larger than any valid skill image", path);
             return -1;
         }
-        fs_status_t rc = skill_parse(buf, (uint32_t)n, &skills[i]);
+        img->len = (uint32_t)n;
+        fs_status_t rc = skill_parse(img->data, img->len, &check);
         if (rc != FS_OK) {
             snprintf(err, SIM_ERR_MAX, "%s: invalid skill image (error %d, see fs_status.h)", path,
                      (int)rc);
@@ -114,11 +119,118 @@ static int fault_active(const sim_fault_t *fl, sim_fault_kind_t kind, double t)
     return fl->kind == kind && t >= fl->at_s - 1e-9 && t < fl->at_s + fl->duration_s - 1e-9;
 }
 
-/* ---------------- run ---------------- */
+/* ---------------- the device ---------------- */
+
+#define SIM_RUN_HB_PERIOD_MS 10u      /* host heartbeat period (the forceskill host's) */
+#define SIM_RUN_TELEMETRY_MS 100u     /* telemetry the host asks for: the run logs its own */
+#define SIM_RUN_START_TICKS 3u        /* ticks before t = 0: boot, then the command */
 
 typedef struct {
-    double x, y, fc, fop_x, fop_y;
-} sample_t;
+    app_t app;
+    app_config_t cfg;
+    uint8_t hb_counter;
+    uint8_t cmd_counter;
+    uint16_t fault_code;              /* first emergency frame's code, 0 if none */
+    uint64_t fault_tick;
+} sim_dev_t;
+
+/* Host frames into the device, device frames out of it (an emergency frame records the first
+ * fault); heartbeats every SIM_RUN_HB_PERIOD_MS while the device acts. */
+static void dev_host(sim_dev_t *d, uint64_t n_tick)
+{
+    can_frame_t f;
+    if (n_tick % SIM_RUN_HB_PERIOD_MS == 0u) {
+        sim_couple_heartbeat_frame(d->cfg.node, d->hb_counter++, SIM_RUN_TELEMETRY_MS, &f);
+        (void)hal_sim_can_deliver(&f);
+    }
+    while (hal_sim_can_tx_peek(&f)) {
+        hal_sim_can_tx_pop();
+        struct fs_dbc_emergency_t m;
+        if (f.id == PROTO_ID_EMERGENCY(d->cfg.node) && d->fault_code == 0u &&
+            fs_dbc_emergency_unpack(&m, f.data, f.dlc) == 0) {
+            d->fault_code = m.fault_code;
+            d->fault_tick = n_tick;
+        }
+    }
+}
+
+/* Power the device up over a fresh flash holding the scenario's skills in slots 1..n, let it
+ * boot with the handle at rest at the start, then start the TEACH or EXECUTE the scenario asks
+ * for as the host would (a HostCommand frame; a sequence is app_start_sequence, what the UDS
+ * routine calls). */
+static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_image_t *skills,
+                     double *total_s, char err[SIM_ERR_MAX])
+{
+    hal_host_init();
+    hal_host_flash_erase();
+    hal_sim_can_reset();
+    nvm_t bank;
+    if (nvm_init(&bank, hal_flash()) != NVM_OK) {
+        snprintf(err, SIM_ERR_MAX, "%s: simulated flash failed", sc->path);
+        return -1;
+    }
+    for (int i = 0; i < sc->n_skills; i++) {
+        if (nvm_write(&bank, (uint16_t)i, skills[i].data, skills[i].len) != NVM_OK) {
+            snprintf(err, SIM_ERR_MAX, "%s: skill %d does not fit a flash slot", sc->path, i + 1);
+            return -1;
+        }
+    }
+    memset(d, 0, sizeof(*d));
+    sim_couple_device_config(sc, &d->cfg);
+    hal_host_set_time_us(0u);
+    app_init(&d->app, &d->cfg);
+    const hal_sensors_t rest = {{sc->start_x_m, sc->start_y_m}, {0.0, 0.0}, {0.0, 0.0}};
+    hal_host_set_sensors(&rest);
+    for (uint32_t k = 0; k < SIM_RUN_START_TICKS; k++) {
+        hal_host_set_time_us((uint64_t)k * 1000u);
+        if (k == SIM_RUN_START_TICKS - 1u) {
+            can_frame_t f;
+            sim_couple_heartbeat_frame(d->cfg.node, d->hb_counter++, SIM_RUN_TELEMETRY_MS, &f);
+            (void)hal_sim_can_deliver(&f);
+            if (sc->mode == SIM_MODE_TEACH) {
+                sim_couple_command_frame(d->cfg.node, d->cmd_counter++, APP_CMD_TEACH, 0u, 0.0, 0.0,
+                                         0u, &f);
+                (void)hal_sim_can_deliver(&f);
+            }
+        }
+        app_tick(&d->app, false);
+        dev_host(d, 1u);
+    }
+    *total_s = 0.0;
+    if (sc->mode == SIM_MODE_EXECUTE) {
+        uint8_t slots[SIM_MAX_SKILLS];
+        fs_real_t goal[SIM_MAX_SKILLS], time[SIM_MAX_SKILLS], dur[SIM_MAX_SKILLS];
+        for (int i = 0; i < sc->n_skills; i++) {
+            if (!d->app.slot_valid[i]) {
+                snprintf(err, SIM_ERR_MAX, "%s: the device did not load skill %d", sc->path, i + 1);
+                return -1;
+            }
+            slots[i] = (uint8_t)(i + 1);
+            goal[i] = sc->goal_scale;
+            time[i] = sc->time_scale;
+            dur[i] = (sc->n_step_durations > 0) ? sc->step_duration_s[i] : 0.0;
+            *total_s += (dur[i] > 0.0) ? dur[i]
+                                       : (double)d->app.slot_skill[i].dmp.duration_s * sc->time_scale;
+        }
+        const uint8_t end = (sc->end_policy < 0) ? 0u : (sc->end_policy == SKILL_END_HOLD ? 1u : 2u);
+        const uint8_t nrc = app_start_sequence(&d->app, slots, goal, time, dur,
+                                               (uint8_t)sc->n_skills, end);
+        if (nrc != UDS_NRC_OK) {
+            snprintf(err, SIM_ERR_MAX, "%s: the device refused the sequence (NRC 0x%02X)", sc->path,
+                     (unsigned)nrc);
+            return -1;
+        }
+    }
+    const app_state_t want = (sc->mode == SIM_MODE_TEACH) ? APP_TEACH : APP_EXECUTE;
+    if (d->app.state != want) {
+        snprintf(err, SIM_ERR_MAX, "%s: the device is in state %d, not %d", sc->path,
+                 (int)d->app.state, (int)want);
+        return -1;
+    }
+    return 0;
+}
+
+/* ---------------- run ---------------- */
 
 static double now_s(void)
 {
@@ -127,18 +239,21 @@ static double now_s(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-int sim_run(const sim_scenario_t *sc, const skill_t *skills, FILE *log, sim_summary_t *sum,
+int sim_run(const sim_scenario_t *sc, const sim_skill_image_t *skills, FILE *log, sim_summary_t *sum,
             char err[SIM_ERR_MAX])
 {
     static logbuf_t lb;
+    static sim_dev_t dev;
     const double t0_wall = now_s();
     const double dt = sc->dt_s;
-    const double h = dt / (double)sc->substeps;
     const int teach = (sc->mode == SIM_MODE_TEACH);
-    const int realistic = (sc->plant == SIM_PLANT_REALISTIC);
 
     memset(sum, 0, sizeof *sum);
     sum->layer_reached_s = -1.0;
+    if (fabs(dt - 1e-3) > 1e-12) {
+        snprintf(err, SIM_ERR_MAX, "%s: the device ticks at 1 ms, dt_s is %g", sc->path, dt);
+        return -1;
+    }
 
     /* independent streams: operator draws do not depend on how much sensor noise was drawn */
     sim_rng_t rng_op, rng_sens;
@@ -147,88 +262,27 @@ int sim_run(const sim_scenario_t *sc, const skill_t *skills, FILE *log, sim_summ
 
     sim_operator_cfg_t opc = sc->op;
     opc.duration_s = sc->duration_s;
-    sim_operator_t op;
-    if (teach) {
-        sim_operator_init(&op, &opc, &rng_op);
-    } else {
-        opc.task = SIM_TASK_NONE;
-        sim_operator_init(&op, &opc, &rng_op);
-    }
-
-    /* firmware side */
-    static exec_config_t ecfg;
-    static exec_state_t est;
-    exec_config_default(&ecfg);
-    double duration = sc->duration_s;
     if (!teach) {
-        ecfg.pfc.gains[0] = skills[0].gains;
-        ecfg.pfc.gains[1].m_d_kg = skills[0].gains.m_d_kg;
-        for (unsigned a = 0; a < PFC_AXES; a++) {
-            ecfg.pfc.limits[a].force_max_N = sc->force_max_N;
-        }
-        ecfg.pfc.dt_s = dt;
-        ecfg.use_model = (uint8_t)(sc->use_model != 0);
-        ecfg.object.m_v_kg = sc->object.m_v_kg;
-        ecfg.object.d_v_Nspm = sc->object.d_v_Nspm;
-        ecfg.object.k1_Npm = sc->object.k1_Npm;
-        ecfg.object.k2_Npm = sc->object.k2_Npm;
-        ecfg.object.layer_depth_m = sc->object.layer_depth_m;
-        ecfg.object.surface_m = sc->object.surface_m;
-        ecfg.phase_stop_gain_per_N2 = sc->phase_stop_gain_per_N2;
-        exec_step_t steps[EXEC_MAX_STEPS];
-        double total = 0.0;
-        for (int i = 0; i < sc->n_skills; i++) {
-            steps[i].skill = &skills[i];
-            steps[i].goal_scale = sc->goal_scale;
-            steps[i].time_scale = sc->time_scale;
-            steps[i].duration_s = (sc->n_step_durations > 0) ? sc->step_duration_s[i] : 0.0;
-            steps[i].end_policy = (sc->end_policy < 0) ? skills[i].end_policy
-                                                       : (skill_end_t)sc->end_policy;
-            total += (steps[i].duration_s > 0.0) ? steps[i].duration_s
-                                                 : skills[i].dmp.duration_s * sc->time_scale;
-        }
-        fs_status_t rc = exec_start(&ecfg, &est, steps, (uint8_t)sc->n_skills, sc->start_y_m);
-        if (rc != FS_OK) {
-            snprintf(err, SIM_ERR_MAX, "%s: cannot start execution (error %d)", sc->path, (int)rc);
-            return -1;
-        }
-        if (!(duration > 0.0)) {
-            duration = total + sc->tail_s;
-        }
+        opc.task = SIM_TASK_NONE;
     }
-    const double m_d = teach ? sc->m_d_kg : (double)ecfg.pfc.gains[0].m_d_kg;
+    sim_operator_t op;
+    sim_operator_init(&op, &opc, &rng_op);
 
-    exec_render_cfg_t rcfg;
-    exec_render_default(&rcfg);
-    rcfg.carriage_kg = sc->carriage.carriage_kg;
-    rcfg.viscous_Nspm = sc->carriage.viscous_Nspm;
-    rcfg.coulomb_N = sc->carriage.coulomb_N;
-    rcfg.motor_max_N = sc->carriage.act_max_N;
-    exec_render_t rend[2];
-    exec_render_reset(&rend[0], sc->start_x_m);
-    exec_render_reset(&rend[1], sc->start_y_m);
-    exec_vel_t vel[2];
-    exec_vel_init(&vel[0], sc->vel_cutoff_Hz, dt);
-    exec_vel_init(&vel[1], sc->vel_cutoff_Hz, dt);
+    /* the device: the product's application tick through the host port of hal.h */
+    double total = 0.0;
+    if (dev_start(&dev, sc, skills, &total, err) != 0) {
+        return -1;
+    }
+    double duration = sc->duration_s;
+    if (!teach && !(duration > 0.0)) {
+        duration = total + sc->tail_s;
+    }
 
     sim_axis_t ax[2];
-    memset(ax, 0, sizeof ax);
-    ax[0].pos_m = sc->start_x_m;
-    ax[1].pos_m = sc->start_y_m;
-
     sim_drive_t drv[2];
+    sim_couple_plant_init(sc, ax, drv);
     for (int a = 0; a < 2; a++) {
-        drv[a].kind = sc->plant;
-        drv[a].prescribed = (uint8_t)(!teach && !realistic);
-        drv[a].mass_kg = realistic ? sc->carriage.carriage_kg : m_d;
-        drv[a].force_cmd_N = 0.0;
-        drv[a].force_ext_N = 0.0;
         drv[a].hand_damping_Nspm = teach ? sc->op.hand_damping_Nspm : 0.0;
-        drv[a].carriage = &sc->carriage;
-        drv[a].object = (a == 0) ? &sc->object : NULL;
-        drv[a].act_limit_N = sc->carriage.act_max_N;
-        drv[a].act_alpha = 1.0 - exp(-h / sc->carriage.act_lag_s);
-        sim_drive_prepare(&drv[a]);
     }
 
     lb.f = log;
@@ -239,16 +293,20 @@ int sim_run(const sim_scenario_t *sc, const skill_t *skills, FILE *log, sim_summ
         lb.len = strlen(hdr);
     }
 
-    sample_t ring[SIM_RING];
+    sim_sample_t ring[SIM_COUPLE_RING];
+    memset(ring, 0, sizeof ring);
     const uint64_t n_ticks = (uint64_t)(duration / dt + 0.5);
     double stuck_fc = 0.0;
     int stuck_set = 0;
     double sq_err = 0.0;
     double max_err = 0.0;
+    uint64_t exec_ticks = 0u;
     const double layer_depth = sc->object.layer_depth_m;
 
     for (uint64_t n = 0; n <= n_ticks; n++) {
         const double t = (double)n * dt;
+        const uint64_t dev_tick = n + SIM_RUN_START_TICKS;
+        hal_host_set_time_us(dev_tick * 1000u);
         /* operator profile for this tick */
         double fprof[2] = {0.0, 0.0};
         const double p_true = ax[0].pos_m - sc->object.surface_m;
@@ -258,56 +316,42 @@ int sim_run(const sim_scenario_t *sc, const skill_t *skills, FILE *log, sim_summ
         drv[0].force_ext_N = fprof[0];
         drv[1].force_ext_N = fprof[1];
 
-        /* sensors at t */
-        sample_t s;
-        double x_true = ax[0].pos_m;
+        /* sensors at t, injected faults on the physical sensor, the pipeline delay */
+        sim_sample_t s;
+        sim_couple_sample(sc, ax, drv, &rng_sens, &s);
         if (sc->fault.kind == SIM_FAULT_ENCODER_JUMP && t >= sc->fault.at_s - 1e-9) {
-            x_true += sc->fault.value;
+            s.x_m = sim_encoder_read(ax[0].pos_m + sc->fault.value, sc->encoder_m);
         }
-        s.x = sim_encoder_read(x_true, sc->encoder_m);
-        s.y = sim_encoder_read(ax[1].pos_m, sc->encoder_m);
-        s.fc = sim_force_read(&sc->tip, ax[0].contact_N, &rng_sens);
-        s.fop_x = sim_force_read(&sc->handle, sim_operator_handle_N(&drv[0], &ax[0]), &rng_sens);
-        s.fop_y = sim_force_read(&sc->handle, sim_operator_handle_N(&drv[1], &ax[1]), &rng_sens);
         if (fault_active(&sc->fault, SIM_FAULT_FORCE_SPIKE, t)) {
-            s.fc += sc->fault.value;
+            s.contact_N += sc->fault.value;
         } else if (fault_active(&sc->fault, SIM_FAULT_FORCE_NAN, t)) {
-            s.fc = (double)NAN;
+            s.contact_N = (double)NAN;
         } else if (fault_active(&sc->fault, SIM_FAULT_FORCE_STUCK, t)) {
             if (!stuck_set) {
-                stuck_fc = s.fc;
+                stuck_fc = s.contact_N;
                 stuck_set = 1;
             }
-            s.fc = stuck_fc;
+            s.contact_N = stuck_fc;
         }
-        ring[n % SIM_RING] = s;
-        const uint64_t d = ((uint64_t)sc->delay_samples > n) ? n : (uint64_t)sc->delay_samples;
-        const sample_t *m = &ring[(n - d) % SIM_RING];
-        const double vx = exec_vel_update(&vel[0], m->x, dt);
-        const double vy = exec_vel_update(&vel[1], m->y, dt);
+        const sim_sample_t *m = sim_couple_delay(ring, n, sc->delay_samples, &s);
+        if (!(isfinite(m->contact_N) && isfinite(m->x_m) && isfinite(m->y_m))) {
+            sum->nonfinite_ticks++;
+        }
+        hal_sensors_t hs;
+        sim_couple_to_hal(m, &hs);
+        hal_host_set_sensors(&hs);
 
-        /* firmware */
-        double f_cmd[2] = {0.0, 0.0};
-        double f_hat = 0.0;
-        double cmd_log = 0.0;
-        if (teach) {
-            const double tot_x = m->fop_x - m->fc;
-            cmd_log = tot_x;
-            if (realistic) {
-                drv[0].force_cmd_N = exec_render_step(&rcfg, &rend[0], tot_x, m_d, tot_x, m->x, vx, dt);
-                drv[1].force_cmd_N =
-                    exec_render_step(&rcfg, &rend[1], m->fop_y, m_d, m->fop_y, m->y, vy, dt);
-            }
-        } else {
-            exec_meas_t em = {{m->x, m->y}, {vx, vy}, m->fc};
-            exec_out_t eo;
-            if (exec_tick(&ecfg, &est, &em, &eo) != FS_OK) {
-                sum->nonfinite_ticks++;
-            }
-            f_cmd[0] = eo.force_cmd_N[0];
-            f_cmd[1] = eo.force_cmd_N[1];
-            f_hat = eo.force_hat_N;
-            cmd_log = f_cmd[0];
+        /* the device's tick, its frames, its actuator; tracking counts the ticks that run the
+         * skill (from EXECUTE: once a sequence has released, the device idles, parked) */
+        const bool executing = dev.app.state == APP_EXECUTE;
+        app_tick(&dev.app, false);
+        dev_host(&dev, dev_tick);
+        double f_cmd[2];
+        const bool enable = sim_couple_actuate(sc, &dev.app, drv, f_cmd);
+        const double f_hat = teach ? 0.0 : (double)dev.app.force_hat_N;
+        /* TEACH logs the rendered total force (operator - contact), EXECUTE the law's x output */
+        const double cmd_log = teach ? m->operator_x_N - m->contact_N : f_cmd[0];
+        if (!teach) {
             for (int a = 0; a < 2; a++) {
                 const double fa = fabs(f_cmd[a]);
                 if (fa > sum->max_cmd_abs_N) {
@@ -324,47 +368,40 @@ int sim_run(const sim_scenario_t *sc, const skill_t *skills, FILE *log, sim_summ
                 const double lim = fabs(sc->fault.value);
                 for (int a = 0; a < 2; a++) {
                     drv[a].act_limit_N = lim;
-                    if (!realistic) {
-                        f_cmd[a] = (f_cmd[a] > lim) ? lim : ((f_cmd[a] < -lim) ? -lim : f_cmd[a]);
+                    if (sc->plant == SIM_PLANT_IDEAL) {
+                        const double c = drv[a].force_cmd_N;
+                        drv[a].force_cmd_N = (c > lim) ? lim : ((c < -lim) ? -lim : c);
                     }
                 }
             } else {
                 drv[0].act_limit_N = sc->carriage.act_max_N;
                 drv[1].act_limit_N = sc->carriage.act_max_N;
             }
-            if (realistic) {
-                drv[0].force_cmd_N =
-                    exec_render_step(&rcfg, &rend[0], f_cmd[0], m_d, -m->fc, m->x, vx, dt);
-                drv[1].force_cmd_N = exec_render_step(&rcfg, &rend[1], f_cmd[1], m_d, 0.0, m->y, vy, dt);
-            } else {
-                drv[0].force_cmd_N = f_cmd[0];
-                drv[1].force_cmd_N = f_cmd[1];
-            }
             if (f_hat > sum->max_hat_N) {
                 sum->max_hat_N = f_hat;
             }
-            const double e = fabs(s.fc - f_hat);
-            if (e == e) {
+            const double e = fabs(s.contact_N - f_hat);
+            if (executing && e == e) {
+                exec_ticks++;
                 sq_err += e * e;
                 if (e > max_err) {
                     max_err = e;
                 }
             }
-        }
-        if (teach && fabs(cmd_log) > sum->max_cmd_abs_N) {
+        } else if (fabs(cmd_log) > sum->max_cmd_abs_N) {
             sum->max_cmd_abs_N = fabs(cmd_log);
         }
 
-        /* log (sensor values at t, the firmware's command and reference of this tick) */
+        /* log (sensor values at t, the device's command and reference of this tick) */
         if (log != NULL) {
-            const double row[7] = {t, s.x, s.y, s.fc, s.fop_x, cmd_log, f_hat};
+            const double row[7] = {t, s.x_m, s.y_m, s.contact_N, s.operator_x_N, cmd_log, f_hat};
             log_row(&lb, row, 7);
         }
-        if (s.fc > sum->max_force_N) {
-            sum->max_force_N = s.fc;
+        if (s.contact_N > sum->max_force_N) {
+            sum->max_force_N = s.contact_N;
         }
-        if (s.fop_x > sum->max_operator_N) {
-            sum->max_operator_N = s.fop_x;
+        if (s.operator_x_N > sum->max_operator_N) {
+            sum->max_operator_N = s.operator_x_N;
         }
         if (p_true > sum->deformation_max_m) {
             sum->deformation_max_m = p_true;
@@ -375,11 +412,9 @@ int sim_run(const sim_scenario_t *sc, const skill_t *skills, FILE *log, sim_summ
         if (n == n_ticks) {
             break;
         }
-        /* plant: substeps over the tick with the command held (zero-order hold) */
-        for (int k = 0; k < sc->substeps; k++) {
-            sim_axis_substep(&ax[0], &drv[0], h);
-            sim_axis_substep(&ax[1], &drv[1], h);
-        }
+        /* plant over the tick, the command held; parked while the device is idle or stopped */
+        const app_state_t st = dev.app.state;
+        sim_couple_advance(sc, ax, drv, st == APP_IDLE || st == APP_BOOT || (st == APP_FAULT && !enable));
     }
     log_flush(&lb);
     if (log != NULL && ferror(log)) {
@@ -388,9 +423,13 @@ int sim_run(const sim_scenario_t *sc, const skill_t *skills, FILE *log, sim_summ
     }
     sum->ticks = n_ticks + 1u;
     sum->sim_time_s = (double)n_ticks * dt;
-    if (!teach && sum->max_hat_N > 0.0) {
+    sum->fault_code = dev.fault_code;
+    sum->fault_s = (dev.fault_code != 0u) ? (double)(dev.fault_tick - SIM_RUN_START_TICKS) * dt : -1.0;
+    sum->final_state = (int)dev.app.state;
+    sum->exec_ticks = exec_ticks;
+    if (!teach && sum->max_hat_N > 0.0 && exec_ticks > 0u) {
         sum->tracking_max_pct = 100.0 * max_err / sum->max_hat_N;
-        sum->tracking_rms_pct = 100.0 * sqrt(sq_err / (double)sum->ticks) / sum->max_hat_N;
+        sum->tracking_rms_pct = 100.0 * sqrt(sq_err / (double)exec_ticks) / sum->max_hat_N;
     }
     sum->wall_s = now_s() - t0_wall;
     sum->x_realtime = (sum->wall_s > 0.0) ? sum->sim_time_s / sum->wall_s : 0.0;
@@ -432,6 +471,10 @@ int sim_write_summary(const sim_scenario_t *sc, const sim_summary_t *s, const ch
     fprintf(f, "  \"limit_violations\": %llu,\n", (unsigned long long)s->limit_violations);
     fprintf(f, "  \"saturated_ticks\": %llu,\n", (unsigned long long)s->saturated_ticks);
     fprintf(f, "  \"nonfinite_ticks\": %llu,\n", (unsigned long long)s->nonfinite_ticks);
+    fprintf(f, "  \"fault_code\": %u,\n", (unsigned)s->fault_code);
+    json_num(f, "fault_s", s->fault_s >= 0.0 ? s->fault_s : (double)NAN, 0);
+    fprintf(f, "  \"final_state\": %d,\n", s->final_state);
+    fprintf(f, "  \"exec_ticks\": %llu,\n", (unsigned long long)s->exec_ticks);
     json_num(f, "wall_time_s", s->wall_s, 0);
     json_num(f, "x_realtime", s->x_realtime, 1);
     fprintf(f, "}\n");
