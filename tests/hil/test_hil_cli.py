@@ -101,7 +101,7 @@ def _exec_with_fault(hil_sim: Path, tmp_path: Path, fault: str) -> tuple[dict, d
 
 def _assert_safe_stop(s: dict, d: dict, code: int, at_s: float) -> None:
     """The device latched `code` at `at_s` (its emergency frame), then the command fell to 0 N
-    within 50 ms (SPEC 5: safe stop) without growing, and stayed 0 to the end of the run."""
+    within 50 ms (safe stop) without growing, and stayed 0 to the end of the run."""
     assert s["fault_code"] == code and s["fault_s"] == pytest.approx(at_s, abs=1e-9)
     assert s["final_state"] == 4   # FAULT: latched, the skill never resumes by itself
     i = int(round(at_s / 0.001))
