@@ -168,7 +168,7 @@ def _fit_with_hint(demo: Any, args: argparse.Namespace, n_kernels: int) -> Any:
                    surface_m=args.surface_m, end_policy=args.end, dt_s=args.dt)
     except FsError as e:
         f = demo.force_N
-        lo, hi = float(np.min(f)), float(np.max(f))
+        lo, hi = float(np.min(f)) or 0.0, float(np.max(f)) or 0.0
         if e.code == ERR_FIT_GOAL and -lo > hi:
             raise FsError(e.code, f"{e.message}; the force reads negative (min {lo:.4g} N, max {hi:.4g} N): "
                           f"a push measured negative (the usual Fz sign) needs --force-sign -1") from None

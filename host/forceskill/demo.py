@@ -38,6 +38,8 @@ DEFAULT_POSITION = "x"
 TARE_HEAD_S = 0.05
 TARE_CONTACT_REL = 0.05
 TARE_MIN_S = 0.05
+#: ... and its level must be a bias, not a contact: |level| <= this fraction of the force range.
+TARE_BIAS_MAX_REL = 0.25
 
 
 @dataclass
@@ -143,10 +145,10 @@ def _tare(t: np.ndarray, f: np.ndarray, window_s: float, auto: bool) -> tuple[np
         away = np.flatnonzero(np.abs(f - base) > thresh)
         end = int(away[0]) if away.size else f.size
         quiet_s = float(t[end - 1] - t0) if end > 0 else 0.0
-        if quiet_s < TARE_MIN_S or end >= f.size:
+        if quiet_s < TARE_MIN_S or end >= f.size or abs(base) > TARE_BIAS_MAX_REL * rng:
             raise DemoError(ERR_DEMO_TARE, f"--tare auto: no quiet stretch before contact (the force leaves "
-                            f"{base:.4g} N by more than {thresh:.3g} N after {quiet_s * 1e3:.0f} ms): the "
-                            f"recording starts in contact; give --tare SECONDS or --tare none")
+                            f"{base:.4g} N by more than {thresh:.3g} N after {quiet_s * 1e3:.0f} ms, force range "
+                            f"{rng:.4g} N): the recording starts in contact; give --tare SECONDS or --tare none")
         window = f[:end]
         span = quiet_s
     else:

@@ -26,6 +26,8 @@ STEP_REL = 0.25
 #: A run of identical, non-zero readings at least this long (and >= STUCK_MIN_SAMPLES) is stuck.
 STUCK_MIN_S = 0.2
 STUCK_MIN_SAMPLES = 10
+#: ... provided at most this fraction of the other sample-to-sample changes are exactly zero.
+STUCK_REST_REL = 0.05
 
 
 @dataclass
@@ -109,15 +111,18 @@ def diagnose(demo: Demo) -> Optional[str]:
         i = int(spike[0]) + 1
         return (f"a single-sample spike to {f[i]:.4g} N at t = {t[i]:.4g} s (between {f[i - 1]:.4g} and "
                 f"{f[i + 1]:.4g} N): a sensor glitch; remove it from the recording")
-    # stuck: identical non-zero readings for a while
+    # stuck: identical non-zero readings for a while, in a recording whose readings otherwise
+    # change from sample to sample (a noiseless simulated hold is not a stuck sensor)
     same = np.concatenate(([False], d == 0.0)) & (f != 0.0)
     if same.any():
         edges = np.diff(np.concatenate(([0], same.astype(np.int8), [0])))
         starts, ends = np.flatnonzero(edges == 1) - 1, np.flatnonzero(edges == -1)
         for s, e in zip(starts, ends):
             if e - s >= STUCK_MIN_SAMPLES and t[e - 1] - t[s] >= STUCK_MIN_S:
-                return (f"the force reads exactly {f[s]:.6g} N for {t[e - 1] - t[s]:.3g} s from t = {t[s]:.4g} s: "
-                        f"a stuck sensor; record again or cut that part")
+                rest = np.count_nonzero(d == 0.0) - (e - s - 1)
+                if rest <= STUCK_REST_REL * d.size:
+                    return (f"the force reads exactly {f[s]:.6g} N for {t[e - 1] - t[s]:.3g} s from "
+                            f"t = {t[s]:.4g} s: a stuck sensor; record again or cut that part")
     big = np.flatnonzero(np.abs(d) > STEP_REL * f_max)
     if big.size:
         i = int(big[np.argmax(np.abs(d[big]))])

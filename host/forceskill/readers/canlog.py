@@ -127,6 +127,12 @@ def _demonstration(a: np.ndarray, leave_idx: np.ndarray, name: str) -> tuple[int
     cut = np.flatnonzero(step >= IDLE_PERIOD_TICKS)
     starts = np.concatenate(([0], cut + 1))
     ends = np.concatenate((cut + 1, [len(a)]))
+    # an idle frame within 100 ticks of TEACH joins the stretch: trim edges not 1 tick apart
+    for k in range(starts.size):
+        while ends[k] - starts[k] >= 2 and step[starts[k]] > 1.0:
+            starts[k] += 1
+        while ends[k] - starts[k] >= 2 and step[ends[k] - 2] > 1.0:
+            ends[k] -= 1
     keep = (ends - starts) >= MIN_STRETCH
     starts, ends = starts[keep], ends[keep]
     if starts.size == 0:

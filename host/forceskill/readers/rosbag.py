@@ -27,10 +27,10 @@ def _norm(datatype: str) -> str:
     return f"{parts[0]}/msg/{parts[-1]}" if len(parts) == 2 else datatype
 
 
-def _stamp_s(msg: Any, log_time_ns: int) -> float:
+def _stamp_ns(msg: Any, log_time_ns: int) -> int:
     st = msg.header.stamp
     ns = int(st.sec) * 1_000_000_000 + int(st.nanosec)
-    return (ns if ns > 0 else log_time_ns) * 1e-9
+    return ns if ns > 0 else int(log_time_ns)
 
 
 def read(path: Path, opts: ReadOptions) -> Columns:
@@ -72,29 +72,30 @@ def read(path: Path, opts: ReadOptions) -> Columns:
         try:
             for _, channel, message, msg in reader.iter_decoded_messages(topics=wanted, log_time_order=True):
                 if channel.topic == topic:
-                    force_t.append(_stamp_s(msg, message.log_time))
+                    force_t.append(_stamp_ns(msg, message.log_time))
                     force.append(float(getattr(msg.wrench.force, opts.axis)))
                 else:
                     obj = msg
                     for attr in POSES[types[channel.topic]]:
                         obj = getattr(obj, attr)
-                    pose_t.append(_stamp_s(msg, message.log_time))
+                    pose_t.append(_stamp_ns(msg, message.log_time))
                     pose.append(float(getattr(obj, opts.axis)))
         except Exception as e:
             raise DemoError(ERR_DEMO_FORMAT, f"{path.name}: cannot decode {topic}: {e}") from None
     if len(force) < 2:
         raise DemoError(ERR_DEMO_TOPIC, f"topic {topic!r} in {path.name} has {len(force)} messages")
-    t = np.array(force_t)
-    order = np.argsort(t, kind="stable")
-    t, f = t[order], np.array(force)[order]
-    t0 = float(t[0])
-    check_duration(float(t[-1]) - t0, opts.max_duration_s, path.name)
-    cols: Columns = {"t": t - t0, "f_contact": f}
+    t_ns = np.array(force_t, dtype=np.int64)
+    order = np.argsort(t_ns, kind="stable")
+    t0_ns = int(t_ns[order[0]])
+    t = (t_ns[order] - t0_ns) * 1e-9       # relative first: float64 seconds since 1970 lose 0.2 us
+    f = np.array(force)[order]
+    check_duration(float(t[-1]), opts.max_duration_s, path.name)
+    cols: Columns = {"t": t, "f_contact": f}
     notes = [f"{path.name}: force {topic} wrench.force.{opts.axis}, {t.size} messages"]
     if opts.pose_topic:
         if len(pose) < 2:
             raise DemoError(ERR_DEMO_TOPIC, f"pose topic {opts.pose_topic!r} in {path.name} has {len(pose)} messages")
-        pt = np.array(pose_t)
+        pt = (np.array(pose_t, dtype=np.int64) - t0_ns) * 1e-9
         po = np.argsort(pt, kind="stable")
         cols["x"] = np.interp(t, pt[po], np.array(pose)[po])
         notes[0] += f", position {opts.pose_topic} .{opts.axis} ({pt.size} messages, interpolated)"
