@@ -255,3 +255,27 @@ def write_bag(path: Path, r: Rec, *, topic: str = "/wrench", pose_topic: Optiona
                     log_time=log_ns, publish_time=log_ns, sequence=i)
         w.finish()
     return path
+
+
+def write_examples(folder: Path) -> list[Path]:
+    """The recordings docs/cli.md's examples use: press100.csv (100 Hz), fz_bias.csv (push reads
+    negative, -0.8 N bias, ms time column, ';' and decimal commas), step20hz.csv, strokes.csv
+    (73 s, 13 strokes), wrench.mcap (ROS 2 bag)."""
+    folder.mkdir(parents=True, exist_ok=True)
+    out = [write_csv(folder / "press100.csv", with_noise(press(rate_hz=100), 0.05)),
+           write_csv(folder / "fz_bias.csv", with_sign(with_bias(with_noise(press(rate_hz=100), 0.03), 0.8)),
+                     names=("time [ms]", "z", "Fz (N)"), time_scale=1e3, delimiter=";", decimal_comma=True,
+                     with_position=False),
+           write_csv(folder / "step20hz.csv", with_step(press(rate_hz=20), 4.0, 8.0)),
+           write_csv(folder / "strokes.csv", strokes())]
+    try:
+        out.append(write_bag(folder / "wrench.mcap", with_noise(press(rate_hz=100), 0.05)))
+    except ImportError:
+        pass
+    return out
+
+
+if __name__ == "__main__":
+    import sys
+    for p in write_examples(Path(sys.argv[1] if len(sys.argv) > 1 else "recordings")):
+        print(p)
