@@ -21,9 +21,21 @@ from typing import Optional, Union
 
 import numpy as np
 
-from .errors import (ERR_DEMO_COLUMN, ERR_DEMO_FORMAT, ERR_DEMO_GAP, ERR_DEMO_NOT_FINITE, ERR_DEMO_TARE,
-                     ERR_DEMO_TIME, ERR_DEMO_TOO_SHORT, ERR_DEMO_ZERO_FORCE, ERR_FIT_ARGS, ERR_READ_ARGS,
-                     DemoError, FsError, ParamError)
+from .errors import (
+    ERR_DEMO_COLUMN,
+    ERR_DEMO_FORMAT,
+    ERR_DEMO_GAP,
+    ERR_DEMO_NOT_FINITE,
+    ERR_DEMO_TARE,
+    ERR_DEMO_TIME,
+    ERR_DEMO_TOO_SHORT,
+    ERR_DEMO_ZERO_FORCE,
+    ERR_FIT_ARGS,
+    ERR_READ_ARGS,
+    DemoError,
+    FsError,
+    ParamError,
+)
 from .readers import MAX_GAP_S, NOTES_KEY, Columns, ReadOptions, read_columns
 
 MIN_SAMPLES = 100

@@ -164,13 +164,12 @@ def write_can_log(path: Path, r: Rec, *, node: int = 0, drop_ticks: Sequence[int
     sampled at 1 kHz. ``drop_ticks``: telemetry frames lost on the bus. ``sessions`` > 1 repeats
     the demonstration with IDLE in between."""
     import can
-
     from forceskill.link.dbc import load_db
 
     db = load_db(node)
     mpos, mforce = db.get_message_by_name("TelemetryPosition"), db.get_message_by_name("TelemetryForce")
     mstat = db.get_message_by_name("DeviceStatus")
-    dropped = set(int(d) for d in drop_ticks)
+    dropped = {int(d) for d in drop_ticks}
     tick = 1000
     msgs: list[can.Message] = []
 

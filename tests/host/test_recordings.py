@@ -12,12 +12,22 @@ from typing import Callable, Optional
 import numpy as np
 import pytest
 import recordings as R
-
 from forceskill import cli, readers
 from forceskill.demo import load_demo
-from forceskill.errors import (ERR_DEMO_COLUMN, ERR_DEMO_DURATION, ERR_DEMO_FILE, ERR_DEMO_FORMAT, ERR_DEMO_GAP,
-                               ERR_DEMO_TARE, ERR_DEMO_TOPIC, ERR_FIT_GOAL, ERR_FIT_INACCURATE, ERR_FIT_TOLERANCE,
-                               ERR_READ_ARGS, FsError)
+from forceskill.errors import (
+    ERR_DEMO_COLUMN,
+    ERR_DEMO_DURATION,
+    ERR_DEMO_FILE,
+    ERR_DEMO_FORMAT,
+    ERR_DEMO_GAP,
+    ERR_DEMO_TARE,
+    ERR_DEMO_TOPIC,
+    ERR_FIT_GOAL,
+    ERR_FIT_INACCURATE,
+    ERR_FIT_TOLERANCE,
+    ERR_READ_ARGS,
+    FsError,
+)
 from forceskill.readers import ReadOptions
 from forceskill.skill import MAX_KERNELS, Skill
 from forceskill.tolerance import sample_error
@@ -53,7 +63,7 @@ def fit_refused(path: Path, *args: str) -> str:
     """Run the CLI as a subprocess; it must refuse with one line and write nothing."""
     skill = path.with_name("refused.skill")
     r = subprocess.run([sys.executable, "-m", "forceskill", "fit", str(path), "-k", K, "--surface-m", SURF,
-                        "-o", str(skill), *args], capture_output=True, text=True, timeout=300)
+                        "-o", str(skill), *args], capture_output=True, text=True, timeout=300, check=False)
     assert r.returncode == 2, (r.stdout, r.stderr)
     assert r.stderr.count("\n") == 1 and r.stderr.startswith("forceskill: error: "), r.stderr
     assert "Traceback" not in r.stderr

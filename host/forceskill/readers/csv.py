@@ -113,9 +113,10 @@ class _Layout:
             raise DemoError(ERR_DEMO_FORMAT, f"{self.path.name}: lines from {first_line_no} do not parse "
                             f"as {self.ncols} numbers")
         n_rows = values.size // self.ncols
-        if _count_lines(flat) != n_rows:     # blank lines, or ragged rows that add up
-            if any(len(ln.split()) != self.ncols for ln in flat.split(b"\n") if ln.strip()):
-                self._locate(block, first_line_no)
+        # blank lines, or ragged rows that add up
+        if _count_lines(flat) != n_rows and any(len(ln.split()) != self.ncols
+                                                for ln in flat.split(b"\n") if ln.strip()):
+            self._locate(block, first_line_no)
         return values.reshape(n_rows, self.ncols)
 
     def _locate(self, block: bytes, first_line_no: int) -> None:

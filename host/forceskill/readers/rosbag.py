@@ -45,7 +45,7 @@ def read(path: Path, opts: ReadOptions) -> Columns:
         try:
             reader = make_reader(fh, decoder_factories=[DecoderFactory()])
             summary = reader.get_summary()
-        except Exception as e:
+        except Exception as e:  # noqa: BLE001  (mcap raises its own and struct errors)
             raise DemoError(ERR_DEMO_FORMAT, f"{path.name} is not a readable MCAP file: {e}") from None
         if summary is None:
             raise DemoError(ERR_DEMO_FORMAT, f"{path.name}: MCAP file without a summary (unfinished recording?)")
@@ -80,7 +80,7 @@ def read(path: Path, opts: ReadOptions) -> Columns:
                         obj = getattr(obj, attr)
                     pose_t.append(_stamp_ns(msg, message.log_time))
                     pose.append(float(getattr(obj, opts.axis)))
-        except Exception as e:
+        except Exception as e:  # noqa: BLE001  (decoder errors of a damaged bag)
             raise DemoError(ERR_DEMO_FORMAT, f"{path.name}: cannot decode {topic}: {e}") from None
     if len(force) < 2:
         raise DemoError(ERR_DEMO_TOPIC, f"topic {topic!r} in {path.name} has {len(force)} messages")
