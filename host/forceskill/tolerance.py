@@ -28,6 +28,7 @@ STUCK_MIN_S = 0.2
 STUCK_MIN_SAMPLES = 10
 #: ... provided at most this fraction of the other sample-to-sample changes are exactly zero.
 STUCK_REST_REL = 0.05
+CHUNK = 1 << 20
 
 
 @dataclass
@@ -40,14 +41,21 @@ class SampleError:
 
 
 def sample_error(demo: Demo, grid_t_s: np.ndarray, f_hat_N: np.ndarray) -> SampleError:
-    """Error of a rollout on ``grid_t_s`` (from 0) at the samples of ``demo`` (times from t0)."""
-    t = demo.t_s - demo.t_s[0]
-    f = demo.force_N
-    err = f - np.interp(t, grid_t_s, f_hat_N)
-    f_max = float(np.max(np.abs(f)))
-    i = int(np.argmax(np.abs(err)))
-    return SampleError(max_pct=100.0 * float(abs(err[i])) / f_max,
-                       rms_pct=100.0 * float(np.sqrt(np.mean(err * err))) / f_max, t_at_max_s=float(t[i]))
+    """Error of a rollout on ``grid_t_s`` (from 0) at the samples of ``demo`` (times from t0).
+
+    Evaluated in chunks of CHUNK samples, so a 10^7-sample recording needs no full-size temporaries."""
+    t0 = float(demo.t_s[0])
+    f_max = float(np.max(np.abs(demo.force_N)))
+    worst, i_worst, sq = -1.0, 0, 0.0
+    for i0 in range(0, demo.t_s.size, CHUNK):
+        t = demo.t_s[i0:i0 + CHUNK] - t0
+        err = np.abs(demo.force_N[i0:i0 + CHUNK] - np.interp(t, grid_t_s, f_hat_N))
+        k = int(np.argmax(err))
+        if err[k] > worst:
+            worst, i_worst = float(err[k]), i0 + k
+        sq += float(np.dot(err, err))
+    return SampleError(max_pct=100.0 * worst / f_max, rms_pct=100.0 * math.sqrt(sq / demo.t_s.size) / f_max,
+                       t_at_max_s=float(demo.t_s[i_worst]) - t0)
 
 
 FitFn = Callable[[int], tuple[object, np.ndarray, np.ndarray]]
