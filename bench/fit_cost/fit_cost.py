@@ -100,9 +100,9 @@ def main() -> int:
               f"rss/size={peak / size_mb:.2f} progress_bar={'yes' if 'reading big.csv' in err else 'no'} exit={rc}")
         rc, peak, wall, err = _peak([*FORCESKILL, "fit", str(big), "-k", "2000", "--surface-m", "0.002",
                                      "-o", str(tmp / "big.skill")])
-        last = err.strip().splitlines()[-2] if err.strip().count("\n") else ""
+        last = next((ln for ln in err.splitlines() if ln.startswith("forceskill: error")), "")
         print(f"big_csv_fit exit={rc} peak_rss_MB={peak:.0f} rss/size={peak / size_mb:.2f} wall_s={wall:.2f}"
-              + (f" ({last[:120]})" if rc else ""))
+              + (f" ({last[:160]})" if rc else ""))
         # the duration limit: the same file with one more row at 10,000 s is refused from its first
         # and last rows, before the body is parsed
         long = big

@@ -43,6 +43,7 @@ MIN_DURATION_S = 0.5
 #: A log whose samples sit within this fraction of dt of the grid t0 + n*dt is used as is.
 GRID_TOL = 0.01
 LEARN_COLUMNS = {"contact": "f_contact", "operator": "f_operator"}
+_CHUNK = 1 << 20
 DEFAULT_POSITION = "x"
 #: --tare auto: the quiet stretch before contact ends where the force leaves the first 50 ms'
 #: median by more than TARE_CONTACT_REL of the force range (or 6 noise deviations if larger);
@@ -209,9 +210,16 @@ def validate(demo: Demo) -> None:
 
 
 def on_grid(t_s: np.ndarray, dt_s: float) -> bool:
-    """True when every sample is within GRID_TOL*dt of t0 + n*dt."""
-    n = np.arange(t_s.size)
-    return bool(np.max(np.abs(t_s - t_s[0] - n * dt_s)) <= GRID_TOL * dt_s)
+    """True when every sample is within GRID_TOL*dt of t0 + n*dt (checked in chunks: no
+    full-size temporaries on long recordings)."""
+    t0 = float(t_s[0])
+    if abs(float(t_s[-1]) - t0 - (t_s.size - 1) * dt_s) > GRID_TOL * dt_s:
+        return False
+    for i0 in range(0, t_s.size, _CHUNK):
+        n = np.arange(i0, min(t_s.size, i0 + _CHUNK))
+        if np.max(np.abs(t_s[i0:i0 + _CHUNK] - t0 - n * dt_s)) > GRID_TOL * dt_s:
+            return False
+    return True
 
 
 def resample(demo: Demo, dt_s: float) -> Demo:
