@@ -1,4 +1,4 @@
-"""Demonstrations from CAN logs: any python-can log format (.blf .asc .log .trc .csv, as written by
+"""Demonstrations from CAN logs: any python-can log format (.blf .asc .log .trc .csv .db .mf4, as written by
 ``forceskill record`` or ``python -m can.logger``), also gzip-compressed (``.asc.gz``), decoded
 through the DBC into the HIL log columns ``t,x,y,f_contact,f_operator,f_cmd,f_hat``.
 
