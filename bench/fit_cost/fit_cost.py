@@ -7,7 +7,7 @@ Prints:
   startup_ratio fit/numpy=... help/numpy=...
   big_csv rows=... bytes=... read_s=... peak_rss_MB=... rss/size=... progress_bar=yes|no
   big_csv_fit exit=... peak_rss_MB=... rss/size=... wall_s=...
-  duration_limit rows=... refused_in_s=... code=...
+  duration_limit rows=... span_s=10000 refused_in_s=... peak_rss_MB=... code=...
 Run: .venv/bin/python bench/fit_cost/fit_cost.py [--runs 11] [--rows 10000000] [--keep DIR]
 """
 from __future__ import annotations
@@ -108,12 +108,10 @@ def main() -> int:
         long = big
         with open(long, "ab") as fh:
             fh.write(b"10000.00000,0.0020000,0.0000\n")
-        t0 = time.perf_counter()
-        r = subprocess.run([*FORCESKILL, "fit", str(long), "-k", "2000", "-o", str(tmp / "long.skill")],
-                           capture_output=True, text=True, env=ENV, check=False)
-        code = re.findall(r"\[(\d+)\]", r.stderr)
-        print(f"duration_limit rows={args.rows} refused_in_s={time.perf_counter() - t0:.2f} "
-              f"code={code[-1] if code else r.returncode}")
+        rc, peak, wall, err = _peak([*FORCESKILL, "fit", str(long), "-k", "2000", "-o", str(tmp / "long.skill")])
+        code = re.findall(r"\[(\d+)\]", err)
+        print(f"duration_limit rows={args.rows + 1} span_s=10000 refused_in_s={wall:.2f} peak_rss_MB={peak:.0f} "
+              f"code={code[-1] if code else rc}")
     finally:
         if not args.keep:
             shutil.rmtree(tmp, ignore_errors=True)

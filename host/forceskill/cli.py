@@ -79,7 +79,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     import numpy as np
 
     from . import tolerance as tol
-    from .demo import load_demo
+    from .demo import load_demo, resample
     from .errors import ERR_FIT_ARGS, ERR_FIT_INACCURATE, ERR_FIT_TOLERANCE
     from .readers import ReadOptions
     from .skill import DURATION_MAX_S, MAX_KERNELS
@@ -103,9 +103,13 @@ def _cmd_fit(args: argparse.Namespace) -> int:
                      stiffness_Npm=args.stiffness, surface_m=args.surface_m)
     for note in demo.notes:
         print(note)
+    # the fit works on the dt grid; the recording's own time and force stay for the error at its
+    # samples, its position is not needed any more (memory on long recordings)
+    grid_demo = resample(demo, args.dt)
+    demo.pos_m = np.zeros(0)
 
     def fit_n(n: int) -> tuple[Any, np.ndarray, np.ndarray]:
-        r = _fit_with_hint(demo, args, n)
+        r = _fit_with_hint(grid_demo, args, n)
         return r, r.t_s, r.f_hat_N
 
     if args.max_error is None:
