@@ -8,6 +8,7 @@ Prints:
   big_csv rows=... bytes=... read_s=... peak_rss_MB=... rss/size=... progress_bar=yes|no
   big_csv_fit exit=... peak_rss_MB=... rss/size=... wall_s=...
   duration_limit rows=... span_s=10000 refused_in_s=... peak_rss_MB=... code=...
+  fit_grid_memory grid_samples=... fit_peak_MB=... (tracemalloc: the fit's own arrays on the 1 ms grid)
 Run: .venv/bin/python bench/fit_cost/fit_cost.py [--runs 11] [--rows 10000000] [--keep DIR]
 """
 from __future__ import annotations
@@ -60,12 +61,30 @@ def write_csv(path: Path, rows: int, rate_hz: float, block: int = 1_000_000) -> 
             np.savetxt(fh, np.column_stack((t, x, f)), fmt=("%.5f", "%.7f", "%.4f"), delimiter=",")
 
 
+def grid_memory(duration_s: float) -> None:
+    """Peak of the fit's own numpy arrays (tracemalloc) on a smooth press of ``duration_s`` at 1 ms."""
+    import tracemalloc
+
+    from forceskill.demo import Demo
+    from forceskill.fit import fit
+    t = np.arange(int(round(duration_s * 1000.0)) + 1) * 1e-3
+    f = 20.0 * np.sin(np.pi * t / t[-1]) ** 2
+    d = Demo(t, 0.002 + f / 2000.0, f)
+    tracemalloc.start()
+    fit(d, 2000.0, surface_m=0.002)
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    print(f"fit_grid_memory grid_samples={t.size} fit_peak_MB={peak / 2**20:.0f} (tracemalloc: the fit's own "
+          f"arrays on the 1 ms grid, {peak / t.size:.0f} bytes per sample)")
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--runs", type=int, default=11)
     ap.add_argument("--rows", type=int, default=10_000_000)
     ap.add_argument("--rate", type=float, default=10_000.0, help="sample rate of the big CSV, Hz")
     ap.add_argument("--keep", metavar="DIR", help="keep the generated files here")
+    ap.add_argument("--parts", default="startup,big,grid", help="comma-separated subset of startup,big,grid")
     args = ap.parse_args()
     tmp = Path(args.keep) if args.keep else Path(tempfile.mkdtemp(prefix="fit_cost_"))
     tmp.mkdir(parents=True, exist_ok=True)
@@ -76,20 +95,26 @@ def main() -> int:
         d = synthetic.pressing(seed=1, duration_s=17.0)
         small = tmp / "press17.csv"
         write_demo(small, {"t": d.t_s, "x": d.pos_m, "f_contact": d.force_N})
+        parts = set(args.parts.split(","))
+        if "grid" in parts:
+            grid_memory(args.rows / args.rate)
         numpy_cmd = [sys.executable, "-c", "import numpy"]
         fit_cmd = [*FORCESKILL, "fit", str(small), "-k", "100", "--surface-m", "0.001", "-o", str(tmp / "p.skill")]
         help_cmd = [*FORCESKILL, "--help"]
-        for c in (numpy_cmd, fit_cmd, help_cmd):     # warm the file cache and the .pyc files
+        for c in (numpy_cmd, fit_cmd, help_cmd) if "startup" in parts else ():   # warm caches and .pyc files
             _wall(c)
-        tn, tf, th = [], [], []
-        for _ in range(args.runs):
+        tn, tf, th = [1.0], [float("nan")], [float("nan")]
+        for _ in range(args.runs if "startup" in parts else 0):
             tn.append(_wall(numpy_cmd))
             tf.append(_wall(fit_cmd))
             th.append(_wall(help_cmd))
-        n, f, h = (float(np.median(x)) for x in (tn, tf, th))
-        print(f"startup_s numpy={n:.3f} fit={f:.3f} help={h:.3f} (medians of {args.runs} interleaved runs)")
-        print(f"startup_ratio fit/numpy={f / n:.2f} help/numpy={h / n:.2f}")
+        n, f, h = (float(np.median(x[1:] if len(x) > 1 else x)) for x in (tn, tf, th))
+        if "startup" in parts:
+            print(f"startup_s numpy={n:.3f} fit={f:.3f} help={h:.3f} (medians of {args.runs} interleaved runs)")
+            print(f"startup_ratio fit/numpy={f / n:.2f} help/numpy={h / n:.2f}")
 
+        if "big" not in parts:
+            return 0
         big = tmp / "big.csv"
         write_csv(big, args.rows, args.rate)
         size_mb = big.stat().st_size / 2**20
