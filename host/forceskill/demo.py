@@ -15,7 +15,7 @@ Irregular or slower sampling is resampled to the fit step by linear interpolatio
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Optional, Union
 
@@ -98,9 +98,8 @@ def load_demo(path: Union[str, Path], position_column: Optional[str] = None, for
     tare_s = parse_tare(tare)
     p = Path(path)
     fcol = force_column or LEARN_COLUMNS[learn]
-    opts = read or ReadOptions()
-    opts.columns = (fcol,) + ((position_column,) if position_column else ())
-    opts.optional = () if position_column else (DEFAULT_POSITION,)
+    opts = replace(read or ReadOptions(), columns=(fcol,) + ((position_column,) if position_column else ()),
+                   optional=() if position_column else (DEFAULT_POSITION,))
     cols = read_columns(p, opts)
     notes = [str(n) for n in cols.pop(NOTES_KEY, [])]
     for name in ("t", fcol) + ((position_column,) if position_column else ()):

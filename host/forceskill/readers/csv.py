@@ -239,8 +239,8 @@ def _read(path: Path, fh: "IO[bytes]", size: int, head: bytes, opts: ReadOptions
     return cols
 
 
-def _blocks(fh: "IO[bytes]", start: int, size: int) -> "list[tuple[int, int]]":
-    """(offset, length) of blocks of whole lines covering bytes start..size."""
+def _blocks(fh: "IO[bytes]", start: int, size: int) -> "list[tuple[int, int, int]]":
+    """(offset, length, lines) of blocks of whole lines covering bytes start..size."""
     out = []
     pos = start
     while pos < size:
@@ -251,7 +251,7 @@ def _blocks(fh: "IO[bytes]", start: int, size: int) -> "list[tuple[int, int]]":
             if cut < 0:
                 raise FsError(ERR_READ_ARGS, f"a line longer than {BLOCK_BYTES} bytes at byte {pos}")
             buf = buf[:cut + 1]
-        out.append((pos, len(buf)))
+        out.append((pos, len(buf), _count_lines(buf)))
         pos += len(buf)
     return out
 
@@ -260,11 +260,7 @@ def _read_blocks(path: Path, fh: "IO[bytes]", size: int, start: int, first_line:
                  keep: dict[str, int], opts: ReadOptions) -> Columns:
     """Large files: count the rows, preallocate the kept columns, fill them block by block."""
     blocks = _blocks(fh, start, size)
-    lines_per_block = []
-    for off, length in blocks:
-        fh.seek(off)
-        lines_per_block.append(_count_lines(fh.read(length)))
-    n = int(sum(lines_per_block))           # >= rows: blank and comment lines are counted too
+    n = sum(lines for _, _, lines in blocks)    # >= rows: blank and comment lines are counted too
     if "t" not in keep and opts.rate_hz:
         check_duration((n - 1) / opts.rate_hz, opts.max_duration_s, path.name)
     out = {name: np.empty(n) for name in keep}
@@ -275,7 +271,7 @@ def _read_blocks(path: Path, fh: "IO[bytes]", size: int, start: int, first_line:
     row = 0
     line = first_line
     try:
-        for off, length in blocks:
+        for off, length, lines in blocks:
             fh.seek(off)
             data = lay.parse(fh.read(length), line)
             m = data.shape[0]
@@ -284,7 +280,7 @@ def _read_blocks(path: Path, fh: "IO[bytes]", size: int, start: int, first_line:
             for name, j in keep.items():
                 out[name][row:row + m] = data[:, j]
             row += m
-            line += lines_per_block.pop(0)
+            line += lines
             if bar is not None:
                 bar.update(length)
     finally:
