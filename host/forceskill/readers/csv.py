@@ -231,6 +231,8 @@ def _read(path: Path, fh: "IO[bytes]", size: int, head: bytes, opts: ReadOptions
     n = next(iter(cols.values())).size if cols else 0
     if "t" in cols:
         cols["t"] *= scale
+        if n:       # again, for a file whose first or last row did not parse on its own
+            check_duration(float(cols["t"][-1] - cols["t"][0]), opts.max_duration_s, path.name)
     else:
         cols["t"] = np.arange(n, dtype=float) / float(opts.rate_hz or 1.0)
         check_duration(float(cols["t"][-1]) if n else 0.0, opts.max_duration_s, path.name)
