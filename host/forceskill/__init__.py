@@ -2,6 +2,8 @@
 
 Modules: ``params`` (gains -> DMP constants), ``dmp`` (the numpy reference of the firmware's DMP),
 ``fit`` (learning from a demonstration), ``skill`` (the image v1 and its JSON twin), ``demo``
-(reading demonstrations), ``plot``, ``cli`` (the ``forceskill`` command).
+(loading and validating demonstrations), ``readers`` (file formats, ``forceskill.readers`` entry
+points), ``tolerance`` (error at the recorded samples, kernel count from a tolerance), ``plot``,
+``cli`` (the ``forceskill`` command).
 """
 __version__ = "0.1.0"

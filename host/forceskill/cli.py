@@ -2,7 +2,8 @@
 
 Each module named in ``COMMAND_MODULES`` exposes ``register(subparsers)`` and adds its sub-command
 with ``set_defaults(func=handler)``, ``handler(args) -> int``. Modules are imported lazily when the
-parser is built; one that is missing or fails to import does not break the others.
+parser is built, only the one a command line needs (``LAZY_COMMANDS``); one that is missing or
+fails to import does not break the others.
 
 Bad input never gives a traceback: one line ``forceskill: error: ...`` on stderr, exit status 2,
 and no output file (outputs are written to a temporary file and renamed on success).
@@ -14,9 +15,7 @@ import importlib
 import json
 import sys
 from pathlib import Path
-from typing import NoReturn, Optional, Sequence
-
-import numpy as np
+from typing import Any, NoReturn, Optional, Sequence
 
 from .errors import FsError
 
@@ -32,6 +31,21 @@ COMMAND_MODULES: list[str] = [
     "forceskill.commands.journey",
     "forceskill.flash",
 ]
+#: Commands of those modules with their one-line help: a command line naming one of them imports
+#: only its module; ``forceskill --help`` lists them without importing any (python-can, cantools,
+#: udsoncan and matplotlib stay unloaded). A module not in this table is imported for the help.
+LAZY_COMMANDS: dict[str, tuple[str, str]] = {
+    "report": ("forceskill.report", "run every paper experiment on the HIL simulator"),
+    "record": ("forceskill.commands.record", "record a demonstration (device in TEACH) to a CAN log"),
+    "upload": ("forceskill.commands.upload", "upload a skill into a device slot (UDS over ISO-TP)"),
+    "run": ("forceskill.commands.run", "execute a skill or a sequence on the device and report tracking"),
+    "status": ("forceskill.commands.status", "show a device's state, versions and skill slots"),
+    "monitor": ("forceskill.commands.monitor", "live values of a device (--plot for a live plot)"),
+    "journey": ("forceskill.commands.journey", "record -> fit -> upload -> run 1x/1.5x over CAN on the simulator"),
+    "flash": ("forceskill.flash", "flash a signed firmware image over CAN (UDS), test-boot it, read back"),
+    "image": ("forceskill.flash", "build or inspect a signed firmware image"),
+}
+BUILTIN_COMMANDS = ("fit", "rollout", "show")
 
 EXIT_BAD_INPUT = 2
 
@@ -62,57 +76,151 @@ def _float(s: str) -> float:
 # ---- fit -------------------------------------------------------------------------------------
 
 def _cmd_fit(args: argparse.Namespace) -> int:
-    from .demo import load_demo
-    from .fit import fit
-    from .params import Gains
+    import numpy as np
+
+    from . import tolerance as tol
+    from .demo import load_demo, resample
+    from .errors import ERR_FIT_ARGS, ERR_FIT_INACCURATE, ERR_FIT_TOLERANCE
+    from .readers import ReadOptions
+    from .skill import DURATION_MAX_S, MAX_KERNELS
 
     out = Path(args.output)
     if not out.parent.is_dir() and str(out.parent):
         raise FsError(620, f"output folder does not exist: {str(out.parent)!r}")
     if args.plot and not Path(args.plot).parent.is_dir() and str(Path(args.plot).parent):
         raise FsError(620, f"plot folder does not exist: {str(Path(args.plot).parent)!r}")
+    if args.max_error is not None:
+        if args.kernels is not None:
+            raise FsError(ERR_FIT_ARGS, "give --kernels N or --max-error PCT, not both")
+        if not (np.isfinite(args.max_error) and 0.0 < args.max_error <= 100.0):
+            raise FsError(ERR_FIT_ARGS, f"--max-error must be in (0, 100] %: {args.max_error:g}")
+    ropts = ReadOptions(time_column=args.time_column, time_unit=args.time_unit, rate_hz=args.rate,
+                        topic=args.topic, pose_topic=args.pose_topic, axis=args.axis,
+                        max_duration_s=DURATION_MAX_S)
     demo = load_demo(args.demo, position_column=args.position_column, force_column=args.force_column,
-                     learn=args.learn)
-    res = fit(demo, args.stiffness, n_kernels=args.kernels, method=args.method, gains=Gains(),
-              surface_m=args.surface_m, end_policy=args.end, dt_s=args.dt)
+                     learn=args.learn, read=ropts, force_sign=float(args.force_sign),
+                     force_scale=args.force_scale, tare=args.tare, max_gap_s=args.max_gap,
+                     stiffness_Npm=args.stiffness, surface_m=args.surface_m)
+    for note in demo.notes:
+        print(note)
+    # the fit works on the dt grid; the recording's own time and force stay for the error at its
+    # samples, its position is not needed any more (memory on long recordings)
+    grid_demo = resample(demo, args.dt)
+    demo.pos_m = np.zeros(0)
+
+    def fit_n(n: int) -> tuple[Any, np.ndarray, np.ndarray]:
+        r = _fit_with_hint(grid_demo, args, n)
+        return r, r.t_s, r.f_hat_N
+
+    if args.max_error is None:
+        n_k = 50 if args.kernels is None else args.kernels
+        res, grid, f_hat = fit_n(n_k)
+        err = tol.sample_error(demo, grid, f_hat)
+        if err.max_pct > tol.DEFAULT_MAX_ERROR_PCT:
+            cause = tol.diagnose(demo)
+            raise FsError(ERR_FIT_INACCURATE, f"approximation error {err.max_pct:.3g} % of max force at N = {n_k} "
+                          f"(largest at t = {err.t_at_max_s:.4g} s) is above {tol.DEFAULT_MAX_ERROR_PCT:g} %: "
+                          + (f"{cause}; " if cause else "")
+                          + f"--max-error PCT searches N up to {MAX_KERNELS}; nothing written")
+    else:
+        n_k, res_any, err, tried = tol.fit_to_tolerance(fit_n, demo, args.max_error, MAX_KERNELS)
+        if n_k == 0:
+            best_n = min(tried, key=lambda nt: nt[1])[0]
+            cause = tol.diagnose(demo)
+            raise FsError(ERR_FIT_TOLERANCE, f"no kernel count up to {MAX_KERNELS} reaches max error "
+                          f"{args.max_error:g} %: best {err.max_pct:.3g} % at N = {best_n} (largest at t = "
+                          f"{err.t_at_max_s:.4g} s); " + (f"{cause}; " if cause else "")
+                          + "split the demonstration into a sequence of shorter skills (run --sequence); "
+                          "nothing written")
+        res = res_any
+        print(f"kernels: N = {n_k}, the smallest reaching max error {args.max_error:g} % "
+              f"({len(tried)} fits: " + ", ".join(f"{n} -> {e:.3g} %" for n, e in sorted(tried)) + ")")
     sk = res.skill
     if args.plot:
         from .plot import fit_figure
         fit_figure(res, args.plot, title=f"{demo.source}: {args.method}, N = {sk.n_kernels}, "
-                   f"max {res.err_max_pct:.2f} %, RMS {res.err_rms_pct:.2f} %")
+                   f"max {err.max_pct:.2f} %, RMS {err.rms_pct:.2f} %")
     try:
         sk.write(out)
     except BaseException:
         if args.plot:   # no partial output: the plot goes with the skill
             Path(args.plot).unlink(missing_ok=True)
         raise
-    f_max = float(np.max(np.abs(res.target_N)))
+    f_max = float(np.max(np.abs(demo.force_N)))
     print(f"demonstration: {demo.source}, T = {sk.duration_s:.3f} s, {res.t_s.size} samples at "
-          f"{sk.dt_s * 1e3:g} ms, max force {f_max:.4g} N")
+          f"{sk.dt_s * 1e3:g} ms (recorded: {demo.t_s.size}), max force {f_max:.4g} N")
     print(f"skill: method {res.method}, N = {sk.n_kernels}, k = {sk.stiffness_Npm:g} N/m, tau = {sk.tau_s:.6g} s, "
           f"g = {sk.goal_m:.6g} m, alpha = {sk.alpha:g}, beta = {sk.beta:g}, gamma = {sk.gamma:g}, "
           f"end {sk.end_policy}")
-    print(f"approximation error: max {res.err_max_pct:.3f} %, RMS {res.err_rms_pct:.3f} % of max force")
+    print(f"approximation error: max {err.max_pct:.3f} %, RMS {err.rms_pct:.3f} % of max force "
+          f"(at the {demo.t_s.size} recorded samples)")
     print(f"wrote {out} ({out.stat().st_size} bytes) and {out}.json" + (f", plot {args.plot}" if args.plot else ""))
     return 0
 
 
+def _fit_with_hint(demo: Any, args: argparse.Namespace, n_kernels: int) -> Any:
+    """fit() with the fit options of ``args``; a refusal for no net push on a force that reads
+    negative says to flip the sign."""
+    import numpy as np
+
+    from .errors import ERR_FIT_GOAL
+    from .fit import fit
+    from .params import Gains
+
+    try:
+        return fit(demo, args.stiffness, n_kernels=n_kernels, method=args.method, gains=Gains(),
+                   surface_m=args.surface_m, end_policy=args.end, dt_s=args.dt)
+    except FsError as e:
+        f = demo.force_N
+        lo, hi = float(np.min(f)) or 0.0, float(np.max(f)) or 0.0
+        if e.code == ERR_FIT_GOAL and -lo > hi:
+            raise FsError(e.code, f"{e.message}; the force reads negative (min {lo:.4g} N, max {hi:.4g} N): "
+                          f"a push measured negative (the usual Fz sign) needs --force-sign -1") from None
+        raise
+
+
 def _register_fit(sub: "argparse._SubParsersAction[_Parser]") -> None:
     p = sub.add_parser("fit", help="learn a force skill from one demonstration",
-                       description="Learn a force skill from one demonstration (CSV with a header row: "
-                       "t [s], position [m], force [N]). Prints the approximation error in % of the "
-                       "maximum demonstrated force; writes SKILL and SKILL.json.")
-    p.add_argument("demo", metavar="DEMO", help="demonstration file (.csv, or a registered log format)")
+                       description="Learn a force skill from one demonstration (CSV with a header row, a "
+                       "CAN log or a ROS 2 bag). Prints the approximation error in % of the maximum "
+                       "demonstrated force at the recorded samples; writes SKILL and SKILL.json. Refuses "
+                       "(nothing written) when the error is above 10 % or above --max-error.")
+    p.add_argument("demo", metavar="DEMO", help="demonstration file (.csv, .blf/.asc/.log/.trc[.gz], .mcap, "
+                   "or a format added by a forceskill.readers plugin)")
     p.add_argument("--stiffness", "-k", type=_float, required=True, metavar="K",
                    help="nominal object stiffness k in N/m (f_hat = k*x)")
     p.add_argument("-o", "--output", required=True, metavar="SKILL", help="skill image to write")
     p.add_argument("--method", choices=("ridge", "lwr"), default="ridge",
                    help="regression: ridge (joint regularised LS, default) or lwr (the paper's)")
-    p.add_argument("--kernels", "-n", type=_positive_int, default=50, metavar="N", help="kernels, 2..256 (50)")
+    p.add_argument("--kernels", "-n", type=_positive_int, default=None, metavar="N",
+                   help="kernels, 2..the format's cap (50)")
+    p.add_argument("--max-error", type=_float, default=None, metavar="PCT",
+                   help="use the smallest N whose max error is <= PCT %% of max force")
     p.add_argument("--learn", choices=("contact", "operator"), default="contact",
                    help="force to learn: contact (tip sensor, f_contact; default) or operator (f_operator)")
-    p.add_argument("--position-column", default="x", metavar="C", help="position column (x)")
+    p.add_argument("--position-column", default=None, metavar="C",
+                   help="position column (x; without one, position = surface + f/k)")
     p.add_argument("--force-column", default=None, metavar="C", help="force column (overrides --learn)")
+    g = p.add_argument_group("reading the recording")
+    g.add_argument("--time-column", default="t", metavar="NAME", help="CSV time column (t)")
+    g.add_argument("--time-unit", choices=("s", "ms", "us", "ns"), default=None,
+                   help="CSV time unit (default: the unit in the header, 't [ms]', else s)")
+    g.add_argument("--rate", type=_float, default=None, metavar="HZ",
+                   help="CSV without a time column: sample n is at n/HZ")
+    g.add_argument("--topic", default=None, metavar="TOPIC",
+                   help="ROS 2 bag: geometry_msgs/WrenchStamped topic (default: the only one)")
+    g.add_argument("--pose-topic", default=None, metavar="TOPIC",
+                   help="ROS 2 bag: PoseStamped/PointStamped topic for the position")
+    g.add_argument("--axis", choices=("x", "y", "z"), default="z", help="ROS 2 bag: force/pose axis (z)")
+    g.add_argument("--force-sign", type=int, choices=(1, -1), default=1,
+                   help="-1 when a push reads negative (1)")
+    g.add_argument("--force-scale", type=_float, default=1.0, metavar="S",
+                   help="multiply the force by S, e.g. to convert to N (1)")
+    g.add_argument("--tare", default="none", metavar="auto|SECONDS|none",
+                   help="remove a sensor bias: the median force before contact (auto) or over the "
+                   "first SECONDS (none)")
+    g.add_argument("--max-gap", type=_float, default=0.1, metavar="S",
+                   help="longest gap between samples that is interpolated, s (0.1)")
     p.add_argument("--surface-m", type=_float, default=0.0, metavar="S",
                    help="object surface position during the demonstration, m (0)")
     p.add_argument("--end", choices=("hold", "release"), default="hold",
@@ -135,7 +243,7 @@ def _cmd_rollout(args: argparse.Namespace) -> int:
     sk = Skill.read(args.skill)
     t, f = rollout(sk, goal_scale=args.goal_scale, time_scale=args.time_scale, n_steps=args.steps)
     write_csv(out, {"t": t, "f_hat": f})
-    print(f"wrote {out}: {t.size} rows, t = 0..{t[-1]:.6g} s, peak f_hat {float(np.max(f)):.6g} N")
+    print(f"wrote {out}: {t.size} rows, t = 0..{t[-1]:.6g} s, peak f_hat {float(f.max()):.6g} N")
     return 0
 
 
@@ -174,7 +282,7 @@ def _cmd_show(args: argparse.Namespace) -> int:
     print(f"  alpha/beta/gamma {sk.alpha:g} / {sk.beta:g} / {sk.gamma:g}")
     print(f"  gains          m_d {sk.m_d_kg:g} kg, k_d {sk.k_d_Nspm:g} Ns/m, k_p {sk.k_p_Npm:g} N/m, "
           f"k_f {sk.k_f:g}, k_i {sk.k_i_per_s:g} 1/s")
-    print(f"  rollout        peak f_hat {float(np.max(f)):.6g} N, final {float(f[-1]):.6g} N")
+    print(f"  rollout        peak f_hat {float(f.max()):.6g} N, final {float(f[-1]):.6g} N")
     return 0
 
 
@@ -188,8 +296,24 @@ def _register_show(sub: "argparse._SubParsersAction[_Parser]") -> None:
 
 # ---- parser and entry point -------------------------------------------------------------------
 
-def build_parser() -> tuple[argparse.ArgumentParser, list[str]]:
-    """The parser with every available command, and the command modules that failed to load."""
+def _modules_for(argv: Optional[Sequence[str]]) -> tuple[list[str], list[str]]:
+    """(modules to import, commands to list from LAZY_COMMANDS without importing) for ``argv``."""
+    if argv is None:
+        return list(COMMAND_MODULES), []
+    cmd = next((a for a in argv if not a.startswith("-")), None)
+    if cmd in BUILTIN_COMMANDS:
+        return [], []
+    if cmd in LAZY_COMMANDS and LAZY_COMMANDS[cmd][0] in COMMAND_MODULES:
+        return [LAZY_COMMANDS[cmd][0]], []
+    if cmd is None:     # help, version or nothing: list the known commands, import the others
+        lazy = {m for m, _ in LAZY_COMMANDS.values()}
+        return ([m for m in COMMAND_MODULES if m not in lazy],
+                [c for c, (m, _) in LAZY_COMMANDS.items() if m in COMMAND_MODULES])
+    return list(COMMAND_MODULES), []
+
+
+def build_parser(argv: Optional[Sequence[str]] = None) -> tuple[argparse.ArgumentParser, list[str]]:
+    """The parser for ``argv`` (every command when None), and the command modules that failed to load."""
     from . import __version__
     parser = _Parser(prog="forceskill", description="Learn force skills from demonstration and run them "
                      "on a force controller over CAN.")
@@ -198,8 +322,11 @@ def build_parser() -> tuple[argparse.ArgumentParser, list[str]]:
     _register_fit(sub)
     _register_rollout(sub)
     _register_show(sub)
+    modules, listed = _modules_for(argv)
+    for name in listed:
+        sub.add_parser(name, help=LAZY_COMMANDS[name][1])
     missing: list[str] = []
-    for name in COMMAND_MODULES:
+    for name in modules:
         try:
             mod = importlib.import_module(name)
             mod.register(sub)
@@ -209,7 +336,8 @@ def build_parser() -> tuple[argparse.ArgumentParser, list[str]]:
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:
-    parser, missing = build_parser()
+    argv = sys.argv[1:] if argv is None else list(argv)
+    parser, missing = build_parser(argv)
     args = parser.parse_args(argv)
     if not getattr(args, "func", None):
         parser.print_help()

@@ -133,7 +133,7 @@ ERR_DEMO_COLUMN = 602  # a requested column is not in the file
 ERR_DEMO_TOO_SHORT = 603  # shorter than 0.5 s or fewer than 100 samples
 ERR_DEMO_NOT_FINITE = 604  # NaN or infinite sample
 ERR_DEMO_TIME = 605  # time not strictly increasing
-ERR_DEMO_GAP = 606  # a sampling gap above 1.5x the median step
+ERR_DEMO_GAP = 606  # a sampling gap longer than --max-gap (100 ms)
 ERR_DEMO_ZERO_FORCE = 607  # the learned force is constant zero
 ERR_FIT_ARGS = 610  # kernels, method, end policy or dt out of range
 ERR_FIT_GOAL = 611  # g <= 0 or tiny: no net push to phase-normalise
@@ -149,6 +149,13 @@ ERR_LINK_TIMEOUT = 635  # the device stopped answering during an operation
 ERR_LINK_STATE = 636  # the device is not in the state the operation needs (e.g. FAULT)
 ERR_LINK_ARGS = 637  # a bad option value (slot, sequence, scale)
 ERR_FLASH_NOT_CONFIRMED = 638
+ERR_FIT_TOLERANCE = 640  # no kernel count up to the cap reaches --max-error
+ERR_FIT_INACCURATE = 641  # approximation error above 10 % without --max-error
+ERR_DEMO_DURATION = 642  # the recording is longer than the skill's 3,600 s limit
+ERR_DEMO_TARE = 643  # --tare: no quiet stretch before contact, or a bad window
+ERR_READ_ARGS = 644  # a reader option out of range (time unit, rate, axis, sign, scale, gap)
+ERR_DEMO_TOPIC = 645  # a bag without the requested topic, or of another message type
+ERR_READER_MISSING = 646  # the reader for this format needs a package that is not installed
 
 # Firmware image and update (700-729, firmware/boot)
 BOOT_ERR_TRUNCATED = 700  # fewer bytes than header + payload_length + tag
@@ -313,6 +320,13 @@ __all__ = [
     'ERR_LINK_STATE',
     'ERR_LINK_ARGS',
     'ERR_FLASH_NOT_CONFIRMED',
+    'ERR_FIT_TOLERANCE',
+    'ERR_FIT_INACCURATE',
+    'ERR_DEMO_DURATION',
+    'ERR_DEMO_TARE',
+    'ERR_READ_ARGS',
+    'ERR_DEMO_TOPIC',
+    'ERR_READER_MISSING',
     'BOOT_ERR_TRUNCATED',
     'BOOT_ERR_MAGIC',
     'BOOT_ERR_FORMAT',

@@ -1,136 +1,179 @@
 """Demonstrations: reading, validating and resampling a recorded task.
 
-A demonstration is time ``t`` (s), the demonstrated position ``x`` (m, into the object) and
-one force (N, pushing positive): the contact (tip) force ``f_contact`` by default, the operator's
-(handle) force ``f_operator`` with ``learn="operator"``. CSV files have a header row; the HIL log
-columns are ``t,x,y,f_contact,f_operator,f_cmd,f_hat`` in SI units. Readers are chosen by file
-suffix from a registry (``register_reader``), so CAN log formats can be added (.blf, .asc, ...).
+A demonstration is time ``t`` (s), the demonstrated position ``x`` (m, into the object) and one
+force (N, pushing positive): the contact (tip) force ``f_contact`` by default, the operator's
+(handle) force ``f_operator`` with ``learn="operator"``, or any column by name. Files are read by
+the reader plugin for their suffix (``forceskill.readers``: CSV, CAN logs, ROS 2 bags). The force
+can be sign-flipped and scaled, a sensor bias measured before contact removed (``tare``), and a
+recording without position gets ``x = surface + f/k``.
 
 Validation refuses, with one line naming the problem and the value: fewer than 100 samples or
-shorter than 0.5 s, NaN/inf, time not strictly increasing, a gap above 1.5x the median step, a
-constant zero force, an unknown column (listing those available). A log not sampled at the fit
-step is resampled by linear interpolation (``resample``).
+shorter than 0.5 s, NaN/inf, time not strictly increasing, a gap longer than ``max_gap_s``
+(100 ms by default), a constant zero force, an unknown column (listing those available).
+Irregular or slower sampling is resampled to the fit step by linear interpolation (``resample``).
 """
 from __future__ import annotations
 
-import csv
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Callable, Optional, Union
+from typing import Optional, Union
 
 import numpy as np
 
-from .errors import (ERR_DEMO_COLUMN, ERR_DEMO_FILE, ERR_DEMO_FORMAT, ERR_DEMO_GAP, ERR_DEMO_NOT_FINITE,
-                     ERR_DEMO_TIME, ERR_DEMO_TOO_SHORT, ERR_DEMO_ZERO_FORCE, ERR_FIT_ARGS, DemoError,
-                     ParamError)
+from .errors import (
+    ERR_DEMO_COLUMN,
+    ERR_DEMO_FORMAT,
+    ERR_DEMO_GAP,
+    ERR_DEMO_NOT_FINITE,
+    ERR_DEMO_TARE,
+    ERR_DEMO_TIME,
+    ERR_DEMO_TOO_SHORT,
+    ERR_DEMO_ZERO_FORCE,
+    ERR_FIT_ARGS,
+    ERR_READ_ARGS,
+    DemoError,
+    FsError,
+    ParamError,
+)
+from .readers import MAX_GAP_S, NOTES_KEY, Columns, ReadOptions, read_columns
 
 MIN_SAMPLES = 100
 MIN_DURATION_S = 0.5
-GAP_FACTOR = 1.5
 #: A log whose samples sit within this fraction of dt of the grid t0 + n*dt is used as is.
 GRID_TOL = 0.01
 LEARN_COLUMNS = {"contact": "f_contact", "operator": "f_operator"}
-
-Columns = dict[str, np.ndarray]
-Reader = Callable[[Path], Columns]
+_CHUNK = 1 << 20
+DEFAULT_POSITION = "x"
+#: --tare auto: the quiet stretch before contact ends where the force leaves the first 50 ms'
+#: median by more than TARE_CONTACT_REL of the force range (or 6 noise deviations if larger);
+#: it must last at least TARE_MIN_S.
+TARE_HEAD_S = 0.05
+TARE_CONTACT_REL = 0.05
+TARE_MIN_S = 0.05
+#: ... and its level must be a bias, not a contact: |level| <= this fraction of the force range.
+TARE_BIAS_MAX_REL = 0.25
 
 
 @dataclass
 class Demo:
-    """One demonstration: time (s), position (m), the force to learn (N), and where it came from."""
+    """One demonstration: time (s), position (m), the force to learn (N), and where it came from.
+
+    ``max_gap_s``: the longest gap between samples that validation accepts; ``notes``: what was
+    done to the recording on the way in (tare, position from force, ...), for the user.
+    """
 
     t_s: np.ndarray
     pos_m: np.ndarray
     force_N: np.ndarray
     source: str = ""
+    max_gap_s: float = MAX_GAP_S
+    notes: list[str] = field(default_factory=list)
 
 
-_READERS: dict[str, Reader] = {}
+def read_csv_columns(path: Union[str, Path]) -> Columns:
+    """Every column of a CSV file with a header row (the CSV reader plugin, default options)."""
+    from .readers import csv
+    return csv.read(Path(path), ReadOptions())
 
 
-def register_reader(suffix: str, fn: Reader) -> None:
-    """Add a reader for files ending in ``suffix`` ('.csv'); it returns named columns including 't'."""
-    _READERS[suffix.lower()] = fn
+def load_demo(path: Union[str, Path], position_column: Optional[str] = None, force_column: Optional[str] = None,
+              learn: str = "contact", *, read: Optional[ReadOptions] = None, force_sign: float = 1.0,
+              force_scale: float = 1.0, tare: str = "none", max_gap_s: float = MAX_GAP_S,
+              stiffness_Npm: Optional[float] = None, surface_m: float = 0.0) -> Demo:
+    """Read and validate a demonstration.
 
-
-def readers() -> list[str]:
-    return sorted(_READERS)
-
-
-def read_csv_columns(path: Path) -> Columns:
-    """Columns of a CSV file with a header row (comma separated, numbers only below the header)."""
-    try:
-        with open(path, newline="") as f:
-            rows = list(csv.reader(f))
-    except OSError as e:
-        raise DemoError(ERR_DEMO_FILE, f"cannot read demonstration {str(path)!r}: {e.strerror}") from None
-    except UnicodeDecodeError:
-        raise DemoError(ERR_DEMO_FORMAT, f"demonstration {str(path)!r} is not a text CSV file") from None
-    rows = [r for r in rows if r and any(c.strip() for c in r)]
-    if not rows:
-        raise DemoError(ERR_DEMO_FORMAT, f"demonstration {str(path)!r} is empty")
-    header = [c.strip() for c in rows[0]]
-    if any(_is_number(c) for c in header):
-        raise DemoError(ERR_DEMO_FORMAT, f"demonstration {str(path)!r} has no header row (first row: "
-                        f"{','.join(header)})")
-    data = np.empty((len(rows) - 1, len(header)))
-    for i, r in enumerate(rows[1:]):
-        if len(r) != len(header):
-            raise DemoError(ERR_DEMO_FORMAT, f"{path}: line {i + 2} has {len(r)} fields, header has {len(header)}")
-        for j, cell in enumerate(r):
-            try:
-                data[i, j] = float(cell)
-            except ValueError:
-                raise DemoError(ERR_DEMO_FORMAT, f"{path}: line {i + 2}, column {header[j]!r}: "
-                                f"not a number: {cell.strip()!r}") from None
-    return {name: data[:, j] for j, name in enumerate(header)}
-
-
-def _is_number(s: str) -> bool:
-    try:
-        float(s)
-    except ValueError:
-        return False
-    return True
-
-
-register_reader(".csv", read_csv_columns)
-
-_log_readers_loaded = False
-
-
-def _load_log_readers() -> None:
-    """CAN log formats (.blf, .asc, ...) live in forceskill.link (python-can, cantools): import
-    it on first use, so ``load_demo`` reads them whether or not the CLI was built first."""
-    global _log_readers_loaded
-    if not _log_readers_loaded:
-        _log_readers_loaded = True
-        import forceskill.link.logs  # noqa: F401  (registers its readers on import)
-
-
-def load_demo(path: Union[str, Path], position_column: str = "x", force_column: Optional[str] = None,
-              learn: str = "contact") -> Demo:
-    """Read and validate a demonstration; ``force_column`` overrides the column ``learn`` selects."""
+    ``force_column`` overrides the column ``learn`` selects. ``position_column`` None: ``x`` when
+    present, else ``surface_m + f/stiffness_Npm`` (a note says so). The force is multiplied by
+    ``force_sign*force_scale``, then ``tare`` ('none', 'auto' or seconds) removes a bias.
+    """
     if learn not in LEARN_COLUMNS:
         raise ParamError(ERR_FIT_ARGS, f"learn must be one of {', '.join(LEARN_COLUMNS)}: {learn!r}")
+    if force_sign not in (1.0, -1.0):
+        raise FsError(ERR_READ_ARGS, f"force sign must be 1 or -1: {force_sign:g}")
+    if not (math.isfinite(force_scale) and force_scale > 0.0):
+        raise FsError(ERR_READ_ARGS, f"force scale must be finite and > 0: {force_scale:g}")
+    if not (math.isfinite(max_gap_s) and max_gap_s > 0.0):
+        raise FsError(ERR_READ_ARGS, f"--max-gap must be finite and > 0 s: {max_gap_s:g}")
+    tare_s = parse_tare(tare)
     p = Path(path)
-    _load_log_readers()
-    reader = _READERS.get(p.suffix.lower())
-    if reader is None:
-        raise DemoError(ERR_DEMO_FILE, f"no reader for demonstration suffix {p.suffix or '(none)'!r} "
-                        f"(known: {', '.join(readers())})")
-    if not p.is_file():
-        raise DemoError(ERR_DEMO_FILE, f"demonstration file not found: {str(p)!r}")
-    cols = reader(p)
     fcol = force_column or LEARN_COLUMNS[learn]
-    for name in ("t", position_column, fcol):
+    opts = replace(read or ReadOptions(), columns=(fcol,) + ((position_column,) if position_column else ()),
+                   optional=() if position_column else (DEFAULT_POSITION,))
+    cols = read_columns(p, opts)
+    notes = [str(n) for n in cols.pop(NOTES_KEY, [])]
+    for name in ("t", fcol) + ((position_column,) if position_column else ()):
         if name not in cols:
             raise DemoError(ERR_DEMO_COLUMN, f"column {name!r} not in {p.name} (available: {', '.join(cols)})")
-    demo = Demo(t_s=np.asarray(cols["t"], float), pos_m=np.asarray(cols[position_column], float),
-                force_N=np.asarray(cols[fcol], float), source=f"{p.name}:{fcol}")
+    f = np.asarray(cols[fcol], float)
+    if force_sign * force_scale != 1.0:
+        f = f * (force_sign * force_scale)
+    t = np.asarray(cols["t"], float)
+    if tare_s is not None:
+        f, note = _tare(t, f, tare_s, tare == "auto")
+        notes.append(note)
+    pos_name = position_column or DEFAULT_POSITION
+    if pos_name in cols:
+        x = np.asarray(cols[pos_name], float)
+    else:
+        if stiffness_Npm is None or not stiffness_Npm > 0.0:
+            raise DemoError(ERR_DEMO_COLUMN, f"no position column {pos_name!r} in {p.name} and no stiffness "
+                            f"to derive it (available: {', '.join(cols)})")
+        x = surface_m + f / stiffness_Npm
+        notes.append(f"no position column {pos_name!r}: position taken as surface + f/k "
+                     f"(k = {stiffness_Npm:g} N/m)")
+    demo = Demo(t_s=t, pos_m=x, force_N=f, source=f"{p.name}:{fcol}", max_gap_s=max_gap_s, notes=notes)
     validate(demo)
     return demo
+
+
+def parse_tare(tare: str) -> Optional[float]:
+    """None for 'none', 0.0 for 'auto' (window found later), else the window in seconds (> 0)."""
+    if tare == "none":
+        return None
+    if tare == "auto":
+        return 0.0
+    try:
+        v = float(tare)
+    except ValueError:
+        raise FsError(ERR_DEMO_TARE, f"--tare must be auto, none or a window in seconds: {tare!r}") from None
+    if not (math.isfinite(v) and v > 0.0):
+        raise FsError(ERR_DEMO_TARE, f"--tare window must be finite and > 0 s: {tare!r}")
+    return v
+
+
+def _tare(t: np.ndarray, f: np.ndarray, window_s: float, auto: bool) -> tuple[np.ndarray, str]:
+    """Subtract the median force of the first ``window_s`` (auto: of the quiet stretch before
+    contact); refuses a window without samples or, for auto, a recording that starts in contact."""
+    if t.size < 2:
+        raise DemoError(ERR_DEMO_TARE, f"--tare: only {t.size} samples")
+    t0 = float(t[0])
+    if auto:
+        head = f[t <= t0 + TARE_HEAD_S]
+        base = float(np.median(head))
+        noise = float(np.median(np.abs(head - base))) * 1.4826
+        rng = float(np.max(f) - np.min(f))
+        thresh = max(TARE_CONTACT_REL * rng, 6.0 * noise)
+        away = np.flatnonzero(np.abs(f - base) > thresh)
+        end = int(away[0]) if away.size else f.size
+        quiet_s = float(t[end - 1] - t0) if end > 0 else 0.0
+        if quiet_s < TARE_MIN_S or end >= f.size or abs(base) > TARE_BIAS_MAX_REL * rng:
+            raise DemoError(ERR_DEMO_TARE, f"--tare auto: no quiet stretch before contact (the force leaves "
+                            f"{base:.4g} N by more than {thresh:.3g} N after {quiet_s * 1e3:.0f} ms, force range "
+                            f"{rng:.4g} N): the recording starts in contact; give --tare SECONDS or --tare none")
+        window = f[:end]
+        span = quiet_s
+    else:
+        window = f[t <= t0 + window_s]
+        span = window_s
+        if window.size < 2:
+            raise DemoError(ERR_DEMO_TARE, f"--tare {window_s:g}: the first {window_s:g} s hold "
+                            f"{window.size} sample(s)")
+        if window_s > 0.5 * float(t[-1] - t0):
+            raise DemoError(ERR_DEMO_TARE, f"--tare {window_s:g}: the window is more than half of the "
+                            f"{float(t[-1] - t0):g} s recording")
+    bias = float(np.median(window))
+    return f - bias, f"tare: removed a bias of {bias:.4g} N (median of the first {span:.3g} s, {window.size} samples)"
 
 
 def validate(demo: Demo) -> None:
@@ -155,21 +198,27 @@ def validate(demo: Demo) -> None:
     duration = float(t[-1] - t[0])
     if duration < MIN_DURATION_S:
         raise DemoError(ERR_DEMO_TOO_SHORT, f"demonstration too short: {duration:g} s (need >= {MIN_DURATION_S:g} s)")
-    med = float(np.median(dt))
-    gaps = np.flatnonzero(dt > GAP_FACTOR * med)
+    gaps = np.flatnonzero(dt > demo.max_gap_s)
     if gaps.size:
         i = int(gaps[0])
         raise DemoError(ERR_DEMO_GAP, f"demonstration has a gap of {dt[i] * 1e3:.6g} ms at t = {t[i]:.6g} s "
-                        f"(median step {med * 1e3:.6g} ms, limit {GAP_FACTOR:g}x)")
+                        f"(longer than --max-gap {demo.max_gap_s * 1e3:g} ms; {gaps.size} such gap(s))")
     if not np.any(f != 0.0):
         raise DemoError(ERR_DEMO_ZERO_FORCE, f"demonstration force ({demo.source or 'force'}) is constant zero "
                         f"over {t.size} samples")
 
 
 def on_grid(t_s: np.ndarray, dt_s: float) -> bool:
-    """True when every sample is within GRID_TOL*dt of t0 + n*dt."""
-    n = np.arange(t_s.size)
-    return bool(np.max(np.abs(t_s - t_s[0] - n * dt_s)) <= GRID_TOL * dt_s)
+    """True when every sample is within GRID_TOL*dt of t0 + n*dt (checked in chunks: no
+    full-size temporaries on long recordings)."""
+    t0 = float(t_s[0])
+    if abs(float(t_s[-1]) - t0 - (t_s.size - 1) * dt_s) > GRID_TOL * dt_s:
+        return False
+    for i0 in range(0, t_s.size, _CHUNK):
+        n = np.arange(i0, min(t_s.size, i0 + _CHUNK))
+        if np.max(np.abs(t_s[i0:i0 + _CHUNK] - t0 - n * dt_s)) > GRID_TOL * dt_s:
+            return False
+    return True
 
 
 def resample(demo: Demo, dt_s: float) -> Demo:
@@ -183,11 +232,13 @@ def resample(demo: Demo, dt_s: float) -> Demo:
     t0 = float(demo.t_s[0])
     if on_grid(demo.t_s, dt_s):
         n = demo.t_s.size
-        return Demo(np.arange(n) * dt_s, demo.pos_m.copy(), demo.force_N.copy(), demo.source)
+        return Demo(np.arange(n) * dt_s, demo.pos_m.copy(), demo.force_N.copy(), demo.source,
+                    demo.max_gap_s, list(demo.notes))
     n_last = int(math.floor((float(demo.t_s[-1]) - t0) / dt_s + 1e-9))
     tn = t0 + np.arange(n_last + 1) * dt_s
     return Demo(np.arange(n_last + 1) * dt_s, np.interp(tn, demo.t_s, demo.pos_m),
-                np.interp(tn, demo.t_s, demo.force_N), demo.source + f" (resampled to {dt_s * 1e3:g} ms)")
+                np.interp(tn, demo.t_s, demo.force_N), demo.source + f" (resampled to {dt_s * 1e3:g} ms)",
+                demo.max_gap_s, list(demo.notes))
 
 
 def write_csv(path: Union[str, Path], columns: Columns) -> None:

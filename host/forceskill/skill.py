@@ -10,7 +10,6 @@ import json
 import math
 import os
 import struct
-import tempfile
 import zlib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -233,13 +232,26 @@ class Skill:
 
 
 def atomic_write(path: Path, data: bytes) -> None:
-    """Write via a temporary file in the same folder and rename, so a failure leaves no file."""
+    """Write via a temporary file in the same folder and rename, so a failure leaves no file.
+
+    The temporary name is made here (pid, counter, O_EXCL) rather than by ``tempfile``, which
+    imports shutil, random, bz2 and lzma: start-up time of every command that writes."""
+    global _tmp_counter
     path = Path(path)
     folder = path.parent if str(path.parent) else Path(".")
-    try:
-        fd, tmp = tempfile.mkstemp(prefix="." + path.name + ".", suffix=".tmp", dir=folder)
-    except OSError as e:
-        raise FsError(ERR_IO, f"cannot write {str(path)!r}: {e.strerror}") from None
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0)
+    for _ in range(100):
+        _tmp_counter += 1
+        tmp = folder / f".{path.name}.{os.getpid()}.{_tmp_counter}.tmp"
+        try:
+            fd = os.open(tmp, flags, 0o666)
+            break
+        except FileExistsError:
+            continue
+        except OSError as e:
+            raise FsError(ERR_IO, f"cannot write {str(path)!r}: {e.strerror}") from None
+    else:
+        raise FsError(ERR_IO, f"cannot write {str(path)!r}: no free temporary name in {str(folder)!r}")
     try:
         with os.fdopen(fd, "wb") as f:
             f.write(data)
@@ -252,3 +264,6 @@ def atomic_write(path: Path, data: bytes) -> None:
         if isinstance(e, OSError):
             raise FsError(ERR_IO, f"cannot write {str(path)!r}: {e.strerror or e}") from None
         raise
+
+
+_tmp_counter = 0

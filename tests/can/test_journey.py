@@ -19,7 +19,6 @@ import pytest
 from conftest import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS, Server
 from forceskill import cli
 from forceskill.demo import load_demo
-from forceskill.link import logs  # noqa: F401  (registers the CAN log readers)
 from forceskill.link.dbc import dbc_path
 from forceskill.skill import Skill
 

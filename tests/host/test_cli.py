@@ -132,7 +132,7 @@ def _set(name: str, i: int, val: float) -> Callable[[dict[str, np.ndarray]], Non
 
 def _gap(c: dict[str, np.ndarray]) -> None:
     c["t"] = c["t"].copy()
-    c["t"][1000:] += 0.0016
+    c["t"][1000:] += 0.15
 
 
 def _zero(c: dict[str, np.ndarray]) -> None:
@@ -151,7 +151,7 @@ BAD_DEMOS = [
     ("inf_position", _set("x", 10, np.inf), {}, 604, "not finite"),
     ("time_backwards", _set("t", 700, 0.5), {}, 605, "not strictly increasing"),
     ("time_repeated", _set("t", 700, 0.699), {}, 605, "not strictly increasing"),
-    ("gap", _gap, {}, 606, "gap of 2.6 ms"),
+    ("gap", _gap, {}, 606, "gap of 151 ms at t = 0.999 s"),
     ("zero_force", _zero, {}, 607, "constant zero"),
     ("no_net_push", _pull, {}, 611, "no net push"),
 ]

@@ -7,7 +7,6 @@ from typing import Iterator
 
 import numpy as np
 
-from ..link import logs as _logs  # noqa: F401  (registers the CAN log readers for `fit`)
 from ..link.bus import add_bus_args, describe, open_bus
 from ..link.device import Device, Sample
 

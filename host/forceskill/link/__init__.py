@@ -4,7 +4,7 @@
 ``dbc``: the DBC (``forceskill.dbc``, ids for node 0; node n adds n), E2E counter + CRC-8.
 ``device``: cyclic frames: presence, heartbeat, commands, status and telemetry.
 ``uds``: udsoncan client over can-isotp (SecurityAccess key, data identifiers, transfers).
-``logs``: demonstration readers for python-can log files (.blf .asc .log .trc .csv).
+Demonstrations from python-can log files are read by ``forceskill.readers.canlog``.
 
 Errors are ``FsError`` with codes 630-649 (host side of the CAN link), listed here.
 """

@@ -1,0 +1,158 @@
+"""Demonstrations from CAN logs: any python-can log format (.blf .asc .log .trc .csv .db .mf4, as written by
+``forceskill record`` or ``python -m can.logger``), also gzip-compressed (``.asc.gz``), decoded
+through the DBC into the HIL log columns ``t,x,y,f_contact,f_operator,f_cmd,f_hat``.
+
+``t`` comes from the device's tick counter (1 ms per tick), not from host timestamps. The device
+streams telemetry every tick in TEACH and every 100 ms otherwise: the demonstration is the
+telemetry streamed every tick. Lost frames stay lost here (the samples around them are kept with
+their ticks; ``demo.validate`` refuses a gap above --max-gap, ``resample`` interpolates shorter
+ones). Two 1 kHz stretches are one demonstration with a gap unless a status frame between them
+says the device left TEACH; when the log holds several demonstrations the longest is used and a
+note says so.
+"""
+from __future__ import annotations
+
+import gzip
+from pathlib import Path
+from typing import Any, Optional
+
+import numpy as np
+
+from ..errors import ERR_LINK_LOG, DemoError
+from . import NOTES_KEY, Columns, ReadOptions
+
+TICK_S = 0.001
+POS_BASE = 0x190
+FORCE_BASE = 0x1A0
+STATUS_BASE = 0x180
+STATE_TEACH = 2
+#: Telemetry period outside TEACH/EXECUTE (APP_IDLE_TELEMETRY_PERIOD_MS): steps this long or
+#: longer separate stretches of 1 kHz telemetry.
+IDLE_PERIOD_TICKS = 100
+#: A stretch needs this many frames to be a demonstration (idle telemetry comes one at a time).
+MIN_STRETCH = 10
+
+
+def read_gz(path: Path, opts: ReadOptions) -> Columns:
+    """A gzip-compressed recording: a CAN log (.blf/.asc/.log/.trc.gz) or a CSV file (.csv.gz)."""
+    inner = Path(path.stem).suffix.lower()
+    if inner == ".csv":
+        from . import csv as csv_reader
+        try:
+            with gzip.open(path, "rb") as f:
+                data = f.read()
+        except (OSError, EOFError) as e:
+            raise DemoError(ERR_LINK_LOG, f"cannot decompress {path.name}: {e}") from None
+        return csv_reader.read_bytes(path, data, opts)
+    return read(path, opts)
+
+
+def _messages(path: Path) -> list[Any]:
+    import can
+    suffixes = [s.lower() for s in path.suffixes]
+    try:
+        if suffixes and suffixes[-1] == ".gz":
+            inner = suffixes[-2] if len(suffixes) > 1 else ""
+            reader_cls = can.io.player.MESSAGE_READERS.get(inner)
+            if reader_cls is None:
+                raise ValueError(f"no python-can reader for {inner or '(none)'}.gz")
+            fobj = gzip.open(path, mode="rb" if inner == ".blf" else "rt")
+            reader = reader_cls(fobj)  # type: ignore[arg-type]
+        else:
+            reader = can.LogReader(str(path))
+        with reader:
+            return [m for m in reader if not m.is_error_frame and not m.is_extended_id]
+    except Exception as e:  # noqa: BLE001  (python-can's readers raise anything on a bad file)
+        raise DemoError(ERR_LINK_LOG, f"cannot read CAN log {path.name}: {e}") from None
+
+
+def read(path: Path, opts: Optional[ReadOptions] = None, node: Optional[int] = None) -> Columns:
+    """Decode a CAN log into demonstration columns (see the module comment)."""
+    from ..link.dbc import load_db
+
+    msgs = _messages(path)
+    ids = np.array([m.arbitration_id for m in msgs], dtype=np.int64)
+    if node is None:
+        counts = [int(np.count_nonzero(ids == POS_BASE + n)) for n in range(16)]
+        node = int(np.argmax(counts))
+        if counts[node] == 0:
+            raise DemoError(ERR_LINK_LOG, f"no device telemetry (ids 0x190-0x19F) in {path.name} "
+                            f"({len(msgs)} frames)")
+    db = load_db(node)
+    mpos = db.get_message_by_name("TelemetryPosition")
+    mforce = db.get_message_by_name("TelemetryForce")
+    mstat = db.get_message_by_name("DeviceStatus")
+    rows = []
+    leave_teach = []        # message index of status frames with the device not in TEACH
+    pending = None
+    wraps, last = 0, -1
+    for i, m in enumerate(msgs):
+        fid = m.arbitration_id
+        if fid == mpos.frame_id and len(m.data) == 8:
+            s: Any = mpos.decode(bytes(m.data))
+            raw = int(s["Tick"])
+            if last >= 0 and raw < last - 32768:
+                wraps += 1
+            last = raw
+            pending = (raw + 65536 * wraps, float(s["PosX"]), float(s["PosY"]), i)
+        elif fid == mforce.frame_id and len(m.data) == 8 and pending is not None:
+            s = mforce.decode(bytes(m.data))
+            rows.append((pending[0], pending[1], pending[2], float(s["ForceContact"]),
+                         float(s["ForceOperator"]), float(s["ForceCmd"]), float(s["ForceRef"]), pending[3]))
+            pending = None
+        elif fid == mstat.frame_id and len(m.data) == 8:
+            try:
+                st: Any = mstat.decode(bytes(m.data), decode_choices=False)
+            except Exception:  # noqa: BLE001, S112  (a status frame that does not decode says nothing)
+                continue
+            if int(st["State"]) != STATE_TEACH:
+                leave_teach.append(i)
+    if len(rows) < 2:
+        raise DemoError(ERR_LINK_LOG, f"no telemetry of node {node} in {path.name}")
+    a = np.array(rows, dtype=float)
+    a = a[np.concatenate(([True], np.diff(a[:, 0]) > 0.0))]     # a repeated tick: keep the first
+    start, end, notes = _demonstration(a, np.array(leave_teach, dtype=float), path.name)
+    a = a[start:end]
+    t = (a[:, 0] - a[0, 0]) * TICK_S
+    cols = {"t": t, "x": a[:, 1], "y": a[:, 2], "f_contact": a[:, 3], "f_operator": a[:, 4],
+            "f_cmd": a[:, 5], "f_hat": a[:, 6], "tick": a[:, 0]}
+    if notes:
+        cols[NOTES_KEY] = np.array(notes, dtype=object)
+    return cols
+
+
+def _demonstration(a: np.ndarray, leave_idx: np.ndarray, name: str) -> tuple[int, int, list[str]]:
+    """Rows [start, end) of the demonstration in telemetry rows ``a`` (tick, ..., message index)."""
+    step = np.diff(a[:, 0])
+    cut = np.flatnonzero(step >= IDLE_PERIOD_TICKS)
+    starts = np.concatenate(([0], cut + 1))
+    ends = np.concatenate((cut + 1, [len(a)]))
+    # an idle frame within 100 ticks of TEACH joins the stretch: trim edges not 1 tick apart
+    for k in range(starts.size):
+        while ends[k] - starts[k] >= 2 and step[starts[k]] > 1.0:
+            starts[k] += 1
+        while ends[k] - starts[k] >= 2 and step[ends[k] - 2] > 1.0:
+            ends[k] -= 1
+    keep = (ends - starts) >= MIN_STRETCH
+    starts, ends = starts[keep], ends[keep]
+    if starts.size == 0:
+        raise DemoError(ERR_LINK_LOG, f"no telemetry streamed every tick (TEACH) in {name}")
+    # join neighbouring stretches unless the device left TEACH between them
+    groups: list[list[int]] = [[int(starts[0]), int(ends[0])]]
+    for s, e in zip(starts[1:], ends[1:]):
+        prev_end_msg, next_msg = a[groups[-1][1] - 1, 7], a[s, 7]
+        left = np.any((leave_idx > prev_end_msg) & (leave_idx < next_msg))
+        if left:
+            groups.append([int(s), int(e)])
+        else:
+            groups[-1][1] = int(e)
+    notes = []
+    if len(groups) > 1:
+        lengths = [(a[e - 1, 0] - a[s, 0]) * TICK_S for s, e in groups]
+        k = int(np.argmax(lengths))
+        spans = ", ".join(f"{(a[s, 0] - a[0, 0]) * TICK_S:.3f}-{(a[e - 1, 0] - a[0, 0]) * TICK_S:.3f} s"
+                          for s, e in groups)
+        notes.append(f"{name} holds {len(groups)} demonstrations (log time {spans}): using the longest, "
+                     f"number {k + 1} ({lengths[k]:.3f} s)")
+        return groups[k][0], groups[k][1], notes
+    return groups[0][0], groups[0][1], notes

@@ -1,0 +1,291 @@
+"""The CSV reader: text tables with a header row, parsed by numpy block by block.
+
+Accepted: a UTF-8 BOM; ``#`` comments (whole lines or the end of a line); blank lines; the
+delimiter sniffed from the header row (``,`` ``;`` tab, else runs of spaces), with ``;`` files
+allowed to use a decimal comma; header names matched with or without their unit suffix (``t [s]``
+is ``t``, ``Fz (N)`` is ``Fz``), exactly first, then ignoring case. The time column (``t`` unless
+told) is scaled by ``--time-unit``, else by the unit in its header (``t [ms]``), else read as
+seconds; with ``--rate`` there is no time column and sample n is at n/rate. The recording's span is
+checked against the duration limit from its first and last rows, before the body is parsed.
+
+Parsing: the bytes of a block are turned into one whitespace-separated string and read by
+``np.fromstring``; a block whose value count does not match rows x columns is re-read line by line
+only to name the first bad line. Files above one block are counted first (rows are preallocated,
+so memory is the parsed columns plus one block) and show a progress bar after 2 s. A python-can
+CSV log (``timestamp,arbitration_id,...``) is handed to the CAN log reader.
+"""
+from __future__ import annotations
+
+import re
+import warnings
+from pathlib import Path
+from typing import IO, Optional
+
+import numpy as np
+
+from ..errors import ERR_DEMO_COLUMN, ERR_DEMO_FILE, ERR_DEMO_FORMAT, ERR_READ_ARGS, DemoError, FsError
+from . import TIME_UNITS_S, Columns, ReadOptions, check_duration
+
+BLOCK_BYTES = 8 << 20
+_TAIL_BYTES = 1 << 16
+_BOM = b"\xef\xbb\xbf"
+_UNIT = re.compile(r"^(.*?)\s*[\[(]\s*([^\])]*?)\s*[\])]\s*$")
+_TIME_UNIT_ALIASES = {"s": "s", "sec": "s", "ms": "ms", "us": "us", "\u00b5s": "us", "\u03bcs": "us", "ns": "ns"}
+
+
+def split_name(name: str) -> tuple[str, str]:
+    """('t', 's') for 't [s]' or 't (s)'; (name, '') without a unit suffix."""
+    m = _UNIT.match(name)
+    return (m.group(1), m.group(2)) if m and m.group(1) else (name, "")
+
+
+def find_column(names: list[str], wanted: str) -> Optional[int]:
+    """Index of ``wanted`` among header ``names``: the full name, then the name without its unit
+    suffix, then both ignoring case; None when absent."""
+    bare = [split_name(n)[0] for n in names]
+    w_bare = split_name(wanted)[0]
+    for cands, key in ((names, wanted), (bare, w_bare)):
+        if key in cands:
+            return cands.index(key)
+    low = wanted.lower()
+    for cands, key in ((names, low), (bare, w_bare.lower())):
+        hits = [i for i, n in enumerate(cands) if n.lower() == key]
+        if hits:
+            return hits[0]
+    return None
+
+
+class _Layout:
+    """Header and delimiter of one CSV file."""
+
+    def __init__(self, path: Path, head: bytes) -> None:
+        self.path = path
+        lines = head.split(b"\n")
+        self.header_line_no = 0
+        self.body_offset = 0
+        pos = 0
+        header: Optional[bytes] = None
+        for i, raw in enumerate(lines[:-1] if len(lines) > 1 else lines):
+            pos += len(raw) + 1
+            text = raw.split(b"#", 1)[0].strip()
+            if text:
+                header, self.header_line_no, self.body_offset = text, i + 1, pos
+                break
+        if header is None:
+            raise DemoError(ERR_DEMO_FORMAT, f"demonstration {str(path)!r} is empty (no header row)")
+        try:
+            htext = header.decode("utf-8")
+        except UnicodeDecodeError:
+            raise DemoError(ERR_DEMO_FORMAT, f"demonstration {str(path)!r} is not a UTF-8 text CSV file") from None
+        counts = {d: htext.count(d) for d in (",", ";", "\t")}
+        delim = max(counts, key=lambda d: counts[d])
+        self.delim: Optional[str] = delim if counts[delim] else None
+        cells = htext.split(self.delim) if self.delim else htext.split()
+        self.names = [c.strip().strip('"').strip("'").strip() for c in cells]
+        if any(_is_number(c) for c in self.names):
+            raise DemoError(ERR_DEMO_FORMAT, f"demonstration {str(path)!r} has no header row (first row: "
+                            f"{htext.strip()[:80]})")
+        if len(set(self.names)) != len(self.names) or not all(self.names):
+            raise DemoError(ERR_DEMO_FORMAT, f"{path.name}: empty or repeated column names in the header "
+                            f"({', '.join(self.names)})")
+        self.ncols = len(self.names)
+        # bytes -> one whitespace-separated string: delimiter and CR become spaces; a ';' file may
+        # write decimals with a comma
+        src = (self.delim or "").encode() + b"\r"
+        self._table = bytes.maketrans(src, b" " * len(src))
+        self._comma_table = bytes.maketrans(b",", b".") if self.delim == ";" else None
+
+    def parse(self, block: bytes, first_line_no: int) -> np.ndarray:
+        """Rows of ``block`` (whole lines) as an (n, ncols) array; refuses a bad line (601)."""
+        if b"#" in block:
+            block = b"\n".join(ln.split(b"#", 1)[0] for ln in block.split(b"\n"))
+        if self._comma_table is not None and b"," in block:
+            block = block.translate(self._comma_table)
+        flat = block.translate(self._table)
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("error")
+                values = np.fromstring(flat, sep=" ") if flat.strip() else np.zeros(0)
+        except (ValueError, DeprecationWarning):
+            values = None
+        if values is None or values.size % self.ncols:
+            self._locate(block, first_line_no)
+            raise DemoError(ERR_DEMO_FORMAT, f"{self.path.name}: lines from {first_line_no} do not parse "
+                            f"as {self.ncols} numbers")
+        n_rows = values.size // self.ncols
+        # blank lines, or ragged rows that add up
+        if _count_lines(flat) != n_rows and any(len(ln.split()) != self.ncols
+                                                for ln in flat.split(b"\n") if ln.strip()):
+            self._locate(block, first_line_no)
+        return values.reshape(n_rows, self.ncols)
+
+    def _locate(self, block: bytes, first_line_no: int) -> None:
+        """Raise the one-line error for the first line of ``block`` that is not ncols numbers."""
+        for i, raw in enumerate(block.split(b"\n")):
+            text = raw.decode("utf-8", errors="replace").strip()
+            if not text:
+                continue
+            cells = text.split(self.delim) if self.delim else text.split()
+            line = first_line_no + i
+            if len(cells) != self.ncols:
+                raise DemoError(ERR_DEMO_FORMAT, f"{self.path.name}: line {line} has {len(cells)} fields, "
+                                f"header has {self.ncols}")
+            for name, cell in zip(self.names, cells):
+                if not _is_number(cell.strip()):
+                    raise DemoError(ERR_DEMO_FORMAT, f"{self.path.name}: line {line}, column {name!r}: "
+                                    f"not a number: {cell.strip()!r}")
+
+
+def _count_lines(buf: bytes) -> int:
+    """Lines in ``buf``, a last one without its newline included (an upper bound on rows)."""
+    return buf.count(b"\n") + (0 if not buf or buf.endswith(b"\n") else 1)
+
+
+def _is_number(s: str) -> bool:
+    try:
+        float(s)
+    except ValueError:
+        return False
+    return True
+
+
+def _last_row(fh: "IO[bytes]", size: int) -> bytes:
+    fh.seek(max(0, size - _TAIL_BYTES))
+    for raw in reversed(fh.read().split(b"\n")):
+        text = raw.split(b"#", 1)[0].strip()
+        if text:
+            return text
+    return b""
+
+
+def _is_can_log(names: list[str]) -> bool:
+    return [n.lower() for n in names[:2]] == ["timestamp", "arbitration_id"]
+
+
+def read(path: Path, opts: ReadOptions) -> Columns:
+    """Columns ``t`` (s) and the requested ones (``opts.columns``, ``opts.optional`` when present)."""
+    try:
+        fh = open(path, "rb")
+    except OSError as e:
+        raise DemoError(ERR_DEMO_FILE, f"cannot read demonstration {str(path)!r}: {e.strerror}") from None
+    with fh:
+        size = path.stat().st_size
+        head = fh.read(min(size, BLOCK_BYTES))
+        return _read(path, fh, size, head, opts)
+
+
+def read_bytes(path: Path, data: bytes, opts: ReadOptions) -> Columns:
+    """The same as ``read`` for a file already in memory (a decompressed .csv.gz)."""
+    import io
+    return _read(path, io.BytesIO(data), len(data), data[:BLOCK_BYTES], opts)
+
+
+def _read(path: Path, fh: "IO[bytes]", size: int, head: bytes, opts: ReadOptions) -> Columns:
+    bom = len(_BOM) if head.startswith(_BOM) else 0
+    lay = _Layout(path, head[bom:])
+    if _is_can_log(lay.names):
+        from .canlog import read as read_can
+        return read_can(path, opts)
+    # the columns to keep: time (unless --rate) and the requested ones
+    keep: dict[str, int] = {}
+    t_unit = opts.time_unit
+    if opts.rate_hz is None:
+        j = find_column(lay.names, opts.time_column)
+        if j is None:
+            raise DemoError(ERR_DEMO_COLUMN, f"time column {opts.time_column!r} not in {path.name} (available: "
+                            f"{', '.join(lay.names)}): name it with --time-column, or give --rate HZ")
+        keep["t"] = j
+        if t_unit is None:
+            unit = split_name(lay.names[j])[1]
+            t_unit = _TIME_UNIT_ALIASES.get(unit, "s")
+    for name in opts.columns:
+        j = find_column(lay.names, name)
+        if j is None:
+            raise DemoError(ERR_DEMO_COLUMN, f"column {name!r} not in {path.name} (available: {', '.join(lay.names)})")
+        keep[name] = j
+    for name in opts.optional:
+        j = find_column(lay.names, name)
+        if j is not None and name not in keep:
+            keep[name] = j
+    if not opts.columns and not opts.optional:     # nothing asked: every column
+        keep.update({n: j for j, n in enumerate(lay.names) if n not in keep})
+    scale = TIME_UNITS_S[t_unit or "s"]
+    body0 = bom + lay.body_offset
+    first_line = lay.header_line_no + 1
+    # the span from the first and last rows, before the body is parsed
+    if "t" in keep:
+        first = head[body0:body0 + 4096]
+        rows = [r for r in (ln.split(b"#", 1)[0].strip() for ln in first.split(b"\n")[:-1]) if r]
+        last = _last_row(fh, size)
+        try:
+            span = (lay.parse(last, 0)[0, keep["t"]] - lay.parse(rows[0], 0)[0, keep["t"]]) * scale
+        except (DemoError, IndexError):
+            span = 0.0      # the full parse names the bad line
+        check_duration(float(span), opts.max_duration_s, path.name)
+    if size <= BLOCK_BYTES:
+        body = head[body0:] if len(head) == size else head[body0:] + fh.read()
+        data = lay.parse(body, first_line)
+        cols = {name: np.ascontiguousarray(data[:, j]) for name, j in keep.items()}
+    else:
+        cols = _read_blocks(path, fh, size, body0, first_line, lay, keep, opts)
+    n = next(iter(cols.values())).size if cols else 0
+    if "t" in cols:
+        cols["t"] *= scale
+        if n:       # again, for a file whose first or last row did not parse on its own
+            check_duration(float(cols["t"][-1] - cols["t"][0]), opts.max_duration_s, path.name)
+    else:
+        cols["t"] = np.arange(n, dtype=float) / float(opts.rate_hz or 1.0)
+        check_duration(float(cols["t"][-1]) if n else 0.0, opts.max_duration_s, path.name)
+    if n == 0:
+        raise DemoError(ERR_DEMO_FORMAT, f"demonstration {str(path)!r} has a header but no rows")
+    return cols
+
+
+def _blocks(fh: "IO[bytes]", start: int, size: int) -> "list[tuple[int, int, int]]":
+    """(offset, length, lines) of blocks of whole lines covering bytes start..size."""
+    out = []
+    pos = start
+    while pos < size:
+        fh.seek(pos)
+        buf = fh.read(BLOCK_BYTES)
+        if pos + len(buf) < size:
+            cut = buf.rfind(b"\n")
+            if cut < 0:
+                raise FsError(ERR_READ_ARGS, f"a line longer than {BLOCK_BYTES} bytes at byte {pos}")
+            buf = buf[:cut + 1]
+        out.append((pos, len(buf), _count_lines(buf)))
+        pos += len(buf)
+    return out
+
+
+def _read_blocks(path: Path, fh: "IO[bytes]", size: int, start: int, first_line: int, lay: _Layout,
+                 keep: dict[str, int], opts: ReadOptions) -> Columns:
+    """Large files: count the rows, preallocate the kept columns, fill them block by block."""
+    blocks = _blocks(fh, start, size)
+    n = sum(lines for _, _, lines in blocks)    # >= rows: blank and comment lines are counted too
+    if "t" not in keep and opts.rate_hz:
+        check_duration((n - 1) / opts.rate_hz, opts.max_duration_s, path.name)
+    out = {name: np.empty(n) for name in keep}
+    bar = None
+    if opts.progress:
+        from tqdm import tqdm  # type: ignore[import-untyped]
+        bar = tqdm(total=size, unit="B", unit_scale=True, desc=f"reading {path.name}", delay=2.0, leave=False)
+    row = 0
+    line = first_line
+    try:
+        for off, length, lines in blocks:
+            fh.seek(off)
+            data = lay.parse(fh.read(length), line)
+            m = data.shape[0]
+            if row + m > n:
+                raise DemoError(ERR_DEMO_FORMAT, f"{path.name} changed while it was read")
+            for name, j in keep.items():
+                out[name][row:row + m] = data[:, j]
+            row += m
+            line += lines
+            if bar is not None:
+                bar.update(length)
+    finally:
+        if bar is not None:
+            bar.close()
+    return {name: a[:row] for name, a in out.items()}
