@@ -18,6 +18,7 @@
 #define DID_SLOT_DIR 0x0200u      /* n u8; per slot: valid u8, length u32, crc u32, N u16, T f32, end u8 */
 #define DID_LAST_TRANSFER 0x0201u /* status code u16 of the last download (0 ok) */
 #define DID_DEVICE_STATE 0x0300u  /* state u8, fault u16, slot u8, step u8, tick u32 */
+#define DID_FAULT_CAUSES 0x0301u  /* latched mask u32, causes present mask u32 (bit n: fault 500+n) */
 
 #define SLOT_DIR_ENTRY 16u
 
@@ -154,6 +155,11 @@ static uint8_t read_did(void *ctx, uint16_t did, uint8_t *out, uint16_t cap, uin
         put_u32(&buf[5], app->tick);
         n = 9u;
         break;
+    case DID_FAULT_CAUSES:   /* what blocks a clear: the causes still present at the last tick */
+        put_u32(&buf[0], app->saf.flt.latched_mask);
+        put_u32(&buf[4], app->saf.cause_mask);
+        n = 8u;
+        break;
     default:
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
@@ -271,6 +277,7 @@ static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len
     case DID_SLOT_DIR:
     case DID_LAST_TRANSFER:
     case DID_DEVICE_STATE:
+    case DID_FAULT_CAUSES:
         return UDS_NRC_REQUEST_OUT_OF_RANGE;     /* read-only */
     default:
         return UDS_NRC_REQUEST_OUT_OF_RANGE;

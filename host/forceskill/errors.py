@@ -91,6 +91,14 @@ ERR_LINK_LOG = 634           # a CAN log without the device's telemetry
 ERR_LINK_TIMEOUT = 635       # the device stopped answering during an operation
 ERR_LINK_STATE = 636         # the device is not in the state the operation needs (e.g. FAULT)
 ERR_LINK_ARGS = 637          # a bad option value (slot, sequence, scale)
+# 66x-67x: the user's files and the host's own limits
+ERR_OUTPUT_IS_INPUT = 660    # an output is one of the inputs (same file), or given twice
+ERR_OUTPUT_SPECIAL = 661     # an output is a device, FIFO, directory or system file
+ERR_SKILL_PEAK = 662         # a rollout not finite or peaking above the force limit
+ERR_ROLLOUT_CAP = 663        # rollout steps above the cap
+ERR_LOG_FORMAT = 664         # no CAN log writer for the output's suffix
+ERR_RUN_FAULT = 665          # the device faulted during a run or a recording
+ERR_CLEAR_BLOCKED = 666      # a fault cannot be cleared: its cause persists
 
 
 class FsError(Exception):

@@ -79,6 +79,7 @@ class Device(can.Listener):
         self.telemetry_period_ms = 0
         self.notifier: Optional[can.Notifier] = None
         self.on_status: Optional[Callable[[Status], None]] = None
+        self.link_error: Optional[BaseException] = None
 
     # -- lifecycle ------------------------------------------------------------------------------
     def __enter__(self) -> "Device":
@@ -124,6 +125,20 @@ class Device(can.Listener):
                     tel.samples.append(Sample(tel.unwrap(pos[0]), pos[1], pos[2], float(sig["ForceContact"]),
                                               float(sig["ForceOperator"]), float(sig["ForceCmd"]),
                                               float(sig["ForceRef"])))
+
+    def on_error(self, exc: Exception) -> None:
+        """The Notifier's receive thread failed (connection lost): remember the first error for
+        ``check_link`` (the commands report it as one line) and pace the thread's retries."""
+        if self.link_error is None:
+            self.link_error = exc
+        time.sleep(0.05)
+
+    def check_link(self) -> None:
+        """FsError(635) if the bus failed under the receive thread."""
+        e = self.link_error
+        if e is not None:
+            first = (str(e).splitlines() or [type(e).__name__])[0]
+            raise FsError(ERR_LINK_TIMEOUT, f"link to node {self.node} on {self.channel} lost: {first}")
 
     # -- presence -------------------------------------------------------------------------------
     def wait_present(self) -> Status:
