@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import argparse
 import importlib
-import json
 import sys
 from pathlib import Path
 from typing import NoReturn, Optional, Sequence
@@ -173,9 +172,8 @@ def _register_rollout(sub: "argparse._SubParsersAction[_Parser]") -> None:
 
 def _cmd_show(args: argparse.Namespace) -> int:
     from .dmp import rollout
-    from .skill import Skill, image_size
-
     from .limits import check_force_limit, peak_problem
+    from .skill import Skill, image_size
 
     check_force_limit(args.force_limit)
     sk = Skill.read(args.skill)

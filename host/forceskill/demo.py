@@ -21,9 +21,19 @@ from typing import Callable, Optional, Sequence, Union
 
 import numpy as np
 
-from .errors import (ERR_DEMO_COLUMN, ERR_DEMO_FILE, ERR_DEMO_FORMAT, ERR_DEMO_GAP, ERR_DEMO_NOT_FINITE,
-                     ERR_DEMO_TIME, ERR_DEMO_TOO_SHORT, ERR_DEMO_ZERO_FORCE, ERR_FIT_ARGS, DemoError,
-                     ParamError)
+from .errors import (
+    ERR_DEMO_COLUMN,
+    ERR_DEMO_FILE,
+    ERR_DEMO_FORMAT,
+    ERR_DEMO_GAP,
+    ERR_DEMO_NOT_FINITE,
+    ERR_DEMO_TIME,
+    ERR_DEMO_TOO_SHORT,
+    ERR_DEMO_ZERO_FORCE,
+    ERR_FIT_ARGS,
+    DemoError,
+    ParamError,
+)
 
 MIN_SAMPLES = 100
 MIN_DURATION_S = 0.5

@@ -15,7 +15,13 @@ import argparse
 import math
 from typing import TYPE_CHECKING
 
-from .errors import ERR_ROLLOUT_CAP, ERR_SCALE_INVALID, ERR_SKILL_PEAK, FsError, ParamError
+from .errors import (
+    ERR_ROLLOUT_CAP,
+    ERR_SCALE_INVALID,
+    ERR_SKILL_PEAK,
+    FsError,
+    ParamError,
+)
 
 if TYPE_CHECKING:
     from .skill import Skill

@@ -218,6 +218,13 @@ def save_figure(outs: Outputs, fig: Any, path: PathLike, dpi: int = 110) -> None
         raise FsError(ERR_IO, f"cannot write plot {os.fspath(path)!r}: {e}") from None
 
 
+def write_figure(fig: Any, path: PathLike, dpi: int = 110) -> None:
+    """One matplotlib figure written on its own (temporary file, rename on success)."""
+    with Outputs() as outs:
+        save_figure(outs, fig, path, dpi=dpi)
+        outs.commit()
+
+
 def format_rows(block: np.ndarray) -> str:
     """Rows of a 2-D array as CSV lines (%.17g, round-trip exact), each ending in a newline."""
     if block.size == 0:

@@ -16,10 +16,23 @@ from typing import TYPE_CHECKING, Any, Optional, Sequence, Union
 
 import numpy as np
 
-from .errors import (ERR_IO, ERR_SKILL_CENTRES, ERR_SKILL_CRC, ERR_SKILL_GAINS, ERR_SKILL_HEADER_SIZE,
-                     ERR_SKILL_KERNELS, ERR_SKILL_LENGTH, ERR_SKILL_MAGIC, ERR_SKILL_NOT_FINITE,
-                     ERR_SKILL_RANGE, ERR_SKILL_TOO_SHORT, ERR_SKILL_UNSUPPORTED, ERR_SKILL_VERSION,
-                     FsError, ParamError, SkillError)
+from .errors import (
+    ERR_IO,
+    ERR_SKILL_CENTRES,
+    ERR_SKILL_CRC,
+    ERR_SKILL_GAINS,
+    ERR_SKILL_HEADER_SIZE,
+    ERR_SKILL_KERNELS,
+    ERR_SKILL_LENGTH,
+    ERR_SKILL_MAGIC,
+    ERR_SKILL_NOT_FINITE,
+    ERR_SKILL_RANGE,
+    ERR_SKILL_TOO_SHORT,
+    ERR_SKILL_UNSUPPORTED,
+    ERR_SKILL_VERSION,
+    ParamError,
+    SkillError,
+)
 from .params import MONOTONE_REL_TOL, DmpParams, Gains, derive
 
 if TYPE_CHECKING:

@@ -5,8 +5,6 @@ from __future__ import annotations
 
 import time
 
-import pytest
-
 from conftest import SCENARIOS, Server
 from forceskill import cli
 

@@ -12,9 +12,9 @@ import numpy as np
 
 from ..errors import ERR_LOG_FORMAT, FsError
 from ..link import logs as _logs  # noqa: F401  (registers the CAN log readers for `fit`)
-from ..outputs import Outputs
 from ..link.bus import add_bus_args, describe, open_bus
 from ..link.device import Device, Sample
+from ..outputs import Outputs
 
 
 def add_common(p: argparse.ArgumentParser) -> None:

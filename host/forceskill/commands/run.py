@@ -13,7 +13,13 @@ from typing import Any, TextIO
 import numpy as np
 
 from ..errors import ERR_RUN_FAULT, ERR_SKILL_PEAK, FsError, fault_text
-from ..limits import add_force_limit, check_force_limit, check_scales, peak_problem, skill_peak_N
+from ..limits import (
+    add_force_limit,
+    check_force_limit,
+    check_scales,
+    peak_problem,
+    skill_peak_N,
+)
 from ..link import ERR_LINK_ARGS, ERR_LINK_STATE
 from ..link import uds as U
 from ..link.device import Device

@@ -3,7 +3,6 @@ from __future__ import annotations
 
 import argparse
 import struct
-
 from typing import Any
 
 from udsoncan.exceptions import NegativeResponseException

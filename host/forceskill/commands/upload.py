@@ -9,9 +9,9 @@ from pathlib import Path
 from tqdm import tqdm
 
 from ..errors import FsError
+from ..limits import add_force_limit, check_skill_force
 from ..link import ERR_LINK_ARGS, ERR_LINK_STATE
 from ..link import uds as U
-from ..limits import add_force_limit, check_skill_force
 from ..link.device import Device
 from ..skill import Skill
 from ._common import add_common, connect
