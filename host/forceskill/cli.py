@@ -17,7 +17,7 @@ from typing import NoReturn, Optional, Sequence
 
 import numpy as np
 
-from .errors import FsError
+from .errors import ERR_IO, ERR_UNEXPECTED, FsError
 
 #: Sub-command modules added by other parts of the host package (report, record, upload, run,
 #: status, monitor, ...): append "forceskill.<module>" here.
@@ -248,11 +248,16 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         sys.stderr.write(f"forceskill: error: {e.message} [{e.code}]\n")
         return EXIT_BAD_INPUT
     except OSError as e:
-        sys.stderr.write(f"forceskill: error: {e.strerror or e}: {e.filename or ''}\n")
+        where = f": {e.filename}" if e.filename else ""
+        sys.stderr.write(f"forceskill: error: {e.strerror or e}{where} [{ERR_IO}]\n")
         return EXIT_BAD_INPUT
     except KeyboardInterrupt:
         sys.stderr.write("forceskill: interrupted\n")
         return 130
+    except Exception as e:  # a failure no check foresaw (a library's own error): still one line
+        first = (str(e).splitlines() or [""])[0]
+        sys.stderr.write(f"forceskill: error: unexpected {type(e).__name__}: {first} [{ERR_UNEXPECTED}]\n")
+        return EXIT_BAD_INPUT
 
 
 if __name__ == "__main__":

@@ -99,6 +99,7 @@ ERR_ROLLOUT_CAP = 663        # rollout steps above the cap
 ERR_LOG_FORMAT = 664         # no CAN log writer for the output's suffix
 ERR_RUN_FAULT = 665          # the device faulted during a run or a recording
 ERR_CLEAR_BLOCKED = 666      # a fault cannot be cleared: its cause persists
+ERR_UNEXPECTED = 667         # an error no check foresaw (e.g. from a library), reported as one line
 
 
 class FsError(Exception):

@@ -10,7 +10,7 @@ from typing import Any, Iterator
 import can
 import numpy as np
 
-from ..errors import ERR_LOG_FORMAT, FsError
+from ..errors import ERR_LINK_TIMEOUT, ERR_LOG_FORMAT, FsError
 from ..link import logs as _logs  # noqa: F401  (registers the CAN log readers for `fit`)
 from ..link.bus import add_bus_args, describe, open_bus
 from ..link.device import Device, Sample
@@ -86,3 +86,13 @@ def sigint_flag() -> Iterator[dict[str, bool]]:
         yield flag
     finally:
         signal.signal(signal.SIGINT, old)
+
+
+@contextmanager
+def link_errors(node: int, channel: str) -> Iterator[None]:
+    """A bus failure (OSError, can.CanError) inside the block becomes FsError 635, one line."""
+    try:
+        yield
+    except (OSError, can.CanError) as e:
+        first = (str(e).splitlines() or [type(e).__name__])[0]
+        raise FsError(ERR_LINK_TIMEOUT, f"link to node {node} on {channel} lost: {first}") from None

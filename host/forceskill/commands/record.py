@@ -78,13 +78,16 @@ def _record(args: argparse.Namespace, writer: can.Listener) -> "FsError | None":
                             break
                     if args.teach:
                         dev.command_until("idle", {"IDLE", "FAULT"}, 2.0 * args.timeout)
-                except FsError as e:
+                except (FsError, OSError, can.CanError) as e:
                     if args.teach:
                         try:
                             dev.command_until("idle", {"IDLE", "FAULT"}, 0.5)
-                        except FsError:
+                        except (FsError, OSError, can.CanError):
                             pass
-                    return e
+                    if isinstance(e, FsError):
+                        return e
+                    first = (str(e).splitlines() or [type(e).__name__])[0]
+                    return FsError(ERR_LINK_TIMEOUT, f"link to node {dev.node} on {dev.channel} lost: {first}")
                 finally:
                     dev.stop_heartbeat()
         finally:

@@ -25,7 +25,7 @@ from ..link import uds as U
 from ..link.device import Device
 from ..outputs import STDOUT, Outputs, format_rows
 from ..skill import Skill
-from ._common import add_common, columns, connect, open_log, sigint_flag, tracking
+from ._common import add_common, columns, connect, link_errors, open_log, sigint_flag, tracking
 
 _STEP = re.compile(r"^\s*(\d+)\s*:\s*([0-9.]+)\s*(ms|s)?\s*$")
 
@@ -132,36 +132,38 @@ def run_on_device(dev: Device, args: argparse.Namespace, writer: Any = None,
         n_emcy = len(dev.emergencies)
         dev.start_heartbeat(telemetry_period_ms=1)
         try:
-            time.sleep(0.05)
-            U.call("start", lambda: client.start_routine(rid, data), dev.node)
-            st = dev.wait_state({"EXECUTE", "FAULT"}, 2.0 * args.timeout)
-            start_tick = st.tick
-            print(f"node {dev.node}: executing {'sequence ' + args.sequence if args.sequence else f'slot {args.slot}'}"
-                  f", goal x{args.goal_scale:g}, time x{args.time_scale:g}, end {end_policy}: "
-                  f"{expected:.3f} s + {tail:.2f} s", file=info, flush=True)
-            while True:
-                if st.state == "FAULT":
-                    fault = st.fault_code
-                    fault_tick = st.tick & 0xFFFF
-                    emcy = dev.emergencies[n_emcy:]
-                    if emcy:
-                        fault, fault_tick = int(emcy[0][1]["FaultCode"]), int(emcy[0][1]["Tick"]) & 0xFFFF
-                    break
-                if stop["stop"]:
-                    interrupted = True
-                    dev.command_until("idle", {"IDLE", "FAULT"}, 2.0 * args.timeout)
-                    break
-                if st.state != "EXECUTE":
-                    break
-                if ((st.tick - start_tick) & 0xFFFFFF) >= total * 1000.0:
-                    dev.command_until("idle", {"IDLE", "FAULT"}, 2.0 * args.timeout)
-                    break
-                time.sleep(0.02)
-                dev.check_link()
-                cur = dev.status
-                assert cur is not None
-                st = cur
-            time.sleep(0.05)
+            with link_errors(dev.node, dev.channel):
+                time.sleep(0.05)
+                U.call("start", lambda: client.start_routine(rid, data), dev.node)
+                st = dev.wait_state({"EXECUTE", "FAULT"}, 2.0 * args.timeout)
+                start_tick = st.tick
+                what = f"sequence {args.sequence}" if args.sequence else f"slot {args.slot}"
+                print(f"node {dev.node}: executing {what}"
+                      f", goal x{args.goal_scale:g}, time x{args.time_scale:g}, end {end_policy}: "
+                      f"{expected:.3f} s + {tail:.2f} s", file=info, flush=True)
+                while True:
+                    if st.state == "FAULT":
+                        fault = st.fault_code
+                        fault_tick = st.tick & 0xFFFF
+                        emcy = dev.emergencies[n_emcy:]
+                        if emcy:
+                            fault, fault_tick = int(emcy[0][1]["FaultCode"]), int(emcy[0][1]["Tick"]) & 0xFFFF
+                        break
+                    if stop["stop"]:
+                        interrupted = True
+                        dev.command_until("idle", {"IDLE", "FAULT"}, 2.0 * args.timeout)
+                        break
+                    if st.state != "EXECUTE":
+                        break
+                    if ((st.tick - start_tick) & 0xFFFFFF) >= total * 1000.0:
+                        dev.command_until("idle", {"IDLE", "FAULT"}, 2.0 * args.timeout)
+                        break
+                    time.sleep(0.02)
+                    dev.check_link()
+                    cur = dev.status
+                    assert cur is not None
+                    st = cur
+                time.sleep(0.05)
         finally:
             dev.stop_heartbeat()
             if writer is not None:

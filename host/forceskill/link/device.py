@@ -3,6 +3,7 @@ a send succeeding), the host heartbeat, commands, and the status/telemetry/emerg
 all encoded and decoded through the DBC."""
 from __future__ import annotations
 
+import logging
 import threading
 import time
 from dataclasses import dataclass, field
@@ -13,6 +14,9 @@ import can
 from ..errors import FsError
 from . import ERR_LINK_NO_RESPONSE, ERR_LINK_TIMEOUT
 from .dbc import END_POLICIES, MODES, STATES, check, load_db, protect
+
+# python-can logs a failed periodic send with its traceback; the commands report it as one line
+logging.getLogger("can.bcm").setLevel(logging.CRITICAL)
 
 HEARTBEAT_PERIOD_S = 0.010   # well inside the device's 100 ms silence timeout, at any speed factor
 
@@ -205,6 +209,14 @@ class Device(can.Listener):
         msg = can.Message(arbitration_id=m.frame_id, data=bytearray(8), is_extended_id=False)
         self._hb_task = self.bus.send_periodic(msg, HEARTBEAT_PERIOD_S, store_task=False,
                                                modifier_callback=self._heartbeat_update)
+        if hasattr(self._hb_task, "on_error"):   # the thread-based task: a failed send ends it quietly
+            self._hb_task.on_error = self._heartbeat_failed
+
+    def _heartbeat_failed(self, exc: Exception) -> bool:
+        """The heartbeat could not be sent (link lost): remember it for ``check_link``, stop."""
+        if self.link_error is None:
+            self.link_error = exc
+        return False
 
     def stop_heartbeat(self) -> None:
         if self._hb_task is not None:
