@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Every test: C unit tests under ASan+UBSan (Debug build), the static checks, the Cortex-M images
 # under qemu (bench/qemu_tick.sh: budgets, qemu vs host, no heap/recursion, stack per entry point),
-# then the Python, HIL and CAN tests against the Release build. Exit status is non-zero if
+# then the Python, HIL and CAN tests against the Release build, and a subset again in .venv-min
+# (every dependency at its lowest allowed version, scripts/min_venv.sh). Exit status is non-zero if
 # anything fails.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -29,3 +30,7 @@ done
 echo "== Python, HIL and CAN tests"
 export FORCESKILL_HIL_SIM="$ROOT/build/hil_sim/hil_sim"
 .venv/bin/python -m pytest -q tests
+
+echo "== the host package at the lowest dependency versions pyproject.toml allows (.venv-min):"
+echo "   host CLI tests and the CAN journey"
+scripts/min_venv.sh

@@ -83,7 +83,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     res = fit(demo, args.stiffness, n_kernels=args.kernels, method=args.method, gains=Gains(),
               surface_m=args.surface_m, end_policy=args.end, dt_s=args.dt)
     sk = res.skill
-    peak = check_skill_force(sk, str(out), force_limit_N=args.force_limit)
+    check_skill_force(sk, str(out), force_limit_N=args.force_limit)
     with Outputs(inputs=[args.demo]) as outs:   # skill, JSON twin and plot: all or nothing
         sk.write(out, outs=outs)
         if args.plot:
@@ -97,8 +97,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     print(f"skill: method {res.method}, N = {sk.n_kernels}, k = {sk.stiffness_Npm:g} N/m, tau = {sk.tau_s:.6g} s, "
           f"g = {sk.goal_m:.6g} m, alpha = {sk.alpha:g}, beta = {sk.beta:g}, gamma = {sk.gamma:g}, "
           f"end {sk.end_policy}")
-    print(f"approximation error: max {res.err_max_pct:.3f} %, RMS {res.err_rms_pct:.3f} % of max force; "
-          f"rollout peak {peak:.4g} N (limit {args.force_limit:g} N)")
+    print(f"approximation error: max {res.err_max_pct:.3f} %, RMS {res.err_rms_pct:.3f} % of max force")
     print(f"wrote {out} ({out.stat().st_size} bytes) and {out}.json" + (f", plot {args.plot}" if args.plot else ""))
     return 0
 

@@ -74,13 +74,13 @@ def test_ctrl_c_commands_idle_and_writes_the_telemetry(loaded, tmp_path):
 
 
 def test_fault_keeps_the_telemetry_then_the_handle_is_parked_and_cleared(capsys, tmp_path):
-    # bus-off at 4 s of simulated time: inside a long hold started right after the upload
-    srv = Server(SCENARIOS / "pressing_task1_demo.toml", extra=("--bus-off-at", "4", "--bus-off-for", "0.2"))
+    # bus-off at 8 s of simulated time: inside a long hold started right after the upload
+    srv = Server(SCENARIOS / "pressing_task1_demo.toml", extra=("--bus-off-at", "8", "--bus-off-for", "0.2"))
     try:
         time.sleep(0.2)
         assert cli.main(["upload", str(SKILL), "--slot", "1", "-q", *srv.bus_args()]) == 0
         csv = tmp_path / "r.csv"
-        rc, out, err = run(capsys, "run", "--slot", "1", "--end", "hold", "--hold-for", "20", "--csv", str(csv),
+        rc, out, err = run(capsys, "run", "--slot", "1", "--end", "hold", "--hold-for", "30", "--csv", str(csv),
                            *srv.bus_args())
         assert rc == 2 and "[665]" in err and "fault 501 (bus-off)" in err and f"written to {csv}" in err
         cols = load_csv(csv)

@@ -195,4 +195,15 @@ def test_fit_refuses_a_skill_above_the_force_limit(tmp_path: Path, capsys: pytes
     assert sorted(p.name for p in tmp_path.iterdir()) == ["strong.csv"]
     rc, stdout, err = run(fit_argv(strong, out, "--force-limit", "200"), capsys)
     assert rc == 0, err
-    assert "limit 200 N" in stdout and out.is_file()
+    assert "wrote" in stdout and out.is_file()
+
+
+def test_run_checks_its_scales_with_the_rollout_validator_before_connecting(capsys: pytest.CaptureFixture[str]) -> None:
+    bus = ["-i", "socketcand", "--bus-kwargs", "host=127.0.0.1", "port=9", "--timeout", "0.1"]
+    for argv in (["--goal-scale", "70"], ["--goal-scale", "-0.5"], ["--time-scale", "0"], ["--time-scale", "inf"]):
+        rc, _, err = run(["run", "--slot", "1", *argv, *bus], capsys)
+        assert rc == 2 and "[109]" in err, (argv, err)
+        with pytest.raises(FsError) as e:
+            dmp.rollout(Skill.read(SKILL), goal_scale=float(argv[1]) if "goal" in argv[0] else 1.0,
+                        time_scale=float(argv[1]) if "time" in argv[0] else 1.0)
+        assert e.value.code == 109

@@ -3,7 +3,9 @@ a send succeeding), the host heartbeat, commands, and the status/telemetry/emerg
 all encoded and decoded through the DBC."""
 from __future__ import annotations
 
+import gc
 import logging
+import sys
 import threading
 import time
 from dataclasses import dataclass, field
@@ -19,6 +21,10 @@ from .dbc import END_POLICIES, MODES, STATES, check, load_db, protect
 logging.getLogger("can.bcm").setLevel(logging.CRITICAL)
 
 HEARTBEAT_PERIOD_S = 0.010   # well inside the device's 100 ms silence timeout, at any speed factor
+#: While the heartbeat runs, a thread waiting for the GIL asks for it after this long (Python's
+#: default 5 ms): the heartbeat thread shares the interpreter with the receive thread, which decodes
+#: 2 kHz of telemetry, and on a loaded machine each wait is stretched by the CPU share.
+HEARTBEAT_GIL_SWITCH_S = 0.0005
 
 
 @dataclass
@@ -84,6 +90,7 @@ class Device(can.Listener):
         self.notifier: Optional[can.Notifier] = None
         self.on_status: Optional[Callable[[Status], None]] = None
         self.link_error: Optional[BaseException] = None
+        self._saved_switch_s = sys.getswitchinterval()
 
     # -- lifecycle ------------------------------------------------------------------------------
     def __enter__(self) -> "Device":
@@ -205,6 +212,12 @@ class Device(can.Listener):
         self.telemetry_period_ms = telemetry_period_ms
         if self._hb_task is not None:
             return
+        # the heartbeat must not wait behind the receive thread or a full garbage collection of
+        # everything the process holds: short GIL switches, and the objects that exist now are
+        # left out of collections until the heartbeat stops
+        self._saved_switch_s = sys.getswitchinterval()
+        sys.setswitchinterval(min(self._saved_switch_s, HEARTBEAT_GIL_SWITCH_S))
+        gc.freeze()
         m = self._m["HostHeartbeat"]
         msg = can.Message(arbitration_id=m.frame_id, data=bytearray(8), is_extended_id=False)
         self._hb_task = self.bus.send_periodic(msg, HEARTBEAT_PERIOD_S, store_task=False,
@@ -222,6 +235,8 @@ class Device(can.Listener):
         if self._hb_task is not None:
             self._hb_task.stop()
             self._hb_task = None
+            sys.setswitchinterval(self._saved_switch_s)
+            gc.unfreeze()
 
     def command(self, mode: str, slot: int = 0, goal_scale: float = 1.0, time_scale: float = 1.0,
                 end: str = "skill") -> None:
