@@ -11,6 +11,7 @@ import time
 import can
 import pytest
 
+from conftest import SCENARIOS, Server
 from forceskill import cli
 from forceskill.commands._common import connect
 from forceskill.errors import FsError
@@ -164,7 +165,6 @@ def test_record_keeps_the_old_log_until_it_has_connected(tmp_path):
 
 
 def test_record_keeps_what_it_recorded_when_the_link_drops(tmp_path):
-    from conftest import SCENARIOS, Server
     srv = Server(SCENARIOS / "pressing_task1_demo.toml")
     try:
         time.sleep(0.2)
