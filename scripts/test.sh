@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Every test: one tick implementation (scripts/check_one_tick.sh), C unit tests under ASan+UBSan (Debug build, preset host-debug), the static checks, the Cortex-M images
 # under qemu (bench/qemu_tick.sh: budgets, qemu vs host, no heap/recursion, stack per entry point),
-# then the Python, HIL and CAN tests against the Release build. Exit status is non-zero if
+# then the Python, HIL and CAN tests against the Release build, and a subset again in .venv-min
+# (every dependency at its lowest allowed version, scripts/min_venv.sh). Exit status is non-zero if
 # anything fails.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -46,3 +47,6 @@ export FORCESKILL_HIL_SIM="$ROOT/build/hil_sim/hil_sim"
 
 echo "== clang-format: firmware/ and hil_sim/ match .clang-format (generated code excluded)"
 tools/check_format.sh
+echo "== the host package at the lowest dependency versions pyproject.toml allows (.venv-min):"
+echo "   host CLI tests and the CAN journey"
+scripts/min_venv.sh

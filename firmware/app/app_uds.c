@@ -142,6 +142,11 @@ static uint8_t read_did(void *ctx, uint16_t did, uint8_t *out, uint16_t cap, uin
         put_u32(&buf[5], app->tick);
         n = 9u;
         break;
+    case DID_FAULT_CAUSES:   /* what blocks a clear: the causes still present at the last tick */
+        put_u32(&buf[0], app->saf.flt.latched_mask);
+        put_u32(&buf[4], app->saf.cause_mask);
+        n = 8u;
+        break;
     default:
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
@@ -259,6 +264,7 @@ static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len
     case DID_SLOT_DIR:
     case DID_LAST_TRANSFER:
     case DID_DEVICE_STATE:
+    case DID_FAULT_CAUSES:
         return UDS_NRC_REQUEST_OUT_OF_RANGE;     /* read-only */
     default:
         return UDS_NRC_REQUEST_OUT_OF_RANGE;

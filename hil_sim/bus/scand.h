@@ -20,7 +20,10 @@
 #define SCAND_MAX_CLIENTS 16u
 #define SCAND_IN_BUF 8192u
 #define SCAND_OUT_BUF (1u << 20)
-#define SCAND_FRAME_HOLDOFF_MS 50u
+/* 250 ms: python-can's socketcand client reads the "< ok >" with one recv() and refuses the
+ * connection if a frame came with it; on a loaded machine (2 cores, load ~19) a client was
+ * measured waking up to 324 ms late, and 50 ms lost connections there. */
+#define SCAND_FRAME_HOLDOFF_MS 250u
 
 typedef enum { SCAND_FREE = 0, SCAND_HELLO = 1, SCAND_OPEN = 2, SCAND_RAW = 3 } scand_state_t;
 

@@ -184,8 +184,12 @@ static void sim_tick(serve_t *s)
 
     (void)sim_couple_actuate(sc, &s->app, s->drv, NULL);   /* ideal drive: compensated in EXECUTE */
     /* a parked device: in IDLE the simulated drive brings the handle back to the scenario's start
-     * position and holds it at rest, so every TEACH or EXECUTE starts where `hil_sim run` starts */
-    sim_couple_advance(sc, s->ax, s->drv, s->app.state == APP_IDLE || s->app.state == APP_BOOT);
+     * position and holds it at rest, so every TEACH or EXECUTE starts where `hil_sim run` starts;
+     * after a fault, once the stop ramp has switched the actuator off, it parks the handle too (a
+     * free handle drifts out of the sensor range and no fault could ever be cleared) */
+    const bool parked = s->app.state == APP_IDLE || s->app.state == APP_BOOT ||
+                        (s->app.state == APP_FAULT && !enable);
+    sim_couple_advance(sc, s->ax, s->drv, parked);
     s->n_tick++;
 }
 

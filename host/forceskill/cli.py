@@ -12,12 +12,11 @@ from __future__ import annotations
 
 import argparse
 import importlib
-import json
 import sys
 from pathlib import Path
 from typing import Any, NoReturn, Optional, Sequence
 
-from .errors import FsError
+from .errors import ERR_IO, ERR_UNEXPECTED, FsError
 
 #: Sub-command modules added by other parts of the host package (report, record, upload, run,
 #: status, monitor, ...): append "forceskill.<module>" here.
@@ -73,6 +72,11 @@ def _float(s: str) -> float:
         raise argparse.ArgumentTypeError(f"not a number: {s!r}") from None
 
 
+def _limits():  # type: ignore[no-untyped-def]
+    from . import limits
+    return limits
+
+
 # ---- fit -------------------------------------------------------------------------------------
 
 def _cmd_fit(args: argparse.Namespace) -> int:
@@ -81,14 +85,17 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     from . import tolerance as tol
     from .demo import load_demo, resample
     from .errors import ERR_FIT_ARGS, ERR_FIT_INACCURATE, ERR_FIT_TOLERANCE
+    from .limits import check_skill_force
+    from .outputs import Outputs, check_target
     from .readers import ReadOptions
     from .skill import DURATION_MAX_S, MAX_KERNELS
 
     out = Path(args.output)
-    if not out.parent.is_dir() and str(out.parent):
-        raise FsError(620, f"output folder does not exist: {str(out.parent)!r}")
-    if args.plot and not Path(args.plot).parent.is_dir() and str(Path(args.plot).parent):
-        raise FsError(620, f"plot folder does not exist: {str(Path(args.plot).parent)!r}")
+    targets = [args.output, args.output + ".json"] + ([args.plot] if args.plot else [])
+    for i, t in enumerate(targets):          # refuse bad outputs before the work
+        real = check_target(t, [args.demo])
+        if real in (check_target(u, ()) for u in targets[:i]):
+            raise FsError(660, f"output {t!r} is given twice")
     if args.max_error is not None:
         if args.kernels is not None:
             raise FsError(ERR_FIT_ARGS, "give --kernels N or --max-error PCT, not both")
@@ -136,16 +143,14 @@ def _cmd_fit(args: argparse.Namespace) -> int:
         print(f"kernels: N = {n_k}, the smallest reaching max error {args.max_error:g} % "
               f"({len(tried)} fits: " + ", ".join(f"{n} -> {e:.3g} %" for n, e in sorted(tried)) + ")")
     sk = res.skill
-    if args.plot:
-        from .plot import fit_figure
-        fit_figure(res, args.plot, title=f"{demo.source}: {args.method}, N = {sk.n_kernels}, "
-                   f"max {err.max_pct:.2f} %, RMS {err.rms_pct:.2f} %")
-    try:
-        sk.write(out)
-    except BaseException:
-        if args.plot:   # no partial output: the plot goes with the skill
-            Path(args.plot).unlink(missing_ok=True)
-        raise
+    check_skill_force(sk, str(out), force_limit_N=args.force_limit)
+    with Outputs(inputs=[args.demo]) as outs:   # skill, JSON twin and plot: all or nothing
+        sk.write(out, outs=outs)
+        if args.plot:
+            from .plot import fit_figure
+            fit_figure(res, args.plot, title=f"{demo.source}: {args.method}, N = {sk.n_kernels}, "
+                       f"max {err.max_pct:.2f} %, RMS {err.rms_pct:.2f} %", outs=outs)
+        outs.commit()
     f_max = float(np.max(np.abs(demo.force_N)))
     print(f"demonstration: {demo.source}, T = {sk.duration_s:.3f} s, {res.t_s.size} samples at "
           f"{sk.dt_s * 1e3:g} ms (recorded: {demo.t_s.size}), max force {f_max:.4g} N")
@@ -227,23 +232,34 @@ def _register_fit(sub: "argparse._SubParsersAction[_Parser]") -> None:
                    help="after the skill's duration: hold the last force or release to 0 in 0.5 s")
     p.add_argument("--dt", type=_float, default=0.001, help=argparse.SUPPRESS)
     p.add_argument("--plot", metavar="PNG", help="write demonstrated vs learned force, error, position")
+    _limits().add_force_limit(p)
     p.set_defaults(func=_cmd_fit)
 
 
 # ---- rollout ---------------------------------------------------------------------------------
 
 def _cmd_rollout(args: argparse.Namespace) -> int:
-    from .demo import write_csv
-    from .dmp import rollout
+    import numpy as np
+
+    from .dmp import rollout_blocks
+    from .outputs import STDOUT, check_target, write_csv
     from .skill import Skill
 
-    out = Path(args.output)
-    if str(out.parent) and not out.parent.is_dir():
-        raise FsError(620, f"output folder does not exist: {str(out.parent)!r}")
+    if args.output != STDOUT:
+        check_target(args.output, [args.skill])
     sk = Skill.read(args.skill)
-    t, f = rollout(sk, goal_scale=args.goal_scale, time_scale=args.time_scale, n_steps=args.steps)
-    write_csv(out, {"t": t, "f_hat": f})
-    print(f"wrote {out}: {t.size} rows, t = 0..{t[-1]:.6g} s, peak f_hat {float(f.max()):.6g} N")
+    stats = {"peak": -np.inf, "t_end": 0.0}
+
+    def blocks():  # type: ignore[no-untyped-def]
+        for t, f in rollout_blocks(sk, goal_scale=args.goal_scale, time_scale=args.time_scale, n_steps=args.steps):
+            if f.size:
+                stats["peak"] = max(stats["peak"], float(np.max(f)))
+                stats["t_end"] = float(t[-1])
+            yield np.column_stack((t, f))
+
+    n = write_csv(args.output, ["t", "f_hat"], blocks(), inputs=[args.skill])
+    msg = f"wrote {args.output}: {n} rows, t = 0..{stats['t_end']:.6g} s, peak f_hat {stats['peak']:.6g} N"
+    print(msg, file=sys.stderr if args.output == STDOUT else sys.stdout)
     return 0
 
 
@@ -252,26 +268,33 @@ def _register_rollout(sub: "argparse._SubParsersAction[_Parser]") -> None:
                        description="Evaluate a skill at its dt from zero state, as the firmware does, and "
                        "write t,f_hat (s, N) as CSV.")
     p.add_argument("skill", metavar="SKILL")
-    p.add_argument("-o", "--output", required=True, metavar="OUT.csv")
-    p.add_argument("--goal-scale", type=_float, default=1.0, metavar="S", help="multiply the goal (force) by S")
-    p.add_argument("--time-scale", type=_float, default=1.0, metavar="S", help="stretch time by S")
+    p.add_argument("-o", "--output", required=True, metavar="OUT.csv", help="CSV to write ('-': standard output)")
+    p.add_argument("--goal-scale", type=_float, default=1.0, metavar="S",
+                   help="multiply the goal (force) by S, 0..65.535")
+    p.add_argument("--time-scale", type=_float, default=1.0, metavar="S", help="stretch time by S, 0.001..65.535")
     p.add_argument("--steps", type=_positive_int, default=None, metavar="N",
-                   help="number of steps (default round(T*time_scale/dt))")
+                   help="number of steps, at most 10^7 (default round(T*time_scale/dt))")
     p.set_defaults(func=_cmd_rollout)
 
 
 # ---- show ------------------------------------------------------------------------------------
 
 def _cmd_show(args: argparse.Namespace) -> int:
+    import numpy as np
+
     from .dmp import rollout
+    from .limits import check_force_limit, peak_problem
     from .skill import Skill, image_size
 
+    check_force_limit(args.force_limit)
     sk = Skill.read(args.skill)
     if args.json:
         sys.stdout.write(sk.to_json())
         return 0
     d = sk.to_json_dict()
     _, f = rollout(sk)
+    finite = bool(np.all(np.isfinite(f)))
+    peak = float(np.max(np.abs(f))) if finite else float("inf")
     print(f"{args.skill}: skill image v{sk.format_version}, {image_size(sk.n_kernels)} bytes, CRC-32 {d['crc32']}")
     print(f"  duration       {sk.duration_s:g} s at dt {sk.dt_s * 1e3:g} ms, end policy {sk.end_policy}")
     print(f"  kernels        {sk.n_kernels}, centres {sk.centres[0]:.4g}..{sk.centres[-1]:.4g}, "
@@ -282,7 +305,12 @@ def _cmd_show(args: argparse.Namespace) -> int:
     print(f"  alpha/beta/gamma {sk.alpha:g} / {sk.beta:g} / {sk.gamma:g}")
     print(f"  gains          m_d {sk.m_d_kg:g} kg, k_d {sk.k_d_Nspm:g} Ns/m, k_p {sk.k_p_Npm:g} N/m, "
           f"k_f {sk.k_f:g}, k_i {sk.k_i_per_s:g} 1/s")
-    print(f"  rollout        peak f_hat {float(f.max()):.6g} N, final {float(f[-1]):.6g} N")
+    print(f"  rollout        peak |f_hat| {peak:.6g} N, final {float(f[-1]):.6g} N")
+    problem = peak_problem(peak, 1.0, args.force_limit)
+    if problem:
+        print(f"  REFUSED        {problem}: fit, upload and run refuse this skill [662]")
+    else:
+        print(f"  force limit    {args.force_limit:g} N: goal scale up to {args.force_limit / peak if peak > 0 else float('inf'):.4g}")
     return 0
 
 
@@ -291,6 +319,7 @@ def _register_show(sub: "argparse._SubParsersAction[_Parser]") -> None:
                        "print a summary (or its JSON twin with --json).")
     p.add_argument("skill", metavar="SKILL")
     p.add_argument("--json", action="store_true", help="print the JSON form")
+    _limits().add_force_limit(p)
     p.set_defaults(func=_cmd_show)
 
 
@@ -350,11 +379,16 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
         sys.stderr.write(f"forceskill: error: {e.message} [{e.code}]\n")
         return EXIT_BAD_INPUT
     except OSError as e:
-        sys.stderr.write(f"forceskill: error: {e.strerror or e}: {e.filename or ''}\n")
+        where = f": {e.filename}" if e.filename else ""
+        sys.stderr.write(f"forceskill: error: {e.strerror or e}{where} [{ERR_IO}]\n")
         return EXIT_BAD_INPUT
     except KeyboardInterrupt:
         sys.stderr.write("forceskill: interrupted\n")
         return 130
+    except Exception as e:  # a failure no check foresaw (a library's own error): still one line
+        first = (str(e).splitlines() or [""])[0]
+        sys.stderr.write(f"forceskill: error: unexpected {type(e).__name__}: {first} [{ERR_UNEXPECTED}]\n")
+        return EXIT_BAD_INPUT
 
 
 if __name__ == "__main__":

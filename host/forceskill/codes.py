@@ -156,6 +156,14 @@ ERR_DEMO_TARE = 643  # --tare: no quiet stretch before contact, or a bad window
 ERR_READ_ARGS = 644  # a reader option out of range (time unit, rate, axis, sign, scale, gap)
 ERR_DEMO_TOPIC = 645  # a bag without the requested topic, or of another message type
 ERR_READER_MISSING = 646  # the reader for this format needs a package that is not installed
+ERR_OUTPUT_IS_INPUT = 660  # an output is one of the inputs (same file), or given twice
+ERR_OUTPUT_SPECIAL = 661  # an output is a device, FIFO, directory or system file
+ERR_SKILL_PEAK = 662  # a rollout not finite or peaking above the force limit
+ERR_ROLLOUT_CAP = 663  # rollout steps above the cap
+ERR_LOG_FORMAT = 664  # no CAN log writer for the output's suffix
+ERR_RUN_FAULT = 665  # the device faulted during a run or a recording
+ERR_CLEAR_BLOCKED = 666  # a fault cannot be cleared: its cause persists
+ERR_UNEXPECTED = 667  # an error no check foresaw (e.g. from a library), reported as one line
 
 # Firmware image and update (700-729, firmware/boot)
 BOOT_ERR_TRUNCATED = 700  # fewer bytes than header + payload_length + tag
@@ -206,6 +214,7 @@ DID_OBJECT = 0x0130  # use_model u8, m_v, d_v, k1, k2, layer, surface (f32 x6)
 DID_SLOT_DIR = 0x0200  # n u8; per slot: valid u8, length u32, crc u32, N u16, T f32, end u8
 DID_LAST_TRANSFER = 0x0201  # status code u16 of the last download (0 ok)
 DID_DEVICE_STATE = 0x0300  # state u8, fault u16, slot u8, step u8, tick u32
+DID_FAULT_CAUSES = 0x0301  # latched mask u32, causes present mask u32 (bit n: fault 500+n)
 DID_FWU_STATUS = 0xF1B0  # update status: FWU_STATUS_LEN bytes, see fwu_status()
 RID_RUN_SKILL = 0x0201  # start: slot u8, goal_scale u16 (1e-3), time_scale u16 (1e-3), end u8
 RID_RUN_SEQUENCE = 0x0202
@@ -327,6 +336,14 @@ __all__ = [
     'ERR_READ_ARGS',
     'ERR_DEMO_TOPIC',
     'ERR_READER_MISSING',
+    'ERR_OUTPUT_IS_INPUT',
+    'ERR_OUTPUT_SPECIAL',
+    'ERR_SKILL_PEAK',
+    'ERR_ROLLOUT_CAP',
+    'ERR_LOG_FORMAT',
+    'ERR_RUN_FAULT',
+    'ERR_CLEAR_BLOCKED',
+    'ERR_UNEXPECTED',
     'BOOT_ERR_TRUNCATED',
     'BOOT_ERR_MAGIC',
     'BOOT_ERR_FORMAT',
@@ -369,6 +386,7 @@ __all__ = [
     'DID_SLOT_DIR',
     'DID_LAST_TRANSFER',
     'DID_DEVICE_STATE',
+    'DID_FAULT_CAUSES',
     'DID_FWU_STATUS',
     'RID_RUN_SKILL',
     'RID_RUN_SEQUENCE',

@@ -17,12 +17,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Optional, Union
+from typing import Callable, Optional, Sequence, Union
 
 import numpy as np
 
 from .errors import (
     ERR_DEMO_COLUMN,
+    ERR_DEMO_FILE,
     ERR_DEMO_FORMAT,
     ERR_DEMO_GAP,
     ERR_DEMO_NOT_FINITE,
@@ -241,11 +242,10 @@ def resample(demo: Demo, dt_s: float) -> Demo:
                 demo.max_gap_s, list(demo.notes))
 
 
-def write_csv(path: Union[str, Path], columns: Columns) -> None:
-    """Write named equal-length columns as CSV with a header (%.17g), atomically."""
-    from .skill import atomic_write
+def write_csv(path: Union[str, Path], columns: Columns, inputs: Sequence[Union[str, Path]] = ()) -> None:
+    """Write named equal-length columns as CSV with a header (%.17g) through forceskill.outputs
+    (temporary file renamed on success; '-' is standard output)."""
+    from .outputs import write_csv as _write
     names = list(columns)
-    data = np.column_stack([np.asarray(columns[k], float) for k in names])
-    lines = [",".join(names)]
-    lines += [",".join("%.17g" % v for v in row) for row in data.tolist()]
-    atomic_write(Path(path), ("\n".join(lines) + "\n").encode())
+    data = np.column_stack([np.asarray(columns[k], float) for k in names]) if names else np.zeros((0, 0))
+    _write(path, names, [data], inputs=inputs)

@@ -17,11 +17,11 @@ used by the fit for speed and checked against the loop in tests/host/test_dmp.py
 """
 from __future__ import annotations
 
-from typing import Optional
+import math
+from typing import Iterator, Optional
 
 import numpy as np
 
-from .errors import ERR_SCALE_INVALID, ParamError
 from .skill import Skill
 
 #: Kernels with (u - c_i)^2/(2 sigma_i^2) above this are skipped (DMP_KERNEL_CUTOFF_EXP, dmp.h).
@@ -271,15 +271,57 @@ def transform_scan(alpha: float, beta: float, gamma: float, a: float, goal: floa
 
 
 def check_scales(goal_scale: float, time_scale: float) -> None:
-    """Goal scale finite, time scale finite and > 0 (code 109, as the firmware)."""
-    if not np.isfinite(goal_scale) or not np.isfinite(time_scale) or not time_scale > 0.0:
-        raise ParamError(ERR_SCALE_INVALID, f"goal scale must be finite and time scale finite and > 0: "
-                         f"goal_scale = {goal_scale:g}, time_scale = {time_scale:g}")
+    """The host's one scale check (forceskill.limits.check_scales): code 109, as the firmware."""
+    from .limits import check_scales as _check
+    _check(goal_scale, time_scale)
 
 
 def default_steps(skill: Skill, time_scale: float = 1.0) -> int:
     """round(T*time_scale/dt): the rollout writes rows 0..this."""
     return int(round(skill.duration_s * time_scale / skill.dt_s))
+
+
+#: Rows per block of ``rollout_blocks`` (memory: a few N x block arrays of float64).
+ROLLOUT_BLOCK = 16384
+
+
+def rollout_blocks(skill: Skill, goal_scale: float = 1.0, time_scale: float = 1.0,
+                   n_steps: Optional[int] = None, block: int = ROLLOUT_BLOCK) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+    """``rollout`` in consecutive blocks of rows (t, f_hat), the same numbers, memory bounded by
+    the block; scales and the step count are checked first (109, 663)."""
+    from .limits import check_steps
+    check_scales(goal_scale, time_scale)
+    n = default_steps(skill, time_scale) if n_steps is None else int(n_steps)
+    check_steps(n)
+    a = skill.dt_s / (skill.tau_s * time_scale)
+    g_e = skill.goal_m * goal_scale
+    alpha, beta, gamma, k = skill.alpha, skill.beta, skill.gamma, skill.stiffness_Npm
+    uu = vv = xx = zz = ii = 0.0
+    start = 0
+    while start <= n:
+        m = min(block, n + 1 - start)
+        u = np.empty(m)
+        v = np.empty(m)
+        ul: list[float] = [0.0] * m
+        vl: list[float] = [0.0] * m
+        for j in range(m):            # rows start..start+m-1; (uu, vv) is row start+j
+            ul[j] = uu
+            vl[j] = vv
+            uu, vv = uu + a * vv, vv + a * alpha * (beta * (1.0 - uu) - vv)
+        u[:] = ul
+        v[:] = vl
+        with np.errstate(all="ignore"):    # a hostile skill overflows to inf: the caller judges it
+            hl = (g_e * v * forcing_scale(u, skill)).tolist()
+        xl: list[float] = [0.0] * m
+        for j in range(m):            # x of row start+j, then one step with that row's forcing
+            xl[j] = xx
+            xx, zz, ii = (xx + a * (zz - xx - gamma * ii + hl[j]),
+                          zz + a * alpha * (beta * (g_e - xx) - zz),
+                          ii + a * xx)
+        with np.errstate(all="ignore"):
+            f = k * np.asarray(xl)
+        yield np.arange(start, start + m) * skill.dt_s, f
+        start += m
 
 
 def rollout(skill: Skill, goal_scale: float = 1.0, time_scale: float = 1.0,
@@ -288,14 +330,16 @@ def rollout(skill: Skill, goal_scale: float = 1.0, time_scale: float = 1.0,
 
     The DMP alone (docs/math.md section 2): the end policy after T is applied by the executor.
     """
-    check_scales(goal_scale, time_scale)
-    n = default_steps(skill, time_scale) if n_steps is None else int(n_steps)
-    if n < 0:
-        raise ParamError(ERR_SCALE_INVALID, f"n_steps must be >= 0: {n}")
-    tau_e = skill.tau_s * time_scale
-    a = skill.dt_s / tau_e
-    g_e = skill.goal_m * goal_scale
-    u, v = phase_loop(skill.alpha, skill.beta, a, n)
-    h = g_e * v[:n] * forcing_scale(u[:n], skill)
-    x, _, _ = transform_loop(skill.alpha, skill.beta, skill.gamma, a, g_e, h)
-    return np.arange(n + 1) * skill.dt_s, skill.stiffness_Npm * x
+    blocks = list(rollout_blocks(skill, goal_scale, time_scale, n_steps))
+    return np.concatenate([b[0] for b in blocks]), np.concatenate([b[1] for b in blocks])
+
+
+def rollout_peak(skill: Skill, goal_scale: float = 1.0, time_scale: float = 1.0) -> float:
+    """max |f_hat| over the default rollout (inf if any value is not finite)."""
+    peak = 0.0
+    for _, f in rollout_blocks(skill, goal_scale, time_scale):
+        if not np.all(np.isfinite(f)):
+            return math.inf
+        if f.size:
+            peak = max(peak, float(np.max(np.abs(f))))
+    return peak

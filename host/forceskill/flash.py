@@ -364,12 +364,8 @@ def _cmd_image_build(args: argparse.Namespace) -> int:
                          fmt(args.skill_format, "skill"), fmt(args.config_format, "config"),
                          int(args.entry_offset, 0))
     out = Path(args.output)
-    tmp = out.with_name(out.name + ".tmp")
-    try:
-        tmp.write_bytes(img)
-        os.replace(tmp, out)
-    except OSError as e:
-        raise FsError(ERR_IO, f"cannot write {out}: {e.strerror}") from None
+    from .outputs import write_file
+    write_file(out, img, inputs=[args.binary])
     print(fw.describe(fw.parse_image(img, fw.load_key(args.key))))
     print(f"written: {out} ({len(img)} bytes)")
     return 0

@@ -1,19 +1,17 @@
 """Figures like the paper's Fig. 5a: demonstrated vs learned force, approximation error, position."""
 from __future__ import annotations
 
-import os
-import tempfile
 from pathlib import Path
-from typing import Union
+from typing import Optional, Union
 
 import numpy as np
 
-from .errors import ERR_IO, FsError
 from .fit import FitResult
+from .outputs import Outputs, save_figure
 
 
-def fit_figure(res: FitResult, path: Union[str, Path], title: str = "") -> None:
-    """Write a PNG (atomically): force (demonstrated dashed black, learned green), error in % of
+def fit_figure(res: FitResult, path: Union[str, Path], title: str = "", outs: Optional[Outputs] = None) -> None:
+    """Write a PNG (into ``outs``, committed with the other outputs, or on its own): force (demonstrated dashed black, learned green), error in % of
     max force, and the demonstrated position with the object surface."""
     import matplotlib
     matplotlib.use("Agg")
@@ -39,14 +37,12 @@ def fit_figure(res: FitResult, path: Union[str, Path], title: str = "") -> None:
     for a in ax:
         a.grid(True, lw=0.3)
     fig.tight_layout()
-    p = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix="." + p.name + ".", suffix=".png", dir=p.parent if str(p.parent) else ".")
-    os.close(fd)
     try:
-        fig.savefig(tmp, dpi=110)
-        os.replace(tmp, p)
-    except OSError as e:
-        os.unlink(tmp)
-        raise FsError(ERR_IO, f"cannot write plot {str(p)!r}: {e.strerror}") from None
+        if outs is not None:
+            save_figure(outs, fig, path, dpi=110)
+        else:
+            with Outputs() as own:
+                save_figure(own, fig, path, dpi=110)
+                own.commit()
     finally:
         plt.close(fig)

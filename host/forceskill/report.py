@@ -25,6 +25,7 @@ from typing import Any, Optional
 import numpy as np
 
 from .errors import ERR_REPORT, FsError
+from .outputs import write_figure, write_file
 
 REPO = Path(__file__).resolve().parents[2]
 #: Paper bounds on the LWR approximation error (% of max force): pressing <= 4, engraving <= 6.
@@ -231,8 +232,10 @@ def _learn_figure(task: Task, res: Any, lwr: Any, demo: dict[str, np.ndarray], e
     for a in ax:
         a.grid(True, lw=0.3)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    try:
+        write_figure(fig, path)
+    finally:
+        plt.close(fig)
 
 
 def _reuse_figure(logs: dict[str, dict[str, np.ndarray]], d_scaled: float, d_unscaled: float,
@@ -261,8 +264,10 @@ def _reuse_figure(logs: dict[str, dict[str, np.ndarray]], d_scaled: float, d_uns
     for x in ax:
         x.grid(True, lw=0.3)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    try:
+        write_figure(fig, path)
+    finally:
+        plt.close(fig)
 
 
 # ---- report ------------------------------------------------------------------------------------
@@ -298,7 +303,7 @@ def write_markdown(summary: dict[str, Any], path: Path) -> None:
     figs = sorted(p.name for p in path.parent.glob("fig_*.png"))
     for f in figs:
         lines.append(f"![{f}]({f})")
-    path.write_text("\n".join(lines) + "\n")
+    write_file(path, ("\n".join(lines) + "\n").encode())
 
 
 def run_report(out: Path, hil_sim: Path, scenarios: Path, seed: int = 1, n_kernels: int = 50,
@@ -319,7 +324,7 @@ def run_report(out: Path, hil_sim: Path, scenarios: Path, seed: int = 1, n_kerne
         experiments.extend(_reuse(hil_sim, scenarios, out, seed, plots))
         bar.update(1)
     summary = {"seed": seed, "n_kernels": n_kernels, "hil_sim": str(hil_sim), "experiments": experiments}
-    (out / "summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    write_file(out / "summary.json", (json.dumps(summary, indent=2) + "\n").encode())
     write_markdown(summary, out / "report.md")
     return summary
 

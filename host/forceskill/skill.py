@@ -8,20 +8,35 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import struct
 import zlib
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Union
+from typing import TYPE_CHECKING, Any, Optional, Sequence, Union
 
 import numpy as np
 
-from .errors import (ERR_IO, ERR_SKILL_CENTRES, ERR_SKILL_CRC, ERR_SKILL_GAINS, ERR_SKILL_HEADER_SIZE,
-                     ERR_SKILL_KERNELS, ERR_SKILL_LENGTH, ERR_SKILL_MAGIC, ERR_SKILL_NOT_FINITE,
-                     ERR_SKILL_RANGE, ERR_SKILL_TOO_SHORT, ERR_SKILL_UNSUPPORTED, ERR_SKILL_VERSION,
-                     FsError, ParamError, SkillError)
+from .errors import (
+    ERR_IO,
+    ERR_SKILL_CENTRES,
+    ERR_SKILL_CRC,
+    ERR_SKILL_GAINS,
+    ERR_SKILL_HEADER_SIZE,
+    ERR_SKILL_KERNELS,
+    ERR_SKILL_LENGTH,
+    ERR_SKILL_MAGIC,
+    ERR_SKILL_NOT_FINITE,
+    ERR_SKILL_RANGE,
+    ERR_SKILL_TOO_SHORT,
+    ERR_SKILL_UNSUPPORTED,
+    ERR_SKILL_VERSION,
+    ParamError,
+    SkillError,
+)
 from .params import MONOTONE_REL_TOL, DmpParams, Gains, derive
+
+if TYPE_CHECKING:
+    from .outputs import Outputs
 
 MAGIC = 0x4C4B5346             # bytes "FSKL"
 FORMAT_VERSION = 1
@@ -42,7 +57,7 @@ assert _HEADER.size == HEADER_SIZE
 _F64_NAMES = ("dt_s", "tau_s", "alpha", "beta", "gamma", "stiffness_Npm", "goal_m", "duration_s",
               "m_d_kg", "k_d_Nspm", "k_p_Npm", "k_f", "k_i_per_s", "surface_m")
 
-PathLike = Union[str, "os.PathLike[str]"]
+PathLike = Union[str, Path]
 
 
 def image_size(n_kernels: int) -> int:
@@ -214,12 +229,20 @@ class Skill:
         return Skill.from_bytes(s.to_bytes(validate=False))
 
     # -- files -----------------------------------------------------------------------------
-    def write(self, path: PathLike) -> None:
-        """Write the image to ``path`` and its JSON twin to ``path.json``, each atomically."""
-        p = Path(path)
+    def write(self, path: PathLike, outs: "Optional[Outputs]" = None, inputs: Sequence[PathLike] = ()) -> None:
+        """Write the image to ``path`` and its JSON twin to ``path.json`` as one unit: into ``outs``
+        (committed by the caller) or committed here; neither file changes unless both are written."""
+        from .outputs import Outputs
         image = self.to_bytes()
-        atomic_write(p, image)
-        atomic_write(Path(str(p) + ".json"), self.to_json().encode())
+        twin = self.to_json().encode()
+        if outs is not None:
+            outs.write_bytes(path, image)
+            outs.write_bytes(str(path) + ".json", twin)
+            return
+        with Outputs(inputs) as own:
+            own.write_bytes(path, image)
+            own.write_bytes(str(path) + ".json", twin)
+            own.commit()
 
     @staticmethod
     def read(path: PathLike) -> "Skill":
@@ -232,38 +255,7 @@ class Skill:
 
 
 def atomic_write(path: Path, data: bytes) -> None:
-    """Write via a temporary file in the same folder and rename, so a failure leaves no file.
-
-    The temporary name is made here (pid, counter, O_EXCL) rather than by ``tempfile``, which
-    imports shutil, random, bz2 and lzma: start-up time of every command that writes."""
-    global _tmp_counter
-    path = Path(path)
-    folder = path.parent if str(path.parent) else Path(".")
-    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0)
-    for _ in range(100):
-        _tmp_counter += 1
-        tmp = folder / f".{path.name}.{os.getpid()}.{_tmp_counter}.tmp"
-        try:
-            fd = os.open(tmp, flags, 0o666)
-            break
-        except FileExistsError:
-            continue
-        except OSError as e:
-            raise FsError(ERR_IO, f"cannot write {str(path)!r}: {e.strerror}") from None
-    else:
-        raise FsError(ERR_IO, f"cannot write {str(path)!r}: no free temporary name in {str(folder)!r}")
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-        os.replace(tmp, path)
-    except BaseException as e:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        if isinstance(e, OSError):
-            raise FsError(ERR_IO, f"cannot write {str(path)!r}: {e.strerror or e}") from None
-        raise
-
-
-_tmp_counter = 0
+    """One output file through forceskill.outputs (temporary file in the same folder, renamed on
+    success; refuses special files)."""
+    from .outputs import write_file
+    write_file(path, data)

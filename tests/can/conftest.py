@@ -17,14 +17,16 @@ import pytest
 REPO = Path(__file__).resolve().parents[2]
 SCENARIOS = REPO / "hil_sim" / "scenarios"
 SPEED = float(os.environ.get("FORCESKILL_CAN_SPEED", "1"))
-# The device stops safely after this much host silence (default 100 ms). The tests' host tools
-# run in Python on a shared, loaded machine, where a process can stall for long; the journey
-# (tests/can/test_journey.py) runs with the product default (JOURNEY_HOST_TIMEOUT_MS: the worst
-# heartbeat gap measured over 60 s in TEACH is 17-86 ms, bench/can_heartbeat/heartbeat_gap.py),
-# the other modules with the configurable maximum. The product default itself is also tested in
-# C (tests/firmware/proto/test_app.c).
+# The device stops safely after this much host silence (product default 100 ms, documented in
+# docs/protocol.md and tested in C: tests/firmware/proto/test_app.c). The host tools here run in
+# Python on a shared machine: on 2 cores at load ~19 (CI beside two CPU-bound processes and other
+# jobs) a plain `time.sleep(0.01)` loop was measured waking up to 324 ms late, and the heartbeat's
+# worst gap (bench/can_heartbeat/heartbeat_gap.py) was 86-245 ms. No host can promise 100 ms
+# there, so every CAN test, the journey included, runs the simulated device with the largest
+# timeout it accepts; FORCESKILL_CAN_JOURNEY_HOST_TIMEOUT_MS=100 runs the journey at the product
+# default on an idle machine.
 HOST_TIMEOUT_MS = int(os.environ.get("FORCESKILL_CAN_HOST_TIMEOUT_MS", "500"))
-JOURNEY_HOST_TIMEOUT_MS = int(os.environ.get("FORCESKILL_CAN_JOURNEY_HOST_TIMEOUT_MS", "100"))
+JOURNEY_HOST_TIMEOUT_MS = int(os.environ.get("FORCESKILL_CAN_JOURNEY_HOST_TIMEOUT_MS", str(HOST_TIMEOUT_MS)))
 
 
 def hil_sim_path() -> Path:

@@ -8,8 +8,10 @@ import subprocess
 import sys
 import time
 
+import can
 import pytest
 
+from conftest import SCENARIOS, Server
 from forceskill import cli
 from forceskill.commands._common import connect
 from forceskill.errors import FsError
@@ -141,3 +143,43 @@ def test_python_can_config_defaults(server, tmp_path):
     p = subprocess.run([sys.executable, "-m", "forceskill", "status"], capture_output=True, text=True,
                        timeout=60, env=env)
     assert p.returncode == 0 and "IDLE" in p.stdout, p.stderr
+
+
+def test_record_refuses_unknown_log_formats_by_name(tmp_path):
+    port = free_port()          # nothing listens: the format is refused before connecting
+    for name, needle in (("x.mf4", ".mf4"), ("x.xyz", ".xyz"), ("x", "without suffix")):
+        p = run_cli("record", "-o", str(tmp_path / name), "-i", "socketcand", "--bus-kwargs",
+                    "host=127.0.0.1", f"port={port}", "--timeout", "0.2")
+        one_line_error(p, "[664]", needle)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_record_keeps_the_old_log_until_it_has_connected(tmp_path):
+    old = tmp_path / "old.blf"
+    old.write_bytes(b"an earlier recording")
+    p = run_cli("record", "-o", str(old), "-i", "socketcand", "--bus-kwargs", "host=127.0.0.1",
+                f"port={free_port()}", "--timeout", "0.2")
+    one_line_error(p, "[630]")
+    assert old.read_bytes() == b"an earlier recording"
+    assert sorted(x.name for x in tmp_path.iterdir()) == ["old.blf"]
+
+
+def test_record_keeps_what_it_recorded_when_the_link_drops(tmp_path):
+    srv = Server(SCENARIOS / "pressing_task1_demo.toml")
+    try:
+        time.sleep(0.2)
+        proc = subprocess.Popen([sys.executable, "-m", "forceskill", "record", "-o", str(tmp_path / "d.blf"),
+                                 "--duration", "30", *srv.bus_args()],
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        assert "recording node 0" in proc.stdout.readline()
+        time.sleep(1.5)
+        srv.proc.kill()            # the link drops mid-recording
+        srv.proc.wait()
+        _, err = proc.communicate(timeout=30)
+    finally:
+        srv.stop()
+    assert proc.returncode == 2 and len(err.strip().splitlines()) == 1 and "Traceback" not in err, err
+    assert "kept what was recorded" in err
+    msgs = list(can.LogReader(str(tmp_path / "d.blf")))
+    assert len(msgs) > 1000       # ~1.5 s of 1 kHz telemetry
+    assert sorted(x.name for x in tmp_path.iterdir()) == ["d.blf"]

@@ -5,8 +5,6 @@ from __future__ import annotations
 
 import time
 
-import pytest
-
 from conftest import SCENARIOS, Server
 from forceskill import cli
 
@@ -33,7 +31,9 @@ def test_bus_off_latches_fault_501(capsys, tmp_path):
     try:
         time.sleep(0.2)
         rc, out, err = run(capsys, "record", "-o", str(tmp_path / "x.blf"), "--duration", "5", *srv.bus_args())
-        assert rc == 2 and "left TEACH (FAULT, fault 501)" in err
+        assert rc == 2 and "left TEACH (FAULT, fault 501 (bus-off))" in err and "[665]" in err
+        # what was recorded up to the fault is kept
+        assert "kept what was recorded" in err and (tmp_path / "x.blf").stat().st_size > 10000
         time.sleep(0.5)
         rc, out, err = run(capsys, "status", "--clear", *srv.bus_args())
         assert rc == 0 and "FAULT, fault 501" in out and "faults cleared" in out

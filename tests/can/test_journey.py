@@ -35,7 +35,7 @@ def forceskill(capsys, *argv: str) -> str:
 
 @pytest.fixture(scope="module")
 def server():
-    """The journey's simulator: the device's default host-silence timeout (100 ms)."""
+    """The journey's simulator: host-silence timeout JOURNEY_HOST_TIMEOUT_MS (conftest: suited to CI)."""
     s = Server(SCENARIOS / "pressing_task1_demo.toml", host_timeout_ms=JOURNEY_HOST_TIMEOUT_MS)
     time.sleep(0.2)
     yield s

@@ -2,13 +2,18 @@
 from __future__ import annotations
 
 import argparse
+import signal
 from contextlib import contextmanager
-from typing import Iterator
+from pathlib import Path
+from typing import Any, Iterator
 
+import can
 import numpy as np
 
+from ..errors import ERR_LINK_TIMEOUT, ERR_LOG_FORMAT, FsError
 from ..link.bus import add_bus_args, describe, open_bus
 from ..link.device import Device, Sample
+from ..outputs import Outputs
 
 
 def add_common(p: argparse.ArgumentParser) -> None:
@@ -51,3 +56,42 @@ def tracking(cols: dict[str, np.ndarray]) -> dict[str, float]:
     return {"max_force_N": float(np.max(f)), "max_ref_N": peak,
             "tracking_max_pct": 100.0 * float(np.max(np.abs(e))) / peak,
             "tracking_rms_pct": 100.0 * float(np.sqrt(np.mean(e * e))) / peak}
+
+
+def open_log(outs: Outputs, path: str) -> Any:
+    """A python-can log writer on the temporary file of ``path`` (committed with ``outs``); a
+    suffix python-can cannot write (or whose writer is not installed, e.g. .mf4 without asammdf)
+    is refused with 664 before anything is connected."""
+    tmp = outs.add(path)
+    try:
+        return can.Logger(str(tmp))
+    except Exception as e:   # python-can raises ValueError, NotImplementedError, ImportError
+        suffix = "".join(Path(path).suffixes[-2:]) if path.lower().endswith(".gz") else Path(path).suffix
+        first = (str(e).splitlines() or [type(e).__name__])[0]
+        raise FsError(ERR_LOG_FORMAT, f"cannot write a CAN log as {suffix or 'a file without suffix'!r} "
+                      f"({Path(path).name}): {first}; use .blf .asc .log .trc or .csv") from None
+
+
+@contextmanager
+def sigint_flag() -> Iterator[dict[str, bool]]:
+    """Ctrl-C sets flag["stop"] instead of raising, while the block runs (main thread only)."""
+    flag = {"stop": False}
+    try:
+        old = signal.signal(signal.SIGINT, lambda *a: flag.__setitem__("stop", True))
+    except ValueError:        # not the main thread: Ctrl-C cannot reach us anyway
+        yield flag
+        return
+    try:
+        yield flag
+    finally:
+        signal.signal(signal.SIGINT, old)
+
+
+@contextmanager
+def link_errors(node: int, channel: str) -> Iterator[None]:
+    """A bus failure (OSError, can.CanError) inside the block becomes FsError 635, one line."""
+    try:
+        yield
+    except (OSError, can.CanError) as e:
+        first = (str(e).splitlines() or [type(e).__name__])[0]
+        raise FsError(ERR_LINK_TIMEOUT, f"link to node {node} on {channel} lost: {first}") from None

@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import FsError
+from ..outputs import write_figure, write_file
 
 REPO = Path(__file__).resolve().parents[3]
 K_NPM = 100.0
@@ -85,7 +86,7 @@ def _cmd(args: argparse.Namespace) -> int:
     summary = {"scenario": scenario.name, "speed": args.speed, "wall_s": wall,
                "runs": [{"goal_scale": float(g), **{k: float(v) for k, v in f.items()}} for g, f in figs.items()],
                "force_ratio_1_5_over_1": ratio}
-    (out / "can_summary.json").write_text(json.dumps(summary, indent=2) + "\n")
+    write_file(out / "can_summary.json", (json.dumps(summary, indent=2) + "\n").encode())
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -99,17 +100,19 @@ def _cmd(args: argparse.Namespace) -> int:
     ax.set_title("execution over CAN (hil_sim serve, socketcand)")
     ax.legend(loc="upper left", fontsize=8)
     fig.tight_layout()
-    fig.savefig(out / "can_tracking.png", dpi=120)
-    plt.close(fig)
+    try:
+        write_figure(fig, out / "can_tracking.png", dpi=120)
+    finally:
+        plt.close(fig)
     rows = "\n".join(f"| {g}x | {f['max_ref_N']:.3f} | {f['max_force_N']:.3f} | {f['tracking_max_pct']:.2f} | "
                      f"{f['tracking_rms_pct']:.2f} |" for g, f in figs.items())
-    (out / "can_report.md").write_text(
+    write_file(out / "can_report.md", (
         f"# The journey over CAN\n\nScenario `{scenario.name}` on `hil_sim serve` (speed {args.speed:g}), "
         f"driven through python-can's socketcand interface: record (TEACH) -> fit -> upload (UDS, "
         f"read-back verified) -> run at goal 1x and 1.5x. Wall time {wall:.1f} s.\n\n"
         "| goal | max reference [N] | max contact force [N] | tracking max [%] | tracking RMS [%] |\n"
         "|---|---:|---:|---:|---:|\n" + rows +
-        f"\n\nForce ratio 1.5x / 1x: {ratio:.3f}. Figures: `can_fit.png`, `can_tracking.png`.\n")
+        f"\n\nForce ratio 1.5x / 1x: {ratio:.3f}. Figures: `can_fit.png`, `can_tracking.png`.\n").encode())
     print(f"wrote {out / 'can_report.md'}, {out / 'can_summary.json'}, {out / 'can_tracking.png'}")
     for g, f in figs.items():
         print(f"goal x{g}: tracking max {f['tracking_max_pct']:.2f} %, RMS {f['tracking_rms_pct']:.2f} %")

@@ -2,65 +2,97 @@
 from __future__ import annotations
 
 import argparse
-import signal
+import math
 import time
 from pathlib import Path
 
 import can
 
-from ..errors import FsError
-from ..link import ERR_LINK_ARGS, ERR_LINK_STATE
-from ._common import add_common, connect
+from ..errors import ERR_RUN_FAULT, FsError, fault_text
+from ..link import ERR_LINK_ARGS, ERR_LINK_STATE, ERR_LINK_TIMEOUT
+from ..outputs import Outputs
+from ._common import add_common, connect, open_log, sigint_flag
+
+#: Longest --duration (24 h of device time); without it, recording runs until Ctrl-C.
+MAX_RECORD_S = 86400.0
 
 
 def _cmd(args: argparse.Namespace) -> int:
-    out = Path(args.output)
-    if str(out.parent) and not out.parent.is_dir():
-        raise FsError(620, f"output folder does not exist: {str(out.parent)!r}")
-    try:
-        writer = can.Logger(str(out))
-    except ValueError as e:
-        raise FsError(ERR_LINK_ARGS, f"no python-can writer for {out.name}: {e}") from None
-    writer.stop()
-    out.unlink(missing_ok=True)
+    if not (math.isfinite(args.duration) and 0.0 <= args.duration <= MAX_RECORD_S):
+        raise FsError(ERR_LINK_ARGS, f"--duration must be in [0, {MAX_RECORD_S:g}] s: {args.duration:g}")
+    with Outputs() as outs:
+        # the writer goes to a temporary file: an old log is replaced only by a new recording
+        writer = open_log(outs, args.output)
+        try:
+            dropped = _record(args, writer)
+        finally:
+            writer.stop()
+        outs.commit()             # what was recorded is kept, also when the link dropped
+    size = Path(args.output).stat().st_size
+    if dropped is not None:
+        raise FsError(dropped.code, f"{dropped.message}; kept what was recorded in {args.output} ({size} bytes)")
+    print(f"wrote {args.output} ({size} bytes)")
+    return 0
+
+
+def _record(args: argparse.Namespace, writer: can.Listener) -> "FsError | None":
+    """Connect, (TEACH,) log until the duration or Ctrl-C; the link error that ended it, if any."""
     with connect(args) as dev:
         st = dev.status
         assert st is not None
         if args.teach and st.state != "IDLE":
             raise FsError(ERR_LINK_STATE, f"node {dev.node} is in {st.state}"
-                          f"{f' (fault {st.fault_code})' if st.fault_code else ''}; TEACH needs IDLE")
-        writer = can.Logger(str(out))
+                          f"{f' (fault {fault_text(st.fault_code)})' if st.fault_code else ''}; TEACH needs IDLE")
         assert dev.notifier is not None
         dev.notifier.add_listener(writer)
-        stop = {"flag": False}
-        old = signal.signal(signal.SIGINT, lambda *a: stop.__setitem__("flag", True))
         try:
-            dev.start_heartbeat(telemetry_period_ms=1)
-            if args.teach:
-                st = dev.command_until("teach", {"TEACH"}, 2.0 * args.timeout)
-            start_tick = st.tick
-            print(f"recording node {dev.node} on {dev.channel} to {out}"
-                  f"{' in TEACH' if args.teach else ''}; "
-                  + (f"{args.duration:g} s of device time" if args.duration else "Ctrl-C to stop"), flush=True)
-            while not stop["flag"]:
-                time.sleep(0.02)
-                cur = dev.status
-                if cur is None:
-                    continue
-                if args.teach and cur.state != "TEACH":
-                    raise FsError(ERR_LINK_STATE, f"node {dev.node} left TEACH ({cur.state}, fault "
-                                  f"{cur.fault_code}) after {((cur.tick - start_tick) & 0xFFFFFF) / 1000:.3f} s")
-                if args.duration and ((cur.tick - start_tick) & 0xFFFFFF) >= args.duration * 1000.0:
-                    break
-            if args.teach:
-                dev.command_until("idle", {"IDLE"}, 2.0 * args.timeout)
+            with sigint_flag() as stop:
+                dev.start_heartbeat(telemetry_period_ms=1)
+                try:
+                    if args.teach:
+                        st = dev.command_until("teach", {"TEACH"}, 2.0 * args.timeout)
+                    start_tick = st.tick
+                    print(f"recording node {dev.node} on {dev.channel} to {args.output}"
+                          f"{' in TEACH' if args.teach else ''}; "
+                          + (f"{args.duration:g} s of device time" if args.duration else "Ctrl-C to stop"),
+                          flush=True)
+                    last_frame = time.monotonic()
+                    seen = dev.frames_seen
+                    while not stop["stop"]:
+                        time.sleep(0.02)
+                        dev.check_link()
+                        if dev.frames_seen != seen:
+                            seen, last_frame = dev.frames_seen, time.monotonic()
+                        elif time.monotonic() - last_frame > args.timeout:
+                            raise FsError(ERR_LINK_TIMEOUT, f"node {dev.node} on {dev.channel} stopped "
+                                          f"sending for {args.timeout:g} s")
+                        cur = dev.status
+                        if cur is None:
+                            continue
+                        if args.teach and cur.state != "TEACH":
+                            raise FsError(ERR_RUN_FAULT if cur.state == "FAULT" else ERR_LINK_STATE,
+                                          f"node {dev.node} left TEACH ({cur.state}, fault "
+                                          f"{fault_text(cur.fault_code)}) after "
+                                          f"{((cur.tick - start_tick) & 0xFFFFFF) / 1000:.3f} s")
+                        if args.duration and ((cur.tick - start_tick) & 0xFFFFFF) >= args.duration * 1000.0:
+                            break
+                    if args.teach:
+                        dev.command_until("idle", {"IDLE", "FAULT"}, 2.0 * args.timeout)
+                except (FsError, OSError, can.CanError) as e:
+                    if args.teach:
+                        try:
+                            dev.command_until("idle", {"IDLE", "FAULT"}, 0.5)
+                        except (FsError, OSError, can.CanError):
+                            pass
+                    if isinstance(e, FsError):
+                        return e
+                    first = (str(e).splitlines() or [type(e).__name__])[0]
+                    return FsError(ERR_LINK_TIMEOUT, f"link to node {dev.node} on {dev.channel} lost: {first}")
+                finally:
+                    dev.stop_heartbeat()
         finally:
-            signal.signal(signal.SIGINT, old)
-            dev.stop_heartbeat()
             dev.notifier.remove_listener(writer)
-            writer.stop()
-    print(f"wrote {out} ({out.stat().st_size} bytes)")
-    return 0
+    return None
 
 
 def register(sub: "argparse._SubParsersAction") -> None:
@@ -68,10 +100,12 @@ def register(sub: "argparse._SubParsersAction") -> None:
                        description="Put the device in TEACH (it renders m_d and streams telemetry at "
                        "1 kHz), keep the host heartbeat, and log every frame with python-can's writer "
                        "for the file suffix (.blf .asc .log .trc .csv ...) until --duration seconds of "
-                       "device time have passed or Ctrl-C; then back to IDLE.")
+                       "device time have passed or Ctrl-C; then back to IDLE. The log is written to a "
+                       "temporary file and renamed when recording ends: an existing log is replaced only "
+                       "by a new recording, and what was recorded is kept if the link drops (exit 2).")
     p.add_argument("-o", "--output", required=True, metavar="LOG", help="log file (.blf .asc .log .trc .csv)")
     p.add_argument("--duration", type=float, default=0.0, metavar="S",
-                   help="seconds of device time to record (default: until Ctrl-C)")
+                   help=f"seconds of device time to record, at most {MAX_RECORD_S:g} (default: until Ctrl-C)")
     p.add_argument("--no-teach", dest="teach", action="store_false",
                    help="only log (do not command TEACH/IDLE)")
     add_common(p)

@@ -3,20 +3,29 @@ force tracking from the telemetry."""
 from __future__ import annotations
 
 import argparse
+import math
 import re
 import struct
+import sys
 import time
-from pathlib import Path
+from typing import Any, TextIO
 
-import can
 import numpy as np
 
-from ..demo import write_csv
-from ..errors import FsError
+from ..errors import ERR_RUN_FAULT, ERR_SKILL_PEAK, FsError, fault_text
+from ..limits import (
+    add_force_limit,
+    check_force_limit,
+    check_scales,
+    peak_problem,
+    skill_peak_N,
+)
 from ..link import ERR_LINK_ARGS, ERR_LINK_STATE
 from ..link import uds as U
 from ..link.device import Device
-from ._common import add_common, columns, connect, tracking
+from ..outputs import STDOUT, Outputs, format_rows
+from ..skill import Skill
+from ._common import add_common, columns, connect, link_errors, open_log, sigint_flag, tracking
 
 _STEP = re.compile(r"^\s*(\d+)\s*:\s*([0-9.]+)\s*(ms|s)?\s*$")
 
@@ -37,23 +46,56 @@ def parse_sequence(text: str) -> list[tuple[int, float]]:
     return steps
 
 
-def _scale(v: float, name: str) -> int:
-    if not (0.0 <= v <= 65.535) or (name == "time" and v <= 0.0):
-        raise FsError(ERR_LINK_ARGS, f"--{name}-scale out of range (0, 65.5]: {v}")
+def _scale(v: float) -> int:
+    """A scale as the device's command encodes it (1/1000 steps)."""
     return int(round(v * 1000.0))
 
 
-def run_on_device(dev: Device, args: argparse.Namespace, log_path: str | None = None) -> dict:
-    """Start, watch and stop one execution; returns the telemetry columns and figures."""
+def check_slot_forces(client: Any, dev: Device, slots: list[int], directory: dict[int, dict],
+                      goal_scale: float, time_scale: float, force_limit_N: float) -> None:
+    """Read each slot's skill back (RequestUpload) and refuse (662), before anything moves, a goal
+    scale that takes its rollout's peak above the force limit, or a rollout that is not finite."""
+    call = lambda what, fn: U.call(what, fn, dev.node)  # noqa: E731
+    call("session change", lambda: client.change_session(0x02))
+    try:
+        for slot in dict.fromkeys(slots):
+            image = U.upload(client, dev.node, slot, int(directory[slot]["length"]))
+            sk = Skill.from_bytes(image)
+            peak = skill_peak_N(sk, time_scale)
+            problem = peak_problem(peak, goal_scale, force_limit_N)
+            if problem:
+                limit = f"; largest goal scale {force_limit_N / peak:.4g}" if 0.0 < peak < float("inf") else ""
+                raise FsError(ERR_SKILL_PEAK, f"slot {slot} of node {dev.node}: {problem}{limit}; nothing was started")
+    finally:
+        try:
+            client.change_session(0x01)
+        except Exception:
+            pass
+
+
+def _fault_index(first_tick: int, n: int, fault_tick: int | None) -> int:
+    """Index of the fault's tick in a contiguous telemetry run starting at first_tick (16-bit
+    ticks compared modulo 2^16), clipped to the run."""
+    if fault_tick is None or n == 0:
+        return n - 1
+    d = (fault_tick - first_tick) & 0xFFFF
+    return min(d, n - 1)
+
+
+def run_on_device(dev: Device, args: argparse.Namespace, writer: Any = None,
+                  info: TextIO = sys.stdout) -> dict:
+    """Check, start, watch and stop one execution. Returns the telemetry columns (ending at the
+    fault's tick if it faulted), the figures, ``fault`` (0 or its code) and ``interrupted`` (Ctrl-C:
+    the device was commanded to IDLE)."""
     st = dev.status
     if st is not None and st.state != "IDLE":
         raise FsError(ERR_LINK_STATE, f"node {dev.node} is in {st.state}"
-                      f"{f' (fault {st.fault_code})' if st.fault_code else ''}; run needs IDLE "
+                      f"{f' (fault {fault_text(st.fault_code)})' if st.fault_code else ''}; run needs IDLE "
                       "(clear a fault with: forceskill status --clear)")
     end_code = {"skill": 0, "hold": 1, "release": 2}[args.end]
-    g, ts = _scale(args.goal_scale, "goal"), _scale(args.time_scale, "time")
-    writer = None
-    with U.uds_client(dev) as client:
+    g, ts = _scale(args.goal_scale), _scale(args.time_scale)
+    fault, fault_tick, interrupted, total = 0, None, False, 0.0
+    with sigint_flag() as stop, U.uds_client(dev) as client:
         directory = {e["slot"]: e for e in U.slot_directory(client, dev.node)}
         if args.sequence:
             steps = parse_sequence(args.sequence)
@@ -64,6 +106,7 @@ def run_on_device(dev: Device, args: argparse.Namespace, log_path: str | None = 
                 data += struct.pack(">BHHI", slot, g, ts, int(round(d * 1000)))
             rid, expected = U.RID_RUN_SEQUENCE, sum(d for _, d in steps)
             last_end = directory[steps[-1][0]]["end"]
+            slots = [slot for slot, _ in steps]
         else:
             if args.slot is None:
                 raise FsError(ERR_LINK_ARGS, "give --slot N or --sequence SLOT:DURATION,...")
@@ -73,70 +116,126 @@ def run_on_device(dev: Device, args: argparse.Namespace, log_path: str | None = 
             data = struct.pack(">BHHB", args.slot, g, ts, end_code)
             rid, expected = U.RID_RUN_SKILL, float(e["duration_s"]) * args.time_scale
             last_end = e["end"]
+            slots = [args.slot]
+        check_slot_forces(client, dev, slots, directory, g / 1000.0, ts / 1000.0, args.force_limit)
         end_policy = args.end if args.end != "skill" else last_end
         tail = args.hold_for if end_policy == "hold" else 0.5 + 0.05
+        total = expected + tail
+        if stop["stop"]:
+            return {"columns": columns([]), "figures": tracking(columns([])), "expected_s": expected,
+                    "fault": 0, "interrupted": True, "started": False}
         notifier = dev.notifier
         assert notifier is not None
-        if log_path:
-            writer = can.Logger(log_path)
+        if writer is not None:
             notifier.add_listener(writer)
         tel = dev.start_telemetry()
+        n_emcy = len(dev.emergencies)
         dev.start_heartbeat(telemetry_period_ms=1)
         try:
-            time.sleep(0.05)
-            U.call("start", lambda: client.start_routine(rid, data), dev.node)
-            st = dev.wait_state({"EXECUTE", "FAULT"}, 2.0 * args.timeout)
-            start_tick = st.tick
-            total = expected + tail
-            print(f"node {dev.node}: executing {'sequence ' + args.sequence if args.sequence else f'slot {args.slot}'}"
-                  f", goal x{args.goal_scale:g}, time x{args.time_scale:g}, end {end_policy}: "
-                  f"{expected:.3f} s + {tail:.2f} s", flush=True)
-            while True:
-                time.sleep(0.02)
-                cur = dev.status
-                assert cur is not None
-                if cur.state == "FAULT":
-                    raise FsError(ERR_LINK_STATE, f"node {dev.node} faulted during execution: fault "
-                                  f"{cur.fault_code} at {((cur.tick - start_tick) & 0xFFFFFF) / 1000:.3f} s")
-                if cur.state != "EXECUTE":
-                    break
-                if ((cur.tick - start_tick) & 0xFFFFFF) >= total * 1000.0:
-                    dev.command_until("idle", {"IDLE", "FAULT"}, 2.0 * args.timeout)
-                    break
-            time.sleep(0.05)
+            with link_errors(dev.node, dev.channel):
+                time.sleep(0.05)
+                U.call("start", lambda: client.start_routine(rid, data), dev.node)
+                st = dev.wait_state({"EXECUTE", "FAULT"}, 2.0 * args.timeout)
+                start_tick = st.tick
+                what = f"sequence {args.sequence}" if args.sequence else f"slot {args.slot}"
+                print(f"node {dev.node}: executing {what}"
+                      f", goal x{args.goal_scale:g}, time x{args.time_scale:g}, end {end_policy}: "
+                      f"{expected:.3f} s + {tail:.2f} s", file=info, flush=True)
+                while True:
+                    if st.state == "FAULT":
+                        fault = st.fault_code
+                        fault_tick = st.tick & 0xFFFF
+                        emcy = dev.emergencies[n_emcy:]
+                        if emcy:
+                            fault, fault_tick = int(emcy[0][1]["FaultCode"]), int(emcy[0][1]["Tick"]) & 0xFFFF
+                        break
+                    if stop["stop"]:
+                        interrupted = True
+                        dev.command_until("idle", {"IDLE", "FAULT"}, 2.0 * args.timeout)
+                        break
+                    if st.state != "EXECUTE":
+                        break
+                    if ((st.tick - start_tick) & 0xFFFFFF) >= total * 1000.0:
+                        dev.command_until("idle", {"IDLE", "FAULT"}, 2.0 * args.timeout)
+                        break
+                    time.sleep(0.02)
+                    dev.check_link()
+                    cur = dev.status
+                    assert cur is not None
+                    st = cur
+                time.sleep(0.05)
         finally:
             dev.stop_heartbeat()
             if writer is not None:
                 notifier.remove_listener(writer)
-                writer.stop()
-    samples = list(tel.samples)
+    with dev._lock:
+        samples = list(tel.samples)
     ticks = np.array([s.tick for s in samples], float)
     if ticks.size:
-        steps_ = np.diff(ticks)
-        breaks = np.flatnonzero(steps_ != 1.0)
+        breaks = np.flatnonzero(np.diff(ticks) != 1.0)
         starts = np.concatenate(([0], breaks + 1))
         ends = np.concatenate((breaks + 1, [ticks.size]))
         k = int(np.argmax(ends - starts))
         samples = samples[starts[k]:ends[k]]
-    cols = columns(samples)
-    n_exec = int(round(total * 1000.0))
-    cols = {k: v[:n_exec + 1] for k, v in cols.items()}
-    fig = tracking(cols)
-    return {"columns": cols, "figures": fig, "expected_s": expected}
+    n_keep = int(round(total * 1000.0)) + 1
+    if fault and samples:
+        n_keep = min(n_keep, _fault_index(samples[0].tick & 0xFFFF, len(samples), fault_tick) + 1)
+    cols = {k: v[:n_keep] for k, v in columns(samples).items()}
+    cols["fault"] = np.zeros(cols["t"].size)
+    if fault and cols["t"].size:
+        cols["fault"][-1] = fault
+    return {"columns": cols, "figures": tracking(cols), "expected_s": expected, "fault": fault,
+            "interrupted": interrupted, "started": True}
+
+
+CSV_COLUMNS = ("t", "x", "y", "f_contact", "f_operator", "f_cmd", "f_hat", "fault")
 
 
 def _cmd(args: argparse.Namespace) -> int:
-    if args.csv and str(Path(args.csv).parent) and not Path(args.csv).parent.is_dir():
-        raise FsError(620, f"output folder does not exist: {str(Path(args.csv).parent)!r}")
-    with connect(args) as dev:
-        r = run_on_device(dev, args, log_path=args.output)
-    cols, fig = r["columns"], r["figures"]
-    print(f"telemetry: {cols['t'].size} samples over {cols['t'][-1] if cols['t'].size else 0:.3f} s; "
-          f"max contact force {fig['max_force_N']:.3f} N, max reference {fig['max_ref_N']:.3f} N")
-    print(f"force tracking: max {fig['tracking_max_pct']:.2f} %, RMS {fig['tracking_rms_pct']:.2f} % of max reference")
-    if args.csv:
-        write_csv(args.csv, {k: cols[k] for k in ("t", "x", "y", "f_contact", "f_operator", "f_cmd", "f_hat")})
-        print(f"wrote {args.csv}")
+    check_scales(args.goal_scale, args.time_scale)
+    check_force_limit(args.force_limit)
+    if not (math.isfinite(args.hold_for) and 0.0 <= args.hold_for <= 3600.0):
+        raise FsError(ERR_LINK_ARGS, f"--hold-for must be in [0, 3600] s: {args.hold_for:g}")
+    if args.sequence:
+        parse_sequence(args.sequence)
+    to_stdout = args.csv == STDOUT
+    info = sys.stderr if to_stdout else sys.stdout
+    with Outputs() as outs:
+        csv_tmp = outs.add(args.csv) if args.csv and not to_stdout else None
+        writer = open_log(outs, args.output) if args.output else None   # refused before connecting
+        try:
+            with connect(args) as dev:
+                r = run_on_device(dev, args, writer, info=info)
+        finally:
+            if writer is not None:
+                writer.stop()
+        cols, fig = r["columns"], r["figures"]
+        if not r["started"]:
+            print("forceskill: interrupted before the start: nothing was sent", file=sys.stderr)
+            return 130
+        block = np.column_stack([cols[k] for k in CSV_COLUMNS])
+        if csv_tmp is not None:
+            with open(csv_tmp, "w", encoding="ascii", newline="\n") as f:
+                f.write(",".join(CSV_COLUMNS) + "\n" + format_rows(block))
+        elif to_stdout:
+            sys.stdout.write(",".join(CSV_COLUMNS) + "\n" + format_rows(block))
+            sys.stdout.flush()
+        outs.commit()             # the telemetry and the bus log are kept on a fault or Ctrl-C too
+    n = cols["t"].size
+    print(f"telemetry: {n} samples over {cols['t'][-1] if n else 0:.3f} s; "
+          f"max contact force {fig['max_force_N']:.3f} N, max reference {fig['max_ref_N']:.3f} N", file=info)
+    print(f"force tracking: max {fig['tracking_max_pct']:.2f} %, RMS {fig['tracking_rms_pct']:.2f} % of max reference",
+          file=info)
+    wrote = f"; telemetry written to {args.csv}" if args.csv and not to_stdout else ""
+    if args.csv and not to_stdout:
+        print(f"wrote {args.csv}", file=info)
+    if r["fault"]:
+        t_f = f" at {cols['t'][-1]:.3f} s" if n else ""
+        raise FsError(ERR_RUN_FAULT, f"node {args.node} faulted during execution: fault "
+                      f"{fault_text(r['fault'])}{t_f}{wrote}")
+    if r["interrupted"]:
+        print(f"forceskill: interrupted: node {args.node} commanded to IDLE{wrote}", file=sys.stderr)
+        return 130
     return 0
 
 
@@ -145,16 +244,23 @@ def register(sub: "argparse._SubParsersAction") -> None:
                        description="Start a skill (--slot) or a sequence (--sequence 1:8s,2:9s) with "
                        "RoutineControl, keep the host heartbeat, record telemetry at 1 kHz, stop after "
                        "the duration (hold: after --hold-for more seconds), and report the force "
-                       "tracking max/RMS in %% of the maximum reference force.")
+                       "tracking max/RMS in %% of the maximum reference force. Before anything is "
+                       "started, each slot's skill is read back and a goal scale that takes its peak "
+                       "above --force-limit is refused. Ctrl-C commands IDLE, writes the telemetry and "
+                       "exits 130; a fault writes the telemetry up to the fault and exits 2.")
     p.add_argument("--slot", type=int, metavar="N", help="slot 1..8")
     p.add_argument("--sequence", metavar="SLOT:DUR,...", help="skills in series, e.g. 1:8s,2:9s")
-    p.add_argument("--goal-scale", type=float, default=1.0, metavar="S")
-    p.add_argument("--time-scale", type=float, default=1.0, metavar="S")
+    p.add_argument("--goal-scale", type=float, default=1.0, metavar="S",
+                   help="multiply the force by S, 0..65.535; refused if the skill's peak times S is "
+                   "above --force-limit")
+    p.add_argument("--time-scale", type=float, default=1.0, metavar="S", help="stretch time by S, 0.001..65.535")
     p.add_argument("--end", choices=("skill", "hold", "release"), default="skill",
                    help="end policy (default: the skill's own)")
     p.add_argument("--hold-for", type=float, default=0.5, metavar="S",
                    help="with hold: seconds to hold the last force before stopping (0.5)")
     p.add_argument("-o", "--output", metavar="LOG", help="also log the bus (.blf .asc .log .trc .csv)")
-    p.add_argument("--csv", metavar="CSV", help="write the telemetry as t,x,y,f_contact,f_operator,f_cmd,f_hat")
+    p.add_argument("--csv", metavar="CSV", help="write the telemetry as t,x,y,f_contact,f_operator,f_cmd,f_hat,fault "
+                   "('-': standard output); also on a fault (ending with the fault row) and on Ctrl-C")
+    add_force_limit(p)
     add_common(p)
     p.set_defaults(func=_cmd)

@@ -3,10 +3,41 @@ from __future__ import annotations
 
 import argparse
 import struct
+from typing import Any
 
-from ..errors import fault_text
+from udsoncan.exceptions import NegativeResponseException
+
+from ..errors import ERR_CLEAR_BLOCKED, FsError, fault_text
+from ..link import ERR_LINK_STATE
 from ..link import uds as U
 from ._common import add_common, connect
+
+
+def _names(codes: list[int]) -> str:
+    return ", ".join(fault_text(c) for c in codes) or "none"
+
+
+def clear_faults(client: Any, node: int, state: str) -> None:
+    """RoutineControl clear faults; a refusal names the condition that blocks it (666), read from
+    the device's fault-cause identifier."""
+    try:
+        client.start_routine(U.RID_CLEAR_FAULTS)
+        return
+    except NegativeResponseException as e:
+        code = e.response.code
+        if code == 0x24:
+            raise FsError(ERR_LINK_STATE, f"node {node} has no fault to clear (state {state})") from None
+        if code != 0x22:
+            raise FsError(632, f"clear faults: node {node} {U.describe_nrc(e)}") from None
+    try:
+        latched, present = U.fault_causes(client, node)
+    except FsError:
+        raise FsError(ERR_CLEAR_BLOCKED, f"faults of node {node} not cleared: a cause persists (the device "
+                      "does not report which)") from None
+    blocking = [c for c in present if c != 500]   # a clear request is host activity itself
+    raise FsError(ERR_CLEAR_BLOCKED, f"faults of node {node} not cleared: cause still present: "
+                  f"{_names(blocking) if blocking else 'none now (it ended at the request; try again)'}; "
+                  f"latched: {_names(latched)}")
 
 
 def _cmd(args: argparse.Namespace) -> int:
@@ -16,8 +47,14 @@ def _cmd(args: argparse.Namespace) -> int:
         print(f"node {dev.node} on {dev.channel}: {st.state}, fault {fault_text(st.fault_code)}, "
               f"actuator {'on' if st.actuator_enabled else 'off'}, tick {st.tick}")
         with U.uds_client(dev) as client:
+            if st.state == "FAULT":
+                try:
+                    latched, present = U.fault_causes(client, dev.node)
+                    print(f"latched faults: {_names(latched)}; causes present: {_names(present)}")
+                except FsError:
+                    pass
             if args.clear:
-                U.call("clear faults", lambda: client.start_routine(U.RID_CLEAR_FAULTS), dev.node)
+                clear_faults(client, dev.node, st.state)
                 print("faults cleared")
             ver = U.read_did(client, U.DID_SW_VERSION, dev.node).decode("ascii", "replace")
             v = U.read_did(client, U.DID_VERSIONS, dev.node)

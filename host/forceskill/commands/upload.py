@@ -9,6 +9,7 @@ from pathlib import Path
 from tqdm import tqdm
 
 from ..errors import FsError
+from ..limits import add_force_limit, check_skill_force
 from ..link import ERR_LINK_ARGS, ERR_LINK_STATE
 from ..link import uds as U
 from ..link.device import Device
@@ -50,6 +51,7 @@ def _cmd(args: argparse.Namespace) -> int:
     if not 1 <= args.slot <= U.N_SLOTS:
         raise FsError(ERR_LINK_ARGS, f"--slot must be 1..{U.N_SLOTS}: {args.slot}")
     sk = Skill.read(args.skill)              # validates (CRC, version, ranges) before anything is sent
+    check_skill_force(sk, args.skill, force_limit_N=args.force_limit)   # finite, peak within the limit
     image = Path(args.skill).read_bytes()
     with connect(args) as dev:
         r = upload_skill(dev, image, args.slot, progress=not args.quiet, verify=not args.no_verify)
@@ -65,11 +67,13 @@ def _cmd(args: argparse.Namespace) -> int:
 def register(sub: "argparse._SubParsersAction") -> None:
     p = sub.add_parser("upload", help="upload a skill into a device slot (UDS over ISO-TP)",
                        description="Validate SKILL, download it into --slot over UDS (programming "
-                       "session, SecurityAccess), then read it back and compare. A refused or "
-                       "interrupted upload leaves the slot's previous skill in place.")
+                       "session, SecurityAccess), then read it back and compare. A skill whose rollout is "
+                       "not finite or peaks above --force-limit is refused before anything is sent. A "
+                       "refused or interrupted upload leaves the slot's previous skill in place.")
     p.add_argument("skill", metavar="SKILL")
     p.add_argument("--slot", type=int, required=True, metavar="N", help=f"slot 1..{U.N_SLOTS}")
     p.add_argument("--no-verify", action="store_true", help="skip the read-back")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    add_force_limit(p)
     add_common(p)
     p.set_defaults(func=_cmd)

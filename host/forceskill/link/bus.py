@@ -76,6 +76,18 @@ def _precheck_socketcand(cfg: dict[str, Any]) -> None:
                       f"{e.strerror or e}") from None
 
 
+def _open_with_retry(cfg: dict[str, Any]) -> can.BusABC:
+    """can.Bus(**cfg); a socketcand handshake that read the "< ok >" together with the first frame
+    (python-can expects it alone: a client that was slow to read) is simply tried again."""
+    for attempt in range(3):
+        try:
+            return can.Bus(**cfg)
+        except can.CanError as e:
+            if cfg.get("interface") != "socketcand" or "got: '< ok >" not in str(e) or attempt == 2:
+                raise
+    raise AssertionError("unreachable")
+
+
 def open_bus(ns: argparse.Namespace) -> tuple[can.BusABC, dict[str, Any]]:
     """Open the bus the options describe; FsError(630) with one line on any failure."""
     node = getattr(ns, "node", 0)
@@ -90,7 +102,7 @@ def open_bus(ns: argparse.Namespace) -> tuple[can.BusABC, dict[str, Any]]:
         if not cfg.get("channel"):
             cfg["channel"] = "can0"
     try:
-        bus = can.Bus(**cfg)
+        bus = _open_with_retry(cfg)
     except can.CanInterfaceNotImplementedError as e:
         raise FsError(ERR_LINK_BUS, f"CAN interface {iface!r} not available here: {e}") from None
     except (can.CanError, OSError, ValueError, TypeError, ImportError) as e:

@@ -3,6 +3,9 @@ a send succeeding), the host heartbeat, commands, and the status/telemetry/emerg
 all encoded and decoded through the DBC."""
 from __future__ import annotations
 
+import gc
+import logging
+import sys
 import threading
 import time
 from dataclasses import dataclass, field
@@ -14,7 +17,14 @@ from ..errors import FsError
 from . import ERR_LINK_NO_RESPONSE, ERR_LINK_TIMEOUT
 from .dbc import END_POLICIES, MODES, STATES, check, load_db, protect
 
+# python-can logs a failed periodic send with its traceback; the commands report it as one line
+logging.getLogger("can.bcm").setLevel(logging.CRITICAL)
+
 HEARTBEAT_PERIOD_S = 0.010   # well inside the device's 100 ms silence timeout, at any speed factor
+#: While the heartbeat runs, a thread waiting for the GIL asks for it after this long (Python's
+#: default 5 ms): the heartbeat thread shares the interpreter with the receive thread, which decodes
+#: 2 kHz of telemetry, and on a loaded machine each wait is stretched by the CPU share.
+HEARTBEAT_GIL_SWITCH_S = 0.0005
 
 
 @dataclass
@@ -79,6 +89,8 @@ class Device(can.Listener):
         self.telemetry_period_ms = 0
         self.notifier: Optional[can.Notifier] = None
         self.on_status: Optional[Callable[[Status], None]] = None
+        self.link_error: Optional[BaseException] = None
+        self._saved_switch_s = sys.getswitchinterval()
 
     # -- lifecycle ------------------------------------------------------------------------------
     def __enter__(self) -> "Device":
@@ -124,6 +136,20 @@ class Device(can.Listener):
                     tel.samples.append(Sample(tel.unwrap(pos[0]), pos[1], pos[2], float(sig["ForceContact"]),
                                               float(sig["ForceOperator"]), float(sig["ForceCmd"]),
                                               float(sig["ForceRef"])))
+
+    def on_error(self, exc: Exception) -> None:
+        """The Notifier's receive thread failed (connection lost): remember the first error for
+        ``check_link`` (the commands report it as one line) and pace the thread's retries."""
+        if self.link_error is None:
+            self.link_error = exc
+        time.sleep(0.05)
+
+    def check_link(self) -> None:
+        """FsError(635) if the bus failed under the receive thread."""
+        e = self.link_error
+        if e is not None:
+            first = (str(e).splitlines() or [type(e).__name__])[0]
+            raise FsError(ERR_LINK_TIMEOUT, f"link to node {self.node} on {self.channel} lost: {first}")
 
     # -- presence -------------------------------------------------------------------------------
     def wait_present(self) -> Status:
@@ -186,15 +212,31 @@ class Device(can.Listener):
         self.telemetry_period_ms = telemetry_period_ms
         if self._hb_task is not None:
             return
+        # the heartbeat must not wait behind the receive thread or a full garbage collection of
+        # everything the process holds: short GIL switches, and the objects that exist now are
+        # left out of collections until the heartbeat stops
+        self._saved_switch_s = sys.getswitchinterval()
+        sys.setswitchinterval(min(self._saved_switch_s, HEARTBEAT_GIL_SWITCH_S))
+        gc.freeze()
         m = self._m["HostHeartbeat"]
         msg = can.Message(arbitration_id=m.frame_id, data=bytearray(8), is_extended_id=False)
         self._hb_task = self.bus.send_periodic(msg, HEARTBEAT_PERIOD_S, store_task=False,
                                                modifier_callback=self._heartbeat_update)
+        if hasattr(self._hb_task, "on_error"):   # the thread-based task: a failed send ends it quietly
+            self._hb_task.on_error = self._heartbeat_failed
+
+    def _heartbeat_failed(self, exc: Exception) -> bool:
+        """The heartbeat could not be sent (link lost): remember it for ``check_link``, stop."""
+        if self.link_error is None:
+            self.link_error = exc
+        return False
 
     def stop_heartbeat(self) -> None:
         if self._hb_task is not None:
             self._hb_task.stop()
             self._hb_task = None
+            sys.setswitchinterval(self._saved_switch_s)
+            gc.unfreeze()
 
     def command(self, mode: str, slot: int = 0, goal_scale: float = 1.0, time_scale: float = 1.0,
                 end: str = "skill") -> None:

@@ -62,7 +62,18 @@ class Raw(udsoncan.DidCodec):
 DID_CODECS = {DID_SW_VERSION: Raw(19), DID_VERSIONS: Raw(6), DID_GAINS_X: Raw(20), DID_GAINS_Y: Raw(20),
               DID_LIMITS_X: Raw(24), DID_LIMITS_Y: Raw(24), DID_COMM: Raw(3), DID_OBJECT: Raw(25),
               DID_SLOT_DIR: Raw(1 + N_SLOTS * SLOT_ENTRY), DID_LAST_TRANSFER: Raw(2),
-              DID_DEVICE_STATE: Raw(9)}
+              DID_DEVICE_STATE: Raw(9), DID_FAULT_CAUSES: Raw(8)}
+
+
+def mask_codes(mask: int) -> list[int]:
+    """Fault codes of a cause/latched mask (bit n is fault 500 + n)."""
+    return [500 + n for n in range(32) if mask >> n & 1]
+
+
+def fault_causes(client: Client, node: int) -> tuple[list[int], list[int]]:
+    """(latched faults, causes present at the device's last tick), from DID 0x0301."""
+    latched, present = struct.unpack(">II", read_did(client, DID_FAULT_CAUSES, node))
+    return mask_codes(latched), mask_codes(present)
 
 
 def device_secret() -> bytes:

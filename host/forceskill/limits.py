@@ -1,0 +1,95 @@
+"""The host's limits on scales, rollout length and a skill's force, checked the same way by every
+command (fit, show, rollout, upload, run) before anything is written or sent.
+
+- Goal scale: finite, 0 <= S <= 65.535; time scale: finite, 0.001 <= S <= 65.535 (the range the
+  device's command encodes, 1/1000 steps in 16 bits; code 109 as the firmware).
+- Rollout length: at most ``MAX_ROLLOUT_STEPS`` steps (663); the rollout is computed and written
+  in blocks, so memory does not grow with the length.
+- Force: a skill's rollout must be finite and its peak |f_hat| at most the force limit (50 N by
+  default, the device's default ``force_max_N``); a goal scale multiplies the force exactly, so a
+  run at goal scale S needs S * peak <= limit (662).
+"""
+from __future__ import annotations
+
+import argparse
+import math
+from typing import TYPE_CHECKING
+
+from .errors import (
+    ERR_ROLLOUT_CAP,
+    ERR_SCALE_INVALID,
+    ERR_SKILL_PEAK,
+    FsError,
+    ParamError,
+)
+
+if TYPE_CHECKING:
+    from .skill import Skill
+
+GOAL_SCALE_MAX = 65.535
+TIME_SCALE_MIN = 0.001
+TIME_SCALE_MAX = 65.535
+#: 10^7 steps: 2.8 h at 1 ms (a skill is at most 3600 s); about 10 s of CPU and a few 100 MB of CSV.
+MAX_ROLLOUT_STEPS = 10_000_000
+#: The device's default |force command| limit (firmware/safety/lim.h force_max_N).
+FORCE_LIMIT_N = 50.0
+
+
+def check_scales(goal_scale: float, time_scale: float) -> None:
+    """Goal scale in [0, 65.535], time scale in [0.001, 65.535], both finite (ParamError 109)."""
+    if not (math.isfinite(goal_scale) and 0.0 <= goal_scale <= GOAL_SCALE_MAX):
+        raise ParamError(ERR_SCALE_INVALID, f"goal scale must be finite and in [0, {GOAL_SCALE_MAX:g}]: "
+                         f"{goal_scale:g}")
+    if not (math.isfinite(time_scale) and TIME_SCALE_MIN <= time_scale <= TIME_SCALE_MAX):
+        raise ParamError(ERR_SCALE_INVALID, f"time scale must be finite and in [{TIME_SCALE_MIN:g}, "
+                         f"{TIME_SCALE_MAX:g}]: {time_scale:g}")
+
+
+def check_steps(n_steps: int) -> None:
+    """0 <= n_steps <= MAX_ROLLOUT_STEPS (663)."""
+    if not 0 <= n_steps <= MAX_ROLLOUT_STEPS:
+        raise FsError(ERR_ROLLOUT_CAP, f"rollout of {n_steps} steps outside 0..{MAX_ROLLOUT_STEPS} "
+                      "(give fewer --steps or a smaller --time-scale)")
+
+
+def check_force_limit(force_limit_N: float) -> None:
+    """A usable force limit: finite and > 0 (ParamError 110)."""
+    from .errors import ERR_LIMIT_INVALID
+    if not (math.isfinite(force_limit_N) and force_limit_N > 0.0):
+        raise ParamError(ERR_LIMIT_INVALID, f"force limit must be finite and > 0 N: {force_limit_N:g}")
+
+
+def skill_peak_N(skill: "Skill", time_scale: float = 1.0) -> float:
+    """max |f_hat| of the skill's rollout at goal 1 (inf when the rollout is not finite)."""
+    from .dmp import rollout_peak
+    return rollout_peak(skill, time_scale=time_scale)
+
+
+def peak_problem(peak_N: float, goal_scale: float, force_limit_N: float) -> str:
+    """'' when goal_scale * peak is finite and within the limit, else what is wrong (one phrase)."""
+    if not math.isfinite(peak_N):
+        return "its rollout is not finite"
+    if goal_scale * peak_N > force_limit_N:
+        at = f" at goal scale {goal_scale:g}" if goal_scale != 1.0 else ""
+        return f"its rollout peaks at {goal_scale * peak_N:.4g} N{at}, above the force limit {force_limit_N:g} N"
+    return ""
+
+
+def check_skill_force(skill: "Skill", name: str, goal_scale: float = 1.0, time_scale: float = 1.0,
+                      force_limit_N: float = FORCE_LIMIT_N) -> float:
+    """The skill's peak at goal 1; FsError 662 if its rollout at goal_scale is not finite or above
+    the limit."""
+    check_scales(goal_scale, time_scale)
+    check_force_limit(force_limit_N)
+    peak = skill_peak_N(skill, time_scale)
+    problem = peak_problem(peak, goal_scale, force_limit_N)
+    if problem:
+        raise FsError(ERR_SKILL_PEAK, f"skill {name}: {problem}")
+    return peak
+
+
+def add_force_limit(p: argparse.ArgumentParser) -> None:
+    """The --force-limit option (N, default the device's 50 N)."""
+    from .cli import _float
+    p.add_argument("--force-limit", type=_float, default=FORCE_LIMIT_N, metavar="N",
+                   help=f"refuse a skill whose rollout is not finite or peaks above N newtons ({FORCE_LIMIT_N:g})")

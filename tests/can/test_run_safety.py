@@ -1,0 +1,138 @@
+"""`run` on the simulator when things go wrong: a goal scale that takes the skill above the force
+limit is refused before anything moves; Ctrl-C commands IDLE, keeps the telemetry and exits 130; a
+fault keeps the telemetry up to the fault row and names the fault; after a fault the simulated
+drive parks the handle so that `status --clear` succeeds; a refused clear names its cause."""
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from conftest import REPO, SCENARIOS, Server
+from forceskill import cli
+
+SKILL = REPO / "tests" / "vectors" / "press_n50_lwr_hold.skill"   # 1.5 s, peak 4.84 N at goal 1
+
+
+def run(capsys, *argv: str) -> tuple[int, str, str]:
+    rc = cli.main(list(argv))
+    out, err = capsys.readouterr()
+    return rc, out, err
+
+
+def load_csv(path: Path) -> dict[str, np.ndarray]:
+    a = np.genfromtxt(path, delimiter=",", names=True)
+    return {n: np.asarray(a[n]) for n in a.dtype.names}
+
+
+@pytest.fixture(scope="module")
+def loaded():
+    s = Server(SCENARIOS / "pressing_task1_demo.toml")
+    time.sleep(0.2)
+    assert cli.main(["upload", str(SKILL), "--slot", "1", "-q", *s.bus_args()]) == 0
+    yield s
+    s.stop()
+
+
+def test_goal_scale_above_the_force_limit_is_refused_before_anything_moves(loaded, capsys, tmp_path):
+    csv = tmp_path / "r.csv"
+    rc, out, err = run(capsys, "run", "--slot", "1", "--goal-scale", "50", "--csv", str(csv), *loaded.bus_args())
+    assert rc == 2 and "[662]" in err and "above the force limit 50 N" in err and "nothing was started" in err
+    assert "executing" not in out and not csv.exists()
+    rc, out, err = run(capsys, "status", *loaded.bus_args())
+    assert rc == 0 and "IDLE, fault none" in out
+    # a lower limit refuses what the default allows
+    rc, out, err = run(capsys, "run", "--slot", "1", "--goal-scale", "2", "--force-limit", "9", *loaded.bus_args())
+    assert rc == 2 and "[662]" in err and "largest goal scale 1.8" in err
+
+
+def test_ctrl_c_commands_idle_and_writes_the_telemetry(loaded, tmp_path):
+    csv = tmp_path / "r.csv"
+    env = dict(os.environ, PYTHONPATH=str(REPO / "host"))
+    p = subprocess.Popen([sys.executable, "-m", "forceskill", "run", "--slot", "1", "--end", "hold",
+                          "--hold-for", "30", "--csv", str(csv), "-o", str(tmp_path / "r.blf"), *loaded.bus_args()],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    line = p.stdout.readline()                       # "node 0: executing ..."
+    assert "executing" in line, line + p.stderr.read()
+    time.sleep(1.0)
+    p.send_signal(signal.SIGINT)
+    out, err = p.communicate(timeout=30)
+    assert p.returncode == 130, err
+    assert "interrupted: node 0 commanded to IDLE" in err and "Traceback" not in err
+    cols = load_csv(csv)
+    assert cols["t"].size > 500 and np.all(cols["fault"] == 0)
+    assert (tmp_path / "r.blf").stat().st_size > 1000
+    time.sleep(0.3)
+    rc = cli.main(["status", *loaded.bus_args()])
+    assert rc == 0
+
+
+def test_fault_keeps_the_telemetry_then_the_handle_is_parked_and_cleared(capsys, tmp_path):
+    # bus-off at 8 s of simulated time: inside a long hold started right after the upload
+    srv = Server(SCENARIOS / "pressing_task1_demo.toml", extra=("--bus-off-at", "8", "--bus-off-for", "0.2"))
+    try:
+        time.sleep(0.2)
+        assert cli.main(["upload", str(SKILL), "--slot", "1", "-q", *srv.bus_args()]) == 0
+        csv = tmp_path / "r.csv"
+        rc, out, err = run(capsys, "run", "--slot", "1", "--end", "hold", "--hold-for", "30", "--csv", str(csv),
+                           *srv.bus_args())
+        assert rc == 2 and "[665]" in err and "fault 501 (bus-off)" in err and f"written to {csv}" in err
+        cols = load_csv(csv)
+        assert cols["fault"][-1] == 501 and np.all(cols["fault"][:-1] == 0) and cols["t"].size > 100
+        assert np.all(np.diff(cols["t"]) > 0)
+        # after the stop ramp the simulated drive parks the handle at the start (a free handle
+        # drifted away at 3.5 cm/s, out of the workspace within 15 s: no clear possible)
+        x = parked_positions(srv)
+        assert np.all(np.abs(x - cols["x"][0]) < 1e-4), x
+        rc, out, err = run(capsys, "status", "--clear", *srv.bus_args())
+        assert rc == 0 and "latched faults: 501 (bus-off)" in out and "faults cleared" in out, out + err
+        rc, out, err = run(capsys, "status", *srv.bus_args())
+        assert rc == 0 and "IDLE, fault none" in out
+    finally:
+        srv.stop()
+
+
+def parked_positions(srv: Server) -> np.ndarray:
+    """x of the FAULT-state telemetry (every 100 ms) from 1 s to 3 s after now."""
+    import argparse
+
+    from forceskill.commands._common import connect
+    ns = argparse.Namespace(interface="socketcand", channel="can0",
+                            bus_kwargs={"host": "127.0.0.1", "port": srv.port}, node=0, timeout=3.0)
+    with connect(ns) as dev:
+        time.sleep(1.0)
+        tel = dev.start_telemetry()
+        time.sleep(2.0)
+        assert dev.status is not None and dev.status.state == "FAULT"
+        return np.array([s.x_m for s in tel.samples])
+
+
+def test_a_refused_clear_names_the_cause_that_persists():
+    import udsoncan
+    from udsoncan.exceptions import NegativeResponseException
+
+    from forceskill.commands.status import clear_faults
+    from forceskill.errors import FsError
+
+    class Client:
+        def start_routine(self, rid: int) -> None:
+            r = udsoncan.Response(service=udsoncan.services.RoutineControl, code=0x22)
+            raise NegativeResponseException(r)
+
+        def read_data_by_identifier(self, did: int):  # latched 507 and 509; 509 and 500 present
+            class R:
+                class service_data:
+                    values = {did: (1 << 7 | 1 << 9).to_bytes(4, "big") + (1 << 9 | 1).to_bytes(4, "big")}
+            return R
+
+    with pytest.raises(FsError) as e:
+        clear_faults(Client(), 0, "FAULT")
+    assert e.value.code == 666
+    assert "cause still present: 509 (outside workspace)" in e.value.message
+    assert "latched: 507 (contact force above limit), 509 (outside workspace)" in e.value.message
