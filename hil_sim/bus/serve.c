@@ -182,7 +182,7 @@ static void sim_tick(serve_t *s)
         device_boot(s);                     /* ECUReset: firmware restarts, flash keeps the slots */
     }
 
-    (void)sim_couple_actuate(sc, &s->app, s->drv, NULL);   /* ideal drive: compensated in EXECUTE */
+    const bool enable = sim_couple_actuate(sc, &s->app, s->drv, NULL); /* ideal drive: compensated in EXECUTE */
     /* a parked device: in IDLE the simulated drive brings the handle back to the scenario's start
      * position and holds it at rest, so every TEACH or EXECUTE starts where `hil_sim run` starts;
      * after a fault, once the stop ramp has switched the actuator off, it parks the handle too (a

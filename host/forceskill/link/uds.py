@@ -20,7 +20,7 @@ from udsoncan.client import Client
 from udsoncan.connections import PythonIsoTpConnection
 from udsoncan.exceptions import NegativeResponseException, TimeoutException, UnexpectedResponseException
 
-from ..codes import (DID_COMM, DID_DEVICE_STATE, DID_GAINS_X, DID_GAINS_Y,  # noqa: F401
+from ..codes import (DID_COMM, DID_DEVICE_STATE, DID_FAULT_CAUSES, DID_GAINS_X, DID_GAINS_Y,  # noqa: F401
                      DID_LAST_TRANSFER, DID_LIMITS_X, DID_LIMITS_Y, DID_OBJECT, DID_SLOT_DIR,
                      DID_SW_VERSION, DID_VERSIONS, RID_CLEAR_FAULTS, RID_ERASE_SLOT,
                      RID_RUN_SEQUENCE, RID_RUN_SKILL, RID_SELF_TEST, SEC_LEVEL_WRITE,
