@@ -320,6 +320,61 @@ static int rng_adapter(void *ctx, uint8_t *buf, uint32_t len)
     return hal_random(buf, len);
 }
 
+const sec_config_t *app_sec_config(const app_t *app, uint8_t level)
+{
+    if (level == UDS_SEC_LEVEL_WRITE) {
+        return &app->sec_cfg[0];
+    }
+    return level == UDS_SEC_LEVEL_FIRMWARE ? &app->sec_cfg[1] : NULL;
+}
+
+void app_sec_persist(app_t *app)
+{
+    uint8_t rec[SEC_RECORD_LEN];
+    sec_record_encode(&app->sec, rec);
+    if (!app->sec_nvm_ok || memcmp(rec, app->sec_saved, sizeof rec) == 0) {
+        return;
+    }
+    if (nvm_write(&app->sec_nvm, 0u, rec, (uint32_t)sizeof rec) == NVM_OK) {
+        memcpy(app->sec_saved, rec, sizeof rec);
+    }
+}
+
+/* One secret per level from the HAL; the attempt counter from the record kept across resets
+ * (none or unreadable: the lockout delay runs at power-up, the safe side). */
+static void sec_setup(app_t *app)
+{
+    static const uint8_t levels[APP_SEC_LEVELS] = {UDS_SEC_LEVEL_WRITE, UDS_SEC_LEVEL_FIRMWARE};
+    for (unsigned i = 0; i < APP_SEC_LEVELS; i++) {
+        sec_config_t *c = &app->sec_cfg[i];
+        sec_default_config(c);
+        uint8_t secret_len = 0u;
+        const uint8_t *secret = hal_device_secret(levels[i], &secret_len);
+        if (secret_len > SEC_SECRET_MAX) {
+            secret_len = SEC_SECRET_MAX;
+        }
+        memcpy(c->secret, secret, secret_len);
+        c->secret_len = secret_len;
+        c->rng = rng_adapter;
+        c->rng_ctx = app;
+    }
+    uint8_t failed = 0u, locked_out = 1u;
+    const fls_dev_t *dev = hal_sec_flash();
+    app->sec_nvm_ok = dev != NULL && nvm_init(&app->sec_nvm, dev) == NVM_OK;
+    if (app->sec_nvm_ok) {
+        uint8_t rec[SEC_RECORD_LEN];
+        uint32_t len = 0u;
+        const nvm_status_t st = nvm_read(&app->sec_nvm, 0u, rec, (uint32_t)sizeof rec, &len);
+        if (st == NVM_OK && sec_record_decode(rec, len, &failed, &locked_out)) {
+            memcpy(app->sec_saved, rec, sizeof rec);
+        } else if (nvm_dir(&app->sec_nvm, 0u) != NULL && nvm_dir(&app->sec_nvm, 0u)->valid == 0u) {
+            failed = 0u;                    /* a fresh device: no record yet */
+            locked_out = 0u;
+        }
+    }
+    sec_restore(&app->sec_cfg[0], &app->sec, app->now_ms, failed, locked_out);
+}
+
 void app_init(app_t *app, const app_config_t *cfg)
 {
     memset(app, 0, sizeof(*app));
@@ -337,17 +392,7 @@ void app_init(app_t *app, const app_config_t *cfg)
     app_uds_bind(app, &hooks);
     uds_server_init(&app->uds, &hooks);
 
-    sec_default_config(&app->sec_cfg);
-    uint8_t secret_len = 0u;
-    const uint8_t *secret = hal_device_secret(&secret_len);
-    if (secret_len > SEC_SECRET_MAX) {
-        secret_len = SEC_SECRET_MAX;
-    }
-    memcpy(app->sec_cfg.secret, secret, secret_len);
-    app->sec_cfg.secret_len = secret_len;
-    app->sec_cfg.rng = rng_adapter;
-    app->sec_cfg.rng_ctx = app;
-    sec_init(&app->sec_cfg, &app->sec, app->now_ms);
+    sec_setup(app);
 
     app->last_transfer_status = APP_TRANSFER_NONE;
     app->nvm_ok = (nvm_init(&app->nvm, hal_flash()) == NVM_OK);
@@ -468,8 +513,13 @@ void app_tick(app_t *app, bool overrun)
         app->vel_mps[a] = exec_vel_update(&app->vel[a], app->sens.pos_m[a], FS_R(0.001));
     }
     if (app->state == APP_BOOT) {
-        if (!app_fw_self_test_and_confirm(app)) {
-            hal_request_reset(1u);          /* unconfirmed: the next boot reverts */
+        app->fw_self_test_ok = app_fw_self_test_and_confirm(app);
+        if (!app->fw_self_test_ok) {
+            /* unconfirmed: the port resets after this tick and the bootloader reverts. Nothing
+             * from the bus is served meanwhile (no node can confirm this image for it). */
+            hal_request_reset(1u);
+            hal_actuator_enable(false);
+            return;
         }
         enter_idle(app);
     }

@@ -35,6 +35,7 @@
 #define APP_TRANSFER_NONE 0xFFFDu        /* DID 0x0201: no download since power-up */
 #define APP_PROTO_VERSION_MAJOR 1u
 #define APP_PROTO_VERSION_MINOR 0u
+#define APP_SEC_LEVELS 2u               /* SecurityAccess levels 1 and 3, one secret each */
 
 /** Device states (DeviceStatus.State in the DBC). */
 typedef enum {
@@ -88,8 +89,11 @@ typedef struct {
     uds_server_t uds;
     uint8_t uds_resp[ISOTP_MAX_PAYLOAD];
     uint32_t reset_since_ms;           /* ECUReset accepted at (its response leaves first) */
-    sec_config_t sec_cfg;
-    sec_state_t sec;
+    sec_config_t sec_cfg[APP_SEC_LEVELS];  /* [0] level 1 (skills, settings), [1] level 3 (firmware) */
+    sec_state_t sec;                   /* one attempt counter for both levels */
+    nvm_t sec_nvm;                     /* attempt record (hal_sec_flash), kept across resets */
+    bool sec_nvm_ok;
+    uint8_t sec_saved[SEC_RECORD_LEN]; /* the record as last stored */
     /* storage */
     nvm_t nvm;
     bool nvm_ok;
@@ -110,6 +114,7 @@ typedef struct {
     boot_t boot;
     fwu_t fwu;
     bool fw_xfer;                      /* the active download is a firmware image */
+    bool fw_self_test_ok;              /* the running image passed its self-test (boot tick) */
     /* control */
     exec_state_t exec;
     exec_config_t exec_run_cfg;
@@ -162,5 +167,11 @@ void app_uds_bind(app_t *app, uds_app_t *out);
 
 /** Reload slot caches from storage (boot, after a download or erase). */
 void app_slots_reload(app_t *app);
+
+/** SecurityAccess config of a level (1 or 3); NULL for any other level. */
+const sec_config_t *app_sec_config(const app_t *app, uint8_t level);
+
+/** Store the SecurityAccess attempt record if it changed (after every seed/key request). */
+void app_sec_persist(app_t *app);
 
 #endif /* APP_H */

@@ -72,8 +72,14 @@ uint32_t hal_fw_slot_sectors(void);
 /** The device key of the firmware image tag (HMAC-SHA256, from protected storage). */
 const uint8_t *hal_fw_key(uint8_t *len);
 
-/** The per-device secret of SecurityAccess (from protected storage); *len gets its length. */
-const uint8_t *hal_device_secret(uint8_t *len);
+/** The per-device SecurityAccess secret of one level (UDS_SEC_LEVEL_WRITE 1, _FIRMWARE 3; from
+ *  protected storage, a different secret per level); *len gets its length (0: level unknown). */
+const uint8_t *hal_device_secret(uint8_t level, uint8_t *len);
+
+/** Two sectors that keep the SecurityAccess attempt record (wrong-key counter, lockout) across
+ *  reset and power loss (an nvm slot 0); NULL if the port has none: the application then starts
+ *  every power-up with the full lockout delay. */
+const fls_dev_t *hal_sec_flash(void);
 
 /** Request a reset (ECUReset): the port restarts the firmware after the current tick. */
 void hal_request_reset(uint8_t type);

@@ -200,7 +200,7 @@ static uint16_t svc_wdbi(uds_server_t *srv, const uint8_t *req, uint16_t len, ui
         return negative(resp, req[0], UDS_NRC_SERVICE_NOT_IN_SESSION);
     }
     const uint16_t did = be16(&req[1]);
-    if (srv->unlocked_level == 0u) {
+    if (srv->unlocked_level != UDS_SEC_LEVEL_WRITE) {
         return negative(resp, req[0], UDS_NRC_SECURITY_ACCESS_DENIED);
     }
     const uint8_t nrc = srv->app.write_did(srv->app.ctx, did, &req[3], (uint16_t)(len - 3u));
@@ -228,7 +228,7 @@ static uint16_t svc_routine(uds_server_t *srv, const uint8_t *req, uint16_t len,
     if (rid == UDS_RID_ERASE_SLOT && srv->session == UDS_SESSION_DEFAULT) {
         return negative(resp, req[0], UDS_NRC_SERVICE_NOT_IN_SESSION);
     }
-    if (rid == UDS_RID_ERASE_SLOT && srv->unlocked_level == 0u) {
+    if (rid == UDS_RID_ERASE_SLOT && srv->unlocked_level != UDS_SEC_LEVEL_WRITE) {
         return negative(resp, req[0], UDS_NRC_SECURITY_ACCESS_DENIED);
     }
     uint16_t n = 0u;

@@ -8,7 +8,9 @@
  * 0x22/0x2E Read/WriteDataByIdentifier, 0x31 RoutineControl, 0x34 RequestDownload,
  * 0x35 RequestUpload, 0x36 TransferData, 0x37 RequestTransferExit, 0x3E TesterPresent.
  * Session rules (docs/protocol.md): 0x2E, 0x27 need a non-default session; 0x34-0x37 need the
- * programming session; writes and downloads need security unlocked. */
+ * programming session. Security levels, each with its own secret: 0x2E and slot erase need level
+ * 1 (UDS_SEC_LEVEL_WRITE); 0x34 needs a level unlocked and the application checks which one the
+ * address needs (skill slot: 1, firmware: 3); firmware routines check level 3 themselves. */
 #ifndef UDS_H
 #define UDS_H
 
@@ -83,7 +85,7 @@
 typedef struct {
     void *ctx;
     uint8_t (*read_did)(void *ctx, uint16_t did, uint8_t *out, uint16_t cap, uint16_t *out_len);
-    /** Write a DID; called only in a non-default session with security unlocked. */
+    /** Write a DID; called only in a non-default session with level UDS_SEC_LEVEL_WRITE. */
     uint8_t (*write_did)(void *ctx, uint16_t did, const uint8_t *data, uint16_t len);
     /** RoutineControl; sub is 1 start, 2 stop, 3 results. */
     uint8_t (*routine)(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *data, uint16_t len,
