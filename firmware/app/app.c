@@ -167,6 +167,14 @@ uint8_t app_start_sequence(app_t *app, const uint8_t *slots, const fs_real_t *go
             !fs_isfinite(goal_scale[i]) || !fs_isfinite(time_scale[i])) {
             return UDS_NRC_REQUEST_OUT_OF_RANGE;
         }
+        /* before any motion: the skill's peak times the goal scale within the force limit */
+        const fs_status_t sc = skchk_run_scales(&app->slot_skill[s - 1u], app->slot_peak_N[s - 1u],
+                                                goal_scale[i], time_scale[i], FS_R(0.001),
+                                                app->cfg.saf.lim.axis[0].force_max_N);
+        app->last_run_status = (uint16_t)sc;
+        if (sc != FS_OK) {
+            return UDS_NRC_REQUEST_OUT_OF_RANGE;
+        }
         steps[i].skill = &app->slot_skill[s - 1u];
         steps[i].goal_scale = goal_scale[i];
         steps[i].time_scale = time_scale[i];
@@ -277,6 +285,13 @@ static void uds_service(app_t *app)
         isotp_poll(&app->tp, app->now_us);
         return;
     }
+    if (app->uds.pending_sid != 0u && !isotp_tx_busy(&app->tp)) {
+        const uint16_t n = uds_server_resume(&app->uds, app->uds_resp,
+                                             (uint16_t)sizeof(app->uds_resp), app->now_ms);
+        if (n != 0u) {
+            (void)isotp_send(&app->tp, app->uds_resp, n, app->now_us);
+        }
+    }
     const uint8_t *req = NULL;
     const uint16_t len = isotp_rx_peek(&app->tp, &req);
     if (len != 0u && !isotp_tx_busy(&app->tp)) {
@@ -305,9 +320,13 @@ void app_slots_reload(app_t *app)
             continue;
         }
         uint32_t len = 0u;
+        fs_real_t peak = FS_R(0.0);
         if (nvm_read(&app->nvm, s, app->image, sizeof(app->image), &len) == NVM_OK &&
-            skill_parse(app->image, len, &app->slot_skill[s]) == FS_OK) {
+            skill_parse(app->image, len, &app->slot_skill[s]) == FS_OK &&
+            skchk_skill(&app->slot_skill[s], FS_R(0.001), FS_R(1e30), &peak) == FS_OK) {
+            /* its peak again, for the run check (the limit may have changed since its commit) */
             app->slot_valid[s] = true;
+            app->slot_peak_N[s] = peak;
             app->slot_crc[s] = skill_crc32(0u, app->image, len - SKILL_CRC_SIZE);
             app->slot_len[s] = len;
         }

@@ -22,6 +22,7 @@
 #include "saf.h"
 #include "sec_access.h"
 #include "skill.h"
+#include "skill_check.h"
 #include "uds.h"
 
 #define APP_TICK_US 1000u
@@ -36,6 +37,10 @@
 #define APP_PROTO_VERSION_MAJOR 1u
 #define APP_PROTO_VERSION_MINOR 0u
 #define APP_SEC_LEVELS 2u               /* SecurityAccess levels 1 and 3, one secret each */
+/* DMP steps of a downloaded skill's own rollout (skill_check.h) per tick while the commit waits:
+ * one DMP step is below one full control tick (M4F <= 1,483 instructions, docs/cortex-m.md), so
+ * 100 steps stay within the 168,000-cycle tick of an idle device; a 17 s skill takes 0.17 s. */
+#define APP_CHECK_STEPS_PER_TICK 100u
 
 /** Device states (DeviceStatus.State in the DBC). */
 typedef enum {
@@ -105,7 +110,11 @@ typedef struct {
     uint32_t xfer_slot;
     uint32_t xfer_size;
     uint16_t last_transfer_status;     /* fs_status / nvm status of the last download */
+    uint16_t last_run_status;          /* fs_status of the last start request's scale check */
     skill_t staging;                   /* validation target of a download */
+    skchk_t check;                     /* output check of staging, spread over ticks */
+    bool checking;                     /* a download waits for its check (UDS 0x78 sent) */
+    fs_real_t slot_peak_N[APP_N_SLOTS];/* peak |f_hat| of each valid slot at goal scale 1 */
     /* firmware update (firmware/boot, docs/update.md) */
     boot_fls_window_t fw_w_state, fw_w_slots;
     fls_dev_t fw_state_dev, fw_slots_dev;

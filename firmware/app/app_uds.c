@@ -523,13 +523,30 @@ static uint8_t download_end(void *ctx, uint32_t *crc_out)
     if (app->state != APP_IDLE || app->uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
         /* a skill started (or security dropped) since RequestDownload: commit refused, the slot
          * keeps what it holds; nothing changes while a skill runs */
+        app->checking = false;
         app->last_transfer_status = 0xFFFEu;
         return app->state != APP_IDLE ? UDS_NRC_CONDITIONS_NOT_CORRECT
                                       : UDS_NRC_SECURITY_ACCESS_DENIED;
     }
-    const fs_status_t st = skill_parse(app->image, app->xfer_size, &app->staging);
-    if (st != FS_OK) {
-        app->last_transfer_status = (uint16_t)st;   /* e.g. 204 CRC: the old skill stays */
+    if (!app->checking) {
+        fs_status_t st = skill_parse(app->image, app->xfer_size, &app->staging);
+        if (st == FS_OK) {
+            st = skchk_params(&app->staging);
+        }
+        if (st != FS_OK) {
+            app->last_transfer_status = (uint16_t)st;   /* e.g. 204 CRC: the old skill stays */
+            return UDS_NRC_PROGRAMMING_FAILURE;
+        }
+        /* the skill's own rollout, APP_CHECK_STEPS_PER_TICK steps per tick (0x78 meanwhile) */
+        skchk_begin(&app->check, &app->staging, FS_R(0.001), app->cfg.saf.lim.axis[0].force_max_N);
+        app->checking = true;
+    }
+    if (!skchk_run(&app->check, APP_CHECK_STEPS_PER_TICK)) {
+        return UDS_NRC_RESPONSE_PENDING;
+    }
+    app->checking = false;
+    if (app->check.status != FS_OK) {
+        app->last_transfer_status = (uint16_t)app->check.status;   /* 222/223: slot unchanged */
         return UDS_NRC_PROGRAMMING_FAILURE;
     }
     const nvm_status_t ns = nvm_write(&app->nvm, slot, app->image, app->xfer_size);
@@ -541,6 +558,7 @@ static uint8_t download_end(void *ctx, uint32_t *crc_out)
     /* swap into the slot cache: UDS runs at the start of a tick and downloads only in IDLE */
     app->slot_skill[slot] = app->staging;
     app->slot_valid[slot] = true;
+    app->slot_peak_N[slot] = app->check.peak_N;
     app->last_transfer_status = 0u;
     *crc_out = skill_crc32(0u, app->image, app->xfer_size - SKILL_CRC_SIZE);
     app->slot_crc[slot] = *crc_out;

@@ -31,6 +31,11 @@
 #define skill_image_size skill_image_size_f32
 #define skill_crc32 skill_crc32_f32
 #define skill_parse skill_parse_f32
+#define skchk_params skchk_params_f32
+#define skchk_begin skchk_begin_f32
+#define skchk_run skchk_run_f32
+#define skchk_skill skchk_skill_f32
+#define skchk_run_scales skchk_run_scales_f32
 
 typedef float fs_real_t;
 #define FS_R(x) ((fs_real_t)(x##f))

@@ -35,6 +35,13 @@ typedef enum {
     FS_ERR_SKILL_UNSUPPORTED = 210, /* a flag this firmware does not implement */
     FS_ERR_SKILL_HEADER_SIZE = 211, /* header_size field is not the v1 header size */
 
+    /* 22x: device-side skill validation before commit and run (skill_check.h) */
+    FS_ERR_SKCHK_RANGE = 220,       /* a parameter outside the device's documented range */
+    FS_ERR_SKCHK_STEP = 221,        /* dt/(tau*time_scale) too large for the DMP's Euler step */
+    FS_ERR_SKCHK_NOT_FINITE = 222,  /* the rollout at goal scale 1 is not finite */
+    FS_ERR_SKCHK_PEAK = 223,        /* the rollout at goal scale 1 peaks above the force limit */
+    FS_ERR_SKCHK_GOAL_SCALE = 224,  /* goal_scale * peak above the force limit: run refused */
+
     /* 3xx: fixed-point conversion (issue 5) */
     FS_ERR_FIXED_OVERFLOW = 300,    /* a value does not fit its fixed-point format */
     FS_ERR_FIXED_WINDOW = 301,      /* more kernels overlap than the fixed build evaluates */

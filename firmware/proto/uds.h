@@ -49,6 +49,8 @@
 #define UDS_NRC_TRANSFER_SUSPENDED 0x71u
 #define UDS_NRC_PROGRAMMING_FAILURE 0x72u
 #define UDS_NRC_WRONG_BLOCK_COUNTER 0x73u
+#define UDS_NRC_BUSY_REPEAT_REQUEST 0x21u
+#define UDS_NRC_RESPONSE_PENDING 0x78u   /* requestCorrectlyReceived-ResponsePending */
 #define UDS_NRC_SUBFUNCTION_NOT_IN_SESSION 0x7Eu
 #define UDS_NRC_SERVICE_NOT_IN_SESSION 0x7Fu
 
@@ -75,6 +77,7 @@
 #define UDS_P2_MS 50u
 #define UDS_P2_STAR_MS 5000u
 #define UDS_S3_MS 5000u                /* non-default session falls back after this silence */
+#define UDS_PENDING_REPEAT_MS 2000u    /* 0x78 repeated well within P2* */
 
 /* Transfer block size announced in 0x74/0x75 responses: bytes per 0x36 request incl. SID and
  * counter; fits one ISO-TP message. */
@@ -103,7 +106,9 @@ typedef struct {
     /** Download of size bytes into memory/slot address addr (0x34): accept or refuse. */
     uint8_t (*download_begin)(void *ctx, uint32_t addr, uint32_t size);
     uint8_t (*download_data)(void *ctx, uint32_t offset, const uint8_t *data, uint16_t len);
-    /** End of transfer: validate (e.g. skill_parse) and commit; on refusal keep the old data. */
+    /** End of transfer: validate (e.g. skill_parse) and commit; on refusal keep the old data.
+     *  UDS_NRC_RESPONSE_PENDING: the validation goes on; the server answers 7F 37 78 and calls
+     *  download_end again from uds_server_resume until it returns anything else. */
     uint8_t (*download_end)(void *ctx, uint32_t *crc32_out);
     void (*transfer_abort)(void *ctx);
     /** Upload of size bytes from addr (0x35). */
@@ -126,6 +131,8 @@ typedef struct {
     uint8_t xfer_counter;        /* counter expected next */
     uint16_t xfer_last_len;      /* length of the last accepted block (for a repeated counter) */
     uint8_t pending_reset;       /* reset type to perform after the response, 0 if none */
+    uint8_t pending_sid;         /* request answered 0x78 whose final response is due, 0 if none */
+    uint32_t pending_since_ms;   /* when 0x78 was last sent */
 } uds_server_t;
 
 /** Initialise in the default session, locked, no transfer. */
@@ -140,6 +147,12 @@ uint16_t uds_server_handle(uds_server_t *srv, const uint8_t *req, uint16_t len, 
  *  precedes the reset; the application waits until its transport and CAN queue are empty):
  *  performs a pending ECU reset. srv->pending_reset != 0 tells that one is waiting. */
 void uds_server_after_response(uds_server_t *srv);
+
+/** A request answered with 0x78 (srv->pending_sid != 0): asks the application again and writes
+ *  the final response into resp (returns its length), or, while still pending, a repeated
+ *  7F SID 78 every UDS_PENDING_REPEAT_MS (else returns 0). Call every tick while pending and the
+ *  transport is free. Meanwhile other requests are answered 0x21 busyRepeatRequest. */
+uint16_t uds_server_resume(uds_server_t *srv, uint8_t *resp, uint16_t resp_cap, uint32_t now_ms);
 
 /** Session timeout (S3): back to default, locked, transfer aborted. Call every tick. */
 void uds_server_poll(uds_server_t *srv, uint32_t now_ms);

@@ -32,6 +32,13 @@ ERR_SKILL_GAINS = 209
 ERR_SKILL_UNSUPPORTED = 210
 ERR_SKILL_HEADER_SIZE = 211
 
+# 22x: device-side skill validation before commit and run (fs_status.h, skill_check.h)
+ERR_SKCHK_RANGE = 220
+ERR_SKCHK_STEP = 221
+ERR_SKCHK_NOT_FINITE = 222
+ERR_SKCHK_PEAK = 223
+ERR_SKCHK_GOAL_SCALE = 224
+
 ERR_LIMIT_INVALID = 110
 
 # 3xx: fixed-point conversion (fs_status.h)

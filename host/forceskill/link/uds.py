@@ -62,7 +62,10 @@ STATUS_NAMES = {0xFFFF: "transfer in progress", 0xFFFE: "transfer interrupted",
                 203: "length mismatch", 204: "CRC-32 mismatch", 205: "bad kernel count",
                 206: "non-finite value", 207: "value out of range", 208: "bad centres",
                 209: "gains inconsistent with alpha/beta/gamma", 210: "unsupported flag",
-                211: "bad header size"}
+                211: "bad header size", 220: "parameter outside the device's range",
+                221: "DMP step too coarse for dt/tau", 222: "rollout at goal 1 not finite",
+                223: "rollout at goal 1 peaks above the force limit",
+                224: "goal scale takes the peak above the force limit"}
 
 
 class Raw(udsoncan.DidCodec):

@@ -666,6 +666,64 @@ static void test_commit_refused_while_executing(void **state)
     assert_memory_equal(app.image, image_a, len_a);
 }
 
+
+/* The device validates a skill before committing it: weights x100 (in range) make the rollout at
+ * goal 1 peak far above 50 N -> RequestTransferExit refused (0x72), DID 0x0201 = 223, slot
+ * unchanged; tau 1e-9 -> 220. Run: a goal scale that takes the peak above the force limit is
+ * refused (0x31) before any motion, one just below it starts. */
+static void test_skill_validated_before_commit_and_run(void **state)
+{
+    (void)state;
+    len_a = load("press_n50_lwr_hold.skill", image_a);
+    unlock(UDS_SESSION_PROGRAMMING);
+    assert_int_equal(download(1, image_a, len_a, UINT32_MAX), 0x00);
+    const fs_real_t peak = app.slot_peak_N[0];
+    assert_true(peak > FS_R(4.8) && peak < FS_R(4.9));        /* the reference rollout: 4.842 N */
+    /* weights x100, CRC recomputed: a well-formed image whose output exceeds the limit */
+    memcpy(image_b, image_a, len_a);
+    const uint16_t n = app.slot_skill[0].dmp.n_kernels;
+    for (uint16_t i = 0; i < n; i++) {
+        double w;
+        memcpy(&w, &image_b[SKILL_HEADER_SIZE + 16u * n + 8u * i], 8);
+        w *= 100.0;
+        memcpy(&image_b[SKILL_HEADER_SIZE + 16u * n + 8u * i], &w, 8);
+    }
+    uint32_t crc = skill_crc32(0u, image_b, len_a - 4u);
+    memcpy(&image_b[len_a - 4u], &crc, 4);
+    assert_int_equal(download(1, image_b, len_a, UINT32_MAX), UDS_NRC_PROGRAMMING_FAILURE);
+    assert_int_equal(app.last_transfer_status, FS_ERR_SKCHK_PEAK);
+    assert_true(app.slot_peak_N[0] == peak);
+    uint32_t len = 0u;
+    assert_int_equal(nvm_read(&app.nvm, 0u, app.image, sizeof(app.image), &len), NVM_OK);
+    assert_memory_equal(app.image, image_a, len_a);
+    /* tau = 1e-9 (header offset of tau: 24): parameter range */
+    memcpy(image_b, image_a, len_a);
+    const double tau = 1e-9;
+    memcpy(&image_b[24], &tau, 8);
+    crc = skill_crc32(0u, image_b, len_a - 4u);
+    memcpy(&image_b[len_a - 4u], &crc, 4);
+    assert_int_equal(download(2, image_b, len_a, UINT32_MAX), UDS_NRC_PROGRAMMING_FAILURE);
+    assert_true(app.last_transfer_status == FS_ERR_SKCHK_RANGE ||
+                app.last_transfer_status == FS_ERR_SKILL_GAINS);
+    assert_false(app.slot_valid[1]);
+    /* run: goal scale 10.4 x 4.84 N > 50 N refused before any motion; 10.2 starts */
+    uint8_t r[64];
+    send_heartbeat();
+    const uint16_t g_over = (uint16_t)(50.0 / (double)peak * 1000.0 * 1.005);
+    const uint16_t g_under = (uint16_t)(50.0 / (double)peak * 1000.0 * 0.995);
+    uint8_t run[10] = {0x31, 0x01, 0x02, 0x01, 1, (uint8_t)(g_over >> 8), (uint8_t)g_over, 0x03, 0xE8, 0};
+    assert_int_equal(uds(run, 10, r, sizeof(r)), 3);
+    assert_int_equal(r[2], UDS_NRC_REQUEST_OUT_OF_RANGE);
+    assert_int_equal(app.last_run_status, FS_ERR_SKCHK_GOAL_SCALE);
+    assert_int_equal(app.state, APP_IDLE);
+    assert_true(app.force_out_N[0] == FS_R(0.0) && app.force_hat_N == FS_R(0.0));
+    send_heartbeat();
+    run[5] = (uint8_t)(g_under >> 8);
+    run[6] = (uint8_t)g_under;
+    assert_int_equal(uds(run, 10, r, sizeof(r)), 4);
+    assert_int_equal(app.state, APP_EXECUTE);
+}
+
 static void test_scheduler_overrun(void **state)
 {
     (void)state;
@@ -700,6 +758,7 @@ int main(void)
         cmocka_unit_test_setup(test_failing_test_image_serves_nothing, setup),
         cmocka_unit_test_setup(test_wrong_key_counter_survives_reset, setup),
         cmocka_unit_test_setup(test_commit_refused_while_executing, setup),
+        cmocka_unit_test_setup(test_skill_validated_before_commit_and_run, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
