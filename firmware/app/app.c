@@ -26,9 +26,10 @@ void app_config_default(app_config_t *cfg)
 
 /* ---------------------------------------------------------------- CAN helpers */
 
-static bool app_send(app_t *app, const can_frame_t *f)
+/* Queue a frame; bulk frames (telemetry, UDS) leave APP_TX_RESERVE places for safety frames. */
+static bool app_send(app_t *app, const can_frame_t *f, bool bulk)
 {
-    if (!hal_can_send(f)) {
+    if ((bulk && hal_can_tx_free() <= APP_TX_RESERVE) || !hal_can_send(f)) {
         app->tx_dropped++;
         return false;
     }
@@ -38,7 +39,7 @@ static bool app_send(app_t *app, const can_frame_t *f)
 static bool tp_send(void *ctx, const can_frame_t *f)
 {
     (void)ctx;
-    return hal_can_send(f);
+    return hal_can_tx_free() > APP_TX_RESERVE && hal_can_send(f);   /* refused: ISO-TP retries */
 }
 
 static int32_t clamp_i32(fs_real_t v, fs_real_t scale, int32_t lo, int32_t hi)
@@ -73,7 +74,7 @@ static void send_status(app_t *app)
     f.id = PROTO_ID_STATUS(app->cfg.node);
     (void)fs_dbc_device_status_pack(f.data, &s, sizeof(f.data));
     e2e_protect(&f, app->tx_counter_status++);
-    (void)app_send(app, &f);
+    (void)app_send(app, &f, false);
 }
 
 /* True if the controller took the frame. Not counted in tx_dropped: an emergency frame that
@@ -109,7 +110,7 @@ static void send_telemetry(app_t *app)
     f.id = PROTO_ID_TELEM_POS(app->cfg.node);
     f.dlc = 8u;
     (void)fs_dbc_telemetry_position_pack(f.data, &p, sizeof(f.data));
-    (void)app_send(app, &f);
+    (void)app_send(app, &f, true);
 
     struct fs_dbc_telemetry_force_t q;
     q.force_contact = (int16_t)clamp_i32(app->sens.force_contact_N[0], FS_R(0.01), -32768, 32767);
@@ -118,7 +119,7 @@ static void send_telemetry(app_t *app)
     q.force_ref = (int16_t)clamp_i32(app->force_hat_N, FS_R(0.01), -32768, 32767);
     f.id = PROTO_ID_TELEM_FORCE(app->cfg.node);
     (void)fs_dbc_telemetry_force_pack(f.data, &q, sizeof(f.data));
-    (void)app_send(app, &f);
+    (void)app_send(app, &f, true);
 }
 
 /* ---------------------------------------------------------------- state machine */

@@ -28,6 +28,10 @@
 #define APP_TICK_US 1000u
 #define APP_N_SLOTS NVM_MAX_SLOTS       /* UDS/CAN slot numbers 1..APP_N_SLOTS */
 #define APP_RX_FRAMES_PER_TICK 64u      /* bounded CAN drain per tick */
+/* Transmit places kept for emergency and status frames: telemetry and ISO-TP (UDS) frames are
+ * queued only while more than this many are free, so a backlog of them (bus flooded by frames
+ * of higher priority) never keeps a safety frame out of the queue. */
+#define APP_TX_RESERVE 8u
 #define APP_RESET_TX_WAIT_MS 100u       /* ECUReset: longest wait for the response to leave */
 #define APP_STATUS_PERIOD_MS 10u
 #define APP_IDLE_TELEMETRY_PERIOD_MS 100u

@@ -25,8 +25,14 @@ typedef struct {
 
 /* ---- CAN (classic, 11-bit ids) ---- */
 
-/** Queue a frame for transmission; false if the transmit queue is full (retry next tick). */
+/** Queue a frame for transmission; false if the transmit queue is full (retry next tick). The
+ *  port sends queued frames by priority, lowest identifier first (frames with the same identifier
+ *  in order), as a controller arbitrating its transmit mailboxes does. */
 bool hal_can_send(const can_frame_t *frame);
+
+/** Free places in the transmit queue (the application keeps some for its urgent frames);
+ *  UINT32_MAX if the port cannot tell. */
+uint32_t hal_can_tx_free(void);
 
 /** Take the next received frame; false if none. Frames arrive in bus order. */
 bool hal_can_receive(can_frame_t *frame);

@@ -125,6 +125,11 @@ bool hal_can_bus_off(void)
     return g_bus_off;
 }
 
+uint32_t hal_can_tx_free(void)
+{
+    return UINT32_MAX;   /* the kernel queues (its qdisc, not this process, orders the frames) */
+}
+
 bool hal_can_tx_idle(void)
 {
     /* bytes of frames written to the socket that the driver has not sent yet */

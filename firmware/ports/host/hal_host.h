@@ -53,12 +53,18 @@ void hal_sim_can_reset(void);
 /** The bus delivers a frame to the device; false (dropped) if the rx FIFO is full. */
 bool hal_sim_can_deliver(const can_frame_t *f);
 
-/** Oldest frame the device queued for transmission (not removed); false if none. */
+/** The most urgent frame the device queued for transmission (lowest identifier, the oldest among
+ *  equal identifiers; not removed); false if none. */
 bool hal_sim_can_tx_peek(can_frame_t *f);
 
-/** Remove the oldest queued frame: the bus has it (hal_can_tx_idle is true once all are taken;
- *  frames the bus holds survive a device reset, as a controller's last frame on the wire). */
+/** Remove the frame hal_sim_can_tx_peek gives: the bus has it (hal_can_tx_idle is true once all
+ *  are taken; frames the bus holds survive a device reset, as a controller's last frame on the
+ *  wire). */
 void hal_sim_can_tx_pop(void);
+
+/** Give back a frame the bus had taken but not sent (a mailbox aborted for a more urgent frame):
+ *  it goes first among the queued frames with its identifier. False if the queue is full. */
+bool hal_sim_can_tx_requeue(const can_frame_t *f);
 
 /** Set or clear the bus-off condition (fault injection). */
 void hal_sim_can_set_bus_off(bool off);
