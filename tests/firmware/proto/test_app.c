@@ -676,7 +676,20 @@ static void test_skill_validated_before_commit_and_run(void **state)
     (void)state;
     len_a = load("press_n50_lwr_hold.skill", image_a);
     unlock(UDS_SESSION_PROGRAMMING);
-    assert_int_equal(download(1, image_a, len_a, UINT32_MAX), 0x00);
+    uint8_t r[64];
+    const uint8_t rd1[6] = {0x34, 0x00, 0x21, 1, (uint8_t)(len_a >> 8), (uint8_t)len_a};
+    assert_int_equal(uds(rd1, 6, r, sizeof(r)), 4);
+    static uint8_t td[4096];
+    td[0] = 0x36;
+    td[1] = 0x01;
+    memcpy(&td[2], image_a, len_a);
+    assert_int_equal(uds(td, (uint16_t)(len_a + 2u), r, sizeof(r)), 2);
+    const uint32_t t0 = app.tick;
+    const uint8_t exit_req[1] = {0x37};
+    assert_int_equal(uds(exit_req, 1, r, sizeof(r)), 5);          /* after 0x78, the CRC */
+    print_message("commit of a 1.5 s skill (N = 50): %u ticks from RequestTransferExit to its "
+                  "answer\n", (unsigned)(app.tick - t0));
+    assert_true(app.tick - t0 >= 15u && app.tick - t0 <= 20u);  /* 1,500 steps at 100 per tick */
     const fs_real_t peak = app.slot_peak_N[0];
     assert_true(peak > FS_R(4.8) && peak < FS_R(4.9));        /* the reference rollout: 4.842 N */
     /* weights x100, CRC recomputed: a well-formed image whose output exceeds the limit */
@@ -707,7 +720,6 @@ static void test_skill_validated_before_commit_and_run(void **state)
                 app.last_transfer_status == FS_ERR_SKILL_GAINS);
     assert_false(app.slot_valid[1]);
     /* run: goal scale 10.4 x 4.84 N > 50 N refused before any motion; 10.2 starts */
-    uint8_t r[64];
     send_heartbeat();
     const uint16_t g_over = (uint16_t)(50.0 / (double)peak * 1000.0 * 1.005);
     const uint16_t g_under = (uint16_t)(50.0 / (double)peak * 1000.0 * 0.995);
