@@ -4,8 +4,9 @@
  *   raw CAN frames to any of the device's identifiers, E2E-valid host commands and heartbeats,
  *   UDS requests through a tester ISO-TP link, authenticated SecurityAccess (either level, with
  *   the port's secrets), skill downloads (a golden image with fuzzed byte changes, completed or
- *   cut short), firmware downloads, sensor values (NaN included), bus-off, ECUReset / power-up,
- *   and time advancing.
+ *   cut short), firmware downloads (fuzz bytes; or a golden image marked for a test boot and
+ *   reset into, its self-test passing or failing), sensor values (NaN included), bus-off,
+ *   ECUReset / power-up, and time advancing.
  * Invariants checked after every tick:
  *   1. the commanded force is finite and within the configured force limit on both axes;
  *   2. a slot changes only by a complete, authenticated (level 1), validated transfer while the
@@ -43,6 +44,9 @@ static uint32_t n_ticks;
 static uint8_t cmd_counter, hb_counter;
 static uint8_t golden[APP_IMAGE_MAX];
 static uint32_t golden_len;
+static uint8_t golden_fw[4096];      /* a firmware image tagged with the port's development key */
+static uint32_t golden_fw_len;
+static bool fail_self_test;          /* the next image started fails its self-test */
 static uint8_t img[APP_IMAGE_MAX];
 static uint8_t resp[ISOTP_MAX_PAYLOAD];
 static uint16_t resp_len;
@@ -176,6 +180,10 @@ static void power_up(void)
     hal_sim_can_reset();
     hal_host_set_time_us(t_us);
     app_init(&app, &cfg);
+    if (fail_self_test) {
+        app.nvm_ok = false;                            /* storage unreadable: self-test fails */
+        fail_self_test = false;
+    }
     snapshot();
     prev_state = APP_BOOT;
 }
@@ -299,10 +307,10 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
         golden_len = (uint32_t)fread(golden, 1, sizeof golden, f);
         fclose(f);
     }
-    if (trace) {
-        fprintf(stderr, "fuzz_app: %u ticks, states seen 0x%02X (bit = state), %u slot changes, "
-                "last transfer %u, last run %u\n", n_ticks, seen_states, commits,
-                app.last_transfer_status, app.last_run_status);
+    f = fopen(FS_FUZZ_GOLDEN_FW, "rb");
+    if (f != NULL) {
+        golden_fw_len = (uint32_t)fread(golden_fw, 1, sizeof golden_fw, f);
+        fclose(f);
     }
     return 0;
 }
@@ -314,6 +322,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     t_us = 0u;
     n_ticks = 0u;
     cmd_counter = hb_counter = 0u;
+    fail_self_test = false;
     seen_states = 0u;
     commits = 0u;
     app_config_default(&cfg);
@@ -331,7 +340,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         const uint8_t op = data[i++];
         const size_t left = size - i;
         const uint8_t *p = &data[i];
-        switch (op % 12u) {
+        switch (op % 13u) {
         case 0: {                                      /* time passes */
             const unsigned n = left > 0u ? 1u + p[0] : 1u;
             i += left > 0u ? 1u : 0u;
@@ -451,6 +460,34 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         case 10:                                       /* power cycle (flash kept) */
             power_up();
             break;
+        case 11: {                                     /* firmware update: level 3, golden image,
+                                                          mark test, ECUReset into it */
+            if (left < 1u || golden_fw_len == 0u) {
+                i = size;
+                break;
+            }
+            for (unsigned k = 0; k < 15u && n_ticks < MAX_TICKS; k++) {
+                unlock(UDS_SESSION_PROGRAMMING, UDS_SEC_LEVEL_FIRMWARE, true);
+                if (app.uds.unlocked_level == UDS_SEC_LEVEL_FIRMWARE) {
+                    break;
+                }
+                for (unsigned w = 0; w < 100u && n_ticks < MAX_TICKS; w++) {
+                    tick();                            /* power-up delay or lockout */
+                }
+            }
+            download(FWU_DOWNLOAD_ADDRESS, golden_fw, golden_fw_len, 64u + p[0], false);
+            const uint8_t mark[5] = {0x31u, 0x01u, 0x0Fu, 0x01u, (uint8_t)(p[0] & 1u)};
+            (void)uds(mark, 5u);
+            fail_self_test = (p[0] & 2u) != 0u;
+            const uint8_t reset[2] = {0x11u, 0x01u};
+            (void)uds(reset, 2u);
+            for (unsigned w = 0; w < 5u && fail_self_test && n_ticks < MAX_TICKS; w++) {
+                tick();                                /* the reset follows its response */
+            }
+            fail_self_test = false;
+            i += 1u;
+            break;
+        }
         default: {                                     /* run a skill through UDS */
             if (left < 5u) {
                 i = size;
@@ -465,8 +502,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     if (trace) {
         fprintf(stderr, "fuzz_app: %u ticks, states seen 0x%02X (bit = state), %u slot changes, "
-                "last transfer %u, last run %u\n", n_ticks, seen_states, commits,
-                app.last_transfer_status, app.last_run_status);
+                "last transfer %u, last run %u, firmware %08X on test %u, reverted %u\n",
+                n_ticks, seen_states, commits, app.last_transfer_status, app.last_run_status,
+                (unsigned)app.boot.running.fw_version, app.boot.test_boot,
+                app.boot.path == BOOT_PATH_REVERTED ? 1u : 0u);
     }
     return 0;
 }

@@ -91,7 +91,7 @@ out("frames", "command", bytes([0x00, 0x81, 0x02, 0x01, 0xE8, 0x03, 0xE8, 0x03, 
 out("frames", "short", bytes([0x01, 0x02, 0x03]))
 
 # app: operation sequences of fuzz_app.c (op byte, then its arguments; see the harness)
-TICKS, RAW, CMD, HB, UDS, SEC, SKILL, FW, SENS, BUSOFF, POWER, RUN = range(12)
+TICKS, RAW, CMD, HB, UDS, SEC, SKILL, FW, SENS, BUSOFF, POWER, FWUPDATE, RUN = range(13)
 
 
 def app_cmd(mode, slot=1, goal=1000, time_scale=1000):
@@ -118,4 +118,6 @@ out("app", "wrong_keys_reset", wait(1100) + bytes([SEC, 5, TICKS, 255, SEC, 5, P
 out("app", "sensors_nan", app_cmd(2) + bytes([HB, 0, SENS]) + struct.pack("<fff", float("nan"), 1.0, 2.0)
     + wait(100))
 out("app", "bus_off_execute", upload + bytes([HB, 0, RUN, 1, 0x03, 0xE8, 0x03, 0xE8, BUSOFF]) + wait(100))
+out("app", "fw_update_confirm_then_revert", bytes([FWUPDATE, 0]) + wait(256)
+    + bytes([FWUPDATE, 2]) + wait(600) + bytes([UDS, 3, 0x31, 0x01, 0x0F, 0x02]))
 print("corpus written to", C)
