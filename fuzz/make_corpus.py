@@ -89,4 +89,35 @@ out("uds", "upload", reqs([0x10, 0x02], [0x35, 0x00, 0x44, 0, 0, 0, 1, 0, 0, 0, 
 out("frames", "heartbeat", bytes([0x10, 0x81, 1, 2, 3, 4, 5, 6, 0x05, 0x00]))
 out("frames", "command", bytes([0x00, 0x81, 0x02, 0x01, 0xE8, 0x03, 0xE8, 0x03, 0x01, 0x00]) * 2)
 out("frames", "short", bytes([0x01, 0x02, 0x03]))
+
+# app: operation sequences of fuzz_app.c (op byte, then its arguments; see the harness)
+TICKS, RAW, CMD, HB, UDS, SEC, SKILL, FW, SENS, BUSOFF, POWER, FWUPDATE, RUN = range(13)
+
+
+def app_cmd(mode, slot=1, goal=1000, time_scale=1000):
+    return bytes([CMD, mode, slot, goal & 0xFF, goal >> 8, time_scale & 0xFF, time_scale >> 8])
+
+
+def wait(ms):
+    return bytes([TICKS, min(ms, 256) - 1]) * max(1, ms // 256)
+
+
+upload = wait(1100) + bytes([SEC, 1]) + bytes([SKILL, 0, 0, 1, 200])      # slot 1, CRC kept
+out("app", "upload_run", upload + bytes([HB, 0, RUN, 1, 0x03, 0xE8, 0x03, 0xE8])
+    + (bytes([HB, 0]) + wait(20)) * 40)
+out("app", "upload_run_over_limit", upload + bytes([HB, 0, RUN, 1, 0x4E, 0x20, 0x03, 0xE8]) + wait(50))
+out("app", "upload_then_cmd_execute", upload + app_cmd(3) + (bytes([HB, 0]) + wait(20)) * 30
+    + app_cmd(1) + wait(10))
+out("app", "teach_silence_clear", app_cmd(2) + bytes([HB, 0]) + wait(300) + bytes([HB, 0])
+    + app_cmd(4) + wait(20))
+out("app", "mutated_upload", wait(1100) + bytes([SEC, 1, SKILL, 2, 2, 1, 50, 130, 0x40, 140, 0x7F]))
+out("app", "cut_upload_erase", wait(1100) + bytes([SEC, 1, SKILL, 0, 0, 3, 100])
+    + bytes([UDS, 4, 0x31, 0x01, 0xFF, 0x00, 0x01]) + wait(10))
+out("app", "fw_download", wait(1100) + bytes([SEC, 3, FW, 0]) + b"FSFW" + bytes(300))
+out("app", "wrong_keys_reset", wait(1100) + bytes([SEC, 5, TICKS, 255, SEC, 5, POWER, SEC, 5]) + wait(1100))
+out("app", "sensors_nan", app_cmd(2) + bytes([HB, 0, SENS]) + struct.pack("<fff", float("nan"), 1.0, 2.0)
+    + wait(100))
+out("app", "bus_off_execute", upload + bytes([HB, 0, RUN, 1, 0x03, 0xE8, 0x03, 0xE8, BUSOFF]) + wait(100))
+out("app", "fw_update_confirm_then_revert", bytes([FWUPDATE, 0]) + wait(256)
+    + bytes([FWUPDATE, 2]) + wait(600) + bytes([UDS, 3, 0x31, 0x01, 0x0F, 0x02]))
 print("corpus written to", C)

@@ -5,6 +5,8 @@
 #   fuzz HARNESS runs=N time_s=T exec_per_s=R crashes=C corpus=K
 # and exits non-zero if any harness crashed (artifacts in $OUT/artifacts).
 # usage: fuzz/run.sh [RUNS=100000] [HARNESS ...]   (default: every harness whose sources exist)
+#        FS_FUZZ_SECONDS=S bounds each harness's run time as well (libFuzzer -max_total_time);
+#        FS_FUZZ_APP_RUNS overrides RUNS for the whole-application harness (slower per input).
 # env:   FS_FUZZ_BUILD (default build/fuzz), CLANG (default clang), FS_FUZZ_JOBS unused: one core.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -23,6 +25,20 @@ sources_for() {
         isotp)       echo "-I$FW/base -I$FW/proto -I$FW/proto/generated $FW/proto/isotp.c" ;;
         uds)         echo "-I$FW/base -I$FW/proto -I$FW/proto/generated $FW/proto/uds.c" ;;
         frames)      echo "-I$FW/base -I$FW/proto -I$FW/proto/generated $FW/proto/generated/fs_dbc.c $FW/proto/e2e.c" ;;
+        app)         local d
+                     for d in base app proto proto/generated safety storage security boot core hal ports/host; do
+                         printf -- '-I%s ' "$FW/$d"
+                     done
+                     echo "-DFS_FUZZ_GOLDEN=\"$ROOT/tests/vectors/press_n10_ridge_release.skill\"" \
+                          "-DFS_FUZZ_GOLDEN_FW=\"$ROOT/tests/firmware/boot/vectors/golden_host_1.2.3.fwimg\"" \
+                          "$FW/app/app.c $FW/app/app_uds.c $FW/app/fs_exec.c" \
+                          "$FW/proto/generated/fs_dbc.c $FW/proto/e2e.c $FW/proto/isotp.c $FW/proto/uds.c" \
+                          "$FW/safety/flt.c $FW/safety/lim.c $FW/safety/saf.c $FW/safety/sen.c $FW/safety/wdg.c" \
+                          "$FW/storage/nvm.c $FW/storage/fls_ram.c" \
+                          "$FW/security/sec_access.c $FW/security/sec_sha256.c" \
+                          "$FW/boot/boot.c $FW/boot/boot_image.c $FW/boot/boot_fls_window.c $FW/boot/fwu.c $FW/boot/fwu_uds.c" \
+                          "$FW/core/dmp.c $FW/core/pfc.c $FW/core/skill.c $FW/core/skill_check.c" \
+                          "$FW/ports/host/hal_host.c $FW/ports/host/hal_can_sim.c" ;;
     esac
 }
 needs_for() {
@@ -32,12 +48,13 @@ needs_for() {
         isotp)       echo "$FW/proto/isotp.c" ;;
         uds)         echo "$FW/proto/uds.c" ;;
         frames)      echo "$FW/proto/generated/fs_dbc.c" ;;
+        app)         echo "$FW/app/app.c" ;;
     esac
 }
 
 HARNESSES=("$@")
 if [ ${#HARNESSES[@]} -eq 0 ]; then
-    HARNESSES=(skill_parse nvm_record isotp uds frames)
+    HARNESSES=(skill_parse nvm_record isotp uds frames app)
 fi
 mkdir -p "$OUT/artifacts"
 status=0
@@ -53,7 +70,11 @@ for h in "${HARNESSES[@]}"; do
     log="$OUT/fuzz_$h.log"
     start=$(date +%s.%N)
     set +e
-    "$OUT/fuzz_$h" -runs="$RUNS" -seed=1 -max_len=8192 -print_final_stats=1 \
+    runs="$RUNS"
+    if [ "$h" = app ] && [ -n "${FS_FUZZ_APP_RUNS:-}" ]; then runs="$FS_FUZZ_APP_RUNS"; fi
+    limit=()
+    if [ -n "${FS_FUZZ_SECONDS:-}" ]; then limit=(-max_total_time="$FS_FUZZ_SECONDS"); fi
+    "$OUT/fuzz_$h" -runs="$runs" "${limit[@]}" -seed=1 -max_len=8192 -print_final_stats=1 \
         -artifact_prefix="$OUT/artifacts/$h-" "$work" "$ROOT/fuzz/corpus/$h" >"$log" 2>&1
     rc=$?
     set -e

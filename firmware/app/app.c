@@ -28,9 +28,10 @@ void app_config_default(app_config_t *cfg)
 
 /* ---------------------------------------------------------------- CAN helpers */
 
-static bool app_send(app_t *app, const can_frame_t *f)
+/* Queue a frame; bulk frames (telemetry, UDS) leave APP_TX_RESERVE places for safety frames. */
+static bool app_send(app_t *app, const can_frame_t *f, bool bulk)
 {
-    if (!hal_can_send(f)) {
+    if ((bulk && hal_can_tx_free() <= APP_TX_RESERVE) || !hal_can_send(f)) {
         app->tx_dropped++;
         return false;
     }
@@ -40,7 +41,7 @@ static bool app_send(app_t *app, const can_frame_t *f)
 static bool tp_send(void *ctx, const can_frame_t *f)
 {
     (void)ctx;
-    return hal_can_send(f);
+    return hal_can_tx_free() > APP_TX_RESERVE && hal_can_send(f);   /* refused: ISO-TP retries */
 }
 
 static int32_t clamp_i32(fs_real_t v, fs_real_t scale, int32_t lo, int32_t hi)
@@ -75,7 +76,7 @@ static void send_status(app_t *app)
     f.id = PROTO_ID_STATUS(app->cfg.node);
     (void)fs_dbc_device_status_pack(f.data, &s, sizeof(f.data));
     e2e_protect(&f, app->tx_counter_status++);
-    (void)app_send(app, &f);
+    (void)app_send(app, &f, false);
 }
 
 /* True if the controller took the frame. Not counted in tx_dropped: an emergency frame that
@@ -111,7 +112,7 @@ static void send_telemetry(app_t *app)
     f.id = PROTO_ID_TELEM_POS(app->cfg.node);
     f.dlc = 8u;
     (void)fs_dbc_telemetry_position_pack(f.data, &p, sizeof(f.data));
-    (void)app_send(app, &f);
+    (void)app_send(app, &f, true);
 
     struct fs_dbc_telemetry_force_t q;
     q.force_contact = (int16_t)clamp_i32(app->sens.force_contact_N[0], FS_R(0.01), -32768, 32767);
@@ -120,7 +121,7 @@ static void send_telemetry(app_t *app)
     q.force_ref = (int16_t)clamp_i32(app->force_hat_N, FS_R(0.01), -32768, 32767);
     f.id = PROTO_ID_TELEM_FORCE(app->cfg.node);
     (void)fs_dbc_telemetry_force_pack(f.data, &q, sizeof(f.data));
-    (void)app_send(app, &f);
+    (void)app_send(app, &f, true);
 }
 
 /* ---------------------------------------------------------------- state machine */
@@ -196,6 +197,14 @@ uint8_t app_start_sequence(app_t *app, const uint8_t *slots, const fs_real_t *go
         }
         if (!(goal_scale[i] >= FS_R(0.0)) || !(time_scale[i] > FS_R(0.0)) ||
             !fs_isfinite(goal_scale[i]) || !fs_isfinite(time_scale[i])) {
+            return UDS_NRC_REQUEST_OUT_OF_RANGE;
+        }
+        /* before any motion: the skill's peak times the goal scale within the force limit */
+        const fs_status_t sc = skchk_run_scales(&app->slot_skill[s - 1u], app->slot_peak_N[s - 1u],
+                                                goal_scale[i], time_scale[i], FS_R(0.001),
+                                                app->cfg.saf.lim.axis[0].force_max_N);
+        app->last_run_status = (uint16_t)sc;
+        if (sc != FS_OK) {
             return UDS_NRC_REQUEST_OUT_OF_RANGE;
         }
         steps[i].skill = &app->slot_skill[s - 1u];
@@ -302,6 +311,13 @@ static void uds_service(app_t *app)
         isotp_poll(&app->tp, app->now_us);
         return;
     }
+    if (app->uds.pending_sid != 0u && !isotp_tx_busy(&app->tp)) {
+        const uint16_t n = uds_server_resume(&app->uds, app->uds_resp,
+                                             (uint16_t)sizeof(app->uds_resp), app->now_ms);
+        if (n != 0u) {
+            (void)isotp_send(&app->tp, app->uds_resp, n, app->now_us);
+        }
+    }
     const uint8_t *req = NULL;
     const uint16_t len = isotp_rx_peek(&app->tp, &req);
     if (len != 0u && !isotp_tx_busy(&app->tp)) {
@@ -330,9 +346,13 @@ void app_slots_reload(app_t *app)
             continue;
         }
         uint32_t len = 0u;
+        fs_real_t peak = FS_R(0.0);
         if (nvm_read(&app->nvm, s, app->image, sizeof(app->image), &len) == NVM_OK &&
-            skill_parse(app->image, len, &app->slot_skill[s]) == FS_OK) {
+            skill_parse(app->image, len, &app->slot_skill[s]) == FS_OK &&
+            skchk_skill(&app->slot_skill[s], FS_R(0.001), FS_R(1e30), &peak) == FS_OK) {
+            /* its peak again, for the run check (the limit may have changed since its commit) */
             app->slot_valid[s] = true;
+            app->slot_peak_N[s] = peak;
             app->slot_crc[s] = skill_crc32(0u, app->image, len - SKILL_CRC_SIZE);
             app->slot_len[s] = len;
         }
@@ -343,6 +363,61 @@ static int rng_adapter(void *ctx, uint8_t *buf, uint32_t len)
 {
     (void)ctx;
     return hal_random(buf, len);
+}
+
+const sec_config_t *app_sec_config(const app_t *app, uint8_t level)
+{
+    if (level == UDS_SEC_LEVEL_WRITE) {
+        return &app->sec_cfg[0];
+    }
+    return level == UDS_SEC_LEVEL_FIRMWARE ? &app->sec_cfg[1] : NULL;
+}
+
+void app_sec_persist(app_t *app)
+{
+    uint8_t rec[SEC_RECORD_LEN];
+    sec_record_encode(&app->sec, rec);
+    if (!app->sec_nvm_ok || memcmp(rec, app->sec_saved, sizeof rec) == 0) {
+        return;
+    }
+    if (nvm_write(&app->sec_nvm, 0u, rec, (uint32_t)sizeof rec) == NVM_OK) {
+        memcpy(app->sec_saved, rec, sizeof rec);
+    }
+}
+
+/* One secret per level from the HAL; the attempt counter from the record kept across resets
+ * (none or unreadable: the lockout delay runs at power-up, the safe side). */
+static void sec_setup(app_t *app)
+{
+    static const uint8_t levels[APP_SEC_LEVELS] = {UDS_SEC_LEVEL_WRITE, UDS_SEC_LEVEL_FIRMWARE};
+    for (unsigned i = 0; i < APP_SEC_LEVELS; i++) {
+        sec_config_t *c = &app->sec_cfg[i];
+        sec_default_config(c);
+        uint8_t secret_len = 0u;
+        const uint8_t *secret = hal_device_secret(levels[i], &secret_len);
+        if (secret_len > SEC_SECRET_MAX) {
+            secret_len = SEC_SECRET_MAX;
+        }
+        memcpy(c->secret, secret, secret_len);
+        c->secret_len = secret_len;
+        c->rng = rng_adapter;
+        c->rng_ctx = app;
+    }
+    uint8_t failed = 0u, locked_out = 1u;
+    const fls_dev_t *dev = hal_sec_flash();
+    app->sec_nvm_ok = dev != NULL && nvm_init(&app->sec_nvm, dev) == NVM_OK;
+    if (app->sec_nvm_ok) {
+        uint8_t rec[SEC_RECORD_LEN];
+        uint32_t len = 0u;
+        const nvm_status_t st = nvm_read(&app->sec_nvm, 0u, rec, (uint32_t)sizeof rec, &len);
+        if (st == NVM_OK && sec_record_decode(rec, len, &failed, &locked_out)) {
+            memcpy(app->sec_saved, rec, sizeof rec);
+        } else if (nvm_dir(&app->sec_nvm, 0u) != NULL && nvm_dir(&app->sec_nvm, 0u)->valid == 0u) {
+            failed = 0u;                    /* a fresh device: no record yet */
+            locked_out = 0u;
+        }
+    }
+    sec_restore(&app->sec_cfg[0], &app->sec, app->now_ms, failed, locked_out);
 }
 
 void app_init(app_t *app, const app_config_t *cfg)
@@ -362,17 +437,7 @@ void app_init(app_t *app, const app_config_t *cfg)
     app_uds_bind(app, &hooks);
     uds_server_init(&app->uds, &hooks);
 
-    sec_default_config(&app->sec_cfg);
-    uint8_t secret_len = 0u;
-    const uint8_t *secret = hal_device_secret(&secret_len);
-    if (secret_len > SEC_SECRET_MAX) {
-        secret_len = SEC_SECRET_MAX;
-    }
-    memcpy(app->sec_cfg.secret, secret, secret_len);
-    app->sec_cfg.secret_len = secret_len;
-    app->sec_cfg.rng = rng_adapter;
-    app->sec_cfg.rng_ctx = app;
-    sec_init(&app->sec_cfg, &app->sec, app->now_ms);
+    sec_setup(app);
 
     app->last_transfer_status = APP_TRANSFER_NONE;
     app->nvm_ok = (nvm_init(&app->nvm, hal_flash()) == NVM_OK);
@@ -493,8 +558,13 @@ void app_tick(app_t *app, bool overrun)
         app->vel_mps[a] = exec_vel_update(&app->vel[a], app->sens.pos_m[a], FS_R(0.001));
     }
     if (app->state == APP_BOOT) {
-        if (!app_fw_self_test_and_confirm(app)) {
-            hal_request_reset(1u);          /* unconfirmed: the next boot reverts */
+        app->fw_self_test_ok = app_fw_self_test_and_confirm(app);
+        if (!app->fw_self_test_ok) {
+            /* unconfirmed: the port resets after this tick and the bootloader reverts. Nothing
+             * from the bus is served meanwhile (no node can confirm this image for it). */
+            hal_request_reset(1u);
+            hal_actuator_enable(false);
+            return;
         }
         (void)app_event(app, APP_EV_BOOTED);
     }

@@ -23,11 +23,16 @@
 #include "saf.h"
 #include "sec_access.h"
 #include "skill.h"
+#include "skill_check.h"
 #include "uds.h"
 
 #define APP_TICK_US 1000u
 #define APP_N_SLOTS NVM_MAX_SLOTS       /* UDS/CAN slot numbers 1..APP_N_SLOTS */
 #define APP_RX_FRAMES_PER_TICK 64u      /* bounded CAN drain per tick */
+/* Transmit places kept for emergency and status frames: telemetry and ISO-TP (UDS) frames are
+ * queued only while more than this many are free, so a backlog of them (bus flooded by frames
+ * of higher priority) never keeps a safety frame out of the queue. */
+#define APP_TX_RESERVE 8u
 #define APP_RESET_TX_WAIT_MS 100u       /* ECUReset: longest wait for the response to leave */
 #define APP_STATUS_PERIOD_MS 10u
 #define APP_IDLE_TELEMETRY_PERIOD_MS 100u
@@ -36,6 +41,11 @@
 #define APP_TRANSFER_NONE 0xFFFDu        /* DID 0x0201: no download since power-up */
 #define APP_PROTO_VERSION_MAJOR 1u
 #define APP_PROTO_VERSION_MINOR 0u
+#define APP_SEC_LEVELS 2u               /* SecurityAccess levels 1 and 3, one secret each */
+/* DMP steps of a downloaded skill's own rollout (skill_check.h) per tick while the commit waits:
+ * one DMP step is below one full control tick (M4F <= 1,483 instructions, docs/cortex-m.md), so
+ * 100 steps stay within the 168,000-cycle tick of an idle device; a 17 s skill takes 0.17 s. */
+#define APP_CHECK_STEPS_PER_TICK 100u
 
 
 /** HostCommand.Mode values. */
@@ -81,8 +91,11 @@ typedef struct {
     uds_server_t uds;
     uint8_t uds_resp[ISOTP_MAX_PAYLOAD];
     uint32_t reset_since_ms;           /* ECUReset accepted at (its response leaves first) */
-    sec_config_t sec_cfg;
-    sec_state_t sec;
+    sec_config_t sec_cfg[APP_SEC_LEVELS];  /* [0] level 1 (skills, settings), [1] level 3 (firmware) */
+    sec_state_t sec;                   /* one attempt counter for both levels */
+    nvm_t sec_nvm;                     /* attempt record (hal_sec_flash), kept across resets */
+    bool sec_nvm_ok;
+    uint8_t sec_saved[SEC_RECORD_LEN]; /* the record as last stored */
     /* storage */
     nvm_t nvm;
     bool nvm_ok;
@@ -94,7 +107,11 @@ typedef struct {
     uint32_t xfer_slot;
     uint32_t xfer_size;
     uint16_t last_transfer_status;     /* fs_status / nvm status of the last download */
+    uint16_t last_run_status;          /* fs_status of the last start request's scale check */
     skill_t staging;                   /* validation target of a download */
+    skchk_t check;                     /* output check of staging, spread over ticks */
+    bool checking;                     /* a download waits for its check (UDS 0x78 sent) */
+    fs_real_t slot_peak_N[APP_N_SLOTS];/* peak |f_hat| of each valid slot at goal scale 1 */
     /* firmware update (firmware/boot, docs/update.md) */
     boot_fls_window_t fw_w_state, fw_w_slots;
     fls_dev_t fw_state_dev, fw_slots_dev;
@@ -103,6 +120,7 @@ typedef struct {
     boot_t boot;
     fwu_t fwu;
     bool fw_xfer;                      /* the active download is a firmware image */
+    bool fw_self_test_ok;              /* the running image passed its self-test (boot tick) */
     /* control */
     exec_state_t exec;
     exec_config_t exec_run_cfg;
@@ -163,5 +181,11 @@ flt_code_t app_clear_faults(app_t *app);
 
 /** Reload slot caches from storage (boot, after a download or erase). */
 void app_slots_reload(app_t *app);
+
+/** SecurityAccess config of a level (1 or 3); NULL for any other level. */
+const sec_config_t *app_sec_config(const app_t *app, uint8_t level);
+
+/** Store the SecurityAccess attempt record if it changed (after every seed/key request). */
+void app_sec_persist(app_t *app);
 
 #endif /* APP_H */

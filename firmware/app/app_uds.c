@@ -171,6 +171,9 @@ static bool finite_all(const fs_real_t *v, unsigned n)
 static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len)
 {
     app_t *app = ctx;
+    if (app->uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
+        return UDS_NRC_SECURITY_ACCESS_DENIED;   /* settings: level 1 (not the firmware level) */
+    }
     if (app->state != APP_IDLE) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT;   /* configuration changes only while idle */
     }
@@ -278,6 +281,10 @@ static uint8_t routine(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *d, u
 {
     app_t *app = ctx;
     if (fwu_uds_owns_rid(rid)) {
+        if (rid == FWU_RID_CONFIRM && fwu_uds_authorised(&app->uds) && !app->fw_self_test_ok) {
+            *out_len = 0u;
+            return UDS_NRC_CONDITIONS_NOT_CORRECT;   /* only an image that passed its self-test */
+        }
         return fwu_uds_routine(&app->fwu, &app->uds, sub, rid, d, len, out, cap, out_len);
     }
     *out_len = 0u;
@@ -376,8 +383,11 @@ static uint8_t routine(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *d, u
         if (d[0] < 1u || d[0] > APP_N_SLOTS) {
             return UDS_NRC_REQUEST_OUT_OF_RANGE;
         }
-        if (app->state == APP_EXECUTE || !app->nvm_ok) {
-            return UDS_NRC_CONDITIONS_NOT_CORRECT;
+        if (app->uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
+            return UDS_NRC_SECURITY_ACCESS_DENIED;
+        }
+        if (app->state != APP_IDLE || !app->nvm_ok) {
+            return UDS_NRC_CONDITIONS_NOT_CORRECT;   /* slots change only while idle */
         }
         if (nvm_erase_slot(&app->nvm, (uint16_t)(d[0] - 1u)) != NVM_OK) {
             return UDS_NRC_PROGRAMMING_FAILURE;
@@ -417,11 +427,19 @@ static void reset_now(void *ctx, uint8_t type)
 static uint8_t security_seed(void *ctx, uint8_t level, uint8_t *seed, uint16_t cap, uint16_t *len)
 {
     app_t *app = ctx;
-    (void)level;
+    const sec_config_t *cfg = app_sec_config(app, level);
+    if (cfg == NULL) {
+        return UDS_NRC_SUBFUNCTION_NOT_SUPPORTED;
+    }
     if (cap < SEC_SEED_LEN) {
         return UDS_NRC_RESPONSE_TOO_LONG;
     }
-    const sec_nrc_t nrc = sec_request_seed(&app->sec_cfg, &app->sec, app->now_ms, seed);
+    /* the state is shared by the levels: a seed of another level is never "already unlocked" */
+    if (app->uds.unlocked_level != level) {
+        sec_lock(&app->sec);
+    }
+    const sec_nrc_t nrc = sec_request_seed(cfg, &app->sec, app->now_ms, seed);
+    app_sec_persist(app);                  /* a lockout that ended clears the stored counter */
     if (nrc != SEC_NRC_NONE) {
         return (uint8_t)nrc;
     }
@@ -432,8 +450,13 @@ static uint8_t security_seed(void *ctx, uint8_t level, uint8_t *seed, uint16_t c
 static uint8_t security_key(void *ctx, uint8_t level, const uint8_t *key, uint16_t len)
 {
     app_t *app = ctx;
-    (void)level;
-    return (uint8_t)sec_send_key(&app->sec_cfg, &app->sec, app->now_ms, key, len);
+    const sec_config_t *cfg = app_sec_config(app, level);
+    if (cfg == NULL) {
+        return UDS_NRC_SUBFUNCTION_NOT_SUPPORTED;
+    }
+    const uint8_t nrc = (uint8_t)sec_send_key(cfg, &app->sec, app->now_ms, key, len);
+    app_sec_persist(app);                  /* the wrong-key counter survives reset and power-up */
+    return nrc;
 }
 
 /* ---------------------------------------------------------------- transfers */
@@ -443,6 +466,9 @@ static uint8_t download_begin(void *ctx, uint32_t addr, uint32_t size)
     app_t *app = ctx;
     app->fw_xfer = addr == FWU_DOWNLOAD_ADDRESS;
     if (app->fw_xfer) {
+        if (!fwu_uds_authorised(&app->uds)) {
+            return UDS_NRC_SECURITY_ACCESS_DENIED;       /* firmware: level 3 only */
+        }
         return app->state == APP_IDLE ? fwu_uds_download_begin(&app->fwu, &app->uds, size)
                                       : UDS_NRC_CONDITIONS_NOT_CORRECT;
     }
@@ -450,7 +476,13 @@ static uint8_t download_begin(void *ctx, uint32_t addr, uint32_t size)
         size > APP_IMAGE_MAX) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
-    if (app->state != APP_IDLE || !app->nvm_ok) {
+    if (app->uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
+        return UDS_NRC_SECURITY_ACCESS_DENIED;
+    }
+    if (app->state != APP_IDLE) {
+        return UDS_NRC_CONDITIONS_NOT_CORRECT;          /* slots change only while idle */
+    }
+    if (!app->nvm_ok) {
         return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED;
     }
     app->xfer_slot = addr;
@@ -479,9 +511,33 @@ static uint8_t download_end(void *ctx, uint32_t *crc_out)
         return fwu_uds_download_end(&app->fwu, &app->uds, crc_out);
     }
     const uint16_t slot = (uint16_t)(app->xfer_slot - 1u);
-    const fs_status_t st = skill_parse(app->image, app->xfer_size, &app->staging);
-    if (st != FS_OK) {
-        app->last_transfer_status = (uint16_t)st;   /* e.g. 204 CRC: the old skill stays */
+    if (app->state != APP_IDLE || app->uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
+        /* a skill started (or security dropped) since RequestDownload: commit refused, the slot
+         * keeps what it holds; nothing changes while a skill runs */
+        app->checking = false;
+        app->last_transfer_status = 0xFFFEu;
+        return app->state != APP_IDLE ? UDS_NRC_CONDITIONS_NOT_CORRECT
+                                      : UDS_NRC_SECURITY_ACCESS_DENIED;
+    }
+    if (!app->checking) {
+        fs_status_t st = skill_parse(app->image, app->xfer_size, &app->staging);
+        if (st == FS_OK) {
+            st = skchk_params(&app->staging);
+        }
+        if (st != FS_OK) {
+            app->last_transfer_status = (uint16_t)st;   /* e.g. 204 CRC: the old skill stays */
+            return UDS_NRC_PROGRAMMING_FAILURE;
+        }
+        /* the skill's own rollout, APP_CHECK_STEPS_PER_TICK steps per tick (0x78 meanwhile) */
+        skchk_begin(&app->check, &app->staging, FS_R(0.001), app->cfg.saf.lim.axis[0].force_max_N);
+        app->checking = true;
+    }
+    if (!skchk_run(&app->check, APP_CHECK_STEPS_PER_TICK)) {
+        return UDS_NRC_RESPONSE_PENDING;
+    }
+    app->checking = false;
+    if (app->check.status != FS_OK) {
+        app->last_transfer_status = (uint16_t)app->check.status;   /* 222/223: slot unchanged */
         return UDS_NRC_PROGRAMMING_FAILURE;
     }
     const nvm_status_t ns = nvm_write(&app->nvm, slot, app->image, app->xfer_size);
@@ -493,6 +549,7 @@ static uint8_t download_end(void *ctx, uint32_t *crc_out)
     /* swap into the slot cache: UDS runs at the start of a tick and downloads only in IDLE */
     app->slot_skill[slot] = app->staging;
     app->slot_valid[slot] = true;
+    app->slot_peak_N[slot] = app->check.peak_N;
     app->last_transfer_status = 0u;
     *crc_out = skill_crc32(0u, app->image, app->xfer_size - SKILL_CRC_SIZE);
     app->slot_crc[slot] = *crc_out;

@@ -34,6 +34,13 @@ typedef enum {
     FS_ERR_SKILL_GAINS = 209,           /* stored alpha/beta/gamma disagree with the stored gains */
     FS_ERR_SKILL_UNSUPPORTED = 210,     /* a flag this firmware does not implement */
     FS_ERR_SKILL_HEADER_SIZE = 211,     /* header_size field is not the v1 header size */
+    /* a parameter outside the device's documented range (skill_check.h) */
+    FS_ERR_SKCHK_RANGE = 220,
+    FS_ERR_SKCHK_STEP = 221,            /* dt/(tau*time_scale) too large for the DMP's Euler step */
+    FS_ERR_SKCHK_NOT_FINITE = 222,      /* the rollout at goal scale 1 is not finite */
+    /* the rollout at goal scale 1 peaks above the force limit */
+    FS_ERR_SKCHK_PEAK = 223,
+    FS_ERR_SKCHK_GOAL_SCALE = 224,      /* goal_scale * peak above the force limit: run refused */
 
     /* 3xx: fixed-point conversion (firmware/fixed) */
     FS_ERR_FIXED_OVERFLOW = 300,        /* a value does not fit its fixed-point format */

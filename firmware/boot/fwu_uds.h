@@ -25,7 +25,8 @@ uint8_t fwu_uds_download_end(fwu_t *f, const uds_server_t *srv, uint32_t *crc32_
 /** True for the routine identifiers handled by fwu_uds_routine. */
 bool fwu_uds_owns_rid(uint16_t rid);
 
-/** RoutineControl for FWU_RID_MARK_TEST (start, option byte) and FWU_RID_CONFIRM (start). */
+/** RoutineControl for FWU_RID_MARK_TEST (start, option byte) and FWU_RID_CONFIRM (start); both
+ *  need the programming session with level UDS_SEC_LEVEL_FIRMWARE (else 0x33). */
 uint8_t fwu_uds_routine(fwu_t *f, const uds_server_t *srv, uint8_t sub, uint16_t rid,
                         const uint8_t *data, uint16_t len, uint8_t *out, uint16_t cap,
                         uint16_t *out_len);

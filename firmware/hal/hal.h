@@ -25,8 +25,14 @@ typedef struct {
 
 /* ---- CAN (classic, 11-bit ids) ---- */
 
-/** Queue a frame for transmission; false if the transmit queue is full (retry next tick). */
+/** Queue a frame for transmission; false if the transmit queue is full (retry next tick). The
+ *  port sends queued frames by priority, lowest identifier first (frames with the same identifier
+ *  in order), as a controller arbitrating its transmit mailboxes does. */
 bool hal_can_send(const can_frame_t *frame);
+
+/** Free places in the transmit queue (the application keeps some for its urgent frames);
+ *  UINT32_MAX if the port cannot tell. */
+uint32_t hal_can_tx_free(void);
 
 /** Take the next received frame; false if none. Frames arrive in bus order. */
 bool hal_can_receive(can_frame_t *frame);
@@ -72,8 +78,14 @@ uint32_t hal_fw_slot_sectors(void);
 /** The device key of the firmware image tag (HMAC-SHA256, from protected storage). */
 const uint8_t *hal_fw_key(uint8_t *len);
 
-/** The per-device secret of SecurityAccess (from protected storage); *len gets its length. */
-const uint8_t *hal_device_secret(uint8_t *len);
+/** The per-device SecurityAccess secret of one level (UDS_SEC_LEVEL_WRITE 1, _FIRMWARE 3; from
+ *  protected storage, a different secret per level); *len gets its length (0: level unknown). */
+const uint8_t *hal_device_secret(uint8_t level, uint8_t *len);
+
+/** Two sectors that keep the SecurityAccess attempt record (wrong-key counter, lockout) across
+ *  reset and power loss (an nvm slot 0); NULL if the port has none: the application then starts
+ *  every power-up with the full lockout delay. */
+const fls_dev_t *hal_sec_flash(void);
 
 /** Request a reset (ECUReset): the port restarts the firmware after the current tick. */
 void hal_request_reset(uint8_t type);

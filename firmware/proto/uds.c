@@ -200,7 +200,7 @@ static uint16_t svc_wdbi(uds_server_t *srv, const uint8_t *req, uint16_t len, ui
         return negative(resp, req[0], UDS_NRC_SERVICE_NOT_IN_SESSION);
     }
     const uint16_t did = be16(&req[1]);
-    if (srv->unlocked_level == 0u) {
+    if (srv->unlocked_level != UDS_SEC_LEVEL_WRITE) {
         return negative(resp, req[0], UDS_NRC_SECURITY_ACCESS_DENIED);
     }
     const uint8_t nrc = srv->app.write_did(srv->app.ctx, did, &req[3], (uint16_t)(len - 3u));
@@ -228,7 +228,7 @@ static uint16_t svc_routine(uds_server_t *srv, const uint8_t *req, uint16_t len,
     if (rid == UDS_RID_ERASE_SLOT && srv->session == UDS_SESSION_DEFAULT) {
         return negative(resp, req[0], UDS_NRC_SERVICE_NOT_IN_SESSION);
     }
-    if (rid == UDS_RID_ERASE_SLOT && srv->unlocked_level == 0u) {
+    if (rid == UDS_RID_ERASE_SLOT && srv->unlocked_level != UDS_SEC_LEVEL_WRITE) {
         return negative(resp, req[0], UDS_NRC_SECURITY_ACCESS_DENIED);
     }
     uint16_t n = 0u;
@@ -368,6 +368,20 @@ static uint16_t svc_transfer_data(uds_server_t *srv, const uint8_t *req, uint16_
 }
 
 /* ---- 0x37 ---- */
+/* Answer of RequestTransferExit: positive with the image's CRC-32, or the NRC. */
+static uint16_t exit_answer(uint8_t *resp, uint8_t nrc, uint32_t crc)
+{
+    if (nrc != UDS_NRC_OK) {
+        return negative(resp, UDS_SID_TRANSFER_EXIT, nrc);
+    }
+    resp[0] = (uint8_t)(UDS_SID_TRANSFER_EXIT + 0x40u);
+    resp[1] = (uint8_t)(crc >> 24);
+    resp[2] = (uint8_t)(crc >> 16);
+    resp[3] = (uint8_t)(crc >> 8);
+    resp[4] = (uint8_t)crc;
+    return 5u;
+}
+
 static uint16_t svc_transfer_exit(uds_server_t *srv, const uint8_t *req, uint8_t *resp)
 {
     if (srv->session != UDS_SESSION_PROGRAMMING) {
@@ -388,14 +402,11 @@ static uint16_t svc_transfer_exit(uds_server_t *srv, const uint8_t *req, uint8_t
     uint32_t crc = 0u;
     srv->xfer = UDS_XFER_NONE;
     const uint8_t nrc = srv->app.download_end(srv->app.ctx, &crc);
-    if (nrc != UDS_NRC_OK) {
-        return negative(resp, req[0], nrc);
+    if (nrc == UDS_NRC_RESPONSE_PENDING) {
+        srv->pending_sid = req[0];
+        srv->pending_since_ms = srv->last_request_ms;
     }
-    resp[1] = (uint8_t)(crc >> 24);
-    resp[2] = (uint8_t)(crc >> 16);
-    resp[3] = (uint8_t)(crc >> 8);
-    resp[4] = (uint8_t)crc;
-    return 5u;
+    return exit_answer(resp, nrc, crc);
 }
 
 /* ---- 0x3E ---- */
@@ -422,6 +433,9 @@ uint16_t uds_server_handle(uds_server_t *srv, const uint8_t *req, uint16_t len, 
         return 0u;
     }
     srv->last_request_ms = now_ms;
+    if (srv->pending_sid != 0u) {
+        return negative(resp, req[0], UDS_NRC_BUSY_REPEAT_REQUEST);   /* one request at a time */
+    }
     switch (req[0]) {
     case UDS_SID_DSC:
         return svc_dsc(srv, req, len, resp);
@@ -460,6 +474,26 @@ void uds_server_after_response(uds_server_t *srv)
             srv->app.reset_now(srv->app.ctx, type);
         }
     }
+}
+
+uint16_t uds_server_resume(uds_server_t *srv, uint8_t *resp, uint16_t resp_cap, uint32_t now_ms)
+{
+    if (srv->pending_sid != UDS_SID_TRANSFER_EXIT || resp_cap < 8u) {
+        srv->pending_sid = 0u;
+        return 0u;
+    }
+    uint32_t crc = 0u;
+    const uint8_t nrc = srv->app.download_end(srv->app.ctx, &crc);
+    srv->last_request_ms = now_ms;               /* the session stays while the server works */
+    if (nrc == UDS_NRC_RESPONSE_PENDING) {
+        if ((uint32_t)(now_ms - srv->pending_since_ms) < UDS_PENDING_REPEAT_MS) {
+            return 0u;
+        }
+        srv->pending_since_ms = now_ms;
+        return negative(resp, UDS_SID_TRANSFER_EXIT, nrc);
+    }
+    srv->pending_sid = 0u;
+    return exit_answer(resp, nrc, crc);
 }
 
 void uds_server_poll(uds_server_t *srv, uint32_t now_ms)

@@ -8,7 +8,9 @@
  * 0x22/0x2E Read/WriteDataByIdentifier, 0x31 RoutineControl, 0x34 RequestDownload,
  * 0x35 RequestUpload, 0x36 TransferData, 0x37 RequestTransferExit, 0x3E TesterPresent.
  * Session rules (docs/protocol.md): 0x2E, 0x27 need a non-default session; 0x34-0x37 need the
- * programming session; writes and downloads need security unlocked. */
+ * programming session. Security levels, each with its own secret: 0x2E and slot erase need level
+ * 1 (UDS_SEC_LEVEL_WRITE); 0x34 needs a level unlocked and the application checks which one the
+ * address needs (skill slot: 1, firmware: 3); firmware routines check level 3 themselves. */
 #ifndef UDS_H
 #define UDS_H
 
@@ -48,6 +50,8 @@
 #define UDS_NRC_TRANSFER_SUSPENDED 0x71u
 #define UDS_NRC_PROGRAMMING_FAILURE 0x72u
 #define UDS_NRC_WRONG_BLOCK_COUNTER 0x73u
+#define UDS_NRC_BUSY_REPEAT_REQUEST 0x21u
+#define UDS_NRC_RESPONSE_PENDING 0x78u   /* requestCorrectlyReceived-ResponsePending */
 #define UDS_NRC_SUBFUNCTION_NOT_IN_SESSION 0x7Eu
 #define UDS_NRC_SERVICE_NOT_IN_SESSION 0x7Fu
 
@@ -66,6 +70,7 @@
 #define UDS_P2_MS 50u
 #define UDS_P2_STAR_MS 5000u
 #define UDS_S3_MS 5000u                /* non-default session falls back after this silence */
+#define UDS_PENDING_REPEAT_MS 2000u    /* 0x78 repeated well within P2* */
 
 /* Transfer block size announced in 0x74/0x75 responses: bytes per 0x36 request incl. SID and
  * counter; fits one ISO-TP message. */
@@ -76,7 +81,7 @@
 typedef struct {
     void *ctx;
     uint8_t (*read_did)(void *ctx, uint16_t did, uint8_t *out, uint16_t cap, uint16_t *out_len);
-    /** Write a DID; called only in a non-default session with security unlocked. */
+    /** Write a DID; called only in a non-default session with level UDS_SEC_LEVEL_WRITE. */
     uint8_t (*write_did)(void *ctx, uint16_t did, const uint8_t *data, uint16_t len);
     /** RoutineControl; sub is 1 start, 2 stop, 3 results. */
     uint8_t (*routine)(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *data, uint16_t len,
@@ -94,7 +99,9 @@ typedef struct {
     /** Download of size bytes into memory/slot address addr (0x34): accept or refuse. */
     uint8_t (*download_begin)(void *ctx, uint32_t addr, uint32_t size);
     uint8_t (*download_data)(void *ctx, uint32_t offset, const uint8_t *data, uint16_t len);
-    /** End of transfer: validate (e.g. skill_parse) and commit; on refusal keep the old data. */
+    /** End of transfer: validate (e.g. skill_parse) and commit; on refusal keep the old data.
+     *  UDS_NRC_RESPONSE_PENDING: the validation goes on; the server answers 7F 37 78 and calls
+     *  download_end again from uds_server_resume until it returns anything else. */
     uint8_t (*download_end)(void *ctx, uint32_t *crc32_out);
     void (*transfer_abort)(void *ctx);
     /** Upload of size bytes from addr (0x35). */
@@ -117,6 +124,8 @@ typedef struct {
     uint8_t xfer_counter;        /* counter expected next */
     uint16_t xfer_last_len;      /* length of the last accepted block (for a repeated counter) */
     uint8_t pending_reset;       /* reset type to perform after the response, 0 if none */
+    uint8_t pending_sid;         /* request answered 0x78 whose final response is due, 0 if none */
+    uint32_t pending_since_ms;   /* when 0x78 was last sent */
 } uds_server_t;
 
 /** Initialise in the default session, locked, no transfer. */
@@ -131,6 +140,12 @@ uint16_t uds_server_handle(uds_server_t *srv, const uint8_t *req, uint16_t len, 
  *  precedes the reset; the application waits until its transport and CAN queue are empty):
  *  performs a pending ECU reset. srv->pending_reset != 0 tells that one is waiting. */
 void uds_server_after_response(uds_server_t *srv);
+
+/** A request answered with 0x78 (srv->pending_sid != 0): asks the application again and writes
+ *  the final response into resp (returns its length), or, while still pending, a repeated
+ *  7F SID 78 every UDS_PENDING_REPEAT_MS (else returns 0). Call every tick while pending and the
+ *  transport is free. Meanwhile other requests are answered 0x21 busyRepeatRequest. */
+uint16_t uds_server_resume(uds_server_t *srv, uint8_t *resp, uint16_t resp_cap, uint32_t now_ms);
 
 /** Session timeout (S3): back to default, locked, transfer aborted. Call every tick. */
 void uds_server_poll(uds_server_t *srv, uint32_t now_ms);

@@ -55,6 +55,43 @@ void sec_init(const sec_config_t *cfg, sec_state_t *st, uint32_t now_ms)
     }
 }
 
+void sec_restore(const sec_config_t *cfg, sec_state_t *st, uint32_t now_ms, uint8_t failed,
+                 uint8_t locked_out)
+{
+    sec_init(cfg, st, now_ms);
+    if (st == NULL || cfg == NULL) {
+        return;
+    }
+    st->failed = failed;
+    st->locked_out = locked_out != 0u ? 1u : 0u;
+    uint32_t wait_ms = cfg->boot_delay_ms;
+    if (st->locked_out != 0u) {
+        wait_ms = cfg->lockout_ms;
+    } else if (failed != 0u && cfg->delay_ms > wait_ms) {
+        wait_ms = cfg->delay_ms;
+    }
+    start_wait(st, now_ms, wait_ms);
+}
+
+void sec_record_encode(const sec_state_t *st, uint8_t rec[SEC_RECORD_LEN])
+{
+    rec[0] = (uint8_t)'S';
+    rec[1] = st->failed;
+    rec[2] = st->locked_out;
+    rec[3] = (uint8_t)(st->failed ^ 0xFFu);
+}
+
+bool sec_record_decode(const uint8_t *rec, uint32_t len, uint8_t *failed, uint8_t *locked_out)
+{
+    if (rec == NULL || len != SEC_RECORD_LEN || rec[0] != (uint8_t)'S' || rec[2] > 1u ||
+        (uint8_t)(rec[3] ^ rec[1]) != 0xFFu) {
+        return false;
+    }
+    *failed = rec[1];
+    *locked_out = rec[2];
+    return true;
+}
+
 void sec_compute_key(const sec_config_t *cfg, const uint8_t seed[SEC_SEED_LEN],
                      uint8_t key_out[SEC_KEY_LEN])
 {

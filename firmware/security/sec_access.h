@@ -11,7 +11,11 @@
  * answers 0x36 exceededNumberOfAttempts and starts the lockout (lockout_ms), also answered with
  * 0x37. A correct key resets the counter. The counter survives sec_lock (session change). A
  * power cycle cannot be used to skip the delay: sec_init starts a boot delay (boot_delay_ms,
- * default = delay_ms) during which requestSeed also answers 0x37 (ISO 14229-1 allows this). */
+ * default = delay_ms) during which requestSeed also answers 0x37 (ISO 14229-1 allows this), and
+ * an application that keeps the counter in non-volatile memory (sec_record_*) restores it with
+ * sec_restore, which restarts the lockout at power-up after a lockout (ISO 14229-1: the delay
+ * timer is active on power-up). One state serves every level; each level has its own config
+ * (its own secret). */
 #ifndef SEC_ACCESS_H
 #define SEC_ACCESS_H
 
@@ -22,6 +26,7 @@
 #define SEC_SEED_LEN 16u
 #define SEC_KEY_LEN 16u
 #define SEC_SECRET_MAX 64u
+#define SEC_RECORD_LEN 4u          /* attempt record: magic 'S', failed, locked_out, ~failed */
 
 /** Result of a SecurityAccess step: 0 = positive response, else the UDS NRC to send. */
 typedef enum {
@@ -68,6 +73,17 @@ sec_status_t sec_config_validate(const sec_config_t *cfg);
 
 /** Power-up: locked, no seed, counter zero, requestSeed refused until now_ms + boot_delay_ms. */
 void sec_init(const sec_config_t *cfg, sec_state_t *st, uint32_t now_ms);
+
+/** Power-up with the attempt record kept across resets: counter restored; requestSeed refused
+ *  for lockout_ms after a lockout, else delay_ms after a wrong key, else boot_delay_ms. */
+void sec_restore(const sec_config_t *cfg, sec_state_t *st, uint32_t now_ms, uint8_t failed,
+                 uint8_t locked_out);
+
+/** Encode the attempt counter of st into rec[SEC_RECORD_LEN] (what the application stores). */
+void sec_record_encode(const sec_state_t *st, uint8_t rec[SEC_RECORD_LEN]);
+
+/** Decode a stored record; false (nothing written) if len or its check bytes are wrong. */
+bool sec_record_decode(const uint8_t *rec, uint32_t len, uint8_t *failed, uint8_t *locked_out);
 
 /** requestSeed at now_ms: seed_out[SEC_SEED_LEN] gets a fresh seed, or all zeros if already
  *  unlocked (ISO 14229-1). Returns 0x37 during a delay/lockout, 0x22 if the RNG fails. */

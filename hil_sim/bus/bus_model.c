@@ -86,19 +86,60 @@ void bus_init(bus_t *b, uint32_t bitrate)
     b->bit_ns = 1000000000ull / (bitrate > 0u ? bitrate : BUS_DEFAULT_BITRATE);
 }
 
+uint32_t busm_key(const can_frame_t *f, bool extended)
+{
+    return extended ? (((f->id >> 18) & 0x7FFu) << 19) | (1u << 18) | (f->id & 0x3FFFFu)
+                    : ((f->id & 0x7FFu) << 19);
+}
+
+static bus_item_t *fifo_at(bus_fifo_t *q, uint32_t i)
+{
+    return &q->items[(q->head + i) % BUS_FIFO_CAP];
+}
+
 bool bus_enqueue(bus_t *b, uint8_t src, const can_frame_t *f, bool extended, uint64_t t_ns)
 {
     if (src >= BUS_MAX_SOURCES || b->fifo[src].len >= BUS_FIFO_CAP) {
         b->dropped++;
         return false;
     }
+    /* sorted insert from the tail: after every frame with a key <= this one (a source that
+     * sends one identifier appends in O(1)) */
     bus_fifo_t *q = &b->fifo[src];
-    bus_item_t *it = &q->items[(q->head + q->len) % BUS_FIFO_CAP];
+    if (t_ns < q->last_t_ns) {
+        t_ns = q->last_t_ns;   /* a frame read later is never eligible earlier (order kept) */
+    }
+    q->last_t_ns = t_ns;
+    const uint32_t key = busm_key(f, extended);
+    uint32_t pos = q->len;
+    while (pos > 0u && busm_key(&fifo_at(q, pos - 1u)->f, fifo_at(q, pos - 1u)->extended) > key) {
+        *fifo_at(q, pos) = *fifo_at(q, pos - 1u);
+        pos--;
+    }
+    bus_item_t *it = fifo_at(q, pos);
     it->f = *f;
     it->extended = extended;
     it->src = src;
     it->t_enqueue_ns = t_ns;
     q->len++;
+    return true;
+}
+
+uint32_t bus_pending(const bus_t *b, uint8_t src)
+{
+    return src < BUS_MAX_SOURCES ? b->fifo[src].len : 0u;
+}
+
+bool bus_least_urgent(bus_t *b, uint8_t src, bool take, bus_item_t *out)
+{
+    if (src >= BUS_MAX_SOURCES || b->fifo[src].len == 0u) {
+        return false;
+    }
+    bus_fifo_t *q = &b->fifo[src];
+    *out = *fifo_at(q, q->len - 1u);
+    if (take) {
+        q->len--;
+    }
     return true;
 }
 
@@ -114,33 +155,50 @@ void bus_flush_source(bus_t *b, uint8_t src)
     }
 }
 
-/* The winner of arbitration at time t: lowest id among FIFO heads queued by t (extended ids
- * compare by their base id first; a standard frame wins over an extended one with the same base). */
-static int arbitrate(const bus_t *b, uint64_t t, uint64_t *earliest)
+/* The winner of arbitration at time t: the lowest key among the frames of every source queued by
+ * t (each source's list is sorted, so its first frame queued by t is its best). Returns the
+ * source and, in *idx, the frame's index in its list; *earliest gets the earliest enqueue time
+ * of a frame queued after t when nothing is eligible. */
+static int arbitrate(bus_t *b, uint64_t t, uint32_t *idx, uint64_t *earliest)
 {
     int best = -1;
     uint32_t best_key = 0u;
     *earliest = UINT64_MAX;
     for (uint32_t s = 0; s < BUS_MAX_SOURCES; s++) {
-        const bus_fifo_t *q = &b->fifo[s];
-        if (q->len == 0u) {
-            continue;
-        }
-        const bus_item_t *it = &q->items[q->head];
-        if (it->t_enqueue_ns > t) {
-            if (it->t_enqueue_ns < *earliest) {
-                *earliest = it->t_enqueue_ns;
+        bus_fifo_t *q = &b->fifo[s];
+        for (uint32_t i = 0; i < q->len; i++) {
+            const bus_item_t *it = fifo_at(q, i);
+            if (it->t_enqueue_ns > t) {
+                if (it->t_enqueue_ns < *earliest) {
+                    *earliest = it->t_enqueue_ns;
+                }
+                continue;
             }
-            continue;
-        }
-        const uint32_t key = it->extended ? (((it->f.id >> 18) & 0x7FFu) << 19) | (1u << 18) | (it->f.id & 0x3FFFFu)
-                                          : ((it->f.id & 0x7FFu) << 19);
-        if (best < 0 || key < best_key) {
-            best = (int)s;
-            best_key = key;
+            const uint32_t key = busm_key(&it->f, it->extended);
+            if (best < 0 || key < best_key) {
+                best = (int)s;
+                best_key = key;
+                *idx = i;
+            }
+            break;
         }
     }
     return best;
+}
+
+/* Remove the frame at index i of a source's list (later frames move up one place). */
+static bus_item_t fifo_remove(bus_fifo_t *q, uint32_t i)
+{
+    const bus_item_t it = *fifo_at(q, i);
+    if (i == 0u) {
+        q->head = (q->head + 1u) % BUS_FIFO_CAP;
+    } else {
+        for (uint32_t j = i; j + 1u < q->len; j++) {
+            *fifo_at(q, j) = *fifo_at(q, j + 1u);
+        }
+    }
+    q->len--;
+    return it;
 }
 
 void bus_run(bus_t *b, uint64_t t_ns, bus_deliver_fn cb, void *ctx)
@@ -157,7 +215,8 @@ void bus_run(bus_t *b, uint64_t t_ns, bus_deliver_fn cb, void *ctx)
         }
         uint64_t earliest = UINT64_MAX;
         uint64_t start = b->idle_from_ns;
-        int s = arbitrate(b, start, &earliest);
+        uint32_t idx = 0u;
+        int s = arbitrate(b, start, &idx, &earliest);
         if (s < 0) {
             if (earliest == UINT64_MAX || earliest > t_ns) {
                 if (b->idle_from_ns < t_ns && earliest > t_ns) {
@@ -167,15 +226,12 @@ void bus_run(bus_t *b, uint64_t t_ns, bus_deliver_fn cb, void *ctx)
             }
             start = earliest;
             b->idle_from_ns = earliest;
-            s = arbitrate(b, start, &earliest);
+            s = arbitrate(b, start, &idx, &earliest);
         }
         if (start > t_ns) {
             return;
         }
-        bus_fifo_t *q = &b->fifo[s];
-        b->cur = q->items[q->head];
-        q->head = (q->head + 1u) % BUS_FIFO_CAP;
-        q->len--;
+        b->cur = fifo_remove(&b->fifo[s], idx);
         const uint32_t bits = busm_frame_bits(&b->cur.f, b->cur.extended);
         b->cur_end_ns = start + (uint64_t)bits * b->bit_ns;
         b->in_flight = true;
@@ -191,11 +247,15 @@ uint64_t bus_next_event_ns(const bus_t *b)
     }
     uint64_t earliest = UINT64_MAX;
     for (uint32_t s = 0; s < BUS_MAX_SOURCES; s++) {
-        if (b->fifo[s].len != 0u) {
-            const uint64_t t = b->fifo[s].items[b->fifo[s].head].t_enqueue_ns;
+        const bus_fifo_t *q = &b->fifo[s];
+        for (uint32_t i = 0; i < q->len; i++) {
+            const uint64_t t = q->items[(q->head + i) % BUS_FIFO_CAP].t_enqueue_ns;
             const uint64_t start = t > b->idle_from_ns ? t : b->idle_from_ns;
             if (start < earliest) {
                 earliest = start;
+            }
+            if (t <= b->idle_from_ns) {
+                break;                       /* nothing in this list can start earlier */
             }
         }
     }

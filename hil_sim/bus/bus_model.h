@@ -1,8 +1,9 @@
 /* Classic CAN bus timing model: frame length in bits with bit stuffing (actual, from the frame's
  * content and its CRC-15, or the worst case), and an arbitrated bus shared by several sources
- * (the device and each socketcand client): one frame at a time, lowest identifier wins among the
- * frames waiting when the bus goes idle, each source transmits its own frames in order.
- * Times are in nanoseconds of simulated time. */
+ * (the device and each socketcand client): one frame at a time; when the bus goes idle, the
+ * lowest identifier among ALL frames waiting at every source wins (as controllers with several
+ * transmit mailboxes arbitrate them by identifier); frames of one source with the same
+ * identifier leave in the order they were queued. Times are in nanoseconds of simulated time. */
 #ifndef BUS_MODEL_H
 #define BUS_MODEL_H
 
@@ -35,11 +36,17 @@ typedef struct {
     uint64_t t_enqueue_ns;
 } bus_item_t;
 
+/** Frames waiting at one source, kept sorted by arbitration key (then by arrival). */
 typedef struct {
     bus_item_t items[BUS_FIFO_CAP];
     uint32_t head;
     uint32_t len;
+    uint64_t last_t_ns;          /* enqueue times never go back within a source */
 } bus_fifo_t;
+
+/** Arbitration key: lower wins (the identifier bits as sent; a standard frame wins over an
+ *  extended one with the same base identifier). */
+uint32_t busm_key(const can_frame_t *f, bool extended);
 
 /** Called when a frame has been transmitted completely (t_end_ns: end of its EOF). */
 typedef void (*bus_deliver_fn)(void *ctx, const bus_item_t *item, uint64_t t_end_ns);
@@ -66,6 +73,13 @@ bool bus_enqueue(bus_t *b, uint8_t src, const can_frame_t *f, bool extended, uin
 
 /** Free places in a source's FIFO. */
 uint32_t bus_room(const bus_t *b, uint8_t src);
+
+/** Frames a source has waiting (not counting one on the wire). */
+uint32_t bus_pending(const bus_t *b, uint8_t src);
+
+/** The least urgent frame a source has waiting (highest key, the latest among equals); with take,
+ *  it is also removed (a controller aborting that mailbox). False if none waits. */
+bool bus_least_urgent(bus_t *b, uint8_t src, bool take, bus_item_t *out);
 
 /** Discard everything a source has queued (client disconnected). */
 void bus_flush_source(bus_t *b, uint8_t src);

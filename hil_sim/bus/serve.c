@@ -26,6 +26,7 @@
 
 #define TICK_NS 1000000ull
 #define MAX_LAG_NS 100000000ull     /* fall further behind than this: slip (count it) */
+#define DEVICE_MAILBOXES 3u         /* transmit mailboxes of the device's controller (bxCAN: 3) */
 
 static const char SERVE_USAGE[] =
     "usage: hil_sim serve [--port PORT] [--host ADDR] [--speed S] [--scenario FILE]\n"
@@ -101,9 +102,14 @@ static uint64_t mono_ns(void)
     return (uint64_t)ts.tv_sec * 1000000000ull + (uint64_t)ts.tv_nsec;
 }
 
+static void device_tx_to_bus(serve_t *s, uint64_t t_ns);
+
 static void deliver(void *ctx, const bus_item_t *it, uint64_t t_end_ns)
 {
     serve_t *s = ctx;
+    if (it->src == 0u) {
+        device_tx_to_bus(s, t_end_ns);      /* a mailbox is free again */
+    }
     if (it->src != 0u && !it->extended) {
         can_frame_t f = it->f;
         if (s->drop_p > 0.0 && sim_rng_uniform(&s->rng_faults) < s->drop_p) {
@@ -193,11 +199,28 @@ static void sim_tick(serve_t *s)
     s->n_tick++;
 }
 
+/* The device's controller: its most urgent queued frames wait in DEVICE_MAILBOXES mailboxes on
+ * the bus; when all are busy, a more urgent frame aborts the least urgent waiting one, which goes
+ * back to the driver's queue (first among its identifier), as drivers of such controllers do. */
 static void device_tx_to_bus(serve_t *s, uint64_t t_ns)
 {
     can_frame_t f;
-    while (bus_room(&s->bus, 0u) > 0u && hal_sim_can_tx_peek(&f)) {
-        (void)bus_enqueue(&s->bus, 0u, &f, false, t_ns);
+    while (hal_sim_can_tx_peek(&f)) {
+        if (bus_pending(&s->bus, 0u) >= DEVICE_MAILBOXES) {
+            bus_item_t worst;
+            if (!bus_least_urgent(&s->bus, 0u, false, &worst) ||
+                busm_key(&f, false) >= busm_key(&worst.f, worst.extended)) {
+                return;
+            }
+            (void)bus_least_urgent(&s->bus, 0u, true, &worst);
+            hal_sim_can_tx_pop();
+            (void)hal_sim_can_tx_requeue(&worst.f);   /* room: f has just left the queue */
+            (void)bus_enqueue(&s->bus, 0u, &f, false, t_ns);
+            continue;
+        }
+        if (!bus_enqueue(&s->bus, 0u, &f, false, t_ns)) {
+            return;
+        }
         hal_sim_can_tx_pop();
     }
 }

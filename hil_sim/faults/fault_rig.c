@@ -237,7 +237,7 @@ int rig_uds_unlock(rig_t *r)
             return -2;
         }
         uint8_t secret_len = 0u;
-        const uint8_t *secret = hal_device_secret(&secret_len);
+        const uint8_t *secret = hal_device_secret(UDS_SEC_LEVEL_WRITE, &secret_len);
         uint8_t mac[SEC_SHA256_LEN];
         sec_hmac_sha256(secret, secret_len, &resp[2], SEC_SEED_LEN, mac);
         uint8_t sk[2u + SEC_KEY_LEN];

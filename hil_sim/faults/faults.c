@@ -52,6 +52,7 @@ typedef struct {
     char bound_text[64];
     char plant_model[16];     /* "" = the plant file's; "ideal" / "realistic" */
     double goal_scale, time_scale, at_s, value, duration_s;
+    double force_max_N;       /* device force limit for this scenario (0: the plant file's) */
     int expect_code;
     double detect_bound_ms;
 } fscen_t;
@@ -189,7 +190,7 @@ static int fscen_load(fscen_t *s, const char *path, char *err, size_t errn)
         struct { const char *k; double *dst; } nums[] = {
             {"goal_scale", &s->goal_scale}, {"time_scale", &s->time_scale}, {"at_s", &s->at_s},
             {"value", &s->value}, {"duration_s", &s->duration_s},
-            {"detect_bound_ms", &s->detect_bound_ms}};
+            {"detect_bound_ms", &s->detect_bound_ms}, {"force_max_N", &s->force_max_N}};
         bool done = false;
         for (size_t i = 0; i < sizeof strs / sizeof strs[0] && !done; i++) {
             if (strcmp(key, strs[i].k) == 0) {
@@ -589,6 +590,9 @@ static int run_one(const fscen_t *fs, uint64_t seed, bool seed_set, frow_t *row,
             snprintf(err, errn, "%s: cannot read skill %s", fs->file, path);
             return -1;
         }
+    }
+    if (fs->force_max_N > 0.0) {
+        sc.force_max_N = fs->force_max_N;
     }
     if (strcmp(fs->kind, "power_loss_upload") == 0) {
         run_power_loss(&sc, row);

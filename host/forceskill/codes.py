@@ -28,6 +28,11 @@ ERR_SKILL_CENTRES = 208  # centres not strictly increasing in [0, 1]
 ERR_SKILL_GAINS = 209  # stored alpha/beta/gamma disagree with the stored gains
 ERR_SKILL_UNSUPPORTED = 210  # a flag this firmware does not implement
 ERR_SKILL_HEADER_SIZE = 211  # header_size field is not the v1 header size
+ERR_SKCHK_RANGE = 220  # a parameter outside the device's documented range (skill_check.h)
+ERR_SKCHK_STEP = 221  # dt/(tau*time_scale) too large for the DMP's Euler step
+ERR_SKCHK_NOT_FINITE = 222  # the rollout at goal scale 1 is not finite
+ERR_SKCHK_PEAK = 223  # the rollout at goal scale 1 peaks above the force limit
+ERR_SKCHK_GOAL_SCALE = 224  # goal_scale * peak above the force limit: run refused
 ERR_FIXED_OVERFLOW = 300  # a value does not fit its fixed-point format
 ERR_FIXED_WINDOW = 301  # more kernels overlap than the fixed build evaluates
 ERR_FIXED_STEP = 302  # dt/tau too small or too large for Q1.31
@@ -46,6 +51,11 @@ SKILL_STATUS_TEXT: dict[int, str] = {
     209: 'gains inconsistent with alpha/beta/gamma',
     210: 'unsupported flag',
     211: 'bad header size',
+    220: "parameter outside the device's range",
+    221: 'Euler step too large',
+    222: 'rollout not finite',
+    223: 'rollout above the force limit',
+    224: 'goal scale above the force limit',
 }
 
 # Protocol: E2E protection, ISO-TP (4xx)
@@ -251,6 +261,11 @@ __all__ = [
     'ERR_SKILL_GAINS',
     'ERR_SKILL_UNSUPPORTED',
     'ERR_SKILL_HEADER_SIZE',
+    'ERR_SKCHK_RANGE',
+    'ERR_SKCHK_STEP',
+    'ERR_SKCHK_NOT_FINITE',
+    'ERR_SKCHK_PEAK',
+    'ERR_SKCHK_GOAL_SCALE',
     'ERR_FIXED_OVERFLOW',
     'ERR_FIXED_WINDOW',
     'ERR_FIXED_STEP',

@@ -91,11 +91,11 @@ def security_key(seed: bytes, secret: bytes) -> bytes:
 
 
 def load_secret(path: Optional[str]) -> bytes:
-    """Device secret for SecurityAccess: hex text from PATH, else link.uds.device_secret()
-    ($FORCESKILL_SECRET, or the simulator's documented secret)."""
+    """Level-3 (firmware) SecurityAccess secret: hex text from PATH, else
+    link.uds.device_secret(3) ($FORCESKILL_FW_SECRET, or the simulator's documented secret)."""
     if not path:
-        from .link.uds import device_secret
-        return device_secret()
+        from .link.uds import SEC_LEVEL_FIRMWARE, device_secret
+        return device_secret(SEC_LEVEL_FIRMWARE)
     try:
         text = Path(path).read_text()
     except OSError as e:
@@ -382,7 +382,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("image", help="signed image (forceskill image build)")
     from .link.bus import add_bus_args
     add_bus_args(p)
-    p.add_argument("--secret", help="device secret for SecurityAccess, hex file (default: $FORCESKILL_SECRET "
+    p.add_argument("--secret", help="level-3 (firmware) SecurityAccess secret, hex file (default: $FORCESKILL_FW_SECRET "
                    "or the simulator's secret, as the other CAN commands)")
     p.add_argument("--key", help="image key, hex file, to check the tag before sending (or $FORCESKILL_FW_KEY)")
     p.add_argument("--allow-downgrade", action="store_true", help="accept an image older than the running one")

@@ -89,7 +89,7 @@ def test_update_revert_refusals_and_skills_kept(sim, tmp_path, capsys):
              (fw.build_image(payload, "1.3.0", "host", fw.DEV_KEY)[:-1000], 0xF2),
              (fw.build_image(payload, "0.9.0", "host", fw.DEV_KEY), 0xF5)]
     for img, nrc in cases:
-        with fl.Link(ns, device_secret()) as client:
+        with fl.Link(ns, device_secret(3)) as client:
             assert fl.read_status(client).version == "1.1.0"    # the first request is answered
             with pytest.raises(FsError) as e:
                 fl.flash_image(client, img)
@@ -97,3 +97,50 @@ def test_update_revert_refusals_and_skills_kept(sim, tmp_path, capsys):
             st = fl.read_status(client)
             assert st.version == "1.1.0" and not st.on_test
     assert slot1(capsys, sim) == before
+
+
+def test_keyless_confirm_across_reset_cannot_keep_failing_image(sim, tmp_path):
+    """Another node without a key repeats RoutineControl 0x0F02 (confirm firmware) every 2 ms
+    from just before the ECUReset until well after it: the failing test image still reverts."""
+    import threading
+    import time
+
+    import can
+    from forceskill.link.uds import device_secret
+    port = int(sim[6].split("=")[1])
+    ns = argparse.Namespace(interface="socketcand", channel="can0",
+                            bus_kwargs={"host": "127.0.0.1", "port": port}, node=0, timeout=3.0)
+    payload = os.urandom(30000)
+    with fl.Link(ns, device_secret(3)) as client:
+        running = fl.read_status(client)
+        img = fw.build_image(b"FSHOST-SELFTEST-FAIL" + payload, "9.0.0", "host", fw.DEV_KEY)
+        fl.flash_image(client, img)
+        stop = threading.Event()
+        sent = [0]
+
+        def hostile() -> None:
+            with can.Bus(interface="socketcand", host="127.0.0.1", port=port, channel="can0") as bus:
+                msg = can.Message(arbitration_id=0x600, is_extended_id=False,
+                                  data=[0x04, 0x31, 0x01, 0x0F, 0x02, 0xCC, 0xCC, 0xCC])
+                while not stop.is_set():
+                    bus.send(msg)
+                    sent[0] += 1
+                    stop.wait(0.002)
+
+        t = threading.Thread(target=hostile, daemon=True)
+        t.start()
+        try:
+            time.sleep(0.2)
+            try:
+                client.ecu_reset(1)
+            except Exception:  # the hostile node's answers share the response id
+                pass
+            time.sleep(1.0)
+        finally:
+            stop.set()
+            t.join(timeout=5)
+        assert sent[0] > 100
+        time.sleep(0.3)
+        st = fl.read_status(client)
+    assert st.running_version == running.running_version and not st.on_test, st.describe()
+    assert st.path in (3, 4), st.describe()            # reverted

@@ -88,3 +88,41 @@ def test_ecu_reset_positive_response(server):
                                                                  address_format=8, memorysize_format=16))
             assert e.value.response.code == 0x7F       # serviceNotSupportedInActiveSession
             assert U.slot_directory(client, 0) == before
+
+
+def test_security_levels_over_the_bus(server, tmp_path):
+    """udsoncan against the simulator: firmware confirm (0x0F02) is refused without level 3
+    (0x33) in the default session and with level 1; level 3 (its own secret) does not open
+    settings or skill slots (0x33); level 1 still does."""
+    image = fit(pressing(seed=5, duration_s=3.0), 100.0, n_kernels=20, surface_m=0.001).skill.to_bytes()
+    with connect(_ns(server)) as dev:
+        with U.uds_client(dev) as client:
+            client.change_session(0x01)
+            for session in (0x01, 0x02):
+                if session == 0x02:
+                    U.unlock(client, 0, 0x02)
+                with pytest.raises(NegativeResponseException) as e:
+                    client.start_routine(0x0F02)
+                assert e.value.response.code == 0x33
+            client.change_session(0x01)
+            client.change_session(0x02)
+            end = time.monotonic() + 15.0
+            while True:
+                try:
+                    client.unlock_security_access(U.SEC_LEVEL_FIRMWARE)
+                    break
+                except NegativeResponseException as e:
+                    assert e.value.response.code == 0x37 and time.monotonic() < end
+                    time.sleep(0.2)
+            with pytest.raises(NegativeResponseException) as e:
+                client.start_routine(U.RID_ERASE_SLOT, bytes([3]))
+            assert e.value.response.code == 0x33
+            with pytest.raises(NegativeResponseException) as e:
+                client.request_download(udsoncan.MemoryLocation(address=3, memorysize=len(image),
+                                                                 address_format=8, memorysize_format=16))
+            assert e.value.response.code == 0x33
+            client.change_session(0x01)
+            U.unlock(client, 0, 0x02)
+            U.download(client, 0, 3, image)
+            assert U.slot_directory(client, 0)[2]["valid"]
+            client.change_session(0x01)

@@ -44,10 +44,15 @@ def seed1(hil_sim: Path, tmp_path_factory) -> dict:
     return data
 
 
+# scenarios run under a raised force limit (the run check refuses goal_scale x peak above it)
+RAISED_F_MAX_N = {"force_limit": 100.0}
+
+
 def check_row(row: dict) -> None:
     name = row["name"]
     assert row["pass"], row
-    assert row["worst_force_N"] <= F_MAX_N + 1e-9 and row["f_max_N"] == F_MAX_N, row
+    f_max = RAISED_F_MAX_N.get(name, F_MAX_N)
+    assert row["worst_force_N"] <= f_max + 1e-9 and row["f_max_N"] == f_max, row
     assert not row["lost"], row
     if name == "power_loss_upload":
         m = re.search(r"(\d+) power-loss points.*old kept (\d+), new complete (\d+), corrupt (\d+); "
@@ -78,11 +83,11 @@ def test_every_fault_injected_and_passes(seed1: dict) -> None:
     # the faults were injected while pressing (a real ramp to zero was needed)
     for n in ("force_spike", "force_nan", "encoder_jump", "bus_off", "tick_overrun"):
         assert rows[n]["force_at_onset_N"] > 2.0, rows[n]
-    # the hostile goal scale drove the request into F_max: the limit bound the command; on the
-    # ideal (dynamics-compensated) plant the contact force then passed 60 N and latched 507, on the
-    # realistic plant the clamp alone holds it below the contact limit
-    for n in ("force_limit", "force_limit_realistic"):
-        assert rows[n]["worst_force_N"] == pytest.approx(F_MAX_N)
+    # a goal scale of 20 under a 100 N limit (f_hat ~97 N): on the ideal (dynamics-compensated)
+    # plant the contact force passed 60 N and latched 507; the largest goal scale the run check
+    # allows under 50 N drove the command to F_max on the realistic plant, whose contact force
+    # stays below the contact limit
+    assert rows["force_limit_realistic"]["worst_force_N"] == pytest.approx(F_MAX_N)
     assert rows["force_limit"]["contact_max_N"] > 60.0
     assert 45.0 < rows["force_limit_realistic"]["contact_max_N"] < 60.0
     # the emergency frame leaves in the tick that latched the fault; bus-off: it waits in the

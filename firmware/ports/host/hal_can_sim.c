@@ -1,4 +1,7 @@
-/* Host port, simulator CAN backend: two bounded FIFOs exchanged with hil_sim/bus. */
+/* Host port, simulator CAN backend: a transmit queue kept in identifier order (lowest first,
+ * frames with the same identifier in the order they were queued: what the bus takes next is what
+ * a controller's mailbox arbitration would send next) and a receive FIFO, exchanged with
+ * hil_sim/bus. */
 #include "hal_host.h"
 
 #include <string.h>
@@ -17,14 +20,42 @@ void hal_sim_can_reset(void)
     memset(&q, 0, sizeof(q));
 }
 
-bool hal_can_send(const can_frame_t *frame)
+static can_frame_t *tx_at(uint32_t i)
 {
-    if (q.bus_off || q.tx_len >= HAL_SIM_TX_QUEUE || frame->dlc > CAN_FRAME_MAX_DLC) {
+    return &q.tx[(q.tx_head + i) % HAL_SIM_TX_QUEUE];
+}
+
+/* Insert in identifier order: after every queued frame with id <= f's (behind_equal), or before
+ * every frame with id >= f's (a frame taken back from the bus goes first among its equals). */
+static bool tx_insert(const can_frame_t *f, bool behind_equal)
+{
+    if (q.tx_len >= HAL_SIM_TX_QUEUE || f->dlc > CAN_FRAME_MAX_DLC) {
         return false;
     }
-    q.tx[(q.tx_head + q.tx_len) % HAL_SIM_TX_QUEUE] = *frame;
+    uint32_t pos = q.tx_len;
+    while (pos > 0u && (tx_at(pos - 1u)->id > f->id ||
+                        (!behind_equal && tx_at(pos - 1u)->id == f->id))) {
+        *tx_at(pos) = *tx_at(pos - 1u);
+        pos--;
+    }
+    *tx_at(pos) = *f;
     q.tx_len++;
     return true;
+}
+
+bool hal_can_send(const can_frame_t *frame)
+{
+    return !q.bus_off && tx_insert(frame, true);
+}
+
+uint32_t hal_can_tx_free(void)
+{
+    return HAL_SIM_TX_QUEUE - q.tx_len;
+}
+
+bool hal_sim_can_tx_requeue(const can_frame_t *f)
+{
+    return tx_insert(f, false);
 }
 
 bool hal_can_receive(can_frame_t *frame)

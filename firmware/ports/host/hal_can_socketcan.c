@@ -55,6 +55,11 @@ bool hal_can_bus_off(void)
     return g_can.bus_off;
 }
 
+uint32_t hal_can_tx_free(void)
+{
+    return UINT32_MAX;   /* the kernel queues (its qdisc, not this process, orders the frames) */
+}
+
 bool hal_can_tx_idle(void)
 {
     return cansock_tx_idle(&g_can);

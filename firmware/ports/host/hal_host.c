@@ -14,8 +14,8 @@ static struct {
     hal_sensors_t sens;
     bool act_enable;
     fs_real_t act_force_N[HAL_AXES];
-    uint8_t secret[64];
-    uint8_t secret_len;
+    uint8_t secret[2][64];           /* level 1, level 3 */
+    uint8_t secret_len[2];
     bool reset_requested;
     uint8_t reset_type;
 } g;
@@ -28,6 +28,9 @@ static fls_ram_t g_fw_fls;
 static fls_dev_t g_fw_dev;
 static uint8_t g_fw_mem[HAL_HOST_FW_SECTOR * HAL_HOST_FW_SECTORS];
 static bool g_fw_ready;
+static fls_ram_t g_sec_fls;
+static fls_dev_t g_sec_dev;
+static uint8_t g_sec_mem[HAL_HOST_SEC_SECTOR * 2u];
 /* development key of the image tag (host/forceskill/fwimage.py DEV_KEY, docs/update.md) */
 static const uint8_t g_fw_key[32] = {
     0x40, 0x41, 0x42, 0x43, 0x44, 0x45, 0x46, 0x47, 0x48, 0x49, 0x4a, 0x4b, 0x4c, 0x4d, 0x4e, 0x4f,
@@ -36,8 +39,10 @@ static const uint8_t g_fw_key[32] = {
 void hal_host_init(void)
 {
     memset(&g, 0, sizeof(g));
-    g.secret_len = (uint8_t)strlen(HAL_HOST_SECRET_DEFAULT);
-    memcpy(g.secret, HAL_HOST_SECRET_DEFAULT, g.secret_len);
+    g.secret_len[0] = (uint8_t)strlen(HAL_HOST_SECRET_DEFAULT);
+    memcpy(g.secret[0], HAL_HOST_SECRET_DEFAULT, g.secret_len[0]);
+    g.secret_len[1] = (uint8_t)strlen(HAL_HOST_FW_SECRET_DEFAULT);
+    memcpy(g.secret[1], HAL_HOST_FW_SECRET_DEFAULT, g.secret_len[1]);
     if (!g_flash_ready) {
         hal_host_flash_erase();
     }
@@ -47,6 +52,8 @@ void hal_host_flash_erase(void)
 {
     memset(g_flash_mem, 0xFF, sizeof(g_flash_mem));
     fls_ram_init(&g_fls, &g_dev, g_flash_mem, HAL_HOST_FLASH_SECTOR, HAL_HOST_FLASH_SECTORS, 4u);
+    memset(g_sec_mem, 0xFF, sizeof(g_sec_mem));
+    fls_ram_init(&g_sec_fls, &g_sec_dev, g_sec_mem, HAL_HOST_SEC_SECTOR, 2u, 4u);
     g_flash_ready = true;
 }
 
@@ -142,19 +149,38 @@ const uint8_t *hal_fw_key(uint8_t *len)
     return g_fw_key;
 }
 
-void hal_host_set_secret(const uint8_t *secret, uint8_t len)
+/* index of a level's secret: 0 for level 1, 1 for level 3, -1 otherwise */
+static int secret_index(uint8_t level)
 {
-    if (len > sizeof(g.secret)) {
-        len = (uint8_t)sizeof(g.secret);
-    }
-    memcpy(g.secret, secret, len);
-    g.secret_len = len;
+    return level == 1u ? 0 : (level == 3u ? 1 : -1);
 }
 
-const uint8_t *hal_device_secret(uint8_t *len)
+void hal_host_set_secret(uint8_t level, const uint8_t *secret, uint8_t len)
 {
-    *len = g.secret_len;
-    return g.secret;
+    const int i = secret_index(level);
+    if (i < 0) {
+        return;
+    }
+    if (len > sizeof(g.secret[0])) {
+        len = (uint8_t)sizeof(g.secret[0]);
+    }
+    memcpy(g.secret[i], secret, len);
+    g.secret_len[i] = len;
+}
+
+const uint8_t *hal_device_secret(uint8_t level, uint8_t *len)
+{
+    const int i = secret_index(level);
+    *len = i < 0 ? 0u : g.secret_len[i];
+    return i < 0 ? g.secret[0] : g.secret[i];
+}
+
+const fls_dev_t *hal_sec_flash(void)
+{
+    if (!g_flash_ready) {
+        hal_host_flash_erase();
+    }
+    return &g_sec_dev;
 }
 
 void hal_request_reset(uint8_t type)

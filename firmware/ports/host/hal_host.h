@@ -18,7 +18,9 @@
 #define HAL_HOST_FW_SECTOR 4096u       /* firmware flash: boot state + 2 slots of 64 sectors */
 #define HAL_HOST_FW_SLOT_SECTORS 64u
 #define HAL_HOST_FW_SECTORS (2u + 2u * HAL_HOST_FW_SLOT_SECTORS)
-#define HAL_HOST_SECRET_DEFAULT "forceskill-simulator-secret-0001"   /* 32 bytes, docs/protocol.md */
+#define HAL_HOST_SECRET_DEFAULT "forceskill-simulator-secret-0001"   /* level 1, 32 bytes, docs/protocol.md */
+#define HAL_HOST_FW_SECRET_DEFAULT "forceskill-simulator-fwsecret-03"  /* level 3, 32 bytes */
+#define HAL_HOST_SEC_SECTOR 256u       /* SecurityAccess attempt record: 2 sectors */
 
 /** Reset the port: erase nothing, clear mailboxes and the reset request; time back to the clock. */
 void hal_host_init(void);
@@ -32,13 +34,13 @@ void hal_host_set_sensors(const hal_sensors_t *s);
 /** Actuator mailbox: enable flag and commanded force per axis. */
 void hal_host_get_actuator(bool *enable, fs_real_t force_N[HAL_AXES]);
 
-/** Replace the device secret (16..64 bytes). */
-void hal_host_set_secret(const uint8_t *secret, uint8_t len);
+/** Replace the SecurityAccess secret of level 1 or 3 (16..64 bytes). */
+void hal_host_set_secret(uint8_t level, const uint8_t *secret, uint8_t len);
 
 /** True once after the firmware requested a reset (type in *type). */
 bool hal_host_take_reset(uint8_t *type);
 
-/** Erase the whole RAM flash (a fresh device). */
+/** Erase the whole RAM flash of the skill slots and the SecurityAccess record (a fresh device). */
 void hal_host_flash_erase(void);
 
 /* ---- simulator CAN backend (hal_can_sim.c) ---- */
@@ -52,12 +54,18 @@ void hal_sim_can_reset(void);
 /** The bus delivers a frame to the device; false (dropped) if the rx FIFO is full. */
 bool hal_sim_can_deliver(const can_frame_t *f);
 
-/** Oldest frame the device queued for transmission (not removed); false if none. */
+/** The most urgent frame the device queued for transmission (lowest identifier, the oldest among
+ *  equal identifiers; not removed); false if none. */
 bool hal_sim_can_tx_peek(can_frame_t *f);
 
-/** Remove the oldest queued frame: the bus has it (hal_can_tx_idle is true once all are taken;
- *  frames the bus holds survive a device reset, as a controller's last frame on the wire). */
+/** Remove the frame hal_sim_can_tx_peek gives: the bus has it (hal_can_tx_idle is true once all
+ *  are taken; frames the bus holds survive a device reset, as a controller's last frame on the
+ *  wire). */
 void hal_sim_can_tx_pop(void);
+
+/** Give back a frame the bus had taken but not sent (a mailbox aborted for a more urgent frame):
+ *  it goes first among the queued frames with its identifier. False if the queue is full. */
+bool hal_sim_can_tx_requeue(const can_frame_t *f);
 
 /** Set or clear the bus-off condition (fault injection). */
 void hal_sim_can_set_bus_off(bool off);

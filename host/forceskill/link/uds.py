@@ -1,8 +1,9 @@
 """UDS client of the device: udsoncan over can-isotp (sharing the Device's python-can Notifier),
 configured here, not re-implemented. Padding 0xCC to 8 bytes, BS 0, STmin 0 (docs/protocol.md).
 
-SecurityAccess key = first 16 bytes of HMAC-SHA256(device secret, seed). The secret comes from
-$FORCESKILL_SECRET (hex) or, by default, the simulator's documented secret."""
+SecurityAccess key = first 16 bytes of HMAC-SHA256(secret of the level, seed). Each level has its
+own secret: level 1 (skills, settings) from $FORCESKILL_SECRET (hex), level 3 (firmware) from
+$FORCESKILL_FW_SECRET (hex); by default the simulator's documented secrets."""
 from __future__ import annotations
 
 import hashlib
@@ -23,14 +24,15 @@ from udsoncan.exceptions import NegativeResponseException, TimeoutException, Une
 from ..codes import (DID_COMM, DID_DEVICE_STATE, DID_FAULT_CAUSES, DID_GAINS_X, DID_GAINS_Y,  # noqa: F401
                      DID_LAST_TRANSFER, DID_LIMITS_X, DID_LIMITS_Y, DID_OBJECT, DID_SLOT_DIR,
                      DID_SW_VERSION, DID_VERSIONS, RID_CLEAR_FAULTS, RID_ERASE_SLOT,
-                     RID_RUN_SEQUENCE, RID_RUN_SKILL, RID_SELF_TEST, SEC_LEVEL_WRITE,
+                     RID_RUN_SEQUENCE, RID_RUN_SKILL, RID_SELF_TEST, SEC_LEVEL_FIRMWARE, SEC_LEVEL_WRITE,
                      SKILL_STATUS_TEXT)
 from ..errors import FsError
 from . import ERR_LINK_NEGATIVE, ERR_LINK_TIMEOUT, ERR_LINK_VERIFY
 from .dbc import UDS_REQUEST_BASE, UDS_RESPONSE_BASE
 from .device import Device
 
-SIM_SECRET = b"forceskill-simulator-secret-0001"
+SIM_SECRET = b"forceskill-simulator-secret-0001"      # level 1
+SIM_FW_SECRET = b"forceskill-simulator-fwsecret-03"   # level 3
 
 # udsoncan logs every negative response; the commands report them as one line themselves
 logging.getLogger("UdsClient").setLevel(logging.CRITICAL)
@@ -76,19 +78,23 @@ def fault_causes(client: Client, node: int) -> tuple[list[int], list[int]]:
     return mask_codes(latched), mask_codes(present)
 
 
-def device_secret() -> bytes:
-    env = os.environ.get("FORCESKILL_SECRET")
+def device_secret(level: int = SEC_LEVEL_WRITE) -> bytes:
+    """The SecurityAccess secret of a level (1 or 3) from the environment, else the simulator's."""
+    var, default = (("FORCESKILL_FW_SECRET", SIM_FW_SECRET) if level == SEC_LEVEL_FIRMWARE
+                    else ("FORCESKILL_SECRET", SIM_SECRET))
+    env = os.environ.get(var)
     if env:
         try:
             return bytes.fromhex(env)
         except ValueError:
-            raise FsError(ERR_LINK_NEGATIVE, "FORCESKILL_SECRET is not hex") from None
-    return SIM_SECRET
+            raise FsError(ERR_LINK_NEGATIVE, f"{var} is not hex") from None
+    return default
 
 
-def security_key(seed: bytes, secret: Optional[bytes] = None) -> bytes:
-    """The SecurityAccess key for a seed: HMAC-SHA256(secret, seed)[:16]."""
-    return hmac.new(secret if secret is not None else device_secret(), bytes(seed), hashlib.sha256).digest()[:16]
+def security_key(seed: bytes, secret: Optional[bytes] = None, level: int = SEC_LEVEL_WRITE) -> bytes:
+    """The SecurityAccess key for a seed: HMAC-SHA256(secret of the level, seed)[:16]."""
+    key = secret if secret is not None else device_secret(level)
+    return hmac.new(key, bytes(seed), hashlib.sha256).digest()[:16]
 
 
 def isotp_params() -> dict:
@@ -106,7 +112,7 @@ def uds_client(dev: Device, request_timeout_s: float = 5.0) -> Iterator[Client]:
     stack = isotp.NotifierBasedCanStack(dev.bus, dev.notifier, address=addr, params=isotp_params())
     conn = PythonIsoTpConnection(stack)
     cfg: Any = dict(udsoncan.configs.default_client_config)
-    cfg.update({"security_algo": lambda level, seed, params=None: security_key(seed),
+    cfg.update({"security_algo": lambda level, seed, params=None: security_key(seed, level=level),
                 "data_identifiers": DID_CODECS, "request_timeout": request_timeout_s,
                 "p2_timeout": request_timeout_s, "p2_star_timeout": request_timeout_s,
                 "use_server_timing": False, "server_address_format": 8,

@@ -144,19 +144,26 @@ static uint16_t uds(const uint8_t *req, uint16_t len, uint8_t *resp, uint16_t ca
     return 0;
 }
 
-static void unlock(uint8_t session)
+/* SecurityAccess at level with the secret of key_level (the port's secret of that level):
+ * returns 0 when unlocked, else the NRC of the key. */
+static uint8_t unlock_with(uint8_t session, uint8_t level, uint8_t key_level)
 {
     uint8_t r[64];
     const uint8_t dsc[2] = {0x10, session};
     assert_int_equal(uds(dsc, 2, r, sizeof(r)), 6);
     ticks(1100);                                       /* SecurityAccess boot delay (1 s) */
-    const uint8_t seed_req[2] = {0x27, 0x01};
+    const uint8_t seed_req[2] = {0x27, level};
     assert_int_equal(uds(seed_req, 2, r, sizeof(r)), 2 + SEC_SEED_LEN);
-    uint8_t key[2 + SEC_KEY_LEN] = {0x27, 0x02};
+    uint8_t key[2 + SEC_KEY_LEN] = {0x27, (uint8_t)(level + 1u)};
     /* HMAC-SHA256 (checked against RFC 4231 vectors in the security tests), secret of the port */
-    sec_compute_key(&app.sec_cfg, &r[2], &key[2]);
-    assert_int_equal(uds(key, sizeof(key), r, sizeof(r)), 2);
-    assert_int_equal(r[0], 0x67);
+    sec_compute_key(app_sec_config(&app, key_level), &r[2], &key[2]);
+    (void)uds(key, sizeof(key), r, sizeof(r));
+    return r[0] == 0x67 ? 0u : r[2];
+}
+
+static void unlock(uint8_t session)
+{
+    assert_int_equal(unlock_with(session, 0x01, 0x01), 0);
 }
 
 static uint8_t image_a[APP_IMAGE_MAX], image_b[APP_IMAGE_MAX];
@@ -475,6 +482,260 @@ static void test_ecu_reset_responds_then_resets(void **state)
     assert_int_equal(t_reset, UINT32_MAX);
 }
 
+
+/* ---- SecurityAccess levels, firmware confirm, slot changes only while idle ---- */
+
+static uint8_t nrc_of(const uint8_t *req, uint16_t len)
+{
+    uint8_t r[64];
+    (void)uds(req, len, r, sizeof(r));
+    return r[0] == 0x7F ? r[2] : 0x00;
+}
+
+/* 0x0F02 (confirm firmware) and 0x0F01 need level 3 in the programming session: refused with
+ * securityAccessDenied in the default session and with level 1; the level-3 secret differs from
+ * the level-1 secret; settings and slots need level 1, not level 3. */
+static void test_security_levels_and_confirm(void **state)
+{
+    (void)state;
+    ticks(5);
+    const uint8_t confirm[4] = {0x31, 0x01, 0x0F, 0x02};
+    const uint8_t mark[5] = {0x31, 0x01, 0x0F, 0x01, 0x00};
+    assert_int_equal(nrc_of(confirm, 4), UDS_NRC_SECURITY_ACCESS_DENIED);   /* default session */
+    unlock(UDS_SESSION_PROGRAMMING);
+    assert_int_equal(nrc_of(confirm, 4), UDS_NRC_SECURITY_ACCESS_DENIED);   /* level 1 only */
+    assert_int_equal(nrc_of(mark, 5), UDS_NRC_SECURITY_ACCESS_DENIED);
+    /* level 3 with the level-1 secret: invalid key */
+    assert_int_equal(unlock_with(UDS_SESSION_PROGRAMMING, 0x03, 0x01), UDS_NRC_INVALID_KEY);
+    assert_memory_not_equal(app_sec_config(&app, 1)->secret, app_sec_config(&app, 3)->secret,
+                            app_sec_config(&app, 1)->secret_len);
+    /* level 3 with its own secret: firmware routines allowed, settings and slots are not */
+    assert_int_equal(unlock_with(UDS_SESSION_PROGRAMMING, 0x03, 0x03), 0);
+    assert_int_equal(nrc_of(confirm, 4), 0x00);        /* not on test: nothing to confirm, ok */
+    const uint8_t wr[23] = {0x2E, 0x01, 0x00};
+    assert_int_equal(nrc_of(wr, 23), UDS_NRC_SECURITY_ACCESS_DENIED);
+    const uint8_t erase[5] = {0x31, 0x01, 0xFF, 0x00, 1};
+    assert_int_equal(nrc_of(erase, 5), UDS_NRC_SECURITY_ACCESS_DENIED);
+    len_a = load("press_n10_ridge_release.skill", image_a);
+    assert_int_equal(download(1, image_a, len_a, UINT32_MAX), UDS_NRC_SECURITY_ACCESS_DENIED);
+    assert_false(app.slot_valid[0]);
+    /* level 3 needs the programming session */
+    uint8_t r[64];
+    const uint8_t ext[2] = {0x10, 0x03};
+    assert_int_equal(uds(ext, 2, r, sizeof(r)), 6);
+    const uint8_t seed3[2] = {0x27, 0x03};
+    assert_int_equal(nrc_of(seed3, 2), UDS_NRC_SUBFUNCTION_NOT_IN_SESSION);
+}
+
+/* A new image on its test boot whose self-test fails serves nothing from the bus in its boot
+ * tick (a confirm request from another node goes unanswered) and asks for the reset that makes
+ * the bootloader revert; it never reaches IDLE. */
+static void test_failing_test_image_serves_nothing(void **state)
+{
+    (void)state;
+    app.boot.test_boot = 1u;          /* on test ... */
+    app.nvm_ok = false;               /* ... and its self-test fails (storage unreadable) */
+    uint8_t type = 0u;
+    (void)hal_host_take_reset(&type);
+    const uint8_t confirm[4] = {0x31, 0x01, 0x0F, 0x02};
+    assert_int_equal(isotp_send(&tester, confirm, 4, t_us), PROTO_OK);
+    isotp_poll(&tester, t_us);
+    const unsigned before = n_out;
+    tick();
+    assert_int_equal(app.state, APP_BOOT);
+    assert_true(hal_host_take_reset(&type));
+    for (unsigned i = before; i < n_out; i++) {
+        assert_int_not_equal(out[i].id, PROTO_ID_UDS_RESPONSE(0));
+    }
+    assert_int_equal(app.boot.test_boot, 1u);          /* not confirmed */
+}
+
+static uint8_t wrong_key(void)
+{
+    uint8_t r[64];
+    const uint8_t seed_req[2] = {0x27, 0x01};
+    (void)uds(seed_req, 2, r, sizeof(r));
+    if (r[0] == 0x7F) {
+        return r[2];
+    }
+    uint8_t key[2 + SEC_KEY_LEN] = {0x27, 0x02};
+    memset(&key[2], 0xA5, SEC_KEY_LEN);
+    (void)uds(key, sizeof(key), r, sizeof(r));
+    return r[0] == 0x7F ? r[2] : 0x00;
+}
+
+static uint16_t ecu_reset(uint8_t sub, uint8_t *resp, uint32_t *t_resp, uint32_t *t_reset);
+
+/* n ms with TesterPresent every second (the session stays) */
+static void ticks_present(unsigned n)
+{
+    uint8_t r[8];
+    const uint8_t tp[2] = {0x3E, 0x00};
+    for (unsigned i = 0; i < n; i += 1000u) {
+        assert_int_equal(uds(tp, 2, r, sizeof(r)), 2);
+        ticks(n - i < 1000u ? n - i : 1000u);
+    }
+}
+
+/* The wrong-key counter and its lockout survive ECUReset and power-up: a node that resets the
+ * device after every wrong key gets 3 guesses, then waits the full lockout (10 s) again after
+ * every reset; a guesser that resets in a loop gets at most 3 wrong keys per 12 s. */
+static void test_wrong_key_counter_survives_reset(void **state)
+{
+    (void)state;
+    uint8_t r[64];
+    const uint8_t prog[2] = {0x10, 0x02};
+    assert_int_equal(uds(prog, 2, r, sizeof(r)), 6);
+    ticks(1100);
+    assert_int_equal(wrong_key(), UDS_NRC_INVALID_KEY);
+    uint32_t t_resp = 0u, t_reset = 0u;
+    assert_int_equal(ecu_reset(0x01, r, &t_resp, &t_reset), 2);
+    assert_int_equal(uds(prog, 2, r, sizeof(r)), 6);
+    ticks(1100);                                        /* delay after a wrong key, from power-up */
+    assert_int_equal(wrong_key(), UDS_NRC_INVALID_KEY);
+    assert_int_equal(ecu_reset(0x01, r, &t_resp, &t_reset), 2);
+    assert_int_equal(uds(prog, 2, r, sizeof(r)), 6);
+    ticks(1100);
+    assert_int_equal(wrong_key(), UDS_NRC_EXCEEDED_ATTEMPTS);   /* the third, across two resets */
+    /* power-up (flash kept): the lockout runs again from power-up */
+    hal_sim_can_reset();
+    app_init(&app, &cfg);
+    assert_int_equal(uds(prog, 2, r, sizeof(r)), 6);
+    ticks_present(9000);
+    assert_int_equal(wrong_key(), UDS_NRC_DELAY_NOT_EXPIRED);
+    ticks_present(1100);
+    assert_int_equal(wrong_key(), UDS_NRC_INVALID_KEY);          /* lockout over: counter 1 */
+
+    /* a guesser that resets after every attempt, 12 s of simulated time */
+    hal_host_flash_erase();
+    hal_sim_can_reset();
+    app_init(&app, &cfg);
+    const uint64_t t_end = t_us + 12000000u;
+    unsigned guesses = 0u;
+    while (t_us < t_end) {
+        assert_int_equal(uds(prog, 2, r, sizeof(r)), 6);
+        uint8_t nrc = wrong_key();
+        while (nrc == UDS_NRC_DELAY_NOT_EXPIRED && t_us < t_end) {
+            ticks(100);                                 /* asks again until the delay is over */
+            nrc = wrong_key();
+        }
+        guesses += (nrc == UDS_NRC_INVALID_KEY || nrc == UDS_NRC_EXCEEDED_ATTEMPTS) ? 1u : 0u;
+        assert_int_equal(ecu_reset(0x01, r, &t_resp, &t_reset), 2);
+    }
+    print_message("wrong keys in 12 s with a reset after each: %u\n", guesses);
+    assert_true(guesses <= 3u);
+}
+
+/* A slot's content cannot change while a skill executes: a download announced and sent in IDLE
+ * whose RequestTransferExit comes after a run started is refused with 0x22 and the slot keeps
+ * the running skill; RequestDownload and erase are refused with 0x22 too. */
+static void test_commit_refused_while_executing(void **state)
+{
+    (void)state;
+    len_a = load("press_n10_ridge_release.skill", image_a);
+    len_b = load("press_n50_ridge_release.skill", image_b);
+    unlock(UDS_SESSION_PROGRAMMING);
+    assert_int_equal(download(2, image_a, len_a, UINT32_MAX), 0x00);
+    uint8_t r[64];
+    const uint8_t rd[6] = {0x34, 0x00, 0x21, 2, (uint8_t)(len_b >> 8), (uint8_t)len_b};
+    assert_int_equal(uds(rd, 6, r, sizeof(r)), 4);
+    static uint8_t td[4096];
+    td[0] = 0x36;
+    td[1] = 0x01;
+    memcpy(&td[2], image_b, len_b);
+    assert_int_equal(uds(td, (uint16_t)(len_b + 2u), r, sizeof(r)), 2);
+    send_heartbeat();
+    const uint8_t run2[10] = {0x31, 0x01, 0x02, 0x01, 2, 0x03, 0xE8, 0x03, 0xE8, 0};
+    assert_int_equal(nrc_of(run2, 10), 0x00);
+    assert_int_equal(app.state, APP_EXECUTE);
+    send_heartbeat();
+    const uint8_t exit_req[1] = {0x37};
+    assert_int_equal(nrc_of(exit_req, 1), UDS_NRC_CONDITIONS_NOT_CORRECT);
+    assert_int_equal(app.slot_skill[1].dmp.n_kernels, 10);
+    assert_int_equal(app.slot_len[1], len_a);
+    send_heartbeat();
+    assert_int_equal(nrc_of(rd, 6), UDS_NRC_CONDITIONS_NOT_CORRECT);
+    send_heartbeat();
+    const uint8_t erase[5] = {0x31, 0x01, 0xFF, 0x00, 2};
+    assert_int_equal(nrc_of(erase, 5), UDS_NRC_CONDITIONS_NOT_CORRECT);
+    assert_true(app.slot_valid[1]);
+    /* the stored record is the running one too */
+    uint32_t len = 0u;
+    assert_int_equal(nvm_read(&app.nvm, 1u, app.image, sizeof(app.image), &len), NVM_OK);
+    assert_int_equal(len, len_a);
+    assert_memory_equal(app.image, image_a, len_a);
+}
+
+
+/* The device validates a skill before committing it: weights x100 (in range) make the rollout at
+ * goal 1 peak far above 50 N -> RequestTransferExit refused (0x72), DID 0x0201 = 223, slot
+ * unchanged; tau 1e-9 -> 220. Run: a goal scale that takes the peak above the force limit is
+ * refused (0x31) before any motion, one just below it starts. */
+static void test_skill_validated_before_commit_and_run(void **state)
+{
+    (void)state;
+    len_a = load("press_n50_lwr_hold.skill", image_a);
+    unlock(UDS_SESSION_PROGRAMMING);
+    uint8_t r[64];
+    const uint8_t rd1[6] = {0x34, 0x00, 0x21, 1, (uint8_t)(len_a >> 8), (uint8_t)len_a};
+    assert_int_equal(uds(rd1, 6, r, sizeof(r)), 4);
+    static uint8_t td[4096];
+    td[0] = 0x36;
+    td[1] = 0x01;
+    memcpy(&td[2], image_a, len_a);
+    assert_int_equal(uds(td, (uint16_t)(len_a + 2u), r, sizeof(r)), 2);
+    const uint32_t t0 = app.tick;
+    const uint8_t exit_req[1] = {0x37};
+    assert_int_equal(uds(exit_req, 1, r, sizeof(r)), 5);          /* after 0x78, the CRC */
+    print_message("commit of a 1.5 s skill (N = 50): %u ticks from RequestTransferExit to its "
+                  "answer\n", (unsigned)(app.tick - t0));
+    assert_true(app.tick - t0 >= 15u && app.tick - t0 <= 20u);  /* 1,500 steps at 100 per tick */
+    const fs_real_t peak = app.slot_peak_N[0];
+    assert_true(peak > FS_R(4.8) && peak < FS_R(4.9));        /* the reference rollout: 4.842 N */
+    /* weights x100, CRC recomputed: a well-formed image whose output exceeds the limit */
+    memcpy(image_b, image_a, len_a);
+    const uint16_t n = app.slot_skill[0].dmp.n_kernels;
+    for (uint16_t i = 0; i < n; i++) {
+        double w;
+        memcpy(&w, &image_b[SKILL_HEADER_SIZE + 16u * n + 8u * i], 8);
+        w *= 100.0;
+        memcpy(&image_b[SKILL_HEADER_SIZE + 16u * n + 8u * i], &w, 8);
+    }
+    uint32_t crc = skill_crc32(0u, image_b, len_a - 4u);
+    memcpy(&image_b[len_a - 4u], &crc, 4);
+    assert_int_equal(download(1, image_b, len_a, UINT32_MAX), UDS_NRC_PROGRAMMING_FAILURE);
+    assert_int_equal(app.last_transfer_status, FS_ERR_SKCHK_PEAK);
+    assert_true(app.slot_peak_N[0] == peak);
+    uint32_t len = 0u;
+    assert_int_equal(nvm_read(&app.nvm, 0u, app.image, sizeof(app.image), &len), NVM_OK);
+    assert_memory_equal(app.image, image_a, len_a);
+    /* tau = 1e-9 (header offset of tau: 24): parameter range */
+    memcpy(image_b, image_a, len_a);
+    const double tau = 1e-9;
+    memcpy(&image_b[24], &tau, 8);
+    crc = skill_crc32(0u, image_b, len_a - 4u);
+    memcpy(&image_b[len_a - 4u], &crc, 4);
+    assert_int_equal(download(2, image_b, len_a, UINT32_MAX), UDS_NRC_PROGRAMMING_FAILURE);
+    assert_true(app.last_transfer_status == FS_ERR_SKCHK_RANGE ||
+                app.last_transfer_status == FS_ERR_SKILL_GAINS);
+    assert_false(app.slot_valid[1]);
+    /* run: goal scale 10.4 x 4.84 N > 50 N refused before any motion; 10.2 starts */
+    send_heartbeat();
+    const uint16_t g_over = (uint16_t)(50.0 / (double)peak * 1000.0 * 1.005);
+    const uint16_t g_under = (uint16_t)(50.0 / (double)peak * 1000.0 * 0.995);
+    uint8_t run[10] = {0x31, 0x01, 0x02, 0x01, 1, (uint8_t)(g_over >> 8), (uint8_t)g_over, 0x03, 0xE8, 0};
+    assert_int_equal(uds(run, 10, r, sizeof(r)), 3);
+    assert_int_equal(r[2], UDS_NRC_REQUEST_OUT_OF_RANGE);
+    assert_int_equal(app.last_run_status, FS_ERR_SKCHK_GOAL_SCALE);
+    assert_int_equal(app.state, APP_IDLE);
+    assert_true(app.force_out_N[0] == FS_R(0.0) && app.force_hat_N == FS_R(0.0));
+    send_heartbeat();
+    run[5] = (uint8_t)(g_under >> 8);
+    run[6] = (uint8_t)g_under;
+    assert_int_equal(uds(run, 10, r, sizeof(r)), 4);
+    assert_int_equal(app.state, APP_EXECUTE);
+}
+
 static void test_scheduler_overrun(void **state)
 {
     (void)state;
@@ -505,6 +766,11 @@ int main(void)
         cmocka_unit_test_setup(test_execute_and_refusals, setup),
         cmocka_unit_test_setup(test_ecu_reset_responds_then_resets, setup),
         cmocka_unit_test_setup(test_scheduler_overrun, setup),
+        cmocka_unit_test_setup(test_security_levels_and_confirm, setup),
+        cmocka_unit_test_setup(test_failing_test_image_serves_nothing, setup),
+        cmocka_unit_test_setup(test_wrong_key_counter_survives_reset, setup),
+        cmocka_unit_test_setup(test_commit_refused_while_executing, setup),
+        cmocka_unit_test_setup(test_skill_validated_before_commit_and_run, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -439,6 +439,47 @@ static void test_download_upload(void **state)
     EXPECT_NRC(0x37, UDS_NRC_SERVICE_NOT_IN_SESSION);
 }
 
+/* RequestTransferExit whose validation takes several ticks: 7F 37 78 at once, other requests
+ * 7F SID 21 meanwhile, no repeat before UDS_PENDING_REPEAT_MS, then the final answer. */
+static void test_transfer_exit_pending(void **state)
+{
+    (void)state;
+    uint16_t n;
+    unlock(UDS_SESSION_PROGRAMMING);
+    REQ(0x34, 0x00, 0x11, 0x01, 0x04);
+    assert_int_equal(n, 4);
+    REQ(0x36, 0x01, 1, 2, 3, 4);
+    assert_int_equal(n, 2);
+    fk.end_nrc = UDS_NRC_RESPONSE_PENDING;
+    REQ(0x37);
+    EXPECT_NRC(0x37, UDS_NRC_RESPONSE_PENDING);
+    assert_int_equal(srv.pending_sid, 0x37);
+    REQ(0x3E, 0x00);
+    EXPECT_NRC(0x3E, UDS_NRC_BUSY_REPEAT_REQUEST);
+    n = uds_server_resume(&srv, resp, (uint16_t)sizeof(resp), 100u);
+    assert_int_equal(n, 0);                                /* still working, no repeat yet */
+    n = uds_server_resume(&srv, resp, (uint16_t)sizeof(resp), UDS_PENDING_REPEAT_MS + 1u);
+    EXPECT_NRC(0x37, UDS_NRC_RESPONSE_PENDING);            /* repeated within P2* */
+    fk.end_nrc = UDS_NRC_OK;
+    n = uds_server_resume(&srv, resp, (uint16_t)sizeof(resp), UDS_PENDING_REPEAT_MS + 2u);
+    assert_int_equal(n, 5);
+    const uint8_t expect[5] = {0x77, 0x11, 0x22, 0x33, 0x44};
+    assert_memory_equal(resp, expect, 5);
+    assert_int_equal(srv.pending_sid, 0);
+    assert_int_equal(fk.end_calls, 4);
+    REQ(0x3E, 0x00);
+    assert_int_equal(n, 2);
+    /* a refusal after pending: the final answer is the NRC */
+    REQ(0x34, 0x00, 0x11, 0x01, 0x04);
+    REQ(0x36, 0x01, 1, 2, 3, 4);
+    fk.end_nrc = UDS_NRC_RESPONSE_PENDING;
+    REQ(0x37);
+    fk.end_nrc = UDS_NRC_PROGRAMMING_FAILURE;
+    n = uds_server_resume(&srv, resp, (uint16_t)sizeof(resp), 10u);
+    EXPECT_NRC(0x37, UDS_NRC_PROGRAMMING_FAILURE);
+    assert_int_equal(uds_server_resume(&srv, resp, (uint16_t)sizeof(resp), 20u), 0);
+}
+
 static void test_block_counter_wraps(void **state)
 {
     (void)state;
@@ -489,6 +530,7 @@ int main(void)
         cmocka_unit_test_setup(test_download_upload, setup),
         cmocka_unit_test_setup(test_block_counter_wraps, setup),
         cmocka_unit_test_setup(test_tester_present, setup),
+        cmocka_unit_test_setup(test_transfer_exit_pending, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,0 +1,120 @@
+/* Device-side skill validation: ranges, step rule, own rollout (see skill_check.h). */
+#include "skill_check.h"
+
+#include <stddef.h>
+
+static bool within(fs_real_t v, fs_real_t lo, fs_real_t hi)
+{
+    return fs_isfinite(v) && v >= lo && v <= hi;
+}
+
+/* Fastest rate of the DMP in DMP time (per unit of t/tau): below 1 + alpha + sqrt(gamma). */
+static fs_real_t step_rate(const skill_t *s)
+{
+    return FS_R(1.0) + s->dmp.p.alpha + fs_sqrt(s->dmp.p.gamma);
+}
+
+static bool step_ok(const skill_t *s, fs_real_t dt_s, fs_real_t time_scale)
+{
+    const fs_real_t h = dt_s / (s->dmp.tau_s * time_scale) * step_rate(s);
+    return fs_isfinite(h) && h <= (fs_real_t)(SKCHK_STEP_MAX);
+}
+
+fs_status_t skchk_params(const skill_t *s)
+{
+    if (s == NULL) {
+        return FS_ERR_NULL_ARG;
+    }
+    const dmp_model_t *m = &s->dmp;
+    const pfc_axis_gains_t *g = &s->gains;
+    bool ok = within(m->tau_s, (fs_real_t)(SKCHK_TAU_MIN_S), (fs_real_t)(SKCHK_TAU_MAX_S)) &&
+              within(m->goal_m, FS_R(0.0), (fs_real_t)(SKCHK_GOAL_MAX_M)) && m->goal_m > FS_R(0.0) &&
+              within(m->stiffness_Npm, FS_R(0.0), (fs_real_t)(SKCHK_STIFFNESS_MAX_NPM)) &&
+              within(m->duration_s, FS_R(0.0), (fs_real_t)(SKCHK_DURATION_MAX_S)) &&
+              within(m->p.alpha, FS_R(0.0), (fs_real_t)(SKCHK_ALPHA_MAX)) &&
+              within(m->p.gamma, FS_R(0.0), (fs_real_t)(SKCHK_GAMMA_MAX)) &&
+              within(g->m_d_kg, (fs_real_t)(SKCHK_MASS_MIN_KG), (fs_real_t)(SKCHK_MASS_MAX_KG)) &&
+              within(g->k_d_Nspm, FS_R(0.0), (fs_real_t)(SKCHK_GAIN_MAX)) &&
+              within(g->k_p_Npm, FS_R(0.0), (fs_real_t)(SKCHK_GAIN_MAX)) &&
+              within(g->k_f, FS_R(0.0), (fs_real_t)(SKCHK_GAIN_MAX)) &&
+              within(g->k_i_per_s, FS_R(0.0), (fs_real_t)(SKCHK_GAIN_MAX)) &&
+              within(s->surface_m, (fs_real_t)(-SKCHK_SURFACE_MAX_M), (fs_real_t)(SKCHK_SURFACE_MAX_M));
+    for (uint16_t i = 0u; ok && i < m->n_kernels && i < DMP_MAX_KERNELS; i++) {
+        ok = within(m->weight[i], (fs_real_t)(-SKCHK_WEIGHT_MAX), (fs_real_t)(SKCHK_WEIGHT_MAX)) &&
+             within(m->width[i], (fs_real_t)(SKCHK_WIDTH_MIN), (fs_real_t)(SKCHK_WIDTH_MAX));
+    }
+    if (!ok || m->n_kernels == 0u || m->n_kernels > DMP_MAX_KERNELS) {
+        return FS_ERR_SKCHK_RANGE;
+    }
+    return step_ok(s, m->dt_s, FS_R(1.0)) ? FS_OK : FS_ERR_SKCHK_STEP;
+}
+
+void skchk_begin(skchk_t *c, const skill_t *s, fs_real_t dt_s, fs_real_t force_max_N)
+{
+    c->skill = s;
+    dmp_state_reset(&c->dmp);
+    const fs_real_t n = s->dmp.duration_s / dt_s + FS_R(0.5);
+    c->steps_total = (fs_isfinite(n) && n > FS_R(0.0) && n < FS_R(4.0e9)) ? (uint32_t)n : 0u;
+    c->steps_done = 0u;
+    c->peak_N = FS_R(0.0);
+    c->force_max_N = force_max_N;
+    c->status = FS_OK;
+    c->done = c->steps_total == 0u;
+}
+
+bool skchk_run(skchk_t *c, uint32_t max_steps)
+{
+    for (uint32_t i = 0u; i < max_steps && !c->done; i++) {
+        const fs_real_t f = dmp_step(&c->skill->dmp, &c->dmp, NULL, NULL);
+        const fs_real_t a = fs_fabs(f);
+        if (!fs_isfinite(f)) {
+            c->status = FS_ERR_SKCHK_NOT_FINITE;
+            c->done = true;
+        } else {
+            if (a > c->peak_N) {
+                c->peak_N = a;
+            }
+            if (c->peak_N > c->force_max_N) {
+                c->status = FS_ERR_SKCHK_PEAK;
+                c->done = true;
+            }
+        }
+        c->steps_done++;
+        if (c->steps_done >= c->steps_total) {
+            c->done = true;
+        }
+    }
+    return c->done;
+}
+
+fs_status_t skchk_skill(const skill_t *s, fs_real_t dt_s, fs_real_t force_max_N, fs_real_t *peak_N)
+{
+    const fs_status_t st = skchk_params(s);
+    if (st != FS_OK) {
+        return st;
+    }
+    skchk_t c;
+    skchk_begin(&c, s, dt_s, force_max_N);
+    while (!skchk_run(&c, UINT32_MAX)) {
+    }
+    if (peak_N != NULL) {
+        *peak_N = c.peak_N;
+    }
+    return c.status;
+}
+
+fs_status_t skchk_run_scales(const skill_t *s, fs_real_t peak_N, fs_real_t goal_scale,
+                             fs_real_t time_scale, fs_real_t dt_s, fs_real_t force_max_N)
+{
+    if (s == NULL) {
+        return FS_ERR_NULL_ARG;
+    }
+    if (!fs_isfinite(goal_scale) || !fs_isfinite(time_scale) || !(time_scale > FS_R(0.0))) {
+        return FS_ERR_SCALE_INVALID;
+    }
+    if (!step_ok(s, dt_s, time_scale)) {
+        return FS_ERR_SKCHK_STEP;
+    }
+    const fs_real_t peak = fs_fabs(goal_scale) * peak_N;
+    return (fs_isfinite(peak) && peak <= force_max_N) ? FS_OK : FS_ERR_SKCHK_GOAL_SCALE;
+}

@@ -1,0 +1,170 @@
+/* Device-side skill validation (skill_check.h): the peak of the skill's own rollout equals the
+ * maximum of the Python reference rollout (tests/vectors/NAME_g1_t1.csv, written by
+ * host/forceskill with numpy, independent of this code); hostile but well-formed skills are
+ * refused with their 22x code; the incremental check gives the one-shot result whatever the
+ * budget per call; the run-time goal-scale rule is exact at the limit. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "skill_check.h"
+
+#ifdef FS_REAL_FLOAT
+#define PEAK_REL_TOL 1e-4
+#else
+#define PEAK_REL_TOL 1e-9
+#endif
+
+static uint8_t image[8192];
+static skill_t skill;
+
+static void load_skill(const char *name)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s.skill", FS_VECTORS_DIR, name);
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    const size_t n = fread(image, 1, sizeof image, f);
+    fclose(f);
+    assert_int_equal(skill_parse(image, (uint32_t)n, &skill), FS_OK);
+}
+
+/* max |f_hat| of the reference rollout over the skill's duration */
+static double reference_peak(const char *name, double duration_s)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s_g1_t1.csv", FS_VECTORS_DIR, name);
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    char line[256];
+    assert_non_null(fgets(line, sizeof line, f));   /* header */
+    double peak = 0.0;
+    while (fgets(line, sizeof line, f) != NULL) {
+        double t = 0.0, v = 0.0;
+        assert_int_equal(sscanf(line, "%lf,%lf", &t, &v), 2);
+        if (t <= duration_s + 1e-9 && fabs(v) > peak) {
+            peak = fabs(v);
+        }
+    }
+    fclose(f);
+    return peak;
+}
+
+static void test_peak_matches_reference(void **state)
+{
+    (void)state;
+    static const char *names[] = {"press_n50_lwr_hold", "engrave_n50_ridge_release",
+                                  "press_n100_ridge_hold", "engrave_n10_lwr_hold"};
+    for (unsigned i = 0; i < sizeof names / sizeof names[0]; i++) {
+        load_skill(names[i]);
+        fs_real_t peak = FS_R(0.0);
+        assert_int_equal(skchk_skill(&skill, FS_R(0.001), FS_R(50.0), &peak), FS_OK);
+        const double ref = reference_peak(names[i], (double)skill.dmp.duration_s);
+        print_message("%s: peak %.9f N, reference %.9f N\n", names[i], (double)peak, ref);
+        assert_true(ref > 1.0);
+        assert_true(fabs((double)peak - ref) <= PEAK_REL_TOL * ref);
+        /* a limit just below the peak refuses it */
+        assert_int_equal(skchk_skill(&skill, FS_R(0.001), peak * FS_R(0.999), NULL),
+                         FS_ERR_SKCHK_PEAK);
+    }
+}
+
+static void test_hostile_skills_refused(void **state)
+{
+    (void)state;
+    load_skill("press_n50_lwr_hold");
+    const skill_t good = skill;
+    skill.dmp.weight[3] *= FS_R(1e30);
+    assert_int_equal(skchk_params(&skill), FS_ERR_SKCHK_RANGE);
+    skill = good;
+    skill.dmp.goal_m = FS_R(1e30);
+    assert_int_equal(skchk_params(&skill), FS_ERR_SKCHK_RANGE);
+    skill = good;
+    skill.dmp.tau_s = FS_R(1e-9);
+    assert_int_equal(skchk_params(&skill), FS_ERR_SKCHK_RANGE);
+    skill = good;
+    skill.dmp.tau_s = FS_R(0.005);          /* in range, but dt*rate/tau = 2.5 */
+    assert_int_equal(skchk_params(&skill), FS_ERR_SKCHK_STEP);
+    skill = good;
+    skill.dmp.duration_s = FS_R(601.0);
+    assert_int_equal(skchk_params(&skill), FS_ERR_SKCHK_RANGE);
+    skill = good;
+    skill.dmp.width[0] = FS_R(1e-7);
+    assert_int_equal(skchk_params(&skill), FS_ERR_SKCHK_RANGE);
+    /* in range, but weights x100: the rollout peaks far above 50 N */
+    skill = good;
+    for (uint16_t i = 0; i < skill.dmp.n_kernels; i++) {
+        skill.dmp.weight[i] *= FS_R(100.0);
+    }
+    assert_int_equal(skchk_params(&skill), FS_OK);
+    assert_int_equal(skchk_skill(&skill, FS_R(0.001), FS_R(50.0), NULL), FS_ERR_SKCHK_PEAK);
+    assert_int_equal(skchk_params(NULL), FS_ERR_NULL_ARG);
+}
+
+static void test_incremental_equals_one_shot(void **state)
+{
+    (void)state;
+    load_skill("engrave_n50_ridge_release");
+    fs_real_t one = FS_R(0.0);
+    assert_int_equal(skchk_skill(&skill, FS_R(0.001), FS_R(50.0), &one), FS_OK);
+    static const uint32_t budgets[] = {1u, 7u, 100u, 5000u};
+    for (unsigned b = 0; b < 4u; b++) {
+        skchk_t c;
+        skchk_begin(&c, &skill, FS_R(0.001), FS_R(50.0));
+        unsigned calls = 0u;
+        while (!skchk_run(&c, budgets[b])) {
+            calls++;
+        }
+        assert_int_equal(c.status, FS_OK);
+        assert_int_equal(c.steps_done, 2000u);      /* T = 2 s at 1 ms */
+        assert_true(c.peak_N == one);
+        assert_int_equal(calls + 1u, (2000u + budgets[b] - 1u) / budgets[b]);
+    }
+}
+
+static void test_run_scales(void **state)
+{
+    (void)state;
+    load_skill("press_n50_lwr_hold");
+    fs_real_t peak = FS_R(0.0);
+    assert_int_equal(skchk_skill(&skill, FS_R(0.001), FS_R(50.0), &peak), FS_OK);
+    const fs_real_t g_max = FS_R(50.0) / peak;
+    assert_int_equal(skchk_run_scales(&skill, peak, g_max * FS_R(0.999), FS_R(1.0), FS_R(0.001),
+                                      FS_R(50.0)), FS_OK);
+    assert_int_equal(skchk_run_scales(&skill, peak, g_max * FS_R(1.001), FS_R(1.0), FS_R(0.001),
+                                      FS_R(50.0)), FS_ERR_SKCHK_GOAL_SCALE);
+    assert_int_equal(skchk_run_scales(&skill, peak, FS_R(50.0), FS_R(1.0), FS_R(0.001),
+                                      FS_R(50.0)), FS_ERR_SKCHK_GOAL_SCALE);
+    /* the goal-scaled rollout really peaks at goal_scale * peak (f_hat linear in the goal) */
+    dmp_state_t s;
+    dmp_state_reset(&s);
+    const dmp_run_t run = {FS_R(1.5), FS_R(1.0)};
+    fs_real_t p15 = FS_R(0.0);
+    for (unsigned k = 0; k < 1500u; k++) {
+        const fs_real_t f = fs_fabs(dmp_step(&skill.dmp, &s, &run, NULL));
+        p15 = f > p15 ? f : p15;
+    }
+    assert_true(fabs((double)p15 - 1.5 * (double)peak) <= PEAK_REL_TOL * 10.0 * (double)p15);
+    /* a time scale that makes the Euler step too coarse */
+    assert_int_equal(skchk_run_scales(&skill, peak, FS_R(1.0), FS_R(0.002), FS_R(0.001),
+                                      FS_R(50.0)), FS_ERR_SKCHK_STEP);
+    assert_int_equal(skchk_run_scales(&skill, peak, FS_R(1.0), FS_R(0.0), FS_R(0.001),
+                                      FS_R(50.0)), FS_ERR_SCALE_INVALID);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_peak_matches_reference),
+        cmocka_unit_test(test_hostile_skills_refused),
+        cmocka_unit_test(test_incremental_equals_one_shot),
+        cmocka_unit_test(test_run_scales),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
