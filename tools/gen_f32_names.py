@@ -19,7 +19,7 @@ ROOT = Path(__file__).resolve().parents[1]
 # output -> the public headers whose functions it renames (the modules built twice)
 OUTPUTS = {
     "firmware/core/fs_f32_names.h": ["firmware/core/dmp.h", "firmware/core/pfc.h",
-                                     "firmware/core/skill.h"],
+                                     "firmware/core/skill.h", "firmware/core/skill_check.h"],
     "firmware/safety/saf_f32_names.h": ["firmware/safety/lim.h", "firmware/safety/sen.h",
                                         "firmware/safety/wdg.h", "firmware/safety/saf.h"],
 }

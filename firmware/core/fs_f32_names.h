@@ -1,4 +1,4 @@
-/* The _f32 names of the float32 build of dmp.h, pfc.h, skill.h
+/* The _f32 names of the float32 build of dmp.h, pfc.h, skill.h, skill_check.h
  * (FS_REAL_FLOAT): generated from their declarations by tools/gen_f32_names.py;
  * do not edit. */
 #ifndef FS_F32_NAMES_H
@@ -21,5 +21,10 @@
 #define skill_image_size skill_image_size_f32
 #define skill_crc32 skill_crc32_f32
 #define skill_parse skill_parse_f32
+#define skchk_params skchk_params_f32
+#define skchk_begin skchk_begin_f32
+#define skchk_run skchk_run_f32
+#define skchk_skill skchk_skill_f32
+#define skchk_run_scales skchk_run_scales_f32
 
 #endif /* FS_F32_NAMES_H */
