@@ -64,17 +64,26 @@ def _float(s: str) -> float:
 def _cmd_fit(args: argparse.Namespace) -> int:
     from .demo import load_demo
     from .fit import fit
-    from .params import Gains
+    from .params import Gains, gains_for_object, load_gains
 
     out = Path(args.output)
     if not out.parent.is_dir() and str(out.parent):
         raise FsError(620, f"output folder does not exist: {str(out.parent)!r}")
     if args.plot and not Path(args.plot).parent.is_dir() and str(Path(args.plot).parent):
         raise FsError(620, f"plot folder does not exist: {str(Path(args.plot).parent)!r}")
+    gains, object_mass_kg = load_gains(args.gains) if args.gains else (Gains(), None)
+    if args.object_mass is not None:
+        object_mass_kg = args.object_mass
+        if not args.gains:   # the defaults are adapted to the object; given gains are only checked
+            gains = gains_for_object(args.stiffness, args.object_mass)
+            if gains != Gains():
+                print(f"force gains scaled to the {args.object_mass:g} kg object: kkf = {gains.kkf_Npm:.4g} N/m, "
+                      f"kki = {gains.kki_Npms:.4g} N/(m s) (k_f*m_v/m_d = 0.75)")
     demo = load_demo(args.demo, position_column=args.position_column, force_column=args.force_column,
                      learn=args.learn)
-    res = fit(demo, args.stiffness, n_kernels=args.kernels, method=args.method, gains=Gains(),
-              surface_m=args.surface_m, end_policy=args.end, dt_s=args.dt)
+    res = fit(demo, args.stiffness, n_kernels=args.kernels, method=args.method, gains=gains,
+              surface_m=args.surface_m, end_policy=args.end, dt_s=args.dt,
+              force0_N=0.0 if args.start_force == "zero" else None, object_mass_kg=object_mass_kg)
     sk = res.skill
     if args.plot:
         from .plot import fit_figure
@@ -90,8 +99,8 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     print(f"demonstration: {demo.source}, T = {sk.duration_s:.3f} s, {res.t_s.size} samples at "
           f"{sk.dt_s * 1e3:g} ms, max force {f_max:.4g} N")
     print(f"skill: method {res.method}, N = {sk.n_kernels}, k = {sk.stiffness_Npm:g} N/m, tau = {sk.tau_s:.6g} s, "
-          f"g = {sk.goal_m:.6g} m, alpha = {sk.alpha:g}, beta = {sk.beta:g}, gamma = {sk.gamma:g}, "
-          f"end {sk.end_policy}")
+          f"g = {sk.goal_N:.6g} N, f0 = {sk.force0_N:.4g} N, alpha = {sk.alpha:g}, beta = {sk.beta:g}, "
+          f"gamma = {sk.gamma:g}, end {sk.end_policy}")
     print(f"approximation error: max {res.err_max_pct:.3f} %, RMS {res.err_rms_pct:.3f} % of max force")
     print(f"wrote {out} ({out.stat().st_size} bytes) and {out}.json" + (f", plot {args.plot}" if args.plot else ""))
     return 0
@@ -108,7 +117,7 @@ def _register_fit(sub: "argparse._SubParsersAction[_Parser]") -> None:
     p.add_argument("-o", "--output", required=True, metavar="SKILL", help="skill image to write")
     p.add_argument("--method", choices=("ridge", "lwr"), default="ridge",
                    help="regression: ridge (joint regularised LS, default) or lwr (the paper's)")
-    p.add_argument("--kernels", "-n", type=_positive_int, default=50, metavar="N", help="kernels, 2..256 (50)")
+    p.add_argument("--kernels", "-n", type=_positive_int, default=50, metavar="N", help="kernels, 2..1024 (50)")
     p.add_argument("--learn", choices=("contact", "operator"), default="contact",
                    help="force to learn: contact (tip sensor, f_contact; default) or operator (f_operator)")
     p.add_argument("--position-column", default="x", metavar="C", help="position column (x)")
@@ -117,6 +126,14 @@ def _register_fit(sub: "argparse._SubParsersAction[_Parser]") -> None:
                    help="object surface position during the demonstration, m (0)")
     p.add_argument("--end", choices=("hold", "release"), default="hold",
                    help="after the skill's duration: hold the last force or release to 0 in 0.5 s")
+    p.add_argument("--gains", metavar="FILE.toml",
+                   help="controller gains (m_d_kg, k_d_Nspm, k_p_Npm, kkf_Npm = k*k_f, kki_Npms = k*k_i; "
+                   "optional m_v_kg, the object's mass), validated and stored in the skill")
+    p.add_argument("--object-mass", type=_float, default=None, metavar="KG",
+                   help="object mass m_v if known: k_f*m_v/m_d < 1 is checked, and the default force "
+                   "gains are scaled down when needed (soft, heavy objects)")
+    p.add_argument("--start-force", choices=("first", "zero"), default="first",
+                   help="starting force of the skill: the demonstration's first force (default) or 0 N")
     p.add_argument("--dt", type=_float, default=0.001, help=argparse.SUPPRESS)
     p.add_argument("--plot", metavar="PNG", help="write demonstrated vs learned force, error, position")
     p.set_defaults(func=_cmd_fit)
@@ -169,11 +186,12 @@ def _cmd_show(args: argparse.Namespace) -> int:
     print(f"  kernels        {sk.n_kernels}, centres {sk.centres[0]:.4g}..{sk.centres[-1]:.4g}, "
           f"widths {sk.widths.min():.3g}..{sk.widths.max():.3g}")
     print(f"  tau            {sk.tau_s:.6g} s")
-    print(f"  goal g         {sk.goal_m:.6g} m")
+    print(f"  goal g         {sk.goal_N:.6g} N, starting force f0 {sk.force0_N:.6g} N")
     print(f"  stiffness k    {sk.stiffness_Npm:g} N/m, surface {sk.surface_m:g} m")
     print(f"  alpha/beta/gamma {sk.alpha:g} / {sk.beta:g} / {sk.gamma:g}")
     print(f"  gains          m_d {sk.m_d_kg:g} kg, k_d {sk.k_d_Nspm:g} Ns/m, k_p {sk.k_p_Npm:g} N/m, "
-          f"k_f {sk.k_f:g}, k_i {sk.k_i_per_s:g} 1/s")
+          f"k*k_f {sk.kkf_Npm:g} N/m, k*k_i {sk.kki_Npms:g} N/(m s) (k_f {sk.kkf_Npm / sk.stiffness_Npm:.4g}, "
+          f"k_i {sk.kki_Npms / sk.stiffness_Npm:.4g} 1/s at k)")
     print(f"  rollout        peak f_hat {float(np.max(f)):.6g} N, final {float(f[-1]):.6g} N")
     return 0
 

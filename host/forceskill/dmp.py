@@ -1,15 +1,20 @@
 """The learned force DMP in numpy: the reference the C core (firmware/core/dmp.c) is checked against.
 
-docs/math.md section 2 is the algorithm, step for step. State ``[u, v, I, x, z]`` (u = u~, v = v~,
-the normalised phase), zero at t = 0; forward Euler with every right-hand side at the old state:
+docs/math.md section 2 is the algorithm, step for step. The DMP runs in force units: the state
+``[u, v, I, y, z]`` (u = u~, v = v~, the normalised phase; y = k*x - f0, the force above the starting
+force f0, in N; g, z, I and h in N, the weights dimensionless) is zero at t = 0; forward Euler with every right-hand side at
+the old state:
 
     h  = g_e * v * S(u)
-    x' = x + dt/tau_e * (z - x - gamma*I + h + c_x)
-    z' = z + dt/tau_e * alpha*(beta*(g_e - x) - z)
-    I' = I + dt/tau_e * x
+    y' = y + dt/tau_e * (z - y - gamma*I + h + c_y)
+    z' = z + dt/tau_e * alpha*(beta*(g_e - y) - z)
+    I' = I + dt/tau_e * y
     v' = v + dt/tau_e * alpha*(beta*(1 - u) - v)
     u' = u + dt/tau_e * v
-    f_hat = k * x'
+    f_hat = f0 + y'
+
+Nothing in it depends on the stiffness k (it enters only the execution reference x_d = surface +
+f_hat/k and the controller's k_f = kkf/k, k_i = kki/k).
 
 ``rollout`` runs that loop literally (one Python step per tick, kernels vectorised over all ticks,
 since the phase does not depend on x). ``linear_scan`` is the same recursion evaluated in blocks,
@@ -284,9 +289,10 @@ def default_steps(skill: Skill, time_scale: float = 1.0) -> int:
 
 def rollout(skill: Skill, goal_scale: float = 1.0, time_scale: float = 1.0,
             n_steps: Optional[int] = None) -> tuple[np.ndarray, np.ndarray]:
-    """t_n = n*dt and f_hat_n = k*x_n for n = 0..n_steps (default round(T*time_scale/dt)).
+    """t_n = n*dt and f_hat_n = f0 + y_n for n = 0..n_steps (default round(T*time_scale/dt)).
 
-    The DMP alone (docs/math.md section 2): the end policy after T is applied by the executor.
+    The DMP alone (docs/math.md section 2): the end policy after T is applied by the executor. The
+    goal scale multiplies the part above the starting force: f_hat - f0 scales exactly by it.
     """
     check_scales(goal_scale, time_scale)
     n = default_steps(skill, time_scale) if n_steps is None else int(n_steps)
@@ -294,8 +300,8 @@ def rollout(skill: Skill, goal_scale: float = 1.0, time_scale: float = 1.0,
         raise ParamError(ERR_SCALE_INVALID, f"n_steps must be >= 0: {n}")
     tau_e = skill.tau_s * time_scale
     a = skill.dt_s / tau_e
-    g_e = skill.goal_m * goal_scale
+    g_e = skill.goal_N * goal_scale
     u, v = phase_loop(skill.alpha, skill.beta, a, n)
     h = g_e * v[:n] * forcing_scale(u[:n], skill)
     x, _, _ = transform_loop(skill.alpha, skill.beta, skill.gamma, a, g_e, h)
-    return np.arange(n + 1) * skill.dt_s, skill.stiffness_Npm * x
+    return np.arange(n + 1) * skill.dt_s, skill.force0_N + x

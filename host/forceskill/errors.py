@@ -33,6 +33,8 @@ ERR_SKILL_UNSUPPORTED = 210
 ERR_SKILL_HEADER_SIZE = 211
 
 ERR_LIMIT_INVALID = 110
+ERR_FORCE_GAIN_INERTIA = 112   # k_f*m_v/m_d >= 1: the force loop feeds back the object's inertia
+ERR_STIFFNESS_ABOVE_DEVICE = 113  # skill stiffness above the device's stable limit (upload/run)
 
 # 3xx: fixed-point conversion (fs_status.h)
 ERR_FIXED_OVERFLOW = 300
@@ -80,6 +82,7 @@ ERR_DEMO_ZERO_FORCE = 607    # the learned force is constant zero
 ERR_FIT_ARGS = 610           # kernels, method, end policy or dt out of range
 ERR_FIT_GOAL = 611           # g <= 0 or tiny: no net push to phase-normalise
 ERR_FIT_NUMERIC = 612        # the regression produced a non-finite weight
+ERR_GAINS_FILE = 613         # --gains file unreadable, not TOML, an unknown key or a non-number
 ERR_IO = 620                 # an output file could not be written
 ERR_REPORT = 621             # a step of `forceskill report` failed (simulator, fit, execution)
 # 63x: the CAN link (forceskill.link and the commands on it)

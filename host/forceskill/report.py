@@ -32,6 +32,9 @@ LWR_BOUND_PCT = {"pressing": 4.0, "engraving": 6.0}
 LWR_KERNELS = (50, 60, 70, 80, 90, 100)
 SURFACE_M = 0.001
 LAYER_X_M = 0.020
+#: mass of every object of the HIL scenarios (m_v_kg in hil_sim/scenarios/*.toml): the force gains
+#: are adapted to it (k_f*m_v/m_d <= 0.75)
+OBJECT_MASS_KG = 10.0
 
 
 @dataclass(frozen=True)
@@ -111,19 +114,21 @@ def _learn(task: Task, hil_sim: Path, scen: Path, out: Path, seed: int, n_kernel
            plots: bool) -> dict[str, Any]:
     from .demo import load_demo
     from .fit import fit
+    from .params import gains_for_object
 
     demo_log = out / "logs" / f"{task.name}_demo.csv"
     demo_sum = run_sim(hil_sim, scen / f"{task.name}_demo.toml", demo_log, "--seed", str(seed))
     demo = load_demo(demo_log)
+    gains = gains_for_object(task.stiffness_Npm, OBJECT_MASS_KG)
     res = fit(demo, task.stiffness_Npm, n_kernels=n_kernels, method="ridge", surface_m=SURFACE_M,
-              end_policy=task.end_policy)
+              end_policy=task.end_policy, gains=gains)
     lwr50 = fit(demo, task.stiffness_Npm, n_kernels=50, method="lwr", surface_m=SURFACE_M,
-                end_policy=task.end_policy)
+                end_policy=task.end_policy, gains=gains)
     bound = LWR_BOUND_PCT[task.kind]
     lwr_n, lwr_at_n = None, None
     for n in LWR_KERNELS:
         r = lwr50 if n == 50 else fit(demo, task.stiffness_Npm, n_kernels=n, method="lwr",
-                                      surface_m=SURFACE_M, end_policy=task.end_policy)
+                                      surface_m=SURFACE_M, end_policy=task.end_policy, gains=gains)
         if r.err_max_pct <= bound:
             lwr_n, lwr_at_n = n, r
             break
