@@ -17,6 +17,7 @@ void exec_config_default(exec_config_t *cfg)
     cfg->object.layer_depth_m = FS_R(0.019);
     cfg->object.surface_m = FS_R(0.0);
     cfg->phase_stop_gain_per_N2 = FS_R(0.0);
+    cfg->surface_from_contact = 0u;
 }
 
 static uint32_t exec_ticks(fs_real_t t_s, fs_real_t dt_s)
@@ -108,6 +109,7 @@ fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_st
     st->ref_pd_mps = FS_R(0.0);
     st->ref_pdd_mps2 = FS_R(0.0);
     st->ref_prev_pos_m = cfg->object.surface_m;
+    st->surface_m = cfg->object.surface_m;
     st->y_hold_m = y_hold_m;
     st->start_pending = 1u;
     pfc_reset(&st->pfc);
@@ -124,6 +126,12 @@ fs_real_t exec_object_force(const exec_object_t *obj, fs_real_t p_m)
         return obj->k1_Npm * p_m;
     }
     return obj->k1_Npm * obj->layer_depth_m + obj->k2_Npm * (p_m - obj->layer_depth_m);
+}
+
+/* f/k, 0 for f <= 0 (the unilateral spring-only reference). */
+static fs_real_t exec_spring_deformation(fs_real_t stiffness_Npm, fs_real_t force_N)
+{
+    return (force_N > FS_R(0.0)) ? force_N / stiffness_Npm : FS_R(0.0);
 }
 
 fs_real_t exec_object_deformation(const exec_object_t *obj, fs_real_t force_N)
@@ -171,8 +179,16 @@ static fs_real_t exec_reference_force(const exec_config_t *cfg, exec_state_t *st
          * fades out like a carry between steps */
         st->start_pending = 0u;
         st->force_carry_N = meas->force_contact_N - s->skill->dmp.force0_N;
+        const fs_real_t p0 = (cfg->use_model != 0u)
+                                 ? exec_object_deformation(&cfg->object, meas->force_contact_N)
+                                 : exec_spring_deformation(s->skill->stiffness_Npm,
+                                                           meas->force_contact_N);
         if (cfg->use_model != 0u) {
-            st->ref_p_m = exec_object_deformation(&cfg->object, meas->force_contact_N);
+            st->ref_p_m = p0;
+        }
+        if (cfg->surface_from_contact != 0u) {
+            st->surface_m = meas->pos_m[0] - p0;
+            st->ref_prev_pos_m = meas->pos_m[0];
         }
     }
     dmp_coupling_t coupling = {FS_R(0.0), FS_R(0.0)};
@@ -212,7 +228,7 @@ fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_mea
         out->force_cmd_N[0] = FS_R(0.0);
         out->force_cmd_N[1] = FS_R(0.0);
         out->force_hat_N = st->force_hat_N;
-        out->pos_ref_m = cfg->object.surface_m + st->ref_p_m;
+        out->pos_ref_m = st->surface_m + st->ref_p_m;
         return FS_ERR_NOT_FINITE;
     }
     const fs_real_t dt = cfg->pfc.dt_s;
@@ -234,16 +250,12 @@ fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_mea
         st->ref_p_m = p;
         st->ref_pd_mps = pd;
         st->ref_pdd_mps2 = pdd;
-        ref[0].pos_m = o->surface_m + p;
+        ref[0].pos_m = st->surface_m + p;
         ref[0].vel_mps = pd;
         ref[0].acc_mps2 = pdd;
     } else {
-        const fs_real_t k = st->steps[st->step].skill->stiffness_Npm;
-        fs_real_t p = f_hat / k;
-        if (p < FS_R(0.0)) {
-            p = FS_R(0.0);
-        }
-        const fs_real_t x_d = cfg->object.surface_m + p;
+        const fs_real_t p = exec_spring_deformation(st->steps[st->step].skill->stiffness_Npm, f_hat);
+        const fs_real_t x_d = st->surface_m + p;
         st->ref_p_m = p;
         ref[0].pos_m = x_d;
         ref[0].vel_mps = (x_d - st->ref_prev_pos_m) / dt;

@@ -351,7 +351,7 @@ int bus_cmd_serve(int argc, char **argv)
     s->app_cfg.exec.object.k1_Npm = s->sc.object.k1_Npm;
     s->app_cfg.exec.object.k2_Npm = s->sc.object.k2_Npm;
     s->app_cfg.exec.object.layer_depth_m = s->sc.object.layer_depth_m;
-    s->app_cfg.exec.object.surface_m = s->sc.object.surface_m;
+    s->app_cfg.exec.object.surface_m = s->sc.object.surface_m + s->sc.surface_error_m;
     s->app_cfg.exec.phase_stop_gain_per_N2 = s->sc.phase_stop_gain_per_N2;
     s->app_cfg.render.carriage_kg = s->sc.carriage.carriage_kg;
     s->app_cfg.render.viscous_Nspm = s->sc.carriage.viscous_Nspm;

@@ -173,8 +173,9 @@ int sim_run(const sim_scenario_t *sc, const skill_t *skills, FILE *log, sim_summ
         ecfg.object.k1_Npm = sc->object.k1_Npm;
         ecfg.object.k2_Npm = sc->object.k2_Npm;
         ecfg.object.layer_depth_m = sc->object.layer_depth_m;
-        ecfg.object.surface_m = sc->object.surface_m;
+        ecfg.object.surface_m = sc->object.surface_m + sc->surface_error_m;
         ecfg.phase_stop_gain_per_N2 = sc->phase_stop_gain_per_N2;
+        ecfg.surface_from_contact = (uint8_t)(sc->surface_from_contact != 0);
         exec_step_t steps[EXEC_MAX_STEPS];
         double total = 0.0;
         for (int i = 0; i < sc->n_skills; i++) {

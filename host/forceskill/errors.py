@@ -34,7 +34,6 @@ ERR_SKILL_HEADER_SIZE = 211
 
 ERR_LIMIT_INVALID = 110
 ERR_FORCE_GAIN_INERTIA = 112   # k_f*m_v/m_d >= 1: the force loop feeds back the object's inertia
-ERR_STIFFNESS_ABOVE_DEVICE = 113  # skill stiffness above the device's stable limit (upload/run)
 
 # 3xx: fixed-point conversion (fs_status.h)
 ERR_FIXED_OVERFLOW = 300

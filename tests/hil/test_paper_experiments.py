@@ -13,10 +13,12 @@ import numpy as np
 import pytest
 
 from forceskill.skill import Skill
+from forceskill import report as report_mod
 from forceskill.report import TASKS, read_log, run_report
 
 SEEDS = (1, 2)
 LEARN = [t.name for t in TASKS]
+STIFF = [f"stiff_{kind}_{k}" for kind, k in report_mod.STIFF]
 
 
 @pytest.fixture(scope="module", params=SEEDS, ids=[f"seed{s}" for s in SEEDS])
@@ -36,7 +38,7 @@ def test_report_files(report: dict) -> None:
     out: Path = report["_dir"]
     data = json.loads((out / "summary.json").read_text())
     names = [e["name"] for e in data["experiments"]]
-    assert names == LEARN + ["reuse_200_1x", "reuse_300_1_5x", "reuse_300_1x_unscaled"]
+    assert names == LEARN + ["reuse_200_1x", "reuse_300_1_5x", "reuse_300_1x_unscaled"] + STIFF
     for e in data["experiments"]:
         for key in ("name", "approx_max_pct", "approx_max_pct_lwr", "tracking_rms_pct", "tracking_max_pct",
                     "max_force_N"):
@@ -77,6 +79,21 @@ def test_execution_tracking(report: dict, name: str) -> None:
     e = _exp(report, name)
     assert 0.05 <= e["tracking_rms_pct"] <= 3.0
     assert e["tracking_max_pct"] <= 10.0
+
+
+@pytest.mark.parametrize("name", STIFF)
+def test_execution_on_stiff_objects(report: dict, name: str) -> None:
+    """1e4 and 1e5 N/m, surface known to 0.5 mm: tracking RMS <= 2 % of max force, no fault, no
+    limit violation (measured 0.3-0.8 % on the ideal plant, docs/hil.md)."""
+    e = _exp(report, name)
+    assert e["approx_max_pct"] <= 1.5
+    assert 0.05 <= e["tracking_rms_pct"] <= 2.0
+    assert e["tracking_max_pct"] <= 10.0
+    assert e["limit_violations"] == 0 and e["nonfinite_ticks"] == 0 and e["saturated_ticks"] == 0
+    log = read_log(Path(e["exec_log"]))
+    assert np.all(np.isfinite(log["f_contact"])) and np.max(log["f_contact"]) < 0.5 * e["force_limit_N"]
+    # on a stiff object the law's output is the small inertial part: the object carries the force
+    assert np.all(np.abs(log["f_cmd"]) <= e["force_limit_N"]) and 1.0 < e["max_force_N"] < 50.0
 
 
 @pytest.mark.parametrize("name", LEARN + ["reuse_200_1x", "reuse_300_1_5x", "reuse_300_1x_unscaled"])

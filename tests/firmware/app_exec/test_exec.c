@@ -172,6 +172,33 @@ static void test_starts_from_measured_force(void **state)
     }
 }
 
+/* surface_from_contact: the reference is built on x - f/k measured at the first tick, not on the
+ * configured surface (0.5 mm off here); without it, on the configured one. */
+static void test_surface_from_contact(void **state)
+{
+    (void)state;
+    exec_config_t cfg;
+    exec_config_default(&cfg);
+    const double k = g_engrave.stiffness_Npm;
+    const double surface = 0.001, f_c = 2.0;
+    cfg.object.surface_m = surface + 0.0005;
+    for (int from_contact = 0; from_contact <= 1; from_contact++) {
+        cfg.surface_from_contact = (uint8_t)from_contact;
+        static exec_state_t st;
+        exec_step_t s = step_of(&g_engrave, 1.0, 1.0, 0.0, SKILL_END_HOLD);
+        assert_int_equal(exec_start(&cfg, &st, &s, 1, 0.0), FS_OK);
+        exec_meas_t m = zero_meas();
+        m.pos_m[0] = surface + f_c / k;
+        m.force_contact_N = f_c;
+        for (int n = 0; n < 50; n++) {
+            exec_out_t o;
+            assert_int_equal(exec_tick(&cfg, &st, &m, &o), FS_OK);
+            const double want = (from_contact ? surface : surface + 0.0005) + o.force_hat_N / k;
+            assert_true(fabs(o.pos_ref_m - want) <= 1e-12);
+        }
+    }
+}
+
 /* hold keeps the last force; release ramps linearly to 0 in 0.5 s, then done */
 static void test_end_policies(void **state)
 {
@@ -431,6 +458,7 @@ int main(void)
         cmocka_unit_test(test_open_loop_matches_python_rollouts),
         cmocka_unit_test(test_goal_scaling_is_exact),
         cmocka_unit_test(test_starts_from_measured_force),
+        cmocka_unit_test(test_surface_from_contact),
         cmocka_unit_test(test_end_policies),
         cmocka_unit_test(test_sequence_continuity),
         cmocka_unit_test(test_model_reference_static_inverse),
