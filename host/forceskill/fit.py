@@ -5,7 +5,7 @@ y* = f - f0 in N (the DMP runs in force units, so nothing below depends on the s
 g = k*g'(T) in N with the position reference the executor will use (k*x_d = f) and the force
 integral by the left rectangle rule (the forward-Euler sum the control law's integrator uses); tau by a bracketing
 search so the discrete phase gives u~(T) = 0.99 (``lwr``: 0.95); centres uniform in time mapped to
-phase, widths sigma_i = 0.5*(c_{i+1} - c_i) (``lwr``: 0.35*(c_{i+1} - c_i)); h_d from the same
+phase, widths sigma_i = 0.65*(c_{i+1} - c_i) (``lwr``: 0.35*(c_{i+1} - c_i)); h_d from the same
 discrete recursion as the rollout; regression of h_d on g*v~*S(u~) by ``ridge`` (joint
 Tikhonov-regularised least squares, the default) or ``lwr`` (the paper's per-kernel weighted LS);
 then the learned force is rolled out and compared with the demonstration.
@@ -26,7 +26,7 @@ from .skill import FLAG_END_RELEASE, MAX_KERNELS, Skill
 
 PHASE_AT_END = 0.99
 #: sigma_i = WIDTH_FACTOR * (c_{i+1} - c_i)
-WIDTH_FACTOR = 0.5
+WIDTH_FACTOR = 0.65
 #: The paper's LWR (local constants) uses its own phase end and narrower kernels: its bias grows
 #: with the kernel width and with the 1/v~ growth of h_d/(g*v~) near the end of the phase, times
 #: g/max|x*| (measured on the HIL demonstrations, docs/math.md section 3).

@@ -88,7 +88,7 @@ def test_tau_centres_widths_goal(press_fit: FitResult) -> None:
     assert sk.centres[0] == 0.0 and sk.centres[-1] == pytest.approx(0.99, abs=1e-12)
     t_i = np.linspace(0, sk.duration_s, sk.n_kernels)
     np.testing.assert_allclose(sk.centres, np.interp(t_i, np.arange(u.size) * sk.dt_s, u), atol=1e-12)
-    np.testing.assert_allclose(sk.widths[:-1], 0.5 * np.diff(sk.centres), rtol=1e-15)
+    np.testing.assert_allclose(sk.widths[:-1], 0.65 * np.diff(sk.centres), rtol=1e-15)
     assert sk.widths[-1] == sk.widths[-2]
     # g = k*g'(T) in N with k*x_d(T) = f(T), int f by the left rectangle rule, above f0
     y = press_fit.target_N - sk.force0_N
@@ -185,3 +185,19 @@ def test_gains_are_stored_and_the_inertia_check_applies() -> None:
     with pytest.raises(ParamError) as e:
         fit(d, 200.0, gains=g, object_mass_kg=25.0)   # 1.25
     assert e.value.code == 112
+
+
+@pytest.mark.parametrize("kind", ["pressing", "engraving"])
+def test_default_fit_at_n50_within_1_5_pct_over_seeds(kind: str) -> None:
+    """Profiles like the paper's (8-9 s), ten operator seeds: the default fit (ridge, N = 50,
+    sigma = 0.65 x centre spacing) stays within 1.5 % max error (measured: pressing <= 0.21 %,
+    engraving <= 0.8 %; bench/accuracy/accuracy_n50.py), and a third of the kernels is visibly
+    worse (the measure is not vacuous)."""
+    worst = 0.0
+    for seed in range(10):
+        T = 8.0 + seed % 2
+        d = synthetic.pressing(seed, T) if kind == "pressing" else synthetic.engraving(seed, T, 100.0, 6.0 + seed % 5)
+        worst = max(worst, fit(d, 200.0).err_max_pct)
+        if seed == 0:
+            assert fit(d, 200.0, n_kernels=16).err_max_pct > 2.0 * fit(d, 200.0).err_max_pct
+    assert 0.05 < worst <= 1.5
