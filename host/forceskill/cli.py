@@ -113,7 +113,7 @@ def _register_fit(sub: "argparse._SubParsersAction[_Parser]") -> None:
                        "maximum demonstrated force; writes SKILL and SKILL.json.")
     p.add_argument("demo", metavar="DEMO", help="demonstration file (.csv, or a registered log format)")
     p.add_argument("--stiffness", "-k", type=_float, required=True, metavar="K",
-                   help="nominal object stiffness k in N/m (f_hat = k*x)")
+                   help="nominal object stiffness k in N/m (execution: x_d = surface + f_hat/k, k_f = kkf/k)")
     p.add_argument("-o", "--output", required=True, metavar="SKILL", help="skill image to write")
     p.add_argument("--method", choices=("ridge", "lwr"), default="ridge",
                    help="regression: ridge (joint regularised LS, default) or lwr (the paper's)")
