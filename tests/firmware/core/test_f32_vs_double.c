@@ -17,7 +17,7 @@
 #define CAP_ROWS 30000L
 
 static tu_skill_desc_t desc;
-static uint8_t img[128 + 24 * 256 + 4];
+static uint8_t img[SKILL_HEADER_SIZE + 24 * 256 + 4];
 static skill_t sk;
 static double fd[CAP_ROWS], ff[CAP_ROWS];
 
