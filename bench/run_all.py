@@ -375,8 +375,8 @@ def fixed_facts(image: Path) -> str:
         sk = Skill.from_bytes(image.read_bytes())
         n = int(round(sk.duration_s / sk.dt_s))
         u, v = fsdmp.phase_scan(sk.alpha, sk.beta, sk.dt_s / sk.tau_s, n)
-        h = sk.goal_m * v * (fsdmp.normalised_kernels(u, sk.centres, sk.widths) @ sk.weights)
-        return (f"g = {sk.goal_m:.2f}, max abs(w) = {float(np.max(np.abs(sk.weights))):.1f}, "
+        h = sk.goal_N * v * (fsdmp.normalised_kernels(u, sk.centres, sk.widths) @ sk.weights)
+        return (f"g = {sk.goal_N:.2f} N, max abs(w) = {float(np.max(np.abs(sk.weights))):.1f}, "
                 f"max 1/sigma = {float(np.max(1.0 / sk.widths)):.0f}, largest abs(h) on the nominal phase path "
                 f"= {float(np.max(np.abs(h))):.1f}")
     except Exception as e:   # the message is a courtesy; the refusal itself is the figure
@@ -430,7 +430,7 @@ def bench_fit(rep: Report, demo: Any, cfg: dict[str, Any]) -> None:
         if core in sizes:
             s = sizes[core]
             rows.append([f"forceskill C core ({core}): static model, no heap", "—", "", "",
-                         f"{s['model'] / 1024:.1f} (sizeof {tname}, N <= 256) + {s['state']} B state", ""])
+                         f"{s['model'] / 1024:.1f} (sizeof {tname}, N <= DMP_MAX_KERNELS = 1024) + {s['state']} B state", ""])
     body = table(["fit", "ms (median)", "range over rounds", "speed vs fastest peer", "peak memory, KiB",
                   "max error of its own rollout, % of max"], rows)
     body += (f"\n\n{cfg['fit_rounds']} rounds, order rotated. Peak memory: tracemalloc (Python objects and numpy "

@@ -1,6 +1,6 @@
 /* One half of the dmp_step benchmark, compiled twice: against the double core (defines
  * BENCH_ENTRY bench_core_step_double) and the float core (FS_REAL_FLOAT, BENCH_ENTRY
- * bench_core_step_float). Builds a realistic skill (default gains, k = 280 N/m, T = 17 s,
+ * bench_core_step_float). Builds a realistic skill (default gains, force units, T = 17 s,
  * centres uniform in time through the discrete phase, sigma = half the gap, smooth weights) and
  * times full 17 000-step rollouts. */
 #define _POSIX_C_SOURCE 199309L
@@ -31,7 +31,7 @@ static double phase_at(double alpha, double beta, double tau, long n)
 
 static int build_model(uint16_t n)
 {
-    const double alpha = 9.0, beta = 2.25, k = 280.0;
+    const double alpha = 9.0, beta = 2.25;
     const long steps = lround(T_S / DT_S);
     double lo = 0.01 * T_S, hi = 10.0 * T_S;
     for (int it = 0; it < 100; it++) {
@@ -54,11 +54,11 @@ static int build_model(uint16_t n)
     model.n_kernels = n;
     model.p.alpha = (fs_real_t)alpha;
     model.p.beta = (fs_real_t)beta;
-    model.p.gamma = (fs_real_t)(k * 27.0 / (40.0 * alpha));
+    model.p.gamma = (fs_real_t)(4860.0 / (40.0 * alpha));
     model.dt_s = (fs_real_t)DT_S;
     model.tau_s = (fs_real_t)tau;
-    model.goal_m = (fs_real_t)0.05;
-    model.stiffness_Npm = (fs_real_t)k;
+    model.goal_N = (fs_real_t)5.0;
+    model.force0_N = (fs_real_t)0.0;
     model.duration_s = (fs_real_t)T_S;
     for (uint16_t i = 0; i < n; i++) {
         const double s = (double)i / (double)(n - 1);

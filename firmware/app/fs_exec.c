@@ -17,6 +17,7 @@ void exec_config_default(exec_config_t *cfg)
     cfg->object.layer_depth_m = FS_R(0.019);
     cfg->object.surface_m = FS_R(0.0);
     cfg->phase_stop_gain_per_N2 = FS_R(0.0);
+    cfg->surface_from_contact = 0u;
 }
 
 static uint32_t exec_ticks(fs_real_t t_s, fs_real_t dt_s)
@@ -46,7 +47,7 @@ static void exec_begin_step(exec_state_t *st)
     st->run.goal_scale = s->goal_scale;
     st->run.time_scale = s->time_scale;
     st->t_step_s = FS_R(0.0);
-    st->force_dmp_N = FS_R(0.0);
+    st->force_dmp_N = s->skill->dmp.force0_N;
 }
 
 fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
@@ -108,7 +109,9 @@ fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_st
     st->ref_pd_mps = FS_R(0.0);
     st->ref_pdd_mps2 = FS_R(0.0);
     st->ref_prev_pos_m = cfg->object.surface_m;
+    st->surface_m = cfg->object.surface_m;
     st->y_hold_m = y_hold_m;
+    st->start_pending = 1u;
     pfc_reset(&st->pfc);
     exec_begin_step(st);
     return FS_OK;
@@ -123,6 +126,24 @@ fs_real_t exec_object_force(const exec_object_t *obj, fs_real_t p_m)
         return obj->k1_Npm * p_m;
     }
     return obj->k1_Npm * obj->layer_depth_m + obj->k2_Npm * (p_m - obj->layer_depth_m);
+}
+
+/* f/k, 0 for f <= 0 (the unilateral spring-only reference). */
+static fs_real_t exec_spring_deformation(fs_real_t stiffness_Npm, fs_real_t force_N)
+{
+    return (force_N > FS_R(0.0)) ? force_N / stiffness_Npm : FS_R(0.0);
+}
+
+fs_real_t exec_object_deformation(const exec_object_t *obj, fs_real_t force_N)
+{
+    if (!(force_N > FS_R(0.0))) {
+        return FS_R(0.0);
+    }
+    const fs_real_t f_layer = obj->k1_Npm * obj->layer_depth_m;
+    if (force_N <= f_layer) {
+        return force_N / obj->k1_Npm;
+    }
+    return obj->layer_depth_m + (force_N - f_layer) / obj->k2_Npm;
 }
 
 /* 1 at t = 0 falling smoothly (smoothstep) to 0 at EXEC_BLEND_S. */
@@ -153,6 +174,23 @@ static fs_real_t exec_reference_force(const exec_config_t *cfg, exec_state_t *st
         return st->force_end_N * r;
     }
     const exec_step_t *s = &st->steps[st->step];
+    if (st->start_pending != 0u) {
+        /* start from the measured contact force: the difference to the skill's starting force
+         * fades out like a carry between steps */
+        st->start_pending = 0u;
+        st->force_carry_N = meas->force_contact_N - s->skill->dmp.force0_N;
+        const fs_real_t p0 = (cfg->use_model != 0u)
+                                 ? exec_object_deformation(&cfg->object, meas->force_contact_N)
+                                 : exec_spring_deformation(s->skill->stiffness_Npm,
+                                                           meas->force_contact_N);
+        if (cfg->use_model != 0u) {
+            st->ref_p_m = p0;
+        }
+        if (cfg->surface_from_contact != 0u) {
+            st->surface_m = meas->pos_m[0] - p0;
+            st->ref_prev_pos_m = meas->pos_m[0];
+        }
+    }
     dmp_coupling_t coupling = {FS_R(0.0), FS_R(0.0)};
     const dmp_coupling_t *cp = 0;
     if (cfg->phase_stop_gain_per_N2 > FS_R(0.0)) {
@@ -167,8 +205,8 @@ static fs_real_t exec_reference_force(const exec_config_t *cfg, exec_state_t *st
 
     if (exec_ticks(st->t_step_s, dt) >= exec_ticks(exec_step_duration(s), dt)) {
         if ((uint8_t)(st->step + 1u) < st->n_steps) {
-            st->force_carry_N = f;
             st->step++;
+            st->force_carry_N = f - st->steps[st->step].skill->dmp.force0_N;
             exec_begin_step(st);
         } else {
             st->ending = 1u;
@@ -190,7 +228,7 @@ fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_mea
         out->force_cmd_N[0] = FS_R(0.0);
         out->force_cmd_N[1] = FS_R(0.0);
         out->force_hat_N = st->force_hat_N;
-        out->pos_ref_m = cfg->object.surface_m + st->ref_p_m;
+        out->pos_ref_m = st->surface_m + st->ref_p_m;
         return FS_ERR_NOT_FINITE;
     }
     const fs_real_t dt = cfg->pfc.dt_s;
@@ -212,16 +250,12 @@ fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_mea
         st->ref_p_m = p;
         st->ref_pd_mps = pd;
         st->ref_pdd_mps2 = pdd;
-        ref[0].pos_m = o->surface_m + p;
+        ref[0].pos_m = st->surface_m + p;
         ref[0].vel_mps = pd;
         ref[0].acc_mps2 = pdd;
     } else {
-        const fs_real_t k = st->steps[st->step].skill->dmp.stiffness_Npm;
-        fs_real_t p = f_hat / k;
-        if (p < FS_R(0.0)) {
-            p = FS_R(0.0);
-        }
-        const fs_real_t x_d = cfg->object.surface_m + p;
+        const fs_real_t p = exec_spring_deformation(st->steps[st->step].skill->stiffness_Npm, f_hat);
+        const fs_real_t x_d = st->surface_m + p;
         st->ref_p_m = p;
         ref[0].pos_m = x_d;
         ref[0].vel_mps = (x_d - st->ref_prev_pos_m) / dt;

@@ -5,16 +5,22 @@
  * Pure functions over explicit state structs: no heap, no I/O, bounded work per tick.
  *
  * Per tick (exec_tick), step k of the sequence:
- *   f_dmp  = dmp_step(skill_k, goal_scale_k, time_scale_k, coupling)       (0 after the duration)
- *   f_hat  = f_dmp + f_carry * blend(t)        (sequence continuity, see below)
+ *   f_dmp  = dmp_step(skill_k, goal_scale_k, time_scale_k, coupling) = f0_k + y   (f0_k: the
+ *            skill's starting force; goal_scale scales y, the part above f0_k)
+ *   f_hat  = f_dmp + f_carry * blend(t)        (start and sequence continuity, see below)
  *   x_d, xd_d, xdd_d from f_hat: the object model m_v*pdd + d_v*pd + F(p) = f_hat integrated
  *            forward (semi-implicit Euler, unilateral p >= 0), x_d = surface + p;
  *            without a model x_d = surface + f_hat/k (k of the skill), xd_d by difference.
- *   f_cmd  = pfc_step(ref = {x_d, xd_d, xdd_d, f_hat}, y holds its start position)
- * Continuity between steps: the next skill's DMP starts from zero state (its force starts at 0);
- * the last f_hat of the previous step, f_carry, is added and faded out with a raised cosine over
- * EXEC_BLEND_S. The force is therefore continuous at the switch (jump = one DMP step of the new
- * skill) and equals the new skill's own profile after EXEC_BLEND_S.
+ *   f_cmd  = pfc_step(ref = {x_d, xd_d, xdd_d, f_hat}, y holds its start position); the caller
+ *            gives the skill's controller gains (k_f = kkf/k, k_i = kki/k: skill_t.gains)
+ * Start: the first tick measures the contact force f_c; f_carry = f_c - f0 of the first skill, so
+ * execution starts from the measured contact force without a jump and reaches the skill's own
+ * profile after EXEC_BLEND_S. On a stiff object a surface error d acts as a force disturbance
+ * k*d*k_p/(k_p + k*k_f) (3.4 N per 0.5 mm at 1e4 N/m): with surface_from_contact the surface is
+ * taken from that first measurement instead (x - p(f_c); error sigma_f/k). Continuity between steps: the next skill's DMP starts from zero
+ * state (its force starts at its f0); f_carry = last f_hat of the previous step - f0 of the next
+ * is added and faded out with a raised cosine over EXEC_BLEND_S. The force is therefore
+ * continuous at the switch (jump = one DMP step of the new skill).
  * End of the sequence: hold keeps the last f_hat; release ramps it linearly to 0 in
  * SKILL_RELEASE_TIME_S, then the sequence is done (f_hat stays 0). */
 #ifndef FS_EXEC_H
@@ -60,6 +66,9 @@ typedef struct {
     uint8_t use_model;               /* 1: invert the object model; 0: x_d = surface + f_hat/k */
     exec_object_t object;            /* used when use_model; surface_m is used in both cases */
     fs_real_t phase_stop_gain_per_N2;/* 0 disables phase stopping (dmp coupling) */
+    uint8_t surface_from_contact;    /* 1: the surface is taken at the first tick from the measured
+                                      * position and contact force, x - p(f) (the object model's
+                                      * or f/k); 0: object.surface_m */
 } exec_config_t;
 
 /** Measurements of one tick (already delayed/filtered as the firmware sees them). */
@@ -98,6 +107,8 @@ typedef struct {
     fs_real_t ref_pdd_mps2;
     fs_real_t ref_prev_pos_m;        /* model-free reference: previous x_d (for xd_d) */
     fs_real_t y_hold_m;
+    uint8_t start_pending;           /* 1 until the first tick has measured the contact force */
+    fs_real_t surface_m;             /* the surface the reference is built on */
     pfc_state_t pfc;
 } exec_state_t;
 
@@ -111,6 +122,10 @@ fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_st
 
 /** Force of the object model at deformation p (0 for p <= 0). */
 fs_real_t exec_object_force(const exec_object_t *obj, fs_real_t p_m);
+
+/** Static deformation of the object model under force f (the inverse of exec_object_force;
+ *  0 for f <= 0). */
+fs_real_t exec_object_deformation(const exec_object_t *obj, fs_real_t force_N);
 
 /** One 1 kHz tick. Returns FS_ERR_NOT_FINITE (commanding 0 N) when a measurement is not finite. */
 fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_meas_t *meas,

@@ -19,6 +19,8 @@ typedef enum {
     FS_ERR_DT_INVALID = 108,            /* dt <= 0 or not finite */
     FS_ERR_SCALE_INVALID = 109,         /* goal/time scale not finite, or time scale <= 0 */
     FS_ERR_LIMIT_INVALID = 110,         /* a controller limit (force_max, integral_max) is <= 0 */
+    /* k_f*m_v/m_d >= 1: the force loop feeds back the object's inertia */
+    FS_ERR_FORCE_GAIN_INERTIA = 112,
 
     /* 2xx: skill image parsing and validation (skill_parse) */
     FS_ERR_SKILL_TOO_SHORT = 200,       /* fewer bytes than the fixed header */

@@ -32,52 +32,82 @@ static void dmp_params_zero(dmp_params_t *out)
     out->gamma = FS_R(0.0);
 }
 
-fs_status_t dmp_params_from_gains(const pfc_axis_gains_t *gains, fs_real_t stiffness_Npm,
-                                  dmp_params_t *out)
+/* The derivation with the beta <= alpha/4 tolerance as a parameter (double: DMP_MONOTONE_REL_TOL,
+ * the float core: DMP_MONOTONE_REL_TOL_REAL). */
+static fs_status_t dmp_derive(const double gain[5], double monotone_rel_tol, double abg[3])
 {
-    if (gains == NULL || out == NULL) {
-        return FS_ERR_NULL_ARG;
+    const double m_d = gain[0];
+    const double k_d = gain[1];
+    const double k_p = gain[2];
+    const double kkf = gain[3];
+    const double kki = gain[4];
+    for (uint32_t i = 0u; i < 5u; i++) {
+        if (!isfinite(gain[i])) {
+            return FS_ERR_NOT_FINITE;
+        }
     }
-    dmp_params_zero(out);
-    const fs_real_t m_d = gains->m_d_kg;
-    const fs_real_t k_d = gains->k_d_Nspm;
-    const fs_real_t k_p = gains->k_p_Npm;
-    const fs_real_t k_f = gains->k_f;
-    const fs_real_t k_i = gains->k_i_per_s;
-    const fs_real_t k = stiffness_Npm;
-    if (!fs_isfinite(m_d) || !fs_isfinite(k_d) || !fs_isfinite(k_p) || !fs_isfinite(k_f) ||
-        !fs_isfinite(k_i) || !fs_isfinite(k)) {
-        return FS_ERR_NOT_FINITE;
-    }
-    if (!(m_d > FS_R(0.0))) {
+    if (!(m_d > 0.0)) {
         return FS_ERR_MASS_NONPOSITIVE;
     }
-    if (!(k > FS_R(0.0))) {
-        return FS_ERR_STIFFNESS_NONPOSITIVE;
-    }
-    if (k_d < FS_R(0.0) || k_p < FS_R(0.0) || k_f < FS_R(0.0) || k_i < FS_R(0.0)) {
+    if (k_d < 0.0 || k_p < 0.0 || kkf < 0.0 || kki < 0.0) {
         return FS_ERR_GAIN_NEGATIVE;
     }
     if (!(k_d > m_d)) {
         return FS_ERR_KD_LE_MD;
     }
-    const fs_real_t alpha = k_d / m_d - FS_R(1.0);
+    const double alpha = k_d / m_d - 1.0;
     /* alpha can round to 0 when k_d exceeds m_d by less than an ulp: that is k_d <= m_d too. */
-    if (!(alpha > FS_R(0.0))) {
+    if (!(alpha > 0.0)) {
         return FS_ERR_KD_LE_MD;
     }
-    const fs_real_t gamma = k * k_i / (m_d * alpha);
-    /* m_d*gamma = k*k_i/alpha: written this way the k terms cancel exactly for the default gains
-     * (k_f = k_i/alpha), so beta = alpha/4 holds in floating point for every k. */
-    const fs_real_t beta = (k_p + k * (k_f - k_i / alpha)) / (m_d * alpha) - FS_R(1.0);
-    if (!fs_isfinite(alpha) || !fs_isfinite(gamma) || !fs_isfinite(beta)) {
+    if (!isfinite(alpha)) {
         return FS_ERR_NOT_FINITE;
     }
-    if (!(beta > FS_R(0.0))) {
+    const double gamma = kki / (m_d * alpha);
+    /* m_d*gamma = kki/alpha: written this way the kkf and kki terms cancel exactly for the default
+     * gains (kkf = kki/alpha), so beta = alpha/4 holds in floating point. */
+    const double beta = (k_p + (kkf - kki / alpha)) / (m_d * alpha) - 1.0;
+    if (!isfinite(gamma) || !isfinite(beta)) {
+        return FS_ERR_NOT_FINITE;
+    }
+    if (!(beta > 0.0)) {
         return FS_ERR_BETA_NONPOSITIVE;
     }
-    if (beta > alpha / FS_R(4.0) * (FS_R(1.0) + DMP_MONOTONE_REL_TOL_REAL)) {
+    if (beta > alpha / 4.0 * (1.0 + monotone_rel_tol)) {
         return FS_ERR_PHASE_NOT_MONOTONE;
+    }
+    abg[0] = alpha;
+    abg[1] = beta;
+    abg[2] = gamma;
+    return FS_OK;
+}
+
+fs_status_t dmp_derive_f64(const double gain[5], double abg[3])
+{
+    if (gain == NULL || abg == NULL) {
+        return FS_ERR_NULL_ARG;
+    }
+    return dmp_derive(gain, DMP_MONOTONE_REL_TOL, abg);
+}
+
+fs_status_t dmp_params_from_gains(const dmp_gains_t *gains, dmp_params_t *out)
+{
+    if (gains == NULL || out == NULL) {
+        return FS_ERR_NULL_ARG;
+    }
+    dmp_params_zero(out);
+    const double gain[5] = {(double)gains->m_d_kg, (double)gains->k_d_Nspm, (double)gains->k_p_Npm,
+                            (double)gains->kkf_Npm, (double)gains->kki_Npms};
+    double abg[3];
+    const fs_status_t st = dmp_derive(gain, (double)DMP_MONOTONE_REL_TOL_REAL, abg);
+    if (st != FS_OK) {
+        return st;
+    }
+    const fs_real_t alpha = (fs_real_t)abg[0];
+    const fs_real_t beta = (fs_real_t)abg[1];
+    const fs_real_t gamma = (fs_real_t)abg[2];
+    if (!fs_isfinite(alpha) || !fs_isfinite(beta) || !fs_isfinite(gamma)) {
+        return FS_ERR_NOT_FINITE;
     }
     out->alpha = alpha;
     out->beta = beta;
@@ -85,11 +115,34 @@ fs_status_t dmp_params_from_gains(const pfc_axis_gains_t *gains, fs_real_t stiff
     return FS_OK;
 }
 
-fs_real_t dmp_goal_prime(const dmp_params_t *p, const pfc_axis_gains_t *gains, fs_real_t pos_d_m,
-                         fs_real_t force_d_N, fs_real_t force_d_integral_Ns)
+fs_status_t dmp_gains_at_stiffness(const dmp_gains_t *gains, fs_real_t stiffness_Npm,
+                                   pfc_axis_gains_t *out)
 {
-    const fs_real_t c = (gains->k_p_Npm * pos_d_m + gains->k_f * force_d_N +
-                         gains->k_i_per_s * force_d_integral_Ns) / gains->m_d_kg;
+    if (gains == NULL || out == NULL) {
+        return FS_ERR_NULL_ARG;
+    }
+    if (!fs_isfinite(stiffness_Npm)) {
+        return FS_ERR_NOT_FINITE;
+    }
+    if (!(stiffness_Npm > FS_R(0.0))) {
+        return FS_ERR_STIFFNESS_NONPOSITIVE;
+    }
+    out->m_d_kg = gains->m_d_kg;
+    out->k_d_Nspm = gains->k_d_Nspm;
+    out->k_p_Npm = gains->k_p_Npm;
+    out->k_f = gains->kkf_Npm / stiffness_Npm;
+    out->k_i_per_s = gains->kki_Npms / stiffness_Npm;
+    if (!fs_isfinite(out->k_f) || !fs_isfinite(out->k_i_per_s)) {
+        return FS_ERR_NOT_FINITE;
+    }
+    return FS_OK;
+}
+
+fs_real_t dmp_goal(const dmp_params_t *p, const dmp_gains_t *gains, fs_real_t ref_force_N,
+                   fs_real_t force_d_N, fs_real_t force_d_integral_Ns)
+{
+    const fs_real_t c = (gains->k_p_Npm * ref_force_N + gains->kkf_Npm * force_d_N +
+                         gains->kki_Npms * force_d_integral_Ns) / gains->m_d_kg;
     return c / (p->alpha * p->beta);
 }
 
@@ -103,15 +156,15 @@ fs_status_t dmp_model_init(dmp_model_t *m)
         return FS_ERR_SKILL_KERNELS;
     }
     if (!fs_isfinite(m->p.alpha) || !fs_isfinite(m->p.beta) || !fs_isfinite(m->p.gamma) ||
-        !fs_isfinite(m->dt_s) || !fs_isfinite(m->tau_s) || !fs_isfinite(m->goal_m) ||
-        !fs_isfinite(m->stiffness_Npm) || !fs_isfinite(m->duration_s) ||
+        !fs_isfinite(m->dt_s) || !fs_isfinite(m->tau_s) || !fs_isfinite(m->goal_N) ||
+        !fs_isfinite(m->force0_N) || !fs_isfinite(m->duration_s) ||
         !dmp_all_finite(m->centre, n) || !dmp_all_finite(m->width, n) ||
         !dmp_all_finite(m->weight, n)) {
         return FS_ERR_SKILL_NOT_FINITE;
     }
     if (!(m->dt_s > FS_R(0.0)) || m->dt_s > FS_R(0.1) || !(m->tau_s > FS_R(0.0)) ||
         !(m->duration_s > FS_R(0.0)) || m->duration_s > FS_R(3600.0) ||
-        !(m->stiffness_Npm > FS_R(0.0)) || !(m->goal_m > FS_R(0.0))) {
+        !(m->goal_N > FS_R(0.0))) {
         return FS_ERR_SKILL_RANGE;
     }
     for (uint16_t i = 0u; i < n; i++) {
@@ -175,8 +228,8 @@ void dmp_state_reset(dmp_state_t *s)
     s->window[1] = 0u;
     s->u = FS_R(0.0);
     s->v = FS_R(0.0);
-    s->integral_x = FS_R(0.0);
-    s->x_m = FS_R(0.0);
+    s->integral_y = FS_R(0.0);
+    s->y_N = FS_R(0.0);
     s->z = FS_R(0.0);
 }
 
@@ -200,14 +253,14 @@ static fs_real_t dmp_blend_all(const dmp_model_t *m, fs_real_t u)
     return num / den;
 }
 
-fs_real_t dmp_forcing(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_real_t goal_m)
+fs_real_t dmp_forcing(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_real_t goal_N)
 {
-    return goal_m * v * dmp_tick_blend(m, u, dmp_tick_window_start(m, u), dmp_tick_window_end(m, u), NULL);
+    return goal_N * v * dmp_tick_blend(m, u, dmp_tick_window_start(m, u), dmp_tick_window_end(m, u), NULL);
 }
 
-fs_real_t dmp_forcing_full(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_real_t goal_m)
+fs_real_t dmp_forcing_full(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_real_t goal_N)
 {
-    return goal_m * v * dmp_blend_all(m, u);
+    return goal_N * v * dmp_blend_all(m, u);
 }
 
 uint16_t dmp_active_kernels(const dmp_model_t *m, fs_real_t u)
@@ -229,14 +282,14 @@ fs_real_t dmp_phase_stop_factor(fs_real_t force_err_N, fs_real_t gain_per_N2)
 fs_real_t dmp_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
                    const dmp_coupling_t *coupling)
 {
-    const dmp_tick_state_t st = {s->window, &s->u, &s->v, &s->integral_x, &s->x_m, &s->z};
+    const dmp_tick_state_t st = {s->window, &s->u, &s->v, &s->integral_y, &s->y_N, &s->z};
     const fs_real_t s_blend = dmp_tick_state_blend(m, &st);
     const fs_real_t goal_scale = (run != NULL) ? run->goal_scale : FS_R(1.0);
     const fs_real_t time_scale = (run != NULL) ? run->time_scale : FS_R(1.0);
     fs_real_t slowdown = FS_R(0.0);
-    fs_real_t term_x = FS_R(0.0);
+    fs_real_t term_y = FS_R(0.0);
     if (coupling != NULL) {
-        term_x = coupling->term_x;
+        term_y = coupling->term_y_N;
         slowdown = (coupling->phase_slowdown > FS_R(0.0)) ? coupling->phase_slowdown : FS_R(0.0);
     }
     const fs_real_t tau_e = m->tau_s * time_scale * (FS_R(1.0) + slowdown);
@@ -246,8 +299,8 @@ fs_real_t dmp_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
                                .k_alpha = k_alpha,
                                .k_alphabeta = k_alpha * m->p.beta,
                                .k_gamma = k * m->p.gamma,
-                               .goal = m->goal_m * goal_scale,
-                               .stiffness = m->stiffness_Npm,
-                               .term_x = term_x};
-    return dmp_tick_step(&c, &st, s_blend, NULL);
+                               .goal = m->goal_N * goal_scale,
+                               .out_scale = FS_R(1.0),
+                               .term_y = term_y};
+    return m->force0_N + dmp_tick_step(&c, &st, s_blend, NULL);
 }

@@ -1,12 +1,16 @@
-/* The force DMP (the paper's eqs. 11-17 corrected, docs/math.md): parameters from gains, the learned
- * system with its phase, and one forward-Euler step per tick. Pure functions over explicit
- * structs: no heap, no I/O, bounded work per step. See docs/math.md for the derivation.
+/* The force DMP (the paper's eqs. 11-17 corrected): parameters from gains, the learned system
+ * with its phase, and one forward-Euler step per tick. Pure functions over explicit structs: no
+ * heap, no I/O, bounded work per step. See docs/math.md for the derivation. It runs in force
+ * units: y = k*x - f0 (N above the starting force f0), g, z, I and h in N (the weights w_i are
+ * dimensionless, h/(g*v~)):
  *
- *   tau*xd  = z - x - gamma*I + h + c_x       tau*zd = alpha*(beta*(g - x) - z)    tau*Id = x
+ *   tau*yd  = z - y - gamma*I + h + c_y       tau*zd = alpha*(beta*(g - y) - z)    tau*Id = y
  *   tau*vd~ = alpha*(beta*(1 - u~) - v~)      tau*ud~ = v~
  *   h = g*v~ * sum(psi_i*w_i)/sum(psi_i),     psi_i = exp(-(u~ - c_i)^2 / (2*sigma_i^2))
- *   f_hat = k*x
- * with tau -> tau*time_scale*(1 + phase_slowdown) and g -> g*goal_scale at run time. */
+ *   f_hat = f0 + y
+ * with tau -> tau*time_scale*(1 + phase_slowdown) and g -> g*goal_scale at run time. Nothing here
+ * depends on the stiffness k: it enters only the execution reference and the controller gains
+ * (dmp_gains_at_stiffness). */
 #ifndef DMP_H
 #define DMP_H
 
@@ -16,7 +20,7 @@
 #include "pfc.h"
 
 #ifndef DMP_MAX_KERNELS
-#define DMP_MAX_KERNELS 256u
+#define DMP_MAX_KERNELS 1024u
 #endif
 
 /* Kernels with (u~-c_i)^2/(2 sigma_i^2) above this are skipped. exp(-23) ~ 1e-10, so the
@@ -37,25 +41,45 @@
 #define DMP_MONOTONE_REL_TOL_REAL DMP_MONOTONE_REL_TOL
 #endif
 
-/** DMP parameters derived from gains and nominal stiffness (corrected eq. 14). */
+/** DMP parameters derived from the gains (corrected eq. 14 in force units). */
 typedef struct {
     fs_real_t alpha;
     fs_real_t beta;
     fs_real_t gamma;
 } dmp_params_t;
 
-/** alpha = k_d/m_d - 1, gamma = k*k_i/(m_d*alpha), beta = (k_p + k*k_f - m_d*gamma)/(m_d*alpha) - 1
- *  (evaluated as (k_p + k*(k_f - k_i/alpha))/(m_d*alpha) - 1, the same in real numbers).
- *  Checks, first failure reported: NULL (100); any input not finite (101); m_d <= 0 (102);
- *  k <= 0 (106); k_d, k_p, k_f or k_i < 0 (107); k_d <= m_d (103); a derived value not finite (101);
- *  beta <= 0 (104); beta > alpha/4*(1 + DMP_MONOTONE_REL_TOL_REAL) (105).
- *  On error *out is zeroed (never NaN). */
-fs_status_t dmp_params_from_gains(const pfc_axis_gains_t *gains, fs_real_t stiffness_Npm,
-                                  dmp_params_t *out);
+/** Gains a skill is fitted with, independent of the stiffness k: the force gains are stored
+ *  scaled, kkf = k*k_f (N/m) and kki = k*k_i (N/(m s)). Defaults 40, 400, 1170, 540, 4860. */
+typedef struct {
+    fs_real_t m_d_kg;
+    fs_real_t k_d_Nspm;
+    fs_real_t k_p_Npm;
+    fs_real_t kkf_Npm;
+    fs_real_t kki_Npms;
+} dmp_gains_t;
 
-/** Goal trajectory g'(t) = c/(alpha*beta), c = (k_p*x_d + k_f*f_d + k_i*int_f_d)/m_d. */
-fs_real_t dmp_goal_prime(const dmp_params_t *p, const pfc_axis_gains_t *gains, fs_real_t pos_d_m,
-                         fs_real_t force_d_N, fs_real_t force_d_integral_Ns);
+/** The one derivation, in double (skill_parse checks stored float64 values with it):
+ *  gain[] = {m_d, k_d, k_p, kkf, kki} -> abg[] = {alpha, beta, gamma}, alpha = k_d/m_d - 1,
+ *  gamma = kki/(m_d*alpha), beta = (k_p + (kkf - kki/alpha))/(m_d*alpha) - 1. Checks, first
+ *  failure reported: any input not finite (101); m_d <= 0 (102); a gain < 0 (107); k_d <= m_d
+ *  (103); a derived value not finite (101); beta <= 0 (104: beta > 0 with alpha > 0 implies the
+ *  closed loop is Routh-Hurwitz stable); beta > alpha/4*(1 + DMP_MONOTONE_REL_TOL) (105).
+ *  abg[] is written only on success. */
+fs_status_t dmp_derive_f64(const double gain[5], double abg[3]);
+
+/** dmp_derive_f64 in the core's type: NULL (100), then its checks, with the float build's
+ *  tolerance DMP_MONOTONE_REL_TOL_REAL for beta <= alpha/4. On error *out is zeroed. */
+fs_status_t dmp_params_from_gains(const dmp_gains_t *gains, dmp_params_t *out);
+
+/** Controller gains on an object of nominal stiffness k: k_f = kkf/k, k_i = kki/k (m_d, k_d,
+ *  k_p copied). NULL (100); k not finite (101) or <= 0 (106); a result not finite (101). */
+fs_status_t dmp_gains_at_stiffness(const dmp_gains_t *gains, fs_real_t stiffness_Npm,
+                                   pfc_axis_gains_t *out);
+
+/** Goal trajectory in N, k*g'(t) = c/(alpha*beta), c = (k_p*(k*x_d) + kkf*f_d + kki*int_f_d)/m_d,
+ *  the position reference given as the force k*x_d it stands for. */
+fs_real_t dmp_goal(const dmp_params_t *p, const dmp_gains_t *gains, fs_real_t ref_force_N,
+                   fs_real_t force_d_N, fs_real_t force_d_integral_Ns);
 
 /** A learned force skill ready to evaluate (what skill_parse fills). Derived arrays are set by
  *  dmp_model_init; do not fill them by hand. */
@@ -64,8 +88,8 @@ typedef struct {
     dmp_params_t p;
     fs_real_t dt_s;
     fs_real_t tau_s;
-    fs_real_t goal_m;
-    fs_real_t stiffness_Npm;
+    fs_real_t goal_N;
+    fs_real_t force0_N;                        /* starting force f0: f_hat = f0 + y */
     fs_real_t duration_s;
     fs_real_t centre[DMP_MAX_KERNELS];
     fs_real_t width[DMP_MAX_KERNELS];          /* sigma_i */
@@ -78,19 +102,20 @@ typedef struct {
 
 /** Validate the model and fill the derived arrays (after centre/width/weight and scalars are set).
  *  Checks in skill-image order: NULL (100); 1 <= N <= DMP_MAX_KERNELS (205); every value finite
- *  (206); 0 < dt <= 0.1, tau > 0, 0 < T <= 3600, k > 0, g > 0, sigma_i > 0 and 1/(2 sigma_i^2)
+ *  (206); 0 < dt <= 0.1, tau > 0, 0 < T <= 3600, g > 0, sigma_i > 0 and 1/(2 sigma_i^2)
  *  finite (207); centres strictly increasing in [0, 1] (208); alpha > 0, beta > 0, gamma >= 0,
  *  beta <= alpha/4*(1 + DMP_MONOTONE_REL_TOL_REAL) (209). */
 fs_status_t dmp_model_init(dmp_model_t *m);
 
-/** DMP state, DMP time: normalised phase u~, v~, the position integral I, x, z; window is the
- *  last step's kernel window [start, end) (a hint for the next: the result never depends on it). */
+/** DMP state, DMP time: normalised phase u~, v~, the integral I of y, y = f_hat - f0 (N), z;
+ *  window is the last step's kernel window [start, end) (a hint for the next: the result never
+ *  depends on it). */
 typedef struct {
     uint16_t window[2];
     fs_real_t u;
     fs_real_t v;
-    fs_real_t integral_x;
-    fs_real_t x_m;
+    fs_real_t integral_y;
+    fs_real_t y_N;
     fs_real_t z;
 } dmp_state_t;
 
@@ -100,10 +125,10 @@ typedef struct {
     fs_real_t time_scale;
 } dmp_run_t;
 
-/** Coupling (optional): term_x is added to tau*xd; phase_slowdown >= 0 multiplies tau by
+/** Coupling (optional): term_y (N) is added to tau*yd; phase_slowdown >= 0 multiplies tau by
  *  (1 + phase_slowdown) for every state, so the skill waits (e.g. for contact). */
 typedef struct {
-    fs_real_t term_x;
+    fs_real_t term_y_N;
     fs_real_t phase_slowdown;
 } dmp_coupling_t;
 
@@ -111,17 +136,17 @@ typedef struct {
  *  zero or negative (it scales the force linearly). */
 fs_status_t dmp_run_validate(const dmp_run_t *run);
 
-/** Zero initial conditions. */
+/** Zero initial conditions (y = 0: f_hat starts at f0). */
 void dmp_state_reset(dmp_state_t *s);
 
 /** Forcing term h at phase (u~, v~) and goal g, summing only kernels with
  *  e_i = (u~ - c_i)^2/(2 sigma_i^2) <= DMP_KERNEL_CUTOFF_EXP (found by binary search on the envelopes),
  *  psi_i = exp(-e_i) (dmp_tick.h); if none qualifies, the kernel with the smallest e_i
  *  alone (an O(N) scan that only happens when the phase is outside every kernel). */
-fs_real_t dmp_forcing(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_real_t goal_m);
+fs_real_t dmp_forcing(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_real_t goal_N);
 
 /** Forcing term h over all N kernels (reference for tests; not for the tick). */
-fs_real_t dmp_forcing_full(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_real_t goal_m);
+fs_real_t dmp_forcing_full(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_real_t goal_N);
 
 /** Number of kernels dmp_forcing sums at phase u~ (1 in the nearest-kernel fallback). */
 uint16_t dmp_active_kernels(const dmp_model_t *m, fs_real_t u);
@@ -133,7 +158,7 @@ fs_real_t dmp_phase_stop_factor(fs_real_t force_err_N, fs_real_t gain_per_N2);
 /** Advance the state by one step of dt_s (forward Euler, all right-hand sides at the old
  *  state, docs/math.md section 2; the step is dmp_tick.h, shared with dmpfx_step). run NULL means scales 1; coupling may be NULL (none); a
  *  phase_slowdown that is negative or NaN counts as 0, +inf freezes every state.
- *  Returns f_hat = k*x after the step. The caller validates run with dmp_run_validate. */
+ *  Returns f_hat = f0 + y after the step. The caller validates run with dmp_run_validate. */
 fs_real_t dmp_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
                    const dmp_coupling_t *coupling);
 

@@ -10,8 +10,11 @@
  *                   (the shift keeps sum psi >= 1.0 in Q1.30: full resolution);
  *                   no kernel within the cutoff -> the nearest kernel's weight
  *   Euler step      all right-hand sides at the old state, in coefficient form
- *                   x += k1*(z - x + h + term_x) - k_gamma*I     z += k_ab*(g - x) - k_a*z
- *                   I += k1*x    v += k_ab*(1 - u) - k_a*v       u += k1*v     f = k*x
+ *                   y += k1*(z - y + h + term_y) - k_gamma*I     z += k_ab*(g - y) - k_a*z
+ *                   I += k1*y    v += k_ab*(1 - u) - k_a*v       u += k1*v     f = out_scale*y
+ * y, z, I, h, g are in force units (N above the starting force; the weights are dimensionless);
+ * the real layer's out_scale is 1, the fixed layer keeps them times 2^-s in Q8.24 and
+ * out_scale = 2^s, a per-skill power of two. 
  * The including file includes its public header, fs_num.h, then defines DMP_TICK_MODEL (its
  * model type, with fields n_kernels, centre[], kernel_scale[], weight[], env_lo[], env_hi[] in
  * the layer's types) and includes this file once. The window of the last step is kept in the
@@ -37,26 +40,26 @@
 #endif
 #endif
 
-/** Per-tick constants of one Euler step: dt/tau_e*{1, alpha, alpha*beta, gamma}, g_e, k and
- *  the coupling term added to tau*xd. */
+/** Per-tick constants of one Euler step: dt/tau_e*{1, alpha, alpha*beta, gamma}, g_e, the
+ *  output scale (N per unit of y) and the coupling term added to tau*yd. */
 typedef struct {
     fs_coef_t k1;
     fs_coef_t k_alpha;
     fs_coef_t k_alphabeta;
     fs_coef_t k_gamma;
     fs_val_t goal;
-    fs_stiff_t stiffness;
-    fs_val_t term_x;
+    fs_stiff_t out_scale;
+    fs_val_t term_y;
 } dmp_tick_coef_t;
 
-/** The DMP state as the step sees it: the layer's accumulators (fs_acc_t) of u~, v~, I, x, z,
+/** The DMP state as the step sees it: the layer's accumulators (fs_acc_t) of u~, v~, I, y, z,
  *  and the kernel window [start, end) of the last step (a hint: any value gives the same result). */
 typedef struct {
     uint16_t *window;
     fs_acc_t *u;
     fs_acc_t *v;
-    fs_acc_t *integral_x;
-    fs_acc_t *x;
+    fs_acc_t *integral_y;
+    fs_acc_t *y;
     fs_acc_t *z;
 } dmp_tick_state_t;
 
@@ -198,27 +201,27 @@ static inline fs_val_t dmp_tick_state_blend(const DMP_TICK_MODEL *m, const dmp_t
 
 /** One forward-Euler step (every right-hand side at the old state) with constants c and the
  *  blend s_blend = dmp_tick_state_blend of the same state; the layer's saturations are counted
- *  in *ev. Returns f_hat = k*x after the step. */
+ *  in *ev. Returns out_scale*y after the step (N above f0). */
 static inline fs_force_t dmp_tick_step(const dmp_tick_coef_t *c, const dmp_tick_state_t *s,
                                        fs_val_t s_blend, uint32_t *ev)
 {
     const fs_phase_t u = fs_num_view(*s->u);
     const fs_phase_t v = fs_num_view(*s->v);
-    const fs_val_t i_x = fs_num_view(*s->integral_x);
-    const fs_val_t x = fs_num_view(*s->x);
+    const fs_val_t i_y = fs_num_view(*s->integral_y);
+    const fs_val_t y = fs_num_view(*s->y);
     const fs_val_t z = fs_num_view(*s->z);
 
     const fs_val_t h = fs_num_mul_vv(fs_num_mul_vp(c->goal, v, ev), s_blend, ev);
-    const fs_val_t sx =
-        fs_num_add_ev(fs_num_add_ev(fs_num_sub_ev(z, x, ev), h, ev), c->term_x, ev);
-    const fs_val_t gx = fs_num_sub_ev(c->goal, x, ev);
+    const fs_val_t sy =
+        fs_num_add_ev(fs_num_add_ev(fs_num_sub_ev(z, y, ev), h, ev), c->term_y, ev);
+    const fs_val_t gy = fs_num_sub_ev(c->goal, y, ev);
     const fs_phase_t one_u = fs_num_sub_ev(FS_NUM_PHASE_ONE, u, ev);
-    *s->x = fs_num_acc_mac2(*s->x, c->k1, sx, c->k_gamma, i_x, ev);
-    *s->z = fs_num_acc_mac2(*s->z, c->k_alphabeta, gx, c->k_alpha, z, ev);
-    *s->integral_x = fs_num_acc_mac1(*s->integral_x, c->k1, x, ev);
+    *s->y = fs_num_acc_mac2(*s->y, c->k1, sy, c->k_gamma, i_y, ev);
+    *s->z = fs_num_acc_mac2(*s->z, c->k_alphabeta, gy, c->k_alpha, z, ev);
+    *s->integral_y = fs_num_acc_mac1(*s->integral_y, c->k1, y, ev);
     *s->v = fs_num_acc_mac2(*s->v, c->k_alphabeta, one_u, c->k_alpha, v, ev);
     *s->u = fs_num_acc_mac1(*s->u, c->k1, v, ev);
-    return fs_num_force(c->stiffness, fs_num_view(*s->x), ev);
+    return fs_num_force(c->out_scale, fs_num_view(*s->y), ev);
 }
 
 #endif /* DMP_TICK_H */

@@ -4,8 +4,10 @@
 #ifndef FS_F32_NAMES_H
 #define FS_F32_NAMES_H
 
+#define dmp_derive_f64 dmp_derive_f64_f32
 #define dmp_params_from_gains dmp_params_from_gains_f32
-#define dmp_goal_prime dmp_goal_prime_f32
+#define dmp_gains_at_stiffness dmp_gains_at_stiffness_f32
+#define dmp_goal dmp_goal_f32
 #define dmp_model_init dmp_model_init_f32
 #define dmp_run_validate dmp_run_validate_f32
 #define dmp_state_reset dmp_state_reset_f32

@@ -12,13 +12,13 @@
  *   fs_kdist_t  nearest-kernel key, monotone in e_i        Q.49 unsigned |u - c_i| s_i
  *   fs_act_t    kernel activation psi_i = exp(-e)          Q1.30 (psi_Q31 / 2)
  *   fs_bnum_t, fs_bden_t  blend sums sum psi w, sum psi   int64 Q.51, uint64 Q.30
- *   fs_val_t    x, z, I, h, w_i, g, term_x, positions, velocities, accelerations, force integral
- *                                                          Q8.24
+ *   fs_val_t    DMP y, z, I, h, g, term_y (force units, times 2^-s in fixed point), w_i,
+ *               positions, velocities, accelerations, force integral        Q8.24
  *   fs_coef_t   Euler coefficients dt/tau_e*{1, alpha, alpha*beta, gamma}, control dt  Q1.31
  *   fs_acc_t    a DMP state: exact sum of its Euler increments (value * 2^31)  int64
  *   fs_force_t  forces (N)                                 Q16.16
  *   fs_gain_t   control gains                              Q16.16
- *   fs_stiff_t  stiffness k (N/m)                          Q20.12
+ *   fs_stiff_t  DMP output scale (N per unit of y: 1, or 2^s) Q20.12
  *   fs_wide_t   sum of control-law terms (N)               int64 Q.32
  * Operations (trivial inline functions over fs_real_t in the real layer; in the fixed layer
  * rounding half up, saturation and not wrapping; the _ev variants count saturations in *ev):
@@ -28,7 +28,7 @@
  *   fs_num_add_ev / fs_num_sub_ev     saturating a +- b, counted
  *   fs_num_sub / fs_num_add           saturating a +- b (control law)
  *   fs_num_mul_vp(val, phase, ev)     val * phase -> val    fs_num_mul_vv(val, val, ev) -> val
- *   fs_num_force(stiff, x, ev)        k * x -> force
+ *   fs_num_force(scale, y, ev)        scale * y -> force
  *   fs_num_kernel_expo(u, c, s)       e_i: real d*d*s, fixed (|d| s)^2/2 (d = u - c)
  *   fs_num_kernel_dist(u, c, s)       a key monotone in e_i (nearest-kernel fallback)
  *   fs_num_exp_neg(e)                 exp(-e) for e >= 0 -> activation

@@ -1,4 +1,4 @@
-/* Skill image v1 parser (docs/skill_format.md). Every check runs on the stored float64 values in
+/* Skill image v2 parser (docs/skill_format.md). Every check runs on the stored float64 values in
  * double, in the documented order, so the double and float builds accept and reject the same
  * images as the Python reader; the float build then rounds the values to float. */
 #include "skill.h"
@@ -19,15 +19,16 @@
 #define OFF_BETA 40u
 #define OFF_GAMMA 48u
 #define OFF_STIFFNESS 56u
-#define OFF_GOAL 64u
+#define OFF_GOAL 64u          /* goal_N */
 #define OFF_DURATION 72u
 #define OFF_M_D 80u
 #define OFF_K_D 88u
 #define OFF_K_P 96u
-#define OFF_K_F 104u
-#define OFF_K_I 112u
+#define OFF_KKF 104u          /* k*k_f, N/m */
+#define OFF_KKI 112u          /* k*k_i, N/(m s) */
 #define OFF_SURFACE 120u
-#define SKILL_N_HEADER_F64 14u
+#define OFF_FORCE0 128u
+#define SKILL_N_HEADER_F64 15u
 
 /* alpha/beta/gamma stored vs derived from the stored gains: relative agreement required. */
 #define SKILL_GAINS_REL_TOL 1e-9
@@ -87,35 +88,6 @@ static int rel_close(double a, double b, double rel)
     return fabs(a - b) <= rel * ((fa > fb) ? fa : fb);
 }
 
-/* dmp_params_from_gains in double (the image stores float64): same formula and checks, returns
- * nonzero when the gains are valid and fills abg[] = {alpha, beta, gamma}. */
-static int skill_derive(const double gain[5], double k, double abg[3])
-{
-    const double m_d = gain[0];
-    const double k_d = gain[1];
-    const double k_p = gain[2];
-    const double k_f = gain[3];
-    const double k_i = gain[4];
-    if (!(m_d > 0.0) || !(k > 0.0) || k_d < 0.0 || k_p < 0.0 || k_f < 0.0 || k_i < 0.0 ||
-        !(k_d > m_d)) {
-        return 0;
-    }
-    const double alpha = k_d / m_d - 1.0;
-    if (!(alpha > 0.0)) {
-        return 0;
-    }
-    const double gamma = k * k_i / (m_d * alpha);
-    const double beta = (k_p + k * (k_f - k_i / alpha)) / (m_d * alpha) - 1.0;
-    if (!isfinite(alpha) || !isfinite(beta) || !isfinite(gamma) || !(beta > 0.0) ||
-        beta > alpha / 4.0 * (1.0 + DMP_MONOTONE_REL_TOL)) {
-        return 0;
-    }
-    abg[0] = alpha;
-    abg[1] = beta;
-    abg[2] = gamma;
-    return 1;
-}
-
 #ifdef FS_REAL_FLOAT
 /* Round a validated double to the float core: nonzero if it fits the float range. */
 static int to_real(double d, fs_real_t *out)
@@ -139,7 +111,7 @@ fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
     if (buf == NULL || out == NULL) {
         return FS_ERR_NULL_ARG;
     }
-    if (len < SKILL_HEADER_SIZE) {
+    if (len < OFF_HEADER_SIZE) {
         return FS_ERR_SKILL_TOO_SHORT;
     }
     if (rd_u32(buf, OFF_MAGIC) != SKILL_MAGIC) {
@@ -147,6 +119,9 @@ fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
     }
     if (rd_u16(buf, OFF_VERSION) != SKILL_FORMAT_VERSION) {
         return FS_ERR_SKILL_VERSION;
+    }
+    if (len < SKILL_HEADER_SIZE) {
+        return FS_ERR_SKILL_TOO_SHORT;
     }
     if (rd_u16(buf, OFF_HEADER_SIZE) != SKILL_HEADER_SIZE) {
         return FS_ERR_SKILL_HEADER_SIZE;
@@ -163,7 +138,7 @@ fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
     if (n == 0u || n > DMP_MAX_KERNELS) {
         return FS_ERR_SKILL_KERNELS;
     }
-    /* Every float64 field: 14 in the header from OFF_DT, then 3N array entries, contiguous. */
+    /* Every float64 field: 15 in the header from OFF_DT, then 3N array entries, contiguous. */
     const uint32_t n_f64 = SKILL_N_HEADER_F64 + 3u * (uint32_t)n;
     for (uint32_t i = 0u; i < n_f64; i++) {
         if (!isfinite(rd_f64(buf, OFF_DT + 8u * i))) {
@@ -196,11 +171,11 @@ fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
         prev = c;
     }
     const double gain[5] = {rd_f64(buf, OFF_M_D), rd_f64(buf, OFF_K_D), rd_f64(buf, OFF_K_P),
-                            rd_f64(buf, OFF_K_F), rd_f64(buf, OFF_K_I)};
+                            rd_f64(buf, OFF_KKF), rd_f64(buf, OFF_KKI)};
     const double stored[3] = {rd_f64(buf, OFF_ALPHA), rd_f64(buf, OFF_BETA),
                               rd_f64(buf, OFF_GAMMA)};
     double derived[3];
-    if (!skill_derive(gain, k, derived) ||
+    if (dmp_derive_f64(gain, derived) != FS_OK ||
         !rel_close(stored[0], derived[0], SKILL_GAINS_REL_TOL) ||
         !rel_close(stored[1], derived[1], SKILL_GAINS_REL_TOL) ||
         !rel_close(stored[2], derived[2], SKILL_GAINS_REL_TOL) ||
@@ -218,18 +193,20 @@ fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
     m->n_kernels = n;
     int ok = to_real(stored[0], &m->p.alpha) && to_real(stored[1], &m->p.beta) &&
              to_real(stored[2], &m->p.gamma) && to_real(dt, &m->dt_s) &&
-             to_real(tau, &m->tau_s) && to_real(goal, &m->goal_m) &&
-             to_real(k, &m->stiffness_Npm) && to_real(duration, &m->duration_s) &&
-             to_real(gain[0], &out->gains.m_d_kg) && to_real(gain[1], &out->gains.k_d_Nspm) &&
-             to_real(gain[2], &out->gains.k_p_Npm) && to_real(gain[3], &out->gains.k_f) &&
-             to_real(gain[4], &out->gains.k_i_per_s) &&
+             to_real(tau, &m->tau_s) && to_real(goal, &m->goal_N) &&
+             to_real(rd_f64(buf, OFF_FORCE0), &m->force0_N) &&
+             to_real(k, &out->stiffness_Npm) && to_real(duration, &m->duration_s) &&
+             to_real(gain[0], &out->fit_gains.m_d_kg) &&
+             to_real(gain[1], &out->fit_gains.k_d_Nspm) &&
+             to_real(gain[2], &out->fit_gains.k_p_Npm) && to_real(gain[3], &out->fit_gains.kkf_Npm) &&
+             to_real(gain[4], &out->fit_gains.kki_Npms) &&
              to_real(rd_f64(buf, OFF_SURFACE), &out->surface_m);
     for (uint32_t i = 0u; ok && i < n; i++) {
         ok = to_real(rd_f64(buf, off_c + 8u * i), &m->centre[i]) &&
              to_real(rd_f64(buf, off_s + 8u * i), &m->width[i]) &&
              to_real(rd_f64(buf, off_w + 8u * i), &m->weight[i]);
     }
-    if (!ok) {
+    if (!ok || dmp_gains_at_stiffness(&out->fit_gains, out->stiffness_Npm, &out->gains) != FS_OK) {
         return FS_ERR_SKILL_RANGE;
     }
     out->end_policy = ((flags & SKILL_FLAG_END_RELEASE) != 0u) ? SKILL_END_RELEASE : SKILL_END_HOLD;

@@ -32,6 +32,19 @@ static void dmpfx_window(const dmpfx_model_t *m, int32_t u, uint32_t *lo, uint32
 
 static fs_status_t dmpfx_measure_peaks(dmpfx_model_t *m, double duration_s);
 
+/* The smallest s in [DMPFX_SHIFT_MIN, DMPFX_SHIFT_MAX] with magnitude*2^-s <= DMPFX_SCALE_TARGET
+ * (DMPFX_SHIFT_MAX + 1 if none: refused by dmpfx_convert). */
+static int32_t dmpfx_choose_shift(double magnitude)
+{
+    int32_t s = DMPFX_SHIFT_MIN;
+    while (s <= DMPFX_SHIFT_MAX && !(magnitude <= ldexp(DMPFX_SCALE_TARGET, s))) {
+        s++;
+    }
+    return s;
+}
+
+static fs_status_t dmpfx_convert(const dmp_model_t *m, int32_t shift, dmpfx_model_t *out);
+
 fs_status_t dmpfx_from_model(const dmp_model_t *m, dmpfx_model_t *out)
 {
     if (m == NULL || out == NULL) {
@@ -41,7 +54,33 @@ fs_status_t dmpfx_from_model(const dmp_model_t *m, dmpfx_model_t *out)
     if (n == 0u || n > DMP_MAX_KERNELS) {
         return FS_ERR_SKILL_KERNELS;
     }
+    /* Two passes: first at a scale that keeps |g|*(1 + max|w|) <= 2 (|h| <= 1.9*|g|*max|w|,
+     * and y, z, I follow g and h: the nominal run stays far below the headroom of 64), to
+     * measure its peak in N; then at the scale that puts that peak at DMPFX_SCALE_TARGET (the
+     * headroom above it is what goal scales up to 64/DMPFX_SCALE_TARGET use), measured again. */
+    double w_max = 0.0;
+    for (uint16_t i = 0u; i < n; i++) {
+        w_max = fmax(w_max, fabs((double)m->weight[i]));
+    }
+    const double bound_N = fabs((double)m->goal_N) * (1.0 + w_max) * 0.5 * DMPFX_SCALE_TARGET;
+    const int32_t s1 = dmpfx_choose_shift(bound_N);
+    fs_status_t st = dmpfx_convert(m, s1, out);
+    if (st != FS_OK) {
+        return st;
+    }
+    const double peak_N = ldexp(out->peak_q24 / (double)FX_Q24_ONE, s1);
+    const int32_t s2 = dmpfx_choose_shift(peak_N);
+    return (s2 == s1) ? FS_OK : dmpfx_convert(m, s2, out);
+}
+
+static fs_status_t dmpfx_convert(const dmp_model_t *m, int32_t shift, dmpfx_model_t *out)
+{
+    const uint16_t n = m->n_kernels;
+    if (shift > DMPFX_SHIFT_MAX) {
+        return FS_ERR_FIXED_OVERFLOW;
+    }
     out->n_kernels = n;
+    out->value_shift = shift;
     const int32_t q24_lim = (int32_t)(DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE);
     for (uint16_t i = 0u; i < n; i++) {
         const double c = (double)m->centre[i];
@@ -81,7 +120,10 @@ fs_status_t dmpfx_from_model(const dmp_model_t *m, dmpfx_model_t *out)
             return FS_ERR_FIXED_WINDOW;
         }
     }
-    fs_status_t st = fx_from_double((double)m->stiffness_Npm, 12u, INT32_MAX, &out->stiffness_q12);
+    fs_status_t st = fx_from_double(ldexp(1.0, shift), 12u, INT32_MAX, &out->out_scale_q12);
+    if (st == FS_OK) {
+        st = fx_from_double((double)m->force0_N, 16u, INT32_MAX, &out->force0_q16);
+    }
     if (st != FS_OK) {
         return st;
     }
@@ -90,7 +132,7 @@ fs_status_t dmpfx_from_model(const dmp_model_t *m, dmpfx_model_t *out)
     out->alpha = (double)m->p.alpha;
     out->beta = (double)m->p.beta;
     out->gamma = (double)m->p.gamma;
-    out->goal_m = (double)m->goal_m;
+    out->goal_N = (double)m->goal_N;
     out->peak_q24 = 0.0;
     out->peak_v_q30 = 0.0;
     return dmpfx_measure_peaks(out, (double)m->duration_s);
@@ -126,7 +168,7 @@ fs_status_t dmpfx_run_init(const dmpfx_model_t *m, double goal_scale, double tim
     if (st != FS_OK) {
         return FS_ERR_FIXED_STEP;
     }
-    const double g = m->goal_m * goal_scale;
+    const double g = ldexp(m->goal_N * goal_scale, -m->value_shift);
     const double lim_q24 = DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE;
     if (fabs(goal_scale) * m->peak_q24 > lim_q24) {
         return FS_ERR_FIXED_OVERFLOW;
@@ -140,8 +182,8 @@ void dmpfx_state_reset(dmpfx_state_t *s)
     s->window[1] = 0u;
     s->u_acc = 0;
     s->v_acc = 0;
-    s->integral_x_acc = 0;
-    s->x_acc = 0;
+    s->integral_y_acc = 0;
+    s->y_acc = 0;
     s->z_acc = 0;
     s->sat_events = 0u;
 }
@@ -165,10 +207,10 @@ int32_t dmpfx_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t
                          .k_alphabeta = run->k_alphabeta_q31,
                          .k_gamma = run->k_gamma_q31,
                          .goal = run->goal_q24,
-                         .stiffness = m->stiffness_q12,
-                         .term_x = 0};
+                         .out_scale = m->out_scale_q12,
+                         .term_y = 0};
     if (coupling != NULL) {
-        c.term_x = coupling->term_x_q24;
+        c.term_y = coupling->term_y_q24;
         const uint32_t rate = (coupling->rate_q31 > FX_Q31_ONE_U) ? FX_Q31_ONE_U : coupling->rate_q31;
         if (rate != FX_Q31_ONE_U) {
             c.k1 = dmpfx_scale_q31(c.k1, rate);
@@ -177,9 +219,10 @@ int32_t dmpfx_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t
             c.k_gamma = dmpfx_scale_q31(c.k_gamma, rate);
         }
     }
-    const dmp_tick_state_t st = {s->window, &s->u_acc, &s->v_acc, &s->integral_x_acc, &s->x_acc,
+    const dmp_tick_state_t st = {s->window, &s->u_acc, &s->v_acc, &s->integral_y_acc, &s->y_acc,
                                  &s->z_acc};
-    return dmp_tick_step(&c, &st, dmp_tick_state_blend(m, &st), &s->sat_events);
+    const int32_t f = dmp_tick_step(&c, &st, dmp_tick_state_blend(m, &st), &s->sat_events);
+    return fx_add_sat(m->force0_q16, f);
 }
 
 static double dmpfx_absd(int32_t v)
@@ -187,7 +230,7 @@ static double dmpfx_absd(int32_t v)
     return fabs((double)v);
 }
 
-/* The nominal run (goal 1, time 1), T/dt steps: peaks of h, x, z, I (Q8.24 units) and v~ (Q2.30
+/* The nominal run (goal 1, time 1), T/dt steps: peaks of h, y, z, I (Q8.24 units) and v~ (Q2.30
  * units) into the model; any saturation, a peak above the headroom or |v~| > DMPFX_V_MAX -> 300.
  * The phase variable checks alpha, beta as the run will see them (v~ peaks at sqrt(alpha beta)/e
  * for the critically damped phase: 1.66 for the default gains). */
@@ -211,9 +254,9 @@ static fs_status_t dmpfx_measure_peaks(dmpfx_model_t *m, double duration_s)
         const int32_t sw = dmpfx_blend(m, u, NULL);
         const double h = (double)run.goal_q24 * ldexp((double)v, -30) * ldexp((double)sw, -24);
         (void)dmpfx_step(m, &run, &s, NULL);
-        peak = fmax(peak, fmax(fabs(h), fmax(dmpfx_absd(dmpfx_view(s.x_acc)),
+        peak = fmax(peak, fmax(fabs(h), fmax(dmpfx_absd(dmpfx_view(s.y_acc)),
                                              fmax(dmpfx_absd(dmpfx_view(s.z_acc)),
-                                                  dmpfx_absd(dmpfx_view(s.integral_x_acc))))));
+                                                  dmpfx_absd(dmpfx_view(s.integral_y_acc))))));
         peak_v = fmax(peak_v, dmpfx_absd(dmpfx_view(s.v_acc)));
     }
     m->peak_q24 = fmax(peak, dmpfx_absd(run.goal_q24));

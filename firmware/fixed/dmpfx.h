@@ -16,9 +16,16 @@
 #ifndef DMPFX_MAX_WINDOW
 #define DMPFX_MAX_WINDOW 32u
 #endif
-/* Largest magnitude accepted for a Q8.24 quantity (weights, goal, and the peaks of h, x, z, I
- * over the run): 64 = half the Q8.24 range, one bit of headroom for coupling and disturbances. */
+/* Largest magnitude accepted for a Q8.24 quantity (the dimensionless weights; goal and the peaks
+ * of h, y, z, I over the run in units of 2^s N): 64 = half the Q8.24 range, one bit of headroom for coupling
+ * and disturbances. */
 #define DMPFX_Q24_HEADROOM 64.0
+/* The value scale 2^s is chosen so that the nominal run's peak of |h|, |y|, |z|, |I| times 2^-s
+ * is at most this: goal scales up to 64/8 = 8 stay within the headroom. */
+#define DMPFX_SCALE_TARGET 8.0
+/* Range of the value-scale exponent s: 2^s in Q20.12 needs -12 <= s <= 18. */
+#define DMPFX_SHIFT_MIN (-12)
+#define DMPFX_SHIFT_MAX 18
 /* Largest phase velocity v~ accepted (Q2.30 holds |v| < 2). */
 #define DMPFX_V_MAX 1.9
 
@@ -31,16 +38,18 @@ typedef struct {
     int32_t weight[DMP_MAX_KERNELS];        /* Q8.24 */
     int32_t env_lo[DMP_MAX_KERNELS];  /* Q2.30 suffix min of c_i - r sigma_i, r = sqrt(32) */
     int32_t env_hi[DMP_MAX_KERNELS];  /* Q2.30 prefix max of c_i + r sigma_i */
-    int32_t stiffness_q12;                /* k, N/m, Q20.12 */
+    int32_t out_scale_q12;                /* 2^s: N per unit of y, z, I, h, g (Q20.12) */
+    int32_t value_shift;                  /* s: values are stored as N * 2^-s */
+    int32_t force0_q16;                   /* starting force f0, N, Q16.16 */
     /* scalars kept in double for dmpfx_run_init (run set-up, not the tick) */
     double dt_s;
     double tau_s;
     double alpha;
     double beta;
     double gamma;
-    double goal_m;
+    double goal_N;
     /* peaks of the nominal run (goal 1, time 1, no coupling), for dmpfx_run_init's check:
-     * max |h|, |x|, |z|, |I| in Q8.24 units and max |v~| in Q2.30 units */
+     * max |h|, |y|, |z|, |I| in Q8.24 units and max |v~| in Q2.30 units */
     double peak_q24;
     double peak_v_q30;
 } dmpfx_model_t;
@@ -65,8 +74,8 @@ typedef struct {
     uint16_t window[2];
     int64_t u_acc;
     int64_t v_acc;
-    int64_t integral_x_acc;
-    int64_t x_acc;
+    int64_t integral_y_acc;
+    int64_t y_acc;
     int64_t z_acc;
     uint32_t sat_events;
 } dmpfx_state_t;
@@ -77,19 +86,23 @@ static inline int32_t dmpfx_view(int64_t acc)
     return fx_acc_view(acc);
 }
 
-/** Coupling: term_x added to tau*xd (Q8.24) and rate = 1/(1 + phase_slowdown) in Q1.31
+/** Coupling: term_y added to tau*yd (Q8.24, in the model's units of 2^s N) and rate = 1/(1 + phase_slowdown) in Q1.31
  *  (unsigned, 1.0 = 2^31 means no slow-down). */
 typedef struct {
-    int32_t term_x_q24;
+    int32_t term_y_q24;
     uint32_t rate_q31;
 } dmpfx_coupling_t;
 
 /** Convert a validated double model (dmp_model_init done) into fixed point, then roll the
- *  nominal run (goal 1, time 1) out once in fixed point to measure the peaks of h, x, z, I and
+ *  nominal run (goal 1, time 1) out once in fixed point to measure the peaks of h, y, z, I and
  *  v~ (the system is linear in g with zero initial conditions, so a goal scale s scales them by
- *  |s| exactly; the time scale changes them only by O(dt/tau)). Cost: one rollout, T/dt steps.
+ *  |s| exactly; the time scale changes them only by O(dt/tau)). Cost: two rollouts, T/dt steps each.
  *  Errors: FS_ERR_FIXED_OVERFLOW (300) a value does not fit its format (1/sigma >= 4096, |w| or
- *  g > 64, stiffness, a peak > 64 or |v~| > 1.9, or a saturation in the nominal run),
+ *  g beyond the value scale's range, f0 beyond Q16.16, a peak > 64 or |v~| > 1.9, or a saturation
+ *  in the nominal run). The forces (g, y, z, I, h) are kept in N * 2^-s, s the smallest
+ *  exponent that puts the nominal run's peak at or below DMPFX_SCALE_TARGET (an exact
+ *  power-of-two scaling: the fixed-point accuracy does not depend on the force level or on k;
+ *  it costs a second rollout at conversion),
  *  FS_ERR_FIXED_WINDOW (301) too many overlapping kernels, FS_ERR_FIXED_STEP, FS_ERR_NULL_ARG. */
 fs_status_t dmpfx_from_model(const dmp_model_t *m, dmpfx_model_t *out);
 
@@ -107,7 +120,7 @@ void dmpfx_state_reset(dmpfx_state_t *s);
 int32_t dmpfx_blend(const dmpfx_model_t *m, int32_t u_q30, uint16_t *count);
 
 /** One forward-Euler step (dmp_tick_step, all right-hand sides at the old state); coupling may
- *  be NULL. Returns f_hat = k*x after the step in Q16.16 N. */
+ *  be NULL. Returns f_hat = f0 + 2^s*y after the step in Q16.16 N. */
 int32_t dmpfx_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s,
                    const dmpfx_coupling_t *coupling);
 

@@ -21,7 +21,7 @@ typedef int32_t fs_coef_t;    /* Q1.31, in [0, 0.5) for the DMP */
 typedef int64_t fs_acc_t;     /* value * 2^31 */
 typedef int32_t fs_force_t;   /* Q16.16 N */
 typedef int32_t fs_gain_t;    /* Q16.16 */
-typedef int32_t fs_stiff_t;   /* Q20.12 N/m */
+typedef int32_t fs_stiff_t;   /* Q20.12: the DMP output scale 2^s (N per unit of y) */
 typedef int64_t fs_wide_t;    /* Q.32 N */
 
 #define FS_NUM_ZERO 0
@@ -99,7 +99,7 @@ static inline fs_val_t fs_num_mul_vv(fs_val_t a, fs_val_t b, uint32_t *ev)
     return fs_num_sat_ev(fx_rshift_round((int64_t)a * b, 24u), ev);
 }
 
-/* Q20.12 N/m * Q8.24 m -> Q16.16 N */
+/* Q20.12 scale * Q8.24 y -> Q16.16 N */
 static inline fs_force_t fs_num_force(fs_stiff_t k, fs_val_t x, uint32_t *ev)
 {
     return fs_num_sat_ev(fx_rshift_round((int64_t)k * x, 20u), ev);

@@ -9,7 +9,7 @@
  *   kernel exponent e_i          Q5.27 (unsigned, clipped at 16)
  *   kernel activation psi_i      Q1.31 (unsigned, 1.0 = 2^31)
  *   w_i, x, z, I, h, g           Q8.24      per-tick constants  Q1.31
- *   forces                       Q16.16 N   stiffness           Q20.12 N/m */
+ *   forces                       Q16.16 N   DMP output scale    Q20.12 */
 #ifndef FX_H
 #define FX_H
 

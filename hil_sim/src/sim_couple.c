@@ -79,7 +79,8 @@ void sim_couple_device_config(const sim_scenario_t *sc, app_config_t *cfg)
     cfg->exec.object.k1_Npm = sc->object.k1_Npm;
     cfg->exec.object.k2_Npm = sc->object.k2_Npm;
     cfg->exec.object.layer_depth_m = sc->object.layer_depth_m;
-    cfg->exec.object.surface_m = sc->object.surface_m;
+    cfg->exec.object.surface_m = sc->object.surface_m + sc->surface_error_m;
+    cfg->exec.surface_from_contact = (uint8_t)(sc->surface_from_contact != 0);
     cfg->exec.phase_stop_gain_per_N2 = sc->phase_stop_gain_per_N2;
     cfg->render.carriage_kg = sc->carriage.carriage_kg;
     cfg->render.viscous_Nspm = sc->carriage.viscous_Nspm;

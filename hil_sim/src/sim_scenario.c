@@ -77,6 +77,8 @@ void sim_scenario_defaults(sim_scenario_t *sc)
     sc->use_model = 1;
     sc->end_policy = -1;
     sc->phase_stop_gain_per_N2 = 0.0;
+    sc->surface_error_m = 0.0;
+    sc->surface_from_contact = 0;
     sc->fault.kind = SIM_FAULT_NONE;
     sc->fault.duration_s = 1e9;
 }
@@ -255,6 +257,7 @@ static const num_key_t NUM_KEYS[] = {
     NK("execute", "goal_scale", goal_scale, -100.0, 100.0),
     NK("execute", "time_scale", time_scale, 1e-3, 1e3),
     NK("execute", "phase_stop_gain_per_N2", phase_stop_gain_per_N2, 0.0, 1e6),
+    NK("execute", "surface_error_m", surface_error_m, -0.1, 0.1),
     NK("fault", "at_s", fault.at_s, 0.0, 3600.0),
     NK("fault", "value", fault.value, -1e6, 1e6),
     NK("fault", "duration_s", fault.duration_s, 0.0, 1e9),
@@ -440,6 +443,19 @@ static int apply(sim_scenario_t *sc, const ctx_t *c, const char *sec, const char
             } else {
                 return fail(c, "end_policy must be \"skill\", \"hold\" or \"release\", got \"%s\"",
                             v->str);
+            }
+            return 0;
+        }
+        if (strcmp(key, "surface") == 0) {
+            if (want(c, key, v, V_STR) != 0) {
+                return -1;
+            }
+            if (strcmp(v->str, "config") == 0) {
+                sc->surface_from_contact = 0;
+            } else if (strcmp(v->str, "contact") == 0) {
+                sc->surface_from_contact = 1;
+            } else {
+                return fail(c, "surface must be \"config\" or \"contact\", got \"%s\"", v->str);
             }
             return 0;
         }

@@ -62,6 +62,8 @@ typedef struct {
     int use_model;                   /* 1: invert the object model for x_d */
     int end_policy;                  /* -1: the skill's own; 0 hold; 1 release */
     double phase_stop_gain_per_N2;
+    double surface_error_m;          /* the firmware's surface = the object's + this */
+    int surface_from_contact;        /* 1: the firmware takes the surface at the first tick */
     /* fault */
     sim_fault_t fault;
 } sim_scenario_t;

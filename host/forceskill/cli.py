@@ -87,6 +87,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     from .errors import ERR_FIT_ARGS, ERR_FIT_INACCURATE, ERR_FIT_TOLERANCE
     from .limits import check_skill_force
     from .outputs import Outputs, check_target
+    from .params import Gains, gains_for_object, load_gains
     from .readers import ReadOptions
     from .skill import DURATION_MAX_S, MAX_KERNELS
 
@@ -101,6 +102,15 @@ def _cmd_fit(args: argparse.Namespace) -> int:
             raise FsError(ERR_FIT_ARGS, "give --kernels N or --max-error PCT, not both")
         if not (np.isfinite(args.max_error) and 0.0 < args.max_error <= 100.0):
             raise FsError(ERR_FIT_ARGS, f"--max-error must be in (0, 100] %: {args.max_error:g}")
+    gains, object_mass_kg = load_gains(args.gains) if args.gains else (Gains(), None)
+    if args.object_mass is not None:
+        object_mass_kg = args.object_mass
+        if not args.gains:   # the defaults are adapted to the object; given gains are only checked
+            gains = gains_for_object(args.stiffness, args.object_mass)
+            if gains != Gains():
+                print(f"force gains scaled to the {args.object_mass:g} kg object: kkf = {gains.kkf_Npm:.4g} N/m, "
+                      f"kki = {gains.kki_Npms:.4g} N/(m s) (k_f*m_v/m_d = 0.75)")
+    args.fit_gains, args.fit_object_mass_kg = gains, object_mass_kg
     ropts = ReadOptions(time_column=args.time_column, time_unit=args.time_unit, rate_hz=args.rate,
                         topic=args.topic, pose_topic=args.pose_topic, axis=args.axis,
                         max_duration_s=DURATION_MAX_S)
@@ -155,8 +165,8 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     print(f"demonstration: {demo.source}, T = {sk.duration_s:.3f} s, {res.t_s.size} samples at "
           f"{sk.dt_s * 1e3:g} ms (recorded: {demo.t_s.size}), max force {f_max:.4g} N")
     print(f"skill: method {res.method}, N = {sk.n_kernels}, k = {sk.stiffness_Npm:g} N/m, tau = {sk.tau_s:.6g} s, "
-          f"g = {sk.goal_m:.6g} m, alpha = {sk.alpha:g}, beta = {sk.beta:g}, gamma = {sk.gamma:g}, "
-          f"end {sk.end_policy}")
+          f"g = {sk.goal_N:.6g} N, f0 = {sk.force0_N:.4g} N, alpha = {sk.alpha:g}, beta = {sk.beta:g}, "
+          f"gamma = {sk.gamma:g}, end {sk.end_policy}")
     print(f"approximation error: max {err.max_pct:.3f} %, RMS {err.rms_pct:.3f} % of max force "
           f"(at the {demo.t_s.size} recorded samples)")
     print(f"wrote {out} ({out.stat().st_size} bytes) and {out}.json" + (f", plot {args.plot}" if args.plot else ""))
@@ -170,11 +180,12 @@ def _fit_with_hint(demo: Any, args: argparse.Namespace, n_kernels: int) -> Any:
 
     from .errors import ERR_FIT_GOAL
     from .fit import fit
-    from .params import Gains
 
     try:
-        return fit(demo, args.stiffness, n_kernels=n_kernels, method=args.method, gains=Gains(),
-                   surface_m=args.surface_m, end_policy=args.end, dt_s=args.dt)
+        return fit(demo, args.stiffness, n_kernels=n_kernels, method=args.method, gains=args.fit_gains,
+                   surface_m=args.surface_m, end_policy=args.end, dt_s=args.dt,
+                   force0_N=0.0 if args.start_force == "zero" else None,
+                   object_mass_kg=args.fit_object_mass_kg)
     except FsError as e:
         f = demo.force_N
         lo, hi = float(np.min(f)) or 0.0, float(np.max(f)) or 0.0
@@ -193,12 +204,12 @@ def _register_fit(sub: "argparse._SubParsersAction[_Parser]") -> None:
     p.add_argument("demo", metavar="DEMO", help="demonstration file (.csv, .blf/.asc/.log/.trc[.gz], .mcap, "
                    "or a format added by a forceskill.readers plugin)")
     p.add_argument("--stiffness", "-k", type=_float, required=True, metavar="K",
-                   help="nominal object stiffness k in N/m (f_hat = k*x)")
+                   help="nominal object stiffness k in N/m (execution: x_d = surface + f_hat/k, k_f = kkf/k)")
     p.add_argument("-o", "--output", required=True, metavar="SKILL", help="skill image to write")
     p.add_argument("--method", choices=("ridge", "lwr"), default="ridge",
                    help="regression: ridge (joint regularised LS, default) or lwr (the paper's)")
     p.add_argument("--kernels", "-n", type=_positive_int, default=None, metavar="N",
-                   help="kernels, 2..the format's cap (50)")
+                   help="kernels, 2..the format's cap 1024 (50)")
     p.add_argument("--max-error", type=_float, default=None, metavar="PCT",
                    help="use the smallest N whose max error is <= PCT %% of max force")
     p.add_argument("--learn", choices=("contact", "operator"), default="contact",
@@ -230,6 +241,14 @@ def _register_fit(sub: "argparse._SubParsersAction[_Parser]") -> None:
                    help="object surface position during the demonstration, m (0)")
     p.add_argument("--end", choices=("hold", "release"), default="hold",
                    help="after the skill's duration: hold the last force or release to 0 in 0.5 s")
+    p.add_argument("--gains", metavar="FILE.toml",
+                   help="controller gains (m_d_kg, k_d_Nspm, k_p_Npm, kkf_Npm = k*k_f, kki_Npms = k*k_i; "
+                   "optional m_v_kg, the object's mass), validated and stored in the skill")
+    p.add_argument("--object-mass", type=_float, default=None, metavar="KG",
+                   help="object mass m_v if known: k_f*m_v/m_d < 1 is checked, and the default force "
+                   "gains are scaled down when needed (soft, heavy objects)")
+    p.add_argument("--start-force", choices=("first", "zero"), default="first",
+                   help="starting force of the skill: the demonstration's first force (default) or 0 N")
     p.add_argument("--dt", type=_float, default=0.001, help=argparse.SUPPRESS)
     p.add_argument("--plot", metavar="PNG", help="write demonstrated vs learned force, error, position")
     _limits().add_force_limit(p)
@@ -300,11 +319,12 @@ def _cmd_show(args: argparse.Namespace) -> int:
     print(f"  kernels        {sk.n_kernels}, centres {sk.centres[0]:.4g}..{sk.centres[-1]:.4g}, "
           f"widths {sk.widths.min():.3g}..{sk.widths.max():.3g}")
     print(f"  tau            {sk.tau_s:.6g} s")
-    print(f"  goal g         {sk.goal_m:.6g} m")
+    print(f"  goal g         {sk.goal_N:.6g} N, starting force f0 {sk.force0_N:.6g} N")
     print(f"  stiffness k    {sk.stiffness_Npm:g} N/m, surface {sk.surface_m:g} m")
     print(f"  alpha/beta/gamma {sk.alpha:g} / {sk.beta:g} / {sk.gamma:g}")
     print(f"  gains          m_d {sk.m_d_kg:g} kg, k_d {sk.k_d_Nspm:g} Ns/m, k_p {sk.k_p_Npm:g} N/m, "
-          f"k_f {sk.k_f:g}, k_i {sk.k_i_per_s:g} 1/s")
+          f"k*k_f {sk.kkf_Npm:g} N/m, k*k_i {sk.kki_Npms:g} N/(m s) (k_f {sk.kkf_Npm / sk.stiffness_Npm:.4g}, "
+          f"k_i {sk.kki_Npms / sk.stiffness_Npm:.4g} 1/s at k)")
     print(f"  rollout        peak |f_hat| {peak:.6g} N, final {float(f[-1]):.6g} N")
     problem = peak_problem(peak, 1.0, args.force_limit)
     if problem:

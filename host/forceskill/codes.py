@@ -16,6 +16,7 @@ ERR_GAIN_NEGATIVE = 107  # a gain that must be >= 0 is negative
 ERR_DT_INVALID = 108  # dt <= 0 or not finite
 ERR_SCALE_INVALID = 109  # goal/time scale not finite, or time scale <= 0
 ERR_LIMIT_INVALID = 110  # a controller limit (force_max, integral_max) is <= 0
+ERR_FORCE_GAIN_INERTIA = 112  # k_f*m_v/m_d >= 1: the force loop feeds back the object's inertia
 ERR_SKILL_TOO_SHORT = 200  # fewer bytes than the fixed header
 ERR_SKILL_MAGIC = 201  # magic is not "FSKL"
 ERR_SKILL_VERSION = 202  # unsupported format version
@@ -148,6 +149,7 @@ ERR_DEMO_ZERO_FORCE = 607  # the learned force is constant zero
 ERR_FIT_ARGS = 610  # kernels, method, end policy or dt out of range
 ERR_FIT_GOAL = 611  # g <= 0 or tiny: no net push to phase-normalise
 ERR_FIT_NUMERIC = 612  # the regression produced a non-finite weight
+ERR_GAINS_FILE = 613  # a --gains file unreadable, not TOML, or with an unknown or non-numeric key
 ERR_IO = 620  # an output file could not be written
 ERR_REPORT = 621  # a step of `forceskill report` failed (simulator, fit, execution)
 ERR_LINK_BUS = 630  # interface, channel, port or bus options unusable
@@ -249,6 +251,7 @@ __all__ = [
     'ERR_DT_INVALID',
     'ERR_SCALE_INVALID',
     'ERR_LIMIT_INVALID',
+    'ERR_FORCE_GAIN_INERTIA',
     'ERR_SKILL_TOO_SHORT',
     'ERR_SKILL_MAGIC',
     'ERR_SKILL_VERSION',
@@ -333,6 +336,7 @@ __all__ = [
     'ERR_FIT_ARGS',
     'ERR_FIT_GOAL',
     'ERR_FIT_NUMERIC',
+    'ERR_GAINS_FILE',
     'ERR_IO',
     'ERR_REPORT',
     'ERR_LINK_BUS',

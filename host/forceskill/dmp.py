@@ -1,15 +1,20 @@
 """The learned force DMP in numpy: the reference the C core (firmware/core/dmp.c) is checked against.
 
-docs/math.md section 2 is the algorithm, step for step. State ``[u, v, I, x, z]`` (u = u~, v = v~,
-the normalised phase), zero at t = 0; forward Euler with every right-hand side at the old state:
+docs/math.md section 2 is the algorithm, step for step. The DMP runs in force units: the state
+``[u, v, I, y, z]`` (u = u~, v = v~, the normalised phase; y = k*x - f0, the force above the starting
+force f0, in N; g, z, I and h in N, the weights dimensionless) is zero at t = 0; forward Euler with every right-hand side at
+the old state:
 
     h  = g_e * v * S(u)
-    x' = x + dt/tau_e * (z - x - gamma*I + h + c_x)
-    z' = z + dt/tau_e * alpha*(beta*(g_e - x) - z)
-    I' = I + dt/tau_e * x
+    y' = y + dt/tau_e * (z - y - gamma*I + h + c_y)
+    z' = z + dt/tau_e * alpha*(beta*(g_e - y) - z)
+    I' = I + dt/tau_e * y
     v' = v + dt/tau_e * alpha*(beta*(1 - u) - v)
     u' = u + dt/tau_e * v
-    f_hat = k * x'
+    f_hat = f0 + y'
+
+Nothing in it depends on the stiffness k (it enters only the execution reference x_d = surface +
+f_hat/k and the controller's k_f = kkf/k, k_i = kki/k).
 
 ``rollout`` runs that loop literally (one Python step per tick, kernels vectorised over all ticks,
 since the phase does not depend on x). ``linear_scan`` is the same recursion evaluated in blocks,
@@ -294,8 +299,8 @@ def rollout_blocks(skill: Skill, goal_scale: float = 1.0, time_scale: float = 1.
     n = default_steps(skill, time_scale) if n_steps is None else int(n_steps)
     check_steps(n)
     a = skill.dt_s / (skill.tau_s * time_scale)
-    g_e = skill.goal_m * goal_scale
-    alpha, beta, gamma, k = skill.alpha, skill.beta, skill.gamma, skill.stiffness_Npm
+    g_e = skill.goal_N * goal_scale
+    alpha, beta, gamma, f0 = skill.alpha, skill.beta, skill.gamma, skill.force0_N
     uu = vv = xx = zz = ii = 0.0
     start = 0
     while start <= n:
@@ -313,22 +318,23 @@ def rollout_blocks(skill: Skill, goal_scale: float = 1.0, time_scale: float = 1.
         with np.errstate(all="ignore"):    # a hostile skill overflows to inf: the caller judges it
             hl = (g_e * v * forcing_scale(u, skill)).tolist()
         xl: list[float] = [0.0] * m
-        for j in range(m):            # x of row start+j, then one step with that row's forcing
+        for j in range(m):            # y of row start+j, then one step with that row's forcing
             xl[j] = xx
             xx, zz, ii = (xx + a * (zz - xx - gamma * ii + hl[j]),
                           zz + a * alpha * (beta * (g_e - xx) - zz),
                           ii + a * xx)
         with np.errstate(all="ignore"):
-            f = k * np.asarray(xl)
+            f = f0 + np.asarray(xl)   # the DMP runs in N above the starting force
         yield np.arange(start, start + m) * skill.dt_s, f
         start += m
 
 
 def rollout(skill: Skill, goal_scale: float = 1.0, time_scale: float = 1.0,
             n_steps: Optional[int] = None) -> tuple[np.ndarray, np.ndarray]:
-    """t_n = n*dt and f_hat_n = k*x_n for n = 0..n_steps (default round(T*time_scale/dt)).
+    """t_n = n*dt and f_hat_n = f0 + y_n for n = 0..n_steps (default round(T*time_scale/dt)).
 
-    The DMP alone (docs/math.md section 2): the end policy after T is applied by the executor.
+    The DMP alone (docs/math.md section 2): the end policy after T is applied by the executor. The
+    goal scale multiplies the part above the starting force: f_hat - f0 scales exactly by it.
     """
     blocks = list(rollout_blocks(skill, goal_scale, time_scale, n_steps))
     return np.concatenate([b[0] for b in blocks]), np.concatenate([b[1] for b in blocks])

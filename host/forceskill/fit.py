@@ -1,9 +1,11 @@
 """Fitting a force skill from one demonstration (docs/math.md section 3).
 
-Steps: resample to dt; learning target x* = f/k; goal g = g'(T) with the force integral by the
-left rectangle rule (the forward-Euler sum the control law's integrator uses); tau by a bracketing
+Steps: resample to dt; starting force f0 (the first sample unless given); learning target
+y* = f - f0 in N (the DMP runs in force units, so nothing below depends on the stiffness k); goal
+g = k*g'(T) in N with the position reference the executor will use (k*x_d = f) and the force
+integral by the left rectangle rule (the forward-Euler sum the control law's integrator uses); tau by a bracketing
 search so the discrete phase gives u~(T) = 0.99 (``lwr``: 0.95); centres uniform in time mapped to
-phase, widths sigma_i = 0.5*(c_{i+1} - c_i) (``lwr``: 0.35*(c_{i+1} - c_i)); h_d from the same
+phase, widths sigma_i = 0.65*(c_{i+1} - c_i) (``lwr``: 0.35*(c_{i+1} - c_i)); h_d from the same
 discrete recursion as the rollout; regression of h_d on g*v~*S(u~) by ``ridge`` (joint
 Tikhonov-regularised least squares, the default) or ``lwr`` (the paper's per-kernel weighted LS);
 then the learned force is rolled out and compared with the demonstration.
@@ -19,18 +21,18 @@ import numpy as np
 from . import dmp
 from .demo import Demo, resample, validate
 from .errors import ERR_FIT_ARGS, ERR_FIT_GOAL, ERR_FIT_NUMERIC, DemoError, FsError, ParamError
-from .params import Gains, derive, goal_prime
+from .params import Gains, check_inertia, check_stiffness, derive, goal
 from .skill import FLAG_END_RELEASE, MAX_KERNELS, Skill
 
 PHASE_AT_END = 0.99
 #: sigma_i = WIDTH_FACTOR * (c_{i+1} - c_i)
-WIDTH_FACTOR = 0.5
+WIDTH_FACTOR = 0.65
 #: The paper's LWR (local constants) uses its own phase end and narrower kernels: its bias grows
 #: with the kernel width and with the 1/v~ growth of h_d/(g*v~) near the end of the phase, times
 #: g/max|x*| (measured on the HIL demonstrations, docs/math.md section 3).
 LWR_PHASE_AT_END = 0.95
 LWR_WIDTH_FACTOR = 0.35
-#: g must exceed this fraction of max|x*|: below, the phase-normalised forcing needs huge weights.
+#: g must exceed this fraction of max|y*|: below, the phase-normalised forcing needs huge weights.
 GOAL_MIN_REL = 1e-3
 #: Tikhonov term of the ridge fit, relative to the mean diagonal of the normal matrix
 #: (measured on the synthetic tasks, docs/math.md section 3).
@@ -119,25 +121,30 @@ def kernel_layout(u: np.ndarray, dt_s: float, duration_s: float, n_kernels: int,
     return centres, widths
 
 
-def desired_forcing(x_star: np.ndarray, alpha: float, beta: float, gamma: float, a: float,
-                    goal: float) -> np.ndarray:
-    """h_d,n = (x*_{n+1} - x*_n)/a - (z_n - x*_n - gamma*I_n), n = 0..M-1, z and I driven by x*.
+def desired_forcing(y_star: np.ndarray, alpha: float, beta: float, gamma: float, a: float,
+                    goal_N: float) -> np.ndarray:
+    """h_d,n = (y*_{n+1} - y*_n)/a - (z_n - y*_n - gamma*I_n), n = 0..M-1, z and I driven by y*.
 
-    The forward-Euler x-update solved for h, so replaying h_d reproduces x* to round-off.
+    The forward-Euler y-update solved for h, so replaying h_d reproduces y* to round-off.
     """
-    m = x_star.size - 1
+    m = y_star.size - 1
     big_i = np.empty(m + 1)
     big_i[0] = 0.0
-    np.cumsum(a * x_star[:-1], out=big_i[1:])
-    b = a * alpha * (beta * (goal - x_star[:-1]))
+    np.cumsum(a * y_star[:-1], out=big_i[1:])
+    b = a * alpha * (beta * (goal_N - y_star[:-1]))
     z = dmp.linear_scan(np.array([[1.0 - a * alpha]]), b[:, None])[:, 0]
-    return (x_star[1:] - x_star[:-1]) / a - (z[:-1] - x_star[:-1] - gamma * big_i[:-1])
+    return (y_star[1:] - y_star[:-1]) / a - (z[:-1] - y_star[:-1] - gamma * big_i[:-1])
 
 
 def fit(demo: Demo, stiffness_Npm: float, n_kernels: int = 50, method: str = "ridge",
         gains: Gains = Gains(), surface_m: float = 0.0, end_policy: str = "hold",
-        dt_s: float = 0.001, ridge_lambda_rel: Optional[float] = None) -> FitResult:
-    """Learn a skill from one demonstration; raises ParamError/DemoError (one-line, numbered)."""
+        dt_s: float = 0.001, ridge_lambda_rel: Optional[float] = None,
+        force0_N: Optional[float] = None, object_mass_kg: Optional[float] = None) -> FitResult:
+    """Learn a skill from one demonstration; raises ParamError/DemoError (one-line, numbered).
+
+    ``force0_N``: the starting force (None: the demonstration's first resampled force).
+    ``object_mass_kg``: when known, k_f*m_v/m_d < 1 is checked (code 112).
+    """
     if method not in METHODS:
         raise ParamError(ERR_FIT_ARGS, f"method must be one of {', '.join(METHODS)}: {method!r}")
     if end_policy not in END_POLICIES:
@@ -146,22 +153,29 @@ def fit(demo: Demo, stiffness_Npm: float, n_kernels: int = 50, method: str = "ri
         raise ParamError(ERR_FIT_ARGS, f"number of kernels must be in 2..{MAX_KERNELS}: {n_kernels}")
     if not math.isfinite(surface_m):
         raise ParamError(ERR_FIT_ARGS, f"surface position must be finite: {surface_m}")
+    if force0_N is not None and not math.isfinite(force0_N):
+        raise ParamError(ERR_FIT_ARGS, f"starting force must be finite: {force0_N}")
     lam_rel = RIDGE_LAMBDA_REL if ridge_lambda_rel is None else float(ridge_lambda_rel)
-    p = derive(gains, stiffness_Npm)
+    check_stiffness(stiffness_Npm)
+    p = derive(gains)
+    if object_mass_kg is not None:
+        check_inertia(gains, stiffness_Npm, object_mass_kg)
     validate(demo)
     d = resample(demo, dt_s)
     n_t = d.t_s.size - 1
     duration = n_t * dt_s
     f = d.force_N
-    x_d = d.pos_m - surface_m
-    x_star = f / stiffness_Npm
-    # goal: g = g'(T), int f by the left rectangle rule (what the integrator of the law accumulates)
-    f_int = dt_s * float(np.sum(f[:-1]))
-    goal = goal_prime(p, gains, float(x_d[-1]), float(f[-1]), f_int)
-    x_scale = float(np.max(np.abs(x_star)))
-    if not (goal > GOAL_MIN_REL * x_scale):
-        raise DemoError(ERR_FIT_GOAL, f"goal g = {goal:.4g} m is not > {GOAL_MIN_REL:g} x max|f/k| = "
-                        f"{GOAL_MIN_REL * x_scale:.4g} m: the demonstration has no net push to learn")
+    f0 = float(f[0]) if force0_N is None else float(force0_N)
+    y_star = f - f0
+    # goal: g = k*g'(T) with k*x_d(T) = f(T) (the executor's reference), int f by the left rectangle
+    # rule (what the integrator of the law accumulates); all of it above the starting force
+    f_int = dt_s * float(np.sum(y_star[:-1]))
+    goal_N = goal(p, gains, float(y_star[-1]), float(y_star[-1]), f_int)
+    y_scale = float(np.max(np.abs(y_star)))
+    if not (goal_N > GOAL_MIN_REL * y_scale):
+        raise DemoError(ERR_FIT_GOAL, f"goal g = {goal_N:.4g} N is not > {GOAL_MIN_REL:g} x max|f - f0| = "
+                        f"{GOAL_MIN_REL * y_scale:.4g} N (f0 = {f0:.4g} N): the demonstration has no net push "
+                        "above its starting force to learn")
     lwr = method == "lwr"
     tau = solve_tau(p.alpha, p.beta, dt_s, n_t, LWR_PHASE_AT_END if lwr else PHASE_AT_END)
     a = dt_s / tau
@@ -171,8 +185,8 @@ def fit(demo: Demo, stiffness_Npm: float, n_kernels: int = 50, method: str = "ri
     if not (np.all(np.diff(centres) > 0.0) and centres[0] >= 0.0 and centres[-1] <= 1.0):
         raise ParamError(ERR_FIT_ARGS, f"{n_kernels} kernels do not fit a {duration:g} s demonstration "
                          f"at dt = {dt_s:g} s (centres collide)")
-    h_d = desired_forcing(x_star, p.alpha, p.beta, p.gamma, a, goal)
-    s = goal * v[:-1]                                  # h = s_n * S(u_n)
+    h_d = desired_forcing(y_star, p.alpha, p.beta, p.gamma, a, goal_N)
+    s = goal_N * v[:-1]                                # h = s_n * S(u_n)
     bands = dmp.KernelBands(u[:-1], centres, widths)
     if not lwr:
         gram = bands.gram(s * s)
@@ -187,17 +201,17 @@ def fit(demo: Demo, stiffness_Npm: float, n_kernels: int = 50, method: str = "ri
     if not np.all(np.isfinite(weights)):
         raise FsError(ERR_FIT_NUMERIC, f"regression gave a non-finite weight ({method}, N = {n_kernels})")
     skill = Skill(dt_s=dt_s, tau_s=tau, alpha=p.alpha, beta=p.beta, gamma=p.gamma, stiffness_Npm=stiffness_Npm,
-                  goal_m=goal, duration_s=duration, m_d_kg=gains.m_d_kg, k_d_Nspm=gains.k_d_Nspm,
-                  k_p_Npm=gains.k_p_Npm, k_f=gains.k_f, k_i_per_s=gains.k_i_per_s, surface_m=surface_m,
-                  centres=centres, widths=widths, weights=weights,
+                  goal_N=goal_N, duration_s=duration, m_d_kg=gains.m_d_kg, k_d_Nspm=gains.k_d_Nspm,
+                  k_p_Npm=gains.k_p_Npm, kkf_Npm=gains.kkf_Npm, kki_Npms=gains.kki_Npms, surface_m=surface_m,
+                  force0_N=f0, centres=centres, widths=widths, weights=weights,
                   flags=FLAG_END_RELEASE if end_policy == "release" else 0)
     skill.to_bytes()   # validates exactly as the firmware will
     if bands.complete:
         h = s * bands.sum_weighted(weights)
     else:
         h = s * dmp.forcing_scale(u[:-1], skill)
-    x, _, _ = dmp.transform_scan(p.alpha, p.beta, p.gamma, a, goal, h)
-    f_hat = stiffness_Npm * x
+    y, _, _ = dmp.transform_scan(p.alpha, p.beta, p.gamma, a, goal_N, h)
+    f_hat = f0 + y
     f_max = float(np.max(np.abs(f)))
     err = f - f_hat
     return FitResult(skill=skill, t_s=d.t_s, target_N=f, f_hat_N=f_hat,

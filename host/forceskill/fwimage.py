@@ -27,8 +27,8 @@ assert HEADER_STRUCT.size == HEADER_SIZE
 TARGETS = {"cortex-m4f": 1, "cortex-m3": 2, "host": 3}
 TARGET_NAMES = {v: k for k, v in TARGETS.items()}
 
-# Data formats this product writes today (docs/skill_format.md v1; configuration record v1).
-SKILL_FORMAT = 1
+# Data formats this product writes today (docs/skill_format.md v2; configuration record v1).
+SKILL_FORMAT = 2
 CONFIG_FORMAT = 1
 
 # Development key of the simulator and the qemu demo (docs/update.md: never ship it).

@@ -1,4 +1,4 @@
-"""Skill image v1 (docs/skill_format.md): bytes, validation and the JSON twin.
+"""Skill image v2 (docs/skill_format.md): bytes, validation and the JSON twin.
 
 A skill is plain data (dmpbbo style): fitting produces it, the firmware parses and evaluates it.
 Validation runs the same checks, in the same order, with the same codes as ``skill_parse`` in
@@ -39,29 +39,31 @@ if TYPE_CHECKING:
     from .outputs import Outputs
 
 MAGIC = 0x4C4B5346             # bytes "FSKL"
-FORMAT_VERSION = 1
-HEADER_SIZE = 128
+FORMAT_VERSION = 2
+HEADER_SIZE = 136
 CRC_SIZE = 4
-MAX_KERNELS = 256              # DMP_MAX_KERNELS
+MAX_KERNELS = 1024             # DMP_MAX_KERNELS
 FLAG_END_RELEASE = 0x0001
-FLAG_Y_AXIS = 0x0002           # reserved, refused in v1
+FLAG_Y_AXIS = 0x0002           # reserved, refused
 KNOWN_FLAGS = FLAG_END_RELEASE
 RELEASE_TIME_S = 0.5
 GAINS_REL_TOL = 1e-9           # stored alpha/beta/gamma vs derived from stored gains
 DT_MAX_S = 0.1
 DURATION_MAX_S = 3600.0
 
-# magic u32, version u16, header_size u16, total_length u32, n u16, flags u16, then 14 f64
-_HEADER = struct.Struct("<IHHIHH14d")
+# magic u32, version u16, header_size u16, total_length u32, n u16, flags u16, then 15 f64
+_HEADER = struct.Struct("<IHHIHH15d")
+#: the fixed part every version shares (magic, version): enough to name an old image's version
+_PREFIX = struct.Struct("<IH")
 assert _HEADER.size == HEADER_SIZE
-_F64_NAMES = ("dt_s", "tau_s", "alpha", "beta", "gamma", "stiffness_Npm", "goal_m", "duration_s",
-              "m_d_kg", "k_d_Nspm", "k_p_Npm", "k_f", "k_i_per_s", "surface_m")
+_F64_NAMES = ("dt_s", "tau_s", "alpha", "beta", "gamma", "stiffness_Npm", "goal_N", "duration_s",
+              "m_d_kg", "k_d_Nspm", "k_p_Npm", "kkf_Npm", "kki_Npms", "surface_m", "force0_N")
 
 PathLike = Union[str, Path]
 
 
 def image_size(n_kernels: int) -> int:
-    """Total image length in bytes for N kernels: 128 + 24 N + 4."""
+    """Total image length in bytes for N kernels: 136 + 24 N + 4."""
     return HEADER_SIZE + 24 * n_kernels + CRC_SIZE
 
 
@@ -75,17 +77,18 @@ class Skill:
     beta: float
     gamma: float
     stiffness_Npm: float
-    goal_m: float
+    goal_N: float
     duration_s: float
     m_d_kg: float
     k_d_Nspm: float
     k_p_Npm: float
-    k_f: float
-    k_i_per_s: float
+    kkf_Npm: float
+    kki_Npms: float
     surface_m: float
     centres: np.ndarray
     widths: np.ndarray
     weights: np.ndarray
+    force0_N: float = 0.0
     flags: int = 0
     format_version: int = field(default=FORMAT_VERSION)
 
@@ -106,7 +109,7 @@ class Skill:
 
     @property
     def gains(self) -> Gains:
-        return Gains(self.m_d_kg, self.k_d_Nspm, self.k_p_Npm, self.k_f, self.k_i_per_s)
+        return Gains(self.m_d_kg, self.k_d_Nspm, self.k_p_Npm, self.kkf_Npm, self.kki_Npms)
 
     @property
     def params(self) -> DmpParams:
@@ -114,7 +117,7 @@ class Skill:
 
     # -- bytes -----------------------------------------------------------------------------
     def to_bytes(self, validate: bool = True) -> bytes:
-        """The v1 image (little-endian, CRC-32 last). Validates first unless told not to."""
+        """The v2 image (little-endian, CRC-32 last). Validates first unless told not to."""
         n = self.n_kernels
         if not (self.widths.size == n and self.weights.size == n):
             raise SkillError(ERR_SKILL_LENGTH, f"centres/widths/weights lengths differ: "
@@ -132,15 +135,20 @@ class Skill:
     def from_bytes(buf: bytes) -> "Skill":
         """Parse and validate an image; raises SkillError with the firmware's code (200-211)."""
         buf = bytes(buf)
-        if len(buf) < HEADER_SIZE:
+        if len(buf) < _PREFIX.size:
             raise SkillError(ERR_SKILL_TOO_SHORT, f"skill image too short: {len(buf)} bytes, header is {HEADER_SIZE}")
-        fields = _HEADER.unpack_from(buf, 0)
-        magic, version, header_size, total_length, n, flags = fields[:6]
-        f64 = dict(zip(_F64_NAMES, fields[6:]))
+        magic, version = _PREFIX.unpack_from(buf, 0)
         if magic != MAGIC:
             raise SkillError(ERR_SKILL_MAGIC, f"skill image magic is 0x{magic:08X}, expected 0x{MAGIC:08X} ('FSKL')")
         if version != FORMAT_VERSION:
-            raise SkillError(ERR_SKILL_VERSION, f"unsupported skill format version {version} (this reads {FORMAT_VERSION})")
+            hint = " (fitted before skills ran in force units: fit the demonstration again)" if version < FORMAT_VERSION else ""
+            raise SkillError(ERR_SKILL_VERSION, f"skill image format version {version} is not supported: this "
+                             f"reads version {FORMAT_VERSION}{hint}")
+        if len(buf) < HEADER_SIZE:
+            raise SkillError(ERR_SKILL_TOO_SHORT, f"skill image too short: {len(buf)} bytes, header is {HEADER_SIZE}")
+        fields = _HEADER.unpack_from(buf, 0)
+        _, _, header_size, total_length, n, flags = fields[:6]
+        f64 = dict(zip(_F64_NAMES, fields[6:]))
         if header_size != HEADER_SIZE:
             raise SkillError(ERR_SKILL_HEADER_SIZE, f"skill header_size is {header_size}, expected {HEADER_SIZE}")
         if total_length != len(buf) or total_length != image_size(n):
@@ -173,7 +181,7 @@ class Skill:
                   ("tau_s", self.tau_s > 0.0, "> 0"),
                   ("duration_s", 0.0 < self.duration_s <= DURATION_MAX_S, f"(0, {DURATION_MAX_S:g}]"),
                   ("stiffness_Npm", self.stiffness_Npm > 0.0, "> 0"),
-                  ("goal_m", self.goal_m > 0.0, "> 0"))
+                  ("goal_N", self.goal_N > 0.0, "> 0"))
         for name, ok, rng in checks:
             if not ok:
                 raise SkillError(ERR_SKILL_RANGE, f"skill {name} = {getattr(self, name)!r} outside {rng}")
@@ -189,7 +197,7 @@ class Skill:
             raise SkillError(ERR_SKILL_CENTRES, f"skill centres not strictly increasing at {i}: "
                              f"{float(c[i - 1])!r} then {float(c[i])!r}")
         try:
-            p = derive(self.gains, self.stiffness_Npm)
+            p = derive(self.gains)
         except ParamError as e:
             raise SkillError(ERR_SKILL_GAINS, f"skill gains invalid: {e.message}") from None
         for name, stored, derived in (("alpha", self.alpha, p.alpha), ("beta", self.beta, p.beta),

@@ -227,8 +227,8 @@ int dev_create(const uint8_t *secret, uint32_t secret_len)
     D.cfg.target_id = BOOT_TARGET_HOST;
     D.cfg.key = DEV_KEY;
     D.cfg.key_len = sizeof DEV_KEY;
-    D.cfg.skill_min = 1u;
-    D.cfg.skill_max = 1u;
+    D.cfg.skill_min = 2u;   /* stored skills of image format 2 (docs/skill_format.md) */
+    D.cfg.skill_max = 2u;
     D.cfg.config_min = 1u;
     D.cfg.config_max = 1u;
     sec_default_config(&D.sec_cfg);

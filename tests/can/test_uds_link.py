@@ -28,11 +28,11 @@ def _ns(server) -> argparse.Namespace:
 
 @pytest.mark.parametrize("n_kernels,slot", [(100, 5), (200, 6)])
 def test_upload_large_skill_read_back(server, tmp_path, capsys, n_kernels, slot):
-    """`forceskill upload` of N = 100 (2,532 B: one 2.5 KB TransferData) and N = 200 (4,932 B:
+    """`forceskill upload` of N = 100 (2,540 B: one 2.5 KB TransferData) and N = 200 (4,940 B:
     a 4,095-byte ISO-TP request, then the rest), read back with RequestUpload and compared."""
     image = fit(pressing(seed=5, duration_s=8.0), 100.0, n_kernels=n_kernels,
                 surface_m=0.001).skill.to_bytes()
-    assert len(image) == 132 + 24 * n_kernels
+    assert len(image) == 140 + 24 * n_kernels
     path = tmp_path / f"n{n_kernels}.skill"
     path.write_bytes(image)
     rc = cli.main(["upload", str(path), "--slot", str(slot), "-q", *server.bus_args()])

@@ -191,8 +191,8 @@ def _file_cases(tmp: Path) -> list[tuple[list[str], str]]:
         (["fit", g, "-k", "100", "-o", o, "--position-column", "px"], "column 'px'"),
         (["fit", g, "-k", "0", "-o", o], "stiffness must be > 0"),
         (["fit", g, "-k", "nan", "-o", o], "not finite"),
-        (["fit", g, "-k", "100", "-o", o, "--kernels", "1"], "2..256: 1"),
-        (["fit", g, "-k", "100", "-o", o, "--kernels", "300"], "2..256: 300"),
+        (["fit", g, "-k", "100", "-o", o, "--kernels", "1"], "2..1024: 1"),
+        (["fit", g, "-k", "100", "-o", o, "--kernels", "1100"], "2..1024: 1100"),
         (["fit", g, "-k", "100", "-o", o, "--method", "gmr"], "invalid choice: 'gmr'"),
         (["fit", g, "-k", "100", "-o", str(tmp / "nodir" / "x.skill")], "does not exist"),
         (["fit", g, "-o", o], "required: --stiffness"),
@@ -201,7 +201,7 @@ def _file_cases(tmp: Path) -> list[tuple[list[str], str]]:
         (["rollout", str(VECTORS / "press_n10_ridge_release.skill"), "-o", str(tmp / "r.csv"), "--time-scale", "0"],
          "time scale"),
         (["rollout", str(tmp / "none.skill"), "-o", str(tmp / "r.csv")], "cannot read skill"),
-        (["show", str(VECTORS / "bad" / "version_2.skill")], "version 2"),
+        (["show", str(VECTORS / "bad" / "version_1.skill")], "format version 1 is not supported"),
         (["nosuchcommand"], "invalid choice"),
     ]
 

@@ -7,51 +7,60 @@ import pytest
 from forceskill import dmp, synthetic
 from forceskill.errors import ParamError
 from forceskill.fit import FitResult, desired_forcing
-from forceskill.params import Gains, derive, goal_prime
+from forceskill.params import Gains, derive, goal
 from forceskill.skill import Skill
+
+
+def at_k(m_d: float, k_d: float, k_p: float, k_f: float, k_i: float, k: float) -> Gains:
+    """The skill's gains for controller gains k_f, k_i on stiffness k."""
+    return Gains(m_d, k_d, k_p, k * k_f, k * k_i)
+
 
 GAIN_SETS = [
     (Gains(), 100.0),
     (Gains(), 600.0),
-    (Gains(m_d_kg=10.0, k_d_Nspm=150.0, k_p_Npm=400.0, k_f=1.0, k_i_per_s=5.0), 300.0),
-    (Gains(m_d_kg=2.0, k_d_Nspm=60.0, k_p_Npm=300.0, k_f=0.5, k_i_per_s=10.0), 50.0),
+    (Gains(), 1e6),
+    (at_k(10.0, 150.0, 400.0, 1.0, 5.0, 300.0), 300.0),
+    (at_k(2.0, 60.0, 300.0, 0.5, 10.0, 50.0), 50.0),
 ]
 
 
 def law_closed_loop(gains: Gains, k: float, dt: float, x_d: np.ndarray, f_d: np.ndarray) -> np.ndarray:
     """Paper eq. (10) on a spring f = k x, forward Euler in (x, xd, int x, int f_d); returns x_n.
 
-    m_d xdd = k_d (0 - xd) + k_p (x_d - x) + k_f (f_d - f) + k_i (int f_d - k int x).
+    m_d xdd = k_d (0 - xd) + k_p (x_d - x) + k_f (f_d - f) + k_i (int f_d - k int x), written in
+    metres with the controller's k_f = kkf/k, k_i = kki/k (independent of the DMP's formulas).
     """
+    k_f, k_i = gains.kkf_Npm / k, gains.kki_Npms / k
     m = len(x_d)
     x = xd = ix = F = 0.0
     out = [0.0]
     for n in range(m):
         f = k * x
-        xdd = (-gains.k_d_Nspm * xd + gains.k_p_Npm * (x_d[n] - x) + gains.k_f * (f_d[n] - f)
-               + gains.k_i_per_s * (F - k * ix)) / gains.m_d_kg
+        xdd = (-gains.k_d_Nspm * xd + gains.k_p_Npm * (x_d[n] - x) + k_f * (f_d[n] - f)
+               + k_i * (F - k * ix)) / gains.m_d_kg
         x, xd, ix, F = x + dt * xd, xd + dt * xdd, ix + dt * x, F + dt * f_d[n]
         out.append(x)
     return np.array(out)
 
 
-def zero_weight_skill(gains: Gains, k: float, goal: float, tau: float, duration: float) -> Skill:
-    p = derive(gains, k)
+def zero_weight_skill(gains: Gains, k: float, goal_N: float, tau: float, duration: float,
+                      force0_N: float = 0.0) -> Skill:
+    p = derive(gains)
     c = np.linspace(0.0, 0.99, 10)
     return Skill(dt_s=0.001, tau_s=tau, alpha=p.alpha, beta=p.beta, gamma=p.gamma, stiffness_Npm=k,
-                 goal_m=goal, duration_s=duration, m_d_kg=gains.m_d_kg, k_d_Nspm=gains.k_d_Nspm,
-                 k_p_Npm=gains.k_p_Npm, k_f=gains.k_f, k_i_per_s=gains.k_i_per_s, surface_m=0.0,
-                 centres=c, widths=np.full(10, 0.05), weights=np.zeros(10))
+                 goal_N=goal_N, duration_s=duration, m_d_kg=gains.m_d_kg, k_d_Nspm=gains.k_d_Nspm,
+                 k_p_Npm=gains.k_p_Npm, kkf_Npm=gains.kkf_Npm, kki_Npms=gains.kki_Npms, surface_m=0.0,
+                 force0_N=force0_N, centres=c, widths=np.full(10, 0.05), weights=np.zeros(10))
 
 
 @pytest.mark.parametrize("gains,k", GAIN_SETS)
 @pytest.mark.parametrize("time_scale", [1.0, 1.3])
 def test_h0_rollout_equals_closed_loop_law_on_a_spring(gains: Gains, k: float, time_scale: float) -> None:
     """Constant x_d and f_d = 0 keep g' constant; tau = 1 s is real time, time_scale stretches dt."""
-    p = derive(gains, k)
-    x_d = 0.03
-    goal = goal_prime(p, gains, x_d, 0.0, 0.0)
-    sk = zero_weight_skill(gains, k, goal, tau=1.0, duration=3.0)
+    p = derive(gains)
+    x_d = 0.03 * 100.0 / k
+    sk = zero_weight_skill(gains, k, goal(p, gains, k * x_d, 0.0, 0.0), tau=1.0, duration=3.0)
     _, f_hat = dmp.rollout(sk, time_scale=time_scale)
     n = f_hat.size - 1
     x_law = law_closed_loop(gains, k, 0.001 / time_scale, np.full(n, x_d), np.zeros(n))
@@ -63,42 +72,43 @@ def test_h0_rollout_equals_closed_loop_law_on_a_spring(gains: Gains, k: float, t
 @pytest.mark.parametrize("gains,k", GAIN_SETS)
 def test_h0_transform_with_moving_goal_equals_law_with_varying_references(gains: Gains, k: float) -> None:
     """g'_n from time-varying x_d, f_d and int f_d: the DMP tracks the law to round-off."""
-    p = derive(gains, k)
+    p = derive(gains)
     dt = 0.001
     t = np.arange(4000) * dt
-    x_d = 0.01 + 0.02 * np.sin(1.3 * t) ** 2
+    x_d = (0.01 + 0.02 * np.sin(1.3 * t) ** 2) * 100.0 / k
     f_d = 3.0 + 2.0 * np.sin(0.7 * t)
     F = np.concatenate(([0.0], np.cumsum(dt * f_d)[:-1]))    # forward-Euler int f_d at step n
-    g_n = np.array([goal_prime(p, gains, a, b, c) for a, b, c in zip(x_d, f_d, F)])
-    x, _, _ = dmp.transform_loop(p.alpha, p.beta, p.gamma, dt, g_n, np.zeros(t.size))
-    x_law = law_closed_loop(gains, k, dt, x_d, f_d)
-    assert np.max(np.abs(x - x_law)) <= 1e-10 * np.max(np.abs(x_law))
+    g_n = np.array([goal(p, gains, k * a, b, c) for a, b, c in zip(x_d, f_d, F)])
+    y, _, _ = dmp.transform_loop(p.alpha, p.beta, p.gamma, dt, g_n, np.zeros(t.size))
+    f_law = k * law_closed_loop(gains, k, dt, x_d, f_d)
+    assert np.max(np.abs(y - f_law)) <= 1e-10 * np.max(np.abs(f_law))
 
 
 def test_printed_beta_of_the_paper_does_not_reproduce_the_law() -> None:
     gains, k = Gains(), 600.0
-    p = derive(gains, k)
-    beta_paper = (gains.k_p_Npm + gains.k_f - p.gamma) / (gains.m_d_kg * p.alpha) - 1.0
-    goal_ok = goal_prime(p, gains, 0.03, 0.0, 0.0)
-    goal_paper = (gains.k_p_Npm * 0.03 / gains.m_d_kg) / (p.alpha * beta_paper)
+    p = derive(gains)
+    k_f = gains.kkf_Npm / k
+    beta_paper = (gains.k_p_Npm + k_f - p.gamma) / (gains.m_d_kg * p.alpha) - 1.0
+    goal_ok = goal(p, gains, k * 0.03, 0.0, 0.0)
+    goal_paper = k * (gains.k_p_Npm * 0.03 / gains.m_d_kg) / (p.alpha * beta_paper)
     n = 3000
-    x_good, _, _ = dmp.transform_loop(p.alpha, p.beta, p.gamma, 0.001, goal_ok, np.zeros(n))
-    x_bad, _, _ = dmp.transform_loop(p.alpha, beta_paper, p.gamma, 0.001, goal_paper, np.zeros(n))
-    x_law = law_closed_loop(gains, k, 0.001, np.full(n, 0.03), np.zeros(n))
-    assert np.max(np.abs(x_good - x_law)) <= 1e-10 * np.max(np.abs(x_law))
+    y_good, _, _ = dmp.transform_loop(p.alpha, p.beta, p.gamma, 0.001, goal_ok, np.zeros(n))
+    y_bad, _, _ = dmp.transform_loop(p.alpha, beta_paper, p.gamma, 0.001, goal_paper, np.zeros(n))
+    f_law = k * law_closed_loop(gains, k, 0.001, np.full(n, 0.03), np.zeros(n))
+    assert np.max(np.abs(y_good - f_law)) <= 1e-10 * np.max(np.abs(f_law))
     # a million times the tolerance the corrected beta meets
-    assert np.max(np.abs(x_bad - x_law)) >= 1e-4 * np.max(np.abs(x_law))
+    assert np.max(np.abs(y_bad - f_law)) >= 1e-4 * np.max(np.abs(f_law))
 
 
 def test_replay_of_h_d_reproduces_the_target(press_fit: FitResult) -> None:
     sk = press_fit.skill
-    x_star = press_fit.target_N / sk.stiffness_Npm
+    y_star = press_fit.target_N - sk.force0_N
     a = sk.dt_s / sk.tau_s
-    h_d = desired_forcing(x_star, sk.alpha, sk.beta, sk.gamma, a, sk.goal_m)
+    h_d = desired_forcing(y_star, sk.alpha, sk.beta, sk.gamma, a, sk.goal_N)
     np.testing.assert_array_equal(h_d, press_fit.h_d)
-    x, _, _ = dmp.transform_loop(sk.alpha, sk.beta, sk.gamma, a, sk.goal_m, h_d)
-    assert x_star[0] == 0.0
-    assert np.max(np.abs(x - x_star)) <= 1e-9 * np.max(np.abs(x_star))
+    y, _, _ = dmp.transform_loop(sk.alpha, sk.beta, sk.gamma, a, sk.goal_N, h_d)
+    assert y_star[0] == 0.0
+    assert np.max(np.abs(y - y_star)) <= 1e-9 * np.max(np.abs(y_star))
 
 
 @pytest.mark.parametrize("scale", [0.5, 1.5, 2.0])
@@ -106,6 +116,13 @@ def test_goal_scaling_scales_the_force_exactly(press_fit: FitResult, scale: floa
     _, f1 = dmp.rollout(press_fit.skill)
     _, fs = dmp.rollout(press_fit.skill, goal_scale=scale)
     assert np.max(np.abs(fs - scale * f1)) <= 1e-9 * np.max(np.abs(scale * f1))
+    # starting in contact: the part above the starting force scales exactly
+    sk = Skill.from_bytes(press_fit.skill.to_bytes())
+    sk.force0_N = 2.5
+    _, g1 = dmp.rollout(sk)
+    _, gs = dmp.rollout(sk, goal_scale=scale)
+    assert g1[0] == gs[0] == 2.5
+    assert np.max(np.abs((gs - 2.5) - scale * (g1 - 2.5))) <= 1e-9 * np.max(np.abs(scale * f1))
 
 
 def test_time_scaling_stretches_the_force(engrave_fit: FitResult) -> None:
@@ -133,7 +150,7 @@ def test_phase_reaches_0_99_at_the_duration(press_fit: FitResult) -> None:
 
 
 def test_scans_equal_the_loops() -> None:
-    p = derive(Gains(), 280.0)
+    p = derive(Gains())
     a = 0.001 / 5.3
     u, v = dmp.phase_loop(p.alpha, p.beta, a, 9000)
     us, vs = dmp.phase_scan(p.alpha, p.beta, a, 9000)

@@ -6,6 +6,8 @@ docs/math.md section 3.
 """
 from __future__ import annotations
 
+from typing import Callable
+
 import numpy as np
 import pytest
 
@@ -86,14 +88,13 @@ def test_tau_centres_widths_goal(press_fit: FitResult) -> None:
     assert sk.centres[0] == 0.0 and sk.centres[-1] == pytest.approx(0.99, abs=1e-12)
     t_i = np.linspace(0, sk.duration_s, sk.n_kernels)
     np.testing.assert_allclose(sk.centres, np.interp(t_i, np.arange(u.size) * sk.dt_s, u), atol=1e-12)
-    np.testing.assert_allclose(sk.widths[:-1], 0.5 * np.diff(sk.centres), rtol=1e-15)
+    np.testing.assert_allclose(sk.widths[:-1], 0.65 * np.diff(sk.centres), rtol=1e-15)
     assert sk.widths[-1] == sk.widths[-2]
-    # g = g'(T), int f by the left rectangle rule
-    f = press_fit.target_N
-    x_d = press_fit.pos_m - sk.surface_m
+    # g = k*g'(T) in N with k*x_d(T) = f(T), int f by the left rectangle rule, above f0
+    y = press_fit.target_N - sk.force0_N
     g = Gains()
-    c = (g.k_p_Npm * x_d[-1] + g.k_f * f[-1] + g.k_i_per_s * 0.001 * np.sum(f[:-1])) / g.m_d_kg
-    assert sk.goal_m == pytest.approx(c / (9.0 * 2.25), rel=1e-12)
+    c = (g.k_p_Npm * y[-1] + g.kkf_Npm * y[-1] + g.kki_Npms * 0.001 * np.sum(y[:-1])) / g.m_d_kg
+    assert sk.goal_N == pytest.approx(c / (9.0 * 2.25), rel=1e-12)
 
 
 @pytest.mark.parametrize("beta_frac", [0.25, 0.2, 0.1])
@@ -126,8 +127,77 @@ def test_unstable_or_non_monotone_gains_are_refused() -> None:
 
 
 def test_fit_with_other_valid_gains_is_consistent() -> None:
-    gains = Gains(m_d_kg=10.0, k_d_Nspm=150.0, k_p_Npm=400.0, k_f=1.0, k_i_per_s=5.0)
+    gains = Gains(m_d_kg=10.0, k_d_Nspm=150.0, k_p_Npm=400.0, kkf_Npm=100.0, kki_Npms=500.0)
     res = fit(synthetic.engraving(2, 6.0), 100.0, gains=gains)
-    p = derive(gains, 100.0)
+    p = derive(gains)
     assert (res.skill.alpha, res.skill.beta, res.skill.gamma) == (p.alpha, p.beta, p.gamma)
     assert res.err_max_pct < 1.5
+
+
+STIFFNESSES = (10.0, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7)
+
+
+@pytest.mark.parametrize("make", [lambda: synthetic.pressing(3, 12.0), lambda: synthetic.engraving(4, 8.0)])
+def test_the_error_does_not_depend_on_the_stiffness(make: "Callable[[], Demo]") -> None:
+    """Same recording, stiffness 10 .. 1e7 N/m: the same error within 0.2 percentage points, every
+    rollout finite (the DMP runs in force units; k only scales the controller's force gains)."""
+    d = make()
+    errs = []
+    for k in STIFFNESSES:
+        res = fit(d, k)
+        _, f = dmp.rollout(res.skill)
+        assert np.all(np.isfinite(f))
+        errs.append(100.0 * float(np.max(np.abs(f - res.target_N))) / float(np.max(np.abs(res.target_N))))
+        assert res.skill.gamma == 13.5 and res.skill.stiffness_Npm == k
+    assert max(errs) - min(errs) <= 0.2, errs
+    assert max(errs) < 3.0
+
+
+def test_the_skill_starts_from_the_demonstration_s_first_force() -> None:
+    """A sensor bias (-0.8 N) or a demonstration already in contact (+3 N): the skill starts
+    there (f0 stored) and reaches the error of the clean demonstration; from 0 it cannot."""
+    base = synthetic.pressing(5, 10.0)
+    clean = fit(base, 300.0)
+    assert clean.skill.force0_N == 0.0
+    for offset in (-0.8, 3.0):
+        d = Demo(base.t_s, base.pos_m, base.force_N + offset, "offset")
+        res = fit(d, 300.0)
+        assert res.skill.force0_N == offset
+        t, f = dmp.rollout(res.skill)
+        assert f[0] == offset
+        f_max = float(np.max(np.abs(res.target_N)))
+        err = 100.0 * float(np.max(np.abs(f - res.target_N))) / f_max
+        assert err == pytest.approx(res.err_max_pct, abs=1e-9)
+        # the same shape above f0 as the clean skill: the same absolute error
+        clean_abs = clean.err_max_pct * float(np.max(np.abs(clean.target_N)))
+        assert abs(err * f_max - clean_abs) <= 1e-6 * clean_abs
+        zero = fit(d, 300.0, force0_N=0.0)
+        assert zero.err_max_pct >= 0.9 * 100.0 * abs(offset) / f_max
+
+
+def test_gains_are_stored_and_the_inertia_check_applies() -> None:
+    d = synthetic.pressing(0, 3.0)
+    g = Gains(kkf_Npm=400.0)
+    res = fit(d, 200.0, gains=g)
+    assert (res.skill.kkf_Npm, res.skill.kki_Npms) == (400.0, 4860.0)
+    assert res.skill.gains == g
+    fit(d, 200.0, gains=g, object_mass_kg=10.0)       # k_f*m_v/m_d = 2*10/40 = 0.5
+    with pytest.raises(ParamError) as e:
+        fit(d, 200.0, gains=g, object_mass_kg=25.0)   # 1.25
+    assert e.value.code == 112
+
+
+@pytest.mark.parametrize("kind", ["pressing", "engraving"])
+def test_default_fit_at_n50_within_1_5_pct_over_seeds(kind: str) -> None:
+    """Profiles like the paper's (8-9 s), ten operator seeds: the default fit (ridge, N = 50,
+    sigma = 0.65 x centre spacing) stays within 1.5 % max error (measured: pressing <= 0.21 %,
+    engraving <= 0.8 %; bench/accuracy/accuracy_n50.py), and a third of the kernels is visibly
+    worse (the measure is not vacuous)."""
+    worst = 0.0
+    for seed in range(10):
+        T = 8.0 + seed % 2
+        d = synthetic.pressing(seed, T) if kind == "pressing" else synthetic.engraving(seed, T, 100.0, 6.0 + seed % 5)
+        worst = max(worst, fit(d, 200.0).err_max_pct)
+        if seed == 0:
+            assert fit(d, 200.0, n_kernels=16).err_max_pct > 2.0 * fit(d, 200.0).err_max_pct
+    assert 0.05 < worst <= 1.5

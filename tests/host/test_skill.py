@@ -1,4 +1,4 @@
-"""Skill image v1: layout, round trip, JSON twin, and every corrupt image refused with its code."""
+"""Skill image v2: layout, round trip, JSON twin, and every corrupt image refused with its code."""
 from __future__ import annotations
 
 import json
@@ -20,18 +20,32 @@ def test_layout_matches_docs_skill_format(press_fit: FitResult) -> None:
     sk = press_fit.skill
     b = sk.to_bytes()
     n = sk.n_kernels
-    assert len(b) == 128 + 24 * n + 4 == image_size(n)
+    assert len(b) == 136 + 24 * n + 4 == image_size(n)
     assert b[:4] == b"FSKL" and struct.unpack_from("<I", b, 0)[0] == MAGIC
-    assert struct.unpack_from("<HHIHH", b, 4) == (1, 128, len(b), n, sk.flags)
+    assert struct.unpack_from("<HHIHH", b, 4) == (2, 136, len(b), n, sk.flags)
     offsets = {16: sk.dt_s, 24: sk.tau_s, 32: sk.alpha, 40: sk.beta, 48: sk.gamma, 56: sk.stiffness_Npm,
-               64: sk.goal_m, 72: sk.duration_s, 80: sk.m_d_kg, 88: sk.k_d_Nspm, 96: sk.k_p_Npm,
-               104: sk.k_f, 112: sk.k_i_per_s, 120: sk.surface_m}
+               64: sk.goal_N, 72: sk.duration_s, 80: sk.m_d_kg, 88: sk.k_d_Nspm, 96: sk.k_p_Npm,
+               104: sk.kkf_Npm, 112: sk.kki_Npms, 120: sk.surface_m, 128: sk.force0_N}
     for off, val in offsets.items():
         assert struct.unpack_from("<d", b, off)[0] == val
-    np.testing.assert_array_equal(np.frombuffer(b, "<f8", n, 128), sk.centres)
-    np.testing.assert_array_equal(np.frombuffer(b, "<f8", n, 128 + 8 * n), sk.widths)
-    np.testing.assert_array_equal(np.frombuffer(b, "<f8", n, 128 + 16 * n), sk.weights)
-    assert struct.unpack_from("<I", b, 128 + 24 * n)[0] == zlib.crc32(b[:128 + 24 * n])
+    np.testing.assert_array_equal(np.frombuffer(b, "<f8", n, 136), sk.centres)
+    np.testing.assert_array_equal(np.frombuffer(b, "<f8", n, 136 + 8 * n), sk.widths)
+    np.testing.assert_array_equal(np.frombuffer(b, "<f8", n, 136 + 16 * n), sk.weights)
+    assert struct.unpack_from("<I", b, 136 + 24 * n)[0] == zlib.crc32(b[:136 + 24 * n])
+
+
+def test_a_version_1_image_is_refused_naming_both_versions() -> None:
+    data = (VECTORS / "bad" / "version_1.skill").read_bytes()
+    with pytest.raises(SkillError) as e:
+        Skill.from_bytes(data)
+    assert e.value.code == 202
+    assert "version 1 is not supported" in str(e.value) and "reads version 2" in str(e.value)
+    assert "fit the demonstration again" in str(e.value)
+
+
+def test_firmware_images_declare_this_skill_format() -> None:
+    from forceskill import fwimage, skill
+    assert fwimage.SKILL_FORMAT == skill.FORMAT_VERSION
 
 
 def test_round_trip_bytes_file_and_json(press_fit: FitResult, engrave_fit: FitResult, tmp_path: Path) -> None:
@@ -74,12 +88,12 @@ def test_every_bad_image_is_refused_with_its_code(name: str, code: int) -> None:
     assert "\n" not in str(e.value)
     if code > 204:   # refused after the CRC check: the CRC must be right to get there
         n = struct.unpack_from("<H", data, 12)[0]
-        assert struct.unpack_from("<I", data, 128 + 24 * n)[0] == zlib.crc32(data[:128 + 24 * n])
+        assert struct.unpack_from("<I", data, 136 + 24 * n)[0] == zlib.crc32(data[:136 + 24 * n])
 
 
 def test_writing_an_invalid_skill_is_refused_and_writes_nothing(press_fit: FitResult, tmp_path: Path) -> None:
     sk = Skill.from_bytes(press_fit.skill.to_bytes())
-    sk.goal_m = -1.0
+    sk.goal_N = -1.0
     with pytest.raises(SkillError) as e:
         sk.write(tmp_path / "bad.skill")
     assert e.value.code == 207

@@ -59,9 +59,9 @@ def test_regenerated_skills_equal_the_files() -> None:
         disk = Skill.read(VECTORS / (name + ".skill"))
         assert (disk.n_kernels, disk.flags) == (sk.n_kernels, sk.flags)
         for k in ("dt_s", "alpha", "beta", "gamma", "stiffness_Npm", "duration_s", "surface_m", "m_d_kg",
-                  "k_d_Nspm", "k_p_Npm", "k_f", "k_i_per_s"):
+                  "k_d_Nspm", "k_p_Npm", "kkf_Npm", "kki_Npms", "force0_N"):
             assert getattr(disk, k) == getattr(sk, k), k
-        for k in ("tau_s", "goal_m"):
+        for k in ("tau_s", "goal_N"):
             assert getattr(disk, k) == pytest.approx(getattr(sk, k), rel=1e-12), k
         np.testing.assert_allclose(disk.centres, sk.centres, rtol=1e-12, atol=1e-15)
         np.testing.assert_allclose(disk.widths, sk.widths, rtol=1e-9)

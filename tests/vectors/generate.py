@@ -3,8 +3,9 @@
 
 Writes, next to this script:
   <name>.skill, <name>.skill.json   skills fitted from two analytic demonstrations
-                                    (pressing-like, engraving-like), N in {10, 50, 100}, ridge and lwr,
-                                    hold and release
+                                    (pressing-like from rest at 100 N/m, engraving-like starting in
+                                    contact at 1 N at 280 N/m), N in {10, 50, 100}, ridge
+                                    and lwr, hold and release
   <name>_g<G>_t<T>.csv              dmp.rollout of the image: header ``t,f_hat``, %.17g, rows
                                     n = 0..round(T_skill*time_scale/dt)
   manifest.txt                      ``<skill> <goal_scale> <time_scale> <rollout csv>`` per line
@@ -24,17 +25,27 @@ from typing import Any
 import numpy as np
 
 from forceskill import dmp, synthetic
+from forceskill.demo import Demo
 from forceskill.fit import fit
-from forceskill.params import Gains, derive
-from forceskill.skill import HEADER_SIZE, MAGIC, Skill
+from forceskill.params import Gains, gains_for_object
+
+#: the HIL objects' mass (hil_sim/scenarios): the skills' force gains are adapted to it, so the
+#: vectors run stably on the simulator (the fault rig and the HIL tests execute them)
+OBJECT_MASS_KG = 10.0
+from forceskill.skill import HEADER_SIZE, MAGIC, MAX_KERNELS, Skill
 
 HERE = Path(__file__).resolve().parent
 
 # Short demonstrations keep the rollouts (and tests/vectors) well under 2 MB.
 DEMOS = {
     "press": (lambda: synthetic.pressing(seed=11, duration_s=1.5, k_v1=100.0, k_v2=180.0), 100.0),
-    "engrave": (lambda: synthetic.engraving(seed=12, duration_s=2.0, k_v=280.0, f_max_N=8.0), 280.0),
+    "engrave": (lambda: _in_contact(synthetic.engraving(seed=12, duration_s=2.0, k_v=280.0, f_max_N=8.0)), 280.0),
 }
+
+
+def _in_contact(d: Demo) -> Demo:
+    """The demonstration starting at 1 N (already in contact): the skill's f0 is not 0."""
+    return Demo(d.t_s, d.pos_m, d.force_N + 1.0, d.source + " +1 N")
 KERNELS = (10, 50, 100)
 METHODS = ("ridge", "lwr")
 # (goal_scale, time_scale): every skill at (1, 1); N = 50 skills also scaled.
@@ -61,7 +72,7 @@ def fitted_skills() -> dict[str, Skill]:
             for i, method in enumerate(METHODS):
                 end = "release" if (n // 10 + i) % 2 else "hold"   # both policies for each method
                 res = fit(demo, k, n_kernels=n, method=method, end_policy=end,
-                          surface_m=synthetic.SURFACE_M)
+                          surface_m=synthetic.SURFACE_M, gains=gains_for_object(k, OBJECT_MASS_KG))
                 out[skill_name(dname, n, method, end)] = res.skill
     return out
 
@@ -89,9 +100,11 @@ def golden(skills: dict[str, Skill]) -> tuple[dict[str, bytes], list[str]]:
 
 # ---- corrupt images ------------------------------------------------------------------------
 
-_HDR = struct.Struct("<IHHIHH14d")
-_F64 = ("dt_s", "tau_s", "alpha", "beta", "gamma", "stiffness_Npm", "goal_m", "duration_s",
-        "m_d_kg", "k_d_Nspm", "k_p_Npm", "k_f", "k_i_per_s", "surface_m")
+_HDR = struct.Struct("<IHHIHH15d")
+_F64 = ("dt_s", "tau_s", "alpha", "beta", "gamma", "stiffness_Npm", "goal_N", "duration_s",
+        "m_d_kg", "k_d_Nspm", "k_p_Npm", "kkf_Npm", "kki_Npms", "surface_m", "force0_N")
+#: a v1 image (metres, k-dependent gains): 14 f64 in a 128-byte header
+_HDR_V1 = struct.Struct("<IHHIHH14d")
 
 
 def pack(fields: dict[str, Any], centres: np.ndarray, widths: np.ndarray, weights: np.ndarray,
@@ -108,7 +121,7 @@ def pack(fields: dict[str, Any], centres: np.ndarray, widths: np.ndarray, weight
 def bad_images(base: Skill) -> list[tuple[str, bytes, int]]:
     """(file name, bytes, expected code) for every rejection, from a valid N = 10 skill."""
     n = base.n_kernels
-    f0: dict[str, Any] = {"magic": MAGIC, "version": 1, "header_size": HEADER_SIZE,
+    f0: dict[str, Any] = {"magic": MAGIC, "version": 2, "header_size": HEADER_SIZE,
                           "total_length": HEADER_SIZE + 24 * n + 4, "n": n, "flags": base.flags}
     f0.update({k: getattr(base, k) for k in _F64})
     c, w, wt = base.centres.copy(), base.widths.copy(), base.weights.copy()
@@ -127,7 +140,10 @@ def bad_images(base: Skill) -> list[tuple[str, bytes, int]]:
     out.append(("short_header.skill", good[:100], 200))
     out.append(("empty.skill", b"", 200))
     out.append(("magic.skill", mod(magic=0x4C4B5347), 201))
-    out.append(("version_2.skill", mod(version=2), 202))
+    v1_head = _HDR_V1.pack(MAGIC, 1, 128, 128 + 24 * n + 4, n, 0, *([1.0] * 14))
+    v1_body = v1_head + np.concatenate([c, w, wt]).astype("<f8").tobytes()
+    out.append(("version_1.skill", v1_body + struct.pack("<I", zlib.crc32(v1_body) & 0xFFFFFFFF), 202))
+    out.append(("version_3.skill", mod(version=3), 202))
     out.append(("version_0.skill", mod(version=0), 202))
     out.append(("header_size.skill", mod(header_size=120), 211))
     out.append(("length_field.skill", mod(total_length=f0["total_length"] + 24), 203))
@@ -138,16 +154,17 @@ def bad_images(base: Skill) -> list[tuple[str, bytes, int]]:
     out.append(("crc.skill", bytes(bad_crc), 204))
     e = np.zeros(0)
     out.append(("kernels_0.skill", pack(dict(f0, n=0, total_length=HEADER_SIZE + 4), e, e, e), 205))
-    n2 = 257
+    n2 = MAX_KERNELS + 1
     c2 = np.linspace(0.0, 0.99, n2)
     w2 = np.full(n2, 0.5 * (c2[1] - c2[0]))
-    out.append(("kernels_257.skill", pack(dict(f0, n=n2, total_length=HEADER_SIZE + 24 * n2 + 4), c2, w2,
+    out.append((f"kernels_{n2}.skill", pack(dict(f0, n=n2, total_length=HEADER_SIZE + 24 * n2 + 4), c2, w2,
                                           np.zeros(n2)), 205))
     wt_nan = wt.copy()
     wt_nan[3] = np.nan
     out.append(("nan_weight.skill", arr(weights=wt_nan), 206))
     out.append(("inf_tau.skill", mod(tau_s=np.inf), 206))
     out.append(("nan_surface.skill", mod(surface_m=np.nan), 206))
+    out.append(("nan_force0.skill", mod(force0_N=np.nan), 206))
     c_nan = c.copy()
     c_nan[0] = np.nan
     out.append(("nan_centre.skill", arr(centres=c_nan), 206))
@@ -157,7 +174,7 @@ def bad_images(base: Skill) -> list[tuple[str, bytes, int]]:
     out.append(("range_duration_zero.skill", mod(duration_s=0.0), 207))
     out.append(("range_duration_big.skill", mod(duration_s=3601.0), 207))
     out.append(("range_stiffness.skill", mod(stiffness_Npm=0.0), 207))
-    out.append(("range_goal.skill", mod(goal_m=-0.5), 207))
+    out.append(("range_goal.skill", mod(goal_N=-0.5), 207))
     w_zero = w.copy()
     w_zero[4] = 0.0
     out.append(("range_width.skill", arr(widths=w_zero), 207))
@@ -177,9 +194,9 @@ def bad_images(base: Skill) -> list[tuple[str, bytes, int]]:
     out.append(("gains_gamma.skill", mod(gamma=base.gamma * (1.0 - 1e-6)), 209))
     out.append(("gains_kd_le_md.skill", mod(k_d_Nspm=base.m_d_kg), 209))
     # beta > alpha/4 with alpha/beta/gamma consistent with the stored gains (phase overshoots)
-    g_hi = Gains(base.m_d_kg, base.k_d_Nspm, 1500.0, base.k_f, base.k_i_per_s)
+    g_hi = Gains(base.m_d_kg, base.k_d_Nspm, 1500.0, base.kkf_Npm, base.kki_Npms)
     alpha, gamma = base.alpha, base.gamma
-    beta = (g_hi.k_p_Npm + base.stiffness_Npm * g_hi.k_f - g_hi.m_d_kg * gamma) / (g_hi.m_d_kg * alpha) - 1.0
+    beta = (g_hi.k_p_Npm + g_hi.kkf_Npm - g_hi.m_d_kg * gamma) / (g_hi.m_d_kg * alpha) - 1.0
     assert beta > alpha / 4
     out.append(("gains_beta_gt_alpha_4.skill", mod(k_p_Npm=1500.0, beta=beta), 209))
     out.append(("flag_y_axis.skill", mod(flags=0x0002), 210))

@@ -19,6 +19,7 @@ static pfcfx_state_t cm_pfc_state;
 static int32_t cm_prev_pos_q24[CM_HAL_AXES];
 static int32_t cm_prev_pos_d_q24;
 static int32_t cm_surface_q24;
+static int64_t cm_inv_k_q32;   /* 1/k, m/N, Q.32: x_d = surface + f_hat/k */
 static int32_t cm_hold_y_q24;
 static int32_t cm_last_cmd_q16[CM_HAL_AXES];
 static int32_t cm_force_max_q16;
@@ -46,6 +47,11 @@ fs_status_t cm_tick_init(const uint8_t *image, uint32_t len, double goal_scale, 
     }
     if (st == FS_OK) {
         st = fx_from_double(cm_skill.surface_m, 24u, INT32_MAX, &cm_surface_q24);
+    }
+    if (st == FS_OK) {
+        const double inv_k = ldexp(1.0 / cm_skill.stiffness_Npm, 32);
+        st = (inv_k < ldexp(1.0, 32)) ? FS_OK : FS_ERR_FIXED_OVERFLOW;
+        cm_inv_k_q32 = (int64_t)(inv_k + 0.5);
     }
     if (st == FS_OK) {
         st = fx_from_double(CM_FORCE_MAX_N, 16u, INT32_MAX, &cm_force_max_q16);
@@ -109,7 +115,7 @@ uint32_t cm_tick(void)
     const int32_t f_hat = dmpfx_step(&cm_model, &cm_run, &cm_dmp, NULL);
     /* 3. reference */
     pfcfx_ref_t ref[PFC_AXES];
-    const int32_t pos_d = fx_add_sat(cm_surface_q24, dmpfx_view(cm_dmp.x_acc));
+    const int32_t pos_d = fx_add_sat(cm_surface_q24, fx_sat32(((int64_t)f_hat * cm_inv_k_q32) >> 24));
     ref[0].pos_m = pos_d;
     ref[0].vel_mps = fx_mul_int_sat(fx_sub_sat(pos_d, cm_prev_pos_d_q24), INV_DT);
     ref[0].acc_mps2 = 0;

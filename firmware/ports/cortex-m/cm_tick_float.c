@@ -95,7 +95,7 @@ uint32_t cm_tick(void)
     const float f_hat = dmp_step(&cm_skill.dmp, &cm_dmp, &cm_run, NULL);
     /* 3. reference */
     pfc_axis_ref_t ref[PFC_AXES];
-    const float pos_d = cm_skill.surface_m + cm_dmp.x_m;
+    const float pos_d = cm_skill.surface_m + f_hat / cm_skill.stiffness_Npm;
     ref[0].pos_m = pos_d;
     ref[0].vel_mps = (pos_d - cm_prev_pos_d_m) * INV_DT;
     ref[0].acc_mps2 = 0.0f;

@@ -13,7 +13,7 @@
 #include <stdint.h>
 #include "hal.h"
 
-#define HAL_HOST_FLASH_SECTOR 8192u     /* one skill record of N = 256 (6,276 B + 36 B) fits */
+#define HAL_HOST_FLASH_SECTOR 32768u    /* one skill record of N = 1024 (24,716 B + 36 B) fits */
 #define HAL_HOST_FLASH_SECTORS 16u      /* 2 copies x 8 slots */
 #define HAL_HOST_FW_SECTOR 4096u       /* firmware flash: boot state + 2 slots of 64 sectors */
 #define HAL_HOST_FW_SLOT_SECTORS 64u

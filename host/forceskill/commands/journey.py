@@ -22,6 +22,7 @@ from ..outputs import write_figure, write_file
 REPO = Path(__file__).resolve().parents[3]
 K_NPM = 100.0
 SURFACE_M = 0.001
+OBJECT_MASS_KG = 10.0   # m_v_kg of the scenario: the default force gains are adapted to it
 
 
 def _find_hil_sim(given: str | None) -> Path:
@@ -67,7 +68,7 @@ def _cmd(args: argparse.Namespace) -> int:
 
         step("record", "-o", str(out / "demo.blf"), "--duration", str(args.duration), *bus)
         step("fit", str(out / "demo.blf"), "--stiffness", str(K_NPM), "--surface-m", str(SURFACE_M),
-             "--end", "release", "-o", str(out / "press.skill"), "--plot", str(out / "can_fit.png"))
+             "--object-mass", str(OBJECT_MASS_KG), "--end", "release", "-o", str(out / "press.skill"), "--plot", str(out / "can_fit.png"))
         step("upload", str(out / "press.skill"), "--slot", "1", *bus)
         runs: dict[str, Any] = {}
         for g in ("1", "1.5"):

@@ -76,7 +76,8 @@ static exec_step_t step_of(const skill_t *s, double goal, double ts, double dur,
     return st;
 }
 
-/* Open loop (measurements held at 0), no model: f_hat equals the Python reference rollout. */
+/* Open loop (measurements held at 0 but the contact force at the skill's starting force f0, so
+ * execution starts where the skill does), no model: f_hat equals the Python reference rollout. */
 static void run_golden(const skill_t *sk, const char *csv, double goal, double ts)
 {
     static double ref[40000];
@@ -92,6 +93,7 @@ static void run_golden(const skill_t *sk, const char *csv, double goal, double t
         fmax = fmax > fabs(ref[i]) ? fmax : fabs(ref[i]);
     }
     exec_meas_t m = zero_meas();
+    m.force_contact_N = sk->dmp.force0_N;
     double worst = 0.0;
     for (size_t n = 1; n < rows; n++) {
         exec_out_t o;
@@ -122,11 +124,78 @@ static void test_goal_scaling_is_exact(void **state)
     assert_int_equal(exec_start(&cfg, &a, &s1, 1, 0.0), FS_OK);
     assert_int_equal(exec_start(&cfg, &b, &s2, 1, 0.0), FS_OK);
     exec_meas_t m = zero_meas();
+    const double f0 = g_engrave.dmp.force0_N;
+    assert_true(f0 > 0.5);   /* the engraving vector starts in contact */
+    m.force_contact_N = f0;
     for (int n = 0; n < 6000; n++) {
         exec_out_t oa, ob;
         exec_tick(&cfg, &a, &m, &oa);
         exec_tick(&cfg, &b, &m, &ob);
-        assert_true(fabs(ob.force_hat_N - 1.5 * oa.force_hat_N) <= 1e-9 * (1.0 + fabs(ob.force_hat_N)));
+        /* exact for the part above the starting force */
+        assert_true(fabs((ob.force_hat_N - f0) - 1.5 * (oa.force_hat_N - f0)) <=
+                    1e-9 * (1.0 + fabs(ob.force_hat_N)));
+    }
+}
+
+/* Execution starts from the measured contact force without a jump, whatever the skill's f0, and
+ * follows the skill's own profile once the difference has faded out (EXEC_BLEND_S). */
+static void test_starts_from_measured_force(void **state)
+{
+    (void)state;
+    static double ref[40000];
+    const size_t rows = load_rollout("engrave_n50_lwr_hold_g1_t1.csv", ref, 40000);
+    exec_config_t cfg;
+    exec_config_default(&cfg);
+    const double measured[] = {0.0, 2.7, -0.3};
+    for (size_t j = 0; j < 3; j++) {
+        static exec_state_t st;
+        exec_step_t s = step_of(&g_engrave, 1.0, 1.0, 0.0, SKILL_END_HOLD);
+        assert_int_equal(exec_start(&cfg, &st, &s, 1, 0.0), FS_OK);
+        exec_meas_t m = zero_meas();
+        m.force_contact_N = measured[j];
+        double prev = measured[j];
+        double max_step = 0.0;
+        double worst_after = 0.0;
+        const size_t blend_rows = (size_t)(EXEC_BLEND_S / 0.001);
+        for (size_t n = 1; n < rows; n++) {
+            exec_out_t o;
+            assert_int_equal(exec_tick(&cfg, &st, &m, &o), FS_OK);
+            max_step = fmax(max_step, fabs(o.force_hat_N - prev));
+            prev = o.force_hat_N;
+            if (n >= blend_rows) {
+                worst_after = fmax(worst_after, fabs(o.force_hat_N - ref[n]));
+            }
+        }
+        /* no jump: the largest change per tick is the skill's own slope (< 0.05 N/ms here) */
+        assert_true(max_step < 0.05);
+        assert_true(worst_after <= 1e-9 * 10.0);
+    }
+}
+
+/* surface_from_contact: the reference is built on x - f/k measured at the first tick, not on the
+ * configured surface (0.5 mm off here); without it, on the configured one. */
+static void test_surface_from_contact(void **state)
+{
+    (void)state;
+    exec_config_t cfg;
+    exec_config_default(&cfg);
+    const double k = g_engrave.stiffness_Npm;
+    const double surface = 0.001, f_c = 2.0;
+    cfg.object.surface_m = surface + 0.0005;
+    for (int from_contact = 0; from_contact <= 1; from_contact++) {
+        cfg.surface_from_contact = (uint8_t)from_contact;
+        static exec_state_t st;
+        exec_step_t s = step_of(&g_engrave, 1.0, 1.0, 0.0, SKILL_END_HOLD);
+        assert_int_equal(exec_start(&cfg, &st, &s, 1, 0.0), FS_OK);
+        exec_meas_t m = zero_meas();
+        m.pos_m[0] = surface + f_c / k;
+        m.force_contact_N = f_c;
+        for (int n = 0; n < 50; n++) {
+            exec_out_t o;
+            assert_int_equal(exec_tick(&cfg, &st, &m, &o), FS_OK);
+            const double want = (from_contact ? surface : surface + 0.0005) + o.force_hat_N / k;
+            assert_true(fabs(o.pos_ref_m - want) <= 1e-12);
+        }
     }
 }
 
@@ -388,6 +457,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_open_loop_matches_python_rollouts),
         cmocka_unit_test(test_goal_scaling_is_exact),
+        cmocka_unit_test(test_starts_from_measured_force),
+        cmocka_unit_test(test_surface_from_contact),
         cmocka_unit_test(test_end_policies),
         cmocka_unit_test(test_sequence_continuity),
         cmocka_unit_test(test_model_reference_static_inverse),

@@ -88,14 +88,15 @@ void tu_default_desc(tu_skill_desc_t *d, uint16_t n, double stiffness_Npm, doubl
     d->m_d = 40.0;
     d->k_d = 400.0;
     d->k_p = 1170.0;
-    d->k_f = 3.0;
-    d->k_i = 27.0;
+    d->kkf = 540.0;
+    d->kki = 4860.0;
     d->stiffness_Npm = stiffness_Npm;
     d->alpha = d->k_d / d->m_d - 1.0;
-    d->gamma = stiffness_Npm * d->k_i / (d->m_d * d->alpha);
-    d->beta = (d->k_p + stiffness_Npm * (d->k_f - d->k_i / d->alpha)) / (d->m_d * d->alpha) - 1.0;
+    d->gamma = d->kki / (d->m_d * d->alpha);
+    d->beta = (d->k_p + (d->kkf - d->kki / d->alpha)) / (d->m_d * d->alpha) - 1.0;
     d->duration_s = duration_s;
-    d->goal_m = 0.05;
+    d->goal_N = 5.0;
+    d->force0_N = 0.0;
     d->surface_m = 0.001;
     d->tau_s = tu_tau_for_duration(d->alpha, d->beta, d->dt_s, duration_s);
     tu_centres_widths(d->alpha, d->beta, d->dt_s, d->tau_s, duration_s, n, d->centre, d->width);
@@ -114,8 +115,8 @@ fs_status_t tu_model_from_desc(const tu_skill_desc_t *d, dmp_model_t *m)
     m->p.gamma = (fs_real_t)d->gamma;
     m->dt_s = (fs_real_t)d->dt_s;
     m->tau_s = (fs_real_t)d->tau_s;
-    m->goal_m = (fs_real_t)d->goal_m;
-    m->stiffness_Npm = (fs_real_t)d->stiffness_Npm;
+    m->goal_N = (fs_real_t)d->goal_N;
+    m->force0_N = (fs_real_t)d->force0_N;
     m->duration_s = (fs_real_t)d->duration_s;
     for (uint16_t i = 0; i < d->n_kernels && i < DMP_MAX_KERNELS; i++) {
         m->centre[i] = (fs_real_t)d->centre[i];
@@ -155,27 +156,28 @@ void tu_fix_crc(uint8_t *b, uint32_t len)
 uint32_t tu_write_image(const tu_skill_desc_t *d, uint8_t *buf, uint32_t cap)
 {
     const uint32_t n = d->n_kernels;
-    const uint32_t len = 128u + 24u * n + 4u;
+    const uint32_t len = SKILL_HEADER_SIZE + 24u * n + 4u;
     if (len > cap) {
         return 0;
     }
     memset(buf, 0, len);
     tu_put_u32(buf, 0, 0x4C4B5346u);
-    tu_put_u16(buf, 4, 1);
-    tu_put_u16(buf, 6, 128);
+    tu_put_u16(buf, 4, SKILL_FORMAT_VERSION);
+    tu_put_u16(buf, 6, SKILL_HEADER_SIZE);
     tu_put_u32(buf, 8, len);
     tu_put_u16(buf, 12, (uint16_t)n);
     tu_put_u16(buf, 14, d->flags);
-    const double hdr[14] = {d->dt_s, d->tau_s, d->alpha, d->beta, d->gamma,
-                            d->stiffness_Npm, d->goal_m, d->duration_s, d->m_d, d->k_d,
-                            d->k_p, d->k_f, d->k_i, d->surface_m};
-    for (uint32_t i = 0; i < 14; i++) {
+    const double hdr[15] = {d->dt_s, d->tau_s, d->alpha, d->beta, d->gamma,
+                            d->stiffness_Npm, d->goal_N, d->duration_s, d->m_d, d->k_d,
+                            d->k_p, d->kkf, d->kki, d->surface_m, d->force0_N};
+    for (uint32_t i = 0; i < 15; i++) {
         tu_put_f64(buf, 16 + 8 * i, hdr[i]);
     }
+    const uint32_t h = SKILL_HEADER_SIZE;
     for (uint32_t i = 0; i < n; i++) {
-        tu_put_f64(buf, 128 + 8 * i, d->centre[i]);
-        tu_put_f64(buf, 128 + 8 * n + 8 * i, d->width[i]);
-        tu_put_f64(buf, 128 + 16 * n + 8 * i, d->weight[i]);
+        tu_put_f64(buf, h + 8 * i, d->centre[i]);
+        tu_put_f64(buf, h + 8 * n + 8 * i, d->width[i]);
+        tu_put_f64(buf, h + 16 * n + 8 * i, d->weight[i]);
     }
     tu_fix_crc(buf, len);
     return len;

@@ -26,20 +26,21 @@ void tu_centres_widths(double alpha, double beta, double dt_s, double tau_s, dou
 typedef struct {
     uint16_t n_kernels;
     uint16_t flags;
-    double dt_s, tau_s, alpha, beta, gamma, stiffness_Npm, goal_m, duration_s;
-    double m_d, k_d, k_p, k_f, k_i, surface_m;
+    double dt_s, tau_s, alpha, beta, gamma, stiffness_Npm, goal_N, duration_s;
+    double m_d, k_d, k_p, kkf, kki, surface_m, force0_N;
     double centre[DMP_MAX_KERNELS];
     double width[DMP_MAX_KERNELS];
     double weight[DMP_MAX_KERNELS];
 } tu_skill_desc_t;
 
-/** A realistic skill: default gains, stiffness k, duration T, N kernels, smooth weights. */
+/** A realistic skill: default gains, stiffness k (stored only: the DMP does not depend on it),
+ *  duration T, N kernels, goal 5 N, smooth (dimensionless) weights, starting force 0. */
 void tu_default_desc(tu_skill_desc_t *d, uint16_t n, double stiffness_Npm, double duration_s);
 
 /** Copy a description into a dmp_model_t and run dmp_model_init (returns its status). */
 fs_status_t tu_model_from_desc(const tu_skill_desc_t *d, dmp_model_t *m);
 
-/** Serialise a description as an image v1 (little-endian, CRC last) into buf; returns length. */
+/** Serialise a description as an image v2 (little-endian, CRC last) into buf; returns length. */
 uint32_t tu_write_image(const tu_skill_desc_t *d, uint8_t *buf, uint32_t cap);
 
 /** Little-endian writers for patching images in tests. */

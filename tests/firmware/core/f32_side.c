@@ -22,7 +22,7 @@ long f32_parse_rollout(const uint8_t *image, uint32_t len, double goal_scale, do
     }
     dmp_state_t s;
     dmp_state_reset(&s);
-    out[0] = 0.0;
+    out[0] = (double)sk.dmp.force0_N;
     for (long i = 1; i <= n; i++) {
         out[i] = (double)dmp_step(&sk.dmp, &s, &run, NULL);
     }

@@ -17,7 +17,7 @@
 #define CAP_ROWS 30000L
 
 static tu_skill_desc_t desc;
-static uint8_t img[128 + 24 * 256 + 4];
+static uint8_t img[SKILL_HEADER_SIZE + 24 * 256 + 4];
 static skill_t sk;
 static double fd[CAP_ROWS], ff[CAP_ROWS];
 
@@ -37,7 +37,7 @@ static void test_float_tracks_double(void **state)
             assert_true(rows <= CAP_ROWS);
             dmp_state_t s;
             dmp_state_reset(&s);
-            fd[0] = 0.0;
+            fd[0] = sk.dmp.force0_N;
             for (long r = 1; r < rows; r++) {
                 fd[r] = dmp_step(&sk.dmp, &s, &run, NULL);
             }

@@ -1,4 +1,4 @@
-/* Skill image v1 parsing (docs/skill_format.md): CRC-32 against the standard check value, a
+/* Skill image v2 parsing (docs/skill_format.md): CRC-32 against the standard check value, a
  * valid image round trip, and one or more images for every rejection code, including the check
  * order. Images are built here with a small byte writer (core_test_util.c). Built double and float. */
 #include <math.h>
@@ -13,7 +13,8 @@
 #include "core_test_util.h"
 #include "skill.h"
 
-#define CAP (128u + 24u * 300u + 4u)
+#define H SKILL_HEADER_SIZE
+#define CAP (H + 24u * 1100u + 4u)
 
 static tu_skill_desc_t desc;
 static uint8_t img[CAP];
@@ -21,7 +22,7 @@ static skill_t sk;
 
 /* Offsets of header f64 fields (docs/skill_format.md). */
 enum { O_DT = 16, O_TAU = 24, O_ALPHA = 32, O_BETA = 40, O_GAMMA = 48, O_K = 56, O_G = 64,
-       O_T = 72, O_MD = 80, O_KD = 88, O_KP = 96, O_KF = 104, O_KI = 112, O_SURF = 120 };
+       O_T = 72, O_MD = 80, O_KD = 88, O_KP = 96, O_KKF = 104, O_KKI = 112, O_SURF = 120, O_F0 = 128 };
 
 static uint32_t valid_image(uint16_t n)
 {
@@ -64,16 +65,17 @@ static void test_crc32_check_value(void **state)
 static void test_image_size(void **state)
 {
     (void)state;
-    assert_int_equal(skill_image_size(1), 156u);
-    assert_int_equal(skill_image_size(50), 128u + 1200u + 4u);
-    assert_int_equal(skill_image_size(256), 128u + 6144u + 4u);
+    assert_int_equal(skill_image_size(1), 164u);
+    assert_int_equal(skill_image_size(50), 136u + 1200u + 4u);
+    assert_int_equal(skill_image_size(1024), 136u + 24576u + 4u);
+    assert_int_equal(skill_image_size(256), 136u + 6144u + 4u);
 }
 
 static void test_valid_round_trip(void **state)
 {
     (void)state;
-    const uint16_t ns[] = {1, 2, 50, 256};
-    for (size_t k = 0; k < 4; k++) {
+    const uint16_t ns[] = {1, 2, 50, 256, 1024};
+    for (size_t k = 0; k < 5; k++) {
         const uint16_t n = ns[k];
         const uint32_t len = valid_image(n);
         assert_int_equal(skill_parse(img, len, &sk), FS_OK);
@@ -84,14 +86,20 @@ static void test_valid_round_trip(void **state)
         assert_true(m->p.alpha == (fs_real_t)desc.alpha);
         assert_true(m->p.beta == (fs_real_t)desc.beta);
         assert_true(m->p.gamma == (fs_real_t)desc.gamma);
-        assert_true(m->stiffness_Npm == (fs_real_t)desc.stiffness_Npm);
-        assert_true(m->goal_m == (fs_real_t)desc.goal_m);
+        assert_true(sk.stiffness_Npm == (fs_real_t)desc.stiffness_Npm);
+        assert_true(m->goal_N == (fs_real_t)desc.goal_N);
+        assert_true(m->force0_N == (fs_real_t)desc.force0_N);
         assert_true(m->duration_s == (fs_real_t)desc.duration_s);
         assert_true(sk.gains.m_d_kg == (fs_real_t)desc.m_d);
         assert_true(sk.gains.k_d_Nspm == (fs_real_t)desc.k_d);
         assert_true(sk.gains.k_p_Npm == (fs_real_t)desc.k_p);
-        assert_true(sk.gains.k_f == (fs_real_t)desc.k_f);
-        assert_true(sk.gains.k_i_per_s == (fs_real_t)desc.k_i);
+        assert_true(sk.fit_gains.kkf_Npm == (fs_real_t)desc.kkf);
+        assert_true(sk.fit_gains.kki_Npms == (fs_real_t)desc.kki);
+        /* controller gains at the nominal k */
+        assert_true(fabs((double)sk.gains.k_f - desc.kkf / desc.stiffness_Npm) <=
+                    1e-6 * desc.kkf / desc.stiffness_Npm);
+        assert_true(fabs((double)sk.gains.k_i_per_s - desc.kki / desc.stiffness_Npm) <=
+                    1e-6 * desc.kki / desc.stiffness_Npm);
         assert_true(sk.surface_m == (fs_real_t)desc.surface_m);
         assert_int_equal(sk.end_policy, SKILL_END_RELEASE);
         for (uint16_t i = 0; i < n; i++) {
@@ -121,7 +129,8 @@ static void test_reject_structure(void **state)
     (void)state;
     uint32_t len = valid_image(10);
     expect("empty", 0, FS_ERR_SKILL_TOO_SHORT);
-    expect("127 bytes", 127, FS_ERR_SKILL_TOO_SHORT);
+    expect("5 bytes", 5, FS_ERR_SKILL_TOO_SHORT);
+    expect("135 bytes", H - 1u, FS_ERR_SKILL_TOO_SHORT);
     assert_int_equal(skill_parse(NULL, len, &sk), FS_ERR_NULL_ARG);
     assert_int_equal(skill_parse(img, len, NULL), FS_ERR_NULL_ARG);
 
@@ -131,9 +140,13 @@ static void test_reject_structure(void **state)
     expect("magic", len, FS_ERR_SKILL_MAGIC);
 
     len = valid_image(10);
-    tu_put_u16(img, 4, 2);
+    tu_put_u16(img, 4, 1);
     tu_fix_crc(img, len);
-    expect("version 2", len, FS_ERR_SKILL_VERSION);
+    expect("version 1 (metres, k-dependent gains)", len, FS_ERR_SKILL_VERSION);
+    expect("version 1, a v1-sized buffer", H - 8u, FS_ERR_SKILL_VERSION);
+    tu_put_u16(img, 4, 3);
+    tu_fix_crc(img, len);
+    expect("version 3", len, FS_ERR_SKILL_VERSION);
     tu_put_u16(img, 4, 0);
     tu_fix_crc(img, len);
     expect("version 0", len, FS_ERR_SKILL_VERSION);
@@ -145,7 +158,7 @@ static void test_reject_structure(void **state)
 
     len = valid_image(10);
     expect("buffer shorter than total_length", len - 1, FS_ERR_SKILL_LENGTH);
-    expect("128-byte header only", 128, FS_ERR_SKILL_LENGTH);
+    expect("header only", H, FS_ERR_SKILL_LENGTH);
     expect("buffer longer than total_length", len + 8, FS_ERR_SKILL_LENGTH);
     tu_put_u32(img, 8, len + 24);
     tu_fix_crc(img, len);
@@ -156,7 +169,7 @@ static void test_reject_structure(void **state)
     expect("N disagrees with total_length", len, FS_ERR_SKILL_LENGTH);
 
     len = valid_image(10);
-    img[128 + 16 * 10 + 3] ^= 0x40u; /* a weight bit */
+    img[H + 16 * 10 + 3] ^= 0x40u; /* a weight bit */
     expect("CRC (payload flipped)", len, FS_ERR_SKILL_CRC);
     len = valid_image(10);
     img[len - 1] ^= 0x01u;
@@ -165,24 +178,24 @@ static void test_reject_structure(void **state)
     /* N = 0 with a consistent length and CRC */
     len = valid_image(1);
     tu_put_u16(img, 12, 0);
-    tu_put_u32(img, 8, 132);
-    len = 132;
+    tu_put_u32(img, 8, H + 4u);
+    len = H + 4u;
     tu_fix_crc(img, len);
     expect("N = 0", len, FS_ERR_SKILL_KERNELS);
-    /* N = 257 with a consistent length and CRC */
-    tu_default_desc(&desc, 256, 280.0, 8.0);
-    desc.n_kernels = 256;
+    /* N = DMP_MAX_KERNELS + 1 with a consistent length and CRC */
+    tu_default_desc(&desc, DMP_MAX_KERNELS, 280.0, 8.0);
+    desc.n_kernels = DMP_MAX_KERNELS;
     len = tu_write_image(&desc, img, CAP);
     {
-        /* grow to 257 kernels by hand */
+        /* grow by one kernel by hand */
         static uint8_t big[CAP];
-        const uint32_t n = 257, blen = 128 + 24 * n + 4;
-        memcpy(big, img, 128);
+        const uint32_t m = DMP_MAX_KERNELS, n = m + 1u, blen = H + 24 * n + 4;
+        memcpy(big, img, H);
         for (uint32_t i = 0; i < n; i++) {
-            const uint32_t src = (i < 256) ? i : 255;
-            tu_put_f64(big, 128 + 8 * i, (double)i / 300.0);
-            memcpy(big + 128 + 8 * n + 8 * i, img + 128 + 8 * 256 + 8 * src, 8);
-            memcpy(big + 128 + 16 * n + 8 * i, img + 128 + 16 * 256 + 8 * src, 8);
+            const uint32_t src = (i < m) ? i : m - 1u;
+            tu_put_f64(big, H + 8 * i, (double)i / (double)(n + 10u));
+            memcpy(big + H + 8 * n + 8 * i, img + H + 8 * m + 8 * src, 8);
+            memcpy(big + H + 16 * n + 8 * i, img + H + 16 * m + 8 * src, 8);
         }
         tu_put_u16(big, 12, (uint16_t)n);
         tu_put_u32(big, 8, blen);
@@ -198,11 +211,14 @@ static void test_reject_values(void **state)
     /* 206: every f64 field must be finite, including ones no range check looks at */
     expect_f64("dt NaN", O_DT, NAN, FS_ERR_SKILL_NOT_FINITE);
     expect_f64("surface NaN", O_SURF, NAN, FS_ERR_SKILL_NOT_FINITE);
-    expect_f64("k_i inf", O_KI, INFINITY, FS_ERR_SKILL_NOT_FINITE);
+    expect_f64("kki inf", O_KKI, INFINITY, FS_ERR_SKILL_NOT_FINITE);
+    expect_f64("f0 NaN", O_F0, NAN, FS_ERR_SKILL_NOT_FINITE);
+    expect_f64("f0 -0.8 N (a sensor bias) accepted", O_F0, -0.8, FS_OK);
+    expect_f64("f0 3 N (in contact) accepted", O_F0, 3.0, FS_OK);
     expect_f64("gamma -inf", O_GAMMA, -INFINITY, FS_ERR_SKILL_NOT_FINITE);
-    expect_f64("centre NaN", 128, NAN, FS_ERR_SKILL_NOT_FINITE);
-    expect_f64("width inf", 128 + 8 * 10 + 8 * 9, INFINITY, FS_ERR_SKILL_NOT_FINITE);
-    expect_f64("weight NaN", 128 + 16 * 10 + 8 * 9, NAN, FS_ERR_SKILL_NOT_FINITE);
+    expect_f64("centre NaN", H, NAN, FS_ERR_SKILL_NOT_FINITE);
+    expect_f64("width inf", H + 8 * 10 + 8 * 9, INFINITY, FS_ERR_SKILL_NOT_FINITE);
+    expect_f64("weight NaN", H + 16 * 10 + 8 * 9, NAN, FS_ERR_SKILL_NOT_FINITE);
     /* 207 */
     expect_f64("dt 0", O_DT, 0.0, FS_ERR_SKILL_RANGE);
     expect_f64("dt > 0.1", O_DT, 0.2, FS_ERR_SKILL_RANGE);
@@ -213,20 +229,20 @@ static void test_reject_values(void **state)
     expect_f64("k 0", O_K, 0.0, FS_ERR_SKILL_RANGE);
     expect_f64("g 0", O_G, 0.0, FS_ERR_SKILL_RANGE);
     expect_f64("g < 0", O_G, -0.01, FS_ERR_SKILL_RANGE);
-    expect_f64("sigma 0", 128 + 8 * 10 + 8 * 4, 0.0, FS_ERR_SKILL_RANGE);
-    expect_f64("sigma < 0", 128 + 8 * 10, -0.01, FS_ERR_SKILL_RANGE);
+    expect_f64("sigma 0", H + 8 * 10 + 8 * 4, 0.0, FS_ERR_SKILL_RANGE);
+    expect_f64("sigma < 0", H + 8 * 10, -0.01, FS_ERR_SKILL_RANGE);
     /* boundary values accepted */
     expect_f64("dt 0.1", O_DT, 0.1, FS_OK);
     expect_f64("T 3600", O_T, 3600.0, FS_OK);
     /* 208 */
-    expect_f64("centre < 0", 128, -1e-9, FS_ERR_SKILL_CENTRES);
-    expect_f64("centre > 1", 128 + 8 * 9, 1.0 + 1e-9, FS_ERR_SKILL_CENTRES);
+    expect_f64("centre < 0", H, -1e-9, FS_ERR_SKILL_CENTRES);
+    expect_f64("centre > 1", H + 8 * 9, 1.0 + 1e-9, FS_ERR_SKILL_CENTRES);
     {
         const uint32_t len = valid_image(10);
-        tu_put_f64(img, 128 + 8 * 5, desc.centre[4]);
+        tu_put_f64(img, H + 8 * 5, desc.centre[4]);
         tu_fix_crc(img, len);
         expect("centres equal", len, FS_ERR_SKILL_CENTRES);
-        tu_put_f64(img, 128 + 8 * 5, desc.centre[4] - 1e-6);
+        tu_put_f64(img, H + 8 * 5, desc.centre[4] - 1e-6);
         tu_fix_crc(img, len);
         expect("centres decreasing", len, FS_ERR_SKILL_CENTRES);
     }
@@ -236,26 +252,26 @@ static void test_reject_values(void **state)
     expect_f64("alpha off by 1e-8 rel", O_ALPHA, desc.alpha * (1.0 + 1e-8), FS_ERR_SKILL_GAINS);
     expect_f64("beta off by 1e-8 rel", O_BETA, desc.beta * (1.0 - 1e-8), FS_ERR_SKILL_GAINS);
     expect_f64("gamma off", O_GAMMA, desc.gamma * 1.01, FS_ERR_SKILL_GAINS);
-    expect_f64("k changed (gamma no longer derived)", O_K, 300.0, FS_ERR_SKILL_GAINS);
+    expect_f64("k changed: the DMP does not depend on it", O_K, 1e7, FS_OK);
     expect_f64("k_d <= m_d", O_KD, 40.0, FS_ERR_SKILL_GAINS);
     expect_f64("m_d <= 0", O_MD, 0.0, FS_ERR_SKILL_GAINS);
-    expect_f64("k_f < 0", O_KF, -1.0, FS_ERR_SKILL_GAINS);
+    expect_f64("kkf < 0", O_KKF, -1.0, FS_ERR_SKILL_GAINS);
     {
         /* consistent alpha/beta/gamma but beta > alpha/4: k_p raised */
         uint32_t len = valid_image(10);
         const double k_p = 1300.0;
-        const double beta = (k_p + desc.stiffness_Npm * (desc.k_f - desc.k_i / desc.alpha)) /
+        const double beta = (k_p + (desc.kkf - desc.kki / desc.alpha)) /
                                 (desc.m_d * desc.alpha) - 1.0;
         assert_true(beta > desc.alpha / 4.0);
         tu_put_f64(img, O_KP, k_p);
         tu_put_f64(img, O_BETA, beta);
         tu_fix_crc(img, len);
         expect("beta > alpha/4", len, FS_ERR_SKILL_GAINS);
-        /* beta <= 0 with consistent values: k_p = 0, k_f = 0 */
+        /* beta <= 0 with consistent values: k_p = 0, kkf = 0 */
         len = valid_image(10);
         tu_put_f64(img, O_KP, 0.0);
-        tu_put_f64(img, O_KF, 0.0);
-        tu_put_f64(img, O_KI, 0.0);
+        tu_put_f64(img, O_KKF, 0.0);
+        tu_put_f64(img, O_KKI, 0.0);
         tu_put_f64(img, O_GAMMA, 0.0);
         tu_put_f64(img, O_BETA, -1.0);
         tu_fix_crc(img, len);
@@ -266,7 +282,7 @@ static void test_reject_values(void **state)
         uint32_t len = valid_image(10);
         tu_put_u16(img, 14, 0x0002);
         tu_fix_crc(img, len);
-        expect("y-axis flag (reserved in v1)", len, FS_ERR_SKILL_UNSUPPORTED);
+        expect("y-axis flag (reserved)", len, FS_ERR_SKILL_UNSUPPORTED);
         tu_put_u16(img, 14, 0x8001);
         tu_fix_crc(img, len);
         expect("unknown flag bit 15", len, FS_ERR_SKILL_UNSUPPORTED);
@@ -302,11 +318,11 @@ static void test_check_order(void **state)
     expect("finiteness before range", len, FS_ERR_SKILL_NOT_FINITE);
     len = valid_image(10);
     tu_put_f64(img, O_DT, 0.0);
-    tu_put_f64(img, 128, 2.0);
+    tu_put_f64(img, H, 2.0);
     tu_fix_crc(img, len);
     expect("range before centres", len, FS_ERR_SKILL_RANGE);
     len = valid_image(10);
-    tu_put_f64(img, 128, 2.0);
+    tu_put_f64(img, H, 2.0);
     tu_put_f64(img, O_ALPHA, 1.0);
     tu_fix_crc(img, len);
     expect("centres before gains", len, FS_ERR_SKILL_CENTRES);
@@ -322,15 +338,15 @@ static void test_check_order(void **state)
 static void test_float_range(void **state)
 {
     (void)state;
-    expect_f64("weight 1e300 (float)", 128 + 16 * 10, 1e300, FS_ERR_SKILL_RANGE);
-    expect_f64("sigma 1e-30 (float: 1/(2 sigma^2) overflows)", 128 + 8 * 10, 1e-30,
+    expect_f64("weight 1e300 (float)", H + 16 * 10, 1e300, FS_ERR_SKILL_RANGE);
+    expect_f64("sigma 1e-30 (float: 1/(2 sigma^2) overflows)", H + 8 * 10, 1e-30,
                FS_ERR_SKILL_RANGE);
 }
 #else
 static void test_double_accepts_extremes(void **state)
 {
     (void)state;
-    expect_f64("weight 1e300 (double)", 128 + 16 * 10, 1e300, FS_OK);
+    expect_f64("weight 1e300 (double)", H + 16 * 10, 1e300, FS_OK);
 }
 #endif
 

@@ -124,7 +124,7 @@ static double check_rollout(const char *dir, const char *skill_file, double goal
             fclose(f);
             fail_msg("%s: row %ld has t = %.17g, expected %.17g", path, row, t, (double)row * dt);
         }
-        const double f_c = (row == 0) ? 0.0 : (double)dmp_step(&sk.dmp, &s, &run, NULL);
+        const double f_c = (row == 0) ? (double)sk.dmp.force0_N : (double)dmp_step(&sk.dmp, &s, &run, NULL);
         err_max = fmax(err_max, fabs(f_c - f_ref));
         f_max = fmax(f_max, fabs(f_ref));
         row++;

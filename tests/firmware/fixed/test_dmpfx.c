@@ -42,7 +42,7 @@ static uint32_t read_file(const char *name, uint8_t *buf, uint32_t cap)
     return (uint32_t)n;
 }
 
-/* Fixed rollout rows n = 0..rows (row 0 is 0), f in N. Returns the saturation count. */
+/* Fixed rollout rows n = 0..rows (row 0 is f0), f in N. Returns the saturation count. */
 static uint32_t rollout_fx(const dmpfx_model_t *m, double goal_scale, double time_scale, long rows,
                            double *out)
 {
@@ -50,7 +50,7 @@ static uint32_t rollout_fx(const dmpfx_model_t *m, double goal_scale, double tim
     assert_int_equal(dmpfx_run_init(m, goal_scale, time_scale, &run), FS_OK);
     dmpfx_state_t s;
     dmpfx_state_reset(&s);
-    out[0] = 0.0;
+    out[0] = fx_to_double(m->force0_q16, 16u);
     for (long i = 1; i <= rows; i++) {
         out[i] = fx_to_double(dmpfx_step(m, &run, &s, NULL), 16u);
     }
@@ -63,7 +63,7 @@ static void rollout_double(const dmp_model_t *m, double goal_scale, double time_
     const dmp_run_t run = {goal_scale, time_scale};
     dmp_state_t s;
     dmp_state_reset(&s);
-    out[0] = 0.0;
+    out[0] = (double)m->force0_N;
     for (long i = 1; i <= rows; i++) {
         out[i] = dmp_step(m, &s, &run, NULL);
     }
@@ -202,16 +202,31 @@ static void test_rejects(void **state)
     static tu_skill_desc_t d;
     static dmp_model_t m;
     dmpfx_run_t run;
-    /* a weight that does not fit the Q8.24 headroom */
+    /* a (dimensionless) weight that does not fit the Q8.24 headroom */
     tu_default_desc(&d, 50, 280.0, 2.0);
     d.weight[17] = 200.0;
     assert_int_equal(tu_model_from_desc(&d, &m), FS_OK);
     assert_int_equal(dmpfx_from_model(&m, &fxm), FS_ERR_FIXED_OVERFLOW);
-    /* a goal whose h bound overflows Q8.24 */
+    /* a goal beyond the largest value scale (64 * 2^18 N) */
     tu_default_desc(&d, 50, 280.0, 2.0);
-    d.goal_m = 50.0;
+    d.goal_N = 1.0e8;
     assert_int_equal(tu_model_from_desc(&d, &m), FS_OK);
     assert_int_equal(dmpfx_from_model(&m, &fxm), FS_ERR_FIXED_OVERFLOW);
+    /* a starting force beyond Q16.16 */
+    tu_default_desc(&d, 50, 280.0, 2.0);
+    d.force0_N = 1.0e5;
+    assert_int_equal(tu_model_from_desc(&d, &m), FS_OK);
+    assert_int_equal(dmpfx_from_model(&m, &fxm), FS_ERR_FIXED_OVERFLOW);
+    /* small and large forces are scaled by a power of two: both convert */
+    tu_default_desc(&d, 50, 280.0, 2.0);
+    d.goal_N = 0.05;
+    assert_int_equal(tu_model_from_desc(&d, &m), FS_OK);
+    assert_int_equal(dmpfx_from_model(&m, &fxm), FS_OK);
+    assert_true(fxm.value_shift < 0);
+    d.goal_N = 5.0e3;
+    assert_int_equal(tu_model_from_desc(&d, &m), FS_OK);
+    assert_int_equal(dmpfx_from_model(&m, &fxm), FS_OK);
+    assert_true(fxm.value_shift > 10);
     /* accepted at 1x, refused at a goal scale that would overflow */
     tu_default_desc(&d, 50, 280.0, 2.0);
     assert_int_equal(tu_model_from_desc(&d, &m), FS_OK);
@@ -220,10 +235,10 @@ static void test_rejects(void **state)
     assert_int_equal(dmpfx_run_init(&fxm, 1000.0, 1.0, &run), FS_ERR_FIXED_OVERFLOW);
     assert_int_equal(dmpfx_run_init(&fxm, 1.0, 0.0, &run), FS_ERR_SCALE_INVALID);
     assert_int_equal(dmpfx_run_init(&fxm, NAN, 1.0, &run), FS_ERR_SCALE_INVALID);
-    /* a stiffness that does not fit Q20.12 */
-    tu_default_desc(&d, 50, 1.0e6, 2.0);
+    /* the stiffness is not part of the DMP: 1e7 N/m converts like any other */
+    tu_default_desc(&d, 50, 1.0e7, 2.0);
     assert_int_equal(tu_model_from_desc(&d, &m), FS_OK);
-    assert_int_equal(dmpfx_from_model(&m, &fxm), FS_ERR_FIXED_OVERFLOW);
+    assert_int_equal(dmpfx_from_model(&m, &fxm), FS_OK);
     /* kernels narrower than Q13.19 can hold (1/sigma >= 4096) */
     tu_default_desc(&d, 50, 280.0, 2.0);
     d.width[30] = 1.0e-4;
@@ -254,9 +269,10 @@ static void test_coupling(void **state)
     dmpfx_run_t run;
     assert_int_equal(dmpfx_run_init(&fxm, 1.0, 1.0, &run), FS_OK);
     const double slow = 0.6;
-    const double term = 0.004;
+    const double term = 0.4; /* N */
     dmpfx_coupling_t cfx;
-    assert_int_equal(fx_from_double(term, 24u, INT32_MAX, &cfx.term_x_q24), FS_OK);
+    assert_int_equal(fx_from_double(ldexp(term, -fxm.value_shift), 24u, INT32_MAX, &cfx.term_y_q24),
+                     FS_OK);
     cfx.rate_q31 = (uint32_t)floor(ldexp(1.0 / (1.0 + slow), 31) + 0.5);
     const dmp_coupling_t cd = {term, slow};
     const dmp_run_t rd = {1.0, 1.0};
@@ -297,7 +313,7 @@ static void test_saturation_never_wraps(void **state)
         int32_t x_abs_max = 0;
         for (int i = 0; i < 5000; i++) {
             (void)dmpfx_step(&fxm, &run, &s, NULL);
-            const int64_t accs[] = {s.u_acc, s.v_acc, s.integral_x_acc, s.x_acc, s.z_acc};
+            const int64_t accs[] = {s.u_acc, s.v_acc, s.integral_y_acc, s.y_acc, s.z_acc};
             for (size_t j = 0; j < 5; j++) {
                 const int32_t a = fx_abs_sat(dmpfx_view(accs[j]));
                 x_abs_max = (a > x_abs_max) ? a : x_abs_max;

@@ -185,7 +185,7 @@ static void test_hostile_skills_and_goal_scales(void **state)
         const fs_real_t k_env = (fs_real_t)uniform(100.0, 5000.0);
         for (uint32_t k = 0; k < 2000u && s.n < 1000000u; k++) {
             const fs_real_t f_hat = dmp_step(m, &ds, &run, NULL);
-            pfc_axis_ref_t ref[SAF_AXES] = {{ds.x_m, FS_R(0.0), FS_R(0.0), f_hat},
+            pfc_axis_ref_t ref[SAF_AXES] = {{ds.y_N / base->stiffness_Npm, FS_R(0.0), FS_R(0.0), f_hat},
                                             {FS_R(0.0), FS_R(0.0), FS_R(0.0), FS_R(0.0)}};
             saf_meas_t meas[SAF_AXES] = {{plant_x, plant_v, k_env * plant_x},
                                          {FS_R(0.0), FS_R(0.0), FS_R(0.0)}};

@@ -123,7 +123,7 @@ static void test_write_read_alternate(void **state)
     nvm_t n;
     assert_int_equal(nvm_init(&n, &dev), NVM_OK);
     assert_int_equal(n.n_slots, 4);
-    uint8_t a[2532], b[1332], out[8192];
+    uint8_t a[4096], b[2048], out[8192];
     const uint32_t la = load_vector("press_n100_lwr_release.skill", a, sizeof a + 1);
     const uint32_t lb = load_vector("engrave_n50_lwr_hold.skill", b, sizeof b + 1);
     uint32_t len = 0;
