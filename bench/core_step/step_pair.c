@@ -25,7 +25,7 @@ typedef struct {
     real w[DMP_MAX_KERNELS];
     real reach_lo[DMP_MAX_KERNELS];
     real reach_hi[DMP_MAX_KERNELS];
-    real k1, ka, kab, kg, g, k;
+    real k1, ka, kab, kg, g, f0; /* f0: the starting force, N */
 } min_model_t;
 
 typedef struct {
@@ -63,8 +63,8 @@ static void min_build(const dmp_model_t *m, min_model_t *q)
     q->ka = k1 * m->p.alpha;
     q->kab = q->ka * m->p.beta;
     q->kg = k1 * m->p.gamma;
-    q->g = m->goal_m;
-    q->k = m->stiffness_Npm;
+    q->g = m->goal_N;
+    q->f0 = m->force0_N;
 }
 
 static real min_step(const min_model_t *q, min_state_t *st)
@@ -110,7 +110,7 @@ static real min_step(const min_model_t *q, min_state_t *st)
     st->i_x = st->i_x + q->k1 * x;
     st->v = v + (q->kab * (FS_R(1.0) - u) - q->ka * v);
     st->u = u + q->k1 * v;
-    return q->k * st->x;
+    return q->f0 + st->x; /* force units: the state is N above the starting force */
 }
 
 static double now_ns(void)

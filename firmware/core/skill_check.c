@@ -28,8 +28,10 @@ fs_status_t skchk_params(const skill_t *s)
     const dmp_model_t *m = &s->dmp;
     const pfc_axis_gains_t *g = &s->gains;
     bool ok = within(m->tau_s, (fs_real_t)(SKCHK_TAU_MIN_S), (fs_real_t)(SKCHK_TAU_MAX_S)) &&
-              within(m->goal_m, FS_R(0.0), (fs_real_t)(SKCHK_GOAL_MAX_M)) && m->goal_m > FS_R(0.0) &&
-              within(m->stiffness_Npm, FS_R(0.0), (fs_real_t)(SKCHK_STIFFNESS_MAX_NPM)) &&
+              within(m->goal_N, FS_R(0.0), (fs_real_t)(SKCHK_GOAL_MAX_N)) && m->goal_N > FS_R(0.0) &&
+              within(m->force0_N, (fs_real_t)(-SKCHK_FORCE0_MAX_N), (fs_real_t)(SKCHK_FORCE0_MAX_N)) &&
+              within(s->stiffness_Npm, FS_R(0.0), (fs_real_t)(SKCHK_STIFFNESS_MAX_NPM)) &&
+              s->stiffness_Npm > FS_R(0.0) &&
               within(m->duration_s, FS_R(0.0), (fs_real_t)(SKCHK_DURATION_MAX_S)) &&
               within(m->p.alpha, FS_R(0.0), (fs_real_t)(SKCHK_ALPHA_MAX)) &&
               within(m->p.gamma, FS_R(0.0), (fs_real_t)(SKCHK_GAMMA_MAX)) &&
@@ -115,6 +117,9 @@ fs_status_t skchk_run_scales(const skill_t *s, fs_real_t peak_N, fs_real_t goal_
     if (!step_ok(s, dt_s, time_scale)) {
         return FS_ERR_SKCHK_STEP;
     }
-    const fs_real_t peak = fs_fabs(goal_scale) * peak_N;
+    /* f_hat = f0 + goal_scale*y with |y| <= peak_N + |f0| at goal scale 1: a bound that is exact
+     * (goal_scale*peak_N) for a skill starting from 0 N */
+    const fs_real_t f0 = fs_fabs(s->dmp.force0_N);
+    const fs_real_t peak = f0 + fs_fabs(goal_scale) * (peak_N + f0);
     return (fs_isfinite(peak) && peak <= force_max_N) ? FS_OK : FS_ERR_SKCHK_GOAL_SCALE;
 }

@@ -25,8 +25,9 @@
 /* Device ranges (docs/skill_format.md); the image format itself allows wider values. */
 #define SKCHK_TAU_MIN_S 1e-3
 #define SKCHK_TAU_MAX_S 1e3
-#define SKCHK_GOAL_MAX_M 10.0
-#define SKCHK_STIFFNESS_MAX_NPM 1e6
+#define SKCHK_GOAL_MAX_N 1e7
+#define SKCHK_FORCE0_MAX_N 1e3
+#define SKCHK_STIFFNESS_MAX_NPM 1e8
 #define SKCHK_WEIGHT_MAX 1e4
 #define SKCHK_WIDTH_MIN 1e-5
 #define SKCHK_WIDTH_MAX 1.0

@@ -83,7 +83,7 @@ static void test_hostile_skills_refused(void **state)
     skill.dmp.weight[3] *= FS_R(1e30);
     assert_int_equal(skchk_params(&skill), FS_ERR_SKCHK_RANGE);
     skill = good;
-    skill.dmp.goal_m = FS_R(1e30);
+    skill.dmp.goal_N = FS_R(1e30);
     assert_int_equal(skchk_params(&skill), FS_ERR_SKCHK_RANGE);
     skill = good;
     skill.dmp.tau_s = FS_R(1e-9);
