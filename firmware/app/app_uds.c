@@ -122,7 +122,7 @@ static uint8_t read_did(void *ctx, uint16_t did, uint8_t *out, uint16_t cap, uin
                 const skill_t *sk = &app->slot_skill[s];
                 e[0] = 1u;
                 put_u32(&e[1], app->slot_len[s]);
-                put_u32(&e[5], app->slot_crc[s]);   /* the image's own CRC-32 field */
+                put_u32(&e[5], app->slot_crc[s]); /* the image's own CRC-32 field */
                 put_u16(&e[9], sk->dmp.n_kernels);
                 put_f32(&e[11], sk->dmp.duration_s);
                 e[15] = (uint8_t)sk->end_policy;
@@ -142,13 +142,12 @@ static uint8_t read_did(void *ctx, uint16_t did, uint8_t *out, uint16_t cap, uin
         put_u32(&buf[5], app->tick);
         n = 9u;
         break;
-    case DID_FAULT_CAUSES:   /* what blocks a clear: the causes still present at the last tick */
+    case DID_FAULT_CAUSES: /* what blocks a clear: the causes still present at the last tick */
         put_u32(&buf[0], app->saf.flt.latched_mask);
         put_u32(&buf[4], app->saf.cause_mask);
         n = 8u;
         break;
-    default:
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    default: return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
     if (n > cap) {
         return UDS_NRC_RESPONSE_TOO_LONG;
@@ -172,10 +171,10 @@ static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len
 {
     app_t *app = ctx;
     if (app->uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
-        return UDS_NRC_SECURITY_ACCESS_DENIED;   /* settings: level 1 (not the firmware level) */
+        return UDS_NRC_SECURITY_ACCESS_DENIED; /* settings: level 1 (not the firmware level) */
     }
     if (app->state != APP_IDLE) {
-        return UDS_NRC_CONDITIONS_NOT_CORRECT;   /* configuration changes only while idle */
+        return UDS_NRC_CONDITIONS_NOT_CORRECT; /* configuration changes only while idle */
     }
     switch (did) {
     case DID_GAINS_X:
@@ -267,10 +266,8 @@ static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len
     case DID_SLOT_DIR:
     case DID_LAST_TRANSFER:
     case DID_DEVICE_STATE:
-    case DID_FAULT_CAUSES:
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;     /* read-only */
-    default:
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    case DID_FAULT_CAUSES: return UDS_NRC_REQUEST_OUT_OF_RANGE; /* read-only */
+    default: return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
 }
 
@@ -283,7 +280,7 @@ static uint8_t routine(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *d, u
     if (fwu_uds_owns_rid(rid)) {
         if (rid == FWU_RID_CONFIRM && fwu_uds_authorised(&app->uds) && !app->fw_self_test_ok) {
             *out_len = 0u;
-            return UDS_NRC_CONDITIONS_NOT_CORRECT;   /* only an image that passed its self-test */
+            return UDS_NRC_CONDITIONS_NOT_CORRECT; /* only an image that passed its self-test */
         }
         return fwu_uds_routine(&app->fwu, &app->uds, sub, rid, d, len, out, cap, out_len);
     }
@@ -370,7 +367,7 @@ static uint8_t routine(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *d, u
             return UDS_NRC_REQUEST_SEQUENCE_ERROR;
         }
         if (app_clear_faults(app) != FLT_NONE) {
-            return UDS_NRC_CONDITIONS_NOT_CORRECT;   /* a cause persists */
+            return UDS_NRC_CONDITIONS_NOT_CORRECT; /* a cause persists */
         }
         return UDS_NRC_OK;
     case UDS_RID_ERASE_SLOT:
@@ -387,15 +384,14 @@ static uint8_t routine(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *d, u
             return UDS_NRC_SECURITY_ACCESS_DENIED;
         }
         if (app->state != APP_IDLE || !app->nvm_ok) {
-            return UDS_NRC_CONDITIONS_NOT_CORRECT;   /* slots change only while idle */
+            return UDS_NRC_CONDITIONS_NOT_CORRECT; /* slots change only while idle */
         }
         if (nvm_erase_slot(&app->nvm, (uint16_t)(d[0] - 1u)) != NVM_OK) {
             return UDS_NRC_PROGRAMMING_FAILURE;
         }
         app->slot_valid[d[0] - 1u] = false;
         return UDS_NRC_OK;
-    default:
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    default: return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
 }
 
@@ -439,7 +435,7 @@ static uint8_t security_seed(void *ctx, uint8_t level, uint8_t *seed, uint16_t c
         sec_lock(&app->sec);
     }
     const sec_nrc_t nrc = sec_request_seed(cfg, &app->sec, app->now_ms, seed);
-    app_sec_persist(app);                  /* a lockout that ended clears the stored counter */
+    app_sec_persist(app); /* a lockout that ended clears the stored counter */
     if (nrc != SEC_NRC_NONE) {
         return (uint8_t)nrc;
     }
@@ -455,7 +451,7 @@ static uint8_t security_key(void *ctx, uint8_t level, const uint8_t *key, uint16
         return UDS_NRC_SUBFUNCTION_NOT_SUPPORTED;
     }
     const uint8_t nrc = (uint8_t)sec_send_key(cfg, &app->sec, app->now_ms, key, len);
-    app_sec_persist(app);                  /* the wrong-key counter survives reset and power-up */
+    app_sec_persist(app); /* the wrong-key counter survives reset and power-up */
     return nrc;
 }
 
@@ -467,7 +463,7 @@ static uint8_t download_begin(void *ctx, uint32_t addr, uint32_t size)
     app->fw_xfer = addr == FWU_DOWNLOAD_ADDRESS;
     if (app->fw_xfer) {
         if (!fwu_uds_authorised(&app->uds)) {
-            return UDS_NRC_SECURITY_ACCESS_DENIED;       /* firmware: level 3 only */
+            return UDS_NRC_SECURITY_ACCESS_DENIED; /* firmware: level 3 only */
         }
         return app->state == APP_IDLE ? fwu_uds_download_begin(&app->fwu, &app->uds, size)
                                       : UDS_NRC_CONDITIONS_NOT_CORRECT;
@@ -480,14 +476,14 @@ static uint8_t download_begin(void *ctx, uint32_t addr, uint32_t size)
         return UDS_NRC_SECURITY_ACCESS_DENIED;
     }
     if (app->state != APP_IDLE) {
-        return UDS_NRC_CONDITIONS_NOT_CORRECT;          /* slots change only while idle */
+        return UDS_NRC_CONDITIONS_NOT_CORRECT; /* slots change only while idle */
     }
     if (!app->nvm_ok) {
         return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED;
     }
     app->xfer_slot = addr;
     app->xfer_size = size;
-    app->last_transfer_status = 0xFFFFu;           /* in progress */
+    app->last_transfer_status = 0xFFFFu; /* in progress */
     return UDS_NRC_OK;
 }
 
@@ -525,7 +521,7 @@ static uint8_t download_end(void *ctx, uint32_t *crc_out)
             st = skchk_params(&app->staging);
         }
         if (st != FS_OK) {
-            app->last_transfer_status = (uint16_t)st;   /* e.g. 204 CRC: the old skill stays */
+            app->last_transfer_status = (uint16_t)st; /* e.g. 204 CRC: the old skill stays */
             return UDS_NRC_PROGRAMMING_FAILURE;
         }
         /* the skill's own rollout, APP_CHECK_STEPS_PER_TICK steps per tick (0x78 meanwhile) */
@@ -537,13 +533,13 @@ static uint8_t download_end(void *ctx, uint32_t *crc_out)
     }
     app->checking = false;
     if (app->check.status != FS_OK) {
-        app->last_transfer_status = (uint16_t)app->check.status;   /* 222/223: slot unchanged */
+        app->last_transfer_status = (uint16_t)app->check.status; /* 222/223: slot unchanged */
         return UDS_NRC_PROGRAMMING_FAILURE;
     }
     const nvm_status_t ns = nvm_write(&app->nvm, slot, app->image, app->xfer_size);
     if (ns != NVM_OK) {
         app->last_transfer_status = (uint16_t)ns;
-        app_slots_reload(app);                       /* whatever storage holds now */
+        app_slots_reload(app); /* whatever storage holds now */
         return UDS_NRC_PROGRAMMING_FAILURE;
     }
     /* swap into the slot cache: UDS runs at the start of a tick and downloads only in IDLE */
@@ -564,7 +560,7 @@ static void transfer_abort(void *ctx)
         fwu_abort(&app->fwu);
     }
     if (app->last_transfer_status == 0xFFFFu) {
-        app->last_transfer_status = 0xFFFEu;         /* interrupted: nothing was written */
+        app->last_transfer_status = 0xFFFEu; /* interrupted: nothing was written */
     }
     app->xfer_size = 0u;
 }
@@ -576,8 +572,9 @@ static uint8_t upload_begin(void *ctx, uint32_t addr, uint32_t size)
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
     uint32_t len = 0u;
-    if (nvm_read(&app->nvm, (uint16_t)(addr - 1u), app->image, sizeof(app->image), &len) != NVM_OK) {
-        return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED;  /* empty slot */
+    if (nvm_read(&app->nvm, (uint16_t)(addr - 1u), app->image, sizeof(app->image), &len) !=
+        NVM_OK) {
+        return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED; /* empty slot */
     }
     if (size != len) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;

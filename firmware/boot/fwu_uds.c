@@ -52,7 +52,7 @@ uint8_t fwu_uds_routine(fwu_t *f, const uds_server_t *srv, uint8_t sub, uint16_t
     }
     if (rid == FWU_RID_CONFIRM) {
         if (!fwu_uds_authorised(srv)) {
-            return UDS_NRC_SECURITY_ACCESS_DENIED;   /* no node confirms an image without level 3 */
+            return UDS_NRC_SECURITY_ACCESS_DENIED; /* no node confirms an image without level 3 */
         }
         return len == 0u ? fwu_nrc(fwu_confirm(f)) : UDS_NRC_INCORRECT_LENGTH;
     }

@@ -142,7 +142,8 @@ fs_real_t dmp_goal(const dmp_params_t *p, const dmp_gains_t *gains, fs_real_t re
                    fs_real_t force_d_N, fs_real_t force_d_integral_Ns)
 {
     const fs_real_t c = (gains->k_p_Npm * ref_force_N + gains->kkf_Npm * force_d_N +
-                         gains->kki_Npms * force_d_integral_Ns) / gains->m_d_kg;
+                         gains->kki_Npms * force_d_integral_Ns) /
+                        gains->m_d_kg;
     return c / (p->alpha * p->beta);
 }
 
@@ -157,14 +158,12 @@ fs_status_t dmp_model_init(dmp_model_t *m)
     }
     if (!fs_isfinite(m->p.alpha) || !fs_isfinite(m->p.beta) || !fs_isfinite(m->p.gamma) ||
         !fs_isfinite(m->dt_s) || !fs_isfinite(m->tau_s) || !fs_isfinite(m->goal_N) ||
-        !fs_isfinite(m->force0_N) || !fs_isfinite(m->duration_s) ||
-        !dmp_all_finite(m->centre, n) || !dmp_all_finite(m->width, n) ||
-        !dmp_all_finite(m->weight, n)) {
+        !fs_isfinite(m->force0_N) || !fs_isfinite(m->duration_s) || !dmp_all_finite(m->centre, n) ||
+        !dmp_all_finite(m->width, n) || !dmp_all_finite(m->weight, n)) {
         return FS_ERR_SKILL_NOT_FINITE;
     }
     if (!(m->dt_s > FS_R(0.0)) || m->dt_s > FS_R(0.1) || !(m->tau_s > FS_R(0.0)) ||
-        !(m->duration_s > FS_R(0.0)) || m->duration_s > FS_R(3600.0) ||
-        !(m->goal_N > FS_R(0.0))) {
+        !(m->duration_s > FS_R(0.0)) || m->duration_s > FS_R(3600.0) || !(m->goal_N > FS_R(0.0))) {
         return FS_ERR_SKILL_RANGE;
     }
     for (uint16_t i = 0u; i < n; i++) {
@@ -190,8 +189,8 @@ fs_status_t dmp_model_init(dmp_model_t *m)
         return FS_ERR_SKILL_GAINS;
     }
 
-    const fs_real_t r_per_sigma =
-        fs_sqrt(FS_R(2.0) * (fs_real_t)DMP_KERNEL_CUTOFF_EXP) * DMP_ENVELOPE_MARGIN;
+    const fs_real_t r_per_sigma = fs_sqrt(FS_R(2.0) * (fs_real_t)DMP_KERNEL_CUTOFF_EXP) *
+                                  DMP_ENVELOPE_MARGIN;
     fs_real_t run_max = -FS_REAL_INF;
     for (uint16_t i = 0u; i < n; i++) {
         const fs_real_t s = m->width[i];
@@ -245,8 +244,8 @@ static fs_real_t dmp_blend_all(const dmp_model_t *m, fs_real_t u)
     fs_real_t num = FS_R(0.0);
     fs_real_t den = FS_R(0.0);
     for (uint16_t i = 0u; i < m->n_kernels; i++) {
-        const fs_real_t psi =
-            fs_exp(-(fs_num_kernel_expo(u, m->centre[i], m->kernel_scale[i]) - e_min));
+        const fs_real_t psi = fs_exp(
+            -(fs_num_kernel_expo(u, m->centre[i], m->kernel_scale[i]) - e_min));
         num += psi * m->weight[i];
         den += psi;
     }
@@ -255,7 +254,8 @@ static fs_real_t dmp_blend_all(const dmp_model_t *m, fs_real_t u)
 
 fs_real_t dmp_forcing(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_real_t goal_N)
 {
-    return goal_N * v * dmp_tick_blend(m, u, dmp_tick_window_start(m, u), dmp_tick_window_end(m, u), NULL);
+    return goal_N * v *
+           dmp_tick_blend(m, u, dmp_tick_window_start(m, u), dmp_tick_window_end(m, u), NULL);
 }
 
 fs_real_t dmp_forcing_full(const dmp_model_t *m, fs_real_t u, fs_real_t v, fs_real_t goal_N)

@@ -212,8 +212,7 @@ static inline fs_force_t dmp_tick_step(const dmp_tick_coef_t *c, const dmp_tick_
     const fs_val_t z = fs_num_view(*s->z);
 
     const fs_val_t h = fs_num_mul_vv(fs_num_mul_vp(c->goal, v, ev), s_blend, ev);
-    const fs_val_t sy =
-        fs_num_add_ev(fs_num_add_ev(fs_num_sub_ev(z, y, ev), h, ev), c->term_y, ev);
+    const fs_val_t sy = fs_num_add_ev(fs_num_add_ev(fs_num_sub_ev(z, y, ev), h, ev), c->term_y, ev);
     const fs_val_t gy = fs_num_sub_ev(c->goal, y, ev);
     const fs_phase_t one_u = fs_num_sub_ev(FS_NUM_PHASE_ONE, u, ev);
     *s->y = fs_num_acc_mac2(*s->y, c->k1, sy, c->k_gamma, i_y, ev);

@@ -19,13 +19,13 @@
 #define OFF_BETA 40u
 #define OFF_GAMMA 48u
 #define OFF_STIFFNESS 56u
-#define OFF_GOAL 64u          /* goal_N */
+#define OFF_GOAL 64u /* goal_N */
 #define OFF_DURATION 72u
 #define OFF_M_D 80u
 #define OFF_K_D 88u
 #define OFF_K_P 96u
-#define OFF_KKF 104u          /* k*k_f, N/m */
-#define OFF_KKI 112u          /* k*k_i, N/(m s) */
+#define OFF_KKF 104u /* k*k_f, N/m */
+#define OFF_KKI 112u /* k*k_i, N/(m s) */
 #define OFF_SURFACE 120u
 #define OFF_FORCE0 128u
 #define SKILL_N_HEADER_F64 15u
@@ -192,13 +192,13 @@ fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
     dmp_model_t *m = &out->dmp;
     m->n_kernels = n;
     int ok = to_real(stored[0], &m->p.alpha) && to_real(stored[1], &m->p.beta) &&
-             to_real(stored[2], &m->p.gamma) && to_real(dt, &m->dt_s) &&
-             to_real(tau, &m->tau_s) && to_real(goal, &m->goal_N) &&
-             to_real(rd_f64(buf, OFF_FORCE0), &m->force0_N) &&
+             to_real(stored[2], &m->p.gamma) && to_real(dt, &m->dt_s) && to_real(tau, &m->tau_s) &&
+             to_real(goal, &m->goal_N) && to_real(rd_f64(buf, OFF_FORCE0), &m->force0_N) &&
              to_real(k, &out->stiffness_Npm) && to_real(duration, &m->duration_s) &&
              to_real(gain[0], &out->fit_gains.m_d_kg) &&
              to_real(gain[1], &out->fit_gains.k_d_Nspm) &&
-             to_real(gain[2], &out->fit_gains.k_p_Npm) && to_real(gain[3], &out->fit_gains.kkf_Npm) &&
+             to_real(gain[2], &out->fit_gains.k_p_Npm) &&
+             to_real(gain[3], &out->fit_gains.kkf_Npm) &&
              to_real(gain[4], &out->fit_gains.kki_Npms) &&
              to_real(rd_f64(buf, OFF_SURFACE), &out->surface_m);
     for (uint32_t i = 0u; ok && i < n; i++) {

@@ -28,8 +28,10 @@ fs_status_t skchk_params(const skill_t *s)
     const dmp_model_t *m = &s->dmp;
     const pfc_axis_gains_t *g = &s->gains;
     bool ok = within(m->tau_s, (fs_real_t)(SKCHK_TAU_MIN_S), (fs_real_t)(SKCHK_TAU_MAX_S)) &&
-              within(m->goal_N, FS_R(0.0), (fs_real_t)(SKCHK_GOAL_MAX_N)) && m->goal_N > FS_R(0.0) &&
-              within(m->force0_N, (fs_real_t)(-SKCHK_FORCE0_MAX_N), (fs_real_t)(SKCHK_FORCE0_MAX_N)) &&
+              within(m->goal_N, FS_R(0.0), (fs_real_t)(SKCHK_GOAL_MAX_N)) &&
+              m->goal_N > FS_R(0.0) &&
+              within(m->force0_N, (fs_real_t)(-SKCHK_FORCE0_MAX_N),
+                     (fs_real_t)(SKCHK_FORCE0_MAX_N)) &&
               within(s->stiffness_Npm, FS_R(0.0), (fs_real_t)(SKCHK_STIFFNESS_MAX_NPM)) &&
               s->stiffness_Npm > FS_R(0.0) &&
               within(m->duration_s, FS_R(0.0), (fs_real_t)(SKCHK_DURATION_MAX_S)) &&
@@ -40,7 +42,8 @@ fs_status_t skchk_params(const skill_t *s)
               within(g->k_p_Npm, FS_R(0.0), (fs_real_t)(SKCHK_GAIN_MAX)) &&
               within(g->k_f, FS_R(0.0), (fs_real_t)(SKCHK_GAIN_MAX)) &&
               within(g->k_i_per_s, FS_R(0.0), (fs_real_t)(SKCHK_GAIN_MAX)) &&
-              within(s->surface_m, (fs_real_t)(-SKCHK_SURFACE_MAX_M), (fs_real_t)(SKCHK_SURFACE_MAX_M));
+              within(s->surface_m, (fs_real_t)(-SKCHK_SURFACE_MAX_M),
+                     (fs_real_t)(SKCHK_SURFACE_MAX_M));
     for (uint16_t i = 0u; ok && i < m->n_kernels && i < DMP_MAX_KERNELS; i++) {
         ok = within(m->weight[i], (fs_real_t)(-SKCHK_WEIGHT_MAX), (fs_real_t)(SKCHK_WEIGHT_MAX)) &&
              within(m->width[i], (fs_real_t)(SKCHK_WIDTH_MIN), (fs_real_t)(SKCHK_WIDTH_MAX));

@@ -47,11 +47,11 @@
 typedef struct {
     const skill_t *skill;
     dmp_state_t dmp;
-    uint32_t steps_total;      /* DMP steps of the duration at the executor's dt */
+    uint32_t steps_total; /* DMP steps of the duration at the executor's dt */
     uint32_t steps_done;
-    fs_real_t peak_N;          /* max |f_hat| so far */
+    fs_real_t peak_N; /* max |f_hat| so far */
     fs_real_t force_max_N;
-    fs_status_t status;        /* FS_OK while running or passed; 222/223 once refused */
+    fs_status_t status; /* FS_OK while running or passed; 222/223 once refused */
     bool done;
 } skchk_t;
 

@@ -211,7 +211,8 @@ int32_t dmpfx_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t
                          .term_y = 0};
     if (coupling != NULL) {
         c.term_y = coupling->term_y_q24;
-        const uint32_t rate = (coupling->rate_q31 > FX_Q31_ONE_U) ? FX_Q31_ONE_U : coupling->rate_q31;
+        const uint32_t rate = (coupling->rate_q31 > FX_Q31_ONE_U) ? FX_Q31_ONE_U
+                                                                  : coupling->rate_q31;
         if (rate != FX_Q31_ONE_U) {
             c.k1 = dmpfx_scale_q31(c.k1, rate);
             c.k_alpha = dmpfx_scale_q31(c.k_alpha, rate);
@@ -219,8 +220,8 @@ int32_t dmpfx_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t
             c.k_gamma = dmpfx_scale_q31(c.k_gamma, rate);
         }
     }
-    const dmp_tick_state_t st = {s->window, &s->u_acc, &s->v_acc, &s->integral_y_acc, &s->y_acc,
-                                 &s->z_acc};
+    const dmp_tick_state_t st = {s->window,          &s->u_acc, &s->v_acc,
+                                 &s->integral_y_acc, &s->y_acc, &s->z_acc};
     const int32_t f = dmp_tick_step(&c, &st, dmp_tick_state_blend(m, &st), &s->sat_events);
     return fx_add_sat(m->force0_q16, f);
 }

@@ -51,7 +51,7 @@
 #define UDS_NRC_PROGRAMMING_FAILURE 0x72u
 #define UDS_NRC_WRONG_BLOCK_COUNTER 0x73u
 #define UDS_NRC_BUSY_REPEAT_REQUEST 0x21u
-#define UDS_NRC_RESPONSE_PENDING 0x78u   /* requestCorrectlyReceived-ResponsePending */
+#define UDS_NRC_RESPONSE_PENDING 0x78u /* requestCorrectlyReceived-ResponsePending */
 #define UDS_NRC_SUBFUNCTION_NOT_IN_SESSION 0x7Eu
 #define UDS_NRC_SERVICE_NOT_IN_SESSION 0x7Fu
 
@@ -69,8 +69,8 @@
 /* Timing reported in the DSC response and enforced by the server */
 #define UDS_P2_MS 50u
 #define UDS_P2_STAR_MS 5000u
-#define UDS_S3_MS 5000u                /* non-default session falls back after this silence */
-#define UDS_PENDING_REPEAT_MS 2000u    /* 0x78 repeated well within P2* */
+#define UDS_S3_MS 5000u             /* non-default session falls back after this silence */
+#define UDS_PENDING_REPEAT_MS 2000u /* 0x78 repeated well within P2* */
 
 /* Transfer block size announced in 0x74/0x75 responses: bytes per 0x36 request incl. SID and
  * counter; fits one ISO-TP message. */
@@ -109,23 +109,27 @@ typedef struct {
     uint8_t (*upload_data)(void *ctx, uint32_t offset, uint8_t *out, uint16_t len);
 } uds_app_t;
 
-typedef enum { UDS_XFER_NONE = 0, UDS_XFER_DOWNLOAD = 1, UDS_XFER_UPLOAD = 2 } uds_xfer_t;
+typedef enum {
+    UDS_XFER_NONE = 0,
+    UDS_XFER_DOWNLOAD = 1,
+    UDS_XFER_UPLOAD = 2
+} uds_xfer_t;
 
 /** Server state. */
 typedef struct {
     uds_app_t app;
     uint8_t session;
-    uint8_t unlocked_level;      /* 0: locked, else the level unlocked */
-    uint8_t seed_level;          /* level whose seed was sent and awaits a key, 0 if none */
+    uint8_t unlocked_level; /* 0: locked, else the level unlocked */
+    uint8_t seed_level;     /* level whose seed was sent and awaits a key, 0 if none */
     uint32_t last_request_ms;
     uds_xfer_t xfer;
     uint32_t xfer_size;
     uint32_t xfer_pos;
-    uint8_t xfer_counter;        /* counter expected next */
-    uint16_t xfer_last_len;      /* length of the last accepted block (for a repeated counter) */
-    uint8_t pending_reset;       /* reset type to perform after the response, 0 if none */
-    uint8_t pending_sid;         /* request answered 0x78 whose final response is due, 0 if none */
-    uint32_t pending_since_ms;   /* when 0x78 was last sent */
+    uint8_t xfer_counter;      /* counter expected next */
+    uint16_t xfer_last_len;    /* length of the last accepted block (for a repeated counter) */
+    uint8_t pending_reset;     /* reset type to perform after the response, 0 if none */
+    uint8_t pending_sid;       /* request answered 0x78 whose final response is due, 0 if none */
+    uint32_t pending_since_ms; /* when 0x78 was last sent */
 } uds_server_t;
 
 /** Initialise in the default session, locked, no transfer. */

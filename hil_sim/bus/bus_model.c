@@ -3,7 +3,7 @@
 
 #include <string.h>
 
-#define TAIL_BITS 13u    /* CRC delimiter 1, ACK slot 1, ACK delimiter 1, EOF 7, intermission 3 */
+#define TAIL_BITS 13u /* CRC delimiter 1, ACK slot 1, ACK delimiter 1, EOF 7, intermission 3 */
 
 uint16_t busm_crc15(const uint8_t *bits, uint32_t nbits)
 {
@@ -31,15 +31,15 @@ uint32_t busm_frame_bits(const can_frame_t *f, bool extended)
     uint8_t bits[160];
     uint32_t n = 0u;
     const uint8_t dlc = f->dlc > 8u ? 8u : f->dlc;
-    n = put_bits(bits, n, 0u, 1u);                                   /* SOF */
+    n = put_bits(bits, n, 0u, 1u); /* SOF */
     if (!extended) {
         n = put_bits(bits, n, f->id & 0x7FFu, 11u);
-        n = put_bits(bits, n, 0u, 3u);                               /* RTR, IDE, r0 */
+        n = put_bits(bits, n, 0u, 3u); /* RTR, IDE, r0 */
     } else {
         n = put_bits(bits, n, (f->id >> 18) & 0x7FFu, 11u);
-        n = put_bits(bits, n, 3u, 2u);                               /* SRR 1, IDE 1 */
+        n = put_bits(bits, n, 3u, 2u); /* SRR 1, IDE 1 */
         n = put_bits(bits, n, f->id & 0x3FFFFu, 18u);
-        n = put_bits(bits, n, 0u, 3u);                               /* RTR, r1, r0 */
+        n = put_bits(bits, n, 0u, 3u); /* RTR, r1, r0 */
     }
     n = put_bits(bits, n, dlc, 4u);
     for (uint8_t i = 0; i < dlc; i++) {
@@ -60,7 +60,7 @@ uint32_t busm_frame_bits(const can_frame_t *f, bool extended)
         }
         if (run == 5u) {
             stuff++;
-            last = (uint8_t)(last ^ 1u);   /* the stuff bit */
+            last = (uint8_t)(last ^ 1u); /* the stuff bit */
             run = 1u;
         }
     }
@@ -107,7 +107,7 @@ bool bus_enqueue(bus_t *b, uint8_t src, const can_frame_t *f, bool extended, uin
      * sends one identifier appends in O(1)) */
     bus_fifo_t *q = &b->fifo[src];
     if (t_ns < q->last_t_ns) {
-        t_ns = q->last_t_ns;   /* a frame read later is never eligible earlier (order kept) */
+        t_ns = q->last_t_ns; /* a frame read later is never eligible earlier (order kept) */
     }
     q->last_t_ns = t_ns;
     const uint32_t key = busm_key(f, extended);
@@ -220,7 +220,7 @@ void bus_run(bus_t *b, uint64_t t_ns, bus_deliver_fn cb, void *ctx)
         if (s < 0) {
             if (earliest == UINT64_MAX || earliest > t_ns) {
                 if (b->idle_from_ns < t_ns && earliest > t_ns) {
-                    b->idle_from_ns = t_ns;     /* bus idle until now */
+                    b->idle_from_ns = t_ns; /* bus idle until now */
                 }
                 return;
             }
@@ -255,7 +255,7 @@ uint64_t bus_next_event_ns(const bus_t *b)
                 earliest = start;
             }
             if (t <= b->idle_from_ns) {
-                break;                       /* nothing in this list can start earlier */
+                break; /* nothing in this list can start earlier */
             }
         }
     }

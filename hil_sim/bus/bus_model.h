@@ -11,8 +11,8 @@
 #include <stdint.h>
 #include "can_frame.h"
 
-#define BUS_MAX_SOURCES 17u       /* source 0: the device; 1..16: clients */
-#define BUS_FIFO_CAP 4096u        /* frames waiting per source */
+#define BUS_MAX_SOURCES 17u /* source 0: the device; 1..16: clients */
+#define BUS_FIFO_CAP 4096u  /* frames waiting per source */
 #define BUS_DEFAULT_BITRATE 1000000u
 
 /** CRC-15 of CAN (poly 0x4599, init 0) over nbits bits given MSB-first in bits[]. */
@@ -41,7 +41,7 @@ typedef struct {
     bus_item_t items[BUS_FIFO_CAP];
     uint32_t head;
     uint32_t len;
-    uint64_t last_t_ns;          /* enqueue times never go back within a source */
+    uint64_t last_t_ns; /* enqueue times never go back within a source */
 } bus_fifo_t;
 
 /** Arbitration key: lower wins (the identifier bits as sent; a standard frame wins over an
@@ -53,8 +53,8 @@ typedef void (*bus_deliver_fn)(void *ctx, const bus_item_t *item, uint64_t t_end
 
 /** The shared bus. */
 typedef struct {
-    uint64_t bit_ns;             /* 1e9 / bitrate */
-    uint64_t idle_from_ns;       /* the bus is free from this time */
+    uint64_t bit_ns;       /* 1e9 / bitrate */
+    uint64_t idle_from_ns; /* the bus is free from this time */
     bool in_flight;
     bus_item_t cur;
     uint64_t cur_end_ns;
@@ -62,7 +62,7 @@ typedef struct {
     /* statistics */
     uint64_t frames;
     uint64_t bits;
-    uint64_t dropped;            /* enqueue refused: fifo full */
+    uint64_t dropped; /* enqueue refused: fifo full */
 } bus_t;
 
 /** Idle bus at bitrate (bit/s). */

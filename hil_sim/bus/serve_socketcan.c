@@ -11,11 +11,11 @@
 #include "hal_host.h"
 
 #define TICK_NS 1000000ull
-#define MAX_LAG_NS 100000000ull     /* fall further behind than this: slip (count it) */
+#define MAX_LAG_NS 100000000ull /* fall further behind than this: slip (count it) */
 
 /* options of the simulated bus (TCP server, bus model, fault injection on it) */
-static const char *const TCP_BUS_OPTIONS[] = {"--port", "--host", "--channel", "--drop", "--corrupt",
-                                              "--bus-off-at", "--bus-off-for"};
+static const char *const TCP_BUS_OPTIONS[] = {"--port",    "--host",       "--channel",    "--drop",
+                                              "--corrupt", "--bus-off-at", "--bus-off-for"};
 
 static bool has_option(int argc, char *const *argv, const char *opt)
 {
@@ -30,13 +30,16 @@ static bool has_option(int argc, char *const *argv, const char *opt)
 int serve_socketcan_check(const char *ifname, int argc, char *const *argv)
 {
     if (!cansock_valid_ifname(ifname)) {
-        fprintf(stderr, "hil_sim serve: --socketcan needs an interface name of 1..%u characters without "
-                "'/', ':' or spaces, got '%.40s'\n", CANSOCK_IFNAME_MAX - 1u, ifname);
+        fprintf(stderr,
+                "hil_sim serve: --socketcan needs an interface name of 1..%u characters without "
+                "'/', ':' or spaces, got '%.40s'\n",
+                CANSOCK_IFNAME_MAX - 1u, ifname);
         return -1;
     }
     for (size_t k = 0; k < sizeof(TCP_BUS_OPTIONS) / sizeof(TCP_BUS_OPTIONS[0]); k++) {
         if (has_option(argc, argv, TCP_BUS_OPTIONS[k])) {
-            fprintf(stderr, "hil_sim serve: %s applies to the simulated bus, not with --socketcan\n",
+            fprintf(stderr,
+                    "hil_sim serve: %s applies to the simulated bus, not with --socketcan\n",
                     TCP_BUS_OPTIONS[k]);
             return -1;
         }
@@ -53,9 +56,9 @@ void serve_socketcan_rx(cansock_t *c, uint64_t now_us)
 {
     can_frame_t f;
     while (cansock_receive(c, &f, now_us)) {
-        (void)hal_sim_can_deliver(&f);      /* a full receive FIFO drops it (counted) */
+        (void)hal_sim_can_deliver(&f); /* a full receive FIFO drops it (counted) */
     }
-    hal_sim_can_set_bus_off(c->bus_off);    /* bus-off empties the device's transmit queue */
+    hal_sim_can_set_bus_off(c->bus_off); /* bus-off empties the device's transmit queue */
 }
 
 void serve_socketcan_tx(cansock_t *c)
@@ -76,7 +79,7 @@ static uint64_t mono_ns(void)
 static void sleep_until_ns(uint64_t t_ns)
 {
     const struct timespec ts = {(time_t)(t_ns / 1000000000ull), (long)(t_ns % 1000000000ull)};
-    (void)clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL);   /* a signal ends it early */
+    (void)clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL); /* a signal ends it early */
 }
 
 /* What the driver saw since the last tick, one line each on stderr: bus-off and back, and the
@@ -92,22 +95,27 @@ static void report_events(const cansock_t *c, seen_t *seen, uint64_t t_ns)
     const double t_s = (double)t_ns * 1e-9;
     if (c->bus_off != seen->bus_off) {
         if (c->bus_off) {
-            fprintf(stderr, "hil_sim serve: %s bus-off at %.3f s (device fault 501); restart requested "
-                    "every %u ms\n", c->ifname, t_s, CANSOCK_RESTART_MS);
+            fprintf(stderr,
+                    "hil_sim serve: %s bus-off at %.3f s (device fault 501); restart requested "
+                    "every %u ms\n",
+                    c->ifname, t_s, CANSOCK_RESTART_MS);
         } else {
             fprintf(stderr, "hil_sim serve: %s back on the bus at %.3f s\n", c->ifname, t_s);
         }
         seen->bus_off = c->bus_off;
     }
     if (c->last_restart_errno != 0 && c->last_restart_errno != seen->restart_errno) {
-        fprintf(stderr, "hil_sim serve: restart of %s failed: %s (it needs CAP_NET_ADMIN; or let the "
-                "interface restart itself: ip link set %s type can restart-ms 100)\n", c->ifname,
-                strerror(c->last_restart_errno), c->ifname);
+        fprintf(stderr,
+                "hil_sim serve: restart of %s failed: %s (it needs CAP_NET_ADMIN; or let the "
+                "interface restart itself: ip link set %s type can restart-ms 100)\n",
+                c->ifname, strerror(c->last_restart_errno), c->ifname);
         seen->restart_errno = c->last_restart_errno;
     }
     if (c->last_tx_errno != 0 && c->last_tx_errno != seen->tx_errno) {
-        fprintf(stderr, "hil_sim serve: writing to %s failed at %.3f s: %s (frames are lost until it "
-                "works)\n", c->ifname, t_s, strerror(c->last_tx_errno));
+        fprintf(stderr,
+                "hil_sim serve: writing to %s failed at %.3f s: %s (frames are lost until it "
+                "works)\n",
+                c->ifname, t_s, strerror(c->last_tx_errno));
         seen->tx_errno = c->last_tx_errno;
     }
 }
@@ -155,14 +163,16 @@ int serve_socketcan_run(const serve_socketcan_cfg_t *cfg)
         sleep_until_ns(wall0 + (uint64_t)((double)next_ns / cfg->speed));
     }
     const cansock_stats_t *st = &drv.st;
-    fprintf(stderr,
-            "hil_sim serve: stopped at %.3f s simulated; SocketCAN %s: %u frames in, %u out, %u refused "
-            "(queue full), %u write errors, %u error frames, %u bus-off, %u restarts (%u failed), %u "
-            "extended/remote ignored; %llu clock slips; device rx overflows %u, tx dropped %u\n",
-            (double)next_ns * 1e-9, drv.ifname, st->rx_frames, st->tx_frames, st->tx_full, st->tx_errors,
-            st->error_frames, st->bus_offs, st->restarts, st->restart_failures, st->rx_foreign,
-            (unsigned long long)slips, hal_sim_can_rx_overflows(),
-            cfg->device_tx_dropped != NULL ? *cfg->device_tx_dropped : 0u);
+    fprintf(
+        stderr,
+        "hil_sim serve: stopped at %.3f s simulated; SocketCAN %s: %u frames in, %u out, %u "
+        "refused "
+        "(queue full), %u write errors, %u error frames, %u bus-off, %u restarts (%u failed), %u "
+        "extended/remote ignored; %llu clock slips; device rx overflows %u, tx dropped %u\n",
+        (double)next_ns * 1e-9, drv.ifname, st->rx_frames, st->tx_frames, st->tx_full,
+        st->tx_errors, st->error_frames, st->bus_offs, st->restarts, st->restart_failures,
+        st->rx_foreign, (unsigned long long)slips, hal_sim_can_rx_overflows(),
+        cfg->device_tx_dropped != NULL ? *cfg->device_tx_dropped : 0u);
     cansock_close(&drv);
     return 0;
 }

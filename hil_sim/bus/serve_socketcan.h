@@ -22,12 +22,12 @@ typedef void (*serve_tick_fn)(void *ctx);
 /** What to run and where. */
 typedef struct {
     const char *ifname;
-    const cansock_ops_t *ops;          /* NULL: the Linux ones (AF_CAN + libsocketcan) */
-    uint32_t bitrate_bps;              /* 0: the interface as configured */
-    double speed;                      /* simulated seconds per wall second */
-    uint64_t end_ns;                   /* stop at this simulated time (UINT64_MAX: when *stop) */
+    const cansock_ops_t *ops; /* NULL: the Linux ones (AF_CAN + libsocketcan) */
+    uint32_t bitrate_bps;     /* 0: the interface as configured */
+    double speed;             /* simulated seconds per wall second */
+    uint64_t end_ns;          /* stop at this simulated time (UINT64_MAX: when *stop) */
     uint8_t node;
-    const char *scenario;              /* for the first line; NULL: the default scenario */
+    const char *scenario; /* for the first line; NULL: the default scenario */
     serve_tick_fn tick;
     void *ctx;
     const uint32_t *device_tx_dropped; /* the device's count of frames it could not queue */

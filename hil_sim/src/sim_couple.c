@@ -110,7 +110,8 @@ void sim_couple_plant_init(const sim_scenario_t *sc, sim_axis_t ax[2], sim_drive
     }
 }
 
-bool sim_couple_actuate(const sim_scenario_t *sc, const app_t *app, sim_drive_t drv[2], double cmd_N[2])
+bool sim_couple_actuate(const sim_scenario_t *sc, const app_t *app, sim_drive_t drv[2],
+                        double cmd_N[2])
 {
     bool enable = false;
     fs_real_t f[2];

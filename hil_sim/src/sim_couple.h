@@ -17,8 +17,9 @@
 #include "sim_rng.h"
 #include "sim_scenario.h"
 
-#define SIM_PARK_TAU_S 0.05   /* idle: the drive brings the handle back to the start position */
-#define SIM_PARK_VMAX_MPS 0.5 /* ... at most this fast: 0.5 mm per tick, 1/10 of the device's
+#define SIM_PARK_TAU_S 0.05 /* idle: the drive brings the handle back to the start position */
+#define SIM_PARK_VMAX_MPS \
+    0.5 /* ... at most this fast: 0.5 mm per tick, 1/10 of the device's
                                  encoder-jump limit (an uncapped first-order park moved a handle
                                  0.29 m away by 5.8 mm in one tick: an encoder jump to the device;
                                  0.1 m/s left the handle still moving when the next run started) */
@@ -61,7 +62,8 @@ void sim_couple_plant_init(const sim_scenario_t *sc, sim_axis_t ax[2], sim_drive
 /** The device's actuator output (hal_host_get_actuator) into the drives: the command while
  *  enabled, else 0; the ideal drive is dynamics-compensated while executing. Returns the enable
  *  flag; cmd_N (may be NULL) receives the commands. */
-bool sim_couple_actuate(const sim_scenario_t *sc, const app_t *app, sim_drive_t drv[2], double cmd_N[2]);
+bool sim_couple_actuate(const sim_scenario_t *sc, const app_t *app, sim_drive_t drv[2],
+                        double cmd_N[2]);
 
 /** The host's heartbeat frame for node (E2E counter, telemetry period in ms, 0 = the device's). */
 void sim_couple_heartbeat_frame(uint8_t node, uint8_t counter, uint8_t telemetry_period_ms,

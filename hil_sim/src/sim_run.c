@@ -121,16 +121,16 @@ static int fault_active(const sim_fault_t *fl, sim_fault_kind_t kind, double t)
 
 /* ---------------- the device ---------------- */
 
-#define SIM_RUN_HB_PERIOD_MS 10u      /* host heartbeat period (the forceskill host's) */
-#define SIM_RUN_TELEMETRY_MS 100u     /* telemetry the host asks for: the run logs its own */
-#define SIM_RUN_START_TICKS 3u        /* ticks before t = 0: boot, then the command */
+#define SIM_RUN_HB_PERIOD_MS 10u  /* host heartbeat period (the forceskill host's) */
+#define SIM_RUN_TELEMETRY_MS 100u /* telemetry the host asks for: the run logs its own */
+#define SIM_RUN_START_TICKS 3u    /* ticks before t = 0: boot, then the command */
 
 typedef struct {
     app_t app;
     app_config_t cfg;
     uint8_t hb_counter;
     uint8_t cmd_counter;
-    uint16_t fault_code;              /* first emergency frame's code, 0 if none */
+    uint16_t fault_code; /* first emergency frame's code, 0 if none */
     uint64_t fault_tick;
 } sim_dev_t;
 
@@ -209,10 +209,12 @@ static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_ima
             goal[i] = sc->goal_scale;
             time[i] = sc->time_scale;
             dur[i] = (sc->n_step_durations > 0) ? sc->step_duration_s[i] : 0.0;
-            *total_s += (dur[i] > 0.0) ? dur[i]
-                                       : (double)d->app.slot_skill[i].dmp.duration_s * sc->time_scale;
+            *total_s += (dur[i] > 0.0)
+                            ? dur[i]
+                            : (double)d->app.slot_skill[i].dmp.duration_s * sc->time_scale;
         }
-        const uint8_t end = (sc->end_policy < 0) ? 0u : (sc->end_policy == SKILL_END_HOLD ? 1u : 2u);
+        const uint8_t end = (sc->end_policy < 0) ? 0u
+                                                 : (sc->end_policy == SKILL_END_HOLD ? 1u : 2u);
         const uint8_t nrc = app_start_sequence(&d->app, slots, goal, time, dur,
                                                (uint8_t)sc->n_skills, end);
         if (nrc != UDS_NRC_OK) {
@@ -239,8 +241,8 @@ static double now_s(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-int sim_run(const sim_scenario_t *sc, const sim_skill_image_t *skills, FILE *log, sim_summary_t *sum,
-            char err[SIM_ERR_MAX])
+int sim_run(const sim_scenario_t *sc, const sim_skill_image_t *skills, FILE *log,
+            sim_summary_t *sum, char err[SIM_ERR_MAX])
 {
     static logbuf_t lb;
     static sim_dev_t dev;
@@ -414,7 +416,8 @@ int sim_run(const sim_scenario_t *sc, const sim_skill_image_t *skills, FILE *log
         }
         /* plant over the tick, the command held; parked while the device is idle or stopped */
         const app_state_t st = dev.app.state;
-        sim_couple_advance(sc, ax, drv, st == APP_IDLE || st == APP_BOOT || (st == APP_FAULT && !enable));
+        sim_couple_advance(sc, ax, drv,
+                           st == APP_IDLE || st == APP_BOOT || (st == APP_FAULT && !enable));
     }
     log_flush(&lb);
     if (log != NULL && ferror(log)) {
@@ -424,7 +427,8 @@ int sim_run(const sim_scenario_t *sc, const sim_skill_image_t *skills, FILE *log
     sum->ticks = n_ticks + 1u;
     sum->sim_time_s = (double)n_ticks * dt;
     sum->fault_code = dev.fault_code;
-    sum->fault_s = (dev.fault_code != 0u) ? (double)(dev.fault_tick - SIM_RUN_START_TICKS) * dt : -1.0;
+    sum->fault_s = (dev.fault_code != 0u) ? (double)(dev.fault_tick - SIM_RUN_START_TICKS) * dt
+                                          : -1.0;
     sum->final_state = (int)dev.app.state;
     sum->exec_ticks = exec_ticks;
     if (!teach && sum->max_hat_N > 0.0 && exec_ticks > 0u) {
@@ -456,7 +460,8 @@ int sim_write_summary(const sim_scenario_t *sc, const sim_summary_t *s, const ch
             sc->mode == SIM_MODE_TEACH ? "teach" : "execute",
             sc->plant == SIM_PLANT_IDEAL ? "ideal" : "realistic");
     fprintf(f, "  \"seed\": %llu,\n", (unsigned long long)sc->seed);
-    fprintf(f, "  \"goal_scale\": %.9g,\n  \"time_scale\": %.9g,\n", sc->goal_scale, sc->time_scale);
+    fprintf(f, "  \"goal_scale\": %.9g,\n  \"time_scale\": %.9g,\n", sc->goal_scale,
+            sc->time_scale);
     fprintf(f, "  \"force_limit_N\": %.9g,\n", sc->force_max_N);
     fprintf(f, "  \"ticks\": %llu,\n", (unsigned long long)s->ticks);
     json_num(f, "sim_time_s", s->sim_time_s, 0);
@@ -466,8 +471,10 @@ int sim_write_summary(const sim_scenario_t *sc, const sim_summary_t *s, const ch
     json_num(f, "max_f_hat_N", s->max_hat_N, 0);
     json_num(f, "deformation_max_m", s->deformation_max_m, 0);
     json_num(f, "layer_reached_s", s->layer_reached_s >= 0.0 ? s->layer_reached_s : (double)NAN, 0);
-    json_num(f, "tracking_max_pct", sc->mode == SIM_MODE_EXECUTE ? s->tracking_max_pct : (double)NAN, 0);
-    json_num(f, "tracking_rms_pct", sc->mode == SIM_MODE_EXECUTE ? s->tracking_rms_pct : (double)NAN, 0);
+    json_num(f, "tracking_max_pct",
+             sc->mode == SIM_MODE_EXECUTE ? s->tracking_max_pct : (double)NAN, 0);
+    json_num(f, "tracking_rms_pct",
+             sc->mode == SIM_MODE_EXECUTE ? s->tracking_rms_pct : (double)NAN, 0);
     fprintf(f, "  \"limit_violations\": %llu,\n", (unsigned long long)s->limit_violations);
     fprintf(f, "  \"saturated_ticks\": %llu,\n", (unsigned long long)s->saturated_ticks);
     fprintf(f, "  \"nonfinite_ticks\": %llu,\n", (unsigned long long)s->nonfinite_ticks);

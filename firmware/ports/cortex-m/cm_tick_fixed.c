@@ -19,7 +19,7 @@ static pfcfx_state_t cm_pfc_state;
 static int32_t cm_prev_pos_q24[CM_HAL_AXES];
 static int32_t cm_prev_pos_d_q24;
 static int32_t cm_surface_q24;
-static int64_t cm_inv_k_q32;   /* 1/k, m/N, Q.32: x_d = surface + f_hat/k */
+static int64_t cm_inv_k_q32; /* 1/k, m/N, Q.32: x_d = surface + f_hat/k */
 static int32_t cm_hold_y_q24;
 static int32_t cm_last_cmd_q16[CM_HAL_AXES];
 static int32_t cm_force_max_q16;
@@ -84,11 +84,26 @@ fs_status_t cm_tick_init(const uint8_t *image, uint32_t len, double goal_scale, 
     return FS_OK;
 }
 
-uint32_t cm_tick_rows(void) { return cm_rows; }
-double cm_tick_surface_m(void) { return cm_skill.surface_m; }
-uint32_t cm_tick_faults(void) { return cm_faults; }
-const char *cm_tick_numeric(void) { return "fixed"; }
-double cm_tick_fhat_N(uint32_t bits) { return fx_to_double((int32_t)bits, 16u); }
+uint32_t cm_tick_rows(void)
+{
+    return cm_rows;
+}
+double cm_tick_surface_m(void)
+{
+    return cm_skill.surface_m;
+}
+uint32_t cm_tick_faults(void)
+{
+    return cm_faults;
+}
+const char *cm_tick_numeric(void)
+{
+    return "fixed";
+}
+double cm_tick_fhat_N(uint32_t bits)
+{
+    return fx_to_double((int32_t)bits, 16u);
+}
 
 /* Q16.16 N -> int16 telemetry in 0.01 N (saturated). */
 static void cm_put_i16(uint8_t *b, int32_t v_q16)
@@ -115,7 +130,8 @@ uint32_t cm_tick(void)
     const int32_t f_hat = dmpfx_step(&cm_model, &cm_run, &cm_dmp, NULL);
     /* 3. reference */
     pfcfx_ref_t ref[PFC_AXES];
-    const int32_t pos_d = fx_add_sat(cm_surface_q24, fx_sat32(((int64_t)f_hat * cm_inv_k_q32) >> 24));
+    const int32_t pos_d = fx_add_sat(cm_surface_q24,
+                                     fx_sat32(((int64_t)f_hat * cm_inv_k_q32) >> 24));
     ref[0].pos_m = pos_d;
     ref[0].vel_mps = fx_mul_int_sat(fx_sub_sat(pos_d, cm_prev_pos_d_q24), INV_DT);
     ref[0].acc_mps2 = 0;

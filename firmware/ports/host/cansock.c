@@ -41,8 +41,9 @@ int cansock_open(cansock_t *c, const cansock_ops_t *ops, const char *ifname, cha
     cansock_init(c);
     c->ops = ops != NULL ? ops : &cansock_linux_ops;
     if (!cansock_valid_ifname(ifname)) {
-        snprintf(err, err_len, "invalid interface name '%.40s' (1..%u characters, no '/', ':' or spaces)",
-                 ifname, CANSOCK_IFNAME_MAX - 1u);
+        snprintf(err, err_len,
+                 "invalid interface name '%.40s' (1..%u characters, no '/', ':' or spaces)", ifname,
+                 CANSOCK_IFNAME_MAX - 1u);
         return -EINVAL;
     }
     const int fd = c->ops->open_raw(ifname, err, err_len);
@@ -52,7 +53,8 @@ int cansock_open(cansock_t *c, const cansock_ops_t *ops, const char *ifname, cha
     const int fl = fcntl(fd, F_GETFL);
     if (fl < 0 || fcntl(fd, F_SETFL, fl | O_NONBLOCK) != 0) {
         const int e = errno;
-        snprintf(err, err_len, "cannot make the socket of %s non-blocking: %s", ifname, strerror(e));
+        snprintf(err, err_len, "cannot make the socket of %s non-blocking: %s", ifname,
+                 strerror(e));
         close(fd);
         return -e;
     }
@@ -66,7 +68,8 @@ int cansock_set_bitrate(cansock_t *c, uint32_t bitrate_bps, char *err, uint32_t 
     uint32_t now_bps = 0u;
     const int g = c->ops->get_bitrate(c->ifname, &now_bps);
     if (g == -EOPNOTSUPP) {
-        snprintf(err, err_len, "%s has no bit timing (a virtual interface such as vcan has none)", c->ifname);
+        snprintf(err, err_len, "%s has no bit timing (a virtual interface such as vcan has none)",
+                 c->ifname);
         return g;
     }
     if (g == 0 && now_bps == bitrate_bps) {
@@ -81,9 +84,10 @@ int cansock_set_bitrate(cansock_t *c, uint32_t bitrate_bps, char *err, uint32_t 
         snprintf(was, sizeof(was), "%u bit/s", now_bps);
     }
     if (r == -EPERM || r == -EACCES) {
-        snprintf(err, err_len, "setting %s to %u bit/s needs CAP_NET_ADMIN (root, or setcap "
-                 "cap_net_admin+ep on the program); %s left as configured (%s)", c->ifname, bitrate_bps,
-                 c->ifname, was);
+        snprintf(err, err_len,
+                 "setting %s to %u bit/s needs CAP_NET_ADMIN (root, or setcap "
+                 "cap_net_admin+ep on the program); %s left as configured (%s)",
+                 c->ifname, bitrate_bps, c->ifname, was);
     } else {
         snprintf(err, err_len, "cannot set %s to %u bit/s: %s (was %s)", c->ifname, bitrate_bps,
                  strerror(-r), was);
@@ -195,25 +199,19 @@ bool cansock_receive(cansock_t *c, can_frame_t *f, uint64_t now_us)
         const ssize_t n = read(c->fd, &lf, sizeof(lf));
         if (n <= 0) {
             if (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) {
-                c->st.rx_errors++;          /* e.g. ENETDOWN once when the interface goes down */
+                c->st.rx_errors++; /* e.g. ENETDOWN once when the interface goes down */
             }
-            return false;                   /* nothing (more) to read; 0: the peer closed */
+            return false; /* nothing (more) to read; 0: the peer closed */
         }
         if (n != (ssize_t)sizeof(lf)) {
             c->st.rx_errors++;
             continue;
         }
         switch (cansock_from_linux(&lf, f)) {
-        case CANSOCK_RX_DATA:
-            c->st.rx_frames++;
-            return true;
-        case CANSOCK_RX_ERROR:
-            cansock_on_error_frame(c, &lf, now_us);
-            break;
+        case CANSOCK_RX_DATA: c->st.rx_frames++; return true;
+        case CANSOCK_RX_ERROR: cansock_on_error_frame(c, &lf, now_us); break;
         case CANSOCK_RX_FOREIGN:
-        default:
-            c->st.rx_foreign++;
-            break;
+        default: c->st.rx_foreign++; break;
         }
     }
     return false;

@@ -21,9 +21,9 @@
 
 #include "can_frame.h"
 
-#define CANSOCK_IFNAME_MAX 16u       /* IFNAMSIZ, terminating zero included */
-#define CANSOCK_RESTART_MS 100u      /* bus-off: first restart request after this, then repeated */
-#define CANSOCK_RX_SKIP_MAX 256u     /* error/foreign frames consumed per receive call at most */
+#define CANSOCK_IFNAME_MAX 16u   /* IFNAMSIZ, terminating zero included */
+#define CANSOCK_RESTART_MS 100u  /* bus-off: first restart request after this, then repeated */
+#define CANSOCK_RX_SKIP_MAX 256u /* error/foreign frames consumed per receive call at most */
 #define CANSOCK_ERR_MASK (CAN_ERR_BUSOFF | CAN_ERR_RESTARTED | CAN_ERR_CRTL | CAN_ERR_ACK)
 
 /** The operating-system side; every function returns 0 (or a descriptor) or -errno. */
@@ -45,37 +45,37 @@ extern const cansock_ops_t cansock_linux_ops;
 
 /** What a received struct can_frame is to this product. */
 typedef enum {
-    CANSOCK_RX_DATA = 0,      /* an 11-bit data frame */
-    CANSOCK_RX_ERROR = 1,     /* an error frame (CAN_ERR_FLAG) */
-    CANSOCK_RX_FOREIGN = 2    /* extended id or remote frame: not this product's, ignored */
+    CANSOCK_RX_DATA = 0,   /* an 11-bit data frame */
+    CANSOCK_RX_ERROR = 1,  /* an error frame (CAN_ERR_FLAG) */
+    CANSOCK_RX_FOREIGN = 2 /* extended id or remote frame: not this product's, ignored */
 } cansock_rx_kind_t;
 
 /** Counters (since open). */
 typedef struct {
     uint32_t rx_frames;
     uint32_t tx_frames;
-    uint32_t rx_foreign;          /* extended/remote frames ignored */
-    uint32_t rx_errors;           /* failed or short reads */
+    uint32_t rx_foreign; /* extended/remote frames ignored */
+    uint32_t rx_errors;  /* failed or short reads */
     uint32_t error_frames;
-    uint32_t bus_offs;            /* transitions into bus-off */
-    uint32_t restarts;            /* restart requests */
+    uint32_t bus_offs; /* transitions into bus-off */
+    uint32_t restarts; /* restart requests */
     uint32_t restart_failures;
-    uint32_t tx_full;             /* refused: queue full (EAGAIN/ENOBUFS) */
-    uint32_t tx_bus_off;          /* refused: bus-off */
-    uint32_t tx_errors;           /* refused: any other write error (interface down, ...) */
-    uint8_t tx_err_counter;       /* controller error counters of the last error frame with them */
+    uint32_t tx_full;       /* refused: queue full (EAGAIN/ENOBUFS) */
+    uint32_t tx_bus_off;    /* refused: bus-off */
+    uint32_t tx_errors;     /* refused: any other write error (interface down, ...) */
+    uint8_t tx_err_counter; /* controller error counters of the last error frame with them */
     uint8_t rx_err_counter;
 } cansock_stats_t;
 
 /** One open interface. */
 typedef struct cansock {
-    int fd;                            /* -1: closed */
+    int fd; /* -1: closed */
     char ifname[CANSOCK_IFNAME_MAX];
     const cansock_ops_t *ops;
     bool bus_off;
-    uint64_t restart_at_us;            /* next restart request while bus-off */
-    int last_tx_errno;                 /* of the last tx error (not queue full), 0 if none */
-    int last_restart_errno;            /* of the last failed restart, 0 if none */
+    uint64_t restart_at_us; /* next restart request while bus-off */
+    int last_tx_errno;      /* of the last tx error (not queue full), 0 if none */
+    int last_restart_errno; /* of the last failed restart, 0 if none */
     cansock_stats_t st;
 } cansock_t;
 

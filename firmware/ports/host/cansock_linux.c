@@ -50,8 +50,10 @@ static int linux_open_raw(const char *ifname, char *err, uint32_t err_len)
     const int s = socket(PF_CAN, SOCK_RAW | SOCK_CLOEXEC, CAN_RAW);
     if (s < 0) {
         const int e = errno;
-        snprintf(err, err_len, "socket(AF_CAN) failed: %s (this kernel has no SocketCAN: "
-                 "modprobe can_raw, or serve the bus over TCP without --socketcan)", strerror(e));
+        snprintf(err, err_len,
+                 "socket(AF_CAN) failed: %s (this kernel has no SocketCAN: "
+                 "modprobe can_raw, or serve the bus over TCP without --socketcan)",
+                 strerror(e));
         return -e;
     }
     struct ifreq ifr;
@@ -94,7 +96,7 @@ static int linux_get_bitrate(const char *ifname, uint32_t *bitrate_bps)
     const int r = can_get_bittiming(ifname, &bt);
     quiet_end(q);
     if (r != 0) {
-        return -EOPNOTSUPP;          /* the interface exists but reports no CAN bit timing */
+        return -EOPNOTSUPP; /* the interface exists but reports no CAN bit timing */
     }
     *bitrate_bps = bt.bitrate;
     return 0;
@@ -106,7 +108,7 @@ static int linux_set_bitrate(const char *ifname, uint32_t bitrate_bps)
     errno = 0;
     int r = 0;
     if (can_do_stop(ifname) != 0) {
-        r = failed();                /* EPERM without CAP_NET_ADMIN: nothing changed */
+        r = failed(); /* EPERM without CAP_NET_ADMIN: nothing changed */
     } else {
         if (can_set_bitrate(ifname, bitrate_bps) != 0) {
             r = failed();

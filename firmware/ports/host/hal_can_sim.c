@@ -33,8 +33,8 @@ static bool tx_insert(const can_frame_t *f, bool behind_equal)
         return false;
     }
     uint32_t pos = q.tx_len;
-    while (pos > 0u && (tx_at(pos - 1u)->id > f->id ||
-                        (!behind_equal && tx_at(pos - 1u)->id == f->id))) {
+    while (pos > 0u &&
+           (tx_at(pos - 1u)->id > f->id || (!behind_equal && tx_at(pos - 1u)->id == f->id))) {
         *tx_at(pos) = *tx_at(pos - 1u);
         pos--;
     }

@@ -57,7 +57,7 @@ bool hal_can_bus_off(void)
 
 uint32_t hal_can_tx_free(void)
 {
-    return UINT32_MAX;   /* the kernel queues (its qdisc, not this process, orders the frames) */
+    return UINT32_MAX; /* the kernel queues (its qdisc, not this process, orders the frames) */
 }
 
 bool hal_can_tx_idle(void)

@@ -14,7 +14,7 @@ static struct {
     hal_sensors_t sens;
     bool act_enable;
     fs_real_t act_force_N[HAL_AXES];
-    uint8_t secret[2][64];           /* level 1, level 3 */
+    uint8_t secret[2][64]; /* level 1, level 3 */
     uint8_t secret_len[2];
     bool reset_requested;
     uint8_t reset_type;
