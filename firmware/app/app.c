@@ -6,7 +6,8 @@
 #include "fs_dbc.h"
 #include "proto_ids.h"
 
-_Static_assert(SAF_AXES == PFC_AXES && SAF_AXES == HAL_AXES, "safety, control law and HAL axes differ");
+_Static_assert(SAF_AXES == PFC_AXES && SAF_AXES == HAL_AXES,
+               "safety, control law and HAL axes differ");
 
 /* ---------------------------------------------------------------- configuration */
 
@@ -151,11 +152,10 @@ bool app_event(app_t *app, app_event_t ev)
             app->exec_done = false;
         }
         app->force_hat_N = FS_R(0.0);
-        wdg_disarm(&app->saf.wdg);          /* host silence matters only while the device acts */
+        wdg_disarm(&app->saf.wdg); /* host silence matters only while the device acts */
         break;
     case APP_BOOT:
-    default:
-        break;
+    default: break;
     }
     return true;
 }
@@ -231,12 +231,8 @@ static void handle_command(app_t *app, const can_frame_t *f)
         return;
     }
     switch ((app_cmd_mode_t)c.mode) {
-    case APP_CMD_IDLE:
-        (void)app_event(app, APP_EV_STOP);
-        break;
-    case APP_CMD_TEACH:
-        (void)app_event(app, APP_EV_TEACH);
-        break;
+    case APP_CMD_IDLE: (void)app_event(app, APP_EV_STOP); break;
+    case APP_CMD_TEACH: (void)app_event(app, APP_EV_TEACH); break;
     case APP_CMD_EXECUTE: {
         const uint8_t slot = c.slot;
         const fs_real_t g = milli(c.goal_scale);
@@ -251,8 +247,7 @@ static void handle_command(app_t *app, const can_frame_t *f)
         }
         break;
     case APP_CMD_NONE:
-    default:
-        break;
+    default: break;
     }
 }
 
@@ -311,11 +306,11 @@ static void uds_service(app_t *app)
         if (n != 0u) {
             (void)isotp_send(&app->tp, app->uds_resp, n, app->now_us);
         }
-        app->reset_since_ms = app->now_ms;      /* used only if this was an accepted ECUReset */
+        app->reset_since_ms = app->now_ms; /* used only if this was an accepted ECUReset */
     }
     uds_server_poll(&app->uds, app->now_ms);
     if (app->uds.unlocked_level == 0u && sec_is_unlocked(&app->sec)) {
-        sec_lock(&app->sec);   /* the server locked (session change, S3 timeout, reset): relock too */
+        sec_lock(&app->sec); /* the server locked (session change, S3 timeout, reset): relock too */
     }
     isotp_poll(&app->tp, app->now_us);
 }
@@ -402,7 +397,7 @@ void app_init(app_t *app, const app_config_t *cfg)
     }
     bc->skill_min = any_skill ? (uint16_t)SKILL_FORMAT_VERSION : 0u;
     bc->skill_max = bc->skill_min;
-    bc->config_min = 0u;    /* gains/limits are not persisted yet */
+    bc->config_min = 0u; /* gains/limits are not persisted yet */
     bc->config_max = 0u;
     (void)boot_select(&app->boot, bc);
     fwu_init(&app->fwu, &app->boot);
@@ -455,24 +450,24 @@ static void control(app_t *app)
         m.vel_mps[1] = app->vel_mps[1];
         m.force_contact_N = app->sens.force_contact_N[0];
         exec_out_t out;
-        (void)exec_tick(&app->exec_run_cfg, &app->exec, &m, &out);   /* non-finite: 0 N, sen faults */
+        (void)exec_tick(&app->exec_run_cfg, &app->exec, &m, &out); /* non-finite: 0 N, sen faults */
         app->force_hat_N = out.force_hat_N;
         app->seq_step = out.step;
         if (app->cfg.render_carriage != 0u) {
             const fs_real_t m_d = app->exec_run_cfg.pfc.gains[0].m_d_kg;
-            app->force_req_N[0] = exec_render_step(&app->cfg.render, &app->rend[0], out.force_cmd_N[0],
-                                                   m_d, -app->sens.force_contact_N[0],
-                                                   app->sens.pos_m[0], app->vel_mps[0], dt);
-            app->force_req_N[1] = exec_render_step(&app->cfg.render, &app->rend[1], out.force_cmd_N[1],
-                                                   m_d, FS_R(0.0), app->sens.pos_m[1],
-                                                   app->vel_mps[1], dt);
+            app->force_req_N[0] = exec_render_step(
+                &app->cfg.render, &app->rend[0], out.force_cmd_N[0], m_d,
+                -app->sens.force_contact_N[0], app->sens.pos_m[0], app->vel_mps[0], dt);
+            app->force_req_N[1] = exec_render_step(&app->cfg.render, &app->rend[1],
+                                                   out.force_cmd_N[1], m_d, FS_R(0.0),
+                                                   app->sens.pos_m[1], app->vel_mps[1], dt);
         } else {
             app->force_req_N[0] = out.force_cmd_N[0];
             app->force_req_N[1] = out.force_cmd_N[1];
         }
         if (out.done != 0u) {
             app->exec_done = true;
-            (void)app_event(app, APP_EV_STOP);        /* release finished: back to IDLE */
+            (void)app_event(app, APP_EV_STOP); /* release finished: back to IDLE */
             app->force_req_N[0] = FS_R(0.0);
             app->force_req_N[1] = FS_R(0.0);
         }
@@ -494,7 +489,7 @@ void app_tick(app_t *app, bool overrun)
     }
     if (app->state == APP_BOOT) {
         if (!app_fw_self_test_and_confirm(app)) {
-            hal_request_reset(1u);          /* unconfirmed: the next boot reverts */
+            hal_request_reset(1u); /* unconfirmed: the next boot reverts */
         }
         (void)app_event(app, APP_EV_BOOTED);
     }

@@ -26,14 +26,14 @@
 #include "uds.h"
 
 #define APP_TICK_US 1000u
-#define APP_N_SLOTS NVM_MAX_SLOTS       /* UDS/CAN slot numbers 1..APP_N_SLOTS */
-#define APP_RX_FRAMES_PER_TICK 64u      /* bounded CAN drain per tick */
-#define APP_RESET_TX_WAIT_MS 100u       /* ECUReset: longest wait for the response to leave */
+#define APP_N_SLOTS NVM_MAX_SLOTS  /* UDS/CAN slot numbers 1..APP_N_SLOTS */
+#define APP_RX_FRAMES_PER_TICK 64u /* bounded CAN drain per tick */
+#define APP_RESET_TX_WAIT_MS 100u  /* ECUReset: longest wait for the response to leave */
 #define APP_STATUS_PERIOD_MS 10u
 #define APP_IDLE_TELEMETRY_PERIOD_MS 100u
 #define APP_IMAGE_MAX SKILL_IMAGE_MAX
 #define APP_SW_VERSION "forceskill-fw 0.1.0"
-#define APP_TRANSFER_NONE 0xFFFDu        /* DID 0x0201: no download since power-up */
+#define APP_TRANSFER_NONE 0xFFFDu /* DID 0x0201: no download since power-up */
 #define APP_PROTO_VERSION_MAJOR 1u
 #define APP_PROTO_VERSION_MINOR 0u
 
@@ -49,15 +49,15 @@ typedef enum {
 
 /** Device configuration (factory defaults from app_config_default, changed by UDS writes). */
 typedef struct {
-    uint8_t node;                      /* 0..PROTO_NODE_MAX: ids = base + node */
-    uint8_t render_carriage;           /* 1: render m_d by admittance (real carriage); 0: the
+    uint8_t node;                     /* 0..PROTO_NODE_MAX: ids = base + node */
+    uint8_t render_carriage;          /* 1: render m_d by admittance (real carriage); 0: the
                                           drive is dynamics-compensated (ideal plant) */
-    pfc_axis_gains_t gains[PFC_AXES];  /* TEACH rendering (m_d) and the y axis */
-    exec_config_t exec;                /* object model, phase stopping (gains come from the skill) */
+    pfc_axis_gains_t gains[PFC_AXES]; /* TEACH rendering (m_d) and the y axis */
+    exec_config_t exec;               /* object model, phase stopping (gains come from the skill) */
     exec_render_cfg_t render;
     saf_config_t saf;
     fs_real_t vel_cutoff_Hz;
-    uint8_t telemetry_period_ms;       /* in TEACH/EXECUTE, 1..255 */
+    uint8_t telemetry_period_ms; /* in TEACH/EXECUTE, 1..255 */
 } app_config_t;
 
 /** The whole device. */
@@ -72,29 +72,29 @@ typedef struct {
     e2e_rx_t rx_heartbeat;
     uint8_t tx_counter_status;
     uint8_t tx_counter_emcy;
-    uint8_t host_period_ms;            /* telemetry period requested by the host heartbeat */
-    bool host_frame;                   /* a valid host frame this tick */
+    uint8_t host_period_ms; /* telemetry period requested by the host heartbeat */
+    bool host_frame;        /* a valid host frame this tick */
     uint32_t e2e_errors;
     uint32_t tx_dropped;
     /* UDS on ISO-TP */
     isotp_link_t tp;
     uds_server_t uds;
     uint8_t uds_resp[ISOTP_MAX_PAYLOAD];
-    uint32_t reset_since_ms;           /* ECUReset accepted at (its response leaves first) */
+    uint32_t reset_since_ms; /* ECUReset accepted at (its response leaves first) */
     sec_config_t sec_cfg;
     sec_state_t sec;
     /* storage */
     nvm_t nvm;
     bool nvm_ok;
-    skill_t slot_skill[APP_N_SLOTS];   /* parsed copy of each valid slot */
+    skill_t slot_skill[APP_N_SLOTS]; /* parsed copy of each valid slot */
     bool slot_valid[APP_N_SLOTS];
-    uint32_t slot_crc[APP_N_SLOTS];    /* CRC-32 field of each valid image */
+    uint32_t slot_crc[APP_N_SLOTS]; /* CRC-32 field of each valid image */
     uint32_t slot_len[APP_N_SLOTS];
-    uint8_t image[APP_IMAGE_MAX];      /* transfer scratch (download staging / upload) */
+    uint8_t image[APP_IMAGE_MAX]; /* transfer scratch (download staging / upload) */
     uint32_t xfer_slot;
     uint32_t xfer_size;
-    uint16_t last_transfer_status;     /* fs_status / nvm status of the last download */
-    skill_t staging;                   /* validation target of a download */
+    uint16_t last_transfer_status; /* fs_status / nvm status of the last download */
+    skill_t staging;               /* validation target of a download */
     /* firmware update (firmware/boot, docs/update.md) */
     boot_fls_window_t fw_w_state, fw_w_slots;
     fls_dev_t fw_state_dev, fw_slots_dev;
@@ -102,7 +102,7 @@ typedef struct {
     boot_config_t boot_cfg;
     boot_t boot;
     fwu_t fwu;
-    bool fw_xfer;                      /* the active download is a firmware image */
+    bool fw_xfer; /* the active download is a firmware image */
     /* control */
     exec_state_t exec;
     exec_config_t exec_run_cfg;
@@ -121,8 +121,8 @@ typedef struct {
     saf_output_t saf_out;
     bool actuator_enabled;
     bool overrun;
-    uint32_t teach_ticks;              /* ticks since TEACH started */
-    uint64_t next_tick_us;             /* app_poll: when the next tick is due */
+    uint32_t teach_ticks;  /* ticks since TEACH started */
+    uint64_t next_tick_us; /* app_poll: when the next tick is due */
 } app_t;
 
 /** Factory defaults: node 0, default gains/limits/safety, ideal drive, telemetry 1 ms. */

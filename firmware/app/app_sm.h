@@ -17,12 +17,12 @@ typedef enum {
 
 /** What can move the device from one state to another. */
 typedef enum {
-    APP_EV_BOOTED = 0,    /* start-up finished (first tick) */
-    APP_EV_STOP = 1,      /* host command IDLE, or RoutineControl stop of a running skill */
-    APP_EV_TEACH = 2,     /* host command TEACH */
-    APP_EV_EXECUTE = 3,   /* a skill or sequence was accepted and started */
-    APP_EV_FAULT = 4,     /* the safety supervisor latched a fault (safe stop running) */
-    APP_EV_CLEARED = 5    /* every latched fault was cleared */
+    APP_EV_BOOTED = 0,  /* start-up finished (first tick) */
+    APP_EV_STOP = 1,    /* host command IDLE, or RoutineControl stop of a running skill */
+    APP_EV_TEACH = 2,   /* host command TEACH */
+    APP_EV_EXECUTE = 3, /* a skill or sequence was accepted and started */
+    APP_EV_FAULT = 4,   /* the safety supervisor latched a fault (safe stop running) */
+    APP_EV_CLEARED = 5  /* every latched fault was cleared */
 } app_event_t;
 
 #define APP_EVENT_COUNT 6u

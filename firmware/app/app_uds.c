@@ -122,7 +122,7 @@ static uint8_t read_did(void *ctx, uint16_t did, uint8_t *out, uint16_t cap, uin
                 const skill_t *sk = &app->slot_skill[s];
                 e[0] = 1u;
                 put_u32(&e[1], app->slot_len[s]);
-                put_u32(&e[5], app->slot_crc[s]);   /* the image's own CRC-32 field */
+                put_u32(&e[5], app->slot_crc[s]); /* the image's own CRC-32 field */
                 put_u16(&e[9], sk->dmp.n_kernels);
                 put_f32(&e[11], sk->dmp.duration_s);
                 e[15] = (uint8_t)sk->end_policy;
@@ -142,8 +142,7 @@ static uint8_t read_did(void *ctx, uint16_t did, uint8_t *out, uint16_t cap, uin
         put_u32(&buf[5], app->tick);
         n = 9u;
         break;
-    default:
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    default: return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
     if (n > cap) {
         return UDS_NRC_RESPONSE_TOO_LONG;
@@ -167,7 +166,7 @@ static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len
 {
     app_t *app = ctx;
     if (app->state != APP_IDLE) {
-        return UDS_NRC_CONDITIONS_NOT_CORRECT;   /* configuration changes only while idle */
+        return UDS_NRC_CONDITIONS_NOT_CORRECT; /* configuration changes only while idle */
     }
     switch (did) {
     case DID_GAINS_X:
@@ -258,10 +257,8 @@ static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len
     case DID_VERSIONS:
     case DID_SLOT_DIR:
     case DID_LAST_TRANSFER:
-    case DID_DEVICE_STATE:
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;     /* read-only */
-    default:
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    case DID_DEVICE_STATE: return UDS_NRC_REQUEST_OUT_OF_RANGE; /* read-only */
+    default: return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
 }
 
@@ -357,7 +354,7 @@ static uint8_t routine(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *d, u
             return UDS_NRC_REQUEST_SEQUENCE_ERROR;
         }
         if (app_clear_faults(app) != FLT_NONE) {
-            return UDS_NRC_CONDITIONS_NOT_CORRECT;   /* a cause persists */
+            return UDS_NRC_CONDITIONS_NOT_CORRECT; /* a cause persists */
         }
         return UDS_NRC_OK;
     case UDS_RID_ERASE_SLOT:
@@ -378,8 +375,7 @@ static uint8_t routine(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *d, u
         }
         app->slot_valid[d[0] - 1u] = false;
         return UDS_NRC_OK;
-    default:
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    default: return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
 }
 
@@ -449,7 +445,7 @@ static uint8_t download_begin(void *ctx, uint32_t addr, uint32_t size)
     }
     app->xfer_slot = addr;
     app->xfer_size = size;
-    app->last_transfer_status = 0xFFFFu;           /* in progress */
+    app->last_transfer_status = 0xFFFFu; /* in progress */
     return UDS_NRC_OK;
 }
 
@@ -475,13 +471,13 @@ static uint8_t download_end(void *ctx, uint32_t *crc_out)
     const uint16_t slot = (uint16_t)(app->xfer_slot - 1u);
     const fs_status_t st = skill_parse(app->image, app->xfer_size, &app->staging);
     if (st != FS_OK) {
-        app->last_transfer_status = (uint16_t)st;   /* e.g. 204 CRC: the old skill stays */
+        app->last_transfer_status = (uint16_t)st; /* e.g. 204 CRC: the old skill stays */
         return UDS_NRC_PROGRAMMING_FAILURE;
     }
     const nvm_status_t ns = nvm_write(&app->nvm, slot, app->image, app->xfer_size);
     if (ns != NVM_OK) {
         app->last_transfer_status = (uint16_t)ns;
-        app_slots_reload(app);                       /* whatever storage holds now */
+        app_slots_reload(app); /* whatever storage holds now */
         return UDS_NRC_PROGRAMMING_FAILURE;
     }
     /* swap into the slot cache: UDS runs at the start of a tick and downloads only in IDLE */
@@ -501,7 +497,7 @@ static void transfer_abort(void *ctx)
         fwu_abort(&app->fwu);
     }
     if (app->last_transfer_status == 0xFFFFu) {
-        app->last_transfer_status = 0xFFFEu;         /* interrupted: nothing was written */
+        app->last_transfer_status = 0xFFFEu; /* interrupted: nothing was written */
     }
     app->xfer_size = 0u;
 }
@@ -513,8 +509,9 @@ static uint8_t upload_begin(void *ctx, uint32_t addr, uint32_t size)
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
     uint32_t len = 0u;
-    if (nvm_read(&app->nvm, (uint16_t)(addr - 1u), app->image, sizeof(app->image), &len) != NVM_OK) {
-        return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED;  /* empty slot */
+    if (nvm_read(&app->nvm, (uint16_t)(addr - 1u), app->image, sizeof(app->image), &len) !=
+        NVM_OK) {
+        return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED; /* empty slot */
     }
     if (size != len) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;

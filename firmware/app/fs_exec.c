@@ -156,9 +156,8 @@ static fs_real_t exec_reference_force(const exec_config_t *cfg, exec_state_t *st
     dmp_coupling_t coupling = {FS_R(0.0), FS_R(0.0)};
     const dmp_coupling_t *cp = 0;
     if (cfg->phase_stop_gain_per_N2 > FS_R(0.0)) {
-        coupling.phase_slowdown =
-            dmp_phase_stop_factor(meas->force_contact_N - st->force_hat_N,
-                                  cfg->phase_stop_gain_per_N2);
+        coupling.phase_slowdown = dmp_phase_stop_factor(meas->force_contact_N - st->force_hat_N,
+                                                        cfg->phase_stop_gain_per_N2);
         cp = &coupling;
     }
     st->force_dmp_N = dmp_step(&s->skill->dmp, &st->dmp, &st->run, cp);
@@ -204,7 +203,7 @@ fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_mea
                         o->m_v_kg;
         fs_real_t pd = st->ref_pd_mps + pdd * dt;
         fs_real_t p = st->ref_p_m + pd * dt;
-        if (p < FS_R(0.0)) {   /* unilateral: the reference cannot pull the surface out */
+        if (p < FS_R(0.0)) { /* unilateral: the reference cannot pull the surface out */
             p = FS_R(0.0);
             pd = FS_R(0.0);
             pdd = FS_R(0.0);

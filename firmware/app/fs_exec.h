@@ -36,11 +36,11 @@
 
 /** One step of a sequence: which skill, how it is modulated, for how long, what happens after. */
 typedef struct {
-    const skill_t *skill;      /* parsed, validated skill (not owned) */
-    fs_real_t goal_scale;      /* g -> goal_scale*g: scales the force */
-    fs_real_t time_scale;      /* tau -> time_scale*tau: stretches the profile */
-    fs_real_t duration_s;      /* how long the step runs; <= 0 means the skill's T*time_scale */
-    skill_end_t end_policy;    /* used after the last step: hold or release */
+    const skill_t *skill;   /* parsed, validated skill (not owned) */
+    fs_real_t goal_scale;   /* g -> goal_scale*g: scales the force */
+    fs_real_t time_scale;   /* tau -> time_scale*tau: stretches the profile */
+    fs_real_t duration_s;   /* how long the step runs; <= 0 means the skill's T*time_scale */
+    skill_end_t end_policy; /* used after the last step: hold or release */
 } exec_step_t;
 
 /** Known object model for the position reference (docs/math.md): f = m_v*pdd + d_v*pd
@@ -57,16 +57,16 @@ typedef struct {
 /** Execution configuration: controller gains/limits, optional object model, phase stopping. */
 typedef struct {
     pfc_config_t pfc;
-    uint8_t use_model;               /* 1: invert the object model; 0: x_d = surface + f_hat/k */
-    exec_object_t object;            /* used when use_model; surface_m is used in both cases */
-    fs_real_t phase_stop_gain_per_N2;/* 0 disables phase stopping (dmp coupling) */
+    uint8_t use_model;                /* 1: invert the object model; 0: x_d = surface + f_hat/k */
+    exec_object_t object;             /* used when use_model; surface_m is used in both cases */
+    fs_real_t phase_stop_gain_per_N2; /* 0 disables phase stopping (dmp coupling) */
 } exec_config_t;
 
 /** Measurements of one tick (already delayed/filtered as the firmware sees them). */
 typedef struct {
     fs_real_t pos_m[PFC_AXES];
     fs_real_t vel_mps[PFC_AXES];
-    fs_real_t force_contact_N;       /* x-axis tip force, pushing positive */
+    fs_real_t force_contact_N; /* x-axis tip force, pushing positive */
 } exec_meas_t;
 
 /** Output of one tick. */
@@ -83,20 +83,20 @@ typedef struct {
     exec_step_t steps[EXEC_MAX_STEPS];
     uint8_t n_steps;
     uint8_t step;
-    uint8_t ending;                  /* 1 after the last step's duration: end policy active */
+    uint8_t ending; /* 1 after the last step's duration: end policy active */
     uint8_t done;
     dmp_state_t dmp;
     dmp_run_t run;
-    fs_real_t t_step_s;              /* time since the running step started */
-    fs_real_t t_end_s;               /* time since the end policy started */
-    fs_real_t force_dmp_N;           /* last DMP output of the running step */
-    fs_real_t force_hat_N;           /* last f_hat */
-    fs_real_t force_carry_N;         /* previous step's last f_hat, faded out over EXEC_BLEND_S */
-    fs_real_t force_end_N;           /* f_hat when the end policy started */
-    fs_real_t ref_p_m;               /* reference deformation p_d */
+    fs_real_t t_step_s;      /* time since the running step started */
+    fs_real_t t_end_s;       /* time since the end policy started */
+    fs_real_t force_dmp_N;   /* last DMP output of the running step */
+    fs_real_t force_hat_N;   /* last f_hat */
+    fs_real_t force_carry_N; /* previous step's last f_hat, faded out over EXEC_BLEND_S */
+    fs_real_t force_end_N;   /* f_hat when the end policy started */
+    fs_real_t ref_p_m;       /* reference deformation p_d */
     fs_real_t ref_pd_mps;
     fs_real_t ref_pdd_mps2;
-    fs_real_t ref_prev_pos_m;        /* model-free reference: previous x_d (for xd_d) */
+    fs_real_t ref_prev_pos_m; /* model-free reference: previous x_d (for xd_d) */
     fs_real_t y_hold_m;
     pfc_state_t pfc;
 } exec_state_t;
@@ -122,7 +122,7 @@ fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_mea
 typedef struct {
     fs_real_t prev_pos_m;
     fs_real_t vel_mps;
-    fs_real_t alpha;     /* low-pass coefficient dt/(dt + 1/(2 pi fc)) */
+    fs_real_t alpha; /* low-pass coefficient dt/(dt + 1/(2 pi fc)) */
     uint8_t primed;
 } exec_vel_t;
 
@@ -136,23 +136,23 @@ fs_real_t exec_vel_update(exec_vel_t *v, fs_real_t pos_m, fs_real_t dt_s);
 
 /** Carriage model and inner loop gains used to render a desired acceleration. */
 typedef struct {
-    fs_real_t carriage_kg;       /* moving mass of the carriage */
-    fs_real_t viscous_Nspm;      /* friction compensation, viscous part */
-    fs_real_t coulomb_N;         /* friction compensation, Coulomb part */
-    fs_real_t kp_Npm;            /* inner loop: virtual position - measured position */
-    fs_real_t kd_Nspm;           /* inner loop: virtual velocity - measured velocity */
-    fs_real_t ext_ff;            /* fraction of the measured external force fed forward, 0..1 */
-    fs_real_t ext_cutoff_Hz;     /* low-pass on that feedforward: the measured contact force
+    fs_real_t carriage_kg;   /* moving mass of the carriage */
+    fs_real_t viscous_Nspm;  /* friction compensation, viscous part */
+    fs_real_t coulomb_N;     /* friction compensation, Coulomb part */
+    fs_real_t kp_Npm;        /* inner loop: virtual position - measured position */
+    fs_real_t kd_Nspm;       /* inner loop: virtual velocity - measured velocity */
+    fs_real_t ext_ff;        /* fraction of the measured external force fed forward, 0..1 */
+    fs_real_t ext_cutoff_Hz; /* low-pass on that feedforward: the measured contact force
                                   * carries the object's inertia one sample late, and feeding it
                                   * back unfiltered oscillates at fs/4 (measured) */
-    fs_real_t motor_max_N;       /* actuator limit */
+    fs_real_t motor_max_N;   /* actuator limit */
 } exec_render_cfg_t;
 
 /** Virtual (admittance) state of one axis. */
 typedef struct {
     fs_real_t pos_m;
     fs_real_t vel_mps;
-    fs_real_t ext_lp_N;          /* low-passed external force */
+    fs_real_t ext_lp_N; /* low-passed external force */
 } exec_render_t;
 
 /** Defaults for the realistic HIL carriage (2 kg, 5 Ns/m, 1 N, +-200 N). */

@@ -10,8 +10,8 @@
 
 /** A classic CAN data frame. */
 typedef struct {
-    uint32_t id;                 /* 11-bit identifier */
-    uint8_t dlc;                 /* 0..8 */
+    uint32_t id; /* 11-bit identifier */
+    uint8_t dlc; /* 0..8 */
     uint8_t data[CAN_FRAME_MAX_DLC];
 } can_frame_t;
 

@@ -13,13 +13,13 @@
 
 /** One flash device (or region) given to the storage. */
 typedef struct {
-    uint32_t sector_size;     /* bytes per erase sector */
+    uint32_t sector_size; /* bytes per erase sector */
     uint32_t sector_count;
-    uint32_t write_unit;      /* programming granularity in bytes (1, 4, 8, ...; <= 16) */
+    uint32_t write_unit; /* programming granularity in bytes (1, 4, 8, ...; <= 16) */
     int (*erase)(void *ctx, uint32_t sector);
     int (*program)(void *ctx, uint32_t addr, const uint8_t *data, uint32_t len);
     int (*read)(void *ctx, uint32_t addr, uint8_t *data, uint32_t len);
-    void *ctx;                /* the port's device handle, passed back to every call */
+    void *ctx; /* the port's device handle, passed back to every call */
 } fls_dev_t;
 
 #endif /* FLS_H */

@@ -143,7 +143,7 @@ boot_status_t boot_select(boot_t *b, const boot_config_t *cfg)
                 b->running_slot = BOOT_SLOT_NONE;
             }
             if (st == BOOT_OK) {
-                s->test_attempts = 1u;     /* recorded BEFORE the jump: one try only */
+                s->test_attempts = 1u; /* recorded BEFORE the jump: one try only */
                 if (boot_state_store(cfg, s) == BOOT_OK) {
                     b->test_boot = 1u;
                     run(b, t, &h, BOOT_PATH_TEST);
@@ -171,7 +171,7 @@ boot_status_t boot_select(boot_t *b, const boot_config_t *cfg)
     const boot_path_t why = b->path;
     if (act_st == BOOT_OK) {
         if (why != BOOT_PATH_NONE) {
-            (void)boot_state_store(cfg, s);   /* test dropped; if this write fails, the next
+            (void)boot_state_store(cfg, s); /* test dropped; if this write fails, the next
                                                  reset decides the same way again */
         }
         run(b, s->active_slot, &act, why == BOOT_PATH_NONE ? BOOT_PATH_ACTIVE : why);
@@ -204,7 +204,7 @@ boot_status_t boot_select(boot_t *b, const boot_config_t *cfg)
     }
     s->active_slot = best;
     s->active_version = best_h.fw_version;
-    s->confirmed = 1u;     /* an image that booted before, or the factory image */
+    s->confirmed = 1u; /* an image that booted before, or the factory image */
     s->test_slot = BOOT_SLOT_NONE;
     s->test_attempts = 0u;
     (void)boot_state_store(cfg, s);

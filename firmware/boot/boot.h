@@ -21,19 +21,19 @@
 
 #define BOOT_SLOT_COUNT 2u
 #define BOOT_SLOT_NONE 0xFFu
-#define BOOT_FLAG_ALLOW_DOWNGRADE 0x01u   /* test image may be older than the active one */
+#define BOOT_FLAG_ALLOW_DOWNGRADE 0x01u /* test image may be older than the active one */
 #define BOOT_STATE_VERSION 1u
-#define BOOT_STATE_LEN 16u                /* bytes of the state record payload */
+#define BOOT_STATE_LEN 16u /* bytes of the state record payload */
 
 /** Where and what: filled by the port once. */
 typedef struct {
-    const fls_dev_t *app_dev;        /* flash holding both application slots */
+    const fls_dev_t *app_dev;            /* flash holding both application slots */
     uint32_t slot_addr[BOOT_SLOT_COUNT]; /* sector-aligned start of slot A and slot B */
-    uint32_t slot_size;              /* bytes per slot, a multiple of the sector size */
-    nvm_t *state_nvm;                /* record store (initialised with nvm_init) for the state */
-    uint16_t state_slot;             /* record index of the boot state in state_nvm */
-    uint32_t target_id;              /* BOOT_TARGET_* of this device */
-    const uint8_t *key;              /* device key of the image tag (HMAC-SHA256) */
+    uint32_t slot_size;                  /* bytes per slot, a multiple of the sector size */
+    nvm_t *state_nvm;    /* record store (initialised with nvm_init) for the state */
+    uint16_t state_slot; /* record index of the boot state in state_nvm */
+    uint32_t target_id;  /* BOOT_TARGET_* of this device */
+    const uint8_t *key;  /* device key of the image tag (HMAC-SHA256) */
     uint32_t key_len;
     uint16_t skill_min, skill_max;   /* format versions of the stored skills (0,0 = none) */
     uint16_t config_min, config_max; /* format versions of the stored configuration */
@@ -51,21 +51,21 @@ typedef struct {
 
 /** How the last boot_select decided. */
 typedef enum {
-    BOOT_PATH_NONE = 0,      /* nothing bootable */
-    BOOT_PATH_ACTIVE = 1,    /* the active, confirmed image */
-    BOOT_PATH_TEST = 2,      /* the test image, first and only unconfirmed boot */
-    BOOT_PATH_REVERTED = 3,  /* the test image did not confirm: back to the active one */
+    BOOT_PATH_NONE = 0,         /* nothing bootable */
+    BOOT_PATH_ACTIVE = 1,       /* the active, confirmed image */
+    BOOT_PATH_TEST = 2,         /* the test image, first and only unconfirmed boot */
+    BOOT_PATH_REVERTED = 3,     /* the test image did not confirm: back to the active one */
     BOOT_PATH_TEST_REFUSED = 4, /* the test image failed verification: active one */
-    BOOT_PATH_RECOVERED = 5, /* the active image failed verification: the other slot */
-    BOOT_PATH_FIRST = 6,     /* no state record yet: best verified slot adopted */
+    BOOT_PATH_RECOVERED = 5,    /* the active image failed verification: the other slot */
+    BOOT_PATH_FIRST = 6,        /* no state record yet: best verified slot adopted */
 } boot_path_t;
 
 /** Run-time view of the boot. */
 typedef struct {
     const boot_config_t *cfg;
     boot_state_t state;
-    uint8_t running_slot;        /* slot started, BOOT_SLOT_NONE if none */
-    uint8_t test_boot;           /* 1: the running image is on test and must confirm */
+    uint8_t running_slot; /* slot started, BOOT_SLOT_NONE if none */
+    uint8_t test_boot;    /* 1: the running image is on test and must confirm */
     boot_path_t path;
     boot_status_t refusal;       /* why a candidate was refused on this boot (0 if none) */
     boot_image_header_t running; /* header of the running image (valid if running_slot set) */

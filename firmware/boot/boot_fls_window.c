@@ -25,8 +25,8 @@ static int win_program(void *ctx, uint32_t addr, const uint8_t *data, uint32_t l
     if (!inside(w, addr, len)) {
         return -1;
     }
-    return w->parent->program(w->parent->ctx, w->first_sector * w->parent->sector_size + addr,
-                              data, len);
+    return w->parent->program(w->parent->ctx, w->first_sector * w->parent->sector_size + addr, data,
+                              len);
 }
 
 static int win_read(void *ctx, uint32_t addr, uint8_t *data, uint32_t len)

@@ -40,10 +40,10 @@ boot_status_t boot_image_parse_header(const uint8_t hdr[BOOT_IMAGE_HEADER_SIZE],
     }
     if (rd_u16(hdr + 4) != BOOT_IMAGE_FORMAT_VERSION || rd_u16(hdr + 6) != BOOT_IMAGE_HEADER_SIZE ||
         rd_u32(hdr + 20) != 0u || reserved_or != 0u || out->payload_length == 0u ||
-        out->payload_length > 0xFFFFFFFFu - BOOT_IMAGE_OVERHEAD ||
-        (out->entry_offset & 3u) != 0u || out->entry_offset >= out->payload_length ||
-        out->skill_format_oldest == 0u || out->skill_format_oldest > out->skill_format ||
-        out->config_format_oldest == 0u || out->config_format_oldest > out->config_format) {
+        out->payload_length > 0xFFFFFFFFu - BOOT_IMAGE_OVERHEAD || (out->entry_offset & 3u) != 0u ||
+        out->entry_offset >= out->payload_length || out->skill_format_oldest == 0u ||
+        out->skill_format_oldest > out->skill_format || out->config_format_oldest == 0u ||
+        out->config_format_oldest > out->config_format) {
         return BOOT_ERR_FORMAT;
     }
     for (uint32_t i = 0u; i < 32u; i++) {
@@ -121,7 +121,7 @@ static boot_status_t check_range(uint16_t lo, uint16_t hi, uint16_t oldest, uint
                                  boot_status_t err)
 {
     if (lo == 0u && hi == 0u) {
-        return BOOT_OK;           /* nothing stored */
+        return BOOT_OK; /* nothing stored */
     }
     return (lo >= oldest && hi <= native && lo <= hi) ? BOOT_OK : err;
 }

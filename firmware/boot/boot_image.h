@@ -49,7 +49,7 @@ typedef struct {
     uint16_t config_format, config_format_oldest;
     uint32_t entry_offset;
     uint8_t payload_sha256[32];
-    char build_id[33];            /* NUL-terminated copy */
+    char build_id[33]; /* NUL-terminated copy */
 } boot_image_header_t;
 
 /** Parse and check the 128 header bytes (magic 701, format/flags/reserved/entry 702, target 703

@@ -85,7 +85,7 @@ boot_status_t fwu_begin(fwu_t *f, bool authorised, uint32_t size)
     boot_t *b = f->boot;
     const boot_config_t *cfg = b->cfg;
     if (b->test_boot) {
-        return refuse(f, FWU_ERR_TEST_PENDING);   /* the other slot is our fallback */
+        return refuse(f, FWU_ERR_TEST_PENDING); /* the other slot is our fallback */
     }
     if (size < BOOT_IMAGE_OVERHEAD + 1u) {
         return refuse(f, FWU_ERR_RANGE);
@@ -130,7 +130,7 @@ static boot_status_t check_header(fwu_t *f)
         return BOOT_ERR_TRUNCATED;
     }
     if (f->size > total) {
-        return BOOT_ERR_FORMAT;     /* trailing bytes after the tag */
+        return BOOT_ERR_FORMAT; /* trailing bytes after the tag */
     }
     f->image_version = h.fw_version;
     return BOOT_OK;
@@ -273,16 +273,16 @@ uint8_t fwu_nrc(boot_status_t st)
     case BOOT_ERR_DOWNGRADE: return 0xF5u;
     case BOOT_ERR_SKILL_FORMAT: return 0xF6u;
     case BOOT_ERR_CONFIG_FORMAT: return 0xF7u;
-    case BOOT_ERR_TOO_LARGE: return 0x70u;      /* uploadDownloadNotAccepted */
-    case BOOT_ERR_FLASH: return 0x72u;          /* generalProgrammingFailure */
-    case FWU_ERR_LOCKED: return 0x33u;          /* securityAccessDenied */
-    case FWU_ERR_SEQUENCE: return 0x24u;        /* requestSequenceError */
-    case FWU_ERR_BLOCK_COUNTER: return 0x73u;   /* wrongBlockSequenceCounter */
-    case FWU_ERR_OVERRUN: return 0x71u;         /* transferDataSuspended */
-    case FWU_ERR_TEST_PENDING: return 0x22u;    /* conditionsNotCorrect */
-    case FWU_ERR_RANGE: return 0x31u;           /* requestOutOfRange */
+    case BOOT_ERR_TOO_LARGE: return 0x70u;    /* uploadDownloadNotAccepted */
+    case BOOT_ERR_FLASH: return 0x72u;        /* generalProgrammingFailure */
+    case FWU_ERR_LOCKED: return 0x33u;        /* securityAccessDenied */
+    case FWU_ERR_SEQUENCE: return 0x24u;      /* requestSequenceError */
+    case FWU_ERR_BLOCK_COUNTER: return 0x73u; /* wrongBlockSequenceCounter */
+    case FWU_ERR_OVERRUN: return 0x71u;       /* transferDataSuspended */
+    case FWU_ERR_TEST_PENDING: return 0x22u;  /* conditionsNotCorrect */
+    case FWU_ERR_RANGE: return 0x31u;         /* requestOutOfRange */
     case BOOT_ERR_NO_IMAGE:
     case BOOT_ERR_ARG:
-    default: return 0x10u;                      /* generalReject */
+    default: return 0x10u; /* generalReject */
     }
 }

@@ -22,27 +22,27 @@
 #define FWU_OPT_ALLOW_DOWNGRADE BOOT_FLAG_ALLOW_DOWNGRADE
 
 typedef enum {
-    FWU_IDLE = 0,       /* no download */
-    FWU_RECEIVING = 1,  /* between fwu_begin and fwu_end */
-    FWU_RECEIVED = 2,   /* complete and verified in the inactive slot */
-    FWU_MARKED = 3,     /* marked for a test boot at the next reset */
+    FWU_IDLE = 0,      /* no download */
+    FWU_RECEIVING = 1, /* between fwu_begin and fwu_end */
+    FWU_RECEIVED = 2,  /* complete and verified in the inactive slot */
+    FWU_MARKED = 3,    /* marked for a test boot at the next reset */
 } fwu_phase_t;
 
 /** Receiver state (one per device). */
 typedef struct {
     boot_t *boot;
     fwu_phase_t phase;
-    uint8_t slot;             /* slot being written */
-    uint32_t size;            /* bytes announced by RequestDownload */
-    uint32_t received;        /* bytes accepted so far */
-    uint32_t programmed;      /* bytes programmed (received minus the staged tail) */
-    uint32_t erased;          /* bytes of the slot erased so far, from its start */
+    uint8_t slot;        /* slot being written */
+    uint32_t size;       /* bytes announced by RequestDownload */
+    uint32_t received;   /* bytes accepted so far */
+    uint32_t programmed; /* bytes programmed (received minus the staged tail) */
+    uint32_t erased;     /* bytes of the slot erased so far, from its start */
     uint8_t hdr[BOOT_IMAGE_HEADER_SIZE];
-    uint8_t tail[16];         /* bytes waiting for a full write unit */
+    uint8_t tail[16]; /* bytes waiting for a full write unit */
     uint32_t tail_len;
-    uint32_t crc32;           /* zlib CRC-32 of the received bytes (RequestTransferExit reply) */
-    uint32_t image_version;   /* fw_version of the received image, 0 before its header */
-    boot_status_t last;       /* last refusal, 0 if none */
+    uint32_t crc32;         /* zlib CRC-32 of the received bytes (RequestTransferExit reply) */
+    uint32_t image_version; /* fw_version of the received image, 0 before its header */
+    boot_status_t last;     /* last refusal, 0 if none */
 } fwu_t;
 
 /** Attach to a booted device (boot_select already run). */

@@ -89,7 +89,8 @@ fs_real_t dmp_goal_prime(const dmp_params_t *p, const pfc_axis_gains_t *gains, f
                          fs_real_t force_d_N, fs_real_t force_d_integral_Ns)
 {
     const fs_real_t c = (gains->k_p_Npm * pos_d_m + gains->k_f * force_d_N +
-                         gains->k_i_per_s * force_d_integral_Ns) / gains->m_d_kg;
+                         gains->k_i_per_s * force_d_integral_Ns) /
+                        gains->m_d_kg;
     return c / (p->alpha * p->beta);
 }
 
@@ -137,8 +138,8 @@ fs_status_t dmp_model_init(dmp_model_t *m)
         return FS_ERR_SKILL_GAINS;
     }
 
-    const fs_real_t r_per_sigma =
-        fs_sqrt(FS_R(2.0) * (fs_real_t)DMP_KERNEL_CUTOFF_EXP) * DMP_ENVELOPE_MARGIN;
+    const fs_real_t r_per_sigma = fs_sqrt(FS_R(2.0) * (fs_real_t)DMP_KERNEL_CUTOFF_EXP) *
+                                  DMP_ENVELOPE_MARGIN;
     fs_real_t run_max = -FS_REAL_INF;
     for (uint16_t i = 0u; i < n; i++) {
         const fs_real_t s = m->width[i];
@@ -190,8 +191,8 @@ static fs_real_t dmp_blend_all(const dmp_model_t *m, fs_real_t u)
     fs_real_t num = FS_R(0.0);
     fs_real_t den = FS_R(0.0);
     for (uint16_t i = 0u; i < m->n_kernels; i++) {
-        const fs_real_t psi =
-            fs_exp(-(fs_num_kernel_expo(u, m->centre[i], m->kernel_scale[i]) - e_min));
+        const fs_real_t psi = fs_exp(
+            -(fs_num_kernel_expo(u, m->centre[i], m->kernel_scale[i]) - e_min));
         num += psi * m->weight[i];
         den += psi;
     }

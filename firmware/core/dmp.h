@@ -68,12 +68,12 @@ typedef struct {
     fs_real_t stiffness_Npm;
     fs_real_t duration_s;
     fs_real_t centre[DMP_MAX_KERNELS];
-    fs_real_t width[DMP_MAX_KERNELS];          /* sigma_i */
+    fs_real_t width[DMP_MAX_KERNELS]; /* sigma_i */
     fs_real_t weight[DMP_MAX_KERNELS];
     /* derived by dmp_model_init */
-    fs_real_t kernel_scale[DMP_MAX_KERNELS];   /* 1/(2 sigma_i^2): e_i = (u~ - c_i)^2 * this */
-    fs_real_t env_hi[DMP_MAX_KERNELS];         /* prefix max of c_i + r*sigma_i (non-decreasing) */
-    fs_real_t env_lo[DMP_MAX_KERNELS];         /* suffix min of c_i - r*sigma_i (non-decreasing) */
+    fs_real_t kernel_scale[DMP_MAX_KERNELS]; /* 1/(2 sigma_i^2): e_i = (u~ - c_i)^2 * this */
+    fs_real_t env_hi[DMP_MAX_KERNELS];       /* prefix max of c_i + r*sigma_i (non-decreasing) */
+    fs_real_t env_lo[DMP_MAX_KERNELS];       /* suffix min of c_i - r*sigma_i (non-decreasing) */
 } dmp_model_t;
 
 /** Validate the model and fill the derived arrays (after centre/width/weight and scalars are set).

@@ -125,8 +125,7 @@ static inline fs_force_t dmp_tick_step(const DMP_TICK_MODEL *m, const dmp_tick_c
     const fs_val_t z = fs_num_view(*s->z);
 
     const fs_val_t h = fs_num_mul_vv(fs_num_mul_vp(c->goal, v, ev), dmp_tick_blend(m, u, NULL), ev);
-    const fs_val_t sx =
-        fs_num_add_ev(fs_num_add_ev(fs_num_sub_ev(z, x, ev), h, ev), c->term_x, ev);
+    const fs_val_t sx = fs_num_add_ev(fs_num_add_ev(fs_num_sub_ev(z, x, ev), h, ev), c->term_x, ev);
     const fs_val_t gx = fs_num_sub_ev(c->goal, x, ev);
     const fs_phase_t one_u = fs_num_sub_ev(FS_NUM_PHASE_ONE, u, ev);
     *s->x = fs_num_acc_mac2(*s->x, c->k1, sx, c->k_gamma, i_x, ev);

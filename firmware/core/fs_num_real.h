@@ -31,7 +31,10 @@ typedef fs_real_t fs_wide_t;
 #define FS_NUM_EXPO_INF FS_REAL_INF
 #define FS_NUM_MAX_WINDOW DMP_MAX_KERNELS
 
-static inline fs_val_t fs_num_view(fs_acc_t acc) { return acc; }
+static inline fs_val_t fs_num_view(fs_acc_t acc)
+{
+    return acc;
+}
 
 static inline fs_acc_t fs_num_acc_mac1(fs_acc_t acc, fs_coef_t k, fs_val_t a, uint32_t *ev)
 {
@@ -58,8 +61,14 @@ static inline fs_val_t fs_num_sub_ev(fs_val_t a, fs_val_t b, uint32_t *ev)
     return a - b;
 }
 
-static inline fs_val_t fs_num_add(fs_val_t a, fs_val_t b) { return a + b; }
-static inline fs_val_t fs_num_sub(fs_val_t a, fs_val_t b) { return a - b; }
+static inline fs_val_t fs_num_add(fs_val_t a, fs_val_t b)
+{
+    return a + b;
+}
+static inline fs_val_t fs_num_sub(fs_val_t a, fs_val_t b)
+{
+    return a - b;
+}
 
 static inline fs_val_t fs_num_mul_vp(fs_val_t a, fs_phase_t p, uint32_t *ev)
 {
@@ -90,7 +99,10 @@ static inline fs_kdist_t fs_num_kernel_dist(fs_phase_t u, fs_phase_t c, fs_kscal
     return fs_num_kernel_expo(u, c, s);
 }
 
-static inline fs_act_t fs_num_exp_neg(fs_expo_t e) { return fs_exp(-e); }
+static inline fs_act_t fs_num_exp_neg(fs_expo_t e)
+{
+    return fs_exp(-e);
+}
 
 static inline void fs_num_blend_acc(fs_bnum_t *num, fs_bden_t *den, fs_act_t psi, fs_val_t w)
 {
@@ -98,13 +110,31 @@ static inline void fs_num_blend_acc(fs_bnum_t *num, fs_bden_t *den, fs_act_t psi
     *den += psi;
 }
 
-static inline fs_val_t fs_num_blend_div(fs_bnum_t num, fs_bden_t den) { return num / den; }
+static inline fs_val_t fs_num_blend_div(fs_bnum_t num, fs_bden_t den)
+{
+    return num / den;
+}
 
-static inline fs_wide_t fs_num_gain_val(fs_gain_t g, fs_val_t v) { return g * v; }
-static inline fs_wide_t fs_num_gain_force(fs_gain_t g, fs_force_t f) { return g * f; }
-static inline fs_force_t fs_num_wide_force(fs_wide_t w) { return w; }
-static inline fs_val_t fs_num_dt_force(fs_coef_t dt, fs_force_t f) { return dt * f; }
-static inline int fs_num_is_nan(fs_wide_t w) { return w != w; }
+static inline fs_wide_t fs_num_gain_val(fs_gain_t g, fs_val_t v)
+{
+    return g * v;
+}
+static inline fs_wide_t fs_num_gain_force(fs_gain_t g, fs_force_t f)
+{
+    return g * f;
+}
+static inline fs_force_t fs_num_wide_force(fs_wide_t w)
+{
+    return w;
+}
+static inline fs_val_t fs_num_dt_force(fs_coef_t dt, fs_force_t f)
+{
+    return dt * f;
+}
+static inline int fs_num_is_nan(fs_wide_t w)
+{
+    return w != w;
+}
 
 static inline fs_real_t fs_num_clamp(fs_real_t v, fs_real_t lim)
 {

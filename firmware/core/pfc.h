@@ -24,8 +24,8 @@ typedef struct {
 
 /** Output saturation and anti-windup bound of one axis. */
 typedef struct {
-    fs_real_t force_max_N;       /* |f_cmd| <= force_max_N */
-    fs_real_t integral_max_Ns;   /* |I_f| <= integral_max_Ns */
+    fs_real_t force_max_N;     /* |f_cmd| <= force_max_N */
+    fs_real_t integral_max_Ns; /* |I_f| <= integral_max_Ns */
 } pfc_axis_limits_t;
 
 /** Complete controller configuration (both axes). */

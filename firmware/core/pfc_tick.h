@@ -21,8 +21,7 @@
 /** One control tick, both axes: saturated force command per axis into force_cmd[PFC_AXES]. */
 static inline void pfc_tick_step(const PFC_TICK_CONFIG *cfg, PFC_TICK_STATE *st,
                                  const PFC_TICK_REF ref[PFC_AXES],
-                                 const PFC_TICK_MEAS meas[PFC_AXES],
-                                 fs_force_t force_cmd[PFC_AXES])
+                                 const PFC_TICK_MEAS meas[PFC_AXES], fs_force_t force_cmd[PFC_AXES])
 {
     for (uint32_t a = 0u; a < PFC_AXES; a++) {
         const fs_gain_t m_d = cfg->gains[a].m_d_kg;
@@ -53,9 +52,9 @@ static inline void pfc_tick_step(const PFC_TICK_CONFIG *cfg, PFC_TICK_STATE *st,
         const int windup = (unsat > force_max && force_err > FS_NUM_ZERO) ||
                            (unsat < -force_max && force_err < FS_NUM_ZERO);
         if (k_i > FS_NUM_ZERO && !windup) {
-            st->force_err_integral_Ns[a] =
-                fs_num_clamp(fs_num_add(i_f, fs_num_dt_force(cfg->dt_s, force_err)),
-                             cfg->limits[a].integral_max_Ns);
+            st->force_err_integral_Ns[a] = fs_num_clamp(
+                fs_num_add(i_f, fs_num_dt_force(cfg->dt_s, force_err)),
+                cfg->limits[a].integral_max_Ns);
         }
     }
 }

@@ -200,8 +200,7 @@ fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
     const double stored[3] = {rd_f64(buf, OFF_ALPHA), rd_f64(buf, OFF_BETA),
                               rd_f64(buf, OFF_GAMMA)};
     double derived[3];
-    if (!skill_derive(gain, k, derived) ||
-        !rel_close(stored[0], derived[0], SKILL_GAINS_REL_TOL) ||
+    if (!skill_derive(gain, k, derived) || !rel_close(stored[0], derived[0], SKILL_GAINS_REL_TOL) ||
         !rel_close(stored[1], derived[1], SKILL_GAINS_REL_TOL) ||
         !rel_close(stored[2], derived[2], SKILL_GAINS_REL_TOL) ||
         stored[1] > stored[0] / 4.0 * (1.0 + DMP_MONOTONE_REL_TOL)) {
@@ -217,12 +216,11 @@ fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
     dmp_model_t *m = &out->dmp;
     m->n_kernels = n;
     int ok = to_real(stored[0], &m->p.alpha) && to_real(stored[1], &m->p.beta) &&
-             to_real(stored[2], &m->p.gamma) && to_real(dt, &m->dt_s) &&
-             to_real(tau, &m->tau_s) && to_real(goal, &m->goal_m) &&
-             to_real(k, &m->stiffness_Npm) && to_real(duration, &m->duration_s) &&
-             to_real(gain[0], &out->gains.m_d_kg) && to_real(gain[1], &out->gains.k_d_Nspm) &&
-             to_real(gain[2], &out->gains.k_p_Npm) && to_real(gain[3], &out->gains.k_f) &&
-             to_real(gain[4], &out->gains.k_i_per_s) &&
+             to_real(stored[2], &m->p.gamma) && to_real(dt, &m->dt_s) && to_real(tau, &m->tau_s) &&
+             to_real(goal, &m->goal_m) && to_real(k, &m->stiffness_Npm) &&
+             to_real(duration, &m->duration_s) && to_real(gain[0], &out->gains.m_d_kg) &&
+             to_real(gain[1], &out->gains.k_d_Nspm) && to_real(gain[2], &out->gains.k_p_Npm) &&
+             to_real(gain[3], &out->gains.k_f) && to_real(gain[4], &out->gains.k_i_per_s) &&
              to_real(rd_f64(buf, OFF_SURFACE), &out->surface_m);
     for (uint32_t i = 0u; ok && i < n; i++) {
         ok = to_real(rd_f64(buf, off_c + 8u * i), &m->centre[i]) &&

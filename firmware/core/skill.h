@@ -9,27 +9,30 @@
 #include "fs_status.h"
 #include "pfc.h"
 
-#define SKILL_MAGIC 0x4C4B5346u         /* bytes "FSKL" */
+#define SKILL_MAGIC 0x4C4B5346u /* bytes "FSKL" */
 #define SKILL_FORMAT_VERSION 1u
 #define SKILL_HEADER_SIZE 128u
 #define SKILL_CRC_SIZE 4u
-#define SKILL_KERNEL_BYTES 24u          /* per kernel: centre, width, weight (f64 each) */
+#define SKILL_KERNEL_BYTES 24u /* per kernel: centre, width, weight (f64 each) */
 /** Bytes of an image with n kernels, and of the largest image this firmware accepts. */
 #define SKILL_IMAGE_SIZE(n) \
     (SKILL_HEADER_SIZE + SKILL_KERNEL_BYTES * (uint32_t)(n) + SKILL_CRC_SIZE)
 #define SKILL_IMAGE_MAX SKILL_IMAGE_SIZE(DMP_MAX_KERNELS)
-#define SKILL_FLAG_END_RELEASE 0x0001u  /* end policy: 0 hold, 1 release (ramp to 0 in 0.5 s) */
-#define SKILL_FLAG_Y_AXIS 0x0002u       /* reserved: y-axis position DMP (refused in v1) */
+#define SKILL_FLAG_END_RELEASE 0x0001u /* end policy: 0 hold, 1 release (ramp to 0 in 0.5 s) */
+#define SKILL_FLAG_Y_AXIS 0x0002u      /* reserved: y-axis position DMP (refused in v1) */
 #define SKILL_RELEASE_TIME_S 0.5
 
 /** End policy after the skill's duration. */
-typedef enum { SKILL_END_HOLD = 0, SKILL_END_RELEASE = 1 } skill_end_t;
+typedef enum {
+    SKILL_END_HOLD = 0,
+    SKILL_END_RELEASE = 1
+} skill_end_t;
 
 /** A parsed, validated skill. */
 typedef struct {
     dmp_model_t dmp;
-    pfc_axis_gains_t gains;   /* x-axis gains the skill was fitted with */
-    fs_real_t surface_m;      /* object surface position during the demonstration */
+    pfc_axis_gains_t gains; /* x-axis gains the skill was fitted with */
+    fs_real_t surface_m;    /* object surface position during the demonstration */
     skill_end_t end_policy;
 } skill_t;
 

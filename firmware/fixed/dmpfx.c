@@ -176,7 +176,8 @@ int32_t dmpfx_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t
                          .term_x = 0};
     if (coupling != NULL) {
         c.term_x = coupling->term_x_q24;
-        const uint32_t rate = (coupling->rate_q31 > FX_Q31_ONE_U) ? FX_Q31_ONE_U : coupling->rate_q31;
+        const uint32_t rate = (coupling->rate_q31 > FX_Q31_ONE_U) ? FX_Q31_ONE_U
+                                                                  : coupling->rate_q31;
         if (rate != FX_Q31_ONE_U) {
             c.k1 = dmpfx_scale_q31(c.k1, rate);
             c.k_alpha = dmpfx_scale_q31(c.k_alpha, rate);

@@ -26,12 +26,12 @@
  *  names (dmp_tick.h reads both). */
 typedef struct {
     uint16_t n_kernels;
-    int32_t centre[DMP_MAX_KERNELS];        /* Q2.30 */
-    int32_t kernel_scale[DMP_MAX_KERNELS];  /* 1/sigma_i, Q13.19 */
-    int32_t weight[DMP_MAX_KERNELS];        /* Q8.24 */
-    int32_t env_lo[DMP_MAX_KERNELS];  /* Q2.30 suffix min of c_i - r sigma_i, r = sqrt(32) */
-    int32_t env_hi[DMP_MAX_KERNELS];  /* Q2.30 prefix max of c_i + r sigma_i */
-    int32_t stiffness_q12;                /* k, N/m, Q20.12 */
+    int32_t centre[DMP_MAX_KERNELS];       /* Q2.30 */
+    int32_t kernel_scale[DMP_MAX_KERNELS]; /* 1/sigma_i, Q13.19 */
+    int32_t weight[DMP_MAX_KERNELS];       /* Q8.24 */
+    int32_t env_lo[DMP_MAX_KERNELS];       /* Q2.30 suffix min of c_i - r sigma_i, r = sqrt(32) */
+    int32_t env_hi[DMP_MAX_KERNELS];       /* Q2.30 prefix max of c_i + r sigma_i */
+    int32_t stiffness_q12;                 /* k, N/m, Q20.12 */
     /* scalars kept in double for dmpfx_run_init (run set-up, not the tick) */
     double dt_s;
     double tau_s;

@@ -9,20 +9,20 @@
 #include <stdint.h>
 #include "fx.h"
 
-typedef int32_t fs_phase_t;   /* Q2.30 */
-typedef int32_t fs_kscale_t;  /* Q13.19 1/sigma */
-typedef uint32_t fs_expo_t;   /* Q5.27 unsigned */
-typedef uint64_t fs_kdist_t;  /* Q.49 unsigned */
-typedef int32_t fs_act_t;     /* Q1.30, in [0, 2^30] */
-typedef int64_t fs_bnum_t;    /* Q.51 */
-typedef uint64_t fs_bden_t;   /* Q.30 */
-typedef int32_t fs_val_t;     /* Q8.24 */
-typedef int32_t fs_coef_t;    /* Q1.31, in [0, 0.5) for the DMP */
-typedef int64_t fs_acc_t;     /* value * 2^31 */
-typedef int32_t fs_force_t;   /* Q16.16 N */
-typedef int32_t fs_gain_t;    /* Q16.16 */
-typedef int32_t fs_stiff_t;   /* Q20.12 N/m */
-typedef int64_t fs_wide_t;    /* Q.32 N */
+typedef int32_t fs_phase_t;  /* Q2.30 */
+typedef int32_t fs_kscale_t; /* Q13.19 1/sigma */
+typedef uint32_t fs_expo_t;  /* Q5.27 unsigned */
+typedef uint64_t fs_kdist_t; /* Q.49 unsigned */
+typedef int32_t fs_act_t;    /* Q1.30, in [0, 2^30] */
+typedef int64_t fs_bnum_t;   /* Q.51 */
+typedef uint64_t fs_bden_t;  /* Q.30 */
+typedef int32_t fs_val_t;    /* Q8.24 */
+typedef int32_t fs_coef_t;   /* Q1.31, in [0, 0.5) for the DMP */
+typedef int64_t fs_acc_t;    /* value * 2^31 */
+typedef int32_t fs_force_t;  /* Q16.16 N */
+typedef int32_t fs_gain_t;   /* Q16.16 */
+typedef int32_t fs_stiff_t;  /* Q20.12 N/m */
+typedef int64_t fs_wide_t;   /* Q.32 N */
 
 #define FS_NUM_ZERO 0
 #define FS_NUM_PHASE_ONE FX_Q30_ONE
@@ -36,7 +36,10 @@ typedef int64_t fs_wide_t;    /* Q.32 N */
  * word >= 6 << 17, and below it r^2/2 fits uint32 in Q5.27. */
 #define FS_NUM_R_SKIP_HI ((uint32_t)6u << 17)
 
-static inline fs_val_t fs_num_view(fs_acc_t acc) { return fx_acc_view(acc); }
+static inline fs_val_t fs_num_view(fs_acc_t acc)
+{
+    return fx_acc_view(acc);
+}
 
 static inline fs_acc_t fs_num_acc_mac1(fs_acc_t acc, fs_coef_t k, fs_val_t a, uint32_t *ev)
 {
@@ -74,8 +77,14 @@ static inline fs_val_t fs_num_sub_ev(fs_val_t a, fs_val_t b, uint32_t *ev)
     return fs_num_ovf_ev(ovf, r, a, ev);
 }
 
-static inline fs_val_t fs_num_add(fs_val_t a, fs_val_t b) { return fx_add_sat(a, b); }
-static inline fs_val_t fs_num_sub(fs_val_t a, fs_val_t b) { return fx_sub_sat(a, b); }
+static inline fs_val_t fs_num_add(fs_val_t a, fs_val_t b)
+{
+    return fx_add_sat(a, b);
+}
+static inline fs_val_t fs_num_sub(fs_val_t a, fs_val_t b)
+{
+    return fx_sub_sat(a, b);
+}
 
 /* Saturate a 64-bit value into int32 and count. */
 static inline int32_t fs_num_sat_ev(int64_t v, uint32_t *ev)
@@ -125,7 +134,10 @@ static inline fs_expo_t fs_num_kernel_expo(fs_phase_t u, fs_phase_t c, fs_kscale
 }
 
 /* exp(-e) in Q1.30: the Q1.31 table exp halved, so psi*w is one signed 32x32 product. */
-static inline fs_act_t fs_num_exp_neg(fs_expo_t e) { return (int32_t)(fx_exp_neg_q27(e) >> 1); }
+static inline fs_act_t fs_num_exp_neg(fs_expo_t e)
+{
+    return (int32_t)(fx_exp_neg_q27(e) >> 1);
+}
 
 /* num += psi*w / 2^3 (Q.51; < 32 * 2^60 / 8 = 2^62 over a window), den += psi (Q.30). */
 static inline void fs_num_blend_acc(fs_bnum_t *num, fs_bden_t *den, fs_act_t psi, fs_val_t w)
@@ -156,11 +168,20 @@ static inline fs_val_t fs_num_blend_div(fs_bnum_t num, fs_bden_t den)
 }
 
 /* Q16.16 gain * Q8.24 -> Q.32 (N); < 2^54 for int32 operands. */
-static inline fs_wide_t fs_num_gain_val(fs_gain_t g, fs_val_t v) { return ((int64_t)g * v) >> 8; }
+static inline fs_wide_t fs_num_gain_val(fs_gain_t g, fs_val_t v)
+{
+    return ((int64_t)g * v) >> 8;
+}
 /* Q16.16 gain * Q16.16 N -> Q.32 (N); < 2^62. */
-static inline fs_wide_t fs_num_gain_force(fs_gain_t g, fs_force_t f) { return (int64_t)g * f; }
+static inline fs_wide_t fs_num_gain_force(fs_gain_t g, fs_force_t f)
+{
+    return (int64_t)g * f;
+}
 /* Q.32 -> Q16.16 N, rounded, saturated. */
-static inline fs_force_t fs_num_wide_force(fs_wide_t w) { return fx_sat32(fx_rshift_round(w, 16u)); }
+static inline fs_force_t fs_num_wide_force(fs_wide_t w)
+{
+    return fx_sat32(fx_rshift_round(w, 16u));
+}
 /* Q1.31 s * Q16.16 N -> Q8.24 N*s */
 static inline fs_val_t fs_num_dt_force(fs_coef_t dt, fs_force_t f)
 {
@@ -171,6 +192,9 @@ static inline int fs_num_is_nan(fs_wide_t w)
     (void)w;
     return 0;
 }
-static inline int32_t fs_num_clamp(int32_t v, int32_t lim) { return fx_clamp_sym(v, lim); }
+static inline int32_t fs_num_clamp(int32_t v, int32_t lim)
+{
+    return fx_clamp_sym(v, lim);
+}
 
 #endif /* FS_NUM_FIXED_H */

@@ -144,16 +144,16 @@ static inline uint32_t fx_exp_neg_q27(uint32_t a_q27)
     const uint32_t a = (a_q27 > FX_EXP_ARG_MAX_Q27) ? FX_EXP_ARG_MAX_Q27 : a_q27;
     /* y = a*log2(e) in Q.58, < 23.09 * 2^58 < 2^63: exact product, no rounding of the exponent */
     const uint64_t y = (uint64_t)a * FX_LOG2E_Q31;
-    const uint32_t n = (uint32_t)(y >> 58);          /* integer part, 0..23 */
-    const uint32_t f = (uint32_t)(y >> 26);          /* fraction, Q.32 */
+    const uint32_t n = (uint32_t)(y >> 58); /* integer part, 0..23 */
+    const uint32_t f = (uint32_t)(y >> 26); /* fraction, Q.32 */
     const uint32_t frac_bits = 32u - FX_EXP_TABLE_BITS;
     const uint32_t k = f >> frac_bits;
     const uint32_t r = f & ((1u << frac_bits) - 1u);
     const uint32_t t0 = fx_exp2_table[k];
     const uint32_t t1 = fx_exp2_table[k + 1u];
     /* t0 - t1 < 2^23 and r < 2^24: the product needs 47 bits */
-    const uint32_t drop =
-        (uint32_t)(((uint64_t)(t0 - t1) * r + (1u << (frac_bits - 1u))) >> frac_bits);
+    const uint32_t drop = (uint32_t)(((uint64_t)(t0 - t1) * r + (1u << (frac_bits - 1u))) >>
+                                     frac_bits);
     const uint32_t m = t0 - drop;
     if (n == 0u) {
         return m;

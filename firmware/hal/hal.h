@@ -18,9 +18,9 @@
 
 /** One sample of every sensor, as the tick sees it (the port applies calibration). */
 typedef struct {
-    fs_real_t pos_m[HAL_AXES];             /* encoders */
-    fs_real_t force_contact_N[HAL_AXES];   /* tip sensor (x; y reads 0 where absent) */
-    fs_real_t force_operator_N[HAL_AXES];  /* handle sensor */
+    fs_real_t pos_m[HAL_AXES];            /* encoders */
+    fs_real_t force_contact_N[HAL_AXES];  /* tip sensor (x; y reads 0 where absent) */
+    fs_real_t force_operator_N[HAL_AXES]; /* handle sensor */
 } hal_sensors_t;
 
 /* ---- CAN (classic, 11-bit ids) ---- */

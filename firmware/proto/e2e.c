@@ -2,14 +2,15 @@
 #include "e2e.h"
 
 #define E2E_POLY 0x1Du
-#define E2E_COUNTER_SHIFT 0u   /* counter in the low nibble of data[6] = bits 48..51 */
+#define E2E_COUNTER_SHIFT 0u /* counter in the low nibble of data[6] = bits 48..51 */
 
 uint8_t e2e_crc8_update(uint8_t crc, const uint8_t *data, uint32_t len)
 {
     for (uint32_t i = 0; i < len; i++) {
         crc ^= data[i];
         for (uint8_t b = 0; b < 8u; b++) {
-            crc = (uint8_t)(((crc & 0x80u) != 0u) ? (((uint32_t)crc << 1) ^ E2E_POLY) : ((uint32_t)crc << 1));
+            crc = (uint8_t)(((crc & 0x80u) != 0u) ? (((uint32_t)crc << 1) ^ E2E_POLY)
+                                                  : ((uint32_t)crc << 1));
         }
     }
     return crc;
@@ -31,7 +32,8 @@ uint8_t e2e_frame_crc(const can_frame_t *f)
 void e2e_protect(can_frame_t *f, uint8_t counter)
 {
     f->dlc = 8u;
-    f->data[6] = (uint8_t)((f->data[6] & 0xF0u) | ((counter & E2E_COUNTER_MASK) << E2E_COUNTER_SHIFT));
+    f->data[6] = (uint8_t)((f->data[6] & 0xF0u) |
+                           ((counter & E2E_COUNTER_MASK) << E2E_COUNTER_SHIFT));
     f->data[7] = e2e_frame_crc(f);
 }
 

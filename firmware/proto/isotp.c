@@ -62,7 +62,8 @@ static bool emit(isotp_link_t *link, const uint8_t *payload, uint8_t n)
 
 static bool send_fc(isotp_link_t *link, uint8_t status)
 {
-    const uint8_t fc[3] = {(uint8_t)((PCI_FC << 4) | status), link->cfg.block_size, link->cfg.st_min};
+    const uint8_t fc[3] = {(uint8_t)((PCI_FC << 4) | status), link->cfg.block_size,
+                           link->cfg.st_min};
     return emit(link, fc, 3u);
 }
 
@@ -76,7 +77,7 @@ static void rx_single(isotp_link_t *link, const can_frame_t *f)
         return;
     }
     if (link->rx_state == ISOTP_RX_RECEIVING) {
-        fail(link, PROTO_ERR_ISOTP_UNEXPECTED);   /* ISO 15765-2: a new SF aborts a reception */
+        fail(link, PROTO_ERR_ISOTP_UNEXPECTED); /* ISO 15765-2: a new SF aborts a reception */
     }
     memcpy(link->rx_buf, &f->data[1], len);
     link->rx_len = len;
@@ -99,7 +100,7 @@ static void rx_first(isotp_link_t *link, const can_frame_t *f, uint64_t now_us)
         return;
     }
     if (len <= SF_MAX) {
-        fail(link, PROTO_ERR_ISOTP_FORMAT);       /* would have fitted a single frame */
+        fail(link, PROTO_ERR_ISOTP_FORMAT); /* would have fitted a single frame */
         return;
     }
     if (len > ISOTP_MAX_PAYLOAD) {
@@ -109,7 +110,7 @@ static void rx_first(isotp_link_t *link, const can_frame_t *f, uint64_t now_us)
         return;
     }
     if (link->rx_state == ISOTP_RX_RECEIVING) {
-        fail(link, PROTO_ERR_ISOTP_UNEXPECTED);   /* a new FF aborts a reception */
+        fail(link, PROTO_ERR_ISOTP_UNEXPECTED); /* a new FF aborts a reception */
     }
     memcpy(link->rx_buf, &f->data[2], FF_DATA);
     link->rx_len = len;
@@ -125,7 +126,7 @@ static void rx_first(isotp_link_t *link, const can_frame_t *f, uint64_t now_us)
 static void rx_consecutive(isotp_link_t *link, const can_frame_t *f, uint64_t now_us)
 {
     if (link->rx_state != ISOTP_RX_RECEIVING) {
-        return;                                   /* not for a reception in progress: ignore */
+        return; /* not for a reception in progress: ignore */
     }
     const uint8_t sn = (uint8_t)(f->data[0] & 0x0Fu);
     if (sn != link->rx_sn) {
@@ -163,7 +164,7 @@ static void rx_consecutive(isotp_link_t *link, const can_frame_t *f, uint64_t no
 static void tx_flow_control(isotp_link_t *link, const can_frame_t *f, uint64_t now_us)
 {
     if (link->tx_state != ISOTP_TX_WAIT_FC) {
-        fail(link, PROTO_ERR_ISOTP_UNEXPECTED);   /* unexpected FC: ignored */
+        fail(link, PROTO_ERR_ISOTP_UNEXPECTED); /* unexpected FC: ignored */
         return;
     }
     if (f->dlc < 3u) {
@@ -178,7 +179,7 @@ static void tx_flow_control(isotp_link_t *link, const can_frame_t *f, uint64_t n
         link->tx_stmin_us = isotp_stmin_to_us(f->data[2]);
         link->tx_wft = 0u;
         link->tx_state = ISOTP_TX_SENDING;
-        link->tx_next_us = now_us;                /* the first CF may follow the FC at once */
+        link->tx_next_us = now_us; /* the first CF may follow the FC at once */
     } else if (status == FC_WAIT) {
         link->tx_wft++;
         if (link->tx_wft > link->cfg.wft_max) {
@@ -191,7 +192,7 @@ static void tx_flow_control(isotp_link_t *link, const can_frame_t *f, uint64_t n
         fail(link, PROTO_ERR_ISOTP_OVERFLOW);
         link->tx_state = ISOTP_TX_IDLE;
     } else {
-        fail(link, PROTO_ERR_ISOTP_FORMAT);       /* reserved flow status: abort */
+        fail(link, PROTO_ERR_ISOTP_FORMAT); /* reserved flow status: abort */
         link->tx_state = ISOTP_TX_IDLE;
     }
 }
@@ -204,7 +205,7 @@ void isotp_on_frame(isotp_link_t *link, const can_frame_t *frame, uint64_t now_u
     switch ((uint8_t)(frame->data[0] >> 4)) {
     case PCI_SF:
         if (link->rx_state == ISOTP_RX_DONE) {
-            fail(link, PROTO_ERR_ISOTP_UNEXPECTED);   /* previous message not consumed yet */
+            fail(link, PROTO_ERR_ISOTP_UNEXPECTED); /* previous message not consumed yet */
         } else {
             rx_single(link, frame);
         }
@@ -216,14 +217,10 @@ void isotp_on_frame(isotp_link_t *link, const can_frame_t *frame, uint64_t now_u
             rx_first(link, frame, now_us);
         }
         break;
-    case PCI_CF:
-        rx_consecutive(link, frame, now_us);
-        break;
-    case PCI_FC:
-        tx_flow_control(link, frame, now_us);
-        break;
+    case PCI_CF: rx_consecutive(link, frame, now_us); break;
+    case PCI_FC: tx_flow_control(link, frame, now_us); break;
     default:
-        fail(link, PROTO_ERR_ISOTP_FORMAT);           /* reserved PCI type: ignored */
+        fail(link, PROTO_ERR_ISOTP_FORMAT); /* reserved PCI type: ignored */
         break;
     }
 }
@@ -235,7 +232,7 @@ static void tx_run(isotp_link_t *link, uint64_t now_us)
         sf[0] = (uint8_t)((PCI_SF << 4) | link->tx_len);
         memcpy(&sf[1], link->tx_buf, link->tx_len);
         if (emit(link, sf, (uint8_t)(link->tx_len + 1u))) {
-            link->tx_state = ISOTP_TX_IDLE;      /* else: driver full, retried on the next poll */
+            link->tx_state = ISOTP_TX_IDLE; /* else: driver full, retried on the next poll */
         }
         return;
     }
@@ -262,7 +259,7 @@ static void tx_run(isotp_link_t *link, uint64_t now_us)
         cf[0] = (uint8_t)((PCI_CF << 4) | link->tx_sn);
         memcpy(&cf[1], &link->tx_buf[link->tx_pos], n);
         if (!emit(link, cf, (uint8_t)(n + 1u))) {
-            return;                                  /* driver full: retry on the next poll */
+            return; /* driver full: retry on the next poll */
         }
         link->tx_pos = (uint16_t)(link->tx_pos + n);
         link->tx_sn = (uint8_t)((link->tx_sn + 1u) & 0x0Fu);
@@ -280,7 +277,7 @@ static void tx_run(isotp_link_t *link, uint64_t now_us)
             }
         }
         if (link->tx_stmin_us != 0u) {
-            return;                                  /* next CF after STmin: a later poll */
+            return; /* next CF after STmin: a later poll */
         }
     }
 }

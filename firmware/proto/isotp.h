@@ -18,7 +18,7 @@
 #define ISOTP_MAX_PAYLOAD 4095u
 #endif
 #define ISOTP_PADDING 0xCCu
-#define ISOTP_DEFAULT_N_BS_US 1000000u   /* ISO 15765-2 default N_Bs / N_Cr: 1000 ms */
+#define ISOTP_DEFAULT_N_BS_US 1000000u /* ISO 15765-2 default N_Bs / N_Cr: 1000 ms */
 #define ISOTP_DEFAULT_N_CR_US 1000000u
 #define ISOTP_DEFAULT_WFT_MAX 10u
 
@@ -29,15 +29,24 @@ typedef bool (*isotp_send_fn)(void *ctx, const can_frame_t *frame);
 typedef struct {
     uint32_t tx_id;
     uint32_t rx_id;
-    uint8_t block_size;   /* 0: no further FC */
-    uint8_t st_min;       /* raw STmin byte: 0x00-0x7F ms, 0xF1-0xF9 100-900 us */
+    uint8_t block_size; /* 0: no further FC */
+    uint8_t st_min;     /* raw STmin byte: 0x00-0x7F ms, 0xF1-0xF9 100-900 us */
     uint32_t n_bs_us;
     uint32_t n_cr_us;
-    uint8_t wft_max;      /* FC WAIT frames accepted in a row before aborting */
+    uint8_t wft_max; /* FC WAIT frames accepted in a row before aborting */
 } isotp_config_t;
 
-typedef enum { ISOTP_RX_IDLE = 0, ISOTP_RX_RECEIVING = 1, ISOTP_RX_DONE = 2 } isotp_rx_state_t;
-typedef enum { ISOTP_TX_IDLE = 0, ISOTP_TX_SEND_FIRST = 1, ISOTP_TX_WAIT_FC = 2, ISOTP_TX_SENDING = 3 } isotp_tx_state_t;
+typedef enum {
+    ISOTP_RX_IDLE = 0,
+    ISOTP_RX_RECEIVING = 1,
+    ISOTP_RX_DONE = 2
+} isotp_rx_state_t;
+typedef enum {
+    ISOTP_TX_IDLE = 0,
+    ISOTP_TX_SEND_FIRST = 1,
+    ISOTP_TX_WAIT_FC = 2,
+    ISOTP_TX_SENDING = 3
+} isotp_tx_state_t;
 
 /** One ISO-TP link (both directions). */
 typedef struct {
@@ -47,12 +56,12 @@ typedef struct {
     /* reception */
     isotp_rx_state_t rx_state;
     uint8_t rx_buf[ISOTP_MAX_PAYLOAD];
-    uint16_t rx_len;              /* announced length */
-    uint16_t rx_pos;              /* bytes received so far */
-    uint8_t rx_sn;                /* expected sequence number */
-    uint8_t rx_bs_left;           /* CFs until we must send the next FC (0 with BS 0) */
-    uint64_t rx_deadline_us;      /* N_Cr */
-    bool rx_fc_pending;           /* FC to send (driver was busy) */
+    uint16_t rx_len;         /* announced length */
+    uint16_t rx_pos;         /* bytes received so far */
+    uint8_t rx_sn;           /* expected sequence number */
+    uint8_t rx_bs_left;      /* CFs until we must send the next FC (0 with BS 0) */
+    uint64_t rx_deadline_us; /* N_Cr */
+    bool rx_fc_pending;      /* FC to send (driver was busy) */
     uint8_t rx_fc_status;
     /* transmission */
     isotp_tx_state_t tx_state;
@@ -60,11 +69,11 @@ typedef struct {
     uint16_t tx_len;
     uint16_t tx_pos;
     uint8_t tx_sn;
-    uint8_t tx_bs;                /* block size granted by the receiver */
+    uint8_t tx_bs; /* block size granted by the receiver */
     uint8_t tx_bs_left;
     uint32_t tx_stmin_us;
-    uint64_t tx_next_us;          /* earliest time of the next CF */
-    uint64_t tx_deadline_us;      /* N_Bs */
+    uint64_t tx_next_us;     /* earliest time of the next CF */
+    uint64_t tx_deadline_us; /* N_Bs */
     uint8_t tx_wft;
     /* diagnostics */
     proto_status_t last_error;

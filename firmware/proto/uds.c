@@ -25,7 +25,7 @@ static void enter_session(uds_server_t *srv, uint8_t session)
         xfer_abort(srv);
     }
     srv->session = session;
-    srv->unlocked_level = 0u;       /* every session change locks (ISO 14229-1 9.4) */
+    srv->unlocked_level = 0u; /* every session change locks (ISO 14229-1 9.4) */
     srv->seed_level = 0u;
 }
 
@@ -57,7 +57,8 @@ static uint16_t svc_dsc(uds_server_t *srv, const uint8_t *req, uint16_t len, uin
         return negative(resp, req[0], UDS_NRC_INCORRECT_LENGTH);
     }
     const uint8_t sub = (uint8_t)(req[1] & 0x7Fu);
-    if (sub != UDS_SESSION_DEFAULT && sub != UDS_SESSION_PROGRAMMING && sub != UDS_SESSION_EXTENDED) {
+    if (sub != UDS_SESSION_DEFAULT && sub != UDS_SESSION_PROGRAMMING &&
+        sub != UDS_SESSION_EXTENDED) {
         return negative(resp, req[0], UDS_NRC_SUBFUNCTION_NOT_SUPPORTED);
     }
     if (srv->app.session_allowed != NULL) {
@@ -74,7 +75,7 @@ static uint16_t svc_dsc(uds_server_t *srv, const uint8_t *req, uint16_t len, uin
     resp[1] = sub;
     resp[2] = (uint8_t)(UDS_P2_MS >> 8);
     resp[3] = (uint8_t)(UDS_P2_MS & 0xFFu);
-    resp[4] = (uint8_t)((UDS_P2_STAR_MS / 10u) >> 8);   /* P2* in units of 10 ms */
+    resp[4] = (uint8_t)((UDS_P2_STAR_MS / 10u) >> 8); /* P2* in units of 10 ms */
     resp[5] = (uint8_t)((UDS_P2_STAR_MS / 10u) & 0xFFu);
     return 6u;
 }
@@ -154,7 +155,7 @@ static uint16_t svc_security(uds_server_t *srv, const uint8_t *req, uint16_t len
     if (srv->seed_level != level) {
         return negative(resp, req[0], UDS_NRC_REQUEST_SEQUENCE_ERROR);
     }
-    srv->seed_level = 0u;   /* one key per seed */
+    srv->seed_level = 0u; /* one key per seed */
     const uint8_t nrc = srv->app.security_key(srv->app.ctx, level, &req[2], (uint16_t)(len - 2u));
     if (nrc != UDS_NRC_OK) {
         return negative(resp, req[0], nrc);
@@ -271,7 +272,7 @@ static uint16_t svc_request_transfer(uds_server_t *srv, const uint8_t *req, uint
         return negative(resp, req[0], UDS_NRC_SECURITY_ACCESS_DENIED);
     }
     if (dfi != 0x00u) {
-        return negative(resp, req[0], UDS_NRC_REQUEST_OUT_OF_RANGE);   /* no compression/encryption */
+        return negative(resp, req[0], UDS_NRC_REQUEST_OUT_OF_RANGE); /* no compression/encryption */
     }
     if (srv->xfer != UDS_XFER_NONE) {
         return negative(resp, req[0], UDS_NRC_CONDITIONS_NOT_CORRECT); /* one transfer at a time */
@@ -289,7 +290,7 @@ static uint16_t svc_request_transfer(uds_server_t *srv, const uint8_t *req, uint
     srv->xfer_counter = 1u;
     srv->xfer_last_len = 0u;
     resp[0] = (uint8_t)(req[0] + 0x40u);
-    resp[1] = 0x20u;   /* lengthFormatIdentifier: 2-byte maxNumberOfBlockLength */
+    resp[1] = 0x20u; /* lengthFormatIdentifier: 2-byte maxNumberOfBlockLength */
     resp[2] = (uint8_t)(UDS_MAX_BLOCK_LENGTH >> 8);
     resp[3] = (uint8_t)(UDS_MAX_BLOCK_LENGTH & 0xFFu);
     return 4u;
@@ -322,10 +323,10 @@ static uint16_t svc_transfer_data(uds_server_t *srv, const uint8_t *req, uint16_
             return negative(resp, req[0], UDS_NRC_INCORRECT_LENGTH);
         }
         if (repeat) {
-            return 2u;    /* block already written: acknowledge again (ISO 14229-1 14.5) */
+            return 2u; /* block already written: acknowledge again (ISO 14229-1 14.5) */
         }
         if (srv->xfer_pos + n > srv->xfer_size) {
-            return negative(resp, req[0], UDS_NRC_TRANSFER_SUSPENDED);  /* more than announced */
+            return negative(resp, req[0], UDS_NRC_TRANSFER_SUSPENDED); /* more than announced */
         }
         const uint8_t nrc = srv->app.download_data(srv->app.ctx, srv->xfer_pos, &req[2], n);
         if (nrc != UDS_NRC_OK) {
@@ -344,7 +345,7 @@ static uint16_t svc_transfer_data(uds_server_t *srv, const uint8_t *req, uint16_
     if (repeat) {
         offset -= srv->xfer_last_len;
     } else if (srv->xfer_pos >= srv->xfer_size) {
-        return negative(resp, req[0], UDS_NRC_REQUEST_SEQUENCE_ERROR);   /* all data sent */
+        return negative(resp, req[0], UDS_NRC_REQUEST_SEQUENCE_ERROR); /* all data sent */
     }
     uint32_t n = srv->xfer_size - offset;
     if (n > UDS_MAX_BLOCK_LENGTH - 2u) {
@@ -378,7 +379,7 @@ static uint16_t svc_transfer_exit(uds_server_t *srv, const uint8_t *req, uint8_t
     }
     if (srv->xfer_pos != srv->xfer_size) {
         xfer_abort(srv);
-        return negative(resp, req[0], UDS_NRC_REQUEST_SEQUENCE_ERROR);   /* incomplete */
+        return negative(resp, req[0], UDS_NRC_REQUEST_SEQUENCE_ERROR); /* incomplete */
     }
     resp[0] = (uint8_t)(req[0] + 0x40u);
     if (srv->xfer == UDS_XFER_UPLOAD) {
@@ -423,29 +424,18 @@ uint16_t uds_server_handle(uds_server_t *srv, const uint8_t *req, uint16_t len, 
     }
     srv->last_request_ms = now_ms;
     switch (req[0]) {
-    case UDS_SID_DSC:
-        return svc_dsc(srv, req, len, resp);
-    case UDS_SID_ECU_RESET:
-        return svc_reset(srv, req, len, resp);
-    case UDS_SID_SECURITY:
-        return svc_security(srv, req, len, resp, resp_cap);
-    case UDS_SID_RDBI:
-        return svc_rdbi(srv, req, len, resp, resp_cap);
-    case UDS_SID_WDBI:
-        return svc_wdbi(srv, req, len, resp);
-    case UDS_SID_ROUTINE:
-        return svc_routine(srv, req, len, resp, resp_cap);
+    case UDS_SID_DSC: return svc_dsc(srv, req, len, resp);
+    case UDS_SID_ECU_RESET: return svc_reset(srv, req, len, resp);
+    case UDS_SID_SECURITY: return svc_security(srv, req, len, resp, resp_cap);
+    case UDS_SID_RDBI: return svc_rdbi(srv, req, len, resp, resp_cap);
+    case UDS_SID_WDBI: return svc_wdbi(srv, req, len, resp);
+    case UDS_SID_ROUTINE: return svc_routine(srv, req, len, resp, resp_cap);
     case UDS_SID_REQ_DOWNLOAD:
-    case UDS_SID_REQ_UPLOAD:
-        return svc_request_transfer(srv, req, len, resp);
-    case UDS_SID_TRANSFER_DATA:
-        return svc_transfer_data(srv, req, len, resp, resp_cap);
-    case UDS_SID_TRANSFER_EXIT:
-        return svc_transfer_exit(srv, req, resp);
-    case UDS_SID_TESTER_PRESENT:
-        return svc_tester_present(req, len, resp);
-    default:
-        return negative(resp, req[0], UDS_NRC_SERVICE_NOT_SUPPORTED);
+    case UDS_SID_REQ_UPLOAD: return svc_request_transfer(srv, req, len, resp);
+    case UDS_SID_TRANSFER_DATA: return svc_transfer_data(srv, req, len, resp, resp_cap);
+    case UDS_SID_TRANSFER_EXIT: return svc_transfer_exit(srv, req, resp);
+    case UDS_SID_TESTER_PRESENT: return svc_tester_present(req, len, resp);
+    default: return negative(resp, req[0], UDS_NRC_SERVICE_NOT_SUPPORTED);
     }
 }
 
@@ -464,7 +454,8 @@ void uds_server_after_response(uds_server_t *srv)
 
 void uds_server_poll(uds_server_t *srv, uint32_t now_ms)
 {
-    if (srv->session != UDS_SESSION_DEFAULT && (uint32_t)(now_ms - srv->last_request_ms) > UDS_S3_MS) {
+    if (srv->session != UDS_SESSION_DEFAULT &&
+        (uint32_t)(now_ms - srv->last_request_ms) > UDS_S3_MS) {
         xfer_abort(srv);
         enter_session(srv, UDS_SESSION_DEFAULT);
     }

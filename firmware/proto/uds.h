@@ -65,7 +65,7 @@
 /* Timing reported in the DSC response and enforced by the server */
 #define UDS_P2_MS 50u
 #define UDS_P2_STAR_MS 5000u
-#define UDS_S3_MS 5000u                /* non-default session falls back after this silence */
+#define UDS_S3_MS 5000u /* non-default session falls back after this silence */
 
 /* Transfer block size announced in 0x74/0x75 responses: bytes per 0x36 request incl. SID and
  * counter; fits one ISO-TP message. */
@@ -102,21 +102,25 @@ typedef struct {
     uint8_t (*upload_data)(void *ctx, uint32_t offset, uint8_t *out, uint16_t len);
 } uds_app_t;
 
-typedef enum { UDS_XFER_NONE = 0, UDS_XFER_DOWNLOAD = 1, UDS_XFER_UPLOAD = 2 } uds_xfer_t;
+typedef enum {
+    UDS_XFER_NONE = 0,
+    UDS_XFER_DOWNLOAD = 1,
+    UDS_XFER_UPLOAD = 2
+} uds_xfer_t;
 
 /** Server state. */
 typedef struct {
     uds_app_t app;
     uint8_t session;
-    uint8_t unlocked_level;      /* 0: locked, else the level unlocked */
-    uint8_t seed_level;          /* level whose seed was sent and awaits a key, 0 if none */
+    uint8_t unlocked_level; /* 0: locked, else the level unlocked */
+    uint8_t seed_level;     /* level whose seed was sent and awaits a key, 0 if none */
     uint32_t last_request_ms;
     uds_xfer_t xfer;
     uint32_t xfer_size;
     uint32_t xfer_pos;
-    uint8_t xfer_counter;        /* counter expected next */
-    uint16_t xfer_last_len;      /* length of the last accepted block (for a repeated counter) */
-    uint8_t pending_reset;       /* reset type to perform after the response, 0 if none */
+    uint8_t xfer_counter;   /* counter expected next */
+    uint16_t xfer_last_len; /* length of the last accepted block (for a repeated counter) */
+    uint8_t pending_reset;  /* reset type to perform after the response, 0 if none */
 } uds_server_t;
 
 /** Initialise in the default session, locked, no transfer. */

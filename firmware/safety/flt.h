@@ -12,19 +12,19 @@
 
 /** Payload data of one emergency frame (the CAN layer adds counter and CRC-8). */
 typedef struct {
-    uint16_t code;          /* the fault that latched (5xx) */
-    uint8_t n_latched;      /* number of faults latched after this one */
-    uint32_t latched_mask;  /* FLT_BIT of every latched fault */
-    uint32_t tick;          /* control tick at which it latched */
+    uint16_t code;         /* the fault that latched (5xx) */
+    uint8_t n_latched;     /* number of faults latched after this one */
+    uint32_t latched_mask; /* FLT_BIT of every latched fault */
+    uint32_t tick;         /* control tick at which it latched */
 } flt_emcy_t;
 
 /** Fault state. */
 typedef struct {
-    uint32_t latched_mask;      /* FLT_BIT of every latched fault */
-    uint16_t first_code;        /* first fault since the last clear (status frame), 0 if none */
-    uint32_t first_tick;        /* tick at which first_code latched */
+    uint32_t latched_mask; /* FLT_BIT of every latched fault */
+    uint16_t first_code;   /* first fault since the last clear (status frame), 0 if none */
+    uint32_t first_tick;   /* tick at which first_code latched */
     uint32_t raise_count[FLT_COUNT]; /* times each fault latched since flt_init (diagnostics) */
-    flt_emcy_t emcy[FLT_COUNT]; /* FIFO of emergency frames not yet sent */
+    flt_emcy_t emcy[FLT_COUNT];      /* FIFO of emergency frames not yet sent */
     uint8_t emcy_head;
     uint8_t emcy_len;
 } flt_state_t;

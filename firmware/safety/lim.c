@@ -26,7 +26,7 @@ saf_status_t lim_config_validate(const lim_config_t *cfg)
     }
     for (uint32_t i = 0u; i < LIM_AXES; i++) {
         const lim_axis_t *a = &cfg->axis[i];
-        const fs_real_t v[6] = {a->force_max_N, a->slew_max_N, a->pos_min_m,
+        const fs_real_t v[6] = {a->force_max_N, a->slew_max_N,  a->pos_min_m,
                                 a->pos_max_m,   a->vel_max_mps, a->contact_force_max_N};
         for (uint32_t j = 0u; j < 6u; j++) {
             if (!fs_isfinite(v[j])) {
@@ -147,10 +147,9 @@ lim_result_t lim_apply(const lim_config_t *cfg, lim_state_t *st, const fs_real_t
         /* Leaky bucket: +2 when the slew limit binds, -1 otherwise. Binding every tick trips
          * after slew_fault_ticks; an oscillation binding every other tick after about
          * 4*slew_fault_ticks; a single large step (e.g. 0 -> 50 N, 25 ticks) never. */
-        if ((r.flags & LIM_F_SLEW) != 0u &&
-            (target - prev > slew || target - prev < -slew)) {
+        if ((r.flags & LIM_F_SLEW) != 0u && (target - prev > slew || target - prev < -slew)) {
             st->slew_run[i] = (uint16_t)((st->slew_run[i] <= UINT16_MAX - 2u) ? st->slew_run[i] + 2u
-                                                                             : UINT16_MAX);
+                                                                              : UINT16_MAX);
         } else if (st->slew_run[i] > 0u) {
             st->slew_run[i]--;
         }

@@ -13,22 +13,22 @@
 #include "saf_real.h"
 
 #define LIM_AXES SAF_AXES
-#define LIM_FORCE_CEILING_N 200.0   /* no configuration may set force_max_N above this */
+#define LIM_FORCE_CEILING_N 200.0 /* no configuration may set force_max_N above this */
 
 /** Limits of one axis. */
 typedef struct {
-    fs_real_t force_max_N;          /* |command| <= this (default 50 N) */
-    fs_real_t slew_max_N;           /* |command change| per tick <= this (default 2 N = 2 kN/s) */
-    fs_real_t pos_min_m;            /* workspace; outside it force pushing further out is cut */
+    fs_real_t force_max_N; /* |command| <= this (default 50 N) */
+    fs_real_t slew_max_N;  /* |command change| per tick <= this (default 2 N = 2 kN/s) */
+    fs_real_t pos_min_m;   /* workspace; outside it force pushing further out is cut */
     fs_real_t pos_max_m;
-    fs_real_t vel_max_mps;          /* above it, force along the velocity is cut (default 1 m/s) */
-    fs_real_t contact_force_max_N;  /* measured |contact force| above it latches FLT_FORCE_LIMIT */
+    fs_real_t vel_max_mps;         /* above it, force along the velocity is cut (default 1 m/s) */
+    fs_real_t contact_force_max_N; /* measured |contact force| above it latches FLT_FORCE_LIMIT */
 } lim_axis_t;
 
 /** Limits of the device. */
 typedef struct {
     lim_axis_t axis[LIM_AXES];
-    uint16_t slew_fault_ticks;      /* FLT_SLEW_LIMIT when the slew limit binds persistently:
+    uint16_t slew_fault_ticks; /* FLT_SLEW_LIMIT when the slew limit binds persistently:
                                        leaky bucket +2 per binding tick, -1 per free tick,
                                        trips at 2*slew_fault_ticks, i.e. after this many ticks
                                        of continuous binding (default 50; 0 = never) */
@@ -41,16 +41,16 @@ typedef struct {
 } lim_state_t;
 
 /* Flags of what lim_apply did this tick (lim_result_t.flags). */
-#define LIM_F_NOT_FINITE 0x01u   /* a request was NaN/inf (treated as 0) */
-#define LIM_F_FORCE 0x02u        /* a request was clamped to +-force_max_N */
-#define LIM_F_SLEW 0x04u         /* the slew limit bound the output */
-#define LIM_F_WORKSPACE 0x08u    /* outside the workspace: outward force cut */
-#define LIM_F_VELOCITY 0x10u     /* over speed: force along the velocity cut */
+#define LIM_F_NOT_FINITE 0x01u /* a request was NaN/inf (treated as 0) */
+#define LIM_F_FORCE 0x02u      /* a request was clamped to +-force_max_N */
+#define LIM_F_SLEW 0x04u       /* the slew limit bound the output */
+#define LIM_F_WORKSPACE 0x08u  /* outside the workspace: outward force cut */
+#define LIM_F_VELOCITY 0x10u   /* over speed: force along the velocity cut */
 
 /** What the limiter did and which fault causes it saw (FLT_BIT mask). */
 typedef struct {
     uint32_t flags;
-    uint32_t cause_mask;   /* FLT_CMD_NOT_FINITE, FLT_WORKSPACE, FLT_VELOCITY, FLT_FORCE_LIMIT,
+    uint32_t cause_mask; /* FLT_CMD_NOT_FINITE, FLT_WORKSPACE, FLT_VELOCITY, FLT_FORCE_LIMIT,
                               FLT_SLEW_LIMIT */
 } lim_result_t;
 

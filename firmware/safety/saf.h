@@ -29,25 +29,25 @@ typedef struct {
 
 /** Inputs of one tick. Event flags are levels for this tick ("present now"). */
 typedef struct {
-    uint32_t tick;                        /* control tick counter */
-    uint32_t now_ms;                      /* time of this tick, ms */
-    bool host_frame;                      /* a host command/heartbeat arrived since last tick */
-    bool bus_off;                         /* CAN controller is bus-off */
-    bool tick_overrun;                    /* the previous tick overran its period */
-    bool skill_invalid;                   /* the active skill is invalid / failed to load */
-    bool storage_error;                   /* a flash operation failed */
+    uint32_t tick;                   /* control tick counter */
+    uint32_t now_ms;                 /* time of this tick, ms */
+    bool host_frame;                 /* a host command/heartbeat arrived since last tick */
+    bool bus_off;                    /* CAN controller is bus-off */
+    bool tick_overrun;               /* the previous tick overran its period */
+    bool skill_invalid;              /* the active skill is invalid / failed to load */
+    bool storage_error;              /* a flash operation failed */
     saf_meas_t meas[SAF_AXES];       /* raw measurements of this tick */
-    fs_real_t force_req_N[SAF_AXES];      /* the control law's request (any value) */
+    fs_real_t force_req_N[SAF_AXES]; /* the control law's request (any value) */
 } saf_input_t;
 
 /** Outputs of one tick. */
 typedef struct {
-    fs_real_t force_cmd_N[SAF_AXES];  /* to the actuator: always finite and within the limits */
-    bool actuator_enable;             /* false once the stop ramp has reached zero */
-    bool stopping;                    /* a fault is latched (ramping or disabled) */
-    uint16_t fault_code;              /* status frame: first latched fault, 0 if none */
-    uint32_t cause_mask;              /* FLT_BIT of every cause present this tick */
-    uint32_t lim_flags;               /* LIM_F_* of this tick */
+    fs_real_t force_cmd_N[SAF_AXES]; /* to the actuator: always finite and within the limits */
+    bool actuator_enable;            /* false once the stop ramp has reached zero */
+    bool stopping;                   /* a fault is latched (ramping or disabled) */
+    uint16_t fault_code;             /* status frame: first latched fault, 0 if none */
+    uint32_t cause_mask;             /* FLT_BIT of every cause present this tick */
+    uint32_t lim_flags;              /* LIM_F_* of this tick */
 } saf_output_t;
 
 /** Supervisor state. */
@@ -57,13 +57,13 @@ typedef struct {
     sen_state_t sen;
     wdg_state_t wdg;
     wdg_ramp_t ramp;
-    uint32_t cause_mask;      /* causes seen at the last saf_step (for clearing) */
+    uint32_t cause_mask; /* causes seen at the last saf_step (for clearing) */
     fs_real_t last_cmd_N[SAF_AXES];
     bool actuator_enabled;
-    bool hold_zero;           /* after a clear: output 0 until a zero request is seen */
+    bool hold_zero; /* after a clear: output 0 until a zero request is seen */
 } saf_state_t;
 
-#define SAF_REARM_N 0.01      /* |request| at or below this re-arms the output after a clear */
+#define SAF_REARM_N 0.01 /* |request| at or below this re-arms the output after a clear */
 
 /** Defaults of lim, sen and wdg. */
 void saf_default_config(saf_config_t *cfg);

@@ -29,7 +29,7 @@ saf_status_t sen_config_validate(const sen_config_t *cfg)
     }
     for (uint32_t i = 0u; i < SAF_AXES; i++) {
         const sen_axis_t *a = &cfg->axis[i];
-        const fs_real_t v[7] = {a->force_range_N, a->pos_min_m, a->pos_max_m, a->vel_range_mps,
+        const fs_real_t v[7] = {a->force_range_N, a->pos_min_m, a->pos_max_m,  a->vel_range_mps,
                                 a->spike_N,       a->jump_m,    a->stuck_min_N};
         for (uint32_t j = 0u; j < 7u; j++) {
             if (!fs_isfinite(v[j])) {

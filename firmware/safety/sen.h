@@ -10,14 +10,14 @@
 
 /** Plausibility bounds of one axis. */
 typedef struct {
-    fs_real_t force_range_N;  /* |force| above it: FLT_SENSOR_RANGE (default 200 N) */
-    fs_real_t pos_min_m;      /* position outside [min, max]: FLT_SENSOR_RANGE (+-1 m) */
+    fs_real_t force_range_N; /* |force| above it: FLT_SENSOR_RANGE (default 200 N) */
+    fs_real_t pos_min_m;     /* position outside [min, max]: FLT_SENSOR_RANGE (+-1 m) */
     fs_real_t pos_max_m;
-    fs_real_t vel_range_mps;  /* |velocity| above it: FLT_SENSOR_RANGE (default 10 m/s) */
-    fs_real_t spike_N;        /* |force change| per tick above it: FLT_SENSOR_SPIKE (20 N) */
-    fs_real_t jump_m;         /* |position change| per tick above it: FLT_ENCODER_JUMP (5 mm) */
-    fs_real_t stuck_min_N;    /* stuck check only while |force| > this (default 0.5 N) */
-    uint16_t stuck_ticks;     /* force bit-identical this many ticks: FLT_SENSOR_STUCK
+    fs_real_t vel_range_mps; /* |velocity| above it: FLT_SENSOR_RANGE (default 10 m/s) */
+    fs_real_t spike_N;       /* |force change| per tick above it: FLT_SENSOR_SPIKE (20 N) */
+    fs_real_t jump_m;        /* |position change| per tick above it: FLT_ENCODER_JUMP (5 mm) */
+    fs_real_t stuck_min_N;   /* stuck check only while |force| > this (default 0.5 N) */
+    uint16_t stuck_ticks;    /* force bit-identical this many ticks: FLT_SENSOR_STUCK
                                  (default 500; 0 = off, e.g. for a noiseless simulated sensor) */
 } sen_axis_t;
 

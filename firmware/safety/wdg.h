@@ -22,23 +22,23 @@
 
 /** Watchdog and ramp configuration. */
 typedef struct {
-    uint16_t timeout_ms;   /* host silence that latches FLT_HOST_SILENCE */
-    uint16_t ramp_ms;      /* safe-stop ramp duration, 1..50 ms (>= one tick) */
-    uint16_t tick_us;      /* control period (1000 at 1 kHz) */
+    uint16_t timeout_ms; /* host silence that latches FLT_HOST_SILENCE */
+    uint16_t ramp_ms;    /* safe-stop ramp duration, 1..50 ms (>= one tick) */
+    uint16_t tick_us;    /* control period (1000 at 1 kHz) */
 } wdg_config_t;
 
 /** Watchdog state. */
 typedef struct {
-    uint32_t last_host_ms;  /* time of the last host frame */
-    uint8_t armed;          /* a host frame has been seen since init/disarm */
+    uint32_t last_host_ms; /* time of the last host frame */
+    uint8_t armed;         /* a host frame has been seen since init/disarm */
 } wdg_state_t;
 
 /** Safe-stop ramp state. */
 typedef struct {
     fs_real_t from_N[SAF_AXES];
     fs_real_t out_N[SAF_AXES];
-    uint16_t n_ticks;       /* ramp length in ticks */
-    uint16_t k;             /* ticks done */
+    uint16_t n_ticks; /* ramp length in ticks */
+    uint16_t k;       /* ticks done */
     uint8_t active;
 } wdg_ramp_t;
 

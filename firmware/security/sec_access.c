@@ -75,7 +75,7 @@ sec_nrc_t sec_request_seed(const sec_config_t *cfg, sec_state_t *st, uint32_t no
         return SEC_NRC_CONDITIONS;
     }
     if (st->unlocked != 0u) {
-        (void)memset(seed_out, 0, SEC_SEED_LEN);   /* ISO 14229-1: already unlocked -> zero seed */
+        (void)memset(seed_out, 0, SEC_SEED_LEN); /* ISO 14229-1: already unlocked -> zero seed */
         return SEC_NRC_NONE;
     }
     if (st->waiting != 0u) {
@@ -96,7 +96,7 @@ sec_nrc_t sec_request_seed(const sec_config_t *cfg, sec_state_t *st, uint32_t no
     for (uint32_t i = 0u; i < SEC_SEED_LEN; i++) {
         any = (uint8_t)(any | st->seed[i]);
     }
-    if (any == 0u) {   /* the zero seed means "unlocked"; a source that gives it is broken */
+    if (any == 0u) { /* the zero seed means "unlocked"; a source that gives it is broken */
         return SEC_NRC_CONDITIONS;
     }
     st->seed_valid = 1u;
@@ -113,7 +113,7 @@ sec_nrc_t sec_send_key(const sec_config_t *cfg, sec_state_t *st, uint32_t now_ms
     if (st->seed_valid == 0u) {
         return SEC_NRC_SEQUENCE_ERROR;
     }
-    st->seed_valid = 0u;   /* one answer per seed, right or wrong */
+    st->seed_valid = 0u; /* one answer per seed, right or wrong */
     if (key == NULL || key_len != SEC_KEY_LEN) {
         sec_wipe(st->seed, SEC_SEED_LEN);
         return SEC_NRC_INCORRECT_LENGTH;

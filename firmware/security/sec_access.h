@@ -40,11 +40,11 @@ typedef int (*sec_rng_fn)(void *ctx, uint8_t *buf, uint32_t len);
 /** Configuration (device secret from protected storage, policy). */
 typedef struct {
     uint8_t secret[SEC_SECRET_MAX];
-    uint8_t secret_len;        /* 16..64 bytes */
-    uint8_t max_attempts;      /* wrong keys before lockout (default 3, 1..255) */
-    uint32_t delay_ms;         /* after each wrong key (default 1000) */
-    uint32_t lockout_ms;       /* after max_attempts wrong keys (default 10000) */
-    uint32_t boot_delay_ms;    /* after power-up (default 1000; 0 = none) */
+    uint8_t secret_len;     /* 16..64 bytes */
+    uint8_t max_attempts;   /* wrong keys before lockout (default 3, 1..255) */
+    uint32_t delay_ms;      /* after each wrong key (default 1000) */
+    uint32_t lockout_ms;    /* after max_attempts wrong keys (default 10000) */
+    uint32_t boot_delay_ms; /* after power-up (default 1000; 0 = none) */
     sec_rng_fn rng;
     void *rng_ctx;
 } sec_config_t;
@@ -52,12 +52,12 @@ typedef struct {
 /** Session state. */
 typedef struct {
     uint8_t seed[SEC_SEED_LEN];
-    uint8_t seed_valid;        /* a seed was issued and not yet answered */
+    uint8_t seed_valid; /* a seed was issued and not yet answered */
     uint8_t unlocked;
-    uint8_t failed;            /* wrong keys since the last success (or lockout end) */
+    uint8_t failed; /* wrong keys since the last success (or lockout end) */
     uint8_t locked_out;
-    uint32_t wait_until_ms;    /* requestSeed refused (0x37) before this time */
-    uint8_t waiting;           /* wait_until_ms is in force */
+    uint32_t wait_until_ms; /* requestSeed refused (0x37) before this time */
+    uint8_t waiting;        /* wait_until_ms is in force */
 } sec_state_t;
 
 /** Fill defaults (secret left empty: the caller copies the device secret in). */

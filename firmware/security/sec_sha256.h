@@ -12,7 +12,7 @@
 /** Incremental SHA-256 state. */
 typedef struct {
     uint32_t h[8];
-    uint64_t total_len;         /* bytes hashed so far */
+    uint64_t total_len; /* bytes hashed so far */
     uint8_t block[SEC_SHA256_BLOCK];
     uint32_t block_len;
 } sec_sha256_t;
@@ -32,7 +32,7 @@ void sec_sha256(const uint8_t *data, uint32_t len, uint8_t out[SEC_SHA256_LEN]);
 /** Incremental HMAC-SHA256 state. */
 typedef struct {
     sec_sha256_t inner;
-    uint8_t okey[SEC_SHA256_BLOCK];   /* key XOR opad */
+    uint8_t okey[SEC_SHA256_BLOCK]; /* key XOR opad */
 } sec_hmac_t;
 
 /** Start an HMAC with key (any length; keys longer than 64 bytes are hashed first). */

@@ -26,7 +26,7 @@ static int ram_erase(void *ctx, uint32_t sector)
     f->erase_count++;
     uint8_t *p = f->mem + (size_t)sector * f->sector_size;
     if (torn != 0) {
-        (void)memset(p, 0xFF, f->sector_size / 2u);   /* the rest keeps its old contents */
+        (void)memset(p, 0xFF, f->sector_size / 2u); /* the rest keeps its old contents */
         f->dead = 1u;
         return -1;
     }
@@ -43,7 +43,8 @@ static int ram_program(void *ctx, uint32_t addr, const uint8_t *data, uint32_t l
         return -1;
     }
     const uint64_t size = (uint64_t)f->sector_size * f->sector_count;
-    if ((uint64_t)addr + len > size || (addr / f->sector_size) != ((addr + len - 1u) / f->sector_size)) {
+    if ((uint64_t)addr + len > size ||
+        (addr / f->sector_size) != ((addr + len - 1u) / f->sector_size)) {
         return -1;
     }
     if (op_begin(f, &torn) != 0) {
@@ -60,7 +61,7 @@ static int ram_program(void *ctx, uint32_t addr, const uint8_t *data, uint32_t l
         }
     }
     for (uint32_t i = 0u; i < n; i++) {
-        f->mem[addr + i] &= data[i];   /* NOR: programming only clears bits */
+        f->mem[addr + i] &= data[i]; /* NOR: programming only clears bits */
     }
     if (torn != 0) {
         f->dead = 1u;

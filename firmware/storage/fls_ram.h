@@ -15,10 +15,10 @@ typedef struct {
     uint32_t sector_size;
     uint32_t sector_count;
     uint32_t write_unit;
-    uint32_t ops;             /* erase + program operations since the last power cycle */
-    uint32_t total_ops;       /* erase + program operations since fls_ram_init */
-    uint32_t power_loss_at;   /* 0 = never; else tear the op with ops == power_loss_at */
-    uint8_t dead;             /* power lost: every call fails until fls_ram_power_cycle */
+    uint32_t ops;           /* erase + program operations since the last power cycle */
+    uint32_t total_ops;     /* erase + program operations since fls_ram_init */
+    uint32_t power_loss_at; /* 0 = never; else tear the op with ops == power_loss_at */
+    uint8_t dead;           /* power lost: every call fails until fls_ram_power_cycle */
     uint32_t erase_count;
     uint32_t program_count;
 } fls_ram_t;

@@ -4,9 +4,9 @@
 #include <stddef.h>
 #include <string.h>
 
-#define NVM_CHUNK 256u          /* bytes per program/read call (one power-loss point each) */
+#define NVM_CHUNK 256u /* bytes per program/read call (one power-loss point each) */
 #define NVM_SEQ_OFF 8u
-#define NVM_CRC_COVER 16u       /* header bytes covered by the CRC */
+#define NVM_CRC_COVER 16u /* header bytes covered by the CRC */
 
 /* ---- CRC-32 (zlib: reflected polynomial 0xEDB88320, init/final xor 0xFFFFFFFF) ----------- */
 
@@ -132,7 +132,8 @@ nvm_status_t nvm_record_parse(const uint8_t *buf, uint32_t len, uint16_t expecte
     /* A buffer of len bytes holds at most len - header - commit bytes of payload (with the
      * smallest commit unit, 4 bytes). */
     const uint32_t len_max = (len >= NVM_HEADER_SIZE + NVM_COMMIT_SIZE)
-                                 ? len - NVM_HEADER_SIZE - NVM_COMMIT_SIZE : 0u;
+                                 ? len - NVM_HEADER_SIZE - NVM_COMMIT_SIZE
+                                 : 0u;
     nvm_record_info_t info;
     nvm_status_t s = header_check(buf, expected_slot, len_max, &info);
     if (s != NVM_OK) {

@@ -38,16 +38,16 @@
 typedef struct {
     uint16_t slot;
     uint32_t seq;
-    uint32_t length;          /* payload bytes */
-    uint32_t crc32;           /* the stored CRC (covers header bytes 0..15 and the payload) */
-    uint32_t payload_offset;  /* offset of the payload from the record start */
+    uint32_t length;         /* payload bytes */
+    uint32_t crc32;          /* the stored CRC (covers header bytes 0..15 and the payload) */
+    uint32_t payload_offset; /* offset of the payload from the record start */
 } nvm_record_info_t;
 
 /** Directory entry of one slot (what the slot-directory data identifier reports). */
 typedef struct {
-    uint8_t valid;            /* a valid record exists */
-    uint8_t copy;             /* 0 = A, 1 = B: which copy holds it */
-    uint8_t both_valid;       /* the other copy is valid too (an older version) */
+    uint8_t valid;      /* a valid record exists */
+    uint8_t copy;       /* 0 = A, 1 = B: which copy holds it */
+    uint8_t both_valid; /* the other copy is valid too (an older version) */
     uint32_t seq;
     uint32_t length;
     uint32_t crc32;
@@ -56,7 +56,7 @@ typedef struct {
 /** Storage handle. */
 typedef struct {
     const fls_dev_t *dev;
-    uint16_t n_slots;              /* min(NVM_MAX_SLOTS, sector_count / 2) */
+    uint16_t n_slots; /* min(NVM_MAX_SLOTS, sector_count / 2) */
     nvm_dir_entry_t dir[NVM_MAX_SLOTS];
 } nvm_t;
 

@@ -20,9 +20,9 @@
  *  tick, and becomes active only at a tick boundary while idle (moteus-style swap). */
 typedef struct {
     skill_t buf[2];
-    uint8_t active;            /* index of the active buffer */
-    uint8_t has_active;        /* a skill is active */
-    uint8_t pending;           /* buf[!active] holds a validated skill waiting for the swap */
+    uint8_t active;     /* index of the active buffer */
+    uint8_t has_active; /* a skill is active */
+    uint8_t pending;    /* buf[!active] holds a validated skill waiting for the swap */
     uint16_t active_slot;
     uint16_t pending_slot;
 } nvm_bank_t;

@@ -3,7 +3,7 @@
 
 #include <string.h>
 
-#define TAIL_BITS 13u    /* CRC delimiter 1, ACK slot 1, ACK delimiter 1, EOF 7, intermission 3 */
+#define TAIL_BITS 13u /* CRC delimiter 1, ACK slot 1, ACK delimiter 1, EOF 7, intermission 3 */
 
 uint16_t busm_crc15(const uint8_t *bits, uint32_t nbits)
 {
@@ -31,15 +31,15 @@ uint32_t busm_frame_bits(const can_frame_t *f, bool extended)
     uint8_t bits[160];
     uint32_t n = 0u;
     const uint8_t dlc = f->dlc > 8u ? 8u : f->dlc;
-    n = put_bits(bits, n, 0u, 1u);                                   /* SOF */
+    n = put_bits(bits, n, 0u, 1u); /* SOF */
     if (!extended) {
         n = put_bits(bits, n, f->id & 0x7FFu, 11u);
-        n = put_bits(bits, n, 0u, 3u);                               /* RTR, IDE, r0 */
+        n = put_bits(bits, n, 0u, 3u); /* RTR, IDE, r0 */
     } else {
         n = put_bits(bits, n, (f->id >> 18) & 0x7FFu, 11u);
-        n = put_bits(bits, n, 3u, 2u);                               /* SRR 1, IDE 1 */
+        n = put_bits(bits, n, 3u, 2u); /* SRR 1, IDE 1 */
         n = put_bits(bits, n, f->id & 0x3FFFFu, 18u);
-        n = put_bits(bits, n, 0u, 3u);                               /* RTR, r1, r0 */
+        n = put_bits(bits, n, 0u, 3u); /* RTR, r1, r0 */
     }
     n = put_bits(bits, n, dlc, 4u);
     for (uint8_t i = 0; i < dlc; i++) {
@@ -60,7 +60,7 @@ uint32_t busm_frame_bits(const can_frame_t *f, bool extended)
         }
         if (run == 5u) {
             stuff++;
-            last = (uint8_t)(last ^ 1u);   /* the stuff bit */
+            last = (uint8_t)(last ^ 1u); /* the stuff bit */
             run = 1u;
         }
     }
@@ -133,7 +133,8 @@ static int arbitrate(const bus_t *b, uint64_t t, uint64_t *earliest)
             }
             continue;
         }
-        const uint32_t key = it->extended ? (((it->f.id >> 18) & 0x7FFu) << 19) | (1u << 18) | (it->f.id & 0x3FFFFu)
+        const uint32_t key = it->extended ? (((it->f.id >> 18) & 0x7FFu) << 19) | (1u << 18) |
+                                                (it->f.id & 0x3FFFFu)
                                           : ((it->f.id & 0x7FFu) << 19);
         if (best < 0 || key < best_key) {
             best = (int)s;
@@ -161,7 +162,7 @@ void bus_run(bus_t *b, uint64_t t_ns, bus_deliver_fn cb, void *ctx)
         if (s < 0) {
             if (earliest == UINT64_MAX || earliest > t_ns) {
                 if (b->idle_from_ns < t_ns && earliest > t_ns) {
-                    b->idle_from_ns = t_ns;     /* bus idle until now */
+                    b->idle_from_ns = t_ns; /* bus idle until now */
                 }
                 return;
             }

@@ -10,8 +10,8 @@
 #include <stdint.h>
 #include "can_frame.h"
 
-#define BUS_MAX_SOURCES 17u       /* source 0: the device; 1..16: clients */
-#define BUS_FIFO_CAP 4096u        /* frames waiting per source */
+#define BUS_MAX_SOURCES 17u /* source 0: the device; 1..16: clients */
+#define BUS_FIFO_CAP 4096u  /* frames waiting per source */
 #define BUS_DEFAULT_BITRATE 1000000u
 
 /** CRC-15 of CAN (poly 0x4599, init 0) over nbits bits given MSB-first in bits[]. */
@@ -46,8 +46,8 @@ typedef void (*bus_deliver_fn)(void *ctx, const bus_item_t *item, uint64_t t_end
 
 /** The shared bus. */
 typedef struct {
-    uint64_t bit_ns;             /* 1e9 / bitrate */
-    uint64_t idle_from_ns;       /* the bus is free from this time */
+    uint64_t bit_ns;       /* 1e9 / bitrate */
+    uint64_t idle_from_ns; /* the bus is free from this time */
     bool in_flight;
     bus_item_t cur;
     uint64_t cur_end_ns;
@@ -55,7 +55,7 @@ typedef struct {
     /* statistics */
     uint64_t frames;
     uint64_t bits;
-    uint64_t dropped;            /* enqueue refused: fifo full */
+    uint64_t dropped; /* enqueue refused: fifo full */
 } bus_t;
 
 /** Idle bus at bitrate (bit/s). */

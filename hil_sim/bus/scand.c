@@ -82,8 +82,10 @@ unsigned scand_pollfds(const scand_t *s, struct pollfd *fds, unsigned max)
 static void drop_client(scand_t *s, scand_client_t *c)
 {
     if (s->verbose) {
-        fprintf(stderr, "hil_sim serve: client %d left (%llu frames in, %llu out, %llu dropped, "
-                "%llu input bytes discarded)\n", (int)(c - s->clients), (unsigned long long)c->frames_in,
+        fprintf(stderr,
+                "hil_sim serve: client %d left (%llu frames in, %llu out, %llu dropped, "
+                "%llu input bytes discarded)\n",
+                (int)(c - s->clients), (unsigned long long)c->frames_in,
                 (unsigned long long)c->frames_out, (unsigned long long)c->dropped,
                 (unsigned long long)c->garbage);
     }
@@ -107,9 +109,12 @@ static void reply(scand_t *s, scand_client_t *c, const char *msg)
 
 static int hexval(char ch)
 {
-    if (ch >= '0' && ch <= '9') return ch - '0';
-    if (ch >= 'a' && ch <= 'f') return ch - 'a' + 10;
-    if (ch >= 'A' && ch <= 'F') return ch - 'A' + 10;
+    if (ch >= '0' && ch <= '9')
+        return ch - '0';
+    if (ch >= 'a' && ch <= 'f')
+        return ch - 'a' + 10;
+    if (ch >= 'A' && ch <= 'F')
+        return ch - 'A' + 10;
     return -1;
 }
 
@@ -135,7 +140,7 @@ static bool parse_hex_token(const char *tok, uint32_t *out, unsigned max_digits)
 static bool parse_send(char *body, can_frame_t *f, bool *ext)
 {
     char *save = NULL;
-    char *tok = strtok_r(body, " ", &save);      /* "send" */
+    char *tok = strtok_r(body, " ", &save); /* "send" */
     tok = strtok_r(NULL, " ", &save);
     uint32_t id = 0u;
     if (tok == NULL || !parse_hex_token(tok, &id, 8u)) {
@@ -186,7 +191,7 @@ static void handle_command(scand_t *s, scand_client_t *c, char *cmd, uint64_t no
     if (c->state == SCAND_OPEN) {
         if (strcmp(word, "rawmode") == 0) {
             c->state = SCAND_RAW;
-            c->hold = true;                        /* frames queue from now on (see scand.h) */
+            c->hold = true; /* frames queue from now on (see scand.h) */
             c->frames_from_ms = now_ms + SCAND_FRAME_HOLDOFF_MS;
             reply(s, c, "< ok >");
             return;
@@ -194,7 +199,7 @@ static void handle_command(scand_t *s, scand_client_t *c, char *cmd, uint64_t no
         reply(s, c, "< error unknown command >");
         return;
     }
-    c->hold = false;                               /* it read "< ok >": frames may flow */
+    c->hold = false; /* it read "< ok >": frames may flow */
     if (strcmp(word, "send") == 0) {
         can_frame_t f;
         bool ext = false;
@@ -236,9 +241,11 @@ static void parse_client(scand_t *s, scand_client_t *c, uint64_t now_ms)
         }
         *gt = '\0';
         char *b = lt + 1;
-        while (*b == ' ') b++;
+        while (*b == ' ')
+            b++;
         char *e = gt - 1;
-        while (e > b && *e == ' ') *e-- = '\0';
+        while (e > b && *e == ' ')
+            *e-- = '\0';
         handle_command(s, c, b, now_ms);
         if (c->fd < 0) {
             return;
@@ -256,7 +263,7 @@ static void read_client(scand_t *s, scand_client_t *c, uint64_t now_ms)
 {
     for (;;) {
         if (c->in_len >= SCAND_IN_BUF - 1u) {
-            c->garbage += c->in_len;               /* one "command" longer than the buffer */
+            c->garbage += c->in_len; /* one "command" longer than the buffer */
             c->in_len = 0u;
         }
         const ssize_t n = recv(c->fd, c->in + c->in_len, SCAND_IN_BUF - 1u - c->in_len, 0);

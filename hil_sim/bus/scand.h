@@ -22,22 +22,27 @@
 #define SCAND_OUT_BUF (1u << 20)
 #define SCAND_FRAME_HOLDOFF_MS 50u
 
-typedef enum { SCAND_FREE = 0, SCAND_HELLO = 1, SCAND_OPEN = 2, SCAND_RAW = 3 } scand_state_t;
+typedef enum {
+    SCAND_FREE = 0,
+    SCAND_HELLO = 1,
+    SCAND_OPEN = 2,
+    SCAND_RAW = 3
+} scand_state_t;
 
 typedef struct {
     int fd;
     scand_state_t state;
     char in[SCAND_IN_BUF];
     uint32_t in_len;
-    char *out;                 /* SCAND_OUT_BUF bytes (static storage per slot) */
+    char *out; /* SCAND_OUT_BUF bytes (static storage per slot) */
     uint32_t out_head;
     uint32_t out_len;
-    uint64_t frames_from_ms;   /* wall ms after which queued frames are written anyway */
-    bool hold;                 /* raw mode entered, frames queued but not written yet */
+    uint64_t frames_from_ms; /* wall ms after which queued frames are written anyway */
+    bool hold;               /* raw mode entered, frames queued but not written yet */
     uint64_t frames_in;
     uint64_t frames_out;
     uint64_t dropped;
-    uint64_t garbage;          /* input discarded: a command longer than SCAND_IN_BUF */
+    uint64_t garbage; /* input discarded: a command longer than SCAND_IN_BUF */
 } scand_client_t;
 
 /** A frame a client sent: client index 0..SCAND_MAX_CLIENTS-1. */
@@ -45,7 +50,7 @@ typedef void (*scand_frame_fn)(void *ctx, unsigned client, const can_frame_t *f,
 
 typedef struct {
     int listen_fd;
-    uint16_t port;             /* bound port (useful with port 0) */
+    uint16_t port; /* bound port (useful with port 0) */
     char channel[32];
     scand_client_t clients[SCAND_MAX_CLIENTS];
     scand_frame_fn on_frame;

@@ -22,7 +22,7 @@
 #include "sim_scenario.h"
 
 #define TICK_NS 1000000ull
-#define MAX_LAG_NS 100000000ull     /* fall further behind than this: slip (count it) */
+#define MAX_LAG_NS 100000000ull /* fall further behind than this: slip (count it) */
 
 static const char SERVE_USAGE[] =
     "usage: hil_sim serve [--port PORT] [--host ADDR] [--speed S] [--scenario FILE]\n"
@@ -43,7 +43,8 @@ static const char SERVE_USAGE[] =
     "                   the host tools share a heavily loaded machine)\n"
     "fault injection (seeded by the scenario's seed), on frames from clients to the device:\n"
     "  --drop P         lose each frame with probability P\n"
-    "  --corrupt P      flip one random data bit of each frame with probability P (E2E/ISO-TP see it)\n"
+    "  --corrupt P      flip one random data bit of each frame with probability P (E2E/ISO-TP see "
+    "it)\n"
     "  --bus-off-at S   the device's controller goes bus-off at S simulated seconds\n"
     "  --bus-off-for S  ... for S seconds (default 0.5)\n";
 
@@ -83,7 +84,7 @@ typedef struct {
     uint64_t dropped, corrupted;
 } serve_t;
 
-static serve_t S;   /* large (bus FIFOs, app): static storage */
+static serve_t S; /* large (bus FIFOs, app): static storage */
 
 static uint64_t mono_ns(void)
 {
@@ -100,8 +101,10 @@ static void deliver(void *ctx, const bus_item_t *it, uint64_t t_end_ns)
         if (s->drop_p > 0.0 && sim_rng_uniform(&s->rng_faults) < s->drop_p) {
             s->dropped++;
         } else {
-            if (s->corrupt_p > 0.0 && f.dlc > 0u && sim_rng_uniform(&s->rng_faults) < s->corrupt_p) {
-                const unsigned bit = (unsigned)(sim_rng_uniform(&s->rng_faults) * 8.0 * (double)f.dlc);
+            if (s->corrupt_p > 0.0 && f.dlc > 0u &&
+                sim_rng_uniform(&s->rng_faults) < s->corrupt_p) {
+                const unsigned bit = (unsigned)(sim_rng_uniform(&s->rng_faults) * 8.0 *
+                                                (double)f.dlc);
                 f.data[(bit / 8u) % f.dlc] ^= (uint8_t)(1u << (bit % 8u));
                 s->corrupted++;
             }
@@ -161,7 +164,8 @@ static void sim_tick(serve_t *s)
         sim_operator_cfg_t opc = sc->op;
         opc.duration_s = sc->duration_s;
         sim_rng_t rng_op;
-        sim_rng_seed(&rng_op, sc->seed + s->teach_count);   /* first demonstration: the scenario seed */
+        sim_rng_seed(&rng_op,
+                     sc->seed + s->teach_count); /* first demonstration: the scenario seed */
         sim_operator_init(&s->op, &opc, &rng_op);
         s->teach_start_tick = s->app.tick;
         s->teach_count++;
@@ -187,7 +191,7 @@ static void sim_tick(serve_t *s)
     app_tick(&s->app, false);
     uint8_t reset_type = 0u;
     if (hal_host_take_reset(&reset_type)) {
-        device_boot(s);                     /* ECUReset: firmware restarts, flash keeps the slots */
+        device_boot(s); /* ECUReset: firmware restarts, flash keeps the slots */
     }
 
     bool enable = false;
@@ -257,7 +261,8 @@ int bus_cmd_serve(int argc, char **argv)
     const char *host = "127.0.0.1";
     const char *channel = "can0";
     const char *scenario = NULL;
-    double port = 29536.0, speed = 1.0, node = 0.0, bitrate = 1e6, duration = 0.0, host_timeout = 100.0;
+    double port = 29536.0, speed = 1.0, node = 0.0, bitrate = 1e6, duration = 0.0,
+           host_timeout = 100.0;
     double drop = 0.0, corrupt = 0.0, bus_off_at = -1.0, bus_off_for = 0.5;
     bool verbose = false;
     for (int i = 0; i < argc; i++) {
@@ -276,19 +281,32 @@ int bus_cmd_serve(int argc, char **argv)
             return 2;
         }
         int rc = 0;
-        if (strcmp(a, "--port") == 0) rc = parse_double(a, v, &port);
-        else if (strcmp(a, "--host") == 0) host = v;
-        else if (strcmp(a, "--speed") == 0) rc = parse_double(a, v, &speed);
-        else if (strcmp(a, "--scenario") == 0) scenario = v;
-        else if (strcmp(a, "--node") == 0) rc = parse_double(a, v, &node);
-        else if (strcmp(a, "--channel") == 0) channel = v;
-        else if (strcmp(a, "--bitrate") == 0) rc = parse_double(a, v, &bitrate);
-        else if (strcmp(a, "--duration") == 0) rc = parse_double(a, v, &duration);
-        else if (strcmp(a, "--host-timeout") == 0) rc = parse_double(a, v, &host_timeout);
-        else if (strcmp(a, "--drop") == 0) rc = parse_double(a, v, &drop);
-        else if (strcmp(a, "--corrupt") == 0) rc = parse_double(a, v, &corrupt);
-        else if (strcmp(a, "--bus-off-at") == 0) rc = parse_double(a, v, &bus_off_at);
-        else if (strcmp(a, "--bus-off-for") == 0) rc = parse_double(a, v, &bus_off_for);
+        if (strcmp(a, "--port") == 0)
+            rc = parse_double(a, v, &port);
+        else if (strcmp(a, "--host") == 0)
+            host = v;
+        else if (strcmp(a, "--speed") == 0)
+            rc = parse_double(a, v, &speed);
+        else if (strcmp(a, "--scenario") == 0)
+            scenario = v;
+        else if (strcmp(a, "--node") == 0)
+            rc = parse_double(a, v, &node);
+        else if (strcmp(a, "--channel") == 0)
+            channel = v;
+        else if (strcmp(a, "--bitrate") == 0)
+            rc = parse_double(a, v, &bitrate);
+        else if (strcmp(a, "--duration") == 0)
+            rc = parse_double(a, v, &duration);
+        else if (strcmp(a, "--host-timeout") == 0)
+            rc = parse_double(a, v, &host_timeout);
+        else if (strcmp(a, "--drop") == 0)
+            rc = parse_double(a, v, &drop);
+        else if (strcmp(a, "--corrupt") == 0)
+            rc = parse_double(a, v, &corrupt);
+        else if (strcmp(a, "--bus-off-at") == 0)
+            rc = parse_double(a, v, &bus_off_at);
+        else if (strcmp(a, "--bus-off-for") == 0)
+            rc = parse_double(a, v, &bus_off_for);
         else {
             fprintf(stderr, "hil_sim serve: unknown option '%s'\n%s", a, SERVE_USAGE);
             return 2;
@@ -314,13 +332,16 @@ int bus_cmd_serve(int argc, char **argv)
         fprintf(stderr, "hil_sim serve: --bitrate must be 10000..1000000, got %g\n", bitrate);
         return 2;
     }
-    if (!(host_timeout >= (double)WDG_TIMEOUT_MIN_MS && host_timeout <= (double)WDG_TIMEOUT_MAX_MS)) {
-        fprintf(stderr, "hil_sim serve: --host-timeout must be %u..%u ms, got %g\n", WDG_TIMEOUT_MIN_MS,
-                WDG_TIMEOUT_MAX_MS, host_timeout);
+    if (!(host_timeout >= (double)WDG_TIMEOUT_MIN_MS &&
+          host_timeout <= (double)WDG_TIMEOUT_MAX_MS)) {
+        fprintf(stderr, "hil_sim serve: --host-timeout must be %u..%u ms, got %g\n",
+                WDG_TIMEOUT_MIN_MS, WDG_TIMEOUT_MAX_MS, host_timeout);
         return 2;
     }
-    if (!(drop >= 0.0 && drop <= 1.0) || !(corrupt >= 0.0 && corrupt <= 1.0) || !(bus_off_for >= 0.0)) {
-        fprintf(stderr, "hil_sim serve: --drop/--corrupt must be probabilities 0..1, --bus-off-for >= 0\n");
+    if (!(drop >= 0.0 && drop <= 1.0) || !(corrupt >= 0.0 && corrupt <= 1.0) ||
+        !(bus_off_for >= 0.0)) {
+        fprintf(stderr,
+                "hil_sim serve: --drop/--corrupt must be probabilities 0..1, --bus-off-for >= 0\n");
         return 2;
     }
     serve_t *s = &S;
@@ -328,7 +349,8 @@ int bus_cmd_serve(int argc, char **argv)
     s->drop_p = drop;
     s->corrupt_p = corrupt;
     s->bus_off_from_ns = bus_off_at >= 0.0 ? (uint64_t)(bus_off_at * 1e9) : UINT64_MAX;
-    s->bus_off_until_ns = bus_off_at >= 0.0 ? (uint64_t)((bus_off_at + bus_off_for) * 1e9) : UINT64_MAX;
+    s->bus_off_until_ns = bus_off_at >= 0.0 ? (uint64_t)((bus_off_at + bus_off_for) * 1e9)
+                                            : UINT64_MAX;
     s->speed = speed;
     s->node = (uint8_t)node;
     char err[SIM_ERR_MAX];
@@ -367,7 +389,8 @@ int bus_cmd_serve(int argc, char **argv)
     device_boot(s);
     bus_init(&s->bus, (uint32_t)bitrate);
 
-    if (scand_listen(&s->sd, host, (uint16_t)port, channel, on_client_frame, s, err, sizeof(err)) != 0) {
+    if (scand_listen(&s->sd, host, (uint16_t)port, channel, on_client_frame, s, err, sizeof(err)) !=
+        0) {
         fprintf(stderr, "hil_sim serve: %s\n", err);
         return 1;
     }
@@ -419,17 +442,20 @@ int bus_cmd_serve(int argc, char **argv)
         if (wait_ns > 20000000ull) {
             wait_ns = 20000000ull;
         }
-        s->sim_ns = UINT64_MAX;   /* poll_clients stamps frames with the time they are read */
+        s->sim_ns = UINT64_MAX; /* poll_clients stamps frames with the time they are read */
         s->wall0 = wall0;
         s->next_tick_ns = next_tick_ns;
         poll_clients(s, fds, wait_ns);
     }
     scand_close(&s->sd);
     fprintf(stderr,
-            "hil_sim serve: stopped at %.3f s simulated; bus %llu frames, load %.1f %%; %llu clock slips; "
+            "hil_sim serve: stopped at %.3f s simulated; bus %llu frames, load %.1f %%; %llu clock "
+            "slips; "
             "device rx overflows %u, tx dropped %u; injected: %llu lost, %llu corrupted\n",
             (double)next_tick_ns * 1e-9, (unsigned long long)s->bus.frames,
-            next_tick_ns > 0u ? 100.0 * (double)s->bus.bits * (double)s->bus.bit_ns / (double)next_tick_ns : 0.0,
+            next_tick_ns > 0u
+                ? 100.0 * (double)s->bus.bits * (double)s->bus.bit_ns / (double)next_tick_ns
+                : 0.0,
             (unsigned long long)s->slips, hal_sim_can_rx_overflows(), s->app.tx_dropped,
             (unsigned long long)s->dropped, (unsigned long long)s->corrupted);
     return 0;

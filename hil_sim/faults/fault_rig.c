@@ -19,7 +19,7 @@
 static bool tester_send(void *ctx, const can_frame_t *f)
 {
     (void)ctx;
-    return hal_sim_can_deliver(f);   /* UDS frames do not feed the host-silence watchdog */
+    return hal_sim_can_deliver(f); /* UDS frames do not feed the host-silence watchdog */
 }
 
 void rig_init(rig_t *r, const sim_scenario_t *sc)
@@ -69,7 +69,8 @@ void rig_init(rig_t *r, const sim_scenario_t *sc)
     }
 
     isotp_config_t tc;
-    isotp_config_default(&tc, PROTO_ID_UDS_REQUEST(r->cfg.node), PROTO_ID_UDS_RESPONSE(r->cfg.node));
+    isotp_config_default(&tc, PROTO_ID_UDS_REQUEST(r->cfg.node),
+                         PROTO_ID_UDS_RESPONSE(r->cfg.node));
     isotp_init(&r->tester, &tc, tester_send, r);
 }
 
@@ -97,7 +98,7 @@ static void deliver_host(rig_t *r, can_frame_t *f)
         return;
     }
     if (r->inj.corrupt_host) {
-        f->data[2] ^= 0x10u;   /* a bit error the CAN CRC missed: the E2E CRC-8 catches it */
+        f->data[2] ^= 0x10u; /* a bit error the CAN CRC missed: the E2E CRC-8 catches it */
     }
     (void)hal_sim_can_deliver(f);
     if (!r->inj.corrupt_host) {
@@ -148,7 +149,7 @@ static void host_receive(rig_t *r)
         if (f.id == PROTO_ID_UDS_RESPONSE(node)) {
             isotp_on_frame(&r->tester, &f, now_us);
         } else if (f.id == PROTO_ID_EMERGENCY(node) || f.id == PROTO_ID_STATUS(node)) {
-            e2e_rx_t rx;   /* the counter is not followed here; the CRC is checked */
+            e2e_rx_t rx; /* the counter is not followed here; the CRC is checked */
             e2e_rx_reset(&rx);
             if (e2e_check(&rx, &f) != PROTO_OK) {
                 r->e2e_bad_rx++;
@@ -233,7 +234,7 @@ void rig_step(rig_t *r)
     }
     const bool parked = r->app.state == APP_IDLE || r->app.state == APP_BOOT ||
                         (r->app.state == APP_FAULT && !enable);
-    sim_couple_advance(sc, r->ax, r->drv, parked);   /* as serve.c: parked while idle */
+    sim_couple_advance(sc, r->ax, r->drv, parked); /* as serve.c: parked while idle */
     if (r->ax[0].contact_N > r->contact_max_N) {
         r->contact_max_N = r->ax[0].contact_N;
     }
@@ -285,7 +286,7 @@ int rig_uds_unlock(rig_t *r)
         const uint8_t rs[2] = {UDS_SID_SECURITY, 0x01u};
         const uint16_t n = rig_uds(r, rs, 2u, resp, sizeof resp, 200u);
         if (n == 3u && resp[0] == UDS_NEGATIVE_RESPONSE && resp[2] == UDS_NRC_DELAY_NOT_EXPIRED) {
-            rig_run(r, 100u);   /* power-up delay of SecurityAccess */
+            rig_run(r, 100u); /* power-up delay of SecurityAccess */
             continue;
         }
         if (n != 2u + SEC_SEED_LEN || resp[0] != 0x67u) {
@@ -309,8 +310,17 @@ uint8_t rig_uds_download(rig_t *r, uint8_t slot, const uint8_t *img, uint32_t le
 {
     static uint8_t buf[ISOTP_MAX_PAYLOAD];
     uint8_t resp[64];
-    uint8_t rd[11] = {UDS_SID_REQ_DOWNLOAD, 0x00u, 0x44u, 0u, 0u, 0u, slot,
-                      (uint8_t)(len >> 24), (uint8_t)(len >> 16), (uint8_t)(len >> 8), (uint8_t)len};
+    uint8_t rd[11] = {UDS_SID_REQ_DOWNLOAD,
+                      0x00u,
+                      0x44u,
+                      0u,
+                      0u,
+                      0u,
+                      slot,
+                      (uint8_t)(len >> 24),
+                      (uint8_t)(len >> 16),
+                      (uint8_t)(len >> 8),
+                      (uint8_t)len};
     uint16_t n = rig_uds(r, rd, (uint16_t)sizeof rd, resp, sizeof resp, 500u);
     if (n == 0u) {
         return 0xFFu;

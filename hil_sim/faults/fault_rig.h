@@ -20,26 +20,26 @@
 #include "sim_scenario.h"
 
 #define RIG_MAX_EMCY 16u
-#define RIG_HB_PERIOD_MS 10u     /* the host heartbeat period (forceskill host default) */
+#define RIG_HB_PERIOD_MS 10u /* the host heartbeat period (forceskill host default) */
 
 /** Sensor/actuator/bus injections applied by rig_step (all off when zero/false). */
 typedef struct {
-    bool force_nan;               /* tip force reads NaN */
-    double force_add_N;           /* added to the tip force reading */
-    bool force_stuck;             /* tip force repeats stuck_value_N */
+    bool force_nan;     /* tip force reads NaN */
+    double force_add_N; /* added to the tip force reading */
+    bool force_stuck;   /* tip force repeats stuck_value_N */
     double stuck_value_N;
-    double encoder_add_m;         /* added to the x encoder reading */
-    double act_limit_N;           /* > 0: the actuator saturates at +-act_limit_N */
-    bool corrupt_host;            /* host frames arrive with one bit flipped (E2E fails) */
-    double drop_p;                /* each host frame is lost with this probability (seeded) */
-    uint32_t stall_ticks;         /* the device does not get the CPU for this many ticks */
+    double encoder_add_m; /* added to the x encoder reading */
+    double act_limit_N;   /* > 0: the actuator saturates at +-act_limit_N */
+    bool corrupt_host;    /* host frames arrive with one bit flipped (E2E fails) */
+    double drop_p;        /* each host frame is lost with this probability (seeded) */
+    uint32_t stall_ticks; /* the device does not get the CPU for this many ticks */
 } rig_inject_t;
 
 /** One emergency frame seen by the host. */
 typedef struct {
     uint16_t code;
-    uint32_t dev_tick;            /* the frame's tick field */
-    uint64_t rx_tick;             /* rig tick at which it reached the host */
+    uint32_t dev_tick; /* the frame's tick field */
+    uint64_t rx_tick;  /* rig tick at which it reached the host */
 } rig_emcy_t;
 
 /** The rig. */
@@ -48,28 +48,28 @@ typedef struct {
     sim_axis_t ax[2];
     sim_drive_t drv[2];
     sim_rng_t rng_sens;
-    sim_sample_t ring[SIM_COUPLE_RING];  /* sensor pipeline (delay_samples) */
-    uint64_t n_tick;              /* simulated ms since the rig started */
+    sim_sample_t ring[SIM_COUPLE_RING]; /* sensor pipeline (delay_samples) */
+    uint64_t n_tick;                    /* simulated ms since the rig started */
     app_config_t cfg;
     app_t app;
     /* host */
     bool heartbeat_on;
     uint8_t hb_counter, cmd_counter;
-    uint64_t last_host_tick;      /* tick of the last host frame delivered to the device */
-    isotp_link_t tester;          /* UDS client (ISO-TP, ids swapped) */
+    uint64_t last_host_tick; /* tick of the last host frame delivered to the device */
+    isotp_link_t tester;     /* UDS client (ISO-TP, ids swapped) */
     /* injections and observations */
     rig_inject_t inj;
     rig_emcy_t emcy[RIG_MAX_EMCY];
     uint32_t n_emcy;
-    uint16_t status_fault;        /* last DeviceStatus: fault code, state */
+    uint16_t status_fault; /* last DeviceStatus: fault code, state */
     uint8_t status_state;
-    uint32_t e2e_bad_rx;          /* device frames failing the host's E2E check */
-    sim_rng_t rng_faults;         /* frame loss draws */
-    uint32_t host_dropped;        /* host frames lost by injection */
-    double contact_max_N;         /* largest true contact force since rig_init */
-    double cmd_N[2];              /* this tick's actuator command (after enable) */
+    uint32_t e2e_bad_rx;   /* device frames failing the host's E2E check */
+    sim_rng_t rng_faults;  /* frame loss draws */
+    uint32_t host_dropped; /* host frames lost by injection */
+    double contact_max_N;  /* largest true contact force since rig_init */
+    double cmd_N[2];       /* this tick's actuator command (after enable) */
     bool act_enable;
-    bool ran;                     /* app_poll ran a tick this rig tick */
+    bool ran; /* app_poll ran a tick this rig tick */
 } rig_t;
 
 /** Build the device from a plant scenario (hil_sim scenario file, EXECUTE part unused) over a

@@ -21,13 +21,14 @@
 
 #define MAX_SCEN 24
 #define IMG_MAX 8192u
-#define HOLD_MS 1000u            /* latched and zero for this long after detection */
-#define ZERO_BOUND_MS 50u        /* force at zero within 50 ms of detection (docs/safety.md) */
+#define HOLD_MS 1000u     /* latched and zero for this long after detection */
+#define ZERO_BOUND_MS 50u /* force at zero within 50 ms of detection (docs/safety.md) */
 
 static const char FAULT_USAGE[] =
     "usage: hil_sim faults [--seed N] [--dir DIR] [-o TABLE.md] [--json OUT.json] [--only NAME]\n"
     "                      [--trace TICKS.csv]\n"
-    "Inject every fault scenario (DIR/*.toml, default " HIL_SIM_FAULTS_DIR ") into the full device\n"
+    "Inject every fault scenario (DIR/*.toml, default " HIL_SIM_FAULTS_DIR
+    ") into the full device\n"
     "application (state machine, safety supervisor, skill storage, UDS) running in lockstep\n"
     "against the simulated plant, the host scripted over the simulated CAN queues. Prints and\n"
     "writes the table: detection time, time to zero force, worst force, latched, lost, pass.\n"
@@ -35,8 +36,10 @@ static const char FAULT_USAGE[] =
     "scenario keys: name, description, plant (hil_sim scenario file), plant_model, skill,\n"
     "  neighbour_skill,"
     " new_skill, goal_scale, time_scale, kind (host_silence, host_corrupt, host_loss, bus_off,\n"
-    "  force_spike, force_nan, force_stuck, encoder_jump, actuator_saturation, force_limit, tick_overrun,\n"
-    "  power_loss_upload), at_s (after EXECUTE starts), value, duration_s, expect_code (0: no fault\n"
+    "  force_spike, force_nan, force_stuck, encoder_jump, actuator_saturation, force_limit, "
+    "tick_overrun,\n"
+    "  power_loss_upload), at_s (after EXECUTE starts), value, duration_s, expect_code (0: no "
+    "fault\n"
     "  may latch), detect_bound_ms, bound_text\n";
 
 typedef struct {
@@ -50,7 +53,7 @@ typedef struct {
     char new_skill[SIM_PATH_MAX];
     char kind[32];
     char bound_text[64];
-    char plant_model[16];     /* "" = the plant file's; "ideal" / "realistic" */
+    char plant_model[16]; /* "" = the plant file's; "ideal" / "realistic" */
     double goal_scale, time_scale, at_s, value, duration_s;
     int expect_code;
     double detect_bound_ms;
@@ -61,22 +64,22 @@ typedef struct {
     char kind[32];
     char description[256];
     int expect_code;
-    int code;                 /* latched code (device state), 0 none */
-    bool emcy_seen;           /* an emergency frame with the code reached the host */
-    double emcy_delay_ms;     /* from detection to that frame at the host (-1: none) */
-    bool status_seen;         /* a status frame showed the code */
-    double detect_ms;         /* -1: not applicable / not detected */
+    int code;             /* latched code (device state), 0 none */
+    bool emcy_seen;       /* an emergency frame with the code reached the host */
+    double emcy_delay_ms; /* from detection to that frame at the host (-1: none) */
+    bool status_seen;     /* a status frame showed the code */
+    double detect_ms;     /* -1: not applicable / not detected */
     double detect_bound_ms;
     char bound_text[64];
-    double zero_ms;           /* from detection to |F| = 0 on both axes */
+    double zero_ms; /* from detection to |F| = 0 on both axes */
     double force_at_onset_N;
-    double worst_N;           /* max |commanded force| over the run, both axes */
-    double contact_max_N;     /* max true contact force on the object over the run */
+    double worst_N;       /* max |commanded force| over the run, both axes */
+    double contact_max_N; /* max true contact force on the object over the run */
     double f_max_N;
     bool monotone;
-    bool latched;             /* fault state, zero force, actuator off for HOLD_MS */
-    bool cleared;             /* clear accepted once the cause was gone, force stayed 0 */
-    bool lost;                /* flash or slot cache changed (storage scenario: see note) */
+    bool latched; /* fault state, zero force, actuator off for HOLD_MS */
+    bool cleared; /* clear accepted once the cause was gone, force stayed 0 */
+    bool lost;    /* flash or slot cache changed (storage scenario: see note) */
     bool pass;
     char note[200];
 } frow_t;
@@ -143,7 +146,7 @@ static int fscen_load(fscen_t *s, const char *path, char *err, size_t errn)
         ln++;
         char *p = line;
         bool in_str = false;
-        for (char *q = p; *q != '\0'; q++) {   /* strip a comment outside strings */
+        for (char *q = p; *q != '\0'; q++) { /* strip a comment outside strings */
             if (*q == '"') {
                 in_str = !in_str;
             } else if (*q == '#' && !in_str) {
@@ -179,17 +182,28 @@ static int fscen_load(fscen_t *s, const char *path, char *err, size_t errn)
                 return -1;
             }
         }
-        struct { const char *k; char *dst; size_t n; } strs[] = {
-            {"name", s->name, sizeof s->name}, {"description", s->description, sizeof s->description},
-            {"plant", s->plant, sizeof s->plant}, {"skill", s->skill, sizeof s->skill},
-            {"neighbour_skill", s->neighbour, sizeof s->neighbour},
-            {"new_skill", s->new_skill, sizeof s->new_skill}, {"kind", s->kind, sizeof s->kind},
-            {"bound_text", s->bound_text, sizeof s->bound_text},
-            {"plant_model", s->plant_model, sizeof s->plant_model}};
-        struct { const char *k; double *dst; } nums[] = {
-            {"goal_scale", &s->goal_scale}, {"time_scale", &s->time_scale}, {"at_s", &s->at_s},
-            {"value", &s->value}, {"duration_s", &s->duration_s},
-            {"detect_bound_ms", &s->detect_bound_ms}};
+        struct {
+            const char *k;
+            char *dst;
+            size_t n;
+        } strs[] = {{"name", s->name, sizeof s->name},
+                    {"description", s->description, sizeof s->description},
+                    {"plant", s->plant, sizeof s->plant},
+                    {"skill", s->skill, sizeof s->skill},
+                    {"neighbour_skill", s->neighbour, sizeof s->neighbour},
+                    {"new_skill", s->new_skill, sizeof s->new_skill},
+                    {"kind", s->kind, sizeof s->kind},
+                    {"bound_text", s->bound_text, sizeof s->bound_text},
+                    {"plant_model", s->plant_model, sizeof s->plant_model}};
+        struct {
+            const char *k;
+            double *dst;
+        } nums[] = {{"goal_scale", &s->goal_scale},
+                    {"time_scale", &s->time_scale},
+                    {"at_s", &s->at_s},
+                    {"value", &s->value},
+                    {"duration_s", &s->duration_s},
+                    {"detect_bound_ms", &s->detect_bound_ms}};
         bool done = false;
         for (size_t i = 0; i < sizeof strs / sizeof strs[0] && !done; i++) {
             if (strcmp(key, strs[i].k) == 0) {
@@ -224,10 +238,10 @@ static int fscen_load(fscen_t *s, const char *path, char *err, size_t errn)
         }
     }
     fclose(f);
-    static const char *const kinds[] = {"host_silence", "host_corrupt", "bus_off", "force_spike",
-                                        "force_nan", "force_stuck", "encoder_jump",
-                                        "actuator_saturation", "host_loss", "force_limit", "tick_overrun",
-                                        "power_loss_upload"};
+    static const char *const kinds[] = {"host_silence", "host_corrupt",        "bus_off",
+                                        "force_spike",  "force_nan",           "force_stuck",
+                                        "encoder_jump", "actuator_saturation", "host_loss",
+                                        "force_limit",  "tick_overrun",        "power_loss_upload"};
     bool ok = false;
     for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; i++) {
         ok = ok || strcmp(s->kind, kinds[i]) == 0;
@@ -251,17 +265,18 @@ static int fscen_load(fscen_t *s, const char *path, char *err, size_t errn)
 
 /* ---------------------------------------------------------------- running */
 
-static rig_t g_rig;    /* large: static */
-static FILE *g_trace;  /* --trace: one CSV line per tick of the fault runs */
+static rig_t g_rig;   /* large: static */
+static FILE *g_trace; /* --trace: one CSV line per tick of the fault runs */
 
 static void trace_tick(const rig_t *r)
 {
     if (g_trace != NULL) {
         const sim_sample_t *m = &r->ring[(r->n_tick - 1u) % SIM_COUPLE_RING];
         fprintf(g_trace, "%llu,%d,%u,%.6f,%.6f,%d,%.6f,%.6f,%.6f,%.6f,%.6f\n",
-                (unsigned long long)(r->n_tick - 1u), (int)r->app.state, (unsigned)r->app.saf_out.fault_code,
-                r->cmd_N[0], r->cmd_N[1], r->act_enable ? 1 : 0, r->ax[0].pos_m, r->ax[0].vel_mps,
-                r->ax[0].contact_N, m->x_m, m->contact_N);
+                (unsigned long long)(r->n_tick - 1u), (int)r->app.state,
+                (unsigned)r->app.saf_out.fault_code, r->cmd_N[0], r->cmd_N[1],
+                r->act_enable ? 1 : 0, r->ax[0].pos_m, r->ax[0].vel_mps, r->ax[0].contact_N, m->x_m,
+                m->contact_N);
     }
 }
 static uint8_t g_img[IMG_MAX], g_nb[IMG_MAX], g_new[IMG_MAX], g_rd[IMG_MAX];
@@ -298,7 +313,8 @@ static fls_ram_t *flash_ram(void)
 static int setup_device(rig_t *r, const sim_scenario_t *sc)
 {
     rig_init(r, sc);
-    if (rig_flash_skill(r, 0u, g_img, g_img_len) != 0 || rig_flash_skill(r, 1u, g_nb, g_nb_len) != 0) {
+    if (rig_flash_skill(r, 0u, g_img, g_img_len) != 0 ||
+        rig_flash_skill(r, 1u, g_nb, g_nb_len) != 0) {
         return -1;
     }
     rig_boot(r);
@@ -320,12 +336,13 @@ static void run_fault(const fscen_t *fs, const sim_scenario_t *sc, frow_t *row)
     const uint64_t t_exec = r->n_tick;
     const uint64_t t_inj = t_exec + (uint64_t)llround(fs->at_s * 1000.0);
     const uint64_t dur = (uint64_t)llround(fs->duration_s * 1000.0) > 0u
-                             ? (uint64_t)llround(fs->duration_s * 1000.0) : 1u;
+                             ? (uint64_t)llround(fs->duration_s * 1000.0)
+                             : 1u;
     const double contact_max = (double)r->cfg.saf.lim.axis[0].contact_force_max_N;
     uint64_t onset = UINT64_MAX, det = UINT64_MAX, zero = UINT64_MAX;
     double prev[2] = {0.0, 0.0};
     bool injected = false, monotone = true, hold_ok = true, was_exec = false;
-    uint64_t end = t_inj + 20000u;     /* bounded: the run ends HOLD_MS after detection */
+    uint64_t end = t_inj + 20000u; /* bounded: the run ends HOLD_MS after detection */
     const bool expect_none = fs->expect_code == 0;
     if (expect_none) {
         end = t_inj + (uint64_t)llround(fs->duration_s * 1000.0) + 200u;
@@ -334,7 +351,7 @@ static void run_fault(const fscen_t *fs, const sim_scenario_t *sc, frow_t *row)
         const uint64_t t = r->n_tick;
         if (t == t_inj) {
             row->force_at_onset_N = cmd_abs_max(r);
-            was_exec = r->app.state == APP_EXECUTE;   /* the skill runs when the fault comes */
+            was_exec = r->app.state == APP_EXECUTE; /* the skill runs when the fault comes */
             injected = true;
             if (strcmp(fs->kind, "host_silence") == 0) {
                 r->heartbeat_on = false;
@@ -356,7 +373,7 @@ static void run_fault(const fscen_t *fs, const sim_scenario_t *sc, frow_t *row)
                 r->inj.stuck_value_N = r->ring[(t - 1u) % SIM_COUPLE_RING].contact_N;
                 onset = t;
             } else if (strcmp(fs->kind, "encoder_jump") == 0) {
-                r->inj.encoder_add_m = fs->value;   /* from now on */
+                r->inj.encoder_add_m = fs->value; /* from now on */
                 onset = t;
             } else if (strcmp(fs->kind, "actuator_saturation") == 0) {
                 r->inj.act_limit_N = fs->value;
@@ -369,7 +386,7 @@ static void run_fault(const fscen_t *fs, const sim_scenario_t *sc, frow_t *row)
                 onset = t;
             }
         }
-        if (injected && t == t_inj + dur) {   /* the cause goes away (not encoder/silence) */
+        if (injected && t == t_inj + dur) { /* the cause goes away (not encoder/silence) */
             r->inj.force_add_N = 0.0;
             r->inj.force_nan = false;
             r->inj.force_stuck = false;
@@ -383,10 +400,11 @@ static void run_fault(const fscen_t *fs, const sim_scenario_t *sc, frow_t *row)
         rig_step(r);
         trace_tick(r);
         if (t == t_inj && t_inj == t_exec) {
-            was_exec = r->app.state == APP_EXECUTE;   /* at_s = 0: started by this tick's command */
+            was_exec = r->app.state == APP_EXECUTE; /* at_s = 0: started by this tick's command */
         }
         /* the hostile goal scale: the onset is the first contact-force sample above the limit */
-        if (hostile && onset == UINT64_MAX && r->ring[t % SIM_COUPLE_RING].contact_N > contact_max) {
+        if (hostile && onset == UINT64_MAX &&
+            r->ring[t % SIM_COUPLE_RING].contact_N > contact_max) {
             onset = t;
             row->force_at_onset_N = cmd_abs_max(r);
         }
@@ -402,7 +420,7 @@ static void run_fault(const fscen_t *fs, const sim_scenario_t *sc, frow_t *row)
             }
             end = det + HOLD_MS;
             if (strcmp(fs->kind, "host_silence") == 0) {
-                r->heartbeat_on = true;     /* the host comes back: no resume all the same */
+                r->heartbeat_on = true; /* the host comes back: no resume all the same */
             }
         }
         if (det != UINT64_MAX) {
@@ -448,7 +466,8 @@ static void run_fault(const fscen_t *fs, const sim_scenario_t *sc, frow_t *row)
         return;
     }
     if (det == UINT64_MAX || onset == UINT64_MAX) {
-        snprintf(row->note, sizeof row->note, "not detected (onset %s)", onset == UINT64_MAX ? "never" : "seen");
+        snprintf(row->note, sizeof row->note, "not detected (onset %s)",
+                 onset == UINT64_MAX ? "never" : "seen");
         return;
     }
     row->detect_ms = (double)(det - onset);
@@ -465,16 +484,16 @@ static void run_fault(const fscen_t *fs, const sim_scenario_t *sc, frow_t *row)
     }
     row->cleared = r->app.state == APP_IDLE && stayed_zero;
     if (!row->status_seen) {
-        row->status_seen = r->status_fault == row->code;   /* bus-off: status after recovery */
+        row->status_seen = r->status_fault == row->code; /* bus-off: status after recovery */
     }
     row->pass = was_exec && row->code == fs->expect_code && row->detect_ms <= fs->detect_bound_ms &&
                 row->zero_ms >= 0.0 && row->zero_ms <= (double)ZERO_BOUND_MS &&
                 row->worst_N <= row->f_max_N && row->monotone && row->latched && row->cleared &&
                 !row->lost && row->emcy_seen;
     snprintf(row->note, sizeof row->note, "%s%s%s", was_exec ? "" : "not executing at injection; ",
-             !row->emcy_seen ? "no emergency frame"
+             !row->emcy_seen                    ? "no emergency frame"
              : strcmp(fs->kind, "bus_off") == 0 ? "emergency frame after bus recovery"
-                                               : "emergency frame",
+                                                : "emergency frame",
              row->status_seen ? ", status frame" : "");
 }
 
@@ -543,13 +562,16 @@ static void run_power_loss(const sim_scenario_t *sc, frow_t *row)
     row->cleared = true;
     row->lost = bad != 0u;
     row->pass = n_ops > 0u && bad == 0u && reupload_fail == 0u && row->worst_N <= row->f_max_N;
-    snprintf(row->note, sizeof row->note,
-             "%u power-loss points (every erase/program of the upload): old kept %u, new complete %u, "
-             "corrupt %u; re-upload ok %u/%u", (unsigned)n_ops, (unsigned)kept_old,
-             (unsigned)got_new, (unsigned)bad, (unsigned)(n_ops - reupload_fail), (unsigned)n_ops);
+    snprintf(
+        row->note, sizeof row->note,
+        "%u power-loss points (every erase/program of the upload): old kept %u, new complete %u, "
+        "corrupt %u; re-upload ok %u/%u",
+        (unsigned)n_ops, (unsigned)kept_old, (unsigned)got_new, (unsigned)bad,
+        (unsigned)(n_ops - reupload_fail), (unsigned)n_ops);
 }
 
-static int run_one(const fscen_t *fs, uint64_t seed, bool seed_set, frow_t *row, char *err, size_t errn)
+static int run_one(const fscen_t *fs, uint64_t seed, bool seed_set, frow_t *row, char *err,
+                   size_t errn)
 {
     memset(row, 0, sizeof(*row));
     snprintf(row->name, sizeof row->name, "%s", fs->name);
@@ -574,11 +596,16 @@ static int run_one(const fscen_t *fs, uint64_t seed, bool seed_set, frow_t *row,
         sc.seed = seed;
     }
     if (fs->plant_model[0] != '\0') {
-        sc.plant = strcmp(fs->plant_model, "realistic") == 0 ? SIM_PLANT_REALISTIC : SIM_PLANT_IDEAL;
+        sc.plant = strcmp(fs->plant_model, "realistic") == 0 ? SIM_PLANT_REALISTIC
+                                                             : SIM_PLANT_IDEAL;
     }
-    struct { const char *rel; uint8_t *buf; uint32_t *len; } imgs[] = {
-        {fs->skill, g_img, &g_img_len}, {fs->neighbour, g_nb, &g_nb_len},
-        {fs->new_skill, g_new, &g_new_len}};
+    struct {
+        const char *rel;
+        uint8_t *buf;
+        uint32_t *len;
+    } imgs[] = {{fs->skill, g_img, &g_img_len},
+                {fs->neighbour, g_nb, &g_nb_len},
+                {fs->new_skill, g_new, &g_new_len}};
     for (size_t i = 0; i < 3u; i++) {
         *imgs[i].len = 0u;
         if (imgs[i].rel[0] == '\0') {
@@ -612,8 +639,10 @@ static void fmt_ms(char *out, size_t n, double v)
 static void write_table(FILE *f, const frow_t *rows, int n, uint64_t seed)
 {
     int passed = 0;
-    fprintf(f, "| fault | injection | code | detection (ms) | bound (ms) | time to zero force (ms) | "
-               "force at onset (N) | worst force (N) | F_max (N) | worst contact force (N) | latched 1 s, no resume | clear after cause gone | lost | pass |\n");
+    fprintf(f,
+            "| fault | injection | code | detection (ms) | bound (ms) | time to zero force (ms) | "
+            "force at onset (N) | worst force (N) | F_max (N) | worst contact force (N) | latched "
+            "1 s, no resume | clear after cause gone | lost | pass |\n");
     fprintf(f, "|---|---|---:|---:|---|---:|---:|---:|---:|---:|---|---|---|---|\n");
     for (int i = 0; i < n; i++) {
         const frow_t *r = &rows[i];
@@ -627,13 +656,13 @@ static void write_table(FILE *f, const frow_t *rows, int n, uint64_t seed)
         }
         const bool storage = strcmp(r->kind, "power_loss_upload") == 0;
         const bool none = r->expect_code == 0;
-        fprintf(f, "| %s | %s | %s | %s | %s | %s | %.1f | %.1f | %.0f | %.1f | %s | %s | %s | %s |\n", r->name,
-                r->description, storage ? "-" : code, d,
-                (storage || none) ? "-" : r->bound_text, z, r->force_at_onset_N, r->worst_N, r->f_max_N,
-                r->contact_max_N,
-                (storage || none) ? "n/a" : (r->latched ? "yes" : "NO"),
-                (storage || none) ? "n/a" : (r->cleared ? "yes" : "NO"), r->lost ? "YES" : "no",
-                r->pass ? "pass" : "FAIL");
+        fprintf(
+            f, "| %s | %s | %s | %s | %s | %s | %.1f | %.1f | %.0f | %.1f | %s | %s | %s | %s |\n",
+            r->name, r->description, storage ? "-" : code, d,
+            (storage || none) ? "-" : r->bound_text, z, r->force_at_onset_N, r->worst_N, r->f_max_N,
+            r->contact_max_N, (storage || none) ? "n/a" : (r->latched ? "yes" : "NO"),
+            (storage || none) ? "n/a" : (r->cleared ? "yes" : "NO"), r->lost ? "YES" : "no",
+            r->pass ? "pass" : "FAIL");
         passed += r->pass ? 1 : 0;
     }
     fprintf(f, "\n%d/%d fault scenarios pass (seed %llu).\n", passed, n, (unsigned long long)seed);
@@ -664,16 +693,20 @@ static void write_json(FILE *f, const frow_t *rows, int n, uint64_t seed)
         json_str(f, r->name);
         fprintf(f, ", \"kind\": ");
         json_str(f, r->kind);
-        fprintf(f, ", \"expect_code\": %d, \"code\": %d, \"detect_ms\": %.3f, \"detect_bound_ms\": %.3f, "
-                   "\"zero_ms\": %.3f, \"force_at_onset_N\": %.6f, \"worst_force_N\": %.6f, \"f_max_N\": %.3f, "
-                   "\"contact_max_N\": %.6f, \"emcy_delay_ms\": %.3f, "
-                   "\"monotone\": %s, \"latched\": %s, \"cleared\": %s, \"emcy_seen\": %s, "
-                   "\"status_seen\": %s, \"lost\": %s, \"pass\": %s, \"note\": ",
-                r->expect_code, r->code, r->detect_ms, r->detect_bound_ms, r->zero_ms, r->force_at_onset_N,
-                r->worst_N, r->f_max_N, r->contact_max_N, r->emcy_delay_ms, r->monotone ? "true" : "false", r->latched ? "true" : "false",
-                r->cleared ? "true" : "false", r->emcy_seen ? "true" : "false",
-                r->status_seen ? "true" : "false", r->lost ? "true" : "false",
-                r->pass ? "true" : "false");
+        fprintf(
+            f,
+            ", \"expect_code\": %d, \"code\": %d, \"detect_ms\": %.3f, \"detect_bound_ms\": %.3f, "
+            "\"zero_ms\": %.3f, \"force_at_onset_N\": %.6f, \"worst_force_N\": %.6f, \"f_max_N\": "
+            "%.3f, "
+            "\"contact_max_N\": %.6f, \"emcy_delay_ms\": %.3f, "
+            "\"monotone\": %s, \"latched\": %s, \"cleared\": %s, \"emcy_seen\": %s, "
+            "\"status_seen\": %s, \"lost\": %s, \"pass\": %s, \"note\": ",
+            r->expect_code, r->code, r->detect_ms, r->detect_bound_ms, r->zero_ms,
+            r->force_at_onset_N, r->worst_N, r->f_max_N, r->contact_max_N, r->emcy_delay_ms,
+            r->monotone ? "true" : "false", r->latched ? "true" : "false",
+            r->cleared ? "true" : "false", r->emcy_seen ? "true" : "false",
+            r->status_seen ? "true" : "false", r->lost ? "true" : "false",
+            r->pass ? "true" : "false");
         json_str(f, r->note);
         fprintf(f, "}%s\n", i + 1 < n ? "," : "");
     }
@@ -699,7 +732,8 @@ int faults_cmd(int argc, char **argv)
         }
         const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
         if (v == NULL) {
-            fprintf(stderr, "hil_sim faults: %s needs a value (or unknown option)\n%s", a, FAULT_USAGE);
+            fprintf(stderr, "hil_sim faults: %s needs a value (or unknown option)\n%s", a,
+                    FAULT_USAGE);
             return 2;
         }
         if (strcmp(a, "--seed") == 0) {
@@ -726,7 +760,8 @@ int faults_cmd(int argc, char **argv)
                 fprintf(stderr, "hil_sim faults: %s: %s\n", v, strerror(errno));
                 return 2;
             }
-            fprintf(g_trace, "tick,state,fault,cmd_x_N,cmd_y_N,enable,x_m,v_mps,contact_N,x_meas_m,contact_meas_N\n");
+            fprintf(g_trace, "tick,state,fault,cmd_x_N,cmd_y_N,enable,x_m,v_mps,contact_N,x_meas_m,"
+                             "contact_meas_N\n");
         } else {
             fprintf(stderr, "hil_sim faults: unknown option '%s'\n%s", a, FAULT_USAGE);
             return 2;
@@ -784,7 +819,8 @@ int faults_cmd(int argc, char **argv)
         return 2;
     }
     write_table(stdout, rows, nr, seed);
-    printf("wall time %.2f s\n", (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
+    printf("wall time %.2f s\n",
+           (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
     if (out_md != NULL) {
         FILE *f = fopen(out_md, "w");
         if (f == NULL) {

@@ -19,10 +19,12 @@ typedef struct {
 static const sim_command_t COMMANDS[] = {
     {"run", sim_cmd_run, "run a scenario in lockstep, write a CSV log and a JSON summary"},
 #ifdef HIL_SIM_HAVE_SERVE
-    {"serve", bus_cmd_serve, "run the device firmware in real time, serve its CAN bus (socketcand)"},
+    {"serve", bus_cmd_serve,
+     "run the device firmware in real time, serve its CAN bus (socketcand)"},
 #endif
 #ifdef HIL_SIM_HAVE_FAULTS
-    {"faults", faults_cmd, "inject every fault scenario into the device in lockstep, write the table"},
+    {"faults", faults_cmd,
+     "inject every fault scenario into the device in lockstep, write the table"},
 #endif
 };
 

@@ -13,7 +13,8 @@
 static const char RUN_USAGE[] =
     "usage: hil_sim run SCENARIO.toml [options]\n"
     "  -o, --output LOG.csv    write the log (t,x,y,f_contact,f_operator,f_cmd,f_hat; SI units)\n"
-    "                          and LOG.summary.json beside it (without -o the summary goes to stdout)\n"
+    "                          and LOG.summary.json beside it (without -o the summary goes to "
+    "stdout)\n"
     "  --seed N                operator and sensor seed (default: the scenario's)\n"
     "  --skill FILE [FILE...]  skill image(s) to execute in series (replaces the scenario's)\n"
     "  --goal-scale S          goal scale for every step (default: the scenario's, 1)\n"
@@ -181,7 +182,8 @@ int sim_cmd_run(int argc, char **argv)
         memcpy(sc.step_duration_s, cli_durations, sizeof(double) * (size_t)n_cli_durations);
     }
     if (sc.mode == SIM_MODE_EXECUTE && n_cli_skills == 0 && sc.n_skills == 0) {
-        fprintf(stderr, "hil_sim: %s: execute scenario without skills: pass --skill FILE\n", scenario);
+        fprintf(stderr, "hil_sim: %s: execute scenario without skills: pass --skill FILE\n",
+                scenario);
         return 2;
     }
     if (sim_scenario_check(&sc, err) != 0) {

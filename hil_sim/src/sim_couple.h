@@ -12,8 +12,9 @@
 #include "sim_rng.h"
 #include "sim_scenario.h"
 
-#define SIM_PARK_TAU_S 0.05   /* idle: the drive brings the handle back to the start position */
-#define SIM_PARK_VMAX_MPS 0.5 /* ... at most this fast: 0.5 mm per tick, 1/10 of the device's
+#define SIM_PARK_TAU_S 0.05 /* idle: the drive brings the handle back to the start position */
+#define SIM_PARK_VMAX_MPS \
+    0.5 /* ... at most this fast: 0.5 mm per tick, 1/10 of the device's
                                  encoder-jump limit (an uncapped first-order park moved a handle
                                  0.29 m away by 5.8 mm in one tick: an encoder jump to the device;
                                  0.1 m/s left the handle still moving when the next run started) */

@@ -29,15 +29,18 @@ double sim_object_spring_N(const sim_object_t *o, double p_m);
 
 /* ---------------- plant ---------------- */
 
-typedef enum { SIM_PLANT_IDEAL = 0, SIM_PLANT_REALISTIC = 1 } sim_plant_kind_t;
+typedef enum {
+    SIM_PLANT_IDEAL = 0,
+    SIM_PLANT_REALISTIC = 1
+} sim_plant_kind_t;
 
 /** Carriage parameters of the realistic plant. */
 typedef struct {
-    double carriage_kg;    /* 2 kg */
-    double act_max_N;      /* +-200 N actuator limit */
-    double act_lag_s;      /* 0.5 ms first-order lag */
-    double viscous_Nspm;   /* 5 Ns/m */
-    double coulomb_N;      /* 1 N */
+    double carriage_kg;  /* 2 kg */
+    double act_max_N;    /* +-200 N actuator limit */
+    double act_lag_s;    /* 0.5 ms first-order lag */
+    double viscous_Nspm; /* 5 Ns/m */
+    double coulomb_N;    /* 1 N */
 } sim_carriage_t;
 
 /** State of one axis. */
@@ -45,24 +48,24 @@ typedef struct {
     double pos_m;
     double vel_mps;
     double acc_mps2;
-    double act_N;          /* realistic: actuator force after the lag */
-    double contact_N;      /* contact force at the end of the last substep */
+    double act_N;     /* realistic: actuator force after the lag */
+    double contact_N; /* contact force at the end of the last substep */
 } sim_axis_t;
 
 /** How an axis is driven during one substep. */
 typedef struct {
     sim_plant_kind_t kind;
-    uint8_t prescribed;    /* ideal EXECUTE: acc = force_cmd/mass (dynamics compensated) */
-    double mass_kg;        /* ideal: m_d; realistic: carriage */
-    double force_cmd_N;    /* ideal: commanded total force; realistic: motor command */
-    double force_ext_N;    /* operator force without the hand damping (0 in EXECUTE) */
+    uint8_t prescribed; /* ideal EXECUTE: acc = force_cmd/mass (dynamics compensated) */
+    double mass_kg;     /* ideal: m_d; realistic: carriage */
+    double force_cmd_N; /* ideal: commanded total force; realistic: motor command */
+    double force_ext_N; /* operator force without the hand damping (0 in EXECUTE) */
     double hand_damping_Nspm;
     const sim_carriage_t *carriage; /* realistic only */
     const sim_object_t *object;     /* NULL: no contact on this axis */
-    double act_limit_N;    /* current actuator limit (fault injection may lower it) */
-    double act_alpha;      /* realistic: 1 - exp(-dt/lag), precomputed for the substep */
-    double inv_mass;       /* 1/mass_kg (sim_drive_prepare) */
-    double inv_mass_contact; /* 1/(mass_kg + m_v) (sim_drive_prepare) */
+    double act_limit_N;             /* current actuator limit (fault injection may lower it) */
+    double act_alpha;               /* realistic: 1 - exp(-dt/lag), precomputed for the substep */
+    double inv_mass;                /* 1/mass_kg (sim_drive_prepare) */
+    double inv_mass_contact;        /* 1/(mass_kg + m_v) (sim_drive_prepare) */
 } sim_drive_t;
 
 /** Precompute the drive's inverse masses (call after setting mass_kg and object). */
@@ -77,24 +80,28 @@ double sim_operator_handle_N(const sim_drive_t *d, const sim_axis_t *a);
 
 /* ---------------- operator ---------------- */
 
-typedef enum { SIM_TASK_NONE = 0, SIM_TASK_PRESSING = 1, SIM_TASK_ENGRAVING = 2 } sim_task_t;
+typedef enum {
+    SIM_TASK_NONE = 0,
+    SIM_TASK_PRESSING = 1,
+    SIM_TASK_ENGRAVING = 2
+} sim_task_t;
 
 #define SIM_MAX_LEVELS 64
 
 /** Operator parameters (from the scenario). */
 typedef struct {
     sim_task_t task;
-    double low_N, high_N;                 /* pressing levels (nominal) */
-    double level_min_N, level_max_N;      /* engraving random levels */
-    double jitter;                        /* pressing levels x (1 +- jitter), seeded */
-    double ramp_s;                        /* pressing: ramp to low and to high; engraving: ramp-up */
-    double release_s;                     /* both: release over the last release_s */
+    double low_N, high_N;            /* pressing levels (nominal) */
+    double level_min_N, level_max_N; /* engraving random levels */
+    double jitter;                   /* pressing levels x (1 +- jitter), seeded */
+    double ramp_s;                   /* pressing: ramp to low and to high; engraving: ramp-up */
+    double release_s;                /* both: release over the last release_s */
     double reaction_min_s, reaction_max_s;
-    double dwell_min_s, dwell_max_s;      /* engraving: level change every 0.6-1.4 s */
-    double transition_s;                  /* engraving: 0.7 s smooth transitions */
-    double layer_timeout_s;               /* pressing: go high anyway after this time */
-    double hand_damping_Nspm;             /* 30 Ns/m */
-    double tremor_frac;                   /* 1 % of the force */
+    double dwell_min_s, dwell_max_s; /* engraving: level change every 0.6-1.4 s */
+    double transition_s;             /* engraving: 0.7 s smooth transitions */
+    double layer_timeout_s;          /* pressing: go high anyway after this time */
+    double hand_damping_Nspm;        /* 30 Ns/m */
+    double tremor_frac;              /* 1 % of the force */
     double duration_s;
 } sim_operator_cfg_t;
 
@@ -102,11 +109,11 @@ typedef struct {
 typedef struct {
     sim_operator_cfg_t cfg;
     double low_N, high_N, reaction_s;
-    double t_layer_s;                     /* < 0 until the inner layer is reached */
-    double t_high_s;                      /* start of the ramp to the high level */
+    double t_layer_s; /* < 0 until the inner layer is reached */
+    double t_high_s;  /* start of the ramp to the high level */
     int n_levels;
-    double level_t_s[SIM_MAX_LEVELS];     /* start of each transition */
-    double level_N[SIM_MAX_LEVELS];       /* level after the transition */
+    double level_t_s[SIM_MAX_LEVELS]; /* start of each transition */
+    double level_N[SIM_MAX_LEVELS];   /* level after the transition */
     double tremor_hz[2], tremor_phase[2];
 } sim_operator_t;
 

@@ -8,7 +8,7 @@
 /** xoshiro256** state. */
 typedef struct {
     uint64_t s[4];
-    double spare;        /* second value of the last polar-method pair */
+    double spare; /* second value of the last polar-method pair */
     int has_spare;
 } sim_rng_t;
 

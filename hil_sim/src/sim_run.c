@@ -294,9 +294,10 @@ int sim_run(const sim_scenario_t *sc, const skill_t *skills, FILE *log, sim_summ
             const double tot_x = m->fop_x - m->fc;
             cmd_log = tot_x;
             if (realistic) {
-                drv[0].force_cmd_N = exec_render_step(&rcfg, &rend[0], tot_x, m_d, tot_x, m->x, vx, dt);
-                drv[1].force_cmd_N =
-                    exec_render_step(&rcfg, &rend[1], m->fop_y, m_d, m->fop_y, m->y, vy, dt);
+                drv[0].force_cmd_N = exec_render_step(&rcfg, &rend[0], tot_x, m_d, tot_x, m->x, vx,
+                                                      dt);
+                drv[1].force_cmd_N = exec_render_step(&rcfg, &rend[1], m->fop_y, m_d, m->fop_y,
+                                                      m->y, vy, dt);
             }
         } else {
             exec_meas_t em = {{m->x, m->y}, {vx, vy}, m->fc};
@@ -333,9 +334,10 @@ int sim_run(const sim_scenario_t *sc, const skill_t *skills, FILE *log, sim_summ
                 drv[1].act_limit_N = sc->carriage.act_max_N;
             }
             if (realistic) {
-                drv[0].force_cmd_N =
-                    exec_render_step(&rcfg, &rend[0], f_cmd[0], m_d, -m->fc, m->x, vx, dt);
-                drv[1].force_cmd_N = exec_render_step(&rcfg, &rend[1], f_cmd[1], m_d, 0.0, m->y, vy, dt);
+                drv[0].force_cmd_N = exec_render_step(&rcfg, &rend[0], f_cmd[0], m_d, -m->fc, m->x,
+                                                      vx, dt);
+                drv[1].force_cmd_N = exec_render_step(&rcfg, &rend[1], f_cmd[1], m_d, 0.0, m->y, vy,
+                                                      dt);
             } else {
                 drv[0].force_cmd_N = f_cmd[0];
                 drv[1].force_cmd_N = f_cmd[1];
@@ -417,7 +419,8 @@ int sim_write_summary(const sim_scenario_t *sc, const sim_summary_t *s, const ch
             sc->mode == SIM_MODE_TEACH ? "teach" : "execute",
             sc->plant == SIM_PLANT_IDEAL ? "ideal" : "realistic");
     fprintf(f, "  \"seed\": %llu,\n", (unsigned long long)sc->seed);
-    fprintf(f, "  \"goal_scale\": %.9g,\n  \"time_scale\": %.9g,\n", sc->goal_scale, sc->time_scale);
+    fprintf(f, "  \"goal_scale\": %.9g,\n  \"time_scale\": %.9g,\n", sc->goal_scale,
+            sc->time_scale);
     fprintf(f, "  \"force_limit_N\": %.9g,\n", sc->force_max_N);
     fprintf(f, "  \"ticks\": %llu,\n", (unsigned long long)s->ticks);
     json_num(f, "sim_time_s", s->sim_time_s, 0);
@@ -427,8 +430,10 @@ int sim_write_summary(const sim_scenario_t *sc, const sim_summary_t *s, const ch
     json_num(f, "max_f_hat_N", s->max_hat_N, 0);
     json_num(f, "deformation_max_m", s->deformation_max_m, 0);
     json_num(f, "layer_reached_s", s->layer_reached_s >= 0.0 ? s->layer_reached_s : (double)NAN, 0);
-    json_num(f, "tracking_max_pct", sc->mode == SIM_MODE_EXECUTE ? s->tracking_max_pct : (double)NAN, 0);
-    json_num(f, "tracking_rms_pct", sc->mode == SIM_MODE_EXECUTE ? s->tracking_rms_pct : (double)NAN, 0);
+    json_num(f, "tracking_max_pct",
+             sc->mode == SIM_MODE_EXECUTE ? s->tracking_max_pct : (double)NAN, 0);
+    json_num(f, "tracking_rms_pct",
+             sc->mode == SIM_MODE_EXECUTE ? s->tracking_rms_pct : (double)NAN, 0);
     fprintf(f, "  \"limit_violations\": %llu,\n", (unsigned long long)s->limit_violations);
     fprintf(f, "  \"saturated_ticks\": %llu,\n", (unsigned long long)s->saturated_ticks);
     fprintf(f, "  \"nonfinite_ticks\": %llu,\n", (unsigned long long)s->nonfinite_ticks);

@@ -13,17 +13,17 @@
 typedef struct {
     uint64_t ticks;
     double sim_time_s;
-    double max_force_N;          /* max logged contact force */
-    double max_operator_N;       /* max logged operator force */
-    double max_cmd_abs_N;        /* max |f_cmd| (x and y) */
-    double max_hat_N;            /* max f_hat */
-    double deformation_max_m;    /* max true p = x - surface */
-    double layer_reached_s;      /* first time p >= layer depth, -1 if never */
-    double tracking_max_pct;     /* EXECUTE: max |f_contact - f_hat| / max f_hat */
+    double max_force_N;       /* max logged contact force */
+    double max_operator_N;    /* max logged operator force */
+    double max_cmd_abs_N;     /* max |f_cmd| (x and y) */
+    double max_hat_N;         /* max f_hat */
+    double deformation_max_m; /* max true p = x - surface */
+    double layer_reached_s;   /* first time p >= layer depth, -1 if never */
+    double tracking_max_pct;  /* EXECUTE: max |f_contact - f_hat| / max f_hat */
     double tracking_rms_pct;
-    uint64_t limit_violations;   /* ticks with |f_cmd| > force_max_N */
-    uint64_t saturated_ticks;    /* ticks with |f_cmd| at the limit */
-    uint64_t nonfinite_ticks;    /* ticks where the firmware refused a non-finite measurement */
+    uint64_t limit_violations; /* ticks with |f_cmd| > force_max_N */
+    uint64_t saturated_ticks;  /* ticks with |f_cmd| at the limit */
+    uint64_t nonfinite_ticks;  /* ticks where the firmware refused a non-finite measurement */
     double wall_s;
     double x_realtime;
 } sim_summary_t;

@@ -12,7 +12,13 @@
 
 #define SIM_ARR_MAX SIM_MAX_SKILLS
 
-typedef enum { V_NUM, V_STR, V_BOOL, V_NUMARR, V_STRARR } vtype_t;
+typedef enum {
+    V_NUM,
+    V_STR,
+    V_BOOL,
+    V_NUMARR,
+    V_STRARR
+} vtype_t;
 
 typedef struct {
     vtype_t type;
@@ -56,17 +62,35 @@ void sim_scenario_defaults(sim_scenario_t *sc)
     sc->start_y_m = 0.0;
     sc->m_d_kg = 40.0;
     sc->force_max_N = 50.0;
-    sc->object = (sim_object_t){.skin_m = 0.0, .surface_m = 0.001, .k1_Npm = 100.0, .k2_Npm = 100.0,
-                                .layer_depth_m = 0.019, .d_v_Nspm = 50.0, .m_v_kg = 10.0};
-    sc->carriage = (sim_carriage_t){.carriage_kg = 2.0, .act_max_N = 200.0, .act_lag_s = 0.0005,
-                                    .viscous_Nspm = 5.0, .coulomb_N = 1.0};
-    sc->op = (sim_operator_cfg_t){.task = SIM_TASK_NONE, .low_N = 2.5, .high_N = 4.5,
-                                  .level_min_N = 1.5, .level_max_N = 4.0, .jitter = 0.1,
-                                  .ramp_s = 1.0, .release_s = 1.0,
-                                  .reaction_min_s = 0.2, .reaction_max_s = 0.35,
-                                  .dwell_min_s = 0.6, .dwell_max_s = 1.4, .transition_s = 0.7,
-                                  .layer_timeout_s = 5.0, .hand_damping_Nspm = 30.0,
-                                  .tremor_frac = 0.01, .duration_s = 0.0};
+    sc->object = (sim_object_t){.skin_m = 0.0,
+                                .surface_m = 0.001,
+                                .k1_Npm = 100.0,
+                                .k2_Npm = 100.0,
+                                .layer_depth_m = 0.019,
+                                .d_v_Nspm = 50.0,
+                                .m_v_kg = 10.0};
+    sc->carriage = (sim_carriage_t){.carriage_kg = 2.0,
+                                    .act_max_N = 200.0,
+                                    .act_lag_s = 0.0005,
+                                    .viscous_Nspm = 5.0,
+                                    .coulomb_N = 1.0};
+    sc->op = (sim_operator_cfg_t){.task = SIM_TASK_NONE,
+                                  .low_N = 2.5,
+                                  .high_N = 4.5,
+                                  .level_min_N = 1.5,
+                                  .level_max_N = 4.0,
+                                  .jitter = 0.1,
+                                  .ramp_s = 1.0,
+                                  .release_s = 1.0,
+                                  .reaction_min_s = 0.2,
+                                  .reaction_max_s = 0.35,
+                                  .dwell_min_s = 0.6,
+                                  .dwell_max_s = 1.4,
+                                  .transition_s = 0.7,
+                                  .layer_timeout_s = 5.0,
+                                  .hand_damping_Nspm = 30.0,
+                                  .tremor_frac = 0.01,
+                                  .duration_s = 0.0};
     sc->tip = (sim_force_sensor_t){.noise_N = 0.02, .bias_N = 0.0, .range_N = 100.0, .bits = 16u};
     sc->handle = sc->tip;
     sc->encoder_m = 1e-6;
@@ -211,7 +235,10 @@ typedef struct {
     double lo, hi;
 } num_key_t;
 
-#define NK(sec, k, field, lo, hi) {sec, k, offsetof(sim_scenario_t, field), lo, hi}
+#define NK(sec, k, field, lo, hi)                       \
+    {                                                   \
+        sec, k, offsetof(sim_scenario_t, field), lo, hi \
+    }
 static const num_key_t NUM_KEYS[] = {
     NK("", "duration_s", duration_s, 0.0, 3600.0),
     NK("", "tail_s", tail_s, 0.0, 60.0),
@@ -304,7 +331,8 @@ static int apply(sim_scenario_t *sc, const ctx_t *c, const char *sec, const char
             if (strcmp(sec, "sensors") == 0 &&
                 (strcmp(key, "force_noise_N") == 0 || strcmp(key, "force_range_N") == 0)) {
                 /* both force sensors share noise and range */
-                *(double *)(void *)((char *)&sc->handle + (k->offset - offsetof(sim_scenario_t, tip))) = v->num;
+                *(double *)(void *)((char *)&sc->handle +
+                                    (k->offset - offsetof(sim_scenario_t, tip))) = v->num;
             }
             return 0;
         }
@@ -444,8 +472,8 @@ static int apply(sim_scenario_t *sc, const ctx_t *c, const char *sec, const char
             return 0;
         }
     } else if (strcmp(sec, "fault") == 0 && strcmp(key, "kind") == 0) {
-        static const char *const names[] = {"none", "force_spike", "force_nan", "force_stuck",
-                                            "encoder_jump", "actuator_saturation"};
+        static const char *const names[] = {"none",        "force_spike",  "force_nan",
+                                            "force_stuck", "encoder_jump", "actuator_saturation"};
         if (want(c, key, v, V_STR) != 0) {
             return -1;
         }
@@ -455,8 +483,10 @@ static int apply(sim_scenario_t *sc, const ctx_t *c, const char *sec, const char
                 return 0;
             }
         }
-        return fail(c, "fault kind must be one of none, force_spike, force_nan, force_stuck, "
-                       "encoder_jump, actuator_saturation; got \"%s\"", v->str);
+        return fail(c,
+                    "fault kind must be one of none, force_spike, force_nan, force_stuck, "
+                    "encoder_jump, actuator_saturation; got \"%s\"",
+                    v->str);
     }
     if (sec[0] == '\0') {
         return fail(c, "unknown key '%s'", key);
@@ -464,8 +494,8 @@ static int apply(sim_scenario_t *sc, const ctx_t *c, const char *sec, const char
     return fail(c, "unknown key '%s' in [%s]", key, sec);
 }
 
-static const char *const SECTIONS[] = {"object", "carriage", "operator", "sensors", "execute",
-                                       "fault"};
+static const char *const SECTIONS[] = {"object",  "carriage", "operator",
+                                       "sensors", "execute",  "fault"};
 
 int sim_scenario_parse(sim_scenario_t *sc, const char *text, const char *name,
                        char err[SIM_ERR_MAX])
@@ -510,8 +540,10 @@ int sim_scenario_parse(sim_scenario_t *sc, const char *text, const char *name,
                 }
             }
             if (!known) {
-                return fail(&c, "unknown section [%s] (known: object, carriage, operator, "
-                                "sensors, execute, fault)", nm);
+                return fail(&c,
+                            "unknown section [%s] (known: object, carriage, operator, "
+                            "sensors, execute, fault)",
+                            nm);
             }
             snprintf(section, sizeof section, "%s", nm);
             continue;
@@ -582,9 +614,11 @@ int sim_scenario_check(const sim_scenario_t *sc, char err[SIM_ERR_MAX])
             snprintf(err, SIM_ERR_MAX, "%s: a teach scenario needs duration_s > 0", f);
             return -1;
         }
-        if (sc->op.task == SIM_TASK_PRESSING && sc->op.high_N * (1.0 + sc->op.jitter) > sc->force_max_N) {
-            snprintf(err, SIM_ERR_MAX, "%s: operator high_force_N %g (+jitter) exceeds force_max_N %g",
-                     f, sc->op.high_N, sc->force_max_N);
+        if (sc->op.task == SIM_TASK_PRESSING &&
+            sc->op.high_N * (1.0 + sc->op.jitter) > sc->force_max_N) {
+            snprintf(err, SIM_ERR_MAX,
+                     "%s: operator high_force_N %g (+jitter) exceeds force_max_N %g", f,
+                     sc->op.high_N, sc->force_max_N);
             return -1;
         }
         if (sc->op.task == SIM_TASK_ENGRAVING && sc->op.level_max_N > sc->force_max_N) {
@@ -599,8 +633,10 @@ int sim_scenario_check(const sim_scenario_t *sc, char err[SIM_ERR_MAX])
         }
     } else {
         if (sc->n_skills < 1) {
-            snprintf(err, SIM_ERR_MAX, "%s: an execute scenario needs at least one skill "
-                     "([execute] skills = [...] or --skill FILE)", f);
+            snprintf(err, SIM_ERR_MAX,
+                     "%s: an execute scenario needs at least one skill "
+                     "([execute] skills = [...] or --skill FILE)",
+                     f);
             return -1;
         }
         if (sc->n_step_durations != 0 && sc->n_step_durations != sc->n_skills) {

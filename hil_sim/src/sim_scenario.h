@@ -12,14 +12,17 @@
 #define SIM_MAX_SKILLS 8
 #define SIM_ERR_MAX 640
 
-typedef enum { SIM_MODE_TEACH = 0, SIM_MODE_EXECUTE = 1 } sim_mode_t;
+typedef enum {
+    SIM_MODE_TEACH = 0,
+    SIM_MODE_EXECUTE = 1
+} sim_mode_t;
 
 typedef enum {
     SIM_FAULT_NONE = 0,
-    SIM_FAULT_FORCE_SPIKE,       /* tip sensor reads +value N extra for duration_s */
-    SIM_FAULT_FORCE_NAN,         /* tip sensor reads NaN from at_s for duration_s */
-    SIM_FAULT_FORCE_STUCK,       /* tip sensor repeats its reading at at_s for duration_s */
-    SIM_FAULT_ENCODER_JUMP,      /* x encoder reads +value m from at_s on */
+    SIM_FAULT_FORCE_SPIKE,        /* tip sensor reads +value N extra for duration_s */
+    SIM_FAULT_FORCE_NAN,          /* tip sensor reads NaN from at_s for duration_s */
+    SIM_FAULT_FORCE_STUCK,        /* tip sensor repeats its reading at at_s for duration_s */
+    SIM_FAULT_ENCODER_JUMP,       /* x encoder reads +value m from at_s on */
     SIM_FAULT_ACTUATOR_SATURATION /* actuator limited to value N from at_s for duration_s */
 } sim_fault_kind_t;
 
@@ -35,32 +38,32 @@ typedef struct {
 typedef struct {
     char name[64];
     char path[SIM_PATH_MAX];
-    char dir[SIM_PATH_MAX];          /* folder of the scenario file (relative skill paths) */
+    char dir[SIM_PATH_MAX]; /* folder of the scenario file (relative skill paths) */
     sim_mode_t mode;
     sim_plant_kind_t plant;
-    double duration_s;               /* <= 0 in EXECUTE: sum of step durations + tail_s */
+    double duration_s; /* <= 0 in EXECUTE: sum of step durations + tail_s */
     double tail_s;
-    double dt_s;                     /* firmware tick, 1 ms */
-    int substeps;                    /* plant substeps per tick (10 -> 0.1 ms) */
+    double dt_s;  /* firmware tick, 1 ms */
+    int substeps; /* plant substeps per tick (10 -> 0.1 ms) */
     uint64_t seed;
     double start_x_m, start_y_m;
-    double m_d_kg;                   /* rendered inertia (gains.m_d) */
-    double force_max_N;              /* F_max at the last stage (50 N) */
+    double m_d_kg;      /* rendered inertia (gains.m_d) */
+    double force_max_N; /* F_max at the last stage (50 N) */
     sim_object_t object;
     sim_carriage_t carriage;
     sim_operator_cfg_t op;
     sim_force_sensor_t tip, handle;
     double encoder_m;
-    int delay_samples;               /* sensor pipeline delay in ticks (0..4) */
-    double vel_cutoff_Hz;            /* firmware velocity filter */
+    int delay_samples;    /* sensor pipeline delay in ticks (0..4) */
+    double vel_cutoff_Hz; /* firmware velocity filter */
     /* execute */
     int n_skills;
     char skill_path[SIM_MAX_SKILLS][SIM_PATH_MAX];
     int n_step_durations;
     double step_duration_s[SIM_MAX_SKILLS];
     double goal_scale, time_scale;
-    int use_model;                   /* 1: invert the object model for x_d */
-    int end_policy;                  /* -1: the skill's own; 0 hold; 1 release */
+    int use_model;  /* 1: invert the object model for x_d */
+    int end_policy; /* -1: the skill's own; 0 hold; 1 release */
     double phase_stop_gain_per_N2;
     /* fault */
     sim_fault_t fault;

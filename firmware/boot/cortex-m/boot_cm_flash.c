@@ -31,7 +31,7 @@ static int cm_program(void *ctx, uint32_t addr, const uint8_t *data, uint32_t le
     }
     volatile uint8_t *p = (volatile uint8_t *)(f->base + addr);
     for (uint32_t i = 0; i < len; i++) {
-        p[i] = (uint8_t)(p[i] & data[i]);   /* NOR: programming clears bits only */
+        p[i] = (uint8_t)(p[i] & data[i]); /* NOR: programming clears bits only */
     }
     return 0;
 }

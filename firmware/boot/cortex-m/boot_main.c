@@ -17,9 +17,12 @@ static void put_version(uint32_t v)
     sh_putdec(v & 0xFFFFu);
 }
 
-static const char *const PATH[] = {"none", "active", "test (first boot, must confirm)",
+static const char *const PATH[] = {"none",
+                                   "active",
+                                   "test (first boot, must confirm)",
                                    "reverted (test image did not confirm)",
-                                   "active (test image refused)", "recovered (other slot)",
+                                   "active (test image refused)",
+                                   "recovered (other slot)",
                                    "first boot"};
 
 __attribute__((noreturn)) static void start(uint32_t vt)

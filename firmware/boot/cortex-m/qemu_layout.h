@@ -5,14 +5,15 @@
 #ifndef QEMU_LAYOUT_H
 #define QEMU_LAYOUT_H
 
-#define QL_SECTOR_SIZE 0x1000u        /* 4 KiB erase sectors */
-#define QL_BOOT_ADDR 0x00000000u      /* bootloader, 64 KiB */
-#define QL_STATE_ADDR 0x00010000u     /* boot state: 2 sectors (one nvm record, two copies) */
+#define QL_SECTOR_SIZE 0x1000u    /* 4 KiB erase sectors */
+#define QL_BOOT_ADDR 0x00000000u  /* bootloader, 64 KiB */
+#define QL_STATE_ADDR 0x00010000u /* boot state: 2 sectors (one nvm record, two copies) */
 #define QL_STATE_SECTORS 2u
-#define QL_SLOT_A_ADDR 0x00020000u    /* application slot A, 256 KiB */
-#define QL_SLOT_B_ADDR 0x00060000u    /* application slot B, 256 KiB */
+#define QL_SLOT_A_ADDR 0x00020000u /* application slot A, 256 KiB */
+#define QL_SLOT_B_ADDR 0x00060000u /* application slot B, 256 KiB */
 #define QL_SLOT_SIZE 0x00040000u
-#define QL_ENTRY_OFFSET 0x180u        /* vector table offset in the payload (slot + 0x200: VTOR
+#define QL_ENTRY_OFFSET \
+    0x180u /* vector table offset in the payload (slot + 0x200: VTOR
                                          alignment for up to 128 vectors) */
 #define QL_RAM_TOP 0x20400000u
 

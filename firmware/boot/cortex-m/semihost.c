@@ -11,7 +11,7 @@ static uint32_t sh_call(uint32_t op, const void *arg)
 
 void sh_puts(const char *s)
 {
-    (void)sh_call(0x04u, s);   /* SYS_WRITE0 */
+    (void)sh_call(0x04u, s); /* SYS_WRITE0 */
 }
 
 void sh_puthex(uint32_t v)
@@ -39,8 +39,8 @@ void sh_putdec(uint32_t v)
 
 void sh_exit(uint32_t code)
 {
-    const uint32_t block[2] = {0x20026u, code};   /* ADP_Stopped_ApplicationExit, code */
+    const uint32_t block[2] = {0x20026u, code}; /* ADP_Stopped_ApplicationExit, code */
     for (;;) {
-        (void)sh_call(0x20u, block);              /* SYS_EXIT_EXTENDED */
+        (void)sh_call(0x20u, block); /* SYS_EXIT_EXTENDED */
     }
 }

@@ -25,8 +25,20 @@ void Fault_Handler(void)
 typedef void (*vector_t)(void);
 
 __attribute__((section(".isr_vector"), used)) const vector_t fs_vectors[16] = {
-    (vector_t)(uintptr_t)&_estack, Reset_Handler,
-    Fault_Handler, Fault_Handler, Fault_Handler, Fault_Handler, Fault_Handler,
-    0, 0, 0, 0,
-    Fault_Handler, Fault_Handler, 0, Fault_Handler, Fault_Handler,
+    (vector_t)(uintptr_t)&_estack,
+    Reset_Handler,
+    Fault_Handler,
+    Fault_Handler,
+    Fault_Handler,
+    Fault_Handler,
+    Fault_Handler,
+    0,
+    0,
+    0,
+    0,
+    Fault_Handler,
+    Fault_Handler,
+    0,
+    Fault_Handler,
+    Fault_Handler,
 };

@@ -19,8 +19,8 @@ static uint32_t bench_out[CM_BENCH_MAX_ROWS];
 
 int main(void)
 {
-    const fs_status_t st =
-        cm_tick_init(cm_bench_skill, cm_bench_skill_len, CM_BENCH_GOAL_SCALE, CM_BENCH_TIME_SCALE);
+    const fs_status_t st = cm_tick_init(cm_bench_skill, cm_bench_skill_len, CM_BENCH_GOAL_SCALE,
+                                        CM_BENCH_TIME_SCALE);
     if (st != FS_OK) {
         sh_buf_str("bench: skill rejected, status ");
         sh_buf_u32((uint32_t)st);

@@ -36,8 +36,8 @@ void cm_plant_sense(void)
     const float pen = plant_pos_m[0] - plant_surface_m;
     const float f = (pen > 0.0f) ? plant_k_Npm * pen : 0.0f;
     for (uint32_t a = 0u; a < CM_HAL_AXES; a++) {
-        cm_hal_regs.sensors.enc_count[a] =
-            (int32_t)(plant_pos_m[a] * (float)(1u << CM_HAL_ENC_FRAC_BITS));
+        cm_hal_regs.sensors.enc_count[a] = (int32_t)(plant_pos_m[a] *
+                                                     (float)(1u << CM_HAL_ENC_FRAC_BITS));
     }
     cm_hal_regs.sensors.force_count[0] = (int32_t)(f * (float)(1u << CM_HAL_FORCE_FRAC_BITS));
     cm_hal_regs.sensors.force_count[1] = 0;
@@ -46,7 +46,8 @@ void cm_plant_sense(void)
 void cm_plant_step(void)
 {
     for (uint32_t a = 0u; a < CM_HAL_AXES; a++) {
-        const float f = (float)cm_hal_regs.actuator_count[a] / (float)(1u << CM_HAL_FORCE_FRAC_BITS);
+        const float f = (float)cm_hal_regs.actuator_count[a] /
+                        (float)(1u << CM_HAL_FORCE_FRAC_BITS);
         plant_vel_mps[a] += f / PLANT_M_D_KG * PLANT_DT_S;
         plant_pos_m[a] += plant_vel_mps[a] * PLANT_DT_S;
     }

@@ -26,7 +26,7 @@ typedef struct {
     volatile cm_hal_sensors_t sensors;
     volatile int32_t actuator_count[CM_HAL_AXES];
     volatile uint32_t actuator_enable;
-    volatile uint32_t telemetry[2];  /* 8-byte frame, little-endian words */
+    volatile uint32_t telemetry[2]; /* 8-byte frame, little-endian words */
     volatile uint32_t telemetry_seq;
 } cm_hal_regs_t;
 

@@ -14,12 +14,12 @@
 #include <stdint.h>
 #include "fs_status.h"
 
-#define CM_FORCE_MAX_N 50.0          /* default F_max (pfc_default_config) */
-#define CM_SLEW_N_PER_TICK 2.0       /* force slew limit per 1 ms tick */
-#define CM_WORKSPACE_MIN_M (-0.05)   /* position workspace of both axes */
+#define CM_FORCE_MAX_N 50.0        /* default F_max (pfc_default_config) */
+#define CM_SLEW_N_PER_TICK 2.0     /* force slew limit per 1 ms tick */
+#define CM_WORKSPACE_MIN_M (-0.05) /* position workspace of both axes */
 #define CM_WORKSPACE_MAX_M 0.25
 #define CM_SPEED_MAX_MPS 1.0
-#define CM_FAULT_WORKSPACE 0x01u     /* latched safety faults (telemetry byte 6) */
+#define CM_FAULT_WORKSPACE 0x01u /* latched safety faults (telemetry byte 6) */
 #define CM_FAULT_SPEED 0x02u
 #define CM_FAULT_NOT_FINITE 0x04u
 

@@ -78,11 +78,26 @@ fs_status_t cm_tick_init(const uint8_t *image, uint32_t len, double goal_scale, 
     return FS_OK;
 }
 
-uint32_t cm_tick_rows(void) { return cm_rows; }
-double cm_tick_surface_m(void) { return cm_skill.surface_m; }
-uint32_t cm_tick_faults(void) { return cm_faults; }
-const char *cm_tick_numeric(void) { return "fixed"; }
-double cm_tick_fhat_N(uint32_t bits) { return fx_to_double((int32_t)bits, 16u); }
+uint32_t cm_tick_rows(void)
+{
+    return cm_rows;
+}
+double cm_tick_surface_m(void)
+{
+    return cm_skill.surface_m;
+}
+uint32_t cm_tick_faults(void)
+{
+    return cm_faults;
+}
+const char *cm_tick_numeric(void)
+{
+    return "fixed";
+}
+double cm_tick_fhat_N(uint32_t bits)
+{
+    return fx_to_double((int32_t)bits, 16u);
+}
 
 /* Q16.16 N -> int16 telemetry in 0.01 N (saturated). */
 static void cm_put_i16(uint8_t *b, int32_t v_q16)

@@ -53,10 +53,22 @@ fs_status_t cm_tick_init(const uint8_t *image, uint32_t len, double goal_scale, 
     return FS_OK;
 }
 
-uint32_t cm_tick_rows(void) { return cm_rows; }
-double cm_tick_surface_m(void) { return (double)cm_skill.surface_m; }
-uint32_t cm_tick_faults(void) { return cm_faults; }
-const char *cm_tick_numeric(void) { return "float"; }
+uint32_t cm_tick_rows(void)
+{
+    return cm_rows;
+}
+double cm_tick_surface_m(void)
+{
+    return (double)cm_skill.surface_m;
+}
+uint32_t cm_tick_faults(void)
+{
+    return cm_faults;
+}
+const char *cm_tick_numeric(void)
+{
+    return "float";
+}
 
 double cm_tick_fhat_N(uint32_t bits)
 {
@@ -111,7 +123,8 @@ uint32_t cm_tick(void)
     /* 5. safety limits */
     int32_t out[PFC_AXES];
     for (uint32_t a = 0u; a < PFC_AXES; a++) {
-        if (meas[a].pos_m < (float)CM_WORKSPACE_MIN_M || meas[a].pos_m > (float)CM_WORKSPACE_MAX_M) {
+        if (meas[a].pos_m < (float)CM_WORKSPACE_MIN_M ||
+            meas[a].pos_m > (float)CM_WORKSPACE_MAX_M) {
             cm_faults |= CM_FAULT_WORKSPACE;
         }
         if (fabsf(meas[a].vel_mps) > (float)CM_SPEED_MAX_MPS) {

@@ -59,10 +59,13 @@ __attribute__((section(".vectors"), used)) static const cm_vector_t cm_vectors[1
     Default_Handler,   /* MemManage */
     Default_Handler,   /* BusFault */
     Default_Handler,   /* UsageFault */
-    0, 0, 0, 0,        /* reserved */
-    Default_Handler,   /* SVCall */
-    Default_Handler,   /* DebugMonitor */
-    0,                 /* reserved */
-    Default_Handler,   /* PendSV */
-    SysTick_Handler,   /* SysTick */
+    0,
+    0,
+    0,
+    0,               /* reserved */
+    Default_Handler, /* SVCall */
+    Default_Handler, /* DebugMonitor */
+    0,               /* reserved */
+    Default_Handler, /* PendSV */
+    SysTick_Handler, /* SysTick */
 };

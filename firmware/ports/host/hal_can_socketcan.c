@@ -39,7 +39,8 @@ int hal_socketcan_open(const char *ifname, uint32_t bitrate, char *err, uint32_t
     const int s = socket(PF_CAN, SOCK_RAW, CAN_RAW);
     if (s < 0) {
         const int e = errno;
-        snprintf(err, err_len, "socket(AF_CAN) failed: %s (no SocketCAN in this kernel?)", strerror(e));
+        snprintf(err, err_len, "socket(AF_CAN) failed: %s (no SocketCAN in this kernel?)",
+                 strerror(e));
         return -e;
     }
     struct ifreq ifr;
@@ -102,7 +103,7 @@ bool hal_can_receive(can_frame_t *frame)
         if ((f.can_id & CAN_ERR_FLAG) != 0u) {
             if ((f.can_id & CAN_ERR_BUSOFF) != 0u) {
                 g_bus_off = true;
-                (void)can_do_restart(g_ifname);   /* the fault latches; the bus may come back */
+                (void)can_do_restart(g_ifname); /* the fault latches; the bus may come back */
             }
             if ((f.can_id & CAN_ERR_RESTARTED) != 0u) {
                 g_bus_off = false;
@@ -110,7 +111,7 @@ bool hal_can_receive(can_frame_t *frame)
             continue;
         }
         if ((f.can_id & (CAN_EFF_FLAG | CAN_RTR_FLAG)) != 0u) {
-            continue;                              /* 11-bit data frames only on this product */
+            continue; /* 11-bit data frames only on this product */
         }
         frame->id = f.can_id & CAN_SFF_MASK;
         frame->dlc = f.can_dlc;

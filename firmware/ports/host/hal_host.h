@@ -12,12 +12,12 @@
 #include <stdint.h>
 #include "hal.h"
 
-#define HAL_HOST_FLASH_SECTOR 8192u     /* one skill record of N = 256 (6,276 B + 36 B) fits */
-#define HAL_HOST_FLASH_SECTORS 16u      /* 2 copies x 8 slots */
-#define HAL_HOST_FW_SECTOR 4096u       /* firmware flash: boot state + 2 slots of 64 sectors */
+#define HAL_HOST_FLASH_SECTOR 8192u /* one skill record of N = 256 (6,276 B + 36 B) fits */
+#define HAL_HOST_FLASH_SECTORS 16u  /* 2 copies x 8 slots */
+#define HAL_HOST_FW_SECTOR 4096u    /* firmware flash: boot state + 2 slots of 64 sectors */
 #define HAL_HOST_FW_SLOT_SECTORS 64u
 #define HAL_HOST_FW_SECTORS (2u + 2u * HAL_HOST_FW_SLOT_SECTORS)
-#define HAL_HOST_SECRET_DEFAULT "forceskill-simulator-secret-0001"   /* 32 bytes, docs/protocol.md */
+#define HAL_HOST_SECRET_DEFAULT "forceskill-simulator-secret-0001" /* 32 bytes, docs/protocol.md */
 
 /** Reset the port: erase nothing, clear mailboxes and the reset request; time back to the clock. */
 void hal_host_init(void);
@@ -42,8 +42,8 @@ void hal_host_flash_erase(void);
 
 /* ---- simulator CAN backend (hal_can_sim.c) ---- */
 
-#define HAL_SIM_TX_QUEUE 64u     /* driver transmit queue (frames) */
-#define HAL_SIM_RX_QUEUE 256u    /* receive FIFO (frames); overflow drops the newest */
+#define HAL_SIM_TX_QUEUE 64u  /* driver transmit queue (frames) */
+#define HAL_SIM_RX_QUEUE 256u /* receive FIFO (frames); overflow drops the newest */
 
 /** Empty both queues and clear bus-off. */
 void hal_sim_can_reset(void);
