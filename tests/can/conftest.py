@@ -22,7 +22,7 @@ SPEED = float(os.environ.get("FORCESKILL_CAN_SPEED", "1"))
 # (tests/can/test_journey.py) runs with the product default (JOURNEY_HOST_TIMEOUT_MS: the worst
 # heartbeat gap measured over 60 s in TEACH is 17-86 ms, bench/can_heartbeat/heartbeat_gap.py),
 # the other modules with the configurable maximum. The product default itself is also tested in
-# C (tests/firmware/proto/test_app.c).
+# C (tests/firmware/app/test_app.c).
 HOST_TIMEOUT_MS = int(os.environ.get("FORCESKILL_CAN_HOST_TIMEOUT_MS", "500"))
 JOURNEY_HOST_TIMEOUT_MS = int(os.environ.get("FORCESKILL_CAN_JOURNEY_HOST_TIMEOUT_MS", "100"))
 
