@@ -11,10 +11,10 @@ from __future__ import annotations
 
 import argparse
 import importlib
-import json
 import sys
+from collections.abc import Sequence
 from pathlib import Path
-from typing import NoReturn, Optional, Sequence
+from typing import NoReturn
 
 import numpy as np
 
@@ -97,7 +97,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     return 0
 
 
-def _register_fit(sub: "argparse._SubParsersAction[_Parser]") -> None:
+def _register_fit(sub: argparse._SubParsersAction[_Parser]) -> None:
     p = sub.add_parser("fit", help="learn a force skill from one demonstration",
                        description="Learn a force skill from one demonstration (CSV with a header row: "
                        "t [s], position [m], force [N]). Prints the approximation error in % of the "
@@ -139,7 +139,7 @@ def _cmd_rollout(args: argparse.Namespace) -> int:
     return 0
 
 
-def _register_rollout(sub: "argparse._SubParsersAction[_Parser]") -> None:
+def _register_rollout(sub: argparse._SubParsersAction[_Parser]) -> None:
     p = sub.add_parser("rollout", help="evaluate a skill offline (the firmware's DMP in numpy)",
                        description="Evaluate a skill at its dt from zero state, as the firmware does, and "
                        "write t,f_hat (s, N) as CSV.")
@@ -178,7 +178,7 @@ def _cmd_show(args: argparse.Namespace) -> int:
     return 0
 
 
-def _register_show(sub: "argparse._SubParsersAction[_Parser]") -> None:
+def _register_show(sub: argparse._SubParsersAction[_Parser]) -> None:
     p = sub.add_parser("show", help="summarise a skill image", description="Validate a skill image and "
                        "print a summary (or its JSON twin with --json).")
     p.add_argument("skill", metavar="SKILL")
@@ -208,7 +208,7 @@ def build_parser() -> tuple[argparse.ArgumentParser, list[str]]:
     return parser, missing
 
 
-def main(argv: Optional[Sequence[str]] = None) -> int:
+def main(argv: Sequence[str] | None = None) -> int:
     parser, missing = build_parser()
     args = parser.parse_args(argv)
     if not getattr(args, "func", None):

@@ -15,15 +15,25 @@ from __future__ import annotations
 
 import csv
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable, Optional, Union
 
 import numpy as np
 
-from .errors import (ERR_DEMO_COLUMN, ERR_DEMO_FILE, ERR_DEMO_FORMAT, ERR_DEMO_GAP, ERR_DEMO_NOT_FINITE,
-                     ERR_DEMO_TIME, ERR_DEMO_TOO_SHORT, ERR_DEMO_ZERO_FORCE, ERR_FIT_ARGS, DemoError,
-                     ParamError)
+from .errors import (
+    ERR_DEMO_COLUMN,
+    ERR_DEMO_FILE,
+    ERR_DEMO_FORMAT,
+    ERR_DEMO_GAP,
+    ERR_DEMO_NOT_FINITE,
+    ERR_DEMO_TIME,
+    ERR_DEMO_TOO_SHORT,
+    ERR_DEMO_ZERO_FORCE,
+    ERR_FIT_ARGS,
+    DemoError,
+    ParamError,
+)
 
 MIN_SAMPLES = 100
 MIN_DURATION_S = 0.5
@@ -109,7 +119,7 @@ def _load_log_readers() -> None:
         import forceskill.link.logs  # noqa: F401  (registers its readers on import)
 
 
-def load_demo(path: Union[str, Path], position_column: str = "x", force_column: Optional[str] = None,
+def load_demo(path: str | Path, position_column: str = "x", force_column: str | None = None,
               learn: str = "contact") -> Demo:
     """Read and validate a demonstration; ``force_column`` overrides the column ``learn`` selects."""
     if learn not in LEARN_COLUMNS:
@@ -190,11 +200,11 @@ def resample(demo: Demo, dt_s: float) -> Demo:
                 np.interp(tn, demo.t_s, demo.force_N), demo.source + f" (resampled to {dt_s * 1e3:g} ms)")
 
 
-def write_csv(path: Union[str, Path], columns: Columns) -> None:
+def write_csv(path: str | Path, columns: Columns) -> None:
     """Write named equal-length columns as CSV with a header (%.17g), atomically."""
     from .skill import atomic_write
     names = list(columns)
     data = np.column_stack([np.asarray(columns[k], float) for k in names])
     lines = [",".join(names)]
-    lines += [",".join("%.17g" % v for v in row) for row in data.tolist()]
+    lines += [",".join(f"{v:.17g}" for v in row) for row in data.tolist()]
     atomic_write(Path(path), ("\n".join(lines) + "\n").encode())

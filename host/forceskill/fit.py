@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Optional
 
 import numpy as np
 
@@ -131,12 +130,13 @@ def desired_forcing(x_star: np.ndarray, alpha: float, beta: float, gamma: float,
     np.cumsum(a * x_star[:-1], out=big_i[1:])
     b = a * alpha * (beta * (goal - x_star[:-1]))
     z = dmp.linear_scan(np.array([[1.0 - a * alpha]]), b[:, None])[:, 0]
-    return (x_star[1:] - x_star[:-1]) / a - (z[:-1] - x_star[:-1] - gamma * big_i[:-1])
+    f_target: np.ndarray = (x_star[1:] - x_star[:-1]) / a - (z[:-1] - x_star[:-1] - gamma * big_i[:-1])
+    return f_target
 
 
 def fit(demo: Demo, stiffness_Npm: float, n_kernels: int = 50, method: str = "ridge",
         gains: Gains = Gains(), surface_m: float = 0.0, end_policy: str = "hold",
-        dt_s: float = 0.001, ridge_lambda_rel: Optional[float] = None) -> FitResult:
+        dt_s: float = 0.001, ridge_lambda_rel: float | None = None) -> FitResult:
     """Learn a skill from one demonstration; raises ParamError/DemoError (one-line, numbered)."""
     if method not in METHODS:
         raise ParamError(ERR_FIT_ARGS, f"method must be one of {', '.join(METHODS)}: {method!r}")

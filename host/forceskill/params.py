@@ -11,8 +11,16 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .errors import (ERR_BETA_NONPOSITIVE, ERR_GAIN_NEGATIVE, ERR_KD_LE_MD, ERR_MASS_NONPOSITIVE,
-                     ERR_NOT_FINITE, ERR_PHASE_NOT_MONOTONE, ERR_STIFFNESS_NONPOSITIVE, ParamError)
+from .errors import (
+    ERR_BETA_NONPOSITIVE,
+    ERR_GAIN_NEGATIVE,
+    ERR_KD_LE_MD,
+    ERR_MASS_NONPOSITIVE,
+    ERR_NOT_FINITE,
+    ERR_PHASE_NOT_MONOTONE,
+    ERR_STIFFNESS_NONPOSITIVE,
+    ParamError,
+)
 
 #: beta <= alpha/4 is checked with this relative tolerance (DMP_MONOTONE_REL_TOL in dmp.h): the
 #: default gains give beta = alpha/4 exactly in real numbers.

@@ -4,7 +4,6 @@ from __future__ import annotations
 import os
 import tempfile
 from pathlib import Path
-from typing import Union
 
 import numpy as np
 
@@ -12,7 +11,7 @@ from .errors import ERR_IO, FsError
 from .fit import FitResult
 
 
-def fit_figure(res: FitResult, path: Union[str, Path], title: str = "") -> None:
+def fit_figure(res: FitResult, path: str | Path, title: str = "") -> None:
     """Write a PNG (atomically): force (demonstrated dashed black, learned green), error in % of
     max force, and the demonstrated position with the object surface."""
     import matplotlib

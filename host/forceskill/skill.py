@@ -18,10 +18,24 @@ from typing import Any, Union
 
 import numpy as np
 
-from .errors import (ERR_IO, ERR_SKILL_CENTRES, ERR_SKILL_CRC, ERR_SKILL_GAINS, ERR_SKILL_HEADER_SIZE,
-                     ERR_SKILL_KERNELS, ERR_SKILL_LENGTH, ERR_SKILL_MAGIC, ERR_SKILL_NOT_FINITE,
-                     ERR_SKILL_RANGE, ERR_SKILL_TOO_SHORT, ERR_SKILL_UNSUPPORTED, ERR_SKILL_VERSION,
-                     FsError, ParamError, SkillError)
+from .errors import (
+    ERR_IO,
+    ERR_SKILL_CENTRES,
+    ERR_SKILL_CRC,
+    ERR_SKILL_GAINS,
+    ERR_SKILL_HEADER_SIZE,
+    ERR_SKILL_KERNELS,
+    ERR_SKILL_LENGTH,
+    ERR_SKILL_MAGIC,
+    ERR_SKILL_NOT_FINITE,
+    ERR_SKILL_RANGE,
+    ERR_SKILL_TOO_SHORT,
+    ERR_SKILL_UNSUPPORTED,
+    ERR_SKILL_VERSION,
+    FsError,
+    ParamError,
+    SkillError,
+)
 from .params import MONOTONE_REL_TOL, DmpParams, Gains, derive
 
 MAGIC = 0x4C4B5346             # bytes "FSKL"
@@ -115,14 +129,14 @@ class Skill:
         return image
 
     @staticmethod
-    def from_bytes(buf: bytes) -> "Skill":
+    def from_bytes(buf: bytes) -> Skill:
         """Parse and validate an image; raises SkillError with the firmware's code (200-211)."""
         buf = bytes(buf)
         if len(buf) < HEADER_SIZE:
             raise SkillError(ERR_SKILL_TOO_SHORT, f"skill image too short: {len(buf)} bytes, header is {HEADER_SIZE}")
         fields = _HEADER.unpack_from(buf, 0)
         magic, version, header_size, total_length, n, flags = fields[:6]
-        f64 = dict(zip(_F64_NAMES, fields[6:]))
+        f64 = dict(zip(_F64_NAMES, fields[6:], strict=True))
         if magic != MAGIC:
             raise SkillError(ERR_SKILL_MAGIC, f"skill image magic is 0x{magic:08X}, expected 0x{MAGIC:08X} ('FSKL')")
         if version != FORMAT_VERSION:
@@ -207,7 +221,7 @@ class Skill:
         return json.dumps(self.to_json_dict(), indent=1) + "\n"
 
     @staticmethod
-    def from_json_dict(d: dict[str, Any]) -> "Skill":
+    def from_json_dict(d: dict[str, Any]) -> Skill:
         """Rebuild from the JSON twin (validated like an image)."""
         kw: dict[str, Any] = {k: float(d[k]) for k in _F64_NAMES}
         s = Skill(centres=np.array(d["centres"], dtype=float), widths=np.array(d["widths"], dtype=float),
@@ -223,7 +237,7 @@ class Skill:
         atomic_write(Path(str(p) + ".json"), self.to_json().encode())
 
     @staticmethod
-    def read(path: PathLike) -> "Skill":
+    def read(path: PathLike) -> Skill:
         """Read and validate an image file."""
         try:
             data = Path(path).read_bytes()

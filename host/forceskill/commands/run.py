@@ -7,6 +7,7 @@ import re
 import struct
 import time
 from pathlib import Path
+from typing import Any
 
 import can
 import numpy as np
@@ -43,7 +44,7 @@ def _scale(v: float, name: str) -> int:
     return int(round(v * 1000.0))
 
 
-def run_on_device(dev: Device, args: argparse.Namespace, log_path: str | None = None) -> dict:
+def run_on_device(dev: Device, args: argparse.Namespace, log_path: str | None = None) -> dict[str, Any]:
     """Start, watch and stop one execution; returns the telemetry columns and figures."""
     st = dev.status
     if st is not None and st.state != "IDLE":
@@ -140,7 +141,7 @@ def _cmd(args: argparse.Namespace) -> int:
     return 0
 
 
-def register(sub: "argparse._SubParsersAction") -> None:
+def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p = sub.add_parser("run", help="execute a skill or a sequence on the device and report tracking",
                        description="Start a skill (--slot) or a sequence (--sequence 1:8s,2:9s) with "
                        "RoutineControl, keep the host heartbeat, record telemetry at 1 kHz, stop after "

@@ -24,7 +24,7 @@ FORCE_BASE = 0x1A0
 
 
 def _is_can_csv(path: Path) -> bool:
-    with open(path, "r", encoding="utf-8", errors="replace") as f:
+    with open(path, encoding="utf-8", errors="replace") as f:
         head = f.readline().strip().lower()
     return head.startswith("timestamp,arbitration_id")
 
@@ -57,7 +57,7 @@ def read_can_log(path: Path, node: int | None = None) -> dict[str, np.ndarray]:
             last = raw
             pending = (raw + 65536 * wraps, float(s["PosX"]), float(s["PosY"]))
         elif m.arbitration_id == mforce.frame_id and len(m.data) == 8 and pending is not None:
-            s = mforce.decode(bytes(m.data))  # type: ignore[assignment]
+            s = mforce.decode(bytes(m.data))
             rows.append((pending[0], pending[1], pending[2], float(s["ForceContact"]),
                          float(s["ForceOperator"]), float(s["ForceCmd"]), float(s["ForceRef"])))
             pending = None
