@@ -16,8 +16,9 @@ echo "== comments and docs cite no SPEC or issue numbers"
 tools/check_no_tracker_refs.sh
 echo "== layers: no upward or sideways include, no include cycle (tools/check_layers.py)"
 .venv/bin/python tools/check_layers.py
-echo "== Python: ruff (lint) and mypy (strict) on host/forceskill (configuration: host/pyproject.toml)"
+echo "== Python: ruff (lint, format) and mypy (strict) on host/forceskill (configuration: host/pyproject.toml)"
 .venv/bin/ruff check --config host/pyproject.toml host/forceskill
+.venv/bin/ruff format --config host/pyproject.toml --check host/forceskill
 (cd host && ../.venv/bin/mypy)
 
 echo "== C tests (Debug: ASan + UBSan; preset host-debug, build/host-debug)"
