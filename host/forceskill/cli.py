@@ -13,6 +13,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import sys
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any, NoReturn, Optional, Sequence
 
@@ -282,7 +283,7 @@ def _cmd_rollout(args: argparse.Namespace) -> int:
     return 0
 
 
-def _register_rollout(sub: "argparse._SubParsersAction[_Parser]") -> None:
+def _register_rollout(sub: argparse._SubParsersAction[_Parser]) -> None:
     p = sub.add_parser("rollout", help="evaluate a skill offline (the firmware's DMP in numpy)",
                        description="Evaluate a skill at its dt from zero state, as the firmware does, and "
                        "write t,f_hat (s, N) as CSV.")
@@ -334,7 +335,7 @@ def _cmd_show(args: argparse.Namespace) -> int:
     return 0
 
 
-def _register_show(sub: "argparse._SubParsersAction[_Parser]") -> None:
+def _register_show(sub: argparse._SubParsersAction[_Parser]) -> None:
     p = sub.add_parser("show", help="summarise a skill image", description="Validate a skill image and "
                        "print a summary (or its JSON twin with --json).")
     p.add_argument("skill", metavar="SKILL")
@@ -384,7 +385,7 @@ def build_parser(argv: Optional[Sequence[str]] = None) -> tuple[argparse.Argumen
     return parser, missing
 
 
-def main(argv: Optional[Sequence[str]] = None) -> int:
+def main(argv: Sequence[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     parser, missing = build_parser(argv)
     args = parser.parse_args(argv)

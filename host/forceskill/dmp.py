@@ -39,7 +39,8 @@ def kernel_exponents(u: np.ndarray, centres: np.ndarray, widths: np.ndarray) -> 
     float/double layer (fs_num_real.h, kernel_scale = 1/(2 sigma^2))."""
     half_inv_var = 1.0 / (2.0 * widths * widths)
     d = np.asarray(u, dtype=float)[:, None] - centres[None, :]
-    return d * d * half_inv_var[None, :]
+    e: np.ndarray = d * d * half_inv_var[None, :]
+    return e
 
 
 def normalised_kernels(u: np.ndarray, centres: np.ndarray, widths: np.ndarray) -> np.ndarray:
@@ -52,7 +53,8 @@ def normalised_kernels(u: np.ndarray, centres: np.ndarray, widths: np.ndarray) -
     """
     u = np.asarray(u, dtype=float).reshape(-1)
     if u.size > 1 and np.all(np.diff(u) >= 0.0):
-        return _normalised_kernels_banded(u, centres, widths).T
+        banded: np.ndarray = _normalised_kernels_banded(u, centres, widths).T
+        return banded
     return _normalised_kernels_dense(u, centres, widths)
 
 
@@ -103,7 +105,8 @@ def _normalised_kernels_banded(u: np.ndarray, centres: np.ndarray, widths: np.nd
 
 def forcing_scale(u: np.ndarray, skill: Skill) -> np.ndarray:
     """S(u) = sum psi_i w_i / sum psi_i for every u (the kernel part of h = g*v*S(u))."""
-    return normalised_kernels(u, skill.centres, skill.widths) @ skill.weights
+    s: np.ndarray = normalised_kernels(u, skill.centres, skill.widths) @ skill.weights
+    return s
 
 
 def phase_loop(alpha: float, beta: float, a: float, n_steps: int) -> tuple[np.ndarray, np.ndarray]:
@@ -119,8 +122,8 @@ def phase_loop(alpha: float, beta: float, a: float, n_steps: int) -> tuple[np.nd
     return u, v
 
 
-def transform_loop(alpha: float, beta: float, gamma: float, a: float, goal: "float | np.ndarray",
-                   h: np.ndarray, c_x: Optional[np.ndarray] = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def transform_loop(alpha: float, beta: float, gamma: float, a: float, goal: float | np.ndarray,
+                   h: np.ndarray, c_x: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """x_n, z_n, I_n for n = 0..len(h) from zero state, forcing h_n and goal g_n (scalar or per step).
 
     The literal loop of docs/math.md section 2 (x, z, I part); ``c_x`` is the coupling term.
@@ -156,7 +159,7 @@ def _powers(a_mat: np.ndarray, count: int) -> np.ndarray:
     return p
 
 
-def linear_scan(a_mat: np.ndarray, b: np.ndarray, s0: Optional[np.ndarray] = None,
+def linear_scan(a_mat: np.ndarray, b: np.ndarray, s0: np.ndarray | None = None,
                 block: int = 64) -> np.ndarray:
     """States s_0..s_M of s_{n+1} = A s_n + b_n (b: (M, d)) evaluated in blocks.
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 # Every numbered code (1xx-3xx as the firmware's fs_status.h, 5xx faults, 6xx host only, ...) is
 # generated from firmware/base/codes.toml into forceskill.codes and re-exported here, so
 # `errors.ERR_SKILL_CRC` is the firmware's FS_ERR_SKILL_CRC; docs/codes.md lists them all.
-from .codes import *  # noqa: E402,F401,F403
+from .codes import *  # noqa: F403
 from .codes import DEVICE_FAULTS
 
 

@@ -11,27 +11,32 @@ new image has confirmed itself (or the device reports it reverted).
 from __future__ import annotations
 
 import argparse
-import hashlib
-import hmac
 import os
 import struct
 import sys
 import time
 import zlib
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Callable, Optional
+from typing import Any
 
 from . import fwimage as fw
 from .codes import DID_FWU_STATUS as DID_STATUS
-from .codes import (DOWNLOAD_ADDRESS, RID_CONFIRM, RID_MARK_TEST,  # noqa: F401
-                    SEC_LEVEL_FIRMWARE, UDS_REQUEST_BASE, UDS_RESPONSE_BASE)
+from .codes import (  # noqa: F401
+    DOWNLOAD_ADDRESS,
+    RID_CONFIRM,
+    RID_MARK_TEST,
+    SEC_LEVEL_FIRMWARE,
+    UDS_REQUEST_BASE,
+    UDS_RESPONSE_BASE,
+)
 from .errors import ERR_FLASH_NOT_CONFIRMED as ERR_NOT_CONFIRMED
-from .errors import (ERR_IO, ERR_LINK_BUS, ERR_LINK_NEGATIVE,  # noqa: F401
-                     ERR_LINK_NO_RESPONSE, ERR_LINK_TIMEOUT, FsError)
+from .errors import ERR_IO, ERR_LINK_BUS, ERR_LINK_NEGATIVE, ERR_LINK_NO_RESPONSE, ERR_LINK_TIMEOUT, FsError  # noqa: F401
 
 STATUS_LEN = 17
 SESSION_PROGRAMMING = 0x02
+PENDING_TIMEOUT_S = 5.0   # after "response pending" (NRC 0x78): erasing a slot takes a while
 
 PATHS = {0: "none", 1: "active", 2: "test boot (must confirm)", 3: "reverted (test image did not confirm)",
          4: "active (test image refused)", 5: "recovered (other slot)", 6: "first boot"}
@@ -54,7 +59,7 @@ class DeviceStatus:
     phase: int
 
     @classmethod
-    def decode(cls, b: bytes) -> "DeviceStatus":
+    def decode(cls, b: bytes) -> DeviceStatus:
         if len(b) < STATUS_LEN:
             raise FsError(ERR_LINK_NEGATIVE, f"update status record is {len(b)} bytes, expected {STATUS_LEN}")
         rv, rs, ot, a, t, p, tg, lr, recv, ph = struct.unpack(">IBBBBBBHIB", b[:STATUS_LEN])
@@ -85,12 +90,7 @@ def nrc_error(code: int, step: str) -> FsError:
     return FsError(err, f"{step}: device refused (NRC 0x{code:02X}): {text}")
 
 
-def security_key(seed: bytes, secret: bytes) -> bytes:
-    """SecurityAccess key of firmware/security/sec_access.h: HMAC-SHA256(secret, seed)[:16]."""
-    return hmac.new(secret, seed, hashlib.sha256).digest()[:16]
-
-
-def load_secret(path: Optional[str]) -> bytes:
+def load_secret(path: str | None) -> bytes:
     """Level-3 (firmware) SecurityAccess secret: hex text from PATH, else
     link.uds.device_secret(3) ($FORCESKILL_FW_SECRET, or the simulator's documented secret)."""
     if not path:
@@ -109,7 +109,7 @@ def load_secret(path: Optional[str]) -> bytes:
     return secret
 
 
-def check_plan(img: fw.FwImage, dev: Optional[DeviceStatus], allow_downgrade: bool) -> list[str]:
+def check_plan(img: fw.FwImage, dev: DeviceStatus | None, allow_downgrade: bool) -> list[str]:
     """Lines shown before writing; raises FsError for what the device would refuse anyway."""
     lines = [f"image:  firmware {img.version} for {img.target}, build '{img.build_id or '-'}', "
              f"{len(img.to_bytes())} bytes"]
@@ -129,7 +129,8 @@ def check_plan(img: fw.FwImage, dev: Optional[DeviceStatus], allow_downgrade: bo
     return lines
 
 
-def client_config(secret: Optional[bytes], timeout_s: float) -> dict:
+def status_codecs() -> dict[int, Any]:
+    """The data identifier the update path reads: DID 0xF1B0 (read-only), decoded."""
     import udsoncan
 
     class StatusCodec(udsoncan.DidCodec):
@@ -141,68 +142,41 @@ def client_config(secret: Optional[bytes], timeout_s: float) -> dict:
         def __len__(self) -> int:
             return STATUS_LEN
 
-    cfg = dict(udsoncan.configs.default_client_config)
-    cfg["data_identifiers"] = {DID_STATUS: StatusCodec()}
-    cfg["request_timeout"] = timeout_s
-    cfg["p2_timeout"] = timeout_s
-    # a 4 KiB request takes longer than the server's P2 (50 ms) to cross a slow or simulated bus,
-    # and the P2 timer starts when the request is queued: use our own timeout throughout
-    cfg["use_server_timing"] = False
-    cfg["server_address_format"] = 32
-    cfg["server_memorysize_format"] = 32
-    if secret is not None:
-        def algo(level: int, seed: bytes, params: Any = None) -> bytes:
-            return security_key(bytes(seed), secret)
-        cfg["security_algo"] = algo
-    return cfg
+    return {DID_STATUS: StatusCodec()}
 
 
 def read_status(client: Any) -> DeviceStatus:
     resp = client.read_data_by_identifier(DID_STATUS)
-    return resp.service_data.values[DID_STATUS]
+    status: DeviceStatus = resp.service_data.values[DID_STATUS]
+    return status
 
 
-def _call(step: str, fn: Callable, *a: Any) -> Any:
-    """Run one UDS request; negative responses and timeouts become FsError."""
-    from udsoncan.exceptions import NegativeResponseException, TimeoutException
-    try:
-        return fn(*a)
-    except NegativeResponseException as e:
-        raise nrc_error(e.response.code, step) from None
-    except TimeoutException:
-        raise FsError(ERR_LINK_TIMEOUT, f"{step}: no response from the device") from None
+def _refused(step: str, e: Any) -> FsError:
+    """The update path's refusal policy for link.uds.call: each NRC its own code."""
+    return nrc_error(int(e.response.code), step)
 
 
-def unlock_firmware(client: Any, wait_s: float = 15.0) -> None:
-    """SecurityAccess level 3, waiting out the device's delay (NRC 0x37: the 1 s after power-up,
-    e.g. right after a previous update's reset, or after a wrong key) as link.uds.unlock does."""
-    from udsoncan.exceptions import NegativeResponseException, TimeoutException
-    step = "SecurityAccess(level 3)"
-    end = time.monotonic() + wait_s
-    while True:
-        try:
-            client.unlock_security_access(SEC_LEVEL_FIRMWARE)
-            return
-        except NegativeResponseException as e:
-            if e.response.code == 0x37 and time.monotonic() < end:
-                time.sleep(0.2)
-                continue
-            raise nrc_error(e.response.code, step) from None
-        except TimeoutException:
-            raise FsError(ERR_LINK_TIMEOUT, f"{step}: no response from the device") from None
+def _call(step: str, fn: Callable[..., Any], *a: Any, node: int = 0) -> Any:
+    """Run one UDS request (link.uds.call); negative responses and timeouts become FsError."""
+    from .link.uds import call
+    return call(step, lambda: fn(*a), node, _refused)
 
 
 def flash_image(client: Any, image: bytes, allow_downgrade: bool = False,
-                progress: Optional[Callable[[int], None]] = None, block_size: int = 0) -> int:
-    """Write image into the inactive slot and mark it for a test boot; returns the blocks sent.
-    The caller then resets the device (ECUReset) and reads the status back."""
+                progress: Callable[[int], None] | None = None, block_size: int = 0, node: int = 0) -> int:
+    """Write image into the inactive slot of node and mark it for a test boot; returns the blocks
+    sent. The caller then resets the device (ECUReset) and reads the status back."""
     from udsoncan import MemoryLocation
+
+    from .link.uds import unlock
     # through the default session: ends any transfer a previous, interrupted run left open
-    _call("DiagnosticSessionControl(default)", client.change_session, 0x01)
-    _call("DiagnosticSessionControl(programming)", client.change_session, SESSION_PROGRAMMING)
-    unlock_firmware(client)
+    _call("DiagnosticSessionControl(default)", client.change_session, 0x01, node=node)
+    _call("DiagnosticSessionControl(programming)", client.change_session, SESSION_PROGRAMMING, node=node)
+    # SecurityAccess level 3, waiting out the device's delay (NRC 0x37: the 1 s after power-up,
+    # e.g. right after a previous update's reset, or after a wrong key)
+    unlock(client, node, None, SEC_LEVEL_FIRMWARE, _refused)
     resp = _call("RequestDownload", client.request_download,
-                 MemoryLocation(DOWNLOAD_ADDRESS, len(image), 32, 32))
+                 MemoryLocation(DOWNLOAD_ADDRESS, len(image), 32, 32), node=node)
     block = int(resp.service_data.max_length) - 2
     if block_size > 0:
         block = min(block, block_size)
@@ -211,12 +185,12 @@ def flash_image(client: Any, image: bytes, allow_downgrade: bool = False,
     seq, n_blocks = 1, 0
     for off in range(0, len(image), block):
         chunk = image[off:off + block]
-        _call(f"TransferData(block {n_blocks + 1}, offset {off})", client.transfer_data, seq, chunk)
+        _call(f"TransferData(block {n_blocks + 1}, offset {off})", client.transfer_data, seq, chunk, node=node)
         seq = (seq + 1) & 0xFF
         n_blocks += 1
         if progress:
             progress(len(chunk))
-    resp = _call("RequestTransferExit", client.request_transfer_exit)
+    resp = _call("RequestTransferExit", client.request_transfer_exit, node=node)
     rec = bytes(resp.service_data.parameter_records or b"")
     if len(rec) >= 4:
         crc = int.from_bytes(rec[:4], "big")
@@ -224,7 +198,7 @@ def flash_image(client: Any, image: bytes, allow_downgrade: bool = False,
             raise FsError(ERR_LINK_NEGATIVE, f"device CRC-32 0x{crc:08X} differs from the image's "
                           f"0x{zlib.crc32(image):08X}")
     _call("RoutineControl(mark test)", client.start_routine, RID_MARK_TEST,
-          bytes([1 if allow_downgrade else 0]))
+          bytes([1 if allow_downgrade else 0]), node=node)
     return n_blocks
 
 
@@ -232,7 +206,7 @@ def wait_confirmed(client: Any, version: int, timeout_s: float) -> DeviceStatus:
     """After ECUReset: poll the status until the new image runs and has confirmed itself."""
     from udsoncan.exceptions import NegativeResponseException, TimeoutException
     deadline = time.monotonic() + timeout_s
-    last: Optional[DeviceStatus] = None
+    last: DeviceStatus | None = None
     while time.monotonic() < deadline:
         try:
             last = read_status(client)
@@ -252,26 +226,22 @@ def wait_confirmed(client: Any, version: int, timeout_s: float) -> DeviceStatus:
 # ---- connection ------------------------------------------------------------------------------
 
 class Link:
-    """Bus (link.bus.open_bus: python-can options, one-line errors) + can-isotp stack +
-    udsoncan client for one node; a context manager yielding the client."""
+    """Bus (link.bus.open_bus: python-can options, one-line errors) + the link.uds client for one
+    node, with the update path's data identifier and 32-bit addresses; a context manager yielding
+    the client. secret None: no SecurityAccess expected (the default secret is used if asked)."""
 
-    def __init__(self, args: argparse.Namespace, secret: Optional[bytes]) -> None:
+    def __init__(self, args: argparse.Namespace, secret: bytes | None) -> None:
         import can
-        import isotp
-        import udsoncan.connections
-        from udsoncan.client import Client
+
         from .link.bus import describe, open_bus
-        from .link.uds import isotp_params
+        from .link.uds import open_client
         self.bus, cfg = open_bus(args)
         self.channel = describe(cfg)
         self.node = args.node
         self.notifier = can.Notifier(self.bus, [], timeout=0.1)
-        addr = isotp.Address(isotp.AddressingMode.Normal_11bits, txid=UDS_REQUEST_BASE + args.node,
-                             rxid=UDS_RESPONSE_BASE + args.node)
-        self.stack = isotp.NotifierBasedCanStack(self.bus, self.notifier, address=addr,
-                                                 params=isotp_params())
-        self.conn = udsoncan.connections.PythonIsoTpConnection(self.stack)
-        self.client = Client(self.conn, config=client_config(secret, args.timeout))
+        self.client = open_client(self.bus, self.notifier, args.node, secret=secret, dids=status_codecs(),
+                                  timeout_s=args.timeout, pending_timeout_s=PENDING_TIMEOUT_S,
+                                  address_format=32, memorysize_format=32)
 
     def __enter__(self) -> Any:
         self.client.open()
@@ -287,7 +257,7 @@ class Link:
 
 # ---- commands --------------------------------------------------------------------------------
 
-def _read_image(path: str, key_path: Optional[str], verify: bool) -> fw.FwImage:
+def _read_image(path: str, key_path: str | None, verify: bool) -> fw.FwImage:
     try:
         data = Path(path).read_bytes()
     except OSError as e:
@@ -324,7 +294,7 @@ def _cmd_flash(args: argparse.Namespace) -> int:
             if e.response.code == 0x31:
                 raise FsError(ERR_LINK_NEGATIVE, f"node {args.node} does not know DID 0xF1B0: its "
                               "firmware has no update support (docs/update.md, Integration)") from None
-            raise nrc_error(e.response.code, "ReadDataByIdentifier(0xF1B0)") from None
+            raise nrc_error(int(e.response.code or 0), "ReadDataByIdentifier(0xF1B0)") from None
         for line in check_plan(img, dev, args.allow_downgrade):
             print(line)
         if args.dry_run:
@@ -336,12 +306,12 @@ def _cmd_flash(args: argparse.Namespace) -> int:
         with tqdm(total=len(data), unit="B", unit_scale=True, desc="flash", disable=args.quiet,
                   file=sys.stderr) as bar:
             n = flash_image(client, data, args.allow_downgrade, progress=bar.update,
-                            block_size=args.block_size)
+                            block_size=args.block_size, node=args.node)
         dt = time.monotonic() - t0
         print(f"written and verified by the device: {len(data)} bytes in {n} blocks, {dt:.2f} s "
               f"({len(data) / max(dt, 1e-9) / 1024:.1f} KiB/s); marked for a test boot")
         # ISO 14229-1: the device answers before it resets (the response is not suppressed here)
-        _call("ECUReset(hard)", client.ecu_reset, 1)
+        _call("ECUReset(hard)", client.ecu_reset, 1, node=args.node)
         st = wait_confirmed(client, img.fw_version, args.confirm_timeout)
         print(f"after reset: {st.describe()}: new image confirmed")
     return 0
@@ -377,7 +347,7 @@ def _cmd_image_show(args: argparse.Namespace) -> int:
     return 0
 
 
-def register(sub: argparse._SubParsersAction) -> None:
+def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p = sub.add_parser("flash", help="flash a signed firmware image over CAN (UDS), test-boot it, read back")
     p.add_argument("image", help="signed image (forceskill image build)")
     from .link.bus import add_bus_args
@@ -395,7 +365,11 @@ def register(sub: argparse._SubParsersAction) -> None:
 
     img = sub.add_parser("image", help="build or inspect a signed firmware image")
     isub = img.add_subparsers(dest="image_command", metavar="ACTION", parser_class=sub._parser_class)
-    img.set_defaults(func=lambda a: (img.print_help(), 2)[1])
+    def _usage(a: argparse.Namespace) -> int:
+        img.print_help()
+        return 2
+
+    img.set_defaults(func=_usage)
     b = isub.add_parser("build", help="wrap a firmware binary into a signed image")
     b.add_argument("binary", help="raw payload (objcopy -O binary output, or a host build)")
     b.add_argument("-o", "--output", required=True, help="image file to write")

@@ -15,6 +15,25 @@ import struct
 from dataclasses import dataclass
 from pathlib import Path
 
+# 7xx: firmware image and update, the firmware's boot_status.h; 73x host only (codes.py)
+from .codes import BOOT_ERR_CONFIG_FORMAT as ERR_CONFIG_FORMAT
+from .codes import BOOT_ERR_DOWNGRADE as ERR_DOWNGRADE
+from .codes import BOOT_ERR_FLASH as ERR_FLASH
+from .codes import BOOT_ERR_FORMAT as ERR_FORMAT
+from .codes import BOOT_ERR_HASH as ERR_HASH
+from .codes import BOOT_ERR_MAGIC as ERR_MAGIC
+from .codes import BOOT_ERR_SKILL_FORMAT as ERR_SKILL_FORMAT
+from .codes import BOOT_ERR_TAG as ERR_TAG
+from .codes import BOOT_ERR_TARGET as ERR_TARGET
+from .codes import BOOT_ERR_TRUNCATED as ERR_TRUNCATED
+from .codes import ERR_IMAGE_ARGS as ERR_ARGS
+from .codes import ERR_IMAGE_KEY as ERR_KEY
+from .codes import FWU_ERR_BLOCK_COUNTER as ERR_BLOCK_COUNTER
+from .codes import FWU_ERR_LOCKED as ERR_LOCKED
+from .codes import FWU_ERR_OVERRUN as ERR_OVERRUN
+from .codes import FWU_ERR_RANGE as ERR_RANGE
+from .codes import FWU_ERR_SEQUENCE as ERR_SEQUENCE
+from .codes import FWU_ERR_TEST_PENDING as ERR_TEST_PENDING
 from .errors import FsError
 
 MAGIC = 0x57465346  # bytes "FSFW"
@@ -34,18 +53,6 @@ CONFIG_FORMAT = 1
 # Development key of the simulator and the qemu demo (docs/update.md: never ship it).
 DEV_KEY = bytes(range(0x40, 0x60))
 KEY_ENV = "FORCESKILL_FW_KEY"
-
-# 7xx: firmware image and update, the firmware's boot_status.h; 73x host only (codes.py)
-from .codes import (  # noqa: E402
-    BOOT_ERR_CONFIG_FORMAT as ERR_CONFIG_FORMAT, BOOT_ERR_DOWNGRADE as ERR_DOWNGRADE,
-    BOOT_ERR_FLASH as ERR_FLASH, BOOT_ERR_FORMAT as ERR_FORMAT, BOOT_ERR_HASH as ERR_HASH,
-    BOOT_ERR_MAGIC as ERR_MAGIC, BOOT_ERR_NO_IMAGE as ERR_NO_IMAGE,
-    BOOT_ERR_SKILL_FORMAT as ERR_SKILL_FORMAT, BOOT_ERR_TAG as ERR_TAG,
-    BOOT_ERR_TARGET as ERR_TARGET, BOOT_ERR_TOO_LARGE as ERR_TOO_LARGE,
-    BOOT_ERR_TRUNCATED as ERR_TRUNCATED, ERR_IMAGE_ARGS as ERR_ARGS, ERR_IMAGE_KEY as ERR_KEY,
-    FWU_ERR_BLOCK_COUNTER as ERR_BLOCK_COUNTER, FWU_ERR_LOCKED as ERR_LOCKED,
-    FWU_ERR_OVERRUN as ERR_OVERRUN, FWU_ERR_RANGE as ERR_RANGE, FWU_ERR_SEQUENCE as ERR_SEQUENCE,
-    FWU_ERR_TEST_PENDING as ERR_TEST_PENDING)
 
 # Negative response codes of the device's update path (firmware/boot/fwu.h, docs/update.md).
 NRC = {
@@ -88,7 +95,7 @@ def unpack_version(v: int) -> str:
     return f"{(v >> 24) & 0xFF}.{(v >> 16) & 0xFF}.{v & 0xFFFF}"
 
 
-def load_key(path: str | os.PathLike | None = None) -> bytes:
+def load_key(path: str | os.PathLike[str] | None = None) -> bytes:
     """Device key: hex text from PATH, else from $FORCESKILL_FW_KEY (hex), else the development key."""
     text = None
     if path is not None:

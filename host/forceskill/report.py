@@ -8,26 +8,23 @@ skills in series (8 s then 9 s) on 200 N/m at goal 1x, on 300 N/m at 1.5x, and o
 (no scaling) for comparison. Writes DIR/report.md, DIR/summary.json, DIR/fig_*.png, and keeps
 the logs (DIR/logs) and skills (DIR/skills).
 
-The simulator binary: ``--hil-sim PATH``, else ``$FORCESKILL_HIL_SIM``, else
-``build/hil_sim/hil_sim`` in the repository. Scenarios: ``--scenarios DIR``, else
-``hil_sim/scenarios`` in the repository.
+The simulator binary: ``--hil-sim PATH``, else ``$FORCESKILL_HIL_SIM``, else ``hil_sim`` on PATH.
+Scenarios: ``--scenarios DIR``, else the paper scenarios packaged with forceskill.
 """
 from __future__ import annotations
 
 import argparse
 import json
-import os
 import subprocess
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Optional
+from typing import Any
 
 import numpy as np
 
 from .errors import ERR_REPORT, FsError
 from .outputs import write_figure, write_file
 
-REPO = Path(__file__).resolve().parents[2]
 #: Paper bounds on the LWR approximation error (% of max force): pressing <= 4, engraving <= 6.
 LWR_BOUND_PCT = {"pressing": 4.0, "engraving": 6.0}
 LWR_KERNELS = (50, 60, 70, 80, 90, 100)
@@ -69,20 +66,6 @@ STIFF = (("pressing", "1e4"), ("pressing", "1e5"), ("engraving", "1e4"), ("engra
 STIFF_SEED = 7
 
 
-def find_hil_sim(explicit: Optional[str] = None) -> Path:
-    """The hil_sim binary: explicit path, $FORCESKILL_HIL_SIM, or build/hil_sim/hil_sim."""
-    for cand, what in ((explicit, "--hil-sim"), (os.environ.get("FORCESKILL_HIL_SIM"), "$FORCESKILL_HIL_SIM"),
-                       (str(REPO / "build" / "hil_sim" / "hil_sim"), "the default build")):
-        if cand:
-            p = Path(cand)
-            if p.is_file() and os.access(p, os.X_OK):
-                return p
-            if what != "the default build":
-                raise FsError(ERR_REPORT, f"{what} is not an executable file: {cand!r}")
-    raise FsError(ERR_REPORT, f"hil_sim not found at {REPO / 'build/hil_sim/hil_sim'!s}: build it "
-                  "(cmake -S . -B build -G Ninja && ninja -C build hil_sim) or pass --hil-sim PATH")
-
-
 def run_sim(hil_sim: Path, scenario: Path, log: Path, *extra: str) -> dict[str, Any]:
     """Run one scenario; returns its summary (raises FsError with hil_sim's message on failure)."""
     cmd = [str(hil_sim), "run", str(scenario), "-o", str(log), *extra]
@@ -90,13 +73,14 @@ def run_sim(hil_sim: Path, scenario: Path, log: Path, *extra: str) -> dict[str, 
     if r.returncode != 0:
         msg = (r.stderr.strip().splitlines() or ["no message"])[0]
         raise FsError(ERR_REPORT, f"hil_sim failed on {scenario.name} (exit {r.returncode}): {msg}")
-    return json.loads(log.with_suffix(".summary.json").read_text())
+    summary: dict[str, Any] = json.loads(log.with_suffix(".summary.json").read_text())
+    return summary
 
 
 def read_log(path: Path) -> dict[str, np.ndarray]:
     """A hil_sim CSV log as columns."""
     data = np.genfromtxt(path, delimiter=",", names=True)
-    return {k: np.asarray(data[k], dtype=float) for k in data.dtype.names}
+    return {k: np.asarray(data[k], dtype=float) for k in data.dtype.names or ()}
 
 
 def deformation(log: dict[str, np.ndarray], surface_m: float = SURFACE_M) -> np.ndarray:
@@ -112,7 +96,7 @@ def deformation_diff_pct(p_ref: np.ndarray, p_other: np.ndarray, t: np.ndarray,
     return float(100.0 * np.max(np.abs(p_other[:n][m] - p_ref[:n][m])) / np.max(p_ref[:n][m]))
 
 
-def _pct(x: Optional[float]) -> str:
+def _pct(x: float | None) -> str:
     return "-" if x is None else f"{x:.2f}"
 
 
@@ -224,7 +208,7 @@ def _stiff(hil_sim: Path, scen: Path, out: Path, seed: int, n_kernels: int) -> l
 
 # ---- figures -----------------------------------------------------------------------------------
 
-def _plt():  # type: ignore[no-untyped-def]
+def _plt() -> Any:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -373,8 +357,9 @@ def run_report(out: Path, hil_sim: Path, scenarios: Path, seed: int = 1, n_kerne
 
 def _cmd_report(args: argparse.Namespace) -> int:
     out = Path(args.output)
-    hil_sim = find_hil_sim(args.hil_sim)
-    scen = Path(args.scenarios) if args.scenarios else REPO / "hil_sim" / "scenarios"
+    from .sim import find_hil_sim, scenario_dir
+    hil_sim = find_hil_sim(args.hil_sim, ERR_REPORT)
+    scen = scenario_dir(args.scenarios)
     if not (scen / "pressing_task1_demo.toml").is_file():
         raise FsError(ERR_REPORT, f"scenario folder without the paper scenarios: {str(scen)!r}")
     out.mkdir(parents=True, exist_ok=True)
@@ -401,9 +386,10 @@ def register(subparsers: Any) -> None:
                               description="Demonstrate, fit, execute and reuse every experiment of the paper "
                               "on the HIL simulator; write DIR/report.md, DIR/summary.json and figures.")
     p.add_argument("-o", "--output", required=True, metavar="DIR", help="output folder (created)")
-    p.add_argument("--hil-sim", metavar="PATH", help="hil_sim binary (default $FORCESKILL_HIL_SIM or "
-                   "build/hil_sim/hil_sim)")
-    p.add_argument("--scenarios", metavar="DIR", help="scenario folder (default hil_sim/scenarios)")
+    p.add_argument("--hil-sim", metavar="PATH", help="hil_sim binary (default $FORCESKILL_HIL_SIM, "
+                   "else hil_sim on PATH)")
+    p.add_argument("--scenarios", metavar="DIR", help="scenario folder (default: the packaged "
+                   "paper scenarios)")
     p.add_argument("--seed", type=int, default=1, help="operator/sensor seed (1)")
     p.add_argument("--kernels", type=int, default=50, metavar="N", help="kernels of the default fit (50)")
     p.add_argument("--no-plots", action="store_true", help="skip the figures")

@@ -30,6 +30,7 @@ from .errors import (
     ERR_SKILL_TOO_SHORT,
     ERR_SKILL_UNSUPPORTED,
     ERR_SKILL_VERSION,
+    FsError,
     ParamError,
     SkillError,
 )
@@ -132,7 +133,7 @@ class Skill:
         return image
 
     @staticmethod
-    def from_bytes(buf: bytes) -> "Skill":
+    def from_bytes(buf: bytes) -> Skill:
         """Parse and validate an image; raises SkillError with the firmware's code (200-211)."""
         buf = bytes(buf)
         if len(buf) < _PREFIX.size:
@@ -229,7 +230,7 @@ class Skill:
         return json.dumps(self.to_json_dict(), indent=1) + "\n"
 
     @staticmethod
-    def from_json_dict(d: dict[str, Any]) -> "Skill":
+    def from_json_dict(d: dict[str, Any]) -> Skill:
         """Rebuild from the JSON twin (validated like an image)."""
         kw: dict[str, Any] = {k: float(d[k]) for k in _F64_NAMES}
         s = Skill(centres=np.array(d["centres"], dtype=float), widths=np.array(d["widths"], dtype=float),
@@ -253,7 +254,7 @@ class Skill:
             own.commit()
 
     @staticmethod
-    def read(path: PathLike) -> "Skill":
+    def read(path: PathLike) -> Skill:
         """Read and validate an image file."""
         try:
             data = Path(path).read_bytes()

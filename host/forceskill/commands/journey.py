@@ -8,32 +8,20 @@ from __future__ import annotations
 
 import argparse
 import json
-import shutil
 import subprocess
+import sys
 import time
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from ..errors import FsError
+from ..errors import ERR_IO, FsError
 from ..outputs import write_figure, write_file
 
-REPO = Path(__file__).resolve().parents[3]
 K_NPM = 100.0
 SURFACE_M = 0.001
 OBJECT_MASS_KG = 10.0   # m_v_kg of the scenario: the default force gains are adapted to it
-
-
-def _find_hil_sim(given: str | None) -> Path:
-    cands = [Path(given)] if given else [REPO / "build" / "hil_sim" / "hil_sim"]
-    if not given and shutil.which("hil_sim"):
-        cands.append(Path(str(shutil.which("hil_sim"))))
-    for c in cands:
-        if c.is_file():
-            return c
-    raise FsError(620, f"hil_sim not found at {cands[0]}: build it (cmake -S . -B build -G Ninja && "
-                  "ninja -C build hil_sim) or pass --hil-sim PATH")
 
 
 def _load_csv(path: Path) -> dict[str, np.ndarray]:
@@ -42,29 +30,32 @@ def _load_csv(path: Path) -> dict[str, np.ndarray]:
 
 
 def _cmd(args: argparse.Namespace) -> int:
-    from .. import cli
+    from ..sim import find_hil_sim, scenario_dir
     from ._common import tracking
     out = Path(args.output)
     out.mkdir(parents=True, exist_ok=True)
-    scenario = Path(args.scenario)
-    hil = _find_hil_sim(args.hil_sim)
+    scenario = Path(args.scenario) if args.scenario else scenario_dir(None) / "pressing_task1_demo.toml"
+    if not scenario.is_file():
+        raise FsError(ERR_IO, f"scenario not found: {str(scenario)!r}")
+    hil = find_hil_sim(args.hil_sim, ERR_IO)
     srv = subprocess.Popen([str(hil), "serve", "--port", "0", "--speed", str(args.speed), "--scenario",
                             str(scenario), "--host-timeout", str(args.host_timeout)],
                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         line = srv.stdout.readline() if srv.stdout else ""
         if "listening on" not in line:
-            raise FsError(620, f"hil_sim serve did not start: {line.strip() or (srv.stderr.read() if srv.stderr else '')}")
+            raise FsError(ERR_IO, f"hil_sim serve did not start: {line.strip() or (srv.stderr.read() if srv.stderr else '')}")
         port = int(line.split("127.0.0.1:")[1].split()[0])
         print(line.strip(), flush=True)
         bus = ["-i", "socketcand", "-c", "can0", "--bus-kwargs", "host=127.0.0.1", f"port={port}"]
         t0 = time.perf_counter()
 
         def step(*argv: str) -> None:
+            # each step is the command a user types, in its own process (python -m forceskill)
             print("$ forceskill " + " ".join(argv), flush=True)
-            rc = cli.main(list(argv))
+            rc = subprocess.run([sys.executable, "-m", "forceskill", *argv]).returncode
             if rc != 0:
-                raise FsError(620, f"step failed: forceskill {' '.join(argv)}")
+                raise FsError(ERR_IO, f"step failed: forceskill {' '.join(argv)}")
 
         step("record", "-o", str(out / "demo.blf"), "--duration", str(args.duration), *bus)
         step("fit", str(out / "demo.blf"), "--stiffness", str(K_NPM), "--surface-m", str(SURFACE_M),
@@ -120,12 +111,14 @@ def _cmd(args: argparse.Namespace) -> int:
     return 0
 
 
-def register(sub: "argparse._SubParsersAction") -> None:
+def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p = sub.add_parser("journey", help="record -> fit -> upload -> run 1x/1.5x over CAN on the simulator",
                        description=__doc__)
     p.add_argument("-o", "--output", default="can_journey", metavar="DIR")
-    p.add_argument("--hil-sim", metavar="PATH", help="hil_sim binary (default build/hil_sim/hil_sim)")
-    p.add_argument("--scenario", default=str(REPO / "hil_sim" / "scenarios" / "pressing_task1_demo.toml"))
+    p.add_argument("--hil-sim", metavar="PATH", help="hil_sim binary (default $FORCESKILL_HIL_SIM, "
+                   "else hil_sim on PATH)")
+    p.add_argument("--scenario", metavar="TOML", help="simulator scenario (default: the packaged "
+                   "pressing_task1_demo.toml)")
     p.add_argument("--speed", type=float, default=1.0, metavar="S", help="simulator speed factor (1)")
     p.add_argument("--duration", type=float, default=6.0, metavar="S", help="demonstration length (6 s)")
     p.add_argument("--host-timeout", type=int, default=250, metavar="MS",

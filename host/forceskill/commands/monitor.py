@@ -16,7 +16,7 @@ def _cmd(args: argparse.Namespace) -> int:
         if args.plot:
             import matplotlib.pyplot as plt
             plt.ion()
-            fig, ax = plt.subplots(figsize=(8, 4))
+            _, ax = plt.subplots(figsize=(8, 4))
             lines = {k: ax.plot([], [], label=k)[0] for k in ("f_contact", "f_cmd", "f_ref")}
             ax.set_xlabel("device time [s]")
             ax.set_ylabel("force [N]")
@@ -46,7 +46,7 @@ def _cmd(args: argparse.Namespace) -> int:
     return 0
 
 
-def register(sub: "argparse._SubParsersAction") -> None:
+def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p = sub.add_parser("monitor", help="live values of a device (--plot for a live plot)",
                        description="Print the state and the latest telemetry ten times a second "
                        "(or plot force over time with --plot) until Ctrl-C or --duration.")

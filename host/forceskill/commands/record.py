@@ -95,7 +95,7 @@ def _record(args: argparse.Namespace, writer: can.Listener) -> "FsError | None":
     return None
 
 
-def register(sub: "argparse._SubParsersAction") -> None:
+def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p = sub.add_parser("record", help="record a demonstration (device in TEACH) to a CAN log",
                        description="Put the device in TEACH (it renders m_d and streams telemetry at "
                        "1 kHz), keep the host heartbeat, and log every frame with python-can's writer "

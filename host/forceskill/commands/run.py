@@ -8,6 +8,7 @@ import re
 import struct
 import sys
 import time
+from pathlib import Path
 from typing import Any, TextIO
 
 import numpy as np
@@ -239,7 +240,7 @@ def _cmd(args: argparse.Namespace) -> int:
     return 0
 
 
-def register(sub: "argparse._SubParsersAction") -> None:
+def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p = sub.add_parser("run", help="execute a skill or a sequence on the device and report tracking",
                        description="Start a skill (--slot) or a sequence (--sequence 1:8s,2:9s) with "
                        "RoutineControl, keep the host heartbeat, record telemetry at 1 kHz, stop after "

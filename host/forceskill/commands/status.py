@@ -71,7 +71,7 @@ def _cmd(args: argparse.Namespace) -> int:
     return 0
 
 
-def register(sub: "argparse._SubParsersAction") -> None:
+def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p = sub.add_parser("status", help="show a device's state, versions and skill slots",
                        description="Wait for the node's status frame (presence), then read its "
                        "versions and slot directory over UDS.")

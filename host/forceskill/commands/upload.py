@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import time
 from pathlib import Path
+from typing import Any
 
 from tqdm import tqdm
 
@@ -17,7 +18,7 @@ from ..skill import Skill
 from ._common import add_common, connect
 
 
-def upload_skill(dev: Device, image: bytes, slot: int, progress: bool = True, verify: bool = True) -> dict:
+def upload_skill(dev: Device, image: bytes, slot: int, progress: bool = True, verify: bool = True) -> dict[str, Any]:
     """Download image into slot and verify; returns timing figures. Old skill kept on failure."""
     st = dev.status
     if st is not None and st.state != "IDLE":
@@ -64,7 +65,7 @@ def _cmd(args: argparse.Namespace) -> int:
     return 0
 
 
-def register(sub: "argparse._SubParsersAction") -> None:
+def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p = sub.add_parser("upload", help="upload a skill into a device slot (UDS over ISO-TP)",
                        description="Validate SKILL, download it into --slot over UDS (programming "
                        "session, SecurityAccess), then read it back and compare. A skill whose rollout is "

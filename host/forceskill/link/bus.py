@@ -39,7 +39,7 @@ def bus_config(ns: argparse.Namespace) -> dict[str, Any]:
             given[key] = getattr(ns, key)
     given.update(getattr(ns, "bus_kwargs", {}) or {})
     try:
-        cfg = can.util.load_config(config={k: v for k, v in given.items()})
+        cfg = can.util.load_config(config=dict(given))
     except Exception as e:  # load_config raises on an unknown interface from the config file
         raise FsError(ERR_LINK_BUS, f"CAN configuration unusable: {e}") from None
     cfg.update(given)

@@ -30,14 +30,14 @@ def dbc_path() -> Path:
     return Path(__file__).resolve().parents[3] / "firmware" / "proto" / "forceskill.dbc"
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _base_db() -> cantools.database.can.Database:
     db = cantools.database.load_file(str(dbc_path()), strict=True)
     assert isinstance(db, cantools.database.can.Database)
     return db
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def load_db(node: int = 0) -> cantools.database.can.Database:
     """The DBC with every frame id moved to node ``node`` (0..15)."""
     if not 0 <= node <= 15:

@@ -8,8 +8,9 @@ import logging
 import sys
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any, Callable, Optional
+from typing import Any
 
 import can
 
@@ -75,25 +76,25 @@ class Device(can.Listener):
         self.db = load_db(node)
         self._m = {m.name: m for m in self.db.messages}
         self._ids = {m.frame_id: m for m in self.db.messages}
-        self.status: Optional[Status] = None
+        self.status: Status | None = None
         self.status_event = threading.Event()
-        self.emergencies: list[tuple[float, dict]] = []
-        self.telemetry: Optional[Telemetry] = None
+        self.emergencies: list[tuple[float, dict[str, Any]]] = []
+        self.telemetry: Telemetry | None = None
         self.frames_seen = 0
         self.bad_crc = 0
-        self._pending_pos: Optional[tuple[int, float, float]] = None
+        self._pending_pos: tuple[int, float, float] | None = None
         self._lock = threading.Lock()
         self._counter = {"HostCommand": 0, "HostHeartbeat": 0}
-        self._hb_task: Optional[can.broadcastmanager.CyclicSendTaskABC] = None
+        self._hb_task: can.broadcastmanager.CyclicSendTaskABC | None = None
         self.heartbeat_sent: list[float] = []     # monotonic send times (diagnostics)
         self.telemetry_period_ms = 0
-        self.notifier: Optional[can.Notifier] = None
-        self.on_status: Optional[Callable[[Status], None]] = None
-        self.link_error: Optional[BaseException] = None
+        self.notifier: can.Notifier | None = None
+        self.on_status: Callable[[Status], None] | None = None
+        self.link_error: BaseException | None = None
         self._saved_switch_s = sys.getswitchinterval()
 
     # -- lifecycle ------------------------------------------------------------------------------
-    def __enter__(self) -> "Device":
+    def __enter__(self) -> Device:
         self.notifier = can.Notifier(self.bus, [self], timeout=0.05)
         return self
 
@@ -180,7 +181,7 @@ class Device(can.Listener):
                       f"within {timeout_s:g} s (state {st.state if st else '?'})")
 
     # -- sending --------------------------------------------------------------------------------
-    def _send_safety(self, name: str, signals: dict) -> None:
+    def _send_safety(self, name: str, signals: dict[str, Any]) -> None:
         m = self._m[name]
         full = {s.name: 0 for s in m.signals}
         full.update(signals)

@@ -12,8 +12,10 @@ import logging
 import os
 import struct
 import time
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from typing import Any, Callable, Iterator, Optional
+from functools import partial
+from typing import Any
 
 import isotp
 import udsoncan
@@ -21,11 +23,28 @@ from udsoncan.client import Client
 from udsoncan.connections import PythonIsoTpConnection
 from udsoncan.exceptions import NegativeResponseException, TimeoutException, UnexpectedResponseException
 
-from ..codes import (DID_COMM, DID_DEVICE_STATE, DID_FAULT_CAUSES, DID_GAINS_X, DID_GAINS_Y,  # noqa: F401
-                     DID_LAST_TRANSFER, DID_LIMITS_X, DID_LIMITS_Y, DID_OBJECT, DID_SLOT_DIR,
-                     DID_SW_VERSION, DID_VERSIONS, RID_CLEAR_FAULTS, RID_ERASE_SLOT,
-                     RID_RUN_SEQUENCE, RID_RUN_SKILL, RID_SELF_TEST, SEC_LEVEL_FIRMWARE, SEC_LEVEL_WRITE,
-                     SKILL_STATUS_TEXT)
+from ..codes import (  # noqa: F401
+    DID_COMM,
+    DID_DEVICE_STATE,
+    DID_FAULT_CAUSES,
+    DID_GAINS_X,
+    DID_GAINS_Y,
+    DID_LAST_TRANSFER,
+    DID_LIMITS_X,
+    DID_LIMITS_Y,
+    DID_OBJECT,
+    DID_SLOT_DIR,
+    DID_SW_VERSION,
+    DID_VERSIONS,
+    RID_CLEAR_FAULTS,
+    RID_ERASE_SLOT,
+    RID_RUN_SEQUENCE,
+    RID_RUN_SKILL,
+    RID_SELF_TEST,
+    SEC_LEVEL_FIRMWARE,
+    SEC_LEVEL_WRITE,
+    SKILL_STATUS_TEXT,
+)
 from ..errors import FsError
 from . import ERR_LINK_NEGATIVE, ERR_LINK_TIMEOUT, ERR_LINK_VERIFY
 from .dbc import UDS_REQUEST_BASE, UDS_RESPONSE_BASE
@@ -97,27 +116,42 @@ def security_key(seed: bytes, secret: Optional[bytes] = None, level: int = SEC_L
     return hmac.new(key, bytes(seed), hashlib.sha256).digest()[:16]
 
 
-def isotp_params() -> dict:
+def isotp_params() -> dict[str, Any]:
     return {"tx_padding": 0xCC, "tx_data_min_length": 8, "stmin": 0, "blocksize": 0,
             "rx_flowcontrol_timeout": 1000, "rx_consecutive_frame_timeout": 1000,
             "max_frame_size": 4095, "can_fd": False, "blocking_send": False, "wftmax": 0}
+
+
+def open_client(bus: Any, notifier: Any, node: int, *, secret: bytes | None = None,
+                dids: dict[int, Any] | None = None, timeout_s: float = 5.0,
+                pending_timeout_s: float | None = None, address_format: int = 8,
+                memorysize_format: int = 16) -> Client:
+    """A udsoncan Client (not yet opened) for node over can-isotp on bus, sharing notifier.
+    SecurityAccess keys use secret, or the requested level's device_secret(level) when it is None; dids maps data identifiers
+    to codecs (default: the application's); timeout_s bounds every request (server timing ignored:
+    a 4 KiB request takes longer than the server's P2 to cross a slow or simulated bus), and
+    pending_timeout_s (default timeout_s) each wait after a "response pending" (NRC 0x78)."""
+    addr = isotp.Address(isotp.AddressingMode.Normal_11bits, txid=UDS_REQUEST_BASE + node,
+                         rxid=UDS_RESPONSE_BASE + node)
+    stack = isotp.NotifierBasedCanStack(bus, notifier, address=addr, params=isotp_params())
+    conn = PythonIsoTpConnection(stack)
+
+    def algo(level: int, seed: bytes, params: Any = None) -> bytes:
+        return security_key(bytes(seed), secret, level=level)
+
+    cfg: Any = dict(udsoncan.configs.default_client_config)
+    cfg.update({"security_algo": algo, "data_identifiers": DID_CODECS if dids is None else dids,
+                "request_timeout": timeout_s, "p2_timeout": timeout_s, "p2_star_timeout": timeout_s if pending_timeout_s is None else pending_timeout_s,
+                "use_server_timing": False, "server_address_format": address_format,
+                "server_memorysize_format": memorysize_format, "exception_on_negative_response": True})
+    return Client(conn, config=cfg)
 
 
 @contextmanager
 def uds_client(dev: Device, request_timeout_s: float = 5.0) -> Iterator[Client]:
     """A connected udsoncan Client for dev (whose Notifier must be running)."""
     assert dev.notifier is not None
-    addr = isotp.Address(isotp.AddressingMode.Normal_11bits, txid=UDS_REQUEST_BASE + dev.node,
-                         rxid=UDS_RESPONSE_BASE + dev.node)
-    stack = isotp.NotifierBasedCanStack(dev.bus, dev.notifier, address=addr, params=isotp_params())
-    conn = PythonIsoTpConnection(stack)
-    cfg: Any = dict(udsoncan.configs.default_client_config)
-    cfg.update({"security_algo": lambda level, seed, params=None: security_key(seed, level=level),
-                "data_identifiers": DID_CODECS, "request_timeout": request_timeout_s,
-                "p2_timeout": request_timeout_s, "p2_star_timeout": request_timeout_s,
-                "use_server_timing": False, "server_address_format": 8,
-                "server_memorysize_format": 16, "exception_on_negative_response": True})
-    with Client(conn, config=cfg) as client:
+    with open_client(dev.bus, dev.notifier, dev.node, timeout_s=request_timeout_s) as client:
         yield client
 
 
@@ -126,33 +160,46 @@ def describe_nrc(e: NegativeResponseException) -> str:
     return f"{r.service.get_name() if r.service else 'request'} refused: {r.code_name} (0x{r.code:02X})"
 
 
-def call(what: str, fn: Callable[[], Any], node: int) -> Any:
-    """Run a udsoncan call; negative responses and timeouts become one-line FsErrors."""
+#: Turns a refused request (its step name and the exception) into the FsError to raise.
+NrcPolicy = Callable[[str, NegativeResponseException], FsError]
+
+
+def _refusal(what: str, e: NegativeResponseException, node: int, on_nrc: NrcPolicy | None) -> FsError:
+    return on_nrc(what, e) if on_nrc else FsError(ERR_LINK_NEGATIVE, f"{what}: node {node} {describe_nrc(e)}")
+
+
+def call(what: str, fn: Callable[[], Any], node: int, on_nrc: NrcPolicy | None = None) -> Any:
+    """Run a udsoncan call; negative responses and timeouts become one-line FsErrors (a refusal
+    through on_nrc when given, else ERR_LINK_NEGATIVE naming the response code)."""
     try:
         return fn()
     except NegativeResponseException as e:
-        raise FsError(ERR_LINK_NEGATIVE, f"{what}: node {node} {describe_nrc(e)}") from None
+        raise _refusal(what, e, node, on_nrc) from None
     except TimeoutException:
         raise FsError(ERR_LINK_TIMEOUT, f"{what}: no UDS response from node {node}") from None
     except UnexpectedResponseException as e:
         raise FsError(ERR_LINK_NEGATIVE, f"{what}: unexpected response from node {node}: {e}") from None
 
 
-def unlock(client: Client, node: int, session: int) -> None:
-    """Enter session and unlock level 1; waits out the device's power-up/failed-key delay (0x37)."""
-    call("session change", lambda: client.change_session(session), node)
-    end = time.monotonic() + 15.0
+def unlock(client: Client, node: int, session: int | None, level: int = SEC_LEVEL_WRITE,
+           on_nrc: NrcPolicy | None = None, wait_s: float = 15.0) -> None:
+    """Enter session (unless None) and unlock level; waits out the device's power-up/failed-key
+    delay (NRC 0x37) for up to wait_s."""
+    if session is not None:
+        call("session change", lambda: client.change_session(session), node, on_nrc)
+    what = "security access" if on_nrc is None else f"SecurityAccess(level {level})"
+    end = time.monotonic() + wait_s
     while True:
         try:
-            client.unlock_security_access(SEC_LEVEL_WRITE)
+            client.unlock_security_access(level)
             return
         except NegativeResponseException as e:
             if e.response.code == 0x37 and time.monotonic() < end:
                 time.sleep(0.2)
                 continue
-            raise FsError(ERR_LINK_NEGATIVE, f"security access: node {node} {describe_nrc(e)}") from None
+            raise _refusal(what, e, node, on_nrc) from None
         except TimeoutException:
-            raise FsError(ERR_LINK_TIMEOUT, f"security access: no UDS response from node {node}") from None
+            raise FsError(ERR_LINK_TIMEOUT, f"{what}: no UDS response from node {node}") from None
 
 
 def read_did(client: Client, did: int, node: int) -> bytes:
@@ -160,7 +207,7 @@ def read_did(client: Client, did: int, node: int) -> bytes:
     return bytes(r.service_data.values[did])
 
 
-def slot_directory(client: Client, node: int) -> list[dict]:
+def slot_directory(client: Client, node: int) -> list[dict[str, Any]]:
     raw = read_did(client, DID_SLOT_DIR, node)
     out = []
     for i in range(raw[0]):
@@ -172,11 +219,12 @@ def slot_directory(client: Client, node: int) -> list[dict]:
 
 
 def last_transfer_status(client: Client, node: int) -> int:
-    return struct.unpack(">H", read_did(client, DID_LAST_TRANSFER, node))[0]
+    code: int = struct.unpack(">H", read_did(client, DID_LAST_TRANSFER, node))[0]
+    return code
 
 
 def download(client: Client, node: int, slot: int, image: bytes,
-             progress: Optional[Callable[[int], None]] = None) -> int:
+             progress: Callable[[int], None] | None = None) -> int:
     """RequestDownload + TransferData + RequestTransferExit of image into slot; returns the CRC-32
     the device reports. On refusal the device keeps the slot's previous skill."""
     loc = udsoncan.MemoryLocation(address=slot, memorysize=len(image), address_format=8, memorysize_format=16)
@@ -185,7 +233,7 @@ def download(client: Client, node: int, slot: int, image: bytes,
     seq = 1
     for off in range(0, len(image), block):
         chunk = image[off:off + block]
-        call("transfer data", lambda: client.transfer_data(seq & 0xFF, chunk), node)
+        call("transfer data", partial(client.transfer_data, seq & 0xFF, chunk), node)
         seq += 1
         if progress:
             progress(len(chunk))
@@ -209,15 +257,15 @@ def upload(client: Client, node: int, slot: int, size: int) -> bytes:
     data = bytearray()
     seq = 1
     while len(data) < size:
-        r = call("transfer data", lambda: client.transfer_data(seq & 0xFF), node)
+        r = call("transfer data", partial(client.transfer_data, seq & 0xFF), node)
         data += bytes(r.service_data.parameter_records or b"")
         seq += 1
-    call("transfer exit", lambda: client.request_transfer_exit(), node)
+    call("transfer exit", client.request_transfer_exit, node)
     return bytes(data)
 
 
 def verify(node: int, slot: int, sent: bytes, read: bytes) -> None:
     if sent != read:
-        first = next((i for i, (a, b) in enumerate(zip(sent, read)) if a != b), min(len(sent), len(read)))
+        first = next((i for i, (a, b) in enumerate(zip(sent, read, strict=False)) if a != b), min(len(sent), len(read)))
         raise FsError(ERR_LINK_VERIFY, f"read-back of slot {slot} on node {node} differs from the file "
                       f"at byte {first} ({len(read)} of {len(sent)} bytes read)")
