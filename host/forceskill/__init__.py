@@ -6,4 +6,5 @@ Modules: ``params`` (gains -> DMP constants), ``dmp`` (the numpy reference of th
 points), ``tolerance`` (error at the recorded samples, kernel count from a tolerance), ``plot``,
 ``cli`` (the ``forceskill`` command).
 """
+
 __version__ = "0.1.0"

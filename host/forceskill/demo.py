@@ -12,18 +12,18 @@ shorter than 0.5 s, NaN/inf, time not strictly increasing, a gap longer than ``m
 (100 ms by default), a constant zero force, an unknown column (listing those available).
 Irregular or slower sampling is resampled to the fit step by linear interpolation (``resample``).
 """
+
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Callable, Optional, Sequence, Union
 
 import numpy as np
 
 from .errors import (
     ERR_DEMO_COLUMN,
-    ERR_DEMO_FILE,
     ERR_DEMO_FORMAT,
     ERR_DEMO_GAP,
     ERR_DEMO_NOT_FINITE,
@@ -72,16 +72,27 @@ class Demo:
     notes: list[str] = field(default_factory=list)
 
 
-def read_csv_columns(path: Union[str, Path]) -> Columns:
+def read_csv_columns(path: str | Path) -> Columns:
     """Every column of a CSV file with a header row (the CSV reader plugin, default options)."""
     from .readers import csv
+
     return csv.read(Path(path), ReadOptions())
 
 
-def load_demo(path: Union[str, Path], position_column: Optional[str] = None, force_column: Optional[str] = None,
-              learn: str = "contact", *, read: Optional[ReadOptions] = None, force_sign: float = 1.0,
-              force_scale: float = 1.0, tare: str = "none", max_gap_s: float = MAX_GAP_S,
-              stiffness_Npm: Optional[float] = None, surface_m: float = 0.0) -> Demo:
+def load_demo(
+    path: str | Path,
+    position_column: str | None = None,
+    force_column: str | None = None,
+    learn: str = "contact",
+    *,
+    read: ReadOptions | None = None,
+    force_sign: float = 1.0,
+    force_scale: float = 1.0,
+    tare: str = "none",
+    max_gap_s: float = MAX_GAP_S,
+    stiffness_Npm: float | None = None,
+    surface_m: float = 0.0,
+) -> Demo:
     """Read and validate a demonstration.
 
     ``force_column`` overrides the column ``learn`` selects. ``position_column`` None: ``x`` when
@@ -99,13 +110,18 @@ def load_demo(path: Union[str, Path], position_column: Optional[str] = None, for
     tare_s = parse_tare(tare)
     p = Path(path)
     fcol = force_column or LEARN_COLUMNS[learn]
-    opts = replace(read or ReadOptions(), columns=(fcol,) + ((position_column,) if position_column else ()),
-                   optional=() if position_column else (DEFAULT_POSITION,))
+    opts = replace(
+        read or ReadOptions(),
+        columns=(fcol,) + ((position_column,) if position_column else ()),
+        optional=() if position_column else (DEFAULT_POSITION,),
+    )
     cols = read_columns(p, opts)
     notes = [str(n) for n in cols.pop(NOTES_KEY, [])]
     for name in ("t", fcol) + ((position_column,) if position_column else ()):
         if name not in cols:
-            raise DemoError(ERR_DEMO_COLUMN, f"column {name!r} not in {p.name} (available: {', '.join(cols)})")
+            raise DemoError(
+                ERR_DEMO_COLUMN, f"column {name!r} not in {p.name} (available: {', '.join(cols)})"
+            )
     f = np.asarray(cols[fcol], float)
     if force_sign * force_scale != 1.0:
         f = f * (force_sign * force_scale)
@@ -118,17 +134,21 @@ def load_demo(path: Union[str, Path], position_column: Optional[str] = None, for
         x = np.asarray(cols[pos_name], float)
     else:
         if stiffness_Npm is None or not stiffness_Npm > 0.0:
-            raise DemoError(ERR_DEMO_COLUMN, f"no position column {pos_name!r} in {p.name} and no stiffness "
-                            f"to derive it (available: {', '.join(cols)})")
+            raise DemoError(
+                ERR_DEMO_COLUMN,
+                f"no position column {pos_name!r} in {p.name} and no stiffness "
+                f"to derive it (available: {', '.join(cols)})",
+            )
         x = surface_m + f / stiffness_Npm
-        notes.append(f"no position column {pos_name!r}: position taken as surface + f/k "
-                     f"(k = {stiffness_Npm:g} N/m)")
+        notes.append(
+            f"no position column {pos_name!r}: position taken as surface + f/k (k = {stiffness_Npm:g} N/m)"
+        )
     demo = Demo(t_s=t, pos_m=x, force_N=f, source=f"{p.name}:{fcol}", max_gap_s=max_gap_s, notes=notes)
     validate(demo)
     return demo
 
 
-def parse_tare(tare: str) -> Optional[float]:
+def parse_tare(tare: str) -> float | None:
     """None for 'none', 0.0 for 'auto' (window found later), else the window in seconds (> 0)."""
     if tare == "none":
         return None
@@ -159,54 +179,79 @@ def _tare(t: np.ndarray, f: np.ndarray, window_s: float, auto: bool) -> tuple[np
         end = int(away[0]) if away.size else f.size
         quiet_s = float(t[end - 1] - t0) if end > 0 else 0.0
         if quiet_s < TARE_MIN_S or end >= f.size or abs(base) > TARE_BIAS_MAX_REL * rng:
-            raise DemoError(ERR_DEMO_TARE, f"--tare auto: no quiet stretch before contact (the force leaves "
-                            f"{base:.4g} N by more than {thresh:.3g} N after {quiet_s * 1e3:.0f} ms, force range "
-                            f"{rng:.4g} N): the recording starts in contact; give --tare SECONDS or --tare none")
+            raise DemoError(
+                ERR_DEMO_TARE,
+                f"--tare auto: no quiet stretch before contact (the force leaves "
+                f"{base:.4g} N by more than {thresh:.3g} N after {quiet_s * 1e3:.0f} ms, force range "
+                f"{rng:.4g} N): the recording starts in contact; give --tare SECONDS or --tare none",
+            )
         window = f[:end]
         span = quiet_s
     else:
         window = f[t <= t0 + window_s]
         span = window_s
         if window.size < 2:
-            raise DemoError(ERR_DEMO_TARE, f"--tare {window_s:g}: the first {window_s:g} s hold "
-                            f"{window.size} sample(s)")
+            raise DemoError(
+                ERR_DEMO_TARE, f"--tare {window_s:g}: the first {window_s:g} s hold {window.size} sample(s)"
+            )
         if window_s > 0.5 * float(t[-1] - t0):
-            raise DemoError(ERR_DEMO_TARE, f"--tare {window_s:g}: the window is more than half of the "
-                            f"{float(t[-1] - t0):g} s recording")
+            raise DemoError(
+                ERR_DEMO_TARE,
+                f"--tare {window_s:g}: the window is more than half of the {float(t[-1] - t0):g} s recording",
+            )
     bias = float(np.median(window))
-    return f - bias, f"tare: removed a bias of {bias:.4g} N (median of the first {span:.3g} s, {window.size} samples)"
+    return (
+        f - bias,
+        f"tare: removed a bias of {bias:.4g} N (median of the first {span:.3g} s, {window.size} samples)",
+    )
 
 
 def validate(demo: Demo) -> None:
     """Refuse a demonstration that cannot be learned from (DemoError, 603-607)."""
     t, x, f = demo.t_s, demo.pos_m, demo.force_N
     if not (t.shape == x.shape == f.shape and t.ndim == 1):
-        raise DemoError(ERR_DEMO_FORMAT, f"demonstration columns differ in length: t {t.shape}, "
-                        f"position {x.shape}, force {f.shape}")
+        raise DemoError(
+            ERR_DEMO_FORMAT,
+            f"demonstration columns differ in length: t {t.shape}, position {x.shape}, force {f.shape}",
+        )
     if t.size < MIN_SAMPLES:
-        raise DemoError(ERR_DEMO_TOO_SHORT, f"demonstration too short: {t.size} samples (need >= {MIN_SAMPLES})")
+        raise DemoError(
+            ERR_DEMO_TOO_SHORT, f"demonstration too short: {t.size} samples (need >= {MIN_SAMPLES})"
+        )
     for name, arr in (("t", t), ("position", x), ("force", f)):
         bad = np.flatnonzero(~np.isfinite(arr))
         if bad.size:
-            raise DemoError(ERR_DEMO_NOT_FINITE, f"demonstration {name} is not finite at sample {bad[0]} "
-                            f"(t = {t[bad[0]]:g} s): {arr[bad[0]]}")
+            raise DemoError(
+                ERR_DEMO_NOT_FINITE,
+                f"demonstration {name} is not finite at sample {bad[0]} (t = {t[bad[0]]:g} s): {arr[bad[0]]}",
+            )
     dt = np.diff(t)
     bad = np.flatnonzero(~(dt > 0.0))
     if bad.size:
         i = int(bad[0])
-        raise DemoError(ERR_DEMO_TIME, f"demonstration time not strictly increasing at sample {i + 1}: "
-                        f"t = {t[i]:.9g} s then {t[i + 1]:.9g} s")
+        raise DemoError(
+            ERR_DEMO_TIME,
+            f"demonstration time not strictly increasing at sample {i + 1}: "
+            f"t = {t[i]:.9g} s then {t[i + 1]:.9g} s",
+        )
     duration = float(t[-1] - t[0])
     if duration < MIN_DURATION_S:
-        raise DemoError(ERR_DEMO_TOO_SHORT, f"demonstration too short: {duration:g} s (need >= {MIN_DURATION_S:g} s)")
+        raise DemoError(
+            ERR_DEMO_TOO_SHORT, f"demonstration too short: {duration:g} s (need >= {MIN_DURATION_S:g} s)"
+        )
     gaps = np.flatnonzero(dt > demo.max_gap_s)
     if gaps.size:
         i = int(gaps[0])
-        raise DemoError(ERR_DEMO_GAP, f"demonstration has a gap of {dt[i] * 1e3:.6g} ms at t = {t[i]:.6g} s "
-                        f"(longer than --max-gap {demo.max_gap_s * 1e3:g} ms; {gaps.size} such gap(s))")
+        raise DemoError(
+            ERR_DEMO_GAP,
+            f"demonstration has a gap of {dt[i] * 1e3:.6g} ms at t = {t[i]:.6g} s "
+            f"(longer than --max-gap {demo.max_gap_s * 1e3:g} ms; {gaps.size} such gap(s))",
+        )
     if not np.any(f != 0.0):
-        raise DemoError(ERR_DEMO_ZERO_FORCE, f"demonstration force ({demo.source or 'force'}) is constant zero "
-                        f"over {t.size} samples")
+        raise DemoError(
+            ERR_DEMO_ZERO_FORCE,
+            f"demonstration force ({demo.source or 'force'}) is constant zero over {t.size} samples",
+        )
 
 
 def on_grid(t_s: np.ndarray, dt_s: float) -> bool:
@@ -217,7 +262,7 @@ def on_grid(t_s: np.ndarray, dt_s: float) -> bool:
         return False
     for i0 in range(0, t_s.size, _CHUNK):
         n = np.arange(i0, min(t_s.size, i0 + _CHUNK))
-        if np.max(np.abs(t_s[i0:i0 + _CHUNK] - t0 - n * dt_s)) > GRID_TOL * dt_s:
+        if np.max(np.abs(t_s[i0 : i0 + _CHUNK] - t0 - n * dt_s)) > GRID_TOL * dt_s:
             return False
     return True
 
@@ -233,19 +278,31 @@ def resample(demo: Demo, dt_s: float) -> Demo:
     t0 = float(demo.t_s[0])
     if on_grid(demo.t_s, dt_s):
         n = demo.t_s.size
-        return Demo(np.arange(n) * dt_s, demo.pos_m.copy(), demo.force_N.copy(), demo.source,
-                    demo.max_gap_s, list(demo.notes))
+        return Demo(
+            np.arange(n) * dt_s,
+            demo.pos_m.copy(),
+            demo.force_N.copy(),
+            demo.source,
+            demo.max_gap_s,
+            list(demo.notes),
+        )
     n_last = int(math.floor((float(demo.t_s[-1]) - t0) / dt_s + 1e-9))
     tn = t0 + np.arange(n_last + 1) * dt_s
-    return Demo(np.arange(n_last + 1) * dt_s, np.interp(tn, demo.t_s, demo.pos_m),
-                np.interp(tn, demo.t_s, demo.force_N), demo.source + f" (resampled to {dt_s * 1e3:g} ms)",
-                demo.max_gap_s, list(demo.notes))
+    return Demo(
+        np.arange(n_last + 1) * dt_s,
+        np.interp(tn, demo.t_s, demo.pos_m),
+        np.interp(tn, demo.t_s, demo.force_N),
+        demo.source + f" (resampled to {dt_s * 1e3:g} ms)",
+        demo.max_gap_s,
+        list(demo.notes),
+    )
 
 
-def write_csv(path: Union[str, Path], columns: Columns, inputs: Sequence[Union[str, Path]] = ()) -> None:
+def write_csv(path: str | Path, columns: Columns, inputs: Sequence[str | Path] = ()) -> None:
     """Write named equal-length columns as CSV with a header (%.17g) through forceskill.outputs
     (temporary file renamed on success; '-' is standard output)."""
     from .outputs import write_csv as _write
+
     names = list(columns)
     data = np.column_stack([np.asarray(columns[k], float) for k in names]) if names else np.zeros((0, 0))
     _write(path, names, [data], inputs=inputs)

@@ -9,6 +9,7 @@ command (fit, show, rollout, upload, run) before anything is written or sent.
   default, the device's default ``force_max_N``); a goal scale multiplies the force exactly, so a
   run at goal scale S needs S * peak <= limit (662).
 """
+
 from __future__ import annotations
 
 import argparse
@@ -38,30 +39,38 @@ FORCE_LIMIT_N = 50.0
 def check_scales(goal_scale: float, time_scale: float) -> None:
     """Goal scale in [0, 65.535], time scale in [0.001, 65.535], both finite (ParamError 109)."""
     if not (math.isfinite(goal_scale) and 0.0 <= goal_scale <= GOAL_SCALE_MAX):
-        raise ParamError(ERR_SCALE_INVALID, f"goal scale must be finite and in [0, {GOAL_SCALE_MAX:g}]: "
-                         f"{goal_scale:g}")
+        raise ParamError(
+            ERR_SCALE_INVALID, f"goal scale must be finite and in [0, {GOAL_SCALE_MAX:g}]: {goal_scale:g}"
+        )
     if not (math.isfinite(time_scale) and TIME_SCALE_MIN <= time_scale <= TIME_SCALE_MAX):
-        raise ParamError(ERR_SCALE_INVALID, f"time scale must be finite and in [{TIME_SCALE_MIN:g}, "
-                         f"{TIME_SCALE_MAX:g}]: {time_scale:g}")
+        raise ParamError(
+            ERR_SCALE_INVALID,
+            f"time scale must be finite and in [{TIME_SCALE_MIN:g}, {TIME_SCALE_MAX:g}]: {time_scale:g}",
+        )
 
 
 def check_steps(n_steps: int) -> None:
     """0 <= n_steps <= MAX_ROLLOUT_STEPS (663)."""
     if not 0 <= n_steps <= MAX_ROLLOUT_STEPS:
-        raise FsError(ERR_ROLLOUT_CAP, f"rollout of {n_steps} steps outside 0..{MAX_ROLLOUT_STEPS} "
-                      "(give fewer --steps or a smaller --time-scale)")
+        raise FsError(
+            ERR_ROLLOUT_CAP,
+            f"rollout of {n_steps} steps outside 0..{MAX_ROLLOUT_STEPS} "
+            "(give fewer --steps or a smaller --time-scale)",
+        )
 
 
 def check_force_limit(force_limit_N: float) -> None:
     """A usable force limit: finite and > 0 (ParamError 110)."""
     from .errors import ERR_LIMIT_INVALID
+
     if not (math.isfinite(force_limit_N) and force_limit_N > 0.0):
         raise ParamError(ERR_LIMIT_INVALID, f"force limit must be finite and > 0 N: {force_limit_N:g}")
 
 
-def skill_peak_N(skill: "Skill", time_scale: float = 1.0) -> float:
+def skill_peak_N(skill: Skill, time_scale: float = 1.0) -> float:
     """max |f_hat| of the skill's rollout at goal 1 (inf when the rollout is not finite)."""
     from .dmp import rollout_peak
+
     return rollout_peak(skill, time_scale=time_scale)
 
 
@@ -71,12 +80,19 @@ def peak_problem(peak_N: float, goal_scale: float, force_limit_N: float) -> str:
         return "its rollout is not finite"
     if goal_scale * peak_N > force_limit_N:
         at = f" at goal scale {goal_scale:g}" if goal_scale != 1.0 else ""
-        return f"its rollout peaks at {goal_scale * peak_N:.4g} N{at}, above the force limit {force_limit_N:g} N"
+        return (
+            f"its rollout peaks at {goal_scale * peak_N:.4g} N{at}, above the force limit {force_limit_N:g} N"
+        )
     return ""
 
 
-def check_skill_force(skill: "Skill", name: str, goal_scale: float = 1.0, time_scale: float = 1.0,
-                      force_limit_N: float = FORCE_LIMIT_N) -> float:
+def check_skill_force(
+    skill: Skill,
+    name: str,
+    goal_scale: float = 1.0,
+    time_scale: float = 1.0,
+    force_limit_N: float = FORCE_LIMIT_N,
+) -> float:
     """The skill's peak at goal 1; FsError 662 if its rollout at goal_scale is not finite or above
     the limit."""
     check_scales(goal_scale, time_scale)
@@ -91,5 +107,11 @@ def check_skill_force(skill: "Skill", name: str, goal_scale: float = 1.0, time_s
 def add_force_limit(p: argparse.ArgumentParser) -> None:
     """The --force-limit option (N, default the device's 50 N)."""
     from .cli import _float
-    p.add_argument("--force-limit", type=_float, default=FORCE_LIMIT_N, metavar="N",
-                   help=f"refuse a skill whose rollout is not finite or peaks above N newtons ({FORCE_LIMIT_N:g})")
+
+    p.add_argument(
+        "--force-limit",
+        type=_float,
+        default=FORCE_LIMIT_N,
+        metavar="N",
+        help=f"refuse a skill whose rollout is not finite or peaks above N newtons ({FORCE_LIMIT_N:g})",
+    )

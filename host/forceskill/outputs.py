@@ -15,15 +15,17 @@
 
 ``-`` as a CSV output means standard output (``csv_sink``), streamed and never buffered whole.
 """
+
 from __future__ import annotations
 
 import os
 import secrets
 import stat
 import sys
+from collections.abc import Iterable, Iterator, Sequence
 from contextlib import contextmanager
 from pathlib import Path
-from typing import IO, Any, Iterable, Iterator, Optional, Sequence, Union
+from typing import IO, Any, Union
 
 import numpy as np
 
@@ -72,21 +74,31 @@ def check_target(path: PathLike, inputs: Iterable[PathLike] = ()) -> Path:
     absolute = os.path.abspath(shown)
     real = os.path.realpath(shown)
     if absolute.startswith(_SPECIAL_ROOTS) or real.startswith(_SPECIAL_ROOTS):
-        raise FsError(ERR_OUTPUT_SPECIAL, f"refusing to write to {shown!r}: a device or system file, "
-                      "not a regular file")
+        raise FsError(
+            ERR_OUTPUT_SPECIAL, f"refusing to write to {shown!r}: a device or system file, not a regular file"
+        )
     if os.path.lexists(real):
         try:
             st = os.stat(real)
         except OSError as e:
             raise FsError(ERR_IO, f"cannot write {shown!r}: {e.strerror}") from None
         if not stat.S_ISREG(st.st_mode):
-            kind = "a directory" if stat.S_ISDIR(st.st_mode) else "a FIFO" if stat.S_ISFIFO(st.st_mode) \
-                else "a device" if stat.S_ISCHR(st.st_mode) or stat.S_ISBLK(st.st_mode) else "not a regular file"
+            kind = (
+                "a directory"
+                if stat.S_ISDIR(st.st_mode)
+                else "a FIFO"
+                if stat.S_ISFIFO(st.st_mode)
+                else "a device"
+                if stat.S_ISCHR(st.st_mode) or stat.S_ISBLK(st.st_mode)
+                else "not a regular file"
+            )
             raise FsError(ERR_OUTPUT_SPECIAL, f"refusing to write to {shown!r}: {kind}")
     for inp in inputs:
         if os.path.exists(os.fspath(inp)) and os.path.exists(real) and _same_file(os.fspath(inp), real):
-            raise FsError(ERR_OUTPUT_IS_INPUT, f"output {shown!r} is the input {os.fspath(inp)!r}: "
-                          "refusing to overwrite an input")
+            raise FsError(
+                ERR_OUTPUT_IS_INPUT,
+                f"output {shown!r} is the input {os.fspath(inp)!r}: refusing to overwrite an input",
+            )
     folder = os.path.dirname(real)
     if not os.path.isdir(folder):
         raise FsError(ERR_IO, f"output folder does not exist: {os.path.dirname(shown) or '.'!r}")
@@ -109,7 +121,7 @@ class Outputs:
         self._items: list[_Item] = []
         self.committed = False
 
-    def __enter__(self) -> "Outputs":
+    def __enter__(self) -> Outputs:
         return self
 
     def __exit__(self, *exc: object) -> None:
@@ -155,10 +167,10 @@ class Outputs:
     def commit(self) -> None:
         """Rename every temporary file onto its target; on a failure restore the targets renamed so
         far (from hard links kept until now) and raise FsError(620)."""
-        done: list[tuple[_Item, Optional[Path]]] = []
+        done: list[tuple[_Item, Path | None]] = []
         try:
             for it in self._items:
-                backup: Optional[Path] = None
+                backup: Path | None = None
                 if it.target.exists():
                     backup = it.target.with_name(f".{it.target.name}.{secrets.token_hex(4)}.keep")
                     try:
@@ -183,7 +195,9 @@ class Outputs:
                     pass
             failed = self._items[len(done)].shown if len(done) < len(self._items) else "?"
             self.discard()
-            raise FsError(ERR_IO, f"cannot write {failed!r}: {e.strerror or e}; nothing was changed") from None
+            raise FsError(
+                ERR_IO, f"cannot write {failed!r}: {e.strerror or e}; nothing was changed"
+            ) from None
         for _, backup in done:
             if backup is not None:
                 try:
@@ -224,7 +238,7 @@ def format_rows(block: np.ndarray) -> str:
     """Rows of a 2-D array as CSV lines (%.17g, round-trip exact), each ending in a newline."""
     if block.size == 0:
         return ""
-    return "".join(",".join("%.17g" % v for v in row) + "\n" for row in block.tolist())
+    return "".join(",".join(f"{v:.17g}" for v in row) + "\n" for row in block.tolist())
 
 
 @contextmanager
@@ -245,15 +259,16 @@ def csv_sink(path: PathLike, inputs: Iterable[PathLike] = ()) -> Iterator[IO[str
         outs.commit()
 
 
-def write_csv(path: PathLike, names: Sequence[str], blocks: Iterable[np.ndarray],
-              inputs: Iterable[PathLike] = ()) -> int:
+def write_csv(
+    path: PathLike, names: Sequence[str], blocks: Iterable[np.ndarray], inputs: Iterable[PathLike] = ()
+) -> int:
     """Write a header and the rows of each block (streamed: one block in memory at a time);
     returns the number of rows."""
     n = 0
     with csv_sink(path, inputs) as f:
         f.write(",".join(names) + "\n")
-        for b in blocks:
-            b = np.asarray(b, dtype=float).reshape(-1, len(names))
+        for block in blocks:
+            b = np.asarray(block, dtype=float).reshape(-1, len(names))
             f.write(format_rows(b))
             n += b.shape[0]
     return n

@@ -8,16 +8,28 @@ valid only if alpha > 0, beta > 0 (which implies the closed loop is stable, Rout
 ``beta <= alpha/4`` (the phase is then monotone). Mirrors ``dmp_derive_f64`` in firmware/core/dmp.h,
 with the same error codes.
 """
+
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields
 from pathlib import Path
-from typing import Any, Optional
+from typing import Any
 
-from .errors import (ERR_BETA_NONPOSITIVE, ERR_FIT_ARGS, ERR_FORCE_GAIN_INERTIA, ERR_GAIN_NEGATIVE,
-                     ERR_GAINS_FILE, ERR_KD_LE_MD, ERR_MASS_NONPOSITIVE, ERR_NOT_FINITE, ERR_PHASE_NOT_MONOTONE,
-                     ERR_STIFFNESS_NONPOSITIVE, FsError, ParamError)
+from .errors import (
+    ERR_BETA_NONPOSITIVE,
+    ERR_FIT_ARGS,
+    ERR_FORCE_GAIN_INERTIA,
+    ERR_GAIN_NEGATIVE,
+    ERR_GAINS_FILE,
+    ERR_KD_LE_MD,
+    ERR_MASS_NONPOSITIVE,
+    ERR_NOT_FINITE,
+    ERR_PHASE_NOT_MONOTONE,
+    ERR_STIFFNESS_NONPOSITIVE,
+    FsError,
+    ParamError,
+)
 
 #: beta <= alpha/4 is checked with this relative tolerance (DMP_MONOTONE_REL_TOL in dmp.h): the
 #: default gains give beta = alpha/4 exactly in real numbers.
@@ -55,8 +67,13 @@ class DmpParams:
 
 def derive(gains: Gains) -> DmpParams:
     """alpha, beta, gamma from the gains; raises ParamError (1xx) if invalid or unstable."""
-    values = {"m_d": gains.m_d_kg, "k_d": gains.k_d_Nspm, "k_p": gains.k_p_Npm, "kkf": gains.kkf_Npm,
-              "kki": gains.kki_Npms}
+    values = {
+        "m_d": gains.m_d_kg,
+        "k_d": gains.k_d_Nspm,
+        "k_p": gains.k_p_Npm,
+        "kkf": gains.kkf_Npm,
+        "kki": gains.kki_Npms,
+    }
     for name, val in values.items():
         if not math.isfinite(val):
             raise ParamError(ERR_NOT_FINITE, f"{name} is not finite: {val}")
@@ -66,8 +83,10 @@ def derive(gains: Gains) -> DmpParams:
         if values[name] < 0.0:
             raise ParamError(ERR_GAIN_NEGATIVE, f"gain {name} must be >= 0: {values[name]:g}")
     if gains.k_d_Nspm <= gains.m_d_kg:
-        raise ParamError(ERR_KD_LE_MD, f"k_d must exceed m_d (alpha > 0), got k_d = {gains.k_d_Nspm:g}, "
-                         f"m_d = {gains.m_d_kg:g}")
+        raise ParamError(
+            ERR_KD_LE_MD,
+            f"k_d must exceed m_d (alpha > 0), got k_d = {gains.k_d_Nspm:g}, m_d = {gains.m_d_kg:g}",
+        )
     m_d = gains.m_d_kg
     alpha = gains.k_d_Nspm / m_d - 1.0
     if not alpha > 0.0:
@@ -81,8 +100,10 @@ def derive(gains: Gains) -> DmpParams:
     if not beta > 0.0:
         raise ParamError(ERR_BETA_NONPOSITIVE, f"derived beta must be > 0 (unstable system): beta = {beta:g}")
     if beta > 0.25 * alpha * (1.0 + MONOTONE_REL_TOL):
-        raise ParamError(ERR_PHASE_NOT_MONOTONE, f"beta must be <= alpha/4 for a monotone phase: "
-                         f"beta = {beta:g}, alpha/4 = {0.25 * alpha:g}")
+        raise ParamError(
+            ERR_PHASE_NOT_MONOTONE,
+            f"beta must be <= alpha/4 for a monotone phase: beta = {beta:g}, alpha/4 = {0.25 * alpha:g}",
+        )
     return DmpParams(alpha=alpha, beta=beta, gamma=gamma)
 
 
@@ -100,9 +121,12 @@ def check_inertia(gains: Gains, stiffness_Npm: float, object_mass_kg: float) -> 
     k_f = gains.kkf_Npm / stiffness_Npm
     ratio = k_f * object_mass_kg / gains.m_d_kg
     if not ratio < 1.0:
-        raise ParamError(ERR_FORCE_GAIN_INERTIA, f"k_f*m_v/m_d = {ratio:.3g} must be < 1 (k_f = kkf/k = "
-                         f"{k_f:.4g}, m_v = {object_mass_kg:g} kg, m_d = {gains.m_d_kg:g} kg): lower kkf_Npm "
-                         "or raise m_d_kg")
+        raise ParamError(
+            ERR_FORCE_GAIN_INERTIA,
+            f"k_f*m_v/m_d = {ratio:.3g} must be < 1 (k_f = kkf/k = "
+            f"{k_f:.4g}, m_v = {object_mass_kg:g} kg, m_d = {gains.m_d_kg:g} kg): lower kkf_Npm "
+            "or raise m_d_kg",
+        )
 
 
 #: When the default force gains are adapted to a known object mass, k_f*m_v/m_d is brought down to
@@ -125,11 +149,14 @@ def gains_for_object(stiffness_Npm: float, object_mass_kg: float, base: Gains = 
     return Gains(base.m_d_kg, base.k_d_Nspm, base.k_p_Npm, kkf, kkf * (base.kki_Npms / base.kkf_Npm))
 
 
-def goal(p: DmpParams, gains: Gains, ref_force_N: float, force_d_N: float, force_d_integral_Ns: float) -> float:
+def goal(
+    p: DmpParams, gains: Gains, ref_force_N: float, force_d_N: float, force_d_integral_Ns: float
+) -> float:
     """Goal in N, k*g'(t) = c/(alpha*beta), c = (k_p*(k*x_d) + kkf*f_d + kki*int f_d)/m_d, with the
     position reference given as the force k*x_d it corresponds to."""
-    c = (gains.k_p_Npm * ref_force_N + gains.kkf_Npm * force_d_N + gains.kki_Npms * force_d_integral_Ns) \
-        / gains.m_d_kg
+    c = (
+        gains.k_p_Npm * ref_force_N + gains.kkf_Npm * force_d_N + gains.kki_Npms * force_d_integral_Ns
+    ) / gains.m_d_kg
     return c / (p.alpha * p.beta)
 
 
@@ -137,14 +164,14 @@ def goal(p: DmpParams, gains: Gains, ref_force_N: float, force_d_N: float, force
 GAIN_KEYS = tuple(f.name for f in fields(Gains))
 
 
-def load_gains(path: str) -> tuple[Gains, Optional[float]]:
+def load_gains(path: str) -> tuple[Gains, float | None]:
     """Read a TOML gains file: any of m_d_kg, k_d_Nspm, k_p_Npm, kkf_Npm, kki_Npms (the rest keep
     their defaults) and optionally m_v_kg; validated with ``derive``. Returns (gains, m_v or None).
     Unreadable file, bad TOML, unknown key or non-number: FsError 613."""
     try:
         import tomllib
-    except ModuleNotFoundError:   # Python < 3.11
-        import tomli as tomllib   # type: ignore[no-redef]
+    except ModuleNotFoundError:  # Python < 3.11
+        import tomli as tomllib  # type: ignore[no-redef,unused-ignore]
     try:
         raw = Path(path).read_bytes()
     except OSError as e:
@@ -155,11 +182,13 @@ def load_gains(path: str) -> tuple[Gains, Optional[float]]:
         raise FsError(ERR_GAINS_FILE, f"gains file {path!r} is not valid TOML: {e}") from None
     if isinstance(doc.get("gains"), dict) and len(doc) == 1:
         doc = doc["gains"]
-    allowed = GAIN_KEYS + ("m_v_kg",)
+    allowed = (*GAIN_KEYS, "m_v_kg")
     kw: dict[str, float] = {}
     for key, val in doc.items():
         if key not in allowed:
-            raise FsError(ERR_GAINS_FILE, f"gains file {path!r}: unknown key {key!r} (known: {', '.join(allowed)})")
+            raise FsError(
+                ERR_GAINS_FILE, f"gains file {path!r}: unknown key {key!r} (known: {', '.join(allowed)})"
+            )
         if isinstance(val, bool) or not isinstance(val, (int, float)):
             raise FsError(ERR_GAINS_FILE, f"gains file {path!r}: {key} must be a number, got {val!r}")
         kw[key] = float(val)

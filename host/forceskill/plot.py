@@ -1,8 +1,8 @@
 """Figures like the paper's Fig. 5a: demonstrated vs learned force, approximation error, position."""
+
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Optional, Union
 
 import numpy as np
 
@@ -10,10 +10,11 @@ from .fit import FitResult
 from .outputs import Outputs, save_figure
 
 
-def fit_figure(res: FitResult, path: Union[str, Path], title: str = "", outs: Optional[Outputs] = None) -> None:
+def fit_figure(res: FitResult, path: str | Path, title: str = "", outs: Outputs | None = None) -> None:
     """Write a PNG (into ``outs``, committed with the other outputs, or on its own): force (demonstrated dashed black, learned green), error in % of
     max force, and the demonstrated position with the object surface."""
     import matplotlib
+
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
@@ -24,8 +25,11 @@ def fit_figure(res: FitResult, path: Union[str, Path], title: str = "", outs: Op
     ax[0].plot(t, res.f_hat_N, "g-", lw=1.0, label="learned")
     ax[0].set_ylabel("force [N]")
     ax[0].legend(loc="best", fontsize=8)
-    ax[0].set_title(title or f"{res.method}, N = {res.skill.n_kernels}: max error {res.err_max_pct:.2f} %, "
-                    f"RMS {res.err_rms_pct:.2f} %")
+    ax[0].set_title(
+        title
+        or f"{res.method}, N = {res.skill.n_kernels}: max error {res.err_max_pct:.2f} %, "
+        f"RMS {res.err_rms_pct:.2f} %"
+    )
     ax[1].plot(t, 100.0 * (res.target_N - res.f_hat_N) / f_max, "r-", lw=0.8)
     ax[1].set_ylabel("error [% of max]")
     if res.pos_m.size == t.size:

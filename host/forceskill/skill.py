@@ -4,15 +4,17 @@ A skill is plain data (dmpbbo style): fitting produces it, the firmware parses a
 Validation runs the same checks, in the same order, with the same codes as ``skill_parse`` in
 firmware/core/skill.c; the bad images in tests/vectors/bad/ prove it.
 """
+
 from __future__ import annotations
 
 import json
 import math
 import struct
 import zlib
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Optional, Sequence, Union
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -30,7 +32,6 @@ from .errors import (
     ERR_SKILL_TOO_SHORT,
     ERR_SKILL_UNSUPPORTED,
     ERR_SKILL_VERSION,
-    FsError,
     ParamError,
     SkillError,
 )
@@ -39,16 +40,16 @@ from .params import MONOTONE_REL_TOL, DmpParams, Gains, derive
 if TYPE_CHECKING:
     from .outputs import Outputs
 
-MAGIC = 0x4C4B5346             # bytes "FSKL"
+MAGIC = 0x4C4B5346  # bytes "FSKL"
 FORMAT_VERSION = 2
 HEADER_SIZE = 136
 CRC_SIZE = 4
-MAX_KERNELS = 1024             # DMP_MAX_KERNELS
+MAX_KERNELS = 1024  # DMP_MAX_KERNELS
 FLAG_END_RELEASE = 0x0001
-FLAG_Y_AXIS = 0x0002           # reserved, refused
+FLAG_Y_AXIS = 0x0002  # reserved, refused
 KNOWN_FLAGS = FLAG_END_RELEASE
 RELEASE_TIME_S = 0.5
-GAINS_REL_TOL = 1e-9           # stored alpha/beta/gamma vs derived from stored gains
+GAINS_REL_TOL = 1e-9  # stored alpha/beta/gamma vs derived from stored gains
 DT_MAX_S = 0.1
 DURATION_MAX_S = 3600.0
 
@@ -57,10 +58,25 @@ _HEADER = struct.Struct("<IHHIHH15d")
 #: the fixed part every version shares (magic, version): enough to name an old image's version
 _PREFIX = struct.Struct("<IH")
 assert _HEADER.size == HEADER_SIZE
-_F64_NAMES = ("dt_s", "tau_s", "alpha", "beta", "gamma", "stiffness_Npm", "goal_N", "duration_s",
-              "m_d_kg", "k_d_Nspm", "k_p_Npm", "kkf_Npm", "kki_Npms", "surface_m", "force0_N")
+_F64_NAMES = (
+    "dt_s",
+    "tau_s",
+    "alpha",
+    "beta",
+    "gamma",
+    "stiffness_Npm",
+    "goal_N",
+    "duration_s",
+    "m_d_kg",
+    "k_d_Nspm",
+    "k_p_Npm",
+    "kkf_Npm",
+    "kki_Npms",
+    "surface_m",
+    "force0_N",
+)
 
-PathLike = Union[str, Path]
+PathLike = str | Path
 
 
 def image_size(n_kernels: int) -> int:
@@ -121,12 +137,25 @@ class Skill:
         """The v2 image (little-endian, CRC-32 last). Validates first unless told not to."""
         n = self.n_kernels
         if not (self.widths.size == n and self.weights.size == n):
-            raise SkillError(ERR_SKILL_LENGTH, f"centres/widths/weights lengths differ: "
-                             f"{n}/{self.widths.size}/{self.weights.size}")
-        head = _HEADER.pack(MAGIC, self.format_version, HEADER_SIZE, image_size(n), n, self.flags,
-                            *(float(getattr(self, k)) for k in _F64_NAMES))
-        body = head + self.centres.astype("<f8").tobytes() + self.widths.astype("<f8").tobytes() \
+            raise SkillError(
+                ERR_SKILL_LENGTH,
+                f"centres/widths/weights lengths differ: {n}/{self.widths.size}/{self.weights.size}",
+            )
+        head = _HEADER.pack(
+            MAGIC,
+            self.format_version,
+            HEADER_SIZE,
+            image_size(n),
+            n,
+            self.flags,
+            *(float(getattr(self, k)) for k in _F64_NAMES),
+        )
+        body = (
+            head
+            + self.centres.astype("<f8").tobytes()
+            + self.widths.astype("<f8").tobytes()
             + self.weights.astype("<f8").tobytes()
+        )
         image = body + struct.pack("<I", zlib.crc32(body) & 0xFFFFFFFF)
         if validate:
             Skill.from_bytes(image)
@@ -137,93 +166,141 @@ class Skill:
         """Parse and validate an image; raises SkillError with the firmware's code (200-211)."""
         buf = bytes(buf)
         if len(buf) < _PREFIX.size:
-            raise SkillError(ERR_SKILL_TOO_SHORT, f"skill image too short: {len(buf)} bytes, header is {HEADER_SIZE}")
+            raise SkillError(
+                ERR_SKILL_TOO_SHORT, f"skill image too short: {len(buf)} bytes, header is {HEADER_SIZE}"
+            )
         magic, version = _PREFIX.unpack_from(buf, 0)
         if magic != MAGIC:
-            raise SkillError(ERR_SKILL_MAGIC, f"skill image magic is 0x{magic:08X}, expected 0x{MAGIC:08X} ('FSKL')")
+            raise SkillError(
+                ERR_SKILL_MAGIC, f"skill image magic is 0x{magic:08X}, expected 0x{MAGIC:08X} ('FSKL')"
+            )
         if version != FORMAT_VERSION:
-            hint = " (fitted before skills ran in force units: fit the demonstration again)" if version < FORMAT_VERSION else ""
-            raise SkillError(ERR_SKILL_VERSION, f"skill image format version {version} is not supported: this "
-                             f"reads version {FORMAT_VERSION}{hint}")
+            hint = (
+                " (fitted before skills ran in force units: fit the demonstration again)"
+                if version < FORMAT_VERSION
+                else ""
+            )
+            raise SkillError(
+                ERR_SKILL_VERSION,
+                f"skill image format version {version} is not supported: this "
+                f"reads version {FORMAT_VERSION}{hint}",
+            )
         if len(buf) < HEADER_SIZE:
-            raise SkillError(ERR_SKILL_TOO_SHORT, f"skill image too short: {len(buf)} bytes, header is {HEADER_SIZE}")
+            raise SkillError(
+                ERR_SKILL_TOO_SHORT, f"skill image too short: {len(buf)} bytes, header is {HEADER_SIZE}"
+            )
         fields = _HEADER.unpack_from(buf, 0)
         _, _, header_size, total_length, n, flags = fields[:6]
-        f64 = dict(zip(_F64_NAMES, fields[6:]))
+        f64 = dict(zip(_F64_NAMES, fields[6:], strict=True))
         if header_size != HEADER_SIZE:
-            raise SkillError(ERR_SKILL_HEADER_SIZE, f"skill header_size is {header_size}, expected {HEADER_SIZE}")
+            raise SkillError(
+                ERR_SKILL_HEADER_SIZE, f"skill header_size is {header_size}, expected {HEADER_SIZE}"
+            )
         if total_length != len(buf) or total_length != image_size(n):
-            raise SkillError(ERR_SKILL_LENGTH, f"skill length field {total_length} disagrees with buffer "
-                             f"({len(buf)} bytes) or with N = {n} ({image_size(n)} bytes)")
+            raise SkillError(
+                ERR_SKILL_LENGTH,
+                f"skill length field {total_length} disagrees with buffer "
+                f"({len(buf)} bytes) or with N = {n} ({image_size(n)} bytes)",
+            )
         body_len = total_length - CRC_SIZE
         (stored_crc,) = struct.unpack_from("<I", buf, body_len)
         crc = zlib.crc32(buf[:body_len]) & 0xFFFFFFFF
         if crc != stored_crc:
-            raise SkillError(ERR_SKILL_CRC, f"skill CRC-32 mismatch: stored 0x{stored_crc:08X}, computed 0x{crc:08X}")
+            raise SkillError(
+                ERR_SKILL_CRC, f"skill CRC-32 mismatch: stored 0x{stored_crc:08X}, computed 0x{crc:08X}"
+            )
         if not 1 <= n <= MAX_KERNELS:
             raise SkillError(ERR_SKILL_KERNELS, f"skill kernel count {n} outside 1..{MAX_KERNELS}")
         arrays = np.frombuffer(buf, dtype="<f8", count=3 * n, offset=HEADER_SIZE).astype(np.float64)
-        centres, widths, weights = arrays[:n].copy(), arrays[n:2 * n].copy(), arrays[2 * n:].copy()
+        centres, widths, weights = arrays[:n].copy(), arrays[n : 2 * n].copy(), arrays[2 * n :].copy()
         for name, val in f64.items():
             if not math.isfinite(val):
                 raise SkillError(ERR_SKILL_NOT_FINITE, f"skill field {name} is not finite: {val}")
         for name, arr in (("centres", centres), ("widths", widths), ("weights", weights)):
             bad = np.flatnonzero(~np.isfinite(arr))
             if bad.size:
-                raise SkillError(ERR_SKILL_NOT_FINITE, f"skill {name}[{bad[0]}] is not finite: {float(arr[bad[0]])}")
+                raise SkillError(
+                    ERR_SKILL_NOT_FINITE, f"skill {name}[{bad[0]}] is not finite: {float(arr[bad[0]])}"
+                )
         kw: dict[str, Any] = dict(f64)
-        skill = Skill(centres=centres, widths=widths, weights=weights, flags=flags, format_version=version, **kw)
+        skill = Skill(
+            centres=centres, widths=widths, weights=weights, flags=flags, format_version=version, **kw
+        )
         skill._validate_values()
         return skill
 
     def _validate_values(self) -> None:
         """Checks 207-210 (ranges, centres, gains, flags), in the firmware's order."""
-        checks = (("dt_s", 0.0 < self.dt_s <= DT_MAX_S, f"(0, {DT_MAX_S:g}]"),
-                  ("tau_s", self.tau_s > 0.0, "> 0"),
-                  ("duration_s", 0.0 < self.duration_s <= DURATION_MAX_S, f"(0, {DURATION_MAX_S:g}]"),
-                  ("stiffness_Npm", self.stiffness_Npm > 0.0, "> 0"),
-                  ("goal_N", self.goal_N > 0.0, "> 0"))
+        checks = (
+            ("dt_s", 0.0 < self.dt_s <= DT_MAX_S, f"(0, {DT_MAX_S:g}]"),
+            ("tau_s", self.tau_s > 0.0, "> 0"),
+            ("duration_s", 0.0 < self.duration_s <= DURATION_MAX_S, f"(0, {DURATION_MAX_S:g}]"),
+            ("stiffness_Npm", self.stiffness_Npm > 0.0, "> 0"),
+            ("goal_N", self.goal_N > 0.0, "> 0"),
+        )
         for name, ok, rng in checks:
             if not ok:
                 raise SkillError(ERR_SKILL_RANGE, f"skill {name} = {getattr(self, name)!r} outside {rng}")
         bad = np.flatnonzero(~(self.widths > 0.0))
         if bad.size:
-            raise SkillError(ERR_SKILL_RANGE, f"skill widths[{bad[0]}] = {float(self.widths[bad[0]])!r} must be > 0")
+            raise SkillError(
+                ERR_SKILL_RANGE, f"skill widths[{bad[0]}] = {float(self.widths[bad[0]])!r} must be > 0"
+            )
         c = self.centres
         if c[0] < 0.0 or c[-1] > 1.0:
-            raise SkillError(ERR_SKILL_CENTRES, f"skill centres must lie in [0, 1]: first {float(c[0])!r}, last {float(c[-1])!r}")
+            raise SkillError(
+                ERR_SKILL_CENTRES,
+                f"skill centres must lie in [0, 1]: first {float(c[0])!r}, last {float(c[-1])!r}",
+            )
         bad = np.flatnonzero(~(np.diff(c) > 0.0))
         if bad.size:
             i = int(bad[0]) + 1
-            raise SkillError(ERR_SKILL_CENTRES, f"skill centres not strictly increasing at {i}: "
-                             f"{float(c[i - 1])!r} then {float(c[i])!r}")
+            raise SkillError(
+                ERR_SKILL_CENTRES,
+                f"skill centres not strictly increasing at {i}: {float(c[i - 1])!r} then {float(c[i])!r}",
+            )
         try:
             p = derive(self.gains)
         except ParamError as e:
             raise SkillError(ERR_SKILL_GAINS, f"skill gains invalid: {e.message}") from None
-        for name, stored, derived in (("alpha", self.alpha, p.alpha), ("beta", self.beta, p.beta),
-                                      ("gamma", self.gamma, p.gamma)):
+        for name, stored, derived in (
+            ("alpha", self.alpha, p.alpha),
+            ("beta", self.beta, p.beta),
+            ("gamma", self.gamma, p.gamma),
+        ):
             if abs(stored - derived) > GAINS_REL_TOL * abs(derived):
-                raise SkillError(ERR_SKILL_GAINS, f"skill {name} = {stored!r} disagrees with {derived!r} "
-                                 "derived from its gains")
+                raise SkillError(
+                    ERR_SKILL_GAINS,
+                    f"skill {name} = {stored!r} disagrees with {derived!r} derived from its gains",
+                )
         if self.beta > 0.25 * self.alpha * (1.0 + MONOTONE_REL_TOL):
             raise SkillError(ERR_SKILL_GAINS, f"skill beta = {self.beta!r} > alpha/4 = {0.25 * self.alpha!r}")
         if self.flags & ~KNOWN_FLAGS & 0xFFFF:
-            raise SkillError(ERR_SKILL_UNSUPPORTED, f"skill flags 0x{self.flags:04X} carry unsupported bits "
-                             f"0x{self.flags & ~KNOWN_FLAGS & 0xFFFF:04X}")
+            raise SkillError(
+                ERR_SKILL_UNSUPPORTED,
+                f"skill flags 0x{self.flags:04X} carry unsupported bits "
+                f"0x{self.flags & ~KNOWN_FLAGS & 0xFFFF:04X}",
+            )
 
     # -- JSON twin -------------------------------------------------------------------------
     def to_json_dict(self) -> dict[str, Any]:
         """The same fields, human-readable (floats round-trip exactly: repr)."""
-        d: dict[str, Any] = {"format": "forceskill skill image", "format_version": self.format_version,
-                             "n_kernels": self.n_kernels, "flags": self.flags, "end_policy": self.end_policy}
+        d: dict[str, Any] = {
+            "format": "forceskill skill image",
+            "format_version": self.format_version,
+            "n_kernels": self.n_kernels,
+            "flags": self.flags,
+            "end_policy": self.end_policy,
+        }
         for k in _F64_NAMES:
             d[k] = float(getattr(self, k))
         d["centres"] = [float(x) for x in self.centres]
         d["widths"] = [float(x) for x in self.widths]
         d["weights"] = [float(x) for x in self.weights]
         d["image_bytes"] = image_size(self.n_kernels)
-        d["crc32"] = f"0x{struct.unpack_from('<I', self.to_bytes(validate=False), image_size(self.n_kernels) - 4)[0]:08X}"
+        d["crc32"] = (
+            f"0x{struct.unpack_from('<I', self.to_bytes(validate=False), image_size(self.n_kernels) - 4)[0]:08X}"
+        )
         return d
 
     def to_json(self) -> str:
@@ -233,15 +310,21 @@ class Skill:
     def from_json_dict(d: dict[str, Any]) -> Skill:
         """Rebuild from the JSON twin (validated like an image)."""
         kw: dict[str, Any] = {k: float(d[k]) for k in _F64_NAMES}
-        s = Skill(centres=np.array(d["centres"], dtype=float), widths=np.array(d["widths"], dtype=float),
-                  weights=np.array(d["weights"], dtype=float), flags=int(d["flags"]), **kw)
+        s = Skill(
+            centres=np.array(d["centres"], dtype=float),
+            widths=np.array(d["widths"], dtype=float),
+            weights=np.array(d["weights"], dtype=float),
+            flags=int(d["flags"]),
+            **kw,
+        )
         return Skill.from_bytes(s.to_bytes(validate=False))
 
     # -- files -----------------------------------------------------------------------------
-    def write(self, path: PathLike, outs: "Optional[Outputs]" = None, inputs: Sequence[PathLike] = ()) -> None:
+    def write(self, path: PathLike, outs: Outputs | None = None, inputs: Sequence[PathLike] = ()) -> None:
         """Write the image to ``path`` and its JSON twin to ``path.json`` as one unit: into ``outs``
         (committed by the caller) or committed here; neither file changes unless both are written."""
         from .outputs import Outputs
+
         image = self.to_bytes()
         twin = self.to_json().encode()
         if outs is not None:
@@ -267,4 +350,5 @@ def atomic_write(path: Path, data: bytes) -> None:
     """One output file through forceskill.outputs (temporary file in the same folder, renamed on
     success; refuses special files)."""
     from .outputs import write_file
+
     write_file(path, data)

@@ -8,11 +8,12 @@ missed and the first that reached it, so the N it returns reaches the tolerance 
 ``diagnose`` names what in a recording a smooth skill cannot follow (a step within one sample, a
 single-sample spike, a stuck sensor) for the refusal's hint.
 """
+
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable, Optional
 
 import numpy as np
 
@@ -48,21 +49,25 @@ def sample_error(demo: Demo, grid_t_s: np.ndarray, f_hat_N: np.ndarray) -> Sampl
     f_max = float(np.max(np.abs(demo.force_N)))
     worst, i_worst, sq = -1.0, 0, 0.0
     for i0 in range(0, demo.t_s.size, CHUNK):
-        t = demo.t_s[i0:i0 + CHUNK] - t0
-        err = np.abs(demo.force_N[i0:i0 + CHUNK] - np.interp(t, grid_t_s, f_hat_N))
+        t = demo.t_s[i0 : i0 + CHUNK] - t0
+        err = np.abs(demo.force_N[i0 : i0 + CHUNK] - np.interp(t, grid_t_s, f_hat_N))
         k = int(np.argmax(err))
         if err[k] > worst:
             worst, i_worst = float(err[k]), i0 + k
         sq += float(np.dot(err, err))
-    return SampleError(max_pct=100.0 * worst / f_max, rms_pct=100.0 * math.sqrt(sq / demo.t_s.size) / f_max,
-                       t_at_max_s=float(demo.t_s[i_worst]) - t0)
+    return SampleError(
+        max_pct=100.0 * worst / f_max,
+        rms_pct=100.0 * math.sqrt(sq / demo.t_s.size) / f_max,
+        t_at_max_s=float(demo.t_s[i_worst]) - t0,
+    )
 
 
 FitFn = Callable[[int], tuple[object, np.ndarray, np.ndarray]]
 
 
-def fit_to_tolerance(fit_n: FitFn, demo: Demo, max_error_pct: float, n_max: int, n_min: int = 2
-                     ) -> tuple[int, object, SampleError, list[tuple[int, float]]]:
+def fit_to_tolerance(
+    fit_n: FitFn, demo: Demo, max_error_pct: float, n_max: int, n_min: int = 2
+) -> tuple[int, object, SampleError, list[tuple[int, float]]]:
     """Smallest N in n_min..n_max with ``sample_error`` <= ``max_error_pct`` (see the module comment).
 
     ``fit_n(N)`` returns (result, grid times, rollout). Returns (N, result, error, tried), N = 0
@@ -85,7 +90,7 @@ def fit_to_tolerance(fit_n: FitFn, demo: Demo, max_error_pct: float, n_max: int,
             tried.append((n, cache[n][1].max_pct))
         return cache[n]
 
-    lo = n_min - 1          # largest N known to miss (n_min - 1: none yet)
+    lo = n_min - 1  # largest N known to miss (n_min - 1: none yet)
     n = n_min
     while True:
         if at(n)[1].max_pct <= max_error_pct:
@@ -105,7 +110,7 @@ def fit_to_tolerance(fit_n: FitFn, demo: Demo, max_error_pct: float, n_max: int,
     return hi, cache[hi][0], cache[hi][1], tried
 
 
-def diagnose(demo: Demo) -> Optional[str]:
+def diagnose(demo: Demo) -> str | None:
     """The first feature a smooth skill cannot follow, as a phrase with its time; None if none."""
     t, f = demo.t_s - demo.t_s[0], demo.force_N
     f_max = float(np.max(np.abs(f)))
@@ -113,27 +118,36 @@ def diagnose(demo: Demo) -> Optional[str]:
         return None
     d = np.diff(f)
     # a spike: up then straight back down (both steps large, opposite signs)
-    spike = np.flatnonzero((np.abs(d[:-1]) > STEP_REL * f_max) & (np.abs(d[1:]) > STEP_REL * f_max)
-                           & (np.sign(d[:-1]) != np.sign(d[1:])))
+    spike = np.flatnonzero(
+        (np.abs(d[:-1]) > STEP_REL * f_max)
+        & (np.abs(d[1:]) > STEP_REL * f_max)
+        & (np.sign(d[:-1]) != np.sign(d[1:]))
+    )
     if spike.size:
         i = int(spike[0]) + 1
-        return (f"a single-sample spike to {f[i]:.4g} N at t = {t[i]:.4g} s (between {f[i - 1]:.4g} and "
-                f"{f[i + 1]:.4g} N): a sensor glitch; remove it from the recording")
+        return (
+            f"a single-sample spike to {f[i]:.4g} N at t = {t[i]:.4g} s (between {f[i - 1]:.4g} and "
+            f"{f[i + 1]:.4g} N): a sensor glitch; remove it from the recording"
+        )
     # stuck: identical non-zero readings for a while, in a recording whose readings otherwise
     # change from sample to sample (a noiseless simulated hold is not a stuck sensor)
     same = np.concatenate(([False], d == 0.0)) & (f != 0.0)
     if same.any():
         edges = np.diff(np.concatenate(([0], same.astype(np.int8), [0])))
         starts, ends = np.flatnonzero(edges == 1) - 1, np.flatnonzero(edges == -1)
-        for s, e in zip(starts, ends):
+        for s, e in zip(starts, ends, strict=False):
             if e - s >= STUCK_MIN_SAMPLES and t[e - 1] - t[s] >= STUCK_MIN_S:
                 rest = np.count_nonzero(d == 0.0) - (e - s - 1)
                 if rest <= STUCK_REST_REL * d.size:
-                    return (f"the force reads exactly {f[s]:.6g} N for {t[e - 1] - t[s]:.3g} s from "
-                            f"t = {t[s]:.4g} s: a stuck sensor; record again or cut that part")
+                    return (
+                        f"the force reads exactly {f[s]:.6g} N for {t[e - 1] - t[s]:.3g} s from "
+                        f"t = {t[s]:.4g} s: a stuck sensor; record again or cut that part"
+                    )
     big = np.flatnonzero(np.abs(d) > STEP_REL * f_max)
     if big.size:
         i = int(big[np.argmax(np.abs(d[big]))])
-        return (f"a force step of {d[i]:+.4g} N within one sample ({(t[i + 1] - t[i]) * 1e3:.3g} ms) at "
-                f"t = {t[i]:.4g} s: steps faster than the sample rate cannot be learned; record faster")
+        return (
+            f"a force step of {d[i]:+.4g} N within one sample ({(t[i + 1] - t[i]) * 1e3:.3g} ms) at "
+            f"t = {t[i]:.4g} s: steps faster than the sample rate cannot be learned; record faster"
+        )
     return None

@@ -1,4 +1,5 @@
 """Shared plumbing of the CAN commands: bus options, connecting to a node, telemetry figures."""
+
 from __future__ import annotations
 
 import argparse
@@ -38,12 +39,15 @@ def columns(samples: list[Sample]) -> dict[str, np.ndarray]:
     if not samples:
         return {k: np.zeros(0) for k in ("t", "x", "y", "f_contact", "f_operator", "f_cmd", "f_hat")}
     tick = np.array([s.tick for s in samples], float)
-    return {"t": (tick - tick[0]) * 1e-3, "x": np.array([s.x_m for s in samples]),
-            "y": np.array([s.y_m for s in samples]),
-            "f_contact": np.array([s.f_contact_N for s in samples]),
-            "f_operator": np.array([s.f_operator_N for s in samples]),
-            "f_cmd": np.array([s.f_cmd_N for s in samples]),
-            "f_hat": np.array([s.f_ref_N for s in samples])}
+    return {
+        "t": (tick - tick[0]) * 1e-3,
+        "x": np.array([s.x_m for s in samples]),
+        "y": np.array([s.y_m for s in samples]),
+        "f_contact": np.array([s.f_contact_N for s in samples]),
+        "f_operator": np.array([s.f_operator_N for s in samples]),
+        "f_cmd": np.array([s.f_cmd_N for s in samples]),
+        "f_hat": np.array([s.f_ref_N for s in samples]),
+    }
 
 
 def tracking(cols: dict[str, np.ndarray]) -> dict[str, float]:
@@ -51,12 +55,19 @@ def tracking(cols: dict[str, np.ndarray]) -> dict[str, float]:
     f, ref = cols["f_contact"], cols["f_hat"]
     peak = float(np.max(ref)) if ref.size else 0.0
     if peak <= 0.0:
-        return {"max_force_N": float(np.max(f)) if f.size else 0.0, "max_ref_N": peak,
-                "tracking_max_pct": float("nan"), "tracking_rms_pct": float("nan")}
+        return {
+            "max_force_N": float(np.max(f)) if f.size else 0.0,
+            "max_ref_N": peak,
+            "tracking_max_pct": float("nan"),
+            "tracking_rms_pct": float("nan"),
+        }
     e = f - ref
-    return {"max_force_N": float(np.max(f)), "max_ref_N": peak,
-            "tracking_max_pct": 100.0 * float(np.max(np.abs(e))) / peak,
-            "tracking_rms_pct": 100.0 * float(np.sqrt(np.mean(e * e))) / peak}
+    return {
+        "max_force_N": float(np.max(f)),
+        "max_ref_N": peak,
+        "tracking_max_pct": 100.0 * float(np.max(np.abs(e))) / peak,
+        "tracking_rms_pct": 100.0 * float(np.sqrt(np.mean(e * e))) / peak,
+    }
 
 
 def open_log(outs: Outputs, path: str) -> Any:
@@ -66,11 +77,14 @@ def open_log(outs: Outputs, path: str) -> Any:
     tmp = outs.add(path)
     try:
         return can.Logger(str(tmp))
-    except Exception as e:   # python-can raises ValueError, NotImplementedError, ImportError
+    except Exception as e:  # python-can raises ValueError, NotImplementedError, ImportError
         suffix = "".join(Path(path).suffixes[-2:]) if path.lower().endswith(".gz") else Path(path).suffix
         first = (str(e).splitlines() or [type(e).__name__])[0]
-        raise FsError(ERR_LOG_FORMAT, f"cannot write a CAN log as {suffix or 'a file without suffix'!r} "
-                      f"({Path(path).name}): {first}; use .blf .asc .log .trc or .csv") from None
+        raise FsError(
+            ERR_LOG_FORMAT,
+            f"cannot write a CAN log as {suffix or 'a file without suffix'!r} "
+            f"({Path(path).name}): {first}; use .blf .asc .log .trc or .csv",
+        ) from None
 
 
 @contextmanager
@@ -79,7 +93,7 @@ def sigint_flag() -> Iterator[dict[str, bool]]:
     flag = {"stop": False}
     try:
         old = signal.signal(signal.SIGINT, lambda *a: flag.__setitem__("stop", True))
-    except ValueError:        # not the main thread: Ctrl-C cannot reach us anyway
+    except ValueError:  # not the main thread: Ctrl-C cannot reach us anyway
         yield flag
         return
     try:

@@ -1,4 +1,5 @@
 """forceskill record: put the device in TEACH and log the bus to any python-can log format."""
+
 from __future__ import annotations
 
 import argparse
@@ -27,22 +28,27 @@ def _cmd(args: argparse.Namespace) -> int:
             dropped = _record(args, writer)
         finally:
             writer.stop()
-        outs.commit()             # what was recorded is kept, also when the link dropped
+        outs.commit()  # what was recorded is kept, also when the link dropped
     size = Path(args.output).stat().st_size
     if dropped is not None:
-        raise FsError(dropped.code, f"{dropped.message}; kept what was recorded in {args.output} ({size} bytes)")
+        raise FsError(
+            dropped.code, f"{dropped.message}; kept what was recorded in {args.output} ({size} bytes)"
+        )
     print(f"wrote {args.output} ({size} bytes)")
     return 0
 
 
-def _record(args: argparse.Namespace, writer: can.Listener) -> "FsError | None":
+def _record(args: argparse.Namespace, writer: can.Listener) -> FsError | None:
     """Connect, (TEACH,) log until the duration or Ctrl-C; the link error that ended it, if any."""
     with connect(args) as dev:
         st = dev.status
         assert st is not None
         if args.teach and st.state != "IDLE":
-            raise FsError(ERR_LINK_STATE, f"node {dev.node} is in {st.state}"
-                          f"{f' (fault {fault_text(st.fault_code)})' if st.fault_code else ''}; TEACH needs IDLE")
+            raise FsError(
+                ERR_LINK_STATE,
+                f"node {dev.node} is in {st.state}"
+                f"{f' (fault {fault_text(st.fault_code)})' if st.fault_code else ''}; TEACH needs IDLE",
+            )
         assert dev.notifier is not None
         dev.notifier.add_listener(writer)
         try:
@@ -52,10 +58,12 @@ def _record(args: argparse.Namespace, writer: can.Listener) -> "FsError | None":
                     if args.teach:
                         st = dev.command_until("teach", {"TEACH"}, 2.0 * args.timeout)
                     start_tick = st.tick
-                    print(f"recording node {dev.node} on {dev.channel} to {args.output}"
-                          f"{' in TEACH' if args.teach else ''}; "
-                          + (f"{args.duration:g} s of device time" if args.duration else "Ctrl-C to stop"),
-                          flush=True)
+                    print(
+                        f"recording node {dev.node} on {dev.channel} to {args.output}"
+                        f"{' in TEACH' if args.teach else ''}; "
+                        + (f"{args.duration:g} s of device time" if args.duration else "Ctrl-C to stop"),
+                        flush=True,
+                    )
                     last_frame = time.monotonic()
                     seen = dev.frames_seen
                     while not stop["stop"]:
@@ -64,16 +72,20 @@ def _record(args: argparse.Namespace, writer: can.Listener) -> "FsError | None":
                         if dev.frames_seen != seen:
                             seen, last_frame = dev.frames_seen, time.monotonic()
                         elif time.monotonic() - last_frame > args.timeout:
-                            raise FsError(ERR_LINK_TIMEOUT, f"node {dev.node} on {dev.channel} stopped "
-                                          f"sending for {args.timeout:g} s")
+                            raise FsError(
+                                ERR_LINK_TIMEOUT,
+                                f"node {dev.node} on {dev.channel} stopped sending for {args.timeout:g} s",
+                            )
                         cur = dev.status
                         if cur is None:
                             continue
                         if args.teach and cur.state != "TEACH":
-                            raise FsError(ERR_RUN_FAULT if cur.state == "FAULT" else ERR_LINK_STATE,
-                                          f"node {dev.node} left TEACH ({cur.state}, fault "
-                                          f"{fault_text(cur.fault_code)}) after "
-                                          f"{((cur.tick - start_tick) & 0xFFFFFF) / 1000:.3f} s")
+                            raise FsError(
+                                ERR_RUN_FAULT if cur.state == "FAULT" else ERR_LINK_STATE,
+                                f"node {dev.node} left TEACH ({cur.state}, fault "
+                                f"{fault_text(cur.fault_code)}) after "
+                                f"{((cur.tick - start_tick) & 0xFFFFFF) / 1000:.3f} s",
+                            )
                         if args.duration and ((cur.tick - start_tick) & 0xFFFFFF) >= args.duration * 1000.0:
                             break
                     if args.teach:
@@ -87,7 +99,9 @@ def _record(args: argparse.Namespace, writer: can.Listener) -> "FsError | None":
                     if isinstance(e, FsError):
                         return e
                     first = (str(e).splitlines() or [type(e).__name__])[0]
-                    return FsError(ERR_LINK_TIMEOUT, f"link to node {dev.node} on {dev.channel} lost: {first}")
+                    return FsError(
+                        ERR_LINK_TIMEOUT, f"link to node {dev.node} on {dev.channel} lost: {first}"
+                    )
                 finally:
                     dev.stop_heartbeat()
         finally:
@@ -96,17 +110,26 @@ def _record(args: argparse.Namespace, writer: can.Listener) -> "FsError | None":
 
 
 def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    p = sub.add_parser("record", help="record a demonstration (device in TEACH) to a CAN log",
-                       description="Put the device in TEACH (it renders m_d and streams telemetry at "
-                       "1 kHz), keep the host heartbeat, and log every frame with python-can's writer "
-                       "for the file suffix (.blf .asc .log .trc .csv ...) until --duration seconds of "
-                       "device time have passed or Ctrl-C; then back to IDLE. The log is written to a "
-                       "temporary file and renamed when recording ends: an existing log is replaced only "
-                       "by a new recording, and what was recorded is kept if the link drops (exit 2).")
+    p = sub.add_parser(
+        "record",
+        help="record a demonstration (device in TEACH) to a CAN log",
+        description="Put the device in TEACH (it renders m_d and streams telemetry at "
+        "1 kHz), keep the host heartbeat, and log every frame with python-can's writer "
+        "for the file suffix (.blf .asc .log .trc .csv ...) until --duration seconds of "
+        "device time have passed or Ctrl-C; then back to IDLE. The log is written to a "
+        "temporary file and renamed when recording ends: an existing log is replaced only "
+        "by a new recording, and what was recorded is kept if the link drops (exit 2).",
+    )
     p.add_argument("-o", "--output", required=True, metavar="LOG", help="log file (.blf .asc .log .trc .csv)")
-    p.add_argument("--duration", type=float, default=0.0, metavar="S",
-                   help=f"seconds of device time to record, at most {MAX_RECORD_S:g} (default: until Ctrl-C)")
-    p.add_argument("--no-teach", dest="teach", action="store_false",
-                   help="only log (do not command TEACH/IDLE)")
+    p.add_argument(
+        "--duration",
+        type=float,
+        default=0.0,
+        metavar="S",
+        help=f"seconds of device time to record, at most {MAX_RECORD_S:g} (default: until Ctrl-C)",
+    )
+    p.add_argument(
+        "--no-teach", dest="teach", action="store_false", help="only log (do not command TEACH/IDLE)"
+    )
     add_common(p)
     p.set_defaults(func=_cmd)

@@ -1,5 +1,6 @@
 """forceskill run: execute a skill (or a sequence of skills) on the device, watch it, report the
 force tracking from the telemetry."""
+
 from __future__ import annotations
 
 import argparse
@@ -8,7 +9,6 @@ import re
 import struct
 import sys
 import time
-from pathlib import Path
 from typing import Any, TextIO
 
 import numpy as np
@@ -52,11 +52,21 @@ def _scale(v: float) -> int:
     return int(round(v * 1000.0))
 
 
-def check_slot_forces(client: Any, dev: Device, slots: list[int], directory: dict[int, dict],
-                      goal_scale: float, time_scale: float, force_limit_N: float) -> None:
+def check_slot_forces(
+    client: Any,
+    dev: Device,
+    slots: list[int],
+    directory: dict[int, dict[str, Any]],
+    goal_scale: float,
+    time_scale: float,
+    force_limit_N: float,
+) -> None:
     """Read each slot's skill back (RequestUpload) and refuse (662), before anything moves, a goal
     scale that takes its rollout's peak above the force limit, or a rollout that is not finite."""
-    call = lambda what, fn: U.call(what, fn, dev.node)  # noqa: E731
+
+    def call(what: str, fn: Any) -> Any:
+        return U.call(what, fn, dev.node)
+
     call("session change", lambda: client.change_session(0x02))
     try:
         for slot in dict.fromkeys(slots):
@@ -65,8 +75,12 @@ def check_slot_forces(client: Any, dev: Device, slots: list[int], directory: dic
             peak = skill_peak_N(sk, time_scale)
             problem = peak_problem(peak, goal_scale, force_limit_N)
             if problem:
-                limit = f"; largest goal scale {force_limit_N / peak:.4g}" if 0.0 < peak < float("inf") else ""
-                raise FsError(ERR_SKILL_PEAK, f"slot {slot} of node {dev.node}: {problem}{limit}; nothing was started")
+                limit = (
+                    f"; largest goal scale {force_limit_N / peak:.4g}" if 0.0 < peak < float("inf") else ""
+                )
+                raise FsError(
+                    ERR_SKILL_PEAK, f"slot {slot} of node {dev.node}: {problem}{limit}; nothing was started"
+                )
     finally:
         try:
             client.change_session(0x01)
@@ -83,16 +97,20 @@ def _fault_index(first_tick: int, n: int, fault_tick: int | None) -> int:
     return min(d, n - 1)
 
 
-def run_on_device(dev: Device, args: argparse.Namespace, writer: Any = None,
-                  info: TextIO = sys.stdout) -> dict:
+def run_on_device(
+    dev: Device, args: argparse.Namespace, writer: Any = None, info: TextIO = sys.stdout
+) -> dict[str, Any]:
     """Check, start, watch and stop one execution. Returns the telemetry columns (ending at the
     fault's tick if it faulted), the figures, ``fault`` (0 or its code) and ``interrupted`` (Ctrl-C:
     the device was commanded to IDLE)."""
     st = dev.status
     if st is not None and st.state != "IDLE":
-        raise FsError(ERR_LINK_STATE, f"node {dev.node} is in {st.state}"
-                      f"{f' (fault {fault_text(st.fault_code)})' if st.fault_code else ''}; run needs IDLE "
-                      "(clear a fault with: forceskill status --clear)")
+        raise FsError(
+            ERR_LINK_STATE,
+            f"node {dev.node} is in {st.state}"
+            f"{f' (fault {fault_text(st.fault_code)})' if st.fault_code else ''}; run needs IDLE "
+            "(clear a fault with: forceskill status --clear)",
+        )
     end_code = {"skill": 0, "hold": 1, "release": 2}[args.end]
     g, ts = _scale(args.goal_scale), _scale(args.time_scale)
     fault, fault_tick, interrupted, total = 0, None, False, 0.0
@@ -123,8 +141,14 @@ def run_on_device(dev: Device, args: argparse.Namespace, writer: Any = None,
         tail = args.hold_for if end_policy == "hold" else 0.5 + 0.05
         total = expected + tail
         if stop["stop"]:
-            return {"columns": columns([]), "figures": tracking(columns([])), "expected_s": expected,
-                    "fault": 0, "interrupted": True, "started": False}
+            return {
+                "columns": columns([]),
+                "figures": tracking(columns([])),
+                "expected_s": expected,
+                "fault": 0,
+                "interrupted": True,
+                "started": False,
+            }
         notifier = dev.notifier
         assert notifier is not None
         if writer is not None:
@@ -139,9 +163,13 @@ def run_on_device(dev: Device, args: argparse.Namespace, writer: Any = None,
                 st = dev.wait_state({"EXECUTE", "FAULT"}, 2.0 * args.timeout)
                 start_tick = st.tick
                 what = f"sequence {args.sequence}" if args.sequence else f"slot {args.slot}"
-                print(f"node {dev.node}: executing {what}"
-                      f", goal x{args.goal_scale:g}, time x{args.time_scale:g}, end {end_policy}: "
-                      f"{expected:.3f} s + {tail:.2f} s", file=info, flush=True)
+                print(
+                    f"node {dev.node}: executing {what}"
+                    f", goal x{args.goal_scale:g}, time x{args.time_scale:g}, end {end_policy}: "
+                    f"{expected:.3f} s + {tail:.2f} s",
+                    file=info,
+                    flush=True,
+                )
                 while True:
                     if st.state == "FAULT":
                         fault = st.fault_code
@@ -177,7 +205,7 @@ def run_on_device(dev: Device, args: argparse.Namespace, writer: Any = None,
         starts = np.concatenate(([0], breaks + 1))
         ends = np.concatenate((breaks + 1, [ticks.size]))
         k = int(np.argmax(ends - starts))
-        samples = samples[starts[k]:ends[k]]
+        samples = samples[starts[k] : ends[k]]
     n_keep = int(round(total * 1000.0)) + 1
     if fault and samples:
         n_keep = min(n_keep, _fault_index(samples[0].tick & 0xFFFF, len(samples), fault_tick) + 1)
@@ -185,8 +213,14 @@ def run_on_device(dev: Device, args: argparse.Namespace, writer: Any = None,
     cols["fault"] = np.zeros(cols["t"].size)
     if fault and cols["t"].size:
         cols["fault"][-1] = fault
-    return {"columns": cols, "figures": tracking(cols), "expected_s": expected, "fault": fault,
-            "interrupted": interrupted, "started": True}
+    return {
+        "columns": cols,
+        "figures": tracking(cols),
+        "expected_s": expected,
+        "fault": fault,
+        "interrupted": interrupted,
+        "started": True,
+    }
 
 
 CSV_COLUMNS = ("t", "x", "y", "f_contact", "f_operator", "f_cmd", "f_hat", "fault")
@@ -203,7 +237,7 @@ def _cmd(args: argparse.Namespace) -> int:
     info = sys.stderr if to_stdout else sys.stdout
     with Outputs() as outs:
         csv_tmp = outs.add(args.csv) if args.csv and not to_stdout else None
-        writer = open_log(outs, args.output) if args.output else None   # refused before connecting
+        writer = open_log(outs, args.output) if args.output else None  # refused before connecting
         try:
             with connect(args) as dev:
                 r = run_on_device(dev, args, writer, info=info)
@@ -221,19 +255,26 @@ def _cmd(args: argparse.Namespace) -> int:
         elif to_stdout:
             sys.stdout.write(",".join(CSV_COLUMNS) + "\n" + format_rows(block))
             sys.stdout.flush()
-        outs.commit()             # the telemetry and the bus log are kept on a fault or Ctrl-C too
+        outs.commit()  # the telemetry and the bus log are kept on a fault or Ctrl-C too
     n = cols["t"].size
-    print(f"telemetry: {n} samples over {cols['t'][-1] if n else 0:.3f} s; "
-          f"max contact force {fig['max_force_N']:.3f} N, max reference {fig['max_ref_N']:.3f} N", file=info)
-    print(f"force tracking: max {fig['tracking_max_pct']:.2f} %, RMS {fig['tracking_rms_pct']:.2f} % of max reference",
-          file=info)
+    print(
+        f"telemetry: {n} samples over {cols['t'][-1] if n else 0:.3f} s; "
+        f"max contact force {fig['max_force_N']:.3f} N, max reference {fig['max_ref_N']:.3f} N",
+        file=info,
+    )
+    print(
+        f"force tracking: max {fig['tracking_max_pct']:.2f} %, RMS {fig['tracking_rms_pct']:.2f} % of max reference",
+        file=info,
+    )
     wrote = f"; telemetry written to {args.csv}" if args.csv and not to_stdout else ""
     if args.csv and not to_stdout:
         print(f"wrote {args.csv}", file=info)
     if r["fault"]:
         t_f = f" at {cols['t'][-1]:.3f} s" if n else ""
-        raise FsError(ERR_RUN_FAULT, f"node {args.node} faulted during execution: fault "
-                      f"{fault_text(r['fault'])}{t_f}{wrote}")
+        raise FsError(
+            ERR_RUN_FAULT,
+            f"node {args.node} faulted during execution: fault {fault_text(r['fault'])}{t_f}{wrote}",
+        )
     if r["interrupted"]:
         print(f"forceskill: interrupted: node {args.node} commanded to IDLE{wrote}", file=sys.stderr)
         return 130
@@ -241,27 +282,49 @@ def _cmd(args: argparse.Namespace) -> int:
 
 
 def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    p = sub.add_parser("run", help="execute a skill or a sequence on the device and report tracking",
-                       description="Start a skill (--slot) or a sequence (--sequence 1:8s,2:9s) with "
-                       "RoutineControl, keep the host heartbeat, record telemetry at 1 kHz, stop after "
-                       "the duration (hold: after --hold-for more seconds), and report the force "
-                       "tracking max/RMS in %% of the maximum reference force. Before anything is "
-                       "started, each slot's skill is read back and a goal scale that takes its peak "
-                       "above --force-limit is refused. Ctrl-C commands IDLE, writes the telemetry and "
-                       "exits 130; a fault writes the telemetry up to the fault and exits 2.")
+    p = sub.add_parser(
+        "run",
+        help="execute a skill or a sequence on the device and report tracking",
+        description="Start a skill (--slot) or a sequence (--sequence 1:8s,2:9s) with "
+        "RoutineControl, keep the host heartbeat, record telemetry at 1 kHz, stop after "
+        "the duration (hold: after --hold-for more seconds), and report the force "
+        "tracking max/RMS in %% of the maximum reference force. Before anything is "
+        "started, each slot's skill is read back and a goal scale that takes its peak "
+        "above --force-limit is refused. Ctrl-C commands IDLE, writes the telemetry and "
+        "exits 130; a fault writes the telemetry up to the fault and exits 2.",
+    )
     p.add_argument("--slot", type=int, metavar="N", help="slot 1..8")
     p.add_argument("--sequence", metavar="SLOT:DUR,...", help="skills in series, e.g. 1:8s,2:9s")
-    p.add_argument("--goal-scale", type=float, default=1.0, metavar="S",
-                   help="multiply the force by S, 0..65.535; refused if the skill's peak times S is "
-                   "above --force-limit")
-    p.add_argument("--time-scale", type=float, default=1.0, metavar="S", help="stretch time by S, 0.001..65.535")
-    p.add_argument("--end", choices=("skill", "hold", "release"), default="skill",
-                   help="end policy (default: the skill's own)")
-    p.add_argument("--hold-for", type=float, default=0.5, metavar="S",
-                   help="with hold: seconds to hold the last force before stopping (0.5)")
+    p.add_argument(
+        "--goal-scale",
+        type=float,
+        default=1.0,
+        metavar="S",
+        help="multiply the force by S, 0..65.535; refused if the skill's peak times S is above --force-limit",
+    )
+    p.add_argument(
+        "--time-scale", type=float, default=1.0, metavar="S", help="stretch time by S, 0.001..65.535"
+    )
+    p.add_argument(
+        "--end",
+        choices=("skill", "hold", "release"),
+        default="skill",
+        help="end policy (default: the skill's own)",
+    )
+    p.add_argument(
+        "--hold-for",
+        type=float,
+        default=0.5,
+        metavar="S",
+        help="with hold: seconds to hold the last force before stopping (0.5)",
+    )
     p.add_argument("-o", "--output", metavar="LOG", help="also log the bus (.blf .asc .log .trc .csv)")
-    p.add_argument("--csv", metavar="CSV", help="write the telemetry as t,x,y,f_contact,f_operator,f_cmd,f_hat,fault "
-                   "('-': standard output); also on a fault (ending with the fault row) and on Ctrl-C")
+    p.add_argument(
+        "--csv",
+        metavar="CSV",
+        help="write the telemetry as t,x,y,f_contact,f_operator,f_cmd,f_hat,fault "
+        "('-': standard output); also on a fault (ending with the fault row) and on Ctrl-C",
+    )
     add_force_limit(p)
     add_common(p)
     p.set_defaults(func=_cmd)

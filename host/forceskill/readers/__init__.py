@@ -13,12 +13,13 @@ installed packages are scanned only for a suffix no built-in reader knows, which
 fast); ``register`` adds or replaces one in-process (tests, scripts).
 Reader modules import their heavy dependencies (python-can, cantools, mcap) only inside ``read``.
 """
+
 from __future__ import annotations
 
 import importlib
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable, Optional
 
 import numpy as np
 
@@ -60,10 +61,10 @@ class ReadOptions:
     columns: tuple[str, ...] = ()
     optional: tuple[str, ...] = ()
     time_column: str = "t"
-    time_unit: Optional[str] = None
-    rate_hz: Optional[float] = None
-    topic: Optional[str] = None
-    pose_topic: Optional[str] = None
+    time_unit: str | None = None
+    rate_hz: float | None = None
+    topic: str | None = None
+    pose_topic: str | None = None
     axis: str = "z"
     max_duration_s: float = 3600.0
     progress: bool = True
@@ -71,7 +72,9 @@ class ReadOptions:
     def check(self) -> None:
         """Refuse option values no reader can use (ERR_READ_ARGS)."""
         if self.time_unit is not None and self.time_unit not in TIME_UNITS_S:
-            raise FsError(ERR_READ_ARGS, f"time unit must be one of {', '.join(TIME_UNITS_S)}: {self.time_unit!r}")
+            raise FsError(
+                ERR_READ_ARGS, f"time unit must be one of {', '.join(TIME_UNITS_S)}: {self.time_unit!r}"
+            )
         if self.rate_hz is not None and not (np.isfinite(self.rate_hz) and 0.0 < self.rate_hz <= 1e6):
             raise FsError(ERR_READ_ARGS, f"--rate must be in (0, 1e6] Hz: {self.rate_hz:g}")
         if self.axis not in AXES:
@@ -80,7 +83,7 @@ class ReadOptions:
 
 Reader = Callable[[Path, ReadOptions], Columns]
 _registered: dict[str, Reader] = {}
-_entry_points: Optional[dict[str, str]] = None
+_entry_points: dict[str, str] | None = None
 
 
 def register(suffix: str, fn: Reader) -> None:
@@ -92,7 +95,10 @@ def _discovered() -> dict[str, str]:
     global _entry_points
     if _entry_points is None:
         from importlib.metadata import entry_points
-        _entry_points = {ep.name.lower().lstrip("."): ep.value for ep in entry_points(group="forceskill.readers")}
+
+        _entry_points = {
+            ep.name.lower().lstrip("."): ep.value for ep in entry_points(group="forceskill.readers")
+        }
     return _entry_points
 
 
@@ -118,8 +124,11 @@ def reader_for(path: Path) -> Reader:
     for name in names:
         if name in table:
             return _load(name, table[name])
-    raise DemoError(ERR_DEMO_FILE, f"no reader for demonstration suffix {path.suffix or '(none)'!r} "
-                    f"(known: {', '.join(known_suffixes())})")
+    raise DemoError(
+        ERR_DEMO_FILE,
+        f"no reader for demonstration suffix {path.suffix or '(none)'!r} "
+        f"(known: {', '.join(known_suffixes())})",
+    )
 
 
 def _load(name: str, target: str) -> Reader:
@@ -127,11 +136,13 @@ def _load(name: str, target: str) -> Reader:
     try:
         fn: Reader = getattr(importlib.import_module(module), attr)
     except (ImportError, AttributeError) as e:
-        raise FsError(ERR_READER_MISSING, f"the reader for .{name} files ({target}) cannot load: {e}") from None
+        raise FsError(
+            ERR_READER_MISSING, f"the reader for .{name} files ({target}) cannot load: {e}"
+        ) from None
     return fn
 
 
-def read_columns(path: Path, opts: Optional[ReadOptions] = None) -> Columns:
+def read_columns(path: Path, opts: ReadOptions | None = None) -> Columns:
     """Read a recording with the reader for its suffix; refuses a missing file (600)."""
     opts = opts or ReadOptions()
     opts.check()
@@ -144,5 +155,8 @@ def read_columns(path: Path, opts: Optional[ReadOptions] = None) -> Columns:
 def check_duration(duration_s: float, limit_s: float, source: str) -> None:
     """Refuse a recording longer than ``limit_s`` (ERR_DEMO_DURATION), before it is parsed further."""
     if duration_s > limit_s:
-        raise DemoError(ERR_DEMO_DURATION, f"{source} lasts {duration_s:.6g} s, longer than the "
-                        f"{limit_s:g} s a skill can last: split it into a sequence of recordings")
+        raise DemoError(
+            ERR_DEMO_DURATION,
+            f"{source} lasts {duration_s:.6g} s, longer than the "
+            f"{limit_s:g} s a skill can last: split it into a sequence of recordings",
+        )

@@ -10,11 +10,12 @@ ones). Two 1 kHz stretches are one demonstration with a gap unless a status fram
 says the device left TEACH; when the log holds several demonstrations the longest is used and a
 note says so.
 """
+
 from __future__ import annotations
 
 import gzip
 from pathlib import Path
-from typing import Any, Optional
+from typing import Any
 
 import numpy as np
 
@@ -38,6 +39,7 @@ def read_gz(path: Path, opts: ReadOptions) -> Columns:
     inner = Path(path.stem).suffix.lower()
     if inner == ".csv":
         from . import csv as csv_reader
+
         try:
             with gzip.open(path, "rb") as f:
                 data = f.read()
@@ -49,6 +51,7 @@ def read_gz(path: Path, opts: ReadOptions) -> Columns:
 
 def _messages(path: Path) -> list[Any]:
     import can
+
     suffixes = [s.lower() for s in path.suffixes]
     try:
         if suffixes and suffixes[-1] == ".gz":
@@ -56,17 +59,17 @@ def _messages(path: Path) -> list[Any]:
             reader_cls = can.io.player.MESSAGE_READERS.get(inner)
             if reader_cls is None:
                 raise ValueError(f"no python-can reader for {inner or '(none)'}.gz")
-            fobj = gzip.open(path, mode="rb" if inner == ".blf" else "rt")
+            fobj = gzip.open(path, mode="rb" if inner == ".blf" else "rt")  # noqa: SIM115 (closed by the reader)
             reader = reader_cls(fobj)  # type: ignore[arg-type]
         else:
             reader = can.LogReader(str(path))
         with reader:
             return [m for m in reader if not m.is_error_frame and not m.is_extended_id]
-    except Exception as e:  # noqa: BLE001  (python-can's readers raise anything on a bad file)
+    except Exception as e:
         raise DemoError(ERR_LINK_LOG, f"cannot read CAN log {path.name}: {e}") from None
 
 
-def read(path: Path, opts: Optional[ReadOptions] = None, node: Optional[int] = None) -> Columns:
+def read(path: Path, opts: ReadOptions | None = None, node: int | None = None) -> Columns:
     """Decode a CAN log into demonstration columns (see the module comment)."""
     from ..link.dbc import load_db
 
@@ -76,14 +79,15 @@ def read(path: Path, opts: Optional[ReadOptions] = None, node: Optional[int] = N
         counts = [int(np.count_nonzero(ids == POS_BASE + n)) for n in range(16)]
         node = int(np.argmax(counts))
         if counts[node] == 0:
-            raise DemoError(ERR_LINK_LOG, f"no device telemetry (ids 0x190-0x19F) in {path.name} "
-                            f"({len(msgs)} frames)")
+            raise DemoError(
+                ERR_LINK_LOG, f"no device telemetry (ids 0x190-0x19F) in {path.name} ({len(msgs)} frames)"
+            )
     db = load_db(node)
     mpos = db.get_message_by_name("TelemetryPosition")
     mforce = db.get_message_by_name("TelemetryForce")
     mstat = db.get_message_by_name("DeviceStatus")
     rows = []
-    leave_teach = []        # message index of status frames with the device not in TEACH
+    leave_teach = []  # message index of status frames with the device not in TEACH
     pending = None
     wraps, last = 0, -1
     for i, m in enumerate(msgs):
@@ -97,25 +101,43 @@ def read(path: Path, opts: Optional[ReadOptions] = None, node: Optional[int] = N
             pending = (raw + 65536 * wraps, float(s["PosX"]), float(s["PosY"]), i)
         elif fid == mforce.frame_id and len(m.data) == 8 and pending is not None:
             s = mforce.decode(bytes(m.data))
-            rows.append((pending[0], pending[1], pending[2], float(s["ForceContact"]),
-                         float(s["ForceOperator"]), float(s["ForceCmd"]), float(s["ForceRef"]), pending[3]))
+            rows.append(
+                (
+                    pending[0],
+                    pending[1],
+                    pending[2],
+                    float(s["ForceContact"]),
+                    float(s["ForceOperator"]),
+                    float(s["ForceCmd"]),
+                    float(s["ForceRef"]),
+                    pending[3],
+                )
+            )
             pending = None
         elif fid == mstat.frame_id and len(m.data) == 8:
             try:
                 st: Any = mstat.decode(bytes(m.data), decode_choices=False)
-            except Exception:  # noqa: BLE001, S112  (a status frame that does not decode says nothing)
+            except Exception:
                 continue
             if int(st["State"]) != STATE_TEACH:
                 leave_teach.append(i)
     if len(rows) < 2:
         raise DemoError(ERR_LINK_LOG, f"no telemetry of node {node} in {path.name}")
     a = np.array(rows, dtype=float)
-    a = a[np.concatenate(([True], np.diff(a[:, 0]) > 0.0))]     # a repeated tick: keep the first
+    a = a[np.concatenate(([True], np.diff(a[:, 0]) > 0.0))]  # a repeated tick: keep the first
     start, end, notes = _demonstration(a, np.array(leave_teach, dtype=float), path.name)
     a = a[start:end]
     t = (a[:, 0] - a[0, 0]) * TICK_S
-    cols = {"t": t, "x": a[:, 1], "y": a[:, 2], "f_contact": a[:, 3], "f_operator": a[:, 4],
-            "f_cmd": a[:, 5], "f_hat": a[:, 6], "tick": a[:, 0]}
+    cols = {
+        "t": t,
+        "x": a[:, 1],
+        "y": a[:, 2],
+        "f_contact": a[:, 3],
+        "f_operator": a[:, 4],
+        "f_cmd": a[:, 5],
+        "f_hat": a[:, 6],
+        "tick": a[:, 0],
+    }
     if notes:
         cols[NOTES_KEY] = np.array(notes, dtype=object)
     return cols
@@ -139,7 +161,7 @@ def _demonstration(a: np.ndarray, leave_idx: np.ndarray, name: str) -> tuple[int
         raise DemoError(ERR_LINK_LOG, f"no telemetry streamed every tick (TEACH) in {name}")
     # join neighbouring stretches unless the device left TEACH between them
     groups: list[list[int]] = [[int(starts[0]), int(ends[0])]]
-    for s, e in zip(starts[1:], ends[1:]):
+    for s, e in zip(starts[1:], ends[1:], strict=False):
         prev_end_msg, next_msg = a[groups[-1][1] - 1, 7], a[s, 7]
         left = np.any((leave_idx > prev_end_msg) & (leave_idx < next_msg))
         if left:
@@ -150,9 +172,12 @@ def _demonstration(a: np.ndarray, leave_idx: np.ndarray, name: str) -> tuple[int
     if len(groups) > 1:
         lengths = [(a[e - 1, 0] - a[s, 0]) * TICK_S for s, e in groups]
         k = int(np.argmax(lengths))
-        spans = ", ".join(f"{(a[s, 0] - a[0, 0]) * TICK_S:.3f}-{(a[e - 1, 0] - a[0, 0]) * TICK_S:.3f} s"
-                          for s, e in groups)
-        notes.append(f"{name} holds {len(groups)} demonstrations (log time {spans}): using the longest, "
-                     f"number {k + 1} ({lengths[k]:.3f} s)")
+        spans = ", ".join(
+            f"{(a[s, 0] - a[0, 0]) * TICK_S:.3f}-{(a[e - 1, 0] - a[0, 0]) * TICK_S:.3f} s" for s, e in groups
+        )
+        notes.append(
+            f"{name} holds {len(groups)} demonstrations (log time {spans}): using the longest, "
+            f"number {k + 1} ({lengths[k]:.3f} s)"
+        )
         return groups[k][0], groups[k][1], notes
     return groups[0][0], groups[0][1], notes

@@ -14,12 +14,13 @@ only to name the first bad line. Files above one block are counted first (rows a
 so memory is the parsed columns plus one block) and show a progress bar after 2 s. A python-can
 CSV log (``timestamp,arbitration_id,...``) is handed to the CAN log reader.
 """
+
 from __future__ import annotations
 
 import re
 import warnings
 from pathlib import Path
-from typing import IO, Optional
+from typing import IO
 
 import numpy as np
 
@@ -30,7 +31,15 @@ BLOCK_BYTES = 8 << 20
 _TAIL_BYTES = 1 << 16
 _BOM = b"\xef\xbb\xbf"
 _UNIT = re.compile(r"^(.*?)\s*[\[(]\s*([^\])]*?)\s*[\])]\s*$")
-_TIME_UNIT_ALIASES = {"s": "s", "sec": "s", "ms": "ms", "us": "us", "\u00b5s": "us", "\u03bcs": "us", "ns": "ns"}
+_TIME_UNIT_ALIASES = {
+    "s": "s",
+    "sec": "s",
+    "ms": "ms",
+    "us": "us",
+    "\u00b5s": "us",
+    "\u03bcs": "us",
+    "ns": "ns",
+}
 
 
 def split_name(name: str) -> tuple[str, str]:
@@ -39,7 +48,7 @@ def split_name(name: str) -> tuple[str, str]:
     return (m.group(1), m.group(2)) if m and m.group(1) else (name, "")
 
 
-def find_column(names: list[str], wanted: str) -> Optional[int]:
+def find_column(names: list[str], wanted: str) -> int | None:
     """Index of ``wanted`` among header ``names``: the full name, then the name without its unit
     suffix, then both ignoring case; None when absent."""
     bare = [split_name(n)[0] for n in names]
@@ -64,7 +73,7 @@ class _Layout:
         self.header_line_no = 0
         self.body_offset = 0
         pos = 0
-        header: Optional[bytes] = None
+        header: bytes | None = None
         for i, raw in enumerate(lines[:-1] if len(lines) > 1 else lines):
             pos += len(raw) + 1
             text = raw.split(b"#", 1)[0].strip()
@@ -76,18 +85,24 @@ class _Layout:
         try:
             htext = header.decode("utf-8")
         except UnicodeDecodeError:
-            raise DemoError(ERR_DEMO_FORMAT, f"demonstration {str(path)!r} is not a UTF-8 text CSV file") from None
+            raise DemoError(
+                ERR_DEMO_FORMAT, f"demonstration {str(path)!r} is not a UTF-8 text CSV file"
+            ) from None
         counts = {d: htext.count(d) for d in (",", ";", "\t")}
         delim = max(counts, key=lambda d: counts[d])
-        self.delim: Optional[str] = delim if counts[delim] else None
+        self.delim: str | None = delim if counts[delim] else None
         cells = htext.split(self.delim) if self.delim else htext.split()
         self.names = [c.strip().strip('"').strip("'").strip() for c in cells]
         if any(_is_number(c) for c in self.names):
-            raise DemoError(ERR_DEMO_FORMAT, f"demonstration {str(path)!r} has no header row (first row: "
-                            f"{htext.strip()[:80]})")
+            raise DemoError(
+                ERR_DEMO_FORMAT,
+                f"demonstration {str(path)!r} has no header row (first row: {htext.strip()[:80]})",
+            )
         if len(set(self.names)) != len(self.names) or not all(self.names):
-            raise DemoError(ERR_DEMO_FORMAT, f"{path.name}: empty or repeated column names in the header "
-                            f"({', '.join(self.names)})")
+            raise DemoError(
+                ERR_DEMO_FORMAT,
+                f"{path.name}: empty or repeated column names in the header ({', '.join(self.names)})",
+            )
         self.ncols = len(self.names)
         # bytes -> one whitespace-separated string: delimiter and CR become spaces; a ';' file may
         # write decimals with a comma
@@ -110,12 +125,15 @@ class _Layout:
             values = None
         if values is None or values.size % self.ncols:
             self._locate(block, first_line_no)
-            raise DemoError(ERR_DEMO_FORMAT, f"{self.path.name}: lines from {first_line_no} do not parse "
-                            f"as {self.ncols} numbers")
+            raise DemoError(
+                ERR_DEMO_FORMAT,
+                f"{self.path.name}: lines from {first_line_no} do not parse as {self.ncols} numbers",
+            )
         n_rows = values.size // self.ncols
         # blank lines, or ragged rows that add up
-        if _count_lines(flat) != n_rows and any(len(ln.split()) != self.ncols
-                                                for ln in flat.split(b"\n") if ln.strip()):
+        if _count_lines(flat) != n_rows and any(
+            len(ln.split()) != self.ncols for ln in flat.split(b"\n") if ln.strip()
+        ):
             self._locate(block, first_line_no)
         return values.reshape(n_rows, self.ncols)
 
@@ -128,12 +146,16 @@ class _Layout:
             cells = text.split(self.delim) if self.delim else text.split()
             line = first_line_no + i
             if len(cells) != self.ncols:
-                raise DemoError(ERR_DEMO_FORMAT, f"{self.path.name}: line {line} has {len(cells)} fields, "
-                                f"header has {self.ncols}")
-            for name, cell in zip(self.names, cells):
+                raise DemoError(
+                    ERR_DEMO_FORMAT,
+                    f"{self.path.name}: line {line} has {len(cells)} fields, header has {self.ncols}",
+                )
+            for name, cell in zip(self.names, cells, strict=False):
                 if not _is_number(cell.strip()):
-                    raise DemoError(ERR_DEMO_FORMAT, f"{self.path.name}: line {line}, column {name!r}: "
-                                    f"not a number: {cell.strip()!r}")
+                    raise DemoError(
+                        ERR_DEMO_FORMAT,
+                        f"{self.path.name}: line {line}, column {name!r}: not a number: {cell.strip()!r}",
+                    )
 
 
 def _count_lines(buf: bytes) -> int:
@@ -149,7 +171,7 @@ def _is_number(s: str) -> bool:
     return True
 
 
-def _last_row(fh: "IO[bytes]", size: int) -> bytes:
+def _last_row(fh: IO[bytes], size: int) -> bytes:
     fh.seek(max(0, size - _TAIL_BYTES))
     for raw in reversed(fh.read().split(b"\n")):
         text = raw.split(b"#", 1)[0].strip()
@@ -165,7 +187,7 @@ def _is_can_log(names: list[str]) -> bool:
 def read(path: Path, opts: ReadOptions) -> Columns:
     """Columns ``t`` (s) and the requested ones (``opts.columns``, ``opts.optional`` when present)."""
     try:
-        fh = open(path, "rb")
+        fh = open(path, "rb")  # noqa: SIM115 (closed by the with below)
     except OSError as e:
         raise DemoError(ERR_DEMO_FILE, f"cannot read demonstration {str(path)!r}: {e.strerror}") from None
     with fh:
@@ -177,14 +199,16 @@ def read(path: Path, opts: ReadOptions) -> Columns:
 def read_bytes(path: Path, data: bytes, opts: ReadOptions) -> Columns:
     """The same as ``read`` for a file already in memory (a decompressed .csv.gz)."""
     import io
+
     return _read(path, io.BytesIO(data), len(data), data[:BLOCK_BYTES], opts)
 
 
-def _read(path: Path, fh: "IO[bytes]", size: int, head: bytes, opts: ReadOptions) -> Columns:
+def _read(path: Path, fh: IO[bytes], size: int, head: bytes, opts: ReadOptions) -> Columns:
     bom = len(_BOM) if head.startswith(_BOM) else 0
     lay = _Layout(path, head[bom:])
     if _is_can_log(lay.names):
         from .canlog import read as read_can
+
         return read_can(path, opts)
     # the columns to keep: time (unless --rate) and the requested ones
     keep: dict[str, int] = {}
@@ -192,8 +216,11 @@ def _read(path: Path, fh: "IO[bytes]", size: int, head: bytes, opts: ReadOptions
     if opts.rate_hz is None:
         j = find_column(lay.names, opts.time_column)
         if j is None:
-            raise DemoError(ERR_DEMO_COLUMN, f"time column {opts.time_column!r} not in {path.name} (available: "
-                            f"{', '.join(lay.names)}): name it with --time-column, or give --rate HZ")
+            raise DemoError(
+                ERR_DEMO_COLUMN,
+                f"time column {opts.time_column!r} not in {path.name} (available: "
+                f"{', '.join(lay.names)}): name it with --time-column, or give --rate HZ",
+            )
         keep["t"] = j
         if t_unit is None:
             unit = split_name(lay.names[j])[1]
@@ -201,26 +228,28 @@ def _read(path: Path, fh: "IO[bytes]", size: int, head: bytes, opts: ReadOptions
     for name in opts.columns:
         j = find_column(lay.names, name)
         if j is None:
-            raise DemoError(ERR_DEMO_COLUMN, f"column {name!r} not in {path.name} (available: {', '.join(lay.names)})")
+            raise DemoError(
+                ERR_DEMO_COLUMN, f"column {name!r} not in {path.name} (available: {', '.join(lay.names)})"
+            )
         keep[name] = j
     for name in opts.optional:
         j = find_column(lay.names, name)
         if j is not None and name not in keep:
             keep[name] = j
-    if not opts.columns and not opts.optional:     # nothing asked: every column
+    if not opts.columns and not opts.optional:  # nothing asked: every column
         keep.update({n: j for j, n in enumerate(lay.names) if n not in keep})
     scale = TIME_UNITS_S[t_unit or "s"]
     body0 = bom + lay.body_offset
     first_line = lay.header_line_no + 1
     # the span from the first and last rows, before the body is parsed
     if "t" in keep:
-        first = head[body0:body0 + 4096]
+        first = head[body0 : body0 + 4096]
         rows = [r for r in (ln.split(b"#", 1)[0].strip() for ln in first.split(b"\n")[:-1]) if r]
         last = _last_row(fh, size)
         try:
             span = (lay.parse(last, 0)[0, keep["t"]] - lay.parse(rows[0], 0)[0, keep["t"]]) * scale
         except (DemoError, IndexError):
-            span = 0.0      # the full parse names the bad line
+            span = 0.0  # the full parse names the bad line
         check_duration(float(span), opts.max_duration_s, path.name)
     if size <= BLOCK_BYTES:
         body = head[body0:] if len(head) == size else head[body0:] + fh.read()
@@ -231,7 +260,7 @@ def _read(path: Path, fh: "IO[bytes]", size: int, head: bytes, opts: ReadOptions
     n = next(iter(cols.values())).size if cols else 0
     if "t" in cols:
         cols["t"] *= scale
-        if n:       # again, for a file whose first or last row did not parse on its own
+        if n:  # again, for a file whose first or last row did not parse on its own
             check_duration(float(cols["t"][-1] - cols["t"][0]), opts.max_duration_s, path.name)
     else:
         cols["t"] = np.arange(n, dtype=float) / float(opts.rate_hz or 1.0)
@@ -241,7 +270,7 @@ def _read(path: Path, fh: "IO[bytes]", size: int, head: bytes, opts: ReadOptions
     return cols
 
 
-def _blocks(fh: "IO[bytes]", start: int, size: int) -> "list[tuple[int, int, int]]":
+def _blocks(fh: IO[bytes], start: int, size: int) -> list[tuple[int, int, int]]:
     """(offset, length, lines) of blocks of whole lines covering bytes start..size."""
     out = []
     pos = start
@@ -252,23 +281,32 @@ def _blocks(fh: "IO[bytes]", start: int, size: int) -> "list[tuple[int, int, int
             cut = buf.rfind(b"\n")
             if cut < 0:
                 raise FsError(ERR_READ_ARGS, f"a line longer than {BLOCK_BYTES} bytes at byte {pos}")
-            buf = buf[:cut + 1]
+            buf = buf[: cut + 1]
         out.append((pos, len(buf), _count_lines(buf)))
         pos += len(buf)
     return out
 
 
-def _read_blocks(path: Path, fh: "IO[bytes]", size: int, start: int, first_line: int, lay: _Layout,
-                 keep: dict[str, int], opts: ReadOptions) -> Columns:
+def _read_blocks(
+    path: Path,
+    fh: IO[bytes],
+    size: int,
+    start: int,
+    first_line: int,
+    lay: _Layout,
+    keep: dict[str, int],
+    opts: ReadOptions,
+) -> Columns:
     """Large files: count the rows, preallocate the kept columns, fill them block by block."""
     blocks = _blocks(fh, start, size)
-    n = sum(lines for _, _, lines in blocks)    # >= rows: blank and comment lines are counted too
+    n = sum(lines for _, _, lines in blocks)  # >= rows: blank and comment lines are counted too
     if "t" not in keep and opts.rate_hz:
         check_duration((n - 1) / opts.rate_hz, opts.max_duration_s, path.name)
     out = {name: np.empty(n) for name in keep}
     bar = None
     if opts.progress:
-        from tqdm import tqdm  # type: ignore[import-untyped]
+        from tqdm import tqdm  # type: ignore[import-untyped,unused-ignore]
+
         bar = tqdm(total=size, unit="B", unit_scale=True, desc=f"reading {path.name}", delay=2.0, leave=False)
     row = 0
     line = first_line
@@ -280,7 +318,7 @@ def _read_blocks(path: Path, fh: "IO[bytes]", size: int, start: int, first_line:
             if row + m > n:
                 raise DemoError(ERR_DEMO_FORMAT, f"{path.name} changed while it was read")
             for name, j in keep.items():
-                out[name][row:row + m] = data[:, j]
+                out[name][row : row + m] = data[:, j]
             row += m
             line += lines
             if bar is not None:

@@ -7,6 +7,7 @@ the position ``x``: the same axis of a geometry_msgs/PoseStamped (``pose.positio
 PointStamped (``point``) topic, interpolated at the force's times. Columns: ``t``, ``f_contact``
 (the force axis, so the default ``--learn contact`` picks it), ``x`` with a pose topic.
 """
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -39,25 +40,35 @@ def read(path: Path, opts: ReadOptions) -> Columns:
         from mcap.reader import make_reader
         from mcap_ros2.decoder import DecoderFactory
     except ImportError as e:
-        raise FsError(ERR_READER_MISSING, f"reading {path.name} needs the mcap and mcap-ros2-support packages "
-                      f"(pip install 'forceskill[ros]'): {e}") from None
+        raise FsError(
+            ERR_READER_MISSING,
+            f"reading {path.name} needs the mcap and mcap-ros2-support packages "
+            f"(pip install 'forceskill[ros]'): {e}",
+        ) from None
     with open(path, "rb") as fh:
         try:
             reader = make_reader(fh, decoder_factories=[DecoderFactory()])
             summary = reader.get_summary()
-        except Exception as e:  # noqa: BLE001  (mcap raises its own and struct errors)
+        except Exception as e:
             raise DemoError(ERR_DEMO_FORMAT, f"{path.name} is not a readable MCAP file: {e}") from None
         if summary is None:
-            raise DemoError(ERR_DEMO_FORMAT, f"{path.name}: MCAP file without a summary (unfinished recording?)")
-        types = {ch.topic: _norm(summary.schemas[ch.schema_id].name) if ch.schema_id in summary.schemas else "?"
-                 for ch in summary.channels.values()}
+            raise DemoError(
+                ERR_DEMO_FORMAT, f"{path.name}: MCAP file without a summary (unfinished recording?)"
+            )
+        types = {
+            ch.topic: _norm(summary.schemas[ch.schema_id].name) if ch.schema_id in summary.schemas else "?"
+            for ch in summary.channels.values()
+        }
         listing = ", ".join(f"{t} ({ty})" for t, ty in sorted(types.items())) or "none"
         topic = opts.topic
         if topic is None:
             wrenches = [t for t, ty in types.items() if ty == WRENCH]
             if len(wrenches) != 1:
-                raise DemoError(ERR_DEMO_TOPIC, f"{path.name} has {len(wrenches)} {WRENCH} topics: choose one "
-                                f"with --topic (topics: {listing})")
+                raise DemoError(
+                    ERR_DEMO_TOPIC,
+                    f"{path.name} has {len(wrenches)} {WRENCH} topics: choose one "
+                    f"with --topic (topics: {listing})",
+                )
             topic = wrenches[0]
         for name, allowed in ((topic, (WRENCH,)), (opts.pose_topic, tuple(POSES))):
             if name is None:
@@ -65,8 +76,10 @@ def read(path: Path, opts: ReadOptions) -> Columns:
             if name not in types:
                 raise DemoError(ERR_DEMO_TOPIC, f"topic {name!r} not in {path.name} (topics: {listing})")
             if types[name] not in allowed:
-                raise DemoError(ERR_DEMO_TOPIC, f"topic {name!r} in {path.name} is {types[name]}, not "
-                                f"{' or '.join(allowed)}")
+                raise DemoError(
+                    ERR_DEMO_TOPIC,
+                    f"topic {name!r} in {path.name} is {types[name]}, not {' or '.join(allowed)}",
+                )
         wanted = [topic] + ([opts.pose_topic] if opts.pose_topic else [])
         force_t, force, pose_t, pose = [], [], [], []
         try:
@@ -80,21 +93,23 @@ def read(path: Path, opts: ReadOptions) -> Columns:
                         obj = getattr(obj, attr)
                     pose_t.append(_stamp_ns(msg, message.log_time))
                     pose.append(float(getattr(obj, opts.axis)))
-        except Exception as e:  # noqa: BLE001  (decoder errors of a damaged bag)
+        except Exception as e:
             raise DemoError(ERR_DEMO_FORMAT, f"{path.name}: cannot decode {topic}: {e}") from None
     if len(force) < 2:
         raise DemoError(ERR_DEMO_TOPIC, f"topic {topic!r} in {path.name} has {len(force)} messages")
     t_ns = np.array(force_t, dtype=np.int64)
     order = np.argsort(t_ns, kind="stable")
     t0_ns = int(t_ns[order[0]])
-    t = (t_ns[order] - t0_ns) * 1e-9       # relative first: float64 seconds since 1970 lose 0.2 us
+    t = (t_ns[order] - t0_ns) * 1e-9  # relative first: float64 seconds since 1970 lose 0.2 us
     f = np.array(force)[order]
     check_duration(float(t[-1]), opts.max_duration_s, path.name)
     cols: Columns = {"t": t, "f_contact": f}
     notes = [f"{path.name}: force {topic} wrench.force.{opts.axis}, {t.size} messages"]
     if opts.pose_topic:
         if len(pose) < 2:
-            raise DemoError(ERR_DEMO_TOPIC, f"pose topic {opts.pose_topic!r} in {path.name} has {len(pose)} messages")
+            raise DemoError(
+                ERR_DEMO_TOPIC, f"pose topic {opts.pose_topic!r} in {path.name} has {len(pose)} messages"
+            )
         pt = (np.array(pose_t, dtype=np.int64) - t0_ns) * 1e-9
         po = np.argsort(pt, kind="stable")
         cols["x"] = np.interp(t, pt[po], np.array(pose)[po])
