@@ -4,4 +4,5 @@ Modules: ``params`` (gains -> DMP constants), ``dmp`` (the numpy reference of th
 ``fit`` (learning from a demonstration), ``skill`` (the image v1 and its JSON twin), ``demo``
 (reading demonstrations), ``plot``, ``cli`` (the ``forceskill`` command).
 """
+
 __version__ = "0.1.0"

@@ -1,4 +1,5 @@
 """``python -m forceskill`` is the ``forceskill`` command."""
+
 import sys
 
 from .cli import main

@@ -11,6 +11,7 @@ shorter than 0.5 s, NaN/inf, time not strictly increasing, a gap above 1.5x the 
 constant zero force, an unknown column (listing those available). A log not sampled at the fit
 step is resampled by linear interpolation (``resample``).
 """
+
 from __future__ import annotations
 
 import csv
@@ -82,18 +83,23 @@ def read_csv_columns(path: Path) -> Columns:
         raise DemoError(ERR_DEMO_FORMAT, f"demonstration {str(path)!r} is empty")
     header = [c.strip() for c in rows[0]]
     if any(_is_number(c) for c in header):
-        raise DemoError(ERR_DEMO_FORMAT, f"demonstration {str(path)!r} has no header row (first row: "
-                        f"{','.join(header)})")
+        raise DemoError(
+            ERR_DEMO_FORMAT, f"demonstration {str(path)!r} has no header row (first row: {','.join(header)})"
+        )
     data = np.empty((len(rows) - 1, len(header)))
     for i, r in enumerate(rows[1:]):
         if len(r) != len(header):
-            raise DemoError(ERR_DEMO_FORMAT, f"{path}: line {i + 2} has {len(r)} fields, header has {len(header)}")
+            raise DemoError(
+                ERR_DEMO_FORMAT, f"{path}: line {i + 2} has {len(r)} fields, header has {len(header)}"
+            )
         for j, cell in enumerate(r):
             try:
                 data[i, j] = float(cell)
             except ValueError:
-                raise DemoError(ERR_DEMO_FORMAT, f"{path}: line {i + 2}, column {header[j]!r}: "
-                                f"not a number: {cell.strip()!r}") from None
+                raise DemoError(
+                    ERR_DEMO_FORMAT,
+                    f"{path}: line {i + 2}, column {header[j]!r}: not a number: {cell.strip()!r}",
+                ) from None
     return {name: data[:, j] for j, name in enumerate(header)}
 
 
@@ -119,8 +125,9 @@ def _load_log_readers() -> None:
         import forceskill.link.logs  # noqa: F401  (registers its readers on import)
 
 
-def load_demo(path: str | Path, position_column: str = "x", force_column: str | None = None,
-              learn: str = "contact") -> Demo:
+def load_demo(
+    path: str | Path, position_column: str = "x", force_column: str | None = None, learn: str = "contact"
+) -> Demo:
     """Read and validate a demonstration; ``force_column`` overrides the column ``learn`` selects."""
     if learn not in LEARN_COLUMNS:
         raise ParamError(ERR_FIT_ARGS, f"learn must be one of {', '.join(LEARN_COLUMNS)}: {learn!r}")
@@ -128,17 +135,25 @@ def load_demo(path: str | Path, position_column: str = "x", force_column: str | 
     _load_log_readers()
     reader = _READERS.get(p.suffix.lower())
     if reader is None:
-        raise DemoError(ERR_DEMO_FILE, f"no reader for demonstration suffix {p.suffix or '(none)'!r} "
-                        f"(known: {', '.join(readers())})")
+        raise DemoError(
+            ERR_DEMO_FILE,
+            f"no reader for demonstration suffix {p.suffix or '(none)'!r} (known: {', '.join(readers())})",
+        )
     if not p.is_file():
         raise DemoError(ERR_DEMO_FILE, f"demonstration file not found: {str(p)!r}")
     cols = reader(p)
     fcol = force_column or LEARN_COLUMNS[learn]
     for name in ("t", position_column, fcol):
         if name not in cols:
-            raise DemoError(ERR_DEMO_COLUMN, f"column {name!r} not in {p.name} (available: {', '.join(cols)})")
-    demo = Demo(t_s=np.asarray(cols["t"], float), pos_m=np.asarray(cols[position_column], float),
-                force_N=np.asarray(cols[fcol], float), source=f"{p.name}:{fcol}")
+            raise DemoError(
+                ERR_DEMO_COLUMN, f"column {name!r} not in {p.name} (available: {', '.join(cols)})"
+            )
+    demo = Demo(
+        t_s=np.asarray(cols["t"], float),
+        pos_m=np.asarray(cols[position_column], float),
+        force_N=np.asarray(cols[fcol], float),
+        source=f"{p.name}:{fcol}",
+    )
     validate(demo)
     return demo
 
@@ -147,33 +162,49 @@ def validate(demo: Demo) -> None:
     """Refuse a demonstration that cannot be learned from (DemoError, 603-607)."""
     t, x, f = demo.t_s, demo.pos_m, demo.force_N
     if not (t.shape == x.shape == f.shape and t.ndim == 1):
-        raise DemoError(ERR_DEMO_FORMAT, f"demonstration columns differ in length: t {t.shape}, "
-                        f"position {x.shape}, force {f.shape}")
+        raise DemoError(
+            ERR_DEMO_FORMAT,
+            f"demonstration columns differ in length: t {t.shape}, position {x.shape}, force {f.shape}",
+        )
     if t.size < MIN_SAMPLES:
-        raise DemoError(ERR_DEMO_TOO_SHORT, f"demonstration too short: {t.size} samples (need >= {MIN_SAMPLES})")
+        raise DemoError(
+            ERR_DEMO_TOO_SHORT, f"demonstration too short: {t.size} samples (need >= {MIN_SAMPLES})"
+        )
     for name, arr in (("t", t), ("position", x), ("force", f)):
         bad = np.flatnonzero(~np.isfinite(arr))
         if bad.size:
-            raise DemoError(ERR_DEMO_NOT_FINITE, f"demonstration {name} is not finite at sample {bad[0]} "
-                            f"(t = {t[bad[0]]:g} s): {arr[bad[0]]}")
+            raise DemoError(
+                ERR_DEMO_NOT_FINITE,
+                f"demonstration {name} is not finite at sample {bad[0]} (t = {t[bad[0]]:g} s): {arr[bad[0]]}",
+            )
     dt = np.diff(t)
     bad = np.flatnonzero(~(dt > 0.0))
     if bad.size:
         i = int(bad[0])
-        raise DemoError(ERR_DEMO_TIME, f"demonstration time not strictly increasing at sample {i + 1}: "
-                        f"t = {t[i]:.9g} s then {t[i + 1]:.9g} s")
+        raise DemoError(
+            ERR_DEMO_TIME,
+            f"demonstration time not strictly increasing at sample {i + 1}: "
+            f"t = {t[i]:.9g} s then {t[i + 1]:.9g} s",
+        )
     duration = float(t[-1] - t[0])
     if duration < MIN_DURATION_S:
-        raise DemoError(ERR_DEMO_TOO_SHORT, f"demonstration too short: {duration:g} s (need >= {MIN_DURATION_S:g} s)")
+        raise DemoError(
+            ERR_DEMO_TOO_SHORT, f"demonstration too short: {duration:g} s (need >= {MIN_DURATION_S:g} s)"
+        )
     med = float(np.median(dt))
     gaps = np.flatnonzero(dt > GAP_FACTOR * med)
     if gaps.size:
         i = int(gaps[0])
-        raise DemoError(ERR_DEMO_GAP, f"demonstration has a gap of {dt[i] * 1e3:.6g} ms at t = {t[i]:.6g} s "
-                        f"(median step {med * 1e3:.6g} ms, limit {GAP_FACTOR:g}x)")
+        raise DemoError(
+            ERR_DEMO_GAP,
+            f"demonstration has a gap of {dt[i] * 1e3:.6g} ms at t = {t[i]:.6g} s "
+            f"(median step {med * 1e3:.6g} ms, limit {GAP_FACTOR:g}x)",
+        )
     if not np.any(f != 0.0):
-        raise DemoError(ERR_DEMO_ZERO_FORCE, f"demonstration force ({demo.source or 'force'}) is constant zero "
-                        f"over {t.size} samples")
+        raise DemoError(
+            ERR_DEMO_ZERO_FORCE,
+            f"demonstration force ({demo.source or 'force'}) is constant zero over {t.size} samples",
+        )
 
 
 def on_grid(t_s: np.ndarray, dt_s: float) -> bool:
@@ -196,13 +227,18 @@ def resample(demo: Demo, dt_s: float) -> Demo:
         return Demo(np.arange(n) * dt_s, demo.pos_m.copy(), demo.force_N.copy(), demo.source)
     n_last = int(math.floor((float(demo.t_s[-1]) - t0) / dt_s + 1e-9))
     tn = t0 + np.arange(n_last + 1) * dt_s
-    return Demo(np.arange(n_last + 1) * dt_s, np.interp(tn, demo.t_s, demo.pos_m),
-                np.interp(tn, demo.t_s, demo.force_N), demo.source + f" (resampled to {dt_s * 1e3:g} ms)")
+    return Demo(
+        np.arange(n_last + 1) * dt_s,
+        np.interp(tn, demo.t_s, demo.pos_m),
+        np.interp(tn, demo.t_s, demo.force_N),
+        demo.source + f" (resampled to {dt_s * 1e3:g} ms)",
+    )
 
 
 def write_csv(path: str | Path, columns: Columns) -> None:
     """Write named equal-length columns as CSV with a header (%.17g), atomically."""
     from .skill import atomic_write
+
     names = list(columns)
     data = np.column_stack([np.asarray(columns[k], float) for k in names])
     lines = [",".join(names)]

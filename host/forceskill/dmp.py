@@ -15,6 +15,7 @@ the normalised phase), zero at t = 0; forward Euler with every right-hand side a
 since the phase does not depend on x). ``linear_scan`` is the same recursion evaluated in blocks,
 used by the fit for speed and checked against the loop in tests/host/test_dmp.py.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -54,7 +55,7 @@ def normalised_kernels(u: np.ndarray, centres: np.ndarray, widths: np.ndarray) -
 def _normalised_kernels_dense(u: np.ndarray, centres: np.ndarray, widths: np.ndarray) -> np.ndarray:
     out = np.empty((u.size, centres.size))
     for r0 in range(0, u.size, _ROW_CHUNK):
-        e = kernel_exponents(u[r0:r0 + _ROW_CHUNK], centres, widths)
+        e = kernel_exponents(u[r0 : r0 + _ROW_CHUNK], centres, widths)
         e_act = np.where(e <= KERNEL_CUTOFF_EXP, e, np.inf)
         e_min = e_act.min(axis=1)
         none = ~np.isfinite(e_min)
@@ -64,7 +65,7 @@ def _normalised_kernels_dense(u: np.ndarray, centres: np.ndarray, widths: np.nda
             rows = np.flatnonzero(none)
             psi[rows] = 0.0
             psi[rows, np.argmin(e[rows], axis=1)] = 1.0
-        out[r0:r0 + psi.shape[0]] = psi / psi.sum(axis=1, keepdims=True)
+        out[r0 : r0 + psi.shape[0]] = psi / psi.sum(axis=1, keepdims=True)
     return out
 
 
@@ -78,9 +79,9 @@ def _normalised_kernels_banded(u: np.ndarray, centres: np.ndarray, widths: np.nd
     e_t = np.full((n_k, u.size), np.inf)
     for i in range(n_k):
         if hi[i] > lo[i]:
-            d = u[lo[i]:hi[i]] - centres[i]
+            d = u[lo[i] : hi[i]] - centres[i]
             e = d * d * half_inv_var[i]
-            e_t[i, lo[i]:hi[i]] = np.where(e <= KERNEL_CUTOFF_EXP, e, np.inf)
+            e_t[i, lo[i] : hi[i]] = np.where(e <= KERNEL_CUTOFF_EXP, e, np.inf)
     e_min = e_t.min(axis=0)
     psi_t = np.zeros((n_k, u.size))
     for i in range(n_k):
@@ -115,8 +116,15 @@ def phase_loop(alpha: float, beta: float, a: float, n_steps: int) -> tuple[np.nd
     return u, v
 
 
-def transform_loop(alpha: float, beta: float, gamma: float, a: float, goal: float | np.ndarray,
-                   h: np.ndarray, c_x: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def transform_loop(
+    alpha: float,
+    beta: float,
+    gamma: float,
+    a: float,
+    goal: float | np.ndarray,
+    h: np.ndarray,
+    c_x: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """x_n, z_n, I_n for n = 0..len(h) from zero state, forcing h_n and goal g_n (scalar or per step).
 
     The literal loop of docs/math.md section 2 (x, z, I part); ``c_x`` is the coupling term.
@@ -133,9 +141,11 @@ def transform_loop(alpha: float, beta: float, gamma: float, a: float, goal: floa
     gl = g.tolist()
     cl = cx.tolist()
     for n in range(m):
-        xx, zz, ii = (xx + a * (zz - xx - gamma * ii + hl[n] + cl[n]),
-                      zz + a * alpha * (beta * (gl[n] - xx) - zz),
-                      ii + a * xx)
+        xx, zz, ii = (
+            xx + a * (zz - xx - gamma * ii + hl[n] + cl[n]),
+            zz + a * alpha * (beta * (gl[n] - xx) - zz),
+            ii + a * xx,
+        )
         x[n + 1] = xx
         z[n + 1] = zz
         big_i[n + 1] = ii
@@ -152,8 +162,9 @@ def _powers(a_mat: np.ndarray, count: int) -> np.ndarray:
     return p
 
 
-def linear_scan(a_mat: np.ndarray, b: np.ndarray, s0: np.ndarray | None = None,
-                block: int = 64) -> np.ndarray:
+def linear_scan(
+    a_mat: np.ndarray, b: np.ndarray, s0: np.ndarray | None = None, block: int = 64
+) -> np.ndarray:
     """States s_0..s_M of s_{n+1} = A s_n + b_n (b: (M, d)) evaluated in blocks.
 
     Within a block the response to b is one matrix product with a block-Toeplitz matrix of
@@ -173,16 +184,16 @@ def linear_scan(a_mat: np.ndarray, b: np.ndarray, s0: np.ndarray | None = None,
     nb = -(-m // L)
     p = _powers(a_mat, L)
     # Toeplitz: y_k = sum_{j<k} A^(k-1-j) b_j for k = 1..L  ->  Y[(k-1)*d + r] = T[...] @ bflat
-    kk = np.arange(L)[:, None]            # row block k-1
-    jj = np.arange(L)[None, :]            # column block j
-    lag = kk - jj                         # power k-1-j, valid for j <= k-1
-    t4 = np.where((lag >= 0)[:, :, None, None], p[np.clip(lag, 0, L)], 0.0)   # (L, L, d, d)
+    kk = np.arange(L)[:, None]  # row block k-1
+    jj = np.arange(L)[None, :]  # column block j
+    lag = kk - jj  # power k-1-j, valid for j <= k-1
+    t4 = np.where((lag >= 0)[:, :, None, None], p[np.clip(lag, 0, L)], 0.0)  # (L, L, d, d)
     t = t4.transpose(0, 2, 1, 3).reshape(L * d, L * d)
     bp = np.zeros((nb * L, d))
     bp[:m] = b
-    y = (bp.reshape(nb, L * d) @ t.T).reshape(nb, L, d)   # y[mb, k-1] = local state at k
+    y = (bp.reshape(nb, L * d) @ t.T).reshape(nb, L, d)  # y[mb, k-1] = local state at k
     a_l = p[L]
-    if nb > 64:   # the block boundaries are the same kind of recursion (A^L, y_L): scan it too
+    if nb > 64:  # the block boundaries are the same kind of recursion (A^L, y_L): scan it too
         starts = linear_scan(a_l, y[:, L - 1], s0v, block=16)[:-1]
     else:
         starts = np.empty((nb, d))
@@ -213,21 +224,21 @@ class KernelBands:
         self.psi: list[np.ndarray] = []
         rowsum = np.zeros(u.size)
         for i in range(centres.size):
-            d = u[self.lo[i]:self.hi[i]] - centres[i]
+            d = u[self.lo[i] : self.hi[i]] - centres[i]
             e = d * d * half_inv_var[i]
             p = np.where(e <= KERNEL_CUTOFF_EXP, np.exp(-np.minimum(e, KERNEL_CUTOFF_EXP + 1.0)), 0.0)
             self.psi.append(p)
-            rowsum[self.lo[i]:self.hi[i]] += p
+            rowsum[self.lo[i] : self.hi[i]] += p
         self.rowsum = rowsum
-        self.complete = bool(np.all(rowsum > 0.0))   # False: a row needs the nearest-kernel fallback
+        self.complete = bool(np.all(rowsum > 0.0))  # False: a row needs the nearest-kernel fallback
         inv = 1.0 / np.where(rowsum > 0.0, rowsum, 1.0)
-        self.norm = [p * inv[self.lo[i]:self.hi[i]] for i, p in enumerate(self.psi)]
+        self.norm = [p * inv[self.lo[i] : self.hi[i]] for i, p in enumerate(self.psi)]
 
     def sum_weighted(self, w: np.ndarray) -> np.ndarray:
         """S_n = sum_i w_i psi_i/sum psi (the normalised mixture) for every row."""
         out = np.zeros(self.n_rows)
         for i, k in enumerate(self.norm):
-            out[self.lo[i]:self.hi[i]] += w[i] * k
+            out[self.lo[i] : self.hi[i]] += w[i] * k
         return out
 
     def gram(self, s2: np.ndarray) -> np.ndarray:
@@ -235,19 +246,21 @@ class KernelBands:
         n_k = len(self.norm)
         g = np.zeros((n_k, n_k))
         for i in range(n_k):
-            ki = self.norm[i] * s2[self.lo[i]:self.hi[i]]
+            ki = self.norm[i] * s2[self.lo[i] : self.hi[i]]
             for j in range(i, n_k):
                 if self.lo[j] >= self.hi[i]:
                     break
                 a, b = max(self.lo[i], self.lo[j]), min(self.hi[i], self.hi[j])
                 if b > a:
-                    g[i, j] = g[j, i] = float(ki[a - self.lo[i]:b - self.lo[i]] @ self.norm[j][a - self.lo[j]:b - self.lo[j]])
+                    g[i, j] = g[j, i] = float(
+                        ki[a - self.lo[i] : b - self.lo[i]] @ self.norm[j][a - self.lo[j] : b - self.lo[j]]
+                    )
         return g
 
     def project(self, y: np.ndarray, normalised: bool = True) -> np.ndarray:
         """sum_n K_in y_n for every kernel (normalised or raw psi)."""
         ks = self.norm if normalised else self.psi
-        return np.array([float(k @ y[self.lo[i]:self.hi[i]]) for i, k in enumerate(ks)])
+        return np.array([float(k @ y[self.lo[i] : self.hi[i]]) for i, k in enumerate(ks)])
 
 
 def phase_scan(alpha: float, beta: float, a: float, n_steps: int) -> tuple[np.ndarray, np.ndarray]:
@@ -258,12 +271,11 @@ def phase_scan(alpha: float, beta: float, a: float, n_steps: int) -> tuple[np.nd
     return s[:, 0], s[:, 1]
 
 
-def transform_scan(alpha: float, beta: float, gamma: float, a: float, goal: float,
-                   h: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def transform_scan(
+    alpha: float, beta: float, gamma: float, a: float, goal: float, h: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Same as ``transform_loop`` (constant goal) via ``linear_scan``."""
-    a_mat = np.array([[1.0 - a, a, -a * gamma],
-                      [-a * alpha * beta, 1.0 - a * alpha, 0.0],
-                      [a, 0.0, 1.0]])
+    a_mat = np.array([[1.0 - a, a, -a * gamma], [-a * alpha * beta, 1.0 - a * alpha, 0.0], [a, 0.0, 1.0]])
     b = np.zeros((len(h), 3))
     b[:, 0] = a * np.asarray(h, dtype=float)
     b[:, 1] = a * alpha * beta * goal
@@ -274,8 +286,11 @@ def transform_scan(alpha: float, beta: float, gamma: float, a: float, goal: floa
 def check_scales(goal_scale: float, time_scale: float) -> None:
     """Goal scale finite, time scale finite and > 0 (code 109, as the firmware)."""
     if not np.isfinite(goal_scale) or not np.isfinite(time_scale) or not time_scale > 0.0:
-        raise ParamError(ERR_SCALE_INVALID, f"goal scale must be finite and time scale finite and > 0: "
-                         f"goal_scale = {goal_scale:g}, time_scale = {time_scale:g}")
+        raise ParamError(
+            ERR_SCALE_INVALID,
+            f"goal scale must be finite and time scale finite and > 0: "
+            f"goal_scale = {goal_scale:g}, time_scale = {time_scale:g}",
+        )
 
 
 def default_steps(skill: Skill, time_scale: float = 1.0) -> int:
@@ -283,8 +298,9 @@ def default_steps(skill: Skill, time_scale: float = 1.0) -> int:
     return int(round(skill.duration_s * time_scale / skill.dt_s))
 
 
-def rollout(skill: Skill, goal_scale: float = 1.0, time_scale: float = 1.0,
-            n_steps: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+def rollout(
+    skill: Skill, goal_scale: float = 1.0, time_scale: float = 1.0, n_steps: int | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """t_n = n*dt and f_hat_n = k*x_n for n = 0..n_steps (default round(T*time_scale/dt)).
 
     The DMP alone (docs/math.md section 2): the end policy after T is applied by the executor.

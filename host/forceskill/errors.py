@@ -4,6 +4,7 @@ Codes 1xx-3xx are the firmware's (firmware/base/fs_status.h): a skill refused he
 there with the same number. Codes 6xx are host-only (demonstration files and fitting); the firmware
 never sees a demonstration.
 """
+
 from __future__ import annotations
 
 # Every numbered code (1xx-3xx as the firmware's fs_status.h, 5xx faults, 6xx host only, ...) is

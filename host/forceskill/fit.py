@@ -8,6 +8,7 @@ discrete recursion as the rollout; regression of h_d on g*v~*S(u~) by ``ridge`` 
 Tikhonov-regularised least squares, the default) or ``lwr`` (the paper's per-kernel weighted LS);
 then the learned force is rolled out and compared with the demonstration.
 """
+
 from __future__ import annotations
 
 import math
@@ -56,7 +57,7 @@ class FitResult:
 def _phase_end(alpha: float, beta: float, a: float, n: int) -> float:
     """u~ after n forward-Euler steps of the phase from rest, via powers of its 2x2 matrix."""
     m = np.array([[1.0, a], [-a * alpha * beta, 1.0 - a * alpha]])
-    e_n = np.linalg.matrix_power(m, n) @ np.array([-1.0, 0.0])   # error state (u - 1, v)
+    e_n = np.linalg.matrix_power(m, n) @ np.array([-1.0, 0.0])  # error state (u - 1, v)
     return 1.0 + float(e_n[0])
 
 
@@ -73,7 +74,7 @@ def solve_tau(alpha: float, beta: float, dt_s: float, n_steps: int, target: floa
         return _phase_end(alpha, beta, dt_s / tau, n_steps) - target
 
     lo, hi = 0.2 * T, 2.0 * T
-    lo = max(lo, 2.0 * alpha * dt_s)   # keep dt/tau*alpha < 0.5: stable, monotone Euler phase
+    lo = max(lo, 2.0 * alpha * dt_s)  # keep dt/tau*alpha < 0.5: stable, monotone Euler phase
     r_lo, r_hi = r(lo), r(hi)
     for _ in range(60):
         if r_hi < 0.0:
@@ -81,8 +82,11 @@ def solve_tau(alpha: float, beta: float, dt_s: float, n_steps: int, target: floa
         hi *= 2.0
         r_hi = r(hi)
     if not (r_lo > 0.0 > r_hi):
-        raise ParamError(ERR_FIT_ARGS, f"cannot place the phase: u~(T) = {target} unreachable for "
-                         f"T = {T:g} s (alpha = {alpha:g}, beta = {beta:g})")
+        raise ParamError(
+            ERR_FIT_ARGS,
+            f"cannot place the phase: u~(T) = {target} unreachable for "
+            f"T = {T:g} s (alpha = {alpha:g}, beta = {beta:g})",
+        )
     side = 0
     tau = lo
     for _ in range(200):
@@ -107,8 +111,9 @@ def solve_tau(alpha: float, beta: float, dt_s: float, n_steps: int, target: floa
     return tau
 
 
-def kernel_layout(u: np.ndarray, dt_s: float, duration_s: float, n_kernels: int,
-                  width_factor: float = WIDTH_FACTOR) -> tuple[np.ndarray, np.ndarray]:
+def kernel_layout(
+    u: np.ndarray, dt_s: float, duration_s: float, n_kernels: int, width_factor: float = WIDTH_FACTOR
+) -> tuple[np.ndarray, np.ndarray]:
     """Centres c_i = u~(t_i), t_i = linspace(0, T, N) (linear interpolation of the discrete phase);
     widths sigma_i = width_factor*(c_{i+1} - c_i), sigma_N = sigma_{N-1}."""
     t_i = np.linspace(0.0, duration_s, n_kernels)
@@ -118,8 +123,9 @@ def kernel_layout(u: np.ndarray, dt_s: float, duration_s: float, n_kernels: int,
     return centres, widths
 
 
-def desired_forcing(x_star: np.ndarray, alpha: float, beta: float, gamma: float, a: float,
-                    goal: float) -> np.ndarray:
+def desired_forcing(
+    x_star: np.ndarray, alpha: float, beta: float, gamma: float, a: float, goal: float
+) -> np.ndarray:
     """h_d,n = (x*_{n+1} - x*_n)/a - (z_n - x*_n - gamma*I_n), n = 0..M-1, z and I driven by x*.
 
     The forward-Euler x-update solved for h, so replaying h_d reproduces x* to round-off.
@@ -134,9 +140,17 @@ def desired_forcing(x_star: np.ndarray, alpha: float, beta: float, gamma: float,
     return f_target
 
 
-def fit(demo: Demo, stiffness_Npm: float, n_kernels: int = 50, method: str = "ridge",
-        gains: Gains = Gains(), surface_m: float = 0.0, end_policy: str = "hold",
-        dt_s: float = 0.001, ridge_lambda_rel: float | None = None) -> FitResult:
+def fit(
+    demo: Demo,
+    stiffness_Npm: float,
+    n_kernels: int = 50,
+    method: str = "ridge",
+    gains: Gains = Gains(),
+    surface_m: float = 0.0,
+    end_policy: str = "hold",
+    dt_s: float = 0.001,
+    ridge_lambda_rel: float | None = None,
+) -> FitResult:
     """Learn a skill from one demonstration; raises ParamError/DemoError (one-line, numbered)."""
     if method not in METHODS:
         raise ParamError(ERR_FIT_ARGS, f"method must be one of {', '.join(METHODS)}: {method!r}")
@@ -160,19 +174,26 @@ def fit(demo: Demo, stiffness_Npm: float, n_kernels: int = 50, method: str = "ri
     goal = goal_prime(p, gains, float(x_d[-1]), float(f[-1]), f_int)
     x_scale = float(np.max(np.abs(x_star)))
     if not (goal > GOAL_MIN_REL * x_scale):
-        raise DemoError(ERR_FIT_GOAL, f"goal g = {goal:.4g} m is not > {GOAL_MIN_REL:g} x max|f/k| = "
-                        f"{GOAL_MIN_REL * x_scale:.4g} m: the demonstration has no net push to learn")
+        raise DemoError(
+            ERR_FIT_GOAL,
+            f"goal g = {goal:.4g} m is not > {GOAL_MIN_REL:g} x max|f/k| = "
+            f"{GOAL_MIN_REL * x_scale:.4g} m: the demonstration has no net push to learn",
+        )
     lwr = method == "lwr"
     tau = solve_tau(p.alpha, p.beta, dt_s, n_t, LWR_PHASE_AT_END if lwr else PHASE_AT_END)
     a = dt_s / tau
     u, v = dmp.phase_scan(p.alpha, p.beta, a, n_t)
-    centres, widths = kernel_layout(u, dt_s, duration, int(n_kernels),
-                                    LWR_WIDTH_FACTOR if lwr else WIDTH_FACTOR)
+    centres, widths = kernel_layout(
+        u, dt_s, duration, int(n_kernels), LWR_WIDTH_FACTOR if lwr else WIDTH_FACTOR
+    )
     if not (np.all(np.diff(centres) > 0.0) and centres[0] >= 0.0 and centres[-1] <= 1.0):
-        raise ParamError(ERR_FIT_ARGS, f"{n_kernels} kernels do not fit a {duration:g} s demonstration "
-                         f"at dt = {dt_s:g} s (centres collide)")
+        raise ParamError(
+            ERR_FIT_ARGS,
+            f"{n_kernels} kernels do not fit a {duration:g} s demonstration "
+            f"at dt = {dt_s:g} s (centres collide)",
+        )
     h_d = desired_forcing(x_star, p.alpha, p.beta, p.gamma, a, goal)
-    s = goal * v[:-1]                                  # h = s_n * S(u_n)
+    s = goal * v[:-1]  # h = s_n * S(u_n)
     bands = dmp.KernelBands(u[:-1], centres, widths)
     if not lwr:
         gram = bands.gram(s * s)
@@ -186,12 +207,27 @@ def fit(demo: Demo, stiffness_Npm: float, n_kernels: int = 50, method: str = "ri
         weights = np.where(den > 0.0, num / np.where(den > 0.0, den, 1.0), 0.0)
     if not np.all(np.isfinite(weights)):
         raise FsError(ERR_FIT_NUMERIC, f"regression gave a non-finite weight ({method}, N = {n_kernels})")
-    skill = Skill(dt_s=dt_s, tau_s=tau, alpha=p.alpha, beta=p.beta, gamma=p.gamma, stiffness_Npm=stiffness_Npm,
-                  goal_m=goal, duration_s=duration, m_d_kg=gains.m_d_kg, k_d_Nspm=gains.k_d_Nspm,
-                  k_p_Npm=gains.k_p_Npm, k_f=gains.k_f, k_i_per_s=gains.k_i_per_s, surface_m=surface_m,
-                  centres=centres, widths=widths, weights=weights,
-                  flags=FLAG_END_RELEASE if end_policy == "release" else 0)
-    skill.to_bytes()   # validates exactly as the firmware will
+    skill = Skill(
+        dt_s=dt_s,
+        tau_s=tau,
+        alpha=p.alpha,
+        beta=p.beta,
+        gamma=p.gamma,
+        stiffness_Npm=stiffness_Npm,
+        goal_m=goal,
+        duration_s=duration,
+        m_d_kg=gains.m_d_kg,
+        k_d_Nspm=gains.k_d_Nspm,
+        k_p_Npm=gains.k_p_Npm,
+        k_f=gains.k_f,
+        k_i_per_s=gains.k_i_per_s,
+        surface_m=surface_m,
+        centres=centres,
+        widths=widths,
+        weights=weights,
+        flags=FLAG_END_RELEASE if end_policy == "release" else 0,
+    )
+    skill.to_bytes()  # validates exactly as the firmware will
     if bands.complete:
         h = s * bands.sum_weighted(weights)
     else:
@@ -200,7 +236,14 @@ def fit(demo: Demo, stiffness_Npm: float, n_kernels: int = 50, method: str = "ri
     f_hat = stiffness_Npm * x
     f_max = float(np.max(np.abs(f)))
     err = f - f_hat
-    return FitResult(skill=skill, t_s=d.t_s, target_N=f, f_hat_N=f_hat,
-                     err_max_pct=100.0 * float(np.max(np.abs(err))) / f_max,
-                     err_rms_pct=100.0 * float(np.sqrt(np.mean(err * err))) / f_max,
-                     pos_m=d.pos_m, method=method, h_d=h_d)
+    return FitResult(
+        skill=skill,
+        t_s=d.t_s,
+        target_N=f,
+        f_hat_N=f_hat,
+        err_max_pct=100.0 * float(np.max(np.abs(err))) / f_max,
+        err_rms_pct=100.0 * float(np.sqrt(np.mean(err * err))) / f_max,
+        pos_m=d.pos_m,
+        method=method,
+        h_d=h_d,
+    )

@@ -5,6 +5,7 @@ HMAC-SHA256(device key, header || payload) from Python's standard library (``hma
 the firmware checks it with firmware/security's SHA-256/HMAC (tested against FIPS 180-4 and
 RFC 4231 vectors) in firmware/boot/boot_image.c. Codes 7xx are the firmware's (firmware/base/boot_status.h).
 """
+
 from __future__ import annotations
 
 import hashlib
@@ -56,8 +57,11 @@ KEY_ENV = "FORCESKILL_FW_KEY"
 
 # Negative response codes of the device's update path (firmware/boot/fwu.h, docs/update.md).
 NRC = {
-    0x22: (ERR_TEST_PENDING, "conditions not correct: the running image is still on test (not "
-                             "confirmed), or the device is busy (not idle, a transfer open)"),
+    0x22: (
+        ERR_TEST_PENDING,
+        "conditions not correct: the running image is still on test (not "
+        "confirmed), or the device is busy (not idle, a transfer open)",
+    ),
     0x24: (ERR_SEQUENCE, "request sequence error"),
     0x31: (ERR_RANGE, "request out of range (address, size or data format)"),
     0x33: (ERR_LOCKED, "security access denied: programming session and unlock required"),
@@ -146,10 +150,16 @@ class FwImage:
         return self.header + self.payload + self.tag
 
 
-def build_image(payload: bytes, version: str, target: str, key: bytes, build_id: str = "",
-                skill_format: tuple[int, int] = (SKILL_FORMAT, SKILL_FORMAT),
-                config_format: tuple[int, int] = (CONFIG_FORMAT, CONFIG_FORMAT),
-                entry_offset: int = 0) -> bytes:
+def build_image(
+    payload: bytes,
+    version: str,
+    target: str,
+    key: bytes,
+    build_id: str = "",
+    skill_format: tuple[int, int] = (SKILL_FORMAT, SKILL_FORMAT),
+    config_format: tuple[int, int] = (CONFIG_FORMAT, CONFIG_FORMAT),
+    entry_offset: int = 0,
+) -> bytes:
     """Wrap a firmware binary into a signed image. skill_format/config_format = (native, oldest
     stored version the firmware migrates from); entry_offset = offset of the Cortex-M vector table
     from the payload start (0 for the host target)."""
@@ -163,11 +173,23 @@ def build_image(payload: bytes, version: str, target: str, key: bytes, build_id:
             raise ImageError(ERR_ARGS, f"{name} format ({native}, oldest {oldest}) invalid")
     if not payload or not 0 <= entry_offset < len(payload) or entry_offset % 4:
         raise ImageError(ERR_ARGS, f"entry offset {entry_offset} not a multiple of 4 inside the payload")
-    header = HEADER_STRUCT.pack(MAGIC, FORMAT_VERSION, HEADER_SIZE, pack_version(version),
-                                len(payload), TARGETS[target], 0,
-                                skill_format[0], skill_format[1], config_format[0], config_format[1],
-                                entry_offset, bytes(28), hashlib.sha256(payload).digest(),
-                                bid.ljust(32, b"\0"))
+    header = HEADER_STRUCT.pack(
+        MAGIC,
+        FORMAT_VERSION,
+        HEADER_SIZE,
+        pack_version(version),
+        len(payload),
+        TARGETS[target],
+        0,
+        skill_format[0],
+        skill_format[1],
+        config_format[0],
+        config_format[1],
+        entry_offset,
+        bytes(28),
+        hashlib.sha256(payload).digest(),
+        bid.ljust(32, b"\0"),
+    )
     tag = hmac.new(key, header + payload, hashlib.sha256).digest()
     return header + bytes(payload) + tag
 
@@ -175,30 +197,73 @@ def build_image(payload: bytes, version: str, target: str, key: bytes, build_id:
 def parse_image(data: bytes, key: bytes | None = None) -> FwImage:
     """Parse and check an image in the firmware's order (700..706); with a key, check the tag."""
     if len(data) < HEADER_SIZE:
-        raise ImageError(ERR_TRUNCATED, f"image is {len(data)} bytes, shorter than the {HEADER_SIZE}-byte header")
-    (magic, fmt, hsize, fw_version, length, target_id, flags, sk, sk_old, cf, cf_old,
-     entry_offset, reserved, sha, bid) = HEADER_STRUCT.unpack_from(data)
+        raise ImageError(
+            ERR_TRUNCATED, f"image is {len(data)} bytes, shorter than the {HEADER_SIZE}-byte header"
+        )
+    (
+        magic,
+        fmt,
+        hsize,
+        fw_version,
+        length,
+        target_id,
+        flags,
+        sk,
+        sk_old,
+        cf,
+        cf_old,
+        entry_offset,
+        reserved,
+        sha,
+        bid,
+    ) = HEADER_STRUCT.unpack_from(data)
     if magic != MAGIC:
         raise ImageError(ERR_MAGIC, f"magic 0x{magic:08X} is not 'FSFW' (0x{MAGIC:08X})")
-    if (fmt != FORMAT_VERSION or hsize != HEADER_SIZE or flags != 0 or any(reserved)
-            or length == 0 or entry_offset % 4 or entry_offset >= length
-            or not 1 <= sk_old <= sk or not 1 <= cf_old <= cf):
-        raise ImageError(ERR_FORMAT, f"header format {fmt} size {hsize} flags {flags:#x} entry "
-                         f"{entry_offset}: not a valid format-1 header")
+    if (
+        fmt != FORMAT_VERSION
+        or hsize != HEADER_SIZE
+        or flags != 0
+        or any(reserved)
+        or length == 0
+        or entry_offset % 4
+        or entry_offset >= length
+        or not 1 <= sk_old <= sk
+        or not 1 <= cf_old <= cf
+    ):
+        raise ImageError(
+            ERR_FORMAT,
+            f"header format {fmt} size {hsize} flags {flags:#x} entry "
+            f"{entry_offset}: not a valid format-1 header",
+        )
     if target_id not in TARGET_NAMES:
         raise ImageError(ERR_TARGET, f"target id {target_id} unknown")
     if len(data) < HEADER_SIZE + length + TAG_SIZE:
-        raise ImageError(ERR_TRUNCATED, f"image is {len(data)} bytes, header says "
-                         f"{HEADER_SIZE + length + TAG_SIZE}")
+        raise ImageError(
+            ERR_TRUNCATED, f"image is {len(data)} bytes, header says {HEADER_SIZE + length + TAG_SIZE}"
+        )
     if len(data) > HEADER_SIZE + length + TAG_SIZE:
-        raise ImageError(ERR_FORMAT, f"image is {len(data)} bytes, header says "
-                         f"{HEADER_SIZE + length + TAG_SIZE} (trailing bytes)")
-    payload = bytes(data[HEADER_SIZE:HEADER_SIZE + length])
+        raise ImageError(
+            ERR_FORMAT,
+            f"image is {len(data)} bytes, header says {HEADER_SIZE + length + TAG_SIZE} (trailing bytes)",
+        )
+    payload = bytes(data[HEADER_SIZE : HEADER_SIZE + length])
     if hashlib.sha256(payload).digest() != sha:
         raise ImageError(ERR_HASH, "payload SHA-256 does not match the header")
-    tag = bytes(data[HEADER_SIZE + length:])
-    img = FwImage(fw_version, target_id, payload, sha, sk, sk_old, cf, cf_old, entry_offset,
-                  bid.rstrip(b"\0").decode("ascii", "replace"), tag, bytes(data[:HEADER_SIZE]))
+    tag = bytes(data[HEADER_SIZE + length :])
+    img = FwImage(
+        fw_version,
+        target_id,
+        payload,
+        sha,
+        sk,
+        sk_old,
+        cf,
+        cf_old,
+        entry_offset,
+        bid.rstrip(b"\0").decode("ascii", "replace"),
+        tag,
+        bytes(data[:HEADER_SIZE]),
+    )
     if key is not None:
         want = hmac.new(key, img.header + payload, hashlib.sha256).digest()
         img.authentic = hmac.compare_digest(want, tag)
@@ -210,13 +275,15 @@ def parse_image(data: bytes, key: bytes | None = None) -> FwImage:
 def describe(img: FwImage) -> str:
     """Human-readable summary (``forceskill image show``)."""
     auth = {None: "not checked (no key)", True: "valid", False: "WRONG"}[img.authentic]
-    return "\n".join([
-        f"firmware version  {img.version}",
-        f"target            {img.target}",
-        f"build id          {img.build_id or '-'}",
-        f"payload           {len(img.payload)} bytes, sha256 {img.payload_sha256.hex()}",
-        f"skill format      {img.skill_format} (migrates from {img.skill_format_oldest})",
-        f"config format     {img.config_format} (migrates from {img.config_format_oldest})",
-        f"entry offset      {img.entry_offset}",
-        f"tag (HMAC-SHA256) {auth}",
-    ])
+    return "\n".join(
+        [
+            f"firmware version  {img.version}",
+            f"target            {img.target}",
+            f"build id          {img.build_id or '-'}",
+            f"payload           {len(img.payload)} bytes, sha256 {img.payload_sha256.hex()}",
+            f"skill format      {img.skill_format} (migrates from {img.skill_format_oldest})",
+            f"config format     {img.config_format} (migrates from {img.config_format_oldest})",
+            f"entry offset      {img.entry_offset}",
+            f"tag (HMAC-SHA256) {auth}",
+        ]
+    )

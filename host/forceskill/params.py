@@ -6,6 +6,7 @@ The paper's eq. 14, corrected for the stiffness k (docs/math.md):
 ``beta <= alpha/4`` (the phase is then monotone). Mirrors ``dmp_params_from_gains`` in
 firmware/core/dmp.h, with the same error codes.
 """
+
 from __future__ import annotations
 
 import math
@@ -52,8 +53,14 @@ class DmpParams:
 
 def derive(gains: Gains, stiffness_Npm: float) -> DmpParams:
     """alpha, beta, gamma from gains and nominal stiffness; raises ParamError (1xx) if invalid."""
-    values = {"m_d": gains.m_d_kg, "k_d": gains.k_d_Nspm, "k_p": gains.k_p_Npm, "k_f": gains.k_f,
-              "k_i": gains.k_i_per_s, "stiffness": stiffness_Npm}
+    values = {
+        "m_d": gains.m_d_kg,
+        "k_d": gains.k_d_Nspm,
+        "k_p": gains.k_p_Npm,
+        "k_f": gains.k_f,
+        "k_i": gains.k_i_per_s,
+        "stiffness": stiffness_Npm,
+    }
     for name, val in values.items():
         if not math.isfinite(val):
             raise ParamError(ERR_NOT_FINITE, f"{name} is not finite: {val}")
@@ -65,8 +72,10 @@ def derive(gains: Gains, stiffness_Npm: float) -> DmpParams:
         if values[name] < 0.0:
             raise ParamError(ERR_GAIN_NEGATIVE, f"gain {name} must be >= 0: {values[name]:g}")
     if gains.k_d_Nspm <= gains.m_d_kg:
-        raise ParamError(ERR_KD_LE_MD, f"k_d must exceed m_d (alpha > 0), got k_d = {gains.k_d_Nspm:g}, "
-                         f"m_d = {gains.m_d_kg:g}")
+        raise ParamError(
+            ERR_KD_LE_MD,
+            f"k_d must exceed m_d (alpha > 0), got k_d = {gains.k_d_Nspm:g}, m_d = {gains.m_d_kg:g}",
+        )
     m_d = gains.m_d_kg
     alpha = gains.k_d_Nspm / m_d - 1.0
     gamma = stiffness_Npm * gains.k_i_per_s / (m_d * alpha)
@@ -74,13 +83,18 @@ def derive(gains: Gains, stiffness_Npm: float) -> DmpParams:
     if not beta > 0.0:
         raise ParamError(ERR_BETA_NONPOSITIVE, f"derived beta must be > 0 (unstable system): beta = {beta:g}")
     if beta > 0.25 * alpha * (1.0 + MONOTONE_REL_TOL):
-        raise ParamError(ERR_PHASE_NOT_MONOTONE, f"beta must be <= alpha/4 for a monotone phase: "
-                         f"beta = {beta:g}, alpha/4 = {0.25 * alpha:g}")
+        raise ParamError(
+            ERR_PHASE_NOT_MONOTONE,
+            f"beta must be <= alpha/4 for a monotone phase: beta = {beta:g}, alpha/4 = {0.25 * alpha:g}",
+        )
     return DmpParams(alpha=alpha, beta=beta, gamma=gamma)
 
 
-def goal_prime(p: DmpParams, gains: Gains, pos_d_m: float, force_d_N: float,
-               force_d_integral_Ns: float) -> float:
+def goal_prime(
+    p: DmpParams, gains: Gains, pos_d_m: float, force_d_N: float, force_d_integral_Ns: float
+) -> float:
     """g'(t) = c/(alpha*beta), c = (k_p*x_d + k_f*f_d + k_i*int f_d)/m_d."""
-    c = (gains.k_p_Npm * pos_d_m + gains.k_f * force_d_N + gains.k_i_per_s * force_d_integral_Ns) / gains.m_d_kg
+    c = (
+        gains.k_p_Npm * pos_d_m + gains.k_f * force_d_N + gains.k_i_per_s * force_d_integral_Ns
+    ) / gains.m_d_kg
     return c / (p.alpha * p.beta)

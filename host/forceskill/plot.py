@@ -1,4 +1,5 @@
 """Figures like the paper's Fig. 5a: demonstrated vs learned force, approximation error, position."""
+
 from __future__ import annotations
 
 import os
@@ -15,6 +16,7 @@ def fit_figure(res: FitResult, path: str | Path, title: str = "") -> None:
     """Write a PNG (atomically): force (demonstrated dashed black, learned green), error in % of
     max force, and the demonstrated position with the object surface."""
     import matplotlib
+
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
@@ -25,8 +27,11 @@ def fit_figure(res: FitResult, path: str | Path, title: str = "") -> None:
     ax[0].plot(t, res.f_hat_N, "g-", lw=1.0, label="learned")
     ax[0].set_ylabel("force [N]")
     ax[0].legend(loc="best", fontsize=8)
-    ax[0].set_title(title or f"{res.method}, N = {res.skill.n_kernels}: max error {res.err_max_pct:.2f} %, "
-                    f"RMS {res.err_rms_pct:.2f} %")
+    ax[0].set_title(
+        title
+        or f"{res.method}, N = {res.skill.n_kernels}: max error {res.err_max_pct:.2f} %, "
+        f"RMS {res.err_rms_pct:.2f} %"
+    )
     ax[1].plot(t, 100.0 * (res.target_N - res.f_hat_N) / f_max, "r-", lw=0.8)
     ax[1].set_ylabel("error [% of max]")
     if res.pos_m.size == t.size:
@@ -39,7 +44,9 @@ def fit_figure(res: FitResult, path: str | Path, title: str = "") -> None:
         a.grid(True, lw=0.3)
     fig.tight_layout()
     p = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix="." + p.name + ".", suffix=".png", dir=p.parent if str(p.parent) else ".")
+    fd, tmp = tempfile.mkstemp(
+        prefix="." + p.name + ".", suffix=".png", dir=p.parent if str(p.parent) else "."
+    )
     os.close(fd)
     try:
         fig.savefig(tmp, dpi=110)

@@ -11,6 +11,7 @@ the logs (DIR/logs) and skills (DIR/skills).
 The simulator binary: ``--hil-sim PATH``, else ``$FORCESKILL_HIL_SIM``, else ``hil_sim`` on PATH.
 Scenarios: ``--scenarios DIR``, else the paper scenarios packaged with forceskill.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -36,10 +37,10 @@ class Task:
     """One learning experiment of the paper."""
 
     name: str
-    kind: str           # pressing | engraving
+    kind: str  # pressing | engraving
     stiffness_Npm: float
     end_policy: str
-    figure: str         # the paper's figure
+    figure: str  # the paper's figure
 
 
 TASKS = (
@@ -79,8 +80,9 @@ def deformation(log: dict[str, np.ndarray], surface_m: float = SURFACE_M) -> np.
     return np.maximum(log["x"] - surface_m, 0.0)
 
 
-def deformation_diff_pct(p_ref: np.ndarray, p_other: np.ndarray, t: np.ndarray,
-                         window_s: float = REUSE_WINDOW_S) -> float:
+def deformation_diff_pct(
+    p_ref: np.ndarray, p_other: np.ndarray, t: np.ndarray, window_s: float = REUSE_WINDOW_S
+) -> float:
     """max |p_other - p_ref| / max p_ref over t <= window_s, in %."""
     n = min(p_ref.size, p_other.size)
     m = t[:n] <= window_s + 1e-9
@@ -91,43 +93,75 @@ def _pct(x: float | None) -> str:
     return "-" if x is None else f"{x:.2f}"
 
 
-def _learn(task: Task, hil_sim: Path, scen: Path, out: Path, seed: int, n_kernels: int,
-           plots: bool) -> dict[str, Any]:
+def _learn(
+    task: Task, hil_sim: Path, scen: Path, out: Path, seed: int, n_kernels: int, plots: bool
+) -> dict[str, Any]:
     from .demo import load_demo
     from .fit import fit
 
     demo_log = out / "logs" / f"{task.name}_demo.csv"
     demo_sum = run_sim(hil_sim, scen / f"{task.name}_demo.toml", demo_log, "--seed", str(seed))
     demo = load_demo(demo_log)
-    res = fit(demo, task.stiffness_Npm, n_kernels=n_kernels, method="ridge", surface_m=SURFACE_M,
-              end_policy=task.end_policy)
-    lwr50 = fit(demo, task.stiffness_Npm, n_kernels=50, method="lwr", surface_m=SURFACE_M,
-                end_policy=task.end_policy)
+    res = fit(
+        demo,
+        task.stiffness_Npm,
+        n_kernels=n_kernels,
+        method="ridge",
+        surface_m=SURFACE_M,
+        end_policy=task.end_policy,
+    )
+    lwr50 = fit(
+        demo, task.stiffness_Npm, n_kernels=50, method="lwr", surface_m=SURFACE_M, end_policy=task.end_policy
+    )
     bound = LWR_BOUND_PCT[task.kind]
     lwr_n, lwr_at_n = None, None
     for n in LWR_KERNELS:
-        r = lwr50 if n == 50 else fit(demo, task.stiffness_Npm, n_kernels=n, method="lwr",
-                                      surface_m=SURFACE_M, end_policy=task.end_policy)
+        r = (
+            lwr50
+            if n == 50
+            else fit(
+                demo,
+                task.stiffness_Npm,
+                n_kernels=n,
+                method="lwr",
+                surface_m=SURFACE_M,
+                end_policy=task.end_policy,
+            )
+        )
         if r.err_max_pct <= bound:
             lwr_n, lwr_at_n = n, r
             break
     skill_path = out / "skills" / f"{task.name}.skill"
     res.skill.write(skill_path)
     exec_log = out / "logs" / f"{task.name}_exec.csv"
-    ex = run_sim(hil_sim, scen / f"{task.name}_exec.toml", exec_log, "--seed", str(seed),
-                 "--skill", str(skill_path))
+    ex = run_sim(
+        hil_sim, scen / f"{task.name}_exec.toml", exec_log, "--seed", str(seed), "--skill", str(skill_path)
+    )
     entry: dict[str, Any] = {
-        "name": task.name, "kind": task.kind, "figure": task.figure, "stiffness_Npm": task.stiffness_Npm,
+        "name": task.name,
+        "kind": task.kind,
+        "figure": task.figure,
+        "stiffness_Npm": task.stiffness_Npm,
         "max_force_N": float(np.max(demo.force_N)),
-        "approx_max_pct": res.err_max_pct, "approx_rms_pct": res.err_rms_pct, "n_kernels": n_kernels,
-        "approx_max_pct_lwr": lwr50.err_max_pct, "approx_rms_pct_lwr": lwr50.err_rms_pct,
-        "lwr_bound_pct": bound, "lwr_kernels_needed": lwr_n,
+        "approx_max_pct": res.err_max_pct,
+        "approx_rms_pct": res.err_rms_pct,
+        "n_kernels": n_kernels,
+        "approx_max_pct_lwr": lwr50.err_max_pct,
+        "approx_rms_pct_lwr": lwr50.err_rms_pct,
+        "lwr_bound_pct": bound,
+        "lwr_kernels_needed": lwr_n,
         "approx_max_pct_lwr_needed": None if lwr_at_n is None else lwr_at_n.err_max_pct,
-        "tracking_max_pct": ex["tracking_max_pct"], "tracking_rms_pct": ex["tracking_rms_pct"],
-        "exec_max_force_N": ex["max_force_N"], "max_cmd_abs_N": ex["max_cmd_abs_N"],
-        "force_limit_N": ex["force_limit_N"], "limit_violations": ex["limit_violations"],
-        "deformation_max_m": demo_sum["deformation_max_m"], "layer_reached_s": demo_sum["layer_reached_s"],
-        "skill": str(skill_path), "demo_log": str(demo_log), "exec_log": str(exec_log),
+        "tracking_max_pct": ex["tracking_max_pct"],
+        "tracking_rms_pct": ex["tracking_rms_pct"],
+        "exec_max_force_N": ex["max_force_N"],
+        "max_cmd_abs_N": ex["max_cmd_abs_N"],
+        "force_limit_N": ex["force_limit_N"],
+        "limit_violations": ex["limit_violations"],
+        "deformation_max_m": demo_sum["deformation_max_m"],
+        "layer_reached_s": demo_sum["layer_reached_s"],
+        "skill": str(skill_path),
+        "demo_log": str(demo_log),
+        "exec_log": str(exec_log),
     }
     if plots:
         _learn_figure(task, res, lwr50, read_log(demo_log), read_log(exec_log), out / f"fig_{task.name}.png")
@@ -140,8 +174,17 @@ def _reuse(hil_sim: Path, scen: Path, out: Path, seed: int, plots: bool) -> list
     sums: dict[str, dict[str, Any]] = {}
     for name, scenario, goal in REUSE:
         log = out / "logs" / f"{name}.csv"
-        sums[name] = run_sim(hil_sim, scen / f"{scenario}.toml", log, "--seed", str(seed),
-                             "--skill", *skills, "--goal-scale", repr(goal))
+        sums[name] = run_sim(
+            hil_sim,
+            scen / f"{scenario}.toml",
+            log,
+            "--seed",
+            str(seed),
+            "--skill",
+            *skills,
+            "--goal-scale",
+            repr(goal),
+        )
         logs[name] = read_log(log)
     t = logs["reuse_200_1x"]["t"]
     p200 = deformation(logs["reuse_200_1x"])
@@ -150,19 +193,31 @@ def _reuse(hil_sim: Path, scen: Path, out: Path, seed: int, plots: bool) -> list
     entries = []
     for name, _, goal in REUSE:
         s = sums[name]
-        entries.append({
-            "name": name, "kind": "reuse", "figure": "Fig. 7", "goal_scale": goal,
-            "stiffness_Npm": 200.0 if "200" in name else 300.0,
-            "max_force_N": s["max_force_N"], "approx_max_pct": None, "approx_rms_pct": None,
-            "approx_max_pct_lwr": None, "approx_rms_pct_lwr": None,
-            "tracking_max_pct": s["tracking_max_pct"], "tracking_rms_pct": s["tracking_rms_pct"],
-            "max_cmd_abs_N": s["max_cmd_abs_N"], "force_limit_N": s["force_limit_N"],
-            "limit_violations": s["limit_violations"], "deformation_max_m": s["deformation_max_m"],
-            "deformation_diff_pct": None if name == "reuse_200_1x" else
-            (d_scaled if name == "reuse_300_1_5x" else d_unscaled),
-            "deformation_diff_unscaled_pct": d_unscaled if name == "reuse_300_1_5x" else None,
-            "exec_log": str(out / "logs" / f"{name}.csv"),
-        })
+        entries.append(
+            {
+                "name": name,
+                "kind": "reuse",
+                "figure": "Fig. 7",
+                "goal_scale": goal,
+                "stiffness_Npm": 200.0 if "200" in name else 300.0,
+                "max_force_N": s["max_force_N"],
+                "approx_max_pct": None,
+                "approx_rms_pct": None,
+                "approx_max_pct_lwr": None,
+                "approx_rms_pct_lwr": None,
+                "tracking_max_pct": s["tracking_max_pct"],
+                "tracking_rms_pct": s["tracking_rms_pct"],
+                "max_cmd_abs_N": s["max_cmd_abs_N"],
+                "force_limit_N": s["force_limit_N"],
+                "limit_violations": s["limit_violations"],
+                "deformation_max_m": s["deformation_max_m"],
+                "deformation_diff_pct": None
+                if name == "reuse_200_1x"
+                else (d_scaled if name == "reuse_300_1_5x" else d_unscaled),
+                "deformation_diff_unscaled_pct": d_unscaled if name == "reuse_300_1_5x" else None,
+                "exec_log": str(out / "logs" / f"{name}.csv"),
+            }
+        )
     if plots:
         _reuse_figure(logs, d_scaled, d_unscaled, out / "fig_reuse.png")
     return entries
@@ -170,15 +225,19 @@ def _reuse(hil_sim: Path, scen: Path, out: Path, seed: int, plots: bool) -> list
 
 # ---- figures -----------------------------------------------------------------------------------
 
+
 def _plt() -> Any:
     import matplotlib
+
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
     return plt
 
 
-def _learn_figure(task: Task, res: Any, lwr: Any, demo: dict[str, np.ndarray], ex: dict[str, np.ndarray],
-                  path: Path) -> None:
+def _learn_figure(
+    task: Task, res: Any, lwr: Any, demo: dict[str, np.ndarray], ex: dict[str, np.ndarray], path: Path
+) -> None:
     plt = _plt()
     t = res.t_s
     f_max = float(np.max(np.abs(res.target_N)))
@@ -190,10 +249,20 @@ def _learn_figure(task: Task, res: Any, lwr: Any, demo: dict[str, np.ndarray], e
     ax[0].set_ylabel("force [N]")
     ax[0].legend(fontsize=7, loc="best")
     ax[0].set_title(f"{task.name} ({task.figure}): k = {task.stiffness_Npm:g} N/m", fontsize=10)
-    ax[1].plot(t, 100.0 * (res.target_N - res.f_hat_N) / f_max, "g-", lw=0.8,
-               label=f"ridge: max {res.err_max_pct:.2f} %")
-    ax[1].plot(t, 100.0 * (lwr.target_N - lwr.f_hat_N) / f_max, color="tab:orange", lw=0.6,
-               label=f"LWR N=50: max {lwr.err_max_pct:.2f} %")
+    ax[1].plot(
+        t,
+        100.0 * (res.target_N - res.f_hat_N) / f_max,
+        "g-",
+        lw=0.8,
+        label=f"ridge: max {res.err_max_pct:.2f} %",
+    )
+    ax[1].plot(
+        t,
+        100.0 * (lwr.target_N - lwr.f_hat_N) / f_max,
+        color="tab:orange",
+        lw=0.6,
+        label=f"LWR N=50: max {lwr.err_max_pct:.2f} %",
+    )
     ax[1].set_ylabel("error [% max]")
     ax[1].legend(fontsize=7, loc="best")
     r = 2
@@ -219,8 +288,9 @@ def _learn_figure(task: Task, res: Any, lwr: Any, demo: dict[str, np.ndarray], e
     plt.close(fig)
 
 
-def _reuse_figure(logs: dict[str, dict[str, np.ndarray]], d_scaled: float, d_unscaled: float,
-                  path: Path) -> None:
+def _reuse_figure(
+    logs: dict[str, dict[str, np.ndarray]], d_scaled: float, d_unscaled: float, path: Path
+) -> None:
     plt = _plt()
     a, b, c = logs["reuse_200_1x"], logs["reuse_300_1_5x"], logs["reuse_300_1x_unscaled"]
     fig, ax = plt.subplots(3, 1, figsize=(8.0, 8.5))
@@ -236,9 +306,17 @@ def _reuse_figure(logs: dict[str, dict[str, np.ndarray]], d_scaled: float, d_uns
     ax[1].set_ylabel("force [N]")
     ax[1].legend(fontsize=7)
     ax[2].plot(a["t"], 1e3 * deformation(a), "b-", lw=1.2, label="200 N/m, goal 1x")
-    ax[2].plot(b["t"], 1e3 * deformation(b), "r--", lw=1.2, label=f"300 N/m, goal 1.5x (max diff {d_scaled:.1f} %)")
-    ax[2].plot(c["t"], 1e3 * deformation(c), color="0.5", ls=":", lw=1.2,
-               label=f"300 N/m, goal 1x (max diff {d_unscaled:.1f} %)")
+    ax[2].plot(
+        b["t"], 1e3 * deformation(b), "r--", lw=1.2, label=f"300 N/m, goal 1.5x (max diff {d_scaled:.1f} %)"
+    )
+    ax[2].plot(
+        c["t"],
+        1e3 * deformation(c),
+        color="0.5",
+        ls=":",
+        lw=1.2,
+        label=f"300 N/m, goal 1x (max diff {d_unscaled:.1f} %)",
+    )
     ax[2].set_ylabel("deformation [mm]")
     ax[2].set_xlabel("t [s]")
     ax[2].legend(fontsize=7)
@@ -251,42 +329,64 @@ def _reuse_figure(logs: dict[str, dict[str, np.ndarray]], d_scaled: float, d_uns
 
 # ---- report ------------------------------------------------------------------------------------
 
+
 def write_markdown(summary: dict[str, Any], path: Path) -> None:
     """DIR/report.md: one table row per experiment."""
     lines = [
-        "# forceskill: the paper's experiments on the HIL simulator", "",
+        "# forceskill: the paper's experiments on the HIL simulator",
+        "",
         f"hil_sim `{summary['hil_sim']}`, seed {summary['seed']}, default fit ridge N = {summary['n_kernels']}, "
         "ideal plant. Errors in % of the maximum force; approximation error against the recorded "
-        "(noisy) contact force; tracking = measured contact force vs f_hat during execution.", "",
+        "(noisy) contact force; tracking = measured contact force vs f_hat during execution.",
+        "",
         "| experiment | max force [N] | approx. max/RMS LWR N=50 [%] | LWR N for the paper's bound | "
         "approx. max/RMS default [%] | tracking max/RMS [%] | deformation diff [%] | limit violations |",
         "|---|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for e in summary["experiments"]:
-        lwr = "-" if e["approx_max_pct_lwr"] is None else f"{e['approx_max_pct_lwr']:.2f} / {e['approx_rms_pct_lwr']:.2f}"
+        lwr = (
+            "-"
+            if e["approx_max_pct_lwr"] is None
+            else f"{e['approx_max_pct_lwr']:.2f} / {e['approx_rms_pct_lwr']:.2f}"
+        )
         if e["kind"] == "reuse":
             need = "-"
         elif e["lwr_kernels_needed"] is None:
             need = f"> 100 (bound {e['lwr_bound_pct']:g} %)"
         else:
             need = f"{e['lwr_kernels_needed']} ({e['approx_max_pct_lwr_needed']:.2f} % <= {e['lwr_bound_pct']:g} %)"
-        dflt = "-" if e["approx_max_pct"] is None else f"{e['approx_max_pct']:.2f} / {e['approx_rms_pct']:.2f}"
+        dflt = (
+            "-" if e["approx_max_pct"] is None else f"{e['approx_max_pct']:.2f} / {e['approx_rms_pct']:.2f}"
+        )
         trk = f"{e['tracking_max_pct']:.2f} / {e['tracking_rms_pct']:.2f}"
         dd = e.get("deformation_diff_pct")
         ddu = e.get("deformation_diff_unscaled_pct")
         dtxt = "-" if dd is None else (f"{dd:.2f} (unscaled {ddu:.2f})" if ddu is not None else f"{dd:.2f}")
-        lines.append(f"| {e['name']} | {e['max_force_N']:.2f} | {lwr} | {need} | {dflt} | {trk} | {dtxt} | "
-                     f"{e['limit_violations']} |")
-    lines += ["", "Deformation difference: max over t <= 17 s of |p(t) - p_200@1x(t)| / max p_200@1x, with "
-              "p = x - 0.001 m.", ""]
+        lines.append(
+            f"| {e['name']} | {e['max_force_N']:.2f} | {lwr} | {need} | {dflt} | {trk} | {dtxt} | "
+            f"{e['limit_violations']} |"
+        )
+    lines += [
+        "",
+        "Deformation difference: max over t <= 17 s of |p(t) - p_200@1x(t)| / max p_200@1x, with "
+        "p = x - 0.001 m.",
+        "",
+    ]
     figs = sorted(p.name for p in path.parent.glob("fig_*.png"))
     for f in figs:
         lines.append(f"![{f}]({f})")
     path.write_text("\n".join(lines) + "\n")
 
 
-def run_report(out: Path, hil_sim: Path, scenarios: Path, seed: int = 1, n_kernels: int = 50,
-               plots: bool = True, progress: bool = True) -> dict[str, Any]:
+def run_report(
+    out: Path,
+    hil_sim: Path,
+    scenarios: Path,
+    seed: int = 1,
+    n_kernels: int = 50,
+    plots: bool = True,
+    progress: bool = True,
+) -> dict[str, Any]:
     """Run every experiment; write report.md, summary.json and the figures into out."""
     from tqdm import tqdm
 
@@ -311,36 +411,53 @@ def run_report(out: Path, hil_sim: Path, scenarios: Path, seed: int = 1, n_kerne
 def _cmd_report(args: argparse.Namespace) -> int:
     out = Path(args.output)
     from .sim import find_hil_sim, scenario_dir
+
     hil_sim = find_hil_sim(args.hil_sim, ERR_REPORT)
     scen = scenario_dir(args.scenarios)
     if not (scen / "pressing_task1_demo.toml").is_file():
         raise FsError(ERR_REPORT, f"scenario folder without the paper scenarios: {str(scen)!r}")
     out.mkdir(parents=True, exist_ok=True)
-    summary = run_report(out, hil_sim, scen, seed=args.seed, n_kernels=args.kernels, plots=not args.no_plots,
-                         progress=not args.quiet)
+    summary = run_report(
+        out,
+        hil_sim,
+        scen,
+        seed=args.seed,
+        n_kernels=args.kernels,
+        plots=not args.no_plots,
+        progress=not args.quiet,
+    )
     for e in summary["experiments"]:
         extra = ""
         if e["approx_max_pct"] is not None:
-            extra = (f" approx max {e['approx_max_pct']:.2f} % (LWR N=50 {e['approx_max_pct_lwr']:.2f} %, "
-                     f"bound met at N={e['lwr_kernels_needed']})")
+            extra = (
+                f" approx max {e['approx_max_pct']:.2f} % (LWR N=50 {e['approx_max_pct_lwr']:.2f} %, "
+                f"bound met at N={e['lwr_kernels_needed']})"
+            )
         if e.get("deformation_diff_pct") is not None:
             extra += f" deformation diff {e['deformation_diff_pct']:.2f} %"
-        print(f"{e['name']:24s} max {e['max_force_N']:6.2f} N, tracking max/RMS "
-              f"{e['tracking_max_pct']:.2f}/{e['tracking_rms_pct']:.2f} %{extra}")
+        print(
+            f"{e['name']:24s} max {e['max_force_N']:6.2f} N, tracking max/RMS "
+            f"{e['tracking_max_pct']:.2f}/{e['tracking_rms_pct']:.2f} %{extra}"
+        )
     print(f"wrote {out / 'report.md'}, {out / 'summary.json'} and the figures")
     return 0
 
 
 def register(subparsers: Any) -> None:
     """Add ``forceskill report``."""
-    p = subparsers.add_parser("report", help="run every paper experiment on the HIL simulator",
-                              description="Demonstrate, fit, execute and reuse every experiment of the paper "
-                              "on the HIL simulator; write DIR/report.md, DIR/summary.json and figures.")
+    p = subparsers.add_parser(
+        "report",
+        help="run every paper experiment on the HIL simulator",
+        description="Demonstrate, fit, execute and reuse every experiment of the paper "
+        "on the HIL simulator; write DIR/report.md, DIR/summary.json and figures.",
+    )
     p.add_argument("-o", "--output", required=True, metavar="DIR", help="output folder (created)")
-    p.add_argument("--hil-sim", metavar="PATH", help="hil_sim binary (default $FORCESKILL_HIL_SIM, "
-                   "else hil_sim on PATH)")
-    p.add_argument("--scenarios", metavar="DIR", help="scenario folder (default: the packaged "
-                   "paper scenarios)")
+    p.add_argument(
+        "--hil-sim", metavar="PATH", help="hil_sim binary (default $FORCESKILL_HIL_SIM, else hil_sim on PATH)"
+    )
+    p.add_argument(
+        "--scenarios", metavar="DIR", help="scenario folder (default: the packaged paper scenarios)"
+    )
     p.add_argument("--seed", type=int, default=1, help="operator/sensor seed (1)")
     p.add_argument("--kernels", type=int, default=50, metavar="N", help="kernels of the default fit (50)")
     p.add_argument("--no-plots", action="store_true", help="skip the figures")

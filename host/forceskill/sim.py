@@ -1,5 +1,6 @@
 """Where the HIL simulator and its scenarios are, for the commands that drive them (report,
 journey): nothing here assumes the repository layout, so an installed package works alike."""
+
 from __future__ import annotations
 
 import os
@@ -23,8 +24,11 @@ def find_hil_sim(explicit: str | None, code: int) -> Path:
     found = shutil.which("hil_sim")
     if found:
         return Path(found)
-    raise FsError(code, f"hil_sim not found: pass --hil-sim PATH, set ${HIL_SIM_ENV} or put hil_sim on "
-                  "PATH (build it: cmake --preset host-release && cmake --build --preset host-release)")
+    raise FsError(
+        code,
+        f"hil_sim not found: pass --hil-sim PATH, set ${HIL_SIM_ENV} or put hil_sim on "
+        "PATH (build it: cmake --preset host-release && cmake --build --preset host-release)",
+    )
 
 
 def scenario_dir(explicit: str | None) -> Path:
@@ -32,4 +36,5 @@ def scenario_dir(explicit: str | None) -> Path:
     if explicit:
         return Path(explicit)
     from importlib.resources import files
+
     return Path(str(files("forceskill") / "data" / "scenarios"))

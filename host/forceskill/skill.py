@@ -4,6 +4,7 @@ A skill is plain data (dmpbbo style): fitting produces it, the firmware parses a
 Validation runs the same checks, in the same order, with the same codes as ``skill_parse`` in
 firmware/core/skill.c; the bad images in tests/vectors/bad/ prove it.
 """
+
 from __future__ import annotations
 
 import json
@@ -38,24 +39,38 @@ from .errors import (
 )
 from .params import MONOTONE_REL_TOL, DmpParams, Gains, derive
 
-MAGIC = 0x4C4B5346             # bytes "FSKL"
+MAGIC = 0x4C4B5346  # bytes "FSKL"
 FORMAT_VERSION = 1
 HEADER_SIZE = 128
 CRC_SIZE = 4
-MAX_KERNELS = 256              # DMP_MAX_KERNELS
+MAX_KERNELS = 256  # DMP_MAX_KERNELS
 FLAG_END_RELEASE = 0x0001
-FLAG_Y_AXIS = 0x0002           # reserved, refused in v1
+FLAG_Y_AXIS = 0x0002  # reserved, refused in v1
 KNOWN_FLAGS = FLAG_END_RELEASE
 RELEASE_TIME_S = 0.5
-GAINS_REL_TOL = 1e-9           # stored alpha/beta/gamma vs derived from stored gains
+GAINS_REL_TOL = 1e-9  # stored alpha/beta/gamma vs derived from stored gains
 DT_MAX_S = 0.1
 DURATION_MAX_S = 3600.0
 
 # magic u32, version u16, header_size u16, total_length u32, n u16, flags u16, then 14 f64
 _HEADER = struct.Struct("<IHHIHH14d")
 assert _HEADER.size == HEADER_SIZE
-_F64_NAMES = ("dt_s", "tau_s", "alpha", "beta", "gamma", "stiffness_Npm", "goal_m", "duration_s",
-              "m_d_kg", "k_d_Nspm", "k_p_Npm", "k_f", "k_i_per_s", "surface_m")
+_F64_NAMES = (
+    "dt_s",
+    "tau_s",
+    "alpha",
+    "beta",
+    "gamma",
+    "stiffness_Npm",
+    "goal_m",
+    "duration_s",
+    "m_d_kg",
+    "k_d_Nspm",
+    "k_p_Npm",
+    "k_f",
+    "k_i_per_s",
+    "surface_m",
+)
 
 PathLike = Union[str, "os.PathLike[str]"]
 
@@ -117,12 +132,25 @@ class Skill:
         """The v1 image (little-endian, CRC-32 last). Validates first unless told not to."""
         n = self.n_kernels
         if not (self.widths.size == n and self.weights.size == n):
-            raise SkillError(ERR_SKILL_LENGTH, f"centres/widths/weights lengths differ: "
-                             f"{n}/{self.widths.size}/{self.weights.size}")
-        head = _HEADER.pack(MAGIC, self.format_version, HEADER_SIZE, image_size(n), n, self.flags,
-                            *(float(getattr(self, k)) for k in _F64_NAMES))
-        body = head + self.centres.astype("<f8").tobytes() + self.widths.astype("<f8").tobytes() \
+            raise SkillError(
+                ERR_SKILL_LENGTH,
+                f"centres/widths/weights lengths differ: {n}/{self.widths.size}/{self.weights.size}",
+            )
+        head = _HEADER.pack(
+            MAGIC,
+            self.format_version,
+            HEADER_SIZE,
+            image_size(n),
+            n,
+            self.flags,
+            *(float(getattr(self, k)) for k in _F64_NAMES),
+        )
+        body = (
+            head
+            + self.centres.astype("<f8").tobytes()
+            + self.widths.astype("<f8").tobytes()
             + self.weights.astype("<f8").tobytes()
+        )
         image = body + struct.pack("<I", zlib.crc32(body) & 0xFFFFFFFF)
         if validate:
             Skill.from_bytes(image)
@@ -133,88 +161,129 @@ class Skill:
         """Parse and validate an image; raises SkillError with the firmware's code (200-211)."""
         buf = bytes(buf)
         if len(buf) < HEADER_SIZE:
-            raise SkillError(ERR_SKILL_TOO_SHORT, f"skill image too short: {len(buf)} bytes, header is {HEADER_SIZE}")
+            raise SkillError(
+                ERR_SKILL_TOO_SHORT, f"skill image too short: {len(buf)} bytes, header is {HEADER_SIZE}"
+            )
         fields = _HEADER.unpack_from(buf, 0)
         magic, version, header_size, total_length, n, flags = fields[:6]
         f64 = dict(zip(_F64_NAMES, fields[6:], strict=True))
         if magic != MAGIC:
-            raise SkillError(ERR_SKILL_MAGIC, f"skill image magic is 0x{magic:08X}, expected 0x{MAGIC:08X} ('FSKL')")
+            raise SkillError(
+                ERR_SKILL_MAGIC, f"skill image magic is 0x{magic:08X}, expected 0x{MAGIC:08X} ('FSKL')"
+            )
         if version != FORMAT_VERSION:
-            raise SkillError(ERR_SKILL_VERSION, f"unsupported skill format version {version} (this reads {FORMAT_VERSION})")
+            raise SkillError(
+                ERR_SKILL_VERSION, f"unsupported skill format version {version} (this reads {FORMAT_VERSION})"
+            )
         if header_size != HEADER_SIZE:
-            raise SkillError(ERR_SKILL_HEADER_SIZE, f"skill header_size is {header_size}, expected {HEADER_SIZE}")
+            raise SkillError(
+                ERR_SKILL_HEADER_SIZE, f"skill header_size is {header_size}, expected {HEADER_SIZE}"
+            )
         if total_length != len(buf) or total_length != image_size(n):
-            raise SkillError(ERR_SKILL_LENGTH, f"skill length field {total_length} disagrees with buffer "
-                             f"({len(buf)} bytes) or with N = {n} ({image_size(n)} bytes)")
+            raise SkillError(
+                ERR_SKILL_LENGTH,
+                f"skill length field {total_length} disagrees with buffer "
+                f"({len(buf)} bytes) or with N = {n} ({image_size(n)} bytes)",
+            )
         body_len = total_length - CRC_SIZE
         (stored_crc,) = struct.unpack_from("<I", buf, body_len)
         crc = zlib.crc32(buf[:body_len]) & 0xFFFFFFFF
         if crc != stored_crc:
-            raise SkillError(ERR_SKILL_CRC, f"skill CRC-32 mismatch: stored 0x{stored_crc:08X}, computed 0x{crc:08X}")
+            raise SkillError(
+                ERR_SKILL_CRC, f"skill CRC-32 mismatch: stored 0x{stored_crc:08X}, computed 0x{crc:08X}"
+            )
         if not 1 <= n <= MAX_KERNELS:
             raise SkillError(ERR_SKILL_KERNELS, f"skill kernel count {n} outside 1..{MAX_KERNELS}")
         arrays = np.frombuffer(buf, dtype="<f8", count=3 * n, offset=HEADER_SIZE).astype(np.float64)
-        centres, widths, weights = arrays[:n].copy(), arrays[n:2 * n].copy(), arrays[2 * n:].copy()
+        centres, widths, weights = arrays[:n].copy(), arrays[n : 2 * n].copy(), arrays[2 * n :].copy()
         for name, val in f64.items():
             if not math.isfinite(val):
                 raise SkillError(ERR_SKILL_NOT_FINITE, f"skill field {name} is not finite: {val}")
         for name, arr in (("centres", centres), ("widths", widths), ("weights", weights)):
             bad = np.flatnonzero(~np.isfinite(arr))
             if bad.size:
-                raise SkillError(ERR_SKILL_NOT_FINITE, f"skill {name}[{bad[0]}] is not finite: {float(arr[bad[0]])}")
+                raise SkillError(
+                    ERR_SKILL_NOT_FINITE, f"skill {name}[{bad[0]}] is not finite: {float(arr[bad[0]])}"
+                )
         kw: dict[str, Any] = dict(f64)
-        skill = Skill(centres=centres, widths=widths, weights=weights, flags=flags, format_version=version, **kw)
+        skill = Skill(
+            centres=centres, widths=widths, weights=weights, flags=flags, format_version=version, **kw
+        )
         skill._validate_values()
         return skill
 
     def _validate_values(self) -> None:
         """Checks 207-210 (ranges, centres, gains, flags), in the firmware's order."""
-        checks = (("dt_s", 0.0 < self.dt_s <= DT_MAX_S, f"(0, {DT_MAX_S:g}]"),
-                  ("tau_s", self.tau_s > 0.0, "> 0"),
-                  ("duration_s", 0.0 < self.duration_s <= DURATION_MAX_S, f"(0, {DURATION_MAX_S:g}]"),
-                  ("stiffness_Npm", self.stiffness_Npm > 0.0, "> 0"),
-                  ("goal_m", self.goal_m > 0.0, "> 0"))
+        checks = (
+            ("dt_s", 0.0 < self.dt_s <= DT_MAX_S, f"(0, {DT_MAX_S:g}]"),
+            ("tau_s", self.tau_s > 0.0, "> 0"),
+            ("duration_s", 0.0 < self.duration_s <= DURATION_MAX_S, f"(0, {DURATION_MAX_S:g}]"),
+            ("stiffness_Npm", self.stiffness_Npm > 0.0, "> 0"),
+            ("goal_m", self.goal_m > 0.0, "> 0"),
+        )
         for name, ok, rng in checks:
             if not ok:
                 raise SkillError(ERR_SKILL_RANGE, f"skill {name} = {getattr(self, name)!r} outside {rng}")
         bad = np.flatnonzero(~(self.widths > 0.0))
         if bad.size:
-            raise SkillError(ERR_SKILL_RANGE, f"skill widths[{bad[0]}] = {float(self.widths[bad[0]])!r} must be > 0")
+            raise SkillError(
+                ERR_SKILL_RANGE, f"skill widths[{bad[0]}] = {float(self.widths[bad[0]])!r} must be > 0"
+            )
         c = self.centres
         if c[0] < 0.0 or c[-1] > 1.0:
-            raise SkillError(ERR_SKILL_CENTRES, f"skill centres must lie in [0, 1]: first {float(c[0])!r}, last {float(c[-1])!r}")
+            raise SkillError(
+                ERR_SKILL_CENTRES,
+                f"skill centres must lie in [0, 1]: first {float(c[0])!r}, last {float(c[-1])!r}",
+            )
         bad = np.flatnonzero(~(np.diff(c) > 0.0))
         if bad.size:
             i = int(bad[0]) + 1
-            raise SkillError(ERR_SKILL_CENTRES, f"skill centres not strictly increasing at {i}: "
-                             f"{float(c[i - 1])!r} then {float(c[i])!r}")
+            raise SkillError(
+                ERR_SKILL_CENTRES,
+                f"skill centres not strictly increasing at {i}: {float(c[i - 1])!r} then {float(c[i])!r}",
+            )
         try:
             p = derive(self.gains, self.stiffness_Npm)
         except ParamError as e:
             raise SkillError(ERR_SKILL_GAINS, f"skill gains invalid: {e.message}") from None
-        for name, stored, derived in (("alpha", self.alpha, p.alpha), ("beta", self.beta, p.beta),
-                                      ("gamma", self.gamma, p.gamma)):
+        for name, stored, derived in (
+            ("alpha", self.alpha, p.alpha),
+            ("beta", self.beta, p.beta),
+            ("gamma", self.gamma, p.gamma),
+        ):
             if abs(stored - derived) > GAINS_REL_TOL * abs(derived):
-                raise SkillError(ERR_SKILL_GAINS, f"skill {name} = {stored!r} disagrees with {derived!r} "
-                                 "derived from its gains")
+                raise SkillError(
+                    ERR_SKILL_GAINS,
+                    f"skill {name} = {stored!r} disagrees with {derived!r} derived from its gains",
+                )
         if self.beta > 0.25 * self.alpha * (1.0 + MONOTONE_REL_TOL):
             raise SkillError(ERR_SKILL_GAINS, f"skill beta = {self.beta!r} > alpha/4 = {0.25 * self.alpha!r}")
         if self.flags & ~KNOWN_FLAGS & 0xFFFF:
-            raise SkillError(ERR_SKILL_UNSUPPORTED, f"skill flags 0x{self.flags:04X} carry unsupported bits "
-                             f"0x{self.flags & ~KNOWN_FLAGS & 0xFFFF:04X}")
+            raise SkillError(
+                ERR_SKILL_UNSUPPORTED,
+                f"skill flags 0x{self.flags:04X} carry unsupported bits "
+                f"0x{self.flags & ~KNOWN_FLAGS & 0xFFFF:04X}",
+            )
 
     # -- JSON twin -------------------------------------------------------------------------
     def to_json_dict(self) -> dict[str, Any]:
         """The same fields, human-readable (floats round-trip exactly: repr)."""
-        d: dict[str, Any] = {"format": "forceskill skill image", "format_version": self.format_version,
-                             "n_kernels": self.n_kernels, "flags": self.flags, "end_policy": self.end_policy}
+        d: dict[str, Any] = {
+            "format": "forceskill skill image",
+            "format_version": self.format_version,
+            "n_kernels": self.n_kernels,
+            "flags": self.flags,
+            "end_policy": self.end_policy,
+        }
         for k in _F64_NAMES:
             d[k] = float(getattr(self, k))
         d["centres"] = [float(x) for x in self.centres]
         d["widths"] = [float(x) for x in self.widths]
         d["weights"] = [float(x) for x in self.weights]
         d["image_bytes"] = image_size(self.n_kernels)
-        d["crc32"] = f"0x{struct.unpack_from('<I', self.to_bytes(validate=False), image_size(self.n_kernels) - 4)[0]:08X}"
+        d["crc32"] = (
+            f"0x{struct.unpack_from('<I', self.to_bytes(validate=False), image_size(self.n_kernels) - 4)[0]:08X}"
+        )
         return d
 
     def to_json(self) -> str:
@@ -224,8 +293,13 @@ class Skill:
     def from_json_dict(d: dict[str, Any]) -> Skill:
         """Rebuild from the JSON twin (validated like an image)."""
         kw: dict[str, Any] = {k: float(d[k]) for k in _F64_NAMES}
-        s = Skill(centres=np.array(d["centres"], dtype=float), widths=np.array(d["widths"], dtype=float),
-                  weights=np.array(d["weights"], dtype=float), flags=int(d["flags"]), **kw)
+        s = Skill(
+            centres=np.array(d["centres"], dtype=float),
+            widths=np.array(d["widths"], dtype=float),
+            weights=np.array(d["weights"], dtype=float),
+            flags=int(d["flags"]),
+            **kw,
+        )
         return Skill.from_bytes(s.to_bytes(validate=False))
 
     # -- files -----------------------------------------------------------------------------

@@ -4,6 +4,7 @@ Smooth force profiles with positions from a static two-layer spring object (surf
 inner layer at 20 mm). Used by the golden-vector generator, the tests and the benchmark; the HIL
 simulator produces the realistic ones.
 """
+
 from __future__ import annotations
 
 import numpy as np
@@ -27,14 +28,20 @@ def _position(f: np.ndarray, k_v1: float, k_v2: float) -> np.ndarray:
     return SURFACE_M + np.maximum(p, 0.0)
 
 
-def pressing(seed: int = 0, duration_s: float = 17.0, k_v1: float = 100.0, k_v2: float = 180.0,
-             dt_s: float = 0.001, noise_N: float = 0.0) -> Demo:
+def pressing(
+    seed: int = 0,
+    duration_s: float = 17.0,
+    k_v1: float = 100.0,
+    k_v2: float = 180.0,
+    dt_s: float = 0.001,
+    noise_N: float = 0.0,
+) -> Demo:
     """Smooth ramp to a low force that reaches the inner layer, reaction time, ramp to a higher force."""
     rng = np.random.default_rng(seed)
     t = np.arange(int(round(duration_s / dt_s)) + 1) * dt_s
     f_low = k_v1 * (INNER_LAYER_M - SURFACE_M) * rng.uniform(1.1, 1.3)
     f_high = f_low + k_v2 * rng.uniform(0.010, 0.020)
-    t1 = rng.uniform(0.15, 0.25) * duration_s           # ramp 1 duration
+    t1 = rng.uniform(0.15, 0.25) * duration_s  # ramp 1 duration
     t2 = t1 + rng.uniform(0.2, 0.35) + 0.15 * duration_s  # reaction time + hold, then ramp 2
     r2 = rng.uniform(0.15, 0.25) * duration_s
     f = f_low * _smooth(t / t1) + (f_high - f_low) * _smooth((t - t2) / r2)
@@ -44,8 +51,14 @@ def pressing(seed: int = 0, duration_s: float = 17.0, k_v1: float = 100.0, k_v2:
     return Demo(t, x, f, f"synthetic pressing seed={seed} k_v={k_v1:g}/{k_v2:g}")
 
 
-def engraving(seed: int = 0, duration_s: float = 8.0, k_v: float = 100.0, f_max_N: float = 6.0,
-              dt_s: float = 0.001, noise_N: float = 0.0) -> Demo:
+def engraving(
+    seed: int = 0,
+    duration_s: float = 8.0,
+    k_v: float = 100.0,
+    f_max_N: float = 6.0,
+    dt_s: float = 0.001,
+    noise_N: float = 0.0,
+) -> Demo:
     """Random force levels every 0.6-1.4 s with 0.7 s transitions; ramp-up 1 s, release over 0.8 s."""
     rng = np.random.default_rng(seed)
     t = np.arange(int(round(duration_s / dt_s)) + 1) * dt_s

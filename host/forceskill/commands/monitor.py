@@ -1,4 +1,5 @@
 """forceskill monitor: live state and telemetry of a node (text, or --plot for a live plot)."""
+
 from __future__ import annotations
 
 import argparse
@@ -15,6 +16,7 @@ def _cmd(args: argparse.Namespace) -> int:
         t_end = time.monotonic() + args.duration if args.duration else None
         if args.plot:
             import matplotlib.pyplot as plt
+
             plt.ion()
             _, ax = plt.subplots(figsize=(8, 4))
             lines = {k: ax.plot([], [], label=k)[0] for k in ("f_contact", "f_cmd", "f_ref")}
@@ -36,9 +38,12 @@ def _cmd(args: argparse.Namespace) -> int:
                     ax.autoscale_view()
                     plt.pause(0.001)
                 elif s is not None and st is not None:
-                    print(f"{st.state:8s} fault {st.fault_code:3d}  x {s.x_m * 1e3:8.3f} mm  "
-                          f"f_contact {s.f_contact_N:7.2f} N  f_operator {s.f_operator_N:7.2f} N  "
-                          f"f_cmd {s.f_cmd_N:7.2f} N  f_ref {s.f_ref_N:7.2f} N", flush=True)
+                    print(
+                        f"{st.state:8s} fault {st.fault_code:3d}  x {s.x_m * 1e3:8.3f} mm  "
+                        f"f_contact {s.f_contact_N:7.2f} N  f_operator {s.f_operator_N:7.2f} N  "
+                        f"f_cmd {s.f_cmd_N:7.2f} N  f_ref {s.f_ref_N:7.2f} N",
+                        flush=True,
+                    )
         except KeyboardInterrupt:
             pass
         finally:
@@ -47,13 +52,21 @@ def _cmd(args: argparse.Namespace) -> int:
 
 
 def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    p = sub.add_parser("monitor", help="live values of a device (--plot for a live plot)",
-                       description="Print the state and the latest telemetry ten times a second "
-                       "(or plot force over time with --plot) until Ctrl-C or --duration.")
+    p = sub.add_parser(
+        "monitor",
+        help="live values of a device (--plot for a live plot)",
+        description="Print the state and the latest telemetry ten times a second "
+        "(or plot force over time with --plot) until Ctrl-C or --duration.",
+    )
     p.add_argument("--plot", action="store_true", help="live matplotlib plot")
     p.add_argument("--duration", type=float, default=0.0, metavar="S", help="stop after S seconds")
-    p.add_argument("--rate", type=int, default=0, metavar="MS",
-                   help="request telemetry every MS ms via the heartbeat (only in TEACH/EXECUTE; "
-                   "sending a heartbeat makes this tool a host the device supervises)")
+    p.add_argument(
+        "--rate",
+        type=int,
+        default=0,
+        metavar="MS",
+        help="request telemetry every MS ms via the heartbeat (only in TEACH/EXECUTE; "
+        "sending a heartbeat makes this tool a host the device supervises)",
+    )
     add_common(p)
     p.set_defaults(func=_cmd)

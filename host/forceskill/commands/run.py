@@ -1,5 +1,6 @@
 """forceskill run: execute a skill (or a sequence of skills) on the device, watch it, report the
 force tracking from the telemetry."""
+
 from __future__ import annotations
 
 import argparse
@@ -48,9 +49,12 @@ def run_on_device(dev: Device, args: argparse.Namespace, log_path: str | None = 
     """Start, watch and stop one execution; returns the telemetry columns and figures."""
     st = dev.status
     if st is not None and st.state != "IDLE":
-        raise FsError(ERR_LINK_STATE, f"node {dev.node} is in {st.state}"
-                      f"{f' (fault {st.fault_code})' if st.fault_code else ''}; run needs IDLE "
-                      "(clear a fault with: forceskill status --clear)")
+        raise FsError(
+            ERR_LINK_STATE,
+            f"node {dev.node} is in {st.state}"
+            f"{f' (fault {st.fault_code})' if st.fault_code else ''}; run needs IDLE "
+            "(clear a fault with: forceskill status --clear)",
+        )
     end_code = {"skill": 0, "hold": 1, "release": 2}[args.end]
     g, ts = _scale(args.goal_scale, "goal"), _scale(args.time_scale, "time")
     writer = None
@@ -89,16 +93,22 @@ def run_on_device(dev: Device, args: argparse.Namespace, log_path: str | None = 
             st = dev.wait_state({"EXECUTE", "FAULT"}, 2.0 * args.timeout)
             start_tick = st.tick
             total = expected + tail
-            print(f"node {dev.node}: executing {'sequence ' + args.sequence if args.sequence else f'slot {args.slot}'}"
-                  f", goal x{args.goal_scale:g}, time x{args.time_scale:g}, end {end_policy}: "
-                  f"{expected:.3f} s + {tail:.2f} s", flush=True)
+            print(
+                f"node {dev.node}: executing {'sequence ' + args.sequence if args.sequence else f'slot {args.slot}'}"
+                f", goal x{args.goal_scale:g}, time x{args.time_scale:g}, end {end_policy}: "
+                f"{expected:.3f} s + {tail:.2f} s",
+                flush=True,
+            )
             while True:
                 time.sleep(0.02)
                 cur = dev.status
                 assert cur is not None
                 if cur.state == "FAULT":
-                    raise FsError(ERR_LINK_STATE, f"node {dev.node} faulted during execution: fault "
-                                  f"{cur.fault_code} at {((cur.tick - start_tick) & 0xFFFFFF) / 1000:.3f} s")
+                    raise FsError(
+                        ERR_LINK_STATE,
+                        f"node {dev.node} faulted during execution: fault "
+                        f"{cur.fault_code} at {((cur.tick - start_tick) & 0xFFFFFF) / 1000:.3f} s",
+                    )
                 if cur.state != "EXECUTE":
                     break
                 if ((cur.tick - start_tick) & 0xFFFFFF) >= total * 1000.0:
@@ -118,10 +128,10 @@ def run_on_device(dev: Device, args: argparse.Namespace, log_path: str | None = 
         starts = np.concatenate(([0], breaks + 1))
         ends = np.concatenate((breaks + 1, [ticks.size]))
         k = int(np.argmax(ends - starts))
-        samples = samples[starts[k]:ends[k]]
+        samples = samples[starts[k] : ends[k]]
     cols = columns(samples)
     n_exec = int(round(total * 1000.0))
-    cols = {k: v[:n_exec + 1] for k, v in cols.items()}
+    cols = {k: v[: n_exec + 1] for k, v in cols.items()}
     fig = tracking(cols)
     return {"columns": cols, "figures": fig, "expected_s": expected}
 
@@ -132,30 +142,50 @@ def _cmd(args: argparse.Namespace) -> int:
     with connect(args) as dev:
         r = run_on_device(dev, args, log_path=args.output)
     cols, fig = r["columns"], r["figures"]
-    print(f"telemetry: {cols['t'].size} samples over {cols['t'][-1] if cols['t'].size else 0:.3f} s; "
-          f"max contact force {fig['max_force_N']:.3f} N, max reference {fig['max_ref_N']:.3f} N")
-    print(f"force tracking: max {fig['tracking_max_pct']:.2f} %, RMS {fig['tracking_rms_pct']:.2f} % of max reference")
+    print(
+        f"telemetry: {cols['t'].size} samples over {cols['t'][-1] if cols['t'].size else 0:.3f} s; "
+        f"max contact force {fig['max_force_N']:.3f} N, max reference {fig['max_ref_N']:.3f} N"
+    )
+    print(
+        f"force tracking: max {fig['tracking_max_pct']:.2f} %, RMS {fig['tracking_rms_pct']:.2f} % of max reference"
+    )
     if args.csv:
-        write_csv(args.csv, {k: cols[k] for k in ("t", "x", "y", "f_contact", "f_operator", "f_cmd", "f_hat")})
+        write_csv(
+            args.csv, {k: cols[k] for k in ("t", "x", "y", "f_contact", "f_operator", "f_cmd", "f_hat")}
+        )
         print(f"wrote {args.csv}")
     return 0
 
 
 def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
-    p = sub.add_parser("run", help="execute a skill or a sequence on the device and report tracking",
-                       description="Start a skill (--slot) or a sequence (--sequence 1:8s,2:9s) with "
-                       "RoutineControl, keep the host heartbeat, record telemetry at 1 kHz, stop after "
-                       "the duration (hold: after --hold-for more seconds), and report the force "
-                       "tracking max/RMS in %% of the maximum reference force.")
+    p = sub.add_parser(
+        "run",
+        help="execute a skill or a sequence on the device and report tracking",
+        description="Start a skill (--slot) or a sequence (--sequence 1:8s,2:9s) with "
+        "RoutineControl, keep the host heartbeat, record telemetry at 1 kHz, stop after "
+        "the duration (hold: after --hold-for more seconds), and report the force "
+        "tracking max/RMS in %% of the maximum reference force.",
+    )
     p.add_argument("--slot", type=int, metavar="N", help="slot 1..8")
     p.add_argument("--sequence", metavar="SLOT:DUR,...", help="skills in series, e.g. 1:8s,2:9s")
     p.add_argument("--goal-scale", type=float, default=1.0, metavar="S")
     p.add_argument("--time-scale", type=float, default=1.0, metavar="S")
-    p.add_argument("--end", choices=("skill", "hold", "release"), default="skill",
-                   help="end policy (default: the skill's own)")
-    p.add_argument("--hold-for", type=float, default=0.5, metavar="S",
-                   help="with hold: seconds to hold the last force before stopping (0.5)")
+    p.add_argument(
+        "--end",
+        choices=("skill", "hold", "release"),
+        default="skill",
+        help="end policy (default: the skill's own)",
+    )
+    p.add_argument(
+        "--hold-for",
+        type=float,
+        default=0.5,
+        metavar="S",
+        help="with hold: seconds to hold the last force before stopping (0.5)",
+    )
     p.add_argument("-o", "--output", metavar="LOG", help="also log the bus (.blf .asc .log .trc .csv)")
-    p.add_argument("--csv", metavar="CSV", help="write the telemetry as t,x,y,f_contact,f_operator,f_cmd,f_hat")
+    p.add_argument(
+        "--csv", metavar="CSV", help="write the telemetry as t,x,y,f_contact,f_operator,f_cmd,f_hat"
+    )
     add_common(p)
     p.set_defaults(func=_cmd)

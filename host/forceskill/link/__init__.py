@@ -8,16 +8,17 @@
 
 Errors are ``FsError`` with codes 630-649 (host side of the CAN link), listed here.
 """
+
 from __future__ import annotations
 
 # The link's error codes live with every other host code in forceskill.errors (63x).
 from forceskill.errors import (  # noqa: F401
-                               ERR_LINK_ARGS,
-                               ERR_LINK_BUS,
-                               ERR_LINK_LOG,
-                               ERR_LINK_NEGATIVE,
-                               ERR_LINK_NO_RESPONSE,
-                               ERR_LINK_STATE,
-                               ERR_LINK_TIMEOUT,
-                               ERR_LINK_VERIFY,
+    ERR_LINK_ARGS,
+    ERR_LINK_BUS,
+    ERR_LINK_LOG,
+    ERR_LINK_NEGATIVE,
+    ERR_LINK_NO_RESPONSE,
+    ERR_LINK_STATE,
+    ERR_LINK_TIMEOUT,
+    ERR_LINK_VERIFY,
 )

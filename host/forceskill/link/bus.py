@@ -2,6 +2,7 @@
 ``-i/--interface``, ``-c/--channel``, ``-b/--bitrate``, ``--bus-kwargs key=value ...``), with
 python-can's configuration files and environment (``can.util.load_config``) supplying what is
 not given. Opening the bus turns every failure into one ``FsError`` line naming the culprit."""
+
 from __future__ import annotations
 
 import argparse
@@ -25,10 +26,20 @@ def add_bus_args(parser: argparse.ArgumentParser) -> None:
     """python-can's bus options plus the device's node id and the response timeout."""
     can.cli.add_bus_arguments(parser)
     g = parser.add_argument_group("device")
-    g.add_argument("--node", type=int, default=0, metavar="N",
-                   help="device node id 0..15 (CAN ids = base + N; default 0)")
-    g.add_argument("--timeout", type=float, default=DEFAULT_TIMEOUT_S, metavar="S",
-                   help=f"seconds to wait for the device before giving up ({DEFAULT_TIMEOUT_S:g})")
+    g.add_argument(
+        "--node",
+        type=int,
+        default=0,
+        metavar="N",
+        help="device node id 0..15 (CAN ids = base + N; default 0)",
+    )
+    g.add_argument(
+        "--timeout",
+        type=float,
+        default=DEFAULT_TIMEOUT_S,
+        metavar="S",
+        help=f"seconds to wait for the device before giving up ({DEFAULT_TIMEOUT_S:g})",
+    )
 
 
 def bus_config(ns: argparse.Namespace) -> dict[str, Any]:
@@ -44,8 +55,11 @@ def bus_config(ns: argparse.Namespace) -> dict[str, Any]:
         raise FsError(ERR_LINK_BUS, f"CAN configuration unusable: {e}") from None
     cfg.update(given)
     if not cfg.get("interface"):
-        raise FsError(ERR_LINK_BUS, "no CAN interface given: use -i/--interface (or set one in "
-                      "python-can's configuration file ~/.canrc or $CAN_INTERFACE)")
+        raise FsError(
+            ERR_LINK_BUS,
+            "no CAN interface given: use -i/--interface (or set one in "
+            "python-can's configuration file ~/.canrc or $CAN_INTERFACE)",
+        )
     return cfg
 
 
@@ -72,8 +86,9 @@ def _precheck_socketcand(cfg: dict[str, Any]) -> None:
         with socket.create_connection((str(host), port_i), timeout=2.0):
             pass
     except OSError as e:
-        raise FsError(ERR_LINK_BUS, f"cannot connect to socketcand at {host}:{port_i}: "
-                      f"{e.strerror or e}") from None
+        raise FsError(
+            ERR_LINK_BUS, f"cannot connect to socketcand at {host}:{port_i}: {e.strerror or e}"
+        ) from None
 
 
 def open_bus(ns: argparse.Namespace) -> tuple[can.BusABC, dict[str, Any]]:
@@ -98,6 +113,7 @@ def open_bus(ns: argparse.Namespace) -> tuple[can.BusABC, dict[str, Any]]:
         if iface == "socketcand" and "Expected '< ok >'" in msg:
             msg = f"channel {cfg.get('channel')!r} not served by socketcand at {cfg.get('host')}:{cfg.get('port')}"
             raise FsError(ERR_LINK_BUS, msg) from None
-        raise FsError(ERR_LINK_BUS, f"cannot open CAN interface {iface!r} channel "
-                      f"{cfg.get('channel')!r}: {msg}") from None
+        raise FsError(
+            ERR_LINK_BUS, f"cannot open CAN interface {iface!r} channel {cfg.get('channel')!r}: {msg}"
+        ) from None
     return bus, cfg

@@ -6,6 +6,7 @@ HostCommand, HostHeartbeat, DeviceStatus) carry a 4-bit rolling counter in bits 
 CRC-8 SAE J1850 (poly 0x1D, init 0xFF, xorout 0xFF) in byte 7 over the identifier (low byte,
 high byte) and data bytes 0..6 (docs/protocol.md).
 """
+
 from __future__ import annotations
 
 import copy

@@ -1,6 +1,7 @@
 """The device's cyclic frames on a python-can bus: presence (judged by frames received, never by
 a send succeeding), the host heartbeat, commands, and the status/telemetry/emergency streams,
 all encoded and decoded through the DBC."""
+
 from __future__ import annotations
 
 import threading
@@ -15,7 +16,7 @@ from ..errors import FsError
 from . import ERR_LINK_NO_RESPONSE, ERR_LINK_TIMEOUT
 from .dbc import END_POLICIES, MODES, STATES, check, load_db, protect
 
-HEARTBEAT_PERIOD_S = 0.010   # well inside the device's 100 ms silence timeout, at any speed factor
+HEARTBEAT_PERIOD_S = 0.010  # well inside the device's 100 ms silence timeout, at any speed factor
 
 
 @dataclass
@@ -44,6 +45,7 @@ class Sample:
 @dataclass
 class Telemetry:
     """Telemetry samples in arrival order; tick is the device's 1 kHz tick, unwrapped."""
+
     samples: list[Sample] = field(default_factory=list)
     _last_raw: int = -1
     _wraps: int = 0
@@ -76,7 +78,7 @@ class Device(can.Listener):
         self._lock = threading.Lock()
         self._counter = {"HostCommand": 0, "HostHeartbeat": 0}
         self._hb_task: can.broadcastmanager.CyclicSendTaskABC | None = None
-        self.heartbeat_sent: list[float] = []     # monotonic send times (diagnostics)
+        self.heartbeat_sent: list[float] = []  # monotonic send times (diagnostics)
         self.telemetry_period_ms = 0
         self.notifier: can.Notifier | None = None
         self.on_status: Callable[[Status], None] | None = None
@@ -105,9 +107,16 @@ class Device(can.Listener):
             return
         self.frames_seen += 1
         if m.name == "DeviceStatus":
-            st = Status(STATES.get(int(sig["State"]), str(sig["State"])), int(sig["FaultCode"]),
-                        int(sig["Slot"]), int(sig["Tick"]), bool(sig["ActuatorEnabled"]),
-                        bool(sig["HostAlive"]), int(sig["SequenceStep"]), float(msg.timestamp))
+            st = Status(
+                STATES.get(int(sig["State"]), str(sig["State"])),
+                int(sig["FaultCode"]),
+                int(sig["Slot"]),
+                int(sig["Tick"]),
+                bool(sig["ActuatorEnabled"]),
+                bool(sig["HostAlive"]),
+                int(sig["SequenceStep"]),
+                float(msg.timestamp),
+            )
             self.status = st
             self.status_event.set()
             if self.on_status is not None:
@@ -122,17 +131,28 @@ class Device(can.Listener):
             tel = self.telemetry
             if pos is not None and tel is not None:
                 with self._lock:
-                    tel.samples.append(Sample(tel.unwrap(pos[0]), pos[1], pos[2], float(sig["ForceContact"]),
-                                              float(sig["ForceOperator"]), float(sig["ForceCmd"]),
-                                              float(sig["ForceRef"])))
+                    tel.samples.append(
+                        Sample(
+                            tel.unwrap(pos[0]),
+                            pos[1],
+                            pos[2],
+                            float(sig["ForceContact"]),
+                            float(sig["ForceOperator"]),
+                            float(sig["ForceCmd"]),
+                            float(sig["ForceRef"]),
+                        )
+                    )
 
     # -- presence -------------------------------------------------------------------------------
     def wait_present(self) -> Status:
         """The next status frame of this node, or FsError 'no response from node N on CHANNEL'."""
         self.status_event.clear()
         if not self.status_event.wait(self.timeout_s):
-            raise FsError(ERR_LINK_NO_RESPONSE, f"no response from node {self.node} on {self.channel} "
-                          f"(no status frame 0x{self._m['DeviceStatus'].frame_id:03X} within {self.timeout_s:g} s)")
+            raise FsError(
+                ERR_LINK_NO_RESPONSE,
+                f"no response from node {self.node} on {self.channel} "
+                f"(no status frame 0x{self._m['DeviceStatus'].frame_id:03X} within {self.timeout_s:g} s)",
+            )
         assert self.status is not None
         return self.status
 
@@ -151,8 +171,11 @@ class Device(can.Listener):
             if not self.status_event.wait(w) and w >= self.timeout_s:
                 raise FsError(ERR_LINK_TIMEOUT, f"node {self.node} on {self.channel} stopped sending status")
         st = self.status
-        raise FsError(ERR_LINK_TIMEOUT, f"node {self.node} did not reach {'/'.join(sorted(states))} "
-                      f"within {timeout_s:g} s (state {st.state if st else '?'})")
+        raise FsError(
+            ERR_LINK_TIMEOUT,
+            f"node {self.node} did not reach {'/'.join(sorted(states))} "
+            f"within {timeout_s:g} s (state {st.state if st else '?'})",
+        )
 
     # -- sending --------------------------------------------------------------------------------
     def _send_safety(self, name: str, signals: dict[str, Any]) -> None:
@@ -162,8 +185,9 @@ class Device(can.Listener):
         data = m.encode(full, strict=True)
         with self._lock:
             c = self._counter[name] = (self._counter[name] + 1) & 0x0F
-        self.bus.send(can.Message(arbitration_id=m.frame_id, data=protect(m.frame_id, data, c),
-                                  is_extended_id=False))
+        self.bus.send(
+            can.Message(arbitration_id=m.frame_id, data=protect(m.frame_id, data, c), is_extended_id=False)
+        )
 
     def heartbeat(self) -> None:
         self._send_safety("HostHeartbeat", {"TelemetryPeriod": self.telemetry_period_ms})
@@ -189,19 +213,29 @@ class Device(can.Listener):
             return
         m = self._m["HostHeartbeat"]
         msg = can.Message(arbitration_id=m.frame_id, data=bytearray(8), is_extended_id=False)
-        self._hb_task = self.bus.send_periodic(msg, HEARTBEAT_PERIOD_S, store_task=False,
-                                               modifier_callback=self._heartbeat_update)
+        self._hb_task = self.bus.send_periodic(
+            msg, HEARTBEAT_PERIOD_S, store_task=False, modifier_callback=self._heartbeat_update
+        )
 
     def stop_heartbeat(self) -> None:
         if self._hb_task is not None:
             self._hb_task.stop()
             self._hb_task = None
 
-    def command(self, mode: str, slot: int = 0, goal_scale: float = 1.0, time_scale: float = 1.0,
-                end: str = "skill") -> None:
+    def command(
+        self, mode: str, slot: int = 0, goal_scale: float = 1.0, time_scale: float = 1.0, end: str = "skill"
+    ) -> None:
         """One HostCommand frame (each valid frame is one command)."""
-        self._send_safety("HostCommand", {"Mode": MODES[mode], "Slot": slot, "GoalScale": goal_scale,
-                                          "TimeScale": time_scale, "EndPolicy": END_POLICIES[end]})
+        self._send_safety(
+            "HostCommand",
+            {
+                "Mode": MODES[mode],
+                "Slot": slot,
+                "GoalScale": goal_scale,
+                "TimeScale": time_scale,
+                "EndPolicy": END_POLICIES[end],
+            },
+        )
 
     def command_until(self, mode: str, states: set[str], timeout_s: float, retry_s: float = 0.2) -> Status:
         """Send a mode command and repeat it (each with a new counter) until the status shows one

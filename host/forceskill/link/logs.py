@@ -4,6 +4,7 @@ through the DBC into the HIL log columns ``t,x,y,f_contact,f_operator,f_cmd,f_ha
 
 The demonstration is the longest stretch of telemetry sampled every tick (1 kHz, as in TEACH);
 ``t`` comes from the device's tick counter (1 ms per tick), not from host timestamps."""
+
 from __future__ import annotations
 
 from pathlib import Path
@@ -40,8 +41,9 @@ def read_can_log(path: Path, node: int | None = None) -> dict[str, np.ndarray]:
         counts = {n: ids.count(POS_BASE + n) for n in range(16)}
         node = max(counts, key=lambda n: counts[n])
         if counts[node] == 0:
-            raise DemoError(ERR_LINK_LOG, f"no device telemetry (ids 0x190-0x19F) in {path.name} "
-                            f"({len(msgs)} frames)")
+            raise DemoError(
+                ERR_LINK_LOG, f"no device telemetry (ids 0x190-0x19F) in {path.name} ({len(msgs)} frames)"
+            )
     db = load_db(node)
     mpos = db.get_message_by_name("TelemetryPosition")
     mforce = db.get_message_by_name("TelemetryForce")
@@ -58,8 +60,17 @@ def read_can_log(path: Path, node: int | None = None) -> dict[str, np.ndarray]:
             pending = (raw + 65536 * wraps, float(s["PosX"]), float(s["PosY"]))
         elif m.arbitration_id == mforce.frame_id and len(m.data) == 8 and pending is not None:
             s = mforce.decode(bytes(m.data))
-            rows.append((pending[0], pending[1], pending[2], float(s["ForceContact"]),
-                         float(s["ForceOperator"]), float(s["ForceCmd"]), float(s["ForceRef"])))
+            rows.append(
+                (
+                    pending[0],
+                    pending[1],
+                    pending[2],
+                    float(s["ForceContact"]),
+                    float(s["ForceOperator"]),
+                    float(s["ForceCmd"]),
+                    float(s["ForceRef"]),
+                )
+            )
             pending = None
     if len(rows) < 2:
         raise DemoError(ERR_LINK_LOG, f"no telemetry of node {node} in {path.name}")
@@ -70,10 +81,18 @@ def read_can_log(path: Path, node: int | None = None) -> dict[str, np.ndarray]:
     starts = np.concatenate(([0], breaks + 1))
     ends = np.concatenate((breaks + 1, [len(a)]))
     k = int(np.argmax(ends - starts))
-    a = a[starts[k]:ends[k]]
+    a = a[starts[k] : ends[k]]
     t = (a[:, 0] - a[0, 0]) * TICK_S
-    return {"t": t, "x": a[:, 1], "y": a[:, 2], "f_contact": a[:, 3], "f_operator": a[:, 4],
-            "f_cmd": a[:, 5], "f_hat": a[:, 6], "tick": a[:, 0]}
+    return {
+        "t": t,
+        "x": a[:, 1],
+        "y": a[:, 2],
+        "f_contact": a[:, 3],
+        "f_operator": a[:, 4],
+        "f_cmd": a[:, 5],
+        "f_hat": a[:, 6],
+        "tick": a[:, 0],
+    }
 
 
 def _reader(path: Path) -> dict[str, np.ndarray]:

@@ -3,6 +3,7 @@ configured here, not re-implemented. Padding 0xCC to 8 bytes, BS 0, STmin 0 (doc
 
 SecurityAccess key = first 16 bytes of HMAC-SHA256(device secret, seed). The secret comes from
 $FORCESKILL_SECRET (hex) or, by default, the simulator's documented secret."""
+
 from __future__ import annotations
 
 import hashlib
@@ -56,8 +57,13 @@ logging.getLogger("isotp").setLevel(logging.CRITICAL)
 N_SLOTS = 8
 SLOT_ENTRY = 16
 
-STATUS_NAMES = {0xFFFF: "transfer in progress", 0xFFFE: "transfer interrupted",
-                0xFFFD: "none since power-up", 0: "ok", **SKILL_STATUS_TEXT}
+STATUS_NAMES = {
+    0xFFFF: "transfer in progress",
+    0xFFFE: "transfer interrupted",
+    0xFFFD: "none since power-up",
+    0: "ok",
+    **SKILL_STATUS_TEXT,
+}
 
 
 class Raw(udsoncan.DidCodec):
@@ -76,10 +82,19 @@ class Raw(udsoncan.DidCodec):
         return self.n
 
 
-DID_CODECS = {DID_SW_VERSION: Raw(19), DID_VERSIONS: Raw(6), DID_GAINS_X: Raw(20), DID_GAINS_Y: Raw(20),
-              DID_LIMITS_X: Raw(24), DID_LIMITS_Y: Raw(24), DID_COMM: Raw(3), DID_OBJECT: Raw(25),
-              DID_SLOT_DIR: Raw(1 + N_SLOTS * SLOT_ENTRY), DID_LAST_TRANSFER: Raw(2),
-              DID_DEVICE_STATE: Raw(9)}
+DID_CODECS = {
+    DID_SW_VERSION: Raw(19),
+    DID_VERSIONS: Raw(6),
+    DID_GAINS_X: Raw(20),
+    DID_GAINS_Y: Raw(20),
+    DID_LIMITS_X: Raw(24),
+    DID_LIMITS_Y: Raw(24),
+    DID_COMM: Raw(3),
+    DID_OBJECT: Raw(25),
+    DID_SLOT_DIR: Raw(1 + N_SLOTS * SLOT_ENTRY),
+    DID_LAST_TRANSFER: Raw(2),
+    DID_DEVICE_STATE: Raw(9),
+}
 
 
 def device_secret() -> bytes:
@@ -94,26 +109,46 @@ def device_secret() -> bytes:
 
 def security_key(seed: bytes, secret: bytes | None = None) -> bytes:
     """The SecurityAccess key for a seed: HMAC-SHA256(secret, seed)[:16]."""
-    return hmac.new(secret if secret is not None else device_secret(), bytes(seed), hashlib.sha256).digest()[:16]
+    return hmac.new(secret if secret is not None else device_secret(), bytes(seed), hashlib.sha256).digest()[
+        :16
+    ]
 
 
 def isotp_params() -> dict[str, Any]:
-    return {"tx_padding": 0xCC, "tx_data_min_length": 8, "stmin": 0, "blocksize": 0,
-            "rx_flowcontrol_timeout": 1000, "rx_consecutive_frame_timeout": 1000,
-            "max_frame_size": 4095, "can_fd": False, "blocking_send": False, "wftmax": 0}
+    return {
+        "tx_padding": 0xCC,
+        "tx_data_min_length": 8,
+        "stmin": 0,
+        "blocksize": 0,
+        "rx_flowcontrol_timeout": 1000,
+        "rx_consecutive_frame_timeout": 1000,
+        "max_frame_size": 4095,
+        "can_fd": False,
+        "blocking_send": False,
+        "wftmax": 0,
+    }
 
 
-def open_client(bus: Any, notifier: Any, node: int, *, secret: bytes | None = None,
-                dids: dict[int, Any] | None = None, timeout_s: float = 5.0,
-                pending_timeout_s: float | None = None, address_format: int = 8,
-                memorysize_format: int = 16) -> Client:
+def open_client(
+    bus: Any,
+    notifier: Any,
+    node: int,
+    *,
+    secret: bytes | None = None,
+    dids: dict[int, Any] | None = None,
+    timeout_s: float = 5.0,
+    pending_timeout_s: float | None = None,
+    address_format: int = 8,
+    memorysize_format: int = 16,
+) -> Client:
     """A udsoncan Client (not yet opened) for node over can-isotp on bus, sharing notifier.
     SecurityAccess keys use secret, or device_secret() when it is None; dids maps data identifiers
     to codecs (default: the application's); timeout_s bounds every request (server timing ignored:
     a 4 KiB request takes longer than the server's P2 to cross a slow or simulated bus), and
     pending_timeout_s (default timeout_s) each wait after a "response pending" (NRC 0x78)."""
-    addr = isotp.Address(isotp.AddressingMode.Normal_11bits, txid=UDS_REQUEST_BASE + node,
-                         rxid=UDS_RESPONSE_BASE + node)
+    addr = isotp.Address(
+        isotp.AddressingMode.Normal_11bits, txid=UDS_REQUEST_BASE + node, rxid=UDS_RESPONSE_BASE + node
+    )
     stack = isotp.NotifierBasedCanStack(bus, notifier, address=addr, params=isotp_params())
     conn = PythonIsoTpConnection(stack)
 
@@ -121,10 +156,19 @@ def open_client(bus: Any, notifier: Any, node: int, *, secret: bytes | None = No
         return security_key(bytes(seed), secret)
 
     cfg: Any = dict(udsoncan.configs.default_client_config)
-    cfg.update({"security_algo": algo, "data_identifiers": DID_CODECS if dids is None else dids,
-                "request_timeout": timeout_s, "p2_timeout": timeout_s, "p2_star_timeout": timeout_s if pending_timeout_s is None else pending_timeout_s,
-                "use_server_timing": False, "server_address_format": address_format,
-                "server_memorysize_format": memorysize_format, "exception_on_negative_response": True})
+    cfg.update(
+        {
+            "security_algo": algo,
+            "data_identifiers": DID_CODECS if dids is None else dids,
+            "request_timeout": timeout_s,
+            "p2_timeout": timeout_s,
+            "p2_star_timeout": timeout_s if pending_timeout_s is None else pending_timeout_s,
+            "use_server_timing": False,
+            "server_address_format": address_format,
+            "server_memorysize_format": memorysize_format,
+            "exception_on_negative_response": True,
+        }
+    )
     return Client(conn, config=cfg)
 
 
@@ -162,8 +206,14 @@ def call(what: str, fn: Callable[[], Any], node: int, on_nrc: NrcPolicy | None =
         raise FsError(ERR_LINK_NEGATIVE, f"{what}: unexpected response from node {node}: {e}") from None
 
 
-def unlock(client: Client, node: int, session: int | None, level: int = SEC_LEVEL_WRITE,
-           on_nrc: NrcPolicy | None = None, wait_s: float = 15.0) -> None:
+def unlock(
+    client: Client,
+    node: int,
+    session: int | None,
+    level: int = SEC_LEVEL_WRITE,
+    on_nrc: NrcPolicy | None = None,
+    wait_s: float = 15.0,
+) -> None:
     """Enter session (unless None) and unlock level; waits out the device's power-up/failed-key
     delay (NRC 0x37) for up to wait_s."""
     if session is not None:
@@ -192,10 +242,19 @@ def slot_directory(client: Client, node: int) -> list[dict[str, Any]]:
     raw = read_did(client, DID_SLOT_DIR, node)
     out = []
     for i in range(raw[0]):
-        e = raw[1 + SLOT_ENTRY * i: 1 + SLOT_ENTRY * (i + 1)]
+        e = raw[1 + SLOT_ENTRY * i : 1 + SLOT_ENTRY * (i + 1)]
         valid, length, crc, n, dur, end = struct.unpack(">BIIHfB", e)
-        out.append({"slot": i + 1, "valid": bool(valid), "length": length, "crc32": crc, "n_kernels": n,
-                    "duration_s": dur, "end": "release" if end else "hold"})
+        out.append(
+            {
+                "slot": i + 1,
+                "valid": bool(valid),
+                "length": length,
+                "crc32": crc,
+                "n_kernels": n,
+                "duration_s": dur,
+                "end": "release" if end else "hold",
+            }
+        )
     return out
 
 
@@ -204,8 +263,9 @@ def last_transfer_status(client: Client, node: int) -> int:
     return code
 
 
-def download(client: Client, node: int, slot: int, image: bytes,
-             progress: Callable[[int], None] | None = None) -> int:
+def download(
+    client: Client, node: int, slot: int, image: bytes, progress: Callable[[int], None] | None = None
+) -> int:
     """RequestDownload + TransferData + RequestTransferExit of image into slot; returns the CRC-32
     the device reports. On refusal the device keeps the slot's previous skill."""
     loc = udsoncan.MemoryLocation(address=slot, memorysize=len(image), address_format=8, memorysize_format=16)
@@ -213,7 +273,7 @@ def download(client: Client, node: int, slot: int, image: bytes,
     block = int(r.service_data.max_length) - 2
     seq = 1
     for off in range(0, len(image), block):
-        chunk = image[off:off + block]
+        chunk = image[off : off + block]
         call("transfer data", partial(client.transfer_data, seq & 0xFF, chunk), node)
         seq += 1
         if progress:
@@ -222,9 +282,12 @@ def download(client: Client, node: int, slot: int, image: bytes,
         r = client.request_transfer_exit()
     except NegativeResponseException as e:
         code = last_transfer_status(client, node)
-        raise FsError(ERR_LINK_NEGATIVE, f"node {node} rejected the skill at transfer exit "
-                      f"({describe_nrc(e)}; device status {code}: {STATUS_NAMES.get(code, 'storage error')}); "
-                      f"slot {slot} keeps its previous skill") from None
+        raise FsError(
+            ERR_LINK_NEGATIVE,
+            f"node {node} rejected the skill at transfer exit "
+            f"({describe_nrc(e)}; device status {code}: {STATUS_NAMES.get(code, 'storage error')}); "
+            f"slot {slot} keeps its previous skill",
+        ) from None
     except TimeoutException:
         raise FsError(ERR_LINK_TIMEOUT, f"transfer exit: no UDS response from node {node}") from None
     params = bytes(r.service_data.parameter_records or b"")
@@ -247,6 +310,11 @@ def upload(client: Client, node: int, slot: int, size: int) -> bytes:
 
 def verify(node: int, slot: int, sent: bytes, read: bytes) -> None:
     if sent != read:
-        first = next((i for i, (a, b) in enumerate(zip(sent, read, strict=False)) if a != b), min(len(sent), len(read)))
-        raise FsError(ERR_LINK_VERIFY, f"read-back of slot {slot} on node {node} differs from the file "
-                      f"at byte {first} ({len(read)} of {len(sent)} bytes read)")
+        first = next(
+            (i for i, (a, b) in enumerate(zip(sent, read, strict=False)) if a != b), min(len(sent), len(read))
+        )
+        raise FsError(
+            ERR_LINK_VERIFY,
+            f"read-back of slot {slot} on node {node} differs from the file "
+            f"at byte {first} ({len(read)} of {len(sent)} bytes read)",
+        )
