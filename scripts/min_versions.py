@@ -14,13 +14,25 @@ except ModuleNotFoundError:  # Python 3.10
 ROOT = Path(__file__).resolve().parents[1]
 
 
+def _marker_applies(marker: str) -> bool:
+    """The one kind of marker pyproject.toml uses: python_version < / >= 'X.Y'."""
+    m = re.fullmatch(r"\s*python_version\s*(<|>=)\s*['\"](\d+)\.(\d+)['\"]\s*", marker)
+    if not m:
+        sys.exit(f"min_versions: unsupported environment marker: {marker.strip()!r}")
+    below = sys.version_info[:2] < (int(m.group(2)), int(m.group(3)))
+    return below if m.group(1) == "<" else not below
+
+
 def pins() -> list[str]:
     deps = tomllib.loads((ROOT / "host" / "pyproject.toml").read_text())["project"]["dependencies"]
     out = []
-    for d in deps:
+    for dep in deps:
+        d, _, marker = dep.partition(";")
+        if marker and not _marker_applies(marker):
+            continue  # e.g. tomli, needed only before Python 3.11
         m = re.fullmatch(r"\s*([A-Za-z0-9_.\-]+)\s*>=\s*([0-9][0-9A-Za-z.]*)\s*", d)
         if not m:
-            sys.exit(f"min_versions: dependency without a plain lower bound: {d!r}")
+            sys.exit(f"min_versions: dependency without a plain lower bound: {dep!r}")
         out.append(f"{m.group(1)}=={m.group(2)}")
     return out
 
