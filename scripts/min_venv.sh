@@ -9,13 +9,15 @@ cd "$ROOT"
 PY="${PYTHON:-python3}"
 VENV=.venv-min
 if [ ! -x "$VENV/bin/python" ] || [ host/pyproject.toml -nt "$VENV/.installed" ]; then
-  echo "== $VENV with the lowest allowed versions:" $("$PY" scripts/min_versions.py)
+  rm -f "$VENV/.installed"
+  pins="$("$PY" scripts/min_versions.py)"   # a separate statement: set -e stops on its failure
+  echo "== $VENV with the lowest allowed versions:" $pins
   if [ ! -x "$VENV/bin/python" ]; then
     "$PY" -m venv "$VENV"
     "$VENV/bin/pip" install -q --upgrade pip
   fi
   # shellcheck disable=SC2046
-  "$VENV/bin/pip" install -q --only-binary numpy,matplotlib $("$PY" scripts/min_versions.py) "pytest>=7"
+  "$VENV/bin/pip" install -q --only-binary numpy,matplotlib $pins "pytest>=7"
   "$VENV/bin/pip" install -q --no-deps -e host
   touch "$VENV/.installed"
 fi
