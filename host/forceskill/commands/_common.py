@@ -13,7 +13,7 @@ import can
 import numpy as np
 
 from ..errors import ERR_LINK_TIMEOUT, ERR_LOG_FORMAT, FsError
-from ..link.bus import add_bus_args, describe, open_bus
+from ..link.bus import add_bus_args, describe, error_summary, open_bus
 from ..link.device import Device, Sample
 from ..outputs import Outputs
 
@@ -108,5 +108,6 @@ def link_errors(node: int, channel: str) -> Iterator[None]:
     try:
         yield
     except (OSError, can.CanError) as e:
-        first = (str(e).splitlines() or [type(e).__name__])[0]
-        raise FsError(ERR_LINK_TIMEOUT, f"link to node {node} on {channel} lost: {first}") from None
+        raise FsError(
+            ERR_LINK_TIMEOUT, f"link to node {node} on {channel} lost: {error_summary(e)}"
+        ) from None

@@ -11,6 +11,7 @@ import can
 
 from ..errors import ERR_RUN_FAULT, FsError, fault_text
 from ..link import ERR_LINK_ARGS, ERR_LINK_STATE, ERR_LINK_TIMEOUT
+from ..link.bus import error_summary
 from ..outputs import Outputs
 from ._common import add_common, connect, open_log, sigint_flag
 
@@ -98,9 +99,9 @@ def _record(args: argparse.Namespace, writer: can.Listener) -> FsError | None:
                             pass
                     if isinstance(e, FsError):
                         return e
-                    first = (str(e).splitlines() or [type(e).__name__])[0]
                     return FsError(
-                        ERR_LINK_TIMEOUT, f"link to node {dev.node} on {dev.channel} lost: {first}"
+                        ERR_LINK_TIMEOUT,
+                        f"link to node {dev.node} on {dev.channel} lost: {error_summary(e)}",
                     )
                 finally:
                     dev.stop_heartbeat()

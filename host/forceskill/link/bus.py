@@ -18,8 +18,16 @@ from . import ERR_LINK_ARGS, ERR_LINK_BUS
 
 DEFAULT_TIMEOUT_S = 2.0
 
-# python-can's socketcand reader warns whenever a TCP read ends inside a frame (normal streaming)
-logging.getLogger("can.interfaces.socketcand.socketcand").setLevel(logging.ERROR)
+# python-can's socketcand reader warns whenever a TCP read ends inside a frame (normal streaming),
+# and logs a lost connection with its traceback: the commands report link failures as one line
+logging.getLogger("can.interfaces.socketcand.socketcand").setLevel(logging.CRITICAL)
+
+
+def error_summary(e: BaseException) -> str:
+    """One line for a bus failure: the exception's first line without the traceback that some
+    python-can interfaces put into the message itself."""
+    first = (str(e).splitlines() or [""])[0].split("Traceback (most recent call last)")[0].strip()
+    return first or type(e).__name__
 
 
 def add_bus_args(parser: argparse.ArgumentParser) -> None:

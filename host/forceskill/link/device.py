@@ -17,6 +17,7 @@ import can
 
 from ..errors import FsError
 from . import ERR_LINK_NO_RESPONSE, ERR_LINK_TIMEOUT
+from .bus import error_summary
 from .dbc import END_POLICIES, MODES, STATES, check, load_db, protect
 
 # python-can logs a failed periodic send with its traceback; the commands report it as one line
@@ -166,8 +167,9 @@ class Device(can.Listener):
         """FsError(635) if the bus failed under the receive thread."""
         e = self.link_error
         if e is not None:
-            first = (str(e).splitlines() or [type(e).__name__])[0]
-            raise FsError(ERR_LINK_TIMEOUT, f"link to node {self.node} on {self.channel} lost: {first}")
+            raise FsError(
+                ERR_LINK_TIMEOUT, f"link to node {self.node} on {self.channel} lost: {error_summary(e)}"
+            )
 
     # -- presence -------------------------------------------------------------------------------
     def wait_present(self) -> Status:
