@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Comments and docs speak of the code itself: fail on a reference to the specification's or the
-# tracker's numbering ("SPEC 5", "issue 6") anywhere in the tree's sources and docs.
+# Comments and docs speak of the code itself: fail on a reference to a numbered section of the
+# specification or a numbered tracker entry (the pattern below) anywhere in the tree's sources and docs.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
