@@ -24,20 +24,20 @@ from .errors import ERR_IO, ERR_UNEXPECTED, FsError
 #: Sub-command modules added by other parts of the host package (report, record, upload, run,
 #: status, monitor, ...): append "forceskill.<module>" here.
 COMMAND_MODULES: list[str] = [
-    "forceskill.report",
+    "forceskill.commands.report",
     "forceskill.commands.record",
     "forceskill.commands.upload",
     "forceskill.commands.run",
     "forceskill.commands.status",
     "forceskill.commands.monitor",
     "forceskill.commands.journey",
-    "forceskill.flash",
+    "forceskill.commands.flash",
 ]
 #: Commands of those modules with their one-line help: a command line naming one of them imports
 #: only its module; ``forceskill --help`` lists them without importing any (python-can, cantools,
 #: udsoncan and matplotlib stay unloaded). A module not in this table is imported for the help.
 LAZY_COMMANDS: dict[str, tuple[str, str]] = {
-    "report": ("forceskill.report", "run every paper experiment on the HIL simulator"),
+    "report": ("forceskill.commands.report", "run every paper experiment on the HIL simulator"),
     "record": ("forceskill.commands.record", "record a demonstration (device in TEACH) to a CAN log"),
     "upload": ("forceskill.commands.upload", "upload a skill into a device slot (UDS over ISO-TP)"),
     "run": ("forceskill.commands.run", "execute a skill or a sequence on the device and report tracking"),
@@ -47,8 +47,11 @@ LAZY_COMMANDS: dict[str, tuple[str, str]] = {
         "forceskill.commands.journey",
         "record -> fit -> upload -> run 1x/1.5x over CAN on the simulator",
     ),
-    "flash": ("forceskill.flash", "flash a signed firmware image over CAN (UDS), test-boot it, read back"),
-    "image": ("forceskill.flash", "build or inspect a signed firmware image"),
+    "flash": (
+        "forceskill.commands.flash",
+        "flash a signed firmware image over CAN (UDS), test-boot it, read back",
+    ),
+    "image": ("forceskill.commands.flash", "build or inspect a signed firmware image"),
 }
 BUILTIN_COMMANDS = ("fit", "rollout", "show")
 
@@ -79,7 +82,7 @@ def _float(s: str) -> float:
 
 
 def _limits() -> types.ModuleType:
-    from . import limits
+    from .model import limits
 
     return limits
 
@@ -90,14 +93,14 @@ def _limits() -> types.ModuleType:
 def _cmd_fit(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from . import tolerance as tol
-    from .demo import load_demo, resample
     from .errors import ERR_FIT_ARGS, ERR_FIT_INACCURATE, ERR_FIT_TOLERANCE
-    from .limits import check_skill_force
+    from .model import tolerance as tol
+    from .model.demo import load_demo, resample
+    from .model.limits import check_skill_force
+    from .model.params import Gains, gains_for_object, load_gains
+    from .model.skill import DURATION_MAX_S, MAX_KERNELS
     from .outputs import Outputs, check_target
-    from .params import Gains, gains_for_object, load_gains
     from .readers import ReadOptions
-    from .skill import DURATION_MAX_S, MAX_KERNELS
 
     out = Path(args.output)
     targets = [args.output, args.output + ".json"] + ([args.plot] if args.plot else [])
@@ -228,7 +231,7 @@ def _fit_with_hint(demo: Any, args: argparse.Namespace, n_kernels: int) -> Any:
     import numpy as np
 
     from .errors import ERR_FIT_GOAL
-    from .fit import fit
+    from .model.fit import fit
 
     try:
         return fit(
@@ -409,9 +412,9 @@ def _register_fit(sub: argparse._SubParsersAction[_Parser]) -> None:
 def _cmd_rollout(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from .dmp import rollout_blocks
+    from .model.dmp import rollout_blocks
+    from .model.skill import Skill
     from .outputs import STDOUT, check_target, write_csv
-    from .skill import Skill
 
     if args.output != STDOUT:
         check_target(args.output, [args.skill])
@@ -470,9 +473,9 @@ def _register_rollout(sub: argparse._SubParsersAction[_Parser]) -> None:
 def _cmd_show(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from .dmp import rollout
-    from .limits import check_force_limit, peak_problem
-    from .skill import Skill, image_size
+    from .model.dmp import rollout
+    from .model.limits import check_force_limit, peak_problem
+    from .model.skill import Skill, image_size
 
     check_force_limit(args.force_limit)
     sk = Skill.read(args.skill)

@@ -291,7 +291,7 @@ def transform_scan(
 
 
 def check_scales(goal_scale: float, time_scale: float) -> None:
-    """The host's one scale check (forceskill.limits.check_scales): code 109, as the firmware."""
+    """The host's one scale check (forceskill.model.limits.check_scales): code 109, as the firmware."""
     from .limits import check_scales as _check
 
     _check(goal_scale, time_scale)

@@ -22,9 +22,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from . import fwimage as fw
-from .codes import DID_FWU_STATUS as DID_STATUS
-from .codes import (  # noqa: F401
+from ..codes import DID_FWU_STATUS as DID_STATUS
+from ..codes import (  # noqa: F401
     DOWNLOAD_ADDRESS,
     RID_CONFIRM,
     RID_MARK_TEST,
@@ -32,8 +31,9 @@ from .codes import (  # noqa: F401
     UDS_REQUEST_BASE,
     UDS_RESPONSE_BASE,
 )
-from .errors import ERR_FLASH_NOT_CONFIRMED as ERR_NOT_CONFIRMED
-from .errors import ERR_IO, ERR_LINK_BUS, ERR_LINK_NEGATIVE, ERR_LINK_NO_RESPONSE, ERR_LINK_TIMEOUT, FsError  # noqa: F401
+from ..errors import ERR_FLASH_NOT_CONFIRMED as ERR_NOT_CONFIRMED
+from ..errors import ERR_IO, ERR_LINK_BUS, ERR_LINK_NEGATIVE, ERR_LINK_NO_RESPONSE, ERR_LINK_TIMEOUT, FsError  # noqa: F401
+from ..model import fwimage as fw
 
 STATUS_LEN = 17
 SESSION_PROGRAMMING = 0x02
@@ -102,7 +102,7 @@ def load_secret(path: str | None) -> bytes:
     """Level-3 (firmware) SecurityAccess secret: hex text from PATH, else
     link.uds.device_secret(3) ($FORCESKILL_FW_SECRET, or the simulator's documented secret)."""
     if not path:
-        from .link.uds import SEC_LEVEL_FIRMWARE, device_secret
+        from ..link.uds import SEC_LEVEL_FIRMWARE, device_secret
 
         return device_secret(SEC_LEVEL_FIRMWARE)
     try:
@@ -175,7 +175,7 @@ def _refused(step: str, e: Any) -> FsError:
 
 def _call(step: str, fn: Callable[..., Any], *a: Any, node: int = 0) -> Any:
     """Run one UDS request (link.uds.call); negative responses and timeouts become FsError."""
-    from .link.uds import call
+    from ..link.uds import call
 
     return call(step, lambda: fn(*a), node, _refused)
 
@@ -192,7 +192,7 @@ def flash_image(
     sent. The caller then resets the device (ECUReset) and reads the status back."""
     from udsoncan import MemoryLocation
 
-    from .link.uds import unlock
+    from ..link.uds import unlock
 
     # through the default session: ends any transfer a previous, interrupted run left open
     _call("DiagnosticSessionControl(default)", client.change_session, 0x01, node=node)
@@ -276,8 +276,8 @@ class Link:
     def __init__(self, args: argparse.Namespace, secret: bytes | None) -> None:
         import can
 
-        from .link.bus import describe, open_bus
-        from .link.uds import open_client
+        from ..link.bus import describe, open_bus
+        from ..link.uds import open_client
 
         self.bus, cfg = open_bus(args)
         self.channel = describe(cfg)
@@ -321,7 +321,7 @@ def _read_image(path: str, key_path: str | None, verify: bool) -> fw.FwImage:
 def _cmd_flash(args: argparse.Namespace) -> int:
     img = _read_image(args.image, args.key, verify=args.key is not None or bool(os.environ.get(fw.KEY_ENV)))
     data = img.to_bytes()
-    from .link.bus import bus_config
+    from ..link.bus import bus_config
 
     try:
         bus_config(args)
@@ -410,7 +410,7 @@ def _cmd_image_build(args: argparse.Namespace) -> int:
         int(args.entry_offset, 0),
     )
     out = Path(args.output)
-    from .outputs import write_file
+    from ..outputs import write_file
 
     write_file(out, img, inputs=[args.binary])
     print(fw.describe(fw.parse_image(img, fw.load_key(args.key))))
@@ -434,7 +434,7 @@ def _cmd_image_show(args: argparse.Namespace) -> int:
 def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p = sub.add_parser("flash", help="flash a signed firmware image over CAN (UDS), test-boot it, read back")
     p.add_argument("image", help="signed image (forceskill image build)")
-    from .link.bus import add_bus_args
+    from ..link.bus import add_bus_args
 
     add_bus_args(p)
     p.add_argument(

@@ -16,7 +16,7 @@ import argparse
 import math
 from typing import TYPE_CHECKING
 
-from .errors import (
+from ..errors import (
     ERR_ROLLOUT_CAP,
     ERR_SCALE_INVALID,
     ERR_SKILL_PEAK,
@@ -61,7 +61,7 @@ def check_steps(n_steps: int) -> None:
 
 def check_force_limit(force_limit_N: float) -> None:
     """A usable force limit: finite and > 0 (ParamError 110)."""
-    from .errors import ERR_LIMIT_INVALID
+    from ..errors import ERR_LIMIT_INVALID
 
     if not (math.isfinite(force_limit_N) and force_limit_N > 0.0):
         raise ParamError(ERR_LIMIT_INVALID, f"force limit must be finite and > 0 N: {force_limit_N:g}")
@@ -106,7 +106,7 @@ def check_skill_force(
 
 def add_force_limit(p: argparse.ArgumentParser) -> None:
     """The --force-limit option (N, default the device's 50 N)."""
-    from .cli import _float
+    from ..cli import _float
 
     p.add_argument(
         "--force-limit",
