@@ -18,7 +18,6 @@ from ..link import ERR_LINK_ARGS, ERR_LINK_STATE
 from ..link import uds as U
 from ..link.device import Device
 from ..model.limits import (
-    add_force_limit,
     check_force_limit,
     check_scales,
     peak_problem,
@@ -26,6 +25,7 @@ from ..model.limits import (
 )
 from ..model.skill import Skill
 from ..outputs import STDOUT, Outputs, format_rows
+from ._args import add_force_limit
 from ._common import add_common, columns, connect, link_errors, open_log, sigint_flag, tracking
 
 _STEP = re.compile(r"^\s*(\d+)\s*:\s*([0-9.]+)\s*(ms|s)?\s*$")

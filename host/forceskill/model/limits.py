@@ -12,7 +12,6 @@ command (fit, show, rollout, upload, run) before anything is written or sent.
 
 from __future__ import annotations
 
-import argparse
 import math
 from typing import TYPE_CHECKING
 
@@ -102,16 +101,3 @@ def check_skill_force(
     if problem:
         raise FsError(ERR_SKILL_PEAK, f"skill {name}: {problem}")
     return peak
-
-
-def add_force_limit(p: argparse.ArgumentParser) -> None:
-    """The --force-limit option (N, default the device's 50 N)."""
-    from ..cli import _float
-
-    p.add_argument(
-        "--force-limit",
-        type=_float,
-        default=FORCE_LIMIT_N,
-        metavar="N",
-        help=f"refuse a skill whose rollout is not finite or peaks above N newtons ({FORCE_LIMIT_N:g})",
-    )
