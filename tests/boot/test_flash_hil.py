@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 
 from forceskill import cli
-from forceskill.commands import flash as fl
+from forceskill.link import flash as fl
 from forceskill.model import fwimage as fw
 from forceskill.errors import FsError
 

@@ -21,7 +21,7 @@ import isotp
 import pytest
 
 from forceskill import cli
-from forceskill.commands import flash as fl
+from forceskill.link import flash as fl
 from forceskill.model import fwimage as fw
 from forceskill.errors import FsError
 

@@ -1,0 +1,302 @@
+"""The firmware update path over UDS (docs/update.md), used by ``forceskill flash``.
+
+Read the device's update status (DID 0xF1B0), show image and device version and target,
+refuse a wrong target or a downgrade here already (the device refuses them too), then over
+udsoncan + can-isotp: programming session, SecurityAccess level 3, RequestDownload at
+0xF0000000 (the inactive slot), TransferData with a progress bar, RequestTransferExit (device
+checks hash and tag; its CRC-32 is compared with ours), RoutineControl 0x0F01 (mark for a test
+boot; option bit 0 = allow downgrade), ECUReset, then read back the running version until the
+new image has confirmed itself (or the device reports it reverted).
+"""
+
+from __future__ import annotations
+
+import argparse
+import struct
+import time
+import zlib
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from ..codes import DID_FWU_STATUS as DID_STATUS
+from ..codes import (  # noqa: F401
+    DOWNLOAD_ADDRESS,
+    RID_CONFIRM,
+    RID_MARK_TEST,
+    SEC_LEVEL_FIRMWARE,
+    UDS_REQUEST_BASE,
+    UDS_RESPONSE_BASE,
+)
+from ..errors import ERR_FLASH_NOT_CONFIRMED as ERR_NOT_CONFIRMED
+from ..errors import ERR_IO, ERR_LINK_BUS, ERR_LINK_NEGATIVE, ERR_LINK_NO_RESPONSE, ERR_LINK_TIMEOUT, FsError  # noqa: F401
+from ..model import fwimage as fw
+
+STATUS_LEN = 17
+SESSION_PROGRAMMING = 0x02
+PENDING_TIMEOUT_S = 5.0  # after "response pending" (NRC 0x78): erasing a slot takes a while
+
+PATHS = {
+    0: "none",
+    1: "active",
+    2: "test boot (must confirm)",
+    3: "reverted (test image did not confirm)",
+    4: "active (test image refused)",
+    5: "recovered (other slot)",
+    6: "first boot",
+}
+PHASES = {0: "idle", 1: "receiving", 2: "received", 3: "marked for test"}
+
+
+@dataclass
+class DeviceStatus:
+    """Decoded DID 0xF1B0 (firmware/boot/fwu.h, fwu_status)."""
+
+    running_version: int
+    running_slot: int
+    on_test: bool
+    active_slot: int
+    test_slot: int
+    path: int
+    target_id: int
+    last_refusal: int
+    received_version: int
+    phase: int
+
+    @classmethod
+    def decode(cls, b: bytes) -> DeviceStatus:
+        if len(b) < STATUS_LEN:
+            raise FsError(ERR_LINK_NEGATIVE, f"update status record is {len(b)} bytes, expected {STATUS_LEN}")
+        rv, rs, ot, a, t, p, tg, lr, recv, ph = struct.unpack(">IBBBBBBHIB", b[:STATUS_LEN])
+        return cls(rv, rs, bool(ot), a, t, p, tg, lr, recv, ph)
+
+    @property
+    def version(self) -> str:
+        return fw.unpack_version(self.running_version)
+
+    @property
+    def target(self) -> str:
+        return fw.TARGET_NAMES.get(self.target_id, f"unknown({self.target_id})")
+
+    def describe(self) -> str:
+        slot = "AB"[self.running_slot] if self.running_slot < 2 else "-"
+        path = PATHS.get(self.path, str(self.path))
+        if self.path == 2 and not self.on_test:
+            path = "test boot, confirmed"
+        s = f"device: firmware {self.version} on {self.target}, slot {slot}, {path}"
+        if self.last_refusal:
+            s += f", last refusal {self.last_refusal}"
+        return s
+
+
+def nrc_error(code: int, step: str) -> FsError:
+    """The FsError for a negative response code of the update path."""
+    err, text = fw.NRC.get(code, (ERR_LINK_NEGATIVE, f"negative response 0x{code:02X}"))
+    return FsError(err, f"{step}: device refused (NRC 0x{code:02X}): {text}")
+
+
+def load_secret(path: str | None) -> bytes:
+    """Level-3 (firmware) SecurityAccess secret: hex text from PATH, else
+    link.uds.device_secret(3) ($FORCESKILL_FW_SECRET, or the simulator's documented secret)."""
+    if not path:
+        from .uds import SEC_LEVEL_FIRMWARE, device_secret
+
+        return device_secret(SEC_LEVEL_FIRMWARE)
+    try:
+        text = Path(path).read_text()
+    except OSError as e:
+        raise FsError(fw.ERR_KEY, f"secret file {path}: {e.strerror}") from None
+    try:
+        secret = bytes.fromhex("".join(text.split()))
+    except ValueError:
+        raise FsError(fw.ERR_KEY, f"secret file {path} is not hex") from None
+    if not 16 <= len(secret) <= 64:
+        raise FsError(fw.ERR_KEY, f"device secret is {len(secret)} bytes, need 16..64")
+    return secret
+
+
+def check_plan(img: fw.FwImage, dev: DeviceStatus | None, allow_downgrade: bool) -> list[str]:
+    """Lines shown before writing; raises FsError for what the device would refuse anyway."""
+    lines = [
+        f"image:  firmware {img.version} for {img.target}, build '{img.build_id or '-'}', "
+        f"{len(img.to_bytes())} bytes"
+    ]
+    if dev is None:
+        return lines
+    lines.append(dev.describe())
+    if dev.on_test:
+        raise FsError(
+            fw.ERR_TEST_PENDING,
+            f"device runs {dev.version} on test (not confirmed yet): "
+            "wait for it to confirm or reset it, then flash again",
+        )
+    if dev.target_id != img.target_id:
+        raise FsError(fw.ERR_TARGET, f"image is for {img.target}, device is {dev.target}")
+    if img.fw_version < dev.running_version:
+        if not allow_downgrade:
+            raise FsError(
+                fw.ERR_DOWNGRADE,
+                f"image {img.version} is older than the running "
+                f"{dev.version}: refused (use --allow-downgrade)",
+            )
+        lines.append(f"downgrade {dev.version} -> {img.version} allowed by --allow-downgrade")
+    return lines
+
+
+def status_codecs() -> dict[int, Any]:
+    """The data identifier the update path reads: DID 0xF1B0 (read-only), decoded."""
+    import udsoncan
+
+    class StatusCodec(udsoncan.DidCodec):
+        """DID 0xF1B0, read-only."""
+
+        def decode(self, payload: bytes) -> DeviceStatus:
+            return DeviceStatus.decode(payload)
+
+        def __len__(self) -> int:
+            return STATUS_LEN
+
+    return {DID_STATUS: StatusCodec()}
+
+
+def read_status(client: Any) -> DeviceStatus:
+    resp = client.read_data_by_identifier(DID_STATUS)
+    status: DeviceStatus = resp.service_data.values[DID_STATUS]
+    return status
+
+
+def _refused(step: str, e: Any) -> FsError:
+    """The update path's refusal policy for link.uds.call: each NRC its own code."""
+    return nrc_error(int(e.response.code), step)
+
+
+def request(step: str, fn: Callable[..., Any], *a: Any, node: int = 0) -> Any:
+    """Run one UDS request (link.uds.call); negative responses and timeouts become FsError."""
+    from .uds import call
+
+    return call(step, lambda: fn(*a), node, _refused)
+
+
+def flash_image(
+    client: Any,
+    image: bytes,
+    allow_downgrade: bool = False,
+    progress: Callable[[int], None] | None = None,
+    block_size: int = 0,
+    node: int = 0,
+) -> int:
+    """Write image into the inactive slot of node and mark it for a test boot; returns the blocks
+    sent. The caller then resets the device (ECUReset) and reads the status back."""
+    from udsoncan import MemoryLocation
+
+    from .uds import unlock
+
+    # through the default session: ends any transfer a previous, interrupted run left open
+    request("DiagnosticSessionControl(default)", client.change_session, 0x01, node=node)
+    request("DiagnosticSessionControl(programming)", client.change_session, SESSION_PROGRAMMING, node=node)
+    # SecurityAccess level 3, waiting out the device's delay (NRC 0x37: the 1 s after power-up,
+    # e.g. right after a previous update's reset, or after a wrong key)
+    unlock(client, node, None, SEC_LEVEL_FIRMWARE, _refused)
+    resp = request(
+        "RequestDownload",
+        client.request_download,
+        MemoryLocation(DOWNLOAD_ADDRESS, len(image), 32, 32),
+        node=node,
+    )
+    block = int(resp.service_data.max_length) - 2
+    if block_size > 0:
+        block = min(block, block_size)
+    if block < 1:
+        raise FsError(ERR_LINK_NEGATIVE, f"device announced a block length of {block + 2}")
+    seq, n_blocks = 1, 0
+    for off in range(0, len(image), block):
+        chunk = image[off : off + block]
+        request(
+            f"TransferData(block {n_blocks + 1}, offset {off})", client.transfer_data, seq, chunk, node=node
+        )
+        seq = (seq + 1) & 0xFF
+        n_blocks += 1
+        if progress:
+            progress(len(chunk))
+    resp = request("RequestTransferExit", client.request_transfer_exit, node=node)
+    rec = bytes(resp.service_data.parameter_records or b"")
+    if len(rec) >= 4:
+        crc = int.from_bytes(rec[:4], "big")
+        if crc != zlib.crc32(image):
+            raise FsError(
+                ERR_LINK_NEGATIVE,
+                f"device CRC-32 0x{crc:08X} differs from the image's 0x{zlib.crc32(image):08X}",
+            )
+    request(
+        "RoutineControl(mark test)",
+        client.start_routine,
+        RID_MARK_TEST,
+        bytes([1 if allow_downgrade else 0]),
+        node=node,
+    )
+    return n_blocks
+
+
+def wait_confirmed(client: Any, version: int, timeout_s: float) -> DeviceStatus:
+    """After ECUReset: poll the status until the new image runs and has confirmed itself."""
+    from udsoncan.exceptions import NegativeResponseException, TimeoutException
+
+    deadline = time.monotonic() + timeout_s
+    last: DeviceStatus | None = None
+    while time.monotonic() < deadline:
+        try:
+            last = read_status(client)
+        except (TimeoutException, NegativeResponseException):
+            time.sleep(0.05)
+            continue
+        if last.running_version == version and not last.on_test:
+            return last
+        if last.running_version != version and last.path in (3, 4):
+            raise FsError(
+                ERR_NOT_CONFIRMED,
+                f"device reverted to {last.version}: the new image "
+                f"{fw.unpack_version(version)} did not confirm itself ({PATHS[last.path]})",
+            )
+        time.sleep(0.05)
+    got = last.describe() if last else "no status"
+    raise FsError(ERR_NOT_CONFIRMED, f"new image not confirmed within {timeout_s:g} s ({got})")
+
+
+class Link:
+    """Bus (link.bus.open_bus: python-can options, one-line errors) + the link.uds client for one
+    node, with the update path's data identifier and 32-bit addresses; a context manager yielding
+    the client. secret None: no SecurityAccess expected (the default secret is used if asked)."""
+
+    def __init__(self, args: argparse.Namespace, secret: bytes | None) -> None:
+        import can
+
+        from .bus import describe, open_bus
+        from .uds import open_client
+
+        self.bus, cfg = open_bus(args)
+        self.channel = describe(cfg)
+        self.node = args.node
+        self.notifier = can.Notifier(self.bus, [], timeout=0.1)
+        self.client = open_client(
+            self.bus,
+            self.notifier,
+            args.node,
+            secret=secret,
+            dids=status_codecs(),
+            timeout_s=args.timeout,
+            pending_timeout_s=PENDING_TIMEOUT_S,
+            address_format=32,
+            memorysize_format=32,
+        )
+
+    def __enter__(self) -> Any:
+        self.client.open()
+        return self.client
+
+    def __exit__(self, *exc: Any) -> None:
+        try:
+            self.client.close()
+        finally:
+            self.notifier.stop()
+            self.bus.shutdown()
