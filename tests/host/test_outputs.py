@@ -14,7 +14,7 @@ import pytest
 from forceskill.model import dmp, synthetic
 from forceskill import outputs
 from forceskill.errors import FsError
-from forceskill.model.limits import MAX_ROLLOUT_STEPS
+from forceskill.model.scales import MAX_ROLLOUT_STEPS
 from forceskill.model.skill import Skill
 from test_cli import VECTORS, run, write_demo
 

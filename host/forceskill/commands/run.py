@@ -19,10 +19,10 @@ from ..link import uds as U
 from ..link.device import Device
 from ..model.limits import (
     check_force_limit,
-    check_scales,
     peak_problem,
     skill_peak_N,
 )
+from ..model.scales import check_scales
 from ..model.skill import Skill
 from ..outputs import STDOUT, Outputs, format_rows
 from ._args import add_force_limit
