@@ -11,7 +11,7 @@ import time
 import can
 import pytest
 
-from conftest import SCENARIOS, Server
+from helpers.canbus import SCENARIOS, Server
 from forceskill import cli
 from forceskill.commands._common import connect
 from forceskill.errors import FsError

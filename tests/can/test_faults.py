@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import time
 
-from conftest import SCENARIOS, Server
+from helpers.canbus import SCENARIOS, Server
 from forceskill import cli
 
 

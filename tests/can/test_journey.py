@@ -16,7 +16,7 @@ import cantools
 import numpy as np
 import pytest
 
-from conftest import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS, Server
+from helpers.canbus import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS, Server
 from forceskill import cli
 from forceskill.model.demo import load_demo
 from forceskill.link.dbc import dbc_path
@@ -36,7 +36,7 @@ def forceskill(capsys, *argv: str) -> str:
 
 @pytest.fixture(scope="module")
 def server():
-    """The journey's simulator: host-silence timeout JOURNEY_HOST_TIMEOUT_MS (conftest: suited to CI)."""
+    """The journey's simulator: host-silence timeout JOURNEY_HOST_TIMEOUT_MS (helpers.canbus: suited to CI)."""
     s = Server(SCENARIOS / "pressing_task1_demo.toml", host_timeout_ms=JOURNEY_HOST_TIMEOUT_MS)
     time.sleep(0.2)
     yield s

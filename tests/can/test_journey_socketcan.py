@@ -8,8 +8,8 @@ import time
 
 import pytest
 
-from conftest import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS
-from socketcan_server import SocketCANServer, vcan_or_skip
+from helpers.canbus import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS
+from helpers.socketcan import SocketCANServer, vcan_or_skip
 from test_journey import (  # noqa: F401  (collected here again, on the SocketCAN server)
     test_cantools_decodes_every_device_frame, test_record_fit_upload_run, test_sequence_in_series,
     test_tracking_figures_1x_and_1_5x)

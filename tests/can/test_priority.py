@@ -8,7 +8,7 @@ from __future__ import annotations
 import importlib.util
 import sys
 
-from conftest import REPO, hil_sim_path
+from helpers.canbus import REPO, hil_sim_path
 
 
 def _flood():

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from conftest import REPO, SCENARIOS, Server
+from helpers.canbus import REPO, SCENARIOS, Server
 from forceskill import cli
 
 SKILL = REPO / "tests" / "vectors" / "press_n50_lwr_hold.skill"   # 1.5 s, peak 4.84 N at goal 1

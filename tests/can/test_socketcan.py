@@ -11,8 +11,8 @@ import time
 import can
 import pytest
 
-from conftest import SCENARIOS, hil_sim_path
-from socketcan_server import SocketCANServer, af_can_error, vcan_or_skip
+from helpers.canbus import SCENARIOS, hil_sim_path
+from helpers.socketcan import SocketCANServer, af_can_error, vcan_or_skip
 
 
 def serve(*args: str) -> subprocess.CompletedProcess:

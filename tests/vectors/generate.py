@@ -12,7 +12,7 @@ Writes, next to this script:
   bad/*.skill, bad/manifest.txt     corrupt images, one per rejection of docs/skill_format.md:
                                     ``<file> <expected code>``; images that must fail after the CRC
                                     check carry a correct CRC.
-Run: .venv/bin/python tests/vectors/generate.py   (tests/host/test_vectors.py checks the files are current)
+Run: .venv/bin/python tests/vectors/generate.py   (tests/host/model/test_vectors.py checks the files are current)
 """
 from __future__ import annotations
 

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import HOST_TIMEOUT_MS, SPEED, Server, hil_sim_path
+from helpers.canbus import HOST_TIMEOUT_MS, SPEED, Server, hil_sim_path
 
 VCAN = os.environ.get("FORCESKILL_VCAN", "vcan0")
 VCAN_HOWTO = (f"sudo modprobe vcan && sudo ip link add dev {VCAN} type vcan && sudo ip link set up {VCAN}"

@@ -12,8 +12,8 @@ import pytest
 from forceskill.model import dmp
 from forceskill.errors import SkillError
 from forceskill.model.skill import Skill
+from helpers.paths import VECTORS
 
-VECTORS = Path(__file__).resolve().parents[1] / "vectors"
 sys.path.insert(0, str(VECTORS))
 import generate  # noqa: E402  (tests/vectors/generate.py)
 

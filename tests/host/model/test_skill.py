@@ -12,8 +12,8 @@ import pytest
 from forceskill.errors import SkillError
 from forceskill.model.fit import FitResult
 from forceskill.model.skill import MAGIC, Skill, image_size
+from helpers.paths import VECTORS
 
-VECTORS = Path(__file__).resolve().parents[1] / "vectors"
 
 
 def test_layout_matches_docs_skill_format(press_fit: FitResult) -> None:

@@ -16,8 +16,8 @@ from forceskill.model import dmp, synthetic
 from forceskill.model.demo import Demo, load_demo, write_csv
 from forceskill.errors import DemoError
 from forceskill.model.skill import Skill
+from helpers.paths import VECTORS
 
-VECTORS = Path(__file__).resolve().parents[1] / "vectors"
 
 
 def write_demo(path: Path, d: Demo, **extra: np.ndarray) -> Path:

@@ -1,4 +1,4 @@
-"""`forceskill fit` on realistic recordings (tests/host/recordings.py): each is learned within its
+"""`forceskill fit` on realistic recordings (tests/helpers/recordings.py): each is learned within its
 tolerance, or refused with one line naming the cause and its code (the CLI run as a subprocess,
 never a traceback, nothing written). Formats: CSV dialects, CAN logs, ROS 2 bags, reader plugins."""
 from __future__ import annotations
@@ -11,7 +11,7 @@ from typing import Callable, Optional
 
 import numpy as np
 import pytest
-import recordings as R
+from helpers import recordings as R
 from forceskill import cli, readers
 from forceskill.model.demo import load_demo
 from forceskill.errors import (

@@ -10,8 +10,9 @@ import pytest
 
 from forceskill import cli
 from forceskill.model import fwimage as fw
+from helpers.paths import REPO
 
-GOLDEN = Path(__file__).resolve().parents[1] / "firmware" / "boot" / "vectors" / "golden_host_1.2.3.fwimg"
+GOLDEN = REPO / "tests" / "firmware" / "boot" / "vectors" / "golden_host_1.2.3.fwimg"
 
 
 def golden_payload() -> bytes:
