@@ -113,40 +113,24 @@ def _learn(
     demo_sum = run_sim(hil_sim, scen / f"{task.name}_demo.toml", demo_log, "--seed", str(seed))
     demo = load_demo(demo_log)
     gains = gains_for_object(task.stiffness_Npm, OBJECT_MASS_KG)
-    res = fit(
-        demo,
-        task.stiffness_Npm,
-        n_kernels=n_kernels,
-        method="ridge",
-        surface_m=SURFACE_M,
-        end_policy=task.end_policy,
-        gains=gains,
-    )
-    lwr50 = fit(
-        demo,
-        task.stiffness_Npm,
-        n_kernels=50,
-        method="lwr",
-        surface_m=SURFACE_M,
-        end_policy=task.end_policy,
-        gains=gains,
-    )
+
+    def fit_n(n: int, method: str) -> Any:
+        return fit(
+            demo,
+            task.stiffness_Npm,
+            n_kernels=n,
+            method=method,
+            surface_m=SURFACE_M,
+            end_policy=task.end_policy,
+            gains=gains,
+        )
+
+    res = fit_n(n_kernels, "ridge")
+    lwr50 = fit_n(50, "lwr")
     bound = LWR_BOUND_PCT[task.kind]
     lwr_n, lwr_at_n = None, None
     for n in LWR_KERNELS:
-        r = (
-            lwr50
-            if n == 50
-            else fit(
-                demo,
-                task.stiffness_Npm,
-                n_kernels=n,
-                method="lwr",
-                surface_m=SURFACE_M,
-                end_policy=task.end_policy,
-                gains=gains,
-            )
-        )
+        r = lwr50 if n == 50 else fit_n(n, "lwr")
         if r.err_max_pct <= bound:
             lwr_n, lwr_at_n = n, r
             break
