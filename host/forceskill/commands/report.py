@@ -171,6 +171,21 @@ def _learn(
     return entry
 
 
+#: Figures of an execution's summary (run_sim) that every report row carries, in this order.
+TRACKING_FIELDS = (
+    "tracking_max_pct",
+    "tracking_rms_pct",
+    "max_cmd_abs_N",
+    "force_limit_N",
+    "limit_violations",
+)
+
+
+def _tracking(summary: dict[str, Any], *extra: str) -> dict[str, Any]:
+    """The TRACKING_FIELDS of an execution summary, then the extra ones named."""
+    return {k: summary[k] for k in TRACKING_FIELDS + extra}
+
+
 def _reuse(hil_sim: Path, scen: Path, out: Path, seed: int, plots: bool) -> list[dict[str, Any]]:
     skills = [str(out / "skills" / "engraving_task1.skill"), str(out / "skills" / "engraving_task2.skill")]
     logs: dict[str, dict[str, np.ndarray]] = {}
@@ -208,12 +223,7 @@ def _reuse(hil_sim: Path, scen: Path, out: Path, seed: int, plots: bool) -> list
                 "approx_rms_pct": None,
                 "approx_max_pct_lwr": None,
                 "approx_rms_pct_lwr": None,
-                "tracking_max_pct": s["tracking_max_pct"],
-                "tracking_rms_pct": s["tracking_rms_pct"],
-                "max_cmd_abs_N": s["max_cmd_abs_N"],
-                "force_limit_N": s["force_limit_N"],
-                "limit_violations": s["limit_violations"],
-                "deformation_max_m": s["deformation_max_m"],
+                **_tracking(s, "deformation_max_m"),
                 "deformation_diff_pct": None
                 if name == "reuse_200_1x"
                 else (d_scaled if name == "reuse_300_1_5x" else d_unscaled),
@@ -255,14 +265,7 @@ def _stiff(hil_sim: Path, scen: Path, out: Path, seed: int, n_kernels: int) -> l
                 "approx_rms_pct": res.err_rms_pct,
                 "approx_max_pct_lwr": None,
                 "approx_rms_pct_lwr": None,
-                "tracking_max_pct": s["tracking_max_pct"],
-                "tracking_rms_pct": s["tracking_rms_pct"],
-                "max_cmd_abs_N": s["max_cmd_abs_N"],
-                "force_limit_N": s["force_limit_N"],
-                "limit_violations": s["limit_violations"],
-                "saturated_ticks": s["saturated_ticks"],
-                "nonfinite_ticks": s["nonfinite_ticks"],
-                "deformation_max_m": s["deformation_max_m"],
+                **_tracking(s, "saturated_ticks", "nonfinite_ticks", "deformation_max_m"),
                 "skill": str(skill_path),
                 "exec_log": str(log),
             }
