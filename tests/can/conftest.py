@@ -1,5 +1,6 @@
 """Fixtures of the CAN end-to-end tests: `hil_sim serve` on a free port (helpers.canbus.Server),
 driven only through python-can's socketcand interface."""
+
 from __future__ import annotations
 
 import time

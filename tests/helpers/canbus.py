@@ -1,6 +1,7 @@
 """`hil_sim serve` on a free port, driven only through python-can's socketcand interface (the
 product's commands and third-party clients). $FORCESKILL_CAN_SPEED sets the simulator's speed
 factor (default 1: real time, as robust as possible on a busy machine)."""
+
 from __future__ import annotations
 
 import os
@@ -25,22 +26,57 @@ JOURNEY_HOST_TIMEOUT_MS = int(os.environ.get("FORCESKILL_CAN_JOURNEY_HOST_TIMEOU
 class Server:
     """A running `hil_sim serve` (terminated by the fixture)."""
 
-    def __init__(self, scenario: Path, speed: float = SPEED, node: int = 0, extra: tuple = (),
-                 host_timeout_ms: int = HOST_TIMEOUT_MS) -> None:
+    def __init__(
+        self,
+        scenario: Path,
+        speed: float = SPEED,
+        node: int = 0,
+        extra: tuple = (),
+        host_timeout_ms: int = HOST_TIMEOUT_MS,
+    ) -> None:
         self.host_timeout_ms = host_timeout_ms
-        self.proc = subprocess.Popen([str(hil_sim_path()), "serve", "--port", "0", "--speed", str(speed),
-                                      "--scenario", str(scenario), "--node", str(node),
-                                      "--host-timeout", str(host_timeout_ms), *extra],
-                                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        self.proc = subprocess.Popen(
+            [
+                str(hil_sim_path()),
+                "serve",
+                "--port",
+                "0",
+                "--speed",
+                str(speed),
+                "--scenario",
+                str(scenario),
+                "--node",
+                str(node),
+                "--host-timeout",
+                str(host_timeout_ms),
+                *extra,
+            ],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
         line = self.proc.stdout.readline()
-        assert "listening on 127.0.0.1:" in line, f"hil_sim serve did not start: {line!r} {self.proc.stderr.read()}"
+        assert "listening on 127.0.0.1:" in line, (
+            f"hil_sim serve did not start: {line!r} {self.proc.stderr.read()}"
+        )
         self.port = int(line.split("127.0.0.1:")[1].split()[0])
         self.node = node
         self.speed = speed
 
     def bus_args(self, node: int | None = None) -> list[str]:
-        return ["-i", "socketcand", "-c", "can0", "--bus-kwargs", "host=127.0.0.1", f"port={self.port}",
-                "--node", str(self.node if node is None else node), "--timeout", "3"]
+        return [
+            "-i",
+            "socketcand",
+            "-c",
+            "can0",
+            "--bus-kwargs",
+            "host=127.0.0.1",
+            f"port={self.port}",
+            "--node",
+            str(self.node if node is None else node),
+            "--timeout",
+            "3",
+        ]
 
     def stop(self) -> str:
         self.proc.terminate()

@@ -1,4 +1,5 @@
 """Where the tests find the repository's files and the built simulator."""
+
 from __future__ import annotations
 
 import os
@@ -16,5 +17,6 @@ def hil_sim_path() -> Path:
     p = Path(os.environ.get("FORCESKILL_HIL_SIM", str(REPO / "build" / "hil_sim" / "hil_sim")))
     assert p.is_file() and os.access(p, os.X_OK), (
         f"hil_sim not built at {p}: run `cmake -S . -B build -G Ninja && ninja -C build hil_sim` "
-        "or set FORCESKILL_HIL_SIM")
+        "or set FORCESKILL_HIL_SIM"
+    )
     return p

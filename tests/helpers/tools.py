@@ -1,5 +1,6 @@
 """`load("name")` imports tools/name.py (the repository's scripts are not a package) so a test can
 call its functions."""
+
 from __future__ import annotations
 
 import importlib.util

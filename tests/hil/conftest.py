@@ -1,4 +1,5 @@
 """Fixtures of the HIL tests: the built hil_sim binary and the paper scenarios (helpers.paths)."""
+
 from __future__ import annotations
 
 from pathlib import Path

@@ -1,5 +1,6 @@
 """forceskill.link.dbc: the packaged DBC, node offsets and the E2E protection of safety frames,
 against the published CRC-8/SAE-J1850 check value and a bitwise reference written here."""
+
 from __future__ import annotations
 
 import pytest
@@ -22,16 +23,16 @@ def _crc8_reference(data: bytes) -> int:
 
 
 def test_crc8_check_value_and_reference() -> None:
-    assert dbc.crc8_j1850(b"123456789") == 0x4B   # the catalogue's check value
+    assert dbc.crc8_j1850(b"123456789") == 0x4B  # the catalogue's check value
     for data in (b"", b"\x00", b"\xff" * 8, bytes(range(8)), b"forceskill"):
         assert dbc.crc8_j1850(data) == _crc8_reference(data)
 
 
 def test_protect_then_check_and_any_flipped_bit_is_caught() -> None:
     frame = dbc.protect(0x120, bytes([1, 2, 3, 4, 5, 6, 0xA0, 0]), counter=0x17)
-    assert frame[6] == 0xA7                          # high nibble kept, counter's low nibble
+    assert frame[6] == 0xA7  # high nibble kept, counter's low nibble
     assert dbc.check(0x120, frame)
-    assert not dbc.check(0x121, frame)               # the identifier is protected too
+    assert not dbc.check(0x121, frame)  # the identifier is protected too
     for i in range(8):
         for bit in range(8):
             bad = bytearray(frame)
