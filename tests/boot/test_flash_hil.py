@@ -19,6 +19,7 @@ from forceskill import cli
 from forceskill.errors import FsError
 from forceskill.link import flash as fl
 from forceskill.model import fwimage as fw
+from helpers.canbus import socketcand_args
 
 REPO = Path(__file__).resolve().parents[2]
 SKILL = REPO / "tests" / "vectors" / "engrave_n10_lwr_hold.skill"
@@ -41,17 +42,7 @@ def sim():
     line = proc.stdout.readline()
     assert "listening on 127.0.0.1:" in line, line
     port = int(line.split("127.0.0.1:")[1].split()[0])
-    yield [
-        "-i",
-        "socketcand",
-        "-c",
-        "can0",
-        "--bus-kwargs",
-        "host=127.0.0.1",
-        f"port={port}",
-        "--timeout",
-        "3",
-    ]
+    yield [*socketcand_args(port), "--timeout", "3"]
     proc.terminate()
     proc.communicate(timeout=10)
 

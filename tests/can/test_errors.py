@@ -71,22 +71,10 @@ def _image(seed: int) -> bytes:
     return fit(pressing(seed=seed, duration_s=3.0), 100.0, n_kernels=20, surface_m=0.001).skill.to_bytes()
 
 
-def _ns(server):
-    import argparse
-
-    return argparse.Namespace(
-        interface="socketcand",
-        channel="can0",
-        bus_kwargs={"host": "127.0.0.1", "port": server.port},
-        node=0,
-        timeout=3.0,
-    )
-
-
 def test_corrupted_upload_keeps_old_skill(server):
     old, new = _image(1), bytearray(_image(2))
     new[200] ^= 0x01  # the image's CRC-32 no longer matches
-    with connect(_ns(server)) as dev, U.uds_client(dev) as client:
+    with connect(server.namespace()) as dev, U.uds_client(dev) as client:
         U.unlock(client, 0, 0x02)
         U.download(client, 0, 3, old)
         with pytest.raises(FsError) as e:
@@ -99,7 +87,7 @@ def test_corrupted_upload_keeps_old_skill(server):
 
 def test_interrupted_upload_keeps_old_skill(server):
     old, new = _image(3), _image(4)
-    with connect(_ns(server)) as dev, U.uds_client(dev) as client:
+    with connect(server.namespace()) as dev, U.uds_client(dev) as client:
         U.unlock(client, 0, 0x02)
         U.download(client, 0, 4, old)
         import udsoncan
@@ -118,7 +106,7 @@ def test_interrupted_upload_keeps_old_skill(server):
 def test_writes_need_security(server):
     import udsoncan
 
-    with connect(_ns(server)) as dev, U.uds_client(dev) as client:
+    with connect(server.namespace()) as dev, U.uds_client(dev) as client:
         client.change_session(0x02)
         loc = udsoncan.MemoryLocation(address=1, memorysize=200, address_format=8, memorysize_format=16)
         with pytest.raises(FsError, match="0x33"):

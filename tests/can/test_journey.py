@@ -21,7 +21,7 @@ from forceskill import cli
 from forceskill.link.dbc import dbc_path
 from forceskill.model.demo import load_demo
 from forceskill.model.skill import Skill
-from helpers.canbus import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS, Server
+from helpers.canbus import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS, Server, socketcand_args
 
 K_NPM = 100.0  # pressing task 1, outer layer (hil_sim/scenarios/pressing_task1_demo.toml)
 SURFACE_M = 0.001
@@ -184,13 +184,7 @@ def test_can_logger_log_accepted_by_fit(server, tmp_path, capsys):
             sys.executable,
             "-m",
             "can.logger",
-            "-i",
-            "socketcand",
-            "-c",
-            "can0",
-            "--bus-kwargs",
-            "host=127.0.0.1",
-            f"port={server.port}",
+            *socketcand_args(server.port),
             "-f",
             str(log),
         ],

@@ -5,7 +5,6 @@ the first request on a freshly opened socketcand connection, and ECUReset's posi
 
 from __future__ import annotations
 
-import argparse
 import struct
 import time
 import zlib
@@ -22,16 +21,6 @@ from forceskill.model.fit import fit
 from forceskill.model.synthetic import pressing
 
 
-def _ns(server) -> argparse.Namespace:
-    return argparse.Namespace(
-        interface="socketcand",
-        channel="can0",
-        bus_kwargs={"host": "127.0.0.1", "port": server.port},
-        node=0,
-        timeout=3.0,
-    )
-
-
 @pytest.mark.parametrize("n_kernels,slot", [(100, 5), (200, 6)])
 def test_upload_large_skill_read_back(server, tmp_path, capsys, n_kernels, slot):
     """`forceskill upload` of N = 100 (2,540 B: one 2.5 KB TransferData) and N = 200 (4,940 B:
@@ -46,7 +35,7 @@ def test_upload_large_skill_read_back(server, tmp_path, capsys, n_kernels, slot)
     out, err = capsys.readouterr()
     assert rc == 0, err
     assert f"N = {n_kernels}" in out and "verified by read-back" in out
-    with connect(_ns(server)) as dev, U.uds_client(dev) as client:
+    with connect(server.namespace()) as dev, U.uds_client(dev) as client:
         U.unlock(client, 0, 0x02)
         assert U.upload(client, 0, slot, len(image)) == image
         d = U.slot_directory(client, 0)[slot - 1]
@@ -86,7 +75,7 @@ def test_first_request_on_fresh_connection(server):
 def test_ecu_reset_positive_response(server):
     """ECUReset (hard) gets its positive response 51 01, then the device restarts: it comes back
     in the default session (programming session and security gone) with its skills."""
-    with connect(_ns(server)) as dev, U.uds_client(dev) as client:
+    with connect(server.namespace()) as dev, U.uds_client(dev) as client:
         before = U.slot_directory(client, 0)
         U.unlock(client, 0, 0x02)
         r = client.ecu_reset(0x01)
@@ -106,7 +95,7 @@ def test_security_levels_over_the_bus(server, tmp_path):
     (0x33) in the default session and with level 1; level 3 (its own secret) does not open
     settings or skill slots (0x33); level 1 still does."""
     image = fit(pressing(seed=5, duration_s=3.0), 100.0, n_kernels=20, surface_m=0.001).skill.to_bytes()
-    with connect(_ns(server)) as dev, U.uds_client(dev) as client:
+    with connect(server.namespace()) as dev, U.uds_client(dev) as client:
         client.change_session(0x01)
         for session in (0x01, 0x02):
             if session == 0x02:

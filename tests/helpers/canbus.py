@@ -4,6 +4,7 @@ factor (default 1: real time, as robust as possible on a busy machine)."""
 
 from __future__ import annotations
 
+import argparse
 import os
 import subprocess
 from pathlib import Path
@@ -21,6 +22,11 @@ SPEED = float(os.environ.get("FORCESKILL_CAN_SPEED", "1"))
 # default on an idle machine.
 HOST_TIMEOUT_MS = int(os.environ.get("FORCESKILL_CAN_HOST_TIMEOUT_MS", "500"))
 JOURNEY_HOST_TIMEOUT_MS = int(os.environ.get("FORCESKILL_CAN_JOURNEY_HOST_TIMEOUT_MS", str(HOST_TIMEOUT_MS)))
+
+
+def socketcand_args(port: int) -> list[str]:
+    """python-can's command-line options for the simulator's socketcand bus on port."""
+    return ["-i", "socketcand", "-c", "can0", "--bus-kwargs", "host=127.0.0.1", f"port={port}"]
 
 
 class Server:
@@ -64,19 +70,19 @@ class Server:
         self.speed = speed
 
     def bus_args(self, node: int | None = None) -> list[str]:
-        return [
-            "-i",
-            "socketcand",
-            "-c",
-            "can0",
-            "--bus-kwargs",
-            "host=127.0.0.1",
-            f"port={self.port}",
-            "--node",
-            str(self.node if node is None else node),
-            "--timeout",
-            "3",
-        ]
+        """The CLI's bus options for this server (node: the server's unless given)."""
+        node = self.node if node is None else node
+        return [*socketcand_args(self.port), "--node", str(node), "--timeout", "3"]
+
+    def namespace(self, node: int = 0) -> argparse.Namespace:
+        """The parsed form of bus_args, for link functions that take the CLI's arguments."""
+        return argparse.Namespace(
+            interface="socketcand",
+            channel="can0",
+            bus_kwargs={"host": "127.0.0.1", "port": self.port},
+            node=node,
+            timeout=3.0,
+        )
 
     def stop(self) -> str:
         self.proc.terminate()
