@@ -29,6 +29,32 @@ def socketcand_args(port: int) -> list[str]:
     return ["-i", "socketcand", "-c", "can0", "--bus-kwargs", "host=127.0.0.1", f"port={port}"]
 
 
+def serve(
+    bus: list[str], scenario: Path, node: int, speed: float, host_timeout_ms: int, extra: tuple
+) -> subprocess.Popen:
+    """Start `hil_sim serve` with the bus options bus (--port 0, or --socketcan IFACE); its first
+    stdout line says where it listens."""
+    return subprocess.Popen(
+        [
+            str(hil_sim_path()),
+            "serve",
+            *bus,
+            "--speed",
+            str(speed),
+            "--scenario",
+            str(scenario),
+            "--node",
+            str(node),
+            "--host-timeout",
+            str(host_timeout_ms),
+            *extra,
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+
+
 class Server:
     """A running `hil_sim serve` (terminated by the fixture)."""
 
@@ -41,26 +67,7 @@ class Server:
         host_timeout_ms: int = HOST_TIMEOUT_MS,
     ) -> None:
         self.host_timeout_ms = host_timeout_ms
-        self.proc = subprocess.Popen(
-            [
-                str(hil_sim_path()),
-                "serve",
-                "--port",
-                "0",
-                "--speed",
-                str(speed),
-                "--scenario",
-                str(scenario),
-                "--node",
-                str(node),
-                "--host-timeout",
-                str(host_timeout_ms),
-                *extra,
-            ],
-            stdout=subprocess.PIPE,
-            stderr=subprocess.PIPE,
-            text=True,
-        )
+        self.proc = serve(["--port", "0"], scenario, node, speed, host_timeout_ms, extra)
         line = self.proc.stdout.readline()
         assert "listening on 127.0.0.1:" in line, (
             f"hil_sim serve did not start: {line!r} {self.proc.stderr.read()}"

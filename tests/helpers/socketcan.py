@@ -7,12 +7,11 @@ from __future__ import annotations
 
 import os
 import socket
-import subprocess
 from pathlib import Path
 
 import pytest
 
-from helpers.canbus import HOST_TIMEOUT_MS, SPEED, Server, hil_sim_path
+from helpers.canbus import HOST_TIMEOUT_MS, SPEED, Server, serve
 
 VCAN = os.environ.get("FORCESKILL_VCAN", "vcan0")
 VCAN_HOWTO = (
@@ -64,26 +63,7 @@ class SocketCANServer(Server):
         self.speed = speed
         self.node = node
         self.host_timeout_ms = host_timeout_ms
-        self.proc = subprocess.Popen(
-            [
-                str(hil_sim_path()),
-                "serve",
-                "--socketcan",
-                iface,
-                "--scenario",
-                str(scenario),
-                "--node",
-                str(node),
-                "--speed",
-                str(speed),
-                "--host-timeout",
-                str(host_timeout_ms),
-                *extra,
-            ],
-            stdout=subprocess.PIPE,
-            stderr=subprocess.PIPE,
-            text=True,
-        )
+        self.proc = serve(["--socketcan", iface], scenario, node, speed, host_timeout_ms, extra)
         self.first_line = self.proc.stdout.readline()
         assert f"on SocketCAN {iface}" in self.first_line, (
             f"hil_sim serve --socketcan did not start: {self.first_line!r} {self.proc.stderr.read()}"
