@@ -472,7 +472,7 @@ def _cmd_show(args: argparse.Namespace) -> int:
 
     from .dmp import rollout
     from .limits import check_force_limit, peak_problem
-    from .skill import Skill, image_size
+    from .skill import Skill
 
     check_force_limit(args.force_limit)
     sk = Skill.read(args.skill)
@@ -483,9 +483,7 @@ def _cmd_show(args: argparse.Namespace) -> int:
     _, f = rollout(sk)
     finite = bool(np.all(np.isfinite(f)))
     peak = float(np.max(np.abs(f))) if finite else float("inf")
-    print(
-        f"{args.skill}: skill image v{sk.format_version}, {image_size(sk.n_kernels)} bytes, CRC-32 {d['crc32']}"
-    )
+    print(f"{args.skill}: skill image v{sk.format_version}, {len(sk.to_bytes())} bytes, CRC-32 {d['crc32']}")
     print(f"  duration       {sk.duration_s:g} s at dt {sk.dt_s * 1e3:g} ms, end policy {sk.end_policy}")
     print(
         f"  kernels        {sk.n_kernels}, centres {sk.centres[0]:.4g}..{sk.centres[-1]:.4g}, "

@@ -1,7 +1,7 @@
 """The host's limits on scales, rollout length and a skill's force, checked the same way by every
 command (fit, show, rollout, upload, run) before anything is written or sent.
 
-- Goal scale: finite, 0 <= S <= 65.535; time scale: finite, 0.001 <= S <= 65.535 (the range the
+- Goal scale and path scale (the y path about its start): finite, 0 <= S <= 65.535; time scale: finite, 0.001 <= S <= 65.535 (the range the
   device's command encodes, 1/1000 steps in 16 bits; code 109 as the firmware).
 - Rollout length: at most ``MAX_ROLLOUT_STEPS`` steps (663); the rollout is computed and written
   in blocks, so memory does not grow with the length.
@@ -46,6 +46,18 @@ def check_scales(goal_scale: float, time_scale: float) -> None:
         raise ParamError(
             ERR_SCALE_INVALID,
             f"time scale must be finite and in [{TIME_SCALE_MIN:g}, {TIME_SCALE_MAX:g}]: {time_scale:g}",
+        )
+
+
+#: --path-scale (the y path about its start): the goal scale's range and encoding
+PATH_SCALE_MAX = GOAL_SCALE_MAX
+
+
+def check_path_scale(path_scale: float) -> None:
+    """Path scale in [0, 65.535], finite (ParamError 109, as the device's scale check)."""
+    if not (math.isfinite(path_scale) and 0.0 <= path_scale <= PATH_SCALE_MAX):
+        raise ParamError(
+            ERR_SCALE_INVALID, f"path scale must be finite and in [0, {PATH_SCALE_MAX:g}]: {path_scale:g}"
         )
 
 
