@@ -460,8 +460,8 @@ void app_init(app_t *app, const app_config_t *cfg)
     for (unsigned i = 0; i < APP_N_SLOTS; i++) {
         any_skill = any_skill || app->slot_valid[i];
     }
-    bc->skill_min = any_skill ? (uint16_t)SKILL_FORMAT_VERSION : 0u;
-    bc->skill_max = bc->skill_min;
+    bc->skill_min = any_skill ? (uint16_t)SKILL_FORMAT_VERSION_MIN : 0u;
+    bc->skill_max = any_skill ? (uint16_t)SKILL_FORMAT_VERSION : 0u;
     bc->config_min = 0u; /* gains/limits are not persisted yet */
     bc->config_max = 0u;
     (void)boot_select(&app->boot, bc);

@@ -468,7 +468,7 @@ static uint8_t download_begin(void *ctx, uint32_t addr, uint32_t size)
         return app->state == APP_IDLE ? fwu_uds_download_begin(&app->fwu, &app->uds, size)
                                       : UDS_NRC_CONDITIONS_NOT_CORRECT;
     }
-    if (addr < 1u || addr > APP_N_SLOTS || size < SKILL_HEADER_SIZE + SKILL_CRC_SIZE ||
+    if (addr < 1u || addr > APP_N_SLOTS || size < SKILL_HEADER_SIZE_V2 + SKILL_CRC_SIZE ||
         size > APP_IMAGE_MAX) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
