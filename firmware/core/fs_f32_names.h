@@ -29,6 +29,7 @@
 #define skchk_begin skchk_begin_f32
 #define skchk_run skchk_run_f32
 #define skchk_skill skchk_skill_f32
+#define skchk_run_path skchk_run_path_f32
 #define skchk_run_scales skchk_run_scales_f32
 
 #endif /* FS_F32_NAMES_H */
