@@ -215,7 +215,7 @@ static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_ima
         }
         const uint8_t end = (sc->end_policy < 0) ? 0u
                                                  : (sc->end_policy == SKILL_END_HOLD ? 1u : 2u);
-        const uint8_t nrc = app_start_sequence(&d->app, slots, goal, time, dur,
+        const uint8_t nrc = app_start_sequence(&d->app, slots, goal, time, dur, NULL,
                                                (uint8_t)sc->n_skills, end);
         if (nrc != UDS_NRC_OK) {
             snprintf(err, SIM_ERR_MAX, "%s: the device refused the sequence (NRC 0x%02X)", sc->path,
