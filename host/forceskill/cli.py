@@ -142,6 +142,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
         max_gap_s=args.max_gap,
         stiffness_Npm=args.stiffness,
         surface_m=args.surface_m,
+        y_column=args.y_column,
     )
     for note in demo.notes:
         print(note)
@@ -215,6 +216,12 @@ def _cmd_fit(args: argparse.Namespace) -> int:
         f"approximation error: max {err.max_pct:.3f} %, RMS {err.rms_pct:.3f} % of max force "
         f"(at the {demo.t_s.size} recorded samples)"
     )
+    if sk.y_weights is not None:
+        print(
+            f"y path ({args.y_column}): start {sk.y_start_m:.6g} m, goal g_y {sk.goal_y_m:.6g} m, "
+            f"beta_y {sk.beta_y:g}; approximation error max {res.y_err_max_mm:.4f} mm, "
+            f"RMS {res.y_err_rms_mm:.4f} mm (on the {sk.dt_s * 1e3:g} ms grid)"
+        )
     print(
         f"wrote {out} ({out.stat().st_size} bytes) and {out}.json"
         + (f", plot {args.plot}" if args.plot else "")
@@ -313,6 +320,13 @@ def _register_fit(sub: argparse._SubParsersAction[_Parser]) -> None:
         help="position column (x; without one, position = surface + f/k)",
     )
     p.add_argument("--force-column", default=None, metavar="C", help="force column (overrides --learn)")
+    p.add_argument(
+        "--y-column",
+        default=None,
+        metavar="NAME",
+        help="the path along y (m) to learn as the skill's position DMP (format v3); "
+        "a ROS 2 bag's pose axis is pose_x, pose_y or pose_z (with --pose-topic)",
+    )
     g = p.add_argument_group("reading the recording")
     g.add_argument("--time-column", default="t", metavar="NAME", help="CSV time column (t)")
     g.add_argument(
@@ -409,26 +423,41 @@ def _register_fit(sub: argparse._SubParsersAction[_Parser]) -> None:
 def _cmd_rollout(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from .dmp import rollout_blocks
+    from .dmp import rollout_blocks, rollout_path
+    from .limits import check_path_scale
     from .outputs import STDOUT, check_target, write_csv
     from .skill import Skill
 
     if args.output != STDOUT:
         check_target(args.output, [args.skill])
+    check_path_scale(args.path_scale)
     sk = Skill.read(args.skill)
     stats = {"peak": -np.inf, "t_end": 0.0}
+    y_all: np.ndarray | None = None
+    if sk.has_y:
+        _, y_all = rollout_path(
+            sk, time_scale=args.time_scale, path_scale=args.path_scale, n_steps=args.steps
+        )
 
     def blocks() -> Iterator[np.ndarray]:
+        row = 0
         for t, f in rollout_blocks(
             sk, goal_scale=args.goal_scale, time_scale=args.time_scale, n_steps=args.steps
         ):
             if f.size:
                 stats["peak"] = max(stats["peak"], float(np.max(f)))
                 stats["t_end"] = float(t[-1])
-            yield np.column_stack((t, f))
+            if y_all is None:
+                yield np.column_stack((t, f))
+            else:
+                yield np.column_stack((t, f, y_all[row : row + t.size]))
+            row += t.size
 
-    n = write_csv(args.output, ["t", "f_hat"], blocks(), inputs=[args.skill])
+    names = ["t", "f_hat"] + (["y_hat"] if y_all is not None else [])
+    n = write_csv(args.output, names, blocks(), inputs=[args.skill])
     msg = f"wrote {args.output}: {n} rows, t = 0..{stats['t_end']:.6g} s, peak f_hat {stats['peak']:.6g} N"
+    if y_all is not None and y_all.size:
+        msg += f", y_hat {float(np.min(y_all)):.6g}..{float(np.max(y_all)):.6g} m"
     print(msg, file=sys.stderr if args.output == STDOUT else sys.stdout)
     return 0
 
@@ -438,7 +467,7 @@ def _register_rollout(sub: argparse._SubParsersAction[_Parser]) -> None:
         "rollout",
         help="evaluate a skill offline (the firmware's DMP in numpy)",
         description="Evaluate a skill at its dt from zero state, as the firmware does, and "
-        "write t,f_hat (s, N) as CSV.",
+        "write t,f_hat (s, N) as CSV; a skill with a y DMP adds y_hat (m).",
     )
     p.add_argument("skill", metavar="SKILL")
     p.add_argument(
@@ -453,6 +482,13 @@ def _register_rollout(sub: argparse._SubParsersAction[_Parser]) -> None:
     )
     p.add_argument(
         "--time-scale", type=_float, default=1.0, metavar="S", help="stretch time by S, 0.001..65.535"
+    )
+    p.add_argument(
+        "--path-scale",
+        type=_float,
+        default=1.0,
+        metavar="S",
+        help="scale the y path about its start by S, 0..65.535 (skills with a y DMP)",
     )
     p.add_argument(
         "--steps",
@@ -499,6 +535,18 @@ def _cmd_show(args: argparse.Namespace) -> int:
         f"k_i {sk.kki_Npms / sk.stiffness_Npm:.4g} 1/s at k)"
     )
     print(f"  rollout        peak |f_hat| {peak:.6g} N, final {float(f[-1]):.6g} N")
+    if sk.has_y:
+        from .dmp import rollout_path
+
+        _, y = rollout_path(sk)
+        ext = float(np.max(np.abs(y - sk.y_start_m)))
+        print(
+            f"  y path         position DMP on y: start {sk.y_start_m:.6g} m, goal g_y {sk.goal_y_m:.6g} m, "
+            f"beta_y {sk.beta_y:g}, gamma 0; rollout {float(np.min(y)):.6g}..{float(np.max(y)):.6g} m, "
+            f"extent {ext * 1e3:.4g} mm from the start, final {float(y[-1]):.6g} m"
+        )
+    else:
+        print("  y path         none (force only: y holds its position)")
     problem = peak_problem(peak, 1.0, args.force_limit)
     if problem:
         print(f"  REFUSED        {problem}: fit, upload and run refuse this skill [662]")
