@@ -43,9 +43,7 @@ def fit_figure(res: FitResult, path: str | Path, title: str = "", outs: Outputs 
         ax[3].plot(t, 1e3 * res.y_target_m, "k--", lw=1.2, label="demonstrated")
         ax[3].plot(t, 1e3 * res.y_hat_m, "g-", lw=1.0, label="learned")
         ax[3].set_ylabel("y path [mm]")
-        ax[3].set_title(
-            f"y: max error {res.y_err_max_mm:.3f} mm, RMS {res.y_err_rms_mm:.3f} mm", fontsize=9
-        )
+        ax[3].set_title(f"y: max error {res.y_err_max_mm:.3f} mm, RMS {res.y_err_rms_mm:.3f} mm", fontsize=9)
         ax[3].legend(loc="best", fontsize=8)
     ax[-1].set_xlabel("t [s]")
     for a in ax:
