@@ -37,6 +37,16 @@ def hil_sim_path() -> Path:
     return p
 
 
+def forceskill(capsys, *argv: str) -> str:
+    """Run the forceskill CLI in-process; its stdout (a failure names the command and stderr)."""
+    from forceskill import cli
+
+    rc = cli.main(list(argv))
+    out, err = capsys.readouterr()
+    assert rc == 0, f"forceskill {' '.join(argv)} failed ({rc}): {err}"
+    return out
+
+
 class Server:
     """A running `hil_sim serve` (terminated by the fixture)."""
 

@@ -16,8 +16,7 @@ import cantools
 import numpy as np
 import pytest
 
-from conftest import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS, Server
-from forceskill import cli
+from conftest import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS, Server, forceskill
 from forceskill.demo import load_demo
 from forceskill.link.dbc import dbc_path
 from forceskill.skill import Skill
@@ -25,13 +24,6 @@ from forceskill.skill import Skill
 K_NPM = 100.0          # pressing task 1, outer layer (hil_sim/scenarios/pressing_task1_demo.toml)
 SURFACE_M = 0.001
 OBJECT_MASS_KG = 10.0  # m_v_kg of the scenario: the default force gains are adapted to it
-
-
-def forceskill(capsys, *argv: str) -> str:
-    rc = cli.main(list(argv))
-    out, err = capsys.readouterr()
-    assert rc == 0, f"forceskill {' '.join(argv)} failed ({rc}): {err}"
-    return out
 
 
 @pytest.fixture(scope="module")

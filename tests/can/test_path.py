@@ -10,20 +10,13 @@ import time
 import numpy as np
 import pytest
 
-from conftest import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS, Server
-from forceskill import cli, dmp
+from conftest import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS, Server, forceskill
+from forceskill import dmp
 from forceskill.demo import load_demo
 from forceskill.skill import Skill
 
 K_NPM = 280.0
 OBJECT_MASS_KG = 10.0
-
-
-def forceskill(capsys, *argv: str) -> str:
-    rc = cli.main(list(argv))
-    out, err = capsys.readouterr()
-    assert rc == 0, f"forceskill {' '.join(argv)} failed ({rc}): {err}"
-    return out
 
 
 @pytest.fixture(scope="module")

@@ -148,34 +148,49 @@ static double check_rollout(const char *dir, const char *skill_file, double goal
     return rel;
 }
 
-static void test_golden_rollouts(void **state)
+/* Every line of the manifest `name` in tests/vectors with exactly n_fields fields through
+ * check (blank and comment lines skipped, a malformed line fails); returns the worst value check
+ * returned, *count the number of lines. */
+static double for_each_manifest_line(const char *name, int n_fields,
+                                     double (*check)(const char *dir, char *const *fld),
+                                     int *count)
 {
-    (void)state;
-    const char *dir = FS_VECTORS_DIR;
     char path[1024];
-    snprintf(path, sizeof(path), "%s/manifest.txt", dir);
+    snprintf(path, sizeof(path), "%s/%s", FS_VECTORS_DIR, name);
     FILE *m = fopen(path, "r");
     if (m == NULL) {
         fail_msg("missing %s (the Python side writes the golden vectors)", path);
     }
     char line[1024];
-    int count = 0;
     double worst = 0.0;
+    *count = 0;
     while (fgets(line, sizeof(line), m) != NULL) {
-        char *fld[4];
-        const int n = split(line, fld, 4);
+        char *fld[5];
+        const int n = split(line, fld, n_fields);
         if (n == 0) {
             continue;
         }
-        if (n != 4) {
+        if (n != n_fields) {
             fclose(m);
             fail_msg("%s: malformed line (%d fields)", path, n);
         }
-        worst = fmax(worst, check_rollout(dir, fld[0], strtod(fld[1], NULL),
-                                          strtod(fld[2], NULL), fld[3]));
-        count++;
+        worst = fmax(worst, check(FS_VECTORS_DIR, fld));
+        (*count)++;
     }
     fclose(m);
+    return worst;
+}
+
+static double check_rollout_line(const char *dir, char *const *fld)
+{
+    return check_rollout(dir, fld[0], strtod(fld[1], NULL), strtod(fld[2], NULL), fld[3]);
+}
+
+static void test_golden_rollouts(void **state)
+{
+    (void)state;
+    int count = 0;
+    const double worst = for_each_manifest_line("manifest.txt", 4, check_rollout_line, &count);
     printf("[%s] %d golden rollouts, worst error %.3g of max|f| (tolerance %.0g)\n", BUILD_NAME,
            count, worst, REL_TOL);
     assert_true(count > 0);
@@ -183,7 +198,7 @@ static void test_golden_rollouts(void **state)
 
 /* One manifest_y line: the force and the path of dmp_step_xy against the CSV; returns the worst
  * of the two relative errors. */
-static double check_rollout_xy(const char *dir, char *const fld[5])
+static double check_rollout_xy(const char *dir, char *const *fld)
 {
     char path[1024];
     const double gs = strtod(fld[1], NULL);
@@ -248,29 +263,8 @@ static double check_rollout_xy(const char *dir, char *const fld[5])
 static void test_golden_rollouts_y(void **state)
 {
     (void)state;
-    char path[1024];
-    snprintf(path, sizeof(path), "%s/manifest_y.txt", FS_VECTORS_DIR);
-    FILE *m = fopen(path, "r");
-    if (m == NULL) {
-        fail_msg("missing %s (the Python side writes the golden vectors)", path);
-    }
-    char line[1024];
     int count = 0;
-    double worst = 0.0;
-    while (fgets(line, sizeof(line), m) != NULL) {
-        char *fld[5];
-        const int n = split(line, fld, 5);
-        if (n == 0) {
-            continue;
-        }
-        if (n != 5) {
-            fclose(m);
-            fail_msg("%s: malformed line (%d fields)", path, n);
-        }
-        worst = fmax(worst, check_rollout_xy(FS_VECTORS_DIR, fld));
-        count++;
-    }
-    fclose(m);
+    const double worst = for_each_manifest_line("manifest_y.txt", 5, check_rollout_xy, &count);
     printf("[%s] %d golden rollouts with a y DMP, worst error %.3g (tolerance %.0g)\n",
            BUILD_NAME, count, worst, REL_TOL);
     assert_true(count > 0);
