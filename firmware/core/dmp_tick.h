@@ -163,15 +163,20 @@ static inline fs_val_t dmp_tick_blend2(const DMP_TICK_MODEL *m, fs_phase_t u, ui
             e_min = (ei < e_min) ? ei : e_min;
         }
     }
-    /* pass 2: the shifted activations of the stored exponents */
-    if (n != 0u) {
+    /* pass 2: the shifted activations of the stored exponents (one loop per case: no test of
+     * w_y per kernel) */
+    if (n != 0u && w_y == NULL) {
+        for (uint32_t i = lo; i < end; i++) {
+            if (e[i - lo] <= FS_NUM_CUTOFF) {
+                fs_num_blend_acc(&num, &den, fs_num_exp_neg(e[i - lo] - e_min), m->weight[i]);
+            }
+        }
+    } else if (n != 0u) {
         for (uint32_t i = lo; i < end; i++) {
             if (e[i - lo] <= FS_NUM_CUTOFF) {
                 const fs_act_t psi = fs_num_exp_neg(e[i - lo] - e_min);
                 fs_num_blend_acc(&num, &den, psi, m->weight[i]);
-                if (w_y != NULL) {
-                    fs_num_blend_acc_num(&num_y, psi, w_y[i]);
-                }
+                fs_num_blend_acc_num(&num_y, psi, w_y[i]);
             }
         }
     }
