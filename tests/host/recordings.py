@@ -224,10 +224,11 @@ POSE_MSGDEF = (f"std_msgs/Header header\ngeometry_msgs/Pose pose\n{_HEADER_DEFS}
 
 
 def write_bag(path: Path, r: Rec, *, topic: str = "/wrench", pose_topic: Optional[str] = "/pose",
-              axis: str = "z", t0_ns: int = 1_700_000_000_000_000_000, extra_wrench: Optional[str] = None) -> Path:
+              axis: str = "z", t0_ns: int = 1_700_000_000_000_000_000, extra_wrench: Optional[str] = None,
+              y_path: Optional[np.ndarray] = None) -> Path:
     """A ROS 2 bag (MCAP): the force on ``axis`` of a WrenchStamped topic (the other axes carry
     other values), the position on a PoseStamped topic at half the rate. ``extra_wrench``: a
-    second WrenchStamped topic."""
+    second WrenchStamped topic; ``y_path``: the pose's y along the recording (else 0.2)."""
     from mcap_ros2.writer import Writer
 
     def stamp(ts: float) -> dict[str, object]:
@@ -247,7 +248,7 @@ def write_bag(path: Path, r: Rec, *, topic: str = "/wrench", pose_topic: Optiona
             if extra_wrench:
                 w.write_message(extra_wrench, ws, msg, log_time=log_ns, publish_time=log_ns, sequence=i)
             if pose_topic and i % 2 == 0:
-                pos = {"x": 0.1, "y": 0.2, "z": 0.3}
+                pos = {"x": 0.1, "y": 0.2 if y_path is None else float(y_path[i]), "z": 0.3}
                 pos[axis] = float(x)
                 w.write_message(pose_topic, ps, {"header": stamp(float(ts)), "pose": {
                     "position": pos, "orientation": {"x": 0.0, "y": 0.0, "z": 0.0, "w": 1.0}}},

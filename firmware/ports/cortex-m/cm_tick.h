@@ -46,6 +46,10 @@ double cm_tick_surface_m(void);
  *  the host build. */
 uint32_t cm_tick(void);
 
+/** The y DMP's p of the last tick (m above the path's start) as raw bits (float32 bits, or
+ *  Q8.24 m), for comparison with the host build; 0 without a y DMP. */
+uint32_t cm_tick_path_bits(void);
+
 /** Latched safety faults (CM_FAULT_*). */
 uint32_t cm_tick_faults(void);
 

@@ -22,6 +22,7 @@ static int32_t cm_surface_q24;
 static int64_t cm_inv_k_q32; /* 1/k, m/N, Q.32: x_d = surface + f_hat/k */
 static int32_t cm_hold_y_q24;
 static int32_t cm_prev_y_d_q24;
+static int32_t cm_path_q24;
 static int32_t cm_last_cmd_q16[CM_HAL_AXES];
 static int32_t cm_force_max_q16;
 static int32_t cm_slew_q16;
@@ -84,6 +85,11 @@ fs_status_t cm_tick_init(const uint8_t *image, uint32_t len, double goal_scale, 
     cm_faults = 0u;
     cm_seq = 0u;
     return FS_OK;
+}
+
+uint32_t cm_tick_path_bits(void)
+{
+    return (uint32_t)cm_path_q24;
 }
 
 uint32_t cm_tick_rows(void)
@@ -152,6 +158,7 @@ uint32_t cm_tick(void)
     ref[1].pos_m = y_d;
     ref[1].vel_mps = fx_mul_int_sat(fx_sub_sat(y_d, cm_prev_y_d_q24), INV_DT);
     cm_prev_y_d_q24 = y_d;
+    cm_path_q24 = path_q24;
     ref[1].acc_mps2 = 0;
     ref[1].force_N = 0;
     /* 4. control law */

@@ -23,6 +23,7 @@ static float cm_prev_pos_m[CM_HAL_AXES];
 static float cm_prev_pos_d_m;
 static float cm_hold_y_m;
 static float cm_prev_y_d_m;
+static uint32_t cm_path_bits;
 static float cm_last_cmd_N[CM_HAL_AXES];
 static uint32_t cm_faults;
 static uint32_t cm_rows;
@@ -53,6 +54,11 @@ fs_status_t cm_tick_init(const uint8_t *image, uint32_t len, double goal_scale, 
     cm_faults = 0u;
     cm_seq = 0u;
     return FS_OK;
+}
+
+uint32_t cm_tick_path_bits(void)
+{
+    return cm_path_bits;
 }
 
 uint32_t cm_tick_rows(void)
@@ -128,6 +134,7 @@ uint32_t cm_tick(void)
     ref[1].pos_m = y_d;
     ref[1].vel_mps = (y_d - cm_prev_y_d_m) * INV_DT;
     cm_prev_y_d_m = y_d;
+    memcpy(&cm_path_bits, &path_m, sizeof(cm_path_bits));
     ref[1].acc_mps2 = 0.0f;
     ref[1].force_N = 0.0f;
     /* 4. control law */
