@@ -328,19 +328,22 @@ fs_real_t dmp_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
 fs_real_t dmp_step_xy(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
                       const dmp_coupling_t *coupling, fs_real_t path_scale, fs_real_t *path_m)
 {
+    if (m->has_y == 0u) { /* a force-only skill: dmp_step's code, p stays 0 */
+        if (path_m != NULL) {
+            *path_m = FS_R(0.0);
+        }
+        return dmp_step(m, s, run, coupling);
+    }
     const dmp_tick_state_t st = {s->window, &s->u, &s->v, &s->integral_y, &s->y_N, &s->z};
     fs_real_t s_y = FS_R(0.0);
-    const fs_real_t s_blend = dmp_tick_state_blend2(m, &st, (m->has_y != 0u) ? m->y_weight : NULL,
-                                                    &s_y);
+    const fs_real_t s_blend = dmp_tick_state_blend2(m, &st, m->y_weight, &s_y);
     const dmp_tick_coef_t c = dmp_coef(m, run, coupling);
-    if (m->has_y != 0u) {
-        const dmp_tick_path_coef_t cp = {.k1 = c.k1,
-                                         .k_alpha = c.k_alpha,
-                                         .k_alphabeta = c.k_alpha * m->beta_y,
-                                         .goal = m->goal_y_m * path_scale,
-                                         .scale = path_scale};
-        (void)dmp_tick_path_step(&cp, &s->path_m, &s->path_z, s->v, s_y, NULL);
-    }
+    const dmp_tick_path_coef_t cp = {.k1 = c.k1,
+                                     .k_alpha = c.k_alpha,
+                                     .k_alphabeta = c.k_alpha * m->beta_y,
+                                     .goal = m->goal_y_m * path_scale,
+                                     .scale = path_scale};
+    (void)dmp_tick_path_step(&cp, &s->path_m, &s->path_z, s->v, s_y, NULL);
     if (path_m != NULL) {
         *path_m = s->path_m;
     }

@@ -181,16 +181,27 @@ static inline fs_val_t dmp_tick_blend2(const DMP_TICK_MODEL *m, fs_phase_t u, ui
         }
     }
 #else
-    /* psi_i >= exp(-cutoff) > 0: den > 0 tells that a kernel was summed (n only for *count) */
-    for (uint32_t i = lo; i < end; i++) {
-        const fs_expo_t ei = fs_num_kernel_expo(u, m->centre[i], m->kernel_scale[i]);
-        if (ei <= FS_NUM_CUTOFF) {
-            if (count != NULL) {
-                n++;
+    /* psi_i >= exp(-cutoff) > 0: den > 0 tells that a kernel was summed (n only for *count);
+     * one loop per case: no test of w_y per kernel */
+    if (w_y == NULL) {
+        for (uint32_t i = lo; i < end; i++) {
+            const fs_expo_t ei = fs_num_kernel_expo(u, m->centre[i], m->kernel_scale[i]);
+            if (ei <= FS_NUM_CUTOFF) {
+                if (count != NULL) {
+                    n++;
+                }
+                fs_num_blend_acc(&num, &den, fs_num_exp_neg(ei), m->weight[i]);
             }
-            const fs_act_t psi = fs_num_exp_neg(ei);
-            fs_num_blend_acc(&num, &den, psi, m->weight[i]);
-            if (w_y != NULL) {
+        }
+    } else {
+        for (uint32_t i = lo; i < end; i++) {
+            const fs_expo_t ei = fs_num_kernel_expo(u, m->centre[i], m->kernel_scale[i]);
+            if (ei <= FS_NUM_CUTOFF) {
+                if (count != NULL) {
+                    n++;
+                }
+                const fs_act_t psi = fs_num_exp_neg(ei);
+                fs_num_blend_acc(&num, &den, psi, m->weight[i]);
                 fs_num_blend_acc_num(&num_y, psi, w_y[i]);
             }
         }

@@ -273,21 +273,25 @@ static dmp_tick_coef_t dmpfx_coef(const dmpfx_model_t *m, const dmpfx_run_t *run
 int32_t dmpfx_step_xy(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s,
                       const dmpfx_coupling_t *coupling, int32_t *path_q24)
 {
+    if (m->has_y == 0u) { /* a force-only skill: dmpfx_step's code, p stays 0 */
+        if (path_q24 != NULL) {
+            *path_q24 = 0;
+        }
+        return dmpfx_step(m, run, s, coupling);
+    }
     int32_t k_ab_y;
     const dmp_tick_coef_t c = dmpfx_coef(m, run, coupling, &k_ab_y);
     const dmp_tick_state_t st = {s->window,          &s->u_acc, &s->v_acc,
                                  &s->integral_y_acc, &s->y_acc, &s->z_acc};
     int32_t s_y = 0;
-    const int32_t s_x = dmp_tick_state_blend2(m, &st, (m->has_y != 0u) ? m->y_weight : NULL, &s_y);
-    if (m->has_y != 0u) {
-        const dmp_tick_path_coef_t cp = {.k1 = c.k1,
-                                         .k_alpha = c.k_alpha,
-                                         .k_alphabeta = k_ab_y,
-                                         .goal = run->goal_y_q24,
-                                         .scale = run->path_scale_q24};
-        (void)dmp_tick_path_step(&cp, &s->path_acc, &s->path_z_acc, dmpfx_view(s->v_acc), s_y,
-                                 &s->sat_events);
-    }
+    const int32_t s_x = dmp_tick_state_blend2(m, &st, m->y_weight, &s_y);
+    const dmp_tick_path_coef_t cp = {.k1 = c.k1,
+                                     .k_alpha = c.k_alpha,
+                                     .k_alphabeta = k_ab_y,
+                                     .goal = run->goal_y_q24,
+                                     .scale = run->path_scale_q24};
+    (void)dmp_tick_path_step(&cp, &s->path_acc, &s->path_z_acc, dmpfx_view(s->v_acc), s_y,
+                             &s->sat_events);
     if (path_q24 != NULL) {
         *path_q24 = dmpfx_view(s->path_acc);
     }
