@@ -1,6 +1,6 @@
 /* Skill image v2/v3 (docs/skill_format.md): little-endian, versioned header, arrays of centres,
  * widths and weights (v3 with the y DMP: and the y weights), CRC-32 (zlib) over everything before
- * it. Python writes it (host/forceskill/skill.py); this parses and validates it into a ready
+ * it. Python writes it (host/forceskill/model/skill.py); this parses and validates it into a ready
  * dmp_model_t. */
 #ifndef SKILL_H
 #define SKILL_H

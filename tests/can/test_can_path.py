@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 
 from conftest import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS, Server, forceskill
-from forceskill import dmp
-from forceskill.demo import load_demo
-from forceskill.skill import Skill
+from forceskill.model import dmp
+from forceskill.model.demo import load_demo
+from forceskill.model.skill import Skill
 
 K_NPM = 280.0
 OBJECT_MASS_KG = 10.0

@@ -12,10 +12,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from forceskill import dmp
-from forceskill.demo import load_demo
-from forceskill.fit import fit
-from forceskill.params import gains_for_object
+from forceskill.model import dmp
+from forceskill.model.demo import load_demo
+from forceskill.model.fit import fit
+from forceskill.model.params import gains_for_object
 
 REPO = Path(__file__).resolve().parents[2]
 SCEN = REPO / "hil_sim" / "scenarios"

@@ -28,16 +28,17 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from forceskill import dmp, synthetic
-from forceskill.demo import Demo
-from forceskill.fit import fit
-from forceskill.params import Gains, gains_for_object
+
+from forceskill.model import dmp, synthetic
+from forceskill.model.demo import Demo
+from forceskill.model.fit import fit
+from forceskill.model.params import Gains, gains_for_object
 
 #: the HIL objects' mass (hil_sim/scenarios): the skills' force gains are adapted to it, so the
 #: vectors run stably on the simulator (the fault rig and the HIL tests execute them)
 OBJECT_MASS_KG = 10.0
-from forceskill.skill import HEADER_SIZE_V2 as HEADER_SIZE
-from forceskill.skill import MAGIC, MAX_KERNELS, Skill
+from forceskill.model.skill import HEADER_SIZE_V2 as HEADER_SIZE
+from forceskill.model.skill import MAGIC, MAX_KERNELS, Skill
 
 HERE = Path(__file__).resolve().parent
 
@@ -279,7 +280,7 @@ def bad_images_y(base: Skill) -> list[tuple[str, bytes, int]]:
     out.append(("y_inf_weight.skill", pack3(bad), 206))
     out.append(("y_nan_goal.skill", pack3(yw, goal_y_m=np.nan), 206))
     # beta_y = k_p/(m_d*alpha) - 1 > alpha/4 while the force DMP's alpha, beta, gamma stay valid
-    from forceskill.params import derive
+    from forceskill.model.params import derive
     g = Gains(base.m_d_kg, base.k_d_Nspm, 1500.0, base.kkf_Npm, base.kki_Npms + 340.0 * base.alpha)
     p = derive(g)
     out.append(("y_beta_gt_alpha_4.skill", pack3(yw, k_p_Npm=g.k_p_Npm, kki_Npms=g.kki_Npms, alpha=p.alpha,

@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .errors import (
+from ..errors import (
     ERR_IO,
     ERR_SKILL_CENTRES,
     ERR_SKILL_CRC,
@@ -42,7 +42,7 @@ from .errors import (
 from .params import MONOTONE_REL_TOL, DmpParams, Gains, derive
 
 if TYPE_CHECKING:
-    from .outputs import Outputs
+    from ..outputs import Outputs
 
 MAGIC = 0x4C4B5346  # bytes "FSKL"
 FORMAT_VERSION = 3
@@ -102,7 +102,7 @@ def image_size(n_kernels: int, version: int = 2, has_y: bool = False) -> int:
 def derive_beta_y(gains: Gains) -> float:
     """beta of the position DMP on y (the law with k_f = k_i = 0): k_p/(m_d*alpha) - 1; the same
     alpha, gamma = 0. Raises ParamError (1xx) for gains derive refuses, 104/105 for beta_y."""
-    from .errors import ERR_BETA_NONPOSITIVE, ERR_PHASE_NOT_MONOTONE
+    from ..errors import ERR_BETA_NONPOSITIVE, ERR_PHASE_NOT_MONOTONE
 
     alpha = derive(gains).alpha
     beta_y = gains.k_p_Npm / (gains.m_d_kg * alpha) - 1.0
@@ -415,7 +415,7 @@ class Skill:
     def write(self, path: PathLike, outs: Outputs | None = None, inputs: Sequence[PathLike] = ()) -> None:
         """Write the image to ``path`` and its JSON twin to ``path.json`` as one unit: into ``outs``
         (committed by the caller) or committed here; neither file changes unless both are written."""
-        from .outputs import Outputs
+        from ..outputs import Outputs
 
         image = self.to_bytes()
         twin = self.to_json().encode()
@@ -441,6 +441,6 @@ class Skill:
 def atomic_write(path: Path, data: bytes) -> None:
     """One output file through forceskill.outputs (temporary file in the same folder, renamed on
     success; refuses special files)."""
-    from .outputs import write_file
+    from ..outputs import write_file
 
     write_file(path, data)
