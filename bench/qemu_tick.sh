@@ -131,6 +131,11 @@ fi
 # the golden float64 rollout of the same skill and scales, if tests/vectors has one
 GOLDEN=$(awk -v s="$(basename "$SKILL")" -v g="$GOAL" -v t="$TIME" \
   '$1 == s && $2 + 0 == g + 0 && $3 + 0 == t + 0 { print $4; exit }' "$ROOT/tests/vectors/manifest.txt" 2>/dev/null || true)
+if [ -z "$GOLDEN" ]; then  # a skill with a y DMP: its rollout at path scale 1 (t,f_hat,y_hat)
+  GOLDEN=$(awk -v s="$(basename "$SKILL")" -v g="$GOAL" -v t="$TIME" \
+    '$1 == s && $2 + 0 == g + 0 && $3 + 0 == t + 0 && $4 + 0 == 1 { print $5; exit }' \
+    "$ROOT/tests/vectors/manifest_y.txt" 2>/dev/null || true)
+fi
 python3 "$ROOT/bench/qemu/compare.py" $NUMERIC $TARGET "$WORK/bench.out" "$WORK/host.out" \
   ${GOLDEN:+"$(dirname "$SKILL")/$GOLDEN"} || status=1
 

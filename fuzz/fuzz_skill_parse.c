@@ -44,7 +44,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     static uint8_t fixed[SKILL_IMAGE_MAX + 64u];
     check_one(data, size);
-    if (size >= SKILL_HEADER_SIZE + SKILL_CRC_SIZE && size <= sizeof fixed) {
+    if (size >= SKILL_HEADER_SIZE_V2 + SKILL_CRC_SIZE && size <= sizeof fixed) {
         memcpy(fixed, data, size);
         const uint32_t crc = skill_crc32(0u, fixed, (uint32_t)size - SKILL_CRC_SIZE);
         for (uint32_t i = 0; i < 4u; i++) {

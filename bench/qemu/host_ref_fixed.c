@@ -42,9 +42,17 @@ int main(int argc, char **argv)
     const long rows = lround(skill.dmp.duration_s * ts / skill.dmp.dt_s);
     dmpfx_state_t s;
     dmpfx_state_reset(&s);
+    static uint32_t path_bits[8000];
     for (long n = 0; n < rows; n++) {
-        const uint32_t bits = (uint32_t)dmpfx_step(&model, &run, &s, NULL);
+        int32_t p = 0;
+        const uint32_t bits = (uint32_t)dmpfx_step_xy(&model, &run, &s, NULL, &p);
+        if (n < 8000) {
+            path_bits[n] = (uint32_t)p;
+        }
         printf("%s %08x%s", (n % 8) == 0 ? "fhat" : "", bits, ((n % 8) == 7 || n + 1 == rows) ? "\n" : "");
+    }
+    for (long n = 0; n < rows && n < 8000; n++) {
+        printf("%s %08x%s", (n % 8) == 0 ? "ypath" : "", path_bits[n], ((n % 8) == 7 || n + 1 == rows) ? "\n" : "");
     }
     return 0;
 }

@@ -35,11 +35,19 @@ int main(int argc, char **argv)
     const long rows = lround((double)skill.dmp.duration_s * ts / (double)skill.dmp.dt_s);
     dmp_state_t s;
     dmp_state_reset(&s);
+    static uint32_t path_bits[8000];
     for (long n = 0; n < rows; n++) {
-        const float fh = dmp_step(&skill.dmp, &s, &run, NULL);
+        float p = 0.0f;
+        const float fh = dmp_step_xy(&skill.dmp, &s, &run, NULL, 1.0f, &p);
         uint32_t bits;
         memcpy(&bits, &fh, sizeof(bits));
+        if (n < 8000) {
+            memcpy(&path_bits[n], &p, sizeof(bits));
+        }
         printf("%s %08x%s", (n % 8) == 0 ? "fhat" : "", bits, ((n % 8) == 7 || n + 1 == rows) ? "\n" : "");
+    }
+    for (long n = 0; n < rows && n < 8000; n++) {
+        printf("%s %08x%s", (n % 8) == 0 ? "ypath" : "", path_bits[n], ((n % 8) == 7 || n + 1 == rows) ? "\n" : "");
     }
     return 0;
 }

@@ -181,7 +181,7 @@ static fs_real_t milli(uint32_t v)
 
 uint8_t app_start_sequence(app_t *app, const uint8_t *slots, const fs_real_t *goal_scale,
                            const fs_real_t *time_scale, const fs_real_t *duration_s,
-                           uint8_t n_steps, uint8_t end)
+                           const fs_real_t *path_scale, uint8_t n_steps, uint8_t end)
 {
     if (n_steps == 0u || n_steps > EXEC_MAX_STEPS || end > 2u) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
@@ -207,6 +207,15 @@ uint8_t app_start_sequence(app_t *app, const uint8_t *slots, const fs_real_t *go
         if (sc != FS_OK) {
             return UDS_NRC_REQUEST_OUT_OF_RANGE;
         }
+        const fs_real_t ps = (path_scale != NULL) ? path_scale[i] : FS_R(1.0);
+        const lim_axis_t *ya = &app->cfg.saf.lim.axis[1];
+        const fs_status_t sp = skchk_run_path(&app->slot_skill[s - 1u], app->slot_path_m[s - 1u],
+                                              ps, ya->pos_max_m - ya->pos_min_m);
+        app->last_run_status = (uint16_t)sp;
+        if (sp != FS_OK) {
+            return UDS_NRC_REQUEST_OUT_OF_RANGE;
+        }
+        steps[i].path_scale = ps;
         steps[i].skill = &app->slot_skill[s - 1u];
         steps[i].goal_scale = goal_scale[i];
         steps[i].time_scale = time_scale[i];
@@ -247,7 +256,7 @@ static void handle_command(app_t *app, const can_frame_t *f)
         const fs_real_t g = milli(c.goal_scale);
         const fs_real_t ts = milli(c.time_scale);
         const fs_real_t d = FS_R(0.0);
-        (void)app_start_sequence(app, &slot, &g, &ts, &d, 1u, c.end_policy);
+        (void)app_start_sequence(app, &slot, &g, &ts, &d, NULL, 1u, c.end_policy);
         break;
     }
     case APP_CMD_CLEAR_FAULT:
@@ -333,6 +342,24 @@ static void uds_service(app_t *app)
 
 /* ---------------------------------------------------------------- init and tick */
 
+/* A stored skill's check without limits: its peak force and path extent, for the run checks
+ * (the limits may have changed since its commit). */
+static fs_status_t app_check_stored(const skill_t *sk, fs_real_t *peak_N, fs_real_t *path_m)
+{
+    const fs_status_t st = skchk_params(sk);
+    if (st != FS_OK) {
+        return st;
+    }
+    skchk_t c;
+    skchk_begin(&c, sk, FS_R(0.001), FS_R(1e30));
+    c.path_max_m = FS_R(1e30);
+    while (!skchk_run(&c, UINT32_MAX)) {
+    }
+    *peak_N = c.peak_N;
+    *path_m = c.path_peak_m;
+    return c.status;
+}
+
 void app_slots_reload(app_t *app)
 {
     for (uint16_t s = 0; s < APP_N_SLOTS; s++) {
@@ -342,12 +369,13 @@ void app_slots_reload(app_t *app)
         }
         uint32_t len = 0u;
         fs_real_t peak = FS_R(0.0);
+        fs_real_t path = FS_R(0.0);
         if (nvm_read(&app->nvm, s, app->image, sizeof(app->image), &len) == NVM_OK &&
             skill_parse(app->image, len, &app->slot_skill[s]) == FS_OK &&
-            skchk_skill(&app->slot_skill[s], FS_R(0.001), FS_R(1e30), &peak) == FS_OK) {
-            /* its peak again, for the run check (the limit may have changed since its commit) */
+            app_check_stored(&app->slot_skill[s], &peak, &path) == FS_OK) {
             app->slot_valid[s] = true;
             app->slot_peak_N[s] = peak;
+            app->slot_path_m[s] = path;
             app->slot_crc[s] = skill_crc32(0u, app->image, len - SKILL_CRC_SIZE);
             app->slot_len[s] = len;
         }
@@ -460,8 +488,8 @@ void app_init(app_t *app, const app_config_t *cfg)
     for (unsigned i = 0; i < APP_N_SLOTS; i++) {
         any_skill = any_skill || app->slot_valid[i];
     }
-    bc->skill_min = any_skill ? (uint16_t)SKILL_FORMAT_VERSION : 0u;
-    bc->skill_max = bc->skill_min;
+    bc->skill_min = any_skill ? (uint16_t)SKILL_FORMAT_VERSION_MIN : 0u;
+    bc->skill_max = any_skill ? (uint16_t)SKILL_FORMAT_VERSION : 0u;
     bc->config_min = 0u; /* gains/limits are not persisted yet */
     bc->config_max = 0u;
     (void)boot_select(&app->boot, bc);

@@ -113,6 +113,7 @@ typedef struct {
     skchk_t check;                      /* output check of staging, spread over ticks */
     bool checking;                      /* a download waits for its check (UDS 0x78 sent) */
     fs_real_t slot_peak_N[APP_N_SLOTS]; /* peak |f_hat| of each valid slot at goal scale 1 */
+    fs_real_t slot_path_m[APP_N_SLOTS]; /* extent max|p| of each valid slot's y path (0: none) */
     /* firmware update (firmware/boot, docs/update.md) */
     boot_fls_window_t fw_w_state, fw_w_slots;
     fls_dev_t fw_state_dev, fw_slots_dev;
@@ -164,10 +165,12 @@ void app_tick(app_t *app, bool overrun);
 bool app_poll(app_t *app);
 
 /** Start a sequence (1..EXEC_MAX_STEPS steps); slots 1..APP_N_SLOTS, end 0 = skill's own,
- *  1 hold, 2 release; duration_s <= 0: the skill's T*time_scale. Returns a UDS NRC (0 ok). */
+ *  1 hold, 2 release; duration_s <= 0: the skill's T*time_scale; path_scale (NULL: 1 for every
+ *  step) scales the y path of skills with a y DMP, path_scale times the slot's path extent
+ *  within the y workspace's width (226 in last_run_status). Returns a UDS NRC (0 ok). */
 uint8_t app_start_sequence(app_t *app, const uint8_t *slots, const fs_real_t *goal_scale,
                            const fs_real_t *time_scale, const fs_real_t *duration_s,
-                           uint8_t n_steps, uint8_t end);
+                           const fs_real_t *path_scale, uint8_t n_steps, uint8_t end);
 
 /** Handle the UDS hooks (app_uds.c): fills an uds_app_t bound to app. */
 void app_uds_bind(app_t *app, uds_app_t *out);

@@ -296,8 +296,13 @@ static uint8_t routine(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *d, u
             fs_real_t g[EXEC_MAX_STEPS], ts[EXEC_MAX_STEPS], dur[EXEC_MAX_STEPS];
             uint8_t n = 0u;
             uint8_t end = 0u;
+            fs_real_t ps[EXEC_MAX_STEPS];
+            for (uint8_t i = 0; i < EXEC_MAX_STEPS; i++) {
+                ps[i] = FS_R(1.0);
+            }
             if (rid == UDS_RID_RUN_SKILL) {
-                if (len != 6u) {
+                /* slot, goal scale, time scale, end [, path scale]: 6 or 8 bytes */
+                if (len != 6u && len != 8u) {
                     return UDS_NRC_INCORRECT_LENGTH;
                 }
                 slots[0] = d[0];
@@ -305,6 +310,9 @@ static uint8_t routine(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *d, u
                 ts[0] = (fs_real_t)get_u16(&d[3]) * FS_R(0.001);
                 dur[0] = FS_R(0.0);
                 end = d[5];
+                if (len == 8u) {
+                    ps[0] = (fs_real_t)get_u16(&d[6]) * FS_R(0.001);
+                }
                 n = 1u;
             } else {
                 if (len < 10u || (len - 1u) % 9u != 0u || (len - 1u) / 9u > EXEC_MAX_STEPS) {
@@ -320,7 +328,7 @@ static uint8_t routine(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *d, u
                     dur[i] = (fs_real_t)get_u32(&s[5]) * FS_R(0.001);
                 }
             }
-            return app_start_sequence(app, slots, g, ts, dur, n, end);
+            return app_start_sequence(app, slots, g, ts, dur, ps, n, end);
         }
         if (sub == UDS_ROUTINE_STOP) {
             if (app->state != APP_EXECUTE) {
@@ -468,7 +476,7 @@ static uint8_t download_begin(void *ctx, uint32_t addr, uint32_t size)
         return app->state == APP_IDLE ? fwu_uds_download_begin(&app->fwu, &app->uds, size)
                                       : UDS_NRC_CONDITIONS_NOT_CORRECT;
     }
-    if (addr < 1u || addr > APP_N_SLOTS || size < SKILL_HEADER_SIZE + SKILL_CRC_SIZE ||
+    if (addr < 1u || addr > APP_N_SLOTS || size < SKILL_HEADER_SIZE_V2 + SKILL_CRC_SIZE ||
         size > APP_IMAGE_MAX) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
@@ -526,6 +534,8 @@ static uint8_t download_end(void *ctx, uint32_t *crc_out)
         }
         /* the skill's own rollout, APP_CHECK_STEPS_PER_TICK steps per tick (0x78 meanwhile) */
         skchk_begin(&app->check, &app->staging, FS_R(0.001), app->cfg.saf.lim.axis[0].force_max_N);
+        app->check.path_max_m = app->cfg.saf.lim.axis[1].pos_max_m -
+                                app->cfg.saf.lim.axis[1].pos_min_m;
         app->checking = true;
     }
     if (!skchk_run(&app->check, APP_CHECK_STEPS_PER_TICK)) {
@@ -546,6 +556,7 @@ static uint8_t download_end(void *ctx, uint32_t *crc_out)
     app->slot_skill[slot] = app->staging;
     app->slot_valid[slot] = true;
     app->slot_peak_N[slot] = app->check.peak_N;
+    app->slot_path_m[slot] = app->check.path_peak_m;
     app->last_transfer_status = 0u;
     *crc_out = skill_crc32(0u, app->image, app->xfer_size - SKILL_CRC_SIZE);
     app->slot_crc[slot] = *crc_out;

@@ -92,7 +92,8 @@ fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_st
             return FS_ERR_NULL_ARG;
         }
         if (!fs_isfinite(s->goal_scale) || !fs_isfinite(s->time_scale) ||
-            !fs_isfinite(s->duration_s) || s->time_scale <= FS_R(0.0)) {
+            !fs_isfinite(s->duration_s) || s->time_scale <= FS_R(0.0) ||
+            !fs_isfinite(s->path_scale) || s->path_scale < FS_R(0.0)) {
             return FS_ERR_SCALE_INVALID;
         }
         st->steps[i] = *s;
@@ -111,6 +112,9 @@ fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_st
     st->ref_prev_pos_m = cfg->object.surface_m;
     st->surface_m = cfg->object.surface_m;
     st->y_hold_m = y_hold_m;
+    st->path_m = FS_R(0.0);
+    st->y_ref_m = y_hold_m;
+    st->y_ref_vel_mps = FS_R(0.0);
     st->start_pending = 1u;
     pfc_reset(&st->pfc);
     exec_begin_step(st);
@@ -198,12 +202,15 @@ static fs_real_t exec_reference_force(const exec_config_t *cfg, exec_state_t *st
                                                         cfg->phase_stop_gain_per_N2);
         cp = &coupling;
     }
-    st->force_dmp_N = dmp_step(&s->skill->dmp, &st->dmp, &st->run, cp);
+    st->force_dmp_N = dmp_step_xy(&s->skill->dmp, &st->dmp, &st->run, cp, s->path_scale,
+                                  &st->path_m);
     st->t_step_s += dt;
     fs_real_t f = st->force_dmp_N + st->force_carry_N * exec_blend(st->t_step_s);
 
     if (exec_ticks(st->t_step_s, dt) >= exec_ticks(exec_step_duration(s), dt)) {
         if ((uint8_t)(st->step + 1u) < st->n_steps) {
+            st->y_hold_m += st->path_m; /* the next step's path starts where this one ended */
+            st->path_m = FS_R(0.0);
             st->step++;
             st->force_carry_N = f - st->steps[st->step].skill->dmp.force0_N;
             exec_begin_step(st);
@@ -228,6 +235,7 @@ fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_mea
         out->force_cmd_N[1] = FS_R(0.0);
         out->force_hat_N = st->force_hat_N;
         out->pos_ref_m = st->surface_m + st->ref_p_m;
+        out->y_ref_m = st->y_ref_m;
         return FS_ERR_NOT_FINITE;
     }
     const fs_real_t dt = cfg->pfc.dt_s;
@@ -263,10 +271,15 @@ fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_mea
         st->ref_prev_pos_m = x_d;
     }
     ref[0].force_N = f_hat;
-    ref[1].pos_m = st->y_hold_m;
-    ref[1].vel_mps = FS_R(0.0);
-    ref[1].acc_mps2 = FS_R(0.0);
+    /* y: the path (a step without a y DMP keeps p = 0: y holds), derivatives by differences */
+    const fs_real_t y_d = st->y_hold_m + st->path_m;
+    const fs_real_t yd_d = (y_d - st->y_ref_m) / dt;
+    ref[1].pos_m = y_d;
+    ref[1].vel_mps = yd_d;
+    ref[1].acc_mps2 = (yd_d - st->y_ref_vel_mps) / dt;
     ref[1].force_N = FS_R(0.0);
+    st->y_ref_m = y_d;
+    st->y_ref_vel_mps = yd_d;
 
     pfc_axis_meas_t m[PFC_AXES];
     m[0].pos_m = meas->pos_m[0];
@@ -279,6 +292,7 @@ fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_mea
 
     out->force_hat_N = f_hat;
     out->pos_ref_m = ref[0].pos_m;
+    out->y_ref_m = y_d;
     out->step = st->step;
     out->done = st->done;
     return FS_OK;

@@ -11,8 +11,14 @@
  *   x_d, xd_d, xdd_d from f_hat: the object model m_v*pdd + d_v*pd + F(p) = f_hat integrated
  *            forward (semi-implicit Euler, unilateral p >= 0), x_d = surface + p;
  *            without a model x_d = surface + f_hat/k (k of the skill), xd_d by difference.
- *   f_cmd  = pfc_step(ref = {x_d, xd_d, xdd_d, f_hat}, y holds its start position); the caller
- *            gives the skill's controller gains (k_f = kkf/k, k_i = kki/k: skill_t.gains)
+ *   p      = the skill's y DMP on the same phase (dmp_step_xy, path_scale of the step), a skill
+ *            without one: p = 0; y_d = y_base + p, yd_d and ydd_d by differences of y_d
+ *   f_cmd  = pfc_step(ref = {x_d, xd_d, xdd_d, f_hat}, {y_d, yd_d, ydd_d}); the caller gives
+ *            the skill's controller gains (k_f = kkf/k, k_i = kki/k: skill_t.gains); y is
+ *            position-controlled (its k_f = k_i = 0)
+ * y_base is the y position at exec_start (the path is learned relative to its start); at a
+ * switch between steps it advances by the finished step's p, so the path is continuous; after
+ * the sequence y_d stays where the path ended.
  * Start: the first tick measures the contact force f_c; f_carry = f_c - f0 of the first skill, so
  * execution starts from the measured contact force without a jump and reaches the skill's own
  * profile after EXEC_BLEND_S. On a stiff object a surface error d acts as a force disturbance
@@ -47,6 +53,7 @@ typedef struct {
     fs_real_t time_scale;   /* tau -> time_scale*tau: stretches the profile */
     fs_real_t duration_s;   /* how long the step runs; <= 0 means the skill's T*time_scale */
     skill_end_t end_policy; /* used after the last step: hold or release */
+    fs_real_t path_scale;   /* the y path about its start (skills with a y DMP); >= 0 */
 } exec_step_t;
 
 /** Known object model for the position reference (docs/math.md): f = m_v*pdd + d_v*pd
@@ -83,6 +90,7 @@ typedef struct {
     fs_real_t force_cmd_N[PFC_AXES]; /* saturated law output ("m_d*xdd") per axis */
     fs_real_t force_hat_N;           /* reference force f_hat */
     fs_real_t pos_ref_m;             /* x_d */
+    fs_real_t y_ref_m;               /* y_d */
     uint8_t step;                    /* index of the running step */
     uint8_t done;                    /* 1 once the sequence (and any release) has ended */
 } exec_out_t;
@@ -106,17 +114,21 @@ typedef struct {
     fs_real_t ref_pd_mps;
     fs_real_t ref_pdd_mps2;
     fs_real_t ref_prev_pos_m; /* model-free reference: previous x_d (for xd_d) */
-    fs_real_t y_hold_m;
-    uint8_t start_pending; /* 1 until the first tick has measured the contact force */
-    fs_real_t surface_m;   /* the surface the reference is built on */
+    fs_real_t y_hold_m;       /* y_base: the running step's path starts here */
+    fs_real_t path_m;         /* p of the running step's y DMP */
+    fs_real_t y_ref_m;        /* y_d = y_base + p */
+    fs_real_t y_ref_vel_mps;  /* yd_d */
+    uint8_t start_pending;    /* 1 until the first tick has measured the contact force */
+    fs_real_t surface_m;      /* the surface the reference is built on */
     pfc_state_t pfc;
 } exec_state_t;
 
 /** Default configuration: pfc_default_config, 50 N limit, no model, no phase stopping. */
 void exec_config_default(exec_config_t *cfg);
 
-/** Load a sequence (1..EXEC_MAX_STEPS steps) and reset the state; y_hold_m is the y position to
- *  hold. Validates skills (non-NULL), finite scales, time_scale > 0 and the configuration. */
+/** Load a sequence (1..EXEC_MAX_STEPS steps) and reset the state; y_hold_m is the y position the
+ *  path starts from (held by skills without a y DMP). Validates skills (non-NULL), finite scales,
+ *  time_scale > 0, path_scale >= 0 and the configuration. */
 fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
                        uint8_t n_steps, fs_real_t y_hold_m);
 

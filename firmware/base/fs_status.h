@@ -43,6 +43,12 @@ typedef enum {
     /* the rollout at goal scale 1 peaks above the force limit */
     FS_ERR_SKCHK_PEAK = 223,
     FS_ERR_SKCHK_GOAL_SCALE = 224,      /* goal_scale * peak above the force limit: run refused */
+    /* the y path at path scale 1 is not finite or leaves the device's y range (its extent from
+     * the start above the y workspace's width), or a y parameter is outside the device's range */
+    FS_ERR_SKCHK_PATH = 225,
+    /* path_scale * path extent above the y workspace's width, or a path scale not finite or
+     * negative: run refused */
+    FS_ERR_SKCHK_PATH_SCALE = 226,
 
     /* 3xx: fixed-point conversion (firmware/fixed) */
     FS_ERR_FIXED_OVERFLOW = 300,        /* a value does not fit its fixed-point format */

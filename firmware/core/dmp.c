@@ -188,6 +188,16 @@ fs_status_t dmp_model_init(dmp_model_t *m)
         beta > alpha / FS_R(4.0) * (FS_R(1.0) + DMP_MONOTONE_REL_TOL_REAL)) {
         return FS_ERR_SKILL_GAINS;
     }
+    if (m->has_y != 0u) {
+        if (!fs_isfinite(m->beta_y) || !fs_isfinite(m->goal_y_m) || !fs_isfinite(m->y_start_m) ||
+            !dmp_all_finite(m->y_weight, n)) {
+            return FS_ERR_SKILL_NOT_FINITE;
+        }
+        if (!(m->beta_y > FS_R(0.0)) ||
+            m->beta_y > alpha / FS_R(4.0) * (FS_R(1.0) + DMP_MONOTONE_REL_TOL_REAL)) {
+            return FS_ERR_SKILL_GAINS;
+        }
+    }
 
     const fs_real_t r_per_sigma = fs_sqrt(FS_R(2.0) * (fs_real_t)DMP_KERNEL_CUTOFF_EXP) *
                                   DMP_ENVELOPE_MARGIN;
@@ -230,6 +240,8 @@ void dmp_state_reset(dmp_state_t *s)
     s->integral_y = FS_R(0.0);
     s->y_N = FS_R(0.0);
     s->z = FS_R(0.0);
+    s->path_m = FS_R(0.0);
+    s->path_z = FS_R(0.0);
 }
 
 /* S(u) over all N kernels with psi_i = exp(-(e_i - e_min)) (the test reference: the shift keeps
@@ -279,11 +291,10 @@ fs_real_t dmp_phase_stop_factor(fs_real_t force_err_N, fs_real_t gain_per_N2)
     return (r > FS_R(0.0)) ? r : FS_R(0.0);
 }
 
-fs_real_t dmp_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
-                   const dmp_coupling_t *coupling)
+/* The force DMP's per-tick constants for a run and a coupling (both may be NULL). */
+static dmp_tick_coef_t dmp_coef(const dmp_model_t *m, const dmp_run_t *run,
+                                const dmp_coupling_t *coupling)
 {
-    const dmp_tick_state_t st = {s->window, &s->u, &s->v, &s->integral_y, &s->y_N, &s->z};
-    const fs_real_t s_blend = dmp_tick_state_blend(m, &st);
     const fs_real_t goal_scale = (run != NULL) ? run->goal_scale : FS_R(1.0);
     const fs_real_t time_scale = (run != NULL) ? run->time_scale : FS_R(1.0);
     fs_real_t slowdown = FS_R(0.0);
@@ -302,5 +313,39 @@ fs_real_t dmp_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
                                .goal = m->goal_N * goal_scale,
                                .out_scale = FS_R(1.0),
                                .term_y = term_y};
+    return c;
+}
+
+fs_real_t dmp_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
+                   const dmp_coupling_t *coupling)
+{
+    const dmp_tick_state_t st = {s->window, &s->u, &s->v, &s->integral_y, &s->y_N, &s->z};
+    const fs_real_t s_blend = dmp_tick_state_blend(m, &st);
+    const dmp_tick_coef_t c = dmp_coef(m, run, coupling);
+    return m->force0_N + dmp_tick_step(&c, &st, s_blend, NULL);
+}
+
+fs_real_t dmp_step_xy(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
+                      const dmp_coupling_t *coupling, fs_real_t path_scale, fs_real_t *path_m)
+{
+    if (m->has_y == 0u) { /* a force-only skill: dmp_step's code, p stays 0 */
+        if (path_m != NULL) {
+            *path_m = FS_R(0.0);
+        }
+        return dmp_step(m, s, run, coupling);
+    }
+    const dmp_tick_state_t st = {s->window, &s->u, &s->v, &s->integral_y, &s->y_N, &s->z};
+    fs_real_t s_y = FS_R(0.0);
+    const fs_real_t s_blend = dmp_tick_state_blend2(m, &st, m->y_weight, &s_y);
+    const dmp_tick_coef_t c = dmp_coef(m, run, coupling);
+    const dmp_tick_path_coef_t cp = {.k1 = c.k1,
+                                     .k_alpha = c.k_alpha,
+                                     .k_alphabeta = c.k_alpha * m->beta_y,
+                                     .goal = m->goal_y_m * path_scale,
+                                     .scale = path_scale};
+    (void)dmp_tick_path_step(&cp, &s->path_m, &s->path_z, s->v, s_y, NULL);
+    if (path_m != NULL) {
+        *path_m = s->path_m;
+    }
     return m->force0_N + dmp_tick_step(&c, &st, s_blend, NULL);
 }

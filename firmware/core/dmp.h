@@ -10,7 +10,12 @@
  *   f_hat = f0 + y
  * with tau -> tau*time_scale*(1 + phase_slowdown) and g -> g*goal_scale at run time. Nothing here
  * depends on the stiffness k: it enters only the execution reference and the controller gains
- * (dmp_gains_at_stiffness). */
+ * (dmp_gains_at_stiffness).
+ * A skill may also hold the position DMP on y (paper eq. 9: the same law with k_f = k_i = 0), on
+ * the same phase and kernels, with its own weights w_y (m), goal g_y (m) and beta_y:
+ *   tau*pd = z_p - p + h_y      tau*z_pd = alpha*(beta_y*(s_p*g_y - p) - z_p)
+ *   h_y = s_p*v~ * sum(psi_i*w_y_i)/sum(psi_i),   y_hat = y_start + p
+ * s_p the path scale (the path scales about its start); dmp_step_xy advances both. */
 #ifndef DMP_H
 #define DMP_H
 
@@ -98,13 +103,20 @@ typedef struct {
     fs_real_t kernel_scale[DMP_MAX_KERNELS]; /* 1/(2 sigma_i^2): e_i = (u~ - c_i)^2 * this */
     fs_real_t env_hi[DMP_MAX_KERNELS];       /* prefix max of c_i + r*sigma_i (non-decreasing) */
     fs_real_t env_lo[DMP_MAX_KERNELS];       /* suffix min of c_i - r*sigma_i (non-decreasing) */
+    /* the position DMP on y (has_y = 1), on the same phase and kernels */
+    uint8_t has_y;
+    fs_real_t beta_y;                    /* k_p/(m_d*alpha) - 1 (gamma = 0) */
+    fs_real_t goal_y_m;                  /* g_y: the DMP's goal, m above the path's start */
+    fs_real_t y_start_m;                 /* where the demonstrated path started */
+    fs_real_t y_weight[DMP_MAX_KERNELS]; /* m: h_y = v~*S_y */
 } dmp_model_t;
 
 /** Validate the model and fill the derived arrays (after centre/width/weight and scalars are set).
  *  Checks in skill-image order: NULL (100); 1 <= N <= DMP_MAX_KERNELS (205); every value finite
  *  (206); 0 < dt <= 0.1, tau > 0, 0 < T <= 3600, g > 0, sigma_i > 0 and 1/(2 sigma_i^2)
  *  finite (207); centres strictly increasing in [0, 1] (208); alpha > 0, beta > 0, gamma >= 0,
- *  beta <= alpha/4*(1 + DMP_MONOTONE_REL_TOL_REAL) (209). */
+ *  beta <= alpha/4*(1 + DMP_MONOTONE_REL_TOL_REAL) (209). With has_y: goal_y, y_start and
+ *  y_weight[] finite (206), 0 < beta_y <= alpha/4*(1 + tol) (209). */
 fs_status_t dmp_model_init(dmp_model_t *m);
 
 /** DMP state, DMP time: normalised phase u~, v~, the integral I of y, y = f_hat - f0 (N), z;
@@ -117,6 +129,8 @@ typedef struct {
     fs_real_t integral_y;
     fs_real_t y_N;
     fs_real_t z;
+    fs_real_t path_m; /* p: the y DMP's position above the path's start (0 without one) */
+    fs_real_t path_z; /* z_p */
 } dmp_state_t;
 
 /** Run-time modulation: goal_scale multiplies g (and so f_hat), time_scale stretches tau. */
@@ -161,5 +175,12 @@ fs_real_t dmp_phase_stop_factor(fs_real_t force_err_N, fs_real_t gain_per_N2);
  *  Returns f_hat = f0 + y after the step. The caller validates run with dmp_run_validate. */
 fs_real_t dmp_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
                    const dmp_coupling_t *coupling);
+
+/** dmp_step and, for a model with has_y, the y DMP's step on the same phase (the kernel
+ *  activations computed once for both), path scale path_scale (not checked: finite, >= 0 is
+ *  the caller's). *path_m (may be NULL) receives p after the step (m above the path's start,
+ *  0 without a y DMP). Returns f_hat as dmp_step. */
+fs_real_t dmp_step_xy(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
+                      const dmp_coupling_t *coupling, fs_real_t path_scale, fs_real_t *path_m);
 
 #endif /* DMP_H */

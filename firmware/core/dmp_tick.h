@@ -80,9 +80,9 @@ static inline uint32_t dmp_tick_window_start(const DMP_TICK_MODEL *m, fs_phase_t
     return a;
 }
 
-/** Weight of the kernel with the smallest e_i (the first on ties): the fallback when no kernel
+/** Index of the kernel with the smallest e_i (the first on ties): the fallback when no kernel
  *  is within the cutoff (an O(N) scan, only when u is outside every kernel). */
-static inline fs_val_t dmp_tick_nearest_weight(const DMP_TICK_MODEL *m, fs_phase_t u)
+static inline uint32_t dmp_tick_nearest(const DMP_TICK_MODEL *m, fs_phase_t u)
 {
     uint32_t best = 0u;
     fs_kdist_t r_best = fs_num_kernel_dist(u, m->centre[0], m->kernel_scale[0]);
@@ -93,7 +93,7 @@ static inline fs_val_t dmp_tick_nearest_weight(const DMP_TICK_MODEL *m, fs_phase
             best = i;
         }
     }
-    return m->weight[best];
+    return best;
 }
 
 /** End of the kernel window at u: the first i with env_lo[i] > u (env_lo is non-decreasing,
@@ -140,12 +140,15 @@ static inline void dmp_tick_window_walk(const DMP_TICK_MODEL *m, fs_phase_t u, u
 /** S(u) = sum psi_i w_i / sum psi_i over the kernels with e_i <= FS_NUM_CUTOFF in the window
  *  [lo, hi) (dmp_tick_window_*; empty when hi <= lo), at most FS_NUM_MAX_WINDOW kernels from lo;
  *  psi_i as DMP_TICK_BLEND_SHIFT says. *count (may be NULL) receives the number summed (1 in
- *  the nearest-kernel fallback). */
-static inline fs_val_t dmp_tick_blend(const DMP_TICK_MODEL *m, fs_phase_t u, uint32_t lo,
-                                      uint32_t hi, uint16_t *count)
+ *  the nearest-kernel fallback). With w_y non-NULL, *s_y receives the same blend of the second
+ *  weight set w_y (the y DMP's) from the same activations: each psi_i is computed once. */
+static inline fs_val_t dmp_tick_blend2(const DMP_TICK_MODEL *m, fs_phase_t u, uint32_t lo,
+                                       uint32_t hi, uint16_t *count, const fs_val_t *w_y,
+                                       fs_val_t *s_y)
 {
     const uint32_t end = (hi > lo + FS_NUM_MAX_WINDOW) ? lo + FS_NUM_MAX_WINDOW : hi;
     fs_bnum_t num = 0;
+    fs_bnum_t num_y = 0;
     fs_bden_t den = 0;
     uint32_t n = 0u;
 #if DMP_TICK_BLEND_SHIFT
@@ -160,23 +163,47 @@ static inline fs_val_t dmp_tick_blend(const DMP_TICK_MODEL *m, fs_phase_t u, uin
             e_min = (ei < e_min) ? ei : e_min;
         }
     }
-    /* pass 2: the shifted activations of the stored exponents */
-    if (n != 0u) {
+    /* pass 2: the shifted activations of the stored exponents (one loop per case: no test of
+     * w_y per kernel) */
+    if (n != 0u && w_y == NULL) {
         for (uint32_t i = lo; i < end; i++) {
             if (e[i - lo] <= FS_NUM_CUTOFF) {
                 fs_num_blend_acc(&num, &den, fs_num_exp_neg(e[i - lo] - e_min), m->weight[i]);
             }
         }
+    } else if (n != 0u) {
+        for (uint32_t i = lo; i < end; i++) {
+            if (e[i - lo] <= FS_NUM_CUTOFF) {
+                const fs_act_t psi = fs_num_exp_neg(e[i - lo] - e_min);
+                fs_num_blend_acc(&num, &den, psi, m->weight[i]);
+                fs_num_blend_acc_num(&num_y, psi, w_y[i]);
+            }
+        }
     }
 #else
-    /* psi_i >= exp(-cutoff) > 0: den > 0 tells that a kernel was summed (n only for *count) */
-    for (uint32_t i = lo; i < end; i++) {
-        const fs_expo_t ei = fs_num_kernel_expo(u, m->centre[i], m->kernel_scale[i]);
-        if (ei <= FS_NUM_CUTOFF) {
-            if (count != NULL) {
-                n++;
+    /* psi_i >= exp(-cutoff) > 0: den > 0 tells that a kernel was summed (n only for *count);
+     * one loop per case: no test of w_y per kernel */
+    if (w_y == NULL) {
+        for (uint32_t i = lo; i < end; i++) {
+            const fs_expo_t ei = fs_num_kernel_expo(u, m->centre[i], m->kernel_scale[i]);
+            if (ei <= FS_NUM_CUTOFF) {
+                if (count != NULL) {
+                    n++;
+                }
+                fs_num_blend_acc(&num, &den, fs_num_exp_neg(ei), m->weight[i]);
             }
-            fs_num_blend_acc(&num, &den, fs_num_exp_neg(ei), m->weight[i]);
+        }
+    } else {
+        for (uint32_t i = lo; i < end; i++) {
+            const fs_expo_t ei = fs_num_kernel_expo(u, m->centre[i], m->kernel_scale[i]);
+            if (ei <= FS_NUM_CUTOFF) {
+                if (count != NULL) {
+                    n++;
+                }
+                const fs_act_t psi = fs_num_exp_neg(ei);
+                fs_num_blend_acc(&num, &den, psi, m->weight[i]);
+                fs_num_blend_acc_num(&num_y, psi, w_y[i]);
+            }
         }
     }
     n = (den > FS_NUM_ZERO) ? ((n == 0u) ? 1u : n) : 0u;
@@ -185,9 +212,23 @@ static inline fs_val_t dmp_tick_blend(const DMP_TICK_MODEL *m, fs_phase_t u, uin
         *count = (uint16_t)((n == 0u) ? 1u : n);
     }
     if (n == 0u) {
-        return dmp_tick_nearest_weight(m, u);
+        const uint32_t best = dmp_tick_nearest(m, u);
+        if (w_y != NULL) {
+            *s_y = w_y[best];
+        }
+        return m->weight[best];
+    }
+    if (w_y != NULL) {
+        *s_y = fs_num_blend_div(num_y, den);
     }
     return fs_num_blend_div(num, den);
+}
+
+/** dmp_tick_blend2 of the force weights alone. */
+static inline fs_val_t dmp_tick_blend(const DMP_TICK_MODEL *m, fs_phase_t u, uint32_t lo,
+                                      uint32_t hi, uint16_t *count)
+{
+    return dmp_tick_blend2(m, u, lo, hi, count, NULL, NULL);
 }
 
 /** The blend S at the state's phase, the state's window walked there first. Callers take it
@@ -221,6 +262,44 @@ static inline fs_force_t dmp_tick_step(const dmp_tick_coef_t *c, const dmp_tick_
     *s->v = fs_num_acc_mac2(*s->v, c->k_alphabeta, one_u, c->k_alpha, v, ev);
     *s->u = fs_num_acc_mac1(*s->u, c->k1, v, ev);
     return fs_num_force(c->out_scale, fs_num_view(*s->y), ev);
+}
+
+/** The blend pair (S, S_y) at the state's phase, the state's window walked there first; *s_y
+ *  is the blend of w_y (the y DMP's weights) over the same activations. */
+static inline fs_val_t dmp_tick_state_blend2(const DMP_TICK_MODEL *m, const dmp_tick_state_t *s,
+                                             const fs_val_t *w_y, fs_val_t *s_y)
+{
+    const fs_phase_t u = fs_num_view(*s->u);
+    dmp_tick_window_walk(m, u, s->window);
+    return dmp_tick_blend2(m, u, s->window[0], s->window[1], NULL, w_y, s_y);
+}
+
+/** Per-tick constants of the position DMP on y (paper eq. 9: the law with k_f = k_i = 0, so
+ *  gamma = 0): dt/tau_e*{1, alpha, alpha*beta_y} (the phase's k1 and k_alpha), the scaled goal
+ *  path_scale*g_y and the path scale itself (h_y = path_scale*v~*S_y). */
+typedef struct {
+    fs_coef_t k1;
+    fs_coef_t k_alpha;
+    fs_coef_t k_alphabeta;
+    fs_val_t goal;
+    fs_val_t scale;
+} dmp_tick_path_coef_t;
+
+/** One forward-Euler step of the y DMP, every right-hand side at the old state:
+ *    h = scale*v*S_y     p += k1*(z_p - p + h)     z_p += k_ab*(goal - p) - k_a*z_p
+ *  v is the phase velocity of the same step before it advances (take it before dmp_tick_step).
+ *  Returns p after the step (m above the path's start). */
+static inline fs_val_t dmp_tick_path_step(const dmp_tick_path_coef_t *c, fs_acc_t *p, fs_acc_t *z_p,
+                                          fs_phase_t v, fs_val_t s_y, uint32_t *ev)
+{
+    const fs_val_t pv = fs_num_view(*p);
+    const fs_val_t zv = fs_num_view(*z_p);
+    const fs_val_t h = fs_num_mul_vv(fs_num_mul_vp(c->scale, v, ev), s_y, ev);
+    const fs_val_t sp = fs_num_add_ev(fs_num_sub_ev(zv, pv, ev), h, ev);
+    const fs_val_t gp = fs_num_sub_ev(c->goal, pv, ev);
+    *p = fs_num_acc_mac1(*p, c->k1, sp, ev);
+    *z_p = fs_num_acc_mac2(*z_p, c->k_alphabeta, gp, c->k_alpha, zv, ev);
+    return fs_num_view(*p);
 }
 
 #endif /* DMP_TICK_H */

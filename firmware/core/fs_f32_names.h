@@ -16,17 +16,20 @@
 #define dmp_active_kernels dmp_active_kernels_f32
 #define dmp_phase_stop_factor dmp_phase_stop_factor_f32
 #define dmp_step dmp_step_f32
+#define dmp_step_xy dmp_step_xy_f32
 #define pfc_default_config pfc_default_config_f32
 #define pfc_config_validate pfc_config_validate_f32
 #define pfc_reset pfc_reset_f32
 #define pfc_step pfc_step_f32
 #define skill_image_size skill_image_size_f32
+#define skill_image_size_v skill_image_size_v_f32
 #define skill_crc32 skill_crc32_f32
 #define skill_parse skill_parse_f32
 #define skchk_params skchk_params_f32
 #define skchk_begin skchk_begin_f32
 #define skchk_run skchk_run_f32
 #define skchk_skill skchk_skill_f32
+#define skchk_run_path skchk_run_path_f32
 #define skchk_run_scales skchk_run_scales_f32
 
 #endif /* FS_F32_NAMES_H */

@@ -110,6 +110,11 @@ static inline void fs_num_blend_acc(fs_bnum_t *num, fs_bden_t *den, fs_act_t psi
     *den += psi;
 }
 
+static inline void fs_num_blend_acc_num(fs_bnum_t *num, fs_act_t psi, fs_val_t w)
+{
+    *num += psi * w;
+}
+
 static inline fs_val_t fs_num_blend_div(fs_bnum_t num, fs_bden_t den)
 {
     return num / den;

@@ -1,4 +1,4 @@
-/* Skill image v2 parser (docs/skill_format.md). Every check runs on the stored float64 values in
+/* Skill image v2/v3 parser (docs/skill_format.md). Every check runs on the stored float64 values in
  * double, in the documented order, so the double and float builds accept and reject the same
  * images as the Python reader; the float build then rounds the values to float. */
 #include "skill.h"
@@ -28,14 +28,27 @@
 #define OFF_KKI 112u /* k*k_i, N/(m s) */
 #define OFF_SURFACE 120u
 #define OFF_FORCE0 128u
-#define SKILL_N_HEADER_F64 15u
+#define OFF_Y_START 136u /* v3 */
+#define OFF_GOAL_Y 144u  /* v3 */
+#define SKILL_N_HEADER_F64_V2 15u
+#define SKILL_N_HEADER_F64_V3 17u
 
 /* alpha/beta/gamma stored vs derived from the stored gains: relative agreement required. */
 #define SKILL_GAINS_REL_TOL 1e-9
 
 uint32_t skill_image_size(uint16_t n_kernels)
 {
-    return SKILL_IMAGE_SIZE(n_kernels);
+    return skill_image_size_v(2u, n_kernels, 0u);
+}
+
+uint32_t skill_image_size_v(uint16_t version, uint16_t n_kernels, uint8_t has_y)
+{
+    if (version == 2u) {
+        return SKILL_HEADER_SIZE_V2 + SKILL_KERNEL_BYTES * (uint32_t)n_kernels + SKILL_CRC_SIZE;
+    }
+    return SKILL_HEADER_SIZE +
+           ((has_y != 0u) ? SKILL_KERNEL_BYTES_Y : SKILL_KERNEL_BYTES) * (uint32_t)n_kernels +
+           SKILL_CRC_SIZE;
 }
 
 /* Reflected polynomial 0xEDB88320 (zlib), processed a nibble at a time: 16-entry table. */
@@ -117,18 +130,22 @@ fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
     if (rd_u32(buf, OFF_MAGIC) != SKILL_MAGIC) {
         return FS_ERR_SKILL_MAGIC;
     }
-    if (rd_u16(buf, OFF_VERSION) != SKILL_FORMAT_VERSION) {
+    const uint16_t version = rd_u16(buf, OFF_VERSION);
+    if (version < SKILL_FORMAT_VERSION_MIN || version > SKILL_FORMAT_VERSION) {
         return FS_ERR_SKILL_VERSION;
     }
-    if (len < SKILL_HEADER_SIZE) {
+    const uint32_t header = (version == 2u) ? SKILL_HEADER_SIZE_V2 : SKILL_HEADER_SIZE;
+    if (len < header) {
         return FS_ERR_SKILL_TOO_SHORT;
     }
-    if (rd_u16(buf, OFF_HEADER_SIZE) != SKILL_HEADER_SIZE) {
+    if (rd_u16(buf, OFF_HEADER_SIZE) != header) {
         return FS_ERR_SKILL_HEADER_SIZE;
     }
     const uint16_t n = rd_u16(buf, OFF_N_KERNELS);
     const uint32_t total = rd_u32(buf, OFF_TOTAL_LENGTH);
-    if (total != len || total != skill_image_size(n)) {
+    const uint16_t flags = rd_u16(buf, OFF_FLAGS);
+    const uint8_t has_y = (uint8_t)(version >= 3u && (flags & SKILL_FLAG_Y_AXIS) != 0u);
+    if (total != len || total != skill_image_size_v(version, n, has_y)) {
         return FS_ERR_SKILL_LENGTH;
     }
     const uint32_t body = total - SKILL_CRC_SIZE;
@@ -138,8 +155,10 @@ fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
     if (n == 0u || n > DMP_MAX_KERNELS) {
         return FS_ERR_SKILL_KERNELS;
     }
-    /* Every float64 field: 15 in the header from OFF_DT, then 3N array entries, contiguous. */
-    const uint32_t n_f64 = SKILL_N_HEADER_F64 + 3u * (uint32_t)n;
+    /* Every float64 field: 15 (v3: 17) in the header from OFF_DT, then 3N (4N with the y DMP)
+     * array entries, contiguous. */
+    const uint32_t n_f64 = ((version == 2u) ? SKILL_N_HEADER_F64_V2 : SKILL_N_HEADER_F64_V3) +
+                           ((has_y != 0u) ? 4u : 3u) * (uint32_t)n;
     for (uint32_t i = 0u; i < n_f64; i++) {
         if (!isfinite(rd_f64(buf, OFF_DT + 8u * i))) {
             return FS_ERR_SKILL_NOT_FINITE;
@@ -150,9 +169,10 @@ fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
     const double duration = rd_f64(buf, OFF_DURATION);
     const double k = rd_f64(buf, OFF_STIFFNESS);
     const double goal = rd_f64(buf, OFF_GOAL);
-    const uint32_t off_c = SKILL_HEADER_SIZE;
-    const uint32_t off_s = SKILL_HEADER_SIZE + 8u * (uint32_t)n;
-    const uint32_t off_w = SKILL_HEADER_SIZE + 16u * (uint32_t)n;
+    const uint32_t off_c = header;
+    const uint32_t off_s = header + 8u * (uint32_t)n;
+    const uint32_t off_w = header + 16u * (uint32_t)n;
+    const uint32_t off_wy = header + 24u * (uint32_t)n;
     if (!(dt > 0.0) || dt > 0.1 || !(tau > 0.0) || !(duration > 0.0) || duration > 3600.0 ||
         !(k > 0.0) || !(goal > 0.0)) {
         return FS_ERR_SKILL_RANGE;
@@ -182,8 +202,15 @@ fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
         stored[1] > stored[0] / 4.0 * (1.0 + DMP_MONOTONE_REL_TOL)) {
         return FS_ERR_SKILL_GAINS;
     }
-    const uint16_t flags = rd_u16(buf, OFF_FLAGS);
-    if ((flags & (uint16_t)~SKILL_FLAG_END_RELEASE) != 0u) {
+    /* the y DMP: the law with k_f = k_i = 0 on the stored alpha */
+    const double beta_y = gain[2] / (gain[0] * stored[0]) - 1.0;
+    if (has_y != 0u &&
+        (!(beta_y > 0.0) || beta_y > stored[0] / 4.0 * (1.0 + DMP_MONOTONE_REL_TOL))) {
+        return FS_ERR_SKILL_GAINS;
+    }
+    const uint16_t known = (version == 2u) ? (uint16_t)SKILL_FLAG_END_RELEASE
+                                           : (uint16_t)(SKILL_FLAG_END_RELEASE | SKILL_FLAG_Y_AXIS);
+    if ((flags & (uint16_t)~known) != 0u) {
         return FS_ERR_SKILL_UNSUPPORTED;
     }
 
@@ -205,6 +232,17 @@ fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
         ok = to_real(rd_f64(buf, off_c + 8u * i), &m->centre[i]) &&
              to_real(rd_f64(buf, off_s + 8u * i), &m->width[i]) &&
              to_real(rd_f64(buf, off_w + 8u * i), &m->weight[i]);
+    }
+    m->has_y = has_y;
+    m->beta_y = FS_R(0.0);
+    m->goal_y_m = FS_R(0.0);
+    m->y_start_m = FS_R(0.0);
+    if (has_y != 0u) {
+        ok = ok && to_real(beta_y, &m->beta_y) && to_real(rd_f64(buf, OFF_GOAL_Y), &m->goal_y_m) &&
+             to_real(rd_f64(buf, OFF_Y_START), &m->y_start_m);
+        for (uint32_t i = 0u; ok && i < n; i++) {
+            ok = to_real(rd_f64(buf, off_wy + 8u * i), &m->y_weight[i]);
+        }
     }
     if (!ok || dmp_gains_at_stiffness(&out->fit_gains, out->stiffness_Npm, &out->gains) != FS_OK) {
         return FS_ERR_SKILL_RANGE;

@@ -1,6 +1,7 @@
-/* Skill image v2 (docs/skill_format.md): little-endian, versioned header, arrays of centres,
- * widths and weights, CRC-32 (zlib) over everything before it. Python writes it
- * (host/forceskill/model/skill.py); this parses and validates it into a ready dmp_model_t. */
+/* Skill image v2/v3 (docs/skill_format.md): little-endian, versioned header, arrays of centres,
+ * widths and weights (v3 with the y DMP: and the y weights), CRC-32 (zlib) over everything before
+ * it. Python writes it (host/forceskill/model/skill.py); this parses and validates it into a ready
+ * dmp_model_t. */
 #ifndef SKILL_H
 #define SKILL_H
 
@@ -9,17 +10,21 @@
 #include "fs_status.h"
 #include "pfc.h"
 
-#define SKILL_MAGIC 0x4C4B5346u /* bytes "FSKL" */
-#define SKILL_FORMAT_VERSION 2u
-#define SKILL_HEADER_SIZE 136u
+#define SKILL_MAGIC 0x4C4B5346u     /* bytes "FSKL" */
+#define SKILL_FORMAT_VERSION 3u     /* native: the force DMP and an optional y DMP */
+#define SKILL_FORMAT_VERSION_MIN 2u /* oldest read: force only (v1 is refused) */
+#define SKILL_HEADER_SIZE_V2 136u
+#define SKILL_HEADER_SIZE 152u /* v3: the v2 header, then y_start_m and goal_y_m */
 #define SKILL_CRC_SIZE 4u
-#define SKILL_KERNEL_BYTES 24u /* per kernel: centre, width, weight (f64 each) */
-/** Bytes of an image with n kernels, and of the largest image this firmware accepts. */
+#define SKILL_KERNEL_BYTES 24u   /* per kernel: centre, width, weight (f64 each) */
+#define SKILL_KERNEL_BYTES_Y 32u /* ... and the y weight (v3 with the y DMP) */
+/** Bytes of a v3 image with n kernels and the y DMP, and of the largest image this firmware
+ *  accepts. */
 #define SKILL_IMAGE_SIZE(n) \
-    (SKILL_HEADER_SIZE + SKILL_KERNEL_BYTES * (uint32_t)(n) + SKILL_CRC_SIZE)
+    (SKILL_HEADER_SIZE + SKILL_KERNEL_BYTES_Y * (uint32_t)(n) + SKILL_CRC_SIZE)
 #define SKILL_IMAGE_MAX SKILL_IMAGE_SIZE(DMP_MAX_KERNELS)
 #define SKILL_FLAG_END_RELEASE 0x0001u /* end policy: 0 hold, 1 release (ramp to 0 in 0.5 s) */
-#define SKILL_FLAG_Y_AXIS 0x0002u      /* reserved: y-axis position DMP (refused) */
+#define SKILL_FLAG_Y_AXIS 0x0002u      /* v3: the position DMP on y is present (v2: refused) */
 #define SKILL_RELEASE_TIME_S 0.5
 
 /** End policy after the skill's duration. */
@@ -38,15 +43,20 @@ typedef struct {
     skill_end_t end_policy;
 } skill_t;
 
-/** Total image length in bytes for N kernels. */
+/** Total image length in bytes for N kernels of a v2 image (force only): 136 + 24 N + 4. */
 uint32_t skill_image_size(uint16_t n_kernels);
+
+/** Total image length in bytes for N kernels of an image of format version (2 or 3) with or
+ *  without the y DMP (only v3 has one): v3 152 + 24 N (+ 8 N) + 4. */
+uint32_t skill_image_size_v(uint16_t version, uint16_t n_kernels, uint8_t has_y);
 
 /** zlib-compatible CRC-32, continuing from crc (start with 0). */
 uint32_t skill_crc32(uint32_t crc, const uint8_t *data, uint32_t len);
 
-/** Parse and validate an image (magic, version, sizes, CRC, finite values, ranges, gains
- *  consistent with alpha/beta/gamma, beta <= alpha/4); on error *out is unspecified. An image of
- *  another version (v1 stored metres and k-dependent gains) is refused with 202. */
+/** Parse and validate an image of version 2 or 3 (magic, version, sizes, CRC, finite values,
+ *  ranges, gains consistent with alpha/beta/gamma, beta <= alpha/4, with the y DMP 0 < beta_y <=
+ *  alpha/4); on error *out is unspecified. An image of another version (v1 stored metres and
+ *  k-dependent gains) is refused with 202. */
 fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out);
 
 #endif /* SKILL_H */

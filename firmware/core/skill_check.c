@@ -51,6 +51,19 @@ fs_status_t skchk_params(const skill_t *s)
     if (!ok || m->n_kernels == 0u || m->n_kernels > DMP_MAX_KERNELS) {
         return FS_ERR_SKCHK_RANGE;
     }
+    if (m->has_y != 0u) {
+        bool y_ok = within(m->goal_y_m, (fs_real_t)(-SKCHK_SURFACE_MAX_M),
+                           (fs_real_t)(SKCHK_SURFACE_MAX_M)) &&
+                    within(m->y_start_m, (fs_real_t)(-SKCHK_SURFACE_MAX_M),
+                           (fs_real_t)(SKCHK_SURFACE_MAX_M));
+        for (uint16_t i = 0u; y_ok && i < m->n_kernels; i++) {
+            y_ok = within(m->y_weight[i], (fs_real_t)(-SKCHK_WEIGHT_MAX),
+                          (fs_real_t)(SKCHK_WEIGHT_MAX));
+        }
+        if (!y_ok) {
+            return FS_ERR_SKCHK_PATH;
+        }
+    }
     return step_ok(s, m->dt_s, FS_R(1.0)) ? FS_OK : FS_ERR_SKCHK_STEP;
 }
 
@@ -63,6 +76,8 @@ void skchk_begin(skchk_t *c, const skill_t *s, fs_real_t dt_s, fs_real_t force_m
     c->steps_done = 0u;
     c->peak_N = FS_R(0.0);
     c->force_max_N = force_max_N;
+    c->path_peak_m = FS_R(0.0);
+    c->path_max_m = (fs_real_t)(SKCHK_PATH_MAX_M);
     c->status = FS_OK;
     c->done = c->steps_total == 0u;
 }
@@ -70,10 +85,18 @@ void skchk_begin(skchk_t *c, const skill_t *s, fs_real_t dt_s, fs_real_t force_m
 bool skchk_run(skchk_t *c, uint32_t max_steps)
 {
     for (uint32_t i = 0u; i < max_steps && !c->done; i++) {
-        const fs_real_t f = dmp_step(&c->skill->dmp, &c->dmp, NULL, NULL);
+        fs_real_t p = FS_R(0.0);
+        const fs_real_t f = dmp_step_xy(&c->skill->dmp, &c->dmp, NULL, NULL, FS_R(1.0), &p);
         const fs_real_t a = fs_fabs(f);
+        const fs_real_t ap = fs_fabs(p);
+        if (ap > c->path_peak_m) {
+            c->path_peak_m = ap;
+        }
         if (!fs_isfinite(f)) {
             c->status = FS_ERR_SKCHK_NOT_FINITE;
+            c->done = true;
+        } else if (!fs_isfinite(p) || c->path_peak_m > c->path_max_m) {
+            c->status = FS_ERR_SKCHK_PATH;
             c->done = true;
         } else {
             if (a > c->peak_N) {
@@ -106,6 +129,19 @@ fs_status_t skchk_skill(const skill_t *s, fs_real_t dt_s, fs_real_t force_max_N,
         *peak_N = c.peak_N;
     }
     return c.status;
+}
+
+fs_status_t skchk_run_path(const skill_t *s, fs_real_t path_peak_m, fs_real_t path_scale,
+                           fs_real_t path_max_m)
+{
+    if (s == NULL) {
+        return FS_ERR_NULL_ARG;
+    }
+    if (!fs_isfinite(path_scale) || path_scale < FS_R(0.0)) {
+        return FS_ERR_SKCHK_PATH_SCALE;
+    }
+    const fs_real_t extent = path_scale * path_peak_m;
+    return (fs_isfinite(extent) && extent <= path_max_m) ? FS_OK : FS_ERR_SKCHK_PATH_SCALE;
 }
 
 fs_status_t skchk_run_scales(const skill_t *s, fs_real_t peak_N, fs_real_t goal_scale,

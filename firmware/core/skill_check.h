@@ -11,7 +11,12 @@
  *     it over idle ticks; skchk_skill does it in one call.
  *  3. skchk_run_scales: f_hat is linear in the goal (zero initial state), so goal_scale*peak is
  *     the run's peak; above the limit (224) or a time scale that breaks the step rule (221) is
- *     refused before any motion. */
+ *     refused before any motion.
+ *  4. The y half (a skill with the y DMP): y parameters in range (|g_y|, |y_start| within
+ *     SKCHK_SURFACE_MAX_M, |w_y| <= SKCHK_WEIGHT_MAX) and the rollout's path finite with its
+ *     extent max|p| from the start within path_max_m (the y workspace's width; default
+ *     SKCHK_PATH_MAX_M), else 225; at run time path_scale*extent within it, else 226
+ *     (skchk_run_path). */
 #ifndef SKILL_CHECK_H
 #define SKILL_CHECK_H
 
@@ -42,6 +47,8 @@
  * rate in DMP time is below 1 + alpha + sqrt(gamma); 0.5 keeps the step well inside the
  * forward-Euler stability disc |1 - h*lambda| < 1). */
 #define SKCHK_STEP_MAX 0.5
+/* Default largest extent of a y path from its start (m): the default y workspace's width. */
+#define SKCHK_PATH_MAX_M 1.0
 
 /** Incremental output check of one skill. */
 typedef struct {
@@ -51,11 +58,14 @@ typedef struct {
     uint32_t steps_done;
     fs_real_t peak_N; /* max |f_hat| so far */
     fs_real_t force_max_N;
-    fs_status_t status; /* FS_OK while running or passed; 222/223 once refused */
+    fs_real_t path_peak_m; /* max |p| of the y DMP so far (0 without one) */
+    fs_real_t path_max_m;  /* the y range: SKCHK_PATH_MAX_M unless set after skchk_begin */
+    fs_status_t status;    /* FS_OK while running or passed; 222/223/225 once refused */
     bool done;
 } skchk_t;
 
-/** Parameter ranges and the step rule (220, 221; FS_ERR_NULL_ARG for NULL). */
+/** Parameter ranges and the step rule (220, 221; the y DMP's parameters 225; FS_ERR_NULL_ARG
+ *  for NULL). */
 fs_status_t skchk_params(const skill_t *s);
 
 /** Start the output check of s (parameters already checked) for an executor stepping every
@@ -68,6 +78,11 @@ bool skchk_run(skchk_t *c, uint32_t max_steps);
 /** Whole check in one call (tests, host tools): params, then the full rollout; *peak_N (may be
  *  NULL) gets the peak |f_hat| at goal scale 1. */
 fs_status_t skchk_skill(const skill_t *s, fs_real_t dt_s, fs_real_t force_max_N, fs_real_t *peak_N);
+
+/** Run-time path scale of a checked skill whose path extent is path_peak_m: finite, >= 0 and
+ *  path_scale*path_peak_m <= path_max_m, else 226 (FS_ERR_NULL_ARG for NULL). */
+fs_status_t skchk_run_path(const skill_t *s, fs_real_t path_peak_m, fs_real_t path_scale,
+                           fs_real_t path_max_m);
 
 /** Run-time scales of a checked skill with peak peak_N: goal_scale*peak_N <= force_max_N (224)
  *  and the step rule at time_scale (221). */

@@ -93,6 +93,9 @@ static fs_status_t dmpfx_convert(const dmp_model_t *m, int32_t shift, dmpfx_mode
         if (st == FS_OK) {
             st = fx_from_double(w, 24u, q24_lim, &out->weight[i]);
         }
+        if (st == FS_OK && m->has_y != 0u) {
+            st = fx_from_double((double)m->y_weight[i], 24u, q24_lim, &out->y_weight[i]);
+        }
         if (st != FS_OK) {
             return st;
         }
@@ -133,6 +136,10 @@ static fs_status_t dmpfx_convert(const dmp_model_t *m, int32_t shift, dmpfx_mode
     out->beta = (double)m->p.beta;
     out->gamma = (double)m->p.gamma;
     out->goal_N = (double)m->goal_N;
+    out->has_y = m->has_y;
+    out->beta_y = (double)m->beta_y;
+    out->goal_y_m = (double)m->goal_y_m;
+    out->peak_y_q24 = 0.0;
     out->peak_q24 = 0.0;
     out->peak_v_q30 = 0.0;
     return dmpfx_measure_peaks(out, (double)m->duration_s);
@@ -173,7 +180,42 @@ fs_status_t dmpfx_run_init(const dmpfx_model_t *m, double goal_scale, double tim
     if (fabs(goal_scale) * m->peak_q24 > lim_q24) {
         return FS_ERR_FIXED_OVERFLOW;
     }
-    return fx_from_double(g, 24u, (int32_t)lim_q24, &run->goal_q24);
+    run->k_alphabeta_y_q31 = 0;
+    run->goal_y_q24 = 0;
+    run->path_scale_q24 = 0;
+    st = fx_from_double(g, 24u, (int32_t)lim_q24, &run->goal_q24);
+    return (st == FS_OK) ? dmpfx_run_path(m, 1.0, run) : st;
+}
+
+fs_status_t dmpfx_run_path(const dmpfx_model_t *m, double path_scale, dmpfx_run_t *run)
+{
+    if (m == NULL || run == NULL) {
+        return FS_ERR_NULL_ARG;
+    }
+    if (!isfinite(path_scale) || path_scale < 0.0) {
+        return FS_ERR_SCALE_INVALID;
+    }
+    if (m->has_y == 0u) {
+        return FS_OK;
+    }
+    const double lim_q24 = DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE;
+    if (path_scale * m->peak_y_q24 > lim_q24) {
+        return FS_ERR_FIXED_OVERFLOW;
+    }
+    /* k*alpha*beta_y from the run's k*alpha (Q1.31): beta_y <= alpha/4 keeps it below 0.5
+     * wherever k*alpha is */
+    const double k_alpha = (double)run->k_alpha_q31 / 2147483648.0;
+    if (!(k_alpha * m->beta_y < 0.5)) {
+        return FS_ERR_FIXED_STEP;
+    }
+    fs_status_t st = fx_from_double(k_alpha * m->beta_y, 31u, INT32_MAX, &run->k_alphabeta_y_q31);
+    if (st == FS_OK) {
+        st = fx_from_double(m->goal_y_m * path_scale, 24u, (int32_t)lim_q24, &run->goal_y_q24);
+    }
+    if (st == FS_OK) {
+        st = fx_from_double(path_scale, 24u, (int32_t)lim_q24, &run->path_scale_q24);
+    }
+    return st;
 }
 
 void dmpfx_state_reset(dmpfx_state_t *s)
@@ -185,6 +227,8 @@ void dmpfx_state_reset(dmpfx_state_t *s)
     s->integral_y_acc = 0;
     s->y_acc = 0;
     s->z_acc = 0;
+    s->path_acc = 0;
+    s->path_z_acc = 0;
     s->sat_events = 0u;
 }
 
@@ -199,8 +243,9 @@ static int32_t dmpfx_scale_q31(int32_t k_q31, uint32_t rate_q31)
     return (int32_t)(((uint64_t)(uint32_t)k_q31 * rate_q31 + (1u << 30)) >> 31);
 }
 
-int32_t dmpfx_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s,
-                   const dmpfx_coupling_t *coupling)
+/* The force DMP's constants of one step (the run's, slowed down by the coupling's rate). */
+static dmp_tick_coef_t dmpfx_coef(const dmpfx_model_t *m, const dmpfx_run_t *run,
+                                  const dmpfx_coupling_t *coupling, int32_t *k_ab_y)
 {
     dmp_tick_coef_t c = {.k1 = run->k1_q31,
                          .k_alpha = run->k_alpha_q31,
@@ -209,6 +254,7 @@ int32_t dmpfx_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t
                          .goal = run->goal_q24,
                          .out_scale = m->out_scale_q12,
                          .term_y = 0};
+    *k_ab_y = run->k_alphabeta_y_q31;
     if (coupling != NULL) {
         c.term_y = coupling->term_y_q24;
         const uint32_t rate = (coupling->rate_q31 > FX_Q31_ONE_U) ? FX_Q31_ONE_U
@@ -218,8 +264,46 @@ int32_t dmpfx_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t
             c.k_alpha = dmpfx_scale_q31(c.k_alpha, rate);
             c.k_alphabeta = dmpfx_scale_q31(c.k_alphabeta, rate);
             c.k_gamma = dmpfx_scale_q31(c.k_gamma, rate);
+            *k_ab_y = dmpfx_scale_q31(*k_ab_y, rate);
         }
     }
+    return c;
+}
+
+int32_t dmpfx_step_xy(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s,
+                      const dmpfx_coupling_t *coupling, int32_t *path_q24)
+{
+    if (m->has_y == 0u) { /* a force-only skill: dmpfx_step's code, p stays 0 */
+        if (path_q24 != NULL) {
+            *path_q24 = 0;
+        }
+        return dmpfx_step(m, run, s, coupling);
+    }
+    int32_t k_ab_y;
+    const dmp_tick_coef_t c = dmpfx_coef(m, run, coupling, &k_ab_y);
+    const dmp_tick_state_t st = {s->window,          &s->u_acc, &s->v_acc,
+                                 &s->integral_y_acc, &s->y_acc, &s->z_acc};
+    int32_t s_y = 0;
+    const int32_t s_x = dmp_tick_state_blend2(m, &st, m->y_weight, &s_y);
+    const dmp_tick_path_coef_t cp = {.k1 = c.k1,
+                                     .k_alpha = c.k_alpha,
+                                     .k_alphabeta = k_ab_y,
+                                     .goal = run->goal_y_q24,
+                                     .scale = run->path_scale_q24};
+    (void)dmp_tick_path_step(&cp, &s->path_acc, &s->path_z_acc, dmpfx_view(s->v_acc), s_y,
+                             &s->sat_events);
+    if (path_q24 != NULL) {
+        *path_q24 = dmpfx_view(s->path_acc);
+    }
+    const int32_t f = dmp_tick_step(&c, &st, s_x, &s->sat_events);
+    return fx_add_sat(m->force0_q16, f);
+}
+
+int32_t dmpfx_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s,
+                   const dmpfx_coupling_t *coupling)
+{
+    int32_t k_ab_y;
+    const dmp_tick_coef_t c = dmpfx_coef(m, run, coupling, &k_ab_y);
     const dmp_tick_state_t st = {s->window,          &s->u_acc, &s->v_acc,
                                  &s->integral_y_acc, &s->y_acc, &s->z_acc};
     const int32_t f = dmp_tick_step(&c, &st, dmp_tick_state_blend(m, &st), &s->sat_events);
@@ -249,12 +333,22 @@ static fs_status_t dmpfx_measure_peaks(dmpfx_model_t *m, double duration_s)
     const long rows = lround(duration_s / m->dt_s);
     double peak = 0.0;
     double peak_v = 0.0;
+    double peak_y = 0.0;
     for (long n = 0; n < rows; n++) {
         const int32_t u = dmpfx_view(s.u_acc);
         const int32_t v = dmpfx_view(s.v_acc);
         const int32_t sw = dmpfx_blend(m, u, NULL);
         const double h = (double)run.goal_q24 * ldexp((double)v, -30) * ldexp((double)sw, -24);
-        (void)dmpfx_step(m, &run, &s, NULL);
+        int32_t sy = 0;
+        if (m->has_y != 0u) {
+            (void)dmp_tick_blend2(m, u, dmp_tick_window_start(m, u), dmp_tick_window_end(m, u),
+                                  NULL, m->y_weight, &sy);
+        }
+        const double h_y = (double)run.path_scale_q24 * ldexp((double)v, -30) *
+                           ldexp((double)sy, -24);
+        (void)dmpfx_step_xy(m, &run, &s, NULL, NULL);
+        peak_y = fmax(peak_y, fmax(fabs(h_y), fmax(dmpfx_absd(dmpfx_view(s.path_acc)),
+                                                   dmpfx_absd(dmpfx_view(s.path_z_acc)))));
         peak = fmax(peak, fmax(fabs(h), fmax(dmpfx_absd(dmpfx_view(s.y_acc)),
                                              fmax(dmpfx_absd(dmpfx_view(s.z_acc)),
                                                   dmpfx_absd(dmpfx_view(s.integral_y_acc))))));
@@ -262,7 +356,9 @@ static fs_status_t dmpfx_measure_peaks(dmpfx_model_t *m, double duration_s)
     }
     m->peak_q24 = fmax(peak, dmpfx_absd(run.goal_q24));
     m->peak_v_q30 = peak_v;
+    m->peak_y_q24 = fmax(peak_y, dmpfx_absd(run.goal_y_q24));
     if (s.sat_events != 0u || m->peak_q24 > DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE ||
+        m->peak_y_q24 > DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE ||
         peak_v > DMPFX_V_MAX * (double)FX_Q30_ONE) {
         return FS_ERR_FIXED_OVERFLOW;
     }

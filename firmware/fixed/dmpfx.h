@@ -52,6 +52,13 @@ typedef struct {
      * max |h|, |y|, |z|, |I| in Q8.24 units and max |v~| in Q2.30 units */
     double peak_q24;
     double peak_v_q30;
+    /* the position DMP on y (has_y = 1): weights and values in m, Q8.24 without a scale (a
+     * path of 0.1 m is 1.7e6 LSB) */
+    uint8_t has_y;
+    int32_t y_weight[DMP_MAX_KERNELS]; /* Q8.24 m */
+    double beta_y;
+    double goal_y_m;
+    double peak_y_q24; /* max |h_y|, |p|, |z_p| of the nominal run (path scale 1) */
 } dmpfx_model_t;
 
 /** Per-run constants: dt/tau_e * {1, alpha, alpha*beta, gamma} in Q1.31 and g_e in Q8.24. */
@@ -61,6 +68,10 @@ typedef struct {
     int32_t k_alphabeta_q31;
     int32_t k_gamma_q31;
     int32_t goal_q24;
+    /* the y DMP: dt/tau_e*alpha*beta_y, the scaled goal and the path scale (dmpfx_run_path) */
+    int32_t k_alphabeta_y_q31;
+    int32_t goal_y_q24;
+    int32_t path_scale_q24;
 } dmpfx_run_t;
 
 /** Fixed-point DMP state. Each state is kept as the exact 64-bit sum of its Euler increments
@@ -77,6 +88,8 @@ typedef struct {
     int64_t integral_y_acc;
     int64_t y_acc;
     int64_t z_acc;
+    int64_t path_acc;   /* p of the y DMP, m */
+    int64_t path_z_acc; /* z_p */
     uint32_t sat_events;
 } dmpfx_state_t;
 
@@ -112,6 +125,11 @@ fs_status_t dmpfx_from_model(const dmp_model_t *m, dmpfx_model_t *out);
 fs_status_t dmpfx_run_init(const dmpfx_model_t *m, double goal_scale, double time_scale,
                            dmpfx_run_t *run);
 
+/** The y DMP's constants in run (after dmpfx_run_init, which sets path scale 1): path scale
+ *  finite and >= 0 (FS_ERR_SCALE_INVALID), |path_scale| times the nominal peaks within the
+ *  Q8.24 headroom (FS_ERR_FIXED_OVERFLOW). A model without a y DMP: FS_OK, nothing to set. */
+fs_status_t dmpfx_run_path(const dmpfx_model_t *m, double path_scale, dmpfx_run_t *run);
+
 /** Zero initial conditions. */
 void dmpfx_state_reset(dmpfx_state_t *s);
 
@@ -123,5 +141,11 @@ int32_t dmpfx_blend(const dmpfx_model_t *m, int32_t u_q30, uint16_t *count);
  *  be NULL. Returns f_hat = f0 + 2^s*y after the step in Q16.16 N. */
 int32_t dmpfx_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s,
                    const dmpfx_coupling_t *coupling);
+
+/** dmpfx_step and, with has_y, the y DMP's step on the same phase (each kernel activation
+ *  computed once for both); *path_q24 (may be NULL) receives p after the step, Q8.24 m above
+ *  the path's start (0 without a y DMP). Returns f_hat as dmpfx_step. */
+int32_t dmpfx_step_xy(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s,
+                      const dmpfx_coupling_t *coupling, int32_t *path_q24);
 
 #endif /* DMPFX_H */

@@ -146,9 +146,18 @@ static inline void fs_num_blend_acc(fs_bnum_t *num, fs_bden_t *den, fs_act_t psi
     *den += (uint32_t)psi;
 }
 
+/* The numerator part of fs_num_blend_acc for a second weight set over the same activations (the
+ * y DMP's): the same Q.51 with psi shifted first, so the product accumulates in one multiply-
+ * accumulate (psi keeps 27 fraction bits: 7e-9 relative). */
+static inline void fs_num_blend_acc_num(fs_bnum_t *num, fs_act_t psi, fs_val_t w)
+{
+    *num += (int64_t)w * (psi >> 3);
+}
+
 /* S = num * 2^3 / den in Q8.24, den >= 2^30 (the e_min kernel has psi = 1). |S| <= max |w_i|,
  * so the quotient fits; den is brought to 32 bits (keeping >= 30 significant bits) and num
  * shifted to match. */
+
 static inline fs_val_t fs_num_blend_div(fs_bnum_t num, fs_bden_t den)
 {
     const int neg = num < 0;

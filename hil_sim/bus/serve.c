@@ -174,6 +174,7 @@ static void sim_tick(serve_t *s)
     if (teach && sc->op.task != SIM_TASK_NONE) {
         const double t = (double)(s->app.tick - s->teach_start_tick) * dt;
         sim_operator_force(&s->op, t, p_true, sc->object.layer_depth_m, fprof);
+        fprof[1] += sim_operator_path_force(&s->op, t, sc->start_y_m, s->ax[1].pos_m);
     }
     for (int a = 0; a < 2; a++) {
         s->drv[a].force_ext_N = fprof[a];

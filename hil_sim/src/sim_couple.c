@@ -60,9 +60,12 @@ void sim_couple_advance(const sim_scenario_t *sc, sim_axis_t ax[2], const sim_dr
         return;
     }
     const double h = dt / (double)sc->substeps;
+    sim_drive_t dy = drv[1];
     for (int k = 0; k < sc->substeps; k++) {
         sim_axis_substep(&ax[0], &drv[0], h);
-        sim_axis_substep(&ax[1], &drv[1], h);
+        /* the tip slides on the surface: Coulomb friction along y, mu times the contact force */
+        dy.friction_N = sc->object.friction_mu * ax[0].contact_N;
+        sim_axis_substep(&ax[1], &dy, h);
     }
 }
 

@@ -52,10 +52,19 @@ void sim_axis_substep(sim_axis_t *a, const sim_drive_t *d, double dt_s)
     const double mv = touching ? skin * o->m_v_kg : 0.0;
     double acc;
     double contact;
-    double coulomb = 0.0;
+    double coulomb = (d->friction_N > 0.0) ? d->friction_N : 0.0;
 
     if (d->prescribed) {
-        acc = d->force_cmd_N * d->inv_mass;
+        double fric = 0.0;
+        if (coulomb > 0.0) {
+            if (fabs(v0) > SIM_STICK_VEL_MPS) {
+                fric = -coulomb * sgn(v0);
+            } else {
+                fric = (fabs(d->force_cmd_N) <= coulomb) ? -d->force_cmd_N
+                                                         : -coulomb * sgn(d->force_cmd_N);
+            }
+        }
+        acc = (d->force_cmd_N + fric) * d->inv_mass;
         contact = touching ? mv * acc + c : 0.0;
         if (contact < 0.0) {
             contact = 0.0;
@@ -74,7 +83,7 @@ void sim_axis_substep(sim_axis_t *a, const sim_drive_t *d, double dt_s)
             }
             a->act_N += d->act_alpha * (u - a->act_N);
             drive += a->act_N - d->carriage->viscous_Nspm * v0;
-            coulomb = d->carriage->coulomb_N;
+            coulomb += d->carriage->coulomb_N;
         } else {
             drive += d->force_cmd_N;
         }
@@ -142,6 +151,49 @@ void sim_operator_init(sim_operator_t *op, const sim_operator_cfg_t *cfg, sim_rn
         }
         op->n_levels = i;
     }
+    /* the path along y: drawn after everything else, so a scenario without one keeps its draws */
+    op->n_path = 0;
+    if (cfg->path_m > 0.0) {
+        double t = 0.4;
+        const double t_back = cfg->duration_s - cfg->release_s - cfg->path_move_s;
+        int i = 0;
+        while (i < SIM_MAX_LEVELS - 1 && t + cfg->path_move_s < t_back) {
+            op->path_t_s[i] = t;
+            op->path_y_m[i] = sim_rng_range(rng, -0.5, 1.0) * cfg->path_m;
+            t += cfg->path_move_s +
+                 sim_rng_range(rng, cfg->path_dwell_min_s, cfg->path_dwell_max_s);
+            i++;
+        }
+        op->path_t_s[i] = (t_back > t) ? t_back : t;
+        op->path_y_m[i] = 0.1 * cfg->path_m;
+        op->n_path = i + 1;
+    }
+}
+
+void sim_operator_path(const sim_operator_t *op, double t_s, double *y_m, double *yd_mps)
+{
+    double y = 0.0;
+    double yd = 0.0;
+    const double mv = op->cfg.path_move_s;
+    for (int i = 0; i < op->n_path && op->path_t_s[i] <= t_s; i++) {
+        const double from = (i == 0) ? 0.0 : op->path_y_m[i - 1];
+        const double r = (t_s - op->path_t_s[i]) / mv;
+        y = from + (op->path_y_m[i] - from) * sim_smoothstep(r);
+        yd = (r < 1.0) ? (op->path_y_m[i] - from) * 6.0 * r * (1.0 - r) / mv : 0.0;
+    }
+    *y_m = y;
+    *yd_mps = yd;
+}
+
+double sim_operator_path_force(const sim_operator_t *op, double t_s, double y0_m, double y_m)
+{
+    if (op->n_path == 0) {
+        return 0.0;
+    }
+    double y = 0.0;
+    double yd = 0.0;
+    sim_operator_path(op, t_s, &y, &yd);
+    return op->cfg.hand_stiffness_Npm * (y0_m + y - y_m) + op->cfg.hand_damping_Nspm * yd;
 }
 
 /* Engraving profile value at t from the transition schedule (transitions may overlap: each one

@@ -22,6 +22,7 @@ typedef struct {
     double layer_depth_m;
     double d_v_Nspm;
     double m_v_kg;
+    double friction_mu; /* Coulomb friction along y between tip and surface: mu * contact force */
 } sim_object_t;
 
 /** Spring part F(p) of the object (0 for p <= 0). */
@@ -66,13 +67,18 @@ typedef struct {
     double act_alpha;               /* realistic: 1 - exp(-dt/lag), precomputed for the substep */
     double inv_mass;                /* 1/mass_kg (sim_drive_prepare) */
     double inv_mass_contact;        /* 1/(mass_kg + m_v) (sim_drive_prepare) */
+    double friction_N;              /* Coulomb friction of the surface on this axis (y: mu * the
+                                     * x contact force, set every substep by sim_couple_advance) */
 } sim_drive_t;
 
 /** Precompute the drive's inverse masses (call after setting mass_kg and object). */
 void sim_drive_prepare(sim_drive_t *d);
 
 /** Advance one axis by dt_s (semi-implicit Euler; contact solved jointly with the object's
- *  inertia, force clipped at 0: the object never pulls). */
+ *  inertia, force clipped at 0: the object never pulls). Coulomb friction friction_N (plus the
+ *  realistic carriage's) opposes the motion, sticks below SIM_STICK_VEL_MPS while the driving
+ *  force is within it, and acts in every mode, the prescribed one included (a disturbance the
+ *  device's law has to reject). */
 void sim_axis_substep(sim_axis_t *a, const sim_drive_t *d, double dt_s);
 
 /** Operator force as the handle sensor sees it: profile minus hand damping. */
@@ -103,6 +109,14 @@ typedef struct {
     double hand_damping_Nspm;        /* 30 Ns/m */
     double tremor_frac;              /* 1 % of the force */
     double duration_s;
+    /* the path along y (engraving, wiping: paper Fig. 6): waypoints in [-path_m/2, path_m] from
+     * the start, a new one every path_dwell_min_s..path_dwell_max_s reached over path_move_s
+     * (smoothstep), back near the start (path_m/10) before the release; the hand follows it as
+     * a spring hand_stiffness_Npm with the hand damping's feed-forward. path_m = 0: no path */
+    double path_m;
+    double path_move_s;
+    double path_dwell_min_s, path_dwell_max_s;
+    double hand_stiffness_Npm;
 } sim_operator_cfg_t;
 
 /** Operator state (seeded draws and the pressing phase). */
@@ -115,6 +129,9 @@ typedef struct {
     double level_t_s[SIM_MAX_LEVELS]; /* start of each transition */
     double level_N[SIM_MAX_LEVELS];   /* level after the transition */
     double tremor_hz[2], tremor_phase[2];
+    int n_path;
+    double path_t_s[SIM_MAX_LEVELS]; /* start of each move */
+    double path_y_m[SIM_MAX_LEVELS]; /* waypoint after the move, m from the start */
 } sim_operator_t;
 
 /** Draw the seeded parameters (levels, reaction time, engraving schedule, tremor). */
@@ -124,6 +141,13 @@ void sim_operator_init(sim_operator_t *op, const sim_operator_cfg_t *cfg, sim_rn
  *  know when the inner layer is reached: pass the current deformation and the layer depth. */
 void sim_operator_force(sim_operator_t *op, double t_s, double p_m, double layer_depth_m,
                         double force_N[2]);
+
+/** The operator's intended path at t_s (m from the start) and its velocity. */
+void sim_operator_path(const sim_operator_t *op, double t_s, double *y_m, double *yd_mps);
+
+/** The hand's force along y that follows the path: hand_stiffness*(y0 + path(t) - y) plus
+ *  hand_damping*path'(t) (the drive subtracts hand_damping*y'); 0 without a path. */
+double sim_operator_path_force(const sim_operator_t *op, double t_s, double y0_m, double y_m);
 
 /* ---------------- sensors ---------------- */
 

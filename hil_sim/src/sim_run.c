@@ -200,6 +200,7 @@ static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_ima
     if (sc->mode == SIM_MODE_EXECUTE) {
         uint8_t slots[SIM_MAX_SKILLS];
         fs_real_t goal[SIM_MAX_SKILLS], time[SIM_MAX_SKILLS], dur[SIM_MAX_SKILLS];
+        fs_real_t path[SIM_MAX_SKILLS];
         for (int i = 0; i < sc->n_skills; i++) {
             if (!d->app.slot_valid[i]) {
                 snprintf(err, SIM_ERR_MAX, "%s: the device did not load skill %d", sc->path, i + 1);
@@ -208,6 +209,7 @@ static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_ima
             slots[i] = (uint8_t)(i + 1);
             goal[i] = sc->goal_scale;
             time[i] = sc->time_scale;
+            path[i] = sc->path_scale;
             dur[i] = (sc->n_step_durations > 0) ? sc->step_duration_s[i] : 0.0;
             *total_s += (dur[i] > 0.0)
                             ? dur[i]
@@ -215,7 +217,7 @@ static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_ima
         }
         const uint8_t end = (sc->end_policy < 0) ? 0u
                                                  : (sc->end_policy == SKILL_END_HOLD ? 1u : 2u);
-        const uint8_t nrc = app_start_sequence(&d->app, slots, goal, time, dur,
+        const uint8_t nrc = app_start_sequence(&d->app, slots, goal, time, dur, path,
                                                (uint8_t)sc->n_skills, end);
         if (nrc != UDS_NRC_OK) {
             snprintf(err, SIM_ERR_MAX, "%s: the device refused the sequence (NRC 0x%02X)", sc->path,
@@ -314,6 +316,7 @@ int sim_run(const sim_scenario_t *sc, const sim_skill_image_t *skills, FILE *log
         const double p_true = ax[0].pos_m - sc->object.surface_m;
         if (teach) {
             sim_operator_force(&op, t, p_true, layer_depth, fprof);
+            fprof[1] += sim_operator_path_force(&op, t, sc->start_y_m, ax[1].pos_m);
         }
         drv[0].force_ext_N = fprof[0];
         drv[1].force_ext_N = fprof[1];

@@ -68,7 +68,8 @@ void sim_scenario_defaults(sim_scenario_t *sc)
                                 .k2_Npm = 100.0,
                                 .layer_depth_m = 0.019,
                                 .d_v_Nspm = 50.0,
-                                .m_v_kg = 10.0};
+                                .m_v_kg = 10.0,
+                                .friction_mu = 0.0};
     sc->carriage = (sim_carriage_t){.carriage_kg = 2.0,
                                     .act_max_N = 200.0,
                                     .act_lag_s = 0.0005,
@@ -90,7 +91,12 @@ void sim_scenario_defaults(sim_scenario_t *sc)
                                   .layer_timeout_s = 5.0,
                                   .hand_damping_Nspm = 30.0,
                                   .tremor_frac = 0.01,
-                                  .duration_s = 0.0};
+                                  .duration_s = 0.0,
+                                  .path_m = 0.0,
+                                  .path_move_s = 0.6,
+                                  .path_dwell_min_s = 0.2,
+                                  .path_dwell_max_s = 1.0,
+                                  .hand_stiffness_Npm = 3000.0};
     sc->tip = (sim_force_sensor_t){.noise_N = 0.02, .bias_N = 0.0, .range_N = 100.0, .bits = 16u};
     sc->handle = sc->tip;
     sc->encoder_m = 1e-6;
@@ -98,6 +104,7 @@ void sim_scenario_defaults(sim_scenario_t *sc)
     sc->vel_cutoff_Hz = 50.0;
     sc->goal_scale = 1.0;
     sc->time_scale = 1.0;
+    sc->path_scale = 1.0;
     sc->use_model = 1;
     sc->end_policy = -1;
     sc->phase_stop_gain_per_N2 = 0.0;
@@ -255,6 +262,7 @@ static const num_key_t NUM_KEYS[] = {
     NK("object", "d_v_Nspm", object.d_v_Nspm, 0.0, 1e5),
     NK("object", "m_v_kg", object.m_v_kg, 0.0, 1e4),
     NK("object", "skin_m", object.skin_m, 0.0, 0.1),
+    NK("object", "friction_mu", object.friction_mu, 0.0, 2.0),
     NK("carriage", "mass_kg", carriage.carriage_kg, 1e-3, 1e3),
     NK("carriage", "act_max_N", carriage.act_max_N, 0.0, 1e5),
     NK("carriage", "act_lag_s", carriage.act_lag_s, 1e-6, 1.0),
@@ -275,6 +283,11 @@ static const num_key_t NUM_KEYS[] = {
     NK("operator", "layer_timeout_s", op.layer_timeout_s, 0.0, 3600.0),
     NK("operator", "hand_damping_Nspm", op.hand_damping_Nspm, 0.0, 1e4),
     NK("operator", "tremor_frac", op.tremor_frac, 0.0, 0.5),
+    NK("operator", "path_m", op.path_m, 0.0, 0.4),
+    NK("operator", "path_move_s", op.path_move_s, 0.05, 10.0),
+    NK("operator", "path_dwell_min_s", op.path_dwell_min_s, 0.0, 100.0),
+    NK("operator", "path_dwell_max_s", op.path_dwell_max_s, 0.0, 100.0),
+    NK("operator", "hand_stiffness_Npm", op.hand_stiffness_Npm, 0.0, 1e6),
     NK("sensors", "force_noise_N", tip.noise_N, 0.0, 100.0),
     NK("sensors", "force_range_N", tip.range_N, 1e-3, 1e5),
     NK("sensors", "tip_bias_N", tip.bias_N, -100.0, 100.0),
@@ -283,6 +296,7 @@ static const num_key_t NUM_KEYS[] = {
     NK("sensors", "vel_cutoff_Hz", vel_cutoff_Hz, 0.1, 499.0),
     NK("execute", "goal_scale", goal_scale, -100.0, 100.0),
     NK("execute", "time_scale", time_scale, 1e-3, 1e3),
+    NK("execute", "path_scale", path_scale, 0.0, 65.535),
     NK("execute", "phase_stop_gain_per_N2", phase_stop_gain_per_N2, 0.0, 1e6),
     NK("execute", "surface_error_m", surface_error_m, -0.1, 0.1),
     NK("fault", "at_s", fault.at_s, 0.0, 3600.0),

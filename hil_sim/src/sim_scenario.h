@@ -62,8 +62,9 @@ typedef struct {
     int n_step_durations;
     double step_duration_s[SIM_MAX_SKILLS];
     double goal_scale, time_scale;
-    int use_model;  /* 1: invert the object model for x_d */
-    int end_policy; /* -1: the skill's own; 0 hold; 1 release */
+    double path_scale; /* the y path of skills with a y DMP, about its start */
+    int use_model;     /* 1: invert the object model for x_d */
+    int end_policy;    /* -1: the skill's own; 0 hold; 1 release */
     double phase_stop_gain_per_N2;
     double surface_error_m;   /* the firmware's surface = the object's + this */
     int surface_from_contact; /* 1: the firmware takes the surface at the first tick */

@@ -34,6 +34,8 @@ ERR_SKCHK_STEP = 221  # dt/(tau*time_scale) too large for the DMP's Euler step
 ERR_SKCHK_NOT_FINITE = 222  # the rollout at goal scale 1 is not finite
 ERR_SKCHK_PEAK = 223  # the rollout at goal scale 1 peaks above the force limit
 ERR_SKCHK_GOAL_SCALE = 224  # goal_scale * peak above the force limit: run refused
+ERR_SKCHK_PATH = 225
+ERR_SKCHK_PATH_SCALE = 226
 ERR_FIXED_OVERFLOW = 300  # a value does not fit its fixed-point format
 ERR_FIXED_WINDOW = 301  # more kernels overlap than the fixed build evaluates
 ERR_FIXED_STEP = 302  # dt/tau too small or too large for Q1.31
@@ -57,6 +59,8 @@ SKILL_STATUS_TEXT: dict[int, str] = {
     222: 'rollout not finite',
     223: 'rollout above the force limit',
     224: 'goal scale above the force limit',
+    225: "y path outside the device's y range",
+    226: "path scale outside the device's y range",
 }
 
 # Protocol: E2E protection, ISO-TP (4xx)
@@ -269,6 +273,8 @@ __all__ = [
     'ERR_SKCHK_NOT_FINITE',
     'ERR_SKCHK_PEAK',
     'ERR_SKCHK_GOAL_SCALE',
+    'ERR_SKCHK_PATH',
+    'ERR_SKCHK_PATH_SCALE',
     'ERR_FIXED_OVERFLOW',
     'ERR_FIXED_WINDOW',
     'ERR_FIXED_STEP',

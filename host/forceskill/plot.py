@@ -12,7 +12,8 @@ from .outputs import Outputs, save_figure
 
 def fit_figure(res: FitResult, path: str | Path, title: str = "", outs: Outputs | None = None) -> None:
     """Write a PNG (into ``outs``, committed with the other outputs, or on its own): force (demonstrated dashed black, learned green), error in % of
-    max force, and the demonstrated position with the object surface."""
+    max force, and the demonstrated position with the object surface; a skill with a y DMP adds
+    the y path (demonstrated dashed black, learned green)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -20,7 +21,8 @@ def fit_figure(res: FitResult, path: str | Path, title: str = "", outs: Outputs 
 
     t = res.t_s
     f_max = float(np.max(np.abs(res.target_N)))
-    fig, ax = plt.subplots(3, 1, figsize=(7.0, 7.0), sharex=True)
+    has_y = res.y_hat_m.size == t.size
+    fig, ax = plt.subplots(4 if has_y else 3, 1, figsize=(7.0, 9.0 if has_y else 7.0), sharex=True)
     ax[0].plot(t, res.target_N, "k--", lw=1.2, label="demonstrated")
     ax[0].plot(t, res.f_hat_N, "g-", lw=1.0, label="learned")
     ax[0].set_ylabel("force [N]")
@@ -37,7 +39,13 @@ def fit_figure(res: FitResult, path: str | Path, title: str = "", outs: Outputs 
         ax[2].axhline(1e3 * res.skill.surface_m, color="0.5", ls=":", lw=0.8, label="surface")
         ax[2].legend(loc="best", fontsize=8)
     ax[2].set_ylabel("x [mm]")
-    ax[2].set_xlabel("t [s]")
+    if has_y:
+        ax[3].plot(t, 1e3 * res.y_target_m, "k--", lw=1.2, label="demonstrated")
+        ax[3].plot(t, 1e3 * res.y_hat_m, "g-", lw=1.0, label="learned")
+        ax[3].set_ylabel("y path [mm]")
+        ax[3].set_title(f"y: max error {res.y_err_max_mm:.3f} mm, RMS {res.y_err_rms_mm:.3f} mm", fontsize=9)
+        ax[3].legend(loc="best", fontsize=8)
+    ax[-1].set_xlabel("t [s]")
     for a in ax:
         a.grid(True, lw=0.3)
     fig.tight_layout()

@@ -17,22 +17,14 @@ import cantools
 import numpy as np
 import pytest
 
-from forceskill import cli
 from forceskill.link.dbc import dbc_path
 from forceskill.model.demo import load_demo
 from forceskill.model.skill import Skill
-from helpers.canbus import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS, Server, socketcand_args
+from helpers.canbus import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS, Server, forceskill, socketcand_args
 
 K_NPM = 100.0  # pressing task 1, outer layer (hil_sim/scenarios/pressing_task1_demo.toml)
 SURFACE_M = 0.001
 OBJECT_MASS_KG = 10.0  # m_v_kg of the scenario: the default force gains are adapted to it
-
-
-def forceskill(capsys, *argv: str) -> str:
-    rc = cli.main(list(argv))
-    out, err = capsys.readouterr()
-    assert rc == 0, f"forceskill {' '.join(argv)} failed ({rc}): {err}"
-    return out
 
 
 @pytest.fixture(scope="module")

@@ -8,6 +8,7 @@ import argparse
 import os
 import subprocess
 from pathlib import Path
+from typing import Any
 
 from helpers.paths import REPO, SCENARIOS, hil_sim_path  # noqa: F401  (re-exported for the CAN tests)
 
@@ -99,3 +100,13 @@ class Server:
             self.proc.kill()
             _, err = self.proc.communicate()
         return err
+
+
+def forceskill(capsys: Any, *argv: str) -> str:
+    """Run the forceskill CLI in-process; its stdout (a failure names the command and stderr)."""
+    from forceskill import cli
+
+    rc = cli.main(list(argv))
+    out, err = capsys.readouterr()
+    assert rc == 0, f"forceskill {' '.join(argv)} failed ({rc}): {err}"
+    return out

@@ -282,10 +282,11 @@ def write_bag(
     axis: str = "z",
     t0_ns: int = 1_700_000_000_000_000_000,
     extra_wrench: str | None = None,
+    y_path: np.ndarray | None = None,
 ) -> Path:
     """A ROS 2 bag (MCAP): the force on ``axis`` of a WrenchStamped topic (the other axes carry
     other values), the position on a PoseStamped topic at half the rate. ``extra_wrench``: a
-    second WrenchStamped topic."""
+    second WrenchStamped topic; ``y_path``: the pose's y along the recording (else 0.2)."""
     from mcap_ros2.writer import Writer
 
     def stamp(ts: float) -> dict[str, object]:
@@ -308,7 +309,7 @@ def write_bag(
             if extra_wrench:
                 w.write_message(extra_wrench, ws, msg, log_time=log_ns, publish_time=log_ns, sequence=i)
             if pose_topic and i % 2 == 0:
-                pos = {"x": 0.1, "y": 0.2, "z": 0.3}
+                pos = {"x": 0.1, "y": 0.2 if y_path is None else float(y_path[i]), "z": 0.3}
                 pos[axis] = float(x)
                 w.write_message(
                     pose_topic,

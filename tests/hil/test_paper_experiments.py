@@ -142,3 +142,17 @@ def test_reuse_deformation(report: dict) -> None:
     assert (
         np.max(np.abs(b["f_hat"] - 1.5 * a["f_hat"])) <= 0.5 * 2.0 * offset + 1e-5 * np.max(b["f_hat"]) + 2e-6
     )
+
+
+@pytest.mark.parametrize("name", ["engraving_task1", "engraving_task2"])
+def test_engraving_path_tracked(report: dict, name: str) -> None:
+    """The engraving operator moves along y (tens of mm) on a surface with Coulomb friction
+    (0.3 x the contact force); the skill learns the path (within 0.5 mm) and the execution tracks
+    it within 1 mm RMS of the learned path, the force as the other tasks."""
+    e = next(x for x in report["experiments"] if x["name"] == name)
+    assert e["path_extent_mm"] >= 30.0
+    assert e["path_fit_max_mm"] <= 0.5
+    assert e["path_rms_mm"] <= 1.0
+    assert e["path_max_mm"] <= 3.0
+    sk = Skill.read(e["skill"])
+    assert sk.has_y and sk.format_version == 3

@@ -37,7 +37,7 @@ static void test_rng_reference_and_determinism(void **state)
     assert_true(fabs(sq / 1e5 - 1.0) < 0.02);
 }
 
-static const sim_object_t OBJ = {0.0, 0.001, 100.0, 180.0, 0.019, 50.0, 10.0};
+static const sim_object_t OBJ = {0.0, 0.001, 100.0, 180.0, 0.019, 50.0, 10.0, 0.0};
 
 static void test_object_spring(void **state)
 {

@@ -9,6 +9,11 @@ Writes, next to this script:
   <name>_g<G>_t<T>.csv              dmp.rollout of the image: header ``t,f_hat``, %.17g, rows
                                     n = 0..round(T_skill*time_scale/dt)
   manifest.txt                      ``<skill> <goal_scale> <time_scale> <rollout csv>`` per line
+  wipe_*.skill, wipe_*_g<G>_t<T>_p<P>.csv, manifest_y.txt
+                                    skills with the position DMP on y (format v3), fitted from a
+                                    wiping-like demonstration (force profile + path along y):
+                                    header ``t,f_hat,y_hat`` (dmp.rollout and dmp.rollout_path),
+                                    ``<skill> <goal_scale> <time_scale> <path_scale> <csv>`` per line
   bad/*.skill, bad/manifest.txt     corrupt images, one per rejection of docs/skill_format.md:
                                     ``<file> <expected code>``; images that must fail after the CRC
                                     check carry a correct CRC.
@@ -29,7 +34,8 @@ from forceskill.model import dmp, synthetic
 from forceskill.model.demo import Demo
 from forceskill.model.fit import fit
 from forceskill.model.params import Gains, gains_for_object
-from forceskill.model.skill import HEADER_SIZE, MAGIC, MAX_KERNELS, Skill
+from forceskill.model.skill import HEADER_SIZE_V2 as HEADER_SIZE
+from forceskill.model.skill import MAGIC, MAX_KERNELS, Skill
 
 #: the HIL objects' mass (hil_sim/scenarios): the skills' force gains are adapted to it, so the
 #: vectors run stably on the simulator (the fault rig and the HIL tests execute them)
@@ -48,7 +54,15 @@ DEMOS = {
 
 def _in_contact(d: Demo) -> Demo:
     """The demonstration starting at 1 N (already in contact): the skill's f0 is not 0."""
-    return Demo(d.t_s, d.pos_m, d.force_N + 1.0, d.source + " +1 N")
+    return Demo(d.t_s, d.pos_m, d.force_N + 1.0, d.source + " +1 N", y_m=d.y_m)
+
+
+#: the y half: (name, N, method, end policy) and the scales (goal, time, path) of each
+WIPE_DEMO = (lambda: _in_contact(synthetic.wiping(seed=13, duration_s=2.0, k_v=280.0, f_max_N=8.0)), 280.0)
+WIPE_SKILLS = (
+    ("wipe_n10_ridge_hold", 10, "ridge", "hold", ((1.0, 1.0, 1.0),)),
+    ("wipe_n50_ridge_release", 50, "ridge", "release", ((1.0, 1.0, 1.0), (1.5, 1.3, 1.5))),
+)
 
 
 KERNELS = (10, 50, 100)
@@ -87,6 +101,52 @@ def fitted_skills() -> dict[str, Skill]:
                 )
                 out[skill_name(dname, n, method, end)] = res.skill
     return out
+
+
+def fitted_y_skills() -> dict[str, tuple[Skill, tuple[tuple[float, float, float], ...]]]:
+    """The skills with a y DMP and their scales, fitted afresh."""
+    make, k = WIPE_DEMO
+    demo = make()
+    out = {}
+    for name, n, method, end, scales in WIPE_SKILLS:
+        res = fit(
+            demo,
+            k,
+            n_kernels=n,
+            method=method,
+            end_policy=end,
+            surface_m=synthetic.SURFACE_M,
+            gains=gains_for_object(k, OBJECT_MASS_KG),
+        )
+        out[name] = (res.skill, scales)
+    return out
+
+
+def rollout_y_csv(skill: Skill, goal_scale: float, time_scale: float, path_scale: float) -> bytes:
+    t, f = dmp.rollout(skill, goal_scale=goal_scale, time_scale=time_scale)
+    _, y = dmp.rollout_path(skill, time_scale=time_scale, path_scale=path_scale)
+    lines = ["t,f_hat,y_hat"] + [
+        "{:.17g},{:.17g},{:.17g}".format(*r) for r in zip(t.tolist(), f.tolist(), y.tolist(), strict=False)
+    ]
+    return ("\n".join(lines) + "\n").encode()
+
+
+def golden_y(
+    skills: dict[str, tuple[Skill, tuple[tuple[float, float, float], ...]]],
+) -> tuple[dict[str, bytes], list[str]]:
+    """Files and manifest_y lines for the skills with a y DMP."""
+    files: dict[str, bytes] = {}
+    manifest: list[str] = []
+    for name, (sk, scales) in skills.items():
+        image = sk.to_bytes()
+        files[name + ".skill"] = image
+        files[name + ".skill.json"] = sk.to_json().encode()
+        parsed = Skill.from_bytes(image)
+        for gs, ts, ps in scales:
+            csv_name = f"{name}_g{scale_tag(gs)}_t{scale_tag(ts)}_p{scale_tag(ps)}.csv"
+            files[csv_name] = rollout_y_csv(parsed, gs, ts, ps)
+            manifest.append(f"{name}.skill {gs:g} {ts:g} {ps:g} {csv_name}")
+    return files, manifest
 
 
 def scale_tag(x: float) -> str:
@@ -188,7 +248,7 @@ def bad_images(base: Skill) -> list[tuple[str, bytes, int]]:
     v1_head = _HDR_V1.pack(MAGIC, 1, 128, 128 + 24 * n + 4, n, 0, *([1.0] * 14))
     v1_body = v1_head + np.concatenate([c, w, wt]).astype("<f8").tobytes()
     out.append(("version_1.skill", v1_body + struct.pack("<I", zlib.crc32(v1_body) & 0xFFFFFFFF), 202))
-    out.append(("version_3.skill", mod(version=3), 202))
+    out.append(("version_4.skill", mod(version=4), 202))
     out.append(("version_0.skill", mod(version=0), 202))
     out.append(("header_size.skill", mod(header_size=120), 211))
     out.append(("length_field.skill", mod(total_length=f0["total_length"] + 24), 203))
@@ -249,14 +309,61 @@ def bad_images(base: Skill) -> list[tuple[str, bytes, int]]:
     beta = (g_hi.k_p_Npm + g_hi.kkf_Npm - g_hi.m_d_kg * gamma) / (g_hi.m_d_kg * alpha) - 1.0
     assert beta > alpha / 4
     out.append(("gains_beta_gt_alpha_4.skill", mod(k_p_Npm=1500.0, beta=beta), 209))
-    out.append(("flag_y_axis.skill", mod(flags=0x0002), 210))
+    out.append(("flag_y_axis.skill", mod(flags=0x0002), 210))  # the y DMP needs version 3
     out.append(("flag_unknown.skill", mod(flags=0x0100), 210))
+    return out
+
+
+_HDR3 = struct.Struct("<IHHIHH17d")
+
+
+def bad_images_y(base: Skill) -> list[tuple[str, bytes, int]]:
+    """Version-3 rejections (the y half) from a valid skill with a y DMP."""
+    assert base.y_weights is not None
+    n = base.n_kernels
+    names = (*_F64, "y_start_m", "goal_y_m")
+
+    def pack3(yw: np.ndarray, n_y: int | None = None, **kw: Any) -> bytes:
+        f = {k: getattr(base, k) for k in names}
+        f.update({k: v for k, v in kw.items() if k in names})
+        flags = kw.get("flags", base.flags)
+        hsize = kw.get("header_size", 152)
+        length = kw.get("total_length", 152 + 32 * n + 4)
+        head = _HDR3.pack(MAGIC, 3, hsize, length, n, flags, *(float(f[k]) for k in names))
+        body = head + np.concatenate([base.centres, base.widths, base.weights, yw]).astype("<f8").tobytes()
+        return body + struct.pack("<I", zlib.crc32(body) & 0xFFFFFFFF)
+
+    yw = base.y_weights
+    good = pack3(yw)
+    assert good == base.to_bytes()
+    out: list[tuple[str, bytes, int]] = []
+    out.append(("y_header_size.skill", pack3(yw, header_size=136), 211))
+    out.append(("y_length_no_flag.skill", pack3(yw, flags=base.flags & ~0x0002), 203))
+    bad = yw.copy()
+    bad[2] = np.inf
+    out.append(("y_inf_weight.skill", pack3(bad), 206))
+    out.append(("y_nan_goal.skill", pack3(yw, goal_y_m=np.nan), 206))
+    # beta_y = k_p/(m_d*alpha) - 1 > alpha/4 while the force DMP's alpha, beta, gamma stay valid
+    from forceskill.model.params import derive
+
+    g = Gains(base.m_d_kg, base.k_d_Nspm, 1500.0, base.kkf_Npm, base.kki_Npms + 340.0 * base.alpha)
+    p = derive(g)
+    out.append(
+        (
+            "y_beta_gt_alpha_4.skill",
+            pack3(yw, k_p_Npm=g.k_p_Npm, kki_Npms=g.kki_Npms, alpha=p.alpha, beta=p.beta, gamma=p.gamma),
+            209,
+        )
+    )
     return out
 
 
 def main() -> int:
     skills = fitted_skills()
     files, manifest = golden(skills)
+    y_skills = fitted_y_skills()
+    files_y, manifest_y = golden_y(y_skills)
+    files.update(files_y)
     for old in HERE.glob("*.skill*"):
         old.unlink()
     for old in HERE.glob("*.csv"):
@@ -264,13 +371,15 @@ def main() -> int:
     for name, data in files.items():
         (HERE / name).write_bytes(data)
     (HERE / "manifest.txt").write_text("\n".join(manifest) + "\n")
+    (HERE / "manifest_y.txt").write_text("\n".join(manifest_y) + "\n")
     bad_dir = HERE / "bad"
     bad_dir.mkdir(exist_ok=True)
     for old in bad_dir.glob("*.skill"):
         old.unlink()
     base = skills[skill_name("press", 10, "ridge", "release")]
     lines = []
-    for name, data, code in bad_images(base):
+    base_y = y_skills["wipe_n10_ridge_hold"][0]
+    for name, data, code in bad_images(base) + bad_images_y(base_y):
         (bad_dir / name).write_bytes(data)
         lines.append(f"{name} {code}")
     (bad_dir / "manifest.txt").write_text("\n".join(lines) + "\n")

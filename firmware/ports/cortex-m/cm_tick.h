@@ -3,7 +3,9 @@
  *   1. sensors through the HAL (cm_hal_sensors_read), converted to units; velocity by difference
  *   2. DMP step (N kernels of the embedded skill) -> f_hat
  *   3. reference: x_d = surface + x_dmp (= f_hat/k), xd_d by difference, xdd_d = 0, f_d = f_hat;
- *      y holds its start position
+ *      y: y_d = start + p of the skill's y DMP (stepped with the force DMP, dmp_step_xy /
+ *      dmpfx_step_xy: each kernel activation once for both), yd_d by difference, ydd_d = 0;
+ *      a skill without a y DMP holds the start position
  *   4. parallel force/position law, 2 DOF (pfc_step / pfcfx_step)
  *   5. safety limits at the last stage: workspace and speed (latch a fault: command 0),
  *      |f| <= F_max, slew <= CM_SLEW_N_PER_TICK
@@ -23,6 +25,14 @@
 #define CM_FAULT_SPEED 0x02u
 #define CM_FAULT_NOT_FINITE 0x04u
 
+/* What the tick steps (bench/qemu_tick.sh measures the parts by building the images with
+ * -DCM_TICK_DMP=N in CMAKE_C_FLAGS): 2 both DMPs (the product: dmp_step_xy), 1 the force DMP
+ * alone (dmp_step: the tick before the y DMP), 0 no DMP (f_hat = f0: the tick without its DMP
+ * part, for measuring only; its f_hat comparison with the host fails by design). */
+#ifndef CM_TICK_DMP
+#define CM_TICK_DMP 2
+#endif
+
 /** Parse the skill image, convert it for this numeric build, reset all state. */
 fs_status_t cm_tick_init(const uint8_t *image, uint32_t len, double goal_scale, double time_scale);
 
@@ -35,6 +45,10 @@ double cm_tick_surface_m(void);
 /** One control tick. Returns f_hat's raw bits (float32 bits, or Q16.16 N) for comparison with
  *  the host build. */
 uint32_t cm_tick(void);
+
+/** The y DMP's p of the last tick (m above the path's start) as raw bits (float32 bits, or
+ *  Q8.24 m), for comparison with the host build; 0 without a y DMP. */
+uint32_t cm_tick_path_bits(void);
 
 /** Latched safety faults (CM_FAULT_*). */
 uint32_t cm_tick_faults(void);

@@ -21,6 +21,8 @@ static int32_t cm_prev_pos_d_q24;
 static int32_t cm_surface_q24;
 static int64_t cm_inv_k_q32; /* 1/k, m/N, Q.32: x_d = surface + f_hat/k */
 static int32_t cm_hold_y_q24;
+static int32_t cm_prev_y_d_q24;
+static int32_t cm_path_q24;
 static int32_t cm_last_cmd_q16[CM_HAL_AXES];
 static int32_t cm_force_max_q16;
 static int32_t cm_slew_q16;
@@ -78,10 +80,16 @@ fs_status_t cm_tick_init(const uint8_t *image, uint32_t len, double goal_scale, 
     cm_prev_pos_q24[0] = cm_prev_pos_q24[1] = 0;
     cm_prev_pos_d_q24 = cm_surface_q24;
     cm_hold_y_q24 = 0;
+    cm_prev_y_d_q24 = 0;
     cm_last_cmd_q16[0] = cm_last_cmd_q16[1] = 0;
     cm_faults = 0u;
     cm_seq = 0u;
     return FS_OK;
+}
+
+uint32_t cm_tick_path_bits(void)
+{
+    return (uint32_t)cm_path_q24;
 }
 
 uint32_t cm_tick_rows(void)
@@ -127,7 +135,16 @@ uint32_t cm_tick(void)
         cm_prev_pos_q24[a] = pos;
     }
     /* 2. DMP */
+#if CM_TICK_DMP == 2
+    int32_t path_q24 = 0;
+    const int32_t f_hat = dmpfx_step_xy(&cm_model, &cm_run, &cm_dmp, NULL, &path_q24);
+#elif CM_TICK_DMP == 1
+    const int32_t path_q24 = 0;
     const int32_t f_hat = dmpfx_step(&cm_model, &cm_run, &cm_dmp, NULL);
+#else
+    const int32_t path_q24 = 0;
+    const int32_t f_hat = cm_model.force0_q16;
+#endif
     /* 3. reference */
     pfcfx_ref_t ref[PFC_AXES];
     const int32_t pos_d = fx_add_sat(cm_surface_q24,
@@ -137,8 +154,11 @@ uint32_t cm_tick(void)
     ref[0].acc_mps2 = 0;
     ref[0].force_N = f_hat;
     cm_prev_pos_d_q24 = pos_d;
-    ref[1].pos_m = cm_hold_y_q24;
-    ref[1].vel_mps = 0;
+    const int32_t y_d = fx_add_sat(cm_hold_y_q24, path_q24);
+    ref[1].pos_m = y_d;
+    ref[1].vel_mps = fx_mul_int_sat(fx_sub_sat(y_d, cm_prev_y_d_q24), INV_DT);
+    cm_prev_y_d_q24 = y_d;
+    cm_path_q24 = path_q24;
     ref[1].acc_mps2 = 0;
     ref[1].force_N = 0;
     /* 4. control law */

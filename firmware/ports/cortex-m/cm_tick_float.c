@@ -22,6 +22,8 @@ static pfc_state_t cm_pfc_state;
 static float cm_prev_pos_m[CM_HAL_AXES];
 static float cm_prev_pos_d_m;
 static float cm_hold_y_m;
+static float cm_prev_y_d_m;
+static uint32_t cm_path_bits;
 static float cm_last_cmd_N[CM_HAL_AXES];
 static uint32_t cm_faults;
 static uint32_t cm_rows;
@@ -47,10 +49,16 @@ fs_status_t cm_tick_init(const uint8_t *image, uint32_t len, double goal_scale, 
     cm_prev_pos_m[0] = cm_prev_pos_m[1] = 0.0f;
     cm_prev_pos_d_m = cm_skill.surface_m;
     cm_hold_y_m = 0.0f;
+    cm_prev_y_d_m = 0.0f;
     cm_last_cmd_N[0] = cm_last_cmd_N[1] = 0.0f;
     cm_faults = 0u;
     cm_seq = 0u;
     return FS_OK;
+}
+
+uint32_t cm_tick_path_bits(void)
+{
+    return cm_path_bits;
 }
 
 uint32_t cm_tick_rows(void)
@@ -104,7 +112,16 @@ uint32_t cm_tick(void)
         cm_prev_pos_m[a] = pos;
     }
     /* 2. DMP */
+#if CM_TICK_DMP == 2
+    float path_m = 0.0f;
+    const float f_hat = dmp_step_xy(&cm_skill.dmp, &cm_dmp, &cm_run, NULL, 1.0f, &path_m);
+#elif CM_TICK_DMP == 1
+    const float path_m = 0.0f;
     const float f_hat = dmp_step(&cm_skill.dmp, &cm_dmp, &cm_run, NULL);
+#else
+    const float path_m = 0.0f;
+    const float f_hat = cm_skill.dmp.force0_N;
+#endif
     /* 3. reference */
     pfc_axis_ref_t ref[PFC_AXES];
     const float pos_d = cm_skill.surface_m + f_hat / cm_skill.stiffness_Npm;
@@ -113,8 +130,11 @@ uint32_t cm_tick(void)
     ref[0].acc_mps2 = 0.0f;
     ref[0].force_N = f_hat;
     cm_prev_pos_d_m = pos_d;
-    ref[1].pos_m = cm_hold_y_m;
-    ref[1].vel_mps = 0.0f;
+    const float y_d = cm_hold_y_m + path_m;
+    ref[1].pos_m = y_d;
+    ref[1].vel_mps = (y_d - cm_prev_y_d_m) * INV_DT;
+    cm_prev_y_d_m = y_d;
+    memcpy(&cm_path_bits, &path_m, sizeof(cm_path_bits));
     ref[1].acc_mps2 = 0.0f;
     ref[1].force_N = 0.0f;
     /* 4. control law */

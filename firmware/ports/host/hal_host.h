@@ -13,9 +13,10 @@
 #include <stdint.h>
 #include "hal.h"
 
-#define HAL_HOST_FLASH_SECTOR 32768u /* one skill record of N = 1024 (24,716 B + 36 B) fits */
-#define HAL_HOST_FLASH_SECTORS 16u   /* 2 copies x 8 slots */
-#define HAL_HOST_FW_SECTOR 4096u     /* firmware flash: boot state + 2 slots of 64 sectors */
+#define HAL_HOST_FLASH_SECTOR \
+    65536u /* one skill record of N = 1024 with the y DMP (32,924 B + 36 B) fits */
+#define HAL_HOST_FLASH_SECTORS 16u /* 2 copies x 8 slots */
+#define HAL_HOST_FW_SECTOR 4096u   /* firmware flash: boot state + 2 slots of 64 sectors */
 #define HAL_HOST_FW_SLOT_SECTORS 64u
 #define HAL_HOST_FW_SECTORS (2u + 2u * HAL_HOST_FW_SLOT_SECTORS)
 #define HAL_HOST_SECRET_DEFAULT \

@@ -6,7 +6,7 @@ from __future__ import annotations
 import argparse
 
 from ..model.limits import FORCE_LIMIT_N
-from ..model.scales import GOAL_SCALE_MAX, TIME_SCALE_MAX, TIME_SCALE_MIN
+from ..model.scales import GOAL_SCALE_MAX, PATH_SCALE_MAX, TIME_SCALE_MAX, TIME_SCALE_MIN
 
 
 def int_arg(s: str) -> int:
@@ -54,4 +54,16 @@ def add_scales(p: argparse.ArgumentParser, goal_note: str = "") -> None:
         default=1.0,
         metavar="S",
         help=f"stretch time by S, {TIME_SCALE_MIN:g}..{TIME_SCALE_MAX:g}",
+    )
+
+
+def add_path_scale(p: argparse.ArgumentParser, note: str = "") -> None:
+    """--path-scale (default 1), its range in the help taken from model.scales."""
+    p.add_argument(
+        "--path-scale",
+        type=float_arg,
+        default=1.0,
+        metavar="S",
+        help=f"scale a skill's y path about its start by S, 0..{PATH_SCALE_MAX:g} (skills with a y DMP"
+        + (f"; {note})" if note else ")"),
     )

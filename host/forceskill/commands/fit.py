@@ -65,6 +65,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
         max_gap_s=args.max_gap,
         stiffness_Npm=args.stiffness,
         surface_m=args.surface_m,
+        y_column=args.y_column,
     )
     for note in demo.notes:
         print(note)
@@ -138,6 +139,12 @@ def _cmd_fit(args: argparse.Namespace) -> int:
         f"approximation error: max {err.max_pct:.3f} %, RMS {err.rms_pct:.3f} % of max force "
         f"(at the {demo.t_s.size} recorded samples)"
     )
+    if sk.y_weights is not None:
+        print(
+            f"y path ({args.y_column}): start {sk.y_start_m:.6g} m, goal g_y {sk.goal_y_m:.6g} m, "
+            f"beta_y {sk.beta_y:g}; approximation error max {res.y_err_max_mm:.4f} mm, "
+            f"RMS {res.y_err_rms_mm:.4f} mm (on the {sk.dt_s * 1e3:g} ms grid)"
+        )
     print(
         f"wrote {out} ({out.stat().st_size} bytes) and {out}.json"
         + (f", plot {args.plot}" if args.plot else "")
@@ -237,6 +244,13 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         help="position column (x; without one, position = surface + f/k)",
     )
     p.add_argument("--force-column", default=None, metavar="C", help="force column (overrides --learn)")
+    p.add_argument(
+        "--y-column",
+        default=None,
+        metavar="NAME",
+        help="the path along y (m) to learn as the skill's position DMP (format v3); "
+        "a ROS 2 bag's pose axis is pose_x, pose_y or pose_z (with --pose-topic)",
+    )
     g = p.add_argument_group("reading the recording")
     g.add_argument("--time-column", default="t", metavar="NAME", help="CSV time column (t)")
     g.add_argument(

@@ -3,7 +3,10 @@
 For each learning task (pressing 1/2, engraving 1/2): the demonstration runs in TEACH on the
 simulator (``hil_sim run hil_sim/scenarios/<task>_demo.toml``), is fitted with the default fit
 (ridge, N = 50) and with the paper's LWR (N = 50, then the smallest N in 50..100 that meets the
-paper's bound), and the default skill is executed on the same object. Reuse: the two engraving
+paper's bound), and the default skill is executed on the same object. The engraving operators
+move along y while varying the force (paper Fig. 6) on a surface with Coulomb friction: their
+skills also learn the y path (``fit --y-column y``), and the report gives the path tracking of
+the execution (measured y against the learned path, mm) and draws both halves. Reuse: the two engraving
 skills in series (8 s then 9 s) on 200 N/m at goal 1x, on 300 N/m at 1.5x, and on 300 N/m at 1x
 (no scaling) for comparison. Writes DIR/report.md, DIR/summary.json, DIR/fig_*.png, and keeps
 the logs (DIR/logs) and skills (DIR/skills).
@@ -98,6 +101,23 @@ def deformation_diff_pct(
     return float(100.0 * np.max(np.abs(p_other[:n][m] - p_ref[:n][m])) / np.max(p_ref[:n][m]))
 
 
+def path_tracking_mm(skill: Any, ex: dict[str, np.ndarray], time_scale: float = 1.0) -> dict[str, float]:
+    """Executed y (the execution log: row n is the device's n-th tick of the skill) against the
+    learned path from where execution started, y(0) + p_n (dmp.rollout_path), over the skill's
+    rows: max and RMS in mm."""
+    from ..model.dmp import rollout_path
+
+    _, y_hat = rollout_path(skill, time_scale=time_scale)
+    p = y_hat - skill.y_start_m
+    m = min(p.size, ex["y"].size)
+    e = ex["y"][:m] - (ex["y"][0] + p[:m])
+    return {
+        "path_max_mm": 1e3 * float(np.max(np.abs(e))),
+        "path_rms_mm": 1e3 * float(np.sqrt(np.mean(e * e))),
+        "path_extent_mm": 1e3 * float(np.max(p) - np.min(p)),
+    }
+
+
 def _pct(x: float | None) -> str:
     return "-" if x is None else f"{x:.2f}"
 
@@ -111,7 +131,8 @@ def _learn(
 
     demo_log = out / "logs" / f"{task.name}_demo.csv"
     demo_sum = run_sim(hil_sim, scen / f"{task.name}_demo.toml", demo_log, "--seed", str(seed))
-    demo = load_demo(demo_log)
+    with_path = task.kind == "engraving"
+    demo = load_demo(demo_log, y_column="y" if with_path else None)
     gains = gains_for_object(task.stiffness_Npm, OBJECT_MASS_KG)
 
     def fit_n(n: int, method: str) -> Any:
@@ -166,6 +187,10 @@ def _learn(
         "demo_log": str(demo_log),
         "exec_log": str(exec_log),
     }
+    if with_path:
+        entry.update(path_tracking_mm(res.skill, read_log(exec_log)))
+        entry["path_fit_max_mm"] = res.y_err_max_mm
+        entry["path_fit_rms_mm"] = res.y_err_rms_mm
     if plots:
         _learn_figure(task, res, lwr50, read_log(demo_log), read_log(exec_log), out / f"fig_{task.name}.png")
     return entry
@@ -291,7 +316,7 @@ def _learn_figure(
     plt = _plt()
     t = res.t_s
     f_max = float(np.max(np.abs(res.target_N)))
-    rows = 4 if task.kind == "pressing" else 3
+    rows = 4
     fig, ax = plt.subplots(rows, 1, figsize=(7.5, 2.2 * rows + 0.6))
     ax[0].plot(t, res.target_N, "k--", lw=1.2, label="demonstrated (contact)")
     ax[0].plot(t, res.f_hat_N, "g-", lw=1.0, label=f"learned, ridge N={res.skill.n_kernels}")
@@ -325,7 +350,15 @@ def _learn_figure(
             ax[2].plot(demo["t"][hit[0]], 1e3 * x[hit[0]], "ro", ms=6, label="inner layer reached")
         ax[2].set_ylabel("x [mm]")
         ax[2].legend(fontsize=7, loc="best")
-        r = 3
+    else:
+        y0 = float(demo["y"][0])
+        ax[2].plot(demo["t"], 1e3 * (demo["y"] - y0), "k--", lw=1.2, label="demonstrated y path")
+        if res.y_hat_m.size:
+            ax[2].plot(t, 1e3 * (res.y_hat_m - y0), "g-", lw=0.8, label="learned")
+        ax[2].plot(ex["t"], 1e3 * (ex["y"] - float(ex["y"][0])), "b-", lw=0.7, label="executed")
+        ax[2].set_ylabel("y from start [mm]")
+        ax[2].legend(fontsize=7, loc="best")
+    r = 3
     ax[r].plot(ex["t"], ex["f_hat"], "g--", lw=1.2, label="learned f_hat")
     ax[r].plot(ex["t"], ex["f_contact"], "b-", lw=0.7, label="measured (execution)")
     ax[r].set_ylabel("force [N]")
@@ -394,8 +427,9 @@ def write_markdown(summary: dict[str, Any], path: Path) -> None:
         "(noisy) contact force; tracking = measured contact force vs f_hat during execution.",
         "",
         "| experiment | max force [N] | approx. max/RMS LWR N=50 [%] | LWR N for the paper's bound | "
-        "approx. max/RMS default [%] | tracking max/RMS [%] | deformation diff [%] | limit violations |",
-        "|---|---:|---:|---:|---:|---:|---:|---:|",
+        "approx. max/RMS default [%] | tracking max/RMS [%] | path tracking max/RMS [mm] | "
+        "deformation diff [%] | limit violations |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for e in summary["experiments"]:
         lwr = (
@@ -413,14 +447,19 @@ def write_markdown(summary: dict[str, Any], path: Path) -> None:
             "-" if e["approx_max_pct"] is None else f"{e['approx_max_pct']:.2f} / {e['approx_rms_pct']:.2f}"
         )
         trk = f"{e['tracking_max_pct']:.2f} / {e['tracking_rms_pct']:.2f}"
+        ptrk = f"{e['path_max_mm']:.2f} / {e['path_rms_mm']:.2f}" if "path_rms_mm" in e else "-"
         dd = e.get("deformation_diff_pct")
         ddu = e.get("deformation_diff_unscaled_pct")
         dtxt = "-" if dd is None else (f"{dd:.2f} (unscaled {ddu:.2f})" if ddu is not None else f"{dd:.2f}")
         lines.append(
-            f"| {e['name']} | {e['max_force_N']:.2f} | {lwr} | {need} | {dflt} | {trk} | {dtxt} | "
+            f"| {e['name']} | {e['max_force_N']:.2f} | {lwr} | {need} | {dflt} | {trk} | {ptrk} | {dtxt} | "
             f"{e['limit_violations']} |"
         )
     lines += [
+        "",
+        "Path tracking (engraving: the operator moves along y on a surface with Coulomb friction "
+        "0.3 x the contact force): measured y against the learned path from where execution "
+        "started, over the skill's duration.",
         "",
         "Deformation difference: max over t <= 17 s of |p(t) - p_200@1x(t)| / max p_200@1x, with "
         "p = x - 0.001 m. stiff_*: a synthetic profile fitted at 1e4 / 1e5 N/m, executed on that "

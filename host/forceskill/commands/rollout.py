@@ -1,4 +1,5 @@
-"""forceskill rollout: evaluate a skill offline (the firmware's DMP in numpy) and write t,f_hat as CSV."""
+"""forceskill rollout: evaluate a skill offline (the firmware's DMP in numpy) and write t,f_hat (and
+y_hat for a skill with a y DMP) as CSV."""
 
 from __future__ import annotations
 
@@ -6,32 +7,47 @@ import argparse
 import sys
 from collections.abc import Iterator
 
-from ._args import add_scales, int_arg
+from ._args import add_path_scale, add_scales, int_arg
 
 
 def _cmd_rollout(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from ..model.dmp import rollout_blocks
+    from ..model.dmp import rollout_blocks, rollout_path
+    from ..model.scales import check_path_scale
     from ..model.skill import Skill
     from ..outputs import STDOUT, check_target, write_csv
 
     if args.output != STDOUT:
         check_target(args.output, [args.skill])
+    check_path_scale(args.path_scale)
     sk = Skill.read(args.skill)
     stats = {"peak": -np.inf, "t_end": 0.0}
+    y_all: np.ndarray | None = None
+    if sk.has_y:
+        _, y_all = rollout_path(
+            sk, time_scale=args.time_scale, path_scale=args.path_scale, n_steps=args.steps
+        )
 
     def blocks() -> Iterator[np.ndarray]:
+        row = 0
         for t, f in rollout_blocks(
             sk, goal_scale=args.goal_scale, time_scale=args.time_scale, n_steps=args.steps
         ):
             if f.size:
                 stats["peak"] = max(stats["peak"], float(np.max(f)))
                 stats["t_end"] = float(t[-1])
-            yield np.column_stack((t, f))
+            if y_all is None:
+                yield np.column_stack((t, f))
+            else:
+                yield np.column_stack((t, f, y_all[row : row + t.size]))
+            row += t.size
 
-    n = write_csv(args.output, ["t", "f_hat"], blocks(), inputs=[args.skill])
+    names = ["t", "f_hat"] + (["y_hat"] if y_all is not None else [])
+    n = write_csv(args.output, names, blocks(), inputs=[args.skill])
     msg = f"wrote {args.output}: {n} rows, t = 0..{stats['t_end']:.6g} s, peak f_hat {stats['peak']:.6g} N"
+    if y_all is not None and y_all.size:
+        msg += f", y_hat {float(np.min(y_all)):.6g}..{float(np.max(y_all)):.6g} m"
     print(msg, file=sys.stderr if args.output == STDOUT else sys.stdout)
     return 0
 
@@ -42,13 +58,14 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         "rollout",
         help="evaluate a skill offline (the firmware's DMP in numpy)",
         description="Evaluate a skill at its dt from zero state, as the firmware does, and "
-        "write t,f_hat (s, N) as CSV.",
+        "write t,f_hat (s, N) as CSV; a skill with a y DMP adds y_hat (m).",
     )
     p.add_argument("skill", metavar="SKILL")
     p.add_argument(
         "-o", "--output", required=True, metavar="OUT.csv", help="CSV to write ('-': standard output)"
     )
     add_scales(p)
+    add_path_scale(p)
     p.add_argument(
         "--steps",
         type=int_arg,

@@ -22,10 +22,10 @@ from ..model.limits import (
     peak_problem,
     skill_peak_N,
 )
-from ..model.scales import check_scales
+from ..model.scales import check_path_scale, check_scales
 from ..model.skill import Skill
 from ..outputs import STDOUT, Outputs, format_rows
-from ._args import add_force_limit, add_scales
+from ._args import add_force_limit, add_path_scale, add_scales
 from ._common import add_common, columns, connect, link_errors, open_log, sigint_flag, tracking
 
 _STEP = re.compile(r"^\s*(\d+)\s*:\s*([0-9.]+)\s*(ms|s)?\s*$")
@@ -60,9 +60,11 @@ def check_slot_forces(
     goal_scale: float,
     time_scale: float,
     force_limit_N: float,
-) -> None:
+) -> dict[int, Skill]:
     """Read each slot's skill back (RequestUpload) and refuse (662), before anything moves, a goal
-    scale that takes its rollout's peak above the force limit, or a rollout that is not finite."""
+    scale that takes its rollout's peak above the force limit, or a rollout that is not finite.
+    Returns the skills read back by slot."""
+    skills: dict[int, Skill] = {}
 
     def call(what: str, fn: Any) -> Any:
         return U.call(what, fn, dev.node)
@@ -72,6 +74,7 @@ def check_slot_forces(
         for slot in dict.fromkeys(slots):
             image = U.upload(client, dev.node, slot, int(directory[slot]["length"]))
             sk = Skill.from_bytes(image)
+            skills[slot] = sk
             peak = skill_peak_N(sk, time_scale)
             problem = peak_problem(peak, goal_scale, force_limit_N)
             if problem:
@@ -86,6 +89,40 @@ def check_slot_forces(
             client.change_session(0x01)
         except Exception:
             pass
+    return skills
+
+
+def path_tracking(
+    cols: dict[str, np.ndarray], tick16: np.ndarray, path_m: np.ndarray, after_tick: int, start_tick: int
+) -> dict[str, float]:
+    """Path tracking of a skill with a y DMP: max/RMS |y - y_d| in mm over the path's rows, with
+    y_d = y(start) + p (p = rollout_path - y_start, row n+1 at the n-th tick of the execution).
+    The execution started at a tick in (after_tick, start_tick] (the last IDLE status and the
+    first EXECUTE status, 10 ms apart): the start within that window that fits best is used, so
+    the figures are exact to within that window."""
+    y = cols["y"]
+    best = {"path_max_mm": float("nan"), "path_rms_mm": float("nan"), "path_extent_mm": float("nan")}
+    n_ref = path_m.size - 1
+    span = max(1, (start_tick - after_tick) & 0xFFFFFF)
+    best_rms = float("inf")
+    for d in range(1, min(span, 64) + 1):
+        hits = np.flatnonzero(tick16 == ((after_tick + d) & 0xFFFF))
+        if not hits.size:
+            continue
+        i0 = int(hits[0])
+        m = min(n_ref, y.size - i0)
+        if m < 2:
+            continue
+        e = y[i0 : i0 + m] - (y[i0] + path_m[1 : m + 1])
+        rms = float(np.sqrt(np.mean(e * e)))
+        if rms < best_rms:
+            best_rms = rms
+            best = {
+                "path_max_mm": 1e3 * float(np.max(np.abs(e))),
+                "path_rms_mm": 1e3 * rms,
+                "path_extent_mm": 1e3 * float(np.max(np.abs(path_m))),
+            }
+    return best
 
 
 def _fault_index(first_tick: int, n: int, fault_tick: int | None) -> int:
@@ -112,7 +149,7 @@ def run_on_device(
             "(clear a fault with: forceskill status --clear)",
         )
     end_code = {"skill": 0, "hold": 1, "release": 2}[args.end]
-    g, ts = _scale(args.goal_scale), _scale(args.time_scale)
+    g, ts, ps = _scale(args.goal_scale), _scale(args.time_scale), _scale(args.path_scale)
     fault, fault_tick, interrupted, total = 0, None, False, 0.0
     with sigint_flag() as stop, U.uds_client(dev) as client:
         directory = {e["slot"]: e for e in U.slot_directory(client, dev.node)}
@@ -133,10 +170,15 @@ def run_on_device(
             if e is None or not e["valid"]:
                 raise FsError(ERR_LINK_ARGS, f"slot {args.slot} of node {dev.node} holds no skill")
             data = struct.pack(">BHHB", args.slot, g, ts, end_code)
+            if ps != 1000:  # the optional path scale (firmware reading skill format v3)
+                data += struct.pack(">H", ps)
             rid, expected = U.RID_RUN_SKILL, float(e["duration_s"]) * args.time_scale
             last_end = e["end"]
             slots = [args.slot]
-        check_slot_forces(client, dev, slots, directory, g / 1000.0, ts / 1000.0, args.force_limit)
+        skills = check_slot_forces(client, dev, slots, directory, g / 1000.0, ts / 1000.0, args.force_limit)
+        path_skill = skills.get(slots[0]) if not args.sequence else None
+        if path_skill is not None and not path_skill.has_y:
+            path_skill = None
         end_policy = args.end if args.end != "skill" else last_end
         tail = args.hold_for if end_policy == "hold" else 0.5 + 0.05
         total = expected + tail
@@ -144,6 +186,7 @@ def run_on_device(
             return {
                 "columns": columns([]),
                 "figures": tracking(columns([])),
+                "path": None,
                 "expected_s": expected,
                 "fault": 0,
                 "interrupted": True,
@@ -159,6 +202,8 @@ def run_on_device(
         try:
             with link_errors(dev.node, dev.channel):
                 time.sleep(0.05)
+                before = dev.status
+                idle_tick = before.tick if before is not None else 0
                 U.call("start", lambda: client.start_routine(rid, data), dev.node)
                 st = dev.wait_state({"EXECUTE", "FAULT"}, 2.0 * args.timeout)
                 start_tick = st.tick
@@ -210,12 +255,20 @@ def run_on_device(
     if fault and samples:
         n_keep = min(n_keep, _fault_index(samples[0].tick & 0xFFFF, len(samples), fault_tick) + 1)
     cols = {k: v[:n_keep] for k, v in columns(samples).items()}
+    path_fig = None
+    if path_skill is not None and samples:
+        from ..model.dmp import rollout_path
+
+        _, y_hat = rollout_path(path_skill, time_scale=ts / 1000.0, path_scale=ps / 1000.0)
+        tick16 = np.array([s.tick & 0xFFFF for s in samples[:n_keep]])
+        path_fig = path_tracking(cols, tick16, y_hat - path_skill.y_start_m, idle_tick, start_tick)
     cols["fault"] = np.zeros(cols["t"].size)
     if fault and cols["t"].size:
         cols["fault"][-1] = fault
     return {
         "columns": cols,
         "figures": tracking(cols),
+        "path": path_fig,
         "expected_s": expected,
         "fault": fault,
         "interrupted": interrupted,
@@ -228,6 +281,9 @@ CSV_COLUMNS = ("t", "x", "y", "f_contact", "f_operator", "f_cmd", "f_hat", "faul
 
 def _cmd(args: argparse.Namespace) -> int:
     check_scales(args.goal_scale, args.time_scale)
+    check_path_scale(args.path_scale)
+    if args.sequence and args.path_scale != 1.0:
+        raise FsError(ERR_LINK_ARGS, "--path-scale applies to --slot only (a sequence runs every path at 1)")
     check_force_limit(args.force_limit)
     if not (math.isfinite(args.hold_for) and 0.0 <= args.hold_for <= 3600.0):
         raise FsError(ERR_LINK_ARGS, f"--hold-for must be in [0, 3600] s: {args.hold_for:g}")
@@ -266,6 +322,13 @@ def _cmd(args: argparse.Namespace) -> int:
         f"force tracking: max {fig['tracking_max_pct']:.2f} %, RMS {fig['tracking_rms_pct']:.2f} % of max reference",
         file=info,
     )
+    pf = r.get("path")
+    if pf is not None:
+        print(
+            f"path tracking: max {pf['path_max_mm']:.3f} mm, RMS {pf['path_rms_mm']:.3f} mm "
+            f"(y path extent {pf['path_extent_mm']:.2f} mm, path scale {args.path_scale:g})",
+            file=info,
+        )
     wrote = f"; telemetry written to {args.csv}" if args.csv and not to_stdout else ""
     if args.csv and not to_stdout:
         print(f"wrote {args.csv}", file=info)
@@ -296,6 +359,7 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p.add_argument("--slot", type=int, metavar="N", help="slot 1..8")
     p.add_argument("--sequence", metavar="SLOT:DUR,...", help="skills in series, e.g. 1:8s,2:9s")
     add_scales(p, "refused if the skill's peak times S is above --force-limit")
+    add_path_scale(p, "--slot")
     p.add_argument(
         "--end",
         choices=("skill", "hold", "release"),

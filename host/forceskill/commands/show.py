@@ -14,7 +14,7 @@ def _cmd_show(args: argparse.Namespace) -> int:
     from ..errors import ERR_SKILL_PEAK
     from ..model.dmp import rollout
     from ..model.limits import check_force_limit, peak_problem
-    from ..model.skill import Skill, image_size
+    from ..model.skill import Skill
 
     check_force_limit(args.force_limit)
     sk = Skill.read(args.skill)
@@ -25,9 +25,7 @@ def _cmd_show(args: argparse.Namespace) -> int:
     _, f = rollout(sk)
     finite = bool(np.all(np.isfinite(f)))
     peak = float(np.max(np.abs(f))) if finite else float("inf")
-    print(
-        f"{args.skill}: skill image v{sk.format_version}, {image_size(sk.n_kernels)} bytes, CRC-32 {d['crc32']}"
-    )
+    print(f"{args.skill}: skill image v{sk.format_version}, {len(sk.to_bytes())} bytes, CRC-32 {d['crc32']}")
     print(f"  duration       {sk.duration_s:g} s at dt {sk.dt_s * 1e3:g} ms, end policy {sk.end_policy}")
     print(
         f"  kernels        {sk.n_kernels}, centres {sk.centres[0]:.4g}..{sk.centres[-1]:.4g}, "
@@ -43,6 +41,18 @@ def _cmd_show(args: argparse.Namespace) -> int:
         f"k_i {sk.kki_Npms / sk.stiffness_Npm:.4g} 1/s at k)"
     )
     print(f"  rollout        peak |f_hat| {peak:.6g} N, final {float(f[-1]):.6g} N")
+    if sk.has_y:
+        from ..model.dmp import rollout_path
+
+        _, y = rollout_path(sk)
+        ext = float(np.max(np.abs(y - sk.y_start_m)))
+        print(
+            f"  y path         position DMP on y: start {sk.y_start_m:.6g} m, goal g_y {sk.goal_y_m:.6g} m, "
+            f"beta_y {sk.beta_y:g}, gamma 0; rollout {float(np.min(y)):.6g}..{float(np.max(y)):.6g} m, "
+            f"extent {ext * 1e3:.4g} mm from the start, final {float(y[-1]):.6g} m"
+        )
+    else:
+        print("  y path         none (force only: y holds its position)")
     problem = peak_problem(peak, 1.0, args.force_limit)
     if problem:
         print(f"  REFUSED        {problem}: fit, upload and run refuse this skill [{ERR_SKILL_PEAK}]")

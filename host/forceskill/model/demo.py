@@ -70,6 +70,8 @@ class Demo:
     source: str = ""
     max_gap_s: float = MAX_GAP_S
     notes: list[str] = field(default_factory=list)
+    #: the path along the unconstrained axis y (m), learned by the position DMP; None: none
+    y_m: np.ndarray | None = None
 
 
 def read_csv_columns(path: str | Path) -> Columns:
@@ -92,8 +94,11 @@ def load_demo(
     max_gap_s: float = MAX_GAP_S,
     stiffness_Npm: float | None = None,
     surface_m: float = 0.0,
+    y_column: str | None = None,
 ) -> Demo:
     """Read and validate a demonstration.
+
+    ``y_column``: the column holding the path along y (m) that the skill's position DMP learns.
 
     ``force_column`` overrides the column ``learn`` selects. ``position_column`` None: ``x`` when
     present, else ``surface_m + f/stiffness_Npm`` (a note says so). The force is multiplied by
@@ -112,12 +117,14 @@ def load_demo(
     fcol = force_column or LEARN_COLUMNS[learn]
     opts = replace(
         read or ReadOptions(),
-        columns=(fcol,) + ((position_column,) if position_column else ()),
+        columns=(fcol,) + ((position_column,) if position_column else ()) + ((y_column,) if y_column else ()),
         optional=() if position_column else (DEFAULT_POSITION,),
     )
     cols = read_columns(p, opts)
     notes = [str(n) for n in cols.pop(NOTES_KEY, [])]
-    for name in ("t", fcol) + ((position_column,) if position_column else ()):
+    for name in (
+        ("t", fcol) + ((position_column,) if position_column else ()) + ((y_column,) if y_column else ())
+    ):
         if name not in cols:
             raise DemoError(
                 ERR_DEMO_COLUMN, f"column {name!r} not in {p.name} (available: {', '.join(cols)})"
@@ -143,7 +150,8 @@ def load_demo(
         notes.append(
             f"no position column {pos_name!r}: position taken as surface + f/k (k = {stiffness_Npm:g} N/m)"
         )
-    demo = Demo(t_s=t, pos_m=x, force_N=f, source=f"{p.name}:{fcol}", max_gap_s=max_gap_s, notes=notes)
+    y = None if not y_column else np.asarray(cols[y_column], float)
+    demo = Demo(t_s=t, pos_m=x, force_N=f, source=f"{p.name}:{fcol}", max_gap_s=max_gap_s, notes=notes, y_m=y)
     validate(demo)
     return demo
 
@@ -209,16 +217,18 @@ def _tare(t: np.ndarray, f: np.ndarray, window_s: float, auto: bool) -> tuple[np
 def validate(demo: Demo) -> None:
     """Refuse a demonstration that cannot be learned from (DemoError, 603-607)."""
     t, x, f = demo.t_s, demo.pos_m, demo.force_N
-    if not (t.shape == x.shape == f.shape and t.ndim == 1):
+    y = x if demo.y_m is None else demo.y_m
+    if not (t.shape == x.shape == f.shape == y.shape and t.ndim == 1):
         raise DemoError(
             ERR_DEMO_FORMAT,
-            f"demonstration columns differ in length: t {t.shape}, position {x.shape}, force {f.shape}",
+            f"demonstration columns differ in length: t {t.shape}, position {x.shape}, force {f.shape}"
+            + ("" if demo.y_m is None else f", y {y.shape}"),
         )
     if t.size < MIN_SAMPLES:
         raise DemoError(
             ERR_DEMO_TOO_SHORT, f"demonstration too short: {t.size} samples (need >= {MIN_SAMPLES})"
         )
-    for name, arr in (("t", t), ("position", x), ("force", f)):
+    for name, arr in (("t", t), ("position", x), ("force", f), ("y", y)):
         bad = np.flatnonzero(~np.isfinite(arr))
         if bad.size:
             raise DemoError(
@@ -285,6 +295,7 @@ def resample(demo: Demo, dt_s: float) -> Demo:
             demo.source,
             demo.max_gap_s,
             list(demo.notes),
+            None if demo.y_m is None else demo.y_m.copy(),
         )
     n_last = int(math.floor((float(demo.t_s[-1]) - t0) / dt_s + 1e-9))
     tn = t0 + np.arange(n_last + 1) * dt_s
@@ -295,6 +306,7 @@ def resample(demo: Demo, dt_s: float) -> Demo:
         demo.source + f" (resampled to {dt_s * 1e3:g} ms)",
         demo.max_gap_s,
         list(demo.notes),
+        None if demo.y_m is None else np.interp(tn, demo.t_s, demo.y_m),
     )
 
 

@@ -366,3 +366,45 @@ def rollout_peak(skill: Skill, goal_scale: float = 1.0, time_scale: float = 1.0)
         if f.size:
             peak = max(peak, float(np.max(np.abs(f))))
     return peak
+
+
+def forcing_scales(u: np.ndarray, skill: Skill) -> tuple[np.ndarray, np.ndarray | None]:
+    """S(u) of the force DMP and S_y(u) of the y DMP (None for a force-only skill) from one
+    evaluation of the normalised kernels: both DMPs share the phase and the kernels."""
+    k = normalised_kernels(u, skill.centres, skill.widths)
+    s_y: np.ndarray | None = None if skill.y_weights is None else k @ skill.y_weights
+    s_x: np.ndarray = k @ skill.weights
+    return s_x, s_y
+
+
+def rollout_path(
+    skill: Skill, time_scale: float = 1.0, path_scale: float = 1.0, n_steps: int | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """t_n and y_hat_n = y_start + p_n of the position DMP on y (paper eq. 9: the force DMP's law
+    with k_f = k_i = 0, so gamma = 0 and beta_y = k_p/(m_d*alpha) - 1), n = 0..n_steps:
+
+        h_y = s_p * v * S_y(u)
+        p'  = p + dt/tau_e * (z_p - p + h_y)
+        z_p' = z_p + dt/tau_e * alpha*(beta_y*(s_p*g_y - p) - z_p)
+
+    from zero state on the force DMP's phase (the same u, v, tau_e: time scaling stretches both).
+    s_p = path_scale scales p exactly (p is linear in s_p from a zero state): the path scales
+    about its start. The goal scale of the force does not enter. A force-only skill gives y_start.
+    """
+    from .scales import check_path_scale
+
+    check_scales(1.0, time_scale)
+    check_path_scale(path_scale)
+    n = default_steps(skill, time_scale) if n_steps is None else int(n_steps)
+    check_steps(n)
+    t = np.arange(n + 1) * skill.dt_s
+    if skill.y_weights is None:
+        return t, np.full(n + 1, skill.y_start_m)
+    a = skill.dt_s / (skill.tau_s * time_scale)
+    u, v = phase_loop(skill.alpha, skill.beta, a, n)
+    with np.errstate(all="ignore"):
+        h = path_scale * v[:-1] * (normalised_kernels(u[:-1], skill.centres, skill.widths) @ skill.y_weights)
+    p, _, _ = transform_loop(skill.alpha, skill.beta_y, 0.0, a, path_scale * skill.goal_y_m, h)
+    with np.errstate(all="ignore"):
+        y = skill.y_start_m + p
+    return t, y

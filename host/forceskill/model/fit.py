@@ -9,12 +9,20 @@ phase, widths sigma_i = 0.65*(c_{i+1} - c_i) (``lwr``: 0.35*(c_{i+1} - c_i)); h_
 discrete recursion as the rollout; regression of h_d on g*v~*S(u~) by ``ridge`` (joint
 Tikhonov-regularised least squares, the default) or ``lwr`` (the paper's per-kernel weighted LS);
 then the learned force is rolled out and compared with the demonstration.
+
+A demonstration with a path along y (``Demo.y_m``) also gets the position DMP on y (paper eq. 9:
+the same law with k_f = k_i = 0, so gamma = 0 and beta_y = k_p/(m_d*alpha) - 1), fitted on the
+same phase, tau and kernels: target p* = y - y(0) in m, goal g_y = k_p*p*(T)/(m_d*alpha*beta_y)
+(the DMP's rest point is p*(T)), h_d from the same recursion with gamma = 0, and the regression of
+h_d on v~*S_y(u~) (no goal factor: a wiping path may end where it started, g_y = 0) with the
+force's method and kernels. The weights are in m.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -22,7 +30,7 @@ from ..errors import ERR_FIT_ARGS, ERR_FIT_GOAL, ERR_FIT_NUMERIC, DemoError, FsE
 from . import dmp
 from .demo import Demo, resample, validate
 from .params import Gains, check_inertia, check_stiffness, derive, goal
-from .skill import FLAG_END_RELEASE, MAX_KERNELS, Skill
+from .skill import FLAG_END_RELEASE, MAX_KERNELS, Skill, derive_beta_y
 
 PHASE_AT_END = 0.99
 #: sigma_i = WIDTH_FACTOR * (c_{i+1} - c_i)
@@ -54,6 +62,12 @@ class FitResult:
     pos_m: np.ndarray = field(default_factory=lambda: np.zeros(0))
     method: str = "ridge"
     h_d: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    #: the y half (a demonstration with a path along y): demonstrated and learned path (m) and the
+    #: learned path's error in mm; empty / nan without one
+    y_target_m: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    y_hat_m: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    y_err_max_mm: float = math.nan
+    y_err_rms_mm: float = math.nan
 
 
 def _phase_end(alpha: float, beta: float, a: float, n: int) -> float:
@@ -142,6 +156,22 @@ def desired_forcing(
     return f_target
 
 
+def _regress(bands: dmp.KernelBands, s: np.ndarray, h_d: np.ndarray, lwr: bool, lam_rel: float) -> np.ndarray:
+    """Weights w with h_d ~ s*S(u): ridge (joint, Tikhonov relative to the mean diagonal) or the
+    paper's per-kernel LWR."""
+    if not lwr:
+        gram = bands.gram(s * s)
+        lam = lam_rel * float(np.trace(gram)) / gram.shape[0]
+        w: np.ndarray = np.linalg.solve(gram + lam * np.eye(gram.shape[0]), bands.project(s * h_d))
+        return w
+    # the paper's LWR: per-kernel weighted LS with the raw local weights psi_i (cut at e_i > 23,
+    # below 1e-10 of the peak); w_i = sum psi_i s h_d / sum psi_i s^2
+    num = bands.project(s * h_d, normalised=False)
+    den = bands.project(s * s, normalised=False)
+    w = np.where(den > 0.0, num / np.where(den > 0.0, den, 1.0), 0.0)
+    return w
+
+
 def fit(
     demo: Demo,
     stiffness_Npm: float,
@@ -210,18 +240,21 @@ def fit(
     h_d = desired_forcing(y_star, p.alpha, p.beta, p.gamma, a, goal_N)
     s = goal_N * v[:-1]  # h = s_n * S(u_n)
     bands = dmp.KernelBands(u[:-1], centres, widths)
-    if not lwr:
-        gram = bands.gram(s * s)
-        lam = lam_rel * float(np.trace(gram)) / gram.shape[0]
-        weights = np.linalg.solve(gram + lam * np.eye(gram.shape[0]), bands.project(s * h_d))
-    else:
-        # the paper's LWR: per-kernel weighted LS with the raw local weights psi_i (cut at e_i > 23,
-        # below 1e-10 of the peak); w_i = sum psi_i s h_d / sum psi_i s^2
-        num = bands.project(s * h_d, normalised=False)
-        den = bands.project(s * s, normalised=False)
-        weights = np.where(den > 0.0, num / np.where(den > 0.0, den, 1.0), 0.0)
+    weights = _regress(bands, s, h_d, lwr, lam_rel)
     if not np.all(np.isfinite(weights)):
         raise FsError(ERR_FIT_NUMERIC, f"regression gave a non-finite weight ({method}, N = {n_kernels})")
+    y_kw: dict[str, Any] = {}
+    if d.y_m is not None:
+        beta_y = derive_beta_y(gains)
+        p_star = d.y_m - float(d.y_m[0])
+        goal_y = gains.k_p_Npm * float(p_star[-1]) / (gains.m_d_kg * p.alpha * beta_y)
+        h_d_y = desired_forcing(p_star, p.alpha, beta_y, 0.0, a, goal_y)
+        y_weights = _regress(bands, v[:-1], h_d_y, lwr, lam_rel)
+        if not np.all(np.isfinite(y_weights)):
+            raise FsError(
+                ERR_FIT_NUMERIC, f"y regression gave a non-finite weight ({method}, N = {n_kernels})"
+            )
+        y_kw = {"y_start_m": float(d.y_m[0]), "goal_y_m": goal_y, "y_weights": y_weights}
     skill = Skill(
         dt_s=dt_s,
         tau_s=tau,
@@ -242,6 +275,7 @@ def fit(
         widths=widths,
         weights=weights,
         flags=FLAG_END_RELEASE if end_policy == "release" else 0,
+        **y_kw,
     )
     skill.to_bytes()  # validates exactly as the firmware will
     if bands.complete:
@@ -252,6 +286,21 @@ def fit(
     f_hat = f0 + y
     f_max = float(np.max(np.abs(f)))
     err = f - f_hat
+    y_res: dict[str, Any] = {}
+    if skill.y_weights is not None and d.y_m is not None:
+        s_y = v[:-1]
+        h_y = s_y * (
+            bands.sum_weighted(skill.y_weights) if bands.complete else dmp.forcing_scales(u[:-1], skill)[1]
+        )
+        p_hat, _, _ = dmp.transform_scan(p.alpha, skill.beta_y, 0.0, a, skill.goal_y_m, h_y)
+        y_hat = skill.y_start_m + p_hat
+        e_y = d.y_m - y_hat
+        y_res = {
+            "y_target_m": d.y_m,
+            "y_hat_m": y_hat,
+            "y_err_max_mm": 1e3 * float(np.max(np.abs(e_y))),
+            "y_err_rms_mm": 1e3 * float(np.sqrt(np.mean(e_y * e_y))),
+        }
     return FitResult(
         skill=skill,
         t_s=d.t_s,
@@ -262,4 +311,5 @@ def fit(
         pos_m=d.pos_m,
         method=method,
         h_d=h_d,
+        **y_res,
     )

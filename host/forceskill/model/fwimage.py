@@ -47,8 +47,10 @@ assert HEADER_STRUCT.size == HEADER_SIZE
 TARGETS = {"cortex-m4f": 1, "cortex-m3": 2, "host": 3}
 TARGET_NAMES = {v: k for k, v in TARGETS.items()}
 
-# Data formats this product writes today (docs/skill_format.md v2; configuration record v1).
-SKILL_FORMAT = 2
+# Data formats this product writes today (docs/skill_format.md v3, reading v2 too; configuration
+# record v1).
+SKILL_FORMAT = 3
+SKILL_FORMAT_OLDEST = 2
 CONFIG_FORMAT = 1
 
 # Development key of the simulator and the qemu demo (docs/update.md: never ship it).
@@ -156,7 +158,7 @@ def build_image(
     target: str,
     key: bytes,
     build_id: str = "",
-    skill_format: tuple[int, int] = (SKILL_FORMAT, SKILL_FORMAT),
+    skill_format: tuple[int, int] = (SKILL_FORMAT, SKILL_FORMAT_OLDEST),
     config_format: tuple[int, int] = (CONFIG_FORMAT, CONFIG_FORMAT),
     entry_offset: int = 0,
 ) -> bytes:

@@ -1,7 +1,7 @@
 """The host's limits on scales, rollout length and a skill's force, checked the same way by every
 command (fit, show, rollout, upload, run) before anything is written or sent.
 
-- Goal scale: finite, 0 <= S <= 65.535; time scale: finite, 0.001 <= S <= 65.535 (the range the
+- Goal scale and path scale (the y path about its start): finite, 0 <= S <= 65.535; time scale: finite, 0.001 <= S <= 65.535 (the range the
   device's command encodes, 1/1000 steps in 16 bits; code 109 as the firmware).
 - Rollout length: at most ``MAX_ROLLOUT_STEPS`` steps (663); the rollout is computed and written
   in blocks, so memory does not grow with the length.
@@ -23,8 +23,10 @@ from ..errors import (
 from .scales import (  # noqa: F401  (re-exported: every limit a command checks)
     GOAL_SCALE_MAX,
     MAX_ROLLOUT_STEPS,
+    PATH_SCALE_MAX,
     TIME_SCALE_MAX,
     TIME_SCALE_MIN,
+    check_path_scale,
     check_scales,
     check_steps,
 )

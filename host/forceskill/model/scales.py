@@ -1,4 +1,4 @@
-"""The goal and time scales a skill is executed at, and the length of a rollout: the ranges the
+"""The goal, time and path scales a skill is executed at, and the length of a rollout: the ranges the
 device's command encodes (1/1000 steps in 16 bits; code 109 as the firmware) and the rollout cap
 (663). Used by the DMP, the limits and every command."""
 
@@ -25,6 +25,18 @@ def check_scales(goal_scale: float, time_scale: float) -> None:
         raise ParamError(
             ERR_SCALE_INVALID,
             f"time scale must be finite and in [{TIME_SCALE_MIN:g}, {TIME_SCALE_MAX:g}]: {time_scale:g}",
+        )
+
+
+#: --path-scale (the y path of a skill with a y DMP, about its start): the goal scale's range
+PATH_SCALE_MAX = GOAL_SCALE_MAX
+
+
+def check_path_scale(path_scale: float) -> None:
+    """Path scale in [0, 65.535], finite (ParamError 109, as the device's scale check)."""
+    if not (math.isfinite(path_scale) and 0.0 <= path_scale <= PATH_SCALE_MAX):
+        raise ParamError(
+            ERR_SCALE_INVALID, f"path scale must be finite and in [0, {PATH_SCALE_MAX:g}]: {path_scale:g}"
         )
 
 

@@ -1,4 +1,8 @@
-"""Skill image v2 (docs/skill_format.md): bytes, validation and the JSON twin.
+"""Skill image v2/v3 (docs/skill_format.md): bytes, validation and the JSON twin.
+
+Version 3 adds the optional position DMP on y (start, goal and one weight per kernel, sharing the
+force DMP's phase and kernels); a skill without it is written as version 2, readable by every
+device that reads force-only skills.
 
 A skill is plain data (dmpbbo style): fitting produces it, the firmware parses and evaluates it.
 Validation runs the same checks, in the same order, with the same codes as ``skill_parse`` in
@@ -41,23 +45,29 @@ if TYPE_CHECKING:
     from ..outputs import Outputs
 
 MAGIC = 0x4C4B5346  # bytes "FSKL"
-FORMAT_VERSION = 2
-HEADER_SIZE = 136
+FORMAT_VERSION = 3
+#: the oldest version this reads (v1 stored metres and stiffness-dependent gains)
+FORMAT_VERSION_MIN = 2
+HEADER_SIZE_V2 = 136
+HEADER_SIZE = 152  # version 3: the v2 header, then y_start_m and goal_y_m
 CRC_SIZE = 4
 MAX_KERNELS = 1024  # DMP_MAX_KERNELS
 FLAG_END_RELEASE = 0x0001
-FLAG_Y_AXIS = 0x0002  # reserved, refused
-KNOWN_FLAGS = FLAG_END_RELEASE
+FLAG_Y_AXIS = 0x0002  # version 3: the position DMP on y is present (refused in version 2)
+KNOWN_FLAGS = {2: FLAG_END_RELEASE, 3: FLAG_END_RELEASE | FLAG_Y_AXIS}
 RELEASE_TIME_S = 0.5
 GAINS_REL_TOL = 1e-9  # stored alpha/beta/gamma vs derived from stored gains
 DT_MAX_S = 0.1
 DURATION_MAX_S = 3600.0
 
-# magic u32, version u16, header_size u16, total_length u32, n u16, flags u16, then 15 f64
-_HEADER = struct.Struct("<IHHIHH15d")
+# magic u32, version u16, header_size u16, total_length u32, n u16, flags u16, then 15 f64 (v2)
+# or 17 f64 (v3)
+_HEADER_V2 = struct.Struct("<IHHIHH15d")
+_HEADER_V3 = struct.Struct("<IHHIHH17d")
+_HEADERS = {2: _HEADER_V2, 3: _HEADER_V3}
 #: the fixed part every version shares (magic, version): enough to name an old image's version
 _PREFIX = struct.Struct("<IH")
-assert _HEADER.size == HEADER_SIZE
+assert _HEADER_V2.size == HEADER_SIZE_V2 and _HEADER_V3.size == HEADER_SIZE
 _F64_NAMES = (
     "dt_s",
     "tau_s",
@@ -75,13 +85,35 @@ _F64_NAMES = (
     "surface_m",
     "force0_N",
 )
+#: the version-3 header's two more fields (the y half; 0 in a force-only v3 image)
+_F64_NAMES_Y = ("y_start_m", "goal_y_m")
 
 PathLike = str | Path
 
 
-def image_size(n_kernels: int) -> int:
-    """Total image length in bytes for N kernels: 136 + 24 N + 4."""
-    return HEADER_SIZE + 24 * n_kernels + CRC_SIZE
+def image_size(n_kernels: int, version: int = 2, has_y: bool = False) -> int:
+    """Total image length in bytes for N kernels: v2 136 + 24 N + 4; v3 152 + 24 N (+ 8 N with
+    the y DMP) + 4."""
+    if version == 2:
+        return HEADER_SIZE_V2 + 24 * n_kernels + CRC_SIZE
+    return HEADER_SIZE + (32 if has_y else 24) * n_kernels + CRC_SIZE
+
+
+def derive_beta_y(gains: Gains) -> float:
+    """beta of the position DMP on y (the law with k_f = k_i = 0): k_p/(m_d*alpha) - 1; the same
+    alpha, gamma = 0. Raises ParamError (1xx) for gains derive refuses, 104/105 for beta_y."""
+    from ..errors import ERR_BETA_NONPOSITIVE, ERR_PHASE_NOT_MONOTONE
+
+    alpha = derive(gains).alpha
+    beta_y = gains.k_p_Npm / (gains.m_d_kg * alpha) - 1.0
+    if not beta_y > 0.0:
+        raise ParamError(ERR_BETA_NONPOSITIVE, f"y DMP beta = k_p/(m_d*alpha) - 1 must be > 0: {beta_y:g}")
+    if beta_y > 0.25 * alpha * (1.0 + MONOTONE_REL_TOL):
+        raise ParamError(
+            ERR_PHASE_NOT_MONOTONE,
+            f"y DMP beta must be <= alpha/4: beta_y = {beta_y:g}, alpha/4 = {0.25 * alpha:g}",
+        )
+    return beta_y
 
 
 @dataclass
@@ -107,12 +139,22 @@ class Skill:
     weights: np.ndarray
     force0_N: float = 0.0
     flags: int = 0
-    format_version: int = field(default=FORMAT_VERSION)
+    format_version: int = field(default=0)
+    #: the position DMP on y (version 3, flags bit 1): y_hat = y_start + p, p its state (m),
+    #: goal_y_m its goal, y_weights in m (h_y = v~*S_y(u~)); None: a force-only skill
+    y_start_m: float = 0.0
+    goal_y_m: float = 0.0
+    y_weights: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         self.centres = np.ascontiguousarray(self.centres, dtype=np.float64).reshape(-1)
         self.widths = np.ascontiguousarray(self.widths, dtype=np.float64).reshape(-1)
         self.weights = np.ascontiguousarray(self.weights, dtype=np.float64).reshape(-1)
+        if self.y_weights is not None:
+            self.y_weights = np.ascontiguousarray(self.y_weights, dtype=np.float64).reshape(-1)
+            self.flags |= FLAG_Y_AXIS
+        if self.format_version == 0:  # written as v2 unless it needs v3
+            self.format_version = 3 if self.y_weights is not None else 2
 
     # -- derived views ---------------------------------------------------------------------
     @property
@@ -125,6 +167,16 @@ class Skill:
         return "release" if self.flags & FLAG_END_RELEASE else "hold"
 
     @property
+    def has_y(self) -> bool:
+        """True if the skill carries the position DMP on y."""
+        return self.y_weights is not None
+
+    @property
+    def beta_y(self) -> float:
+        """beta of the y DMP, derived from the stored gains (alpha and gamma = 0 as said)."""
+        return self.k_p_Npm / (self.m_d_kg * self.alpha) - 1.0
+
+    @property
     def gains(self) -> Gains:
         return Gains(self.m_d_kg, self.k_d_Nspm, self.k_p_Npm, self.kkf_Npm, self.kki_Npms)
 
@@ -134,27 +186,34 @@ class Skill:
 
     # -- bytes -----------------------------------------------------------------------------
     def to_bytes(self, validate: bool = True) -> bytes:
-        """The v2 image (little-endian, CRC-32 last). Validates first unless told not to."""
+        """The image (v2 for a force-only skill, v3 with the y DMP; little-endian, CRC-32 last).
+        Validates first unless told not to."""
         n = self.n_kernels
-        if not (self.widths.size == n and self.weights.size == n):
+        yw = self.y_weights
+        if not (self.widths.size == n and self.weights.size == n and (yw is None or yw.size == n)):
             raise SkillError(
                 ERR_SKILL_LENGTH,
-                f"centres/widths/weights lengths differ: {n}/{self.widths.size}/{self.weights.size}",
+                f"centres/widths/weights/y_weights lengths differ: {n}/{self.widths.size}/"
+                f"{self.weights.size}/{n if yw is None else yw.size}",
             )
-        head = _HEADER.pack(
+        version = self.format_version
+        header = _HEADERS.get(version, _HEADER_V3)
+        names = _F64_NAMES + (_F64_NAMES_Y if header is _HEADER_V3 else ())
+        head = header.pack(
             MAGIC,
-            self.format_version,
-            HEADER_SIZE,
-            image_size(n),
+            version,
+            header.size,
+            image_size(n, 2 if header is _HEADER_V2 else 3, yw is not None),
             n,
             self.flags,
-            *(float(getattr(self, k)) for k in _F64_NAMES),
+            *(float(getattr(self, k)) for k in names),
         )
         body = (
             head
             + self.centres.astype("<f8").tobytes()
             + self.widths.astype("<f8").tobytes()
             + self.weights.astype("<f8").tobytes()
+            + (b"" if yw is None else yw.astype("<f8").tobytes())
         )
         image = body + struct.pack("<I", zlib.crc32(body) & 0xFFFFFFFF)
         if validate:
@@ -163,44 +222,49 @@ class Skill:
 
     @staticmethod
     def from_bytes(buf: bytes) -> Skill:
-        """Parse and validate an image; raises SkillError with the firmware's code (200-211)."""
+        """Parse and validate an image (v2 or v3); raises SkillError with the firmware's code
+        (200-211)."""
         buf = bytes(buf)
         if len(buf) < _PREFIX.size:
             raise SkillError(
-                ERR_SKILL_TOO_SHORT, f"skill image too short: {len(buf)} bytes, header is {HEADER_SIZE}"
+                ERR_SKILL_TOO_SHORT, f"skill image too short: {len(buf)} bytes, header is {HEADER_SIZE_V2}"
             )
         magic, version = _PREFIX.unpack_from(buf, 0)
         if magic != MAGIC:
             raise SkillError(
                 ERR_SKILL_MAGIC, f"skill image magic is 0x{magic:08X}, expected 0x{MAGIC:08X} ('FSKL')"
             )
-        if version != FORMAT_VERSION:
+        if not FORMAT_VERSION_MIN <= version <= FORMAT_VERSION:
             hint = (
                 " (fitted before skills ran in force units: fit the demonstration again)"
-                if version < FORMAT_VERSION
+                if version < FORMAT_VERSION_MIN
                 else ""
             )
             raise SkillError(
                 ERR_SKILL_VERSION,
                 f"skill image format version {version} is not supported: this "
-                f"reads version {FORMAT_VERSION}{hint}",
+                f"reads versions {FORMAT_VERSION_MIN} and {FORMAT_VERSION}{hint}",
             )
-        if len(buf) < HEADER_SIZE:
+        header = _HEADERS[version]
+        if len(buf) < header.size:
             raise SkillError(
-                ERR_SKILL_TOO_SHORT, f"skill image too short: {len(buf)} bytes, header is {HEADER_SIZE}"
+                ERR_SKILL_TOO_SHORT, f"skill image too short: {len(buf)} bytes, header is {header.size}"
             )
-        fields = _HEADER.unpack_from(buf, 0)
+        fields = header.unpack_from(buf, 0)
         _, _, header_size, total_length, n, flags = fields[:6]
-        f64 = dict(zip(_F64_NAMES, fields[6:], strict=True))
-        if header_size != HEADER_SIZE:
+        names = _F64_NAMES + (_F64_NAMES_Y if version == 3 else ())
+        f64 = dict(zip(names, fields[6:], strict=True))
+        if header_size != header.size:
             raise SkillError(
-                ERR_SKILL_HEADER_SIZE, f"skill header_size is {header_size}, expected {HEADER_SIZE}"
+                ERR_SKILL_HEADER_SIZE, f"skill header_size is {header_size}, expected {header.size}"
             )
-        if total_length != len(buf) or total_length != image_size(n):
+        has_y = version == 3 and bool(flags & FLAG_Y_AXIS)
+        size = image_size(n, version, has_y)
+        if total_length != len(buf) or total_length != size:
             raise SkillError(
                 ERR_SKILL_LENGTH,
                 f"skill length field {total_length} disagrees with buffer "
-                f"({len(buf)} bytes) or with N = {n} ({image_size(n)} bytes)",
+                f"({len(buf)} bytes) or with N = {n} ({size} bytes)",
             )
         body_len = total_length - CRC_SIZE
         (stored_crc,) = struct.unpack_from("<I", buf, body_len)
@@ -211,12 +275,17 @@ class Skill:
             )
         if not 1 <= n <= MAX_KERNELS:
             raise SkillError(ERR_SKILL_KERNELS, f"skill kernel count {n} outside 1..{MAX_KERNELS}")
-        arrays = np.frombuffer(buf, dtype="<f8", count=3 * n, offset=HEADER_SIZE).astype(np.float64)
-        centres, widths, weights = arrays[:n].copy(), arrays[n : 2 * n].copy(), arrays[2 * n :].copy()
+        n_arr = 4 if has_y else 3
+        arrays = np.frombuffer(buf, dtype="<f8", count=n_arr * n, offset=header.size).astype(np.float64)
+        centres, widths, weights = arrays[:n].copy(), arrays[n : 2 * n].copy(), arrays[2 * n : 3 * n].copy()
+        y_weights = arrays[3 * n :].copy() if has_y else None
         for name, val in f64.items():
             if not math.isfinite(val):
                 raise SkillError(ERR_SKILL_NOT_FINITE, f"skill field {name} is not finite: {val}")
-        for name, arr in (("centres", centres), ("widths", widths), ("weights", weights)):
+        named = [("centres", centres), ("widths", widths), ("weights", weights)]
+        if y_weights is not None:
+            named.append(("y_weights", y_weights))
+        for name, arr in named:
             bad = np.flatnonzero(~np.isfinite(arr))
             if bad.size:
                 raise SkillError(
@@ -224,7 +293,13 @@ class Skill:
                 )
         kw: dict[str, Any] = dict(f64)
         skill = Skill(
-            centres=centres, widths=widths, weights=weights, flags=flags, format_version=version, **kw
+            centres=centres,
+            widths=widths,
+            weights=weights,
+            flags=flags,
+            format_version=version,
+            y_weights=y_weights,
+            **kw,
         )
         skill._validate_values()
         return skill
@@ -275,11 +350,20 @@ class Skill:
                 )
         if self.beta > 0.25 * self.alpha * (1.0 + MONOTONE_REL_TOL):
             raise SkillError(ERR_SKILL_GAINS, f"skill beta = {self.beta!r} > alpha/4 = {0.25 * self.alpha!r}")
-        if self.flags & ~KNOWN_FLAGS & 0xFFFF:
+        if self.has_y:
+            beta_y = self.beta_y
+            if not (0.0 < beta_y <= 0.25 * self.alpha * (1.0 + MONOTONE_REL_TOL)):
+                raise SkillError(
+                    ERR_SKILL_GAINS,
+                    f"skill y DMP beta = k_p/(m_d*alpha) - 1 = {beta_y!r} outside (0, alpha/4 = "
+                    f"{0.25 * self.alpha!r}]",
+                )
+        known = KNOWN_FLAGS.get(self.format_version, FLAG_END_RELEASE)
+        if self.flags & ~known & 0xFFFF:
             raise SkillError(
                 ERR_SKILL_UNSUPPORTED,
                 f"skill flags 0x{self.flags:04X} carry unsupported bits "
-                f"0x{self.flags & ~KNOWN_FLAGS & 0xFFFF:04X}",
+                f"0x{self.flags & ~known & 0xFFFF:04X} (format version {self.format_version})",
             )
 
     # -- JSON twin -------------------------------------------------------------------------
@@ -297,10 +381,14 @@ class Skill:
         d["centres"] = [float(x) for x in self.centres]
         d["widths"] = [float(x) for x in self.widths]
         d["weights"] = [float(x) for x in self.weights]
-        d["image_bytes"] = image_size(self.n_kernels)
-        d["crc32"] = (
-            f"0x{struct.unpack_from('<I', self.to_bytes(validate=False), image_size(self.n_kernels) - 4)[0]:08X}"
-        )
+        if self.format_version >= 3:
+            for k in _F64_NAMES_Y:
+                d[k] = float(getattr(self, k))
+        if self.y_weights is not None:
+            d["y_weights"] = [float(x) for x in self.y_weights]
+        image = self.to_bytes(validate=False)
+        d["image_bytes"] = len(image)
+        d["crc32"] = f"0x{struct.unpack_from('<I', image, len(image) - 4)[0]:08X}"
         return d
 
     def to_json(self) -> str:
@@ -310,11 +398,15 @@ class Skill:
     def from_json_dict(d: dict[str, Any]) -> Skill:
         """Rebuild from the JSON twin (validated like an image)."""
         kw: dict[str, Any] = {k: float(d[k]) for k in _F64_NAMES}
+        kw.update({k: float(d[k]) for k in _F64_NAMES_Y if k in d})
+        yw = d.get("y_weights")
         s = Skill(
             centres=np.array(d["centres"], dtype=float),
             widths=np.array(d["widths"], dtype=float),
             weights=np.array(d["weights"], dtype=float),
             flags=int(d["flags"]),
+            format_version=int(d.get("format_version", 0)),
+            y_weights=None if yw is None else np.array(yw, dtype=float),
             **kw,
         )
         return Skill.from_bytes(s.to_bytes(validate=False))

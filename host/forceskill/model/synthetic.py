@@ -76,3 +76,30 @@ def engraving(
     if noise_N > 0.0:
         f = f + rng.normal(0.0, noise_N, f.size)
     return Demo(t, x, f, f"synthetic engraving seed={seed} k_v={k_v:g}")
+
+
+def wiping(
+    seed: int = 0,
+    duration_s: float = 8.0,
+    k_v: float = 100.0,
+    f_max_N: float = 6.0,
+    path_m: float = 0.05,
+    dt_s: float = 0.001,
+) -> Demo:
+    """The engraving force profile with a path along y (paper Fig. 6: the operator moves along the
+    surface while varying the force): from y = 0, random waypoints in [-path_m/2, path_m] every
+    0.8-1.6 s reached over 0.6 s transitions (C1), back near the start before the release."""
+    d = engraving(seed, duration_s, k_v, f_max_N, dt_s)
+    rng = np.random.default_rng(seed + 1000)
+    t = d.t_s
+    y = np.zeros_like(t)
+    here = 0.0
+    tc = 0.4
+    t_end = duration_s - 1.0
+    while tc + 0.6 < t_end:
+        new = rng.uniform(-0.5, 1.0) * path_m
+        y = y + (new - here) * _smooth((t - tc) / 0.6)
+        here = new
+        tc += 0.6 + rng.uniform(0.2, 1.0)
+    y = y + (0.1 * path_m - here) * _smooth((t - t_end) / 0.6)
+    return Demo(t, d.pos_m, d.force_N, f"synthetic wiping seed={seed} k_v={k_v:g} path={path_m:g} m", y_m=y)

@@ -5,7 +5,9 @@ topic (``--topic``; without it the bag's only WrenchStamped topic). ``t`` is the
 stamp (the log time when the stamp is zero), relative to the first message. ``--pose-topic`` adds
 the position ``x``: the same axis of a geometry_msgs/PoseStamped (``pose.position``) or
 PointStamped (``point``) topic, interpolated at the force's times. Columns: ``t``, ``f_contact``
-(the force axis, so the default ``--learn contact`` picks it), ``x`` with a pose topic.
+(the force axis, so the default ``--learn contact`` picks it), ``x`` with a pose topic, and every
+axis of the pose as ``pose_x``, ``pose_y``, ``pose_z`` (``fit --y-column pose_y`` learns the path
+along y from it).
 """
 
 from __future__ import annotations
@@ -82,6 +84,7 @@ def read(path: Path, opts: ReadOptions) -> Columns:
                 )
         wanted = [topic] + ([opts.pose_topic] if opts.pose_topic else [])
         force_t, force, pose_t, pose = [], [], [], []
+        pose_xyz: list[tuple[float, float, float]] = []
         try:
             for _, channel, message, msg in reader.iter_decoded_messages(topics=wanted, log_time_order=True):
                 if channel.topic == topic:
@@ -93,6 +96,7 @@ def read(path: Path, opts: ReadOptions) -> Columns:
                         obj = getattr(obj, attr)
                     pose_t.append(_stamp_ns(msg, message.log_time))
                     pose.append(float(getattr(obj, opts.axis)))
+                    pose_xyz.append((float(obj.x), float(obj.y), float(obj.z)))
         except Exception as e:
             raise DemoError(ERR_DEMO_FORMAT, f"{path.name}: cannot decode {topic}: {e}") from None
     if len(force) < 2:
@@ -113,6 +117,9 @@ def read(path: Path, opts: ReadOptions) -> Columns:
         pt = (np.array(pose_t, dtype=np.int64) - t0_ns) * 1e-9
         po = np.argsort(pt, kind="stable")
         cols["x"] = np.interp(t, pt[po], np.array(pose)[po])
+        xyz = np.array(pose_xyz)[po]
+        for i, name in enumerate(("pose_x", "pose_y", "pose_z")):
+            cols[name] = np.interp(t, pt[po], xyz[:, i])
         notes[0] += f", position {opts.pose_topic} .{opts.axis} ({pt.size} messages, interpolated)"
     cols[NOTES_KEY] = np.array(notes, dtype=object)
     return cols

@@ -697,9 +697,9 @@ static void test_skill_validated_before_commit_and_run(void **state)
     const uint16_t n = app.slot_skill[0].dmp.n_kernels;
     for (uint16_t i = 0; i < n; i++) {
         double w;
-        memcpy(&w, &image_b[SKILL_HEADER_SIZE + 16u * n + 8u * i], 8);
+        memcpy(&w, &image_b[SKILL_HEADER_SIZE_V2 + 16u * n + 8u * i], 8);
         w *= 100.0;
-        memcpy(&image_b[SKILL_HEADER_SIZE + 16u * n + 8u * i], &w, 8);
+        memcpy(&image_b[SKILL_HEADER_SIZE_V2 + 16u * n + 8u * i], &w, 8);
     }
     uint32_t crc = skill_crc32(0u, image_b, len_a - 4u);
     memcpy(&image_b[len_a - 4u], &crc, 4);

@@ -156,14 +156,14 @@ void tu_fix_crc(uint8_t *b, uint32_t len)
 uint32_t tu_write_image(const tu_skill_desc_t *d, uint8_t *buf, uint32_t cap)
 {
     const uint32_t n = d->n_kernels;
-    const uint32_t len = SKILL_HEADER_SIZE + 24u * n + 4u;
+    const uint32_t len = SKILL_HEADER_SIZE_V2 + 24u * n + 4u;
     if (len > cap) {
         return 0;
     }
     memset(buf, 0, len);
     tu_put_u32(buf, 0, 0x4C4B5346u);
-    tu_put_u16(buf, 4, SKILL_FORMAT_VERSION);
-    tu_put_u16(buf, 6, SKILL_HEADER_SIZE);
+    tu_put_u16(buf, 4, 2u);
+    tu_put_u16(buf, 6, SKILL_HEADER_SIZE_V2);
     tu_put_u32(buf, 8, len);
     tu_put_u16(buf, 12, (uint16_t)n);
     tu_put_u16(buf, 14, d->flags);
@@ -173,7 +173,7 @@ uint32_t tu_write_image(const tu_skill_desc_t *d, uint8_t *buf, uint32_t cap)
     for (uint32_t i = 0; i < 15; i++) {
         tu_put_f64(buf, 16 + 8 * i, hdr[i]);
     }
-    const uint32_t h = SKILL_HEADER_SIZE;
+    const uint32_t h = SKILL_HEADER_SIZE_V2;
     for (uint32_t i = 0; i < n; i++) {
         tu_put_f64(buf, h + 8 * i, d->centre[i]);
         tu_put_f64(buf, h + 8 * n + 8 * i, d->width[i]);

@@ -13,7 +13,7 @@
 #include "core_test_util.h"
 #include "skill.h"
 
-#define H SKILL_HEADER_SIZE
+#define H SKILL_HEADER_SIZE_V2
 #define CAP (H + 24u * 1100u + 4u)
 
 static tu_skill_desc_t desc;
@@ -144,9 +144,12 @@ static void test_reject_structure(void **state)
     tu_fix_crc(img, len);
     expect("version 1 (metres, k-dependent gains)", len, FS_ERR_SKILL_VERSION);
     expect("version 1, a v1-sized buffer", H - 8u, FS_ERR_SKILL_VERSION);
+    tu_put_u16(img, 4, 4);
+    tu_fix_crc(img, len);
+    expect("version 4", len, FS_ERR_SKILL_VERSION);
     tu_put_u16(img, 4, 3);
     tu_fix_crc(img, len);
-    expect("version 3", len, FS_ERR_SKILL_VERSION);
+    expect("version 3 with the v2 header size", len, FS_ERR_SKILL_HEADER_SIZE);
     tu_put_u16(img, 4, 0);
     tu_fix_crc(img, len);
     expect("version 0", len, FS_ERR_SKILL_VERSION);

@@ -21,7 +21,7 @@
 #define PEAK_REL_TOL 1e-9
 #endif
 
-static uint8_t image[8192];
+static uint8_t image[16384];
 static skill_t skill;
 
 static void load_skill(const char *name)
@@ -158,6 +158,50 @@ static void test_run_scales(void **state)
                                       FS_R(50.0)), FS_ERR_SCALE_INVALID);
 }
 
+/* The y half: the path extent of the check equals max|y_hat - y_start| of the Python rollout
+ * (wipe_n50_ridge_release_g1_t1_p1.csv); a y range below it refuses the skill (225); the run's
+ * path scale is refused beyond the range (226); a y weight beyond the device's range: 225. */
+static void test_y_path(void **state)
+{
+    (void)state;
+    load_skill("wipe_n50_ridge_release");
+    assert_int_equal(skill.dmp.has_y, 1u);
+    char path[512];
+    snprintf(path, sizeof path, "%s/wipe_n50_ridge_release_g1_t1_p1.csv", FS_VECTORS_DIR);
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    char line[256];
+    assert_non_null(fgets(line, sizeof line, f));
+    double ext = 0.0;
+    const double y0 = (double)skill.dmp.y_start_m;
+    while (fgets(line, sizeof line, f) != NULL) {
+        double t = 0.0, v = 0.0, y = 0.0;
+        assert_int_equal(sscanf(line, "%lf,%lf,%lf", &t, &v, &y), 3);
+        ext = fmax(ext, fabs(y - y0));
+    }
+    fclose(f);
+    skchk_t c;
+    assert_int_equal(skchk_params(&skill), FS_OK);
+    skchk_begin(&c, &skill, FS_R(0.001), FS_R(50.0));
+    while (!skchk_run(&c, 100u)) {
+    }
+    assert_int_equal(c.status, FS_OK);
+    printf("path extent %.9f m, reference %.9f m\n", (double)c.path_peak_m, ext);
+    assert_true(fabs((double)c.path_peak_m - ext) <= PEAK_REL_TOL * ext);
+    skchk_begin(&c, &skill, FS_R(0.001), FS_R(50.0));
+    c.path_max_m = (fs_real_t)(0.5 * ext);
+    while (!skchk_run(&c, 100u)) {
+    }
+    assert_int_equal(c.status, FS_ERR_SKCHK_PATH);
+    const fs_real_t pk = (fs_real_t)ext;
+    assert_int_equal(skchk_run_path(&skill, pk, FS_R(2.0), (fs_real_t)(2.0 * ext * 1.001)), FS_OK);
+    assert_int_equal(skchk_run_path(&skill, pk, FS_R(2.0), (fs_real_t)(1.99 * ext)),
+                     FS_ERR_SKCHK_PATH_SCALE);
+    assert_int_equal(skchk_run_path(&skill, pk, FS_R(-1.0), FS_R(1.0)), FS_ERR_SKCHK_PATH_SCALE);
+    skill.dmp.y_weight[3] = (fs_real_t)(2.0 * SKCHK_WEIGHT_MAX);
+    assert_int_equal(skchk_params(&skill), FS_ERR_SKCHK_PATH);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -165,6 +209,7 @@ int main(void)
         cmocka_unit_test(test_hostile_skills_refused),
         cmocka_unit_test(test_incremental_equals_one_shot),
         cmocka_unit_test(test_run_scales),
+        cmocka_unit_test(test_y_path),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -3,6 +3,10 @@
  *                    to tests/vectors, '#' comments): parse the image, roll it out as
  *                    docs/math.md section 2 says, compare with the CSV ("t,f_hat" header) within
  *                    1e-6 of max|f| (double build) or 1e-4 (float build);
+ *  manifest_y.txt    lines "<skill> <goal_scale> <time_scale> <path_scale> <csv>": skills with
+ *                    the y DMP, rolled out by dmp_step_xy (one step of both DMPs), compared
+ *                    with "t,f_hat,y_hat" within the same tolerances (y_hat = y_start + p, error
+ *                    relative to max|p|, the path's extent from its start);
  *  bad/manifest.txt  lines "<file> <expected code>" (paths relative to tests/vectors/bad):
  *                    skill_parse must return exactly that code.
  * A missing manifest is a failure, not a skip. FS_VECTORS_DIR comes from CMake. */
@@ -144,36 +148,125 @@ static double check_rollout(const char *dir, const char *skill_file, double goal
     return rel;
 }
 
-static void test_golden_rollouts(void **state)
+/* Every line of the manifest `name` in tests/vectors with exactly n_fields fields through
+ * check (blank and comment lines skipped, a malformed line fails); returns the worst value check
+ * returned, *count the number of lines. */
+static double for_each_manifest_line(const char *name, int n_fields,
+                                     double (*check)(const char *dir, char *const *fld),
+                                     int *count)
 {
-    (void)state;
-    const char *dir = FS_VECTORS_DIR;
     char path[1024];
-    snprintf(path, sizeof(path), "%s/manifest.txt", dir);
+    snprintf(path, sizeof(path), "%s/%s", FS_VECTORS_DIR, name);
     FILE *m = fopen(path, "r");
     if (m == NULL) {
         fail_msg("missing %s (the Python side writes the golden vectors)", path);
     }
     char line[1024];
-    int count = 0;
     double worst = 0.0;
+    *count = 0;
     while (fgets(line, sizeof(line), m) != NULL) {
-        char *fld[4];
-        const int n = split(line, fld, 4);
+        char *fld[5];
+        const int n = split(line, fld, n_fields);
         if (n == 0) {
             continue;
         }
-        if (n != 4) {
+        if (n != n_fields) {
             fclose(m);
             fail_msg("%s: malformed line (%d fields)", path, n);
         }
-        worst = fmax(worst, check_rollout(dir, fld[0], strtod(fld[1], NULL),
-                                          strtod(fld[2], NULL), fld[3]));
-        count++;
+        worst = fmax(worst, check(FS_VECTORS_DIR, fld));
+        (*count)++;
     }
     fclose(m);
+    return worst;
+}
+
+static double check_rollout_line(const char *dir, char *const *fld)
+{
+    return check_rollout(dir, fld[0], strtod(fld[1], NULL), strtod(fld[2], NULL), fld[3]);
+}
+
+static void test_golden_rollouts(void **state)
+{
+    (void)state;
+    int count = 0;
+    const double worst = for_each_manifest_line("manifest.txt", 4, check_rollout_line, &count);
     printf("[%s] %d golden rollouts, worst error %.3g of max|f| (tolerance %.0g)\n", BUILD_NAME,
            count, worst, REL_TOL);
+    assert_true(count > 0);
+}
+
+/* One manifest_y line: the force and the path of dmp_step_xy against the CSV; returns the worst
+ * of the two relative errors. */
+static double check_rollout_xy(const char *dir, char *const *fld)
+{
+    char path[1024];
+    const double gs = strtod(fld[1], NULL);
+    const double ts = strtod(fld[2], NULL);
+    const double ps = strtod(fld[3], NULL);
+    snprintf(path, sizeof(path), "%s/%s", dir, fld[0]);
+    const long len = read_file(path, image, MAX_IMAGE);
+    if (len < 0 || skill_parse(image, (uint32_t)len, &sk) != FS_OK || sk.dmp.has_y != 1u) {
+        fail_msg("%s: not a skill with a y DMP (%s)", path, BUILD_NAME);
+    }
+    snprintf(path, sizeof(path), "%s/%s", dir, fld[4]);
+    FILE *f = fopen(path, "r");
+    if (f == NULL) {
+        fail_msg("cannot read rollout %s", path);
+    }
+    char line[256];
+    if (fgets(line, sizeof(line), f) == NULL || strncmp(line, "t,f_hat,y_hat", 13) != 0) {
+        fclose(f);
+        fail_msg("%s: header is not 't,f_hat,y_hat'", path);
+    }
+    const dmp_run_t run = {(fs_real_t)gs, (fs_real_t)ts};
+    const long n_steps = lround((double)sk.dmp.duration_s * ts / (double)sk.dmp.dt_s);
+    dmp_state_t s;
+    dmp_state_reset(&s);
+    long row = 0;
+    double ef = 0.0, fm = 0.0, ey = 0.0, pm = 0.0;
+    const double y0 = (double)sk.dmp.y_start_m;
+    while (fgets(line, sizeof(line), f) != NULL) {
+        char *end = NULL;
+        (void)strtod(line, &end);
+        char *end2 = NULL;
+        const double f_ref = strtod(end + 1, &end2);
+        const double y_ref = strtod(end2 + 1, NULL);
+        double f_c = (double)sk.dmp.force0_N;
+        double p_c = 0.0;
+        if (row > 0) {
+            fs_real_t p = FS_R(0.0);
+            f_c = (double)dmp_step_xy(&sk.dmp, &s, &run, NULL, (fs_real_t)ps, &p);
+            p_c = (double)p;
+        }
+        ef = fmax(ef, fabs(f_c - f_ref));
+        fm = fmax(fm, fabs(f_ref));
+        ey = fmax(ey, fabs((y0 + p_c) - y_ref));
+        pm = fmax(pm, fabs(y_ref - y0));
+        row++;
+    }
+    fclose(f);
+    if (row != n_steps + 1) {
+        fail_msg("%s: %ld rows, expected %ld", path, row, n_steps + 1);
+    }
+    assert_true(fm > 0.0 && pm > 0.0);
+    printf("[%s] %s gs=%g ts=%g ps=%g: max err force %.3g of max|f|, path %.3g of max|p| "
+           "(%.3g um)\n",
+           BUILD_NAME, fld[0], gs, ts, ps, ef / fm, ey / pm, ey * 1e6);
+    if (!(ef / fm <= REL_TOL) || !(ey / pm <= REL_TOL)) {
+        fail_msg("%s (%s): force %.3g, path %.3g exceed %.1g", fld[4], BUILD_NAME, ef / fm,
+                 ey / pm, REL_TOL);
+    }
+    return fmax(ef / fm, ey / pm);
+}
+
+static void test_golden_rollouts_y(void **state)
+{
+    (void)state;
+    int count = 0;
+    const double worst = for_each_manifest_line("manifest_y.txt", 5, check_rollout_xy, &count);
+    printf("[%s] %d golden rollouts with a y DMP, worst error %.3g (tolerance %.0g)\n",
+           BUILD_NAME, count, worst, REL_TOL);
     assert_true(count > 0);
 }
 
@@ -225,6 +318,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_golden_rollouts),
+        cmocka_unit_test(test_golden_rollouts_y),
         cmocka_unit_test(test_golden_bad_images),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -132,6 +132,79 @@ static void test_golden_vectors(void **state)
            100.0 * worst);
 }
 
+static double y_ref[MAX_ROWS + 1];
+static double y_fx[MAX_ROWS + 1];
+
+/* The skills with a y DMP (manifest_y.txt): dmpfx_step_xy against the Python rollout of both
+ * halves (force and y_hat = y_start + p), the same tolerance relative to max|f| and max|p|. */
+static void test_golden_vectors_y(void **state)
+{
+    (void)state;
+    char mpath[512];
+    snprintf(mpath, sizeof(mpath), "%s/manifest_y.txt", FS_VECTORS_DIR);
+    FILE *mf = fopen(mpath, "r");
+    assert_non_null(mf);
+    char sk[256];
+    char csv[256];
+    double gs;
+    double ts;
+    double ps;
+    int lines = 0;
+    while (fscanf(mf, "%255s %lf %lf %lf %255s", sk, &gs, &ts, &ps, csv) == 5) {
+        const uint32_t len = read_file(sk, image, sizeof(image));
+        assert_int_equal(skill_parse(image, len, &skill), FS_OK);
+        assert_int_equal(skill.dmp.has_y, 1u);
+        assert_int_equal(dmpfx_from_model(&skill.dmp, &fxm), FS_OK);
+        const long rows = lround(skill.dmp.duration_s * ts / skill.dmp.dt_s);
+        assert_true(rows <= MAX_ROWS);
+        dmpfx_run_t run;
+        assert_int_equal(dmpfx_run_init(&fxm, gs, ts, &run), FS_OK);
+        assert_int_equal(dmpfx_run_path(&fxm, ps, &run), FS_OK);
+        dmpfx_state_t s;
+        dmpfx_state_reset(&s);
+        const double y0 = (double)skill.dmp.y_start_m;
+        f_fx[0] = fx_to_double(fxm.force0_q16, 16u);
+        y_fx[0] = y0;
+        for (long i = 1; i <= rows; i++) {
+            int32_t p = 0;
+            f_fx[i] = fx_to_double(dmpfx_step_xy(&fxm, &run, &s, NULL, &p), 16u);
+            y_fx[i] = y0 + fx_to_double(p, 24u);
+        }
+        assert_int_equal(s.sat_events, 0u);
+        char cpath[512];
+        snprintf(cpath, sizeof(cpath), "%s/%s", FS_VECTORS_DIR, csv);
+        FILE *cf = fopen(cpath, "r");
+        assert_non_null(cf);
+        char line[128];
+        assert_non_null(fgets(line, sizeof(line), cf)); /* header t,f_hat,y_hat */
+        long n = 0;
+        double t;
+        double f;
+        double y;
+        while (fscanf(cf, "%lf,%lf,%lf", &t, &f, &y) == 3) {
+            assert_true(n <= rows);
+            f_ref[n] = f;
+            y_ref[n++] = y;
+        }
+        fclose(cf);
+        assert_int_equal(n, rows + 1);
+        double e_y = 0.0;
+        double p_max = 0.0;
+        for (long i = 0; i <= rows; i++) {
+            e_y = fmax(e_y, fabs(y_fx[i] - y_ref[i]));
+            p_max = fmax(p_max, fabs(y_ref[i] - y0));
+        }
+        const double e_f = rel_err(f_fx, f_ref, rows);
+        printf("fixed vs python  %-28s g=%-3g t=%-3g p=%-3g  force %.4f %%  path %.4f %% (%.3g um)\n",
+               sk, gs, ts, ps, 100.0 * e_f, 100.0 * e_y / p_max, 1e6 * e_y);
+        assert_true(e_f <= FIXED_TOL_REL);
+        assert_true(e_y / p_max <= FIXED_TOL_REL);
+        lines++;
+    }
+    fclose(mf);
+    assert_true(lines >= 3);
+}
+
 /* A long (17 s) synthetic skill with the default fit's kernel layout, goal 1x and 1.5x. */
 static void test_long_skill(void **state)
 {
@@ -331,7 +404,8 @@ static void test_saturation_never_wraps(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_golden_vectors), cmocka_unit_test(test_long_skill),
+        cmocka_unit_test(test_golden_vectors), cmocka_unit_test(test_golden_vectors_y),
+        cmocka_unit_test(test_long_skill),
         cmocka_unit_test(test_blend),          cmocka_unit_test(test_rejects),
         cmocka_unit_test(test_coupling),       cmocka_unit_test(test_saturation_never_wraps),
     };

@@ -296,3 +296,38 @@ def test_resampling_a_500_hz_log(tmp_path: Path) -> None:
 def test_demo_error_is_one_line_with_code() -> None:
     e = DemoError(603, "demonstration too short:\n  3 samples")
     assert str(e) == "demonstration too short: 3 samples" and e.code == 603
+
+
+def test_fit_y_column_rollout_and_show_the_path(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    d = synthetic.wiping(seed=5, duration_s=4.0, k_v=280.0, f_max_N=8.0, path_m=0.04)
+    assert d.y_m is not None
+    csv = write_demo(tmp_path / "wipe.csv", d, y_path=d.y_m)
+    sk_path = tmp_path / "wipe.skill"
+    png = tmp_path / "wipe.png"
+    rc, out, err = run(
+        ["fit", str(csv), "-k", "280", "--y-column", "y_path", "-o", str(sk_path), "--plot", str(png)], capsys
+    )
+    assert rc == 0, err
+    assert "y path (y_path): start 0 m" in out and "approximation error max" in out
+    sk = Skill.read(sk_path)
+    assert sk.has_y and sk.format_version == 3
+    assert json.loads((tmp_path / "wipe.skill.json").read_text())["y_weights"] == [
+        float(w) for w in sk.y_weights
+    ]
+    roll = tmp_path / "roll.csv"
+    rc, out, err = run(["rollout", str(sk_path), "-o", str(roll), "--path-scale", "1.5"], capsys)
+    assert rc == 0, err
+    assert roll.read_text().split("\n", 1)[0] == "t,f_hat,y_hat"
+    data = np.loadtxt(roll, delimiter=",", skiprows=1)
+    _, y1 = dmp.rollout_path(sk)
+    assert np.max(np.abs(data[:, 2] - 1.5 * y1)) <= 1e-12
+    rc, out, err = run(["show", str(sk_path)], capsys)
+    assert rc == 0 and "position DMP on y" in out and "extent" in out
+    rc, out, err = run(
+        ["rollout", str(sk_path), "-o", str(tmp_path / "r2.csv"), "--path-scale", "-1"], capsys
+    )
+    assert rc == 2 and "path scale" in err and "[109]" in err and not (tmp_path / "r2.csv").exists()
+    rc, out, err = run(
+        ["fit", str(csv), "-k", "280", "--y-column", "nope", "-o", str(tmp_path / "n.skill")], capsys
+    )
+    assert rc == 2 and "'nope'" in err and not (tmp_path / "n.skill").exists()

@@ -207,3 +207,43 @@ def test_default_fit_at_n50_within_1_5_pct_over_seeds(kind: str) -> None:
         if seed == 0:
             assert fit(d, 200.0, n_kernels=16).err_max_pct > 2.0 * fit(d, 200.0).err_max_pct
     assert 0.05 < worst <= 1.5
+
+
+def test_the_y_path_is_learned_on_the_same_phase_and_kernels() -> None:
+    """The wiping demonstration's path: the y DMP's rollout (dmp.rollout_path, the literal loop)
+    reproduces it within 0.5 mm at N = 50 and 0.05 mm at N = 100; the force half is fitted as
+    without a path (same weights), and the learned path is the fit's own y_hat."""
+    d = synthetic.wiping(seed=5, duration_s=6.0, k_v=280.0, f_max_N=8.0, path_m=0.06)
+    plain = fit(Demo(d.t_s, d.pos_m, d.force_N), 280.0)
+    for n, tol_mm in ((50, 0.5), (100, 0.05)):
+        res = fit(d, 280.0, n_kernels=n)
+        sk = res.skill
+        assert sk.has_y and sk.format_version == 3 and sk.y_weights is not None
+        _, y = dmp.rollout_path(sk)
+        assert d.y_m is not None
+        err_mm = 1e3 * float(np.max(np.abs(y - d.y_m)))
+        assert err_mm <= tol_mm, (n, err_mm)
+        assert abs(err_mm - res.y_err_max_mm) <= 1e-6
+        if n == 50:
+            np.testing.assert_array_equal(sk.weights, plain.skill.weights)
+            assert sk.goal_N == plain.skill.goal_N
+
+
+def test_a_path_that_returns_to_its_start_is_learned() -> None:
+    """g_y = 0 (the path ends where it started): the forcing carries the whole path."""
+    d = synthetic.engraving(seed=4, duration_s=4.0, k_v=280.0, f_max_N=6.0)
+    y = 0.02 * np.sin(np.pi * d.t_s / d.t_s[-1]) ** 2
+    res = fit(Demo(d.t_s, d.pos_m, d.force_N, y_m=0.3 + y), 280.0)
+    assert abs(res.skill.goal_y_m) < 1e-12 and res.skill.y_start_m == 0.3
+    assert res.y_err_max_mm < 0.1
+
+
+def test_y_gains_that_overshoot_are_refused() -> None:
+    """beta_y = k_p/(m_d*alpha) - 1 > alpha/4 (105) refuses a demonstration with a path; the same
+    gains fit a force-only skill (the force DMP's beta stays within alpha/4)."""
+    d = synthetic.wiping(seed=5, duration_s=3.0, k_v=280.0)
+    g = Gains(k_p_Npm=1500.0, kki_Npms=Gains().kki_Npms + 340.0 * 9.0)
+    fit(Demo(d.t_s, d.pos_m, d.force_N), 280.0, gains=g)
+    with pytest.raises(ParamError) as e:
+        fit(d, 280.0, gains=g)
+    assert e.value.code == 105

@@ -36,7 +36,7 @@ def test_manifest_covers_the_brief() -> None:
     assert {s.end_policy for s in skills} == {"hold", "release"}
     assert {(g, t) for _, g, t, _ in m} == {(1.0, 1.0), (1.5, 1.0), (1.0, 1.3), (1.5, 1.3)}
     total = sum(p.stat().st_size for p in VECTORS.rglob("*") if p.is_file())
-    assert total < 2_000_000
+    assert total < 2_300_000
 
 
 @pytest.mark.parametrize("skill,gs,ts,csv", manifest())
@@ -93,10 +93,73 @@ def test_regenerated_skills_equal_the_files() -> None:
 
 def test_regenerated_bad_images_match_the_manifest() -> None:
     base = Skill.read(VECTORS / (generate.skill_name("press", 10, "ridge", "release") + ".skill"))
-    lines = [f"{n} {c}" for n, _, c in generate.bad_images(base)]
+    base_y = Skill.read(VECTORS / "wipe_n10_ridge_hold.skill")
+    bad = generate.bad_images(base) + generate.bad_images_y(base_y)
+    lines = [f"{n} {c}" for n, _, c in bad]
     assert lines == (VECTORS / "bad" / "manifest.txt").read_text().split("\n")[:-1]
-    for name, data, code in generate.bad_images(base):
+    for name, data, code in bad:
         assert data == (VECTORS / "bad" / name).read_bytes(), name
         with pytest.raises(SkillError) as e:
             Skill.from_bytes(data)
         assert e.value.code == code
+
+
+def manifest_y() -> list[tuple[str, float, float, float, str]]:
+    out = []
+    for ln in (VECTORS / "manifest_y.txt").read_text().split("\n"):
+        if ln.strip():
+            s, g, t, p, c = ln.split()
+            out.append((s, float(g), float(t), float(p), c))
+    return out
+
+
+def test_manifest_y_covers_both_halves_and_every_scale() -> None:
+    m = manifest_y()
+    skills = [Skill.read(VECTORS / s) for s, *_ in m]
+    assert all(s.has_y and s.format_version == 3 for s in skills)
+    assert {s.n_kernels for s in skills} == {10, 50}
+    assert any(g != 1.0 and t != 1.0 and p != 1.0 for _, g, t, p, _ in m)
+
+
+@pytest.mark.parametrize("skill,gs,ts,ps,csv", manifest_y())
+def test_y_rollout_of_each_image_reproduces_its_csv(
+    skill: str, gs: float, ts: float, ps: float, csv: str
+) -> None:
+    sk = Skill.read(VECTORS / skill)
+    t, f = dmp.rollout(sk, goal_scale=gs, time_scale=ts)
+    _, y = dmp.rollout_path(sk, time_scale=ts, path_scale=ps)
+    ref = np.loadtxt(VECTORS / csv, delimiter=",", skiprows=1)
+    assert (VECTORS / csv).read_text().split("\n", 1)[0] == "t,f_hat,y_hat"
+    assert ref.shape == (t.size, 3)
+    np.testing.assert_array_equal(ref[:, 0], t)
+    assert np.max(np.abs(ref[:, 1] - f)) <= 1e-12 * np.max(np.abs(f))
+    assert np.max(np.abs(ref[:, 2] - y)) <= 1e-12 * np.max(np.abs(y))
+
+
+def test_regenerated_y_skills_equal_the_files() -> None:
+    files, lines = generate.golden_y(generate.fitted_y_skills())
+    assert lines == (VECTORS / "manifest_y.txt").read_text().split("\n")[:-1]
+    for name, data in files.items():
+        if name.endswith(".skill"):
+            new, disk = Skill.from_bytes(data), Skill.read(VECTORS / name)
+            assert disk.y_weights is not None and new.y_weights is not None
+            np.testing.assert_allclose(
+                disk.y_weights, new.y_weights, rtol=1e-7, atol=1e-9 * np.max(np.abs(new.y_weights))
+            )
+            assert disk.goal_y_m == pytest.approx(new.goal_y_m, rel=1e-12)
+            assert disk.y_start_m == new.y_start_m
+
+
+def test_path_scale_scales_the_path_about_its_start_and_goal_scale_leaves_it() -> None:
+    sk = Skill.read(VECTORS / "wipe_n50_ridge_release.skill")
+    _, y1 = dmp.rollout_path(sk)
+    _, y2 = dmp.rollout_path(sk, path_scale=1.5)
+    p1, p2 = y1 - sk.y_start_m, y2 - sk.y_start_m
+    assert np.max(np.abs(p2 - 1.5 * p1)) <= 1e-12 * np.max(np.abs(p1))
+    _, f1 = dmp.rollout(sk)
+    _, f2 = dmp.rollout(sk, goal_scale=1.5)
+    assert np.max(np.abs((f2 - sk.force0_N) - 1.5 * (f1 - sk.force0_N))) <= 1e-9 * np.max(np.abs(f1))
+    # time scaling stretches both on the one phase: the end of the path is the same point
+    _, y13 = dmp.rollout_path(sk, time_scale=1.3)
+    assert y13.size == round(sk.duration_s * 1.3 / sk.dt_s) + 1
+    assert abs(y13[-1] - y1[-1]) < 2e-3 * np.ptp(y1)

@@ -377,6 +377,20 @@ def test_ros2_bag_wrench_and_pose(tmp_path: Path, capsys: pytest.CaptureFixture[
     assert np.all(load_demo(p, read=ReadOptions(axis="x"), stiffness_Npm=1e3).force_N == 1.5)
 
 
+def test_ros2_bag_pose_axis_is_the_y_path(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """The pose topic's y axis (column pose_y) is the path a skill learns with --y-column."""
+    pytest.importorskip("mcap_ros2")
+    rec = R.press(rate_hz=100)
+    y = 0.03 * np.sin(np.pi * (rec.t - rec.t[0]) / (rec.t[-1] - rec.t[0])) ** 2
+    p = R.write_bag(tmp_path / "wipe.mcap", rec, y_path=y)
+    d = load_demo(p, read=ReadOptions(axis="z", pose_topic="/pose"), y_column="pose_y")
+    assert d.y_m is not None
+    np.testing.assert_allclose(d.y_m, y, atol=2e-5)  # pose at half rate, interpolated
+    out, _ = fit_ok(p, capsys, "--axis", "z", "--pose-topic", "/pose", "--y-column", "pose_y")
+    assert "y path (pose_y): start 0 m" in out
+    assert float(out.split("approximation error max ")[1].split(" mm")[0]) < 0.5
+
+
 def test_ros2_bag_topic_errors(tmp_path: Path) -> None:
     pytest.importorskip("mcap_ros2")
     rec = R.press(rate_hz=50)
