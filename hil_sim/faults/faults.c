@@ -45,14 +45,18 @@ static int name_cmp(const void *a, const void *b)
     return strcmp(*(const char *const *)a, *(const char *const *)b);
 }
 
-int faults_cmd(int argc, char **argv)
+/* The options of `hil_sim faults`. */
+typedef struct {
+    const char *dir, *out_md, *out_json, *only;
+    uint64_t seed;
+    bool seed_set;
+    FILE *trace;
+} fopts_t;
+
+/* Parse argv into o; returns -1 to go on, else the exit status (0 after --help, 2 on errors). */
+static int parse_args(int argc, char **argv, fopts_t *o)
 {
-    const char *dir = HIL_SIM_FAULTS_DIR;
-    const char *out_md = NULL, *out_json = NULL, *only = NULL;
-    uint64_t seed = 1u;
-    bool seed_set = false;
-    FILE *trace = NULL;
-    for (int i = 0; i < argc; i++) {
+    for (int i = 0; i < argc; i += 2) {
         const char *a = argv[i];
         if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             fputs(FAULT_USAGE, stdout);
@@ -72,36 +76,39 @@ int faults_cmd(int argc, char **argv)
                 fprintf(stderr, "hil_sim faults: --seed needs an integer, got '%s'\n", v);
                 return 2;
             }
-            seed = (uint64_t)s;
-            seed_set = true;
+            o->seed = (uint64_t)s;
+            o->seed_set = true;
         } else if (strcmp(a, "--dir") == 0) {
-            dir = v;
+            o->dir = v;
         } else if (strcmp(a, "-o") == 0) {
-            out_md = v;
+            o->out_md = v;
         } else if (strcmp(a, "--json") == 0) {
-            out_json = v;
+            o->out_json = v;
         } else if (strcmp(a, "--only") == 0) {
-            only = v;
+            o->only = v;
         } else if (strcmp(a, "--trace") == 0) {
-            trace = fopen(v, "w");
-            if (trace == NULL) {
+            o->trace = fopen(v, "w");
+            if (o->trace == NULL) {
                 fprintf(stderr, "hil_sim faults: %s: %s\n", v, strerror(errno));
                 return 2;
             }
-            fault_run_trace(trace);
+            fault_run_trace(o->trace);
         } else {
             fprintf(stderr, "hil_sim faults: unknown option '%s'\n%s", a, FAULT_USAGE);
             return 2;
         }
-        i++;
     }
+    return -1;
+}
+
+/* The *.toml file names of dir in name order (at most MAX_SCEN); -1 if dir cannot be read. */
+static int list_scenarios(const char *dir, const char *sorted[MAX_SCEN])
+{
+    static char names[MAX_SCEN][256];
     DIR *d = opendir(dir);
     if (d == NULL) {
-        fprintf(stderr, "hil_sim faults: %s: %s\n", dir, strerror(errno));
-        return 2;
+        return -1;
     }
-    static char names[MAX_SCEN][256];
-    const char *sorted[MAX_SCEN] = {NULL};
     int n = 0;
     struct dirent *e;
     while ((e = readdir(d)) != NULL) {
@@ -114,57 +121,86 @@ int faults_cmd(int argc, char **argv)
     }
     closedir(d);
     qsort(sorted, (size_t)n, sizeof sorted[0], name_cmp);
-    static frow_t rows[MAX_SCEN];
-    int nr = 0;
+    return n;
+}
+
+/* Load and run the n scenarios (those named --only) into rows; their count, or -1 on an error. */
+static int run_all(const fopts_t *o, const char *const *sorted, int n, frow_t *rows)
+{
+    static fscen_t fs;
     char err[SIM_ERR_MAX + SIM_PATH_MAX];
-    struct timespec t0, t1;
-    clock_gettime(CLOCK_MONOTONIC, &t0);
+    int nr = 0;
     for (int i = 0; i < n; i++) {
-        static fscen_t fs;
         char path[SIM_PATH_MAX];
-        fscen_join(path, dir, sorted[i]);
+        fscen_join(path, o->dir, sorted[i]);
         if (fscen_load(&fs, path, err) != 0) {
             fprintf(stderr, "hil_sim faults: %s\n", err);
-            return 2;
+            return -1;
         }
-        if (only != NULL && strcmp(only, fs.name) != 0) {
+        if (o->only != NULL && strcmp(o->only, fs.name) != 0) {
             continue;
         }
-        if (fault_run_one(&fs, seed, seed_set, &rows[nr], err, sizeof err) != 0) {
+        if (fault_run_one(&fs, o->seed, o->seed_set, &rows[nr], err, sizeof err) != 0) {
             fprintf(stderr, "hil_sim faults: %s\n", err);
-            return 2;
+            return -1;
         }
         nr++;
     }
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    if (trace != NULL) {
-        fault_run_trace(NULL);
-        fclose(trace);
+    return nr;
+}
+
+/* Write the table (markdown) or the JSON of the rows to path; -1 if it cannot be opened. */
+static int write_file(const char *path, bool json, const frow_t *rows, int n, uint64_t seed)
+{
+    FILE *f = fopen(path, "w");
+    if (f == NULL) {
+        fprintf(stderr, "hil_sim faults: %s: %s\n", path, strerror(errno));
+        return -1;
     }
-    if (nr == 0) {
-        fprintf(stderr, "hil_sim faults: no scenario in %s\n", dir);
+    if (json) {
+        fault_write_json(f, rows, n, seed);
+    } else {
+        fault_write_table(f, rows, n, seed);
+    }
+    fclose(f);
+    return 0;
+}
+
+int faults_cmd(int argc, char **argv)
+{
+    fopts_t o = {.dir = HIL_SIM_FAULTS_DIR, .seed = 1u};
+    const int status = parse_args(argc, argv, &o);
+    if (status >= 0) {
+        return status;
+    }
+    const char *sorted[MAX_SCEN] = {NULL};
+    const int n = list_scenarios(o.dir, sorted);
+    if (n < 0) {
+        fprintf(stderr, "hil_sim faults: %s: %s\n", o.dir, strerror(errno));
         return 2;
     }
-    fault_write_table(stdout, rows, nr, seed);
+    static frow_t rows[MAX_SCEN];
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    const int nr = run_all(&o, sorted, n, rows);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    if (o.trace != NULL) {
+        fault_run_trace(NULL);
+        fclose(o.trace);
+    }
+    if (nr < 0) {
+        return 2;
+    }
+    if (nr == 0) {
+        fprintf(stderr, "hil_sim faults: no scenario in %s\n", o.dir);
+        return 2;
+    }
+    fault_write_table(stdout, rows, nr, o.seed);
     printf("wall time %.2f s\n",
            (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec));
-    if (out_md != NULL) {
-        FILE *f = fopen(out_md, "w");
-        if (f == NULL) {
-            fprintf(stderr, "hil_sim faults: %s: %s\n", out_md, strerror(errno));
-            return 2;
-        }
-        fault_write_table(f, rows, nr, seed);
-        fclose(f);
-    }
-    if (out_json != NULL) {
-        FILE *f = fopen(out_json, "w");
-        if (f == NULL) {
-            fprintf(stderr, "hil_sim faults: %s: %s\n", out_json, strerror(errno));
-            return 2;
-        }
-        fault_write_json(f, rows, nr, seed);
-        fclose(f);
+    if ((o.out_md != NULL && write_file(o.out_md, false, rows, nr, o.seed) != 0) ||
+        (o.out_json != NULL && write_file(o.out_json, true, rows, nr, o.seed) != 0)) {
+        return 2;
     }
     for (int i = 0; i < nr; i++) {
         if (!rows[i].pass) {
