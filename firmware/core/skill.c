@@ -106,11 +106,9 @@ static int to_real(double d, fs_real_t *out)
 }
 #endif
 
-fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
+/* The frame of an image: magic, version, header size, length, CRC, kernel count (into *n). */
+static fs_status_t check_frame(const uint8_t *buf, uint32_t len, uint16_t *n_out)
 {
-    if (buf == NULL || out == NULL) {
-        return FS_ERR_NULL_ARG;
-    }
     if (len < OFF_HEADER_SIZE) {
         return FS_ERR_SKILL_TOO_SHORT;
     }
@@ -138,6 +136,15 @@ fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
     if (n == 0u || n > DMP_MAX_KERNELS) {
         return FS_ERR_SKILL_KERNELS;
     }
+    *n_out = n;
+    return FS_OK;
+}
+
+/* The values of a framed image with n kernels, in double: all finite, the timing, stiffness,
+ * goal and widths in range, the centres increasing in [0, 1], the stored alpha/beta/gamma those
+ * the fit gains derive (and monotone), no unknown flag. */
+static fs_status_t check_values(const uint8_t *buf, uint16_t n)
+{
     /* Every float64 field: 15 in the header from OFF_DT, then 3N array entries, contiguous. */
     const uint32_t n_f64 = SKILL_N_HEADER_F64 + 3u * (uint32_t)n;
     for (uint32_t i = 0u; i < n_f64; i++) {
@@ -146,15 +153,12 @@ fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
         }
     }
     const double dt = rd_f64(buf, OFF_DT);
-    const double tau = rd_f64(buf, OFF_TAU);
     const double duration = rd_f64(buf, OFF_DURATION);
-    const double k = rd_f64(buf, OFF_STIFFNESS);
-    const double goal = rd_f64(buf, OFF_GOAL);
     const uint32_t off_c = SKILL_HEADER_SIZE;
     const uint32_t off_s = SKILL_HEADER_SIZE + 8u * (uint32_t)n;
-    const uint32_t off_w = SKILL_HEADER_SIZE + 16u * (uint32_t)n;
-    if (!(dt > 0.0) || dt > 0.1 || !(tau > 0.0) || !(duration > 0.0) || duration > 3600.0 ||
-        !(k > 0.0) || !(goal > 0.0)) {
+    if (!(dt > 0.0) || dt > 0.1 || !(rd_f64(buf, OFF_TAU) > 0.0) || !(duration > 0.0) ||
+        duration > 3600.0 || !(rd_f64(buf, OFF_STIFFNESS) > 0.0) ||
+        !(rd_f64(buf, OFF_GOAL) > 0.0)) {
         return FS_ERR_SKILL_RANGE;
     }
     for (uint32_t i = 0u; i < n; i++) {
@@ -182,33 +186,62 @@ fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
         stored[1] > stored[0] / 4.0 * (1.0 + DMP_MONOTONE_REL_TOL)) {
         return FS_ERR_SKILL_GAINS;
     }
-    const uint16_t flags = rd_u16(buf, OFF_FLAGS);
-    if ((flags & (uint16_t)~SKILL_FLAG_END_RELEASE) != 0u) {
+    if ((rd_u16(buf, OFF_FLAGS) & (uint16_t)~SKILL_FLAG_END_RELEASE) != 0u) {
         return FS_ERR_SKILL_UNSUPPORTED;
     }
+    return FS_OK;
+}
 
-    /* Valid in double: fill the model in the core's type. The float build can still refuse a
-     * value beyond the float range (207) or one that rounding made invalid (dmp_model_init). */
+/* Fill the skill from a valid image in the core's type: 0 if a value does not fit it. */
+static int fill_skill(const uint8_t *buf, uint16_t n, skill_t *out)
+{
+    const uint32_t off_c = SKILL_HEADER_SIZE;
+    const uint32_t off_s = SKILL_HEADER_SIZE + 8u * (uint32_t)n;
+    const uint32_t off_w = SKILL_HEADER_SIZE + 16u * (uint32_t)n;
     dmp_model_t *m = &out->dmp;
     m->n_kernels = n;
-    int ok = to_real(stored[0], &m->p.alpha) && to_real(stored[1], &m->p.beta) &&
-             to_real(stored[2], &m->p.gamma) && to_real(dt, &m->dt_s) && to_real(tau, &m->tau_s) &&
-             to_real(goal, &m->goal_N) && to_real(rd_f64(buf, OFF_FORCE0), &m->force0_N) &&
-             to_real(k, &out->stiffness_Npm) && to_real(duration, &m->duration_s) &&
-             to_real(gain[0], &out->fit_gains.m_d_kg) &&
-             to_real(gain[1], &out->fit_gains.k_d_Nspm) &&
-             to_real(gain[2], &out->fit_gains.k_p_Npm) &&
-             to_real(gain[3], &out->fit_gains.kkf_Npm) &&
-             to_real(gain[4], &out->fit_gains.kki_Npms) &&
+    int ok = to_real(rd_f64(buf, OFF_ALPHA), &m->p.alpha) &&
+             to_real(rd_f64(buf, OFF_BETA), &m->p.beta) &&
+             to_real(rd_f64(buf, OFF_GAMMA), &m->p.gamma) &&
+             to_real(rd_f64(buf, OFF_DT), &m->dt_s) && to_real(rd_f64(buf, OFF_TAU), &m->tau_s) &&
+             to_real(rd_f64(buf, OFF_GOAL), &m->goal_N) &&
+             to_real(rd_f64(buf, OFF_FORCE0), &m->force0_N) &&
+             to_real(rd_f64(buf, OFF_STIFFNESS), &out->stiffness_Npm) &&
+             to_real(rd_f64(buf, OFF_DURATION), &m->duration_s) &&
+             to_real(rd_f64(buf, OFF_M_D), &out->fit_gains.m_d_kg) &&
+             to_real(rd_f64(buf, OFF_K_D), &out->fit_gains.k_d_Nspm) &&
+             to_real(rd_f64(buf, OFF_K_P), &out->fit_gains.k_p_Npm) &&
+             to_real(rd_f64(buf, OFF_KKF), &out->fit_gains.kkf_Npm) &&
+             to_real(rd_f64(buf, OFF_KKI), &out->fit_gains.kki_Npms) &&
              to_real(rd_f64(buf, OFF_SURFACE), &out->surface_m);
     for (uint32_t i = 0u; ok && i < n; i++) {
         ok = to_real(rd_f64(buf, off_c + 8u * i), &m->centre[i]) &&
              to_real(rd_f64(buf, off_s + 8u * i), &m->width[i]) &&
              to_real(rd_f64(buf, off_w + 8u * i), &m->weight[i]);
     }
-    if (!ok || dmp_gains_at_stiffness(&out->fit_gains, out->stiffness_Npm, &out->gains) != FS_OK) {
+    return ok;
+}
+
+fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
+{
+    if (buf == NULL || out == NULL) {
+        return FS_ERR_NULL_ARG;
+    }
+    uint16_t n = 0u;
+    fs_status_t st = check_frame(buf, len, &n);
+    if (st == FS_OK) {
+        st = check_values(buf, n);
+    }
+    if (st != FS_OK) {
+        return st;
+    }
+    /* Valid in double: fill the model in the core's type. The float build can still refuse a
+     * value beyond the float range (207) or one that rounding made invalid (dmp_model_init). */
+    if (!fill_skill(buf, n, out) ||
+        dmp_gains_at_stiffness(&out->fit_gains, out->stiffness_Npm, &out->gains) != FS_OK) {
         return FS_ERR_SKILL_RANGE;
     }
+    const uint16_t flags = rd_u16(buf, OFF_FLAGS);
     out->end_policy = ((flags & SKILL_FLAG_END_RELEASE) != 0u) ? SKILL_END_RELEASE : SKILL_END_HOLD;
-    return dmp_model_init(m);
+    return dmp_model_init(&out->dmp);
 }
