@@ -19,6 +19,8 @@ echo "== one implementation of the control tick (scripts/check_one_tick.sh)"
 scripts/check_one_tick.sh
 echo "== layers: no upward or sideways include, no include cycle (tools/check_layers.py)"
 .venv/bin/python tools/check_layers.py
+echo "== no C function over 80 lines in firmware/ and hil_sim/ without a /* long: reason */ (tools/check_fn_length.py)"
+.venv/bin/python tools/check_fn_length.py
 echo "== Python: ruff (lint, format) and mypy (strict) on host/forceskill (configuration: host/pyproject.toml)"
 .venv/bin/ruff check --config host/pyproject.toml host/forceskill
 .venv/bin/ruff format --config host/pyproject.toml --check host/forceskill
