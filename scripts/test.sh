@@ -9,7 +9,8 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$ROOT/scripts/setup.sh"
 cd "$ROOT"
 
-echo "== generated files agree with their sources (codes.toml -> headers, codes.py, docs/codes.md;"
+echo "== generated files agree with their sources (codes.toml -> headers, codes.py, docs/codes.md and"
+echo "   the marked tables of docs/protocol.md, safety.md, update.md;"
 echo "   public headers -> the _f32 rename headers)"
 .venv/bin/python tools/gen_codes.py --check
 .venv/bin/python tools/gen_f32_names.py --check
