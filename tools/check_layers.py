@@ -6,7 +6,8 @@ point to the same module or to a lower layer, and no header may include itself t
         <-  safety, storage, security, proto  <-  boot  <-  app  <-  ports  <-  hil_sim
 
 Modules of one layer do not include each other. Some lower modules are open only in part (safety
-and hal use only the core's fs_real.h). Prints the module graph; exit 1 on an upward or sideways
+and hal use only the core's fs_real.h), and a module's private header (app_internal.h) is open
+only to its own files and the simulator. Prints the module graph; exit 1 on an upward or sideways
 include, an include cycle, or an include that names an ambiguous header.
 usage: tools/check_layers.py [--graph]
 """
@@ -24,6 +25,9 @@ RANK = {"base": 0, "core": 1, "fixed": 2, "hal": 2,
         "boot": 4, "app": 5, "ports": 6, "hil_sim": 7}
 # (from, to): the only headers of `to` that `from` may include
 ONLY = {("safety", "core"): {"fs_real.h"}, ("hal", "core"): {"fs_real.h"}}
+# a module's private headers: only these other modules may include them (the simulator is a
+# white-box user of the application; ports use app.h)
+PRIVATE = {"app_internal.h": {"hil_sim"}}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 
 
@@ -113,6 +117,8 @@ def check(root: Path = ROOT) -> tuple[list[str], dict[tuple[str, str], set[str]]
             elif RANK[b] >= RANK[a]:
                 kind = "sideways" if RANK[b] == RANK[a] else "upward"
                 problems.append(f"{src}: {kind} include of {dst} ({a} -> {b})")
+            elif dst.name in PRIVATE and a not in PRIVATE[dst.name]:
+                problems.append(f"{src}: {dst.name} is private to {b} (use {b}.h)")
             elif (a, b) in ONLY and dst.name not in ONLY[(a, b)]:
                 problems.append(f"{src}: {a} may use only {', '.join(sorted(ONLY[(a, b)]))} "
                                 f"of {b}, not {dst.name}")

@@ -3,7 +3,7 @@
  * slot (validated by skill_parse, written by nvm, the old skill kept on any failure) and upload. */
 #include <string.h>
 
-#include "app.h"
+#include "app_internal.h"
 #include "fwu_uds.h"
 
 /* Data identifiers (DID_*, fs_uds_ids.h): big-endian values, IEEE-754 float32 for reals. */

@@ -12,7 +12,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "app.h"
+#include "app_internal.h"
 #include "bus_model.h"
 #include "hal_host.h"
 #include "scand.h"

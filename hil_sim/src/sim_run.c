@@ -8,7 +8,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "app.h"
+#include "app_internal.h"
 #include "fs_dbc.h"
 #include "hal_host.h"
 #include "nvm.h"

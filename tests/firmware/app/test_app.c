@@ -12,7 +12,7 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "app.h"
+#include "app_internal.h"
 #include "fs_dbc.h"
 #include "hal_host.h"
 
