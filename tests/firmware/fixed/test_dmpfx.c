@@ -16,6 +16,7 @@
 #include "core_test_util.h"
 #include "dmpfx.h"
 #include "skill.h"
+#include "vectors_io.h"
 
 #ifndef FS_VECTORS_DIR
 #error "FS_VECTORS_DIR must point at tests/vectors"
@@ -30,17 +31,6 @@ static dmpfx_model_t fxm;
 static uint8_t image[SKILL_IMAGE_MAX];
 static double f_ref[MAX_ROWS + 1];
 static double f_fx[MAX_ROWS + 1];
-
-static uint32_t read_file(const char *name, uint8_t *buf, uint32_t cap)
-{
-    char path[512];
-    snprintf(path, sizeof(path), "%s/%s", FS_VECTORS_DIR, name);
-    FILE *f = fopen(path, "rb");
-    assert_non_null(f);
-    const size_t n = fread(buf, 1, cap, f);
-    fclose(f);
-    return (uint32_t)n;
-}
 
 /* Fixed rollout rows n = 0..rows (row 0 is f0), f in N. Returns the saturation count. */
 static uint32_t rollout_fx(const dmpfx_model_t *m, double goal_scale, double time_scale, long rows,
@@ -94,7 +84,8 @@ static void test_golden_vectors(void **state)
     int lines = 0;
     double worst = 0.0;
     while (fscanf(mf, "%255s %lf %lf %255s", sk, &gs, &ts, csv) == 4) {
-        const uint32_t len = read_file(sk, image, sizeof(image));
+        const uint32_t len = tv_read(sk, image, sizeof(image));
+        assert_true(len > 0u);
         assert_int_equal(skill_parse(image, len, &skill), FS_OK);
         assert_int_equal(dmpfx_from_model(&skill.dmp, &fxm), FS_OK);
         const long rows = lround(skill.dmp.duration_s * ts / skill.dmp.dt_s);
@@ -164,7 +155,8 @@ static void test_long_skill(void **state)
 static void test_blend(void **state)
 {
     (void)state;
-    const uint32_t len = read_file("engrave_n50_ridge_release.skill", image, sizeof(image));
+    const uint32_t len = tv_read("engrave_n50_ridge_release.skill", image, sizeof(image));
+    assert_true(len > 0u);
     assert_int_equal(skill_parse(image, len, &skill), FS_OK);
     assert_int_equal(dmpfx_from_model(&skill.dmp, &fxm), FS_OK);
     double wmax = 0.0;
@@ -263,7 +255,8 @@ static void test_rejects(void **state)
 static void test_coupling(void **state)
 {
     (void)state;
-    const uint32_t len = read_file("press_n50_ridge_release.skill", image, sizeof(image));
+    const uint32_t len = tv_read("press_n50_ridge_release.skill", image, sizeof(image));
+    assert_true(len > 0u);
     assert_int_equal(skill_parse(image, len, &skill), FS_OK);
     assert_int_equal(dmpfx_from_model(&skill.dmp, &fxm), FS_OK);
     dmpfx_run_t run;
@@ -299,7 +292,8 @@ static void test_coupling(void **state)
 static void test_saturation_never_wraps(void **state)
 {
     (void)state;
-    const uint32_t len = read_file("press_n50_ridge_release.skill", image, sizeof(image));
+    const uint32_t len = tv_read("press_n50_ridge_release.skill", image, sizeof(image));
+    assert_true(len > 0u);
     assert_int_equal(skill_parse(image, len, &skill), FS_OK);
     assert_int_equal(dmpfx_from_model(&skill.dmp, &fxm), FS_OK);
     dmpfx_run_t run;
