@@ -32,6 +32,15 @@ static uint8_t image[SKILL_IMAGE_MAX];
 static double f_ref[MAX_ROWS + 1];
 static double f_fx[MAX_ROWS + 1];
 
+/* A golden skill of tests/vectors into skill (float64 core) and fxm (fixed point). */
+static void load_fixed(const char *name)
+{
+    const uint32_t len = tv_read(name, image, sizeof(image));
+    assert_true(len > 0u);
+    assert_int_equal(skill_parse(image, len, &skill), FS_OK);
+    assert_int_equal(dmpfx_from_model(&skill.dmp, &fxm), FS_OK);
+}
+
 /* Fixed rollout rows n = 0..rows (row 0 is f0), f in N. Returns the saturation count. */
 static uint32_t rollout_fx(const dmpfx_model_t *m, double goal_scale, double time_scale, long rows,
                            double *out)
@@ -84,10 +93,7 @@ static void test_golden_vectors(void **state)
     int lines = 0;
     double worst = 0.0;
     while (fscanf(mf, "%255s %lf %lf %255s", sk, &gs, &ts, csv) == 4) {
-        const uint32_t len = tv_read(sk, image, sizeof(image));
-        assert_true(len > 0u);
-        assert_int_equal(skill_parse(image, len, &skill), FS_OK);
-        assert_int_equal(dmpfx_from_model(&skill.dmp, &fxm), FS_OK);
+        load_fixed(sk);
         const long rows = lround(skill.dmp.duration_s * ts / skill.dmp.dt_s);
         assert_true(rows <= MAX_ROWS);
         assert_int_equal(rollout_fx(&fxm, gs, ts, rows, f_fx), 0u);
@@ -155,10 +161,7 @@ static void test_long_skill(void **state)
 static void test_blend(void **state)
 {
     (void)state;
-    const uint32_t len = tv_read("engrave_n50_ridge_release.skill", image, sizeof(image));
-    assert_true(len > 0u);
-    assert_int_equal(skill_parse(image, len, &skill), FS_OK);
-    assert_int_equal(dmpfx_from_model(&skill.dmp, &fxm), FS_OK);
+    load_fixed("engrave_n50_ridge_release.skill");
     double wmax = 0.0;
     for (uint16_t i = 0; i < skill.dmp.n_kernels; i++) {
         wmax = fmax(wmax, fabs(skill.dmp.weight[i]));
@@ -255,10 +258,7 @@ static void test_rejects(void **state)
 static void test_coupling(void **state)
 {
     (void)state;
-    const uint32_t len = tv_read("press_n50_ridge_release.skill", image, sizeof(image));
-    assert_true(len > 0u);
-    assert_int_equal(skill_parse(image, len, &skill), FS_OK);
-    assert_int_equal(dmpfx_from_model(&skill.dmp, &fxm), FS_OK);
+    load_fixed("press_n50_ridge_release.skill");
     dmpfx_run_t run;
     assert_int_equal(dmpfx_run_init(&fxm, 1.0, 1.0, &run), FS_OK);
     const double slow = 0.6;
@@ -292,10 +292,7 @@ static void test_coupling(void **state)
 static void test_saturation_never_wraps(void **state)
 {
     (void)state;
-    const uint32_t len = tv_read("press_n50_ridge_release.skill", image, sizeof(image));
-    assert_true(len > 0u);
-    assert_int_equal(skill_parse(image, len, &skill), FS_OK);
-    assert_int_equal(dmpfx_from_model(&skill.dmp, &fxm), FS_OK);
+    load_fixed("press_n50_ridge_release.skill");
     dmpfx_run_t run;
     assert_int_equal(dmpfx_run_init(&fxm, 1.0, 1.0, &run), FS_OK);
     const int32_t goals[] = {INT32_MAX, INT32_MIN};
