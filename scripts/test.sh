@@ -18,7 +18,7 @@ echo "== comments and docs cite no SPEC or issue numbers"
 tools/check_no_tracker_refs.sh
 echo "== one implementation of the control tick (scripts/check_one_tick.sh)"
 scripts/check_one_tick.sh
-echo "== layers: no upward or sideways include, no include cycle (tools/check_layers.py)"
+echo "== layers: no upward or sideways include or host import, no cycle (tools/check_layers.py)"
 .venv/bin/python tools/check_layers.py
 echo "== no C function over 80 lines in firmware/ and hil_sim/ without a /* long: reason */ (tools/check_fn_length.py)"
 .venv/bin/python tools/check_fn_length.py
