@@ -22,9 +22,10 @@ echo "== layers: no upward or sideways include or host import, no cycle (tools/c
 .venv/bin/python tools/check_layers.py
 echo "== no C function over 80 lines in firmware/ and hil_sim/ without a /* long: reason */ (tools/check_fn_length.py)"
 .venv/bin/python tools/check_fn_length.py
-echo "== Python: ruff (lint, format) and mypy (strict) on host/forceskill (configuration: host/pyproject.toml)"
-.venv/bin/ruff check --config host/pyproject.toml host/forceskill
-.venv/bin/ruff format --config host/pyproject.toml --check host/forceskill
+echo "== Python: ruff (lint, format) on host/forceskill, tests/, tools/ and bench/, mypy (strict) on"
+echo "   host/forceskill (configuration: host/pyproject.toml)"
+.venv/bin/ruff check --config host/pyproject.toml host/forceskill tests tools bench
+.venv/bin/ruff format --config host/pyproject.toml --check host/forceskill tests tools bench
 (cd host && ../.venv/bin/mypy)
 
 echo "== C tests (Debug: ASan + UBSan; preset host-debug, build/host-debug)"

@@ -13,6 +13,7 @@ usage: tools/check_fn_length.py [--limit N] [--all] [FILE ...]
   --all   also list the long functions that carry a reason (exit status unchanged)
 Exit 0 when every long function carries a reason, 1 otherwise.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -49,7 +50,7 @@ def blank(text: str) -> str:
     i, n = 0, len(text)
     while i < n:
         c = text[i]
-        two = text[i:i + 2]
+        two = text[i : i + 2]
         if two == "/*":
             end = text.find("*/", i + 2)
             end = n if end < 0 else end + 2
@@ -116,7 +117,7 @@ def functions(path: Path, rel: str) -> list[Function]:
                         first = line_at[m.start(1)]
                         end = close_brace(code, i)
                         last = line_at[end]
-                        window = "\n".join(lines[max(0, first - 4):line_at[i]])
+                        window = "\n".join(lines[max(0, first - 4) : line_at[i]])
                         r = REASON.search(window)
                         found.append(Function(rel, name, first, last, r.group(0) if r else None))
                         i = end + 1
@@ -170,14 +171,18 @@ def main(argv: list[str] | None = None) -> int:
                 continue
             if f.reason is None:
                 bad += 1
-                print(f"{f.path}:{f.first_line}: {f.name}() is {f.lines} lines "
-                      f"(over {args.limit}) without a /* long: reason */ comment")
+                print(
+                    f"{f.path}:{f.first_line}: {f.name}() is {f.lines} lines "
+                    f"(over {args.limit}) without a /* long: reason */ comment"
+                )
             else:
                 reasoned += 1
                 if args.all:
                     print(f"{f.path}:{f.first_line}: {f.name}() is {f.lines} lines: {f.reason}")
-    print(f"{bad} function(s) over {args.limit} lines without a reason, "
-          f"{reasoned} with one", file=sys.stderr if bad else sys.stdout)
+    print(
+        f"{bad} function(s) over {args.limit} lines without a reason, {reasoned} with one",
+        file=sys.stderr if bad else sys.stdout,
+    )
     return 1 if bad else 0
 
 

@@ -17,6 +17,7 @@ itself through others. Prints the module graph; exit 1 on an upward or sideways 
 a cycle, or an include that names an ambiguous header.
 usage: tools/check_layers.py [--graph]
 """
+
 from __future__ import annotations
 
 import argparse
@@ -27,9 +28,20 @@ from collections import defaultdict
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-RANK = {"base": 0, "core": 1, "fixed": 2, "hal": 2,
-        "safety": 3, "storage": 3, "security": 3, "proto": 3,
-        "boot": 4, "app": 5, "ports": 6, "hil_sim": 7}
+RANK = {
+    "base": 0,
+    "core": 1,
+    "fixed": 2,
+    "hal": 2,
+    "safety": 3,
+    "storage": 3,
+    "security": 3,
+    "proto": 3,
+    "boot": 4,
+    "app": 5,
+    "ports": 6,
+    "hil_sim": 7,
+}
 # (from, to): the only headers of `to` that `from` may include
 ONLY = {("safety", "core"): {"fs_real.h"}, ("hal", "core"): {"fs_real.h"}}
 # a module's private headers: only these other modules may include them (the simulator is a
@@ -51,8 +63,7 @@ def module(rel: Path) -> str:
 def sources(root: Path) -> list[Path]:
     out = []
     for top in ("firmware", "hil_sim"):
-        out += [p.relative_to(root) for p in sorted((root / top).rglob("*"))
-                if p.suffix in (".c", ".h")]
+        out += [p.relative_to(root) for p in sorted((root / top).rglob("*")) if p.suffix in (".c", ".h")]
     return out
 
 
@@ -66,7 +77,7 @@ def resolve(inc: str, src: Path, by_name: dict[str, list[Path]], root: Path) -> 
     if len(found) > 1:
         found = [f for f in found if module(f) == module(src)] or found
     if len(found) > 1:
-        raise LookupError(f"{src}: #include \"{inc}\" is ambiguous: {', '.join(map(str, found))}")
+        raise LookupError(f'{src}: #include "{inc}" is ambiguous: {", ".join(map(str, found))}')
     return found[0] if found else None
 
 
@@ -88,7 +99,7 @@ def cycles(edges: dict[Path, set[Path]]) -> list[list[Path]]:
                 stack.pop()
                 path.pop()
             elif state.get(nxt) == 1:
-                found.append(path[path.index(nxt):] + [nxt])
+                found.append([*path[path.index(nxt) :], nxt])
             elif nxt not in state:
                 state[nxt] = 1
                 stack.append((nxt, iter(sorted(edges.get(nxt, ())))))
@@ -127,8 +138,9 @@ def check(root: Path = ROOT) -> tuple[list[str], dict[tuple[str, str], set[str]]
             elif dst.name in PRIVATE and a not in PRIVATE[dst.name]:
                 problems.append(f"{src}: {dst.name} is private to {b} (use {b}.h)")
             elif (a, b) in ONLY and dst.name not in ONLY[(a, b)]:
-                problems.append(f"{src}: {a} may use only {', '.join(sorted(ONLY[(a, b)]))} "
-                                f"of {b}, not {dst.name}")
+                problems.append(
+                    f"{src}: {a} may use only {', '.join(sorted(ONLY[(a, b)]))} of {b}, not {dst.name}"
+                )
     for c in cycles(edges):
         problems.append("include cycle: " + " -> ".join(map(str, c)))
     return problems, graph
@@ -157,7 +169,7 @@ def host_modules(pkg_dir: Path) -> dict[str, Path]:
     """Every module of the package under pkg_dir (host/forceskill), by dotted name."""
     out = {}
     for p in sorted(pkg_dir.rglob("*.py")):
-        parts = (pkg_dir.name,) + p.relative_to(pkg_dir).with_suffix("").parts
+        parts = (pkg_dir.name, *p.relative_to(pkg_dir).with_suffix("").parts)
         if parts[-1] == "__init__":
             parts = parts[:-1]
         out[".".join(parts)] = p
@@ -178,10 +190,11 @@ def host_imports(mod: str, path: Path, known: dict[str, Path]) -> set[str]:
             else:
                 target = node.module or ""
             subs = [f"{target}.{a.name}" for a in node.names if f"{target}.{a.name}" in known]
-            names = subs if subs and len(subs) == len(node.names) else [target] + subs
+            names = subs if subs and len(subs) == len(node.names) else [target, *subs]
         else:
             continue
-        for n in names:
+        for name in names:
+            n = name
             while n and n not in known and "." in n:
                 n = n.rpartition(".")[0]
             if n in known and n != mod:
@@ -230,10 +243,11 @@ def main(argv: list[str] | None = None) -> int:
             print(f"  host {a:8} -> {b:8} {' '.join(sorted(names))}")
     for p in problems + host_problems:
         print(p, file=sys.stderr)
-    print(f"layers: {len(graph)} module edges, {len(problems)} violations "
-          "(upward/sideways includes, cycles)")
-    print(f"host layers: {len(host_graph)} layer edges, {len(host_problems)} violations "
-          "(upward/sideways imports, cycles)")
+    print(f"layers: {len(graph)} module edges, {len(problems)} violations (upward/sideways includes, cycles)")
+    print(
+        f"host layers: {len(host_graph)} layer edges, {len(host_problems)} violations "
+        "(upward/sideways imports, cycles)"
+    )
     return 1 if problems or host_problems else 0
 
 

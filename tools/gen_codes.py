@@ -9,14 +9,16 @@ usage: tools/gen_codes.py            write the files
        tools/gen_codes.py --check    exit 1 (one line per file) if a file differs from the table,
                                      or the DBC's frame identifiers differ from the table's
 """
+
 from __future__ import annotations
 
 import argparse
 import re
 import sys
 import textwrap
-import tomllib
 from pathlib import Path
+
+import tomllib
 
 ROOT = Path(__file__).resolve().parents[1]
 TABLE = "firmware/base/codes.toml"
@@ -104,7 +106,7 @@ def _validate_docs(table: dict, code_names: set[str]) -> None:
 
 def py_name(group: dict, name: str) -> str:
     strip = group.get("py_strip", "")
-    return name[len(strip):] if strip and name.startswith(strip) else name
+    return name[len(strip) :] if strip and name.startswith(strip) else name
 
 
 def _c_line(code: str, text: str, column: int) -> list[str]:
@@ -112,11 +114,11 @@ def _c_line(code: str, text: str, column: int) -> list[str]:
     one = f"{code:<{column}} /* {text} */"
     if len(one) <= WIDTH:
         return [one]
-    indent = code[:len(code) - len(code.lstrip())]
+    indent = code[: len(code) - len(code.lstrip())]
     wrapped = textwrap.wrap(text, WIDTH - len(indent) - 6)
     body = [f"{indent}/* {wrapped[0]}"] + [f"{indent} * {w}" for w in wrapped[1:]]
     body[-1] += " */"
-    return body + [code]
+    return [*body, code]
 
 
 def _guard(header: str) -> str:
@@ -163,8 +165,7 @@ def c_status_headers(table: dict) -> dict[str, str]:
                     f"#define {p}_COUNT {len(rows)}u /* codes {p}_CODE_FIRST .. {p}_CODE_FIRST + "
                     f"{p}_COUNT - 1 */",
                     "",
-                    f"/** Bit of a code in a cause/latched mask (0 for {g['ok']} or an unknown "
-                    "code). */",
+                    f"/** Bit of a code in a cause/latched mask (0 for {g['ok']} or an unknown code). */",
                     f"#define {p}_BIT(code) \\",
                     f"    (((uint32_t)(code) >= {p}_CODE_FIRST && (uint32_t)(code) < {p}_CODE_FIRST"
                     f" + {p}_COUNT) \\",
@@ -184,9 +185,13 @@ def _c_nrc_function(table: dict, g: dict) -> list[str]:
     fn = g["enum"].removesuffix("_t") + "_nrc"
     nrc = g["nrc"]
     c_name = {int(v): n for v, n, _, _ in table["uds"]["nrc"]["codes"]}
-    body = [f"/** The UDS negative response code of a status (UDS_NRC_OK for {g['ok']}). */",
-            f"static inline uint8_t {fn}({g['enum']} st)", "{", "    switch (st) {",
-            f"    case {g['ok']}: return UDS_NRC_OK;"]
+    body = [
+        f"/** The UDS negative response code of a status (UDS_NRC_OK for {g['ok']}). */",
+        f"static inline uint8_t {fn}({g['enum']} st)",
+        "{",
+        "    switch (st) {",
+        f"    case {g['ok']}: return UDS_NRC_OK;",
+    ]
     for _, name, _, _ in _rows(g):
         if name in nrc:
             body.append(f"    case {name}: return {c_name[int(nrc[name])]};")
@@ -199,8 +204,12 @@ def c_uds_nrc(table: dict) -> str:
     for value, name, iso, _ in table["uds"]["nrc"]["codes"]:
         body += _c_line(f"#define {name} 0x{int(value):02X}u", iso, 44)
     body.append("")
-    return _c_file("uds_nrc.h", "UDS negative response codes the device answers (ISO 14229-1 "
-                   "values; docs/protocol.md).", body, [])
+    return _c_file(
+        "uds_nrc.h",
+        "UDS negative response codes the device answers (ISO 14229-1 values; docs/protocol.md).",
+        body,
+        [],
+    )
 
 
 def _doc_comment(text: str) -> list[str]:
@@ -212,15 +221,22 @@ def _doc_comment(text: str) -> list[str]:
 
 def c_proto_ids(table: dict) -> str:
     can = table["can"]
-    body = [f"#define PROTO_NODE_MAX {can['node_max']}u",
-            f"#define PROTO_DEFAULT_NODE {can['default_node']}u", ""]
+    body = [
+        f"#define PROTO_NODE_MAX {can['node_max']}u",
+        f"#define PROTO_DEFAULT_NODE {can['default_node']}u",
+        "",
+    ]
     for value, name, _, _, text in can["ids"]:
-        body += _c_line(f"#define PROTO_ID_{name}(node) (0x{value:03X}u + (uint32_t)(node))",
-                        text, 0)
+        body += _c_line(f"#define PROTO_ID_{name}(node) (0x{value:03X}u + (uint32_t)(node))", text, 0)
     body.append("")
-    return _c_file("proto_ids.h", "CAN identifiers of one node: id = base + node, node 0.."
-                   "PROTO_NODE_MAX (docs/codes.md);\n * the DBC lists the cyclic frames of node 0 "
-                   "with the same bases.", body, ["<stdint.h>", '"proto_status.h"'])
+    return _c_file(
+        "proto_ids.h",
+        "CAN identifiers of one node: id = base + node, node 0.."
+        "PROTO_NODE_MAX (docs/codes.md);\n * the DBC lists the cyclic frames of node 0 "
+        "with the same bases.",
+        body,
+        ["<stdint.h>", '"proto_status.h"'],
+    )
 
 
 def c_uds_ids(table: dict) -> str:
@@ -234,15 +250,25 @@ def c_uds_ids(table: dict) -> str:
         digits = 8 if value > 0xFFFF else (4 if value > 0xFF else 2)
         body += _c_line(f"#define {name} 0x{value:0{digits}X}u", text, 38)
     body.append("")
-    return _c_file("fs_uds_ids.h", "UDS identifiers of the device: data identifiers (0x22/0x2E), "
-                   "routine identifiers (0x31),\n * security levels (0x27) and the firmware "
-                   "download address (0x34).", body, [])
+    return _c_file(
+        "fs_uds_ids.h",
+        "UDS identifiers of the device: data identifiers (0x22/0x2E), "
+        "routine identifiers (0x31),\n * security levels (0x27) and the firmware "
+        "download address (0x34).",
+        body,
+        [],
+    )
 
 
 def python_module(table: dict) -> str:
-    lines = ['"""Every numbered code and identifier of forceskill.', "",
-             f"{STAMP[0].upper()}{STAMP[1:]}.", '"""',
-             "from __future__ import annotations", ""]
+    lines = [
+        '"""Every numbered code and identifier of forceskill.',
+        "",
+        f"{STAMP[0].upper()}{STAMP[1:]}.",
+        '"""',
+        "from __future__ import annotations",
+        "",
+    ]
     names: list[str] = []
     for g in table["status"]:
         lines.append(f"# {g['title']}")
@@ -260,8 +286,11 @@ def python_module(table: dict) -> str:
                     lines.append(f"    {value}: {short!r},")
             lines += ["}", ""]
     can = table["can"]
-    lines += ["# CAN identifiers of node 0; node n uses id + n",
-              f"NODE_MAX = {can['node_max']}", f"DEFAULT_NODE = {can['default_node']}"]
+    lines += [
+        "# CAN identifiers of node 0; node n uses id + n",
+        f"NODE_MAX = {can['node_max']}",
+        f"DEFAULT_NODE = {can['default_node']}",
+    ]
     names += ["NODE_MAX", "DEFAULT_NODE"]
     for value, _, n, _, text in can["ids"]:
         names.append(n)
@@ -281,9 +310,12 @@ def python_module(table: dict) -> str:
         if "nrc" in g:
             n = g["enum"].removesuffix("_t").upper() + "_NRC"
             names.append(n)
-            lines += ["", f"# {g['title']}: the negative response code of each status "
-                      f"(others: 0x{int(g['nrc']['nrc_default']):02X})",
-                      f"{n}: dict[int, int] = {{"]
+            lines += [
+                "",
+                f"# {g['title']}: the negative response code of each status "
+                f"(others: 0x{int(g['nrc']['nrc_default']):02X})",
+                f"{n}: dict[int, int] = {{",
+            ]
             for value, name, _, _ in _rows(g):
                 if name in g["nrc"]:
                     lines.append(f"    {value}: 0x{int(g['nrc'][name]):02X},")
@@ -299,45 +331,70 @@ def _md_cell(text: str) -> str:
 
 
 def markdown(table: dict) -> str:
-    out = ["# Codes and identifiers", "",
-           f"<!-- {STAMP} -->", "",
-           "Every numbered status code, CAN identifier and UDS identifier of the device and the "
-           "host, "
-           f"from one table (`{TABLE}`). `tools/gen_codes.py` writes the C headers "
-           "(`firmware/base/*.h`), the host's constants (`host/forceskill/codes.py`, re-exported "
-           "by `forceskill.errors`) and this page; `tools/gen_codes.py --check` (run by "
-           "`scripts/test.sh`) fails when any of them differs from the table or the DBC's frame "
-           "identifiers differ from the ones below. Codes are stable: never renumbered, only "
-           "appended.", "",
-           "The CLI prints a refusal as one line ending in `[code]` "
-           "(`forceskill.errors.FsError`).", ""]
+    out = [
+        "# Codes and identifiers",
+        "",
+        f"<!-- {STAMP} -->",
+        "",
+        "Every numbered status code, CAN identifier and UDS identifier of the device and the "
+        "host, "
+        f"from one table (`{TABLE}`). `tools/gen_codes.py` writes the C headers "
+        "(`firmware/base/*.h`), the host's constants (`host/forceskill/codes.py`, re-exported "
+        "by `forceskill.errors`) and this page; `tools/gen_codes.py --check` (run by "
+        "`scripts/test.sh`) fails when any of them differs from the table or the DBC's frame "
+        "identifiers differ from the ones below. Codes are stable: never renumbered, only "
+        "appended.",
+        "",
+        "The CLI prints a refusal as one line ending in `[code]` (`forceskill.errors.FsError`).",
+        "",
+    ]
     for g in table["status"]:
         where = f"`{g['header']}`, `{g['enum']}`" if "header" in g else "host only"
-        out += [f"## {g['title']}", "", f"C: {where}.", "",
-                "| code | name | host name | meaning |", "|---:|---|---|---|"]
+        out += [
+            f"## {g['title']}",
+            "",
+            f"C: {where}.",
+            "",
+            "| code | name | host name | meaning |",
+            "|---:|---|---|---|",
+        ]
         for value, name, text, short in _rows(g):
-            meaning = text + (f" (host text: \"{short}\")" if short else "")
+            meaning = text + (f' (host text: "{short}")' if short else "")
             host = py_name(g, name)
             out.append(f"| {value} | `{name}` | `{host}` | {_md_cell(meaning)} |")
         out.append("")
     can = table["can"]
-    out += ["## CAN identifiers", "",
-            f"Node n (0..{can['node_max']}, default {can['default_node']}) uses base + n. C: "
-            "`proto_ids.h`, `PROTO_ID_<name>(node)`.", "",
-            "| base | C macro | host name | DBC frame | what |", "|---:|---|---|---|---|"]
+    out += [
+        "## CAN identifiers",
+        "",
+        f"Node n (0..{can['node_max']}, default {can['default_node']}) uses base + n. C: "
+        "`proto_ids.h`, `PROTO_ID_<name>(node)`.",
+        "",
+        "| base | C macro | host name | DBC frame | what |",
+        "|---:|---|---|---|---|",
+    ]
     for value, name, host, frame, text in can["ids"]:
-        out.append(f"| 0x{value:03X} | `PROTO_ID_{name}` | `{host}` | {frame or '-'} | "
-                   f"{_md_cell(text)} |")
-    out += ["", "## UDS identifiers", "",
-            "C: `fs_uds_ids.h`. Services and sessions are ISO 14229's "
-            "(`firmware/proto/uds.h`, [protocol.md](protocol.md)).", "",
-            "| value | kind | C name | host name | what |", "|---:|---|---|---|---|"]
+        out.append(f"| 0x{value:03X} | `PROTO_ID_{name}` | `{host}` | {frame or '-'} | {_md_cell(text)} |")
+    out += [
+        "",
+        "## UDS identifiers",
+        "",
+        "C: `fs_uds_ids.h`. Services and sessions are ISO 14229's "
+        "(`firmware/proto/uds.h`, [protocol.md](protocol.md)).",
+        "",
+        "| value | kind | C name | host name | what |",
+        "|---:|---|---|---|---|",
+    ]
     for value, name, host, kind, text in table["uds"]["ids"]:
         digits = 8 if value > 0xFFFF else (4 if value > 0xFF else 2)
         out.append(f"| 0x{value:0{digits}X} | {kind} | `{name}` | `{host}` | {_md_cell(text)} |")
-    out += ["", "## UDS negative response codes", "",
-            "C: `uds_nrc.h`; the update path's mapping is `boot_status_nrc()` "
-            "([update.md](update.md)).", ""]
+    out += [
+        "",
+        "## UDS negative response codes",
+        "",
+        "C: `uds_nrc.h`; the update path's mapping is `boot_status_nrc()` ([update.md](update.md)).",
+        "",
+    ]
     out += region_nrcs(table).splitlines()
     out.append("")
     return "\n".join(out)
@@ -362,10 +419,10 @@ def region_can_ids(table: dict) -> str:
     rows = []
     for value, name, _, frame, _ in can["ids"]:
         d = can["doc"][name]
-        rows.append([f"0x{value:03X} + n", frame or d["frame"], d["sender"], d["period"],
-                     d["protected"]])
-    return _table(["id", "frame", "sender", "period", "protected"],
-                  ["---:", "---", "---", "---", "---"], rows)
+        rows.append([f"0x{value:03X} + n", frame or d["frame"], d["sender"], d["period"], d["protected"]])
+    return _table(
+        ["id", "frame", "sender", "period", "protected"], ["---:", "---", "---", "---", "---"], rows
+    )
 
 
 def _uds(table: dict, kind: str) -> list[tuple[int, str, str, dict]]:
@@ -374,36 +431,49 @@ def _uds(table: dict, kind: str) -> list[tuple[int, str, str, dict]]:
 
 
 def region_routines(table: dict) -> str:
-    rows = [[_hex(v), d["label"], d["start"], d["stop"], d["results"]]
-            for v, _, _, d in _uds(table, "RID")]
-    return _table(["RID", "routine", "start data", "stop", "results"],
-                  ["---:", "---", "---", "---", "---"], rows)
+    rows = [[_hex(v), d["label"], d["start"], d["stop"], d["results"]] for v, _, _, d in _uds(table, "RID")]
+    return _table(
+        ["RID", "routine", "start data", "stop", "results"], ["---:", "---", "---", "---", "---"], rows
+    )
 
 
 def region_dids(table: dict) -> str:
-    rows = [[_hex(v), d.get("content", text), str(d["length"]), d["write"]]
-            for v, _, text, d in _uds(table, "DID")]
+    rows = [
+        [_hex(v), d.get("content", text), str(d["length"]), d["write"]]
+        for v, _, text, d in _uds(table, "DID")
+    ]
     return _table(["DID", "content", "length", "write"], ["---:", "---", "---:", "---"], rows)
 
 
 def region_nrcs(table: dict) -> str:
-    rows = [[f"0x{int(v):02X}", f"`{n}`", iso, when]
-            for v, n, iso, when in table["uds"]["nrc"]["codes"]]
-    return _table(["NRC", "C name", "ISO 14229-1 name", "given when"],
-                  ["---:", "---", "---", "---"], rows)
+    rows = [[f"0x{int(v):02X}", f"`{n}`", iso, when] for v, n, iso, when in table["uds"]["nrc"]["codes"]]
+    return _table(["NRC", "C name", "ISO 14229-1 name", "given when"], ["---:", "---", "---", "---"], rows)
 
 
 def region_faults(table: dict) -> str:
     g = next(g for g in table["status"] if "bitmask" in g)
-    rows = [[str(v), name.removeprefix(g["bitmask"] + "_"), g["doc"][name]["detection"],
-             g["doc"][name]["clearing"]] for v, name, _, _ in _rows(g)]
-    return _table(["code", "name", "detection (per tick)", "clearing condition"],
-                  ["---:", "---", "---", "---"], rows)
+    rows = [
+        [
+            str(v),
+            name.removeprefix(g["bitmask"] + "_"),
+            g["doc"][name]["detection"],
+            g["doc"][name]["clearing"],
+        ]
+        for v, name, _, _ in _rows(g)
+    ]
+    return _table(
+        ["code", "name", "detection (per tick)", "clearing condition"], ["---:", "---", "---", "---"], rows
+    )
 
 
 def region_results(table: dict) -> str:
-    rows = [[str(v), f"`{name}`", text] for g in table["status"] if "header" in g
-            for v, name, text, _ in _rows(g) if 520 <= v < 600]
+    rows = [
+        [str(v), f"`{name}`", text]
+        for g in table["status"]
+        if "header" in g
+        for v, name, text, _ in _rows(g)
+        if 520 <= v < 600
+    ]
     return _table(["code", "name", "meaning"], ["---:", "---", "---"], rows)
 
 
@@ -420,9 +490,15 @@ def region_update_nrcs(table: dict) -> str:
     return _table(["status", "name", "NRC", "meaning"], ["---:", "---", "---", "---"], rows)
 
 
-REGIONS = {"can_ids": region_can_ids, "routines": region_routines, "dids": region_dids,
-           "nrcs": region_nrcs, "faults": region_faults, "results": region_results,
-           "update_nrcs": region_update_nrcs}
+REGIONS = {
+    "can_ids": region_can_ids,
+    "routines": region_routines,
+    "dids": region_dids,
+    "nrcs": region_nrcs,
+    "faults": region_faults,
+    "results": region_results,
+    "update_nrcs": region_update_nrcs,
+}
 
 
 def _begin(name: str) -> str:
@@ -442,8 +518,7 @@ def fill_regions(rel: str, text: str, table: dict) -> str:
         end_at = text.find(_end(name))
         if len(found) != 1 or end_at < found[0].end():
             raise TableError(f"{rel}: needs one '{_begin(name)}' ... '{_end(name)}' pair")
-        text = (text[:found[0].start()] + _begin(name) + "\n" + REGIONS[name](table) + "\n"
-                + text[end_at:])
+        text = text[: found[0].start()] + _begin(name) + "\n" + REGIONS[name](table) + "\n" + text[end_at:]
     return text
 
 

@@ -1,11 +1,12 @@
 """tools/check_fn_length.py: the tree passes; a function over the limit is reported with its
 file, line, name and length unless it carries a `/* long: reason */` comment; braces inside
 strings, comments, macros and initialisers are not mistaken for function bodies."""
+
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 from types import ModuleType
-from typing import Callable
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -41,8 +42,7 @@ def test_lengths_names_and_reasons(tmp_path: Path, tool: Callable[[str], ModuleT
     assert found["long_one"].first_line == 5 + 14
 
 
-def test_main_fails_on_a_long_function(tmp_path: Path, tool: Callable[[str], ModuleType],
-                                       capsys) -> None:  # type: ignore[no-untyped-def]
+def test_main_fails_on_a_long_function(tmp_path: Path, tool: Callable[[str], ModuleType], capsys) -> None:  # type: ignore[no-untyped-def]
     mod = tool("check_fn_length")
     src = tmp_path / "b.c"
     src.write_text(_function("too_long", 85))

@@ -1,14 +1,14 @@
 """tools/check_layers.py: the tree and the host package pass, and an upward include or import, a sideways include, a narrow
 layer used beyond its opening and an include cycle are each reported."""
+
 from __future__ import annotations
 
 import shutil
+from collections.abc import Callable
 from pathlib import Path
 from types import ModuleType
-from typing import Callable
 
 ROOT = Path(__file__).resolve().parents[2]
-
 
 
 def _copy(tmp: Path) -> Path:
@@ -30,11 +30,11 @@ def test_the_tree_has_no_upward_include_and_no_cycle(tool: Callable[[str], Modul
 def test_violations_are_reported(tmp_path: Path, tool: Callable[[str], ModuleType]) -> None:
     mod = tool("check_layers")
     root = _copy(tmp_path)
-    _add_include(root / "firmware/core/fs_num.h", "fs_num_fixed.h")        # upward
-    _add_include(root / "firmware/storage/nvm.h", "flt_codes.h")           # fine: base
-    _add_include(root / "firmware/security/sec_access.h", "nvm.h")         # sideways
-    _add_include(root / "firmware/safety/lim.h", "pfc.h")                  # beyond fs_real.h
-    _add_include(root / "firmware/core/dmp.h", "skill.h")                  # skill.h -> dmp.h: cycle
+    _add_include(root / "firmware/core/fs_num.h", "fs_num_fixed.h")  # upward
+    _add_include(root / "firmware/storage/nvm.h", "flt_codes.h")  # fine: base
+    _add_include(root / "firmware/security/sec_access.h", "nvm.h")  # sideways
+    _add_include(root / "firmware/safety/lim.h", "pfc.h")  # beyond fs_real.h
+    _add_include(root / "firmware/core/dmp.h", "skill.h")  # skill.h -> dmp.h: cycle
     problems, _ = mod.check(root)
     text = "\n".join(problems)
     assert "upward include of firmware/fixed/fs_num_fixed.h (core -> fixed)" in text
@@ -44,20 +44,23 @@ def test_violations_are_reported(tmp_path: Path, tool: Callable[[str], ModuleTyp
     assert not any(p.startswith("firmware/storage/nvm.h:") for p in problems)
 
 
-def test_a_private_header_outside_its_module_is_reported(tmp_path: Path,
-                                                         tool: Callable[[str], ModuleType]) -> None:
+def test_a_private_header_outside_its_module_is_reported(
+    tmp_path: Path, tool: Callable[[str], ModuleType]
+) -> None:
     mod = tool("check_layers")
     root = _copy(tmp_path)
-    _add_include(root / "firmware/ports/host/hal_host.c", "app_internal.h")   # a port: app.h only
-    _add_include(root / "firmware/ports/host/hal_can_sim.c", "app.h")         # fine
+    _add_include(root / "firmware/ports/host/hal_host.c", "app_internal.h")  # a port: app.h only
+    _add_include(root / "firmware/ports/host/hal_can_sim.c", "app.h")  # fine
     problems, _ = mod.check(root)
-    assert problems == ["firmware/ports/host/hal_host.c: app_internal.h is private to app "
-                        "(use app.h)"]
+    assert problems == ["firmware/ports/host/hal_host.c: app_internal.h is private to app (use app.h)"]
 
 
 def _copy_host(tmp: Path) -> Path:
-    shutil.copytree(ROOT / "host" / "forceskill", tmp / "host" / "forceskill",
-                    ignore=shutil.ignore_patterns("__pycache__", "data"))
+    shutil.copytree(
+        ROOT / "host" / "forceskill",
+        tmp / "host" / "forceskill",
+        ignore=shutil.ignore_patterns("__pycache__", "data"),
+    )
     return tmp
 
 
@@ -76,12 +79,12 @@ def test_host_violations_are_reported(tmp_path: Path, tool: Callable[[str], Modu
         p = pkg / rel
         p.write_text(line + "\n" + p.read_text())
 
-    prepend("model/skill.py", "from ..link import device")                  # upward
-    prepend("link/bus.py", "def f():\n    from ..commands import run")     # upward, inside a function
-    prepend("model/tolerance.py", "from ..readers import canlog")            # fine: lower layer
-    prepend("readers/csv.py", "from ..link import uds")                      # beyond link.dbc
-    prepend("model/params.py", "from . import fit")                          # fit -> params: cycle
-    (pkg / "extra.py").write_text("")                                        # no layer
+    prepend("model/skill.py", "from ..link import device")  # upward
+    prepend("link/bus.py", "def f():\n    from ..commands import run")  # upward, inside a function
+    prepend("model/tolerance.py", "from ..readers import canlog")  # fine: lower layer
+    prepend("readers/csv.py", "from ..link import uds")  # beyond link.dbc
+    prepend("model/params.py", "from . import fit")  # fit -> params: cycle
+    (pkg / "extra.py").write_text("")  # no layer
     problems, _ = mod.check_host(tmp_path)
     text = "\n".join(problems)
     assert "forceskill.model.skill: upward import of forceskill.link.device (model -> link)" in text

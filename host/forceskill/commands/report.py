@@ -113,40 +113,24 @@ def _learn(
     demo_sum = run_sim(hil_sim, scen / f"{task.name}_demo.toml", demo_log, "--seed", str(seed))
     demo = load_demo(demo_log)
     gains = gains_for_object(task.stiffness_Npm, OBJECT_MASS_KG)
-    res = fit(
-        demo,
-        task.stiffness_Npm,
-        n_kernels=n_kernels,
-        method="ridge",
-        surface_m=SURFACE_M,
-        end_policy=task.end_policy,
-        gains=gains,
-    )
-    lwr50 = fit(
-        demo,
-        task.stiffness_Npm,
-        n_kernels=50,
-        method="lwr",
-        surface_m=SURFACE_M,
-        end_policy=task.end_policy,
-        gains=gains,
-    )
+
+    def fit_n(n: int, method: str) -> Any:
+        return fit(
+            demo,
+            task.stiffness_Npm,
+            n_kernels=n,
+            method=method,
+            surface_m=SURFACE_M,
+            end_policy=task.end_policy,
+            gains=gains,
+        )
+
+    res = fit_n(n_kernels, "ridge")
+    lwr50 = fit_n(50, "lwr")
     bound = LWR_BOUND_PCT[task.kind]
     lwr_n, lwr_at_n = None, None
     for n in LWR_KERNELS:
-        r = (
-            lwr50
-            if n == 50
-            else fit(
-                demo,
-                task.stiffness_Npm,
-                n_kernels=n,
-                method="lwr",
-                surface_m=SURFACE_M,
-                end_policy=task.end_policy,
-                gains=gains,
-            )
-        )
+        r = lwr50 if n == 50 else fit_n(n, "lwr")
         if r.err_max_pct <= bound:
             lwr_n, lwr_at_n = n, r
             break
@@ -187,6 +171,21 @@ def _learn(
     return entry
 
 
+#: Figures of an execution's summary (run_sim) that every report row carries, in this order.
+TRACKING_FIELDS = (
+    "tracking_max_pct",
+    "tracking_rms_pct",
+    "max_cmd_abs_N",
+    "force_limit_N",
+    "limit_violations",
+)
+
+
+def _tracking(summary: dict[str, Any], *extra: str) -> dict[str, Any]:
+    """The TRACKING_FIELDS of an execution summary, then the extra ones named."""
+    return {k: summary[k] for k in TRACKING_FIELDS + extra}
+
+
 def _reuse(hil_sim: Path, scen: Path, out: Path, seed: int, plots: bool) -> list[dict[str, Any]]:
     skills = [str(out / "skills" / "engraving_task1.skill"), str(out / "skills" / "engraving_task2.skill")]
     logs: dict[str, dict[str, np.ndarray]] = {}
@@ -224,12 +223,7 @@ def _reuse(hil_sim: Path, scen: Path, out: Path, seed: int, plots: bool) -> list
                 "approx_rms_pct": None,
                 "approx_max_pct_lwr": None,
                 "approx_rms_pct_lwr": None,
-                "tracking_max_pct": s["tracking_max_pct"],
-                "tracking_rms_pct": s["tracking_rms_pct"],
-                "max_cmd_abs_N": s["max_cmd_abs_N"],
-                "force_limit_N": s["force_limit_N"],
-                "limit_violations": s["limit_violations"],
-                "deformation_max_m": s["deformation_max_m"],
+                **_tracking(s, "deformation_max_m"),
                 "deformation_diff_pct": None
                 if name == "reuse_200_1x"
                 else (d_scaled if name == "reuse_300_1_5x" else d_unscaled),
@@ -271,14 +265,7 @@ def _stiff(hil_sim: Path, scen: Path, out: Path, seed: int, n_kernels: int) -> l
                 "approx_rms_pct": res.err_rms_pct,
                 "approx_max_pct_lwr": None,
                 "approx_rms_pct_lwr": None,
-                "tracking_max_pct": s["tracking_max_pct"],
-                "tracking_rms_pct": s["tracking_rms_pct"],
-                "max_cmd_abs_N": s["max_cmd_abs_N"],
-                "force_limit_N": s["force_limit_N"],
-                "limit_violations": s["limit_violations"],
-                "saturated_ticks": s["saturated_ticks"],
-                "nonfinite_ticks": s["nonfinite_ticks"],
-                "deformation_max_m": s["deformation_max_m"],
+                **_tracking(s, "saturated_ticks", "nonfinite_ticks", "deformation_max_m"),
                 "skill": str(skill_path),
                 "exec_log": str(log),
             }

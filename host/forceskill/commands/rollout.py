@@ -6,7 +6,7 @@ import argparse
 import sys
 from collections.abc import Iterator
 
-from ._args import float_arg, int_arg
+from ._args import add_scales, int_arg
 
 
 def _cmd_rollout(args: argparse.Namespace) -> int:
@@ -48,16 +48,7 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p.add_argument(
         "-o", "--output", required=True, metavar="OUT.csv", help="CSV to write ('-': standard output)"
     )
-    p.add_argument(
-        "--goal-scale",
-        type=float_arg,
-        default=1.0,
-        metavar="S",
-        help="multiply the goal (force) by S, 0..65.535",
-    )
-    p.add_argument(
-        "--time-scale", type=float_arg, default=1.0, metavar="S", help="stretch time by S, 0.001..65.535"
-    )
+    add_scales(p)
     p.add_argument(
         "--steps",
         type=int_arg,

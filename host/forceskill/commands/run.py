@@ -25,7 +25,7 @@ from ..model.limits import (
 from ..model.scales import check_scales
 from ..model.skill import Skill
 from ..outputs import STDOUT, Outputs, format_rows
-from ._args import add_force_limit
+from ._args import add_force_limit, add_scales
 from ._common import add_common, columns, connect, link_errors, open_log, sigint_flag, tracking
 
 _STEP = re.compile(r"^\s*(\d+)\s*:\s*([0-9.]+)\s*(ms|s)?\s*$")
@@ -295,16 +295,7 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     )
     p.add_argument("--slot", type=int, metavar="N", help="slot 1..8")
     p.add_argument("--sequence", metavar="SLOT:DUR,...", help="skills in series, e.g. 1:8s,2:9s")
-    p.add_argument(
-        "--goal-scale",
-        type=float,
-        default=1.0,
-        metavar="S",
-        help="multiply the force by S, 0..65.535; refused if the skill's peak times S is above --force-limit",
-    )
-    p.add_argument(
-        "--time-scale", type=float, default=1.0, metavar="S", help="stretch time by S, 0.001..65.535"
-    )
+    add_scales(p, "refused if the skill's peak times S is above --force-limit")
     p.add_argument(
         "--end",
         choices=("skill", "hold", "release"),

@@ -11,6 +11,7 @@ from ._args import add_force_limit
 def _cmd_show(args: argparse.Namespace) -> int:
     import numpy as np
 
+    from ..errors import ERR_SKILL_PEAK
     from ..model.dmp import rollout
     from ..model.limits import check_force_limit, peak_problem
     from ..model.skill import Skill, image_size
@@ -44,7 +45,7 @@ def _cmd_show(args: argparse.Namespace) -> int:
     print(f"  rollout        peak |f_hat| {peak:.6g} N, final {float(f[-1]):.6g} N")
     problem = peak_problem(peak, 1.0, args.force_limit)
     if problem:
-        print(f"  REFUSED        {problem}: fit, upload and run refuse this skill [662]")
+        print(f"  REFUSED        {problem}: fit, upload and run refuse this skill [{ERR_SKILL_PEAK}]")
     else:
         print(
             f"  force limit    {args.force_limit:g} N: goal scale up to {args.force_limit / peak if peak > 0 else float('inf'):.4g}"

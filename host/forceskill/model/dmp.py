@@ -18,7 +18,7 @@ f_hat/k and the controller's k_f = kkf/k, k_i = kki/k).
 
 ``rollout`` runs that loop literally (one Python step per tick, kernels vectorised over all ticks,
 since the phase does not depend on x). ``linear_scan`` is the same recursion evaluated in blocks,
-used by the fit for speed and checked against the loop in tests/host/test_dmp.py.
+used by the fit for speed and checked against the loop in tests/host/model/test_dmp.py.
 """
 
 from __future__ import annotations
