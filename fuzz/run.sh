@@ -80,12 +80,19 @@ for h in "${HARNESSES[@]}"; do
     set -e
     end=$(date +%s.%N)
     execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo 0)
-    crashes=$(find "$OUT/artifacts" -name "$h-*" -newermt "@${start%.*}" 2>/dev/null | wc -l)
+    # a slow-unit artifact is an input that took over 10 s on a loaded machine: listed, not a
+    # crash (a hang is a timeout-* artifact, libFuzzer's -timeout)
+    crashes=$(find "$OUT/artifacts" -name "$h-*" ! -name "$h-slow-unit-*" -newermt "@${start%.*}" \
+              2>/dev/null | wc -l)
+    slow=$(find "$OUT/artifacts" -name "$h-slow-unit-*" -newermt "@${start%.*}" 2>/dev/null | wc -l)
     if [ "$rc" -ne 0 ] && [ "$crashes" -eq 0 ]; then crashes=1; fi
     t=$(echo "$end - $start" | bc)
     rate=$(echo "scale=0; ${execs:-0} / ($t + 0.001)" | bc)
     ncorp=$(find "$work" -type f | wc -l)
     echo "fuzz $h runs=${execs:-0} time_s=$(printf '%.1f' "$t") exec_per_s=$rate crashes=$crashes corpus=$ncorp"
+    if [ "$slow" -ne 0 ]; then
+        echo "fuzz $h: $slow input(s) over 10 s (slow-unit artifacts in $OUT/artifacts; not crashes)"
+    fi
     if [ "$crashes" -ne 0 ]; then
         status=1
         grep -m1 -A12 'ERROR\|runtime error\|deadly signal' "$log" || tail -20 "$log"

@@ -9,7 +9,8 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$ROOT/scripts/setup.sh"
 cd "$ROOT"
 
-echo "== generated files agree with their sources (codes.toml -> headers, codes.py, docs/codes.md;"
+echo "== generated files agree with their sources (codes.toml -> headers, codes.py, docs/codes.md and"
+echo "   the marked tables of docs/protocol.md, safety.md, update.md;"
 echo "   public headers -> the _f32 rename headers)"
 .venv/bin/python tools/gen_codes.py --check
 .venv/bin/python tools/gen_f32_names.py --check
@@ -19,6 +20,8 @@ echo "== one implementation of the control tick (scripts/check_one_tick.sh)"
 scripts/check_one_tick.sh
 echo "== layers: no upward or sideways include or host import, no cycle (tools/check_layers.py)"
 .venv/bin/python tools/check_layers.py
+echo "== no C function over 80 lines in firmware/ and hil_sim/ without a /* long: reason */ (tools/check_fn_length.py)"
+.venv/bin/python tools/check_fn_length.py
 echo "== Python: ruff (lint, format) on host/forceskill, tests/, tools/ and bench/, mypy (strict) on"
 echo "   host/forceskill (configuration: host/pyproject.toml)"
 .venv/bin/ruff check --config host/pyproject.toml host/forceskill tests tools bench

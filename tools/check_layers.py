@@ -6,8 +6,9 @@ point to the same module or to a lower layer, and no header may include itself t
         <-  safety, storage, security, proto  <-  boot  <-  app  <-  ports  <-  hil_sim
 
 Modules of one layer do not include each other. Some lower modules are open only in part (safety
-and hal use only the core's fs_real.h). The host package host/forceskill is checked the same way on
-its imports (those inside functions too):
+and hal use only the core's fs_real.h), and a module's private header (app_internal.h) is open
+only to its own files and the simulator. The host package host/forceskill is checked the same way
+on its imports (those inside functions too):
 
     codes, errors, outputs, sim  <-  readers  <-  model  <-  link  <-  plot  <-  commands  <-  cli
 
@@ -43,6 +44,9 @@ RANK = {
 }
 # (from, to): the only headers of `to` that `from` may include
 ONLY = {("safety", "core"): {"fs_real.h"}, ("hal", "core"): {"fs_real.h"}}
+# a module's private headers: only these other modules may include them (the simulator is a
+# white-box user of the application; ports use app.h)
+PRIVATE = {"app_internal.h": {"hil_sim"}}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 
 
@@ -131,6 +135,8 @@ def check(root: Path = ROOT) -> tuple[list[str], dict[tuple[str, str], set[str]]
             elif RANK[b] >= RANK[a]:
                 kind = "sideways" if RANK[b] == RANK[a] else "upward"
                 problems.append(f"{src}: {kind} include of {dst} ({a} -> {b})")
+            elif dst.name in PRIVATE and a not in PRIVATE[dst.name]:
+                problems.append(f"{src}: {dst.name} is private to {b} (use {b}.h)")
             elif (a, b) in ONLY and dst.name not in ONLY[(a, b)]:
                 problems.append(
                     f"{src}: {a} may use only {', '.join(sorted(ONLY[(a, b)]))} of {b}, not {dst.name}"

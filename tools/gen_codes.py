@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Write every file that carries a numbered code or identifier from the one table,
-firmware/base/codes.toml: the C headers in firmware/base/, host/forceskill/codes.py and
-docs/codes.md. Standard library only (tomllib, Python 3.11+).
+firmware/base/codes.toml: the C headers in firmware/base/, host/forceskill/codes.py,
+docs/codes.md, and the marked tables of docs/protocol.md, docs/safety.md and docs/update.md
+(between `<!-- begin codes:NAME ... -->` and `<!-- end codes:NAME -->`; the text around them is
+kept). Standard library only (tomllib, Python 3.11+).
 
 usage: tools/gen_codes.py            write the files
        tools/gen_codes.py --check    exit 1 (one line per file) if a file differs from the table,
@@ -24,6 +26,12 @@ BASE = "firmware/base"
 PY_OUT = "host/forceskill/codes.py"
 DOC_OUT = "docs/codes.md"
 DBC = "firmware/proto/forceskill.dbc"
+# the marked regions each document holds, in order
+DOC_REGIONS = {
+    "docs/protocol.md": ["can_ids", "routines", "dids", "nrcs"],
+    "docs/safety.md": ["faults", "results"],
+    "docs/update.md": ["update_nrcs"],
+}
 STAMP = f"generated from {TABLE} by tools/gen_codes.py; do not edit"
 WIDTH = 100
 
@@ -64,6 +72,36 @@ def validate(table: dict) -> None:
     names = [r[1] for r in table["uds"]["ids"]] + [r[1] for r in table["can"]["ids"]]
     if len(names) != len(set(names)):
         raise TableError("an identifier name is used twice")
+    _validate_docs(table, seen_n)
+
+
+def _same_keys(what: str, have: set[str], want: set[str]) -> None:
+    if have != want:
+        extra, missing = sorted(have - want), sorted(want - have)
+        raise TableError(f"{what}: no such name {extra}" if extra else f"{what}: missing {missing}")
+
+
+def _validate_docs(table: dict, code_names: set[str]) -> None:
+    """Every documented row has its doc entry, every doc entry a row; NRC values once, and every
+    NRC a code maps to is in the NRC table."""
+    can = table["can"]
+    _same_keys("[can.doc]", set(can["doc"]), {r[1] for r in can["ids"]})
+    uds = table["uds"]
+    _same_keys("[uds.doc]", set(uds["doc"]), {r[1] for r in uds["ids"] if r[3] in ("DID", "RID")})
+    nrcs = [int(r[0]) for r in uds["nrc"]["codes"]]
+    if len(nrcs) != len(set(nrcs)) or nrcs != sorted(nrcs):
+        raise TableError("[uds.nrc]: values repeated or not ascending")
+    for g in table["status"]:
+        names = {r[1] for r in _rows(g)}
+        if "doc" in g:
+            _same_keys(f"{g['title']}: [status.doc]", set(g["doc"]), names)
+        if "nrc" in g:
+            mapped = {k: v for k, v in g["nrc"].items() if k != "nrc_default"}
+            if not set(mapped) <= names:
+                raise TableError(f"{g['title']}: [status.nrc] names {sorted(set(mapped) - names)}")
+            for v in [*mapped.values(), g["nrc"]["nrc_default"]]:
+                if int(v) not in nrcs:
+                    raise TableError(f"{g['title']}: NRC 0x{int(v):02X} not in [uds.nrc]")
 
 
 def py_name(group: dict, name: str) -> str:
@@ -134,9 +172,44 @@ def c_status_headers(table: dict) -> dict[str, str]:
                     f"         ? (1u << ((uint32_t)(code) - {p}_CODE_FIRST)) : 0u)",
                     "",
                 ]
+            if "nrc" in g:
+                includes += [i for i in ("<stdint.h>", '"uds_nrc.h"') if i not in includes]
+                body += _c_nrc_function(table, g)
         what = "; ".join(g["title"].split(" (")[0] for g in groups)
         out[header] = _c_file(header, f"Status codes: {what}.", body, includes)
     return out
+
+
+def _c_nrc_function(table: dict, g: dict) -> list[str]:
+    """`<prefix>_status_nrc()`: the UDS negative response code of each status of the group."""
+    fn = g["enum"].removesuffix("_t") + "_nrc"
+    nrc = g["nrc"]
+    c_name = {int(v): n for v, n, _, _ in table["uds"]["nrc"]["codes"]}
+    body = [
+        f"/** The UDS negative response code of a status (UDS_NRC_OK for {g['ok']}). */",
+        f"static inline uint8_t {fn}({g['enum']} st)",
+        "{",
+        "    switch (st) {",
+        f"    case {g['ok']}: return UDS_NRC_OK;",
+    ]
+    for _, name, _, _ in _rows(g):
+        if name in nrc:
+            body.append(f"    case {name}: return {c_name[int(nrc[name])]};")
+    body += [f"    default: return {c_name[int(nrc['nrc_default'])]};", "    }", "}", ""]
+    return body
+
+
+def c_uds_nrc(table: dict) -> str:
+    body = ["#define UDS_NRC_OK 0x00u /* positive response */"]
+    for value, name, iso, _ in table["uds"]["nrc"]["codes"]:
+        body += _c_line(f"#define {name} 0x{int(value):02X}u", iso, 44)
+    body.append("")
+    return _c_file(
+        "uds_nrc.h",
+        "UDS negative response codes the device answers (ISO 14229-1 values; docs/protocol.md).",
+        body,
+        [],
+    )
 
 
 def _doc_comment(text: str) -> list[str]:
@@ -228,6 +301,25 @@ def python_module(table: dict) -> str:
         digits = 8 if value > 0xFFFF else (4 if value > 0xFF else 2)
         entry = f"{n} = 0x{value:0{digits}X}  # {text}"
         lines.append(entry if len(entry) <= WIDTH else f"{n} = 0x{value:0{digits}X}")
+    lines += ["", "# UDS negative response codes the device answers"]
+    for value, name, iso, _ in table["uds"]["nrc"]["codes"]:
+        n = name.removeprefix("UDS_")
+        names.append(n)
+        lines.append(f"{n} = 0x{int(value):02X}  # {iso}")
+    for g in table["status"]:
+        if "nrc" in g:
+            n = g["enum"].removesuffix("_t").upper() + "_NRC"
+            names.append(n)
+            lines += [
+                "",
+                f"# {g['title']}: the negative response code of each status "
+                f"(others: 0x{int(g['nrc']['nrc_default']):02X})",
+                f"{n}: dict[int, int] = {{",
+            ]
+            for value, name, _, _ in _rows(g):
+                if name in g["nrc"]:
+                    lines.append(f"    {value}: 0x{int(g['nrc'][name]):02X},")
+            lines.append("}")
     lines += ["", "__all__ = ["]
     lines += [f"    {n!r}," for n in names]
     lines += ["]", ""]
@@ -287,7 +379,7 @@ def markdown(table: dict) -> str:
         "",
         "## UDS identifiers",
         "",
-        "C: `fs_uds_ids.h`. Services, sessions and negative response codes are ISO 14229's "
+        "C: `fs_uds_ids.h`. Services and sessions are ISO 14229's "
         "(`firmware/proto/uds.h`, [protocol.md](protocol.md)).",
         "",
         "| value | kind | C name | host name | what |",
@@ -296,17 +388,151 @@ def markdown(table: dict) -> str:
     for value, name, host, kind, text in table["uds"]["ids"]:
         digits = 8 if value > 0xFFFF else (4 if value > 0xFF else 2)
         out.append(f"| 0x{value:0{digits}X} | {kind} | `{name}` | `{host}` | {_md_cell(text)} |")
+    out += [
+        "",
+        "## UDS negative response codes",
+        "",
+        "C: `uds_nrc.h`; the update path's mapping is `boot_status_nrc()` ([update.md](update.md)).",
+        "",
+    ]
+    out += region_nrcs(table).splitlines()
     out.append("")
     return "\n".join(out)
 
 
-def outputs(table: dict) -> dict[str, str]:
-    """Every file the table gives, by path relative to the repository."""
+# ---------------------------------------------------------------- marked regions of the docs
+
+
+def _hex(value: int) -> str:
+    digits = 8 if value > 0xFFFF else (4 if value > 0xFF else 2)
+    return f"0x{value:0{digits}X}"
+
+
+def _table(head: list[str], align: list[str], rows: list[list[str]]) -> str:
+    lines = ["| " + " | ".join(head) + " |", "|" + "|".join(align) + "|"]
+    lines += ["| " + " | ".join(_md_cell(c) for c in r) + " |" for r in rows]
+    return "\n".join(lines)
+
+
+def region_can_ids(table: dict) -> str:
+    can = table["can"]
+    rows = []
+    for value, name, _, frame, _ in can["ids"]:
+        d = can["doc"][name]
+        rows.append([f"0x{value:03X} + n", frame or d["frame"], d["sender"], d["period"], d["protected"]])
+    return _table(
+        ["id", "frame", "sender", "period", "protected"], ["---:", "---", "---", "---", "---"], rows
+    )
+
+
+def _uds(table: dict, kind: str) -> list[tuple[int, str, str, dict]]:
+    doc = table["uds"]["doc"]
+    return [(v, n, text, doc[n]) for v, n, _, k, text in table["uds"]["ids"] if k == kind]
+
+
+def region_routines(table: dict) -> str:
+    rows = [[_hex(v), d["label"], d["start"], d["stop"], d["results"]] for v, _, _, d in _uds(table, "RID")]
+    return _table(
+        ["RID", "routine", "start data", "stop", "results"], ["---:", "---", "---", "---", "---"], rows
+    )
+
+
+def region_dids(table: dict) -> str:
+    rows = [
+        [_hex(v), d.get("content", text), str(d["length"]), d["write"]]
+        for v, _, text, d in _uds(table, "DID")
+    ]
+    return _table(["DID", "content", "length", "write"], ["---:", "---", "---:", "---"], rows)
+
+
+def region_nrcs(table: dict) -> str:
+    rows = [[f"0x{int(v):02X}", f"`{n}`", iso, when] for v, n, iso, when in table["uds"]["nrc"]["codes"]]
+    return _table(["NRC", "C name", "ISO 14229-1 name", "given when"], ["---:", "---", "---", "---"], rows)
+
+
+def region_faults(table: dict) -> str:
+    g = next(g for g in table["status"] if "bitmask" in g)
+    rows = [
+        [
+            str(v),
+            name.removeprefix(g["bitmask"] + "_"),
+            g["doc"][name]["detection"],
+            g["doc"][name]["clearing"],
+        ]
+        for v, name, _, _ in _rows(g)
+    ]
+    return _table(
+        ["code", "name", "detection (per tick)", "clearing condition"], ["---:", "---", "---", "---"], rows
+    )
+
+
+def region_results(table: dict) -> str:
+    rows = [
+        [str(v), f"`{name}`", text]
+        for g in table["status"]
+        if "header" in g
+        for v, name, text, _ in _rows(g)
+        if 520 <= v < 600
+    ]
+    return _table(["code", "name", "meaning"], ["---:", "---", "---"], rows)
+
+
+def region_update_nrcs(table: dict) -> str:
+    iso = {int(v): name for v, _, name, _ in table["uds"]["nrc"]["codes"]}
+    rows = []
+    for g in table["status"]:
+        if "nrc" not in g:
+            continue
+        for v, name, text, _ in _rows(g):
+            nrc = int(g["nrc"].get(name, g["nrc"]["nrc_default"]))
+            label = f"0x{nrc:02X}" + ("" if nrc >= 0xF0 else f" {iso[nrc]}")
+            rows.append([str(v), f"`{name}`", label, text])
+    return _table(["status", "name", "NRC", "meaning"], ["---:", "---", "---", "---"], rows)
+
+
+REGIONS = {
+    "can_ids": region_can_ids,
+    "routines": region_routines,
+    "dids": region_dids,
+    "nrcs": region_nrcs,
+    "faults": region_faults,
+    "results": region_results,
+    "update_nrcs": region_update_nrcs,
+}
+
+
+def _begin(name: str) -> str:
+    return f"<!-- begin codes:{name} ({STAMP}) -->"
+
+
+def _end(name: str) -> str:
+    return f"<!-- end codes:{name} -->"
+
+
+def fill_regions(rel: str, text: str, table: dict) -> str:
+    """The document with each of its marked regions replaced by the table's text; TableError if
+    a marker is missing, repeated or out of order."""
+    for name in DOC_REGIONS[rel]:
+        begin = re.compile(rf"^<!-- begin codes:{name}\b.*-->$", re.M)
+        found = list(begin.finditer(text))
+        end_at = text.find(_end(name))
+        if len(found) != 1 or end_at < found[0].end():
+            raise TableError(f"{rel}: needs one '{_begin(name)}' ... '{_end(name)}' pair")
+        text = text[: found[0].start()] + _begin(name) + "\n" + REGIONS[name](table) + "\n" + text[end_at:]
+    return text
+
+
+def outputs(table: dict, root: Path = ROOT) -> dict[str, str]:
+    """Every file the table gives, by path relative to the repository (the documents with
+    marked regions as they are under root, their regions filled)."""
     files = {f"{BASE}/{h}": text for h, text in c_status_headers(table).items()}
     files[f"{BASE}/proto_ids.h"] = c_proto_ids(table)
     files[f"{BASE}/fs_uds_ids.h"] = c_uds_ids(table)
+    files[f"{BASE}/uds_nrc.h"] = c_uds_nrc(table)
     files[PY_OUT] = python_module(table)
     files[DOC_OUT] = markdown(table)
+    for rel in DOC_REGIONS:
+        files[rel] = fill_regions(rel, (root / rel).read_text(), table)
     return files
 
 
@@ -332,7 +558,7 @@ def check(root: Path = ROOT) -> list[str]:
     """One line per stale or missing file and per DBC disagreement; empty when all agree."""
     table = load(root)
     problems = []
-    for rel, text in outputs(table).items():
+    for rel, text in outputs(table, root).items():
         path = root / rel
         if not path.is_file() or path.read_text() != text:
             problems.append(f"{rel} differs from {TABLE}: run tools/gen_codes.py")

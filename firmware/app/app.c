@@ -1,5 +1,5 @@
 /* Device application: state machine, 1 kHz tick, cyclic frames (see app.h). */
-#include "app.h"
+#include "app_internal.h"
 
 #include <string.h>
 
@@ -661,4 +661,14 @@ bool app_fw_self_test_and_confirm(app_t *app)
         return false;
     }
     return boot_confirm(&app->boot) == BOOT_OK;
+}
+
+app_state_t app_state(const app_t *app)
+{
+    return app->state;
+}
+
+uint16_t app_fault_code(const app_t *app)
+{
+    return app->saf_out.fault_code;
 }

@@ -3,7 +3,7 @@
  * slot (validated by skill_parse, written by nvm, the old skill kept on any failure) and upload. */
 #include <string.h>
 
-#include "app.h"
+#include "app_internal.h"
 #include "fwu_uds.h"
 
 /* Data identifiers (DID_*, fs_uds_ids.h): big-endian values, IEEE-754 float32 for reals. */
@@ -51,27 +51,30 @@ static fs_real_t get_f32(const uint8_t *p)
 
 /* ---------------------------------------------------------------- data identifiers */
 
-static uint8_t read_did(void *ctx, uint16_t did, uint8_t *out, uint16_t cap, uint16_t *len)
+/* The identity DIDs (software version, format versions); their length, 0 for another DID. */
+static uint16_t did_identity(uint16_t did, uint8_t *buf)
 {
-    app_t *app = ctx;
-    uint8_t buf[8u + APP_N_SLOTS * SLOT_DIR_ENTRY];
-    uint16_t n = 0u;
-    if (did == FWU_DID_STATUS) {
-        return fwu_uds_read_did(&app->fwu, out, cap, len);
-    }
     switch (did) {
-    case DID_SW_VERSION:
-        n = (uint16_t)strlen(APP_SW_VERSION);
+    case DID_SW_VERSION: {
+        const uint16_t n = (uint16_t)strlen(APP_SW_VERSION);
         memcpy(buf, APP_SW_VERSION, n);
-        break;
+        return n;
+    }
     case DID_VERSIONS:
         buf[0] = APP_PROTO_VERSION_MAJOR;
         buf[1] = APP_PROTO_VERSION_MINOR;
         buf[2] = SKILL_FORMAT_VERSION;
         put_u16(&buf[3], DMP_MAX_KERNELS);
         buf[5] = APP_N_SLOTS;
-        n = 6u;
-        break;
+        return 6u;
+    default: return 0u;
+    }
+}
+
+/* The configuration DIDs (gains, limits, communication, object); their length, 0 for another. */
+static uint16_t did_config(const app_t *app, uint16_t did, uint8_t *buf)
+{
+    switch (did) {
     case DID_GAINS_X:
     case DID_GAINS_Y: {
         const pfc_axis_gains_t *g = &app->cfg.gains[did - DID_GAINS_X];
@@ -80,8 +83,7 @@ static uint8_t read_did(void *ctx, uint16_t did, uint8_t *out, uint16_t cap, uin
         put_f32(&buf[8], g->k_p_Npm);
         put_f32(&buf[12], g->k_f);
         put_f32(&buf[16], g->k_i_per_s);
-        n = 20u;
-        break;
+        return 20u;
     }
     case DID_LIMITS_X:
     case DID_LIMITS_Y: {
@@ -92,14 +94,12 @@ static uint8_t read_did(void *ctx, uint16_t did, uint8_t *out, uint16_t cap, uin
         put_f32(&buf[12], l->pos_max_m);
         put_f32(&buf[16], l->vel_max_mps);
         put_f32(&buf[20], l->contact_force_max_N);
-        n = 24u;
-        break;
+        return 24u;
     }
     case DID_COMM:
         buf[0] = app->cfg.telemetry_period_ms;
         put_u16(&buf[1], app->saf_cfg.wdg.timeout_ms);
-        n = 3u;
-        break;
+        return 3u;
     case DID_OBJECT: {
         const exec_object_t *o = &app->cfg.exec.object;
         buf[0] = app->cfg.exec.use_model;
@@ -109,45 +109,67 @@ static uint8_t read_did(void *ctx, uint16_t did, uint8_t *out, uint16_t cap, uin
         put_f32(&buf[13], o->k2_Npm);
         put_f32(&buf[17], o->layer_depth_m);
         put_f32(&buf[21], o->surface_m);
-        n = 25u;
-        break;
+        return 25u;
     }
-    case DID_SLOT_DIR:
-        buf[0] = APP_N_SLOTS;
-        n = 1u;
-        for (uint16_t s = 0; s < APP_N_SLOTS; s++) {
-            uint8_t *e = &buf[n];
-            memset(e, 0, SLOT_DIR_ENTRY);
-            if (app->slot_valid[s]) {
-                const skill_t *sk = &app->slot_skill[s];
-                e[0] = 1u;
-                put_u32(&e[1], app->slot_len[s]);
-                put_u32(&e[5], app->slot_crc[s]); /* the image's own CRC-32 field */
-                put_u16(&e[9], sk->dmp.n_kernels);
-                put_f32(&e[11], sk->dmp.duration_s);
-                e[15] = (uint8_t)sk->end_policy;
-            }
-            n = (uint16_t)(n + SLOT_DIR_ENTRY);
+    default: return 0u;
+    }
+}
+
+/* The slot directory: the count, then per slot valid, length, CRC, kernels, T, end policy. */
+static uint16_t did_slot_dir(const app_t *app, uint8_t *buf)
+{
+    uint16_t n = 1u;
+    buf[0] = APP_N_SLOTS;
+    for (uint16_t s = 0; s < APP_N_SLOTS; s++) {
+        uint8_t *e = &buf[n];
+        memset(e, 0, SLOT_DIR_ENTRY);
+        if (app->slot_valid[s]) {
+            const skill_t *sk = &app->slot_skill[s];
+            e[0] = 1u;
+            put_u32(&e[1], app->slot_len[s]);
+            put_u32(&e[5], app->slot_crc[s]); /* the image's own CRC-32 field */
+            put_u16(&e[9], sk->dmp.n_kernels);
+            put_f32(&e[11], sk->dmp.duration_s);
+            e[15] = (uint8_t)sk->end_policy;
         }
-        break;
-    case DID_LAST_TRANSFER:
-        put_u16(buf, app->last_transfer_status);
-        n = 2u;
-        break;
+        n = (uint16_t)(n + SLOT_DIR_ENTRY);
+    }
+    return n;
+}
+
+/* The status DIDs (slots, last transfer, device state, fault causes); length, 0 for another. */
+static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf)
+{
+    switch (did) {
+    case DID_SLOT_DIR: return did_slot_dir(app, buf);
+    case DID_LAST_TRANSFER: put_u16(buf, app->last_transfer_status); return 2u;
     case DID_DEVICE_STATE:
         buf[0] = (uint8_t)app->state;
         put_u16(&buf[1], app->saf_out.fault_code);
         buf[3] = app->active_slot;
         buf[4] = app->seq_step;
         put_u32(&buf[5], app->tick);
-        n = 9u;
-        break;
+        return 9u;
     case DID_FAULT_CAUSES: /* what blocks a clear: the causes still present at the last tick */
         put_u32(&buf[0], app->saf.flt.latched_mask);
         put_u32(&buf[4], app->saf.cause_mask);
-        n = 8u;
-        break;
-    default: return UDS_NRC_REQUEST_OUT_OF_RANGE;
+        return 8u;
+    default: return 0u;
+    }
+}
+
+static uint8_t read_did(void *ctx, uint16_t did, uint8_t *out, uint16_t cap, uint16_t *len)
+{
+    app_t *app = ctx;
+    uint8_t buf[8u + APP_N_SLOTS * SLOT_DIR_ENTRY];
+    if (did == FWU_DID_STATUS) {
+        return fwu_uds_read_did(&app->fwu, out, cap, len);
+    }
+    uint16_t n = did_identity(did, buf);
+    n = n != 0u ? n : did_config(app, did, buf);
+    n = n != 0u ? n : did_status(app, did, buf);
+    if (n == 0u) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
     if (n > cap) {
         return UDS_NRC_RESPONSE_TOO_LONG;
@@ -167,6 +189,100 @@ static bool finite_all(const fs_real_t *v, unsigned n)
     return true;
 }
 
+/* DID_GAINS_X/Y: m_d, k_d, k_p, k_f, k_i (float32), accepted when the gains validate. */
+static uint8_t write_gains(app_t *app, uint16_t did, const uint8_t *d, uint16_t len)
+{
+    if (len != 20u) {
+        return UDS_NRC_INCORRECT_LENGTH;
+    }
+    pfc_config_t pc;
+    pfc_default_config(&pc);
+    pc.gains[0] = app->cfg.gains[0];
+    pc.gains[1] = app->cfg.gains[1];
+    pfc_axis_gains_t *g = &pc.gains[did - DID_GAINS_X];
+    g->m_d_kg = get_f32(&d[0]);
+    g->k_d_Nspm = get_f32(&d[4]);
+    g->k_p_Npm = get_f32(&d[8]);
+    g->k_f = get_f32(&d[12]);
+    g->k_i_per_s = get_f32(&d[16]);
+    if (pfc_config_validate(&pc) != FS_OK) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    app->cfg.gains[did - DID_GAINS_X] = *g;
+    return UDS_NRC_OK;
+}
+
+/* DID_LIMITS_X/Y: six float32 limits, accepted when the safety configuration validates. */
+static uint8_t write_limits(app_t *app, uint16_t did, const uint8_t *d, uint16_t len)
+{
+    if (len != 24u) {
+        return UDS_NRC_INCORRECT_LENGTH;
+    }
+    saf_config_t sc = app->saf_cfg;
+    lim_axis_t *l = &sc.lim.axis[did - DID_LIMITS_X];
+    fs_real_t v[6];
+    for (unsigned i = 0; i < 6u; i++) {
+        v[i] = get_f32(&d[4u * i]);
+    }
+    if (!finite_all(v, 6u)) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    l->force_max_N = v[0];
+    l->slew_max_N = v[1];
+    l->pos_min_m = v[2];
+    l->pos_max_m = v[3];
+    l->vel_max_mps = v[4];
+    l->contact_force_max_N = v[5];
+    if (saf_config_validate(&sc) != SAF_OK) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    app->saf_cfg = sc;
+    app->cfg.saf = sc;
+    return UDS_NRC_OK;
+}
+
+/* DID_COMM: telemetry period (ms, > 0) and host timeout (ms, the watchdog's range). */
+static uint8_t write_comm(app_t *app, const uint8_t *d, uint16_t len)
+{
+    if (len != 3u) {
+        return UDS_NRC_INCORRECT_LENGTH;
+    }
+    saf_config_t sc = app->saf_cfg;
+    sc.wdg.timeout_ms = get_u16(&d[1]);
+    if (d[0] == 0u || saf_config_validate(&sc) != SAF_OK) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    app->cfg.telemetry_period_ms = d[0];
+    app->saf_cfg = sc;
+    app->cfg.saf = sc;
+    return UDS_NRC_OK;
+}
+
+/* DID_OBJECT: use the model (0/1), then m_v, d_v, k1, k2, layer depth, surface (float32). */
+static uint8_t write_object(app_t *app, const uint8_t *d, uint16_t len)
+{
+    if (len != 25u || d[0] > 1u) {
+        return len != 25u ? UDS_NRC_INCORRECT_LENGTH : UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    fs_real_t v[6];
+    for (unsigned i = 0; i < 6u; i++) {
+        v[i] = get_f32(&d[1u + 4u * i]);
+    }
+    if (!finite_all(v, 6u) || v[0] < FS_R(0.0) || v[1] < FS_R(0.0) || v[2] <= FS_R(0.0) ||
+        v[3] <= FS_R(0.0) || v[4] < FS_R(0.0)) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    exec_object_t *o = &app->cfg.exec.object;
+    app->cfg.exec.use_model = d[0];
+    o->m_v_kg = v[0];
+    o->d_v_Nspm = v[1];
+    o->k1_Npm = v[2];
+    o->k2_Npm = v[3];
+    o->layer_depth_m = v[4];
+    o->surface_m = v[5];
+    return UDS_NRC_OK;
+}
+
 static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len)
 {
     app_t *app = ctx;
@@ -178,100 +294,148 @@ static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len
     }
     switch (did) {
     case DID_GAINS_X:
-    case DID_GAINS_Y: {
-        if (len != 20u) {
-            return UDS_NRC_INCORRECT_LENGTH;
-        }
-        pfc_config_t pc;
-        pfc_default_config(&pc);
-        pc.gains[0] = app->cfg.gains[0];
-        pc.gains[1] = app->cfg.gains[1];
-        pfc_axis_gains_t *g = &pc.gains[did - DID_GAINS_X];
-        g->m_d_kg = get_f32(&d[0]);
-        g->k_d_Nspm = get_f32(&d[4]);
-        g->k_p_Npm = get_f32(&d[8]);
-        g->k_f = get_f32(&d[12]);
-        g->k_i_per_s = get_f32(&d[16]);
-        if (pfc_config_validate(&pc) != FS_OK) {
-            return UDS_NRC_REQUEST_OUT_OF_RANGE;
-        }
-        app->cfg.gains[did - DID_GAINS_X] = *g;
-        return UDS_NRC_OK;
-    }
+    case DID_GAINS_Y: return write_gains(app, did, d, len);
     case DID_LIMITS_X:
-    case DID_LIMITS_Y: {
-        if (len != 24u) {
-            return UDS_NRC_INCORRECT_LENGTH;
-        }
-        saf_config_t sc = app->saf_cfg;
-        lim_axis_t *l = &sc.lim.axis[did - DID_LIMITS_X];
-        fs_real_t v[6];
-        for (unsigned i = 0; i < 6u; i++) {
-            v[i] = get_f32(&d[4u * i]);
-        }
-        if (!finite_all(v, 6u)) {
-            return UDS_NRC_REQUEST_OUT_OF_RANGE;
-        }
-        l->force_max_N = v[0];
-        l->slew_max_N = v[1];
-        l->pos_min_m = v[2];
-        l->pos_max_m = v[3];
-        l->vel_max_mps = v[4];
-        l->contact_force_max_N = v[5];
-        if (saf_config_validate(&sc) != SAF_OK) {
-            return UDS_NRC_REQUEST_OUT_OF_RANGE;
-        }
-        app->saf_cfg = sc;
-        app->cfg.saf = sc;
-        return UDS_NRC_OK;
-    }
-    case DID_COMM: {
-        if (len != 3u) {
-            return UDS_NRC_INCORRECT_LENGTH;
-        }
-        saf_config_t sc = app->saf_cfg;
-        sc.wdg.timeout_ms = get_u16(&d[1]);
-        if (d[0] == 0u || saf_config_validate(&sc) != SAF_OK) {
-            return UDS_NRC_REQUEST_OUT_OF_RANGE;
-        }
-        app->cfg.telemetry_period_ms = d[0];
-        app->saf_cfg = sc;
-        app->cfg.saf = sc;
-        return UDS_NRC_OK;
-    }
-    case DID_OBJECT: {
-        if (len != 25u || d[0] > 1u) {
-            return len != 25u ? UDS_NRC_INCORRECT_LENGTH : UDS_NRC_REQUEST_OUT_OF_RANGE;
-        }
-        fs_real_t v[6];
-        for (unsigned i = 0; i < 6u; i++) {
-            v[i] = get_f32(&d[1u + 4u * i]);
-        }
-        if (!finite_all(v, 6u) || v[0] < FS_R(0.0) || v[1] < FS_R(0.0) || v[2] <= FS_R(0.0) ||
-            v[3] <= FS_R(0.0) || v[4] < FS_R(0.0)) {
-            return UDS_NRC_REQUEST_OUT_OF_RANGE;
-        }
-        exec_object_t *o = &app->cfg.exec.object;
-        app->cfg.exec.use_model = d[0];
-        o->m_v_kg = v[0];
-        o->d_v_Nspm = v[1];
-        o->k1_Npm = v[2];
-        o->k2_Npm = v[3];
-        o->layer_depth_m = v[4];
-        o->surface_m = v[5];
-        return UDS_NRC_OK;
-    }
-    case DID_SW_VERSION:
-    case DID_VERSIONS:
-    case DID_SLOT_DIR:
-    case DID_LAST_TRANSFER:
-    case DID_DEVICE_STATE:
-    case DID_FAULT_CAUSES: return UDS_NRC_REQUEST_OUT_OF_RANGE; /* read-only */
-    default: return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    case DID_LIMITS_Y: return write_limits(app, did, d, len);
+    case DID_COMM: return write_comm(app, d, len);
+    case DID_OBJECT: return write_object(app, d, len);
+    default: return UDS_NRC_REQUEST_OUT_OF_RANGE; /* read-only or unknown */
     }
 }
 
 /* ---------------------------------------------------------------- routines */
+
+/* A start request of RUN_SKILL (slot, goal and time scale in 1/1000, end policy) or
+ * RUN_SEQUENCE (end policy, then per step: slot, goal, time in 1/1000, duration in ms). */
+static uint8_t routine_run_start(app_t *app, uint16_t rid, const uint8_t *d, uint16_t len)
+{
+    uint8_t slots[EXEC_MAX_STEPS];
+    fs_real_t g[EXEC_MAX_STEPS], ts[EXEC_MAX_STEPS], dur[EXEC_MAX_STEPS];
+    uint8_t n = 0u;
+    uint8_t end = 0u;
+    fs_real_t ps[EXEC_MAX_STEPS];
+    for (uint8_t i = 0; i < EXEC_MAX_STEPS; i++) {
+        ps[i] = FS_R(1.0);
+    }
+    if (rid == UDS_RID_RUN_SKILL) {
+        /* slot, goal scale, time scale, end [, path scale]: 6 or 8 bytes */
+        if (len != 6u && len != 8u) {
+            return UDS_NRC_INCORRECT_LENGTH;
+        }
+        slots[0] = d[0];
+        g[0] = (fs_real_t)get_u16(&d[1]) * FS_R(0.001);
+        ts[0] = (fs_real_t)get_u16(&d[3]) * FS_R(0.001);
+        dur[0] = FS_R(0.0);
+        end = d[5];
+        if (len == 8u) {
+            ps[0] = (fs_real_t)get_u16(&d[6]) * FS_R(0.001);
+        }
+        n = 1u;
+    } else {
+        if (len < 10u || (len - 1u) % 9u != 0u || (len - 1u) / 9u > EXEC_MAX_STEPS) {
+            return UDS_NRC_INCORRECT_LENGTH;
+        }
+        end = d[0];
+        n = (uint8_t)((len - 1u) / 9u);
+        for (uint8_t i = 0; i < n; i++) {
+            const uint8_t *s = &d[1u + 9u * i];
+            slots[i] = s[0];
+            g[i] = (fs_real_t)get_u16(&s[1]) * FS_R(0.001);
+            ts[i] = (fs_real_t)get_u16(&s[3]) * FS_R(0.001);
+            dur[i] = (fs_real_t)get_u32(&s[5]) * FS_R(0.001);
+        }
+    }
+    return app_start_sequence(app, slots, g, ts, dur, ps, n, end);
+}
+
+/* RUN_SKILL / RUN_SEQUENCE: start, stop, or the results (state, step, done, fault code). */
+static uint8_t routine_run(app_t *app, uint8_t sub, uint16_t rid, const uint8_t *d, uint16_t len,
+                           uint8_t *out, uint16_t *out_len)
+{
+    if (sub == UDS_ROUTINE_START) {
+        return routine_run_start(app, rid, d, len);
+    }
+    if (sub == UDS_ROUTINE_STOP) {
+        if (app->state != APP_EXECUTE) {
+            return UDS_NRC_REQUEST_SEQUENCE_ERROR;
+        }
+        (void)app_event(app, APP_EV_STOP);
+        return UDS_NRC_OK;
+    }
+    out[0] = (uint8_t)app->state;
+    out[1] = app->seq_step;
+    out[2] = app->exec_done ? 1u : 0u;
+    put_u16(&out[3], app->saf_out.fault_code);
+    *out_len = 5u;
+    return UDS_NRC_OK;
+}
+
+/* SELF_TEST: the configurations, the skill storage and the sensors; out = pass/fail, code. */
+static uint8_t routine_self_test(const app_t *app, uint8_t sub, uint8_t *out, uint16_t *out_len)
+{
+    if (sub == UDS_ROUTINE_STOP) {
+        return UDS_NRC_SUBFUNCTION_NOT_SUPPORTED;
+    }
+    uint16_t code = 0u;
+    pfc_config_t pc;
+    pfc_default_config(&pc);
+    pc.gains[0] = app->cfg.gains[0];
+    pc.gains[1] = app->cfg.gains[1];
+    if (saf_config_validate(&app->saf_cfg) != SAF_OK) {
+        code = 1u;
+    } else if (pfc_config_validate(&pc) != FS_OK) {
+        code = (uint16_t)pfc_config_validate(&pc);
+    } else if (!app->nvm_ok) {
+        code = NVM_ERR_GEOMETRY;
+    } else if (!fs_isfinite(app->sens.pos_m[0]) || !fs_isfinite(app->sens.pos_m[1]) ||
+               !fs_isfinite(app->sens.force_contact_N[0])) {
+        code = FLT_SENSOR_NAN;
+    }
+    out[0] = (uint8_t)(code == 0u ? 0u : 1u);
+    put_u16(&out[1], code);
+    *out_len = 3u;
+    return UDS_NRC_OK;
+}
+
+/* CLEAR_FAULTS: accepted in FAULT once no cause persists. */
+static uint8_t routine_clear_faults(app_t *app, uint8_t sub)
+{
+    if (sub != UDS_ROUTINE_START) {
+        return UDS_NRC_SUBFUNCTION_NOT_SUPPORTED;
+    }
+    if (app->state != APP_FAULT) {
+        return UDS_NRC_REQUEST_SEQUENCE_ERROR;
+    }
+    if (app_clear_faults(app) != FLT_NONE) {
+        return UDS_NRC_CONDITIONS_NOT_CORRECT; /* a cause persists */
+    }
+    return UDS_NRC_OK;
+}
+
+/* ERASE_SLOT (slot 1..APP_N_SLOTS): write level unlocked, only while idle. */
+static uint8_t routine_erase_slot(app_t *app, uint8_t sub, const uint8_t *d, uint16_t len)
+{
+    if (sub != UDS_ROUTINE_START) {
+        return UDS_NRC_SUBFUNCTION_NOT_SUPPORTED;
+    }
+    if (len != 1u) {
+        return UDS_NRC_INCORRECT_LENGTH;
+    }
+    if (d[0] < 1u || d[0] > APP_N_SLOTS) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    if (app->uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
+        return UDS_NRC_SECURITY_ACCESS_DENIED;
+    }
+    if (app->state != APP_IDLE || !app->nvm_ok) {
+        return UDS_NRC_CONDITIONS_NOT_CORRECT; /* slots change only while idle */
+    }
+    if (nvm_erase_slot(&app->nvm, (uint16_t)(d[0] - 1u)) != NVM_OK) {
+        return UDS_NRC_PROGRAMMING_FAILURE;
+    }
+    app->slot_valid[d[0] - 1u] = false;
+    return UDS_NRC_OK;
+}
 
 static uint8_t routine(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *d, uint16_t len,
                        uint8_t *out, uint16_t cap, uint16_t *out_len)
@@ -290,115 +454,10 @@ static uint8_t routine(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *d, u
     }
     switch (rid) {
     case UDS_RID_RUN_SKILL:
-    case UDS_RID_RUN_SEQUENCE:
-        if (sub == UDS_ROUTINE_START) {
-            uint8_t slots[EXEC_MAX_STEPS];
-            fs_real_t g[EXEC_MAX_STEPS], ts[EXEC_MAX_STEPS], dur[EXEC_MAX_STEPS];
-            uint8_t n = 0u;
-            uint8_t end = 0u;
-            fs_real_t ps[EXEC_MAX_STEPS];
-            for (uint8_t i = 0; i < EXEC_MAX_STEPS; i++) {
-                ps[i] = FS_R(1.0);
-            }
-            if (rid == UDS_RID_RUN_SKILL) {
-                /* slot, goal scale, time scale, end [, path scale]: 6 or 8 bytes */
-                if (len != 6u && len != 8u) {
-                    return UDS_NRC_INCORRECT_LENGTH;
-                }
-                slots[0] = d[0];
-                g[0] = (fs_real_t)get_u16(&d[1]) * FS_R(0.001);
-                ts[0] = (fs_real_t)get_u16(&d[3]) * FS_R(0.001);
-                dur[0] = FS_R(0.0);
-                end = d[5];
-                if (len == 8u) {
-                    ps[0] = (fs_real_t)get_u16(&d[6]) * FS_R(0.001);
-                }
-                n = 1u;
-            } else {
-                if (len < 10u || (len - 1u) % 9u != 0u || (len - 1u) / 9u > EXEC_MAX_STEPS) {
-                    return UDS_NRC_INCORRECT_LENGTH;
-                }
-                end = d[0];
-                n = (uint8_t)((len - 1u) / 9u);
-                for (uint8_t i = 0; i < n; i++) {
-                    const uint8_t *s = &d[1u + 9u * i];
-                    slots[i] = s[0];
-                    g[i] = (fs_real_t)get_u16(&s[1]) * FS_R(0.001);
-                    ts[i] = (fs_real_t)get_u16(&s[3]) * FS_R(0.001);
-                    dur[i] = (fs_real_t)get_u32(&s[5]) * FS_R(0.001);
-                }
-            }
-            return app_start_sequence(app, slots, g, ts, dur, ps, n, end);
-        }
-        if (sub == UDS_ROUTINE_STOP) {
-            if (app->state != APP_EXECUTE) {
-                return UDS_NRC_REQUEST_SEQUENCE_ERROR;
-            }
-            (void)app_event(app, APP_EV_STOP);
-            return UDS_NRC_OK;
-        }
-        out[0] = (uint8_t)app->state;
-        out[1] = app->seq_step;
-        out[2] = app->exec_done ? 1u : 0u;
-        put_u16(&out[3], app->saf_out.fault_code);
-        *out_len = 5u;
-        return UDS_NRC_OK;
-    case UDS_RID_SELF_TEST: {
-        if (sub == UDS_ROUTINE_STOP) {
-            return UDS_NRC_SUBFUNCTION_NOT_SUPPORTED;
-        }
-        uint16_t code = 0u;
-        pfc_config_t pc;
-        pfc_default_config(&pc);
-        pc.gains[0] = app->cfg.gains[0];
-        pc.gains[1] = app->cfg.gains[1];
-        if (saf_config_validate(&app->saf_cfg) != SAF_OK) {
-            code = 1u;
-        } else if (pfc_config_validate(&pc) != FS_OK) {
-            code = (uint16_t)pfc_config_validate(&pc);
-        } else if (!app->nvm_ok) {
-            code = NVM_ERR_GEOMETRY;
-        } else if (!fs_isfinite(app->sens.pos_m[0]) || !fs_isfinite(app->sens.pos_m[1]) ||
-                   !fs_isfinite(app->sens.force_contact_N[0])) {
-            code = FLT_SENSOR_NAN;
-        }
-        out[0] = (uint8_t)(code == 0u ? 0u : 1u);
-        put_u16(&out[1], code);
-        *out_len = 3u;
-        return UDS_NRC_OK;
-    }
-    case UDS_RID_CLEAR_FAULTS:
-        if (sub != UDS_ROUTINE_START) {
-            return UDS_NRC_SUBFUNCTION_NOT_SUPPORTED;
-        }
-        if (app->state != APP_FAULT) {
-            return UDS_NRC_REQUEST_SEQUENCE_ERROR;
-        }
-        if (app_clear_faults(app) != FLT_NONE) {
-            return UDS_NRC_CONDITIONS_NOT_CORRECT; /* a cause persists */
-        }
-        return UDS_NRC_OK;
-    case UDS_RID_ERASE_SLOT:
-        if (sub != UDS_ROUTINE_START) {
-            return UDS_NRC_SUBFUNCTION_NOT_SUPPORTED;
-        }
-        if (len != 1u) {
-            return UDS_NRC_INCORRECT_LENGTH;
-        }
-        if (d[0] < 1u || d[0] > APP_N_SLOTS) {
-            return UDS_NRC_REQUEST_OUT_OF_RANGE;
-        }
-        if (app->uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
-            return UDS_NRC_SECURITY_ACCESS_DENIED;
-        }
-        if (app->state != APP_IDLE || !app->nvm_ok) {
-            return UDS_NRC_CONDITIONS_NOT_CORRECT; /* slots change only while idle */
-        }
-        if (nvm_erase_slot(&app->nvm, (uint16_t)(d[0] - 1u)) != NVM_OK) {
-            return UDS_NRC_PROGRAMMING_FAILURE;
-        }
-        app->slot_valid[d[0] - 1u] = false;
-        return UDS_NRC_OK;
+    case UDS_RID_RUN_SEQUENCE: return routine_run(app, sub, rid, d, len, out, out_len);
+    case UDS_RID_SELF_TEST: return routine_self_test(app, sub, out, out_len);
+    case UDS_RID_CLEAR_FAULTS: return routine_clear_faults(app, sub);
+    case UDS_RID_ERASE_SLOT: return routine_erase_slot(app, sub, d, len);
     default: return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
 }

@@ -3,6 +3,9 @@
 #ifndef BOOT_STATUS_H
 #define BOOT_STATUS_H
 
+#include <stdint.h>
+#include "uds_nrc.h"
+
 /** Firmware image and update (700-729, firmware/boot). */
 typedef enum {
     BOOT_OK = 0,
@@ -29,5 +32,31 @@ typedef enum {
     FWU_ERR_TEST_PENDING = 725,
     FWU_ERR_RANGE = 726,          /* address, size or data format of RequestDownload not accepted */
 } boot_status_t;
+
+/** The UDS negative response code of a status (UDS_NRC_OK for BOOT_OK). */
+static inline uint8_t boot_status_nrc(boot_status_t st)
+{
+    switch (st) {
+    case BOOT_OK: return UDS_NRC_OK;
+    case BOOT_ERR_TRUNCATED: return UDS_NRC_FW_TRUNCATED;
+    case BOOT_ERR_MAGIC: return UDS_NRC_FW_HEADER;
+    case BOOT_ERR_FORMAT: return UDS_NRC_FW_HEADER;
+    case BOOT_ERR_TARGET: return UDS_NRC_FW_TARGET;
+    case BOOT_ERR_TOO_LARGE: return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED;
+    case BOOT_ERR_HASH: return UDS_NRC_FW_HASH;
+    case BOOT_ERR_TAG: return UDS_NRC_FW_TAG;
+    case BOOT_ERR_DOWNGRADE: return UDS_NRC_FW_DOWNGRADE;
+    case BOOT_ERR_SKILL_FORMAT: return UDS_NRC_FW_SKILL_FORMAT;
+    case BOOT_ERR_CONFIG_FORMAT: return UDS_NRC_FW_CONFIG_FORMAT;
+    case BOOT_ERR_FLASH: return UDS_NRC_PROGRAMMING_FAILURE;
+    case FWU_ERR_LOCKED: return UDS_NRC_SECURITY_ACCESS_DENIED;
+    case FWU_ERR_SEQUENCE: return UDS_NRC_REQUEST_SEQUENCE_ERROR;
+    case FWU_ERR_BLOCK_COUNTER: return UDS_NRC_WRONG_BLOCK_COUNTER;
+    case FWU_ERR_OVERRUN: return UDS_NRC_TRANSFER_SUSPENDED;
+    case FWU_ERR_TEST_PENDING: return UDS_NRC_CONDITIONS_NOT_CORRECT;
+    case FWU_ERR_RANGE: return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    default: return UDS_NRC_GENERAL_REJECT;
+    }
+}
 
 #endif /* BOOT_STATUS_H */

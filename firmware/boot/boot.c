@@ -111,6 +111,74 @@ static void run(boot_t *b, uint8_t s, const boot_image_header_t *h, boot_path_t 
     b->path = path;
 }
 
+/* A pending test image: try it once (the attempt recorded before the jump), or drop it after
+ * a refusal or an unconfirmed earlier try. Returns true when it runs (b->path says why not). */
+static bool try_test_image(boot_t *b, const boot_config_t *cfg, boot_status_t act_st,
+                           const boot_image_header_t *act)
+{
+    boot_state_t *s = &b->state;
+    const uint8_t t = s->test_slot;
+    boot_image_header_t h;
+    if (s->test_attempts != 0u || t == s->active_slot) {
+        /* booted once and never confirmed (or nonsense): revert */
+        b->path = BOOT_PATH_REVERTED;
+        s->test_slot = BOOT_SLOT_NONE;
+        s->test_attempts = 0u;
+        s->test_flags = 0u;
+        return false;
+    }
+    boot_status_t st = boot_slot_verify(cfg, t, &h);
+    if (st == BOOT_OK) {
+        /* downgrade is judged against the active image */
+        b->running_slot = act_st == BOOT_OK ? s->active_slot : BOOT_SLOT_NONE;
+        b->running = *act;
+        st = boot_check_candidate(b, &h, s->test_flags);
+        b->running_slot = BOOT_SLOT_NONE;
+    }
+    if (st != BOOT_OK) {
+        b->refusal = st;
+        b->path = BOOT_PATH_TEST_REFUSED;
+        s->test_slot = BOOT_SLOT_NONE;
+        s->test_flags = 0u;
+        return false;
+    }
+    s->test_attempts = 1u; /* recorded BEFORE the jump: one try only */
+    if (boot_state_store(cfg, s) == BOOT_OK) {
+        b->test_boot = 1u;
+        run(b, t, &h, BOOT_PATH_TEST);
+        return true;
+    }
+    /* could not record the attempt: do not risk an unbounded test loop */
+    s->test_attempts = 0u;
+    b->refusal = BOOT_ERR_FLASH;
+    b->path = BOOT_PATH_TEST_REFUSED;
+    return false;
+}
+
+/* Recovery / first boot: the best image that verifies, other than the active slot (highest
+ * version, A on a tie) into *best_h; its slot, or BOOT_SLOT_NONE. */
+static uint8_t best_image(const boot_config_t *cfg, uint8_t active, boot_image_header_t *best_h)
+{
+    uint8_t best = BOOT_SLOT_NONE;
+    boot_image_header_t h;
+    memset(best_h, 0, sizeof *best_h);
+    for (uint8_t i = 0u; i < BOOT_SLOT_COUNT; i++) {
+        if (i == active) {
+            continue;
+        }
+        boot_status_t st = boot_slot_verify(cfg, i, &h);
+        if (st == BOOT_OK) {
+            st = boot_image_check_data(&h, cfg->skill_min, cfg->skill_max, cfg->config_min,
+                                       cfg->config_max);
+        }
+        if (st == BOOT_OK && (best == BOOT_SLOT_NONE || h.fw_version > best_h->fw_version)) {
+            best = i;
+            *best_h = h;
+        }
+    }
+    return best;
+}
+
 boot_status_t boot_select(boot_t *b, const boot_config_t *cfg)
 {
     if (b == NULL || cfg == NULL) {
@@ -123,49 +191,14 @@ boot_status_t boot_select(boot_t *b, const boot_config_t *cfg)
     b->refusal = BOOT_OK;
     const bool had_record = boot_state_load(cfg, &b->state);
     boot_state_t *s = &b->state;
-    boot_image_header_t h;
 
     /* The active image's header (for the downgrade rule), if it verifies. */
     boot_image_header_t act;
     memset(&act, 0, sizeof act);
     boot_status_t act_st = slot_ok(s->active_slot) ? boot_slot_verify(cfg, s->active_slot, &act)
                                                    : BOOT_ERR_NO_IMAGE;
-
-    if (slot_ok(s->test_slot)) {
-        const uint8_t t = s->test_slot;
-        if (s->test_attempts == 0u && t != s->active_slot) {
-            boot_status_t st = boot_slot_verify(cfg, t, &h);
-            if (st == BOOT_OK) {
-                /* downgrade is judged against the active image */
-                b->running_slot = act_st == BOOT_OK ? s->active_slot : BOOT_SLOT_NONE;
-                b->running = act;
-                st = boot_check_candidate(b, &h, s->test_flags);
-                b->running_slot = BOOT_SLOT_NONE;
-            }
-            if (st == BOOT_OK) {
-                s->test_attempts = 1u; /* recorded BEFORE the jump: one try only */
-                if (boot_state_store(cfg, s) == BOOT_OK) {
-                    b->test_boot = 1u;
-                    run(b, t, &h, BOOT_PATH_TEST);
-                    return BOOT_OK;
-                }
-                /* could not record the attempt: do not risk an unbounded test loop */
-                s->test_attempts = 0u;
-                b->refusal = BOOT_ERR_FLASH;
-                b->path = BOOT_PATH_TEST_REFUSED;
-            } else {
-                b->refusal = st;
-                b->path = BOOT_PATH_TEST_REFUSED;
-                s->test_slot = BOOT_SLOT_NONE;
-                s->test_flags = 0u;
-            }
-        } else {
-            /* booted once and never confirmed (or nonsense): revert */
-            b->path = BOOT_PATH_REVERTED;
-            s->test_slot = BOOT_SLOT_NONE;
-            s->test_attempts = 0u;
-            s->test_flags = 0u;
-        }
+    if (slot_ok(s->test_slot) && try_test_image(b, cfg, act_st, &act)) {
+        return BOOT_OK;
     }
 
     const boot_path_t why = b->path;
@@ -180,25 +213,8 @@ boot_status_t boot_select(boot_t *b, const boot_config_t *cfg)
     if (slot_ok(s->active_slot) && b->refusal == BOOT_OK) {
         b->refusal = act_st;
     }
-
-    /* Recovery / first boot: the best image that verifies (highest version, A on a tie). */
-    uint8_t best = BOOT_SLOT_NONE;
     boot_image_header_t best_h;
-    memset(&best_h, 0, sizeof best_h);
-    for (uint8_t i = 0u; i < BOOT_SLOT_COUNT; i++) {
-        if (i == s->active_slot) {
-            continue;
-        }
-        boot_status_t st = boot_slot_verify(cfg, i, &h);
-        if (st == BOOT_OK) {
-            st = boot_image_check_data(&h, cfg->skill_min, cfg->skill_max, cfg->config_min,
-                                       cfg->config_max);
-        }
-        if (st == BOOT_OK && (best == BOOT_SLOT_NONE || h.fw_version > best_h.fw_version)) {
-            best = i;
-            best_h = h;
-        }
-    }
+    const uint8_t best = best_image(cfg, s->active_slot, &best_h);
     if (best == BOOT_SLOT_NONE) {
         return BOOT_ERR_NO_IMAGE;
     }

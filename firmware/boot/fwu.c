@@ -262,27 +262,5 @@ uint16_t fwu_status(const fwu_t *f, uint8_t *out, uint16_t cap)
 
 uint8_t fwu_nrc(boot_status_t st)
 {
-    switch (st) {
-    case BOOT_OK: return 0x00u;
-    case BOOT_ERR_MAGIC:
-    case BOOT_ERR_FORMAT: return 0xF0u;
-    case BOOT_ERR_TARGET: return 0xF1u;
-    case BOOT_ERR_TRUNCATED: return 0xF2u;
-    case BOOT_ERR_HASH: return 0xF3u;
-    case BOOT_ERR_TAG: return 0xF4u;
-    case BOOT_ERR_DOWNGRADE: return 0xF5u;
-    case BOOT_ERR_SKILL_FORMAT: return 0xF6u;
-    case BOOT_ERR_CONFIG_FORMAT: return 0xF7u;
-    case BOOT_ERR_TOO_LARGE: return 0x70u;    /* uploadDownloadNotAccepted */
-    case BOOT_ERR_FLASH: return 0x72u;        /* generalProgrammingFailure */
-    case FWU_ERR_LOCKED: return 0x33u;        /* securityAccessDenied */
-    case FWU_ERR_SEQUENCE: return 0x24u;      /* requestSequenceError */
-    case FWU_ERR_BLOCK_COUNTER: return 0x73u; /* wrongBlockSequenceCounter */
-    case FWU_ERR_OVERRUN: return 0x71u;       /* transferDataSuspended */
-    case FWU_ERR_TEST_PENDING: return 0x22u;  /* conditionsNotCorrect */
-    case FWU_ERR_RANGE: return 0x31u;         /* requestOutOfRange */
-    case BOOT_ERR_NO_IMAGE:
-    case BOOT_ERR_ARG:
-    default: return 0x10u; /* generalReject */
-    }
+    return boot_status_nrc(st);
 }

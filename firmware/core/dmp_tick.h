@@ -142,6 +142,7 @@ static inline void dmp_tick_window_walk(const DMP_TICK_MODEL *m, fs_phase_t u, u
  *  psi_i as DMP_TICK_BLEND_SHIFT says. *count (may be NULL) receives the number summed (1 in
  *  the nearest-kernel fallback). With w_y non-NULL, *s_y receives the same blend of the second
  *  weight set w_y (the y DMP's) from the same activations: each psi_i is computed once. */
+/* long: the counted hot path, one inline body without calls (docs/cortex-m.md) */
 static inline fs_val_t dmp_tick_blend2(const DMP_TICK_MODEL *m, fs_phase_t u, uint32_t lo,
                                        uint32_t hi, uint16_t *count, const fs_val_t *w_y,
                                        fs_val_t *s_y)

@@ -119,11 +119,17 @@ static int to_real(double d, fs_real_t *out)
 }
 #endif
 
-fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
+/* The layout of a framed image: its version, header size, kernel count and y DMP flag. */
+typedef struct {
+    uint16_t version;
+    uint16_t n;
+    uint32_t header;
+    uint8_t has_y;
+} skill_layout_t;
+
+/* The frame of an image: magic, version, header size, length, CRC, kernel count (into *lay). */
+static fs_status_t check_frame(const uint8_t *buf, uint32_t len, skill_layout_t *lay)
 {
-    if (buf == NULL || out == NULL) {
-        return FS_ERR_NULL_ARG;
-    }
     if (len < OFF_HEADER_SIZE) {
         return FS_ERR_SKILL_TOO_SHORT;
     }
@@ -143,8 +149,8 @@ fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
     }
     const uint16_t n = rd_u16(buf, OFF_N_KERNELS);
     const uint32_t total = rd_u32(buf, OFF_TOTAL_LENGTH);
-    const uint16_t flags = rd_u16(buf, OFF_FLAGS);
-    const uint8_t has_y = (uint8_t)(version >= 3u && (flags & SKILL_FLAG_Y_AXIS) != 0u);
+    const uint8_t has_y = (uint8_t)(version >= 3u &&
+                                    (rd_u16(buf, OFF_FLAGS) & SKILL_FLAG_Y_AXIS) != 0u);
     if (total != len || total != skill_image_size_v(version, n, has_y)) {
         return FS_ERR_SKILL_LENGTH;
     }
@@ -155,26 +161,58 @@ fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
     if (n == 0u || n > DMP_MAX_KERNELS) {
         return FS_ERR_SKILL_KERNELS;
     }
+    lay->version = version;
+    lay->n = n;
+    lay->header = header;
+    lay->has_y = has_y;
+    return FS_OK;
+}
+
+/* The gains of a framed image: the stored alpha/beta/gamma those the fit gains derive (and
+ * monotone); with a y DMP, its beta (the law with k_f = k_i = 0 on alpha) monotone too. */
+static fs_status_t check_gains(const uint8_t *buf, uint8_t has_y)
+{
+    const double gain[5] = {rd_f64(buf, OFF_M_D), rd_f64(buf, OFF_K_D), rd_f64(buf, OFF_K_P),
+                            rd_f64(buf, OFF_KKF), rd_f64(buf, OFF_KKI)};
+    const double stored[3] = {rd_f64(buf, OFF_ALPHA), rd_f64(buf, OFF_BETA),
+                              rd_f64(buf, OFF_GAMMA)};
+    double derived[3];
+    if (dmp_derive_f64(gain, derived) != FS_OK ||
+        !rel_close(stored[0], derived[0], SKILL_GAINS_REL_TOL) ||
+        !rel_close(stored[1], derived[1], SKILL_GAINS_REL_TOL) ||
+        !rel_close(stored[2], derived[2], SKILL_GAINS_REL_TOL) ||
+        stored[1] > stored[0] / 4.0 * (1.0 + DMP_MONOTONE_REL_TOL)) {
+        return FS_ERR_SKILL_GAINS;
+    }
+    const double beta_y = gain[2] / (gain[0] * stored[0]) - 1.0;
+    if (has_y != 0u &&
+        (!(beta_y > 0.0) || beta_y > stored[0] / 4.0 * (1.0 + DMP_MONOTONE_REL_TOL))) {
+        return FS_ERR_SKILL_GAINS;
+    }
+    return FS_OK;
+}
+
+/* The values of a framed image, in double: all finite, the timing, stiffness, goal and widths in
+ * range, the centres increasing in [0, 1], the gains (check_gains), no unknown flag. */
+static fs_status_t check_values(const uint8_t *buf, const skill_layout_t *lay)
+{
+    const uint32_t n = lay->n;
     /* Every float64 field: 15 (v3: 17) in the header from OFF_DT, then 3N (4N with the y DMP)
      * array entries, contiguous. */
-    const uint32_t n_f64 = ((version == 2u) ? SKILL_N_HEADER_F64_V2 : SKILL_N_HEADER_F64_V3) +
-                           ((has_y != 0u) ? 4u : 3u) * (uint32_t)n;
+    const uint32_t n_f64 = ((lay->version == 2u) ? SKILL_N_HEADER_F64_V2 : SKILL_N_HEADER_F64_V3) +
+                           ((lay->has_y != 0u) ? 4u : 3u) * n;
     for (uint32_t i = 0u; i < n_f64; i++) {
         if (!isfinite(rd_f64(buf, OFF_DT + 8u * i))) {
             return FS_ERR_SKILL_NOT_FINITE;
         }
     }
     const double dt = rd_f64(buf, OFF_DT);
-    const double tau = rd_f64(buf, OFF_TAU);
     const double duration = rd_f64(buf, OFF_DURATION);
-    const double k = rd_f64(buf, OFF_STIFFNESS);
-    const double goal = rd_f64(buf, OFF_GOAL);
-    const uint32_t off_c = header;
-    const uint32_t off_s = header + 8u * (uint32_t)n;
-    const uint32_t off_w = header + 16u * (uint32_t)n;
-    const uint32_t off_wy = header + 24u * (uint32_t)n;
-    if (!(dt > 0.0) || dt > 0.1 || !(tau > 0.0) || !(duration > 0.0) || duration > 3600.0 ||
-        !(k > 0.0) || !(goal > 0.0)) {
+    const uint32_t off_c = lay->header;
+    const uint32_t off_s = lay->header + 8u * n;
+    if (!(dt > 0.0) || dt > 0.1 || !(rd_f64(buf, OFF_TAU) > 0.0) || !(duration > 0.0) ||
+        duration > 3600.0 || !(rd_f64(buf, OFF_STIFFNESS) > 0.0) ||
+        !(rd_f64(buf, OFF_GOAL) > 0.0)) {
         return FS_ERR_SKILL_RANGE;
     }
     for (uint32_t i = 0u; i < n; i++) {
@@ -190,63 +228,92 @@ fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
         }
         prev = c;
     }
-    const double gain[5] = {rd_f64(buf, OFF_M_D), rd_f64(buf, OFF_K_D), rd_f64(buf, OFF_K_P),
-                            rd_f64(buf, OFF_KKF), rd_f64(buf, OFF_KKI)};
-    const double stored[3] = {rd_f64(buf, OFF_ALPHA), rd_f64(buf, OFF_BETA),
-                              rd_f64(buf, OFF_GAMMA)};
-    double derived[3];
-    if (dmp_derive_f64(gain, derived) != FS_OK ||
-        !rel_close(stored[0], derived[0], SKILL_GAINS_REL_TOL) ||
-        !rel_close(stored[1], derived[1], SKILL_GAINS_REL_TOL) ||
-        !rel_close(stored[2], derived[2], SKILL_GAINS_REL_TOL) ||
-        stored[1] > stored[0] / 4.0 * (1.0 + DMP_MONOTONE_REL_TOL)) {
-        return FS_ERR_SKILL_GAINS;
+    const fs_status_t st = check_gains(buf, lay->has_y);
+    if (st != FS_OK) {
+        return st;
     }
-    /* the y DMP: the law with k_f = k_i = 0 on the stored alpha */
-    const double beta_y = gain[2] / (gain[0] * stored[0]) - 1.0;
-    if (has_y != 0u &&
-        (!(beta_y > 0.0) || beta_y > stored[0] / 4.0 * (1.0 + DMP_MONOTONE_REL_TOL))) {
-        return FS_ERR_SKILL_GAINS;
-    }
-    const uint16_t known = (version == 2u) ? (uint16_t)SKILL_FLAG_END_RELEASE
-                                           : (uint16_t)(SKILL_FLAG_END_RELEASE | SKILL_FLAG_Y_AXIS);
-    if ((flags & (uint16_t)~known) != 0u) {
+    const uint16_t known = (lay->version == 2u)
+                               ? (uint16_t)SKILL_FLAG_END_RELEASE
+                               : (uint16_t)(SKILL_FLAG_END_RELEASE | SKILL_FLAG_Y_AXIS);
+    if ((rd_u16(buf, OFF_FLAGS) & (uint16_t)~known) != 0u) {
         return FS_ERR_SKILL_UNSUPPORTED;
     }
+    return FS_OK;
+}
 
-    /* Valid in double: fill the model in the core's type. The float build can still refuse a
-     * value beyond the float range (207) or one that rounding made invalid (dmp_model_init). */
+/* Fill the y DMP from a valid image in the core's type (zeros without one): 0 if a value does
+ * not fit it. */
+static int fill_path(const uint8_t *buf, const skill_layout_t *lay, dmp_model_t *m)
+{
+    m->has_y = lay->has_y;
+    m->beta_y = FS_R(0.0);
+    m->goal_y_m = FS_R(0.0);
+    m->y_start_m = FS_R(0.0);
+    if (lay->has_y == 0u) {
+        return 1;
+    }
+    const double beta_y = rd_f64(buf, OFF_K_P) / (rd_f64(buf, OFF_M_D) * rd_f64(buf, OFF_ALPHA)) -
+                          1.0;
+    const uint32_t off_wy = lay->header + 24u * (uint32_t)lay->n;
+    int ok = to_real(beta_y, &m->beta_y) && to_real(rd_f64(buf, OFF_GOAL_Y), &m->goal_y_m) &&
+             to_real(rd_f64(buf, OFF_Y_START), &m->y_start_m);
+    for (uint32_t i = 0u; ok && i < lay->n; i++) {
+        ok = to_real(rd_f64(buf, off_wy + 8u * i), &m->y_weight[i]);
+    }
+    return ok;
+}
+
+/* Fill the skill from a valid image in the core's type: 0 if a value does not fit it. */
+static int fill_skill(const uint8_t *buf, const skill_layout_t *lay, skill_t *out)
+{
+    const uint32_t n = lay->n;
+    const uint32_t off_c = lay->header;
+    const uint32_t off_s = lay->header + 8u * n;
+    const uint32_t off_w = lay->header + 16u * n;
     dmp_model_t *m = &out->dmp;
-    m->n_kernels = n;
-    int ok = to_real(stored[0], &m->p.alpha) && to_real(stored[1], &m->p.beta) &&
-             to_real(stored[2], &m->p.gamma) && to_real(dt, &m->dt_s) && to_real(tau, &m->tau_s) &&
-             to_real(goal, &m->goal_N) && to_real(rd_f64(buf, OFF_FORCE0), &m->force0_N) &&
-             to_real(k, &out->stiffness_Npm) && to_real(duration, &m->duration_s) &&
-             to_real(gain[0], &out->fit_gains.m_d_kg) &&
-             to_real(gain[1], &out->fit_gains.k_d_Nspm) &&
-             to_real(gain[2], &out->fit_gains.k_p_Npm) &&
-             to_real(gain[3], &out->fit_gains.kkf_Npm) &&
-             to_real(gain[4], &out->fit_gains.kki_Npms) &&
+    m->n_kernels = lay->n;
+    int ok = to_real(rd_f64(buf, OFF_ALPHA), &m->p.alpha) &&
+             to_real(rd_f64(buf, OFF_BETA), &m->p.beta) &&
+             to_real(rd_f64(buf, OFF_GAMMA), &m->p.gamma) &&
+             to_real(rd_f64(buf, OFF_DT), &m->dt_s) && to_real(rd_f64(buf, OFF_TAU), &m->tau_s) &&
+             to_real(rd_f64(buf, OFF_GOAL), &m->goal_N) &&
+             to_real(rd_f64(buf, OFF_FORCE0), &m->force0_N) &&
+             to_real(rd_f64(buf, OFF_STIFFNESS), &out->stiffness_Npm) &&
+             to_real(rd_f64(buf, OFF_DURATION), &m->duration_s) &&
+             to_real(rd_f64(buf, OFF_M_D), &out->fit_gains.m_d_kg) &&
+             to_real(rd_f64(buf, OFF_K_D), &out->fit_gains.k_d_Nspm) &&
+             to_real(rd_f64(buf, OFF_K_P), &out->fit_gains.k_p_Npm) &&
+             to_real(rd_f64(buf, OFF_KKF), &out->fit_gains.kkf_Npm) &&
+             to_real(rd_f64(buf, OFF_KKI), &out->fit_gains.kki_Npms) &&
              to_real(rd_f64(buf, OFF_SURFACE), &out->surface_m);
     for (uint32_t i = 0u; ok && i < n; i++) {
         ok = to_real(rd_f64(buf, off_c + 8u * i), &m->centre[i]) &&
              to_real(rd_f64(buf, off_s + 8u * i), &m->width[i]) &&
              to_real(rd_f64(buf, off_w + 8u * i), &m->weight[i]);
     }
-    m->has_y = has_y;
-    m->beta_y = FS_R(0.0);
-    m->goal_y_m = FS_R(0.0);
-    m->y_start_m = FS_R(0.0);
-    if (has_y != 0u) {
-        ok = ok && to_real(beta_y, &m->beta_y) && to_real(rd_f64(buf, OFF_GOAL_Y), &m->goal_y_m) &&
-             to_real(rd_f64(buf, OFF_Y_START), &m->y_start_m);
-        for (uint32_t i = 0u; ok && i < n; i++) {
-            ok = to_real(rd_f64(buf, off_wy + 8u * i), &m->y_weight[i]);
-        }
+    return ok && fill_path(buf, lay, m);
+}
+
+fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
+{
+    if (buf == NULL || out == NULL) {
+        return FS_ERR_NULL_ARG;
     }
-    if (!ok || dmp_gains_at_stiffness(&out->fit_gains, out->stiffness_Npm, &out->gains) != FS_OK) {
+    skill_layout_t lay = {0u, 0u, 0u, 0u};
+    fs_status_t st = check_frame(buf, len, &lay);
+    if (st == FS_OK) {
+        st = check_values(buf, &lay);
+    }
+    if (st != FS_OK) {
+        return st;
+    }
+    /* Valid in double: fill the model in the core's type. The float build can still refuse a
+     * value beyond the float range (207) or one that rounding made invalid (dmp_model_init). */
+    if (!fill_skill(buf, &lay, out) ||
+        dmp_gains_at_stiffness(&out->fit_gains, out->stiffness_Npm, &out->gains) != FS_OK) {
         return FS_ERR_SKILL_RANGE;
     }
+    const uint16_t flags = rd_u16(buf, OFF_FLAGS);
     out->end_policy = ((flags & SKILL_FLAG_END_RELEASE) != 0u) ? SKILL_END_RELEASE : SKILL_END_HOLD;
-    return dmp_model_init(m);
+    return dmp_model_init(&out->dmp);
 }

@@ -17,6 +17,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 #include "fs_uds_ids.h"
+#include "uds_nrc.h"
 
 /* Service identifiers */
 #define UDS_SID_DSC 0x10u
@@ -33,27 +34,7 @@
 #define UDS_NEGATIVE_RESPONSE 0x7Fu
 #define UDS_SUPPRESS_POS 0x80u
 
-/* Negative response codes used by this server */
-#define UDS_NRC_OK 0x00u
-#define UDS_NRC_SERVICE_NOT_SUPPORTED 0x11u
-#define UDS_NRC_SUBFUNCTION_NOT_SUPPORTED 0x12u
-#define UDS_NRC_INCORRECT_LENGTH 0x13u
-#define UDS_NRC_RESPONSE_TOO_LONG 0x14u
-#define UDS_NRC_CONDITIONS_NOT_CORRECT 0x22u
-#define UDS_NRC_REQUEST_SEQUENCE_ERROR 0x24u
-#define UDS_NRC_REQUEST_OUT_OF_RANGE 0x31u
-#define UDS_NRC_SECURITY_ACCESS_DENIED 0x33u
-#define UDS_NRC_INVALID_KEY 0x35u
-#define UDS_NRC_EXCEEDED_ATTEMPTS 0x36u
-#define UDS_NRC_DELAY_NOT_EXPIRED 0x37u
-#define UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED 0x70u
-#define UDS_NRC_TRANSFER_SUSPENDED 0x71u
-#define UDS_NRC_PROGRAMMING_FAILURE 0x72u
-#define UDS_NRC_WRONG_BLOCK_COUNTER 0x73u
-#define UDS_NRC_BUSY_REPEAT_REQUEST 0x21u
-#define UDS_NRC_RESPONSE_PENDING 0x78u /* requestCorrectlyReceived-ResponsePending */
-#define UDS_NRC_SUBFUNCTION_NOT_IN_SESSION 0x7Eu
-#define UDS_NRC_SERVICE_NOT_IN_SESSION 0x7Fu
+/* Negative response codes (UDS_NRC_*): uds_nrc.h, generated from firmware/base/codes.toml. */
 
 /* Sessions */
 #define UDS_SESSION_DEFAULT 0x01u

@@ -76,6 +76,75 @@ static fs_real_t clamp_sym(fs_real_t x, fs_real_t b)
     return x;
 }
 
+/* The measurement gates of one axis: outside the workspace or above the velocity limit, a
+ * request pushing further out is zeroed; the contact force is checked. Returns the target. */
+static fs_real_t gate_by_measurement(const lim_axis_t *a, const saf_meas_t *m, fs_real_t target,
+                                     lim_result_t *r)
+{
+    const fs_real_t pos = m->pos_m;
+    const fs_real_t vel = m->vel_mps;
+    const fs_real_t f = m->force_N;
+    /* Comparisons with NaN are false: a NaN reading never gates here (sen_check
+     * latches FLT_SENSOR_NAN and the stop ramp takes over). */
+    if (pos > a->pos_max_m || pos < a->pos_min_m) {
+        r->cause_mask |= FLT_BIT(FLT_WORKSPACE);
+        if ((pos > a->pos_max_m && target > FS_R(0.0)) ||
+            (pos < a->pos_min_m && target < FS_R(0.0))) {
+            r->flags |= LIM_F_WORKSPACE;
+            target = FS_R(0.0);
+        }
+    }
+    if (vel > a->vel_max_mps || vel < -a->vel_max_mps) {
+        r->cause_mask |= FLT_BIT(FLT_VELOCITY);
+        if ((vel > FS_R(0.0) && target > FS_R(0.0)) || (vel < FS_R(0.0) && target < FS_R(0.0))) {
+            r->flags |= LIM_F_VELOCITY;
+            target = FS_R(0.0);
+        }
+    }
+    if (f > a->contact_force_max_N || f < -a->contact_force_max_N) {
+        r->cause_mask |= FLT_BIT(FLT_FORCE_LIMIT);
+    }
+    return target;
+}
+
+/* The slew limit of axis i toward target, its leaky bucket and the force clamp; returns the
+ * output (also kept as the axis's last output). */
+static fs_real_t slew_step(const lim_config_t *cfg, lim_state_t *st, uint32_t i, fs_real_t target,
+                           fs_real_t fmax, fs_real_t slew, lim_result_t *r)
+{
+    /* Slew relative to the last output (sanitised: it is this module's own state, but a
+     * corrupted value must not propagate). */
+    fs_real_t prev = st->out_N[i];
+    if (!fs_isfinite(prev)) {
+        prev = FS_R(0.0);
+    }
+    prev = clamp_sym(prev, fmax);
+    fs_real_t out = target;
+    if (target - prev > slew) {
+        out = prev + slew;
+        r->flags |= LIM_F_SLEW;
+    } else if (target - prev < -slew) {
+        out = prev - slew;
+        r->flags |= LIM_F_SLEW;
+    }
+    /* Leaky bucket: +2 when the slew limit binds, -1 otherwise. Binding every tick trips
+     * after slew_fault_ticks; an oscillation binding every other tick after about
+     * 4*slew_fault_ticks; a single large step (e.g. 0 -> 50 N, 25 ticks) never. */
+    if ((r->flags & LIM_F_SLEW) != 0u && (target - prev > slew || target - prev < -slew)) {
+        st->slew_run[i] = (uint16_t)((st->slew_run[i] <= UINT16_MAX - 2u) ? st->slew_run[i] + 2u
+                                                                          : UINT16_MAX);
+    } else if (st->slew_run[i] > 0u) {
+        st->slew_run[i]--;
+    }
+    if (cfg->slew_fault_ticks != 0u &&
+        (uint32_t)st->slew_run[i] >= 2u * (uint32_t)cfg->slew_fault_ticks) {
+        r->cause_mask |= FLT_BIT(FLT_SLEW_LIMIT);
+    }
+    out = clamp_sym(out, fmax);
+    st->out_N[i] = out;
+    return out;
+}
+
 lim_result_t lim_apply(const lim_config_t *cfg, lim_state_t *st, const fs_real_t req_N[LIM_AXES],
                        const saf_meas_t meas[LIM_AXES], fs_real_t out_N[LIM_AXES])
 {
@@ -104,62 +173,9 @@ lim_result_t lim_apply(const lim_config_t *cfg, lim_state_t *st, const fs_real_t
             target = clamp_sym(target, fmax);
         }
         if (meas != NULL) {
-            const fs_real_t pos = meas[i].pos_m;
-            const fs_real_t vel = meas[i].vel_mps;
-            const fs_real_t f = meas[i].force_N;
-            /* Comparisons with NaN are false: a NaN reading never gates here (sen_check
-             * latches FLT_SENSOR_NAN and the stop ramp takes over). */
-            if (pos > a->pos_max_m || pos < a->pos_min_m) {
-                r.cause_mask |= FLT_BIT(FLT_WORKSPACE);
-                if ((pos > a->pos_max_m && target > FS_R(0.0)) ||
-                    (pos < a->pos_min_m && target < FS_R(0.0))) {
-                    r.flags |= LIM_F_WORKSPACE;
-                    target = FS_R(0.0);
-                }
-            }
-            if (vel > a->vel_max_mps || vel < -a->vel_max_mps) {
-                r.cause_mask |= FLT_BIT(FLT_VELOCITY);
-                if ((vel > FS_R(0.0) && target > FS_R(0.0)) ||
-                    (vel < FS_R(0.0) && target < FS_R(0.0))) {
-                    r.flags |= LIM_F_VELOCITY;
-                    target = FS_R(0.0);
-                }
-            }
-            if (f > a->contact_force_max_N || f < -a->contact_force_max_N) {
-                r.cause_mask |= FLT_BIT(FLT_FORCE_LIMIT);
-            }
+            target = gate_by_measurement(a, &meas[i], target, &r);
         }
-        /* Slew relative to the last output (sanitised: it is this module's own state, but a
-         * corrupted value must not propagate). */
-        fs_real_t prev = st->out_N[i];
-        if (!fs_isfinite(prev)) {
-            prev = FS_R(0.0);
-        }
-        prev = clamp_sym(prev, fmax);
-        fs_real_t out = target;
-        if (target - prev > slew) {
-            out = prev + slew;
-            r.flags |= LIM_F_SLEW;
-        } else if (target - prev < -slew) {
-            out = prev - slew;
-            r.flags |= LIM_F_SLEW;
-        }
-        /* Leaky bucket: +2 when the slew limit binds, -1 otherwise. Binding every tick trips
-         * after slew_fault_ticks; an oscillation binding every other tick after about
-         * 4*slew_fault_ticks; a single large step (e.g. 0 -> 50 N, 25 ticks) never. */
-        if ((r.flags & LIM_F_SLEW) != 0u && (target - prev > slew || target - prev < -slew)) {
-            st->slew_run[i] = (uint16_t)((st->slew_run[i] <= UINT16_MAX - 2u) ? st->slew_run[i] + 2u
-                                                                              : UINT16_MAX);
-        } else if (st->slew_run[i] > 0u) {
-            st->slew_run[i]--;
-        }
-        if (cfg->slew_fault_ticks != 0u &&
-            (uint32_t)st->slew_run[i] >= 2u * (uint32_t)cfg->slew_fault_ticks) {
-            r.cause_mask |= FLT_BIT(FLT_SLEW_LIMIT);
-        }
-        out = clamp_sym(out, fmax);
-        st->out_N[i] = out;
-        out_N[i] = out;
+        out_N[i] = slew_step(cfg, st, i, target, fmax, slew, &r);
     }
     return r;
 }

@@ -74,22 +74,23 @@ static void latch_causes(flt_state_t *flt, uint32_t cause, uint32_t tick)
     }
 }
 
-void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, saf_output_t *out)
+/* No configuration, state or input: zero force, actuator off, stopping. */
+static void fail_safe(saf_output_t *out)
 {
-    if (out == NULL) {
-        return;
+    for (uint32_t i = 0u; i < SAF_AXES; i++) {
+        out->force_cmd_N[i] = FS_R(0.0);
     }
-    if (cfg == NULL || st == NULL || in == NULL) {
-        for (uint32_t i = 0u; i < SAF_AXES; i++) {
-            out->force_cmd_N[i] = FS_R(0.0);
-        }
-        out->actuator_enable = false;
-        out->stopping = true;
-        out->fault_code = 0u;
-        out->cause_mask = 0u;
-        out->lim_flags = 0u;
-        return;
-    }
+    out->actuator_enable = false;
+    out->stopping = true;
+    out->fault_code = 0u;
+    out->cause_mask = 0u;
+    out->lim_flags = 0u;
+}
+
+/* The causes seen in this tick's inputs: host watchdog, bus-off, overrun, skill, storage and
+ * the sensor checks (the limiter's causes come later). */
+static uint32_t input_causes(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in)
+{
     uint32_t cause = 0u;
     if (in->host_frame) {
         wdg_kick(&st->wdg, in->now_ms);
@@ -109,9 +110,14 @@ void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, s
     if (in->storage_error) {
         cause |= FLT_BIT(FLT_STORAGE);
     }
-    cause |= sen_check(&cfg->sen, &st->sen, in->meas);
+    return cause | sen_check(&cfg->sen, &st->sen, in->meas);
+}
 
-    fs_real_t req[SAF_AXES];
+/* The request the limiter sees: zero while stopping, and after a clear until the request has
+ * come back to (near) zero once (hold_zero). */
+static void gate_request(saf_state_t *st, const saf_input_t *in, bool stopping,
+                         fs_real_t req[SAF_AXES])
+{
     bool req_zero = true;
     for (uint32_t i = 0u; i < SAF_AXES; i++) {
         req[i] = in->force_req_N[i];
@@ -128,15 +134,50 @@ void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, s
             }
         }
     }
-    /* While stopping (a fault latched or a cause seen this tick) the request is ignored: the
-     * limiter still runs for its measurement checks (workspace, velocity, contact force), but
-     * sees a zero request, and its slew-binding bucket is not charged by the ramp. */
-    const bool stopping = flt_active(&st->flt) || cause != 0u;
     if (stopping) {
         for (uint32_t i = 0u; i < SAF_AXES; i++) {
             req[i] = FS_R(0.0);
         }
     }
+}
+
+/* A latched fault: the ramp to zero from the last command, then the actuator off; the
+ * limiter's slew reference follows what the actuator really got. */
+static void stop_command(const saf_config_t *cfg, saf_state_t *st, fs_real_t cmd[SAF_AXES])
+{
+    if (st->actuator_enabled) {
+        if (st->ramp.active == 0u) {
+            wdg_ramp_start(&st->ramp, &cfg->wdg, st->last_cmd_N);
+        }
+        if (wdg_ramp_step(&st->ramp, cmd)) {
+            st->actuator_enabled = false;
+        }
+    } else {
+        for (uint32_t i = 0u; i < SAF_AXES; i++) {
+            cmd[i] = FS_R(0.0);
+        }
+    }
+    for (uint32_t i = 0u; i < SAF_AXES; i++) {
+        st->lim.out_N[i] = cmd[i];
+    }
+}
+
+void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, saf_output_t *out)
+{
+    if (out == NULL) {
+        return;
+    }
+    if (cfg == NULL || st == NULL || in == NULL) {
+        fail_safe(out);
+        return;
+    }
+    uint32_t cause = input_causes(cfg, st, in);
+    /* While stopping (a fault latched or a cause seen this tick) the request is ignored: the
+     * limiter still runs for its measurement checks (workspace, velocity, contact force), but
+     * sees a zero request, and its slew-binding bucket is not charged by the ramp. */
+    const bool stopping = flt_active(&st->flt) || cause != 0u;
+    fs_real_t req[SAF_AXES];
+    gate_request(st, in, stopping, req);
     fs_real_t lim_out[SAF_AXES];
     const lim_result_t lr = lim_apply(&cfg->lim, &st->lim, req, in->meas, lim_out);
     if (stopping) {
@@ -152,22 +193,7 @@ void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, s
 
     fs_real_t cmd[SAF_AXES];
     if (flt_active(&st->flt)) {
-        if (st->actuator_enabled) {
-            if (st->ramp.active == 0u) {
-                wdg_ramp_start(&st->ramp, &cfg->wdg, st->last_cmd_N);
-            }
-            if (wdg_ramp_step(&st->ramp, cmd)) {
-                st->actuator_enabled = false;
-            }
-        } else {
-            for (uint32_t i = 0u; i < SAF_AXES; i++) {
-                cmd[i] = FS_R(0.0);
-            }
-        }
-        /* Keep the limiter's slew reference on what the actuator really got. */
-        for (uint32_t i = 0u; i < SAF_AXES; i++) {
-            st->lim.out_N[i] = cmd[i];
-        }
+        stop_command(cfg, st, cmd);
     } else {
         for (uint32_t i = 0u; i < SAF_AXES; i++) {
             cmd[i] = lim_out[i];

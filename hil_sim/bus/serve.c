@@ -12,7 +12,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "app.h"
+#include "app_internal.h"
 #include "bus_model.h"
 #include "hal_host.h"
 #include "scand.h"
@@ -321,16 +321,35 @@ static int serve_run_socketcan(serve_t *s, const char *ifname, int argc, char **
 }
 #endif
 
-int bus_cmd_serve(int argc, char **argv)
+/* The options of `hil_sim serve`. */
+typedef struct {
+    const char *host, *channel, *scenario, *socketcan;
+    double port, speed, node, bitrate, duration, host_timeout;
+    double drop, corrupt, bus_off_at, bus_off_for;
+    bool verbose;
+} serve_opts_t;
+
+/* argv into o; -1 to go on, else the exit status (0 after --help, 2 on a usage error). */
+static int parse_serve_args(int argc, char **argv, serve_opts_t *o)
 {
-    const char *host = "127.0.0.1";
-    const char *channel = "can0";
-    const char *scenario = NULL;
-    const char *socketcan = NULL;
-    double port = 29536.0, speed = 1.0, node = 0.0, bitrate = 1e6, duration = 0.0,
-           host_timeout = 100.0;
-    double drop = 0.0, corrupt = 0.0, bus_off_at = -1.0, bus_off_for = 0.5;
-    bool verbose = false;
+    const struct {
+        const char *name;
+        double *num;
+        const char **str;
+    } opts[] = {{"--port", &o->port, NULL},
+                {"--host", NULL, &o->host},
+                {"--speed", &o->speed, NULL},
+                {"--scenario", NULL, &o->scenario},
+                {"--socketcan", NULL, &o->socketcan},
+                {"--node", &o->node, NULL},
+                {"--channel", NULL, &o->channel},
+                {"--bitrate", &o->bitrate, NULL},
+                {"--duration", &o->duration, NULL},
+                {"--host-timeout", &o->host_timeout, NULL},
+                {"--drop", &o->drop, NULL},
+                {"--corrupt", &o->corrupt, NULL},
+                {"--bus-off-at", &o->bus_off_at, NULL},
+                {"--bus-off-for", &o->bus_off_for, NULL}};
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
@@ -339,128 +358,123 @@ int bus_cmd_serve(int argc, char **argv)
             return 0;
         }
         if (strcmp(a, "--verbose") == 0) {
-            verbose = true;
+            o->verbose = true;
             continue;
         }
         if (v == NULL) {
             fprintf(stderr, "hil_sim serve: %s needs a value (or unknown option)\n", a);
             return 2;
         }
-        int rc = 0;
-        if (strcmp(a, "--port") == 0)
-            rc = parse_double(a, v, &port);
-        else if (strcmp(a, "--host") == 0)
-            host = v;
-        else if (strcmp(a, "--speed") == 0)
-            rc = parse_double(a, v, &speed);
-        else if (strcmp(a, "--scenario") == 0)
-            scenario = v;
-        else if (strcmp(a, "--socketcan") == 0)
-            socketcan = v;
-        else if (strcmp(a, "--node") == 0)
-            rc = parse_double(a, v, &node);
-        else if (strcmp(a, "--channel") == 0)
-            channel = v;
-        else if (strcmp(a, "--bitrate") == 0)
-            rc = parse_double(a, v, &bitrate);
-        else if (strcmp(a, "--duration") == 0)
-            rc = parse_double(a, v, &duration);
-        else if (strcmp(a, "--host-timeout") == 0)
-            rc = parse_double(a, v, &host_timeout);
-        else if (strcmp(a, "--drop") == 0)
-            rc = parse_double(a, v, &drop);
-        else if (strcmp(a, "--corrupt") == 0)
-            rc = parse_double(a, v, &corrupt);
-        else if (strcmp(a, "--bus-off-at") == 0)
-            rc = parse_double(a, v, &bus_off_at);
-        else if (strcmp(a, "--bus-off-for") == 0)
-            rc = parse_double(a, v, &bus_off_for);
-        else {
+        size_t k = 0;
+        while (k < sizeof opts / sizeof opts[0] && strcmp(a, opts[k].name) != 0) {
+            k++;
+        }
+        if (k == sizeof opts / sizeof opts[0]) {
             fprintf(stderr, "hil_sim serve: unknown option '%s'\n%s", a, SERVE_USAGE);
             return 2;
         }
-        if (rc != 0) {
+        if (opts[k].str != NULL) {
+            *opts[k].str = v;
+        } else if (parse_double(a, v, opts[k].num) != 0) {
             return 2;
         }
         i++;
     }
-    if (!(port >= 0.0 && port <= 65535.0) || port != floor(port)) {
-        fprintf(stderr, "hil_sim serve: --port must be 0..65535, got %g\n", port);
-        return 2;
+    return -1;
+}
+
+/* The ranges of the options; 0, or -1 after a one-line message. */
+static int check_serve_opts(const serve_opts_t *o)
+{
+    if (!(o->port >= 0.0 && o->port <= 65535.0) || o->port != floor(o->port)) {
+        fprintf(stderr, "hil_sim serve: --port must be 0..65535, got %g\n", o->port);
+        return -1;
     }
-    if (!(speed > 0.0 && speed <= 1000.0)) {
-        fprintf(stderr, "hil_sim serve: --speed must be in (0, 1000], got %g\n", speed);
-        return 2;
+    if (!(o->speed > 0.0 && o->speed <= 1000.0)) {
+        fprintf(stderr, "hil_sim serve: --speed must be in (0, 1000], got %g\n", o->speed);
+        return -1;
     }
-    if (!(node >= 0.0 && node <= (double)PROTO_NODE_MAX) || node != floor(node)) {
-        fprintf(stderr, "hil_sim serve: --node must be 0..%u, got %g\n", PROTO_NODE_MAX, node);
-        return 2;
+    if (!(o->node >= 0.0 && o->node <= (double)PROTO_NODE_MAX) || o->node != floor(o->node)) {
+        fprintf(stderr, "hil_sim serve: --node must be 0..%u, got %g\n", PROTO_NODE_MAX, o->node);
+        return -1;
     }
-    if (!(bitrate >= 10000.0 && bitrate <= 1e6)) {
-        fprintf(stderr, "hil_sim serve: --bitrate must be 10000..1000000, got %g\n", bitrate);
-        return 2;
+    if (!(o->bitrate >= 10000.0 && o->bitrate <= 1e6)) {
+        fprintf(stderr, "hil_sim serve: --bitrate must be 10000..1000000, got %g\n", o->bitrate);
+        return -1;
     }
-    if (!(host_timeout >= (double)WDG_TIMEOUT_MIN_MS &&
-          host_timeout <= (double)WDG_TIMEOUT_MAX_MS)) {
+    if (!(o->host_timeout >= (double)WDG_TIMEOUT_MIN_MS &&
+          o->host_timeout <= (double)WDG_TIMEOUT_MAX_MS)) {
         fprintf(stderr, "hil_sim serve: --host-timeout must be %u..%u ms, got %g\n",
-                WDG_TIMEOUT_MIN_MS, WDG_TIMEOUT_MAX_MS, host_timeout);
-        return 2;
+                WDG_TIMEOUT_MIN_MS, WDG_TIMEOUT_MAX_MS, o->host_timeout);
+        return -1;
     }
-    if (!(drop >= 0.0 && drop <= 1.0) || !(corrupt >= 0.0 && corrupt <= 1.0) ||
-        !(bus_off_for >= 0.0)) {
+    if (!(o->drop >= 0.0 && o->drop <= 1.0) || !(o->corrupt >= 0.0 && o->corrupt <= 1.0) ||
+        !(o->bus_off_for >= 0.0)) {
         fprintf(stderr,
                 "hil_sim serve: --drop/--corrupt must be probabilities 0..1, --bus-off-for >= 0\n");
-        return 2;
+        return -1;
     }
-    if (socketcan != NULL && serve_check_socketcan(socketcan, argc, argv) != 0) {
-        return 2;
-    }
-    serve_t *s = &S;
+    return 0;
+}
+
+/* The serve state from the options: injections, the scenario, the device booted on the plant.
+ * 0, or -1 after a one-line message. */
+static int serve_setup(serve_t *s, const serve_opts_t *o)
+{
     memset(s, 0, sizeof(*s));
-    s->drop_p = drop;
-    s->corrupt_p = corrupt;
-    s->bus_off_from_ns = bus_off_at >= 0.0 ? (uint64_t)(bus_off_at * 1e9) : UINT64_MAX;
-    s->bus_off_until_ns = bus_off_at >= 0.0 ? (uint64_t)((bus_off_at + bus_off_for) * 1e9)
-                                            : UINT64_MAX;
-    s->speed = speed;
-    s->node = (uint8_t)node;
+    s->drop_p = o->drop;
+    s->corrupt_p = o->corrupt;
+    s->bus_off_from_ns = o->bus_off_at >= 0.0 ? (uint64_t)(o->bus_off_at * 1e9) : UINT64_MAX;
+    s->bus_off_until_ns = o->bus_off_at >= 0.0 ? (uint64_t)((o->bus_off_at + o->bus_off_for) * 1e9)
+                                               : UINT64_MAX;
+    s->speed = o->speed;
+    s->node = (uint8_t)o->node;
     char err[SIM_ERR_MAX];
     sim_scenario_defaults(&s->sc);
-    if (scenario != NULL && sim_scenario_load(&s->sc, scenario, err) != 0) {
+    if (o->scenario != NULL && sim_scenario_load(&s->sc, o->scenario, err) != 0) {
         fprintf(stderr, "hil_sim serve: %s\n", err);
-        return 2;
+        return -1;
     }
-
     /* the device, configured as the scenario's controller */
     sim_couple_device_config(&s->sc, &s->app_cfg);
     s->app_cfg.node = s->node;
-    s->app_cfg.saf.wdg.timeout_ms = (uint16_t)host_timeout;
+    s->app_cfg.saf.wdg.timeout_ms = (uint16_t)o->host_timeout;
     sim_rng_seed(&s->rng_faults, s->sc.seed ^ 0xFA17FA17FA17FA17ull);
     hal_host_init();
     plant_init(s);
     device_boot(s);
-    if (socketcan != NULL) {
-        return serve_run_socketcan(s, socketcan, argc, argv, (uint32_t)bitrate, duration, scenario);
-    }
-    bus_init(&s->bus, (uint32_t)bitrate);
+    return 0;
+}
 
-    if (scand_listen(&s->sd, host, (uint16_t)port, channel, on_client_frame, s, err, sizeof(err)) !=
-        0) {
-        fprintf(stderr, "hil_sim serve: %s\n", err);
-        return 1;
+/* Every 1 ms tick due by simulated time target (before end_ns): clients' frames when catching
+ * up, the bus, the bus-off window, the device and plant tick, the device's frames. */
+static void run_due_ticks(serve_t *s, struct pollfd *fds, uint64_t target, uint64_t *next_tick_ns,
+                          uint64_t end_ns)
+{
+    while (*next_tick_ns <= target && *next_tick_ns < end_ns) {
+        const uint64_t t = *next_tick_ns;
+        if (target - t >= TICK_NS) {
+            /* catching up (the process was descheduled): take what clients sent meanwhile
+             * before each tick, so a late burst of ticks does not look like host silence */
+            s->sim_ns = t;
+            poll_clients(s, fds, 0u);
+        }
+        bus_run(&s->bus, t, deliver, s);
+        s->sim_ns = t;
+        hal_sim_can_set_bus_off(t >= s->bus_off_from_ns && t < s->bus_off_until_ns);
+        sim_tick(s);
+        device_tx_to_bus(s, t);
+        *next_tick_ns = t + TICK_NS;
     }
-    s->sd.verbose = verbose;
-    signal(SIGINT, on_signal);
-    signal(SIGTERM, on_signal);
-    signal(SIGPIPE, SIG_IGN);
-    printf("hil_sim serve: listening on %s:%u channel %s node %u speed %g bitrate %u%s%s\n", host,
-           (unsigned)s->sd.port, channel, (unsigned)s->node, speed, (unsigned)bitrate,
-           scenario != NULL ? " scenario " : "", scenario != NULL ? scenario : "");
-    fflush(stdout);
+}
 
+/* The real-time loop until a signal or end_ns: ticks on the wall clock scaled by the speed
+ * (slipping when the machine cannot keep up), the bus between ticks, the clients polled until
+ * the next event. Returns the simulated time reached in ns. */
+static uint64_t serve_loop(serve_t *s, double speed, uint64_t end_ns)
+{
     uint64_t wall0 = mono_ns();
     uint64_t next_tick_ns = 0u;
-    const uint64_t end_ns = duration > 0.0 ? (uint64_t)(duration * 1e9) : UINT64_MAX;
     struct pollfd fds[SCAND_MAX_CLIENTS + 1u];
     while (!g_stop && next_tick_ns < end_ns) {
         uint64_t target = (uint64_t)((double)(mono_ns() - wall0) * speed);
@@ -470,21 +484,7 @@ int bus_cmd_serve(int argc, char **argv)
             target = next_tick_ns;
             s->slips++;
         }
-        while (next_tick_ns <= target && next_tick_ns < end_ns) {
-            if (target - next_tick_ns >= TICK_NS) {
-                /* catching up (the process was descheduled): take what clients sent meanwhile
-                 * before each tick, so a late burst of ticks does not look like host silence */
-                s->sim_ns = next_tick_ns;
-                poll_clients(s, fds, 0u);
-            }
-            bus_run(&s->bus, next_tick_ns, deliver, s);
-            s->sim_ns = next_tick_ns;
-            hal_sim_can_set_bus_off(next_tick_ns >= s->bus_off_from_ns &&
-                                    next_tick_ns < s->bus_off_until_ns);
-            sim_tick(s);
-            device_tx_to_bus(s, next_tick_ns);
-            next_tick_ns += TICK_NS;
-        }
+        run_due_ticks(s, fds, target, &next_tick_ns, end_ns);
         bus_run(&s->bus, target, deliver, s);
         device_tx_to_bus(s, target);
         s->sim_ns = target;
@@ -504,6 +504,52 @@ int bus_cmd_serve(int argc, char **argv)
         s->next_tick_ns = next_tick_ns;
         poll_clients(s, fds, wait_ns);
     }
+    return next_tick_ns;
+}
+
+int bus_cmd_serve(int argc, char **argv)
+{
+    serve_opts_t o = {.host = "127.0.0.1",
+                      .channel = "can0",
+                      .port = 29536.0,
+                      .speed = 1.0,
+                      .bitrate = 1e6,
+                      .host_timeout = 100.0,
+                      .bus_off_at = -1.0,
+                      .bus_off_for = 0.5};
+    const int status = parse_serve_args(argc, argv, &o);
+    if (status >= 0) {
+        return status;
+    }
+    if (check_serve_opts(&o) != 0 ||
+        (o.socketcan != NULL && serve_check_socketcan(o.socketcan, argc, argv) != 0)) {
+        return 2;
+    }
+    serve_t *s = &S;
+    if (serve_setup(s, &o) != 0) {
+        return 2;
+    }
+    if (o.socketcan != NULL) {
+        return serve_run_socketcan(s, o.socketcan, argc, argv, (uint32_t)o.bitrate, o.duration,
+                                   o.scenario);
+    }
+    bus_init(&s->bus, (uint32_t)o.bitrate);
+    char err[SIM_ERR_MAX];
+    if (scand_listen(&s->sd, o.host, (uint16_t)o.port, o.channel, on_client_frame, s, err,
+                     sizeof(err)) != 0) {
+        fprintf(stderr, "hil_sim serve: %s\n", err);
+        return 1;
+    }
+    s->sd.verbose = o.verbose;
+    signal(SIGINT, on_signal);
+    signal(SIGTERM, on_signal);
+    signal(SIGPIPE, SIG_IGN);
+    printf("hil_sim serve: listening on %s:%u channel %s node %u speed %g bitrate %u%s%s\n", o.host,
+           (unsigned)s->sd.port, o.channel, (unsigned)s->node, o.speed, (unsigned)o.bitrate,
+           o.scenario != NULL ? " scenario " : "", o.scenario != NULL ? o.scenario : "");
+    fflush(stdout);
+    const uint64_t end_ns = o.duration > 0.0 ? (uint64_t)(o.duration * 1e9) : UINT64_MAX;
+    const uint64_t next_tick_ns = serve_loop(s, o.speed, end_ns);
     scand_close(&s->sd);
     fprintf(stderr,
             "hil_sim serve: stopped at %.3f s simulated; bus %llu frames, load %.1f %%; %llu clock "

@@ -13,7 +13,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "app.h"
+#include "app_internal.h"
 #include "sim_couple.h"
 #include "sim_model.h"
 #include "sim_rng.h"

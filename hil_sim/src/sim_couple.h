@@ -10,7 +10,7 @@
 
 #include <stdbool.h>
 #include <stdint.h>
-#include "app.h"
+#include "app_internal.h"
 #include "can_frame.h"
 #include "hal.h"
 #include "sim_model.h"

@@ -8,7 +8,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "app.h"
+#include "app_internal.h"
 #include "fs_dbc.h"
 #include "hal_host.h"
 #include "nvm.h"
@@ -243,14 +243,227 @@ static double now_s(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* Everything the lockstep loop carries from tick to tick. */
+typedef struct {
+    const sim_scenario_t *sc;
+    int teach;
+    sim_rng_t rng_op, rng_sens;
+    sim_operator_t op;
+    sim_axis_t ax[2];
+    sim_drive_t drv[2];
+    sim_sample_t ring[SIM_COUPLE_RING];
+    double stuck_fc;
+    int stuck_set;
+    double sq_err, max_err; /* |contact - reference| while executing */
+    uint64_t exec_ticks;
+    sim_dev_t dev;
+    logbuf_t lb;
+} run_t;
+
+/* Seed the streams, start the operator and the device, set up the plant and the log; the run's
+ * length in s into *duration_s. */
+static int run_start(run_t *r, const sim_scenario_t *sc, const sim_skill_image_t *skills, FILE *log,
+                     double *duration_s, char err[SIM_ERR_MAX])
+{
+    memset(r, 0, sizeof *r);
+    r->sc = sc;
+    r->teach = (sc->mode == SIM_MODE_TEACH);
+    /* independent streams: operator draws do not depend on how much sensor noise was drawn */
+    sim_rng_seed(&r->rng_op, sc->seed);
+    sim_rng_seed(&r->rng_sens, sc->seed ^ 0x5EB5C0DEDA7A5EEDull);
+
+    sim_operator_cfg_t opc = sc->op;
+    opc.duration_s = sc->duration_s;
+    if (!r->teach) {
+        opc.task = SIM_TASK_NONE;
+    }
+    sim_operator_init(&r->op, &opc, &r->rng_op);
+
+    /* the device: the product's application tick through the host port of hal.h */
+    double total = 0.0;
+    if (dev_start(&r->dev, sc, skills, &total, err) != 0) {
+        return -1;
+    }
+    *duration_s = sc->duration_s;
+    if (!r->teach && !(*duration_s > 0.0)) {
+        *duration_s = total + sc->tail_s;
+    }
+
+    sim_couple_plant_init(sc, r->ax, r->drv);
+    for (int a = 0; a < 2; a++) {
+        r->drv[a].hand_damping_Nspm = r->teach ? sc->op.hand_damping_Nspm : 0.0;
+    }
+    r->lb.f = log;
+    r->lb.len = 0;
+    if (log != NULL) {
+        const char *hdr = "t,x,y,f_contact,f_operator,f_cmd,f_hat\n";
+        memcpy(r->lb.buf, hdr, strlen(hdr));
+        r->lb.len = strlen(hdr);
+    }
+    return 0;
+}
+
+/* The sensors at t into *s, the scenario's faults injected on the physical sensor; returns the
+ * sample the device reads this tick (after the pipeline delay). */
+static const sim_sample_t *run_sense(run_t *r, uint64_t n, double t, sim_sample_t *s)
+{
+    const sim_scenario_t *sc = r->sc;
+    sim_couple_sample(sc, r->ax, r->drv, &r->rng_sens, s);
+    if (sc->fault.kind == SIM_FAULT_ENCODER_JUMP && t >= sc->fault.at_s - 1e-9) {
+        s->x_m = sim_encoder_read(r->ax[0].pos_m + sc->fault.value, sc->encoder_m);
+    }
+    if (fault_active(&sc->fault, SIM_FAULT_FORCE_SPIKE, t)) {
+        s->contact_N += sc->fault.value;
+    } else if (fault_active(&sc->fault, SIM_FAULT_FORCE_NAN, t)) {
+        s->contact_N = (double)NAN;
+    } else if (fault_active(&sc->fault, SIM_FAULT_FORCE_STUCK, t)) {
+        if (!r->stuck_set) {
+            r->stuck_fc = s->contact_N;
+            r->stuck_set = 1;
+        }
+        s->contact_N = r->stuck_fc;
+    }
+    return sim_couple_delay(r->ring, n, sc->delay_samples, s);
+}
+
+/* EXECUTE: the command against the limit, the injected actuator saturation, the tracking of the
+ * reference while the skill runs (executing: the device was in EXECUTE before this tick). */
+static void run_execute_figures(run_t *r, double t, const double f_cmd[2], double f_hat,
+                                double contact_N, bool executing, sim_summary_t *sum)
+{
+    const sim_scenario_t *sc = r->sc;
+    for (int a = 0; a < 2; a++) {
+        const double fa = fabs(f_cmd[a]);
+        if (fa > sum->max_cmd_abs_N) {
+            sum->max_cmd_abs_N = fa;
+        }
+        if (fa > sc->force_max_N * (1.0 + 1e-12)) {
+            sum->limit_violations++;
+        }
+        if (fa >= sc->force_max_N * (1.0 - 1e-9)) {
+            sum->saturated_ticks++;
+        }
+    }
+    if (fault_active(&sc->fault, SIM_FAULT_ACTUATOR_SATURATION, t)) {
+        const double lim = fabs(sc->fault.value);
+        for (int a = 0; a < 2; a++) {
+            r->drv[a].act_limit_N = lim;
+            if (sc->plant == SIM_PLANT_IDEAL) {
+                const double c = r->drv[a].force_cmd_N;
+                r->drv[a].force_cmd_N = (c > lim) ? lim : ((c < -lim) ? -lim : c);
+            }
+        }
+    } else {
+        r->drv[0].act_limit_N = sc->carriage.act_max_N;
+        r->drv[1].act_limit_N = sc->carriage.act_max_N;
+    }
+    if (f_hat > sum->max_hat_N) {
+        sum->max_hat_N = f_hat;
+    }
+    const double e = fabs(contact_N - f_hat);
+    if (executing && e == e) {
+        r->exec_ticks++;
+        r->sq_err += e * e;
+        if (e > r->max_err) {
+            r->max_err = e;
+        }
+    }
+}
+
+/* The log row of tick t and the maxima every run reports. */
+static void run_record(run_t *r, double t, const sim_sample_t *s, double cmd_log, double f_hat,
+                       double p_true, sim_summary_t *sum)
+{
+    if (r->lb.f != NULL) {
+        const double row[7] = {t, s->x_m, s->y_m, s->contact_N, s->operator_x_N, cmd_log, f_hat};
+        log_row(&r->lb, row, 7);
+    }
+    if (s->contact_N > sum->max_force_N) {
+        sum->max_force_N = s->contact_N;
+    }
+    if (s->operator_x_N > sum->max_operator_N) {
+        sum->max_operator_N = s->operator_x_N;
+    }
+    if (p_true > sum->deformation_max_m) {
+        sum->deformation_max_m = p_true;
+    }
+    if (sum->layer_reached_s < 0.0 && p_true >= r->sc->object.layer_depth_m) {
+        sum->layer_reached_s = t;
+    }
+}
+
+/* Tick n: operator, sensors, the device's tick and frames, its actuator, the figures. Returns
+ * whether the device leaves the plant parked (idle, booting, or stopped with the drive off). */
+static bool run_tick(run_t *r, uint64_t n, double t, sim_summary_t *sum)
+{
+    const sim_scenario_t *sc = r->sc;
+    const uint64_t dev_tick = n + SIM_RUN_START_TICKS;
+    hal_host_set_time_us(dev_tick * 1000u);
+    /* operator profile for this tick */
+    double fprof[2] = {0.0, 0.0};
+    const double p_true = r->ax[0].pos_m - sc->object.surface_m;
+    if (r->teach) {
+        sim_operator_force(&r->op, t, p_true, sc->object.layer_depth_m, fprof);
+        fprof[1] += sim_operator_path_force(&r->op, t, sc->start_y_m, r->ax[1].pos_m);
+    }
+    r->drv[0].force_ext_N = fprof[0];
+    r->drv[1].force_ext_N = fprof[1];
+
+    sim_sample_t s;
+    const sim_sample_t *m = run_sense(r, n, t, &s);
+    if (!(isfinite(m->contact_N) && isfinite(m->x_m) && isfinite(m->y_m))) {
+        sum->nonfinite_ticks++;
+    }
+    hal_sensors_t hs;
+    sim_couple_to_hal(m, &hs);
+    hal_host_set_sensors(&hs);
+
+    /* the device's tick, its frames, its actuator; tracking counts the ticks that run the
+     * skill (from EXECUTE: once a sequence has released, the device idles, parked) */
+    const bool executing = r->dev.app.state == APP_EXECUTE;
+    app_tick(&r->dev.app, false);
+    dev_host(&r->dev, dev_tick);
+    double f_cmd[2];
+    const bool enable = sim_couple_actuate(sc, &r->dev.app, r->drv, f_cmd);
+    const double f_hat = r->teach ? 0.0 : (double)r->dev.app.force_hat_N;
+    /* TEACH logs the rendered total force (operator - contact), EXECUTE the law's x output */
+    const double cmd_log = r->teach ? m->operator_x_N - m->contact_N : f_cmd[0];
+    if (!r->teach) {
+        run_execute_figures(r, t, f_cmd, f_hat, s.contact_N, executing, sum);
+    } else if (fabs(cmd_log) > sum->max_cmd_abs_N) {
+        sum->max_cmd_abs_N = fabs(cmd_log);
+    }
+    run_record(r, t, &s, cmd_log, f_hat, p_true, sum);
+    const app_state_t st = r->dev.app.state;
+    return st == APP_IDLE || st == APP_BOOT || (st == APP_FAULT && !enable);
+}
+
+/* The summary's totals once the last tick has run. */
+static void run_finish(const run_t *r, uint64_t n_ticks, double t0_wall, sim_summary_t *sum)
+{
+    const double dt = r->sc->dt_s;
+    sum->ticks = n_ticks + 1u;
+    sum->sim_time_s = (double)n_ticks * dt;
+    sum->fault_code = r->dev.fault_code;
+    sum->fault_s = (r->dev.fault_code != 0u)
+                       ? (double)(r->dev.fault_tick - SIM_RUN_START_TICKS) * dt
+                       : -1.0;
+    sum->final_state = (int)r->dev.app.state;
+    sum->exec_ticks = r->exec_ticks;
+    if (!r->teach && sum->max_hat_N > 0.0 && r->exec_ticks > 0u) {
+        sum->tracking_max_pct = 100.0 * r->max_err / sum->max_hat_N;
+        sum->tracking_rms_pct = 100.0 * sqrt(r->sq_err / (double)r->exec_ticks) / sum->max_hat_N;
+    }
+    sum->wall_s = now_s() - t0_wall;
+    sum->x_realtime = (sum->wall_s > 0.0) ? sum->sim_time_s / sum->wall_s : 0.0;
+}
+
 int sim_run(const sim_scenario_t *sc, const sim_skill_image_t *skills, FILE *log,
             sim_summary_t *sum, char err[SIM_ERR_MAX])
 {
-    static logbuf_t lb;
-    static sim_dev_t dev;
+    static run_t r; /* large (device, log buffer): not on the stack */
     const double t0_wall = now_s();
     const double dt = sc->dt_s;
-    const int teach = (sc->mode == SIM_MODE_TEACH);
 
     memset(sum, 0, sizeof *sum);
     sum->layer_reached_s = -1.0;
@@ -258,188 +471,25 @@ int sim_run(const sim_scenario_t *sc, const sim_skill_image_t *skills, FILE *log
         snprintf(err, SIM_ERR_MAX, "%s: the device ticks at 1 ms, dt_s is %g", sc->path, dt);
         return -1;
     }
-
-    /* independent streams: operator draws do not depend on how much sensor noise was drawn */
-    sim_rng_t rng_op, rng_sens;
-    sim_rng_seed(&rng_op, sc->seed);
-    sim_rng_seed(&rng_sens, sc->seed ^ 0x5EB5C0DEDA7A5EEDull);
-
-    sim_operator_cfg_t opc = sc->op;
-    opc.duration_s = sc->duration_s;
-    if (!teach) {
-        opc.task = SIM_TASK_NONE;
-    }
-    sim_operator_t op;
-    sim_operator_init(&op, &opc, &rng_op);
-
-    /* the device: the product's application tick through the host port of hal.h */
-    double total = 0.0;
-    if (dev_start(&dev, sc, skills, &total, err) != 0) {
+    double duration = 0.0;
+    if (run_start(&r, sc, skills, log, &duration, err) != 0) {
         return -1;
     }
-    double duration = sc->duration_s;
-    if (!teach && !(duration > 0.0)) {
-        duration = total + sc->tail_s;
-    }
-
-    sim_axis_t ax[2];
-    sim_drive_t drv[2];
-    sim_couple_plant_init(sc, ax, drv);
-    for (int a = 0; a < 2; a++) {
-        drv[a].hand_damping_Nspm = teach ? sc->op.hand_damping_Nspm : 0.0;
-    }
-
-    lb.f = log;
-    lb.len = 0;
-    if (log != NULL) {
-        const char *hdr = "t,x,y,f_contact,f_operator,f_cmd,f_hat\n";
-        memcpy(lb.buf, hdr, strlen(hdr));
-        lb.len = strlen(hdr);
-    }
-
-    sim_sample_t ring[SIM_COUPLE_RING];
-    memset(ring, 0, sizeof ring);
     const uint64_t n_ticks = (uint64_t)(duration / dt + 0.5);
-    double stuck_fc = 0.0;
-    int stuck_set = 0;
-    double sq_err = 0.0;
-    double max_err = 0.0;
-    uint64_t exec_ticks = 0u;
-    const double layer_depth = sc->object.layer_depth_m;
-
     for (uint64_t n = 0; n <= n_ticks; n++) {
-        const double t = (double)n * dt;
-        const uint64_t dev_tick = n + SIM_RUN_START_TICKS;
-        hal_host_set_time_us(dev_tick * 1000u);
-        /* operator profile for this tick */
-        double fprof[2] = {0.0, 0.0};
-        const double p_true = ax[0].pos_m - sc->object.surface_m;
-        if (teach) {
-            sim_operator_force(&op, t, p_true, layer_depth, fprof);
-            fprof[1] += sim_operator_path_force(&op, t, sc->start_y_m, ax[1].pos_m);
-        }
-        drv[0].force_ext_N = fprof[0];
-        drv[1].force_ext_N = fprof[1];
-
-        /* sensors at t, injected faults on the physical sensor, the pipeline delay */
-        sim_sample_t s;
-        sim_couple_sample(sc, ax, drv, &rng_sens, &s);
-        if (sc->fault.kind == SIM_FAULT_ENCODER_JUMP && t >= sc->fault.at_s - 1e-9) {
-            s.x_m = sim_encoder_read(ax[0].pos_m + sc->fault.value, sc->encoder_m);
-        }
-        if (fault_active(&sc->fault, SIM_FAULT_FORCE_SPIKE, t)) {
-            s.contact_N += sc->fault.value;
-        } else if (fault_active(&sc->fault, SIM_FAULT_FORCE_NAN, t)) {
-            s.contact_N = (double)NAN;
-        } else if (fault_active(&sc->fault, SIM_FAULT_FORCE_STUCK, t)) {
-            if (!stuck_set) {
-                stuck_fc = s.contact_N;
-                stuck_set = 1;
-            }
-            s.contact_N = stuck_fc;
-        }
-        const sim_sample_t *m = sim_couple_delay(ring, n, sc->delay_samples, &s);
-        if (!(isfinite(m->contact_N) && isfinite(m->x_m) && isfinite(m->y_m))) {
-            sum->nonfinite_ticks++;
-        }
-        hal_sensors_t hs;
-        sim_couple_to_hal(m, &hs);
-        hal_host_set_sensors(&hs);
-
-        /* the device's tick, its frames, its actuator; tracking counts the ticks that run the
-         * skill (from EXECUTE: once a sequence has released, the device idles, parked) */
-        const bool executing = dev.app.state == APP_EXECUTE;
-        app_tick(&dev.app, false);
-        dev_host(&dev, dev_tick);
-        double f_cmd[2];
-        const bool enable = sim_couple_actuate(sc, &dev.app, drv, f_cmd);
-        const double f_hat = teach ? 0.0 : (double)dev.app.force_hat_N;
-        /* TEACH logs the rendered total force (operator - contact), EXECUTE the law's x output */
-        const double cmd_log = teach ? m->operator_x_N - m->contact_N : f_cmd[0];
-        if (!teach) {
-            for (int a = 0; a < 2; a++) {
-                const double fa = fabs(f_cmd[a]);
-                if (fa > sum->max_cmd_abs_N) {
-                    sum->max_cmd_abs_N = fa;
-                }
-                if (fa > sc->force_max_N * (1.0 + 1e-12)) {
-                    sum->limit_violations++;
-                }
-                if (fa >= sc->force_max_N * (1.0 - 1e-9)) {
-                    sum->saturated_ticks++;
-                }
-            }
-            if (fault_active(&sc->fault, SIM_FAULT_ACTUATOR_SATURATION, t)) {
-                const double lim = fabs(sc->fault.value);
-                for (int a = 0; a < 2; a++) {
-                    drv[a].act_limit_N = lim;
-                    if (sc->plant == SIM_PLANT_IDEAL) {
-                        const double c = drv[a].force_cmd_N;
-                        drv[a].force_cmd_N = (c > lim) ? lim : ((c < -lim) ? -lim : c);
-                    }
-                }
-            } else {
-                drv[0].act_limit_N = sc->carriage.act_max_N;
-                drv[1].act_limit_N = sc->carriage.act_max_N;
-            }
-            if (f_hat > sum->max_hat_N) {
-                sum->max_hat_N = f_hat;
-            }
-            const double e = fabs(s.contact_N - f_hat);
-            if (executing && e == e) {
-                exec_ticks++;
-                sq_err += e * e;
-                if (e > max_err) {
-                    max_err = e;
-                }
-            }
-        } else if (fabs(cmd_log) > sum->max_cmd_abs_N) {
-            sum->max_cmd_abs_N = fabs(cmd_log);
-        }
-
-        /* log (sensor values at t, the device's command and reference of this tick) */
-        if (log != NULL) {
-            const double row[7] = {t, s.x_m, s.y_m, s.contact_N, s.operator_x_N, cmd_log, f_hat};
-            log_row(&lb, row, 7);
-        }
-        if (s.contact_N > sum->max_force_N) {
-            sum->max_force_N = s.contact_N;
-        }
-        if (s.operator_x_N > sum->max_operator_N) {
-            sum->max_operator_N = s.operator_x_N;
-        }
-        if (p_true > sum->deformation_max_m) {
-            sum->deformation_max_m = p_true;
-        }
-        if (sum->layer_reached_s < 0.0 && p_true >= layer_depth) {
-            sum->layer_reached_s = t;
-        }
+        const bool parked = run_tick(&r, n, (double)n * dt, sum);
         if (n == n_ticks) {
             break;
         }
         /* plant over the tick, the command held; parked while the device is idle or stopped */
-        const app_state_t st = dev.app.state;
-        sim_couple_advance(sc, ax, drv,
-                           st == APP_IDLE || st == APP_BOOT || (st == APP_FAULT && !enable));
+        sim_couple_advance(sc, r.ax, r.drv, parked);
     }
-    log_flush(&lb);
+    log_flush(&r.lb);
     if (log != NULL && ferror(log)) {
         snprintf(err, SIM_ERR_MAX, "writing the log failed");
         return -1;
     }
-    sum->ticks = n_ticks + 1u;
-    sum->sim_time_s = (double)n_ticks * dt;
-    sum->fault_code = dev.fault_code;
-    sum->fault_s = (dev.fault_code != 0u) ? (double)(dev.fault_tick - SIM_RUN_START_TICKS) * dt
-                                          : -1.0;
-    sum->final_state = (int)dev.app.state;
-    sum->exec_ticks = exec_ticks;
-    if (!teach && sum->max_hat_N > 0.0 && exec_ticks > 0u) {
-        sum->tracking_max_pct = 100.0 * max_err / sum->max_hat_N;
-        sum->tracking_rms_pct = 100.0 * sqrt(sq_err / (double)exec_ticks) / sum->max_hat_N;
-    }
-    sum->wall_s = now_s() - t0_wall;
-    sum->x_realtime = (sum->wall_s > 0.0) ? sum->sim_time_s / sum->wall_s : 0.0;
+    run_finish(&r, n_ticks, t0_wall, sum);
     return 0;
 }
 

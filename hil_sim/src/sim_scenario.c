@@ -1,51 +1,13 @@
-/* Scenario TOML-subset parser: see sim_scenario.h and docs/hil.md. */
+/* Scenario files: their keys, defaults and checks (sim_scenario.h, docs/hil.md); the TOML
+ * subset itself is read by sim_toml.c. */
 #include "sim_scenario.h"
 
-#include <ctype.h>
-#include <errno.h>
-#include <math.h>
-#include <stdarg.h>
 #include <stddef.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
-#define SIM_ARR_MAX SIM_MAX_SKILLS
-
-typedef enum {
-    V_NUM,
-    V_STR,
-    V_BOOL,
-    V_NUMARR,
-    V_STRARR
-} vtype_t;
-
-typedef struct {
-    vtype_t type;
-    double num;
-    int b;
-    char str[SIM_PATH_MAX];
-    int n;
-    double nums[SIM_ARR_MAX];
-    char strs[SIM_ARR_MAX][SIM_PATH_MAX];
-} value_t;
-
-typedef struct {
-    const char *file;
-    int line;
-    char *err;
-} ctx_t;
-
-static int fail(const ctx_t *c, const char *fmt, ...)
-{
-    char msg[SIM_ERR_MAX / 2];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    snprintf(c->err, SIM_ERR_MAX, "%s:%d: %s", c->file, c->line, msg);
-    return -1;
-}
+typedef sim_toml_ctx_t ctx_t;
+typedef sim_toml_value_t value_t;
 
 void sim_scenario_defaults(sim_scenario_t *sc)
 {
@@ -112,128 +74,6 @@ void sim_scenario_defaults(sim_scenario_t *sc)
     sc->surface_from_contact = 0;
     sc->fault.kind = SIM_FAULT_NONE;
     sc->fault.duration_s = 1e9;
-}
-
-static char *skip_ws(char *p)
-{
-    while (*p == ' ' || *p == '\t') {
-        p++;
-    }
-    return p;
-}
-
-/* Parse one scalar at *pp (number or string); advances *pp. */
-static int parse_scalar(const ctx_t *c, char **pp, int *is_str, double *num, char *str)
-{
-    char *p = skip_ws(*pp);
-    if (*p == '"') {
-        p++;
-        size_t n = 0;
-        while (*p != '"') {
-            if (*p == '\0') {
-                return fail(c, "unterminated string");
-            }
-            if (*p == '\\' && (p[1] == '"' || p[1] == '\\')) {
-                p++;
-            }
-            if (n + 1 >= SIM_PATH_MAX) {
-                return fail(c, "string longer than %d characters", SIM_PATH_MAX - 1);
-            }
-            str[n++] = *p++;
-        }
-        str[n] = '\0';
-        *pp = p + 1;
-        *is_str = 1;
-        return 0;
-    }
-    char *end = NULL;
-    errno = 0;
-    double v = strtod(p, &end);
-    if (end == p) {
-        char tok[32];
-        size_t n = 0;
-        while (p[n] != '\0' && p[n] != ',' && p[n] != ']' && !isspace((unsigned char)p[n]) &&
-               n + 1 < sizeof tok) {
-            tok[n] = p[n];
-            n++;
-        }
-        tok[n] = '\0';
-        return fail(c, "expected a number, a \"string\", true or false, got '%s'", tok);
-    }
-    if (errno == ERANGE || !isfinite(v)) {
-        return fail(c, "number out of range");
-    }
-    *num = v;
-    *is_str = 0;
-    *pp = end;
-    return 0;
-}
-
-static int parse_value(const ctx_t *c, char *p, value_t *v)
-{
-    p = skip_ws(p);
-    if (strncmp(p, "true", 4) == 0 || strncmp(p, "false", 5) == 0) {
-        v->type = V_BOOL;
-        v->b = (p[0] == 't');
-        p += v->b ? 4 : 5;
-    } else if (*p == '[') {
-        p++;
-        v->n = 0;
-        int kind = -1;
-        p = skip_ws(p);
-        while (*p != ']') {
-            if (v->n >= SIM_ARR_MAX) {
-                return fail(c, "array longer than %d items", SIM_ARR_MAX);
-            }
-            int is_str = 0;
-            if (parse_scalar(c, &p, &is_str, &v->nums[v->n], v->strs[v->n]) != 0) {
-                return -1;
-            }
-            if (kind >= 0 && kind != is_str) {
-                return fail(c, "array mixes numbers and strings");
-            }
-            kind = is_str;
-            v->n++;
-            p = skip_ws(p);
-            if (*p == ',') {
-                p = skip_ws(p + 1);
-            } else if (*p != ']') {
-                return fail(c, "expected ',' or ']' in array (arrays must be on one line)");
-            }
-        }
-        p++;
-        v->type = (kind == 1) ? V_STRARR : V_NUMARR;
-    } else {
-        int is_str = 0;
-        if (parse_scalar(c, &p, &is_str, &v->num, v->str) != 0) {
-            return -1;
-        }
-        v->type = is_str ? V_STR : V_NUM;
-    }
-    p = skip_ws(p);
-    if (*p != '\0' && *p != '#') {
-        return fail(c, "unexpected text after the value: '%s'", p);
-    }
-    return 0;
-}
-
-static const char *type_name(vtype_t t)
-{
-    switch (t) {
-    case V_NUM: return "a number";
-    case V_STR: return "a string";
-    case V_BOOL: return "true/false";
-    case V_NUMARR: return "an array of numbers";
-    default: return "an array of strings";
-    }
-}
-
-static int want(const ctx_t *c, const char *key, const value_t *v, vtype_t t)
-{
-    if (v->type != t) {
-        return fail(c, "'%s' must be %s, got %s", key, type_name(t), type_name(v->type));
-    }
-    return 0;
 }
 
 /* number keys: section, key, pointer offset into the scenario */
@@ -304,19 +144,6 @@ static const num_key_t NUM_KEYS[] = {
     NK("fault", "duration_s", fault.duration_s, 0.0, 1e9),
 };
 
-static int set_int(const ctx_t *c, const char *key, const value_t *v, double lo, double hi,
-                   double *out)
-{
-    if (want(c, key, v, V_NUM) != 0) {
-        return -1;
-    }
-    if (v->num != floor(v->num) || v->num < lo || v->num > hi) {
-        return fail(c, "'%s' must be an integer in [%g, %g], got %g", key, lo, hi, v->num);
-    }
-    *out = v->num;
-    return 0;
-}
-
 /* Skill paths in a scenario are relative to the scenario file's folder. */
 static int resolve_path(const ctx_t *c, const sim_scenario_t *sc, char *out, const char *path)
 {
@@ -327,201 +154,224 @@ static int resolve_path(const ctx_t *c, const sim_scenario_t *sc, char *out, con
         n = snprintf(out, SIM_PATH_MAX, "%s/%s", sc->dir, path);
     }
     if (n < 0 || n >= SIM_PATH_MAX) {
-        return fail(c, "skill path too long");
+        return sim_toml_fail(c, "skill path too long");
     }
     return 0;
 }
 
-static int apply(sim_scenario_t *sc, const ctx_t *c, const char *sec, const char *key,
-                 const value_t *v)
+/* A key of NUM_KEYS: 1 if it is one (applied, or -1 after an error), 0 if not. */
+static int apply_number(sim_scenario_t *sc, const ctx_t *c, const char *sec, const char *key,
+                        const value_t *v)
 {
     for (size_t i = 0; i < sizeof NUM_KEYS / sizeof NUM_KEYS[0]; i++) {
         const num_key_t *k = &NUM_KEYS[i];
-        if (strcmp(k->section, sec) == 0 && strcmp(k->key, key) == 0) {
-            if (want(c, key, v, V_NUM) != 0) {
-                return -1;
-            }
-            if (v->num < k->lo || v->num > k->hi) {
-                return fail(c, "'%s' = %g is outside [%g, %g]", key, v->num, k->lo, k->hi);
-            }
-            *(double *)(void *)((char *)sc + k->offset) = v->num;
-            if (strcmp(sec, "sensors") == 0 &&
-                (strcmp(key, "force_noise_N") == 0 || strcmp(key, "force_range_N") == 0)) {
-                /* both force sensors share noise and range */
-                *(double *)(void *)((char *)&sc->handle +
-                                    (k->offset - offsetof(sim_scenario_t, tip))) = v->num;
-            }
-            return 0;
+        if (strcmp(k->section, sec) != 0 || strcmp(k->key, key) != 0) {
+            continue;
         }
+        double *dst = (double *)(void *)((char *)sc + k->offset);
+        if (sim_toml_number(c, key, v, k->lo, k->hi, dst) != 0) {
+            return -1;
+        }
+        if (strcmp(sec, "sensors") == 0 &&
+            (strcmp(key, "force_noise_N") == 0 || strcmp(key, "force_range_N") == 0)) {
+            /* both force sensors share noise and range */
+            *(double *)(void *)((char *)&sc->handle +
+                                (k->offset - offsetof(sim_scenario_t, tip))) = v->num;
+        }
+        return 1;
     }
+    return 0;
+}
+
+/* Keys before the first section; 1 if key is one of them (or -1), 0 if not. */
+static int apply_top(sim_scenario_t *sc, const ctx_t *c, const char *key, const value_t *v)
+{
+    static const char *const MODES[] = {"teach", "execute"};
+    static const char *const PLANTS[] = {"ideal", "realistic"};
+    static const sim_plant_kind_t PLANT_OF[] = {SIM_PLANT_IDEAL, SIM_PLANT_REALISTIC};
+    int i = 0;
     double n = 0.0;
-    if (strcmp(sec, "") == 0) {
-        if (strcmp(key, "name") == 0) {
-            if (want(c, key, v, V_STR) != 0) {
-                return -1;
-            }
-            snprintf(sc->name, sizeof sc->name, "%.63s", v->str);
-            return 0;
-        }
-        if (strcmp(key, "mode") == 0 || strcmp(key, "plant") == 0) {
-            if (want(c, key, v, V_STR) != 0) {
-                return -1;
-            }
-            if (strcmp(key, "mode") == 0) {
-                if (strcmp(v->str, "teach") == 0) {
-                    sc->mode = SIM_MODE_TEACH;
-                } else if (strcmp(v->str, "execute") == 0) {
-                    sc->mode = SIM_MODE_EXECUTE;
-                } else {
-                    return fail(c, "mode must be \"teach\" or \"execute\", got \"%s\"", v->str);
-                }
-            } else if (strcmp(v->str, "ideal") == 0) {
-                sc->plant = SIM_PLANT_IDEAL;
-            } else if (strcmp(v->str, "realistic") == 0) {
-                sc->plant = SIM_PLANT_REALISTIC;
-            } else {
-                return fail(c, "plant must be \"ideal\" or \"realistic\", got \"%s\"", v->str);
-            }
-            return 0;
-        }
-        if (strcmp(key, "seed") == 0) {
-            if (set_int(c, key, v, 0.0, 9007199254740992.0, &n) != 0) {
-                return -1;
-            }
-            sc->seed = (uint64_t)n;
-            return 0;
-        }
-        if (strcmp(key, "substeps") == 0) {
-            if (set_int(c, key, v, 1.0, 1000.0, &n) != 0) {
-                return -1;
-            }
-            sc->substeps = (int)n;
-            return 0;
-        }
-    } else if (strcmp(sec, "operator") == 0 && strcmp(key, "task") == 0) {
-        if (want(c, key, v, V_STR) != 0) {
+    if (strcmp(key, "name") == 0) {
+        return sim_toml_string(c, key, v, sc->name, sizeof sc->name) == 0 ? 1 : -1;
+    }
+    if (strcmp(key, "mode") == 0) {
+        if (sim_toml_choice(c, key, v, "mode", MODES, 2, &i) != 0) {
             return -1;
         }
-        if (strcmp(v->str, "pressing") == 0) {
-            sc->op.task = SIM_TASK_PRESSING;
-        } else if (strcmp(v->str, "engraving") == 0) {
-            sc->op.task = SIM_TASK_ENGRAVING;
-        } else if (strcmp(v->str, "none") == 0) {
-            sc->op.task = SIM_TASK_NONE;
-        } else {
-            return fail(c, "task must be \"pressing\", \"engraving\" or \"none\", got \"%s\"",
-                        v->str);
+        sc->mode = i == 0 ? SIM_MODE_TEACH : SIM_MODE_EXECUTE;
+        return 1;
+    }
+    if (strcmp(key, "plant") == 0) {
+        if (sim_toml_choice(c, key, v, "plant", PLANTS, 2, &i) != 0) {
+            return -1;
         }
+        sc->plant = PLANT_OF[i];
+        return 1;
+    }
+    if (strcmp(key, "seed") == 0) {
+        if (sim_toml_integer(c, key, v, 0.0, 9007199254740992.0, &n) != 0) {
+            return -1;
+        }
+        sc->seed = (uint64_t)n;
+        return 1;
+    }
+    if (strcmp(key, "substeps") == 0) {
+        if (sim_toml_integer(c, key, v, 1.0, 1000.0, &n) != 0) {
+            return -1;
+        }
+        sc->substeps = (int)n;
+        return 1;
+    }
+    return 0;
+}
+
+/* [operator] keys other than numbers. */
+static int apply_operator(sim_scenario_t *sc, const ctx_t *c, const char *key, const value_t *v)
+{
+    static const char *const TASKS[] = {"pressing", "engraving", "none"};
+    static const sim_task_t TASK_OF[] = {SIM_TASK_PRESSING, SIM_TASK_ENGRAVING, SIM_TASK_NONE};
+    int i = 0;
+    if (strcmp(key, "task") != 0) {
         return 0;
-    } else if (strcmp(sec, "sensors") == 0) {
-        if (strcmp(key, "force_bits") == 0) {
-            if (set_int(c, key, v, 0.0, 32.0, &n) != 0) {
-                return -1;
-            }
-            sc->tip.bits = (unsigned)n;
-            sc->handle.bits = (unsigned)n;
-            return 0;
-        }
-        if (strcmp(key, "delay_samples") == 0) {
-            if (set_int(c, key, v, 0.0, 4.0, &n) != 0) {
-                return -1;
-            }
-            sc->delay_samples = (int)n;
-            return 0;
-        }
-    } else if (strcmp(sec, "execute") == 0) {
-        if (strcmp(key, "skills") == 0) {
-            if (v->type == V_STR) {
-                sc->n_skills = 1;
-                return resolve_path(c, sc, sc->skill_path[0], v->str);
-            }
-            if (want(c, key, v, V_STRARR) != 0) {
-                return -1;
-            }
-            sc->n_skills = v->n;
-            for (int i = 0; i < v->n; i++) {
-                if (resolve_path(c, sc, sc->skill_path[i], v->strs[i]) != 0) {
-                    return -1;
-                }
-            }
-            return 0;
-        }
-        if (strcmp(key, "step_durations_s") == 0) {
-            if (want(c, key, v, V_NUMARR) != 0) {
-                return -1;
-            }
-            for (int i = 0; i < v->n; i++) {
-                if (!(v->nums[i] > 0.0 && v->nums[i] <= 3600.0)) {
-                    return fail(c, "step_durations_s[%d] = %g must be in (0, 3600]", i, v->nums[i]);
-                }
-                sc->step_duration_s[i] = v->nums[i];
-            }
-            sc->n_step_durations = v->n;
-            return 0;
-        }
-        if (strcmp(key, "model") == 0) {
-            if (want(c, key, v, V_STR) != 0) {
-                return -1;
-            }
-            if (strcmp(v->str, "object") == 0) {
-                sc->use_model = 1;
-            } else if (strcmp(v->str, "none") == 0) {
-                sc->use_model = 0;
-            } else {
-                return fail(c, "model must be \"object\" or \"none\", got \"%s\"", v->str);
-            }
-            return 0;
-        }
-        if (strcmp(key, "end_policy") == 0) {
-            if (want(c, key, v, V_STR) != 0) {
-                return -1;
-            }
-            if (strcmp(v->str, "skill") == 0) {
-                sc->end_policy = -1;
-            } else if (strcmp(v->str, "hold") == 0) {
-                sc->end_policy = 0;
-            } else if (strcmp(v->str, "release") == 0) {
-                sc->end_policy = 1;
-            } else {
-                return fail(c, "end_policy must be \"skill\", \"hold\" or \"release\", got \"%s\"",
-                            v->str);
-            }
-            return 0;
-        }
-        if (strcmp(key, "surface") == 0) {
-            if (want(c, key, v, V_STR) != 0) {
-                return -1;
-            }
-            if (strcmp(v->str, "config") == 0) {
-                sc->surface_from_contact = 0;
-            } else if (strcmp(v->str, "contact") == 0) {
-                sc->surface_from_contact = 1;
-            } else {
-                return fail(c, "surface must be \"config\" or \"contact\", got \"%s\"", v->str);
-            }
-            return 0;
-        }
-    } else if (strcmp(sec, "fault") == 0 && strcmp(key, "kind") == 0) {
-        static const char *const names[] = {"none",        "force_spike",  "force_nan",
-                                            "force_stuck", "encoder_jump", "actuator_saturation"};
-        if (want(c, key, v, V_STR) != 0) {
+    }
+    if (sim_toml_choice(c, key, v, "task", TASKS, 3, &i) != 0) {
+        return -1;
+    }
+    sc->op.task = TASK_OF[i];
+    return 1;
+}
+
+/* [sensors] keys other than numbers. */
+static int apply_sensors(sim_scenario_t *sc, const ctx_t *c, const char *key, const value_t *v)
+{
+    double n = 0.0;
+    if (strcmp(key, "force_bits") == 0) {
+        if (sim_toml_integer(c, key, v, 0.0, 32.0, &n) != 0) {
             return -1;
         }
-        for (int i = 0; i < 6; i++) {
-            if (strcmp(v->str, names[i]) == 0) {
-                sc->fault.kind = (sim_fault_kind_t)i;
-                return 0;
+        sc->tip.bits = (unsigned)n;
+        sc->handle.bits = (unsigned)n;
+        return 1;
+    }
+    if (strcmp(key, "delay_samples") == 0) {
+        if (sim_toml_integer(c, key, v, 0.0, 4.0, &n) != 0) {
+            return -1;
+        }
+        sc->delay_samples = (int)n;
+        return 1;
+    }
+    return 0;
+}
+
+/* [execute] skills and step_durations_s: the arrays. */
+static int apply_execute_lists(sim_scenario_t *sc, const ctx_t *c, const char *key,
+                               const value_t *v)
+{
+    if (strcmp(key, "skills") == 0) {
+        if (v->type == SIM_TOML_STR) {
+            sc->n_skills = 1;
+            return resolve_path(c, sc, sc->skill_path[0], v->str) == 0 ? 1 : -1;
+        }
+        if (sim_toml_want(c, key, v, SIM_TOML_STRARR) != 0) {
+            return -1;
+        }
+        sc->n_skills = v->n;
+        for (int i = 0; i < v->n; i++) {
+            if (resolve_path(c, sc, sc->skill_path[i], v->strs[i]) != 0) {
+                return -1;
             }
         }
-        return fail(c,
-                    "fault kind must be one of none, force_spike, force_nan, force_stuck, "
-                    "encoder_jump, actuator_saturation; got \"%s\"",
-                    v->str);
+        return 1;
+    }
+    if (strcmp(key, "step_durations_s") == 0) {
+        if (sim_toml_want(c, key, v, SIM_TOML_NUMARR) != 0) {
+            return -1;
+        }
+        for (int i = 0; i < v->n; i++) {
+            if (!(v->nums[i] > 0.0 && v->nums[i] <= 3600.0)) {
+                return sim_toml_fail(c, "step_durations_s[%d] = %g must be in (0, 3600]", i,
+                                     v->nums[i]);
+            }
+            sc->step_duration_s[i] = v->nums[i];
+        }
+        sc->n_step_durations = v->n;
+        return 1;
+    }
+    return 0;
+}
+
+/* [execute] model, end_policy and surface: the choices. */
+static int apply_execute_choices(sim_scenario_t *sc, const ctx_t *c, const char *key,
+                                 const value_t *v)
+{
+    static const char *const MODELS[] = {"object", "none"};
+    static const char *const POLICIES[] = {"skill", "hold", "release"};
+    static const char *const SURFACES[] = {"config", "contact"};
+    int i = 0;
+    if (strcmp(key, "model") == 0) {
+        if (sim_toml_choice(c, key, v, "model", MODELS, 2, &i) != 0) {
+            return -1;
+        }
+        sc->use_model = i == 0 ? 1 : 0;
+        return 1;
+    }
+    if (strcmp(key, "end_policy") == 0) {
+        if (sim_toml_choice(c, key, v, "end_policy", POLICIES, 3, &i) != 0) {
+            return -1;
+        }
+        sc->end_policy = i - 1;
+        return 1;
+    }
+    if (strcmp(key, "surface") == 0) {
+        if (sim_toml_choice(c, key, v, "surface", SURFACES, 2, &i) != 0) {
+            return -1;
+        }
+        sc->surface_from_contact = i;
+        return 1;
+    }
+    return 0;
+}
+
+/* [fault] kind. */
+static int apply_fault(sim_scenario_t *sc, const ctx_t *c, const char *key, const value_t *v)
+{
+    static const char *const KINDS[] = {"none",        "force_spike",  "force_nan",
+                                        "force_stuck", "encoder_jump", "actuator_saturation"};
+    int i = 0;
+    if (strcmp(key, "kind") != 0) {
+        return 0;
+    }
+    if (sim_toml_choice(c, key, v, "fault kind", KINDS, 6, &i) != 0) {
+        return -1;
+    }
+    sc->fault.kind = (sim_fault_kind_t)i;
+    return 1;
+}
+
+/* One key of a scenario file (sim_toml_apply_fn). */
+static int apply(void *user, const ctx_t *c, const char *sec, const char *key, const value_t *v)
+{
+    sim_scenario_t *sc = user;
+    int r = apply_number(sc, c, sec, key, v);
+    if (r == 0 && sec[0] == '\0') {
+        r = apply_top(sc, c, key, v);
+    } else if (r == 0 && strcmp(sec, "operator") == 0) {
+        r = apply_operator(sc, c, key, v);
+    } else if (r == 0 && strcmp(sec, "sensors") == 0) {
+        r = apply_sensors(sc, c, key, v);
+    } else if (r == 0 && strcmp(sec, "execute") == 0) {
+        r = apply_execute_lists(sc, c, key, v);
+        r = r != 0 ? r : apply_execute_choices(sc, c, key, v);
+    } else if (r == 0 && strcmp(sec, "fault") == 0) {
+        r = apply_fault(sc, c, key, v);
+    }
+    if (r != 0) {
+        return r < 0 ? -1 : 0;
     }
     if (sec[0] == '\0') {
-        return fail(c, "unknown key '%s'", key);
+        return sim_toml_fail(c, "unknown key '%s'", key);
     }
-    return fail(c, "unknown key '%s' in [%s]", key, sec);
+    return sim_toml_fail(c, "unknown key '%s' in [%s]", key, sec);
 }
 
 static const char *const SECTIONS[] = {"object",  "carriage", "operator",
@@ -530,100 +380,14 @@ static const char *const SECTIONS[] = {"object",  "carriage", "operator",
 int sim_scenario_parse(sim_scenario_t *sc, const char *text, const char *name,
                        char err[SIM_ERR_MAX])
 {
-    static value_t v; /* large (arrays of paths): not on the stack */
-    ctx_t c = {name, 0, err};
-    char section[32] = "";
-    const char *p = text;
-    char line[2048];
-    while (*p != '\0') {
-        const char *nl = strchr(p, '\n');
-        size_t len = nl ? (size_t)(nl - p) : strlen(p);
-        c.line++;
-        if (len >= sizeof line) {
-            return fail(&c, "line longer than %zu characters", sizeof line - 1);
-        }
-        memcpy(line, p, len);
-        line[len] = '\0';
-        p = nl ? nl + 1 : p + len;
-        if (len > 0 && line[len - 1] == '\r') {
-            line[len - 1] = '\0';
-        }
-        char *s = skip_ws(line);
-        if (*s == '\0' || *s == '#') {
-            continue;
-        }
-        if (*s == '[') {
-            char *e = strchr(s, ']');
-            if (e == NULL) {
-                return fail(&c, "section header without ']'");
-            }
-            *e = '\0';
-            char *rest = skip_ws(e + 1);
-            if (*rest != '\0' && *rest != '#') {
-                return fail(&c, "unexpected text after the section header");
-            }
-            const char *nm = skip_ws(s + 1);
-            int known = 0;
-            for (size_t i = 0; i < sizeof SECTIONS / sizeof SECTIONS[0]; i++) {
-                if (strcmp(nm, SECTIONS[i]) == 0) {
-                    known = 1;
-                }
-            }
-            if (!known) {
-                return fail(&c,
-                            "unknown section [%s] (known: object, carriage, operator, "
-                            "sensors, execute, fault)",
-                            nm);
-            }
-            snprintf(section, sizeof section, "%s", nm);
-            continue;
-        }
-        char *eq = strchr(s, '=');
-        if (eq == NULL) {
-            return fail(&c, "expected 'key = value'");
-        }
-        char *ke = eq;
-        while (ke > s && (ke[-1] == ' ' || ke[-1] == '\t')) {
-            ke--;
-        }
-        *ke = '\0';
-        for (char *q = s; *q; q++) {
-            if (!(isalnum((unsigned char)*q) || *q == '_')) {
-                return fail(&c, "invalid key '%s'", s);
-            }
-        }
-        if (*s == '\0') {
-            return fail(&c, "empty key");
-        }
-        memset(&v, 0, sizeof v);
-        if (parse_value(&c, eq + 1, &v) != 0) {
-            return -1;
-        }
-        if (apply(sc, &c, section, s, &v) != 0) {
-            return -1;
-        }
-    }
-    return 0;
+    return sim_toml_parse(text, name, SECTIONS, sizeof SECTIONS / sizeof SECTIONS[0], apply, sc,
+                          err);
 }
 
 int sim_scenario_load(sim_scenario_t *sc, const char *path, char err[SIM_ERR_MAX])
 {
-    FILE *f = fopen(path, "rb");
-    if (f == NULL) {
-        snprintf(err, SIM_ERR_MAX, "%s: cannot open scenario: %s", path, strerror(errno));
-        return -1;
-    }
-    static char text[1 << 16];
-    size_t n = fread(text, 1, sizeof text - 1, f);
-    int too_long = !feof(f);
-    fclose(f);
-    if (too_long) {
-        snprintf(err, SIM_ERR_MAX, "%s: scenario larger than %zu bytes", path, sizeof text - 1);
-        return -1;
-    }
-    text[n] = '\0';
-    if (strlen(text) != n) {
-        snprintf(err, SIM_ERR_MAX, "%s: scenario contains a NUL byte", path);
+    const char *text = sim_toml_load(path, "scenario", err);
+    if (text == NULL) {
         return -1;
     }
     snprintf(sc->path, sizeof sc->path, "%s", path);

@@ -1,16 +1,15 @@
-/* Scenario files: a small TOML subset (docs/hil.md "Scenario format"), parsed in C.
- * Supported: comments (#), [section] headers, key = value with value a number, a "string",
- * true/false, or a one-line array of numbers or strings. Unknown sections/keys are errors
- * (typos must not silently fall back to defaults). Errors name file:line and the problem. */
+/* Scenario files (docs/hil.md "Scenario format"), read by sim_toml.h's TOML subset: comments
+ * (#), [section] headers, key = value with value a number, a "string", true/false, or a one-line
+ * array of numbers or strings. Unknown sections/keys are errors (typos must not silently fall
+ * back to defaults). Errors name file:line and the problem. */
 #ifndef SIM_SCENARIO_H
 #define SIM_SCENARIO_H
 
 #include <stdint.h>
 #include "sim_model.h"
+#include "sim_toml.h"
 
-#define SIM_PATH_MAX 512
-#define SIM_MAX_SKILLS 8
-#define SIM_ERR_MAX 640
+#define SIM_MAX_SKILLS SIM_TOML_ARR_MAX
 
 typedef enum {
     SIM_MODE_TEACH = 0,

@@ -243,6 +243,57 @@ SEC_LEVEL_WRITE = 0x01  # skills, gains, limits: extended or programming session
 SEC_LEVEL_FIRMWARE = 0x03  # firmware images: programming session only
 DOWNLOAD_ADDRESS = 0xF0000000  # RequestDownload memoryAddress of "the inactive slot"
 
+# UDS negative response codes the device answers
+NRC_GENERAL_REJECT = 0x10  # generalReject
+NRC_SERVICE_NOT_SUPPORTED = 0x11  # serviceNotSupported
+NRC_SUBFUNCTION_NOT_SUPPORTED = 0x12  # subFunctionNotSupported
+NRC_INCORRECT_LENGTH = 0x13  # incorrectMessageLengthOrInvalidFormat
+NRC_RESPONSE_TOO_LONG = 0x14  # responseTooLong
+NRC_BUSY_REPEAT_REQUEST = 0x21  # busyRepeatRequest
+NRC_CONDITIONS_NOT_CORRECT = 0x22  # conditionsNotCorrect
+NRC_REQUEST_SEQUENCE_ERROR = 0x24  # requestSequenceError
+NRC_REQUEST_OUT_OF_RANGE = 0x31  # requestOutOfRange
+NRC_SECURITY_ACCESS_DENIED = 0x33  # securityAccessDenied
+NRC_INVALID_KEY = 0x35  # invalidKey
+NRC_EXCEEDED_ATTEMPTS = 0x36  # exceededNumberOfAttempts
+NRC_DELAY_NOT_EXPIRED = 0x37  # requiredTimeDelayNotExpired
+NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED = 0x70  # uploadDownloadNotAccepted
+NRC_TRANSFER_SUSPENDED = 0x71  # transferDataSuspended
+NRC_PROGRAMMING_FAILURE = 0x72  # generalProgrammingFailure
+NRC_WRONG_BLOCK_COUNTER = 0x73  # wrongBlockSequenceCounter
+NRC_RESPONSE_PENDING = 0x78  # requestCorrectlyReceived-ResponsePending
+NRC_SUBFUNCTION_NOT_IN_SESSION = 0x7E  # subFunctionNotSupportedInActiveSession
+NRC_SERVICE_NOT_IN_SESSION = 0x7F  # serviceNotSupportedInActiveSession
+NRC_FW_HEADER = 0xF0  # vehicleManufacturerSpecific
+NRC_FW_TARGET = 0xF1  # vehicleManufacturerSpecific
+NRC_FW_TRUNCATED = 0xF2  # vehicleManufacturerSpecific
+NRC_FW_HASH = 0xF3  # vehicleManufacturerSpecific
+NRC_FW_TAG = 0xF4  # vehicleManufacturerSpecific
+NRC_FW_DOWNGRADE = 0xF5  # vehicleManufacturerSpecific
+NRC_FW_SKILL_FORMAT = 0xF6  # vehicleManufacturerSpecific
+NRC_FW_CONFIG_FORMAT = 0xF7  # vehicleManufacturerSpecific
+
+# Firmware image and update (700-729, firmware/boot): the negative response code of each status (others: 0x10)
+BOOT_STATUS_NRC: dict[int, int] = {
+    700: 0xF2,
+    701: 0xF0,
+    702: 0xF0,
+    703: 0xF1,
+    704: 0x70,
+    705: 0xF3,
+    706: 0xF4,
+    707: 0xF5,
+    708: 0xF6,
+    709: 0xF7,
+    711: 0x72,
+    720: 0x33,
+    722: 0x24,
+    723: 0x73,
+    724: 0x71,
+    725: 0x22,
+    726: 0x31,
+}
+
 __all__ = [
     'ERR_NULL_ARG',
     'ERR_NOT_FINITE',
@@ -423,4 +474,33 @@ __all__ = [
     'SEC_LEVEL_WRITE',
     'SEC_LEVEL_FIRMWARE',
     'DOWNLOAD_ADDRESS',
+    'NRC_GENERAL_REJECT',
+    'NRC_SERVICE_NOT_SUPPORTED',
+    'NRC_SUBFUNCTION_NOT_SUPPORTED',
+    'NRC_INCORRECT_LENGTH',
+    'NRC_RESPONSE_TOO_LONG',
+    'NRC_BUSY_REPEAT_REQUEST',
+    'NRC_CONDITIONS_NOT_CORRECT',
+    'NRC_REQUEST_SEQUENCE_ERROR',
+    'NRC_REQUEST_OUT_OF_RANGE',
+    'NRC_SECURITY_ACCESS_DENIED',
+    'NRC_INVALID_KEY',
+    'NRC_EXCEEDED_ATTEMPTS',
+    'NRC_DELAY_NOT_EXPIRED',
+    'NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED',
+    'NRC_TRANSFER_SUSPENDED',
+    'NRC_PROGRAMMING_FAILURE',
+    'NRC_WRONG_BLOCK_COUNTER',
+    'NRC_RESPONSE_PENDING',
+    'NRC_SUBFUNCTION_NOT_IN_SESSION',
+    'NRC_SERVICE_NOT_IN_SESSION',
+    'NRC_FW_HEADER',
+    'NRC_FW_TARGET',
+    'NRC_FW_TRUNCATED',
+    'NRC_FW_HASH',
+    'NRC_FW_TAG',
+    'NRC_FW_DOWNGRADE',
+    'NRC_FW_SKILL_FORMAT',
+    'NRC_FW_CONFIG_FORMAT',
+    'BOOT_STATUS_NRC',
 ]

@@ -15,7 +15,7 @@
 
 #include <errno.h>
 
-#include "app.h"
+#include "app_internal.h"
 #include "fs_dbc.h"
 #include "hal_host.h"
 #include "pair_ops.h"

@@ -44,6 +44,17 @@ def test_violations_are_reported(tmp_path: Path, tool: Callable[[str], ModuleTyp
     assert not any(p.startswith("firmware/storage/nvm.h:") for p in problems)
 
 
+def test_a_private_header_outside_its_module_is_reported(
+    tmp_path: Path, tool: Callable[[str], ModuleType]
+) -> None:
+    mod = tool("check_layers")
+    root = _copy(tmp_path)
+    _add_include(root / "firmware/ports/host/hal_host.c", "app_internal.h")  # a port: app.h only
+    _add_include(root / "firmware/ports/host/hal_can_sim.c", "app.h")  # fine
+    problems, _ = mod.check(root)
+    assert problems == ["firmware/ports/host/hal_host.c: app_internal.h is private to app (use app.h)"]
+
+
 def _copy_host(tmp: Path) -> Path:
     shutil.copytree(
         ROOT / "host" / "forceskill",

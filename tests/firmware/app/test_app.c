@@ -12,9 +12,10 @@
 #include <string.h>
 #include <cmocka.h>
 
-#include "app.h"
+#include "app_internal.h"
 #include "fs_dbc.h"
 #include "hal_host.h"
+#include "vectors_io.h"
 
 static app_t app;
 static app_config_t cfg;
@@ -169,15 +170,12 @@ static void unlock(uint8_t session)
 static uint8_t image_a[APP_IMAGE_MAX], image_b[APP_IMAGE_MAX];
 static uint32_t len_a, len_b;
 
+/* A golden image of tests/vectors into buf (APP_IMAGE_MAX bytes); its length. */
 static uint32_t load(const char *name, uint8_t *buf)
 {
-    char path[512];
-    snprintf(path, sizeof(path), "%s/%s", FS_VECTORS_DIR, name);
-    FILE *f = fopen(path, "rb");
-    assert_non_null(f);
-    const size_t n = fread(buf, 1, APP_IMAGE_MAX, f);
-    fclose(f);
-    return (uint32_t)n;
+    const uint32_t n = tv_read(name, buf, APP_IMAGE_MAX);
+    assert_true(n > 0u);
+    return n;
 }
 
 static uint8_t download(uint8_t slot, const uint8_t *img, uint32_t len, uint32_t stop_after)

@@ -16,6 +16,7 @@
 #include "core_test_util.h"
 #include "dmpfx.h"
 #include "skill.h"
+#include "vectors_io.h"
 
 #ifndef FS_VECTORS_DIR
 #error "FS_VECTORS_DIR must point at tests/vectors"
@@ -31,15 +32,13 @@ static uint8_t image[SKILL_IMAGE_MAX];
 static double f_ref[MAX_ROWS + 1];
 static double f_fx[MAX_ROWS + 1];
 
-static uint32_t read_file(const char *name, uint8_t *buf, uint32_t cap)
+/* A golden skill of tests/vectors into skill (float64 core) and fxm (fixed point). */
+static void load_fixed(const char *name)
 {
-    char path[512];
-    snprintf(path, sizeof(path), "%s/%s", FS_VECTORS_DIR, name);
-    FILE *f = fopen(path, "rb");
-    assert_non_null(f);
-    const size_t n = fread(buf, 1, cap, f);
-    fclose(f);
-    return (uint32_t)n;
+    const uint32_t len = tv_read(name, image, sizeof(image));
+    assert_true(len > 0u);
+    assert_int_equal(skill_parse(image, len, &skill), FS_OK);
+    assert_int_equal(dmpfx_from_model(&skill.dmp, &fxm), FS_OK);
 }
 
 /* Fixed rollout rows n = 0..rows (row 0 is f0), f in N. Returns the saturation count. */
@@ -94,9 +93,7 @@ static void test_golden_vectors(void **state)
     int lines = 0;
     double worst = 0.0;
     while (fscanf(mf, "%255s %lf %lf %255s", sk, &gs, &ts, csv) == 4) {
-        const uint32_t len = read_file(sk, image, sizeof(image));
-        assert_int_equal(skill_parse(image, len, &skill), FS_OK);
-        assert_int_equal(dmpfx_from_model(&skill.dmp, &fxm), FS_OK);
+        load_fixed(sk);
         const long rows = lround(skill.dmp.duration_s * ts / skill.dmp.dt_s);
         assert_true(rows <= MAX_ROWS);
         assert_int_equal(rollout_fx(&fxm, gs, ts, rows, f_fx), 0u);
@@ -237,9 +234,7 @@ static void test_long_skill(void **state)
 static void test_blend(void **state)
 {
     (void)state;
-    const uint32_t len = read_file("engrave_n50_ridge_release.skill", image, sizeof(image));
-    assert_int_equal(skill_parse(image, len, &skill), FS_OK);
-    assert_int_equal(dmpfx_from_model(&skill.dmp, &fxm), FS_OK);
+    load_fixed("engrave_n50_ridge_release.skill");
     double wmax = 0.0;
     for (uint16_t i = 0; i < skill.dmp.n_kernels; i++) {
         wmax = fmax(wmax, fabs(skill.dmp.weight[i]));
@@ -336,9 +331,7 @@ static void test_rejects(void **state)
 static void test_coupling(void **state)
 {
     (void)state;
-    const uint32_t len = read_file("press_n50_ridge_release.skill", image, sizeof(image));
-    assert_int_equal(skill_parse(image, len, &skill), FS_OK);
-    assert_int_equal(dmpfx_from_model(&skill.dmp, &fxm), FS_OK);
+    load_fixed("press_n50_ridge_release.skill");
     dmpfx_run_t run;
     assert_int_equal(dmpfx_run_init(&fxm, 1.0, 1.0, &run), FS_OK);
     const double slow = 0.6;
@@ -372,9 +365,7 @@ static void test_coupling(void **state)
 static void test_saturation_never_wraps(void **state)
 {
     (void)state;
-    const uint32_t len = read_file("press_n50_ridge_release.skill", image, sizeof(image));
-    assert_int_equal(skill_parse(image, len, &skill), FS_OK);
-    assert_int_equal(dmpfx_from_model(&skill.dmp, &fxm), FS_OK);
+    load_fixed("press_n50_ridge_release.skill");
     dmpfx_run_t run;
     assert_int_equal(dmpfx_run_init(&fxm, 1.0, 1.0, &run), FS_OK);
     const int32_t goals[] = {INT32_MAX, INT32_MIN};

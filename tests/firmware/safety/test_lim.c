@@ -19,6 +19,7 @@
 #include "dmp.h"
 #include "lim.h"
 #include "pfc.h"
+#include "vectors_io.h"
 #include "skill.h"
 
 #ifdef FS_REAL_FLOAT
@@ -124,17 +125,6 @@ static void test_random_hostile_requests(void **state)
     assert_int_equal(s.n, 1000000u);
 }
 
-static uint32_t load_vector(const char *name, uint8_t *buf, uint32_t cap)
-{
-    char path[512];
-    snprintf(path, sizeof path, "%s/%s", FS_VECTORS_DIR, name);
-    FILE *f = fopen(path, "rb");
-    assert_non_null(f);
-    const size_t n = fread(buf, 1, cap, f);
-    fclose(f);
-    return (uint32_t)n;
-}
-
 static void test_hostile_skills_and_goal_scales(void **state)
 {
     (void)state;
@@ -157,7 +147,8 @@ static void test_hostile_skills_and_goal_scales(void **state)
     stats_t s = {0, 0.0, 0.0, 0};
     uint32_t n_skills = 0;
     while (s.n < 1000000u) {
-        const uint32_t len = load_vector(vectors[n_skills % 4u], img, sizeof img);
+        const uint32_t len = tv_read(vectors[n_skills % 4u], img, sizeof img);
+        assert_true(len > 0u);
         assert_int_equal(skill_parse(img, len, base), FS_OK);
         *m = base->dmp;
         /* hostile skill: weights scaled by up to 1e+-300, some NaN/inf (as if validation had

@@ -10,23 +10,12 @@
 #include <cmocka.h>
 
 #include "fls_ram.h"
+#include "vectors_io.h"
 #include "nvm_bank.h"
 
 #define SECTOR 8192u
 static uint8_t g_mem[SECTOR * 8u];
 static uint8_t g_scratch[SECTOR];
-
-static uint32_t load_vector(const char *name, uint8_t *buf, uint32_t cap)
-{
-    char path[512];
-    snprintf(path, sizeof path, "%s/%s", FS_VECTORS_DIR, name);
-    FILE *f = fopen(path, "rb");
-    assert_non_null(f);
-    const size_t n = fread(buf, 1, cap, f);
-    fclose(f);
-    assert_true(n > 0 && n < cap);
-    return (uint32_t)n;
-}
 
 static void test_swap_at_idle_tick_only(void **state)
 {
@@ -37,8 +26,10 @@ static void test_swap_at_idle_tick_only(void **state)
     nvm_t n;
     assert_int_equal(nvm_init(&n, &dev), NVM_OK);
     static uint8_t a[SECTOR], b[SECTOR];
-    const uint32_t la = load_vector("press_n10_lwr_hold.skill", a, sizeof a);
-    const uint32_t lb = load_vector("engrave_n50_ridge_release.skill", b, sizeof b);
+    const uint32_t la = tv_read("press_n10_lwr_hold.skill", a, sizeof a);
+    assert_true(la > 0u && la < sizeof a);
+    const uint32_t lb = tv_read("engrave_n50_ridge_release.skill", b, sizeof b);
+    assert_true(lb > 0u && lb < sizeof b);
     assert_int_equal(nvm_write(&n, 0, a, la), NVM_OK);
     assert_int_equal(nvm_write(&n, 1, b, lb), NVM_OK);
 

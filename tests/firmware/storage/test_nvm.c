@@ -12,6 +12,7 @@
 #include <cmocka.h>
 
 #include "fls_ram.h"
+#include "vectors_io.h"
 #include "nvm.h"
 #include "skill.h"
 
@@ -19,19 +20,6 @@
 #define SECTORS 8u
 
 static uint8_t g_mem[SECTOR * SECTORS];
-
-/* Read a golden skill image written by the Python package (tests/vectors). */
-static uint32_t load_vector(const char *name, uint8_t *buf, uint32_t cap)
-{
-    char path[512];
-    snprintf(path, sizeof path, "%s/%s", FS_VECTORS_DIR, name);
-    FILE *f = fopen(path, "rb");
-    assert_non_null(f);
-    const size_t n = fread(buf, 1, cap, f);
-    fclose(f);
-    assert_true(n > 0 && n < cap);
-    return (uint32_t)n;
-}
 
 static void fill_pattern(uint8_t *b, uint32_t n, uint32_t seed)
 {
@@ -124,8 +112,10 @@ static void test_write_read_alternate(void **state)
     assert_int_equal(nvm_init(&n, &dev), NVM_OK);
     assert_int_equal(n.n_slots, 4);
     uint8_t a[4096], b[2048], out[8192];
-    const uint32_t la = load_vector("press_n100_lwr_release.skill", a, sizeof a + 1);
-    const uint32_t lb = load_vector("engrave_n50_lwr_hold.skill", b, sizeof b + 1);
+    const uint32_t la = tv_read("press_n100_lwr_release.skill", a, sizeof a + 1);
+    assert_true(la > 0u && la < sizeof a + 1);
+    const uint32_t lb = tv_read("engrave_n50_lwr_hold.skill", b, sizeof b + 1);
+    assert_true(lb > 0u && lb < sizeof b + 1);
     uint32_t len = 0;
     assert_int_equal(nvm_read(&n, 1, out, sizeof out, &len), NVM_ERR_EMPTY);
     assert_int_equal(nvm_write(&n, 1, a, la), NVM_OK);
@@ -291,8 +281,10 @@ static void test_power_loss_every_write(void **state)
 {
     (void)state;
     static uint8_t a[SECTOR], b[SECTOR];
-    const uint32_t la = load_vector("press_n50_lwr_hold.skill", a, sizeof a);
-    const uint32_t lb = load_vector("engrave_n100_ridge_hold.skill", b, sizeof b);
+    const uint32_t la = tv_read("press_n50_lwr_hold.skill", a, sizeof a);
+    assert_true(la > 0u && la < sizeof a);
+    const uint32_t lb = tv_read("engrave_n100_ridge_hold.skill", b, sizeof b);
+    assert_true(lb > 0u && lb < sizeof b);
     const uint32_t wus[] = {1, 4, 8, 16};
     uint32_t total = 0;
     for (size_t w = 0; w < sizeof wus / sizeof wus[0]; w++) {

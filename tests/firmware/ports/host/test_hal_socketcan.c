@@ -15,7 +15,7 @@
 
 #include <errno.h>
 
-#include "app.h"
+#include "app_internal.h"
 #include "cansock.h"
 #include "fs_dbc.h"
 #include "hal_host.h"

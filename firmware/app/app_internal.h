@@ -1,0 +1,186 @@
+/* The device application's internals (the public surface is app.h): the whole device state
+ * app_t, its configuration app_config_t and the functions its own modules (app.c, app_uds.c)
+ * share. Included by firmware/app and by white-box users (the simulator, tests, fuzzers);
+ * tools/check_layers.py keeps every other firmware module on app.h.
+ *
+ * The device application: state machine BOOT -> IDLE -> TEACH | EXECUTE -> FAULT
+ * (latched), the 1 kHz tick, the cyclic frames of forceskill.dbc (status, telemetry, emergency;
+ * host command and heartbeat with E2E checks) and the UDS server on ISO-TP with its device hooks
+ * (app_uds.c: data identifiers, routines, skill download/upload into slots).
+ * Hardware only through hal.h. No heap; everything lives in app_t (one static instance).
+ *
+ * Per tick (app_tick): CAN rx (bounded) -> UDS -> sensors -> commands/state -> control
+ * (TEACH: render m_d; EXECUTE: fs_exec sequence) -> safety supervisor (limits, faults, safe
+ * stop) -> actuator -> emergency/status/telemetry frames. */
+#ifndef APP_INTERNAL_H
+#define APP_INTERNAL_H
+
+#include <stdbool.h>
+#include <stdint.h>
+#include "app.h"
+#include "app_sm.h"
+#include "e2e.h"
+#include "fs_exec.h"
+#include "hal.h"
+#include "isotp.h"
+#include "nvm.h"
+#include "boot_fls_window.h"
+#include "fwu.h"
+#include "saf.h"
+#include "sec_access.h"
+#include "skill.h"
+#include "skill_check.h"
+#include "uds.h"
+
+#define APP_TICK_US 1000u
+#define APP_N_SLOTS NVM_MAX_SLOTS  /* UDS/CAN slot numbers 1..APP_N_SLOTS */
+#define APP_RX_FRAMES_PER_TICK 64u /* bounded CAN drain per tick */
+/* Transmit places kept for emergency and status frames: telemetry and ISO-TP (UDS) frames are
+ * queued only while more than this many are free, so a backlog of them (bus flooded by frames
+ * of higher priority) never keeps a safety frame out of the queue. */
+#define APP_TX_RESERVE 8u
+#define APP_RESET_TX_WAIT_MS 100u /* ECUReset: longest wait for the response to leave */
+#define APP_STATUS_PERIOD_MS 10u
+#define APP_IDLE_TELEMETRY_PERIOD_MS 100u
+#define APP_IMAGE_MAX SKILL_IMAGE_MAX
+#define APP_SW_VERSION "forceskill-fw 0.1.0"
+#define APP_TRANSFER_NONE 0xFFFDu /* DID 0x0201: no download since power-up */
+#define APP_PROTO_VERSION_MAJOR 1u
+#define APP_PROTO_VERSION_MINOR 0u
+#define APP_SEC_LEVELS 2u /* SecurityAccess levels 1 and 3, one secret each */
+/* DMP steps of a downloaded skill's own rollout (skill_check.h) per tick while the commit waits:
+ * one DMP step is below one full control tick (M4F <= 1,483 instructions, docs/cortex-m.md), so
+ * 100 steps stay within the 168,000-cycle tick of an idle device; a 17 s skill takes 0.17 s. */
+#define APP_CHECK_STEPS_PER_TICK 100u
+
+
+/** HostCommand.Mode values. */
+typedef enum {
+    APP_CMD_NONE = 0,
+    APP_CMD_IDLE = 1,
+    APP_CMD_TEACH = 2,
+    APP_CMD_EXECUTE = 3,
+    APP_CMD_CLEAR_FAULT = 4
+} app_cmd_mode_t;
+
+/** Device configuration (factory defaults from app_config_default, changed by UDS writes). */
+struct app_config {
+    uint8_t node;                     /* 0..PROTO_NODE_MAX: ids = base + node */
+    uint8_t render_carriage;          /* 1: render m_d by admittance (real carriage); 0: the
+                                          drive is dynamics-compensated (ideal plant) */
+    pfc_axis_gains_t gains[PFC_AXES]; /* TEACH rendering (m_d) and the y axis */
+    exec_config_t exec;               /* object model, phase stopping (gains come from the skill) */
+    exec_render_cfg_t render;
+    saf_config_t saf;
+    fs_real_t vel_cutoff_Hz;
+    uint8_t telemetry_period_ms; /* in TEACH/EXECUTE, 1..255 */
+};
+
+/** The whole device. */
+struct app {
+    app_config_t cfg;
+    app_state_t state;
+    uint32_t tick;
+    uint64_t now_us;
+    uint32_t now_ms;
+    /* CAN */
+    e2e_rx_t rx_command;
+    e2e_rx_t rx_heartbeat;
+    uint8_t tx_counter_status;
+    uint8_t tx_counter_emcy;
+    uint8_t host_period_ms; /* telemetry period requested by the host heartbeat */
+    bool host_frame;        /* a valid host frame this tick */
+    uint32_t e2e_errors;
+    uint32_t tx_dropped;
+    /* UDS on ISO-TP */
+    isotp_link_t tp;
+    uds_server_t uds;
+    uint8_t uds_resp[ISOTP_MAX_PAYLOAD];
+    uint32_t reset_since_ms; /* ECUReset accepted at (its response leaves first) */
+    sec_config_t
+        sec_cfg[APP_SEC_LEVELS]; /* [0] level 1 (skills, settings), [1] level 3 (firmware) */
+    sec_state_t sec;             /* one attempt counter for both levels */
+    nvm_t sec_nvm;               /* attempt record (hal_sec_flash), kept across resets */
+    bool sec_nvm_ok;
+    uint8_t sec_saved[SEC_RECORD_LEN]; /* the record as last stored */
+    /* storage */
+    nvm_t nvm;
+    bool nvm_ok;
+    skill_t slot_skill[APP_N_SLOTS]; /* parsed copy of each valid slot */
+    bool slot_valid[APP_N_SLOTS];
+    uint32_t slot_crc[APP_N_SLOTS]; /* CRC-32 field of each valid image */
+    uint32_t slot_len[APP_N_SLOTS];
+    uint8_t image[APP_IMAGE_MAX]; /* transfer scratch (download staging / upload) */
+    uint32_t xfer_slot;
+    uint32_t xfer_size;
+    uint16_t last_transfer_status;      /* fs_status / nvm status of the last download */
+    uint16_t last_run_status;           /* fs_status of the last start request's scale check */
+    skill_t staging;                    /* validation target of a download */
+    skchk_t check;                      /* output check of staging, spread over ticks */
+    bool checking;                      /* a download waits for its check (UDS 0x78 sent) */
+    fs_real_t slot_peak_N[APP_N_SLOTS]; /* peak |f_hat| of each valid slot at goal scale 1 */
+    fs_real_t slot_path_m[APP_N_SLOTS]; /* extent max|p| of each valid slot's y path (0: none) */
+    /* firmware update (firmware/boot, docs/update.md) */
+    boot_fls_window_t fw_w_state, fw_w_slots;
+    fls_dev_t fw_state_dev, fw_slots_dev;
+    nvm_t fw_state_nvm;
+    boot_config_t boot_cfg;
+    boot_t boot;
+    fwu_t fwu;
+    bool fw_xfer;         /* the active download is a firmware image */
+    bool fw_self_test_ok; /* the running image passed its self-test (boot tick) */
+    /* control */
+    exec_state_t exec;
+    exec_config_t exec_run_cfg;
+    exec_render_t rend[PFC_AXES];
+    exec_vel_t vel[PFC_AXES];
+    hal_sensors_t sens;
+    fs_real_t vel_mps[PFC_AXES];
+    fs_real_t force_req_N[PFC_AXES];
+    fs_real_t force_out_N[PFC_AXES];
+    fs_real_t force_hat_N;
+    uint8_t active_slot;
+    uint8_t seq_step;
+    bool exec_done;
+    saf_config_t saf_cfg;
+    saf_state_t saf;
+    saf_output_t saf_out;
+    bool actuator_enabled;
+    bool overrun;
+    uint32_t teach_ticks;  /* ticks since TEACH started */
+    uint64_t next_tick_us; /* app_poll: when the next tick is due */
+};
+
+/** A new firmware image on its test boot: run the self-test and confirm it (boot_confirm);
+ *  true if confirmed or not on test. Called once, on the first tick. */
+bool app_fw_self_test_and_confirm(app_t *app);
+
+/** Start a sequence (1..EXEC_MAX_STEPS steps); slots 1..APP_N_SLOTS, end 0 = skill's own,
+ *  1 hold, 2 release; duration_s <= 0: the skill's T*time_scale; path_scale (NULL: 1 for every
+ *  step) scales the y path of skills with a y DMP, path_scale times the slot's path extent
+ *  within the y workspace's width (226 in last_run_status). Returns a UDS NRC (0 ok). */
+uint8_t app_start_sequence(app_t *app, const uint8_t *slots, const fs_real_t *goal_scale,
+                           const fs_real_t *time_scale, const fs_real_t *duration_s,
+                           const fs_real_t *path_scale, uint8_t n_steps, uint8_t end);
+
+/** Handle the UDS hooks (app_uds.c): fills an uds_app_t bound to app. */
+void app_uds_bind(app_t *app, uds_app_t *out);
+
+/** Apply a state machine event (app_sm_next): the only place the device state changes; runs the
+ *  entry actions of the new state. Returns true if the state changed. */
+bool app_event(app_t *app, app_event_t ev);
+
+/** Clear the latched faults (host command or RoutineControl): FLT_NONE and IDLE when cleared,
+ *  else the first fault whose cause persists (the device stays in FAULT). */
+flt_code_t app_clear_faults(app_t *app);
+
+/** Reload slot caches from storage (boot, after a download or erase). */
+void app_slots_reload(app_t *app);
+
+/** SecurityAccess config of a level (1 or 3); NULL for any other level. */
+const sec_config_t *app_sec_config(const app_t *app, uint8_t level);
+
+/** Store the SecurityAccess attempt record if it changed (after every seed/key request). */
+void app_sec_persist(app_t *app);
+
+#endif /* APP_INTERNAL_H */
