@@ -18,6 +18,7 @@
 #include "scand.h"
 #include "sim_couple.h"
 #include "sim_model.h"
+#include "sim_plant.h"
 #include "sim_rng.h"
 #include "sim_scenario.h"
 
@@ -60,15 +61,7 @@ typedef struct {
     bool have_scenario;
     double speed;
     uint8_t node;
-    sim_axis_t ax[2];
-    sim_drive_t drv[2];
-    sim_operator_t op;
-    sim_rng_t rng_sens;
-    uint64_t teach_count;
-    uint32_t teach_start_tick;
-    bool teaching;
-    sim_sample_t ring[SIM_COUPLE_RING];
-    uint64_t n_tick;
+    sim_plant_t plant;
     bus_t bus;
     scand_t sd;
     app_t app;
@@ -120,68 +113,20 @@ static void on_client_frame(void *ctx, unsigned client, const can_frame_t *f, bo
 static void device_boot(serve_t *s)
 {
     hal_sim_can_reset();
-    hal_host_set_time_us(s->n_tick * 1000u);
+    hal_host_set_time_us(s->plant.n_tick * 1000u);
     app_init(&s->app, &s->app_cfg);
 }
 
-static void plant_init(serve_t *s)
-{
-    const sim_scenario_t *sc = &s->sc;
-    memset(s->ax, 0, sizeof(s->ax));
-    s->ax[0].pos_m = sc->start_x_m;
-    s->ax[1].pos_m = sc->start_y_m;
-    const double h = sc->dt_s / (double)sc->substeps;
-    for (int a = 0; a < 2; a++) {
-        sim_drive_t *d = &s->drv[a];
-        memset(d, 0, sizeof(*d));
-        d->kind = sc->plant;
-        d->mass_kg = sc->plant == SIM_PLANT_REALISTIC ? sc->carriage.carriage_kg : sc->m_d_kg;
-        d->carriage = &sc->carriage;
-        d->object = (a == 0) ? &sc->object : NULL;
-        d->act_limit_N = sc->carriage.act_max_N;
-        d->act_alpha = 1.0 - exp(-h / sc->carriage.act_lag_s);
-        sim_drive_prepare(d);
-    }
-    sim_rng_seed(&s->rng_sens, sc->seed ^ 0x5EB5C0DEDA7A5EEDull);
-    memset(s->ring, 0, sizeof(s->ring));
-}
-
-/* One 1 ms step: sensors at t, firmware tick, actuator, plant over the tick. */
+/* One 1 ms step: sensors at t, firmware tick, actuator, plant over the tick (sim_plant.h). */
 static void sim_tick(serve_t *s)
 {
-    const sim_scenario_t *sc = &s->sc;
-    const double dt = sc->dt_s;
-    hal_host_set_time_us(s->n_tick * 1000u);
-    const uint64_t t_ns = s->n_tick * TICK_NS;
+    const uint64_t n_tick = s->plant.n_tick;
+    hal_host_set_time_us(n_tick * 1000u);
+    const uint64_t t_ns = n_tick * TICK_NS;
     hal_sim_can_set_bus_off(t_ns >= s->bus_off_from_ns && t_ns < s->bus_off_until_ns);
 
-    /* operator: demonstrates from the moment the device enters TEACH */
-    const bool teach = s->app.state == APP_TEACH;
-    if (teach && !s->teaching) {
-        sim_operator_cfg_t opc = sc->op;
-        opc.duration_s = sc->duration_s;
-        sim_rng_t rng_op;
-        sim_rng_seed(&rng_op, sc->seed + s->teach_count);   /* first demonstration: the scenario seed */
-        sim_operator_init(&s->op, &opc, &rng_op);
-        s->teach_start_tick = s->app.tick;
-        s->teach_count++;
-    }
-    s->teaching = teach;
-    double fprof[2] = {0.0, 0.0};
-    const double p_true = s->ax[0].pos_m - sc->object.surface_m;
-    if (teach && sc->op.task != SIM_TASK_NONE) {
-        const double t = (double)(s->app.tick - s->teach_start_tick) * dt;
-        sim_operator_force(&s->op, t, p_true, sc->object.layer_depth_m, fprof);
-    }
-    for (int a = 0; a < 2; a++) {
-        s->drv[a].force_ext_N = fprof[a];
-        s->drv[a].hand_damping_Nspm = teach ? sc->op.hand_damping_Nspm : 0.0;
-    }
-
-    sim_sample_t smp;
-    sim_couple_sample(sc, s->ax, s->drv, &s->rng_sens, &smp);
     hal_sensors_t hs;
-    sim_couple_to_hal(sim_couple_delay(s->ring, s->n_tick, sc->delay_samples, &smp), &hs);
+    sim_plant_sense(&s->plant, &s->sc, s->app.state == APP_TEACH, s->app.tick, &hs);
     hal_host_set_sensors(&hs);
 
     app_tick(&s->app, false);
@@ -193,16 +138,7 @@ static void sim_tick(serve_t *s)
     bool enable = false;
     fs_real_t f[2];
     hal_host_get_actuator(&enable, f);
-    const bool ideal = sc->plant == SIM_PLANT_IDEAL;
-    for (int a = 0; a < 2; a++) {
-        s->drv[a].force_cmd_N = enable ? f[a] : 0.0;
-        /* the ideal drive is dynamics-compensated while the law runs (as hil_sim run) */
-        s->drv[a].prescribed = (uint8_t)(ideal && s->app.state == APP_EXECUTE);
-    }
-    /* a parked device: in IDLE the simulated drive brings the handle back to the scenario's start
-     * position and holds it at rest, so every TEACH or EXECUTE starts where `hil_sim run` starts */
-    sim_couple_advance(sc, s->ax, s->drv, s->app.state == APP_IDLE || s->app.state == APP_BOOT);
-    s->n_tick++;
+    sim_plant_advance(&s->plant, &s->sc, enable, f, s->app.state);
 }
 
 static void device_tx_to_bus(serve_t *s, uint64_t t_ns)
@@ -339,31 +275,10 @@ int bus_cmd_serve(int argc, char **argv)
     }
 
     /* the device, configured as the scenario's controller */
-    app_config_default(&s->app_cfg);
-    s->app_cfg.node = s->node;
-    s->app_cfg.render_carriage = (uint8_t)(s->sc.plant == SIM_PLANT_REALISTIC);
-    s->app_cfg.gains[0].m_d_kg = s->sc.m_d_kg;
-    s->app_cfg.gains[1].m_d_kg = s->sc.m_d_kg;
-    s->app_cfg.vel_cutoff_Hz = s->sc.vel_cutoff_Hz;
-    s->app_cfg.exec.use_model = (uint8_t)(s->sc.use_model != 0);
-    s->app_cfg.exec.object.m_v_kg = s->sc.object.m_v_kg;
-    s->app_cfg.exec.object.d_v_Nspm = s->sc.object.d_v_Nspm;
-    s->app_cfg.exec.object.k1_Npm = s->sc.object.k1_Npm;
-    s->app_cfg.exec.object.k2_Npm = s->sc.object.k2_Npm;
-    s->app_cfg.exec.object.layer_depth_m = s->sc.object.layer_depth_m;
-    s->app_cfg.exec.object.surface_m = s->sc.object.surface_m;
-    s->app_cfg.exec.phase_stop_gain_per_N2 = s->sc.phase_stop_gain_per_N2;
-    s->app_cfg.render.carriage_kg = s->sc.carriage.carriage_kg;
-    s->app_cfg.render.viscous_Nspm = s->sc.carriage.viscous_Nspm;
-    s->app_cfg.render.coulomb_N = s->sc.carriage.coulomb_N;
-    s->app_cfg.render.motor_max_N = s->sc.carriage.act_max_N;
-    for (unsigned a = 0; a < PFC_AXES; a++) {
-        s->app_cfg.saf.lim.axis[a].force_max_N = s->sc.force_max_N;
-    }
-    s->app_cfg.saf.wdg.timeout_ms = (uint16_t)host_timeout;
+    sim_plant_app_config(&s->sc, s->node, (uint16_t)host_timeout, &s->app_cfg);
     sim_rng_seed(&s->rng_faults, s->sc.seed ^ 0xFA17FA17FA17FA17ull);
     hal_host_init();
-    plant_init(s);
+    sim_plant_init(&s->plant, &s->sc);
     device_boot(s);
     bus_init(&s->bus, (uint32_t)bitrate);
 

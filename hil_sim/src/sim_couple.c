@@ -21,12 +21,12 @@ const sim_sample_t *sim_couple_delay(sim_sample_t ring[SIM_COUPLE_RING], uint64_
 
 void sim_couple_to_hal(const sim_sample_t *m, hal_sensors_t *hs)
 {
-    hs->pos_m[0] = m->x_m;
-    hs->pos_m[1] = m->y_m;
-    hs->force_contact_N[0] = m->contact_N;
-    hs->force_contact_N[1] = 0.0;
-    hs->force_operator_N[0] = m->operator_x_N;
-    hs->force_operator_N[1] = m->operator_y_N;
+    hs->pos_m[0] = (fs_real_t)m->x_m;
+    hs->pos_m[1] = (fs_real_t)m->y_m;
+    hs->force_contact_N[0] = (fs_real_t)m->contact_N;
+    hs->force_contact_N[1] = FS_R(0.0);
+    hs->force_operator_N[0] = (fs_real_t)m->operator_x_N;
+    hs->force_operator_N[1] = (fs_real_t)m->operator_y_N;
 }
 
 void sim_couple_advance(const sim_scenario_t *sc, sim_axis_t ax[2], const sim_drive_t drv[2],

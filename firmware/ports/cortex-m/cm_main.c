@@ -1,0 +1,69 @@
+/* The product image on qemu's MPS2 boards: the application (firmware/app, app_tick) on the
+ * Cortex-M port of hal.h, run by the 1 kHz SysTick, with the processor-in-the-loop plant around
+ * each tick (docs/cortex-m.md). Runs until the board is reset or powered off; every 10 s of
+ * device time it reports its load on the semihosting console (`hil_sim pil` shows it). */
+#include <stdint.h>
+
+#include "app.h"
+#include "cm_board.h"
+#include "cm_pil.h"
+#include "cm_port.h"
+#include "semihost.h"
+#include "sim_plant.h"
+
+#define CM_REPORT_TICKS 10000u
+
+static app_t g_app;
+static app_config_t g_cfg;
+static sim_scenario_t g_sc;
+
+static void report(uint32_t loop_max, uint32_t tick_max)
+{
+    const uint32_t per_us = CM_CORE_CLOCK_HZ / 1000000u;
+    sh_buf_str("fs_pil: tick ");
+    sh_buf_u32(g_app.tick);
+    sh_buf_str(" state ");
+    sh_buf_u32((uint32_t)g_app.state);
+    sh_buf_str(" overruns ");
+    sh_buf_u32(cm_port_overruns());
+    sh_buf_str(" skipped ");
+    sh_buf_u32(cm_port_skipped());
+    sh_buf_str(" longest loop ");
+    sh_buf_u32(loop_max / per_us);
+    sh_buf_str(" us, app_tick ");
+    sh_buf_u32(tick_max / per_us);
+    sh_buf_str(" us\n");
+    sh_flush();
+}
+
+int main(void)
+{
+    sim_params_dev_t dev;
+    const bool have_params = cm_pil_load(&g_sc, &dev);
+    cm_port_init(dev.seed, SIM_PARAMS_SEED_LEN);
+    cm_pil_init(&g_sc);
+    sim_plant_app_config(&g_sc, (uint8_t)dev.node, (uint16_t)dev.host_timeout_ms, &g_cfg);
+    app_init(&g_app, &g_cfg);
+    sh_puts(have_params ? "fs_pil: started (scenario from hil_sim pil)\n"
+                        : "fs_pil: started (no parameter block: plant at rest)\n");
+    cm_port_start_ticks();
+    uint32_t loop_max = 0u;
+    uint32_t tick_max = 0u;
+    for (;;) {
+        const bool overrun = cm_port_wait_tick();
+        cm_pil_sense(&g_app);
+        const uint32_t p0 = cm_port_tick_phase();
+        cm_port_mark_begin();
+        app_tick(&g_app, overrun);
+        cm_port_mark_end();
+        const uint32_t p1 = cm_port_tick_phase();
+        cm_pil_advance(&g_app);
+        const uint32_t p2 = cm_port_tick_phase();
+        tick_max = (p1 - p0 > tick_max && p1 >= p0) ? p1 - p0 : tick_max;
+        loop_max = (p2 > loop_max) ? p2 : loop_max;
+        if (g_app.tick % CM_REPORT_TICKS == 0u) {
+            report(loop_max, tick_max);
+        }
+        cm_port_end_tick();
+    }
+}

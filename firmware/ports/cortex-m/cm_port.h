@@ -1,0 +1,55 @@
+/* The Cortex-M port of firmware/hal/hal.h on qemu's MPS2 boards (docs/cortex-m.md): CAN over
+ * UART0 in SLCAN (cm_slcan.h, cm_uart.h), time from the 1 kHz SysTick, flash in the PSRAM
+ * (NOR semantics), the CMSDK watchdog, reset by SYSRESETREQ. Sensors and actuator are the
+ * processor-in-the-loop plant (cm_pil.h). This header is the port's own part beyond hal.h,
+ * used by its main loop (cm_main.c). */
+#ifndef CM_PORT_H
+#define CM_PORT_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#define CM_PORT_TICK_HZ 1000u
+#define CM_PORT_WDG_TIMEOUT_MS 200u       /* watchdog: NMI after this, board reset after twice */
+
+/* Flash map in the PSRAM (cm_board.h): the skill slots (hal_flash) and the firmware update
+ * region (hal_fw_flash: boot state, slot A, slot B), the geometry of the host port. */
+#define CM_FLASH_SKILL_ADDR 0x21000000u
+#define CM_FLASH_SKILL_SECTOR 8192u
+#define CM_FLASH_SKILL_SECTORS 16u
+#define CM_FLASH_FW_ADDR 0x21100000u
+#define CM_FLASH_FW_SECTOR 4096u
+#define CM_FLASH_FW_SLOT_SECTORS 64u
+#define CM_FLASH_FW_SECTORS (2u + 2u * CM_FLASH_FW_SLOT_SECTORS)
+
+/** Start the port: UART and SLCAN, flash, random seed (from seed, seed_len bytes). */
+void cm_port_init(const uint8_t *seed, uint32_t seed_len);
+
+/** Start the SysTick at CM_PORT_TICK_HZ and the watchdog (after the application's init). */
+void cm_port_start_ticks(void);
+
+/** SysTicks that found the previous one still pending while the core slept (the emulator's
+ *  clock caught up with the host's after the host descheduled it; not an overrun). */
+uint32_t cm_port_skipped(void);
+
+/** Core clock cycles since the last SysTick (0 .. CM_CORE_CLOCK_HZ/CM_PORT_TICK_HZ - 1). */
+uint32_t cm_port_tick_phase(void);
+
+/** Sleep until the next SysTick; returns true if the previous tick overran (a SysTick arrived
+ *  while it was running). */
+bool cm_port_wait_tick(void);
+
+/** End of one tick: feed the watchdog; perform a requested reset (hal_request_reset). */
+void cm_port_end_tick(void);
+
+/** Ticks that started late (a SysTick arrived while a tick was still running). */
+uint32_t cm_port_overruns(void);
+
+/** Empty functions around the application tick, which bench/qemu_tick.sh finds in the exec trace
+ *  to count the instructions of each tick (no other effect). */
+void cm_port_mark_begin(void);
+
+/** See cm_port_mark_begin. */
+void cm_port_mark_end(void);
+
+#endif /* CM_PORT_H */
