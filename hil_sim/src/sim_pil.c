@@ -46,7 +46,7 @@ static const char PIL_USAGE[] =
     "                   removed at exit)\n"
     "  --node N         device node id 0..15 (default 0)\n"
     "  --host-timeout MS  device's host-silence timeout, 20..500 ms (default 100)\n"
-    "  --icount-shift K qemu -icount shift (default 3: 8 ns per instruction, 125 MIPS): the\n"
+    "  --icount-shift K qemu -icount shift (default 2: 4 ns per instruction, 250 MIPS): the\n"
     "                   board's clock follows its instructions; the image paces it to the host's\n"
     "                   clock (never ahead of it; behind when qemu cannot keep up)\n"
     "  --qemu EXE       qemu-system-arm to run (default: from PATH)\n"
@@ -144,7 +144,7 @@ int sim_cmd_pil(int argc, char **argv)
 {
     const char *target = NULL, *host = "127.0.0.1", *image = NULL, *scenario = NULL;
     const char *flash = NULL, *qemu = "qemu-system-arm";
-    double port = 29537.0, node = 0.0, host_timeout = 100.0, shift = 3.0;
+    double port = 29537.0, node = 0.0, host_timeout = 100.0, shift = 2.0;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;

@@ -24,6 +24,7 @@
 #define CM_SCB_AIRCR_SYSRESETREQ 0x05FA0004u
 #define CM_SCB_SHPR3 CM_REG(0xE000ED20u)     /* SysTick priority: bits 31..24 */
 #define CM_NVIC_ISER0 CM_REG(0xE000E100u)
+#define CM_NVIC_ISPR0 CM_REG(0xE000E200u)
 #define CM_NVIC_IPR(n) (*(volatile uint8_t *)(0xE000E400u + (n)))
 
 /* CMSDK APB UART0 (board serial port 0): RX interrupt IRQ 0, TX interrupt IRQ 1 */

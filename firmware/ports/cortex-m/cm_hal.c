@@ -19,6 +19,8 @@ void NMI_Handler(void);
 static slcan_t g_slcan;
 static can_frame_t g_rx[CM_CAN_RX_QUEUE];
 static uint32_t g_rx_head, g_rx_tail;
+static can_frame_t g_tx[CM_PORT_TX_QUEUE];
+static uint32_t g_tx_head, g_tx_tail;
 static volatile uint32_t g_ms;           /* SysTick count since power-up */
 static volatile uint32_t g_pending;
 static volatile uint32_t g_busy;
@@ -64,6 +66,7 @@ void cm_port_init(const uint8_t *seed, uint32_t seed_len)
 {
     slcan_init(&g_slcan);
     g_rx_head = g_rx_tail = 0u;
+    g_tx_head = g_tx_tail = 0u;
     cm_uart_init();
     boot_cm_flash_init(&g_skill_fl, &g_skill_dev, CM_FLASH_SKILL_ADDR, CM_FLASH_SKILL_SECTOR,
                        CM_FLASH_SKILL_SECTORS);
@@ -106,14 +109,29 @@ bool cm_port_wait_tick(void)
     const bool missed = g_missed != 0u;
     g_missed = 0u;
     __asm__ volatile("cpsie i" ::: "memory");
+    cm_uart_rx_budget(CM_PORT_RX_BYTES_PER_TICK);
     if (missed) {
         g_overruns = g_overruns + 1u;
     }
     return missed;
 }
 
+/* Frames of the transmit queue to the UART as SLCAN text: at most budget frames. */
+static void can_tx_drain(uint32_t budget)
+{
+    for (uint32_t n = 0u; n < budget && g_tx_tail != g_tx_head; n++) {
+        char text[SLCAN_FRAME_TEXT_MAX];
+        const uint32_t len = slcan_encode(&g_tx[g_tx_tail % CM_PORT_TX_QUEUE], text);
+        if (g_slcan.open && !cm_uart_write(text, len)) {
+            return;                              /* the host does not read: retry next tick */
+        }
+        g_tx_tail++;
+    }
+}
+
 void cm_port_end_tick(void)
 {
+    can_tx_drain(CM_PORT_TX_FRAMES_PER_TICK);
     CM_WDG_LOCK = CM_WDG_UNLOCK_KEY;
     CM_WDG_INTCLR = 1u;                          /* reload the watchdog */
     CM_WDG_LOCK = 0u;
@@ -127,9 +145,15 @@ void cm_port_end_tick(void)
     g_busy = 0u;
 }
 
-uint32_t cm_port_tick_phase(void)
+uint32_t cm_port_cycles(void)
 {
-    return CM_SYST_RVR - CM_SYST_CVR;
+    uint32_t ms;
+    uint32_t cvr;
+    do {
+        ms = g_ms;
+        cvr = CM_SYST_CVR;
+    } while (ms != g_ms);
+    return ms * (CM_SYST_RVR + 1u) + (CM_SYST_RVR - cvr);
 }
 
 uint32_t cm_port_overruns(void)
@@ -146,15 +170,18 @@ uint32_t cm_port_skipped(void)
 
 bool hal_can_send(const can_frame_t *frame)
 {
-    char text[SLCAN_FRAME_TEXT_MAX];
-    const uint32_t n = slcan_encode(frame, text);
-    if (n == 0u) {
+    if (frame->id > CAN_STD_ID_MASK || frame->dlc > CAN_FRAME_MAX_DLC) {
         return true;                             /* not a classic frame: nothing to send */
     }
     if (!g_slcan.open) {
         return true;                             /* no adapter listening: the frame is lost */
     }
-    return cm_uart_write(text, n);
+    if (g_tx_head - g_tx_tail >= CM_PORT_TX_QUEUE) {
+        return false;
+    }
+    g_tx[g_tx_head % CM_PORT_TX_QUEUE] = *frame;
+    g_tx_head++;
+    return true;
 }
 
 bool hal_can_receive(can_frame_t *frame)
@@ -188,7 +215,7 @@ bool hal_can_bus_off(void)
 
 bool hal_can_tx_idle(void)
 {
-    return cm_uart_tx_empty();
+    return g_tx_tail == g_tx_head && cm_uart_tx_empty();
 }
 
 /* ---- time ---- */

@@ -28,7 +28,7 @@ static void report(uint32_t loop_max, uint32_t tick_max)
     sh_buf_u32(cm_port_overruns());
     sh_buf_str(" skipped ");
     sh_buf_u32(cm_port_skipped());
-    sh_buf_str(" longest loop ");
+    sh_buf_str(" longest loop (plant + app_tick) ");
     sh_buf_u32(loop_max / per_us);
     sh_buf_str(" us, app_tick ");
     sh_buf_u32(tick_max / per_us);
@@ -51,16 +51,28 @@ int main(void)
     uint32_t tick_max = 0u;
     for (;;) {
         const bool overrun = cm_port_wait_tick();
+        const uint32_t c0 = cm_port_cycles();
         cm_pil_sense(&g_app);
-        const uint32_t p0 = cm_port_tick_phase();
+        const uint32_t c1 = cm_port_cycles();
         cm_port_mark_begin();
         app_tick(&g_app, overrun);
         cm_port_mark_end();
-        const uint32_t p1 = cm_port_tick_phase();
+        if (g_app.state == APP_IDLE) {
+            cm_port_mark_idle();
+        } else if (g_app.state == APP_EXECUTE) {
+            if (g_app.uds.xfer != UDS_XFER_NONE) {
+                cm_port_mark_upload();
+            } else {
+                cm_port_mark_execute();
+            }
+        } else {
+            cm_port_mark_other();
+        }
+        const uint32_t c2 = cm_port_cycles();
         cm_pil_advance(&g_app);
-        const uint32_t p2 = cm_port_tick_phase();
-        tick_max = (p1 - p0 > tick_max && p1 >= p0) ? p1 - p0 : tick_max;
-        loop_max = (p2 > loop_max) ? p2 : loop_max;
+        const uint32_t c3 = cm_port_cycles();
+        tick_max = (c2 - c1 > tick_max) ? c2 - c1 : tick_max;
+        loop_max = (c3 - c0 > loop_max) ? c3 - c0 : loop_max;
         if (g_app.tick % CM_REPORT_TICKS == 0u) {
             report(loop_max, tick_max);
         }

@@ -10,3 +10,23 @@ void cm_port_mark_end(void)
 {
     __asm__ volatile("" ::: "memory");
 }
+
+void cm_port_mark_idle(void)
+{
+    __asm__ volatile("" ::: "memory");
+}
+
+void cm_port_mark_execute(void)
+{
+    __asm__ volatile("" ::: "memory");
+}
+
+void cm_port_mark_upload(void)
+{
+    __asm__ volatile("" ::: "memory");
+}
+
+void cm_port_mark_other(void)
+{
+    __asm__ volatile("" ::: "memory");
+}

@@ -10,7 +10,15 @@
 #include <stdint.h>
 
 #define CM_PORT_TICK_HZ 1000u
-#define CM_PORT_WDG_TIMEOUT_MS 200u       /* watchdog: NMI after this, board reset after twice */
+#define CM_PORT_WDG_TIMEOUT_MS 200u
+/* Bytes of SLCAN text the UART takes per tick: 192 = 8.7 frames of 8 bytes per ms, the frame rate
+ * of a 1 Mbit/s CAN bus (~7.4 frames per ms) with a margin. */
+#define CM_PORT_RX_BYTES_PER_TICK 192u
+/* The transmit side likewise: a queue of CM_PORT_TX_QUEUE frames (hal_can_send refuses when it is
+ * full, as a CAN controller's mailboxes do), of which up to CM_PORT_TX_FRAMES_PER_TICK leave per
+ * tick. */
+#define CM_PORT_TX_QUEUE 32u
+#define CM_PORT_TX_FRAMES_PER_TICK 9u       /* watchdog: NMI after this, board reset after twice */
 
 /* Flash map in the PSRAM (cm_board.h): the skill slots (hal_flash) and the firmware update
  * region (hal_fw_flash: boot state, slot A, slot B), the geometry of the host port. */
@@ -32,8 +40,8 @@ void cm_port_start_ticks(void);
  *  clock caught up with the host's after the host descheduled it; not an overrun). */
 uint32_t cm_port_skipped(void);
 
-/** Core clock cycles since the last SysTick (0 .. CM_CORE_CLOCK_HZ/CM_PORT_TICK_HZ - 1). */
-uint32_t cm_port_tick_phase(void);
+/** Core clock cycles since the SysTick started (wraps every 172 s; differences are exact). */
+uint32_t cm_port_cycles(void);
 
 /** Sleep until the next SysTick; returns true if the previous tick overran (a SysTick arrived
  *  while it was running). */
@@ -51,5 +59,18 @@ void cm_port_mark_begin(void);
 
 /** See cm_port_mark_begin. */
 void cm_port_mark_end(void);
+
+/** Empty functions called after cm_port_mark_end, one per kind of tick, so the trace tells which
+ *  kind the counted tick was: IDLE, EXECUTE, EXECUTE while a UDS transfer runs, anything else. */
+void cm_port_mark_idle(void);
+
+/** See cm_port_mark_idle. */
+void cm_port_mark_execute(void);
+
+/** See cm_port_mark_idle. */
+void cm_port_mark_upload(void);
+
+/** See cm_port_mark_idle. */
+void cm_port_mark_other(void);
 
 #endif /* CM_PORT_H */

@@ -8,6 +8,7 @@ static volatile uint8_t rx_ring[CM_UART_RX_RING];
 static volatile uint32_t rx_head;   /* written by the RX interrupt */
 static volatile uint32_t rx_tail;   /* written by the tick */
 static volatile uint32_t rx_lost;
+static volatile uint32_t rx_allowed; /* bytes the RX interrupt may still take this tick */
 static volatile uint8_t tx_ring[CM_UART_TX_RING];
 static volatile uint32_t tx_head;   /* written by the tick */
 static volatile uint32_t tx_tail;   /* written by the TX interrupt (and the tick's kick) */
@@ -18,6 +19,7 @@ void UART0TX_Handler(void);
 void cm_uart_init(void)
 {
     rx_head = rx_tail = rx_lost = 0u;
+    rx_allowed = 0u;
     tx_head = tx_tail = 0u;
     CM_UART_BAUDDIV = 16u;
     CM_UART_CTRL = CM_UART_CTRL_TX_EN | CM_UART_CTRL_RX_EN | CM_UART_CTRL_TX_INT | CM_UART_CTRL_RX_INT;
@@ -30,6 +32,11 @@ void UART0RX_Handler(void)
 {
     CM_UART_INTSTATUS = CM_UART_INT_RX;
     while ((CM_UART_STATE & CM_UART_STATE_RXFULL) != 0u) {
+        if (rx_allowed == 0u) {
+            CM_UART_CTRL &= ~CM_UART_CTRL_RX_INT;   /* budget spent: resume at the next tick */
+            return;
+        }
+        rx_allowed = rx_allowed - 1u;
         const uint8_t b = (uint8_t)CM_UART_DATA;
         const uint32_t h = rx_head;
         if (h - rx_tail < CM_UART_RX_RING) {
@@ -55,6 +62,17 @@ void UART0TX_Handler(void)
 {
     CM_UART_INTSTATUS = CM_UART_INT_TX;
     tx_pump();
+}
+
+void cm_uart_rx_budget(uint32_t bytes)
+{
+    __asm__ volatile("cpsid i" ::: "memory");
+    rx_allowed = bytes;
+    CM_UART_CTRL |= CM_UART_CTRL_RX_INT;
+    __asm__ volatile("cpsie i" ::: "memory");
+    if ((CM_UART_STATE & CM_UART_STATE_RXFULL) != 0u) {
+        CM_NVIC_ISPR0 = 1u << CM_UART0_RX_IRQ;      /* a byte already waits: take it now */
+    }
 }
 
 bool cm_uart_getc(uint8_t *byte)

@@ -13,6 +13,11 @@
 /** Enable the UART, its interrupts and empty both rings. */
 void cm_uart_init(void);
 
+/** Allow the RX interrupt to take up to bytes more bytes (called once per tick): the emulated
+ *  UART has no baud rate, so this budget gives the link the throughput of a real one; bytes
+ *  beyond it wait in the UART (and the host's socket) until the next tick. */
+void cm_uart_rx_budget(uint32_t bytes);
+
 /** Take one received byte; false if none. */
 bool cm_uart_getc(uint8_t *byte);
 
