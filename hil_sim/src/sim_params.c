@@ -95,7 +95,8 @@ uint32_t sim_params_pack(const sim_scenario_t *sc, const sim_params_dev_t *dev, 
     put_u32(&out[8], (uint32_t)N_FIELDS);
     put_u32(&out[12], dev->node);
     put_u32(&out[16], dev->host_timeout_ms);
-    memcpy(&out[20], dev->seed, SIM_PARAMS_SEED_LEN);
+    put_u32(&out[20], dev->flags);
+    memcpy(&out[24], dev->seed, SIM_PARAMS_SEED_LEN);
     for (size_t i = 0; i < N_FIELDS; i++) {
         const double v = get_field(sc, &FIELDS[i]);
         uint64_t bits;
@@ -116,7 +117,8 @@ int sim_params_unpack(const uint8_t *in, uint32_t len, sim_scenario_t *sc, sim_p
     memset(sc, 0, sizeof(*sc));   /* every field the plant reads follows; no fault */
     dev->node = get_u32(&in[12]);
     dev->host_timeout_ms = get_u32(&in[16]);
-    memcpy(dev->seed, &in[20], SIM_PARAMS_SEED_LEN);
+    dev->flags = get_u32(&in[20]);
+    memcpy(dev->seed, &in[24], SIM_PARAMS_SEED_LEN);
     for (size_t i = 0; i < N_FIELDS; i++) {
         const uint64_t bits = (uint64_t)get_u32(&in[SIM_PARAMS_HEADER + 8u * i]) |
                               ((uint64_t)get_u32(&in[SIM_PARAMS_HEADER + 8u * i + 4u]) << 32);

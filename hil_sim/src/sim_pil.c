@@ -209,6 +209,7 @@ int sim_cmd_pil(int argc, char **argv)
     memset(&dev, 0, sizeof dev);
     dev.node = (uint32_t)node;
     dev.host_timeout_ms = (uint32_t)host_timeout;
+    dev.flags = SIM_PARAMS_PACE;          /* qemu runs with -icount sleep=off */
     if (getrandom(dev.seed, sizeof dev.seed, 0) != (ssize_t)sizeof dev.seed) {
         fprintf(stderr, "hil_sim pil: getrandom failed\n");
         return 1;

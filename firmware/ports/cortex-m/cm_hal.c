@@ -74,10 +74,10 @@ void cm_port_init(const uint8_t *seed, uint32_t seed_len)
     sec_sha256(seed, seed_len, g_pool);
 }
 
-void cm_port_start_ticks(void)
+void cm_port_start_ticks(bool pace)
 {
     g_ms0 = g_ms;
-    g_host_us0 = sh_host_elapsed_us();
+    g_host_us0 = pace ? sh_host_elapsed_us() : 0u;
     CM_WDG_LOCK = CM_WDG_UNLOCK_KEY;
     CM_WDG_LOAD = CM_CORE_CLOCK_HZ / 1000u * CM_PORT_WDG_TIMEOUT_MS;
     CM_WDG_CTRL = CM_WDG_CTRL_INTEN_RESEN;

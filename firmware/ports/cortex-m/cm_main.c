@@ -46,7 +46,7 @@ int main(void)
     app_init(&g_app, &g_cfg);
     sh_puts(have_params ? "fs_pil: started (scenario from hil_sim pil)\n"
                         : "fs_pil: started (no parameter block: plant at rest)\n");
-    cm_port_start_ticks();
+    cm_port_start_ticks(have_params && (dev.flags & SIM_PARAMS_PACE) != 0u);
     uint32_t loop_max = 0u;
     uint32_t tick_max = 0u;
     for (;;) {

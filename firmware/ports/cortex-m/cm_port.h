@@ -33,8 +33,10 @@
 /** Start the port: UART and SLCAN, flash, random seed (from seed, seed_len bytes). */
 void cm_port_init(const uint8_t *seed, uint32_t seed_len);
 
-/** Start the SysTick at CM_PORT_TICK_HZ and the watchdog (after the application's init). */
-void cm_port_start_ticks(void);
+/** Start the SysTick at CM_PORT_TICK_HZ and the watchdog (after the application's init). pace:
+ *  the emulator's clock runs free (qemu -icount sleep=off), so hold each tick until the host's
+ *  clock (semihosting) has reached the device's time. */
+void cm_port_start_ticks(bool pace);
 
 /** SysTicks that found the previous one still pending while the core slept (the emulator's
  *  clock caught up with the host's after the host descheduled it; not an overrun). */

@@ -13,6 +13,7 @@ void slcan_init(slcan_t *s)
 {
     memset(s, 0, sizeof(*s));
     s->bitrate_code = 8u;
+    s->open = true;       /* auto-startup: a board reset does not silence a connected host */
 }
 
 /* Value of one hex digit, or -1. */

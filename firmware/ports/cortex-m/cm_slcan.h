@@ -10,7 +10,8 @@
  *   tiiildd..  transmit a standard frame (reply "z"), Tiiiiiiiildd.. extended (reply "Z";
  *   dropped: the product uses 11-bit identifiers only), riiil / Riiiiiiiil remote (replied,
  *   dropped). Frames are taken only while open (and not listen-only); others answer BEL.
- * Received frames are sent to the host as "tiiildd..\r" while open. */
+ * Received frames are sent to the host as "tiiildd..\r" while open. The channel starts open
+ * (as Lawicel's auto-startup), so a board reset does not silence a host that stays connected. */
 #ifndef CM_SLCAN_H
 #define CM_SLCAN_H
 
@@ -33,7 +34,7 @@ typedef struct {
     uint32_t errors;          /* commands answered with BEL */
 } slcan_t;
 
-/** Closed channel, 1 Mbit/s, empty line. */
+/** Open channel (auto-startup), 1 Mbit/s, empty line. */
 void slcan_init(slcan_t *s);
 
 /** Feed one received byte. When it completes a command, writes the reply (CR-terminated, or
