@@ -167,11 +167,6 @@ def qemu_tick(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
     for target, numeric, must, aim in QEMU_TARGETS:
         bdir = bld.dir / f"qemu-{target}"
         cmd = ["bash", str(script), target, "--build-dir", str(bdir)]
-        for flag, rel in (("--host-ref-float", "bench/qemu/qemu_host_ref_float"),
-                          ("--host-ref-fixed", "bench/qemu/qemu_host_ref_fixed")):
-            exe = bld.exe(rel)
-            if exe is not None:
-                cmd += [flag, str(exe)]
         try:
             p = _run(cmd, root, timeout=float(cfg.get("qemu_timeout_s", 600)))
         except subprocess.TimeoutExpired:
@@ -202,7 +197,7 @@ def qemu_tick(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
         if bench_line:
             notes.append(f"{target}: skill {bench_line.split(':', 1)[1].strip()}, {ticks or '?'} ticks counted")
         notes += [f"{target}: {c}" for c in checks if c.startswith(("qemu_vs_host", "loop "))]
-        for img in ("cm_bench", "cm_loop"):
+        for img in ("fs_pil",):
             elf = bdir / "firmware" / "ports" / "cortex-m" / f"{img}.elf"
             sz = _elf_size(elf) if elf.is_file() else None
             if sz is not None:

@@ -29,11 +29,12 @@
 
 #define PIL_PARAMS_ADDR "0x003F0000"   /* firmware/ports/cortex-m/cm_board.h CM_PARAMS_ADDR */
 #define PIL_FLASH_BYTES (16u * 1024u * 1024u) /* the board's PSRAM */
+#define PIL_MAX_EXTRA 16
 
 static const char PIL_USAGE[] =
     "usage: hil_sim pil --target cortex-m4f|cortex-m3 [--port PORT] [--host ADDR] [--image ELF]\n"
     "                   [--scenario FILE] [--flash FILE] [--node N] [--host-timeout MS]\n"
-    "                   [--icount-shift K] [--qemu EXE]\n"
+    "                   [--icount-shift K] [--qemu EXE] [--qemu-arg ARG]...\n"
     "Run the product's Cortex-M image (firmware/ports/cortex-m fs_pil.elf) under qemu with the\n"
     "simulator's plant linked in; its UART0 carries the CAN bus in SLCAN on a TCP port:\n"
     "  forceskill status -i slcan -c socket://ADDR:PORT\n"
@@ -50,6 +51,8 @@ static const char PIL_USAGE[] =
     "                   board's clock follows its instructions; the image paces it to the host's\n"
     "                   clock (never ahead of it; behind when qemu cannot keep up)\n"
     "  --qemu EXE       qemu-system-arm to run (default: from PATH)\n"
+    "  --qemu-arg ARG   one more argument for qemu (repeatable; e.g. the exec trace of\n"
+    "                   bench/qemu_tick.sh)\n"
     "Runs until SIGINT/SIGTERM; one client at a time (a serial port).\n";
 
 static volatile sig_atomic_t g_stop;
@@ -145,6 +148,8 @@ int sim_cmd_pil(int argc, char **argv)
     const char *target = NULL, *host = "127.0.0.1", *image = NULL, *scenario = NULL;
     const char *flash = NULL, *qemu = "qemu-system-arm";
     double port = 29537.0, node = 0.0, host_timeout = 100.0, shift = 2.0;
+    char *extra[PIL_MAX_EXTRA];
+    int n_extra = 0;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
@@ -167,6 +172,7 @@ int sim_cmd_pil(int argc, char **argv)
         else if (strcmp(a, "--host-timeout") == 0) rc = parse_num(a, v, 20.0, 500.0, &host_timeout);
         else if (strcmp(a, "--icount-shift") == 0) rc = parse_num(a, v, 0.0, 10.0, &shift);
         else if (strcmp(a, "--qemu") == 0) qemu = v;
+        else if (strcmp(a, "--qemu-arg") == 0 && n_extra < PIL_MAX_EXTRA) extra[n_extra++] = (char *)v;
         else {
             fprintf(stderr, "hil_sim pil: unknown option '%s'\n%s", a, PIL_USAGE);
             return 2;
@@ -245,11 +251,16 @@ int sim_cmd_pil(int argc, char **argv)
         snprintf(backend, sizeof backend, "memory-backend-file,id=flash,size=16M,mem-path=%s,share=on",
                  flash_path);
         snprintf(icount, sizeof icount, "shift=%d,sleep=off", (int)shift);
-        char *qargv[] = {(char *)qemu, "-M", (char *)machine, "-cpu", (char *)cpu, "-nographic",
-                         "-monitor", "none", "-semihosting-config", "enable=on,target=native",
-                         "-kernel", (char *)image, "-device", loader, "-serial", serial,
-                         "-object", backend, "-machine", "memory-backend=flash", "-icount", icount,
-                         NULL};
+        char *qargv[24 + PIL_MAX_EXTRA] = {(char *)qemu, "-M", (char *)machine, "-cpu", (char *)cpu,
+                         "-nographic", "-monitor", "none", "-semihosting-config",
+                         "enable=on,target=native", "-kernel", (char *)image, "-device", loader,
+                         "-serial", serial, "-object", backend, "-machine", "memory-backend=flash",
+                         "-icount", icount};
+        int qn = 22;
+        for (int i = 0; i < n_extra; i++) {
+            qargv[qn++] = extra[i];
+        }
+        qargv[qn] = NULL;
         signal(SIGINT, on_signal);
         signal(SIGTERM, on_signal);
         const pid_t pid = p > 0 ? fork() : -1;
