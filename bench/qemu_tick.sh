@@ -102,16 +102,18 @@ echo "counter check ok: 100 nops + call/return/call counted as $CC"
 
 echo "== the product image: $(basename "$SKILL") (N = $KERNELS), IDLE / download / EXECUTE / EXECUTE + read-back"
 # Per counted tick: kind, all instructions of app_tick, those inside dmp_step/pfc_step (entered
-# from their caller, left when the caller's code runs again).
-COUNT_AWK='/ cm_port_mark_begin$/ { inb = 1; c = 0; part = 0; inpart = 0; next }
-  / cm_port_mark_end$/ { if (inb) { done = 1; lc = c; lp = part } inb = 0; next }
+# from their caller, left when the caller's code runs again), 1 if the DMP stepped (not after the
+# skill's end, when the end policy runs the law alone).
+COUNT_AWK='/ cm_port_mark_begin$/ { inb = 1; c = 0; part = 0; inpart = 0; dmp = 0; next }
+  / cm_port_mark_end$/ { if (inb) { done = 1; lc = c; lp = part; ld = dmp } inb = 0; next }
   / cm_port_mark_(idle|execute|upload|other)$/ {
-      if (done) { k = $NF; sub(/^cm_port_mark_/, "", k); print k, lc, lp; done = 0
+      if (done) { k = $NF; sub(/^cm_port_mark_/, "", k); print k, lc, lp, ld; done = 0
                   if (prof != "" && k == "execute") { for (f in h) tot[f] += h[f]; nexec++ } }
       delete h; next }
   END { if (prof != "") { for (f in tot) printf "%d %s\n", tot[f] / nexec, f > prof } }
   { if (inb) { c++; s = $NF; h[s]++
-               if (!inpart && (s == "dmp_step_f32" || s == "pfc_step_f32")) { inpart = 1; caller = prev }
+               if (!inpart && (s == "dmp_step_f32" || s == "pfc_step_f32")) { inpart = 1; caller = prev
+                                                                                   if (s == "dmp_step_f32") dmp = 1 }
                else if (inpart && s == caller) { inpart = 0 }
                if (inpart) part++
                prev = s } }'
@@ -137,8 +139,8 @@ stats() { # lines of numbers on stdin -> "min median max count"
   sort -n | awk '{ v[NR] = $1 } END { if (NR == 0) { print "- - - 0"; exit }
     m = (NR % 2) ? v[(NR + 1) / 2] : int((v[NR / 2] + v[NR / 2 + 1]) / 2); print v[1], m, v[NR], NR }'
 }
-# the DMP + control-law part of every tick that ran them (EXECUTE, with or without a transfer)
-read -r MIN MED MAX N < <(awk '$3 > 0 { print $3 }' "$WORK/ticks.txt" | stats)
+# the DMP + control-law part of every tick that stepped the DMP (EXECUTE, with or without a transfer)
+read -r MIN MED MAX N < <(awk '$4 == 1 { print $3 }' "$WORK/ticks.txt" | stats)
 echo "tick_instructions target=$TARGET kernels=$KERNELS min=$MIN median=$MED max=$MAX"
 [ "$N" -ge 100 ] || { echo "FAILED: only $N ticks ran the DMP"; status=1; }
 for st in idle execute upload; do

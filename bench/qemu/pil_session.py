@@ -3,9 +3,9 @@
 python-can's slcan interface: IDLE ticks, then a skill download, then an execution of that skill
 during which the host reads the skill back (UDS RequestUpload: EXECUTE ticks while a transfer
 runs), then more EXECUTE ticks. The image marks each tick's kind (cm_port_mark_*).
-Under the exec trace the image runs ~20x slower than real time, so the host paces its own
-traffic by the device's clock: one heartbeat per DeviceStatus frame (every 10 ms of device time),
-as a host does against a device running in real time.
+Under the exec trace the image runs 20-50 times slower than real time, so the host heartbeat
+goes every --heartbeat-s of wall time (0.5 s: about every 10-25 ms of device time, as a host
+against a device in real time) instead of the host tools' 10 ms.
   pil_session.py PORT SKILL [--exec-s S]"""
 from __future__ import annotations
 
@@ -19,17 +19,6 @@ import can
 
 from forceskill.link import uds as U
 from forceskill.link.device import Device
-
-
-class DevicePacedHeartbeat(can.Listener):
-    """Answers each DeviceStatus frame of the node with one host heartbeat."""
-
-    def __init__(self, dev: Device, status_id: int) -> None:
-        self.dev, self.status_id = dev, status_id
-
-    def on_message_received(self, msg: can.Message) -> None:
-        if msg.arbitration_id == self.status_id:
-            self.dev.heartbeat()
 
 
 def wait_ticks(dev: Device, n: int, timeout_s: float) -> None:
@@ -46,6 +35,7 @@ def main(argv: list[str]) -> int:
     ap.add_argument("port", type=int)
     ap.add_argument("skill", type=Path)
     ap.add_argument("--exec-s", type=float, default=1.0, help="execution length (s of device time)")
+    ap.add_argument("--heartbeat-s", type=float, default=0.5, help="host heartbeat period (s of wall time)")
     ap.add_argument("--timeout", type=float, default=600.0, help="wall-clock limit of each phase (s)")
     args = ap.parse_args(argv)
     image = args.skill.read_bytes()
@@ -59,9 +49,9 @@ def main(argv: list[str]) -> int:
                 U.download(client, 0, 1, image)
             wait_ticks(dev, 200, args.timeout)
             dev.telemetry_period_ms = 1
-            hb = DevicePacedHeartbeat(dev, 0x180)
-            assert dev.notifier is not None
-            dev.notifier.add_listener(hb)
+            m = dev._m["HostHeartbeat"]
+            hb = bus.send_periodic(can.Message(arbitration_id=m.frame_id, data=bytearray(8), is_extended_id=False),
+                                   args.heartbeat_s, store_task=False, modifier_callback=dev._heartbeat_update)
             try:
                 with U.uds_client(dev, request_timeout_s=args.timeout) as client:
                     # RequestUpload needs the programming session, entered while IDLE
@@ -72,10 +62,11 @@ def main(argv: list[str]) -> int:
                     dev.wait_state({"EXECUTE"}, args.timeout)
                     wait_ticks(dev, int(args.exec_s * 500), args.timeout)
                     U.upload(client, 0, 1, len(image))       # read-back while executing
+                    print(f"pil_session: read-back done at tick {dev.status.tick}", flush=True)
                     wait_ticks(dev, int(args.exec_s * 500), args.timeout)
                     dev.command_until("idle", {"IDLE", "FAULT"}, args.timeout)
             finally:
-                dev.notifier.remove_listener(hb)
+                hb.stop()
             st = dev.status
             print(f"pil_session: done, device {st.state}, fault {st.fault_code}, tick {st.tick}")
             return 0 if st.fault_code == 0 else 1

@@ -60,7 +60,7 @@ int main(void)
         if (g_app.state == APP_IDLE) {
             cm_port_mark_idle();
         } else if (g_app.state == APP_EXECUTE) {
-            if (g_app.uds.xfer != UDS_XFER_NONE) {
+            if (g_app.uds.xfer != UDS_XFER_NONE && isotp_tx_busy(&g_app.tp)) {
                 cm_port_mark_upload();
             } else {
                 cm_port_mark_execute();

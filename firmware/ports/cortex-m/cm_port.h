@@ -63,7 +63,8 @@ void cm_port_mark_begin(void);
 void cm_port_mark_end(void);
 
 /** Empty functions called after cm_port_mark_end, one per kind of tick, so the trace tells which
- *  kind the counted tick was: IDLE, EXECUTE, EXECUTE while a UDS transfer runs, anything else. */
+ *  kind the counted tick was: IDLE, EXECUTE, EXECUTE while a UDS transfer sends its data
+ *  (ISO-TP transmitting, e.g. a read-back), anything else. */
 void cm_port_mark_idle(void);
 
 /** See cm_port_mark_idle. */
