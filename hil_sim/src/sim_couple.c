@@ -1,7 +1,7 @@
 /* Device <-> plant coupling of one tick (see sim_couple.h). */
 #include "sim_couple.h"
 
-void sim_couple_sample(const sim_scenario_t *sc, const sim_axis_t ax[2], const sim_drive_t drv[2],
+void sim_couple_sample(const sim_scenario_t *sc, const sim_axis_t *ax, const sim_drive_t *drv,
                        sim_rng_t *rng, sim_sample_t *out)
 {
     out->x_m = sim_encoder_read(ax[0].pos_m, sc->encoder_m);

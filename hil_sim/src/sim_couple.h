@@ -25,8 +25,9 @@ typedef struct {
 
 #define SIM_COUPLE_RING 8u /* sensor pipeline length: > the largest delay_samples (4) */
 
-/** Sample the encoders and force sensors of the plant now (noise from rng, in that order). */
-void sim_couple_sample(const sim_scenario_t *sc, const sim_axis_t ax[2], const sim_drive_t drv[2],
+/** Sample the encoders and force sensors of the plant now (ax, drv: both axes; noise from rng,
+ *  in that order). */
+void sim_couple_sample(const sim_scenario_t *sc, const sim_axis_t *ax, const sim_drive_t *drv,
                        sim_rng_t *rng, sim_sample_t *out);
 
 /** The sensor pipeline: store tick n_tick's sample in ring and return the sample the device sees
