@@ -38,6 +38,11 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--heartbeat-s", type=float, default=0.5, help="host heartbeat period (s of wall time)")
     ap.add_argument("--timeout", type=float, default=600.0, help="wall-clock limit of each phase (s)")
     args = ap.parse_args(argv)
+    # under the trace a consecutive frame can be seconds of wall time apart: ISO-TP's 1 s
+    # receive timeouts of the host tools would drop the transfer
+    base_params = U.isotp_params
+    U.isotp_params = lambda: {**base_params(), "rx_flowcontrol_timeout": int(args.timeout * 1000),
+                              "rx_consecutive_frame_timeout": int(args.timeout * 1000)}
     image = args.skill.read_bytes()
     bus = can.Bus(interface="slcan", channel=f"socket://127.0.0.1:{args.port}", sleep_after_open=0.1)
     try:
