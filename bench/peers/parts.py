@@ -167,11 +167,6 @@ def qemu_tick(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
     for target, numeric, must, aim in QEMU_TARGETS:
         bdir = bld.dir / f"qemu-{target}"
         cmd = ["bash", str(script), target, "--build-dir", str(bdir)]
-        for flag, rel in (("--host-ref-float", "bench/qemu/qemu_host_ref_float"),
-                          ("--host-ref-fixed", "bench/qemu/qemu_host_ref_fixed")):
-            exe = bld.exe(rel)
-            if exe is not None:
-                cmd += [flag, str(exe)]
         try:
             p = _run(cmd, root, timeout=float(cfg.get("qemu_timeout_s", 600)))
         except subprocess.TimeoutExpired:
@@ -202,7 +197,7 @@ def qemu_tick(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
         if bench_line:
             notes.append(f"{target}: skill {bench_line.split(':', 1)[1].strip()}, {ticks or '?'} ticks counted")
         notes += [f"{target}: {c}" for c in checks if c.startswith(("qemu_vs_host", "loop "))]
-        for img in ("cm_bench", "cm_loop"):
+        for img in ("fs_pil",):
             elf = bdir / "firmware" / "ports" / "cortex-m" / f"{img}.elf"
             sz = _elf_size(elf) if elf.is_file() else None
             if sz is not None:
@@ -212,17 +207,17 @@ def qemu_tick(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
         return _na("qemu_tick.sh gave no figure")
     body = _table(["target", "numeric", "N", "instructions per tick, min", "median", "max",
                    "share of a 1 ms tick at 168 MHz (max)", "at 72 MHz (max)"], rows)
-    body += ("\n\nbench/qemu_tick.sh TARGET (the Cortex-M part's program): the full control tick (sensor read "
-             "through the HAL, DMP, parallel force/position law for 2 DOF, safety checks, telemetry packing) "
-             "counted instruction by instruction in qemu's exec trace, every tick of the run (min/median/max over "
-             "the ticks). The share "
+    body += ("\n\nbench/qemu_tick.sh TARGET (the Cortex-M part's program): the DMP and control-law part "
+             "(dmp_step + pfc_step with their callees) of the product image's app_tick, counted instruction by "
+             "instruction in qemu's exec trace over every EXECUTE tick of the run (min/median/max; the script "
+             "also prints the whole app_tick per state, docs/cortex-m.md). The share "
              "of the tick assumes one cycle per instruction: an approximation (loads, taken branches, divides "
              "and flash wait states take more), so the true cycle share is somewhat higher.")
     if size_rows:
         body += "\n\n" + _table(["target", "image", "flash, bytes", "RAM, bytes (incl. reserved stack)"], size_rows)
         body += ("\n\nflash = .text + .ARM.exidx + .data, RAM = .data + .bss + .stack (the definition of "
-                 "bench/qemu/image_report.py), from `arm-none-eabi-size -A`. cm_bench is the benchmark image, "
-                 "cm_loop the 1 kHz SysTick loop image.")
+                 "bench/qemu/image_report.py), from `arm-none-eabi-size -A`. fs_pil is the product image (the "
+                 "application on the port, with the simulator's plant linked in).")
     if notes:
         body += "\n\n" + "\n".join(f"- {n}" for n in notes)
     return body, targets, data

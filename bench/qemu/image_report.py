@@ -18,8 +18,9 @@ import re
 import subprocess
 import sys
 
-ENTRY_POINTS = ["Reset_Handler", "SysTick_Handler", "HardFault_Handler", "Default_Handler",
-                "cm_tick"]
+ENTRY_POINTS = ["Reset_Handler", "SysTick_Handler", "UART0RX_Handler", "UART0TX_Handler",
+                "NMI_Handler", "HardFault_Handler", "Default_Handler",
+                "app_tick"]
 
 
 def run(cmd):

@@ -415,9 +415,7 @@ int sim_run(const sim_scenario_t *sc, const sim_skill_image_t *skills, FILE *log
             break;
         }
         /* plant over the tick, the command held; parked while the device is idle or stopped */
-        const app_state_t st = dev.app.state;
-        sim_couple_advance(sc, ax, drv,
-                           st == APP_IDLE || st == APP_BOOT || (st == APP_FAULT && !enable));
+        sim_couple_advance(sc, ax, drv, sim_couple_parked(dev.app.state, enable));
     }
     log_flush(&lb);
     if (log != NULL && ferror(log)) {
