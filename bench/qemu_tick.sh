@@ -158,8 +158,9 @@ stats() { # lines of numbers on stdin -> "min median max count"
   sort -n | awk '{ v[NR] = $1 } END { if (NR == 0) { print "- - - 0"; exit }
     m = (NR % 2) ? v[(NR + 1) / 2] : int((v[NR / 2] + v[NR / 2 + 1]) / 2); print v[1], m, v[NR], NR }'
 }
-# the DMP + control-law part of every tick that stepped the DMP (EXECUTE, with or without a transfer)
-read -r MIN MED MAX N < <(awk '$4 == 1 { print $3 }' "$WORK/ticks.txt" | stats)
+# the DMP + control-law part of every EXECUTE tick that stepped the DMP (with or without a
+# transfer; the skill check of a download steps the DMP too, in IDLE ticks: counted apart)
+read -r MIN MED MAX N < <(awk '$4 == 1 && ($1 == "execute" || $1 == "upload") { print $3 }' "$WORK/ticks.txt" | stats)
 echo "tick_instructions target=$TARGET kernels=$KERNELS min=$MIN median=$MED max=$MAX"
 [ "$N" -ge 100 ] || { echo "FAILED: only $N ticks ran the DMP"; status=1; }
 # boots: the first with an empty flash, the second (the session's ECUReset) with the skill stored

@@ -1,8 +1,9 @@
 """The product's Cortex-M4F image under qemu (`hil_sim pil`): its UART carries the CAN bus in
 SLCAN, reached through python-can's stock `slcan` interface (socket://127.0.0.1:PORT). The same
 host commands as against the simulator (record -> fit -> upload -> status -> run 1x and 1.5x);
-the tracking figures within 0.5 percentage points of the host build's (`hil_sim serve` running
-the same skill on the same scenario).
+the tracking figures within 0.5 percentage points of the host build's (`hil_sim run`: the
+application's double build running the same skill on the same plant, over several sensor seeds).
+Then the firmware update against the image with `forceskill flash`.
 
 The image is found in build/cortex-m4f (scripts/test.sh builds it); a missing image is a failure
 naming the build command. The device's host-silence timeout is the CAN tests' configurable one
@@ -20,7 +21,7 @@ import can
 import numpy as np
 import pytest
 
-from conftest import HOST_TIMEOUT_MS, REPO, SCENARIOS, Server, hil_sim_path
+from conftest import HOST_TIMEOUT_MS, REPO, SCENARIOS, hil_sim_path
 from forceskill import cli
 from forceskill import fwimage as fw
 from forceskill.skill import Skill
@@ -30,7 +31,15 @@ K_NPM = 100.0
 SURFACE_M = 0.001
 OBJECT_MASS_KG = 10.0  # m_v_kg of the scenario (as the journey over the simulator)
 SCENARIO = SCENARIOS / "pressing_task1_demo.toml"
+SCENARIO_EXEC = SCENARIOS / "pressing_task1_exec.toml"  # the same plant, object and sensors
+HOST_SEEDS = range(1, 9)
 SKILL = REPO / "tests" / "vectors" / "engrave_n10_lwr_hold.skill"
+# The host's waits are wall time; the image's time runs at most as fast as the host's clock and
+# slower when qemu gets less than the CPU it needs (a loaded machine): a UDS request of 4 KiB
+# (TransferData) then takes longer than against the simulator, so the host tools wait up to
+# PIL_TIMEOUT_S for each answer (--timeout; 3 s against hil_sim serve). Nothing here asserts a
+# wall-clock duration: every figure checked is in the device's time (its tick counter).
+PIL_TIMEOUT_S = 10
 
 
 class Pil:
@@ -48,7 +57,7 @@ class Pil:
         self.port = int(line.split("127.0.0.1:")[1].split()[0])
 
     def bus_args(self) -> list[str]:
-        return ["-i", "slcan", "-c", f"socket://127.0.0.1:{self.port}", "--timeout", "3"]
+        return ["-i", "slcan", "-c", f"socket://127.0.0.1:{self.port}", "--timeout", str(PIL_TIMEOUT_S)]
 
     def stop(self) -> str:
         self.proc.terminate()
@@ -84,15 +93,15 @@ def test_slcan_handshake_and_frames(pil):
     try:
         assert bus.get_version(2.0) == (10, 10)
         ids: dict[int, int] = {}
-        t0 = time.monotonic()
-        while time.monotonic() - t0 < 1.0:
+        deadline = time.monotonic() + PIL_TIMEOUT_S
+        while ids.get(0x180, 0) < 20 and time.monotonic() < deadline:
             m = bus.recv(0.2)
             if m is not None:
                 assert not m.is_extended_id and m.dlc <= 8
                 ids[m.arbitration_id] = ids.get(m.arbitration_id, 0) + 1
         assert ids.get(0x180, 0) >= 20        # DeviceStatus every 10 ms of device time
         bus.serialPortOrig.write(b"Xbogus\r")
-        deadline = time.monotonic() + 2.0
+        deadline = time.monotonic() + PIL_TIMEOUT_S
         seen_bel = False
         while time.monotonic() < deadline and not seen_bel:
             seen_bel = b"\a" in bus.serialPortOrig.read(4096)
@@ -135,23 +144,31 @@ def test_journey_on_the_image_matches_the_host_build(pil, tmp_path, capsys):
     assert f"slot 1: {len(sk.to_bytes())} bytes" in forceskill(capsys, "status", *bus)
     image = run_both(capsys, d, bus, "image")
 
-    # the host build: the same skill on the simulator's bus
-    srv = Server(SCENARIO)
-    try:
-        time.sleep(0.2)
-        hbus = ["-i", "socketcand", "-c", "can0", "--bus-kwargs", "host=127.0.0.1", f"port={srv.port}",
-                "--timeout", "3"]
-        forceskill(capsys, "upload", str(d / "press.skill"), "--slot", "1", "-q", *hbus)
-        host = run_both(capsys, d, hbus, "host")
-    finally:
-        srv.stop()
-
+    # the host build: the same skill in the same scenario, executed by the host build of the
+    # application in lockstep with the plant (`hil_sim run`: no bus and no wall clock, so the
+    # reference does not move with the machine's load; the start, the plant and the sensor
+    # pipeline are the ones the image's run sees). The largest error of a run is a single sample
+    # of the noisy force sensor (a few 0.01 N telemetry steps): one run's maximum moves by
+    # +-0.3 pp with the noise's realisation alone, so the host build's figure is the range over
+    # HOST_SEEDS sensor seeds, and the image's must lie within 0.5 pp of that range.
     for g in ("1", "1.5"):
+        mx_h, rms_h = [], []
+        for seed in HOST_SEEDS:
+            log = d / f"host_{g}_{seed}.csv"
+            subprocess.run([str(hil_sim_path()), "run", str(SCENARIO_EXEC), "--skill", str(d / "press.skill"),
+                            "--goal-scale", g, "--seed", str(seed), "--duration", f"{sk.duration_s + 0.5:.3f}",
+                            "-o", str(log)], check=True, capture_output=True)
+            h = load_csv(log)
+            keep = h["t"] <= image[g]["t"][-1] + 1e-9       # the same span as the image's run
+            m, r = tracking({k: v[keep] for k, v in h.items()})
+            mx_h.append(m)
+            rms_h.append(r)
         mx_i, rms_i = tracking(image[g])
-        mx_h, rms_h = tracking(host[g])
-        print(f"goal x{g}: image max {mx_i:.2f} % RMS {rms_i:.2f} %; host max {mx_h:.2f} % RMS {rms_h:.2f} %")
+        print(f"goal x{g}: image max {mx_i:.2f} % RMS {rms_i:.2f} %; host build over {len(HOST_SEEDS)} seeds: "
+              f"max {min(mx_h):.2f}..{max(mx_h):.2f} %, RMS {min(rms_h):.2f}..{max(rms_h):.2f} %")
         assert rms_i <= 3.0 and mx_i <= 6.0
-        assert abs(mx_i - mx_h) <= 0.5 and abs(rms_i - rms_h) <= 0.5, (g, mx_i, mx_h, rms_i, rms_h)
+        assert min(mx_h) - 0.5 <= mx_i <= max(mx_h) + 0.5, (g, mx_i, mx_h)
+        assert min(rms_h) - 0.5 <= rms_i <= max(rms_h) + 0.5, (g, rms_i, rms_h)
         assert np.all(np.abs(image[g]["f_cmd"]) <= 50.0 + 1e-6)
         assert abs(image[g]["t"][-1] - (sk.duration_s + 0.5)) < 0.01
     r = image["1.5"]["f_contact"].max() / image["1"]["f_contact"].max()
@@ -168,13 +185,13 @@ def test_skills_survive_a_board_reset(pil, capsys):
     from forceskill.link import uds as U
     import argparse
     ns = argparse.Namespace(interface="slcan", channel=f"socket://127.0.0.1:{pil.port}", bus_kwargs={},
-                            node=0, timeout=3.0)
+                            node=0, timeout=float(PIL_TIMEOUT_S))
     with connect(ns) as dev:
         tick0 = dev.status.tick
         with U.uds_client(dev) as client:
             client.ecu_reset(1)
         t0 = time.monotonic()
-        while time.monotonic() - t0 < 10 and dev.status.tick >= tick0:
+        while time.monotonic() - t0 < 3 * PIL_TIMEOUT_S and dev.status.tick >= tick0:
             time.sleep(0.05)
         assert dev.status.tick < tick0          # the tick counter restarted: the board was reset
     after = forceskill(capsys, "status", *bus)
