@@ -209,9 +209,9 @@ sys.path.insert(0, str(PEERS_DIR))
 
 
 def fs_fit(demo: Any, n_kernels: int, method: str = "ridge") -> Any:
-    """forceskill.fit.fit on the benchmark demonstration (what `forceskill fit` calls)."""
-    from forceskill.demo import Demo as FsDemo
-    from forceskill.fit import fit
+    """forceskill.model.fit.fit on the benchmark demonstration (what `forceskill fit` calls)."""
+    from forceskill.model.demo import Demo as FsDemo
+    from forceskill.model.fit import fit
     d = FsDemo(t_s=demo.t_s, pos_m=demo.pos_m, force_N=demo.force_N, source="bench/peers/demo.py")
     return fit(d, demo.stiffness_Npm, n_kernels=n_kernels, method=method, surface_m=demo.surface_m)
 
@@ -368,8 +368,8 @@ def fixed_facts(image: Path) -> str:
     below 4096), for a message on a refusal; the checks themselves are firmware/fixed/dmpfx.c's."""
     try:
         import numpy as np
-        from forceskill import dmp as fsdmp
-        from forceskill.skill import Skill
+        from forceskill.model import dmp as fsdmp
+        from forceskill.model.skill import Skill
         sk = Skill.from_bytes(image.read_bytes())
         n = int(round(sk.duration_s / sk.dt_s))
         u, v = fsdmp.phase_scan(sk.alpha, sk.beta, sk.dt_s / sk.tau_s, n)

@@ -19,7 +19,7 @@ echo "== comments and docs cite no SPEC or issue numbers"
 tools/check_no_tracker_refs.sh
 echo "== one implementation of the control tick (scripts/check_one_tick.sh)"
 scripts/check_one_tick.sh
-echo "== layers: no upward or sideways include, no include cycle (tools/check_layers.py)"
+echo "== layers: no upward or sideways include or host import, no cycle (tools/check_layers.py)"
 .venv/bin/python tools/check_layers.py
 echo "== Python: ruff (lint, format) and mypy (strict) on host/forceskill (configuration: host/pyproject.toml)"
 .venv/bin/ruff check --config host/pyproject.toml host/forceskill

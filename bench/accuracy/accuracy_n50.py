@@ -3,7 +3,7 @@
 
     .venv/bin/python bench/accuracy/accuracy_n50.py
 
-Synthetic profiles shaped like the paper's (forceskill.synthetic: pressing two-layer 100/180 N/m;
+Synthetic profiles shaped like the paper's (forceskill.model.synthetic: pressing two-layer 100/180 N/m;
 engraving 6-10 N levels), seeds 0-11, durations 8, 9, 12 and 17 s, with and without 0.02 N sensor
 noise (engraving), fitted at N = 50 (ridge) for kernel widths sigma_i = w*(c_{i+1} - c_i).
 Prints the median / max of the max error (% of max force) and the most kernels evaluated per tick
@@ -18,8 +18,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "host"))
 
-from forceskill import dmp, synthetic  # noqa: E402
-from forceskill import fit as fitmod  # noqa: E402
+from forceskill.model import dmp, synthetic  # noqa: E402
+from forceskill.model import fit as fitmod  # noqa: E402
 
 WIDTHS = (0.5, 0.65, 1.0)
 DURATIONS = (8.0, 9.0, 12.0, 17.0)

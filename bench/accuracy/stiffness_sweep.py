@@ -16,8 +16,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "host"))
 
-from forceskill import dmp, synthetic  # noqa: E402
-from forceskill.fit import fit  # noqa: E402
+from forceskill.model import dmp, synthetic  # noqa: E402
+from forceskill.model.fit import fit  # noqa: E402
 
 STIFFNESSES = (10.0, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7)
 

@@ -24,10 +24,10 @@ import can
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "host"))
 
-from forceskill.fit import fit  # noqa: E402
+from forceskill.model.fit import fit  # noqa: E402
 from forceskill.link import uds as U  # noqa: E402
 from forceskill.link.device import Device  # noqa: E402
-from forceskill.synthetic import pressing  # noqa: E402
+from forceskill.model.synthetic import pressing  # noqa: E402
 
 BITRATE = 1_000_000
 # python-can's socketcand reader warns whenever a TCP read ends inside a frame (normal streaming)

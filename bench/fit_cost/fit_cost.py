@@ -65,8 +65,8 @@ def grid_memory(duration_s: float) -> None:
     """Peak of the fit's own numpy arrays (tracemalloc) on a smooth press of ``duration_s`` at 1 ms."""
     import tracemalloc
 
-    from forceskill.demo import Demo
-    from forceskill.fit import fit
+    from forceskill.model.demo import Demo
+    from forceskill.model.fit import fit
     t = np.arange(int(round(duration_s * 1000.0)) + 1) * 1e-3
     f = 20.0 * np.sin(np.pi * t / t[-1]) ** 2
     d = Demo(t, 0.002 + f / 2000.0, f)
@@ -90,8 +90,8 @@ def main() -> int:
     tmp.mkdir(parents=True, exist_ok=True)
     try:
         sys.path.insert(0, str(ROOT / "host"))
-        from forceskill import synthetic
-        from forceskill.demo import write_csv as write_demo
+        from forceskill.model import synthetic
+        from forceskill.model.demo import write_csv as write_demo
         d = synthetic.pressing(seed=1, duration_s=17.0)
         small = tmp / "press17.csv"
         write_demo(small, {"t": d.t_s, "x": d.pos_m, "f_contact": d.force_N})
@@ -118,7 +118,7 @@ def main() -> int:
         big = tmp / "big.csv"
         write_csv(big, args.rows, args.rate)
         size_mb = big.stat().st_size / 2**20
-        read_cmd = [sys.executable, "-c", "import sys; from forceskill.demo import load_demo; "
+        read_cmd = [sys.executable, "-c", "import sys; from forceskill.model.demo import load_demo; "
                     "d = load_demo(sys.argv[1], stiffness_Npm=2000.0); print(d.t_s.size)", str(big)]
         rc, peak, wall, err = _peak(read_cmd)
         print(f"big_csv rows={args.rows} bytes={big.stat().st_size} read_s={wall:.2f} peak_rss_MB={peak:.0f} "

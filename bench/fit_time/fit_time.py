@@ -18,8 +18,8 @@ for _v in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 import numpy as np  # noqa: E402
 
-from forceskill import synthetic  # noqa: E402
-from forceskill.fit import fit  # noqa: E402
+from forceskill.model import synthetic  # noqa: E402
+from forceskill.model.fit import fit  # noqa: E402
 
 
 def main() -> int:

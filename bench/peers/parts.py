@@ -278,7 +278,7 @@ def own_benchmarks(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
         else:
             parts.append(_table(["method", "N", "demo", "ms (median)", "ms (min)", "max error"], rows)
                          + "\n\nbench/fit_time/fit_time.py (the host part's program) fits its own synthetic "
-                           "17 s engraving demonstration (forceskill.synthetic, seed 7).")
+                           "17 s engraving demonstration (forceskill.model.synthetic, seed 7).")
     return "\n\n".join(parts), [], data
 
 

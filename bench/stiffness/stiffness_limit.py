@@ -20,9 +20,9 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "host"))
 
-from forceskill import synthetic  # noqa: E402
-from forceskill.fit import fit  # noqa: E402
-from forceskill.report import STIFF_SEED, SURFACE_M, find_hil_sim  # noqa: E402
+from forceskill.model import synthetic  # noqa: E402
+from forceskill.model.fit import fit  # noqa: E402
+from forceskill.commands.report import STIFF_SEED, SURFACE_M, find_hil_sim  # noqa: E402
 
 STIFFNESSES = (1e3, 3e3, 1e4, 3e4, 1e5, 3e5, 1e6, 3e6, 1e7)
 

@@ -14,8 +14,9 @@ from pathlib import Path
 
 import pytest
 
-from forceskill import cli, flash as fl
-from forceskill import fwimage as fw
+from forceskill import cli
+from forceskill.link import flash as fl
+from forceskill.model import fwimage as fw
 from forceskill.errors import FsError
 
 REPO = Path(__file__).resolve().parents[2]

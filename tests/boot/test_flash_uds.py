@@ -20,8 +20,9 @@ import can
 import isotp
 import pytest
 
-from forceskill import cli, flash as fl
-from forceskill import fwimage as fw
+from forceskill import cli
+from forceskill.link import flash as fl
+from forceskill.model import fwimage as fw
 from forceskill.errors import FsError
 
 ROOT = Path(__file__).resolve().parents[2]

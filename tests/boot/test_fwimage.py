@@ -1,4 +1,4 @@
-"""Firmware image tool (forceskill.fwimage, `forceskill image build|show`, `flash --dry-run`)."""
+"""Firmware image tool (forceskill.model.fwimage, `forceskill image build|show`, `flash --dry-run`)."""
 from __future__ import annotations
 
 import hashlib
@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from forceskill import cli
-from forceskill import fwimage as fw
+from forceskill.model import fwimage as fw
 
 GOLDEN = Path(__file__).resolve().parents[1] / "firmware" / "boot" / "vectors" / "golden_host_1.2.3.fwimg"
 

@@ -2,7 +2,7 @@
 semihosting).
 
 Builds firmware/boot/cortex-m with arm-none-eabi-gcc, wraps the test application into signed
-images with the host tool (forceskill.fwimage), loads bootloader + slot images (+ an optional
+images with the host tool (forceskill.model.fwimage), loads bootloader + slot images (+ an optional
 boot-state record) into qemu's code memory and checks what the bootloader starts or refuses.
 Layout: firmware/boot/cortex-m/qemu_layout.h.
 """
@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from forceskill import fwimage as fw
+from forceskill.model import fwimage as fw
 
 ROOT = Path(__file__).resolve().parents[2]
 SRC = ROOT / "firmware" / "boot" / "cortex-m"

@@ -16,8 +16,8 @@ from forceskill import cli
 from forceskill.commands._common import connect
 from forceskill.errors import FsError
 from forceskill.link import uds as U
-from forceskill.synthetic import pressing
-from forceskill.fit import fit
+from forceskill.model.synthetic import pressing
+from forceskill.model.fit import fit
 
 
 def run_cli(*argv: str) -> subprocess.CompletedProcess:

@@ -18,9 +18,9 @@ import pytest
 
 from conftest import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS, Server
 from forceskill import cli
-from forceskill.demo import load_demo
+from forceskill.model.demo import load_demo
 from forceskill.link.dbc import dbc_path
-from forceskill.skill import Skill
+from forceskill.model.skill import Skill
 
 K_NPM = 100.0          # pressing task 1, outer layer (hil_sim/scenarios/pressing_task1_demo.toml)
 SURFACE_M = 0.001

@@ -23,8 +23,8 @@ import pytest
 
 from conftest import HOST_TIMEOUT_MS, REPO, SCENARIOS, hil_sim_path
 from forceskill import cli
-from forceskill import fwimage as fw
-from forceskill.skill import Skill
+from forceskill.model import fwimage as fw
+from forceskill.model.skill import Skill
 
 IMAGE = REPO / "build" / "cortex-m4f" / "firmware" / "ports" / "cortex-m" / "fs_pil.elf"
 K_NPM = 100.0

@@ -16,9 +16,9 @@ from udsoncan.exceptions import NegativeResponseException
 
 from forceskill import cli
 from forceskill.commands._common import connect
-from forceskill.fit import fit
+from forceskill.model.fit import fit
 from forceskill.link import uds as U
-from forceskill.synthetic import pressing
+from forceskill.model.synthetic import pressing
 
 
 def _ns(server) -> argparse.Namespace:

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from forceskill.report import read_log
+from forceskill.commands.report import read_log
 
 VECTORS = Path(__file__).resolve().parents[1] / "vectors"
 SKILL = VECTORS / "engrave_n50_ridge_release.skill"   # T = 1.5 s, k = 280 N/m (golden vector)

@@ -12,9 +12,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from forceskill.skill import Skill
-from forceskill import report as report_mod
-from forceskill.report import TASKS, read_log, run_report
+from forceskill.model.skill import Skill
+from forceskill.commands import report as report_mod
+from forceskill.commands.report import TASKS, read_log, run_report
 
 SEEDS = (1, 2)
 LEARN = [t.name for t in TASKS]

@@ -3,8 +3,8 @@ from __future__ import annotations
 
 import pytest
 
-from forceskill import synthetic
-from forceskill.fit import FitResult, fit
+from forceskill.model import synthetic
+from forceskill.model.fit import FitResult, fit
 
 
 @pytest.fixture(scope="session")

@@ -11,10 +11,11 @@ from typing import Callable
 import numpy as np
 import pytest
 
-from forceskill import cli, dmp, synthetic
-from forceskill.demo import Demo, load_demo, write_csv
+from forceskill import cli
+from forceskill.model import dmp, synthetic
+from forceskill.model.demo import Demo, load_demo, write_csv
 from forceskill.errors import DemoError
-from forceskill.skill import Skill
+from forceskill.model.skill import Skill
 
 VECTORS = Path(__file__).resolve().parents[1] / "vectors"
 
@@ -222,7 +223,7 @@ def test_resampling_a_500_hz_log(tmp_path: Path) -> None:
     half = Demo(d.t_s[::2], d.pos_m[::2], d.force_N[::2], "500 Hz")
     p = write_demo(tmp_path / "d500.csv", half)
     loaded = load_demo(p)
-    from forceskill.demo import resample
+    from forceskill.model.demo import resample
     r = resample(loaded, 0.001)
     assert r.t_s.size == d.t_s.size
     np.testing.assert_allclose(r.t_s, d.t_s, atol=1e-12)

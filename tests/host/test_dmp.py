@@ -4,11 +4,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from forceskill import dmp, synthetic
+from forceskill.model import dmp, synthetic
 from forceskill.errors import ParamError
-from forceskill.fit import FitResult, desired_forcing
-from forceskill.params import Gains, derive, goal
-from forceskill.skill import Skill
+from forceskill.model.fit import FitResult, desired_forcing
+from forceskill.model.params import Gains, derive, goal
+from forceskill.model.skill import Skill
 
 
 def at_k(m_d: float, k_d: float, k_p: float, k_f: float, k_i: float, k: float) -> Gains:

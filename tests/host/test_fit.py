@@ -11,11 +11,11 @@ from typing import Callable
 import numpy as np
 import pytest
 
-from forceskill import dmp, synthetic
-from forceskill.demo import Demo
+from forceskill.model import dmp, synthetic
+from forceskill.model.demo import Demo
 from forceskill.errors import DemoError, ParamError
-from forceskill.fit import FitResult, fit, solve_tau
-from forceskill.params import Gains, derive
+from forceskill.model.fit import FitResult, fit, solve_tau
+from forceskill.model.params import Gains, derive
 
 TASKS = {
     "press_100_180": (lambda s: synthetic.pressing(s, 8.0, 100.0, 180.0), 100.0, "pressing"),
@@ -28,7 +28,7 @@ PAPER_BOUND = {"pressing": 4.0, "engraving": 6.0}
 
 def independent_error(res: FitResult) -> tuple[float, float]:
     """max and RMS |f - f_hat| in % of max |f|, from dmp.rollout of the written image."""
-    from forceskill.skill import Skill
+    from forceskill.model.skill import Skill
     sk = Skill.from_bytes(res.skill.to_bytes())
     _, f_hat = dmp.rollout(sk)
     e = res.target_N - f_hat

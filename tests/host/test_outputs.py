@@ -11,10 +11,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from forceskill import dmp, outputs, synthetic
+from forceskill.model import dmp, synthetic
+from forceskill import outputs
 from forceskill.errors import FsError
-from forceskill.limits import MAX_ROLLOUT_STEPS
-from forceskill.skill import Skill
+from forceskill.model.scales import MAX_ROLLOUT_STEPS
+from forceskill.model.skill import Skill
 from test_cli import VECTORS, run, write_demo
 
 SKILL = VECTORS / "press_n10_ridge_release.skill"

@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from forceskill.errors import FsError, ParamError
-from forceskill.params import Gains, check_inertia, derive, goal, load_gains
+from forceskill.model.params import Gains, check_inertia, derive, goal, load_gains
 
 
 def test_default_gains_give_alpha_9_beta_2_25_gamma_13_5() -> None:

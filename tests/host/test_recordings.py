@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 import recordings as R
 from forceskill import cli, readers
-from forceskill.demo import load_demo
+from forceskill.model.demo import load_demo
 from forceskill.errors import (
     ERR_DEMO_COLUMN,
     ERR_DEMO_DURATION,
@@ -29,8 +29,8 @@ from forceskill.errors import (
     FsError,
 )
 from forceskill.readers import ReadOptions
-from forceskill.skill import MAX_KERNELS, Skill
-from forceskill.tolerance import sample_error
+from forceskill.model.skill import MAX_KERNELS, Skill
+from forceskill.model.tolerance import sample_error
 
 K = str(R.OBJECT_K_NPM)
 SURF = str(R.SURFACE_M)
@@ -117,7 +117,7 @@ def test_printed_error_is_what_the_user_computes_from_the_rollout(tmp_path: Path
 def test_max_error_picks_the_smallest_kernel_count(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """73 s, 13 strokes: N = 50 is refused (above 10 %); --max-error 5 prints the N it chose, that N
     reaches 5 % at the recorded samples and N - 1 does not (checked with the library's fit)."""
-    from forceskill.fit import fit
+    from forceskill.model.fit import fit
 
     rec = R.strokes()
     p = R.write_csv(tmp_path / "strokes.csv", rec)

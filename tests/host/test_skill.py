@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from forceskill.errors import SkillError
-from forceskill.fit import FitResult
-from forceskill.skill import MAGIC, Skill, image_size
+from forceskill.model.fit import FitResult
+from forceskill.model.skill import MAGIC, Skill, image_size
 
 VECTORS = Path(__file__).resolve().parents[1] / "vectors"
 
@@ -44,7 +44,7 @@ def test_a_version_1_image_is_refused_naming_both_versions() -> None:
 
 
 def test_firmware_images_declare_this_skill_format() -> None:
-    from forceskill import fwimage, skill
+    from forceskill.model import fwimage, skill
     assert fwimage.SKILL_FORMAT == skill.FORMAT_VERSION
 
 

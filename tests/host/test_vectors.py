@@ -9,9 +9,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from forceskill import dmp
+from forceskill.model import dmp
 from forceskill.errors import SkillError
-from forceskill.skill import Skill
+from forceskill.model.skill import Skill
 
 VECTORS = Path(__file__).resolve().parents[1] / "vectors"
 sys.path.insert(0, str(VECTORS))

@@ -24,15 +24,15 @@ from typing import Any
 
 import numpy as np
 
-from forceskill import dmp, synthetic
-from forceskill.demo import Demo
-from forceskill.fit import fit
-from forceskill.params import Gains, gains_for_object
+from forceskill.model import dmp, synthetic
+from forceskill.model.demo import Demo
+from forceskill.model.fit import fit
+from forceskill.model.params import Gains, gains_for_object
 
 #: the HIL objects' mass (hil_sim/scenarios): the skills' force gains are adapted to it, so the
 #: vectors run stably on the simulator (the fault rig and the HIL tests execute them)
 OBJECT_MASS_KG = 10.0
-from forceskill.skill import HEADER_SIZE, MAGIC, MAX_KERNELS, Skill
+from forceskill.model.skill import HEADER_SIZE, MAGIC, MAX_KERNELS, Skill
 
 HERE = Path(__file__).resolve().parent
 

@@ -14,18 +14,18 @@ from typing import Any, TextIO
 import numpy as np
 
 from ..errors import ERR_RUN_FAULT, ERR_SKILL_PEAK, FsError, fault_text
-from ..limits import (
-    add_force_limit,
-    check_force_limit,
-    check_scales,
-    peak_problem,
-    skill_peak_N,
-)
 from ..link import ERR_LINK_ARGS, ERR_LINK_STATE
 from ..link import uds as U
 from ..link.device import Device
+from ..model.limits import (
+    check_force_limit,
+    peak_problem,
+    skill_peak_N,
+)
+from ..model.scales import check_scales
+from ..model.skill import Skill
 from ..outputs import STDOUT, Outputs, format_rows
-from ..skill import Skill
+from ._args import add_force_limit
 from ._common import add_common, columns, connect, link_errors, open_log, sigint_flag, tracking
 
 _STEP = re.compile(r"^\s*(\d+)\s*:\s*([0-9.]+)\s*(ms|s)?\s*$")

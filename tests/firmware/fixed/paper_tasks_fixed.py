@@ -12,9 +12,9 @@ import subprocess
 import sys
 from pathlib import Path
 
-from forceskill.demo import load_demo
-from forceskill.fit import fit
-from forceskill.report import SURFACE_M, TASKS, run_sim
+from forceskill.model.demo import load_demo
+from forceskill.model.fit import fit
+from forceskill.commands.report import SURFACE_M, TASKS, run_sim
 
 ROOT = Path(__file__).resolve().parents[3]
 

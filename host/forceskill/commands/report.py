@@ -23,8 +23,8 @@ from typing import Any
 
 import numpy as np
 
-from .errors import ERR_REPORT, FsError
-from .outputs import write_figure, write_file
+from ..errors import ERR_REPORT, FsError
+from ..outputs import write_figure, write_file
 
 #: Paper bounds on the LWR approximation error (% of max force): pressing <= 4, engraving <= 6.
 LWR_BOUND_PCT = {"pressing": 4.0, "engraving": 6.0}
@@ -105,9 +105,9 @@ def _pct(x: float | None) -> str:
 def _learn(
     task: Task, hil_sim: Path, scen: Path, out: Path, seed: int, n_kernels: int, plots: bool
 ) -> dict[str, Any]:
-    from .demo import load_demo
-    from .fit import fit
-    from .params import gains_for_object
+    from ..model.demo import load_demo
+    from ..model.fit import fit
+    from ..model.params import gains_for_object
 
     demo_log = out / "logs" / f"{task.name}_demo.csv"
     demo_sum = run_sim(hil_sim, scen / f"{task.name}_demo.toml", demo_log, "--seed", str(seed))
@@ -243,8 +243,8 @@ def _reuse(hil_sim: Path, scen: Path, out: Path, seed: int, plots: bool) -> list
 
 
 def _stiff(hil_sim: Path, scen: Path, out: Path, seed: int, n_kernels: int) -> list[dict[str, Any]]:
-    from . import synthetic
-    from .fit import fit
+    from ..model import synthetic
+    from ..model.fit import fit
 
     entries = []
     for kind, k_txt in STIFF:
@@ -482,7 +482,7 @@ def run_report(
 
 def _cmd_report(args: argparse.Namespace) -> int:
     out = Path(args.output)
-    from .sim import find_hil_sim, scenario_dir
+    from ..sim import find_hil_sim, scenario_dir
 
     hil_sim = find_hil_sim(args.hil_sim, ERR_REPORT)
     scen = scenario_dir(args.scenarios)
