@@ -1,40 +1,49 @@
 #!/usr/bin/env bash
-# Exact instruction count of the full control tick on Cortex-M under qemu.
-#   bench/qemu_tick.sh TARGET [--build-dir DIR] [--host-ref-float EXE] [--host-ref-fixed EXE]
-# TARGET: cortex-m4f (float32, mps2-an386) or cortex-m3 (fixed point, mps2-an385).
-# 1. builds the images (toolchain cmake/arm-none-eabi.cmake, Release) and the host references;
-# 2. checks the counter on cm_count_check (must count exactly 103 per marked region);
-# 3. runs cm_bench under qemu with one instruction per translation block and the exec trace
-#    streamed through a fifo into awk (the trace is never stored): instructions strictly
-#    between the end of cm_bench_mark_begin and the start of cm_bench_mark_end, per tick;
-# 4. prints `tick_instructions target=TARGET kernels=N min=A median=B max=C`;
-# 5. compares the printed f_hat rollout with the host build (bench/qemu/compare.py);
-# 6. runs the 1 kHz SysTick loop image and requires no overrun.
-# Exit status 1 if the budget (M4F 1,500, M3 3,000), the comparison or a check fails.
+# Exact instruction counts of the shipped Cortex-M image's 1 kHz tick under qemu.
+#   bench/qemu_tick.sh TARGET [--build-dir DIR] [--exec-s S]
+# TARGET: cortex-m4f (mps2-an386, hardware float) or cortex-m3 (mps2-an385, software float).
+# 1. builds the images (toolchain cmake/arm-none-eabi.cmake, Release; size, heap and stack report);
+# 2. checks that a program calling malloc cannot link with the images' flags;
+# 3. checks the counter on cm_count_check (must count exactly 103 per marked region);
+# 4. runs the product image fs_pil (`hil_sim pil`, the application's app_tick on the port of
+#    hal.h, with the plant linked in) with one instruction per translation block and the exec
+#    trace streamed through a fifo into awk (never stored), while bench/qemu/pil_session.py drives
+#    it over python-can's slcan interface: IDLE, a skill download, an execution of
+#    tests/vectors/engrave_n50_ridge_release.skill with a read-back (UDS upload) during it;
+# 5. counts, per app_tick (between cm_port_mark_begin and cm_port_mark_end), all its
+#    instructions and those of the DMP and control-law part (dmp_step and pfc_step with their
+#    callees), and the kind of the tick (cm_port_mark_idle/execute/upload after it); prints
+#      tick_instructions target=T kernels=N min= median= max=          (DMP + control law, EXECUTE)
+#      app_tick_instructions target=T state=IDLE|EXECUTE|UPLOAD min= median= max=
+# Exit status 1 if a check fails or the DMP + control-law part exceeds its budget (M4F 1,500,
+# M3 20,000: software float).
 set -euo pipefail
 
-usage() { echo "usage: $0 cortex-m4f|cortex-m3 [--build-dir DIR] [--host-ref-float EXE] [--host-ref-fixed EXE]" >&2; exit 2; }
+usage() { echo "usage: $0 cortex-m4f|cortex-m3 [--build-dir DIR] [--exec-s S]" >&2; exit 2; }
 [ $# -ge 1 ] || usage
 TARGET=$1; shift
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=$ROOT/build/$TARGET
-HOST_BUILD=$ROOT/build/qemu-host
-REF_FLOAT=""
-REF_FIXED=""
+EXEC_S=1.0
 while [ $# -gt 0 ]; do
   case $1 in
     --build-dir) BUILD=$2; shift 2 ;;
-    --host-ref-float) REF_FLOAT=$2; shift 2 ;;
-    --host-ref-fixed) REF_FIXED=$2; shift 2 ;;
+    --exec-s) EXEC_S=$2; shift 2 ;;
+    --host-ref-float|--host-ref-fixed) shift 2 ;;   # accepted for older callers; unused
     *) usage ;;
   esac
 done
 
 case $TARGET in
-  cortex-m4f) MACHINE=mps2-an386; CPU=cortex-m4; NUMERIC=float; BUDGET=1500 ;;
-  cortex-m3)  MACHINE=mps2-an385; CPU=cortex-m3; NUMERIC=fixed; BUDGET=3000 ;;
+  cortex-m4f) MACHINE=mps2-an386; CPU=cortex-m4; BUDGET=1500 ;;
+  cortex-m3)  MACHINE=mps2-an385; CPU=cortex-m3; BUDGET=20000 ;;
   *) usage ;;
 esac
+PY=${PYTHON:-$ROOT/.venv/bin/python}
+HIL_SIM=${FORCESKILL_HIL_SIM:-$ROOT/build/hil_sim/hil_sim}
+[ -x "$HIL_SIM" ] || { echo "hil_sim not built at $HIL_SIM (./scripts/setup.sh)"; exit 1; }
+SKILL=$ROOT/tests/vectors/engrave_n50_ridge_release.skill
+KERNELS=$(od -An -tu2 -j12 -N2 "$SKILL" | tr -d ' ')
 
 # One instruction per translation block: -singlestep up to qemu 8.0, then
 # -accel tcg,one-insn-per-tb=on (8.1 renamed it; -singlestep was removed in 9.x).
@@ -48,41 +57,14 @@ fi
 
 echo "== building $TARGET images in $BUILD"
 cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/arm-none-eabi.cmake" \
-      -DFS_CORTEX_TARGET=$TARGET -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$BUILD" --target cm_bench cm_loop cm_count_check -j 2 | grep -E '^(size|heap|stack)' || true
+      -DFS_CORTEX_TARGET=$TARGET -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE="$PY" >/dev/null
+cmake --build "$BUILD" --target fs_pil cm_count_check -j 2 | grep -E '^(size|heap|stack)' || true
 IMG=$BUILD/firmware/ports/cortex-m
-SKILL=$(sed -n 's/^FS_BENCH_SKILL:FILEPATH=//p' "$BUILD/CMakeCache.txt")
-GOAL=$(sed -n 's/^FS_BENCH_GOAL_SCALE:STRING=//p' "$BUILD/CMakeCache.txt")
-TIME=$(sed -n 's/^FS_BENCH_TIME_SCALE:STRING=//p' "$BUILD/CMakeCache.txt")
-KERNELS=$(od -An -tu2 -j12 -N2 "$SKILL" | tr -d ' ')
-
-if [ "$NUMERIC" = float ]; then REF=$REF_FLOAT; REF_T=qemu_host_ref_float; else REF=$REF_FIXED; REF_T=qemu_host_ref_fixed; fi
-if [ -z "$REF" ]; then
-  echo "== building host reference in $HOST_BUILD"
-  cmake -S "$ROOT" -B "$HOST_BUILD" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-  cmake --build "$HOST_BUILD" --target $REF_T -j 2 >/dev/null
-  REF=$HOST_BUILD/bench/qemu/$REF_T
-fi
 
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/qemu_tick.XXXXXX")
-trap 'rm -rf "$WORK"' EXIT
-# Semihosting output (no chardev given) goes to qemu's stderr.
-QEMU=(qemu-system-arm -M $MACHINE -cpu $CPU -nographic -monitor none -serial null
-      -semihosting-config enable=on,target=native)
-
-# Count instructions per marked region from a trace streamed on stdin; one count per line.
-COUNT_AWK='/ cm_bench_mark_begin$/ { inb = 1; c = 0; next }
-           / cm_bench_mark_end$/   { if (inb) print c; inb = 0; next }
-           { if (inb) c++ }'
-
-run_counted() { # ELF OUTFILE COUNTFILE
-  mkfifo "$WORK/trace.fifo"
-  awk "$COUNT_AWK" < "$WORK/trace.fifo" > "$3" &
-  local awk_pid=$!
-  "${QEMU[@]}" -kernel "$1" "${ONE_INSN[@]}" -d exec,nochain -D "$WORK/trace.fifo" > "$2" 2>&1
-  wait $awk_pid
-  rm -f "$WORK/trace.fifo"
-}
+PIL_PID=""
+cleanup() { [ -n "$PIL_PID" ] && kill "$PIL_PID" 2>/dev/null || true; rm -rf "$WORK"; }
+trap cleanup EXIT
 
 echo "== heap poison check"
 # The images link with malloc & co. wrapped to undefined symbols (ports/cortex-m/CMakeLists.txt):
@@ -103,49 +85,97 @@ else
 fi
 
 echo "== counter check ($MACHINE, ${ONE_INSN[*]})"
-run_counted "$IMG/cm_count_check.elf" "$WORK/cc.out" "$WORK/cc.counts"
+mkfifo "$WORK/cc.fifo"
+awk '/ cm_port_mark_begin$/ { inb = 1; c = 0; next }
+     / cm_port_mark_end$/   { if (inb) print c; inb = 0; next }
+     { if (inb) c++ }' < "$WORK/cc.fifo" > "$WORK/cc.counts" &
+AWK_PID=$!
+qemu-system-arm -M $MACHINE -cpu $CPU -nographic -monitor none -serial null \
+  -semihosting-config enable=on,target=native -kernel "$IMG/cm_count_check.elf" "${ONE_INSN[@]}" \
+  -d exec,nochain -D "$WORK/cc.fifo" > "$WORK/cc.out" 2>&1
+wait $AWK_PID
 CC=$(tr '\n' ' ' < "$WORK/cc.counts")
 if [ "$CC" != "103 103 103 " ]; then
   echo "counter check FAILED: expected '103 103 103', got '$CC'"; exit 1
 fi
 echo "counter check ok: 100 nops + call/return/call counted as $CC"
 
-echo "== benchmark: $(basename "$SKILL") goal=$GOAL time=$TIME"
-run_counted "$IMG/cm_bench.elf" "$WORK/bench.out" "$WORK/bench.counts"
-grep '^bench' "$WORK/bench.out" || { echo "benchmark image failed:"; tail -5 "$WORK/bench.out"; exit 1; }
-ROWS=$(sed -n 's/^bench .*rows=\([0-9]*\).*/\1/p' "$WORK/bench.out")
-NCOUNTS=$(wc -l < "$WORK/bench.counts")
-if [ "$NCOUNTS" != "$ROWS" ]; then echo "FAILED: $NCOUNTS counted ticks for $ROWS rows"; exit 1; fi
-read -r MIN MEDIAN MAX < <(sort -n "$WORK/bench.counts" | awk '{ v[NR] = $1 } END {
-  m = (NR % 2) ? v[(NR + 1) / 2] : int((v[NR / 2] + v[NR / 2 + 1]) / 2); print v[1], m, v[NR] }')
-echo "tick_instructions target=$TARGET kernels=$KERNELS min=$MIN median=$MEDIAN max=$MAX"
-
+echo "== the product image: $(basename "$SKILL") (N = $KERNELS), IDLE / download / EXECUTE / EXECUTE + read-back"
+# Per counted tick: kind, all instructions of app_tick, those inside dmp_step/pfc_step (entered
+# from their caller, left when the caller's code runs again), 1 if the DMP stepped (not after the
+# skill's end, when the end policy runs the law alone).
+# Also: each boot (from the first instruction of Reset_Handler to the first counted tick: all its
+# instructions and those inside app_init), and the skill check of each download (the instructions
+# inside skchk_params/skchk_begin/skchk_run, entered from the UDS transfer's code, over the ticks
+# it is spread across).
+COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot = 0 }
+                                    inb = 1; c = 0; part = 0; inpart = 0; dmp = 0; next }
+  / cm_port_mark_end$/ { if (inb) { done = 1; lc = c; lp = part; ld = dmp }
+                         if (chk_tick > 0) { chk_ticks++; if (chk_tick > chk_max) chk_max = chk_tick }
+                         if (chk_tick == 0 && chk_ticks > 0) { print "check", chk_total, chk_ticks, chk_max
+                                                               chk_total = 0; chk_ticks = 0; chk_max = 0 }
+                         chk_tick = 0; inb = 0; next }
+  / cm_port_mark_(idle|execute|upload|other)$/ {
+      if (done) { k = $NF; sub(/^cm_port_mark_/, "", k); print k, lc, lp, ld; done = 0
+                  if (prof != "" && k == "execute") { for (f in h) tot[f] += h[f]; nexec++ } }
+      delete h; next }
+  END { if (prof != "") { for (f in tot) printf "%d %s\n", tot[f] / nexec, f > prof } }
+  { s = $NF
+    if (!inboot && s == "Reset_Handler") { inboot = 1; bc = 0; ba = 0; ininit = 0 }
+    if (inboot) { bc++
+                  if (!ininit && s == "app_init") { ininit = 1; initcaller = bprev }
+                  else if (ininit && s == initcaller) { ininit = 0 }
+                  if (ininit) ba++
+                  bprev = s }
+    if (inb) { c++; h[s]++
+               if (!inpart && (s == "dmp_step_f32" || s == "pfc_step_f32")) { inpart = 1; caller = prev
+                                                                                   if (s == "dmp_step_f32") dmp = 1 }
+               else if (inpart && s == caller) { inpart = 0 }
+               if (inpart) part++
+               if (!inchk && s ~ /^skchk_(params|begin|run)_f32$/) { inchk = 1; chkcaller = prev }
+               else if (inchk && s == chkcaller) { inchk = 0 }
+               if (inchk) { chk_total++; chk_tick++ }
+               prev = s } }'
+mkfifo "$WORK/trace.fifo"
+# QEMU_TICK_PROFILE=FILE: also write the mean instructions per function of an EXECUTE tick there
+awk -v prof="${QEMU_TICK_PROFILE:-}" "$COUNT_AWK" < "$WORK/trace.fifo" > "$WORK/ticks.txt" &
+AWK_PID=$!
+"$HIL_SIM" pil --target "$TARGET" --image "$IMG/fs_pil.elf" --port 0 --host-timeout 500 \
+  --qemu-arg "${ONE_INSN[0]}" ${ONE_INSN[1]:+--qemu-arg "${ONE_INSN[1]}"} \
+  --qemu-arg -d --qemu-arg exec,nochain --qemu-arg -D --qemu-arg "$WORK/trace.fifo" \
+  > "$WORK/pil.out" 2> "$WORK/pil.err" &
+PIL_PID=$!
+for _ in $(seq 600); do grep -q "listening on" "$WORK/pil.out" && break; sleep 0.1; done
+PORT=$(sed -n 's/.*127.0.0.1:\([0-9]*\).*/\1/p' "$WORK/pil.out")
+[ -n "$PORT" ] || { echo "hil_sim pil did not start:"; cat "$WORK/pil.err"; exit 1; }
 status=0
-if [ "$MAX" -gt "$BUDGET" ]; then
-  echo "budget FAILED: max $MAX > $BUDGET instructions"; status=1
+"$PY" "$ROOT/bench/qemu/pil_session.py" "$PORT" "$SKILL" --exec-s "$EXEC_S" || status=1
+kill -TERM "$PIL_PID"; wait "$PIL_PID" || true; PIL_PID=""
+wait $AWK_PID
+grep '^fs_pil' "$WORK/pil.err" || true
+
+stats() { # lines of numbers on stdin -> "min median max count"
+  sort -n | awk '{ v[NR] = $1 } END { if (NR == 0) { print "- - - 0"; exit }
+    m = (NR % 2) ? v[(NR + 1) / 2] : int((v[NR / 2] + v[NR / 2 + 1]) / 2); print v[1], m, v[NR], NR }'
+}
+# the DMP + control-law part of every EXECUTE tick that stepped the DMP (with or without a
+# transfer; the skill check of a download steps the DMP too, in IDLE ticks: counted apart)
+read -r MIN MED MAX N < <(awk '$4 == 1 && ($1 == "execute" || $1 == "upload") { print $3 }' "$WORK/ticks.txt" | stats)
+echo "tick_instructions target=$TARGET kernels=$KERNELS min=$MIN median=$MED max=$MAX"
+[ "$N" -ge 100 ] || { echo "FAILED: only $N ticks ran the DMP"; status=1; }
+# boots: the first with an empty flash, the second (the session's ECUReset) with the skill stored
+awk '$1 == "boot" { n++; printf "boot_instructions target=%s boot=%d skills=%d total=%d app_init=%d\n", t, n, n - 1, $2, $3 }' \
+  t="$TARGET" "$WORK/ticks.txt"
+awk '$1 == "check" { printf "skill_check_instructions target=%s total=%d ticks=%d max_per_tick=%d\n", t, $2, $3, $4 }' \
+  t="$TARGET" "$WORK/ticks.txt"
+for st in idle execute upload; do
+  read -r A B C N < <(awk -v k=$st '$1 == k { print $2 }' "$WORK/ticks.txt" | stats)
+  echo "app_tick_instructions target=$TARGET state=$(echo $st | tr a-z A-Z) min=$A median=$B max=$C ticks=$N"
+  [ "$N" -gt 0 ] || { echo "FAILED: no $st tick counted"; status=1; }
+done
+if [ "$MAX" = "-" ] || [ "$MAX" -gt "$BUDGET" ]; then
+  echo "budget FAILED: DMP + control law max $MAX > $BUDGET instructions"; status=1
 else
-  echo "budget ok: max $MAX <= $BUDGET instructions"
+  echo "budget ok: DMP + control law max $MAX <= $BUDGET instructions"
 fi
-
-"$REF" "$SKILL" "$GOAL" "$TIME" > "$WORK/host.out"
-# the golden float64 rollout of the same skill and scales, if tests/vectors has one
-GOLDEN=$(awk -v s="$(basename "$SKILL")" -v g="$GOAL" -v t="$TIME" \
-  '$1 == s && $2 + 0 == g + 0 && $3 + 0 == t + 0 { print $4; exit }' "$ROOT/tests/vectors/manifest.txt" 2>/dev/null || true)
-if [ -z "$GOLDEN" ]; then  # a skill with a y DMP: its rollout at path scale 1 (t,f_hat,y_hat)
-  GOLDEN=$(awk -v s="$(basename "$SKILL")" -v g="$GOAL" -v t="$TIME" \
-    '$1 == s && $2 + 0 == g + 0 && $3 + 0 == t + 0 && $4 + 0 == 1 { print $5; exit }' \
-    "$ROOT/tests/vectors/manifest_y.txt" 2>/dev/null || true)
-fi
-python3 "$ROOT/bench/qemu/compare.py" $NUMERIC $TARGET "$WORK/bench.out" "$WORK/host.out" \
-  ${GOLDEN:+"$(dirname "$SKILL")/$GOLDEN"} || status=1
-
-echo "== 1 kHz SysTick loop"
-# -icount: deterministic virtual time, 2^5 ns per instruction (~31 MIPS), so an overrun is
-# the code's, not the loaded host's.
-LOOP=$(timeout 120 "${QEMU[@]}" -icount shift=5,sleep=off -kernel "$IMG/cm_loop.elf" 2>&1 | grep '^loop' || true)
-echo "$LOOP"
-case $LOOP in
-  *"overruns=0 faults=0"*) ;;
-  *) echo "loop FAILED"; status=1 ;;
-esac
 exit $status

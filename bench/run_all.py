@@ -59,8 +59,6 @@ PART_TARGETS = {
     "hil_sim/hil_sim": "hil_sim",
     "bench/hil_speed/bench_hil_speed": "bench_hil_speed",
     "bench/core_step/bench_core_step": "bench_core_step",
-    "bench/qemu/qemu_host_ref_float": "qemu_host_ref_float",
-    "bench/qemu/qemu_host_ref_fixed": "qemu_host_ref_fixed",
 }
 
 

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# Every test: one tick implementation (scripts/check_one_tick.sh), C unit tests under ASan+UBSan (Debug build, preset host-debug), the static checks, the Cortex-M images
-# under qemu (bench/qemu_tick.sh: budgets, qemu vs host, no heap/recursion, stack per entry point),
-# then the Python, HIL and CAN tests against the Release build, and a subset again in .venv-min
-# (every dependency at its lowest allowed version, scripts/min_venv.sh). Exit status is non-zero if
-# anything fails.
+# Every test: one tick implementation (scripts/check_one_tick.sh), C unit tests under ASan+UBSan
+# (Debug build, preset host-debug), the static checks, the Cortex-M images under qemu
+# (bench/qemu_tick.sh: the product image's tick counted per state, no heap/recursion, size and
+# stack per entry point), then the Python, HIL and CAN tests against the Release build
+# (tests/can/test_pil.py: the journey and the firmware update against the Cortex-M4F image built
+# by the step before), and a subset again in .venv-min (every dependency at its lowest allowed
+# version, scripts/min_venv.sh). Exit status is non-zero if anything fails.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$ROOT/scripts/setup.sh"
@@ -39,14 +41,14 @@ tests/consumer/run.sh build/consumer
 echo "== static checks (cppcheck; MISRA addon findings counted, not fatal)"
 tools/static_check.sh build/host-debug/static
 
-echo "== Cortex-M images under qemu (M4F float, M3 fixed): instructions per tick within budget,"
-echo "   qemu output vs the host build, no heap, no recursion, worst stack per entry point"
+echo "== Cortex-M images under qemu (M4F, M3): the product image's app_tick counted per state,"
+echo "   DMP + control law within budget, no heap, no recursion, size, worst stack per entry point"
 for target in cortex-m4f cortex-m3; do
   log="build/qemu_tick_$target.log"
   if ! bench/qemu_tick.sh "$target" >"$log" 2>&1; then
     cat "$log"; echo "qemu benchmark failed for $target (log: $log)" >&2; exit 1
   fi
-  grep -E '^(size|heap|stack|tick_instructions|budget|qemu_vs|loop|counter check)' "$log" || true
+  grep -E '^(size|heap|stack|tick_instructions|app_tick_instructions|budget|counter check)' "$log" || true
 done
 
 echo "== Python, HIL and CAN tests"

@@ -6,6 +6,11 @@
 #include "fs_dbc.h"
 #include "proto_ids.h"
 
+#ifndef APP_FW_TARGET_ID
+/* the firmware images this device accepts (BOOT_TARGET_*): a port's build defines its own */
+#define APP_FW_TARGET_ID BOOT_TARGET_HOST
+#endif
+
 _Static_assert(SAF_AXES == PFC_AXES && SAF_AXES == HAL_AXES,
                "safety, control law and HAL axes differ");
 
@@ -480,7 +485,7 @@ void app_init(app_t *app, const app_config_t *cfg)
     bc->slot_size = slot_sectors * fw->sector_size;
     bc->state_nvm = &app->fw_state_nvm;
     bc->state_slot = 0u;
-    bc->target_id = BOOT_TARGET_HOST;
+    bc->target_id = APP_FW_TARGET_ID;
     uint8_t key_len = 0u;
     bc->key = hal_fw_key(&key_len);
     bc->key_len = key_len;

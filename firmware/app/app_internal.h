@@ -49,9 +49,12 @@
 #define APP_PROTO_VERSION_MINOR 0u
 #define APP_SEC_LEVELS 2u /* SecurityAccess levels 1 and 3, one secret each */
 /* DMP steps of a downloaded skill's own rollout (skill_check.h) per tick while the commit waits:
- * one DMP step is below one full control tick (M4F <= 1,483 instructions, docs/cortex-m.md), so
- * 100 steps stay within the 168,000-cycle tick of an idle device; a 17 s skill takes 0.17 s. */
+ * on the M4F 100 steps are ~55,000 instructions (docs/cortex-m.md), within the 168,000-cycle tick
+ * of an idle device; a 17 s skill takes 0.17 s. A port whose float is in software defines fewer
+ * (the M3 image: 8, ~90,000 instructions). */
+#ifndef APP_CHECK_STEPS_PER_TICK
 #define APP_CHECK_STEPS_PER_TICK 100u
+#endif
 
 
 /** HostCommand.Mode values. */

@@ -71,15 +71,7 @@ typedef struct {
     bool have_scenario;
     double speed;
     uint8_t node;
-    sim_axis_t ax[2];
-    sim_drive_t drv[2];
-    sim_operator_t op;
-    sim_rng_t rng_sens;
-    uint64_t teach_count;
-    uint32_t teach_start_tick;
-    bool teaching;
-    sim_sample_t ring[SIM_COUPLE_RING];
-    uint64_t n_tick;
+    sim_couple_plant_t plant;
     bus_t bus;
     scand_t sd;
     app_t app;
@@ -138,53 +130,16 @@ static void on_client_frame(void *ctx, unsigned client, const can_frame_t *f, bo
 static void device_boot(serve_t *s)
 {
     hal_sim_can_reset();
-    hal_host_set_time_us(s->n_tick * 1000u);
+    hal_host_set_time_us(s->plant.n_tick * 1000u);
     app_init(&s->app, &s->app_cfg);
 }
 
-static void plant_init(serve_t *s)
-{
-    sim_couple_plant_init(&s->sc, s->ax, s->drv);
-    sim_rng_seed(&s->rng_sens, s->sc.seed ^ 0x5EB5C0DEDA7A5EEDull);
-    memset(s->ring, 0, sizeof(s->ring));
-}
-
-/* One 1 ms step: sensors at t, firmware tick, actuator, plant over the tick. */
+/* One 1 ms step: sensors at t, firmware tick, actuator, plant over the tick (sim_couple.h). */
 static void sim_tick(serve_t *s)
 {
-    const sim_scenario_t *sc = &s->sc;
-    const double dt = sc->dt_s;
-    hal_host_set_time_us(s->n_tick * 1000u);
-
-    /* operator: demonstrates from the moment the device enters TEACH */
-    const bool teach = s->app.state == APP_TEACH;
-    if (teach && !s->teaching) {
-        sim_operator_cfg_t opc = sc->op;
-        opc.duration_s = sc->duration_s;
-        sim_rng_t rng_op;
-        sim_rng_seed(&rng_op,
-                     sc->seed + s->teach_count); /* first demonstration: the scenario seed */
-        sim_operator_init(&s->op, &opc, &rng_op);
-        s->teach_start_tick = s->app.tick;
-        s->teach_count++;
-    }
-    s->teaching = teach;
-    double fprof[2] = {0.0, 0.0};
-    const double p_true = s->ax[0].pos_m - sc->object.surface_m;
-    if (teach && sc->op.task != SIM_TASK_NONE) {
-        const double t = (double)(s->app.tick - s->teach_start_tick) * dt;
-        sim_operator_force(&s->op, t, p_true, sc->object.layer_depth_m, fprof);
-        fprof[1] += sim_operator_path_force(&s->op, t, sc->start_y_m, s->ax[1].pos_m);
-    }
-    for (int a = 0; a < 2; a++) {
-        s->drv[a].force_ext_N = fprof[a];
-        s->drv[a].hand_damping_Nspm = teach ? sc->op.hand_damping_Nspm : 0.0;
-    }
-
-    sim_sample_t smp;
-    sim_couple_sample(sc, s->ax, s->drv, &s->rng_sens, &smp);
+    hal_host_set_time_us(s->plant.n_tick * 1000u);
     hal_sensors_t hs;
-    sim_couple_to_hal(sim_couple_delay(s->ring, s->n_tick, sc->delay_samples, &smp), &hs);
+    sim_couple_sense(&s->plant, &s->sc, s->app.state == APP_TEACH, s->app.tick, &hs);
     hal_host_set_sensors(&hs);
 
     app_tick(&s->app, false);
@@ -193,16 +148,10 @@ static void sim_tick(serve_t *s)
         device_boot(s); /* ECUReset: firmware restarts, flash keeps the slots */
     }
 
-    const bool enable = sim_couple_actuate(sc, &s->app, s->drv,
-                                           NULL); /* ideal drive: compensated in EXECUTE */
-    /* a parked device: in IDLE the simulated drive brings the handle back to the scenario's start
-     * position and holds it at rest, so every TEACH or EXECUTE starts where `hil_sim run` starts;
-     * after a fault, once the stop ramp has switched the actuator off, it parks the handle too (a
-     * free handle drifts out of the sensor range and no fault could ever be cleared) */
-    const bool parked = s->app.state == APP_IDLE || s->app.state == APP_BOOT ||
-                        (s->app.state == APP_FAULT && !enable);
-    sim_couple_advance(sc, s->ax, s->drv, parked);
-    s->n_tick++;
+    bool enable = false;
+    fs_real_t f[2];
+    hal_host_get_actuator(&enable, f);
+    (void)sim_couple_step(&s->plant, &s->sc, s->app.state, enable, f);
 }
 
 /* The device's controller: its most urgent queued frames wait in DEVICE_MAILBOXES mailboxes on
@@ -441,7 +390,7 @@ static int serve_setup(serve_t *s, const serve_opts_t *o)
     s->app_cfg.saf.wdg.timeout_ms = (uint16_t)o->host_timeout;
     sim_rng_seed(&s->rng_faults, s->sc.seed ^ 0xFA17FA17FA17FA17ull);
     hal_host_init();
-    plant_init(s);
+    sim_couple_start(&s->plant, &s->sc);
     device_boot(s);
     return 0;
 }

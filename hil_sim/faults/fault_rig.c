@@ -177,9 +177,7 @@ void rig_step(rig_t *r)
         r->drv[a].force_ext_N = 0.0;
         r->drv[a].hand_damping_Nspm = 0.0;
     }
-    const bool parked = r->app.state == APP_IDLE || r->app.state == APP_BOOT ||
-                        (r->app.state == APP_FAULT && !enable);
-    sim_couple_advance(sc, r->ax, r->drv, parked); /* as serve.c: parked while idle */
+    sim_couple_advance(sc, r->ax, r->drv, sim_couple_parked(r->app.state, enable));
     if (r->ax[0].contact_N > r->contact_max_N) {
         r->contact_max_N = r->ax[0].contact_N;
     }

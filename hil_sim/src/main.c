@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "sim_cli.h"
+#include "sim_pil.h"
 #ifdef HIL_SIM_HAVE_SERVE
 #include "serve.h"
 #endif
@@ -22,6 +23,8 @@ static const sim_command_t COMMANDS[] = {
     {"serve", bus_cmd_serve,
      "run the device firmware in real time, serve its CAN bus (socketcand)"},
 #endif
+    {"pil", sim_cmd_pil,
+     "run the product's Cortex-M image under qemu, its UART as a CAN bus (SLCAN)"},
 #ifdef HIL_SIM_HAVE_FAULTS
     {"faults", faults_cmd,
      "inject every fault scenario into the device in lockstep, write the table"},

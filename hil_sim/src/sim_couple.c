@@ -6,10 +6,9 @@
 
 #include "e2e.h"
 #include "fs_dbc.h"
-#include "hal_host.h"
 #include "proto_ids.h"
 
-void sim_couple_sample(const sim_scenario_t *sc, const sim_axis_t ax[2], const sim_drive_t drv[2],
+void sim_couple_sample(const sim_scenario_t *sc, const sim_axis_t *ax, const sim_drive_t *drv,
                        sim_rng_t *rng, sim_sample_t *out)
 {
     out->x_m = sim_encoder_read(ax[0].pos_m, sc->encoder_m);
@@ -29,12 +28,12 @@ const sim_sample_t *sim_couple_delay(sim_sample_t ring[SIM_COUPLE_RING], uint64_
 
 void sim_couple_to_hal(const sim_sample_t *m, hal_sensors_t *hs)
 {
-    hs->pos_m[0] = m->x_m;
-    hs->pos_m[1] = m->y_m;
-    hs->force_contact_N[0] = m->contact_N;
-    hs->force_contact_N[1] = 0.0;
-    hs->force_operator_N[0] = m->operator_x_N;
-    hs->force_operator_N[1] = m->operator_y_N;
+    hs->pos_m[0] = (fs_real_t)m->x_m;
+    hs->pos_m[1] = (fs_real_t)m->y_m;
+    hs->force_contact_N[0] = (fs_real_t)m->contact_N;
+    hs->force_contact_N[1] = FS_R(0.0);
+    hs->force_operator_N[0] = (fs_real_t)m->operator_x_N;
+    hs->force_operator_N[1] = (fs_real_t)m->operator_y_N;
 }
 
 void sim_couple_advance(const sim_scenario_t *sc, sim_axis_t ax[2], const sim_drive_t drv[2],
@@ -73,24 +72,24 @@ void sim_couple_device_config(const sim_scenario_t *sc, app_config_t *cfg)
 {
     app_config_default(cfg);
     cfg->render_carriage = (uint8_t)(sc->plant == SIM_PLANT_REALISTIC);
-    cfg->gains[0].m_d_kg = sc->m_d_kg;
-    cfg->gains[1].m_d_kg = sc->m_d_kg;
-    cfg->vel_cutoff_Hz = sc->vel_cutoff_Hz;
+    cfg->gains[0].m_d_kg = (fs_real_t)sc->m_d_kg;
+    cfg->gains[1].m_d_kg = (fs_real_t)sc->m_d_kg;
+    cfg->vel_cutoff_Hz = (fs_real_t)sc->vel_cutoff_Hz;
     cfg->exec.use_model = (uint8_t)(sc->use_model != 0);
-    cfg->exec.object.m_v_kg = sc->object.m_v_kg;
-    cfg->exec.object.d_v_Nspm = sc->object.d_v_Nspm;
-    cfg->exec.object.k1_Npm = sc->object.k1_Npm;
-    cfg->exec.object.k2_Npm = sc->object.k2_Npm;
-    cfg->exec.object.layer_depth_m = sc->object.layer_depth_m;
-    cfg->exec.object.surface_m = sc->object.surface_m + sc->surface_error_m;
+    cfg->exec.object.m_v_kg = (fs_real_t)sc->object.m_v_kg;
+    cfg->exec.object.d_v_Nspm = (fs_real_t)sc->object.d_v_Nspm;
+    cfg->exec.object.k1_Npm = (fs_real_t)sc->object.k1_Npm;
+    cfg->exec.object.k2_Npm = (fs_real_t)sc->object.k2_Npm;
+    cfg->exec.object.layer_depth_m = (fs_real_t)sc->object.layer_depth_m;
+    cfg->exec.object.surface_m = (fs_real_t)(sc->object.surface_m + sc->surface_error_m);
     cfg->exec.surface_from_contact = (uint8_t)(sc->surface_from_contact != 0);
-    cfg->exec.phase_stop_gain_per_N2 = sc->phase_stop_gain_per_N2;
-    cfg->render.carriage_kg = sc->carriage.carriage_kg;
-    cfg->render.viscous_Nspm = sc->carriage.viscous_Nspm;
-    cfg->render.coulomb_N = sc->carriage.coulomb_N;
-    cfg->render.motor_max_N = sc->carriage.act_max_N;
+    cfg->exec.phase_stop_gain_per_N2 = (fs_real_t)sc->phase_stop_gain_per_N2;
+    cfg->render.carriage_kg = (fs_real_t)sc->carriage.carriage_kg;
+    cfg->render.viscous_Nspm = (fs_real_t)sc->carriage.viscous_Nspm;
+    cfg->render.coulomb_N = (fs_real_t)sc->carriage.coulomb_N;
+    cfg->render.motor_max_N = (fs_real_t)sc->carriage.act_max_N;
     for (unsigned a = 0; a < PFC_AXES; a++) {
-        cfg->saf.lim.axis[a].force_max_N = sc->force_max_N;
+        cfg->saf.lim.axis[a].force_max_N = (fs_real_t)sc->force_max_N;
     }
 }
 
@@ -113,20 +112,69 @@ void sim_couple_plant_init(const sim_scenario_t *sc, sim_axis_t ax[2], sim_drive
     }
 }
 
-bool sim_couple_actuate(const sim_scenario_t *sc, const app_t *app, sim_drive_t drv[2],
-                        double cmd_N[2])
+bool sim_couple_drive(const sim_scenario_t *sc, app_state_t state, bool enable,
+                      const fs_real_t force_N[2], sim_drive_t drv[2], double cmd_N[2])
 {
-    bool enable = false;
-    fs_real_t f[2];
-    hal_host_get_actuator(&enable, f);
     const bool ideal = sc->plant == SIM_PLANT_IDEAL;
     for (int a = 0; a < 2; a++) {
-        drv[a].force_cmd_N = enable ? (double)f[a] : 0.0;
-        drv[a].prescribed = (uint8_t)(ideal && app->state == APP_EXECUTE);
+        drv[a].force_cmd_N = enable ? (double)force_N[a] : 0.0;
+        drv[a].prescribed = (uint8_t)(ideal && state == APP_EXECUTE);
         if (cmd_N != NULL) {
             cmd_N[a] = drv[a].force_cmd_N;
         }
     }
+    return enable;
+}
+
+bool sim_couple_parked(app_state_t state, bool enable)
+{
+    return state == APP_IDLE || state == APP_BOOT || (state == APP_FAULT && !enable);
+}
+
+void sim_couple_start(sim_couple_plant_t *p, const sim_scenario_t *sc)
+{
+    memset(p, 0, sizeof(*p));
+    sim_couple_plant_init(sc, p->ax, p->drv);
+    sim_rng_seed(&p->rng_sens, sc->seed ^ 0x5EB5C0DEDA7A5EEDull);
+}
+
+void sim_couple_sense(sim_couple_plant_t *p, const sim_scenario_t *sc, bool teach,
+                      uint32_t dev_tick, hal_sensors_t *hs)
+{
+    /* operator: demonstrates from the moment the device enters TEACH */
+    if (teach && !p->teaching) {
+        sim_operator_cfg_t opc = sc->op;
+        opc.duration_s = sc->duration_s;
+        sim_rng_t rng_op;
+        sim_rng_seed(&rng_op,
+                     sc->seed + p->teach_count); /* first demonstration: the scenario seed */
+        sim_operator_init(&p->op, &opc, &rng_op);
+        p->teach_start_tick = dev_tick;
+        p->teach_count++;
+    }
+    p->teaching = teach;
+    double fprof[2] = {0.0, 0.0};
+    const double p_true = p->ax[0].pos_m - sc->object.surface_m;
+    if (teach && sc->op.task != SIM_TASK_NONE) {
+        const double t = (double)(dev_tick - p->teach_start_tick) * sc->dt_s;
+        sim_operator_force(&p->op, t, p_true, sc->object.layer_depth_m, fprof);
+        fprof[1] += sim_operator_path_force(&p->op, t, sc->start_y_m, p->ax[1].pos_m);
+    }
+    for (int a = 0; a < 2; a++) {
+        p->drv[a].force_ext_N = fprof[a];
+        p->drv[a].hand_damping_Nspm = teach ? sc->op.hand_damping_Nspm : 0.0;
+    }
+    sim_sample_t smp;
+    sim_couple_sample(sc, p->ax, p->drv, &p->rng_sens, &smp);
+    sim_couple_to_hal(sim_couple_delay(p->ring, p->n_tick, sc->delay_samples, &smp), hs);
+}
+
+bool sim_couple_step(sim_couple_plant_t *p, const sim_scenario_t *sc, app_state_t state,
+                     bool enable, const fs_real_t force_N[2])
+{
+    (void)sim_couple_drive(sc, state, enable, force_N, p->drv, NULL);
+    sim_couple_advance(sc, p->ax, p->drv, sim_couple_parked(state, enable));
+    p->n_tick++;
     return enable;
 }
 

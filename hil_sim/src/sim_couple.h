@@ -31,8 +31,9 @@ typedef struct {
 
 #define SIM_COUPLE_RING 8u /* sensor pipeline length: > the largest delay_samples (4) */
 
-/** Sample the encoders and force sensors of the plant now (noise from rng, in that order). */
-void sim_couple_sample(const sim_scenario_t *sc, const sim_axis_t ax[2], const sim_drive_t drv[2],
+/** Sample the encoders and force sensors of the plant now (ax, drv: both axes; noise from rng,
+ *  in that order). */
+void sim_couple_sample(const sim_scenario_t *sc, const sim_axis_t *ax, const sim_drive_t *drv,
                        sim_rng_t *rng, sim_sample_t *out);
 
 /** The sensor pipeline: store tick n_tick's sample in ring and return the sample the device sees
@@ -59,11 +60,49 @@ void sim_couple_device_config(const sim_scenario_t *sc, app_config_t *cfg);
  *  prepared for sc's plant (its carriage and, on x, its object). */
 void sim_couple_plant_init(const sim_scenario_t *sc, sim_axis_t ax[2], sim_drive_t drv[2]);
 
-/** The device's actuator output (hal_host_get_actuator) into the drives: the command while
- *  enabled, else 0; the ideal drive is dynamics-compensated while executing. Returns the enable
- *  flag; cmd_N (may be NULL) receives the commands. */
+/** The device's actuator output into the drives: force_N while enable, else 0; the ideal drive
+ *  is dynamics-compensated while state is EXECUTE. Returns enable; cmd_N (may be NULL) receives
+ *  the commands. */
+bool sim_couple_drive(const sim_scenario_t *sc, app_state_t state, bool enable,
+                      const fs_real_t force_N[2], sim_drive_t drv[2], double cmd_N[2]);
+
+/** The host port's actuator output (hal_host_get_actuator) into the drives, as sim_couple_drive
+ *  for app's state (sim_couple_host.c). */
 bool sim_couple_actuate(const sim_scenario_t *sc, const app_t *app, sim_drive_t drv[2],
                         double cmd_N[2]);
+
+/** True when the drive parks the handle: the device in IDLE or BOOT (every TEACH or EXECUTE
+ *  starts where `hil_sim run` starts), or in FAULT once its stop ramp has switched the actuator
+ *  off (a free handle would drift out of the sensor range and no fault could be cleared). */
+bool sim_couple_parked(app_state_t state, bool enable);
+
+/** Plant, operator and sensor pipeline of a device run one tick at a time against a bus
+ *  (hil_sim serve, the processor-in-the-loop Cortex-M image of hil_sim pil). */
+typedef struct {
+    sim_axis_t ax[2];
+    sim_drive_t drv[2];
+    sim_operator_t op;
+    sim_rng_t rng_sens;
+    uint64_t teach_count;
+    uint32_t teach_start_tick;
+    bool teaching;
+    sim_sample_t ring[SIM_COUPLE_RING];
+    uint64_t n_tick;
+} sim_couple_plant_t;
+
+/** The plant at the scenario's start (sim_couple_plant_init), sensor noise seeded from sc. */
+void sim_couple_start(sim_couple_plant_t *p, const sim_scenario_t *sc);
+
+/** The sensors the device reads at its coming tick: teach = the device is in TEACH (the operator
+ *  demonstrates, seeded by sc's seed + the demonstration's number, its clock from dev_tick at the
+ *  start of TEACH), every sensor sampled and delayed. */
+void sim_couple_sense(sim_couple_plant_t *p, const sim_scenario_t *sc, bool teach,
+                      uint32_t dev_tick, hal_sensors_t *hs);
+
+/** After the device's tick: its actuator output (enable, force_N) into the drives for state,
+ *  then the plant over the tick, parked as sim_couple_parked says. Returns enable. */
+bool sim_couple_step(sim_couple_plant_t *p, const sim_scenario_t *sc, app_state_t state,
+                     bool enable, const fs_real_t force_N[2]);
 
 /** The host's heartbeat frame for node (E2E counter, telemetry period in ms, 0 = the device's). */
 void sim_couple_heartbeat_frame(uint8_t node, uint8_t counter, uint8_t telemetry_period_ms,

@@ -434,8 +434,7 @@ static bool run_tick(run_t *r, uint64_t n, double t, sim_summary_t *sum)
         sum->max_cmd_abs_N = fabs(cmd_log);
     }
     run_record(r, t, &s, cmd_log, f_hat, p_true, sum);
-    const app_state_t st = r->dev.app.state;
-    return st == APP_IDLE || st == APP_BOOT || (st == APP_FAULT && !enable);
+    return sim_couple_parked(r->dev.app.state, enable);
 }
 
 /* The summary's totals once the last tick has run. */

@@ -29,8 +29,18 @@ static int cm_program(void *ctx, uint32_t addr, const uint8_t *data, uint32_t le
     if ((uint64_t)addr + len > (uint64_t)f->sector_size * f->sector_count) {
         return -1;
     }
+    uint32_t i = 0u;
+    if (((f->base + addr) & 3u) == 0u) {
+        /* whole words (the write unit): 4 bytes per access */
+        volatile uint32_t *w = (volatile uint32_t *)(f->base + addr);
+        for (; i + 4u <= len; i += 4u) {
+            uint32_t d;
+            memcpy(&d, &data[i], 4u);
+            w[i / 4u] = w[i / 4u] & d; /* NOR: programming clears bits only */
+        }
+    }
     volatile uint8_t *p = (volatile uint8_t *)(f->base + addr);
-    for (uint32_t i = 0; i < len; i++) {
+    for (; i < len; i++) {
         p[i] = (uint8_t)(p[i] & data[i]); /* NOR: programming clears bits only */
     }
     return 0;

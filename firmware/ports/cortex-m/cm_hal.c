@@ -1,29 +1,325 @@
-/* Register-level HAL of the Cortex-M images (see cm_hal.h). */
-#include "cm_hal.h"
+/* hal.h on qemu's MPS2 boards: CAN over SLCAN, time, flash, random, keys, reset, watchdog
+ * (see cm_port.h). Sensors and actuator: the image that links the port provides them
+ * (hil_sim/pil/pil_plant.c). */
+#include <string.h>
 
-cm_hal_regs_t cm_hal_regs;
+#include "boot_cm_flash.h"
+#include "cm_board.h"
+#include "cm_devinfo.h"
+#include "cm_port.h"
+#include "cm_slcan.h"
+#include "cm_uart.h"
+#include "hal.h"
+#include "sec_sha256.h"
+#include "cm_semihost.h"
 
-void cm_hal_sensors_read(cm_hal_sensors_t *out)
+#define CM_CAN_RX_QUEUE 256u /* received frames (power of two); overflow drops the newest */
+
+void SysTick_Handler(void);
+void NMI_Handler(void);
+
+static slcan_t g_slcan;
+static can_frame_t g_rx[CM_CAN_RX_QUEUE];
+static uint32_t g_rx_head, g_rx_tail;
+static can_frame_t g_tx[CM_PORT_TX_QUEUE];
+static uint32_t g_tx_head, g_tx_tail;
+static volatile uint32_t g_ms; /* SysTick count since power-up */
+static volatile uint32_t g_pending;
+static volatile uint32_t g_busy;
+static volatile uint32_t g_overruns;
+static volatile uint32_t g_missed;
+static volatile uint32_t g_skipped;
+static uint32_t g_ms0;      /* g_ms when the ticks started */
+static uint64_t g_host_us0; /* host time then (0: no pacing) */
+static bool g_reset_requested;
+static boot_cm_flash_t g_skill_fl, g_fw_fl, g_sec_fl;
+static fls_dev_t g_skill_dev, g_fw_dev, g_sec_dev;
+static uint8_t g_pool[SEC_SHA256_LEN]; /* random: SHA-256 chain over the seed */
+static uint32_t g_pool_counter;
+
+/* development key of the image tag (host/forceskill/model/fwimage.py DEV_KEY, docs/update.md) */
+static const uint8_t g_fw_key[32] = {
+    0x40, 0x41, 0x42, 0x43, 0x44, 0x45, 0x46, 0x47, 0x48, 0x49, 0x4a, 0x4b, 0x4c, 0x4d, 0x4e, 0x4f,
+    0x50, 0x51, 0x52, 0x53, 0x54, 0x55, 0x56, 0x57, 0x58, 0x59, 0x5a, 0x5b, 0x5c, 0x5d, 0x5e, 0x5f};
+
+void SysTick_Handler(void)
 {
-    for (uint32_t a = 0u; a < CM_HAL_AXES; a++) {
-        out->enc_count[a] = cm_hal_regs.sensors.enc_count[a];
-        out->force_count[a] = cm_hal_regs.sensors.force_count[a];
+    g_ms = g_ms + 1u;
+    if (g_busy != 0u) {
+        g_missed = 1u; /* the running tick took longer than its period: an overrun */
+    } else if (g_pending != 0u) {
+        g_skipped = g_skipped + 1u; /* two SysTicks while the core slept: qemu caught up with
+                                       host time (icount sleep), not the code's overrun */
+    }
+    g_pending = 1u;
+}
+
+void NMI_Handler(void)
+{
+    /* first watchdog expiry: stop feeding; the second expiry resets the board */
+    for (;;) {
+        __asm__ volatile("wfi");
     }
 }
 
-void cm_hal_actuator_write(const int32_t count[CM_HAL_AXES])
+void cm_port_init(const uint8_t *seed, uint32_t seed_len)
 {
-    for (uint32_t a = 0u; a < CM_HAL_AXES; a++) {
-        cm_hal_regs.actuator_count[a] = count[a];
+    slcan_init(&g_slcan);
+    g_rx_head = g_rx_tail = 0u;
+    g_tx_head = g_tx_tail = 0u;
+    cm_uart_init();
+    boot_cm_flash_init(&g_skill_fl, &g_skill_dev, CM_FLASH_SKILL_ADDR, CM_FLASH_SKILL_SECTOR,
+                       CM_FLASH_SKILL_SECTORS);
+    boot_cm_flash_init(&g_fw_fl, &g_fw_dev, CM_FLASH_FW_ADDR, CM_FLASH_FW_SECTOR,
+                       CM_FLASH_FW_SECTORS);
+    boot_cm_flash_init(&g_sec_fl, &g_sec_dev, CM_FLASH_SEC_ADDR, CM_FLASH_SEC_SECTOR, 2u);
+    sec_sha256(seed, seed_len, g_pool);
+}
+
+void cm_port_start_ticks(bool pace)
+{
+    g_ms0 = g_ms;
+    g_host_us0 = pace ? sh_host_elapsed_us() : 0u;
+    CM_WDG_LOCK = CM_WDG_UNLOCK_KEY;
+    CM_WDG_LOAD = CM_CORE_CLOCK_HZ / 1000u * CM_PORT_WDG_TIMEOUT_MS;
+    CM_WDG_CTRL = CM_WDG_CTRL_INTEN_RESEN;
+    CM_WDG_LOCK = 0u;
+    CM_SCB_SHPR3 = (CM_SCB_SHPR3 & 0x00FFFFFFu) | 0x80000000u;
+    CM_SYST_RVR = CM_CORE_CLOCK_HZ / CM_PORT_TICK_HZ - 1u;
+    CM_SYST_CVR = 0u;
+    CM_SYST_CSR = CM_SYST_CSR_ENABLE_TICKINT_CLK;
+}
+
+bool cm_port_wait_tick(void)
+{
+    /* pacing: the board's clock follows its instructions (qemu -icount, idle time skipped), so
+     * while the device is ahead of the host's clock, the SysTick is held (it does not count the
+     * instructions of this wait) until the host has caught up */
+    const uint64_t due_us = (uint64_t)(g_ms - g_ms0) * 1000u;
+    if (g_host_us0 != 0u && sh_host_elapsed_us() - g_host_us0 < due_us) {
+        CM_SYST_CSR = 0u;
+        while (sh_host_elapsed_us() - g_host_us0 < due_us) {
+            /* between two looks at the host's clock, CM_PORT_PACE_SPIN iterations without a
+             * semihosting call: each call takes qemu's global lock, which the I/O thread
+             * needs to hand the UART its received bytes */
+            for (volatile uint32_t n = 0u; n < CM_PORT_PACE_SPIN; n = n + 1u) {
+            }
+        }
+        CM_SYST_CSR = CM_SYST_CSR_ENABLE_TICKINT_CLK;
+    }
+    while (g_pending == 0u) {
+        __asm__ volatile("wfi");
+    }
+    __asm__ volatile("cpsid i" ::: "memory");
+    g_pending = 0u;
+    g_busy = 1u;
+    const bool missed = g_missed != 0u;
+    g_missed = 0u;
+    __asm__ volatile("cpsie i" ::: "memory");
+    cm_uart_rx_budget(CM_PORT_RX_BYTES_PER_TICK);
+    if (missed) {
+        g_overruns = g_overruns + 1u;
+    }
+    return missed;
+}
+
+/* Frames of the transmit queue to the UART as SLCAN text: at most budget frames. */
+static void can_tx_drain(uint32_t budget)
+{
+    for (uint32_t n = 0u; n < budget && g_tx_tail != g_tx_head; n++) {
+        char text[SLCAN_FRAME_TEXT_MAX];
+        const uint32_t len = slcan_encode(&g_tx[g_tx_tail % CM_PORT_TX_QUEUE], text);
+        if (g_slcan.open && !cm_uart_write(text, len)) {
+            return; /* the host does not read: retry next tick */
+        }
+        g_tx_tail++;
     }
 }
 
-void cm_hal_telemetry_write(const uint8_t frame[8])
+void cm_port_end_tick(void)
 {
-    for (uint32_t w = 0u; w < 2u; w++) {
-        const uint8_t *b = &frame[4u * w];
-        cm_hal_regs.telemetry[w] = (uint32_t)b[0] | ((uint32_t)b[1] << 8) | ((uint32_t)b[2] << 16) |
-                                   ((uint32_t)b[3] << 24);
+    can_tx_drain(CM_PORT_TX_FRAMES_PER_TICK);
+    CM_WDG_LOCK = CM_WDG_UNLOCK_KEY;
+    CM_WDG_INTCLR = 1u; /* reload the watchdog */
+    CM_WDG_LOCK = 0u;
+    if (g_reset_requested) {
+        __asm__ volatile("dsb" ::: "memory");
+        CM_SCB_AIRCR = CM_SCB_AIRCR_SYSRESETREQ;
+        for (;;) {
+            __asm__ volatile("wfi");
+        }
     }
-    cm_hal_regs.telemetry_seq = cm_hal_regs.telemetry_seq + 1u;
+    g_busy = 0u;
+}
+
+uint32_t cm_port_cycles(void)
+{
+    uint32_t ms;
+    uint32_t cvr;
+    do {
+        ms = g_ms;
+        cvr = CM_SYST_CVR;
+    } while (ms != g_ms);
+    return ms * (CM_SYST_RVR + 1u) + (CM_SYST_RVR - cvr);
+}
+
+uint32_t cm_port_overruns(void)
+{
+    return g_overruns;
+}
+
+uint32_t cm_port_skipped(void)
+{
+    return g_skipped;
+}
+
+/* ---- CAN over SLCAN ---- */
+
+bool hal_can_send(const can_frame_t *frame)
+{
+    if (frame->id > CAN_STD_ID_MASK || frame->dlc > CAN_FRAME_MAX_DLC) {
+        return true; /* not a classic frame: nothing to send */
+    }
+    if (!g_slcan.open) {
+        return true; /* no adapter listening: the frame is lost */
+    }
+    if (g_tx_head - g_tx_tail >= CM_PORT_TX_QUEUE) {
+        return false;
+    }
+    g_tx[g_tx_head % CM_PORT_TX_QUEUE] = *frame;
+    g_tx_head++;
+    return true;
+}
+
+uint32_t hal_can_tx_free(void)
+{
+    return CM_PORT_TX_QUEUE - (g_tx_head - g_tx_tail);
+}
+
+bool hal_can_receive(can_frame_t *frame)
+{
+    uint8_t b;
+    while (g_rx_tail == g_rx_head && cm_uart_getc(&b)) {
+        char reply[SLCAN_REPLY_MAX];
+        uint32_t reply_len = 0u;
+        can_frame_t f;
+        if (slcan_feed(&g_slcan, b, &f, reply, &reply_len) &&
+            g_rx_head - g_rx_tail < CM_CAN_RX_QUEUE) {
+            g_rx[g_rx_head % CM_CAN_RX_QUEUE] = f;
+            g_rx_head++;
+        }
+        if (reply_len > 0u) {
+            (void)cm_uart_write(reply, reply_len);
+        }
+    }
+    if (g_rx_tail == g_rx_head) {
+        return false;
+    }
+    *frame = g_rx[g_rx_tail % CM_CAN_RX_QUEUE];
+    g_rx_tail++;
+    return true;
+}
+
+bool hal_can_bus_off(void)
+{
+    return false;
+}
+
+bool hal_can_tx_idle(void)
+{
+    return g_tx_tail == g_tx_head && cm_uart_tx_empty();
+}
+
+/* ---- time ---- */
+
+uint64_t hal_time_us(void)
+{
+    uint32_t ms;
+    uint32_t cvr;
+    do {
+        ms = g_ms;
+        cvr = CM_SYST_CVR;
+    } while (ms != g_ms);
+    const uint32_t per_us = CM_CORE_CLOCK_HZ / 1000000u;
+    const uint32_t sub_us = (CM_SYST_RVR - cvr) / per_us;
+    return (uint64_t)ms * 1000u + (uint64_t)(sub_us < 1000u ? sub_us : 999u);
+}
+
+/* ---- platform ---- */
+
+int hal_random(uint8_t *buf, uint32_t len)
+{
+    /* the board has no entropy source: a SHA-256 chain over the seed `hil_sim pil` passes at
+     * start (from the host's getrandom) and the SysTick phase of each call */
+    uint32_t done = 0u;
+    while (done < len) {
+        uint8_t in[SEC_SHA256_LEN + 8u];
+        memcpy(in, g_pool, SEC_SHA256_LEN);
+        const uint32_t mix[2] = {g_pool_counter++, CM_SYST_CVR};
+        memcpy(&in[SEC_SHA256_LEN], mix, sizeof mix);
+        uint8_t out[SEC_SHA256_LEN];
+        sec_sha256(in, (uint32_t)sizeof in, out);
+        memcpy(g_pool, out, SEC_SHA256_LEN);
+        out[0] ^= 0x5Au; /* output differs from the next chain input */
+        sec_sha256(out, SEC_SHA256_LEN, out);
+        const uint32_t n = (len - done < SEC_SHA256_LEN) ? len - done : SEC_SHA256_LEN;
+        memcpy(&buf[done], out, n);
+        done += n;
+    }
+    return 0;
+}
+
+const fls_dev_t *hal_flash(void)
+{
+    return &g_skill_dev;
+}
+
+const fls_dev_t *hal_fw_flash(void)
+{
+    return &g_fw_dev;
+}
+
+uint32_t hal_fw_slot_sectors(void)
+{
+    return CM_FLASH_FW_SLOT_SECTORS;
+}
+
+const uint8_t *hal_fw_key(uint8_t *len)
+{
+    *len = (uint8_t)sizeof(g_fw_key);
+    return g_fw_key;
+}
+
+static uint32_t devinfo_u32(const volatile uint8_t *p)
+{
+    return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) | ((uint32_t)p[3] << 24);
+}
+
+const uint8_t *hal_device_secret(uint8_t level, uint8_t *len)
+{
+    /* from the device-unique area (cm_devinfo.h); unknown level or unprovisioned board: 0 */
+    const volatile uint8_t *d = (const volatile uint8_t *)(uintptr_t)CM_DEVINFO_ADDR;
+    const uint32_t i = level == 1u ? 0u : (level == 3u ? 1u : CM_DEVINFO_LEVELS);
+    *len = 0u;
+    if (i >= CM_DEVINFO_LEVELS || devinfo_u32(d) != CM_DEVINFO_MAGIC ||
+        devinfo_u32(&d[4]) != CM_DEVINFO_VERSION) {
+        return (const uint8_t *)(uintptr_t)CM_DEVINFO_ADDR;
+    }
+    const uint32_t off = CM_DEVINFO_SECRET_OFF(i);
+    const uint8_t n = d[off];
+    if (n >= 1u && n <= CM_DEVINFO_SECRET_MAX) {
+        *len = n;
+    }
+    return (const uint8_t *)(uintptr_t)(CM_DEVINFO_ADDR + off + 1u);
+}
+
+const fls_dev_t *hal_sec_flash(void)
+{
+    return &g_sec_dev;
+}
+
+void hal_request_reset(uint8_t type)
+{
+    (void)type;
+    g_reset_requested = true;
 }

@@ -3,8 +3,7 @@
  * code (-nostartfiles): no heap, no constructors, no argv. */
 #include <stdint.h>
 
-#include "cm_bench.h"
-#include "semihost.h"
+#include "cm_semihost.h"
 
 /* Linker-script symbols: addresses only (sections are word aligned). */
 extern uint32_t __data_load[], __data_start[], __data_end[], __bss_start[], __bss_end[];
@@ -13,8 +12,10 @@ int main(void);
 void Reset_Handler(void);
 void Default_Handler(void);
 void HardFault_Handler(void);
+void NMI_Handler(void) __attribute__((weak, alias("Default_Handler")));
 void SysTick_Handler(void) __attribute__((weak, alias("Default_Handler")));
-
+void UART0RX_Handler(void) __attribute__((weak, alias("Default_Handler")));
+void UART0TX_Handler(void) __attribute__((weak, alias("Default_Handler")));
 
 #define SCB_CPACR (*(volatile uint32_t *)0xE000ED88u)
 
@@ -50,11 +51,13 @@ void HardFault_Handler(void)
 
 typedef void (*cm_vector_t)(void);
 
-/* Cortex-M core vectors (16 entries); no external interrupt is enabled by these images. */
-__attribute__((section(".vectors"), used)) static const cm_vector_t cm_vectors[16] = {
+#define CM_N_VECTORS 48u /* 16 core + 32 external (the MPS2 boards use IRQ 0..31) */
+
+/* Core vectors and the external interrupts this port uses: UART0 RX (IRQ 0) and TX (IRQ 1). */
+__attribute__((section(".vectors"), used)) static const cm_vector_t cm_vectors[CM_N_VECTORS] = {
     (cm_vector_t)(uintptr_t)__stack_top, /* initial main stack pointer */
     Reset_Handler,
-    Default_Handler,   /* NMI */
+    NMI_Handler,       /* NMI: the watchdog's first expiry */
     HardFault_Handler, /* HardFault */
     Default_Handler,   /* MemManage */
     Default_Handler,   /* BusFault */
@@ -68,4 +71,36 @@ __attribute__((section(".vectors"), used)) static const cm_vector_t cm_vectors[1
     0,               /* reserved */
     Default_Handler, /* PendSV */
     SysTick_Handler, /* SysTick */
+    UART0RX_Handler, /* IRQ 0 */
+    UART0TX_Handler, /* IRQ 1 */
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
+    Default_Handler,
 };

@@ -3,7 +3,9 @@
 Starts `hil_sim serve` (pressing task 1 of the paper), then through python-can's socketcand
 interface only: record a demonstration in TEACH (.blf), fit it, upload it (UDS, read-back
 verified), execute it at goal 1x and 1.5x, and write DIR/can_report.md, DIR/can_summary.json and
-DIR/can_tracking.png. Exactly the commands a user types (docs/protocol.md, "The journey over CAN")."""
+DIR/can_tracking.png. Exactly the commands a user types (docs/protocol.md, "The journey over CAN").
+With --target cortex-m4f|cortex-m3 the device is the product's Cortex-M image under qemu
+(`hil_sim pil`, docs/cortex-m.md), reached through python-can's slcan interface instead."""
 
 from __future__ import annotations
 
@@ -40,33 +42,27 @@ def _cmd(args: argparse.Namespace) -> int:
     if not scenario.is_file():
         raise FsError(ERR_IO, f"scenario not found: {str(scenario)!r}")
     hil = find_hil_sim(args.hil_sim, ERR_IO)
-    srv = subprocess.Popen(
-        [
-            str(hil),
-            "serve",
-            "--port",
-            "0",
-            "--speed",
-            str(args.speed),
-            "--scenario",
-            str(scenario),
-            "--host-timeout",
-            str(args.host_timeout),
-        ],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
+    if args.target == "host":
+        what, cmd = "hil_sim serve", [str(hil), "serve", "--port", "0", "--speed", str(args.speed)]
+    else:
+        if args.speed != 1.0:
+            raise FsError(ERR_IO, f"--speed applies to the simulator only, not to --target {args.target}")
+        what, cmd = "hil_sim pil", [str(hil), "pil", "--target", args.target, "--port", "0"]
+    cmd += ["--scenario", str(scenario), "--host-timeout", str(args.host_timeout)]
+    srv = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         line = srv.stdout.readline() if srv.stdout else ""
         if "listening on" not in line:
             raise FsError(
                 ERR_IO,
-                f"hil_sim serve did not start: {line.strip() or (srv.stderr.read() if srv.stderr else '')}",
+                f"{what} did not start: {line.strip() or (srv.stderr.read() if srv.stderr else '')}",
             )
         port = int(line.split("127.0.0.1:")[1].split()[0])
         print(line.strip(), flush=True)
-        bus = ["-i", "socketcand", "-c", "can0", "--bus-kwargs", "host=127.0.0.1", f"port={port}"]
+        if args.target == "host":
+            bus = ["-i", "socketcand", "-c", "can0", "--bus-kwargs", "host=127.0.0.1", f"port={port}"]
+        else:
+            bus = ["-i", "slcan", "-c", f"socket://127.0.0.1:{port}"]
         t0 = time.perf_counter()
 
         def step(*argv: str) -> None:
@@ -121,6 +117,7 @@ def _cmd(args: argparse.Namespace) -> int:
     ratio = float(np.max(runs["1.5"]["f_contact"]) / np.max(runs["1"]["f_contact"]))
     summary = {
         "scenario": scenario.name,
+        "target": args.target,
         "speed": args.speed,
         "wall_s": wall,
         "runs": [{"goal_scale": float(g), **{k: float(v) for k, v in f.items()}} for g, f in figs.items()],
@@ -139,13 +136,19 @@ def _cmd(args: argparse.Namespace) -> int:
         ax.plot(c["t"], c["f_hat"], "k--", lw=0.9, label=f"reference f_hat, goal x{g}", zorder=5)
     ax.set_xlabel("t [s]")
     ax.set_ylabel("force [N]")
-    ax.set_title("execution over CAN (hil_sim serve, socketcand)")
+    link = "hil_sim serve, socketcand" if args.target == "host" else f"{args.target} image, slcan"
+    ax.set_title(f"execution over CAN ({link})")
     ax.legend(loc="upper left", fontsize=8)
     fig.tight_layout()
     try:
         write_figure(fig, out / "can_tracking.png", dpi=120)
     finally:
         plt.close(fig)
+    where = (
+        f"`hil_sim serve` (speed {args.speed:g}), driven through python-can's socketcand interface"
+        if args.target == "host"
+        else f"the {args.target} image under qemu (`hil_sim pil`), driven through python-can's slcan interface"
+    )
     rows = "\n".join(
         f"| {g}x | {f['max_ref_N']:.3f} | {f['max_force_N']:.3f} | {f['tracking_max_pct']:.2f} | "
         f"{f['tracking_rms_pct']:.2f} |"
@@ -154,8 +157,7 @@ def _cmd(args: argparse.Namespace) -> int:
     write_file(
         out / "can_report.md",
         (
-            f"# The journey over CAN\n\nScenario `{scenario.name}` on `hil_sim serve` (speed {args.speed:g}), "
-            f"driven through python-can's socketcand interface: record (TEACH) -> fit -> upload (UDS, "
+            f"# The journey over CAN\n\nScenario `{scenario.name}` on {where}: record (TEACH) -> fit -> upload (UDS, "
             f"read-back verified) -> run at goal 1x and 1.5x. Wall time {wall:.1f} s.\n\n"
             "| goal | max reference [N] | max contact force [N] | tracking max [%] | tracking RMS [%] |\n"
             "|---|---:|---:|---:|---:|\n"
@@ -183,6 +185,13 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         "--scenario",
         metavar="TOML",
         help="simulator scenario (default: the packaged pressing_task1_demo.toml)",
+    )
+    p.add_argument(
+        "--target",
+        choices=("host", "cortex-m4f", "cortex-m3"),
+        default="host",
+        help="the device: host = the firmware in hil_sim serve (socketcand); cortex-m4f / cortex-m3 = "
+        "the product's Cortex-M image under qemu (hil_sim pil, slcan)",
     )
     p.add_argument("--speed", type=float, default=1.0, metavar="S", help="simulator speed factor (1)")
     p.add_argument("--duration", type=float, default=6.0, metavar="S", help="demonstration length (6 s)")

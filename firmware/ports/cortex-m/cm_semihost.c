@@ -1,8 +1,10 @@
 /* Semihosting calls: r0 = operation, r1 = argument, bkpt 0xAB. */
-#include "semihost.h"
+#include "cm_semihost.h"
 
 #define SH_SYS_WRITE0 0x04u
 #define SH_SYS_EXIT 0x18u
+#define SH_SYS_ELAPSED 0x30u
+#define SH_SYS_TICKFREQ 0x31u
 #define SH_ADP_APPLICATION_EXIT 0x20026u
 #define SH_ADP_RUNTIME_ERROR 0x20023u
 #define SH_BUF_SIZE 1024u
@@ -74,4 +76,18 @@ void sh_exit(int ok)
     (void)sh_call(SH_SYS_EXIT, ok ? SH_ADP_APPLICATION_EXIT : SH_ADP_RUNTIME_ERROR);
     for (;;) {
     }
+}
+
+uint64_t sh_host_elapsed_us(void)
+{
+    static uint32_t ticks_per_us;
+    if (ticks_per_us == 0u) {
+        const uint32_t f = sh_call(SH_SYS_TICKFREQ, 0u);
+        ticks_per_us = (f >= 1000000u && f != 0xFFFFFFFFu) ? f / 1000000u : 1u;
+    }
+    uint32_t block[2] = {0u, 0u};
+    if (sh_call(SH_SYS_ELAPSED, (uint32_t)(uintptr_t)block) != 0u) {
+        return 0u;
+    }
+    return (((uint64_t)block[1] << 32) | block[0]) / ticks_per_us;
 }

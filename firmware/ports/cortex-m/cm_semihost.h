@@ -1,7 +1,7 @@
 /* ARM semihosting (bkpt 0xAB on M-profile) for output and exit under qemu
  * (-semihosting-config enable=on,target=native). Debug-only I/O: a real device has no host. */
-#ifndef SEMIHOST_H
-#define SEMIHOST_H
+#ifndef CM_SEMIHOST_H
+#define CM_SEMIHOST_H
 
 #include <stdint.h>
 
@@ -20,7 +20,11 @@ void sh_buf_hex32(uint32_t v);
 /** Write out the line buffer. */
 void sh_flush(void);
 
+/** Host time elapsed since the emulator started, in microseconds (SYS_ELAPSED / SYS_TICKFREQ);
+ *  0 if the host does not provide it. */
+uint64_t sh_host_elapsed_us(void);
+
 /** Stop the program: qemu exits with status 0 (ok != 0) or 1. Does not return. */
 void sh_exit(int ok) __attribute__((noreturn));
 
-#endif /* SEMIHOST_H */
+#endif /* CM_SEMIHOST_H */

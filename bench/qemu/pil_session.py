@@ -1,0 +1,95 @@
+#!/usr/bin/env python3
+"""Drive the Cortex-M image (`hil_sim pil`) through the ticks bench/qemu_tick.sh counts, over
+python-can's slcan interface: IDLE ticks, then a skill download, then an execution of that skill
+during which the host reads the skill back (UDS RequestUpload: EXECUTE ticks while a transfer
+runs), then more EXECUTE ticks, then a board reset (ECUReset: the second boot finds the skill stored).
+The image marks each tick's kind (cm_port_mark_*).
+Under the exec trace the image runs 20-50 times slower than real time, so the host heartbeat
+goes every --heartbeat-s of wall time (0.5 s: about every 10-25 ms of device time, as a host
+against a device in real time) instead of the host tools' 10 ms.
+  pil_session.py PORT SKILL [--exec-s S]"""
+from __future__ import annotations
+
+import argparse
+import struct
+import sys
+import time
+from pathlib import Path
+
+import can
+
+from forceskill.link import uds as U
+from forceskill.link.device import Device
+
+
+def wait_ticks(dev: Device, n: int, timeout_s: float) -> None:
+    t0 = dev.status.tick
+    end = time.monotonic() + timeout_s
+    while ((dev.status.tick - t0) & 0xFFFFFF) < n:
+        if time.monotonic() > end:
+            raise SystemExit(f"pil_session: the device did not advance {n} ticks in {timeout_s} s")
+        time.sleep(0.05)
+
+
+def main(argv: list[str]) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("port", type=int)
+    ap.add_argument("skill", type=Path)
+    ap.add_argument("--exec-s", type=float, default=1.0, help="execution length (s of device time)")
+    ap.add_argument("--heartbeat-s", type=float, default=0.5, help="host heartbeat period (s of wall time)")
+    ap.add_argument("--timeout", type=float, default=600.0, help="wall-clock limit of each phase (s)")
+    args = ap.parse_args(argv)
+    # under the trace a consecutive frame can be seconds of wall time apart: ISO-TP's 1 s
+    # receive timeouts of the host tools would drop the transfer
+    base_params = U.isotp_params
+    U.isotp_params = lambda: {**base_params(), "rx_flowcontrol_timeout": int(args.timeout * 1000),
+                              "rx_consecutive_frame_timeout": int(args.timeout * 1000)}
+    image = args.skill.read_bytes()
+    bus = can.Bus(interface="slcan", channel=f"socket://127.0.0.1:{args.port}", sleep_after_open=0.1)
+    try:
+        with Device(bus, node=0, channel="slcan", timeout_s=args.timeout) as dev:
+            dev.wait_present()
+            wait_ticks(dev, 1200, args.timeout)          # past the 1 s SecurityAccess delay
+            with U.uds_client(dev, request_timeout_s=args.timeout) as client:
+                U.unlock(client, 0, 0x02)
+                U.download(client, 0, 1, image)
+            wait_ticks(dev, 200, args.timeout)
+            dev.telemetry_period_ms = 1
+            m = dev._m["HostHeartbeat"]
+            hb = bus.send_periodic(can.Message(arbitration_id=m.frame_id, data=bytearray(8), is_extended_id=False),
+                                   args.heartbeat_s, store_task=False, modifier_callback=dev._heartbeat_update)
+            try:
+                with U.uds_client(dev, request_timeout_s=args.timeout) as client:
+                    # RequestUpload needs the programming session, entered while IDLE
+                    U.call("session change", lambda: client.change_session(1), 0)
+                    U.call("session change", lambda: client.change_session(2), 0)
+                    data = struct.pack(">BHHB", 1, 1000, 1000, 2)
+                    U.call("start", lambda: client.start_routine(U.RID_RUN_SKILL, data), 0)
+                    dev.wait_state({"EXECUTE"}, args.timeout)
+                    wait_ticks(dev, int(args.exec_s * 500), args.timeout)
+                    U.upload(client, 0, 1, len(image))       # read-back while executing
+                    print(f"pil_session: read-back done at tick {dev.status.tick}", flush=True)
+                    wait_ticks(dev, int(args.exec_s * 500), args.timeout)
+                    dev.command_until("idle", {"IDLE", "FAULT"}, args.timeout)
+            finally:
+                hb.stop()
+            st = dev.status
+            print(f"pil_session: done, device {st.state}, fault {st.fault_code}, tick {st.tick}")
+            # a board reset: the second boot finds the skill in its flash (bench/qemu_tick.sh
+            # counts both boots)
+            tick0 = st.tick
+            with U.uds_client(dev, request_timeout_s=args.timeout) as client:
+                U.call("reset", lambda: client.ecu_reset(1), 0)
+            end = time.monotonic() + args.timeout
+            while dev.status.tick >= tick0 or dev.status.tick < 50:
+                if time.monotonic() > end:
+                    raise SystemExit("pil_session: the device did not restart after ECUReset")
+                time.sleep(0.05)
+            print(f"pil_session: restarted, device {dev.status.state}", flush=True)
+            return 0 if st.fault_code == 0 else 1
+    finally:
+        bus.shutdown()
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

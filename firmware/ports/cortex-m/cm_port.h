@@ -1,0 +1,86 @@
+/* The Cortex-M port of firmware/hal/hal.h on qemu's MPS2 boards (docs/cortex-m.md): CAN over
+ * UART0 in SLCAN (cm_slcan.h, cm_uart.h), time from the 1 kHz SysTick, flash in the PSRAM
+ * (NOR semantics), the CMSDK watchdog, reset by SYSRESETREQ. Sensors and actuator are the
+ * processor-in-the-loop plant (hil_sim/pil/pil_plant.h). This header is the port's own part
+ * beyond hal.h, used by the image's main loop (hil_sim/pil/pil_main.c). */
+#ifndef CM_PORT_H
+#define CM_PORT_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#define CM_PORT_TICK_HZ 1000u
+#define CM_PORT_WDG_TIMEOUT_MS 200u
+/* Pacing (cm_port_wait_tick): iterations of an empty loop between two reads of the host's clock,
+ * ~8 us of the board's time (4 instructions each at 250 MIPS) */
+#define CM_PORT_PACE_SPIN 500u
+/* Bytes of SLCAN text the UART takes per tick: 192 = 8.7 frames of 8 bytes per ms, the frame rate
+ * of a 1 Mbit/s CAN bus (~7.4 frames per ms) with a margin. */
+#define CM_PORT_RX_BYTES_PER_TICK 192u
+/* The transmit side likewise: a queue of CM_PORT_TX_QUEUE frames (hal_can_send refuses when it is
+ * full, as a CAN controller's mailboxes do), of which up to CM_PORT_TX_FRAMES_PER_TICK leave per
+ * tick. */
+#define CM_PORT_TX_QUEUE 32u
+#define CM_PORT_TX_FRAMES_PER_TICK 9u /* watchdog: NMI after this, board reset after twice */
+
+/* Flash map in the PSRAM (cm_board.h): the skill slots (hal_flash), the firmware update
+ * region (hal_fw_flash: boot state, slot A, slot B), the geometry of the host port, and the
+ * SecurityAccess record (hal_sec_flash); the device-unique area is cm_devinfo.h. */
+#define CM_FLASH_SKILL_ADDR 0x21000000u
+#define CM_FLASH_SKILL_SECTOR 8192u
+#define CM_FLASH_SKILL_SECTORS 16u
+#define CM_FLASH_FW_ADDR 0x21100000u
+#define CM_FLASH_FW_SECTOR 4096u
+#define CM_FLASH_FW_SLOT_SECTORS 64u
+#define CM_FLASH_FW_SECTORS (2u + 2u * CM_FLASH_FW_SLOT_SECTORS)
+/* hal_sec_flash: two sectors of the SecurityAccess attempt record */
+#define CM_FLASH_SEC_ADDR 0x21200000u
+#define CM_FLASH_SEC_SECTOR 4096u
+
+/** Start the port: UART and SLCAN, flash, random seed (from seed, seed_len bytes). */
+void cm_port_init(const uint8_t *seed, uint32_t seed_len);
+
+/** Start the SysTick at CM_PORT_TICK_HZ and the watchdog (after the application's init). pace:
+ *  the emulator's clock runs free (qemu -icount sleep=off), so hold each tick until the host's
+ *  clock (semihosting) has reached the device's time. */
+void cm_port_start_ticks(bool pace);
+
+/** SysTicks that found the previous one still pending while the core slept (the emulator's
+ *  clock caught up with the host's after the host descheduled it; not an overrun). */
+uint32_t cm_port_skipped(void);
+
+/** Core clock cycles since the SysTick started (wraps every 172 s; differences are exact). */
+uint32_t cm_port_cycles(void);
+
+/** Sleep until the next SysTick; returns true if the previous tick overran (a SysTick arrived
+ *  while it was running). */
+bool cm_port_wait_tick(void);
+
+/** End of one tick: feed the watchdog; perform a requested reset (hal_request_reset). */
+void cm_port_end_tick(void);
+
+/** Ticks that started late (a SysTick arrived while a tick was still running). */
+uint32_t cm_port_overruns(void);
+
+/** Empty functions around the application tick, which bench/qemu_tick.sh finds in the exec trace
+ *  to count the instructions of each tick (no other effect). */
+void cm_port_mark_begin(void);
+
+/** See cm_port_mark_begin. */
+void cm_port_mark_end(void);
+
+/** Empty functions called after cm_port_mark_end, one per kind of tick, so the trace tells which
+ *  kind the counted tick was: IDLE, EXECUTE, EXECUTE while a UDS transfer sends its data
+ *  (ISO-TP transmitting, e.g. a read-back), anything else. */
+void cm_port_mark_idle(void);
+
+/** See cm_port_mark_idle. */
+void cm_port_mark_execute(void);
+
+/** See cm_port_mark_idle. */
+void cm_port_mark_upload(void);
+
+/** See cm_port_mark_idle. */
+void cm_port_mark_other(void);
+
+#endif /* CM_PORT_H */

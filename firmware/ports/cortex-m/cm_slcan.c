@@ -1,0 +1,215 @@
+/* SLCAN codec (see cm_slcan.h). */
+#include "cm_slcan.h"
+
+#include <string.h>
+
+#define SLCAN_CR '\r'
+#define SLCAN_BEL '\a'
+
+static const char HEX[16] = {'0', '1', '2', '3', '4', '5', '6', '7',
+                             '8', '9', 'A', 'B', 'C', 'D', 'E', 'F'};
+
+void slcan_init(slcan_t *s)
+{
+    memset(s, 0, sizeof(*s));
+    s->bitrate_code = 8u;
+    s->open = true; /* auto-startup: a board reset does not silence a connected host */
+}
+
+/* Value of one hex digit, or -1. */
+static int32_t hex_digit(char c)
+{
+    if (c >= '0' && c <= '9') {
+        return (int32_t)(c - '0');
+    }
+    if (c >= 'A' && c <= 'F') {
+        return (int32_t)(c - 'A') + 10;
+    }
+    if (c >= 'a' && c <= 'f') {
+        return (int32_t)(c - 'a') + 10;
+    }
+    return -1;
+}
+
+/* n hex digits at p -> *out; false if one is not a hex digit. */
+static bool hex_value(const char *p, uint32_t n, uint32_t *out)
+{
+    uint32_t v = 0u;
+    for (uint32_t i = 0u; i < n; i++) {
+        const int32_t d = hex_digit(p[i]);
+        if (d < 0) {
+            return false;
+        }
+        v = (v << 4) | (uint32_t)d;
+    }
+    *out = v;
+    return true;
+}
+
+/* A frame command: id_digits 3 (t, r) or 8 (T, R); data unless remote. Validates the length. */
+static bool parse_frame(const char *line, uint32_t len, uint32_t id_digits, bool remote,
+                        can_frame_t *f)
+{
+    if (len < 1u + id_digits + 1u) {
+        return false;
+    }
+    uint32_t id = 0u;
+    uint32_t dlc = 0u;
+    if (!hex_value(&line[1], id_digits, &id) || !hex_value(&line[1u + id_digits], 1u, &dlc) ||
+        dlc > CAN_FRAME_MAX_DLC) {
+        return false;
+    }
+    if (id_digits == 3u && id > CAN_STD_ID_MASK) {
+        return false;
+    }
+    const uint32_t n_data = remote ? 0u : dlc;
+    if (len != 1u + id_digits + 1u + 2u * n_data) {
+        return false;
+    }
+    f->id = id;
+    f->dlc = (uint8_t)dlc;
+    for (uint32_t i = 0u; i < n_data; i++) {
+        uint32_t b = 0u;
+        if (!hex_value(&line[2u + id_digits + 2u * i], 2u, &b)) {
+            return false;
+        }
+        f->data[i] = (uint8_t)b;
+    }
+    return true;
+}
+
+static uint32_t reply_text(char reply[SLCAN_REPLY_MAX], const char *text)
+{
+    const uint32_t n = (uint32_t)strlen(text);
+    memcpy(reply, text, n);
+    reply[n] = SLCAN_CR;
+    return n + 1u;
+}
+
+/* Execute one complete command line; returns true if it carried a frame for the device. */
+static bool execute(slcan_t *s, can_frame_t *frame, char reply[SLCAN_REPLY_MAX],
+                    uint32_t *reply_len)
+{
+    const char *l = s->line;
+    const uint32_t n = s->len;
+    bool ok = false;
+    bool deliver = false;
+    const char *text = "";
+    can_frame_t f;
+    switch (n > 0u ? l[0] : '\0') {
+    case '\0':
+        ok = true; /* empty line: a keep-alive CR */
+        break;
+    case 'S':
+        if (n == 2u && l[1] >= '0' && l[1] <= '8') {
+            s->bitrate_code = (uint8_t)(l[1] - '0');
+            ok = true;
+        }
+        break;
+    case 's': ok = (n == 5u); break;
+    case 'O':
+    case 'L':
+        ok = (n == 1u);
+        if (ok) {
+            s->open = true;
+            s->listen_only = (l[0] == 'L');
+        }
+        break;
+    case 'C':
+        ok = (n == 1u);
+        if (ok) {
+            s->open = false;
+            s->listen_only = false;
+        }
+        break;
+    case 'V':
+        ok = (n == 1u);
+        text = "V1010";
+        break;
+    case 'v':
+        ok = (n == 1u);
+        text = "vFS01";
+        break;
+    case 'N':
+        ok = (n == 1u);
+        text = "NFS01";
+        break;
+    case 'F':
+        ok = (n == 1u);
+        text = "F00";
+        break;
+    case 'Z': ok = (n == 2u && (l[1] == '0' || l[1] == '1')); break;
+    case 'M':
+    case 'm': ok = (n == 9u); break;
+    case 't':
+    case 'r':
+        ok = s->open && !s->listen_only && parse_frame(l, n, 3u, l[0] == 'r', &f);
+        text = "z";
+        deliver = ok && l[0] == 't';
+        break;
+    case 'T':
+    case 'R':
+        ok = s->open && !s->listen_only && parse_frame(l, n, 8u, l[0] == 'R', &f);
+        text = "Z";
+        break;
+    default: break;
+    }
+    if (!ok) {
+        s->errors++;
+        reply[0] = SLCAN_BEL;
+        *reply_len = 1u;
+        return false;
+    }
+    *reply_len = reply_text(reply, text);
+    if (deliver) {
+        *frame = f;
+    }
+    return deliver;
+}
+
+bool slcan_feed(slcan_t *s, uint8_t byte, can_frame_t *frame, char reply[SLCAN_REPLY_MAX],
+                uint32_t *reply_len)
+{
+    *reply_len = 0u;
+    if (byte == (uint8_t)SLCAN_CR) {
+        bool got = false;
+        if (s->overlong) {
+            s->errors++;
+            reply[0] = SLCAN_BEL;
+            *reply_len = 1u;
+        } else {
+            got = execute(s, frame, reply, reply_len);
+        }
+        s->len = 0u;
+        s->overlong = false;
+        return got;
+    }
+    if (byte == (uint8_t)'\n') {
+        return false; /* tolerate CR LF line ends */
+    }
+    if (s->len < SLCAN_LINE_MAX) {
+        s->line[s->len++] = (char)byte;
+    } else {
+        s->overlong = true;
+    }
+    return false;
+}
+
+uint32_t slcan_encode(const can_frame_t *frame, char out[SLCAN_FRAME_TEXT_MAX])
+{
+    if (frame->id > CAN_STD_ID_MASK || frame->dlc > CAN_FRAME_MAX_DLC) {
+        return 0u;
+    }
+    uint32_t k = 0u;
+    out[k++] = 't';
+    out[k++] = HEX[(frame->id >> 8) & 0xFu];
+    out[k++] = HEX[(frame->id >> 4) & 0xFu];
+    out[k++] = HEX[frame->id & 0xFu];
+    out[k++] = HEX[frame->dlc];
+    for (uint32_t i = 0u; i < frame->dlc; i++) {
+        out[k++] = HEX[frame->data[i] >> 4];
+        out[k++] = HEX[frame->data[i] & 0xFu];
+    }
+    out[k++] = SLCAN_CR;
+    return k;
+}
