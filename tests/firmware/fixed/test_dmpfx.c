@@ -148,10 +148,8 @@ static void test_golden_vectors_y(void **state)
     double ps;
     int lines = 0;
     while (fscanf(mf, "%255s %lf %lf %lf %255s", sk, &gs, &ts, &ps, csv) == 5) {
-        const uint32_t len = read_file(sk, image, sizeof(image));
-        assert_int_equal(skill_parse(image, len, &skill), FS_OK);
+        load_fixed(sk);
         assert_int_equal(skill.dmp.has_y, 1u);
-        assert_int_equal(dmpfx_from_model(&skill.dmp, &fxm), FS_OK);
         const long rows = lround(skill.dmp.duration_s * ts / skill.dmp.dt_s);
         assert_true(rows <= MAX_ROWS);
         dmpfx_run_t run;
