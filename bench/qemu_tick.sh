@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Exact instruction counts of the shipped Cortex-M image's 1 kHz tick under qemu.
-#   bench/qemu_tick.sh TARGET [--build-dir DIR] [--exec-s S]
+#   bench/qemu_tick.sh TARGET [--build-dir DIR] [--exec-s S] [--skill FILE]
 # TARGET: cortex-m4f (mps2-an386, hardware float) or cortex-m3 (mps2-an385, software float).
 # 1. builds the images (toolchain cmake/arm-none-eabi.cmake, Release; size, heap and stack report);
 # 2. checks that a program calling malloc cannot link with the images' flags;
@@ -19,7 +19,7 @@
 # M3 20,000: software float).
 set -euo pipefail
 
-usage() { echo "usage: $0 cortex-m4f|cortex-m3 [--build-dir DIR] [--exec-s S]" >&2; exit 2; }
+usage() { echo "usage: $0 cortex-m4f|cortex-m3 [--build-dir DIR] [--exec-s S] [--skill FILE]" >&2; exit 2; }
 [ $# -ge 1 ] || usage
 TARGET=$1; shift
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -29,6 +29,7 @@ while [ $# -gt 0 ]; do
   case $1 in
     --build-dir) BUILD=$2; shift 2 ;;
     --exec-s) EXEC_S=$2; shift 2 ;;
+    --skill) SKILL_ARG=$2; shift 2 ;;
     --host-ref-float|--host-ref-fixed) shift 2 ;;   # accepted for older callers; unused
     *) usage ;;
   esac
@@ -42,7 +43,7 @@ esac
 PY=${PYTHON:-$ROOT/.venv/bin/python}
 HIL_SIM=${FORCESKILL_HIL_SIM:-$ROOT/build/hil_sim/hil_sim}
 [ -x "$HIL_SIM" ] || { echo "hil_sim not built at $HIL_SIM (./scripts/setup.sh)"; exit 1; }
-SKILL=$ROOT/tests/vectors/engrave_n50_ridge_release.skill
+SKILL=${SKILL_ARG:-$ROOT/tests/vectors/engrave_n50_ridge_release.skill}
 KERNELS=$(od -An -tu2 -j12 -N2 "$SKILL" | tr -d ' ')
 
 # One instruction per translation block: -singlestep up to qemu 8.0, then
@@ -101,22 +102,22 @@ fi
 echo "counter check ok: 100 nops + call/return/call counted as $CC"
 
 echo "== the product image: $(basename "$SKILL") (N = $KERNELS), IDLE / download / EXECUTE / EXECUTE + read-back"
-# Per counted tick: kind, all instructions of app_tick, those inside dmp_step/pfc_step (entered
+# Per counted tick: kind, all instructions of app_tick, those inside dmp_step(_xy)/pfc_step (entered
 # from their caller, left when the caller's code runs again), 1 if the DMP stepped (not after the
-# skill's end, when the end policy runs the law alone).
+# skill's end, when the end policy runs the law alone), those inside dmp_step(_xy) alone.
 # Also: each boot (from the first instruction of Reset_Handler to the first counted tick: all its
 # instructions and those inside app_init), and the skill check of each download (the instructions
 # inside skchk_params/skchk_begin/skchk_run, entered from the UDS transfer's code, over the ticks
 # it is spread across).
 COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot = 0 }
-                                    inb = 1; c = 0; part = 0; inpart = 0; dmp = 0; next }
-  / cm_port_mark_end$/ { if (inb) { done = 1; lc = c; lp = part; ld = dmp }
+                                    inb = 1; c = 0; part = 0; inpart = 0; dmp = 0; dpart = 0; indmp = 0; next }
+  / cm_port_mark_end$/ { if (inb) { done = 1; lc = c; lp = part; ld = dmp; ldp = dpart }
                          if (chk_tick > 0) { chk_ticks++; if (chk_tick > chk_max) chk_max = chk_tick }
                          if (chk_tick == 0 && chk_ticks > 0) { print "check", chk_total, chk_ticks, chk_max
                                                                chk_total = 0; chk_ticks = 0; chk_max = 0 }
                          chk_tick = 0; inb = 0; next }
   / cm_port_mark_(idle|execute|upload|other)$/ {
-      if (done) { k = $NF; sub(/^cm_port_mark_/, "", k); print k, lc, lp, ld; done = 0
+      if (done) { k = $NF; sub(/^cm_port_mark_/, "", k); print k, lc, lp, ld, ldp; done = 0
                   if (prof != "" && k == "execute") { for (f in h) tot[f] += h[f]; nexec++ } }
       delete h; next }
   END { if (prof != "") { for (f in tot) printf "%d %s\n", tot[f] / nexec, f > prof } }
@@ -128,17 +129,20 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                   if (ininit) ba++
                   bprev = s }
     if (inb) { c++; h[s]++
-               if (!inpart && (s == "dmp_step_f32" || s == "pfc_step_f32")) { inpart = 1; caller = prev
-                                                                                   if (s == "dmp_step_f32") dmp = 1 }
+               if (!inpart && (s ~ DMP || s == "pfc_step_f32")) { inpart = 1; caller = prev
+                                                                   if (s ~ DMP) dmp = 1 }
                else if (inpart && s == caller) { inpart = 0 }
                if (inpart) part++
+               if (!indmp && s ~ DMP) { indmp = 1; dcaller = prev }
+               else if (indmp && s == dcaller) { indmp = 0 }
+               if (indmp) dpart++
                if (!inchk && s ~ /^skchk_(params|begin|run)_f32$/) { inchk = 1; chkcaller = prev }
                else if (inchk && s == chkcaller) { inchk = 0 }
                if (inchk) { chk_total++; chk_tick++ }
                prev = s } }'
 mkfifo "$WORK/trace.fifo"
 # QEMU_TICK_PROFILE=FILE: also write the mean instructions per function of an EXECUTE tick there
-awk -v prof="${QEMU_TICK_PROFILE:-}" "$COUNT_AWK" < "$WORK/trace.fifo" > "$WORK/ticks.txt" &
+awk -v prof="${QEMU_TICK_PROFILE:-}" -v DMP="^dmp_step(_xy)?_f32$" "$COUNT_AWK" < "$WORK/trace.fifo" > "$WORK/ticks.txt" &
 AWK_PID=$!
 "$HIL_SIM" pil --target "$TARGET" --image "$IMG/fs_pil.elf" --port 0 --host-timeout 500 \
   --qemu-arg "${ONE_INSN[0]}" ${ONE_INSN[1]:+--qemu-arg "${ONE_INSN[1]}"} \
@@ -162,6 +166,9 @@ stats() { # lines of numbers on stdin -> "min median max count"
 # transfer; the skill check of a download steps the DMP too, in IDLE ticks: counted apart)
 read -r MIN MED MAX N < <(awk '$4 == 1 && ($1 == "execute" || $1 == "upload") { print $3 }' "$WORK/ticks.txt" | stats)
 echo "tick_instructions target=$TARGET kernels=$KERNELS min=$MIN median=$MED max=$MAX"
+# the DMP part alone (dmp_step or dmp_step_xy with its callees) of the same ticks
+read -r DMIN DMED DMAX _ < <(awk '$4 == 1 && ($1 == "execute" || $1 == "upload") { print $5 }' "$WORK/ticks.txt" | stats)
+echo "dmp_instructions target=$TARGET kernels=$KERNELS skill=$(basename "$SKILL") min=$DMIN median=$DMED max=$DMAX"
 [ "$N" -ge 100 ] || { echo "FAILED: only $N ticks ran the DMP"; status=1; }
 # boots: the first with an empty flash, the second (the session's ECUReset) with the skill stored
 awk '$1 == "boot" { n++; printf "boot_instructions target=%s boot=%d skills=%d total=%d app_init=%d\n", t, n, n - 1, $2, $3 }' \
