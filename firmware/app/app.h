@@ -46,6 +46,13 @@
  * one DMP step is below one full control tick (M4F <= 1,483 instructions, docs/cortex-m.md), so
  * 100 steps stay within the 168,000-cycle tick of an idle device; a 17 s skill takes 0.17 s. */
 #define APP_CHECK_STEPS_PER_TICK 100u
+/* Highest nominal skill stiffness the device accepts (commit and start refuse above it, 225):
+ * tracking against object stiffness on the HIL (bench/stiffness/stiffness_limit.py, docs/hil.md).
+ * the highest k from 1e4 N/m up at which both stiff profiles track within 5 % RMS without a fault:
+ * 5e5 N/m for a dynamics-compensated drive (render_carriage 0), 3e4 N/m for a carriage rendered by
+ * admittance (render_carriage 1, exec_render_default; 13-15 % at 1e5 N/m). */
+#define APP_STIFFNESS_MAX_NPM 5e5
+#define APP_STIFFNESS_MAX_RENDERED_NPM 3e4
 
 
 /** HostCommand.Mode values. */
@@ -68,6 +75,7 @@ typedef struct {
     saf_config_t saf;
     fs_real_t vel_cutoff_Hz;
     uint8_t telemetry_period_ms; /* in TEACH/EXECUTE, 1..255 */
+    fs_real_t stiffness_max_Npm; /* skills stiffer than this are refused (225), DID 0x0140 */
 } app_config_t;
 
 /** The whole device. */

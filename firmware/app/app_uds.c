@@ -142,6 +142,10 @@ static uint8_t read_did(void *ctx, uint16_t did, uint8_t *out, uint16_t cap, uin
         put_u32(&buf[5], app->tick);
         n = 9u;
         break;
+    case DID_STIFFNESS_MAX:
+        put_f32(buf, app->cfg.stiffness_max_Npm);
+        n = 4u;
+        break;
     case DID_FAULT_CAUSES: /* what blocks a clear: the causes still present at the last tick */
         put_u32(&buf[0], app->saf.flt.latched_mask);
         put_u32(&buf[4], app->saf.cause_mask);
@@ -259,6 +263,17 @@ static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len
         o->k2_Npm = v[3];
         o->layer_depth_m = v[4];
         o->surface_m = v[5];
+        return UDS_NRC_OK;
+    }
+    case DID_STIFFNESS_MAX: {
+        if (len != 4u) {
+            return UDS_NRC_INCORRECT_LENGTH;
+        }
+        const fs_real_t k = get_f32(d);
+        if (!fs_isfinite(k) || !(k > FS_R(0.0)) || k > FS_R(SKCHK_STIFFNESS_MAX_NPM)) {
+            return UDS_NRC_REQUEST_OUT_OF_RANGE;
+        }
+        app->cfg.stiffness_max_Npm = k;
         return UDS_NRC_OK;
     }
     case DID_SW_VERSION:
@@ -519,6 +534,9 @@ static uint8_t download_end(void *ctx, uint32_t *crc_out)
         fs_status_t st = skill_parse(app->image, app->xfer_size, &app->staging);
         if (st == FS_OK) {
             st = skchk_params(&app->staging);
+        }
+        if (st == FS_OK) {
+            st = skchk_stiffness(&app->staging, app->cfg.stiffness_max_Npm);
         }
         if (st != FS_OK) {
             app->last_transfer_status = (uint16_t)st; /* e.g. 204 CRC: the old skill stays */

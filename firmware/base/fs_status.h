@@ -43,6 +43,9 @@ typedef enum {
     /* the rollout at goal scale 1 peaks above the force limit */
     FS_ERR_SKCHK_PEAK = 223,
     FS_ERR_SKCHK_GOAL_SCALE = 224,      /* goal_scale * peak above the force limit: run refused */
+    /* the skill's nominal stiffness is above the device's stiffness limit (commit and run
+     * refused) */
+    FS_ERR_SKCHK_STIFFNESS = 225,
 
     /* 3xx: fixed-point conversion (firmware/fixed) */
     FS_ERR_FIXED_OVERFLOW = 300,        /* a value does not fit its fixed-point format */

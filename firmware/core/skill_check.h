@@ -11,7 +11,10 @@
  *     it over idle ticks; skchk_skill does it in one call.
  *  3. skchk_run_scales: f_hat is linear in the goal (zero initial state), so goal_scale*peak is
  *     the run's peak; above the limit (224) or a time scale that breaks the step rule (221) is
- *     refused before any motion. */
+ *     refused before any motion.
+ *  4. skchk_stiffness: the skill's nominal stiffness within the device's limit (225), checked at
+ *     commit and at start: on stiffer objects the device's force loop does not track (the limit
+ *     is measured per device, docs/hil.md). */
 #ifndef SKILL_CHECK_H
 #define SKILL_CHECK_H
 
@@ -73,5 +76,8 @@ fs_status_t skchk_skill(const skill_t *s, fs_real_t dt_s, fs_real_t force_max_N,
  *  and the step rule at time_scale (221). */
 fs_status_t skchk_run_scales(const skill_t *s, fs_real_t peak_N, fs_real_t goal_scale,
                              fs_real_t time_scale, fs_real_t dt_s, fs_real_t force_max_N);
+
+/** The skill's nominal stiffness at most stiffness_max_Npm (225; FS_ERR_NULL_ARG for NULL). */
+fs_status_t skchk_stiffness(const skill_t *s, fs_real_t stiffness_max_Npm);
 
 #endif /* SKILL_CHECK_H */

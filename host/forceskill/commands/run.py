@@ -18,6 +18,7 @@ from ..limits import (
     add_force_limit,
     check_force_limit,
     check_scales,
+    check_skill_stiffness,
     peak_problem,
     skill_peak_N,
 )
@@ -61,17 +62,20 @@ def check_slot_forces(
     time_scale: float,
     force_limit_N: float,
 ) -> None:
-    """Read each slot's skill back (RequestUpload) and refuse (662), before anything moves, a goal
-    scale that takes its rollout's peak above the force limit, or a rollout that is not finite."""
+    """Read each slot's skill back (RequestUpload) and refuse, before anything moves, a skill
+    stiffer than the device's stiffness limit (690), a goal scale that takes its rollout's peak
+    above the force limit, or a rollout that is not finite (662)."""
 
     def call(what: str, fn: Any) -> Any:
         return U.call(what, fn, dev.node)
 
     call("session change", lambda: client.change_session(0x02))
     try:
+        limit_Npm = U.stiffness_limit(client, dev.node)
         for slot in dict.fromkeys(slots):
             image = U.upload(client, dev.node, slot, int(directory[slot]["length"]))
             sk = Skill.from_bytes(image)
+            check_skill_stiffness(sk, f"slot {slot}", limit_Npm, dev.node, "nothing was started")
             peak = skill_peak_N(sk, time_scale)
             problem = peak_problem(peak, goal_scale, force_limit_N)
             if problem:

@@ -158,6 +158,18 @@ static void test_run_scales(void **state)
                                       FS_R(50.0)), FS_ERR_SCALE_INVALID);
 }
 
+static void test_stiffness_limit(void **state)
+{
+    (void)state;
+    load_skill("press_n50_lwr_hold");
+    const fs_real_t k = skill.stiffness_Npm;
+    assert_true(k > FS_R(0.0));
+    assert_int_equal(skchk_stiffness(&skill, k), FS_OK); /* at the limit: accepted */
+    assert_int_equal(skchk_stiffness(&skill, k * FS_R(10.0)), FS_OK);
+    assert_int_equal(skchk_stiffness(&skill, k * FS_R(0.999)), FS_ERR_SKCHK_STIFFNESS);
+    assert_int_equal(skchk_stiffness(NULL, k), FS_ERR_NULL_ARG);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -165,6 +177,7 @@ int main(void)
         cmocka_unit_test(test_hostile_skills_refused),
         cmocka_unit_test(test_incremental_equals_one_shot),
         cmocka_unit_test(test_run_scales),
+        cmocka_unit_test(test_stiffness_limit),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
