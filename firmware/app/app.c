@@ -207,9 +207,8 @@ uint8_t app_start_sequence(app_t *app, const uint8_t *slots, const fs_real_t *go
             app->last_run_status = (uint16_t)sc;
             return UDS_NRC_REQUEST_OUT_OF_RANGE;
         }
-        sc = skchk_run_scales(&app->slot_skill[s - 1u], app->slot_peak_N[s - 1u],
-                                                goal_scale[i], time_scale[i], FS_R(0.001),
-                                                app->cfg.saf.lim.axis[0].force_max_N);
+        sc = skchk_run_scales(&app->slot_skill[s - 1u], app->slot_peak_N[s - 1u], goal_scale[i],
+                              time_scale[i], FS_R(0.001), app->cfg.saf.lim.axis[0].force_max_N);
         app->last_run_status = (uint16_t)sc;
         if (sc != FS_OK) {
             return UDS_NRC_REQUEST_OUT_OF_RANGE;

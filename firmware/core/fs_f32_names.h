@@ -28,5 +28,6 @@
 #define skchk_run skchk_run_f32
 #define skchk_skill skchk_skill_f32
 #define skchk_run_scales skchk_run_scales_f32
+#define skchk_stiffness skchk_stiffness_f32
 
 #endif /* FS_F32_NAMES_H */
