@@ -15,6 +15,7 @@ import recordings as R
 from forceskill import cli, readers
 from forceskill.demo import load_demo
 from forceskill.errors import (
+    ERR_LOG_UNREADABLE,
     ERR_DEMO_COLUMN,
     ERR_DEMO_DURATION,
     ERR_DEMO_FILE,
@@ -269,6 +270,35 @@ def test_can_log_lost_frames_are_interpolated(suffix: str, tmp_path: Path, capsy
     np.testing.assert_allclose(d.force_N, np.round(rec.f[keep], 2), atol=1e-9)
     out, _ = fit_ok(p, capsys)
     assert "T = 6.000 s" in out and printed_error(out) <= PRESS_TOL_PCT
+
+
+@pytest.mark.parametrize("suffix", [".asc", ".blf", ".csv", ".db", ".log", ".mf4", ".trc"])
+def test_every_python_can_log_format_is_read(suffix: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """Each format python-can reads, written by python-can's own writer (can.Logger), gives the
+    demonstration exactly (the DBC's 0.01 N force resolution), also through `fit`."""
+    if suffix == ".mf4":
+        pytest.importorskip("asammdf")
+    rec = _can_rec()
+    p = R.write_can_log(tmp_path / f"demo{suffix}", rec)
+    d = load_demo(p)
+    assert d.t_s.size == rec.t.size and d.t_s[-1] == pytest.approx(6.0)
+    np.testing.assert_allclose(d.force_N, np.round(rec.f, 2), atol=1e-9)
+    out, _ = fit_ok(p, capsys)
+    assert "T = 6.000 s" in out and printed_error(out) <= PRESS_TOL_PCT
+
+
+def test_a_log_format_python_can_cannot_read_is_refused_by_name(tmp_path: Path) -> None:
+    """python-can writes .txt (can.Printer) but cannot read it: refused naming the format (691);
+    a .txt text table is still read as one."""
+    p = R.write_can_log(tmp_path / "demo.txt", _can_rec())
+    assert p.read_text().startswith("Timestamp:")
+    err = fit_refused(p)
+    assert f"[{ERR_LOG_UNREADABLE}]" in err and "demo.txt is a python-can text log (can.Printer, .txt)" in err
+    assert "cannot read" in err and ".blf" in err
+    table = tmp_path / "table.txt"
+    rec = R.press()
+    table.write_text("t,x,f_contact\n" + "".join(f"{t:.6f},{x:.6g},{f:.6g}\n" for t, x, f in zip(rec.t, rec.x, rec.f)))
+    assert load_demo(table).t_s.size == rec.t.size
 
 
 def test_can_log_gap_and_sessions(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

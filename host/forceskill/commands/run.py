@@ -27,7 +27,16 @@ from ..link import uds as U
 from ..link.device import Device
 from ..outputs import STDOUT, Outputs, format_rows
 from ..skill import Skill
-from ._common import add_common, columns, connect, link_errors, open_log, sigint_flag, tracking
+from ._common import (
+    add_common,
+    close_log,
+    columns,
+    connect,
+    link_errors,
+    open_log,
+    sigint_flag,
+    tracking,
+)
 
 _STEP = re.compile(r"^\s*(\d+)\s*:\s*([0-9.]+)\s*(ms|s)?\s*$")
 
@@ -247,7 +256,7 @@ def _cmd(args: argparse.Namespace) -> int:
                 r = run_on_device(dev, args, writer, info=info)
         finally:
             if writer is not None:
-                writer.stop()
+                close_log(writer)
         cols, fig = r["columns"], r["figures"]
         if not r["started"]:
             print("forceskill: interrupted before the start: nothing was sent", file=sys.stderr)

@@ -6,6 +6,7 @@ of them ``"t"`` (seconds, strictly increasing as recorded). Built-in formats (ho
 
 - ``csv``: text tables (``forceskill.readers.csv``; python-can CSV logs go to the CAN reader);
 - ``blf asc log trc db mf4`` and ``gz`` (compressed): CAN logs through the DBC (``forceskill.readers.canlog``);
+- ``txt``: python-can's text log (which it cannot read) refused by name, else a text table as ``csv``;
 - ``mcap``: ROS 2 bags, geometry_msgs/WrenchStamped (``forceskill.readers.rosbag``).
 
 A package adds a format by declaring its own entry point in the ``forceskill.readers`` group (the
@@ -44,6 +45,7 @@ _BUILTIN = {
     "mf4": "forceskill.readers.canlog:read",
     "gz": "forceskill.readers.canlog:read_gz",
     "mcap": "forceskill.readers.rosbag:read",
+    "txt": "forceskill.readers.canlog:read_txt",
 }
 
 

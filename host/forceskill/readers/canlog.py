@@ -9,6 +9,10 @@ their ticks; ``demo.validate`` refuses a gap above --max-gap, ``resample`` inter
 ones). Two 1 kHz stretches are one demonstration with a gap unless a status frame between them
 says the device left TEACH; when the log holds several demonstrations the longest is used and a
 note says so.
+
+python-can writes one format it cannot read back: ``.txt`` (``can.Printer``, what ``can.Logger``
+writes for that suffix). Such a log is refused by name (691); any other ``.txt`` file is read as a
+text table (the CSV reader).
 """
 
 from __future__ import annotations
@@ -19,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ERR_LINK_LOG, DemoError
+from ..errors import ERR_LINK_LOG, ERR_LOG_UNREADABLE, ERR_READER_MISSING, DemoError
 from . import NOTES_KEY, Columns, ReadOptions
 
 TICK_S = 0.001
@@ -49,6 +53,30 @@ def read_gz(path: Path, opts: ReadOptions) -> Columns:
     return read(path, opts)
 
 
+#: python-can's text log (can.Printer): every line starts with this.
+_PRINTER_HEAD = b"Timestamp:"
+_READABLE = ".asc, .blf, .csv, .db, .log, .mf4 (with asammdf) or .trc"
+
+
+def read_txt(path: Path, opts: ReadOptions) -> Columns:
+    """A ``.txt`` file: python-can's text log is refused (691: python-can cannot read it back);
+    anything else is a text table for the CSV reader."""
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(4096)
+    except OSError as e:
+        raise DemoError(ERR_LINK_LOG, f"cannot read {path.name}: {e.strerror or e}") from None
+    if head.lstrip(b"\xef\xbb\xbf \t\r\n").startswith(_PRINTER_HEAD):
+        raise DemoError(
+            ERR_LOG_UNREADABLE,
+            f"{path.name} is a python-can text log (can.Printer, .txt), a format python-can writes "
+            f"but cannot read: record or convert the log as {_READABLE}",
+        )
+    from . import csv as csv_reader
+
+    return csv_reader.read(path, opts)
+
+
 def _messages(path: Path) -> list[Any]:
     import can
 
@@ -65,6 +93,13 @@ def _messages(path: Path) -> list[Any]:
             reader = can.LogReader(str(path))
         with reader:
             return [m for m in reader if not m.is_error_frame and not m.is_extended_id]
+    except DemoError:
+        raise
+    except (NotImplementedError, ImportError) as e:  # python-can's MF4 reader without asammdf
+        raise DemoError(
+            ERR_READER_MISSING,
+            f"cannot read CAN log {path.name}: {e} (pip install asammdf, or forceskill[mf4])",
+        ) from None
     except Exception as e:
         raise DemoError(ERR_LINK_LOG, f"cannot read CAN log {path.name}: {e}") from None
 
