@@ -359,3 +359,27 @@ def test_readers_are_entry_points_and_plugins(tmp_path: Path, monkeypatch: pytes
     assert e.value.code == ERR_DEMO_FILE and ".csv" in e.value.message and ".mcap" in e.value.message
     monkeypatch.setitem(readers._registered, "npz", read_npz)
     assert np.array_equal(load_demo(p, stiffness_Npm=1e3).force_N, rec.f)
+
+
+def test_every_reader_shows_a_progress_bar_only_when_reading_is_slow(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    """CSV (in blocks), CAN log and ROS 2 bag: a tqdm bar on stderr once reading has taken
+    PROGRESS_DELAY_S (2 s; 0 here stands for a slow read), nothing for a quick read."""
+    import forceskill.readers.csv as csv_reader
+
+    monkeypatch.setattr(csv_reader, "BLOCK_BYTES", 1 << 14)
+    rec = _can_rec()
+    files = [(R.write_csv(tmp_path / "demo.csv", rec), None),
+             (R.write_can_log(tmp_path / "demo.asc", rec), None)]
+    try:
+        import mcap_ros2  # noqa: F401
+        files.append((R.write_bag(tmp_path / "demo.mcap", R.press(rate_hz=1000)), ReadOptions(topic="/wrench")))
+    except ImportError:
+        pass
+    for p, opts in files:
+        load_demo(p, read=opts, stiffness_Npm=1e3)
+        assert capsys.readouterr().err == "", p.name
+    monkeypatch.setattr(readers, "PROGRESS_DELAY_S", 0.0)
+    for p, opts in files:
+        load_demo(p, read=opts, stiffness_Npm=1e3)
+        assert f"reading {p.name}" in capsys.readouterr().err, p.name

@@ -21,6 +21,7 @@ import importlib
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -84,6 +85,36 @@ class ReadOptions:
 
 
 Reader = Callable[[Path, ReadOptions], Columns]
+#: A reader's progress bar appears on stderr only once reading has taken this long.
+PROGRESS_DELAY_S = 2.0
+
+
+class _NoBar:
+    def update(self, n: float = 1) -> None:
+        pass
+
+    def close(self) -> None:
+        pass
+
+
+def progress_bar(path: Path, opts: ReadOptions, total: float | None = None, unit: str = "B") -> Any:
+    """The reading progress bar of every reader: tqdm on stderr, shown only when reading takes
+    more than PROGRESS_DELAY_S (``total`` bytes, or a count of ``unit`` without a total); a bar
+    that does nothing when ``opts.progress`` is off. Call ``update(n)`` and ``close()``."""
+    if not opts.progress:
+        return _NoBar()
+    from tqdm import tqdm  # type: ignore[import-untyped,unused-ignore]
+
+    return tqdm(
+        total=total,
+        unit=unit,
+        unit_scale=True,
+        desc=f"reading {path.name}",
+        delay=PROGRESS_DELAY_S,
+        leave=False,
+    )
+
+
 _registered: dict[str, Reader] = {}
 _entry_points: dict[str, str] | None = None
 

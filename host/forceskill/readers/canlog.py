@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ERR_LINK_LOG, ERR_LOG_UNREADABLE, ERR_READER_MISSING, DemoError
-from . import NOTES_KEY, Columns, ReadOptions
+from . import NOTES_KEY, Columns, ReadOptions, progress_bar
 
 TICK_S = 0.001
 POS_BASE = 0x190
@@ -53,6 +53,8 @@ def read_gz(path: Path, opts: ReadOptions) -> Columns:
     return read(path, opts)
 
 
+#: Frames between two updates of the progress bar.
+_BAR_EVERY = 4096
 #: python-can's text log (can.Printer): every line starts with this.
 _PRINTER_HEAD = b"Timestamp:"
 _READABLE = ".asc, .blf, .csv, .db, .log, .mf4 (with asammdf) or .trc"
@@ -77,7 +79,7 @@ def read_txt(path: Path, opts: ReadOptions) -> Columns:
     return csv_reader.read(path, opts)
 
 
-def _messages(path: Path) -> list[Any]:
+def _messages(path: Path, opts: ReadOptions) -> list[Any]:
     import can
 
     suffixes = [s.lower() for s in path.suffixes]
@@ -91,8 +93,18 @@ def _messages(path: Path) -> list[Any]:
             reader = reader_cls(fobj)  # type: ignore[arg-type]
         else:
             reader = can.LogReader(str(path))
-        with reader:
-            return [m for m in reader if not m.is_error_frame and not m.is_extended_id]
+        bar = progress_bar(path, opts, unit=" frames")
+        out = []
+        try:
+            with reader:
+                for i, m in enumerate(reader, 1):
+                    if not m.is_error_frame and not m.is_extended_id:
+                        out.append(m)
+                    if not i % _BAR_EVERY:
+                        bar.update(_BAR_EVERY)
+        finally:
+            bar.close()
+        return out
     except DemoError:
         raise
     except (NotImplementedError, ImportError) as e:  # python-can's MF4 reader without asammdf
@@ -108,7 +120,7 @@ def read(path: Path, opts: ReadOptions | None = None, node: int | None = None) -
     """Decode a CAN log into demonstration columns (see the module comment)."""
     from ..link.dbc import load_db
 
-    msgs = _messages(path)
+    msgs = _messages(path, opts or ReadOptions())
     ids = np.array([m.arbitration_id for m in msgs], dtype=np.int64)
     if node is None:
         counts = [int(np.count_nonzero(ids == POS_BASE + n)) for n in range(16)]
