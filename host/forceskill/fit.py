@@ -209,7 +209,7 @@ def fit(
         )
     h_d = desired_forcing(y_star, p.alpha, p.beta, p.gamma, a, goal_N)
     s = goal_N * v[:-1]  # h = s_n * S(u_n)
-    bands = dmp.KernelBands(u[:-1], centres, widths)
+    bands = dmp.KernelBands(u[:-1], centres, widths, keep_raw=lwr)
     if not lwr:
         gram = bands.gram(s * s)
         lam = lam_rel * float(np.trace(gram)) / gram.shape[0]
@@ -248,6 +248,7 @@ def fit(
         h = s * bands.sum_weighted(weights)
     else:
         h = s * dmp.forcing_scale(u[:-1], skill)
+    del bands  # the kernels are the largest arrays of a long fit: freed before the rollout
     y, _, _ = dmp.transform_scan(p.alpha, p.beta, p.gamma, a, goal_N, h)
     f_hat = f0 + y
     f_max = float(np.max(np.abs(f)))
