@@ -88,7 +88,17 @@ def fit_to_tolerance(
                 return cache[n]
             cache[n] = (res, sample_error(demo, t, f_hat))
             tried.append((n, cache[n][1].max_pct))
+            _forget(n)
         return cache[n]
+
+    def _forget(n: int) -> None:
+        """Drop the results (grid-sized arrays) no answer can be: only the best N so far and the
+        smallest N that passes keep theirs (memory flat over the search)."""
+        ok = [k for k in cache if cache[k][1].max_pct <= max_error_pct]
+        keep = {min(cache, key=lambda k: cache[k][1].max_pct), n, *([min(ok)] if ok else [])}
+        for k in cache:
+            if k not in keep and cache[k][0] is not None:
+                cache[k] = (None, cache[k][1])
 
     lo = n_min - 1  # largest N known to miss (n_min - 1: none yet)
     n = n_min
