@@ -11,6 +11,7 @@ writes it below the marker line of docs/performance.md (the hand-written method 
 the marker is kept). Figures of a part that has not landed, or whose program fails, read
 "not available: <why>"; nothing is ever filled in by hand.
 """
+
 from __future__ import annotations
 
 import argparse
@@ -27,9 +28,10 @@ import statistics
 import subprocess
 import sys
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable, Optional
+from typing import Any
 
 # One BLAS/OpenMP thread for every library: the machine is shared and a control tick runs on one
 # core; multi-threaded BLAS on a loaded 2-core machine made fit times vary by 3-5x.
@@ -67,8 +69,11 @@ PART_TARGETS = {
 def ensure_venv() -> None:
     """Re-run inside the project's venv when started with another interpreter."""
     venv_py = ROOT / ".venv" / "bin" / "python"
-    if Path(sys.prefix).resolve() != (ROOT / ".venv").resolve() and venv_py.exists() \
-            and os.environ.get("FS_BENCH_NO_REEXEC") != "1":
+    if (
+        Path(sys.prefix).resolve() != (ROOT / ".venv").resolve()
+        and venv_py.exists()
+        and os.environ.get("FS_BENCH_NO_REEXEC") != "1"
+    ):
         os.environ["FS_BENCH_NO_REEXEC"] = "1"
         os.execv(str(venv_py), [str(venv_py), *sys.argv])
 
@@ -79,7 +84,7 @@ def pip(*args: str) -> None:
     subprocess.run(cmd, check=True)
 
 
-def version_of(dist: str) -> Optional[str]:
+def version_of(dist: str) -> str | None:
     try:
         return _md.version(dist)
     except _md.PackageNotFoundError:
@@ -88,6 +93,7 @@ def version_of(dist: str) -> Optional[str]:
 
 def ensure_peers() -> None:
     """Install the pinned peers (with movement_primitives' Cython step) and forceskill if missing."""
+
     def mp_fast_ok() -> bool:
         try:
             importlib.import_module("movement_primitives.dmp_fast")
@@ -103,16 +109,23 @@ def ensure_peers() -> None:
     if not ok:
         print("== installing the peers: " + ", ".join(f"{d}=={v}" for d, v in PEER_PINS.items()), flush=True)
         pip(*PEER_BUILD_DEPS)
-        pip("--no-build-isolation", "--force-reinstall", "--no-deps",
-            *(f"{d}=={v}" for d, v in PEER_PINS.items()))
+        pip(
+            "--no-build-isolation",
+            "--force-reinstall",
+            "--no-deps",
+            *(f"{d}=={v}" for d, v in PEER_PINS.items()),
+        )
         importlib.invalidate_caches()
         if not mp_fast_ok():
-            raise SystemExit("run_all: movement_primitives installed without its compiled dmp_fast step "
-                             "(Cython/numpy/C compiler missing?)")
+            raise SystemExit(
+                "run_all: movement_primitives installed without its compiled dmp_fast step "
+                "(Cython/numpy/C compiler missing?)"
+            )
 
 
-def run(cmd: list[str], timeout: float = 600.0, cwd: Path = ROOT,
-        env: Optional[dict[str, str]] = None) -> subprocess.CompletedProcess[str]:
+def run(
+    cmd: list[str], timeout: float = 600.0, cwd: Path = ROOT, env: dict[str, str] | None = None
+) -> subprocess.CompletedProcess[str]:
     return subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=timeout, env=env)
 
 
@@ -129,9 +142,9 @@ class Build:
     dir: Path
     ok_all: bool = False
     why_not_all: str = ""
-    failed: dict[str, str] = field(default_factory=dict)   # rel path -> why its target did not build
+    failed: dict[str, str] = field(default_factory=dict)  # rel path -> why its target did not build
 
-    def exe(self, rel: str) -> Optional[Path]:
+    def exe(self, rel: str) -> Path | None:
         """A program of this build, or None if it is missing or its target failed to build now
         (a stale binary from an earlier build is never used)."""
         if rel in self.failed:
@@ -143,11 +156,24 @@ class Build:
 def build(build_dir: Path, jobs: int) -> Build:
     """Release tree of our own: fs_bench_step must build; the rest (other parts' benchmark
     programs, the simulator) is built as far as it builds."""
-    print(f"== building (Release) in {build_dir.relative_to(ROOT) if build_dir.is_relative_to(ROOT) else build_dir}",
-          flush=True)
+    print(
+        f"== building (Release) in {build_dir.relative_to(ROOT) if build_dir.is_relative_to(ROOT) else build_dir}",
+        flush=True,
+    )
     gen = ["-G", "Ninja"] if shutil.which("ninja") else []
-    cfg = run(["cmake", "-S", str(ROOT), "-B", str(build_dir), *gen, "-DCMAKE_BUILD_TYPE=Release",
-               "-DFORCESKILL_BUILD_TESTS=OFF", f"-DPython3_EXECUTABLE={sys.executable}"])
+    cfg = run(
+        [
+            "cmake",
+            "-S",
+            str(ROOT),
+            "-B",
+            str(build_dir),
+            *gen,
+            "-DCMAKE_BUILD_TYPE=Release",
+            "-DFORCESKILL_BUILD_TESTS=OFF",
+            f"-DPython3_EXECUTABLE={sys.executable}",
+        ]
+    )
     if cfg.returncode != 0:
         raise SystemExit("run_all: cmake configure failed:\n" + cfg.stdout[-2000:] + cfg.stderr[-2000:])
     b = run(["cmake", "--build", str(build_dir), "--target", "fs_bench_step", "-j", str(jobs)])
@@ -179,7 +205,7 @@ def loglog_slope(xs: list[float], ys: list[float]) -> float:
     ly = [math.log(y) for y in ys]
     mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
     sxx = sum((a - mx) ** 2 for a in lx)
-    return sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / sxx
+    return sum((a - mx) * (b - my) for a, b in zip(lx, ly, strict=False)) / sxx
 
 
 def growth_word(slope: float) -> str:
@@ -194,7 +220,7 @@ def growth_word(slope: float) -> str:
     return "about quadratic or worse"
 
 
-def fmt(x: Optional[float], digits: int = 3) -> str:
+def fmt(x: float | None, digits: int = 3) -> str:
     if x is None:
         return "n/a"
     if x == 0:
@@ -211,19 +237,20 @@ sys.path.insert(0, str(PEERS_DIR))
 
 
 def fs_fit(demo: Any, n_kernels: int, method: str = "ridge") -> Any:
-    """forceskill.fit.fit on the benchmark demonstration (what `forceskill fit` calls)."""
-    from forceskill.demo import Demo as FsDemo
-    from forceskill.fit import fit
+    """forceskill.model.fit.fit on the benchmark demonstration (what `forceskill fit` calls)."""
+    from forceskill.model.demo import Demo as FsDemo
+    from forceskill.model.fit import fit
+
     d = FsDemo(t_s=demo.t_s, pos_m=demo.pos_m, force_N=demo.force_N, source="bench/peers/demo.py")
     return fit(d, demo.stiffness_Npm, n_kernels=n_kernels, method=method, surface_m=demo.surface_m)
 
 
 @dataclass
 class CStep:
-    ns: dict[str, float] = field(default_factory=dict)            # core -> ns/step (median of reps)
+    ns: dict[str, float] = field(default_factory=dict)  # core -> ns/step (median of reps)
     info: dict[str, dict[str, str]] = field(default_factory=dict)  # core -> key=value of its line
     sizes: dict[str, dict[str, int]] = field(default_factory=dict)
-    rejected: dict[str, int] = field(default_factory=dict)         # core -> fs_status_t
+    rejected: dict[str, int] = field(default_factory=dict)  # core -> fs_status_t
 
 
 def c_step(exe: Path, image: Path, reps: int) -> CStep:
@@ -250,7 +277,7 @@ def c_step(exe: Path, image: Path, reps: int) -> CStep:
 @dataclass
 class Report:
     quick: bool
-    sections: list[tuple[str, str]] = field(default_factory=list)   # (title, markdown body)
+    sections: list[tuple[str, str]] = field(default_factory=list)  # (title, markdown body)
     data: dict[str, Any] = field(default_factory=dict)
     targets: list[list[str]] = field(default_factory=list)
 
@@ -269,11 +296,13 @@ def table(header: list[str], rows: list[list[str]]) -> str:
     return "\n".join(out)
 
 
-def verdict(value: Optional[float], must: float, aim: Optional[float], higher_is_better: bool) -> str:
+def verdict(value: float | None, must: float, aim: float | None, higher_is_better: bool) -> str:
     if value is None:
         return "not available"
+
     def ok(limit: float) -> bool:
         return value >= limit if higher_is_better else value <= limit
+
     if aim is not None and ok(aim):
         return "meets must and aim"
     if ok(must):
@@ -286,9 +315,11 @@ def verdict(value: Optional[float], must: float, aim: Optional[float], higher_is
 FIXED_5S = "forceskill C core, fixed (on the 5 s demo: it refuses the 17 s skill)"
 
 
-def bench_step(rep: Report, bld: Build, demo: Any, image50: Path, cfg: dict[str, Any],
-               image5: Optional[Path] = None) -> None:
+def bench_step(
+    rep: Report, bld: Build, demo: Any, image50: Path, cfg: dict[str, Any], image5: Path | None = None
+) -> None:
     import peers
+
     exe = bld.exe("bench/peers/fs_bench_step")
     assert exe is not None
     mp = peers.mp_fit(demo, 50)
@@ -312,57 +343,111 @@ def bench_step(rep: Report, bld: Build, demo: Any, image50: Path, cfg: dict[str,
         return out
 
     runners.append(("c", run_c))
-    runners.append(("mp-euler", lambda: {"movement_primitives DMP.step, euler-cython":
-                                         peers.mp_step_ns(mp, n_peer, "euler-cython")}))
-    runners.append(("mp-rk4", lambda: {"movement_primitives DMP.step, rk4-cython (its default)":
-                                       peers.mp_step_ns(mp, n_peer, "rk4-cython")}))
-    runners.append(("mp-open", lambda: {"movement_primitives open_loop, euler-cython (per step)":
-                                        peers.mp_open_loop_ns(mp, "euler-cython", run_t=n_peer * 0.001)}))
+    runners.append(
+        (
+            "mp-euler",
+            lambda: {
+                "movement_primitives DMP.step, euler-cython": peers.mp_step_ns(mp, n_peer, "euler-cython")
+            },
+        )
+    )
+    runners.append(
+        (
+            "mp-rk4",
+            lambda: {
+                "movement_primitives DMP.step, rk4-cython (its default)": peers.mp_step_ns(
+                    mp, n_peer, "rk4-cython"
+                )
+            },
+        )
+    )
+    runners.append(
+        (
+            "mp-open",
+            lambda: {
+                "movement_primitives open_loop, euler-cython (per step)": peers.mp_open_loop_ns(
+                    mp, "euler-cython", run_t=n_peer * 0.001
+                )
+            },
+        )
+    )
     runners.append(("pydmps", lambda: {"pydmps DMPs_discrete.step": peers.pydmps_step_ns(pd, n_peer)}))
 
     samples: dict[str, list[float]] = {}
     for r in range(cfg["rounds"]):
         k = r % len(runners)
-        for _, fn in runners[k:] + runners[:k]:      # rotate the order every round
+        for _, fn in runners[k:] + runners[:k]:  # rotate the order every round
             for name, ns in fn().items():
                 samples.setdefault(name, []).append(ns)
     med = {k: median(v) for k, v in samples.items()}
-    rep.data["step_ns"] = {k: {"median": med[k], "min": min(v), "max": max(v), "rounds": len(v)}
-                           for k, v in samples.items()}
+    rep.data["step_ns"] = {
+        k: {"median": med[k], "min": min(v), "max": max(v), "rounds": len(v)} for k, v in samples.items()
+    }
     peer_names = [k for k in med if not k.startswith("forceskill")]
     fastest = min(peer_names, key=lambda k: med[k])
     rep.data["step_fastest_peer"] = fastest
     rows = []
     for k in sorted(med, key=lambda k: med[k]):
         ratio = med[fastest] / med[k]
-        rows.append([k, fmt(med[k]), f"{fmt(min(samples[k]))} – {fmt(max(samples[k]))}",
-                     f"{ratio:.1f}x" if k.startswith("forceskill") else ("1x (fastest peer)" if k == fastest
-                                                                          else f"{ratio:.2f}x")])
+        rows.append(
+            [
+                k,
+                fmt(med[k]),
+                f"{fmt(min(samples[k]))} – {fmt(max(samples[k]))}",
+                f"{ratio:.1f}x"
+                if k.startswith("forceskill")
+                else ("1x (fastest peer)" if k == fastest else f"{ratio:.2f}x"),
+            ]
+        )
     info = rep.data["c_info_50"].get("double", {})
     if "forceskill C core, fixed" not in med:
         why = fixed_why(rep.data.get("c_rejected_50", {}), image50)
-        rows.append([f"forceskill C core, fixed, on the {demo.duration_s:g} s demo", "not available: " + why, "", ""])
-    body = table(["implementation", "ns per step (median)", "range over rounds", "speed vs fastest peer"], rows)
-    body += (f"\n\n{cfg['rounds']} rounds, the implementations' order rotated every round; a C figure is the "
-             f"median of {cfg['c_reps']} rollouts of the whole {demo.duration_s:g} s skill "
-             f"({info.get('steps', '?')} steps, {info.get('active_mean', '?')} kernels evaluated per step on "
-             f"average), a peer figure one run of {n_peer} steps from the start of its fitted DMP.")
+        rows.append(
+            [f"forceskill C core, fixed, on the {demo.duration_s:g} s demo", "not available: " + why, "", ""]
+        )
+    body = table(
+        ["implementation", "ns per step (median)", "range over rounds", "speed vs fastest peer"], rows
+    )
+    body += (
+        f"\n\n{cfg['rounds']} rounds, the implementations' order rotated every round; a C figure is the "
+        f"median of {cfg['c_reps']} rollouts of the whole {demo.duration_s:g} s skill "
+        f"({info.get('steps', '?')} steps, {info.get('active_mean', '?')} kernels evaluated per step on "
+        f"average), a peer figure one run of {n_peer} steps from the start of its fitted DMP."
+    )
     fs_keys = [k for k in sorted(med, key=lambda k: med[k]) if k.startswith("forceskill")]
     peers_sorted = sorted(peer_names, key=lambda k: med[k])
-    body += ("\n\nSpeed-up of each forceskill step over each peer (peer ns / forceskill ns, medians):\n\n"
-             + table(["forceskill"] + peers_sorted,
-                     [[k] + [f"{med[p] / med[k]:.0f}x" for p in peers_sorted] for k in fs_keys]))
+    body += (
+        "\n\nSpeed-up of each forceskill step over each peer (peer ns / forceskill ns, medians):\n\n"
+        + table(
+            ["forceskill", *peers_sorted],
+            [[k] + [f"{med[p] / med[k]:.0f}x" for p in peers_sorted] for k in fs_keys],
+        )
+    )
     rep.add("One DMP step: 1-D, N = 50 kernels, dt = 1 ms", body)
     for core in ("double", "float", "fixed"):
         key = f"forceskill C core, {core}"
         if key in med:
             ratio = med[fastest] / med[key]
-            rep.targets.append([f"C step ({core}) vs fastest peer step ({fastest})", ">= 20x", "",
-                                f"{ratio:.0f}x", verdict(ratio, 20.0, None, True)])
+            rep.targets.append(
+                [
+                    f"C step ({core}) vs fastest peer step ({fastest})",
+                    ">= 20x",
+                    "",
+                    f"{ratio:.0f}x",
+                    verdict(ratio, 20.0, None, True),
+                ]
+            )
         elif core == "fixed" and FIXED_5S in med:
             ratio = med[fastest] / med[FIXED_5S]
-            rep.targets.append([f"C step (fixed, 5 s demo: refuses the 17 s skill) vs fastest peer step ({fastest})",
-                                ">= 20x", "", f"{ratio:.0f}x", verdict(ratio, 20.0, None, True)])
+            rep.targets.append(
+                [
+                    f"C step (fixed, 5 s demo: refuses the 17 s skill) vs fastest peer step ({fastest})",
+                    ">= 20x",
+                    "",
+                    f"{ratio:.0f}x",
+                    verdict(ratio, 20.0, None, True),
+                ]
+            )
 
 
 def fixed_facts(image: Path) -> str:
@@ -370,16 +455,20 @@ def fixed_facts(image: Path) -> str:
     below 4096), for a message on a refusal; the checks themselves are firmware/fixed/dmpfx.c's."""
     try:
         import numpy as np
-        from forceskill import dmp as fsdmp
-        from forceskill.skill import Skill
+
+        from forceskill.model import dmp as fsdmp
+        from forceskill.model.skill import Skill
+
         sk = Skill.from_bytes(image.read_bytes())
         n = int(round(sk.duration_s / sk.dt_s))
         u, v = fsdmp.phase_scan(sk.alpha, sk.beta, sk.dt_s / sk.tau_s, n)
         h = sk.goal_N * v * (fsdmp.normalised_kernels(u, sk.centres, sk.widths) @ sk.weights)
-        return (f"g = {sk.goal_N:.2f} N, max abs(w) = {float(np.max(np.abs(sk.weights))):.1f}, "
-                f"max 1/sigma = {float(np.max(1.0 / sk.widths)):.0f}, largest abs(h) on the nominal phase path "
-                f"= {float(np.max(np.abs(h))):.1f}")
-    except Exception as e:   # the message is a courtesy; the refusal itself is the figure
+        return (
+            f"g = {sk.goal_N:.2f} N, max abs(w) = {float(np.max(np.abs(sk.weights))):.1f}, "
+            f"max 1/sigma = {float(np.max(1.0 / sk.widths)):.0f}, largest abs(h) on the nominal phase path "
+            f"= {float(np.max(np.abs(h))):.1f}"
+        )
+    except Exception as e:  # the message is a courtesy; the refusal itself is the figure
         return f"(values not available: {type(e).__name__})"
 
 
@@ -387,22 +476,25 @@ def fixed_why(rejected: dict[str, int], image: Path) -> str:
     """Why there is no fixed-point step figure on the benchmark skill."""
     if "fixed" not in rejected:
         return "firmware/fixed (fs_fixed) is not in this build"
-    return (f"the fixed-point core refuses this skill with status {rejected['fixed']} (fs_status.h 3xx: a value "
-            f"does not fit its Q format; Q8.24 holds values below 64, Q13.19 1/sigma below 4096): "
-            + fixed_facts(image))
+    return (
+        f"the fixed-point core refuses this skill with status {rejected['fixed']} (fs_status.h 3xx: a value "
+        f"does not fit its Q format; Q8.24 holds values below 64, Q13.19 1/sigma below 4096): "
+        + fixed_facts(image)
+    )
 
 
 # ---------------------------------------------------------------------------------------------
 # 2. fitting the 17 s demonstration, N = 50
 def bench_fit(rep: Report, demo: Any, cfg: dict[str, Any]) -> None:
     import peers
+
     fits: list[tuple[str, Callable[[], Any]]] = [
         ("forceskill fit (ridge, default)", lambda: fs_fit(demo, 50, "ridge")),
         ("forceskill fit --method lwr", lambda: fs_fit(demo, 50, "lwr")),
         ("movement_primitives DMP.imitate", lambda: peers.mp_fit(demo, 50)),
         ("pydmps DMPs_discrete.imitate_path", lambda: peers.pydmps_fit(demo, 50)),
     ]
-    for _, fn in fits:   # warm-up: imports, first-touch allocations
+    for _, fn in fits:  # warm-up: imports, first-touch allocations
         fn()
     samples: dict[str, list[float]] = {name: [] for name, _ in fits}
     for r in range(cfg["fit_rounds"]):
@@ -419,35 +511,77 @@ def bench_fit(rep: Report, demo: Any, cfg: dict[str, Any]) -> None:
     }
     peer_names = [k for k in med if not k.startswith("forceskill")]
     fastest = min(peer_names, key=lambda k: med[k])
-    rep.data["fit_ms"] = {k: {"median": med[k], "min": min(v), "max": max(v), "peak_KiB": peak[k],
-                              "err_max_pct": quality[k]} for k, v in samples.items()}
+    rep.data["fit_ms"] = {
+        k: {"median": med[k], "min": min(v), "max": max(v), "peak_KiB": peak[k], "err_max_pct": quality[k]}
+        for k, v in samples.items()
+    }
     rows = []
     for k in sorted(med, key=lambda k: med[k]):
-        rows.append([k, fmt(med[k]), f"{fmt(min(samples[k]))} – {fmt(max(samples[k]))}",
-                     f"{med[fastest] / med[k]:.2f}x", f"{peak[k]:,.0f}", f"{quality[k]:.2f}"])
+        rows.append(
+            [
+                k,
+                fmt(med[k]),
+                f"{fmt(min(samples[k]))} – {fmt(max(samples[k]))}",
+                f"{med[fastest] / med[k]:.2f}x",
+                f"{peak[k]:,.0f}",
+                f"{quality[k]:.2f}",
+            ]
+        )
     sizes = rep.data.get("c_sizes", {})
     for core, tname in (("double", "dmp_model_t"), ("float", "dmp_model_t"), ("fixed", "dmpfx_model_t")):
         if core in sizes:
             s = sizes[core]
-            rows.append([f"forceskill C core ({core}): static model, no heap", "—", "", "",
-                         f"{s['model'] / 1024:.1f} (sizeof {tname}, N <= DMP_MAX_KERNELS = 1024) + {s['state']} B state", ""])
-    body = table(["fit", "ms (median)", "range over rounds", "speed vs fastest peer", "peak memory, KiB",
-                  "max error of its own rollout, % of max"], rows)
-    body += (f"\n\n{cfg['fit_rounds']} rounds, order rotated. Peak memory: tracemalloc (Python objects and numpy "
-             "buffers) over one fit. forceskill's fit includes what `forceskill fit` does after the regression: "
-             "validating the skill image and rolling it out to report the error. The error column is a sanity "
-             "check that each library fitted the demonstration with its defaults (each against its own target "
-             "x* = f/k rolled out by itself), not a ranking of methods.")
+            rows.append(
+                [
+                    f"forceskill C core ({core}): static model, no heap",
+                    "—",
+                    "",
+                    "",
+                    f"{s['model'] / 1024:.1f} (sizeof {tname}, N <= DMP_MAX_KERNELS = 1024) + {s['state']} B state",
+                    "",
+                ]
+            )
+    body = table(
+        [
+            "fit",
+            "ms (median)",
+            "range over rounds",
+            "speed vs fastest peer",
+            "peak memory, KiB",
+            "max error of its own rollout, % of max",
+        ],
+        rows,
+    )
+    body += (
+        f"\n\n{cfg['fit_rounds']} rounds, order rotated. Peak memory: tracemalloc (Python objects and numpy "
+        "buffers) over one fit. forceskill's fit includes what `forceskill fit` does after the regression: "
+        "validating the skill image and rolling it out to report the error. The error column is a sanity "
+        "check that each library fitted the demonstration with its defaults (each against its own target "
+        "x* = f/k rolled out by itself), not a ranking of methods."
+    )
     fs_keys = [k for k in sorted(med, key=lambda k: med[k]) if k.startswith("forceskill")]
     peers_sorted = sorted(peer_names, key=lambda k: med[k])
-    body += ("\n\nSpeed-up of each forceskill fit over each peer's (peer ms / forceskill ms, medians):\n\n"
-             + table(["forceskill"] + peers_sorted,
-                     [[k] + [f"{med[p] / med[k]:.1f}x" for p in peers_sorted] for k in fs_keys]))
+    body += (
+        "\n\nSpeed-up of each forceskill fit over each peer's (peer ms / forceskill ms, medians):\n\n"
+        + table(
+            ["forceskill", *peers_sorted],
+            [[k] + [f"{med[p] / med[k]:.1f}x" for p in peers_sorted] for k in fs_keys],
+        )
+    )
     rep.add(f"Fitting the {demo.duration_s:g} s, 1 kHz demonstration, N = 50", body)
     fs = med["forceskill fit (ridge, default)"]
-    rep.targets.append(["fit of a 17 s, 1 kHz log, N = 50 (ms)", "<= 50", "<= 10", fmt(fs), verdict(fs, 50, 10, False)])
-    rep.targets.append([f"fit vs fastest peer fit ({fastest})", ">= 1x", "", f"{med[fastest] / fs:.1f}x",
-                        verdict(med[fastest] / fs, 1.0, None, True)])
+    rep.targets.append(
+        ["fit of a 17 s, 1 kHz log, N = 50 (ms)", "<= 50", "<= 10", fmt(fs), verdict(fs, 50, 10, False)]
+    )
+    rep.targets.append(
+        [
+            f"fit vs fastest peer fit ({fastest})",
+            ">= 1x",
+            "",
+            f"{med[fastest] / fs:.1f}x",
+            verdict(med[fastest] / fs, 1.0, None, True),
+        ]
+    )
 
 
 # ---------------------------------------------------------------------------------------------
@@ -455,15 +589,23 @@ def bench_fit(rep: Report, demo: Any, cfg: dict[str, Any]) -> None:
 def bench_scaling(rep: Report, bld: Build, demo: Any, images: dict[int, Path], cfg: dict[str, Any]) -> None:
     import peers
     from demo import make_demo
+
     exe = bld.exe("bench/peers/fs_bench_step")
     assert exe is not None
-    cols = ["C double step, ns", "C float step, ns", "C fixed step, ns",
-            "movement_primitives step (euler-cython), ns", "pydmps step, ns",
-            "forceskill fit, ms", "movement_primitives fit, ms", "pydmps fit, ms"]
+    cols = [
+        "C double step, ns",
+        "C float step, ns",
+        "C fixed step, ns",
+        "movement_primitives step (euler-cython), ns",
+        "pydmps step, ns",
+        "forceskill fit, ms",
+        "movement_primitives fit, ms",
+        "pydmps fit, ms",
+    ]
     res: dict[str, dict[int, list[float]]] = {c: {n: [] for n in KERNELS_SCALING} for c in cols}
     rejected: dict[int, int] = {}
     models = {n: (peers.mp_fit(demo, n), peers.pydmps_fit(demo, n)) for n in KERNELS_SCALING}
-    for n in KERNELS_SCALING:   # warm-up per N (first calls pay for page faults and caches)
+    for n in KERNELS_SCALING:  # warm-up per N (first calls pay for page faults and caches)
         fs_fit(demo, n)
     for _ in range(cfg["scale_rounds"]):
         for n in KERNELS_SCALING:
@@ -475,92 +617,115 @@ def bench_scaling(rep: Report, bld: Build, demo: Any, images: dict[int, Path], c
                 rejected[n] = r.rejected["fixed"]
             mp, pd = models[n]
             res["movement_primitives step (euler-cython), ns"][n].append(
-                peers.mp_step_ns(mp, cfg["scale_peer_steps"], "euler-cython"))
+                peers.mp_step_ns(mp, cfg["scale_peer_steps"], "euler-cython")
+            )
             res["pydmps step, ns"][n].append(peers.pydmps_step_ns(pd, cfg["scale_peer_steps"]))
-            res["forceskill fit, ms"][n].append(peers.time_ms(lambda: fs_fit(demo, n)))
-            res["movement_primitives fit, ms"][n].append(peers.time_ms(lambda: peers.mp_fit(demo, n)))
-            res["pydmps fit, ms"][n].append(peers.time_ms(lambda: peers.pydmps_fit(demo, n)))
+            res["forceskill fit, ms"][n].append(peers.time_ms(lambda n=n: fs_fit(demo, n)))
+            res["movement_primitives fit, ms"][n].append(peers.time_ms(lambda n=n: peers.mp_fit(demo, n)))
+            res["pydmps fit, ms"][n].append(peers.time_ms(lambda n=n: peers.pydmps_fit(demo, n)))
     med = {c: {n: (median(v) if v else None) for n, v in d.items()} for c, d in res.items()}
     rows = []
-    slopes: dict[str, Optional[float]] = {}
+    slopes: dict[str, float | None] = {}
     for c in cols:
         xs = [n for n in KERNELS_SCALING if med[c][n] is not None]
-        if not xs:
-            if c == "C fixed step, ns" and not rejected:
-                continue    # no fixed-point core in this build: said in the step table
+        if not xs and c == "C fixed step, ns" and not rejected:
+            continue  # no fixed-point core in this build: said in the step table
         cells = []
         for n in KERNELS_SCALING:
             v = med[c][n]
-            cells.append(fmt(v) if v is not None else
-                         (f"refused (status {rejected[n]})" if n in rejected else "n/a"))
+            cells.append(
+                fmt(v) if v is not None else (f"refused (status {rejected[n]})" if n in rejected else "n/a")
+            )
         slopes[c] = loglog_slope([float(n) for n in xs], [med[c][n] for n in xs]) if len(xs) >= 2 else None  # type: ignore[misc]
         sl = slopes[c]
-        tail = (loglog_slope([float(n) for n in xs[-2:]], [med[c][n] for n in xs[-2:]])  # type: ignore[misc]
-                if len(xs) >= 2 else None)
-        rows.append([c] + cells + [f"N^{sl:.2f} ({growth_word(sl)}); N^{tail:.2f} from {xs[-2]} to {xs[-1]}"
-                                   if sl is not None and tail is not None else "n/a"])
+        tail = (
+            loglog_slope([float(n) for n in xs[-2:]], [med[c][n] for n in xs[-2:]])  # type: ignore[misc]
+            if len(xs) >= 2
+            else None
+        )
+        rows.append(
+            [
+                c,
+                *cells,
+                f"N^{sl:.2f} ({growth_word(sl)}); N^{tail:.2f} from {xs[-2]} to {xs[-1]}"
+                if sl is not None and tail is not None
+                else "n/a",
+            ]
+        )
     body = table(["N kernels"] + [str(n) for n in KERNELS_SCALING] + ["growth (log-log slope)"], rows)
-    body += (f"\n\nThe {demo.duration_s:g} s demonstration; medians of {cfg['scale_rounds']} round(s). The C step evaluates "
-             "only the kernels within the cutoff of the phase (docs/math.md 2), so its cost hardly depends on N; "
-             "the peers evaluate all N kernels every step, but at these N their step cost is mostly Python and numpy "
-             "call overhead. "
-             "\"refused\": the fixed-point core rejects that skill (fs_status.h code).")
+    body += (
+        f"\n\nThe {demo.duration_s:g} s demonstration; medians of {cfg['scale_rounds']} round(s). The C step evaluates "
+        "only the kernels within the cutoff of the phase (docs/math.md 2), so its cost hardly depends on N; "
+        "the peers evaluate all N kernels every step, but at these N their step cost is mostly Python and numpy "
+        "call overhead. "
+        '"refused": the fixed-point core rejects that skill (fs_status.h code).'
+    )
     for n in sorted(rejected):
         body += f"\n- fixed point refuses N = {n} (status {rejected[n]}): {fixed_facts(images[n])}"
     rep.add("Scaling with the number of kernels N", body)
     rep.data["scaling_kernels"] = {"median": med, "slope": slopes}
 
-    lengths = [L for L in DEMO_LENGTHS_S]
-    libs = [("forceskill fit", lambda d: fs_fit(d, 50)),
-            ("movement_primitives fit", lambda d: peers.mp_fit(d, 50)),
-            ("pydmps fit", lambda d: peers.pydmps_fit(d, 50))]
+    lengths = list(DEMO_LENGTHS_S)
+    libs = [
+        ("forceskill fit", lambda d: fs_fit(d, 50)),
+        ("movement_primitives fit", lambda d: peers.mp_fit(d, 50)),
+        ("pydmps fit", lambda d: peers.pydmps_fit(d, 50)),
+    ]
     fres: dict[str, dict[float, list[float]]] = {c: {L: [] for L in lengths} for c, _ in libs}
-    fmem: dict[str, dict[float, Optional[float]]] = {c: {L: None for L in lengths} for c, _ in libs}
+    fmem: dict[str, dict[float, float | None]] = {c: dict.fromkeys(lengths) for c, _ in libs}
     for L in lengths:
         d = make_demo(L)
-        active = [(c, fn) for c, fn in libs if c.startswith("forceskill") or L <= cfg["peer_max_len_s"]]
-        for c, fn in active:
-            fn(d)   # warm-up
+        active = [(c, fn) for c, fn in libs if c.startswith("forceskill") or cfg["peer_max_len_s"] >= L]
+        for _, fn in active:
+            fn(d)  # warm-up
         for r in range(cfg["len_rounds"]):
             k = r % len(active)
             for c, fn in active[k:] + active[:k]:
-                fres[c][L].append(peers.time_ms(lambda: fn(d)))
+                fres[c][L].append(peers.time_ms(lambda fn=fn, d=d: fn(d)))
         for c, fn in active:
-            fmem[c][L] = peers.peak_kib(lambda: fn(d)) / 1024.0
+            fmem[c][L] = peers.peak_kib(lambda fn=fn, d=d: fn(d)) / 1024.0
     fmed = {c: {L: (median(v) if v else None) for L, v in dd.items()} for c, dd in fres.items()}
     frows = []
-    fslopes: dict[str, dict[str, Optional[float]]] = {}
+    fslopes: dict[str, dict[str, float | None]] = {}
     for c, _ in libs:
-        for label, series, unit in (("ms", fmed[c], "ms"), ("peak MiB", fmem[c], "MiB")):
+        for label, series, _unit in (("ms", fmed[c], "ms"), ("peak MiB", fmem[c], "MiB")):
             xs = [L for L in lengths if series[L] is not None]
             ys = [series[L] for L in xs]
             sl = loglog_slope(xs, ys) if len(xs) >= 2 else None  # type: ignore[arg-type]
             tail = loglog_slope(xs[-2:], ys[-2:]) if len(xs) >= 2 else None  # type: ignore[arg-type]
             fslopes[f"{c}, {label}"] = {"all": sl, "last_two": tail}
             cells = [fmt(series[L]) if series[L] is not None else "skipped (--quick)" for L in lengths]
-            grow = (f"T^{sl:.2f} ({growth_word(sl)}); T^{tail:.2f} from {xs[-2]:g} to {xs[-1]:g} s"
-                    if sl is not None and tail is not None else "n/a")
-            frows.append([f"{c}, {label}"] + cells + [grow])
+            grow = (
+                f"T^{sl:.2f} ({growth_word(sl)}); T^{tail:.2f} from {xs[-2]:g} to {xs[-1]:g} s"
+                if sl is not None and tail is not None
+                else "n/a"
+            )
+            frows.append([f"{c}, {label}", *cells, grow])
     body = table(["demonstration length"] + [f"{L:g} s" for L in lengths] + ["growth (log-log slope)"], frows)
-    body += (f"\n\nN = 50, 1 kHz samples; times are medians of {cfg['len_rounds']} round(s) (order rotated), peak "
-             "memory (tracemalloc) is one fit. Every library builds dense per-sample arrays (kernels x samples), "
-             "so memory grows linearly with the length; the slope over the last two lengths shows the asymptotic growth "
-             "of the time once fixed costs no longer dominate.")
+    body += (
+        f"\n\nN = 50, 1 kHz samples; times are medians of {cfg['len_rounds']} round(s) (order rotated), peak "
+        "memory (tracemalloc) is one fit. Every library builds dense per-sample arrays (kernels x samples), "
+        "so memory grows linearly with the length; the slope over the last two lengths shows the asymptotic growth "
+        "of the time once fixed costs no longer dominate."
+    )
     rep.add("Scaling with the length of the demonstration", body)
-    rep.data["scaling_length"] = {"median_ms": {c: {f"{L:g}": v for L, v in dd.items()} for c, dd in fmed.items()},
-                                  "peak_MiB": {c: {f"{L:g}": v for L, v in dd.items()} for c, dd in fmem.items()},
-                                  "slope": fslopes}
+    rep.data["scaling_length"] = {
+        "median_ms": {c: {f"{L:g}": v for L, v in dd.items()} for c, dd in fmed.items()},
+        "peak_MiB": {c: {f"{L:g}": v for L, v in dd.items()} for c, dd in fmem.items()},
+        "slope": fslopes,
+    }
 
 
 # ---------------------------------------------------------------------------------------------
 # 4. the other parts' benchmarks (HIL, CAN, Cortex-M, the core's and the fit's own)
 def integrate_parts(rep: Report, bld: Build, cfg: dict[str, Any]) -> None:
     import parts
+
     cfg["rep_data"] = rep.data
     for title, fn in parts.PARTS:
         try:
             body, targets, data = fn(ROOT, bld, cfg)
-        except Exception as e:   # a part's program failing must not hide the others' figures
+        except Exception as e:  # a part's program failing must not hide the others' figures
             body, targets, data = f"not available: {type(e).__name__}: {str(e)[:300]}", [], {}
         rep.add(title, body)
         rep.targets.extend(targets)
@@ -612,11 +777,22 @@ def machine_info() -> list[list[str]]:
 def render(rep: Report, info: list[list[str]], started: float, argv: list[str]) -> str:
     now = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     mode = "--quick (CI smoke: small repeat counts; figures are noisier)" if rep.quick else "full"
-    out = [MARKER, "", f"## Figures ({now}, mode: {mode})", "",
-           f"Produced by `{' '.join(['.venv/bin/python', 'bench/run_all.py', *argv])}` in "
-           f"{time.time() - started:.0f} s.", "", "### Machine and versions", "",
-           table(["", ""], info), "", "### Targets", "",
-           table(["figure", "must", "aim", "measured", "verdict"], rep.targets)]
+    out = [
+        MARKER,
+        "",
+        f"## Figures ({now}, mode: {mode})",
+        "",
+        f"Produced by `{' '.join(['.venv/bin/python', 'bench/run_all.py', *argv])}` in "
+        f"{time.time() - started:.0f} s.",
+        "",
+        "### Machine and versions",
+        "",
+        table(["", ""], info),
+        "",
+        "### Targets",
+        "",
+        table(["figure", "must", "aim", "measured", "verdict"], rep.targets),
+    ]
     for title, body in rep.sections:
         out += ["", f"### {title}", "", body]
     return "\n".join(out) + "\n"
@@ -633,21 +809,32 @@ def write_doc(text: str) -> None:
     DOC.write_text(head + text)
 
 
-def main(argv: Optional[list[str]] = None) -> int:
+def main(argv: list[str] | None = None) -> int:
     ensure_venv()
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(
+        description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     ap.add_argument("--quick", action="store_true", help="CI smoke: small repeat counts (< 60 s)")
-    ap.add_argument("--build-dir", default=str(ROOT / "build" / "bench"),
-                    help="Release build tree (default build/bench/, the bench preset's)")
+    ap.add_argument(
+        "--build-dir",
+        default=str(ROOT / "build" / "bench"),
+        help="Release build tree (default build/bench/, the bench preset's)",
+    )
     ap.add_argument("--jobs", type=int, default=min(2, os.cpu_count() or 1), help="build jobs (default 2)")
     ap.add_argument("--no-install", action="store_true", help="do not pip-install missing peers")
     ap.add_argument("--no-write", action="store_true", help="print only; leave docs/performance.md alone")
-    ap.add_argument("--write", action="store_true", help="with --quick: write docs/performance.md anyway "
-                                                          "(by default --quick only prints, so its noisy figures "
-                                                          "never replace a full run's)")
-    ap.add_argument("--json", default=None, help="also write the raw figures as JSON here "
-                                                  "(default BUILD_DIR/performance.json)")
+    ap.add_argument(
+        "--write",
+        action="store_true",
+        help="with --quick: write docs/performance.md anyway "
+        "(by default --quick only prints, so its noisy figures "
+        "never replace a full run's)",
+    )
+    ap.add_argument(
+        "--json",
+        default=None,
+        help="also write the raw figures as JSON here (default BUILD_DIR/performance.json)",
+    )
     args = ap.parse_args(argv)
     started = time.time()
     info_argv = ["--quick"] if args.quick else []
@@ -655,14 +842,20 @@ def main(argv: Optional[list[str]] = None) -> int:
         ensure_peers()
     info = machine_info()
     bld = build(Path(args.build_dir).resolve(), args.jobs)
-    cfg: dict[str, Any] = dict(
-        rounds=3 if args.quick else 11, c_reps=3 if args.quick else 7,
-        peer_steps=1000 if args.quick else 17000,
-        fit_rounds=2 if args.quick else 9,
-        scale_rounds=1 if args.quick else 5, len_rounds=1 if args.quick else 3, scale_peer_steps=500 if args.quick else 5000,
-        peer_max_len_s=17.0 if args.quick else 1e9, quick=args.quick,
-        qemu_timeout_s=120 if args.quick else 600)
+    cfg: dict[str, Any] = {
+        "rounds": 3 if args.quick else 11,
+        "c_reps": 3 if args.quick else 7,
+        "peer_steps": 1000 if args.quick else 17000,
+        "fit_rounds": 2 if args.quick else 9,
+        "scale_rounds": 1 if args.quick else 5,
+        "len_rounds": 1 if args.quick else 3,
+        "scale_peer_steps": 500 if args.quick else 5000,
+        "peer_max_len_s": 17.0 if args.quick else 1e9,
+        "quick": args.quick,
+        "qemu_timeout_s": 120 if args.quick else 600,
+    }
     from demo import make_demo
+
     demo = make_demo(17.0)
     data_dir = bld.dir / "bench-data"
     data_dir.mkdir(parents=True, exist_ok=True)
@@ -683,10 +876,22 @@ def main(argv: Optional[list[str]] = None) -> int:
     print("\n" + "=" * 100 + "\n")
     print(text)
     jpath = Path(args.json) if args.json else bld.dir / "performance.json"
-    jpath.write_text(json.dumps({"machine": dict((r[0], r[1]) for r in info), "quick": args.quick,
-                                 "targets": rep.targets, "data": rep.data}, indent=1, default=str))
+    jpath.write_text(
+        json.dumps(
+            {
+                "machine": {r[0]: r[1] for r in info},
+                "quick": args.quick,
+                "targets": rep.targets,
+                "data": rep.data,
+            },
+            indent=1,
+            default=str,
+        )
+    )
     if args.no_write or (args.quick and not args.write):
-        print(f"wrote {jpath} (docs/performance.md left alone{'' if args.no_write else ': --quick without --write'})")
+        print(
+            f"wrote {jpath} (docs/performance.md left alone{'' if args.no_write else ': --quick without --write'})"
+        )
     else:
         write_doc(text)
         print(f"wrote {DOC.relative_to(ROOT)} and {jpath}")

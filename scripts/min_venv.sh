@@ -32,5 +32,5 @@ print("installed:", ", ".join(f"{p.split('==')[0]} {md.version(p.split('==')[0])
 sys.exit(f"not the lowest versions: {bad}" if bad else 0)
 PY
 export FORCESKILL_HIL_SIM="$ROOT/build/hil_sim/hil_sim"
-"$VENV/bin/python" -m pytest -q tests/host/test_cli.py tests/host/test_outputs.py \
+"$VENV/bin/python" -m pytest -q tests/host/commands/test_cli.py tests/host/test_outputs.py \
   "tests/can/test_journey.py::test_record_fit_upload_run" "tests/can/test_journey.py::test_tracking_figures_1x_and_1_5x"

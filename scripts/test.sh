@@ -17,11 +17,12 @@ echo "== comments and docs cite no SPEC or issue numbers"
 tools/check_no_tracker_refs.sh
 echo "== one implementation of the control tick (scripts/check_one_tick.sh)"
 scripts/check_one_tick.sh
-echo "== layers: no upward or sideways include, no include cycle (tools/check_layers.py)"
+echo "== layers: no upward or sideways include or host import, no cycle (tools/check_layers.py)"
 .venv/bin/python tools/check_layers.py
-echo "== Python: ruff (lint, format) and mypy (strict) on host/forceskill (configuration: host/pyproject.toml)"
-.venv/bin/ruff check --config host/pyproject.toml host/forceskill
-.venv/bin/ruff format --config host/pyproject.toml --check host/forceskill
+echo "== Python: ruff (lint, format) on host/forceskill, tests/, tools/ and bench/, mypy (strict) on"
+echo "   host/forceskill (configuration: host/pyproject.toml)"
+.venv/bin/ruff check --config host/pyproject.toml host/forceskill tests tools bench
+.venv/bin/ruff format --config host/pyproject.toml --check host/forceskill tests tools bench
 (cd host && ../.venv/bin/mypy)
 
 echo "== C tests (Debug: ASan + UBSan; preset host-debug, build/host-debug)"

@@ -6,22 +6,41 @@ point to the same module or to a lower layer, and no header may include itself t
         <-  safety, storage, security, proto  <-  boot  <-  app  <-  ports  <-  hil_sim
 
 Modules of one layer do not include each other. Some lower modules are open only in part (safety
-and hal use only the core's fs_real.h). Prints the module graph; exit 1 on an upward or sideways
-include, an include cycle, or an include that names an ambiguous header.
+and hal use only the core's fs_real.h). The host package host/forceskill is checked the same way on
+its imports (those inside functions too):
+
+    codes, errors, outputs, sim  <-  readers  <-  model  <-  link  <-  plot  <-  commands  <-  cli
+
+(readers may use link.dbc only: a CAN log is decoded with the device's DBC), and no module imports
+itself through others. Prints the module graph; exit 1 on an upward or sideways include or import,
+a cycle, or an include that names an ambiguous header.
 usage: tools/check_layers.py [--graph]
 """
+
 from __future__ import annotations
 
 import argparse
+import ast
 import re
 import sys
 from collections import defaultdict
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-RANK = {"base": 0, "core": 1, "fixed": 2, "hal": 2,
-        "safety": 3, "storage": 3, "security": 3, "proto": 3,
-        "boot": 4, "app": 5, "ports": 6, "hil_sim": 7}
+RANK = {
+    "base": 0,
+    "core": 1,
+    "fixed": 2,
+    "hal": 2,
+    "safety": 3,
+    "storage": 3,
+    "security": 3,
+    "proto": 3,
+    "boot": 4,
+    "app": 5,
+    "ports": 6,
+    "hil_sim": 7,
+}
 # (from, to): the only headers of `to` that `from` may include
 ONLY = {("safety", "core"): {"fs_real.h"}, ("hal", "core"): {"fs_real.h"}}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
@@ -40,8 +59,7 @@ def module(rel: Path) -> str:
 def sources(root: Path) -> list[Path]:
     out = []
     for top in ("firmware", "hil_sim"):
-        out += [p.relative_to(root) for p in sorted((root / top).rglob("*"))
-                if p.suffix in (".c", ".h")]
+        out += [p.relative_to(root) for p in sorted((root / top).rglob("*")) if p.suffix in (".c", ".h")]
     return out
 
 
@@ -55,7 +73,7 @@ def resolve(inc: str, src: Path, by_name: dict[str, list[Path]], root: Path) -> 
     if len(found) > 1:
         found = [f for f in found if module(f) == module(src)] or found
     if len(found) > 1:
-        raise LookupError(f"{src}: #include \"{inc}\" is ambiguous: {', '.join(map(str, found))}")
+        raise LookupError(f'{src}: #include "{inc}" is ambiguous: {", ".join(map(str, found))}')
     return found[0] if found else None
 
 
@@ -77,7 +95,7 @@ def cycles(edges: dict[Path, set[Path]]) -> list[list[Path]]:
                 stack.pop()
                 path.pop()
             elif state.get(nxt) == 1:
-                found.append(path[path.index(nxt):] + [nxt])
+                found.append([*path[path.index(nxt) :], nxt])
             elif nxt not in state:
                 state[nxt] = 1
                 stack.append((nxt, iter(sorted(edges.get(nxt, ())))))
@@ -114,10 +132,95 @@ def check(root: Path = ROOT) -> tuple[list[str], dict[tuple[str, str], set[str]]
                 kind = "sideways" if RANK[b] == RANK[a] else "upward"
                 problems.append(f"{src}: {kind} include of {dst} ({a} -> {b})")
             elif (a, b) in ONLY and dst.name not in ONLY[(a, b)]:
-                problems.append(f"{src}: {a} may use only {', '.join(sorted(ONLY[(a, b)]))} "
-                                f"of {b}, not {dst.name}")
+                problems.append(
+                    f"{src}: {a} may use only {', '.join(sorted(ONLY[(a, b)]))} of {b}, not {dst.name}"
+                )
     for c in cycles(edges):
         problems.append("include cycle: " + " -> ".join(map(str, c)))
+    return problems, graph
+
+
+# ---- host package ------------------------------------------------------------------------------
+
+HOST_PKG = "forceskill"
+HOST_RANK = {"base": 0, "readers": 1, "model": 2, "link": 3, "plot": 4, "commands": 5, "cli": 6}
+HOST_BASE = {"forceskill", "forceskill.codes", "forceskill.errors", "forceskill.outputs", "forceskill.sim"}
+# (from, to): the only modules of `to` that `from` may import
+HOST_ONLY = {("readers", "link"): {"forceskill.link.dbc"}}
+
+
+def host_layer(mod: str) -> str | None:
+    """Layer of a module of the host package; None for a module no layer names."""
+    if mod in HOST_BASE:
+        return "base"
+    parts = mod.split(".")
+    if len(parts) >= 2 and parts[1] in ("readers", "model", "link", "commands"):
+        return parts[1]
+    return {"forceskill.plot": "plot", "forceskill.cli": "cli", "forceskill.__main__": "cli"}.get(mod)
+
+
+def host_modules(pkg_dir: Path) -> dict[str, Path]:
+    """Every module of the package under pkg_dir (host/forceskill), by dotted name."""
+    out = {}
+    for p in sorted(pkg_dir.rglob("*.py")):
+        parts = (pkg_dir.name, *p.relative_to(pkg_dir).with_suffix("").parts)
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
+        out[".".join(parts)] = p
+    return out
+
+
+def host_imports(mod: str, path: Path, known: dict[str, Path]) -> set[str]:
+    """Modules of the package that a module imports, anywhere in it (functions included)."""
+    pkg = mod if path.name == "__init__.py" else mod.rpartition(".")[0]
+    found: set[str] = set()
+    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+        if isinstance(node, ast.Import):
+            names = [a.name for a in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = pkg.split(".")[: len(pkg.split(".")) - node.level + 1]
+                target = ".".join(base + ([node.module] if node.module else []))
+            else:
+                target = node.module or ""
+            subs = [f"{target}.{a.name}" for a in node.names if f"{target}.{a.name}" in known]
+            names = subs if subs and len(subs) == len(node.names) else [target, *subs]
+        else:
+            continue
+        for name in names:
+            n = name
+            while n and n not in known and "." in n:
+                n = n.rpartition(".")[0]
+            if n in known and n != mod:
+                found.add(n)
+    return found
+
+
+def check_host(root: Path = ROOT) -> tuple[list[str], dict[tuple[str, str], set[str]]]:
+    """Violations of the host package's layers (one line each) and its layer graph {(from, to): modules}."""
+    pkg_dir = root / "host" / HOST_PKG
+    if not pkg_dir.is_dir():
+        return [f"{pkg_dir}: the host package is missing"], {}
+    known = host_modules(pkg_dir)
+    problems: list[str] = []
+    graph: dict[tuple[str, str], set[str]] = defaultdict(set)
+    edges: dict[Path, set[Path]] = defaultdict(set)
+    for mod, path in known.items():
+        a = host_layer(mod)
+        if a is None:
+            problems.append(f"{mod}: module has no layer (add it to tools/check_layers.py)")
+            continue
+        for dst in sorted(host_imports(mod, path, known)):
+            edges[Path(mod)].add(Path(dst))
+            b = host_layer(dst)
+            if b is None or a == b:
+                continue
+            graph[(a, b)].add(dst)
+            if HOST_RANK[b] >= HOST_RANK[a] and dst not in HOST_ONLY.get((a, b), ()):
+                kind = "sideways" if HOST_RANK[b] == HOST_RANK[a] else "upward"
+                problems.append(f"{mod}: {kind} import of {dst} ({a} -> {b})")
+    for c in cycles(edges):
+        problems.append("import cycle: " + " -> ".join(map(str, c)))
     return problems, graph
 
 
@@ -126,14 +229,20 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--graph", action="store_true", help="print every module edge and header")
     args = ap.parse_args(argv)
     problems, graph = check()
+    host_problems, host_graph = check_host()
     if args.graph:
         for (a, b), names in sorted(graph.items(), key=lambda kv: (RANK.get(kv[0][0], 99), kv[0])):
             print(f"  {a:8} -> {b:8} {' '.join(sorted(names))}")
-    for p in problems:
+        for (a, b), names in sorted(host_graph.items(), key=lambda kv: HOST_RANK[kv[0][0]]):
+            print(f"  host {a:8} -> {b:8} {' '.join(sorted(names))}")
+    for p in problems + host_problems:
         print(p, file=sys.stderr)
-    print(f"layers: {len(graph)} module edges, {len(problems)} violations "
-          "(upward/sideways includes, cycles)")
-    return 1 if problems else 0
+    print(f"layers: {len(graph)} module edges, {len(problems)} violations (upward/sideways includes, cycles)")
+    print(
+        f"host layers: {len(host_graph)} layer edges, {len(host_problems)} violations "
+        "(upward/sideways imports, cycles)"
+    )
+    return 1 if problems or host_problems else 0
 
 
 if __name__ == "__main__":

@@ -7,14 +7,16 @@ usage: tools/gen_codes.py            write the files
        tools/gen_codes.py --check    exit 1 (one line per file) if a file differs from the table,
                                      or the DBC's frame identifiers differ from the table's
 """
+
 from __future__ import annotations
 
 import argparse
 import re
 import sys
 import textwrap
-import tomllib
 from pathlib import Path
+
+import tomllib
 
 ROOT = Path(__file__).resolve().parents[1]
 TABLE = "firmware/base/codes.toml"
@@ -66,7 +68,7 @@ def validate(table: dict) -> None:
 
 def py_name(group: dict, name: str) -> str:
     strip = group.get("py_strip", "")
-    return name[len(strip):] if strip and name.startswith(strip) else name
+    return name[len(strip) :] if strip and name.startswith(strip) else name
 
 
 def _c_line(code: str, text: str, column: int) -> list[str]:
@@ -74,11 +76,11 @@ def _c_line(code: str, text: str, column: int) -> list[str]:
     one = f"{code:<{column}} /* {text} */"
     if len(one) <= WIDTH:
         return [one]
-    indent = code[:len(code) - len(code.lstrip())]
+    indent = code[: len(code) - len(code.lstrip())]
     wrapped = textwrap.wrap(text, WIDTH - len(indent) - 6)
     body = [f"{indent}/* {wrapped[0]}"] + [f"{indent} * {w}" for w in wrapped[1:]]
     body[-1] += " */"
-    return body + [code]
+    return [*body, code]
 
 
 def _guard(header: str) -> str:
@@ -125,8 +127,7 @@ def c_status_headers(table: dict) -> dict[str, str]:
                     f"#define {p}_COUNT {len(rows)}u /* codes {p}_CODE_FIRST .. {p}_CODE_FIRST + "
                     f"{p}_COUNT - 1 */",
                     "",
-                    f"/** Bit of a code in a cause/latched mask (0 for {g['ok']} or an unknown "
-                    "code). */",
+                    f"/** Bit of a code in a cause/latched mask (0 for {g['ok']} or an unknown code). */",
                     f"#define {p}_BIT(code) \\",
                     f"    (((uint32_t)(code) >= {p}_CODE_FIRST && (uint32_t)(code) < {p}_CODE_FIRST"
                     f" + {p}_COUNT) \\",
@@ -147,15 +148,22 @@ def _doc_comment(text: str) -> list[str]:
 
 def c_proto_ids(table: dict) -> str:
     can = table["can"]
-    body = [f"#define PROTO_NODE_MAX {can['node_max']}u",
-            f"#define PROTO_DEFAULT_NODE {can['default_node']}u", ""]
+    body = [
+        f"#define PROTO_NODE_MAX {can['node_max']}u",
+        f"#define PROTO_DEFAULT_NODE {can['default_node']}u",
+        "",
+    ]
     for value, name, _, _, text in can["ids"]:
-        body += _c_line(f"#define PROTO_ID_{name}(node) (0x{value:03X}u + (uint32_t)(node))",
-                        text, 0)
+        body += _c_line(f"#define PROTO_ID_{name}(node) (0x{value:03X}u + (uint32_t)(node))", text, 0)
     body.append("")
-    return _c_file("proto_ids.h", "CAN identifiers of one node: id = base + node, node 0.."
-                   "PROTO_NODE_MAX (docs/codes.md);\n * the DBC lists the cyclic frames of node 0 "
-                   "with the same bases.", body, ["<stdint.h>", '"proto_status.h"'])
+    return _c_file(
+        "proto_ids.h",
+        "CAN identifiers of one node: id = base + node, node 0.."
+        "PROTO_NODE_MAX (docs/codes.md);\n * the DBC lists the cyclic frames of node 0 "
+        "with the same bases.",
+        body,
+        ["<stdint.h>", '"proto_status.h"'],
+    )
 
 
 def c_uds_ids(table: dict) -> str:
@@ -169,15 +177,25 @@ def c_uds_ids(table: dict) -> str:
         digits = 8 if value > 0xFFFF else (4 if value > 0xFF else 2)
         body += _c_line(f"#define {name} 0x{value:0{digits}X}u", text, 38)
     body.append("")
-    return _c_file("fs_uds_ids.h", "UDS identifiers of the device: data identifiers (0x22/0x2E), "
-                   "routine identifiers (0x31),\n * security levels (0x27) and the firmware "
-                   "download address (0x34).", body, [])
+    return _c_file(
+        "fs_uds_ids.h",
+        "UDS identifiers of the device: data identifiers (0x22/0x2E), "
+        "routine identifiers (0x31),\n * security levels (0x27) and the firmware "
+        "download address (0x34).",
+        body,
+        [],
+    )
 
 
 def python_module(table: dict) -> str:
-    lines = ['"""Every numbered code and identifier of forceskill.', "",
-             f"{STAMP[0].upper()}{STAMP[1:]}.", '"""',
-             "from __future__ import annotations", ""]
+    lines = [
+        '"""Every numbered code and identifier of forceskill.',
+        "",
+        f"{STAMP[0].upper()}{STAMP[1:]}.",
+        '"""',
+        "from __future__ import annotations",
+        "",
+    ]
     names: list[str] = []
     for g in table["status"]:
         lines.append(f"# {g['title']}")
@@ -195,8 +213,11 @@ def python_module(table: dict) -> str:
                     lines.append(f"    {value}: {short!r},")
             lines += ["}", ""]
     can = table["can"]
-    lines += ["# CAN identifiers of node 0; node n uses id + n",
-              f"NODE_MAX = {can['node_max']}", f"DEFAULT_NODE = {can['default_node']}"]
+    lines += [
+        "# CAN identifiers of node 0; node n uses id + n",
+        f"NODE_MAX = {can['node_max']}",
+        f"DEFAULT_NODE = {can['default_node']}",
+    ]
     names += ["NODE_MAX", "DEFAULT_NODE"]
     for value, _, n, _, text in can["ids"]:
         names.append(n)
@@ -218,39 +239,60 @@ def _md_cell(text: str) -> str:
 
 
 def markdown(table: dict) -> str:
-    out = ["# Codes and identifiers", "",
-           f"<!-- {STAMP} -->", "",
-           "Every numbered status code, CAN identifier and UDS identifier of the device and the "
-           "host, "
-           f"from one table (`{TABLE}`). `tools/gen_codes.py` writes the C headers "
-           "(`firmware/base/*.h`), the host's constants (`host/forceskill/codes.py`, re-exported "
-           "by `forceskill.errors`) and this page; `tools/gen_codes.py --check` (run by "
-           "`scripts/test.sh`) fails when any of them differs from the table or the DBC's frame "
-           "identifiers differ from the ones below. Codes are stable: never renumbered, only "
-           "appended.", "",
-           "The CLI prints a refusal as one line ending in `[code]` "
-           "(`forceskill.errors.FsError`).", ""]
+    out = [
+        "# Codes and identifiers",
+        "",
+        f"<!-- {STAMP} -->",
+        "",
+        "Every numbered status code, CAN identifier and UDS identifier of the device and the "
+        "host, "
+        f"from one table (`{TABLE}`). `tools/gen_codes.py` writes the C headers "
+        "(`firmware/base/*.h`), the host's constants (`host/forceskill/codes.py`, re-exported "
+        "by `forceskill.errors`) and this page; `tools/gen_codes.py --check` (run by "
+        "`scripts/test.sh`) fails when any of them differs from the table or the DBC's frame "
+        "identifiers differ from the ones below. Codes are stable: never renumbered, only "
+        "appended.",
+        "",
+        "The CLI prints a refusal as one line ending in `[code]` (`forceskill.errors.FsError`).",
+        "",
+    ]
     for g in table["status"]:
         where = f"`{g['header']}`, `{g['enum']}`" if "header" in g else "host only"
-        out += [f"## {g['title']}", "", f"C: {where}.", "",
-                "| code | name | host name | meaning |", "|---:|---|---|---|"]
+        out += [
+            f"## {g['title']}",
+            "",
+            f"C: {where}.",
+            "",
+            "| code | name | host name | meaning |",
+            "|---:|---|---|---|",
+        ]
         for value, name, text, short in _rows(g):
-            meaning = text + (f" (host text: \"{short}\")" if short else "")
+            meaning = text + (f' (host text: "{short}")' if short else "")
             host = py_name(g, name)
             out.append(f"| {value} | `{name}` | `{host}` | {_md_cell(meaning)} |")
         out.append("")
     can = table["can"]
-    out += ["## CAN identifiers", "",
-            f"Node n (0..{can['node_max']}, default {can['default_node']}) uses base + n. C: "
-            "`proto_ids.h`, `PROTO_ID_<name>(node)`.", "",
-            "| base | C macro | host name | DBC frame | what |", "|---:|---|---|---|---|"]
+    out += [
+        "## CAN identifiers",
+        "",
+        f"Node n (0..{can['node_max']}, default {can['default_node']}) uses base + n. C: "
+        "`proto_ids.h`, `PROTO_ID_<name>(node)`.",
+        "",
+        "| base | C macro | host name | DBC frame | what |",
+        "|---:|---|---|---|---|",
+    ]
     for value, name, host, frame, text in can["ids"]:
-        out.append(f"| 0x{value:03X} | `PROTO_ID_{name}` | `{host}` | {frame or '-'} | "
-                   f"{_md_cell(text)} |")
-    out += ["", "## UDS identifiers", "",
-            "C: `fs_uds_ids.h`. Services, sessions and negative response codes are ISO 14229's "
-            "(`firmware/proto/uds.h`, [protocol.md](protocol.md)).", "",
-            "| value | kind | C name | host name | what |", "|---:|---|---|---|---|"]
+        out.append(f"| 0x{value:03X} | `PROTO_ID_{name}` | `{host}` | {frame or '-'} | {_md_cell(text)} |")
+    out += [
+        "",
+        "## UDS identifiers",
+        "",
+        "C: `fs_uds_ids.h`. Services, sessions and negative response codes are ISO 14229's "
+        "(`firmware/proto/uds.h`, [protocol.md](protocol.md)).",
+        "",
+        "| value | kind | C name | host name | what |",
+        "|---:|---|---|---|---|",
+    ]
     for value, name, host, kind, text in table["uds"]["ids"]:
         digits = 8 if value > 0xFFFF else (4 if value > 0xFF else 2)
         out.append(f"| 0x{value:0{digits}X} | {kind} | `{name}` | `{host}` | {_md_cell(text)} |")

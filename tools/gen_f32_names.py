@@ -8,6 +8,7 @@ checks with nm that the float libraries export only _f32 symbols.
 usage: tools/gen_f32_names.py            write firmware/core/fs_f32_names.h, firmware/safety/saf_f32_names.h
        tools/gen_f32_names.py --check    exit 1 if either differs from the headers' declarations
 """
+
 from __future__ import annotations
 
 import argparse
@@ -18,10 +19,18 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 # output -> the public headers whose functions it renames (the modules built twice)
 OUTPUTS = {
-    "firmware/core/fs_f32_names.h": ["firmware/core/dmp.h", "firmware/core/pfc.h",
-                                     "firmware/core/skill.h", "firmware/core/skill_check.h"],
-    "firmware/safety/saf_f32_names.h": ["firmware/safety/lim.h", "firmware/safety/sen.h",
-                                        "firmware/safety/wdg.h", "firmware/safety/saf.h"],
+    "firmware/core/fs_f32_names.h": [
+        "firmware/core/dmp.h",
+        "firmware/core/pfc.h",
+        "firmware/core/skill.h",
+        "firmware/core/skill_check.h",
+    ],
+    "firmware/safety/saf_f32_names.h": [
+        "firmware/safety/lim.h",
+        "firmware/safety/sen.h",
+        "firmware/safety/wdg.h",
+        "firmware/safety/saf.h",
+    ],
 }
 COMMENT = re.compile(r"/\*.*?\*/", re.S)
 # a declaration at column 0: return type words and stars, then the name and "(";
@@ -35,10 +44,14 @@ def functions(text: str) -> list[str]:
 
 def render(out: str, headers: list[str], root: Path) -> str:
     guard = re.sub(r"[^A-Z0-9]", "_", Path(out).name.upper())
-    lines = [f"/* The _f32 names of the float32 build of {', '.join(Path(h).name for h in headers)}",
-             " * (FS_REAL_FLOAT): generated from their declarations by tools/gen_f32_names.py;",
-             " * do not edit. */",
-             f"#ifndef {guard}", f"#define {guard}", ""]
+    lines = [
+        f"/* The _f32 names of the float32 build of {', '.join(Path(h).name for h in headers)}",
+        " * (FS_REAL_FLOAT): generated from their declarations by tools/gen_f32_names.py;",
+        " * do not edit. */",
+        f"#ifndef {guard}",
+        f"#define {guard}",
+        "",
+    ]
     for h in headers:
         for name in functions((root / h).read_text()):
             lines.append(f"#define {name} {name}_f32")
@@ -48,9 +61,11 @@ def render(out: str, headers: list[str], root: Path) -> str:
 
 def check(root: Path = ROOT) -> list[str]:
     """One line per output that differs from what the headers give."""
-    return [f"{out} differs from the declarations in {', '.join(h)}: run tools/gen_f32_names.py"
-            for out, h in OUTPUTS.items()
-            if not (root / out).is_file() or (root / out).read_text() != render(out, h, root)]
+    return [
+        f"{out} differs from the declarations in {', '.join(h)}: run tools/gen_f32_names.py"
+        for out, h in OUTPUTS.items()
+        if not (root / out).is_file() or (root / out).read_text() != render(out, h, root)
+    ]
 
 
 def main(argv: list[str] | None = None) -> int:

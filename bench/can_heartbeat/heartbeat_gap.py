@@ -11,9 +11,11 @@ simulator's clock slips, and whether the device stayed in TEACH (it runs with --
 default 500 ms, so that a long gap is measured rather than ending the run).
 
 Usage: heartbeat_gap.py [--hil-sim PATH] [--duration S] [--impl cyclic|thread] [--host-timeout MS]"""
+
 from __future__ import annotations
 
 import argparse
+import itertools
 import logging
 import re
 import subprocess
@@ -45,7 +47,7 @@ class Spy(can.Listener):
 
 
 def gaps_ms(t: list[float]) -> list[float]:
-    return [(b - a) * 1e3 for a, b in zip(t, t[1:])]
+    return [(b - a) * 1e3 for a, b in itertools.pairwise(t)]
 
 
 def pct(v: list[float], q: float) -> float:
@@ -60,9 +62,21 @@ def main() -> int:
     ap.add_argument("--impl", choices=("cyclic", "thread"), default="cyclic")
     ap.add_argument("--host-timeout", type=int, default=500)
     args = ap.parse_args()
-    srv = subprocess.Popen([args.hil_sim, "serve", "--port", "0", "--host-timeout", str(args.host_timeout),
-                            "--scenario", str(REPO / "hil_sim" / "scenarios" / "pressing_task1_demo.toml")],
-                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    srv = subprocess.Popen(
+        [
+            args.hil_sim,
+            "serve",
+            "--port",
+            "0",
+            "--host-timeout",
+            str(args.host_timeout),
+            "--scenario",
+            str(REPO / "hil_sim" / "scenarios" / "pressing_task1_demo.toml"),
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     try:
         port = int(srv.stdout.readline().split("127.0.0.1:")[1].split()[0])
         hb_id = {m.name: m.frame_id for m in load_db(0).messages}["HostHeartbeat"]
@@ -79,13 +93,15 @@ def main() -> int:
             if args.impl == "cyclic":
                 dev.start_heartbeat(telemetry_period_ms=1)
             else:
-                def run() -> None:        # the former implementation (a plain Python thread)
+
+                def run() -> None:  # the former implementation (a plain Python thread)
                     nxt = time.monotonic()
                     while not stop.is_set():
                         dev.heartbeat()
                         dev.heartbeat_sent.append(time.monotonic())
                         nxt += HEARTBEAT_PERIOD_S
                         stop.wait(max(0.0, nxt - time.monotonic()))
+
                 th = threading.Thread(target=run, daemon=True)
                 th.start()
             dev.command_until("teach", {"TEACH"}, 6.0)
@@ -108,12 +124,14 @@ def main() -> int:
         _, err = srv.communicate(timeout=10)
     slips = re.search(r"(\d+) clock slips", err)
     g_bus, g_host = gaps_ms(spy.t), gaps_ms(dev.heartbeat_sent)
-    print(f"heartbeat_gap impl={args.impl} duration_s={args.duration:g} period_ms={HEARTBEAT_PERIOD_S * 1e3:g} "
-          f"frames_on_bus={len(spy.t)} bus_gap_max_ms={max(g_bus):.1f} bus_gap_p999_ms={pct(g_bus, 0.999):.1f} "
-          f"bus_gaps_over_50ms={sum(g > 50 for g in g_bus)} bus_gaps_over_100ms={sum(g > 100 for g in g_bus)} "
-          f"host_gap_max_ms={max(g_host):.1f} host_gap_p999_ms={pct(g_host, 0.999):.1f} "
-          f"sim_clock_slips={slips.group(1) if slips else '?'} "
-          f"teach={'kept' if left_teach is None else 'left: ' + left_teach}")
+    print(
+        f"heartbeat_gap impl={args.impl} duration_s={args.duration:g} period_ms={HEARTBEAT_PERIOD_S * 1e3:g} "
+        f"frames_on_bus={len(spy.t)} bus_gap_max_ms={max(g_bus):.1f} bus_gap_p999_ms={pct(g_bus, 0.999):.1f} "
+        f"bus_gaps_over_50ms={sum(g > 50 for g in g_bus)} bus_gaps_over_100ms={sum(g > 100 for g in g_bus)} "
+        f"host_gap_max_ms={max(g_host):.1f} host_gap_p999_ms={pct(g_host, 0.999):.1f} "
+        f"sim_clock_slips={slips.group(1) if slips else '?'} "
+        f"teach={'kept' if left_teach is None else 'left: ' + left_teach}"
+    )
     return 0
 
 

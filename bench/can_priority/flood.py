@@ -14,9 +14,11 @@ emergency frame's latency after the tick that latched the fault, and whether the
 held until the flood ended (it may be: it has the lowest priority).
 
 Usage: flood.py [--hil-sim PATH] [--seconds S]   (tests/can/test_priority.py asserts the figures)"""
+
 from __future__ import annotations
 
 import argparse
+import itertools
 import logging
 import re
 import socket
@@ -62,14 +64,14 @@ class Raw:
             if not chunk:
                 raise RuntimeError("socketcand closed")
             self.buf += chunk
-        self.buf = self.buf[self.buf.index(token) + len(token):]
+        self.buf = self.buf[self.buf.index(token) + len(token) :]
 
     def _read(self) -> None:
         self.s.settimeout(0.2)
         while not self.stop.is_set():
             try:
                 chunk = self.s.recv(1 << 16)
-            except socket.timeout:
+            except TimeoutError:
                 continue
             except OSError:
                 return
@@ -78,8 +80,14 @@ class Raw:
             self.buf += chunk
 
     def frames(self) -> list[tuple[int, float, bytes]]:
-        return [(int(m.group(1), 16), int(m.group(2)) + int(m.group(3)) * 1e-6, bytes.fromhex(m.group(4).decode()))
-                for m in FRAME_RE.finditer(bytes(self.buf))]
+        return [
+            (
+                int(m.group(1), 16),
+                int(m.group(2)) + int(m.group(3)) * 1e-6,
+                bytes.fromhex(m.group(4).decode()),
+            )
+            for m in FRAME_RE.finditer(bytes(self.buf))
+        ]
 
     def close(self) -> None:
         self.stop.set()
@@ -98,13 +106,13 @@ class Flooder(Raw):
         self.sender = threading.Thread(target=self._send, daemon=True)
         self.sender.start()
 
-    def _read(self) -> None:          # drain what the server broadcasts; keep nothing
+    def _read(self) -> None:  # drain what the server broadcasts; keep nothing
         self.s.settimeout(0.2)
         while not self.stop.is_set():
             try:
                 if not self.s.recv(1 << 16):
                     return
-            except socket.timeout:
+            except TimeoutError:
                 continue
             except OSError:
                 return
@@ -122,7 +130,7 @@ class Flooder(Raw):
 
 @dataclass
 class Result:
-    phases: dict = field(default_factory=dict)      # name -> (t0, t1)
+    phases: dict = field(default_factory=dict)  # name -> (t0, t1)
     flood_load: dict = field(default_factory=dict)  # name -> share of the bus time
     status_gap_ms: dict = field(default_factory=dict)
     emcy_latency_ms: float = float("nan")
@@ -133,14 +141,24 @@ class Result:
     def lines(self) -> list[str]:
         out = [f"frames recorded: {self.frames}"]
         for name, (t0, t1) in self.phases.items():
-            out.append(f"phase {name}: {t1 - t0:.2f} s flooded, flood {100 * self.flood_load[name]:.1f} % "
-                       f"of the bus, largest status gap {self.status_gap_ms[name]:.2f} ms (period 10 ms)")
-        out.append(f"emergency frame (fault {self.emcy_code}) {self.emcy_latency_ms:.3f} ms after the tick "
-                   "that latched the fault")
+            out.append(
+                f"phase {name}: {t1 - t0:.2f} s flooded, flood {100 * self.flood_load[name]:.1f} % "
+                f"of the bus, largest status gap {self.status_gap_ms[name]:.2f} ms (period 10 ms)"
+            )
+        out.append(
+            f"emergency frame (fault {self.emcy_code}) {self.emcy_latency_ms:.3f} ms after the tick "
+            "that latched the fault"
+        )
         uds_t0, uds_t1 = self.phases["UDS"]
-        out.append("UDS answer: first frame at "
-                   + (f"{self.uds_answer_t - uds_t0:.3f} s into the UDS flood" if self.uds_answer_t == self.uds_answer_t
-                      else "never") + f" (flood ended at {uds_t1 - uds_t0:.3f} s)")
+        out.append(
+            "UDS answer: first frame at "
+            + (
+                f"{self.uds_answer_t - uds_t0:.3f} s into the UDS flood"
+                if self.uds_answer_t == self.uds_answer_t
+                else "never"
+            )
+            + f" (flood ended at {uds_t1 - uds_t0:.3f} s)"
+        )
         return out
 
 
@@ -166,8 +184,13 @@ def measure(port: int, seconds: float = 1.5) -> Result:
             f1 = Flooder(port, 0x640)
             f1.running.set()
             time.sleep(0.2)
-            host.send(can.Message(arbitration_id=ID_UDS_REQ, is_extended_id=False,
-                                  data=[0x03, 0x22, 0x02, 0x00, 0xCC, 0xCC, 0xCC, 0xCC]))
+            host.send(
+                can.Message(
+                    arbitration_id=ID_UDS_REQ,
+                    is_extended_id=False,
+                    data=[0x03, 0x22, 0x02, 0x00, 0xCC, 0xCC, 0xCC, 0xCC],
+                )
+            )
             time.sleep(seconds)
             f1.close()
             time.sleep(0.3)
@@ -190,10 +213,12 @@ def measure(port: int, seconds: float = 1.5) -> Result:
     res.phases["telemetry"] = _phase_window(frames, 0x185, 0.0, end)
     for name, fid in (("UDS", 0x640), ("telemetry", 0x185)):
         t0, t1 = res.phases[name]
-        bits = sum(111 for i, t, _ in frames if i == fid and t0 <= t <= t1)   # unstuffed 8-byte frame
+        bits = sum(111 for i, t, _ in frames if i == fid and t0 <= t <= t1)  # unstuffed 8-byte frame
         res.flood_load[name] = bits * 1e-6 / max(t1 - t0, 1e-9)
         st = [t for i, t, _ in frames if i == ID_STATUS and t0 - 0.02 <= t <= t1 + 0.02]
-        res.status_gap_ms[name] = max((b - a) * 1e3 for a, b in zip(st, st[1:])) if len(st) > 1 else float("inf")
+        res.status_gap_ms[name] = (
+            max((b - a) * 1e3 for a, b in itertools.pairwise(st)) if len(st) > 1 else float("inf")
+        )
     # device epoch: the bus time of tick 0 (a status frame leaves at the earliest its own wire
     # time, >= 111 bits = 0.111 ms, after its tick: the latency below is an upper bound)
     epoch = min(t - status_msg.decode(d)["Tick"] * 1e-3 for i, t, d in frames if i == ID_STATUS) - 111e-6
@@ -209,10 +234,21 @@ def measure(port: int, seconds: float = 1.5) -> Result:
 
 
 def start_server(hil_sim: Path) -> tuple[subprocess.Popen, int]:
-    proc = subprocess.Popen([str(hil_sim), "serve", "--port", "0", "--scenario",
-                             str(REPO / "hil_sim" / "scenarios" / "pressing_task1_demo.toml"),
-                             "--host-timeout", "100"],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc = subprocess.Popen(
+        [
+            str(hil_sim),
+            "serve",
+            "--port",
+            "0",
+            "--scenario",
+            str(REPO / "hil_sim" / "scenarios" / "pressing_task1_demo.toml"),
+            "--host-timeout",
+            "100",
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     line = proc.stdout.readline() if proc.stdout else ""
     if "listening on 127.0.0.1:" not in line:
         raise RuntimeError(f"hil_sim serve did not start: {line!r}")

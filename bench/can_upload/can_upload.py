@@ -8,6 +8,7 @@ of the simulator's C model). Measured time = wall time from the RequestDownload 
 RequestTransferExit response, best and median of --repeat uploads. Target: measured <= 2x bus-limited.
 
 Usage: can_upload.py [--hil-sim PATH] [--repeat N]"""
+
 from __future__ import annotations
 
 import argparse
@@ -24,10 +25,10 @@ import can
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "host"))
 
-from forceskill.fit import fit  # noqa: E402
 from forceskill.link import uds as U  # noqa: E402
 from forceskill.link.device import Device  # noqa: E402
-from forceskill.synthetic import pressing  # noqa: E402
+from forceskill.model.fit import fit  # noqa: E402
+from forceskill.model.synthetic import pressing  # noqa: E402
 
 BITRATE = 1_000_000
 # python-can's socketcand reader warns whenever a TCP read ends inside a frame (normal streaming)
@@ -85,9 +86,15 @@ def main() -> int:
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--kernels", type=int, default=50)
     args = ap.parse_args()
-    image = fit(pressing(seed=3, duration_s=8.0), 100.0, n_kernels=args.kernels, surface_m=0.001).skill.to_bytes()
-    srv = subprocess.Popen([args.hil_sim, "serve", "--port", "0", "--speed", "1", "--host-timeout", "500"],
-                           stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+    image = fit(
+        pressing(seed=3, duration_s=8.0), 100.0, n_kernels=args.kernels, surface_m=0.001
+    ).skill.to_bytes()
+    srv = subprocess.Popen(
+        [args.hil_sim, "serve", "--port", "0", "--speed", "1", "--host-timeout", "500"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.DEVNULL,
+        text=True,
+    )
     try:
         line = srv.stdout.readline()
         port = int(line.split("127.0.0.1:")[1].split()[0])
@@ -112,7 +119,11 @@ def main() -> int:
                         fr = list(cap.frames)
                     bits = sum(frame_bits(m.arbitration_id, bytes(m.data)) for m in fr)
                     bus_limited.append(bits / BITRATE)
-                    on_bus.append(fr[-1].timestamp - fr[0].timestamp + frame_bits(fr[0].arbitration_id, bytes(fr[0].data)) / BITRATE)
+                    on_bus.append(
+                        fr[-1].timestamp
+                        - fr[0].timestamp
+                        + frame_bits(fr[0].arbitration_id, bytes(fr[0].data)) / BITRATE
+                    )
                 assert U.upload(client, 0, 1, len(image)) == image
         spy.stop()
         spy_bus.shutdown()
@@ -123,9 +134,11 @@ def main() -> int:
     n_frames = len(fr)
     best, med = min(walls), statistics.median(walls)
     limit = statistics.median(bus_limited)
-    print(f"can_upload kernels={args.kernels} bytes={len(image)} frames={n_frames} "
-          f"bus_limited_ms={limit * 1e3:.2f} measured_best_ms={best * 1e3:.2f} measured_median_ms={med * 1e3:.2f} "
-          f"bus_span_median_ms={statistics.median(on_bus) * 1e3:.2f} ratio_median={med / limit:.2f} (must be <= 2)")
+    print(
+        f"can_upload kernels={args.kernels} bytes={len(image)} frames={n_frames} "
+        f"bus_limited_ms={limit * 1e3:.2f} measured_best_ms={best * 1e3:.2f} measured_median_ms={med * 1e3:.2f} "
+        f"bus_span_median_ms={statistics.median(on_bus) * 1e3:.2f} ratio_median={med / limit:.2f} (must be <= 2)"
+    )
     return 0 if med <= 2.0 * limit else 1
 
 

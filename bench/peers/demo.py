@@ -8,6 +8,7 @@ same samples. The position is that of a spring object (surface at 1 mm, stiffnes
 learning target ``x* = f/K`` (docs/math.md) is what the peer libraries imitate, and forceskill
 fits the force and position columns.
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -70,7 +71,7 @@ def make_demo(duration_s: float = 17.0, seed: int = SEED) -> Demo:
     fmax = float(np.max(f))
     freqs = rng.uniform(8.0, 12.0, size=3)
     phases = rng.uniform(0.0, 2.0 * np.pi, size=3)
-    tremor = sum(np.sin(2.0 * np.pi * fr * t + ph) for fr, ph in zip(freqs, phases)) / 3.0
+    tremor = sum(np.sin(2.0 * np.pi * fr * t + ph) for fr, ph in zip(freqs, phases, strict=False)) / 3.0
     f = f + 0.01 * fmax * tremor * np.clip(f / fmax, 0.0, 1.0)
     f = np.maximum(f, 0.0)
     pos = SURFACE_M + f / STIFFNESS_NPM
@@ -85,5 +86,7 @@ def write_csv(demo: Demo, path: str) -> None:
 
 if __name__ == "__main__":
     d = make_demo()
-    print(f"samples={d.t_s.size} duration_s={d.duration_s:.3f} max_force_N={d.force_N.max():.3f} "
-          f"impulse_Ns={np.trapezoid(d.force_N, d.t_s):.3f} checksum={d.force_N.sum():.9e}")
+    print(
+        f"samples={d.t_s.size} duration_s={d.duration_s:.3f} max_force_N={d.force_N.max():.3f} "
+        f"impulse_Ns={np.trapezoid(d.force_N, d.t_s):.3f} checksum={d.force_N.sum():.9e}"
+    )

@@ -13,15 +13,16 @@ Every library imitates the same samples: the learning target ``x* = f/k`` of ben
 Times are wall-clock ``time.perf_counter_ns`` with the garbage collector off during a measured
 loop (as ``timeit`` does).
 """
+
 from __future__ import annotations
 
 import gc
 import time
 import tracemalloc
-from typing import Any, Callable
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
-
 from demo import Demo
 
 
@@ -30,9 +31,9 @@ from demo import Demo
 def mp_fit(demo: Demo, n_kernels: int) -> Any:
     """movement_primitives: a 1-D DMP imitating x* (construction + imitate, as its docs do)."""
     from movement_primitives.dmp import DMP
+
     y = demo.target_m[:, np.newaxis]
-    dmp = DMP(n_dims=1, execution_time=demo.duration_s, dt=0.001, n_weights_per_dim=n_kernels,
-              int_dt=0.001)
+    dmp = DMP(n_dims=1, execution_time=demo.duration_s, dt=0.001, n_weights_per_dim=n_kernels, int_dt=0.001)
     dmp.imitate(demo.t_s, y)
     return dmp
 
@@ -75,6 +76,7 @@ def mp_open_loop_ns(dmp: Any, step_function: str, run_t: float | None = None) ->
 def pydmps_fit(demo: Demo, n_kernels: int) -> Any:
     """pydmps: DMPs_discrete imitating x* over its normalised run time (dt = 1/(samples - 1))."""
     import pydmps.dmp_discrete
+
     n = demo.t_s.size
     dmp = pydmps.dmp_discrete.DMPs_discrete(n_dmps=1, n_bfs=n_kernels, dt=1.0 / (n - 1))
     dmp.imitate_path(y_des=demo.target_m[np.newaxis, :])

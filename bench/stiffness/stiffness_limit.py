@@ -12,6 +12,7 @@ force, the device's faults (code of the first, pressing / engraving; 0 = none) a
 stayed finite without a limit violation; then, per plant, the stiffness limit (LIMIT_RMS_PCT): the
 figure firmware/app/app.h configures (APP_STIFFNESS_MAX_NPM, APP_STIFFNESS_MAX_RENDERED_NPM).
 """
+
 from __future__ import annotations
 
 import json
@@ -23,10 +24,10 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "host"))
 
-from forceskill import synthetic  # noqa: E402
-from forceskill.fit import fit  # noqa: E402
-from forceskill.params import gains_for_object  # noqa: E402
-from forceskill.report import STIFF_SEED, SURFACE_M  # noqa: E402
+from forceskill.commands.report import STIFF_SEED, SURFACE_M  # noqa: E402
+from forceskill.model import synthetic  # noqa: E402
+from forceskill.model.fit import fit  # noqa: E402
+from forceskill.model.params import gains_for_object  # noqa: E402
 from forceskill.sim import find_hil_sim  # noqa: E402
 
 #: The scenario's object mass (m_v): the default gains are scaled down on soft objects as
@@ -50,15 +51,20 @@ def run(hil_sim: Path, kind: str, k: float, plant: str, tmp: Path) -> dict:
     text = text.replace("k1_Npm = 1e4", f"k1_Npm = {k:g}").replace("k2_Npm = 1e4", f"k2_Npm = {k:g}")
     scen.write_text(text.replace("seed = 1\n", "seed = 1\nstiffness_max_Npm = 1e8\n", 1))
     log = tmp / "log.csv"
-    subprocess.run([str(hil_sim), "run", str(scen), "--skill", str(skill), "--plant", plant, "-o", str(log)],
-                   check=True, capture_output=True)
+    subprocess.run(
+        [str(hil_sim), "run", str(scen), "--skill", str(skill), "--plant", plant, "-o", str(log)],
+        check=True,
+        capture_output=True,
+    )
     return json.loads(log.with_suffix(".summary.json").read_text())
 
 
 def main() -> int:
     hil_sim = find_hil_sim(None, 621)
-    print("| plant | k [N/m] | pressing RMS / max [%] | engraving RMS / max [%] | max contact force [N] "
-          "| faults | finite, no violation |")
+    print(
+        "| plant | k [N/m] | pressing RMS / max [%] | engraving RMS / max [%] | max contact force [N] "
+        "| faults | finite, no violation |"
+    )
     print("|---|---:|---:|---:|---:|---:|---|")
     limits: dict[str, float] = {}
     with tempfile.TemporaryDirectory() as d:
@@ -69,19 +75,25 @@ def main() -> int:
                 p = run(hil_sim, "pressing", k, plant, tmp)
                 e = run(hil_sim, "engraving", k, plant, tmp)
                 ok = all(s["nonfinite_ticks"] == 0 and s["limit_violations"] == 0 for s in (p, e))
-                good = ok and all(s["fault_code"] == 0 and s["tracking_rms_pct"] <= LIMIT_RMS_PCT for s in (p, e))
+                good = ok and all(
+                    s["fault_code"] == 0 and s["tracking_rms_pct"] <= LIMIT_RMS_PCT for s in (p, e)
+                )
                 if k >= LIMIT_FROM_NPM:
                     within = within and good
                     if within:
                         limits[plant] = k
-                print(f"| {plant} | {k:.0e} | {p['tracking_rms_pct']:.2f} / {p['tracking_max_pct']:.1f} | "
-                      f"{e['tracking_rms_pct']:.2f} / {e['tracking_max_pct']:.1f} | "
-                      f"{max(p['max_force_N'], e['max_force_N']):.2f} | {p['fault_code']} / {e['fault_code']} | "
-                      f"{'yes' if ok else 'NO'} |")
+                print(
+                    f"| {plant} | {k:.0e} | {p['tracking_rms_pct']:.2f} / {p['tracking_max_pct']:.1f} | "
+                    f"{e['tracking_rms_pct']:.2f} / {e['tracking_max_pct']:.1f} | "
+                    f"{max(p['max_force_N'], e['max_force_N']):.2f} | {p['fault_code']} / {e['fault_code']} | "
+                    f"{'yes' if ok else 'NO'} |"
+                )
     for plant in ("ideal", "realistic"):
         k_lim = limits.get(plant)
         text = f"{k_lim:.0e} N/m" if k_lim is not None else f"below {LIMIT_FROM_NPM:.0e} N/m"
-        print(f"limit {plant}: {text} (RMS <= {LIMIT_RMS_PCT:g} %, no fault, from {LIMIT_FROM_NPM:.0e} N/m up)")
+        print(
+            f"limit {plant}: {text} (RMS <= {LIMIT_RMS_PCT:g} %, no fault, from {LIMIT_FROM_NPM:.0e} N/m up)"
+        )
     return 0
 
 

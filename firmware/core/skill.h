@@ -1,6 +1,6 @@
 /* Skill image v2 (docs/skill_format.md): little-endian, versioned header, arrays of centres,
  * widths and weights, CRC-32 (zlib) over everything before it. Python writes it
- * (host/forceskill/skill.py); this parses and validates it into a ready dmp_model_t. */
+ * (host/forceskill/model/skill.py); this parses and validates it into a ready dmp_model_t. */
 #ifndef SKILL_H
 #define SKILL_H
 

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .fit import FitResult
+from .model.fit import FitResult
 from .outputs import Outputs, save_figure
 
 

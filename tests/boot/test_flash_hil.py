@@ -5,6 +5,7 @@ app integration of docs/update.md section 8 in hil_sim.
 maximum), ECUReset answered before the restart, the first request of each connection answered,
 revert when the new image fails its self-test, each refusal with its own NRC, skills kept byte
 for byte across updates."""
+
 from __future__ import annotations
 
 import argparse
@@ -14,9 +15,11 @@ from pathlib import Path
 
 import pytest
 
-from forceskill import cli, flash as fl
-from forceskill import fwimage as fw
+from forceskill import cli
 from forceskill.errors import FsError
+from forceskill.link import flash as fl
+from forceskill.model import fwimage as fw
+from helpers.canbus import socketcand_args
 
 REPO = Path(__file__).resolve().parents[2]
 SKILL = REPO / "tests" / "vectors" / "engrave_n10_lwr_hold.skill"
@@ -30,13 +33,16 @@ def hil_sim() -> Path:
 
 @pytest.fixture(scope="module")
 def sim():
-    proc = subprocess.Popen([str(hil_sim()), "serve", "--port", "0", "--host-timeout", "500"],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc = subprocess.Popen(
+        [str(hil_sim()), "serve", "--port", "0", "--host-timeout", "500"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     line = proc.stdout.readline()
     assert "listening on 127.0.0.1:" in line, line
     port = int(line.split("127.0.0.1:")[1].split()[0])
-    yield ["-i", "socketcand", "-c", "can0", "--bus-kwargs", "host=127.0.0.1", f"port={port}",
-           "--timeout", "3"]
+    yield [*socketcand_args(port), "--timeout", "3"]
     proc.terminate()
     proc.communicate(timeout=10)
 
@@ -56,7 +62,7 @@ def flash(capsys, path: str, bus: list[str], *extra: str) -> tuple[int, str, str
 
 def slot1(capsys, bus) -> str:
     assert cli.main(["status", *bus]) == 0
-    return [ln for ln in capsys.readouterr().out.splitlines() if ln.strip().startswith("slot 1:")][0]
+    return next(ln for ln in capsys.readouterr().out.splitlines() if ln.strip().startswith("slot 1:"))
 
 
 def test_update_revert_refusals_and_skills_kept(sim, tmp_path, capsys):
@@ -72,7 +78,7 @@ def test_update_revert_refusals_and_skills_kept(sim, tmp_path, capsys):
     rc, out, err = flash(capsys, image(tmp_path, "v11", "1.1.0", payload[::-1]), sim)
     assert rc == 0, err
     assert "after reset: device: firmware 1.1.0 on host, slot B" in out
-    assert slot1(capsys, sim) == before                 # the skill survived both updates
+    assert slot1(capsys, sim) == before  # the skill survived both updates
 
     # a build whose self-test fails: booted once, not confirmed, reverted
     bad = b"FSHOST-SELFTEST-FAIL" + payload[:20000]
@@ -80,17 +86,24 @@ def test_update_revert_refusals_and_skills_kept(sim, tmp_path, capsys):
     assert rc == 2 and "device reverted to 1.1.0" in err and "[638]" in err, err
 
     # refusals, each with its own code, straight to the device
-    ns = argparse.Namespace(interface="socketcand", channel="can0",
-                            bus_kwargs={"host": "127.0.0.1", "port": int(sim[6].split("=")[1])},
-                            node=0, timeout=3.0)
+    ns = argparse.Namespace(
+        interface="socketcand",
+        channel="can0",
+        bus_kwargs={"host": "127.0.0.1", "port": int(sim[6].split("=")[1])},
+        node=0,
+        timeout=3.0,
+    )
     from forceskill.link.uds import device_secret
-    cases = [(fw.build_image(payload, "1.3.0", "host", bytes(32)), 0xF4),
-             (fw.build_image(payload, "1.3.0", "cortex-m4f", fw.DEV_KEY), 0xF1),
-             (fw.build_image(payload, "1.3.0", "host", fw.DEV_KEY)[:-1000], 0xF2),
-             (fw.build_image(payload, "0.9.0", "host", fw.DEV_KEY), 0xF5)]
+
+    cases = [
+        (fw.build_image(payload, "1.3.0", "host", bytes(32)), 0xF4),
+        (fw.build_image(payload, "1.3.0", "cortex-m4f", fw.DEV_KEY), 0xF1),
+        (fw.build_image(payload, "1.3.0", "host", fw.DEV_KEY)[:-1000], 0xF2),
+        (fw.build_image(payload, "0.9.0", "host", fw.DEV_KEY), 0xF5),
+    ]
     for img, nrc in cases:
         with fl.Link(ns, device_secret(3)) as client:
-            assert fl.read_status(client).version == "1.1.0"    # the first request is answered
+            assert fl.read_status(client).version == "1.1.0"  # the first request is answered
             with pytest.raises(FsError) as e:
                 fl.flash_image(client, img)
             assert f"NRC 0x{nrc:02X}" in str(e.value), str(e.value)
@@ -106,10 +119,17 @@ def test_keyless_confirm_across_reset_cannot_keep_failing_image(sim, tmp_path):
     import time
 
     import can
+
     from forceskill.link.uds import device_secret
+
     port = int(sim[6].split("=")[1])
-    ns = argparse.Namespace(interface="socketcand", channel="can0",
-                            bus_kwargs={"host": "127.0.0.1", "port": port}, node=0, timeout=3.0)
+    ns = argparse.Namespace(
+        interface="socketcand",
+        channel="can0",
+        bus_kwargs={"host": "127.0.0.1", "port": port},
+        node=0,
+        timeout=3.0,
+    )
     payload = os.urandom(30000)
     with fl.Link(ns, device_secret(3)) as client:
         running = fl.read_status(client)
@@ -120,8 +140,11 @@ def test_keyless_confirm_across_reset_cannot_keep_failing_image(sim, tmp_path):
 
         def hostile() -> None:
             with can.Bus(interface="socketcand", host="127.0.0.1", port=port, channel="can0") as bus:
-                msg = can.Message(arbitration_id=0x600, is_extended_id=False,
-                                  data=[0x04, 0x31, 0x01, 0x0F, 0x02, 0xCC, 0xCC, 0xCC])
+                msg = can.Message(
+                    arbitration_id=0x600,
+                    is_extended_id=False,
+                    data=[0x04, 0x31, 0x01, 0x0F, 0x02, 0xCC, 0xCC, 0xCC],
+                )
                 while not stop.is_set():
                     bus.send(msg)
                     sent[0] += 1
@@ -143,4 +166,4 @@ def test_keyless_confirm_across_reset_cannot_keep_failing_image(sim, tmp_path):
         time.sleep(0.3)
         st = fl.read_status(client)
     assert st.running_version == running.running_version and not st.on_test, st.describe()
-    assert st.path in (3, 4), st.describe()            # reverted
+    assert st.path in (3, 4), st.describe()  # reverted

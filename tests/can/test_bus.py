@@ -1,21 +1,22 @@
 """The simulator's bus as python-can sees it: socketcand handshake, several clients seeing each
 other's frames (not their own), the frame format, and the bitrate model's pacing."""
+
 from __future__ import annotations
 
+import importlib.util
+import itertools
 import socket
 import time
-
-import importlib.util
 from pathlib import Path
 
 import can
-import pytest
 
 _spec = importlib.util.spec_from_file_location(
-    "can_upload", Path(__file__).resolve().parents[2] / "bench" / "can_upload" / "can_upload.py")
+    "can_upload", Path(__file__).resolve().parents[2] / "bench" / "can_upload" / "can_upload.py"
+)
 _bench = importlib.util.module_from_spec(_spec)
 _spec.loader.exec_module(_bench)
-frame_bits = _bench.frame_bits     # independent (Python) CAN frame length with bit stuffing
+frame_bits = _bench.frame_bits  # independent (Python) CAN frame length with bit stuffing
 
 
 def open_bus(server) -> can.BusABC:
@@ -37,10 +38,10 @@ def test_handshake_replies_alone(server):
     s.sendall(b"< open can0 >")
     assert s.recv(256) == b"< ok >"
     s.sendall(b"< rawmode >")
-    assert s.recv(256) == b"< ok >"           # alone: no frame in the same read
+    assert s.recv(256) == b"< ok >"  # alone: no frame in the same read
     time.sleep(0.3)
     data = s.recv(65536).decode()
-    assert data.startswith("< frame 180 ")     # then frames: '< frame ID SEC.USEC HEXDATA >'
+    assert data.startswith("< frame 180 ")  # then frames: '< frame ID SEC.USEC HEXDATA >'
     parts = data.split(">")[0].split()
     assert parts[:3] == ["<", "frame", "180"] and len(parts[3].split(".")[1]) == 6
     assert len(parts[4]) == 16 and parts[4] == parts[4].upper()
@@ -65,7 +66,7 @@ def test_clients_see_each_other(server):
         b.send(can.Message(arbitration_id=0x1ABCDE, data=[9], is_extended_id=True))
         m = recv_id(a, 0x1ABCDE)
         assert m is not None and m.is_extended_id and bytes(m.data) == b"\x09"
-        assert recv_id(a, 0x7A1, timeout=0.5) is None      # no echo of its own frame
+        assert recv_id(a, 0x7A1, timeout=0.5) is None  # no echo of its own frame
     finally:
         a.shutdown()
         b.shutdown()
@@ -84,12 +85,14 @@ def test_bus_time_paced_by_bitrate(server):
             m = b.recv(0.2)
             if m is not None and m.arbitration_id == 0x7B0:
                 got.append(m)
-        assert [m.data[0] for m in got] == list(range(100))     # in order
-        dt = [(y.timestamp - x.timestamp) * 1e6 for x, y in zip(got, got[1:])]
+        assert [m.data[0] for m in got] == list(range(100))  # in order
+        dt = [(y.timestamp - x.timestamp) * 1e6 for x, y in itertools.pairwise(got)]
         # 8-byte standard frame: 111 bits unstuffed, 135 worst case; other traffic may interleave
         assert min(dt) >= 111 - 1 and sorted(dt)[len(dt) // 2] <= 135 + 1
         # back to back, a frame ends exactly its own wire time (actual stuff bits) after the previous
-        exact = [d for d, y in zip(dt, got[1:]) if abs(d - frame_bits(0x7B0, bytes(y.data))) < 0.5]
+        exact = [
+            d for d, y in zip(dt, got[1:], strict=False) if abs(d - frame_bits(0x7B0, bytes(y.data))) < 0.5
+        ]
         assert len(exact) >= 80, sorted(dt)[:10]
     finally:
         a.shutdown()

@@ -1,12 +1,13 @@
 """Bus faults injected by `hil_sim serve` on the frames reaching the device: corrupted frames are
 rejected by the E2E check (no command is ever taken from them), a bus-off latches fault 501 and
 stops the demonstration, lost heartbeats within the timeout do not."""
+
 from __future__ import annotations
 
 import time
 
-from conftest import SCENARIOS, Server
 from forceskill import cli
+from helpers.canbus import SCENARIOS, Server
 
 
 def run(capsys, *argv: str) -> tuple[int, str, str]:
@@ -19,7 +20,9 @@ def test_corrupted_frames_never_command(capsys, tmp_path):
     srv = Server(SCENARIOS / "pressing_task1_demo.toml", extra=("--corrupt", "1"))
     try:
         time.sleep(0.2)
-        rc, out, err = run(capsys, "record", "-o", str(tmp_path / "x.blf"), "--duration", "1", *srv.bus_args())
+        rc, _out, err = run(
+            capsys, "record", "-o", str(tmp_path / "x.blf"), "--duration", "1", *srv.bus_args()
+        )
         assert rc == 2 and "did not reach TEACH" in err and "state IDLE" in err
     finally:
         log = srv.stop()
@@ -27,10 +30,14 @@ def test_corrupted_frames_never_command(capsys, tmp_path):
 
 
 def test_bus_off_latches_fault_501(capsys, tmp_path):
-    srv = Server(SCENARIOS / "pressing_task1_demo.toml", extra=("--bus-off-at", "2.5", "--bus-off-for", "0.3"))
+    srv = Server(
+        SCENARIOS / "pressing_task1_demo.toml", extra=("--bus-off-at", "2.5", "--bus-off-for", "0.3")
+    )
     try:
         time.sleep(0.2)
-        rc, out, err = run(capsys, "record", "-o", str(tmp_path / "x.blf"), "--duration", "5", *srv.bus_args())
+        rc, out, err = run(
+            capsys, "record", "-o", str(tmp_path / "x.blf"), "--duration", "5", *srv.bus_args()
+        )
         assert rc == 2 and "left TEACH (FAULT, fault 501 (bus-off))" in err and "[665]" in err
         # what was recorded up to the fault is kept
         assert "kept what was recorded" in err and (tmp_path / "x.blf").stat().st_size > 10000
@@ -47,7 +54,9 @@ def test_lost_heartbeats_tolerated(capsys, tmp_path):
     srv = Server(SCENARIOS / "pressing_task1_demo.toml", extra=("--drop", "0.2"))
     try:
         time.sleep(0.2)
-        rc, out, err = run(capsys, "record", "-o", str(tmp_path / "x.blf"), "--duration", "2", *srv.bus_args())
+        rc, _out, err = run(
+            capsys, "record", "-o", str(tmp_path / "x.blf"), "--duration", "2", *srv.bus_args()
+        )
         assert rc == 0, err
     finally:
         log = srv.stop()

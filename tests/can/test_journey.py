@@ -3,6 +3,7 @@ record a pressing demonstration (TEACH) to .blf, fit it, upload it with udsoncan
 verified), run it at 1x and 1.5x, and check the tracking figures of docs/hil.md on the recorded telemetry.
 Also: a log written by `python -m can.logger` is accepted by `forceskill fit`, and cantools decodes
 every cyclic frame the device sends."""
+
 from __future__ import annotations
 
 import signal
@@ -16,13 +17,13 @@ import cantools
 import numpy as np
 import pytest
 
-from conftest import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS, Server
 from forceskill import cli
-from forceskill.demo import load_demo
 from forceskill.link.dbc import dbc_path
-from forceskill.skill import Skill
+from forceskill.model.demo import load_demo
+from forceskill.model.skill import Skill
+from helpers.canbus import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS, Server, socketcand_args
 
-K_NPM = 100.0          # pressing task 1, outer layer (hil_sim/scenarios/pressing_task1_demo.toml)
+K_NPM = 100.0  # pressing task 1, outer layer (hil_sim/scenarios/pressing_task1_demo.toml)
 SURFACE_M = 0.001
 OBJECT_MASS_KG = 10.0  # m_v_kg of the scenario: the default force gains are adapted to it
 
@@ -36,7 +37,7 @@ def forceskill(capsys, *argv: str) -> str:
 
 @pytest.fixture(scope="module")
 def server():
-    """The journey's simulator: host-silence timeout JOURNEY_HOST_TIMEOUT_MS (conftest: suited to CI)."""
+    """The journey's simulator: host-silence timeout JOURNEY_HOST_TIMEOUT_MS (helpers.canbus: suited to CI)."""
     s = Server(SCENARIOS / "pressing_task1_demo.toml", host_timeout_ms=JOURNEY_HOST_TIMEOUT_MS)
     time.sleep(0.2)
     yield s
@@ -56,11 +57,24 @@ def test_record_fit_upload_run(journey, capsys):
     assert "in TEACH" in out
     demo = load_demo(d / "demo.blf")
     assert 5.9 <= demo.t_s[-1] <= 6.1 and np.allclose(np.diff(demo.t_s), 1e-3)
-    assert 3.5 < demo.force_N.max() < 6.0            # the seeded operator's high level (4.5 N +- 10 %)
-    out = forceskill(capsys, "fit", str(d / "demo.blf"), "--stiffness", str(K_NPM), "--surface-m",
-                     str(SURFACE_M), "--object-mass", str(OBJECT_MASS_KG), "--end", "release", "-o", str(d / "press.skill"))
+    assert 3.5 < demo.force_N.max() < 6.0  # the seeded operator's high level (4.5 N +- 10 %)
+    out = forceskill(
+        capsys,
+        "fit",
+        str(d / "demo.blf"),
+        "--stiffness",
+        str(K_NPM),
+        "--surface-m",
+        str(SURFACE_M),
+        "--object-mass",
+        str(OBJECT_MASS_KG),
+        "--end",
+        "release",
+        "-o",
+        str(d / "press.skill"),
+    )
     err_max = float(out.split("approximation error: max ")[1].split(" %")[0])
-    assert err_max <= 2.5                             # the default fit's bound (docs/performance.md)
+    assert err_max <= 2.5  # the default fit's bound (docs/performance.md)
     out = forceskill(capsys, "upload", str(d / "press.skill"), "--slot", "1", "-q", *bus)
     assert "verified by read-back" in out
     status = forceskill(capsys, "status", *bus)
@@ -69,19 +83,32 @@ def test_record_fit_upload_run(journey, capsys):
     results = {}
     for g in ("1", "1.5"):
         csv = d / f"run_{g}.csv"
-        out = forceskill(capsys, "run", "--slot", "1", "--goal-scale", g, "--csv", str(csv),
-                         "-o", str(d / f"run_{g}.blf"), *bus)
+        out = forceskill(
+            capsys,
+            "run",
+            "--slot",
+            "1",
+            "--goal-scale",
+            g,
+            "--csv",
+            str(csv),
+            "-o",
+            str(d / f"run_{g}.blf"),
+            *bus,
+        )
         results[g] = load_csv(csv)
     journey["results"] = results
     journey["skill"] = sk
     # the whole journey ran under the device's host-silence supervision of JOURNEY_HOST_TIMEOUT_MS
     import argparse
+
     from forceskill.commands._common import connect
     from forceskill.link import uds as U
     from forceskill.link.bus import add_bus_args
+
     parser = argparse.ArgumentParser()
     add_bus_args(parser)
-    ns = parser.parse_args(bus)                       # the server's bus, whatever its interface
+    ns = parser.parse_args(bus)  # the server's bus, whatever its interface
     with connect(ns) as dev, U.uds_client(dev) as client:
         comm = U.read_did(client, U.DID_COMM, 0)
     assert int.from_bytes(comm[1:3], "big") == srv.host_timeout_ms == JOURNEY_HOST_TIMEOUT_MS
@@ -107,7 +134,7 @@ def test_tracking_figures_1x_and_1_5x(journey):
         # max: 2.7 % (1x) and 1.7 % (1.5x) measured; 6 % catches a run that starts before the
         # handle is parked (a too slow simulated park gave 6.9 % at 1.5x, the start transient)
         assert mx <= 6.0, f"goal x{g}: tracking max {mx:.2f} %"
-        assert np.all(np.abs(cols["f_cmd"]) <= 50.0 + 1e-9)   # F_max at the last stage
+        assert np.all(np.abs(cols["f_cmd"]) <= 50.0 + 1e-9)  # F_max at the last stage
     # goal scaling scales the force by 1.5 (reference exactly, measured within 3 %)
     r_ref = res["1.5"]["f_hat"].max() / res["1"]["f_hat"].max()
     r_meas = res["1.5"]["f_contact"].max() / res["1"]["f_contact"].max()
@@ -126,10 +153,10 @@ def test_sequence_in_series(journey, capsys):
     assert "sequence 1:2s,1:2.5s" in out
     cols = load_csv(csv)
     t, ref = cols["t"], cols["f_hat"]
-    assert abs(t[-1] - (4.5 + 0.5)) < 0.01                       # both steps, then the release
+    assert abs(t[-1] - (4.5 + 0.5)) < 0.01  # both steps, then the release
     i_switch = int(round(2.0 / 1e-3))
-    assert abs(ref[i_switch + 1] - ref[i_switch - 1]) < 0.05 * ref.max()   # continuous at the switch
-    mx, rms = tracking(cols)
+    assert abs(ref[i_switch + 1] - ref[i_switch - 1]) < 0.05 * ref.max()  # continuous at the switch
+    _mx, rms = tracking(cols)
     assert rms <= 3.0
 
 
@@ -143,7 +170,7 @@ def test_cantools_decodes_every_device_frame(journey):
                 decoded = db.decode_message(msg.arbitration_id, msg.data, decode_choices=False)
                 assert all(np.isfinite(float(v)) for v in decoded.values() if not isinstance(v, str))
                 seen[msg.arbitration_id] = seen.get(msg.arbitration_id, 0) + 1
-            elif msg.arbitration_id == 0x680:           # UDS responses: ISO-TP, not DBC frames
+            elif msg.arbitration_id == 0x680:  # UDS responses: ISO-TP, not DBC frames
                 assert msg.dlc == 8 and (msg.data[0] >> 4) in (0, 1, 2, 3)
     names = {db.get_message_by_frame_id(i).name for i in seen}
     assert {"DeviceStatus", "TelemetryPosition", "TelemetryForce"} <= names
@@ -152,18 +179,38 @@ def test_cantools_decodes_every_device_frame(journey):
 
 def test_can_logger_log_accepted_by_fit(server, tmp_path, capsys):
     log = tmp_path / "logger.asc"
-    p = subprocess.Popen([sys.executable, "-m", "can.logger", "-i", "socketcand", "-c", "can0",
-                          "--bus-kwargs", "host=127.0.0.1", f"port={server.port}", "-f", str(log)],
-                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    p = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "can.logger",
+            *socketcand_args(server.port),
+            "-f",
+            str(log),
+        ],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
     try:
         time.sleep(1.5)
-        forceskill(capsys, "record", "-o", str(tmp_path / "driver.log"), "--duration", "5", *server.bus_args())
+        forceskill(
+            capsys, "record", "-o", str(tmp_path / "driver.log"), "--duration", "5", *server.bus_args()
+        )
         time.sleep(0.3)
     finally:
         p.send_signal(signal.SIGINT)
         p.wait(timeout=20)
-    out = forceskill(capsys, "fit", str(log), "--stiffness", str(K_NPM), "--surface-m", str(SURFACE_M),
-                     "-o", str(tmp_path / "from_logger.skill"))
+    out = forceskill(
+        capsys,
+        "fit",
+        str(log),
+        "--stiffness",
+        str(K_NPM),
+        "--surface-m",
+        str(SURFACE_M),
+        "-o",
+        str(tmp_path / "from_logger.skill"),
+    )
     assert "logger.asc:f_contact" in out and "T = 5.0" in out
     # the python-can logger's copy and forceskill's own .log record the same demonstration
     a, b = load_demo(log), load_demo(tmp_path / "driver.log")

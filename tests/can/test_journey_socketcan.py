@@ -2,24 +2,29 @@
 1x and 1.5x, tracking figures, a sequence, cantools on every device frame) with the device on a
 SocketCAN interface (`hil_sim serve --socketcan vcan0`) and the host tools on python-can's
 `socketcan` interface. Skipped with a message where the kernel has no AF_CAN or no vcan0."""
+
 from __future__ import annotations
 
 import time
 
 import pytest
-
-from conftest import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS
-from socketcan_server import SocketCANServer, vcan_or_skip
 from test_journey import (  # noqa: F401  (collected here again, on the SocketCAN server)
-    test_cantools_decodes_every_device_frame, test_record_fit_upload_run, test_sequence_in_series,
-    test_tracking_figures_1x_and_1_5x)
+    test_cantools_decodes_every_device_frame,
+    test_record_fit_upload_run,
+    test_sequence_in_series,
+    test_tracking_figures_1x_and_1_5x,
+)
+
+from helpers.canbus import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS
+from helpers.socketcan import SocketCANServer, vcan_or_skip
 
 
 @pytest.fixture(scope="module")
 def server():
     """The journey's device on the interface, with the default host-silence timeout (100 ms)."""
-    s = SocketCANServer(SCENARIOS / "pressing_task1_demo.toml", vcan_or_skip(),
-                        host_timeout_ms=JOURNEY_HOST_TIMEOUT_MS)
+    s = SocketCANServer(
+        SCENARIOS / "pressing_task1_demo.toml", vcan_or_skip(), host_timeout_ms=JOURNEY_HOST_TIMEOUT_MS
+    )
     time.sleep(0.2)
     yield s
     s.stop()

@@ -2,6 +2,7 @@
 limit is refused before anything moves; Ctrl-C commands IDLE, keeps the telemetry and exits 130; a
 fault keeps the telemetry up to the fault row and names the fault; after a fault the simulated
 drive parks the handle so that `status --clear` succeeds; a refused clear names its cause."""
+
 from __future__ import annotations
 
 import os
@@ -14,10 +15,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from conftest import REPO, SCENARIOS, Server
 from forceskill import cli
+from helpers.canbus import REPO, SCENARIOS, Server
 
-SKILL = REPO / "tests" / "vectors" / "press_n50_lwr_hold.skill"   # 1.5 s, peak 4.84 N at goal 1
+SKILL = REPO / "tests" / "vectors" / "press_n50_lwr_hold.skill"  # 1.5 s, peak 4.84 N at goal 1
 
 
 def run(capsys, *argv: str) -> tuple[int, str, str]:
@@ -42,27 +43,51 @@ def loaded():
 
 def test_goal_scale_above_the_force_limit_is_refused_before_anything_moves(loaded, capsys, tmp_path):
     csv = tmp_path / "r.csv"
-    rc, out, err = run(capsys, "run", "--slot", "1", "--goal-scale", "50", "--csv", str(csv), *loaded.bus_args())
+    rc, out, err = run(
+        capsys, "run", "--slot", "1", "--goal-scale", "50", "--csv", str(csv), *loaded.bus_args()
+    )
     assert rc == 2 and "[662]" in err and "above the force limit 50 N" in err and "nothing was started" in err
     assert "executing" not in out and not csv.exists()
     rc, out, err = run(capsys, "status", *loaded.bus_args())
     assert rc == 0 and "IDLE, fault none" in out
     # a lower limit refuses what the default allows
-    rc, out, err = run(capsys, "run", "--slot", "1", "--goal-scale", "2", "--force-limit", "9", *loaded.bus_args())
+    rc, out, err = run(
+        capsys, "run", "--slot", "1", "--goal-scale", "2", "--force-limit", "9", *loaded.bus_args()
+    )
     assert rc == 2 and "[662]" in err and "largest goal scale 1.8" in err
 
 
 def test_ctrl_c_commands_idle_and_writes_the_telemetry(loaded, tmp_path):
     csv = tmp_path / "r.csv"
     env = dict(os.environ, PYTHONPATH=str(REPO / "host"))
-    p = subprocess.Popen([sys.executable, "-m", "forceskill", "run", "--slot", "1", "--end", "hold",
-                          "--hold-for", "30", "--csv", str(csv), "-o", str(tmp_path / "r.blf"), *loaded.bus_args()],
-                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
-    line = p.stdout.readline()                       # "node 0: executing ..."
+    p = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "forceskill",
+            "run",
+            "--slot",
+            "1",
+            "--end",
+            "hold",
+            "--hold-for",
+            "30",
+            "--csv",
+            str(csv),
+            "-o",
+            str(tmp_path / "r.blf"),
+            *loaded.bus_args(),
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=env,
+    )
+    line = p.stdout.readline()  # "node 0: executing ..."
     assert "executing" in line, line + p.stderr.read()
     time.sleep(1.0)
     p.send_signal(signal.SIGINT)
-    out, err = p.communicate(timeout=30)
+    _out, err = p.communicate(timeout=30)
     assert p.returncode == 130, err
     assert "interrupted: node 0 commanded to IDLE" in err and "Traceback" not in err
     cols = load_csv(csv)
@@ -80,8 +105,19 @@ def test_fault_keeps_the_telemetry_then_the_handle_is_parked_and_cleared(capsys,
         time.sleep(0.2)
         assert cli.main(["upload", str(SKILL), "--slot", "1", "-q", *srv.bus_args()]) == 0
         csv = tmp_path / "r.csv"
-        rc, out, err = run(capsys, "run", "--slot", "1", "--end", "hold", "--hold-for", "30", "--csv", str(csv),
-                           *srv.bus_args())
+        rc, out, err = run(
+            capsys,
+            "run",
+            "--slot",
+            "1",
+            "--end",
+            "hold",
+            "--hold-for",
+            "30",
+            "--csv",
+            str(csv),
+            *srv.bus_args(),
+        )
         assert rc == 2 and "[665]" in err and "fault 501 (bus-off)" in err and f"written to {csv}" in err
         cols = load_csv(csv)
         assert cols["fault"][-1] == 501 and np.all(cols["fault"][:-1] == 0) and cols["t"].size > 100
@@ -103,8 +139,14 @@ def parked_positions(srv: Server) -> np.ndarray:
     import argparse
 
     from forceskill.commands._common import connect
-    ns = argparse.Namespace(interface="socketcand", channel="can0",
-                            bus_kwargs={"host": "127.0.0.1", "port": srv.port}, node=0, timeout=3.0)
+
+    ns = argparse.Namespace(
+        interface="socketcand",
+        channel="can0",
+        bus_kwargs={"host": "127.0.0.1", "port": srv.port},
+        node=0,
+        timeout=3.0,
+    )
     with connect(ns) as dev:
         time.sleep(1.0)
         tel = dev.start_telemetry()
@@ -128,7 +170,8 @@ def test_a_refused_clear_names_the_cause_that_persists():
         def read_data_by_identifier(self, did: int):  # latched 507 and 509; 509 and 500 present
             class R:
                 class service_data:
-                    values = {did: (1 << 7 | 1 << 9).to_bytes(4, "big") + (1 << 9 | 1).to_bytes(4, "big")}
+                    values = {did: (1 << 7 | 1 << 9).to_bytes(4, "big") + (1 << 9 | 1).to_bytes(4, "big")}  # noqa: RUF012
+
             return R
 
     with pytest.raises(FsError) as e:
@@ -144,17 +187,20 @@ def test_a_skill_stiffer_than_the_device_limit_is_refused_by_host_and_device(loa
     or started (690)."""
     import struct
 
-    from forceskill import synthetic
     from forceskill.errors import FsError
-    from forceskill.fit import fit
     from forceskill.link import uds as U
     from forceskill.link.device import Device
+    from forceskill.model import synthetic
+    from forceskill.model.fit import fit
 
     stiff = tmp_path / "stiff.skill"
     fit(synthetic.pressing(7, 2.0), 1e6, surface_m=0.001).skill.write(stiff)
-    rc, out, err = run(capsys, "upload", str(stiff), "--slot", "2", "-q", *loaded.bus_args())
+    rc, _out, err = run(capsys, "upload", str(stiff), "--slot", "2", "-q", *loaded.bus_args())
     assert rc == 2 and err.count("\n") == 1, err
-    assert "[690]" in err and "nominal stiffness 1e+06 N/m is above the stiffness limit 5e+05 N/m of node 0" in err
+    assert (
+        "[690]" in err
+        and "nominal stiffness 1e+06 N/m is above the stiffness limit 5e+05 N/m of node 0" in err
+    )
     assert "nothing was sent" in err
     import can
 
@@ -171,13 +217,13 @@ def test_a_skill_stiffer_than_the_device_limit_is_refused_by_host_and_device(loa
         # a lower limit (written as a setting) makes the 100 N/m skill of slot 1 too stiff
         client.write_data_by_identifier(U.DID_STIFFNESS_MAX, struct.pack(">f", 50.0))
         try:
-            rc2, out2, err2 = run(capsys, "run", "--slot", "1", *loaded.bus_args())
+            rc2, _out2, err2 = run(capsys, "run", "--slot", "1", *loaded.bus_args())
             assert rc2 == 2 and "[690]" in err2 and "slot 1: nominal stiffness 100 N/m" in err2
             assert "limit 50 N/m of node 0" in err2 and "nothing was started" in err2
             # and the device refuses the start routine itself
             with pytest.raises(Exception) as e2:
                 client.start_routine(U.RID_RUN_SKILL, data=struct.pack(">BHHB", 1, 1000, 1000, 0))
-            assert getattr(e2.value, "response").code == 0x31
+            assert e2.value.response.code == 0x31
             assert dev.status is not None and dev.status.state == "IDLE"
         finally:
             U.unlock(client, 0, 0x02)

@@ -3,6 +3,7 @@ command fails naming it), and where vcan exists: third-party python-can clients 
 like a controller, a --bitrate request on an interface without bit timing is refused with one
 line while the device runs on, and the stop line reports the interface's counters. The port's
 code paths themselves run here in C over a socket pair (ctest -R "cansock|socketcan")."""
+
 from __future__ import annotations
 
 import subprocess
@@ -11,8 +12,8 @@ import time
 import can
 import pytest
 
-from conftest import SCENARIOS, hil_sim_path
-from socketcan_server import SocketCANServer, af_can_error, vcan_or_skip
+from helpers.canbus import SCENARIOS, hil_sim_path
+from helpers.socketcan import SocketCANServer, af_can_error, vcan_or_skip
 
 
 def serve(*args: str) -> subprocess.CompletedProcess:
@@ -42,15 +43,18 @@ def test_missing_interface_fails_with_one_line():
     assert "AF_CAN" in line or "no CAN interface 'fsnocan7'" in line
 
 
-@pytest.mark.parametrize("args, needle", [
-    (("--socketcan", "vcan0", "--port", "0"), "--port applies to the simulated bus"),
-    (("--socketcan", "vcan0", "--bus-off-at", "1"), "--bus-off-at applies to the simulated bus"),
-    (("--socketcan", "vcan0", "--channel", "can0"), "--channel applies to the simulated bus"),
-    (("--socketcan", "can/0"), "needs an interface name of 1..15 characters"),
-    (("--socketcan", "averyverylongcan0"), "needs an interface name"),
-    (("--socketcan", "vcan0", "--bitrate", "2000000"), "--bitrate must be 10000..1000000"),
-    (("--socketcan",), "--socketcan needs a value"),
-])
+@pytest.mark.parametrize(
+    "args, needle",
+    [
+        (("--socketcan", "vcan0", "--port", "0"), "--port applies to the simulated bus"),
+        (("--socketcan", "vcan0", "--bus-off-at", "1"), "--bus-off-at applies to the simulated bus"),
+        (("--socketcan", "vcan0", "--channel", "can0"), "--channel applies to the simulated bus"),
+        (("--socketcan", "can/0"), "needs an interface name of 1..15 characters"),
+        (("--socketcan", "averyverylongcan0"), "needs an interface name"),
+        (("--socketcan", "vcan0", "--bitrate", "2000000"), "--bitrate must be 10000..1000000"),
+        (("--socketcan",), "--socketcan needs a value"),
+    ],
+)
 def test_refusals(args, needle):
     p = serve(*args)
     assert p.returncode == 2
@@ -63,7 +67,7 @@ def vcan_server():
     s = SocketCANServer(SCENARIOS / "pressing_task1_demo.toml", iface, node=3, extra=("--bitrate", "500000"))
     time.sleep(0.2)
     yield s
-    if s.proc.poll() is None:                # the test stops it to read its stderr
+    if s.proc.poll() is None:  # the test stops it to read its stderr
         s.stop()
 
 
@@ -75,7 +79,7 @@ def test_bitrate_on_vcan_refused_and_device_runs(vcan_server):
     with can.Bus(interface="socketcan", channel=vcan_server.iface) as bus:
         while len(status) < 5 and time.monotonic() < deadline:
             m = bus.recv(0.5)
-            if m is not None and m.arbitration_id == 0x183:       # DeviceStatus of node 3
+            if m is not None and m.arbitration_id == 0x183:  # DeviceStatus of node 3
                 status.append(m)
     assert len(status) == 5 and all(m.dlc == 8 and not m.is_extended_id for m in status)
     err = vcan_server.stop()

@@ -3,6 +3,7 @@ hil_sim/scenarios/faults against the full device application in lockstep. Each r
 here from the JSON figures against the bounds of docs/safety.md (not only the binary's own pass
 flag), the markdown table is written to the build directory, and the checker is shown to fail
 when a bound is violated."""
+
 from __future__ import annotations
 
 import json
@@ -15,28 +16,38 @@ import pytest
 REPO = Path(__file__).resolve().parents[2]
 FAULTS = REPO / "hil_sim" / "scenarios" / "faults"
 DOC = REPO / "docs" / "safety.md"
-ZERO_BOUND_MS = 50          # force at zero within 50 ms of detection (docs/safety.md)
-HOST_TIMEOUT_MS = 100       # default host-silence timeout
+ZERO_BOUND_MS = 50  # force at zero within 50 ms of detection (docs/safety.md)
+HOST_TIMEOUT_MS = 100  # default host-silence timeout
 F_MAX_N = 50.0
-EXPECTED = {                # every fault the rig injects -> its code
-    "host_silence": 500, "host_frames_corrupt": 500, "bus_off": 501, "force_spike": 505,
-    "force_nan": 502, "force_stuck": 504, "encoder_jump": 506, "actuator_saturation": 0,
-    "force_limit": 507, "tick_overrun": 511, "power_loss_upload": 0, "host_frame_loss": 0,
+EXPECTED = {  # every fault the rig injects -> its code
+    "host_silence": 500,
+    "host_frames_corrupt": 500,
+    "bus_off": 501,
+    "force_spike": 505,
+    "force_nan": 502,
+    "force_stuck": 504,
+    "encoder_jump": 506,
+    "actuator_saturation": 0,
+    "force_limit": 507,
+    "tick_overrun": 511,
+    "power_loss_upload": 0,
+    "host_frame_loss": 0,
     "force_limit_realistic": 0,
 }
 
 
 def run_faults(hil_sim: Path, tmp: Path, *args: str) -> tuple[subprocess.CompletedProcess, dict | None]:
     js = tmp / "faults.json"
-    r = subprocess.run([str(hil_sim), "faults", "--json", str(js), *args], capture_output=True,
-                       text=True, timeout=60)
+    r = subprocess.run(
+        [str(hil_sim), "faults", "--json", str(js), *args], capture_output=True, text=True, timeout=60
+    )
     return r, (json.loads(js.read_text()) if js.exists() else None)
 
 
 @pytest.fixture(scope="module")
 def seed1(hil_sim: Path, tmp_path_factory) -> dict:
     tmp = tmp_path_factory.mktemp("faults")
-    table = hil_sim.parent / "fault_table.md"          # build output
+    table = hil_sim.parent / "fault_table.md"  # build output
     r, data = run_faults(hil_sim, tmp, "--seed", "1", "-o", str(table))
     assert r.returncode == 0, r.stdout + r.stderr
     lines = table.read_text().splitlines()
@@ -55,8 +66,11 @@ def check_row(row: dict) -> None:
     assert row["worst_force_N"] <= f_max + 1e-9 and row["f_max_N"] == f_max, row
     assert not row["lost"], row
     if name == "power_loss_upload":
-        m = re.search(r"(\d+) power-loss points.*old kept (\d+), new complete (\d+), corrupt (\d+); "
-                      r"re-upload ok (\d+)/(\d+)", row["note"])
+        m = re.search(
+            r"(\d+) power-loss points.*old kept (\d+), new complete (\d+), corrupt (\d+); "
+            r"re-upload ok (\d+)/(\d+)",
+            row["note"],
+        )
         assert m, row["note"]
         n, old, new, bad, ok, n2 = map(int, m.groups())
         assert n >= 3 and bad == 0 and old + new == n and ok == n2 == n, row["note"]
@@ -104,11 +118,12 @@ def test_other_seed_and_determinism(hil_sim: Path, tmp_path: Path, seed1: dict) 
     for row in data["rows"]:
         check_row(row)
     r1, again = run_faults(hil_sim, tmp_path, "--seed", "1")
-    assert r1.returncode == 0 and again == seed1            # bit-identical figures for a seed
+    assert r1.returncode == 0 and again == seed1  # bit-identical figures for a seed
 
 
-def _copy_scenarios(tmp: Path, edit: dict[str, tuple[str, str]], append: str = "",
-                    skip: tuple[str, ...] = ()) -> Path:
+def _copy_scenarios(
+    tmp: Path, edit: dict[str, tuple[str, str]], append: str = "", skip: tuple[str, ...] = ()
+) -> Path:
     d = tmp / "faults"
     d.mkdir()
     for f in sorted(FAULTS.glob("*.toml")):
@@ -128,8 +143,9 @@ def test_injected_faults_on_the_realistic_plant(hil_sim: Path, tmp_path: Path) -
     admittance rendering). Left out: the two scenarios whose expectation is plant-specific
     (actuator saturation: on this plant the wound-up command steps the contact force by > 20 N
     when the saturation ends and the spike detector latches 505; the ideal-plant force limit)."""
-    d = _copy_scenarios(tmp_path, {}, append='\nplant_model = "realistic"\n',
-                        skip=("actuator_saturation", "force_limit"))
+    d = _copy_scenarios(
+        tmp_path, {}, append='\nplant_model = "realistic"\n', skip=("actuator_saturation", "force_limit")
+    )
     r, data = run_faults(hil_sim, tmp_path, "--dir", str(d))
     assert r.returncode == 0, r.stdout + r.stderr
     assert len(data["rows"]) == len(EXPECTED) - 2
@@ -138,10 +154,13 @@ def test_injected_faults_on_the_realistic_plant(hil_sim: Path, tmp_path: Path) -
 
 
 def test_checker_fails_a_violated_bound(hil_sim: Path, tmp_path: Path) -> None:
-    d = _copy_scenarios(tmp_path, {
-        "host_silence": ("detect_bound_ms = 101", "detect_bound_ms = 50"),   # tighter than real
-        "force_spike": ("expect_code = 505", "expect_code = 502"),           # wrong code
-    })
+    d = _copy_scenarios(
+        tmp_path,
+        {
+            "host_silence": ("detect_bound_ms = 101", "detect_bound_ms = 50"),  # tighter than real
+            "force_spike": ("expect_code = 505", "expect_code = 502"),  # wrong code
+        },
+    )
     r, data = run_faults(hil_sim, tmp_path, "--dir", str(d))
     assert r.returncode == 1, r.stdout + r.stderr
     failed = {row["name"] for row in data["rows"] if not row["pass"]}

@@ -4,6 +4,7 @@
 execute (ideal plant), reuse with and without goal scaling. Bounds on both sides where meaningful:
 an error that is suspiciously small (e.g. 0 because nothing ran) fails too.
 """
+
 from __future__ import annotations
 
 import json
@@ -12,9 +13,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from forceskill.skill import Skill
-from forceskill import report as report_mod
-from forceskill.report import TASKS, read_log, run_report
+from forceskill.commands import report as report_mod
+from forceskill.commands.report import TASKS, read_log, run_report
+from forceskill.model.skill import Skill
 
 SEEDS = (1, 2)
 LEARN = [t.name for t in TASKS]
@@ -24,8 +25,9 @@ STIFF = [f"stiff_{kind}_{k}" for kind, k in report_mod.STIFF]
 @pytest.fixture(scope="module", params=SEEDS, ids=[f"seed{s}" for s in SEEDS])
 def report(request, tmp_path_factory, hil_sim: Path, scenarios: Path) -> dict:
     out = tmp_path_factory.mktemp(f"report_seed{request.param}")
-    summary = run_report(out, hil_sim, scenarios, seed=request.param, plots=(request.param == 1),
-                         progress=False)
+    summary = run_report(
+        out, hil_sim, scenarios, seed=request.param, plots=(request.param == 1), progress=False
+    )
     summary["_dir"] = out
     return summary
 
@@ -38,10 +40,16 @@ def test_report_files(report: dict) -> None:
     out: Path = report["_dir"]
     data = json.loads((out / "summary.json").read_text())
     names = [e["name"] for e in data["experiments"]]
-    assert names == LEARN + ["reuse_200_1x", "reuse_300_1_5x", "reuse_300_1x_unscaled"] + STIFF
+    assert names == [*LEARN, "reuse_200_1x", "reuse_300_1_5x", "reuse_300_1x_unscaled", *STIFF]
     for e in data["experiments"]:
-        for key in ("name", "approx_max_pct", "approx_max_pct_lwr", "tracking_rms_pct", "tracking_max_pct",
-                    "max_force_N"):
+        for key in (
+            "name",
+            "approx_max_pct",
+            "approx_max_pct_lwr",
+            "tracking_rms_pct",
+            "tracking_max_pct",
+            "max_force_N",
+        ):
             assert key in e
     md = (out / "report.md").read_text()
     for n in names:
@@ -68,13 +76,14 @@ def test_lwr_within_paper_bounds(report: dict, name: str) -> None:
     # the paper's figure: LWR with N = 50 kernels (measured 1.6-4.2 %, seeds 1-8, docs/math.md 3)
     assert 0.3 <= e["approx_max_pct_lwr"] <= bound, f"{name}: LWR N=50 {e['approx_max_pct_lwr']:.2f} %"
     assert e["lwr_kernels_needed"] is not None and e["lwr_kernels_needed"] <= 100, (
-        f"{name}: LWR needs more than 100 kernels (N=50: {e['approx_max_pct_lwr']:.2f} %)")
+        f"{name}: LWR needs more than 100 kernels (N=50: {e['approx_max_pct_lwr']:.2f} %)"
+    )
     assert 0.3 <= e["approx_max_pct_lwr_needed"] <= bound
     # LWR at N = 50 is worse than the default fit at N = 50 (ridge is 2-5x more accurate, docs/math.md)
     assert e["approx_max_pct_lwr"] >= e["approx_max_pct"]
 
 
-@pytest.mark.parametrize("name", LEARN + ["reuse_200_1x", "reuse_300_1_5x"])
+@pytest.mark.parametrize("name", [*LEARN, "reuse_200_1x", "reuse_300_1_5x"])
 def test_execution_tracking(report: dict, name: str) -> None:
     e = _exp(report, name)
     assert 0.05 <= e["tracking_rms_pct"] <= 3.0
@@ -96,7 +105,7 @@ def test_execution_on_stiff_objects(report: dict, name: str) -> None:
     assert np.all(np.abs(log["f_cmd"]) <= e["force_limit_N"]) and 1.0 < e["max_force_N"] < 50.0
 
 
-@pytest.mark.parametrize("name", LEARN + ["reuse_200_1x", "reuse_300_1_5x", "reuse_300_1x_unscaled"])
+@pytest.mark.parametrize("name", [*LEARN, "reuse_200_1x", "reuse_300_1_5x", "reuse_300_1x_unscaled"])
 def test_force_never_exceeds_the_limit(report: dict, name: str) -> None:
     e = _exp(report, name)
     assert e["force_limit_N"] == 50.0
@@ -111,7 +120,7 @@ def test_pressing_demonstrations_reach_the_inner_layer(report: dict) -> None:
     for name in ("pressing_task1", "pressing_task2"):
         e = _exp(report, name)
         assert e["layer_reached_s"] is not None and 0.3 < e["layer_reached_s"] < 3.0
-        assert 0.020 < e["deformation_max_m"] + 0.001 < 0.05   # beyond x = 0.020 m, not through
+        assert 0.020 < e["deformation_max_m"] + 0.001 < 0.05  # beyond x = 0.020 m, not through
 
 
 def test_reuse_deformation(report: dict) -> None:
@@ -130,4 +139,6 @@ def test_reuse_deformation(report: dict) -> None:
     f0 = [Skill.read(p).force0_N for p in sorted((out / "skills").glob("engraving_task*.skill"))]
     offset = max(abs(f) for f in f0) + max(abs(a["f_hat"][0]), abs(b["f_hat"][0]))
     assert offset < 0.01 * np.max(a["f_hat"])
-    assert np.max(np.abs(b["f_hat"] - 1.5 * a["f_hat"])) <= 0.5 * 2.0 * offset + 1e-5 * np.max(b["f_hat"]) + 2e-6
+    assert (
+        np.max(np.abs(b["f_hat"] - 1.5 * a["f_hat"])) <= 0.5 * 2.0 * offset + 1e-5 * np.max(b["f_hat"]) + 2e-6
+    )

@@ -1,6 +1,7 @@
 """docs/cli.md against the CLI itself: every sub-command (and `image` action) has a section
 `## <command>` with an example `$ forceskill <command> ...`, and every option its --help lists is
 named in that section (or in "CAN bus options" when the section links there)."""
+
 from __future__ import annotations
 
 import argparse
@@ -48,8 +49,11 @@ def _commands() -> dict[str, argparse.ArgumentParser]:
 
 def _options(p: argparse.ArgumentParser) -> list[tuple[str, ...]]:
     """The options --help lists, each with all its spellings (help itself and hidden ones excluded)."""
-    return [tuple(a.option_strings) for a in p._actions
-            if a.option_strings and not isinstance(a, argparse._HelpAction) and a.help != argparse.SUPPRESS]
+    return [
+        tuple(a.option_strings)
+        for a in p._actions
+        if a.option_strings and not isinstance(a, argparse._HelpAction) and a.help != argparse.SUPPRESS
+    ]
 
 
 COMMANDS = _commands()
@@ -67,19 +71,36 @@ def _section(command: str) -> str:
 
 def test_every_command_is_found() -> None:
     # the commands the product ships; a module failing to import must not hide one silently
-    assert {"fit", "rollout", "show", "report", "record", "upload", "run", "status", "monitor",
-            "journey", "flash", "image build", "image show"} <= set(COMMANDS)
+    assert {
+        "fit",
+        "rollout",
+        "show",
+        "report",
+        "record",
+        "upload",
+        "run",
+        "status",
+        "monitor",
+        "journey",
+        "flash",
+        "image build",
+        "image show",
+    } <= set(COMMANDS)
 
 
 @pytest.mark.parametrize("command", sorted(COMMANDS))
 def test_command_has_an_example(command: str) -> None:
-    assert re.search(rf"^\$ forceskill {re.escape(command)}(\s|$)", _section(command), flags=re.M), \
+    assert re.search(rf"^\$ forceskill {re.escape(command)}(\s|$)", _section(command), flags=re.M), (
         f"docs/cli.md, section {command}: no example line '$ forceskill {command} ...'"
+    )
 
 
 @pytest.mark.parametrize("command", sorted(COMMANDS))
 def test_every_option_is_documented(command: str) -> None:
     body = _section(command)
-    undocumented = [o[-1] for o in _options(COMMANDS[command])
-                    if not any(re.search(rf"(?<![\w-]){re.escape(s)}(?![\w-])", body) for s in o)]
+    undocumented = [
+        o[-1]
+        for o in _options(COMMANDS[command])
+        if not any(re.search(rf"(?<![\w-]){re.escape(s)}(?![\w-])", body) for s in o)
+    ]
     assert not undocumented, f"docs/cli.md, section {command}: options not described: {undocumented}"

@@ -1,19 +1,20 @@
 """One table of codes and identifiers (firmware/base/codes.toml): the generated C headers, the
 host's constants and docs/codes.md agree with it, and the C headers read back independently (a
 regex over the enums and macros, not the generator) give the same numbers as the host."""
+
 from __future__ import annotations
 
 import re
-import tomllib
+from collections.abc import Callable
 from pathlib import Path
 from types import ModuleType
-from typing import Callable
+
+import tomllib
 
 from forceskill import codes, errors
 
 ROOT = Path(__file__).resolve().parents[2]
 BASE = ROOT / "firmware/base"
-
 
 
 def _c_enum(path: Path, prefix: str) -> dict[str, int]:
@@ -23,8 +24,10 @@ def _c_enum(path: Path, prefix: str) -> dict[str, int]:
 
 def _c_defines(path: Path) -> dict[str, int]:
     text = path.read_text()
-    return {m.group(1): int(m.group(2), 16)
-            for m in re.finditer(r"#define (\w+)(?:\(node\))? \(?0x([0-9A-F]+)u", text)}
+    return {
+        m.group(1): int(m.group(2), 16)
+        for m in re.finditer(r"#define (\w+)(?:\(node\))? \(?0x([0-9A-F]+)u", text)
+    }
 
 
 def test_generated_files_are_up_to_date(tool: Callable[[str], ModuleType]) -> None:
@@ -40,9 +43,13 @@ def test_fs_status_codes_are_mirrored(tool: Callable[[str], ModuleType]) -> None
 
 
 def test_every_c_status_code_is_in_the_host(tool: Callable[[str], ModuleType]) -> None:
-    headers = {"flt_codes.h": "(?:FLT|SAF)_", "nvm_status.h": "NVM_ERR_",
-               "sec_status.h": "SEC_ERR_", "proto_status.h": "PROTO_ERR_",
-               "boot_status.h": "(?:BOOT|FWU)_ERR_"}
+    headers = {
+        "flt_codes.h": "(?:FLT|SAF)_",
+        "nvm_status.h": "NVM_ERR_",
+        "sec_status.h": "SEC_ERR_",
+        "proto_status.h": "PROTO_ERR_",
+        "boot_status.h": "(?:BOOT|FWU)_ERR_",
+    }
     for header, prefix in headers.items():
         c = {k: v for k, v in _c_enum(BASE / header, prefix).items() if v}
         assert c, header
@@ -92,8 +99,7 @@ def test_dbc_frame_ids_match_the_table(tool: Callable[[str], ModuleType]) -> Non
 
 def test_check_reports_a_stale_file(tmp_path: Path, tool: Callable[[str], ModuleType]) -> None:
     gen = tool("gen_codes")
-    for rel in ["firmware/base/codes.toml", "firmware/proto/forceskill.dbc",
-                *gen.outputs(gen.load(ROOT))]:
+    for rel in ["firmware/base/codes.toml", "firmware/proto/forceskill.dbc", *gen.outputs(gen.load(ROOT))]:
         (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
         (tmp_path / rel).write_text((ROOT / rel).read_text())
     assert gen.check(tmp_path) == []

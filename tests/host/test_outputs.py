@@ -3,6 +3,7 @@ target's folder, renamed on success, all outputs of a command or none), refuses 
 an input or a special file, follows symlinks and the umask; skills whose rollout is not finite or
 peaks above the force limit are refused by fit/upload/run and flagged by show; rollouts are
 bounded and streamed."""
+
 from __future__ import annotations
 
 import os
@@ -11,11 +12,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from forceskill import dmp, outputs, synthetic
-from forceskill.errors import FsError
-from forceskill.limits import MAX_ROLLOUT_STEPS
-from forceskill.skill import Skill
 from test_cli import VECTORS, run, write_demo
+
+from forceskill import outputs
+from forceskill.errors import FsError
+from forceskill.model import dmp, synthetic
+from forceskill.model.scales import MAX_ROLLOUT_STEPS
+from forceskill.model.skill import Skill
 
 SKILL = VECTORS / "press_n10_ridge_release.skill"
 
@@ -44,7 +47,10 @@ def hostile(tmp_path: Path, factor: float) -> Path:
 
 # ---- outputs -----------------------------------------------------------------------------------
 
-def test_fit_refuses_to_overwrite_its_demonstration(demo_csv: Path, capsys: pytest.CaptureFixture[str]) -> None:
+
+def test_fit_refuses_to_overwrite_its_demonstration(
+    demo_csv: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     before = snapshot(demo_csv.parent)
     rc, _, err = run(fit_argv(demo_csv, demo_csv), capsys)
     assert rc == 2 and "[660]" in err and err.count("\n") == 1
@@ -52,20 +58,25 @@ def test_fit_refuses_to_overwrite_its_demonstration(demo_csv: Path, capsys: pyte
     link = demo_csv.parent / "alias.csv"
     link.symlink_to(demo_csv)
     before = snapshot(demo_csv.parent)
-    for argv in (fit_argv(link, demo_csv), fit_argv(demo_csv, link),       # the input through a link
-                 fit_argv(demo_csv, demo_csv.parent / "s.skill", "--plot", str(link))):
+    for argv in (
+        fit_argv(link, demo_csv),
+        fit_argv(demo_csv, link),  # the input through a link
+        fit_argv(demo_csv, demo_csv.parent / "s.skill", "--plot", str(link)),
+    ):
         rc, _, err = run(argv, capsys)
         assert rc == 2 and "[660]" in err, err
     assert snapshot(demo_csv.parent) == before
 
 
-def test_failed_fit_keeps_every_existing_file(demo_csv: Path, tmp_path: Path,
-                                              capsys: pytest.CaptureFixture[str]) -> None:
+def test_failed_fit_keeps_every_existing_file(
+    demo_csv: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     for name, data in (("s.skill", b"old skill"), ("s.skill.json", b"old twin"), ("p.png", b"old plot")):
         (tmp_path / name).write_bytes(data)
     before = snapshot(tmp_path)
-    rc, _, err = run(fit_argv(demo_csv, tmp_path / "s.skill", "--plot", str(tmp_path / "p.png"),
-                              "--kernels", "1"), capsys)
+    rc, _, err = run(
+        fit_argv(demo_csv, tmp_path / "s.skill", "--plot", str(tmp_path / "p.png"), "--kernels", "1"), capsys
+    )
     assert rc == 2 and "[610]" in err
     assert snapshot(tmp_path) == before
     # the JSON twin cannot be written: neither the skill nor the plot changes
@@ -98,12 +109,13 @@ def test_commit_is_all_or_nothing(tmp_path: Path, monkeypatch: pytest.MonkeyPatc
     monkeypatch.undo()
     assert e.value.code == 620 and "nothing was changed" in e.value.message
     assert a.read_bytes() == b"old a" and not b.exists()
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.bin"]   # no temporary files left
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.bin"]  # no temporary files left
 
 
 @pytest.mark.parametrize("mask,mode", [(0o022, 0o644), (0o002, 0o664), (0o077, 0o600)])
-def test_new_outputs_follow_the_umask(tmp_path: Path, mask: int, mode: int,
-                                      capsys: pytest.CaptureFixture[str]) -> None:
+def test_new_outputs_follow_the_umask(
+    tmp_path: Path, mask: int, mode: int, capsys: pytest.CaptureFixture[str]
+) -> None:
     old = os.umask(mask)
     try:
         rc, _, err = run(["rollout", str(SKILL), "-o", str(tmp_path / "r.csv"), "--steps", "5"], capsys)
@@ -113,8 +125,9 @@ def test_new_outputs_follow_the_umask(tmp_path: Path, mask: int, mode: int,
     assert stat.S_IMODE((tmp_path / "r.csv").stat().st_mode) == mode
 
 
-def test_replaced_output_keeps_its_mode_and_a_symlink_stays(tmp_path: Path,
-                                                             capsys: pytest.CaptureFixture[str]) -> None:
+def test_replaced_output_keeps_its_mode_and_a_symlink_stays(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     target = tmp_path / "target.csv"
     target.write_text("old\n")
     target.chmod(0o640)
@@ -148,11 +161,16 @@ def test_dash_writes_csv_to_stdout(capsys: pytest.CaptureFixture[str]) -> None:
 
 # ---- inputs: bounded, one line ---------------------------------------------------------------
 
+
 def test_rollout_is_bounded(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "r.csv"
-    for argv, code in ((["--steps", "1000000000"], "[663]"), (["--time-scale", "1e6"], "[109]"),
-                       (["--goal-scale", "1e6"], "[109]"), (["--goal-scale", "-1"], "[109]"),
-                       (["--time-scale", "nan"], "[109]")):
+    for argv, code in (
+        (["--steps", "1000000000"], "[663]"),
+        (["--time-scale", "1e6"], "[109]"),
+        (["--goal-scale", "1e6"], "[109]"),
+        (["--goal-scale", "-1"], "[109]"),
+        (["--time-scale", "nan"], "[109]"),
+    ):
         rc, _, err = run(["rollout", str(SKILL), "-o", str(out), *argv], capsys)
         assert rc == 2 and code in err and err.count("\n") == 1, (argv, err)
     assert not out.exists()
@@ -170,7 +188,10 @@ def test_rollout_blocks_are_the_rollout() -> None:
 
 # ---- the force limit ---------------------------------------------------------------------------
 
-def test_show_flags_and_upload_refuses_a_hostile_skill(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+
+def test_show_flags_and_upload_refuses_a_hostile_skill(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     huge = hostile(tmp_path, 1e30)
     rc, out, err = run(["show", str(huge)], capsys)
     assert rc == 0 and "REFUSED" in out and ("not finite" in out or "above the force limit" in out)
@@ -181,12 +202,28 @@ def test_show_flags_and_upload_refuses_a_hostile_skill(tmp_path: Path, capsys: p
     assert rc == 0 and "REFUSED" not in out and "goal scale up to" in out
     # upload refuses before anything is sent: the bus options point at nothing
     for p in (huge, big):
-        rc, _, err = run(["upload", str(p), "--slot", "1", "-i", "socketcand", "--bus-kwargs",
-                          "host=127.0.0.1", "port=9", "--timeout", "0.1"], capsys)
+        rc, _, err = run(
+            [
+                "upload",
+                str(p),
+                "--slot",
+                "1",
+                "-i",
+                "socketcand",
+                "--bus-kwargs",
+                "host=127.0.0.1",
+                "port=9",
+                "--timeout",
+                "0.1",
+            ],
+            capsys,
+        )
         assert rc == 2 and "[662]" in err and err.count("\n") == 1, err
 
 
-def test_fit_refuses_a_skill_above_the_force_limit(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_fit_refuses_a_skill_above_the_force_limit(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     d = synthetic.pressing(seed=2, duration_s=3.0)
     strong = write_demo(tmp_path / "strong.csv", d.__class__(d.t_s, d.pos_m, 20.0 * d.force_N, d.source))
     out = tmp_path / "s.skill"
@@ -198,12 +235,22 @@ def test_fit_refuses_a_skill_above_the_force_limit(tmp_path: Path, capsys: pytes
     assert "wrote" in stdout and out.is_file()
 
 
-def test_run_checks_its_scales_with_the_rollout_validator_before_connecting(capsys: pytest.CaptureFixture[str]) -> None:
+def test_run_checks_its_scales_with_the_rollout_validator_before_connecting(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
     bus = ["-i", "socketcand", "--bus-kwargs", "host=127.0.0.1", "port=9", "--timeout", "0.1"]
-    for argv in (["--goal-scale", "70"], ["--goal-scale", "-0.5"], ["--time-scale", "0"], ["--time-scale", "inf"]):
+    for argv in (
+        ["--goal-scale", "70"],
+        ["--goal-scale", "-0.5"],
+        ["--time-scale", "0"],
+        ["--time-scale", "inf"],
+    ):
         rc, _, err = run(["run", "--slot", "1", *argv, *bus], capsys)
         assert rc == 2 and "[109]" in err, (argv, err)
         with pytest.raises(FsError) as e:
-            dmp.rollout(Skill.read(SKILL), goal_scale=float(argv[1]) if "goal" in argv[0] else 1.0,
-                        time_scale=float(argv[1]) if "time" in argv[0] else 1.0)
+            dmp.rollout(
+                Skill.read(SKILL),
+                goal_scale=float(argv[1]) if "goal" in argv[0] else 1.0,
+                time_scale=float(argv[1]) if "time" in argv[0] else 1.0,
+            )
         assert e.value.code == 109

@@ -1,5 +1,6 @@
 """forceskill.sim: hil_sim from --hil-sim, then $FORCESKILL_HIL_SIM, then PATH; the paper
 scenarios from the package itself (no repository layout assumed)."""
+
 from __future__ import annotations
 
 import os

@@ -1,14 +1,14 @@
-"""tools/check_layers.py: the tree passes, and an upward include, a sideways include, a narrow
+"""tools/check_layers.py: the tree and the host package pass, and an upward include or import, a sideways include, a narrow
 layer used beyond its opening and an include cycle are each reported."""
+
 from __future__ import annotations
 
 import shutil
+from collections.abc import Callable
 from pathlib import Path
 from types import ModuleType
-from typing import Callable
 
 ROOT = Path(__file__).resolve().parents[2]
-
 
 
 def _copy(tmp: Path) -> Path:
@@ -30,11 +30,11 @@ def test_the_tree_has_no_upward_include_and_no_cycle(tool: Callable[[str], Modul
 def test_violations_are_reported(tmp_path: Path, tool: Callable[[str], ModuleType]) -> None:
     mod = tool("check_layers")
     root = _copy(tmp_path)
-    _add_include(root / "firmware/core/fs_num.h", "fs_num_fixed.h")        # upward
-    _add_include(root / "firmware/storage/nvm.h", "flt_codes.h")           # fine: base
-    _add_include(root / "firmware/security/sec_access.h", "nvm.h")         # sideways
-    _add_include(root / "firmware/safety/lim.h", "pfc.h")                  # beyond fs_real.h
-    _add_include(root / "firmware/core/dmp.h", "skill.h")                  # skill.h -> dmp.h: cycle
+    _add_include(root / "firmware/core/fs_num.h", "fs_num_fixed.h")  # upward
+    _add_include(root / "firmware/storage/nvm.h", "flt_codes.h")  # fine: base
+    _add_include(root / "firmware/security/sec_access.h", "nvm.h")  # sideways
+    _add_include(root / "firmware/safety/lim.h", "pfc.h")  # beyond fs_real.h
+    _add_include(root / "firmware/core/dmp.h", "skill.h")  # skill.h -> dmp.h: cycle
     problems, _ = mod.check(root)
     text = "\n".join(problems)
     assert "upward include of firmware/fixed/fs_num_fixed.h (core -> fixed)" in text
@@ -42,3 +42,44 @@ def test_violations_are_reported(tmp_path: Path, tool: Callable[[str], ModuleTyp
     assert "safety may use only fs_real.h of core, not pfc.h" in text
     assert "include cycle" in text and "firmware/core/skill.h" in text
     assert not any(p.startswith("firmware/storage/nvm.h:") for p in problems)
+
+
+def _copy_host(tmp: Path) -> Path:
+    shutil.copytree(
+        ROOT / "host" / "forceskill",
+        tmp / "host" / "forceskill",
+        ignore=shutil.ignore_patterns("__pycache__", "data"),
+    )
+    return tmp
+
+
+def test_the_host_package_imports_only_downwards(tool: Callable[[str], ModuleType]) -> None:
+    problems, graph = tool("check_layers").check_host(ROOT)
+    assert problems == []
+    assert ("commands", "link") in graph and ("link", "model") in graph
+    assert ("model", "link") not in graph and ("link", "commands") not in graph
+
+
+def test_host_violations_are_reported(tmp_path: Path, tool: Callable[[str], ModuleType]) -> None:
+    mod = tool("check_layers")
+    pkg = _copy_host(tmp_path) / "host" / "forceskill"
+
+    def prepend(rel: str, line: str) -> None:
+        p = pkg / rel
+        p.write_text(line + "\n" + p.read_text())
+
+    prepend("model/skill.py", "from ..link import device")  # upward
+    prepend("link/bus.py", "def f():\n    from ..commands import run")  # upward, inside a function
+    prepend("model/tolerance.py", "from ..readers import canlog")  # fine: lower layer
+    prepend("readers/csv.py", "from ..link import uds")  # beyond link.dbc
+    prepend("model/params.py", "from . import fit")  # fit -> params: cycle
+    (pkg / "extra.py").write_text("")  # no layer
+    problems, _ = mod.check_host(tmp_path)
+    text = "\n".join(problems)
+    assert "forceskill.model.skill: upward import of forceskill.link.device (model -> link)" in text
+    assert "forceskill.link.bus: upward import of forceskill.commands.run (link -> commands)" in text
+    assert "forceskill.readers.csv: upward import of forceskill.link.uds (readers -> link)" in text
+    assert "import cycle" in text and "forceskill.model.params -> forceskill.model.fit" in text
+    assert "forceskill.extra: module has no layer" in text
+    assert not any(p.startswith("forceskill.model.tolerance:") for p in problems)
+    assert not any("forceskill.link.dbc" in p for p in problems)

@@ -12,8 +12,9 @@ Writes, next to this script:
   bad/*.skill, bad/manifest.txt     corrupt images, one per rejection of docs/skill_format.md:
                                     ``<file> <expected code>``; images that must fail after the CRC
                                     check carry a correct CRC.
-Run: .venv/bin/python tests/vectors/generate.py   (tests/host/test_vectors.py checks the files are current)
+Run: .venv/bin/python tests/vectors/generate.py   (tests/host/model/test_vectors.py checks the files are current)
 """
+
 from __future__ import annotations
 
 import struct
@@ -24,28 +25,32 @@ from typing import Any
 
 import numpy as np
 
-from forceskill import dmp, synthetic
-from forceskill.demo import Demo
-from forceskill.fit import fit
-from forceskill.params import Gains, gains_for_object
+from forceskill.model import dmp, synthetic
+from forceskill.model.demo import Demo
+from forceskill.model.fit import fit
+from forceskill.model.params import Gains, gains_for_object
+from forceskill.model.skill import HEADER_SIZE, MAGIC, MAX_KERNELS, Skill
 
 #: the HIL objects' mass (hil_sim/scenarios): the skills' force gains are adapted to it, so the
 #: vectors run stably on the simulator (the fault rig and the HIL tests execute them)
 OBJECT_MASS_KG = 10.0
-from forceskill.skill import HEADER_SIZE, MAGIC, MAX_KERNELS, Skill
-
 HERE = Path(__file__).resolve().parent
 
 # Short demonstrations keep the rollouts (and tests/vectors) well under 2 MB.
 DEMOS = {
     "press": (lambda: synthetic.pressing(seed=11, duration_s=1.5, k_v1=100.0, k_v2=180.0), 100.0),
-    "engrave": (lambda: _in_contact(synthetic.engraving(seed=12, duration_s=2.0, k_v=280.0, f_max_N=8.0)), 280.0),
+    "engrave": (
+        lambda: _in_contact(synthetic.engraving(seed=12, duration_s=2.0, k_v=280.0, f_max_N=8.0)),
+        280.0,
+    ),
 }
 
 
 def _in_contact(d: Demo) -> Demo:
     """The demonstration starting at 1 N (already in contact): the skill's f0 is not 0."""
     return Demo(d.t_s, d.pos_m, d.force_N + 1.0, d.source + " +1 N")
+
+
 KERNELS = (10, 50, 100)
 METHODS = ("ridge", "lwr")
 # (goal_scale, time_scale): every skill at (1, 1); N = 50 skills also scaled.
@@ -59,7 +64,7 @@ def skill_name(demo: str, n: int, method: str, end: str) -> str:
 
 def rollout_csv(skill: Skill, goal_scale: float, time_scale: float) -> bytes:
     t, f = dmp.rollout(skill, goal_scale=goal_scale, time_scale=time_scale)
-    lines = ["t,f_hat"] + ["%.17g,%.17g" % (a, b) for a, b in zip(t.tolist(), f.tolist())]
+    lines = ["t,f_hat"] + [f"{a:.17g},{b:.17g}" for a, b in zip(t.tolist(), f.tolist(), strict=False)]
     return ("\n".join(lines) + "\n").encode()
 
 
@@ -70,9 +75,16 @@ def fitted_skills() -> dict[str, Skill]:
         demo = make()
         for n in KERNELS:
             for i, method in enumerate(METHODS):
-                end = "release" if (n // 10 + i) % 2 else "hold"   # both policies for each method
-                res = fit(demo, k, n_kernels=n, method=method, end_policy=end,
-                          surface_m=synthetic.SURFACE_M, gains=gains_for_object(k, OBJECT_MASS_KG))
+                end = "release" if (n // 10 + i) % 2 else "hold"  # both policies for each method
+                res = fit(
+                    demo,
+                    k,
+                    n_kernels=n,
+                    method=method,
+                    end_policy=end,
+                    surface_m=synthetic.SURFACE_M,
+                    gains=gains_for_object(k, OBJECT_MASS_KG),
+                )
                 out[skill_name(dname, n, method, end)] = res.skill
     return out
 
@@ -89,7 +101,7 @@ def golden(skills: dict[str, Skill]) -> tuple[dict[str, bytes], list[str]]:
         image = sk.to_bytes()
         files[name + ".skill"] = image
         files[name + ".skill.json"] = sk.to_json().encode()
-        parsed = Skill.from_bytes(image)   # roll out exactly what the file holds
+        parsed = Skill.from_bytes(image)  # roll out exactly what the file holds
         scales = SCALES_ALL + (SCALES_N50 if sk.n_kernels == 50 else ())
         for gs, ts in scales:
             csv_name = f"{name}_g{scale_tag(gs)}_t{scale_tag(ts)}.csv"
@@ -101,19 +113,46 @@ def golden(skills: dict[str, Skill]) -> tuple[dict[str, bytes], list[str]]:
 # ---- corrupt images ------------------------------------------------------------------------
 
 _HDR = struct.Struct("<IHHIHH15d")
-_F64 = ("dt_s", "tau_s", "alpha", "beta", "gamma", "stiffness_Npm", "goal_N", "duration_s",
-        "m_d_kg", "k_d_Nspm", "k_p_Npm", "kkf_Npm", "kki_Npms", "surface_m", "force0_N")
+_F64 = (
+    "dt_s",
+    "tau_s",
+    "alpha",
+    "beta",
+    "gamma",
+    "stiffness_Npm",
+    "goal_N",
+    "duration_s",
+    "m_d_kg",
+    "k_d_Nspm",
+    "k_p_Npm",
+    "kkf_Npm",
+    "kki_Npms",
+    "surface_m",
+    "force0_N",
+)
 #: a v1 image (metres, k-dependent gains): 14 f64 in a 128-byte header
 _HDR_V1 = struct.Struct("<IHHIHH14d")
 
 
-def pack(fields: dict[str, Any], centres: np.ndarray, widths: np.ndarray, weights: np.ndarray,
-         fix_crc: bool = True) -> bytes:
+def pack(
+    fields: dict[str, Any], centres: np.ndarray, widths: np.ndarray, weights: np.ndarray, fix_crc: bool = True
+) -> bytes:
     """An image from raw fields (magic, version, header_size, total_length, n, flags, f64s)."""
-    head = _HDR.pack(fields["magic"], fields["version"], fields["header_size"], fields["total_length"],
-                     fields["n"], fields["flags"], *(float(fields[k]) for k in _F64))
-    body = head + np.asarray(centres, "<f8").tobytes() + np.asarray(widths, "<f8").tobytes() \
+    head = _HDR.pack(
+        fields["magic"],
+        fields["version"],
+        fields["header_size"],
+        fields["total_length"],
+        fields["n"],
+        fields["flags"],
+        *(float(fields[k]) for k in _F64),
+    )
+    body = (
+        head
+        + np.asarray(centres, "<f8").tobytes()
+        + np.asarray(widths, "<f8").tobytes()
         + np.asarray(weights, "<f8").tobytes()
+    )
     crc = zlib.crc32(body) & 0xFFFFFFFF if fix_crc else fields.get("crc", 0)
     return body + struct.pack("<I", crc)
 
@@ -121,8 +160,14 @@ def pack(fields: dict[str, Any], centres: np.ndarray, widths: np.ndarray, weight
 def bad_images(base: Skill) -> list[tuple[str, bytes, int]]:
     """(file name, bytes, expected code) for every rejection, from a valid N = 10 skill."""
     n = base.n_kernels
-    f0: dict[str, Any] = {"magic": MAGIC, "version": 2, "header_size": HEADER_SIZE,
-                          "total_length": HEADER_SIZE + 24 * n + 4, "n": n, "flags": base.flags}
+    f0: dict[str, Any] = {
+        "magic": MAGIC,
+        "version": 2,
+        "header_size": HEADER_SIZE,
+        "total_length": HEADER_SIZE + 24 * n + 4,
+        "n": n,
+        "flags": base.flags,
+    }
     f0.update({k: getattr(base, k) for k in _F64})
     c, w, wt = base.centres.copy(), base.widths.copy(), base.weights.copy()
     good = pack(f0, c, w, wt)
@@ -150,15 +195,20 @@ def bad_images(base: Skill) -> list[tuple[str, bytes, int]]:
     out.append(("length_truncated.skill", good[:-8], 203))
     out.append(("length_trailing.skill", good + b"\0\0\0\0", 203))
     bad_crc = bytearray(good)
-    bad_crc[HEADER_SIZE + 16 * n + 3] ^= 0x40   # a weight byte
+    bad_crc[HEADER_SIZE + 16 * n + 3] ^= 0x40  # a weight byte
     out.append(("crc.skill", bytes(bad_crc), 204))
     e = np.zeros(0)
     out.append(("kernels_0.skill", pack(dict(f0, n=0, total_length=HEADER_SIZE + 4), e, e, e), 205))
     n2 = MAX_KERNELS + 1
     c2 = np.linspace(0.0, 0.99, n2)
     w2 = np.full(n2, 0.5 * (c2[1] - c2[0]))
-    out.append((f"kernels_{n2}.skill", pack(dict(f0, n=n2, total_length=HEADER_SIZE + 24 * n2 + 4), c2, w2,
-                                          np.zeros(n2)), 205))
+    out.append(
+        (
+            f"kernels_{n2}.skill",
+            pack(dict(f0, n=n2, total_length=HEADER_SIZE + 24 * n2 + 4), c2, w2, np.zeros(n2)),
+            205,
+        )
+    )
     wt_nan = wt.copy()
     wt_nan[3] = np.nan
     out.append(("nan_weight.skill", arr(weights=wt_nan), 206))
@@ -225,8 +275,10 @@ def main() -> int:
         lines.append(f"{name} {code}")
     (bad_dir / "manifest.txt").write_text("\n".join(lines) + "\n")
     total = sum(p.stat().st_size for p in HERE.rglob("*") if p.is_file())
-    print(f"wrote {len(files)} files, {len(manifest)} rollouts, {len(lines)} bad images; "
-          f"tests/vectors is {total / 1e6:.2f} MB")
+    print(
+        f"wrote {len(files)} files, {len(manifest)} rollouts, {len(lines)} bad images; "
+        f"tests/vectors is {total / 1e6:.2f} MB"
+    )
     return 0
 
 

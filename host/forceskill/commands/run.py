@@ -14,19 +14,19 @@ from typing import Any, TextIO
 import numpy as np
 
 from ..errors import ERR_RUN_FAULT, ERR_SKILL_PEAK, FsError, fault_text
-from ..limits import (
-    add_force_limit,
+from ..link import ERR_LINK_ARGS, ERR_LINK_STATE
+from ..link import uds as U
+from ..link.device import Device
+from ..model.limits import (
     check_force_limit,
-    check_scales,
     check_skill_stiffness,
     peak_problem,
     skill_peak_N,
 )
-from ..link import ERR_LINK_ARGS, ERR_LINK_STATE
-from ..link import uds as U
-from ..link.device import Device
+from ..model.scales import check_scales
+from ..model.skill import Skill
 from ..outputs import STDOUT, Outputs, format_rows
-from ..skill import Skill
+from ._args import add_force_limit, add_scales
 from ._common import (
     add_common,
     close_log,
@@ -308,16 +308,7 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     )
     p.add_argument("--slot", type=int, metavar="N", help="slot 1..8")
     p.add_argument("--sequence", metavar="SLOT:DUR,...", help="skills in series, e.g. 1:8s,2:9s")
-    p.add_argument(
-        "--goal-scale",
-        type=float,
-        default=1.0,
-        metavar="S",
-        help="multiply the force by S, 0..65.535; refused if the skill's peak times S is above --force-limit",
-    )
-    p.add_argument(
-        "--time-scale", type=float, default=1.0, metavar="S", help="stretch time by S, 0.001..65.535"
-    )
+    add_scales(p, "refused if the skill's peak times S is above --force-limit")
     p.add_argument(
         "--end",
         choices=("skill", "hold", "release"),

@@ -11,11 +11,12 @@ from typing import Any
 from tqdm import tqdm
 
 from ..errors import FsError
-from ..limits import add_force_limit, check_skill_force, check_skill_stiffness
 from ..link import ERR_LINK_ARGS, ERR_LINK_STATE
 from ..link import uds as U
 from ..link.device import Device
-from ..skill import Skill
+from ..model.limits import check_skill_force, check_skill_stiffness
+from ..model.skill import Skill
+from ._args import add_force_limit
 from ._common import add_common, connect
 
 

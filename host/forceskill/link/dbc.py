@@ -16,6 +16,7 @@ from pathlib import Path
 import cantools
 
 from ..codes import UDS_REQUEST_BASE, UDS_RESPONSE_BASE  # noqa: F401
+from ..errors import ERR_IO, FsError
 
 SAFETY_FRAMES = ("Emergency", "HostCommand", "HostHeartbeat", "DeviceStatus")
 STATES = {0: "BOOT", 1: "IDLE", 2: "TEACH", 3: "EXECUTE", 4: "FAULT"}
@@ -24,11 +25,16 @@ END_POLICIES = {"skill": 0, "hold": 1, "release": 2}
 
 
 def dbc_path() -> Path:
-    """Path of the DBC: the packaged copy, else the firmware's."""
-    here = Path(__file__).resolve().parent.parent / "data" / "forceskill.dbc"
-    if here.is_file():
-        return here
-    return Path(__file__).resolve().parents[3] / "firmware" / "proto" / "forceskill.dbc"
+    """Path of the DBC packaged with forceskill (forceskill/data/forceskill.dbc); FsError naming
+    the path when the installation lacks it."""
+    from importlib.resources import files
+
+    path = Path(str(files("forceskill") / "data" / "forceskill.dbc"))
+    if not path.is_file():
+        raise FsError(
+            ERR_IO, f"the device's DBC is missing from the installed package: {path}; reinstall forceskill"
+        )
+    return path
 
 
 @functools.cache

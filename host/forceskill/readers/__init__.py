@@ -5,7 +5,8 @@ An entry point's name is the file suffix it reads without the leading dot (``csv
 of them ``"t"`` (seconds, strictly increasing as recorded). Built-in formats (host/pyproject.toml):
 
 - ``csv``: text tables (``forceskill.readers.csv``; python-can CSV logs go to the CAN reader);
-- ``blf asc log trc db mf4`` and ``gz`` (compressed): CAN logs through the DBC (``forceskill.readers.canlog``);
+- ``blf asc log trc db mf4``: CAN logs through the DBC (``forceskill.readers.canlog``); ``gz``: any of
+  these compressed (``forceskill.readers.gz``);
 - ``txt``: python-can's text log (which it cannot read) refused by name, else a text table as ``csv``;
 - ``mcap``: ROS 2 bags, geometry_msgs/WrenchStamped (``forceskill.readers.rosbag``).
 
@@ -44,7 +45,7 @@ _BUILTIN = {
     "trc": "forceskill.readers.canlog:read",
     "db": "forceskill.readers.canlog:read",
     "mf4": "forceskill.readers.canlog:read",
-    "gz": "forceskill.readers.canlog:read_gz",
+    "gz": "forceskill.readers.gz:read",
     "mcap": "forceskill.readers.rosbag:read",
     "txt": "forceskill.readers.canlog:read_txt",
 }

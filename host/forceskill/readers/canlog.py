@@ -38,21 +38,6 @@ IDLE_PERIOD_TICKS = 100
 MIN_STRETCH = 10
 
 
-def read_gz(path: Path, opts: ReadOptions) -> Columns:
-    """A gzip-compressed recording: a CAN log (.blf/.asc/.log/.trc.gz) or a CSV file (.csv.gz)."""
-    inner = Path(path.stem).suffix.lower()
-    if inner == ".csv":
-        from . import csv as csv_reader
-
-        try:
-            with gzip.open(path, "rb") as f:
-                data = f.read()
-        except (OSError, EOFError) as e:
-            raise DemoError(ERR_LINK_LOG, f"cannot decompress {path.name}: {e}") from None
-        return csv_reader.read_bytes(path, data, opts)
-    return read(path, opts)
-
-
 #: Frames between two updates of the progress bar.
 _BAR_EVERY = 4096
 #: python-can's text log (can.Printer): every line starts with this.

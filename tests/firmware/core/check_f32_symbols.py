@@ -1,6 +1,7 @@
 """The float32 libraries export only _f32 symbols (so they link beside the double ones): nm over
 each library; every defined global symbol must end in _f32.
 usage: check_f32_symbols.py NM LIBRARY..."""
+
 import subprocess
 import sys
 
@@ -9,8 +10,9 @@ def main(nm: str, libs: list[str]) -> int:
     bad = []
     n = 0
     for lib in libs:
-        out = subprocess.run([nm, "-g", "--defined-only", lib], check=True, capture_output=True,
-                             text=True).stdout
+        out = subprocess.run(
+            [nm, "-g", "--defined-only", lib], check=True, capture_output=True, text=True
+        ).stdout
         for line in out.splitlines():
             parts = line.split()
             if len(parts) == 3 and parts[1] in "TDBRC":

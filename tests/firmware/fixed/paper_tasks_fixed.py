@@ -8,13 +8,14 @@ units, so the fixed-point layout holds the same accuracy at any stiffness (<= 0.
 
 usage: paper_tasks_fixed.py HIL_SIM FIXED_COMPARE OUT_DIR
 """
+
 import subprocess
 import sys
 from pathlib import Path
 
-from forceskill.demo import load_demo
-from forceskill.fit import fit
-from forceskill.report import SURFACE_M, TASKS, run_sim
+from forceskill.commands.report import SURFACE_M, TASKS, run_sim
+from forceskill.model.demo import load_demo
+from forceskill.model.fit import fit
 
 ROOT = Path(__file__).resolve().parents[3]
 
@@ -26,8 +27,14 @@ def main() -> int:
     for task in TASKS:
         log = out / f"{task.name}_demo.csv"
         run_sim(hil_sim, ROOT / "hil_sim" / "scenarios" / f"{task.name}_demo.toml", log, "--seed", "1")
-        res = fit(load_demo(log), task.stiffness_Npm, n_kernels=50, method="ridge",
-                  surface_m=SURFACE_M, end_policy=task.end_policy)
+        res = fit(
+            load_demo(log),
+            task.stiffness_Npm,
+            n_kernels=50,
+            method="ridge",
+            surface_m=SURFACE_M,
+            end_policy=task.end_policy,
+        )
         skill = out / f"{task.name}.skill"
         res.skill.write(skill)
         for goal in ("1", "1.5"):

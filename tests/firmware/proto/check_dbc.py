@@ -1,6 +1,7 @@
 """The generated C and the DBC agree: for every message, random raw signal values packed by the
 generated C equal cantools' encoding, and the C unpack/decode of random bytes equals cantools'
 decoding (raw and physical). Run by ctest with the harness path: check_dbc.py HARNESS DBC."""
+
 import random
 import subprocess
 import sys
@@ -49,13 +50,14 @@ def main(harness: str, dbc_path: str) -> int:
             raw_c, phys_c = out.split("|")
             raw_py = msg.decode(data, decode_choices=False, scaling=False)
             phys_py = msg.decode(data, decode_choices=False, scaling=True)
-            for n, v in zip(signals, raw_c.split()):
+            for n, v in zip(signals, raw_c.split(), strict=False):
                 assert int(v) == raw_py[n], f"{msg.name}.{n}: C raw {v} != cantools {raw_py[n]}"
-            for n, v in zip(signals, phys_c.split()):
+            for n, v in zip(signals, phys_c.split(), strict=False):
                 ref = float(phys_py[n])
                 # decode functions compute in double; printed with 9 significant digits
-                assert abs(float(v) - ref) <= 1e-8 * max(1.0, abs(ref)), \
+                assert abs(float(v) - ref) <= 1e-8 * max(1.0, abs(ref)), (
                     f"{msg.name}.{n}: C phys {v} != cantools {ref}"
+                )
             checked += 1
     proc.stdin.close()
     proc.wait()

@@ -1,6 +1,7 @@
 """firmware/proto/generated/ is what `cantools generate_c_source` makes from the DBC today
 (same options as firmware/proto/regen.sh); only the generator's timestamp line may differ.
 Usage: check_generated.py CANTOOLS_EXE PROTO_DIR"""
+
 import pathlib
 import re
 import subprocess
@@ -17,14 +18,27 @@ def normalise(text: str) -> list[str]:
 def main(cantools_exe: str, proto_dir: str) -> int:
     proto = pathlib.Path(proto_dir)
     with tempfile.TemporaryDirectory() as tmp:
-        subprocess.run([cantools_exe, "generate_c_source", "--database-name", "fs_dbc",
-                        "--use-round", "-o", tmp, str(proto / "forceskill.dbc")],
-                       check=True, capture_output=True)
+        subprocess.run(
+            [
+                cantools_exe,
+                "generate_c_source",
+                "--database-name",
+                "fs_dbc",
+                "--use-round",
+                "-o",
+                tmp,
+                str(proto / "forceskill.dbc"),
+            ],
+            check=True,
+            capture_output=True,
+        )
         for name in ("fs_dbc.h", "fs_dbc.c"):
             fresh = normalise((pathlib.Path(tmp) / name).read_text())
             stored = normalise((proto / "generated" / name).read_text())
             if fresh != stored:
-                diff = next(i for i, (a, b) in enumerate(zip(fresh + [""], stored + [""])) if a != b)
+                diff = next(
+                    i for i, (a, b) in enumerate(zip([*fresh, ""], [*stored, ""], strict=False)) if a != b
+                )
                 print(f"{name} is stale (first difference at line {diff + 1}); run firmware/proto/regen.sh")
                 return 1
     print("generated C is up to date with forceskill.dbc")

@@ -1,21 +1,21 @@
 """The golden vectors are current: regenerated in memory they equal the files, and dmp.rollout of
 every image reproduces its CSV (the C tests read the same files)."""
+
 from __future__ import annotations
 
 import json
 import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-from forceskill import dmp
 from forceskill.errors import SkillError
-from forceskill.skill import Skill
+from forceskill.model import dmp
+from forceskill.model.skill import Skill
+from helpers.paths import VECTORS
 
-VECTORS = Path(__file__).resolve().parents[1] / "vectors"
 sys.path.insert(0, str(VECTORS))
-import generate  # noqa: E402  (tests/vectors/generate.py)
+import generate
 
 
 def manifest() -> list[tuple[str, float, float, str]]:
@@ -58,14 +58,29 @@ def test_regenerated_skills_equal_the_files() -> None:
     for name, sk in skills.items():
         disk = Skill.read(VECTORS / (name + ".skill"))
         assert (disk.n_kernels, disk.flags) == (sk.n_kernels, sk.flags)
-        for k in ("dt_s", "alpha", "beta", "gamma", "stiffness_Npm", "duration_s", "surface_m", "m_d_kg",
-                  "k_d_Nspm", "k_p_Npm", "kkf_Npm", "kki_Npms", "force0_N"):
+        for k in (
+            "dt_s",
+            "alpha",
+            "beta",
+            "gamma",
+            "stiffness_Npm",
+            "duration_s",
+            "surface_m",
+            "m_d_kg",
+            "k_d_Nspm",
+            "k_p_Npm",
+            "kkf_Npm",
+            "kki_Npms",
+            "force0_N",
+        ):
             assert getattr(disk, k) == getattr(sk, k), k
         for k in ("tau_s", "goal_N"):
             assert getattr(disk, k) == pytest.approx(getattr(sk, k), rel=1e-12), k
         np.testing.assert_allclose(disk.centres, sk.centres, rtol=1e-12, atol=1e-15)
         np.testing.assert_allclose(disk.widths, sk.widths, rtol=1e-9)
-        np.testing.assert_allclose(disk.weights, sk.weights, rtol=1e-7, atol=1e-9 * np.max(np.abs(sk.weights)))
+        np.testing.assert_allclose(
+            disk.weights, sk.weights, rtol=1e-7, atol=1e-9 * np.max(np.abs(sk.weights))
+        )
         j = json.loads((VECTORS / (name + ".skill.json")).read_text())
         assert Skill.from_json_dict(j).to_bytes() == disk.to_bytes()
     for csv_name, data in files.items():

@@ -17,8 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import ERR_FIT_ARGS, FsError
 from .demo import Demo
-from .errors import ERR_FIT_ARGS, FsError
 
 #: Without --max-error, `fit` refuses a skill whose max error is above this (% of max force).
 DEFAULT_MAX_ERROR_PCT = 10.0

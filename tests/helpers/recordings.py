@@ -7,11 +7,12 @@ samples, a long gap, steps within one sample, single-sample spikes, a stuck sens
 Writers: CSV in its common dialects, python-can CAN logs through the device DBC, ROS 2 bags
 (MCAP, geometry_msgs/WrenchStamped and PoseStamped) with mcap-ros2-support's writer.
 """
+
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Optional, Sequence
 
 import numpy as np
 
@@ -41,8 +42,13 @@ def _pos(f: np.ndarray) -> np.ndarray:
     return SURFACE_M + np.maximum(f, 0.0) / OBJECT_K_NPM
 
 
-def press(duration_s: float = 8.0, rate_hz: float = 100.0, peak_N: float = 20.0, seed: int = 0,
-          t: Optional[np.ndarray] = None) -> Rec:
+def press(
+    duration_s: float = 8.0,
+    rate_hz: float = 100.0,
+    peak_N: float = 20.0,
+    seed: int = 0,
+    t: np.ndarray | None = None,
+) -> Rec:
     """Quiet 0.5 s, ramp to a hold, a second higher level, release before the end."""
     rng = np.random.default_rng(seed)
     t = _times(duration_s, rate_hz) if t is None else t
@@ -54,8 +60,9 @@ def press(duration_s: float = 8.0, rate_hz: float = 100.0, peak_N: float = 20.0,
     return Rec(t, f, _pos(f))
 
 
-def strokes(n: int = 13, duration_s: float = 73.0, rate_hz: float = 100.0, peak_N: float = 15.0,
-            seed: int = 0) -> Rec:
+def strokes(
+    n: int = 13, duration_s: float = 73.0, rate_hz: float = 100.0, peak_N: float = 15.0, seed: int = 0
+) -> Rec:
     """Wiping: n contacts of random height, each a raised-cosine stroke, with lifts in between."""
     rng = np.random.default_rng(seed)
     t = _times(duration_s, rate_hz)
@@ -96,7 +103,7 @@ def with_dropouts(r: Rec, n: int, max_len: int = 3, seed: int = 0) -> Rec:
     keep = np.ones(r.t.size, bool)
     first = int(np.searchsorted(r.t, 1.0))
     for i in rng.choice(np.arange(first, r.t.size - max_len - 1), n, replace=False):
-        keep[i:i + rng.integers(1, max_len + 1)] = False
+        keep[i : i + rng.integers(1, max_len + 1)] = False
     return Rec(r.t[keep], r.f[keep], r.x[keep])
 
 
@@ -131,10 +138,21 @@ def with_stuck(r: Rec, from_s: float, length_s: float) -> Rec:
 
 # ---- writers ----------------------------------------------------------------------------------
 
-def write_csv(path: Path, r: Rec, *, delimiter: str = ",", names: Sequence[str] = ("t", "x", "f_contact"),
-              time_scale: float = 1.0, bom: bool = False, comments: Sequence[str] = (),
-              decimal_comma: bool = False, with_time: bool = True, with_position: bool = True,
-              line_end: str = "\n") -> Path:
+
+def write_csv(
+    path: Path,
+    r: Rec,
+    *,
+    delimiter: str = ",",
+    names: Sequence[str] = ("t", "x", "f_contact"),
+    time_scale: float = 1.0,
+    bom: bool = False,
+    comments: Sequence[str] = (),
+    decimal_comma: bool = False,
+    with_time: bool = True,
+    with_position: bool = True,
+    line_end: str = "\n",
+) -> Path:
     """One recording as a CSV dialect: names for (time, position, force) in the header."""
     cols = []
     header = []
@@ -148,7 +166,7 @@ def write_csv(path: Path, r: Rec, *, delimiter: str = ",", names: Sequence[str] 
     header.append(names[2])
     lines = [f"# {c}" for c in comments] + [delimiter.join(header)]
     for row in np.column_stack(cols):
-        cells = ["%.9g" % v for v in row]
+        cells = [f"{v:.9g}" for v in row]
         if decimal_comma:
             cells = [c.replace(".", ",") for c in cells]
         lines.append(delimiter.join(cells))
@@ -157,13 +175,15 @@ def write_csv(path: Path, r: Rec, *, delimiter: str = ",", names: Sequence[str] 
     return path
 
 
-def write_can_log(path: Path, r: Rec, *, node: int = 0, drop_ticks: Sequence[int] = (),
-                  sessions: int = 1) -> Path:
+def write_can_log(
+    path: Path, r: Rec, *, node: int = 0, drop_ticks: Sequence[int] = (), sessions: int = 1
+) -> Path:
     """A python-can log (any suffix it writes, .gz too) of the device's telemetry at 1 kHz in
     TEACH, status frames every 10 ms, idle telemetry every 100 ms before and after; ``r`` must be
     sampled at 1 kHz. ``drop_ticks``: telemetry frames lost on the bus. ``sessions`` > 1 repeats
     the demonstration with IDLE in between."""
     import can
+
     from forceskill.link.dbc import load_db
 
     db = load_db(node)
@@ -173,23 +193,49 @@ def write_can_log(path: Path, r: Rec, *, node: int = 0, drop_ticks: Sequence[int
     tick = 1000
     msgs: list[can.Message] = []
 
-    def emit(state: int, ticks: range, rows: Optional[np.ndarray]) -> None:
+    def emit(state: int, ticks: range, rows: np.ndarray | None) -> None:
         for k, tk in enumerate(ticks):
             ts = tk * 1e-3
             if tk % 10 == 0:
-                data = mstat.encode({"State": state, "Slot": 0, "FaultCode": 0, "Tick": tk & 0xFFFFFF, "Counter": 0,
-                                     "ActuatorEnabled": 0, "HostAlive": 1, "SequenceStep": 0, "Crc": 0})
-                msgs.append(can.Message(timestamp=ts, arbitration_id=mstat.frame_id, data=data, is_extended_id=False))
+                data = mstat.encode(
+                    {
+                        "State": state,
+                        "Slot": 0,
+                        "FaultCode": 0,
+                        "Tick": tk & 0xFFFFFF,
+                        "Counter": 0,
+                        "ActuatorEnabled": 0,
+                        "HostAlive": 1,
+                        "SequenceStep": 0,
+                        "Crc": 0,
+                    }
+                )
+                msgs.append(
+                    can.Message(timestamp=ts, arbitration_id=mstat.frame_id, data=data, is_extended_id=False)
+                )
             if rows is None and tk % 100:
                 continue
             if rows is not None and (tk - ticks.start) in dropped:
                 continue
             x, f = (0.0, 0.0) if rows is None else (float(rows[k, 0]), float(rows[k, 1]))
-            msgs.append(can.Message(timestamp=ts, arbitration_id=mpos.frame_id, is_extended_id=False,
-                                    data=mpos.encode({"PosX": x, "PosY": 0.0, "Tick": tk & 0xFFFF})))
-            msgs.append(can.Message(timestamp=ts, arbitration_id=mforce.frame_id, is_extended_id=False,
-                                    data=mforce.encode({"ForceContact": f, "ForceOperator": f, "ForceCmd": 0.0,
-                                                        "ForceRef": 0.0})))
+            msgs.append(
+                can.Message(
+                    timestamp=ts,
+                    arbitration_id=mpos.frame_id,
+                    is_extended_id=False,
+                    data=mpos.encode({"PosX": x, "PosY": 0.0, "Tick": tk & 0xFFFF}),
+                )
+            )
+            msgs.append(
+                can.Message(
+                    timestamp=ts,
+                    arbitration_id=mforce.frame_id,
+                    is_extended_id=False,
+                    data=mforce.encode(
+                        {"ForceContact": f, "ForceOperator": f, "ForceCmd": 0.0, "ForceRef": 0.0}
+                    ),
+                )
+            )
 
     rows = np.column_stack((r.x, r.f))
     for _ in range(sessions):
@@ -203,7 +249,7 @@ def write_can_log(path: Path, r: Rec, *, node: int = 0, drop_ticks: Sequence[int
     w = can.Logger(str(path))
     for m in msgs:
         w.on_message_received(m)
-    close_log(w)     # the .db writer drops what is still queued when stopped
+    close_log(w)  # the .db writer drops what is still queued when stopped
     return path
 
 
@@ -218,16 +264,28 @@ int32 sec
 uint32 nanosec
 """
 _XYZ = "float64 x\nfloat64 y\nfloat64 z\n"
-WRENCH_MSGDEF = (f"std_msgs/Header header\ngeometry_msgs/Wrench wrench\n{_HEADER_DEFS}"
-                 f"{_SEP}\nMSG: geometry_msgs/Wrench\ngeometry_msgs/Vector3 force\ngeometry_msgs/Vector3 torque\n"
-                 f"{_SEP}\nMSG: geometry_msgs/Vector3\n{_XYZ}")
-POSE_MSGDEF = (f"std_msgs/Header header\ngeometry_msgs/Pose pose\n{_HEADER_DEFS}"
-               f"{_SEP}\nMSG: geometry_msgs/Pose\ngeometry_msgs/Point position\ngeometry_msgs/Quaternion orientation\n"
-               f"{_SEP}\nMSG: geometry_msgs/Point\n{_XYZ}{_SEP}\nMSG: geometry_msgs/Quaternion\n{_XYZ}float64 w\n")
+WRENCH_MSGDEF = (
+    f"std_msgs/Header header\ngeometry_msgs/Wrench wrench\n{_HEADER_DEFS}"
+    f"{_SEP}\nMSG: geometry_msgs/Wrench\ngeometry_msgs/Vector3 force\ngeometry_msgs/Vector3 torque\n"
+    f"{_SEP}\nMSG: geometry_msgs/Vector3\n{_XYZ}"
+)
+POSE_MSGDEF = (
+    f"std_msgs/Header header\ngeometry_msgs/Pose pose\n{_HEADER_DEFS}"
+    f"{_SEP}\nMSG: geometry_msgs/Pose\ngeometry_msgs/Point position\ngeometry_msgs/Quaternion orientation\n"
+    f"{_SEP}\nMSG: geometry_msgs/Point\n{_XYZ}{_SEP}\nMSG: geometry_msgs/Quaternion\n{_XYZ}float64 w\n"
+)
 
 
-def write_bag(path: Path, r: Rec, *, topic: str = "/wrench", pose_topic: Optional[str] = "/pose",
-              axis: str = "z", t0_ns: int = 1_700_000_000_000_000_000, extra_wrench: Optional[str] = None) -> Path:
+def write_bag(
+    path: Path,
+    r: Rec,
+    *,
+    topic: str = "/wrench",
+    pose_topic: str | None = "/pose",
+    axis: str = "z",
+    t0_ns: int = 1_700_000_000_000_000_000,
+    extra_wrench: str | None = None,
+) -> Path:
     """A ROS 2 bag (MCAP): the force on ``axis`` of a WrenchStamped topic (the other axes carry
     other values), the position on a PoseStamped topic at half the rate. ``extra_wrench``: a
     second WrenchStamped topic."""
@@ -241,20 +299,31 @@ def write_bag(path: Path, r: Rec, *, topic: str = "/wrench", pose_topic: Optiona
         w = Writer(fh)
         ws = w.register_msgdef("geometry_msgs/msg/WrenchStamped", WRENCH_MSGDEF)
         ps = w.register_msgdef("geometry_msgs/msg/PoseStamped", POSE_MSGDEF)
-        for i, (ts, f, x) in enumerate(zip(r.t, r.f, r.x)):
+        for i, (ts, f, x) in enumerate(zip(r.t, r.f, r.x, strict=False)):
             force = {"x": 1.5, "y": -2.5, "z": 7.0}
             force[axis] = float(f)
             log_ns = t0_ns + int(round(ts * 1e9)) + 300_000
-            msg = {"header": stamp(float(ts)), "wrench": {"force": force, "torque": {"x": 0.0, "y": 0.0, "z": 0.0}}}
+            msg = {
+                "header": stamp(float(ts)),
+                "wrench": {"force": force, "torque": {"x": 0.0, "y": 0.0, "z": 0.0}},
+            }
             w.write_message(topic, ws, msg, log_time=log_ns, publish_time=log_ns, sequence=i)
             if extra_wrench:
                 w.write_message(extra_wrench, ws, msg, log_time=log_ns, publish_time=log_ns, sequence=i)
             if pose_topic and i % 2 == 0:
                 pos = {"x": 0.1, "y": 0.2, "z": 0.3}
                 pos[axis] = float(x)
-                w.write_message(pose_topic, ps, {"header": stamp(float(ts)), "pose": {
-                    "position": pos, "orientation": {"x": 0.0, "y": 0.0, "z": 0.0, "w": 1.0}}},
-                    log_time=log_ns, publish_time=log_ns, sequence=i)
+                w.write_message(
+                    pose_topic,
+                    ps,
+                    {
+                        "header": stamp(float(ts)),
+                        "pose": {"position": pos, "orientation": {"x": 0.0, "y": 0.0, "z": 0.0, "w": 1.0}},
+                    },
+                    log_time=log_ns,
+                    publish_time=log_ns,
+                    sequence=i,
+                )
         w.finish()
     return path
 
@@ -264,12 +333,20 @@ def write_examples(folder: Path) -> list[Path]:
     negative, -0.8 N bias, ms time column, ';' and decimal commas), step20hz.csv, strokes.csv
     (73 s, 13 strokes), wrench.mcap (ROS 2 bag)."""
     folder.mkdir(parents=True, exist_ok=True)
-    out = [write_csv(folder / "press100.csv", with_noise(press(rate_hz=100), 0.05)),
-           write_csv(folder / "fz_bias.csv", with_sign(with_bias(with_noise(press(rate_hz=100), 0.03), 0.8)),
-                     names=("time [ms]", "z", "Fz (N)"), time_scale=1e3, delimiter=";", decimal_comma=True,
-                     with_position=False),
-           write_csv(folder / "step20hz.csv", with_step(press(rate_hz=20), 4.0, 8.0)),
-           write_csv(folder / "strokes.csv", strokes())]
+    out = [
+        write_csv(folder / "press100.csv", with_noise(press(rate_hz=100), 0.05)),
+        write_csv(
+            folder / "fz_bias.csv",
+            with_sign(with_bias(with_noise(press(rate_hz=100), 0.03), 0.8)),
+            names=("time [ms]", "z", "Fz (N)"),
+            time_scale=1e3,
+            delimiter=";",
+            decimal_comma=True,
+            with_position=False,
+        ),
+        write_csv(folder / "step20hz.csv", with_step(press(rate_hz=20), 4.0, 8.0)),
+        write_csv(folder / "strokes.csv", strokes()),
+    ]
     try:
         out.append(write_bag(folder / "wrench.mcap", with_noise(press(rate_hz=100), 0.05)))
     except ImportError:
@@ -279,5 +356,6 @@ def write_examples(folder: Path) -> list[Path]:
 
 if __name__ == "__main__":
     import sys
+
     for p in write_examples(Path(sys.argv[1] if len(sys.argv) > 1 else "recordings")):
         print(p)

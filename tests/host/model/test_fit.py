@@ -4,18 +4,19 @@ Bounds on both sides: the default fit must be accurate, and a too-small model mu
 worse (so the error measure is not vacuous). Figures measured at the time of writing are in
 docs/math.md section 3.
 """
+
 from __future__ import annotations
 
-from typing import Callable
+from collections.abc import Callable
 
 import numpy as np
 import pytest
 
-from forceskill import dmp, synthetic
-from forceskill.demo import Demo
 from forceskill.errors import DemoError, ParamError
-from forceskill.fit import FitResult, fit, solve_tau
-from forceskill.params import Gains, derive
+from forceskill.model import dmp, synthetic
+from forceskill.model.demo import Demo
+from forceskill.model.fit import FitResult, fit, solve_tau
+from forceskill.model.params import Gains, derive
 
 TASKS = {
     "press_100_180": (lambda s: synthetic.pressing(s, 8.0, 100.0, 180.0), 100.0, "pressing"),
@@ -28,7 +29,8 @@ PAPER_BOUND = {"pressing": 4.0, "engraving": 6.0}
 
 def independent_error(res: FitResult) -> tuple[float, float]:
     """max and RMS |f - f_hat| in % of max |f|, from dmp.rollout of the written image."""
-    from forceskill.skill import Skill
+    from forceskill.model.skill import Skill
+
     sk = Skill.from_bytes(res.skill.to_bytes())
     _, f_hat = dmp.rollout(sk)
     e = res.target_N - f_hat
@@ -65,8 +67,8 @@ def test_lwr_is_within_the_paper_bounds_at_50_kernels(task: str) -> None:
     res = fit(make(1), k, n_kernels=100, method="lwr")
     assert 0.1 < res.err_max_pct <= PAPER_BOUND[kind]
     ridge50 = fit(make(1), k, n_kernels=50)
-    assert res50.err_max_pct > res.err_max_pct              # more kernels help LWR
-    assert res50.err_max_pct > 2.0 * ridge50.err_max_pct    # ridge is the more accurate method
+    assert res50.err_max_pct > res.err_max_pct  # more kernels help LWR
+    assert res50.err_max_pct > 2.0 * ridge50.err_max_pct  # ridge is the more accurate method
 
 
 def test_noisy_sensor_fit_is_limited_by_the_noise() -> None:
@@ -109,7 +111,7 @@ def test_solve_tau_hits_the_phase_target_for_other_gains(beta_frac: float) -> No
 
 def test_demo_without_net_push_is_refused() -> None:
     t = np.arange(3000) * 0.001
-    f = np.sin(2 * np.pi * t / 3.0)             # pushes, then pulls back: no net impulse
+    f = np.sin(2 * np.pi * t / 3.0)  # pushes, then pulls back: no net impulse
     d = Demo(t, np.zeros_like(t), f)
     with pytest.raises(DemoError) as e:
         fit(d, 100.0)
@@ -138,7 +140,7 @@ STIFFNESSES = (10.0, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7)
 
 
 @pytest.mark.parametrize("make", [lambda: synthetic.pressing(3, 12.0), lambda: synthetic.engraving(4, 8.0)])
-def test_the_error_does_not_depend_on_the_stiffness(make: "Callable[[], Demo]") -> None:
+def test_the_error_does_not_depend_on_the_stiffness(make: Callable[[], Demo]) -> None:
     """Same recording, stiffness 10 .. 1e7 N/m: the same error within 0.2 percentage points, every
     rollout finite (the DMP runs in force units; k only scales the controller's force gains)."""
     d = make()
@@ -163,7 +165,7 @@ def test_the_skill_starts_from_the_demonstration_s_first_force() -> None:
         d = Demo(base.t_s, base.pos_m, base.force_N + offset, "offset")
         res = fit(d, 300.0)
         assert res.skill.force0_N == offset
-        t, f = dmp.rollout(res.skill)
+        _t, f = dmp.rollout(res.skill)
         assert f[0] == offset
         f_max = float(np.max(np.abs(res.target_N)))
         err = 100.0 * float(np.max(np.abs(f - res.target_N))) / f_max
@@ -181,9 +183,9 @@ def test_gains_are_stored_and_the_inertia_check_applies() -> None:
     res = fit(d, 200.0, gains=g)
     assert (res.skill.kkf_Npm, res.skill.kki_Npms) == (400.0, 4860.0)
     assert res.skill.gains == g
-    fit(d, 200.0, gains=g, object_mass_kg=10.0)       # k_f*m_v/m_d = 2*10/40 = 0.5
+    fit(d, 200.0, gains=g, object_mass_kg=10.0)  # k_f*m_v/m_d = 2*10/40 = 0.5
     with pytest.raises(ParamError) as e:
-        fit(d, 200.0, gains=g, object_mass_kg=25.0)   # 1.25
+        fit(d, 200.0, gains=g, object_mass_kg=25.0)  # 1.25
     assert e.value.code == 112
 
 
@@ -196,7 +198,11 @@ def test_default_fit_at_n50_within_1_5_pct_over_seeds(kind: str) -> None:
     worst = 0.0
     for seed in range(10):
         T = 8.0 + seed % 2
-        d = synthetic.pressing(seed, T) if kind == "pressing" else synthetic.engraving(seed, T, 100.0, 6.0 + seed % 5)
+        d = (
+            synthetic.pressing(seed, T)
+            if kind == "pressing"
+            else synthetic.engraving(seed, T, 100.0, 6.0 + seed % 5)
+        )
         worst = max(worst, fit(d, 200.0).err_max_pct)
         if seed == 0:
             assert fit(d, 200.0, n_kernels=16).err_max_pct > 2.0 * fit(d, 200.0).err_max_pct

@@ -14,57 +14,34 @@ command (fit, show, rollout, upload, run) before anything is written or sent.
 
 from __future__ import annotations
 
-import argparse
 import math
 from typing import TYPE_CHECKING
 
-from .errors import (
-    ERR_ROLLOUT_CAP,
-    ERR_SCALE_INVALID,
+from ..errors import (
     ERR_SKILL_PEAK,
     ERR_SKILL_STIFFNESS,
     FsError,
     ParamError,
 )
+from .scales import (  # noqa: F401  (re-exported: every limit a command checks)
+    GOAL_SCALE_MAX,
+    MAX_ROLLOUT_STEPS,
+    TIME_SCALE_MAX,
+    TIME_SCALE_MIN,
+    check_scales,
+    check_steps,
+)
 
 if TYPE_CHECKING:
     from .skill import Skill
 
-GOAL_SCALE_MAX = 65.535
-TIME_SCALE_MIN = 0.001
-TIME_SCALE_MAX = 65.535
-#: 10^7 steps: 2.8 h at 1 ms (a skill is at most 3600 s); about 10 s of CPU and a few 100 MB of CSV.
-MAX_ROLLOUT_STEPS = 10_000_000
 #: The device's default |force command| limit (firmware/safety/lim.h force_max_N).
 FORCE_LIMIT_N = 50.0
 
 
-def check_scales(goal_scale: float, time_scale: float) -> None:
-    """Goal scale in [0, 65.535], time scale in [0.001, 65.535], both finite (ParamError 109)."""
-    if not (math.isfinite(goal_scale) and 0.0 <= goal_scale <= GOAL_SCALE_MAX):
-        raise ParamError(
-            ERR_SCALE_INVALID, f"goal scale must be finite and in [0, {GOAL_SCALE_MAX:g}]: {goal_scale:g}"
-        )
-    if not (math.isfinite(time_scale) and TIME_SCALE_MIN <= time_scale <= TIME_SCALE_MAX):
-        raise ParamError(
-            ERR_SCALE_INVALID,
-            f"time scale must be finite and in [{TIME_SCALE_MIN:g}, {TIME_SCALE_MAX:g}]: {time_scale:g}",
-        )
-
-
-def check_steps(n_steps: int) -> None:
-    """0 <= n_steps <= MAX_ROLLOUT_STEPS (663)."""
-    if not 0 <= n_steps <= MAX_ROLLOUT_STEPS:
-        raise FsError(
-            ERR_ROLLOUT_CAP,
-            f"rollout of {n_steps} steps outside 0..{MAX_ROLLOUT_STEPS} "
-            "(give fewer --steps or a smaller --time-scale)",
-        )
-
-
 def check_force_limit(force_limit_N: float) -> None:
     """A usable force limit: finite and > 0 (ParamError 110)."""
-    from .errors import ERR_LIMIT_INVALID
+    from ..errors import ERR_LIMIT_INVALID
 
     if not (math.isfinite(force_limit_N) and force_limit_N > 0.0):
         raise ParamError(ERR_LIMIT_INVALID, f"force limit must be finite and > 0 N: {force_limit_N:g}")
@@ -117,16 +94,3 @@ def check_skill_stiffness(
             f"{name}: nominal stiffness {skill.stiffness_Npm:.4g} N/m is above the stiffness limit "
             f"{limit_Npm:.4g} N/m of node {node} (its force loop does not track stiffer objects); {outcome}",
         )
-
-
-def add_force_limit(p: argparse.ArgumentParser) -> None:
-    """The --force-limit option (N, default the device's 50 N)."""
-    from .cli import _float
-
-    p.add_argument(
-        "--force-limit",
-        type=_float,
-        default=FORCE_LIMIT_N,
-        metavar="N",
-        help=f"refuse a skill whose rollout is not finite or peaks above N newtons ({FORCE_LIMIT_N:g})",
-    )

@@ -2,20 +2,21 @@
 (vcan0 by default, $FORCESKILL_VCAN to change), driven through python-can's `socketcan`
 interface. `vcan_or_skip()` skips with a message where the kernel has no AF_CAN or the interface
 is missing."""
+
 from __future__ import annotations
 
 import os
 import socket
-import subprocess
 from pathlib import Path
 
 import pytest
 
-from conftest import HOST_TIMEOUT_MS, SPEED, Server, hil_sim_path
+from helpers.canbus import HOST_TIMEOUT_MS, SPEED, Server, serve
 
 VCAN = os.environ.get("FORCESKILL_VCAN", "vcan0")
-VCAN_HOWTO = (f"sudo modprobe vcan && sudo ip link add dev {VCAN} type vcan && sudo ip link set up {VCAN}"
-              " (docs/hil.md)")
+VCAN_HOWTO = (
+    f"sudo modprobe vcan && sudo ip link add dev {VCAN} type vcan && sudo ip link set up {VCAN} (docs/hil.md)"
+)
 
 
 def af_can_error() -> str | None:
@@ -48,21 +49,34 @@ def vcan_or_skip() -> str:
 class SocketCANServer(Server):
     """A running `hil_sim serve --socketcan IFACE` (stop(), from Server, ends it)."""
 
-    def __init__(self, scenario: Path, iface: str, node: int = 0, extra: tuple = (),
-                 host_timeout_ms: int = HOST_TIMEOUT_MS, speed: float = SPEED) -> None:
+    def __init__(
+        self,
+        scenario: Path,
+        iface: str,
+        node: int = 0,
+        extra: tuple = (),
+        host_timeout_ms: int = HOST_TIMEOUT_MS,
+        speed: float = SPEED,
+    ) -> None:
         # not Server.__init__: no TCP port, the interface instead
         self.iface = iface
         self.speed = speed
         self.node = node
         self.host_timeout_ms = host_timeout_ms
-        self.proc = subprocess.Popen([str(hil_sim_path()), "serve", "--socketcan", iface,
-                                      "--scenario", str(scenario), "--node", str(node), "--speed", str(speed),
-                                      "--host-timeout", str(host_timeout_ms), *extra],
-                                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        self.proc = serve(["--socketcan", iface], scenario, node, speed, host_timeout_ms, extra)
         self.first_line = self.proc.stdout.readline()
         assert f"on SocketCAN {iface}" in self.first_line, (
-            f"hil_sim serve --socketcan did not start: {self.first_line!r} {self.proc.stderr.read()}")
+            f"hil_sim serve --socketcan did not start: {self.first_line!r} {self.proc.stderr.read()}"
+        )
 
     def bus_args(self, node: int | None = None) -> list[str]:
-        return ["-i", "socketcan", "-c", self.iface, "--node", str(self.node if node is None else node),
-                "--timeout", "3"]
+        return [
+            "-i",
+            "socketcan",
+            "-c",
+            self.iface,
+            "--node",
+            str(self.node if node is None else node),
+            "--timeout",
+            "3",
+        ]

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .errors import (
+from ..errors import (
     ERR_IO,
     ERR_SKILL_CENTRES,
     ERR_SKILL_CRC,
@@ -38,7 +38,7 @@ from .errors import (
 from .params import MONOTONE_REL_TOL, DmpParams, Gains, derive
 
 if TYPE_CHECKING:
-    from .outputs import Outputs
+    from ..outputs import Outputs
 
 MAGIC = 0x4C4B5346  # bytes "FSKL"
 FORMAT_VERSION = 2
@@ -323,7 +323,7 @@ class Skill:
     def write(self, path: PathLike, outs: Outputs | None = None, inputs: Sequence[PathLike] = ()) -> None:
         """Write the image to ``path`` and its JSON twin to ``path.json`` as one unit: into ``outs``
         (committed by the caller) or committed here; neither file changes unless both are written."""
-        from .outputs import Outputs
+        from ..outputs import Outputs
 
         image = self.to_bytes()
         twin = self.to_json().encode()
@@ -349,6 +349,6 @@ class Skill:
 def atomic_write(path: Path, data: bytes) -> None:
     """One output file through forceskill.outputs (temporary file in the same folder, renamed on
     success; refuses special files)."""
-    from .outputs import write_file
+    from ..outputs import write_file
 
     write_file(path, data)

@@ -1,4 +1,5 @@
 """Skill image v2: layout, round trip, JSON twin, and every corrupt image refused with its code."""
+
 from __future__ import annotations
 
 import json
@@ -10,10 +11,9 @@ import numpy as np
 import pytest
 
 from forceskill.errors import SkillError
-from forceskill.fit import FitResult
-from forceskill.skill import MAGIC, Skill, image_size
-
-VECTORS = Path(__file__).resolve().parents[1] / "vectors"
+from forceskill.model.fit import FitResult
+from forceskill.model.skill import MAGIC, Skill, image_size
+from helpers.paths import VECTORS
 
 
 def test_layout_matches_docs_skill_format(press_fit: FitResult) -> None:
@@ -23,15 +23,29 @@ def test_layout_matches_docs_skill_format(press_fit: FitResult) -> None:
     assert len(b) == 136 + 24 * n + 4 == image_size(n)
     assert b[:4] == b"FSKL" and struct.unpack_from("<I", b, 0)[0] == MAGIC
     assert struct.unpack_from("<HHIHH", b, 4) == (2, 136, len(b), n, sk.flags)
-    offsets = {16: sk.dt_s, 24: sk.tau_s, 32: sk.alpha, 40: sk.beta, 48: sk.gamma, 56: sk.stiffness_Npm,
-               64: sk.goal_N, 72: sk.duration_s, 80: sk.m_d_kg, 88: sk.k_d_Nspm, 96: sk.k_p_Npm,
-               104: sk.kkf_Npm, 112: sk.kki_Npms, 120: sk.surface_m, 128: sk.force0_N}
+    offsets = {
+        16: sk.dt_s,
+        24: sk.tau_s,
+        32: sk.alpha,
+        40: sk.beta,
+        48: sk.gamma,
+        56: sk.stiffness_Npm,
+        64: sk.goal_N,
+        72: sk.duration_s,
+        80: sk.m_d_kg,
+        88: sk.k_d_Nspm,
+        96: sk.k_p_Npm,
+        104: sk.kkf_Npm,
+        112: sk.kki_Npms,
+        120: sk.surface_m,
+        128: sk.force0_N,
+    }
     for off, val in offsets.items():
         assert struct.unpack_from("<d", b, off)[0] == val
     np.testing.assert_array_equal(np.frombuffer(b, "<f8", n, 136), sk.centres)
     np.testing.assert_array_equal(np.frombuffer(b, "<f8", n, 136 + 8 * n), sk.widths)
     np.testing.assert_array_equal(np.frombuffer(b, "<f8", n, 136 + 16 * n), sk.weights)
-    assert struct.unpack_from("<I", b, 136 + 24 * n)[0] == zlib.crc32(b[:136 + 24 * n])
+    assert struct.unpack_from("<I", b, 136 + 24 * n)[0] == zlib.crc32(b[: 136 + 24 * n])
 
 
 def test_a_version_1_image_is_refused_naming_both_versions() -> None:
@@ -44,7 +58,8 @@ def test_a_version_1_image_is_refused_naming_both_versions() -> None:
 
 
 def test_firmware_images_declare_this_skill_format() -> None:
-    from forceskill import fwimage, skill
+    from forceskill.model import fwimage, skill
+
     assert fwimage.SKILL_FORMAT == skill.FORMAT_VERSION
 
 
@@ -61,7 +76,7 @@ def test_round_trip_bytes_file_and_json(press_fit: FitResult, engrave_fit: FitRe
         assert d["crc32"] == f"0x{zlib.crc32(b[:-4]):08X}"
         assert Skill.from_json_dict(d).to_bytes() == b
         assert Skill.read(p).to_bytes() == b
-        assert sorted(x.name for x in tmp_path.iterdir()) == ["a.skill", "a.skill.json"]   # no temp left
+        assert sorted(x.name for x in tmp_path.iterdir()) == ["a.skill", "a.skill.json"]  # no temp left
 
 
 def test_end_policy_flag(press_fit: FitResult, engrave_fit: FitResult) -> None:
@@ -86,9 +101,9 @@ def test_every_bad_image_is_refused_with_its_code(name: str, code: int) -> None:
         Skill.from_bytes(data)
     assert e.value.code == code, str(e.value)
     assert "\n" not in str(e.value)
-    if code > 204:   # refused after the CRC check: the CRC must be right to get there
+    if code > 204:  # refused after the CRC check: the CRC must be right to get there
         n = struct.unpack_from("<H", data, 12)[0]
-        assert struct.unpack_from("<I", data, 136 + 24 * n)[0] == zlib.crc32(data[:136 + 24 * n])
+        assert struct.unpack_from("<I", data, 136 + 24 * n)[0] == zlib.crc32(data[: 136 + 24 * n])
 
 
 def test_writing_an_invalid_skill_is_refused_and_writes_nothing(press_fit: FitResult, tmp_path: Path) -> None:

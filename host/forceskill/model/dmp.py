@@ -18,7 +18,7 @@ f_hat/k and the controller's k_f = kkf/k, k_i = kki/k).
 
 ``rollout`` runs that loop literally (one Python step per tick, kernels vectorised over all ticks,
 since the phase does not depend on x). ``linear_scan`` is the same recursion evaluated in blocks,
-used by the fit for speed and checked against the loop in tests/host/test_dmp.py.
+used by the fit for speed and checked against the loop in tests/host/model/test_dmp.py.
 """
 
 from __future__ import annotations
@@ -28,6 +28,7 @@ from collections.abc import Iterator
 
 import numpy as np
 
+from .scales import check_scales, check_steps
 from .skill import Skill
 
 #: Kernels with (u - c_i)^2/(2 sigma_i^2) above this are skipped (DMP_KERNEL_CUTOFF_EXP, dmp.h).
@@ -304,13 +305,6 @@ def transform_scan(
     return out[:, 0], out[:, 1], out[:, 2]
 
 
-def check_scales(goal_scale: float, time_scale: float) -> None:
-    """The host's one scale check (forceskill.limits.check_scales): code 109, as the firmware."""
-    from .limits import check_scales as _check
-
-    _check(goal_scale, time_scale)
-
-
 def default_steps(skill: Skill, time_scale: float = 1.0) -> int:
     """round(T*time_scale/dt): the rollout writes rows 0..this."""
     return int(round(skill.duration_s * time_scale / skill.dt_s))
@@ -329,8 +323,6 @@ def rollout_blocks(
 ) -> Iterator[tuple[np.ndarray, np.ndarray]]:
     """``rollout`` in consecutive blocks of rows (t, f_hat), the same numbers, memory bounded by
     the block; scales and the step count are checked first (109, 663)."""
-    from .limits import check_steps
-
     check_scales(goal_scale, time_scale)
     n = default_steps(skill, time_scale) if n_steps is None else int(n_steps)
     check_steps(n)

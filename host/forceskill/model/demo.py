@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import (
+from ..errors import (
     ERR_DEMO_COLUMN,
     ERR_DEMO_FORMAT,
     ERR_DEMO_GAP,
@@ -37,7 +37,7 @@ from .errors import (
     FsError,
     ParamError,
 )
-from .readers import MAX_GAP_S, NOTES_KEY, Columns, ReadOptions, read_columns
+from ..readers import MAX_GAP_S, NOTES_KEY, Columns, ReadOptions, read_columns
 
 MIN_SAMPLES = 100
 MIN_DURATION_S = 0.5
@@ -74,7 +74,7 @@ class Demo:
 
 def read_csv_columns(path: str | Path) -> Columns:
     """Every column of a CSV file with a header row (the CSV reader plugin, default options)."""
-    from .readers import csv
+    from ..readers import csv
 
     return csv.read(Path(path), ReadOptions())
 
@@ -301,7 +301,7 @@ def resample(demo: Demo, dt_s: float) -> Demo:
 def write_csv(path: str | Path, columns: Columns, inputs: Sequence[str | Path] = ()) -> None:
     """Write named equal-length columns as CSV with a header (%.17g) through forceskill.outputs
     (temporary file renamed on success; '-' is standard output)."""
-    from .outputs import write_csv as _write
+    from ..outputs import write_csv as _write
 
     names = list(columns)
     data = np.column_stack([np.asarray(columns[k], float) for k in names]) if names else np.zeros((0, 0))

@@ -18,9 +18,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..errors import ERR_FIT_ARGS, ERR_FIT_GOAL, ERR_FIT_NUMERIC, DemoError, FsError, ParamError
 from . import dmp
 from .demo import Demo, resample, validate
-from .errors import ERR_FIT_ARGS, ERR_FIT_GOAL, ERR_FIT_NUMERIC, DemoError, FsError, ParamError
 from .params import Gains, check_inertia, check_stiffness, derive, goal
 from .skill import FLAG_END_RELEASE, MAX_KERNELS, Skill
 

@@ -17,25 +17,25 @@ from dataclasses import dataclass
 from pathlib import Path
 
 # 7xx: firmware image and update, the firmware's boot_status.h; 73x host only (codes.py)
-from .codes import BOOT_ERR_CONFIG_FORMAT as ERR_CONFIG_FORMAT
-from .codes import BOOT_ERR_DOWNGRADE as ERR_DOWNGRADE
-from .codes import BOOT_ERR_FLASH as ERR_FLASH
-from .codes import BOOT_ERR_FORMAT as ERR_FORMAT
-from .codes import BOOT_ERR_HASH as ERR_HASH
-from .codes import BOOT_ERR_MAGIC as ERR_MAGIC
-from .codes import BOOT_ERR_SKILL_FORMAT as ERR_SKILL_FORMAT
-from .codes import BOOT_ERR_TAG as ERR_TAG
-from .codes import BOOT_ERR_TARGET as ERR_TARGET
-from .codes import BOOT_ERR_TRUNCATED as ERR_TRUNCATED
-from .codes import ERR_IMAGE_ARGS as ERR_ARGS
-from .codes import ERR_IMAGE_KEY as ERR_KEY
-from .codes import FWU_ERR_BLOCK_COUNTER as ERR_BLOCK_COUNTER
-from .codes import FWU_ERR_LOCKED as ERR_LOCKED
-from .codes import FWU_ERR_OVERRUN as ERR_OVERRUN
-from .codes import FWU_ERR_RANGE as ERR_RANGE
-from .codes import FWU_ERR_SEQUENCE as ERR_SEQUENCE
-from .codes import FWU_ERR_TEST_PENDING as ERR_TEST_PENDING
-from .errors import FsError
+from ..codes import BOOT_ERR_CONFIG_FORMAT as ERR_CONFIG_FORMAT
+from ..codes import BOOT_ERR_DOWNGRADE as ERR_DOWNGRADE
+from ..codes import BOOT_ERR_FLASH as ERR_FLASH
+from ..codes import BOOT_ERR_FORMAT as ERR_FORMAT
+from ..codes import BOOT_ERR_HASH as ERR_HASH
+from ..codes import BOOT_ERR_MAGIC as ERR_MAGIC
+from ..codes import BOOT_ERR_SKILL_FORMAT as ERR_SKILL_FORMAT
+from ..codes import BOOT_ERR_TAG as ERR_TAG
+from ..codes import BOOT_ERR_TARGET as ERR_TARGET
+from ..codes import BOOT_ERR_TRUNCATED as ERR_TRUNCATED
+from ..codes import ERR_IMAGE_ARGS as ERR_ARGS
+from ..codes import ERR_IMAGE_KEY as ERR_KEY
+from ..codes import FWU_ERR_BLOCK_COUNTER as ERR_BLOCK_COUNTER
+from ..codes import FWU_ERR_LOCKED as ERR_LOCKED
+from ..codes import FWU_ERR_OVERRUN as ERR_OVERRUN
+from ..codes import FWU_ERR_RANGE as ERR_RANGE
+from ..codes import FWU_ERR_SEQUENCE as ERR_SEQUENCE
+from ..codes import FWU_ERR_TEST_PENDING as ERR_TEST_PENDING
+from ..errors import FsError
 
 MAGIC = 0x57465346  # bytes "FSFW"
 FORMAT_VERSION = 1

@@ -1,21 +1,20 @@
-"""`forceskill fit` on realistic recordings (tests/host/recordings.py): each is learned within its
+"""`forceskill fit` on realistic recordings (tests/helpers/recordings.py): each is learned within its
 tolerance, or refused with one line naming the cause and its code (the CLI run as a subprocess,
 never a traceback, nothing written). Formats: CSV dialects, CAN logs, ROS 2 bags, reader plugins."""
+
 from __future__ import annotations
 
 import re
 import subprocess
 import sys
+from collections.abc import Callable
 from pathlib import Path
-from typing import Callable, Optional
 
 import numpy as np
 import pytest
-import recordings as R
+
 from forceskill import cli, readers
-from forceskill.demo import load_demo
 from forceskill.errors import (
-    ERR_LOG_UNREADABLE,
     ERR_DEMO_COLUMN,
     ERR_DEMO_DURATION,
     ERR_DEMO_FILE,
@@ -26,12 +25,15 @@ from forceskill.errors import (
     ERR_FIT_GOAL,
     ERR_FIT_INACCURATE,
     ERR_FIT_TOLERANCE,
+    ERR_LOG_UNREADABLE,
     ERR_READ_ARGS,
     FsError,
 )
+from forceskill.model.demo import load_demo
+from forceskill.model.skill import MAX_KERNELS, Skill
+from forceskill.model.tolerance import sample_error
 from forceskill.readers import ReadOptions
-from forceskill.skill import MAX_KERNELS, Skill
-from forceskill.tolerance import sample_error
+from helpers import recordings as R
 
 K = str(R.OBJECT_K_NPM)
 SURF = str(R.SURFACE_M)
@@ -63,8 +65,26 @@ def fit_ok(path: Path, capsys: pytest.CaptureFixture[str], *args: str) -> tuple[
 def fit_refused(path: Path, *args: str) -> str:
     """Run the CLI as a subprocess; it must refuse with one line and write nothing."""
     skill = path.with_name("refused.skill")
-    r = subprocess.run([sys.executable, "-m", "forceskill", "fit", str(path), "-k", K, "--surface-m", SURF,
-                        "-o", str(skill), *args], capture_output=True, text=True, timeout=300, check=False)
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "forceskill",
+            "fit",
+            str(path),
+            "-k",
+            K,
+            "--surface-m",
+            SURF,
+            "-o",
+            str(skill),
+            *args,
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
+    )
     assert r.returncode == 2, (r.stdout, r.stderr)
     assert r.stderr.count("\n") == 1 and r.stderr.startswith("forceskill: error: "), r.stderr
     assert "Traceback" not in r.stderr
@@ -86,13 +106,22 @@ SUCCESS: list[tuple[str, Callable[[], R.Rec], tuple[str, ...]]] = [
     ("bias_tare_auto", lambda: R.with_bias(R.with_noise(R.press(), 0.03), -0.8), ("--tare", "auto")),
     ("bias_tare_0.4s", lambda: R.with_bias(R.press(), -0.8), ("--tare", "0.4")),
     ("gap_250ms_allowed", lambda: R.with_gap(R.press(), 6.2, 0.25), ("--max-gap", "0.3")),
-    ("kilonewton_scaled", lambda: R.Rec(R.press().t, R.press().f / 1000.0, R.press().x), ("--force-scale", "1000")),
+    (
+        "kilonewton_scaled",
+        lambda: R.Rec(R.press().t, R.press().f / 1000.0, R.press().x),
+        ("--force-scale", "1000"),
+    ),
 ]
 
 
 @pytest.mark.parametrize("name,make,args", SUCCESS, ids=[s[0] for s in SUCCESS])
-def test_learned_within_tolerance(name: str, make: Callable[[], R.Rec], args: tuple[str, ...], tmp_path: Path,
-                                  capsys: pytest.CaptureFixture[str]) -> None:
+def test_learned_within_tolerance(
+    name: str,
+    make: Callable[[], R.Rec],
+    args: tuple[str, ...],
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+) -> None:
     rec = make()
     out, _ = fit_ok(R.write_csv(tmp_path / f"{name}.csv", rec), capsys, *args)
     assert printed_error(out) <= PRESS_TOL_PCT, out
@@ -101,8 +130,9 @@ def test_learned_within_tolerance(name: str, make: Callable[[], R.Rec], args: tu
         assert abs(bias + 0.8) < 0.02
 
 
-def test_printed_error_is_what_the_user_computes_from_the_rollout(tmp_path: Path,
-                                                                 capsys: pytest.CaptureFixture[str]) -> None:
+def test_printed_error_is_what_the_user_computes_from_the_rollout(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     """Jittery 32 Hz recording: the printed max error equals the one computed from `forceskill
     rollout` interpolated at the recording's own sample times (within 0.5 percentage points)."""
     rec = R.with_noise(R.press(t=R.jittered_times(8.0, 14.0, 49.0, seed=3)), 0.05)
@@ -115,10 +145,12 @@ def test_printed_error_is_what_the_user_computes_from_the_rollout(tmp_path: Path
     assert abs(printed_error(out) - user_pct) <= 0.5, (printed_error(out), user_pct)
 
 
-def test_max_error_picks_the_smallest_kernel_count(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_max_error_picks_the_smallest_kernel_count(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     """73 s, 13 strokes: N = 50 is refused (above 10 %); --max-error 5 prints the N it chose, that N
     reaches 5 % at the recorded samples and N - 1 does not (checked with the library's fit)."""
-    from forceskill.fit import fit
+    from forceskill.model.fit import fit
 
     rec = R.strokes()
     p = R.write_csv(tmp_path / "strokes.csv", rec)
@@ -139,26 +171,57 @@ def test_max_error_picks_the_smallest_kernel_count(tmp_path: Path, capsys: pytes
 REFUSED: list[tuple[str, Callable[[], R.Rec], tuple[str, ...], int, list[str]]] = [
     ("negative_push", lambda: R.with_sign(R.press()), (), ERR_FIT_GOAL, ["no net push", "--force-sign -1"]),
     ("gap_300ms", lambda: R.with_gap(R.press(), 3.0, 0.3), (), ERR_DEMO_GAP, ["gap of 300 ms at t = 3 s"]),
-    ("step_within_a_sample", lambda: R.with_step(R.press(rate_hz=20), 4.0, 8.0), (), ERR_FIT_INACCURATE,
-     ["force step of +", "at t = 3.95 s", "faster than the sample rate"]),
-    ("step_no_N_reaches", lambda: R.with_step(R.press(rate_hz=20), 4.0, 8.0), ("--max-error", "0.2"),
-     ERR_FIT_TOLERANCE, [f"no kernel count up to {MAX_KERNELS} reaches max error 0.2 %", "best ", "at N = ",
-                         "force step", "split the demonstration into a sequence"]),
-    ("noise_spikes", lambda: R.with_spikes(R.with_noise(R.press(), 0.05), [2.0, 5.0], 30.0), (),
-     ERR_FIT_INACCURATE, ["single-sample spike", "t = 2 s"]),
-    ("stuck_sensor", lambda: R.with_stuck(R.with_bias(R.with_noise(R.press(), 0.05), 2.0), 0.0, 1.5), (),
-     ERR_FIT_INACCURATE, ["stuck sensor", "from t = 0 s"]),
+    (
+        "step_within_a_sample",
+        lambda: R.with_step(R.press(rate_hz=20), 4.0, 8.0),
+        (),
+        ERR_FIT_INACCURATE,
+        ["force step of +", "at t = 3.95 s", "faster than the sample rate"],
+    ),
+    (
+        "step_no_N_reaches",
+        lambda: R.with_step(R.press(rate_hz=20), 4.0, 8.0),
+        ("--max-error", "0.2"),
+        ERR_FIT_TOLERANCE,
+        [
+            f"no kernel count up to {MAX_KERNELS} reaches max error 0.2 %",
+            "best ",
+            "at N = ",
+            "force step",
+            "split the demonstration into a sequence",
+        ],
+    ),
+    (
+        "noise_spikes",
+        lambda: R.with_spikes(R.with_noise(R.press(), 0.05), [2.0, 5.0], 30.0),
+        (),
+        ERR_FIT_INACCURATE,
+        ["single-sample spike", "t = 2 s"],
+    ),
+    (
+        "stuck_sensor",
+        lambda: R.with_stuck(R.with_bias(R.with_noise(R.press(), 0.05), 2.0), 0.0, 1.5),
+        (),
+        ERR_FIT_INACCURATE,
+        ["stuck sensor", "from t = 0 s"],
+    ),
     ("tare_window_empty", lambda: R.press(rate_hz=20), ("--tare", "0.01"), ERR_DEMO_TARE, ["hold 1 sample"]),
-    ("no_time_column", lambda: R.press(), ("--time-column", "time"), ERR_DEMO_COLUMN,
-     ["'time' not in", "--rate HZ"]),
-    ("bad_scale", lambda: R.press(), ("--force-scale", "0"), ERR_READ_ARGS, ["force scale"]),
-    ("bad_max_error", lambda: R.press(), ("--max-error", "-1"), 610, ["--max-error"]),
+    (
+        "no_time_column",
+        R.press,
+        ("--time-column", "time"),
+        ERR_DEMO_COLUMN,
+        ["'time' not in", "--rate HZ"],
+    ),
+    ("bad_scale", R.press, ("--force-scale", "0"), ERR_READ_ARGS, ["force scale"]),
+    ("bad_max_error", R.press, ("--max-error", "-1"), 610, ["--max-error"]),
 ]
 
 
 @pytest.mark.parametrize("name,make,args,code,texts", REFUSED, ids=[r[0] for r in REFUSED])
-def test_refused_with_the_cause(name: str, make: Callable[[], R.Rec], args: tuple[str, ...], code: int,
-                                texts: list[str], tmp_path: Path) -> None:
+def test_refused_with_the_cause(
+    name: str, make: Callable[[], R.Rec], args: tuple[str, ...], code: int, texts: list[str], tmp_path: Path
+) -> None:
     err = fit_refused(R.write_csv(tmp_path / f"{name}.csv", make()), *args)
     assert err.rstrip().endswith(f"[{code}]"), err
     for text in texts:
@@ -168,8 +231,9 @@ def test_refused_with_the_cause(name: str, make: Callable[[], R.Rec], args: tupl
 def test_tare_auto_refuses_a_recording_that_starts_in_contact(tmp_path: Path) -> None:
     t = np.arange(0, 4.0, 0.01)
     f = 5.0 + 3.0 * np.sin(t)
-    err = fit_refused(R.write_csv(tmp_path / "contact.csv", R.Rec(t, f, R.SURFACE_M + f / R.OBJECT_K_NPM)),
-                      "--tare", "auto")
+    err = fit_refused(
+        R.write_csv(tmp_path / "contact.csv", R.Rec(t, f, R.SURFACE_M + f / R.OBJECT_K_NPM)), "--tare", "auto"
+    )
     assert "starts in contact" in err and f"[{ERR_DEMO_TARE}]" in err
 
 
@@ -189,23 +253,30 @@ def test_duration_limit_is_checked_before_the_body_is_parsed(tmp_path: Path) -> 
 
 # ---- CSV dialects ------------------------------------------------------------------------------
 
-DIALECTS: list[tuple[str, dict[str, object], Optional[ReadOptions]]] = [
+DIALECTS: list[tuple[str, dict[str, object], ReadOptions | None]] = [
     ("semicolon_decimal_comma", {"delimiter": ";", "decimal_comma": True}, None),
     ("tab", {"delimiter": "\t"}, None),
     ("spaces", {"delimiter": "   "}, None),
-    ("bom_comments_crlf", {"bom": True, "comments": ["sensor: ATI mini45", "rate 100 Hz"], "line_end": "\r\n"},
-     None),
+    (
+        "bom_comments_crlf",
+        {"bom": True, "comments": ["sensor: ATI mini45", "rate 100 Hz"], "line_end": "\r\n"},
+        None,
+    ),
     ("units_in_header", {"names": ("t [s]", "x (m)", "f_contact [N]")}, None),
     ("time_in_ms_from_header", {"names": ("t [ms]", "x", "f_contact"), "time_scale": 1e3}, None),
-    ("time_column_and_unit", {"names": ("time", "x", "f_contact"), "time_scale": 1e6},
-     ReadOptions(time_column="time", time_unit="us")),
+    (
+        "time_column_and_unit",
+        {"names": ("time", "x", "f_contact"), "time_scale": 1e6},
+        ReadOptions(time_column="time", time_unit="us"),
+    ),
     ("no_time_column_rate", {"with_time": False}, ReadOptions(rate_hz=100.0)),
 ]
 
 
 @pytest.mark.parametrize("name,kw,opts", DIALECTS, ids=[d[0] for d in DIALECTS])
-def test_csv_dialects_read_the_same_recording(name: str, kw: dict[str, object], opts: Optional[ReadOptions],
-                                              tmp_path: Path) -> None:
+def test_csv_dialects_read_the_same_recording(
+    name: str, kw: dict[str, object], opts: ReadOptions | None, tmp_path: Path
+) -> None:
     rec = R.with_noise(R.press(rate_hz=100), 0.05)
     plain = load_demo(R.write_csv(tmp_path / "plain.csv", rec))
     d = load_demo(R.write_csv(tmp_path / f"{name}.csv", rec, **kw), read=opts)  # type: ignore[arg-type]
@@ -214,11 +285,16 @@ def test_csv_dialects_read_the_same_recording(name: str, kw: dict[str, object], 
     np.testing.assert_allclose(d.pos_m, plain.pos_m, rtol=1e-8, atol=0)
 
 
-def test_without_position_it_is_force_over_stiffness_and_says_so(tmp_path: Path,
-                                                                  capsys: pytest.CaptureFixture[str]) -> None:
+def test_without_position_it_is_force_over_stiffness_and_says_so(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     rec = R.press()
-    out, _ = fit_ok(R.write_csv(tmp_path / "nopos.csv", rec, names=("t", "", "Fz (N)"), with_position=False),
-                    capsys, "--force-column", "Fz")
+    out, _ = fit_ok(
+        R.write_csv(tmp_path / "nopos.csv", rec, names=("t", "", "Fz (N)"), with_position=False),
+        capsys,
+        "--force-column",
+        "Fz",
+    )
     assert "position taken as surface + f/k" in out and printed_error(out) <= PRESS_TOL_PCT
     d = load_demo(tmp_path / "nopos.csv", force_column="Fz", stiffness_Npm=500.0, surface_m=0.01)
     np.testing.assert_allclose(d.pos_m, 0.01 + rec.f / 500.0, rtol=1e-8)
@@ -231,6 +307,7 @@ def test_bad_rows_are_named_in_large_files(tmp_path: Path, monkeypatch: pytest.M
     """Files above one block are read block by block (rows preallocated): the same numbers, and a
     bad cell is named with its line number."""
     from forceskill.readers import csv as csv_reader
+
     rec = R.with_noise(R.press(rate_hz=1000), 0.05)
     p = R.write_csv(tmp_path / "big.csv", rec, comments=["a comment"])
     whole = load_demo(p)
@@ -252,12 +329,15 @@ def test_bad_rows_are_named_in_large_files(tmp_path: Path, monkeypatch: pytest.M
 
 # ---- CAN logs ----------------------------------------------------------------------------------
 
+
 def _can_rec() -> R.Rec:
     return R.with_noise(R.press(duration_s=6.0, rate_hz=1000, peak_N=8.0), 0.02)
 
 
 @pytest.mark.parametrize("suffix", [".asc", ".log.gz", ".blf"])
-def test_can_log_lost_frames_are_interpolated(suffix: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_can_log_lost_frames_are_interpolated(
+    suffix: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     """Lost telemetry frames (1 and 40 ticks) leave the demonstration whole (not its longest
     unbroken stretch); the idle telemetry around TEACH is not part of it."""
     rec = _can_rec()
@@ -273,7 +353,9 @@ def test_can_log_lost_frames_are_interpolated(suffix: str, tmp_path: Path, capsy
 
 
 @pytest.mark.parametrize("suffix", [".asc", ".blf", ".csv", ".db", ".log", ".mf4", ".trc"])
-def test_every_python_can_log_format_is_read(suffix: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_every_python_can_log_format_is_read(
+    suffix: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     """Each format python-can reads, written by python-can's own writer (can.Logger), gives the
     demonstration exactly (the DBC's 0.01 N force resolution), also through `fit`."""
     if suffix == ".mf4":
@@ -297,7 +379,10 @@ def test_a_log_format_python_can_cannot_read_is_refused_by_name(tmp_path: Path) 
     assert "cannot read" in err and ".blf" in err
     table = tmp_path / "table.txt"
     rec = R.press()
-    table.write_text("t,x,f_contact\n" + "".join(f"{t:.6f},{x:.6g},{f:.6g}\n" for t, x, f in zip(rec.t, rec.x, rec.f)))
+    table.write_text(
+        "t,x,f_contact\n"
+        + "".join(f"{t:.6f},{x:.6g},{f:.6g}\n" for t, x, f in zip(rec.t, rec.x, rec.f, strict=False))
+    )
     assert load_demo(table).t_s.size == rec.t.size
 
 
@@ -311,6 +396,7 @@ def test_can_log_gap_and_sessions(tmp_path: Path, capsys: pytest.CaptureFixture[
 
 # ---- ROS 2 bags --------------------------------------------------------------------------------
 
+
 def test_ros2_bag_wrench_and_pose(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     pytest.importorskip("mcap_ros2")
     rec = R.with_noise(R.press(rate_hz=100), 0.05)
@@ -318,7 +404,7 @@ def test_ros2_bag_wrench_and_pose(tmp_path: Path, capsys: pytest.CaptureFixture[
     d = load_demo(p, read=ReadOptions(topic="/wrench", axis="z", pose_topic="/pose"))
     np.testing.assert_allclose(d.t_s, rec.t, atol=1e-9)
     np.testing.assert_array_equal(d.force_N, rec.f)
-    np.testing.assert_allclose(d.pos_m, rec.x, atol=2e-5)     # pose at half rate, interpolated
+    np.testing.assert_allclose(d.pos_m, rec.x, atol=2e-5)  # pose at half rate, interpolated
     out, _ = fit_ok(p, capsys, "--topic", "/wrench", "--axis", "z", "--pose-topic", "/pose")
     assert "force /wrench wrench.force.z" in out and printed_error(out) <= PRESS_TOL_PCT
     # without --topic: the bag's only WrenchStamped topic; --axis x reads another axis
@@ -331,7 +417,11 @@ def test_ros2_bag_topic_errors(tmp_path: Path) -> None:
     rec = R.press(rate_hz=50)
     p = R.write_bag(tmp_path / "two.mcap", rec, extra_wrench="/wrench_raw")
     err = fit_refused(p)
-    assert f"[{ERR_DEMO_TOPIC}]" in err and "2 geometry_msgs/msg/WrenchStamped topics" in err and "/wrench_raw" in err
+    assert (
+        f"[{ERR_DEMO_TOPIC}]" in err
+        and "2 geometry_msgs/msg/WrenchStamped topics" in err
+        and "/wrench_raw" in err
+    )
     err = fit_refused(p, "--topic", "/nope")
     assert "topic '/nope' not in two.mcap" in err
     err = fit_refused(p, "--topic", "/pose")
@@ -340,8 +430,10 @@ def test_ros2_bag_topic_errors(tmp_path: Path) -> None:
 
 # ---- reader plugins ----------------------------------------------------------------------------
 
+
 def test_readers_are_entry_points_and_plugins(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     from importlib.metadata import entry_points
+
     names = {ep.name: ep.value for ep in entry_points(group="forceskill.readers")}
     assert names["csv"] == "forceskill.readers.csv:read" and names["mcap"] == "forceskill.readers.rosbag:read"
     for name, target in names.items():
@@ -362,18 +454,24 @@ def test_readers_are_entry_points_and_plugins(tmp_path: Path, monkeypatch: pytes
 
 
 def test_every_reader_shows_a_progress_bar_only_when_reading_is_slow(
-        tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
     """CSV (in blocks), CAN log and ROS 2 bag: a tqdm bar on stderr once reading has taken
     PROGRESS_DELAY_S (2 s; 0 here stands for a slow read), nothing for a quick read."""
     import forceskill.readers.csv as csv_reader
 
     monkeypatch.setattr(csv_reader, "BLOCK_BYTES", 1 << 14)
     rec = _can_rec()
-    files = [(R.write_csv(tmp_path / "demo.csv", rec), None),
-             (R.write_can_log(tmp_path / "demo.asc", rec), None)]
+    files = [
+        (R.write_csv(tmp_path / "demo.csv", rec), None),
+        (R.write_can_log(tmp_path / "demo.asc", rec), None),
+    ]
     try:
         import mcap_ros2  # noqa: F401
-        files.append((R.write_bag(tmp_path / "demo.mcap", R.press(rate_hz=1000)), ReadOptions(topic="/wrench")))
+
+        files.append(
+            (R.write_bag(tmp_path / "demo.mcap", R.press(rate_hz=1000)), ReadOptions(topic="/wrench"))
+        )
     except ImportError:
         pass
     for p, opts in files:

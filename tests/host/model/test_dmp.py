@@ -1,14 +1,15 @@
 """The numpy DMP against independent references: the closed-loop law, replay of h_d, scaling."""
+
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from forceskill import dmp, synthetic
 from forceskill.errors import ParamError
-from forceskill.fit import FitResult, desired_forcing
-from forceskill.params import Gains, derive, goal
-from forceskill.skill import Skill
+from forceskill.model import dmp, synthetic
+from forceskill.model.fit import FitResult, desired_forcing
+from forceskill.model.params import Gains, derive, goal
+from forceskill.model.skill import Skill
 
 
 def at_k(m_d: float, k_d: float, k_p: float, k_f: float, k_i: float, k: float) -> Gains:
@@ -37,21 +38,39 @@ def law_closed_loop(gains: Gains, k: float, dt: float, x_d: np.ndarray, f_d: np.
     out = [0.0]
     for n in range(m):
         f = k * x
-        xdd = (-gains.k_d_Nspm * xd + gains.k_p_Npm * (x_d[n] - x) + k_f * (f_d[n] - f)
-               + k_i * (F - k * ix)) / gains.m_d_kg
+        xdd = (
+            -gains.k_d_Nspm * xd + gains.k_p_Npm * (x_d[n] - x) + k_f * (f_d[n] - f) + k_i * (F - k * ix)
+        ) / gains.m_d_kg
         x, xd, ix, F = x + dt * xd, xd + dt * xdd, ix + dt * x, F + dt * f_d[n]
         out.append(x)
     return np.array(out)
 
 
-def zero_weight_skill(gains: Gains, k: float, goal_N: float, tau: float, duration: float,
-                      force0_N: float = 0.0) -> Skill:
+def zero_weight_skill(
+    gains: Gains, k: float, goal_N: float, tau: float, duration: float, force0_N: float = 0.0
+) -> Skill:
     p = derive(gains)
     c = np.linspace(0.0, 0.99, 10)
-    return Skill(dt_s=0.001, tau_s=tau, alpha=p.alpha, beta=p.beta, gamma=p.gamma, stiffness_Npm=k,
-                 goal_N=goal_N, duration_s=duration, m_d_kg=gains.m_d_kg, k_d_Nspm=gains.k_d_Nspm,
-                 k_p_Npm=gains.k_p_Npm, kkf_Npm=gains.kkf_Npm, kki_Npms=gains.kki_Npms, surface_m=0.0,
-                 force0_N=force0_N, centres=c, widths=np.full(10, 0.05), weights=np.zeros(10))
+    return Skill(
+        dt_s=0.001,
+        tau_s=tau,
+        alpha=p.alpha,
+        beta=p.beta,
+        gamma=p.gamma,
+        stiffness_Npm=k,
+        goal_N=goal_N,
+        duration_s=duration,
+        m_d_kg=gains.m_d_kg,
+        k_d_Nspm=gains.k_d_Nspm,
+        k_p_Npm=gains.k_p_Npm,
+        kkf_Npm=gains.kkf_Npm,
+        kki_Npms=gains.kki_Npms,
+        surface_m=0.0,
+        force0_N=force0_N,
+        centres=c,
+        widths=np.full(10, 0.05),
+        weights=np.zeros(10),
+    )
 
 
 @pytest.mark.parametrize("gains,k", GAIN_SETS)
@@ -66,7 +85,7 @@ def test_h0_rollout_equals_closed_loop_law_on_a_spring(gains: Gains, k: float, t
     x_law = law_closed_loop(gains, k, 0.001 / time_scale, np.full(n, x_d), np.zeros(n))
     f_law = k * x_law
     assert np.max(np.abs(f_hat - f_law)) <= 1e-10 * np.max(np.abs(f_law))
-    assert np.max(np.abs(f_law)) > 0.1 * k * x_d   # the response is not trivially zero
+    assert np.max(np.abs(f_law)) > 0.1 * k * x_d  # the response is not trivially zero
 
 
 @pytest.mark.parametrize("gains,k", GAIN_SETS)
@@ -77,8 +96,8 @@ def test_h0_transform_with_moving_goal_equals_law_with_varying_references(gains:
     t = np.arange(4000) * dt
     x_d = (0.01 + 0.02 * np.sin(1.3 * t) ** 2) * 100.0 / k
     f_d = 3.0 + 2.0 * np.sin(0.7 * t)
-    F = np.concatenate(([0.0], np.cumsum(dt * f_d)[:-1]))    # forward-Euler int f_d at step n
-    g_n = np.array([goal(p, gains, k * a, b, c) for a, b, c in zip(x_d, f_d, F)])
+    F = np.concatenate(([0.0], np.cumsum(dt * f_d)[:-1]))  # forward-Euler int f_d at step n
+    g_n = np.array([goal(p, gains, k * a, b, c) for a, b, c in zip(x_d, f_d, F, strict=False)])
     y, _, _ = dmp.transform_loop(p.alpha, p.beta, p.gamma, dt, g_n, np.zeros(t.size))
     f_law = k * law_closed_loop(gains, k, dt, x_d, f_d)
     assert np.max(np.abs(y - f_law)) <= 1e-10 * np.max(np.abs(f_law))
@@ -164,7 +183,7 @@ def test_scans_equal_the_loops() -> None:
 
 def full_sum(u: np.ndarray, sk: Skill) -> np.ndarray:
     """S(u) over every kernel with no cutoff (independent of the cutoff and shift rules)."""
-    e = (u[:, None] - sk.centres[None, :]) ** 2 / (2.0 * sk.widths ** 2)
+    e = (u[:, None] - sk.centres[None, :]) ** 2 / (2.0 * sk.widths**2)
     psi = np.exp(-e)
     return (psi @ sk.weights) / psi.sum(axis=1)
 
@@ -179,7 +198,7 @@ def test_cutoff_kernel_sum_equals_the_full_sum(press_fit: FitResult, engrave_fit
         dense = dmp._normalised_kernels_dense(u, sk.centres, sk.widths) @ sk.weights
         assert np.max(np.abs(s_cut - dense)) <= 1e-13 * np.max(np.abs(dense))
         active = (dmp.kernel_exponents(u, sk.centres, sk.widths) <= dmp.KERNEL_CUTOFF_EXP).sum(axis=1)
-        assert active.max() < sk.n_kernels // 2     # most kernels are skipped on every tick
+        assert active.max() < sk.n_kernels // 2  # most kernels are skipped on every tick
 
 
 def test_far_from_every_kernel_the_nearest_kernel_alone_is_used() -> None:
@@ -204,27 +223,28 @@ def test_invalid_scales_are_refused(press_fit: FitResult, gs: float, ts: float) 
 def test_rollout_rows_and_start(press_fit: FitResult) -> None:
     sk = press_fit.skill
     t, f = dmp.rollout(sk, n_steps=17)
-    assert t.size == 18 and f[0] == 0.0 and f[1] == 0.0   # v = 0 at t = 0 -> h = 0; x moves from step 2
+    assert t.size == 18 and f[0] == 0.0 and f[1] == 0.0  # v = 0 at t = 0 -> h = 0; x moves from step 2
     assert t[-1] == pytest.approx(0.017)
-    assert synthetic.SURFACE_M == sk.surface_m
+    assert sk.surface_m == synthetic.SURFACE_M
 
 
 def test_chunked_transform_scan_and_in_place_bands_give_the_same_numbers():
     """The long-fit memory savings change no number: transform_scan in chunks (state carried)
     equals the sequential loop, and KernelBands normalised in place equals the kept-raw copy."""
-    from forceskill import dmp as D
+    from forceskill.model import dmp as D
+
     rng = np.random.default_rng(3)
     h = rng.normal(0.0, 50.0, 5000)
     ref = D.transform_scan(25.0, 6.25, 40.0, 1e-3 / 3.0, 12.0, h, chunk=1 << 20)
     for chunk in (1, 7, 640, 4999):
         got = D.transform_scan(25.0, 6.25, 40.0, 1e-3 / 3.0, 12.0, h, chunk=chunk)
-        for a, b in zip(got, ref):
+        for a, b in zip(got, ref, strict=False):
             np.testing.assert_allclose(a, b, rtol=1e-12, atol=1e-12 * np.max(np.abs(b)))
     y_loop = np.empty(h.size + 1)
     y, z, i = 0.0, 0.0, 0.0
     a = 1e-3 / 3.0
     y_loop[0] = 0.0
-    for n, hn in enumerate(h):          # the forward-Euler recursion written out (docs/math.md)
+    for n, hn in enumerate(h):  # the forward-Euler recursion written out (docs/math.md)
         y, z, i = y + a * (z - y - 40.0 * i + hn), z + a * 25.0 * (6.25 * (12.0 - y) - z), i + a * y
         y_loop[n + 1] = y
     np.testing.assert_allclose(ref[0], y_loop, rtol=1e-9, atol=1e-9 * np.max(np.abs(y_loop)))
@@ -232,6 +252,6 @@ def test_chunked_transform_scan_and_in_place_bands_give_the_same_numbers():
     c = np.linspace(0.0, 1.0, 20)
     w = np.full(20, 0.65 * (c[1] - c[0]))
     raw, lean = D.KernelBands(u, c, w), D.KernelBands(u, c, w, keep_raw=False)
-    assert all(np.array_equal(p, q) for p, q in zip(raw.norm, lean.norm)) and lean.psi == []
+    assert all(np.array_equal(p, q) for p, q in zip(raw.norm, lean.norm, strict=False)) and lean.psi == []
     with pytest.raises(ValueError):
         lean.project(u, normalised=False)

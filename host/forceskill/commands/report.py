@@ -23,8 +23,8 @@ from typing import Any
 
 import numpy as np
 
-from .errors import ERR_REPORT, FsError
-from .outputs import write_figure, write_file
+from ..errors import ERR_REPORT, FsError
+from ..outputs import write_figure, write_file
 
 #: Paper bounds on the LWR approximation error (% of max force): pressing <= 4, engraving <= 6.
 LWR_BOUND_PCT = {"pressing": 4.0, "engraving": 6.0}
@@ -105,48 +105,32 @@ def _pct(x: float | None) -> str:
 def _learn(
     task: Task, hil_sim: Path, scen: Path, out: Path, seed: int, n_kernels: int, plots: bool
 ) -> dict[str, Any]:
-    from .demo import load_demo
-    from .fit import fit
-    from .params import gains_for_object
+    from ..model.demo import load_demo
+    from ..model.fit import fit
+    from ..model.params import gains_for_object
 
     demo_log = out / "logs" / f"{task.name}_demo.csv"
     demo_sum = run_sim(hil_sim, scen / f"{task.name}_demo.toml", demo_log, "--seed", str(seed))
     demo = load_demo(demo_log)
     gains = gains_for_object(task.stiffness_Npm, OBJECT_MASS_KG)
-    res = fit(
-        demo,
-        task.stiffness_Npm,
-        n_kernels=n_kernels,
-        method="ridge",
-        surface_m=SURFACE_M,
-        end_policy=task.end_policy,
-        gains=gains,
-    )
-    lwr50 = fit(
-        demo,
-        task.stiffness_Npm,
-        n_kernels=50,
-        method="lwr",
-        surface_m=SURFACE_M,
-        end_policy=task.end_policy,
-        gains=gains,
-    )
+
+    def fit_n(n: int, method: str) -> Any:
+        return fit(
+            demo,
+            task.stiffness_Npm,
+            n_kernels=n,
+            method=method,
+            surface_m=SURFACE_M,
+            end_policy=task.end_policy,
+            gains=gains,
+        )
+
+    res = fit_n(n_kernels, "ridge")
+    lwr50 = fit_n(50, "lwr")
     bound = LWR_BOUND_PCT[task.kind]
     lwr_n, lwr_at_n = None, None
     for n in LWR_KERNELS:
-        r = (
-            lwr50
-            if n == 50
-            else fit(
-                demo,
-                task.stiffness_Npm,
-                n_kernels=n,
-                method="lwr",
-                surface_m=SURFACE_M,
-                end_policy=task.end_policy,
-                gains=gains,
-            )
-        )
+        r = lwr50 if n == 50 else fit_n(n, "lwr")
         if r.err_max_pct <= bound:
             lwr_n, lwr_at_n = n, r
             break
@@ -187,6 +171,21 @@ def _learn(
     return entry
 
 
+#: Figures of an execution's summary (run_sim) that every report row carries, in this order.
+TRACKING_FIELDS = (
+    "tracking_max_pct",
+    "tracking_rms_pct",
+    "max_cmd_abs_N",
+    "force_limit_N",
+    "limit_violations",
+)
+
+
+def _tracking(summary: dict[str, Any], *extra: str) -> dict[str, Any]:
+    """The TRACKING_FIELDS of an execution summary, then the extra ones named."""
+    return {k: summary[k] for k in TRACKING_FIELDS + extra}
+
+
 def _reuse(hil_sim: Path, scen: Path, out: Path, seed: int, plots: bool) -> list[dict[str, Any]]:
     skills = [str(out / "skills" / "engraving_task1.skill"), str(out / "skills" / "engraving_task2.skill")]
     logs: dict[str, dict[str, np.ndarray]] = {}
@@ -224,12 +223,7 @@ def _reuse(hil_sim: Path, scen: Path, out: Path, seed: int, plots: bool) -> list
                 "approx_rms_pct": None,
                 "approx_max_pct_lwr": None,
                 "approx_rms_pct_lwr": None,
-                "tracking_max_pct": s["tracking_max_pct"],
-                "tracking_rms_pct": s["tracking_rms_pct"],
-                "max_cmd_abs_N": s["max_cmd_abs_N"],
-                "force_limit_N": s["force_limit_N"],
-                "limit_violations": s["limit_violations"],
-                "deformation_max_m": s["deformation_max_m"],
+                **_tracking(s, "deformation_max_m"),
                 "deformation_diff_pct": None
                 if name == "reuse_200_1x"
                 else (d_scaled if name == "reuse_300_1_5x" else d_unscaled),
@@ -243,8 +237,8 @@ def _reuse(hil_sim: Path, scen: Path, out: Path, seed: int, plots: bool) -> list
 
 
 def _stiff(hil_sim: Path, scen: Path, out: Path, seed: int, n_kernels: int) -> list[dict[str, Any]]:
-    from . import synthetic
-    from .fit import fit
+    from ..model import synthetic
+    from ..model.fit import fit
 
     entries = []
     for kind, k_txt in STIFF:
@@ -271,14 +265,7 @@ def _stiff(hil_sim: Path, scen: Path, out: Path, seed: int, n_kernels: int) -> l
                 "approx_rms_pct": res.err_rms_pct,
                 "approx_max_pct_lwr": None,
                 "approx_rms_pct_lwr": None,
-                "tracking_max_pct": s["tracking_max_pct"],
-                "tracking_rms_pct": s["tracking_rms_pct"],
-                "max_cmd_abs_N": s["max_cmd_abs_N"],
-                "force_limit_N": s["force_limit_N"],
-                "limit_violations": s["limit_violations"],
-                "saturated_ticks": s["saturated_ticks"],
-                "nonfinite_ticks": s["nonfinite_ticks"],
-                "deformation_max_m": s["deformation_max_m"],
+                **_tracking(s, "saturated_ticks", "nonfinite_ticks", "deformation_max_m"),
                 "skill": str(skill_path),
                 "exec_log": str(log),
             }
@@ -482,7 +469,7 @@ def run_report(
 
 def _cmd_report(args: argparse.Namespace) -> int:
     out = Path(args.output)
-    from .sim import find_hil_sim, scenario_dir
+    from ..sim import find_hil_sim, scenario_dir
 
     hil_sim = find_hil_sim(args.hil_sim, ERR_REPORT)
     scen = scenario_dir(args.scenarios)

@@ -16,7 +16,7 @@ from dataclasses import dataclass, fields
 from pathlib import Path
 from typing import Any
 
-from .errors import (
+from ..errors import (
     ERR_BETA_NONPOSITIVE,
     ERR_FIT_ARGS,
     ERR_FORCE_GAIN_INERTIA,

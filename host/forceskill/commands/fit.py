@@ -1,0 +1,327 @@
+"""forceskill fit: learn a force skill from one demonstration (CSV, CAN log, ROS 2 bag)."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+from typing import Any
+
+from ..errors import FsError
+from ._args import add_force_limit, float_arg, int_arg
+
+
+def _cmd_fit(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from ..errors import ERR_FIT_ARGS, ERR_FIT_INACCURATE, ERR_FIT_TOLERANCE
+    from ..model import tolerance as tol
+    from ..model.demo import load_demo, resample
+    from ..model.limits import check_skill_force
+    from ..model.params import Gains, gains_for_object, load_gains
+    from ..model.skill import DURATION_MAX_S, MAX_KERNELS
+    from ..outputs import Outputs, check_target
+    from ..readers import ReadOptions
+
+    out = Path(args.output)
+    targets = [args.output, args.output + ".json"] + ([args.plot] if args.plot else [])
+    for i, t in enumerate(targets):  # refuse bad outputs before the work
+        real = check_target(t, [args.demo])
+        if real in (check_target(u, ()) for u in targets[:i]):
+            raise FsError(660, f"output {t!r} is given twice")
+    if args.max_error is not None:
+        if args.kernels is not None:
+            raise FsError(ERR_FIT_ARGS, "give --kernels N or --max-error PCT, not both")
+        if not (np.isfinite(args.max_error) and 0.0 < args.max_error <= 100.0):
+            raise FsError(ERR_FIT_ARGS, f"--max-error must be in (0, 100] %: {args.max_error:g}")
+    gains, object_mass_kg = load_gains(args.gains) if args.gains else (Gains(), None)
+    if args.object_mass is not None:
+        object_mass_kg = args.object_mass
+        if not args.gains:  # the defaults are adapted to the object; given gains are only checked
+            gains = gains_for_object(args.stiffness, args.object_mass)
+            if gains != Gains():
+                print(
+                    f"force gains scaled to the {args.object_mass:g} kg object: kkf = {gains.kkf_Npm:.4g} N/m, "
+                    f"kki = {gains.kki_Npms:.4g} N/(m s) (k_f*m_v/m_d = 0.75)"
+                )
+    args.fit_gains, args.fit_object_mass_kg = gains, object_mass_kg
+    ropts = ReadOptions(
+        time_column=args.time_column,
+        time_unit=args.time_unit,
+        rate_hz=args.rate,
+        topic=args.topic,
+        pose_topic=args.pose_topic,
+        axis=args.axis,
+        max_duration_s=DURATION_MAX_S,
+    )
+    demo = load_demo(
+        args.demo,
+        position_column=args.position_column,
+        force_column=args.force_column,
+        learn=args.learn,
+        read=ropts,
+        force_sign=float(args.force_sign),
+        force_scale=args.force_scale,
+        tare=args.tare,
+        max_gap_s=args.max_gap,
+        stiffness_Npm=args.stiffness,
+        surface_m=args.surface_m,
+    )
+    for note in demo.notes:
+        print(note)
+    # the fit works on the dt grid; the recording's own time and force stay for the error at its
+    # samples, its position is not needed any more (memory on long recordings)
+    grid_demo = resample(demo, args.dt)
+    demo.pos_m = np.zeros(0)
+
+    def fit_n(n: int) -> tuple[Any, np.ndarray, np.ndarray]:
+        r = _fit_with_hint(grid_demo, args, n)
+        return r, r.t_s, r.f_hat_N
+
+    if args.max_error is None:
+        n_k = 50 if args.kernels is None else args.kernels
+        res, grid, f_hat = fit_n(n_k)
+        err = tol.sample_error(demo, grid, f_hat)
+        if err.max_pct > tol.DEFAULT_MAX_ERROR_PCT:
+            cause = tol.diagnose(demo)
+            raise FsError(
+                ERR_FIT_INACCURATE,
+                f"approximation error {err.max_pct:.3g} % of max force at N = {n_k} "
+                f"(largest at t = {err.t_at_max_s:.4g} s) is above {tol.DEFAULT_MAX_ERROR_PCT:g} %: "
+                + (f"{cause}; " if cause else "")
+                + f"--max-error PCT searches N up to {MAX_KERNELS}; nothing written",
+            )
+    else:
+        n_k, res_any, err, tried = tol.fit_to_tolerance(fit_n, demo, args.max_error, MAX_KERNELS)
+        if n_k == 0:
+            best_n = min(tried, key=lambda nt: nt[1])[0]
+            cause = tol.diagnose(demo)
+            raise FsError(
+                ERR_FIT_TOLERANCE,
+                f"no kernel count up to {MAX_KERNELS} reaches max error "
+                f"{args.max_error:g} %: best {err.max_pct:.3g} % at N = {best_n} (largest at t = "
+                f"{err.t_at_max_s:.4g} s); "
+                + (f"{cause}; " if cause else "")
+                + "split the demonstration into a sequence of shorter skills (run --sequence); "
+                "nothing written",
+            )
+        res = res_any
+        print(
+            f"kernels: N = {n_k}, the smallest reaching max error {args.max_error:g} % "
+            f"({len(tried)} fits: " + ", ".join(f"{n} -> {e:.3g} %" for n, e in sorted(tried)) + ")"
+        )
+    sk = res.skill
+    check_skill_force(sk, str(out), force_limit_N=args.force_limit)
+    with Outputs(inputs=[args.demo]) as outs:  # skill, JSON twin and plot: all or nothing
+        sk.write(out, outs=outs)
+        if args.plot:
+            from ..plot import fit_figure
+
+            fit_figure(
+                res,
+                args.plot,
+                title=f"{demo.source}: {args.method}, N = {sk.n_kernels}, "
+                f"max {err.max_pct:.2f} %, RMS {err.rms_pct:.2f} %",
+                outs=outs,
+            )
+        outs.commit()
+    f_max = float(np.max(np.abs(demo.force_N)))
+    print(
+        f"demonstration: {demo.source}, T = {sk.duration_s:.3f} s, {res.t_s.size} samples at "
+        f"{sk.dt_s * 1e3:g} ms (recorded: {demo.t_s.size}), max force {f_max:.4g} N"
+    )
+    print(
+        f"skill: method {res.method}, N = {sk.n_kernels}, k = {sk.stiffness_Npm:g} N/m, tau = {sk.tau_s:.6g} s, "
+        f"g = {sk.goal_N:.6g} N, f0 = {sk.force0_N:.4g} N, alpha = {sk.alpha:g}, beta = {sk.beta:g}, "
+        f"gamma = {sk.gamma:g}, end {sk.end_policy}"
+    )
+    print(
+        f"approximation error: max {err.max_pct:.3f} %, RMS {err.rms_pct:.3f} % of max force "
+        f"(at the {demo.t_s.size} recorded samples)"
+    )
+    print(
+        f"wrote {out} ({out.stat().st_size} bytes) and {out}.json"
+        + (f", plot {args.plot}" if args.plot else "")
+    )
+    return 0
+
+
+def _fit_with_hint(demo: Any, args: argparse.Namespace, n_kernels: int) -> Any:
+    """fit() with the fit options of ``args``; a refusal for no net push on a force that reads
+    negative says to flip the sign."""
+    import numpy as np
+
+    from ..errors import ERR_FIT_GOAL
+    from ..model.fit import fit
+
+    try:
+        return fit(
+            demo,
+            args.stiffness,
+            n_kernels=n_kernels,
+            method=args.method,
+            gains=args.fit_gains,
+            surface_m=args.surface_m,
+            end_policy=args.end,
+            dt_s=args.dt,
+            force0_N=0.0 if args.start_force == "zero" else None,
+            object_mass_kg=args.fit_object_mass_kg,
+        )
+    except FsError as e:
+        f = demo.force_N
+        lo, hi = float(np.min(f)) or 0.0, float(np.max(f)) or 0.0
+        if e.code == ERR_FIT_GOAL and -lo > hi:
+            raise FsError(
+                e.code,
+                f"{e.message}; the force reads negative (min {lo:.4g} N, max {hi:.4g} N): "
+                f"a push measured negative (the usual Fz sign) needs --force-sign -1",
+            ) from None
+        raise
+
+
+def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    """Add ``forceskill fit``."""
+    p = sub.add_parser(
+        "fit",
+        help="learn a force skill from one demonstration",
+        description="Learn a force skill from one demonstration (CSV with a header row, a "
+        "CAN log or a ROS 2 bag). Prints the approximation error in % of the maximum "
+        "demonstrated force at the recorded samples; writes SKILL and SKILL.json. Refuses "
+        "(nothing written) when the error is above 10 % or above --max-error.",
+    )
+    p.add_argument(
+        "demo",
+        metavar="DEMO",
+        help="demonstration file (.csv, .blf/.asc/.log/.trc[.gz], .mcap, "
+        "or a format added by a forceskill.readers plugin)",
+    )
+    p.add_argument(
+        "--stiffness",
+        "-k",
+        type=float_arg,
+        required=True,
+        metavar="K",
+        help="nominal object stiffness k in N/m (execution: x_d = surface + f_hat/k, k_f = kkf/k)",
+    )
+    p.add_argument("-o", "--output", required=True, metavar="SKILL", help="skill image to write")
+    p.add_argument(
+        "--method",
+        choices=("ridge", "lwr"),
+        default="ridge",
+        help="regression: ridge (joint regularised LS, default) or lwr (the paper's)",
+    )
+    p.add_argument(
+        "--kernels",
+        "-n",
+        type=int_arg,
+        default=None,
+        metavar="N",
+        help="kernels, 2..the format's cap 1024 (50)",
+    )
+    p.add_argument(
+        "--max-error",
+        type=float_arg,
+        default=None,
+        metavar="PCT",
+        help="use the smallest N whose max error is <= PCT %% of max force",
+    )
+    p.add_argument(
+        "--learn",
+        choices=("contact", "operator"),
+        default="contact",
+        help="force to learn: contact (tip sensor, f_contact; default) or operator (f_operator)",
+    )
+    p.add_argument(
+        "--position-column",
+        default=None,
+        metavar="C",
+        help="position column (x; without one, position = surface + f/k)",
+    )
+    p.add_argument("--force-column", default=None, metavar="C", help="force column (overrides --learn)")
+    g = p.add_argument_group("reading the recording")
+    g.add_argument("--time-column", default="t", metavar="NAME", help="CSV time column (t)")
+    g.add_argument(
+        "--time-unit",
+        choices=("s", "ms", "us", "ns"),
+        default=None,
+        help="CSV time unit (default: the unit in the header, 't [ms]', else s)",
+    )
+    g.add_argument(
+        "--rate",
+        type=float_arg,
+        default=None,
+        metavar="HZ",
+        help="CSV without a time column: sample n is at n/HZ",
+    )
+    g.add_argument(
+        "--topic",
+        default=None,
+        metavar="TOPIC",
+        help="ROS 2 bag: geometry_msgs/WrenchStamped topic (default: the only one)",
+    )
+    g.add_argument(
+        "--pose-topic",
+        default=None,
+        metavar="TOPIC",
+        help="ROS 2 bag: PoseStamped/PointStamped topic for the position",
+    )
+    g.add_argument("--axis", choices=("x", "y", "z"), default="z", help="ROS 2 bag: force/pose axis (z)")
+    g.add_argument(
+        "--force-sign", type=int, choices=(1, -1), default=1, help="-1 when a push reads negative (1)"
+    )
+    g.add_argument(
+        "--force-scale",
+        type=float_arg,
+        default=1.0,
+        metavar="S",
+        help="multiply the force by S, e.g. to convert to N (1)",
+    )
+    g.add_argument(
+        "--tare",
+        default="none",
+        metavar="auto|SECONDS|none",
+        help="remove a sensor bias: the median force before contact (auto) or over the first SECONDS (none)",
+    )
+    g.add_argument(
+        "--max-gap",
+        type=float_arg,
+        default=0.1,
+        metavar="S",
+        help="longest gap between samples that is interpolated, s (0.1)",
+    )
+    p.add_argument(
+        "--surface-m",
+        type=float_arg,
+        default=0.0,
+        metavar="S",
+        help="object surface position during the demonstration, m (0)",
+    )
+    p.add_argument(
+        "--end",
+        choices=("hold", "release"),
+        default="hold",
+        help="after the skill's duration: hold the last force or release to 0 in 0.5 s",
+    )
+    p.add_argument(
+        "--gains",
+        metavar="FILE.toml",
+        help="controller gains (m_d_kg, k_d_Nspm, k_p_Npm, kkf_Npm = k*k_f, kki_Npms = k*k_i; "
+        "optional m_v_kg, the object's mass), validated and stored in the skill",
+    )
+    p.add_argument(
+        "--object-mass",
+        type=float_arg,
+        default=None,
+        metavar="KG",
+        help="object mass m_v if known: k_f*m_v/m_d < 1 is checked, and the default force "
+        "gains are scaled down when needed (soft, heavy objects)",
+    )
+    p.add_argument(
+        "--start-force",
+        choices=("first", "zero"),
+        default="first",
+        help="starting force of the skill: the demonstration's first force (default) or 0 N",
+    )
+    p.add_argument("--dt", type=float_arg, default=0.001, help=argparse.SUPPRESS)
+    p.add_argument("--plot", metavar="PNG", help="write demonstrated vs learned force, error, position")
+    add_force_limit(p)
+    p.set_defaults(func=_cmd_fit)

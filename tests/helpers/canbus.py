@@ -1,0 +1,101 @@
+"""`hil_sim serve` on a free port, driven only through python-can's socketcand interface (the
+product's commands and third-party clients). $FORCESKILL_CAN_SPEED sets the simulator's speed
+factor (default 1: real time, as robust as possible on a busy machine)."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import subprocess
+from pathlib import Path
+
+from helpers.paths import REPO, SCENARIOS, hil_sim_path  # noqa: F401  (re-exported for the CAN tests)
+
+SPEED = float(os.environ.get("FORCESKILL_CAN_SPEED", "1"))
+# The device stops safely after this much host silence (product default 100 ms, documented in
+# docs/protocol.md and tested in C: tests/firmware/proto/test_app.c). The host tools here run in
+# Python on a shared machine: on 2 cores at load ~19 (CI beside two CPU-bound processes and other
+# jobs) a plain `time.sleep(0.01)` loop was measured waking up to 324 ms late, and the heartbeat's
+# worst gap (bench/can_heartbeat/heartbeat_gap.py) was 86-245 ms. No host can promise 100 ms
+# there, so every CAN test, the journey included, runs the simulated device with the largest
+# timeout it accepts; FORCESKILL_CAN_JOURNEY_HOST_TIMEOUT_MS=100 runs the journey at the product
+# default on an idle machine.
+HOST_TIMEOUT_MS = int(os.environ.get("FORCESKILL_CAN_HOST_TIMEOUT_MS", "500"))
+JOURNEY_HOST_TIMEOUT_MS = int(os.environ.get("FORCESKILL_CAN_JOURNEY_HOST_TIMEOUT_MS", str(HOST_TIMEOUT_MS)))
+
+
+def socketcand_args(port: int) -> list[str]:
+    """python-can's command-line options for the simulator's socketcand bus on port."""
+    return ["-i", "socketcand", "-c", "can0", "--bus-kwargs", "host=127.0.0.1", f"port={port}"]
+
+
+def serve(
+    bus: list[str], scenario: Path, node: int, speed: float, host_timeout_ms: int, extra: tuple
+) -> subprocess.Popen:
+    """Start `hil_sim serve` with the bus options bus (--port 0, or --socketcan IFACE); its first
+    stdout line says where it listens."""
+    return subprocess.Popen(
+        [
+            str(hil_sim_path()),
+            "serve",
+            *bus,
+            "--speed",
+            str(speed),
+            "--scenario",
+            str(scenario),
+            "--node",
+            str(node),
+            "--host-timeout",
+            str(host_timeout_ms),
+            *extra,
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+
+
+class Server:
+    """A running `hil_sim serve` (terminated by the fixture)."""
+
+    def __init__(
+        self,
+        scenario: Path,
+        speed: float = SPEED,
+        node: int = 0,
+        extra: tuple = (),
+        host_timeout_ms: int = HOST_TIMEOUT_MS,
+    ) -> None:
+        self.host_timeout_ms = host_timeout_ms
+        self.proc = serve(["--port", "0"], scenario, node, speed, host_timeout_ms, extra)
+        line = self.proc.stdout.readline()
+        assert "listening on 127.0.0.1:" in line, (
+            f"hil_sim serve did not start: {line!r} {self.proc.stderr.read()}"
+        )
+        self.port = int(line.split("127.0.0.1:")[1].split()[0])
+        self.node = node
+        self.speed = speed
+
+    def bus_args(self, node: int | None = None) -> list[str]:
+        """The CLI's bus options for this server (node: the server's unless given)."""
+        node = self.node if node is None else node
+        return [*socketcand_args(self.port), "--node", str(node), "--timeout", "3"]
+
+    def namespace(self, node: int = 0) -> argparse.Namespace:
+        """The parsed form of bus_args, for link functions that take the CLI's arguments."""
+        return argparse.Namespace(
+            interface="socketcand",
+            channel="can0",
+            bus_kwargs={"host": "127.0.0.1", "port": self.port},
+            node=node,
+            timeout=3.0,
+        )
+
+    def stop(self) -> str:
+        self.proc.terminate()
+        try:
+            _, err = self.proc.communicate(timeout=10)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            _, err = self.proc.communicate()
+        return err
