@@ -47,7 +47,7 @@ _BUILTIN = {
     "mf4": "forceskill.readers.canlog:read",
     "gz": "forceskill.readers.gz:read",
     "mcap": "forceskill.readers.rosbag:read",
-    "txt": "forceskill.readers.canlog:read_txt",
+    "txt": "forceskill.readers.txt:read",
 }
 
 

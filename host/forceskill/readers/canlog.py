@@ -10,9 +10,8 @@ ones). Two 1 kHz stretches are one demonstration with a gap unless a status fram
 says the device left TEACH; when the log holds several demonstrations the longest is used and a
 note says so.
 
-python-can writes one format it cannot read back: ``.txt`` (``can.Printer``, what ``can.Logger``
-writes for that suffix). Such a log is refused by name (691); any other ``.txt`` file is read as a
-text table (the CSV reader).
+python-can writes one format it cannot read back: ``.txt`` (``can.Printer``); ``forceskill.readers.txt``
+refuses such a log by name.
 """
 
 from __future__ import annotations
@@ -23,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ERR_LINK_LOG, ERR_LOG_UNREADABLE, ERR_READER_MISSING, DemoError
+from ..errors import ERR_LINK_LOG, ERR_READER_MISSING, DemoError
 from . import NOTES_KEY, Columns, ReadOptions, progress_bar
 
 TICK_S = 0.001
@@ -40,28 +39,6 @@ MIN_STRETCH = 10
 
 #: Frames between two updates of the progress bar.
 _BAR_EVERY = 4096
-#: python-can's text log (can.Printer): every line starts with this.
-_PRINTER_HEAD = b"Timestamp:"
-_READABLE = ".asc, .blf, .csv, .db, .log, .mf4 (with asammdf) or .trc"
-
-
-def read_txt(path: Path, opts: ReadOptions) -> Columns:
-    """A ``.txt`` file: python-can's text log is refused (691: python-can cannot read it back);
-    anything else is a text table for the CSV reader."""
-    try:
-        with open(path, "rb") as fh:
-            head = fh.read(4096)
-    except OSError as e:
-        raise DemoError(ERR_LINK_LOG, f"cannot read {path.name}: {e.strerror or e}") from None
-    if head.lstrip(b"\xef\xbb\xbf \t\r\n").startswith(_PRINTER_HEAD):
-        raise DemoError(
-            ERR_LOG_UNREADABLE,
-            f"{path.name} is a python-can text log (can.Printer, .txt), a format python-can writes "
-            f"but cannot read: record or convert the log as {_READABLE}",
-        )
-    from . import csv as csv_reader
-
-    return csv_reader.read(path, opts)
 
 
 def _messages(path: Path, opts: ReadOptions) -> list[Any]:
