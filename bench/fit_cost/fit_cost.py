@@ -5,6 +5,7 @@ measured in the same run, and the peak memory of reading a 10^7-row CSV.
 Prints:
   startup_s numpy=... fit=... help=... (medians of --runs interleaved runs, process start to exit)
   startup_ratio fit/numpy=... help/numpy=...
+  load_average ... (1/5/15 min, at the start and the end of the start-up runs)
   big_csv rows=... bytes=... read_s=... peak_rss_MB=... rss/size=... progress_bar=yes|no
   big_csv_fit exit=... peak_rss_MB=... rss/size=... wall_s=...
   duration_limit rows=... span_s=10000 refused_in_s=... peak_rss_MB=... code=...
@@ -31,7 +32,11 @@ BIN = Path(sys.executable).parent
 FORCESKILL = (
     [str(BIN / "forceskill")] if (BIN / "forceskill").exists() else [sys.executable, "-m", "forceskill"]
 )
-ENV = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
+# As a user runs them: with bytecode caches (pip writes them on install; the warm-up runs write
+# them here), whatever PYTHONDONTWRITEBYTECODE says in the calling shell (with it, every run
+# compiles the package's modules again: +0.1-0.6 s measured on this machine).
+ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+ENV.update(OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
 
 
 def _wall(cmd: list[str]) -> float:
@@ -121,6 +126,7 @@ def main() -> int:
         help_cmd = [*FORCESKILL, "--help"]
         for c in (numpy_cmd, fit_cmd, help_cmd) if "startup" in parts else ():  # warm caches and .pyc files
             _wall(c)
+        load0 = " ".join(f"{x:.2f}" for x in os.getloadavg())
         tn, tf, th = [1.0], [float("nan")], [float("nan")]
         for _ in range(args.runs if "startup" in parts else 0):
             tn.append(_wall(numpy_cmd))
@@ -128,6 +134,7 @@ def main() -> int:
             th.append(_wall(help_cmd))
         n, f, h = (float(np.median(x[1:] if len(x) > 1 else x)) for x in (tn, tf, th))
         if "startup" in parts:
+            print(f"load_average {load0} at start, {' '.join(f'{x:.2f}' for x in os.getloadavg())} at end")
             print(
                 f"startup_s numpy={n:.3f} fit={f:.3f} help={h:.3f} (medians of {args.runs} interleaved runs)"
             )

@@ -30,6 +30,7 @@ void app_config_default(app_config_t *cfg)
     saf_default_config(&cfg->saf);
     cfg->vel_cutoff_Hz = FS_R(50.0);
     cfg->telemetry_period_ms = 1u;
+    cfg->stiffness_max_Npm = FS_R(APP_STIFFNESS_MAX_NPM);
 }
 
 /* ---------------------------------------------------------------- CAN helpers */
@@ -204,10 +205,15 @@ uint8_t app_start_sequence(app_t *app, const uint8_t *slots, const fs_real_t *go
             !fs_isfinite(goal_scale[i]) || !fs_isfinite(time_scale[i])) {
             return UDS_NRC_REQUEST_OUT_OF_RANGE;
         }
-        /* before any motion: the skill's peak times the goal scale within the force limit */
-        const fs_status_t sc = skchk_run_scales(&app->slot_skill[s - 1u], app->slot_peak_N[s - 1u],
-                                                goal_scale[i], time_scale[i], FS_R(0.001),
-                                                app->cfg.saf.lim.axis[0].force_max_N);
+        /* before any motion: a stiffness the device tracks, the skill's peak times the goal
+         * scale within the force limit */
+        fs_status_t sc = skchk_stiffness(&app->slot_skill[s - 1u], app->cfg.stiffness_max_Npm);
+        if (sc != FS_OK) {
+            app->last_run_status = (uint16_t)sc;
+            return UDS_NRC_REQUEST_OUT_OF_RANGE;
+        }
+        sc = skchk_run_scales(&app->slot_skill[s - 1u], app->slot_peak_N[s - 1u], goal_scale[i],
+                              time_scale[i], FS_R(0.001), app->cfg.saf.lim.axis[0].force_max_N);
         app->last_run_status = (uint16_t)sc;
         if (sc != FS_OK) {
             return UDS_NRC_REQUEST_OUT_OF_RANGE;

@@ -55,6 +55,13 @@
 #ifndef APP_CHECK_STEPS_PER_TICK
 #define APP_CHECK_STEPS_PER_TICK 100u
 #endif
+/* Highest nominal skill stiffness the device accepts (commit and start refuse above it, 227):
+ * tracking against object stiffness on the HIL (bench/stiffness/stiffness_limit.py, docs/hil.md),
+ * the highest k from 1e4 N/m up at which both stiff profiles track within 5 % RMS without a fault:
+ * 5e5 N/m for a dynamics-compensated drive (render_carriage 0), 3e4 N/m for a carriage rendered by
+ * admittance (render_carriage 1, exec_render_default; 13-15 % at 1e5 N/m). */
+#define APP_STIFFNESS_MAX_NPM 5e5
+#define APP_STIFFNESS_MAX_RENDERED_NPM 3e4
 
 
 /** HostCommand.Mode values. */
@@ -77,6 +84,7 @@ struct app_config {
     saf_config_t saf;
     fs_real_t vel_cutoff_Hz;
     uint8_t telemetry_period_ms; /* in TEACH/EXECUTE, 1..255 */
+    fs_real_t stiffness_max_Npm; /* skills stiffer than this are refused (227), DID 0x0140 */
 };
 
 /** The whole device. */

@@ -150,6 +150,9 @@ static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf)
         buf[4] = app->seq_step;
         put_u32(&buf[5], app->tick);
         return 9u;
+    case DID_STIFFNESS_MAX:
+        put_f32(buf, app->cfg.stiffness_max_Npm);
+        return 4u;
     case DID_FAULT_CAUSES: /* what blocks a clear: the causes still present at the last tick */
         put_u32(&buf[0], app->saf.flt.latched_mask);
         put_u32(&buf[4], app->saf.cause_mask);
@@ -259,6 +262,20 @@ static uint8_t write_comm(app_t *app, const uint8_t *d, uint16_t len)
 }
 
 /* DID_OBJECT: use the model (0/1), then m_v, d_v, k1, k2, layer depth, surface (float32). */
+/* DID_STIFFNESS_MAX: the highest nominal skill stiffness accepted, finite in (0, 1e8] N/m. */
+static uint8_t write_stiffness_max(app_t *app, const uint8_t *d, uint16_t len)
+{
+    if (len != 4u) {
+        return UDS_NRC_INCORRECT_LENGTH;
+    }
+    const fs_real_t k = get_f32(d);
+    if (!fs_isfinite(k) || !(k > FS_R(0.0)) || k > FS_R(SKCHK_STIFFNESS_MAX_NPM)) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    app->cfg.stiffness_max_Npm = k;
+    return UDS_NRC_OK;
+}
+
 static uint8_t write_object(app_t *app, const uint8_t *d, uint16_t len)
 {
     if (len != 25u || d[0] > 1u) {
@@ -299,6 +316,7 @@ static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len
     case DID_LIMITS_Y: return write_limits(app, did, d, len);
     case DID_COMM: return write_comm(app, d, len);
     case DID_OBJECT: return write_object(app, d, len);
+    case DID_STIFFNESS_MAX: return write_stiffness_max(app, d, len);
     default: return UDS_NRC_REQUEST_OUT_OF_RANGE; /* read-only or unknown */
     }
 }
@@ -586,6 +604,9 @@ static uint8_t download_end(void *ctx, uint32_t *crc_out)
         fs_status_t st = skill_parse(app->image, app->xfer_size, &app->staging);
         if (st == FS_OK) {
             st = skchk_params(&app->staging);
+        }
+        if (st == FS_OK) {
+            st = skchk_stiffness(&app->staging, app->cfg.stiffness_max_Npm);
         }
         if (st != FS_OK) {
             app->last_transfer_status = (uint16_t)st; /* e.g. 204 CRC: the old skill stays */

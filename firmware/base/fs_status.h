@@ -49,6 +49,9 @@ typedef enum {
     /* path_scale * path extent above the y workspace's width, or a path scale not finite or
      * negative: run refused */
     FS_ERR_SKCHK_PATH_SCALE = 226,
+    /* the skill's nominal stiffness is above the device's stiffness limit (commit and run
+     * refused) */
+    FS_ERR_SKCHK_STIFFNESS = 227,
 
     /* 3xx: fixed-point conversion (firmware/fixed) */
     FS_ERR_FIXED_OVERFLOW = 300,        /* a value does not fit its fixed-point format */

@@ -18,6 +18,8 @@
 #define DID_SLOT_DIR 0x0200u
 #define DID_LAST_TRANSFER 0x0201u      /* status code u16 of the last download (0 ok) */
 #define DID_DEVICE_STATE 0x0300u       /* state u8, fault u16, slot u8, step u8, tick u32 */
+/* highest nominal skill stiffness the device accepts, N/m (f32) */
+#define DID_STIFFNESS_MAX 0x0140u
 /* latched mask u32, causes present mask u32 (bit n: fault 500+n) */
 #define DID_FAULT_CAUSES 0x0301u
 #define FWU_DID_STATUS 0xF1B0u         /* update status: FWU_STATUS_LEN bytes, see fwu_status() */

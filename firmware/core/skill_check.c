@@ -162,3 +162,11 @@ fs_status_t skchk_run_scales(const skill_t *s, fs_real_t peak_N, fs_real_t goal_
     const fs_real_t peak = f0 + fs_fabs(goal_scale) * (peak_N + f0);
     return (fs_isfinite(peak) && peak <= force_max_N) ? FS_OK : FS_ERR_SKCHK_GOAL_SCALE;
 }
+
+fs_status_t skchk_stiffness(const skill_t *s, fs_real_t stiffness_max_Npm)
+{
+    if (s == NULL) {
+        return FS_ERR_NULL_ARG;
+    }
+    return (s->stiffness_Npm <= stiffness_max_Npm) ? FS_OK : FS_ERR_SKCHK_STIFFNESS;
+}

@@ -17,6 +17,9 @@
  *     extent max|p| from the start within path_max_m (the y workspace's width; default
  *     SKCHK_PATH_MAX_M), else 225; at run time path_scale*extent within it, else 226
  *     (skchk_run_path). */
+ *  5. skchk_stiffness: the skill's nominal stiffness within the device's limit (227), checked at
+ *     commit and at start: on stiffer objects the device's force loop does not track (the limit
+ *     is measured per device, docs/hil.md). */
 #ifndef SKILL_CHECK_H
 #define SKILL_CHECK_H
 
@@ -88,5 +91,8 @@ fs_status_t skchk_run_path(const skill_t *s, fs_real_t path_peak_m, fs_real_t pa
  *  and the step rule at time_scale (221). */
 fs_status_t skchk_run_scales(const skill_t *s, fs_real_t peak_N, fs_real_t goal_scale,
                              fs_real_t time_scale, fs_real_t dt_s, fs_real_t force_max_N);
+
+/** The skill's nominal stiffness at most stiffness_max_Npm (227; FS_ERR_NULL_ARG for NULL). */
+fs_status_t skchk_stiffness(const skill_t *s, fs_real_t stiffness_max_Npm);
 
 #endif /* SKILL_CHECK_H */

@@ -91,6 +91,11 @@ void sim_couple_device_config(const sim_scenario_t *sc, app_config_t *cfg)
     for (unsigned a = 0; a < PFC_AXES; a++) {
         cfg->saf.lim.axis[a].force_max_N = (fs_real_t)sc->force_max_N;
     }
+    if (sc->stiffness_max_Npm > 0.0) {
+        cfg->stiffness_max_Npm = sc->stiffness_max_Npm;
+    } else if (cfg->render_carriage != 0u) {
+        cfg->stiffness_max_Npm = FS_R(APP_STIFFNESS_MAX_RENDERED_NPM);
+    }
 }
 
 void sim_couple_plant_init(const sim_scenario_t *sc, sim_axis_t ax[2], sim_drive_t drv[2])

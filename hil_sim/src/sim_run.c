@@ -220,8 +220,9 @@ static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_ima
         const uint8_t nrc = app_start_sequence(&d->app, slots, goal, time, dur, path,
                                                (uint8_t)sc->n_skills, end);
         if (nrc != UDS_NRC_OK) {
-            snprintf(err, SIM_ERR_MAX, "%s: the device refused the sequence (NRC 0x%02X)", sc->path,
-                     (unsigned)nrc);
+            snprintf(err, SIM_ERR_MAX,
+                     "%s: the device refused the sequence (NRC 0x%02X, status %u)", sc->path,
+                     (unsigned)nrc, (unsigned)d->app.last_run_status);
             return -1;
         }
     }

@@ -24,6 +24,7 @@ void sim_scenario_defaults(sim_scenario_t *sc)
     sc->start_y_m = 0.0;
     sc->m_d_kg = 40.0;
     sc->force_max_N = 50.0;
+    sc->stiffness_max_Npm = 0.0;
     sc->object = (sim_object_t){.skin_m = 0.0,
                                 .surface_m = 0.001,
                                 .k1_Npm = 100.0,
@@ -95,6 +96,7 @@ static const num_key_t NUM_KEYS[] = {
     NK("", "start_y_m", start_y_m, -1.0, 1.0),
     NK("", "m_d_kg", m_d_kg, 1e-3, 1e4),
     NK("", "force_max_N", force_max_N, 1e-3, 1e4),
+    NK("", "stiffness_max_Npm", stiffness_max_Npm, 0.0, 1e8),
     NK("object", "surface_m", object.surface_m, -1.0, 1.0),
     NK("object", "k1_Npm", object.k1_Npm, 1e-6, 1e7),
     NK("object", "k2_Npm", object.k2_Npm, 1e-6, 1e7),

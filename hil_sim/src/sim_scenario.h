@@ -48,6 +48,8 @@ typedef struct {
     double start_x_m, start_y_m;
     double m_d_kg;      /* rendered inertia (gains.m_d) */
     double force_max_N; /* F_max at the last stage (50 N) */
+    double
+        stiffness_max_Npm; /* the device's skill stiffness limit (0: its default for the plant) */
     sim_object_t object;
     sim_carriage_t carriage;
     sim_operator_cfg_t op;

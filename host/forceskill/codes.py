@@ -36,6 +36,7 @@ ERR_SKCHK_PEAK = 223  # the rollout at goal scale 1 peaks above the force limit
 ERR_SKCHK_GOAL_SCALE = 224  # goal_scale * peak above the force limit: run refused
 ERR_SKCHK_PATH = 225
 ERR_SKCHK_PATH_SCALE = 226
+ERR_SKCHK_STIFFNESS = 227
 ERR_FIXED_OVERFLOW = 300  # a value does not fit its fixed-point format
 ERR_FIXED_WINDOW = 301  # more kernels overlap than the fixed build evaluates
 ERR_FIXED_STEP = 302  # dt/tau too small or too large for Q1.31
@@ -61,6 +62,7 @@ SKILL_STATUS_TEXT: dict[int, str] = {
     224: 'goal scale above the force limit',
     225: "y path outside the device's y range",
     226: "path scale outside the device's y range",
+    227: "stiffness above the device's limit",
 }
 
 # Protocol: E2E protection, ISO-TP (4xx)
@@ -180,6 +182,8 @@ ERR_LOG_FORMAT = 664  # no CAN log writer for the output's suffix
 ERR_RUN_FAULT = 665  # the device faulted during a run or a recording
 ERR_CLEAR_BLOCKED = 666  # a fault cannot be cleared: its cause persists
 ERR_UNEXPECTED = 667  # an error no check foresaw (e.g. from a library), reported as one line
+ERR_SKILL_STIFFNESS = 690
+ERR_LOG_UNREADABLE = 691
 
 # Firmware image and update (700-729, firmware/boot)
 BOOT_ERR_TRUNCATED = 700  # fewer bytes than header + payload_length + tag
@@ -230,6 +234,7 @@ DID_OBJECT = 0x0130  # use_model u8, m_v, d_v, k1, k2, layer, surface (f32 x6)
 DID_SLOT_DIR = 0x0200  # n u8; per slot: valid u8, length u32, crc u32, N u16, T f32, end u8
 DID_LAST_TRANSFER = 0x0201  # status code u16 of the last download (0 ok)
 DID_DEVICE_STATE = 0x0300  # state u8, fault u16, slot u8, step u8, tick u32
+DID_STIFFNESS_MAX = 0x0140  # highest nominal skill stiffness the device accepts, N/m (f32)
 DID_FAULT_CAUSES = 0x0301  # latched mask u32, causes present mask u32 (bit n: fault 500+n)
 DID_FWU_STATUS = 0xF1B0  # update status: FWU_STATUS_LEN bytes, see fwu_status()
 RID_RUN_SKILL = 0x0201  # start: slot u8, goal_scale u16 (1e-3), time_scale u16 (1e-3), end u8
@@ -326,6 +331,7 @@ __all__ = [
     'ERR_SKCHK_GOAL_SCALE',
     'ERR_SKCHK_PATH',
     'ERR_SKCHK_PATH_SCALE',
+    'ERR_SKCHK_STIFFNESS',
     'ERR_FIXED_OVERFLOW',
     'ERR_FIXED_WINDOW',
     'ERR_FIXED_STEP',
@@ -420,6 +426,8 @@ __all__ = [
     'ERR_RUN_FAULT',
     'ERR_CLEAR_BLOCKED',
     'ERR_UNEXPECTED',
+    'ERR_SKILL_STIFFNESS',
+    'ERR_LOG_UNREADABLE',
     'BOOT_ERR_TRUNCATED',
     'BOOT_ERR_MAGIC',
     'BOOT_ERR_FORMAT',
@@ -462,6 +470,7 @@ __all__ = [
     'DID_SLOT_DIR',
     'DID_LAST_TRANSFER',
     'DID_DEVICE_STATE',
+    'DID_STIFFNESS_MAX',
     'DID_FAULT_CAUSES',
     'DID_FWU_STATUS',
     'RID_RUN_SKILL',

@@ -151,7 +151,12 @@ def test_python_can_config_defaults(server, tmp_path):
 
 def test_record_refuses_unknown_log_formats_by_name(tmp_path):
     port = free_port()  # nothing listens: the format is refused before connecting
-    for name, needle in (("x.mf4", ".mf4"), ("x.xyz", ".xyz"), ("x", "without suffix")):
+    import importlib.util
+
+    cases = [("x.xyz", ".xyz"), ("x", "without suffix")]
+    if importlib.util.find_spec("asammdf") is None:  # python-can writes .mf4 only with asammdf
+        cases.append(("x.mf4", ".mf4"))
+    for name, needle in cases:
         p = run_cli(
             "record",
             "-o",

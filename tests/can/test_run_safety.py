@@ -179,3 +179,54 @@ def test_a_refused_clear_names_the_cause_that_persists():
     assert e.value.code == 666
     assert "cause still present: 509 (outside workspace)" in e.value.message
     assert "latched: 507 (contact force above limit), 509 (outside workspace)" in e.value.message
+
+
+def test_a_skill_stiffer_than_the_device_limit_is_refused_by_host_and_device(loaded, capsys, tmp_path):
+    """The device (ideal plant: limit 5e5 N/m, DID 0x0140) refuses a skill fitted for a stiffer
+    object at commit (227) and at start; upload and run refuse it first, before anything is sent
+    or started (690)."""
+    import struct
+
+    from forceskill.errors import FsError
+    from forceskill.link import uds as U
+    from forceskill.link.device import Device
+    from forceskill.model import synthetic
+    from forceskill.model.fit import fit
+
+    stiff = tmp_path / "stiff.skill"
+    fit(synthetic.pressing(7, 2.0), 1e6, surface_m=0.001).skill.write(stiff)
+    rc, _out, err = run(capsys, "upload", str(stiff), "--slot", "2", "-q", *loaded.bus_args())
+    assert rc == 2 and err.count("\n") == 1, err
+    assert (
+        "[690]" in err
+        and "nominal stiffness 1e+06 N/m is above the stiffness limit 5e+05 N/m of node 0" in err
+    )
+    assert "nothing was sent" in err
+    import can
+
+    bus = can.Bus(interface="socketcand", channel="can0", host="127.0.0.1", port=loaded.port)
+    with Device(bus, node=0) as dev, U.uds_client(dev) as client:
+        assert U.stiffness_limit(client, 0) == 5e5
+        assert not U.slot_directory(client, 0)[1]["valid"]
+        # the device itself: the commit is refused with 227, slot 2 stays empty
+        U.unlock(client, 0, 0x02)
+        with pytest.raises(FsError) as e:
+            U.download(client, 0, 2, stiff.read_bytes())
+        assert "device status 227: stiffness above the device's limit" in e.value.message
+        assert not U.slot_directory(client, 0)[1]["valid"]
+        # a lower limit (written as a setting) makes the 100 N/m skill of slot 1 too stiff
+        client.write_data_by_identifier(U.DID_STIFFNESS_MAX, struct.pack(">f", 50.0))
+        try:
+            rc2, _out2, err2 = run(capsys, "run", "--slot", "1", *loaded.bus_args())
+            assert rc2 == 2 and "[690]" in err2 and "slot 1: nominal stiffness 100 N/m" in err2
+            assert "limit 50 N/m of node 0" in err2 and "nothing was started" in err2
+            # and the device refuses the start routine itself
+            with pytest.raises(Exception) as e2:
+                client.start_routine(U.RID_RUN_SKILL, data=struct.pack(">BHHB", 1, 1000, 1000, 0))
+            assert e2.value.response.code == 0x31
+            assert dev.status is not None and dev.status.state == "IDLE"
+        finally:
+            U.unlock(client, 0, 0x02)
+            client.write_data_by_identifier(U.DID_STIFFNESS_MAX, struct.pack(">f", 5e5))
+        assert U.stiffness_limit(client, 0) == 5e5
+    bus.shutdown()

@@ -244,9 +244,12 @@ def write_can_log(
         emit(2, range(tick, tick + rows.shape[0]), rows)
         tick += rows.shape[0]
     emit(1, range(tick, tick + 500), None)
-    with can.Logger(str(path)) as w:
-        for m in msgs:
-            w.on_message_received(m)
+    from forceskill.commands._common import close_log
+
+    w = can.Logger(str(path))
+    for m in msgs:
+        w.on_message_received(m)
+    close_log(w)  # the .db writer drops what is still queued when stopped
     return path
 
 

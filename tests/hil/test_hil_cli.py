@@ -193,3 +193,24 @@ def test_realistic_plant(hil_sim: Path, scenarios: Path, tmp_path: Path) -> None
     demo_i = ok(hil_sim, scenarios / "pressing_task1_demo.toml", "-o", tmp_path / "di.csv")
     # the rendered 40 kg handle behaves like the ideal one: the inner layer is reached within 10 %
     assert demo["layer_reached_s"] == pytest.approx(demo_i["layer_reached_s"], rel=0.1)
+
+
+def test_device_stiffness_limit_per_plant(hil_sim: Path, scenarios: Path, tmp_path: Path) -> None:
+    """The device refuses to start a skill stiffer than its limit (227): 3e4 N/m when it renders the
+    carriage (realistic plant), 5e5 N/m with a dynamics-compensated drive (ideal); the scenario's
+    stiffness_max_Npm overrides it."""
+    from forceskill.model import synthetic
+    from forceskill.model.fit import fit
+
+    skill = tmp_path / "s.skill"
+    fit(synthetic.pressing(7, 2.0), 1e5, surface_m=0.001).skill.write(skill)
+    scen = scenarios / "stiff_pressing_1e5_exec.toml"
+    r = run(hil_sim, "run", scen, "--skill", skill, "--plant", "realistic", "-o", tmp_path / "r.csv")
+    assert r.returncode != 0 and "the device refused the sequence (NRC 0x31, status 227)" in r.stderr, (
+        r.stderr
+    )
+    ok(hil_sim, scen, "--skill", skill, "-o", tmp_path / "i.csv")  # ideal: within 5e5
+    lifted = tmp_path / "lifted.toml"
+    lifted.write_text(scen.read_text().replace("seed = 1\n", "seed = 1\nstiffness_max_Npm = 1e8\n", 1))
+    s = ok(hil_sim, lifted, "--skill", skill, "--plant", "realistic", "-o", tmp_path / "l.csv")
+    assert s["fault_code"] == 0 and s["exec_ticks"] > 1000

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import signal
+import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -85,6 +86,17 @@ def open_log(outs: Outputs, path: str) -> Any:
             f"cannot write a CAN log as {suffix or 'a file without suffix'!r} "
             f"({Path(path).name}): {first}; use .blf .asc .log .trc or .csv",
         ) from None
+
+
+def close_log(writer: Any, timeout_s: float = 10.0) -> None:
+    """Stop a python-can log writer with every frame it was given written: the .db writer
+    (SqliteWriter) queues frames for a thread whose stop drops what is still queued, so its queue
+    is drained first (for at most ``timeout_s``)."""
+    queue = getattr(writer, "buffer", None)
+    end = time.monotonic() + timeout_s
+    while queue is not None and not queue.empty() and time.monotonic() < end:
+        time.sleep(0.01)
+    writer.stop()
 
 
 @contextmanager

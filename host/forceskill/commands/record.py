@@ -13,7 +13,7 @@ from ..errors import ERR_RUN_FAULT, FsError, fault_text
 from ..link import ERR_LINK_ARGS, ERR_LINK_STATE, ERR_LINK_TIMEOUT
 from ..link.bus import error_summary
 from ..outputs import Outputs
-from ._common import add_common, connect, open_log, sigint_flag
+from ._common import add_common, close_log, connect, open_log, sigint_flag
 
 #: Longest --duration (24 h of device time); without it, recording runs until Ctrl-C.
 MAX_RECORD_S = 86400.0
@@ -28,7 +28,7 @@ def _cmd(args: argparse.Namespace) -> int:
         try:
             dropped = _record(args, writer)
         finally:
-            writer.stop()
+            close_log(writer)
         outs.commit()  # what was recorded is kept, also when the link dropped
     size = Path(args.output).stat().st_size
     if dropped is not None:

@@ -19,6 +19,7 @@ from ..link import uds as U
 from ..link.device import Device
 from ..model.limits import (
     check_force_limit,
+    check_skill_stiffness,
     peak_problem,
     skill_peak_N,
 )
@@ -26,7 +27,16 @@ from ..model.scales import check_path_scale, check_scales
 from ..model.skill import Skill
 from ..outputs import STDOUT, Outputs, format_rows
 from ._args import add_force_limit, add_path_scale, add_scales
-from ._common import add_common, columns, connect, link_errors, open_log, sigint_flag, tracking
+from ._common import (
+    add_common,
+    close_log,
+    columns,
+    connect,
+    link_errors,
+    open_log,
+    sigint_flag,
+    tracking,
+)
 
 _STEP = re.compile(r"^\s*(\d+)\s*:\s*([0-9.]+)\s*(ms|s)?\s*$")
 
@@ -61,9 +71,10 @@ def check_slot_forces(
     time_scale: float,
     force_limit_N: float,
 ) -> dict[int, Skill]:
-    """Read each slot's skill back (RequestUpload) and refuse (662), before anything moves, a goal
-    scale that takes its rollout's peak above the force limit, or a rollout that is not finite.
-    Returns the skills read back by slot."""
+    """Read each slot's skill back (RequestUpload) and refuse, before anything moves, a skill
+    stiffer than the device's stiffness limit (690), a goal scale that takes its rollout's peak
+    above the force limit, or a rollout that is not finite (662). Returns the skills read back by
+    slot."""
     skills: dict[int, Skill] = {}
 
     def call(what: str, fn: Any) -> Any:
@@ -71,10 +82,12 @@ def check_slot_forces(
 
     call("session change", lambda: client.change_session(0x02))
     try:
+        limit_Npm = U.stiffness_limit(client, dev.node)
         for slot in dict.fromkeys(slots):
             image = U.upload(client, dev.node, slot, int(directory[slot]["length"]))
             sk = Skill.from_bytes(image)
             skills[slot] = sk
+            check_skill_stiffness(sk, f"slot {slot}", limit_Npm, dev.node, "nothing was started")
             peak = skill_peak_N(sk, time_scale)
             problem = peak_problem(peak, goal_scale, force_limit_N)
             if problem:
@@ -299,7 +312,7 @@ def _cmd(args: argparse.Namespace) -> int:
                 r = run_on_device(dev, args, writer, info=info)
         finally:
             if writer is not None:
-                writer.stop()
+                close_log(writer)
         cols, fig = r["columns"], r["figures"]
         if not r["started"]:
             print("forceskill: interrupted before the start: nothing was sent", file=sys.stderr)

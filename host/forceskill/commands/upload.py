@@ -14,7 +14,7 @@ from ..errors import FsError
 from ..link import ERR_LINK_ARGS, ERR_LINK_STATE
 from ..link import uds as U
 from ..link.device import Device
-from ..model.limits import check_skill_force
+from ..model.limits import check_skill_force, check_skill_stiffness
 from ..model.skill import Skill
 from ._args import add_force_limit
 from ._common import add_common, connect
@@ -23,11 +23,15 @@ from ._common import add_common, connect
 def upload_skill(
     dev: Device, image: bytes, slot: int, progress: bool = True, verify: bool = True
 ) -> dict[str, Any]:
-    """Download image into slot and verify; returns timing figures. Old skill kept on failure."""
+    """Download image into slot and verify; returns timing figures. Old skill kept on failure.
+    A skill stiffer than the device's stiffness limit is refused before anything is sent (690)."""
     st = dev.status
     if st is not None and st.state != "IDLE":
         raise FsError(ERR_LINK_STATE, f"node {dev.node} is in {st.state}; uploads need IDLE")
     with U.uds_client(dev) as client:
+        check_skill_stiffness(
+            Skill.from_bytes(image), f"skill for slot {slot}", U.stiffness_limit(client, dev.node), dev.node
+        )
         U.unlock(client, dev.node, 0x02)
         bar = tqdm(
             total=len(image), unit="B", unit_scale=True, desc=f"slot {slot}", disable=not progress, leave=True
@@ -81,7 +85,8 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         help="upload a skill into a device slot (UDS over ISO-TP)",
         description="Validate SKILL, download it into --slot over UDS (programming "
         "session, SecurityAccess), then read it back and compare. A skill whose rollout is "
-        "not finite or peaks above --force-limit is refused before anything is sent. A "
+        "not finite or peaks above --force-limit, or whose nominal stiffness is above the "
+        "device's stiffness limit (read from it), is refused before anything is sent. A "
         "refused or interrupted upload leaves the slot's previous skill in place.",
     )
     p.add_argument("skill", metavar="SKILL")

@@ -35,6 +35,7 @@ from ..codes import (  # noqa: F401
     DID_LIMITS_Y,
     DID_OBJECT,
     DID_SLOT_DIR,
+    DID_STIFFNESS_MAX,
     DID_SW_VERSION,
     DID_VERSIONS,
     RID_CLEAR_FAULTS,
@@ -99,6 +100,7 @@ DID_CODECS = {
     DID_LAST_TRANSFER: Raw(2),
     DID_DEVICE_STATE: Raw(9),
     DID_FAULT_CAUSES: Raw(8),
+    DID_STIFFNESS_MAX: Raw(4),
 }
 
 
@@ -257,6 +259,11 @@ def unlock(
 def read_did(client: Client, did: int, node: int) -> bytes:
     r = call(f"read 0x{did:04X}", lambda: client.read_data_by_identifier(did), node)
     return bytes(r.service_data.values[did])
+
+
+def stiffness_limit(client: Client, node: int) -> float:
+    """The device's skill stiffness limit in N/m (DID 0x0140): it refuses stiffer skills."""
+    return float(struct.unpack(">f", read_did(client, DID_STIFFNESS_MAX, node))[0])
 
 
 def slot_directory(client: Client, node: int) -> list[dict[str, Any]]:

@@ -223,24 +223,30 @@ class KernelBands:
     normalised weights are shift-invariant, so they equal ``normalised_kernels`` to round-off).
     """
 
-    def __init__(self, u: np.ndarray, centres: np.ndarray, widths: np.ndarray) -> None:
+    def __init__(self, u: np.ndarray, centres: np.ndarray, widths: np.ndarray, keep_raw: bool = True) -> None:
+        """``keep_raw`` False: only the normalised kernels are kept (normalised in place: half the
+        memory; ``project(normalised=False)`` is then unavailable)."""
         self.n_rows = u.size
         half_inv_var = 1.0 / (2.0 * widths * widths)
         radius = np.sqrt(KERNEL_CUTOFF_EXP / half_inv_var) * (1.0 + 1e-6)
         self.lo = np.searchsorted(u, centres - radius, side="left")
         self.hi = np.searchsorted(u, centres + radius, side="right")
-        self.psi: list[np.ndarray] = []
+        psi: list[np.ndarray] = []
         rowsum = np.zeros(u.size)
         for i in range(centres.size):
             d = u[self.lo[i] : self.hi[i]] - centres[i]
             e = d * d * half_inv_var[i]
             p = np.where(e <= KERNEL_CUTOFF_EXP, np.exp(-np.minimum(e, KERNEL_CUTOFF_EXP + 1.0)), 0.0)
-            self.psi.append(p)
+            psi.append(p)
             rowsum[self.lo[i] : self.hi[i]] += p
-        self.rowsum = rowsum
         self.complete = bool(np.all(rowsum > 0.0))  # False: a row needs the nearest-kernel fallback
-        inv = 1.0 / np.where(rowsum > 0.0, rowsum, 1.0)
-        self.norm = [p * inv[self.lo[i] : self.hi[i]] for i, p in enumerate(self.psi)]
+        inv = np.reciprocal(np.where(rowsum > 0.0, rowsum, 1.0), out=rowsum)
+        if keep_raw:
+            self.psi = psi
+            self.norm = [p * inv[self.lo[i] : self.hi[i]] for i, p in enumerate(psi)]
+        else:
+            self.psi = []
+            self.norm = [np.multiply(p, inv[self.lo[i] : self.hi[i]], out=p) for i, p in enumerate(psi)]
 
     def sum_weighted(self, w: np.ndarray) -> np.ndarray:
         """S_n = sum_i w_i psi_i/sum psi (the normalised mixture) for every row."""
@@ -267,6 +273,8 @@ class KernelBands:
 
     def project(self, y: np.ndarray, normalised: bool = True) -> np.ndarray:
         """sum_n K_in y_n for every kernel (normalised or raw psi)."""
+        if not normalised and not self.psi:
+            raise ValueError("raw kernels not kept (KernelBands(keep_raw=False))")
         ks = self.norm if normalised else self.psi
         return np.array([float(k @ y[self.lo[i] : self.hi[i]]) for i, k in enumerate(ks)])
 
@@ -280,15 +288,21 @@ def phase_scan(alpha: float, beta: float, a: float, n_steps: int) -> tuple[np.nd
 
 
 def transform_scan(
-    alpha: float, beta: float, gamma: float, a: float, goal: float, h: np.ndarray
+    alpha: float, beta: float, gamma: float, a: float, goal: float, h: np.ndarray, chunk: int = 1 << 16
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Same as ``transform_loop`` (constant goal) via ``linear_scan``."""
+    """Same as ``transform_loop`` (constant goal) via ``linear_scan``, ``chunk`` steps at a time
+    (the state carried from one chunk to the next), so its temporaries do not grow with len(h)."""
     a_mat = np.array([[1.0 - a, a, -a * gamma], [-a * alpha * beta, 1.0 - a * alpha, 0.0], [a, 0.0, 1.0]])
-    b = np.zeros((len(h), 3))
-    b[:, 0] = a * np.asarray(h, dtype=float)
-    b[:, 1] = a * alpha * beta * goal
-    s = linear_scan(a_mat, b)
-    return s[:, 0], s[:, 1], s[:, 2]
+    h = np.asarray(h, dtype=float).reshape(-1)
+    out = np.empty((h.size + 1, 3))
+    out[0] = 0.0
+    for i0 in range(0, max(h.size, 1), chunk):
+        hb = h[i0 : i0 + chunk]
+        b = np.zeros((hb.size, 3))
+        b[:, 0] = a * hb
+        b[:, 1] = a * alpha * beta * goal
+        out[i0 : i0 + hb.size + 1] = linear_scan(a_mat, b, out[i0])
+    return out[:, 0], out[:, 1], out[:, 2]
 
 
 def default_steps(skill: Skill, time_scale: float = 1.0) -> int:

@@ -239,7 +239,7 @@ def fit(
         )
     h_d = desired_forcing(y_star, p.alpha, p.beta, p.gamma, a, goal_N)
     s = goal_N * v[:-1]  # h = s_n * S(u_n)
-    bands = dmp.KernelBands(u[:-1], centres, widths)
+    bands = dmp.KernelBands(u[:-1], centres, widths, keep_raw=lwr)
     weights = _regress(bands, s, h_d, lwr, lam_rel)
     if not np.all(np.isfinite(weights)):
         raise FsError(ERR_FIT_NUMERIC, f"regression gave a non-finite weight ({method}, N = {n_kernels})")
@@ -282,6 +282,7 @@ def fit(
         h = s * bands.sum_weighted(weights)
     else:
         h = s * dmp.forcing_scale(u[:-1], skill)
+    del bands  # the kernels are the largest arrays of a long fit: freed before the rollout
     y, _, _ = dmp.transform_scan(p.alpha, p.beta, p.gamma, a, goal_N, h)
     f_hat = f0 + y
     f_max = float(np.max(np.abs(f)))

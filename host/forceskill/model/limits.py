@@ -8,6 +8,8 @@ command (fit, show, rollout, upload, run) before anything is written or sent.
 - Force: a skill's rollout must be finite and its peak |f_hat| at most the force limit (50 N by
   default, the device's default ``force_max_N``); a goal scale multiplies the force exactly, so a
   run at goal scale S needs S * peak <= limit (662).
+- Stiffness: a skill's nominal stiffness at most the device's stiffness limit (read from the
+  device, DID 0x0140), above which its force loop does not track (690); ``fit`` accepts any.
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ from typing import TYPE_CHECKING
 
 from ..errors import (
     ERR_SKILL_PEAK,
+    ERR_SKILL_STIFFNESS,
     FsError,
     ParamError,
 )
@@ -81,3 +84,15 @@ def check_skill_force(
     if problem:
         raise FsError(ERR_SKILL_PEAK, f"skill {name}: {problem}")
     return peak
+
+
+def check_skill_stiffness(
+    skill: Skill, name: str, limit_Npm: float, node: int, outcome: str = "nothing was sent"
+) -> None:
+    """FsError 690 if the skill's nominal stiffness is above the device's limit ``limit_Npm``."""
+    if not skill.stiffness_Npm <= limit_Npm:
+        raise FsError(
+            ERR_SKILL_STIFFNESS,
+            f"{name}: nominal stiffness {skill.stiffness_Npm:.4g} N/m is above the stiffness limit "
+            f"{limit_Npm:.4g} N/m of node {node} (its force loop does not track stiffer objects); {outcome}",
+        )

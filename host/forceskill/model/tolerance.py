@@ -88,7 +88,17 @@ def fit_to_tolerance(
                 return cache[n]
             cache[n] = (res, sample_error(demo, t, f_hat))
             tried.append((n, cache[n][1].max_pct))
+            _forget(n)
         return cache[n]
+
+    def _forget(n: int) -> None:
+        """Drop the results (grid-sized arrays) no answer can be: only the best N so far and the
+        smallest N that passes keep theirs (memory flat over the search)."""
+        ok = [k for k in cache if cache[k][1].max_pct <= max_error_pct]
+        keep = {min(cache, key=lambda k: cache[k][1].max_pct), n, *([min(ok)] if ok else [])}
+        for k in cache:
+            if k not in keep and cache[k][0] is not None:
+                cache[k] = (None, cache[k][1])
 
     lo = n_min - 1  # largest N known to miss (n_min - 1: none yet)
     n = n_min
@@ -111,43 +121,56 @@ def fit_to_tolerance(
 
 
 def diagnose(demo: Demo) -> str | None:
-    """The first feature a smooth skill cannot follow, as a phrase with its time; None if none."""
-    t, f = demo.t_s - demo.t_s[0], demo.force_N
+    """The first feature a smooth skill cannot follow, as a phrase with its time; None if none.
+
+    One float array of the steps and a few boolean masks (no other full-size copies: it runs on
+    10^7-sample recordings too)."""
+    f = demo.force_N
+    t0 = float(demo.t_s[0])
+
+    def t(i: int) -> float:
+        return float(demo.t_s[i]) - t0
+
     f_max = float(np.max(np.abs(f)))
     if f.size < 3 or f_max <= 0.0:
         return None
-    d = np.diff(f)
+    thresh = STEP_REL * f_max
+    a = np.diff(f)
+    down = np.signbit(a)
+    zero = a == 0.0
+    n_zero = int(np.count_nonzero(zero))
+    np.abs(a, out=a)  # a = |step| from here on
+    large = a > thresh
     # a spike: up then straight back down (both steps large, opposite signs)
-    spike = np.flatnonzero(
-        (np.abs(d[:-1]) > STEP_REL * f_max)
-        & (np.abs(d[1:]) > STEP_REL * f_max)
-        & (np.sign(d[:-1]) != np.sign(d[1:]))
-    )
+    spike = np.flatnonzero(large[:-1] & large[1:] & (down[:-1] != down[1:]))
     if spike.size:
         i = int(spike[0]) + 1
         return (
-            f"a single-sample spike to {f[i]:.4g} N at t = {t[i]:.4g} s (between {f[i - 1]:.4g} and "
+            f"a single-sample spike to {f[i]:.4g} N at t = {t(i):.4g} s (between {f[i - 1]:.4g} and "
             f"{f[i + 1]:.4g} N): a sensor glitch; remove it from the recording"
         )
     # stuck: identical non-zero readings for a while, in a recording whose readings otherwise
     # change from sample to sample (a noiseless simulated hold is not a stuck sensor)
-    same = np.concatenate(([False], d == 0.0)) & (f != 0.0)
-    if same.any():
-        edges = np.diff(np.concatenate(([0], same.astype(np.int8), [0])))
-        starts, ends = np.flatnonzero(edges == 1) - 1, np.flatnonzero(edges == -1)
-        for s, e in zip(starts, ends, strict=False):
-            if e - s >= STUCK_MIN_SAMPLES and t[e - 1] - t[s] >= STUCK_MIN_S:
-                rest = np.count_nonzero(d == 0.0) - (e - s - 1)
-                if rest <= STUCK_REST_REL * d.size:
+    if n_zero:
+        same = np.concatenate(([False], zero)) & (f != 0.0)
+        # runs of `same`: from the sample before its first true to one past its last
+        starts = np.flatnonzero(same & ~np.concatenate(([False], same[:-1]))) - 1
+        ends = np.flatnonzero(same & ~np.concatenate((same[1:], [False]))) + 1
+        del same
+        for s, e in zip(starts.tolist(), ends.tolist(), strict=False):
+            if e - s >= STUCK_MIN_SAMPLES and t(e - 1) - t(s) >= STUCK_MIN_S:
+                rest = n_zero - (e - s - 1)
+                if rest <= STUCK_REST_REL * a.size:
                     return (
-                        f"the force reads exactly {f[s]:.6g} N for {t[e - 1] - t[s]:.3g} s from "
-                        f"t = {t[s]:.4g} s: a stuck sensor; record again or cut that part"
+                        f"the force reads exactly {f[s]:.6g} N for {t(e - 1) - t(s):.3g} s from "
+                        f"t = {t(s):.4g} s: a stuck sensor; record again or cut that part"
                     )
-    big = np.flatnonzero(np.abs(d) > STEP_REL * f_max)
+    big = np.flatnonzero(large)
     if big.size:
-        i = int(big[np.argmax(np.abs(d[big]))])
+        i = int(big[np.argmax(a[big])])
+        step = float(f[i + 1] - f[i])
         return (
-            f"a force step of {d[i]:+.4g} N within one sample ({(t[i + 1] - t[i]) * 1e3:.3g} ms) at "
-            f"t = {t[i]:.4g} s: steps faster than the sample rate cannot be learned; record faster"
+            f"a force step of {step:+.4g} N within one sample ({(t(i + 1) - t(i)) * 1e3:.3g} ms) at "
+            f"t = {t(i):.4g} s: steps faster than the sample rate cannot be learned; record faster"
         )
     return None

@@ -7,6 +7,7 @@ of them ``"t"`` (seconds, strictly increasing as recorded). Built-in formats (ho
 - ``csv``: text tables (``forceskill.readers.csv``; python-can CSV logs go to the CAN reader);
 - ``blf asc log trc db mf4``: CAN logs through the DBC (``forceskill.readers.canlog``); ``gz``: any of
   these compressed (``forceskill.readers.gz``);
+- ``txt``: python-can's text log (which it cannot read) refused by name, else a text table as ``csv``;
 - ``mcap``: ROS 2 bags, geometry_msgs/WrenchStamped (``forceskill.readers.rosbag``).
 
 A package adds a format by declaring its own entry point in the ``forceskill.readers`` group (the
@@ -21,6 +22,7 @@ import importlib
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -45,6 +47,7 @@ _BUILTIN = {
     "mf4": "forceskill.readers.canlog:read",
     "gz": "forceskill.readers.gz:read",
     "mcap": "forceskill.readers.rosbag:read",
+    "txt": "forceskill.readers.txt:read",
 }
 
 
@@ -83,6 +86,36 @@ class ReadOptions:
 
 
 Reader = Callable[[Path, ReadOptions], Columns]
+#: A reader's progress bar appears on stderr only once reading has taken this long.
+PROGRESS_DELAY_S = 2.0
+
+
+class _NoBar:
+    def update(self, n: float = 1) -> None:
+        pass
+
+    def close(self) -> None:
+        pass
+
+
+def progress_bar(path: Path, opts: ReadOptions, total: float | None = None, unit: str = "B") -> Any:
+    """The reading progress bar of every reader: tqdm on stderr, shown only when reading takes
+    more than PROGRESS_DELAY_S (``total`` bytes, or a count of ``unit`` without a total); a bar
+    that does nothing when ``opts.progress`` is off. Call ``update(n)`` and ``close()``."""
+    if not opts.progress:
+        return _NoBar()
+    from tqdm import tqdm  # type: ignore[import-untyped,unused-ignore]
+
+    return tqdm(
+        total=total,
+        unit=unit,
+        unit_scale=True,
+        desc=f"reading {path.name}",
+        delay=PROGRESS_DELAY_S,
+        leave=False,
+    )
+
+
 _registered: dict[str, Reader] = {}
 _entry_points: dict[str, str] | None = None
 

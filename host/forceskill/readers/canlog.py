@@ -9,6 +9,9 @@ their ticks; ``demo.validate`` refuses a gap above --max-gap, ``resample`` inter
 ones). Two 1 kHz stretches are one demonstration with a gap unless a status frame between them
 says the device left TEACH; when the log holds several demonstrations the longest is used and a
 note says so.
+
+python-can writes one format it cannot read back: ``.txt`` (``can.Printer``); ``forceskill.readers.txt``
+refuses such a log by name.
 """
 
 from __future__ import annotations
@@ -19,8 +22,8 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ERR_LINK_LOG, DemoError
-from . import NOTES_KEY, Columns, ReadOptions
+from ..errors import ERR_LINK_LOG, ERR_READER_MISSING, DemoError
+from . import NOTES_KEY, Columns, ReadOptions, progress_bar
 
 TICK_S = 0.001
 POS_BASE = 0x190
@@ -34,7 +37,11 @@ IDLE_PERIOD_TICKS = 100
 MIN_STRETCH = 10
 
 
-def _messages(path: Path) -> list[Any]:
+#: Frames between two updates of the progress bar.
+_BAR_EVERY = 4096
+
+
+def _messages(path: Path, opts: ReadOptions) -> list[Any]:
     import can
 
     suffixes = [s.lower() for s in path.suffixes]
@@ -48,8 +55,25 @@ def _messages(path: Path) -> list[Any]:
             reader = reader_cls(fobj)  # type: ignore[arg-type]
         else:
             reader = can.LogReader(str(path))
-        with reader:
-            return [m for m in reader if not m.is_error_frame and not m.is_extended_id]
+        bar = progress_bar(path, opts, unit=" frames")
+        out = []
+        try:
+            with reader:
+                for i, m in enumerate(reader, 1):
+                    if not m.is_error_frame and not m.is_extended_id:
+                        out.append(m)
+                    if not i % _BAR_EVERY:
+                        bar.update(_BAR_EVERY)
+        finally:
+            bar.close()
+        return out
+    except DemoError:
+        raise
+    except (NotImplementedError, ImportError) as e:  # python-can's MF4 reader without asammdf
+        raise DemoError(
+            ERR_READER_MISSING,
+            f"cannot read CAN log {path.name}: {e} (pip install asammdf, or forceskill[mf4])",
+        ) from None
     except Exception as e:
         raise DemoError(ERR_LINK_LOG, f"cannot read CAN log {path.name}: {e}") from None
 
@@ -58,7 +82,7 @@ def read(path: Path, opts: ReadOptions | None = None, node: int | None = None) -
     """Decode a CAN log into demonstration columns (see the module comment)."""
     from ..link.dbc import load_db
 
-    msgs = _messages(path)
+    msgs = _messages(path, opts or ReadOptions())
     ids = np.array([m.arbitration_id for m in msgs], dtype=np.int64)
     if node is None:
         counts = [int(np.count_nonzero(ids == POS_BASE + n)) for n in range(16)]

@@ -25,7 +25,7 @@ from typing import IO
 import numpy as np
 
 from ..errors import ERR_DEMO_COLUMN, ERR_DEMO_FILE, ERR_DEMO_FORMAT, ERR_READ_ARGS, DemoError, FsError
-from . import TIME_UNITS_S, Columns, ReadOptions, check_duration
+from . import TIME_UNITS_S, Columns, ReadOptions, check_duration, progress_bar
 
 BLOCK_BYTES = 8 << 20
 _TAIL_BYTES = 1 << 16
@@ -303,11 +303,7 @@ def _read_blocks(
     if "t" not in keep and opts.rate_hz:
         check_duration((n - 1) / opts.rate_hz, opts.max_duration_s, path.name)
     out = {name: np.empty(n) for name in keep}
-    bar = None
-    if opts.progress:
-        from tqdm import tqdm  # type: ignore[import-untyped,unused-ignore]
-
-        bar = tqdm(total=size, unit="B", unit_scale=True, desc=f"reading {path.name}", delay=2.0, leave=False)
+    bar = progress_bar(path, opts, total=size)
     row = 0
     line = first_line
     try:
@@ -321,9 +317,7 @@ def _read_blocks(
                 out[name][row : row + m] = data[:, j]
             row += m
             line += lines
-            if bar is not None:
-                bar.update(length)
+            bar.update(length)
     finally:
-        if bar is not None:
-            bar.close()
+        bar.close()
     return {name: a[:row] for name, a in out.items()}

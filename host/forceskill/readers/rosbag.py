@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ERR_DEMO_FORMAT, ERR_DEMO_TOPIC, ERR_READER_MISSING, DemoError, FsError
-from . import NOTES_KEY, Columns, ReadOptions, check_duration
+from . import NOTES_KEY, Columns, ReadOptions, check_duration, progress_bar
 
 WRENCH = "geometry_msgs/msg/WrenchStamped"
 POSES = {"geometry_msgs/msg/PoseStamped": ("pose", "position"), "geometry_msgs/msg/PointStamped": ("point",)}
@@ -85,8 +85,13 @@ def read(path: Path, opts: ReadOptions) -> Columns:
         wanted = [topic] + ([opts.pose_topic] if opts.pose_topic else [])
         force_t, force, pose_t, pose = [], [], [], []
         pose_xyz: list[tuple[float, float, float]] = []
+        bar = progress_bar(path, opts, unit=" msgs")
         try:
-            for _, channel, message, msg in reader.iter_decoded_messages(topics=wanted, log_time_order=True):
+            for i, (_, channel, message, msg) in enumerate(
+                reader.iter_decoded_messages(topics=wanted, log_time_order=True), 1
+            ):
+                if not i % 1024:
+                    bar.update(1024)
                 if channel.topic == topic:
                     force_t.append(_stamp_ns(msg, message.log_time))
                     force.append(float(getattr(msg.wrench.force, opts.axis)))
@@ -99,6 +104,8 @@ def read(path: Path, opts: ReadOptions) -> Columns:
                     pose_xyz.append((float(obj.x), float(obj.y), float(obj.z)))
         except Exception as e:
             raise DemoError(ERR_DEMO_FORMAT, f"{path.name}: cannot decode {topic}: {e}") from None
+        finally:
+            bar.close()
     if len(force) < 2:
         raise DemoError(ERR_DEMO_TOPIC, f"topic {topic!r} in {path.name} has {len(force)} messages")
     t_ns = np.array(force_t, dtype=np.int64)

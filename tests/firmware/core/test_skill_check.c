@@ -200,6 +200,16 @@ static void test_y_path(void **state)
     assert_int_equal(skchk_run_path(&skill, pk, FS_R(-1.0), FS_R(1.0)), FS_ERR_SKCHK_PATH_SCALE);
     skill.dmp.y_weight[3] = (fs_real_t)(2.0 * SKCHK_WEIGHT_MAX);
     assert_int_equal(skchk_params(&skill), FS_ERR_SKCHK_PATH);
+static void test_stiffness_limit(void **state)
+{
+    (void)state;
+    load_skill("press_n50_lwr_hold");
+    const fs_real_t k = skill.stiffness_Npm;
+    assert_true(k > FS_R(0.0));
+    assert_int_equal(skchk_stiffness(&skill, k), FS_OK); /* at the limit: accepted */
+    assert_int_equal(skchk_stiffness(&skill, k * FS_R(10.0)), FS_OK);
+    assert_int_equal(skchk_stiffness(&skill, k * FS_R(0.999)), FS_ERR_SKCHK_STIFFNESS);
+    assert_int_equal(skchk_stiffness(NULL, k), FS_ERR_NULL_ARG);
 }
 
 int main(void)
@@ -210,6 +220,7 @@ int main(void)
         cmocka_unit_test(test_incremental_equals_one_shot),
         cmocka_unit_test(test_run_scales),
         cmocka_unit_test(test_y_path),
+        cmocka_unit_test(test_stiffness_limit),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

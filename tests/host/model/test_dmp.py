@@ -226,3 +226,32 @@ def test_rollout_rows_and_start(press_fit: FitResult) -> None:
     assert t.size == 18 and f[0] == 0.0 and f[1] == 0.0  # v = 0 at t = 0 -> h = 0; x moves from step 2
     assert t[-1] == pytest.approx(0.017)
     assert sk.surface_m == synthetic.SURFACE_M
+
+
+def test_chunked_transform_scan_and_in_place_bands_give_the_same_numbers():
+    """The long-fit memory savings change no number: transform_scan in chunks (state carried)
+    equals the sequential loop, and KernelBands normalised in place equals the kept-raw copy."""
+    from forceskill.model import dmp as D
+
+    rng = np.random.default_rng(3)
+    h = rng.normal(0.0, 50.0, 5000)
+    ref = D.transform_scan(25.0, 6.25, 40.0, 1e-3 / 3.0, 12.0, h, chunk=1 << 20)
+    for chunk in (1, 7, 640, 4999):
+        got = D.transform_scan(25.0, 6.25, 40.0, 1e-3 / 3.0, 12.0, h, chunk=chunk)
+        for a, b in zip(got, ref, strict=False):
+            np.testing.assert_allclose(a, b, rtol=1e-12, atol=1e-12 * np.max(np.abs(b)))
+    y_loop = np.empty(h.size + 1)
+    y, z, i = 0.0, 0.0, 0.0
+    a = 1e-3 / 3.0
+    y_loop[0] = 0.0
+    for n, hn in enumerate(h):  # the forward-Euler recursion written out (docs/math.md)
+        y, z, i = y + a * (z - y - 40.0 * i + hn), z + a * 25.0 * (6.25 * (12.0 - y) - z), i + a * y
+        y_loop[n + 1] = y
+    np.testing.assert_allclose(ref[0], y_loop, rtol=1e-9, atol=1e-9 * np.max(np.abs(y_loop)))
+    u = np.sort(rng.uniform(0.0, 1.0, 3000))
+    c = np.linspace(0.0, 1.0, 20)
+    w = np.full(20, 0.65 * (c[1] - c[0]))
+    raw, lean = D.KernelBands(u, c, w), D.KernelBands(u, c, w, keep_raw=False)
+    assert all(np.array_equal(p, q) for p, q in zip(raw.norm, lean.norm, strict=False)) and lean.psi == []
+    with pytest.raises(ValueError):
+        lean.project(u, normalised=False)

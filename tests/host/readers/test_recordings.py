@@ -25,6 +25,7 @@ from forceskill.errors import (
     ERR_FIT_GOAL,
     ERR_FIT_INACCURATE,
     ERR_FIT_TOLERANCE,
+    ERR_LOG_UNREADABLE,
     ERR_READ_ARGS,
     FsError,
 )
@@ -351,6 +352,40 @@ def test_can_log_lost_frames_are_interpolated(
     assert "T = 6.000 s" in out and printed_error(out) <= PRESS_TOL_PCT
 
 
+@pytest.mark.parametrize("suffix", [".asc", ".blf", ".csv", ".db", ".log", ".mf4", ".trc"])
+def test_every_python_can_log_format_is_read(
+    suffix: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Each format python-can reads, written by python-can's own writer (can.Logger), gives the
+    demonstration exactly (the DBC's 0.01 N force resolution), also through `fit`."""
+    if suffix == ".mf4":
+        pytest.importorskip("asammdf")
+    rec = _can_rec()
+    p = R.write_can_log(tmp_path / f"demo{suffix}", rec)
+    d = load_demo(p)
+    assert d.t_s.size == rec.t.size and d.t_s[-1] == pytest.approx(6.0)
+    np.testing.assert_allclose(d.force_N, np.round(rec.f, 2), atol=1e-9)
+    out, _ = fit_ok(p, capsys)
+    assert "T = 6.000 s" in out and printed_error(out) <= PRESS_TOL_PCT
+
+
+def test_a_log_format_python_can_cannot_read_is_refused_by_name(tmp_path: Path) -> None:
+    """python-can writes .txt (can.Printer) but cannot read it: refused naming the format (691);
+    a .txt text table is still read as one."""
+    p = R.write_can_log(tmp_path / "demo.txt", _can_rec())
+    assert p.read_text().startswith("Timestamp:")
+    err = fit_refused(p)
+    assert f"[{ERR_LOG_UNREADABLE}]" in err and "demo.txt is a python-can text log (can.Printer, .txt)" in err
+    assert "cannot read" in err and ".blf" in err
+    table = tmp_path / "table.txt"
+    rec = R.press()
+    table.write_text(
+        "t,x,f_contact\n"
+        + "".join(f"{t:.6f},{x:.6g},{f:.6g}\n" for t, x, f in zip(rec.t, rec.x, rec.f, strict=False))
+    )
+    assert load_demo(table).t_s.size == rec.t.size
+
+
 def test_can_log_gap_and_sessions(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     rec = _can_rec()
     err = fit_refused(R.write_can_log(tmp_path / "gap.asc", rec, drop_ticks=range(2000, 2150)))
@@ -430,3 +465,33 @@ def test_readers_are_entry_points_and_plugins(tmp_path: Path, monkeypatch: pytes
     assert e.value.code == ERR_DEMO_FILE and ".csv" in e.value.message and ".mcap" in e.value.message
     monkeypatch.setitem(readers._registered, "npz", read_npz)
     assert np.array_equal(load_demo(p, stiffness_Npm=1e3).force_N, rec.f)
+
+
+def test_every_reader_shows_a_progress_bar_only_when_reading_is_slow(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """CSV (in blocks), CAN log and ROS 2 bag: a tqdm bar on stderr once reading has taken
+    PROGRESS_DELAY_S (2 s; 0 here stands for a slow read), nothing for a quick read."""
+    import forceskill.readers.csv as csv_reader
+
+    monkeypatch.setattr(csv_reader, "BLOCK_BYTES", 1 << 14)
+    rec = _can_rec()
+    files = [
+        (R.write_csv(tmp_path / "demo.csv", rec), None),
+        (R.write_can_log(tmp_path / "demo.asc", rec), None),
+    ]
+    try:
+        import mcap_ros2  # noqa: F401
+
+        files.append(
+            (R.write_bag(tmp_path / "demo.mcap", R.press(rate_hz=1000)), ReadOptions(topic="/wrench"))
+        )
+    except ImportError:
+        pass
+    for p, opts in files:
+        load_demo(p, read=opts, stiffness_Npm=1e3)
+        assert capsys.readouterr().err == "", p.name
+    monkeypatch.setattr(readers, "PROGRESS_DELAY_S", 0.0)
+    for p, opts in files:
+        load_demo(p, read=opts, stiffness_Npm=1e3)
+        assert f"reading {p.name}" in capsys.readouterr().err, p.name
