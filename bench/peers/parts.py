@@ -4,19 +4,23 @@ Each function runs one part's own benchmark (it owns its folder; we only read wh
 and returns (markdown body, rows for the targets table, raw data). A part that has not landed,
 or whose program fails, gives "not available: <why>" and no number.
 """
+
 from __future__ import annotations
 
 import os
 import re
 import subprocess
 import sys
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Callable, Optional
+from typing import Any
 
 Result = tuple[str, list[list[str]], dict[str, Any]]
 
 
-def _run(cmd: list[str], cwd: Path, timeout: float, env: Optional[dict[str, str]] = None) -> subprocess.CompletedProcess[str]:
+def _run(
+    cmd: list[str], cwd: Path, timeout: float, env: dict[str, str] | None = None
+) -> subprocess.CompletedProcess[str]:
     e = dict(os.environ)
     if env:
         e.update(env)
@@ -41,7 +45,7 @@ def _table(header: list[str], rows: list[list[str]]) -> str:
     return "\n".join(out)
 
 
-def _verdict(value: Optional[float], must: float, aim: Optional[float], higher: bool) -> str:
+def _verdict(value: float | None, must: float, aim: float | None, higher: bool) -> str:
     if value is None:
         return "not available"
     ok = (lambda lim: value >= lim) if higher else (lambda lim: value <= lim)
@@ -51,7 +55,7 @@ def _verdict(value: Optional[float], must: float, aim: Optional[float], higher: 
 
 
 # ---------------------------------------------------------------------------------------------
-def _exe(bld: Any, rel: str, part: str) -> tuple[Optional[Path], str]:
+def _exe(bld: Any, rel: str, part: str) -> tuple[Path | None, str]:
     p = bld.exe(rel)
     if p is not None:
         return p, ""
@@ -73,7 +77,7 @@ def hil_speed(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
         return _na(why)
     p = _run([str(exe)], root, timeout=600)
     rows, data = [], {}
-    worst: Optional[float] = None
+    worst: float | None = None
     for line in p.stdout.splitlines():
         kv = _kv(line)
         if line.startswith("hil_lockstep") and "scenario" in kv:
@@ -86,11 +90,20 @@ def hil_speed(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
     if p.returncode != 0 or not rows:
         return _na(f"bench_hil_speed exited {p.returncode}: {(p.stderr or p.stdout).strip()[:200]}")
     body = _table(["scenario", "simulated s", "x real time", "x real time, writing the CSV log"], rows)
-    body += ("\n\nbench/hil_speed/bench_hil_speed (the HIL part's program, -O2): lockstep, both axes, one "
-             "core, the plant integrated in substeps inside each 1 ms firmware tick (10, i.e. 0.1 ms, by default); best of 5 runs per scenario "
-             "(best of 3 with the CSV log written to /dev/null). Execution scenarios run the golden N = 50 skills.")
-    targets = [["HIL lockstep speed, both axes, one core (slowest scenario)", ">= 1,000x", ">= 5,000x",
-                f"{worst:,.0f}x", _verdict(worst, 1000, 5000, True)]]
+    body += (
+        "\n\nbench/hil_speed/bench_hil_speed (the HIL part's program, -O2): lockstep, both axes, one "
+        "core, the plant integrated in substeps inside each 1 ms firmware tick (10, i.e. 0.1 ms, by default); best of 5 runs per scenario "
+        "(best of 3 with the CSV log written to /dev/null). Execution scenarios run the golden N = 50 skills."
+    )
+    targets = [
+        [
+            "HIL lockstep speed, both axes, one core (slowest scenario)",
+            ">= 1,000x",
+            ">= 5,000x",
+            f"{worst:,.0f}x",
+            _verdict(worst, 1000, 5000, True),
+        ]
+    ]
     return body, targets, data
 
 
@@ -117,22 +130,53 @@ def can_upload(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
     span = _num(kv["bus_span_median_ms"]) if "bus_span_median_ms" in kv else None
     ratio = med / limit
     load = limit / med
-    data = {k: v for k, v in kv.items()}
+    data = dict(kv.items())
     data.update({"ratio": ratio, "bus_load": load, "exit": p.returncode})
-    rows = [[kv.get("kernels", "?"), kv.get("bytes", "?"), kv.get("frames", "?"), f"{limit:.2f}", f"{med:.2f}",
-             f"{best:.2f}", f"{span:.2f}" if span is not None else "n/a", f"{ratio:.2f}x", f"{100 * load:.0f} %"]]
-    body = _table(["N", "image bytes", "frames on the bus", "bus-limited ms", "measured ms (median)",
-                   "measured ms (best)", "first to last frame on the bus, ms", "measured / bus-limited",
-                   "bus load during the upload"], rows)
-    body += (f"\n\nbench/can_upload/can_upload.py (the CAN part's program, {repeat} uploads): the product's "
-             "udsoncan + can-isotp client uploads the skill (RequestDownload, TransferData, RequestTransferExit) to "
-             "`hil_sim serve` in real time over the socketcand bus; bus-limited time = the wire time of every frame "
-             "of the exchange (both directions, flow control included) at 1 Mbit/s with its actual bit stuffing. "
-             "Bus load = bus-limited time / measured time: the share of the bus the transfer kept busy.")
+    rows = [
+        [
+            kv.get("kernels", "?"),
+            kv.get("bytes", "?"),
+            kv.get("frames", "?"),
+            f"{limit:.2f}",
+            f"{med:.2f}",
+            f"{best:.2f}",
+            f"{span:.2f}" if span is not None else "n/a",
+            f"{ratio:.2f}x",
+            f"{100 * load:.0f} %",
+        ]
+    ]
+    body = _table(
+        [
+            "N",
+            "image bytes",
+            "frames on the bus",
+            "bus-limited ms",
+            "measured ms (median)",
+            "measured ms (best)",
+            "first to last frame on the bus, ms",
+            "measured / bus-limited",
+            "bus load during the upload",
+        ],
+        rows,
+    )
+    body += (
+        f"\n\nbench/can_upload/can_upload.py (the CAN part's program, {repeat} uploads): the product's "
+        "udsoncan + can-isotp client uploads the skill (RequestDownload, TransferData, RequestTransferExit) to "
+        "`hil_sim serve` in real time over the socketcand bus; bus-limited time = the wire time of every frame "
+        "of the exchange (both directions, flow control included) at 1 Mbit/s with its actual bit stuffing. "
+        "Bus load = bus-limited time / measured time: the share of the bus the transfer kept busy."
+    )
     if p.returncode != 0:
         body += f"\n\n- can_upload.py exited {p.returncode} (it fails when the median exceeds 2x the bus-limited time)."
-    targets = [["skill upload, N = 50, simulated 1 Mbit/s bus (measured / bus-limited)", "<= 2x", "<= 1.2x",
-                f"{ratio:.2f}x", _verdict(ratio, 2.0, 1.2, False)]]
+    targets = [
+        [
+            "skill upload, N = 50, simulated 1 Mbit/s bus (measured / bus-limited)",
+            "<= 2x",
+            "<= 1.2x",
+            f"{ratio:.2f}x",
+            _verdict(ratio, 2.0, 1.2, False),
+        ]
+    ]
     return body, targets, data
 
 
@@ -140,12 +184,13 @@ QEMU_TARGETS = [("cortex-m4f", "float32 (FPU)", 1500, 850), ("cortex-m3", "float
 TICK_CYCLES = {"168 MHz": 168_000, "72 MHz": 72_000}
 
 
-def _elf_size(elf: Path) -> Optional[tuple[int, int]]:
+def _elf_size(elf: Path) -> tuple[int, int] | None:
     """(flash, RAM) bytes with bench/qemu/image_report.py's definition: flash = .text +
     .ARM.exidx + .data (its load image), RAM = .data + .bss + .stack (reserved stack)."""
     try:
-        out = subprocess.run(["arm-none-eabi-size", "-A", str(elf)], capture_output=True, text=True,
-                             check=True).stdout
+        out = subprocess.run(
+            ["arm-none-eabi-size", "-A", str(elf)], capture_output=True, text=True, check=True
+        ).stdout
     except (OSError, subprocess.CalledProcessError):
         return None
     sec: dict[str, int] = {}
@@ -170,33 +215,66 @@ def qemu_tick(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
         try:
             p = _run(cmd, root, timeout=float(cfg.get("qemu_timeout_s", 600)))
         except subprocess.TimeoutExpired:
-            rows.append([target, numeric, f"not available: qemu_tick.sh {target} timed out", "", "", "", "", ""])
+            rows.append(
+                [target, numeric, f"not available: qemu_tick.sh {target} timed out", "", "", "", "", ""]
+            )
             continue
         line = next((ln for ln in p.stdout.splitlines() if ln.startswith("tick_instructions")), None)
         if line is None:
             err = [ln for ln in (p.stdout + p.stderr).splitlines() if ln.strip()]
-            rows.append([target, numeric, f"not available: qemu_tick.sh exited {p.returncode}: "
-                         f"{(err[-1] if err else 'no output')[:200]}", "", "", "", "", ""])
+            rows.append(
+                [
+                    target,
+                    numeric,
+                    f"not available: qemu_tick.sh exited {p.returncode}: "
+                    f"{(err[-1] if err else 'no output')[:200]}",
+                    "",
+                    "",
+                    "",
+                    "",
+                    "",
+                ]
+            )
             continue
         kv = _kv(line)
         lo, med, hi = int(kv["min"]), int(kv["median"]), int(kv["max"])
-        data[target] = {"min": lo, "median": med, "max": hi, "kernels": kv.get("kernels"), "exit": p.returncode}
+        data[target] = {
+            "min": lo,
+            "median": med,
+            "max": hi,
+            "kernels": kv.get("kernels"),
+            "exit": p.returncode,
+        }
         shares = [f"{100.0 * hi / c:.2f} %" for c in TICK_CYCLES.values()]
         rows.append([target, numeric, kv.get("kernels", "?"), f"{lo:,}", f"{med:,}", f"{hi:,}", *shares])
-        targets.append([f"DMP + control law of the product tick, {target} ({numeric}), N = {kv.get('kernels', '?')}, "
-                        "instructions (max)",
-                        f"<= {must:,}", f"<= {aim:,}", f"{hi:,}", _verdict(float(hi), must, aim, False)])
+        targets.append(
+            [
+                f"DMP + control law of the product tick, {target} ({numeric}), N = {kv.get('kernels', '?')}, "
+                "instructions (max)",
+                f"<= {must:,}",
+                f"<= {aim:,}",
+                f"{hi:,}",
+                _verdict(float(hi), must, aim, False),
+            ]
+        )
         bench_line = next((ln for ln in p.stdout.splitlines() if ln.startswith("== benchmark:")), "")
         ticks = next((_kv(ln).get("rows") for ln in p.stdout.splitlines() if ln.startswith("bench ")), None)
         data[target]["ticks"] = ticks
-        checks = [ln.strip() for ln in p.stdout.splitlines()
-                  if ln.startswith(("qemu_vs_host", "loop ", "budget", "counter check"))]
+        checks = [
+            ln.strip()
+            for ln in p.stdout.splitlines()
+            if ln.startswith(("qemu_vs_host", "loop ", "budget", "counter check"))
+        ]
         if p.returncode != 0:
             failed = [c for c in checks if "FAILED" in c] or [f"exit status {p.returncode}"]
-            notes.append(f"{target}: qemu_tick.sh exited {p.returncode} ({'; '.join(failed)}); "
-                         f"the instruction count above was printed before that check")
+            notes.append(
+                f"{target}: qemu_tick.sh exited {p.returncode} ({'; '.join(failed)}); "
+                f"the instruction count above was printed before that check"
+            )
         if bench_line:
-            notes.append(f"{target}: skill {bench_line.split(':', 1)[1].strip()}, {ticks or '?'} ticks counted")
+            notes.append(
+                f"{target}: skill {bench_line.split(':', 1)[1].strip()}, {ticks or '?'} ticks counted"
+            )
         notes += [f"{target}: {c}" for c in checks if c.startswith(("qemu_vs_host", "loop "))]
         for img in ("fs_pil",):
             elf = bdir / "firmware" / "ports" / "cortex-m" / f"{img}.elf"
@@ -206,19 +284,36 @@ def qemu_tick(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
                 size_rows.append([target, f"{img}.elf", f"{sz[0]:,}", f"{sz[1]:,}"])
     if not rows:
         return _na("qemu_tick.sh gave no figure")
-    body = _table(["target", "numeric", "N", "instructions per tick, min", "median", "max",
-                   "share of a 1 ms tick at 168 MHz (max)", "at 72 MHz (max)"], rows)
-    body += ("\n\nbench/qemu_tick.sh TARGET (the Cortex-M part's program): the DMP and control-law part "
-             "(dmp_step + pfc_step with their callees) of the product image's app_tick, counted instruction by "
-             "instruction in qemu's exec trace over every EXECUTE tick of the run (min/median/max; the script "
-             "also prints the whole app_tick per state, docs/cortex-m.md). The share "
-             "of the tick assumes one cycle per instruction: an approximation (loads, taken branches, divides "
-             "and flash wait states take more), so the true cycle share is somewhat higher.")
+    body = _table(
+        [
+            "target",
+            "numeric",
+            "N",
+            "instructions per tick, min",
+            "median",
+            "max",
+            "share of a 1 ms tick at 168 MHz (max)",
+            "at 72 MHz (max)",
+        ],
+        rows,
+    )
+    body += (
+        "\n\nbench/qemu_tick.sh TARGET (the Cortex-M part's program): the DMP and control-law part "
+        "(dmp_step + pfc_step with their callees) of the product image's app_tick, counted instruction by "
+        "instruction in qemu's exec trace over every EXECUTE tick of the run (min/median/max; the script "
+        "also prints the whole app_tick per state, docs/cortex-m.md). The share "
+        "of the tick assumes one cycle per instruction: an approximation (loads, taken branches, divides "
+        "and flash wait states take more), so the true cycle share is somewhat higher."
+    )
     if size_rows:
-        body += "\n\n" + _table(["target", "image", "flash, bytes", "RAM, bytes (incl. reserved stack)"], size_rows)
-        body += ("\n\nflash = .text + .ARM.exidx + .data, RAM = .data + .bss + .stack (the definition of "
-                 "bench/qemu/image_report.py), from `arm-none-eabi-size -A`. fs_pil is the product image (the "
-                 "application on the port, with the simulator's plant linked in).")
+        body += "\n\n" + _table(
+            ["target", "image", "flash, bytes", "RAM, bytes (incl. reserved stack)"], size_rows
+        )
+        body += (
+            "\n\nflash = .text + .ARM.exidx + .data, RAM = .data + .bss + .stack (the definition of "
+            "bench/qemu/image_report.py), from `arm-none-eabi-size -A`. fs_pil is the product image (the "
+            "application on the port, with the simulator's plant linked in)."
+        )
     if notes:
         body += "\n\n" + "\n".join(f"- {n}" for n in notes)
     return body, targets, data
@@ -247,18 +342,36 @@ def own_benchmarks(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
                     data[f"core_step_N{n}"] = {"double": d, "float": f}
                     md = mine.get("C double step, ns", {}).get(n)
                     mf = mine.get("C float step, ns", {}).get(n)
-                    rows.append([str(n), f"{d:.1f}", f"{f:.1f}",
-                                 f"{md:.1f}" if md else "n/a", f"{mf:.1f}" if mf else "n/a"])
+                    rows.append(
+                        [
+                            str(n),
+                            f"{d:.1f}",
+                            f"{f:.1f}",
+                            f"{md:.1f}" if md else "n/a",
+                            f"{mf:.1f}" if mf else "n/a",
+                        ]
+                    )
             if p.returncode != 0 or not rows:
-                parts.append(f"bench/core_step: not available: bench_core_step exited {p.returncode}: "
-                             f"{(p.stderr or p.stdout).strip()[:200]}")
+                parts.append(
+                    f"bench/core_step: not available: bench_core_step exited {p.returncode}: "
+                    f"{(p.stderr or p.stdout).strip()[:200]}"
+                )
             else:
-                parts.append(_table(["N", "bench_core_step double, ns", "bench_core_step float, ns",
-                                     "fs_bench_step double, ns (this run)", "fs_bench_step float, ns (this run)"],
-                                    rows)
-                             + "\n\nbench_core_step (the core part's program) steps its own synthetic models, "
-                               "compiled -O2; fs_bench_step steps the skills fitted from the benchmark demonstration "
-                               "with the Release libraries.")
+                parts.append(
+                    _table(
+                        [
+                            "N",
+                            "bench_core_step double, ns",
+                            "bench_core_step float, ns",
+                            "fs_bench_step double, ns (this run)",
+                            "fs_bench_step float, ns (this run)",
+                        ],
+                        rows,
+                    )
+                    + "\n\nbench_core_step (the core part's program) steps its own synthetic models, "
+                    "compiled -O2; fs_bench_step steps the skills fitted from the benchmark demonstration "
+                    "with the Release libraries."
+                )
     script = root / "bench" / "fit_time" / "fit_time.py"
     if not script.is_file():
         parts.append("bench/fit_time: not available: it has not landed")
@@ -269,16 +382,28 @@ def own_benchmarks(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
         for line in p.stdout.splitlines():
             kv = _kv(line)
             if line.startswith("fit_ms") and "median" in kv:
-                data[f"fit_time_{kv.get('method')}"] = {k: v for k, v in kv.items()}
-                rows.append([kv.get("method", "?"), kv.get("N", "?"), kv.get("T", "?"), kv["median"],
-                             kv.get("min", "?"), kv.get("err_max", "?")])
+                data[f"fit_time_{kv.get('method')}"] = dict(kv.items())
+                rows.append(
+                    [
+                        kv.get("method", "?"),
+                        kv.get("N", "?"),
+                        kv.get("T", "?"),
+                        kv["median"],
+                        kv.get("min", "?"),
+                        kv.get("err_max", "?"),
+                    ]
+                )
         if p.returncode != 0 or not rows:
-            parts.append(f"bench/fit_time: not available: fit_time.py exited {p.returncode}: "
-                         f"{(p.stderr or p.stdout).strip()[-200:]}")
+            parts.append(
+                f"bench/fit_time: not available: fit_time.py exited {p.returncode}: "
+                f"{(p.stderr or p.stdout).strip()[-200:]}"
+            )
         else:
-            parts.append(_table(["method", "N", "demo", "ms (median)", "ms (min)", "max error"], rows)
-                         + "\n\nbench/fit_time/fit_time.py (the host part's program) fits its own synthetic "
-                           "17 s engraving demonstration (forceskill.model.synthetic, seed 7).")
+            parts.append(
+                _table(["method", "N", "demo", "ms (median)", "ms (min)", "max error"], rows)
+                + "\n\nbench/fit_time/fit_time.py (the host part's program) fits its own synthetic "
+                "17 s engraving demonstration (forceskill.model.synthetic, seed 7)."
+            )
     return "\n\n".join(parts), [], data
 
 

@@ -12,15 +12,23 @@ per entry point.
   information (libgcc, libm, libc) get their frame from their prologue in the disassembly
   (push/vpush/sub sp) and their calls from their bl/b.w targets: marked "(prologue)".
 """
+
 import argparse
 import os
 import re
 import subprocess
 import sys
 
-ENTRY_POINTS = ["Reset_Handler", "SysTick_Handler", "UART0RX_Handler", "UART0TX_Handler",
-                "NMI_Handler", "HardFault_Handler", "Default_Handler",
-                "app_tick"]
+ENTRY_POINTS = [
+    "Reset_Handler",
+    "SysTick_Handler",
+    "UART0RX_Handler",
+    "UART0TX_Handler",
+    "NMI_Handler",
+    "HardFault_Handler",
+    "Default_Handler",
+    "app_tick",
+]
 
 
 def run(cmd):
@@ -36,9 +44,11 @@ def size_report(size_tool, elf, target):
             sec[parts[0]] = int(parts[1])
     flash = sec.get(".text", 0) + sec.get(".ARM.exidx", 0) + sec.get(".data", 0)
     ram = sec.get(".data", 0) + sec.get(".bss", 0) + sec.get(".stack", 0)
-    print(f"size {os.path.basename(elf)} target={target} flash={flash} ram={ram} "
-          f"(text={sec.get('.text', 0)} data={sec.get('.data', 0)} bss={sec.get('.bss', 0)} "
-          f"stack_reserved={sec.get('.stack', 0)})")
+    print(
+        f"size {os.path.basename(elf)} target={target} flash={flash} ram={ram} "
+        f"(text={sec.get('.text', 0)} data={sec.get('.data', 0)} bss={sec.get('.bss', 0)} "
+        f"stack_reserved={sec.get('.stack', 0)})"
+    )
 
 
 def heap_check(nm_tool, elf, heap_syms):
@@ -48,9 +58,13 @@ def heap_check(nm_tool, elf, heap_syms):
         parts = line.split()
         if parts:
             names.add(parts[-1])
-    bad = sorted(n for n in names
-                 if n in heap_syms or (n.startswith("__wrap_") and n[7:] in heap_syms)
-                 or (n.startswith("__real_") and n[7:] in heap_syms))
+    bad = sorted(
+        n
+        for n in names
+        if n in heap_syms
+        or (n.startswith("__wrap_") and n[7:] in heap_syms)
+        or (n.startswith("__real_") and n[7:] in heap_syms)
+    )
     if bad:
         print(f"heap check FAILED: {os.path.basename(elf)} references {' '.join(bad)}")
         sys.exit(1)
@@ -60,7 +74,7 @@ def heap_check(nm_tool, elf, heap_syms):
 
 NODE_RE = re.compile(r'node:\s*\{\s*title:\s*"([^"]+)"\s*label:\s*"([^"]*)"')
 EDGE_RE = re.compile(r'edge:\s*\{\s*sourcename:\s*"([^"]+)"\s*targetname:\s*"([^"]+)"')
-SU_RE = re.compile(r'(\d+) bytes \((static|dynamic|dynamic,bounded)\)')
+SU_RE = re.compile(r"(\d+) bytes \((static|dynamic|dynamic,bounded)\)")
 
 
 def load_callgraph(roots):
@@ -69,7 +83,8 @@ def load_callgraph(roots):
         for f in files:
             if not f.endswith(".ci"):
                 continue
-            text = open(os.path.join(dirpath, f), encoding="utf-8", errors="replace").read()
+            with open(os.path.join(dirpath, f), encoding="utf-8", errors="replace") as fh:
+                text = fh.read()
             for title, label in NODE_RE.findall(text):
                 m = SU_RE.search(label.replace("\\n", "\n"))
                 if m:
@@ -80,17 +95,17 @@ def load_callgraph(roots):
     return frames, kinds, edges
 
 
-FUNC_RE = re.compile(r'^[0-9a-f]+ <([^>]+)>:$')
-CALL_RE = re.compile(r'\s(?:bl|blx|b\.w|b)\s+[0-9a-f]+ <([^>+]+)>')
-PUSH_RE = re.compile(r'\s(?:push|stmdb\s+sp!,)\s*\{([^}]*)\}')
-VPUSH_RE = re.compile(r'\svpush\s*\{([^}]*)\}')
-SUBSP_RE = re.compile(r'\ssub(?:\.w)?\s+sp,\s*(?:sp,\s*)?#(\d+)')
+FUNC_RE = re.compile(r"^[0-9a-f]+ <([^>]+)>:$")
+CALL_RE = re.compile(r"\s(?:bl|blx|b\.w|b)\s+[0-9a-f]+ <([^>+]+)>")
+PUSH_RE = re.compile(r"\s(?:push|stmdb\s+sp!,)\s*\{([^}]*)\}")
+VPUSH_RE = re.compile(r"\svpush\s*\{([^}]*)\}")
+SUBSP_RE = re.compile(r"\ssub(?:\.w)?\s+sp,\s*(?:sp,\s*)?#(\d+)")
 
 
 def reg_count(reglist):
     n = 0
-    for part in reglist.split(","):
-        part = part.strip()
+    for raw in reglist.split(","):
+        part = raw.strip()
         if "-" in part:
             a, b = part.split("-")
             n += int(b.strip()[1:]) - int(a.strip()[1:]) + 1
@@ -132,7 +147,7 @@ def worst_stack(fn, frames, edges, memo, stack, unknown):
     if fn in memo:
         return memo[fn]
     if fn in stack:
-        print(f"stack report FAILED: recursion through {' -> '.join(stack + [fn])}")
+        print(f"stack report FAILED: recursion through {' -> '.join([*stack, fn])}")
         sys.exit(1)
     if fn not in frames:
         unknown.add(fn)
@@ -144,7 +159,7 @@ def worst_stack(fn, frames, edges, memo, stack, unknown):
         if d > best:
             best, path = d, p
     stack.pop()
-    memo[fn] = (frames[fn] + best, [fn] + path)
+    memo[fn] = (frames[fn] + best, [fn, *path])
     return memo[fn]
 
 
@@ -160,15 +175,21 @@ def stack_report(roots, elf, names, objdump):
         estimated.update(lib_frames)
         for k, v in lib_edges.items():
             edges.setdefault(k, set()).update(v)
-        todo = {d for ds in lib_edges.values() for d in ds
-                if d not in frames and d in names and d not in estimated}
+        todo = {
+            d
+            for ds in lib_edges.values()
+            for d in ds
+            if d not in frames and d in names and d not in estimated
+        }
     memo, unknown = {}, set()
     for ep in ENTRY_POINTS:
         if ep not in names or ep not in frames:
             continue  # absent, or an alias of Default_Handler (weak SysTick_Handler)
         depth, path = worst_stack(ep, frames, edges, memo, [], unknown)
-        print(f"stack {os.path.basename(elf)} entry={ep} worst={depth} bytes via "
-              f"{' > '.join(p + ('(prologue)' if p in estimated else '') for p in path)}")
+        print(
+            f"stack {os.path.basename(elf)} entry={ep} worst={depth} bytes via "
+            f"{' > '.join(p + ('(prologue)' if p in estimated else '') for p in path)}"
+        )
     if dyn:
         print(f"stack report FAILED: dynamic frames (VLA/alloca) in {' '.join(dyn)}")
         sys.exit(1)
@@ -184,8 +205,12 @@ def main():
     ap.add_argument("--size", required=True)
     ap.add_argument("--objdump", required=True)
     ap.add_argument("--target", required=True)
-    ap.add_argument("--ci-dirs", required=True, nargs="+",
-                    help="object directories of the image (their .ci files form the call graph)")
+    ap.add_argument(
+        "--ci-dirs",
+        required=True,
+        nargs="+",
+        help="object directories of the image (their .ci files form the call graph)",
+    )
     ap.add_argument("--heap-syms", required=True)
     a = ap.parse_args()
     heap_syms = set(a.heap_syms.replace(";", " ").split())

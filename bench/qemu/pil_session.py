@@ -8,6 +8,7 @@ Under the exec trace the image runs 20-50 times slower than real time, so the ho
 goes every --heartbeat-s of wall time (0.5 s: about every 10-25 ms of device time, as a host
 against a device in real time) instead of the host tools' 10 ms.
   pil_session.py PORT SKILL [--exec-s S]"""
+
 from __future__ import annotations
 
 import argparse
@@ -42,22 +43,29 @@ def main(argv: list[str]) -> int:
     # under the trace a consecutive frame can be seconds of wall time apart: ISO-TP's 1 s
     # receive timeouts of the host tools would drop the transfer
     base_params = U.isotp_params
-    U.isotp_params = lambda: {**base_params(), "rx_flowcontrol_timeout": int(args.timeout * 1000),
-                              "rx_consecutive_frame_timeout": int(args.timeout * 1000)}
+    U.isotp_params = lambda: {
+        **base_params(),
+        "rx_flowcontrol_timeout": int(args.timeout * 1000),
+        "rx_consecutive_frame_timeout": int(args.timeout * 1000),
+    }
     image = args.skill.read_bytes()
     bus = can.Bus(interface="slcan", channel=f"socket://127.0.0.1:{args.port}", sleep_after_open=0.1)
     try:
         with Device(bus, node=0, channel="slcan", timeout_s=args.timeout) as dev:
             dev.wait_present()
-            wait_ticks(dev, 1200, args.timeout)          # past the 1 s SecurityAccess delay
+            wait_ticks(dev, 1200, args.timeout)  # past the 1 s SecurityAccess delay
             with U.uds_client(dev, request_timeout_s=args.timeout) as client:
                 U.unlock(client, 0, 0x02)
                 U.download(client, 0, 1, image)
             wait_ticks(dev, 200, args.timeout)
             dev.telemetry_period_ms = 1
             m = dev._m["HostHeartbeat"]
-            hb = bus.send_periodic(can.Message(arbitration_id=m.frame_id, data=bytearray(8), is_extended_id=False),
-                                   args.heartbeat_s, store_task=False, modifier_callback=dev._heartbeat_update)
+            hb = bus.send_periodic(
+                can.Message(arbitration_id=m.frame_id, data=bytearray(8), is_extended_id=False),
+                args.heartbeat_s,
+                store_task=False,
+                modifier_callback=dev._heartbeat_update,
+            )
             try:
                 with U.uds_client(dev, request_timeout_s=args.timeout) as client:
                     # RequestUpload needs the programming session, entered while IDLE
@@ -67,7 +75,7 @@ def main(argv: list[str]) -> int:
                     U.call("start", lambda: client.start_routine(U.RID_RUN_SKILL, data), 0)
                     dev.wait_state({"EXECUTE"}, args.timeout)
                     wait_ticks(dev, int(args.exec_s * 500), args.timeout)
-                    U.upload(client, 0, 1, len(image))       # read-back while executing
+                    U.upload(client, 0, 1, len(image))  # read-back while executing
                     print(f"pil_session: read-back done at tick {dev.status.tick}", flush=True)
                     wait_ticks(dev, int(args.exec_s * 500), args.timeout)
                     dev.command_until("idle", {"IDLE", "FAULT"}, args.timeout)

@@ -30,7 +30,7 @@ void app_config_default(app_config_t *cfg)
     saf_default_config(&cfg->saf);
     cfg->vel_cutoff_Hz = FS_R(50.0);
     cfg->telemetry_period_ms = 1u;
-    cfg->stiffness_max_Npm = FS_R(APP_STIFFNESS_MAX_NPM);
+    cfg->stiffness_max_Npm = (fs_real_t)APP_STIFFNESS_MAX_NPM;
 }
 
 /* ---------------------------------------------------------------- CAN helpers */

@@ -150,9 +150,7 @@ static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf)
         buf[4] = app->seq_step;
         put_u32(&buf[5], app->tick);
         return 9u;
-    case DID_STIFFNESS_MAX:
-        put_f32(buf, app->cfg.stiffness_max_Npm);
-        return 4u;
+    case DID_STIFFNESS_MAX: put_f32(buf, app->cfg.stiffness_max_Npm); return 4u;
     case DID_FAULT_CAUSES: /* what blocks a clear: the causes still present at the last tick */
         put_u32(&buf[0], app->saf.flt.latched_mask);
         put_u32(&buf[4], app->saf.cause_mask);
@@ -269,7 +267,7 @@ static uint8_t write_stiffness_max(app_t *app, const uint8_t *d, uint16_t len)
         return UDS_NRC_INCORRECT_LENGTH;
     }
     const fs_real_t k = get_f32(d);
-    if (!fs_isfinite(k) || !(k > FS_R(0.0)) || k > FS_R(SKCHK_STIFFNESS_MAX_NPM)) {
+    if (!fs_isfinite(k) || !(k > FS_R(0.0)) || k > (fs_real_t)SKCHK_STIFFNESS_MAX_NPM) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
     app->cfg.stiffness_max_Npm = k;

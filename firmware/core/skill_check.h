@@ -16,7 +16,7 @@
  *     SKCHK_SURFACE_MAX_M, |w_y| <= SKCHK_WEIGHT_MAX) and the rollout's path finite with its
  *     extent max|p| from the start within path_max_m (the y workspace's width; default
  *     SKCHK_PATH_MAX_M), else 225; at run time path_scale*extent within it, else 226
- *     (skchk_run_path). */
+ *     (skchk_run_path).
  *  5. skchk_stiffness: the skill's nominal stiffness within the device's limit (227), checked at
  *     commit and at start: on stiffer objects the device's force loop does not track (the limit
  *     is measured per device, docs/hil.md). */

@@ -94,7 +94,7 @@ void sim_couple_device_config(const sim_scenario_t *sc, app_config_t *cfg)
     if (sc->stiffness_max_Npm > 0.0) {
         cfg->stiffness_max_Npm = sc->stiffness_max_Npm;
     } else if (cfg->render_carriage != 0u) {
-        cfg->stiffness_max_Npm = FS_R(APP_STIFFNESS_MAX_RENDERED_NPM);
+        cfg->stiffness_max_Npm = (fs_real_t)APP_STIFFNESS_MAX_RENDERED_NPM;
     }
 }
 

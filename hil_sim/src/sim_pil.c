@@ -183,13 +183,17 @@ static int provision(const char *path)
     return 0;
 }
 
-int sim_cmd_pil(int argc, char **argv)
-{
-    const char *target = NULL, *host = "127.0.0.1", *image = NULL, *scenario = NULL;
-    const char *flash = NULL, *qemu = "qemu-system-arm";
-    double port = 29537.0, node = 0.0, host_timeout = 100.0, shift = 2.0;
+/* The command line of `hil_sim pil`. */
+typedef struct {
+    const char *target, *host, *image, *scenario, *flash, *qemu;
+    double port, node, host_timeout, shift;
     char *extra[PIL_MAX_EXTRA];
-    int n_extra = 0;
+    int n_extra;
+} pil_opts_t;
+
+/* Parse the options into *o: -1 to go on, else the exit status (0 after --help, 2 on an error). */
+static int pil_parse(int argc, char **argv, pil_opts_t *o)
+{
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
@@ -203,27 +207,27 @@ int sim_cmd_pil(int argc, char **argv)
         }
         int rc = 0;
         if (strcmp(a, "--target") == 0)
-            target = v;
+            o->target = v;
         else if (strcmp(a, "--port") == 0)
-            rc = parse_num(a, v, 0.0, 65535.0, &port);
+            rc = parse_num(a, v, 0.0, 65535.0, &o->port);
         else if (strcmp(a, "--host") == 0)
-            host = v;
+            o->host = v;
         else if (strcmp(a, "--image") == 0)
-            image = v;
+            o->image = v;
         else if (strcmp(a, "--scenario") == 0)
-            scenario = v;
+            o->scenario = v;
         else if (strcmp(a, "--flash") == 0)
-            flash = v;
+            o->flash = v;
         else if (strcmp(a, "--node") == 0)
-            rc = parse_num(a, v, 0.0, 15.0, &node);
+            rc = parse_num(a, v, 0.0, 15.0, &o->node);
         else if (strcmp(a, "--host-timeout") == 0)
-            rc = parse_num(a, v, 20.0, 500.0, &host_timeout);
+            rc = parse_num(a, v, 20.0, 500.0, &o->host_timeout);
         else if (strcmp(a, "--icount-shift") == 0)
-            rc = parse_num(a, v, 0.0, 10.0, &shift);
+            rc = parse_num(a, v, 0.0, 10.0, &o->shift);
         else if (strcmp(a, "--qemu") == 0)
-            qemu = v;
-        else if (strcmp(a, "--qemu-arg") == 0 && n_extra < PIL_MAX_EXTRA)
-            extra[n_extra++] = (char *)v;
+            o->qemu = v;
+        else if (strcmp(a, "--qemu-arg") == 0 && o->n_extra < PIL_MAX_EXTRA)
+            o->extra[o->n_extra++] = (char *)v;
         else {
             fprintf(stderr, "hil_sim pil: unknown option '%s'\n%s", a, PIL_USAGE);
             return 2;
@@ -233,49 +237,173 @@ int sim_cmd_pil(int argc, char **argv)
         }
         i++;
     }
-    const char *machine = NULL, *cpu = NULL;
-    if (target != NULL && strcmp(target, "cortex-m4f") == 0) {
-        machine = "mps2-an386";
-        cpu = "cortex-m4";
-    } else if (target != NULL && strcmp(target, "cortex-m3") == 0) {
-        machine = "mps2-an385";
-        cpu = "cortex-m3";
+    return -1;
+}
+
+/* Start qemu on the board of the target with the image, the parameter block, the flash file and
+ * the board's serial port on host:p; the child's pid (or -1). */
+static pid_t pil_spawn(const pil_opts_t *o, const char *machine, const char *cpu, int p,
+                       const char *params_path, const char *flash_path)
+{
+    char serial[128], loader[128], backend[SIM_PATH_MAX + 96], icount[64];
+    snprintf(serial, sizeof serial, "tcp:%s:%d,server=on,wait=off", o->host, p);
+    snprintf(loader, sizeof loader, "loader,file=%s,addr=0x%08X,force-raw=on", params_path,
+             (unsigned)CM_PARAMS_ADDR);
+    snprintf(backend, sizeof backend, "memory-backend-file,id=flash,size=16M,mem-path=%s,share=on",
+             flash_path);
+    snprintf(icount, sizeof icount, "shift=%d,sleep=off", (int)o->shift);
+    char *qargv[24 + PIL_MAX_EXTRA] = {(char *)o->qemu,
+                                       "-M",
+                                       (char *)machine,
+                                       "-cpu",
+                                       (char *)cpu,
+                                       "-nographic",
+                                       "-monitor",
+                                       "none",
+                                       "-semihosting-config",
+                                       "enable=on,target=native",
+                                       "-kernel",
+                                       (char *)o->image,
+                                       "-device",
+                                       loader,
+                                       "-serial",
+                                       serial,
+                                       "-object",
+                                       backend,
+                                       "-machine",
+                                       "memory-backend=flash",
+                                       "-icount",
+                                       icount};
+    int qn = 22;
+    for (int i = 0; i < o->n_extra; i++) {
+        qargv[qn++] = o->extra[i];
+    }
+    qargv[qn] = NULL;
+    const pid_t pid = p > 0 ? fork() : -1;
+    if (pid == 0) {
+        execvp(o->qemu, qargv);
+        fprintf(stderr, "hil_sim pil: cannot run %s: %s\n", o->qemu, strerror(errno));
+        _exit(127);
+    }
+    return pid;
+}
+
+/* Wait for the board's serial port, announce it, run until SIGINT/SIGTERM or qemu's exit: 0 when
+ * it ran and was stopped, else 1. */
+static int pil_supervise(const pil_opts_t *o, pid_t pid, int p, const char *machine)
+{
+    int wst = 0;
+    int up = 0;
+    for (int i = 0; i < 500 && !g_stop && !up; i++) {
+        if (waitpid(pid, &wst, WNOHANG) == pid) {
+            break;
+        }
+        up = can_connect(o->host, p);
+        if (!up) {
+            const struct timespec ts = {0, 10000000L};
+            nanosleep(&ts, NULL);
+        }
+    }
+    if (up) {
+        printf("hil_sim pil: listening on %s:%d target %s (%s) image %s%s%s\n", o->host, p,
+               o->target, machine, o->image, o->scenario != NULL ? " scenario " : "",
+               o->scenario != NULL ? o->scenario : "");
+        fflush(stdout);
+        while (!g_stop && waitpid(pid, &wst, WNOHANG) == 0) {
+            const struct timespec ts = {0, 50000000L};
+            nanosleep(&ts, NULL);
+        }
+    }
+    int status = 1;
+    if (waitpid(pid, &wst, WNOHANG) == 0) {
+        kill(pid, SIGTERM);
+        (void)waitpid(pid, &wst, 0);
+        status = up ? 0 : 1;
+    } else {
+        fprintf(stderr, "hil_sim pil: qemu exited (%d)\n",
+                WIFEXITED(wst) ? WEXITSTATUS(wst) : 128 + WTERMSIG(wst));
+    }
+    if (!up) {
+        fprintf(stderr, "hil_sim pil: the board's serial port never listened on %s:%d\n", o->host,
+                p);
+    }
+    return status;
+}
+
+/* The board of --target and the image (default: the build tree's): 0, else 2 with a message. */
+static int pil_board(pil_opts_t *o, const char **machine, const char **cpu, char *image_buf,
+                     size_t image_cap)
+{
+    if (o->target != NULL && strcmp(o->target, "cortex-m4f") == 0) {
+        *machine = "mps2-an386";
+        *cpu = "cortex-m4";
+    } else if (o->target != NULL && strcmp(o->target, "cortex-m3") == 0) {
+        *machine = "mps2-an385";
+        *cpu = "cortex-m3";
     } else {
         fprintf(stderr, "hil_sim pil: --target must be cortex-m4f or cortex-m3\n");
         return 2;
     }
-    char image_buf[SIM_PATH_MAX + 64];
-    if (image == NULL) {
-        snprintf(image_buf, sizeof image_buf, "%s/build/%s/firmware/ports/cortex-m/fs_pil.elf",
-                 FS_SOURCE_DIR, target);
-        image = image_buf;
+    if (o->image == NULL) {
+        snprintf(image_buf, image_cap, "%s/build/%s/firmware/ports/cortex-m/fs_pil.elf",
+                 FS_SOURCE_DIR, o->target);
+        o->image = image_buf;
     }
-    if (access(image, R_OK) != 0) {
+    if (access(o->image, R_OK) != 0) {
         fprintf(stderr,
                 "hil_sim pil: no image at %s: build it with `cmake --preset %s && "
                 "cmake --build build/%s --target fs_pil` or pass --image\n",
-                image, target, target);
+                o->image, o->target, o->target);
         return 2;
     }
+    return 0;
+}
+
+/* The parameter block the image reads at boot (scenario and device settings) into blk: its
+ * length, 0 on an error (reported). */
+static uint32_t pil_params(const pil_opts_t *o, uint8_t *blk, uint32_t cap)
+{
     sim_scenario_t sc;
     char err[SIM_ERR_MAX];
     sim_scenario_defaults(&sc);
-    if (scenario != NULL && sim_scenario_load(&sc, scenario, err) != 0) {
+    if (o->scenario != NULL && sim_scenario_load(&sc, o->scenario, err) != 0) {
         fprintf(stderr, "hil_sim pil: %s\n", err);
-        return 2;
+        return 0u;
     }
     sim_params_dev_t dev;
     memset(&dev, 0, sizeof dev);
-    dev.node = (uint32_t)node;
-    dev.host_timeout_ms = (uint32_t)host_timeout;
+    dev.node = (uint32_t)o->node;
+    dev.host_timeout_ms = (uint32_t)o->host_timeout;
     dev.flags = SIM_PARAMS_PACE; /* qemu runs with -icount sleep=off */
     if (getrandom(dev.seed, sizeof dev.seed, 0) != (ssize_t)sizeof dev.seed) {
         fprintf(stderr, "hil_sim pil: getrandom failed\n");
-        return 1;
+        return 0u;
+    }
+    const uint32_t n = sim_params_pack(&sc, &dev, blk, cap);
+    if (n == 0u) {
+        fprintf(stderr, "hil_sim pil: the scenario does not fit the image's parameter block\n");
+    }
+    return n;
+}
+
+int sim_cmd_pil(int argc, char **argv)
+{
+    pil_opts_t o = {NULL,    "127.0.0.1", NULL,  NULL, NULL,   "qemu-system-arm",
+                    29537.0, 0.0,         100.0, 2.0,  {NULL}, 0};
+    const int parsed = pil_parse(argc, argv, &o);
+    if (parsed >= 0) {
+        return parsed;
+    }
+    const char *machine = NULL, *cpu = NULL;
+    char image_buf[SIM_PATH_MAX + 64];
+    if (pil_board(&o, &machine, &cpu, image_buf, sizeof image_buf) != 0) {
+        return 2;
     }
     static uint8_t blk[SIM_PARAMS_MAX_BYTES];
-    const uint32_t blk_len = sim_params_pack(&sc, &dev, blk, (uint32_t)sizeof blk);
-
+    const uint32_t blk_len = pil_params(&o, blk, (uint32_t)sizeof blk);
+    if (blk_len == 0u) {
+        return 2;
+    }
     char dir[] = "/tmp/hil_sim_pil.XXXXXX";
     if (mkdtemp(dir) == NULL) {
         fprintf(stderr, "hil_sim pil: cannot create a work folder: %s\n", strerror(errno));
@@ -290,93 +418,18 @@ int sim_cmd_pil(int argc, char **argv)
     if (pf != NULL) {
         fclose(pf);
     }
-    const char *flash_path = flash != NULL ? flash : flash_tmp;
-    if (!wrote || blk_len == 0u) {
+    const char *flash_path = o.flash != NULL ? o.flash : flash_tmp;
+    if (!wrote) {
         fprintf(stderr, "hil_sim pil: cannot write the parameter block\n");
     } else if (flash_file(flash_path) == 0 && provision(flash_path) == 0) {
-        int p = (int)port;
-        if (p == 0) {
-            p = free_port(host);
-        }
-        char serial[128], loader[128], backend[SIM_PATH_MAX + 96], icount[64];
-        snprintf(serial, sizeof serial, "tcp:%s:%d,server=on,wait=off", host, p);
-        snprintf(loader, sizeof loader, "loader,file=%s,addr=0x%08X,force-raw=on", params_path,
-                 (unsigned)CM_PARAMS_ADDR);
-        snprintf(backend, sizeof backend,
-                 "memory-backend-file,id=flash,size=16M,mem-path=%s,share=on", flash_path);
-        snprintf(icount, sizeof icount, "shift=%d,sleep=off", (int)shift);
-        char *qargv[24 + PIL_MAX_EXTRA] = {(char *)qemu,
-                                           "-M",
-                                           (char *)machine,
-                                           "-cpu",
-                                           (char *)cpu,
-                                           "-nographic",
-                                           "-monitor",
-                                           "none",
-                                           "-semihosting-config",
-                                           "enable=on,target=native",
-                                           "-kernel",
-                                           (char *)image,
-                                           "-device",
-                                           loader,
-                                           "-serial",
-                                           serial,
-                                           "-object",
-                                           backend,
-                                           "-machine",
-                                           "memory-backend=flash",
-                                           "-icount",
-                                           icount};
-        int qn = 22;
-        for (int i = 0; i < n_extra; i++) {
-            qargv[qn++] = extra[i];
-        }
-        qargv[qn] = NULL;
+        const int p = (o.port == 0.0) ? free_port(o.host) : (int)o.port;
         signal(SIGINT, on_signal);
         signal(SIGTERM, on_signal);
-        const pid_t pid = p > 0 ? fork() : -1;
-        if (pid == 0) {
-            execvp(qemu, qargv);
-            fprintf(stderr, "hil_sim pil: cannot run %s: %s\n", qemu, strerror(errno));
-            _exit(127);
-        }
+        const pid_t pid = pil_spawn(&o, machine, cpu, p, params_path, flash_path);
         if (pid < 0) {
             fprintf(stderr, "hil_sim pil: cannot start qemu (port %d)\n", p);
         } else {
-            int wst = 0;
-            int up = 0;
-            for (int i = 0; i < 500 && !g_stop && !up; i++) {
-                if (waitpid(pid, &wst, WNOHANG) == pid) {
-                    break;
-                }
-                up = can_connect(host, p);
-                if (!up) {
-                    const struct timespec ts = {0, 10000000L};
-                    nanosleep(&ts, NULL);
-                }
-            }
-            if (up) {
-                printf("hil_sim pil: listening on %s:%d target %s (%s) image %s%s%s\n", host, p,
-                       target, machine, image, scenario != NULL ? " scenario " : "",
-                       scenario != NULL ? scenario : "");
-                fflush(stdout);
-                while (!g_stop && waitpid(pid, &wst, WNOHANG) == 0) {
-                    const struct timespec ts = {0, 50000000L};
-                    nanosleep(&ts, NULL);
-                }
-            }
-            if (waitpid(pid, &wst, WNOHANG) == 0) {
-                kill(pid, SIGTERM);
-                (void)waitpid(pid, &wst, 0);
-                status = up ? 0 : 1;
-            } else {
-                fprintf(stderr, "hil_sim pil: qemu exited (%d)\n",
-                        WIFEXITED(wst) ? WEXITSTATUS(wst) : 128 + WTERMSIG(wst));
-            }
-            if (!up) {
-                fprintf(stderr, "hil_sim pil: the board's serial port never listened on %s:%d\n",
-                        host, p);
-            }
+            status = pil_supervise(&o, pid, p, machine);
         }
     }
     unlink(params_path);

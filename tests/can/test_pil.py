@@ -9,19 +9,20 @@ The image is found in build/cortex-m4f (scripts/test.sh builds it); a missing im
 naming the build command. The device's host-silence timeout is the CAN tests' configurable one
 (conftest.HOST_TIMEOUT_MS): python-can's slcan reads the 1 kHz stream byte by byte, and on a
 loaded machine its heartbeat thread stalls for longer than the product default (docs/cortex-m.md)."""
+
 from __future__ import annotations
 
 import os
 import subprocess
 import time
+from collections.abc import Iterator
 from pathlib import Path
-from typing import Iterator
 
 import can
 import numpy as np
 import pytest
-
 from conftest import HOST_TIMEOUT_MS, REPO, SCENARIOS, hil_sim_path
+
 from forceskill import cli
 from forceskill.model import fwimage as fw
 from forceskill.model.skill import Skill
@@ -46,14 +47,33 @@ class Pil:
     """A running `hil_sim pil --target cortex-m4f` (terminated by the fixture)."""
 
     def __init__(self, flash: Path) -> None:
-        assert IMAGE.is_file(), (f"Cortex-M4F image not built at {IMAGE}: run `cmake --preset cortex-m4f "
-                                 "&& cmake --build build/cortex-m4f --target fs_pil`")
-        self.proc = subprocess.Popen([str(hil_sim_path()), "pil", "--target", "cortex-m4f", "--port", "0",
-                                      "--scenario", str(SCENARIO), "--flash", str(flash),
-                                      "--host-timeout", str(HOST_TIMEOUT_MS)],
-                                     stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        assert IMAGE.is_file(), (
+            f"Cortex-M4F image not built at {IMAGE}: run `cmake --preset cortex-m4f "
+            "&& cmake --build build/cortex-m4f --target fs_pil`"
+        )
+        self.proc = subprocess.Popen(
+            [
+                str(hil_sim_path()),
+                "pil",
+                "--target",
+                "cortex-m4f",
+                "--port",
+                "0",
+                "--scenario",
+                str(SCENARIO),
+                "--flash",
+                str(flash),
+                "--host-timeout",
+                str(HOST_TIMEOUT_MS),
+            ],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
         line = self.proc.stdout.readline()
-        assert "listening on 127.0.0.1:" in line, f"hil_sim pil did not start: {line!r} {self.proc.stderr.read()}"
+        assert "listening on 127.0.0.1:" in line, (
+            f"hil_sim pil did not start: {line!r} {self.proc.stderr.read()}"
+        )
         self.port = int(line.split("127.0.0.1:")[1].split()[0])
 
     def bus_args(self) -> list[str]:
@@ -99,7 +119,7 @@ def test_slcan_handshake_and_frames(pil):
             if m is not None:
                 assert not m.is_extended_id and m.dlc <= 8
                 ids[m.arbitration_id] = ids.get(m.arbitration_id, 0) + 1
-        assert ids.get(0x180, 0) >= 20        # DeviceStatus every 10 ms of device time
+        assert ids.get(0x180, 0) >= 20  # DeviceStatus every 10 ms of device time
         bus.serialPortOrig.write(b"Xbogus\r")
         deadline = time.monotonic() + PIL_TIMEOUT_S
         seen_bel = False
@@ -135,8 +155,21 @@ def test_journey_on_the_image_matches_the_host_build(pil, tmp_path, capsys):
     bus = pil.bus_args()
     out = forceskill(capsys, "record", "-o", str(d / "demo.blf"), "--duration", "6", *bus)
     assert "in TEACH" in out
-    out = forceskill(capsys, "fit", str(d / "demo.blf"), "--stiffness", str(K_NPM), "--surface-m",
-                     str(SURFACE_M), "--object-mass", str(OBJECT_MASS_KG), "--end", "release", "-o", str(d / "press.skill"))
+    out = forceskill(
+        capsys,
+        "fit",
+        str(d / "demo.blf"),
+        "--stiffness",
+        str(K_NPM),
+        "--surface-m",
+        str(SURFACE_M),
+        "--object-mass",
+        str(OBJECT_MASS_KG),
+        "--end",
+        "release",
+        "-o",
+        str(d / "press.skill"),
+    )
     assert float(out.split("approximation error: max ")[1].split(" %")[0]) <= 2.5
     out = forceskill(capsys, "upload", str(d / "press.skill"), "--slot", "1", "-q", *bus)
     assert "verified by read-back" in out
@@ -155,17 +188,35 @@ def test_journey_on_the_image_matches_the_host_build(pil, tmp_path, capsys):
         mx_h, rms_h = [], []
         for seed in HOST_SEEDS:
             log = d / f"host_{g}_{seed}.csv"
-            subprocess.run([str(hil_sim_path()), "run", str(SCENARIO_EXEC), "--skill", str(d / "press.skill"),
-                            "--goal-scale", g, "--seed", str(seed), "--duration", f"{sk.duration_s + 0.5:.3f}",
-                            "-o", str(log)], check=True, capture_output=True)
+            subprocess.run(
+                [
+                    str(hil_sim_path()),
+                    "run",
+                    str(SCENARIO_EXEC),
+                    "--skill",
+                    str(d / "press.skill"),
+                    "--goal-scale",
+                    g,
+                    "--seed",
+                    str(seed),
+                    "--duration",
+                    f"{sk.duration_s + 0.5:.3f}",
+                    "-o",
+                    str(log),
+                ],
+                check=True,
+                capture_output=True,
+            )
             h = load_csv(log)
-            keep = h["t"] <= image[g]["t"][-1] + 1e-9       # the same span as the image's run
+            keep = h["t"] <= image[g]["t"][-1] + 1e-9  # the same span as the image's run
             m, r = tracking({k: v[keep] for k, v in h.items()})
             mx_h.append(m)
             rms_h.append(r)
         mx_i, rms_i = tracking(image[g])
-        print(f"goal x{g}: image max {mx_i:.2f} % RMS {rms_i:.2f} %; host build over {len(HOST_SEEDS)} seeds: "
-              f"max {min(mx_h):.2f}..{max(mx_h):.2f} %, RMS {min(rms_h):.2f}..{max(rms_h):.2f} %")
+        print(
+            f"goal x{g}: image max {mx_i:.2f} % RMS {rms_i:.2f} %; host build over {len(HOST_SEEDS)} seeds: "
+            f"max {min(mx_h):.2f}..{max(mx_h):.2f} %, RMS {min(rms_h):.2f}..{max(rms_h):.2f} %"
+        )
         assert rms_i <= 3.0 and mx_i <= 6.0
         assert min(mx_h) - 0.5 <= mx_i <= max(mx_h) + 0.5, (g, mx_i, mx_h)
         assert min(rms_h) - 0.5 <= rms_i <= max(rms_h) + 0.5, (g, rms_i, rms_h)
@@ -181,11 +232,18 @@ def test_skills_survive_a_board_reset(pil, capsys):
     bus = pil.bus_args()
     before = forceskill(capsys, "status", *bus)
     assert "slot 1: " in before and "slot 1: empty" not in before
+    import argparse
+
     from forceskill.commands._common import connect
     from forceskill.link import uds as U
-    import argparse
-    ns = argparse.Namespace(interface="slcan", channel=f"socket://127.0.0.1:{pil.port}", bus_kwargs={},
-                            node=0, timeout=float(PIL_TIMEOUT_S))
+
+    ns = argparse.Namespace(
+        interface="slcan",
+        channel=f"socket://127.0.0.1:{pil.port}",
+        bus_kwargs={},
+        node=0,
+        timeout=float(PIL_TIMEOUT_S),
+    )
     with connect(ns) as dev:
         tick0 = dev.status.tick
         with U.uds_client(dev) as client:
@@ -193,9 +251,9 @@ def test_skills_survive_a_board_reset(pil, capsys):
         t0 = time.monotonic()
         while time.monotonic() - t0 < 3 * PIL_TIMEOUT_S and dev.status.tick >= tick0:
             time.sleep(0.05)
-        assert dev.status.tick < tick0          # the tick counter restarted: the board was reset
+        assert dev.status.tick < tick0  # the tick counter restarted: the board was reset
     after = forceskill(capsys, "status", *bus)
-    line = [ln for ln in before.splitlines() if "slot 1:" in ln][0]
+    line = next(ln for ln in before.splitlines() if "slot 1:" in ln)
     assert line in after
 
 
@@ -249,4 +307,4 @@ def test_firmware_update_on_the_image(pil_fw, tmp_path, capsys):
 
 def slot1(capsys, bus: list[str]) -> str:
     out = forceskill(capsys, "status", *bus)
-    return [ln for ln in out.splitlines() if ln.strip().startswith("slot 1:")][0]
+    return next(ln for ln in out.splitlines() if ln.strip().startswith("slot 1:"))

@@ -280,8 +280,10 @@ def fit(
     skill.to_bytes()  # validates exactly as the firmware will
     if bands.complete:
         h = s * bands.sum_weighted(weights)
+        h_y_scale = bands.sum_weighted(skill.y_weights) if skill.y_weights is not None else None
     else:
         h = s * dmp.forcing_scale(u[:-1], skill)
+        h_y_scale = dmp.forcing_scales(u[:-1], skill)[1] if skill.y_weights is not None else None
     del bands  # the kernels are the largest arrays of a long fit: freed before the rollout
     y, _, _ = dmp.transform_scan(p.alpha, p.beta, p.gamma, a, goal_N, h)
     f_hat = f0 + y
@@ -290,9 +292,8 @@ def fit(
     y_res: dict[str, Any] = {}
     if skill.y_weights is not None and d.y_m is not None:
         s_y = v[:-1]
-        h_y = s_y * (
-            bands.sum_weighted(skill.y_weights) if bands.complete else dmp.forcing_scales(u[:-1], skill)[1]
-        )
+        assert h_y_scale is not None
+        h_y = s_y * h_y_scale
         p_hat, _, _ = dmp.transform_scan(p.alpha, skill.beta_y, 0.0, a, skill.goal_y_m, h_y)
         y_hat = skill.y_start_m + p_hat
         e_y = d.y_m - y_hat

@@ -200,6 +200,8 @@ static void test_y_path(void **state)
     assert_int_equal(skchk_run_path(&skill, pk, FS_R(-1.0), FS_R(1.0)), FS_ERR_SKCHK_PATH_SCALE);
     skill.dmp.y_weight[3] = (fs_real_t)(2.0 * SKCHK_WEIGHT_MAX);
     assert_int_equal(skchk_params(&skill), FS_ERR_SKCHK_PATH);
+}
+
 static void test_stiffness_limit(void **state)
 {
     (void)state;
