@@ -92,7 +92,7 @@ void sim_couple_device_config(const sim_scenario_t *sc, app_config_t *cfg)
         cfg->saf.lim.axis[a].force_max_N = (fs_real_t)sc->force_max_N;
     }
     if (sc->stiffness_max_Npm > 0.0) {
-        cfg->stiffness_max_Npm = sc->stiffness_max_Npm;
+        cfg->stiffness_max_Npm = (fs_real_t)sc->stiffness_max_Npm;
     } else if (cfg->render_carriage != 0u) {
         cfg->stiffness_max_Npm = (fs_real_t)APP_STIFFNESS_MAX_RENDERED_NPM;
     }
