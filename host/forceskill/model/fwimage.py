@@ -16,6 +16,8 @@ import struct
 from dataclasses import dataclass
 from pathlib import Path
 
+from .. import codes as C
+
 # 7xx: firmware image and update, the firmware's boot_status.h; 73x host only (codes.py)
 from ..codes import BOOT_ERR_CONFIG_FORMAT as ERR_CONFIG_FORMAT
 from ..codes import BOOT_ERR_DOWNGRADE as ERR_DOWNGRADE
@@ -57,27 +59,36 @@ CONFIG_FORMAT = 1
 DEV_KEY = bytes(range(0x40, 0x60))
 KEY_ENV = "FORCESKILL_FW_KEY"
 
-# Negative response codes of the device's update path (firmware/boot/fwu.h, docs/update.md).
+# Negative response codes of the device's update path (codes.toml's NRC table, docs/update.md).
 NRC = {
-    0x22: (
+    C.NRC_CONDITIONS_NOT_CORRECT: (
         ERR_TEST_PENDING,
         "conditions not correct: the running image is still on test (not "
         "confirmed), or the device is busy (not idle, a transfer open)",
     ),
-    0x24: (ERR_SEQUENCE, "request sequence error"),
-    0x31: (ERR_RANGE, "request out of range (address, size or data format)"),
-    0x33: (ERR_LOCKED, "security access denied: programming session and unlock required"),
-    0x71: (ERR_OVERRUN, "transfer data suspended: more data than announced"),
-    0x72: (ERR_FLASH, "general programming failure (flash write)"),
-    0x73: (ERR_BLOCK_COUNTER, "wrong block sequence counter"),
-    0xF0: (ERR_FORMAT, "image header malformed (magic, format version or reserved bytes)"),
-    0xF1: (ERR_TARGET, "image is for another target"),
-    0xF2: (ERR_TRUNCATED, "image truncated"),
-    0xF3: (ERR_HASH, "payload SHA-256 mismatch (corrupted transfer)"),
-    0xF4: (ERR_TAG, "authentication tag wrong (image not signed with this device's key)"),
-    0xF5: (ERR_DOWNGRADE, "downgrade refused (use --allow-downgrade)"),
-    0xF6: (ERR_SKILL_FORMAT, "stored skills use a format the new image cannot read or migrate"),
-    0xF7: (ERR_CONFIG_FORMAT, "stored configuration uses a format the new image cannot read or migrate"),
+    C.NRC_REQUEST_SEQUENCE_ERROR: (ERR_SEQUENCE, "request sequence error"),
+    C.NRC_REQUEST_OUT_OF_RANGE: (ERR_RANGE, "request out of range (address, size or data format)"),
+    C.NRC_SECURITY_ACCESS_DENIED: (
+        ERR_LOCKED,
+        "security access denied: programming session and unlock required",
+    ),
+    C.NRC_TRANSFER_SUSPENDED: (ERR_OVERRUN, "transfer data suspended: more data than announced"),
+    C.NRC_PROGRAMMING_FAILURE: (ERR_FLASH, "general programming failure (flash write)"),
+    C.NRC_WRONG_BLOCK_COUNTER: (ERR_BLOCK_COUNTER, "wrong block sequence counter"),
+    C.NRC_FW_HEADER: (ERR_FORMAT, "image header malformed (magic, format version or reserved bytes)"),
+    C.NRC_FW_TARGET: (ERR_TARGET, "image is for another target"),
+    C.NRC_FW_TRUNCATED: (ERR_TRUNCATED, "image truncated"),
+    C.NRC_FW_HASH: (ERR_HASH, "payload SHA-256 mismatch (corrupted transfer)"),
+    C.NRC_FW_TAG: (ERR_TAG, "authentication tag wrong (image not signed with this device's key)"),
+    C.NRC_FW_DOWNGRADE: (ERR_DOWNGRADE, "downgrade refused (use --allow-downgrade)"),
+    C.NRC_FW_SKILL_FORMAT: (
+        ERR_SKILL_FORMAT,
+        "stored skills use a format the new image cannot read or migrate",
+    ),
+    C.NRC_FW_CONFIG_FORMAT: (
+        ERR_CONFIG_FORMAT,
+        "stored configuration uses a format the new image cannot read or migrate",
+    ),
 }
 
 
