@@ -21,11 +21,11 @@ from pathlib import Path
 import can
 import numpy as np
 import pytest
-from conftest import HOST_TIMEOUT_MS, REPO, SCENARIOS, hil_sim_path
 
 from forceskill import cli
 from forceskill.model import fwimage as fw
 from forceskill.model.skill import Skill
+from helpers.canbus import HOST_TIMEOUT_MS, REPO, SCENARIOS, hil_sim_path
 
 IMAGE = REPO / "build" / "cortex-m4f" / "firmware" / "ports" / "cortex-m" / "fs_pil.elf"
 K_NPM = 100.0
