@@ -34,8 +34,8 @@ from forceskill.model import dmp, synthetic
 from forceskill.model.demo import Demo
 from forceskill.model.fit import fit
 from forceskill.model.params import Gains, gains_for_object
+from forceskill.model.skill import _F64_NAMES, _F64_NAMES_Y, MAGIC, MAX_KERNELS, Skill
 from forceskill.model.skill import HEADER_SIZE_V2 as HEADER_SIZE
-from forceskill.model.skill import MAGIC, MAX_KERNELS, Skill
 
 #: the HIL objects' mass (hil_sim/scenarios): the skills' force gains are adapted to it, so the
 #: vectors run stably on the simulator (the fault rig and the HIL tests execute them)
@@ -173,23 +173,7 @@ def golden(skills: dict[str, Skill]) -> tuple[dict[str, bytes], list[str]]:
 # ---- corrupt images ------------------------------------------------------------------------
 
 _HDR = struct.Struct("<IHHIHH15d")
-_F64 = (
-    "dt_s",
-    "tau_s",
-    "alpha",
-    "beta",
-    "gamma",
-    "stiffness_Npm",
-    "goal_N",
-    "duration_s",
-    "m_d_kg",
-    "k_d_Nspm",
-    "k_p_Npm",
-    "kkf_Npm",
-    "kki_Npms",
-    "surface_m",
-    "force0_N",
-)
+_F64 = _F64_NAMES  # the header's float64 fields in file order (the model's own list)
 #: a v1 image (metres, k-dependent gains): 14 f64 in a 128-byte header
 _HDR_V1 = struct.Struct("<IHHIHH14d")
 
@@ -321,7 +305,7 @@ def bad_images_y(base: Skill) -> list[tuple[str, bytes, int]]:
     """Version-3 rejections (the y half) from a valid skill with a y DMP."""
     assert base.y_weights is not None
     n = base.n_kernels
-    names = (*_F64, "y_start_m", "goal_y_m")
+    names = (*_F64, *_F64_NAMES_Y)
 
     def pack3(yw: np.ndarray, n_y: int | None = None, **kw: Any) -> bytes:
         f = {k: getattr(base, k) for k in names}
