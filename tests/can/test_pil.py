@@ -25,7 +25,7 @@ import pytest
 from forceskill import cli
 from forceskill.model import fwimage as fw
 from forceskill.model.skill import Skill
-from helpers.canbus import HOST_TIMEOUT_MS, REPO, SCENARIOS, hil_sim_path
+from helpers.canbus import HOST_TIMEOUT_MS, REPO, SCENARIOS, forceskill, hil_sim_path
 
 IMAGE = REPO / "build" / "cortex-m4f" / "firmware" / "ports" / "cortex-m" / "fs_pil.elf"
 K_NPM = 100.0
@@ -87,13 +87,6 @@ class Pil:
             self.proc.kill()
             _, err = self.proc.communicate()
         return err
-
-
-def forceskill(capsys, *argv: str) -> str:
-    rc = cli.main(list(argv))
-    out, err = capsys.readouterr()
-    assert rc == 0, f"forceskill {' '.join(argv)} failed ({rc}): {err}"
-    return out
 
 
 @pytest.fixture(scope="module")
