@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Exact instruction counts of the shipped Cortex-M image's 1 kHz tick under qemu.
 #   bench/qemu_tick.sh TARGET [--build-dir DIR] [--exec-s S] [--skill FILE]
-# TARGET: cortex-m4f (mps2-an386, hardware float) or cortex-m3 (mps2-an385, software float).
+# TARGET: cortex-m4f (mps2-an386, hardware float) or cortex-m3 (mps2-an385: the DMP and the
+# control law in fixed point, the rest of the application in software float).
 # 1. builds the images (toolchain cmake/arm-none-eabi.cmake, Release; size, heap and stack report);
 # 2. checks that a program calling malloc cannot link with the images' flags;
 # 3. checks the counter on cm_count_check (must count exactly 103 per marked region);
@@ -12,11 +13,12 @@
 #    tests/vectors/engrave_n50_ridge_release.skill with a read-back (UDS upload) during it;
 # 5. counts, per app_tick (between cm_port_mark_begin and cm_port_mark_end), all its
 #    instructions and those of the DMP and control-law part (dmp_step and pfc_step with their
-#    callees), and the kind of the tick (cm_port_mark_idle/execute/upload after it); prints
+#    callees; on the M3 their fixed-point builds dmpfx_step and pfcfx_step), and the kind of the
+#    tick (cm_port_mark_idle/execute/upload after it); prints
 #      tick_instructions target=T kernels=N min= median= max=          (DMP + control law, EXECUTE)
 #      app_tick_instructions target=T state=IDLE|EXECUTE|UPLOAD min= median= max=
 # Exit status 1 if a check fails or the DMP + control-law part exceeds its budget (M4F 1,500,
-# M3 20,000: software float).
+# M3 1,250).
 set -euo pipefail
 
 usage() { echo "usage: $0 cortex-m4f|cortex-m3 [--build-dir DIR] [--exec-s S] [--skill FILE]" >&2; exit 2; }
@@ -36,8 +38,10 @@ while [ $# -gt 0 ]; do
 done
 
 case $TARGET in
-  cortex-m4f) MACHINE=mps2-an386; CPU=cortex-m4; BUDGET=1500 ;;
-  cortex-m3)  MACHINE=mps2-an385; CPU=cortex-m3; BUDGET=20000 ;;
+  cortex-m4f) MACHINE=mps2-an386; CPU=cortex-m4; BUDGET=1500
+              DMP_RE='^dmp_step(_xy)?_f32$'; LAW=pfc_step_f32 ;;
+  cortex-m3)  MACHINE=mps2-an385; CPU=cortex-m3; BUDGET=1250
+              DMP_RE='^dmpfx_step(_xy)?$'; LAW=pfcfx_step ;;
   *) usage ;;
 esac
 PY=${PYTHON:-$ROOT/.venv/bin/python}
@@ -129,7 +133,7 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                   if (ininit) ba++
                   bprev = s }
     if (inb) { c++; h[s]++
-               if (!inpart && (s ~ DMP || s == "pfc_step_f32")) { inpart = 1; caller = prev
+               if (!inpart && (s ~ DMP || s == LAW)) { inpart = 1; caller = prev
                                                                    if (s ~ DMP) dmp = 1 }
                else if (inpart && s == caller) { inpart = 0 }
                if (inpart) part++
@@ -142,7 +146,7 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                prev = s } }'
 mkfifo "$WORK/trace.fifo"
 # QEMU_TICK_PROFILE=FILE: also write the mean instructions per function of an EXECUTE tick there
-awk -v prof="${QEMU_TICK_PROFILE:-}" -v DMP="^dmp_step(_xy)?_f32$" "$COUNT_AWK" < "$WORK/trace.fifo" > "$WORK/ticks.txt" &
+awk -v prof="${QEMU_TICK_PROFILE:-}" -v DMP="$DMP_RE" -v LAW="$LAW" "$COUNT_AWK" < "$WORK/trace.fifo" > "$WORK/ticks.txt" &
 AWK_PID=$!
 "$HIL_SIM" pil --target "$TARGET" --image "$IMG/fs_pil.elf" --port 0 --host-timeout 500 \
   --qemu-arg "${ONE_INSN[0]}" ${ONE_INSN[1]:+--qemu-arg "${ONE_INSN[1]}"} \
@@ -157,6 +161,9 @@ status=0
 kill -TERM "$PIL_PID"; wait "$PIL_PID" || true; PIL_PID=""
 wait $AWK_PID
 grep '^fs_pil' "$WORK/pil.err" || true
+# QEMU_TICK_KEEP=FILE: also keep the per-tick counts there (kind, app_tick, DMP + law, stepped,
+# DMP alone; one line per tick in order)
+[ -z "${QEMU_TICK_KEEP:-}" ] || cp "$WORK/ticks.txt" "$QEMU_TICK_KEEP"
 
 stats() { # lines of numbers on stdin -> "min median max count"
   sort -n | awk '{ v[NR] = $1 } END { if (NR == 0) { print "- - - 0"; exit }

@@ -40,14 +40,90 @@ static fs_real_t exec_step_duration(const exec_step_t *s)
     return s->skill->dmp.duration_s * s->time_scale;
 }
 
-static void exec_begin_step(exec_state_t *st)
+/* The running step's DMP from zero state; the fixed-point build converts its skill and scales
+ * (3xx when one does not fit). */
+static fs_status_t exec_begin_step(exec_state_t *st)
 {
     const exec_step_t *s = &st->steps[st->step];
+    st->t_step_s = FS_R(0.0);
+    st->force_dmp_N = s->skill->dmp.force0_N;
+#ifdef FS_EXEC_FIXED
+    dmpfx_state_reset(&st->dmp);
+    fs_status_t rc = dmpfx_from_model_bound(&s->skill->dmp, &st->dmp_model);
+    if (rc == FS_OK) {
+        rc = dmpfx_run_init(&st->dmp_model, (double)s->goal_scale, (double)s->time_scale, &st->run);
+    }
+    return (rc == FS_OK) ? dmpfx_run_path(&st->dmp_model, (double)s->path_scale, &st->run) : rc;
+#else
     dmp_state_reset(&st->dmp);
     st->run.goal_scale = s->goal_scale;
     st->run.time_scale = s->time_scale;
-    st->t_step_s = FS_R(0.0);
-    st->force_dmp_N = s->skill->dmp.force0_N;
+    return FS_OK;
+#endif
+}
+
+/* One DMP step of the running step s (coupling cp may be NULL): returns f_hat, p into path_m. */
+static fs_real_t exec_dmp_step(exec_state_t *st, const exec_step_t *s, const dmp_coupling_t *cp)
+{
+#ifdef FS_EXEC_FIXED
+    /* the tick's slow-down as the rate 1/(1 + slowdown) (NaN or <= 0: 1; +inf: 0) */
+    dmpfx_coupling_t c = {0, FX_Q31_ONE_U};
+    if (cp != 0 && cp->phase_slowdown > FS_R(0.0)) {
+        c.rate_q31 = (uint32_t)fx_from_float(FS_R(1.0) / (FS_R(1.0) + cp->phase_slowdown), 31u);
+    }
+    const uint32_t ev = st->dmp.sat_events;
+    (void)dmpfx_step_xy(&st->dmp_model, &st->run, &st->dmp, (cp != 0) ? &c : 0, 0);
+    st->dmp_saturated = (st->dmp.sat_events != ev) ? 1u : 0u;
+    /* y and p from their accumulators (value * 2^31 of Q8.24, y in units of 2^s N), not from
+     * the Q8.24 views: the references' velocities and accelerations are their differences, and
+     * a view's LSB (6e-8 m) differenced twice at 1 kHz would be 0.06 m/s^2 */
+    st->path_m = fx_acc_to_float(st->dmp.path_acc, -55);
+    return s->skill->dmp.force0_N + fx_acc_to_float(st->dmp.y_acc, st->dmp_model.value_shift - 55);
+#else
+    return dmp_step_xy(&s->skill->dmp, &st->dmp, &st->run, cp, s->path_scale, &st->path_m);
+#endif
+}
+
+/* The control law of one tick (the fixed-point build: references and measurements converted in,
+ * commands out). */
+static void exec_law_step(const exec_config_t *cfg, exec_state_t *st,
+                          const pfc_axis_ref_t ref[PFC_AXES], const pfc_axis_meas_t m[PFC_AXES],
+                          fs_real_t force_cmd_N[PFC_AXES])
+{
+#ifdef FS_EXEC_FIXED
+    (void)cfg;
+    pfcfx_ref_t rq[PFC_AXES];
+    pfcfx_meas_t mq[PFC_AXES];
+    int32_t cmd_q16[PFC_AXES];
+    for (uint32_t a = 0u; a < PFC_AXES; a++) {
+        rq[a].pos_m = fx_from_float(ref[a].pos_m, 24u);
+        rq[a].vel_mps = fx_from_float(ref[a].vel_mps, 24u);
+        rq[a].acc_mps2 = fx_from_float(ref[a].acc_mps2, 24u);
+        rq[a].force_N = fx_from_float(ref[a].force_N, 16u);
+        mq[a].pos_m = fx_from_float(m[a].pos_m, 24u);
+        mq[a].vel_mps = fx_from_float(m[a].vel_mps, 24u);
+        mq[a].force_N = fx_from_float(m[a].force_N, 16u);
+    }
+    pfcfx_step(&st->pfc_cfg, &st->pfc, rq, mq, cmd_q16);
+    for (uint32_t a = 0u; a < PFC_AXES; a++) {
+        force_cmd_N[a] = fx_to_float(cmd_q16[a], 16u);
+    }
+#else
+    pfc_step(&cfg->pfc, &st->pfc, ref, m, force_cmd_N);
+#endif
+}
+
+/* The law's state from zero (the fixed-point build converts cfg->pfc: 303 if it does not fit). */
+static fs_status_t exec_law_reset(const exec_config_t *cfg, exec_state_t *st)
+{
+#ifdef FS_EXEC_FIXED
+    pfcfx_reset(&st->pfc);
+    return pfcfx_from_config(&cfg->pfc, &st->pfc_cfg);
+#else
+    (void)cfg;
+    pfc_reset(&st->pfc);
+    return FS_OK;
+#endif
 }
 
 fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
@@ -116,9 +192,13 @@ fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_st
     st->y_ref_m = y_hold_m;
     st->y_ref_vel_mps = FS_R(0.0);
     st->start_pending = 1u;
-    pfc_reset(&st->pfc);
-    exec_begin_step(st);
-    return FS_OK;
+    rc = exec_law_reset(cfg, st);
+    /* every step begins once here, the first last: a later switch cannot fail */
+    for (uint8_t i = n_steps; rc == FS_OK && i > 0u; i--) {
+        st->step = (uint8_t)(i - 1u);
+        rc = exec_begin_step(st);
+    }
+    return rc;
 }
 
 fs_real_t exec_object_force(const exec_object_t *obj, fs_real_t p_m)
@@ -202,8 +282,7 @@ static fs_real_t exec_reference_force(const exec_config_t *cfg, exec_state_t *st
                                                         cfg->phase_stop_gain_per_N2);
         cp = &coupling;
     }
-    st->force_dmp_N = dmp_step_xy(&s->skill->dmp, &st->dmp, &st->run, cp, s->path_scale,
-                                  &st->path_m);
+    st->force_dmp_N = exec_dmp_step(st, s, cp);
     st->t_step_s += dt;
     fs_real_t f = st->force_dmp_N + st->force_carry_N * exec_blend(st->t_step_s);
 
@@ -213,7 +292,7 @@ static fs_real_t exec_reference_force(const exec_config_t *cfg, exec_state_t *st
             st->path_m = FS_R(0.0);
             st->step++;
             st->force_carry_N = f - st->steps[st->step].skill->dmp.force0_N;
-            exec_begin_step(st);
+            (void)exec_begin_step(st); /* converted by exec_start */
         } else {
             st->ending = 1u;
             st->force_end_N = f;
@@ -239,6 +318,9 @@ fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_mea
         return FS_ERR_NOT_FINITE;
     }
     const fs_real_t dt = cfg->pfc.dt_s;
+#ifdef FS_EXEC_FIXED
+    st->dmp_saturated = 0u;
+#endif
     const fs_real_t f_hat = exec_reference_force(cfg, st, meas);
     st->force_hat_N = f_hat;
 
@@ -288,14 +370,18 @@ fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_mea
     m[1].pos_m = meas->pos_m[1];
     m[1].vel_mps = meas->vel_mps[1];
     m[1].force_N = FS_R(0.0);
-    pfc_step(&cfg->pfc, &st->pfc, ref, m, out->force_cmd_N);
+    exec_law_step(cfg, st, ref, m, out->force_cmd_N);
 
     out->force_hat_N = f_hat;
     out->pos_ref_m = ref[0].pos_m;
     out->y_ref_m = y_d;
     out->step = st->step;
     out->done = st->done;
+#ifdef FS_EXEC_FIXED
+    return (st->dmp_saturated != 0u) ? FS_ERR_FIXED_OVERFLOW : FS_OK;
+#else
     return FS_OK;
+#endif
 }
 
 void exec_vel_init(exec_vel_t *v, fs_real_t cutoff_Hz, fs_real_t dt_s)

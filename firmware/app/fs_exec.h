@@ -39,6 +39,34 @@
 #include "pfc.h"
 #include "skill.h"
 
+/* Numeric layer of the DMP and the control law, chosen by the build like the core's:
+ *   default         the core's dmp_step_xy/pfc_step in fs_real_t (fs_app_exec, fs_app_exec_f32)
+ *   FS_EXEC_FIXED   their fixed-point build (firmware/fixed: dmpfx_step_xy, pfcfx_step) inside
+ *                   the float32 executor (fs_app_exec_fx: the Cortex-M3 image). Per tick the
+ *                   measurements and the references enter the law in Q formats and its
+ *                   commands, the DMP's force and y path leave as fs_real_t; the rest of the
+ *                   executor (reference model, blends, sequence) stays fs_real_t. A step's skill
+ *                   is converted when the step begins (dmpfx_from_model_bound: O(N), no rollout),
+ *                   the law's configuration at exec_start. Its symbols carry an _fx suffix, so
+ *                   a test links it beside the real executor. */
+#ifdef FS_EXEC_FIXED
+#ifndef FS_REAL_FLOAT
+#error "FS_EXEC_FIXED is the float32 executor's fixed-point build (FS_REAL_FLOAT)"
+#endif
+#include "dmpfx.h"
+#include "pfcfx.h"
+#define exec_config_default exec_config_default_fx
+#define exec_start exec_start_fx
+#define exec_object_force exec_object_force_fx
+#define exec_object_deformation exec_object_deformation_fx
+#define exec_tick exec_tick_fx
+#define exec_vel_init exec_vel_init_fx
+#define exec_vel_update exec_vel_update_fx
+#define exec_render_default exec_render_default_fx
+#define exec_render_reset exec_render_reset_fx
+#define exec_render_step exec_render_step_fx
+#endif
+
 #define EXEC_MAX_STEPS 8u
 /* Fade-out time of the previous step's force at a switch. 1 s spans a demonstration's ramp-up,
  * so the sum neither dips nor jumps; measured on the reuse experiment (8 seeds, deformation
@@ -102,8 +130,18 @@ typedef struct {
     uint8_t step;
     uint8_t ending; /* 1 after the last step's duration: end policy active */
     uint8_t done;
+#ifdef FS_EXEC_FIXED
+    dmpfx_model_t dmp_model; /* the running step's skill in fixed point */
+    dmpfx_run_t run;
+    dmpfx_state_t dmp;
+    pfcfx_config_t pfc_cfg; /* cfg->pfc at exec_start */
+    pfcfx_state_t pfc;
+    uint8_t dmp_saturated; /* this tick's DMP step saturated */
+#else
     dmp_state_t dmp;
     dmp_run_t run;
+    pfc_state_t pfc;
+#endif
     fs_real_t t_step_s;      /* time since the running step started */
     fs_real_t t_end_s;       /* time since the end policy started */
     fs_real_t force_dmp_N;   /* last DMP output of the running step */
@@ -120,7 +158,6 @@ typedef struct {
     fs_real_t y_ref_vel_mps;  /* yd_d */
     uint8_t start_pending;    /* 1 until the first tick has measured the contact force */
     fs_real_t surface_m;      /* the surface the reference is built on */
-    pfc_state_t pfc;
 } exec_state_t;
 
 /** Default configuration: pfc_default_config, 50 N limit, no model, no phase stopping. */
@@ -128,7 +165,8 @@ void exec_config_default(exec_config_t *cfg);
 
 /** Load a sequence (1..EXEC_MAX_STEPS steps) and reset the state; y_hold_m is the y position the
  *  path starts from (held by skills without a y DMP). Validates skills (non-NULL), finite scales,
- *  time_scale > 0, path_scale >= 0 and the configuration. */
+ *  time_scale > 0, path_scale >= 0 and the configuration; the fixed-point build also converts
+ *  every step (3xx codes: a skill, scale or gain that does not fit its Q format). */
 fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
                        uint8_t n_steps, fs_real_t y_hold_m);
 
@@ -139,7 +177,9 @@ fs_real_t exec_object_force(const exec_object_t *obj, fs_real_t p_m);
  *  0 for f <= 0). */
 fs_real_t exec_object_deformation(const exec_object_t *obj, fs_real_t force_N);
 
-/** One 1 kHz tick. Returns FS_ERR_NOT_FINITE (commanding 0 N) when a measurement is not finite. */
+/** One 1 kHz tick. Returns FS_ERR_NOT_FINITE (commanding 0 N) when a measurement is not finite;
+ *  the fixed-point build returns FS_ERR_FIXED_OVERFLOW in a tick whose DMP step saturated (the
+ *  commands are computed from the saturated values). */
 fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_meas_t *meas,
                       exec_out_t *out);
 

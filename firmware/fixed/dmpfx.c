@@ -14,6 +14,9 @@
  * envelopes are widened by 1e-4 so rounding never drops a kernel; the e_i test decides. */
 #define DMPFX_R_CUT 5.656854249492381
 #define DMPFX_ENVELOPE_MARGIN 1.0001
+/* 1/e, and the bound on |v~| the estimate of the y DMP's forcing uses (|h_y| = |v~ S_y|) */
+#define DMPFX_INV_E 0.36787944117144233
+#define DMPFX_V_PEAK_BOUND 1.9
 
 static int32_t dmpfx_env_clamp_q30(double v)
 {
@@ -45,32 +48,86 @@ static int32_t dmpfx_choose_shift(double magnitude)
 
 static fs_status_t dmpfx_convert(const dmp_model_t *m, int32_t shift, dmpfx_model_t *out);
 
-fs_status_t dmpfx_from_model(const dmp_model_t *m, dmpfx_model_t *out)
+/* max |w_i| of a weight set */
+static double dmpfx_w_max(const fs_real_t *w, uint16_t n)
+{
+    double w_max = 0.0;
+    for (uint16_t i = 0u; i < n; i++) {
+        w_max = fmax(w_max, fabs((double)w[i]));
+    }
+    return w_max;
+}
+
+/* B = |g|*(1 + max|w_i|) in N: |h| <= 1.9*|g|*max|w_i|, and y, z, I follow g and h */
+static double dmpfx_bound_N(const dmp_model_t *m)
+{
+    return fabs((double)m->goal_N) * (1.0 + dmpfx_w_max(m->weight, m->n_kernels));
+}
+
+static fs_status_t dmpfx_check_args(const dmp_model_t *m, const dmpfx_model_t *out)
 {
     if (m == NULL || out == NULL) {
         return FS_ERR_NULL_ARG;
     }
-    const uint16_t n = m->n_kernels;
-    if (n == 0u || n > DMP_MAX_KERNELS) {
-        return FS_ERR_SKILL_KERNELS;
+    return (m->n_kernels == 0u || m->n_kernels > DMP_MAX_KERNELS) ? FS_ERR_SKILL_KERNELS : FS_OK;
+}
+
+fs_status_t dmpfx_from_model(const dmp_model_t *m, dmpfx_model_t *out)
+{
+    const fs_status_t sa = dmpfx_check_args(m, out);
+    if (sa != FS_OK) {
+        return sa;
     }
-    /* Two passes: first at a scale that keeps |g|*(1 + max|w|) <= 2 (|h| <= 1.9*|g|*max|w|,
-     * and y, z, I follow g and h: the nominal run stays far below the headroom of 64), to
-     * measure its peak in N; then at the scale that puts that peak at DMPFX_SCALE_TARGET (the
-     * headroom above it is what goal scales up to 64/DMPFX_SCALE_TARGET use), measured again. */
-    double w_max = 0.0;
-    for (uint16_t i = 0u; i < n; i++) {
-        w_max = fmax(w_max, fabs((double)m->weight[i]));
-    }
-    const double bound_N = fabs((double)m->goal_N) * (1.0 + w_max) * 0.5 * DMPFX_SCALE_TARGET;
+    /* Two passes: first at a scale that keeps B <= 2 (the nominal run stays far below the
+     * headroom of 64), to measure its peak in N; then at the scale that puts that peak at
+     * DMPFX_SCALE_TARGET (the headroom above it is what goal scales up to
+     * 64/DMPFX_SCALE_TARGET use), measured again. */
+    const double bound_N = dmpfx_bound_N(m) * 0.5 * DMPFX_SCALE_TARGET;
     const int32_t s1 = dmpfx_choose_shift(bound_N);
     fs_status_t st = dmpfx_convert(m, s1, out);
+    if (st == FS_OK) {
+        st = dmpfx_measure_peaks(out, (double)m->duration_s);
+    }
     if (st != FS_OK) {
         return st;
     }
     const double peak_N = ldexp(out->peak_q24 / (double)FX_Q24_ONE, s1);
     const int32_t s2 = dmpfx_choose_shift(peak_N);
-    return (s2 == s1) ? FS_OK : dmpfx_convert(m, s2, out);
+    if (s2 == s1) {
+        return FS_OK;
+    }
+    st = dmpfx_convert(m, s2, out);
+    return (st == FS_OK) ? dmpfx_measure_peaks(out, (double)m->duration_s) : st;
+}
+
+fs_status_t dmpfx_from_model_bound(const dmp_model_t *m, dmpfx_model_t *out)
+{
+    const fs_status_t sa = dmpfx_check_args(m, out);
+    if (sa != FS_OK) {
+        return sa;
+    }
+    const double bound_N = dmpfx_bound_N(m);
+    const int32_t s = dmpfx_choose_shift(bound_N);
+    const fs_status_t st = dmpfx_convert(m, s, out);
+    if (st != FS_OK) {
+        return st;
+    }
+    const double lim_q24 = DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE;
+    out->peak_q24 = ldexp(bound_N, 24 - s);
+    out->peak_y_q24 = 0.0;
+    if (m->has_y != 0u) {
+        out->peak_y_q24 = ldexp(fabs((double)m->goal_y_m) +
+                                    DMPFX_V_PEAK_BOUND * dmpfx_w_max(m->y_weight, m->n_kernels),
+                                24);
+    }
+    /* v~ of the phase system peaks at sqrt(alpha beta)/e when critically damped (beta =
+     * alpha/4), lower when overdamped; the Euler steps overshoot that by 0.2 % on the vectors */
+    out->peak_v_q30 = ldexp(sqrt(out->alpha * out->beta) * DMPFX_INV_E * 1.01, 30);
+    if (out->peak_q24 > lim_q24 || out->peak_y_q24 > lim_q24 ||
+        out->peak_v_q30 > DMPFX_V_MAX * (double)FX_Q30_ONE) {
+        return FS_ERR_FIXED_OVERFLOW;
+    }
+    return FS_OK;
 }
 
 static fs_status_t dmpfx_convert(const dmp_model_t *m, int32_t shift, dmpfx_model_t *out)
@@ -142,7 +199,7 @@ static fs_status_t dmpfx_convert(const dmp_model_t *m, int32_t shift, dmpfx_mode
     out->peak_y_q24 = 0.0;
     out->peak_q24 = 0.0;
     out->peak_v_q30 = 0.0;
-    return dmpfx_measure_peaks(out, (double)m->duration_s);
+    return FS_OK;
 }
 
 fs_status_t dmpfx_run_init(const dmpfx_model_t *m, double goal_scale, double time_scale,

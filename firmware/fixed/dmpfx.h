@@ -119,6 +119,16 @@ typedef struct {
  *  FS_ERR_FIXED_WINDOW (301) too many overlapping kernels, FS_ERR_FIXED_STEP, FS_ERR_NULL_ARG. */
 fs_status_t dmpfx_from_model(const dmp_model_t *m, dmpfx_model_t *out);
 
+/** dmpfx_from_model without its rollouts, O(N): for a conversion within a control tick (the
+ *  fixed-point executor converts a skill when its step begins). The peaks are estimated instead
+ *  of measured: of h, y, z, I as B = |g|*(1 + max|w_i|) in N (the measured nominal peak is at
+ *  most 0.50 B on every skill of tests/vectors), of the y DMP as |g_y| + 1.9 max|w_y,i|, of v~
+ *  as 1.01 sqrt(alpha beta)/e; the value scale 2^s puts B at or below DMPFX_SCALE_TARGET (one to
+ *  three bits coarser than the measured scale). A run beyond the estimate saturates (never
+ *  wraps) and is counted in dmpfx_state_t.sat_events. Errors as dmpfx_from_model, the estimate
+ *  checked where the measured peaks are. */
+fs_status_t dmpfx_from_model_bound(const dmp_model_t *m, dmpfx_model_t *out);
+
 /** Per-tick constants for a goal and time scale; FS_ERR_SCALE_INVALID for a bad scale,
  *  FS_ERR_FIXED_STEP (302) if dt/tau_e is below 2^-24 or a constant is >= 0.5,
  *  FS_ERR_FIXED_OVERFLOW if |goal_scale| times the nominal peaks leaves the Q8.24 headroom. */

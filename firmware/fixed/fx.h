@@ -172,4 +172,17 @@ fs_status_t fx_from_double(double v, unsigned frac_bits, int32_t limit, int32_t 
 /** Fixed -> double (exact). */
 double fx_to_double(int64_t v, unsigned frac_bits);
 
+/** Float32 -> fixed with frac_bits (0..31) fraction bits, rounded to nearest (ties away from 0),
+ *  saturated to the int32 range, NaN -> 0: integer operations on the float's bits only (no
+ *  software-float call on a core without FPU: the fixed executor's per-tick boundary). */
+int32_t fx_from_float(float v, unsigned frac_bits);
+
+/** Fixed with frac_bits (0..31) fraction bits -> the nearest float32 (ties up), from the bits. */
+float fx_to_float(int32_t v, unsigned frac_bits);
+
+/** acc * 2^exp2 as the nearest float32 (ties up), from the bits: a DMP state accumulator at its
+ *  full resolution (the exact sum of the Euler increments, Q.55 for a Q8.24 state: exp2 = -55),
+ *  where the Q8.24 view would quantise. Results below 2^-126 are 0, above float range +-inf. */
+float fx_acc_to_float(int64_t acc, int32_t exp2);
+
 #endif /* FX_H */

@@ -1,7 +1,8 @@
 /* Fixed-point DMP against the float64 core: every golden vector of tests/vectors/manifest.txt
  * (pressing and engraving skills, N = 10/50/100, goal 1x and 1.5x, time 1x and 1.3x) and a long
  * 17 s skill; the kernel blend against the double blend; rejection of skills that do not fit
- * (3xx codes); coupling (phase slow-down, additive term) against the double core. */
+ * (3xx codes); coupling (phase slow-down, additive term) against the double core; the
+ * executor's conversion without rollout (dmpfx_from_model_bound) on the same skills. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -200,6 +201,62 @@ static void test_golden_vectors_y(void **state)
     assert_true(lines >= 3);
 }
 
+/* dmpfx_from_model_bound (no rollout, the executor's conversion) on every skill of both
+ * manifests and the long synthetic ones: its estimates are at or above the peaks
+ * dmpfx_from_model measures (h, y, z, I; the y DMP; v~), and its rollout agrees with the
+ * float64 core within the same tolerance, without a saturation. */
+static void check_bound(const dmp_model_t *m, const char *name, double gs, double ts)
+{
+    static dmpfx_model_t bm;
+    assert_int_equal(dmpfx_from_model(m, &fxm), FS_OK);
+    assert_int_equal(dmpfx_from_model_bound(m, &bm), FS_OK);
+    /* the estimate in N against the measured peak in N (the scales differ) */
+    assert_true(ldexp(bm.peak_q24, bm.value_shift) >= ldexp(fxm.peak_q24, fxm.value_shift));
+    assert_true(bm.value_shift >= fxm.value_shift);
+    assert_true(bm.peak_y_q24 >= fxm.peak_y_q24);
+    assert_true(bm.peak_v_q30 >= fxm.peak_v_q30);
+    const long rows = lround((double)m->duration_s * ts / (double)m->dt_s);
+    assert_true(rows <= MAX_ROWS);
+    assert_int_equal(rollout_fx(&bm, gs, ts, rows, f_fx), 0u);
+    rollout_double(m, gs, ts, rows, f_ref);
+    const double e = rel_err(f_fx, f_ref, rows);
+    printf("bound conversion  %-34s g=%-3g t=%-3g  s=%d (measured %d)  %.4f %%\n", name, gs, ts,
+           (int)bm.value_shift, (int)fxm.value_shift, 100.0 * e);
+    assert_true(e <= FIXED_TOL_REL);
+}
+
+static void test_bound_conversion(void **state)
+{
+    (void)state;
+    const char *manifests[] = {"manifest.txt", "manifest_y.txt"};
+    int lines = 0;
+    for (size_t k = 0; k < 2u; k++) {
+        char mpath[512];
+        snprintf(mpath, sizeof(mpath), "%s/%s", FS_VECTORS_DIR, manifests[k]);
+        FILE *mf = fopen(mpath, "r");
+        assert_non_null(mf);
+        char line[600];
+        while (fgets(line, sizeof(line), mf) != NULL) {
+            char sk[256];
+            double gs;
+            double ts;
+            if (sscanf(line, "%255s %lf %lf", sk, &gs, &ts) != 3) {
+                continue;
+            }
+            load_fixed(sk);
+            check_bound(&skill.dmp, sk, gs, ts);
+            lines++;
+        }
+        fclose(mf);
+    }
+    assert_true(lines >= 13);
+    static tu_skill_desc_t d;
+    static dmp_model_t m;
+    tu_default_desc(&d, 50, 2000.0, 17.0);
+    assert_int_equal(tu_model_from_desc(&d, &m), FS_OK);
+    check_bound(&m, "synthetic 17 s N=50 k=2000", 1.5, 1.0);
+}
+
 /* A long (17 s) synthetic skill with the default fit's kernel layout, goal 1x and 1.5x. */
 static void test_long_skill(void **state)
 {
@@ -394,7 +451,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_golden_vectors), cmocka_unit_test(test_golden_vectors_y),
-        cmocka_unit_test(test_long_skill),
+        cmocka_unit_test(test_long_skill),     cmocka_unit_test(test_bound_conversion),
         cmocka_unit_test(test_blend),          cmocka_unit_test(test_rejects),
         cmocka_unit_test(test_coupling),       cmocka_unit_test(test_saturation_never_wraps),
     };

@@ -175,12 +175,49 @@ static void test_from_double(void **state)
     assert_true(fabs(fx_to_double(out, 24u) - 0.1) <= ldexp(0.5, -24));
 }
 
+/* Float32 <-> fixed by bits against the double reference: round to nearest (the exact value
+ * floor(v*2^q + 0.5) for v >= 0), saturation, NaN, subnormals; back to float exactly rounded. */
+static void test_float_conversions(void **state)
+{
+    (void)state;
+    assert_int_equal(fx_from_float(1.0f, 24u), FX_Q24_ONE);
+    assert_int_equal(fx_from_float(-0.5f, 31u), -(1 << 30));
+    assert_int_equal(fx_from_float(1.0f, 31u), INT32_MAX);
+    assert_int_equal(fx_from_float(-1.0f, 31u), INT32_MIN);
+    assert_int_equal(fx_from_float(200.0f, 24u), INT32_MAX);
+    assert_int_equal(fx_from_float(-INFINITY, 16u), INT32_MIN);
+    assert_int_equal(fx_from_float(INFINITY, 16u), INT32_MAX);
+    assert_int_equal(fx_from_float(NAN, 16u), 0);
+    assert_int_equal(fx_from_float(1e-40f, 31u), 0);
+    assert_int_equal(fx_from_float(0.0f, 24u), 0);
+    assert_true(fx_to_float(0, 24u) == 0.0f);
+    assert_true(fx_acc_to_float(0, -55) == 0.0f);
+    for (int i = 0; i < 200000; i++) {
+        const unsigned q = (unsigned)(rng_next() % 32u);
+        const double mag = ldexp((double)(rng_next() % 1000000u) / 1e6, (int)(rng_next() % 40u) - 32);
+        const float v = (float)((rng_next() & 1u) ? -mag : mag);
+        const double scaled = ldexp((double)v, (int)q);
+        if (fabs(scaled) < 2147483647.0) {
+            /* ties away from zero: floor(|x| + 0.5) with the sign of x */
+            const double ref = copysign(floor(fabs(scaled) + 0.5), scaled);
+            assert_true((double)fx_from_float(v, q) == ref);
+        }
+        const int32_t x = (int32_t)(uint32_t)rng_next();
+        assert_true(fx_to_float(x, q) == (float)ldexp((double)x, -(int)q) ||
+                    fabs((double)fx_to_float(x, q) - ldexp((double)x, -(int)q)) <=
+                        0.5 * ldexp(fabs((double)x), -(int)q) * 0x1p-23);
+        const int64_t acc = (int64_t)(((uint64_t)rng_next() << 32) | rng_next()) >> (rng_next() % 40u);
+        const double a_ref = ldexp((double)acc, -55);
+        assert_true(fabs((double)fx_acc_to_float(acc, -55) - a_ref) <= fabs(a_ref) * 0x1p-24);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_sat_add_sub), cmocka_unit_test(test_mul_round_exact),
         cmocka_unit_test(test_exp_table),   cmocka_unit_test(test_udiv),
-        cmocka_unit_test(test_from_double),
+        cmocka_unit_test(test_from_double), cmocka_unit_test(test_float_conversions),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

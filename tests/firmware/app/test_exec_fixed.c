@@ -1,0 +1,147 @@
+/* The fixed-point executor (fs_app_exec_fx, the Cortex-M3 image's) against the float64 one
+ * (fs_app_exec) on the same skills and the same measurements: the float64 executor runs closed
+ * loop on a spring contact (x) and a free mass (y), its measurements are recorded and replayed
+ * into the fixed-point one. f_hat and the y path must agree within 0.01 % of the float64 run's
+ * max |f_hat| (the fixed-point DMP's accuracy against float64, docs/cortex-m.md), the law's
+ * commands within 0.1 % of the float64 run's max |f_cmd| + 1 mN: the law adds the Q8.24
+ * resolution of its inputs times its gains, and the float32 references' differences (the y
+ * acceleration is the second difference of y_d: m_d * 4.7e-10 m / (1 ms)^2 = 0.02 N at 5 mm). */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include <cmocka.h>
+
+#include "exec_fixed_side.h"
+#include "fs_exec.h"
+#include "vectors_io.h"
+
+#define DT 0.001
+#define MAX_TICKS 12000u
+#define HAT_REL_LIMIT 1e-4
+#define CMD_REL_LIMIT 1e-3
+#define CMD_ABS_LIMIT_N 1e-3
+
+static uint8_t g_image[SKILL_IMAGE_MAX];
+static skill_t g_skill;
+static exec_state_t g_state;
+static exec_side_meas_t g_meas[MAX_TICKS];
+static exec_side_out_t g_ref[MAX_TICKS];
+static exec_side_out_t g_fx[MAX_TICKS];
+
+static uint32_t load_image(const char *name)
+{
+    const uint32_t n = tv_read(name, g_image, sizeof g_image);
+    assert_true(n > 0u);
+    assert_int_equal(skill_parse(g_image, n, &g_skill), FS_OK);
+    return n;
+}
+
+/* The float64 executor closed loop: x a carriage of mass m_d on a spring contact of the skill's
+ * stiffness (surface at 0, starting at the skill's f0), y a free carriage of mass m_d; semi-
+ * implicit Euler at 1 kHz. Records each tick's measurements and outputs; returns the ticks. */
+static size_t run_float64(const exec_side_run_t *run)
+{
+    exec_config_t cfg;
+    exec_config_default(&cfg);
+    cfg.pfc.gains[0] = g_skill.gains;
+    cfg.pfc.gains[1].m_d_kg = g_skill.gains.m_d_kg;
+    cfg.use_model = run->use_model;
+    cfg.phase_stop_gain_per_N2 = run->phase_stop_gain_per_N2;
+    const exec_step_t step = {&g_skill, run->goal_scale, run->time_scale, 0.0,
+                              g_skill.end_policy, run->path_scale};
+    assert_int_equal(exec_start(&cfg, &g_state, &step, 1u, 0.0), FS_OK);
+    const double k = g_skill.stiffness_Npm;
+    const double m = g_skill.gains.m_d_kg;
+    double x[2] = {g_skill.dmp.force0_N / k, 0.0};
+    double v[2] = {0.0, 0.0};
+    const size_t n = (size_t)((g_skill.dmp.duration_s * run->time_scale + 2.0) / DT);
+    assert_true(n <= MAX_TICKS);
+    for (size_t i = 0; i < n; i++) {
+        const double f_c = (x[0] > 0.0) ? k * x[0] : 0.0;
+        exec_meas_t me = {{x[0], x[1]}, {v[0], v[1]}, f_c};
+        exec_out_t o;
+        assert_int_equal(exec_tick(&cfg, &g_state, &me, &o), FS_OK);
+        g_meas[i] = (exec_side_meas_t){{x[0], x[1]}, {v[0], v[1]}, f_c};
+        g_ref[i] = (exec_side_out_t){{o.force_cmd_N[0], o.force_cmd_N[1]},
+                                     o.force_hat_N, o.pos_ref_m, o.y_ref_m, 0};
+        const double acc[2] = {(o.force_cmd_N[0] - f_c) / m, o.force_cmd_N[1] / m};
+        for (unsigned a = 0; a < 2u; a++) {
+            v[a] += acc[a] * DT;
+            x[a] += v[a] * DT;
+        }
+    }
+    return n;
+}
+
+static void compare(const char *name, double goal, double ts, double path, double stop_gain,
+                    uint8_t use_model)
+{
+    const uint32_t len = load_image(name);
+    const exec_side_run_t run = {g_image, len, goal, ts, path, stop_gain, use_model};
+    const size_t n = run_float64(&run);
+    assert_int_equal(exec_side_fixed_replay(&run, 0.0, g_meas, g_fx, n), 0);
+    double hat_max = 0.0, cmd_max = 0.0, y_max = 0.0, f_c_err = 0.0;
+    double hat_err = 0.0, cmd_err = 0.0, y_err = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        assert_int_equal(g_fx[i].status, 0); /* FS_OK: no saturation */
+        hat_max = fmax(hat_max, fabs(g_ref[i].force_hat_N));
+        hat_err = fmax(hat_err, fabs(g_fx[i].force_hat_N - g_ref[i].force_hat_N));
+        y_max = fmax(y_max, fabs(g_ref[i].y_ref_m));
+        y_err = fmax(y_err, fabs(g_fx[i].y_ref_m - g_ref[i].y_ref_m));
+        f_c_err = fmax(f_c_err, fabs(g_meas[i].force_contact_N - g_ref[i].force_hat_N));
+        for (unsigned a = 0; a < 2u; a++) {
+            cmd_max = fmax(cmd_max, fabs(g_ref[i].force_cmd_N[a]));
+            cmd_err = fmax(cmd_err, fabs(g_fx[i].force_cmd_N[a] - g_ref[i].force_cmd_N[a]));
+        }
+    }
+    printf("%s goal %.2f time %.2f path %.2f stop %g model %u: f_hat %.5f %% of %.2f N, "
+           "f_cmd %.5f %% of %.2f N, y %.5f %% of %.4f m (float64 tracking within %.2f N)\n",
+           name, goal, ts, path, stop_gain, (unsigned)use_model, 100.0 * hat_err / hat_max,
+           hat_max, 100.0 * cmd_err / cmd_max, cmd_max,
+           (y_max > 0.0) ? 100.0 * y_err / y_max : 0.0, y_max, f_c_err);
+    assert_true(hat_max > 1.0);
+    assert_true(hat_err <= HAT_REL_LIMIT * hat_max);
+    assert_true(cmd_err <= CMD_REL_LIMIT * cmd_max + CMD_ABS_LIMIT_N);
+    assert_true(y_err <= HAT_REL_LIMIT * hat_max / g_skill.stiffness_Npm + HAT_REL_LIMIT * y_max);
+}
+
+/* The runs compared: skill, goal, time and path scale, phase-stop gain, object model. */
+typedef struct {
+    const char *skill;
+    double goal, time, path, stop_gain;
+    uint8_t use_model;
+} case_t;
+
+static const case_t k_cases[] = {
+    /* the skill bench/qemu_tick.sh counts on the M3 image, 1x and 1.5x goal at 1.3x time */
+    {"engrave_n50_ridge_release.skill", 1.0, 1.0, 1.0, 0.0, 0u},
+    {"engrave_n50_ridge_release.skill", 1.5, 1.3, 1.0, 0.0, 0u},
+    /* the object model's reference (use_model) and a held end */
+    {"press_n50_lwr_hold.skill", 1.0, 1.0, 1.0, 0.0, 1u},
+    /* a y DMP: the path in fixed point too, at path scale 1 and 0.5 */
+    {"wipe_n50_ridge_release.skill", 1.0, 1.0, 1.0, 0.0, 0u},
+    {"wipe_n50_ridge_release.skill", 1.0, 1.0, 0.5, 0.0, 0u},
+    /* phase stopping: the coupling's slow-down as the fixed-point rate */
+    {"engrave_n100_lwr_release.skill", 1.0, 1.0, 1.0, 0.05, 0u},
+};
+
+static void test_fixed_matches_float64(void **state)
+{
+    (void)state;
+    for (size_t i = 0; i < sizeof k_cases / sizeof k_cases[0]; i++) {
+        const case_t *c = &k_cases[i];
+        compare(c->skill, c->goal, c->time, c->path, c->stop_gain, c->use_model);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_fixed_matches_float64),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
