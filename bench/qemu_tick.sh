@@ -12,7 +12,8 @@
 #    it over python-can's slcan interface: IDLE, a skill download, an execution of
 #    tests/vectors/engrave_n50_ridge_release.skill with a read-back (UDS upload) during it;
 # 5. counts, per app_tick (between cm_port_mark_begin and cm_port_mark_end), all its
-#    instructions and those of the DMP and control-law part (dmp_step and pfc_step with their
+#    instructions (with the interrupts taken meanwhile) and those of the DMP and control-law part
+#    (without them) (dmp_step and pfc_step with their
 #    callees; on the M3 their fixed-point builds dmpfx_step and pfcfx_step), and the kind of the
 #    tick (cm_port_mark_idle/execute/upload after it); prints
 #      tick_instructions target=T kernels=N min= median= max=          (DMP + control law, EXECUTE)
@@ -133,6 +134,11 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                   if (ininit) ba++
                   bprev = s }
     if (inb) { c++; h[s]++
+               # an interrupt taken inside the tick (the UART of the CAN link) counts in the
+               # tick, not in a part it interrupts: from its handler back to the interrupted code
+               if (!inisr && s ~ /_Handler$/ && s != "Reset_Handler") { inisr = 1; isrret = prev }
+               else if (inisr && s == isrret) { inisr = 0 }
+               if (inisr) { prev = s; next }
                if (!inpart && (s ~ DMP || s == LAW)) { inpart = 1; caller = prev
                                                                    if (s ~ DMP) dmp = 1 }
                else if (inpart && s == caller) { inpart = 0 }

@@ -5,6 +5,7 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <string.h>
 
 #include "fs_num.h"
 #define DMP_TICK_MODEL dmpfx_model_t
@@ -18,11 +19,36 @@
 #define DMPFX_INV_E 0.36787944117144233
 #define DMPFX_V_PEAK_BOUND 1.9
 
-static int32_t dmpfx_env_clamp_q30(double v)
+/* A skill value (fs_real_t) in a Q format with frac fraction bits, |result| <= limit, else
+ * FS_ERR_FIXED_OVERFLOW (also for a value that is not finite). The float build converts from the
+ * float's bits (fx_from_float: no software-float call); the double build rounds half up. */
+static fs_status_t dmpfx_q(fs_real_t v, unsigned frac, int32_t limit, int32_t *out)
 {
+#ifdef FS_REAL_FLOAT
+    uint32_t b;
+    memcpy(&b, &v, sizeof b);
+    const int32_t x = fx_from_float(v, frac);
+    if ((b & 0x7F800000u) == 0x7F800000u || x == INT32_MAX || x == INT32_MIN || x > limit ||
+        x < -limit) {
+        return FS_ERR_FIXED_OVERFLOW;
+    }
+    *out = x;
+    return FS_OK;
+#else
+    return fx_from_double(v, frac, limit, out);
+#endif
+}
+
+/* An envelope in Q2.30, clamped to its range [-2, 2) */
+static int32_t dmpfx_env_clamp_q30(fs_real_t v)
+{
+#ifdef FS_REAL_FLOAT
+    return fx_from_float(v, 30u); /* saturates to the range */
+#else
     const double lim = 2.0 - ldexp(1.0, -30);
     const double c = (v > lim) ? lim : ((v < -2.0) ? -2.0 : v);
     return (int32_t)floor(ldexp(c, 30) + 0.5);
+#endif
 }
 
 /* Candidate window [lo, hi): lo = first i with env_hi[i] >= u, hi = first i with env_lo[i] > u
@@ -51,11 +77,12 @@ static fs_status_t dmpfx_convert(const dmp_model_t *m, int32_t shift, dmpfx_mode
 /* max |w_i| of a weight set */
 static double dmpfx_w_max(const fs_real_t *w, uint16_t n)
 {
-    double w_max = 0.0;
+    fs_real_t w_max = FS_R(0.0);
     for (uint16_t i = 0u; i < n; i++) {
-        w_max = fmax(w_max, fabs((double)w[i]));
+        const fs_real_t a = fs_fabs(w[i]);
+        w_max = (a > w_max) ? a : w_max;
     }
-    return w_max;
+    return (double)w_max;
 }
 
 /* B = |g|*(1 + max|w_i|) in N: |h| <= 1.9*|g|*max|w_i|, and y, z, I follow g and h */
@@ -139,24 +166,25 @@ static fs_status_t dmpfx_convert(const dmp_model_t *m, int32_t shift, dmpfx_mode
     out->n_kernels = n;
     out->value_shift = shift;
     const int32_t q24_lim = (int32_t)(DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE);
+    /* in the model's own type: software float on a core without FPU, no double */
+    const fs_real_t r_env = (fs_real_t)(DMPFX_R_CUT * DMPFX_ENVELOPE_MARGIN);
     for (uint16_t i = 0u; i < n; i++) {
-        const double c = (double)m->centre[i];
-        const double s = (double)m->width[i];
-        const double w = (double)m->weight[i];
-        fs_status_t st = fx_from_double(c, 30u, INT32_MAX, &out->centre[i]);
+        const fs_real_t c = m->centre[i];
+        const fs_real_t s = m->width[i];
+        fs_status_t st = dmpfx_q(c, 30u, INT32_MAX, &out->centre[i]);
         if (st == FS_OK) {
-            st = fx_from_double(1.0 / s, 19u, INT32_MAX, &out->kernel_scale[i]);
+            st = dmpfx_q(FS_R(1.0) / s, 19u, INT32_MAX, &out->kernel_scale[i]);
         }
         if (st == FS_OK) {
-            st = fx_from_double(w, 24u, q24_lim, &out->weight[i]);
+            st = dmpfx_q(m->weight[i], 24u, q24_lim, &out->weight[i]);
         }
         if (st == FS_OK && m->has_y != 0u) {
-            st = fx_from_double((double)m->y_weight[i], 24u, q24_lim, &out->y_weight[i]);
+            st = dmpfx_q(m->y_weight[i], 24u, q24_lim, &out->y_weight[i]);
         }
         if (st != FS_OK) {
             return st;
         }
-        const double r = DMPFX_R_CUT * DMPFX_ENVELOPE_MARGIN * s;
+        const fs_real_t r = r_env * s;
         out->env_hi[i] = dmpfx_env_clamp_q30(c + r);
         out->env_lo[i] = dmpfx_env_clamp_q30(c - r);
     }

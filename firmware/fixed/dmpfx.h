@@ -124,7 +124,7 @@ fs_status_t dmpfx_from_model(const dmp_model_t *m, dmpfx_model_t *out);
  *  of measured: of h, y, z, I as B = |g|*(1 + max|w_i|) in N (the measured nominal peak is at
  *  most 0.50 B on every skill of tests/vectors), of the y DMP as |g_y| + 1.9 max|w_y,i|, of v~
  *  as 1.01 sqrt(alpha beta)/e; the value scale 2^s puts B at or below DMPFX_SCALE_TARGET (one to
- *  three bits coarser than the measured scale). A run beyond the estimate saturates (never
+ *  five bits coarser than the measured scale, tests/firmware/fixed). A run beyond the estimate saturates (never
  *  wraps) and is counted in dmpfx_state_t.sat_events. Errors as dmpfx_from_model, the estimate
  *  checked where the measured peaks are. */
 fs_status_t dmpfx_from_model_bound(const dmp_model_t *m, dmpfx_model_t *out);

@@ -1,11 +1,13 @@
-"""The product's Cortex-M4F image under qemu (`hil_sim pil`): its UART carries the CAN bus in
+"""The product's Cortex-M images under qemu (`hil_sim pil`): the M4F's (float32) and the M3's (the
+DMP and the control law in fixed point, the rest in software float). Their UART carries the CAN bus in
 SLCAN, reached through python-can's stock `slcan` interface (socket://127.0.0.1:PORT). The same
 host commands as against the simulator (record -> fit -> upload -> status -> run 1x and 1.5x);
 the tracking figures within 0.5 percentage points of the host build's (`hil_sim run`: the
 application's double build running the same skill on the same plant, over several sensor seeds).
-Then the firmware update against the image with `forceskill flash`.
+Then the firmware update against the M4F image with `forceskill flash`.
 
-The image is found in build/cortex-m4f (scripts/test.sh builds it); a missing image is a failure
+The images are found in build/cortex-m4f and build/cortex-m3 (scripts/test.sh builds them); a
+missing image is a failure
 naming the build command. The device's host-silence timeout is the CAN tests' configurable one
 (conftest.HOST_TIMEOUT_MS): python-can's slcan reads the 1 kHz stream byte by byte, and on a
 loaded machine its heartbeat thread stalls for longer than the product default (docs/cortex-m.md)."""
@@ -27,7 +29,7 @@ from forceskill.model import fwimage as fw
 from forceskill.model.skill import Skill
 from helpers.canbus import HOST_TIMEOUT_MS, REPO, SCENARIOS, forceskill, hil_sim_path
 
-IMAGE = REPO / "build" / "cortex-m4f" / "firmware" / "ports" / "cortex-m" / "fs_pil.elf"
+TARGETS = ("cortex-m4f", "cortex-m3")
 K_NPM = 100.0
 SURFACE_M = 0.001
 OBJECT_MASS_KG = 10.0  # m_v_kg of the scenario (as the journey over the simulator)
@@ -44,19 +46,20 @@ PIL_TIMEOUT_S = 10
 
 
 class Pil:
-    """A running `hil_sim pil --target cortex-m4f` (terminated by the fixture)."""
+    """A running `hil_sim pil --target TARGET` (terminated by the fixture)."""
 
-    def __init__(self, flash: Path) -> None:
-        assert IMAGE.is_file(), (
-            f"Cortex-M4F image not built at {IMAGE}: run `cmake --preset cortex-m4f "
-            "&& cmake --build build/cortex-m4f --target fs_pil`"
+    def __init__(self, flash: Path, target: str = "cortex-m4f") -> None:
+        image = REPO / "build" / target / "firmware" / "ports" / "cortex-m" / "fs_pil.elf"
+        assert image.is_file(), (
+            f"{target} image not built at {image}: run `cmake --preset {target} "
+            f"&& cmake --build build/{target} --target fs_pil`"
         )
         self.proc = subprocess.Popen(
             [
                 str(hil_sim_path()),
                 "pil",
                 "--target",
-                "cortex-m4f",
+                target,
                 "--port",
                 "0",
                 "--scenario",
@@ -89,9 +92,9 @@ class Pil:
         return err
 
 
-@pytest.fixture(scope="module")
-def pil(tmp_path_factory) -> Iterator[Pil]:
-    p = Pil(tmp_path_factory.mktemp("pil") / "flash.bin")
+@pytest.fixture(scope="module", params=TARGETS)
+def pil(request, tmp_path_factory) -> Iterator[Pil]:
+    p = Pil(tmp_path_factory.mktemp("pil") / "flash.bin", request.param)
     yield p
     err = p.stop()
     # the image's own load report: no tick overran its 1 ms period
