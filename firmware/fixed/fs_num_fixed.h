@@ -133,25 +133,28 @@ static inline fs_expo_t fs_num_kernel_expo(fs_phase_t u, fs_phase_t c, fs_kscale
     return (uint32_t)(((uint64_t)r27 * r27) >> 28);
 }
 
-/* exp(-e) in Q1.30: the Q1.31 table exp halved, so psi*w is one signed 32x32 product. */
+/* exp(-e) in Q1.30: the Q1.31 table exp halved, so psi*w is one signed 32x32 product. The
+ * blend calls it with e - e_min of a kernel within the cutoff, <= FS_NUM_CUTOFF: the table
+ * exp's own clip at 16 is not repeated. */
 static inline fs_act_t fs_num_exp_neg(fs_expo_t e)
 {
-    return (int32_t)(fx_exp_neg_q27(e) >> 1);
+    return (int32_t)(fx_exp_neg_q27_le16(e) >> 1);
 }
 
-/* num += psi*w / 2^3 (Q.51; < 32 * 2^60 / 8 = 2^62 over a window), den += psi (Q.30). */
-static inline void fs_num_blend_acc(fs_bnum_t *num, fs_bden_t *den, fs_act_t psi, fs_val_t w)
-{
-    *num += ((int64_t)w * psi) >> 3;
-    *den += (uint32_t)psi;
-}
-
-/* The numerator part of fs_num_blend_acc for a second weight set over the same activations (the
- * y DMP's): the same Q.51 with psi shifted first, so the product accumulates in one multiply-
- * accumulate (psi keeps 27 fraction bits: 7e-9 relative). */
+/* The numerator part of fs_num_blend_acc, for either weight set (the force DMP's, and the y
+ * DMP's over the same activations): num += w * (psi / 2^3) in Q.51 (< 32 * 2^57 over a window),
+ * psi shifted first so the product accumulates in one multiply-accumulate (psi keeps 27
+ * fraction bits: 7e-9 relative). */
 static inline void fs_num_blend_acc_num(fs_bnum_t *num, fs_act_t psi, fs_val_t w)
 {
     *num += (int64_t)w * (psi >> 3);
+}
+
+/* num as fs_num_blend_acc_num, den += psi (Q.30). */
+static inline void fs_num_blend_acc(fs_bnum_t *num, fs_bden_t *den, fs_act_t psi, fs_val_t w)
+{
+    fs_num_blend_acc_num(num, psi, w);
+    *den += (uint32_t)psi;
 }
 
 /* S = num * 2^3 / den in Q8.24, den >= 2^30 (the e_min kernel has psi = 1). |S| <= max |w_i|,

@@ -132,16 +132,15 @@ static inline int64_t fx_acc_add(int64_t acc, int64_t inc, uint32_t *events)
 /** 2^(-k/2^FX_EXP_TABLE_BITS) in Q1.31 (unsigned), k = 0..2^FX_EXP_TABLE_BITS (fx.c). */
 extern const uint32_t fx_exp2_table[(1u << FX_EXP_TABLE_BITS) + 1u];
 
-/** exp(-a) for a in Q5.27 (values above 16 are clipped to 16), result Q1.31 unsigned in
- *  [0, 2^31]. 2^-(a*log2 e): integer part by shift, fraction by a 257-entry table of 2^-k/256
- *  with linear interpolation. Error <= 9.3e-7 relative + 2 LSB (tests/firmware/fixed).
- *  Inline: it is the inner loop of the kernel blend. */
 /* log2(e) in Q1.31 (unsigned): round(1.4426950408889634 * 2^31). */
 #define FX_LOG2E_Q31 3098164009u
 
-static inline uint32_t fx_exp_neg_q27(uint32_t a_q27)
+/** exp(-a) for a in Q5.27, 0 <= a <= 16 (FX_EXP_ARG_MAX_Q27; the caller guarantees it), result
+ *  Q1.31 unsigned in [0, 2^31]. 2^-(a*log2 e): integer part by shift, fraction by a 257-entry
+ *  table of 2^-k/256 with linear interpolation. Error <= 9.3e-7 relative + 2 LSB
+ *  (tests/firmware/fixed). Inline: it is the inner loop of the kernel blend. */
+static inline uint32_t fx_exp_neg_q27_le16(uint32_t a)
 {
-    const uint32_t a = (a_q27 > FX_EXP_ARG_MAX_Q27) ? FX_EXP_ARG_MAX_Q27 : a_q27;
     /* y = a*log2(e) in Q.58, < 23.09 * 2^58 < 2^63: exact product, no rounding of the exponent */
     const uint64_t y = (uint64_t)a * FX_LOG2E_Q31;
     const uint32_t n = (uint32_t)(y >> 58); /* integer part, 0..23 */
@@ -159,6 +158,12 @@ static inline uint32_t fx_exp_neg_q27(uint32_t a_q27)
         return m;
     }
     return (m + (1u << (n - 1u))) >> n;
+}
+
+/** fx_exp_neg_q27_le16 of any Q5.27 argument, values above 16 clipped to 16. */
+static inline uint32_t fx_exp_neg_q27(uint32_t a_q27)
+{
+    return fx_exp_neg_q27_le16((a_q27 > FX_EXP_ARG_MAX_Q27) ? FX_EXP_ARG_MAX_Q27 : a_q27);
 }
 
 /** Unsigned 64/32 division rounded to nearest, n / d, for d > 0 and n < d * 2^32 - d/2 (the
