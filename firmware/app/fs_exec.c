@@ -49,6 +49,7 @@ static fs_status_t exec_begin_step(exec_state_t *st)
     st->force_dmp_N = s->skill->dmp.force0_N;
 #ifdef FS_EXEC_FIXED
     dmpfx_state_reset(&st->dmp);
+    st->dmp_saturated = 0u;
     fs_status_t rc = dmpfx_from_model_bound(&s->skill->dmp, &st->dmp_model);
     if (rc == FS_OK) {
         rc = dmpfx_run_init(&st->dmp_model, (double)s->goal_scale, (double)s->time_scale, &st->run);
@@ -110,6 +111,19 @@ static void exec_law_step(const exec_config_t *cfg, exec_state_t *st,
     }
 #else
     pfc_step(&cfg->pfc, &st->pfc, ref, m, force_cmd_N);
+#endif
+}
+
+/* FS_OK, or (the fixed-point build) FS_ERR_FIXED_OVERFLOW when this tick's DMP step saturated. */
+static fs_status_t exec_dmp_status(exec_state_t *st)
+{
+#ifdef FS_EXEC_FIXED
+    const uint8_t saturated = st->dmp_saturated;
+    st->dmp_saturated = 0u;
+    return (saturated != 0u) ? FS_ERR_FIXED_OVERFLOW : FS_OK;
+#else
+    (void)st;
+    return FS_OK;
 #endif
 }
 
@@ -318,9 +332,6 @@ fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_mea
         return FS_ERR_NOT_FINITE;
     }
     const fs_real_t dt = cfg->pfc.dt_s;
-#ifdef FS_EXEC_FIXED
-    st->dmp_saturated = 0u;
-#endif
     const fs_real_t f_hat = exec_reference_force(cfg, st, meas);
     st->force_hat_N = f_hat;
 
@@ -377,11 +388,7 @@ fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_mea
     out->y_ref_m = y_d;
     out->step = st->step;
     out->done = st->done;
-#ifdef FS_EXEC_FIXED
-    return (st->dmp_saturated != 0u) ? FS_ERR_FIXED_OVERFLOW : FS_OK;
-#else
-    return FS_OK;
-#endif
+    return exec_dmp_status(st);
 }
 
 void exec_vel_init(exec_vel_t *v, fs_real_t cutoff_Hz, fs_real_t dt_s)
