@@ -171,7 +171,8 @@ def kernel_times(
     for sig in (y_star,) if path is None else (y_star, path):
         qs = _curvature(sig, hb, nb, ks)
         qs_mean = float(np.mean(qs))
-        if qs_mean > 0.0 and math.isfinite(qs_mean):
+        # round-off of a straight line is no bend: curvature below 1e-9 of the signal counts as none
+        if qs_mean > 1e-9 * float(np.max(np.abs(sig))) and math.isfinite(qs_mean):
             q += qs / qs_mean
     q_mean = float(np.mean(q))
     if not q_mean > 0.0:

@@ -261,6 +261,28 @@ def test_default_fit_follows_a_17_s_engraving_with_many_level_changes(seed: int)
         uniform.skill.centres, np.interp(t_uniform / 0.001, np.arange(u.size), u), atol=1e-12
     )
     assert uniform.err_max_pct > 1.5
+    # what the device pays for it: kernels per tick at the Cortex-M / fixed-point cutoff 16 (8 with
+    # the uniform layout) and the narrowest kernel against the fixed-point limit 1/sigma <= 4096
+    sk = res.skill
+    u, _ = dmp.phase_loop(sk.alpha, sk.beta, sk.dt_s / sk.tau_s, dmp.default_steps(sk))
+    per_tick = (dmp.kernel_exponents(u, sk.centres, sk.widths) <= 16.0).sum(axis=1)
+    assert per_tick.max() <= 12
+    assert np.max(1.0 / sk.widths) <= 2048.0
+
+
+def test_kernel_times_are_uniform_without_bends() -> None:
+    from forceskill.model.fit import kernel_times
+
+    t = np.arange(8001) * 0.001
+    for y in (2.5 * t, np.zeros_like(t), 3.0 * t[:120]):  # a straight line, flat, shorter than 3 bins
+        np.testing.assert_allclose(
+            kernel_times(y, 0.001, 50), np.linspace(0.0, (y.size - 1) * 0.001, 50), atol=1e-12
+        )
+    bend = np.minimum(t, 4.0)  # one corner at 4 s: the kernels gather there
+    ti = kernel_times(bend, 0.001, 50)
+    assert ti[0] == 0.0 and ti[-1] == 8.0 and np.all(np.diff(ti) > 0.0)
+    gaps = np.diff(ti)
+    assert gaps[np.searchsorted(ti, 4.0) - 1] < 0.8 * gaps[0]
 
 
 def test_the_y_path_is_learned_on_the_same_phase_and_kernels() -> None:
