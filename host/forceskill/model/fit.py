@@ -53,6 +53,11 @@ DENSITY_BIN_S = 0.05
 DENSITY_SMOOTH_S = 0.6
 #: curvature above this multiple of its mean counts as this multiple (bounds the narrowest gap)
 DENSITY_CLIP = 2.0
+#: The denser layout is used only while at most this many kernels are within the Cortex-M and
+#: fixed-point cutoff (DEVICE_CUTOFF_EXP) at any phase; otherwise the gain is halved, then the
+#: layout is uniform in time (the M4F tick budget, docs/math.md section 3).
+KERNELS_PER_TICK_MAX = 12
+DEVICE_CUTOFF_EXP = 16.0
 METHODS = ("ridge", "lwr")
 END_POLICIES = ("hold", "release")
 
@@ -186,6 +191,16 @@ def kernel_times(
     return t_i
 
 
+def kernels_per_tick(centres: np.ndarray, widths: np.ndarray, cutoff: float = DEVICE_CUTOFF_EXP) -> int:
+    """The most kernels with (u - c_i)^2/(2 sigma_i^2) <= cutoff at any one phase u (the largest
+    overlap of the intervals c_i -+ sqrt(2*cutoff)*sigma_i)."""
+    r = math.sqrt(2.0 * cutoff) * widths
+    pos = np.concatenate((centres - r, centres + r))
+    step = np.concatenate((np.ones(centres.size), -np.ones(centres.size)))
+    order = np.lexsort((-step, pos))  # closed intervals: at a tie the start counts first
+    return int(np.max(np.cumsum(step[order])))
+
+
 def kernel_layout(
     u: np.ndarray,
     dt_s: float,
@@ -300,12 +315,15 @@ def fit(
     tau = solve_tau(p.alpha, p.beta, dt_s, n_t, LWR_PHASE_AT_END if lwr else PHASE_AT_END)
     a = dt_s / tau
     u, v = dmp.phase_scan(p.alpha, p.beta, a, n_t)
-    t_i = None  # lwr: uniform in time
-    if not lwr and DENSITY_GAIN > 0.0:
-        t_i = kernel_times(y_star, dt_s, int(n_kernels), DENSITY_GAIN, d.y_m)
     centres, widths = kernel_layout(
-        u, dt_s, duration, int(n_kernels), LWR_WIDTH_FACTOR if lwr else WIDTH_FACTOR, t_i
-    )
+        u, dt_s, duration, int(n_kernels), LWR_WIDTH_FACTOR if lwr else WIDTH_FACTOR
+    )  # uniform in time: lwr, and the fallback of the denser layout
+    for gain in () if lwr or DENSITY_GAIN <= 0.0 else (DENSITY_GAIN, 0.5 * DENSITY_GAIN):
+        t_i = kernel_times(y_star, dt_s, int(n_kernels), gain, d.y_m)
+        c_g, w_g = kernel_layout(u, dt_s, duration, int(n_kernels), WIDTH_FACTOR, t_i)
+        if kernels_per_tick(c_g, w_g) <= KERNELS_PER_TICK_MAX:
+            centres, widths = c_g, w_g
+            break
     if not (np.all(np.diff(centres) > 0.0) and centres[0] >= 0.0 and centres[-1] <= 1.0):
         raise ParamError(
             ERR_FIT_ARGS,

@@ -325,3 +325,18 @@ def test_y_gains_that_overshoot_are_refused() -> None:
     with pytest.raises(ParamError) as e:
         fit(d, 280.0, gains=g)
     assert e.value.code == 105
+
+
+@pytest.mark.parametrize("n", [10, 20, 50, 100])
+def test_the_layout_keeps_the_device_kernel_count(n: int) -> None:
+    """At most KERNELS_PER_TICK_MAX kernels within the Cortex-M / fixed-point cutoff 16 at any
+    phase, for any N (the denser layout falls back when it would need more), checked by
+    counting at every interval start (where the largest overlap of closed intervals begins)."""
+    from forceskill.model.fit import KERNELS_PER_TICK_MAX, kernels_per_tick
+
+    for seed in (1, 2):
+        sk = fit(synthetic.engraving(seed, 8.0, 100.0, 6.0 + seed), 200.0, n_kernels=n).skill
+        starts = sk.centres - np.sqrt(32.0) * sk.widths
+        e = dmp.kernel_exponents(starts, sk.centres, sk.widths)
+        brute = int((e <= 16.0 * (1 + 1e-9)).sum(axis=1).max())
+        assert brute == kernels_per_tick(sk.centres, sk.widths) <= KERNELS_PER_TICK_MAX
