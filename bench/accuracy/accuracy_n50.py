@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Approximation error of the default fit at N = 50 over operator seeds: the figures of docs/math.md.
 
-    .venv/bin/python bench/accuracy/accuracy_n50.py [--layout GAIN,CLIP,BIN_S ...]
+    .venv/bin/python bench/accuracy/accuracy_n50.py [--layout GAIN,CLIP,BIN_S[,MAX_PER_TICK] ...]
 
 Synthetic profiles shaped like the paper's (forceskill.model.synthetic: pressing two-layer 100/180 N/m;
 engraving 6-10 N levels), seeds 0-11, durations 8, 9, 12 and 17 s, with and without 0.02 N sensor
@@ -12,8 +12,9 @@ force, against the recording: with noise it includes the noise), the most kernel
 tick (cutoff 23 in the float core, 16 in fixed point and on the Cortex-M images) and the largest
 1/sigma (the fixed-point format holds up to 4096). Table 2, the noisy profiles with the default fit:
 the error against the recording, against the noise-free profile the noise was added to, and the
-noise alone (max |noise| / max |recording|). ``--layout`` adds a curvature-density row with
-other constants (``fit.DENSITY_GAIN``, ``DENSITY_CLIP``, ``DENSITY_BIN_S``; width 0.65).
+noise alone (max |noise| / max |recording|). ``--layout`` replaces the rows by curvature-density
+rows with other constants (``fit.DENSITY_GAIN``, ``DENSITY_CLIP``, ``DENSITY_BIN_S`` and
+optionally ``KERNELS_PER_TICK_MAX``; width 0.65).
 """
 
 from __future__ import annotations
@@ -32,11 +33,17 @@ from forceskill.model.demo import Demo
 DURATIONS = (8.0, 9.0, 12.0, 17.0)
 KINDS = ("pressing", "engraving", "pressing+noise", "engraving+noise")
 NOISE_N = 0.02
-DEFAULT = (fitmod.DENSITY_GAIN, fitmod.DENSITY_CLIP, fitmod.DENSITY_BIN_S, fitmod.WIDTH_FACTOR)
-#: (label, density gain, clip, bin, width factor)
+DEFAULT = (
+    fitmod.DENSITY_GAIN,
+    fitmod.DENSITY_CLIP,
+    fitmod.DENSITY_BIN_S,
+    fitmod.WIDTH_FACTOR,
+    fitmod.KERNELS_PER_TICK_MAX,
+)
+#: (label, density gain, clip, bin, width factor, most kernels per tick)
 LAYOUTS = [
-    ("uniform, 0.65 (before)", 0.0, *DEFAULT[1:3], 0.65),
-    ("uniform, 1.0", 0.0, *DEFAULT[1:3], 1.0),
+    ("uniform, 0.65 (before)", 0.0, *DEFAULT[1:3], 0.65, DEFAULT[4]),
+    ("uniform, 1.0", 0.0, *DEFAULT[1:3], 1.0, DEFAULT[4]),
     ("curvature density, 0.65 (default)", *DEFAULT),
 ]
 
@@ -56,11 +63,22 @@ def main() -> int:
     if args:
         LAYOUTS.clear()
     while args:
-        if args[0] != "--layout" or len(args) < 2:
-            print("usage: accuracy_n50.py [--layout GAIN,CLIP,BIN_S ...]", file=sys.stderr)
+        vals = args[1].split(",") if len(args) >= 2 else []
+        if args[0] != "--layout" or len(vals) not in (3, 4):
+            print("usage: accuracy_n50.py [--layout GAIN,CLIP,BIN_S[,MAX_PER_TICK] ...]", file=sys.stderr)
             return 2
-        gain, clip, bin_s = (float(x) for x in args[1].split(","))
-        LAYOUTS.append((f"density gain {gain:g}, clip {clip:g}, bin {bin_s:g} s", gain, clip, bin_s, 0.65))
+        gain, clip, bin_s = (float(x) for x in vals[:3])
+        cap = int(vals[3]) if len(vals) == 4 else fitmod.KERNELS_PER_TICK_MAX
+        LAYOUTS.append(
+            (
+                f"density gain {gain:g}, clip {clip:g}, bin {bin_s:g} s, cap {cap}",
+                gain,
+                clip,
+                bin_s,
+                0.65,
+                cap,
+            )
+        )
         args = args[2:]
     cases = [(k, T, s) for s in range(12) for T in DURATIONS for k in KINDS]
     print(
@@ -92,7 +110,7 @@ def main() -> int:
                 max(act[1], int((e <= 16.0).sum(axis=1).max())),
             ]
             inv_sigma = max(inv_sigma, float(np.max(1.0 / sk.widths)))
-            if noise > 0.0 and (gain, clip, bin_s, wf) == DEFAULT:
+            if noise > 0.0 and (gain, clip, bin_s, wf, cap) == DEFAULT:
                 clean = make(kind, seed, T, 0.0).force_N
                 f_max = float(np.max(np.abs(r.target_N)))
                 noisy.setdefault(T, []).append(
@@ -104,7 +122,8 @@ def main() -> int:
                 )
         cells = " | ".join(cell(errs[(k, T)]) for k in KINDS for T in DURATIONS)
         print(f"| {label} | {cells} | {act[0]} / {act[1]} | {inv_sigma:.0f} |")
-    fitmod.DENSITY_GAIN, fitmod.DENSITY_CLIP, fitmod.DENSITY_BIN_S, fitmod.WIDTH_FACTOR = DEFAULT
+    fitmod.DENSITY_GAIN, fitmod.DENSITY_CLIP, fitmod.DENSITY_BIN_S, fitmod.WIDTH_FACTOR = DEFAULT[:4]
+    fitmod.KERNELS_PER_TICK_MAX = DEFAULT[4]
     if not noisy:
         return 0
     print()
