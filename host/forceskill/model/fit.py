@@ -4,8 +4,9 @@ Steps: resample to dt; starting force f0 (the first sample unless given); learni
 y* = f - f0 in N (the DMP runs in force units, so nothing below depends on the stiffness k); goal
 g = k*g'(T) in N with the position reference the executor will use (k*x_d = f) and the force
 integral by the left rectangle rule (the forward-Euler sum the control law's integrator uses); tau by a bracketing
-search so the discrete phase gives u~(T) = 0.99 (``lwr``: 0.95); centres uniform in time mapped to
-phase, widths sigma_i = 0.65*(c_{i+1} - c_i) (``lwr``: 0.35*(c_{i+1} - c_i)); h_d from the same
+search so the discrete phase gives u~(T) = 0.99 (``lwr``: 0.95); kernel times denser where the
+demonstration bends (``kernel_times``) mapped to phase, widths sigma_i = 0.65*(c_{i+1} - c_{i-1})/2
+(``lwr``: times uniform, sigma_i = 0.35*(c_{i+1} - c_i)); h_d from the same
 discrete recursion as the rollout; regression of h_d on g*v~*S(u~) by ``ridge`` (joint
 Tikhonov-regularised least squares, the default) or ``lwr`` (the paper's per-kernel weighted LS);
 then the learned force is rolled out and compared with the demonstration.
@@ -45,6 +46,18 @@ GOAL_MIN_REL = 1e-3
 #: Tikhonov term of the ridge fit, relative to the mean diagonal of the normal matrix
 #: (measured on the synthetic tasks, docs/math.md section 3).
 RIDGE_LAMBDA_REL = 1e-6
+#: Kernel density (``kernel_times``, ridge): rho = 1 + DENSITY_GAIN*curvature/mean curvature, the
+#: curvature of DENSITY_BIN_S bin means smoothed over DENSITY_SMOOTH_S (docs/math.md section 3).
+DENSITY_GAIN = 0.5
+DENSITY_BIN_S = 0.05
+DENSITY_SMOOTH_S = 0.6
+#: curvature above this multiple of its mean counts as this multiple (bounds the narrowest gap)
+DENSITY_CLIP = 2.0
+#: The denser layout is used only while at most this many kernels are within the Cortex-M and
+#: fixed-point cutoff (DEVICE_CUTOFF_EXP) at any phase; otherwise the gain is halved, then the
+#: layout is uniform in time (the M4F tick budget, docs/math.md section 3).
+KERNELS_PER_TICK_MAX = 12
+DEVICE_CUTOFF_EXP = 16.0
 METHODS = ("ridge", "lwr")
 END_POLICIES = ("hold", "release")
 
@@ -127,15 +140,89 @@ def solve_tau(alpha: float, beta: float, dt_s: float, n_steps: int, target: floa
     return tau
 
 
+def _curvature(signal: np.ndarray, hb: int, nb: int, ks: int) -> np.ndarray:
+    """|second difference| of hb-sample bin means (0 in the end bins), moving mean over ks bins."""
+    yb = signal[: nb * hb].reshape(nb, hb).mean(axis=1)
+    q = np.zeros(nb)
+    q[1:-1] = np.abs(yb[2:] - 2.0 * yb[1:-1] + yb[:-2])
+    q = np.convolve(np.pad(q, ks // 2, mode="edge"), np.full(ks, 1.0 / ks), mode="valid")
+    return q
+
+
+def kernel_times(
+    y_star: np.ndarray,
+    dt_s: float,
+    n_kernels: int,
+    density_gain: float = DENSITY_GAIN,
+    path: np.ndarray | None = None,
+) -> np.ndarray:
+    """Kernel times t_1 = 0 < ... < t_N = T, denser where the demonstration bends.
+
+    Density rho(t) = 1 + density_gain*min(q(t)/mean(q), DENSITY_CLIP), q the curvature |y*''| of
+    DENSITY_BIN_S bin means (the binning averages sensor noise out) smoothed over
+    DENSITY_SMOOTH_S; with a ``path`` (the y DMP shares the kernels) q is the sum of both
+    curvatures, each relative to its own mean. t_i is where the cumulative density reaches
+    (i-1)/(N-1) of its total. density_gain 0, a flat recording or one shorter than three bins:
+    uniform in time (linspace(0, T, N)).
+    """
+    n_t = y_star.size - 1
+    duration = n_t * dt_s
+    hb = max(1, int(round(DENSITY_BIN_S / dt_s)))
+    nb = (n_t + 1) // hb
+    if density_gain <= 0.0 or nb < 3:
+        return np.linspace(0.0, duration, n_kernels)
+    ks = max(1, int(round(DENSITY_SMOOTH_S / (hb * dt_s)))) | 1
+    q = np.zeros(nb)
+    for sig in (y_star,) if path is None else (y_star, path):
+        qs = _curvature(sig, hb, nb, ks)
+        qs_mean = float(np.mean(qs))
+        # round-off of a straight line is no bend: curvature below 1e-9 of the signal counts as none
+        if qs_mean > 1e-9 * float(np.max(np.abs(sig))) and math.isfinite(qs_mean):
+            q += qs / qs_mean
+    q_mean = float(np.mean(q))
+    if not q_mean > 0.0:
+        return np.linspace(0.0, duration, n_kernels)
+    rho = 1.0 + density_gain * np.minimum(q / q_mean, DENSITY_CLIP)
+    edges = np.arange(nb + 1) * (hb * dt_s)
+    edges[-1] = duration  # the last bin takes the samples a whole bin leaves over
+    cum = np.concatenate(([0.0], np.cumsum(rho * np.diff(edges))))
+    t_i: np.ndarray = np.interp(np.linspace(0.0, cum[-1], n_kernels), cum, edges)
+    t_i[0], t_i[-1] = 0.0, duration
+    return t_i
+
+
+def kernels_per_tick(centres: np.ndarray, widths: np.ndarray, cutoff: float = DEVICE_CUTOFF_EXP) -> int:
+    """The most kernels with (u - c_i)^2/(2 sigma_i^2) <= cutoff at any one phase u (the largest
+    overlap of the intervals c_i -+ sqrt(2*cutoff)*sigma_i)."""
+    r = math.sqrt(2.0 * cutoff) * widths
+    pos = np.concatenate((centres - r, centres + r))
+    step = np.concatenate((np.ones(centres.size), -np.ones(centres.size)))
+    order = np.lexsort((-step, pos))  # closed intervals: at a tie the start counts first
+    return int(np.max(np.cumsum(step[order])))
+
+
 def kernel_layout(
-    u: np.ndarray, dt_s: float, duration_s: float, n_kernels: int, width_factor: float = WIDTH_FACTOR
+    u: np.ndarray,
+    dt_s: float,
+    duration_s: float,
+    n_kernels: int,
+    width_factor: float = WIDTH_FACTOR,
+    t_i: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Centres c_i = u~(t_i), t_i = linspace(0, T, N) (linear interpolation of the discrete phase);
-    widths sigma_i = width_factor*(c_{i+1} - c_i), sigma_N = sigma_{N-1}."""
-    t_i = np.linspace(0.0, duration_s, n_kernels)
+    """Centres c_i = u~(t_i) (linear interpolation of the discrete phase), t_i = linspace(0, T, N)
+    unless given (``kernel_times``). Widths: t_i uniform (the ``lwr`` layout),
+    sigma_i = width_factor*(c_{i+1} - c_i), sigma_N = sigma_{N-1}; t_i given,
+    sigma_i = width_factor*(c_{i+1} - c_{i-1})/2 (the mean of the two gaps; one gap at either end),
+    so neighbours of unequal gaps get comparable widths."""
+    uniform = t_i is None
+    if t_i is None:
+        t_i = np.linspace(0.0, duration_s, n_kernels)
     centres = np.interp(t_i / dt_s, np.arange(u.size, dtype=float), u)
-    widths = width_factor * np.diff(centres)
-    widths = np.append(widths, widths[-1])
+    gaps = np.diff(centres)
+    if uniform:
+        widths = width_factor * np.append(gaps, gaps[-1])
+    else:
+        widths = width_factor * 0.5 * (np.append(gaps[:1], gaps) + np.append(gaps, gaps[-1:]))
     return centres, widths
 
 
@@ -230,7 +317,13 @@ def fit(
     u, v = dmp.phase_scan(p.alpha, p.beta, a, n_t)
     centres, widths = kernel_layout(
         u, dt_s, duration, int(n_kernels), LWR_WIDTH_FACTOR if lwr else WIDTH_FACTOR
-    )
+    )  # uniform in time: lwr, and the fallback of the denser layout
+    for gain in () if lwr or DENSITY_GAIN <= 0.0 else (DENSITY_GAIN, 0.5 * DENSITY_GAIN):
+        t_i = kernel_times(y_star, dt_s, int(n_kernels), gain, d.y_m)
+        c_g, w_g = kernel_layout(u, dt_s, duration, int(n_kernels), WIDTH_FACTOR, t_i)
+        if kernels_per_tick(c_g, w_g) <= KERNELS_PER_TICK_MAX:
+            centres, widths = c_g, w_g
+            break
     if not (np.all(np.diff(centres) > 0.0) and centres[0] >= 0.0 and centres[-1] <= 1.0):
         raise ParamError(
             ERR_FIT_ARGS,

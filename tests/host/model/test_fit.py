@@ -81,6 +81,31 @@ def test_noisy_sensor_fit_is_limited_by_the_noise() -> None:
     assert res.err_max_pct <= 2.5
 
 
+def reference_kernel_times(y: np.ndarray, dt: float, n: int) -> np.ndarray:
+    """docs/math.md section 3, step 3, written out with loops: 50 ms bin means, curvature
+    |second difference| (0 in the end bins), moving mean over 13 bins (0.6 s, ends repeated),
+    clipped at 2x its mean, density 1 + 0.5*q/mean(q) per bin, t_i where the running integral
+    of the density reaches (i-1)/(N-1) of the total (linear within a bin)."""
+    hb = 50
+    nb = y.size // hb
+    means = [sum(y[b * hb : (b + 1) * hb]) / hb for b in range(nb)]
+    q = [0.0] + [abs(means[b + 1] - 2 * means[b] + means[b - 1]) for b in range(1, nb - 1)] + [0.0]
+    qs = [sum(q[min(max(j, 0), nb - 1)] for j in range(b - 6, b + 7)) / 13 for b in range(nb)]
+    mean = sum(qs) / nb
+    rho = [1.0 + 0.5 * min(v / mean, 2.0) for v in qs]
+    edges = [b * hb * dt for b in range(nb)] + [(y.size - 1) * dt]
+    cum = [0.0]
+    for b in range(nb):
+        cum.append(cum[-1] + rho[b] * (edges[b + 1] - edges[b]))
+    out = []
+    for i in range(n):
+        target = cum[-1] * i / (n - 1)
+        b = next(b for b in range(nb) if cum[b + 1] >= target)
+        out.append(edges[b] + (target - cum[b]) / rho[b])
+    out[0], out[-1] = 0.0, edges[-1]
+    return np.array(out)
+
+
 def test_tau_centres_widths_goal(press_fit: FitResult) -> None:
     sk = press_fit.skill
     # continuous critically damped phase: 1 - u = (1 + s) e^-s = 0.01 at s = alpha T/(2 tau) = 6.638
@@ -88,10 +113,12 @@ def test_tau_centres_widths_goal(press_fit: FitResult) -> None:
     u, _ = dmp.phase_loop(sk.alpha, sk.beta, sk.dt_s / sk.tau_s, dmp.default_steps(sk))
     assert u[-1] == pytest.approx(0.99, abs=1e-12)
     assert sk.centres[0] == 0.0 and sk.centres[-1] == pytest.approx(0.99, abs=1e-12)
-    t_i = np.linspace(0, sk.duration_s, sk.n_kernels)
+    t_i = reference_kernel_times(press_fit.target_N - sk.force0_N, sk.dt_s, sk.n_kernels)
     np.testing.assert_allclose(sk.centres, np.interp(t_i, np.arange(u.size) * sk.dt_s, u), atol=1e-12)
-    np.testing.assert_allclose(sk.widths[:-1], 0.65 * np.diff(sk.centres), rtol=1e-15)
-    assert sk.widths[-1] == sk.widths[-2]
+    gaps = np.diff(sk.centres)
+    np.testing.assert_allclose(sk.widths[1:-1], 0.65 * (gaps[:-1] + gaps[1:]) / 2, rtol=1e-14)
+    assert sk.widths[0] == pytest.approx(0.65 * gaps[0], rel=1e-14)
+    assert sk.widths[-1] == pytest.approx(0.65 * gaps[-1], rel=1e-14)
     # g = k*g'(T) in N with k*x_d(T) = f(T), int f by the left rectangle rule, above f0
     y = press_fit.target_N - sk.force0_N
     g = Gains()
@@ -192,9 +219,9 @@ def test_gains_are_stored_and_the_inertia_check_applies() -> None:
 @pytest.mark.parametrize("kind", ["pressing", "engraving"])
 def test_default_fit_at_n50_within_1_5_pct_over_seeds(kind: str) -> None:
     """Profiles like the paper's (8-9 s), ten operator seeds: the default fit (ridge, N = 50,
-    sigma = 0.65 x centre spacing) stays within 1.5 % max error (measured: pressing <= 0.21 %,
-    engraving <= 0.8 %; bench/accuracy/accuracy_n50.py), and a third of the kernels is visibly
-    worse (the measure is not vacuous)."""
+    kernels denser where the force bends) stays within 1.5 % max error (measured: pressing
+    <= 0.39 %, engraving <= 0.32 %; bench/accuracy/accuracy_n50.py), and a third of the kernels
+    is visibly worse (the measure is not vacuous)."""
     worst = 0.0
     for seed in range(10):
         T = 8.0 + seed % 2
@@ -209,10 +236,59 @@ def test_default_fit_at_n50_within_1_5_pct_over_seeds(kind: str) -> None:
     assert 0.05 < worst <= 1.5
 
 
+@pytest.mark.parametrize("seed", [4, 9])
+def test_default_fit_follows_a_17_s_engraving_with_many_level_changes(seed: int) -> None:
+    """The hardest synthetic profile: 17 s of engraving, ~15 level changes, 50 kernels. Centres
+    uniform in time (the layout before) miss 1.5 % on these seeds (measured 2.76 / 2.44 %); the
+    default layout, denser where the force bends, stays within it (measured 0.77 / 1.22 %;
+    bench/accuracy/accuracy_n50.py) and its error is the one the rollout of its image gives."""
+    import forceskill.model.fit as fitmod
+
+    d = synthetic.engraving(seed, 17.0, 100.0, 6.0 + seed % 5)
+    res = fit(d, 200.0)
+    e_max, _ = independent_error(res)
+    assert res.err_max_pct == pytest.approx(e_max, rel=1e-6)
+    assert 0.05 < res.err_max_pct <= 1.5
+    saved = fitmod.DENSITY_GAIN
+    try:
+        fitmod.DENSITY_GAIN = 0.0
+        uniform = fit(d, 200.0)
+    finally:
+        fitmod.DENSITY_GAIN = saved
+    t_uniform = np.linspace(0.0, uniform.skill.duration_s, 50)
+    u, _ = dmp.phase_loop(9.0, 2.25, 0.001 / uniform.skill.tau_s, dmp.default_steps(uniform.skill))
+    np.testing.assert_allclose(
+        uniform.skill.centres, np.interp(t_uniform / 0.001, np.arange(u.size), u), atol=1e-12
+    )
+    assert uniform.err_max_pct > 1.5
+    # what the device pays for it: kernels per tick at the Cortex-M / fixed-point cutoff 16 (8 with
+    # the uniform layout) and the narrowest kernel against the fixed-point limit 1/sigma <= 4096
+    sk = res.skill
+    u, _ = dmp.phase_loop(sk.alpha, sk.beta, sk.dt_s / sk.tau_s, dmp.default_steps(sk))
+    per_tick = (dmp.kernel_exponents(u, sk.centres, sk.widths) <= 16.0).sum(axis=1)
+    assert per_tick.max() <= 12
+    assert np.max(1.0 / sk.widths) <= 2048.0
+
+
+def test_kernel_times_are_uniform_without_bends() -> None:
+    from forceskill.model.fit import kernel_times
+
+    t = np.arange(8001) * 0.001
+    for y in (2.5 * t, np.zeros_like(t), 3.0 * t[:120]):  # a straight line, flat, shorter than 3 bins
+        np.testing.assert_allclose(
+            kernel_times(y, 0.001, 50), np.linspace(0.0, (y.size - 1) * 0.001, 50), atol=1e-12
+        )
+    bend = np.minimum(t, 4.0)  # one corner at 4 s: the kernels gather there
+    ti = kernel_times(bend, 0.001, 50)
+    assert ti[0] == 0.0 and ti[-1] == 8.0 and np.all(np.diff(ti) > 0.0)
+    gaps = np.diff(ti)
+    assert gaps[np.searchsorted(ti, 4.0) - 1] < 0.8 * gaps[0]
+
+
 def test_the_y_path_is_learned_on_the_same_phase_and_kernels() -> None:
     """The wiping demonstration's path: the y DMP's rollout (dmp.rollout_path, the literal loop)
-    reproduces it within 0.5 mm at N = 50 and 0.05 mm at N = 100; the force half is fitted as
-    without a path (same weights), and the learned path is the fit's own y_hat."""
+    reproduces it within 0.5 mm at N = 50 and 0.05 mm at N = 100; the force half keeps its goal and
+    its accuracy, and the learned path is the fit's own y_hat."""
     d = synthetic.wiping(seed=5, duration_s=6.0, k_v=280.0, f_max_N=8.0, path_m=0.06)
     plain = fit(Demo(d.t_s, d.pos_m, d.force_N), 280.0)
     for n, tol_mm in ((50, 0.5), (100, 0.05)):
@@ -225,8 +301,10 @@ def test_the_y_path_is_learned_on_the_same_phase_and_kernels() -> None:
         assert err_mm <= tol_mm, (n, err_mm)
         assert abs(err_mm - res.y_err_max_mm) <= 1e-6
         if n == 50:
-            np.testing.assert_array_equal(sk.weights, plain.skill.weights)
+            # the kernels follow both curvatures (force and path): the force half keeps its goal
+            # and stays as accurate as without the path (measured 0.15 vs 0.11 %)
             assert sk.goal_N == plain.skill.goal_N
+            assert res.err_max_pct <= 2.0 * plain.err_max_pct <= 0.5
 
 
 def test_a_path_that_returns_to_its_start_is_learned() -> None:
@@ -247,3 +325,18 @@ def test_y_gains_that_overshoot_are_refused() -> None:
     with pytest.raises(ParamError) as e:
         fit(d, 280.0, gains=g)
     assert e.value.code == 105
+
+
+@pytest.mark.parametrize("n", [10, 20, 50, 100])
+def test_the_layout_keeps_the_device_kernel_count(n: int) -> None:
+    """At most KERNELS_PER_TICK_MAX kernels within the Cortex-M / fixed-point cutoff 16 at any
+    phase, for any N (the denser layout falls back when it would need more), checked by
+    counting at every interval start (where the largest overlap of closed intervals begins)."""
+    from forceskill.model.fit import KERNELS_PER_TICK_MAX, kernels_per_tick
+
+    for seed in (1, 2):
+        sk = fit(synthetic.engraving(seed, 8.0, 100.0, 6.0 + seed), 200.0, n_kernels=n).skill
+        starts = sk.centres - np.sqrt(32.0) * sk.widths
+        e = dmp.kernel_exponents(starts, sk.centres, sk.widths)
+        brute = int((e <= 16.0 * (1 + 1e-9)).sum(axis=1).max())
+        assert brute == kernels_per_tick(sk.centres, sk.widths) <= KERNELS_PER_TICK_MAX

@@ -173,7 +173,9 @@ REFUSED: list[tuple[str, Callable[[], R.Rec], tuple[str, ...], int, list[str]]] 
     ("gap_300ms", lambda: R.with_gap(R.press(), 3.0, 0.3), (), ERR_DEMO_GAP, ["gap of 300 ms at t = 3 s"]),
     (
         "step_within_a_sample",
-        lambda: R.with_step(R.press(rate_hz=20), 4.0, 8.0),
+        # 16 N within one 50 ms sample: 13.8 % at N = 50 (an 8 N step is learned to 9.5 %, within
+        # the default 10 %, since the kernels gather where the force bends)
+        lambda: R.with_step(R.press(rate_hz=20), 4.0, 16.0),
         (),
         ERR_FIT_INACCURATE,
         ["force step of +", "at t = 3.95 s", "faster than the sample rate"],
