@@ -103,7 +103,9 @@ echo "counter check ok: 100 nops + call/return/call counted as $CC"
 
 echo "== the product image: $(basename "$SKILL") (N = $KERNELS), IDLE / download / EXECUTE / EXECUTE + read-back"
 # Per counted tick: kind, all instructions of app_tick, those inside dmp_step(_xy)/pfc_step (entered
-# from their caller, left when the caller's code runs again), 1 if the DMP stepped (not after the
+# from their caller, left when the caller's code runs again; an interrupt handler taken meanwhile,
+# from its *_Handler entry until the interrupted function runs again, is the CAN link's cost: in
+# the tick's total, not in the part), 1 if the DMP stepped (not after the
 # skill's end, when the end policy runs the law alone), those inside dmp_step(_xy) alone.
 # Also: each boot (from the first instruction of Reset_Handler to the first counted tick: all its
 # instructions and those inside app_init), and the skill check of each download (the instructions
@@ -118,9 +120,14 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                          chk_tick = 0; inb = 0; next }
   / cm_port_mark_(idle|execute|upload|other)$/ {
       if (done) { k = $NF; sub(/^cm_port_mark_/, "", k); print k, lc, lp, ld, ldp; done = 0
-                  if (prof != "" && k == "execute") { for (f in h) tot[f] += h[f]; nexec++ } }
-      delete h; next }
-  END { if (prof != "") { for (f in tot) printf "%d %s\n", tot[f] / nexec, f > prof } }
+                  if (prof != "" && k == "execute") { for (f in h) tot[f] += h[f]; nexec++
+                                                      for (a in hp) tp[a] += hp[a]
+                                                      if (ld && ldp > maxdp) { maxdp = ldp; delete hm
+                                                                               for (f in h) hm[f] = h[f] } } }
+      delete h; delete hp; next }
+  END { if (prof != "") { for (f in tot) printf "%d %s\n", tot[f] / nexec, f > prof
+                          for (a in tp) printf "%.2f %s\n", tp[a] / nexec, a > (prof ".pc")
+                          for (f in hm) printf "%d %s\n", hm[f], f > (prof ".maxdmp") } }
   { s = $NF
     if (!inboot && s == "Reset_Handler") { inboot = 1; bc = 0; ba = 0; ininit = 0 }
     if (inboot) { bc++
@@ -129,6 +136,11 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                   if (ininit) ba++
                   bprev = s }
     if (inb) { c++; h[s]++
+               if (prof != "") { split($4, pcs, "/"); hp[pcs[2] " " s]++ }
+               # an interrupt (the UART'"'"'s) taken inside the tick: in its total, in no part
+               if (!inirq && s ~ /_Handler$/) { inirq = 1; irqret = prev }
+               else if (inirq && s == irqret) { inirq = 0 }
+               if (inirq) next
                if (!inpart && (s ~ DMP || s == "pfc_step_f32")) { inpart = 1; caller = prev
                                                                    if (s ~ DMP) dmp = 1 }
                else if (inpart && s == caller) { inpart = 0 }
@@ -141,7 +153,9 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                if (inchk) { chk_total++; chk_tick++ }
                prev = s } }'
 mkfifo "$WORK/trace.fifo"
-# QEMU_TICK_PROFILE=FILE: also write the mean instructions per function of an EXECUTE tick there
+# QEMU_TICK_PROFILE=FILE: also write the mean instructions per function of an EXECUTE tick there,
+# per instruction address (hex, with its function) in FILE.pc, and per function of the EXECUTE tick
+# with the largest DMP part in FILE.maxdmp
 awk -v prof="${QEMU_TICK_PROFILE:-}" -v DMP="^dmp_step(_xy)?_f32$" "$COUNT_AWK" < "$WORK/trace.fifo" > "$WORK/ticks.txt" &
 AWK_PID=$!
 "$HIL_SIM" pil --target "$TARGET" --image "$IMG/fs_pil.elf" --port 0 --host-timeout 500 \
@@ -157,6 +171,8 @@ status=0
 kill -TERM "$PIL_PID"; wait "$PIL_PID" || true; PIL_PID=""
 wait $AWK_PID
 grep '^fs_pil' "$WORK/pil.err" || true
+# QEMU_TICK_KEEP=FILE: keep the per-tick lines (kind, total, DMP + law part, stepped, DMP part)
+[ -n "${QEMU_TICK_KEEP:-}" ] && cp "$WORK/ticks.txt" "$QEMU_TICK_KEEP"
 
 stats() { # lines of numbers on stdin -> "min median max count"
   sort -n | awk '{ v[NR] = $1 } END { if (NR == 0) { print "- - - 0"; exit }

@@ -40,9 +40,10 @@ static fs_real_t exec_step_duration(const exec_step_t *s)
     return s->skill->dmp.duration_s * s->time_scale;
 }
 
-static void exec_begin_step(exec_state_t *st)
+static void exec_begin_step(exec_state_t *st, fs_real_t dt_s)
 {
     const exec_step_t *s = &st->steps[st->step];
+    st->step_ticks = exec_ticks(exec_step_duration(s), dt_s);
     dmp_state_reset(&st->dmp);
     st->run.goal_scale = s->goal_scale;
     st->run.time_scale = s->time_scale;
@@ -117,7 +118,7 @@ fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_st
     st->y_ref_vel_mps = FS_R(0.0);
     st->start_pending = 1u;
     pfc_reset(&st->pfc);
-    exec_begin_step(st);
+    exec_begin_step(st, cfg->pfc.dt_s);
     return FS_OK;
 }
 
@@ -207,13 +208,13 @@ static fs_real_t exec_reference_force(const exec_config_t *cfg, exec_state_t *st
     st->t_step_s += dt;
     fs_real_t f = st->force_dmp_N + st->force_carry_N * exec_blend(st->t_step_s);
 
-    if (exec_ticks(st->t_step_s, dt) >= exec_ticks(exec_step_duration(s), dt)) {
+    if (exec_ticks(st->t_step_s, dt) >= st->step_ticks) {
         if ((uint8_t)(st->step + 1u) < st->n_steps) {
             st->y_hold_m += st->path_m; /* the next step's path starts where this one ended */
             st->path_m = FS_R(0.0);
             st->step++;
             st->force_carry_N = f - st->steps[st->step].skill->dmp.force0_N;
-            exec_begin_step(st);
+            exec_begin_step(st, dt);
         } else {
             st->ending = 1u;
             st->force_end_N = f;

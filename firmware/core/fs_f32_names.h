@@ -24,6 +24,8 @@
 #define skill_image_size skill_image_size_f32
 #define skill_image_size_v skill_image_size_v_f32
 #define skill_crc32 skill_crc32_f32
+#define skill_parse_begin skill_parse_begin_f32
+#define skill_parse_run skill_parse_run_f32
 #define skill_parse skill_parse_f32
 #define skchk_params skchk_params_f32
 #define skchk_begin skchk_begin_f32
