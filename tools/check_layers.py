@@ -152,7 +152,7 @@ HOST_PKG = "forceskill"
 HOST_RANK = {"base": 0, "readers": 1, "model": 2, "link": 3, "plot": 4, "commands": 5, "cli": 6}
 HOST_BASE = {"forceskill", "forceskill.codes", "forceskill.errors", "forceskill.outputs", "forceskill.sim"}
 # (from, to): the only modules of `to` that `from` may import
-HOST_ONLY = {("readers", "link"): {"forceskill.link.dbc"}}
+HOST_ONLY = {("readers", "link"): {"forceskill.link.dbc", "forceskill.link.telemetry"}}
 
 
 def host_layer(mod: str) -> str | None:

@@ -51,6 +51,8 @@ static const char SERVE_USAGE[] =
     "it)\n"
     "  --bus-off-at S   the device's controller goes bus-off at S simulated seconds\n"
     "  --bus-off-for S  ... for S seconds (default 0.5)\n"
+    "  --drop-telemetry P  lose each telemetry frame of the device with probability P on its way\n"
+    "                   to the hosts (an adapter that misses frames)\n"
     "on a real bus instead (docs/hil.md):\n"
     "  --socketcan IFACE  the device on a SocketCAN interface (can0 on an adapter, vcan0): no TCP\n"
     "                   server and no bus model, hosts use python-can's socketcan interface;\n"
@@ -80,10 +82,10 @@ typedef struct {
     uint64_t slips;
     uint64_t wall0;
     uint64_t next_tick_ns;
-    double drop_p, corrupt_p;
+    double drop_p, corrupt_p, drop_tel_p;
     uint64_t bus_off_from_ns, bus_off_until_ns;
     sim_rng_t rng_faults;
-    uint64_t dropped, corrupted;
+    uint64_t dropped, corrupted, tel_dropped;
 } serve_t;
 
 static serve_t S; /* large (bus FIFOs, app): static storage */
@@ -117,6 +119,12 @@ static void deliver(void *ctx, const bus_item_t *it, uint64_t t_end_ns)
             }
             (void)hal_sim_can_deliver(&f);
         }
+    }
+    if (it->src == 0u && s->drop_tel_p > 0.0 && !it->extended &&
+        (it->f.id == PROTO_ID_TELEM_POS(s->node) || it->f.id == PROTO_ID_TELEM_FORCE(s->node)) &&
+        sim_rng_uniform(&s->rng_faults) < s->drop_tel_p) {
+        s->tel_dropped++; /* on the bus, but not seen by the hosts */
+        return;
     }
     scand_broadcast(&s->sd, it->src == 0u ? -1 : (int)it->src - 1, &it->f, it->extended, t_end_ns);
 }
@@ -274,7 +282,7 @@ static int serve_run_socketcan(serve_t *s, const char *ifname, int argc, char **
 typedef struct {
     const char *host, *channel, *scenario, *socketcan;
     double port, speed, node, bitrate, duration, host_timeout;
-    double drop, corrupt, bus_off_at, bus_off_for;
+    double drop, corrupt, drop_tel, bus_off_at, bus_off_for;
     bool verbose;
 } serve_opts_t;
 
@@ -297,6 +305,7 @@ static int parse_serve_args(int argc, char **argv, serve_opts_t *o)
                 {"--host-timeout", &o->host_timeout, NULL},
                 {"--drop", &o->drop, NULL},
                 {"--corrupt", &o->corrupt, NULL},
+                {"--drop-telemetry", &o->drop_tel, NULL},
                 {"--bus-off-at", &o->bus_off_at, NULL},
                 {"--bus-off-for", &o->bus_off_for, NULL}};
     for (int i = 0; i < argc; i++) {
@@ -358,9 +367,9 @@ static int check_serve_opts(const serve_opts_t *o)
         return -1;
     }
     if (!(o->drop >= 0.0 && o->drop <= 1.0) || !(o->corrupt >= 0.0 && o->corrupt <= 1.0) ||
-        !(o->bus_off_for >= 0.0)) {
-        fprintf(stderr,
-                "hil_sim serve: --drop/--corrupt must be probabilities 0..1, --bus-off-for >= 0\n");
+        !(o->drop_tel >= 0.0 && o->drop_tel <= 1.0) || !(o->bus_off_for >= 0.0)) {
+        fprintf(stderr, "hil_sim serve: --drop/--corrupt/--drop-telemetry must be probabilities "
+                        "0..1, --bus-off-for >= 0\n");
         return -1;
     }
     return 0;
@@ -373,6 +382,7 @@ static int serve_setup(serve_t *s, const serve_opts_t *o)
     memset(s, 0, sizeof(*s));
     s->drop_p = o->drop;
     s->corrupt_p = o->corrupt;
+    s->drop_tel_p = o->drop_tel;
     s->bus_off_from_ns = o->bus_off_at >= 0.0 ? (uint64_t)(o->bus_off_at * 1e9) : UINT64_MAX;
     s->bus_off_until_ns = o->bus_off_at >= 0.0 ? (uint64_t)((o->bus_off_at + o->bus_off_for) * 1e9)
                                                : UINT64_MAX;
@@ -503,12 +513,14 @@ int bus_cmd_serve(int argc, char **argv)
     fprintf(stderr,
             "hil_sim serve: stopped at %.3f s simulated; bus %llu frames, load %.1f %%; %llu clock "
             "slips; "
-            "device rx overflows %u, tx dropped %u; injected: %llu lost, %llu corrupted\n",
+            "device rx overflows %u, tx dropped %u; injected: %llu lost, %llu corrupted, %llu "
+            "telemetry frames lost\n",
             (double)next_tick_ns * 1e-9, (unsigned long long)s->bus.frames,
             next_tick_ns > 0u
                 ? 100.0 * (double)s->bus.bits * (double)s->bus.bit_ns / (double)next_tick_ns
                 : 0.0,
             (unsigned long long)s->slips, hal_sim_can_rx_overflows(), s->app.tx_dropped,
-            (unsigned long long)s->dropped, (unsigned long long)s->corrupted);
+            (unsigned long long)s->dropped, (unsigned long long)s->corrupted,
+            (unsigned long long)s->tel_dropped);
     return 0;
 }

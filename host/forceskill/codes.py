@@ -184,6 +184,7 @@ ERR_CLEAR_BLOCKED = 666  # a fault cannot be cleared: its cause persists
 ERR_UNEXPECTED = 667  # an error no check foresaw (e.g. from a library), reported as one line
 ERR_SKILL_STIFFNESS = 690
 ERR_LOG_UNREADABLE = 691
+ERR_TELEMETRY_GAP = 692
 
 # Firmware image and update (700-729, firmware/boot)
 BOOT_ERR_TRUNCATED = 700  # fewer bytes than header + payload_length + tag
@@ -428,6 +429,7 @@ __all__ = [
     'ERR_UNEXPECTED',
     'ERR_SKILL_STIFFNESS',
     'ERR_LOG_UNREADABLE',
+    'ERR_TELEMETRY_GAP',
     'BOOT_ERR_TRUNCATED',
     'BOOT_ERR_MAGIC',
     'BOOT_ERR_FORMAT',

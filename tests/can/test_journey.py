@@ -169,6 +169,19 @@ def test_cantools_decodes_every_device_frame(journey):
     assert seen[0x190] > 15000 and seen[0x1A0] > 15000
 
 
+def wait_caught_up(log: Path, timeout_s: float = 30.0) -> None:
+    """Wait until the logger has written what it received while the device streamed at 1 kHz:
+    a loaded machine leaves it seconds behind, and SIGINT drops what it has not read yet. Caught
+    up, it grows at the idle rate (~110 frames/s, ~5 KB/s); behind, at >= 1,000 frames/s."""
+    t_end, last = time.monotonic() + timeout_s, -1
+    while time.monotonic() < t_end:
+        size = log.stat().st_size if log.exists() else 0
+        if last >= 0 and size - last < 15_000:
+            return
+        last = size
+        time.sleep(1.0)
+
+
 def test_can_logger_log_accepted_by_fit(server, tmp_path, capsys):
     log = tmp_path / "logger.asc"
     p = subprocess.Popen(
@@ -188,7 +201,7 @@ def test_can_logger_log_accepted_by_fit(server, tmp_path, capsys):
         forceskill(
             capsys, "record", "-o", str(tmp_path / "driver.log"), "--duration", "5", *server.bus_args()
         )
-        time.sleep(0.3)
+        wait_caught_up(log)
     finally:
         p.send_signal(signal.SIGINT)
         p.wait(timeout=20)

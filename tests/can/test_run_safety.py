@@ -230,3 +230,35 @@ def test_a_skill_stiffer_than_the_device_limit_is_refused_by_host_and_device(loa
             client.write_data_by_identifier(U.DID_STIFFNESS_MAX, struct.pack(">f", 5e5))
         assert U.stiffness_limit(client, 0) == 5e5
     bus.shutdown()
+
+
+def test_lost_telemetry_frames_are_interpolated_and_counted_not_truncated(capsys, tmp_path):
+    """An adapter that misses 2 % of the telemetry frames: the run's CSV still covers the whole
+    execution on the 1 ms grid, the lost samples are reported, and the reference is the skill's."""
+    srv = Server(SCENARIOS / "pressing_task1_demo.toml", extra=("--drop-telemetry", "0.02"))
+    try:
+        time.sleep(0.2)
+        assert cli.main(["upload", str(SKILL), "--slot", "1", "-q", *srv.bus_args()]) == 0
+        csv = tmp_path / "r.csv"
+        rc, out, err = run(capsys, "run", "--slot", "1", "--csv", str(csv), *srv.bus_args())
+        assert rc == 0, err
+        lost = int(out.split(" samples lost on the bus")[0].rsplit("telemetry: ", 1)[1])
+        cols = load_csv(csv)
+        assert np.allclose(np.diff(cols["t"]), 1e-3) and abs(cols["t"][-1] - (1.5 + 0.5)) < 0.01
+        assert 0.5 * 0.02 * cols["t"].size < lost < 4 * 0.02 * cols["t"].size  # ~2-4 % of the samples
+        assert 4.6 < cols["f_hat"].max() < 5.1  # the skill's peak (4.84 N) is in the run
+    finally:
+        err = srv.stop()
+    injected = int(err.split(" telemetry frames lost")[0].rsplit(", ", 1)[1])
+    assert lost <= injected
+
+
+def test_a_run_without_telemetry_is_an_error_not_an_empty_report(capsys, tmp_path):
+    srv = Server(SCENARIOS / "pressing_task1_demo.toml", extra=("--drop-telemetry", "1"))
+    try:
+        time.sleep(0.2)
+        assert cli.main(["upload", str(SKILL), "--slot", "1", "-q", *srv.bus_args()]) == 0
+        rc, out, err = run(capsys, "run", "--slot", "1", *srv.bus_args())
+        assert rc == 2 and "[692]" in err and "no telemetry arrived" in err, out + err
+    finally:
+        srv.stop()

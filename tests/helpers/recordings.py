@@ -176,12 +176,20 @@ def write_csv(
 
 
 def write_can_log(
-    path: Path, r: Rec, *, node: int = 0, drop_ticks: Sequence[int] = (), sessions: int = 1
+    path: Path,
+    r: Rec,
+    *,
+    node: int = 0,
+    drop_ticks: Sequence[int] = (),
+    sessions: int = 1,
+    busy_every: int = 0,
 ) -> Path:
     """A python-can log (any suffix it writes, .gz too) of the device's telemetry at 1 kHz in
     TEACH, status frames every 10 ms, idle telemetry every 100 ms before and after; ``r`` must be
     sampled at 1 kHz. ``drop_ticks``: telemetry frames lost on the bus. ``sessions`` > 1 repeats
-    the demonstration with IDLE in between."""
+    the demonstration with IDLE in between. ``busy_every`` > 0: the bus is busy for 8 ticks in
+    every ``busy_every``, so the positions of those ticks pass their force frames (a controller
+    with several mailboxes sends the lowest identifier first)."""
     import can
 
     from forceskill.link.dbc import load_db
@@ -193,8 +201,14 @@ def write_can_log(
     tick = 1000
     msgs: list[can.Message] = []
 
+    held: list[can.Message] = []  # force frames waiting while the bus is busy
+
     def emit(state: int, ticks: range, rows: np.ndarray | None) -> None:
         for k, tk in enumerate(ticks):
+            busy = rows is not None and busy_every > 0 and (tk - ticks.start) % busy_every < 8
+            if not busy:
+                msgs.extend(held)
+                held.clear()
             ts = tk * 1e-3
             if tk % 10 == 0:
                 data = mstat.encode(
@@ -226,7 +240,7 @@ def write_can_log(
                     data=mpos.encode({"PosX": x, "PosY": 0.0, "Tick": tk & 0xFFFF}),
                 )
             )
-            msgs.append(
+            (held if busy else msgs).append(
                 can.Message(
                     timestamp=ts,
                     arbitration_id=mforce.frame_id,

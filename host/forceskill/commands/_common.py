@@ -7,6 +7,7 @@ import signal
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -16,6 +17,7 @@ import numpy as np
 from ..errors import ERR_LINK_TIMEOUT, ERR_LOG_FORMAT, FsError
 from ..link.bus import add_bus_args, describe, error_summary, open_bus
 from ..link.device import Device, Sample
+from ..link.telemetry import fast_stretches
 from ..outputs import Outputs
 
 
@@ -35,20 +37,46 @@ def connect(args: argparse.Namespace) -> Iterator[Device]:
         bus.shutdown()
 
 
-def columns(samples: list[Sample]) -> dict[str, np.ndarray]:
-    """Telemetry as HIL log columns (t from the device tick, 1 ms)."""
+#: The telemetry columns of a sample, in Sample's field order after the tick.
+TELEMETRY_COLUMNS = ("x", "y", "f_contact", "f_operator", "f_cmd", "f_hat")
+
+
+@dataclass(frozen=True)
+class Stream:
+    """Where the columns start (the device tick of row 0) and the ticks between the first and
+    the last sample whose telemetry never arrived (lost on the bus or by the adapter):
+    interpolated in the columns, counted here."""
+
+    first_tick: int = 0
+    lost_samples: int = 0
+    longest_gap_ms: int = 0
+
+
+def columns(samples: list[Sample]) -> tuple[dict[str, np.ndarray], Stream]:
+    """Telemetry streamed every tick (TEACH, EXECUTE: the idle samples around it left out) as
+    HIL log columns on the device's 1 ms tick grid (t from the tick). A tick whose frames were
+    lost is linearly interpolated from its neighbours and counted; a repeated tick keeps its
+    first sample."""
+    empty = {k: np.zeros(0) for k in ("t", *TELEMETRY_COLUMNS)}
     if not samples:
-        return {k: np.zeros(0) for k in ("t", "x", "y", "f_contact", "f_operator", "f_cmd", "f_hat")}
-    tick = np.array([s.tick for s in samples], float)
-    return {
-        "t": (tick - tick[0]) * 1e-3,
-        "x": np.array([s.x_m for s in samples]),
-        "y": np.array([s.y_m for s in samples]),
-        "f_contact": np.array([s.f_contact_N for s in samples]),
-        "f_operator": np.array([s.f_operator_N for s in samples]),
-        "f_cmd": np.array([s.f_cmd_N for s in samples]),
-        "f_hat": np.array([s.f_ref_N for s in samples]),
-    }
+        return empty, Stream()
+    tick = np.array([s.tick for s in samples], np.int64)
+    values = np.array(
+        [(s.x_m, s.y_m, s.f_contact_N, s.f_operator_N, s.f_cmd_N, s.f_ref_N) for s in samples], float
+    )
+    order = np.argsort(tick, kind="stable")
+    got, first = np.unique(tick[order], return_index=True)
+    values = values[order[first]]
+    starts, ends = fast_stretches(got)
+    if starts.size == 0:
+        return empty, Stream()
+    got, values = got[starts[0] : ends[-1]], values[starts[0] : ends[-1]]
+    grid = np.arange(got[0], got[-1] + 1)
+    cols = {"t": (grid - grid[0]) * 1e-3}
+    for j, name in enumerate(TELEMETRY_COLUMNS):
+        cols[name] = np.interp(grid, got, values[:, j])
+    missing = np.diff(got) - 1
+    return cols, Stream(int(got[0]), int(missing.sum()), int(missing.max()) if missing.size else 0)
 
 
 def tracking(cols: dict[str, np.ndarray]) -> dict[str, float]:

@@ -13,7 +13,7 @@ from typing import Any, TextIO
 
 import numpy as np
 
-from ..errors import ERR_RUN_FAULT, ERR_SKILL_PEAK, FsError, fault_text
+from ..errors import ERR_RUN_FAULT, ERR_SKILL_PEAK, ERR_TELEMETRY_GAP, FsError, fault_text
 from ..link import ERR_LINK_ARGS, ERR_LINK_STATE
 from ..link import uds as U
 from ..link.device import Device
@@ -28,6 +28,7 @@ from ..model.skill import Skill
 from ..outputs import STDOUT, Outputs, format_rows
 from ._args import add_force_limit, add_path_scale, add_scales
 from ._common import (
+    Stream,
     add_common,
     close_log,
     columns,
@@ -37,6 +38,9 @@ from ._common import (
     sigint_flag,
     tracking,
 )
+
+#: The longest run of lost telemetry a run's figures are measured across (as a recording's --max-gap).
+MAX_TELEMETRY_GAP_MS = 100
 
 _STEP = re.compile(r"^\s*(\d+)\s*:\s*([0-9.]+)\s*(ms|s)?\s*$")
 
@@ -197,8 +201,8 @@ def run_on_device(
         total = expected + tail
         if stop["stop"]:
             return {
-                "columns": columns([]),
-                "figures": tracking(columns([])),
+                "columns": columns([])[0],
+                "figures": tracking(columns([])[0]),
                 "path": None,
                 "expected_s": expected,
                 "fault": 0,
@@ -257,23 +261,18 @@ def run_on_device(
                 notifier.remove_listener(writer)
     with dev._lock:
         samples = list(tel.samples)
-    ticks = np.array([s.tick for s in samples], float)
-    if ticks.size:
-        breaks = np.flatnonzero(np.diff(ticks) != 1.0)
-        starts = np.concatenate(([0], breaks + 1))
-        ends = np.concatenate((breaks + 1, [ticks.size]))
-        k = int(np.argmax(ends - starts))
-        samples = samples[starts[k] : ends[k]]
+    grid, stream = columns(samples)  # lost frames interpolated on the tick grid, and counted
+    first_tick = stream.first_tick
     n_keep = int(round(total * 1000.0)) + 1
-    if fault and samples:
-        n_keep = min(n_keep, _fault_index(samples[0].tick & 0xFFFF, len(samples), fault_tick) + 1)
-    cols = {k: v[:n_keep] for k, v in columns(samples).items()}
+    if fault and grid["t"].size:
+        n_keep = min(n_keep, _fault_index(first_tick & 0xFFFF, grid["t"].size, fault_tick) + 1)
+    cols = {k: v[:n_keep] for k, v in grid.items()}
     path_fig = None
-    if path_skill is not None and samples:
+    if path_skill is not None and grid["t"].size:
         from ..model.dmp import rollout_path
 
         _, y_hat = rollout_path(path_skill, time_scale=ts / 1000.0, path_scale=ps / 1000.0)
-        tick16 = np.array([s.tick & 0xFFFF for s in samples[:n_keep]])
+        tick16 = (first_tick + np.arange(cols["t"].size)) & 0xFFFF
         path_fig = path_tracking(cols, tick16, y_hat - path_skill.y_start_m, idle_tick, start_tick)
     cols["fault"] = np.zeros(cols["t"].size)
     if fault and cols["t"].size:
@@ -286,6 +285,7 @@ def run_on_device(
         "fault": fault,
         "interrupted": interrupted,
         "started": True,
+        "stream": stream,
     }
 
 
@@ -325,7 +325,14 @@ def _cmd(args: argparse.Namespace) -> int:
             sys.stdout.write(",".join(CSV_COLUMNS) + "\n" + format_rows(block))
             sys.stdout.flush()
         outs.commit()  # the telemetry and the bus log are kept on a fault or Ctrl-C too
-    n = cols["t"].size
+    n, stream = cols["t"].size, r.get("stream", Stream())
+    if stream.lost_samples:
+        print(
+            f"telemetry: {stream.lost_samples} samples lost on the bus "
+            f"(longest gap {stream.longest_gap_ms} ms), "
+            "interpolated from their neighbours",
+            file=info,
+        )
     print(
         f"telemetry: {n} samples over {cols['t'][-1] if n else 0:.3f} s; "
         f"max contact force {fig['max_force_N']:.3f} N, max reference {fig['max_ref_N']:.3f} N",
@@ -350,6 +357,14 @@ def _cmd(args: argparse.Namespace) -> int:
         raise FsError(
             ERR_RUN_FAULT,
             f"node {args.node} faulted during execution: fault {fault_text(r['fault'])}{t_f}{wrote}",
+        )
+    if n == 0 and not r["interrupted"]:
+        raise FsError(ERR_TELEMETRY_GAP, f"node {args.node}: no telemetry arrived during the run{wrote}")
+    if stream.longest_gap_ms > MAX_TELEMETRY_GAP_MS:
+        raise FsError(
+            ERR_TELEMETRY_GAP,
+            f"node {args.node}: the telemetry missed {stream.longest_gap_ms} ms in a row "
+            f"(more than {MAX_TELEMETRY_GAP_MS} ms): the tracking figures above are not measured there{wrote}",
         )
     if r["interrupted"]:
         print(f"forceskill: interrupted: node {args.node} commanded to IDLE{wrote}", file=sys.stderr)

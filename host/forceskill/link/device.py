@@ -19,6 +19,7 @@ from ..errors import FsError
 from . import ERR_LINK_NO_RESPONSE, ERR_LINK_TIMEOUT
 from .bus import error_summary
 from .dbc import END_POLICIES, MODES, STATES, check, load_db, protect
+from .telemetry import TelemetryPairer
 
 # python-can logs a failed periodic send with its traceback; the commands report it as one line
 logging.getLogger("can.bcm").setLevel(logging.CRITICAL)
@@ -85,7 +86,7 @@ class Device(can.Listener):
         self.telemetry: Telemetry | None = None
         self.frames_seen = 0
         self.bad_crc = 0
-        self._pending_pos: tuple[int, float, float] | None = None
+        self._pairs: TelemetryPairer[tuple[int, float, float]] = TelemetryPairer()
         self._lock = threading.Lock()
         self._counter = {"HostCommand": 0, "HostHeartbeat": 0}
         self._hb_task: can.broadcastmanager.CyclicSendTaskABC | None = None
@@ -137,10 +138,9 @@ class Device(can.Listener):
         elif m.name == "Emergency":
             self.emergencies.append((float(msg.timestamp), dict(sig)))
         elif m.name == "TelemetryPosition":
-            self._pending_pos = (int(sig["Tick"]), float(sig["PosX"]), float(sig["PosY"]))
+            self._pairs.position((int(sig["Tick"]), float(sig["PosX"]), float(sig["PosY"])))
         elif m.name == "TelemetryForce":
-            pos = self._pending_pos
-            self._pending_pos = None
+            pos = self._pairs.force()
             tel = self.telemetry
             if pos is not None and tel is not None:
                 with self._lock:

@@ -30,11 +30,6 @@ POS_BASE = 0x190
 FORCE_BASE = 0x1A0
 STATUS_BASE = 0x180
 STATE_TEACH = 2
-#: Telemetry period outside TEACH/EXECUTE (APP_IDLE_TELEMETRY_PERIOD_MS): steps this long or
-#: longer separate stretches of 1 kHz telemetry.
-IDLE_PERIOD_TICKS = 100
-#: A stretch needs this many frames to be a demonstration (idle telemetry comes one at a time).
-MIN_STRETCH = 10
 
 
 #: Frames between two updates of the progress bar.
@@ -81,6 +76,7 @@ def _messages(path: Path, opts: ReadOptions) -> list[Any]:
 def read(path: Path, opts: ReadOptions | None = None, node: int | None = None) -> Columns:
     """Decode a CAN log into demonstration columns (see the module comment)."""
     from ..link.dbc import load_db
+    from ..link.telemetry import TelemetryPairer
 
     msgs = _messages(path, opts or ReadOptions())
     ids = np.array([m.arbitration_id for m in msgs], dtype=np.int64)
@@ -97,7 +93,7 @@ def read(path: Path, opts: ReadOptions | None = None, node: int | None = None) -
     mstat = db.get_message_by_name("DeviceStatus")
     rows = []
     leave_teach = []  # message index of status frames with the device not in TEACH
-    pending = None
+    pairs: TelemetryPairer[tuple[int, float, float, int]] = TelemetryPairer()
     wraps, last = 0, -1
     for i, m in enumerate(msgs):
         fid = m.arbitration_id
@@ -107,8 +103,11 @@ def read(path: Path, opts: ReadOptions | None = None, node: int | None = None) -
             if last >= 0 and raw < last - 32768:
                 wraps += 1
             last = raw
-            pending = (raw + 65536 * wraps, float(s["PosX"]), float(s["PosY"]), i)
-        elif fid == mforce.frame_id and len(m.data) == 8 and pending is not None:
+            pairs.position((raw + 65536 * wraps, float(s["PosX"]), float(s["PosY"]), i))
+        elif fid == mforce.frame_id and len(m.data) == 8:
+            pending = pairs.force()
+            if pending is None:
+                continue
             s = mforce.decode(bytes(m.data))
             rows.append(
                 (
@@ -122,7 +121,6 @@ def read(path: Path, opts: ReadOptions | None = None, node: int | None = None) -
                     pending[3],
                 )
             )
-            pending = None
         elif fid == mstat.frame_id and len(m.data) == 8:
             try:
                 st: Any = mstat.decode(bytes(m.data), decode_choices=False)
@@ -154,18 +152,9 @@ def read(path: Path, opts: ReadOptions | None = None, node: int | None = None) -
 
 def _demonstration(a: np.ndarray, leave_idx: np.ndarray, name: str) -> tuple[int, int, list[str]]:
     """Rows [start, end) of the demonstration in telemetry rows ``a`` (tick, ..., message index)."""
-    step = np.diff(a[:, 0])
-    cut = np.flatnonzero(step >= IDLE_PERIOD_TICKS)
-    starts = np.concatenate(([0], cut + 1))
-    ends = np.concatenate((cut + 1, [len(a)]))
-    # an idle frame within 100 ticks of TEACH joins the stretch: trim edges not 1 tick apart
-    for k in range(starts.size):
-        while ends[k] - starts[k] >= 2 and step[starts[k]] > 1.0:
-            starts[k] += 1
-        while ends[k] - starts[k] >= 2 and step[ends[k] - 2] > 1.0:
-            ends[k] -= 1
-    keep = (ends - starts) >= MIN_STRETCH
-    starts, ends = starts[keep], ends[keep]
+    from ..link.telemetry import fast_stretches
+
+    starts, ends = fast_stretches(a[:, 0])
     if starts.size == 0:
         raise DemoError(ERR_LINK_LOG, f"no telemetry streamed every tick (TEACH) in {name}")
     # join neighbouring stretches unless the device left TEACH between them

@@ -352,6 +352,18 @@ def test_can_log_lost_frames_are_interpolated(
     assert "T = 6.000 s" in out and printed_error(out) <= PRESS_TOL_PCT
 
 
+def test_can_log_positions_that_pass_their_force_frames_are_paired_by_tick(tmp_path: Path) -> None:
+    """On a busy bus the device's position frames of several ticks leave before the force frames
+    of the first: every sample still gets its own tick's force, and a lost frame costs one tick."""
+    rec = _can_rec()
+    drop = [1203, 2500]
+    d = load_demo(R.write_can_log(tmp_path / "busy.asc", rec, busy_every=50, drop_ticks=drop))
+    keep = np.setdiff1d(np.arange(rec.t.size), drop)
+    assert d.t_s.size == keep.size
+    np.testing.assert_allclose(d.force_N, np.round(rec.f[keep], 2), atol=1e-9)
+    np.testing.assert_allclose(d.pos_m, np.round(rec.x[keep], 6), atol=1e-9)
+
+
 @pytest.mark.parametrize("suffix", [".asc", ".blf", ".csv", ".db", ".log", ".mf4", ".trc"])
 def test_every_python_can_log_format_is_read(
     suffix: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
