@@ -61,6 +61,12 @@
 #ifndef APP_COMMIT_UNITS_PER_TICK
 #define APP_COMMIT_UNITS_PER_TICK 12u
 #endif
+/* Units of the slot's flash write (nvm_write_run: the erase, the commit word, or 256 bytes of
+ * the CRC, programming, read-back or final scan, each at most ~3,500 instructions on the M4F)
+ * per tick while the commit waits. */
+#ifndef APP_COMMIT_FLASH_UNITS_PER_TICK
+#define APP_COMMIT_FLASH_UNITS_PER_TICK 2u
+#endif
 /* Highest nominal skill stiffness the device accepts (commit and start refuse above it, 227):
  * tracking against object stiffness on the HIL (bench/stiffness/stiffness_limit.py, docs/hil.md),
  * the highest k from 1e4 N/m up at which both stiff profiles track within 5 % RMS without a fault:
@@ -75,7 +81,8 @@ enum {
     APP_COMMIT_PARSE = 0, /* skill_parse_run, APP_COMMIT_UNITS_PER_TICK units a tick */
     APP_COMMIT_PARAMS,    /* skchk_params, skchk_stiffness, skchk_begin */
     APP_COMMIT_CHECK,     /* the rollout, APP_CHECK_STEPS_PER_TICK steps a tick */
-    APP_COMMIT_WRITE      /* the slot's flash record, then the slot cache */
+    APP_COMMIT_WRITE      /* the slot's flash record, APP_COMMIT_FLASH_UNITS_PER_TICK units a
+                             tick, then the slot cache */
 };
 
 /** HostCommand.Mode values. */
@@ -145,6 +152,7 @@ struct app {
     skill_t staging;                    /* validation target of a download */
     skill_parser_t parser;              /* the parse of staging, spread over ticks */
     skchk_t check;                      /* output check of staging, spread over ticks */
+    nvm_writer_t writer;                /* the slot's flash write, spread over ticks */
     bool checking;                      /* a download's commit runs (UDS 0x78 sent): no start */
     uint8_t commit_stage;               /* APP_COMMIT_*: the commit's stage while checking */
     fs_real_t slot_peak_N[APP_N_SLOTS]; /* peak |f_hat| of each valid slot at goal scale 1 */

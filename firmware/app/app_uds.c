@@ -584,8 +584,8 @@ static uint8_t download_data(void *ctx, uint32_t offset, const uint8_t *d, uint1
 }
 
 /* One tick's slice of a download's commit (app->commit_stage): false while it goes on; true once
- * done, *st FS_OK when the skill passed every check (the flash write follows in the same tick)
- * or the refusal. */
+ * done, *st FS_OK when the skill passed every check and the flash write is done (its result in
+ * app->writer.status), or the refusal. */
 static bool commit_slice(app_t *app, fs_status_t *st)
 {
     *st = FS_OK;
@@ -615,9 +615,14 @@ static bool commit_slice(app_t *app, fs_status_t *st)
             return false;
         }
         *st = app->check.status; /* 222/223/225: slot unchanged */
+        if (*st != FS_OK) {
+            return true;
+        }
+        (void)nvm_write_begin(&app->writer, &app->nvm, (uint16_t)(app->xfer_slot - 1u), app->image,
+                              app->xfer_size); /* its argument errors end the write at once */
         app->commit_stage = APP_COMMIT_WRITE;
-        return *st != FS_OK;
-    default: return true;
+        return false;
+    default: return nvm_write_run(&app->writer, APP_COMMIT_FLASH_UNITS_PER_TICK);
     }
 }
 
@@ -651,7 +656,7 @@ static uint8_t download_end(void *ctx, uint32_t *crc_out)
         app->last_transfer_status = (uint16_t)st; /* e.g. 204 CRC, 223 peak: the old skill stays */
         return UDS_NRC_PROGRAMMING_FAILURE;
     }
-    const nvm_status_t ns = nvm_write(&app->nvm, slot, app->image, app->xfer_size);
+    const nvm_status_t ns = app->writer.status;
     if (ns != NVM_OK) {
         app->last_transfer_status = (uint16_t)ns;
         app_slots_reload(app); /* whatever storage holds now */

@@ -198,34 +198,53 @@ static uint32_t copy_addr(const nvm_t *n, uint16_t slot, uint8_t copy)
     return ((uint32_t)slot * 2u + copy) * n->dev->sector_size;
 }
 
-/* Scan one copy in place (streaming, NVM_CHUNK bytes of RAM). */
-static nvm_status_t scan_copy(const nvm_t *n, uint16_t slot, uint8_t copy, nvm_record_info_t *info)
+/* The head of one copy's scan: header checks, the commit word, and the CRC of the header's
+ * covered bytes into *crc. */
+static nvm_status_t scan_head(const nvm_t *n, uint16_t slot, uint8_t copy, nvm_record_info_t *info,
+                              uint32_t *crc)
 {
     const fls_dev_t *d = n->dev;
     const uint32_t base = copy_addr(n, slot, copy);
-    uint8_t buf[NVM_CHUNK];
+    uint8_t buf[NVM_HEADER_SIZE];
     if (d->read(d->ctx, base, buf, NVM_HEADER_SIZE) != 0) {
         return NVM_ERR_FLASH;
     }
-    nvm_status_t s = header_check(buf, slot, nvm_payload_max(d), info);
+    const nvm_status_t s = header_check(buf, slot, nvm_payload_max(d), info);
     if (s != NVM_OK) {
         return s;
     }
-    uint32_t crc = nvm_crc32(0u, buf, NVM_CRC_COVER);
-    const uint32_t c_off = commit_offset(info->length, d->write_unit);
+    *crc = nvm_crc32(0u, buf, NVM_CRC_COVER);
     uint8_t cw[4];
-    if (d->read(d->ctx, base + c_off, cw, 4u) != 0) {
+    if (d->read(d->ctx, base + commit_offset(info->length, d->write_unit), cw, 4u) != 0) {
         return NVM_ERR_FLASH;
     }
-    if (rd32(cw) != NVM_COMMIT_WORD) {
-        return NVM_ERR_REC_UNCOMMITTED;
+    return (rd32(cw) != NVM_COMMIT_WORD) ? NVM_ERR_REC_UNCOMMITTED : NVM_OK;
+}
+
+/* The payload's CRC from off, one NVM_CHUNK at most, continued in *crc. */
+static nvm_status_t scan_chunk(const nvm_t *n, uint16_t slot, uint8_t copy,
+                               const nvm_record_info_t *info, uint32_t off, uint32_t *crc)
+{
+    const fls_dev_t *d = n->dev;
+    uint8_t buf[NVM_CHUNK];
+    const uint32_t k = (info->length - off < NVM_CHUNK) ? info->length - off : NVM_CHUNK;
+    if (d->read(d->ctx, copy_addr(n, slot, copy) + NVM_HEADER_SIZE + off, buf, k) != 0) {
+        return NVM_ERR_FLASH;
     }
-    for (uint32_t off = 0u; off < info->length; off += NVM_CHUNK) {
-        const uint32_t k = (info->length - off < NVM_CHUNK) ? info->length - off : NVM_CHUNK;
-        if (d->read(d->ctx, base + NVM_HEADER_SIZE + off, buf, k) != 0) {
-            return NVM_ERR_FLASH;
-        }
-        crc = nvm_crc32(crc, buf, k);
+    *crc = nvm_crc32(*crc, buf, k);
+    return NVM_OK;
+}
+
+/* Scan one copy in place (streaming, NVM_CHUNK bytes of RAM). */
+static nvm_status_t scan_copy(const nvm_t *n, uint16_t slot, uint8_t copy, nvm_record_info_t *info)
+{
+    uint32_t crc = 0u;
+    nvm_status_t s = scan_head(n, slot, copy, info, &crc);
+    for (uint32_t off = 0u; s == NVM_OK && off < info->length; off += NVM_CHUNK) {
+        s = scan_chunk(n, slot, copy, info, off, &crc);
+    }
+    if (s != NVM_OK) {
+        return s;
     }
     return (crc == info->crc32) ? NVM_OK : NVM_ERR_REC_CRC;
 }
@@ -236,13 +255,9 @@ static bool seq_newer(uint32_t a, uint32_t b)
     return (int32_t)(a - b) > 0;
 }
 
-static void rescan_slot(nvm_t *n, uint16_t slot)
+/* The slot's directory entry from the scans of its two copies (the newest valid one wins). */
+static void dir_set(nvm_t *n, uint16_t slot, const bool ok[2], const nvm_record_info_t inf[2])
 {
-    nvm_record_info_t inf[2];
-    bool ok[2];
-    for (uint8_t c = 0u; c < 2u; c++) {
-        ok[c] = scan_copy(n, slot, c, &inf[c]) == NVM_OK;
-    }
     nvm_dir_entry_t *e = &n->dir[slot];
     (void)memset(e, 0, sizeof *e);
     if (!ok[0] && !ok[1]) {
@@ -258,6 +273,16 @@ static void rescan_slot(nvm_t *n, uint16_t slot)
     e->seq = inf[best].seq;
     e->length = inf[best].length;
     e->crc32 = inf[best].crc32;
+}
+
+static void rescan_slot(nvm_t *n, uint16_t slot)
+{
+    nvm_record_info_t inf[2];
+    bool ok[2];
+    for (uint8_t c = 0u; c < 2u; c++) {
+        ok[c] = scan_copy(n, slot, c, &inf[c]) == NVM_OK;
+    }
+    dir_set(n, slot, ok, inf);
 }
 
 nvm_status_t nvm_init(nvm_t *n, const fls_dev_t *dev)
@@ -323,71 +348,166 @@ static nvm_status_t verify_range(const fls_dev_t *d, uint32_t addr, const uint8_
     return NVM_OK;
 }
 
-nvm_status_t nvm_write(nvm_t *n, uint16_t slot, const uint8_t *payload, uint32_t len)
+/* The stages of a write, in nvm_write's order. */
+enum {
+    NW_CRC,    /* the record's CRC over the payload, NVM_CHUNK bytes a unit */
+    NW_ERASE,  /* erase the target copy */
+    NW_PROG,   /* the header, then the payload, NVM_CHUNK bytes a unit */
+    NW_VERIFY, /* read back and compare, the same pieces */
+    NW_COMMIT, /* the commit word */
+    NW_SCAN,   /* the slot's two copies scanned as at boot, NVM_CHUNK bytes a unit */
+    NW_DONE
+};
+
+nvm_status_t nvm_write_begin(nvm_writer_t *w, nvm_t *n, uint16_t slot, const uint8_t *payload,
+                             uint32_t len)
 {
+    w->stage = NW_DONE;
+    w->status = NVM_OK;
     if (n == NULL || n->dev == NULL || (payload == NULL && len != 0u)) {
-        return NVM_ERR_NULL_ARG;
+        w->status = NVM_ERR_NULL_ARG;
+    } else if (slot >= n->n_slots) {
+        w->status = NVM_ERR_SLOT;
+    } else if (len > nvm_payload_max(n->dev)) {
+        w->status = NVM_ERR_TOO_LARGE;
     }
-    if (slot >= n->n_slots) {
-        return NVM_ERR_SLOT;
-    }
-    const fls_dev_t *d = n->dev;
-    if (len > nvm_payload_max(d)) {
-        return NVM_ERR_TOO_LARGE;
+    if (w->status != NVM_OK) {
+        return w->status;
     }
     const nvm_dir_entry_t *e = &n->dir[slot];
+    w->n = n;
+    w->payload = payload;
+    w->len = len;
+    w->slot = slot;
     /* Target: the copy that does not hold the newest record. */
-    const uint8_t target = (e->valid != 0u) ? (uint8_t)(1u - e->copy) : 0u;
-    const uint32_t seq = (e->valid != 0u) ? e->seq + 1u : 1u;
-    const uint32_t base = copy_addr(n, slot, target);
+    w->target = (e->valid != 0u) ? (uint8_t)(1u - e->copy) : 0u;
+    w->seq = (e->valid != 0u) ? e->seq + 1u : 1u;
+    w->base = copy_addr(n, slot, w->target);
+    (void)memset(w->hdr, 0xFF, sizeof w->hdr);
+    wr32(w->hdr, NVM_RECORD_MAGIC);
+    wr16(w->hdr + 4u, (uint16_t)NVM_RECORD_VERSION);
+    wr16(w->hdr + 6u, slot);
+    wr32(w->hdr + NVM_SEQ_OFF, w->seq);
+    wr32(w->hdr + 12u, len);
+    w->crc = nvm_crc32(0u, w->hdr, NVM_CRC_COVER);
+    w->pos = 0u;
+    w->scan = 0u;
+    w->stage = NW_CRC;
+    return NVM_OK;
+}
 
-    uint8_t hdr[NVM_HEADER_SIZE];
-    (void)memset(hdr, 0xFF, sizeof hdr);
-    wr32(hdr, NVM_RECORD_MAGIC);
-    wr16(hdr + 4u, (uint16_t)NVM_RECORD_VERSION);
-    wr16(hdr + 6u, slot);
-    wr32(hdr + NVM_SEQ_OFF, seq);
-    wr32(hdr + 12u, len);
-    uint32_t crc = nvm_crc32(0u, hdr, NVM_CRC_COVER);
-    crc = nvm_crc32(crc, payload, len);
-    wr32(hdr + 16u, crc);
+/* One unit of the program or verify stage: the header at pos 0, then the payload piece by
+ * piece (pos counts payload bytes + 1); true once the stage is done. */
+static bool write_piece(nvm_writer_t *w, bool verify)
+{
+    const fls_dev_t *d = w->n->dev;
+    if (w->pos == 0u) {
+        w->status = verify ? verify_range(d, w->base, w->hdr, NVM_HEADER_SIZE)
+                           : program_range(d, w->base, w->hdr, NVM_HEADER_SIZE);
+        w->pos = 1u;
+        return w->len == 0u;
+    }
+    const uint32_t off = w->pos - 1u;
+    const uint32_t k = (w->len - off < NVM_CHUNK) ? w->len - off : NVM_CHUNK;
+    const uint32_t addr = w->base + NVM_HEADER_SIZE + off;
+    w->status = verify ? verify_range(d, addr, w->payload + off, k)
+                       : program_range(d, addr, w->payload + off, k);
+    w->pos += k;
+    return off + k >= w->len;
+}
 
-    nvm_status_t s = NVM_OK;
-    if (d->erase(d->ctx, (uint32_t)slot * 2u + target) != 0) {
-        s = NVM_ERR_FLASH;
+/* One unit of the final scan (copy w->scan: its head at pos 0, then its payload's CRC); true
+ * once both copies are scanned and the directory entry is set. */
+static bool write_scan(nvm_writer_t *w)
+{
+    const uint8_t c = w->scan;
+    nvm_record_info_t *inf = &w->info[c];
+    bool copy_done = false;
+    if (w->pos == 0u) {
+        w->ok[c] = scan_head(w->n, w->slot, c, inf, &w->scan_crc) == NVM_OK;
+        copy_done = !w->ok[c] || inf->length == 0u;
+        w->pos = 1u;
+    } else {
+        const uint32_t off = w->pos - 1u;
+        w->ok[c] = scan_chunk(w->n, w->slot, c, inf, off, &w->scan_crc) == NVM_OK;
+        w->pos += NVM_CHUNK;
+        copy_done = !w->ok[c] || off + NVM_CHUNK >= inf->length;
     }
-    if (s == NVM_OK) {
-        s = program_range(d, base, hdr, NVM_HEADER_SIZE);
+    if (copy_done) {
+        w->ok[c] = w->ok[c] && w->scan_crc == inf->crc32;
+        w->pos = 0u;
+        w->scan++;
     }
-    if (s == NVM_OK && len != 0u) {
-        s = program_range(d, base + NVM_HEADER_SIZE, payload, len);
+    if (w->scan < 2u) {
+        return false;
     }
-    /* Verify the body before committing: a record that would read back wrong never becomes
-     * valid. */
-    if (s == NVM_OK) {
-        s = verify_range(d, base, hdr, NVM_HEADER_SIZE);
+    dir_set(w->n, w->slot, w->ok, w->info);
+    const nvm_dir_entry_t *ne = &w->n->dir[w->slot];
+    if (w->status == NVM_OK && (ne->valid == 0u || ne->copy != w->target || ne->seq != w->seq)) {
+        w->status = NVM_ERR_VERIFY;
     }
-    if (s == NVM_OK && len != 0u) {
-        s = verify_range(d, base + NVM_HEADER_SIZE, payload, len);
-    }
-    if (s == NVM_OK) {
-        uint8_t cw[16];
-        (void)memset(cw, 0xFF, sizeof cw);
-        wr32(cw, NVM_COMMIT_WORD);
-        const uint32_t u = unit_of(d->write_unit);
-        if (d->program(d->ctx, base + commit_offset(len, d->write_unit), cw, u) != 0) {
-            s = NVM_ERR_FLASH;
+    return true;
+}
+
+bool nvm_write_run(nvm_writer_t *w, uint32_t max_units)
+{
+    const fls_dev_t *d = (w->stage != NW_DONE) ? w->n->dev : NULL;
+    for (uint32_t u = 0u; u < max_units && w->stage != NW_DONE; u++) {
+        bool next = true;
+        switch (w->stage) {
+        case NW_CRC: {
+            const uint32_t k = (w->len - w->pos < NVM_CHUNK) ? w->len - w->pos : NVM_CHUNK;
+            w->crc = nvm_crc32(w->crc, w->payload + w->pos, k);
+            w->pos += k;
+            next = w->pos >= w->len;
+            if (next) {
+                wr32(w->hdr + 16u, w->crc);
+            }
+            break;
+        }
+        case NW_ERASE:
+            if (d->erase(d->ctx, (uint32_t)w->slot * 2u + w->target) != 0) {
+                w->status = NVM_ERR_FLASH;
+            }
+            break;
+        case NW_PROG: next = write_piece(w, false); break;
+        /* Verify the body before committing: a record that would read back wrong never becomes
+         * valid. */
+        case NW_VERIFY: next = write_piece(w, true); break;
+        case NW_COMMIT: {
+            uint8_t cw[16];
+            (void)memset(cw, 0xFF, sizeof cw);
+            wr32(cw, NVM_COMMIT_WORD);
+            if (d->program(d->ctx, w->base + commit_offset(w->len, d->write_unit), cw,
+                           unit_of(d->write_unit)) != 0) {
+                w->status = NVM_ERR_FLASH;
+            }
+            break;
+        }
+        /* Final verification through the same path as boot: scan the whole record. */
+        default: next = write_scan(w); break;
+        }
+        if (w->status != NVM_OK && w->stage < NW_SCAN) {
+            next = true; /* a failed step: straight to the scan (storage as it is now) */
+            w->stage = (uint8_t)(NW_SCAN - 1u);
+        }
+        if (next) {
+            w->stage++;
+            w->pos = 0u;
         }
     }
-    /* Final verification through the same path as boot: scan the whole record. */
-    rescan_slot(n, slot);
-    if (s == NVM_OK) {
-        const nvm_dir_entry_t *ne = &n->dir[slot];
-        if (ne->valid == 0u || ne->copy != target || ne->seq != seq) {
-            s = NVM_ERR_VERIFY;
-        }
+    return w->stage == NW_DONE;
+}
+
+nvm_status_t nvm_write(nvm_t *n, uint16_t slot, const uint8_t *payload, uint32_t len)
+{
+    nvm_writer_t w;
+    if (nvm_write_begin(&w, n, slot, payload, len) != NVM_OK) {
+        return w.status;
     }
-    return s;
+    while (!nvm_write_run(&w, UINT32_MAX)) {
+    }
+    return w.status;
 }
 
 nvm_status_t nvm_read(const nvm_t *n, uint16_t slot, uint8_t *buf, uint32_t cap, uint32_t *len)

@@ -690,10 +690,15 @@ static void test_skill_validated_before_commit_and_run(void **state)
                   "answer\n", (unsigned)(app.tick - t0));
     /* one stage after the other, each bounded per tick: the parse (v2, N = 50: CRC 42 units of
      * 32 bytes, finiteness 42 of 4 fields, widths, centres and values 50 each, 5 header stages:
-     * 239 units), the parameters (1 tick), the rollout (1,500 steps), the flash write (1 tick) */
+     * 239 units), the parameters (1 tick), the rollout (1,500 steps), the flash write (1,340
+     * bytes, 6 pieces of 256: CRC 6, erase 1, program 1 + 6, read-back 1 + 6, commit 1, scan of
+     * the new copy 1 + 6 and of the empty one 1: 30 units) */
     const uint32_t parse_ticks = (239u + APP_COMMIT_UNITS_PER_TICK - 1u) / APP_COMMIT_UNITS_PER_TICK;
     const uint32_t check_ticks = (1500u + APP_CHECK_STEPS_PER_TICK - 1u) / APP_CHECK_STEPS_PER_TICK;
-    assert_int_equal(app.tick - t0, parse_ticks + 1u + check_ticks + 1u);
+    const uint32_t write_ticks =
+        (30u + APP_COMMIT_FLASH_UNITS_PER_TICK - 1u) / APP_COMMIT_FLASH_UNITS_PER_TICK;
+    assert_int_equal(len_a, 1340u);
+    assert_int_equal(app.tick - t0, parse_ticks + 1u + check_ticks + write_ticks);
     const fs_real_t peak = app.slot_peak_N[0];
     assert_true(peak > FS_R(4.8) && peak < FS_R(4.9));        /* the reference rollout: 4.842 N */
     /* weights x100, CRC recomputed: a well-formed image whose output exceeds the limit */
