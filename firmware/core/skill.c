@@ -80,18 +80,32 @@ static uint32_t rd_u32(const uint8_t *b, uint32_t off)
            ((uint32_t)b[off + 3u] << 24);
 }
 
-/* IEEE-754 binary64, little-endian in the image; reinterpreted through a union (no memcpy). */
-static double rd_f64(const uint8_t *b, uint32_t off)
+/* 64 bits, little-endian in the image, as two 32-bit words (cheap on a 32-bit core). */
+static uint64_t rd_u64(const uint8_t *b, uint32_t off)
+{
+    return (uint64_t)rd_u32(b, off) | ((uint64_t)rd_u32(b, off + 4u) << 32);
+}
+
+/* IEEE-754 binary64 from its bits; reinterpreted through a union (no memcpy). */
+static double f64_of(uint64_t bits)
 {
     union {
         uint64_t u;
         double d;
     } v;
-    v.u = 0u;
-    for (uint32_t i = 8u; i > 0u; i--) {
-        v.u = (v.u << 8) | (uint64_t)b[off + i - 1u];
-    }
+    v.u = bits;
     return v.d;
+}
+
+static double rd_f64(const uint8_t *b, uint32_t off)
+{
+    return f64_of(rd_u64(b, off));
+}
+
+/* The binary64 at off is finite (its exponent field is not all ones). */
+static int rd_f64_finite(const uint8_t *b, uint32_t off)
+{
+    return ((rd_u64(b, off) >> 52) & 0x7FFu) != 0x7FFu;
 }
 
 static int rel_close(double a, double b, double rel)
@@ -102,10 +116,20 @@ static int rel_close(double a, double b, double rel)
 }
 
 #ifdef FS_REAL_FLOAT
-/* Round a validated double to the float core: nonzero if it fits the float range. */
+/* FLT_MAX as a binary64 bit pattern: the order of non-negative doubles is that of their bits. */
+#define SKILL_FLT_MAX_BITS 0x47EFFFFFE0000000ull
+_Static_assert(FLT_MAX == 3.40282346638528859811704183484516925e+38F, "IEEE-754 binary32");
+
+/* Round a validated double to the float core: nonzero if it fits the float range (|d| <= FLT_MAX,
+ * compared on the bits: no software double compare on a core without a double FPU). */
 static int to_real(double d, fs_real_t *out)
 {
-    if (fabs(d) > (double)FLT_MAX) {
+    union {
+        double d;
+        uint64_t u;
+    } v;
+    v.d = d;
+    if ((v.u & 0x7FFFFFFFFFFFFFFFull) > SKILL_FLT_MAX_BITS) {
         return 0;
     }
     *out = (fs_real_t)d;
@@ -298,7 +322,7 @@ static bool parse_item(skill_parser_t *p)
                                ((p->has_y != 0u) ? 4u : 3u) * n;
         const uint32_t first = i * SKILL_PARSE_F64_PER_UNIT;
         for (uint32_t k = first; k < n_f64 && k < first + SKILL_PARSE_F64_PER_UNIT; k++) {
-            if (!isfinite(rd_f64(buf, OFF_DT + 8u * k))) {
+            if (!rd_f64_finite(buf, OFF_DT + 8u * k)) {
                 p->status = FS_ERR_SKILL_NOT_FINITE;
             }
         }
