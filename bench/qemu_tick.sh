@@ -108,8 +108,8 @@ echo "== the product image: $(basename "$SKILL") (N = $KERNELS), IDLE / download
 # from its *_Handler entry until the interrupted function runs again, is the CAN link's cost: in
 # the tick's total, not in the part), 1 if the DMP stepped (not after the
 # skill's end, when the end policy runs the law alone), those inside dmp_step(_xy) alone, 1 if the
-# tick worked on a download's commit (skill_parse_run, skchk_*, nvm_write_run not called by
-# nvm_write, the whole write of another record, e.g. SecurityAccess's).
+# tick worked on a download's commit (the application's download_end, which runs the parse, the
+# checks and the slot's write in slices, or skill_parse_run / skchk_* inlined into it).
 # Also: each boot (from the first instruction of Reset_Handler to the first counted tick: all its
 # instructions and those inside app_init), and the skill check of each download (the instructions
 # inside skchk_params/skchk_begin/skchk_run, entered from the UDS transfer's code, over the ticks
@@ -140,7 +140,7 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                   if (ininit) ba++
                   bprev = s }
     if (inb) { c++; h[s]++
-               if (s ~ COMMIT && !(s == "nvm_write_run" && prev == "nvm_write")) cmt = 1
+               if (s ~ COMMIT) cmt = 1
                if (prof != "") { split($4, pcs, "/"); hp[pcs[2] " " s]++ }
                # an interrupt (the UART'"'"'s) taken inside the tick: in its total, in no part
                if (!inirq && s ~ /_Handler$/) { inirq = 1; irqret = prev }
@@ -162,7 +162,7 @@ mkfifo "$WORK/trace.fifo"
 # per instruction address (hex, with its function) in FILE.pc, and per function of the EXECUTE tick
 # with the largest DMP part in FILE.maxdmp
 awk -v prof="${QEMU_TICK_PROFILE:-}" -v DMP="^dmp_step(_xy)?_f32$" \
-    -v COMMIT="^(skill_parse_run_f32|skchk_(params|begin|run)_f32|nvm_write_run)$" "$COUNT_AWK" < "$WORK/trace.fifo" > "$WORK/ticks.txt" &
+    -v COMMIT="^(download_end|skill_parse_run_f32|skchk_(params|begin|run)_f32)$" "$COUNT_AWK" < "$WORK/trace.fifo" > "$WORK/ticks.txt" &
 AWK_PID=$!
 "$HIL_SIM" pil --target "$TARGET" --image "$IMG/fs_pil.elf" --port 0 --host-timeout 500 \
   --qemu-arg "${ONE_INSN[0]}" ${ONE_INSN[1]:+--qemu-arg "${ONE_INSN[1]}"} \

@@ -257,14 +257,24 @@ def qemu_tick(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
                 _verdict(float(hi), must, aim, False),
             ]
         )
+        # every figure line of the run, as printed (performance.json), for docs/cortex-m.md
+        data[target]["lines"] = [
+            ln for ln in p.stdout.splitlines() if ln.split(" ", 1)[0].endswith("_instructions")
+        ]
         # the whole app_tick per state and the ticks of a download's commit
         for ln in p.stdout.splitlines():
             if ln.startswith(("app_tick_instructions", "commit_tick_instructions")):
                 akv = _kv(ln)
                 what = akv.get("state", "commit (any state)")
                 app_rows.append(
-                    [target, what, *(f"{int(akv[k]):,}" if akv.get(k, "-").isdigit() else "-"
-                                     for k in ("min", "median", "max", "ticks"))]
+                    [
+                        target,
+                        what,
+                        *(
+                            f"{int(akv[k]):,}" if akv.get(k, "-").isdigit() else "-"
+                            for k in ("min", "median", "max", "ticks")
+                        ),
+                    ]
                 )
                 data[target][f"app_tick_{what.split()[0].lower()}"] = {
                     k: akv.get(k) for k in ("min", "median", "max", "ticks")

@@ -286,7 +286,8 @@ enum {
     SP_GAINS,   /* the gains and the flags */
     SP_FILL,    /* the header's values in the core's type */
     SP_KERNELS, /* each kernel's values in the core's type, one a unit */
-    SP_FINISH,  /* the x-axis gains, the end policy and dmp_model_init */
+    SP_FINISH,  /* the x-axis gains and the end policy */
+    SP_MODEL,   /* dmp_model_init, SKILL_PARSE_INIT_KERNELS kernels of a pass a unit */
     SP_DONE
 };
 
@@ -373,7 +374,7 @@ static void parse_once(skill_parser_t *p)
         out->end_policy = ((rd_u16(buf, OFF_FLAGS) & SKILL_FLAG_END_RELEASE) != 0u)
                               ? SKILL_END_RELEASE
                               : SKILL_END_HOLD;
-        p->status = dmp_model_init(&out->dmp);
+        dmp_model_init_begin(&p->init);
         break;
     default: break;
     }
@@ -404,6 +405,9 @@ bool skill_parse_run(skill_parser_t *p, uint32_t max_units)
         bool stage_done = true;
         if (p->stage == SP_CRC) {
             stage_done = parse_crc(p);
+        } else if (p->stage == SP_MODEL) {
+            stage_done = dmp_model_init_run(&p->out->dmp, &p->init, SKILL_PARSE_INIT_KERNELS);
+            p->status = stage_done ? p->init.status : FS_OK;
         } else if (p->stage == SP_FINITE || p->stage == SP_WIDTHS || p->stage == SP_CENTRES ||
                    p->stage == SP_KERNELS) {
             stage_done = parse_item(p);

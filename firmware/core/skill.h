@@ -58,8 +58,8 @@ uint32_t skill_crc32(uint32_t crc, const uint8_t *data, uint32_t len);
  *  and results of skill_parse, in its order, at most a bounded amount of work per call, so a
  *  device checks a download over several control ticks. A unit of work is one kernel's value in
  *  one pass, SKILL_PARSE_F64_PER_UNIT float64 fields in the finiteness pass, SKILL_PARSE_CRC_BYTES
- *  bytes of the CRC, or one of the header's stages (the last, dmp_model_init, is O(N) in the
- *  core's type). The image and *out must stay in place until the parse is done. */
+ *  bytes of the CRC, SKILL_PARSE_INIT_KERNELS kernels of a pass of dmp_model_init, or one of
+ *  the header's stages. The image and *out must stay in place until the parse is done. */
 typedef struct {
     const uint8_t *buf;
     uint32_t len;
@@ -71,10 +71,12 @@ typedef struct {
     uint16_t n;         /* kernels */
     uint8_t has_y;      /* the y DMP is present */
     uint8_t stage;      /* internal */
+    dmp_init_t init;    /* the model's derivation (dmp_model_init in slices) */
     fs_status_t status; /* FS_OK while running or once valid; the refusal once done */
 } skill_parser_t;
 #define SKILL_PARSE_CRC_BYTES 32u
 #define SKILL_PARSE_F64_PER_UNIT 4u
+#define SKILL_PARSE_INIT_KERNELS 8u /* kernels of a dmp_model_init pass a unit */
 
 /** Start a parse of buf[0..len) into *out (FS_ERR_NULL_ARG at once for NULL). */
 void skill_parse_begin(skill_parser_t *p, const uint8_t *buf, uint32_t len, skill_t *out);
