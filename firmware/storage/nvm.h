@@ -17,8 +17,9 @@
  * programs header+payload, then the commit word, then reads back and verifies. The newest
  * record is never touched, and the new one becomes valid only with its last program; so a
  * power loss at any erase or program leaves either the old record or the complete new one.
- * Not for use inside the control tick (erase takes milliseconds on real flash); the tick only
- * swaps pointers (nvm_bank_*). */
+ * nvm_write is not for use inside the control tick (erase takes milliseconds on real flash);
+ * the sliced nvm_write_begin/nvm_write_run spreads one write over ticks (the application's
+ * download commit), and the tick only swaps pointers (nvm_bank_*). */
 #ifndef NVM_H
 #define NVM_H
 
