@@ -17,8 +17,9 @@
 #    callees; on the M3 their fixed-point builds dmpfx_step and pfcfx_step), and the kind of the
 #    tick (cm_port_mark_idle/execute/upload after it); prints
 #      tick_instructions target=T kernels=N min= median= max=          (DMP + control law, EXECUTE)
+#      commit_tick_instructions target=T min= median= max= ticks=  (a download's commit)
 #      app_tick_instructions target=T state=IDLE|EXECUTE|UPLOAD min= median= max=
-# Exit status 1 if a check fails or the DMP + control-law part exceeds its budget (M4F 1,500,
+# Exit status 1 if a check fails or the DMP + control-law part exceeds its budget (M4F 850,
 # M3 1,250).
 set -euo pipefail
 
@@ -39,7 +40,7 @@ while [ $# -gt 0 ]; do
 done
 
 case $TARGET in
-  cortex-m4f) MACHINE=mps2-an386; CPU=cortex-m4; BUDGET=1500
+  cortex-m4f) MACHINE=mps2-an386; CPU=cortex-m4; BUDGET=850
               DMP_RE='^dmp_step(_xy)?_f32$'; LAW=pfc_step_f32 ;;
   cortex-m3)  MACHINE=mps2-an385; CPU=cortex-m3; BUDGET=1250
               DMP_RE='^dmpfx_step(_xy)?$'; LAW=pfcfx_step ;;
@@ -108,24 +109,34 @@ echo "counter check ok: 100 nops + call/return/call counted as $CC"
 
 echo "== the product image: $(basename "$SKILL") (N = $KERNELS), IDLE / download / EXECUTE / EXECUTE + read-back"
 # Per counted tick: kind, all instructions of app_tick, those inside dmp_step(_xy)/pfc_step (entered
-# from their caller, left when the caller's code runs again), 1 if the DMP stepped (not after the
-# skill's end, when the end policy runs the law alone), those inside dmp_step(_xy) alone.
+# from their caller, left when the caller's code runs again; an interrupt handler taken meanwhile,
+# from its *_Handler entry until the interrupted function runs again, is the CAN link's cost: in
+# the tick's total, not in the part), 1 if the DMP stepped (not after the
+# skill's end, when the end policy runs the law alone), those inside dmp_step(_xy) alone, 1 if the
+# tick worked on a download's commit (the application's download_end, which runs the parse, the
+# checks and the slot's write in slices, or skill_parse_run / skchk_* inlined into it).
 # Also: each boot (from the first instruction of Reset_Handler to the first counted tick: all its
 # instructions and those inside app_init), and the skill check of each download (the instructions
 # inside skchk_params/skchk_begin/skchk_run, entered from the UDS transfer's code, over the ticks
 # it is spread across).
 COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot = 0 }
-                                    inb = 1; c = 0; part = 0; inpart = 0; dmp = 0; dpart = 0; indmp = 0; next }
-  / cm_port_mark_end$/ { if (inb) { done = 1; lc = c; lp = part; ld = dmp; ldp = dpart }
+                                    inb = 1; c = 0; part = 0; inpart = 0; dmp = 0; dpart = 0; indmp = 0
+                                    cmt = 0; next }
+  / cm_port_mark_end$/ { if (inb) { done = 1; lc = c; lp = part; ld = dmp; ldp = dpart; lcm = cmt }
                          if (chk_tick > 0) { chk_ticks++; if (chk_tick > chk_max) chk_max = chk_tick }
                          if (chk_tick == 0 && chk_ticks > 0) { print "check", chk_total, chk_ticks, chk_max
                                                                chk_total = 0; chk_ticks = 0; chk_max = 0 }
                          chk_tick = 0; inb = 0; next }
   / cm_port_mark_(idle|execute|upload|other)$/ {
-      if (done) { k = $NF; sub(/^cm_port_mark_/, "", k); print k, lc, lp, ld, ldp; done = 0
-                  if (prof != "" && k == "execute") { for (f in h) tot[f] += h[f]; nexec++ } }
-      delete h; next }
-  END { if (prof != "") { for (f in tot) printf "%d %s\n", tot[f] / nexec, f > prof } }
+      if (done) { k = $NF; sub(/^cm_port_mark_/, "", k); print k, lc, lp, ld, ldp, lcm; done = 0
+                  if (prof != "" && k == "execute") { for (f in h) tot[f] += h[f]; nexec++
+                                                      for (a in hp) tp[a] += hp[a]
+                                                      if (ld && ldp > maxdp) { maxdp = ldp; delete hm
+                                                                               for (f in h) hm[f] = h[f] } } }
+      delete h; delete hp; next }
+  END { if (prof != "") { for (f in tot) printf "%d %s\n", tot[f] / nexec, f > prof
+                          for (a in tp) printf "%.2f %s\n", tp[a] / nexec, a > (prof ".pc")
+                          for (f in hm) printf "%d %s\n", hm[f], f > (prof ".maxdmp") } }
   { s = $NF
     if (!inboot && s == "Reset_Handler") { inboot = 1; bc = 0; ba = 0; ininit = 0 }
     if (inboot) { bc++
@@ -134,6 +145,8 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                   if (ininit) ba++
                   bprev = s }
     if (inb) { c++; h[s]++
+               if (s ~ COMMIT) cmt = 1
+               if (prof != "") { split($4, pcs, "/"); hp[pcs[2] " " s]++ }
                # an interrupt taken inside the tick (the UART of the CAN link) counts in the
                # tick, not in a part it interrupts: from its handler back to the interrupted code
                if (!inisr && s ~ /_Handler$/ && s != "Reset_Handler") { inisr = 1; isrret = prev }
@@ -151,8 +164,11 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                if (inchk) { chk_total++; chk_tick++ }
                prev = s } }'
 mkfifo "$WORK/trace.fifo"
-# QEMU_TICK_PROFILE=FILE: also write the mean instructions per function of an EXECUTE tick there
-awk -v prof="${QEMU_TICK_PROFILE:-}" -v DMP="$DMP_RE" -v LAW="$LAW" "$COUNT_AWK" < "$WORK/trace.fifo" > "$WORK/ticks.txt" &
+# QEMU_TICK_PROFILE=FILE: also write the mean instructions per function of an EXECUTE tick there,
+# per instruction address (hex, with its function) in FILE.pc, and per function of the EXECUTE tick
+# with the largest DMP part in FILE.maxdmp
+awk -v prof="${QEMU_TICK_PROFILE:-}" -v DMP="$DMP_RE" -v LAW="$LAW" \
+    -v COMMIT="^(download_end|skill_parse_run_f32|skchk_(params|begin|run)_f32)$" "$COUNT_AWK" < "$WORK/trace.fifo" > "$WORK/ticks.txt" &
 AWK_PID=$!
 "$HIL_SIM" pil --target "$TARGET" --image "$IMG/fs_pil.elf" --port 0 --host-timeout 500 \
   --qemu-arg "${ONE_INSN[0]}" ${ONE_INSN[1]:+--qemu-arg "${ONE_INSN[1]}"} \
@@ -188,6 +204,10 @@ awk '$1 == "boot" { n++; printf "boot_instructions target=%s boot=%d skills=%d t
   t="$TARGET" "$WORK/ticks.txt"
 awk '$1 == "check" { printf "skill_check_instructions target=%s total=%d ticks=%d max_per_tick=%d\n", t, $2, $3, $4 }' \
   t="$TARGET" "$WORK/ticks.txt"
+# the ticks of a download's commit (RequestTransferExit to its answer: the parse, the parameter
+# check, the rollout, the flash write), whatever the state
+read -r A B C N < <(awk '$6 == 1 { print $2 }' "$WORK/ticks.txt" | stats)
+echo "commit_tick_instructions target=$TARGET min=$A median=$B max=$C ticks=$N"
 for st in idle execute upload; do
   read -r A B C N < <(awk -v k=$st '$1 == k { print $2 }' "$WORK/ticks.txt" | stats)
   echo "app_tick_instructions target=$TARGET state=$(echo $st | tr a-z A-Z) min=$A median=$B max=$C ticks=$N"

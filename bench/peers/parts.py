@@ -207,7 +207,7 @@ def qemu_tick(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
     script = root / "bench" / "qemu_tick.sh"
     if not script.is_file():
         return _na("bench/qemu_tick.sh has not landed (no bench/qemu_tick.sh)")
-    rows, size_rows, notes, targets = [], [], [], []
+    rows, size_rows, notes, targets, app_rows = [], [], [], [], []
     data: dict[str, Any] = {}
     for target, numeric, must, aim in QEMU_TARGETS:
         bdir = bld.dir / f"qemu-{target}"
@@ -257,6 +257,28 @@ def qemu_tick(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
                 _verdict(float(hi), must, aim, False),
             ]
         )
+        # every figure line of the run, as printed (performance.json), for docs/cortex-m.md
+        data[target]["lines"] = [
+            ln for ln in p.stdout.splitlines() if ln.split(" ", 1)[0].endswith("_instructions")
+        ]
+        # the whole app_tick per state and the ticks of a download's commit
+        for ln in p.stdout.splitlines():
+            if ln.startswith(("app_tick_instructions", "commit_tick_instructions")):
+                akv = _kv(ln)
+                what = akv.get("state", "commit (any state)")
+                app_rows.append(
+                    [
+                        target,
+                        what,
+                        *(
+                            f"{int(akv[k]):,}" if akv.get(k, "-").isdigit() else "-"
+                            for k in ("min", "median", "max", "ticks")
+                        ),
+                    ]
+                )
+                data[target][f"app_tick_{what.split()[0].lower()}"] = {
+                    k: akv.get(k) for k in ("min", "median", "max", "ticks")
+                }
         bench_line = next((ln for ln in p.stdout.splitlines() if ln.startswith("== benchmark:")), "")
         ticks = next((_kv(ln).get("rows") for ln in p.stdout.splitlines() if ln.startswith("bench ")), None)
         data[target]["ticks"] = ticks
@@ -305,6 +327,15 @@ def qemu_tick(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
         "of the tick assumes one cycle per instruction: an approximation (loads, taken branches, divides "
         "and flash wait states take more), so the true cycle share is somewhat higher."
     )
+    if app_rows:
+        body += "\n\n" + _table(
+            ["target", "tick", "whole app_tick, instructions min", "median", "max", "ticks"], app_rows
+        )
+        body += (
+            "\n\nThe whole application tick (app_tick with the UART interrupts taken during it) per "
+            "state of the same run, and the ticks that worked on a download's commit (the parse, the "
+            "parameter check, the rollout, the flash write: each a bounded slice)."
+        )
     if size_rows:
         body += "\n\n" + _table(
             ["target", "image", "flash, bytes", "RAM, bytes (incl. reserved stack)"], size_rows

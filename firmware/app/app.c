@@ -53,15 +53,12 @@ static bool tp_send(void *ctx, const can_frame_t *f)
 
 static int32_t clamp_i32(fs_real_t v, fs_real_t scale, int32_t lo, int32_t hi)
 {
-    if (!fs_isfinite(v)) {
-        return 0;
-    }
     const fs_real_t r = v / scale;
-    if (r >= (fs_real_t)hi) {
-        return hi;
-    }
-    if (r <= (fs_real_t)lo) {
-        return lo;
+    if (!(r > (fs_real_t)lo && r < (fs_real_t)hi)) { /* out of range, or NaN/inf (v or r) */
+        if (!fs_isfinite(v)) {
+            return 0;
+        }
+        return (r >= (fs_real_t)hi) ? hi : lo;
     }
     /* round half away from zero, as cantools --use-round (roundf) does */
     return (int32_t)(r < FS_R(0.0) ? r - FS_R(0.5) : r + FS_R(0.5));
@@ -114,8 +111,7 @@ static void send_telemetry(app_t *app)
     p.pos_x = clamp_i32(app->sens.pos_m[0], FS_R(1e-6), -8388608, 8388607);
     p.pos_y = clamp_i32(app->sens.pos_m[1], FS_R(1e-6), -8388608, 8388607);
     p.tick = (uint16_t)(app->tick & 0xFFFFu);
-    can_frame_t f;
-    memset(&f, 0, sizeof(f));
+    can_frame_t f; /* id, dlc and the 8 data bytes (the pack functions write all 8) */
     f.id = PROTO_ID_TELEM_POS(app->cfg.node);
     f.dlc = 8u;
     (void)fs_dbc_telemetry_position_pack(f.data, &p, sizeof(f.data));
@@ -180,6 +176,24 @@ flt_code_t app_clear_faults(app_t *app)
     return r;
 }
 
+/* now_us / 1000 truncated to 32 bits, as (uint32_t)(now_us / 1000u), continued from the last
+ * call's whole millisecond: a 32-bit division while less than ~71 minutes pass between calls (every
+ * tick), the 64-bit one otherwise (the first call, a clock that went back). */
+static uint32_t app_now_ms(app_t *app, uint64_t now_us)
+{
+    const uint64_t d = now_us - app->ms_base_us;
+    if (now_us >= app->ms_base_us && d <= (uint64_t)UINT32_MAX) {
+        const uint32_t q = (uint32_t)d / 1000u;
+        app->ms_base_us += (uint64_t)q * 1000u;
+        app->ms_base_ms += q;
+    } else {
+        const uint64_t ms = now_us / 1000u;
+        app->ms_base_us = ms * 1000u;
+        app->ms_base_ms = (uint32_t)ms;
+    }
+    return app->ms_base_ms;
+}
+
 static fs_real_t milli(uint32_t v)
 {
     return (fs_real_t)v * FS_R(0.001);
@@ -192,8 +206,8 @@ uint8_t app_start_sequence(app_t *app, const uint8_t *slots, const fs_real_t *go
     if (n_steps == 0u || n_steps > EXEC_MAX_STEPS || end > 2u) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
-    if (app->state != APP_IDLE) {
-        return UDS_NRC_CONDITIONS_NOT_CORRECT;
+    if (app->state != APP_IDLE || app->checking) {
+        return UDS_NRC_CONDITIONS_NOT_CORRECT; /* a download's commit runs: its end decides */
     }
     exec_step_t steps[EXEC_MAX_STEPS];
     for (uint8_t i = 0; i < n_steps; i++) {
@@ -460,7 +474,7 @@ void app_init(app_t *app, const app_config_t *cfg)
     app->cfg = *cfg;
     app->state = APP_BOOT;
     app->now_us = hal_time_us();
-    app->now_ms = (uint32_t)(app->now_us / 1000u);
+    app->now_ms = app_now_ms(app, app->now_us);
     e2e_rx_reset(&app->rx_command);
     e2e_rx_reset(&app->rx_heartbeat);
 
@@ -581,7 +595,7 @@ static void control(app_t *app)
 void app_tick(app_t *app, bool overrun)
 {
     app->now_us = hal_time_us();
-    app->now_ms = (uint32_t)(app->now_us / 1000u);
+    app->now_ms = app_now_ms(app, app->now_us);
     app->tick++;
     app->host_frame = false;
     app->overrun = overrun;
@@ -606,13 +620,14 @@ void app_tick(app_t *app, bool overrun)
     uds_service(app);
     control(app);
 
-    saf_input_t in;
-    memset(&in, 0, sizeof(in));
+    saf_input_t in; /* every field set: no memset in the tick */
     in.tick = app->tick;
     in.now_ms = app->now_ms;
     in.host_frame = app->host_frame && (app->state == APP_TEACH || app->state == APP_EXECUTE);
     in.bus_off = hal_can_bus_off();
     in.tick_overrun = overrun;
+    in.skill_invalid = false;
+    in.storage_error = false;
     for (unsigned a = 0; a < PFC_AXES; a++) {
         in.meas[a].pos_m = app->sens.pos_m[a];
         in.meas[a].vel_mps = app->vel_mps[a];

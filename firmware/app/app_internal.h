@@ -55,6 +55,18 @@
 #ifndef APP_CHECK_STEPS_PER_TICK
 #define APP_CHECK_STEPS_PER_TICK 100u
 #endif
+/* Units of the downloaded image's parse (skill_parse_run: one kernel's value, 32 bytes of the
+ * CRC) per tick while the commit waits: on the M4F a unit is at most ~450 instructions, so 12
+ * keep such a tick near 6,000; N = 50 takes ~20 ticks, N = 256 ~110. */
+#ifndef APP_COMMIT_UNITS_PER_TICK
+#define APP_COMMIT_UNITS_PER_TICK 12u
+#endif
+/* Units of the slot's flash write (nvm_write_run: the erase, the commit word, or 256 bytes of
+ * the CRC, programming, read-back or final scan, each at most ~3,500 instructions on the M4F)
+ * per tick while the commit waits. */
+#ifndef APP_COMMIT_FLASH_UNITS_PER_TICK
+#define APP_COMMIT_FLASH_UNITS_PER_TICK 2u
+#endif
 /* Highest nominal skill stiffness the device accepts (commit and start refuse above it, 227):
  * tracking against object stiffness on the HIL (bench/stiffness/stiffness_limit.py, docs/hil.md),
  * the highest k from 1e4 N/m up at which both stiff profiles track within 5 % RMS without a fault:
@@ -63,6 +75,15 @@
 #define APP_STIFFNESS_MAX_NPM 5e5
 #define APP_STIFFNESS_MAX_RENDERED_NPM 3e4
 
+
+/** The stages of a skill download's commit (one per tick at least, app_uds.c). */
+enum {
+    APP_COMMIT_PARSE = 0, /* skill_parse_run, APP_COMMIT_UNITS_PER_TICK units a tick */
+    APP_COMMIT_PARAMS,    /* skchk_params, skchk_stiffness, skchk_begin */
+    APP_COMMIT_CHECK,     /* the rollout, APP_CHECK_STEPS_PER_TICK steps a tick */
+    APP_COMMIT_WRITE      /* the slot's flash record, APP_COMMIT_FLASH_UNITS_PER_TICK units a
+                             tick, then the slot cache */
+};
 
 /** HostCommand.Mode values. */
 typedef enum {
@@ -94,6 +115,8 @@ struct app {
     uint32_t tick;
     uint64_t now_us;
     uint32_t now_ms;
+    uint64_t ms_base_us; /* app_now_ms: a whole millisecond (a multiple of 1,000 us) ... */
+    uint32_t ms_base_ms; /* ... and its count, so the tick divides 32 bits, not 64 */
     /* CAN */
     e2e_rx_t rx_command;
     e2e_rx_t rx_heartbeat;
@@ -127,8 +150,11 @@ struct app {
     uint16_t last_transfer_status;      /* fs_status / nvm status of the last download */
     uint16_t last_run_status;           /* fs_status of the last start request's scale check */
     skill_t staging;                    /* validation target of a download */
+    skill_parser_t parser;              /* the parse of staging, spread over ticks */
     skchk_t check;                      /* output check of staging, spread over ticks */
-    bool checking;                      /* a download waits for its check (UDS 0x78 sent) */
+    nvm_writer_t writer;                /* the slot's flash write, spread over ticks */
+    bool checking;                      /* a download's commit runs (UDS 0x78 sent): no start */
+    uint8_t commit_stage;               /* APP_COMMIT_*: the commit's stage while checking */
     fs_real_t slot_peak_N[APP_N_SLOTS]; /* peak |f_hat| of each valid slot at goal scale 1 */
     fs_real_t slot_path_m[APP_N_SLOTS]; /* extent max|p| of each valid slot's y path (0: none) */
     /* firmware update (firmware/boot, docs/update.md) */

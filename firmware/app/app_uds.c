@@ -583,6 +583,49 @@ static uint8_t download_data(void *ctx, uint32_t offset, const uint8_t *d, uint1
     return UDS_NRC_OK;
 }
 
+/* One tick's slice of a download's commit (app->commit_stage): false while it goes on; true once
+ * done, *st FS_OK when the skill passed every check and the flash write is done (its result in
+ * app->writer.status), or the refusal. */
+static bool commit_slice(app_t *app, fs_status_t *st)
+{
+    *st = FS_OK;
+    switch (app->commit_stage) {
+    case APP_COMMIT_PARSE:
+        if (!skill_parse_run(&app->parser, APP_COMMIT_UNITS_PER_TICK)) {
+            return false;
+        }
+        *st = app->parser.status;
+        app->commit_stage = APP_COMMIT_PARAMS;
+        return *st != FS_OK;
+    case APP_COMMIT_PARAMS:
+        *st = skchk_params(&app->staging);
+        if (*st == FS_OK) {
+            *st = skchk_stiffness(&app->staging, app->cfg.stiffness_max_Npm);
+        }
+        if (*st != FS_OK) {
+            return true;
+        }
+        skchk_begin(&app->check, &app->staging, FS_R(0.001), app->cfg.saf.lim.axis[0].force_max_N);
+        app->check.path_max_m = app->cfg.saf.lim.axis[1].pos_max_m -
+                                app->cfg.saf.lim.axis[1].pos_min_m;
+        app->commit_stage = APP_COMMIT_CHECK;
+        return false;
+    case APP_COMMIT_CHECK:
+        if (!skchk_run(&app->check, APP_CHECK_STEPS_PER_TICK)) {
+            return false;
+        }
+        *st = app->check.status; /* 222/223/225: slot unchanged */
+        if (*st != FS_OK) {
+            return true;
+        }
+        (void)nvm_write_begin(&app->writer, &app->nvm, (uint16_t)(app->xfer_slot - 1u), app->image,
+                              app->xfer_size); /* its argument errors end the write at once */
+        app->commit_stage = APP_COMMIT_WRITE;
+        return false;
+    default: return nvm_write_run(&app->writer, APP_COMMIT_FLASH_UNITS_PER_TICK);
+    }
+}
+
 static uint8_t download_end(void *ctx, uint32_t *crc_out)
 {
     app_t *app = ctx;
@@ -599,32 +642,21 @@ static uint8_t download_end(void *ctx, uint32_t *crc_out)
                                       : UDS_NRC_SECURITY_ACCESS_DENIED;
     }
     if (!app->checking) {
-        fs_status_t st = skill_parse(app->image, app->xfer_size, &app->staging);
-        if (st == FS_OK) {
-            st = skchk_params(&app->staging);
-        }
-        if (st == FS_OK) {
-            st = skchk_stiffness(&app->staging, app->cfg.stiffness_max_Npm);
-        }
-        if (st != FS_OK) {
-            app->last_transfer_status = (uint16_t)st; /* e.g. 204 CRC: the old skill stays */
-            return UDS_NRC_PROGRAMMING_FAILURE;
-        }
-        /* the skill's own rollout, APP_CHECK_STEPS_PER_TICK steps per tick (0x78 meanwhile) */
-        skchk_begin(&app->check, &app->staging, FS_R(0.001), app->cfg.saf.lim.axis[0].force_max_N);
-        app->check.path_max_m = app->cfg.saf.lim.axis[1].pos_max_m -
-                                app->cfg.saf.lim.axis[1].pos_min_m;
+        /* the commit, a bounded slice a tick (0x78 meanwhile): parse, parameters, rollout, write */
+        skill_parse_begin(&app->parser, app->image, app->xfer_size, &app->staging);
         app->checking = true;
+        app->commit_stage = APP_COMMIT_PARSE;
     }
-    if (!skchk_run(&app->check, APP_CHECK_STEPS_PER_TICK)) {
+    fs_status_t st = FS_OK;
+    if (!commit_slice(app, &st)) {
         return UDS_NRC_RESPONSE_PENDING;
     }
     app->checking = false;
-    if (app->check.status != FS_OK) {
-        app->last_transfer_status = (uint16_t)app->check.status; /* 222/223: slot unchanged */
+    if (st != FS_OK) {
+        app->last_transfer_status = (uint16_t)st; /* e.g. 204 CRC, 223 peak: the old skill stays */
         return UDS_NRC_PROGRAMMING_FAILURE;
     }
-    const nvm_status_t ns = nvm_write(&app->nvm, slot, app->image, app->xfer_size);
+    const nvm_status_t ns = app->writer.status;
     if (ns != NVM_OK) {
         app->last_transfer_status = (uint16_t)ns;
         app_slots_reload(app); /* whatever storage holds now */
@@ -636,7 +668,7 @@ static uint8_t download_end(void *ctx, uint32_t *crc_out)
     app->slot_peak_N[slot] = app->check.peak_N;
     app->slot_path_m[slot] = app->check.path_peak_m;
     app->last_transfer_status = 0u;
-    *crc_out = skill_crc32(0u, app->image, app->xfer_size - SKILL_CRC_SIZE);
+    *crc_out = app->parser.crc; /* the image's CRC-32, checked by the parse */
     app->slot_crc[slot] = *crc_out;
     app->slot_len[slot] = app->xfer_size;
     return UDS_NRC_OK;
@@ -651,6 +683,7 @@ static void transfer_abort(void *ctx)
     if (app->last_transfer_status == 0xFFFFu) {
         app->last_transfer_status = 0xFFFEu; /* interrupted: nothing was written */
     }
+    app->checking = false; /* a commit in progress ends with the transfer */
     app->xfer_size = 0u;
 }
 

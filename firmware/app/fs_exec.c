@@ -40,11 +40,12 @@ static fs_real_t exec_step_duration(const exec_step_t *s)
     return s->skill->dmp.duration_s * s->time_scale;
 }
 
-/* The running step's DMP from zero state; the fixed-point build converts its skill and scales
+/* The running step's DMP from zero state and its length in ticks at dt_s; the fixed-point build converts its skill and scales
  * (3xx when one does not fit). */
-static fs_status_t exec_begin_step(exec_state_t *st)
+static fs_status_t exec_begin_step(exec_state_t *st, fs_real_t dt_s)
 {
     const exec_step_t *s = &st->steps[st->step];
+    st->step_ticks = exec_ticks(exec_step_duration(s), dt_s);
     st->t_step_s = FS_R(0.0);
     st->force_dmp_N = s->skill->dmp.force0_N;
 #ifdef FS_EXEC_FIXED
@@ -210,7 +211,7 @@ fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_st
     /* every step begins once here, the first last: a later switch cannot fail */
     for (uint8_t i = n_steps; rc == FS_OK && i > 0u; i--) {
         st->step = (uint8_t)(i - 1u);
-        rc = exec_begin_step(st);
+        rc = exec_begin_step(st, cfg->pfc.dt_s);
     }
     return rc;
 }
@@ -300,13 +301,13 @@ static fs_real_t exec_reference_force(const exec_config_t *cfg, exec_state_t *st
     st->t_step_s += dt;
     fs_real_t f = st->force_dmp_N + st->force_carry_N * exec_blend(st->t_step_s);
 
-    if (exec_ticks(st->t_step_s, dt) >= exec_ticks(exec_step_duration(s), dt)) {
+    if (exec_ticks(st->t_step_s, dt) >= st->step_ticks) {
         if ((uint8_t)(st->step + 1u) < st->n_steps) {
             st->y_hold_m += st->path_m; /* the next step's path starts where this one ended */
             st->path_m = FS_R(0.0);
             st->step++;
             st->force_carry_N = f - st->steps[st->step].skill->dmp.force0_N;
-            (void)exec_begin_step(st); /* converted by exec_start */
+            (void)exec_begin_step(st, dt); /* converted by exec_start */
         } else {
             st->ending = 1u;
             st->force_end_N = f;

@@ -15,16 +15,6 @@
  * every kernel with e_i <= cutoff despite rounding; the e_i test itself decides. */
 #define DMP_ENVELOPE_MARGIN FS_R(1.0001)
 
-static int dmp_all_finite(const fs_real_t *a, uint16_t n)
-{
-    for (uint16_t i = 0u; i < n; i++) {
-        if (!fs_isfinite(a[i])) {
-            return 0;
-        }
-    }
-    return 1;
-}
-
 static void dmp_params_zero(dmp_params_t *out)
 {
     out->alpha = FS_R(0.0);
@@ -147,76 +137,148 @@ fs_real_t dmp_goal(const dmp_params_t *p, const dmp_gains_t *gains, fs_real_t re
     return c / (p->alpha * p->beta);
 }
 
-fs_status_t dmp_model_init(dmp_model_t *m)
+/* The passes of dmp_model_init, in the order of its checks. */
+enum {
+    MI_HEAD,      /* kernel count, the scalars finite */
+    MI_FINITE,    /* centre, width, weight finite, a kernel a unit */
+    MI_RANGE,     /* dt, tau, T, g in range */
+    MI_WIDTHS,    /* sigma > 0 and 1/(2 sigma^2) finite */
+    MI_CENTRES,   /* centres increasing in [0, 1] */
+    MI_GAINS,     /* alpha, beta, gamma; with the y DMP its scalars finite */
+    MI_Y_WEIGHTS, /* the y weights finite */
+    MI_Y_GAINS,   /* beta_y in range */
+    MI_FORWARD,   /* kernel_scale and env_hi (prefix max) */
+    MI_BACKWARD,  /* env_lo (suffix min), from the last kernel */
+    MI_DONE
+};
+
+void dmp_model_init_begin(dmp_init_t *it)
 {
-    if (m == NULL) {
-        return FS_ERR_NULL_ARG;
-    }
-    const uint16_t n = m->n_kernels;
-    if (n == 0u || n > DMP_MAX_KERNELS) {
-        return FS_ERR_SKILL_KERNELS;
-    }
-    if (!fs_isfinite(m->p.alpha) || !fs_isfinite(m->p.beta) || !fs_isfinite(m->p.gamma) ||
-        !fs_isfinite(m->dt_s) || !fs_isfinite(m->tau_s) || !fs_isfinite(m->goal_N) ||
-        !fs_isfinite(m->force0_N) || !fs_isfinite(m->duration_s) || !dmp_all_finite(m->centre, n) ||
-        !dmp_all_finite(m->width, n) || !dmp_all_finite(m->weight, n)) {
-        return FS_ERR_SKILL_NOT_FINITE;
-    }
-    if (!(m->dt_s > FS_R(0.0)) || m->dt_s > FS_R(0.1) || !(m->tau_s > FS_R(0.0)) ||
-        !(m->duration_s > FS_R(0.0)) || m->duration_s > FS_R(3600.0) || !(m->goal_N > FS_R(0.0))) {
-        return FS_ERR_SKILL_RANGE;
-    }
-    for (uint16_t i = 0u; i < n; i++) {
-        const fs_real_t s = m->width[i];
-        if (!(s > FS_R(0.0))) {
-            return FS_ERR_SKILL_RANGE;
-        }
-        const fs_real_t hiv = FS_R(1.0) / (FS_R(2.0) * s * s);
-        if (!fs_isfinite(hiv)) {
-            return FS_ERR_SKILL_RANGE;
-        }
-    }
-    for (uint16_t i = 0u; i < n; i++) {
-        const fs_real_t c = m->centre[i];
-        if (c < FS_R(0.0) || c > FS_R(1.0) || (i > 0u && !(c > m->centre[i - 1u]))) {
-            return FS_ERR_SKILL_CENTRES;
-        }
-    }
+    it->stage = MI_HEAD;
+    it->i = 0u;
+    it->run = FS_R(0.0);
+    it->status = FS_OK;
+}
+
+/* The checks of one pass done once (head, ranges, gains, y gains). */
+static fs_status_t dmp_init_once(const dmp_model_t *m, uint8_t stage)
+{
     const fs_real_t alpha = m->p.alpha;
-    const fs_real_t beta = m->p.beta;
-    if (!(alpha > FS_R(0.0)) || !(beta > FS_R(0.0)) || m->p.gamma < FS_R(0.0) ||
-        beta > alpha / FS_R(4.0) * (FS_R(1.0) + DMP_MONOTONE_REL_TOL_REAL)) {
-        return FS_ERR_SKILL_GAINS;
-    }
-    if (m->has_y != 0u) {
-        if (!fs_isfinite(m->beta_y) || !fs_isfinite(m->goal_y_m) || !fs_isfinite(m->y_start_m) ||
-            !dmp_all_finite(m->y_weight, n)) {
-            return FS_ERR_SKILL_NOT_FINITE;
+    const fs_real_t mono = alpha / FS_R(4.0) * (FS_R(1.0) + DMP_MONOTONE_REL_TOL_REAL);
+    switch (stage) {
+    case MI_HEAD:
+        if (m->n_kernels == 0u || m->n_kernels > DMP_MAX_KERNELS) {
+            return FS_ERR_SKILL_KERNELS;
         }
-        if (!(m->beta_y > FS_R(0.0)) ||
-            m->beta_y > alpha / FS_R(4.0) * (FS_R(1.0) + DMP_MONOTONE_REL_TOL_REAL)) {
+        return (!fs_isfinite(m->p.alpha) || !fs_isfinite(m->p.beta) || !fs_isfinite(m->p.gamma) ||
+                !fs_isfinite(m->dt_s) || !fs_isfinite(m->tau_s) || !fs_isfinite(m->goal_N) ||
+                !fs_isfinite(m->force0_N) || !fs_isfinite(m->duration_s))
+                   ? FS_ERR_SKILL_NOT_FINITE
+                   : FS_OK;
+    case MI_RANGE:
+        return (!(m->dt_s > FS_R(0.0)) || m->dt_s > FS_R(0.1) || !(m->tau_s > FS_R(0.0)) ||
+                !(m->duration_s > FS_R(0.0)) || m->duration_s > FS_R(3600.0) ||
+                !(m->goal_N > FS_R(0.0)))
+                   ? FS_ERR_SKILL_RANGE
+                   : FS_OK;
+    case MI_GAINS:
+        if (!(alpha > FS_R(0.0)) || !(m->p.beta > FS_R(0.0)) || m->p.gamma < FS_R(0.0) ||
+            m->p.beta > mono) {
             return FS_ERR_SKILL_GAINS;
         }
+        return (m->has_y != 0u && (!fs_isfinite(m->beta_y) || !fs_isfinite(m->goal_y_m) ||
+                                   !fs_isfinite(m->y_start_m)))
+                   ? FS_ERR_SKILL_NOT_FINITE
+                   : FS_OK;
+    case MI_Y_GAINS:
+        return (m->has_y != 0u && (!(m->beta_y > FS_R(0.0)) || m->beta_y > mono))
+                   ? FS_ERR_SKILL_GAINS
+                   : FS_OK;
+    default: return FS_OK;
     }
+}
 
+/* Kernel it->i of a per-kernel pass; true once the pass's last kernel is done. */
+static bool dmp_init_kernel(dmp_model_t *m, dmp_init_t *it)
+{
+    const uint16_t n = m->n_kernels;
+    const uint16_t i = (it->stage == MI_BACKWARD) ? (uint16_t)(n - 1u - it->i) : it->i;
     const fs_real_t r_per_sigma = fs_sqrt(FS_R(2.0) * (fs_real_t)DMP_KERNEL_CUTOFF_EXP) *
                                   DMP_ENVELOPE_MARGIN;
-    fs_real_t run_max = -FS_REAL_INF;
-    for (uint16_t i = 0u; i < n; i++) {
-        const fs_real_t s = m->width[i];
+    const fs_real_t s = m->width[i];
+    switch (it->stage) {
+    case MI_FINITE:
+        if (!fs_isfinite(m->centre[i]) || !fs_isfinite(s) || !fs_isfinite(m->weight[i])) {
+            it->status = FS_ERR_SKILL_NOT_FINITE;
+        }
+        break;
+    case MI_WIDTHS:
+        if (!(s > FS_R(0.0)) || !fs_isfinite(FS_R(1.0) / (FS_R(2.0) * s * s))) {
+            it->status = FS_ERR_SKILL_RANGE;
+        }
+        break;
+    case MI_CENTRES: {
+        const fs_real_t c = m->centre[i];
+        if (c < FS_R(0.0) || c > FS_R(1.0) || (i > 0u && !(c > m->centre[i - 1u]))) {
+            it->status = FS_ERR_SKILL_CENTRES;
+        }
+        break;
+    }
+    case MI_Y_WEIGHTS:
+        if (m->has_y == 0u) {
+            return true;
+        }
+        if (!fs_isfinite(m->y_weight[i])) {
+            it->status = FS_ERR_SKILL_NOT_FINITE;
+        }
+        break;
+    case MI_FORWARD: {
         m->kernel_scale[i] = FS_R(1.0) / (FS_R(2.0) * s * s);
         const fs_real_t hi = m->centre[i] + r_per_sigma * s;
-        run_max = (hi > run_max) ? hi : run_max;
-        m->env_hi[i] = run_max;
+        it->run = (i == 0u || hi > it->run) ? hi : it->run;
+        m->env_hi[i] = it->run;
+        break;
     }
-    fs_real_t run_min = FS_REAL_INF;
-    for (uint16_t j = n; j > 0u; j--) {
-        const uint16_t i = (uint16_t)(j - 1u);
-        const fs_real_t lo = m->centre[i] - r_per_sigma * m->width[i];
-        run_min = (lo < run_min) ? lo : run_min;
-        m->env_lo[i] = run_min;
+    default: { /* MI_BACKWARD */
+        const fs_real_t lo = m->centre[i] - r_per_sigma * s;
+        it->run = (i == n - 1u || lo < it->run) ? lo : it->run;
+        m->env_lo[i] = it->run;
+        break;
     }
-    return FS_OK;
+    }
+    it->i++;
+    return it->i >= n;
+}
+
+bool dmp_model_init_run(dmp_model_t *m, dmp_init_t *it, uint32_t max_kernels)
+{
+    for (uint32_t k = 0u; k < max_kernels && it->stage != MI_DONE; k++) {
+        bool pass_done = true;
+        if (m == NULL) {
+            it->status = FS_ERR_NULL_ARG;
+        } else if (it->stage == MI_HEAD || it->stage == MI_RANGE || it->stage == MI_GAINS ||
+                   it->stage == MI_Y_GAINS) {
+            it->status = dmp_init_once(m, it->stage);
+        } else {
+            pass_done = dmp_init_kernel(m, it);
+        }
+        if (it->status != FS_OK) {
+            it->stage = MI_DONE;
+        } else if (pass_done) {
+            it->stage++;
+            it->i = 0u;
+        }
+    }
+    return it->stage == MI_DONE;
+}
+
+fs_status_t dmp_model_init(dmp_model_t *m)
+{
+    dmp_init_t it;
+    dmp_model_init_begin(&it);
+    while (!dmp_model_init_run(m, &it, UINT32_MAX)) {
+    }
+    return it.status;
 }
 
 fs_status_t dmp_run_validate(const dmp_run_t *run)

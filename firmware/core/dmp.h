@@ -19,6 +19,7 @@
 #ifndef DMP_H
 #define DMP_H
 
+#include <stdbool.h>
 #include <stdint.h>
 #include "fs_real.h"
 #include "fs_status.h"
@@ -118,6 +119,23 @@ typedef struct {
  *  beta <= alpha/4*(1 + DMP_MONOTONE_REL_TOL_REAL) (209). With has_y: goal_y, y_start and
  *  y_weight[] finite (206), 0 < beta_y <= alpha/4*(1 + tol) (209). */
 fs_status_t dmp_model_init(dmp_model_t *m);
+
+/** dmp_model_init in slices (dmp_model_init_begin, then dmp_model_init_run until it returns
+ *  true): the same checks in the same order and the same derived arrays, at most max_kernels
+ *  kernels of one pass (or one of the scalar checks) per call; then it->status is
+ *  dmp_model_init's result. */
+typedef struct {
+    uint8_t stage;      /* internal */
+    uint16_t i;         /* the pass's next kernel */
+    fs_real_t run;      /* the envelope's running max/min */
+    fs_status_t status; /* FS_OK while running or once done and valid */
+} dmp_init_t;
+
+/** Start a sliced dmp_model_init. */
+void dmp_model_init_begin(dmp_init_t *it);
+
+/** At most max_kernels units of dmp_model_init of m; true once done (it->status). */
+bool dmp_model_init_run(dmp_model_t *m, dmp_init_t *it, uint32_t max_kernels);
 
 /** DMP state, DMP time: normalised phase u~, v~, the integral I of y, y = f_hat - f0 (N), z;
  *  window is the last step's kernel window [start, end) (a hint for the next: the result never

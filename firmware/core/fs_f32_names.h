@@ -9,6 +9,8 @@
 #define dmp_gains_at_stiffness dmp_gains_at_stiffness_f32
 #define dmp_goal dmp_goal_f32
 #define dmp_model_init dmp_model_init_f32
+#define dmp_model_init_begin dmp_model_init_begin_f32
+#define dmp_model_init_run dmp_model_init_run_f32
 #define dmp_run_validate dmp_run_validate_f32
 #define dmp_state_reset dmp_state_reset_f32
 #define dmp_forcing dmp_forcing_f32
@@ -24,6 +26,8 @@
 #define skill_image_size skill_image_size_f32
 #define skill_image_size_v skill_image_size_v_f32
 #define skill_crc32 skill_crc32_f32
+#define skill_parse_begin skill_parse_begin_f32
+#define skill_parse_run skill_parse_run_f32
 #define skill_parse skill_parse_f32
 #define skchk_params skchk_params_f32
 #define skchk_begin skchk_begin_f32

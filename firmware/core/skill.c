@@ -80,18 +80,32 @@ static uint32_t rd_u32(const uint8_t *b, uint32_t off)
            ((uint32_t)b[off + 3u] << 24);
 }
 
-/* IEEE-754 binary64, little-endian in the image; reinterpreted through a union (no memcpy). */
-static double rd_f64(const uint8_t *b, uint32_t off)
+/* 64 bits, little-endian in the image, as two 32-bit words (cheap on a 32-bit core). */
+static uint64_t rd_u64(const uint8_t *b, uint32_t off)
+{
+    return (uint64_t)rd_u32(b, off) | ((uint64_t)rd_u32(b, off + 4u) << 32);
+}
+
+/* IEEE-754 binary64 from its bits; reinterpreted through a union (no memcpy). */
+static double f64_of(uint64_t bits)
 {
     union {
         uint64_t u;
         double d;
     } v;
-    v.u = 0u;
-    for (uint32_t i = 8u; i > 0u; i--) {
-        v.u = (v.u << 8) | (uint64_t)b[off + i - 1u];
-    }
+    v.u = bits;
     return v.d;
+}
+
+static double rd_f64(const uint8_t *b, uint32_t off)
+{
+    return f64_of(rd_u64(b, off));
+}
+
+/* The binary64 at off is finite (its exponent field is not all ones). */
+static int rd_f64_finite(const uint8_t *b, uint32_t off)
+{
+    return ((rd_u64(b, off) >> 52) & 0x7FFu) != 0x7FFu;
 }
 
 static int rel_close(double a, double b, double rel)
@@ -102,10 +116,20 @@ static int rel_close(double a, double b, double rel)
 }
 
 #ifdef FS_REAL_FLOAT
-/* Round a validated double to the float core: nonzero if it fits the float range. */
+/* FLT_MAX as a binary64 bit pattern: the order of non-negative doubles is that of their bits. */
+#define SKILL_FLT_MAX_BITS 0x47EFFFFFE0000000ull
+_Static_assert(FLT_MAX == 3.40282346638528859811704183484516925e+38F, "IEEE-754 binary32");
+
+/* Round a validated double to the float core: nonzero if it fits the float range (|d| <= FLT_MAX,
+ * compared on the bits: no software double compare on a core without a double FPU). */
 static int to_real(double d, fs_real_t *out)
 {
-    if (fabs(d) > (double)FLT_MAX) {
+    union {
+        double d;
+        uint64_t u;
+    } v;
+    v.d = d;
+    if ((v.u & 0x7FFFFFFFFFFFFFFFull) > SKILL_FLT_MAX_BITS) {
         return 0;
     }
     *out = (fs_real_t)d;
@@ -119,17 +143,12 @@ static int to_real(double d, fs_real_t *out)
 }
 #endif
 
-/* The layout of a framed image: its version, header size, kernel count and y DMP flag. */
-typedef struct {
-    uint16_t version;
-    uint16_t n;
-    uint32_t header;
-    uint8_t has_y;
-} skill_layout_t;
-
-/* The frame of an image: magic, version, header size, length, CRC, kernel count (into *lay). */
-static fs_status_t check_frame(const uint8_t *buf, uint32_t len, skill_layout_t *lay)
+/* The frame of an image: magic, version, header size, length (into the parser; the CRC and the
+ * kernel count follow in their own stage). */
+static fs_status_t check_frame(skill_parser_t *p)
 {
+    const uint8_t *buf = p->buf;
+    const uint32_t len = p->len;
     if (len < OFF_HEADER_SIZE) {
         return FS_ERR_SKILL_TOO_SHORT;
     }
@@ -154,17 +173,10 @@ static fs_status_t check_frame(const uint8_t *buf, uint32_t len, skill_layout_t 
     if (total != len || total != skill_image_size_v(version, n, has_y)) {
         return FS_ERR_SKILL_LENGTH;
     }
-    const uint32_t body = total - SKILL_CRC_SIZE;
-    if (rd_u32(buf, body) != skill_crc32(0u, buf, body)) {
-        return FS_ERR_SKILL_CRC;
-    }
-    if (n == 0u || n > DMP_MAX_KERNELS) {
-        return FS_ERR_SKILL_KERNELS;
-    }
-    lay->version = version;
-    lay->n = n;
-    lay->header = header;
-    lay->has_y = has_y;
+    p->version = version;
+    p->n = n;
+    p->header = header;
+    p->has_y = has_y;
     return FS_OK;
 }
 
@@ -192,86 +204,40 @@ static fs_status_t check_gains(const uint8_t *buf, uint8_t has_y)
     return FS_OK;
 }
 
-/* The values of a framed image, in double: all finite, the timing, stiffness, goal and widths in
- * range, the centres increasing in [0, 1], the gains (check_gains), no unknown flag. */
-static fs_status_t check_values(const uint8_t *buf, const skill_layout_t *lay)
+/* The header's values in range: the timing, stiffness and goal. */
+static fs_status_t check_header_range(const uint8_t *buf)
 {
-    const uint32_t n = lay->n;
-    /* Every float64 field: 15 (v3: 17) in the header from OFF_DT, then 3N (4N with the y DMP)
-     * array entries, contiguous. */
-    const uint32_t n_f64 = ((lay->version == 2u) ? SKILL_N_HEADER_F64_V2 : SKILL_N_HEADER_F64_V3) +
-                           ((lay->has_y != 0u) ? 4u : 3u) * n;
-    for (uint32_t i = 0u; i < n_f64; i++) {
-        if (!isfinite(rd_f64(buf, OFF_DT + 8u * i))) {
-            return FS_ERR_SKILL_NOT_FINITE;
-        }
-    }
     const double dt = rd_f64(buf, OFF_DT);
     const double duration = rd_f64(buf, OFF_DURATION);
-    const uint32_t off_c = lay->header;
-    const uint32_t off_s = lay->header + 8u * n;
     if (!(dt > 0.0) || dt > 0.1 || !(rd_f64(buf, OFF_TAU) > 0.0) || !(duration > 0.0) ||
         duration > 3600.0 || !(rd_f64(buf, OFF_STIFFNESS) > 0.0) ||
         !(rd_f64(buf, OFF_GOAL) > 0.0)) {
         return FS_ERR_SKILL_RANGE;
     }
-    for (uint32_t i = 0u; i < n; i++) {
-        if (!(rd_f64(buf, off_s + 8u * i) > 0.0)) {
-            return FS_ERR_SKILL_RANGE;
-        }
-    }
-    double prev = 0.0;
-    for (uint32_t i = 0u; i < n; i++) {
-        const double c = rd_f64(buf, off_c + 8u * i);
-        if (c < 0.0 || c > 1.0 || (i > 0u && !(c > prev))) {
-            return FS_ERR_SKILL_CENTRES;
-        }
-        prev = c;
-    }
-    const fs_status_t st = check_gains(buf, lay->has_y);
-    if (st != FS_OK) {
-        return st;
-    }
-    const uint16_t known = (lay->version == 2u)
-                               ? (uint16_t)SKILL_FLAG_END_RELEASE
-                               : (uint16_t)(SKILL_FLAG_END_RELEASE | SKILL_FLAG_Y_AXIS);
-    if ((rd_u16(buf, OFF_FLAGS) & (uint16_t)~known) != 0u) {
-        return FS_ERR_SKILL_UNSUPPORTED;
-    }
     return FS_OK;
 }
 
-/* Fill the y DMP from a valid image in the core's type (zeros without one): 0 if a value does
- * not fit it. */
-static int fill_path(const uint8_t *buf, const skill_layout_t *lay, dmp_model_t *m)
+/* The gains (check_gains) and no unknown flag. */
+static fs_status_t check_gains_flags(const uint8_t *buf, uint16_t version, uint8_t has_y)
 {
-    m->has_y = lay->has_y;
+    const fs_status_t st = check_gains(buf, has_y);
+    if (st != FS_OK) {
+        return st;
+    }
+    const uint16_t known = (version == 2u) ? (uint16_t)SKILL_FLAG_END_RELEASE
+                                           : (uint16_t)(SKILL_FLAG_END_RELEASE | SKILL_FLAG_Y_AXIS);
+    return ((rd_u16(buf, OFF_FLAGS) & (uint16_t)~known) != 0u) ? FS_ERR_SKILL_UNSUPPORTED : FS_OK;
+}
+
+/* The header's values in the core's type (the y DMP's scalars too, zeros without one): 0 if a
+ * value does not fit it. */
+static int fill_header(const uint8_t *buf, uint8_t has_y, skill_t *out)
+{
+    dmp_model_t *m = &out->dmp;
+    m->has_y = has_y;
     m->beta_y = FS_R(0.0);
     m->goal_y_m = FS_R(0.0);
     m->y_start_m = FS_R(0.0);
-    if (lay->has_y == 0u) {
-        return 1;
-    }
-    const double beta_y = rd_f64(buf, OFF_K_P) / (rd_f64(buf, OFF_M_D) * rd_f64(buf, OFF_ALPHA)) -
-                          1.0;
-    const uint32_t off_wy = lay->header + 24u * (uint32_t)lay->n;
-    int ok = to_real(beta_y, &m->beta_y) && to_real(rd_f64(buf, OFF_GOAL_Y), &m->goal_y_m) &&
-             to_real(rd_f64(buf, OFF_Y_START), &m->y_start_m);
-    for (uint32_t i = 0u; ok && i < lay->n; i++) {
-        ok = to_real(rd_f64(buf, off_wy + 8u * i), &m->y_weight[i]);
-    }
-    return ok;
-}
-
-/* Fill the skill from a valid image in the core's type: 0 if a value does not fit it. */
-static int fill_skill(const uint8_t *buf, const skill_layout_t *lay, skill_t *out)
-{
-    const uint32_t n = lay->n;
-    const uint32_t off_c = lay->header;
-    const uint32_t off_s = lay->header + 8u * n;
-    const uint32_t off_w = lay->header + 16u * n;
-    dmp_model_t *m = &out->dmp;
-    m->n_kernels = lay->n;
     int ok = to_real(rd_f64(buf, OFF_ALPHA), &m->p.alpha) &&
              to_real(rd_f64(buf, OFF_BETA), &m->p.beta) &&
              to_real(rd_f64(buf, OFF_GAMMA), &m->p.gamma) &&
@@ -286,34 +252,183 @@ static int fill_skill(const uint8_t *buf, const skill_layout_t *lay, skill_t *ou
              to_real(rd_f64(buf, OFF_KKF), &out->fit_gains.kkf_Npm) &&
              to_real(rd_f64(buf, OFF_KKI), &out->fit_gains.kki_Npms) &&
              to_real(rd_f64(buf, OFF_SURFACE), &out->surface_m);
-    for (uint32_t i = 0u; ok && i < n; i++) {
-        ok = to_real(rd_f64(buf, off_c + 8u * i), &m->centre[i]) &&
-             to_real(rd_f64(buf, off_s + 8u * i), &m->width[i]) &&
-             to_real(rd_f64(buf, off_w + 8u * i), &m->weight[i]);
+    if (ok && has_y != 0u) {
+        const double beta_y = rd_f64(buf, OFF_K_P) /
+                                  (rd_f64(buf, OFF_M_D) * rd_f64(buf, OFF_ALPHA)) -
+                              1.0;
+        ok = to_real(beta_y, &m->beta_y) && to_real(rd_f64(buf, OFF_GOAL_Y), &m->goal_y_m) &&
+             to_real(rd_f64(buf, OFF_Y_START), &m->y_start_m);
     }
-    return ok && fill_path(buf, lay, m);
+    return ok;
+}
+
+/* Kernel i's centre, width, weight (and y weight) in the core's type: 0 if one does not fit. */
+static int fill_kernel(const skill_parser_t *p, uint32_t i)
+{
+    const uint8_t *buf = p->buf;
+    const uint32_t off = p->header + 8u * i;
+    const uint32_t n8 = 8u * (uint32_t)p->n;
+    dmp_model_t *m = &p->out->dmp;
+    return to_real(rd_f64(buf, off), &m->centre[i]) &&
+           to_real(rd_f64(buf, off + n8), &m->width[i]) &&
+           to_real(rd_f64(buf, off + 2u * n8), &m->weight[i]) &&
+           (p->has_y == 0u || to_real(rd_f64(buf, off + 3u * n8), &m->y_weight[i]));
+}
+
+/* The stages of a parse, in skill_parse's order of checks. */
+enum {
+    SP_FRAME,   /* magic, version, header size, length */
+    SP_CRC,     /* the CRC, SKILL_PARSE_CRC_BYTES bytes a unit; then the kernel count */
+    SP_FINITE,  /* every float64 field finite, SKILL_PARSE_F64_PER_UNIT a unit */
+    SP_RANGE,   /* the header's ranges */
+    SP_WIDTHS,  /* every width > 0, one a unit */
+    SP_CENTRES, /* the centres increasing in [0, 1], one a unit */
+    SP_GAINS,   /* the gains and the flags */
+    SP_FILL,    /* the header's values in the core's type */
+    SP_KERNELS, /* each kernel's values in the core's type, one a unit */
+    SP_FINISH,  /* the x-axis gains and the end policy */
+    SP_MODEL,   /* dmp_model_init, SKILL_PARSE_INIT_KERNELS kernels of a pass a unit */
+    SP_DONE
+};
+
+void skill_parse_begin(skill_parser_t *p, const uint8_t *buf, uint32_t len, skill_t *out)
+{
+    p->buf = buf;
+    p->len = len;
+    p->out = out;
+    p->crc = 0u;
+    p->pos = 0u;
+    p->header = 0u;
+    p->version = 0u;
+    p->n = 0u;
+    p->has_y = 0u;
+    p->stage = SP_FRAME;
+    p->status = (buf == NULL || out == NULL) ? FS_ERR_NULL_ARG : FS_OK;
+    if (p->status != FS_OK) {
+        p->stage = SP_DONE;
+    }
+}
+
+/* One unit of the per-item stages: true once the stage's last item is done. */
+static bool parse_item(skill_parser_t *p)
+{
+    const uint8_t *buf = p->buf;
+    const uint32_t n = p->n;
+    const uint32_t i = p->pos++;
+    switch (p->stage) {
+    case SP_FINITE: {
+        /* 15 (v3: 17) header fields from OFF_DT, then 3N (4N with the y DMP), contiguous */
+        const uint32_t n_f64 = ((p->version == 2u) ? SKILL_N_HEADER_F64_V2
+                                                   : SKILL_N_HEADER_F64_V3) +
+                               ((p->has_y != 0u) ? 4u : 3u) * n;
+        const uint32_t first = i * SKILL_PARSE_F64_PER_UNIT;
+        for (uint32_t k = first; k < n_f64 && k < first + SKILL_PARSE_F64_PER_UNIT; k++) {
+            if (!rd_f64_finite(buf, OFF_DT + 8u * k)) {
+                p->status = FS_ERR_SKILL_NOT_FINITE;
+            }
+        }
+        return first + SKILL_PARSE_F64_PER_UNIT >= n_f64;
+    }
+    case SP_WIDTHS:
+        if (!(rd_f64(buf, p->header + 8u * n + 8u * i) > 0.0)) {
+            p->status = FS_ERR_SKILL_RANGE;
+        }
+        return i + 1u >= n;
+    case SP_CENTRES: {
+        const double c = rd_f64(buf, p->header + 8u * i);
+        if (c < 0.0 || c > 1.0 || (i > 0u && !(c > rd_f64(buf, p->header + 8u * (i - 1u))))) {
+            p->status = FS_ERR_SKILL_CENTRES;
+        }
+        return i + 1u >= n;
+    }
+    case SP_KERNELS:
+        if (!fill_kernel(p, i)) {
+            p->status = FS_ERR_SKILL_RANGE; /* valid in double, beyond the core's type */
+        }
+        return i + 1u >= n;
+    default: return true;
+    }
+}
+
+/* The stages done in one unit each (frame, ranges, gains, fill, finish). */
+static void parse_once(skill_parser_t *p)
+{
+    const uint8_t *buf = p->buf;
+    skill_t *out = p->out;
+    switch (p->stage) {
+    case SP_FRAME: p->status = check_frame(p); break;
+    case SP_RANGE: p->status = check_header_range(buf); break;
+    case SP_GAINS: p->status = check_gains_flags(buf, p->version, p->has_y); break;
+    case SP_FILL:
+        out->dmp.n_kernels = p->n;
+        if (!fill_header(buf, p->has_y, out)) {
+            p->status = FS_ERR_SKILL_RANGE;
+        }
+        break;
+    case SP_FINISH:
+        /* valid in double: the float build can still refuse a value that rounding made invalid */
+        if (dmp_gains_at_stiffness(&out->fit_gains, out->stiffness_Npm, &out->gains) != FS_OK) {
+            p->status = FS_ERR_SKILL_RANGE;
+            break;
+        }
+        out->end_policy = ((rd_u16(buf, OFF_FLAGS) & SKILL_FLAG_END_RELEASE) != 0u)
+                              ? SKILL_END_RELEASE
+                              : SKILL_END_HOLD;
+        dmp_model_init_begin(&p->init);
+        break;
+    default: break;
+    }
+}
+
+/* One unit of the CRC stage: true once the CRC and the kernel count are checked. */
+static bool parse_crc(skill_parser_t *p)
+{
+    const uint32_t body = p->len - SKILL_CRC_SIZE;
+    const uint32_t take = (body - p->pos < SKILL_PARSE_CRC_BYTES) ? body - p->pos
+                                                                  : SKILL_PARSE_CRC_BYTES;
+    p->crc = skill_crc32(p->crc, &p->buf[p->pos], take);
+    p->pos += take;
+    if (p->pos < body) {
+        return false;
+    }
+    if (rd_u32(p->buf, body) != p->crc) {
+        p->status = FS_ERR_SKILL_CRC;
+    } else if (p->n == 0u || p->n > DMP_MAX_KERNELS) {
+        p->status = FS_ERR_SKILL_KERNELS;
+    }
+    return true;
+}
+
+bool skill_parse_run(skill_parser_t *p, uint32_t max_units)
+{
+    for (uint32_t u = 0u; u < max_units && p->stage != SP_DONE; u++) {
+        bool stage_done = true;
+        if (p->stage == SP_CRC) {
+            stage_done = parse_crc(p);
+        } else if (p->stage == SP_MODEL) {
+            stage_done = dmp_model_init_run(&p->out->dmp, &p->init, SKILL_PARSE_INIT_KERNELS);
+            p->status = stage_done ? p->init.status : FS_OK;
+        } else if (p->stage == SP_FINITE || p->stage == SP_WIDTHS || p->stage == SP_CENTRES ||
+                   p->stage == SP_KERNELS) {
+            stage_done = parse_item(p);
+        } else {
+            parse_once(p);
+        }
+        if (p->status != FS_OK) {
+            p->stage = SP_DONE;
+        } else if (stage_done) {
+            p->stage++;
+            p->pos = 0u;
+        }
+    }
+    return p->stage == SP_DONE;
 }
 
 fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
 {
-    if (buf == NULL || out == NULL) {
-        return FS_ERR_NULL_ARG;
+    skill_parser_t p;
+    skill_parse_begin(&p, buf, len, out);
+    while (!skill_parse_run(&p, UINT32_MAX)) {
     }
-    skill_layout_t lay = {0u, 0u, 0u, 0u};
-    fs_status_t st = check_frame(buf, len, &lay);
-    if (st == FS_OK) {
-        st = check_values(buf, &lay);
-    }
-    if (st != FS_OK) {
-        return st;
-    }
-    /* Valid in double: fill the model in the core's type. The float build can still refuse a
-     * value beyond the float range (207) or one that rounding made invalid (dmp_model_init). */
-    if (!fill_skill(buf, &lay, out) ||
-        dmp_gains_at_stiffness(&out->fit_gains, out->stiffness_Npm, &out->gains) != FS_OK) {
-        return FS_ERR_SKILL_RANGE;
-    }
-    const uint16_t flags = rd_u16(buf, OFF_FLAGS);
-    out->end_policy = ((flags & SKILL_FLAG_END_RELEASE) != 0u) ? SKILL_END_RELEASE : SKILL_END_HOLD;
-    return dmp_model_init(&out->dmp);
+    return p.status;
 }

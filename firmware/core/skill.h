@@ -5,6 +5,7 @@
 #ifndef SKILL_H
 #define SKILL_H
 
+#include <stdbool.h>
 #include <stdint.h>
 #include "dmp.h"
 #include "fs_status.h"
@@ -52,6 +53,37 @@ uint32_t skill_image_size_v(uint16_t version, uint16_t n_kernels, uint8_t has_y)
 
 /** zlib-compatible CRC-32, continuing from crc (start with 0). */
 uint32_t skill_crc32(uint32_t crc, const uint8_t *data, uint32_t len);
+
+/** A parse in slices (skill_parse_begin, then skill_parse_run until it returns true): the checks
+ *  and results of skill_parse, in its order, at most a bounded amount of work per call, so a
+ *  device checks a download over several control ticks. A unit of work is one kernel's value in
+ *  one pass, SKILL_PARSE_F64_PER_UNIT float64 fields in the finiteness pass, SKILL_PARSE_CRC_BYTES
+ *  bytes of the CRC, SKILL_PARSE_INIT_KERNELS kernels of a pass of dmp_model_init, or one of
+ *  the header's stages. The image and *out must stay in place until the parse is done. */
+typedef struct {
+    const uint8_t *buf;
+    uint32_t len;
+    skill_t *out;
+    uint32_t crc;       /* CRC-32 of the bytes read so far (the whole body once past the CRC) */
+    uint32_t pos;       /* progress inside the stage */
+    uint32_t header;    /* header size of the image */
+    uint16_t version;   /* format version */
+    uint16_t n;         /* kernels */
+    uint8_t has_y;      /* the y DMP is present */
+    uint8_t stage;      /* internal */
+    dmp_init_t init;    /* the model's derivation (dmp_model_init in slices) */
+    fs_status_t status; /* FS_OK while running or once valid; the refusal once done */
+} skill_parser_t;
+#define SKILL_PARSE_CRC_BYTES 32u
+#define SKILL_PARSE_F64_PER_UNIT 4u
+#define SKILL_PARSE_INIT_KERNELS 8u /* kernels of a dmp_model_init pass a unit */
+
+/** Start a parse of buf[0..len) into *out (FS_ERR_NULL_ARG at once for NULL). */
+void skill_parse_begin(skill_parser_t *p, const uint8_t *buf, uint32_t len, skill_t *out);
+
+/** At most max_units units of the parse; true once done (p->status: FS_OK, *out filled, and
+ *  p->crc the image's CRC-32; or skill_parse's error). */
+bool skill_parse_run(skill_parser_t *p, uint32_t max_units);
 
 /** Parse and validate an image of version 2 or 3 (magic, version, sizes, CRC, finite values,
  *  ranges, gains consistent with alpha/beta/gamma, beta <= alpha/4, with the y DMP 0 < beta_y <=

@@ -60,16 +60,6 @@ bool flt_raise(flt_state_t *st, flt_code_t code, uint32_t tick)
     return true;
 }
 
-bool flt_active(const flt_state_t *st)
-{
-    return st != NULL && st->latched_mask != 0u;
-}
-
-uint16_t flt_active_code(const flt_state_t *st)
-{
-    return (st == NULL) ? 0u : st->first_code;
-}
-
 bool flt_is_latched(const flt_state_t *st, flt_code_t code)
 {
     const uint32_t bit = FLT_BIT(code);

@@ -36,11 +36,18 @@ void flt_init(flt_state_t *st);
  *  queued). FLT_NONE and codes outside the list are ignored (false). */
 bool flt_raise(flt_state_t *st, flt_code_t code, uint32_t tick);
 
-/** True while any fault is latched (the actuator must be ramping down or disabled). */
-bool flt_active(const flt_state_t *st);
+/** True while any fault is latched (the actuator must be ramping down or disabled). Inline:
+ *  the supervisor asks every tick. */
+static inline bool flt_active(const flt_state_t *st)
+{
+    return st != 0 && st->latched_mask != 0u;
+}
 
 /** Code for the status frame: the first fault latched since the last clear, 0 if none. */
-uint16_t flt_active_code(const flt_state_t *st);
+static inline uint16_t flt_active_code(const flt_state_t *st)
+{
+    return (st == 0) ? 0u : st->first_code;
+}
 
 /** True if this particular code is latched. */
 bool flt_is_latched(const flt_state_t *st, flt_code_t code);

@@ -62,6 +62,20 @@ void sen_reset(sen_state_t *st)
     st->have_prev = 0u;
 }
 
+/* Two readings with the same bit pattern (a word compare: -0.0/+0.0 differ, NaN equals itself). */
+static bool same_bits(const fs_real_t *a, const fs_real_t *b)
+{
+#ifdef FS_REAL_FLOAT
+    uint32_t x, y;
+#else
+    uint64_t x, y;
+#endif
+    _Static_assert(sizeof x == sizeof *a, "fs_real_t is 4 or 8 bytes");
+    memcpy(&x, a, sizeof x);
+    memcpy(&y, b, sizeof y);
+    return x == y;
+}
+
 static fs_real_t absr(fs_real_t x)
 {
     return (x < FS_R(0.0)) ? -x : x;
@@ -97,7 +111,7 @@ uint32_t sen_check(const sen_config_t *cfg, sen_state_t *st, const saf_meas_t me
             /* Stuck: bit-identical non-zero force. Compare the bytes, so -0.0/+0.0 and
              * rounding cannot hide a frozen ADC word. */
             if (a->stuck_ticks != 0u && absr(m->force_N) > a->stuck_min_N &&
-                memcmp(&m->force_N, &p->force_N, sizeof m->force_N) == 0) {
+                same_bits(&m->force_N, &p->force_N)) {
                 if (st->same_count[i] < UINT16_MAX) {
                     st->same_count[i]++;
                 }

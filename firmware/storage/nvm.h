@@ -17,8 +17,9 @@
  * programs header+payload, then the commit word, then reads back and verifies. The newest
  * record is never touched, and the new one becomes valid only with its last program; so a
  * power loss at any erase or program leaves either the old record or the complete new one.
- * Not for use inside the control tick (erase takes milliseconds on real flash); the tick only
- * swaps pointers (nvm_bank_*). */
+ * nvm_write is not for use inside the control tick (erase takes milliseconds on real flash);
+ * the sliced nvm_write_begin/nvm_write_run spreads one write over ticks (the application's
+ * download commit), and the tick only swaps pointers (nvm_bank_*). */
 #ifndef NVM_H
 #define NVM_H
 
@@ -87,6 +88,38 @@ const nvm_dir_entry_t *nvm_dir(const nvm_t *n, uint16_t slot);
 
 /** Write payload as the slot's new record (erase inactive copy, program, commit, verify). */
 nvm_status_t nvm_write(nvm_t *n, uint16_t slot, const uint8_t *payload, uint32_t len);
+
+/** nvm_write in slices (nvm_write_begin, then nvm_write_run until it returns true): the same
+ *  steps, flash contents and result, a unit of work per step (the erase, the commit word, or
+ *  up to 256 bytes of the CRC, programming, read-back or final scan). The payload and *n must
+ *  stay in place and unused by other writes until it is done; the newest record stays readable
+ *  throughout (the new one becomes valid with the commit word). */
+typedef struct {
+    nvm_t *n;
+    const uint8_t *payload;
+    uint32_t len;
+    uint32_t seq;  /* the new record's sequence number */
+    uint32_t base; /* the target copy's address */
+    uint32_t pos;  /* progress inside the stage */
+    uint32_t crc;  /* the record's CRC */
+    uint32_t scan_crc;
+    uint16_t slot;
+    uint8_t target; /* the copy written */
+    uint8_t stage;  /* internal */
+    uint8_t scan;   /* the copy the final scan reads */
+    bool ok[2];     /* the final scan's verdict per copy */
+    nvm_record_info_t info[2];
+    uint8_t hdr[NVM_HEADER_SIZE];
+    nvm_status_t status; /* NVM_OK while running or once written; the error once done */
+} nvm_writer_t;
+
+/** Start a write (the argument checks of nvm_write: their error is returned, and the writer is
+ *  then done). */
+nvm_status_t nvm_write_begin(nvm_writer_t *w, nvm_t *n, uint16_t slot, const uint8_t *payload,
+                             uint32_t len);
+
+/** At most max_units units of the write; true once done (w->status as nvm_write returns). */
+bool nvm_write_run(nvm_writer_t *w, uint32_t max_units);
 
 /** Read the newest valid record of a slot into buf (cap bytes); *len gets the payload length.
  *  The CRC is re-checked on the data read. */

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "fs_num.h"
 #include "skill.h"
 
 static skill_t sk;
@@ -27,4 +28,14 @@ long f32_parse_rollout(const uint8_t *image, uint32_t len, double goal_scale, do
         out[i] = (double)dmp_step(&sk.dmp, &s, &run, NULL);
     }
     return n + 1;
+}
+
+double f32_exp_neg(double e)
+{
+    return (double)fs_num_exp_neg((fs_expo_t)e);
+}
+
+double f32_kernel_cutoff(void)
+{
+    return (double)FS_NUM_CUTOFF;
 }

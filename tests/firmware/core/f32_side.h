@@ -11,4 +11,10 @@
 long f32_parse_rollout(const uint8_t *image, uint32_t len, double goal_scale, double time_scale,
                        double *out, long cap);
 
+/** The float core's kernel activation fs_num_exp_neg(e) (exp(-e) for 0 <= e <= the cutoff). */
+double f32_exp_neg(double e);
+
+/** The float core's kernel cutoff (DMP_KERNEL_CUTOFF_EXP as its build sets it). */
+double f32_kernel_cutoff(void);
+
 #endif

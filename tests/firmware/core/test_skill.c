@@ -33,11 +33,33 @@ static uint32_t valid_image(uint16_t n)
     return len;
 }
 
+static skill_t sk_sliced;
+
+/* skill_parse, and the same image parsed one unit per call (skill_parse_run): the same status
+ * and, when valid, the same skill byte for byte and the image's CRC. */
 static void expect(const char *what, uint32_t len, fs_status_t want)
 {
+    memset(&sk, 0, sizeof sk);
+    memset(&sk_sliced, 0, sizeof sk_sliced);
     const fs_status_t got = skill_parse(img, len, &sk);
     if (got != want) {
         fail_msg("%s: skill_parse returned %d, expected %d", what, (int)got, (int)want);
+    }
+    skill_parser_t p;
+    skill_parse_begin(&p, img, len, &sk_sliced);
+    uint32_t calls = 1u;
+    while (!skill_parse_run(&p, 1u)) {
+        calls++;
+    }
+    if (p.status != want) {
+        fail_msg("%s: sliced parse returned %d, expected %d", what, (int)p.status, (int)want);
+    }
+    if (want == FS_OK) {
+        assert_memory_equal(&sk, &sk_sliced, sizeof sk);
+        assert_true(calls > 3u * sk.dmp.n_kernels); /* widths, centres, values: a unit a kernel */
+        uint32_t stored;
+        memcpy(&stored, &img[len - 4u], 4);
+        assert_int_equal(p.crc, stored);
     }
 }
 
@@ -78,7 +100,7 @@ static void test_valid_round_trip(void **state)
     for (size_t k = 0; k < 5; k++) {
         const uint16_t n = ns[k];
         const uint32_t len = valid_image(n);
-        assert_int_equal(skill_parse(img, len, &sk), FS_OK);
+        expect("valid image, whole and sliced", len, FS_OK);
         const dmp_model_t *m = &sk.dmp;
         assert_int_equal(m->n_kernels, n);
         assert_true(m->dt_s == (fs_real_t)desc.dt_s);

@@ -162,6 +162,53 @@ static void test_write_read_alternate(void **state)
     assert_int_equal(len, 0);
 }
 
+/* nvm_write in one-unit slices: the old record stays the one read until the write is done,
+ * then the flash and the directory are byte for byte those of nvm_write; errors as nvm_write's. */
+static uint8_t g_mem2[SECTOR * SECTORS];
+
+static void test_sliced_write_same_as_whole(void **state)
+{
+    (void)state;
+    fls_ram_t ram, ram2;
+    fls_dev_t dev, dev2;
+    fls_ram_init(&ram, &dev, g_mem, SECTOR, SECTORS, 4);
+    fls_ram_init(&ram2, &dev2, g_mem2, SECTOR, SECTORS, 4);
+    nvm_t n, n2;
+    assert_int_equal(nvm_init(&n, &dev), NVM_OK);
+    assert_int_equal(nvm_init(&n2, &dev2), NVM_OK);
+    uint8_t a[2048], b[4096], out[8192];
+    const uint32_t la = tv_read("engrave_n50_lwr_hold.skill", a, sizeof a);
+    const uint32_t lb = tv_read("press_n100_lwr_release.skill", b, sizeof b);
+    assert_true(la > 0u && lb > 0u);
+    for (unsigned round = 0; round < 3; round++) { /* copies A, B, A */
+        const uint8_t *p = (round % 2u == 0u) ? b : a;
+        const uint32_t lp = (round % 2u == 0u) ? lb : la;
+        assert_int_equal(nvm_write(&n, 2, p, lp), NVM_OK);
+        nvm_writer_t w;
+        assert_int_equal(nvm_write_begin(&w, &n2, 2, p, lp), NVM_OK);
+        uint32_t calls = 1u;
+        while (!nvm_write_run(&w, 1u)) {
+            calls++;
+            uint32_t len = 0u;
+            const nvm_status_t rs = nvm_read(&n2, 2, out, sizeof out, &len);
+            if (round == 0u) {
+                assert_int_equal(rs, NVM_ERR_EMPTY);
+            } else {
+                assert_int_equal(rs, NVM_OK); /* the previous record while the new one is written */
+                assert_int_equal(len, (round % 2u == 0u) ? la : lb);
+            }
+        }
+        assert_int_equal(w.status, NVM_OK);
+        assert_true(calls > 5u * (lp / 256u)); /* CRC, program, verify, two scans: 256 B a unit */
+        assert_memory_equal(g_mem, g_mem2, sizeof g_mem);
+        assert_memory_equal(&n.dir[2], &n2.dir[2], sizeof n.dir[2]);
+    }
+    nvm_writer_t w;
+    assert_int_equal(nvm_write_begin(&w, &n2, 4, a, la), NVM_ERR_SLOT);
+    assert_true(nvm_write_run(&w, 1u));
+    assert_int_equal(nvm_write_begin(&w, &n2, 0, a, nvm_payload_max(&dev2) + 1u), NVM_ERR_TOO_LARGE);
+}
+
 static void test_corruption_falls_back(void **state)
 {
     (void)state;
@@ -370,6 +417,7 @@ int main(void)
         cmocka_unit_test(test_crc32),
         cmocka_unit_test(test_record_roundtrip_and_rejections),
         cmocka_unit_test(test_write_read_alternate),
+        cmocka_unit_test(test_sliced_write_same_as_whole),
         cmocka_unit_test(test_corruption_falls_back),
         cmocka_unit_test(test_power_loss_every_write),
         cmocka_unit_test(test_verify_failure_and_geometry),
