@@ -180,7 +180,10 @@ def can_upload(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
     return body, targets, data
 
 
-QEMU_TARGETS = [("cortex-m4f", "float32 (FPU)", 850, 850), ("cortex-m3", "fixed point (DMP + law)", 1250, 1250)]
+QEMU_TARGETS = [
+    ("cortex-m4f", "float32 (FPU)", 850, 850),
+    ("cortex-m3", "fixed point (DMP + law)", 1250, 1250),
+]
 TICK_CYCLES = {"168 MHz": 168_000, "72 MHz": 72_000}
 
 
