@@ -20,11 +20,16 @@ import pytest
 from forceskill.link.dbc import dbc_path
 from forceskill.model.demo import load_demo
 from forceskill.model.skill import Skill
-from helpers.canbus import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS, Server, forceskill, socketcand_args
-
-K_NPM = 100.0  # pressing task 1, outer layer (hil_sim/scenarios/pressing_task1_demo.toml)
-SURFACE_M = 0.001
-OBJECT_MASS_KG = 10.0  # m_v_kg of the scenario: the default force gains are adapted to it
+from helpers.canbus import (
+    JOURNEY_HOST_TIMEOUT_MS,
+    PRESS_K_NPM,
+    PRESS_SURFACE_M,
+    SCENARIOS,
+    Server,
+    fit_press,
+    forceskill,
+    socketcand_args,
+)
 
 
 @pytest.fixture(scope="module")
@@ -50,21 +55,7 @@ def test_record_fit_upload_run(journey, capsys):
     demo = load_demo(d / "demo.blf")
     assert 5.9 <= demo.t_s[-1] <= 6.1 and np.allclose(np.diff(demo.t_s), 1e-3)
     assert 3.5 < demo.force_N.max() < 6.0  # the seeded operator's high level (4.5 N +- 10 %)
-    out = forceskill(
-        capsys,
-        "fit",
-        str(d / "demo.blf"),
-        "--stiffness",
-        str(K_NPM),
-        "--surface-m",
-        str(SURFACE_M),
-        "--object-mass",
-        str(OBJECT_MASS_KG),
-        "--end",
-        "release",
-        "-o",
-        str(d / "press.skill"),
-    )
+    out = fit_press(capsys, d / "demo.blf", d / "press.skill")
     err_max = float(out.split("approximation error: max ")[1].split(" %")[0])
     assert err_max <= 2.5  # the default fit's bound (docs/performance.md)
     out = forceskill(capsys, "upload", str(d / "press.skill"), "--slot", "1", "-q", *bus)
@@ -210,9 +201,9 @@ def test_can_logger_log_accepted_by_fit(server, tmp_path, capsys):
         "fit",
         str(log),
         "--stiffness",
-        str(K_NPM),
+        str(PRESS_K_NPM),
         "--surface-m",
-        str(SURFACE_M),
+        str(PRESS_SURFACE_M),
         "-o",
         str(tmp_path / "from_logger.skill"),
     )

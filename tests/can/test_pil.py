@@ -27,12 +27,9 @@ import pytest
 from forceskill import cli
 from forceskill.model import fwimage as fw
 from forceskill.model.skill import Skill
-from helpers.canbus import HOST_TIMEOUT_MS, REPO, SCENARIOS, forceskill, hil_sim_path
+from helpers.canbus import HOST_TIMEOUT_MS, REPO, SCENARIOS, fit_press, forceskill, hil_sim_path
 
 TARGETS = ("cortex-m4f", "cortex-m3")
-K_NPM = 100.0
-SURFACE_M = 0.001
-OBJECT_MASS_KG = 10.0  # m_v_kg of the scenario (as the journey over the simulator)
 SCENARIO = SCENARIOS / "pressing_task1_demo.toml"
 SCENARIO_EXEC = SCENARIOS / "pressing_task1_exec.toml"  # the same plant, object and sensors
 HOST_SEEDS = range(1, 9)
@@ -151,21 +148,7 @@ def test_journey_on_the_image_matches_the_host_build(pil, tmp_path, capsys):
     bus = pil.bus_args()
     out = forceskill(capsys, "record", "-o", str(d / "demo.blf"), "--duration", "6", *bus)
     assert "in TEACH" in out
-    out = forceskill(
-        capsys,
-        "fit",
-        str(d / "demo.blf"),
-        "--stiffness",
-        str(K_NPM),
-        "--surface-m",
-        str(SURFACE_M),
-        "--object-mass",
-        str(OBJECT_MASS_KG),
-        "--end",
-        "release",
-        "-o",
-        str(d / "press.skill"),
-    )
+    out = fit_press(capsys, d / "demo.blf", d / "press.skill")
     assert float(out.split("approximation error: max ")[1].split(" %")[0]) <= 2.5
     out = forceskill(capsys, "upload", str(d / "press.skill"), "--slot", "1", "-q", *bus)
     assert "verified by read-back" in out

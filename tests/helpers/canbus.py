@@ -110,3 +110,29 @@ def forceskill(capsys: Any, *argv: str) -> str:
     out, err = capsys.readouterr()
     assert rc == 0, f"forceskill {' '.join(argv)} failed ({rc}): {err}"
     return out
+
+
+# Pressing task 1's outer layer (hil_sim/scenarios/pressing_task1_demo.toml), shared by the CAN
+# journeys: stiffness, surface, and the object's mass m_v_kg the default force gains adapt to.
+PRESS_K_NPM = 100.0
+PRESS_SURFACE_M = 0.001
+PRESS_OBJECT_MASS_KG = 10.0
+
+
+def fit_press(capsys: Any, demo: Path, skill: Path) -> str:
+    """`forceskill fit` of a pressing-task-1 recording into a skill ending in a release; its stdout."""
+    return forceskill(
+        capsys,
+        "fit",
+        str(demo),
+        "--stiffness",
+        str(PRESS_K_NPM),
+        "--surface-m",
+        str(PRESS_SURFACE_M),
+        "--object-mass",
+        str(PRESS_OBJECT_MASS_KG),
+        "--end",
+        "release",
+        "-o",
+        str(skill),
+    )
