@@ -19,7 +19,14 @@ PY_OUT = "host/forceskill/wire/generated.py"
 STAMP = f"generated from {TABLE} by tools/gen_codes.py; do not edit"
 
 SIZE = {"u8": 1, "u16": 2, "u32": 4, "f32": 4, "u16s": 2, "u32s": 4}
-CTYPE = {"u8": "uint8_t", "u16": "uint16_t", "u32": "uint32_t", "f32": "float", "u16s": "uint16_t", "u32s": "uint32_t"}
+CTYPE = {
+    "u8": "uint8_t",
+    "u16": "uint16_t",
+    "u32": "uint32_t",
+    "f32": "float",
+    "u16s": "uint16_t",
+    "u32s": "uint32_t",
+}
 UMAX = {"u8": 0xFF, "u16": 0xFFFF, "u32": 0xFFFFFFFF, "u16s": 0xFFFF, "u32s": 0xFFFFFFFF}
 PYFMT = {"u8": "B", "u16": "H", "u32": "I", "f32": "f", "u16s": "H", "u32s": "I"}
 
@@ -103,9 +110,15 @@ def load(root: Path) -> Wire:
             if ty not in SIZE and ty not in records:
                 raise WireError(f"{TABLE}: {where}: unknown type {ty}")
             fl = Field(
-                fd["name"], ty, fd.get("unit", ""), num(fd.get("min"), where), num(fd.get("max"), where),
-                num(fd.get("above"), where), num(fd.get("default"), where),
-                int(num(fd.get("min_count", 0), where) or 0), int(num(fd.get("max_count", 0), where) or 0),
+                fd["name"],
+                ty,
+                fd.get("unit", ""),
+                num(fd.get("min"), where),
+                num(fd.get("max"), where),
+                num(fd.get("above"), where),
+                num(fd.get("default"), where),
+                int(num(fd.get("min_count", 0), where) or 0),
+                int(num(fd.get("max_count", 0), where) or 0),
             )
             if ty not in SIZE and (fd is not r["fields"][-1] or fl.max_count < max(1, fl.min_count)):
                 raise WireError(f"{TABLE}: {where}: an array is the last field, 0 < max_count >= min_count")
@@ -143,7 +156,7 @@ def c_const(w: Wire) -> str:
         f"#ifndef {g}",
         f"#define {g}",
         "",
-        f"/* One step of every scaled wire field (goal, time and path scales, durations): value =",
+        "/* One step of every scaled wire field (goal, time and path scales, durations): value =",
         " * count * FS_WIRE_SCALE; also the factor of the DBC's HostCommand scales. */",
         f"#define FS_WIRE_SCALE {w.scale!r}",
         f"#define FS_WIRE_SCALE_STEPS {w.steps}u /* counts per unit, 1 / FS_WIRE_SCALE */",
@@ -238,9 +251,9 @@ def c_header(w: Wire) -> str:
         lines += _len_macros(r)
         lines += _c_struct(r, w)
         lines += [
-            f"/** Unpack len bytes: PROTO_OK, PROTO_ERR_WIRE_LENGTH or PROTO_ERR_WIRE_RANGE (v unchanged). */",
+            "/** Unpack len bytes: PROTO_OK, PROTO_ERR_WIRE_LENGTH or PROTO_ERR_WIRE_RANGE (v unchanged). */",
             f"proto_status_t fs_wire_{r.name}_unpack(fs_wire_{r.name}_t *v, const uint8_t *d, uint16_t len);",
-            f"/** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */",
+            "/** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */",
             f"uint16_t fs_wire_{r.name}_pack(const fs_wire_{r.name}_t *v, uint8_t *out, uint16_t cap);",
             "",
         ]
@@ -351,7 +364,10 @@ def c_source(w: Wire) -> str:
 
 def _c_unpack(r: Record, w: Wire) -> list[str]:
     up = r.name.upper()
-    lines = [f"proto_status_t fs_wire_{r.name}_unpack(fs_wire_{r.name}_t *v, const uint8_t *d, uint16_t len)", "{"]
+    lines = [
+        f"proto_status_t fs_wire_{r.name}_unpack(fs_wire_{r.name}_t *v, const uint8_t *d, uint16_t len)",
+        "{",
+    ]
     fixed = r.fixed_size()
     arr = r.array
     if arr is not None:
@@ -363,7 +379,12 @@ def _c_unpack(r: Record, w: Wire) -> list[str]:
         lines += [f"    if (len != FS_WIRE_{up}_LEN_MIN && len != FS_WIRE_{up}_LEN_MAX) {{"]
     else:
         lines += [f"    if (len != FS_WIRE_{up}_LEN) {{"]
-    lines += ["        return PROTO_ERR_WIRE_LENGTH;", "    }", f"    fs_wire_{r.name}_t t;", "    memset(&t, 0, sizeof(t));"]
+    lines += [
+        "        return PROTO_ERR_WIRE_LENGTH;",
+        "    }",
+        f"    fs_wire_{r.name}_t t;",
+        "    memset(&t, 0, sizeof(t));",
+    ]
     body, _ = _c_fields_get(r, "", "t.", 0)
     if r.optional:
         n_req = len(r.fields) - r.optional
@@ -393,7 +414,15 @@ def _c_unpack(r: Record, w: Wire) -> list[str]:
         sb, _ = _c_fields_get(sub, "at", f"t.{arr.name}[i].", 0)
         lines += ["    " + s for s in sb]
         lines.append("    }")
-    lines += [f"    if (!{r.name}_in_range(&t)) {{", "        return PROTO_ERR_WIRE_RANGE;", "    }", "    *v = t;", "    return PROTO_OK;", "}", ""]
+    lines += [
+        f"    if (!{r.name}_in_range(&t)) {{",
+        "        return PROTO_ERR_WIRE_RANGE;",
+        "    }",
+        "    *v = t;",
+        "    return PROTO_OK;",
+        "}",
+        "",
+    ]
     return lines
 
 
@@ -424,7 +453,10 @@ def _c_pack(r: Record, w: Wire) -> list[str]:
         at += SIZE[f.type]
     if arr is not None:
         sub = r.sub[arr.type]
-        lines += [f"    for (unsigned i = 0; i < v->n_{arr.name}; i++) {{", f"        const unsigned at = {at}u + {sub.fixed_size()}u * i;"]
+        lines += [
+            f"    for (unsigned i = 0; i < v->n_{arr.name}; i++) {{",
+            f"        const unsigned at = {at}u + {sub.fixed_size()}u * i;",
+        ]
         sat = 0
         for f in sub.fields:
             lines.append(f"        {_c_put(f, f'v->{arr.name}[i].{f.name}', f'at + {sat}u')}")
@@ -490,7 +522,11 @@ def _py_class(r: Record, w: Wire) -> list[str]:
         opt = i >= n_req
         unit = f"  # {f.unit}" if f.unit else ""
         lines.append(f"    {f.name}: {_py_type(f, opt)}" + (" = None" if opt else "") + unit)
-    lines += ["", "    def check(self) -> None:", f'        """FsError ERR_WIRE_RANGE if a field is outside its range."""']
+    lines += [
+        "",
+        "    def check(self) -> None:",
+        '        """FsError ERR_WIRE_RANGE if a field is outside its range."""',
+    ]
     for i, f in enumerate(r.fields):
         if f.type not in SIZE:
             continue
@@ -512,7 +548,12 @@ def _py_class(r: Record, w: Wire) -> list[str]:
             "            e.check()",
         ]
     # pack
-    lines += ["", "    def pack(self) -> bytes:", '        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""', "        self.check()"]
+    lines += [
+        "",
+        "    def pack(self) -> bytes:",
+        '        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""',
+        "        self.check()",
+    ]
     args = ", ".join(f"to_steps(self.{f.name})" if f.type.endswith("s") else f"self.{f.name}" for f in req)
     lines.append(f"        out = _{r.name.upper()}.pack({args})")
     for f in r.fields[n_req:]:
@@ -523,14 +564,19 @@ def _py_class(r: Record, w: Wire) -> list[str]:
         lines.append(f"        out += b''.join(e.pack() for e in self.{arr.name})")
     lines.append("        return out")
     # unpack
-    lines += ["", "    @classmethod", f"    def unpack(cls, data: bytes) -> {cls}:",
-              '        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""',
-              "        data = bytes(data)", f"        n = _{r.name.upper()}.size"]
+    lines += [
+        "",
+        "    @classmethod",
+        f"    def unpack(cls, data: bytes) -> {cls}:",
+        '        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""',
+        "        data = bytes(data)",
+        f"        n = _{r.name.upper()}.size",
+    ]
     if arr is not None:
         sub = _camel(arr.type)
         lines += [
             f"        m = {sub}.SIZE",
-            f"        count = (len(data) - n) // m",
+            "        count = (len(data) - n) // m",
             f"        if len(data) < n or (len(data) - n) % m or not {arr.min_count} <= count <= {arr.max_count}:",
             f"            raise FsError(ERR_WIRE_LENGTH, f'{r.name}: {{len(data)}} bytes is not {{n}} + {{m}} x {arr.min_count}..{arr.max_count}')",
         ]
@@ -549,10 +595,13 @@ def _py_class(r: Record, w: Wire) -> list[str]:
     vals = []
     for i, f in enumerate(req):
         vals.append(f"from_steps(raw[{i}])" if f.type.endswith("s") else f"raw[{i}]")
-    at = "n"
     for f in r.fields[n_req:]:
         fm = PYFMT[f.type]
-        conv = "from_steps(struct.unpack_from('>" + fm + f"', data, n)[0])" if f.type.endswith("s") else f"struct.unpack_from('>{fm}', data, n)[0]"
+        conv = (
+            "from_steps(struct.unpack_from('>" + fm + "', data, n)[0])"
+            if f.type.endswith("s")
+            else f"struct.unpack_from('>{fm}', data, n)[0]"
+        )
         vals.append(f"{conv} if len(data) > n else None")
     if arr is not None:
         sub = _camel(arr.type)
@@ -637,5 +686,7 @@ def dbc_scale_mismatches(root: Path, dbc_rel: str) -> list[str]:
     for sig in ("GoalScale", "TimeScale"):
         m = re.search(rf"^\s*SG_ {sig} : \S+ \(([^,]+),", text, re.M)
         if m is None or float(m.group(1)) != w.scale:
-            bad.append(f"{dbc_rel}: signal {sig} factor {m.group(1) if m else 'missing'}, {TABLE} scale {w.scale}")
+            bad.append(
+                f"{dbc_rel}: signal {sig} factor {m.group(1) if m else 'missing'}, {TABLE} scale {w.scale}"
+            )
     return bad
