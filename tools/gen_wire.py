@@ -167,6 +167,8 @@ def c_const(w: Wire) -> str:
         lines.append(f"#define FS_{n} {_c_num(v)}")
         if n.endswith("_US") and isinstance(v, int):
             lines.append(f"#define FS_{n[:-3]}_S {v / 1e6!r} /* FS_{n} in seconds */")
+            if 1_000_000 % v == 0:
+                lines.append(f"#define FS_{n[:-3]}_HZ {1_000_000 // v}u /* per second */")
     lines += ["", f"#endif /* {g} */", ""]
     return "\n".join(lines)
 
@@ -638,6 +640,8 @@ def python_module(w: Wire) -> str:
         lines.append(f"{n} = {_py_num(v)}")
         if n.endswith("_US") and isinstance(v, int):
             lines.append(f"{n[:-3]}_S = {v / 1e6!r}  # {n} in seconds")
+            if 1_000_000 % v == 0:
+                lines.append(f"{n[:-3]}_HZ = {1_000_000 // v}  # per second")
     lines += [
         "",
         "",
@@ -663,6 +667,7 @@ def python_module(w: Wire) -> str:
     text = "\n".join(lines + body)
     names = ["SCALE", "SCALE_STEPS", *[n for n, _, _ in w.consts]]
     names += [f"{n[:-3]}_S" for n, v, _ in w.consts if n.endswith("_US")]
+    names += [f"{n[:-3]}_HZ" for n, v, _ in w.consts if n.endswith("_US") and 1_000_000 % int(v) == 0]
     names += ["from_steps", "to_steps", *[_camel(n) for n in w.records]]
     text = text.rstrip() + "\n\n\n__all__ = [\n" + "".join(f"    {n!r},\n" for n in names) + "]\n"
     return text

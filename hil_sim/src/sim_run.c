@@ -467,7 +467,7 @@ int sim_run(const sim_scenario_t *sc, const sim_skill_image_t *skills, FILE *log
 
     memset(sum, 0, sizeof *sum);
     sum->layer_reached_s = -1.0;
-    if (fabs(dt - 1e-3) > 1e-12) {
+    if (fabs(dt - FS_TICK_S) > 1e-12) {
         snprintf(err, SIM_ERR_MAX, "%s: the device ticks at 1 ms, dt_s is %g", sc->path, dt);
         return -1;
     }

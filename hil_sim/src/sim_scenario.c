@@ -6,6 +6,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "fs_wire_const.h"
+
 typedef sim_toml_ctx_t ctx_t;
 typedef sim_toml_value_t value_t;
 
@@ -17,7 +19,7 @@ void sim_scenario_defaults(sim_scenario_t *sc)
     sc->plant = SIM_PLANT_IDEAL;
     sc->duration_s = 0.0;
     sc->tail_s = 1.0;
-    sc->dt_s = 0.001;
+    sc->dt_s = FS_TICK_S; /* the device's tick */
     sc->substeps = 10;
     sc->seed = 1;
     sc->start_x_m = 0.0;

@@ -244,7 +244,7 @@ def run_on_device(
                         break
                     if st.state != "EXECUTE":
                         break
-                    if ((st.tick - start_tick) & 0xFFFFFF) >= total * 1000.0:
+                    if ((st.tick - start_tick) & 0xFFFFFF) >= total * W.TICK_HZ:
                         dev.command_until("idle", {"IDLE", "FAULT"}, 2.0 * args.timeout)
                         break
                     time.sleep(0.02)
@@ -261,7 +261,7 @@ def run_on_device(
         samples = list(tel.samples)
     grid, stream = columns(samples)  # lost frames interpolated on the tick grid, and counted
     first_tick = stream.first_tick
-    n_keep = int(round(total * 1000.0)) + 1
+    n_keep = int(round(total * W.TICK_HZ)) + 1
     if fault and grid["t"].size:
         n_keep = min(n_keep, _fault_index(first_tick & 0xFFFF, grid["t"].size, fault_tick) + 1)
     cols = {k: v[:n_keep] for k, v in grid.items()}

@@ -21,6 +21,7 @@ SLOT_COUNT = 8
 #: control tick period in microseconds (the device runs at 1 kHz)
 TICK_US = 0x03E8
 TICK_S = 0.001  # TICK_US in seconds
+TICK_HZ = 1000  # per second
 #: steps of a RUN_SEQUENCE start at most
 SEQUENCE_STEPS_MAX = 8
 #: default |force command| limit force_max_N of each axis
@@ -731,6 +732,7 @@ __all__ = [
     'TARGET_CORTEX_M3',
     'TARGET_HOST',
     'TICK_S',
+    'TICK_HZ',
     'from_steps',
     'to_steps',
     'Versions',
