@@ -17,9 +17,9 @@ import numpy as np
 from ..errors import ERR_LINK_TIMEOUT, ERR_LOG_FORMAT, FsError
 from ..link.bus import add_bus_args, describe, error_summary, open_bus
 from ..link.device import Device, Sample
-from ..link.telemetry import fast_stretches
 from ..outputs import Outputs
 from ..wire import TICK_S
+from ..wire.telemetry import fast_stretches
 
 
 def add_common(p: argparse.ArgumentParser) -> None:
