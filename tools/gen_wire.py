@@ -137,6 +137,19 @@ def load(root: Path) -> Wire:
     return Wire(scale, steps, consts, records)
 
 
+def constants(w: Wire) -> list[tuple[str, int | float, str, bool]]:
+    """(name, value, what, derived): the table's constants, each _US one followed by its value in
+    seconds (_S) and, when 1 s is a whole number of periods, its rate (_HZ)."""
+    out: list[tuple[str, int | float, str, bool]] = []
+    for n, v, what in w.consts:
+        out.append((n, v, what, False))
+        if n.endswith("_US") and isinstance(v, int):
+            out.append((f"{n[:-3]}_S", v / 1e6, f"{n} in seconds", True))
+            if 1_000_000 % v == 0:
+                out.append((f"{n[:-3]}_HZ", 1_000_000 // v, f"{n} as a rate, per second", True))
+    return out
+
+
 def _steps(w: Wire, v: float) -> int:
     return round(v * w.steps)
 
@@ -162,11 +175,11 @@ def c_const(w: Wire) -> str:
         f"#define FS_WIRE_SCALE_STEPS {w.steps}u /* counts per unit, 1 / FS_WIRE_SCALE */",
         "",
     ]
-    for n, v, what in w.consts:
-        lines.append(f"/* {what} */")
-        lines.append(f"#define FS_{n} {_c_num(v)}")
-        if n.endswith("_US") and isinstance(v, int):
-            lines.append(f"#define FS_{n[:-3]}_S {v / 1e6!r} /* FS_{n} in seconds */")
+    for n, v, what, derived in constants(w):
+        if derived:
+            lines.append(f"#define FS_{n} {_c_num(v)} /* FS_{what} */")
+        else:
+            lines += [f"/* {what} */", f"#define FS_{n} {_c_num(v)}"]
     lines += ["", f"#endif /* {g} */", ""]
     return "\n".join(lines)
 
@@ -470,7 +483,7 @@ def _c_pack(r: Record, w: Wire) -> list[str]:
 
 
 def _py_num(v: int | float) -> str:
-    return f"0x{v:04X}" if isinstance(v, int) and v >= 0xFF else repr(v)
+    return f"0x{v:04X}" if isinstance(v, int) and v > 0xFFF else repr(v)
 
 
 def _py_checks(f: Field, w: Wire, var: str, finite: bool) -> list[str]:
@@ -633,11 +646,11 @@ def python_module(w: Wire) -> str:
         f"SCALE = {w.scale!r}",
         f"SCALE_STEPS = {w.steps}  # counts per unit, 1 / SCALE",
     ]
-    for n, v, what in w.consts:
-        lines.append(f"#: {what}")
-        lines.append(f"{n} = {_py_num(v)}")
-        if n.endswith("_US") and isinstance(v, int):
-            lines.append(f"{n[:-3]}_S = {v / 1e6!r}  # {n} in seconds")
+    for n, v, what, derived in constants(w):
+        if derived:
+            lines.append(f"{n} = {_py_num(v)}  # {what}")
+        else:
+            lines += [f"#: {what}", f"{n} = {_py_num(v)}"]
     lines += [
         "",
         "",
@@ -661,8 +674,7 @@ def python_module(w: Wire) -> str:
     for r in w.records.values():
         body += _py_class(r, w)
     text = "\n".join(lines + body)
-    names = ["SCALE", "SCALE_STEPS", *[n for n, _, _ in w.consts]]
-    names += [f"{n[:-3]}_S" for n, v, _ in w.consts if n.endswith("_US")]
+    names = ["SCALE", "SCALE_STEPS", *[c[0] for c in constants(w)]]
     names += ["from_steps", "to_steps", *[_camel(n) for n in w.records]]
     text = text.rstrip() + "\n\n\n__all__ = [\n" + "".join(f"    {n!r},\n" for n in names) + "]\n"
     return text

@@ -29,8 +29,8 @@ import can
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "host"))
 
-from forceskill.link.dbc import load_db  # noqa: E402
 from forceskill.link.device import HEARTBEAT_PERIOD_S, Device  # noqa: E402
+from forceskill.wire.dbc import load_db  # noqa: E402
 
 logging.getLogger("can.interfaces.socketcand.socketcand").setLevel(logging.ERROR)
 

@@ -34,8 +34,8 @@ import can
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "host"))
 
-from forceskill.link.dbc import load_db  # noqa: E402
 from forceskill.link.device import Device  # noqa: E402
+from forceskill.wire.dbc import load_db  # noqa: E402
 
 logging.getLogger("can.interfaces.socketcand.socketcand").setLevel(logging.ERROR)
 

@@ -200,72 +200,19 @@ static uint32_t app_now_ms(app_t *app, uint64_t now_us)
     return app->ms_base_ms;
 }
 
-uint8_t app_start_sequence(app_t *app, const uint8_t *slots, const fs_real_t *goal_scale,
-                           const fs_real_t *time_scale, const fs_real_t *duration_s,
-                           const fs_real_t *path_scale, uint8_t n_steps, uint8_t end)
+/* A HostCommand EXECUTE as a run request: one step, its slot, goal and time scale (counts of the
+ * DBC's factor, FS_WIRE_SCALE), the skill's own duration, path scale 1. */
+static void run_from_command(const struct fs_dbc_host_command_t *c, app_run_request_t *req)
 {
-    if (n_steps == 0u || n_steps > EXEC_MAX_STEPS || end > 2u) {
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;
-    }
-    if (app->state != APP_IDLE || app->checking) {
-        return UDS_NRC_CONDITIONS_NOT_CORRECT; /* a download's commit runs: its end decides */
-    }
-    exec_step_t steps[EXEC_MAX_STEPS];
-    for (uint8_t i = 0; i < n_steps; i++) {
-        const uint8_t s = slots[i];
-        if (s < 1u || s > APP_N_SLOTS || !app->slot_valid[s - 1u]) {
-            return UDS_NRC_REQUEST_OUT_OF_RANGE;
-        }
-        if (!(goal_scale[i] >= FS_R(0.0)) || !(time_scale[i] > FS_R(0.0)) ||
-            !fs_isfinite(goal_scale[i]) || !fs_isfinite(time_scale[i])) {
-            return UDS_NRC_REQUEST_OUT_OF_RANGE;
-        }
-        /* before any motion: a stiffness the device tracks, the skill's peak times the goal
-         * scale within the force limit */
-        fs_status_t sc = skchk_stiffness(&app->slot_skill[s - 1u], app->cfg.stiffness_max_Npm);
-        if (sc != FS_OK) {
-            app->last_run_status = (uint16_t)sc;
-            return UDS_NRC_REQUEST_OUT_OF_RANGE;
-        }
-        sc = skchk_run_scales(&app->slot_skill[s - 1u], app->slot_peak_N[s - 1u], goal_scale[i],
-                              time_scale[i], APP_TICK_S, app->cfg.saf.lim.axis[0].force_max_N);
-        app->last_run_status = (uint16_t)sc;
-        if (sc != FS_OK) {
-            return UDS_NRC_REQUEST_OUT_OF_RANGE;
-        }
-        const fs_real_t ps = (path_scale != NULL) ? path_scale[i] : FS_R(1.0);
-        const lim_axis_t *ya = &app->cfg.saf.lim.axis[1];
-        const fs_status_t sp = skchk_run_path(&app->slot_skill[s - 1u], app->slot_path_m[s - 1u],
-                                              ps, ya->pos_max_m - ya->pos_min_m);
-        app->last_run_status = (uint16_t)sp;
-        if (sp != FS_OK) {
-            return UDS_NRC_REQUEST_OUT_OF_RANGE;
-        }
-        steps[i].path_scale = ps;
-        steps[i].skill = &app->slot_skill[s - 1u];
-        steps[i].goal_scale = goal_scale[i];
-        steps[i].time_scale = time_scale[i];
-        steps[i].duration_s = duration_s[i];
-        steps[i].end_policy = (end == 0u) ? app->slot_skill[s - 1u].end_policy
-                                          : (end == 1u ? SKILL_END_HOLD : SKILL_END_RELEASE);
-    }
-    /* execution uses the gains the (first) skill was fitted with; the y axis keeps the device's */
-    app->exec_run_cfg = app->cfg.exec;
-    app->exec_run_cfg.pfc.gains[0] = steps[0].skill->gains;
-    app->exec_run_cfg.pfc.gains[1] = app->cfg.gains[1];
-    app->exec_run_cfg.pfc.gains[1].m_d_kg = steps[0].skill->gains.m_d_kg;
-    for (unsigned a = 0; a < PFC_AXES; a++) {
-        app->exec_run_cfg.pfc.limits[a].force_max_N = app->cfg.saf.lim.axis[a].force_max_N;
-    }
-    app->exec_run_cfg.pfc.dt_s = APP_TICK_S;
-    if (exec_start(&app->exec_run_cfg, &app->exec, steps, n_steps, app->sens.pos_m[1]) != FS_OK) {
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;
-    }
-    app->active_slot = slots[0];
-    app->seq_step = 0u;
-    app->exec_done = false;
-    (void)app_event(app, APP_EV_EXECUTE);
-    return UDS_NRC_OK;
+    memset(req, 0, sizeof(*req));
+    req->source = APP_RUN_FROM_COMMAND;
+    req->n_steps = 1u;
+    req->end = c->end_policy;
+    req->step[0].slot = c->slot;
+    req->step[0].goal_scale = FS_WIRE_REAL(fs_real_t, c->goal_scale);
+    req->step[0].time_scale = FS_WIRE_REAL(fs_real_t, c->time_scale);
+    req->step[0].duration_s = FS_R(0.0);
+    req->step[0].path_scale = FS_R(1.0);
 }
 
 static void handle_command(app_t *app, const can_frame_t *f)
@@ -278,11 +225,10 @@ static void handle_command(app_t *app, const can_frame_t *f)
     case APP_CMD_IDLE: (void)app_event(app, APP_EV_STOP); break;
     case APP_CMD_TEACH: (void)app_event(app, APP_EV_TEACH); break;
     case APP_CMD_EXECUTE: {
-        const uint8_t slot = c.slot;
-        const fs_real_t g = FS_WIRE_REAL(fs_real_t, c.goal_scale);
-        const fs_real_t ts = FS_WIRE_REAL(fs_real_t, c.time_scale);
-        const fs_real_t d = FS_R(0.0);
-        (void)app_start_sequence(app, &slot, &g, &ts, &d, NULL, 1u, c.end_policy);
+        app_run_request_t req;
+        run_from_command(&c, &req);
+        (void)app_run_start(app,
+                            &req); /* a refused command is ignored: the status frame shows it */
         break;
     }
     case APP_CMD_CLEAR_FAULT:

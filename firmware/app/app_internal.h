@@ -186,13 +186,40 @@ struct app {
  *  true if confirmed or not on test. Called once, on the first tick. */
 bool app_fw_self_test_and_confirm(app_t *app);
 
-/** Start a sequence (1..EXEC_MAX_STEPS steps); slots 1..APP_N_SLOTS, end 0 = skill's own,
- *  1 hold, 2 release; duration_s <= 0: the skill's T*time_scale; path_scale (NULL: 1 for every
- *  step) scales the y path of skills with a y DMP, path_scale times the slot's path extent
- *  within the y workspace's width (226 in last_run_status). Returns a UDS NRC (0 ok). */
-uint8_t app_start_sequence(app_t *app, const uint8_t *slots, const fs_real_t *goal_scale,
-                           const fs_real_t *time_scale, const fs_real_t *duration_s,
-                           const fs_real_t *path_scale, uint8_t n_steps, uint8_t end);
+/** Where a run request came from (HostCommand frame, UDS routine, or the simulator itself). */
+typedef enum {
+    APP_RUN_FROM_COMMAND = 0,
+    APP_RUN_FROM_ROUTINE = 1,
+    APP_RUN_FROM_LOCAL = 2
+} app_run_source_t;
+
+/** One step of a run: slot 1..APP_N_SLOTS, goal and time scale, duration_s (<= 0: the skill's
+ *  T*time_scale) and path scale (the y path of a skill with a y DMP; 1: as demonstrated). */
+typedef struct {
+    uint8_t slot;
+    fs_real_t goal_scale;
+    fs_real_t time_scale;
+    fs_real_t duration_s;
+    fs_real_t path_scale;
+} app_run_step_t;
+
+/** A request to start motion, decoded from any source (app_run.c). */
+typedef struct {
+    app_run_source_t source;
+    uint8_t n_steps; /* 1..EXEC_MAX_STEPS */
+    uint8_t end;     /* 0 each skill's own end policy, 1 hold, 2 release */
+    app_run_step_t step[EXEC_MAX_STEPS];
+} app_run_request_t;
+
+/** The authorisation of a run request, the first check of every start whatever its source: the
+ *  one place a MAC and freshness check of the request sits. Today every request passes (a run
+ *  needs no SecurityAccess level, docs/protocol.md). Returns a UDS NRC (0 authorised). */
+uint8_t app_run_authorize(const app_t *app, const app_run_request_t *req);
+
+/** Start a run: app_run_authorize, then the end policy and step count (0x31), the state (IDLE,
+ *  no commit running: 0x22), each step's slot, scales, stiffness, force and path limits (0x31,
+ *  the check's code 224-227 in last_run_status), then EXECUTE. Returns a UDS NRC (0 started). */
+uint8_t app_run_start(app_t *app, const app_run_request_t *req);
 
 /** The default skill stiffness limit (DID 0x0140, 227 above it) of a drive: the highest nominal
  *  stiffness at which both stiff HIL profiles track within 5 % RMS without a fault

@@ -262,45 +262,45 @@ static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len
 
 /* ---------------------------------------------------------------- routines */
 
-/* A start request of RUN_SKILL (slot, goal and time scale, end policy [, path scale]) or
- * RUN_SEQUENCE (end policy, then per step: slot, goal, time scale, duration). */
-static uint8_t routine_run_start(app_t *app, uint16_t rid, const uint8_t *d, uint16_t len)
+/* A RUN_SKILL start (slot, goal and time scale, end policy [, path scale]) or a RUN_SEQUENCE start
+ * (end policy, then per step: slot, goal and time scale, duration) as a run request; a UDS NRC
+ * (0x13 length, 0x31 a field's range). */
+static uint8_t run_from_routine(uint16_t rid, const uint8_t *d, uint16_t len,
+                                app_run_request_t *req)
 {
-    uint8_t slots[EXEC_MAX_STEPS];
-    fs_real_t g[EXEC_MAX_STEPS], ts[EXEC_MAX_STEPS], dur[EXEC_MAX_STEPS], ps[EXEC_MAX_STEPS];
-    uint8_t n = 0u;
-    uint8_t end = 0u;
-    proto_status_t st;
+    memset(req, 0, sizeof(*req));
+    req->source = APP_RUN_FROM_ROUTINE;
     if (rid == UDS_RID_RUN_SKILL) {
         fs_wire_run_skill_t r;
-        st = fs_wire_run_skill_unpack(&r, d, len);
+        const proto_status_t st = fs_wire_run_skill_unpack(&r, d, len);
         if (st != PROTO_OK) {
             return wire_nrc(st);
         }
-        slots[0] = r.slot;
-        g[0] = FS_WIRE_REAL(fs_real_t, r.goal_scale);
-        ts[0] = FS_WIRE_REAL(fs_real_t, r.time_scale);
-        dur[0] = FS_R(0.0);
-        ps[0] = FS_WIRE_REAL(fs_real_t, r.path_scale); /* absent: the record's default, 1 */
-        end = r.end;
-        n = 1u;
-    } else {
-        fs_wire_run_sequence_t r;
-        st = fs_wire_run_sequence_unpack(&r, d, len);
-        if (st != PROTO_OK) {
-            return wire_nrc(st);
-        }
-        end = r.end;
-        n = r.n_steps;
-        for (uint8_t i = 0; i < n; i++) {
-            slots[i] = r.steps[i].slot;
-            g[i] = FS_WIRE_REAL(fs_real_t, r.steps[i].goal_scale);
-            ts[i] = FS_WIRE_REAL(fs_real_t, r.steps[i].time_scale);
-            dur[i] = FS_WIRE_REAL(fs_real_t, r.steps[i].duration_s);
-            ps[i] = FS_R(1.0);
-        }
+        req->n_steps = 1u;
+        req->end = r.end;
+        req->step[0].slot = r.slot;
+        req->step[0].goal_scale = FS_WIRE_REAL(fs_real_t, r.goal_scale);
+        req->step[0].time_scale = FS_WIRE_REAL(fs_real_t, r.time_scale);
+        req->step[0].duration_s = FS_R(0.0);
+        req->step[0].path_scale = FS_WIRE_REAL(fs_real_t, r.path_scale); /* absent: 1 */
+        return UDS_NRC_OK;
     }
-    return app_start_sequence(app, slots, g, ts, dur, ps, n, end);
+    fs_wire_run_sequence_t r;
+    const proto_status_t st = fs_wire_run_sequence_unpack(&r, d, len);
+    if (st != PROTO_OK) {
+        return wire_nrc(st);
+    }
+    req->n_steps = r.n_steps;
+    req->end = r.end;
+    for (uint8_t i = 0; i < r.n_steps; i++) {
+        app_run_step_t *s = &req->step[i];
+        s->slot = r.steps[i].slot;
+        s->goal_scale = FS_WIRE_REAL(fs_real_t, r.steps[i].goal_scale);
+        s->time_scale = FS_WIRE_REAL(fs_real_t, r.steps[i].time_scale);
+        s->duration_s = FS_WIRE_REAL(fs_real_t, r.steps[i].duration_s);
+        s->path_scale = FS_R(1.0);
+    }
+    return UDS_NRC_OK;
 }
 
 /* RUN_SKILL / RUN_SEQUENCE: start, stop, or the results (state, step, done, fault code). */
@@ -308,7 +308,9 @@ static uint8_t routine_run(app_t *app, uint8_t sub, uint16_t rid, const uint8_t 
                            uint8_t *out, uint16_t cap, uint16_t *out_len)
 {
     if (sub == UDS_ROUTINE_START) {
-        return routine_run_start(app, rid, d, len);
+        app_run_request_t req;
+        const uint8_t nrc = run_from_routine(rid, d, len, &req);
+        return nrc != UDS_NRC_OK ? nrc : app_run_start(app, &req);
     }
     if (sub == UDS_ROUTINE_STOP) {
         if (app->state != APP_EXECUTE) {

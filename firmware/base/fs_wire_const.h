@@ -13,6 +13,7 @@
 /* control tick period in microseconds (the device runs at 1 kHz) */
 #define FS_TICK_US 1000u
 #define FS_TICK_S 0.001 /* FS_TICK_US in seconds */
+#define FS_TICK_HZ 1000u /* FS_TICK_US as a rate, per second */
 /* steps of a RUN_SEQUENCE start at most */
 #define FS_SEQUENCE_STEPS_MAX 8u
 /* default |force command| limit force_max_N of each axis */

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "fault_rig.h"
+#include "fs_wire_const.h"
 #include "fls_ram.h"
 #include "hal_host.h"
 
@@ -296,13 +297,13 @@ static void run_fault(const fscen_t *fs, const sim_scenario_t *sc, frow_t *row)
     w.monotone = true;
     w.hold_ok = true;
     w.t_exec = r->n_tick;
-    w.t_inj = w.t_exec + (uint64_t)llround(fs->at_s * 1000.0);
-    w.dur = (uint64_t)llround(fs->duration_s * 1000.0) > 0u
-                ? (uint64_t)llround(fs->duration_s * 1000.0)
+    w.t_inj = w.t_exec + (uint64_t)llround(fs->at_s * (double)FS_TICK_HZ);
+    w.dur = (uint64_t)llround(fs->duration_s * (double)FS_TICK_HZ) > 0u
+                ? (uint64_t)llround(fs->duration_s * (double)FS_TICK_HZ)
                 : 1u;
     w.end = w.t_inj + 20000u; /* bounded: the run ends HOLD_MS after detection */
     if (fs->expect_code == 0) {
-        w.end = w.t_inj + (uint64_t)llround(fs->duration_s * 1000.0) + 200u;
+        w.end = w.t_inj + (uint64_t)llround(fs->duration_s * (double)FS_TICK_HZ) + 200u;
     }
     run_ticks(r, fs, &w, row);
     row_common(r, &w, crc_before, row);

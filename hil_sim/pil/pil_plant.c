@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "cm_board.h"
+#include "fs_wire_const.h"
 #include "hal.h"
 #include "sim_couple.h"
 
@@ -21,7 +22,7 @@ bool pil_plant_load(sim_scenario_t *sc, sim_params_dev_t *dev)
     }
     /* no block: a plant at rest on the ideal drive, the simulator's defaults where it matters */
     memset(sc, 0, sizeof(*sc));
-    sc->dt_s = 0.001;
+    sc->dt_s = FS_TICK_S;
     sc->substeps = 10;
     sc->seed = 1u;
     sc->m_d_kg = 40.0;

@@ -156,8 +156,8 @@ static void dev_host(sim_dev_t *d, uint64_t n_tick)
 
 /* Power the device up over a fresh flash holding the scenario's skills in slots 1..n, let it
  * boot with the handle at rest at the start, then start the TEACH or EXECUTE the scenario asks
- * for as the host would (a HostCommand frame; a sequence is app_start_sequence, what the UDS
- * routine calls). */
+ * for as the host would (a HostCommand frame; a sequence is a run request to app_run_start, the
+ * device's one motion path). */
 static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_image_t *skills,
                      double *total_s, char err[SIM_ERR_MAX])
 {
@@ -182,7 +182,7 @@ static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_ima
     const hal_sensors_t rest = {{sc->start_x_m, sc->start_y_m}, {0.0, 0.0}, {0.0, 0.0}};
     hal_host_set_sensors(&rest);
     for (uint32_t k = 0; k < SIM_RUN_START_TICKS; k++) {
-        hal_host_set_time_us((uint64_t)k * 1000u);
+        hal_host_set_time_us((uint64_t)k * APP_TICK_US);
         if (k == SIM_RUN_START_TICKS - 1u) {
             can_frame_t f;
             sim_couple_heartbeat_frame(d->cfg.node, d->hb_counter++, SIM_RUN_TELEMETRY_MS, &f);
@@ -198,27 +198,27 @@ static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_ima
     }
     *total_s = 0.0;
     if (sc->mode == SIM_MODE_EXECUTE) {
-        uint8_t slots[SIM_MAX_SKILLS];
-        fs_real_t goal[SIM_MAX_SKILLS], time[SIM_MAX_SKILLS], dur[SIM_MAX_SKILLS];
-        fs_real_t path[SIM_MAX_SKILLS];
+        app_run_request_t req;
+        memset(&req, 0, sizeof(req));
+        req.source = APP_RUN_FROM_LOCAL;
         for (int i = 0; i < sc->n_skills; i++) {
             if (!d->app.slot_valid[i]) {
                 snprintf(err, SIM_ERR_MAX, "%s: the device did not load skill %d", sc->path, i + 1);
                 return -1;
             }
-            slots[i] = (uint8_t)(i + 1);
-            goal[i] = sc->goal_scale;
-            time[i] = sc->time_scale;
-            path[i] = sc->path_scale;
-            dur[i] = (sc->n_step_durations > 0) ? sc->step_duration_s[i] : 0.0;
-            *total_s += (dur[i] > 0.0)
-                            ? dur[i]
+            app_run_step_t *s = &req.step[i];
+            s->slot = (uint8_t)(i + 1);
+            s->goal_scale = sc->goal_scale;
+            s->time_scale = sc->time_scale;
+            s->path_scale = sc->path_scale;
+            s->duration_s = (sc->n_step_durations > 0) ? sc->step_duration_s[i] : 0.0;
+            *total_s += (s->duration_s > 0.0)
+                            ? s->duration_s
                             : (double)d->app.slot_skill[i].dmp.duration_s * sc->time_scale;
         }
-        const uint8_t end = (sc->end_policy < 0) ? 0u
-                                                 : (sc->end_policy == SKILL_END_HOLD ? 1u : 2u);
-        const uint8_t nrc = app_start_sequence(&d->app, slots, goal, time, dur, path,
-                                               (uint8_t)sc->n_skills, end);
+        req.end = (sc->end_policy < 0) ? 0u : (sc->end_policy == SKILL_END_HOLD ? 1u : 2u);
+        req.n_steps = (uint8_t)sc->n_skills;
+        const uint8_t nrc = app_run_start(&d->app, &req);
         if (nrc != UDS_NRC_OK) {
             snprintf(err, SIM_ERR_MAX,
                      "%s: the device refused the sequence (NRC 0x%02X, status %u)", sc->path,
@@ -467,7 +467,7 @@ int sim_run(const sim_scenario_t *sc, const sim_skill_image_t *skills, FILE *log
 
     memset(sum, 0, sizeof *sum);
     sum->layer_reached_s = -1.0;
-    if (fabs(dt - 1e-3) > 1e-12) {
+    if (fabs(dt - FS_TICK_S) > 1e-12) {
         snprintf(err, SIM_ERR_MAX, "%s: the device ticks at 1 ms, dt_s is %g", sc->path, dt);
         return -1;
     }

@@ -6,6 +6,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "fs_wire_const.h"
+
 typedef sim_toml_ctx_t ctx_t;
 typedef sim_toml_value_t value_t;
 
@@ -17,7 +19,7 @@ void sim_scenario_defaults(sim_scenario_t *sc)
     sc->plant = SIM_PLANT_IDEAL;
     sc->duration_s = 0.0;
     sc->tail_s = 1.0;
-    sc->dt_s = 0.001;
+    sc->dt_s = FS_TICK_S; /* the device's tick */
     sc->substeps = 10;
     sc->seed = 1;
     sc->start_x_m = 0.0;
@@ -96,7 +98,7 @@ static const num_key_t NUM_KEYS[] = {
     NK("", "start_y_m", start_y_m, -1.0, 1.0),
     NK("", "m_d_kg", m_d_kg, 1e-3, 1e4),
     NK("", "force_max_N", force_max_N, 1e-3, 1e4),
-    NK("", "stiffness_max_Npm", stiffness_max_Npm, 0.0, 1e8),
+    NK("", "stiffness_max_Npm", stiffness_max_Npm, 0.0, FS_STIFFNESS_CEILING_NPM),
     NK("object", "surface_m", object.surface_m, -1.0, 1.0),
     NK("object", "k1_Npm", object.k1_Npm, 1e-6, 1e7),
     NK("object", "k2_Npm", object.k2_Npm, 1e-6, 1e7),

@@ -17,9 +17,9 @@ import cantools
 import numpy as np
 import pytest
 
-from forceskill.link.dbc import dbc_path
 from forceskill.model.demo import load_demo
 from forceskill.model.skill import Skill
+from forceskill.wire.dbc import dbc_path
 from helpers.canbus import (
     JOURNEY_HOST_TIMEOUT_MS,
     PRESS_K_NPM,

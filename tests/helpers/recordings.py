@@ -192,7 +192,7 @@ def write_can_log(
     with several mailboxes sends the lowest identifier first)."""
     import can
 
-    from forceskill.link.dbc import load_db
+    from forceskill.wire.dbc import load_db
 
     db = load_db(node)
     mpos, mforce = db.get_message_by_name("TelemetryPosition"), db.get_message_by_name("TelemetryForce")

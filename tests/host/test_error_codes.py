@@ -99,7 +99,8 @@ def test_dbc_frame_ids_match_the_table(tool: Callable[[str], ModuleType]) -> Non
 
 def test_check_reports_a_stale_file(tmp_path: Path, tool: Callable[[str], ModuleType]) -> None:
     gen = tool("gen_codes")
-    for rel in ["firmware/base/codes.toml", "firmware/proto/forceskill.dbc", *gen.outputs(gen.load(ROOT))]:
+    tables = ["firmware/base/codes.toml", "firmware/base/wire.toml", "firmware/proto/forceskill.dbc"]
+    for rel in [*tables, *gen.outputs(gen.load(ROOT))]:
         (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
         (tmp_path / rel).write_text((ROOT / rel).read_text())
     assert gen.check(tmp_path) == []
@@ -107,6 +108,13 @@ def test_check_reports_a_stale_file(tmp_path: Path, tool: Callable[[str], Module
     p.write_text(p.read_text().replace("= 204,", "= 214,"))
     dbc = tmp_path / "firmware/proto/forceskill.dbc"
     dbc.write_text(dbc.read_text().replace("BO_ 384 DeviceStatus", "BO_ 385 DeviceStatus"))
+    w = tmp_path / "host/forceskill/wire/generated.py"
+    w.write_text(w.read_text().replace("SLOT_COUNT = 8", "SLOT_COUNT = 9"))
+    dbc.write_text(
+        dbc.read_text().replace("SG_ GoalScale : 8|16@1+ (0.001,0)", "SG_ GoalScale : 8|16@1+ (0.01,0)")
+    )
     problems = gen.check(tmp_path)
     assert any("fs_status.h" in p for p in problems)
     assert any("DeviceStatus" in p for p in problems)
+    assert any("wire/generated.py" in p for p in problems)
+    assert any("GoalScale" in p for p in problems)

@@ -7,8 +7,8 @@ import re
 from pathlib import Path
 
 import forceskill
-from forceskill.link.dbc import dbc_path
 from forceskill.sim import scenario_dir
+from forceskill.wire.dbc import dbc_path
 
 PKG = Path(forceskill.__file__).resolve().parent
 

@@ -15,7 +15,8 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 def _copy(tmp: Path, gen: ModuleType) -> Path:
-    for rel in ["firmware/base/codes.toml", "firmware/proto/forceskill.dbc", *gen.outputs(gen.load(ROOT))]:
+    tables = ["firmware/base/codes.toml", "firmware/base/wire.toml", "firmware/proto/forceskill.dbc"]
+    for rel in [*tables, *gen.outputs(gen.load(ROOT))]:
         (tmp / rel).parent.mkdir(parents=True, exist_ok=True)
         shutil.copyfile(ROOT / rel, tmp / rel)
     return tmp

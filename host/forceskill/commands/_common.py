@@ -17,8 +17,9 @@ import numpy as np
 from ..errors import ERR_LINK_TIMEOUT, ERR_LOG_FORMAT, FsError
 from ..link.bus import add_bus_args, describe, error_summary, open_bus
 from ..link.device import Device, Sample
-from ..link.telemetry import fast_stretches
 from ..outputs import Outputs
+from ..wire import TICK_S
+from ..wire.telemetry import fast_stretches
 
 
 def add_common(p: argparse.ArgumentParser) -> None:
@@ -72,7 +73,7 @@ def columns(samples: list[Sample]) -> tuple[dict[str, np.ndarray], Stream]:
         return empty, Stream()
     got, values = got[starts[0] : ends[-1]], values[starts[0] : ends[-1]]
     grid = np.arange(got[0], got[-1] + 1)
-    cols = {"t": (grid - grid[0]) * 1e-3}
+    cols = {"t": (grid - grid[0]) * TICK_S}
     for j, name in enumerate(TELEMETRY_COLUMNS):
         cols[name] = np.interp(grid, got, values[:, j])
     missing = np.diff(got) - 1

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import time
 
+from ..wire import TICK_S
 from ._common import add_common, connect
 
 
@@ -30,7 +31,7 @@ def _cmd(args: argparse.Namespace) -> int:
                 s = tel.samples[-1] if tel.samples else None
                 if args.plot and tel.samples:
                     win = tel.samples[-5000:]
-                    t = [x.tick * 1e-3 for x in win]
+                    t = [x.tick * TICK_S for x in win]
                     lines["f_contact"].set_data(t, [x.f_contact_N for x in win])
                     lines["f_cmd"].set_data(t, [x.f_cmd_N for x in win])
                     lines["f_ref"].set_data(t, [x.f_ref_N for x in win])

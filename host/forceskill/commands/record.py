@@ -13,6 +13,7 @@ from ..errors import ERR_RUN_FAULT, FsError, fault_text
 from ..link import ERR_LINK_ARGS, ERR_LINK_STATE, ERR_LINK_TIMEOUT
 from ..link.bus import error_summary
 from ..outputs import Outputs
+from ..wire import TICK_HZ
 from ._common import add_common, close_log, connect, open_log, sigint_flag
 
 #: Longest --duration (24 h of device time); without it, recording runs until Ctrl-C.
@@ -85,9 +86,9 @@ def _record(args: argparse.Namespace, writer: can.Listener) -> FsError | None:
                                 ERR_RUN_FAULT if cur.state == "FAULT" else ERR_LINK_STATE,
                                 f"node {dev.node} left TEACH ({cur.state}, fault "
                                 f"{fault_text(cur.fault_code)}) after "
-                                f"{((cur.tick - start_tick) & 0xFFFFFF) / 1000:.3f} s",
+                                f"{((cur.tick - start_tick) & 0xFFFFFF) / TICK_HZ:.3f} s",
                             )
-                        if args.duration and ((cur.tick - start_tick) & 0xFFFFFF) >= args.duration * 1000.0:
+                        if args.duration and ((cur.tick - start_tick) & 0xFFFFFF) >= args.duration * TICK_HZ:
                             break
                     if args.teach:
                         dev.command_until("idle", {"IDLE", "FAULT"}, 2.0 * args.timeout)

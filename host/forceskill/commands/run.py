@@ -26,6 +26,7 @@ from ..model.limits import (
 from ..model.scales import check_path_scale, check_scales
 from ..model.skill import Skill
 from ..outputs import STDOUT, Outputs, format_rows
+from ..wire.dbc import END_POLICIES
 from ._args import add_force_limit, add_path_scale, add_scales
 from ._common import (
     Stream,
@@ -165,7 +166,7 @@ def run_on_device(
             f"{f' (fault {fault_text(st.fault_code)})' if st.fault_code else ''}; run needs IDLE "
             "(clear a fault with: forceskill status --clear)",
         )
-    end_code = {"skill": 0, "hold": 1, "release": 2}[args.end]
+    end_code = END_POLICIES[args.end]
     g, ts, ps = _as_sent(args.goal_scale), _as_sent(args.time_scale), _as_sent(args.path_scale)
     fault, fault_tick, interrupted, total = 0, None, False, 0.0
     with sigint_flag() as stop, U.uds_client(dev) as client:
@@ -244,7 +245,7 @@ def run_on_device(
                         break
                     if st.state != "EXECUTE":
                         break
-                    if ((st.tick - start_tick) & 0xFFFFFF) >= total * 1000.0:
+                    if ((st.tick - start_tick) & 0xFFFFFF) >= total * W.TICK_HZ:
                         dev.command_until("idle", {"IDLE", "FAULT"}, 2.0 * args.timeout)
                         break
                     time.sleep(0.02)
@@ -257,11 +258,10 @@ def run_on_device(
             dev.stop_heartbeat()
             if writer is not None:
                 notifier.remove_listener(writer)
-    with dev._lock:
-        samples = list(tel.samples)
+    samples = dev.telemetry_samples(tel)
     grid, stream = columns(samples)  # lost frames interpolated on the tick grid, and counted
     first_tick = stream.first_tick
-    n_keep = int(round(total * 1000.0)) + 1
+    n_keep = int(round(total * W.TICK_HZ)) + 1
     if fault and grid["t"].size:
         n_keep = min(n_keep, _fault_index(first_tick & 0xFFFF, grid["t"].size, fault_tick) + 1)
     cols = {k: v[:n_keep] for k, v in grid.items()}

@@ -1,10 +1,11 @@
 """The CAN link to a forceskill device, built on python-can, cantools, can-isotp and udsoncan.
 
 ``bus``: python-can bus options (like python-can's own CLI) and opening with one-line errors.
-``dbc``: the DBC (``forceskill.dbc``, ids for node 0; node n adds n), E2E counter + CRC-8.
 ``device``: cyclic frames: presence, heartbeat, commands, status and telemetry.
 ``uds``: udsoncan client over can-isotp (SecurityAccess key, data identifiers, transfers).
-Demonstrations from python-can log files are read by ``forceskill.readers.canlog``.
+The DBC and E2E protection (``forceskill.wire.dbc``), the telemetry pairing
+(``forceskill.wire.telemetry``) and the UDS payload codecs are in ``forceskill.wire``, below the
+readers: demonstrations from python-can log files are read by ``forceskill.readers.canlog``.
 
 Errors are ``FsError`` with codes 630-649 (host side of the CAN link), listed here.
 """

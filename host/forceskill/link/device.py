@@ -16,10 +16,10 @@ from typing import Any
 import can
 
 from ..errors import FsError
+from ..wire.dbc import END_POLICIES, MODES, STATES, check, load_db, protect
+from ..wire.telemetry import TelemetryPairer
 from . import ERR_LINK_NO_RESPONSE, ERR_LINK_TIMEOUT
 from .bus import error_summary
-from .dbc import END_POLICIES, MODES, STATES, check, load_db, protect
-from .telemetry import TelemetryPairer
 
 # python-can logs a failed periodic send with its traceback; the commands report it as one line
 logging.getLogger("can.bcm").setLevel(logging.CRITICAL)
@@ -292,6 +292,11 @@ class Device(can.Listener):
             except FsError:
                 if time.monotonic() >= end:
                     raise
+
+    def telemetry_samples(self, tel: Telemetry) -> list[Sample]:
+        """A copy of the samples ``tel`` holds so far, taken while the receiving thread waits."""
+        with self._lock:
+            return list(tel.samples)
 
     def start_telemetry(self) -> Telemetry:
         self.telemetry = Telemetry()

@@ -49,8 +49,8 @@ from ..codes import (  # noqa: F401
     SKILL_STATUS_TEXT,
 )
 from ..errors import FsError
+from ..wire.dbc import UDS_REQUEST_BASE, UDS_RESPONSE_BASE
 from . import ERR_LINK_NEGATIVE, ERR_LINK_TIMEOUT, ERR_LINK_VERIFY
-from .dbc import UDS_REQUEST_BASE, UDS_RESPONSE_BASE
 from .device import Device
 
 SIM_SECRET = b"forceskill-simulator-secret-0001"  # level 1

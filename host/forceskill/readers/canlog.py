@@ -76,8 +76,8 @@ def _messages(path: Path, opts: ReadOptions) -> list[Any]:
 
 def read(path: Path, opts: ReadOptions | None = None, node: int | None = None) -> Columns:
     """Decode a CAN log into demonstration columns (see the module comment)."""
-    from ..link.dbc import load_db
-    from ..link.telemetry import TelemetryPairer
+    from ..wire.dbc import load_db
+    from ..wire.telemetry import TelemetryPairer
 
     msgs = _messages(path, opts or ReadOptions())
     ids = np.array([m.arbitration_id for m in msgs], dtype=np.int64)
@@ -153,7 +153,7 @@ def read(path: Path, opts: ReadOptions | None = None, node: int | None = None) -
 
 def _demonstration(a: np.ndarray, leave_idx: np.ndarray, name: str) -> tuple[int, int, list[str]]:
     """Rows [start, end) of the demonstration in telemetry rows ``a`` (tick, ..., message index)."""
-    from ..link.telemetry import fast_stretches
+    from ..wire.telemetry import fast_stretches
 
     starts, ends = fast_stretches(a[:, 0])
     if starts.size == 0:

@@ -19,8 +19,9 @@ SCALE_STEPS = 1000  # counts per unit, 1 / SCALE
 #: skill slots of a device, numbered 1..SLOT_COUNT (UDS addresses, HostCommand.Slot)
 SLOT_COUNT = 8
 #: control tick period in microseconds (the device runs at 1 kHz)
-TICK_US = 0x03E8
+TICK_US = 1000
 TICK_S = 0.001  # TICK_US in seconds
+TICK_HZ = 1000  # TICK_US as a rate, per second
 #: steps of a RUN_SEQUENCE start at most
 SEQUENCE_STEPS_MAX = 8
 #: default |force command| limit force_max_N of each axis
@@ -719,6 +720,8 @@ __all__ = [
     'SCALE_STEPS',
     'SLOT_COUNT',
     'TICK_US',
+    'TICK_S',
+    'TICK_HZ',
     'SEQUENCE_STEPS_MAX',
     'FORCE_LIMIT_N',
     'STIFFNESS_MAX_NPM',
@@ -730,7 +733,6 @@ __all__ = [
     'TARGET_CORTEX_M4F',
     'TARGET_CORTEX_M3',
     'TARGET_HOST',
-    'TICK_S',
     'from_steps',
     'to_steps',
     'Versions',

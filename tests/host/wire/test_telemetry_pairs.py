@@ -1,9 +1,9 @@
-"""Pairing the device's telemetry frames (forceskill.link.telemetry) against streams built by
+"""Pairing the device's telemetry frames (forceskill.wire.telemetry) against streams built by
 hand: the order a multi-mailbox controller puts on a busy bus, and frames lost by an adapter."""
 
 from __future__ import annotations
 
-from forceskill.link.telemetry import RESYNC_PAIRS, TelemetryPairer
+from forceskill.wire.telemetry import RESYNC_PAIRS, TelemetryPairer
 
 
 def pair(stream: list[tuple[str, int]]) -> list[tuple[int, int]]:

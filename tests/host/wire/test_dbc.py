@@ -1,11 +1,11 @@
-"""forceskill.link.dbc: the packaged DBC, node offsets and the E2E protection of safety frames,
+"""forceskill.wire.dbc: the packaged DBC, node offsets and the E2E protection of safety frames,
 against the published CRC-8/SAE-J1850 check value and a bitwise reference written here."""
 
 from __future__ import annotations
 
 import pytest
 
-from forceskill.link import dbc
+from forceskill.wire import dbc
 from helpers.paths import REPO
 
 

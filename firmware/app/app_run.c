@@ -1,0 +1,96 @@
+/* The one motion path of the device (see app_internal.h): every start, from a HostCommand frame
+ * or a RUN_SKILL / RUN_SEQUENCE routine, is an app_run_request_t that goes through
+ * app_run_authorize, then the same checks, then EXECUTE. */
+#include "app_internal.h"
+
+uint8_t app_run_authorize(const app_t *app, const app_run_request_t *req)
+{
+    /* A run needs no SecurityAccess level: it executes a skill admitted under level 1 (download,
+     * commit checks) within the device's limits, and the checks after this one refuse anything
+     * else. Authentication of the request (a MAC over it and a freshness value) goes here, once,
+     * for every source. */
+    (void)app;
+    (void)req;
+    return UDS_NRC_OK;
+}
+
+/* One step's checks, before any motion: a valid slot, finite scales (time > 0), a stiffness the
+ * device tracks, the skill's peak times the goal scale within the force limit, the y path within
+ * the y workspace; the step filled in. A UDS NRC; the check's code in last_run_status. */
+static uint8_t run_check_step(app_t *app, const app_run_step_t *rs, uint8_t end, exec_step_t *out)
+{
+    const uint8_t s = rs->slot;
+    if (s < 1u || s > APP_N_SLOTS || !app->slot_valid[s - 1u]) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    if (!(rs->goal_scale >= FS_R(0.0)) || !(rs->time_scale > FS_R(0.0)) ||
+        !fs_isfinite(rs->goal_scale) || !fs_isfinite(rs->time_scale)) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    const skill_t *sk = &app->slot_skill[s - 1u];
+    fs_status_t sc = skchk_stiffness(sk, app->cfg.stiffness_max_Npm);
+    if (sc != FS_OK) {
+        app->last_run_status = (uint16_t)sc;
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    sc = skchk_run_scales(sk, app->slot_peak_N[s - 1u], rs->goal_scale, rs->time_scale, APP_TICK_S,
+                          app->cfg.saf.lim.axis[0].force_max_N);
+    app->last_run_status = (uint16_t)sc;
+    if (sc != FS_OK) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    const lim_axis_t *ya = &app->cfg.saf.lim.axis[1];
+    sc = skchk_run_path(sk, app->slot_path_m[s - 1u], rs->path_scale,
+                        ya->pos_max_m - ya->pos_min_m);
+    app->last_run_status = (uint16_t)sc;
+    if (sc != FS_OK) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    out->path_scale = rs->path_scale;
+    out->skill = sk;
+    out->goal_scale = rs->goal_scale;
+    out->time_scale = rs->time_scale;
+    out->duration_s = rs->duration_s;
+    out->end_policy = (end == 0u) ? sk->end_policy
+                                  : (end == 1u ? SKILL_END_HOLD : SKILL_END_RELEASE);
+    return UDS_NRC_OK;
+}
+
+uint8_t app_run_start(app_t *app, const app_run_request_t *req)
+{
+    const uint8_t auth = app_run_authorize(app, req);
+    if (auth != UDS_NRC_OK) {
+        return auth;
+    }
+    if (req->n_steps == 0u || req->n_steps > EXEC_MAX_STEPS || req->end > 2u) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    if (app->state != APP_IDLE || app->checking) {
+        return UDS_NRC_CONDITIONS_NOT_CORRECT; /* a download's commit runs: its end decides */
+    }
+    exec_step_t steps[EXEC_MAX_STEPS];
+    for (uint8_t i = 0; i < req->n_steps; i++) {
+        const uint8_t nrc = run_check_step(app, &req->step[i], req->end, &steps[i]);
+        if (nrc != UDS_NRC_OK) {
+            return nrc;
+        }
+    }
+    /* execution uses the gains the (first) skill was fitted with; the y axis keeps the device's */
+    app->exec_run_cfg = app->cfg.exec;
+    app->exec_run_cfg.pfc.gains[0] = steps[0].skill->gains;
+    app->exec_run_cfg.pfc.gains[1] = app->cfg.gains[1];
+    app->exec_run_cfg.pfc.gains[1].m_d_kg = steps[0].skill->gains.m_d_kg;
+    for (unsigned a = 0; a < PFC_AXES; a++) {
+        app->exec_run_cfg.pfc.limits[a].force_max_N = app->cfg.saf.lim.axis[a].force_max_N;
+    }
+    app->exec_run_cfg.pfc.dt_s = APP_TICK_S;
+    if (exec_start(&app->exec_run_cfg, &app->exec, steps, req->n_steps, app->sens.pos_m[1]) !=
+        FS_OK) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    app->active_slot = req->step[0].slot;
+    app->seq_step = 0u;
+    app->exec_done = false;
+    (void)app_event(app, APP_EV_EXECUTE);
+    return UDS_NRC_OK;
+}
