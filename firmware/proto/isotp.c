@@ -54,7 +54,8 @@ static bool emit(isotp_link_t *link, const uint8_t *payload, uint8_t n)
 {
     can_frame_t f;
     f.id = link->cfg.tx_id;
-    f.dlc = 8u;
+    f.len = 8u;
+    f.flags = 0u;
     memset(f.data, ISOTP_PADDING, sizeof(f.data));
     memcpy(f.data, payload, n);
     return link->send(link->send_ctx, &f);
@@ -72,7 +73,7 @@ static bool send_fc(isotp_link_t *link, uint8_t status)
 static void rx_single(isotp_link_t *link, const can_frame_t *f)
 {
     const uint8_t len = (uint8_t)(f->data[0] & 0x0Fu);
-    if (len == 0u || len > SF_MAX || (uint8_t)(len + 1u) > f->dlc) {
+    if (len == 0u || len > SF_MAX || (uint8_t)(len + 1u) > f->len) {
         fail(link, PROTO_ERR_ISOTP_FORMAT);
         return;
     }
@@ -87,7 +88,7 @@ static void rx_single(isotp_link_t *link, const can_frame_t *f)
 
 static void rx_first(isotp_link_t *link, const can_frame_t *f, uint64_t now_us)
 {
-    if (f->dlc < 8u) {
+    if (f->len < 8u) {
         fail(link, PROTO_ERR_ISOTP_FORMAT);
         return;
     }
@@ -136,7 +137,7 @@ static void rx_consecutive(isotp_link_t *link, const can_frame_t *f, uint64_t no
     }
     const uint16_t remaining = (uint16_t)(link->rx_len - link->rx_pos);
     const uint8_t n = (uint8_t)(remaining < CF_DATA ? remaining : CF_DATA);
-    if ((uint8_t)(n + 1u) > f->dlc) {
+    if ((uint8_t)(n + 1u) > f->len) {
         fail(link, PROTO_ERR_ISOTP_FORMAT);
         link->rx_state = ISOTP_RX_IDLE;
         return;
@@ -167,7 +168,7 @@ static void tx_flow_control(isotp_link_t *link, const can_frame_t *f, uint64_t n
         fail(link, PROTO_ERR_ISOTP_UNEXPECTED); /* unexpected FC: ignored */
         return;
     }
-    if (f->dlc < 3u) {
+    if (f->len < 3u) {
         fail(link, PROTO_ERR_ISOTP_FORMAT);
         link->tx_state = ISOTP_TX_IDLE;
         return;
@@ -199,7 +200,7 @@ static void tx_flow_control(isotp_link_t *link, const can_frame_t *f, uint64_t n
 
 void isotp_on_frame(isotp_link_t *link, const can_frame_t *frame, uint64_t now_us)
 {
-    if (frame->id != link->cfg.rx_id || frame->dlc == 0u || frame->dlc > CAN_FRAME_MAX_DLC) {
+    if (frame->id != link->cfg.rx_id || frame->len == 0u || !can_frame_len_ok(frame)) {
         return;
     }
     switch ((uint8_t)(frame->data[0] >> 4)) {

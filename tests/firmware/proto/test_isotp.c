@@ -80,7 +80,7 @@ static void test_single_frame_padded(void **state)
     assert_int_equal(qa.n, 1);
     const uint8_t expect[8] = {0x03, 0x22, 0xF1, 0x90, 0xCC, 0xCC, 0xCC, 0xCC};
     assert_int_equal(qa.f[0].id, 0x601);
-    assert_int_equal(qa.f[0].dlc, 8);
+    assert_int_equal(qa.f[0].len, 8);
     assert_memory_equal(qa.f[0].data, expect, 8);
     isotp_on_frame(&lb, &qa.f[0], 0);
     const uint8_t *got = NULL;
@@ -93,7 +93,7 @@ static void test_single_frame_padded(void **state)
 static void test_unpadded_single_frame_accepted_short_dlc_refused(void **state)
 {
     (void)state;
-    can_frame_t f = {.id = 0x681, .dlc = 3, .data = {0x02, 0x3E, 0x00}};
+    can_frame_t f = {.id = 0x681, .len = 3, .data = {0x02, 0x3E, 0x00}};
     isotp_on_frame(&la, &f, 0);
     const uint8_t *got = NULL;
     assert_int_equal(isotp_rx_peek(&la, &got), 2);
@@ -130,7 +130,7 @@ static void check_multi(unsigned len, uint8_t bs, uint8_t stmin)
     /* sequence numbers 1..15,0,1..; last CF padded with 0xCC */
     for (unsigned i = 1; i <= n_cf; i++) {
         assert_int_equal(qa.f[i].data[0], 0x20 | (i & 0xF));
-        assert_int_equal(qa.f[i].dlc, 8);
+        assert_int_equal(qa.f[i].len, 8);
     }
     const unsigned last_n = len - 6u - 7u * (n_cf - 1u);
     for (unsigned k = 1u + last_n; k < 8u; k++) {
@@ -212,14 +212,14 @@ static void test_wrong_sequence_number_aborts(void **state)
 static void test_timeout_n_cr(void **state)
 {
     (void)state;
-    can_frame_t ff = {.id = 0x601, .dlc = 8, .data = {0x10, 0x14, 1, 2, 3, 4, 5, 6}};
+    can_frame_t ff = {.id = 0x601, .len = 8, .data = {0x10, 0x14, 1, 2, 3, 4, 5, 6}};
     isotp_on_frame(&lb, &ff, 0);
     assert_int_equal(qb.n, 1);                          /* FC CTS */
     isotp_poll(&lb, ISOTP_DEFAULT_N_CR_US);
     assert_int_equal(lb.rx_state, ISOTP_RX_RECEIVING);  /* exactly N_Cr: still waiting */
     isotp_poll(&lb, ISOTP_DEFAULT_N_CR_US + 1u);
     assert_int_equal(lb.last_error, PROTO_ERR_ISOTP_TIMEOUT_CR);
-    can_frame_t cf = {.id = 0x601, .dlc = 8, .data = {0x21, 7, 8, 9, 10, 11, 12, 13}};
+    can_frame_t cf = {.id = 0x601, .len = 8, .data = {0x21, 7, 8, 9, 10, 11, 12, 13}};
     isotp_on_frame(&lb, &cf, ISOTP_DEFAULT_N_CR_US + 2u);   /* late CF: ignored */
     const uint8_t *got = NULL;
     assert_int_equal(isotp_rx_peek(&lb, &got), 0);
@@ -234,7 +234,7 @@ static void test_timeout_n_bs_and_wait(void **state)
     assert_true(isotp_tx_busy(&la));
     assert_int_equal(isotp_send(&la, msg, sizeof(msg), 0), PROTO_ERR_ISOTP_BUSY);
     /* FC WAIT restarts N_Bs */
-    can_frame_t wait = {.id = 0x681, .dlc = 3, .data = {0x31, 0, 0}};
+    can_frame_t wait = {.id = 0x681, .len = 3, .data = {0x31, 0, 0}};
     isotp_on_frame(&la, &wait, 900000u);
     isotp_poll(&la, 1500000u);
     assert_true(isotp_tx_busy(&la));
@@ -254,7 +254,7 @@ static void test_overflow(void **state)
 {
     (void)state;
     /* FF with 32-bit escape length: FC overflow */
-    can_frame_t ff = {.id = 0x601, .dlc = 8, .data = {0x10, 0x00, 0x00, 0x00, 0x10, 0x00, 1, 2}};
+    can_frame_t ff = {.id = 0x601, .len = 8, .data = {0x10, 0x00, 0x00, 0x00, 0x10, 0x00, 1, 2}};
     isotp_on_frame(&lb, &ff, 0);
     assert_int_equal(qb.n, 1);
     assert_int_equal(qb.f[0].data[0], 0x32);
@@ -271,7 +271,7 @@ static void test_overflow(void **state)
     assert_int_equal(isotp_send(&la, big, (uint16_t)sizeof(big), 0), PROTO_ERR_ISOTP_OVERFLOW);
     assert_int_equal(isotp_send(&la, big, 0, 0), PROTO_ERR_ISOTP_OVERFLOW);
     /* FF announcing <= 7 bytes is malformed */
-    can_frame_t small = {.id = 0x601, .dlc = 8, .data = {0x10, 0x05, 1, 2, 3, 4, 5, 6}};
+    can_frame_t small = {.id = 0x601, .len = 8, .data = {0x10, 0x05, 1, 2, 3, 4, 5, 6}};
     isotp_on_frame(&lb, &small, 0);
     assert_int_equal(lb.last_error, PROTO_ERR_ISOTP_FORMAT);
 }
@@ -301,12 +301,12 @@ static void test_driver_full_retried(void **state)
 static void test_new_first_frame_restarts(void **state)
 {
     (void)state;
-    can_frame_t ff = {.id = 0x601, .dlc = 8, .data = {0x10, 0x0A, 1, 2, 3, 4, 5, 6}};
+    can_frame_t ff = {.id = 0x601, .len = 8, .data = {0x10, 0x0A, 1, 2, 3, 4, 5, 6}};
     isotp_on_frame(&lb, &ff, 0);
-    can_frame_t ff2 = {.id = 0x601, .dlc = 8, .data = {0x10, 0x09, 9, 9, 9, 9, 9, 9}};
+    can_frame_t ff2 = {.id = 0x601, .len = 8, .data = {0x10, 0x09, 9, 9, 9, 9, 9, 9}};
     isotp_on_frame(&lb, &ff2, 10);
     assert_int_equal(lb.last_error, PROTO_ERR_ISOTP_UNEXPECTED);
-    can_frame_t cf = {.id = 0x601, .dlc = 8, .data = {0x21, 8, 8, 8, 0xCC, 0xCC, 0xCC, 0xCC}};
+    can_frame_t cf = {.id = 0x601, .len = 8, .data = {0x21, 8, 8, 8, 0xCC, 0xCC, 0xCC, 0xCC}};
     isotp_on_frame(&lb, &cf, 20);
     const uint8_t *got = NULL;
     assert_int_equal(isotp_rx_peek(&lb, &got), 9);
