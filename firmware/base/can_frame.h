@@ -34,7 +34,7 @@ typedef struct {
  *  9..15 also mean 8: pass fd false). */
 static inline uint8_t can_dlc_to_len(uint8_t dlc, bool fd)
 {
-    static const uint8_t fd_len[16] = {0u, 1u, 2u, 3u, 4u, 5u, 6u, 7u,
+    static const uint8_t fd_len[16] = {0u, 1u,  2u,  3u,  4u,  5u,  6u,  7u,
                                        8u, 12u, 16u, 20u, 24u, 32u, 48u, 64u};
     if (!fd) {
         return dlc > 8u ? 8u : dlc;

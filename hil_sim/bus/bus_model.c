@@ -30,7 +30,7 @@ uint32_t busm_frame_bits(const can_frame_t *f, bool extended)
 {
     uint8_t bits[160];
     uint32_t n = 0u;
-    const uint8_t dlc = f->len; /* bus_enqueue takes classic frames only: 0..8 */
+    const uint8_t dlc = f->len;    /* bus_enqueue takes classic frames only: 0..8 */
     n = put_bits(bits, n, 0u, 1u); /* SOF */
     if (!extended) {
         n = put_bits(bits, n, f->id & 0x7FFu, 11u);
