@@ -36,7 +36,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     size_t i = (size > 2) ? 2 : size;
     while (i < size) {
         const uint8_t ctl = data[i++];
-        now += (uint64_t)(ctl >> 3) * 50000u; /* 0..1.55 s per step */
+        now += (uint64_t)(ctl >> 3) * 50000u;   /* 0..1.55 s per step */
         switch (ctl & 7u) {
         case 0:
         case 1:
@@ -60,7 +60,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 if (n > ISOTP_MAX_PAYLOAD || msg == NULL) {
                     abort();
                 }
-                volatile uint8_t sink = msg[n - 1u]; /* must be inside the buffer */
+                volatile uint8_t sink = msg[n - 1u];   /* must be inside the buffer */
                 (void)sink;
                 isotp_rx_release(&link);
             }
@@ -76,7 +76,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             (void)isotp_send(&link, payload, len, now);
             break;
         }
-        default: isotp_poll(&link, now); break;
+        default:
+            isotp_poll(&link, now);
+            break;
         }
     }
     return 0;

@@ -12,7 +12,7 @@
 #include "bus_model.h"
 #include "hal_host.h"
 
-static bus_t bus; /* large: static */
+static bus_t bus;                /* large: static */
 static can_frame_t got[64];
 static unsigned n_got;
 
@@ -51,12 +51,12 @@ static void test_all_pending_frames_arbitrate(void **state)
     assert_int_equal(bus_pending(&bus, 0u), 2u);
     bus_run(&bus, 1000000000ull, on_frame, NULL);
     assert_int_equal(n_got, 22u);
-    assert_int_equal(got[0].id, 0x080u); /* first, ahead of the node's UDS frame */
+    assert_int_equal(got[0].id, 0x080u);                 /* first, ahead of the node's UDS frame */
     for (unsigned i = 1; i <= 20u; i++) {
         assert_int_equal(got[i].id, 0x300u);
-        assert_int_equal(got[i].data[0], i - 1u); /* same identifier: in order */
+        assert_int_equal(got[i].data[0], i - 1u);        /* same identifier: in order */
     }
-    assert_int_equal(got[21].id, 0x680u); /* lowest priority: last */
+    assert_int_equal(got[21].id, 0x680u);                /* lowest priority: last */
     /* the least urgent waiting frame of a node can be taken back (mailbox abort) */
     assert_true(bus_enqueue(&bus, 0u, &uds, false, 2000000000ull));
     assert_true(bus_enqueue(&bus, 0u, &emcy, false, 2000000000ull));
@@ -73,7 +73,7 @@ static void test_frames_wait_for_their_enqueue_time(void **state)
     n_got = 0u;
     can_frame_t a = frame(0x400u, 1u), b = frame(0x100u, 2u);
     assert_true(bus_enqueue(&bus, 1u, &a, false, 0u));
-    assert_true(bus_enqueue(&bus, 0u, &b, false, 50000u)); /* 50 us later: a is on the wire */
+    assert_true(bus_enqueue(&bus, 0u, &b, false, 50000u));   /* 50 us later: a is on the wire */
     bus_run(&bus, 1000000ull, on_frame, NULL);
     assert_int_equal(n_got, 2u);
     assert_int_equal(got[0].id, 0x400u);

@@ -39,7 +39,7 @@ static void test_python_can_open_sequence(void **state)
     slcan_t s;
     slcan_init(&s);
     feed_result_t r;
-    feed(&s, "C\rS8\rO\rV\r", &r); /* close, 1 Mbit/s, open, version */
+    feed(&s, "C\rS8\rO\rV\r", &r);     /* close, 1 Mbit/s, open, version */
     assert_int_equal(r.reply_len, 9u);
     assert_memory_equal(r.reply, "\r\r\rV1010\r", 9u);
     assert_true(s.open);
@@ -55,7 +55,7 @@ static void test_frames_in(void **state)
     slcan_init(&s);
     feed_result_t r;
     feed(&s, "t7E080211223344556677\rt1000\rr1234\r", &r);
-    assert_int_equal(r.n_frames, 2u); /* the remote frame is answered, dropped */
+    assert_int_equal(r.n_frames, 2u);                   /* the remote frame is answered, dropped */
     assert_int_equal(r.frames[0].id, 0x7E0u);
     assert_int_equal(r.frames[0].len, 8u);
     const uint8_t want[8] = {0x02, 0x11, 0x22, 0x33, 0x44, 0x55, 0x66, 0x77};
@@ -78,8 +78,8 @@ static void test_malformed_is_bel_and_changes_nothing(void **state)
     (void)state;
     slcan_t s;
     slcan_init(&s);
-    const char *bad[] = {"t7E09\r", "t8001\r", "t7E0211\r", "t7E0111X\r", "tG000\r",
-                         "S9\r",    "O1\r",    "Q\r",       "t7E01112\r", "Z2\r"};
+    const char *bad[] = {"t7E09\r", "t8001\r", "t7E0211\r", "t7E0111X\r", "tG000\r", "S9\r",
+                         "O1\r", "Q\r", "t7E01112\r", "Z2\r"};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         feed_result_t r;
         feed(&s, bad[i], &r);
@@ -117,7 +117,7 @@ static void test_overlong_line_and_crlf(void **state)
     feed(&s, line, &r);
     assert_int_equal(r.n_frames, 0u);
     assert_memory_equal(r.reply, "\a", 1u);
-    feed(&s, "t1001AA\r\n", &r); /* the line after it parses again */
+    feed(&s, "t1001AA\r\n", &r);                          /* the line after it parses again */
     assert_int_equal(r.n_frames, 1u);
     assert_int_equal(r.reply_len, 2u);
 }
@@ -129,11 +129,7 @@ static void test_encode(void **state)
     char out[SLCAN_FRAME_TEXT_MAX];
     const uint32_t n = slcan_encode(&f, out);
     assert_int_equal(n, 12u);
-    assert_memory_equal(out,
-                        "t1903"
-                        "01A0FF"
-                        "\r",
-                        12u);
+    assert_memory_equal(out, "t1903" "01A0FF" "\r", 12u);
     f.len = 8u;
     assert_int_equal(slcan_encode(&f, out), SLCAN_FRAME_TEXT_MAX);
     /* what the codec writes, it reads back */

@@ -35,13 +35,13 @@ static void test_protect_and_check(void **state)
     (void)state;
     can_frame_t f = {.id = 0x181, .len = 8, .data = {1, 2, 3, 4, 5, 6, 0xA0, 0}};
     e2e_protect(&f, 5);
-    assert_int_equal(f.data[6], 0xA5); /* upper nibble kept, counter in the low nibble */
+    assert_int_equal(f.data[6], 0xA5);            /* upper nibble kept, counter in the low nibble */
     const uint8_t covered[9] = {0x81, 0x01, 1, 2, 3, 4, 5, 6, 0xA5};
     assert_int_equal(f.data[7], e2e_crc8(covered, 9));
     e2e_rx_t rx;
     e2e_rx_reset(&rx);
     assert_int_equal(e2e_check(&rx, &f), PROTO_OK);
-    assert_int_equal(e2e_check(&rx, &f), PROTO_ERR_E2E_COUNTER); /* same counter again: stale */
+    assert_int_equal(e2e_check(&rx, &f), PROTO_ERR_E2E_COUNTER);   /* same counter again: stale */
     e2e_protect(&f, 6);
     assert_int_equal(e2e_check(&rx, &f), PROTO_OK);
     /* any single bit flip is detected */

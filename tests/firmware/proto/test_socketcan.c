@@ -26,8 +26,7 @@ static void test_socketcan_roundtrip(void **state)
     (void)state;
     const int probe = socket(PF_CAN, SOCK_RAW, CAN_RAW);
     if (probe < 0) {
-        fprintf(stderr, "SKIP: no SocketCAN in this kernel (socket(AF_CAN): %s)\n",
-                strerror(errno));
+        fprintf(stderr, "SKIP: no SocketCAN in this kernel (socket(AF_CAN): %s)\n", strerror(errno));
         skip();
     }
     struct ifreq ifr;
@@ -35,8 +34,7 @@ static void test_socketcan_roundtrip(void **state)
     memcpy(ifr.ifr_name, IFACE, sizeof(IFACE));
     if (ioctl(probe, SIOCGIFINDEX, &ifr) < 0) {
         close(probe);
-        fprintf(stderr,
-                "SKIP: no %s interface (ip link add dev %s type vcan && ip link set up %s)\n",
+        fprintf(stderr, "SKIP: no %s interface (ip link add dev %s type vcan && ip link set up %s)\n",
                 IFACE, IFACE, IFACE);
         skip();
     }

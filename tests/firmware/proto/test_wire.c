@@ -18,22 +18,21 @@
 #define PAYLOAD_MAX 256u
 
 /* Unpack, then (when it unpacked) pack back; the unpack status, the packed length in *n_out. */
-#define TRY(name)                                                                      \
-    static proto_status_t try_##name(const uint8_t *d, uint16_t len, uint8_t *out,     \
-                                     uint16_t *n_out)                                  \
-    {                                                                                  \
-        fs_wire_##name##_t v;                                                          \
-        memset(&v, 0xA5, sizeof(v));                                                   \
-        fs_wire_##name##_t before = v;                                                 \
-        const proto_status_t st = fs_wire_##name##_unpack(&v, d, len);                 \
-        if (st != PROTO_OK) {                                                          \
-            assert_memory_equal(&v, &before, sizeof(v)); /* refused: unchanged */      \
-            return st;                                                                 \
-        }                                                                              \
-        *n_out = fs_wire_##name##_pack(&v, out, PAYLOAD_MAX);                          \
-        assert_int_equal(fs_wire_##name##_pack(&v, out, (uint16_t)(*n_out - 1u)), 0u); \
-        *n_out = fs_wire_##name##_pack(&v, out, PAYLOAD_MAX);                          \
-        return st;                                                                     \
+#define TRY(name)                                                                                 \
+    static proto_status_t try_##name(const uint8_t *d, uint16_t len, uint8_t *out, uint16_t *n_out) \
+    {                                                                                             \
+        fs_wire_##name##_t v;                                                                     \
+        memset(&v, 0xA5, sizeof(v));                                                              \
+        fs_wire_##name##_t before = v;                                                            \
+        const proto_status_t st = fs_wire_##name##_unpack(&v, d, len);                            \
+        if (st != PROTO_OK) {                                                                     \
+            assert_memory_equal(&v, &before, sizeof(v)); /* refused: unchanged */                 \
+            return st;                                                                            \
+        }                                                                                         \
+        *n_out = fs_wire_##name##_pack(&v, out, PAYLOAD_MAX);                                     \
+        assert_int_equal(fs_wire_##name##_pack(&v, out, (uint16_t)(*n_out - 1u)), 0u);            \
+        *n_out = fs_wire_##name##_pack(&v, out, PAYLOAD_MAX);                                     \
+        return st;                                                                                \
     }
 FS_WIRE_RECORDS(TRY)
 #undef TRY

@@ -54,7 +54,7 @@ static void test_conversion_matches_kernel_layout(void **state)
     memcpy(&id, raw, 4);
     assert_int_equal(id, 0x1A3);
     const uint8_t expect_tail[12] = {3, 0, 0, 0, 0xDE, 0xAD, 0xBE, 0, 0, 0, 0, 0};
-    assert_memory_equal(raw + 4, expect_tail, 12); /* data beyond dlc zero, pads zero */
+    assert_memory_equal(raw + 4, expect_tail, 12);       /* data beyond dlc zero, pads zero */
 
     /* refused, output untouched: 29-bit id, dlc 9 */
     memset(&lf, 0x55, sizeof(lf));
@@ -65,8 +65,7 @@ static void test_conversion_matches_kernel_layout(void **state)
     assert_int_equal(lf.can_id, 0x55555555u);
 
     /* back: a data frame, data beyond len zeroed */
-    uint8_t in_raw[16] = {0x81, 0x06, 0,    0,    2,    0,    0,    0,
-                          0x3E, 0x80, 0x77, 0x77, 0x77, 0x77, 0x77, 0x77};
+    uint8_t in_raw[16] = {0x81, 0x06, 0, 0, 2, 0, 0, 0, 0x3E, 0x80, 0x77, 0x77, 0x77, 0x77, 0x77, 0x77};
     struct can_frame in;
     memcpy(&in, in_raw, sizeof(in));
     can_frame_t out;
@@ -99,10 +98,10 @@ static void test_open_makes_non_blocking_and_refuses_bad_names(void **state)
         const int fd_before = pair_ctl.bus_fd;
         assert_int_equal(cansock_open(&c, &pair_ops, bad[i], err, sizeof(err)), -EINVAL);
         assert_non_null(strstr(err, "invalid interface name"));
-        assert_int_equal(pair_ctl.bus_fd, fd_before); /* open_raw never called */
+        assert_int_equal(pair_ctl.bus_fd, fd_before);     /* open_raw never called */
         assert_int_equal(c.fd, -1);
     }
-    assert_int_equal(cansock_open(&c, &pair_ops, "0123456789abcde", err, sizeof(err)), 0); /* 15 */
+    assert_int_equal(cansock_open(&c, &pair_ops, "0123456789abcde", err, sizeof(err)), 0);  /* 15 */
     cansock_close(&c);
     pair_ctl.open_result = -ENODEV;
     assert_int_equal(cansock_open(&c, &pair_ops, "can7", err, sizeof(err)), -ENODEV);
@@ -124,7 +123,7 @@ static void test_send_and_receive(void **state)
     assert_false(pair_take(&seen));
 
     can_frame_t rx;
-    assert_false(cansock_receive(&drv, &rx, 0u)); /* nothing: does not block */
+    assert_false(cansock_receive(&drv, &rx, 0u));         /* nothing: does not block */
     /* foreign and error frames are consumed on the way to the next data frame */
     pair_put(0x18FF0001u | CAN_EFF_FLAG, 2, (const uint8_t[]){9, 9});
     pair_put(0x601u | CAN_RTR_FLAG, 0, NULL);
@@ -137,14 +136,14 @@ static void test_send_and_receive(void **state)
     assert_int_equal(rx.len, 3);
     assert_int_equal(rx.data[1], 0x3E);
     assert_true(cansock_receive(&drv, &rx, 0u));
-    assert_int_equal(rx.id, 0x110); /* bus order kept */
+    assert_int_equal(rx.id, 0x110);                       /* bus order kept */
     assert_false(cansock_receive(&drv, &rx, 0u));
     assert_int_equal(drv.st.rx_frames, 2);
     assert_int_equal(drv.st.rx_foreign, 2);
     assert_int_equal(drv.st.error_frames, 1);
     assert_int_equal(drv.st.tx_err_counter, 96);
     assert_int_equal(drv.st.rx_err_counter, 12);
-    assert_false(drv.bus_off); /* an ACK error is not bus-off */
+    assert_false(drv.bus_off);                            /* an ACK error is not bus-off */
     /* a frame that cannot go on the wire is refused without writing */
     const can_frame_t bad = {.id = 0x800, .len = 1};
     assert_false(cansock_send(&drv, &bad));
@@ -169,14 +168,14 @@ static void test_full_queue_eagain_then_drains(void **state)
     assert_int_equal(drv.st.tx_full, 1);
     assert_int_equal(drv.st.tx_errors, 0);
     assert_false(cansock_tx_idle(&drv));
-    assert_false(cansock_send(&drv, &f)); /* still full */
+    assert_false(cansock_send(&drv, &f));                  /* still full */
     assert_int_equal(drv.st.tx_full, 2);
     struct can_frame seen;
     for (uint32_t i = 0; i < sent; i++) {
         assert_true(pair_take(&seen));
         uint32_t k;
         memcpy(&k, seen.data, sizeof(k));
-        assert_int_equal(k, i); /* every accepted frame, in order */
+        assert_int_equal(k, i);                            /* every accepted frame, in order */
     }
     assert_false(pair_take(&seen));
     assert_true(cansock_tx_idle(&drv));
@@ -217,13 +216,13 @@ static void test_bus_off_and_recovery(void **state)
     const can_frame_t f = {.id = 0x180, .len = 8};
     pair_put(CAN_ERR_FLAG | CAN_ERR_BUSOFF, CAN_ERR_DLC, NULL);
     pair_put(0x110, 8, (const uint8_t[]){0, 0, 0, 0, 0, 0, 0, 0});
-    assert_true(cansock_receive(&drv, &rx, 5000u)); /* the data frame behind it */
+    assert_true(cansock_receive(&drv, &rx, 5000u));       /* the data frame behind it */
     assert_true(drv.bus_off);
     assert_int_equal(drv.st.bus_offs, 1);
     assert_false(cansock_send(&drv, &f));
     assert_int_equal(drv.st.tx_bus_off, 1);
     struct can_frame seen;
-    assert_false(pair_take(&seen)); /* nothing reached the bus */
+    assert_false(pair_take(&seen));                        /* nothing reached the bus */
     /* a second bus-off frame while off is not a new transition */
     pair_put(CAN_ERR_FLAG | CAN_ERR_BUSOFF, CAN_ERR_DLC, NULL);
     assert_false(cansock_receive(&drv, &rx, 6000u));
@@ -231,16 +230,16 @@ static void test_bus_off_and_recovery(void **state)
 
     pair_ctl.restart_result = -EPERM;
     assert_false(cansock_receive(&drv, &rx, 104999u));
-    assert_int_equal(pair_ctl.restart_calls, 0); /* not before 100 ms */
+    assert_int_equal(pair_ctl.restart_calls, 0);           /* not before 100 ms */
     assert_false(cansock_receive(&drv, &rx, 105000u));
     assert_int_equal(pair_ctl.restart_calls, 1);
     assert_int_equal(drv.st.restart_failures, 1);
     assert_int_equal(drv.last_restart_errno, EPERM);
     assert_true(drv.bus_off);
     assert_false(cansock_receive(&drv, &rx, 150000u));
-    assert_int_equal(pair_ctl.restart_calls, 1); /* retried 100 ms later, not sooner */
+    assert_int_equal(pair_ctl.restart_calls, 1);           /* retried 100 ms later, not sooner */
     pair_ctl.restart_result = 0;
-    assert_false(cansock_receive(&drv, &rx, 205000u)); /* restart, its frame read at once */
+    assert_false(cansock_receive(&drv, &rx, 205000u));     /* restart, its frame read at once */
     assert_int_equal(pair_ctl.restart_calls, 2);
     assert_false(drv.bus_off);
     assert_true(cansock_send(&drv, &f));
@@ -270,7 +269,7 @@ static void test_bitrate_requests(void **state)
     (void)state;
     pair_ctl.bitrate_bps = 500000u;
     assert_int_equal(cansock_set_bitrate(&drv, 500000u, err, sizeof(err)), 1);
-    assert_int_equal(pair_ctl.set_calls, 0); /* already there: nothing touched */
+    assert_int_equal(pair_ctl.set_calls, 0);               /* already there: nothing touched */
     assert_int_equal(cansock_set_bitrate(&drv, 1000000u, err, sizeof(err)), 0);
     assert_int_equal(pair_ctl.set_calls, 1);
     assert_int_equal(pair_ctl.bitrate_bps, 1000000u);
@@ -290,7 +289,7 @@ static void test_bitrate_requests(void **state)
     const unsigned calls = pair_ctl.set_calls;
     assert_int_equal(cansock_set_bitrate(&drv, 250000u, err, sizeof(err)), -EOPNOTSUPP);
     assert_non_null(strstr(err, "no bit timing"));
-    assert_int_equal(pair_ctl.set_calls, calls); /* a vcan is never taken down */
+    assert_int_equal(pair_ctl.set_calls, calls);           /* a vcan is never taken down */
 }
 
 /* The real operating-system side on this machine: without AF_CAN (or without the interface)
@@ -310,8 +309,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_conversion_matches_kernel_layout),
-        cmocka_unit_test_setup_teardown(test_open_makes_non_blocking_and_refuses_bad_names, setup,
-                                        teardown),
+        cmocka_unit_test_setup_teardown(test_open_makes_non_blocking_and_refuses_bad_names, setup, teardown),
         cmocka_unit_test_setup_teardown(test_send_and_receive, setup, teardown),
         cmocka_unit_test_setup_teardown(test_full_queue_eagain_then_drains, setup, teardown),
         cmocka_unit_test_setup_teardown(test_enobufs_and_write_errors, setup, teardown),

@@ -41,10 +41,10 @@ static int setup(void **state)
     hal_sensors_t s;
     memset(&s, 0, sizeof(s));
     s.pos_m[0] = 0.001;
-    s.force_operator_N[0] = 4.0; /* an operator pressing in TEACH */
+    s.force_operator_N[0] = 4.0;                    /* an operator pressing in TEACH */
     hal_host_set_sensors(&s);
     app_config_default(&cfg);
-    cfg.render_carriage = 1u; /* TEACH commands a force: the rendering */
+    cfg.render_carriage = 1u;                       /* TEACH commands a force: the rendering */
     hal_host_set_time_us(0u);
     app_init(&app, &cfg);
     return 0;
@@ -121,7 +121,7 @@ static void test_status_out_commands_in(void **state)
             n_status++;
         }
     }
-    assert_int_equal(n_status, 2); /* every 10 ms */
+    assert_int_equal(n_status, 2);                  /* every 10 ms */
     assert_int_equal(app.state, APP_IDLE);
     command(APP_CMD_TEACH);
     heartbeat();
@@ -130,7 +130,7 @@ static void test_status_out_commands_in(void **state)
     }
     assert_int_equal(app.state, APP_TEACH);
     assert_true(drain(out, 64) > 0u);
-    assert_true(hal_can_tx_idle()); /* the bus took every frame */
+    assert_true(hal_can_tx_idle());                 /* the bus took every frame */
 }
 
 static void test_bus_off_row(void **state)
@@ -150,7 +150,7 @@ static void test_bus_off_row(void **state)
     bool en = false;
     fs_real_t f_N[2];
     hal_host_get_actuator(&en, f_N);
-    assert_true(en && f_N[0] != 0.0); /* the device renders the operator's push */
+    assert_true(en && f_N[0] != 0.0);               /* the device renders the operator's push */
     can_frame_t out[256];
     (void)drain(out, 256);
 
@@ -161,7 +161,7 @@ static void test_bus_off_row(void **state)
     assert_int_equal(app.state, APP_FAULT);
     assert_int_equal(app.saf_out.fault_code, FLT_BUS_OFF);
     const uint64_t off_us = t_us;
-    pair_ctl.restart_result = -EPERM; /* first restart refused, the second works */
+    pair_ctl.restart_result = -EPERM;               /* first restart refused, the second works */
     bool restarted = false;
     for (unsigned i = 0; i < 200 && !restarted; i++) {
         if (i % 10 == 0) {
@@ -173,8 +173,8 @@ static void test_bus_off_row(void **state)
         }
         if (i == 49u) {
             hal_host_get_actuator(&en, f_N);
-            assert_false(en);                     /* ramped to zero and off within 50 ms */
-            assert_int_equal(drain(out, 256), 0); /* nothing transmitted while bus-off */
+            assert_false(en);                       /* ramped to zero and off within 50 ms */
+            assert_int_equal(drain(out, 256), 0);   /* nothing transmitted while bus-off */
         }
         restarted = !hal_can_bus_off();
     }
