@@ -29,9 +29,11 @@ else()
   message(FATAL_ERROR "FS_CORTEX_TARGET must be cortex-m4f or cortex-m3, not '${FS_CORTEX_TARGET}'")
 endif()
 
+# The boards' CAN link is SLCAN over the UART, classic CAN only: frames keep 8 data bytes
+# (CAN_FRAME_MAX_LEN, can_frame.h), so the frame queues stay as small as before CAN FD.
 # Sections per function/object so the linker drops what the image does not use; stack usage
 # per function (.su) and the call graph (.ci) for the worst-case stack report.
-set(CMAKE_C_FLAGS_INIT "${FS_CPU_FLAGS} -ffunction-sections -fdata-sections -fstack-usage -fcallgraph-info=su")
+set(CMAKE_C_FLAGS_INIT "${FS_CPU_FLAGS} -DCAN_FRAME_MAX_LEN=8u -ffunction-sections -fdata-sections -fstack-usage -fcallgraph-info=su")
 set(CMAKE_ASM_FLAGS_INIT "${FS_CPU_FLAGS}")
 set(CMAKE_C_FLAGS_RELEASE "-O2 -DNDEBUG" CACHE STRING "Release flags (Cortex-M: -O2)")
 set(CMAKE_EXE_LINKER_FLAGS_INIT "${FS_CPU_FLAGS} -nostartfiles --specs=nano.specs -Wl,--gc-sections")

@@ -284,7 +284,7 @@ static void download(uint32_t addr, const uint8_t *d, uint32_t len, uint32_t blk
 
 static void send_safety(uint32_t id, uint8_t *counter, const uint8_t *payload)
 {
-    can_frame_t f = {.id = id, .dlc = 8u};
+    can_frame_t f = {.id = id, .len = 8u};
     memcpy(f.data, payload, 8u);
     e2e_protect(&f, ++(*counter));
     (void)hal_sim_can_deliver(&f);
@@ -355,7 +355,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 break;
             }
             static const uint32_t ids[6] = {0x100u, 0x110u, 0x600u, 0x080u, 0x180u, 0x7FFu};
-            can_frame_t f = {.id = ids[p[0] % 6u], .dlc = (uint8_t)(p[1] % 9u)};
+            can_frame_t f = {.id = ids[p[0] % 6u], .len = (uint8_t)(p[1] % 9u)};
             memcpy(f.data, &p[2], 8u);
             (void)hal_sim_can_deliver(&f);
             i += 10u;

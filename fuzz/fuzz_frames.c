@@ -32,9 +32,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     for (size_t i = 0; i + 10u <= size; i += 10u) {
         can_frame_t f;
         f.id = ((uint32_t)data[i] | ((uint32_t)data[i + 1] << 8)) & CAN_STD_ID_MASK;
-        f.dlc = (uint8_t)(data[i + 1] >> 4);
-        if (f.dlc > 8u) {
-            f.dlc = 8u;
+        f.len = (uint8_t)(data[i + 1] >> 4);
+        if (f.len > 8u) {
+            f.len = 8u;
         }
         memcpy(f.data, data + i + 2, 8);
         (void)e2e_check(&rx, &f);

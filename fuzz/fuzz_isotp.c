@@ -15,7 +15,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 static bool send_cb(void *ctx, const can_frame_t *f)
 {
     (void)ctx;
-    if (f->id != 0x681u || f->dlc != 8u) {
+    if (f->id != 0x681u || f->len != 8u) {
         abort();
     }
     return true;
@@ -45,9 +45,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             memset(&f, 0, sizeof f);
             f.id = (ctl & 7u) == 2u ? 0x123u : 0x601u;
             if (i < size) {
-                f.dlc = (uint8_t)(data[i++] % 9u);
+                f.len = (uint8_t)(data[i++] % 9u);
             }
-            for (uint8_t b = 0; b < f.dlc && i < size; b++) {
+            for (uint8_t b = 0; b < f.len && i < size; b++) {
                 f.data[b] = data[i++];
             }
             isotp_on_frame(&link, &f, now);

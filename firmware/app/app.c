@@ -117,9 +117,10 @@ static void send_telemetry(app_t *app)
     p.pos_x = clamp_i32(app->sens.pos_m[0], FS_R(1e-6), -8388608, 8388607);
     p.pos_y = clamp_i32(app->sens.pos_m[1], FS_R(1e-6), -8388608, 8388607);
     p.tick = (uint16_t)(app->tick & 0xFFFFu);
-    can_frame_t f; /* id, dlc and the 8 data bytes (the pack functions write all 8) */
+    can_frame_t f; /* id, length and flags; the pack functions write every data byte */
     f.id = PROTO_ID_TELEM_POS(app->cfg.node);
-    f.dlc = 8u;
+    f.len = FS_DBC_TELEMETRY_POSITION_LENGTH;
+    f.flags = 0u;
     (void)fs_dbc_telemetry_position_pack(f.data, &p, sizeof(f.data));
     (void)app_send(app, &f, true);
 
@@ -129,6 +130,7 @@ static void send_telemetry(app_t *app)
     q.force_cmd = (int16_t)clamp_i32(app->force_out_N[0], FS_R(0.01), -32768, 32767);
     q.force_ref = (int16_t)clamp_i32(app->force_hat_N, FS_R(0.01), -32768, 32767);
     f.id = PROTO_ID_TELEM_FORCE(app->cfg.node);
+    f.len = FS_DBC_TELEMETRY_FORCE_LENGTH;
     (void)fs_dbc_telemetry_force_pack(f.data, &q, sizeof(f.data));
     (void)app_send(app, &f, true);
 }
@@ -218,7 +220,7 @@ static void run_from_command(const struct fs_dbc_host_command_t *c, app_run_requ
 static void handle_command(app_t *app, const can_frame_t *f)
 {
     struct fs_dbc_host_command_t c;
-    if (fs_dbc_host_command_unpack(&c, f->data, f->dlc) != 0) {
+    if (fs_dbc_host_command_unpack(&c, f->data, f->len) != 0) {
         return;
     }
     switch ((app_cmd_mode_t)c.mode) {
@@ -244,7 +246,7 @@ static void handle_command(app_t *app, const can_frame_t *f)
 static void handle_heartbeat(app_t *app, const can_frame_t *f)
 {
     struct fs_dbc_host_heartbeat_t h;
-    if (fs_dbc_host_heartbeat_unpack(&h, f->data, f->dlc) == 0 && h.telemetry_period != 0u) {
+    if (fs_dbc_host_heartbeat_unpack(&h, f->data, f->len) == 0 && h.telemetry_period != 0u) {
         app->host_period_ms = h.telemetry_period;
     }
 }

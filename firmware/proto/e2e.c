@@ -51,7 +51,7 @@ uint8_t e2e_frame_crc(const can_frame_t *f)
 
 void e2e_protect(can_frame_t *f, uint8_t counter)
 {
-    f->dlc = 8u;
+    f->len = E2E_FRAME_LEN;
     f->data[6] = (uint8_t)((f->data[6] & 0xF0u) |
                            ((counter & E2E_COUNTER_MASK) << E2E_COUNTER_SHIFT));
     f->data[7] = e2e_frame_crc(f);
@@ -65,7 +65,7 @@ void e2e_rx_reset(e2e_rx_t *rx)
 
 proto_status_t e2e_check(e2e_rx_t *rx, const can_frame_t *f)
 {
-    if (f->dlc < 8u) {
+    if (f->len < E2E_FRAME_LEN) {
         return PROTO_ERR_DLC;
     }
     if (e2e_frame_crc(f) != f->data[7]) {

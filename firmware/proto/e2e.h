@@ -12,6 +12,7 @@
 #include "proto_ids.h"
 
 #define E2E_COUNTER_MASK 0x0Fu
+#define E2E_FRAME_LEN 8u /* a safety frame's length: the CRC is its last byte */
 
 /** CRC-8 SAE J1850 over len bytes continuing from crc (start with 0xFF, xor the end with 0xFF). */
 uint8_t e2e_crc8_update(uint8_t crc, const uint8_t *data, uint32_t len);
@@ -22,7 +23,7 @@ uint8_t e2e_crc8(const uint8_t *data, uint32_t len);
 /** CRC byte of an 8-byte safety frame: over id (LE, 2 bytes) then data[0..6]. */
 uint8_t e2e_frame_crc(const can_frame_t *f);
 
-/** Write counter (low 4 bits) into data bits 48..51 and the CRC into data[7]; sets dlc 8. */
+/** Write counter (low 4 bits) into data bits 48..51 and the CRC into data[7]; sets len 8. */
 void e2e_protect(can_frame_t *f, uint8_t counter);
 
 /** Receiver state of one protected frame id: the last accepted counter. */
@@ -34,7 +35,7 @@ typedef struct {
 /** Reset the receiver (the next valid frame is accepted whatever its counter). */
 void e2e_rx_reset(e2e_rx_t *rx);
 
-/** Check a received frame: dlc 8, CRC, counter different from the last accepted one.
+/** Check a received frame: len at least 8, CRC, counter different from the last accepted one.
  *  Accepts and remembers the counter only when everything is valid. */
 proto_status_t e2e_check(e2e_rx_t *rx, const can_frame_t *f);
 

@@ -1,4 +1,4 @@
-/* ISO-TP (ISO 15765-2), classic CAN, normal addressing (see isotp.h). */
+/* ISO-TP (ISO 15765-2:2016), classic CAN or CAN FD, normal addressing (see isotp.h). */
 #include "isotp.h"
 
 #include <string.h>
@@ -10,9 +10,8 @@
 #define FC_CTS 0x0u
 #define FC_WAIT 0x1u
 #define FC_OVFLW 0x2u
-#define SF_MAX 7u
-#define FF_DATA 6u
-#define CF_DATA 7u
+#define SF_MAX 7u                       /* single frame with the 4-bit length */
+#define FD_SF_MAX (CAN_FD_MAX_LEN - 2u) /* single frame with the escape length byte */
 
 void isotp_config_default(isotp_config_t *cfg, uint32_t tx_id, uint32_t rx_id)
 {
@@ -23,12 +22,18 @@ void isotp_config_default(isotp_config_t *cfg, uint32_t tx_id, uint32_t rx_id)
     cfg->n_bs_us = ISOTP_DEFAULT_N_BS_US;
     cfg->n_cr_us = ISOTP_DEFAULT_N_CR_US;
     cfg->wft_max = ISOTP_DEFAULT_WFT_MAX;
+    cfg->tx_dl = CAN_CLASSIC_MAX_LEN;
+    cfg->brs = false;
 }
 
 void isotp_init(isotp_link_t *link, const isotp_config_t *cfg, isotp_send_fn send, void *send_ctx)
 {
     memset(link, 0, sizeof(*link));
     link->cfg = *cfg;
+    if (cfg->tx_dl != CAN_FD_MAX_LEN || CAN_FRAME_MAX_LEN < CAN_FD_MAX_LEN) {
+        link->cfg.tx_dl = CAN_CLASSIC_MAX_LEN;
+        link->cfg.brs = false;
+    }
     link->send = send;
     link->send_ctx = send_ctx;
 }
@@ -50,11 +55,21 @@ static void fail(isotp_link_t *link, proto_status_t err)
     link->error_count++;
 }
 
+static bool fd(const isotp_link_t *link)
+{
+    return link->cfg.tx_dl > CAN_CLASSIC_MAX_LEN;
+}
+
+/* One frame of n PCI + data bytes: classic padded to 8; FD padded to 8 or the next FD length. */
 static bool emit(isotp_link_t *link, const uint8_t *payload, uint8_t n)
 {
     can_frame_t f;
     f.id = link->cfg.tx_id;
-    f.dlc = 8u;
+    f.len = n <= CAN_CLASSIC_MAX_LEN ? CAN_CLASSIC_MAX_LEN : can_fd_round_len(n);
+    f.flags = 0u;
+    if (fd(link)) {
+        f.flags = (uint8_t)(CAN_FRAME_FD | (link->cfg.brs ? CAN_FRAME_BRS : 0u));
+    }
     memset(f.data, ISOTP_PADDING, sizeof(f.data));
     memcpy(f.data, payload, n);
     return link->send(link->send_ctx, &f);
@@ -71,15 +86,23 @@ static bool send_fc(isotp_link_t *link, uint8_t status)
 
 static void rx_single(isotp_link_t *link, const can_frame_t *f)
 {
-    const uint8_t len = (uint8_t)(f->data[0] & 0x0Fu);
-    if (len == 0u || len > SF_MAX || (uint8_t)(len + 1u) > f->dlc) {
+    uint8_t len = (uint8_t)(f->data[0] & 0x0Fu);
+    uint8_t off = 1u;
+    if (len == 0u && f->len > CAN_CLASSIC_MAX_LEN) {
+        len = f->len >= 2u ? f->data[1] : 0u; /* escape: SF_DL in the second byte */
+        off = 2u;
+        if (len <= SF_MAX) {
+            len = 0u; /* would have fitted the 4-bit length */
+        }
+    }
+    if (len == 0u || (off == 1u && len > SF_MAX) || (uint16_t)(len + off) > f->len) {
         fail(link, PROTO_ERR_ISOTP_FORMAT);
         return;
     }
     if (link->rx_state == ISOTP_RX_RECEIVING) {
         fail(link, PROTO_ERR_ISOTP_UNEXPECTED); /* ISO 15765-2: a new SF aborts a reception */
     }
-    memcpy(link->rx_buf, &f->data[1], len);
+    memcpy(link->rx_buf, &f->data[off], len);
     link->rx_len = len;
     link->rx_pos = len;
     link->rx_state = ISOTP_RX_DONE;
@@ -87,10 +110,11 @@ static void rx_single(isotp_link_t *link, const can_frame_t *f)
 
 static void rx_first(isotp_link_t *link, const can_frame_t *f, uint64_t now_us)
 {
-    if (f->dlc < 8u) {
+    if (f->len < CAN_CLASSIC_MAX_LEN) {
         fail(link, PROTO_ERR_ISOTP_FORMAT);
         return;
     }
+    const uint8_t ff_data = (uint8_t)(f->len - 2u); /* RX_DL - 2 */
     const uint16_t len = (uint16_t)(((uint16_t)(f->data[0] & 0x0Fu) << 8) | f->data[1]);
     if (len == 0u) {
         /* 32-bit escape length: longer than any buffer here */
@@ -99,7 +123,7 @@ static void rx_first(isotp_link_t *link, const can_frame_t *f, uint64_t now_us)
         (void)send_fc(link, FC_OVFLW);
         return;
     }
-    if (len <= SF_MAX) {
+    if (len <= (f->len > CAN_CLASSIC_MAX_LEN ? (uint16_t)(f->len - 2u) : SF_MAX)) {
         fail(link, PROTO_ERR_ISOTP_FORMAT); /* would have fitted a single frame */
         return;
     }
@@ -112,9 +136,10 @@ static void rx_first(isotp_link_t *link, const can_frame_t *f, uint64_t now_us)
     if (link->rx_state == ISOTP_RX_RECEIVING) {
         fail(link, PROTO_ERR_ISOTP_UNEXPECTED); /* a new FF aborts a reception */
     }
-    memcpy(link->rx_buf, &f->data[2], FF_DATA);
+    memcpy(link->rx_buf, &f->data[2], ff_data);
     link->rx_len = len;
-    link->rx_pos = FF_DATA;
+    link->rx_pos = ff_data;
+    link->rx_dl = f->len;
     link->rx_sn = 1u;
     link->rx_bs_left = link->cfg.block_size;
     link->rx_state = ISOTP_RX_RECEIVING;
@@ -135,8 +160,9 @@ static void rx_consecutive(isotp_link_t *link, const can_frame_t *f, uint64_t no
         return;
     }
     const uint16_t remaining = (uint16_t)(link->rx_len - link->rx_pos);
-    const uint8_t n = (uint8_t)(remaining < CF_DATA ? remaining : CF_DATA);
-    if ((uint8_t)(n + 1u) > f->dlc) {
+    const uint8_t cf_data = (uint8_t)(link->rx_dl - 1u);
+    const uint8_t n = (uint8_t)(remaining < cf_data ? remaining : cf_data);
+    if ((uint8_t)(n + 1u) > f->len || (n == cf_data && f->len != link->rx_dl)) {
         fail(link, PROTO_ERR_ISOTP_FORMAT);
         link->rx_state = ISOTP_RX_IDLE;
         return;
@@ -167,7 +193,7 @@ static void tx_flow_control(isotp_link_t *link, const can_frame_t *f, uint64_t n
         fail(link, PROTO_ERR_ISOTP_UNEXPECTED); /* unexpected FC: ignored */
         return;
     }
-    if (f->dlc < 3u) {
+    if (f->len < 3u) {
         fail(link, PROTO_ERR_ISOTP_FORMAT);
         link->tx_state = ISOTP_TX_IDLE;
         return;
@@ -199,7 +225,7 @@ static void tx_flow_control(isotp_link_t *link, const can_frame_t *f, uint64_t n
 
 void isotp_on_frame(isotp_link_t *link, const can_frame_t *frame, uint64_t now_us)
 {
-    if (frame->id != link->cfg.rx_id || frame->dlc == 0u || frame->dlc > CAN_FRAME_MAX_DLC) {
+    if (frame->id != link->cfg.rx_id || frame->len == 0u || !can_frame_len_ok(frame)) {
         return;
     }
     switch ((uint8_t)(frame->data[0] >> 4)) {
@@ -227,22 +253,26 @@ void isotp_on_frame(isotp_link_t *link, const can_frame_t *frame, uint64_t now_u
 
 static void tx_run(isotp_link_t *link, uint64_t now_us)
 {
-    if (link->tx_state == ISOTP_TX_SEND_FIRST && link->tx_len <= SF_MAX) {
-        uint8_t sf[8];
-        sf[0] = (uint8_t)((PCI_SF << 4) | link->tx_len);
-        memcpy(&sf[1], link->tx_buf, link->tx_len);
-        if (emit(link, sf, (uint8_t)(link->tx_len + 1u))) {
+    const uint16_t sf_max = fd(link) ? FD_SF_MAX : SF_MAX;
+    if (link->tx_state == ISOTP_TX_SEND_FIRST && link->tx_len <= sf_max) {
+        uint8_t sf[CAN_FRAME_MAX_LEN];
+        const uint8_t off = link->tx_len <= SF_MAX ? 1u : 2u; /* 2: the escape length byte */
+        sf[0] = (uint8_t)((PCI_SF << 4) | (off == 1u ? link->tx_len : 0u));
+        sf[1] = (uint8_t)link->tx_len;
+        memcpy(&sf[off], link->tx_buf, link->tx_len);
+        if (emit(link, sf, (uint8_t)(link->tx_len + off))) {
             link->tx_state = ISOTP_TX_IDLE; /* else: driver full, retried on the next poll */
         }
         return;
     }
     if (link->tx_state == ISOTP_TX_SEND_FIRST) {
-        uint8_t ff[8];
+        uint8_t ff[CAN_FRAME_MAX_LEN];
+        const uint8_t ff_data = (uint8_t)(link->cfg.tx_dl - 2u);
         ff[0] = (uint8_t)((PCI_FF << 4) | ((link->tx_len >> 8) & 0x0Fu));
         ff[1] = (uint8_t)(link->tx_len & 0xFFu);
-        memcpy(&ff[2], link->tx_buf, FF_DATA);
-        if (emit(link, ff, 8u)) {
-            link->tx_pos = FF_DATA;
+        memcpy(&ff[2], link->tx_buf, ff_data);
+        if (emit(link, ff, link->cfg.tx_dl)) {
+            link->tx_pos = ff_data;
             link->tx_sn = 1u;
             link->tx_wft = 0u;
             link->tx_state = ISOTP_TX_WAIT_FC;
@@ -253,9 +283,10 @@ static void tx_run(isotp_link_t *link, uint64_t now_us)
     /* Consecutive frames: as many as STmin allows now, up to the block size, while the driver
      * accepts them. Bounded by the message length. */
     while (link->tx_state == ISOTP_TX_SENDING && now_us >= link->tx_next_us) {
-        uint8_t cf[8];
+        uint8_t cf[CAN_FRAME_MAX_LEN];
         const uint16_t remaining = (uint16_t)(link->tx_len - link->tx_pos);
-        const uint8_t n = (uint8_t)(remaining < CF_DATA ? remaining : CF_DATA);
+        const uint8_t cf_data = (uint8_t)(link->cfg.tx_dl - 1u);
+        const uint8_t n = (uint8_t)(remaining < cf_data ? remaining : cf_data);
         cf[0] = (uint8_t)((PCI_CF << 4) | link->tx_sn);
         memcpy(&cf[1], &link->tx_buf[link->tx_pos], n);
         if (!emit(link, cf, (uint8_t)(n + 1u))) {

@@ -1,8 +1,11 @@
-/* ISO-TP (ISO 15765-2) on classic CAN, normal addressing, one rx/tx id pair per link:
+/* ISO-TP (ISO 15765-2:2016) on classic CAN or CAN FD, normal addressing, one rx/tx id pair:
  * single frame (SF), first frame (FF), consecutive frames (CF, sequence number 1..15, 0, ...),
  * flow control (FC: continue/wait/overflow, block size, STmin), timeouts N_Bs (sender waits for
- * FC) and N_Cr (receiver waits for CF), every transmitted frame padded to 8 bytes with
- * ISOTP_PADDING (0xCC). Messages up to ISOTP_MAX_PAYLOAD bytes (12-bit FF length; the 32-bit
+ * FC) and N_Cr (receiver waits for CF). Classic (tx_dl 8, the default): every transmitted frame
+ * padded to 8 bytes with ISOTP_PADDING (0xCC). CAN FD (tx_dl 64): FD frames (BRS if asked),
+ * single frames of 8..62 bytes with the escape length byte (0x00, SF_DL), first frames and
+ * consecutive frames of 64 bytes, the last CF and short frames padded to the next valid FD
+ * length. Reception takes either: RX_DL is the length of the first frame. Messages up to ISOTP_MAX_PAYLOAD bytes (12-bit FF length; the 32-bit
  * escape is refused with FC overflow). Buffers live in the struct: no heap.
  * Time is passed in (microseconds, monotonic); frames leave through a callback, so the module
  * is pure and testable. Received frames are fed with isotp_on_frame, time with isotp_poll. */
@@ -34,6 +37,8 @@ typedef struct {
     uint32_t n_bs_us;
     uint32_t n_cr_us;
     uint8_t wft_max; /* FC WAIT frames accepted in a row before aborting */
+    uint8_t tx_dl;   /* 8: classic CAN; 64: CAN FD (needs CAN_FRAME_MAX_LEN 64) */
+    bool brs;        /* CAN FD: bit-rate switch in the data phase */
 } isotp_config_t;
 
 typedef enum {
@@ -59,6 +64,7 @@ typedef struct {
     uint16_t rx_len;         /* announced length */
     uint16_t rx_pos;         /* bytes received so far */
     uint8_t rx_sn;           /* expected sequence number */
+    uint8_t rx_dl;           /* length of the first frame: every CF but the last has it */
     uint8_t rx_bs_left;      /* CFs until we must send the next FC (0 with BS 0) */
     uint64_t rx_deadline_us; /* N_Cr */
     bool rx_fc_pending;      /* FC to send (driver was busy) */
@@ -80,10 +86,11 @@ typedef struct {
     uint32_t error_count;
 } isotp_link_t;
 
-/** Defaults: BS 0, STmin 0, N_Bs = N_Cr = 1000 ms, WFTmax 10; ids must be set by the caller. */
+/** Defaults: BS 0, STmin 0, N_Bs = N_Cr = 1000 ms, WFTmax 10, classic CAN (tx_dl 8). */
 void isotp_config_default(isotp_config_t *cfg, uint32_t tx_id, uint32_t rx_id);
 
-/** Initialise a link (idle in both directions). */
+/** Initialise a link (idle in both directions); a tx_dl other than 8 or 64, or 64 where frames
+ *  hold 8 bytes, is taken as 8. */
 void isotp_init(isotp_link_t *link, const isotp_config_t *cfg, isotp_send_fn send, void *send_ctx);
 
 /** Feed a received CAN frame; frames with another id are ignored. May send an FC. */

@@ -30,7 +30,7 @@ uint32_t busm_frame_bits(const can_frame_t *f, bool extended)
 {
     uint8_t bits[160];
     uint32_t n = 0u;
-    const uint8_t dlc = f->dlc > 8u ? 8u : f->dlc;
+    const uint8_t dlc = f->len;    /* bus_enqueue takes classic frames only: 0..8 */
     n = put_bits(bits, n, 0u, 1u); /* SOF */
     if (!extended) {
         n = put_bits(bits, n, f->id & 0x7FFu, 11u);
@@ -67,15 +67,15 @@ uint32_t busm_frame_bits(const can_frame_t *f, bool extended)
     return n + stuff + TAIL_BITS;
 }
 
-uint32_t busm_frame_bits_min(uint8_t dlc, bool extended)
+uint32_t busm_frame_bits_min(uint8_t len, bool extended)
 {
-    const uint32_t d = dlc > 8u ? 8u : dlc;
+    const uint32_t d = len > CAN_CLASSIC_MAX_LEN ? CAN_CLASSIC_MAX_LEN : len;
     return (extended ? 54u : 34u) + 8u * d + TAIL_BITS;
 }
 
-uint32_t busm_frame_bits_worst(uint8_t dlc, bool extended)
+uint32_t busm_frame_bits_worst(uint8_t len, bool extended)
 {
-    const uint32_t d = dlc > 8u ? 8u : dlc;
+    const uint32_t d = len > CAN_CLASSIC_MAX_LEN ? CAN_CLASSIC_MAX_LEN : len;
     const uint32_t stuffed = (extended ? 54u : 34u) + 8u * d;
     return stuffed + (stuffed - 1u) / 4u + TAIL_BITS;
 }
@@ -99,7 +99,8 @@ static bus_item_t *fifo_at(bus_fifo_t *q, uint32_t i)
 
 bool bus_enqueue(bus_t *b, uint8_t src, const can_frame_t *f, bool extended, uint64_t t_ns)
 {
-    if (src >= BUS_MAX_SOURCES || b->fifo[src].len >= BUS_FIFO_CAP) {
+    if (src >= BUS_MAX_SOURCES || b->fifo[src].len >= BUS_FIFO_CAP ||
+        (f->flags & CAN_FRAME_FD) != 0u || !can_frame_len_ok(f)) {
         b->dropped++;
         return false;
     }

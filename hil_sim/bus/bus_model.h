@@ -18,15 +18,15 @@
 /** CRC-15 of CAN (poly 0x4599, init 0) over nbits bits given MSB-first in bits[]. */
 uint16_t busm_crc15(const uint8_t *bits, uint32_t nbits);
 
-/** Bits on the wire for this frame with its actual stuff bits: SOF..CRC stuffed, then CRC
+/** Bits on the wire for this classic frame (len 0..8) with its actual stuff bits: SOF..CRC stuffed, then CRC
  *  delimiter, ACK slot and delimiter, EOF (7) and intermission (3). */
 uint32_t busm_frame_bits(const can_frame_t *f, bool extended);
 
-/** Worst-case bits for a frame of this DLC (stuff bit after every 4 bits after the first). */
-uint32_t busm_frame_bits_worst(uint8_t dlc, bool extended);
+/** Worst-case bits for a classic frame of len data bytes (stuff bit after every 4 bits after the first). */
+uint32_t busm_frame_bits_worst(uint8_t len, bool extended);
 
 /** Bits without any stuffing (the minimum). */
-uint32_t busm_frame_bits_min(uint8_t dlc, bool extended);
+uint32_t busm_frame_bits_min(uint8_t len, bool extended);
 
 /** One frame waiting for or on the bus. */
 typedef struct {
@@ -68,7 +68,8 @@ typedef struct {
 /** Idle bus at bitrate (bit/s). */
 void bus_init(bus_t *b, uint32_t bitrate);
 
-/** Queue a frame from src at t_ns; false (counted as dropped) if that source's FIFO is full. */
+/** Queue a frame from src at t_ns; false (counted as dropped) if that source's FIFO is full or
+ *  the frame is not a classic one (this model times classic CAN only). */
 bool bus_enqueue(bus_t *b, uint8_t src, const can_frame_t *f, bool extended, uint64_t t_ns);
 
 /** Free places in a source's FIFO. */

@@ -152,11 +152,12 @@ static bool parse_send(char *body, can_frame_t *f, bool *ext)
     }
     tok = strtok_r(NULL, " ", &save);
     uint32_t dlc = 0u;
-    if (tok == NULL || !parse_hex_token(tok, &dlc, 1u) || dlc > 8u) {
+    if (tok == NULL || !parse_hex_token(tok, &dlc, 1u) || dlc > CAN_CLASSIC_MAX_LEN) {
         return false;
     }
     f->id = id;
-    f->dlc = (uint8_t)dlc;
+    f->len = (uint8_t)dlc;
+    f->flags = 0u; /* socketcand's "send" carries classic frames */
     memset(f->data, 0, sizeof(f->data));
     for (uint32_t i = 0; i < dlc; i++) {
         tok = strtok_r(NULL, " ", &save);
@@ -372,6 +373,9 @@ void scand_handle(scand_t *s, const struct pollfd *fds, unsigned n, uint64_t now
 void scand_broadcast(scand_t *s, int skip_client, const can_frame_t *f, bool extended,
                      uint64_t t_ns)
 {
+    if (!can_frame_len_ok(f) || (f->flags & CAN_FRAME_FD) != 0u) {
+        return; /* socketcand's "frame" carries classic frames only */
+    }
     char msg[64];
     int n = 0;
     const unsigned long long us = (unsigned long long)(t_ns / 1000u);
@@ -383,7 +387,7 @@ void scand_broadcast(scand_t *s, int skip_client, const can_frame_t *f, bool ext
                      us / 1000000ull, us % 1000000ull);
     }
     static const char hex[] = "0123456789ABCDEF";
-    for (uint8_t i = 0; i < f->dlc && i < 8u; i++) {
+    for (uint8_t i = 0; i < f->len; i++) {
         msg[n++] = hex[f->data[i] >> 4];
         msg[n++] = hex[f->data[i] & 0xFu];
     }

@@ -110,11 +110,11 @@ static void deliver(void *ctx, const bus_item_t *it, uint64_t t_end_ns)
         if (s->drop_p > 0.0 && sim_rng_uniform(&s->rng_faults) < s->drop_p) {
             s->dropped++;
         } else {
-            if (s->corrupt_p > 0.0 && f.dlc > 0u &&
+            if (s->corrupt_p > 0.0 && f.len > 0u &&
                 sim_rng_uniform(&s->rng_faults) < s->corrupt_p) {
                 const unsigned bit = (unsigned)(sim_rng_uniform(&s->rng_faults) * 8.0 *
-                                                (double)f.dlc);
-                f.data[(bit / 8u) % f.dlc] ^= (uint8_t)(1u << (bit % 8u));
+                                                (double)f.len);
+                f.data[(bit / 8u) % f.len] ^= (uint8_t)(1u << (bit % 8u));
                 s->corrupted++;
             }
             (void)hal_sim_can_deliver(&f);

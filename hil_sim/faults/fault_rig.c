@@ -108,7 +108,7 @@ static void host_receive(rig_t *r)
             }
             if (f.id == PROTO_ID_EMERGENCY(node)) {
                 struct fs_dbc_emergency_t m;
-                if (fs_dbc_emergency_unpack(&m, f.data, f.dlc) == 0 && r->n_emcy < RIG_MAX_EMCY) {
+                if (fs_dbc_emergency_unpack(&m, f.data, f.len) == 0 && r->n_emcy < RIG_MAX_EMCY) {
                     r->emcy[r->n_emcy].code = m.fault_code;
                     r->emcy[r->n_emcy].dev_tick = m.tick;
                     r->emcy[r->n_emcy].rx_tick = r->n_tick;
@@ -116,7 +116,7 @@ static void host_receive(rig_t *r)
                 }
             } else {
                 struct fs_dbc_device_status_t s;
-                if (fs_dbc_device_status_unpack(&s, f.data, f.dlc) == 0) {
+                if (fs_dbc_device_status_unpack(&s, f.data, f.len) == 0) {
                     r->status_fault = s.fault_code;
                     r->status_state = s.state;
                 }

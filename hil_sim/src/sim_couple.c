@@ -189,7 +189,7 @@ void sim_couple_heartbeat_frame(uint8_t node, uint8_t counter, uint8_t telemetry
     h.telemetry_period = telemetry_period_ms;
     memset(f, 0, sizeof(*f));
     f->id = PROTO_ID_HOST_HEARTBEAT(node);
-    f->dlc = FS_DBC_HOST_HEARTBEAT_LENGTH;
+    f->len = FS_DBC_HOST_HEARTBEAT_LENGTH;
     (void)fs_dbc_host_heartbeat_pack(f->data, &h, sizeof(f->data));
     e2e_protect(f, counter);
 }
@@ -206,7 +206,7 @@ void sim_couple_command_frame(uint8_t node, uint8_t counter, uint8_t mode, uint8
     c.end_policy = end;
     memset(f, 0, sizeof(*f));
     f->id = PROTO_ID_HOST_COMMAND(node);
-    f->dlc = FS_DBC_HOST_COMMAND_LENGTH;
+    f->len = FS_DBC_HOST_COMMAND_LENGTH;
     (void)fs_dbc_host_command_pack(f->data, &c, sizeof(f->data));
     e2e_protect(f, counter);
 }

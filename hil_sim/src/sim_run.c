@@ -147,7 +147,7 @@ static void dev_host(sim_dev_t *d, uint64_t n_tick)
         hal_sim_can_tx_pop();
         struct fs_dbc_emergency_t m;
         if (f.id == PROTO_ID_EMERGENCY(d->cfg.node) && d->fault_code == 0u &&
-            fs_dbc_emergency_unpack(&m, f.data, f.dlc) == 0) {
+            fs_dbc_emergency_unpack(&m, f.data, f.len) == 0) {
             d->fault_code = m.fault_code;
             d->fault_tick = n_tick;
         }

@@ -39,7 +39,7 @@ int main(int argc, char **argv)
     can_frame_t frame;
     memset(&frame, 0, sizeof(frame));
     frame.id = PROTO_ID_STATUS(3u);
-    frame.dlc = 8u;
+    frame.len = 8u;
     e2e_protect(&frame, 5u);
     e2e_rx_t rx;
     e2e_rx_reset(&rx);

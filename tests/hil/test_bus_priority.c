@@ -30,7 +30,7 @@ static can_frame_t frame(uint32_t id, uint8_t tag)
     can_frame_t f;
     memset(&f, 0, sizeof f);
     f.id = id;
-    f.dlc = 8u;
+    f.len = 8u;
     f.data[0] = tag;
     return f;
 }

@@ -177,8 +177,9 @@ uint32_t cm_port_skipped(void)
 
 bool hal_can_send(const can_frame_t *frame)
 {
-    if (frame->id > CAN_STD_ID_MASK || frame->dlc > CAN_FRAME_MAX_DLC) {
-        return true; /* not a classic frame: nothing to send */
+    if (frame->id > CAN_STD_ID_MASK || frame->len > CAN_CLASSIC_MAX_LEN ||
+        (frame->flags & CAN_FRAME_FD) != 0u) {
+        return true; /* not a classic frame (SLCAN carries no other): nothing to send */
     }
     if (!g_slcan.open) {
         return true; /* no adapter listening: the frame is lost */

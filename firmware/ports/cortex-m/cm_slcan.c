@@ -56,7 +56,7 @@ static bool parse_frame(const char *line, uint32_t len, uint32_t id_digits, bool
     uint32_t id = 0u;
     uint32_t dlc = 0u;
     if (!hex_value(&line[1], id_digits, &id) || !hex_value(&line[1u + id_digits], 1u, &dlc) ||
-        dlc > CAN_FRAME_MAX_DLC) {
+        dlc > CAN_CLASSIC_MAX_LEN) {
         return false;
     }
     if (id_digits == 3u && id > CAN_STD_ID_MASK) {
@@ -67,7 +67,8 @@ static bool parse_frame(const char *line, uint32_t len, uint32_t id_digits, bool
         return false;
     }
     f->id = id;
-    f->dlc = (uint8_t)dlc;
+    f->len = (uint8_t)dlc;
+    f->flags = 0u;
     for (uint32_t i = 0u; i < n_data; i++) {
         uint32_t b = 0u;
         if (!hex_value(&line[2u + id_digits + 2u * i], 2u, &b)) {
@@ -197,16 +198,17 @@ bool slcan_feed(slcan_t *s, uint8_t byte, can_frame_t *frame, char reply[SLCAN_R
 
 uint32_t slcan_encode(const can_frame_t *frame, char out[SLCAN_FRAME_TEXT_MAX])
 {
-    if (frame->id > CAN_STD_ID_MASK || frame->dlc > CAN_FRAME_MAX_DLC) {
-        return 0u;
+    if (frame->id > CAN_STD_ID_MASK || frame->len > CAN_CLASSIC_MAX_LEN ||
+        (frame->flags & CAN_FRAME_FD) != 0u) {
+        return 0u; /* SLCAN carries classic frames only */
     }
     uint32_t k = 0u;
     out[k++] = 't';
     out[k++] = HEX[(frame->id >> 8) & 0xFu];
     out[k++] = HEX[(frame->id >> 4) & 0xFu];
     out[k++] = HEX[frame->id & 0xFu];
-    out[k++] = HEX[frame->dlc];
-    for (uint32_t i = 0u; i < frame->dlc; i++) {
+    out[k++] = HEX[frame->len];
+    for (uint32_t i = 0u; i < frame->len; i++) {
         out[k++] = HEX[frame->data[i] >> 4];
         out[k++] = HEX[frame->data[i] & 0xFu];
     }

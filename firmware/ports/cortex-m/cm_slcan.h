@@ -43,7 +43,8 @@ void slcan_init(slcan_t *s);
 bool slcan_feed(slcan_t *s, uint8_t byte, can_frame_t *frame, char reply[SLCAN_REPLY_MAX],
                 uint32_t *reply_len);
 
-/** Text of a frame for the host ("tiiildd..\r"); returns its length (0 if id/dlc invalid). */
+/** Text of a frame for the host ("tiiildd..\r"); returns its length (0 if the id or length is
+ *  invalid, or the frame is CAN FD). */
 uint32_t slcan_encode(const can_frame_t *frame, char out[SLCAN_FRAME_TEXT_MAX]);
 
 #endif /* CM_SLCAN_H */

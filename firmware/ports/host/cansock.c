@@ -105,13 +105,13 @@ void cansock_close(cansock_t *c)
 
 bool cansock_to_linux(const can_frame_t *f, struct can_frame *out)
 {
-    if (f->id > CAN_SFF_MASK || f->dlc > CAN_MAX_DLEN) {
+    if (f->id > CAN_SFF_MASK || f->len > CAN_MAX_DLEN || (f->flags & CAN_FRAME_FD) != 0u) {
         return false;
     }
     memset(out, 0, sizeof(*out));
     out->can_id = f->id;
-    out->len = f->dlc;
-    memcpy(out->data, f->data, f->dlc);
+    out->len = f->len;
+    memcpy(out->data, f->data, f->len);
     return true;
 }
 
@@ -125,7 +125,7 @@ cansock_rx_kind_t cansock_from_linux(const struct can_frame *in, can_frame_t *ou
     }
     memset(out, 0, sizeof(*out));
     out->id = in->can_id & CAN_SFF_MASK;
-    out->dlc = in->len;
+    out->len = in->len;
     memcpy(out->data, in->data, in->len);
     return CANSOCK_RX_DATA;
 }

@@ -29,7 +29,7 @@ static can_frame_t *tx_at(uint32_t i)
  * every frame with id >= f's (a frame taken back from the bus goes first among its equals). */
 static bool tx_insert(const can_frame_t *f, bool behind_equal)
 {
-    if (q.tx_len >= HAL_SIM_TX_QUEUE || f->dlc > CAN_FRAME_MAX_DLC) {
+    if (q.tx_len >= HAL_SIM_TX_QUEUE || !can_frame_len_ok(f)) {
         return false;
     }
     uint32_t pos = q.tx_len;

@@ -57,7 +57,7 @@ static void send_command(uint8_t mode, uint8_t slot)
     c.slot = slot;
     c.goal_scale = 1000u;
     c.time_scale = 1000u;
-    can_frame_t f = {.id = PROTO_ID_HOST_COMMAND(0), .dlc = 8};
+    can_frame_t f = {.id = PROTO_ID_HOST_COMMAND(0), .len = 8};
     (void)fs_dbc_host_command_pack(f.data, &c, 8);
     e2e_protect(&f, ++e2e_cmd_counter);
     assert_true(hal_sim_can_deliver(&f));
@@ -65,7 +65,7 @@ static void send_command(uint8_t mode, uint8_t slot)
 
 static void send_heartbeat(void)
 {
-    can_frame_t f = {.id = PROTO_ID_HOST_HEARTBEAT(0), .dlc = 8};
+    can_frame_t f = {.id = PROTO_ID_HOST_HEARTBEAT(0), .len = 8};
     memset(f.data, 0, 8);
     e2e_protect(&f, ++e2e_hb_counter);
     assert_true(hal_sim_can_deliver(&f));
@@ -218,7 +218,7 @@ static void test_boot_status_and_e2e(void **state)
     assert_int_equal(n_status, 2);                    /* every 10 ms */
     /* a command with a bad CRC is ignored */
     struct fs_dbc_host_command_t c = {.mode = APP_CMD_TEACH};
-    can_frame_t f = {.id = PROTO_ID_HOST_COMMAND(0), .dlc = 8};
+    can_frame_t f = {.id = PROTO_ID_HOST_COMMAND(0), .len = 8};
     (void)fs_dbc_host_command_pack(f.data, &c, 8);
     e2e_protect(&f, 3);
     f.data[7] ^= 0x5A;

@@ -57,11 +57,11 @@ static void test_frames_in(void **state)
     feed(&s, "t7E080211223344556677\rt1000\rr1234\r", &r);
     assert_int_equal(r.n_frames, 2u);                   /* the remote frame is answered, dropped */
     assert_int_equal(r.frames[0].id, 0x7E0u);
-    assert_int_equal(r.frames[0].dlc, 8u);
+    assert_int_equal(r.frames[0].len, 8u);
     const uint8_t want[8] = {0x02, 0x11, 0x22, 0x33, 0x44, 0x55, 0x66, 0x77};
     assert_memory_equal(r.frames[0].data, want, 8u);
     assert_int_equal(r.frames[1].id, 0x100u);
-    assert_int_equal(r.frames[1].dlc, 0u);
+    assert_int_equal(r.frames[1].len, 0u);
     assert_memory_equal(r.reply, "z\rz\rz\r", 6u);
     /* lower-case hex is accepted too */
     feed(&s, "t7e01ab\r", &r);
@@ -125,12 +125,12 @@ static void test_overlong_line_and_crlf(void **state)
 static void test_encode(void **state)
 {
     (void)state;
-    can_frame_t f = {.id = 0x190u, .dlc = 3u, .data = {0x01, 0xA0, 0xFF}};
+    can_frame_t f = {.id = 0x190u, .len = 3u, .data = {0x01, 0xA0, 0xFF}};
     char out[SLCAN_FRAME_TEXT_MAX];
     const uint32_t n = slcan_encode(&f, out);
     assert_int_equal(n, 12u);
     assert_memory_equal(out, "t1903" "01A0FF" "\r", 12u);
-    f.dlc = 8u;
+    f.len = 8u;
     assert_int_equal(slcan_encode(&f, out), SLCAN_FRAME_TEXT_MAX);
     /* what the codec writes, it reads back */
     slcan_t s;
@@ -148,7 +148,7 @@ static void test_encode(void **state)
     f.id = 0x800u;
     assert_int_equal(slcan_encode(&f, out), 0u);
     f.id = 0x7FFu;
-    f.dlc = 9u;
+    f.len = 9u;
     assert_int_equal(slcan_encode(&f, out), 0u);
 }
 

@@ -33,7 +33,7 @@ static void test_crc8_standard_vectors(void **state)
 static void test_protect_and_check(void **state)
 {
     (void)state;
-    can_frame_t f = {.id = 0x181, .dlc = 8, .data = {1, 2, 3, 4, 5, 6, 0xA0, 0}};
+    can_frame_t f = {.id = 0x181, .len = 8, .data = {1, 2, 3, 4, 5, 6, 0xA0, 0}};
     e2e_protect(&f, 5);
     assert_int_equal(f.data[6], 0xA5);            /* upper nibble kept, counter in the low nibble */
     const uint8_t covered[9] = {0x81, 0x01, 1, 2, 3, 4, 5, 6, 0xA5};
@@ -62,7 +62,7 @@ static void test_protect_and_check(void **state)
     e2e_rx_reset(&fresh);
     assert_int_equal(e2e_check(&fresh, &h), PROTO_ERR_E2E_CRC);
     h = f;
-    h.dlc = 7;
+    h.len = 7;
     assert_int_equal(e2e_check(&fresh, &h), PROTO_ERR_DLC);
 }
 

@@ -46,7 +46,7 @@ static void test_socketcan_roundtrip(void **state)
 
     char err[160];
     assert_int_equal(hal_socketcan_open(IFACE, 0u, err, sizeof(err)), 0);
-    const can_frame_t tx = {.id = 0x181, .dlc = 3, .data = {1, 2, 3}};
+    const can_frame_t tx = {.id = 0x181, .len = 3, .data = {1, 2, 3}};
     assert_true(hal_can_send(&tx));
     struct can_frame seen;
     assert_int_equal(read(probe, &seen, sizeof(seen)), (ssize_t)sizeof(seen));

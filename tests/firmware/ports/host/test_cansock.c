@@ -44,7 +44,7 @@ static void test_conversion_matches_kernel_layout(void **state)
 {
     (void)state;
     assert_int_equal(sizeof(struct can_frame), 16);
-    const can_frame_t f = {.id = 0x1A3, .dlc = 3, .data = {0xDE, 0xAD, 0xBE, 0xEF, 1, 2, 3, 4}};
+    const can_frame_t f = {.id = 0x1A3, .len = 3, .data = {0xDE, 0xAD, 0xBE, 0xEF, 1, 2, 3, 4}};
     struct can_frame lf;
     memset(&lf, 0x55, sizeof(lf));
     assert_true(cansock_to_linux(&f, &lf));
@@ -58,8 +58,8 @@ static void test_conversion_matches_kernel_layout(void **state)
 
     /* refused, output untouched: 29-bit id, dlc 9 */
     memset(&lf, 0x55, sizeof(lf));
-    const can_frame_t big_id = {.id = 0x800, .dlc = 1};
-    const can_frame_t big_dlc = {.id = 0x100, .dlc = 9};
+    const can_frame_t big_id = {.id = 0x800, .len = 1};
+    const can_frame_t big_dlc = {.id = 0x100, .len = 9};
     assert_false(cansock_to_linux(&big_id, &lf));
     assert_false(cansock_to_linux(&big_dlc, &lf));
     assert_int_equal(lf.can_id, 0x55555555u);
@@ -72,7 +72,7 @@ static void test_conversion_matches_kernel_layout(void **state)
     memset(&out, 0xAA, sizeof(out));
     assert_int_equal(cansock_from_linux(&in, &out), CANSOCK_RX_DATA);
     assert_int_equal(out.id, 0x681);
-    assert_int_equal(out.dlc, 2);
+    assert_int_equal(out.len, 2);
     const uint8_t expect_data[8] = {0x3E, 0x80, 0, 0, 0, 0, 0, 0};
     assert_memory_equal(out.data, expect_data, 8);
 
@@ -113,7 +113,7 @@ static void test_open_makes_non_blocking_and_refuses_bad_names(void **state)
 static void test_send_and_receive(void **state)
 {
     (void)state;
-    const can_frame_t tx = {.id = 0x190, .dlc = 8, .data = {1, 2, 3, 4, 5, 6, 7, 8}};
+    const can_frame_t tx = {.id = 0x190, .len = 8, .data = {1, 2, 3, 4, 5, 6, 7, 8}};
     assert_true(cansock_send(&drv, &tx));
     struct can_frame seen;
     assert_true(pair_take(&seen));
@@ -133,7 +133,7 @@ static void test_send_and_receive(void **state)
     pair_put(0x110, 8, (const uint8_t[]){1, 1, 1, 1, 1, 1, 1, 1});
     assert_true(cansock_receive(&drv, &rx, 0u));
     assert_int_equal(rx.id, 0x601);
-    assert_int_equal(rx.dlc, 3);
+    assert_int_equal(rx.len, 3);
     assert_int_equal(rx.data[1], 0x3E);
     assert_true(cansock_receive(&drv, &rx, 0u));
     assert_int_equal(rx.id, 0x110);                       /* bus order kept */
@@ -145,7 +145,7 @@ static void test_send_and_receive(void **state)
     assert_int_equal(drv.st.rx_err_counter, 12);
     assert_false(drv.bus_off);                            /* an ACK error is not bus-off */
     /* a frame that cannot go on the wire is refused without writing */
-    const can_frame_t bad = {.id = 0x800, .dlc = 1};
+    const can_frame_t bad = {.id = 0x800, .len = 1};
     assert_false(cansock_send(&drv, &bad));
     assert_false(pair_take(&seen));
 }
@@ -155,7 +155,7 @@ static void test_send_and_receive(void **state)
 static void test_full_queue_eagain_then_drains(void **state)
 {
     (void)state;
-    can_frame_t f = {.id = 0x1A0, .dlc = 8};
+    can_frame_t f = {.id = 0x1A0, .len = 8};
     uint32_t sent = 0u;
     while (sent < 100000u) {
         memcpy(f.data, &sent, sizeof(sent));
@@ -188,7 +188,7 @@ static void test_full_queue_eagain_then_drains(void **state)
 static void test_enobufs_and_write_errors(void **state)
 {
     (void)state;
-    const can_frame_t f = {.id = 0x180, .dlc = 8};
+    const can_frame_t f = {.id = 0x180, .len = 8};
     pair_ctl.write_fail_count = 2u;
     pair_ctl.write_fail_errno = ENOBUFS;
     assert_false(cansock_send(&drv, &f));
@@ -213,7 +213,7 @@ static void test_bus_off_and_recovery(void **state)
 {
     (void)state;
     can_frame_t rx;
-    const can_frame_t f = {.id = 0x180, .dlc = 8};
+    const can_frame_t f = {.id = 0x180, .len = 8};
     pair_put(CAN_ERR_FLAG | CAN_ERR_BUSOFF, CAN_ERR_DLC, NULL);
     pair_put(0x110, 8, (const uint8_t[]){0, 0, 0, 0, 0, 0, 0, 0});
     assert_true(cansock_receive(&drv, &rx, 5000u));       /* the data frame behind it */

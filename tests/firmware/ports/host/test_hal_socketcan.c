@@ -67,12 +67,12 @@ static void tick(void)
 
 static void put_frame(const can_frame_t *f)
 {
-    pair_put(f->id, f->dlc, f->data);
+    pair_put(f->id, f->len, f->data);
 }
 
 static void heartbeat(void)
 {
-    can_frame_t f = {.id = PROTO_ID_HOST_HEARTBEAT(0), .dlc = 8};
+    can_frame_t f = {.id = PROTO_ID_HOST_HEARTBEAT(0), .len = 8};
     e2e_protect(&f, ++hb_counter);
     put_frame(&f);
 }
@@ -84,7 +84,7 @@ static void command(uint8_t mode)
     c.mode = mode;
     c.goal_scale = 1000u;
     c.time_scale = 1000u;
-    can_frame_t f = {.id = PROTO_ID_HOST_COMMAND(0), .dlc = 8};
+    can_frame_t f = {.id = PROTO_ID_HOST_COMMAND(0), .len = 8};
     (void)fs_dbc_host_command_pack(f.data, &c, 8);
     e2e_protect(&f, ++cmd_counter);
     put_frame(&f);
