@@ -276,12 +276,22 @@ static void handle_command(app_t *app, const can_frame_t *f)
     switch ((app_cmd_mode_t)c.mode) {
     case APP_CMD_IDLE: (void)app_event(app, APP_EV_STOP); break;
     case APP_CMD_TEACH: (void)app_event(app, APP_EV_TEACH); break;
+    case APP_CMD_RUN_OPTIONS:
+        app->run_opts_fv = app->secoc.fv[SECOC_CH_COMMAND];
+        app->run_opts_time = c.time_scale;
+        app->run_opts_end = c.end_policy;
+        break;
     case APP_CMD_EXECUTE: {
+        /* its options are the RUN_OPTIONS frame of the freshness value just before */
+        if (app->run_opts_fv == 0u || app->run_opts_fv + 1u != app->secoc.fv[SECOC_CH_COMMAND]) {
+            app->secoc.last_refusal = (uint16_t)SEC_ERR_EXECUTE_OPTIONS;
+            break;
+        }
         const uint8_t slot = c.slot;
         const fs_real_t g = milli(c.goal_scale);
-        const fs_real_t ts = milli(c.time_scale);
+        const fs_real_t ts = milli(app->run_opts_time);
         const fs_real_t d = FS_R(0.0);
-        (void)app_start_sequence(app, &slot, &g, &ts, &d, NULL, 1u, c.end_policy);
+        (void)app_start_sequence(app, &slot, &g, &ts, &d, NULL, 1u, app->run_opts_end);
         break;
     }
     case APP_CMD_CLEAR_FAULT:
@@ -302,29 +312,61 @@ static void handle_heartbeat(app_t *app, const can_frame_t *f)
     }
 }
 
+/* An E2E-valid host frame is acted on only if authentic and fresh (secoc_verify); a stop
+ * (HostCommand IDLE) is the one exception, taken without a MAC. */
+static bool host_frame_accepted(app_t *app, const can_frame_t *f, secoc_channel_t ch)
+{
+    if (ch == SECOC_CH_COMMAND && (f->data[0] & 0x0Fu) == (uint8_t)APP_CMD_IDLE) {
+        return true;
+    }
+    return secoc_verify(&app->secoc, f, ch) == SEC_OK;
+}
+
 static void can_receive(app_t *app)
 {
     can_frame_t f;
     for (unsigned i = 0; i < APP_RX_FRAMES_PER_TICK && hal_can_receive(&f); i++) {
         const uint32_t node = app->cfg.node;
         if (f.id == PROTO_ID_HOST_COMMAND(node)) {
-            if (e2e_check(&app->rx_command, &f) == PROTO_OK) {
+            if (e2e_check(&app->rx_command, &f) != PROTO_OK) {
+                app->e2e_errors++;
+            } else if (host_frame_accepted(app, &f, SECOC_CH_COMMAND)) {
                 app->host_frame = true;
                 handle_command(app, &f);
-            } else {
-                app->e2e_errors++;
             }
         } else if (f.id == PROTO_ID_HOST_HEARTBEAT(node)) {
-            if (e2e_check(&app->rx_heartbeat, &f) == PROTO_OK) {
+            if (e2e_check(&app->rx_heartbeat, &f) != PROTO_OK) {
+                app->e2e_errors++;
+            } else if (host_frame_accepted(app, &f, SECOC_CH_HEARTBEAT)) {
                 app->host_frame = true;
                 handle_heartbeat(app, &f);
-            } else {
-                app->e2e_errors++;
             }
         } else if (f.id == PROTO_ID_UDS_REQUEST(node)) {
             isotp_on_frame(&app->tp, &f, app->now_us);
         }
     }
+}
+
+uint8_t app_motion_key(app_t *app, const uint8_t *host_nonce, uint16_t len)
+{
+    if (len != SECOC_NONCE_LEN) {
+        return UDS_NRC_INCORRECT_LENGTH;
+    }
+    if (app->state == APP_TEACH || app->state == APP_EXECUTE) {
+        return UDS_NRC_CONDITIONS_NOT_CORRECT; /* never re-keyed while a motion runs */
+    }
+    uint8_t dev_nonce[SECOC_NONCE_LEN];
+    if (hal_random(dev_nonce, SECOC_NONCE_LEN) != 0) {
+        return UDS_NRC_CONDITIONS_NOT_CORRECT;
+    }
+    const sec_config_t *c = &app->sec_cfg[0];
+    uint8_t key[SECOC_KEY_LEN];
+    secoc_derive_key(c->secret, c->secret_len, dev_nonce, host_nonce, key);
+    secoc_set_key(&app->secoc, key, SECOC_KEY_LEN);
+    sec_wipe(key, sizeof key);
+    memcpy(app->secoc_dev_nonce, dev_nonce, SECOC_NONCE_LEN);
+    app->run_opts_fv = 0u;
+    return UDS_NRC_OK;
 }
 
 static void uds_service(app_t *app)
@@ -477,6 +519,7 @@ void app_init(app_t *app, const app_config_t *cfg)
     app->now_ms = app_now_ms(app, app->now_us);
     e2e_rx_reset(&app->rx_command);
     e2e_rx_reset(&app->rx_heartbeat);
+    secoc_init(&app->secoc); /* no motion key until a host session establishes one */
 
     isotp_config_t tpc;
     isotp_config_default(&tpc, PROTO_ID_UDS_RESPONSE(cfg->node), PROTO_ID_UDS_REQUEST(cfg->node));

@@ -155,6 +155,11 @@ static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf)
         put_u32(&buf[0], app->saf.flt.latched_mask);
         put_u32(&buf[4], app->saf.cause_mask);
         return 8u;
+    case DID_MOTION_KEY:
+        memcpy(buf, app->secoc_dev_nonce, SECOC_NONCE_LEN);
+        buf[SECOC_NONCE_LEN] = app->secoc.keyed ? 1u : 0u;
+        return SECOC_NONCE_LEN + 1u;
+    case DID_AUTH_STATS: secoc_stats_encode(&app->secoc, buf); return SECOC_STATS_LEN;
     default: return 0u;
     }
 }
@@ -304,6 +309,9 @@ static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len
     if (app->uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
         return UDS_NRC_SECURITY_ACCESS_DENIED; /* settings: level 1 (not the firmware level) */
     }
+    if (did == DID_MOTION_KEY) {
+        return app_motion_key(app, d, len); /* also in FAULT: a host resynchronises to clear it */
+    }
     if (app->state != APP_IDLE) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT; /* configuration changes only while idle */
     }
@@ -369,6 +377,9 @@ static uint8_t routine_run(app_t *app, uint8_t sub, uint16_t rid, const uint8_t 
                            uint8_t *out, uint16_t *out_len)
 {
     if (sub == UDS_ROUTINE_START) {
+        if (app->uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
+            return UDS_NRC_SECURITY_ACCESS_DENIED; /* motion: the unlocked host session only */
+        }
         return routine_run_start(app, rid, d, len);
     }
     if (sub == UDS_ROUTINE_STOP) {
