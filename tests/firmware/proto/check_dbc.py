@@ -49,7 +49,9 @@ def main(harness: str, dbc_path: str) -> int:
                     raw[s.name] = 0  # a signal of another multiplexer value: not in this frame
             if mux is not None:
                 raw[mux.name] = sel
-            used = {n: v for n, v in raw.items() if msg.get_signal_by_name(n).multiplexer_ids in (None, [sel])}
+            used = {
+                n: v for n, v in raw.items() if msg.get_signal_by_name(n).multiplexer_ids in (None, [sel])
+            }
             expected = msg.encode(used, scaling=False, strict=False)
             got = ask("pack " + msg.name + " " + " ".join(str(raw[n]) for n in signals))
             assert bytes.fromhex(got) == expected, f"{msg.name} {raw}: C {got} != cantools {expected.hex()}"
