@@ -128,10 +128,10 @@ struct app {
     bool host_frame;        /* a valid host frame this tick */
     uint32_t e2e_errors;
     uint32_t tx_dropped;
-    secoc_t secoc;                           /* authenticated host frames (motion key) */
+    secoc_t secoc;                            /* authenticated host frames (motion key) */
     uint8_t secoc_dev_nonce[SECOC_NONCE_LEN]; /* the device nonce of the key in use */
-    uint32_t run_opts_fv;                    /* freshness value of the last RUN_OPTIONS ... */
-    uint16_t run_opts_time;                  /* ... its time scale (1/1000) and end policy */
+    uint32_t run_opts_fv;                     /* freshness value of the last RUN_OPTIONS ... */
+    uint16_t run_opts_time;                   /* ... its time scale (1/1000) and end policy */
     uint8_t run_opts_end;
     /* UDS on ISO-TP */
     isotp_link_t tp;

@@ -20,27 +20,31 @@
 
 #define SECOC_KEY_LEN 32u
 #define SECOC_NONCE_LEN 16u
-#define SECOC_MAC_LEN 3u       /* 24 MAC bits in data bytes 3..5 */
+#define SECOC_MAC_LEN 3u /* 24 MAC bits in data bytes 3..5 */
 #define SECOC_MAC_OFFSET 3u
-#define SECOC_PAYLOAD_LEN 3u   /* data bytes 0..2 are the authenticated payload */
-#define SECOC_FV_BYTE 6u       /* FV bits 0..7 (bits 0..3 double as the E2E counter) */
-#define SECOC_FV_WINDOW 256u   /* 2^(FV bits in the frame) */
-#define SECOC_MAX_BAD_MAC 64u  /* wrong MACs in a row that discard the key */
+#define SECOC_PAYLOAD_LEN 3u  /* data bytes 0..2 are the authenticated payload */
+#define SECOC_FV_BYTE 6u      /* FV bits 0..7 (bits 0..3 double as the E2E counter) */
+#define SECOC_FV_WINDOW 256u  /* 2^(FV bits in the frame) */
+#define SECOC_MAX_BAD_MAC 64u /* wrong MACs in a row that discard the key */
 #define SECOC_LABEL "forceskill secoc v1"
-#define SECOC_STATS_LEN 31u    /* bytes of secoc_stats_encode */
+#define SECOC_STATS_LEN 31u /* bytes of secoc_stats_encode */
 
 /** The authenticated frame channels, each with its own freshness value. */
-typedef enum { SECOC_CH_COMMAND = 0, SECOC_CH_HEARTBEAT = 1, SECOC_CHANNELS = 2 } secoc_channel_t;
+typedef enum {
+    SECOC_CH_COMMAND = 0,
+    SECOC_CH_HEARTBEAT = 1,
+    SECOC_CHANNELS = 2
+} secoc_channel_t;
 
 /** Receiver (device) or sender (host) state of one session key. */
 typedef struct {
-    sec_sha256_t inner;              /* SHA-256 state after key ^ ipad */
-    sec_sha256_t outer;              /* SHA-256 state after key ^ opad */
-    uint32_t fv[SECOC_CHANNELS];     /* receiver: last accepted FV; sender: last sent FV */
-    bool keyed;                      /* a key is established */
-    uint8_t bad_in_row;              /* wrong MACs since the last accepted frame */
+    sec_sha256_t inner;          /* SHA-256 state after key ^ ipad */
+    sec_sha256_t outer;          /* SHA-256 state after key ^ opad */
+    uint32_t fv[SECOC_CHANNELS]; /* receiver: last accepted FV; sender: last sent FV */
+    bool keyed;                  /* a key is established */
+    uint8_t bad_in_row;          /* wrong MACs since the last accepted frame */
     uint32_t accepted, bad_mac, replayed, no_key, revoked; /* frames and discarded keys */
-    uint16_t last_refusal;           /* SEC_ERR_* of the last refused frame, 0 if none */
+    uint16_t last_refusal; /* SEC_ERR_* of the last refused frame, 0 if none */
 } secoc_t;
 
 /** No key, every counter zero. */

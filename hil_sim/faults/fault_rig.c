@@ -86,8 +86,8 @@ void rig_command(rig_t *r, uint8_t mode, uint8_t slot, double goal_scale, double
                  uint8_t end)
 {
     can_frame_t f[2];
-    const unsigned n =
-        sim_couple_command_frames(&r->host, r->cfg.node, mode, slot, goal_scale, time_scale, end, f);
+    const unsigned n = sim_couple_command_frames(&r->host, r->cfg.node, mode, slot, goal_scale,
+                                                 time_scale, end, f);
     for (unsigned i = 0; i < n && i < 2u; i++) {
         deliver_host(r, &f[i]);
     }

@@ -128,7 +128,7 @@ static int fault_active(const sim_fault_t *fl, sim_fault_kind_t kind, double t)
 typedef struct {
     app_t app;
     app_config_t cfg;
-    secoc_t host; /* the host's session: its key and freshness values */
+    secoc_t host;        /* the host's session: its key and freshness values */
     uint16_t fault_code; /* first emergency frame's code, 0 if none */
     uint64_t fault_tick;
 } sim_dev_t;
