@@ -32,12 +32,13 @@ static void host_session(void)
     secoc_start_session(&host, secret, len, app.secoc_dev_nonce, nonce);
 }
 
-/* MAC, freshness and E2E of a packed host frame, delivered to the device. */
+/* MAC, freshness and E2E of a packed host frame, sent to the device (lost while it is bus-off:
+ * the host's freshness value advances all the same). */
 static void deliver_authentic(can_frame_t *f, secoc_channel_t ch)
 {
     const uint32_t fv = secoc_protect(&host, f, ch);
     e2e_protect(f, (uint8_t)(fv & E2E_COUNTER_MASK));
-    assert_true(hal_sim_can_deliver(f));
+    (void)hal_sim_can_deliver(f);
 }
 
 /* frames the device sent, collected per tick */
@@ -320,6 +321,9 @@ static void test_bus_off_emergency_sent_after_recovery(void **state)
     const unsigned before = n_out;
     hal_sim_can_set_bus_off(false);
     tick();
+    /* the heartbeats lost meanwhile are within the freshness window: the next one is taken */
+    const uint32_t accepted = app.secoc.accepted;
+    send_heartbeat();
     assert_true(n_out > before);
     assert_int_equal(out[before].id, PROTO_ID_EMERGENCY(0));
     e2e_rx_t rx;
@@ -337,6 +341,7 @@ static void test_bus_off_emergency_sent_after_recovery(void **state)
     for (unsigned i = before + 1u; i < n_out; i++) {
         assert_int_not_equal(out[i].id, PROTO_ID_EMERGENCY(0));
     }
+    assert_int_equal(app.secoc.accepted, accepted + 1u);
 }
 
 /* RequestDownload and one TransferData of img into slot, no RequestTransferExit yet. */
