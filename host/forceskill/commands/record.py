@@ -55,7 +55,7 @@ def _record(args: argparse.Namespace, writer: can.Listener) -> FsError | None:
         assert dev.notifier is not None
         with U.uds_client(dev, request_timeout_s=2.0) as client:
             U.motion_session(client, dev)  # authenticated heartbeats and commands
-            return _record_session(args, dev, writer, st)
+        return _record_session(args, dev, writer, st)
 
 
 def _record_session(

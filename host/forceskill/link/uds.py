@@ -302,7 +302,7 @@ def motion_session(client: Client, dev: Device, tries: int = 10) -> None:
     def refused(what: str, e: NegativeResponseException) -> FsError:
         return FsError(ERR_LINK_AUTH, f"motion key with node {node}: {what}: {describe_nrc(e)}")
 
-    def establish() -> None:
+    def establish(client: Client) -> None:
         _again(lambda: unlock(client, node, SESSION_EXTENDED, on_nrc=refused), tries)
         host_nonce = os.urandom(16)
         _again(
@@ -319,8 +319,12 @@ def motion_session(client: Client, dev: Device, tries: int = 10) -> None:
             raise FsError(ERR_LINK_AUTH, f"node {node} did not establish the motion key")
         dev.set_session(derive_motion_key(device_secret(SEC_LEVEL_WRITE), r[:16], host_nonce))
 
-    establish()
-    dev.resync = establish
+    def resync() -> None:
+        with uds_client(dev, request_timeout_s=2.0) as c:
+            establish(c)
+
+    establish(client)
+    dev.resync = resync
 
 
 def read_did(client: Client, did: int, node: int) -> bytes:
