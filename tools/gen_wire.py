@@ -696,7 +696,7 @@ def dbc_scale_mismatches(root: Path, dbc_rel: str) -> list[str]:
     text = (root / dbc_rel).read_text()
     bad = []
     for sig in ("GoalScale", "TimeScale"):
-        m = re.search(rf"^\s*SG_ {sig} : \S+ \(([^,]+),", text, re.M)
+        m = re.search(rf"^\s*SG_ {sig}(?: m\d+)? : \S+ \(([^,]+),", text, re.M)
         if m is None or float(m.group(1)) != w.scale:
             bad.append(
                 f"{dbc_rel}: signal {sig} factor {m.group(1) if m else 'missing'}, {TABLE} scale {w.scale}"

@@ -204,15 +204,16 @@ static uint32_t app_now_ms(app_t *app, uint64_t now_us)
 
 /* A HostCommand EXECUTE as a run request: one step, its slot, goal and time scale (counts of the
  * DBC's factor, FS_WIRE_SCALE), the skill's own duration, path scale 1. */
-static void run_from_command(const struct fs_dbc_host_command_t *c, app_run_request_t *req)
+static void run_from_command(const struct fs_dbc_host_command_t *c, uint16_t time_scale,
+                             uint8_t end, app_run_request_t *req)
 {
     memset(req, 0, sizeof(*req));
     req->source = APP_RUN_FROM_COMMAND;
     req->n_steps = 1u;
-    req->end = c->end_policy;
+    req->end = end;
     req->step[0].slot = c->slot;
     req->step[0].goal_scale = FS_WIRE_REAL(fs_real_t, c->goal_scale);
-    req->step[0].time_scale = FS_WIRE_REAL(fs_real_t, c->time_scale);
+    req->step[0].time_scale = FS_WIRE_REAL(fs_real_t, time_scale);
     req->step[0].duration_s = FS_R(0.0);
     req->step[0].path_scale = FS_R(1.0);
 }
@@ -226,9 +227,19 @@ static void handle_command(app_t *app, const can_frame_t *f)
     switch ((app_cmd_mode_t)c.mode) {
     case APP_CMD_IDLE: (void)app_event(app, APP_EV_STOP); break;
     case APP_CMD_TEACH: (void)app_event(app, APP_EV_TEACH); break;
+    case APP_CMD_RUN_OPTIONS:
+        app->run_opts_fv = app->secoc.fv[SECOC_CH_COMMAND];
+        app->run_opts_time = c.time_scale;
+        app->run_opts_end = c.end_policy;
+        break;
     case APP_CMD_EXECUTE: {
+        /* its options are the RUN_OPTIONS frame of the freshness value just before */
+        if (app->run_opts_fv == 0u || app->run_opts_fv + 1u != app->secoc.fv[SECOC_CH_COMMAND]) {
+            app->secoc.last_refusal = (uint16_t)SEC_ERR_EXECUTE_OPTIONS;
+            break;
+        }
         app_run_request_t req;
-        run_from_command(&c, &req);
+        run_from_command(&c, app->run_opts_time, app->run_opts_end, &req);
         (void)app_run_start(app,
                             &req); /* a refused command is ignored: the status frame shows it */
         break;
@@ -251,29 +262,61 @@ static void handle_heartbeat(app_t *app, const can_frame_t *f)
     }
 }
 
+/* An E2E-valid host frame is acted on only if authentic and fresh (secoc_verify); a stop
+ * (HostCommand IDLE) is the one exception, taken without a MAC. */
+static bool host_frame_accepted(app_t *app, const can_frame_t *f, secoc_channel_t ch)
+{
+    if (ch == SECOC_CH_COMMAND && (f->data[0] & 0x0Fu) == (uint8_t)APP_CMD_IDLE) {
+        return true;
+    }
+    return secoc_verify(&app->secoc, f, ch) == SEC_OK;
+}
+
 static void can_receive(app_t *app)
 {
     can_frame_t f;
     for (unsigned i = 0; i < APP_RX_FRAMES_PER_TICK && hal_can_receive(&f); i++) {
         const uint32_t node = app->cfg.node;
         if (f.id == PROTO_ID_HOST_COMMAND(node)) {
-            if (e2e_check(&app->rx_command, &f) == PROTO_OK) {
+            if (e2e_check(&app->rx_command, &f) != PROTO_OK) {
+                app->e2e_errors++;
+            } else if (host_frame_accepted(app, &f, SECOC_CH_COMMAND)) {
                 app->host_frame = true;
                 handle_command(app, &f);
-            } else {
-                app->e2e_errors++;
             }
         } else if (f.id == PROTO_ID_HOST_HEARTBEAT(node)) {
-            if (e2e_check(&app->rx_heartbeat, &f) == PROTO_OK) {
+            if (e2e_check(&app->rx_heartbeat, &f) != PROTO_OK) {
+                app->e2e_errors++;
+            } else if (host_frame_accepted(app, &f, SECOC_CH_HEARTBEAT)) {
                 app->host_frame = true;
                 handle_heartbeat(app, &f);
-            } else {
-                app->e2e_errors++;
             }
         } else if (f.id == PROTO_ID_UDS_REQUEST(node)) {
             isotp_on_frame(&app->tp, &f, app->now_us);
         }
     }
+}
+
+uint8_t app_motion_key(app_t *app, const uint8_t *host_nonce, uint16_t len)
+{
+    if (len != SECOC_NONCE_LEN) {
+        return UDS_NRC_INCORRECT_LENGTH;
+    }
+    if (app->state == APP_TEACH || app->state == APP_EXECUTE) {
+        return UDS_NRC_CONDITIONS_NOT_CORRECT; /* never re-keyed while a motion runs */
+    }
+    uint8_t dev_nonce[SECOC_NONCE_LEN];
+    if (hal_random(dev_nonce, SECOC_NONCE_LEN) != 0) {
+        return UDS_NRC_CONDITIONS_NOT_CORRECT;
+    }
+    const sec_config_t *c = &app->sec_cfg[0];
+    uint8_t key[SECOC_KEY_LEN];
+    secoc_derive_key(c->secret, c->secret_len, dev_nonce, host_nonce, key);
+    secoc_set_key(&app->secoc, key, SECOC_KEY_LEN);
+    sec_wipe(key, sizeof key);
+    memcpy(app->secoc_dev_nonce, dev_nonce, SECOC_NONCE_LEN);
+    app->run_opts_fv = 0u;
+    return UDS_NRC_OK;
 }
 
 static void uds_service(app_t *app)
@@ -426,6 +469,7 @@ void app_init(app_t *app, const app_config_t *cfg)
     app->now_ms = app_now_ms(app, app->now_us);
     e2e_rx_reset(&app->rx_command);
     e2e_rx_reset(&app->rx_heartbeat);
+    secoc_init(&app->secoc); /* no motion key until a host session establishes one */
 
     isotp_config_t tpc;
     isotp_config_default(&tpc, PROTO_ID_UDS_RESPONSE(cfg->node), PROTO_ID_UDS_REQUEST(cfg->node));

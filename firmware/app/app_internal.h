@@ -29,6 +29,7 @@
 #include "fwu.h"
 #include "saf.h"
 #include "sec_access.h"
+#include "secoc.h"
 #include "skill.h"
 #include "skill_check.h"
 #include "uds.h"
@@ -46,7 +47,7 @@
 #define APP_IDLE_TELEMETRY_PERIOD_MS 100u
 #define APP_IMAGE_MAX SKILL_IMAGE_MAX
 #define APP_SW_VERSION "forceskill-fw 0.1.0"
-#define APP_PROTO_VERSION_MAJOR 1u
+#define APP_PROTO_VERSION_MAJOR 2u
 #define APP_PROTO_VERSION_MINOR 0u
 #define APP_SEC_LEVELS 2u /* SecurityAccess levels 1 and 3, one secret each */
 /* DMP steps of a downloaded skill's own rollout (skill_check.h) per tick while the commit waits:
@@ -85,7 +86,8 @@ typedef enum {
     APP_CMD_IDLE = 1,
     APP_CMD_TEACH = 2,
     APP_CMD_EXECUTE = 3,
-    APP_CMD_CLEAR_FAULT = 4
+    APP_CMD_CLEAR_FAULT = 4,
+    APP_CMD_RUN_OPTIONS = 5 /* time scale and end policy of the EXECUTE that follows */
 } app_cmd_mode_t;
 
 /** Device configuration (factory defaults from app_config_default, changed by UDS writes). */
@@ -120,6 +122,11 @@ struct app {
     bool host_frame;        /* a valid host frame this tick */
     uint32_t e2e_errors;
     uint32_t tx_dropped;
+    secoc_t secoc;                            /* authenticated host frames (motion key) */
+    uint8_t secoc_dev_nonce[SECOC_NONCE_LEN]; /* the device nonce of the key in use */
+    uint32_t run_opts_fv;                     /* freshness value of the last RUN_OPTIONS ... */
+    uint16_t run_opts_time;                   /* ... its time scale (1/1000) and end policy */
+    uint8_t run_opts_end;
     /* UDS on ISO-TP */
     isotp_link_t tp;
     uds_server_t uds;
@@ -244,6 +251,10 @@ void app_slots_reload(app_t *app);
 
 /** SecurityAccess config of a level (1 or 3); NULL for any other level. */
 const sec_config_t *app_sec_config(const app_t *app, uint8_t level);
+
+/** Establish the motion key of a host session from its nonce (DID 0x0302 write): draws the
+ *  device nonce, derives the key from the level-1 secret. Returns a UDS NRC (0 ok). */
+uint8_t app_motion_key(app_t *app, const uint8_t *host_nonce, uint16_t len);
 
 /** Store the SecurityAccess attempt record if it changed (after every seed/key request). */
 void app_sec_persist(app_t *app);

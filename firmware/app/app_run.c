@@ -5,12 +5,12 @@
 
 uint8_t app_run_authorize(const app_t *app, const app_run_request_t *req)
 {
-    /* A run needs no SecurityAccess level: it executes a skill admitted under level 1 (download,
-     * commit checks) within the device's limits, and the checks after this one refuse anything
-     * else. Authentication of the request (a MAC over it and a freshness value) goes here, once,
-     * for every source. */
-    (void)app;
-    (void)req;
+    /* A HostCommand reached here only after its MAC and freshness were verified on receipt
+     * (host_frame_accepted, secoc.h). A routine start needs the unlocked host session: level 1,
+     * the level that also keys the motion MAC. */
+    if (req->source == APP_RUN_FROM_ROUTINE && app->uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
+        return UDS_NRC_SECURITY_ACCESS_DENIED;
+    }
     return UDS_NRC_OK;
 }
 

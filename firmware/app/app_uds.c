@@ -106,6 +106,19 @@ static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf, uint16_
         const fs_wire_fault_causes_t v = {app->saf.flt.latched_mask, app->saf.cause_mask};
         return fs_wire_fault_causes_pack(&v, buf, cap);
     }
+    case DID_MOTION_KEY:
+        if (cap < SECOC_NONCE_LEN + 1u) {
+            return 0u;
+        }
+        memcpy(buf, app->secoc_dev_nonce, SECOC_NONCE_LEN);
+        buf[SECOC_NONCE_LEN] = app->secoc.keyed ? 1u : 0u;
+        return SECOC_NONCE_LEN + 1u;
+    case DID_AUTH_STATS:
+        if (cap < SECOC_STATS_LEN) {
+            return 0u;
+        }
+        secoc_stats_encode(&app->secoc, buf);
+        return SECOC_STATS_LEN;
     default: return 0u;
     }
 }
@@ -244,6 +257,9 @@ static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len
     app_t *app = ctx;
     if (app->uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
         return UDS_NRC_SECURITY_ACCESS_DENIED; /* settings: level 1 (not the firmware level) */
+    }
+    if (did == DID_MOTION_KEY) {
+        return app_motion_key(app, d, len); /* also in FAULT: a host resynchronises to clear it */
     }
     if (app->state != APP_IDLE) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT; /* configuration changes only while idle */

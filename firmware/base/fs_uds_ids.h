@@ -22,6 +22,11 @@
 #define DID_STIFFNESS_MAX 0x0140u
 /* latched mask u32, causes present mask u32 (bit n: fault 500+n) */
 #define DID_FAULT_CAUSES 0x0301u
+/* write: host nonce (16 bytes) establishes the motion key; read: device nonce (16), keyed u8 */
+#define DID_MOTION_KEY 0x0302u
+/* authenticated host frames: accepted, wrong MAC, replay, no key, keys discarded u32; last
+ * refusal u16; keyed u8; FV command, FV heartbeat u32 */
+#define DID_AUTH_STATS 0x0303u
 #define FWU_DID_STATUS 0xF1B0u         /* update status: FWU_STATUS_LEN bytes, see fwu_status() */
 
 /* start: slot u8, goal_scale u16 (1e-3), time_scale u16 (1e-3), end u8 */

@@ -57,6 +57,7 @@ void rig_boot(rig_t *r)
     hal_sim_can_reset();
     hal_host_set_time_us(r->n_tick * 1000u);
     app_init(&r->app, &r->cfg);
+    (void)sim_couple_host_session(&r->app, &r->host); /* a new session after every power-up */
 }
 
 static void deliver_host(rig_t *r, can_frame_t *f)
@@ -77,17 +78,19 @@ static void deliver_host(rig_t *r, can_frame_t *f)
 static void send_heartbeat(rig_t *r)
 {
     can_frame_t f;
-    sim_couple_heartbeat_frame(r->cfg.node, r->hb_counter++, 10u, &f);
+    sim_couple_heartbeat_frame(&r->host, r->cfg.node, 10u, &f);
     deliver_host(r, &f);
 }
 
 void rig_command(rig_t *r, uint8_t mode, uint8_t slot, double goal_scale, double time_scale,
                  uint8_t end)
 {
-    can_frame_t f;
-    sim_couple_command_frame(r->cfg.node, r->cmd_counter++, mode, slot, goal_scale, time_scale, end,
-                             &f);
-    deliver_host(r, &f);
+    can_frame_t f[2];
+    const unsigned n = sim_couple_command_frames(&r->host, r->cfg.node, mode, slot, goal_scale,
+                                                 time_scale, end, f);
+    for (unsigned i = 0; i < n && i < 2u; i++) {
+        deliver_host(r, &f[i]);
+    }
 }
 
 static void host_receive(rig_t *r)

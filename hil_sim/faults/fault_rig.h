@@ -54,7 +54,7 @@ typedef struct {
     app_t app;
     /* host */
     bool heartbeat_on;
-    uint8_t hb_counter, cmd_counter;
+    secoc_t host; /* the host's session (motion key, freshness values), new at every boot */
     uint64_t last_host_tick; /* tick of the last host frame delivered to the device */
     isotp_link_t tester;     /* UDS client (ISO-TP, ids swapped) */
     /* injections and observations */

@@ -181,7 +181,27 @@ bool sim_couple_step(sim_couple_plant_t *p, const sim_scenario_t *sc, app_state_
     return enable;
 }
 
-void sim_couple_heartbeat_frame(uint8_t node, uint8_t counter, uint8_t telemetry_period_ms,
+uint8_t sim_couple_host_session(app_t *app, secoc_t *host)
+{
+    static const uint8_t nonce[SECOC_NONCE_LEN] = "sim host nonce!";
+    const uint8_t nrc = app_motion_key(app, nonce, SECOC_NONCE_LEN);
+    if (nrc != 0u) {
+        return nrc;
+    }
+    uint8_t len = 0u;
+    const uint8_t *secret = hal_device_secret(UDS_SEC_LEVEL_WRITE, &len);
+    secoc_start_session(host, secret, len, app->secoc_dev_nonce, nonce);
+    return 0u;
+}
+
+/* MAC, freshness value and E2E CRC of a packed host frame (its E2E counter: the FV's low 4 bits). */
+static void host_protect(secoc_t *host, secoc_channel_t ch, can_frame_t *f)
+{
+    const uint32_t fv = secoc_protect(host, f, ch);
+    e2e_protect(f, (uint8_t)(fv & E2E_COUNTER_MASK));
+}
+
+void sim_couple_heartbeat_frame(secoc_t *host, uint8_t node, uint8_t telemetry_period_ms,
                                 can_frame_t *f)
 {
     struct fs_dbc_host_heartbeat_t h;
@@ -191,22 +211,36 @@ void sim_couple_heartbeat_frame(uint8_t node, uint8_t counter, uint8_t telemetry
     f->id = PROTO_ID_HOST_HEARTBEAT(node);
     f->len = FS_DBC_HOST_HEARTBEAT_LENGTH;
     (void)fs_dbc_host_heartbeat_pack(f->data, &h, sizeof(f->data));
-    e2e_protect(f, counter);
+    host_protect(host, SECOC_CH_HEARTBEAT, f);
 }
 
-void sim_couple_command_frame(uint8_t node, uint8_t counter, uint8_t mode, uint8_t slot,
-                              double goal_scale, double time_scale, uint8_t end, can_frame_t *f)
+static void command_frame(secoc_t *host, uint8_t node, const struct fs_dbc_host_command_t *c,
+                          can_frame_t *f)
+{
+    memset(f, 0, sizeof(*f));
+    f->id = PROTO_ID_HOST_COMMAND(node);
+    f->len = FS_DBC_HOST_COMMAND_LENGTH;
+    (void)fs_dbc_host_command_pack(f->data, c, sizeof(f->data));
+    host_protect(host, SECOC_CH_COMMAND, f);
+}
+
+unsigned sim_couple_command_frames(secoc_t *host, uint8_t node, uint8_t mode, uint8_t slot,
+                                   double goal_scale, double time_scale, uint8_t end,
+                                   can_frame_t f[2])
 {
     struct fs_dbc_host_command_t c;
+    unsigned n = 0u;
+    if (mode == APP_CMD_EXECUTE) {
+        memset(&c, 0, sizeof(c));
+        c.mode = APP_CMD_RUN_OPTIONS;
+        c.time_scale = fs_dbc_host_command_time_scale_encode(time_scale);
+        c.end_policy = end;
+        command_frame(host, node, &c, &f[n++]);
+    }
     memset(&c, 0, sizeof(c));
     c.mode = mode;
     c.slot = slot;
     c.goal_scale = fs_dbc_host_command_goal_scale_encode(goal_scale);
-    c.time_scale = fs_dbc_host_command_time_scale_encode(time_scale);
-    c.end_policy = end;
-    memset(f, 0, sizeof(*f));
-    f->id = PROTO_ID_HOST_COMMAND(node);
-    f->len = FS_DBC_HOST_COMMAND_LENGTH;
-    (void)fs_dbc_host_command_pack(f->data, &c, sizeof(f->data));
-    e2e_protect(f, counter);
+    command_frame(host, node, &c, &f[n++]);
+    return n;
 }

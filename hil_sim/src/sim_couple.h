@@ -104,13 +104,21 @@ void sim_couple_sense(sim_couple_plant_t *p, const sim_scenario_t *sc, bool teac
 bool sim_couple_step(sim_couple_plant_t *p, const sim_scenario_t *sc, app_state_t state,
                      bool enable, const fs_real_t force_N[2]);
 
-/** The host's heartbeat frame for node (E2E counter, telemetry period in ms, 0 = the device's). */
-void sim_couple_heartbeat_frame(uint8_t node, uint8_t counter, uint8_t telemetry_period_ms,
+/** An in-process host's session with app: the device establishes its motion key (as the DID
+ *  0x0302 write does) and host gets the same key, derived from the level-1 secret and both
+ *  nonces. Returns 0, or the device's UDS NRC. */
+uint8_t sim_couple_host_session(app_t *app, secoc_t *host);
+
+/** The host's heartbeat frame for node (telemetry period in ms, 0 = the device's), authenticated
+ *  with host's session (freshness value, MAC, E2E). */
+void sim_couple_heartbeat_frame(secoc_t *host, uint8_t node, uint8_t telemetry_period_ms,
                                 can_frame_t *f);
 
-/** The host's command frame for node (mode APP_CMD_*, slot 1.., goal and time scale, end 0 skill /
- *  1 hold / 2 release). */
-void sim_couple_command_frame(uint8_t node, uint8_t counter, uint8_t mode, uint8_t slot,
-                              double goal_scale, double time_scale, uint8_t end, can_frame_t *f);
+/** The host's command frames for node (mode APP_CMD_*, slot 1.., goal and time scale, end 0 skill
+ *  / 1 hold / 2 release), authenticated: EXECUTE is two frames (RUN_OPTIONS, then EXECUTE), any
+ *  other mode one. Returns the number of frames written to f. */
+unsigned sim_couple_command_frames(secoc_t *host, uint8_t node, uint8_t mode, uint8_t slot,
+                                   double goal_scale, double time_scale, uint8_t end,
+                                   can_frame_t f[2]);
 
 #endif /* SIM_COUPLE_H */

@@ -128,8 +128,7 @@ static int fault_active(const sim_fault_t *fl, sim_fault_kind_t kind, double t)
 typedef struct {
     app_t app;
     app_config_t cfg;
-    uint8_t hb_counter;
-    uint8_t cmd_counter;
+    secoc_t host;        /* the host's session: its key and freshness values */
     uint16_t fault_code; /* first emergency frame's code, 0 if none */
     uint64_t fault_tick;
 } sim_dev_t;
@@ -140,7 +139,7 @@ static void dev_host(sim_dev_t *d, uint64_t n_tick)
 {
     can_frame_t f;
     if (n_tick % SIM_RUN_HB_PERIOD_MS == 0u) {
-        sim_couple_heartbeat_frame(d->cfg.node, d->hb_counter++, SIM_RUN_TELEMETRY_MS, &f);
+        sim_couple_heartbeat_frame(&d->host, d->cfg.node, SIM_RUN_TELEMETRY_MS, &f);
         (void)hal_sim_can_deliver(&f);
     }
     while (hal_sim_can_tx_peek(&f)) {
@@ -179,18 +178,20 @@ static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_ima
     sim_couple_device_config(sc, &d->cfg);
     hal_host_set_time_us(0u);
     app_init(&d->app, &d->cfg);
+    (void)sim_couple_host_session(&d->app, &d->host);
     const hal_sensors_t rest = {{sc->start_x_m, sc->start_y_m}, {0.0, 0.0}, {0.0, 0.0}};
     hal_host_set_sensors(&rest);
     for (uint32_t k = 0; k < SIM_RUN_START_TICKS; k++) {
         hal_host_set_time_us((uint64_t)k * APP_TICK_US);
         if (k == SIM_RUN_START_TICKS - 1u) {
             can_frame_t f;
-            sim_couple_heartbeat_frame(d->cfg.node, d->hb_counter++, SIM_RUN_TELEMETRY_MS, &f);
+            sim_couple_heartbeat_frame(&d->host, d->cfg.node, SIM_RUN_TELEMETRY_MS, &f);
             (void)hal_sim_can_deliver(&f);
             if (sc->mode == SIM_MODE_TEACH) {
-                sim_couple_command_frame(d->cfg.node, d->cmd_counter++, APP_CMD_TEACH, 0u, 0.0, 0.0,
-                                         0u, &f);
-                (void)hal_sim_can_deliver(&f);
+                can_frame_t c[2];
+                (void)sim_couple_command_frames(&d->host, d->cfg.node, APP_CMD_TEACH, 0u, 0.0, 0.0,
+                                                0u, c);
+                (void)hal_sim_can_deliver(&c[0]);
             }
         }
         app_tick(&d->app, false);

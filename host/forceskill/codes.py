@@ -144,6 +144,11 @@ NVM_ERR_PAYLOAD = 543  # payload rejected by the content check (e.g. skill_parse
 SEC_ERR_NULL_ARG = 550  # a required pointer was NULL
 SEC_ERR_RNG = 551  # the random source failed or returned a degenerate seed
 SEC_ERR_CONFIG = 552  # configuration invalid (secret length, attempts, delays)
+SEC_ERR_MAC = 553
+SEC_ERR_REPLAY = 554
+SEC_ERR_NO_KEY = 555
+SEC_ERR_FRESHNESS = 556
+SEC_ERR_EXECUTE_OPTIONS = 557
 
 # Host: demonstrations, fitting, files, the CAN link (6xx)
 ERR_DEMO_FILE = 600  # file missing, unreadable, or no reader for its suffix
@@ -189,6 +194,8 @@ ERR_WIRE_RANGE = 669
 ERR_SKILL_STIFFNESS = 690
 ERR_LOG_UNREADABLE = 691
 ERR_TELEMETRY_GAP = 692
+ERR_LINK_PROTOCOL = 693
+ERR_LINK_AUTH = 694
 
 # Firmware image and update (700-729, firmware/boot)
 BOOT_ERR_TRUNCATED = 700  # fewer bytes than header + payload_length + tag
@@ -241,6 +248,8 @@ DID_LAST_TRANSFER = 0x0201  # status code u16 of the last download (0 ok)
 DID_DEVICE_STATE = 0x0300  # state u8, fault u16, slot u8, step u8, tick u32
 DID_STIFFNESS_MAX = 0x0140  # highest nominal skill stiffness the device accepts, N/m (f32)
 DID_FAULT_CAUSES = 0x0301  # latched mask u32, causes present mask u32 (bit n: fault 500+n)
+DID_MOTION_KEY = 0x0302
+DID_AUTH_STATS = 0x0303
 DID_FWU_STATUS = 0xF1B0  # update status: FWU_STATUS_LEN bytes, see fwu_status()
 RID_RUN_SKILL = 0x0201  # start: slot u8, goal_scale u16 (1e-3), time_scale u16 (1e-3), end u8
 RID_RUN_SEQUENCE = 0x0202
@@ -395,6 +404,11 @@ __all__ = [
     'SEC_ERR_NULL_ARG',
     'SEC_ERR_RNG',
     'SEC_ERR_CONFIG',
+    'SEC_ERR_MAC',
+    'SEC_ERR_REPLAY',
+    'SEC_ERR_NO_KEY',
+    'SEC_ERR_FRESHNESS',
+    'SEC_ERR_EXECUTE_OPTIONS',
     'ERR_DEMO_FILE',
     'ERR_DEMO_FORMAT',
     'ERR_DEMO_COLUMN',
@@ -438,6 +452,8 @@ __all__ = [
     'ERR_SKILL_STIFFNESS',
     'ERR_LOG_UNREADABLE',
     'ERR_TELEMETRY_GAP',
+    'ERR_LINK_PROTOCOL',
+    'ERR_LINK_AUTH',
     'BOOT_ERR_TRUNCATED',
     'BOOT_ERR_MAGIC',
     'BOOT_ERR_FORMAT',
@@ -482,6 +498,8 @@ __all__ = [
     'DID_DEVICE_STATE',
     'DID_STIFFNESS_MAX',
     'DID_FAULT_CAUSES',
+    'DID_MOTION_KEY',
+    'DID_AUTH_STATS',
     'DID_FWU_STATUS',
     'RID_RUN_SKILL',
     'RID_RUN_SEQUENCE',

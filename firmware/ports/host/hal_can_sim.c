@@ -81,6 +81,9 @@ bool hal_can_tx_idle(void)
 
 bool hal_sim_can_deliver(const can_frame_t *f)
 {
+    if (q.bus_off) {
+        return false; /* a controller off the bus receives nothing either */
+    }
     if (q.rx_len >= HAL_SIM_RX_QUEUE) {
         q.rx_overflows++;
         return false;

@@ -53,7 +53,8 @@ void hal_host_flash_erase(void);
 /** Empty both queues and clear bus-off. */
 void hal_sim_can_reset(void);
 
-/** The bus delivers a frame to the device; false (dropped) if the rx FIFO is full. */
+/** The bus delivers a frame to the device; false (dropped) if the rx FIFO is full or the
+ *  controller is bus-off (off the bus, it receives nothing). */
 bool hal_sim_can_deliver(const can_frame_t *f);
 
 /** The most urgent frame the device queued for transmission (lowest identifier, the oldest among

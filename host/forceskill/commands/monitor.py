@@ -12,7 +12,11 @@ from ._common import add_common, connect
 def _cmd(args: argparse.Namespace) -> int:
     with connect(args) as dev:
         tel = dev.start_telemetry()
-        if args.rate:
+        if args.rate:  # the rate travels in the heartbeat: authenticated, as every host frame
+            from ..link import uds as U
+
+            with U.uds_client(dev, request_timeout_s=2.0) as client:
+                U.motion_session(client, dev)
             dev.start_heartbeat(telemetry_period_ms=args.rate)
         t_end = time.monotonic() + args.duration if args.duration else None
         if args.plot:

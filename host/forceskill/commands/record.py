@@ -11,7 +11,9 @@ import can
 
 from ..errors import ERR_RUN_FAULT, FsError, fault_text
 from ..link import ERR_LINK_ARGS, ERR_LINK_STATE, ERR_LINK_TIMEOUT
+from ..link import uds as U
 from ..link.bus import error_summary
+from ..link.device import Device, Status
 from ..outputs import Outputs
 from ..wire import TICK_HZ
 from ._common import add_common, close_log, connect, open_log, sigint_flag
@@ -52,62 +54,72 @@ def _record(args: argparse.Namespace, writer: can.Listener) -> FsError | None:
                 f"{f' (fault {fault_text(st.fault_code)})' if st.fault_code else ''}; TEACH needs IDLE",
             )
         assert dev.notifier is not None
-        dev.notifier.add_listener(writer)
-        try:
-            with sigint_flag() as stop:
-                dev.start_heartbeat(telemetry_period_ms=1)
-                try:
-                    if args.teach:
-                        st = dev.command_until("teach", {"TEACH"}, 2.0 * args.timeout)
-                    start_tick = st.tick
-                    print(
-                        f"recording node {dev.node} on {dev.channel} to {args.output}"
-                        f"{' in TEACH' if args.teach else ''}; "
-                        + (f"{args.duration:g} s of device time" if args.duration else "Ctrl-C to stop"),
-                        flush=True,
-                    )
-                    last_frame = time.monotonic()
-                    seen = dev.frames_seen
-                    while not stop["stop"]:
-                        time.sleep(0.02)
-                        dev.check_link()
-                        if dev.frames_seen != seen:
-                            seen, last_frame = dev.frames_seen, time.monotonic()
-                        elif time.monotonic() - last_frame > args.timeout:
-                            raise FsError(
-                                ERR_LINK_TIMEOUT,
-                                f"node {dev.node} on {dev.channel} stopped sending for {args.timeout:g} s",
-                            )
-                        cur = dev.status
-                        if cur is None:
-                            continue
-                        if args.teach and cur.state != "TEACH":
-                            raise FsError(
-                                ERR_RUN_FAULT if cur.state == "FAULT" else ERR_LINK_STATE,
-                                f"node {dev.node} left TEACH ({cur.state}, fault "
-                                f"{fault_text(cur.fault_code)}) after "
-                                f"{((cur.tick - start_tick) & 0xFFFFFF) / TICK_HZ:.3f} s",
-                            )
-                        if args.duration and ((cur.tick - start_tick) & 0xFFFFFF) >= args.duration * TICK_HZ:
-                            break
-                    if args.teach:
-                        dev.command_until("idle", {"IDLE", "FAULT"}, 2.0 * args.timeout)
-                except (FsError, OSError, can.CanError) as e:
-                    if args.teach:
-                        try:
-                            dev.command_until("idle", {"IDLE", "FAULT"}, 0.5)
-                        except (FsError, OSError, can.CanError):
-                            pass
-                    if isinstance(e, FsError):
-                        return e
-                    return FsError(
-                        ERR_LINK_TIMEOUT,
-                        f"link to node {dev.node} on {dev.channel} lost: {error_summary(e)}",
-                    )
-                finally:
-                    dev.stop_heartbeat()
-        finally:
-            dev.notifier.remove_listener(writer)
+        with U.uds_client(dev, request_timeout_s=2.0) as client:
+            U.motion_session(client, dev)  # authenticated heartbeats and commands
+        return _record_session(args, dev, writer, st)
+
+
+def _record_session(
+    args: argparse.Namespace, dev: Device, writer: can.Listener, st: Status
+) -> FsError | None:
+    """The recording itself, with the motion session established."""
+    assert dev.notifier is not None
+    dev.notifier.add_listener(writer)
+    try:
+        with sigint_flag() as stop:
+            dev.start_heartbeat(telemetry_period_ms=1)
+            try:
+                if args.teach:
+                    st = dev.command_until("teach", {"TEACH"}, 2.0 * args.timeout)
+                start_tick = st.tick
+                print(
+                    f"recording node {dev.node} on {dev.channel} to {args.output}"
+                    f"{' in TEACH' if args.teach else ''}; "
+                    + (f"{args.duration:g} s of device time" if args.duration else "Ctrl-C to stop"),
+                    flush=True,
+                )
+                last_frame = time.monotonic()
+                seen = dev.frames_seen
+                while not stop["stop"]:
+                    time.sleep(0.02)
+                    dev.check_link()
+                    if dev.frames_seen != seen:
+                        seen, last_frame = dev.frames_seen, time.monotonic()
+                    elif time.monotonic() - last_frame > args.timeout:
+                        raise FsError(
+                            ERR_LINK_TIMEOUT,
+                            f"node {dev.node} on {dev.channel} stopped sending for {args.timeout:g} s",
+                        )
+                    cur = dev.status
+                    if cur is None:
+                        continue
+                    if args.teach and cur.state != "TEACH":
+                        raise FsError(
+                            ERR_RUN_FAULT if cur.state == "FAULT" else ERR_LINK_STATE,
+                            f"node {dev.node} left TEACH ({cur.state}, fault "
+                            f"{fault_text(cur.fault_code)}) after "
+                            f"{((cur.tick - start_tick) & 0xFFFFFF) / TICK_HZ:.3f} s",
+                        )
+                    if args.duration and ((cur.tick - start_tick) & 0xFFFFFF) >= args.duration * TICK_HZ:
+                        break
+                if args.teach:
+                    dev.command_until("idle", {"IDLE", "FAULT"}, 2.0 * args.timeout)
+            except (FsError, OSError, can.CanError) as e:
+                if args.teach:
+                    try:
+                        dev.command_until("idle", {"IDLE", "FAULT"}, 0.5)
+                    except (FsError, OSError, can.CanError):
+                        pass
+                if isinstance(e, FsError):
+                    return e
+                return FsError(
+                    ERR_LINK_TIMEOUT,
+                    f"link to node {dev.node} on {dev.channel} lost: {error_summary(e)}",
+                )
+            finally:
+                dev.stop_heartbeat()
+    finally:
+        dev.notifier.remove_listener(writer)
     return None
 
 

@@ -212,6 +212,7 @@ def run_on_device(
         assert notifier is not None
         if writer is not None:
             notifier.add_listener(writer)
+        U.motion_session(client, dev)  # authenticated heartbeats and commands; the run's start
         tel = dev.start_telemetry()
         n_emcy = len(dev.emergencies)
         dev.start_heartbeat(telemetry_period_ms=1)

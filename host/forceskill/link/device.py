@@ -16,7 +16,7 @@ from typing import Any
 import can
 
 from ..errors import FsError
-from ..wire.dbc import END_POLICIES, MODES, STATES, check, load_db, protect
+from ..wire.dbc import AUTH_FRAMES, END_POLICIES, MODES, STATES, authenticate, check, load_db, protect
 from ..wire.telemetry import TelemetryPairer
 from . import ERR_LINK_NO_RESPONSE, ERR_LINK_TIMEOUT
 from .bus import error_summary
@@ -29,6 +29,9 @@ HEARTBEAT_PERIOD_S = 0.010  # well inside the device's 100 ms silence timeout, a
 #: default 5 ms): the heartbeat thread shares the interpreter with the receive thread, which decodes
 #: 2 kHz of telemetry, and on a loaded machine each wait is stretched by the CPU share.
 HEARTBEAT_GIL_SWITCH_S = 0.0005
+#: Commands without effect after which command_until re-establishes the motion session (a frame
+#: lost on the bus three times in a row is unlikely; a device that forgot the key is not).
+RESYNC_AFTER = 3
 
 
 @dataclass
@@ -69,6 +72,15 @@ class Telemetry:
         return tick16 + 65536 * self._wraps
 
 
+@dataclass
+class MotionSession:
+    """The host's side of an authenticated session: the motion key (never sent) and the last
+    freshness value sent on each authenticated frame."""
+
+    key: bytes
+    fv: dict[str, int] = field(default_factory=lambda: dict.fromkeys(AUTH_FRAMES, 0))
+
+
 class Device(can.Listener):
     """One node on a bus. Use as a context manager: starts a Notifier (shared with ISO-TP)."""
 
@@ -89,6 +101,12 @@ class Device(can.Listener):
         self._pairs: TelemetryPairer[tuple[int, float, float]] = TelemetryPairer()
         self._lock = threading.Lock()
         self._counter = {"HostCommand": 0, "HostHeartbeat": 0}
+        #: The motion key and freshness values (``link.uds.motion_session``); without one only a
+        #: stop (HostCommand IDLE) is accepted by the device.
+        self.session: MotionSession | None = None
+        #: Re-establishes the session (set by ``link.uds.motion_session``): command_until calls it
+        #: when a command had no effect (device reset, freshness lost after a bus-off).
+        self.resync: Callable[[], None] | None = None
         self._hb_task: can.broadcastmanager.CyclicSendTaskABC | None = None
         self.heartbeat_sent: list[float] = []  # monotonic send times (diagnostics)
         self.telemetry_period_ms = 0
@@ -206,28 +224,39 @@ class Device(can.Listener):
         )
 
     # -- sending --------------------------------------------------------------------------------
-    def _send_safety(self, name: str, signals: dict[str, Any]) -> None:
+    def _frame(self, name: str, signals: dict[str, Any]) -> bytes:
+        """Encode a host frame (of a multiplexed frame only the signals of its mode) and protect it:
+        freshness value, MAC and CRC with a session, else the E2E counter and CRC only."""
         m = self._m[name]
-        full = {s.name: 0 for s in m.signals}
-        full.update(signals)
+        mode = signals.get("Mode")
+        full = {s.name: 0 for s in m.signals if s.multiplexer_ids is None or mode in s.multiplexer_ids}
+        full.update({k: v for k, v in signals.items() if k in full})
         data = m.encode(full, strict=True)
         with self._lock:
+            s = self.session
+            if s is not None:
+                s.fv[name] += 1
+                return authenticate(m.frame_id, data, s.fv[name], s.key)
             c = self._counter[name] = (self._counter[name] + 1) & 0x0F
-        self.bus.send(
-            can.Message(arbitration_id=m.frame_id, data=protect(m.frame_id, data, c), is_extended_id=False)
-        )
+        return protect(m.frame_id, data, c)
+
+    def _send_safety(self, name: str, signals: dict[str, Any]) -> None:
+        data = self._frame(name, signals)
+        self.bus.send(can.Message(arbitration_id=self._m[name].frame_id, data=data, is_extended_id=False))
+
+    def set_session(self, key: bytes) -> None:
+        """Use a newly established motion key: both freshness values restart at 0 (as the
+        device's do)."""
+        with self._lock:
+            self.session = MotionSession(key)
 
     def heartbeat(self) -> None:
         self._send_safety("HostHeartbeat", {"TelemetryPeriod": self.telemetry_period_ms})
 
     def _heartbeat_update(self, msg: can.Message) -> None:
-        """Cyclic task callback: the next heartbeat's content (telemetry period, counter, CRC)."""
-        m = self._m["HostHeartbeat"]
-        full = {s.name: 0 for s in m.signals}
-        full["TelemetryPeriod"] = self.telemetry_period_ms
-        with self._lock:
-            c = self._counter["HostHeartbeat"] = (self._counter["HostHeartbeat"] + 1) & 0x0F
-        msg.data[:] = protect(m.frame_id, m.encode(full, strict=True), c)
+        """Cyclic task callback: the next heartbeat's content (telemetry period, freshness, MAC,
+        CRC)."""
+        msg.data[:] = self._frame("HostHeartbeat", {"TelemetryPeriod": self.telemetry_period_ms})
         self.heartbeat_sent.append(time.monotonic())
         if len(self.heartbeat_sent) > 100000:
             del self.heartbeat_sent[:50000]
@@ -269,23 +298,29 @@ class Device(can.Listener):
     def command(
         self, mode: str, slot: int = 0, goal_scale: float = 1.0, time_scale: float = 1.0, end: str = "skill"
     ) -> None:
-        """One HostCommand frame (each valid frame is one command)."""
-        self._send_safety(
-            "HostCommand",
-            {
-                "Mode": MODES[mode],
-                "Slot": slot,
-                "GoalScale": goal_scale,
-                "TimeScale": time_scale,
-                "EndPolicy": END_POLICIES[end],
-            },
-        )
+        """One HostCommand (each valid frame is one command); EXECUTE is two frames, its
+        RUN_OPTIONS (time scale, end policy) and then EXECUTE (slot, goal scale)."""
+        if mode == "execute":
+            self._send_safety(
+                "HostCommand",
+                {"Mode": MODES["run_options"], "TimeScale": time_scale, "EndPolicy": END_POLICIES[end]},
+            )
+        self._send_safety("HostCommand", {"Mode": MODES[mode], "Slot": slot, "GoalScale": goal_scale})
 
     def command_until(self, mode: str, states: set[str], timeout_s: float, retry_s: float = 0.2) -> Status:
-        """Send a mode command and repeat it (each with a new counter) until the status shows one
-        of states: a command frame lost or corrupted on the bus is simply sent again."""
+        """Send a mode command and repeat it (each with a new freshness value) until the status
+        shows one of states: a command frame lost or corrupted on the bus is simply sent again;
+        after RESYNC_AFTER commands without effect the session is re-established once (``resync``:
+        the device was reset, or lost more frames than the freshness window absorbs)."""
         end = time.monotonic() + timeout_s
+        tries = 0
         while True:
+            if tries == RESYNC_AFTER and self.resync is not None and mode != "idle":
+                try:
+                    self.resync()
+                except FsError:
+                    pass  # e.g. refused while the device still moves: the next try tells
+            tries += 1
             self.command(mode)
             try:
                 return self.wait_state(states, min(retry_s, max(0.0, end - time.monotonic())))

@@ -26,6 +26,7 @@ from udsoncan.exceptions import NegativeResponseException, TimeoutException, Une
 
 from .. import wire as W
 from ..codes import (  # noqa: F401
+    DID_AUTH_STATS,
     DID_COMM,
     DID_DEVICE_STATE,
     DID_FAULT_CAUSES,
@@ -34,11 +35,14 @@ from ..codes import (  # noqa: F401
     DID_LAST_TRANSFER,
     DID_LIMITS_X,
     DID_LIMITS_Y,
+    DID_MOTION_KEY,
     DID_OBJECT,
     DID_SLOT_DIR,
     DID_STIFFNESS_MAX,
     DID_SW_VERSION,
     DID_VERSIONS,
+    ERR_LINK_AUTH,
+    ERR_LINK_PROTOCOL,
     RID_CLEAR_FAULTS,
     RID_ERASE_SLOT,
     RID_RUN_SEQUENCE,
@@ -101,7 +105,13 @@ DID_CODECS = {
     DID_DEVICE_STATE: Raw(W.DeviceState.SIZE),
     DID_FAULT_CAUSES: Raw(W.FaultCauses.SIZE),
     DID_STIFFNESS_MAX: Raw(W.StiffnessMax.SIZE),
+    DID_MOTION_KEY: Raw(17),  # device nonce (16) + keyed flag
+    DID_AUTH_STATS: Raw(31),
 }
+
+#: The protocol major version this host speaks (DID 0xF1A0 byte 0): 2 = authenticated motion.
+PROTO_MAJOR = 2
+SESSION_EXTENDED = 0x03
 
 
 def mask_codes(mask: int) -> list[int]:
@@ -254,6 +264,67 @@ def unlock(
             raise _refusal(what, e, node, on_nrc) from None
         except TimeoutException:
             raise FsError(ERR_LINK_TIMEOUT, f"{what}: no UDS response from node {node}") from None
+
+
+def check_protocol(client: Client, node: int) -> None:
+    """FsError(693) unless the device speaks this host's protocol major version."""
+    major = read_did(client, DID_VERSIONS, node)[0]
+    if major != PROTO_MAJOR:
+        raise FsError(
+            ERR_LINK_PROTOCOL,
+            f"node {node} speaks protocol {major}, this host {PROTO_MAJOR} (authenticated motion): "
+            "update the firmware or the host tools",
+        )
+
+
+def _again(fn: Callable[[], Any], tries: int) -> Any:
+    """fn(), repeated while it fails for a request without an answer (a frame lost on the bus)."""
+    for attempt in range(tries):
+        try:
+            return fn()
+        except FsError as e:
+            if e.code != ERR_LINK_TIMEOUT or attempt == tries - 1:
+                raise
+    raise AssertionError("unreachable")
+
+
+def motion_session(client: Client, dev: Device, tries: int = 10) -> None:
+    """Establish the motion key with dev (docs/protocol.md): check the protocol version, unlock
+    level 1 in the extended session, write a fresh host nonce to DID 0x0302, read the device's
+    nonce back, derive the key from the level-1 secret; commands and heartbeats are authenticated
+    from then on. Also installs it as dev.resync (the same exchange again). A request without an
+    answer is sent again, up to tries times. FsError 693/694."""
+    from .dbc import derive_motion_key
+
+    node = dev.node
+    _again(lambda: check_protocol(client, node), tries)
+
+    def refused(what: str, e: NegativeResponseException) -> FsError:
+        return FsError(ERR_LINK_AUTH, f"motion key with node {node}: {what}: {describe_nrc(e)}")
+
+    def establish(client: Client) -> None:
+        _again(lambda: unlock(client, node, SESSION_EXTENDED, on_nrc=refused), tries)
+        host_nonce = os.urandom(16)
+        _again(
+            lambda: call(
+                "write 0x0302",
+                lambda: client.write_data_by_identifier(DID_MOTION_KEY, host_nonce),
+                node,
+                on_nrc=refused,
+            ),
+            tries,
+        )
+        r = _again(lambda: read_did(client, DID_MOTION_KEY, node), tries)
+        if r[16] != 1:
+            raise FsError(ERR_LINK_AUTH, f"node {node} did not establish the motion key")
+        dev.set_session(derive_motion_key(device_secret(SEC_LEVEL_WRITE), r[:16], host_nonce))
+
+    def resync() -> None:
+        with uds_client(dev, request_timeout_s=2.0) as c:
+            establish(c)
+
+    establish(client)
+    dev.resync = resync
 
 
 def read_did(client: Client, did: int, node: int) -> bytes:

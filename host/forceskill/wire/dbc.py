@@ -20,7 +20,12 @@ from ..errors import ERR_IO, FsError
 
 SAFETY_FRAMES = ("Emergency", "HostCommand", "HostHeartbeat", "DeviceStatus")
 STATES = {0: "BOOT", 1: "IDLE", 2: "TEACH", 3: "EXECUTE", 4: "FAULT"}
-MODES = {"none": 0, "idle": 1, "teach": 2, "execute": 3, "clear_fault": 4}
+MODES = {"none": 0, "idle": 1, "teach": 2, "execute": 3, "clear_fault": 4, "run_options": 5}
+#: The frames that carry a MAC and a freshness value, each its own channel (docs/protocol.md).
+AUTH_FRAMES = ("HostCommand", "HostHeartbeat")
+#: The label of the motion key's derivation (firmware/security/secoc.h SECOC_LABEL).
+SECOC_LABEL = b"forceskill secoc v1"
+MAC_LEN = 3
 END_POLICIES = {"skill": 0, "hold": 1, "release": 2}
 
 
@@ -75,6 +80,34 @@ def protect(frame_id: int, data: bytes, counter: int) -> bytes:
     """Put counter (low nibble of byte 6) and the CRC (byte 7) into an 8-byte safety frame."""
     b = bytearray(data)
     b[6] = (b[6] & 0xF0) | (counter & 0x0F)
+    b[7] = frame_crc(frame_id, b)
+    return bytes(b)
+
+
+def derive_motion_key(secret: bytes, dev_nonce: bytes, host_nonce: bytes) -> bytes:
+    """The session's motion key: HMAC-SHA256(level-1 secret, label || device || host nonce)."""
+    import hashlib
+    import hmac
+
+    return hmac.new(secret, SECOC_LABEL + dev_nonce + host_nonce, hashlib.sha256).digest()
+
+
+def frame_mac(key: bytes, frame_id: int, data: bytes | bytearray, fv: int) -> bytes:
+    """The 24-bit MAC of an authenticated frame: HMAC-SHA256(key, id low, id high, data bytes
+    0..2, freshness value u32 big-endian), first 3 bytes."""
+    import hashlib
+    import hmac
+
+    msg = bytes([frame_id & 0xFF, (frame_id >> 8) & 0x07]) + bytes(data[:3]) + fv.to_bytes(4, "big")
+    return hmac.new(key, msg, hashlib.sha256).digest()[:MAC_LEN]
+
+
+def authenticate(frame_id: int, data: bytes, fv: int, key: bytes) -> bytes:
+    """An 8-byte authenticated frame: the freshness value's low 8 bits in byte 6 (its low nibble
+    is the E2E counter), the MAC in bytes 3..5, then the CRC (byte 7)."""
+    b = bytearray(data)
+    b[6] = fv & 0xFF
+    b[3:6] = frame_mac(key, frame_id, b, fv)
     b[7] = frame_crc(frame_id, b)
     return bytes(b)
 

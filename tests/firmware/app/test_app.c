@@ -20,8 +20,26 @@
 static app_t app;
 static app_config_t cfg;
 static uint64_t t_us;
-static uint8_t e2e_cmd_counter;
-static uint8_t e2e_hb_counter;
+static secoc_t host; /* the test host's session: motion key and freshness values */
+
+/* The host session with the device (as the DID 0x0302 write, then the host's derivation). */
+static void host_session(void)
+{
+    static const uint8_t nonce[SECOC_NONCE_LEN] = "test host nonce";
+    assert_int_equal(app_motion_key(&app, nonce, SECOC_NONCE_LEN), 0);
+    uint8_t len = 0u;
+    const uint8_t *secret = hal_device_secret(UDS_SEC_LEVEL_WRITE, &len);
+    secoc_start_session(&host, secret, len, app.secoc_dev_nonce, nonce);
+}
+
+/* MAC, freshness and E2E of a packed host frame, sent to the device (lost while it is bus-off:
+ * the host's freshness value advances all the same). */
+static void deliver_authentic(can_frame_t *f, secoc_channel_t ch)
+{
+    const uint32_t fv = secoc_protect(&host, f, ch);
+    e2e_protect(f, (uint8_t)(fv & E2E_COUNTER_MASK));
+    (void)hal_sim_can_deliver(f);
+}
 
 /* frames the device sent, collected per tick */
 #define OUTCAP 4096u
@@ -52,23 +70,27 @@ static void ticks(unsigned n)
 static void send_command(uint8_t mode, uint8_t slot)
 {
     struct fs_dbc_host_command_t c;
+    can_frame_t f = {.id = PROTO_ID_HOST_COMMAND(0), .len = 8};
+    if (mode == APP_CMD_EXECUTE) { /* its time scale and end policy first */
+        memset(&c, 0, sizeof(c));
+        c.mode = APP_CMD_RUN_OPTIONS;
+        c.time_scale = 1000u;
+        (void)fs_dbc_host_command_pack(f.data, &c, 8);
+        deliver_authentic(&f, SECOC_CH_COMMAND);
+    }
     memset(&c, 0, sizeof(c));
     c.mode = mode;
     c.slot = slot;
     c.goal_scale = 1000u;
-    c.time_scale = 1000u;
-    can_frame_t f = {.id = PROTO_ID_HOST_COMMAND(0), .len = 8};
     (void)fs_dbc_host_command_pack(f.data, &c, 8);
-    e2e_protect(&f, ++e2e_cmd_counter);
-    assert_true(hal_sim_can_deliver(&f));
+    deliver_authentic(&f, SECOC_CH_COMMAND);
 }
 
 static void send_heartbeat(void)
 {
     can_frame_t f = {.id = PROTO_ID_HOST_HEARTBEAT(0), .len = 8};
     memset(f.data, 0, 8);
-    e2e_protect(&f, ++e2e_hb_counter);
-    assert_true(hal_sim_can_deliver(&f));
+    deliver_authentic(&f, SECOC_CH_HEARTBEAT);
 }
 
 static struct fs_dbc_device_status_t last_status(void)
@@ -111,6 +133,7 @@ static int setup(void **state)
     app_config_default(&cfg);
     hal_host_set_time_us(0u);
     app_init(&app, &cfg);
+    host_session();
     isotp_config_t c;
     isotp_config_default(&c, PROTO_ID_UDS_REQUEST(0), PROTO_ID_UDS_RESPONSE(0));
     isotp_init(&tester, &c, tester_send, NULL);
@@ -298,6 +321,9 @@ static void test_bus_off_emergency_sent_after_recovery(void **state)
     const unsigned before = n_out;
     hal_sim_can_set_bus_off(false);
     tick();
+    /* the heartbeats lost meanwhile are within the freshness window: the next one is taken */
+    const uint32_t accepted = app.secoc.accepted;
+    send_heartbeat();
     assert_true(n_out > before);
     assert_int_equal(out[before].id, PROTO_ID_EMERGENCY(0));
     e2e_rx_t rx;
@@ -315,6 +341,7 @@ static void test_bus_off_emergency_sent_after_recovery(void **state)
     for (unsigned i = before + 1u; i < n_out; i++) {
         assert_int_not_equal(out[i].id, PROTO_ID_EMERGENCY(0));
     }
+    assert_int_equal(app.secoc.accepted, accepted + 1u);
 }
 
 /* RequestDownload and one TransferData of img into slot, no RequestTransferExit yet. */
@@ -366,8 +393,7 @@ static void test_execute_and_refusals(void **state)
     unlock(UDS_SESSION_PROGRAMMING);
     assert_int_equal(download(2, image_a, len_a, UINT32_MAX), 0x00);
     uint8_t r[64];
-    const uint8_t dflt[2] = {0x10, 0x01};
-    assert_int_equal(uds(dflt, 2, r, sizeof(r)), 6);
+    unlock(UDS_SESSION_EXTENDED); /* a run is started by the unlocked host session */
     /* empty slot -> out of range; valid slot -> EXECUTE */
     const uint8_t run_empty[10] = {0x31, 0x01, 0x02, 0x01, 5, 0x03, 0xE8, 0x03, 0xE8, 0};
     assert_int_equal(uds(run_empty, 10, r, sizeof(r)), 3);
@@ -473,15 +499,16 @@ static void test_ecu_reset_responds_then_resets(void **state)
     assert_int_equal(app.slot_len[0], len_a);
     ticks(2);
     assert_int_equal(app.state, APP_IDLE);
+    assert_false(app.secoc.keyed); /* the motion key does not survive a reset */
     /* soft reset with the positive response suppressed (bit 7): no answer, reset all the same */
     assert_int_equal(ecu_reset(0x83, r, &t_resp, &t_reset), 0);
     assert_int_not_equal(t_reset, UINT32_MAX);
     assert_true(t_reset <= 2u);
     /* refused while executing: 7F 11 22 and no reset */
+    host_session(); /* the host's new session after the reset */
     unlock(UDS_SESSION_PROGRAMMING);
     uint8_t rr[64];
-    const uint8_t dflt[2] = {0x10, 0x01};
-    assert_int_equal(uds(dflt, 2, rr, sizeof(rr)), 6);
+    unlock(UDS_SESSION_EXTENDED);
     send_heartbeat();
     const uint8_t run1[10] = {0x31, 0x01, 0x02, 0x01, 1, 0x03, 0xE8, 0x03, 0xE8, 0};
     assert_int_equal(uds(run1, 10, rr, sizeof(rr)), 4);

@@ -18,9 +18,11 @@
       F(counter, "Counter") F(crc, "Crc")) \
     X(host_command, HOST_COMMAND, "HostCommand", \
       F(mode, "Mode") F(slot, "Slot") F(goal_scale, "GoalScale") F(time_scale, "TimeScale") \
-      F(end_policy, "EndPolicy") F(counter, "Counter") F(crc, "Crc")) \
+      F(end_policy, "EndPolicy") F(mac, "Mac") F(counter, "Counter") F(freshness, "Freshness") \
+      F(crc, "Crc")) \
     X(host_heartbeat, HOST_HEARTBEAT, "HostHeartbeat", \
-      F(telemetry_period, "TelemetryPeriod") F(counter, "Counter") F(crc, "Crc")) \
+      F(telemetry_period, "TelemetryPeriod") F(mac, "Mac") F(counter, "Counter") \
+      F(freshness, "Freshness") F(crc, "Crc")) \
     X(device_status, DEVICE_STATUS, "DeviceStatus", \
       F(state, "State") F(slot, "Slot") F(fault_code, "FaultCode") F(tick, "Tick") \
       F(counter, "Counter") F(actuator_enabled, "ActuatorEnabled") F(host_alive, "HostAlive") \
@@ -88,14 +90,16 @@ static int cmd_unpack(const char *name, const char *hex)
 #define G(lc, field) printf(" %.9g", (double)fs_dbc_##lc##_##field##_decode(msg.field));
 #define X(lc, uc, mname, fields) \
     if (strcmp(name, mname) == 0) { \
-        struct fs_dbc_##lc##_t msg; if (fs_dbc_##lc##_unpack(&msg, buf, sizeof(buf)) != 0) return -1; \
+        struct fs_dbc_##lc##_t msg; memset(&msg, 0, sizeof(msg)); \
+        if (fs_dbc_##lc##_unpack(&msg, buf, sizeof(buf)) != 0) return -1; \
         fields printf("|"); PHYS_##lc printf("\n"); return 0; }
 #define PHYS_emergency G(emergency, fault_code) G(emergency, state) G(emergency, n_latched) \
     G(emergency, tick) G(emergency, counter) G(emergency, crc)
 #define PHYS_host_command G(host_command, mode) G(host_command, slot) G(host_command, goal_scale) \
-    G(host_command, time_scale) G(host_command, end_policy) G(host_command, counter) G(host_command, crc)
-#define PHYS_host_heartbeat G(host_heartbeat, telemetry_period) G(host_heartbeat, counter) \
-    G(host_heartbeat, crc)
+    G(host_command, time_scale) G(host_command, end_policy) G(host_command, mac) \
+    G(host_command, counter) G(host_command, freshness) G(host_command, crc)
+#define PHYS_host_heartbeat G(host_heartbeat, telemetry_period) G(host_heartbeat, mac) \
+    G(host_heartbeat, counter) G(host_heartbeat, freshness) G(host_heartbeat, crc)
 #define PHYS_device_status G(device_status, state) G(device_status, slot) G(device_status, fault_code) \
     G(device_status, tick) G(device_status, counter) G(device_status, actuator_enabled) \
     G(device_status, host_alive) G(device_status, sequence_step) G(device_status, crc)

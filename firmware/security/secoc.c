@@ -1,0 +1,166 @@
+/* Authenticated host frames (SecOC style): see secoc.h. */
+#include "secoc.h"
+
+#include <string.h>
+
+#define SECOC_MSG_LEN (2u + SECOC_PAYLOAD_LEN + 4u) /* id (2), payload, FV (4) */
+
+void secoc_init(secoc_t *s)
+{
+    memset(s, 0, sizeof(*s));
+}
+
+void secoc_derive_key(const uint8_t *secret, uint32_t secret_len,
+                      const uint8_t dev_nonce[SECOC_NONCE_LEN],
+                      const uint8_t host_nonce[SECOC_NONCE_LEN], uint8_t key[SECOC_KEY_LEN])
+{
+    static const char label[] = SECOC_LABEL;
+    sec_hmac_t h;
+    sec_hmac_init(&h, secret, secret_len);
+    sec_hmac_update(&h, (const uint8_t *)label, (uint32_t)(sizeof label - 1u));
+    sec_hmac_update(&h, dev_nonce, SECOC_NONCE_LEN);
+    sec_hmac_update(&h, host_nonce, SECOC_NONCE_LEN);
+    sec_hmac_final(&h, key);
+}
+
+void secoc_set_key(secoc_t *s, const uint8_t *key, uint32_t key_len)
+{
+    uint8_t pad[SEC_SHA256_BLOCK];
+    memset(pad, 0, sizeof pad);
+    memcpy(pad, key, key_len > SEC_SHA256_BLOCK ? SEC_SHA256_BLOCK : key_len);
+    for (uint32_t i = 0; i < SEC_SHA256_BLOCK; i++) {
+        pad[i] ^= 0x36u;
+    }
+    sec_sha256_init(&s->inner);
+    sec_sha256_update(&s->inner, pad, SEC_SHA256_BLOCK);
+    for (uint32_t i = 0; i < SEC_SHA256_BLOCK; i++) {
+        pad[i] ^= (uint8_t)(0x36u ^ 0x5Cu);
+    }
+    sec_sha256_init(&s->outer);
+    sec_sha256_update(&s->outer, pad, SEC_SHA256_BLOCK);
+    sec_wipe(pad, sizeof pad);
+    s->fv[SECOC_CH_COMMAND] = 0u;
+    s->fv[SECOC_CH_HEARTBEAT] = 0u;
+    s->bad_in_row = 0u;
+    s->keyed = true;
+}
+
+void secoc_start_session(secoc_t *s, const uint8_t *secret, uint32_t secret_len,
+                         const uint8_t dev_nonce[SECOC_NONCE_LEN],
+                         const uint8_t host_nonce[SECOC_NONCE_LEN])
+{
+    uint8_t key[SECOC_KEY_LEN];
+    secoc_derive_key(secret, secret_len, dev_nonce, host_nonce, key);
+    secoc_init(s);
+    secoc_set_key(s, key, SECOC_KEY_LEN);
+    sec_wipe(key, sizeof key);
+}
+
+void secoc_forget(secoc_t *s)
+{
+    sec_wipe(&s->inner, (uint32_t)sizeof s->inner);
+    sec_wipe(&s->outer, (uint32_t)sizeof s->outer);
+    s->keyed = false;
+}
+
+void secoc_hmac(const secoc_t *s, const uint8_t *msg, uint32_t len, uint8_t out[SEC_SHA256_LEN])
+{
+    sec_sha256_t h = s->inner;
+    uint8_t d[SEC_SHA256_LEN];
+    sec_sha256_update(&h, msg, len);
+    sec_sha256_final(&h, d);
+    h = s->outer;
+    sec_sha256_update(&h, d, SEC_SHA256_LEN);
+    sec_sha256_final(&h, out);
+}
+
+void secoc_mac(const secoc_t *s, const can_frame_t *f, uint32_t fv, uint8_t mac[SECOC_MAC_LEN])
+{
+    uint8_t m[SECOC_MSG_LEN];
+    m[0] = (uint8_t)(f->id & 0xFFu);
+    m[1] = (uint8_t)((f->id >> 8) & 0x07u);
+    memcpy(&m[2], f->data, SECOC_PAYLOAD_LEN);
+    m[5] = (uint8_t)(fv >> 24);
+    m[6] = (uint8_t)(fv >> 16);
+    m[7] = (uint8_t)(fv >> 8);
+    m[8] = (uint8_t)fv;
+    uint8_t out[SEC_SHA256_LEN];
+    secoc_hmac(s, m, SECOC_MSG_LEN, out);
+    memcpy(mac, out, SECOC_MAC_LEN);
+}
+
+uint32_t secoc_protect(secoc_t *s, can_frame_t *f, secoc_channel_t ch)
+{
+    const uint32_t fv = ++s->fv[ch];
+    f->data[SECOC_FV_BYTE] = (uint8_t)(fv & 0xFFu);
+    secoc_mac(s, f, fv, &f->data[SECOC_MAC_OFFSET]);
+    return fv;
+}
+
+static sec_status_t refuse(secoc_t *s, sec_status_t why, uint32_t *count)
+{
+    (*count)++;
+    s->last_refusal = (uint16_t)why;
+    return why;
+}
+
+/* True if the frame's MAC is the one for freshness value fv. */
+static bool mac_matches(const secoc_t *s, const can_frame_t *f, uint32_t fv)
+{
+    uint8_t mac[SECOC_MAC_LEN];
+    secoc_mac(s, f, fv, mac);
+    return sec_ct_equal(mac, &f->data[SECOC_MAC_OFFSET], SECOC_MAC_LEN) == 1;
+}
+
+sec_status_t secoc_verify(secoc_t *s, const can_frame_t *f, secoc_channel_t ch)
+{
+    if (!s->keyed) {
+        return refuse(s, SEC_ERR_NO_KEY, &s->no_key);
+    }
+    const uint32_t last = s->fv[ch];
+    const uint32_t low = f->data[SECOC_FV_BYTE];
+    uint32_t fv = (last & ~(SECOC_FV_WINDOW - 1u)) | low;
+    if (fv <= last) {
+        fv += SECOC_FV_WINDOW;
+        if (fv < last) { /* the 32-bit counter is used up: a new key restarts it */
+            return refuse(s, SEC_ERR_FRESHNESS, &s->no_key);
+        }
+    }
+    if (mac_matches(s, f, fv)) {
+        s->fv[ch] = fv;
+        s->bad_in_row = 0u;
+        s->accepted++;
+        return SEC_OK;
+    }
+    if (fv >= SECOC_FV_WINDOW && mac_matches(s, f, fv - SECOC_FV_WINDOW)) {
+        return refuse(s, SEC_ERR_REPLAY, &s->replayed); /* a genuine frame already used */
+    }
+    (void)refuse(s, SEC_ERR_MAC, &s->bad_mac);
+    if (++s->bad_in_row >= SECOC_MAX_BAD_MAC) {
+        secoc_forget(s);
+        s->revoked++;
+    }
+    return SEC_ERR_MAC;
+}
+
+static void put_u32(uint8_t *b, uint32_t v)
+{
+    b[0] = (uint8_t)(v >> 24);
+    b[1] = (uint8_t)(v >> 16);
+    b[2] = (uint8_t)(v >> 8);
+    b[3] = (uint8_t)v;
+}
+
+void secoc_stats_encode(const secoc_t *s, uint8_t out[SECOC_STATS_LEN])
+{
+    put_u32(&out[0], s->accepted);
+    put_u32(&out[4], s->bad_mac);
+    put_u32(&out[8], s->replayed);
+    put_u32(&out[12], s->no_key);
+    put_u32(&out[16], s->revoked);
+    out[20] = (uint8_t)(s->last_refusal >> 8);
+    out[21] = (uint8_t)s->last_refusal;
+    out[22] = s->keyed ? 1u : 0u;
+    put_u32(&out[23], s->fv[SECOC_CH_COMMAND]);
+    put_u32(&out[27], s->fv[SECOC_CH_HEARTBEAT]);
+}
