@@ -294,7 +294,7 @@ def motion_session(client: Client, dev: Device, tries: int = 10) -> None:
     nonce back, derive the key from the level-1 secret; commands and heartbeats are authenticated
     from then on. Also installs it as dev.resync (the same exchange again). A request without an
     answer is sent again, up to tries times. FsError 693/694."""
-    from .dbc import derive_motion_key
+    from ..wire.dbc import derive_motion_key
 
     node = dev.node
     _again(lambda: check_protocol(client, node), tries)
