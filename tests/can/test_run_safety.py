@@ -220,7 +220,9 @@ def test_a_skill_stiffer_than_the_device_limit_is_refused_by_host_and_device(loa
             rc2, _out2, err2 = run(capsys, "run", "--slot", "1", *loaded.bus_args())
             assert rc2 == 2 and "[690]" in err2 and "slot 1: nominal stiffness 100 N/m" in err2
             assert "limit 50 N/m of node 0" in err2 and "nothing was started" in err2
-            # and the device refuses the start routine itself
+            # and the device refuses the start routine itself (in the unlocked session a run needs;
+            # the run command's own session replaced ours)
+            U.unlock(client, 0, 0x02)
             with pytest.raises(Exception) as e2:
                 client.start_routine(U.RID_RUN_SKILL, data=struct.pack(">BHHB", 1, 1000, 1000, 0))
             assert e2.value.response.code == 0x31

@@ -111,7 +111,7 @@ def test_check_reports_a_stale_file(tmp_path: Path, tool: Callable[[str], Module
     w = tmp_path / "host/forceskill/wire/generated.py"
     w.write_text(w.read_text().replace("SLOT_COUNT = 8", "SLOT_COUNT = 9"))
     dbc.write_text(
-        dbc.read_text().replace("SG_ GoalScale : 8|16@1+ (0.001,0)", "SG_ GoalScale : 8|16@1+ (0.01,0)")
+        dbc.read_text().replace("SG_ GoalScale m3 : 8|16@1+ (0.001,0)", "SG_ GoalScale m3 : 8|16@1+ (0.01,0)")
     )
     problems = gen.check(tmp_path)
     assert any("fs_status.h" in p for p in problems)
