@@ -9,8 +9,9 @@
 # 4. runs the product image fs_pil (`hil_sim pil`, the application's app_tick on the port of
 #    hal.h, with the plant linked in) with one instruction per translation block and the exec
 #    trace streamed through a fifo into awk (never stored), while bench/qemu/pil_session.py drives
-#    it over python-can's slcan interface: IDLE, a skill download, an execution of
-#    tests/vectors/engrave_n50_ridge_release.skill with a read-back (UDS upload) during it;
+#    it over python-can's slcan interface: IDLE, a skill download, TEACH, an execution of
+#    tests/vectors/engrave_n50_ridge_release.skill with a read-back (UDS upload) during it, a
+#    second one ended by host silence (FAULT), a firmware download through its transfer exit;
 # 5. counts, per app_tick (between cm_port_mark_begin and cm_port_mark_end), all its
 #    instructions (with the interrupts taken meanwhile) and those of the DMP and control-law part
 #    (without them) (dmp_step and pfc_step with their
@@ -18,7 +19,7 @@
 #    tick (cm_port_mark_idle/execute/upload after it); prints
 #      tick_instructions target=T kernels=N min= median= max=          (DMP + control law, EXECUTE)
 #      commit_tick_instructions target=T min= median= max= ticks=  (a download's commit)
-#      app_tick_instructions target=T state=IDLE|EXECUTE|UPLOAD min= median= max=
+#      app_tick_instructions target=T state=IDLE|TEACH|EXECUTE|UPLOAD|FWUPDATE|FAULT min= median= max=
 # Exit status 1 if a check fails or the DMP + control-law part exceeds its budget (M4F 850,
 # M3 1,250).
 set -euo pipefail

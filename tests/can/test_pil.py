@@ -252,8 +252,9 @@ def test_skills_survive_a_board_reset(pil, capsys):
 @pytest.fixture(scope="module")
 def pil_fw(tmp_path_factory) -> Iterator[Pil]:
     """A second board for the firmware update (its own flash): the journey's board keeps its
-    no-overrun check, while an update's image verification takes several ticks' time in one
-    tick (the SHA-256 and HMAC over the whole image at mark time, docs/cortex-m.md)."""
+    no-overrun check, while an update's image verification at mark time (the SHA-256 and HMAC
+    over the whole image, RoutineControl) still takes several ticks' time in one tick
+    (docs/cortex-m.md)."""
     p = Pil(tmp_path_factory.mktemp("pil_fw") / "flash.bin")
     yield p
     err = p.stop()
