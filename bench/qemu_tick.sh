@@ -9,8 +9,9 @@
 # 4. runs the product image fs_pil (`hil_sim pil`, the application's app_tick on the port of
 #    hal.h, with the plant linked in) with one instruction per translation block and the exec
 #    trace streamed through a fifo into awk (never stored), while bench/qemu/pil_session.py drives
-#    it over python-can's slcan interface: IDLE, a skill download, an execution of
-#    tests/vectors/engrave_n50_ridge_release.skill with a read-back (UDS upload) during it;
+#    it over python-can's slcan interface: IDLE, a skill download, TEACH, an execution of
+#    tests/vectors/engrave_n50_ridge_release.skill with a read-back (UDS upload) during it, a
+#    second one ended by host silence (FAULT), a firmware download through its transfer exit;
 # 5. counts, per app_tick (between cm_port_mark_begin and cm_port_mark_end), all its
 #    instructions (with the interrupts taken meanwhile) and those of the DMP and control-law part
 #    (without them) (dmp_step and pfc_step with their
@@ -18,7 +19,7 @@
 #    tick (cm_port_mark_idle/execute/upload after it); prints
 #      tick_instructions target=T kernels=N min= median= max=          (DMP + control law, EXECUTE)
 #      commit_tick_instructions target=T min= median= max= ticks=  (a download's commit)
-#      app_tick_instructions target=T state=IDLE|EXECUTE|UPLOAD min= median= max=
+#      app_tick_instructions target=T state=IDLE|TEACH|EXECUTE|UPLOAD|FWUPDATE|FAULT min= median= max=
 # Exit status 1 if a check fails or the DMP + control-law part exceeds its budget (M4F 850,
 # M3 1,250).
 set -euo pipefail
@@ -127,16 +128,20 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                          if (chk_tick == 0 && chk_ticks > 0) { print "check", chk_total, chk_ticks, chk_max
                                                                chk_total = 0; chk_ticks = 0; chk_max = 0 }
                          chk_tick = 0; inb = 0; next }
-  / cm_port_mark_(idle|execute|upload|other)$/ {
+  / cm_port_mark_(idle|teach|execute|upload|fwupdate|fault|other)$/ {
       if (done) { k = $NF; sub(/^cm_port_mark_/, "", k); print k, lc, lp, ld, ldp, lcm; done = 0
                   if (prof != "" && k == "execute") { for (f in h) tot[f] += h[f]; nexec++
                                                       for (a in hp) tp[a] += hp[a]
                                                       if (ld && ldp > maxdp) { maxdp = ldp; delete hm
-                                                                               for (f in h) hm[f] = h[f] } } }
+                                                                               for (f in h) hm[f] = h[f] } }
+                  if (prof != "" && lc > kmax[k]) { kmax[k] = lc
+                                                    for (x in hk) if (index(x, k SUBSEP) == 1) delete hk[x]
+                                                    for (f in h) hk[k, f] = h[f] } }
       delete h; delete hp; next }
   END { if (prof != "") { for (f in tot) printf "%d %s\n", tot[f] / nexec, f > prof
                           for (a in tp) printf "%.2f %s\n", tp[a] / nexec, a > (prof ".pc")
-                          for (f in hm) printf "%d %s\n", hm[f], f > (prof ".maxdmp") } }
+                          for (f in hm) printf "%d %s\n", hm[f], f > (prof ".maxdmp")
+                          for (x in hk) { split(x, q, SUBSEP); printf "%d %s\n", hk[x], q[2] > (prof ".max." q[1]) } } }
   { s = $NF
     if (!inboot && s == "Reset_Handler") { inboot = 1; bc = 0; ba = 0; ininit = 0 }
     if (inboot) { bc++
@@ -165,8 +170,9 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                prev = s } }'
 mkfifo "$WORK/trace.fifo"
 # QEMU_TICK_PROFILE=FILE: also write the mean instructions per function of an EXECUTE tick there,
-# per instruction address (hex, with its function) in FILE.pc, and per function of the EXECUTE tick
-# with the largest DMP part in FILE.maxdmp
+# per instruction address (hex, with its function) in FILE.pc, per function of the EXECUTE tick
+# with the largest DMP part in FILE.maxdmp, and per function of the largest tick of each kind K in
+# FILE.max.K
 awk -v prof="${QEMU_TICK_PROFILE:-}" -v DMP="$DMP_RE" -v LAW="$LAW" \
     -v COMMIT="^(download_end|skill_parse_run_f32|skchk_(params|begin|run)_f32)$" "$COUNT_AWK" < "$WORK/trace.fifo" > "$WORK/ticks.txt" &
 AWK_PID=$!
@@ -179,7 +185,7 @@ for _ in $(seq 600); do grep -q "listening on" "$WORK/pil.out" && break; sleep 0
 PORT=$(sed -n 's/.*127.0.0.1:\([0-9]*\).*/\1/p' "$WORK/pil.out")
 [ -n "$PORT" ] || { echo "hil_sim pil did not start:"; cat "$WORK/pil.err"; exit 1; }
 status=0
-"$PY" "$ROOT/bench/qemu/pil_session.py" "$PORT" "$SKILL" --exec-s "$EXEC_S" || status=1
+"$PY" "$ROOT/bench/qemu/pil_session.py" "$PORT" "$SKILL" --target "$TARGET" --exec-s "$EXEC_S" || status=1
 kill -TERM "$PIL_PID"; wait "$PIL_PID" || true; PIL_PID=""
 wait $AWK_PID
 grep '^fs_pil' "$WORK/pil.err" || true
@@ -193,10 +199,10 @@ stats() { # lines of numbers on stdin -> "min median max count"
 }
 # the DMP + control-law part of every EXECUTE tick that stepped the DMP (with or without a
 # transfer; the skill check of a download steps the DMP too, in IDLE ticks: counted apart)
-read -r MIN MED MAX N < <(awk '$4 == 1 && ($1 == "execute" || $1 == "upload") { print $3 }' "$WORK/ticks.txt" | stats)
+read -r MIN MED MAX N < <(awk '$4 == 1 && $6 == 0 && ($1 == "execute" || $1 == "upload") { print $3 }' "$WORK/ticks.txt" | stats)
 echo "tick_instructions target=$TARGET kernels=$KERNELS min=$MIN median=$MED max=$MAX"
 # the DMP part alone (dmp_step or dmp_step_xy with its callees) of the same ticks
-read -r DMIN DMED DMAX _ < <(awk '$4 == 1 && ($1 == "execute" || $1 == "upload") { print $5 }' "$WORK/ticks.txt" | stats)
+read -r DMIN DMED DMAX _ < <(awk '$4 == 1 && $6 == 0 && ($1 == "execute" || $1 == "upload") { print $5 }' "$WORK/ticks.txt" | stats)
 echo "dmp_instructions target=$TARGET kernels=$KERNELS skill=$(basename "$SKILL") min=$DMIN median=$DMED max=$DMAX"
 [ "$N" -ge 100 ] || { echo "FAILED: only $N ticks ran the DMP"; status=1; }
 # boots: the first with an empty flash, the second (the session's ECUReset) with the skill stored
@@ -206,9 +212,9 @@ awk '$1 == "check" { printf "skill_check_instructions target=%s total=%d ticks=%
   t="$TARGET" "$WORK/ticks.txt"
 # the ticks of a download's commit (RequestTransferExit to its answer: the parse, the parameter
 # check, the rollout, the flash write), whatever the state
-read -r A B C N < <(awk '$6 == 1 { print $2 }' "$WORK/ticks.txt" | stats)
+read -r A B C N < <(awk '$6 == 1 && $1 != "fwupdate" { print $2 }' "$WORK/ticks.txt" | stats)
 echo "commit_tick_instructions target=$TARGET min=$A median=$B max=$C ticks=$N"
-for st in idle execute upload; do
+for st in idle teach execute upload fwupdate fault; do
   read -r A B C N < <(awk -v k=$st '$1 == k { print $2 }' "$WORK/ticks.txt" | stats)
   echo "app_tick_instructions target=$TARGET state=$(echo $st | tr a-z A-Z) min=$A median=$B max=$C ticks=$N"
   [ "$N" -gt 0 ] || { echo "FAILED: no $st tick counted"; status=1; }

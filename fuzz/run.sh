@@ -36,7 +36,7 @@ sources_for() {
                           "$FW/safety/flt.c $FW/safety/lim.c $FW/safety/saf.c $FW/safety/sen.c $FW/safety/wdg.c" \
                           "$FW/storage/nvm.c $FW/storage/fls_ram.c" \
                           "$FW/security/sec_access.c $FW/security/sec_sha256.c $FW/security/secoc.c" \
-                          "$FW/boot/boot.c $FW/boot/boot_image.c $FW/boot/boot_fls_window.c $FW/boot/fwu.c $FW/boot/fwu_uds.c" \
+                          "$FW/boot/boot.c $FW/boot/boot_image.c $FW/boot/boot_verify.c $FW/boot/boot_fls_window.c $FW/boot/fwu.c $FW/boot/fwu_uds.c" \
                           "$FW/core/dmp.c $FW/core/pfc.c $FW/core/skill.c $FW/core/skill_check.c" \
                           "$FW/ports/host/hal_host.c $FW/ports/host/hal_can_sim.c" ;;
     esac

@@ -41,6 +41,36 @@ tests/consumer/run.sh build/consumer
 echo "== static checks (cppcheck; MISRA addon findings counted, not fatal)"
 tools/static_check.sh build/host-debug/static
 
+# The hard real-time budgets of app_tick (instructions, every tick of bench/qemu_tick.sh's journey):
+# M4F max 3,000 in every state and EXECUTE median 1,500; M3 max 8,000 and EXECUTE median 3,000.
+# A state listed in TICK_OVER (target:STATE, or target:EXECUTE-median) is not yet within its budget:
+# reported with its figure, not enforced; every other state over its budget fails the suite.
+# Measured (bench/qemu_tick.sh cortex-m4f, docs/cortex-m.md "Worst tick per state"): on the M4F
+# every state is still over (max IDLE 27,348 SecurityAccess, TEACH 7,697, EXECUTE 5,428 and median
+# 1,889, UPLOAD 26,564, FWUPDATE 58,600 a TransferData block, FAULT 3,431; the CAN link's receive
+# up to ~7,000); the M3's were not measured per state on this tree (IDLE 83,648, EXECUTE 69,199 /
+# median 9,908, UPLOAD 15,590 before).
+TICK_OVER="cortex-m4f:IDLE cortex-m4f:TEACH cortex-m4f:EXECUTE cortex-m4f:EXECUTE-median
+  cortex-m4f:UPLOAD cortex-m4f:FWUPDATE cortex-m4f:FAULT cortex-m3:IDLE cortex-m3:TEACH cortex-m3:EXECUTE
+  cortex-m3:EXECUTE-median cortex-m3:UPLOAD cortex-m3:FWUPDATE cortex-m3:FAULT"
+tick_budgets() { # TARGET LOG: fail on a tick over budget in a state not listed in TICK_OVER
+  local target=$1 log=$2 max_b med_b
+  case $target in cortex-m4f) max_b=3000; med_b=1500 ;; *) max_b=8000; med_b=3000 ;; esac
+  awk -v t="$target" -v mb="$max_b" -v eb="$med_b" -v over=" $(echo $TICK_OVER) " '
+    function check(key, v, b) {
+      if (v == "-") { printf "tick budget FAILED: %s not measured\n", key; bad = 1; return }
+      if (index(over, " " key " ")) {
+        printf "tick budget (not enforced yet): %s %d %s %d\n", key, v, (v + 0 > b ? ">" : "<= (now within: enforce it)"), b
+      } else if (v + 0 > b) { printf "tick budget FAILED: %s %d > %d\n", key, v, b; bad = 1 }
+      else printf "tick budget ok: %s %d <= %d\n", key, v, b }
+    $1 == "app_tick_instructions" && $2 == "target=" t {
+      for (i = 3; i <= NF; i++) { split($i, kv, "="); f[kv[1]] = kv[2] }
+      n++; check(t ":" f["state"], f["max"], mb)
+      if (f["state"] == "EXECUTE") check(t ":EXECUTE-median", f["median"], eb) }
+    END { if (n < 6) { printf "tick budget FAILED: %d states counted for %s, 6 expected\n", n, t; bad = 1 }
+          exit bad }' "$log"
+}
+
 echo "== Cortex-M images under qemu (M4F, M3): the product image's app_tick counted per state,"
 echo "   DMP + control law within budget, no heap, no recursion, size, worst stack per entry point"
 for target in cortex-m4f cortex-m3; do
@@ -49,6 +79,7 @@ for target in cortex-m4f cortex-m3; do
     cat "$log"; echo "qemu benchmark failed for $target (log: $log)" >&2; exit 1
   fi
   grep -E '^(size|heap|stack|tick_instructions|app_tick_instructions|budget|counter check)' "$log" || true
+  tick_budgets "$target" "$log"
 done
 
 echo "== Python, HIL and CAN tests"

@@ -1,13 +1,16 @@
 #!/usr/bin/env python3
-"""Drive the Cortex-M image (`hil_sim pil`) through the ticks bench/qemu_tick.sh counts, over
-python-can's slcan interface: IDLE ticks, then a skill download, then an execution of that skill
-during which the host reads the skill back (UDS RequestUpload: EXECUTE ticks while a transfer
-runs), then more EXECUTE ticks, then a board reset (ECUReset: the second boot finds the skill stored).
-The image marks each tick's kind (cm_port_mark_*).
+"""Drive the Cortex-M image (`hil_sim pil`) through every state bench/qemu_tick.sh counts, over
+python-can's slcan interface: IDLE ticks, a skill download (its commit in slices), TEACH, an
+execution of that skill during which the host reads the skill back (UDS RequestUpload), more
+EXECUTE ticks, a second execution whose host goes silent (fault 500 latched during EXECUTE, the
+safe-stop ramp, FAULT until cleared), a firmware download into the inactive slot through its
+transfer exit (the image's verification; not marked for a test boot), then a board reset
+(ECUReset: the second boot finds the skill stored). The image marks each tick's kind
+(cm_port_mark_*).
 Under the exec trace the image runs 20-50 times slower than real time, so the host heartbeat
 goes every --heartbeat-s of wall time (0.5 s: about every 10-25 ms of device time, as a host
 against a device in real time) instead of the host tools' 10 ms.
-  pil_session.py PORT SKILL [--exec-s S]"""
+  pil_session.py PORT SKILL --target TARGET [--exec-s S] [--fw-bytes N]"""
 
 from __future__ import annotations
 
@@ -21,6 +24,8 @@ import can
 
 from forceskill.link import uds as U
 from forceskill.link.device import Device
+from forceskill.link.flash import flash_image
+from forceskill.model import fwimage as fw
 
 
 def wait_ticks(dev: Device, n: int, timeout_s: float) -> None:
@@ -32,6 +37,35 @@ def wait_ticks(dev: Device, n: int, timeout_s: float) -> None:
         time.sleep(0.05)
 
 
+def heartbeat(bus: can.BusABC, dev: Device, period_s: float) -> can.broadcastmanager.CyclicSendTaskABC:
+    """The host heartbeat every period_s of wall time (the device's E2E counter and CRC)."""
+    m = dev._m["HostHeartbeat"]
+    return bus.send_periodic(
+        can.Message(arbitration_id=m.frame_id, data=bytearray(8), is_extended_id=False),
+        period_s,
+        store_task=False,
+        modifier_callback=dev._heartbeat_update,
+    )
+
+
+def fw_payload(args: argparse.Namespace) -> bytes:
+    """A firmware image for the image's target, signed with the development key."""
+    payload = bytes((i * 7 + 3) & 0xFF for i in range(args.fw_bytes))
+    return fw.build_image(payload, "9.0.0", args.target, fw.DEV_KEY, build_id="qemu_tick")
+
+
+def fault_on_silence(dev: Device, client: object, hb: object, start: bytes, args: argparse.Namespace) -> None:
+    """Start the skill, silence the host's heartbeat until the device latches host silence (500)
+    during EXECUTE, stay in FAULT through the ramp for --fault-ticks, then clear it."""
+    U.call("start", lambda: client.start_routine(U.RID_RUN_SKILL, start), 0)  # type: ignore[attr-defined]
+    dev.wait_state({"EXECUTE"}, args.timeout)
+    wait_ticks(dev, 100, args.timeout)
+    hb.stop()  # type: ignore[attr-defined]
+    st = dev.wait_state({"FAULT"}, args.timeout)
+    print(f"pil_session: fault {st.fault_code} latched at tick {st.tick}", flush=True)
+    wait_ticks(dev, args.fault_ticks, args.timeout)
+
+
 def main(argv: list[str]) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("port", type=int)
@@ -39,6 +73,10 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--exec-s", type=float, default=1.0, help="execution length (s of device time)")
     ap.add_argument("--heartbeat-s", type=float, default=0.5, help="host heartbeat period (s of wall time)")
     ap.add_argument("--timeout", type=float, default=600.0, help="wall-clock limit of each phase (s)")
+    ap.add_argument("--target", default="cortex-m4f", help="the image's firmware target")
+    ap.add_argument("--fw-bytes", type=int, default=16384, help="payload of the firmware download")
+    ap.add_argument("--teach-ticks", type=int, default=300, help="TEACH ticks")
+    ap.add_argument("--fault-ticks", type=int, default=400, help="FAULT ticks after the latch")
     args = ap.parse_args(argv)
     # under the trace a consecutive frame can be seconds of wall time apart: ISO-TP's 1 s
     # receive timeouts of the host tools would drop the transfer
@@ -59,14 +97,11 @@ def main(argv: list[str]) -> int:
                 U.download(client, 0, 1, image)
             wait_ticks(dev, 200, args.timeout)
             dev.telemetry_period_ms = 1
-            m = dev._m["HostHeartbeat"]
-            hb = bus.send_periodic(
-                can.Message(arbitration_id=m.frame_id, data=bytearray(8), is_extended_id=False),
-                args.heartbeat_s,
-                store_task=False,
-                modifier_callback=dev._heartbeat_update,
-            )
+            hb = heartbeat(bus, dev, args.heartbeat_s)
             try:
+                dev.command_until("teach", {"TEACH"}, args.timeout)
+                wait_ticks(dev, args.teach_ticks, args.timeout)
+                dev.command_until("idle", {"IDLE"}, args.timeout)
                 with U.uds_client(dev, request_timeout_s=args.timeout) as client:
                     # RequestUpload needs the programming session, entered while IDLE
                     U.call("session change", lambda: client.change_session(1), 0)
@@ -79,6 +114,11 @@ def main(argv: list[str]) -> int:
                     print(f"pil_session: read-back done at tick {dev.status.tick}", flush=True)
                     wait_ticks(dev, int(args.exec_s * 500), args.timeout)
                     dev.command_until("idle", {"IDLE", "FAULT"}, args.timeout)
+                    fault_on_silence(dev, client, hb, data, args)
+                    hb = heartbeat(bus, dev, args.heartbeat_s)
+                    dev.command_until("clear_fault", {"IDLE"}, args.timeout)
+                    flash_image(client, fw_payload(args), mark_test=False)
+                    print(f"pil_session: firmware download done at tick {dev.status.tick}", flush=True)
             finally:
                 hb.stop()
             st = dev.status

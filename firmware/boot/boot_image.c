@@ -2,10 +2,7 @@
 #include "boot_image.h"
 
 #include <stddef.h>
-#include "sec_sha256.h"
-
-/* Flash is read in chunks of this many bytes (stack buffer; bounded stack on Cortex-M). */
-#define BOOT_READ_CHUNK 128u
+#include "boot_verify.h"
 
 static uint32_t rd_u32(const uint8_t *p)
 {
@@ -69,51 +66,12 @@ boot_status_t boot_image_verify(const fls_dev_t *dev, uint32_t addr, uint32_t ca
     if (dev == NULL || key == NULL || out == NULL) {
         return BOOT_ERR_ARG;
     }
-    uint8_t buf[BOOT_READ_CHUNK];
-    if (cap < BOOT_IMAGE_OVERHEAD) {
-        return BOOT_ERR_TRUNCATED;
-    }
-    if (dev->read(dev->ctx, addr, buf, BOOT_IMAGE_HEADER_SIZE) != 0) {
-        return BOOT_ERR_FLASH;
-    }
-    boot_status_t st = boot_image_parse_header(buf, want_target, out);
-    if (st != BOOT_OK) {
-        return st;
-    }
-    if (out->payload_length > cap - BOOT_IMAGE_OVERHEAD) {
-        return BOOT_ERR_TRUNCATED;
-    }
-    /* One pass over the payload feeds both the hash and the MAC. */
-    sec_hmac_t mac;
-    sec_sha256_t sha;
-    sec_hmac_init(&mac, key, key_len);
-    sec_hmac_update(&mac, buf, BOOT_IMAGE_HEADER_SIZE);
-    sec_sha256_init(&sha);
-    uint32_t pos = addr + BOOT_IMAGE_HEADER_SIZE;
-    uint32_t left = out->payload_length;
-    while (left > 0u) {
-        uint32_t n = left < BOOT_READ_CHUNK ? left : BOOT_READ_CHUNK;
-        if (dev->read(dev->ctx, pos, buf, n) != 0) {
-            sec_wipe(&mac, (uint32_t)sizeof mac);
-            return BOOT_ERR_FLASH;
-        }
-        sec_sha256_update(&sha, buf, n);
-        sec_hmac_update(&mac, buf, n);
-        pos += n;
-        left -= n;
-    }
-    uint8_t digest[SEC_SHA256_LEN];
-    uint8_t tag[SEC_SHA256_LEN];
-    sec_sha256_final(&sha, digest);
-    sec_hmac_final(&mac, tag);
-    if (!sec_ct_equal(digest, out->payload_sha256, SEC_SHA256_LEN)) {
-        return BOOT_ERR_HASH;
-    }
-    if (dev->read(dev->ctx, pos, buf, BOOT_IMAGE_TAG_SIZE) != 0) {
-        return BOOT_ERR_FLASH;
-    }
-    st = sec_ct_equal(tag, buf, BOOT_IMAGE_TAG_SIZE) ? BOOT_OK : BOOT_ERR_TAG;
-    sec_wipe(tag, (uint32_t)sizeof tag);
+    static boot_verify_t v; /* ~700 bytes: not on the boot's stack (one caller at a time) */
+    boot_verify_begin(&v, dev, addr, cap, want_target, key, key_len);
+    (void)boot_verify_run(&v, UINT32_MAX);
+    *out = v.hdr;
+    const boot_status_t st = v.status;
+    boot_verify_wipe(&v);
     return st;
 }
 

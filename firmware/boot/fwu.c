@@ -171,26 +171,51 @@ boot_status_t fwu_data(fwu_t *f, bool authorised, uint32_t offset, const uint8_t
     return BOOT_OK;
 }
 
-boot_status_t fwu_end(fwu_t *f, bool authorised, uint32_t *crc32_out)
+/* The staged tail to flash (padded with 0xFF to a write unit). */
+static boot_status_t flush_tail(fwu_t *f)
 {
-    if (!authorised) {
-        return refuse(f, FWU_ERR_LOCKED);
+    if (f->tail_len == 0u) {
+        return BOOT_OK;
     }
-    if (f->phase != FWU_RECEIVING || f->received != f->size) {
-        return refuse(f, FWU_ERR_SEQUENCE);
-    }
-    if (f->tail_len > 0u) {
-        const uint32_t wu = f->boot->cfg->app_dev->write_unit;
-        memset(&f->tail[f->tail_len], 0xFF, wu - f->tail_len);
-        boot_status_t st = program(f, f->programmed, f->tail, wu);
-        if (st != BOOT_OK) {
-            return refuse(f, st);
-        }
+    const uint32_t wu = f->boot->cfg->app_dev->write_unit;
+    memset(&f->tail[f->tail_len], 0xFF, wu - f->tail_len);
+    boot_status_t st = program(f, f->programmed, f->tail, wu);
+    if (st == BOOT_OK) {
         f->programmed += wu;
         f->tail_len = 0u;
     }
-    boot_image_header_t h;
-    boot_status_t st = boot_slot_verify(f->boot->cfg, f->slot, &h);
+    return st;
+}
+
+boot_status_t fwu_end_step(fwu_t *f, bool authorised, uint32_t *crc32_out, uint32_t rounds,
+                           bool *done)
+{
+    *done = true;
+    if (!authorised) {
+        f->verifying = false;
+        return refuse(f, FWU_ERR_LOCKED);
+    }
+    if (f->phase != FWU_RECEIVING || f->received != f->size) {
+        f->verifying = false;
+        return refuse(f, FWU_ERR_SEQUENCE);
+    }
+    const boot_config_t *cfg = f->boot->cfg;
+    if (!f->verifying) {
+        boot_status_t st = flush_tail(f);
+        if (st != BOOT_OK) {
+            return refuse(f, st);
+        }
+        boot_verify_begin(&f->verify, cfg->app_dev, cfg->slot_addr[f->slot], cfg->slot_size,
+                          cfg->target_id, cfg->key, cfg->key_len);
+        f->verifying = true;
+    }
+    if (!boot_verify_run(&f->verify, rounds)) {
+        *done = false;
+        return BOOT_OK; /* more slices to go: the slot is not usable yet */
+    }
+    f->verifying = false;
+    const boot_status_t st = f->verify.status;
+    boot_verify_wipe(&f->verify);
     if (st != BOOT_OK) {
         return refuse(f, st);
     }
@@ -201,8 +226,18 @@ boot_status_t fwu_end(fwu_t *f, bool authorised, uint32_t *crc32_out)
     return BOOT_OK;
 }
 
+boot_status_t fwu_end(fwu_t *f, bool authorised, uint32_t *crc32_out)
+{
+    bool done = false;
+    return fwu_end_step(f, authorised, crc32_out, UINT32_MAX, &done);
+}
+
 void fwu_abort(fwu_t *f)
 {
+    if (f->verifying) {
+        boot_verify_wipe(&f->verify);
+        f->verifying = false;
+    }
     if (f->phase == FWU_RECEIVING) {
         f->phase = FWU_IDLE;
     }

@@ -16,6 +16,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 #include "boot.h"
+#include "boot_verify.h"
 #include "fs_uds_ids.h" /* FWU_DOWNLOAD_ADDRESS, FWU_RID_*, FWU_DID_STATUS */
 
 #define FWU_STATUS_LEN 17u
@@ -43,6 +44,8 @@ typedef struct {
     uint32_t crc32;         /* zlib CRC-32 of the received bytes (RequestTransferExit reply) */
     uint32_t image_version; /* fw_version of the received image, 0 before its header */
     boot_status_t last;     /* last refusal, 0 if none */
+    bool verifying;         /* fwu_end_step: the image's verification runs in slices */
+    boot_verify_t verify;
 } fwu_t;
 
 /** Attach to a booted device (boot_select already run). */
@@ -62,6 +65,12 @@ boot_status_t fwu_data(fwu_t *f, bool authorised, uint32_t offset, const uint8_t
 /** RequestTransferExit: all announced bytes in (722), then hash (705) and tag (706) are checked
  *  on the bytes read back from flash. *crc32_out (may be NULL) = CRC-32 of the image. */
 boot_status_t fwu_end(fwu_t *f, bool authorised, uint32_t *crc32_out);
+
+/** RequestTransferExit in slices: the first call flushes and starts the verification, each call
+ *  runs at most rounds SHA-256 compression rounds of it; *done false while it goes on (the
+ *  image is neither received nor markable meanwhile), then fwu_end's result. */
+boot_status_t fwu_end_step(fwu_t *f, bool authorised, uint32_t *crc32_out, uint32_t rounds,
+                           bool *done);
 
 /** Abandon a download (session change, S3 timeout). The slot is left unbootable, not marked. */
 void fwu_abort(fwu_t *f);

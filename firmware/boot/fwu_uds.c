@@ -22,7 +22,10 @@ uint8_t fwu_uds_download_data(fwu_t *f, const uds_server_t *srv, uint32_t offset
 
 uint8_t fwu_uds_download_end(fwu_t *f, const uds_server_t *srv, uint32_t *crc32_out)
 {
-    return fwu_nrc(fwu_end(f, fwu_uds_authorised(srv), crc32_out));
+    bool done = false;
+    const boot_status_t st = fwu_end_step(f, fwu_uds_authorised(srv), crc32_out,
+                                          FWU_VERIFY_ROUNDS_PER_CALL, &done);
+    return done ? fwu_nrc(st) : UDS_NRC_RESPONSE_PENDING;
 }
 
 bool fwu_uds_owns_rid(uint16_t rid)

@@ -19,7 +19,15 @@ uint8_t fwu_uds_download_begin(fwu_t *f, const uds_server_t *srv, uint32_t size)
 uint8_t fwu_uds_download_data(fwu_t *f, const uds_server_t *srv, uint32_t offset,
                               const uint8_t *data, uint16_t len);
 
-/** download_end while a firmware download is active (*crc32_out: CRC-32 of the image). */
+/* SHA-256 compression rounds of the image's verification per call of fwu_uds_download_end (one
+ * call a tick while the transfer exit is answered 0x78): 16 rounds, a quarter block, ~1,000
+ * instructions on the Cortex-M images (docs/cortex-m.md). A port may define more. */
+#ifndef FWU_VERIFY_ROUNDS_PER_CALL
+#define FWU_VERIFY_ROUNDS_PER_CALL 16u
+#endif
+
+/** download_end while a firmware download is active (*crc32_out: CRC-32 of the image): the
+ *  verification a slice a call, UDS_NRC_RESPONSE_PENDING until it ends. */
 uint8_t fwu_uds_download_end(fwu_t *f, const uds_server_t *srv, uint32_t *crc32_out);
 
 /** True for the routine identifiers handled by fwu_uds_routine. */

@@ -22,44 +22,123 @@ static uint32_t rotr(uint32_t x, uint32_t n)
     return (x >> n) | (x << (32u - n));
 }
 
+/* Start the compression of one block into job: the schedule's first 16 words, the working
+ * variables from h. */
+static void job_begin(sec_sha256_job_t *job, const uint32_t h[8],
+                      const uint8_t blk[SEC_SHA256_BLOCK])
+{
+    for (uint32_t t = 0u; t < 16u; t++) {
+        job->w[t] = ((uint32_t)blk[4u * t] << 24) | ((uint32_t)blk[4u * t + 1u] << 16) |
+                    ((uint32_t)blk[4u * t + 2u] << 8) | (uint32_t)blk[4u * t + 3u];
+    }
+    (void)memcpy(job->v, h, sizeof job->v);
+    job->round = 0u;
+    job->active = 1u;
+}
+
+/* Up to n more of the job's 64 rounds (the schedule kept in a 16-word window); at the last one the
+ * block is added into h and the job's words wiped. Returns the rounds run. */
+static uint32_t job_run(sec_sha256_job_t *job, uint32_t h[8], uint32_t n)
+{
+    uint32_t *w = job->w;
+    uint32_t *v = job->v;
+    uint32_t done = 0u;
+    for (; done < n && job->round < 64u; done++, job->round++) {
+        const uint32_t t = job->round;
+        if (t >= 16u) {
+            const uint32_t w15 = w[(t - 15u) & 15u];
+            const uint32_t w2 = w[(t - 2u) & 15u];
+            const uint32_t s0 = rotr(w15, 7u) ^ rotr(w15, 18u) ^ (w15 >> 3);
+            const uint32_t s1 = rotr(w2, 17u) ^ rotr(w2, 19u) ^ (w2 >> 10);
+            w[t & 15u] += s0 + w[(t - 7u) & 15u] + s1;
+        }
+        const uint32_t e = v[4];
+        const uint32_t a = v[0];
+        const uint32_t S1 = rotr(e, 6u) ^ rotr(e, 11u) ^ rotr(e, 25u);
+        const uint32_t ch = (e & v[5]) ^ (~e & v[6]);
+        const uint32_t t1 = v[7] + S1 + ch + K256[t] + w[t & 15u];
+        const uint32_t S0 = rotr(a, 2u) ^ rotr(a, 13u) ^ rotr(a, 22u);
+        const uint32_t maj = (a & v[1]) ^ (a & v[2]) ^ (v[1] & v[2]);
+        v[7] = v[6];
+        v[6] = v[5];
+        v[5] = e;
+        v[4] = v[3] + t1;
+        v[3] = v[2];
+        v[2] = v[1];
+        v[1] = a;
+        v[0] = t1 + S0 + maj;
+    }
+    if (job->round == 64u && job->active != 0u) {
+        for (uint32_t i = 0u; i < 8u; i++) {
+            h[i] += v[i];
+        }
+        sec_wipe(job, sizeof *job);
+    }
+    return done;
+}
+
 static void compress(uint32_t h[8], const uint8_t blk[SEC_SHA256_BLOCK])
 {
-    uint32_t w[64];
-    for (uint32_t t = 0u; t < 16u; t++) {
-        w[t] = ((uint32_t)blk[4u * t] << 24) | ((uint32_t)blk[4u * t + 1u] << 16) |
-               ((uint32_t)blk[4u * t + 2u] << 8) | (uint32_t)blk[4u * t + 3u];
+    sec_sha256_job_t job;
+    job_begin(&job, h, blk);
+    (void)job_run(&job, h, 64u);
+}
+
+uint32_t sec_sha256_feed(sec_sha256_t *s, sec_sha256_job_t *job, const uint8_t *data, uint32_t len,
+                         uint32_t *rounds)
+{
+    uint32_t i = 0u;
+    for (;;) {
+        if (job->active != 0u) {
+            *rounds -= job_run(job, s->h, *rounds);
+            if (job->active != 0u) {
+                return i; /* the budget is spent inside a block */
+            }
+            s->block_len = 0u;
+        }
+        if (i == len) {
+            return i;
+        }
+        uint32_t k = SEC_SHA256_BLOCK - s->block_len;
+        if (k > len - i) {
+            k = len - i;
+        }
+        (void)memcpy(s->block + s->block_len, data + i, k);
+        s->block_len += k;
+        s->total_len += k;
+        i += k;
+        if (s->block_len == SEC_SHA256_BLOCK) {
+            job_begin(job, s->h, s->block);
+            if (*rounds == 0u) {
+                return i;
+            }
+        }
     }
-    for (uint32_t t = 16u; t < 64u; t++) {
-        const uint32_t s0 = rotr(w[t - 15u], 7u) ^ rotr(w[t - 15u], 18u) ^ (w[t - 15u] >> 3);
-        const uint32_t s1 = rotr(w[t - 2u], 17u) ^ rotr(w[t - 2u], 19u) ^ (w[t - 2u] >> 10);
-        w[t] = w[t - 16u] + s0 + w[t - 7u] + s1;
+}
+
+uint32_t sec_sha256_padding(const sec_sha256_t *s, uint8_t pad[SEC_SHA256_PAD_MAX])
+{
+    const uint64_t bits = s->total_len * 8u;
+    const uint32_t used = (uint32_t)(s->total_len % SEC_SHA256_BLOCK);
+    const uint32_t n = (used < SEC_SHA256_BLOCK - 8u ? SEC_SHA256_BLOCK : 2u * SEC_SHA256_BLOCK) -
+                       used;
+    (void)memset(pad, 0, n);
+    pad[0] = 0x80u;
+    for (uint32_t i = 0u; i < 8u; i++) {
+        pad[n - 1u - i] = (uint8_t)(bits >> (8u * i));
     }
-    uint32_t a = h[0], b = h[1], c = h[2], d = h[3], e = h[4], f = h[5], g = h[6], hh = h[7];
-    for (uint32_t t = 0u; t < 64u; t++) {
-        const uint32_t S1 = rotr(e, 6u) ^ rotr(e, 11u) ^ rotr(e, 25u);
-        const uint32_t ch = (e & f) ^ (~e & g);
-        const uint32_t t1 = hh + S1 + ch + K256[t] + w[t];
-        const uint32_t S0 = rotr(a, 2u) ^ rotr(a, 13u) ^ rotr(a, 22u);
-        const uint32_t maj = (a & b) ^ (a & c) ^ (b & c);
-        const uint32_t t2 = S0 + maj;
-        hh = g;
-        g = f;
-        f = e;
-        e = d + t1;
-        d = c;
-        c = b;
-        b = a;
-        a = t1 + t2;
+    return n;
+}
+
+void sec_sha256_digest(sec_sha256_t *s, uint8_t out[SEC_SHA256_LEN])
+{
+    for (uint32_t i = 0u; i < 8u; i++) {
+        out[4u * i] = (uint8_t)(s->h[i] >> 24);
+        out[4u * i + 1u] = (uint8_t)(s->h[i] >> 16);
+        out[4u * i + 2u] = (uint8_t)(s->h[i] >> 8);
+        out[4u * i + 3u] = (uint8_t)s->h[i];
     }
-    h[0] += a;
-    h[1] += b;
-    h[2] += c;
-    h[3] += d;
-    h[4] += e;
-    h[5] += f;
-    h[6] += g;
-    h[7] += hh;
-    sec_wipe(w, sizeof w);
+    sec_wipe(s, sizeof *s);
 }
 
 void sec_sha256_init(sec_sha256_t *s)
@@ -101,25 +180,10 @@ void sec_sha256_final(sec_sha256_t *s, uint8_t out[SEC_SHA256_LEN])
     if (s == NULL || out == NULL) {
         return;
     }
-    const uint64_t bits = s->total_len * 8u;
-    s->block[s->block_len++] = 0x80u;
-    if (s->block_len > SEC_SHA256_BLOCK - 8u) {
-        (void)memset(s->block + s->block_len, 0, SEC_SHA256_BLOCK - s->block_len);
-        compress(s->h, s->block);
-        s->block_len = 0u;
-    }
-    (void)memset(s->block + s->block_len, 0, SEC_SHA256_BLOCK - 8u - s->block_len);
-    for (uint32_t i = 0u; i < 8u; i++) {
-        s->block[SEC_SHA256_BLOCK - 1u - i] = (uint8_t)(bits >> (8u * i));
-    }
-    compress(s->h, s->block);
-    for (uint32_t i = 0u; i < 8u; i++) {
-        out[4u * i] = (uint8_t)(s->h[i] >> 24);
-        out[4u * i + 1u] = (uint8_t)(s->h[i] >> 16);
-        out[4u * i + 2u] = (uint8_t)(s->h[i] >> 8);
-        out[4u * i + 3u] = (uint8_t)s->h[i];
-    }
-    sec_wipe(s, sizeof *s);
+    uint8_t pad[SEC_SHA256_PAD_MAX];
+    const uint32_t n = sec_sha256_padding(s, pad);
+    sec_sha256_update(s, pad, n);
+    sec_sha256_digest(s, out);
 }
 
 void sec_sha256(const uint8_t *data, uint32_t len, uint8_t out[SEC_SHA256_LEN])

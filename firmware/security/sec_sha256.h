@@ -17,6 +17,17 @@ typedef struct {
     uint32_t block_len;
 } sec_sha256_t;
 
+#define SEC_SHA256_PAD_MAX 72u /* the longest padding of a message (0x80, zeros, length) */
+
+/** A block's compression spread over calls (sec_sha256_feed): the schedule's window, the working
+ *  variables, the next of its 64 rounds. */
+typedef struct {
+    uint32_t w[16];
+    uint32_t v[8];
+    uint32_t round;
+    uint32_t active; /* 1 while a block is being compressed */
+} sec_sha256_job_t;
+
 /** Start a hash. */
 void sec_sha256_init(sec_sha256_t *s);
 
@@ -25,6 +36,20 @@ void sec_sha256_update(sec_sha256_t *s, const uint8_t *data, uint32_t len);
 
 /** Finish into out[32]; the state must be re-initialised before reuse. */
 void sec_sha256_final(sec_sha256_t *s, uint8_t out[SEC_SHA256_LEN]);
+
+/** Add up to len bytes in bounded work: at most *rounds compression rounds (64 a block, the
+ *  budget decreased by those run), a full block's compression carried in job (zeroed before the
+ *  first call) across calls. Returns the bytes taken; they are all in the hash once a call
+ *  returns len with job->active 0. Do not mix with sec_sha256_update while job->active. */
+uint32_t sec_sha256_feed(sec_sha256_t *s, sec_sha256_job_t *job, const uint8_t *data, uint32_t len,
+                         uint32_t *rounds);
+
+/** The padding sec_sha256_final adds for the bytes hashed so far, into pad; returns its length
+ *  (9..72). Feeding it then sec_sha256_digest is sec_sha256_final. */
+uint32_t sec_sha256_padding(const sec_sha256_t *s, uint8_t pad[SEC_SHA256_PAD_MAX]);
+
+/** The digest of a hash whose padding was added (sec_sha256_padding) into out[32]; wipes *s. */
+void sec_sha256_digest(sec_sha256_t *s, uint8_t out[SEC_SHA256_LEN]);
 
 /** One-shot SHA-256 of data. */
 void sec_sha256(const uint8_t *data, uint32_t len, uint8_t out[SEC_SHA256_LEN]);

@@ -36,6 +36,33 @@ static void report(uint32_t loop_max, uint32_t tick_max)
     sh_flush();
 }
 
+/* A UDS transfer is open or its request pending (a commit or a verification in slices). */
+static bool transferring(const app_t *app)
+{
+    return app->uds.xfer != UDS_XFER_NONE || app->uds.pending_sid != 0u;
+}
+
+/* The kind of the tick just counted (cm_port_mark_idle): xfer if a transfer was open before or
+ * after it (the tick that ends one counts with it). */
+static void mark_kind(bool xfer)
+{
+    if (g_app.state == APP_FAULT) {
+        cm_port_mark_fault();
+    } else if (xfer && g_app.fw_xfer) {
+        cm_port_mark_fwupdate();
+    } else if (xfer) {
+        cm_port_mark_upload();
+    } else if (g_app.state == APP_IDLE) {
+        cm_port_mark_idle();
+    } else if (g_app.state == APP_TEACH) {
+        cm_port_mark_teach();
+    } else if (g_app.state == APP_EXECUTE) {
+        cm_port_mark_execute();
+    } else {
+        cm_port_mark_other();
+    }
+}
+
 int main(void)
 {
     sim_params_dev_t dev;
@@ -51,6 +78,7 @@ int main(void)
     cm_port_start_ticks(have_params && (dev.flags & SIM_PARAMS_PACE) != 0u);
     uint32_t loop_max = 0u;
     uint32_t tick_max = 0u;
+    bool xfer_before = false;
     for (;;) {
         const bool overrun = cm_port_wait_tick();
         const uint32_t c0 = cm_port_cycles();
@@ -59,17 +87,9 @@ int main(void)
         cm_port_mark_begin();
         app_tick(&g_app, overrun);
         cm_port_mark_end();
-        if (g_app.state == APP_IDLE) {
-            cm_port_mark_idle();
-        } else if (g_app.state == APP_EXECUTE) {
-            if (g_app.uds.xfer != UDS_XFER_NONE && isotp_tx_busy(&g_app.tp)) {
-                cm_port_mark_upload();
-            } else {
-                cm_port_mark_execute();
-            }
-        } else {
-            cm_port_mark_other();
-        }
+        const bool xfer_after = transferring(&g_app);
+        mark_kind(xfer_before || xfer_after);
+        xfer_before = xfer_after;
         const uint32_t c2 = cm_port_cycles();
         pil_plant_advance(&g_app);
         const uint32_t c3 = cm_port_cycles();

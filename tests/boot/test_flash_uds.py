@@ -35,6 +35,7 @@ SOURCES = [
     "boot/fwu.c",
     "boot/boot.c",
     "boot/boot_image.c",
+    "boot/boot_verify.c",
     "boot/boot_fls_window.c",
     "security/sec_sha256.c",
     "security/sec_access.c",

@@ -18,7 +18,7 @@
 #include "uds.h"
 
 #define SECTOR 4096u
-#define SLOT_SECTORS 32u   /* 128 KiB slots */
+#define SLOT_SECTORS 32u /* 128 KiB slots */
 #define N_SECTORS (2u + 2u * SLOT_SECTORS)
 
 static const uint8_t DEV_KEY[32] = {
@@ -39,7 +39,7 @@ static struct {
     uds_server_t srv;
     uint32_t now_ms;
     int selftest_ok;
-    int firmware_xfer;       /* the active download is a firmware image */
+    int firmware_xfer; /* the active download is a firmware image */
     boot_status_t boot_status;
 } D;
 
@@ -127,7 +127,7 @@ static uint8_t h_download_begin(void *ctx, uint32_t addr, uint32_t size)
         return fwu_uds_download_begin(&D.fwu, &D.srv, size);
     }
     D.firmware_xfer = 0;
-    return UDS_NRC_REQUEST_OUT_OF_RANGE;   /* skill slots: the application's own code */
+    return UDS_NRC_REQUEST_OUT_OF_RANGE; /* skill slots: the application's own code */
 }
 
 static uint8_t h_download_data(void *ctx, uint32_t offset, const uint8_t *data, uint16_t len)
@@ -180,13 +180,21 @@ static void power_on(void)
     D.boot_status = boot_select(&D.boot, &D.cfg);
     fwu_init(&D.fwu, &D.boot);
     sec_init(&D.sec_cfg, &D.sec, D.now_ms);
-    const uds_app_t app = {
-        .ctx = NULL, .read_did = h_read_did, .write_did = NULL, .routine = h_routine,
-        .session_allowed = h_session_allowed, .ecu_reset = h_ecu_reset, .reset_now = h_reset_now,
-        .security_seed = h_security_seed, .security_key = h_security_key,
-        .download_begin = h_download_begin, .download_data = h_download_data,
-        .download_end = h_download_end, .transfer_abort = h_transfer_abort,
-        .upload_begin = h_upload_begin, .upload_data = h_upload_data};
+    const uds_app_t app = {.ctx = NULL,
+                           .read_did = h_read_did,
+                           .write_did = NULL,
+                           .routine = h_routine,
+                           .session_allowed = h_session_allowed,
+                           .ecu_reset = h_ecu_reset,
+                           .reset_now = h_reset_now,
+                           .security_seed = h_security_seed,
+                           .security_key = h_security_key,
+                           .download_begin = h_download_begin,
+                           .download_data = h_download_data,
+                           .download_end = h_download_end,
+                           .transfer_abort = h_transfer_abort,
+                           .upload_begin = h_upload_begin,
+                           .upload_data = h_upload_data};
     uds_server_init(&D.srv, &app);
     D.firmware_xfer = 0;
     if (D.boot_status == BOOT_OK && D.boot.test_boot) {
@@ -227,7 +235,7 @@ int dev_create(const uint8_t *secret, uint32_t secret_len)
     D.cfg.target_id = BOOT_TARGET_HOST;
     D.cfg.key = DEV_KEY;
     D.cfg.key_len = sizeof DEV_KEY;
-    D.cfg.skill_min = 2u;   /* stored skills of image format 2 (docs/skill_format.md) */
+    D.cfg.skill_min = 2u; /* stored skills of image format 2 (docs/skill_format.md) */
     D.cfg.skill_max = 2u;
     D.cfg.config_min = 1u;
     D.cfg.config_max = 1u;
@@ -237,7 +245,7 @@ int dev_create(const uint8_t *secret, uint32_t secret_len)
     }
     memcpy(D.sec_cfg.secret, secret, secret_len);
     D.sec_cfg.secret_len = (uint8_t)secret_len;
-    D.sec_cfg.boot_delay_ms = 0u;     /* tests reset often; the delay rule is sec_access's test */
+    D.sec_cfg.boot_delay_ms = 0u; /* tests reset often; the delay rule is sec_access's test */
     D.sec_cfg.rng = rng;
     D.selftest_ok = 1;
     return (int)sec_config_validate(&D.sec_cfg);
@@ -273,7 +281,13 @@ uint16_t dev_handle(const uint8_t *req, uint16_t len, uint8_t *resp, uint16_t ca
 {
     D.now_ms = now_ms;
     uds_server_poll(&D.srv, now_ms);
-    return uds_server_handle(&D.srv, req, len, resp, cap, now_ms);
+    uint16_t n = uds_server_handle(&D.srv, req, len, resp, cap, now_ms);
+    while (D.srv.pending_sid != 0u) {
+        /* a request answered 0x78 (the transfer exit's verification in slices): its slices
+         * back to back, the final answer instead of the pending one */
+        n = uds_server_resume(&D.srv, resp, cap, now_ms);
+    }
+    return n;
 }
 
 void dev_after_response(void)

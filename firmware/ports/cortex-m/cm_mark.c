@@ -30,3 +30,18 @@ void cm_port_mark_other(void)
 {
     __asm__ volatile("" ::: "memory");
 }
+
+void cm_port_mark_teach(void)
+{
+    __asm__ volatile("" ::: "memory");
+}
+
+void cm_port_mark_fwupdate(void)
+{
+    __asm__ volatile("" ::: "memory");
+}
+
+void cm_port_mark_fault(void)
+{
+    __asm__ volatile("" ::: "memory");
+}

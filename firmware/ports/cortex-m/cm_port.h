@@ -70,15 +70,25 @@ void cm_port_mark_begin(void);
 void cm_port_mark_end(void);
 
 /** Empty functions called after cm_port_mark_end, one per kind of tick, so the trace tells which
- *  kind the counted tick was: IDLE, EXECUTE, EXECUTE while a UDS transfer sends its data
- *  (ISO-TP transmitting, e.g. a read-back), anything else. */
+ *  kind the counted tick was: IDLE, TEACH, EXECUTE, a skill transfer (download, commit or
+ *  read-back, in any state), a firmware download (through its transfer exit), FAULT (the tick
+ *  that latched it and the ramp after), anything else. */
 void cm_port_mark_idle(void);
+
+/** See cm_port_mark_idle. */
+void cm_port_mark_teach(void);
 
 /** See cm_port_mark_idle. */
 void cm_port_mark_execute(void);
 
 /** See cm_port_mark_idle. */
 void cm_port_mark_upload(void);
+
+/** See cm_port_mark_idle. */
+void cm_port_mark_fwupdate(void);
+
+/** See cm_port_mark_idle. */
+void cm_port_mark_fault(void);
 
 /** See cm_port_mark_idle. */
 void cm_port_mark_other(void);

@@ -185,9 +185,10 @@ def flash_image(
     progress: Callable[[int], None] | None = None,
     block_size: int = 0,
     node: int = 0,
+    mark_test: bool = True,
 ) -> int:
-    """Write image into the inactive slot of node and mark it for a test boot; returns the blocks
-    sent. The caller then resets the device (ECUReset) and reads the status back."""
+    """Write image into the inactive slot of node and (mark_test) mark it for a test boot; returns
+    the blocks sent. The caller then resets the device (ECUReset) and reads the status back."""
     from udsoncan import MemoryLocation
 
     from .uds import unlock
@@ -219,7 +220,14 @@ def flash_image(
         n_blocks += 1
         if progress:
             progress(len(chunk))
-    resp = request("RequestTransferExit", client.request_transfer_exit, node=node)
+    # the device verifies the image (hash and tag) in slices, answering "response pending"
+    # (0x78) meanwhile: wait as long as it keeps saying so (each wait bounded by P2*)
+    overall = client.config["request_timeout"]
+    client.set_config("request_timeout", None)
+    try:
+        resp = request("RequestTransferExit", client.request_transfer_exit, node=node)
+    finally:
+        client.set_config("request_timeout", overall)
     rec = bytes(resp.service_data.parameter_records or b"")
     if len(rec) >= 4:
         crc = int.from_bytes(rec[:4], "big")
@@ -228,6 +236,8 @@ def flash_image(
                 ERR_LINK_NEGATIVE,
                 f"device CRC-32 0x{crc:08X} differs from the image's 0x{zlib.crc32(image):08X}",
             )
+    if not mark_test:
+        return n_blocks
     request(
         "RoutineControl(mark test)",
         client.start_routine,

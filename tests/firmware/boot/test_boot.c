@@ -13,6 +13,7 @@
 
 #include "boot.h"
 #include "boot_fls_window.h"
+#include "boot_verify.h"
 #include "fls_ram.h"
 #include "fwu.h"
 #include "nvm.h"
@@ -245,6 +246,47 @@ static void test_golden_image_from_python(void **state)
     IMG[BOOT_IMAGE_HEADER_SIZE + 500u] ^= 0x01u;
     factory_program(&D, 1u, IMG, len);
     assert_int_equal(boot_slot_verify(&D.cfg, 1u, &h), BOOT_ERR_HASH);
+}
+
+/* The golden image verified in slices of at most `rounds` SHA-256 rounds a call: the result of the
+ * one-call verification after ceil(compressions * 64 / rounds) calls or so, never sooner. */
+static boot_status_t verify_sliced(uint32_t rounds, uint32_t *calls)
+{
+    static boot_verify_t v;
+    boot_verify_begin(&v, D.cfg.app_dev, D.cfg.slot_addr[1], D.cfg.slot_size, D.cfg.target_id,
+                      D.cfg.key, D.cfg.key_len);
+    *calls = 1u;
+    while (!boot_verify_run(&v, rounds)) {
+        (*calls)++;
+    }
+    return v.status;
+}
+
+static void test_golden_image_verified_in_slices(void **state)
+{
+    (void)state;
+    FILE *fp = fopen(BOOT_VECTOR_DIR "/golden_host_1.2.3.fwimg", "rb");
+    assert_non_null(fp);
+    const uint32_t len = (uint32_t)fread(IMG, 1, sizeof IMG, fp);
+    fclose(fp);
+    dev_fresh(&D);
+    factory_program(&D, 1u, IMG, len);
+    /* 1,000 bytes of payload: the hash 16 blocks with its padding, the MAC's inner hash 19 (key,
+     * header, payload, padding) and its outer 2: 37 blocks of 64 rounds */
+    const uint32_t budgets[] = {1u, 16u, 37u, 64u};
+    for (size_t i = 0; i < sizeof budgets / sizeof budgets[0]; i++) {
+        uint32_t calls = 0u;
+        assert_int_equal(verify_sliced(budgets[i], &calls), BOOT_OK);
+        assert_true(calls >= (37u * 64u) / budgets[i]);
+        assert_true(calls <= (37u * 64u) / budgets[i] + 40u);
+    }
+    uint32_t calls = 0u;
+    D.cfg.key = OTHER_KEY;
+    assert_int_equal(verify_sliced(16u, &calls), BOOT_ERR_TAG);
+    D.cfg.key = DEV_KEY;
+    IMG[BOOT_IMAGE_HEADER_SIZE + 999u] ^= 0x80u;
+    factory_program(&D, 1u, IMG, len);
+    assert_int_equal(verify_sliced(16u, &calls), BOOT_ERR_HASH);
 }
 
 static void test_header_refusals(void **state)
@@ -724,6 +766,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_golden_image_from_python),
+        cmocka_unit_test(test_golden_image_verified_in_slices),
         cmocka_unit_test(test_header_refusals),
         cmocka_unit_test(test_state_record_round_trip),
         cmocka_unit_test(test_full_update_and_confirm),

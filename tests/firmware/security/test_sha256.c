@@ -87,6 +87,56 @@ static void test_padding_boundaries(void **state)
     }
 }
 
+static void test_feed_in_slices_equals_one_shot(void **state)
+{
+    (void)state;
+    /* sec_sha256_feed with a budget of 1..64 rounds a call, chunks of 1..130 bytes, then its
+     * padding and digest: the same digest as the one-shot (FIPS-checked) hash; no call runs
+     * more rounds than its budget */
+    uint8_t msg[300];
+    for (uint32_t i = 0; i < sizeof msg; i++) {
+        msg[i] = (uint8_t)(i * 13u + 5u);
+    }
+    const uint32_t lens[] = {0, 1, 55, 56, 64, 65, 128, 191, 300};
+    const uint32_t budgets[] = {1, 7, 16, 64};
+    const uint32_t chunks[] = {1, 64, 130};
+    for (size_t j = 0; j < sizeof lens / sizeof lens[0]; j++) {
+        for (size_t b = 0; b < sizeof budgets / sizeof budgets[0]; b++) {
+            for (size_t c = 0; c < sizeof chunks / sizeof chunks[0]; c++) {
+                uint8_t d1[32], d2[32];
+                sec_sha256(msg, lens[j], d1);
+                sec_sha256_t s;
+                sec_sha256_job_t job;
+                memset(&job, 0, sizeof job);
+                sec_sha256_init(&s);
+                uint8_t pad[SEC_SHA256_PAD_MAX];
+                uint32_t off = 0, calls = 0, padded = 0, pad_len = 0;
+                for (;;) {
+                    const uint8_t *p = padded ? pad : msg;
+                    const uint32_t end = padded ? pad_len : lens[j];
+                    uint32_t n = end - off < chunks[c] ? end - off : chunks[c];
+                    uint32_t rounds = budgets[b];
+                    off += sec_sha256_feed(&s, &job, p + off, n, &rounds);
+                    assert_true(rounds <= budgets[b]);
+                    calls++;
+                    assert_true(calls < 100000u);
+                    if (off < end || job.active) {
+                        continue;
+                    }
+                    if (padded) {
+                        break;
+                    }
+                    pad_len = sec_sha256_padding(&s, pad);
+                    padded = 1;
+                    off = 0;
+                }
+                sec_sha256_digest(&s, d2);
+                assert_memory_equal(d1, d2, 32);
+            }
+        }
+    }
+}
+
 typedef struct {
     uint8_t key[131];
     uint32_t key_len;
@@ -176,6 +226,7 @@ int main(void)
         cmocka_unit_test(test_fips_vectors),
         cmocka_unit_test(test_million_a_incremental),
         cmocka_unit_test(test_padding_boundaries),
+        cmocka_unit_test(test_feed_in_slices_equals_one_shot),
         cmocka_unit_test(test_rfc4231_all_cases),
         cmocka_unit_test(test_ct_equal),
     };
