@@ -12,21 +12,20 @@ from forceskill.errors import FsError, SkillError
 from forceskill.model import periodic, synthetic
 from forceskill.model.demo import Demo
 from forceskill.model.params import derive
-from forceskill.model.periodic_fit import autocorr_period, fit_periodic
+from forceskill.model.periodic_fit import PeriodicFit, autocorr_period, fit_periodic
 from forceskill.model.skill import KIND_PERIODIC, Skill
 
 VECTORS = Path(__file__).resolve().parents[2] / "vectors"
 
 
 @pytest.fixture(scope="module")
-def wipe_fit() -> periodic_fit_result:  # type: ignore[name-defined]  # noqa: F821
+def wipe_fit() -> PeriodicFit:
     return fit_periodic(synthetic.wiping_strokes(seed=3), 100.0)
 
 
 def _law_cycle(skill: Skill, n: int) -> np.ndarray:
-    """An independent integrator: the law about the mean force in (e, ed, I), section 5's
-    third-order equation e''' + (alpha+1) e'' + (alpha*beta + alpha + gamma) e' + alpha*gamma*e =
-    alpha*h' + h'' is not used; instead the (e, z, I) recursion written as one matrix step."""
+    """An independent evaluation: the (e, z, I) recursion as one matrix step, every kernel summed
+    (no cutoff), the phase as n*a mod 2*pi."""
     a = skill.dt_s / skill.tau_s
     m = periodic.transform_matrix(skill.alpha, skill.beta, skill.gamma, a)
     phi = (np.arange(n + 1) * a) % (2.0 * math.pi)
@@ -41,7 +40,7 @@ def _law_cycle(skill: Skill, n: int) -> np.ndarray:
     return res
 
 
-def test_the_rollout_is_periodic_and_matches_an_independent_step(wipe_fit) -> None:  # type: ignore[no-untyped-def]
+def test_the_rollout_is_periodic_and_matches_an_independent_step(wipe_fit: PeriodicFit) -> None:
     sk = wipe_fit.skill
     p = int(round(sk.duration_s / sk.dt_s))
     t, f = periodic.rollout(sk, cycles=4)
@@ -55,7 +54,7 @@ def test_the_rollout_is_periodic_and_matches_an_independent_step(wipe_fit) -> No
     assert np.max(np.abs(periodic.rollout_scan(sk, 4 * p) - f)) <= 1e-12 * np.max(np.abs(f))
 
 
-def test_the_mean_is_the_goal_and_h0_relaxes_to_it(wipe_fit) -> None:  # type: ignore[no-untyped-def]
+def test_the_mean_is_the_goal_and_h0_relaxes_to_it(wipe_fit: PeriodicFit) -> None:
     sk = wipe_fit.skill
     p = int(round(sk.duration_s / sk.dt_s))
     _, f = periodic.rollout(sk, cycles=1)
@@ -66,7 +65,7 @@ def test_the_mean_is_the_goal_and_h0_relaxes_to_it(wipe_fit) -> None:  # type: i
     assert abs(f0[-1] - sk.goal_N) <= 1e-6 * sk.goal_N
 
 
-def test_goal_and_amplitude_scale_exactly_and_time_scale_stretches(wipe_fit) -> None:  # type: ignore[no-untyped-def]
+def test_goal_and_amplitude_scale_exactly_and_time_scale_stretches(wipe_fit: PeriodicFit) -> None:
     sk = wipe_fit.skill
     _, f1 = periodic.rollout(sk, cycles=2)
     _, fs = periodic.rollout(sk, cycles=2, goal_scale=1.5, amplitude_scale=0.5)
@@ -81,7 +80,7 @@ def test_goal_and_amplitude_scale_exactly_and_time_scale_stretches(wipe_fit) -> 
     assert np.max(np.abs(ft[idx] - f1[: idx.size * 2 : 2])) <= 0.02 * np.max(np.abs(f1))
 
 
-def test_fit_finds_the_period_and_the_steady_strokes_and_learns_the_stroke(wipe_fit) -> None:  # type: ignore[no-untyped-def]
+def test_fit_finds_the_period_and_the_steady_strokes_and_learns_the_stroke(wipe_fit: PeriodicFit) -> None:
     r = wipe_fit
     assert r.skill.kind == KIND_PERIODIC and r.skill.format_version == 4
     assert r.period_s == pytest.approx(1.2, rel=1e-4)
@@ -136,7 +135,7 @@ def test_refusals() -> None:
     assert e.value.code == 610
 
 
-def test_v4_image_round_trip_and_discrete_v4_equals_v2(wipe_fit) -> None:  # type: ignore[no-untyped-def]
+def test_v4_image_round_trip_and_discrete_v4_equals_v2(wipe_fit: PeriodicFit) -> None:
     sk = wipe_fit.skill
     b = sk.to_bytes()
     assert len(b) == 208 + 24 * sk.n_kernels + 4
@@ -153,7 +152,7 @@ def test_v4_image_round_trip_and_discrete_v4_equals_v2(wipe_fit) -> None:  # typ
     assert back4.to_bytes() == d2.to_bytes()
 
 
-def test_derive_matches_the_stored_gains(wipe_fit) -> None:  # type: ignore[no-untyped-def]
+def test_derive_matches_the_stored_gains(wipe_fit: PeriodicFit) -> None:
     sk = wipe_fit.skill
     assert derive(sk.gains).alpha == sk.alpha
     assert sk.duration_s == pytest.approx(2.0 * math.pi * sk.tau_s, rel=1e-12)
@@ -200,3 +199,31 @@ def test_bad_v4_images_are_refused_with_their_codes() -> None:
             with pytest.raises(SkillError) as e:
                 Skill.from_bytes((VECTORS / "bad" / name).read_bytes())
             assert e.value.code == int(code), name
+
+
+def test_cli_fit_periodic_and_rollout_cycles(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from forceskill.cli import main
+
+    d = synthetic.wiping_strokes(seed=5, noise_N=0.02)
+    csv = tmp_path / "wipe.csv"
+    np.savetxt(
+        csv, np.column_stack((d.t_s, d.pos_m, d.force_N)), delimiter=",", header="t,x,f_contact", comments=""
+    )
+    out = tmp_path / "wipe.skill"
+    assert main(["fit", str(csv), "-k", "100", "--periodic", "-o", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "11 steady strokes" in text and "period 1.2" in text and "against each stroke" in text
+    sk = Skill.read(out)
+    assert sk.periodic and sk.duration_s == pytest.approx(1.2)
+    roll = tmp_path / "r.csv"
+    args = ["rollout", str(out), "--cycles", "3", "--goal-scale", "1.5", "--amplitude-scale", "0.5"]
+    assert main([*args, "--time-scale", "1.5", "-o", str(roll)]) == 0
+    r = np.loadtxt(roll, delimiter=",", skiprows=1)
+    assert r.shape[0] == 3 * 1800 + 1
+    assert float(np.mean(r[:-1, 1])) == pytest.approx(1.5 * sk.goal_N, rel=1e-5)
+    capsys.readouterr()
+    assert (
+        main(["rollout", str(VECTORS / "press_n10_ridge_release.skill"), "--cycles", "2", "-o", str(roll)])
+        != 0
+    )
+    assert "683" in capsys.readouterr().err
