@@ -149,7 +149,7 @@ def check(root: Path = ROOT) -> tuple[list[str], dict[tuple[str, str], set[str]]
 # ---- host package ------------------------------------------------------------------------------
 
 HOST_PKG = "forceskill"
-HOST_RANK = {"base": 0, "readers": 1, "model": 2, "link": 3, "plot": 4, "commands": 5, "cli": 6}
+HOST_RANK = {"base": 0, "wire": 1, "readers": 2, "model": 3, "link": 4, "plot": 5, "commands": 6, "cli": 7}
 HOST_BASE = {"forceskill", "forceskill.codes", "forceskill.errors", "forceskill.outputs", "forceskill.sim"}
 # (from, to): the only modules of `to` that `from` may import
 HOST_ONLY = {("readers", "link"): {"forceskill.link.dbc", "forceskill.link.telemetry"}}
@@ -160,7 +160,7 @@ def host_layer(mod: str) -> str | None:
     if mod in HOST_BASE:
         return "base"
     parts = mod.split(".")
-    if len(parts) >= 2 and parts[1] in ("readers", "model", "link", "commands"):
+    if len(parts) >= 2 and parts[1] in ("wire", "readers", "model", "link", "commands"):
         return parts[1]
     return {"forceskill.plot": "plot", "forceskill.cli": "cli", "forceskill.__main__": "cli"}.get(mod)
 

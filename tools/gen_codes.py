@@ -3,16 +3,21 @@
 firmware/base/codes.toml: the C headers in firmware/base/, host/forceskill/codes.py,
 docs/codes.md, and the marked tables of docs/protocol.md, docs/safety.md and docs/update.md
 (between `<!-- begin codes:NAME ... -->` and `<!-- end codes:NAME -->`; the text around them is
-kept). Standard library only (tomllib, Python 3.11+).
+kept); and, from the table beside it, firmware/base/wire.toml, the shared constants and the UDS
+payload codecs (tools/gen_wire.py: firmware/base/fs_wire_const.h,
+firmware/proto/generated/fs_wire.{c,h}, host/forceskill/wire/generated.py). Standard library
+only (tomllib, Python 3.11+).
 
 usage: tools/gen_codes.py            write the files
        tools/gen_codes.py --check    exit 1 (one line per file) if a file differs from the table,
-                                     or the DBC's frame identifiers differ from the table's
+                                     or the DBC's frame identifiers (or its HostCommand scale
+                                     factors) differ from the tables's
 """
 
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import re
 import sys
 import textwrap
@@ -34,6 +39,16 @@ DOC_REGIONS = {
 }
 STAMP = f"generated from {TABLE} by tools/gen_codes.py; do not edit"
 WIDTH = 100
+
+
+def _wire():  # type: ignore[no-untyped-def]
+    """tools/gen_wire.py: the constants and UDS payload codecs of firmware/base/wire.toml."""
+    spec = importlib.util.spec_from_file_location("gen_wire", Path(__file__).with_name("gen_wire.py"))
+    assert spec is not None and spec.loader is not None
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules.setdefault("gen_wire", mod)
+    spec.loader.exec_module(mod)
+    return mod
 
 
 class TableError(Exception):
@@ -533,6 +548,7 @@ def outputs(table: dict, root: Path = ROOT) -> dict[str, str]:
     files[DOC_OUT] = markdown(table)
     for rel in DOC_REGIONS:
         files[rel] = fill_regions(rel, (root / rel).read_text(), table)
+    files.update(_wire().outputs(root))
     return files
 
 
@@ -563,6 +579,7 @@ def check(root: Path = ROOT) -> list[str]:
         if not path.is_file() or path.read_text() != text:
             problems.append(f"{rel} differs from {TABLE}: run tools/gen_codes.py")
     problems += dbc_mismatches(table, (root / DBC).read_text())
+    problems += _wire().dbc_scale_mismatches(root, DBC)
     return problems
 
 
@@ -586,11 +603,11 @@ def main(argv: list[str] | None = None) -> int:
                 tmp.write_text(text)
                 tmp.replace(path)
                 print(f"wrote {rel}")
-        bad = dbc_mismatches(table, (ROOT / DBC).read_text())
+        bad = dbc_mismatches(table, (ROOT / DBC).read_text()) + _wire().dbc_scale_mismatches(ROOT, DBC)
         for b in bad:
             print(b, file=sys.stderr)
         return 1 if bad else 0
-    except (OSError, tomllib.TOMLDecodeError, TableError, KeyError, IndexError) as e:
+    except (OSError, tomllib.TOMLDecodeError, TableError, _wire().WireError, KeyError, IndexError) as e:
         print(f"gen_codes: {TABLE}: {e}", file=sys.stderr)
         return 1
 

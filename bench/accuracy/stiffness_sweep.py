@@ -37,7 +37,9 @@ def main() -> int:
             finite = finite and bool(np.all(np.isfinite(f)))
             cells.append(f"{100.0 * np.max(np.abs(f - res.target_N)) / np.max(np.abs(res.target_N)):.4f}")
         print(
-            f"| {k:.0e} | " + " | ".join(cells) + f" | {res.skill.gamma:g} | {res.skill.kkf_Npm / k:.3g} | "
+            f"| {k:.0e} | "
+            + " | ".join(cells)
+            + f" | {res.skill.gamma:g} | {res.skill.gains.force_gains(k)[0]:.3g} | "
             f"{'yes' if finite else 'NO'} |"
         )
     return 0

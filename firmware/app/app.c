@@ -8,7 +8,7 @@
 
 #ifndef APP_FW_TARGET_ID
 /* the firmware images this device accepts (BOOT_TARGET_*): a port's build defines its own */
-#define APP_FW_TARGET_ID BOOT_TARGET_HOST
+#define APP_FW_TARGET_ID FS_TARGET_HOST
 #endif
 
 _Static_assert(SAF_AXES == PFC_AXES && SAF_AXES == HAL_AXES,
@@ -30,7 +30,13 @@ void app_config_default(app_config_t *cfg)
     saf_default_config(&cfg->saf);
     cfg->vel_cutoff_Hz = FS_R(50.0);
     cfg->telemetry_period_ms = 1u;
-    cfg->stiffness_max_Npm = (fs_real_t)APP_STIFFNESS_MAX_NPM;
+    cfg->stiffness_max_Npm = app_stiffness_max_default_Npm(cfg->render_carriage);
+}
+
+fs_real_t app_stiffness_max_default_Npm(uint8_t render_carriage)
+{
+    return (fs_real_t)(render_carriage != 0u ? FS_STIFFNESS_MAX_RENDERED_NPM
+                                             : FS_STIFFNESS_MAX_NPM);
 }
 
 /* ---------------------------------------------------------------- CAN helpers */
@@ -194,11 +200,6 @@ static uint32_t app_now_ms(app_t *app, uint64_t now_us)
     return app->ms_base_ms;
 }
 
-static fs_real_t milli(uint32_t v)
-{
-    return (fs_real_t)v * FS_R(0.001);
-}
-
 uint8_t app_start_sequence(app_t *app, const uint8_t *slots, const fs_real_t *goal_scale,
                            const fs_real_t *time_scale, const fs_real_t *duration_s,
                            const fs_real_t *path_scale, uint8_t n_steps, uint8_t end)
@@ -227,7 +228,7 @@ uint8_t app_start_sequence(app_t *app, const uint8_t *slots, const fs_real_t *go
             return UDS_NRC_REQUEST_OUT_OF_RANGE;
         }
         sc = skchk_run_scales(&app->slot_skill[s - 1u], app->slot_peak_N[s - 1u], goal_scale[i],
-                              time_scale[i], FS_R(0.001), app->cfg.saf.lim.axis[0].force_max_N);
+                              time_scale[i], APP_TICK_S, app->cfg.saf.lim.axis[0].force_max_N);
         app->last_run_status = (uint16_t)sc;
         if (sc != FS_OK) {
             return UDS_NRC_REQUEST_OUT_OF_RANGE;
@@ -256,7 +257,7 @@ uint8_t app_start_sequence(app_t *app, const uint8_t *slots, const fs_real_t *go
     for (unsigned a = 0; a < PFC_AXES; a++) {
         app->exec_run_cfg.pfc.limits[a].force_max_N = app->cfg.saf.lim.axis[a].force_max_N;
     }
-    app->exec_run_cfg.pfc.dt_s = FS_R(0.001);
+    app->exec_run_cfg.pfc.dt_s = APP_TICK_S;
     if (exec_start(&app->exec_run_cfg, &app->exec, steps, n_steps, app->sens.pos_m[1]) != FS_OK) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
@@ -278,8 +279,8 @@ static void handle_command(app_t *app, const can_frame_t *f)
     case APP_CMD_TEACH: (void)app_event(app, APP_EV_TEACH); break;
     case APP_CMD_EXECUTE: {
         const uint8_t slot = c.slot;
-        const fs_real_t g = milli(c.goal_scale);
-        const fs_real_t ts = milli(c.time_scale);
+        const fs_real_t g = FS_WIRE_REAL(fs_real_t, c.goal_scale);
+        const fs_real_t ts = FS_WIRE_REAL(fs_real_t, c.time_scale);
         const fs_real_t d = FS_R(0.0);
         (void)app_start_sequence(app, &slot, &g, &ts, &d, NULL, 1u, c.end_policy);
         break;
@@ -376,7 +377,7 @@ static fs_status_t app_check_stored(const skill_t *sk, fs_real_t *peak_N, fs_rea
         return st;
     }
     skchk_t c;
-    skchk_begin(&c, sk, FS_R(0.001), FS_R(1e30));
+    skchk_begin(&c, sk, APP_TICK_S, FS_R(1e30));
     c.path_max_m = FS_R(1e30);
     while (!skchk_run(&c, UINT32_MAX)) {
     }
@@ -487,7 +488,7 @@ void app_init(app_t *app, const app_config_t *cfg)
 
     sec_setup(app);
 
-    app->last_transfer_status = APP_TRANSFER_NONE;
+    app->last_transfer_status = FS_TRANSFER_NONE;
     app->nvm_ok = (nvm_init(&app->nvm, hal_flash()) == NVM_OK);
     app_slots_reload(app);
 
@@ -523,7 +524,7 @@ void app_init(app_t *app, const app_config_t *cfg)
     app->saf_cfg = cfg->saf;
     saf_init(&app->saf);
     for (unsigned a = 0; a < PFC_AXES; a++) {
-        exec_vel_init(&app->vel[a], cfg->vel_cutoff_Hz, FS_R(0.001));
+        exec_vel_init(&app->vel[a], cfg->vel_cutoff_Hz, APP_TICK_S);
     }
     hal_actuator_enable(false);
     app->next_tick_us = app->now_us + APP_TICK_US;
@@ -545,7 +546,7 @@ static void control(app_t *app)
 {
     app->force_req_N[0] = FS_R(0.0);
     app->force_req_N[1] = FS_R(0.0);
-    const fs_real_t dt = FS_R(0.001);
+    const fs_real_t dt = APP_TICK_S;
     if (app->state == APP_TEACH) {
         app->teach_ticks++;
         if (app->cfg.render_carriage != 0u) {
@@ -603,7 +604,7 @@ void app_tick(app_t *app, bool overrun)
     /* sensors first: commands that start a motion start from this sample */
     hal_sensors_read(&app->sens);
     for (unsigned a = 0; a < PFC_AXES; a++) {
-        app->vel_mps[a] = exec_vel_update(&app->vel[a], app->sens.pos_m[a], FS_R(0.001));
+        app->vel_mps[a] = exec_vel_update(&app->vel[a], app->sens.pos_m[a], APP_TICK_S);
     }
     if (app->state == APP_BOOT) {
         app->fw_self_test_ok = app_fw_self_test_and_confirm(app);

@@ -21,6 +21,7 @@
 #include "app_sm.h"
 #include "e2e.h"
 #include "fs_exec.h"
+#include "fs_wire.h"
 #include "hal.h"
 #include "isotp.h"
 #include "nvm.h"
@@ -32,9 +33,10 @@
 #include "skill_check.h"
 #include "uds.h"
 
-#define APP_TICK_US 1000u
-#define APP_N_SLOTS NVM_MAX_SLOTS  /* UDS/CAN slot numbers 1..APP_N_SLOTS */
-#define APP_RX_FRAMES_PER_TICK 64u /* bounded CAN drain per tick */
+#define APP_TICK_US FS_TICK_US            /* the tick period (wire.toml) */
+#define APP_TICK_S ((fs_real_t)FS_TICK_S) /* the same in seconds, the control law's dt */
+#define APP_N_SLOTS NVM_MAX_SLOTS         /* UDS/CAN slot numbers 1..APP_N_SLOTS */
+#define APP_RX_FRAMES_PER_TICK 64u        /* bounded CAN drain per tick */
 /* Transmit places kept for emergency and status frames: telemetry and ISO-TP (UDS) frames are
  * queued only while more than this many are free, so a backlog of them (bus flooded by frames
  * of higher priority) never keeps a safety frame out of the queue. */
@@ -44,7 +46,6 @@
 #define APP_IDLE_TELEMETRY_PERIOD_MS 100u
 #define APP_IMAGE_MAX SKILL_IMAGE_MAX
 #define APP_SW_VERSION "forceskill-fw 0.1.0"
-#define APP_TRANSFER_NONE 0xFFFDu /* DID 0x0201: no download since power-up */
 #define APP_PROTO_VERSION_MAJOR 1u
 #define APP_PROTO_VERSION_MINOR 0u
 #define APP_SEC_LEVELS 2u /* SecurityAccess levels 1 and 3, one secret each */
@@ -67,13 +68,6 @@
 #ifndef APP_COMMIT_FLASH_UNITS_PER_TICK
 #define APP_COMMIT_FLASH_UNITS_PER_TICK 2u
 #endif
-/* Highest nominal skill stiffness the device accepts (commit and start refuse above it, 227):
- * tracking against object stiffness on the HIL (bench/stiffness/stiffness_limit.py, docs/hil.md),
- * the highest k from 1e4 N/m up at which both stiff profiles track within 5 % RMS without a fault:
- * 5e5 N/m for a dynamics-compensated drive (render_carriage 0), 3e4 N/m for a carriage rendered by
- * admittance (render_carriage 1, exec_render_default; 13-15 % at 1e5 N/m). */
-#define APP_STIFFNESS_MAX_NPM 5e5
-#define APP_STIFFNESS_MAX_RENDERED_NPM 3e4
 
 
 /** The stages of a skill download's commit (one per tick at least, app_uds.c). */
@@ -199,6 +193,13 @@ bool app_fw_self_test_and_confirm(app_t *app);
 uint8_t app_start_sequence(app_t *app, const uint8_t *slots, const fs_real_t *goal_scale,
                            const fs_real_t *time_scale, const fs_real_t *duration_s,
                            const fs_real_t *path_scale, uint8_t n_steps, uint8_t end);
+
+/** The default skill stiffness limit (DID 0x0140, 227 above it) of a drive: the highest nominal
+ *  stiffness at which both stiff HIL profiles track within 5 % RMS without a fault
+ *  (bench/stiffness/stiffness_limit.py, docs/hil.md): FS_STIFFNESS_MAX_NPM for a
+ *  dynamics-compensated drive (render_carriage 0), FS_STIFFNESS_MAX_RENDERED_NPM for a carriage
+ *  rendered by admittance (render_carriage 1; 13-15 % at 1e5 N/m). */
+fs_real_t app_stiffness_max_default_Npm(uint8_t render_carriage);
 
 /** Handle the UDS hooks (app_uds.c): fills an uds_app_t bound to app. */
 void app_uds_bind(app_t *app, uds_app_t *out);

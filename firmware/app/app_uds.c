@@ -6,53 +6,12 @@
 #include "app_internal.h"
 #include "fwu_uds.h"
 
-/* Data identifiers (DID_*, fs_uds_ids.h): big-endian values, IEEE-754 float32 for reals. */
-#define SLOT_DIR_ENTRY 16u
+/* Data identifiers (DID_*, fs_uds_ids.h) and routine records: the generated codecs of
+ * wire.toml (fs_wire.h). Each DID function packs into buf (cap bytes) and returns the length,
+ * 0 for another DID. */
 
-static void put_u16(uint8_t *p, uint16_t v)
-{
-    p[0] = (uint8_t)(v >> 8);
-    p[1] = (uint8_t)v;
-}
-
-static void put_u32(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)(v >> 24);
-    p[1] = (uint8_t)(v >> 16);
-    p[2] = (uint8_t)(v >> 8);
-    p[3] = (uint8_t)v;
-}
-
-static void put_f32(uint8_t *p, fs_real_t v)
-{
-    const float f = (float)v;
-    uint32_t u;
-    memcpy(&u, &f, sizeof(u));
-    put_u32(p, u);
-}
-
-static uint16_t get_u16(const uint8_t *p)
-{
-    return (uint16_t)(((uint16_t)p[0] << 8) | p[1]);
-}
-
-static uint32_t get_u32(const uint8_t *p)
-{
-    return ((uint32_t)p[0] << 24) | ((uint32_t)p[1] << 16) | ((uint32_t)p[2] << 8) | p[3];
-}
-
-static fs_real_t get_f32(const uint8_t *p)
-{
-    const uint32_t u = get_u32(p);
-    float f;
-    memcpy(&f, &u, sizeof(f));
-    return (fs_real_t)f;
-}
-
-/* ---------------------------------------------------------------- data identifiers */
-
-/* The identity DIDs (software version, format versions); their length, 0 for another DID. */
-static uint16_t did_identity(uint16_t did, uint8_t *buf)
+/* The identity DIDs (software version, format versions). */
+static uint16_t did_identity(uint16_t did, uint8_t *buf, uint16_t cap)
 {
     switch (did) {
     case DID_SW_VERSION: {
@@ -60,115 +19,114 @@ static uint16_t did_identity(uint16_t did, uint8_t *buf)
         memcpy(buf, APP_SW_VERSION, n);
         return n;
     }
-    case DID_VERSIONS:
-        buf[0] = APP_PROTO_VERSION_MAJOR;
-        buf[1] = APP_PROTO_VERSION_MINOR;
-        buf[2] = SKILL_FORMAT_VERSION;
-        put_u16(&buf[3], DMP_MAX_KERNELS);
-        buf[5] = APP_N_SLOTS;
-        return 6u;
+    case DID_VERSIONS: {
+        const fs_wire_versions_t v = {APP_PROTO_VERSION_MAJOR, APP_PROTO_VERSION_MINOR,
+                                      SKILL_FORMAT_VERSION, DMP_MAX_KERNELS, APP_N_SLOTS};
+        return fs_wire_versions_pack(&v, buf, cap);
+    }
     default: return 0u;
     }
 }
 
-/* The configuration DIDs (gains, limits, communication, object); their length, 0 for another. */
-static uint16_t did_config(const app_t *app, uint16_t did, uint8_t *buf)
+/* The configuration DIDs (gains, limits, communication, object). */
+static uint16_t did_config(const app_t *app, uint16_t did, uint8_t *buf, uint16_t cap)
 {
     switch (did) {
     case DID_GAINS_X:
     case DID_GAINS_Y: {
         const pfc_axis_gains_t *g = &app->cfg.gains[did - DID_GAINS_X];
-        put_f32(&buf[0], g->m_d_kg);
-        put_f32(&buf[4], g->k_d_Nspm);
-        put_f32(&buf[8], g->k_p_Npm);
-        put_f32(&buf[12], g->k_f);
-        put_f32(&buf[16], g->k_i_per_s);
-        return 20u;
+        const fs_wire_gains_t v = {(float)g->m_d_kg, (float)g->k_d_Nspm, (float)g->k_p_Npm,
+                                   (float)g->k_f, (float)g->k_i_per_s};
+        return fs_wire_gains_pack(&v, buf, cap);
     }
     case DID_LIMITS_X:
     case DID_LIMITS_Y: {
         const lim_axis_t *l = &app->saf_cfg.lim.axis[did - DID_LIMITS_X];
-        put_f32(&buf[0], l->force_max_N);
-        put_f32(&buf[4], l->slew_max_N);
-        put_f32(&buf[8], l->pos_min_m);
-        put_f32(&buf[12], l->pos_max_m);
-        put_f32(&buf[16], l->vel_max_mps);
-        put_f32(&buf[20], l->contact_force_max_N);
-        return 24u;
+        const fs_wire_limits_t v = {(float)l->force_max_N, (float)l->slew_max_N,
+                                    (float)l->pos_min_m,   (float)l->pos_max_m,
+                                    (float)l->vel_max_mps, (float)l->contact_force_max_N};
+        return fs_wire_limits_pack(&v, buf, cap);
     }
-    case DID_COMM:
-        buf[0] = app->cfg.telemetry_period_ms;
-        put_u16(&buf[1], app->saf_cfg.wdg.timeout_ms);
-        return 3u;
+    case DID_COMM: {
+        const fs_wire_comm_t v = {app->cfg.telemetry_period_ms, app->saf_cfg.wdg.timeout_ms};
+        return fs_wire_comm_pack(&v, buf, cap);
+    }
     case DID_OBJECT: {
         const exec_object_t *o = &app->cfg.exec.object;
-        buf[0] = app->cfg.exec.use_model;
-        put_f32(&buf[1], o->m_v_kg);
-        put_f32(&buf[5], o->d_v_Nspm);
-        put_f32(&buf[9], o->k1_Npm);
-        put_f32(&buf[13], o->k2_Npm);
-        put_f32(&buf[17], o->layer_depth_m);
-        put_f32(&buf[21], o->surface_m);
-        return 25u;
+        const fs_wire_object_t v = {
+            app->cfg.exec.use_model, (float)o->m_v_kg,        (float)o->d_v_Nspm, (float)o->k1_Npm,
+            (float)o->k2_Npm,        (float)o->layer_depth_m, (float)o->surface_m};
+        return fs_wire_object_pack(&v, buf, cap);
     }
     default: return 0u;
     }
 }
 
 /* The slot directory: the count, then per slot valid, length, CRC, kernels, T, end policy. */
-static uint16_t did_slot_dir(const app_t *app, uint8_t *buf)
+static uint16_t did_slot_dir(const app_t *app, uint8_t *buf, uint16_t cap)
 {
-    uint16_t n = 1u;
-    buf[0] = APP_N_SLOTS;
+    fs_wire_slot_dir_t v;
+    memset(&v, 0, sizeof(v));
+    v.count = APP_N_SLOTS;
+    v.n_entries = APP_N_SLOTS;
     for (uint16_t s = 0; s < APP_N_SLOTS; s++) {
-        uint8_t *e = &buf[n];
-        memset(e, 0, SLOT_DIR_ENTRY);
+        fs_wire_slot_entry_t *e = &v.entries[s];
         if (app->slot_valid[s]) {
             const skill_t *sk = &app->slot_skill[s];
-            e[0] = 1u;
-            put_u32(&e[1], app->slot_len[s]);
-            put_u32(&e[5], app->slot_crc[s]); /* the image's own CRC-32 field */
-            put_u16(&e[9], sk->dmp.n_kernels);
-            put_f32(&e[11], sk->dmp.duration_s);
-            e[15] = (uint8_t)sk->end_policy;
+            e->valid = 1u;
+            e->length = app->slot_len[s];
+            e->crc32 = app->slot_crc[s]; /* the image's own CRC-32 field */
+            e->n_kernels = sk->dmp.n_kernels;
+            e->duration_s = (float)sk->dmp.duration_s;
+            e->end = (uint8_t)sk->end_policy;
         }
-        n = (uint16_t)(n + SLOT_DIR_ENTRY);
     }
-    return n;
+    return fs_wire_slot_dir_pack(&v, buf, cap);
 }
 
-/* The status DIDs (slots, last transfer, device state, fault causes); length, 0 for another. */
-static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf)
+/* The status DIDs (slots, last transfer, device state, fault causes). */
+static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf, uint16_t cap)
 {
     switch (did) {
-    case DID_SLOT_DIR: return did_slot_dir(app, buf);
-    case DID_LAST_TRANSFER: put_u16(buf, app->last_transfer_status); return 2u;
-    case DID_DEVICE_STATE:
-        buf[0] = (uint8_t)app->state;
-        put_u16(&buf[1], app->saf_out.fault_code);
-        buf[3] = app->active_slot;
-        buf[4] = app->seq_step;
-        put_u32(&buf[5], app->tick);
-        return 9u;
-    case DID_STIFFNESS_MAX: put_f32(buf, app->cfg.stiffness_max_Npm); return 4u;
-    case DID_FAULT_CAUSES: /* what blocks a clear: the causes still present at the last tick */
-        put_u32(&buf[0], app->saf.flt.latched_mask);
-        put_u32(&buf[4], app->saf.cause_mask);
-        return 8u;
+    case DID_SLOT_DIR: return did_slot_dir(app, buf, cap);
+    case DID_LAST_TRANSFER: {
+        const fs_wire_last_transfer_t v = {app->last_transfer_status};
+        return fs_wire_last_transfer_pack(&v, buf, cap);
+    }
+    case DID_DEVICE_STATE: {
+        const fs_wire_device_state_t v = {(uint8_t)app->state, app->saf_out.fault_code,
+                                          app->active_slot, app->seq_step, app->tick};
+        return fs_wire_device_state_pack(&v, buf, cap);
+    }
+    case DID_STIFFNESS_MAX: {
+        const fs_wire_stiffness_max_t v = {(float)app->cfg.stiffness_max_Npm};
+        return fs_wire_stiffness_max_pack(&v, buf, cap);
+    }
+    case DID_FAULT_CAUSES: { /* what blocks a clear: the causes still present at the last tick */
+        const fs_wire_fault_causes_t v = {app->saf.flt.latched_mask, app->saf.cause_mask};
+        return fs_wire_fault_causes_pack(&v, buf, cap);
+    }
     default: return 0u;
     }
+}
+
+/* The NRC of a refused unpack: the length (0x13) or a field's range (0x31). */
+static uint8_t wire_nrc(proto_status_t st)
+{
+    return st == PROTO_ERR_WIRE_LENGTH ? UDS_NRC_INCORRECT_LENGTH : UDS_NRC_REQUEST_OUT_OF_RANGE;
 }
 
 static uint8_t read_did(void *ctx, uint16_t did, uint8_t *out, uint16_t cap, uint16_t *len)
 {
     app_t *app = ctx;
-    uint8_t buf[8u + APP_N_SLOTS * SLOT_DIR_ENTRY];
+    uint8_t buf[FS_WIRE_SLOT_DIR_LEN_MAX]; /* the longest DID */
     if (did == FWU_DID_STATUS) {
         return fwu_uds_read_did(&app->fwu, out, cap, len);
     }
-    uint16_t n = did_identity(did, buf);
-    n = n != 0u ? n : did_config(app, did, buf);
-    n = n != 0u ? n : did_status(app, did, buf);
+    const uint16_t bc = (uint16_t)sizeof(buf);
+    uint16_t n = did_identity(did, buf, bc);
+    n = n != 0u ? n : did_config(app, did, buf, bc);
+    n = n != 0u ? n : did_status(app, did, buf, bc);
     if (n == 0u) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
@@ -180,32 +138,24 @@ static uint8_t read_did(void *ctx, uint16_t did, uint8_t *out, uint16_t cap, uin
     return UDS_NRC_OK;
 }
 
-static bool finite_all(const fs_real_t *v, unsigned n)
-{
-    for (unsigned i = 0; i < n; i++) {
-        if (!fs_isfinite(v[i])) {
-            return false;
-        }
-    }
-    return true;
-}
-
 /* DID_GAINS_X/Y: m_d, k_d, k_p, k_f, k_i (float32), accepted when the gains validate. */
 static uint8_t write_gains(app_t *app, uint16_t did, const uint8_t *d, uint16_t len)
 {
-    if (len != 20u) {
-        return UDS_NRC_INCORRECT_LENGTH;
+    fs_wire_gains_t v;
+    const proto_status_t st = fs_wire_gains_unpack(&v, d, len);
+    if (st != PROTO_OK) {
+        return wire_nrc(st);
     }
     pfc_config_t pc;
     pfc_default_config(&pc);
     pc.gains[0] = app->cfg.gains[0];
     pc.gains[1] = app->cfg.gains[1];
     pfc_axis_gains_t *g = &pc.gains[did - DID_GAINS_X];
-    g->m_d_kg = get_f32(&d[0]);
-    g->k_d_Nspm = get_f32(&d[4]);
-    g->k_p_Npm = get_f32(&d[8]);
-    g->k_f = get_f32(&d[12]);
-    g->k_i_per_s = get_f32(&d[16]);
+    g->m_d_kg = (fs_real_t)v.m_d_kg;
+    g->k_d_Nspm = (fs_real_t)v.k_d_Nspm;
+    g->k_p_Npm = (fs_real_t)v.k_p_Npm;
+    g->k_f = (fs_real_t)v.k_f;
+    g->k_i_per_s = (fs_real_t)v.k_i_per_s;
     if (pfc_config_validate(&pc) != FS_OK) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
@@ -216,24 +166,19 @@ static uint8_t write_gains(app_t *app, uint16_t did, const uint8_t *d, uint16_t 
 /* DID_LIMITS_X/Y: six float32 limits, accepted when the safety configuration validates. */
 static uint8_t write_limits(app_t *app, uint16_t did, const uint8_t *d, uint16_t len)
 {
-    if (len != 24u) {
-        return UDS_NRC_INCORRECT_LENGTH;
+    fs_wire_limits_t v;
+    const proto_status_t st = fs_wire_limits_unpack(&v, d, len); /* finite */
+    if (st != PROTO_OK) {
+        return wire_nrc(st);
     }
     saf_config_t sc = app->saf_cfg;
     lim_axis_t *l = &sc.lim.axis[did - DID_LIMITS_X];
-    fs_real_t v[6];
-    for (unsigned i = 0; i < 6u; i++) {
-        v[i] = get_f32(&d[4u * i]);
-    }
-    if (!finite_all(v, 6u)) {
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;
-    }
-    l->force_max_N = v[0];
-    l->slew_max_N = v[1];
-    l->pos_min_m = v[2];
-    l->pos_max_m = v[3];
-    l->vel_max_mps = v[4];
-    l->contact_force_max_N = v[5];
+    l->force_max_N = (fs_real_t)v.force_max_N;
+    l->slew_max_N = (fs_real_t)v.slew_max_N;
+    l->pos_min_m = (fs_real_t)v.pos_min_m;
+    l->pos_max_m = (fs_real_t)v.pos_max_m;
+    l->vel_max_mps = (fs_real_t)v.vel_max_mps;
+    l->contact_force_max_N = (fs_real_t)v.contact_force_max_N;
     if (saf_config_validate(&sc) != SAF_OK) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
@@ -245,56 +190,52 @@ static uint8_t write_limits(app_t *app, uint16_t did, const uint8_t *d, uint16_t
 /* DID_COMM: telemetry period (ms, > 0) and host timeout (ms, the watchdog's range). */
 static uint8_t write_comm(app_t *app, const uint8_t *d, uint16_t len)
 {
-    if (len != 3u) {
-        return UDS_NRC_INCORRECT_LENGTH;
+    fs_wire_comm_t v;
+    const proto_status_t st = fs_wire_comm_unpack(&v, d, len);
+    if (st != PROTO_OK) {
+        return wire_nrc(st);
     }
     saf_config_t sc = app->saf_cfg;
-    sc.wdg.timeout_ms = get_u16(&d[1]);
-    if (d[0] == 0u || saf_config_validate(&sc) != SAF_OK) {
+    sc.wdg.timeout_ms = v.host_timeout_ms;
+    if (saf_config_validate(&sc) != SAF_OK) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
-    app->cfg.telemetry_period_ms = d[0];
+    app->cfg.telemetry_period_ms = v.telemetry_period_ms;
     app->saf_cfg = sc;
     app->cfg.saf = sc;
     return UDS_NRC_OK;
 }
 
-/* DID_OBJECT: use the model (0/1), then m_v, d_v, k1, k2, layer depth, surface (float32). */
-/* DID_STIFFNESS_MAX: the highest nominal skill stiffness accepted, finite in (0, 1e8] N/m. */
+/* DID_STIFFNESS_MAX: the highest nominal skill stiffness accepted, finite in
+ * (0, FS_STIFFNESS_CEILING_NPM] N/m (the record's range). */
 static uint8_t write_stiffness_max(app_t *app, const uint8_t *d, uint16_t len)
 {
-    if (len != 4u) {
-        return UDS_NRC_INCORRECT_LENGTH;
+    fs_wire_stiffness_max_t v;
+    const proto_status_t st = fs_wire_stiffness_max_unpack(&v, d, len);
+    if (st != PROTO_OK) {
+        return wire_nrc(st);
     }
-    const fs_real_t k = get_f32(d);
-    if (!fs_isfinite(k) || !(k > FS_R(0.0)) || k > (fs_real_t)SKCHK_STIFFNESS_MAX_NPM) {
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;
-    }
-    app->cfg.stiffness_max_Npm = k;
+    app->cfg.stiffness_max_Npm = (fs_real_t)v.stiffness_max_Npm;
     return UDS_NRC_OK;
 }
 
+/* DID_OBJECT: use the model (0/1), then m_v, d_v, k1, k2, layer depth, surface (float32; the
+ * record's ranges). */
 static uint8_t write_object(app_t *app, const uint8_t *d, uint16_t len)
 {
-    if (len != 25u || d[0] > 1u) {
-        return len != 25u ? UDS_NRC_INCORRECT_LENGTH : UDS_NRC_REQUEST_OUT_OF_RANGE;
-    }
-    fs_real_t v[6];
-    for (unsigned i = 0; i < 6u; i++) {
-        v[i] = get_f32(&d[1u + 4u * i]);
-    }
-    if (!finite_all(v, 6u) || v[0] < FS_R(0.0) || v[1] < FS_R(0.0) || v[2] <= FS_R(0.0) ||
-        v[3] <= FS_R(0.0) || v[4] < FS_R(0.0)) {
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    fs_wire_object_t v;
+    const proto_status_t st = fs_wire_object_unpack(&v, d, len);
+    if (st != PROTO_OK) {
+        return wire_nrc(st);
     }
     exec_object_t *o = &app->cfg.exec.object;
-    app->cfg.exec.use_model = d[0];
-    o->m_v_kg = v[0];
-    o->d_v_Nspm = v[1];
-    o->k1_Npm = v[2];
-    o->k2_Npm = v[3];
-    o->layer_depth_m = v[4];
-    o->surface_m = v[5];
+    app->cfg.exec.use_model = v.use_model;
+    o->m_v_kg = (fs_real_t)v.m_v_kg;
+    o->d_v_Nspm = (fs_real_t)v.d_v_Nspm;
+    o->k1_Npm = (fs_real_t)v.k1_Npm;
+    o->k2_Npm = (fs_real_t)v.k2_Npm;
+    o->layer_depth_m = (fs_real_t)v.layer_depth_m;
+    o->surface_m = (fs_real_t)v.surface_m;
     return UDS_NRC_OK;
 }
 
@@ -321,44 +262,42 @@ static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len
 
 /* ---------------------------------------------------------------- routines */
 
-/* A start request of RUN_SKILL (slot, goal and time scale in 1/1000, end policy) or
- * RUN_SEQUENCE (end policy, then per step: slot, goal, time in 1/1000, duration in ms). */
+/* A start request of RUN_SKILL (slot, goal and time scale, end policy [, path scale]) or
+ * RUN_SEQUENCE (end policy, then per step: slot, goal, time scale, duration). */
 static uint8_t routine_run_start(app_t *app, uint16_t rid, const uint8_t *d, uint16_t len)
 {
     uint8_t slots[EXEC_MAX_STEPS];
-    fs_real_t g[EXEC_MAX_STEPS], ts[EXEC_MAX_STEPS], dur[EXEC_MAX_STEPS];
+    fs_real_t g[EXEC_MAX_STEPS], ts[EXEC_MAX_STEPS], dur[EXEC_MAX_STEPS], ps[EXEC_MAX_STEPS];
     uint8_t n = 0u;
     uint8_t end = 0u;
-    fs_real_t ps[EXEC_MAX_STEPS];
-    for (uint8_t i = 0; i < EXEC_MAX_STEPS; i++) {
-        ps[i] = FS_R(1.0);
-    }
+    proto_status_t st;
     if (rid == UDS_RID_RUN_SKILL) {
-        /* slot, goal scale, time scale, end [, path scale]: 6 or 8 bytes */
-        if (len != 6u && len != 8u) {
-            return UDS_NRC_INCORRECT_LENGTH;
+        fs_wire_run_skill_t r;
+        st = fs_wire_run_skill_unpack(&r, d, len);
+        if (st != PROTO_OK) {
+            return wire_nrc(st);
         }
-        slots[0] = d[0];
-        g[0] = (fs_real_t)get_u16(&d[1]) * FS_R(0.001);
-        ts[0] = (fs_real_t)get_u16(&d[3]) * FS_R(0.001);
+        slots[0] = r.slot;
+        g[0] = FS_WIRE_REAL(fs_real_t, r.goal_scale);
+        ts[0] = FS_WIRE_REAL(fs_real_t, r.time_scale);
         dur[0] = FS_R(0.0);
-        end = d[5];
-        if (len == 8u) {
-            ps[0] = (fs_real_t)get_u16(&d[6]) * FS_R(0.001);
-        }
+        ps[0] = FS_WIRE_REAL(fs_real_t, r.path_scale); /* absent: the record's default, 1 */
+        end = r.end;
         n = 1u;
     } else {
-        if (len < 10u || (len - 1u) % 9u != 0u || (len - 1u) / 9u > EXEC_MAX_STEPS) {
-            return UDS_NRC_INCORRECT_LENGTH;
+        fs_wire_run_sequence_t r;
+        st = fs_wire_run_sequence_unpack(&r, d, len);
+        if (st != PROTO_OK) {
+            return wire_nrc(st);
         }
-        end = d[0];
-        n = (uint8_t)((len - 1u) / 9u);
+        end = r.end;
+        n = r.n_steps;
         for (uint8_t i = 0; i < n; i++) {
-            const uint8_t *s = &d[1u + 9u * i];
-            slots[i] = s[0];
-            g[i] = (fs_real_t)get_u16(&s[1]) * FS_R(0.001);
-            ts[i] = (fs_real_t)get_u16(&s[3]) * FS_R(0.001);
-            dur[i] = (fs_real_t)get_u32(&s[5]) * FS_R(0.001);
+            slots[i] = r.steps[i].slot;
+            g[i] = FS_WIRE_REAL(fs_real_t, r.steps[i].goal_scale);
+            ts[i] = FS_WIRE_REAL(fs_real_t, r.steps[i].time_scale);
+            dur[i] = FS_WIRE_REAL(fs_real_t, r.steps[i].duration_s);
+            ps[i] = FS_R(1.0);
         }
     }
     return app_start_sequence(app, slots, g, ts, dur, ps, n, end);
@@ -366,7 +305,7 @@ static uint8_t routine_run_start(app_t *app, uint16_t rid, const uint8_t *d, uin
 
 /* RUN_SKILL / RUN_SEQUENCE: start, stop, or the results (state, step, done, fault code). */
 static uint8_t routine_run(app_t *app, uint8_t sub, uint16_t rid, const uint8_t *d, uint16_t len,
-                           uint8_t *out, uint16_t *out_len)
+                           uint8_t *out, uint16_t cap, uint16_t *out_len)
 {
     if (sub == UDS_ROUTINE_START) {
         return routine_run_start(app, rid, d, len);
@@ -378,16 +317,15 @@ static uint8_t routine_run(app_t *app, uint8_t sub, uint16_t rid, const uint8_t 
         (void)app_event(app, APP_EV_STOP);
         return UDS_NRC_OK;
     }
-    out[0] = (uint8_t)app->state;
-    out[1] = app->seq_step;
-    out[2] = app->exec_done ? 1u : 0u;
-    put_u16(&out[3], app->saf_out.fault_code);
-    *out_len = 5u;
-    return UDS_NRC_OK;
+    const fs_wire_run_results_t v = {(uint8_t)app->state, app->seq_step, app->exec_done ? 1u : 0u,
+                                     app->saf_out.fault_code};
+    *out_len = fs_wire_run_results_pack(&v, out, cap);
+    return *out_len != 0u ? UDS_NRC_OK : UDS_NRC_RESPONSE_TOO_LONG;
 }
 
 /* SELF_TEST: the configurations, the skill storage and the sensors; out = pass/fail, code. */
-static uint8_t routine_self_test(const app_t *app, uint8_t sub, uint8_t *out, uint16_t *out_len)
+static uint8_t routine_self_test(const app_t *app, uint8_t sub, uint8_t *out, uint16_t cap,
+                                 uint16_t *out_len)
 {
     if (sub == UDS_ROUTINE_STOP) {
         return UDS_NRC_SUBFUNCTION_NOT_SUPPORTED;
@@ -407,10 +345,9 @@ static uint8_t routine_self_test(const app_t *app, uint8_t sub, uint8_t *out, ui
                !fs_isfinite(app->sens.force_contact_N[0])) {
         code = FLT_SENSOR_NAN;
     }
-    out[0] = (uint8_t)(code == 0u ? 0u : 1u);
-    put_u16(&out[1], code);
-    *out_len = 3u;
-    return UDS_NRC_OK;
+    const fs_wire_self_test_t v = {(uint8_t)(code == 0u ? 0u : 1u), code};
+    *out_len = fs_wire_self_test_pack(&v, out, cap);
+    return *out_len != 0u ? UDS_NRC_OK : UDS_NRC_RESPONSE_TOO_LONG;
 }
 
 /* CLEAR_FAULTS: accepted in FAULT once no cause persists. */
@@ -434,11 +371,10 @@ static uint8_t routine_erase_slot(app_t *app, uint8_t sub, const uint8_t *d, uin
     if (sub != UDS_ROUTINE_START) {
         return UDS_NRC_SUBFUNCTION_NOT_SUPPORTED;
     }
-    if (len != 1u) {
-        return UDS_NRC_INCORRECT_LENGTH;
-    }
-    if (d[0] < 1u || d[0] > APP_N_SLOTS) {
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    fs_wire_erase_slot_t v;
+    const proto_status_t st = fs_wire_erase_slot_unpack(&v, d, len); /* slot 1..FS_SLOT_COUNT */
+    if (st != PROTO_OK) {
+        return wire_nrc(st);
     }
     if (app->uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
         return UDS_NRC_SECURITY_ACCESS_DENIED;
@@ -446,10 +382,10 @@ static uint8_t routine_erase_slot(app_t *app, uint8_t sub, const uint8_t *d, uin
     if (app->state != APP_IDLE || !app->nvm_ok) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT; /* slots change only while idle */
     }
-    if (nvm_erase_slot(&app->nvm, (uint16_t)(d[0] - 1u)) != NVM_OK) {
+    if (nvm_erase_slot(&app->nvm, (uint16_t)(v.slot - 1u)) != NVM_OK) {
         return UDS_NRC_PROGRAMMING_FAILURE;
     }
-    app->slot_valid[d[0] - 1u] = false;
+    app->slot_valid[v.slot - 1u] = false;
     return UDS_NRC_OK;
 }
 
@@ -470,8 +406,8 @@ static uint8_t routine(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *d, u
     }
     switch (rid) {
     case UDS_RID_RUN_SKILL:
-    case UDS_RID_RUN_SEQUENCE: return routine_run(app, sub, rid, d, len, out, out_len);
-    case UDS_RID_SELF_TEST: return routine_self_test(app, sub, out, out_len);
+    case UDS_RID_RUN_SEQUENCE: return routine_run(app, sub, rid, d, len, out, cap, out_len);
+    case UDS_RID_SELF_TEST: return routine_self_test(app, sub, out, cap, out_len);
     case UDS_RID_CLEAR_FAULTS: return routine_clear_faults(app, sub);
     case UDS_RID_ERASE_SLOT: return routine_erase_slot(app, sub, d, len);
     default: return UDS_NRC_REQUEST_OUT_OF_RANGE;
@@ -566,7 +502,7 @@ static uint8_t download_begin(void *ctx, uint32_t addr, uint32_t size)
     }
     app->xfer_slot = addr;
     app->xfer_size = size;
-    app->last_transfer_status = 0xFFFFu; /* in progress */
+    app->last_transfer_status = FS_TRANSFER_IN_PROGRESS; /* in progress */
     return UDS_NRC_OK;
 }
 
@@ -605,7 +541,7 @@ static bool commit_slice(app_t *app, fs_status_t *st)
         if (*st != FS_OK) {
             return true;
         }
-        skchk_begin(&app->check, &app->staging, FS_R(0.001), app->cfg.saf.lim.axis[0].force_max_N);
+        skchk_begin(&app->check, &app->staging, APP_TICK_S, app->cfg.saf.lim.axis[0].force_max_N);
         app->check.path_max_m = app->cfg.saf.lim.axis[1].pos_max_m -
                                 app->cfg.saf.lim.axis[1].pos_min_m;
         app->commit_stage = APP_COMMIT_CHECK;
@@ -637,7 +573,7 @@ static uint8_t download_end(void *ctx, uint32_t *crc_out)
         /* a skill started (or security dropped) since RequestDownload: commit refused, the slot
          * keeps what it holds; nothing changes while a skill runs */
         app->checking = false;
-        app->last_transfer_status = 0xFFFEu;
+        app->last_transfer_status = FS_TRANSFER_INTERRUPTED;
         return app->state != APP_IDLE ? UDS_NRC_CONDITIONS_NOT_CORRECT
                                       : UDS_NRC_SECURITY_ACCESS_DENIED;
     }
@@ -680,8 +616,8 @@ static void transfer_abort(void *ctx)
     if (app->fw_xfer) {
         fwu_abort(&app->fwu);
     }
-    if (app->last_transfer_status == 0xFFFFu) {
-        app->last_transfer_status = 0xFFFEu; /* interrupted: nothing was written */
+    if (app->last_transfer_status == FS_TRANSFER_IN_PROGRESS) {
+        app->last_transfer_status = FS_TRANSFER_INTERRUPTED; /* interrupted: nothing was written */
     }
     app->checking = false; /* a commit in progress ends with the transfer */
     app->xfer_size = 0u;

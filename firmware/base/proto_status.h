@@ -19,6 +19,9 @@ typedef enum {
     PROTO_ERR_ISOTP_BUSY = 415,       /* a transmission is already in progress */
     PROTO_ERR_ISOTP_WFT = 416,        /* too many FC WAIT frames */
     PROTO_ERR_ISOTP_FORMAT = 417,     /* malformed PCI (length 0, SF too long, reserved type) */
+    /* a UDS payload of a length its record (wire.toml) does not allow */
+    PROTO_ERR_WIRE_LENGTH = 418,
+    PROTO_ERR_WIRE_RANGE = 419,       /* a UDS payload field outside its range (wire.toml) */
 } proto_status_t;
 
 #endif /* PROTO_STATUS_H */

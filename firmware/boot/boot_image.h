@@ -25,6 +25,7 @@
 #include <stdint.h>
 #include "boot_status.h"
 #include "fls.h"
+#include "fs_wire_const.h"
 
 #define BOOT_IMAGE_MAGIC 0x57465346u
 #define BOOT_IMAGE_FORMAT_VERSION 1u
@@ -32,9 +33,10 @@
 #define BOOT_IMAGE_TAG_SIZE 32u
 #define BOOT_IMAGE_OVERHEAD (BOOT_IMAGE_HEADER_SIZE + BOOT_IMAGE_TAG_SIZE)
 
-#define BOOT_TARGET_CORTEX_M4F 1u
-#define BOOT_TARGET_CORTEX_M3 2u
-#define BOOT_TARGET_HOST 3u
+/* image target ids (wire.toml: the host's image tools share them) */
+#define BOOT_TARGET_CORTEX_M4F FS_TARGET_CORTEX_M4F
+#define BOOT_TARGET_CORTEX_M3 FS_TARGET_CORTEX_M3
+#define BOOT_TARGET_HOST FS_TARGET_HOST
 
 /** Pack a semantic version the way the header stores it. */
 #define BOOT_VERSION(major, minor, patch) \

@@ -6,6 +6,7 @@
 #include <stddef.h>
 
 #include "fs_num.h"
+#include "fs_wire_const.h"
 #define PFC_TICK_CONFIG pfc_config_t
 #define PFC_TICK_STATE pfc_state_t
 #define PFC_TICK_REF pfc_axis_ref_t
@@ -13,7 +14,7 @@
 #include "pfc_tick.h"
 
 /* Default output limit: |force| <= F_max = 50 N (docs/safety.md). */
-#define PFC_DEFAULT_FORCE_MAX_N FS_R(50.0)
+#define PFC_DEFAULT_FORCE_MAX_N ((fs_real_t)FS_FORCE_LIMIT_N)
 /* Default integral clamp, as a multiple of F_max/k_i (see pfc_default_config). */
 #define PFC_DEFAULT_INTEGRAL_FORCE_RATIO FS_R(4.0)
 /* Unconstrained axis (k_i = 0): the integral is never used; its bound only has to be > 0.
@@ -38,7 +39,7 @@ void pfc_default_config(pfc_config_t *cfg)
                                      x.k_i_per_s;
     cfg->limits[1].force_max_N = PFC_DEFAULT_FORCE_MAX_N;
     cfg->limits[1].integral_max_Ns = PFC_DEFAULT_Y_INTEGRAL_MAX_NS;
-    cfg->dt_s = FS_R(0.001);
+    cfg->dt_s = (fs_real_t)FS_TICK_S;
 }
 
 fs_status_t pfc_config_validate(const pfc_config_t *cfg)

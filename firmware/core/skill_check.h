@@ -28,6 +28,7 @@
 #include "dmp.h"
 #include "fs_real.h"
 #include "fs_status.h"
+#include "fs_wire_const.h"
 #include "skill.h"
 
 /* Device ranges (docs/skill_format.md); the image format itself allows wider values. */
@@ -35,7 +36,7 @@
 #define SKCHK_TAU_MAX_S 1e3
 #define SKCHK_GOAL_MAX_N 1e7
 #define SKCHK_FORCE0_MAX_N 1e3
-#define SKCHK_STIFFNESS_MAX_NPM 1e8
+#define SKCHK_STIFFNESS_MAX_NPM FS_STIFFNESS_CEILING_NPM
 #define SKCHK_WEIGHT_MAX 1e4
 #define SKCHK_WIDTH_MIN 1e-5
 #define SKCHK_WIDTH_MAX 1.0

@@ -3,13 +3,15 @@
 
 #include <stddef.h>
 
+#include "fs_wire_const.h"
+
 void lim_default_config(lim_config_t *cfg)
 {
     if (cfg == NULL) {
         return;
     }
     for (uint32_t i = 0u; i < LIM_AXES; i++) {
-        cfg->axis[i].force_max_N = FS_R(50.0);
+        cfg->axis[i].force_max_N = (fs_real_t)FS_FORCE_LIMIT_N;
         cfg->axis[i].slew_max_N = FS_R(2.0);
         cfg->axis[i].pos_min_m = FS_R(-0.5);
         cfg->axis[i].pos_max_m = FS_R(0.5);

@@ -27,13 +27,14 @@
 #include <stdint.h>
 #include "nvm_status.h"
 #include "fls.h"
+#include "fs_wire_const.h"
 
 #define NVM_RECORD_MAGIC 0x524D564Eu
 #define NVM_RECORD_VERSION 1u
 #define NVM_COMMIT_WORD 0x00C0FFEEu
 #define NVM_HEADER_SIZE 32u
 #define NVM_COMMIT_SIZE 4u
-#define NVM_MAX_SLOTS 8u
+#define NVM_MAX_SLOTS FS_SLOT_COUNT /* the device's skill slots (wire.toml) */
 
 /** Information about one parsed record. */
 typedef struct {

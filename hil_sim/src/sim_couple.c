@@ -91,11 +91,9 @@ void sim_couple_device_config(const sim_scenario_t *sc, app_config_t *cfg)
     for (unsigned a = 0; a < PFC_AXES; a++) {
         cfg->saf.lim.axis[a].force_max_N = (fs_real_t)sc->force_max_N;
     }
-    if (sc->stiffness_max_Npm > 0.0) {
-        cfg->stiffness_max_Npm = (fs_real_t)sc->stiffness_max_Npm;
-    } else if (cfg->render_carriage != 0u) {
-        cfg->stiffness_max_Npm = (fs_real_t)APP_STIFFNESS_MAX_RENDERED_NPM;
-    }
+    cfg->stiffness_max_Npm = sc->stiffness_max_Npm > 0.0
+                                 ? (fs_real_t)sc->stiffness_max_Npm
+                                 : app_stiffness_max_default_Npm(cfg->render_carriage);
 }
 
 void sim_couple_plant_init(const sim_scenario_t *sc, sim_axis_t ax[2], sim_drive_t drv[2])
@@ -203,8 +201,8 @@ void sim_couple_command_frame(uint8_t node, uint8_t counter, uint8_t mode, uint8
     memset(&c, 0, sizeof(c));
     c.mode = mode;
     c.slot = slot;
-    c.goal_scale = (uint16_t)lround(goal_scale * 1000.0);
-    c.time_scale = (uint16_t)lround(time_scale * 1000.0);
+    c.goal_scale = fs_dbc_host_command_goal_scale_encode(goal_scale);
+    c.time_scale = fs_dbc_host_command_time_scale_encode(time_scale);
     c.end_policy = end;
     memset(f, 0, sizeof(*f));
     f->id = PROTO_ID_HOST_COMMAND(node);

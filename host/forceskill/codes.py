@@ -87,6 +87,8 @@ PROTO_ERR_ISOTP_UNEXPECTED = 414  # frame type not valid in the current state (i
 PROTO_ERR_ISOTP_BUSY = 415  # a transmission is already in progress
 PROTO_ERR_ISOTP_WFT = 416  # too many FC WAIT frames
 PROTO_ERR_ISOTP_FORMAT = 417  # malformed PCI (length 0, SF too long, reserved type)
+PROTO_ERR_WIRE_LENGTH = 418  # a UDS payload of a length its record (wire.toml) does not allow
+PROTO_ERR_WIRE_RANGE = 419  # a UDS payload field outside its range (wire.toml)
 
 # Safety: latched device faults (500-519)
 FLT_HOST_SILENCE = 500  # no host heartbeat/command for wdg timeout (default 100 ms)
@@ -192,6 +194,8 @@ ERR_LOG_FORMAT = 664  # no CAN log writer for the output's suffix
 ERR_RUN_FAULT = 665  # the device faulted during a run or a recording
 ERR_CLEAR_BLOCKED = 666  # a fault cannot be cleared: its cause persists
 ERR_UNEXPECTED = 667  # an error no check foresaw (e.g. from a library), reported as one line
+ERR_WIRE_LENGTH = 668  # a device payload of a length its record (wire.toml) does not allow
+ERR_WIRE_RANGE = 669
 ERR_PERIODIC_STROKES = 680  # fit --periodic: no period found, or fewer than two steady strokes
 ERR_PERIODIC_GOAL = 681  # fit --periodic: the strokes' mean force is not a push
 ERR_PERIODIC_AMPLITUDE = 682  # fit --periodic: the strokes have no amplitude to learn
@@ -368,6 +372,8 @@ __all__ = [
     'PROTO_ERR_ISOTP_BUSY',
     'PROTO_ERR_ISOTP_WFT',
     'PROTO_ERR_ISOTP_FORMAT',
+    'PROTO_ERR_WIRE_LENGTH',
+    'PROTO_ERR_WIRE_RANGE',
     'FLT_HOST_SILENCE',
     'FLT_BUS_OFF',
     'FLT_SENSOR_NAN',
@@ -446,6 +452,8 @@ __all__ = [
     'ERR_RUN_FAULT',
     'ERR_CLEAR_BLOCKED',
     'ERR_UNEXPECTED',
+    'ERR_WIRE_LENGTH',
+    'ERR_WIRE_RANGE',
     'ERR_PERIODIC_STROKES',
     'ERR_PERIODIC_GOAL',
     'ERR_PERIODIC_AMPLITUDE',

@@ -6,13 +6,13 @@ from __future__ import annotations
 import argparse
 import math
 import re
-import struct
 import sys
 import time
 from typing import Any, TextIO
 
 import numpy as np
 
+from .. import wire as W
 from ..errors import ERR_RUN_FAULT, ERR_SKILL_PEAK, ERR_TELEMETRY_GAP, FsError, fault_text
 from ..link import ERR_LINK_ARGS, ERR_LINK_STATE
 from ..link import uds as U
@@ -61,9 +61,9 @@ def parse_sequence(text: str) -> list[tuple[int, float]]:
     return steps
 
 
-def _scale(v: float) -> int:
-    """A scale as the device's command encodes it (1/1000 steps)."""
-    return int(round(v * 1000.0))
+def _as_sent(v: float) -> float:
+    """A scale as the device receives it (a whole number of the wire's steps)."""
+    return W.from_steps(W.to_steps(v))
 
 
 def check_slot_forces(
@@ -166,17 +166,16 @@ def run_on_device(
             "(clear a fault with: forceskill status --clear)",
         )
     end_code = {"skill": 0, "hold": 1, "release": 2}[args.end]
-    g, ts, ps = _scale(args.goal_scale), _scale(args.time_scale), _scale(args.path_scale)
+    g, ts, ps = _as_sent(args.goal_scale), _as_sent(args.time_scale), _as_sent(args.path_scale)
     fault, fault_tick, interrupted, total = 0, None, False, 0.0
     with sigint_flag() as stop, U.uds_client(dev) as client:
         directory = {e["slot"]: e for e in U.slot_directory(client, dev.node)}
         if args.sequence:
             steps = parse_sequence(args.sequence)
-            data = bytes([end_code])
-            for slot, d in steps:
+            for slot, _ in steps:
                 if slot not in directory or not directory[slot]["valid"]:
                     raise FsError(ERR_LINK_ARGS, f"slot {slot} of node {dev.node} holds no skill")
-                data += struct.pack(">BHHI", slot, g, ts, int(round(d * 1000)))
+            data = W.RunSequence(end_code, tuple(W.RunStep(slot, g, ts, d) for slot, d in steps)).pack()
             rid, expected = U.RID_RUN_SEQUENCE, sum(d for _, d in steps)
             last_end = directory[steps[-1][0]]["end"]
             slots = [slot for slot, _ in steps]
@@ -186,13 +185,12 @@ def run_on_device(
             e = directory.get(args.slot)
             if e is None or not e["valid"]:
                 raise FsError(ERR_LINK_ARGS, f"slot {args.slot} of node {dev.node} holds no skill")
-            data = struct.pack(">BHHB", args.slot, g, ts, end_code)
-            if ps != 1000:  # the optional path scale (firmware reading skill format v3)
-                data += struct.pack(">H", ps)
+            # the optional path scale (firmware reading skill format v3) only when it is not 1
+            data = W.RunSkill(args.slot, g, ts, end_code, ps if ps != 1.0 else None).pack()
             rid, expected = U.RID_RUN_SKILL, float(e["duration_s"]) * args.time_scale
             last_end = e["end"]
             slots = [args.slot]
-        skills = check_slot_forces(client, dev, slots, directory, g / 1000.0, ts / 1000.0, args.force_limit)
+        skills = check_slot_forces(client, dev, slots, directory, g, ts, args.force_limit)
         path_skill = skills.get(slots[0]) if not args.sequence else None
         if path_skill is not None and not path_skill.has_y:
             path_skill = None
@@ -271,7 +269,7 @@ def run_on_device(
     if path_skill is not None and grid["t"].size:
         from ..model.dmp import rollout_path
 
-        _, y_hat = rollout_path(path_skill, time_scale=ts / 1000.0, path_scale=ps / 1000.0)
+        _, y_hat = rollout_path(path_skill, time_scale=ts, path_scale=ps)
         tick16 = (first_tick + np.arange(cols["t"].size)) & 0xFFFF
         path_fig = path_tracking(cols, tick16, y_hat - path_skill.y_start_m, idle_tick, start_tick)
     cols["fault"] = np.zeros(cols["t"].size)

@@ -35,10 +35,11 @@ def _cmd_show(args: argparse.Namespace) -> int:
     print(f"  goal g         {sk.goal_N:.6g} N, starting force f0 {sk.force0_N:.6g} N")
     print(f"  stiffness k    {sk.stiffness_Npm:g} N/m, surface {sk.surface_m:g} m")
     print(f"  alpha/beta/gamma {sk.alpha:g} / {sk.beta:g} / {sk.gamma:g}")
+    k_f, k_i = sk.gains.force_gains(sk.stiffness_Npm)
     print(
         f"  gains          m_d {sk.m_d_kg:g} kg, k_d {sk.k_d_Nspm:g} Ns/m, k_p {sk.k_p_Npm:g} N/m, "
-        f"k*k_f {sk.kkf_Npm:g} N/m, k*k_i {sk.kki_Npms:g} N/(m s) (k_f {sk.kkf_Npm / sk.stiffness_Npm:.4g}, "
-        f"k_i {sk.kki_Npms / sk.stiffness_Npm:.4g} 1/s at k)"
+        f"k*k_f {sk.kkf_Npm:g} N/m, k*k_i {sk.kki_Npms:g} N/(m s) (k_f {k_f:.4g}, "
+        f"k_i {k_i:.4g} 1/s at k)"
     )
     print(f"  rollout        peak |f_hat| {peak:.6g} N, final {float(f[-1]):.6g} N")
     if sk.has_y:

@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import argparse
-import struct
 from typing import Any
 
 from udsoncan.exceptions import NegativeResponseException
 
+from .. import wire as W
 from ..errors import ERR_CLEAR_BLOCKED, FsError, fault_text
 from ..link import ERR_LINK_STATE
 from ..link import uds as U
@@ -65,10 +65,10 @@ def _cmd(args: argparse.Namespace) -> int:
                 clear_faults(client, dev.node, st.state)
                 print("faults cleared")
             ver = U.read_did(client, U.DID_SW_VERSION, dev.node).decode("ascii", "replace")
-            v = U.read_did(client, U.DID_VERSIONS, dev.node)
+            v = W.Versions.unpack(U.read_did(client, U.DID_VERSIONS, dev.node))
             print(
-                f"firmware {ver}; protocol {v[0]}.{v[1]}, skill format v{v[2]}, "
-                f"up to {struct.unpack('>H', v[3:5])[0]} kernels, {v[5]} slots"
+                f"firmware {ver}; protocol {v.proto_major}.{v.proto_minor}, skill format "
+                f"v{v.skill_format}, up to {v.max_kernels} kernels, {v.slots} slots"
             )
             last = U.last_transfer_status(client, dev.node)
             for e in U.slot_directory(client, dev.node):

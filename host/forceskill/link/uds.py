@@ -24,6 +24,7 @@ from udsoncan.client import Client
 from udsoncan.connections import PythonIsoTpConnection
 from udsoncan.exceptions import NegativeResponseException, TimeoutException, UnexpectedResponseException
 
+from .. import wire as W
 from ..codes import (  # noqa: F401
     DID_COMM,
     DID_DEVICE_STATE,
@@ -59,20 +60,19 @@ SIM_FW_SECRET = b"forceskill-simulator-fwsecret-03"  # level 3
 logging.getLogger("UdsClient").setLevel(logging.CRITICAL)
 logging.getLogger("isotp").setLevel(logging.CRITICAL)
 
-N_SLOTS = 8
-SLOT_ENTRY = 16
+N_SLOTS = W.SLOT_COUNT
 
 STATUS_NAMES = {
-    0xFFFF: "transfer in progress",
-    0xFFFE: "transfer interrupted",
-    0xFFFD: "none since power-up",
+    W.TRANSFER_IN_PROGRESS: "transfer in progress",
+    W.TRANSFER_INTERRUPTED: "transfer interrupted",
+    W.TRANSFER_NONE: "none since power-up",
     0: "ok",
     **SKILL_STATUS_TEXT,
 }
 
 
 class Raw(udsoncan.DidCodec):
-    """Bytes as they are, of a fixed length."""
+    """Bytes as they are, of a fixed length (the records of ``forceskill.wire`` decode them)."""
 
     def __init__(self, n: int) -> None:
         self.n = n
@@ -89,18 +89,18 @@ class Raw(udsoncan.DidCodec):
 
 DID_CODECS = {
     DID_SW_VERSION: Raw(19),
-    DID_VERSIONS: Raw(6),
-    DID_GAINS_X: Raw(20),
-    DID_GAINS_Y: Raw(20),
-    DID_LIMITS_X: Raw(24),
-    DID_LIMITS_Y: Raw(24),
-    DID_COMM: Raw(3),
-    DID_OBJECT: Raw(25),
-    DID_SLOT_DIR: Raw(1 + N_SLOTS * SLOT_ENTRY),
-    DID_LAST_TRANSFER: Raw(2),
-    DID_DEVICE_STATE: Raw(9),
-    DID_FAULT_CAUSES: Raw(8),
-    DID_STIFFNESS_MAX: Raw(4),
+    DID_VERSIONS: Raw(W.Versions.SIZE),
+    DID_GAINS_X: Raw(W.Gains.SIZE),
+    DID_GAINS_Y: Raw(W.Gains.SIZE),
+    DID_LIMITS_X: Raw(W.Limits.SIZE),
+    DID_LIMITS_Y: Raw(W.Limits.SIZE),
+    DID_COMM: Raw(W.Comm.SIZE),
+    DID_OBJECT: Raw(W.Object.SIZE),
+    DID_SLOT_DIR: Raw(W.SlotDir.SIZE + W.SLOT_COUNT * W.SlotEntry.SIZE),
+    DID_LAST_TRANSFER: Raw(W.LastTransfer.SIZE),
+    DID_DEVICE_STATE: Raw(W.DeviceState.SIZE),
+    DID_FAULT_CAUSES: Raw(W.FaultCauses.SIZE),
+    DID_STIFFNESS_MAX: Raw(W.StiffnessMax.SIZE),
 }
 
 
@@ -111,8 +111,8 @@ def mask_codes(mask: int) -> list[int]:
 
 def fault_causes(client: Client, node: int) -> tuple[list[int], list[int]]:
     """(latched faults, causes present at the device's last tick), from DID 0x0301."""
-    latched, present = struct.unpack(">II", read_did(client, DID_FAULT_CAUSES, node))
-    return mask_codes(latched), mask_codes(present)
+    c = W.FaultCauses.unpack(read_did(client, DID_FAULT_CAUSES, node))
+    return mask_codes(c.latched_mask), mask_codes(c.present_mask)
 
 
 def device_secret(level: int = SEC_LEVEL_WRITE) -> bytes:
@@ -263,32 +263,27 @@ def read_did(client: Client, did: int, node: int) -> bytes:
 
 def stiffness_limit(client: Client, node: int) -> float:
     """The device's skill stiffness limit in N/m (DID 0x0140): it refuses stiffer skills."""
-    return float(struct.unpack(">f", read_did(client, DID_STIFFNESS_MAX, node))[0])
+    return W.StiffnessMax.unpack(read_did(client, DID_STIFFNESS_MAX, node)).stiffness_max_Npm
 
 
 def slot_directory(client: Client, node: int) -> list[dict[str, Any]]:
-    raw = read_did(client, DID_SLOT_DIR, node)
-    out = []
-    for i in range(raw[0]):
-        e = raw[1 + SLOT_ENTRY * i : 1 + SLOT_ENTRY * (i + 1)]
-        valid, length, crc, n, dur, end = struct.unpack(">BIIHfB", e)
-        out.append(
-            {
-                "slot": i + 1,
-                "valid": bool(valid),
-                "length": length,
-                "crc32": crc,
-                "n_kernels": n,
-                "duration_s": dur,
-                "end": "release" if end else "hold",
-            }
-        )
-    return out
+    d = W.SlotDir.unpack(read_did(client, DID_SLOT_DIR, node))
+    return [
+        {
+            "slot": i + 1,
+            "valid": bool(e.valid),
+            "length": e.length,
+            "crc32": e.crc32,
+            "n_kernels": e.n_kernels,
+            "duration_s": e.duration_s,
+            "end": "release" if e.end else "hold",
+        }
+        for i, e in enumerate(d.entries[: d.count])
+    ]
 
 
 def last_transfer_status(client: Client, node: int) -> int:
-    code: int = struct.unpack(">H", read_did(client, DID_LAST_TRANSFER, node))[0]
-    return code
+    return W.LastTransfer.unpack(read_did(client, DID_LAST_TRANSFER, node)).status
 
 
 def download(

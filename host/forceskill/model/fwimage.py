@@ -38,6 +38,7 @@ from ..codes import FWU_ERR_RANGE as ERR_RANGE
 from ..codes import FWU_ERR_SEQUENCE as ERR_SEQUENCE
 from ..codes import FWU_ERR_TEST_PENDING as ERR_TEST_PENDING
 from ..errors import FsError
+from ..wire import TARGET_CORTEX_M3, TARGET_CORTEX_M4F, TARGET_HOST
 
 MAGIC = 0x57465346  # bytes "FSFW"
 FORMAT_VERSION = 1
@@ -46,7 +47,7 @@ TAG_SIZE = 32
 HEADER_STRUCT = struct.Struct("<IHHIIIIHHHHI28s32s32s")
 assert HEADER_STRUCT.size == HEADER_SIZE
 
-TARGETS = {"cortex-m4f": 1, "cortex-m3": 2, "host": 3}
+TARGETS = {"cortex-m4f": TARGET_CORTEX_M4F, "cortex-m3": TARGET_CORTEX_M3, "host": TARGET_HOST}
 TARGET_NAMES = {v: k for k, v in TARGETS.items()}
 
 # Data formats this product writes today (docs/skill_format.md v3, reading v2 too; configuration

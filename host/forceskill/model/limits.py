@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
+from .. import wire as W
 from ..errors import (
     ERR_SKILL_PEAK,
     ERR_SKILL_STIFFNESS,
@@ -37,8 +38,8 @@ from .scales import (  # noqa: F401  (re-exported: every limit a command checks)
 if TYPE_CHECKING:
     from .skill import Skill
 
-#: The device's default |force command| limit (firmware/safety/lim.h force_max_N).
-FORCE_LIMIT_N = 50.0
+#: The device's default |force command| limit (its force_max_N).
+FORCE_LIMIT_N = W.FORCE_LIMIT_N
 
 
 def check_force_limit(force_limit_N: float) -> None:

@@ -118,7 +118,7 @@ def check_stiffness(stiffness_Npm: float) -> None:
 def check_inertia(gains: Gains, stiffness_Npm: float, object_mass_kg: float) -> None:
     """k_f*m_v/m_d < 1 (code 112): a sampled force sensor feeds the object's inertia m_v back
     through k_f; at or above 1 that loop is unstable."""
-    k_f = gains.kkf_Npm / stiffness_Npm
+    k_f = gains.force_gains(stiffness_Npm)[0]
     ratio = k_f * object_mass_kg / gains.m_d_kg
     if not ratio < 1.0:
         raise ParamError(
@@ -142,7 +142,7 @@ def gains_for_object(stiffness_Npm: float, object_mass_kg: float, base: Gains = 
     check_stiffness(stiffness_Npm)
     if not (math.isfinite(object_mass_kg) and object_mass_kg > 0.0):
         raise ParamError(ERR_FIT_ARGS, f"object mass must be > 0 kg: {object_mass_kg:g}")
-    ratio = base.kkf_Npm / stiffness_Npm * object_mass_kg / base.m_d_kg
+    ratio = base.force_gains(stiffness_Npm)[0] * object_mass_kg / base.m_d_kg
     if ratio <= INERTIA_MARGIN:
         return base
     kkf = INERTIA_MARGIN * base.m_d_kg * stiffness_Npm / object_mass_kg

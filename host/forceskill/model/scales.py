@@ -7,10 +7,12 @@ from __future__ import annotations
 import math
 
 from ..errors import ERR_ROLLOUT_CAP, ERR_SCALE_INVALID, FsError, ParamError
+from ..wire import SCALE, from_steps
 
-GOAL_SCALE_MAX = 65.535
-TIME_SCALE_MIN = 0.001
-TIME_SCALE_MAX = 65.535
+#: the largest 16-bit count of the wire's scale steps
+GOAL_SCALE_MAX = from_steps(0xFFFF)
+TIME_SCALE_MIN = SCALE
+TIME_SCALE_MAX = GOAL_SCALE_MAX
 #: 10^7 steps: 2.8 h at 1 ms (a skill is at most 3600 s); about 10 s of CPU and a few 100 MB of CSV.
 MAX_ROLLOUT_STEPS = 10_000_000
 

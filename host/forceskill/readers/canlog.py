@@ -22,13 +22,14 @@ from typing import Any
 
 import numpy as np
 
+from ..codes import CAN_ID_STATUS, CAN_ID_TELEM_FORCE, CAN_ID_TELEM_POS
 from ..errors import ERR_LINK_LOG, ERR_READER_MISSING, DemoError
+from ..wire import TICK_S
 from . import NOTES_KEY, Columns, ReadOptions, progress_bar
 
-TICK_S = 0.001
-POS_BASE = 0x190
-FORCE_BASE = 0x1A0
-STATUS_BASE = 0x180
+POS_BASE = CAN_ID_TELEM_POS
+FORCE_BASE = CAN_ID_TELEM_FORCE
+STATUS_BASE = CAN_ID_STATUS
 STATE_TEACH = 2
 
 

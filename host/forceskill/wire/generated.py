@@ -1,0 +1,753 @@
+"""The values the device and the host share, and the codecs of the device's UDS payloads
+(big-endian, float32 for reals, scaled fields as counts of SCALE; docs/protocol.md).
+
+Generated from firmware/base/wire.toml by tools/gen_codes.py; do not edit.
+"""
+
+from __future__ import annotations
+
+import math
+import struct
+from dataclasses import dataclass
+from typing import ClassVar
+
+from ..errors import ERR_WIRE_LENGTH, ERR_WIRE_RANGE, FsError
+
+#: One step of every scaled field (goal, time and path scales, durations): value = count * SCALE.
+SCALE = 0.001
+SCALE_STEPS = 1000  # counts per unit, 1 / SCALE
+#: skill slots of a device, numbered 1..SLOT_COUNT (UDS addresses, HostCommand.Slot)
+SLOT_COUNT = 8
+#: control tick period in microseconds (the device runs at 1 kHz)
+TICK_US = 0x03E8
+TICK_S = 0.001  # TICK_US in seconds
+#: steps of a RUN_SEQUENCE start at most
+SEQUENCE_STEPS_MAX = 8
+#: default |force command| limit force_max_N of each axis
+FORCE_LIMIT_N = 50.0
+#: default skill stiffness limit (DID 0x0140) of a dynamics-compensated drive
+STIFFNESS_MAX_NPM = 500000.0
+#: default skill stiffness limit of a carriage rendered by admittance
+STIFFNESS_MAX_RENDERED_NPM = 30000.0
+#: highest stiffness a skill may declare and DID 0x0140 may be set to
+STIFFNESS_CEILING_NPM = 100000000.0
+#: DID 0x0201: a download is in progress
+TRANSFER_IN_PROGRESS = 0xFFFF
+#: DID 0x0201: the last download was interrupted or its commit refused
+TRANSFER_INTERRUPTED = 0xFFFE
+#: DID 0x0201: no download since power-up
+TRANSFER_NONE = 0xFFFD
+#: firmware image target id: Cortex-M4F (qemu mps2-an386)
+TARGET_CORTEX_M4F = 1
+#: firmware image target id: Cortex-M3 (qemu mps2-an385)
+TARGET_CORTEX_M3 = 2
+#: firmware image target id: the host port (simulator)
+TARGET_HOST = 3
+
+
+def to_steps(value: float) -> int:
+    """A scaled field's count for a value (rounded to the nearest step)."""
+    return int(round(value * SCALE_STEPS))
+
+
+def from_steps(count: int) -> float:
+    """The value of a scaled field's count."""
+    return count / SCALE_STEPS
+
+
+def _in_range(record: str, name: str, ok: bool, value: object) -> None:
+    if not ok:
+        raise FsError(ERR_WIRE_RANGE, f'{record}.{name} outside its range: {value!r}')
+
+
+_VERSIONS = struct.Struct('>BBBHB')
+
+
+@dataclass(frozen=True)
+class Versions:
+    """DID_VERSIONS: protocol and format versions."""
+
+    SIZE: ClassVar[int] = 6  # bytes of the fields always present
+    proto_major: int
+    proto_minor: int
+    skill_format: int
+    max_kernels: int
+    slots: int
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('versions', 'proto_major', 0 <= self.proto_major <= 255, self.proto_major)
+        _in_range('versions', 'proto_minor', 0 <= self.proto_minor <= 255, self.proto_minor)
+        _in_range('versions', 'skill_format', 0 <= self.skill_format <= 255, self.skill_format)
+        _in_range('versions', 'max_kernels', 0 <= self.max_kernels <= 65535, self.max_kernels)
+        _in_range('versions', 'slots', 0 <= self.slots <= 255, self.slots)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _VERSIONS.pack(self.proto_major, self.proto_minor, self.skill_format, self.max_kernels, self.slots)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> Versions:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _VERSIONS.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'versions: {len(data)} bytes, not {n}')
+        raw = _VERSIONS.unpack(data[:n])
+        v = cls(raw[0], raw[1], raw[2], raw[3], raw[4])
+        v.check()
+        return v
+
+
+_GAINS = struct.Struct('>fffff')
+
+
+@dataclass(frozen=True)
+class Gains:
+    """DID_GAINS_X / DID_GAINS_Y: controller gains of one axis (validated by pfc_config_validate)."""
+
+    SIZE: ClassVar[int] = 20  # bytes of the fields always present
+    m_d_kg: float  # kg
+    k_d_Nspm: float  # N s/m
+    k_p_Npm: float  # N/m
+    k_f: float
+    k_i_per_s: float  # 1/s
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _GAINS.pack(self.m_d_kg, self.k_d_Nspm, self.k_p_Npm, self.k_f, self.k_i_per_s)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> Gains:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _GAINS.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'gains: {len(data)} bytes, not {n}')
+        raw = _GAINS.unpack(data[:n])
+        v = cls(raw[0], raw[1], raw[2], raw[3], raw[4])
+        v.check()
+        return v
+
+
+_LIMITS = struct.Struct('>ffffff')
+
+
+@dataclass(frozen=True)
+class Limits:
+    """DID_LIMITS_X / DID_LIMITS_Y: safety limits of one axis (validated by saf_config_validate)."""
+
+    SIZE: ClassVar[int] = 24  # bytes of the fields always present
+    force_max_N: float  # N
+    slew_max_N: float  # N per tick
+    pos_min_m: float  # m
+    pos_max_m: float  # m
+    vel_max_mps: float  # m/s
+    contact_force_max_N: float  # N
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('limits', 'force_max_N', math.isfinite(self.force_max_N), self.force_max_N)
+        _in_range('limits', 'slew_max_N', math.isfinite(self.slew_max_N), self.slew_max_N)
+        _in_range('limits', 'pos_min_m', math.isfinite(self.pos_min_m), self.pos_min_m)
+        _in_range('limits', 'pos_max_m', math.isfinite(self.pos_max_m), self.pos_max_m)
+        _in_range('limits', 'vel_max_mps', math.isfinite(self.vel_max_mps), self.vel_max_mps)
+        _in_range('limits', 'contact_force_max_N', math.isfinite(self.contact_force_max_N), self.contact_force_max_N)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _LIMITS.pack(self.force_max_N, self.slew_max_N, self.pos_min_m, self.pos_max_m, self.vel_max_mps, self.contact_force_max_N)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> Limits:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _LIMITS.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'limits: {len(data)} bytes, not {n}')
+        raw = _LIMITS.unpack(data[:n])
+        v = cls(raw[0], raw[1], raw[2], raw[3], raw[4], raw[5])
+        v.check()
+        return v
+
+
+_COMM = struct.Struct('>BH')
+
+
+@dataclass(frozen=True)
+class Comm:
+    """DID_COMM: telemetry period in TEACH/EXECUTE and host-silence timeout."""
+
+    SIZE: ClassVar[int] = 3  # bytes of the fields always present
+    telemetry_period_ms: int  # ms
+    host_timeout_ms: int  # ms
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('comm', 'telemetry_period_ms', 1 <= self.telemetry_period_ms <= 255, self.telemetry_period_ms)
+        _in_range('comm', 'host_timeout_ms', 0 <= self.host_timeout_ms <= 65535, self.host_timeout_ms)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _COMM.pack(self.telemetry_period_ms, self.host_timeout_ms)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> Comm:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _COMM.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'comm: {len(data)} bytes, not {n}')
+        raw = _COMM.unpack(data[:n])
+        v = cls(raw[0], raw[1])
+        v.check()
+        return v
+
+
+_OBJECT = struct.Struct('>Bffffff')
+
+
+@dataclass(frozen=True)
+class Object:
+    """DID_OBJECT: the object model of the execution reference."""
+
+    SIZE: ClassVar[int] = 25  # bytes of the fields always present
+    use_model: int
+    m_v_kg: float  # kg
+    d_v_Nspm: float  # N s/m
+    k1_Npm: float  # N/m
+    k2_Npm: float  # N/m
+    layer_depth_m: float  # m
+    surface_m: float  # m
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('object', 'use_model', 0 <= self.use_model <= 1, self.use_model)
+        _in_range('object', 'm_v_kg', math.isfinite(self.m_v_kg) and self.m_v_kg >= 0.0, self.m_v_kg)
+        _in_range('object', 'd_v_Nspm', math.isfinite(self.d_v_Nspm) and self.d_v_Nspm >= 0.0, self.d_v_Nspm)
+        _in_range('object', 'k1_Npm', math.isfinite(self.k1_Npm) and self.k1_Npm > 0.0, self.k1_Npm)
+        _in_range('object', 'k2_Npm', math.isfinite(self.k2_Npm) and self.k2_Npm > 0.0, self.k2_Npm)
+        _in_range('object', 'layer_depth_m', math.isfinite(self.layer_depth_m) and self.layer_depth_m >= 0.0, self.layer_depth_m)
+        _in_range('object', 'surface_m', math.isfinite(self.surface_m), self.surface_m)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _OBJECT.pack(self.use_model, self.m_v_kg, self.d_v_Nspm, self.k1_Npm, self.k2_Npm, self.layer_depth_m, self.surface_m)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> Object:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _OBJECT.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'object: {len(data)} bytes, not {n}')
+        raw = _OBJECT.unpack(data[:n])
+        v = cls(raw[0], raw[1], raw[2], raw[3], raw[4], raw[5], raw[6])
+        v.check()
+        return v
+
+
+_STIFFNESS_MAX = struct.Struct('>f')
+
+
+@dataclass(frozen=True)
+class StiffnessMax:
+    """DID_STIFFNESS_MAX: the highest nominal skill stiffness the device accepts."""
+
+    SIZE: ClassVar[int] = 4  # bytes of the fields always present
+    stiffness_max_Npm: float  # N/m
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('stiffness_max', 'stiffness_max_Npm', math.isfinite(self.stiffness_max_Npm) and self.stiffness_max_Npm > 0.0 and self.stiffness_max_Npm <= 100000000.0, self.stiffness_max_Npm)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _STIFFNESS_MAX.pack(self.stiffness_max_Npm)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> StiffnessMax:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _STIFFNESS_MAX.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'stiffness_max: {len(data)} bytes, not {n}')
+        raw = _STIFFNESS_MAX.unpack(data[:n])
+        v = cls(raw[0])
+        v.check()
+        return v
+
+
+_SLOT_ENTRY = struct.Struct('>BIIHfB')
+
+
+@dataclass(frozen=True)
+class SlotEntry:
+    """one slot of DID_SLOT_DIR (all zero for an empty slot)."""
+
+    SIZE: ClassVar[int] = 16  # bytes of the fields always present
+    valid: int
+    length: int  # bytes
+    crc32: int
+    n_kernels: int
+    duration_s: float  # s
+    end: int
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('slot_entry', 'valid', 0 <= self.valid <= 1, self.valid)
+        _in_range('slot_entry', 'length', 0 <= self.length <= 4294967295, self.length)
+        _in_range('slot_entry', 'crc32', 0 <= self.crc32 <= 4294967295, self.crc32)
+        _in_range('slot_entry', 'n_kernels', 0 <= self.n_kernels <= 65535, self.n_kernels)
+        _in_range('slot_entry', 'end', 0 <= self.end <= 255, self.end)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _SLOT_ENTRY.pack(self.valid, self.length, self.crc32, self.n_kernels, self.duration_s, self.end)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> SlotEntry:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _SLOT_ENTRY.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'slot_entry: {len(data)} bytes, not {n}')
+        raw = _SLOT_ENTRY.unpack(data[:n])
+        v = cls(raw[0], raw[1], raw[2], raw[3], raw[4], raw[5])
+        v.check()
+        return v
+
+
+_SLOT_DIR = struct.Struct('>B')
+
+
+@dataclass(frozen=True)
+class SlotDir:
+    """DID_SLOT_DIR: the slot directory."""
+
+    SIZE: ClassVar[int] = 1  # bytes of the fields always present
+    count: int
+    entries: tuple[SlotEntry, ...]
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('slot_dir', 'count', 0 <= self.count <= 8, self.count)
+        _in_range('slot_dir', 'n_entries', 0 <= len(self.entries) <= 8, len(self.entries))
+        for e in self.entries:
+            e.check()
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _SLOT_DIR.pack(self.count)
+        out += b''.join(e.pack() for e in self.entries)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> SlotDir:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _SLOT_DIR.size
+        m = SlotEntry.SIZE
+        count = (len(data) - n) // m
+        if len(data) < n or (len(data) - n) % m or not 0 <= count <= 8:
+            raise FsError(ERR_WIRE_LENGTH, f'slot_dir: {len(data)} bytes is not {n} + {m} x 0..8')
+        raw = _SLOT_DIR.unpack(data[:n])
+        v = cls(raw[0], tuple(SlotEntry.unpack(data[n + m * i : n + m * (i + 1)]) for i in range(count)))
+        v.check()
+        return v
+
+
+_LAST_TRANSFER = struct.Struct('>H')
+
+
+@dataclass(frozen=True)
+class LastTransfer:
+    """DID_LAST_TRANSFER: status of the last download (0 ok, a code, TRANSFER_*)."""
+
+    SIZE: ClassVar[int] = 2  # bytes of the fields always present
+    status: int
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('last_transfer', 'status', 0 <= self.status <= 65535, self.status)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _LAST_TRANSFER.pack(self.status)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> LastTransfer:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _LAST_TRANSFER.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'last_transfer: {len(data)} bytes, not {n}')
+        raw = _LAST_TRANSFER.unpack(data[:n])
+        v = cls(raw[0])
+        v.check()
+        return v
+
+
+_DEVICE_STATE = struct.Struct('>BHBBI')
+
+
+@dataclass(frozen=True)
+class DeviceState:
+    """DID_DEVICE_STATE: state, latched fault, active slot, sequence step, tick."""
+
+    SIZE: ClassVar[int] = 9  # bytes of the fields always present
+    state: int
+    fault: int
+    slot: int
+    step: int
+    tick: int
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('device_state', 'state', 0 <= self.state <= 255, self.state)
+        _in_range('device_state', 'fault', 0 <= self.fault <= 65535, self.fault)
+        _in_range('device_state', 'slot', 0 <= self.slot <= 255, self.slot)
+        _in_range('device_state', 'step', 0 <= self.step <= 255, self.step)
+        _in_range('device_state', 'tick', 0 <= self.tick <= 4294967295, self.tick)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _DEVICE_STATE.pack(self.state, self.fault, self.slot, self.step, self.tick)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> DeviceState:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _DEVICE_STATE.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'device_state: {len(data)} bytes, not {n}')
+        raw = _DEVICE_STATE.unpack(data[:n])
+        v = cls(raw[0], raw[1], raw[2], raw[3], raw[4])
+        v.check()
+        return v
+
+
+_FAULT_CAUSES = struct.Struct('>II')
+
+
+@dataclass(frozen=True)
+class FaultCauses:
+    """DID_FAULT_CAUSES: latched faults and the causes present at the last tick (bit n: fault 500 + n)."""
+
+    SIZE: ClassVar[int] = 8  # bytes of the fields always present
+    latched_mask: int
+    present_mask: int
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('fault_causes', 'latched_mask', 0 <= self.latched_mask <= 4294967295, self.latched_mask)
+        _in_range('fault_causes', 'present_mask', 0 <= self.present_mask <= 4294967295, self.present_mask)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _FAULT_CAUSES.pack(self.latched_mask, self.present_mask)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> FaultCauses:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _FAULT_CAUSES.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'fault_causes: {len(data)} bytes, not {n}')
+        raw = _FAULT_CAUSES.unpack(data[:n])
+        v = cls(raw[0], raw[1])
+        v.check()
+        return v
+
+
+_RUN_SKILL = struct.Struct('>BHHB')
+
+
+@dataclass(frozen=True)
+class RunSkill:
+    """RID_RUN_SKILL start: one skill (end 0 the skill's own, 1 hold, 2 release)."""
+
+    SIZE: ClassVar[int] = 6  # bytes of the fields always present
+    slot: int
+    goal_scale: float
+    time_scale: float
+    end: int
+    path_scale: float | None = None
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('run_skill', 'slot', 0 <= self.slot <= 255, self.slot)
+        _in_range('run_skill', 'goal_scale', 0 <= to_steps(self.goal_scale) <= 65535, self.goal_scale)
+        _in_range('run_skill', 'time_scale', 0 <= to_steps(self.time_scale) <= 65535, self.time_scale)
+        _in_range('run_skill', 'end', 0 <= self.end <= 2, self.end)
+        if self.path_scale is not None:
+            _in_range('run_skill', 'path_scale', 0 <= to_steps(self.path_scale) <= 65535, self.path_scale)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _RUN_SKILL.pack(self.slot, to_steps(self.goal_scale), to_steps(self.time_scale), self.end)
+        if self.path_scale is not None:
+            out += struct.pack('>H', to_steps(self.path_scale))
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> RunSkill:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _RUN_SKILL.size
+        if len(data) not in (n, n + 2):
+            raise FsError(ERR_WIRE_LENGTH, f'run_skill: {len(data)} bytes, not {n} or {n + 2}')
+        raw = _RUN_SKILL.unpack(data[:n])
+        v = cls(raw[0], from_steps(raw[1]), from_steps(raw[2]), raw[3], from_steps(struct.unpack_from('>H', data, n)[0]) if len(data) > n else None)
+        v.check()
+        return v
+
+
+_RUN_STEP = struct.Struct('>BHHI')
+
+
+@dataclass(frozen=True)
+class RunStep:
+    """one step of a RUN_SEQUENCE start (duration 0: the skill's T times its time scale)."""
+
+    SIZE: ClassVar[int] = 9  # bytes of the fields always present
+    slot: int
+    goal_scale: float
+    time_scale: float
+    duration_s: float  # s
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('run_step', 'slot', 0 <= self.slot <= 255, self.slot)
+        _in_range('run_step', 'goal_scale', 0 <= to_steps(self.goal_scale) <= 65535, self.goal_scale)
+        _in_range('run_step', 'time_scale', 0 <= to_steps(self.time_scale) <= 65535, self.time_scale)
+        _in_range('run_step', 'duration_s', 0 <= to_steps(self.duration_s) <= 4294967295, self.duration_s)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _RUN_STEP.pack(self.slot, to_steps(self.goal_scale), to_steps(self.time_scale), to_steps(self.duration_s))
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> RunStep:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _RUN_STEP.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'run_step: {len(data)} bytes, not {n}')
+        raw = _RUN_STEP.unpack(data[:n])
+        v = cls(raw[0], from_steps(raw[1]), from_steps(raw[2]), from_steps(raw[3]))
+        v.check()
+        return v
+
+
+_RUN_SEQUENCE = struct.Struct('>B')
+
+
+@dataclass(frozen=True)
+class RunSequence:
+    """RID_RUN_SEQUENCE start: the end policy, then 1..SEQUENCE_STEPS_MAX steps."""
+
+    SIZE: ClassVar[int] = 1  # bytes of the fields always present
+    end: int
+    steps: tuple[RunStep, ...]
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('run_sequence', 'end', 0 <= self.end <= 2, self.end)
+        _in_range('run_sequence', 'n_steps', 1 <= len(self.steps) <= 8, len(self.steps))
+        for e in self.steps:
+            e.check()
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _RUN_SEQUENCE.pack(self.end)
+        out += b''.join(e.pack() for e in self.steps)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> RunSequence:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _RUN_SEQUENCE.size
+        m = RunStep.SIZE
+        count = (len(data) - n) // m
+        if len(data) < n or (len(data) - n) % m or not 1 <= count <= 8:
+            raise FsError(ERR_WIRE_LENGTH, f'run_sequence: {len(data)} bytes is not {n} + {m} x 1..8')
+        raw = _RUN_SEQUENCE.unpack(data[:n])
+        v = cls(raw[0], tuple(RunStep.unpack(data[n + m * i : n + m * (i + 1)]) for i in range(count)))
+        v.check()
+        return v
+
+
+_RUN_RESULTS = struct.Struct('>BBBH')
+
+
+@dataclass(frozen=True)
+class RunResults:
+    """RID_RUN_SKILL / RID_RUN_SEQUENCE results."""
+
+    SIZE: ClassVar[int] = 5  # bytes of the fields always present
+    state: int
+    step: int
+    done: int
+    fault: int
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('run_results', 'state', 0 <= self.state <= 255, self.state)
+        _in_range('run_results', 'step', 0 <= self.step <= 255, self.step)
+        _in_range('run_results', 'done', 0 <= self.done <= 1, self.done)
+        _in_range('run_results', 'fault', 0 <= self.fault <= 65535, self.fault)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _RUN_RESULTS.pack(self.state, self.step, self.done, self.fault)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> RunResults:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _RUN_RESULTS.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'run_results: {len(data)} bytes, not {n}')
+        raw = _RUN_RESULTS.unpack(data[:n])
+        v = cls(raw[0], raw[1], raw[2], raw[3])
+        v.check()
+        return v
+
+
+_SELF_TEST = struct.Struct('>BH')
+
+
+@dataclass(frozen=True)
+class SelfTest:
+    """RID_SELF_TEST results: 0 pass / 1 fail, the first failing check's code."""
+
+    SIZE: ClassVar[int] = 3  # bytes of the fields always present
+    status: int
+    code: int
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('self_test', 'status', 0 <= self.status <= 1, self.status)
+        _in_range('self_test', 'code', 0 <= self.code <= 65535, self.code)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _SELF_TEST.pack(self.status, self.code)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> SelfTest:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _SELF_TEST.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'self_test: {len(data)} bytes, not {n}')
+        raw = _SELF_TEST.unpack(data[:n])
+        v = cls(raw[0], raw[1])
+        v.check()
+        return v
+
+
+_ERASE_SLOT = struct.Struct('>B')
+
+
+@dataclass(frozen=True)
+class EraseSlot:
+    """RID_ERASE_SLOT start."""
+
+    SIZE: ClassVar[int] = 1  # bytes of the fields always present
+    slot: int
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('erase_slot', 'slot', 1 <= self.slot <= 8, self.slot)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _ERASE_SLOT.pack(self.slot)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> EraseSlot:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _ERASE_SLOT.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'erase_slot: {len(data)} bytes, not {n}')
+        raw = _ERASE_SLOT.unpack(data[:n])
+        v = cls(raw[0])
+        v.check()
+        return v
+
+
+__all__ = [
+    'SCALE',
+    'SCALE_STEPS',
+    'SLOT_COUNT',
+    'TICK_US',
+    'SEQUENCE_STEPS_MAX',
+    'FORCE_LIMIT_N',
+    'STIFFNESS_MAX_NPM',
+    'STIFFNESS_MAX_RENDERED_NPM',
+    'STIFFNESS_CEILING_NPM',
+    'TRANSFER_IN_PROGRESS',
+    'TRANSFER_INTERRUPTED',
+    'TRANSFER_NONE',
+    'TARGET_CORTEX_M4F',
+    'TARGET_CORTEX_M3',
+    'TARGET_HOST',
+    'TICK_S',
+    'from_steps',
+    'to_steps',
+    'Versions',
+    'Gains',
+    'Limits',
+    'Comm',
+    'Object',
+    'StiffnessMax',
+    'SlotEntry',
+    'SlotDir',
+    'LastTransfer',
+    'DeviceState',
+    'FaultCauses',
+    'RunSkill',
+    'RunStep',
+    'RunSequence',
+    'RunResults',
+    'SelfTest',
+    'EraseSlot',
+]
