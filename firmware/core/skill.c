@@ -1,4 +1,4 @@
-/* Skill image v2/v3 parser (docs/skill_format.md). Every check runs on the stored float64 values in
+/* Skill image v2/v3/v4 parser (docs/skill_format.md). Every check runs on the stored float64 values in
  * double, in the documented order, so the double and float builds accept and reject the same
  * images as the Python reader; the float build then rounds the values to float. */
 #include "skill.h"
@@ -28,10 +28,17 @@
 #define OFF_KKI 112u /* k*k_i, N/(m s) */
 #define OFF_SURFACE 120u
 #define OFF_FORCE0 128u
-#define OFF_Y_START 136u /* v3 */
-#define OFF_GOAL_Y 144u  /* v3 */
+#define OFF_Y_START 136u   /* v3 */
+#define OFF_GOAL_Y 144u    /* v3 */
+#define OFF_AMPLITUDE 152u /* v4: the periodic DMP's six f64 (amplitude, e0, z0, I0, y p0, y z0) */
+#define OFF_KIND 200u      /* v4: kind u16, reserved u16, reserved u32 */
 #define SKILL_N_HEADER_F64_V2 15u
 #define SKILL_N_HEADER_F64_V3 17u
+#define SKILL_N_HEADER_F64_V4 23u
+#define SKILL_N_PERIODIC_F64 6u
+#define SKILL_TWO_PI 6.283185307179586
+/* a periodic skill's duration is its period: |T - 2*pi*tau| <= this * T */
+#define SKILL_PERIOD_REL_TOL 1e-9
 
 /* alpha/beta/gamma stored vs derived from the stored gains: relative agreement required. */
 #define SKILL_GAINS_REL_TOL 1e-9
@@ -46,7 +53,7 @@ uint32_t skill_image_size_v(uint16_t version, uint16_t n_kernels, uint8_t has_y)
     if (version == 2u) {
         return SKILL_HEADER_SIZE_V2 + SKILL_KERNEL_BYTES * (uint32_t)n_kernels + SKILL_CRC_SIZE;
     }
-    return SKILL_HEADER_SIZE +
+    return ((version >= 4u) ? SKILL_HEADER_SIZE_V4 : SKILL_HEADER_SIZE) +
            ((has_y != 0u) ? SKILL_KERNEL_BYTES_Y : SKILL_KERNEL_BYTES) * (uint32_t)n_kernels +
            SKILL_CRC_SIZE;
 }
@@ -159,7 +166,9 @@ static fs_status_t check_frame(skill_parser_t *p)
     if (version < SKILL_FORMAT_VERSION_MIN || version > SKILL_FORMAT_VERSION) {
         return FS_ERR_SKILL_VERSION;
     }
-    const uint32_t header = (version == 2u) ? SKILL_HEADER_SIZE_V2 : SKILL_HEADER_SIZE;
+    const uint32_t header = (version == 2u)   ? SKILL_HEADER_SIZE_V2
+                            : (version == 3u) ? SKILL_HEADER_SIZE
+                                              : SKILL_HEADER_SIZE_V4;
     if (len < header) {
         return FS_ERR_SKILL_TOO_SHORT;
     }
@@ -227,6 +236,34 @@ static fs_status_t check_gains_flags(const uint8_t *buf, uint16_t version, uint8
     const uint16_t known = (version == 2u) ? (uint16_t)SKILL_FLAG_END_RELEASE
                                            : (uint16_t)(SKILL_FLAG_END_RELEASE | SKILL_FLAG_Y_AXIS);
     return ((rd_u16(buf, OFF_FLAGS) & (uint16_t)~known) != 0u) ? FS_ERR_SKILL_UNSUPPORTED : FS_OK;
+}
+
+/* v4: a discrete skill's periodic fields 0 (228); a periodic skill without the y DMP (210),
+ * amplitude > 0 (230), T = 2*pi*tau (229), and runnable by this build (232). */
+static fs_status_t check_kind(const uint8_t *buf, uint16_t version, uint8_t kind, uint8_t has_y)
+{
+    if (version < 4u) {
+        return FS_OK;
+    }
+    if (kind == SKILL_KIND_DISCRETE) {
+        for (uint32_t k = 0u; k < SKILL_N_PERIODIC_F64; k++) {
+            if (rd_f64(buf, OFF_AMPLITUDE + 8u * k) != 0.0) {
+                return FS_ERR_SKILL_KIND;
+            }
+        }
+        return FS_OK;
+    }
+    if (has_y != 0u) {
+        return FS_ERR_SKILL_UNSUPPORTED;
+    }
+    if (!(rd_f64(buf, OFF_AMPLITUDE) > 0.0)) {
+        return FS_ERR_SKILL_AMPLITUDE;
+    }
+    const double duration = rd_f64(buf, OFF_DURATION);
+    if (fabs(duration - SKILL_TWO_PI * rd_f64(buf, OFF_TAU)) > SKILL_PERIOD_REL_TOL * duration) {
+        return FS_ERR_SKILL_PERIOD;
+    }
+    return SKILL_PERIODIC_SUPPORTED ? FS_OK : FS_ERR_SKILL_NO_PERIODIC;
 }
 
 /* The header's values in the core's type (the y DMP's scalars too, zeros without one): 0 if a
@@ -302,6 +339,7 @@ void skill_parse_begin(skill_parser_t *p, const uint8_t *buf, uint32_t len, skil
     p->version = 0u;
     p->n = 0u;
     p->has_y = 0u;
+    p->kind = SKILL_KIND_DISCRETE;
     p->stage = SP_FRAME;
     p->status = (buf == NULL || out == NULL) ? FS_ERR_NULL_ARG : FS_OK;
     if (p->status != FS_OK) {
@@ -317,13 +355,16 @@ static bool parse_item(skill_parser_t *p)
     const uint32_t i = p->pos++;
     switch (p->stage) {
     case SP_FINITE: {
-        /* 15 (v3: 17) header fields from OFF_DT, then 3N (4N with the y DMP), contiguous */
-        const uint32_t n_f64 = ((p->version == 2u) ? SKILL_N_HEADER_F64_V2
-                                                   : SKILL_N_HEADER_F64_V3) +
-                               ((p->has_y != 0u) ? 4u : 3u) * n;
+        /* 15 (v3: 17, v4: 23) header fields from OFF_DT, then 3N (4N with the y DMP) from the
+         * header's end (v4: after the kind) */
+        const uint32_t n_hdr = (p->version == 2u)   ? SKILL_N_HEADER_F64_V2
+                               : (p->version == 3u) ? SKILL_N_HEADER_F64_V3
+                                                    : SKILL_N_HEADER_F64_V4;
+        const uint32_t n_f64 = n_hdr + ((p->has_y != 0u) ? 4u : 3u) * n;
         const uint32_t first = i * SKILL_PARSE_F64_PER_UNIT;
         for (uint32_t k = first; k < n_f64 && k < first + SKILL_PARSE_F64_PER_UNIT; k++) {
-            if (!rd_f64_finite(buf, OFF_DT + 8u * k)) {
+            const uint32_t off = (k < n_hdr) ? OFF_DT + 8u * k : p->header + 8u * (k - n_hdr);
+            if (!rd_f64_finite(buf, off)) {
                 p->status = FS_ERR_SKILL_NOT_FINITE;
             }
         }
@@ -335,9 +376,12 @@ static bool parse_item(skill_parser_t *p)
         }
         return i + 1u >= n;
     case SP_CENTRES: {
+        /* discrete: phases of u~ in [0, 1]; periodic: angles in [0, 2*pi) */
         const double c = rd_f64(buf, p->header + 8u * i);
-        if (c < 0.0 || c > 1.0 || (i > 0u && !(c > rd_f64(buf, p->header + 8u * (i - 1u))))) {
-            p->status = FS_ERR_SKILL_CENTRES;
+        const int periodic = (p->kind == SKILL_KIND_PERIODIC);
+        const int out_of_range = periodic ? (c < 0.0 || !(c < SKILL_TWO_PI)) : (c < 0.0 || c > 1.0);
+        if (out_of_range || (i > 0u && !(c > rd_f64(buf, p->header + 8u * (i - 1u))))) {
+            p->status = periodic ? FS_ERR_SKILL_PHASES : FS_ERR_SKILL_CENTRES;
         }
         return i + 1u >= n;
     }
@@ -358,7 +402,12 @@ static void parse_once(skill_parser_t *p)
     switch (p->stage) {
     case SP_FRAME: p->status = check_frame(p); break;
     case SP_RANGE: p->status = check_header_range(buf); break;
-    case SP_GAINS: p->status = check_gains_flags(buf, p->version, p->has_y); break;
+    case SP_GAINS:
+        p->status = check_gains_flags(buf, p->version, p->has_y);
+        if (p->status == FS_OK) {
+            p->status = check_kind(buf, p->version, p->kind, p->has_y);
+        }
+        break;
     case SP_FILL:
         out->dmp.n_kernels = p->n;
         if (!fill_header(buf, p->has_y, out)) {
@@ -374,6 +423,7 @@ static void parse_once(skill_parser_t *p)
         out->end_policy = ((rd_u16(buf, OFF_FLAGS) & SKILL_FLAG_END_RELEASE) != 0u)
                               ? SKILL_END_RELEASE
                               : SKILL_END_HOLD;
+        out->kind = p->kind;
         dmp_model_init_begin(&p->init);
         break;
     default: break;
@@ -395,6 +445,13 @@ static bool parse_crc(skill_parser_t *p)
         p->status = FS_ERR_SKILL_CRC;
     } else if (p->n == 0u || p->n > DMP_MAX_KERNELS) {
         p->status = FS_ERR_SKILL_KERNELS;
+    } else if (p->version >= 4u) {
+        const uint16_t kind = rd_u16(p->buf, OFF_KIND);
+        if (kind > SKILL_KIND_PERIODIC || rd_u16(p->buf, OFF_KIND + 2u) != 0u ||
+            rd_u32(p->buf, OFF_KIND + 4u) != 0u) {
+            p->status = FS_ERR_SKILL_KIND;
+        }
+        p->kind = (uint8_t)kind;
     }
     return true;
 }

@@ -1,6 +1,7 @@
-/* Skill image v2/v3 (docs/skill_format.md): little-endian, versioned header, arrays of centres,
- * widths and weights (v3 with the y DMP: and the y weights), CRC-32 (zlib) over everything before
- * it. Python writes it (host/forceskill/model/skill.py); this parses and validates it into a ready
+/* Skill image v2/v3/v4 (docs/skill_format.md): little-endian, versioned header, arrays of
+ * centres, widths and weights (v3/v4 with the y DMP: and the y weights), CRC-32 (zlib) over
+ * everything before it; v4 adds the kind (discrete or periodic) and the periodic DMP's fields.
+ * Python writes it (host/forceskill/model/skill.py); this parses and validates it into a ready
  * dmp_model_t. */
 #ifndef SKILL_H
 #define SKILL_H
@@ -12,21 +13,29 @@
 #include "pfc.h"
 
 #define SKILL_MAGIC 0x4C4B5346u     /* bytes "FSKL" */
-#define SKILL_FORMAT_VERSION 3u     /* native: the force DMP and an optional y DMP */
+#define SKILL_FORMAT_VERSION 4u     /* native: the kind, the force DMP and an optional y DMP */
 #define SKILL_FORMAT_VERSION_MIN 2u /* oldest read: force only (v1 is refused) */
 #define SKILL_HEADER_SIZE_V2 136u
-#define SKILL_HEADER_SIZE 152u /* v3: the v2 header, then y_start_m and goal_y_m */
+#define SKILL_HEADER_SIZE 152u    /* v3: the v2 header, then y_start_m and goal_y_m */
+#define SKILL_HEADER_SIZE_V4 208u /* v4: the v3 header, 6 periodic f64, kind u16, reserved */
 #define SKILL_CRC_SIZE 4u
 #define SKILL_KERNEL_BYTES 24u   /* per kernel: centre, width, weight (f64 each) */
 #define SKILL_KERNEL_BYTES_Y 32u /* ... and the y weight (v3 with the y DMP) */
-/** Bytes of a v3 image with n kernels and the y DMP, and of the largest image this firmware
+/** Bytes of a v4 image with n kernels and the y DMP, and of the largest image this firmware
  *  accepts. */
 #define SKILL_IMAGE_SIZE(n) \
-    (SKILL_HEADER_SIZE + SKILL_KERNEL_BYTES_Y * (uint32_t)(n) + SKILL_CRC_SIZE)
+    (SKILL_HEADER_SIZE_V4 + SKILL_KERNEL_BYTES_Y * (uint32_t)(n) + SKILL_CRC_SIZE)
 #define SKILL_IMAGE_MAX SKILL_IMAGE_SIZE(DMP_MAX_KERNELS)
 #define SKILL_FLAG_END_RELEASE 0x0001u /* end policy: 0 hold, 1 release (ramp to 0 in 0.5 s) */
 #define SKILL_FLAG_Y_AXIS 0x0002u      /* v3: the position DMP on y is present (v2: refused) */
 #define SKILL_RELEASE_TIME_S 0.5
+#define SKILL_KIND_DISCRETE 0u
+#define SKILL_KIND_PERIODIC 1u /* v4: a rhythmic skill (docs/math.md section 5) */
+/* A build that runs periodic skills defines SKILL_PERIODIC_SUPPORTED 1; the others refuse a
+ * valid periodic image with FS_ERR_SKILL_NO_PERIODIC after every check of the format. */
+#ifndef SKILL_PERIODIC_SUPPORTED
+#define SKILL_PERIODIC_SUPPORTED 0
+#endif
 
 /** End policy after the skill's duration. */
 typedef enum {
@@ -42,13 +51,14 @@ typedef struct {
     fs_real_t stiffness_Npm; /* nominal object stiffness k: x_d = surface + f_hat/k */
     fs_real_t surface_m;     /* object surface position during the demonstration */
     skill_end_t end_policy;
+    uint8_t kind; /* SKILL_KIND_DISCRETE (v2, v3 and v4 kind 0) or SKILL_KIND_PERIODIC */
 } skill_t;
 
 /** Total image length in bytes for N kernels of a v2 image (force only): 136 + 24 N + 4. */
 uint32_t skill_image_size(uint16_t n_kernels);
 
-/** Total image length in bytes for N kernels of an image of format version (2 or 3) with or
- *  without the y DMP (only v3 has one): v3 152 + 24 N (+ 8 N) + 4. */
+/** Total image length in bytes for N kernels of an image of format version (2, 3 or 4) with or
+ *  without the y DMP (v3 and v4 only): v3 152 + 24 N (+ 8 N) + 4, v4 the same after 208. */
 uint32_t skill_image_size_v(uint16_t version, uint16_t n_kernels, uint8_t has_y);
 
 /** zlib-compatible CRC-32, continuing from crc (start with 0). */
@@ -70,6 +80,7 @@ typedef struct {
     uint16_t version;   /* format version */
     uint16_t n;         /* kernels */
     uint8_t has_y;      /* the y DMP is present */
+    uint8_t kind;       /* SKILL_KIND_* (v4: read with the kernel count) */
     uint8_t stage;      /* internal */
     dmp_init_t init;    /* the model's derivation (dmp_model_init in slices) */
     fs_status_t status; /* FS_OK while running or once valid; the refusal once done */
@@ -85,10 +96,11 @@ void skill_parse_begin(skill_parser_t *p, const uint8_t *buf, uint32_t len, skil
  *  p->crc the image's CRC-32; or skill_parse's error). */
 bool skill_parse_run(skill_parser_t *p, uint32_t max_units);
 
-/** Parse and validate an image of version 2 or 3 (magic, version, sizes, CRC, finite values,
- *  ranges, gains consistent with alpha/beta/gamma, beta <= alpha/4, with the y DMP 0 < beta_y <=
- *  alpha/4); on error *out is unspecified. An image of another version (v1 stored metres and
- *  k-dependent gains) is refused with 202. */
+/** Parse and validate an image of version 2, 3 or 4 (magic, version, sizes, CRC, kind, finite
+ *  values, ranges, centres, gains consistent with alpha/beta/gamma, beta <= alpha/4, with the y
+ *  DMP 0 < beta_y <= alpha/4, flags, a periodic skill's amplitude and period); on error *out is
+ *  unspecified. Another version is refused with 202; a valid periodic skill with 232 by a build
+ *  without SKILL_PERIODIC_SUPPORTED. */
 fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out);
 
 #endif /* SKILL_H */

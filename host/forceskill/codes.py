@@ -37,6 +37,11 @@ ERR_SKCHK_GOAL_SCALE = 224  # goal_scale * peak above the force limit: run refus
 ERR_SKCHK_PATH = 225
 ERR_SKCHK_PATH_SCALE = 226
 ERR_SKCHK_STIFFNESS = 227
+ERR_SKILL_KIND = 228
+ERR_SKILL_PERIOD = 229  # periodic skill: its duration (the period) is not 2*pi*tau
+ERR_SKILL_AMPLITUDE = 230  # periodic skill: amplitude not > 0
+ERR_SKILL_PHASES = 231  # periodic skill: centres not strictly increasing in [0, 2*pi)
+ERR_SKILL_NO_PERIODIC = 232  # a periodic skill on a device build that cannot run one
 ERR_FIXED_OVERFLOW = 300  # a value does not fit its fixed-point format
 ERR_FIXED_WINDOW = 301  # more kernels overlap than the fixed build evaluates
 ERR_FIXED_STEP = 302  # dt/tau too small or too large for Q1.31
@@ -63,6 +68,11 @@ SKILL_STATUS_TEXT: dict[int, str] = {
     225: "y path outside the device's y range",
     226: "path scale outside the device's y range",
     227: "stiffness above the device's limit",
+    228: 'unknown skill kind',
+    229: 'period disagrees with tau',
+    230: 'bad amplitude',
+    231: 'bad phase centres',
+    232: 'periodic skills not supported by this device',
 }
 
 # Protocol: E2E protection, ISO-TP (4xx)
@@ -191,6 +201,10 @@ ERR_CLEAR_BLOCKED = 666  # a fault cannot be cleared: its cause persists
 ERR_UNEXPECTED = 667  # an error no check foresaw (e.g. from a library), reported as one line
 ERR_WIRE_LENGTH = 668  # a device payload of a length its record (wire.toml) does not allow
 ERR_WIRE_RANGE = 669
+ERR_PERIODIC_STROKES = 680  # fit --periodic: no period found, or fewer than two steady strokes
+ERR_PERIODIC_GOAL = 681  # fit --periodic: the strokes' mean force is not a push
+ERR_PERIODIC_AMPLITUDE = 682  # fit --periodic: the strokes have no amplitude to learn
+ERR_PERIODIC_ARGS = 683
 ERR_SKILL_STIFFNESS = 690
 ERR_LOG_UNREADABLE = 691
 ERR_TELEMETRY_GAP = 692
@@ -346,6 +360,11 @@ __all__ = [
     'ERR_SKCHK_PATH',
     'ERR_SKCHK_PATH_SCALE',
     'ERR_SKCHK_STIFFNESS',
+    'ERR_SKILL_KIND',
+    'ERR_SKILL_PERIOD',
+    'ERR_SKILL_AMPLITUDE',
+    'ERR_SKILL_PHASES',
+    'ERR_SKILL_NO_PERIODIC',
     'ERR_FIXED_OVERFLOW',
     'ERR_FIXED_WINDOW',
     'ERR_FIXED_STEP',
@@ -449,6 +468,10 @@ __all__ = [
     'ERR_UNEXPECTED',
     'ERR_WIRE_LENGTH',
     'ERR_WIRE_RANGE',
+    'ERR_PERIODIC_STROKES',
+    'ERR_PERIODIC_GOAL',
+    'ERR_PERIODIC_AMPLITUDE',
+    'ERR_PERIODIC_ARGS',
     'ERR_SKILL_STIFFNESS',
     'ERR_LOG_UNREADABLE',
     'ERR_TELEMETRY_GAP',

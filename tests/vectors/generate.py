@@ -14,6 +14,11 @@ Writes, next to this script:
                                     wiping-like demonstration (force profile + path along y):
                                     header ``t,f_hat,y_hat`` (dmp.rollout and dmp.rollout_path),
                                     ``<skill> <goal_scale> <time_scale> <path_scale> <csv>`` per line
+  periodic_*.skill, periodic_*_g<G>_a<A>_t<T>_c<C>.csv, manifest_periodic.txt
+                                    periodic skills (format v4) fitted from a multi-stroke
+                                    wiping demonstration: header ``t,f_hat`` (periodic.rollout
+                                    over C cycles), ``<skill> <goal> <amplitude> <time> <cycles>
+                                    <csv>`` per line
   bad/*.skill, bad/manifest.txt     corrupt images, one per rejection of docs/skill_format.md:
                                     ``<file> <expected code>``; images that must fail after the CRC
                                     check carry a correct CRC.
@@ -30,10 +35,11 @@ from typing import Any
 
 import numpy as np
 
-from forceskill.model import dmp, synthetic
+from forceskill.model import dmp, periodic, synthetic
 from forceskill.model.demo import Demo
 from forceskill.model.fit import fit
 from forceskill.model.params import Gains, gains_for_object
+from forceskill.model.periodic_fit import fit_periodic
 from forceskill.model.skill import _F64_NAMES, _F64_NAMES_Y, MAGIC, MAX_KERNELS, Skill
 from forceskill.model.skill import HEADER_SIZE_V2 as HEADER_SIZE
 
@@ -63,6 +69,106 @@ WIPE_SKILLS = (
     ("wipe_n10_ridge_hold", 10, "ridge", "hold", ((1.0, 1.0, 1.0),)),
     ("wipe_n50_ridge_release", 50, "ridge", "release", ((1.0, 1.0, 1.0), (1.5, 1.3, 1.5))),
 )
+
+
+#: the periodic skills: (name, N, method) and the scales (goal, amplitude, time, cycles) of each
+STROKES_DEMO = (
+    lambda: synthetic.wiping_strokes(seed=14, n_strokes=6, period_s=0.5, approach_s=0.6, release_s=0.5),
+    280.0,
+)
+PERIODIC_SKILLS = (
+    ("periodic_n20_ridge", 20, "ridge", ((1.0, 1.0, 1.0, 1.0),)),
+    ("periodic_n50_lwr", 50, "lwr", ((1.0, 1.0, 1.0, 1.0),)),
+    ("periodic_n50_ridge", 50, "ridge", ((1.0, 1.0, 1.0, 2.0), (1.5, 0.5, 1.0, 1.0), (1.0, 1.5, 1.3, 1.5))),
+)
+PeriodicScales = tuple[tuple[float, float, float, float], ...]
+
+
+def _num(x: float) -> str:
+    return f"{x:g}".replace(".", "p")
+
+
+def fitted_periodic_skills() -> dict[str, tuple[Skill, PeriodicScales]]:
+    """The periodic skills and their scales, fitted afresh."""
+    make, k = STROKES_DEMO
+    demo = make()
+    gains = gains_for_object(k, OBJECT_MASS_KG)
+    return {
+        name: (fit_periodic(demo, k, n_kernels=n, method=method, gains=gains).skill, sc)
+        for name, n, method, sc in PERIODIC_SKILLS
+    }
+
+
+def golden_periodic(skills: dict[str, tuple[Skill, PeriodicScales]]) -> tuple[dict[str, bytes], list[str]]:
+    """Image, JSON twin and the periodic.rollout CSV of every periodic skill at its scales."""
+    files: dict[str, bytes] = {}
+    manifest: list[str] = []
+    for name, (sk, scales) in skills.items():
+        files[f"{name}.skill"] = sk.to_bytes()
+        files[f"{name}.skill.json"] = sk.to_json().encode()
+        for gs, amp, ts, cyc in scales:
+            t, f = periodic.rollout(sk, cycles=cyc, goal_scale=gs, amplitude_scale=amp, time_scale=ts)
+            csv = f"{name}_g{_num(gs)}_a{_num(amp)}_t{_num(ts)}_c{_num(cyc)}.csv"
+            lines = ["t,f_hat"] + [f"{a:.17g},{b:.17g}" for a, b in zip(t.tolist(), f.tolist(), strict=True)]
+            files[csv] = ("\n".join(lines) + "\n").encode()
+            manifest.append(f"{name}.skill {gs:g} {amp:g} {ts:g} {cyc:g} {csv}")
+    return files, manifest
+
+
+_HDR4 = struct.Struct("<IHHIHH23dHHI")
+
+
+def bad_images_periodic(base: Skill, discrete: Skill) -> list[tuple[str, bytes, int]]:
+    """Version-4 rejections from a valid periodic skill (and a discrete skill written as v4)."""
+    from forceskill.model.skill import _F64_NAMES_P
+
+    names = (*_F64, *_F64_NAMES_Y, *_F64_NAMES_P)
+
+    def pack4(sk: Skill, centres: np.ndarray | None = None, **kw: Any) -> bytes:
+        n = sk.n_kernels
+        f = {k: getattr(sk, k) for k in names}
+        f.update({k: v for k, v in kw.items() if k in names})
+        head = _HDR4.pack(
+            MAGIC,
+            kw.get("version", 4),
+            kw.get("header_size", 208),
+            208 + 24 * n + 4,
+            n,
+            kw.get("flags", sk.flags),
+            *(float(f[k]) for k in names),
+            kw.get("kind", sk.kind),
+            0,
+            kw.get("reserved32", 0),
+        )
+        c = sk.centres if centres is None else centres
+        body = head + np.concatenate([c, sk.widths, sk.weights]).astype("<f8").tobytes()
+        return body + struct.pack("<I", zlib.crc32(body) & 0xFFFFFFFF)
+
+    assert pack4(base) == base.to_bytes()
+    c_hi = base.centres.copy()
+    c_hi[-1] = 2.0 * np.pi
+    c_eq = base.centres.copy()
+    c_eq[3] = c_eq[2]
+    return [
+        ("version_5.skill", pack4(base, version=5), 202),
+        ("p_header_size.skill", pack4(base, header_size=152), 211),
+        ("p_kind_2.skill", pack4(base, kind=2), 228),
+        ("p_reserved.skill", pack4(base, reserved32=1), 228),
+        ("p_discrete_amplitude.skill", pack4(discrete, amplitude_N=1.0), 228),
+        ("p_nan_amplitude.skill", pack4(base, amplitude_N=np.nan), 206),
+        ("p_centre_2pi.skill", pack4(base, centres=c_hi), 231),
+        ("p_centres_equal.skill", pack4(base, centres=c_eq), 231),
+        ("p_y_flag.skill", pack4(base, flags=base.flags | 0x0002), 203),
+        ("p_amplitude_0.skill", pack4(base, amplitude_N=0.0), 230),
+        ("p_period.skill", pack4(base, duration_s=base.duration_s * (1.0 + 1e-6)), 229),
+    ]
+
+
+def discrete_as_v4(base: Skill) -> Skill:
+    """A discrete skill written as format v4 (kind 0, periodic fields 0)."""
+    sk = Skill.from_bytes(base.to_bytes())
+    sk.format_version = 4
+    return sk
 
 
 KERNELS = (10, 50, 100)
@@ -232,7 +338,6 @@ def bad_images(base: Skill) -> list[tuple[str, bytes, int]]:
     v1_head = _HDR_V1.pack(MAGIC, 1, 128, 128 + 24 * n + 4, n, 0, *([1.0] * 14))
     v1_body = v1_head + np.concatenate([c, w, wt]).astype("<f8").tobytes()
     out.append(("version_1.skill", v1_body + struct.pack("<I", zlib.crc32(v1_body) & 0xFFFFFFFF), 202))
-    out.append(("version_4.skill", mod(version=4), 202))
     out.append(("version_0.skill", mod(version=0), 202))
     out.append(("header_size.skill", mod(header_size=120), 211))
     out.append(("length_field.skill", mod(total_length=f0["total_length"] + 24), 203))
@@ -348,6 +453,9 @@ def main() -> int:
     y_skills = fitted_y_skills()
     files_y, manifest_y = golden_y(y_skills)
     files.update(files_y)
+    p_skills = fitted_periodic_skills()
+    files_p, manifest_p = golden_periodic(p_skills)
+    files.update(files_p)
     for old in HERE.glob("*.skill*"):
         old.unlink()
     for old in HERE.glob("*.csv"):
@@ -356,6 +464,7 @@ def main() -> int:
         (HERE / name).write_bytes(data)
     (HERE / "manifest.txt").write_text("\n".join(manifest) + "\n")
     (HERE / "manifest_y.txt").write_text("\n".join(manifest_y) + "\n")
+    (HERE / "manifest_periodic.txt").write_text("\n".join(manifest_p) + "\n")
     bad_dir = HERE / "bad"
     bad_dir.mkdir(exist_ok=True)
     for old in bad_dir.glob("*.skill"):
@@ -363,7 +472,8 @@ def main() -> int:
     base = skills[skill_name("press", 10, "ridge", "release")]
     lines = []
     base_y = y_skills["wipe_n10_ridge_hold"][0]
-    for name, data, code in bad_images(base) + bad_images_y(base_y):
+    bad_p = bad_images_periodic(p_skills["periodic_n20_ridge"][0], discrete_as_v4(base))
+    for name, data, code in bad_images(base) + bad_images_y(base_y) + bad_p:
         (bad_dir / name).write_bytes(data)
         lines.append(f"{name} {code}")
     (bad_dir / "manifest.txt").write_text("\n".join(lines) + "\n")

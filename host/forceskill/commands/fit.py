@@ -73,6 +73,8 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     # samples, its position is not needed any more (memory on long recordings)
     grid_demo = resample(demo, args.dt)
     demo.pos_m = np.zeros(0)
+    if args.periodic:
+        return _fit_periodic(grid_demo, demo.source, args, out)
 
     def fit_n(n: int) -> tuple[Any, np.ndarray, np.ndarray]:
         r = _fit_with_hint(grid_demo, args, n)
@@ -149,6 +151,90 @@ def _cmd_fit(args: argparse.Namespace) -> int:
         f"wrote {out} ({out.stat().st_size} bytes) and {out}.json"
         + (f", plot {args.plot}" if args.plot else "")
     )
+    return 0
+
+
+def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path) -> int:
+    """fit --periodic: the mean stroke of the steady strokes as a periodic skill (format v4)."""
+    from ..errors import ERR_FIT_TOLERANCE, ERR_PERIODIC_ARGS
+    from ..model.limits import check_skill_force
+    from ..model.periodic_fit import fit_periodic
+    from ..outputs import Outputs
+
+    if args.y_column is not None or args.end != "hold" or args.plot:
+        raise FsError(
+            ERR_PERIODIC_ARGS, "--periodic learns the force alone: --y-column, --end and --plot do not apply"
+        )
+
+    def fit_n(n: int) -> Any:
+        return fit_periodic(
+            demo,
+            args.stiffness,
+            n_kernels=n,
+            method=args.method,
+            gains=args.fit_gains,
+            surface_m=args.surface_m,
+            dt_s=args.dt,
+            period_s=args.period,
+            object_mass_kg=args.fit_object_mass_kg,
+        )
+
+    if args.max_error is None:
+        res = fit_n(50 if args.kernels is None else args.kernels)
+    else:  # the smallest N (doubling, then bisection) whose mean-stroke error is within the bound
+        tried: dict[int, Any] = {}
+        n = 5
+        while True:
+            tried[n] = fit_n(n)
+            if tried[n].err_mean_max_pct <= args.max_error or 2 * n > tried[n].strokes_N.shape[1] // 2:
+                break
+            n *= 2
+        if tried[n].err_mean_max_pct > args.max_error:
+            raise FsError(
+                ERR_FIT_TOLERANCE,
+                f"no kernel count up to {n} reaches max error {args.max_error:g} % of the mean stroke "
+                f"(best {min(r.err_mean_max_pct for r in tried.values()):.3g} %); nothing written",
+            )
+        lo = n // 2
+        while n - lo > 1:
+            mid = (lo + n) // 2
+            tried[mid] = fit_n(mid)
+            if tried[mid].err_mean_max_pct <= args.max_error:
+                n = mid
+            else:
+                lo = mid
+        res = tried[n]
+        print(
+            f"kernels: N = {n}, the smallest reaching max error {args.max_error:g} % of the mean stroke ("
+            + ", ".join(f"{k} -> {r.err_mean_max_pct:.3g} %" for k, r in sorted(tried.items()))
+            + ")"
+        )
+    sk = res.skill
+    check_skill_force(sk, str(out), force_limit_N=args.force_limit)
+    with Outputs(inputs=[args.demo]) as outs:
+        sk.write(out, outs=outs)
+        outs.commit()
+    k = res.strokes_N.shape[0]
+    print(
+        f"demonstration: {source}, period {res.period_s:.6g} s"
+        + (" (given)" if args.period is not None else " (autocorrelation)")
+        + f", {k} steady strokes from t = {res.start_s:.4g} s (approach and release left out), "
+        f"max force {res.f_max_N:.4g} N"
+    )
+    print(
+        f"skill: periodic, method {res.method}, N = {sk.n_kernels}, k = {sk.stiffness_Npm:g} N/m, "
+        f"period {sk.duration_s:.6g} s ({int(round(sk.duration_s / sk.dt_s))} steps), tau = {sk.tau_s:.6g} s, "
+        f"mean force g = {sk.goal_N:.6g} N, amplitude {sk.amplitude_N:.6g} N"
+    )
+    print(
+        f"approximation error against the mean stroke: max {res.err_mean_max_pct:.3f} %, "
+        f"RMS {res.err_mean_rms_pct:.3f} % of max force"
+    )
+    print(
+        "against each stroke (max, % of max force): "
+        + ", ".join(f"{e:.3f}" for e in res.err_stroke_max_pct.tolist())
+    )
+    print(f"wrote {out} ({out.stat().st_size} bytes) and {out}.json")
     return 0
 
 
@@ -334,6 +420,20 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         choices=("first", "zero"),
         default="first",
         help="starting force of the skill: the demonstration's first force (default) or 0 N",
+    )
+    per = p.add_argument_group("periodic skills (wiping, polishing: repeated strokes)")
+    per.add_argument(
+        "--periodic",
+        action="store_true",
+        help="learn the mean stroke of the recording's steady strokes as a periodic skill (format v4; "
+        "--max-error then bounds the error against the mean stroke)",
+    )
+    per.add_argument(
+        "--period",
+        type=float_arg,
+        default=None,
+        metavar="S",
+        help="the stroke period in s (default: found by autocorrelation)",
     )
     p.add_argument("--dt", type=float_arg, default=0.001, help=argparse.SUPPRESS)
     p.add_argument("--plot", metavar="PNG", help="write demonstrated vs learned force, error, position")

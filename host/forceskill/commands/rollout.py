@@ -7,7 +7,7 @@ import argparse
 import sys
 from collections.abc import Iterator
 
-from ._args import add_path_scale, add_scales, int_arg
+from ._args import add_path_scale, add_scales, float_arg, int_arg
 
 
 def _cmd_rollout(args: argparse.Namespace) -> int:
@@ -22,6 +22,8 @@ def _cmd_rollout(args: argparse.Namespace) -> int:
         check_target(args.output, [args.skill])
     check_path_scale(args.path_scale)
     sk = Skill.read(args.skill)
+    if sk.periodic or args.cycles is not None or args.amplitude_scale != 1.0:
+        return _rollout_periodic(sk, args)
     stats = {"peak": -np.inf, "t_end": 0.0}
     y_all: np.ndarray | None = None
     if sk.has_y:
@@ -52,6 +54,42 @@ def _cmd_rollout(args: argparse.Namespace) -> int:
     return 0
 
 
+def _rollout_periodic(sk: object, args: argparse.Namespace) -> int:
+    """A periodic skill for --cycles periods (1 by default) at the goal (mean force), amplitude
+    and time (period) scales."""
+    import numpy as np
+
+    from ..errors import ERR_PERIODIC_ARGS, FsError
+    from ..model import periodic
+    from ..model.skill import Skill
+    from ..outputs import STDOUT, write_csv
+
+    assert isinstance(sk, Skill)
+    if not sk.periodic:
+        raise FsError(ERR_PERIODIC_ARGS, "--cycles and --amplitude-scale apply to periodic skills only")
+    if args.path_scale != 1.0:
+        raise FsError(ERR_PERIODIC_ARGS, "a periodic skill has no y path: --path-scale does not apply")
+    cycles = 1.0 if args.cycles is None else args.cycles
+    if not (np.isfinite(cycles) and cycles > 0.0):
+        raise FsError(ERR_PERIODIC_ARGS, f"--cycles must be a number > 0: {cycles:g}")
+    t, f = periodic.rollout(
+        sk,
+        cycles=cycles,
+        goal_scale=args.goal_scale,
+        amplitude_scale=args.amplitude_scale,
+        time_scale=args.time_scale,
+        n_steps=args.steps,
+    )
+    n = write_csv(args.output, ["t", "f_hat"], iter([np.column_stack((t, f))]), inputs=[args.skill])
+    print(
+        f"wrote {args.output}: {n} rows, t = 0..{float(t[-1]):.6g} s ({cycles:g} cycles of "
+        f"{sk.duration_s * args.time_scale:.6g} s), f_hat {float(np.min(f)):.6g}..{float(np.max(f)):.6g} N, "
+        f"mean {float(np.mean(f[:-1])):.6g} N",
+        file=sys.stderr if args.output == STDOUT else sys.stdout,
+    )
+    return 0
+
+
 def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     """Add ``forceskill rollout``."""
     p = sub.add_parser(
@@ -72,5 +110,20 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         default=None,
         metavar="N",
         help="number of steps, at most 10^7 (default round(T*time_scale/dt))",
+    )
+    p.add_argument(
+        "--cycles",
+        type=float_arg,
+        default=None,
+        metavar="N",
+        help="periodic skills: the number of periods to evaluate (1)",
+    )
+    p.add_argument(
+        "--amplitude-scale",
+        type=float_arg,
+        default=1.0,
+        metavar="S",
+        help="periodic skills: multiply the stroke's amplitude by S (--goal-scale sets the mean force, "
+        "--time-scale the period)",
     )
     p.set_defaults(func=_cmd_rollout)

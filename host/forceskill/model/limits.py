@@ -51,8 +51,17 @@ def check_force_limit(force_limit_N: float) -> None:
 
 
 def skill_peak_N(skill: Skill, time_scale: float = 1.0) -> float:
-    """max |f_hat| of the skill's rollout at goal 1 (inf when the rollout is not finite)."""
+    """max |f_hat| of the skill's rollout at goal 1 (inf when the rollout is not finite); a
+    periodic skill: over one cycle from its state on the cycle."""
     from .dmp import rollout_peak
+
+    if skill.periodic:
+        import numpy as np
+
+        from .periodic import rollout as periodic_rollout
+
+        _, f = periodic_rollout(skill, cycles=1.0, time_scale=time_scale)
+        return float(np.max(np.abs(f))) if np.all(np.isfinite(f)) else math.inf
 
     return rollout_peak(skill, time_scale=time_scale)
 

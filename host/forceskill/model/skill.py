@@ -1,8 +1,9 @@
-"""Skill image v2/v3 (docs/skill_format.md): bytes, validation and the JSON twin.
+"""Skill image v2/v3/v4 (docs/skill_format.md): bytes, validation and the JSON twin.
 
 Version 3 adds the optional position DMP on y (start, goal and one weight per kernel, sharing the
 force DMP's phase and kernels); a skill without it is written as version 2, readable by every
-device that reads force-only skills.
+device that reads force-only skills. Version 4 adds the kind (discrete or periodic) and the
+periodic DMP's amplitude and state on the cycle; only periodic skills are written as version 4.
 
 A skill is plain data (dmpbbo style): fitting produces it, the firmware parses and evaluates it.
 Validation runs the same checks, in the same order, with the same codes as ``skill_parse`` in
@@ -24,14 +25,18 @@ import numpy as np
 
 from ..errors import (
     ERR_IO,
+    ERR_SKILL_AMPLITUDE,
     ERR_SKILL_CENTRES,
     ERR_SKILL_CRC,
     ERR_SKILL_GAINS,
     ERR_SKILL_HEADER_SIZE,
     ERR_SKILL_KERNELS,
+    ERR_SKILL_KIND,
     ERR_SKILL_LENGTH,
     ERR_SKILL_MAGIC,
     ERR_SKILL_NOT_FINITE,
+    ERR_SKILL_PERIOD,
+    ERR_SKILL_PHASES,
     ERR_SKILL_RANGE,
     ERR_SKILL_TOO_SHORT,
     ERR_SKILL_UNSUPPORTED,
@@ -45,16 +50,22 @@ if TYPE_CHECKING:
     from ..outputs import Outputs
 
 MAGIC = 0x4C4B5346  # bytes "FSKL"
-FORMAT_VERSION = 3
+FORMAT_VERSION = 4
 #: the oldest version this reads (v1 stored metres and stiffness-dependent gains)
 FORMAT_VERSION_MIN = 2
 HEADER_SIZE_V2 = 136
 HEADER_SIZE = 152  # version 3: the v2 header, then y_start_m and goal_y_m
+HEADER_SIZE_V4 = 208  # version 4: the v3 header, six f64 of the periodic DMP, kind, two reserved
 CRC_SIZE = 4
 MAX_KERNELS = 1024  # DMP_MAX_KERNELS
 FLAG_END_RELEASE = 0x0001
 FLAG_Y_AXIS = 0x0002  # version 3: the position DMP on y is present (refused in version 2)
-KNOWN_FLAGS = {2: FLAG_END_RELEASE, 3: FLAG_END_RELEASE | FLAG_Y_AXIS}
+KNOWN_FLAGS = {2: FLAG_END_RELEASE, 3: FLAG_END_RELEASE | FLAG_Y_AXIS, 4: FLAG_END_RELEASE | FLAG_Y_AXIS}
+KIND_DISCRETE = 0
+KIND_PERIODIC = 1
+KINDS = {KIND_DISCRETE: "discrete", KIND_PERIODIC: "periodic"}
+#: a periodic skill's duration is its period: |T - 2*pi*tau| within this of T
+PERIOD_REL_TOL = 1e-9
 RELEASE_TIME_S = 0.5
 GAINS_REL_TOL = 1e-9  # stored alpha/beta/gamma vs derived from stored gains
 DT_MAX_S = 0.1
@@ -64,10 +75,14 @@ DURATION_MAX_S = 3600.0
 # or 17 f64 (v3)
 _HEADER_V2 = struct.Struct("<IHHIHH15d")
 _HEADER_V3 = struct.Struct("<IHHIHH17d")
-_HEADERS = {2: _HEADER_V2, 3: _HEADER_V3}
+# v4: the v3 fields, 6 f64 more (amplitude_N, e0_N, z0_N, i0_N, y_p0_m, y_z0_m), kind u16,
+# reserved u16 and u32 (0)
+_HEADER_V4 = struct.Struct("<IHHIHH23dHHI")
+_HEADERS = {2: _HEADER_V2, 3: _HEADER_V3, 4: _HEADER_V4}
 #: the fixed part every version shares (magic, version): enough to name an old image's version
 _PREFIX = struct.Struct("<IH")
 assert _HEADER_V2.size == HEADER_SIZE_V2 and _HEADER_V3.size == HEADER_SIZE
+assert _HEADER_V4.size == HEADER_SIZE_V4
 _F64_NAMES = (
     "dt_s",
     "tau_s",
@@ -87,16 +102,25 @@ _F64_NAMES = (
 )
 #: the version-3 header's two more fields (the y half; 0 in a force-only v3 image)
 _F64_NAMES_Y = ("y_start_m", "goal_y_m")
+#: the version-4 header's six more (the periodic DMP; 0 in a discrete v4 image)
+_F64_NAMES_P = ("amplitude_N", "e0_N", "z0_N", "i0_N", "y_p0_m", "y_z0_m")
+
+
+def _f64_names(version: int) -> tuple[str, ...]:
+    """The header's float64 fields of a format version, in image order."""
+    return _F64_NAMES + (_F64_NAMES_Y if version >= 3 else ()) + (_F64_NAMES_P if version >= 4 else ())
+
 
 PathLike = str | Path
 
 
 def image_size(n_kernels: int, version: int = 2, has_y: bool = False) -> int:
     """Total image length in bytes for N kernels: v2 136 + 24 N + 4; v3 152 + 24 N (+ 8 N with
-    the y DMP) + 4."""
+    the y DMP) + 4; v4 the same arrays after a 208-byte header."""
     if version == 2:
         return HEADER_SIZE_V2 + 24 * n_kernels + CRC_SIZE
-    return HEADER_SIZE + (32 if has_y else 24) * n_kernels + CRC_SIZE
+    header = HEADER_SIZE_V4 if version >= 4 else HEADER_SIZE
+    return header + (32 if has_y else 24) * n_kernels + CRC_SIZE
 
 
 def derive_beta_y(gains: Gains) -> float:
@@ -145,6 +169,18 @@ class Skill:
     y_start_m: float = 0.0
     goal_y_m: float = 0.0
     y_weights: np.ndarray | None = None
+    #: version 4: KIND_DISCRETE or KIND_PERIODIC. A periodic skill (docs/math.md section 5):
+    #: centres are phases in [0, 2*pi), widths the von Mises concentrations kappa_i, duration_s
+    #: the period 2*pi*tau, goal_N the mean force, amplitude_N the stroke's amplitude r (h =
+    #: r*S(phi)), (e0, z0, i0) the state on the cycle at phi = 0 (N); y_p0_m, y_z0_m reserved
+    #: for a periodic y path (0)
+    kind: int = KIND_DISCRETE
+    amplitude_N: float = 0.0
+    e0_N: float = 0.0
+    z0_N: float = 0.0
+    i0_N: float = 0.0
+    y_p0_m: float = 0.0
+    y_z0_m: float = 0.0
 
     def __post_init__(self) -> None:
         self.centres = np.ascontiguousarray(self.centres, dtype=np.float64).reshape(-1)
@@ -153,8 +189,8 @@ class Skill:
         if self.y_weights is not None:
             self.y_weights = np.ascontiguousarray(self.y_weights, dtype=np.float64).reshape(-1)
             self.flags |= FLAG_Y_AXIS
-        if self.format_version == 0:  # written as v2 unless it needs v3
-            self.format_version = 3 if self.y_weights is not None else 2
+        if self.format_version == 0:  # written as v2 unless it needs v3 (y) or v4 (periodic)
+            self.format_version = 4 if self.kind != KIND_DISCRETE else 3 if self.y_weights is not None else 2
 
     # -- derived views ---------------------------------------------------------------------
     @property
@@ -165,6 +201,11 @@ class Skill:
     def end_policy(self) -> str:
         """'hold' (keep the last force after T) or 'release' (ramp to zero in 0.5 s)."""
         return "release" if self.flags & FLAG_END_RELEASE else "hold"
+
+    @property
+    def periodic(self) -> bool:
+        """True for a periodic (rhythmic) skill (format v4, kind 1)."""
+        return self.kind == KIND_PERIODIC
 
     @property
     def has_y(self) -> bool:
@@ -198,15 +239,16 @@ class Skill:
             )
         version = self.format_version
         header = _HEADERS.get(version, _HEADER_V3)
-        names = _F64_NAMES + (_F64_NAMES_Y if header is _HEADER_V3 else ())
+        hv = next(v for v, h in _HEADERS.items() if h is header)
         head = header.pack(
             MAGIC,
             version,
             header.size,
-            image_size(n, 2 if header is _HEADER_V2 else 3, yw is not None),
+            image_size(n, hv, yw is not None),
             n,
             self.flags,
-            *(float(getattr(self, k)) for k in names),
+            *(float(getattr(self, k)) for k in _f64_names(hv)),
+            *((self.kind, 0, 0) if hv >= 4 else ()),
         )
         body = (
             head
@@ -222,8 +264,8 @@ class Skill:
 
     @staticmethod
     def from_bytes(buf: bytes) -> Skill:
-        """Parse and validate an image (v2 or v3); raises SkillError with the firmware's code
-        (200-211)."""
+        """Parse and validate an image (v2, v3 or v4); raises SkillError with the firmware's code
+        (200-211, 228-231)."""
         buf = bytes(buf)
         if len(buf) < _PREFIX.size:
             raise SkillError(
@@ -243,7 +285,7 @@ class Skill:
             raise SkillError(
                 ERR_SKILL_VERSION,
                 f"skill image format version {version} is not supported: this "
-                f"reads versions {FORMAT_VERSION_MIN} and {FORMAT_VERSION}{hint}",
+                f"reads versions {FORMAT_VERSION_MIN} to {FORMAT_VERSION}{hint}",
             )
         header = _HEADERS[version]
         if len(buf) < header.size:
@@ -252,13 +294,14 @@ class Skill:
             )
         fields = header.unpack_from(buf, 0)
         _, _, header_size, total_length, n, flags = fields[:6]
-        names = _F64_NAMES + (_F64_NAMES_Y if version == 3 else ())
-        f64 = dict(zip(names, fields[6:], strict=True))
+        names = _f64_names(version)
+        f64 = dict(zip(names, fields[6 : 6 + len(names)], strict=True))
+        kind, reserved = (int(fields[-3]), fields[-2] | fields[-1]) if version >= 4 else (KIND_DISCRETE, 0)
         if header_size != header.size:
             raise SkillError(
                 ERR_SKILL_HEADER_SIZE, f"skill header_size is {header_size}, expected {header.size}"
             )
-        has_y = version == 3 and bool(flags & FLAG_Y_AXIS)
+        has_y = version >= 3 and bool(flags & FLAG_Y_AXIS)
         size = image_size(n, version, has_y)
         if total_length != len(buf) or total_length != size:
             raise SkillError(
@@ -275,6 +318,11 @@ class Skill:
             )
         if not 1 <= n <= MAX_KERNELS:
             raise SkillError(ERR_SKILL_KERNELS, f"skill kernel count {n} outside 1..{MAX_KERNELS}")
+        if kind not in KINDS or reserved != 0:
+            raise SkillError(
+                ERR_SKILL_KIND,
+                f"skill kind {kind} (reserved 0x{reserved:X}) is not 0 (discrete) or 1 (periodic)",
+            )
         n_arr = 4 if has_y else 3
         arrays = np.frombuffer(buf, dtype="<f8", count=n_arr * n, offset=header.size).astype(np.float64)
         centres, widths, weights = arrays[:n].copy(), arrays[n : 2 * n].copy(), arrays[2 * n : 3 * n].copy()
@@ -299,13 +347,15 @@ class Skill:
             flags=flags,
             format_version=version,
             y_weights=y_weights,
+            kind=kind,
             **kw,
         )
         skill._validate_values()
         return skill
 
     def _validate_values(self) -> None:
-        """Checks 207-210 (ranges, centres, gains, flags), in the firmware's order."""
+        """Checks 207-210 (ranges, centres, gains, flags) and 228-231 (kind, periodic), in the
+        firmware's order."""
         checks = (
             ("dt_s", 0.0 < self.dt_s <= DT_MAX_S, f"(0, {DT_MAX_S:g}]"),
             ("tau_s", self.tau_s > 0.0, "> 0"),
@@ -322,13 +372,15 @@ class Skill:
                 ERR_SKILL_RANGE, f"skill widths[{bad[0]}] = {float(self.widths[bad[0]])!r} must be > 0"
             )
         c = self.centres
-        if c[0] < 0.0 or c[-1] > 1.0:
+        if self.kind == KIND_PERIODIC:
+            _validate_phases(c)
+        elif c[0] < 0.0 or c[-1] > 1.0:
             raise SkillError(
                 ERR_SKILL_CENTRES,
                 f"skill centres must lie in [0, 1]: first {float(c[0])!r}, last {float(c[-1])!r}",
             )
         bad = np.flatnonzero(~(np.diff(c) > 0.0))
-        if bad.size:
+        if bad.size and self.kind != KIND_PERIODIC:
             i = int(bad[0]) + 1
             raise SkillError(
                 ERR_SKILL_CENTRES,
@@ -365,6 +417,35 @@ class Skill:
                 f"skill flags 0x{self.flags:04X} carry unsupported bits "
                 f"0x{self.flags & ~known & 0xFFFF:04X} (format version {self.format_version})",
             )
+        if self.format_version >= 4:
+            self._validate_kind()
+
+    def _validate_kind(self) -> None:
+        """v4 (the kind itself is checked with the kernel count): a discrete skill with its
+        periodic fields 0 (228); a periodic one without the y DMP yet (210), amplitude > 0 (230),
+        T = 2*pi*tau (229)."""
+        if self.kind == KIND_DISCRETE:
+            nonzero = [k for k in _F64_NAMES_P if getattr(self, k) != 0.0]
+            if nonzero:
+                raise SkillError(
+                    ERR_SKILL_KIND, f"discrete skill carries periodic fields: {', '.join(nonzero)} not 0"
+                )
+            return
+        if self.has_y:
+            raise SkillError(
+                ERR_SKILL_UNSUPPORTED,
+                "skill flags carry the y DMP (bit 1), which a periodic skill does not support yet",
+            )
+        if not self.amplitude_N > 0.0:
+            raise SkillError(
+                ERR_SKILL_AMPLITUDE, f"periodic skill amplitude_N = {self.amplitude_N!r} must be > 0"
+            )
+        period = 2.0 * math.pi * self.tau_s
+        if abs(self.duration_s - period) > PERIOD_REL_TOL * self.duration_s:
+            raise SkillError(
+                ERR_SKILL_PERIOD,
+                f"periodic skill duration_s = {self.duration_s!r} is not its period 2*pi*tau = {period!r}",
+            )
 
     # -- JSON twin -------------------------------------------------------------------------
     def to_json_dict(self) -> dict[str, Any]:
@@ -384,6 +465,10 @@ class Skill:
         if self.format_version >= 3:
             for k in _F64_NAMES_Y:
                 d[k] = float(getattr(self, k))
+        if self.format_version >= 4:
+            d["kind"] = KINDS.get(self.kind, str(self.kind))
+            for k in _F64_NAMES_P:
+                d[k] = float(getattr(self, k))
         if self.y_weights is not None:
             d["y_weights"] = [float(x) for x in self.y_weights]
         image = self.to_bytes(validate=False)
@@ -398,7 +483,10 @@ class Skill:
     def from_json_dict(d: dict[str, Any]) -> Skill:
         """Rebuild from the JSON twin (validated like an image)."""
         kw: dict[str, Any] = {k: float(d[k]) for k in _F64_NAMES}
-        kw.update({k: float(d[k]) for k in _F64_NAMES_Y if k in d})
+        kw.update({k: float(d[k]) for k in _F64_NAMES_Y + _F64_NAMES_P if k in d})
+        kinds = {v: k for k, v in KINDS.items()}
+        if "kind" in d:
+            kw["kind"] = kinds.get(d["kind"], -1)
         yw = d.get("y_weights")
         s = Skill(
             centres=np.array(d["centres"], dtype=float),
@@ -436,6 +524,16 @@ class Skill:
         except OSError as e:
             raise SkillError(ERR_IO, f"cannot read skill {str(path)!r}: {e.strerror}") from None
         return Skill.from_bytes(data)
+
+
+def _validate_phases(c: np.ndarray) -> None:
+    """A periodic skill's centres: phases strictly increasing in [0, 2*pi) (231)."""
+    bad = np.flatnonzero(~(np.diff(c) > 0.0))
+    if c[0] < 0.0 or not c[-1] < 2.0 * math.pi or bad.size:
+        where = f"at {int(bad[0]) + 1}" if bad.size else f"first {float(c[0])!r}, last {float(c[-1])!r}"
+        raise SkillError(
+            ERR_SKILL_PHASES, f"periodic skill centres must increase strictly in [0, 2*pi): {where}"
+        )
 
 
 def atomic_write(path: Path, data: bytes) -> None:

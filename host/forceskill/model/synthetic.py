@@ -103,3 +103,61 @@ def wiping(
         tc += 0.6 + rng.uniform(0.2, 1.0)
     y = y + (0.1 * path_m - here) * _smooth((t - t_end) / 0.6)
     return Demo(t, d.pos_m, d.force_N, f"synthetic wiping seed={seed} k_v={k_v:g} path={path_m:g} m", y_m=y)
+
+
+def stroke_profile(
+    seed: int = 0, mean_N: float = 6.0, amplitude_N: float = 2.0
+) -> tuple[np.ndarray, np.ndarray]:
+    """One wiping stroke as Fourier coefficients (cos, sin) of harmonics 1..4: a seeded, smooth,
+    zero-mean shape scaled so that (max - min)/2 = amplitude_N; ``stroke(phase)`` adds mean_N."""
+    rng = np.random.default_rng(seed + 2000)
+    decay = np.array([1.0, 0.45, 0.25, 0.12])
+    a = rng.normal(0.0, 1.0, 4) * decay
+    b = rng.normal(0.0, 1.0, 4) * decay
+    a[0], b[0] = 1.0, rng.uniform(-0.3, 0.3)  # the fundamental leads
+    s = _stroke_shape(np.linspace(0.0, 2.0 * np.pi, 4097), a, b)
+    k = amplitude_N / (0.5 * float(np.max(s) - np.min(s)))
+    return k * a, k * b
+
+
+def _stroke_shape(phase: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    h = np.arange(1, a.size + 1)[:, None]
+    out: np.ndarray = a @ np.cos(h * phase[None, :]) + b @ np.sin(h * phase[None, :])
+    return out
+
+
+def stroke(phase: np.ndarray, seed: int = 0, mean_N: float = 6.0, amplitude_N: float = 2.0) -> np.ndarray:
+    """The noise-free force of ``wiping_strokes`` at stroke phase ``phase`` (rad, 0 = a stroke's start)."""
+    a, b = stroke_profile(seed, mean_N, amplitude_N)
+    return mean_N + _stroke_shape(np.asarray(phase, dtype=float), a, b)
+
+
+def wiping_strokes(
+    seed: int = 0,
+    n_strokes: int = 12,
+    period_s: float = 1.2,
+    mean_N: float = 6.0,
+    amplitude_N: float = 2.0,
+    approach_s: float = 1.0,
+    release_s: float = 0.8,
+    k_v: float = 100.0,
+    dt_s: float = 0.001,
+    noise_N: float = 0.0,
+) -> Demo:
+    """A multi-stroke wiping demonstration: the operator presses up to the stroke's force over
+    ``approach_s`` (raised cosine from 0), repeats the stroke (``stroke``) ``n_strokes`` times
+    with period ``period_s``, then releases over ``release_s``. The strokes start at t =
+    approach_s (phase 0); the force ramps are multiplied onto the stroke, so the approach and the
+    release are not strokes. Positions from a one-layer static spring; optional white sensor noise."""
+    rng = np.random.default_rng(seed)
+    duration = approach_s + n_strokes * period_s + release_s
+    t = np.arange(int(round(duration / dt_s)) + 1) * dt_s
+    t_end = approach_s + n_strokes * period_s
+    phase = 2.0 * np.pi * (t - approach_s) / period_s
+    env = _smooth(t / approach_s) * (1.0 - _smooth((t - t_end) / release_s))
+    f = env * stroke(phase, seed, mean_N, amplitude_N)
+    x = _position(f, k_v, k_v)
+    if noise_N > 0.0:
+        f = f + rng.normal(0.0, noise_N, f.size)
+    src = f"synthetic wiping strokes seed={seed} n={n_strokes} period={period_s:g} s k_v={k_v:g}"
+    return Demo(t, x, f, src)

@@ -21,8 +21,23 @@ static uint8_t img[CAP];
 static skill_t sk;
 
 /* Offsets of header f64 fields (docs/skill_format.md). */
-enum { O_DT = 16, O_TAU = 24, O_ALPHA = 32, O_BETA = 40, O_GAMMA = 48, O_K = 56, O_G = 64,
-       O_T = 72, O_MD = 80, O_KD = 88, O_KP = 96, O_KKF = 104, O_KKI = 112, O_SURF = 120, O_F0 = 128 };
+enum {
+    O_DT = 16,
+    O_TAU = 24,
+    O_ALPHA = 32,
+    O_BETA = 40,
+    O_GAMMA = 48,
+    O_K = 56,
+    O_G = 64,
+    O_T = 72,
+    O_MD = 80,
+    O_KD = 88,
+    O_KP = 96,
+    O_KKF = 104,
+    O_KKI = 112,
+    O_SURF = 120,
+    O_F0 = 128
+};
 
 static uint32_t valid_image(uint16_t n)
 {
@@ -166,9 +181,9 @@ static void test_reject_structure(void **state)
     tu_fix_crc(img, len);
     expect("version 1 (metres, k-dependent gains)", len, FS_ERR_SKILL_VERSION);
     expect("version 1, a v1-sized buffer", H - 8u, FS_ERR_SKILL_VERSION);
-    tu_put_u16(img, 4, 4);
+    tu_put_u16(img, 4, 5);
     tu_fix_crc(img, len);
-    expect("version 4", len, FS_ERR_SKILL_VERSION);
+    expect("version 5", len, FS_ERR_SKILL_VERSION);
     tu_put_u16(img, 4, 3);
     tu_fix_crc(img, len);
     expect("version 3 with the v2 header size", len, FS_ERR_SKILL_HEADER_SIZE);
@@ -285,8 +300,8 @@ static void test_reject_values(void **state)
         /* consistent alpha/beta/gamma but beta > alpha/4: k_p raised */
         uint32_t len = valid_image(10);
         const double k_p = 1300.0;
-        const double beta = (k_p + (desc.kkf - desc.kki / desc.alpha)) /
-                                (desc.m_d * desc.alpha) - 1.0;
+        const double beta = (k_p + (desc.kkf - desc.kki / desc.alpha)) / (desc.m_d * desc.alpha) -
+                            1.0;
         assert_true(beta > desc.alpha / 4.0);
         tu_put_f64(img, O_KP, k_p);
         tu_put_f64(img, O_BETA, beta);
@@ -378,12 +393,9 @@ static void test_double_accepts_extremes(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_crc32_check_value),
-        cmocka_unit_test(test_image_size),
-        cmocka_unit_test(test_valid_round_trip),
-        cmocka_unit_test(test_reject_structure),
-        cmocka_unit_test(test_reject_values),
-        cmocka_unit_test(test_check_order),
+        cmocka_unit_test(test_crc32_check_value), cmocka_unit_test(test_image_size),
+        cmocka_unit_test(test_valid_round_trip),  cmocka_unit_test(test_reject_structure),
+        cmocka_unit_test(test_reject_values),     cmocka_unit_test(test_check_order),
 #ifdef FS_REAL_FLOAT
         cmocka_unit_test(test_float_range),
 #else

@@ -128,7 +128,8 @@ static double check_rollout(const char *dir, const char *skill_file, double goal
             fclose(f);
             fail_msg("%s: row %ld has t = %.17g, expected %.17g", path, row, t, (double)row * dt);
         }
-        const double f_c = (row == 0) ? (double)sk.dmp.force0_N : (double)dmp_step(&sk.dmp, &s, &run, NULL);
+        const double f_c = (row == 0) ? (double)sk.dmp.force0_N
+                                      : (double)dmp_step(&sk.dmp, &s, &run, NULL);
         err_max = fmax(err_max, fabs(f_c - f_ref));
         f_max = fmax(f_max, fabs(f_ref));
         row++;
@@ -152,8 +153,7 @@ static double check_rollout(const char *dir, const char *skill_file, double goal
  * check (blank and comment lines skipped, a malformed line fails); returns the worst value check
  * returned, *count the number of lines. */
 static double for_each_manifest_line(const char *name, int n_fields,
-                                     double (*check)(const char *dir, char *const *fld),
-                                     int *count)
+                                     double (*check)(const char *dir, char *const *fld), int *count)
 {
     char path[1024];
     snprintf(path, sizeof(path), "%s/%s", FS_VECTORS_DIR, name);
@@ -254,8 +254,8 @@ static double check_rollout_xy(const char *dir, char *const *fld)
            "(%.3g um)\n",
            BUILD_NAME, fld[0], gs, ts, ps, ef / fm, ey / pm, ey * 1e6);
     if (!(ef / fm <= REL_TOL) || !(ey / pm <= REL_TOL)) {
-        fail_msg("%s (%s): force %.3g, path %.3g exceed %.1g", fld[4], BUILD_NAME, ef / fm,
-                 ey / pm, REL_TOL);
+        fail_msg("%s (%s): force %.3g, path %.3g exceed %.1g", fld[4], BUILD_NAME, ef / fm, ey / pm,
+                 REL_TOL);
     }
     return fmax(ef / fm, ey / pm);
 }
@@ -265,8 +265,8 @@ static void test_golden_rollouts_y(void **state)
     (void)state;
     int count = 0;
     const double worst = for_each_manifest_line("manifest_y.txt", 5, check_rollout_xy, &count);
-    printf("[%s] %d golden rollouts with a y DMP, worst error %.3g (tolerance %.0g)\n",
-           BUILD_NAME, count, worst, REL_TOL);
+    printf("[%s] %d golden rollouts with a y DMP, worst error %.3g (tolerance %.0g)\n", BUILD_NAME,
+           count, worst, REL_TOL);
     assert_true(count > 0);
 }
 
@@ -304,8 +304,8 @@ static void test_golden_bad_images(void **state)
         const fs_status_t got = skill_parse(image, (uint32_t)len, &sk);
         if ((int)got != want) {
             fclose(m);
-            fail_msg("%s (%s): skill_parse returned %d, expected %d", fld[0], BUILD_NAME,
-                     (int)got, want);
+            fail_msg("%s (%s): skill_parse returned %d, expected %d", fld[0], BUILD_NAME, (int)got,
+                     want);
         }
         count++;
     }
@@ -314,12 +314,61 @@ static void test_golden_bad_images(void **state)
     assert_true(count > 0);
 }
 
+/* The periodic golden skills (manifest_periodic.txt, format v4): every check of the format
+ * passes and this build, without a periodic DMP, refuses them with FS_ERR_SKILL_NO_PERIODIC; a
+ * discrete skill rewritten as v4 (kind 0, the periodic fields 0) parses as its v2 image. */
+static void test_periodic_images(void **state)
+{
+    (void)state;
+    static const char *const names[] = {"periodic_n20_ridge.skill", "periodic_n50_lwr.skill",
+                                        "periodic_n50_ridge.skill"};
+    char path[1100];
+    for (size_t i = 0u; i < sizeof(names) / sizeof(names[0]); i++) {
+        snprintf(path, sizeof(path), "%s/%s", FS_VECTORS_DIR, names[i]);
+        const long len = read_file(path, image, MAX_IMAGE);
+        assert_true(len > 0);
+        assert_int_equal(skill_parse(image, (uint32_t)len, &sk), FS_ERR_SKILL_NO_PERIODIC);
+    }
+    snprintf(path, sizeof(path), "%s/press_n10_ridge_release.skill", FS_VECTORS_DIR);
+    const long len2 = read_file(path, image, MAX_IMAGE);
+    assert_true(len2 > 136);
+    static skill_t v2;
+    assert_int_equal(skill_parse(image, (uint32_t)len2, &v2), FS_OK);
+    /* v4: the v2 header, y_start_m = goal_y_m = 0, six periodic f64 = 0, kind 0, reserved 0 */
+    static uint8_t v4[MAX_IMAGE];
+    const uint32_t body = (uint32_t)len2 - 136u - 4u;
+    memcpy(v4, image, 136u);
+    memset(v4 + 136u, 0, 208u - 136u);
+    memcpy(v4 + 208u, image + 136u, body);
+    const uint32_t len4 = 208u + body + 4u;
+    v4[4] = 4u;
+    v4[5] = 0u;
+    v4[6] = 208u;
+    v4[7] = 0u;
+    v4[8] = (uint8_t)(len4 & 0xFFu);
+    v4[9] = (uint8_t)((len4 >> 8) & 0xFFu);
+    v4[10] = (uint8_t)((len4 >> 16) & 0xFFu);
+    v4[11] = (uint8_t)(len4 >> 24);
+    const uint32_t crc = skill_crc32(0u, v4, len4 - 4u);
+    for (uint32_t k = 0u; k < 4u; k++) {
+        v4[len4 - 4u + k] = (uint8_t)((crc >> (8u * k)) & 0xFFu);
+    }
+    assert_int_equal(skill_parse(v4, len4, &sk), FS_OK);
+    assert_int_equal(sk.kind, SKILL_KIND_DISCRETE);
+    assert_int_equal(sk.dmp.n_kernels, v2.dmp.n_kernels);
+    assert_true(sk.dmp.goal_N == v2.dmp.goal_N && sk.dmp.tau_s == v2.dmp.tau_s);
+    for (uint16_t i = 0u; i < sk.dmp.n_kernels; i++) {
+        assert_true(sk.dmp.weight[i] == v2.dmp.weight[i] && sk.dmp.centre[i] == v2.dmp.centre[i]);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_golden_rollouts),
         cmocka_unit_test(test_golden_rollouts_y),
         cmocka_unit_test(test_golden_bad_images),
+        cmocka_unit_test(test_periodic_images),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

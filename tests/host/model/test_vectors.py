@@ -94,7 +94,12 @@ def test_regenerated_skills_equal_the_files() -> None:
 def test_regenerated_bad_images_match_the_manifest() -> None:
     base = Skill.read(VECTORS / (generate.skill_name("press", 10, "ridge", "release") + ".skill"))
     base_y = Skill.read(VECTORS / "wipe_n10_ridge_hold.skill")
-    bad = generate.bad_images(base) + generate.bad_images_y(base_y)
+    base_p = Skill.read(VECTORS / "periodic_n20_ridge.skill")
+    bad = (
+        generate.bad_images(base)
+        + generate.bad_images_y(base_y)
+        + generate.bad_images_periodic(base_p, generate.discrete_as_v4(base))
+    )
     lines = [f"{n} {c}" for n, _, c in bad]
     assert lines == (VECTORS / "bad" / "manifest.txt").read_text().split("\n")[:-1]
     for name, data, code in bad:

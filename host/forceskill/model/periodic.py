@@ -1,0 +1,176 @@
+"""The periodic force DMP in numpy (docs/math.md section 5): the reference of a rhythmic skill.
+
+The same parallel force/position law as the discrete DMP, written about the stroke's mean force g:
+e = y - g is the deviation, the law's integrator integrates e (bounded in periodic steady state),
+and the forcing is a function of a rhythmic phase phi (phi' = 1/tau, period 2*pi*tau) through
+von Mises kernels. One step (dt), every right-hand side at the old state, a = dt/tau_e,
+tau_e = tau*time_scale:
+
+    h    = s_a * r * S(phi)         S = sum psi_i w_i / sum psi_i,  psi_i = exp(-kappa_i (1 - cos(phi - c_i)))
+    e'   = e + a*(z - e - gamma*I + h)
+    z'   = z + a*alpha*(-beta*e - z)
+    I'   = I + a*e
+    phi' = phi + a  (mod 2*pi)
+    f_hat = f0 + s_g*g + e'
+
+from the stored state on the cycle, scaled by the amplitude scale: (e, z, I)_0 = s_a*(e0, z0, I0).
+r is the stroke's amplitude (N), s_g the goal scale (mean force), s_a the amplitude scale: e is
+linear in (h, state_0), so f_hat - f0 - s_g*g scales exactly by s_a.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .dmp import KERNEL_CUTOFF_EXP, linear_scan
+from .scales import check_scales, check_steps
+from .skill import Skill
+
+TWO_PI = 2.0 * math.pi
+#: --amplitude-scale: the goal scale's range
+AMPLITUDE_SCALE_MAX = 65.535
+
+
+def kernel_exponents(phi: np.ndarray, centres: np.ndarray, kappa: np.ndarray) -> np.ndarray:
+    """e[n, i] = kappa_i*(1 - cos(phi_n - c_i)), in [0, 2*kappa_i] (psi_i = exp(-e))."""
+    d = np.asarray(phi, dtype=float).reshape(-1)[:, None] - centres[None, :]
+    e: np.ndarray = kappa[None, :] * (1.0 - np.cos(d))
+    return e
+
+
+def normalised_kernels(phi: np.ndarray, centres: np.ndarray, kappa: np.ndarray) -> np.ndarray:
+    """K[n, i] = psi_i(phi_n)/sum_j psi_j(phi_n), kernels with e_i > 23 skipped, psi_i =
+    exp(-(e_i - e_min)); a phase with no kernel within the cutoff takes the nearest kernel (the
+    discrete DMP's rule, docs/math.md section 2)."""
+    e = kernel_exponents(phi, centres, kappa)
+    e_act = np.where(e <= KERNEL_CUTOFF_EXP, e, np.inf)
+    e_min = e_act.min(axis=1)
+    none = ~np.isfinite(e_min)
+    e_min[none] = 0.0
+    psi = np.exp(-(e_act - e_min[:, None]))
+    if none.any():
+        rows = np.flatnonzero(none)
+        psi[rows] = 0.0
+        psi[rows, np.argmin(e[rows], axis=1)] = 1.0
+    k: np.ndarray = psi / psi.sum(axis=1, keepdims=True)
+    return k
+
+
+def phases(a: float, n_steps: int) -> np.ndarray:
+    """phi_n for n = 0..n_steps: the phase advanced by a per step and wrapped into [0, 2*pi)
+    (phi_{n+1} = phi_n + a, minus 2*pi once it reaches 2*pi: the literal recursion)."""
+    out = np.empty(n_steps + 1)
+    p = 0.0
+    for n in range(n_steps + 1):
+        out[n] = p
+        p += a
+        if p >= TWO_PI:
+            p -= TWO_PI
+    return out
+
+
+def check_amplitude_scale(s: float) -> None:
+    """Amplitude scale finite and in [0, 65.535] (ParamError 109, as the goal scale)."""
+    from ..errors import ERR_SCALE_INVALID, ParamError
+
+    if not (math.isfinite(s) and 0.0 <= s <= AMPLITUDE_SCALE_MAX):
+        raise ParamError(
+            ERR_SCALE_INVALID, f"amplitude scale must be finite and in [0, {AMPLITUDE_SCALE_MAX:g}]: {s:g}"
+        )
+
+
+def cycle_steps(skill: Skill, cycles: float, time_scale: float = 1.0) -> int:
+    """round(cycles * period * time_scale / dt): the rollout of ``cycles`` writes rows 0..this."""
+    return int(round(cycles * skill.duration_s * time_scale / skill.dt_s))
+
+
+def transform_matrix(alpha: float, beta: float, gamma: float, a: float) -> np.ndarray:
+    """The step of (e, z, I) without forcing: s' = A s + (a*h, 0, 0)."""
+    return np.array([[1.0 - a, a, -a * gamma], [-a * alpha * beta, 1.0 - a * alpha, 0.0], [a, 0.0, 1.0]])
+
+
+def rollout(
+    skill: Skill,
+    cycles: float = 1.0,
+    goal_scale: float = 1.0,
+    amplitude_scale: float = 1.0,
+    time_scale: float = 1.0,
+    n_steps: int | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """t_n = n*dt and f_hat_n for n = 0..n_steps (default: ``cycles`` periods at the time scale),
+    the literal loop of the module docstring from the stored state on the cycle."""
+    check_scales(goal_scale, time_scale)
+    check_amplitude_scale(amplitude_scale)
+    n = cycle_steps(skill, cycles, time_scale) if n_steps is None else int(n_steps)
+    check_steps(n)
+    a = skill.dt_s / (skill.tau_s * time_scale)
+    phi = phases(a, n)
+    with np.errstate(all="ignore"):
+        hl = (
+            amplitude_scale
+            * skill.amplitude_N
+            * (normalised_kernels(phi, skill.centres, skill.widths) @ skill.weights)
+        ).tolist()
+    alpha, beta, gamma = skill.alpha, skill.beta, skill.gamma
+    ee, zz, ii = (amplitude_scale * skill.e0_N, amplitude_scale * skill.z0_N, amplitude_scale * skill.i0_N)
+    el = [0.0] * (n + 1)
+    for j in range(n + 1):
+        el[j] = ee
+        ee, zz, ii = (
+            ee + a * (zz - ee - gamma * ii + hl[j]),
+            zz + a * alpha * (-beta * ee - zz),
+            ii + a * ee,
+        )
+    with np.errstate(all="ignore"):
+        f = skill.force0_N + goal_scale * skill.goal_N + np.asarray(el)
+    return np.arange(n + 1) * skill.dt_s, f
+
+
+def rollout_scan(skill: Skill, n_steps: int) -> np.ndarray:
+    """f_hat_n, n = 0..n_steps, at scales 1: ``rollout`` by a blocked linear scan (the fit's fast
+    evaluation; equal to the loop within round-off, tests/host/model/test_periodic.py)."""
+    a = skill.dt_s / skill.tau_s
+    phi = phases(a, n_steps)
+    h = skill.amplitude_N * (normalised_kernels(phi[:-1], skill.centres, skill.widths) @ skill.weights)
+    b = np.zeros((n_steps, 3))
+    b[:, 0] = a * h
+    s = linear_scan(
+        transform_matrix(skill.alpha, skill.beta, skill.gamma, a),
+        b,
+        np.array([skill.e0_N, skill.z0_N, skill.i0_N]),
+    )
+    out: np.ndarray = skill.force0_N + skill.goal_N + s[:, 0]
+    return out
+
+
+def cycle_state(
+    e_star: np.ndarray, alpha: float, beta: float, gamma: float, a: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """z_n and I_n, n = 0..P, on the cycle driven by one period e*_0..e*_{P-1} of a zero-mean
+    deviation: z the periodic solution of z' = z + a*alpha*(-beta*e* - z) (z_P = z_0), I the
+    running sum a*sum e* shifted to zero mean over the cycle (periodic because sum e* = 0)."""
+    p = e_star.size
+    q = 1.0 - a * alpha
+    b = -a * alpha * beta * e_star
+    z_free = linear_scan(np.array([[q]]), b[:, None])[:, 0]  # from z_0 = 0
+    z0 = z_free[-1] / (1.0 - q**p)
+    z: np.ndarray = z_free + z0 * q ** np.arange(p + 1)
+    big_i = np.concatenate(([0.0], np.cumsum(a * e_star)))
+    big_i -= float(np.mean(big_i[:-1]))
+    return z, big_i
+
+
+def cycle_start(params: tuple[float, float, float], a: float, h: np.ndarray) -> np.ndarray:
+    """The state (e, z, I) at phi = 0 of the periodic orbit driven by one period of forcing
+    h_0..h_{P-1}: s_0 = (1 - A^P)^-1 * s_P(from rest), unique because every eigenvalue of the
+    stable step A lies inside the unit circle. On that orbit sum e_n = 0 (I returns to itself):
+    the mean of f_hat over a cycle is exactly the goal."""
+    alpha, beta, gamma = params
+    m = transform_matrix(alpha, beta, gamma, a)
+    b = np.zeros((h.size, 3))
+    b[:, 0] = a * h
+    free = linear_scan(m, b)[-1]
+    s0: np.ndarray = np.linalg.solve(np.eye(3) - np.linalg.matrix_power(m, h.size), free)
+    return s0
