@@ -62,6 +62,10 @@ mount --bind /lib/modules/$KVER $R/lib/modules/$KVER
 hostname forceskill-vm
 ip link set lo up
 
+# 32 MiB socket receive buffers (the default 208 KiB holds ~200 CAN frames, 0.1 s of the device's
+# stream): a reader that TCG slows down falls behind and catches up instead of losing frames
+echo 33554432 >/proc/sys/net/core/rmem_default
+echo 33554432 >/proc/sys/net/core/rmem_max
 modprobe -a can_raw can_bcm can_isotp can_gw vcan vxcan can_dev || die "cannot load the CAN modules"
 MTU=$(arg vm.vcan 0)
 if [ "$MTU" != 0 ]; then
