@@ -8,20 +8,22 @@ from __future__ import annotations
 import time
 
 import pytest
-from test_journey import (  # noqa: F401  (collected here again, on the SocketCAN server)
-    test_cantools_decodes_every_device_frame,
-    test_record_fit_upload_run,
-    test_sequence_in_series,
-    test_tracking_figures_1x_and_1_5x,
-)
+import test_journey as journey_tests
 
 from helpers.canbus import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS
 from helpers.socketcan import SocketCANServer, vcan_or_skip
 
+# The journey's tests, collected here again on the SocketCAN server, in its order (the record test
+# leaves what the others read)
+test_record_fit_upload_run = journey_tests.test_record_fit_upload_run
+test_tracking_figures_1x_and_1_5x = journey_tests.test_tracking_figures_1x_and_1_5x
+test_sequence_in_series = journey_tests.test_sequence_in_series
+test_cantools_decodes_every_device_frame = journey_tests.test_cantools_decodes_every_device_frame
+
 
 @pytest.fixture(scope="module")
 def server():
-    """The journey's device on the interface, with the default host-silence timeout (100 ms)."""
+    """The journey's device on the interface, with the journey's host-silence timeout (helpers.canbus)."""
     s = SocketCANServer(
         SCENARIOS / "pressing_task1_demo.toml", vcan_or_skip(), host_timeout_ms=JOURNEY_HOST_TIMEOUT_MS
     )
