@@ -1,5 +1,6 @@
 """Where the HIL simulator and its scenarios are, for the commands that drive them (report,
-journey): nothing here assumes the repository layout, so an installed package works alike."""
+journey). An installed package needs no repository; a package installed from a checkout (the
+README's set-up: an editable install) also finds the simulator that checkout built."""
 
 from __future__ import annotations
 
@@ -12,9 +13,20 @@ from .errors import FsError
 HIL_SIM_ENV = "FORCESKILL_HIL_SIM"
 
 
+def checkout_hil_sim() -> Path | None:
+    """build/hil_sim/hil_sim of the checkout this package runs from (scripts/setup.sh builds it
+    there), or None for a package installed elsewhere or a checkout not built."""
+    root = Path(__file__).resolve().parents[2]
+    p = root / "build" / "hil_sim" / "hil_sim"
+    if (root / "hil_sim" / "CMakeLists.txt").is_file() and p.is_file() and os.access(p, os.X_OK):
+        return p
+    return None
+
+
 def find_hil_sim(explicit: str | None, code: int) -> Path:
     """The hil_sim binary: explicit path (--hil-sim), else $FORCESKILL_HIL_SIM, else hil_sim on
-    PATH; FsError(code) naming what was tried when none is an executable file."""
+    PATH, else the one this checkout built; FsError(code) naming what was tried when none is an
+    executable file."""
     for cand, what in ((explicit, "--hil-sim"), (os.environ.get(HIL_SIM_ENV), f"${HIL_SIM_ENV}")):
         if cand:
             p = Path(cand)
@@ -24,6 +36,9 @@ def find_hil_sim(explicit: str | None, code: int) -> Path:
     found = shutil.which("hil_sim")
     if found:
         return Path(found)
+    built = checkout_hil_sim()
+    if built is not None:
+        return built
     raise FsError(
         code,
         f"hil_sim not found: pass --hil-sim PATH, set ${HIL_SIM_ENV} or put hil_sim on "

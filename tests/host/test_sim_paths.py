@@ -1,4 +1,5 @@
-"""forceskill.sim: hil_sim from --hil-sim, then $FORCESKILL_HIL_SIM, then PATH; the paper
+"""forceskill.sim: hil_sim from --hil-sim, then $FORCESKILL_HIL_SIM, then PATH, then the
+checkout's own build; the paper
 scenarios from the package itself (no repository layout assumed)."""
 
 from __future__ import annotations
@@ -9,8 +10,11 @@ from pathlib import Path
 
 import pytest
 
+import forceskill.sim
 from forceskill.errors import FsError
 from forceskill.sim import HIL_SIM_ENV, find_hil_sim, scenario_dir
+
+REPO = Path(__file__).resolve().parents[2]
 
 
 def _exe(path: Path) -> Path:
@@ -31,7 +35,19 @@ def test_order_option_env_path(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) 
     assert find_hil_sim(None, 621) == on_path
 
 
+def test_the_checkout_finds_the_simulator_it_built(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """No option, no variable, nothing on PATH: the package of this checkout takes its own
+    build/hil_sim/hil_sim (what scripts/setup.sh builds), the path a user of the README has."""
+    built = REPO / "build" / "hil_sim" / "hil_sim"
+    if not built.is_file():
+        pytest.skip("build/hil_sim/hil_sim not built in this checkout (scripts/setup.sh builds it)")
+    monkeypatch.delenv(HIL_SIM_ENV, raising=False)
+    monkeypatch.setenv("PATH", str(tmp_path))
+    assert find_hil_sim(None, 621) == built
+
+
 def test_not_found_is_one_coded_line(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(forceskill.sim, "checkout_hil_sim", lambda: None)
     monkeypatch.delenv(HIL_SIM_ENV, raising=False)
     monkeypatch.setenv("PATH", str(tmp_path))
     with pytest.raises(FsError) as e:

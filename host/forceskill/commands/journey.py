@@ -179,7 +179,9 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     )
     p.add_argument("-o", "--output", default="can_journey", metavar="DIR")
     p.add_argument(
-        "--hil-sim", metavar="PATH", help="hil_sim binary (default $FORCESKILL_HIL_SIM, else hil_sim on PATH)"
+        "--hil-sim",
+        metavar="PATH",
+        help="hil_sim binary (default $FORCESKILL_HIL_SIM, else hil_sim on PATH, else this checkout's build)",
     )
     p.add_argument(
         "--scenario",

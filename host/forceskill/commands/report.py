@@ -11,7 +11,8 @@ skills in series (8 s then 9 s) on 200 N/m at goal 1x, on 300 N/m at 1.5x, and o
 (no scaling) for comparison. Writes DIR/report.md, DIR/summary.json, DIR/fig_*.png, and keeps
 the logs (DIR/logs) and skills (DIR/skills).
 
-The simulator binary: ``--hil-sim PATH``, else ``$FORCESKILL_HIL_SIM``, else ``hil_sim`` on PATH.
+The simulator binary: ``--hil-sim PATH``, else ``$FORCESKILL_HIL_SIM``, else ``hil_sim`` on PATH,
+else the checkout's own ``build/hil_sim/hil_sim``.
 Scenarios: ``--scenarios DIR``, else the paper scenarios packaged with forceskill.
 """
 
@@ -553,7 +554,9 @@ def register(subparsers: Any) -> None:
     )
     p.add_argument("-o", "--output", required=True, metavar="DIR", help="output folder (created)")
     p.add_argument(
-        "--hil-sim", metavar="PATH", help="hil_sim binary (default $FORCESKILL_HIL_SIM, else hil_sim on PATH)"
+        "--hil-sim",
+        metavar="PATH",
+        help="hil_sim binary (default $FORCESKILL_HIL_SIM, else hil_sim on PATH, else this checkout's build)",
     )
     p.add_argument(
         "--scenarios", metavar="DIR", help="scenario folder (default: the packaged paper scenarios)"
