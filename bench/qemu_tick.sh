@@ -24,16 +24,18 @@
 # M3 1,250).
 set -euo pipefail
 
-usage() { echo "usage: $0 cortex-m4f|cortex-m3 [--build-dir DIR] [--exec-s S] [--skill FILE]" >&2; exit 2; }
+usage() { echo "usage: $0 cortex-m4f|cortex-m3 [--build-dir DIR] [--exec-s S] [--fw-bytes N] [--skill FILE]" >&2; exit 2; }
 [ $# -ge 1 ] || usage
 TARGET=$1; shift
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=$ROOT/build/$TARGET
 EXEC_S=1.0
+FW_BYTES=16384
 while [ $# -gt 0 ]; do
   case $1 in
     --build-dir) BUILD=$2; shift 2 ;;
     --exec-s) EXEC_S=$2; shift 2 ;;
+    --fw-bytes) FW_BYTES=$2; shift 2 ;;   # the firmware download's payload (FWUPDATE)
     --skill) SKILL_ARG=$2; shift 2 ;;
     --host-ref-float|--host-ref-fixed) shift 2 ;;   # accepted for older callers; unused
     *) usage ;;
@@ -185,7 +187,8 @@ for _ in $(seq 600); do grep -q "listening on" "$WORK/pil.out" && break; sleep 0
 PORT=$(sed -n 's/.*127.0.0.1:\([0-9]*\).*/\1/p' "$WORK/pil.out")
 [ -n "$PORT" ] || { echo "hil_sim pil did not start:"; cat "$WORK/pil.err"; exit 1; }
 status=0
-"$PY" "$ROOT/bench/qemu/pil_session.py" "$PORT" "$SKILL" --target "$TARGET" --exec-s "$EXEC_S" || status=1
+"$PY" "$ROOT/bench/qemu/pil_session.py" "$PORT" "$SKILL" --target "$TARGET" --exec-s "$EXEC_S" \
+  --fw-bytes "$FW_BYTES" || status=1
 kill -TERM "$PIL_PID"; wait "$PIL_PID" || true; PIL_PID=""
 wait $AWK_PID
 grep '^fs_pil' "$WORK/pil.err" || true

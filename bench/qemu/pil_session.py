@@ -38,7 +38,8 @@ def wait_ticks(dev: Device, n: int, timeout_s: float) -> None:
 
 
 def heartbeat(bus: can.BusABC, dev: Device, period_s: float) -> can.broadcastmanager.CyclicSendTaskABC:
-    """The host heartbeat every period_s of wall time (the device's E2E counter and CRC)."""
+    """The host heartbeat every period_s of wall time (freshness, MAC, E2E counter and CRC of the
+    motion session)."""
     m = dev._m["HostHeartbeat"]
     return bus.send_periodic(
         can.Message(arbitration_id=m.frame_id, data=bytearray(8), is_extended_id=False),
@@ -95,6 +96,7 @@ def main(argv: list[str]) -> int:
             with U.uds_client(dev, request_timeout_s=args.timeout) as client:
                 U.unlock(client, 0, 0x02)
                 U.download(client, 0, 1, image)
+                U.motion_session(client, dev)  # authenticated heartbeats and commands from here
             wait_ticks(dev, 200, args.timeout)
             dev.telemetry_period_ms = 1
             hb = heartbeat(bus, dev, args.heartbeat_s)
@@ -106,6 +108,7 @@ def main(argv: list[str]) -> int:
                     # RequestUpload needs the programming session, entered while IDLE
                     U.call("session change", lambda: client.change_session(1), 0)
                     U.call("session change", lambda: client.change_session(2), 0)
+                    U.unlock(client, 0, 0x02)  # a run routine's start needs level 1
                     data = struct.pack(">BHHB", 1, 1000, 1000, 2)
                     U.call("start", lambda: client.start_routine(U.RID_RUN_SKILL, data), 0)
                     dev.wait_state({"EXECUTE"}, args.timeout)
