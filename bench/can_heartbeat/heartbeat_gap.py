@@ -29,6 +29,7 @@ import can
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "host"))
 
+from forceskill.link import uds as U  # noqa: E402
 from forceskill.link.device import HEARTBEAT_PERIOD_S, Device  # noqa: E402
 from forceskill.wire.dbc import load_db  # noqa: E402
 
@@ -87,6 +88,8 @@ def main() -> int:
         left_teach = None
         with Device(bus, node=0, channel="can0", timeout_s=3.0) as dev:
             dev.wait_present()
+            with U.uds_client(dev) as client:
+                U.motion_session(client, dev)  # authenticated heartbeats and commands
             dev.telemetry_period_ms = 1
             stop = threading.Event()
             th = None

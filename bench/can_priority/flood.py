@@ -34,6 +34,7 @@ import can
 REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "host"))
 
+from forceskill.link import uds as U  # noqa: E402
 from forceskill.link.device import Device  # noqa: E402
 from forceskill.wire.dbc import load_db  # noqa: E402
 
@@ -177,6 +178,8 @@ def measure(port: int, seconds: float = 1.5) -> Result:
     try:
         with Device(host) as dev:
             dev.wait_present()
+            with U.uds_client(dev) as client:
+                U.motion_session(client, dev)  # authenticated heartbeats and commands
             dev.start_heartbeat(telemetry_period_ms=1)
             dev.command_until("teach", {"TEACH"}, 5.0)
             # phase UDS: flood at 0x640, then request the slot directory (0x600 wins over the

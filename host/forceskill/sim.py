@@ -14,13 +14,28 @@ HIL_SIM_ENV = "FORCESKILL_HIL_SIM"
 
 
 def checkout_hil_sim() -> Path | None:
-    """build/hil_sim/hil_sim of the checkout this package runs from (scripts/setup.sh builds it
-    there), or None for a package installed elsewhere or a checkout not built."""
-    root = Path(__file__).resolve().parents[2]
-    p = root / "build" / "hil_sim" / "hil_sim"
-    if (root / "hil_sim" / "CMakeLists.txt").is_file() and p.is_file() and os.access(p, os.X_OK):
-        return p
-    return None
+    """build/hil_sim/hil_sim of the checkout this package is installed from in editable mode
+    (the README's set-up: scripts/setup.sh installs host/ with pip -e and builds the simulator
+    there), or None for a package installed otherwise or a checkout not built."""
+    import json
+    from importlib.metadata import PackageNotFoundError, distribution
+    from urllib.parse import unquote, urlparse
+
+    try:
+        text = distribution("forceskill").read_text("direct_url.json")
+    except PackageNotFoundError:
+        return None
+    if not text:
+        return None
+    try:
+        info = json.loads(text)
+    except ValueError:
+        return None
+    url = urlparse(str(info.get("url", "")))
+    if not info.get("dir_info", {}).get("editable") or url.scheme != "file":
+        return None
+    p = Path(unquote(url.path)).parent / "build" / "hil_sim" / "hil_sim"
+    return p if p.is_file() and os.access(p, os.X_OK) else None
 
 
 def find_hil_sim(explicit: str | None, code: int) -> Path:
