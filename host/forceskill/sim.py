@@ -18,21 +18,18 @@ def checkout_hil_sim() -> Path | None:
     (the README's set-up: scripts/setup.sh installs host/ with pip -e and builds the simulator
     there), or None for a package installed otherwise or a checkout not built."""
     import json
-    from importlib.metadata import PackageNotFoundError, distribution
+    from importlib.metadata import distributions
     from urllib.parse import unquote, urlparse
 
-    try:
-        text = distribution("forceskill").read_text("direct_url.json")
-    except PackageNotFoundError:
-        return None
-    if not text:
-        return None
-    try:
-        info = json.loads(text)
-    except ValueError:
-        return None
-    url = urlparse(str(info.get("url", "")))
-    if not info.get("dir_info", {}).get("editable") or url.scheme != "file":
+    for dist in distributions(name="forceskill"):  # a wheel layout elsewhere on sys.path may come first
+        try:
+            info = json.loads(dist.read_text("direct_url.json") or "{}")
+        except ValueError:
+            continue
+        url = urlparse(str(info.get("url", "")))
+        if info.get("dir_info", {}).get("editable") and url.scheme == "file":
+            break
+    else:
         return None
     p = Path(unquote(url.path)).parent / "build" / "hil_sim" / "hil_sim"
     return p if p.is_file() and os.access(p, os.X_OK) else None
