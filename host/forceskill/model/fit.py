@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import ERR_FIT_ARGS, ERR_FIT_GOAL, ERR_FIT_NUMERIC, DemoError, FsError, ParamError
+from ..wire import TICK_S
 from . import dmp
 from .demo import Demo, resample, validate
 from .params import Gains, check_inertia, check_stiffness, derive, goal
@@ -267,7 +268,7 @@ def fit(
     gains: Gains = Gains(),
     surface_m: float = 0.0,
     end_policy: str = "hold",
-    dt_s: float = 0.001,
+    dt_s: float = TICK_S,
     ridge_lambda_rel: float | None = None,
     force0_N: float | None = None,
     object_mass_kg: float | None = None,

@@ -28,6 +28,7 @@ from ..errors import (
     FsError,
     ParamError,
 )
+from ..wire import TICK_S
 from . import periodic
 from .demo import Demo, resample, validate
 from .params import Gains, check_inertia, check_stiffness, derive
@@ -201,7 +202,7 @@ def fit_periodic(
     method: str = "ridge",
     gains: Gains = Gains(),
     surface_m: float = 0.0,
-    dt_s: float = 0.001,
+    dt_s: float = TICK_S,
     period_s: float | None = None,
     object_mass_kg: float | None = None,
 ) -> PeriodicFit:

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..wire import TICK_S
 from .demo import Demo
 
 SURFACE_M = 0.001
@@ -33,7 +34,7 @@ def pressing(
     duration_s: float = 17.0,
     k_v1: float = 100.0,
     k_v2: float = 180.0,
-    dt_s: float = 0.001,
+    dt_s: float = TICK_S,
     noise_N: float = 0.0,
 ) -> Demo:
     """Smooth ramp to a low force that reaches the inner layer, reaction time, ramp to a higher force."""
@@ -56,7 +57,7 @@ def engraving(
     duration_s: float = 8.0,
     k_v: float = 100.0,
     f_max_N: float = 6.0,
-    dt_s: float = 0.001,
+    dt_s: float = TICK_S,
     noise_N: float = 0.0,
 ) -> Demo:
     """Random force levels every 0.6-1.4 s with 0.7 s transitions; ramp-up 1 s, release over 0.8 s."""
@@ -84,7 +85,7 @@ def wiping(
     k_v: float = 100.0,
     f_max_N: float = 6.0,
     path_m: float = 0.05,
-    dt_s: float = 0.001,
+    dt_s: float = TICK_S,
 ) -> Demo:
     """The engraving force profile with a path along y (paper Fig. 6: the operator moves along the
     surface while varying the force): from y = 0, random waypoints in [-path_m/2, path_m] every
@@ -141,7 +142,7 @@ def wiping_strokes(
     approach_s: float = 1.0,
     release_s: float = 0.8,
     k_v: float = 100.0,
-    dt_s: float = 0.001,
+    dt_s: float = TICK_S,
     noise_N: float = 0.0,
 ) -> Demo:
     """A multi-stroke wiping demonstration: the operator presses up to the stroke's force over
