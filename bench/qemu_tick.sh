@@ -69,7 +69,7 @@ echo "== building $TARGET images in $BUILD"
 cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/arm-none-eabi.cmake" \
       -DFS_CORTEX_TARGET=$TARGET -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE="$PY" >/dev/null
 cmake --build "$BUILD" --target fs_pil cm_count_check -j 2 | grep -E '^(size|heap|stack)' || true
-IMG=$BUILD/firmware/ports/cortex-m
+IMG=$BUILD/firmware/ports/mps2
 
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/qemu_tick.XXXXXX")
 PIL_PID=""
@@ -77,14 +77,14 @@ cleanup() { [ -n "$PIL_PID" ] && kill "$PIL_PID" 2>/dev/null || true; rm -rf "$W
 trap cleanup EXIT
 
 echo "== heap poison check"
-# The images link with malloc & co. wrapped to undefined symbols (ports/cortex-m/CMakeLists.txt):
+# The images link with malloc & co. wrapped to undefined symbols (ports/mps2/CMakeLists.txt):
 # a program that calls malloc must fail to link with exactly those flags.
 WRAP=$(grep -o -- '-Wl,--wrap=[A-Za-z_]*' "$BUILD/build.ninja" | sed 's/.*=//' | sort -u | tr '\n' ' ')
 printf '#include <stdlib.h>\nint main(void);\nint main(void) { return malloc(4) != 0; }\nvoid Reset_Handler(void) { (void)main(); }\n' > "$WORK/heap.c"
 WRAP_FLAGS=()
 for s in $WRAP; do WRAP_FLAGS+=("-Wl,--wrap=$s"); done
 if arm-none-eabi-gcc -mcpu=$CPU -mthumb -nostartfiles --specs=nano.specs "${WRAP_FLAGS[@]}" \
-     -L"$ROOT/firmware/ports/cortex-m" -T"$ROOT/firmware/ports/cortex-m/$MACHINE.ld" \
+     -L"$ROOT/firmware/ports/mps2" -T"$ROOT/firmware/ports/mps2/$MACHINE.ld" \
      "$WORK/heap.c" -o "$WORK/heap.elf" 2> "$WORK/heap.err"; then
   echo "heap poison check FAILED: a malloc call linked"; exit 1
 fi

@@ -22,7 +22,7 @@ if [ -n "$bad" ]; then
   status=1
 fi
 for f in hil_sim/src/sim_run.c hil_sim/faults/fault_rig.c hil_sim/bus/serve.c \
-         hil_sim/pil/pil_main.c; do
+         firmware/ports/mps2/mps2_main.c; do
   if ! grep -qE '\bapp_(tick|poll)\(' "$f"; then
     echo "check_one_tick FAILED: $f does not run the application's tick (app_tick/app_poll)"
     status=1

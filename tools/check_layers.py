@@ -56,7 +56,7 @@ def module(rel: Path) -> str:
     parts = rel.parts
     if parts[0] == "hil_sim":
         return "hil_sim"
-    if parts[1] == "ports" or (parts[1] == "boot" and len(parts) > 3 and parts[2] == "cortex-m"):
+    if parts[1] == "ports":
         return "ports"
     return parts[1]
 

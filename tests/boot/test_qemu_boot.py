@@ -1,10 +1,10 @@
 """The Cortex-M bootloader under qemu-system-arm (mps2-an385 Cortex-M3 and mps2-an386 Cortex-M4F,
 semihosting).
 
-Builds firmware/boot/cortex-m with arm-none-eabi-gcc, wraps the test application into signed
+Builds firmware/ports/mps2/boot with arm-none-eabi-gcc, wraps the test application into signed
 images with the host tool (forceskill.model.fwimage), loads bootloader + slot images (+ an optional
 boot-state record) into qemu's code memory and checks what the bootloader starts or refuses.
-Layout: firmware/boot/cortex-m/qemu_layout.h.
+Layout: firmware/ports/mps2/boot/qemu_layout.h.
 """
 
 from __future__ import annotations

@@ -2,7 +2,7 @@
  * UART0 in SLCAN (cm_slcan.h, cm_uart.h), time from the 1 kHz SysTick, flash in the PSRAM
  * (NOR semantics), the CMSDK watchdog, reset by SYSRESETREQ. Sensors and actuator are the
  * processor-in-the-loop plant (hil_sim/pil/pil_plant.h). This header is the port's own part
- * beyond hal.h, used by the image's main loop (hil_sim/pil/pil_main.c). */
+ * beyond hal.h, used by the image's main loop (firmware/ports/mps2/mps2_main.c). */
 #ifndef CM_PORT_H
 #define CM_PORT_H
 

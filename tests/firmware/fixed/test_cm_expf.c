@@ -1,4 +1,4 @@
-/* The Cortex-M4F table expf (firmware/ports/cortex-m/cm_expf.c) on the host against exp() in
+/* The Cortex-M4F table expf (firmware/ports/mps2/cm_expf.c) on the host against exp() in
  * double: relative error over the DMP's argument range [-23, 0] and the whole finite range,
  * subnormal results, special values. The error is the table interpolation (9.2e-7) plus the
  * float32 rounding of x*log2(e) (6e-8 relative of |x|*1.44 octaves: 2e-6 at x = -23, 7e-6

@@ -1,4 +1,4 @@
-/* SLCAN codec (firmware/ports/cortex-m/cm_slcan.c) against the Lawicel command set as python-can's
+/* SLCAN codec (firmware/ports/mps2/cm_slcan.c) against the Lawicel command set as python-can's
  * slcan interface uses it: every reply, every frame form, malformed input, line limits. */
 #include <setjmp.h>
 #include <stdarg.h>
