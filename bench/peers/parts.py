@@ -302,7 +302,7 @@ def qemu_tick(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
             )
         notes += [f"{target}: {c}" for c in checks if c.startswith(("qemu_vs_host", "loop "))]
         for img in ("fs_pil",):
-            elf = bdir / "firmware" / "ports" / "cortex-m" / f"{img}.elf"
+            elf = bdir / "firmware" / "ports" / "mps2" / f"{img}.elf"
             sz = _elf_size(elf) if elf.is_file() else None
             if sz is not None:
                 data[target][f"{img}_flash"], data[target][f"{img}_ram"] = sz

@@ -1,20 +1,28 @@
-/* PIL plant behind hal.h's sensors and actuator (see pil_plant.h). */
-#include "pil_plant.h"
-
+/* Processor-in-the-loop plant of the MPS2 images (cm_plant.h): the simulator's plant, operator
+ * and sensor models (hil_sim/src: sim_couple, sim_model, sim_rng) behind the sensor/actuator part
+ * of hal.h. Its scenario comes from the parameter block that `hil_sim pil` loads at
+ * CM_PARAMS_ADDR (hil_sim/src/sim_params.h). The plant runs in the same 1 kHz loop as the
+ * application, before (sensors) and after (actuator) each app_tick. */
 #include <string.h>
 
 #include "cm_board.h"
+#include "cm_plant.h"
 #include "fs_wire_const.h"
 #include "hal.h"
 #include "sim_couple.h"
+#include "sim_params.h"
 
-static const sim_scenario_t *g_sc;
+static sim_scenario_t g_sc_store;
+static const sim_scenario_t *g_sc = &g_sc_store;
+static sim_params_dev_t g_dev;
 static sim_couple_plant_t g_plant;
 static hal_sensors_t g_sens;
 static bool g_enable;
 static fs_real_t g_force_N[HAL_AXES];
 
-bool pil_plant_load(sim_scenario_t *sc, sim_params_dev_t *dev)
+/* Read the parameter block; false if there is none (the scenario then is a plant at rest
+ * without operator, node 0, host timeout 100 ms, a fixed seed). */
+static bool plant_params(sim_scenario_t *sc, sim_params_dev_t *dev)
 {
     const uint8_t *blk = (const uint8_t *)(uintptr_t)CM_PARAMS_ADDR;
     if (sim_params_unpack(blk, CM_PARAMS_MAX, sc, dev) == 0) {
@@ -44,22 +52,28 @@ bool pil_plant_load(sim_scenario_t *sc, sim_params_dev_t *dev)
     return false;
 }
 
-void pil_plant_init(const sim_scenario_t *sc)
+void cm_plant_load(cm_plant_params_t *p, app_config_t *cfg)
 {
-    g_sc = sc;
-    sim_couple_start(&g_plant, sc);
+    p->loaded = plant_params(&g_sc_store, &g_dev);
+    sim_couple_start(&g_plant, g_sc);
     memset(&g_sens, 0, sizeof(g_sens));
     g_enable = false;
     g_force_N[0] = g_force_N[1] = FS_R(0.0);
+    sim_couple_device_config(g_sc, cfg);
+    cfg->node = (uint8_t)g_dev.node;
+    cfg->saf.wdg.timeout_ms = (uint16_t)g_dev.host_timeout_ms;
+    p->pace = (g_dev.flags & SIM_PARAMS_PACE) != 0u;
+    p->seed = g_dev.seed;
+    p->seed_len = SIM_PARAMS_SEED_LEN;
 }
 
-void pil_plant_sense(const app_t *app)
+void cm_plant_sense(const app_t *app)
 {
     /* the tick about to run is app->tick + 1 */
     sim_couple_sense(&g_plant, g_sc, app->state == APP_TEACH, app->tick, &g_sens);
 }
 
-void pil_plant_advance(const app_t *app)
+void cm_plant_advance(const app_t *app)
 {
     (void)sim_couple_step(&g_plant, g_sc, app->state, g_enable, g_force_N);
 }
@@ -83,4 +97,10 @@ void hal_actuator_force(const fs_real_t force_N[HAL_AXES])
         g_force_N[0] = force_N[0];
         g_force_N[1] = force_N[1];
     }
+}
+
+bool cm_plant_transfer(const app_t *app, bool *firmware)
+{
+    *firmware = app->fw_xfer;
+    return app->uds.xfer != UDS_XFER_NONE || app->uds.pending_sid != 0u;
 }

@@ -20,7 +20,7 @@ import pytest
 from forceskill.model import fwimage as fw
 
 ROOT = Path(__file__).resolve().parents[2]
-SRC = ROOT / "firmware" / "boot" / "cortex-m"
+SRC = ROOT / "firmware" / "ports" / "mps2" / "boot"
 SLOT_A, SLOT_B, STATE = 0x20000, 0x60000, 0x10000
 ENTRY_OFFSET = 0x180
 OTHER_KEY = bytes(range(32))
