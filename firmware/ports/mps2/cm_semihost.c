@@ -2,11 +2,10 @@
 #include "cm_semihost.h"
 
 #define SH_SYS_WRITE0 0x04u
-#define SH_SYS_EXIT 0x18u
+#define SH_SYS_EXIT_EXTENDED 0x20u
 #define SH_SYS_ELAPSED 0x30u
 #define SH_SYS_TICKFREQ 0x31u
 #define SH_ADP_APPLICATION_EXIT 0x20026u
-#define SH_ADP_RUNTIME_ERROR 0x20023u
 #define SH_BUF_SIZE 1024u
 
 static char sh_buf[SH_BUF_SIZE + 1u];
@@ -20,18 +19,19 @@ static uint32_t sh_call(uint32_t op, uint32_t arg)
     return r0;
 }
 
-void sh_puts(const char *s)
-{
-    (void)sh_call(SH_SYS_WRITE0, (uint32_t)(uintptr_t)s);
-}
-
 void sh_flush(void)
 {
     if (sh_len > 0u) {
         sh_buf[sh_len] = '\0';
-        sh_puts(sh_buf);
+        (void)sh_call(SH_SYS_WRITE0, (uint32_t)(uintptr_t)sh_buf);
         sh_len = 0u;
     }
+}
+
+void sh_puts(const char *s)
+{
+    sh_flush();
+    (void)sh_call(SH_SYS_WRITE0, (uint32_t)(uintptr_t)s);
 }
 
 static void sh_putc(char c)
@@ -70,11 +70,25 @@ void sh_buf_hex32(uint32_t v)
     }
 }
 
-void sh_exit(int ok)
+void sh_putdec(uint32_t v)
+{
+    sh_buf_u32(v);
+    sh_flush();
+}
+
+void sh_puthex(uint32_t v)
+{
+    sh_buf_str("0x");
+    sh_buf_hex32(v);
+    sh_flush();
+}
+
+void sh_exit(uint32_t code)
 {
     sh_flush();
-    (void)sh_call(SH_SYS_EXIT, ok ? SH_ADP_APPLICATION_EXIT : SH_ADP_RUNTIME_ERROR);
+    const uint32_t block[2] = {SH_ADP_APPLICATION_EXIT, code};
     for (;;) {
+        (void)sh_call(SH_SYS_EXIT_EXTENDED, (uint32_t)(uintptr_t)block);
     }
 }
 

@@ -1,6 +1,8 @@
-/* Startup for Cortex-M3/M4F on qemu mps2-an385/an386: vector table, .data/.bss set-up, FPU
- * enable (M4F), then main. Symbols from the linker scripts (mps2-an38x.ld). No libc start-up
- * code (-nostartfiles): no heap, no constructors, no argv. */
+/* Start-up for Cortex-M3/M4F on qemu mps2-an385/an386, shared by every image of the board (the
+ * product, the bootloader and its test application): vector table, .data/.bss set-up, FPU
+ * enable (M4F), then main; main's return value is qemu's exit status, an unexpected exception
+ * ends the run with status CM_FAULT_EXIT. Symbols from the shared sections (cortex-m-sections.ld).
+ * No libc start-up code (-nostartfiles): no heap, no constructors, no argv. */
 #include <stdint.h>
 
 #include "cm_semihost.h"
@@ -18,6 +20,7 @@ void UART0RX_Handler(void) __attribute__((weak, alias("Default_Handler")));
 void UART0TX_Handler(void) __attribute__((weak, alias("Default_Handler")));
 
 #define SCB_CPACR (*(volatile uint32_t *)0xE000ED88u)
+#define CM_FAULT_EXIT 99u
 
 void Reset_Handler(void)
 {
@@ -33,20 +36,19 @@ void Reset_Handler(void)
     SCB_CPACR |= (0xFu << 20); /* CP10, CP11 full access */
     __asm__ volatile("dsb\n\tisb" ::: "memory");
 #endif
-    const int rc = main();
-    sh_exit(rc == 0);
+    sh_exit((uint32_t)main());
 }
 
 void Default_Handler(void)
 {
     sh_puts("fault: unexpected exception\n");
-    sh_exit(0);
+    sh_exit(CM_FAULT_EXIT);
 }
 
 void HardFault_Handler(void)
 {
     sh_puts("fault: HardFault\n");
-    sh_exit(0);
+    sh_exit(CM_FAULT_EXIT);
 }
 
 typedef void (*cm_vector_t)(void);

@@ -4,7 +4,7 @@
 #include "boot.h"
 #include "qemu_config.h"
 #include "qemu_layout.h"
-#include "semihost.h"
+#include "cm_semihost.h"
 
 #define SCB_VTOR (*(volatile uint32_t *)0xE000ED08u)
 
