@@ -3,7 +3,7 @@
 point to the same module or to a lower layer, and no header may include itself through others.
 
     base (codes, types)  <-  core (maths, numeric layer)  <-  fixed, hal
-        <-  safety, storage, security, proto  <-  boot  <-  app  <-  ports  <-  hil_sim
+        <-  safety, storage, security, proto, control  <-  boot  <-  app  <-  ports  <-  hil_sim
 
 Modules of one layer do not include each other. Some lower modules are open only in part (safety
 and hal use only the core's fs_real.h), and a module's private header (app_internal.h) is open
@@ -38,6 +38,7 @@ RANK = {
     "storage": 3,
     "security": 3,
     "proto": 3,
+    "control": 3,
     "boot": 4,
     "app": 5,
     "ports": 6,
