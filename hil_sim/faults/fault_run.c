@@ -92,7 +92,7 @@ static int setup_device(rig_t *r, const sim_scenario_t *sc)
     rig_boot(r);
     r->heartbeat_on = true;
     rig_run(r, 200u);
-    return r->app.state == APP_IDLE && r->app.slot_valid[0] && r->app.slot_valid[1] ? 0 : -1;
+    return r->app.state == APP_IDLE && r->app.slots.valid[0] && r->app.slots.valid[1] ? 0 : -1;
 }
 
 /* What run_fault follows tick by tick (tick numbers; UINT64_MAX: not yet). */
@@ -237,7 +237,7 @@ static void row_common(const rig_t *r, const watch_t *w, uint32_t crc_before, fr
     }
     row->status_seen = r->status_fault == row->code && row->code != 0;
     const bool lost_flash = rig_flash_crc() != crc_before;
-    row->lost = lost_flash || !r->app.slot_valid[0] || !r->app.slot_valid[1];
+    row->lost = lost_flash || !r->app.slots.valid[0] || !r->app.slots.valid[1];
 }
 
 /* expect_code = 0: no fault may latch; the skill runs to its end within the limits. */
@@ -359,7 +359,7 @@ static void run_power_loss(const sim_scenario_t *sc, frow_t *row)
         const bool is_new = ok && len == g_new_len && memcmp(g_rd, g_new, len) == 0;
         ok = ok && rig_read_slot(1u, g_rd, IMG_MAX, &len) == 0 && len == g_nb_len &&
              memcmp(g_rd, g_nb, len) == 0;
-        ok = ok && r->app.slot_valid[0] && r->app.slot_valid[1] && (is_old || is_new);
+        ok = ok && r->app.slots.valid[0] && r->app.slots.valid[1] && (is_old || is_new);
         if (!ok || (nrc == 0u && !is_new)) {
             bad++;
         } else if (is_new) {

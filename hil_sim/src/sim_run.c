@@ -203,7 +203,7 @@ static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_ima
         memset(&req, 0, sizeof(req));
         req.source = APP_RUN_FROM_LOCAL;
         for (int i = 0; i < sc->n_skills; i++) {
-            if (!d->app.slot_valid[i]) {
+            if (!d->app.slots.valid[i]) {
                 snprintf(err, SIM_ERR_MAX, "%s: the device did not load skill %d", sc->path, i + 1);
                 return -1;
             }
@@ -215,7 +215,7 @@ static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_ima
             s->duration_s = (sc->n_step_durations > 0) ? sc->step_duration_s[i] : 0.0;
             *total_s += (s->duration_s > 0.0)
                             ? s->duration_s
-                            : (double)d->app.slot_skill[i].dmp.duration_s * sc->time_scale;
+                            : (double)d->app.slots.skill[i].dmp.duration_s * sc->time_scale;
         }
         req.end = (sc->end_policy < 0) ? 0u : (sc->end_policy == SKILL_END_HOLD ? 1u : 2u);
         req.n_steps = (uint8_t)sc->n_skills;
