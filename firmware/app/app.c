@@ -514,3 +514,38 @@ uint16_t app_fault_code(const app_t *app)
 {
     return app->saf_out.fault_code;
 }
+
+uint32_t app_tick_count(const app_t *app)
+{
+    return app->tick;
+}
+
+fs_real_t app_force_ref_N(const app_t *app)
+{
+    return app->force_hat_N;
+}
+
+const skill_t *app_slot_skill(const app_t *app, uint8_t slot)
+{
+    return slots_skill(&app->slots, slot);
+}
+
+uint16_t app_last_run_status(const app_t *app)
+{
+    return app->last_run_status;
+}
+
+const uint32_t *app_tx_dropped(const app_t *app)
+{
+    return &app->tx_dropped;
+}
+
+const uint8_t *app_motion_nonce(const app_t *app)
+{
+    return app->secoc_dev_nonce;
+}
+
+bool app_transfer_busy(const app_t *app)
+{
+    return app->uds.xfer != UDS_XFER_NONE || app->uds.pending_sid != 0u;
+}

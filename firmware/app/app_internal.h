@@ -18,6 +18,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 #include "app.h"
+#include "app_config.h"
 #include "app_sm.h"
 #include "e2e.h"
 #include "fs_exec.h"
@@ -35,10 +36,8 @@
 #include "slots.h"
 #include "uds.h"
 
-#define APP_TICK_US FS_TICK_US            /* the tick period (wire.toml) */
-#define APP_TICK_S ((fs_real_t)FS_TICK_S) /* the same in seconds, the control law's dt */
-#define APP_N_SLOTS SLOTS_N               /* UDS/CAN slot numbers 1..APP_N_SLOTS */
-#define APP_RX_FRAMES_PER_TICK 64u        /* bounded CAN drain per tick */
+#define APP_N_SLOTS SLOTS_N        /* UDS/CAN slot numbers 1..APP_N_SLOTS */
+#define APP_RX_FRAMES_PER_TICK 64u /* bounded CAN drain per tick */
 /* Transmit places kept for emergency and status frames: telemetry and ISO-TP (UDS) frames are
  * queued only while more than this many are free, so a backlog of them (bus flooded by frames
  * of higher priority) never keeps a safety frame out of the queue. */
@@ -51,30 +50,6 @@
 #define APP_PROTO_VERSION_MAJOR 2u
 #define APP_PROTO_VERSION_MINOR 0u
 #define APP_SEC_LEVELS 2u /* SecurityAccess levels 1 and 3, one secret each */
-/** HostCommand.Mode values. */
-typedef enum {
-    APP_CMD_NONE = 0,
-    APP_CMD_IDLE = 1,
-    APP_CMD_TEACH = 2,
-    APP_CMD_EXECUTE = 3,
-    APP_CMD_CLEAR_FAULT = 4,
-    APP_CMD_RUN_OPTIONS = 5 /* time scale and end policy of the EXECUTE that follows */
-} app_cmd_mode_t;
-
-/** Device configuration (factory defaults from app_config_default, changed by UDS writes). */
-struct app_config {
-    uint8_t node;                     /* 0..PROTO_NODE_MAX: ids = base + node */
-    uint8_t render_carriage;          /* 1: render m_d by admittance (real carriage); 0: the
-                                          drive is dynamics-compensated (ideal plant) */
-    pfc_axis_gains_t gains[PFC_AXES]; /* TEACH rendering (m_d) and the y axis */
-    exec_config_t exec;               /* object model, phase stopping (gains come from the skill) */
-    exec_render_cfg_t render;
-    saf_config_t saf;
-    fs_real_t vel_cutoff_Hz;
-    uint8_t telemetry_period_ms; /* in TEACH/EXECUTE, 1..255 */
-    fs_real_t stiffness_max_Npm; /* skills stiffer than this are refused (227), DID 0x0140 */
-};
-
 /** The whole device. */
 struct app {
     app_config_t cfg;
@@ -147,47 +122,10 @@ struct app {
  *  true if confirmed or not on test. Called once, on the first tick. */
 bool app_fw_self_test_and_confirm(app_t *app);
 
-/** Where a run request came from (HostCommand frame, UDS routine, or the simulator itself). */
-typedef enum {
-    APP_RUN_FROM_COMMAND = 0,
-    APP_RUN_FROM_ROUTINE = 1,
-    APP_RUN_FROM_LOCAL = 2
-} app_run_source_t;
-
-/** One step of a run: slot 1..APP_N_SLOTS, goal and time scale, duration_s (<= 0: the skill's
- *  T*time_scale) and path scale (the y path of a skill with a y DMP; 1: as demonstrated). */
-typedef struct {
-    uint8_t slot;
-    fs_real_t goal_scale;
-    fs_real_t time_scale;
-    fs_real_t duration_s;
-    fs_real_t path_scale;
-} app_run_step_t;
-
-/** A request to start motion, decoded from any source (app_run.c). */
-typedef struct {
-    app_run_source_t source;
-    uint8_t n_steps; /* 1..EXEC_MAX_STEPS */
-    uint8_t end;     /* 0 each skill's own end policy, 1 hold, 2 release */
-    app_run_step_t step[EXEC_MAX_STEPS];
-} app_run_request_t;
-
 /** The authorisation of a run request, the first check of every start whatever its source: the
  *  one place a MAC and freshness check of the request sits. Today every request passes (a run
  *  needs no SecurityAccess level, docs/protocol.md). Returns a UDS NRC (0 authorised). */
 uint8_t app_run_authorize(const app_t *app, const app_run_request_t *req);
-
-/** Start a run: app_run_authorize, then the end policy and step count (0x31), the state (IDLE,
- *  no commit running: 0x22), each step's slot, scales, stiffness, force and path limits (0x31,
- *  the check's code 224-227 in last_run_status), then EXECUTE. Returns a UDS NRC (0 started). */
-uint8_t app_run_start(app_t *app, const app_run_request_t *req);
-
-/** The default skill stiffness limit (DID 0x0140, 227 above it) of a drive: the highest nominal
- *  stiffness at which both stiff HIL profiles track within 5 % RMS without a fault
- *  (bench/stiffness/stiffness_limit.py, docs/hil.md): FS_STIFFNESS_MAX_NPM for a
- *  dynamics-compensated drive (render_carriage 0), FS_STIFFNESS_MAX_RENDERED_NPM for a carriage
- *  rendered by admittance (render_carriage 1; 13-15 % at 1e5 N/m). */
-fs_real_t app_stiffness_max_default_Npm(uint8_t render_carriage);
 
 /** Handle the UDS hooks (app_uds.c): fills an uds_app_t bound to app. */
 void app_uds_bind(app_t *app, uds_app_t *out);
@@ -202,10 +140,6 @@ flt_code_t app_clear_faults(app_t *app);
 
 /** SecurityAccess config of a level (1 or 3); NULL for any other level. */
 const sec_config_t *app_sec_config(const app_t *app, uint8_t level);
-
-/** Establish the motion key of a host session from its nonce (DID 0x0302 write): draws the
- *  device nonce, derives the key from the level-1 secret. Returns a UDS NRC (0 ok). */
-uint8_t app_motion_key(app_t *app, const uint8_t *host_nonce, uint16_t len);
 
 /** Store the SecurityAccess attempt record if it changed (after every seed/key request). */
 void app_sec_persist(app_t *app);
