@@ -33,8 +33,8 @@
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 int LLVMFuzzerInitialize(int *argc, char ***argv);
 
-#define MAX_TICKS 20000u          /* simulated ms per input */
-#define MAX_UDS_WAIT 400u         /* ticks to wait for one UDS answer */
+#define MAX_TICKS 20000u  /* simulated ms per input */
+#define MAX_UDS_WAIT 400u /* ticks to wait for one UDS answer */
 
 static app_t app;
 static app_config_t cfg;
@@ -44,9 +44,9 @@ static uint32_t n_ticks;
 static uint8_t cmd_counter, hb_counter;
 static uint8_t golden[APP_IMAGE_MAX];
 static uint32_t golden_len;
-static uint8_t golden_fw[4096];      /* a firmware image tagged with the port's development key */
+static uint8_t golden_fw[4096]; /* a firmware image tagged with the port's development key */
 static uint32_t golden_fw_len;
-static bool fail_self_test;          /* the next image started fails its self-test */
+static bool fail_self_test; /* the next image started fails its self-test */
 static uint8_t img[APP_IMAGE_MAX];
 static uint8_t resp[ISOTP_MAX_PAYLOAD];
 static uint16_t resp_len;
@@ -78,9 +78,9 @@ static bool tester_send(void *ctx, const can_frame_t *f)
 static void snapshot(void)
 {
     for (unsigned s = 0; s < APP_N_SLOTS; s++) {
-        prev_valid[s] = app.slot_valid[s];
-        prev_crc[s] = app.slot_crc[s];
-        prev_len[s] = app.slot_len[s];
+        prev_valid[s] = app.slots.valid[s];
+        prev_crc[s] = app.slots.crc[s];
+        prev_len[s] = app.slots.len[s];
     }
     prev_state = app.state;
     prev_test_boot = app.boot.test_boot;
@@ -90,17 +90,12 @@ static void snapshot(void)
 static bool edge(app_state_t from, app_state_t to)
 {
     switch (from) {
-    case APP_BOOT:
-        return to == APP_IDLE;
-    case APP_IDLE:
-        return to == APP_TEACH || to == APP_EXECUTE || to == APP_FAULT;
+    case APP_BOOT: return to == APP_IDLE;
+    case APP_IDLE: return to == APP_TEACH || to == APP_EXECUTE || to == APP_FAULT;
     case APP_TEACH:
-    case APP_EXECUTE:
-        return to == APP_IDLE || to == APP_FAULT;
-    case APP_FAULT:
-        return to == APP_IDLE;
-    default:
-        return false;
+    case APP_EXECUTE: return to == APP_IDLE || to == APP_FAULT;
+    case APP_FAULT: return to == APP_IDLE;
+    default: return false;
     }
 }
 
@@ -125,7 +120,8 @@ static bool legal(app_state_t from, app_state_t to)
 
 static void check_invariants(void)
 {
-    const fs_real_t fmax[2] = {app.saf_cfg.lim.axis[0].force_max_N, app.saf_cfg.lim.axis[1].force_max_N};
+    const fs_real_t fmax[2] = {app.saf_cfg.lim.axis[0].force_max_N,
+                               app.saf_cfg.lim.axis[1].force_max_N};
     bool en = false;
     fs_real_t act[2];
     hal_host_get_actuator(&en, act);
@@ -135,38 +131,38 @@ static void check_invariants(void)
     }
     CHECK(legal(prev_state, app.state));
     if (prev_state == APP_FAULT && app.state != APP_FAULT) {
-        CHECK(app.saf_out.fault_code == 0u);       /* left FAULT only by clearing it */
+        CHECK(app.saf_out.fault_code == 0u); /* left FAULT only by clearing it */
     }
     if (app.state == APP_EXECUTE && prev_state != APP_EXECUTE) {
         for (unsigned i = 0; i < app.exec.n_steps; i++) {
             const exec_step_t *st = &app.exec.steps[i];
-            const long s = st->skill - app.slot_skill;
-            CHECK(s >= 0 && s < (long)APP_N_SLOTS && app.slot_valid[s]);
-            CHECK(st->goal_scale * app.slot_peak_N[s] <= fmax[0] * (1.0 + 1e-9));
+            const long s = st->skill - app.slots.skill;
+            CHECK(s >= 0 && s < (long)APP_N_SLOTS && app.slots.valid[s]);
+            CHECK(st->goal_scale * app.slots.peak_N[s] <= fmax[0] * (1.0 + 1e-9));
         }
     }
     for (unsigned s = 0; s < APP_N_SLOTS; s++) {
-        const bool changed = app.slot_valid[s] != prev_valid[s] ||
-                             (app.slot_valid[s] && (app.slot_crc[s] != prev_crc[s] ||
-                                                    app.slot_len[s] != prev_len[s]));
+        const bool changed = app.slots.valid[s] != prev_valid[s] ||
+                             (app.slots.valid[s] &&
+                              (app.slots.crc[s] != prev_crc[s] || app.slots.len[s] != prev_len[s]));
         if (!changed) {
             continue;
         }
         CHECK(prev_state == APP_IDLE);
         CHECK(app.uds.unlocked_level == UDS_SEC_LEVEL_WRITE);
         uint32_t len = 0u;
-        const nvm_status_t ns = nvm_read(&app.nvm, (uint16_t)s, img, sizeof img, &len);
-        if (!app.slot_valid[s]) {
-            CHECK(ns != NVM_OK);                       /* erased */
+        const nvm_status_t ns = nvm_read(&app.slots.nvm, (uint16_t)s, img, sizeof img, &len);
+        if (!app.slots.valid[s]) {
+            CHECK(ns != NVM_OK); /* erased */
             continue;
         }
-        CHECK(ns == NVM_OK && len == app.slot_len[s]);
+        CHECK(ns == NVM_OK && len == app.slots.len[s]);
         static skill_t sk;
         CHECK(skill_parse(img, len, &sk) == FS_OK);
         fs_real_t peak = 0.0;
         CHECK(skchk_skill(&sk, 0.001, fmax[0], &peak) == FS_OK);
-        CHECK(peak == app.slot_peak_N[s]);
-        CHECK(app.last_transfer_status == 0u);
+        CHECK(peak == app.slots.peak_N[s]);
+        CHECK(app.slots.last_transfer_status == 0u);
         commits++;
     }
     seen_states |= 1u << app.state;
@@ -181,7 +177,7 @@ static void power_up(void)
     hal_host_set_time_us(t_us);
     app_init(&app, &cfg);
     if (fail_self_test) {
-        app.nvm_ok = false;                            /* storage unreadable: self-test fails */
+        app.slots.nvm_ok = false; /* storage unreadable: self-test fails */
         fail_self_test = false;
     }
     snapshot();
@@ -198,7 +194,7 @@ static void tick(void)
     check_invariants();
     uint8_t type = 0u;
     if (hal_host_take_reset(&type)) {
-        power_up();                                    /* the port restarts; flash kept */
+        power_up(); /* the port restarts; flash kept */
     }
     can_frame_t f;
     while (hal_sim_can_tx_peek(&f)) {
@@ -258,9 +254,17 @@ static void unlock(uint8_t session, uint8_t level, bool right_key)
 /* RequestDownload to addr, TransferData in blocks of blk, RequestTransferExit unless cut. */
 static void download(uint32_t addr, const uint8_t *d, uint32_t len, uint32_t blk, bool cut)
 {
-    uint8_t rd[11] = {0x34u, 0x00u, 0x44u, (uint8_t)(addr >> 24), (uint8_t)(addr >> 16),
-                      (uint8_t)(addr >> 8), (uint8_t)addr, (uint8_t)(len >> 24),
-                      (uint8_t)(len >> 16), (uint8_t)(len >> 8), (uint8_t)len};
+    uint8_t rd[11] = {0x34u,
+                      0x00u,
+                      0x44u,
+                      (uint8_t)(addr >> 24),
+                      (uint8_t)(addr >> 16),
+                      (uint8_t)(addr >> 8),
+                      (uint8_t)addr,
+                      (uint8_t)(len >> 24),
+                      (uint8_t)(len >> 16),
+                      (uint8_t)(len >> 8),
+                      (uint8_t)len};
     if (!uds(rd, 11u) || resp[0] != 0x74u) {
         return;
     }
@@ -341,7 +345,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         const size_t left = size - i;
         const uint8_t *p = &data[i];
         switch (op % 13u) {
-        case 0: {                                      /* time passes */
+        case 0: { /* time passes */
             const unsigned n = left > 0u ? 1u + p[0] : 1u;
             i += left > 0u ? 1u : 0u;
             for (unsigned k = 0; k < n && n_ticks < MAX_TICKS; k++) {
@@ -349,7 +353,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             }
             break;
         }
-        case 1: {                                      /* raw frame to one of the device's ids */
+        case 1: { /* raw frame to one of the device's ids */
             if (left < 10u) {
                 i = size;
                 break;
@@ -362,7 +366,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             tick();
             break;
         }
-        case 2: {                                      /* E2E-valid host command */
+        case 2: { /* E2E-valid host command */
             if (left < 6u) {
                 i = size;
                 break;
@@ -381,7 +385,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             tick();
             break;
         }
-        case 3: {                                      /* heartbeat */
+        case 3: { /* heartbeat */
             uint8_t payload[8] = {0};
             payload[0] = left > 0u ? p[0] : 0u;
             i += left > 0u ? 1u : 0u;
@@ -389,7 +393,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             tick();
             break;
         }
-        case 4: {                                      /* arbitrary UDS request */
+        case 4: { /* arbitrary UDS request */
             if (left < 1u) {
                 break;
             }
@@ -403,14 +407,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             i += 1u + n;
             break;
         }
-        case 5:                                        /* authenticated SecurityAccess */
+        case 5: /* authenticated SecurityAccess */
             if (left >= 1u) {
                 unlock((p[0] & 1u) ? UDS_SESSION_PROGRAMMING : UDS_SESSION_EXTENDED,
-                       (p[0] & 2u) ? UDS_SEC_LEVEL_FIRMWARE : UDS_SEC_LEVEL_WRITE, (p[0] & 4u) == 0u);
+                       (p[0] & 2u) ? UDS_SEC_LEVEL_FIRMWARE : UDS_SEC_LEVEL_WRITE,
+                       (p[0] & 4u) == 0u);
                 i += 1u;
             }
             break;
-        case 6: {                                      /* skill download: golden, byte changes */
+        case 6: { /* skill download: golden, byte changes */
             if (left < 4u || golden_len == 0u) {
                 i = size;
                 break;
@@ -420,7 +425,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             for (unsigned k = 0; k < n_mut && 4u + 2u * k + 1u < left; k++) {
                 img[p[4u + 2u * k] % golden_len] ^= p[5u + 2u * k];
             }
-            if ((p[2] & 1u) != 0u) {                   /* keep the CRC right */
+            if ((p[2] & 1u) != 0u) { /* keep the CRC right */
                 const uint32_t crc = skill_crc32(0u, img, golden_len - SKILL_CRC_SIZE);
                 memcpy(&img[golden_len - SKILL_CRC_SIZE], &crc, 4u);
             }
@@ -428,7 +433,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             i += 4u + 2u * n_mut;
             break;
         }
-        case 7: {                                      /* firmware download of fuzz bytes */
+        case 7: { /* firmware download of fuzz bytes */
             if (left < 2u) {
                 i = size;
                 break;
@@ -438,7 +443,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             i += 1u + n;
             break;
         }
-        case 8: {                                      /* sensors */
+        case 8: { /* sensors */
             if (left < 12u) {
                 i = size;
                 break;
@@ -451,16 +456,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             tick();
             break;
         }
-        case 9:                                        /* bus-off for a while */
+        case 9: /* bus-off for a while */
             hal_sim_can_set_bus_off(true);
             tick();
             tick();
             hal_sim_can_set_bus_off(false);
             break;
-        case 10:                                       /* power cycle (flash kept) */
-            power_up();
-            break;
-        case 11: {                                     /* firmware update: level 3, golden image,
+        case 10: /* power cycle (flash kept) */ power_up(); break;
+        case 11: { /* firmware update: level 3, golden image,
                                                           mark test, ECUReset into it */
             if (left < 1u || golden_fw_len == 0u) {
                 i = size;
@@ -472,7 +475,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                     break;
                 }
                 for (unsigned w = 0; w < 100u && n_ticks < MAX_TICKS; w++) {
-                    tick();                            /* power-up delay or lockout */
+                    tick(); /* power-up delay or lockout */
                 }
             }
             download(FWU_DOWNLOAD_ADDRESS, golden_fw, golden_fw_len, 64u + p[0], false);
@@ -482,13 +485,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             const uint8_t reset[2] = {0x11u, 0x01u};
             (void)uds(reset, 2u);
             for (unsigned w = 0; w < 5u && fail_self_test && n_ticks < MAX_TICKS; w++) {
-                tick();                                /* the reset follows its response */
+                tick(); /* the reset follows its response */
             }
             fail_self_test = false;
             i += 1u;
             break;
         }
-        default: {                                     /* run a skill through UDS */
+        default: { /* run a skill through UDS */
             if (left < 5u) {
                 i = size;
                 break;
@@ -501,9 +504,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
     }
     if (trace) {
-        fprintf(stderr, "fuzz_app: %u ticks, states seen 0x%02X (bit = state), %u slot changes, "
+        fprintf(stderr,
+                "fuzz_app: %u ticks, states seen 0x%02X (bit = state), %u slot changes, "
                 "last transfer %u, last run %u, firmware %08X on test %u, reverted %u\n",
-                n_ticks, seen_states, commits, app.last_transfer_status, app.last_run_status,
+                n_ticks, seen_states, commits, app.slots.last_transfer_status, app.last_run_status,
                 (unsigned)app.boot.running.fw_version, app.boot.test_boot,
                 app.boot.path == BOOT_PATH_REVERTED ? 1u : 0u);
     }

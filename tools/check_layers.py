@@ -3,19 +3,22 @@
 point to the same module or to a lower layer, and no header may include itself through others.
 
     base (codes, types)  <-  core (maths, numeric layer)  <-  fixed, hal
-        <-  safety, storage, security, proto  <-  boot  <-  app  <-  ports  <-  hil_sim
+        <-  safety, storage, security, proto, control  <-  boot  <-  app  <-  ports  <-  hil_sim
 
 Modules of one layer do not include each other. Some lower modules are open only in part (safety
 and hal use only the core's fs_real.h), and a module's private header (app_internal.h) is open
-only to its own files and the simulator. The host package host/forceskill is checked the same way
-on its imports (those inside functions too):
+only to its own files (and to sim_couple.h, which hands it to hil_sim/pil's image). Inside a
+firmware folder the .c files call each other without a circle (a file that calls another's
+function sits above it), so each file's concern has one direction. The host package
+host/forceskill is checked the same way on its imports (those inside functions too):
 
     codes, errors, outputs, sim  <-  wire  <-  readers  <-  model  <-  link  <-  plot  <-  commands  <-  cli
 
 (wire: the constants and payload codecs generated from wire.toml, the DBC and the telemetry
 pairing, which the CAN-log reader and the link both use), with no exception, and no module
 imports itself through others. Prints the module graph; exit 1 on an upward or sideways include or import,
-a cycle, or an include that names an ambiguous header.
+a cycle (of includes, or of calls between the files of a folder), or an include that names an
+ambiguous header.
 usage: tools/check_layers.py [--graph]
 """
 
@@ -38,6 +41,7 @@ RANK = {
     "storage": 3,
     "security": 3,
     "proto": 3,
+    "control": 3,
     "boot": 4,
     "app": 5,
     "ports": 6,
@@ -45,10 +49,15 @@ RANK = {
 }
 # (from, to): the only headers of `to` that `from` may include
 ONLY = {("safety", "core"): {"fs_real.h"}, ("hal", "core"): {"fs_real.h"}}
-# a module's private headers: only these other modules may include them (the simulator is a
-# white-box user of the application; ports use app.h)
-PRIVATE = {"app_internal.h": {"hil_sim"}}
+# a module's private headers: only these other modules or files may include them (the simulator
+# configures the application through app_config.h, ports use app.h; sim_couple.h passes the
+# internals on to hil_sim/pil's Cortex-M build alone)
+PRIVATE = {"app_internal.h": {"hil_sim/src/sim_couple.h"}}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
+# a function defined at file level with external linkage: its name (a definition's line starts
+# with its return type, not with `static`)
+DEFINITION = re.compile(r"^(?!static\b)[A-Za-z_][\w \t*]*?\b([A-Za-z_]\w*)\s*\([^;{}]*\)\s*\{", re.M)
+COMMENT = re.compile(r"/\*.*?\*/|//[^\n]*|\"(?:\\.|[^\"\\])*\"", re.S)
 
 
 def module(rel: Path) -> str:
@@ -108,6 +117,26 @@ def cycles(edges: dict[Path, set[Path]]) -> list[list[Path]]:
     return found
 
 
+def call_edges(files: list[Path], root: Path) -> dict[Path, set[Path]]:
+    """Calls between the .c files of each firmware folder: file a -> file b when a calls a
+    function b defines (a shared private header such as app_internal.h hides such a circle from
+    the include graph)."""
+    edges: dict[Path, set[Path]] = defaultdict(set)
+    by_dir: dict[Path, list[Path]] = defaultdict(list)
+    for f in files:
+        if f.suffix == ".c" and f.parts[0] == "firmware":
+            by_dir[f.parent].append(f)
+    for group in by_dir.values():
+        text = {f: COMMENT.sub(" ", (root / f).read_text(errors="replace")) for f in group}
+        owner = {m.group(1): f for f in group for m in DEFINITION.finditer(text[f])}
+        for f in group:
+            for name in set(re.findall(r"\b([A-Za-z_]\w*)\s*\(", text[f])):
+                g = owner.get(name)
+                if g is not None and g != f:
+                    edges[f].add(g)
+    return edges
+
+
 def check(root: Path = ROOT) -> tuple[list[str], dict[tuple[str, str], set[str]]]:
     """Violations (one line each) and the module graph {(from, to): headers}."""
     files = sources(root)
@@ -136,7 +165,7 @@ def check(root: Path = ROOT) -> tuple[list[str], dict[tuple[str, str], set[str]]
             elif RANK[b] >= RANK[a]:
                 kind = "sideways" if RANK[b] == RANK[a] else "upward"
                 problems.append(f"{src}: {kind} include of {dst} ({a} -> {b})")
-            elif dst.name in PRIVATE and a not in PRIVATE[dst.name]:
+            elif dst.name in PRIVATE and not {a, str(src)} & PRIVATE[dst.name]:
                 problems.append(f"{src}: {dst.name} is private to {b} (use {b}.h)")
             elif (a, b) in ONLY and dst.name not in ONLY[(a, b)]:
                 problems.append(
@@ -144,6 +173,8 @@ def check(root: Path = ROOT) -> tuple[list[str], dict[tuple[str, str], set[str]]
                 )
     for c in cycles(edges):
         problems.append("include cycle: " + " -> ".join(map(str, c)))
+    for c in cycles(call_edges(files, root)):
+        problems.append("call cycle between the files of a module: " + " -> ".join(map(str, c)))
     return problems, graph
 
 

@@ -135,55 +135,6 @@ static void send_telemetry(app_t *app)
     (void)app_send(app, &f, true);
 }
 
-/* ---------------------------------------------------------------- state machine */
-
-bool app_event(app_t *app, app_event_t ev)
-{
-    const app_state_t next = app_sm_next(app->state, ev);
-    if (next == app->state) {
-        return false;
-    }
-    app->state = next;
-    switch (next) {
-    case APP_TEACH:
-    case APP_EXECUTE:
-        if (next == APP_TEACH) {
-            app->teach_ticks = 0u;
-        }
-        /* the host must keep its heartbeat from now on: silence in TEACH/EXECUTE stops safely */
-        wdg_kick(&app->saf.wdg, app->now_ms);
-        for (unsigned a = 0; a < PFC_AXES; a++) {
-            exec_render_reset(&app->rend[a], app->sens.pos_m[a]);
-        }
-        break;
-    case APP_IDLE:
-    case APP_FAULT:
-        if (next == APP_IDLE) {
-            app->seq_step = 0u;
-            app->exec_done = false;
-        }
-        app->force_hat_N = FS_R(0.0);
-        wdg_disarm(&app->saf.wdg); /* host silence matters only while the device acts */
-        break;
-    case APP_BOOT:
-    default: break;
-    }
-    return true;
-}
-
-flt_code_t app_clear_faults(app_t *app)
-{
-    const flt_code_t r = saf_clear_request(&app->saf_cfg, &app->saf, app->now_ms);
-    if (r == FLT_NONE) {
-        (void)app_event(app, APP_EV_CLEARED);
-    } else {
-        /* the request counts as a host frame (it arms the watchdog); in FAULT silence does not
-         * matter, so disarm it again */
-        wdg_disarm(&app->saf.wdg);
-    }
-    return r;
-}
-
 /* now_us / 1000 truncated to 32 bits, as (uint32_t)(now_us / 1000u), continued from the last
  * call's whole millisecond: a 32-bit division while less than ~71 minutes pass between calls (every
  * tick), the 64-bit one otherwise (the first call, a clock that went back). */
@@ -297,28 +248,6 @@ static void can_receive(app_t *app)
     }
 }
 
-uint8_t app_motion_key(app_t *app, const uint8_t *host_nonce, uint16_t len)
-{
-    if (len != SECOC_NONCE_LEN) {
-        return UDS_NRC_INCORRECT_LENGTH;
-    }
-    if (app->state == APP_TEACH || app->state == APP_EXECUTE) {
-        return UDS_NRC_CONDITIONS_NOT_CORRECT; /* never re-keyed while a motion runs */
-    }
-    uint8_t dev_nonce[SECOC_NONCE_LEN];
-    if (hal_random(dev_nonce, SECOC_NONCE_LEN) != 0) {
-        return UDS_NRC_CONDITIONS_NOT_CORRECT;
-    }
-    const sec_config_t *c = &app->sec_cfg[0];
-    uint8_t key[SECOC_KEY_LEN];
-    secoc_derive_key(c->secret, c->secret_len, dev_nonce, host_nonce, key);
-    secoc_set_key(&app->secoc, key, SECOC_KEY_LEN);
-    sec_wipe(key, sizeof key);
-    memcpy(app->secoc_dev_nonce, dev_nonce, SECOC_NONCE_LEN);
-    app->run_opts_fv = 0u;
-    return UDS_NRC_OK;
-}
-
 static void uds_service(app_t *app)
 {
     if (app->uds.pending_reset != 0u) {
@@ -359,107 +288,6 @@ static void uds_service(app_t *app)
 
 /* ---------------------------------------------------------------- init and tick */
 
-/* A stored skill's check without limits: its peak force and path extent, for the run checks
- * (the limits may have changed since its commit). */
-static fs_status_t app_check_stored(const skill_t *sk, fs_real_t *peak_N, fs_real_t *path_m)
-{
-    const fs_status_t st = skchk_params(sk);
-    if (st != FS_OK) {
-        return st;
-    }
-    skchk_t c;
-    skchk_begin(&c, sk, APP_TICK_S, FS_R(1e30));
-    c.path_max_m = FS_R(1e30);
-    while (!skchk_run(&c, UINT32_MAX)) {
-    }
-    *peak_N = c.peak_N;
-    *path_m = c.path_peak_m;
-    return c.status;
-}
-
-void app_slots_reload(app_t *app)
-{
-    for (uint16_t s = 0; s < APP_N_SLOTS; s++) {
-        app->slot_valid[s] = false;
-        if (!app->nvm_ok) {
-            continue;
-        }
-        uint32_t len = 0u;
-        fs_real_t peak = FS_R(0.0);
-        fs_real_t path = FS_R(0.0);
-        if (nvm_read(&app->nvm, s, app->image, sizeof(app->image), &len) == NVM_OK &&
-            skill_parse(app->image, len, &app->slot_skill[s]) == FS_OK &&
-            app_check_stored(&app->slot_skill[s], &peak, &path) == FS_OK) {
-            app->slot_valid[s] = true;
-            app->slot_peak_N[s] = peak;
-            app->slot_path_m[s] = path;
-            app->slot_crc[s] = skill_crc32(0u, app->image, len - SKILL_CRC_SIZE);
-            app->slot_len[s] = len;
-        }
-    }
-}
-
-static int rng_adapter(void *ctx, uint8_t *buf, uint32_t len)
-{
-    (void)ctx;
-    return hal_random(buf, len);
-}
-
-const sec_config_t *app_sec_config(const app_t *app, uint8_t level)
-{
-    if (level == UDS_SEC_LEVEL_WRITE) {
-        return &app->sec_cfg[0];
-    }
-    return level == UDS_SEC_LEVEL_FIRMWARE ? &app->sec_cfg[1] : NULL;
-}
-
-void app_sec_persist(app_t *app)
-{
-    uint8_t rec[SEC_RECORD_LEN];
-    sec_record_encode(&app->sec, rec);
-    if (!app->sec_nvm_ok || memcmp(rec, app->sec_saved, sizeof rec) == 0) {
-        return;
-    }
-    if (nvm_write(&app->sec_nvm, 0u, rec, (uint32_t)sizeof rec) == NVM_OK) {
-        memcpy(app->sec_saved, rec, sizeof rec);
-    }
-}
-
-/* One secret per level from the HAL; the attempt counter from the record kept across resets
- * (none or unreadable: the lockout delay runs at power-up, the safe side). */
-static void sec_setup(app_t *app)
-{
-    static const uint8_t levels[APP_SEC_LEVELS] = {UDS_SEC_LEVEL_WRITE, UDS_SEC_LEVEL_FIRMWARE};
-    for (unsigned i = 0; i < APP_SEC_LEVELS; i++) {
-        sec_config_t *c = &app->sec_cfg[i];
-        sec_default_config(c);
-        uint8_t secret_len = 0u;
-        const uint8_t *secret = hal_device_secret(levels[i], &secret_len);
-        if (secret_len > SEC_SECRET_MAX) {
-            secret_len = SEC_SECRET_MAX;
-        }
-        memcpy(c->secret, secret, secret_len);
-        c->secret_len = secret_len;
-        c->rng = rng_adapter;
-        c->rng_ctx = app;
-    }
-    uint8_t failed = 0u, locked_out = 1u;
-    const fls_dev_t *dev = hal_sec_flash();
-    app->sec_nvm_ok = dev != NULL && nvm_init(&app->sec_nvm, dev) == NVM_OK;
-    if (app->sec_nvm_ok) {
-        uint8_t rec[SEC_RECORD_LEN];
-        uint32_t len = 0u;
-        const nvm_status_t st = nvm_read(&app->sec_nvm, 0u, rec, (uint32_t)sizeof rec, &len);
-        if (st == NVM_OK && sec_record_decode(rec, len, &failed, &locked_out)) {
-            memcpy(app->sec_saved, rec, sizeof rec);
-        } else if (nvm_dir(&app->sec_nvm, 0u) != NULL && nvm_dir(&app->sec_nvm, 0u)->valid == 0u) {
-            failed = 0u; /* a fresh device: no record yet */
-            locked_out = 0u;
-        }
-    }
-    sec_restore(&app->sec_cfg[0], &app->sec, app->now_ms, failed, locked_out);
-}
-
 void app_init(app_t *app, const app_config_t *cfg)
 {
     memset(app, 0, sizeof(*app));
@@ -478,11 +306,9 @@ void app_init(app_t *app, const app_config_t *cfg)
     app_uds_bind(app, &hooks);
     uds_server_init(&app->uds, &hooks);
 
-    sec_setup(app);
+    app_sec_setup(app);
 
-    app->last_transfer_status = FS_TRANSFER_NONE;
-    app->nvm_ok = (nvm_init(&app->nvm, hal_flash()) == NVM_OK);
-    app_slots_reload(app);
+    slots_init(&app->slots, hal_flash());
 
     /* firmware update: the bootloader's decision runs here on the host port (flash kept across
      * ECUReset); the image confirms itself once its self-test has passed (first tick) */
@@ -502,10 +328,7 @@ void app_init(app_t *app, const app_config_t *cfg)
     uint8_t key_len = 0u;
     bc->key = hal_fw_key(&key_len);
     bc->key_len = key_len;
-    bool any_skill = false;
-    for (unsigned i = 0; i < APP_N_SLOTS; i++) {
-        any_skill = any_skill || app->slot_valid[i];
-    }
+    const bool any_skill = slots_any(&app->slots);
     bc->skill_min = any_skill ? (uint16_t)SKILL_FORMAT_VERSION_MIN : 0u;
     bc->skill_max = any_skill ? (uint16_t)SKILL_FORMAT_VERSION : 0u;
     bc->config_min = 0u; /* gains/limits are not persisted yet */
@@ -665,7 +488,7 @@ bool app_fw_self_test_and_confirm(app_t *app)
         return true;
     }
     /* self-test of a new image: configuration valid and storage readable */
-    if (saf_config_validate(&app->saf_cfg) != SAF_OK || !app->nvm_ok) {
+    if (saf_config_validate(&app->saf_cfg) != SAF_OK || !app->slots.nvm_ok) {
         return false;
     }
     /* simulator only: a host-target payload starting with this marker stands for a build whose
@@ -690,4 +513,39 @@ app_state_t app_state(const app_t *app)
 uint16_t app_fault_code(const app_t *app)
 {
     return app->saf_out.fault_code;
+}
+
+uint32_t app_tick_count(const app_t *app)
+{
+    return app->tick;
+}
+
+fs_real_t app_force_ref_N(const app_t *app)
+{
+    return app->force_hat_N;
+}
+
+const skill_t *app_slot_skill(const app_t *app, uint8_t slot)
+{
+    return slots_skill(&app->slots, slot);
+}
+
+uint16_t app_last_run_status(const app_t *app)
+{
+    return app->last_run_status;
+}
+
+const uint32_t *app_tx_dropped(const app_t *app)
+{
+    return &app->tx_dropped;
+}
+
+const uint8_t *app_motion_nonce(const app_t *app)
+{
+    return app->secoc_dev_nonce;
+}
+
+bool app_transfer_busy(const app_t *app)
+{
+    return app->uds.xfer != UDS_XFER_NONE || app->uds.pending_sid != 0u;
 }

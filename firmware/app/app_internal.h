@@ -18,6 +18,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 #include "app.h"
+#include "app_config.h"
 #include "app_sm.h"
 #include "e2e.h"
 #include "fs_exec.h"
@@ -32,12 +33,11 @@
 #include "secoc.h"
 #include "skill.h"
 #include "skill_check.h"
+#include "slots.h"
 #include "uds.h"
 
-#define APP_TICK_US FS_TICK_US            /* the tick period (wire.toml) */
-#define APP_TICK_S ((fs_real_t)FS_TICK_S) /* the same in seconds, the control law's dt */
-#define APP_N_SLOTS NVM_MAX_SLOTS         /* UDS/CAN slot numbers 1..APP_N_SLOTS */
-#define APP_RX_FRAMES_PER_TICK 64u        /* bounded CAN drain per tick */
+#define APP_N_SLOTS SLOTS_N        /* UDS/CAN slot numbers 1..APP_N_SLOTS */
+#define APP_RX_FRAMES_PER_TICK 64u /* bounded CAN drain per tick */
 /* Transmit places kept for emergency and status frames: telemetry and ISO-TP (UDS) frames are
  * queued only while more than this many are free, so a backlog of them (bus flooded by frames
  * of higher priority) never keeps a safety frame out of the queue. */
@@ -45,65 +45,11 @@
 #define APP_RESET_TX_WAIT_MS 100u /* ECUReset: longest wait for the response to leave */
 #define APP_STATUS_PERIOD_MS 10u
 #define APP_IDLE_TELEMETRY_PERIOD_MS 100u
-#define APP_IMAGE_MAX SKILL_IMAGE_MAX
+#define APP_IMAGE_MAX SLOTS_IMAGE_MAX
 #define APP_SW_VERSION "forceskill-fw 0.1.0"
 #define APP_PROTO_VERSION_MAJOR 2u
 #define APP_PROTO_VERSION_MINOR 0u
 #define APP_SEC_LEVELS 2u /* SecurityAccess levels 1 and 3, one secret each */
-/* DMP steps of a downloaded skill's own rollout (skill_check.h) per tick while the commit waits:
- * on the M4F 100 steps are ~55,000 instructions (docs/cortex-m.md), within the 168,000-cycle tick
- * of an idle device; a 17 s skill takes 0.17 s. A port whose float is in software defines fewer
- * (the M3 image: 8, ~90,000 instructions). */
-#ifndef APP_CHECK_STEPS_PER_TICK
-#define APP_CHECK_STEPS_PER_TICK 100u
-#endif
-/* Units of the downloaded image's parse (skill_parse_run: one kernel's value, 32 bytes of the
- * CRC) per tick while the commit waits: on the M4F a unit is at most ~450 instructions, so 12
- * keep such a tick near 6,000; N = 50 takes ~20 ticks, N = 256 ~110. */
-#ifndef APP_COMMIT_UNITS_PER_TICK
-#define APP_COMMIT_UNITS_PER_TICK 12u
-#endif
-/* Units of the slot's flash write (nvm_write_run: the erase, the commit word, or 256 bytes of
- * the CRC, programming, read-back or final scan, each at most ~3,500 instructions on the M4F)
- * per tick while the commit waits. */
-#ifndef APP_COMMIT_FLASH_UNITS_PER_TICK
-#define APP_COMMIT_FLASH_UNITS_PER_TICK 2u
-#endif
-
-
-/** The stages of a skill download's commit (one per tick at least, app_uds.c). */
-enum {
-    APP_COMMIT_PARSE = 0, /* skill_parse_run, APP_COMMIT_UNITS_PER_TICK units a tick */
-    APP_COMMIT_PARAMS,    /* skchk_params, skchk_stiffness, skchk_begin */
-    APP_COMMIT_CHECK,     /* the rollout, APP_CHECK_STEPS_PER_TICK steps a tick */
-    APP_COMMIT_WRITE      /* the slot's flash record, APP_COMMIT_FLASH_UNITS_PER_TICK units a
-                             tick, then the slot cache */
-};
-
-/** HostCommand.Mode values. */
-typedef enum {
-    APP_CMD_NONE = 0,
-    APP_CMD_IDLE = 1,
-    APP_CMD_TEACH = 2,
-    APP_CMD_EXECUTE = 3,
-    APP_CMD_CLEAR_FAULT = 4,
-    APP_CMD_RUN_OPTIONS = 5 /* time scale and end policy of the EXECUTE that follows */
-} app_cmd_mode_t;
-
-/** Device configuration (factory defaults from app_config_default, changed by UDS writes). */
-struct app_config {
-    uint8_t node;                     /* 0..PROTO_NODE_MAX: ids = base + node */
-    uint8_t render_carriage;          /* 1: render m_d by admittance (real carriage); 0: the
-                                          drive is dynamics-compensated (ideal plant) */
-    pfc_axis_gains_t gains[PFC_AXES]; /* TEACH rendering (m_d) and the y axis */
-    exec_config_t exec;               /* object model, phase stopping (gains come from the skill) */
-    exec_render_cfg_t render;
-    saf_config_t saf;
-    fs_real_t vel_cutoff_Hz;
-    uint8_t telemetry_period_ms; /* in TEACH/EXECUTE, 1..255 */
-    fs_real_t stiffness_max_Npm; /* skills stiffer than this are refused (227), DID 0x0140 */
-};
-
 /** The whole device. */
 struct app {
     app_config_t cfg;
@@ -138,26 +84,9 @@ struct app {
     nvm_t sec_nvm;               /* attempt record (hal_sec_flash), kept across resets */
     bool sec_nvm_ok;
     uint8_t sec_saved[SEC_RECORD_LEN]; /* the record as last stored */
-    /* storage */
-    nvm_t nvm;
-    bool nvm_ok;
-    skill_t slot_skill[APP_N_SLOTS]; /* parsed copy of each valid slot */
-    bool slot_valid[APP_N_SLOTS];
-    uint32_t slot_crc[APP_N_SLOTS]; /* CRC-32 field of each valid image */
-    uint32_t slot_len[APP_N_SLOTS];
-    uint8_t image[APP_IMAGE_MAX]; /* transfer scratch (download staging / upload) */
-    uint32_t xfer_slot;
-    uint32_t xfer_size;
-    uint16_t last_transfer_status;      /* fs_status / nvm status of the last download */
-    uint16_t last_run_status;           /* fs_status of the last start request's scale check */
-    skill_t staging;                    /* validation target of a download */
-    skill_parser_t parser;              /* the parse of staging, spread over ticks */
-    skchk_t check;                      /* output check of staging, spread over ticks */
-    nvm_writer_t writer;                /* the slot's flash write, spread over ticks */
-    bool checking;                      /* a download's commit runs (UDS 0x78 sent): no start */
-    uint8_t commit_stage;               /* APP_COMMIT_*: the commit's stage while checking */
-    fs_real_t slot_peak_N[APP_N_SLOTS]; /* peak |f_hat| of each valid slot at goal scale 1 */
-    fs_real_t slot_path_m[APP_N_SLOTS]; /* extent max|p| of each valid slot's y path (0: none) */
+    /* the skill store: slot cache, transfer buffer, a download's commit (slots.h) */
+    slots_t slots;
+    uint16_t last_run_status; /* fs_status of the last start request's scale check */
     /* firmware update (firmware/boot, docs/update.md) */
     boot_fls_window_t fw_w_state, fw_w_slots;
     fls_dev_t fw_state_dev, fw_slots_dev;
@@ -193,47 +122,10 @@ struct app {
  *  true if confirmed or not on test. Called once, on the first tick. */
 bool app_fw_self_test_and_confirm(app_t *app);
 
-/** Where a run request came from (HostCommand frame, UDS routine, or the simulator itself). */
-typedef enum {
-    APP_RUN_FROM_COMMAND = 0,
-    APP_RUN_FROM_ROUTINE = 1,
-    APP_RUN_FROM_LOCAL = 2
-} app_run_source_t;
-
-/** One step of a run: slot 1..APP_N_SLOTS, goal and time scale, duration_s (<= 0: the skill's
- *  T*time_scale) and path scale (the y path of a skill with a y DMP; 1: as demonstrated). */
-typedef struct {
-    uint8_t slot;
-    fs_real_t goal_scale;
-    fs_real_t time_scale;
-    fs_real_t duration_s;
-    fs_real_t path_scale;
-} app_run_step_t;
-
-/** A request to start motion, decoded from any source (app_run.c). */
-typedef struct {
-    app_run_source_t source;
-    uint8_t n_steps; /* 1..EXEC_MAX_STEPS */
-    uint8_t end;     /* 0 each skill's own end policy, 1 hold, 2 release */
-    app_run_step_t step[EXEC_MAX_STEPS];
-} app_run_request_t;
-
 /** The authorisation of a run request, the first check of every start whatever its source: the
  *  one place a MAC and freshness check of the request sits. Today every request passes (a run
  *  needs no SecurityAccess level, docs/protocol.md). Returns a UDS NRC (0 authorised). */
 uint8_t app_run_authorize(const app_t *app, const app_run_request_t *req);
-
-/** Start a run: app_run_authorize, then the end policy and step count (0x31), the state (IDLE,
- *  no commit running: 0x22), each step's slot, scales, stiffness, force and path limits (0x31,
- *  the check's code 224-227 in last_run_status), then EXECUTE. Returns a UDS NRC (0 started). */
-uint8_t app_run_start(app_t *app, const app_run_request_t *req);
-
-/** The default skill stiffness limit (DID 0x0140, 227 above it) of a drive: the highest nominal
- *  stiffness at which both stiff HIL profiles track within 5 % RMS without a fault
- *  (bench/stiffness/stiffness_limit.py, docs/hil.md): FS_STIFFNESS_MAX_NPM for a
- *  dynamics-compensated drive (render_carriage 0), FS_STIFFNESS_MAX_RENDERED_NPM for a carriage
- *  rendered by admittance (render_carriage 1; 13-15 % at 1e5 N/m). */
-fs_real_t app_stiffness_max_default_Npm(uint8_t render_carriage);
 
 /** Handle the UDS hooks (app_uds.c): fills an uds_app_t bound to app. */
 void app_uds_bind(app_t *app, uds_app_t *out);
@@ -246,17 +138,14 @@ bool app_event(app_t *app, app_event_t ev);
  *  else the first fault whose cause persists (the device stays in FAULT). */
 flt_code_t app_clear_faults(app_t *app);
 
-/** Reload slot caches from storage (boot, after a download or erase). */
-void app_slots_reload(app_t *app);
-
 /** SecurityAccess config of a level (1 or 3); NULL for any other level. */
 const sec_config_t *app_sec_config(const app_t *app, uint8_t level);
 
-/** Establish the motion key of a host session from its nonce (DID 0x0302 write): draws the
- *  device nonce, derives the key from the level-1 secret. Returns a UDS NRC (0 ok). */
-uint8_t app_motion_key(app_t *app, const uint8_t *host_nonce, uint16_t len);
-
 /** Store the SecurityAccess attempt record if it changed (after every seed/key request). */
 void app_sec_persist(app_t *app);
+
+/** One secret per level from the HAL; the attempt counter from the record kept across resets
+ *  (none or unreadable: the lockout delay runs at power-up, the safe side). At app_init. */
+void app_sec_setup(app_t *app);
 
 #endif /* APP_INTERNAL_H */

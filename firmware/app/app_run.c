@@ -20,27 +20,27 @@ uint8_t app_run_authorize(const app_t *app, const app_run_request_t *req)
 static uint8_t run_check_step(app_t *app, const app_run_step_t *rs, uint8_t end, exec_step_t *out)
 {
     const uint8_t s = rs->slot;
-    if (s < 1u || s > APP_N_SLOTS || !app->slot_valid[s - 1u]) {
+    const skill_t *sk = slots_skill(&app->slots, s);
+    if (sk == NULL) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
     if (!(rs->goal_scale >= FS_R(0.0)) || !(rs->time_scale > FS_R(0.0)) ||
         !fs_isfinite(rs->goal_scale) || !fs_isfinite(rs->time_scale)) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
-    const skill_t *sk = &app->slot_skill[s - 1u];
     fs_status_t sc = skchk_stiffness(sk, app->cfg.stiffness_max_Npm);
     if (sc != FS_OK) {
         app->last_run_status = (uint16_t)sc;
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
-    sc = skchk_run_scales(sk, app->slot_peak_N[s - 1u], rs->goal_scale, rs->time_scale, APP_TICK_S,
+    sc = skchk_run_scales(sk, app->slots.peak_N[s - 1u], rs->goal_scale, rs->time_scale, APP_TICK_S,
                           app->cfg.saf.lim.axis[0].force_max_N);
     app->last_run_status = (uint16_t)sc;
     if (sc != FS_OK) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
     const lim_axis_t *ya = &app->cfg.saf.lim.axis[1];
-    sc = skchk_run_path(sk, app->slot_path_m[s - 1u], rs->path_scale,
+    sc = skchk_run_path(sk, app->slots.path_m[s - 1u], rs->path_scale,
                         ya->pos_max_m - ya->pos_min_m);
     app->last_run_status = (uint16_t)sc;
     if (sc != FS_OK) {
@@ -65,7 +65,7 @@ uint8_t app_run_start(app_t *app, const app_run_request_t *req)
     if (req->n_steps == 0u || req->n_steps > EXEC_MAX_STEPS || req->end > 2u) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
-    if (app->state != APP_IDLE || app->checking) {
+    if (app->state != APP_IDLE || app->slots.checking) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT; /* a download's commit runs: its end decides */
     }
     exec_step_t steps[EXEC_MAX_STEPS];

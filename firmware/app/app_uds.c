@@ -1,6 +1,7 @@
 /* UDS device hooks of the application (see uds.h for the server, docs/protocol.md for the
  * identifiers): data identifiers, routines, SecurityAccess via sec_access, skill download into a
- * slot (validated by skill_parse, written by nvm, the old skill kept on any failure) and upload. */
+ * slot and upload through the skill store (slots.h: the old skill kept on any failure), the
+ * firmware download through fwu_uds. */
 #include <string.h>
 
 #include "app_internal.h"
@@ -71,11 +72,11 @@ static uint16_t did_slot_dir(const app_t *app, uint8_t *buf, uint16_t cap)
     v.n_entries = APP_N_SLOTS;
     for (uint16_t s = 0; s < APP_N_SLOTS; s++) {
         fs_wire_slot_entry_t *e = &v.entries[s];
-        if (app->slot_valid[s]) {
-            const skill_t *sk = &app->slot_skill[s];
+        const skill_t *sk = slots_skill(&app->slots, s + 1u);
+        if (sk != NULL) {
             e->valid = 1u;
-            e->length = app->slot_len[s];
-            e->crc32 = app->slot_crc[s]; /* the image's own CRC-32 field */
+            e->length = app->slots.len[s];
+            e->crc32 = app->slots.crc[s]; /* the image's own CRC-32 field */
             e->n_kernels = sk->dmp.n_kernels;
             e->duration_s = (float)sk->dmp.duration_s;
             e->end = (uint8_t)sk->end_policy;
@@ -90,7 +91,7 @@ static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf, uint16_
     switch (did) {
     case DID_SLOT_DIR: return did_slot_dir(app, buf, cap);
     case DID_LAST_TRANSFER: {
-        const fs_wire_last_transfer_t v = {app->last_transfer_status};
+        const fs_wire_last_transfer_t v = {app->slots.last_transfer_status};
         return fs_wire_last_transfer_pack(&v, buf, cap);
     }
     case DID_DEVICE_STATE: {
@@ -357,7 +358,7 @@ static uint8_t routine_self_test(const app_t *app, uint8_t sub, uint8_t *out, ui
         code = 1u;
     } else if (pfc_config_validate(&pc) != FS_OK) {
         code = (uint16_t)pfc_config_validate(&pc);
-    } else if (!app->nvm_ok) {
+    } else if (!app->slots.nvm_ok) {
         code = NVM_ERR_GEOMETRY;
     } else if (!fs_isfinite(app->sens.pos_m[0]) || !fs_isfinite(app->sens.pos_m[1]) ||
                !fs_isfinite(app->sens.force_contact_N[0])) {
@@ -397,14 +398,10 @@ static uint8_t routine_erase_slot(app_t *app, uint8_t sub, const uint8_t *d, uin
     if (app->uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
         return UDS_NRC_SECURITY_ACCESS_DENIED;
     }
-    if (app->state != APP_IDLE || !app->nvm_ok) {
+    if (app->state != APP_IDLE) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT; /* slots change only while idle */
     }
-    if (nvm_erase_slot(&app->nvm, (uint16_t)(v.slot - 1u)) != NVM_OK) {
-        return UDS_NRC_PROGRAMMING_FAILURE;
-    }
-    app->slot_valid[v.slot - 1u] = false;
-    return UDS_NRC_OK;
+    return slots_erase(&app->slots, v.slot);
 }
 
 static uint8_t routine(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *d, uint16_t len,
@@ -515,13 +512,7 @@ static uint8_t download_begin(void *ctx, uint32_t addr, uint32_t size)
     if (app->state != APP_IDLE) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT; /* slots change only while idle */
     }
-    if (!app->nvm_ok) {
-        return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED;
-    }
-    app->xfer_slot = addr;
-    app->xfer_size = size;
-    app->last_transfer_status = FS_TRANSFER_IN_PROGRESS; /* in progress */
-    return UDS_NRC_OK;
+    return slots_download_begin(&app->slots, addr, size);
 }
 
 static uint8_t download_data(void *ctx, uint32_t offset, const uint8_t *d, uint16_t len)
@@ -530,54 +521,7 @@ static uint8_t download_data(void *ctx, uint32_t offset, const uint8_t *d, uint1
     if (app->fw_xfer) {
         return fwu_uds_download_data(&app->fwu, &app->uds, offset, d, len);
     }
-    if (offset + len > app->xfer_size) {
-        return UDS_NRC_TRANSFER_SUSPENDED;
-    }
-    memcpy(&app->image[offset], d, len);
-    return UDS_NRC_OK;
-}
-
-/* One tick's slice of a download's commit (app->commit_stage): false while it goes on; true once
- * done, *st FS_OK when the skill passed every check and the flash write is done (its result in
- * app->writer.status), or the refusal. */
-static bool commit_slice(app_t *app, fs_status_t *st)
-{
-    *st = FS_OK;
-    switch (app->commit_stage) {
-    case APP_COMMIT_PARSE:
-        if (!skill_parse_run(&app->parser, APP_COMMIT_UNITS_PER_TICK)) {
-            return false;
-        }
-        *st = app->parser.status;
-        app->commit_stage = APP_COMMIT_PARAMS;
-        return *st != FS_OK;
-    case APP_COMMIT_PARAMS:
-        *st = skchk_params(&app->staging);
-        if (*st == FS_OK) {
-            *st = skchk_stiffness(&app->staging, app->cfg.stiffness_max_Npm);
-        }
-        if (*st != FS_OK) {
-            return true;
-        }
-        skchk_begin(&app->check, &app->staging, APP_TICK_S, app->cfg.saf.lim.axis[0].force_max_N);
-        app->check.path_max_m = app->cfg.saf.lim.axis[1].pos_max_m -
-                                app->cfg.saf.lim.axis[1].pos_min_m;
-        app->commit_stage = APP_COMMIT_CHECK;
-        return false;
-    case APP_COMMIT_CHECK:
-        if (!skchk_run(&app->check, APP_CHECK_STEPS_PER_TICK)) {
-            return false;
-        }
-        *st = app->check.status; /* 222/223/225: slot unchanged */
-        if (*st != FS_OK) {
-            return true;
-        }
-        (void)nvm_write_begin(&app->writer, &app->nvm, (uint16_t)(app->xfer_slot - 1u), app->image,
-                              app->xfer_size); /* its argument errors end the write at once */
-        app->commit_stage = APP_COMMIT_WRITE;
-        return false;
-    default: return nvm_write_run(&app->writer, APP_COMMIT_FLASH_UNITS_PER_TICK);
-    }
+    return slots_download_data(&app->slots, offset, d, len);
 }
 
 static uint8_t download_end(void *ctx, uint32_t *crc_out)
@@ -586,46 +530,18 @@ static uint8_t download_end(void *ctx, uint32_t *crc_out)
     if (app->fw_xfer) {
         return fwu_uds_download_end(&app->fwu, &app->uds, crc_out);
     }
-    const uint16_t slot = (uint16_t)(app->xfer_slot - 1u);
     if (app->state != APP_IDLE || app->uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
         /* a skill started (or security dropped) since RequestDownload: commit refused, the slot
          * keeps what it holds; nothing changes while a skill runs */
-        app->checking = false;
-        app->last_transfer_status = FS_TRANSFER_INTERRUPTED;
+        slots_refuse_commit(&app->slots);
         return app->state != APP_IDLE ? UDS_NRC_CONDITIONS_NOT_CORRECT
                                       : UDS_NRC_SECURITY_ACCESS_DENIED;
     }
-    if (!app->checking) {
-        /* the commit, a bounded slice a tick (0x78 meanwhile): parse, parameters, rollout, write */
-        skill_parse_begin(&app->parser, app->image, app->xfer_size, &app->staging);
-        app->checking = true;
-        app->commit_stage = APP_COMMIT_PARSE;
-    }
-    fs_status_t st = FS_OK;
-    if (!commit_slice(app, &st)) {
-        return UDS_NRC_RESPONSE_PENDING;
-    }
-    app->checking = false;
-    if (st != FS_OK) {
-        app->last_transfer_status = (uint16_t)st; /* e.g. 204 CRC, 223 peak: the old skill stays */
-        return UDS_NRC_PROGRAMMING_FAILURE;
-    }
-    const nvm_status_t ns = app->writer.status;
-    if (ns != NVM_OK) {
-        app->last_transfer_status = (uint16_t)ns;
-        app_slots_reload(app); /* whatever storage holds now */
-        return UDS_NRC_PROGRAMMING_FAILURE;
-    }
-    /* swap into the slot cache: UDS runs at the start of a tick and downloads only in IDLE */
-    app->slot_skill[slot] = app->staging;
-    app->slot_valid[slot] = true;
-    app->slot_peak_N[slot] = app->check.peak_N;
-    app->slot_path_m[slot] = app->check.path_peak_m;
-    app->last_transfer_status = 0u;
-    *crc_out = app->parser.crc; /* the image's CRC-32, checked by the parse */
-    app->slot_crc[slot] = *crc_out;
-    app->slot_len[slot] = app->xfer_size;
-    return UDS_NRC_OK;
+    const lim_axis_t *ya = &app->cfg.saf.lim.axis[1];
+    const slots_limits_t lim = {APP_TICK_S, app->cfg.stiffness_max_Npm,
+                                app->cfg.saf.lim.axis[0].force_max_N,
+                                ya->pos_max_m - ya->pos_min_m};
+    return slots_commit_step(&app->slots, &lim, crc_out);
 }
 
 static void transfer_abort(void *ctx)
@@ -634,39 +550,19 @@ static void transfer_abort(void *ctx)
     if (app->fw_xfer) {
         fwu_abort(&app->fwu);
     }
-    if (app->last_transfer_status == FS_TRANSFER_IN_PROGRESS) {
-        app->last_transfer_status = FS_TRANSFER_INTERRUPTED; /* interrupted: nothing was written */
-    }
-    app->checking = false; /* a commit in progress ends with the transfer */
-    app->xfer_size = 0u;
+    slots_abort(&app->slots);
 }
 
 static uint8_t upload_begin(void *ctx, uint32_t addr, uint32_t size)
 {
     app_t *app = ctx;
-    if (addr < 1u || addr > APP_N_SLOTS || !app->nvm_ok) {
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;
-    }
-    uint32_t len = 0u;
-    if (nvm_read(&app->nvm, (uint16_t)(addr - 1u), app->image, sizeof(app->image), &len) !=
-        NVM_OK) {
-        return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED; /* empty slot */
-    }
-    if (size != len) {
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;
-    }
-    app->xfer_size = len;
-    return UDS_NRC_OK;
+    return slots_upload_begin(&app->slots, addr, size);
 }
 
 static uint8_t upload_data(void *ctx, uint32_t offset, uint8_t *out, uint16_t len)
 {
-    app_t *app = ctx;
-    if (offset + len > app->xfer_size) {
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;
-    }
-    memcpy(out, &app->image[offset], len);
-    return UDS_NRC_OK;
+    const app_t *app = ctx;
+    return slots_upload_data(&app->slots, offset, out, len);
 }
 
 void app_uds_bind(app_t *app, uds_app_t *out)

@@ -1,5 +1,6 @@
 /* Bootloader decision logic (boot.h). */
 #include "boot.h"
+#include "boot_verify.h"
 
 #include <stddef.h>
 #include <string.h>

@@ -2,7 +2,6 @@
 #include "boot_image.h"
 
 #include <stddef.h>
-#include "boot_verify.h"
 
 static uint32_t rd_u32(const uint8_t *p)
 {
@@ -57,22 +56,6 @@ boot_status_t boot_image_parse_header(const uint8_t hdr[BOOT_IMAGE_HEADER_SIZE],
 uint32_t boot_image_total_len(const boot_image_header_t *h)
 {
     return h->payload_length + BOOT_IMAGE_OVERHEAD;
-}
-
-boot_status_t boot_image_verify(const fls_dev_t *dev, uint32_t addr, uint32_t cap,
-                                uint32_t want_target, const uint8_t *key, uint32_t key_len,
-                                boot_image_header_t *out)
-{
-    if (dev == NULL || key == NULL || out == NULL) {
-        return BOOT_ERR_ARG;
-    }
-    static boot_verify_t v; /* ~700 bytes: not on the boot's stack (one caller at a time) */
-    boot_verify_begin(&v, dev, addr, cap, want_target, key, key_len);
-    (void)boot_verify_run(&v, UINT32_MAX);
-    *out = v.hdr;
-    const boot_status_t st = v.status;
-    boot_verify_wipe(&v);
-    return st;
 }
 
 static boot_status_t check_range(uint16_t lo, uint16_t hi, uint16_t oldest, uint16_t native,

@@ -62,12 +62,6 @@ boot_status_t boot_image_parse_header(const uint8_t hdr[BOOT_IMAGE_HEADER_SIZE],
 /** Total image bytes (header + payload + tag) for a parsed header. */
 uint32_t boot_image_total_len(const boot_image_header_t *h);
 
-/** Verify the image stored at dev address addr within a region of cap bytes: header (701-703),
- *  fits (700 if the header says more than cap), payload SHA-256 (705), tag (706). */
-boot_status_t boot_image_verify(const fls_dev_t *dev, uint32_t addr, uint32_t cap,
-                                uint32_t want_target, const uint8_t *key, uint32_t key_len,
-                                boot_image_header_t *out);
-
 /** Check that stored data can be read by the image: each of skill/config "min..max stored
  *  version" (0,0 = nothing stored) must lie in [oldest, native] (708 / 709). */
 boot_status_t boot_image_check_data(const boot_image_header_t *h, uint16_t skill_min,

@@ -146,3 +146,19 @@ void boot_verify_wipe(boot_verify_t *v)
 {
     sec_wipe(v, (uint32_t)sizeof *v);
 }
+
+boot_status_t boot_image_verify(const fls_dev_t *dev, uint32_t addr, uint32_t cap,
+                                uint32_t want_target, const uint8_t *key, uint32_t key_len,
+                                boot_image_header_t *out)
+{
+    if (dev == NULL || key == NULL || out == NULL) {
+        return BOOT_ERR_ARG;
+    }
+    static boot_verify_t v; /* ~700 bytes: not on the boot's stack (one caller at a time) */
+    boot_verify_begin(&v, dev, addr, cap, want_target, key, key_len);
+    (void)boot_verify_run(&v, UINT32_MAX);
+    *out = v.hdr;
+    const boot_status_t st = v.status;
+    boot_verify_wipe(&v);
+    return st;
+}

@@ -45,4 +45,10 @@ bool boot_verify_run(boot_verify_t *v, uint32_t rounds);
 /** Abandon a verification: wipes the key material. */
 void boot_verify_wipe(boot_verify_t *v);
 
+/** Verify the image stored at dev address addr within a region of cap bytes: header (701-703),
+ *  fits (700 if the header says more than cap), payload SHA-256 (705), tag (706). */
+boot_status_t boot_image_verify(const fls_dev_t *dev, uint32_t addr, uint32_t cap,
+                                uint32_t want_target, const uint8_t *key, uint32_t key_len,
+                                boot_image_header_t *out);
+
 #endif /* BOOT_VERIFY_H */

@@ -12,9 +12,10 @@
 #include <string.h>
 #include <time.h>
 
-#include "app_internal.h"
+#include "app_config.h"
 #include "bus_model.h"
 #include "hal_host.h"
+#include "proto_ids.h"
 #include "scand.h"
 #include "sim_couple.h"
 #include "sim_model.h"
@@ -76,7 +77,7 @@ typedef struct {
     sim_couple_plant_t plant;
     bus_t bus;
     scand_t sd;
-    app_t app;
+    app_t *app; /* app_device(): one device per process */
     app_config_t app_cfg;
     uint64_t sim_ns;
     uint64_t slips;
@@ -139,7 +140,7 @@ static void device_boot(serve_t *s)
 {
     hal_sim_can_reset();
     hal_host_set_time_us(s->plant.n_tick * 1000u);
-    app_init(&s->app, &s->app_cfg);
+    app_init(s->app, &s->app_cfg);
 }
 
 /* One 1 ms step: sensors at t, firmware tick, actuator, plant over the tick (sim_couple.h). */
@@ -147,10 +148,11 @@ static void sim_tick(serve_t *s)
 {
     hal_host_set_time_us(s->plant.n_tick * 1000u);
     hal_sensors_t hs;
-    sim_couple_sense(&s->plant, &s->sc, s->app.state == APP_TEACH, s->app.tick, &hs);
+    sim_couple_sense(&s->plant, &s->sc, app_state(s->app) == APP_TEACH, app_tick_count(s->app),
+                     &hs);
     hal_host_set_sensors(&hs);
 
-    app_tick(&s->app, false);
+    app_tick(s->app, false);
     uint8_t reset_type = 0u;
     if (hal_host_take_reset(&reset_type)) {
         device_boot(s); /* ECUReset: firmware restarts, flash keeps the slots */
@@ -159,7 +161,7 @@ static void sim_tick(serve_t *s)
     bool enable = false;
     fs_real_t f[2];
     hal_host_get_actuator(&enable, f);
-    (void)sim_couple_step(&s->plant, &s->sc, s->app.state, enable, f);
+    (void)sim_couple_step(&s->plant, &s->sc, app_state(s->app), enable, f);
 }
 
 /* The device's controller: its most urgent queued frames wait in DEVICE_MAILBOXES mailboxes on
@@ -255,7 +257,7 @@ static int serve_run_socketcan(serve_t *s, const char *ifname, int argc, char **
         .scenario = scenario,
         .tick = socketcan_tick,
         .ctx = NULL,
-        .device_tx_dropped = &s->app.tx_dropped,
+        .device_tx_dropped = app_tx_dropped(s->app),
         .stop = &g_stop};
     return serve_socketcan_run(&cfg);
 }
@@ -380,6 +382,7 @@ static int check_serve_opts(const serve_opts_t *o)
 static int serve_setup(serve_t *s, const serve_opts_t *o)
 {
     memset(s, 0, sizeof(*s));
+    s->app = app_device();
     s->drop_p = o->drop;
     s->corrupt_p = o->corrupt;
     s->drop_tel_p = o->drop_tel;
@@ -519,7 +522,7 @@ int bus_cmd_serve(int argc, char **argv)
             next_tick_ns > 0u
                 ? 100.0 * (double)s->bus.bits * (double)s->bus.bit_ns / (double)next_tick_ns
                 : 0.0,
-            (unsigned long long)s->slips, hal_sim_can_rx_overflows(), s->app.tx_dropped,
+            (unsigned long long)s->slips, hal_sim_can_rx_overflows(), *app_tx_dropped(s->app),
             (unsigned long long)s->dropped, (unsigned long long)s->corrupted,
             (unsigned long long)s->tel_dropped);
     return 0;

@@ -13,7 +13,9 @@
 #include "hal_host.h"
 #include "nvm.h"
 #include "proto_ids.h"
+#include "sec_access.h"
 #include "sec_sha256.h"
+#include "uds.h"
 
 
 static bool tester_send(void *ctx, const can_frame_t *f)
@@ -25,6 +27,7 @@ static bool tester_send(void *ctx, const can_frame_t *f)
 void rig_init(rig_t *r, const sim_scenario_t *sc)
 {
     memset(r, 0, sizeof(*r));
+    r->app = app_device();
     r->sc = *sc;
     hal_host_init();
     hal_host_flash_erase();
@@ -56,8 +59,8 @@ void rig_boot(rig_t *r)
 {
     hal_sim_can_reset();
     hal_host_set_time_us(r->n_tick * 1000u);
-    app_init(&r->app, &r->cfg);
-    (void)sim_couple_host_session(&r->app, &r->host); /* a new session after every power-up */
+    app_init(r->app, &r->cfg);
+    (void)sim_couple_host_session(r->app, &r->host); /* a new session after every power-up */
 }
 
 static void deliver_host(rig_t *r, can_frame_t *f)
@@ -160,7 +163,7 @@ void rig_step(rig_t *r)
     if (r->inj.stall_ticks > 0u) {
         r->inj.stall_ticks--;
     } else {
-        r->ran = app_poll(&r->app);
+        r->ran = app_poll(r->app);
     }
     uint8_t reset_type = 0u;
     if (hal_host_take_reset(&reset_type)) {
@@ -169,7 +172,7 @@ void rig_step(rig_t *r)
     host_receive(r);
 
     /* actuator */
-    const bool enable = sim_couple_actuate(sc, &r->app, r->drv, r->cmd_N);
+    const bool enable = sim_couple_actuate(sc, r->app, r->drv, r->cmd_N);
     r->act_enable = enable;
     for (int a = 0; a < 2; a++) {
         if (r->inj.act_limit_N > 0.0) {
@@ -180,7 +183,7 @@ void rig_step(rig_t *r)
         r->drv[a].force_ext_N = 0.0;
         r->drv[a].hand_damping_Nspm = 0.0;
     }
-    sim_couple_advance(sc, r->ax, r->drv, sim_couple_parked(r->app.state, enable));
+    sim_couple_advance(sc, r->ax, r->drv, sim_couple_parked(app_state(r->app), enable));
     if (r->ax[0].contact_N > r->contact_max_N) {
         r->contact_max_N = r->ax[0].contact_N;
     }

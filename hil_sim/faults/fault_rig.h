@@ -13,7 +13,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "app_internal.h"
+#include "app_config.h"
+#include "isotp.h"
 #include "sim_couple.h"
 #include "sim_model.h"
 #include "sim_rng.h"
@@ -51,7 +52,7 @@ typedef struct {
     sim_sample_t ring[SIM_COUPLE_RING]; /* sensor pipeline (delay_samples) */
     uint64_t n_tick;                    /* simulated ms since the rig started */
     app_config_t cfg;
-    app_t app;
+    app_t *app; /* app_device(): one device per process */
     /* host */
     bool heartbeat_on;
     secoc_t host; /* the host's session (motion key, freshness values), new at every boot */

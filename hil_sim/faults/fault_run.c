@@ -45,10 +45,9 @@ static void trace_tick(const rig_t *r)
     if (g_trace != NULL) {
         const sim_sample_t *m = &r->ring[(r->n_tick - 1u) % SIM_COUPLE_RING];
         fprintf(g_trace, "%llu,%d,%u,%.6f,%.6f,%d,%.6f,%.6f,%.6f,%.6f,%.6f\n",
-                (unsigned long long)(r->n_tick - 1u), (int)r->app.state,
-                (unsigned)r->app.saf_out.fault_code, r->cmd_N[0], r->cmd_N[1],
-                r->act_enable ? 1 : 0, r->ax[0].pos_m, r->ax[0].vel_mps, r->ax[0].contact_N, m->x_m,
-                m->contact_N);
+                (unsigned long long)(r->n_tick - 1u), (int)app_state(r->app),
+                (unsigned)app_fault_code(r->app), r->cmd_N[0], r->cmd_N[1], r->act_enable ? 1 : 0,
+                r->ax[0].pos_m, r->ax[0].vel_mps, r->ax[0].contact_N, m->x_m, m->contact_N);
     }
 }
 static uint8_t g_img[IMG_MAX], g_nb[IMG_MAX], g_new[IMG_MAX], g_rd[IMG_MAX];
@@ -92,7 +91,10 @@ static int setup_device(rig_t *r, const sim_scenario_t *sc)
     rig_boot(r);
     r->heartbeat_on = true;
     rig_run(r, 200u);
-    return r->app.state == APP_IDLE && r->app.slot_valid[0] && r->app.slot_valid[1] ? 0 : -1;
+    return app_state(r->app) == APP_IDLE && (app_slot_skill(r->app, 1u) != NULL) &&
+                   (app_slot_skill(r->app, 2u) != NULL)
+               ? 0
+               : -1;
 }
 
 /* What run_fault follows tick by tick (tick numbers; UINT64_MAX: not yet). */
@@ -166,9 +168,9 @@ static bool observe(rig_t *r, const fscen_t *fs, watch_t *w, frow_t *row, uint64
     if (fa > row->worst_N || isnan(fa)) {
         row->worst_N = isnan(fa) ? (double)INFINITY : fa;
     }
-    if (w->det == UINT64_MAX && r->app.saf_out.fault_code != 0u) {
+    if (w->det == UINT64_MAX && app_fault_code(r->app) != 0u) {
         w->det = t;
-        row->code = r->app.saf_out.fault_code;
+        row->code = app_fault_code(r->app);
         if (fs->expect_code == 0) {
             return false;
         }
@@ -186,7 +188,8 @@ static bool observe(rig_t *r, const fscen_t *fs, watch_t *w, frow_t *row, uint64
         if (w->zero == UINT64_MAX && r->cmd_N[0] == 0.0 && r->cmd_N[1] == 0.0) {
             w->zero = t;
         }
-        if (r->app.state != APP_FAULT || (w->zero != UINT64_MAX && (fa != 0.0 || r->act_enable))) {
+        if (app_state(r->app) != APP_FAULT ||
+            (w->zero != UINT64_MAX && (fa != 0.0 || r->act_enable))) {
             w->hold_ok = false;
         }
     }
@@ -202,7 +205,8 @@ static void run_ticks(rig_t *r, const fscen_t *fs, watch_t *w, frow_t *row)
         const uint64_t t = r->n_tick;
         if (t == w->t_inj) {
             row->force_at_onset_N = cmd_abs_max(r);
-            w->was_exec = r->app.state == APP_EXECUTE; /* the skill runs when the fault comes */
+            w->was_exec = app_state(r->app) ==
+                          APP_EXECUTE; /* the skill runs when the fault comes */
             w->injected = true;
             const uint64_t onset = inject(r, fs, t);
             w->onset = onset != UINT64_MAX ? onset : w->onset;
@@ -213,7 +217,7 @@ static void run_ticks(rig_t *r, const fscen_t *fs, watch_t *w, frow_t *row)
         rig_step(r);
         trace_tick(r);
         if (t == w->t_inj && w->t_inj == w->t_exec) {
-            w->was_exec = r->app.state == APP_EXECUTE; /* at_s = 0: started by this command */
+            w->was_exec = app_state(r->app) == APP_EXECUTE; /* at_s = 0: started by this command */
         }
         if (!observe(r, fs, w, row, t)) {
             break;
@@ -237,7 +241,8 @@ static void row_common(const rig_t *r, const watch_t *w, uint32_t crc_before, fr
     }
     row->status_seen = r->status_fault == row->code && row->code != 0;
     const bool lost_flash = rig_flash_crc() != crc_before;
-    row->lost = lost_flash || !r->app.slot_valid[0] || !r->app.slot_valid[1];
+    row->lost = lost_flash || !(app_slot_skill(r->app, 1u) != NULL) ||
+                !(app_slot_skill(r->app, 2u) != NULL);
 }
 
 /* expect_code = 0: no fault may latch; the skill runs to its end within the limits. */
@@ -268,7 +273,7 @@ static void row_fault(rig_t *r, const fscen_t *fs, const watch_t *w, frow_t *row
         rig_step(r);
         stayed_zero = stayed_zero && cmd_abs_max(r) == 0.0;
     }
-    row->cleared = r->app.state == APP_IDLE && stayed_zero;
+    row->cleared = app_state(r->app) == APP_IDLE && stayed_zero;
     if (!row->status_seen) {
         row->status_seen = r->status_fault == row->code; /* bus-off: status after recovery */
     }
@@ -359,7 +364,8 @@ static void run_power_loss(const sim_scenario_t *sc, frow_t *row)
         const bool is_new = ok && len == g_new_len && memcmp(g_rd, g_new, len) == 0;
         ok = ok && rig_read_slot(1u, g_rd, IMG_MAX, &len) == 0 && len == g_nb_len &&
              memcmp(g_rd, g_nb, len) == 0;
-        ok = ok && r->app.slot_valid[0] && r->app.slot_valid[1] && (is_old || is_new);
+        ok = ok && (app_slot_skill(r->app, 1u) != NULL) && (app_slot_skill(r->app, 2u) != NULL) &&
+             (is_old || is_new);
         if (!ok || (nrc == 0u && !is_new)) {
             bad++;
         } else if (is_new) {

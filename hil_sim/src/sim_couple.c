@@ -7,6 +7,7 @@
 #include "e2e.h"
 #include "fs_dbc.h"
 #include "proto_ids.h"
+#include "uds.h"
 
 void sim_couple_sample(const sim_scenario_t *sc, const sim_axis_t *ax, const sim_drive_t *drv,
                        sim_rng_t *rng, sim_sample_t *out)
@@ -190,7 +191,7 @@ uint8_t sim_couple_host_session(app_t *app, secoc_t *host)
     }
     uint8_t len = 0u;
     const uint8_t *secret = hal_device_secret(UDS_SEC_LEVEL_WRITE, &len);
-    secoc_start_session(host, secret, len, app->secoc_dev_nonce, nonce);
+    secoc_start_session(host, secret, len, app_motion_nonce(app), nonce);
     return 0u;
 }
 

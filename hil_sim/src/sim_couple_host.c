@@ -9,5 +9,5 @@ bool sim_couple_actuate(const sim_scenario_t *sc, const app_t *app, sim_drive_t 
     bool enable = false;
     fs_real_t f[2];
     hal_host_get_actuator(&enable, f);
-    return sim_couple_drive(sc, app->state, enable, f, drv, cmd_N);
+    return sim_couple_drive(sc, app_state(app), enable, f, drv, cmd_N);
 }

@@ -8,13 +8,14 @@
 #include <string.h>
 #include <time.h>
 
-#include "app_internal.h"
+#include "app_config.h"
 #include "fs_dbc.h"
 #include "hal_host.h"
 #include "nvm.h"
 #include "proto_ids.h"
 #include "sim_couple.h"
 #include "sim_rng.h"
+#include "uds_nrc.h"
 
 /* ---------------- skills ---------------- */
 
@@ -126,7 +127,7 @@ static int fault_active(const sim_fault_t *fl, sim_fault_kind_t kind, double t)
 #define SIM_RUN_START_TICKS 3u    /* ticks before t = 0: boot, then the command */
 
 typedef struct {
-    app_t app;
+    app_t *app; /* app_device(): one device per process */
     app_config_t cfg;
     secoc_t host;        /* the host's session: its key and freshness values */
     uint16_t fault_code; /* first emergency frame's code, 0 if none */
@@ -175,10 +176,11 @@ static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_ima
         }
     }
     memset(d, 0, sizeof(*d));
+    d->app = app_device();
     sim_couple_device_config(sc, &d->cfg);
     hal_host_set_time_us(0u);
-    app_init(&d->app, &d->cfg);
-    (void)sim_couple_host_session(&d->app, &d->host);
+    app_init(d->app, &d->cfg);
+    (void)sim_couple_host_session(d->app, &d->host);
     const hal_sensors_t rest = {{sc->start_x_m, sc->start_y_m}, {0.0, 0.0}, {0.0, 0.0}};
     hal_host_set_sensors(&rest);
     for (uint32_t k = 0; k < SIM_RUN_START_TICKS; k++) {
@@ -194,7 +196,7 @@ static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_ima
                 (void)hal_sim_can_deliver(&c[0]);
             }
         }
-        app_tick(&d->app, false);
+        app_tick(d->app, false);
         dev_host(d, 1u);
     }
     *total_s = 0.0;
@@ -203,7 +205,8 @@ static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_ima
         memset(&req, 0, sizeof(req));
         req.source = APP_RUN_FROM_LOCAL;
         for (int i = 0; i < sc->n_skills; i++) {
-            if (!d->app.slot_valid[i]) {
+            const skill_t *sk = app_slot_skill(d->app, (uint8_t)(i + 1));
+            if (sk == NULL) {
                 snprintf(err, SIM_ERR_MAX, "%s: the device did not load skill %d", sc->path, i + 1);
                 return -1;
             }
@@ -213,24 +216,23 @@ static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_ima
             s->time_scale = sc->time_scale;
             s->path_scale = sc->path_scale;
             s->duration_s = (sc->n_step_durations > 0) ? sc->step_duration_s[i] : 0.0;
-            *total_s += (s->duration_s > 0.0)
-                            ? s->duration_s
-                            : (double)d->app.slot_skill[i].dmp.duration_s * sc->time_scale;
+            *total_s += (s->duration_s > 0.0) ? s->duration_s
+                                              : (double)sk->dmp.duration_s * sc->time_scale;
         }
         req.end = (sc->end_policy < 0) ? 0u : (sc->end_policy == SKILL_END_HOLD ? 1u : 2u);
         req.n_steps = (uint8_t)sc->n_skills;
-        const uint8_t nrc = app_run_start(&d->app, &req);
+        const uint8_t nrc = app_run_start(d->app, &req);
         if (nrc != UDS_NRC_OK) {
             snprintf(err, SIM_ERR_MAX,
                      "%s: the device refused the sequence (NRC 0x%02X, status %u)", sc->path,
-                     (unsigned)nrc, (unsigned)d->app.last_run_status);
+                     (unsigned)nrc, (unsigned)app_last_run_status(d->app));
             return -1;
         }
     }
     const app_state_t want = (sc->mode == SIM_MODE_TEACH) ? APP_TEACH : APP_EXECUTE;
-    if (d->app.state != want) {
+    if (app_state(d->app) != want) {
         snprintf(err, SIM_ERR_MAX, "%s: the device is in state %d, not %d", sc->path,
-                 (int)d->app.state, (int)want);
+                 (int)app_state(d->app), (int)want);
         return -1;
     }
     return 0;
@@ -422,12 +424,12 @@ static bool run_tick(run_t *r, uint64_t n, double t, sim_summary_t *sum)
 
     /* the device's tick, its frames, its actuator; tracking counts the ticks that run the
      * skill (from EXECUTE: once a sequence has released, the device idles, parked) */
-    const bool executing = r->dev.app.state == APP_EXECUTE;
-    app_tick(&r->dev.app, false);
+    const bool executing = app_state(r->dev.app) == APP_EXECUTE;
+    app_tick(r->dev.app, false);
     dev_host(&r->dev, dev_tick);
     double f_cmd[2];
-    const bool enable = sim_couple_actuate(sc, &r->dev.app, r->drv, f_cmd);
-    const double f_hat = r->teach ? 0.0 : (double)r->dev.app.force_hat_N;
+    const bool enable = sim_couple_actuate(sc, r->dev.app, r->drv, f_cmd);
+    const double f_hat = r->teach ? 0.0 : (double)app_force_ref_N(r->dev.app);
     /* TEACH logs the rendered total force (operator - contact), EXECUTE the law's x output */
     const double cmd_log = r->teach ? m->operator_x_N - m->contact_N : f_cmd[0];
     if (!r->teach) {
@@ -436,7 +438,7 @@ static bool run_tick(run_t *r, uint64_t n, double t, sim_summary_t *sum)
         sum->max_cmd_abs_N = fabs(cmd_log);
     }
     run_record(r, t, &s, cmd_log, f_hat, p_true, sum);
-    return sim_couple_parked(r->dev.app.state, enable);
+    return sim_couple_parked(app_state(r->dev.app), enable);
 }
 
 /* The summary's totals once the last tick has run. */
@@ -449,7 +451,7 @@ static void run_finish(const run_t *r, uint64_t n_ticks, double t0_wall, sim_sum
     sum->fault_s = (r->dev.fault_code != 0u)
                        ? (double)(r->dev.fault_tick - SIM_RUN_START_TICKS) * dt
                        : -1.0;
-    sum->final_state = (int)r->dev.app.state;
+    sum->final_state = (int)app_state(r->dev.app);
     sum->exec_ticks = r->exec_ticks;
     if (!r->teach && sum->max_hat_N > 0.0 && r->exec_ticks > 0u) {
         sum->tracking_max_pct = 100.0 * r->max_err / sum->max_hat_N;

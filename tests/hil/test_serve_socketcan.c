@@ -15,19 +15,20 @@
 
 #include <errno.h>
 
-#include "app_internal.h"
+#include "app_config.h"
+#include "proto_ids.h"
 #include "fs_dbc.h"
 #include "hal_host.h"
 #include "pair_ops.h"
 #include "serve_socketcan.h"
 
 #define RUN_TICKS 600u
-#define ENOBUFS_TICK 50u        /* the interface refuses 30 writes from here */
-#define BUS_OFF_TICK 200u       /* the bus-off error frame goes on the bus after this tick */
+#define ENOBUFS_TICK 50u  /* the interface refuses 30 writes from here */
+#define BUS_OFF_TICK 200u /* the bus-off error frame goes on the bus after this tick */
 
-static app_t app;
+static app_t *app; /* app_device() */
 static app_config_t cfg;
-static uint32_t k;                       /* ticks run */
+static uint32_t k; /* ticks run */
 static uint32_t fault_tick;
 static uint32_t dropped_before_off;
 static can_frame_t seen[4096];
@@ -38,8 +39,8 @@ static void device_tick(void *ctx)
 {
     (void)ctx;
     hal_host_set_time_us((uint64_t)k * 1000u);
-    app_tick(&app, false);
-    if (app.state == APP_FAULT && fault_tick == 0u) {
+    app_tick(app, false);
+    if (app_state(app) == APP_FAULT && fault_tick == 0u) {
         fault_tick = k;
     }
     struct can_frame lf;
@@ -52,7 +53,7 @@ static void device_tick(void *ctx)
         pair_ctl.write_fail_errno = ENOBUFS;
     }
     if (k == BUS_OFF_TICK) {
-        dropped_before_off = app.tx_dropped;
+        dropped_before_off = *app_tx_dropped(app);
         pair_put(CAN_ERR_FLAG | CAN_ERR_BUSOFF, CAN_ERR_DLC, NULL);
     }
     k++;
@@ -63,18 +64,26 @@ static void test_run_over_socket_pair(void **state)
     (void)state;
     pair_reset();
     pair_ctl.bitrate_bps = 500000u;
-    pair_ctl.set_result = -EPERM;               /* no CAP_NET_ADMIN: refused, run goes on */
+    pair_ctl.set_result = -EPERM; /* no CAP_NET_ADMIN: refused, run goes on */
     hal_host_init();
     hal_host_flash_erase();
     hal_sim_can_reset();
     app_config_default(&cfg);
     hal_host_set_time_us(0u);
-    app_init(&app, &cfg);
+    app = app_device();
+    app_init(app, &cfg);
     volatile sig_atomic_t stop = 0;
-    const serve_socketcan_cfg_t sc = {
-        .ifname = "can0", .ops = &pair_ops, .bitrate_bps = 250000u, .speed = 20.0,
-        .end_ns = (uint64_t)RUN_TICKS * 1000000u, .node = 0u, .scenario = NULL, .tick = device_tick,
-        .ctx = NULL, .device_tx_dropped = &app.tx_dropped, .stop = &stop};
+    const serve_socketcan_cfg_t sc = {.ifname = "can0",
+                                      .ops = &pair_ops,
+                                      .bitrate_bps = 250000u,
+                                      .speed = 20.0,
+                                      .end_ns = (uint64_t)RUN_TICKS * 1000000u,
+                                      .node = 0u,
+                                      .scenario = NULL,
+                                      .tick = device_tick,
+                                      .ctx = NULL,
+                                      .device_tx_dropped = app_tx_dropped(app),
+                                      .stop = &stop};
     assert_int_equal(serve_socketcan_run(&sc), 0);
     assert_int_equal(k, RUN_TICKS);
     assert_int_equal(pair_ctl.set_calls, 1);
@@ -93,12 +102,13 @@ static void test_run_over_socket_pair(void **state)
         if (n_status > 0u) {
             assert_int_equal(ctr, (uint8_t)((last + 1u) & 0x0Fu));
         }
-        same_tick = (i > 0u && n_status > 0u && seen_tick[i] == seen_tick[i - 1u]) ? same_tick + 1u : 1u;
+        same_tick = (i > 0u && n_status > 0u && seen_tick[i] == seen_tick[i - 1u]) ? same_tick + 1u
+                                                                                   : 1u;
         most_in_one_tick = same_tick > most_in_one_tick ? same_tick : most_in_one_tick;
         last = ctr;
         n_status++;
     }
-    assert_int_equal(n_status, BUS_OFF_TICK / 10u);   /* ticks 0, 10, ..., 190 */
+    assert_int_equal(n_status, BUS_OFF_TICK / 10u); /* ticks 0, 10, ..., 190 */
     assert_int_equal(dropped_before_off, 0u);
     assert_int_equal(pair_ctl.write_fail_count, 0u);
     /* held while refused (ticks 50..80), then written together: status of 50, 60, 70 */
@@ -106,13 +116,13 @@ static void test_run_over_socket_pair(void **state)
 
     /* bus-off: read before tick BUS_OFF_TICK + 1, latched in that tick */
     assert_int_equal(fault_tick, BUS_OFF_TICK + 1u);
-    assert_int_equal(app.saf_out.fault_code, FLT_BUS_OFF);
+    assert_int_equal(app_fault_code(app), FLT_BUS_OFF);
     const uint32_t back = BUS_OFF_TICK + 1u + CANSOCK_RESTART_MS;
     assert_int_equal(pair_ctl.restart_calls, 1);
     unsigned first_after = n_seen;
     for (unsigned i = 0; i < n_seen; i++) {
         if (seen_tick[i] > BUS_OFF_TICK + 1u) {
-            assert_true(seen_tick[i] > back);           /* nothing while bus-off */
+            assert_true(seen_tick[i] > back); /* nothing while bus-off */
             if (first_after == n_seen) {
                 first_after = i;
             }
@@ -123,7 +133,7 @@ static void test_run_over_socket_pair(void **state)
     struct fs_dbc_emergency_t e;
     assert_int_equal(fs_dbc_emergency_unpack(&e, seen[first_after].data, 8), 0);
     assert_int_equal(e.fault_code, FLT_BUS_OFF);
-    assert_int_equal(app.state, APP_FAULT);
+    assert_int_equal(app_state(app), APP_FAULT);
     pair_reset();
 }
 

@@ -15,13 +15,13 @@
 
 #include <errno.h>
 
-#include "app_internal.h"
+#include "app_config.h"
 #include "cansock.h"
 #include "fs_dbc.h"
 #include "hal_host.h"
 #include "pair_ops.h"
 
-static app_t app;
+static app_t *app; /* app_device() */
 static app_config_t cfg;
 static uint64_t t_us;
 static uint8_t hb_counter;
@@ -41,12 +41,13 @@ static int setup(void **state)
     hal_sensors_t s;
     memset(&s, 0, sizeof(s));
     s.pos_m[0] = 0.001;
-    s.force_operator_N[0] = 4.0;                    /* an operator pressing in TEACH */
+    s.force_operator_N[0] = 4.0; /* an operator pressing in TEACH */
     hal_host_set_sensors(&s);
     app_config_default(&cfg);
-    cfg.render_carriage = 1u;                       /* TEACH commands a force: the rendering */
+    cfg.render_carriage = 1u; /* TEACH commands a force: the rendering */
     hal_host_set_time_us(0u);
-    app_init(&app, &cfg);
+    app = app_device();
+    app_init(app, &cfg);
     return 0;
 }
 
@@ -62,7 +63,7 @@ static void tick(void)
 {
     t_us += 1000u;
     hal_host_set_time_us(t_us);
-    app_tick(&app, false);
+    app_tick(app, false);
 }
 
 static void put_frame(const can_frame_t *f)
@@ -121,16 +122,16 @@ static void test_status_out_commands_in(void **state)
             n_status++;
         }
     }
-    assert_int_equal(n_status, 2);                  /* every 10 ms */
-    assert_int_equal(app.state, APP_IDLE);
+    assert_int_equal(n_status, 2); /* every 10 ms */
+    assert_int_equal(app_state(app), APP_IDLE);
     command(APP_CMD_TEACH);
     heartbeat();
     for (unsigned i = 0; i < 5; i++) {
         tick();
     }
-    assert_int_equal(app.state, APP_TEACH);
+    assert_int_equal(app_state(app), APP_TEACH);
     assert_true(drain(out, 64) > 0u);
-    assert_true(hal_can_tx_idle());                 /* the bus took every frame */
+    assert_true(hal_can_tx_idle()); /* the bus took every frame */
 }
 
 static void test_bus_off_row(void **state)
@@ -146,11 +147,11 @@ static void test_bus_off_row(void **state)
         }
         tick();
     }
-    assert_int_equal(app.state, APP_TEACH);
+    assert_int_equal(app_state(app), APP_TEACH);
     bool en = false;
     fs_real_t f_N[2];
     hal_host_get_actuator(&en, f_N);
-    assert_true(en && f_N[0] != 0.0);               /* the device renders the operator's push */
+    assert_true(en && f_N[0] != 0.0); /* the device renders the operator's push */
     can_frame_t out[256];
     (void)drain(out, 256);
 
@@ -158,10 +159,10 @@ static void test_bus_off_row(void **state)
     pair_put(CAN_ERR_FLAG | CAN_ERR_BUSOFF, CAN_ERR_DLC, NULL);
     tick();
     assert_true(hal_can_bus_off());
-    assert_int_equal(app.state, APP_FAULT);
-    assert_int_equal(app.saf_out.fault_code, FLT_BUS_OFF);
+    assert_int_equal(app_state(app), APP_FAULT);
+    assert_int_equal(app_fault_code(app), FLT_BUS_OFF);
     const uint64_t off_us = t_us;
-    pair_ctl.restart_result = -EPERM;               /* first restart refused, the second works */
+    pair_ctl.restart_result = -EPERM; /* first restart refused, the second works */
     bool restarted = false;
     for (unsigned i = 0; i < 200 && !restarted; i++) {
         if (i % 10 == 0) {
@@ -173,8 +174,8 @@ static void test_bus_off_row(void **state)
         }
         if (i == 49u) {
             hal_host_get_actuator(&en, f_N);
-            assert_false(en);                       /* ramped to zero and off within 50 ms */
-            assert_int_equal(drain(out, 256), 0);   /* nothing transmitted while bus-off */
+            assert_false(en);                     /* ramped to zero and off within 50 ms */
+            assert_int_equal(drain(out, 256), 0); /* nothing transmitted while bus-off */
         }
         restarted = !hal_can_bus_off();
     }
@@ -198,7 +199,7 @@ static void test_bus_off_row(void **state)
         }
         tick();
     }
-    assert_int_equal(app.state, APP_FAULT);
+    assert_int_equal(app_state(app), APP_FAULT);
     hal_host_get_actuator(&en, f_N);
     assert_false(en);
     const unsigned m = drain(out, 256);

@@ -1,0 +1,88 @@
+/* Security of the device (see app_internal.h): the SecurityAccess configuration per level, the
+ * wrong-key record kept across resets, and the motion key of a host session. */
+#include "app_internal.h"
+
+#include <string.h>
+
+static int rng_adapter(void *ctx, uint8_t *buf, uint32_t len)
+{
+    (void)ctx;
+    return hal_random(buf, len);
+}
+
+const sec_config_t *app_sec_config(const app_t *app, uint8_t level)
+{
+    if (level == UDS_SEC_LEVEL_WRITE) {
+        return &app->sec_cfg[0];
+    }
+    return level == UDS_SEC_LEVEL_FIRMWARE ? &app->sec_cfg[1] : NULL;
+}
+
+void app_sec_persist(app_t *app)
+{
+    uint8_t rec[SEC_RECORD_LEN];
+    sec_record_encode(&app->sec, rec);
+    if (!app->sec_nvm_ok || memcmp(rec, app->sec_saved, sizeof rec) == 0) {
+        return;
+    }
+    if (nvm_write(&app->sec_nvm, 0u, rec, (uint32_t)sizeof rec) == NVM_OK) {
+        memcpy(app->sec_saved, rec, sizeof rec);
+    }
+}
+
+/* One secret per level from the HAL; the attempt counter from the record kept across resets
+ * (none or unreadable: the lockout delay runs at power-up, the safe side). */
+void app_sec_setup(app_t *app)
+{
+    static const uint8_t levels[APP_SEC_LEVELS] = {UDS_SEC_LEVEL_WRITE, UDS_SEC_LEVEL_FIRMWARE};
+    for (unsigned i = 0; i < APP_SEC_LEVELS; i++) {
+        sec_config_t *c = &app->sec_cfg[i];
+        sec_default_config(c);
+        uint8_t secret_len = 0u;
+        const uint8_t *secret = hal_device_secret(levels[i], &secret_len);
+        if (secret_len > SEC_SECRET_MAX) {
+            secret_len = SEC_SECRET_MAX;
+        }
+        memcpy(c->secret, secret, secret_len);
+        c->secret_len = secret_len;
+        c->rng = rng_adapter;
+        c->rng_ctx = app;
+    }
+    uint8_t failed = 0u, locked_out = 1u;
+    const fls_dev_t *dev = hal_sec_flash();
+    app->sec_nvm_ok = dev != NULL && nvm_init(&app->sec_nvm, dev) == NVM_OK;
+    if (app->sec_nvm_ok) {
+        uint8_t rec[SEC_RECORD_LEN];
+        uint32_t len = 0u;
+        const nvm_status_t st = nvm_read(&app->sec_nvm, 0u, rec, (uint32_t)sizeof rec, &len);
+        if (st == NVM_OK && sec_record_decode(rec, len, &failed, &locked_out)) {
+            memcpy(app->sec_saved, rec, sizeof rec);
+        } else if (nvm_dir(&app->sec_nvm, 0u) != NULL && nvm_dir(&app->sec_nvm, 0u)->valid == 0u) {
+            failed = 0u; /* a fresh device: no record yet */
+            locked_out = 0u;
+        }
+    }
+    sec_restore(&app->sec_cfg[0], &app->sec, app->now_ms, failed, locked_out);
+}
+
+uint8_t app_motion_key(app_t *app, const uint8_t *host_nonce, uint16_t len)
+{
+    if (len != SECOC_NONCE_LEN) {
+        return UDS_NRC_INCORRECT_LENGTH;
+    }
+    if (app->state == APP_TEACH || app->state == APP_EXECUTE) {
+        return UDS_NRC_CONDITIONS_NOT_CORRECT; /* never re-keyed while a motion runs */
+    }
+    uint8_t dev_nonce[SECOC_NONCE_LEN];
+    if (hal_random(dev_nonce, SECOC_NONCE_LEN) != 0) {
+        return UDS_NRC_CONDITIONS_NOT_CORRECT;
+    }
+    const sec_config_t *c = &app->sec_cfg[0];
+    uint8_t key[SECOC_KEY_LEN];
+    secoc_derive_key(c->secret, c->secret_len, dev_nonce, host_nonce, key);
+    secoc_set_key(&app->secoc, key, SECOC_KEY_LEN);
+    sec_wipe(key, sizeof key);
+    memcpy(app->secoc_dev_nonce, dev_nonce, SECOC_NONCE_LEN);
+    app->run_opts_fv = 0u;
+    return UDS_NRC_OK;
+}

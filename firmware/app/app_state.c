@@ -1,0 +1,50 @@
+/* The device state's one place of change (see app_internal.h): app_sm_next's table and the
+ * entry actions of each state, and the clearing of latched faults. */
+#include "app_internal.h"
+
+bool app_event(app_t *app, app_event_t ev)
+{
+    const app_state_t next = app_sm_next(app->state, ev);
+    if (next == app->state) {
+        return false;
+    }
+    app->state = next;
+    switch (next) {
+    case APP_TEACH:
+    case APP_EXECUTE:
+        if (next == APP_TEACH) {
+            app->teach_ticks = 0u;
+        }
+        /* the host must keep its heartbeat from now on: silence in TEACH/EXECUTE stops safely */
+        wdg_kick(&app->saf.wdg, app->now_ms);
+        for (unsigned a = 0; a < PFC_AXES; a++) {
+            exec_render_reset(&app->rend[a], app->sens.pos_m[a]);
+        }
+        break;
+    case APP_IDLE:
+    case APP_FAULT:
+        if (next == APP_IDLE) {
+            app->seq_step = 0u;
+            app->exec_done = false;
+        }
+        app->force_hat_N = FS_R(0.0);
+        wdg_disarm(&app->saf.wdg); /* host silence matters only while the device acts */
+        break;
+    case APP_BOOT:
+    default: break;
+    }
+    return true;
+}
+
+flt_code_t app_clear_faults(app_t *app)
+{
+    const flt_code_t r = saf_clear_request(&app->saf_cfg, &app->saf, app->now_ms);
+    if (r == FLT_NONE) {
+        (void)app_event(app, APP_EV_CLEARED);
+    } else {
+        /* the request counts as a host frame (it arms the watchdog); in FAULT silence does not
+         * matter, so disarm it again */
+        wdg_disarm(&app->saf.wdg);
+    }
+    return r;
+}

@@ -1,0 +1,225 @@
+/* The skill store of the device (see slots.h). */
+#include "slots.h"
+
+#include <string.h>
+
+#include "fs_wire_const.h"
+#include "uds_nrc.h"
+
+/* A stored skill's check without limits: its peak force and path extent, for the run checks
+ * (the limits may have changed since its commit). */
+static fs_status_t check_stored(const skill_t *sk, fs_real_t dt_s, fs_real_t *peak_N,
+                                fs_real_t *path_m)
+{
+    const fs_status_t st = skchk_params(sk);
+    if (st != FS_OK) {
+        return st;
+    }
+    skchk_t c;
+    skchk_begin(&c, sk, dt_s, FS_R(1e30));
+    c.path_max_m = FS_R(1e30);
+    while (!skchk_run(&c, UINT32_MAX)) {
+    }
+    *peak_N = c.peak_N;
+    *path_m = c.path_peak_m;
+    return c.status;
+}
+
+void slots_init(slots_t *b, const fls_dev_t *dev)
+{
+    memset(b, 0, sizeof(*b));
+    b->last_transfer_status = FS_TRANSFER_NONE;
+    b->nvm_ok = dev != NULL && nvm_init(&b->nvm, dev) == NVM_OK;
+    slots_reload(b);
+}
+
+void slots_reload(slots_t *b)
+{
+    for (uint16_t s = 0; s < SLOTS_N; s++) {
+        b->valid[s] = false;
+        if (!b->nvm_ok) {
+            continue;
+        }
+        uint32_t len = 0u;
+        fs_real_t peak = FS_R(0.0);
+        fs_real_t path = FS_R(0.0);
+        if (nvm_read(&b->nvm, s, b->image, sizeof(b->image), &len) == NVM_OK &&
+            skill_parse(b->image, len, &b->skill[s]) == FS_OK &&
+            check_stored(&b->skill[s], (fs_real_t)FS_TICK_S, &peak, &path) == FS_OK) {
+            b->valid[s] = true;
+            b->peak_N[s] = peak;
+            b->path_m[s] = path;
+            b->crc[s] = skill_crc32(0u, b->image, len - SKILL_CRC_SIZE);
+            b->len[s] = len;
+        }
+    }
+}
+
+const skill_t *slots_skill(const slots_t *b, uint32_t slot)
+{
+    return (slot >= 1u && slot <= SLOTS_N && b->valid[slot - 1u]) ? &b->skill[slot - 1u] : NULL;
+}
+
+bool slots_any(const slots_t *b)
+{
+    bool any = false;
+    for (unsigned i = 0; i < SLOTS_N; i++) {
+        any = any || b->valid[i];
+    }
+    return any;
+}
+
+uint8_t slots_download_begin(slots_t *b, uint32_t slot, uint32_t size)
+{
+    if (slot < 1u || slot > SLOTS_N || size < SKILL_HEADER_SIZE_V2 + SKILL_CRC_SIZE ||
+        size > SLOTS_IMAGE_MAX) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    if (!b->nvm_ok) {
+        return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED;
+    }
+    b->xfer_slot = slot;
+    b->xfer_size = size;
+    b->last_transfer_status = FS_TRANSFER_IN_PROGRESS;
+    return UDS_NRC_OK;
+}
+
+uint8_t slots_download_data(slots_t *b, uint32_t offset, const uint8_t *d, uint16_t len)
+{
+    if (offset > b->xfer_size || len > b->xfer_size - offset) {
+        return UDS_NRC_TRANSFER_SUSPENDED;
+    }
+    memcpy(&b->image[offset], d, len);
+    return UDS_NRC_OK;
+}
+
+/* One slice of the commit (b->commit_stage): false while it goes on; true once done, *st FS_OK
+ * when the skill passed every check and the flash write is done (its result in b->writer.status),
+ * or the refusal. */
+static bool commit_slice(slots_t *b, fs_status_t *st)
+{
+    *st = FS_OK;
+    switch (b->commit_stage) {
+    case SLOTS_COMMIT_PARSE:
+        if (!skill_parse_run(&b->parser, APP_COMMIT_UNITS_PER_TICK)) {
+            return false;
+        }
+        *st = b->parser.status;
+        b->commit_stage = SLOTS_COMMIT_PARAMS;
+        return *st != FS_OK;
+    case SLOTS_COMMIT_PARAMS:
+        *st = skchk_params(&b->staging);
+        if (*st == FS_OK) {
+            *st = skchk_stiffness(&b->staging, b->lim.stiffness_max_Npm);
+        }
+        if (*st != FS_OK) {
+            return true;
+        }
+        skchk_begin(&b->check, &b->staging, b->lim.dt_s, b->lim.force_max_N);
+        b->check.path_max_m = b->lim.path_max_m;
+        b->commit_stage = SLOTS_COMMIT_CHECK;
+        return false;
+    case SLOTS_COMMIT_CHECK:
+        if (!skchk_run(&b->check, APP_CHECK_STEPS_PER_TICK)) {
+            return false;
+        }
+        *st = b->check.status; /* 222/223/225: slot unchanged */
+        if (*st != FS_OK) {
+            return true;
+        }
+        (void)nvm_write_begin(&b->writer, &b->nvm, (uint16_t)(b->xfer_slot - 1u), b->image,
+                              b->xfer_size); /* its argument errors end the write at once */
+        b->commit_stage = SLOTS_COMMIT_WRITE;
+        return false;
+    default: return nvm_write_run(&b->writer, APP_COMMIT_FLASH_UNITS_PER_TICK);
+    }
+}
+
+uint8_t slots_commit_step(slots_t *b, const slots_limits_t *lim, uint32_t *crc_out)
+{
+    if (!b->checking) {
+        /* the commit, a bounded slice a tick (0x78 meanwhile): parse, parameters, rollout, write */
+        skill_parse_begin(&b->parser, b->image, b->xfer_size, &b->staging);
+        b->lim = *lim;
+        b->checking = true;
+        b->commit_stage = SLOTS_COMMIT_PARSE;
+    }
+    fs_status_t st = FS_OK;
+    if (!commit_slice(b, &st)) {
+        return UDS_NRC_RESPONSE_PENDING;
+    }
+    b->checking = false;
+    if (st != FS_OK) {
+        b->last_transfer_status = (uint16_t)st; /* e.g. 204 CRC, 223 peak: the old skill stays */
+        return UDS_NRC_PROGRAMMING_FAILURE;
+    }
+    const nvm_status_t ns = b->writer.status;
+    if (ns != NVM_OK) {
+        b->last_transfer_status = (uint16_t)ns;
+        slots_reload(b); /* whatever storage holds now */
+        return UDS_NRC_PROGRAMMING_FAILURE;
+    }
+    /* swap into the cache: UDS runs at the start of a tick and downloads only in IDLE */
+    const uint32_t s = b->xfer_slot - 1u;
+    b->skill[s] = b->staging;
+    b->valid[s] = true;
+    b->peak_N[s] = b->check.peak_N;
+    b->path_m[s] = b->check.path_peak_m;
+    b->last_transfer_status = 0u;
+    *crc_out = b->parser.crc; /* the image's CRC-32, checked by the parse */
+    b->crc[s] = *crc_out;
+    b->len[s] = b->xfer_size;
+    return UDS_NRC_OK;
+}
+
+void slots_abort(slots_t *b)
+{
+    if (b->last_transfer_status == FS_TRANSFER_IN_PROGRESS) {
+        b->last_transfer_status = FS_TRANSFER_INTERRUPTED; /* interrupted: nothing was written */
+    }
+    b->checking = false; /* a commit in progress ends with the transfer */
+    b->xfer_size = 0u;
+}
+
+void slots_refuse_commit(slots_t *b)
+{
+    b->checking = false;
+    b->last_transfer_status = FS_TRANSFER_INTERRUPTED;
+}
+
+uint8_t slots_upload_begin(slots_t *b, uint32_t slot, uint32_t size)
+{
+    if (slot < 1u || slot > SLOTS_N || !b->nvm_ok) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    uint32_t len = 0u;
+    if (nvm_read(&b->nvm, (uint16_t)(slot - 1u), b->image, sizeof(b->image), &len) != NVM_OK) {
+        return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED; /* empty slot */
+    }
+    if (size != len) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    b->xfer_size = len;
+    return UDS_NRC_OK;
+}
+
+uint8_t slots_upload_data(const slots_t *b, uint32_t offset, uint8_t *out, uint16_t len)
+{
+    if (offset > b->xfer_size || len > b->xfer_size - offset) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    memcpy(out, &b->image[offset], len);
+    return UDS_NRC_OK;
+}
+
+uint8_t slots_erase(slots_t *b, uint32_t slot)
+{
+    if (!b->nvm_ok) {
+        return UDS_NRC_CONDITIONS_NOT_CORRECT;
+    }
+    if (nvm_erase_slot(&b->nvm, (uint16_t)(slot - 1u)) != NVM_OK) {
+        return UDS_NRC_PROGRAMMING_FAILURE;
+    }
+    b->valid[slot - 1u] = false;
+    return UDS_NRC_OK;
+}
