@@ -123,7 +123,7 @@ echo "== the product image: $(basename "$SKILL") (N = $KERNELS), IDLE / download
 # inside skchk_params/skchk_begin/skchk_run, entered from the UDS transfer's code, over the ticks
 # it is spread across).
 COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot = 0 }
-                                    inb = 1; c = 0; part = 0; inpart = 0; dmp = 0; dpart = 0; indmp = 0
+                                    inb = 1; c = 0; part = 0; inpart = 0; dmp = 0; dpart = 0; indmp = 0; inisr = 0
                                     cmt = 0; next }
   / cm_port_mark_end$/ { if (inb) { done = 1; lc = c; lp = part; ld = dmp; ldp = dpart; lcm = cmt }
                          if (chk_tick > 0) { chk_ticks++; if (chk_tick > chk_max) chk_max = chk_tick }
@@ -156,6 +156,8 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                if (prof != "") { split($4, pcs, "/"); hp[pcs[2] " " s]++ }
                # an interrupt taken inside the tick (the UART of the CAN link) counts in the
                # tick, not in a part it interrupts: from its handler back to the interrupted code
+               # (an interrupt taken right after a return resumes in the caller, so the function
+               # last seen may not run again: inisr is also cleared when a tick starts)
                if (!inisr && s ~ /_Handler$/ && s != "Reset_Handler") { inisr = 1; isrret = prev }
                else if (inisr && s == isrret) { inisr = 0 }
                if (inisr) { prev = s; next }

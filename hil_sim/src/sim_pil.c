@@ -346,8 +346,8 @@ static int pil_board(pil_opts_t *o, const char **machine, const char **cpu, char
         return 2;
     }
     if (o->image == NULL) {
-        snprintf(image_buf, image_cap, "%s/build/%s/firmware/ports/mps2/fs_pil.elf",
-                 FS_SOURCE_DIR, o->target);
+        snprintf(image_buf, image_cap, "%s/build/%s/firmware/ports/mps2/fs_pil.elf", FS_SOURCE_DIR,
+                 o->target);
         o->image = image_buf;
     }
     if (access(o->image, R_OK) != 0) {

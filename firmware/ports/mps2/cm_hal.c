@@ -15,12 +15,20 @@
 
 #define CM_CAN_RX_QUEUE 256u /* received frames (power of two); overflow drops the newest */
 
+/* The SLCAN text of the host is parsed in the UART's RX interrupt (can_rx_byte): a complete
+ * frame command lands in g_rx (single producer: the interrupt; single consumer: the tick), its
+ * reply goes straight to the transmit ring. The tick only takes whole frames. */
+#define CM_BARRIER() __asm__ volatile("" ::: "memory")
+
 void SysTick_Handler(void);
 void NMI_Handler(void);
 
 static slcan_t g_slcan;
 static can_frame_t g_rx[CM_CAN_RX_QUEUE];
-static uint32_t g_rx_head, g_rx_tail;
+static volatile uint32_t g_rx_head; /* written by the RX interrupt */
+static volatile uint32_t g_rx_tail; /* written by the tick */
+static volatile uint32_t g_rx_dropped;
+static uint32_t g_rx_taken; /* frames hal_can_receive returned this tick */
 static can_frame_t g_tx[CM_PORT_TX_QUEUE];
 static uint32_t g_tx_head, g_tx_tail;
 static volatile uint32_t g_ms; /* SysTick count since power-up */
@@ -62,12 +70,44 @@ void NMI_Handler(void)
     }
 }
 
+/* The byte that ends (or overflows) a line of the host's SLCAN text (RX interrupt): a frame for
+ * the device into g_rx, the reply of the complete command to the UART. */
+__attribute__((noinline)) static void can_rx_line_end(uint8_t byte)
+{
+    char reply[SLCAN_REPLY_MAX];
+    uint32_t reply_len;
+    can_frame_t f;
+    if (slcan_feed(&g_slcan, byte, &f, reply, &reply_len)) {
+        const uint32_t h = g_rx_head;
+        if (h - g_rx_tail < CM_CAN_RX_QUEUE) {
+            g_rx[h % CM_CAN_RX_QUEUE] = f;
+            CM_BARRIER(); /* the frame before the index that publishes it */
+            g_rx_head = h + 1u;
+        } else {
+            g_rx_dropped = g_rx_dropped + 1u; /* as a CAN controller's receive overrun */
+        }
+    }
+    if (reply_len > 0u) {
+        (void)cm_uart_write_isr(reply, reply_len);
+    }
+}
+
+/* One byte of the host's SLCAN text (RX interrupt). */
+static void can_rx_byte(uint8_t byte)
+{
+    if (slcan_take(&g_slcan, byte)) {
+        return; /* a character of the line: all but the line's end */
+    }
+    can_rx_line_end(byte);
+}
+
 void cm_port_init(const uint8_t *seed, uint32_t seed_len)
 {
     slcan_init(&g_slcan);
     g_rx_head = g_rx_tail = 0u;
+    g_rx_dropped = 0u;
     g_tx_head = g_tx_tail = 0u;
-    cm_uart_init();
+    cm_uart_init(can_rx_byte);
     boot_cm_flash_init(&g_skill_fl, &g_skill_dev, CM_FLASH_SKILL_ADDR, CM_FLASH_SKILL_SECTOR,
                        CM_FLASH_SKILL_SECTORS);
     boot_cm_flash_init(&g_fw_fl, &g_fw_dev, CM_FLASH_FW_ADDR, CM_FLASH_FW_SECTOR,
@@ -117,6 +157,7 @@ bool cm_port_wait_tick(void)
     g_missed = 0u;
     __asm__ volatile("cpsie i" ::: "memory");
     cm_uart_rx_budget(CM_PORT_RX_BYTES_PER_TICK);
+    g_rx_taken = 0u;
     if (missed) {
         g_overruns = g_overruns + 1u;
     }
@@ -199,26 +240,21 @@ uint32_t hal_can_tx_free(void)
 
 bool hal_can_receive(can_frame_t *frame)
 {
-    uint8_t b;
-    while (g_rx_tail == g_rx_head && cm_uart_getc(&b)) {
-        char reply[SLCAN_REPLY_MAX];
-        uint32_t reply_len = 0u;
-        can_frame_t f;
-        if (slcan_feed(&g_slcan, b, &f, reply, &reply_len) &&
-            g_rx_head - g_rx_tail < CM_CAN_RX_QUEUE) {
-            g_rx[g_rx_head % CM_CAN_RX_QUEUE] = f;
-            g_rx_head++;
-        }
-        if (reply_len > 0u) {
-            (void)cm_uart_write(reply, reply_len);
-        }
+    const uint32_t t = g_rx_tail;
+    if (t == g_rx_head || g_rx_taken >= CM_PORT_RX_FRAMES_PER_TICK) {
+        return false; /* none, or this tick's share taken: the rest wait for the next tick */
     }
-    if (g_rx_tail == g_rx_head) {
-        return false;
-    }
-    *frame = g_rx[g_rx_tail % CM_CAN_RX_QUEUE];
-    g_rx_tail++;
+    CM_BARRIER(); /* the index before the frame it published */
+    *frame = g_rx[t % CM_CAN_RX_QUEUE];
+    CM_BARRIER();
+    g_rx_tail = t + 1u;
+    g_rx_taken++;
     return true;
+}
+
+uint32_t cm_port_rx_dropped(void)
+{
+    return g_rx_dropped;
 }
 
 bool hal_can_bus_off(void)

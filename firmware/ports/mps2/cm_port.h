@@ -1,8 +1,8 @@
 /* The Cortex-M port of firmware/hal/hal.h on qemu's MPS2 boards (docs/cortex-m.md): CAN over
  * UART0 in SLCAN (cm_slcan.h, cm_uart.h), time from the 1 kHz SysTick, flash in the PSRAM
  * (NOR semantics), the CMSDK watchdog, reset by SYSRESETREQ. Sensors and actuator are the
- * processor-in-the-loop plant (hil_sim/pil/pil_plant.h). This header is the port's own part
- * beyond hal.h, used by the image's main loop (firmware/ports/mps2/mps2_main.c). */
+ * board's sensor/actuator side (cm_plant.h). This header is the port's own part beyond hal.h,
+ * used by the image's main loop (mps2_main.c). */
 #ifndef CM_PORT_H
 #define CM_PORT_H
 
@@ -15,8 +15,12 @@
  * ~8 us of the board's time (4 instructions each at 250 MIPS) */
 #define CM_PORT_PACE_SPIN 500u
 /* Bytes of SLCAN text the UART takes per tick: 192 = 8.7 frames of 8 bytes per ms, the frame rate
- * of a 1 Mbit/s CAN bus (~7.4 frames per ms) with a margin. */
+ * of a 1 Mbit/s CAN bus (~7.4 frames per ms) with a margin. The RX interrupt parses them into
+ * whole frames; hal_can_receive hands the tick at most CM_PORT_RX_FRAMES_PER_TICK of them (16:
+ * the budget's bytes as the shortest frames the product receives, 12 characters), the rest wait
+ * in the port's 256-frame queue. */
 #define CM_PORT_RX_BYTES_PER_TICK 192u
+#define CM_PORT_RX_FRAMES_PER_TICK 16u
 /* The transmit side likewise: a queue of CM_PORT_TX_QUEUE frames (hal_can_send refuses when it is
  * full, as a CAN controller's mailboxes do), of which up to CM_PORT_TX_FRAMES_PER_TICK leave per
  * tick. */
@@ -61,6 +65,9 @@ void cm_port_end_tick(void);
 
 /** Ticks that started late (a SysTick arrived while a tick was still running). */
 uint32_t cm_port_overruns(void);
+
+/** Received frames lost because the port's receive queue was full. */
+uint32_t cm_port_rx_dropped(void);
 
 /** Empty functions around the application tick, which bench/qemu_tick.sh finds in the exec trace
  *  to count the instructions of each tick (no other effect). */

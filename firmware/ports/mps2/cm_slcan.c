@@ -16,34 +16,30 @@ void slcan_init(slcan_t *s)
     s->open = true; /* auto-startup: a board reset does not silence a connected host */
 }
 
-/* Value of one hex digit, or -1. */
-static int32_t hex_digit(char c)
+/* Value of one hex digit (0-9, A-F, a-f) without a table: 0..15, or 16 or more if c is none. */
+static inline uint32_t hex_nibble(char c)
 {
-    if (c >= '0' && c <= '9') {
-        return (int32_t)(c - '0');
+    const uint32_t u = (uint32_t)(uint8_t)c;
+    const uint32_t d = u - (uint32_t)'0';
+    if (d < 10u) {
+        return d;
     }
-    if (c >= 'A' && c <= 'F') {
-        return (int32_t)(c - 'A') + 10;
-    }
-    if (c >= 'a' && c <= 'f') {
-        return (int32_t)(c - 'a') + 10;
-    }
-    return -1;
+    const uint32_t a = (u | 0x20u) - (uint32_t)'a'; /* 'A'..'F' -> 'a'..'f' */
+    return a < 6u ? a + 10u : 16u;
 }
 
 /* n hex digits at p -> *out; false if one is not a hex digit. */
-static bool hex_value(const char *p, uint32_t n, uint32_t *out)
+static inline bool hex_value(const char *p, uint32_t n, uint32_t *out)
 {
     uint32_t v = 0u;
+    uint32_t bad = 0u;
     for (uint32_t i = 0u; i < n; i++) {
-        const int32_t d = hex_digit(p[i]);
-        if (d < 0) {
-            return false;
-        }
-        v = (v << 4) | (uint32_t)d;
+        const uint32_t d = hex_nibble(p[i]);
+        bad |= d;
+        v = (v << 4) | (d & 0xFu);
     }
     *out = v;
-    return true;
+    return (bad & 0x10u) == 0u;
 }
 
 /* A frame command: id_digits 3 (t, r) or 8 (T, R); data unless remote. Validates the length. */
@@ -69,14 +65,15 @@ static bool parse_frame(const char *line, uint32_t len, uint32_t id_digits, bool
     f->id = id;
     f->len = (uint8_t)dlc;
     f->flags = 0u;
+    const char *p = &line[2u + id_digits];
+    uint32_t bad = 0u;
     for (uint32_t i = 0u; i < n_data; i++) {
-        uint32_t b = 0u;
-        if (!hex_value(&line[2u + id_digits + 2u * i], 2u, &b)) {
-            return false;
-        }
-        f->data[i] = (uint8_t)b;
+        const uint32_t hi = hex_nibble(p[2u * i]);
+        const uint32_t lo = hex_nibble(p[2u * i + 1u]);
+        bad |= hi | lo;
+        f->data[i] = (uint8_t)(((hi & 0xFu) << 4) | (lo & 0xFu));
     }
-    return true;
+    return (bad & 0x10u) == 0u;
 }
 
 static uint32_t reply_text(char reply[SLCAN_REPLY_MAX], const char *text)

@@ -43,6 +43,20 @@ void slcan_init(slcan_t *s);
 bool slcan_feed(slcan_t *s, uint8_t byte, can_frame_t *frame, char reply[SLCAN_REPLY_MAX],
                 uint32_t *reply_len);
 
+/** The common case of slcan_feed, inline for a receive interrupt: store byte if it continues
+ *  the current line (not a line end, the line not full) and return true; false if the byte needs
+ *  slcan_feed (nothing changed). */
+static inline bool slcan_take(slcan_t *s, uint8_t byte)
+{
+    const uint32_t n = s->len;
+    if (byte == (uint8_t)'\r' || byte == (uint8_t)'\n' || n >= SLCAN_LINE_MAX) {
+        return false;
+    }
+    s->line[n] = (char)byte;
+    s->len = n + 1u;
+    return true;
+}
+
 /** Text of a frame for the host ("tiiildd..\r"); returns its length (0 if the id or length is
  *  invalid, or the frame is CAN FD). */
 uint32_t slcan_encode(const can_frame_t *frame, char out[SLCAN_FRAME_TEXT_MAX]);

@@ -1,24 +1,28 @@
-/* UART0 byte queues (see cm_uart.h). Single producer / single consumer rings: the interrupt
- * handlers own one index each, the tick context the other. */
+/* UART0 byte link (see cm_uart.h). The transmit ring has one consumer (the TX interrupt, and the
+ * pump kicked with interrupts masked) and two producers that never overlap: thread context with
+ * interrupts masked, and the RX interrupt's receiver (the TX interrupt has its priority, so it
+ * cannot run meanwhile). */
 #include "cm_uart.h"
 
 #include "cm_board.h"
 
-static volatile uint8_t rx_ring[CM_UART_RX_RING];
-static volatile uint32_t rx_head; /* written by the RX interrupt */
-static volatile uint32_t rx_tail; /* written by the tick */
-static volatile uint32_t rx_lost;
+static cm_uart_rx_fn rx_fn;
 static volatile uint32_t rx_allowed; /* bytes the RX interrupt may still take this tick */
 static volatile uint8_t tx_ring[CM_UART_TX_RING];
-static volatile uint32_t tx_head; /* written by the tick */
-static volatile uint32_t tx_tail; /* written by the TX interrupt (and the tick's kick) */
+static volatile uint32_t tx_head; /* written by the producers */
+static volatile uint32_t tx_tail; /* written by the pump */
 
 void UART0RX_Handler(void);
 void UART0TX_Handler(void);
 
-void cm_uart_init(void)
+static void rx_ignore(uint8_t byte)
 {
-    rx_head = rx_tail = rx_lost = 0u;
+    (void)byte;
+}
+
+void cm_uart_init(cm_uart_rx_fn rx)
+{
+    rx_fn = rx != 0 ? rx : rx_ignore;
     rx_allowed = 0u;
     tx_head = tx_tail = 0u;
     CM_UART_BAUDDIV = 16u;
@@ -33,30 +37,27 @@ void UART0RX_Handler(void)
 {
     CM_UART_INTSTATUS = CM_UART_INT_RX;
     while ((CM_UART_STATE & CM_UART_STATE_RXFULL) != 0u) {
-        if (rx_allowed == 0u) {
+        const uint32_t allowed = rx_allowed;
+        if (allowed == 0u) {
             CM_UART_CTRL &= ~CM_UART_CTRL_RX_INT; /* budget spent: resume at the next tick */
             return;
         }
-        rx_allowed = rx_allowed - 1u;
-        const uint8_t b = (uint8_t)CM_UART_DATA;
-        const uint32_t h = rx_head;
-        if (h - rx_tail < CM_UART_RX_RING) {
-            rx_ring[h % CM_UART_RX_RING] = b;
-            rx_head = h + 1u;
-        } else {
-            rx_lost = rx_lost + 1u;
-        }
+        rx_allowed = allowed - 1u;
+        rx_fn((uint8_t)CM_UART_DATA);
     }
 }
 
 /* Move bytes from the ring to the UART while it takes them (called with the TX IRQ masked or
- * from the handler itself). */
+ * from an interrupt handler of its priority). */
 static void tx_pump(void)
 {
-    while (tx_tail != tx_head && (CM_UART_STATE & CM_UART_STATE_TXFULL) == 0u) {
-        CM_UART_DATA = tx_ring[tx_tail % CM_UART_TX_RING];
-        tx_tail = tx_tail + 1u;
+    uint32_t t = tx_tail;
+    const uint32_t h = tx_head;
+    while (t != h && (CM_UART_STATE & CM_UART_STATE_TXFULL) == 0u) {
+        CM_UART_DATA = tx_ring[t % CM_UART_TX_RING];
+        t++;
     }
+    tx_tail = t;
 }
 
 void UART0TX_Handler(void)
@@ -76,45 +77,41 @@ void cm_uart_rx_budget(uint32_t bytes)
     }
 }
 
-bool cm_uart_getc(uint8_t *byte)
-{
-    const uint32_t t = rx_tail;
-    if (t == rx_head) {
-        return false;
-    }
-    *byte = rx_ring[t % CM_UART_RX_RING];
-    rx_tail = t + 1u;
-    return true;
-}
-
 uint32_t cm_uart_tx_room(void)
 {
     return CM_UART_TX_RING - (tx_head - tx_tail);
 }
 
-bool cm_uart_write(const char *data, uint32_t len)
+/* Copy len bytes into the ring and start sending them; the caller excludes the other producer. */
+static bool tx_push(const char *data, uint32_t len)
 {
-    if (len > cm_uart_tx_room()) {
+    uint32_t h = tx_head;
+    if (len > CM_UART_TX_RING - (h - tx_tail)) {
         return false;
     }
-    uint32_t h = tx_head;
     for (uint32_t i = 0u; i < len; i++) {
         tx_ring[h % CM_UART_TX_RING] = (uint8_t)data[i];
         h++;
     }
     tx_head = h;
-    __asm__ volatile("cpsid i" ::: "memory");
     tx_pump(); /* start (or continue) the transmission */
-    __asm__ volatile("cpsie i" ::: "memory");
     return true;
+}
+
+bool cm_uart_write(const char *data, uint32_t len)
+{
+    __asm__ volatile("cpsid i" ::: "memory");
+    const bool ok = tx_push(data, len);
+    __asm__ volatile("cpsie i" ::: "memory");
+    return ok;
+}
+
+bool cm_uart_write_isr(const char *data, uint32_t len)
+{
+    return tx_push(data, len);
 }
 
 bool cm_uart_tx_empty(void)
 {
     return tx_tail == tx_head;
-}
-
-uint32_t cm_uart_rx_overflows(void)
-{
-    return rx_lost;
 }
