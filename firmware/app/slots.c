@@ -178,6 +178,7 @@ void slots_abort(slots_t *b)
         b->last_transfer_status = FS_TRANSFER_INTERRUPTED; /* interrupted: nothing was written */
     }
     b->checking = false; /* a commit in progress ends with the transfer */
+    b->reading = false;
     b->xfer_size = 0u;
 }
 
@@ -189,17 +190,28 @@ void slots_refuse_commit(slots_t *b)
 
 uint8_t slots_upload_begin(slots_t *b, uint32_t slot, uint32_t size)
 {
-    if (slot < 1u || slot > SLOTS_N || !b->nvm_ok) {
+    if (!b->reading) {
+        if (slot < 1u || slot > SLOTS_N || !b->nvm_ok) {
+            return UDS_NRC_REQUEST_OUT_OF_RANGE;
+        }
+        if (nvm_read_begin(&b->reader, &b->nvm, (uint16_t)(slot - 1u), b->image,
+                           sizeof(b->image)) != NVM_OK) {
+            return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED; /* empty slot */
+        }
+        b->reading = true;
+    }
+    /* the read-back's record CRC, a bounded slice a tick (0x78 meanwhile) */
+    if (!nvm_read_run(&b->reader, SLOTS_READ_UNITS_PER_TICK)) {
+        return UDS_NRC_RESPONSE_PENDING;
+    }
+    b->reading = false;
+    if (b->reader.status != NVM_OK) {
+        return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED;
+    }
+    if (size != b->reader.len) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
-    uint32_t len = 0u;
-    if (nvm_read(&b->nvm, (uint16_t)(slot - 1u), b->image, sizeof(b->image), &len) != NVM_OK) {
-        return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED; /* empty slot */
-    }
-    if (size != len) {
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;
-    }
-    b->xfer_size = len;
+    b->xfer_size = b->reader.len;
     return UDS_NRC_OK;
 }
 

@@ -39,6 +39,13 @@
 #define APP_COMMIT_FLASH_UNITS_PER_TICK 2u
 #endif
 
+/* Units of a read-back's record read (nvm_read_run: its header, or NVM_READ_CHUNK bytes read
+ * and added to the record's CRC, ~1,000 instructions on the M4F) per tick while RequestUpload
+ * waits. */
+#ifndef SLOTS_READ_UNITS_PER_TICK
+#define SLOTS_READ_UNITS_PER_TICK 1u
+#endif
+
 /** The stages of a download's commit (one slice a tick at least). */
 enum {
     SLOTS_COMMIT_PARSE = 0, /* skill_parse_run, APP_COMMIT_UNITS_PER_TICK units a slice */
@@ -77,6 +84,8 @@ typedef struct {
     bool checking;                 /* a download's commit runs: nothing starts meanwhile */
     uint8_t commit_stage;          /* SLOTS_COMMIT_*: the commit's stage while checking */
     slots_limits_t lim;            /* the commit's limits, taken at its first slice */
+    nvm_reader_t reader;           /* a read-back's record read and CRC, spread over ticks */
+    bool reading;                  /* a read-back's RequestUpload is answered 0x78 meanwhile */
 } slots_t;
 
 /** Open storage on dev (NULL: none) and fill the cache from it; no transfer. */
@@ -111,8 +120,10 @@ void slots_abort(slots_t *b);
  *  commit stops, the status is "interrupted", the slot keeps what it holds. */
 void slots_refuse_commit(slots_t *b);
 
-/** Start a read-back of slot 1..SLOTS_N of size bytes (its stored length): a UDS NRC (0x31 out
- *  of range or another size, 0x70 empty slot). */
+/** Start a read-back of slot 1..SLOTS_N of size bytes (its stored length), the record read and
+ *  its CRC checked a slice a call: 0x78 while it goes on (call again with the same arguments);
+ *  then a UDS NRC (0x31 out of range or another size, 0x70 empty or unreadable slot; 0 the
+ *  image is in the transfer buffer). */
 uint8_t slots_upload_begin(slots_t *b, uint32_t slot, uint32_t size);
 
 /** Copy len bytes of the read-back at offset into out: a UDS NRC (0x31 beyond its end). */

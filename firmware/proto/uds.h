@@ -85,7 +85,9 @@ typedef struct {
      *  download_end again from uds_server_resume until it returns anything else. */
     uint8_t (*download_end)(void *ctx, uint32_t *crc32_out);
     void (*transfer_abort)(void *ctx);
-    /** Upload of size bytes from addr (0x35). */
+    /** Upload of size bytes from addr (0x35). UDS_NRC_RESPONSE_PENDING: the read-back goes on;
+     *  the server answers 7F 35 78 and calls upload_begin again with the same arguments from
+     *  uds_server_resume until it returns anything else. */
     uint8_t (*upload_begin)(void *ctx, uint32_t addr, uint32_t size);
     uint8_t (*upload_data)(void *ctx, uint32_t offset, uint8_t *out, uint16_t len);
 } uds_app_t;
@@ -111,6 +113,8 @@ typedef struct {
     uint8_t pending_reset;     /* reset type to perform after the response, 0 if none */
     uint8_t pending_sid;       /* request answered 0x78 whose final response is due, 0 if none */
     uint32_t pending_since_ms; /* when 0x78 was last sent */
+    uint32_t pending_addr;     /* a RequestUpload answered 0x78: its address and size */
+    uint32_t pending_size;
 } uds_server_t;
 
 /** Initialise in the default session, locked, no transfer. */

@@ -544,43 +544,91 @@ nvm_status_t nvm_write(nvm_t *n, uint16_t slot, const uint8_t *payload, uint32_t
     return w.status;
 }
 
-nvm_status_t nvm_read(const nvm_t *n, uint16_t slot, uint8_t *buf, uint32_t cap, uint32_t *len)
+nvm_status_t nvm_read_begin(nvm_reader_t *r, const nvm_t *n, uint16_t slot, uint8_t *buf,
+                            uint32_t cap)
 {
-    if (n == NULL || n->dev == NULL || buf == NULL || len == NULL) {
-        return NVM_ERR_NULL_ARG;
+    (void)memset(r, 0, sizeof(*r));
+    r->n = n;
+    r->buf = buf;
+    r->slot = slot;
+    r->done = true;
+    if (n == NULL || n->dev == NULL || buf == NULL) {
+        r->status = NVM_ERR_NULL_ARG;
+    } else if (slot >= n->n_slots) {
+        r->status = NVM_ERR_SLOT;
+    } else if (n->dir[slot].valid == 0u) {
+        r->status = NVM_ERR_EMPTY;
+    } else if (n->dir[slot].length > cap) {
+        r->status = NVM_ERR_BUFFER;
+    } else {
+        r->base = copy_addr(n, slot, n->dir[slot].copy);
+        r->done = false;
     }
-    if (slot >= n->n_slots) {
-        return NVM_ERR_SLOT;
-    }
-    const nvm_dir_entry_t *e = &n->dir[slot];
-    if (e->valid == 0u) {
-        return NVM_ERR_EMPTY;
-    }
-    if (e->length > cap) {
-        return NVM_ERR_BUFFER;
-    }
-    const fls_dev_t *d = n->dev;
-    const uint32_t base = copy_addr(n, slot, e->copy);
+    return r->status;
+}
+
+/* The reader's first unit: the record's header, checked against the directory entry. */
+static nvm_status_t read_head(nvm_reader_t *r)
+{
+    const fls_dev_t *d = r->n->dev;
+    const nvm_dir_entry_t *e = &r->n->dir[r->slot];
     uint8_t hdr[NVM_HEADER_SIZE];
-    if (d->read(d->ctx, base, hdr, NVM_HEADER_SIZE) != 0 ||
-        d->read(d->ctx, base + NVM_HEADER_SIZE, buf, e->length) != 0) {
+    if (d->read(d->ctx, r->base, hdr, NVM_HEADER_SIZE) != 0) {
         return NVM_ERR_FLASH;
     }
-    nvm_record_info_t info;
-    nvm_status_t s = header_check(hdr, slot, nvm_payload_max(d), &info);
+    const nvm_status_t s = header_check(hdr, r->slot, nvm_payload_max(d), &r->info);
     if (s != NVM_OK) {
         return s;
     }
-    if (info.length != e->length || info.seq != e->seq) {
+    if (r->info.length != e->length || r->info.seq != e->seq) {
         return NVM_ERR_REC_LENGTH;
     }
-    uint32_t crc = nvm_crc32(0u, hdr, NVM_CRC_COVER);
-    crc = nvm_crc32(crc, buf, info.length);
-    if (crc != info.crc32) {
-        return NVM_ERR_REC_CRC;
-    }
-    *len = info.length;
+    r->crc = nvm_crc32(0u, hdr, NVM_CRC_COVER);
     return NVM_OK;
+}
+
+bool nvm_read_run(nvm_reader_t *r, uint32_t max_units)
+{
+    for (uint32_t u = 0u; u < max_units && !r->done; u++) {
+        if (!r->head_done) {
+            r->status = read_head(r);
+            r->head_done = true;
+        } else {
+            const fls_dev_t *d = r->n->dev;
+            const uint32_t k = (r->info.length - r->pos < NVM_READ_CHUNK) ? r->info.length - r->pos
+                                                                          : NVM_READ_CHUNK;
+            if (d->read(d->ctx, r->base + NVM_HEADER_SIZE + r->pos, r->buf + r->pos, k) != 0) {
+                r->status = NVM_ERR_FLASH;
+            } else {
+                r->crc = nvm_crc32(r->crc, r->buf + r->pos, k);
+                r->pos += k;
+            }
+        }
+        if (r->status == NVM_OK && r->head_done && r->pos >= r->info.length) {
+            r->len = r->info.length;
+            r->status = r->crc == r->info.crc32 ? NVM_OK : NVM_ERR_REC_CRC;
+            r->done = true;
+        }
+        r->done = r->done || r->status != NVM_OK;
+    }
+    return r->done;
+}
+
+nvm_status_t nvm_read(const nvm_t *n, uint16_t slot, uint8_t *buf, uint32_t cap, uint32_t *len)
+{
+    if (len == NULL) {
+        return NVM_ERR_NULL_ARG;
+    }
+    nvm_reader_t r;
+    if (nvm_read_begin(&r, n, slot, buf, cap) != NVM_OK) {
+        return r.status;
+    }
+    while (!nvm_read_run(&r, UINT32_MAX)) {
+    }
+    if (r.status == NVM_OK) {
+        *len = r.len;
+    }
+    return r.status;
 }
 
 nvm_status_t nvm_erase_slot(nvm_t *n, uint16_t slot)
