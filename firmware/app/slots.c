@@ -101,7 +101,7 @@ static bool commit_slice(slots_t *b, fs_status_t *st)
     *st = FS_OK;
     switch (b->commit_stage) {
     case SLOTS_COMMIT_PARSE:
-        if (!skill_parse_run(&b->parser, APP_COMMIT_UNITS_PER_TICK)) {
+        if (!skill_parse_run(&b->parser, SLOTS_PARSE_UNITS_PER_TICK)) {
             return false;
         }
         *st = b->parser.status;
@@ -120,7 +120,7 @@ static bool commit_slice(slots_t *b, fs_status_t *st)
         b->commit_stage = SLOTS_COMMIT_CHECK;
         return false;
     case SLOTS_COMMIT_CHECK:
-        if (!skchk_run(&b->check, APP_CHECK_STEPS_PER_TICK)) {
+        if (!skchk_run(&b->check, SLOTS_CHECK_STEPS_PER_TICK)) {
             return false;
         }
         *st = b->check.status; /* 222/223/225: slot unchanged */
@@ -131,7 +131,7 @@ static bool commit_slice(slots_t *b, fs_status_t *st)
                               b->xfer_size); /* its argument errors end the write at once */
         b->commit_stage = SLOTS_COMMIT_WRITE;
         return false;
-    default: return nvm_write_run(&b->writer, APP_COMMIT_FLASH_UNITS_PER_TICK);
+    default: return nvm_write_run(&b->writer, SLOTS_FLASH_UNITS_PER_TICK);
     }
 }
 

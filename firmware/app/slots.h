@@ -19,26 +19,25 @@
 #define SLOTS_N NVM_MAX_SLOTS           /* slot numbers 1..SLOTS_N on the wire */
 #define SLOTS_IMAGE_MAX SKILL_IMAGE_MAX /* the longest image a slot holds */
 
-/* DMP steps of a downloaded skill's own rollout (skill_check.h) per slice while the commit
- * waits: on the M4F 100 steps are ~55,000 instructions (docs/cortex-m.md), within the
- * 168,000-cycle tick of an idle device; a 17 s skill takes 0.17 s. A port whose float is in
- * software defines fewer (the M3 image: 8, ~90,000 instructions). */
-#ifndef APP_CHECK_STEPS_PER_TICK
-#define APP_CHECK_STEPS_PER_TICK 100u
+/* The slices of a download's commit and of a read-back, per tick while the host waits (0x78).
+ * Each image sets them so a tick with a slice stays within its budget (firmware/app/
+ * CMakeLists.txt: the M4F 3,000 instructions, the M3 8,000; the host build takes large slices):
+ *   SLOTS_PARSE_UNITS_PER_TICK  units of the image's parse (skill_parse_run: one kernel's value,
+ *                               32 bytes of the CRC; at most ~450 instructions on the M4F)
+ *   SLOTS_CHECK_STEPS_PER_TICK  DMP steps of the skill's own rollout (skill_check.h: ~480
+ *                               instructions on the M4F, ~11,000 on the M3's software float)
+ *   SLOTS_FLASH_UNITS_PER_TICK  units of the slot's flash write (nvm_write_run: the erase, the
+ *                               commit word, NVM_SLICE_BYTES of the CRC or the final scan, or
+ *                               NVM_CHUNK bytes programmed or read back) */
+#ifndef SLOTS_PARSE_UNITS_PER_TICK
+#define SLOTS_PARSE_UNITS_PER_TICK 12u
 #endif
-/* Units of the downloaded image's parse (skill_parse_run: one kernel's value, 32 bytes of the
- * CRC) per slice: on the M4F a unit is at most ~450 instructions, so 12 keep such a tick near
- * 6,000; N = 50 takes ~20 ticks, N = 256 ~110. */
-#ifndef APP_COMMIT_UNITS_PER_TICK
-#define APP_COMMIT_UNITS_PER_TICK 12u
+#ifndef SLOTS_CHECK_STEPS_PER_TICK
+#define SLOTS_CHECK_STEPS_PER_TICK 100u
 #endif
-/* Units of the slot's flash write (nvm_write_run: the erase, the commit word, or 256 bytes of
- * the CRC, programming, read-back or final scan, each at most ~3,500 instructions on the M4F)
- * per slice. */
-#ifndef APP_COMMIT_FLASH_UNITS_PER_TICK
-#define APP_COMMIT_FLASH_UNITS_PER_TICK 2u
+#ifndef SLOTS_FLASH_UNITS_PER_TICK
+#define SLOTS_FLASH_UNITS_PER_TICK 2u
 #endif
-
 /* Units of a read-back's record read (nvm_read_run: its header, or NVM_READ_CHUNK bytes read
  * and added to the record's CRC, ~1,000 instructions on the M4F) per tick while RequestUpload
  * waits. */
@@ -48,10 +47,10 @@
 
 /** The stages of a download's commit (one slice a tick at least). */
 enum {
-    SLOTS_COMMIT_PARSE = 0, /* skill_parse_run, APP_COMMIT_UNITS_PER_TICK units a slice */
+    SLOTS_COMMIT_PARSE = 0, /* skill_parse_run, SLOTS_PARSE_UNITS_PER_TICK units a slice */
     SLOTS_COMMIT_PARAMS,    /* skchk_params, skchk_stiffness, skchk_begin */
-    SLOTS_COMMIT_CHECK,     /* the rollout, APP_CHECK_STEPS_PER_TICK steps a slice */
-    SLOTS_COMMIT_WRITE      /* the slot's flash record, APP_COMMIT_FLASH_UNITS_PER_TICK units a
+    SLOTS_COMMIT_CHECK,     /* the rollout, SLOTS_CHECK_STEPS_PER_TICK steps a slice */
+    SLOTS_COMMIT_WRITE      /* the slot's flash record, SLOTS_FLASH_UNITS_PER_TICK units a
                                slice, then the slot cache */
 };
 

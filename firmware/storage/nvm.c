@@ -255,13 +255,15 @@ static nvm_status_t scan_head(const nvm_t *n, uint16_t slot, uint8_t copy, nvm_r
     return (rd32(cw) != NVM_COMMIT_WORD) ? NVM_ERR_REC_UNCOMMITTED : NVM_OK;
 }
 
-/* The payload's CRC from off, one NVM_CHUNK at most, continued in *crc. */
+/* The payload's CRC from off, step bytes at most (<= NVM_CHUNK), continued in *crc. */
 static nvm_status_t scan_chunk(const nvm_t *n, uint16_t slot, uint8_t copy,
-                               const nvm_record_info_t *info, uint32_t off, uint32_t *crc)
+                               const nvm_record_info_t *info, uint32_t off, uint32_t step,
+                               uint32_t *crc)
 {
     const fls_dev_t *d = n->dev;
     uint8_t buf[NVM_CHUNK];
-    const uint32_t k = (info->length - off < NVM_CHUNK) ? info->length - off : NVM_CHUNK;
+    const uint32_t m = step < NVM_CHUNK ? step : NVM_CHUNK;
+    const uint32_t k = (info->length - off < m) ? info->length - off : m;
     if (d->read(d->ctx, copy_addr(n, slot, copy) + NVM_HEADER_SIZE + off, buf, k) != 0) {
         return NVM_ERR_FLASH;
     }
@@ -275,7 +277,7 @@ static nvm_status_t scan_copy(const nvm_t *n, uint16_t slot, uint8_t copy, nvm_r
     uint32_t crc = 0u;
     nvm_status_t s = scan_head(n, slot, copy, info, &crc);
     for (uint32_t off = 0u; s == NVM_OK && off < info->length; off += NVM_CHUNK) {
-        s = scan_chunk(n, slot, copy, info, off, &crc);
+        s = scan_chunk(n, slot, copy, info, off, NVM_CHUNK, &crc);
     }
     if (s != NVM_OK) {
         return s;
@@ -384,12 +386,12 @@ static nvm_status_t verify_range(const fls_dev_t *d, uint32_t addr, const uint8_
 
 /* The stages of a write, in nvm_write's order. */
 enum {
-    NW_CRC,    /* the record's CRC over the payload, NVM_CHUNK bytes a unit */
+    NW_CRC,    /* the record's CRC over the payload, NVM_SLICE_BYTES a unit */
     NW_ERASE,  /* erase the target copy */
     NW_PROG,   /* the header, then the payload, NVM_CHUNK bytes a unit */
     NW_VERIFY, /* read back and compare, the same pieces */
     NW_COMMIT, /* the commit word */
-    NW_SCAN,   /* the slot's two copies scanned as at boot, NVM_CHUNK bytes a unit */
+    NW_SCAN,   /* the slot's two copies scanned as at boot, NVM_SLICE_BYTES a unit */
     NW_DONE
 };
 
@@ -463,9 +465,9 @@ static bool write_scan(nvm_writer_t *w)
         w->pos = 1u;
     } else {
         const uint32_t off = w->pos - 1u;
-        w->ok[c] = scan_chunk(w->n, w->slot, c, inf, off, &w->scan_crc) == NVM_OK;
-        w->pos += NVM_CHUNK;
-        copy_done = !w->ok[c] || off + NVM_CHUNK >= inf->length;
+        w->ok[c] = scan_chunk(w->n, w->slot, c, inf, off, NVM_SLICE_BYTES, &w->scan_crc) == NVM_OK;
+        w->pos += NVM_SLICE_BYTES;
+        copy_done = !w->ok[c] || off + NVM_SLICE_BYTES >= inf->length;
     }
     if (copy_done) {
         w->ok[c] = w->ok[c] && w->scan_crc == inf->crc32;
@@ -490,7 +492,8 @@ bool nvm_write_run(nvm_writer_t *w, uint32_t max_units)
         bool next = true;
         switch (w->stage) {
         case NW_CRC: {
-            const uint32_t k = (w->len - w->pos < NVM_CHUNK) ? w->len - w->pos : NVM_CHUNK;
+            const uint32_t k = (w->len - w->pos < NVM_SLICE_BYTES) ? w->len - w->pos
+                                                                   : NVM_SLICE_BYTES;
             w->crc = nvm_crc32(w->crc, w->payload + w->pos, k);
             w->pos += k;
             next = w->pos >= w->len;

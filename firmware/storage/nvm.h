@@ -90,9 +90,13 @@ const nvm_dir_entry_t *nvm_dir(const nvm_t *n, uint16_t slot);
 /** Write payload as the slot's new record (erase inactive copy, program, commit, verify). */
 nvm_status_t nvm_write(nvm_t *n, uint16_t slot, const uint8_t *payload, uint32_t len);
 
+/* Bytes of the CRC or of the final scan in a unit of nvm_write_run (programming and read-back
+ * go 256 bytes a unit, one power-loss point each): ~450 instructions on the M4F. */
+#define NVM_SLICE_BYTES 64u
+
 /** nvm_write in slices (nvm_write_begin, then nvm_write_run until it returns true): the same
- *  steps, flash contents and result, a unit of work per step (the erase, the commit word, or
- *  up to 256 bytes of the CRC, programming, read-back or final scan). The payload and *n must
+ *  steps, flash contents and result, a unit of work per step (the erase, the commit word,
+ *  NVM_SLICE_BYTES of the CRC or the final scan, or up to 256 bytes programmed or read back). The payload and *n must
  *  stay in place and unused by other writes until it is done; the newest record stays readable
  *  throughout (the new one becomes valid with the commit word). */
 typedef struct {

@@ -720,14 +720,16 @@ static void test_skill_validated_before_commit_and_run(void **state)
     /* one stage after the other, each bounded per tick: the parse (v2, N = 50: CRC 42 units of
      * 32 bytes, finiteness 42 of 4 fields, widths, centres and values 50 each, 5 header stages,
      * the model's derivation 32 units of 8 (4 scalar checks and 5 passes of 50 kernels, the y
-     * weights' one step): 271 units), the parameters (1 tick), the rollout (1,500 steps), the flash write (1,340
-     * bytes, 6 pieces of 256: CRC 6, erase 1, program 1 + 6, read-back 1 + 6, commit 1, scan of
-     * the new copy 1 + 6 and of the empty one 1: 30 units) */
-    const uint32_t parse_ticks = (271u + APP_COMMIT_UNITS_PER_TICK - 1u) /
-                                 APP_COMMIT_UNITS_PER_TICK;
-    const uint32_t check_ticks = (1500u + APP_CHECK_STEPS_PER_TICK - 1u) / APP_CHECK_STEPS_PER_TICK;
-    const uint32_t write_ticks = (30u + APP_COMMIT_FLASH_UNITS_PER_TICK - 1u) /
-                                 APP_COMMIT_FLASH_UNITS_PER_TICK;
+     * weights' one step): 271 units), the parameters (1 tick), the rollout (1,500 steps), the
+     * flash write (1,340 bytes: CRC 21 slices of 64, erase 1, program 1 + 6 pieces of 256,
+     * read-back 1 + 6, commit 1, scan of the new copy 1 + 21 slices and of the empty one 1: 60
+     * units) */
+    const uint32_t parse_ticks = (271u + SLOTS_PARSE_UNITS_PER_TICK - 1u) /
+                                 SLOTS_PARSE_UNITS_PER_TICK;
+    const uint32_t check_ticks = (1500u + SLOTS_CHECK_STEPS_PER_TICK - 1u) /
+                                 SLOTS_CHECK_STEPS_PER_TICK;
+    const uint32_t write_ticks = (60u + SLOTS_FLASH_UNITS_PER_TICK - 1u) /
+                                 SLOTS_FLASH_UNITS_PER_TICK;
     assert_int_equal(len_a, 1340u);
     assert_int_equal(app.tick - t0, parse_ticks + 1u + check_ticks + write_ticks);
     const fs_real_t peak = app.slots.peak_N[0];
