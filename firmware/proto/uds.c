@@ -311,6 +311,22 @@ static uint16_t svc_request_transfer(uds_server_t *srv, const uint8_t *req, uint
 }
 
 /* ---- 0x36 ---- */
+/* Answer of a TransferData download block: the block counted and a positive response, or the
+ * NRC (0x78 included). */
+static uint16_t data_answer(uds_server_t *srv, uint8_t nrc, uint8_t counter, uint16_t n,
+                            uint8_t *resp)
+{
+    if (nrc != UDS_NRC_OK) {
+        return negative(resp, UDS_SID_TRANSFER_DATA, nrc);
+    }
+    srv->xfer_pos += n;
+    srv->xfer_last_len = n;
+    srv->xfer_counter = (uint8_t)(srv->xfer_counter + 1u);
+    resp[0] = (uint8_t)(UDS_SID_TRANSFER_DATA + 0x40u);
+    resp[1] = counter;
+    return 2u;
+}
+
 static uint16_t svc_transfer_data(uds_server_t *srv, const uint8_t *req, uint16_t len,
                                   uint8_t *resp, uint16_t cap)
 {
@@ -343,13 +359,13 @@ static uint16_t svc_transfer_data(uds_server_t *srv, const uint8_t *req, uint16_
             return negative(resp, req[0], UDS_NRC_TRANSFER_SUSPENDED); /* more than announced */
         }
         const uint8_t nrc = srv->app.download_data(srv->app.ctx, srv->xfer_pos, &req[2], n);
-        if (nrc != UDS_NRC_OK) {
-            return negative(resp, req[0], nrc);
+        if (nrc == UDS_NRC_RESPONSE_PENDING) {
+            srv->pending_sid = req[0]; /* uds_server_resume asks download_data (data NULL) again */
+            srv->pending_since_ms = srv->last_request_ms;
+            srv->pending_addr = counter;
+            srv->pending_size = n;
         }
-        srv->xfer_pos += n;
-        srv->xfer_last_len = n;
-        srv->xfer_counter = (uint8_t)(srv->xfer_counter + 1u);
-        return 2u;
+        return data_answer(srv, nrc, counter, n, resp);
     }
     /* upload */
     if (len != 2u) {
@@ -483,15 +499,22 @@ void uds_server_after_response(uds_server_t *srv)
 uint16_t uds_server_resume(uds_server_t *srv, uint8_t *resp, uint16_t resp_cap, uint32_t now_ms)
 {
     const uint8_t sid = srv->pending_sid;
-    if ((sid != UDS_SID_TRANSFER_EXIT && sid != UDS_SID_REQ_UPLOAD) || resp_cap < 8u) {
+    if ((sid != UDS_SID_TRANSFER_EXIT && sid != UDS_SID_REQ_UPLOAD &&
+         sid != UDS_SID_TRANSFER_DATA) ||
+        resp_cap < 8u) {
         srv->pending_sid = 0u;
         return 0u;
     }
     uint32_t crc = 0u;
-    const uint8_t nrc = sid == UDS_SID_TRANSFER_EXIT
-                            ? srv->app.download_end(srv->app.ctx, &crc)
-                            : srv->app.upload_begin(srv->app.ctx, srv->pending_addr,
-                                                    srv->pending_size);
+    uint8_t nrc;
+    if (sid == UDS_SID_TRANSFER_EXIT) {
+        nrc = srv->app.download_end(srv->app.ctx, &crc);
+    } else if (sid == UDS_SID_REQ_UPLOAD) {
+        nrc = srv->app.upload_begin(srv->app.ctx, srv->pending_addr, srv->pending_size);
+    } else {
+        nrc = srv->app.download_data(srv->app.ctx, srv->xfer_pos, NULL,
+                                     (uint16_t)srv->pending_size);
+    }
     srv->last_request_ms = now_ms; /* the session stays while the server works */
     if (nrc == UDS_NRC_RESPONSE_PENDING) {
         if ((uint32_t)(now_ms - srv->pending_since_ms) < UDS_PENDING_REPEAT_MS) {
@@ -501,6 +524,9 @@ uint16_t uds_server_resume(uds_server_t *srv, uint8_t *resp, uint16_t resp_cap, 
         return negative(resp, sid, nrc);
     }
     srv->pending_sid = 0u;
+    if (sid == UDS_SID_TRANSFER_DATA) {
+        return data_answer(srv, nrc, (uint8_t)srv->pending_addr, (uint16_t)srv->pending_size, resp);
+    }
     return sid == UDS_SID_TRANSFER_EXIT ? exit_answer(resp, nrc, crc)
                                         : transfer_answer(srv, sid, nrc, srv->pending_size, resp);
 }
