@@ -138,12 +138,17 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                                                                                for (f in h) hm[f] = h[f] } }
                   if (prof != "" && lc > kmax[k]) { kmax[k] = lc
                                                     for (x in hk) if (index(x, k SUBSEP) == 1) delete hk[x]
-                                                    for (f in h) hk[k, f] = h[f] } }
+                                                    for (f in h) hk[k, f] = h[f] }
+                  if (prof != "" && FOCUS != "") { fc = 0; for (f in h) if (f ~ FOCUS) fc += h[f]
+                                                   if (fc > fmax[k]) { fmax[k] = fc
+                                                     for (x in hf) if (index(x, k SUBSEP) == 1) delete hf[x]
+                                                     for (f in h) if (f ~ FOCUS) hf[k, f] = h[f] } } }
       delete h; delete hp; next }
   END { if (prof != "") { for (f in tot) printf "%d %s\n", tot[f] / nexec, f > prof
                           for (a in tp) printf "%.2f %s\n", tp[a] / nexec, a > (prof ".pc")
                           for (f in hm) printf "%d %s\n", hm[f], f > (prof ".maxdmp")
-                          for (x in hk) { split(x, q, SUBSEP); printf "%d %s\n", hk[x], q[2] > (prof ".max." q[1]) } } }
+                          for (x in hk) { split(x, q, SUBSEP); printf "%d %s\n", hk[x], q[2] > (prof ".max." q[1]) }
+                          for (x in hf) { split(x, q, SUBSEP); printf "%d %s\n", hf[x], q[2] > (prof ".focus." q[1]) } } }
   { s = $NF
     if (!inboot && s == "Reset_Handler") { inboot = 1; bc = 0; ba = 0; ininit = 0 }
     if (inboot) { bc++
@@ -176,8 +181,9 @@ mkfifo "$WORK/trace.fifo"
 # QEMU_TICK_PROFILE=FILE: also write the mean instructions per function of an EXECUTE tick there,
 # per instruction address (hex, with its function) in FILE.pc, per function of the EXECUTE tick
 # with the largest DMP part in FILE.maxdmp, and per function of the largest tick of each kind K in
-# FILE.max.K
-awk -v prof="${QEMU_TICK_PROFILE:-}" -v DMP="$DMP_RE" -v LAW="$LAW" \
+# FILE.max.K; with QEMU_TICK_FOCUS=REGEX also, per kind K, the functions matching REGEX of the
+# tick where they ran the most instructions, in FILE.focus.K
+awk -v prof="${QEMU_TICK_PROFILE:-}" -v FOCUS="${QEMU_TICK_FOCUS:-}" -v DMP="$DMP_RE" -v LAW="$LAW" \
     -v COMMIT="^(download_end|skill_parse_run_f32|skchk_(params|begin|run)_f32)$" "$COUNT_AWK" < "$WORK/trace.fifo" > "$WORK/ticks.txt" &
 AWK_PID=$!
 "$HIL_SIM" pil --target "$TARGET" --image "$IMG/fs_pil.elf" --port 0 --host-timeout 500 \

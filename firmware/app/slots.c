@@ -101,7 +101,7 @@ static bool commit_slice(slots_t *b, fs_status_t *st)
     *st = FS_OK;
     switch (b->commit_stage) {
     case SLOTS_COMMIT_PARSE:
-        if (!skill_parse_run(&b->parser, APP_COMMIT_UNITS_PER_TICK)) {
+        if (!skill_parse_run(&b->parser, SLOTS_PARSE_UNITS_PER_TICK)) {
             return false;
         }
         *st = b->parser.status;
@@ -120,7 +120,7 @@ static bool commit_slice(slots_t *b, fs_status_t *st)
         b->commit_stage = SLOTS_COMMIT_CHECK;
         return false;
     case SLOTS_COMMIT_CHECK:
-        if (!skchk_run(&b->check, APP_CHECK_STEPS_PER_TICK)) {
+        if (!skchk_run(&b->check, SLOTS_CHECK_STEPS_PER_TICK)) {
             return false;
         }
         *st = b->check.status; /* 222/223/225: slot unchanged */
@@ -131,7 +131,7 @@ static bool commit_slice(slots_t *b, fs_status_t *st)
                               b->xfer_size); /* its argument errors end the write at once */
         b->commit_stage = SLOTS_COMMIT_WRITE;
         return false;
-    default: return nvm_write_run(&b->writer, APP_COMMIT_FLASH_UNITS_PER_TICK);
+    default: return nvm_write_run(&b->writer, SLOTS_FLASH_UNITS_PER_TICK);
     }
 }
 
@@ -178,6 +178,7 @@ void slots_abort(slots_t *b)
         b->last_transfer_status = FS_TRANSFER_INTERRUPTED; /* interrupted: nothing was written */
     }
     b->checking = false; /* a commit in progress ends with the transfer */
+    b->reading = false;
     b->xfer_size = 0u;
 }
 
@@ -189,17 +190,28 @@ void slots_refuse_commit(slots_t *b)
 
 uint8_t slots_upload_begin(slots_t *b, uint32_t slot, uint32_t size)
 {
-    if (slot < 1u || slot > SLOTS_N || !b->nvm_ok) {
+    if (!b->reading) {
+        if (slot < 1u || slot > SLOTS_N || !b->nvm_ok) {
+            return UDS_NRC_REQUEST_OUT_OF_RANGE;
+        }
+        if (nvm_read_begin(&b->reader, &b->nvm, (uint16_t)(slot - 1u), b->image,
+                           sizeof(b->image)) != NVM_OK) {
+            return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED; /* empty slot */
+        }
+        b->reading = true;
+    }
+    /* the read-back's record CRC, a bounded slice a tick (0x78 meanwhile) */
+    if (!nvm_read_run(&b->reader, SLOTS_READ_UNITS_PER_TICK)) {
+        return UDS_NRC_RESPONSE_PENDING;
+    }
+    b->reading = false;
+    if (b->reader.status != NVM_OK) {
+        return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED;
+    }
+    if (size != b->reader.len) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
-    uint32_t len = 0u;
-    if (nvm_read(&b->nvm, (uint16_t)(slot - 1u), b->image, sizeof(b->image), &len) != NVM_OK) {
-        return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED; /* empty slot */
-    }
-    if (size != len) {
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;
-    }
-    b->xfer_size = len;
+    b->xfer_size = b->reader.len;
     return UDS_NRC_OK;
 }
 

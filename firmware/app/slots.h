@@ -19,32 +19,38 @@
 #define SLOTS_N NVM_MAX_SLOTS           /* slot numbers 1..SLOTS_N on the wire */
 #define SLOTS_IMAGE_MAX SKILL_IMAGE_MAX /* the longest image a slot holds */
 
-/* DMP steps of a downloaded skill's own rollout (skill_check.h) per slice while the commit
- * waits: on the M4F 100 steps are ~55,000 instructions (docs/cortex-m.md), within the
- * 168,000-cycle tick of an idle device; a 17 s skill takes 0.17 s. A port whose float is in
- * software defines fewer (the M3 image: 8, ~90,000 instructions). */
-#ifndef APP_CHECK_STEPS_PER_TICK
-#define APP_CHECK_STEPS_PER_TICK 100u
+/* The slices of a download's commit and of a read-back, per tick while the host waits (0x78).
+ * Each image sets them so a tick with a slice stays within its budget (firmware/app/
+ * CMakeLists.txt: the M4F 3,000 instructions, the M3 8,000; the host build takes large slices):
+ *   SLOTS_PARSE_UNITS_PER_TICK  units of the image's parse (skill_parse_run: one kernel's value,
+ *                               32 bytes of the CRC; at most ~450 instructions on the M4F)
+ *   SLOTS_CHECK_STEPS_PER_TICK  DMP steps of the skill's own rollout (skill_check.h: ~480
+ *                               instructions on the M4F, ~11,000 on the M3's software float)
+ *   SLOTS_FLASH_UNITS_PER_TICK  units of the slot's flash write (nvm_write_run: the erase, the
+ *                               commit word, NVM_SLICE_BYTES of the CRC or the final scan, or
+ *                               NVM_CHUNK bytes programmed or read back) */
+#ifndef SLOTS_PARSE_UNITS_PER_TICK
+#define SLOTS_PARSE_UNITS_PER_TICK 12u
 #endif
-/* Units of the downloaded image's parse (skill_parse_run: one kernel's value, 32 bytes of the
- * CRC) per slice: on the M4F a unit is at most ~450 instructions, so 12 keep such a tick near
- * 6,000; N = 50 takes ~20 ticks, N = 256 ~110. */
-#ifndef APP_COMMIT_UNITS_PER_TICK
-#define APP_COMMIT_UNITS_PER_TICK 12u
+#ifndef SLOTS_CHECK_STEPS_PER_TICK
+#define SLOTS_CHECK_STEPS_PER_TICK 100u
 #endif
-/* Units of the slot's flash write (nvm_write_run: the erase, the commit word, or 256 bytes of
- * the CRC, programming, read-back or final scan, each at most ~3,500 instructions on the M4F)
- * per slice. */
-#ifndef APP_COMMIT_FLASH_UNITS_PER_TICK
-#define APP_COMMIT_FLASH_UNITS_PER_TICK 2u
+#ifndef SLOTS_FLASH_UNITS_PER_TICK
+#define SLOTS_FLASH_UNITS_PER_TICK 2u
+#endif
+/* Units of a read-back's record read (nvm_read_run: its header, or NVM_READ_CHUNK bytes read
+ * and added to the record's CRC, ~1,000 instructions on the M4F) per tick while RequestUpload
+ * waits. */
+#ifndef SLOTS_READ_UNITS_PER_TICK
+#define SLOTS_READ_UNITS_PER_TICK 1u
 #endif
 
 /** The stages of a download's commit (one slice a tick at least). */
 enum {
-    SLOTS_COMMIT_PARSE = 0, /* skill_parse_run, APP_COMMIT_UNITS_PER_TICK units a slice */
+    SLOTS_COMMIT_PARSE = 0, /* skill_parse_run, SLOTS_PARSE_UNITS_PER_TICK units a slice */
     SLOTS_COMMIT_PARAMS,    /* skchk_params, skchk_stiffness, skchk_begin */
-    SLOTS_COMMIT_CHECK,     /* the rollout, APP_CHECK_STEPS_PER_TICK steps a slice */
-    SLOTS_COMMIT_WRITE      /* the slot's flash record, APP_COMMIT_FLASH_UNITS_PER_TICK units a
+    SLOTS_COMMIT_CHECK,     /* the rollout, SLOTS_CHECK_STEPS_PER_TICK steps a slice */
+    SLOTS_COMMIT_WRITE      /* the slot's flash record, SLOTS_FLASH_UNITS_PER_TICK units a
                                slice, then the slot cache */
 };
 
@@ -77,6 +83,8 @@ typedef struct {
     bool checking;                 /* a download's commit runs: nothing starts meanwhile */
     uint8_t commit_stage;          /* SLOTS_COMMIT_*: the commit's stage while checking */
     slots_limits_t lim;            /* the commit's limits, taken at its first slice */
+    nvm_reader_t reader;           /* a read-back's record read and CRC, spread over ticks */
+    bool reading;                  /* a read-back's RequestUpload is answered 0x78 meanwhile */
 } slots_t;
 
 /** Open storage on dev (NULL: none) and fill the cache from it; no transfer. */
@@ -111,8 +119,10 @@ void slots_abort(slots_t *b);
  *  commit stops, the status is "interrupted", the slot keeps what it holds. */
 void slots_refuse_commit(slots_t *b);
 
-/** Start a read-back of slot 1..SLOTS_N of size bytes (its stored length): a UDS NRC (0x31 out
- *  of range or another size, 0x70 empty slot). */
+/** Start a read-back of slot 1..SLOTS_N of size bytes (its stored length), the record read and
+ *  its CRC checked a slice a call: 0x78 while it goes on (call again with the same arguments);
+ *  then a UDS NRC (0x31 out of range or another size, 0x70 empty or unreadable slot; 0 the
+ *  image is in the transfer buffer). */
 uint8_t slots_upload_begin(slots_t *b, uint32_t slot, uint32_t size);
 
 /** Copy len bytes of the read-back at offset into out: a UDS NRC (0x31 beyond its end). */

@@ -171,6 +171,47 @@ boot_status_t fwu_data(fwu_t *f, bool authorised, uint32_t offset, const uint8_t
     return BOOT_OK;
 }
 
+boot_status_t fwu_data_step(fwu_t *f, bool authorised, uint32_t offset, const uint8_t *data,
+                            uint32_t len, uint32_t max_bytes, bool *done)
+{
+    *done = true;
+    if (data != NULL) {
+        f->block_busy = false;
+        if (!authorised) {
+            return refuse(f, FWU_ERR_LOCKED);
+        }
+        if (f->phase != FWU_RECEIVING || offset != f->received) {
+            return refuse(f, FWU_ERR_SEQUENCE);
+        }
+        if (len > f->size - f->received || len > FWU_BLOCK_MAX) {
+            return refuse(f, FWU_ERR_OVERRUN);
+        }
+        memcpy(f->block, data, len);
+        f->block_off = offset;
+        f->block_len = len;
+        f->block_pos = 0u;
+        f->block_busy = true;
+        *done = len == 0u;
+        if (*done) {
+            f->block_busy = false;
+        }
+        return BOOT_OK; /* its pieces from the next call on */
+    }
+    if (!f->block_busy) {
+        return refuse(f, FWU_ERR_SEQUENCE);
+    }
+    const uint32_t rest = f->block_len - f->block_pos;
+    const uint32_t k = rest < max_bytes ? rest : max_bytes;
+    const boot_status_t st = fwu_data(f, authorised, f->block_off + f->block_pos,
+                                      &f->block[f->block_pos], k);
+    f->block_pos += k;
+    *done = st != BOOT_OK || f->block_pos >= f->block_len;
+    if (*done) {
+        f->block_busy = false;
+    }
+    return st;
+}
+
 /* The staged tail to flash (padded with 0xFF to a write unit). */
 static boot_status_t flush_tail(fwu_t *f)
 {
@@ -234,6 +275,7 @@ boot_status_t fwu_end(fwu_t *f, bool authorised, uint32_t *crc32_out)
 
 void fwu_abort(fwu_t *f)
 {
+    f->block_busy = false;
     if (f->verifying) {
         boot_verify_wipe(&f->verify);
         f->verifying = false;

@@ -20,6 +20,7 @@
 #include "fs_uds_ids.h" /* FWU_DOWNLOAD_ADDRESS, FWU_RID_*, FWU_DID_STATUS */
 
 #define FWU_STATUS_LEN 17u
+#define FWU_BLOCK_MAX 4096u /* the longest TransferData block fwu_data_step keeps */
 #define FWU_OPT_ALLOW_DOWNGRADE BOOT_FLAG_ALLOW_DOWNGRADE
 
 typedef enum {
@@ -46,6 +47,11 @@ typedef struct {
     boot_status_t last;     /* last refusal, 0 if none */
     bool verifying;         /* fwu_end_step: the image's verification runs in slices */
     boot_verify_t verify;
+    bool block_busy;    /* fwu_data_step: a TransferData block is taken in slices */
+    uint32_t block_off; /* its offset in the image, its length and the bytes taken */
+    uint32_t block_len;
+    uint32_t block_pos;
+    uint8_t block[FWU_BLOCK_MAX];
 } fwu_t;
 
 /** Attach to a booted device (boot_select already run). */
@@ -61,6 +67,13 @@ boot_status_t fwu_begin(fwu_t *f, bool authorised, uint32_t size);
  *  Any refusal ends the download. */
 boot_status_t fwu_data(fwu_t *f, bool authorised, uint32_t offset, const uint8_t *data,
                        uint32_t len);
+
+/** TransferData in slices: the first call (data not NULL) checks what fwu_data checks first
+ *  (720, 722, 724) and keeps the block (len <= FWU_BLOCK_MAX); each later call (data NULL) takes
+ *  at most max_bytes of it through fwu_data; *done false while it goes on, then fwu_data's
+ *  result (any refusal ends the download). */
+boot_status_t fwu_data_step(fwu_t *f, bool authorised, uint32_t offset, const uint8_t *data,
+                            uint32_t len, uint32_t max_bytes, bool *done);
 
 /** RequestTransferExit: all announced bytes in (722), then hash (705) and tag (706) are checked
  *  on the bytes read back from flash. *crc32_out (may be NULL) = CRC-32 of the image. */

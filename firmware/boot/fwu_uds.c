@@ -17,7 +17,10 @@ uint8_t fwu_uds_download_begin(fwu_t *f, const uds_server_t *srv, uint32_t size)
 uint8_t fwu_uds_download_data(fwu_t *f, const uds_server_t *srv, uint32_t offset,
                               const uint8_t *data, uint16_t len)
 {
-    return fwu_nrc(fwu_data(f, fwu_uds_authorised(srv), offset, data, len));
+    bool done = false;
+    const boot_status_t st = fwu_data_step(f, fwu_uds_authorised(srv), offset, data, len,
+                                           FWU_DATA_BYTES_PER_CALL, &done);
+    return done ? fwu_nrc(st) : UDS_NRC_RESPONSE_PENDING;
 }
 
 uint8_t fwu_uds_download_end(fwu_t *f, const uds_server_t *srv, uint32_t *crc32_out)

@@ -248,6 +248,26 @@ static uint16_t svc_routine(uds_server_t *srv, const uint8_t *req, uint16_t len,
     return (uint16_t)(4u + n);
 }
 
+/* Answer of RequestDownload/RequestUpload: the transfer set up and a positive response with
+ * the block length, or the NRC (0x78 included). */
+static uint16_t transfer_answer(uds_server_t *srv, uint8_t sid, uint8_t nrc, uint32_t size,
+                                uint8_t *resp)
+{
+    if (nrc != UDS_NRC_OK) {
+        return negative(resp, sid, nrc);
+    }
+    srv->xfer = sid == UDS_SID_REQ_DOWNLOAD ? UDS_XFER_DOWNLOAD : UDS_XFER_UPLOAD;
+    srv->xfer_size = size;
+    srv->xfer_pos = 0u;
+    srv->xfer_counter = 1u;
+    srv->xfer_last_len = 0u;
+    resp[0] = (uint8_t)(sid + 0x40u);
+    resp[1] = 0x20u; /* lengthFormatIdentifier: 2-byte maxNumberOfBlockLength */
+    resp[2] = (uint8_t)(UDS_MAX_BLOCK_LENGTH >> 8);
+    resp[3] = (uint8_t)(UDS_MAX_BLOCK_LENGTH & 0xFFu);
+    return 4u;
+}
+
 /* ---- 0x34 / 0x35 ---- */
 static uint16_t svc_request_transfer(uds_server_t *srv, const uint8_t *req, uint16_t len,
                                      uint8_t *resp)
@@ -281,22 +301,32 @@ static uint16_t svc_request_transfer(uds_server_t *srv, const uint8_t *req, uint
     const uint32_t size = be_n(&req[3u + addr_len], size_len);
     const uint8_t nrc = download ? srv->app.download_begin(srv->app.ctx, addr, size)
                                  : srv->app.upload_begin(srv->app.ctx, addr, size);
-    if (nrc != UDS_NRC_OK) {
-        return negative(resp, req[0], nrc);
+    if (nrc == UDS_NRC_RESPONSE_PENDING && !download) {
+        srv->pending_sid = req[0]; /* uds_server_resume asks upload_begin again */
+        srv->pending_since_ms = srv->last_request_ms;
+        srv->pending_addr = addr;
+        srv->pending_size = size;
     }
-    srv->xfer = download ? UDS_XFER_DOWNLOAD : UDS_XFER_UPLOAD;
-    srv->xfer_size = size;
-    srv->xfer_pos = 0u;
-    srv->xfer_counter = 1u;
-    srv->xfer_last_len = 0u;
-    resp[0] = (uint8_t)(req[0] + 0x40u);
-    resp[1] = 0x20u; /* lengthFormatIdentifier: 2-byte maxNumberOfBlockLength */
-    resp[2] = (uint8_t)(UDS_MAX_BLOCK_LENGTH >> 8);
-    resp[3] = (uint8_t)(UDS_MAX_BLOCK_LENGTH & 0xFFu);
-    return 4u;
+    return transfer_answer(srv, req[0], nrc, size, resp);
 }
 
 /* ---- 0x36 ---- */
+/* Answer of a TransferData download block: the block counted and a positive response, or the
+ * NRC (0x78 included). */
+static uint16_t data_answer(uds_server_t *srv, uint8_t nrc, uint8_t counter, uint16_t n,
+                            uint8_t *resp)
+{
+    if (nrc != UDS_NRC_OK) {
+        return negative(resp, UDS_SID_TRANSFER_DATA, nrc);
+    }
+    srv->xfer_pos += n;
+    srv->xfer_last_len = n;
+    srv->xfer_counter = (uint8_t)(srv->xfer_counter + 1u);
+    resp[0] = (uint8_t)(UDS_SID_TRANSFER_DATA + 0x40u);
+    resp[1] = counter;
+    return 2u;
+}
+
 static uint16_t svc_transfer_data(uds_server_t *srv, const uint8_t *req, uint16_t len,
                                   uint8_t *resp, uint16_t cap)
 {
@@ -329,13 +359,13 @@ static uint16_t svc_transfer_data(uds_server_t *srv, const uint8_t *req, uint16_
             return negative(resp, req[0], UDS_NRC_TRANSFER_SUSPENDED); /* more than announced */
         }
         const uint8_t nrc = srv->app.download_data(srv->app.ctx, srv->xfer_pos, &req[2], n);
-        if (nrc != UDS_NRC_OK) {
-            return negative(resp, req[0], nrc);
+        if (nrc == UDS_NRC_RESPONSE_PENDING) {
+            srv->pending_sid = req[0]; /* uds_server_resume asks download_data (data NULL) again */
+            srv->pending_since_ms = srv->last_request_ms;
+            srv->pending_addr = counter;
+            srv->pending_size = n;
         }
-        srv->xfer_pos += n;
-        srv->xfer_last_len = n;
-        srv->xfer_counter = (uint8_t)(srv->xfer_counter + 1u);
-        return 2u;
+        return data_answer(srv, nrc, counter, n, resp);
     }
     /* upload */
     if (len != 2u) {
@@ -468,22 +498,37 @@ void uds_server_after_response(uds_server_t *srv)
 
 uint16_t uds_server_resume(uds_server_t *srv, uint8_t *resp, uint16_t resp_cap, uint32_t now_ms)
 {
-    if (srv->pending_sid != UDS_SID_TRANSFER_EXIT || resp_cap < 8u) {
+    const uint8_t sid = srv->pending_sid;
+    if ((sid != UDS_SID_TRANSFER_EXIT && sid != UDS_SID_REQ_UPLOAD &&
+         sid != UDS_SID_TRANSFER_DATA) ||
+        resp_cap < 8u) {
         srv->pending_sid = 0u;
         return 0u;
     }
     uint32_t crc = 0u;
-    const uint8_t nrc = srv->app.download_end(srv->app.ctx, &crc);
+    uint8_t nrc;
+    if (sid == UDS_SID_TRANSFER_EXIT) {
+        nrc = srv->app.download_end(srv->app.ctx, &crc);
+    } else if (sid == UDS_SID_REQ_UPLOAD) {
+        nrc = srv->app.upload_begin(srv->app.ctx, srv->pending_addr, srv->pending_size);
+    } else {
+        nrc = srv->app.download_data(srv->app.ctx, srv->xfer_pos, NULL,
+                                     (uint16_t)srv->pending_size);
+    }
     srv->last_request_ms = now_ms; /* the session stays while the server works */
     if (nrc == UDS_NRC_RESPONSE_PENDING) {
         if ((uint32_t)(now_ms - srv->pending_since_ms) < UDS_PENDING_REPEAT_MS) {
             return 0u;
         }
         srv->pending_since_ms = now_ms;
-        return negative(resp, UDS_SID_TRANSFER_EXIT, nrc);
+        return negative(resp, sid, nrc);
     }
     srv->pending_sid = 0u;
-    return exit_answer(resp, nrc, crc);
+    if (sid == UDS_SID_TRANSFER_DATA) {
+        return data_answer(srv, nrc, (uint8_t)srv->pending_addr, (uint16_t)srv->pending_size, resp);
+    }
+    return sid == UDS_SID_TRANSFER_EXIT ? exit_answer(resp, nrc, crc)
+                                        : transfer_answer(srv, sid, nrc, srv->pending_size, resp);
 }
 
 void uds_server_poll(uds_server_t *srv, uint32_t now_ms)

@@ -79,13 +79,19 @@ typedef struct {
     uint8_t (*security_key)(void *ctx, uint8_t level, const uint8_t *key, uint16_t len);
     /** Download of size bytes into memory/slot address addr (0x34): accept or refuse. */
     uint8_t (*download_begin)(void *ctx, uint32_t addr, uint32_t size);
+    /** A block of the download at offset. UDS_NRC_RESPONSE_PENDING: the application kept the
+     *  block and writes it in slices; the server answers 7F 36 78 and calls download_data again
+     *  with data NULL (same offset and len) from uds_server_resume until it returns anything
+     *  else. */
     uint8_t (*download_data)(void *ctx, uint32_t offset, const uint8_t *data, uint16_t len);
     /** End of transfer: validate (e.g. skill_parse) and commit; on refusal keep the old data.
      *  UDS_NRC_RESPONSE_PENDING: the validation goes on; the server answers 7F 37 78 and calls
      *  download_end again from uds_server_resume until it returns anything else. */
     uint8_t (*download_end)(void *ctx, uint32_t *crc32_out);
     void (*transfer_abort)(void *ctx);
-    /** Upload of size bytes from addr (0x35). */
+    /** Upload of size bytes from addr (0x35). UDS_NRC_RESPONSE_PENDING: the read-back goes on;
+     *  the server answers 7F 35 78 and calls upload_begin again with the same arguments from
+     *  uds_server_resume until it returns anything else. */
     uint8_t (*upload_begin)(void *ctx, uint32_t addr, uint32_t size);
     uint8_t (*upload_data)(void *ctx, uint32_t offset, uint8_t *out, uint16_t len);
 } uds_app_t;
@@ -111,6 +117,8 @@ typedef struct {
     uint8_t pending_reset;     /* reset type to perform after the response, 0 if none */
     uint8_t pending_sid;       /* request answered 0x78 whose final response is due, 0 if none */
     uint32_t pending_since_ms; /* when 0x78 was last sent */
+    uint32_t pending_addr;     /* answered 0x78: RequestUpload's address and size, or ... */
+    uint32_t pending_size;     /* ... TransferData's block counter and length */
 } uds_server_t;
 
 /** Initialise in the default session, locked, no transfer. */

@@ -255,13 +255,15 @@ static nvm_status_t scan_head(const nvm_t *n, uint16_t slot, uint8_t copy, nvm_r
     return (rd32(cw) != NVM_COMMIT_WORD) ? NVM_ERR_REC_UNCOMMITTED : NVM_OK;
 }
 
-/* The payload's CRC from off, one NVM_CHUNK at most, continued in *crc. */
+/* The payload's CRC from off, step bytes at most (<= NVM_CHUNK), continued in *crc. */
 static nvm_status_t scan_chunk(const nvm_t *n, uint16_t slot, uint8_t copy,
-                               const nvm_record_info_t *info, uint32_t off, uint32_t *crc)
+                               const nvm_record_info_t *info, uint32_t off, uint32_t step,
+                               uint32_t *crc)
 {
     const fls_dev_t *d = n->dev;
     uint8_t buf[NVM_CHUNK];
-    const uint32_t k = (info->length - off < NVM_CHUNK) ? info->length - off : NVM_CHUNK;
+    const uint32_t m = step < NVM_CHUNK ? step : NVM_CHUNK;
+    const uint32_t k = (info->length - off < m) ? info->length - off : m;
     if (d->read(d->ctx, copy_addr(n, slot, copy) + NVM_HEADER_SIZE + off, buf, k) != 0) {
         return NVM_ERR_FLASH;
     }
@@ -275,7 +277,7 @@ static nvm_status_t scan_copy(const nvm_t *n, uint16_t slot, uint8_t copy, nvm_r
     uint32_t crc = 0u;
     nvm_status_t s = scan_head(n, slot, copy, info, &crc);
     for (uint32_t off = 0u; s == NVM_OK && off < info->length; off += NVM_CHUNK) {
-        s = scan_chunk(n, slot, copy, info, off, &crc);
+        s = scan_chunk(n, slot, copy, info, off, NVM_CHUNK, &crc);
     }
     if (s != NVM_OK) {
         return s;
@@ -384,12 +386,12 @@ static nvm_status_t verify_range(const fls_dev_t *d, uint32_t addr, const uint8_
 
 /* The stages of a write, in nvm_write's order. */
 enum {
-    NW_CRC,    /* the record's CRC over the payload, NVM_CHUNK bytes a unit */
+    NW_CRC,    /* the record's CRC over the payload, NVM_SLICE_BYTES a unit */
     NW_ERASE,  /* erase the target copy */
     NW_PROG,   /* the header, then the payload, NVM_CHUNK bytes a unit */
     NW_VERIFY, /* read back and compare, the same pieces */
     NW_COMMIT, /* the commit word */
-    NW_SCAN,   /* the slot's two copies scanned as at boot, NVM_CHUNK bytes a unit */
+    NW_SCAN,   /* the slot's two copies scanned as at boot, NVM_SLICE_BYTES a unit */
     NW_DONE
 };
 
@@ -463,9 +465,9 @@ static bool write_scan(nvm_writer_t *w)
         w->pos = 1u;
     } else {
         const uint32_t off = w->pos - 1u;
-        w->ok[c] = scan_chunk(w->n, w->slot, c, inf, off, &w->scan_crc) == NVM_OK;
-        w->pos += NVM_CHUNK;
-        copy_done = !w->ok[c] || off + NVM_CHUNK >= inf->length;
+        w->ok[c] = scan_chunk(w->n, w->slot, c, inf, off, NVM_SLICE_BYTES, &w->scan_crc) == NVM_OK;
+        w->pos += NVM_SLICE_BYTES;
+        copy_done = !w->ok[c] || off + NVM_SLICE_BYTES >= inf->length;
     }
     if (copy_done) {
         w->ok[c] = w->ok[c] && w->scan_crc == inf->crc32;
@@ -490,7 +492,8 @@ bool nvm_write_run(nvm_writer_t *w, uint32_t max_units)
         bool next = true;
         switch (w->stage) {
         case NW_CRC: {
-            const uint32_t k = (w->len - w->pos < NVM_CHUNK) ? w->len - w->pos : NVM_CHUNK;
+            const uint32_t k = (w->len - w->pos < NVM_SLICE_BYTES) ? w->len - w->pos
+                                                                   : NVM_SLICE_BYTES;
             w->crc = nvm_crc32(w->crc, w->payload + w->pos, k);
             w->pos += k;
             next = w->pos >= w->len;
@@ -544,43 +547,91 @@ nvm_status_t nvm_write(nvm_t *n, uint16_t slot, const uint8_t *payload, uint32_t
     return w.status;
 }
 
-nvm_status_t nvm_read(const nvm_t *n, uint16_t slot, uint8_t *buf, uint32_t cap, uint32_t *len)
+nvm_status_t nvm_read_begin(nvm_reader_t *r, const nvm_t *n, uint16_t slot, uint8_t *buf,
+                            uint32_t cap)
 {
-    if (n == NULL || n->dev == NULL || buf == NULL || len == NULL) {
-        return NVM_ERR_NULL_ARG;
+    (void)memset(r, 0, sizeof(*r));
+    r->n = n;
+    r->buf = buf;
+    r->slot = slot;
+    r->done = true;
+    if (n == NULL || n->dev == NULL || buf == NULL) {
+        r->status = NVM_ERR_NULL_ARG;
+    } else if (slot >= n->n_slots) {
+        r->status = NVM_ERR_SLOT;
+    } else if (n->dir[slot].valid == 0u) {
+        r->status = NVM_ERR_EMPTY;
+    } else if (n->dir[slot].length > cap) {
+        r->status = NVM_ERR_BUFFER;
+    } else {
+        r->base = copy_addr(n, slot, n->dir[slot].copy);
+        r->done = false;
     }
-    if (slot >= n->n_slots) {
-        return NVM_ERR_SLOT;
-    }
-    const nvm_dir_entry_t *e = &n->dir[slot];
-    if (e->valid == 0u) {
-        return NVM_ERR_EMPTY;
-    }
-    if (e->length > cap) {
-        return NVM_ERR_BUFFER;
-    }
-    const fls_dev_t *d = n->dev;
-    const uint32_t base = copy_addr(n, slot, e->copy);
+    return r->status;
+}
+
+/* The reader's first unit: the record's header, checked against the directory entry. */
+static nvm_status_t read_head(nvm_reader_t *r)
+{
+    const fls_dev_t *d = r->n->dev;
+    const nvm_dir_entry_t *e = &r->n->dir[r->slot];
     uint8_t hdr[NVM_HEADER_SIZE];
-    if (d->read(d->ctx, base, hdr, NVM_HEADER_SIZE) != 0 ||
-        d->read(d->ctx, base + NVM_HEADER_SIZE, buf, e->length) != 0) {
+    if (d->read(d->ctx, r->base, hdr, NVM_HEADER_SIZE) != 0) {
         return NVM_ERR_FLASH;
     }
-    nvm_record_info_t info;
-    nvm_status_t s = header_check(hdr, slot, nvm_payload_max(d), &info);
+    const nvm_status_t s = header_check(hdr, r->slot, nvm_payload_max(d), &r->info);
     if (s != NVM_OK) {
         return s;
     }
-    if (info.length != e->length || info.seq != e->seq) {
+    if (r->info.length != e->length || r->info.seq != e->seq) {
         return NVM_ERR_REC_LENGTH;
     }
-    uint32_t crc = nvm_crc32(0u, hdr, NVM_CRC_COVER);
-    crc = nvm_crc32(crc, buf, info.length);
-    if (crc != info.crc32) {
-        return NVM_ERR_REC_CRC;
-    }
-    *len = info.length;
+    r->crc = nvm_crc32(0u, hdr, NVM_CRC_COVER);
     return NVM_OK;
+}
+
+bool nvm_read_run(nvm_reader_t *r, uint32_t max_units)
+{
+    for (uint32_t u = 0u; u < max_units && !r->done; u++) {
+        if (!r->head_done) {
+            r->status = read_head(r);
+            r->head_done = true;
+        } else {
+            const fls_dev_t *d = r->n->dev;
+            const uint32_t k = (r->info.length - r->pos < NVM_READ_CHUNK) ? r->info.length - r->pos
+                                                                          : NVM_READ_CHUNK;
+            if (d->read(d->ctx, r->base + NVM_HEADER_SIZE + r->pos, r->buf + r->pos, k) != 0) {
+                r->status = NVM_ERR_FLASH;
+            } else {
+                r->crc = nvm_crc32(r->crc, r->buf + r->pos, k);
+                r->pos += k;
+            }
+        }
+        if (r->status == NVM_OK && r->head_done && r->pos >= r->info.length) {
+            r->len = r->info.length;
+            r->status = r->crc == r->info.crc32 ? NVM_OK : NVM_ERR_REC_CRC;
+            r->done = true;
+        }
+        r->done = r->done || r->status != NVM_OK;
+    }
+    return r->done;
+}
+
+nvm_status_t nvm_read(const nvm_t *n, uint16_t slot, uint8_t *buf, uint32_t cap, uint32_t *len)
+{
+    if (len == NULL) {
+        return NVM_ERR_NULL_ARG;
+    }
+    nvm_reader_t r;
+    if (nvm_read_begin(&r, n, slot, buf, cap) != NVM_OK) {
+        return r.status;
+    }
+    while (!nvm_read_run(&r, UINT32_MAX)) {
+    }
+    if (r.status == NVM_OK) {
+        *len = r.len;
+    }
+    return r.status;
 }
 
 nvm_status_t nvm_erase_slot(nvm_t *n, uint16_t slot)

@@ -90,9 +90,13 @@ const nvm_dir_entry_t *nvm_dir(const nvm_t *n, uint16_t slot);
 /** Write payload as the slot's new record (erase inactive copy, program, commit, verify). */
 nvm_status_t nvm_write(nvm_t *n, uint16_t slot, const uint8_t *payload, uint32_t len);
 
+/* Bytes of the CRC or of the final scan in a unit of nvm_write_run (programming and read-back
+ * go 256 bytes a unit, one power-loss point each): ~450 instructions on the M4F. */
+#define NVM_SLICE_BYTES 64u
+
 /** nvm_write in slices (nvm_write_begin, then nvm_write_run until it returns true): the same
- *  steps, flash contents and result, a unit of work per step (the erase, the commit word, or
- *  up to 256 bytes of the CRC, programming, read-back or final scan). The payload and *n must
+ *  steps, flash contents and result, a unit of work per step (the erase, the commit word,
+ *  NVM_SLICE_BYTES of the CRC or the final scan, or up to 256 bytes programmed or read back). The payload and *n must
  *  stay in place and unused by other writes until it is done; the newest record stays readable
  *  throughout (the new one becomes valid with the commit word). */
 typedef struct {
@@ -125,6 +129,34 @@ bool nvm_write_run(nvm_writer_t *w, uint32_t max_units);
 /** Read the newest valid record of a slot into buf (cap bytes); *len gets the payload length.
  *  The CRC is re-checked on the data read. */
 nvm_status_t nvm_read(const nvm_t *n, uint16_t slot, uint8_t *buf, uint32_t cap, uint32_t *len);
+
+#define NVM_READ_CHUNK 128u /* payload bytes a unit of nvm_read_run reads and checks */
+
+/** nvm_read in slices (nvm_read_begin, then nvm_read_run until it returns true): the same checks
+ *  and result, a unit of work per step (the header, or NVM_READ_CHUNK bytes of the payload read
+ *  and added to the CRC). *n and buf must stay in place until it is done. */
+typedef struct {
+    const nvm_t *n;
+    uint8_t *buf;
+    uint32_t base; /* the newest copy's address */
+    uint32_t pos;  /* payload bytes read */
+    uint32_t crc;  /* the CRC so far */
+    uint32_t len;  /* the payload length once read */
+    nvm_record_info_t info;
+    uint16_t slot;
+    bool head_done;
+    bool done;
+    nvm_status_t status; /* NVM_OK while running or once read; the error once done */
+} nvm_reader_t;
+
+/** Start a read of slot into buf (cap bytes): the argument and directory checks of nvm_read
+ *  (their error is returned, and the reader is then done). */
+nvm_status_t nvm_read_begin(nvm_reader_t *r, const nvm_t *n, uint16_t slot, uint8_t *buf,
+                            uint32_t cap);
+
+/** At most max_units units of the read; true once done (r->status as nvm_read returns, r->len
+ *  the payload length). */
+bool nvm_read_run(nvm_reader_t *r, uint32_t max_units);
 
 /** Erase both copies of a slot (the slot becomes empty). */
 nvm_status_t nvm_erase_slot(nvm_t *n, uint16_t slot);

@@ -720,14 +720,16 @@ static void test_skill_validated_before_commit_and_run(void **state)
     /* one stage after the other, each bounded per tick: the parse (v2, N = 50: CRC 42 units of
      * 32 bytes, finiteness 42 of 4 fields, widths, centres and values 50 each, 5 header stages,
      * the model's derivation 32 units of 8 (4 scalar checks and 5 passes of 50 kernels, the y
-     * weights' one step): 271 units), the parameters (1 tick), the rollout (1,500 steps), the flash write (1,340
-     * bytes, 6 pieces of 256: CRC 6, erase 1, program 1 + 6, read-back 1 + 6, commit 1, scan of
-     * the new copy 1 + 6 and of the empty one 1: 30 units) */
-    const uint32_t parse_ticks = (271u + APP_COMMIT_UNITS_PER_TICK - 1u) /
-                                 APP_COMMIT_UNITS_PER_TICK;
-    const uint32_t check_ticks = (1500u + APP_CHECK_STEPS_PER_TICK - 1u) / APP_CHECK_STEPS_PER_TICK;
-    const uint32_t write_ticks = (30u + APP_COMMIT_FLASH_UNITS_PER_TICK - 1u) /
-                                 APP_COMMIT_FLASH_UNITS_PER_TICK;
+     * weights' one step): 271 units), the parameters (1 tick), the rollout (1,500 steps), the
+     * flash write (1,340 bytes: CRC 21 slices of 64, erase 1, program 1 + 6 pieces of 256,
+     * read-back 1 + 6, commit 1, scan of the new copy 1 + 21 slices and of the empty one 1: 60
+     * units) */
+    const uint32_t parse_ticks = (271u + SLOTS_PARSE_UNITS_PER_TICK - 1u) /
+                                 SLOTS_PARSE_UNITS_PER_TICK;
+    const uint32_t check_ticks = (1500u + SLOTS_CHECK_STEPS_PER_TICK - 1u) /
+                                 SLOTS_CHECK_STEPS_PER_TICK;
+    const uint32_t write_ticks = (60u + SLOTS_FLASH_UNITS_PER_TICK - 1u) /
+                                 SLOTS_FLASH_UNITS_PER_TICK;
     assert_int_equal(len_a, 1340u);
     assert_int_equal(app.tick - t0, parse_ticks + 1u + check_ticks + write_ticks);
     const fs_real_t peak = app.slots.peak_N[0];
@@ -776,6 +778,79 @@ static void test_skill_validated_before_commit_and_run(void **state)
     run[6] = (uint8_t)g_under;
     assert_int_equal(uds(run, 10, r, sizeof(r)), 4);
     assert_int_equal(app.state, APP_EXECUTE);
+}
+
+/* A read-back (RequestUpload) reads the slot's record and checks its CRC in slices: the device
+ * answers 0x78 at once, serves nothing else meanwhile (0x21), and answers positively after
+ * 1 + ceil(len / NVM_READ_CHUNK) units (SLOTS_READ_UNITS_PER_TICK a tick); the data read back is
+ * the image downloaded. A size other than the stored one is refused (0x31) once the read ends. */
+static void test_read_back_in_slices(void **state)
+{
+    (void)state;
+    len_a = load("press_n50_lwr_hold.skill", image_a);
+    unlock(UDS_SESSION_PROGRAMMING);
+    assert_int_equal(download(1, image_a, len_a, UINT32_MAX), 0x00);
+    const uint8_t ru[6] = {0x35, 0x00, 0x21, 1, (uint8_t)(len_a >> 8), (uint8_t)len_a};
+    assert_int_equal(isotp_send(&tester, ru, 6, t_us), PROTO_OK);
+    const uint32_t t0 = app.tick;
+    bool pending = false, busy = false;
+    uint8_t r[64];
+    uint16_t n = 0u;
+    for (unsigned k = 0; k < 2000u && n == 0u; k++) {
+        isotp_poll(&tester, t_us);
+        const unsigned before = n_out;
+        tick();
+        for (unsigned i = before; i < n_out; i++) {
+            isotp_on_frame(&tester, &out[i], t_us);
+        }
+        const uint8_t *rx = NULL;
+        const uint16_t m = isotp_rx_peek(&tester, &rx);
+        if (m >= 3u && rx[0] == 0x7F && rx[1] == 0x35 && rx[2] == 0x78) {
+            pending = true;
+            isotp_rx_release(&tester);
+            if (!busy) { /* another request while the read runs */
+                const uint8_t tp[2] = {0x3E, 0x00};
+                assert_int_equal(isotp_send(&tester, tp, 2, t_us), PROTO_OK);
+            }
+        } else if (m >= 3u && rx[0] == 0x7F && rx[1] == 0x3E) {
+            busy = rx[2] == UDS_NRC_BUSY_REPEAT_REQUEST;
+            isotp_rx_release(&tester);
+        } else if (m != 0u) {
+            assert_true(m <= sizeof(r));
+            memcpy(r, rx, m);
+            n = m;
+            isotp_rx_release(&tester);
+        }
+    }
+    assert_true(pending);
+    assert_true(busy);
+    assert_int_equal(n, 4);
+    assert_int_equal(r[0], 0x75);
+    const uint32_t units = 1u + (len_a + NVM_READ_CHUNK - 1u) / NVM_READ_CHUNK;
+    const uint32_t want = (units + SLOTS_READ_UNITS_PER_TICK - 1u) / SLOTS_READ_UNITS_PER_TICK;
+    print_message("read-back of %u bytes: answered after %u ticks (%u units)\n", (unsigned)len_a,
+                  (unsigned)(app.tick - t0), (unsigned)units);
+    assert_true(app.tick - t0 >= want);
+    assert_true(app.tick - t0 <= want + 2u);
+    static uint8_t back[4096];
+    uint32_t got = 0u;
+    for (uint8_t c = 1u; got < len_a; c++) {
+        static uint8_t rr[4096];
+        const uint8_t td[2] = {0x36, c};
+        const uint16_t m = uds(td, 2, rr, sizeof(rr));
+        assert_true(m > 2u && rr[0] == 0x76);
+        memcpy(&back[got], &rr[2], m - 2u);
+        got += m - 2u;
+    }
+    assert_int_equal(got, len_a);
+    assert_memory_equal(back, image_a, len_a);
+    const uint8_t exit_req[1] = {0x37};
+    assert_int_equal(uds(exit_req, 1, r, sizeof(r)), 1);
+    const uint8_t wrong[6] = {
+        0x35, 0x00, 0x21, 1, (uint8_t)((len_a + 1u) >> 8), (uint8_t)(len_a + 1u)};
+    assert_int_equal(nrc_of(wrong, 6), UDS_NRC_REQUEST_OUT_OF_RANGE);
+    const uint8_t empty[6] = {0x35, 0x00, 0x21, 3, 0x01, 0x00};
+    assert_int_equal(nrc_of(empty, 6), UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED);
 }
 
 /* While a download's commit runs (0x78 sent), a start is refused (the HostCommand frame and the
@@ -848,6 +923,7 @@ int main(void)
         cmocka_unit_test_setup(test_commit_refused_while_executing, setup),
         cmocka_unit_test_setup(test_skill_validated_before_commit_and_run, setup),
         cmocka_unit_test_setup(test_start_refused_during_commit, setup),
+        cmocka_unit_test_setup(test_read_back_in_slices, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

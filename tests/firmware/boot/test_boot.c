@@ -48,13 +48,14 @@ typedef struct {
     fwu_t fwu;
 } dev_t_;
 
-static dev_t_ D;  /* static: the flash is large for a stack */
+static dev_t_ D; /* static: the flash is large for a stack */
 
 static void attach(dev_t_ *d)
 {
     assert_int_equal(boot_fls_window_init(&d->w_state, &d->state_dev, &d->flash, 0u, 2u), 0);
     assert_int_equal(boot_fls_window_init(&d->w_skills, &d->skills_dev, &d->flash, 2u, 4u), 0);
-    assert_int_equal(boot_fls_window_init(&d->w_app, &d->app_dev, &d->flash, 6u, 2u * SLOT_SECTORS), 0);
+    assert_int_equal(boot_fls_window_init(&d->w_app, &d->app_dev, &d->flash, 6u, 2u * SLOT_SECTORS),
+                     0);
     (void)nvm_init(&d->state_nvm, &d->state_dev);
     (void)nvm_init(&d->skills_nvm, &d->skills_dev);
     memset(&d->cfg, 0, sizeof d->cfg);
@@ -67,7 +68,7 @@ static void attach(dev_t_ *d)
     d->cfg.target_id = BOOT_TARGET_HOST;
     d->cfg.key = DEV_KEY;
     d->cfg.key_len = sizeof DEV_KEY;
-    d->cfg.skill_min = 1u;   /* skills of format 1 are stored (written below) */
+    d->cfg.skill_min = 1u; /* skills of format 1 are stored (written below) */
     d->cfg.skill_max = 1u;
     d->cfg.config_min = 1u;
     d->cfg.config_max = 1u;
@@ -140,8 +141,7 @@ static uint32_t make_image(const img_spec_t *s, uint8_t *out)
     put_le16(out + 30, s->config_oldest);
     sec_sha256(pl, s->payload_len, out + 64);
     memcpy(out + 96, "test-image", 10);
-    sec_hmac_sha256(s->key, 32u, out, BOOT_IMAGE_HEADER_SIZE + s->payload_len,
-                    pl + s->payload_len);
+    sec_hmac_sha256(s->key, 32u, out, BOOT_IMAGE_HEADER_SIZE + s->payload_len, pl + s->payload_len);
     return BOOT_IMAGE_OVERHEAD + s->payload_len;
 }
 
@@ -195,7 +195,8 @@ static const uint8_t SKILL1[40] = "FSKL\x01\x00 skill one, format 1 ........";
 static void device_with_factory_image(dev_t_ *d)
 {
     dev_fresh(d);
-    uint32_t len = make_image(&(img_spec_t){BOOT_VERSION(1, 0, 0), BOOT_TARGET_HOST, 5000u, 1, 1, 1, 1, DEV_KEY}, IMG);
+    uint32_t len = make_image(
+        &(img_spec_t){BOOT_VERSION(1, 0, 0), BOOT_TARGET_HOST, 5000u, 1, 1, 1, 1, DEV_KEY}, IMG);
     factory_program(d, 0u, IMG, len);
     assert_int_equal(nvm_write(&d->skills_nvm, 0u, SKILL0, sizeof SKILL0), NVM_OK);
     assert_int_equal(nvm_write(&d->skills_nvm, 1u, SKILL1, sizeof SKILL1), NVM_OK);
@@ -289,11 +290,57 @@ static void test_golden_image_verified_in_slices(void **state)
     assert_int_equal(verify_sliced(16u, &calls), BOOT_ERR_HASH);
 }
 
+/* TransferData in slices (fwu_data_step, 128 bytes a call): the same slot contents, CRC-32 and
+ * verdict as the whole blocks of fwu_data, a block taken in ceil(len / 128) calls after the one
+ * that keeps it; a refusal (a block past the announced size) before anything is kept. */
+static void test_data_in_slices_same_as_whole_blocks(void **state)
+{
+    (void)state;
+    device_with_factory_image(&D);
+    const uint32_t len = make_image(
+        &(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 6000u, 1, 1, 1, 1, DEV_KEY}, IMG);
+    assert_int_equal(download(&D, IMG, len, len), BOOT_OK);
+    const uint8_t slot = D.fwu.slot;
+    const uint32_t crc_whole = D.fwu.crc32;
+    static uint8_t whole[IMG_MAX], sliced[IMG_MAX];
+    assert_int_equal(D.app_dev.read(D.app_dev.ctx, D.cfg.slot_addr[slot], whole, len), 0);
+    fwu_abort(&D.fwu);
+    assert_int_equal(fwu_begin(&D.fwu, true, len), BOOT_OK);
+    static const uint32_t blocks[] = {100u, 1021u, 7u, 4093u, 333u};
+    uint32_t off = 0u, k = 0u;
+    while (off < len) {
+        uint32_t n = blocks[k++ % 5u];
+        n = n > len - off ? len - off : n;
+        bool done = false;
+        assert_int_equal(fwu_data_step(&D.fwu, true, off, IMG + off, n, 128u, &done), BOOT_OK);
+        assert_false(done);
+        uint32_t calls = 0u;
+        while (!done) {
+            assert_int_equal(fwu_data_step(&D.fwu, true, off, NULL, n, 128u, &done), BOOT_OK);
+            calls++;
+        }
+        assert_int_equal(calls, (n + 127u) / 128u);
+        off += n;
+    }
+    assert_int_equal(fwu_end(&D.fwu, true, NULL), BOOT_OK);
+    assert_int_equal(D.fwu.slot, slot);
+    assert_int_equal(D.fwu.crc32, crc_whole);
+    assert_int_equal(D.app_dev.read(D.app_dev.ctx, D.cfg.slot_addr[slot], sliced, len), 0);
+    assert_memory_equal(sliced, whole, len);
+    fwu_abort(&D.fwu);
+    assert_int_equal(fwu_begin(&D.fwu, true, 300u), BOOT_OK);
+    bool done = false;
+    assert_int_equal(fwu_data_step(&D.fwu, true, 0u, IMG, 301u, 128u, &done), FWU_ERR_OVERRUN);
+    assert_true(done);
+    assert_int_equal(fwu_data_step(&D.fwu, true, 0u, NULL, 301u, 128u, &done), FWU_ERR_SEQUENCE);
+}
+
 static void test_header_refusals(void **state)
 {
     (void)state;
     boot_image_header_t h;
-    uint32_t len = make_image(&(img_spec_t){BOOT_VERSION(1, 0, 0), BOOT_TARGET_HOST, 64u, 1, 1, 1, 1, DEV_KEY}, IMG);
+    uint32_t len = make_image(
+        &(img_spec_t){BOOT_VERSION(1, 0, 0), BOOT_TARGET_HOST, 64u, 1, 1, 1, 1, DEV_KEY}, IMG);
     (void)len;
     assert_int_equal(boot_image_parse_header(IMG, BOOT_TARGET_HOST, &h), BOOT_OK);
     uint8_t bad[BOOT_IMAGE_HEADER_SIZE];
@@ -301,19 +348,19 @@ static void test_header_refusals(void **state)
     bad[0] ^= 1u;
     assert_int_equal(boot_image_parse_header(bad, 0u, &h), BOOT_ERR_MAGIC);
     memcpy(bad, IMG, sizeof bad);
-    bad[4] = 2u;   /* format version 2 */
+    bad[4] = 2u; /* format version 2 */
     assert_int_equal(boot_image_parse_header(bad, 0u, &h), BOOT_ERR_FORMAT);
     memcpy(bad, IMG, sizeof bad);
-    bad[40] = 1u;  /* reserved byte */
+    bad[40] = 1u; /* reserved byte */
     assert_int_equal(boot_image_parse_header(bad, 0u, &h), BOOT_ERR_FORMAT);
     memcpy(bad, IMG, sizeof bad);
-    bad[20] = 1u;  /* unknown flag */
+    bad[20] = 1u; /* unknown flag */
     assert_int_equal(boot_image_parse_header(bad, 0u, &h), BOOT_ERR_FORMAT);
     memcpy(bad, IMG, sizeof bad);
     bad[32] = 64u; /* entry offset at the payload end */
     assert_int_equal(boot_image_parse_header(bad, 0u, &h), BOOT_ERR_FORMAT);
     memcpy(bad, IMG, sizeof bad);
-    put_le16(bad + 26, 2u);   /* skill oldest > native */
+    put_le16(bad + 26, 2u); /* skill oldest > native */
     assert_int_equal(boot_image_parse_header(bad, 0u, &h), BOOT_ERR_FORMAT);
     assert_int_equal(boot_image_parse_header(IMG, BOOT_TARGET_CORTEX_M4F, &h), BOOT_ERR_TARGET);
     /* data formats: stored v1 skills need oldest <= 1 <= native */
@@ -346,7 +393,7 @@ static void test_state_record_round_trip(void **state)
     buf[0] = 9u;
     assert_false(boot_state_decode(buf, &t));
     boot_state_encode(&s, buf);
-    buf[1] = 2u;   /* slot C does not exist */
+    buf[1] = 2u; /* slot C does not exist */
     assert_false(boot_state_decode(buf, &t));
 }
 
@@ -356,14 +403,15 @@ static void test_full_update_and_confirm(void **state)
 {
     (void)state;
     device_with_factory_image(&D);
-    uint32_t len = make_image(&(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 9001u, 1, 1, 1, 1, DEV_KEY}, IMG);
+    uint32_t len = make_image(
+        &(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 9001u, 1, 1, 1, 1, DEV_KEY}, IMG);
     assert_int_equal(download(&D, IMG, len, len), BOOT_OK);
     assert_int_equal(D.fwu.slot, 1u);
     assert_int_equal(D.fwu.phase, FWU_RECEIVED);
     assert_int_equal(fwu_mark_test(&D.fwu, true, 0u), BOOT_OK);
     uint8_t st[FWU_STATUS_LEN];
     assert_int_equal(fwu_status(&D.fwu, st, sizeof st), FWU_STATUS_LEN);
-    assert_int_equal(st[7], 1u);                 /* pending test slot B */
+    assert_int_equal(st[7], 1u); /* pending test slot B */
     assert_int_equal(st[16], FWU_MARKED);
     /* ECUReset: the new image runs on test */
     assert_int_equal(dev_reset(&D), BOOT_OK);
@@ -373,7 +421,7 @@ static void test_full_update_and_confirm(void **state)
     assert_int_equal(D.boot.running.fw_version, BOOT_VERSION(1, 1, 0));
     assert_int_equal(fwu_status(&D.fwu, st, sizeof st), FWU_STATUS_LEN);
     assert_int_equal(st[0] << 24 | st[1] << 16 | st[2] << 8 | st[3], BOOT_VERSION(1, 1, 0));
-    assert_int_equal(st[5], 1u);                 /* on test */
+    assert_int_equal(st[5], 1u); /* on test */
     /* its self-test passes: it confirms itself; later resets keep it */
     assert_int_equal(fwu_confirm(&D.fwu), BOOT_OK);
     assert_false(D.boot.test_boot);
@@ -385,7 +433,8 @@ static void test_full_update_and_confirm(void **state)
     }
     assert_skills_intact(&D);
     /* the next update goes to slot A (the old image), and so on */
-    len = make_image(&(img_spec_t){BOOT_VERSION(1, 2, 0), BOOT_TARGET_HOST, 777u, 1, 1, 1, 1, DEV_KEY}, IMG);
+    len = make_image(
+        &(img_spec_t){BOOT_VERSION(1, 2, 0), BOOT_TARGET_HOST, 777u, 1, 1, 1, 1, DEV_KEY}, IMG);
     assert_int_equal(download(&D, IMG, len, len), BOOT_OK);
     assert_int_equal(D.fwu.slot, 0u);
     assert_int_equal(fwu_mark_test(&D.fwu, true, 0u), BOOT_OK);
@@ -400,7 +449,8 @@ static void test_revert_when_self_test_fails(void **state)
 {
     (void)state;
     device_with_factory_image(&D);
-    uint32_t len = make_image(&(img_spec_t){BOOT_VERSION(2, 0, 0), BOOT_TARGET_HOST, 3000u, 1, 1, 1, 1, DEV_KEY}, IMG);
+    uint32_t len = make_image(
+        &(img_spec_t){BOOT_VERSION(2, 0, 0), BOOT_TARGET_HOST, 3000u, 1, 1, 1, 1, DEV_KEY}, IMG);
     assert_int_equal(download(&D, IMG, len, len), BOOT_OK);
     assert_int_equal(fwu_mark_test(&D.fwu, true, 0u), BOOT_OK);
     assert_int_equal(dev_reset(&D), BOOT_OK);
@@ -423,7 +473,8 @@ static void test_bootloader_refuses_tampered_test_image(void **state)
 {
     (void)state;
     device_with_factory_image(&D);
-    uint32_t len = make_image(&(img_spec_t){BOOT_VERSION(1, 5, 0), BOOT_TARGET_HOST, 3000u, 1, 1, 1, 1, DEV_KEY}, IMG);
+    uint32_t len = make_image(
+        &(img_spec_t){BOOT_VERSION(1, 5, 0), BOOT_TARGET_HOST, 3000u, 1, 1, 1, 1, DEV_KEY}, IMG);
     assert_int_equal(download(&D, IMG, len, len), BOOT_OK);
     assert_int_equal(fwu_mark_test(&D.fwu, true, 0u), BOOT_OK);
     /* one payload bit of slot B cleared after the check (NOR programming only clears bits) */
@@ -448,7 +499,8 @@ static void test_recovery_when_active_image_is_damaged(void **state)
 {
     (void)state;
     device_with_factory_image(&D);
-    uint32_t len = make_image(&(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 2000u, 1, 1, 1, 1, DEV_KEY}, IMG);
+    uint32_t len = make_image(
+        &(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 2000u, 1, 1, 1, 1, DEV_KEY}, IMG);
     assert_int_equal(download(&D, IMG, len, len), BOOT_OK);
     assert_int_equal(fwu_mark_test(&D.fwu, true, 0u), BOOT_OK);
     assert_int_equal(dev_reset(&D), BOOT_OK);
@@ -472,7 +524,8 @@ static void test_wrong_tag_refused(void **state)
 {
     (void)state;
     device_with_factory_image(&D);
-    uint32_t len = make_image(&(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 3000u, 1, 1, 1, 1, OTHER_KEY}, IMG);
+    uint32_t len = make_image(
+        &(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 3000u, 1, 1, 1, 1, OTHER_KEY}, IMG);
     assert_int_equal(download(&D, IMG, len, len), BOOT_ERR_TAG);
     assert_int_equal(fwu_nrc(BOOT_ERR_TAG), 0xF4u);
     assert_int_equal(fwu_mark_test(&D.fwu, true, 0u), FWU_ERR_SEQUENCE);
@@ -485,13 +538,15 @@ static void test_wrong_target_refused(void **state)
 {
     (void)state;
     device_with_factory_image(&D);
-    uint32_t len = make_image(&(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_CORTEX_M3, 3000u, 1, 1, 1, 1, DEV_KEY}, IMG);
+    uint32_t len = make_image(
+        &(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_CORTEX_M3, 3000u, 1, 1, 1, 1, DEV_KEY},
+        IMG);
     assert_int_equal(fwu_begin(&D.fwu, true, len), BOOT_OK);
     /* refused as soon as the header is in, before any payload is written */
     assert_int_equal(fwu_data(&D.fwu, true, 0u, IMG, 100u), BOOT_OK);
     assert_int_equal(fwu_data(&D.fwu, true, 100u, IMG + 100, 100u), BOOT_ERR_TARGET);
     assert_int_equal(fwu_nrc(BOOT_ERR_TARGET), 0xF1u);
-    assert_int_equal(D.fwu.programmed, 96u);   /* only header bytes reached flash */
+    assert_int_equal(D.fwu.programmed, 96u); /* only header bytes reached flash */
     assert_int_equal(fwu_data(&D.fwu, true, 200u, IMG + 200, 100u), FWU_ERR_SEQUENCE);
 }
 
@@ -499,7 +554,8 @@ static void test_truncated_refused(void **state)
 {
     (void)state;
     device_with_factory_image(&D);
-    uint32_t len = make_image(&(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 3000u, 1, 1, 1, 1, DEV_KEY}, IMG);
+    uint32_t len = make_image(
+        &(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 3000u, 1, 1, 1, 1, DEV_KEY}, IMG);
     /* a file cut short: announced size smaller than the header says */
     assert_int_equal(download(&D, IMG, len - 100u, len - 100u), BOOT_ERR_TRUNCATED);
     assert_int_equal(fwu_nrc(BOOT_ERR_TRUNCATED), 0xF2u);
@@ -518,7 +574,8 @@ static void test_corrupted_transfer_refused(void **state)
 {
     (void)state;
     device_with_factory_image(&D);
-    uint32_t len = make_image(&(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 3000u, 1, 1, 1, 1, DEV_KEY}, IMG);
+    uint32_t len = make_image(
+        &(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 3000u, 1, 1, 1, 1, DEV_KEY}, IMG);
     IMG[2000] ^= 0x10u;
     assert_int_equal(download(&D, IMG, len, len), BOOT_ERR_HASH);
     assert_int_equal(fwu_nrc(BOOT_ERR_HASH), 0xF3u);
@@ -528,12 +585,13 @@ static void test_downgrade_refused_unless_forced(void **state)
 {
     (void)state;
     device_with_factory_image(&D);
-    uint32_t len = make_image(&(img_spec_t){BOOT_VERSION(0, 9, 7), BOOT_TARGET_HOST, 3000u, 1, 1, 1, 1, DEV_KEY}, IMG);
+    uint32_t len = make_image(
+        &(img_spec_t){BOOT_VERSION(0, 9, 7), BOOT_TARGET_HOST, 3000u, 1, 1, 1, 1, DEV_KEY}, IMG);
     assert_int_equal(download(&D, IMG, len, len), BOOT_OK);
     assert_int_equal(fwu_mark_test(&D.fwu, true, 0u), BOOT_ERR_DOWNGRADE);
     assert_int_equal(fwu_nrc(BOOT_ERR_DOWNGRADE), 0xF5u);
     assert_int_equal(dev_reset(&D), BOOT_OK);
-    assert_int_equal(D.boot.path, BOOT_PATH_ACTIVE);          /* nothing was marked */
+    assert_int_equal(D.boot.path, BOOT_PATH_ACTIVE); /* nothing was marked */
     assert_int_equal(download(&D, IMG, len, len), BOOT_OK);
     assert_int_equal(fwu_mark_test(&D.fwu, true, FWU_OPT_ALLOW_DOWNGRADE), BOOT_OK);
     assert_int_equal(dev_reset(&D), BOOT_OK);
@@ -551,7 +609,8 @@ static void test_bootloader_refuses_downgrade_marked_without_flag(void **state)
     /* A state record that names an older test image without the flag (e.g. written by an
      * older firmware): the bootloader applies the rule itself. */
     device_with_factory_image(&D);
-    uint32_t len = make_image(&(img_spec_t){BOOT_VERSION(0, 1, 0), BOOT_TARGET_HOST, 3000u, 1, 1, 1, 1, DEV_KEY}, IMG);
+    uint32_t len = make_image(
+        &(img_spec_t){BOOT_VERSION(0, 1, 0), BOOT_TARGET_HOST, 3000u, 1, 1, 1, 1, DEV_KEY}, IMG);
     factory_program(&D, 1u, IMG, len);
     boot_state_t s = D.boot.state;
     s.test_slot = 1u;
@@ -569,17 +628,20 @@ static void test_data_format_refused(void **state)
     (void)state;
     device_with_factory_image(&D);
     /* an image that reads only skill format 2: stored v1 skills would be misread */
-    uint32_t len = make_image(&(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 3000u, 2, 2, 1, 1, DEV_KEY}, IMG);
+    uint32_t len = make_image(
+        &(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 3000u, 2, 2, 1, 1, DEV_KEY}, IMG);
     assert_int_equal(download(&D, IMG, len, len), BOOT_OK);
     assert_int_equal(fwu_mark_test(&D.fwu, true, 0u), BOOT_ERR_SKILL_FORMAT);
     assert_int_equal(fwu_nrc(BOOT_ERR_SKILL_FORMAT), 0xF6u);
     /* configuration likewise */
-    len = make_image(&(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 3000u, 1, 1, 3, 2, DEV_KEY}, IMG);
+    len = make_image(
+        &(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 3000u, 1, 1, 3, 2, DEV_KEY}, IMG);
     assert_int_equal(download(&D, IMG, len, len), BOOT_OK);
     assert_int_equal(fwu_mark_test(&D.fwu, true, 0u), BOOT_ERR_CONFIG_FORMAT);
     assert_int_equal(fwu_nrc(BOOT_ERR_CONFIG_FORMAT), 0xF7u);
     /* an image that migrates from v1 (native 2, oldest 1) is accepted */
-    len = make_image(&(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 3000u, 2, 1, 1, 1, DEV_KEY}, IMG);
+    len = make_image(
+        &(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 3000u, 2, 1, 1, 1, DEV_KEY}, IMG);
     assert_int_equal(download(&D, IMG, len, len), BOOT_OK);
     assert_int_equal(fwu_mark_test(&D.fwu, true, 0u), BOOT_OK);
     assert_skills_intact(&D);
@@ -602,7 +664,7 @@ static void test_access_and_sequence_refusals(void **state)
     assert_int_equal(fwu_data(&D.fwu, true, 0u, IMG, 10u), BOOT_OK);
     assert_int_equal(fwu_data(&D.fwu, false, 10u, IMG + 10, 10u), FWU_ERR_LOCKED);
     assert_int_equal(fwu_begin(&D.fwu, true, len), BOOT_OK);
-    assert_int_equal(fwu_data(&D.fwu, true, 5u, IMG, 10u), FWU_ERR_SEQUENCE);   /* gap */
+    assert_int_equal(fwu_data(&D.fwu, true, 5u, IMG, 10u), FWU_ERR_SEQUENCE); /* gap */
     assert_int_equal(fwu_begin(&D.fwu, true, 300u), BOOT_OK);
     assert_int_equal(fwu_data(&D.fwu, true, 0u, IMG, 301u), FWU_ERR_OVERRUN);
     assert_int_equal(fwu_nrc(FWU_ERR_OVERRUN), 0x71u);
@@ -614,10 +676,11 @@ static void test_access_and_sequence_refusals(void **state)
     assert_int_equal(fwu_end(&D.fwu, true, NULL), FWU_ERR_SEQUENCE);
     assert_int_equal(fwu_mark_test(&D.fwu, false, 0u), FWU_ERR_LOCKED);
     /* every refusal code maps to a distinct NRC, except the two header-format ones */
-    static const boot_status_t codes[] = {BOOT_ERR_TRUNCATED, BOOT_ERR_MAGIC, BOOT_ERR_TARGET,
-        BOOT_ERR_TOO_LARGE, BOOT_ERR_HASH, BOOT_ERR_TAG, BOOT_ERR_DOWNGRADE, BOOT_ERR_SKILL_FORMAT,
-        BOOT_ERR_CONFIG_FORMAT, BOOT_ERR_FLASH, FWU_ERR_LOCKED, FWU_ERR_SEQUENCE,
-        FWU_ERR_BLOCK_COUNTER, FWU_ERR_OVERRUN, FWU_ERR_TEST_PENDING, FWU_ERR_RANGE};
+    static const boot_status_t codes[] = {
+        BOOT_ERR_TRUNCATED,     BOOT_ERR_MAGIC,  BOOT_ERR_TARGET,      BOOT_ERR_TOO_LARGE,
+        BOOT_ERR_HASH,          BOOT_ERR_TAG,    BOOT_ERR_DOWNGRADE,   BOOT_ERR_SKILL_FORMAT,
+        BOOT_ERR_CONFIG_FORMAT, BOOT_ERR_FLASH,  FWU_ERR_LOCKED,       FWU_ERR_SEQUENCE,
+        FWU_ERR_BLOCK_COUNTER,  FWU_ERR_OVERRUN, FWU_ERR_TEST_PENDING, FWU_ERR_RANGE};
     for (size_t i = 0; i < sizeof codes / sizeof codes[0]; i++) {
         assert_int_not_equal(fwu_nrc(codes[i]), 0u);
         for (size_t j = 0; j < i; j++) {
@@ -638,7 +701,7 @@ static void test_new_download_cancels_pending_test(void **state)
     assert_int_equal(fwu_begin(&D.fwu, true, len), BOOT_OK);
     assert_int_equal(D.boot.state.test_slot, BOOT_SLOT_NONE);
     assert_int_equal(fwu_data(&D.fwu, true, 0u, IMG, 500u), BOOT_OK);
-    assert_int_equal(dev_reset(&D), BOOT_OK);   /* interrupted: old image, no test */
+    assert_int_equal(dev_reset(&D), BOOT_OK); /* interrupted: old image, no test */
     assert_int_equal(D.boot.path, BOOT_PATH_ACTIVE);
     assert_int_equal(D.boot.running_slot, 0u);
 }
@@ -659,7 +722,8 @@ static void test_random_damage_never_accepted(void **state)
     /* 3000 images, each with 1-4 flipped bits anywhere (header, payload, tag) or cut short:
      * every one is refused by the receiver or by the mark routine, never started. */
     device_with_factory_image(&D);
-    const uint32_t len = make_image(&(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 1500u, 1, 1, 1, 1, DEV_KEY}, IMG2);
+    const uint32_t len = make_image(
+        &(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 1500u, 1, 1, 1, 1, DEV_KEY}, IMG2);
     uint32_t rng = 0x9E3779B9u, refused = 0;
     uint32_t by_code[16] = {0};
     for (int i = 0; i < 3000; i++) {
@@ -667,7 +731,7 @@ static void test_random_damage_never_accepted(void **state)
         uint32_t n = len;
         const uint32_t kind = xorshift(&rng) % 8u;
         if (kind == 0u) {
-            n = xorshift(&rng) % len;            /* truncated (the download announces n) */
+            n = xorshift(&rng) % len; /* truncated (the download announces n) */
         } else {
             for (uint32_t f = 0; f < 1u + kind % 4u; f++) {
                 const uint32_t pos = xorshift(&rng) % len;
@@ -675,7 +739,7 @@ static void test_random_damage_never_accepted(void **state)
             }
         }
         if (n == len && memcmp(IMG, IMG2, len) == 0) {
-            continue;                            /* flips cancelled out */
+            continue; /* flips cancelled out */
         }
         boot_status_t st = download(&D, IMG, n, n);
         if (st == BOOT_OK) {
@@ -683,9 +747,9 @@ static void test_random_damage_never_accepted(void **state)
         }
         assert_int_not_equal(st, BOOT_OK);
         if (st == FWU_ERR_RANGE) {
-            st = BOOT_ERR_TRUNCATED;             /* cut below header + tag: refused at begin */
+            st = BOOT_ERR_TRUNCATED; /* cut below header + tag: refused at begin */
         }
-        assert_true(st >= 700 && st < 716);     /* an image refusal, not a protocol one */
+        assert_true(st >= 700 && st < 716); /* an image refusal, not a protocol one */
         by_code[st - 700]++;
         refused++;
     }
@@ -693,8 +757,9 @@ static void test_random_damage_never_accepted(void **state)
     assert_int_equal(D.boot.path, BOOT_PATH_ACTIVE);
     assert_int_equal(D.boot.running.fw_version, BOOT_VERSION(1, 0, 0));
     print_message("boot_random_damage refused=%u truncated=%u magic=%u format=%u target=%u "
-                  "too_large=%u hash=%u tag=%u downgrade=%u\n", refused, by_code[0], by_code[1],
-                  by_code[2], by_code[3], by_code[4], by_code[5], by_code[6], by_code[7]);
+                  "too_large=%u hash=%u tag=%u downgrade=%u\n",
+                  refused, by_code[0], by_code[1], by_code[2], by_code[3], by_code[4], by_code[5],
+                  by_code[6], by_code[7]);
     assert_true(by_code[5] > 0u && by_code[6] > 0u && by_code[0] > 0u);
 }
 
@@ -704,16 +769,22 @@ static void test_random_damage_never_accepted(void **state)
  * Returns 1 if it ran to the end (no power loss happened). */
 static int update_sequence(dev_t_ *d, const uint8_t *img, uint32_t len)
 {
-    if (download(d, img, len, len) != BOOT_OK) return 0;
-    if (fwu_mark_test(&d->fwu, true, 0u) != BOOT_OK) return 0;
+    if (download(d, img, len, len) != BOOT_OK)
+        return 0;
+    if (fwu_mark_test(&d->fwu, true, 0u) != BOOT_OK)
+        return 0;
     /* soft reset: the flash keeps power, the armed loss stays armed */
     attach(d);
-    if (boot_select(&d->boot, &d->cfg) != BOOT_OK) return 0;
+    if (boot_select(&d->boot, &d->cfg) != BOOT_OK)
+        return 0;
     fwu_init(&d->fwu, &d->boot);
-    if (d->boot.path != BOOT_PATH_TEST) return 0;
-    if (fwu_confirm(&d->fwu) != BOOT_OK) return 0;
+    if (d->boot.path != BOOT_PATH_TEST)
+        return 0;
+    if (fwu_confirm(&d->fwu) != BOOT_OK)
+        return 0;
     attach(d);
-    if (boot_select(&d->boot, &d->cfg) != BOOT_OK) return 0;
+    if (boot_select(&d->boot, &d->cfg) != BOOT_OK)
+        return 0;
     return d->ram.dead ? 0 : 1;
 }
 
@@ -721,7 +792,8 @@ static void test_power_loss_at_every_write(void **state)
 {
     (void)state;
     const uint32_t v_old = BOOT_VERSION(1, 0, 0), v_new = BOOT_VERSION(1, 1, 0);
-    const uint32_t len = make_image(&(img_spec_t){v_new, BOOT_TARGET_HOST, 6000u, 1, 1, 1, 1, DEV_KEY}, IMG2);
+    const uint32_t len = make_image(
+        &(img_spec_t){v_new, BOOT_TARGET_HOST, 6000u, 1, 1, 1, 1, DEV_KEY}, IMG2);
     uint32_t k = 1, old_seen = 0, new_seen = 0, test_seen = 0;
     for (;; k++) {
         device_with_factory_image(&D);
@@ -736,7 +808,7 @@ static void test_power_loss_at_every_write(void **state)
         assert_true(h.fw_version == v_old || h.fw_version == v_new);
         assert_skills_intact(&D);
         if (D.boot.path == BOOT_PATH_TEST) {
-            test_seen++;   /* marked before the loss, not yet tried: tried now, once */
+            test_seen++; /* marked before the loss, not yet tried: tried now, once */
             assert_int_equal(fwu_confirm(&D.fwu), BOOT_OK);
             assert_int_equal(dev_reset(&D), BOOT_OK);
         }
@@ -750,13 +822,14 @@ static void test_power_loss_at_every_write(void **state)
         assert_int_equal(D.boot.running.fw_version, v_new);
         assert_false(D.boot.test_boot);
         if (completed) {
-            assert_true(ops_run < k);   /* no loss happened: every write point was covered */
+            assert_true(ops_run < k); /* no loss happened: every write point was covered */
             break;
         }
     }
     print_message("boot_power_loss writes=%u old=%u new=%u via_test_boot=%u "
                   "(a loss at each of the %u erase/program operations of one update; then one run "
-                  "without loss)\n", k - 1u, old_seen, new_seen - 1u, test_seen, k - 1u);
+                  "without loss)\n",
+                  k - 1u, old_seen, new_seen - 1u, test_seen, k - 1u);
     assert_true(k > 20u);
     assert_true(old_seen > 0u);
     assert_true(new_seen > 0u);
@@ -767,6 +840,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_golden_image_from_python),
         cmocka_unit_test(test_golden_image_verified_in_slices),
+        cmocka_unit_test(test_data_in_slices_same_as_whole_blocks),
         cmocka_unit_test(test_header_refusals),
         cmocka_unit_test(test_state_record_round_trip),
         cmocka_unit_test(test_full_update_and_confirm),
