@@ -24,19 +24,22 @@
 # M3 1,250).
 set -euo pipefail
 
-usage() { echo "usage: $0 cortex-m4f|cortex-m3 [--build-dir DIR] [--exec-s S] [--fw-bytes N] [--skill FILE]" >&2; exit 2; }
+usage() { echo "usage: $0 cortex-m4f|cortex-m3 [--build-dir DIR] [--exec-s S] [--fw-bytes N] [--skill FILE] [--profile]" >&2; exit 2; }
 [ $# -ge 1 ] || usage
 TARGET=$1; shift
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=$ROOT/build/$TARGET
 EXEC_S=1.0
 FW_BYTES=16384
+PROFILE=0
+T_START=$SECONDS
 while [ $# -gt 0 ]; do
   case $1 in
     --build-dir) BUILD=$2; shift 2 ;;
     --exec-s) EXEC_S=$2; shift 2 ;;
     --fw-bytes) FW_BYTES=$2; shift 2 ;;   # the firmware download's payload (FWUPDATE)
     --skill) SKILL_ARG=$2; shift 2 ;;
+    --profile) PROFILE=1; shift ;;   # per state, the top functions of its worst tick (tick_profile.py)
     --host-ref-float|--host-ref-fixed) shift 2 ;;   # accepted for older callers; unused
     *) usage ;;
   esac
@@ -138,12 +141,14 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                                                                                for (f in h) hm[f] = h[f] } }
                   if (prof != "" && lc > kmax[k]) { kmax[k] = lc
                                                     for (x in hk) if (index(x, k SUBSEP) == 1) delete hk[x]
-                                                    for (f in h) hk[k, f] = h[f] } }
-      delete h; delete hp; next }
+                                                    for (f in h) hk[k, f] = h[f] }
+                  for (f in sfi) { SFI[k, f] += sfi[f]; SFC[k, f] += sfc[f] } }
+      delete h; delete hp; delete sfi; delete sfc; next }
   END { if (prof != "") { for (f in tot) printf "%d %s\n", tot[f] / nexec, f > prof
                           for (a in tp) printf "%.2f %s\n", tp[a] / nexec, a > (prof ".pc")
                           for (f in hm) printf "%d %s\n", hm[f], f > (prof ".maxdmp")
-                          for (x in hk) { split(x, q, SUBSEP); printf "%d %s\n", hk[x], q[2] > (prof ".max." q[1]) } } }
+                          for (x in hk) { split(x, q, SUBSEP); printf "%d %s\n", hk[x], q[2] > (prof ".max." q[1]) } }
+        for (x in SFI) { split(x, q, SUBSEP); print "softfloat", q[1], q[2], SFC[x], SFI[x] } }
   { s = $NF
     if (!inboot && s == "Reset_Handler") { inboot = 1; bc = 0; ba = 0; ininit = 0 }
     if (inboot) { bc++
@@ -152,6 +157,8 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                   if (ininit) ba++
                   bprev = s }
     if (inb) { c++; h[s]++
+               if (s ~ SOFTF) { sfi[s]++; if (s != last) sfc[s]++ }
+               last = s
                if (s ~ COMMIT) cmt = 1
                if (prof != "") { split($4, pcs, "/"); hp[pcs[2] " " s]++ }
                # an interrupt taken inside the tick (the UART of the CAN link) counts in the
@@ -171,12 +178,14 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                if (inchk) { chk_total++; chk_tick++ }
                prev = s } }'
 mkfifo "$WORK/trace.fifo"
+if [ "$PROFILE" = 1 ] && [ -z "${QEMU_TICK_PROFILE:-}" ]; then QEMU_TICK_PROFILE=$WORK/prof; fi
 # QEMU_TICK_PROFILE=FILE: also write the mean instructions per function of an EXECUTE tick there,
 # per instruction address (hex, with its function) in FILE.pc, per function of the EXECUTE tick
 # with the largest DMP part in FILE.maxdmp, and per function of the largest tick of each kind K in
 # FILE.max.K
 awk -v prof="${QEMU_TICK_PROFILE:-}" -v DMP="$DMP_RE" -v LAW="$LAW" \
-    -v COMMIT="^(download_end|skill_parse_run_f32|skchk_(params|begin|run)_f32)$" "$COUNT_AWK" < "$WORK/trace.fifo" > "$WORK/ticks.txt" &
+    -v COMMIT="^(download_end|skill_parse_run_f32|skchk_(params|begin|run)_f32)$" \
+    -v SOFTF='^__aeabi_(d|f|u?i2[df]|u?l2[df])|^__[a-z]+[sd]f[a-z0-9]*$' "$COUNT_AWK" < "$WORK/trace.fifo" > "$WORK/ticks.txt" &
 AWK_PID=$!
 "$HIL_SIM" pil --target "$TARGET" --image "$IMG/fs_pil.elf" --port 0 --host-timeout 500 \
   --qemu-arg "${ONE_INSN[0]}" ${ONE_INSN[1]:+--qemu-arg "${ONE_INSN[1]}"} \
@@ -222,9 +231,22 @@ for st in idle teach execute upload fwupdate fault; do
   echo "app_tick_instructions target=$TARGET state=$(echo $st | tr a-z A-Z) min=$A median=$B max=$C ticks=$N"
   [ "$N" -gt 0 ] || { echo "FAILED: no $st tick counted"; status=1; }
 done
+# the software-float helpers (libgcc) executed inside app_tick, per state: calls and instructions
+for st in idle teach execute upload fwupdate fault; do
+  awk -v k=$st -v t="$TARGET" '$1 == "softfloat" && $2 == k { n++; c += $4; i += $5; names = names " " $3 }
+    END { printf "softfloat_in_app_tick target=%s state=%s helpers=%d calls=%d instructions=%d%s\n",
+                 t, toupper(k), n, c, i, (n ? ":" names : "") }' "$WORK/ticks.txt"
+done
+if [ -n "${QEMU_TICK_PROFILE:-}" ]; then
+  awk '$1 == "softfloat" { print $2, $3, $4, $5 }' "$WORK/ticks.txt" > "$QEMU_TICK_PROFILE.softfloat"
+fi
+if [ "$PROFILE" = 1 ]; then
+  "$PY" "$ROOT/bench/qemu/tick_profile.py" "$QEMU_TICK_PROFILE" --target "$TARGET" || status=1
+fi
 if [ "$MAX" = "-" ] || [ "$MAX" -gt "$BUDGET" ]; then
   echo "budget FAILED: DMP + control law max $MAX > $BUDGET instructions"; status=1
 else
   echo "budget ok: DMP + control law max $MAX <= $BUDGET instructions"
 fi
+echo "qemu_tick_duration target=$TARGET seconds=$((SECONDS - T_START))"
 exit $status
