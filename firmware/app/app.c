@@ -650,8 +650,10 @@ void app_tick(app_t *app, bool overrun)
     if (app->tick % APP_STATUS_PERIOD_MS == 0u) {
         send_status(app);
     }
+    /* the requested rate while the device acts and through a fault (its stop ramp and after:
+     * the host sees how the force came down); IDLE's slow rate otherwise */
     uint32_t period = APP_IDLE_TELEMETRY_PERIOD_MS;
-    if (app->state == APP_TEACH || app->state == APP_EXECUTE) {
+    if (app->state == APP_TEACH || app->state == APP_EXECUTE || app->state == APP_FAULT) {
         period = (app->host_period_ms != 0u) ? app->host_period_ms : app->cfg.telemetry_period_ms;
     }
     if (period == 0u || app->tick % period == 0u) {
