@@ -561,7 +561,14 @@ static void control(app_t *app)
         m.vel_mps[1] = app->vel_mps[1];
         m.force_contact_N = app->sens.force_contact_N[0];
         exec_out_t out;
-        (void)exec_tick(&app->exec_run_cfg, &app->exec, &m, &out); /* non-finite: 0 N, sen faults */
+        /* non-finite measurement: 0 N, the sensor checks latch the fault. A saturated DMP step
+         * (the fixed-point build: the skill at this scale left its Q formats, 300) stops the run:
+         * counted, kept as the run status, and latched as skill invalid in this tick */
+        if (exec_tick(&app->exec_run_cfg, &app->exec, &m, &out) == FS_ERR_FIXED_OVERFLOW) {
+            app->exec_saturated_ticks++;
+            app->last_run_status = (uint16_t)FS_ERR_FIXED_OVERFLOW;
+            app->exec_saturated = true;
+        }
         app->force_hat_N = out.force_hat_N;
         app->seq_step = out.step;
         if (app->cfg.render_carriage != 0u) {
@@ -619,7 +626,8 @@ void app_tick(app_t *app, bool overrun)
     in.host_frame = app->host_frame && (app->state == APP_TEACH || app->state == APP_EXECUTE);
     in.bus_off = hal_can_bus_off();
     in.tick_overrun = overrun;
-    in.skill_invalid = false;
+    in.skill_invalid = app->exec_saturated;
+    app->exec_saturated = false;
     in.storage_error = false;
     for (unsigned a = 0; a < PFC_AXES; a++) {
         in.meas[a].pos_m = app->sens.pos_m[a];
