@@ -142,12 +142,16 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                   if (prof != "" && lc > kmax[k]) { kmax[k] = lc
                                                     for (x in hk) if (index(x, k SUBSEP) == 1) delete hk[x]
                                                     for (f in h) hk[k, f] = h[f] }
+                  if (prof != "" && (!(k in kmin) || lc < kmin[k])) { kmin[k] = lc
+                                                    for (x in hn) if (index(x, k SUBSEP) == 1) delete hn[x]
+                                                    for (f in h) hn[k, f] = h[f] }
                   for (f in sfi) { SFI[k, f] += sfi[f]; SFC[k, f] += sfc[f] } }
       delete h; delete hp; delete sfi; delete sfc; next }
   END { if (prof != "") { for (f in tot) printf "%d %s\n", tot[f] / nexec, f > prof
                           for (a in tp) printf "%.2f %s\n", tp[a] / nexec, a > (prof ".pc")
                           for (f in hm) printf "%d %s\n", hm[f], f > (prof ".maxdmp")
-                          for (x in hk) { split(x, q, SUBSEP); printf "%d %s\n", hk[x], q[2] > (prof ".max." q[1]) } }
+                          for (x in hk) { split(x, q, SUBSEP); printf "%d %s\n", hk[x], q[2] > (prof ".max." q[1]) }
+                          for (x in hn) { split(x, q, SUBSEP); printf "%d %s\n", hn[x], q[2] > (prof ".min." q[1]) } }
         for (x in SFI) { split(x, q, SUBSEP); print "softfloat", q[1], q[2], SFC[x], SFI[x] } }
   { s = $NF
     if (!inboot && s == "Reset_Handler") { inboot = 1; bc = 0; ba = 0; ininit = 0 }
@@ -181,8 +185,10 @@ mkfifo "$WORK/trace.fifo"
 if [ "$PROFILE" = 1 ] && [ -z "${QEMU_TICK_PROFILE:-}" ]; then QEMU_TICK_PROFILE=$WORK/prof; fi
 # QEMU_TICK_PROFILE=FILE: also write the mean instructions per function of an EXECUTE tick there,
 # per instruction address (hex, with its function) in FILE.pc, per function of the EXECUTE tick
-# with the largest DMP part in FILE.maxdmp, and per function of the largest tick of each kind K in
-# FILE.max.K
+# with the largest DMP part in FILE.maxdmp, per function of the largest tick of each kind K in
+# FILE.max.K and of its smallest (a tick without bus traffic: the state's floor) in FILE.min.K,
+# the soft-float helpers per kind in FILE.softfloat (--profile: a temporary FILE, printed by
+# bench/qemu/tick_profile.py)
 awk -v prof="${QEMU_TICK_PROFILE:-}" -v DMP="$DMP_RE" -v LAW="$LAW" \
     -v COMMIT="^(download_end|skill_parse_run_f32|skchk_(params|begin|run)_f32)$" \
     -v SOFTF='^__aeabi_(d|f|u?i2[df]|u?l2[df])|^__[a-z]+[sd]f[a-z0-9]*$' "$COUNT_AWK" < "$WORK/trace.fifo" > "$WORK/ticks.txt" &

@@ -4,12 +4,14 @@ counter writes with QEMU_TICK_PROFILE=PREFIX (what `bench/qemu_tick.sh TARGET --
 
 - PREFIX.max.K: instructions per function of the largest app_tick of kind K (idle, teach,
   execute, upload, fwupdate, fault; the interrupts taken meanwhile included);
+- PREFIX.min.K: the same of the smallest tick of kind K (no bus traffic: the state's floor);
 - PREFIX: the mean instructions per function of an EXECUTE tick;
 - PREFIX.softfloat: per kind, the software-float helpers (libgcc `__aeabi_d*`, `__aeabi_f*`,
   `__addsf3` & co.) executed inside app_tick, their calls and instructions over the whole run.
 
 Prints, for each state, its worst tick's total and its top functions (symbol, instructions,
-share of the tick), then the mean EXECUTE tick's top functions and the soft-float helpers left.
+share of the tick), the same for its smallest tick, then the mean EXECUTE tick's top functions
+and the soft-float helpers left.
   tick_profile.py PREFIX [--top N] [--target T]"""
 
 from __future__ import annotations
@@ -37,18 +39,20 @@ def top_lines(counts: dict[str, float], total: float, n: int) -> list[str]:
     return [f"  {v:>9,.0f}  {100.0 * v / total:5.1f} %  {s}" for s, v in rows] if total > 0 else []
 
 
-def print_states(prefix: Path, target: str, n: int) -> int:
-    """The worst tick of every kind found; returns how many kinds had a profile."""
+def print_states(prefix: Path, target: str, n: int, which: str = "max") -> int:
+    """The worst (which="max") or smallest ("min") tick of every kind found; returns how many
+    kinds had a profile."""
     found = 0
+    label = "worst" if which == "max" else "smallest"
     for k in KINDS:
-        p = Path(f"{prefix}.max.{k}")
+        p = Path(f"{prefix}.{which}.{k}")
         if not p.exists():
-            print(f"tick_profile target={target} state={k.upper()} worst=- (no tick of this kind)")
+            print(f"tick_profile target={target} state={k.upper()} {label}=- (no tick of this kind)")
             continue
         found += 1
         counts = read_counts(p)
         total = sum(counts.values())
-        print(f"tick_profile target={target} state={k.upper()} worst={total:,.0f} instructions; top {n}:")
+        print(f"tick_profile target={target} state={k.upper()} {label}={total:,.0f} instructions; top {n}:")
         for line in top_lines(counts, total, n):
             print(line)
     return found
@@ -91,6 +95,7 @@ def main(argv: list[str]) -> int:
     if print_states(args.prefix, args.target, args.top) == 0:
         print(f"tick_profile: no {args.prefix}.max.* file (run with QEMU_TICK_PROFILE)", file=sys.stderr)
         return 1
+    print_states(args.prefix, args.target, args.top, "min")
     print_mean_execute(args.prefix, args.target, args.top)
     print_softfloat(args.prefix, args.target)
     return 0
