@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Exact instruction counts of the shipped Cortex-M image's 1 kHz tick under qemu.
-#   bench/qemu_tick.sh TARGET [--build-dir DIR] [--exec-s S] [--skill FILE]
+#   bench/qemu_tick.sh TARGET [--build-dir DIR] [--exec-s S] [--fw-bytes N] [--skill FILE] [--profile]
 # TARGET: cortex-m4f (mps2-an386, hardware float) or cortex-m3 (mps2-an385: the DMP and the
 # control law in fixed point, the rest of the application in software float).
 # 1. builds the images (toolchain cmake/arm-none-eabi.cmake, Release; size, heap and stack report);
@@ -20,6 +20,11 @@
 #      tick_instructions target=T kernels=N min= median= max=          (DMP + control law, EXECUTE)
 #      commit_tick_instructions target=T min= median= max= ticks=  (a download's commit)
 #      app_tick_instructions target=T state=IDLE|TEACH|EXECUTE|UPLOAD|FWUPDATE|FAULT min= median= max=
+#      softfloat_in_app_tick target=T state=S helpers=N calls= instructions=[: names]  (libgcc's
+#        __aeabi_d*/__aeabi_f*, __addsf3 & co. executed inside app_tick: none expected on the M4F)
+#      qemu_tick_duration target=T seconds=S
+#    --profile: then, per state, the top functions of its worst and of its smallest tick
+#    (bench/qemu/tick_profile.py over the QEMU_TICK_PROFILE files, below).
 # Exit status 1 if a check fails or the DMP + control-law part exceeds its budget (M4F 850,
 # M3 1,250).
 set -euo pipefail
