@@ -10,8 +10,14 @@
 #include <string.h>
 #include <cmocka.h>
 
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
 #include "app_internal.h"
+#include "fs_dbc.h"
 #include "hal_host.h"
+#include "proto_ids.h"
 #include "vectors_io.h"
 
 #ifndef FS_EXEC_FIXED
@@ -23,6 +29,10 @@ static app_config_t cfg;
 static uint64_t t_us;
 static uint8_t image[APP_IMAGE_MAX];
 
+static struct fs_dbc_telemetry_position_t tel_pos; /* the last telemetry the device sent */
+static struct fs_dbc_telemetry_force_t tel_force;
+static unsigned n_tel;
+
 static void tick(void)
 {
     t_us += 1000u;
@@ -30,6 +40,12 @@ static void tick(void)
     app_tick(&app, false);
     can_frame_t f;
     while (hal_sim_can_tx_peek(&f)) {
+        if (f.id == PROTO_ID_TELEM_POS(0)) {
+            assert_int_equal(fs_dbc_telemetry_position_unpack(&tel_pos, f.data, f.len), 0);
+            n_tel++;
+        } else if (f.id == PROTO_ID_TELEM_FORCE(0)) {
+            assert_int_equal(fs_dbc_telemetry_force_unpack(&tel_force, f.data, f.len), 0);
+        }
         hal_sim_can_tx_pop();
     }
 }
@@ -111,9 +127,81 @@ static void test_a_saturated_dmp_step_faults_the_run(void **state)
     assert_int_equal(app.exec_saturated_ticks, 1u); /* FAULT runs no DMP */
 }
 
+/* The float64 reference of a telemetry value: v / unit rounded half away from zero, clamped;
+ * NaN or infinite -> 0 (the float builds' clamp_i32, in double). */
+static long ref_counts(float v, double unit, long lo, long hi)
+{
+    if (!isfinite(v)) {
+        return 0;
+    }
+    const double r = (double)v / unit;
+    const double c = (r < 0.0) ? ceil(r - 0.5) : floor(r + 0.5);
+    return (c > (double)hi) ? hi : ((c < (double)lo) ? lo : (long)c);
+}
+
+static float vec_value(unsigned i, float span, uint32_t *rng)
+{
+    static const float special[] = {0.0f,       -0.0f,      5e-7f,     -5e-7f,  1e-7f,   8.388607f,
+                                    -8.388608f, 8.3886075f, 9.0f,      -100.0f, 327.67f, 327.675f,
+                                    -327.685f,  -327.68f,   0.005f,    -0.005f, 0.015f,  1e30f,
+                                    -1e30f,     INFINITY,   -INFINITY, NAN};
+    const unsigned n_special = (unsigned)(sizeof special / sizeof special[0]);
+    if (i < n_special) {
+        return special[i];
+    }
+    *rng = *rng * 1664525u + 1013904223u;
+    return span * ((float)(*rng >> 8) / 8388608.0f - 1.0f);
+}
+
+/* The fixed build's telemetry scaling (integers from the float's bits) against the float64
+ * reference on the same sensor values: at most one count apart (a value within a Q format's LSB
+ * of a rounding tie), the bound printed. */
+static void test_telemetry_counts_match_the_float64_reference(void **state)
+{
+    (void)state;
+    start_press();
+    hal_sensors_t s;
+    memset(&s, 0, sizeof s);
+    uint32_t rng = 12345u;
+    long worst_pos = 0, worst_force = 0;
+    unsigned differ = 0u, n = 0u;
+    for (unsigned i = 0; i < 2000u; i++) {
+        s.pos_m[0] = vec_value(i, 10.0f, &rng);
+        s.pos_m[1] = vec_value((i * 7u) % 2000u, 0.5f, &rng);
+        s.force_contact_N[0] = vec_value(i, 400.0f, &rng);
+        s.force_operator_N[0] = vec_value((i * 3u) % 2000u, 30.0f, &rng);
+        hal_host_set_sensors(&s);
+        const unsigned before = n_tel;
+        tick(); /* a fault latches on the first wild value: the telemetry stays at 1 kHz */
+        if (n_tel == before) {
+            continue;
+        }
+        const long d[4] = {
+            labs((long)tel_pos.pos_x - ref_counts(s.pos_m[0], 1e-6, -8388608, 8388607)),
+            labs((long)tel_pos.pos_y - ref_counts(s.pos_m[1], 1e-6, -8388608, 8388607)),
+            labs((long)tel_force.force_contact -
+                 ref_counts(s.force_contact_N[0], 0.01, -32768, 32767)),
+            labs((long)tel_force.force_operator -
+                 ref_counts(s.force_operator_N[0], 0.01, -32768, 32767))};
+        worst_pos = d[0] > worst_pos ? d[0] : worst_pos;
+        worst_pos = d[1] > worst_pos ? d[1] : worst_pos;
+        worst_force = d[2] > worst_force ? d[2] : worst_force;
+        worst_force = d[3] > worst_force ? d[3] : worst_force;
+        differ += (d[0] + d[1] + d[2] + d[3] != 0) ? 1u : 0u;
+        n++;
+    }
+    printf("telemetry_counts fixed vs float64: %u samples, %u with a difference, max |diff| "
+           "position %ld um, force %ld x 0.01 N\n",
+           n, differ, worst_pos, worst_force);
+    assert_true(n > 1900u);
+    assert_true(worst_pos <= 1 && worst_force <= 1);
+    assert_true(differ * 100u <= n); /* ties are rare: at most 1 % of the samples */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_telemetry_counts_match_the_float64_reference),
         cmocka_unit_test(test_a_run_that_fits_keeps_executing),
         cmocka_unit_test(test_a_saturated_dmp_step_faults_the_run),
     };
