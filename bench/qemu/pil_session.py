@@ -27,7 +27,6 @@ from forceskill.link.device import Device
 from forceskill.link.flash import flash_image
 from forceskill.model import fwimage as fw
 
-
 # A command is repeated when its state has not shown after this long (wall time): under the trace
 # the 10 ms between two status frames take 0.2-0.5 s, so the host tools' 0.2 s would repeat a
 # command the device took, and after three repeats re-establish the session in the middle of it.
