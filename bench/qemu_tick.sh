@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Exact instruction counts of the shipped Cortex-M image's 1 kHz tick under qemu.
-#   bench/qemu_tick.sh TARGET [--build-dir DIR] [--exec-s S] [--skill FILE]
+#   bench/qemu_tick.sh TARGET [--build-dir DIR] [--exec-s S] [--fw-bytes N] [--skill FILE] [--profile]
 # TARGET: cortex-m4f (mps2-an386, hardware float) or cortex-m3 (mps2-an385: the DMP and the
 # control law in fixed point, the rest of the application in software float).
 # 1. builds the images (toolchain cmake/arm-none-eabi.cmake, Release; size, heap and stack report);
@@ -20,23 +20,31 @@
 #      tick_instructions target=T kernels=N min= median= max=          (DMP + control law, EXECUTE)
 #      commit_tick_instructions target=T min= median= max= ticks=  (a download's commit)
 #      app_tick_instructions target=T state=IDLE|TEACH|EXECUTE|UPLOAD|FWUPDATE|FAULT min= median= max=
+#      softfloat_in_app_tick target=T state=S helpers=N calls= instructions=[: names]  (libgcc's
+#        __aeabi_d*/__aeabi_f*, __addsf3 & co. executed inside app_tick: none expected on the M4F)
+#      qemu_tick_duration target=T seconds=S
+#    --profile: then, per state, the top functions of its worst and of its smallest tick
+#    (bench/qemu/tick_profile.py over the QEMU_TICK_PROFILE files, below).
 # Exit status 1 if a check fails or the DMP + control-law part exceeds its budget (M4F 850,
 # M3 1,250).
 set -euo pipefail
 
-usage() { echo "usage: $0 cortex-m4f|cortex-m3 [--build-dir DIR] [--exec-s S] [--fw-bytes N] [--skill FILE]" >&2; exit 2; }
+usage() { echo "usage: $0 cortex-m4f|cortex-m3 [--build-dir DIR] [--exec-s S] [--fw-bytes N] [--skill FILE] [--profile]" >&2; exit 2; }
 [ $# -ge 1 ] || usage
 TARGET=$1; shift
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=$ROOT/build/$TARGET
 EXEC_S=1.0
 FW_BYTES=16384
+PROFILE=0
+T_START=$SECONDS
 while [ $# -gt 0 ]; do
   case $1 in
     --build-dir) BUILD=$2; shift 2 ;;
     --exec-s) EXEC_S=$2; shift 2 ;;
     --fw-bytes) FW_BYTES=$2; shift 2 ;;   # the firmware download's payload (FWUPDATE)
     --skill) SKILL_ARG=$2; shift 2 ;;
+    --profile) PROFILE=1; shift ;;   # per state, the top functions of its worst tick (tick_profile.py)
     --host-ref-float|--host-ref-fixed) shift 2 ;;   # accepted for older callers; unused
     *) usage ;;
   esac
@@ -142,13 +150,19 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                   if (prof != "" && FOCUS != "") { fc = 0; for (f in h) if (f ~ FOCUS) fc += h[f]
                                                    if (fc > fmax[k]) { fmax[k] = fc
                                                      for (x in hf) if (index(x, k SUBSEP) == 1) delete hf[x]
-                                                     for (f in h) if (f ~ FOCUS) hf[k, f] = h[f] } } }
-      delete h; delete hp; next }
+                                                     for (f in h) if (f ~ FOCUS) hf[k, f] = h[f] } }
+                  if (prof != "" && (!(k in kmin) || lc < kmin[k])) { kmin[k] = lc
+                                                    for (x in hn) if (index(x, k SUBSEP) == 1) delete hn[x]
+                                                    for (f in h) hn[k, f] = h[f] }
+                  for (f in sfi) { SFI[k, f] += sfi[f]; SFC[k, f] += sfc[f] } }
+      delete h; delete hp; delete sfi; delete sfc; next }
   END { if (prof != "") { for (f in tot) printf "%d %s\n", tot[f] / nexec, f > prof
                           for (a in tp) printf "%.2f %s\n", tp[a] / nexec, a > (prof ".pc")
                           for (f in hm) printf "%d %s\n", hm[f], f > (prof ".maxdmp")
                           for (x in hk) { split(x, q, SUBSEP); printf "%d %s\n", hk[x], q[2] > (prof ".max." q[1]) }
-                          for (x in hf) { split(x, q, SUBSEP); printf "%d %s\n", hf[x], q[2] > (prof ".focus." q[1]) } } }
+                          for (x in hf) { split(x, q, SUBSEP); printf "%d %s\n", hf[x], q[2] > (prof ".focus." q[1]) }
+                          for (x in hn) { split(x, q, SUBSEP); printf "%d %s\n", hn[x], q[2] > (prof ".min." q[1]) } }
+        for (x in SFI) { split(x, q, SUBSEP); print "softfloat", q[1], q[2], SFC[x], SFI[x] } }
   { s = $NF
     if (!inboot && s == "Reset_Handler") { inboot = 1; bc = 0; ba = 0; ininit = 0 }
     if (inboot) { bc++
@@ -157,6 +171,8 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                   if (ininit) ba++
                   bprev = s }
     if (inb) { c++; h[s]++
+               if (s ~ SOFTF) { sfi[s]++; if (s != last) sfc[s]++ }
+               last = s
                if (s ~ COMMIT) cmt = 1
                if (prof != "") { split($4, pcs, "/"); hp[pcs[2] " " s]++ }
                # an interrupt taken inside the tick (the UART of the CAN link) counts in the
@@ -178,13 +194,17 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                if (inchk) { chk_total++; chk_tick++ }
                prev = s } }'
 mkfifo "$WORK/trace.fifo"
+if [ "$PROFILE" = 1 ] && [ -z "${QEMU_TICK_PROFILE:-}" ]; then QEMU_TICK_PROFILE=$WORK/prof; fi
 # QEMU_TICK_PROFILE=FILE: also write the mean instructions per function of an EXECUTE tick there,
 # per instruction address (hex, with its function) in FILE.pc, per function of the EXECUTE tick
-# with the largest DMP part in FILE.maxdmp, and per function of the largest tick of each kind K in
-# FILE.max.K; with QEMU_TICK_FOCUS=REGEX also, per kind K, the functions matching REGEX of the
-# tick where they ran the most instructions, in FILE.focus.K
+# with the largest DMP part in FILE.maxdmp, per function of the largest tick of each kind K in
+# FILE.max.K and of its smallest (a tick without bus traffic: the state's floor) in FILE.min.K,
+# the soft-float helpers per kind in FILE.softfloat (--profile: a temporary FILE, printed by
+# bench/qemu/tick_profile.py); with QEMU_TICK_FOCUS=REGEX also, per kind K, the functions matching
+# REGEX of the tick where they ran the most instructions, in FILE.focus.K
 awk -v prof="${QEMU_TICK_PROFILE:-}" -v FOCUS="${QEMU_TICK_FOCUS:-}" -v DMP="$DMP_RE" -v LAW="$LAW" \
-    -v COMMIT="^(download_end|skill_parse_run_f32|skchk_(params|begin|run)_f32)$" "$COUNT_AWK" < "$WORK/trace.fifo" > "$WORK/ticks.txt" &
+    -v COMMIT="^(download_end|skill_parse_run_f32|skchk_(params|begin|run)_f32)$" \
+    -v SOFTF='^__aeabi_(d|f|u?i2[df]|u?l2[df])|^__[a-z]+[sd]f[a-z0-9]*$' "$COUNT_AWK" < "$WORK/trace.fifo" > "$WORK/ticks.txt" &
 AWK_PID=$!
 "$HIL_SIM" pil --target "$TARGET" --image "$IMG/fs_pil.elf" --port 0 --host-timeout 500 \
   --qemu-arg "${ONE_INSN[0]}" ${ONE_INSN[1]:+--qemu-arg "${ONE_INSN[1]}"} \
@@ -230,9 +250,22 @@ for st in idle teach execute upload fwupdate fault; do
   echo "app_tick_instructions target=$TARGET state=$(echo $st | tr a-z A-Z) min=$A median=$B max=$C ticks=$N"
   [ "$N" -gt 0 ] || { echo "FAILED: no $st tick counted"; status=1; }
 done
+# the software-float helpers (libgcc) executed inside app_tick, per state: calls and instructions
+for st in idle teach execute upload fwupdate fault; do
+  awk -v k=$st -v t="$TARGET" '$1 == "softfloat" && $2 == k { n++; c += $4; i += $5; names = names " " $3 }
+    END { printf "softfloat_in_app_tick target=%s state=%s helpers=%d calls=%d instructions=%d%s\n",
+                 t, toupper(k), n, c, i, (n ? ":" names : "") }' "$WORK/ticks.txt"
+done
+if [ -n "${QEMU_TICK_PROFILE:-}" ]; then
+  awk '$1 == "softfloat" { print $2, $3, $4, $5 }' "$WORK/ticks.txt" > "$QEMU_TICK_PROFILE.softfloat"
+fi
+if [ "$PROFILE" = 1 ]; then
+  "$PY" "$ROOT/bench/qemu/tick_profile.py" "$QEMU_TICK_PROFILE" --target "$TARGET" || status=1
+fi
 if [ "$MAX" = "-" ] || [ "$MAX" -gt "$BUDGET" ]; then
   echo "budget FAILED: DMP + control law max $MAX > $BUDGET instructions"; status=1
 else
   echo "budget ok: DMP + control law max $MAX <= $BUDGET instructions"
 fi
+echo "qemu_tick_duration target=$TARGET seconds=$((SECONDS - T_START))"
 exit $status

@@ -27,6 +27,11 @@ from forceskill.link.device import Device
 from forceskill.link.flash import flash_image
 from forceskill.model import fwimage as fw
 
+# A command is repeated when its state has not shown after this long (wall time): under the trace
+# the 10 ms between two status frames take 0.2-0.5 s, so the host tools' 0.2 s would repeat a
+# command the device took, and after three repeats re-establish the session in the middle of it.
+RETRY_S = 3.0
+
 
 def wait_ticks(dev: Device, n: int, timeout_s: float) -> None:
     t0 = dev.status.tick
@@ -76,8 +81,10 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--timeout", type=float, default=600.0, help="wall-clock limit of each phase (s)")
     ap.add_argument("--target", default="cortex-m4f", help="the image's firmware target")
     ap.add_argument("--fw-bytes", type=int, default=16384, help="payload of the firmware download")
-    ap.add_argument("--teach-ticks", type=int, default=300, help="TEACH ticks")
-    ap.add_argument("--fault-ticks", type=int, default=400, help="FAULT ticks after the latch")
+    # TEACH and FAULT ticks are alike (min = median in both: nothing but the bus varies them):
+    # 150 of each cover the stop ramp (40 ticks) and the host's frames several times over
+    ap.add_argument("--teach-ticks", type=int, default=150, help="TEACH ticks")
+    ap.add_argument("--fault-ticks", type=int, default=150, help="FAULT ticks after the latch")
     args = ap.parse_args(argv)
     # under the trace a consecutive frame can be seconds of wall time apart: ISO-TP's 1 s
     # receive timeouts of the host tools would drop the transfer
@@ -101,9 +108,9 @@ def main(argv: list[str]) -> int:
             dev.telemetry_period_ms = 1
             hb = heartbeat(bus, dev, args.heartbeat_s)
             try:
-                dev.command_until("teach", {"TEACH"}, args.timeout)
+                dev.command_until("teach", {"TEACH"}, args.timeout, RETRY_S)
                 wait_ticks(dev, args.teach_ticks, args.timeout)
-                dev.command_until("idle", {"IDLE"}, args.timeout)
+                dev.command_until("idle", {"IDLE"}, args.timeout, RETRY_S)
                 with U.uds_client(dev, request_timeout_s=args.timeout) as client:
                     # RequestUpload needs the programming session, entered while IDLE
                     U.call("session change", lambda: client.change_session(1), 0)
@@ -116,10 +123,10 @@ def main(argv: list[str]) -> int:
                     U.upload(client, 0, 1, len(image))  # read-back while executing
                     print(f"pil_session: read-back done at tick {dev.status.tick}", flush=True)
                     wait_ticks(dev, int(args.exec_s * 500), args.timeout)
-                    dev.command_until("idle", {"IDLE", "FAULT"}, args.timeout)
+                    dev.command_until("idle", {"IDLE", "FAULT"}, args.timeout, RETRY_S)
                     fault_on_silence(dev, client, hb, data, args)
                     hb = heartbeat(bus, dev, args.heartbeat_s)
-                    dev.command_until("clear_fault", {"IDLE"}, args.timeout)
+                    dev.command_until("clear_fault", {"IDLE"}, args.timeout, RETRY_S)
                     flash_image(client, fw_payload(args), mark_test=False)
                     print(f"pil_session: firmware download done at tick {dev.status.tick}", flush=True)
             finally:

@@ -5,6 +5,9 @@
 
 #include "fs_dbc.h"
 #include "proto_ids.h"
+#ifdef FS_EXEC_FIXED
+#include "fx.h"
+#endif
 
 #ifndef APP_FW_TARGET_ID
 /* the firmware images this device accepts (BOOT_TARGET_*): a port's build defines its own */
@@ -57,6 +60,27 @@ static bool tp_send(void *ctx, const can_frame_t *f)
     return hal_can_tx_free() > APP_TX_RESERVE && hal_can_send(f); /* refused: ISO-TP retries */
 }
 
+#ifdef FS_EXEC_FIXED
+/* The fixed-point build (no FPU): v in counts of 1/per_unit, clamped to lo..hi, from its value in
+ * Q(frac) (fx_from_float reads the float's bits) times per_unit, rounded half away from zero as
+ * the float path rounds; NaN or infinite -> 0 as there. Integer operations only. */
+static int32_t wire_counts(fs_real_t v, unsigned frac, int64_t per_unit, int32_t lo, int32_t hi)
+{
+    uint32_t b;
+    memcpy(&b, &v, sizeof b);
+    if ((b & 0x7F800000u) == 0x7F800000u) {
+        return 0;
+    }
+    const int32_t q = fx_from_float(v, frac);
+    const int64_t mag = (q < 0) ? -(int64_t)q : (int64_t)q;
+    int64_t c = (mag * per_unit + ((int64_t)1 << (frac - 1u))) >> frac;
+    c = (q < 0) ? -c : c;
+    return (c > (int64_t)hi) ? hi : ((c < (int64_t)lo) ? lo : (int32_t)c);
+}
+/* position in um (Q8.24: +-128 m before the clamp), force in 0.01 N (Q16.16: +-32768 N) */
+#define APP_POS_COUNTS(v) wire_counts((v), 24u, 1000000, -8388608, 8388607)
+#define APP_FORCE_COUNTS(v) (int16_t) wire_counts((v), 16u, 100, -32768, 32767)
+#else
 static int32_t clamp_i32(fs_real_t v, fs_real_t scale, int32_t lo, int32_t hi)
 {
     const fs_real_t r = v / scale;
@@ -69,6 +93,9 @@ static int32_t clamp_i32(fs_real_t v, fs_real_t scale, int32_t lo, int32_t hi)
     /* round half away from zero, as cantools --use-round (roundf) does */
     return (int32_t)(r < FS_R(0.0) ? r - FS_R(0.5) : r + FS_R(0.5));
 }
+#define APP_POS_COUNTS(v) clamp_i32((v), FS_R(1e-6), -8388608, 8388607)
+#define APP_FORCE_COUNTS(v) (int16_t) clamp_i32((v), FS_R(0.01), -32768, 32767)
+#endif
 
 static void send_status(app_t *app)
 {
@@ -114,8 +141,8 @@ static bool send_emergency(app_t *app, const flt_emcy_t *e)
 static void send_telemetry(app_t *app)
 {
     struct fs_dbc_telemetry_position_t p;
-    p.pos_x = clamp_i32(app->sens.pos_m[0], FS_R(1e-6), -8388608, 8388607);
-    p.pos_y = clamp_i32(app->sens.pos_m[1], FS_R(1e-6), -8388608, 8388607);
+    p.pos_x = APP_POS_COUNTS(app->sens.pos_m[0]);
+    p.pos_y = APP_POS_COUNTS(app->sens.pos_m[1]);
     p.tick = (uint16_t)(app->tick & 0xFFFFu);
     can_frame_t f; /* id, length and flags; the pack functions write every data byte */
     f.id = PROTO_ID_TELEM_POS(app->cfg.node);
@@ -125,10 +152,10 @@ static void send_telemetry(app_t *app)
     (void)app_send(app, &f, true);
 
     struct fs_dbc_telemetry_force_t q;
-    q.force_contact = (int16_t)clamp_i32(app->sens.force_contact_N[0], FS_R(0.01), -32768, 32767);
-    q.force_operator = (int16_t)clamp_i32(app->sens.force_operator_N[0], FS_R(0.01), -32768, 32767);
-    q.force_cmd = (int16_t)clamp_i32(app->force_out_N[0], FS_R(0.01), -32768, 32767);
-    q.force_ref = (int16_t)clamp_i32(app->force_hat_N, FS_R(0.01), -32768, 32767);
+    q.force_contact = APP_FORCE_COUNTS(app->sens.force_contact_N[0]);
+    q.force_operator = APP_FORCE_COUNTS(app->sens.force_operator_N[0]);
+    q.force_cmd = APP_FORCE_COUNTS(app->force_out_N[0]);
+    q.force_ref = APP_FORCE_COUNTS(app->force_hat_N);
     f.id = PROTO_ID_TELEM_FORCE(app->cfg.node);
     f.len = FS_DBC_TELEMETRY_FORCE_LENGTH;
     (void)fs_dbc_telemetry_force_pack(f.data, &q, sizeof(f.data));
@@ -384,7 +411,14 @@ static void control(app_t *app)
         m.vel_mps[1] = app->vel_mps[1];
         m.force_contact_N = app->sens.force_contact_N[0];
         exec_out_t out;
-        (void)exec_tick(&app->exec_run_cfg, &app->exec, &m, &out); /* non-finite: 0 N, sen faults */
+        /* non-finite measurement: 0 N, the sensor checks latch the fault. A saturated DMP step
+         * (the fixed-point build: the skill at this scale left its Q formats, 300) stops the run:
+         * counted, kept as the run status, and latched as skill invalid in this tick */
+        if (exec_tick(&app->exec_run_cfg, &app->exec, &m, &out) == FS_ERR_FIXED_OVERFLOW) {
+            app->exec_saturated_ticks++;
+            app->last_run_status = (uint16_t)FS_ERR_FIXED_OVERFLOW;
+            app->exec_saturated = true;
+        }
         app->force_hat_N = out.force_hat_N;
         app->seq_step = out.step;
         if (app->cfg.render_carriage != 0u) {
@@ -442,7 +476,8 @@ void app_tick(app_t *app, bool overrun)
     in.host_frame = app->host_frame && (app->state == APP_TEACH || app->state == APP_EXECUTE);
     in.bus_off = hal_can_bus_off();
     in.tick_overrun = overrun;
-    in.skill_invalid = false;
+    in.skill_invalid = app->exec_saturated;
+    app->exec_saturated = false;
     in.storage_error = false;
     for (unsigned a = 0; a < PFC_AXES; a++) {
         in.meas[a].pos_m = app->sens.pos_m[a];
@@ -473,8 +508,10 @@ void app_tick(app_t *app, bool overrun)
     if (app->tick % APP_STATUS_PERIOD_MS == 0u) {
         send_status(app);
     }
+    /* the requested rate while the device acts and through a fault (its stop ramp and after:
+     * the host sees how the force came down); IDLE's slow rate otherwise */
     uint32_t period = APP_IDLE_TELEMETRY_PERIOD_MS;
-    if (app->state == APP_TEACH || app->state == APP_EXECUTE) {
+    if (app->state == APP_TEACH || app->state == APP_EXECUTE || app->state == APP_FAULT) {
         period = (app->host_period_ms != 0u) ? app->host_period_ms : app->cfg.telemetry_period_ms;
     }
     if (period == 0u || app->tick % period == 0u) {

@@ -109,6 +109,8 @@ struct app {
     uint8_t active_slot;
     uint8_t seq_step;
     bool exec_done;
+    bool exec_saturated;           /* this tick's exec_tick saturated (FS_ERR_FIXED_OVERFLOW) */
+    uint32_t exec_saturated_ticks; /* ticks whose exec_tick saturated, since power-up */
     saf_config_t saf_cfg;
     saf_state_t saf;
     saf_output_t saf_out;

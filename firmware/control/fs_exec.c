@@ -47,6 +47,7 @@ static fs_status_t exec_begin_step(exec_state_t *st, fs_real_t dt_s)
     const exec_step_t *s = &st->steps[st->step];
     st->step_ticks = exec_ticks(exec_step_duration(s), dt_s);
     st->t_step_s = FS_R(0.0);
+    st->step_tick = 0u;
     st->force_dmp_N = s->skill->dmp.force0_N;
 #ifdef FS_EXEC_FIXED
     dmpfx_state_reset(&st->dmp);
@@ -301,7 +302,7 @@ static fs_real_t exec_reference_force(const exec_config_t *cfg, exec_state_t *st
     st->t_step_s += dt;
     fs_real_t f = st->force_dmp_N + st->force_carry_N * exec_blend(st->t_step_s);
 
-    if (exec_ticks(st->t_step_s, dt) >= st->step_ticks) {
+    if (++st->step_tick >= st->step_ticks) { /* counted: no float division in the tick */
         if ((uint8_t)(st->step + 1u) < st->n_steps) {
             st->y_hold_m += st->path_m; /* the next step's path starts where this one ended */
             st->path_m = FS_R(0.0);

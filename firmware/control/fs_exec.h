@@ -144,6 +144,7 @@ typedef struct {
 #endif
     fs_real_t t_step_s;      /* time since the running step started */
     uint32_t step_ticks;     /* ticks of the running step (its duration at dt, set at its start) */
+    uint32_t step_tick;      /* ticks of the running step done */
     fs_real_t t_end_s;       /* time since the end policy started */
     fs_real_t force_dmp_N;   /* last DMP output of the running step */
     fs_real_t force_hat_N;   /* last f_hat */

@@ -1,6 +1,7 @@
 /* Limits at the last stage before the actuator: see lim.h. */
 #include "lim.h"
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "fs_wire_const.h"
@@ -96,14 +97,14 @@ static fs_real_t gate_by_measurement(const lim_axis_t *a, const saf_meas_t *m, f
             target = FS_R(0.0);
         }
     }
-    if (vel > a->vel_max_mps || vel < -a->vel_max_mps) {
+    if (fs_fabs(vel) > a->vel_max_mps) { /* NaN: false, as the two compares it stands for */
         r->cause_mask |= FLT_BIT(FLT_VELOCITY);
         if ((vel > FS_R(0.0) && target > FS_R(0.0)) || (vel < FS_R(0.0) && target < FS_R(0.0))) {
             r->flags |= LIM_F_VELOCITY;
             target = FS_R(0.0);
         }
     }
-    if (f > a->contact_force_max_N || f < -a->contact_force_max_N) {
+    if (fs_fabs(f) > a->contact_force_max_N) {
         r->cause_mask |= FLT_BIT(FLT_FORCE_LIMIT);
     }
     return target;
@@ -122,17 +123,22 @@ static fs_real_t slew_step(const lim_config_t *cfg, lim_state_t *st, uint32_t i,
     }
     prev = clamp_sym(prev, fmax);
     fs_real_t out = target;
-    if (target - prev > slew) {
+    const fs_real_t step = target - prev;
+    bool binds = true;
+    if (step > slew) {
         out = prev + slew;
-        r->flags |= LIM_F_SLEW;
-    } else if (target - prev < -slew) {
+    } else if (step < -slew) {
         out = prev - slew;
+    } else {
+        binds = false;
+    }
+    if (binds) {
         r->flags |= LIM_F_SLEW;
     }
-    /* Leaky bucket: +2 when the slew limit binds, -1 otherwise. Binding every tick trips
-     * after slew_fault_ticks; an oscillation binding every other tick after about
+    /* Leaky bucket: +2 when the slew limit binds on this axis, -1 otherwise. Binding every tick
+     * trips after slew_fault_ticks; an oscillation binding every other tick after about
      * 4*slew_fault_ticks; a single large step (e.g. 0 -> 50 N, 25 ticks) never. */
-    if ((r->flags & LIM_F_SLEW) != 0u && (target - prev > slew || target - prev < -slew)) {
+    if (binds) {
         st->slew_run[i] = (uint16_t)((st->slew_run[i] <= UINT16_MAX - 2u) ? st->slew_run[i] + 2u
                                                                           : UINT16_MAX);
     } else if (st->slew_run[i] > 0u) {
@@ -170,7 +176,7 @@ lim_result_t lim_apply(const lim_config_t *cfg, lim_state_t *st, const fs_real_t
             r.cause_mask |= FLT_BIT(FLT_CMD_NOT_FINITE);
             target = FS_R(0.0);
         }
-        if (target > fmax || target < -fmax) {
+        if (fs_fabs(target) > fmax) { /* target is finite here */
             r.flags |= LIM_F_FORCE;
             target = clamp_sym(target, fmax);
         }

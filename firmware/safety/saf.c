@@ -120,26 +120,23 @@ static uint32_t input_causes(const saf_config_t *cfg, saf_state_t *st, const saf
 static void gate_request(saf_state_t *st, const saf_input_t *in, bool stopping,
                          fs_real_t req[SAF_AXES])
 {
-    bool req_zero = true;
-    for (uint32_t i = 0u; i < SAF_AXES; i++) {
-        req[i] = in->force_req_N[i];
-        if (!(req[i] <= (fs_real_t)SAF_REARM_N && req[i] >= -(fs_real_t)SAF_REARM_N)) {
-            req_zero = false;
+    bool pass = !stopping;
+    if (st->hold_zero) { /* the request's magnitude matters only while holding zero */
+        bool req_zero = true;
+        for (uint32_t i = 0u; i < SAF_AXES; i++) {
+            const fs_real_t r = in->force_req_N[i];
+            if (!(r <= (fs_real_t)SAF_REARM_N && r >= -(fs_real_t)SAF_REARM_N)) {
+                req_zero = false;
+            }
         }
-    }
-    if (st->hold_zero) {
         if (req_zero) {
             st->hold_zero = false;
         } else {
-            for (uint32_t i = 0u; i < SAF_AXES; i++) {
-                req[i] = FS_R(0.0);
-            }
+            pass = false;
         }
     }
-    if (stopping) {
-        for (uint32_t i = 0u; i < SAF_AXES; i++) {
-            req[i] = FS_R(0.0);
-        }
+    for (uint32_t i = 0u; i < SAF_AXES; i++) {
+        req[i] = pass ? in->force_req_N[i] : FS_R(0.0);
     }
 }
 

@@ -1,6 +1,6 @@
 """`run` on the simulator when things go wrong: a goal scale that takes the skill above the force
 limit is refused before anything moves; Ctrl-C commands IDLE, keeps the telemetry and exits 130; a
-fault keeps the telemetry up to the fault row and names the fault; after a fault the simulated
+fault keeps the telemetry through its stop ramp (at 1 kHz) and names the fault; after a fault the simulated
 drive parks the handle so that `status --clear` succeeds; a refused clear names its cause."""
 
 from __future__ import annotations
@@ -120,7 +120,8 @@ def test_fault_keeps_the_telemetry_then_the_handle_is_parked_and_cleared(capsys,
         )
         assert rc == 2 and "[665]" in err and "fault 501 (bus-off)" in err and f"written to {csv}" in err
         cols = load_csv(csv)
-        assert cols["fault"][-1] == 501 and np.all(cols["fault"][:-1] == 0) and cols["t"].size > 100
+        i = int(np.flatnonzero(cols["fault"])[0])  # the fault's row, then its stop ramp
+        assert np.all(cols["fault"][i:] == 501) and np.all(cols["fault"][:i] == 0) and i > 100
         assert np.all(np.diff(cols["t"]) > 0)
         # after the stop ramp the simulated drive parks the handle at the start (a free handle
         # drifted away at 3.5 cm/s, out of the workspace within 15 s: no clear possible)
@@ -132,6 +133,52 @@ def test_fault_keeps_the_telemetry_then_the_handle_is_parked_and_cleared(capsys,
         assert rc == 0 and "IDLE, fault none" in out
     finally:
         srv.stop()
+
+
+def test_a_fault_keeps_the_telemetry_at_1khz_through_the_stop_ramp(loaded, capsys, tmp_path, monkeypatch):
+    """The host's heartbeat stops 1.5 s into a held press: the device latches host silence (500)
+    and ramps the force down in 40 ticks (out_k = from x (40 - k)/40, k = 1..40, from = the
+    previous tick's command). The CSV keeps every tick of the ramp: f_cmd measured at 1 kHz."""
+    import threading
+
+    from forceskill.link.device import Device
+
+    start = Device.start_heartbeat
+
+    def start_then_go_silent(self: Device, telemetry_period_ms: int = 0) -> None:
+        start(self, telemetry_period_ms)
+        threading.Timer(1.5, self.stop_heartbeat).start()
+
+    monkeypatch.setattr(Device, "start_heartbeat", start_then_go_silent)
+    csv = tmp_path / "r.csv"
+    rc, out, err = run(
+        capsys,
+        "run",
+        "--slot",
+        "1",
+        "--end",
+        "hold",
+        "--hold-for",
+        "30",
+        "--csv",
+        str(csv),
+        *loaded.bus_args(),
+    )
+    assert rc == 2 and "fault 500 (host silence)" in err, out + err
+    cols = load_csv(csv)
+    i = int(np.flatnonzero(cols["fault"])[0])
+    assert np.all(cols["fault"][i:] == 500) and np.all(cols["fault"][:i] == 0)
+    assert cols["t"].size - i == 51, cols["t"].size - i  # the fault's row and 50 after it
+    assert np.all(np.diff(cols["t"]) > 0.0009) and np.all(np.diff(cols["t"]) < 0.0011)  # 1 kHz
+    c0 = cols["f_cmd"][i - 1]
+    assert abs(c0) > 0.2, c0  # the command holding the press (the contact force near 4.84 N)
+    k = np.arange(1, 41)
+    ramp = c0 * (40 - k) / 40.0
+    # 0.01 N telemetry counts: c0 and each sample within half a count of the device's value
+    assert np.max(np.abs(cols["f_cmd"][i : i + 40] - ramp)) <= 0.011, cols["f_cmd"][i - 1 : i + 41]
+    assert np.all(cols["f_cmd"][i + 39 :] == 0.0)
+    rc, out, err = run(capsys, "status", "--clear", *loaded.bus_args())
+    assert rc == 0 and "faults cleared" in out, out + err
 
 
 def parked_positions(srv: Server) -> np.ndarray:

@@ -43,6 +43,10 @@ from ._common import (
 #: The longest run of lost telemetry a run's figures are measured across (as a recording's --max-gap).
 MAX_TELEMETRY_GAP_MS = 100
 
+#: Rows kept after a fault's tick: the device's longest safe-stop ramp (50 ticks; 40 by default)
+#: and the zero after it. The device keeps the telemetry's rate in FAULT, so they are measured.
+FAULT_RAMP_TICKS = 50
+
 _STEP = re.compile(r"^\s*(\d+)\s*:\s*([0-9.]+)\s*(ms|s)?\s*$")
 
 
@@ -152,6 +156,17 @@ def _fault_index(first_tick: int, n: int, fault_tick: int | None) -> int:
     return min(d, n - 1)
 
 
+def _wait_ticks(dev: Device, tick0: int, n: int, timeout_s: float) -> None:
+    """Until the device's status tick is n past tick0 (24-bit) or timeout_s of wall time."""
+    end = time.monotonic() + timeout_s
+    while time.monotonic() < end:
+        cur = dev.status
+        if cur is not None and ((cur.tick - tick0) & 0xFFFFFF) >= n:
+            return
+        time.sleep(0.01)
+        dev.check_link()
+
+
 def run_on_device(
     dev: Device, args: argparse.Namespace, writer: Any = None, info: TextIO = sys.stdout
 ) -> dict[str, Any]:
@@ -239,6 +254,7 @@ def run_on_device(
                         emcy = dev.emergencies[n_emcy:]
                         if emcy:
                             fault, fault_tick = int(emcy[0][1]["FaultCode"]), int(emcy[0][1]["Tick"]) & 0xFFFF
+                        _wait_ticks(dev, st.tick, FAULT_RAMP_TICKS + 1, 2.0 * args.timeout)  # the ramp
                         break
                     if stop["stop"]:
                         interrupted = True
@@ -263,22 +279,26 @@ def run_on_device(
     grid, stream = columns(samples)  # lost frames interpolated on the tick grid, and counted
     first_tick = stream.first_tick
     n_keep = int(round(total * W.TICK_HZ)) + 1
+    i_fault = n_keep  # the figures end at the fault's row; the columns go on through its ramp
     if fault and grid["t"].size:
-        n_keep = min(n_keep, _fault_index(first_tick & 0xFFFF, grid["t"].size, fault_tick) + 1)
+        i_fault = _fault_index(first_tick & 0xFFFF, grid["t"].size, fault_tick)
+        n_keep = min(n_keep, i_fault + FAULT_RAMP_TICKS + 1)
     cols = {k: v[:n_keep] for k, v in grid.items()}
+    measured = {k: v[: i_fault + 1] for k, v in cols.items()}
     path_fig = None
     if path_skill is not None and grid["t"].size:
         from ..model.dmp import rollout_path
 
         _, y_hat = rollout_path(path_skill, time_scale=ts, path_scale=ps)
-        tick16 = (first_tick + np.arange(cols["t"].size)) & 0xFFFF
-        path_fig = path_tracking(cols, tick16, y_hat - path_skill.y_start_m, idle_tick, start_tick)
+        tick16 = (first_tick + np.arange(measured["t"].size)) & 0xFFFF
+        path_fig = path_tracking(measured, tick16, y_hat - path_skill.y_start_m, idle_tick, start_tick)
     cols["fault"] = np.zeros(cols["t"].size)
     if fault and cols["t"].size:
-        cols["fault"][-1] = fault
+        cols["fault"][i_fault:] = fault
     return {
         "columns": cols,
-        "figures": tracking(cols),
+        "figures": tracking(measured),
+        "fault_row": i_fault if fault else None,
         "path": path_fig,
         "expected_s": expected,
         "fault": fault,
@@ -352,7 +372,7 @@ def _cmd(args: argparse.Namespace) -> int:
     if args.csv and not to_stdout:
         print(f"wrote {args.csv}", file=info)
     if r["fault"]:
-        t_f = f" at {cols['t'][-1]:.3f} s" if n else ""
+        t_f = f" at {cols['t'][r['fault_row']]:.3f} s" if n else ""
         raise FsError(
             ERR_RUN_FAULT,
             f"node {args.node} faulted during execution: fault {fault_text(r['fault'])}{t_f}{wrote}",
