@@ -272,33 +272,70 @@ static bool host_frame_accepted(app_t *app, const can_frame_t *f, secoc_channel_
     return secoc_verify(&app->secoc, f, ch) == SEC_OK;
 }
 
-static void can_receive(app_t *app)
+/* A host frame that passed its E2E check: verified (or a stop), then acted on. */
+static void host_frame(app_t *app, const can_frame_t *f, secoc_channel_t ch)
 {
-    can_frame_t f;
-    for (unsigned i = 0; i < APP_RX_FRAMES_PER_TICK && hal_can_receive(&f); i++) {
-        const uint32_t node = app->cfg.node;
-        if (f.id == PROTO_ID_HOST_COMMAND(node)) {
-            if (e2e_check(&app->rx_command, &f) != PROTO_OK) {
-                app->e2e_errors++;
-            } else if (host_frame_accepted(app, &f, SECOC_CH_COMMAND)) {
-                app->host_frame = true;
-                handle_command(app, &f);
-            }
-        } else if (f.id == PROTO_ID_HOST_HEARTBEAT(node)) {
-            if (e2e_check(&app->rx_heartbeat, &f) != PROTO_OK) {
-                app->e2e_errors++;
-            } else if (host_frame_accepted(app, &f, SECOC_CH_HEARTBEAT)) {
-                app->host_frame = true;
-                handle_heartbeat(app, &f);
-            }
-        } else if (f.id == PROTO_ID_UDS_REQUEST(node)) {
-            isotp_on_frame(&app->tp, &f, app->now_us);
-        }
+    if (!host_frame_accepted(app, f, ch)) {
+        return;
+    }
+    app->host_frame = true;
+    if (ch == SECOC_CH_COMMAND) {
+        handle_command(app, f);
+    } else {
+        handle_heartbeat(app, f);
     }
 }
 
-uint8_t app_motion_key(app_t *app, const uint8_t *host_nonce, uint16_t len)
+/* True if frame f of channel ch needs a MAC verification (all but a stop). */
+static bool needs_mac(const can_frame_t *f, secoc_channel_t ch)
 {
+    return !(ch == SECOC_CH_COMMAND && (f->data[0] & 0x0Fu) == (uint8_t)APP_CMD_IDLE);
+}
+
+/* The CAN frames of this tick, bounded: APP_RX_FRAMES_PER_TICK frames, APP_MAC_PER_TICK MAC
+ * verifications (the frame beyond them is held for the next tick, the rest stays queued). */
+static void can_receive(app_t *app)
+{
+    unsigned macs = 0u;
+    if (app->held_ch != 0u) {
+        const secoc_channel_t ch = (secoc_channel_t)(app->held_ch - 1u);
+        app->held_ch = 0u;
+        host_frame(app, &app->held, ch);
+        macs++;
+    }
+    can_frame_t f;
+    for (unsigned i = 0; i < APP_RX_FRAMES_PER_TICK && hal_can_receive(&f); i++) {
+        const uint32_t node = app->cfg.node;
+        secoc_channel_t ch;
+        e2e_rx_t *rx;
+        if (f.id == PROTO_ID_HOST_COMMAND(node)) {
+            ch = SECOC_CH_COMMAND;
+            rx = &app->rx_command;
+        } else if (f.id == PROTO_ID_HOST_HEARTBEAT(node)) {
+            ch = SECOC_CH_HEARTBEAT;
+            rx = &app->rx_heartbeat;
+        } else {
+            if (f.id == PROTO_ID_UDS_REQUEST(node)) {
+                isotp_on_frame(&app->tp, &f, app->now_us);
+            }
+            continue;
+        }
+        if (e2e_check(rx, &f) != PROTO_OK) { /* the cheap refusal first */
+            app->e2e_errors++;
+            continue;
+        }
+        if (needs_mac(&f, ch) && macs++ >= APP_MAC_PER_TICK) {
+            app->held = f;
+            app->held_ch = (uint8_t)(ch + 1u);
+            break;
+        }
+        host_frame(app, &f, ch);
+    }
+}
+
+uint8_t app_motion_key_begin(app_t *app, const uint8_t *host_nonce, uint16_t len)
+{
+    static const char label[] = SECOC_LABEL;
     if (len != SECOC_NONCE_LEN) {
         return UDS_NRC_INCORRECT_LENGTH;
     }
@@ -309,14 +346,39 @@ uint8_t app_motion_key(app_t *app, const uint8_t *host_nonce, uint16_t len)
     if (hal_random(dev_nonce, SECOC_NONCE_LEN) != 0) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT;
     }
+    uint8_t msg[sizeof label - 1u + 2u * SECOC_NONCE_LEN];
+    memcpy(msg, label, sizeof label - 1u);
+    memcpy(&msg[sizeof label - 1u], dev_nonce, SECOC_NONCE_LEN);
+    memcpy(&msg[sizeof label - 1u + SECOC_NONCE_LEN], host_nonce, SECOC_NONCE_LEN);
     const sec_config_t *c = &app->sec_cfg[0];
-    uint8_t key[SECOC_KEY_LEN];
-    secoc_derive_key(c->secret, c->secret_len, dev_nonce, host_nonce, key);
-    secoc_set_key(&app->secoc, key, SECOC_KEY_LEN);
-    sec_wipe(key, sizeof key);
+    (void)sec_hmac_job_begin(&app->motion_job, c->secret, c->secret_len, msg, (uint32_t)sizeof msg);
+    secoc_forget(&app->secoc); /* the old session ends now */
     memcpy(app->secoc_dev_nonce, dev_nonce, SECOC_NONCE_LEN);
     app->run_opts_fv = 0u;
+    app->held_ch = 0u;
+    app->motion_keying = true;
+    return UDS_NRC_RESPONSE_PENDING;
+}
+
+uint8_t app_motion_key_run(app_t *app, uint32_t rounds)
+{
+    if (!app->motion_keying) {
+        return UDS_NRC_CONDITIONS_NOT_CORRECT;
+    }
+    uint8_t out[SEC_SHA256_LEN];
+    if (!sec_hmac_job_run(&app->motion_job, rounds, out)) {
+        return UDS_NRC_RESPONSE_PENDING;
+    }
+    app->motion_keying = false;
+    secoc_set_key(&app->secoc, out); /* the first SECOC_KEY_LEN bytes (secoc_derive_key) */
+    sec_wipe(out, sizeof out);
     return UDS_NRC_OK;
+}
+
+uint8_t app_motion_key(app_t *app, const uint8_t *host_nonce, uint16_t len)
+{
+    const uint8_t nrc = app_motion_key_begin(app, host_nonce, len);
+    return nrc == UDS_NRC_RESPONSE_PENDING ? app_motion_key_run(app, UINT32_MAX) : nrc;
 }
 
 static void uds_service(app_t *app)

@@ -47,7 +47,7 @@
 #define APP_IDLE_TELEMETRY_PERIOD_MS 100u
 #define APP_IMAGE_MAX SKILL_IMAGE_MAX
 #define APP_SW_VERSION "forceskill-fw 0.1.0"
-#define APP_PROTO_VERSION_MAJOR 2u
+#define APP_PROTO_VERSION_MAJOR 3u /* 3: the frames' MAC is AES-CMAC (docs/protocol.md) */
 #define APP_PROTO_VERSION_MINOR 0u
 #define APP_SEC_LEVELS 2u /* SecurityAccess levels 1 and 3, one secret each */
 /* DMP steps of a downloaded skill's own rollout (skill_check.h) per tick while the commit waits:
@@ -70,6 +70,20 @@
 #define APP_COMMIT_FLASH_UNITS_PER_TICK 2u
 #endif
 
+
+/* SHA-256 rounds per tick of a SecurityAccess key check or a motion key derivation (four
+ * compressions of 64 rounds, answered 0x78 first): ~80 instructions a round on both images
+ * plus the wipes of a stage change, at most 1,775 a tick with 8 (bench/qemu_mac_cost.sh); 32
+ * ticks in all. */
+#ifndef APP_SEC_ROUNDS_PER_TICK
+#define APP_SEC_ROUNDS_PER_TICK 8u
+#endif
+/* MAC verifications (secoc_verify: one AES-128 block, two for a frame that fails) per tick; the
+ * authenticated frame beyond them waits for the next tick (app_t.held), so a flood of forged
+ * frames costs at most this many a tick. */
+#ifndef APP_MAC_PER_TICK
+#define APP_MAC_PER_TICK 2u
+#endif
 
 /** The stages of a skill download's commit (one per tick at least, app_uds.c). */
 enum {
@@ -124,6 +138,10 @@ struct app {
     uint32_t tx_dropped;
     secoc_t secoc;                            /* authenticated host frames (motion key) */
     uint8_t secoc_dev_nonce[SECOC_NONCE_LEN]; /* the device nonce of the key in use */
+    sec_hmac_job_t motion_job;                /* the derivation of the next key, in slices */
+    bool motion_keying;                       /* motion_job runs (DID 0x0302 answered 0x78) */
+    can_frame_t held;                         /* an authenticated frame beyond APP_MAC_PER_TICK */
+    uint8_t held_ch;                          /* its channel + 1, 0: none */
     uint32_t run_opts_fv;                     /* freshness value of the last RUN_OPTIONS ... */
     uint16_t run_opts_time;                   /* ... its time scale (1/1000) and end policy */
     uint8_t run_opts_end;
@@ -252,8 +270,16 @@ void app_slots_reload(app_t *app);
 /** SecurityAccess config of a level (1 or 3); NULL for any other level. */
 const sec_config_t *app_sec_config(const app_t *app, uint8_t level);
 
-/** Establish the motion key of a host session from its nonce (DID 0x0302 write): draws the
- *  device nonce, derives the key from the level-1 secret. Returns a UDS NRC (0 ok). */
+/** Begin the motion key of a host session from its nonce (DID 0x0302 write): forgets the key
+ *  in use, draws the device nonce, starts the derivation from the level-1 secret. Returns
+ *  UDS_NRC_RESPONSE_PENDING (app_motion_key_run finishes it) or a refusal's NRC. */
+uint8_t app_motion_key_begin(app_t *app, const uint8_t *host_nonce, uint16_t len);
+
+/** Up to rounds SHA-256 rounds of the derivation begun: UDS_NRC_RESPONSE_PENDING while it runs,
+ *  then 0 with the key in use. */
+uint8_t app_motion_key_run(app_t *app, uint32_t rounds);
+
+/** Begin and finish at once (the simulator's and the tests' own host session). A UDS NRC. */
 uint8_t app_motion_key(app_t *app, const uint8_t *host_nonce, uint16_t len);
 
 /** Store the SecurityAccess attempt record if it changed (after every seed/key request). */

@@ -259,7 +259,8 @@ static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len
         return UDS_NRC_SECURITY_ACCESS_DENIED; /* settings: level 1 (not the firmware level) */
     }
     if (did == DID_MOTION_KEY) {
-        return app_motion_key(app, d, len); /* also in FAULT: a host resynchronises to clear it */
+        /* also in FAULT: a host resynchronises to clear it; answered 0x78, derived in slices */
+        return app_motion_key_begin(app, d, len);
     }
     if (app->state != APP_IDLE) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT; /* configuration changes only while idle */
@@ -487,8 +488,29 @@ static uint8_t security_key(void *ctx, uint8_t level, const uint8_t *key, uint16
     if (cfg == NULL) {
         return UDS_NRC_SUBFUNCTION_NOT_SUPPORTED;
     }
-    const uint8_t nrc = (uint8_t)sec_send_key(cfg, &app->sec, app->now_ms, key, len);
-    app_sec_persist(app); /* the wrong-key counter survives reset and power-up */
+    /* answered 0x78, the key's HMAC checked in slices (resume); the attempt counts as wrong
+     * until then, stored now: the wrong-key counter survives reset and power-up */
+    const uint8_t nrc = (uint8_t)sec_send_key_begin(cfg, &app->sec, key, len);
+    app_sec_persist(app);
+    return nrc;
+}
+
+/* A sendKey's check or the motion key's derivation, APP_SEC_ROUNDS_PER_TICK rounds a tick. */
+static uint8_t resume(void *ctx, uint8_t sid, uint16_t arg)
+{
+    app_t *app = ctx;
+    if (sid == UDS_SID_WDBI && arg == DID_MOTION_KEY) {
+        return app_motion_key_run(app, APP_SEC_ROUNDS_PER_TICK);
+    }
+    const sec_config_t *cfg = app_sec_config(app, (uint8_t)arg);
+    if (sid != UDS_SID_SECURITY || cfg == NULL) {
+        return UDS_NRC_CONDITIONS_NOT_CORRECT;
+    }
+    const uint8_t nrc = (uint8_t)sec_send_key_run(cfg, &app->sec, app->now_ms,
+                                                  APP_SEC_ROUNDS_PER_TICK);
+    if (nrc != UDS_NRC_RESPONSE_PENDING) {
+        app_sec_persist(app);
+    }
     return nrc;
 }
 
@@ -681,6 +703,7 @@ void app_uds_bind(app_t *app, uds_app_t *out)
     out->reset_now = reset_now;
     out->security_seed = security_seed;
     out->security_key = security_key;
+    out->resume = resume;
     out->download_begin = download_begin;
     out->download_data = download_data;
     out->download_end = download_end;

@@ -109,8 +109,9 @@ DID_CODECS = {
     DID_AUTH_STATS: Raw(31),
 }
 
-#: The protocol major version this host speaks (DID 0xF1A0 byte 0): 2 = authenticated motion.
-PROTO_MAJOR = 2
+#: The protocol major version this host speaks (DID 0xF1A0 byte 0): 3 = motion authenticated
+#: by AES-CMAC (2 was HMAC-SHA256).
+PROTO_MAJOR = 3
 SESSION_EXTENDED = 0x03
 
 
