@@ -28,6 +28,11 @@ static uint16_t did_identity(uint16_t did, uint8_t *buf, uint16_t cap)
     }
 }
 
+static uint32_t be32(const uint8_t *p)
+{
+    return ((uint32_t)p[0] << 24) | ((uint32_t)p[1] << 16) | ((uint32_t)p[2] << 8) | p[3];
+}
+
 /* The configuration DIDs (gains, limits, communication, object). */
 static uint16_t did_config(const app_t *app, uint16_t did, uint8_t *buf, uint16_t cap)
 {
@@ -106,19 +111,25 @@ static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf, uint16_
         const fs_wire_fault_causes_t v = {app->saf.flt.latched_mask, app->saf.cause_mask};
         return fs_wire_fault_causes_pack(&v, buf, cap);
     }
-    case DID_MOTION_KEY:
-        if (cap < SECOC_NONCE_LEN + 1u) {
-            return 0u;
-        }
-        memcpy(buf, app->secoc_dev_nonce, SECOC_NONCE_LEN);
-        buf[SECOC_NONCE_LEN] = app->secoc.keyed ? 1u : 0u;
-        return SECOC_NONCE_LEN + 1u;
-    case DID_AUTH_STATS:
-        if (cap < SECOC_STATS_LEN) {
-            return 0u;
-        }
-        secoc_stats_encode(&app->secoc, buf);
-        return SECOC_STATS_LEN;
+    case DID_MOTION_KEY: {
+        const uint8_t *n = app->secoc_dev_nonce;
+        const fs_wire_motion_key_t v = {be32(&n[0]), be32(&n[4]), be32(&n[8]), be32(&n[12]),
+                                        app->secoc.keyed ? 1u : 0u};
+        return fs_wire_motion_key_pack(&v, buf, cap);
+    }
+    case DID_AUTH_STATS: {
+        const secoc_t *a = &app->secoc;
+        const fs_wire_auth_stats_t v = {a->accepted,
+                                        a->bad_mac,
+                                        a->replayed,
+                                        a->no_key,
+                                        a->revoked,
+                                        a->last_refusal,
+                                        a->keyed ? 1u : 0u,
+                                        a->fv[SECOC_CH_COMMAND],
+                                        a->fv[SECOC_CH_HEARTBEAT]};
+        return fs_wire_auth_stats_pack(&v, buf, cap);
+    }
     default: return 0u;
     }
 }
@@ -260,6 +271,10 @@ static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len
     }
     if (did == DID_MOTION_KEY) {
         /* also in FAULT: a host resynchronises to clear it; answered 0x78, derived in slices */
+        fs_wire_motion_key_write_t w;
+        if (fs_wire_motion_key_write_unpack(&w, d, len) != PROTO_OK) {
+            return UDS_NRC_INCORRECT_LENGTH;
+        }
         return app_motion_key_begin(app, d, len);
     }
     if (app->state != APP_IDLE) {

@@ -120,25 +120,3 @@ sec_status_t secoc_verify(secoc_t *s, const can_frame_t *f, secoc_channel_t ch)
     }
     return SEC_ERR_MAC;
 }
-
-static void put_u32(uint8_t *b, uint32_t v)
-{
-    b[0] = (uint8_t)(v >> 24);
-    b[1] = (uint8_t)(v >> 16);
-    b[2] = (uint8_t)(v >> 8);
-    b[3] = (uint8_t)v;
-}
-
-void secoc_stats_encode(const secoc_t *s, uint8_t out[SECOC_STATS_LEN])
-{
-    put_u32(&out[0], s->accepted);
-    put_u32(&out[4], s->bad_mac);
-    put_u32(&out[8], s->replayed);
-    put_u32(&out[12], s->no_key);
-    put_u32(&out[16], s->revoked);
-    out[20] = (uint8_t)(s->last_refusal >> 8);
-    out[21] = (uint8_t)s->last_refusal;
-    out[22] = s->keyed ? 1u : 0u;
-    put_u32(&out[23], s->fv[SECOC_CH_COMMAND]);
-    put_u32(&out[27], s->fv[SECOC_CH_HEARTBEAT]);
-}

@@ -30,7 +30,6 @@
 #define SECOC_FV_WINDOW 256u              /* 2^(FV bits in the frame) */
 #define SECOC_MAX_BAD_MAC 64u             /* wrong MACs in a row that discard the key */
 #define SECOC_LABEL "forceskill secoc v3" /* protocol version 3: AES-CMAC */
-#define SECOC_STATS_LEN 31u               /* bytes of secoc_stats_encode */
 
 /** The authenticated frame channels, each with its own freshness value. */
 typedef enum {
@@ -81,9 +80,5 @@ uint32_t secoc_protect(secoc_t *s, can_frame_t *f, secoc_channel_t ch);
  *  SEC_OK accepts it (its FV becomes the last); SEC_ERR_NO_KEY, SEC_ERR_MAC, SEC_ERR_REPLAY,
  *  SEC_ERR_FRESHNESS refuse it, counted. */
 sec_status_t secoc_verify(secoc_t *s, const can_frame_t *f, secoc_channel_t ch);
-
-/** The counters as DID bytes (big-endian): accepted, wrong MAC, replayed, no key, keys
- *  discarded (u32 each), last refusal u16, keyed u8, FV command u32, FV heartbeat u32. */
-void secoc_stats_encode(const secoc_t *s, uint8_t out[SECOC_STATS_LEN]);
 
 #endif /* SECOC_H */

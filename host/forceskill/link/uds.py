@@ -105,8 +105,8 @@ DID_CODECS = {
     DID_DEVICE_STATE: Raw(W.DeviceState.SIZE),
     DID_FAULT_CAUSES: Raw(W.FaultCauses.SIZE),
     DID_STIFFNESS_MAX: Raw(W.StiffnessMax.SIZE),
-    DID_MOTION_KEY: Raw(17),  # device nonce (16) + keyed flag
-    DID_AUTH_STATS: Raw(31),
+    DID_MOTION_KEY: Raw(W.MotionKey.SIZE),  # the write: W.MotionKeyWrite.SIZE bytes, passed as they are
+    DID_AUTH_STATS: Raw(W.AuthStats.SIZE),
 }
 
 #: The protocol major version this host speaks (DID 0xF1A0 byte 0): 3 = motion authenticated
@@ -306,19 +306,21 @@ def motion_session(client: Client, dev: Device, tries: int = 10) -> None:
     def establish(client: Client) -> None:
         _again(lambda: unlock(client, node, SESSION_EXTENDED, on_nrc=refused), tries)
         host_nonce = os.urandom(16)
+        payload = W.MotionKeyWrite(*struct.unpack(">4I", host_nonce)).pack()
         _again(
             lambda: call(
                 "write 0x0302",
-                lambda: client.write_data_by_identifier(DID_MOTION_KEY, host_nonce),
+                lambda: client.write_data_by_identifier(DID_MOTION_KEY, payload),
                 node,
                 on_nrc=refused,
             ),
             tries,
         )
-        r = _again(lambda: read_did(client, DID_MOTION_KEY, node), tries)
-        if r[16] != 1:
+        mk = W.MotionKey.unpack(_again(lambda: read_did(client, DID_MOTION_KEY, node), tries))
+        if mk.keyed != 1:
             raise FsError(ERR_LINK_AUTH, f"node {node} did not establish the motion key")
-        dev.set_session(derive_motion_key(device_secret(SEC_LEVEL_WRITE), r[:16], host_nonce))
+        dev_nonce = struct.pack(">4I", mk.nonce_0, mk.nonce_1, mk.nonce_2, mk.nonce_3)
+        dev.set_session(derive_motion_key(device_secret(SEC_LEVEL_WRITE), dev_nonce, host_nonce))
 
     def resync() -> None:
         with uds_client(dev, request_timeout_s=2.0) as c:
