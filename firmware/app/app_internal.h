@@ -50,6 +50,7 @@
 #define APP_PROTO_VERSION_MAJOR 3u /* 3: the frames' MAC is AES-CMAC (docs/protocol.md) */
 #define APP_PROTO_VERSION_MINOR 0u
 #define APP_SEC_LEVELS 2u /* SecurityAccess levels 1 and 3, one secret each */
+#define APP_TESTERS 2u    /* UDS tester ids: UDS_REQUEST(_2) -> UDS_RESPONSE(_2) */
 /* DMP steps of a downloaded skill's own rollout (skill_check.h) per tick while the commit waits:
  * on the M4F 100 steps are ~55,000 instructions (docs/cortex-m.md), within the 168,000-cycle tick
  * of an idle device; a 17 s skill takes 0.17 s. A port whose float is in software defines fewer
@@ -145,8 +146,12 @@ struct app {
     uint32_t run_opts_fv;                     /* freshness value of the last RUN_OPTIONS ... */
     uint16_t run_opts_time;                   /* ... its time scale (1/1000) and end policy */
     uint8_t run_opts_end;
-    /* UDS on ISO-TP */
-    isotp_link_t tp;
+    /* UDS on ISO-TP, one link per tester id (UDS_REQUEST, UDS_REQUEST_2) */
+    isotp_link_t tp[APP_TESTERS];
+    uint8_t uds_from;     /* the tester of the request served last or pending */
+    uint8_t uds_next;     /* the tester asked first next tick (the two take turns) */
+    uint8_t uds_owner;    /* tester + 1 that unlocked the session, 0 while locked */
+    uint32_t uds_foreign; /* writes refused because another tester owns the session (558) */
     uds_server_t uds;
     uint8_t uds_resp[ISOTP_MAX_PAYLOAD];
     uint32_t reset_since_ms; /* ECUReset accepted at (its response leaves first) */

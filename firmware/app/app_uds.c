@@ -127,7 +127,8 @@ static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf, uint16_
                                         a->last_refusal,
                                         a->keyed ? 1u : 0u,
                                         a->fv[SECOC_CH_COMMAND],
-                                        a->fv[SECOC_CH_HEARTBEAT]};
+                                        a->fv[SECOC_CH_HEARTBEAT],
+                                        app->uds_foreign};
         return fs_wire_auth_stats_pack(&v, buf, cap);
     }
     default: return 0u;

@@ -70,23 +70,34 @@ class Attacker:
             params={"tx_padding": 0xCC, "tx_data_min_length": 8},
         )
         cfg = dict(udsoncan.configs.default_client_config)
-        cfg["data_identifiers"] = {0x0303: _Raw31()}
+        cfg["data_identifiers"] = {0x0303: _Raw35()}
         with Client(PythonIsoTpConnection(tp), config=cfg) as c:
             r = bytes(c.read_data_by_identifier(0x0303).service_data.values[0x0303])
-        keys = ("accepted", "wrong_mac", "replay", "no_key", "discarded", "last", "keyed", "fv_cmd", "fv_hb")
-        return dict(zip(keys, struct.unpack(">IIIIIHBII", r), strict=True))
+        keys = (
+            "accepted",
+            "wrong_mac",
+            "replay",
+            "no_key",
+            "discarded",
+            "last",
+            "keyed",
+            "fv_cmd",
+            "fv_hb",
+            "foreign",
+        )
+        return dict(zip(keys, struct.unpack(">IIIIIHBIII", r), strict=True))
 
     def close(self) -> None:
         self.notifier.stop()
         self.bus.shutdown()
 
 
-class _Raw31(udsoncan.DidCodec):
+class _Raw35(udsoncan.DidCodec):
     def decode(self, payload: bytes) -> bytes:
         return bytes(payload)
 
     def __len__(self) -> int:
-        return 31
+        return 35
 
 
 def forge_motion(a: Attacker, fv0: int) -> None:

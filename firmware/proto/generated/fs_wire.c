@@ -804,6 +804,7 @@ proto_status_t fs_wire_auth_stats_unpack(fs_wire_auth_stats_t *v, const uint8_t 
     t.keyed = (uint8_t)get_be(&d[22u], 1u);
     t.fv_command = (uint32_t)get_be(&d[23u], 4u);
     t.fv_heartbeat = (uint32_t)get_be(&d[27u], 4u);
+    t.foreign_writes = (uint32_t)get_be(&d[31u], 4u);
     if (!auth_stats_in_range(&t)) {
         return PROTO_ERR_WIRE_RANGE;
     }
@@ -813,7 +814,7 @@ proto_status_t fs_wire_auth_stats_unpack(fs_wire_auth_stats_t *v, const uint8_t 
 
 uint16_t fs_wire_auth_stats_pack(const fs_wire_auth_stats_t *v, uint8_t *out, uint16_t cap)
 {
-    const unsigned n = 31u;
+    const unsigned n = 35u;
     if (!auth_stats_in_range(v) || n > cap) {
         return 0u;
     }
@@ -826,5 +827,6 @@ uint16_t fs_wire_auth_stats_pack(const fs_wire_auth_stats_t *v, uint8_t *out, ui
     put_be(&out[22u], v->keyed, 1u);
     put_be(&out[23u], v->fv_command, 4u);
     put_be(&out[27u], v->fv_heartbeat, 4u);
+    put_be(&out[31u], v->foreign_writes, 4u);
     return (uint16_t)n;
 }

@@ -262,8 +262,8 @@ proto_status_t fs_wire_motion_key_write_unpack(fs_wire_motion_key_write_t *v, co
 /** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */
 uint16_t fs_wire_motion_key_write_pack(const fs_wire_motion_key_write_t *v, uint8_t *out, uint16_t cap);
 
-#define FS_WIRE_AUTH_STATS_LEN 31u
-/** DID_AUTH_STATS: authenticated host frames accepted and refused, the last refusal's code, the freshness values last accepted. */
+#define FS_WIRE_AUTH_STATS_LEN 35u
+/** DID_AUTH_STATS: authenticated host frames accepted and refused, the last refusal's code, the freshness values last accepted, UDS writes refused because the other tester owns the session. */
 typedef struct {
     uint32_t accepted;
     uint32_t wrong_mac;
@@ -274,6 +274,7 @@ typedef struct {
     uint8_t keyed;
     uint32_t fv_command;
     uint32_t fv_heartbeat;
+    uint32_t foreign_writes;
 } fs_wire_auth_stats_t;
 /** Unpack len bytes: PROTO_OK, PROTO_ERR_WIRE_LENGTH or PROTO_ERR_WIRE_RANGE (v unchanged). */
 proto_status_t fs_wire_auth_stats_unpack(fs_wire_auth_stats_t *v, const uint8_t *d, uint16_t len);

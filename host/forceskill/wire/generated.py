@@ -795,14 +795,14 @@ class MotionKeyWrite:
         return v
 
 
-_AUTH_STATS = struct.Struct('>IIIIIHBII')
+_AUTH_STATS = struct.Struct('>IIIIIHBIII')
 
 
 @dataclass(frozen=True)
 class AuthStats:
-    """DID_AUTH_STATS: authenticated host frames accepted and refused, the last refusal's code, the freshness values last accepted."""
+    """DID_AUTH_STATS: authenticated host frames accepted and refused, the last refusal's code, the freshness values last accepted, UDS writes refused because the other tester owns the session."""
 
-    SIZE: ClassVar[int] = 31  # bytes of the fields always present
+    SIZE: ClassVar[int] = 35  # bytes of the fields always present
     accepted: int
     wrong_mac: int
     replayed: int
@@ -812,6 +812,7 @@ class AuthStats:
     keyed: int
     fv_command: int
     fv_heartbeat: int
+    foreign_writes: int
 
     def check(self) -> None:
         """FsError ERR_WIRE_RANGE if a field is outside its range."""
@@ -824,11 +825,12 @@ class AuthStats:
         _in_range('auth_stats', 'keyed', 0 <= self.keyed <= 1, self.keyed)
         _in_range('auth_stats', 'fv_command', 0 <= self.fv_command <= 4294967295, self.fv_command)
         _in_range('auth_stats', 'fv_heartbeat', 0 <= self.fv_heartbeat <= 4294967295, self.fv_heartbeat)
+        _in_range('auth_stats', 'foreign_writes', 0 <= self.foreign_writes <= 4294967295, self.foreign_writes)
 
     def pack(self) -> bytes:
         """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
         self.check()
-        out = _AUTH_STATS.pack(self.accepted, self.wrong_mac, self.replayed, self.no_key, self.discarded, self.last_refusal, self.keyed, self.fv_command, self.fv_heartbeat)
+        out = _AUTH_STATS.pack(self.accepted, self.wrong_mac, self.replayed, self.no_key, self.discarded, self.last_refusal, self.keyed, self.fv_command, self.fv_heartbeat, self.foreign_writes)
         return out
 
     @classmethod
@@ -839,7 +841,7 @@ class AuthStats:
         if len(data) != n:
             raise FsError(ERR_WIRE_LENGTH, f'auth_stats: {len(data)} bytes, not {n}')
         raw = _AUTH_STATS.unpack(data[:n])
-        v = cls(raw[0], raw[1], raw[2], raw[3], raw[4], raw[5], raw[6], raw[7], raw[8])
+        v = cls(raw[0], raw[1], raw[2], raw[3], raw[4], raw[5], raw[6], raw[7], raw[8], raw[9])
         v.check()
         return v
 
