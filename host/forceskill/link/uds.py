@@ -179,7 +179,8 @@ def open_client(
     SecurityAccess keys use secret, or the requested level's device_secret(level) when it is None; dids maps data identifiers
     to codecs (default: the application's); timeout_s bounds every request (server timing ignored:
     a 4 KiB request takes longer than the server's P2 to cross a slow or simulated bus), and
-    pending_timeout_s (default timeout_s) each wait after a "response pending" (NRC 0x78)."""
+    pending_timeout_s (default timeout_s) each wait after a "response pending" (NRC 0x78), and then
+    the whole request."""
     addr = isotp.Address(
         isotp.AddressingMode.Normal_11bits, txid=UDS_REQUEST_BASE + node, rxid=UDS_RESPONSE_BASE + node
     )
@@ -194,7 +195,7 @@ def open_client(
         {
             "security_algo": algo,
             "data_identifiers": DID_CODECS if dids is None else dids,
-            "request_timeout": timeout_s,
+            "request_timeout": timeout_s if pending_timeout_s is None else max(timeout_s, pending_timeout_s),
             "p2_timeout": timeout_s,
             "p2_star_timeout": timeout_s if pending_timeout_s is None else pending_timeout_s,
             "use_server_timing": False,
@@ -207,10 +208,15 @@ def open_client(
 
 
 @contextmanager
-def uds_client(dev: Device, request_timeout_s: float = 5.0) -> Iterator[Client]:
-    """A connected udsoncan Client for dev (whose Notifier must be running)."""
+def uds_client(
+    dev: Device, request_timeout_s: float = 5.0, pending_timeout_s: float | None = None
+) -> Iterator[Client]:
+    """A connected udsoncan Client for dev (whose Notifier must be running); timeouts as
+    open_client's."""
     assert dev.notifier is not None
-    with open_client(dev.bus, dev.notifier, dev.node, timeout_s=request_timeout_s) as client:
+    with open_client(
+        dev.bus, dev.notifier, dev.node, timeout_s=request_timeout_s, pending_timeout_s=pending_timeout_s
+    ) as client:
         yield client
 
 
@@ -323,7 +329,9 @@ def motion_session(client: Client, dev: Device, tries: int = 10) -> None:
         dev.set_session(derive_motion_key(device_secret(SEC_LEVEL_WRITE), dev_nonce, host_nonce))
 
     def resync() -> None:
-        with uds_client(dev, request_timeout_s=2.0) as c:
+        # a lost request is sent again after 2 s; the key check and derivation answer 0x78 and
+        # take 32 device ticks each (longer than 2 s of a traced qemu image)
+        with uds_client(dev, request_timeout_s=2.0, pending_timeout_s=30.0) as c:
             establish(c)
 
     establish(client)
