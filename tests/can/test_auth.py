@@ -252,3 +252,72 @@ def test_freshness_resynchronises_after_a_bus_off(bus_off_s):
     finally:
         bus.shutdown()
         srv.stop()
+
+
+def test_a_running_motion_is_not_changed_and_its_start_not_replayed(loaded):
+    """The genuine host runs slot 1 at goal x1; meanwhile the attacker forges RUN_OPTIONS +
+    EXECUTE at goal x3 and TEACH with guessed MACs at the freshness values that follow the sniffed
+    ones: refused (wrong MAC), the run goes on unchanged (EXECUTE of slot 1). Once the device is
+    IDLE again, the sniffed genuine RUN_OPTIONS + EXECUTE pair replayed starts nothing."""
+    from forceskill.link import uds as U
+    from forceskill.link.device import Device
+
+    a = Attacker(loaded.port)
+    bus = can.Bus(interface="socketcand", host="127.0.0.1", port=loaded.port, channel="can0")
+    try:
+        with Device(bus, timeout_s=3.0) as dev:
+            dev.wait_present()
+            with U.uds_client(dev) as client:
+                U.motion_session(client, dev)
+                dev.start_heartbeat(telemetry_period_ms=10)
+                try:
+                    dev.command("execute", slot=1, goal_scale=1.0)
+                    dev.wait_state({"EXECUTE"}, 3.0)
+                    before = a.stats()
+                    fv = before["fv_cmd"] + 1
+                    for i in range(20):
+                        mac = struct.pack(">I", (i * 40503 + 7) & 0xFFFFFF)[1:]
+                        ts = 1000 << 4
+                        a.send(
+                            CMD,
+                            e2e_valid(
+                                CMD,
+                                bytes([RUN_OPTIONS | ts & 0xF0, ts >> 8 & 0xFF, ts >> 16]),
+                                fv + 2 * i,
+                                mac,
+                            ),
+                        )
+                        a.send(
+                            CMD,
+                            e2e_valid(
+                                CMD, bytes([EXECUTE | 1 << 4, 3000 & 0xFF, 3000 >> 8]), fv + 2 * i + 1, mac
+                            ),
+                        )
+                        time.sleep(0.01)
+                    during = a.stats()
+                    assert a.state == 3 and dev.status.slot == 1, (a.state, dev.status)
+                    assert during["wrong_mac"] > before["wrong_mac"], (before, during)
+                    dev.command_until("idle", {"IDLE"}, 3.0)
+                finally:
+                    dev.stop_heartbeat()
+            time.sleep(0.2)
+            pair = [
+                bytes(m.data)
+                for m in a.seen
+                if m.arbitration_id == CMD and m.data[0] & 0x0F in (RUN_OPTIONS, EXECUTE)
+            ]
+            genuine = [d for d in pair if d[0] & 0x0F == RUN_OPTIONS and (d[0] >> 4 | d[1] << 4) == 1000][:1]
+            assert genuine
+            k = pair.index(genuine[0])
+            mid = a.stats()
+            for _ in range(3):
+                a.send(CMD, pair[k])
+                a.send(CMD, pair[k + 1])
+                time.sleep(0.05)
+            time.sleep(0.2)
+            assert a.state == 1, STATE_NAMES.get(a.state)
+            after = a.stats()
+            assert after["accepted"] == mid["accepted"], (mid, after)
+    finally:
+        bus.shutdown()
+        a.close()
