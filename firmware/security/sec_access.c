@@ -213,8 +213,10 @@ void sec_lock(sec_state_t *st)
         st->unlocked = 0u;
         st->seed_valid = 0u;
         sec_wipe(st->seed, SEC_SEED_LEN);
-        st->checking = 0u;
-        sec_wipe(st->key, SEC_KEY_LEN);
-        sec_wipe(&st->job, (uint32_t)sizeof st->job);
+        if (st->checking != 0u) { /* a finished check wiped its own key material */
+            st->checking = 0u;
+            sec_wipe(st->key, SEC_KEY_LEN);
+            sec_wipe(&st->job, (uint32_t)sizeof st->job);
+        }
     }
 }
