@@ -8,6 +8,7 @@
 
 #include "boot.h"
 #include "fault_rig.h"
+#include "fls_ram.h"
 #include "hal_host.h"
 #include "skill.h"
 
@@ -29,6 +30,8 @@ typedef struct {
 } pc_point_t;
 
 static pc_point_t g_pts[HAL_HOST_FLASH_LOG];
+static uint8_t g_clean_region[HAL_HOST_FLASH_LOG]; /* region of each operation, uncut run */
+static bool g_torn; /* --torn: operation i itself is torn (fls_ram), not completed */
 
 static int read_file(const char *path, uint8_t *buf, uint32_t cap, uint32_t *len)
 {
@@ -190,6 +193,27 @@ static bool check_fw(rig_t *r, const pc_keep_t *k, pc_point_t *p)
     return true;
 }
 
+/* The simulated flash of a region (the host port keeps it as the device's ctx). */
+static fls_ram_t *region_ram(uint8_t region)
+{
+    const fls_dev_t *d = region == HAL_HOST_REGION_SLOTS      ? hal_flash()
+                         : region == HAL_HOST_REGION_FIRMWARE ? hal_fw_flash()
+                                                              : hal_sec_flash();
+    return (fls_ram_t *)d->ctx;
+}
+
+/* --torn: operation `cut` of the run (1-based, in the uncut run's order) is torn by its region's
+ * fls_ram (a program writes half its units, an erase half the sector); the later ones fail. */
+static void tear(uint32_t cut)
+{
+    const uint8_t rg = g_clean_region[cut - 1u];
+    uint32_t k = 0u;
+    for (uint32_t j = 0; j < cut; j++) {
+        k += g_clean_region[j] == rg ? 1u : 0u;
+    }
+    fls_ram_set_power_loss(region_ram(rg), k);
+}
+
 /* One run: a fresh device, the operation (skill download or firmware update) with the power cut
  * just after `cut` flash operations of it (0: never), then the power back on and the device
  * booted again. The operation's flash operations are returned in *ops (uncut run). */
@@ -206,6 +230,9 @@ static int run_once(const sim_scenario_t *sc, bool fw, uint32_t cut, uint32_t *o
     if (cut != 0u) {
         hal_host_flash_cut_after(cut);
     }
+    if (cut != 0u && g_torn) {
+        tear(cut);
+    }
     if (fw) {
         (void)fw_update(r, 1u);
     } else {
@@ -213,12 +240,19 @@ static int run_once(const sim_scenario_t *sc, bool fw, uint32_t cut, uint32_t *o
         rig_run(r, 5u);
     }
     *ops = hal_host_flash_ops() - ops0;
+    for (uint32_t i = 0; cut == 0u && i < *ops && i < HAL_HOST_FLASH_LOG; i++) {
+        const hal_host_flash_op_t *o = hal_host_flash_op(ops0 + i);
+        g_clean_region[i] = o != NULL ? o->region : 0u;
+    }
     if (cut != 0u) {
         const hal_host_flash_op_t *o = hal_host_flash_op(ops0 + cut - 1u);
         p->region = o != NULL ? o->region : 0xFFu;
         p->kind = o != NULL ? o->kind : 0xFFu;
     }
     hal_host_flash_power_on();
+    for (uint8_t rg = 0; rg < HAL_HOST_FLASH_REGIONS; rg++) {
+        fls_ram_power_cycle(region_ram(rg));
+    }
     rig_boot(r);
     r->heartbeat_on = true;
     rig_run(r, PC_SETTLE_MS);
@@ -260,15 +294,17 @@ static int run_case(FILE *out, const sim_scenario_t *sc, bool fw, bool verbose)
         }
         bad += p->result == 2u ? 1 : 0;
         if (verbose || p->result == 2u) {
-            fprintf(out, "  cut after op %u (%s %s): %s %s\n", (unsigned)i, region_name(p->region),
-                    p->kind == 0u ? "erase" : "program",
+            fprintf(out, "  cut %s op %u (%s %s): %s %s\n", g_torn ? "during" : "after",
+                    (unsigned)i, region_name(p->region), p->kind == 0u ? "erase" : "program",
                     p->result == 0u ? "old" : (p->result == 1u ? "new" : "BAD"), p->why);
         }
     }
-    fprintf(out, "\n%s: %u cut points (every erase/program from RequestDownload to %s)\n\n",
+    fprintf(out, "\n%s: %u cut points (%s every erase/program from RequestDownload to %s)\n\n",
             fw ? "firmware update 1.0.0 -> 1.1.0" : "skill download into slot 1", (unsigned)n,
+            g_torn ? "during" : "just after",
             fw ? "the new image confirmed" : "the commit's answer");
-    fprintf(out, "| operation cut after | cut points | runs old | runs new | bad |\n");
+    fprintf(out, "| operation cut %s | cut points | runs old | runs new | bad |\n",
+            g_torn ? "during" : "after");
     fprintf(out, "|---|---|---|---|---|\n");
     for (uint8_t rg = 0; rg < HAL_HOST_FLASH_REGIONS; rg++) {
         for (uint8_t kd = 0; kd < 2u; kd++) {
@@ -315,14 +351,17 @@ int powercut_cmd(int argc, char **argv)
     for (int i = 0; i < argc; i++) {
         if (strcmp(argv[i], "-v") == 0 || strcmp(argv[i], "--verbose") == 0) {
             verbose = true;
+        } else if (strcmp(argv[i], "--torn") == 0) {
+            g_torn = true;
         } else {
             const bool help = strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0;
             fprintf(help ? stdout : stderr,
-                    "usage: hil_sim powercut [-v]\n"
+                    "usage: hil_sim powercut [-v] [--torn]\n"
                     "A power cut just after every flash erase/program of a skill download and of "
                     "a firmware\nupdate, one run each, then a boot: prints the count of cut "
                     "points and the outcome\ntable; -v one line per cut point. Exit 1 on any bad "
-                    "outcome.\n");
+                    "outcome.\n--torn: the power fails during operation i instead (half "
+                    "of it written).\n");
             return help ? 0 : 2;
         }
     }
