@@ -6,7 +6,9 @@
  *   the port's secrets), skill downloads (a golden image with fuzzed byte changes, completed or
  *   cut short), firmware downloads (fuzz bytes; or a golden image marked for a test boot and
  *   reset into, its self-test passing or failing), sensor values (NaN included), bus-off,
- *   ECUReset / power-up, and time advancing.
+ *   ECUReset / power-up, and time advancing; a host session (the motion key), authentic host
+ *   commands and heartbeats (MAC and freshness of that session), replays of the last authentic
+ *   frame, and E2E-valid frames without a valid MAC.
  * Invariants checked after every tick:
  *   1. the commanded force is finite and within the configured force limit on both axes;
  *   2. a slot changes only by a complete, authenticated (level 1), validated transfer while the
@@ -16,7 +18,11 @@
  *      EXECUTE -> IDLE | FAULT; FAULT -> IDLE, at most one per stage of a tick, never back to
  *      BOOT), FAULT is left only with its code cleared, and EXECUTE starts only with goal
  *      scales whose peak is within the force limit;
- *   4. a firmware image on test is confirmed only after its own self-test passed.
+ *   4. a firmware image on test is confirmed only after its own self-test passed;
+ *   5. motion starts (IDLE -> TEACH | EXECUTE) only within two ticks of an authentic fresh
+ *      HostCommand (a frame beyond the tick's MAC budget is verified the tick after) or during a
+ *      UDS request (the run routines); the device accepts no more authenticated frames than the
+ *      harness sent authentic ones (no forged or replayed frame is ever accepted).
  * A violated invariant aborts (libFuzzer reports it as a crash). */
 #include <math.h>
 #include <stdbool.h>
@@ -56,6 +62,14 @@ static bool prev_valid[APP_N_SLOTS];
 static uint32_t prev_crc[APP_N_SLOTS], prev_len[APP_N_SLOTS];
 static app_state_t prev_state;
 static uint8_t prev_test_boot;
+/* the harness's host session: its key and freshness values, the last authentic frame */
+static secoc_t fz_host;
+static bool fz_keyed;
+static can_frame_t fz_last;
+static bool fz_have_last;
+static uint32_t fz_authentic;   /* authentic frames delivered since power-up */
+static unsigned fz_start_ticks; /* ticks left in which a motion start is allowed */
+static bool fz_in_uds;          /* a UDS request is being answered */
 /* FS_FUZZ_TRACE set: one line per input (what it reached), for checking the seeds */
 static bool trace;
 static unsigned seen_states, commits;
@@ -165,6 +179,10 @@ static void check_invariants(void)
         CHECK(app.slots.last_transfer_status == 0u);
         commits++;
     }
+    if (prev_state == APP_IDLE && (app.state == APP_TEACH || app.state == APP_EXECUTE)) {
+        CHECK(fz_start_ticks > 0u || fz_in_uds);
+    }
+    CHECK(app.secoc.accepted <= fz_authentic);
     seen_states |= 1u << app.state;
     if (prev_test_boot != 0u && app.boot.test_boot == 0u) {
         CHECK(app.fw_self_test_ok);
@@ -176,6 +194,8 @@ static void power_up(void)
     hal_sim_can_reset();
     hal_host_set_time_us(t_us);
     app_init(&app, &cfg);
+    fz_keyed = false; /* the device forgot the motion key */
+    fz_authentic = 0u;
     if (fail_self_test) {
         app.slots.nvm_ok = false; /* storage unreadable: self-test fails */
         fail_self_test = false;
@@ -192,6 +212,9 @@ static void tick(void)
     snapshot();
     app_tick(&app, false);
     check_invariants();
+    if (fz_start_ticks > 0u) {
+        fz_start_ticks--;
+    }
     uint8_t type = 0u;
     if (hal_host_take_reset(&type)) {
         power_up(); /* the port restarts; flash kept */
@@ -213,7 +236,9 @@ static bool uds(const uint8_t *req, uint16_t len)
         return false;
     }
     for (unsigned k = 0; k < MAX_UDS_WAIT && n_ticks < MAX_TICKS; k++) {
+        fz_in_uds = true;
         tick();
+        fz_in_uds = false;
         const uint8_t *r = NULL;
         const uint16_t n = isotp_rx_peek(&tester, &r);
         if (n != 0u) {
@@ -294,6 +319,34 @@ static void send_safety(uint32_t id, uint8_t *counter, const uint8_t *payload)
     (void)hal_sim_can_deliver(&f);
 }
 
+/* An authentic host frame of the harness's session (MAC, freshness, E2E), delivered. */
+static void send_authentic(uint32_t id, secoc_channel_t ch, const uint8_t *payload)
+{
+    can_frame_t f = {.id = id, .len = 8u};
+    memcpy(f.data, payload, 8u);
+    const uint32_t fv = secoc_protect(&fz_host, &f, ch);
+    e2e_protect(&f, (uint8_t)(fv & E2E_COUNTER_MASK));
+    if (hal_sim_can_deliver(&f)) {
+        fz_authentic++;
+    }
+    fz_last = f;
+    fz_have_last = true;
+}
+
+/* A HostCommand payload from 6 fuzz bytes (mode, slot, goal, time scale, end policy). */
+static void command_payload(const uint8_t *p, uint8_t payload[8])
+{
+    struct fs_dbc_host_command_t c;
+    memset(&c, 0, sizeof c);
+    c.mode = (uint8_t)(p[0] % 6u);
+    c.slot = (uint8_t)(p[1] % 10u);
+    c.goal_scale = (uint16_t)(p[2] | (p[3] << 8));
+    c.time_scale = (uint16_t)(p[4] | (p[5] << 8));
+    c.end_policy = (uint8_t)(p[1] >> 6);
+    memset(payload, 0, 8u);
+    (void)fs_dbc_host_command_pack(payload, &c, 8u);
+}
+
 static float get_f32(const uint8_t *p)
 {
     float v;
@@ -327,6 +380,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     n_ticks = 0u;
     cmd_counter = hb_counter = 0u;
     fail_self_test = false;
+    fz_keyed = false;
+    fz_have_last = false;
+    fz_start_ticks = 0u;
+    fz_in_uds = false;
     seen_states = 0u;
     commits = 0u;
     app_config_default(&cfg);
@@ -344,7 +401,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         const uint8_t op = data[i++];
         const size_t left = size - i;
         const uint8_t *p = &data[i];
-        switch (op % 13u) {
+        switch (op % 17u) {
         case 0: { /* time passes */
             const unsigned n = left > 0u ? 1u + p[0] : 1u;
             i += left > 0u ? 1u : 0u;
@@ -371,15 +428,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 i = size;
                 break;
             }
-            struct fs_dbc_host_command_t c;
-            memset(&c, 0, sizeof c);
-            c.mode = (uint8_t)(p[0] % 6u);
-            c.slot = (uint8_t)(p[1] % 10u);
-            c.goal_scale = (uint16_t)(p[2] | (p[3] << 8));
-            c.time_scale = (uint16_t)(p[4] | (p[5] << 8));
-            c.end_policy = (uint8_t)(p[1] >> 6);
-            uint8_t payload[8] = {0};
-            (void)fs_dbc_host_command_pack(payload, &c, 8u);
+            uint8_t payload[8];
+            command_payload(p, payload); /* no MAC: refused unless a stop */
             send_safety(PROTO_ID_HOST_COMMAND(0), &cmd_counter, payload);
             i += 6u;
             tick();
@@ -491,6 +541,48 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             i += 1u;
             break;
         }
+        case 13: { /* host session: the motion key */
+            static const uint8_t nonce[SECOC_NONCE_LEN] = "fuzz host nonce";
+            if (app_motion_key(&app, nonce, SECOC_NONCE_LEN) == 0u) {
+                uint8_t len = 0u;
+                const uint8_t *secret = hal_device_secret(UDS_SEC_LEVEL_WRITE, &len);
+                secoc_start_session(&fz_host, secret, len, app.secoc_dev_nonce, nonce);
+                fz_keyed = true;
+            }
+            tick();
+            break;
+        }
+        case 14: { /* authentic host command */
+            if (left < 6u) {
+                i = size;
+                break;
+            }
+            if (fz_keyed) {
+                uint8_t payload[8];
+                command_payload(p, payload);
+                send_authentic(PROTO_ID_HOST_COMMAND(0), SECOC_CH_COMMAND, payload);
+                fz_start_ticks = 2u;
+            }
+            i += 6u;
+            tick();
+            break;
+        }
+        case 15: { /* authentic heartbeat */
+            uint8_t payload[8] = {0};
+            payload[0] = left > 0u ? p[0] : 0u;
+            i += left > 0u ? 1u : 0u;
+            if (fz_keyed) {
+                send_authentic(PROTO_ID_HOST_HEARTBEAT(0), SECOC_CH_HEARTBEAT, payload);
+            }
+            tick();
+            break;
+        }
+        case 16: /* replay of the last authentic frame */
+            if (fz_have_last) {
+                (void)hal_sim_can_deliver(&fz_last);
+            }
+            tick();
+            break;
         default: { /* run a skill through UDS */
             if (left < 5u) {
                 i = size;

@@ -92,6 +92,7 @@ out("frames", "short", bytes([0x01, 0x02, 0x03]))
 
 # app: operation sequences of fuzz_app.c (op byte, then its arguments; see the harness)
 TICKS, RAW, CMD, HB, UDS, SEC, SKILL, FW, SENS, BUSOFF, POWER, FWUPDATE, RUN = range(13)
+SESSION, ACMD, AHB, REPLAY = range(13, 17)  # the harness's host session and its frames
 
 
 def app_cmd(mode, slot=1, goal=1000, time_scale=1000):
@@ -120,4 +121,15 @@ out("app", "sensors_nan", app_cmd(2) + bytes([HB, 0, SENS]) + struct.pack("<fff"
 out("app", "bus_off_execute", upload + bytes([HB, 0, RUN, 1, 0x03, 0xE8, 0x03, 0xE8, BUSOFF]) + wait(100))
 out("app", "fw_update_confirm_then_revert", bytes([FWUPDATE, 0]) + wait(256)
     + bytes([FWUPDATE, 2]) + wait(600) + bytes([UDS, 3, 0x31, 0x01, 0x0F, 0x02]))
+
+
+def auth_cmd(mode, slot=1, goal=1000, time_scale=1000):
+    return bytes([ACMD, mode, slot, goal & 0xFF, goal >> 8, time_scale & 0xFF, time_scale >> 8])
+
+
+out("app", "authentic_teach_execute_replay", upload + bytes([SESSION, AHB, 0]) + auth_cmd(2)
+    + (bytes([AHB, 0]) + wait(10)) * 5 + bytes([REPLAY]) + auth_cmd(1) + auth_cmd(5) + auth_cmd(3)
+    + (bytes([AHB, 0]) + wait(10)) * 20 + bytes([REPLAY, REPLAY]) + app_cmd(3) + auth_cmd(1))
+out("app", "forged_after_session", upload + bytes([SESSION]) + app_cmd(2) + app_cmd(5) + app_cmd(3)
+    + bytes([HB, 0, REPLAY]) + wait(20) + bytes([POWER]) + auth_cmd(2) + wait(20))
 print("corpus written to", C)

@@ -35,7 +35,7 @@ sources_for() {
                           "$FW/proto/generated/fs_dbc.c $FW/proto/generated/fs_wire.c $FW/proto/e2e.c $FW/proto/isotp.c $FW/proto/uds.c" \
                           "$FW/safety/flt.c $FW/safety/lim.c $FW/safety/saf.c $FW/safety/sen.c $FW/safety/wdg.c" \
                           "$FW/storage/nvm.c $FW/storage/fls_ram.c" \
-                          "$FW/security/sec_access.c $FW/security/sec_sha256.c $FW/security/secoc.c" \
+                          "$FW/security/sec_access.c $FW/security/sec_sha256.c $FW/security/sec_aes.c $FW/security/secoc.c" \
                           "$FW/boot/boot.c $FW/boot/boot_image.c $FW/boot/boot_verify.c $FW/boot/boot_fls_window.c $FW/boot/fwu.c $FW/boot/fwu_uds.c" \
                           "$FW/core/dmp.c $FW/core/pfc.c $FW/core/skill.c $FW/core/skill_check.c" \
                           "$FW/ports/host/hal_host.c $FW/ports/host/hal_can_sim.c" ;;

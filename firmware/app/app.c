@@ -250,67 +250,175 @@ static bool host_frame_accepted(app_t *app, const can_frame_t *f, secoc_channel_
     return secoc_verify(&app->secoc, f, ch) == SEC_OK;
 }
 
-static void can_receive(app_t *app)
+/* A host frame that passed its E2E check: verified (or a stop), then acted on. */
+static void host_frame(app_t *app, const can_frame_t *f, secoc_channel_t ch)
 {
-    can_frame_t f;
-    for (unsigned i = 0; i < APP_RX_FRAMES_PER_TICK && hal_can_receive(&f); i++) {
-        const uint32_t node = app->cfg.node;
-        if (f.id == PROTO_ID_HOST_COMMAND(node)) {
-            if (e2e_check(&app->rx_command, &f) != PROTO_OK) {
-                app->e2e_errors++;
-            } else if (host_frame_accepted(app, &f, SECOC_CH_COMMAND)) {
-                app->host_frame = true;
-                handle_command(app, &f);
-            }
-        } else if (f.id == PROTO_ID_HOST_HEARTBEAT(node)) {
-            if (e2e_check(&app->rx_heartbeat, &f) != PROTO_OK) {
-                app->e2e_errors++;
-            } else if (host_frame_accepted(app, &f, SECOC_CH_HEARTBEAT)) {
-                app->host_frame = true;
-                handle_heartbeat(app, &f);
-            }
-        } else if (f.id == PROTO_ID_UDS_REQUEST(node)) {
-            isotp_on_frame(&app->tp, &f, app->now_us);
-        }
+    if (!host_frame_accepted(app, f, ch)) {
+        return;
+    }
+    app->host_frame = true;
+    if (ch == SECOC_CH_COMMAND) {
+        handle_command(app, f);
+    } else {
+        handle_heartbeat(app, f);
     }
 }
 
+/* True if frame f of channel ch needs a MAC verification (all but a stop). */
+static bool needs_mac(const can_frame_t *f, secoc_channel_t ch)
+{
+    return !(ch == SECOC_CH_COMMAND && (f->data[0] & 0x0Fu) == (uint8_t)APP_CMD_IDLE);
+}
+
+/* The CAN frames of this tick, bounded: APP_RX_FRAMES_PER_TICK frames, APP_MAC_PER_TICK MAC
+ * verifications (the frame beyond them is held for the next tick, the rest stays queued). */
+static void can_receive(app_t *app)
+{
+    unsigned macs = 0u;
+    if (app->held_ch != 0u) {
+        const secoc_channel_t ch = (secoc_channel_t)(app->held_ch - 1u);
+        app->held_ch = 0u;
+        host_frame(app, &app->held, ch);
+        macs++;
+    }
+    can_frame_t f;
+    for (unsigned i = 0; i < APP_RX_FRAMES_PER_TICK && hal_can_receive(&f); i++) {
+        const uint32_t node = app->cfg.node;
+        secoc_channel_t ch;
+        e2e_rx_t *rx;
+        if (f.id == PROTO_ID_HOST_COMMAND(node)) {
+            ch = SECOC_CH_COMMAND;
+            rx = &app->rx_command;
+        } else if (f.id == PROTO_ID_HOST_HEARTBEAT(node)) {
+            ch = SECOC_CH_HEARTBEAT;
+            rx = &app->rx_heartbeat;
+        } else {
+            if (f.id == PROTO_ID_UDS_REQUEST(node)) {
+                isotp_on_frame(&app->tp[0], &f, app->now_us);
+            } else if (f.id == PROTO_ID_UDS_REQUEST_2(node)) {
+                isotp_on_frame(&app->tp[1], &f, app->now_us);
+            }
+            continue;
+        }
+        if (e2e_check(rx, &f) != PROTO_OK) { /* the cheap refusal first */
+            app->e2e_errors++;
+            continue;
+        }
+        if (needs_mac(&f, ch) && macs++ >= APP_MAC_PER_TICK) {
+            app->held = f;
+            app->held_ch = (uint8_t)(ch + 1u);
+            break;
+        }
+        host_frame(app, &f, ch);
+    }
+}
+
+/* True if a request of service sid from tester t is a write in a session another tester
+ * unlocked: session, reset, SecurityAccess, DID writes, routines, transfers (reads and
+ * TesterPresent stay open). */
+static bool foreign_write(const app_t *app, uint8_t t, uint8_t sid)
+{
+    if (app->uds_owner == 0u || app->uds_owner == t + 1u) {
+        return false;
+    }
+    switch (sid) {
+    case UDS_SID_DSC:
+    case UDS_SID_ECU_RESET:
+    case UDS_SID_SECURITY:
+    case UDS_SID_WDBI:
+    case UDS_SID_ROUTINE:
+    case UDS_SID_REQ_DOWNLOAD:
+    case UDS_SID_REQ_UPLOAD:
+    case UDS_SID_TRANSFER_DATA:
+    case UDS_SID_TRANSFER_EXIT: return true;
+    default: return false;
+    }
+}
+
+/* Serve one request of tester t (its link has one and is free to answer); a foreign write is
+ * refused here (0x33, code 558 as the last refusal, counted), the rest goes to the server. */
+static void uds_serve(app_t *app, uint8_t t, const uint8_t *req, uint16_t len)
+{
+    isotp_link_t *tp = &app->tp[t];
+    uint16_t n;
+    if (foreign_write(app, t, req[0])) {
+        app->uds_resp[0] = UDS_NEGATIVE_RESPONSE;
+        app->uds_resp[1] = req[0];
+        app->uds_resp[2] = UDS_NRC_SECURITY_ACCESS_DENIED;
+        n = 3u;
+        app->uds_foreign++;
+        app->secoc.last_refusal = (uint16_t)SEC_ERR_SESSION_OWNER;
+    } else {
+        if (app->uds.pending_sid == 0u) {
+            app->uds_from = t; /* the answer to a pending request goes to its own tester */
+        }
+        n = uds_server_handle(&app->uds, req, len, app->uds_resp, (uint16_t)sizeof(app->uds_resp),
+                              app->now_ms);
+        app->reset_since_ms = app->now_ms; /* used only if this was an accepted ECUReset */
+    }
+    isotp_rx_release(tp);
+    if (n != 0u) {
+        (void)isotp_send(tp, app->uds_resp, n, app->now_us);
+    }
+}
+
+static bool any_tx_busy(const app_t *app)
+{
+    for (unsigned t = 0; t < APP_TESTERS; t++) {
+        if (isotp_tx_busy(&app->tp[t])) {
+            return true;
+        }
+    }
+    return false;
+}
+
+/* One UDS request a tick, from either tester in turn; the session belongs to the tester that
+ * unlocked it (uds_owner) until it locks again. */
 static void uds_service(app_t *app)
 {
     if (app->uds.pending_reset != 0u) {
         /* ECUReset accepted (ISO 14229-1): its positive response leaves the bus first, then the
          * reset (at the first tick that finds the transport and the CAN queue empty; bounded by
          * APP_RESET_TX_WAIT_MS, e.g. bus-off). No request is served meanwhile. */
-        if ((!isotp_tx_busy(&app->tp) && hal_can_tx_idle()) ||
+        if ((!any_tx_busy(app) && hal_can_tx_idle()) ||
             (uint32_t)(app->now_ms - app->reset_since_ms) >= APP_RESET_TX_WAIT_MS) {
             uds_server_after_response(&app->uds);
         }
-        isotp_poll(&app->tp, app->now_us);
+        for (unsigned t = 0; t < APP_TESTERS; t++) {
+            isotp_poll(&app->tp[t], app->now_us);
+        }
         return;
     }
-    if (app->uds.pending_sid != 0u && !isotp_tx_busy(&app->tp)) {
+    isotp_link_t *own = &app->tp[app->uds_from];
+    if (app->uds.pending_sid != 0u && !isotp_tx_busy(own)) {
         const uint16_t n = uds_server_resume(&app->uds, app->uds_resp,
                                              (uint16_t)sizeof(app->uds_resp), app->now_ms);
         if (n != 0u) {
-            (void)isotp_send(&app->tp, app->uds_resp, n, app->now_us);
+            (void)isotp_send(own, app->uds_resp, n, app->now_us);
         }
     }
-    const uint8_t *req = NULL;
-    const uint16_t len = isotp_rx_peek(&app->tp, &req);
-    if (len != 0u && !isotp_tx_busy(&app->tp)) {
-        const uint16_t n = uds_server_handle(&app->uds, req, len, app->uds_resp,
-                                             (uint16_t)sizeof(app->uds_resp), app->now_ms);
-        isotp_rx_release(&app->tp);
-        if (n != 0u) {
-            (void)isotp_send(&app->tp, app->uds_resp, n, app->now_us);
+    for (unsigned k = 0; k < APP_TESTERS; k++) {
+        const uint8_t t = (uint8_t)((app->uds_next + k) % APP_TESTERS);
+        const uint8_t *req = NULL;
+        const uint16_t len = isotp_rx_peek(&app->tp[t], &req);
+        if (len != 0u && !isotp_tx_busy(&app->tp[t])) {
+            uds_serve(app, t, req, len);
+            app->uds_next = (uint8_t)((t + 1u) % APP_TESTERS);
+            break;
         }
-        app->reset_since_ms = app->now_ms; /* used only if this was an accepted ECUReset */
     }
     uds_server_poll(&app->uds, app->now_ms);
-    if (app->uds.unlocked_level == 0u && sec_is_unlocked(&app->sec)) {
-        sec_lock(&app->sec); /* the server locked (session change, S3 timeout, reset): relock too */
+    if (app->uds.unlocked_level == 0u) {
+        app->uds_owner = 0u;
+        if (sec_is_unlocked(&app->sec)) {
+            sec_lock(&app->sec); /* the server locked (session change, S3 timeout, reset) */
+        }
+    } else if (app->uds_owner == 0u) {
+        app->uds_owner = (uint8_t)(app->uds_from + 1u); /* the tester whose sendKey unlocked */
     }
-    isotp_poll(&app->tp, app->now_us);
+    for (unsigned t = 0; t < APP_TESTERS; t++) {
+        isotp_poll(&app->tp[t], app->now_us);
+    }
 }
 
 /* ---------------------------------------------------------------- init and tick */
@@ -328,7 +436,10 @@ void app_init(app_t *app, const app_config_t *cfg)
 
     isotp_config_t tpc;
     isotp_config_default(&tpc, PROTO_ID_UDS_RESPONSE(cfg->node), PROTO_ID_UDS_REQUEST(cfg->node));
-    isotp_init(&app->tp, &tpc, tp_send, app);
+    isotp_init(&app->tp[0], &tpc, tp_send, app);
+    isotp_config_default(&tpc, PROTO_ID_UDS_RESPONSE_2(cfg->node),
+                         PROTO_ID_UDS_REQUEST_2(cfg->node));
+    isotp_init(&app->tp[1], &tpc, tp_send, app);
     uds_app_t hooks;
     app_uds_bind(app, &hooks);
     uds_server_init(&app->uds, &hooks);
@@ -565,6 +676,21 @@ fs_real_t app_force_ref_N(const app_t *app)
 const skill_t *app_slot_skill(const app_t *app, uint8_t slot)
 {
     return slots_skill(&app->slots, slot);
+}
+
+uint32_t app_slot_crc(const app_t *app, uint8_t slot)
+{
+    return slots_skill(&app->slots, slot) != NULL ? app->slots.crc[slot - 1u] : 0u;
+}
+
+const boot_t *app_boot(const app_t *app)
+{
+    return &app->boot;
+}
+
+const boot_config_t *app_boot_config(const app_t *app)
+{
+    return &app->boot_cfg;
 }
 
 uint16_t app_last_run_status(const app_t *app)

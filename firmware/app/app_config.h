@@ -14,6 +14,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 #include "app.h"
+#include "boot.h"
 #include "fs_exec.h"
 #include "fs_real.h"
 #include "fs_wire_const.h"
@@ -85,8 +86,8 @@ typedef struct {
  *  the check's code 224-227 in last_run_status), then EXECUTE. Returns a UDS NRC (0 started). */
 uint8_t app_run_start(app_t *app, const app_run_request_t *req);
 
-/** Establish the motion key of a host session from its nonce (DID 0x0302 write): draws the
- *  device nonce, derives the key from the level-1 secret. Returns a UDS NRC (0 ok). */
+/** Establish the motion key of a host session from its nonce at once (the simulator's and the
+ *  tests' own host session; the DID 0x0302 write runs it in slices). Returns a UDS NRC (0 ok). */
 uint8_t app_motion_key(app_t *app, const uint8_t *host_nonce, uint16_t len);
 
 /** The count of ticks since app_init. */
@@ -97,6 +98,15 @@ fs_real_t app_force_ref_N(const app_t *app);
 
 /** The cached skill of slot 1..FS_SLOT_COUNT, NULL for an empty slot. */
 const skill_t *app_slot_skill(const app_t *app, uint8_t slot);
+
+/** The CRC-32 field of slot 1..FS_SLOT_COUNT's image, 0 for an empty slot. */
+uint32_t app_slot_crc(const app_t *app, uint8_t slot);
+
+/** The bootloader's view of the firmware slots (the running slot, its header, its state). */
+const boot_t *app_boot(const app_t *app);
+
+/** The firmware slots' flash layout the device was started with. */
+const boot_config_t *app_boot_config(const app_t *app);
 
 /** The check's code of the last start request (0, or 224-227 of a refused step). */
 uint16_t app_last_run_status(const app_t *app);

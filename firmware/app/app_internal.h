@@ -47,9 +47,23 @@
 #define APP_IDLE_TELEMETRY_PERIOD_MS 100u
 #define APP_IMAGE_MAX SLOTS_IMAGE_MAX
 #define APP_SW_VERSION "forceskill-fw 0.1.0"
-#define APP_PROTO_VERSION_MAJOR 2u
+#define APP_PROTO_VERSION_MAJOR 3u /* 3: the frames' MAC is AES-CMAC (docs/protocol.md) */
 #define APP_PROTO_VERSION_MINOR 0u
 #define APP_SEC_LEVELS 2u /* SecurityAccess levels 1 and 3, one secret each */
+#define APP_TESTERS 2u    /* UDS tester ids: UDS_REQUEST(_2) -> UDS_RESPONSE(_2) */
+/* SHA-256 rounds per tick of a SecurityAccess key check or a motion key derivation (four
+ * compressions of 64 rounds, answered 0x78 first): ~80 instructions a round on both images
+ * plus the wipes of a stage change, at most 1,775 a tick with 8 (bench/qemu_mac_cost.sh); 32
+ * ticks in all. */
+#ifndef APP_SEC_ROUNDS_PER_TICK
+#define APP_SEC_ROUNDS_PER_TICK 8u
+#endif
+/* MAC verifications (secoc_verify: one AES-128 block, two for a frame that fails) per tick; the
+ * authenticated frame beyond them waits for the next tick (app_t.held), so a flood of forged
+ * frames costs at most this many a tick. */
+#ifndef APP_MAC_PER_TICK
+#define APP_MAC_PER_TICK 2u
+#endif
 /** The whole device. */
 struct app {
     app_config_t cfg;
@@ -70,11 +84,19 @@ struct app {
     uint32_t tx_dropped;
     secoc_t secoc;                            /* authenticated host frames (motion key) */
     uint8_t secoc_dev_nonce[SECOC_NONCE_LEN]; /* the device nonce of the key in use */
+    sec_hmac_job_t motion_job;                /* the derivation of the next key, in slices */
+    bool motion_keying;                       /* motion_job runs (DID 0x0302 answered 0x78) */
+    can_frame_t held;                         /* an authenticated frame beyond APP_MAC_PER_TICK */
+    uint8_t held_ch;                          /* its channel + 1, 0: none */
     uint32_t run_opts_fv;                     /* freshness value of the last RUN_OPTIONS ... */
     uint16_t run_opts_time;                   /* ... its time scale (1/1000) and end policy */
     uint8_t run_opts_end;
-    /* UDS on ISO-TP */
-    isotp_link_t tp;
+    /* UDS on ISO-TP, one link per tester id (UDS_REQUEST, UDS_REQUEST_2) */
+    isotp_link_t tp[APP_TESTERS];
+    uint8_t uds_from;     /* the tester of the request served last or pending */
+    uint8_t uds_next;     /* the tester asked first next tick (the two take turns) */
+    uint8_t uds_owner;    /* tester + 1 that unlocked the session, 0 while locked */
+    uint32_t uds_foreign; /* writes refused because another tester owns the session (558) */
     uds_server_t uds;
     uint8_t uds_resp[ISOTP_MAX_PAYLOAD];
     uint32_t reset_since_ms; /* ECUReset accepted at (its response leaves first) */
@@ -142,6 +164,15 @@ flt_code_t app_clear_faults(app_t *app);
 
 /** SecurityAccess config of a level (1 or 3); NULL for any other level. */
 const sec_config_t *app_sec_config(const app_t *app, uint8_t level);
+
+/** Begin the motion key of a host session from its nonce (DID 0x0302 write): forgets the key
+ *  in use, draws the device nonce, starts the derivation from the level-1 secret. Returns
+ *  UDS_NRC_RESPONSE_PENDING (app_motion_key_run finishes it) or a refusal's NRC. */
+uint8_t app_motion_key_begin(app_t *app, const uint8_t *host_nonce, uint16_t len);
+
+/** Up to rounds SHA-256 rounds of the derivation begun: UDS_NRC_RESPONSE_PENDING while it runs,
+ *  then 0 with the key in use. */
+uint8_t app_motion_key_run(app_t *app, uint32_t rounds);
 
 /** Store the SecurityAccess attempt record if it changed (after every seed/key request). */
 void app_sec_persist(app_t *app);

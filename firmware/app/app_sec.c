@@ -65,8 +65,9 @@ void app_sec_setup(app_t *app)
     sec_restore(&app->sec_cfg[0], &app->sec, app->now_ms, failed, locked_out);
 }
 
-uint8_t app_motion_key(app_t *app, const uint8_t *host_nonce, uint16_t len)
+uint8_t app_motion_key_begin(app_t *app, const uint8_t *host_nonce, uint16_t len)
 {
+    static const char label[] = SECOC_LABEL;
     if (len != SECOC_NONCE_LEN) {
         return UDS_NRC_INCORRECT_LENGTH;
     }
@@ -77,12 +78,37 @@ uint8_t app_motion_key(app_t *app, const uint8_t *host_nonce, uint16_t len)
     if (hal_random(dev_nonce, SECOC_NONCE_LEN) != 0) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT;
     }
+    uint8_t msg[sizeof label - 1u + 2u * SECOC_NONCE_LEN];
+    memcpy(msg, label, sizeof label - 1u);
+    memcpy(&msg[sizeof label - 1u], dev_nonce, SECOC_NONCE_LEN);
+    memcpy(&msg[sizeof label - 1u + SECOC_NONCE_LEN], host_nonce, SECOC_NONCE_LEN);
     const sec_config_t *c = &app->sec_cfg[0];
-    uint8_t key[SECOC_KEY_LEN];
-    secoc_derive_key(c->secret, c->secret_len, dev_nonce, host_nonce, key);
-    secoc_set_key(&app->secoc, key, SECOC_KEY_LEN);
-    sec_wipe(key, sizeof key);
+    (void)sec_hmac_job_begin(&app->motion_job, c->secret, c->secret_len, msg, (uint32_t)sizeof msg);
+    secoc_forget(&app->secoc); /* the old session ends now */
     memcpy(app->secoc_dev_nonce, dev_nonce, SECOC_NONCE_LEN);
     app->run_opts_fv = 0u;
+    app->held_ch = 0u;
+    app->motion_keying = true;
+    return UDS_NRC_RESPONSE_PENDING;
+}
+
+uint8_t app_motion_key_run(app_t *app, uint32_t rounds)
+{
+    if (!app->motion_keying) {
+        return UDS_NRC_CONDITIONS_NOT_CORRECT;
+    }
+    uint8_t out[SEC_SHA256_LEN];
+    if (!sec_hmac_job_run(&app->motion_job, rounds, out)) {
+        return UDS_NRC_RESPONSE_PENDING;
+    }
+    app->motion_keying = false;
+    secoc_set_key(&app->secoc, out); /* the first SECOC_KEY_LEN bytes (secoc_derive_key) */
+    sec_wipe(out, sizeof out);
     return UDS_NRC_OK;
+}
+
+uint8_t app_motion_key(app_t *app, const uint8_t *host_nonce, uint16_t len)
+{
+    const uint8_t nrc = app_motion_key_begin(app, host_nonce, len);
+    return nrc == UDS_NRC_RESPONSE_PENDING ? app_motion_key_run(app, UINT32_MAX) : nrc;
 }

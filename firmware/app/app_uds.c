@@ -29,6 +29,11 @@ static uint16_t did_identity(uint16_t did, uint8_t *buf, uint16_t cap)
     }
 }
 
+static uint32_t be32(const uint8_t *p)
+{
+    return ((uint32_t)p[0] << 24) | ((uint32_t)p[1] << 16) | ((uint32_t)p[2] << 8) | p[3];
+}
+
 /* The configuration DIDs (gains, limits, communication, object). */
 static uint16_t did_config(const app_t *app, uint16_t did, uint8_t *buf, uint16_t cap)
 {
@@ -107,19 +112,26 @@ static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf, uint16_
         const fs_wire_fault_causes_t v = {app->saf.flt.latched_mask, app->saf.cause_mask};
         return fs_wire_fault_causes_pack(&v, buf, cap);
     }
-    case DID_MOTION_KEY:
-        if (cap < SECOC_NONCE_LEN + 1u) {
-            return 0u;
-        }
-        memcpy(buf, app->secoc_dev_nonce, SECOC_NONCE_LEN);
-        buf[SECOC_NONCE_LEN] = app->secoc.keyed ? 1u : 0u;
-        return SECOC_NONCE_LEN + 1u;
-    case DID_AUTH_STATS:
-        if (cap < SECOC_STATS_LEN) {
-            return 0u;
-        }
-        secoc_stats_encode(&app->secoc, buf);
-        return SECOC_STATS_LEN;
+    case DID_MOTION_KEY: {
+        const uint8_t *n = app->secoc_dev_nonce;
+        const fs_wire_motion_key_t v = {be32(&n[0]), be32(&n[4]), be32(&n[8]), be32(&n[12]),
+                                        app->secoc.keyed ? 1u : 0u};
+        return fs_wire_motion_key_pack(&v, buf, cap);
+    }
+    case DID_AUTH_STATS: {
+        const secoc_t *a = &app->secoc;
+        const fs_wire_auth_stats_t v = {a->accepted,
+                                        a->bad_mac,
+                                        a->replayed,
+                                        a->no_key,
+                                        a->revoked,
+                                        a->last_refusal,
+                                        a->keyed ? 1u : 0u,
+                                        a->fv[SECOC_CH_COMMAND],
+                                        a->fv[SECOC_CH_HEARTBEAT],
+                                        app->uds_foreign};
+        return fs_wire_auth_stats_pack(&v, buf, cap);
+    }
     default: return 0u;
     }
 }
@@ -260,7 +272,12 @@ static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len
         return UDS_NRC_SECURITY_ACCESS_DENIED; /* settings: level 1 (not the firmware level) */
     }
     if (did == DID_MOTION_KEY) {
-        return app_motion_key(app, d, len); /* also in FAULT: a host resynchronises to clear it */
+        /* also in FAULT: a host resynchronises to clear it; answered 0x78, derived in slices */
+        fs_wire_motion_key_write_t w;
+        if (fs_wire_motion_key_write_unpack(&w, d, len) != PROTO_OK) {
+            return UDS_NRC_INCORRECT_LENGTH;
+        }
+        return app_motion_key_begin(app, d, len);
     }
     if (app->state != APP_IDLE) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT; /* configuration changes only while idle */
@@ -484,8 +501,29 @@ static uint8_t security_key(void *ctx, uint8_t level, const uint8_t *key, uint16
     if (cfg == NULL) {
         return UDS_NRC_SUBFUNCTION_NOT_SUPPORTED;
     }
-    const uint8_t nrc = (uint8_t)sec_send_key(cfg, &app->sec, app->now_ms, key, len);
-    app_sec_persist(app); /* the wrong-key counter survives reset and power-up */
+    /* answered 0x78, the key's HMAC checked in slices (resume); the attempt counts as wrong
+     * until then, stored now: the wrong-key counter survives reset and power-up */
+    const uint8_t nrc = (uint8_t)sec_send_key_begin(cfg, &app->sec, key, len);
+    app_sec_persist(app);
+    return nrc;
+}
+
+/* A sendKey's check or the motion key's derivation, APP_SEC_ROUNDS_PER_TICK rounds a tick. */
+static uint8_t resume(void *ctx, uint8_t sid, uint16_t arg)
+{
+    app_t *app = ctx;
+    if (sid == UDS_SID_WDBI && arg == DID_MOTION_KEY) {
+        return app_motion_key_run(app, APP_SEC_ROUNDS_PER_TICK);
+    }
+    const sec_config_t *cfg = app_sec_config(app, (uint8_t)arg);
+    if (sid != UDS_SID_SECURITY || cfg == NULL) {
+        return UDS_NRC_CONDITIONS_NOT_CORRECT;
+    }
+    const uint8_t nrc = (uint8_t)sec_send_key_run(cfg, &app->sec, app->now_ms,
+                                                  APP_SEC_ROUNDS_PER_TICK);
+    if (nrc != UDS_NRC_RESPONSE_PENDING) {
+        app_sec_persist(app);
+    }
     return nrc;
 }
 
@@ -577,6 +615,7 @@ void app_uds_bind(app_t *app, uds_app_t *out)
     out->reset_now = reset_now;
     out->security_seed = security_seed;
     out->security_key = security_key;
+    out->resume = resume;
     out->download_begin = download_begin;
     out->download_data = download_data;
     out->download_end = download_end;

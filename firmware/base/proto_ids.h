@@ -22,5 +22,9 @@
 #define PROTO_ID_UDS_REQUEST(node) (0x600u + (uint32_t)(node))
 /* device -> host UDS response (ISO-TP) */
 #define PROTO_ID_UDS_RESPONSE(node) (0x680u + (uint32_t)(node))
+/* second tester -> device UDS request (ISO-TP) */
+#define PROTO_ID_UDS_REQUEST_2(node) (0x640u + (uint32_t)(node))
+/* device -> second tester UDS response (ISO-TP) */
+#define PROTO_ID_UDS_RESPONSE_2(node) (0x6C0u + (uint32_t)(node))
 
 #endif /* PROTO_IDS_H */

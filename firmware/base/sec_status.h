@@ -21,6 +21,9 @@ typedef enum {
     /* HostCommand EXECUTE refused: not preceded by its RUN_OPTIONS frame (the previous freshness
      * value) */
     SEC_ERR_EXECUTE_OPTIONS = 557,
+    /* UDS write refused (0x33): the unlocked session belongs to the other tester id, the one
+     * whose SecurityAccess unlocked it */
+    SEC_ERR_SESSION_OWNER = 558,
 } sec_status_t;
 
 #endif /* SEC_STATUS_H */

@@ -50,6 +50,14 @@ static uint32_t be_n(const uint8_t *p, uint8_t n)
     return v;
 }
 
+/* A hook answered 0x78: its final response is due from uds_server_resume. */
+static void pend(uds_server_t *srv, uint8_t sid, uint16_t arg)
+{
+    srv->pending_sid = sid;
+    srv->pending_arg = arg;
+    srv->pending_since_ms = srv->last_request_ms;
+}
+
 /* ---- 0x10 ---- */
 static uint16_t svc_dsc(uds_server_t *srv, const uint8_t *req, uint16_t len, uint8_t *resp)
 {
@@ -157,6 +165,9 @@ static uint16_t svc_security(uds_server_t *srv, const uint8_t *req, uint16_t len
     }
     srv->seed_level = 0u; /* one key per seed */
     const uint8_t nrc = srv->app.security_key(srv->app.ctx, level, &req[2], (uint16_t)(len - 2u));
+    if (nrc == UDS_NRC_RESPONSE_PENDING) {
+        pend(srv, req[0], level);
+    }
     if (nrc != UDS_NRC_OK) {
         return negative(resp, req[0], nrc);
     }
@@ -205,6 +216,9 @@ static uint16_t svc_wdbi(uds_server_t *srv, const uint8_t *req, uint16_t len, ui
         return negative(resp, req[0], UDS_NRC_SECURITY_ACCESS_DENIED);
     }
     const uint8_t nrc = srv->app.write_did(srv->app.ctx, did, &req[3], (uint16_t)(len - 3u));
+    if (nrc == UDS_NRC_RESPONSE_PENDING) {
+        pend(srv, req[0], did);
+    }
     if (nrc != UDS_NRC_OK) {
         return negative(resp, req[0], nrc);
     }
@@ -434,8 +448,7 @@ static uint16_t svc_transfer_exit(uds_server_t *srv, const uint8_t *req, uint8_t
     srv->xfer = UDS_XFER_NONE;
     const uint8_t nrc = srv->app.download_end(srv->app.ctx, &crc);
     if (nrc == UDS_NRC_RESPONSE_PENDING) {
-        srv->pending_sid = req[0];
-        srv->pending_since_ms = srv->last_request_ms;
+        pend(srv, req[0], 0u);
     }
     return exit_answer(resp, nrc, crc);
 }
@@ -496,12 +509,30 @@ void uds_server_after_response(uds_server_t *srv)
     }
 }
 
+/* The final response of a pending sendKey or DID write (nrc from the resume hook). */
+static uint16_t resumed_answer(uds_server_t *srv, uint8_t sid, uint8_t nrc, uint8_t *resp)
+{
+    if (nrc != UDS_NRC_OK) {
+        return negative(resp, sid, nrc);
+    }
+    resp[0] = (uint8_t)(sid + 0x40u);
+    if (sid == UDS_SID_SECURITY) {
+        srv->unlocked_level = (uint8_t)srv->pending_arg;
+        resp[1] = (uint8_t)(srv->pending_arg + 1u); /* the sendKey subfunction */
+        return 2u;
+    }
+    resp[1] = (uint8_t)(srv->pending_arg >> 8);
+    resp[2] = (uint8_t)srv->pending_arg;
+    return 3u;
+}
+
 uint16_t uds_server_resume(uds_server_t *srv, uint8_t *resp, uint16_t resp_cap, uint32_t now_ms)
 {
     const uint8_t sid = srv->pending_sid;
-    if ((sid != UDS_SID_TRANSFER_EXIT && sid != UDS_SID_REQ_UPLOAD &&
-         sid != UDS_SID_TRANSFER_DATA) ||
-        resp_cap < 8u) {
+    const bool hook = sid == UDS_SID_TRANSFER_EXIT || sid == UDS_SID_REQ_UPLOAD ||
+                      sid == UDS_SID_TRANSFER_DATA ||
+                      ((sid == UDS_SID_SECURITY || sid == UDS_SID_WDBI) && srv->app.resume != NULL);
+    if (!hook || resp_cap < 8u) {
         srv->pending_sid = 0u;
         return 0u;
     }
@@ -511,9 +542,11 @@ uint16_t uds_server_resume(uds_server_t *srv, uint8_t *resp, uint16_t resp_cap, 
         nrc = srv->app.download_end(srv->app.ctx, &crc);
     } else if (sid == UDS_SID_REQ_UPLOAD) {
         nrc = srv->app.upload_begin(srv->app.ctx, srv->pending_addr, srv->pending_size);
-    } else {
+    } else if (sid == UDS_SID_TRANSFER_DATA) {
         nrc = srv->app.download_data(srv->app.ctx, srv->xfer_pos, NULL,
                                      (uint16_t)srv->pending_size);
+    } else {
+        nrc = srv->app.resume(srv->app.ctx, sid, srv->pending_arg);
     }
     srv->last_request_ms = now_ms; /* the session stays while the server works */
     if (nrc == UDS_NRC_RESPONSE_PENDING) {
@@ -527,8 +560,13 @@ uint16_t uds_server_resume(uds_server_t *srv, uint8_t *resp, uint16_t resp_cap, 
     if (sid == UDS_SID_TRANSFER_DATA) {
         return data_answer(srv, nrc, (uint8_t)srv->pending_addr, (uint16_t)srv->pending_size, resp);
     }
-    return sid == UDS_SID_TRANSFER_EXIT ? exit_answer(resp, nrc, crc)
-                                        : transfer_answer(srv, sid, nrc, srv->pending_size, resp);
+    if (sid == UDS_SID_TRANSFER_EXIT) {
+        return exit_answer(resp, nrc, crc);
+    }
+    if (sid == UDS_SID_REQ_UPLOAD) {
+        return transfer_answer(srv, sid, nrc, srv->pending_size, resp);
+    }
+    return resumed_answer(srv, sid, nrc, resp);
 }
 
 void uds_server_poll(uds_server_t *srv, uint32_t now_ms)

@@ -77,6 +77,10 @@ typedef struct {
      *  and delays; it answers 0x35, 0x36 or 0x37). */
     uint8_t (*security_seed)(void *ctx, uint8_t level, uint8_t *seed, uint16_t cap, uint16_t *len);
     uint8_t (*security_key)(void *ctx, uint8_t level, const uint8_t *key, uint16_t len);
+    /** A sendKey (security_key) or a DID write (write_did) answered UDS_NRC_RESPONSE_PENDING
+     *  goes on: sid with its level or DID. The server answers 7F SID 78 first, calls this from
+     *  uds_server_resume until it returns anything else, then gives the final response. */
+    uint8_t (*resume)(void *ctx, uint8_t sid, uint16_t arg);
     /** Download of size bytes into memory/slot address addr (0x34): accept or refuse. */
     uint8_t (*download_begin)(void *ctx, uint32_t addr, uint32_t size);
     /** A block of the download at offset. UDS_NRC_RESPONSE_PENDING: the application kept the
@@ -116,6 +120,7 @@ typedef struct {
     uint16_t xfer_last_len;    /* length of the last accepted block (for a repeated counter) */
     uint8_t pending_reset;     /* reset type to perform after the response, 0 if none */
     uint8_t pending_sid;       /* request answered 0x78 whose final response is due, 0 if none */
+    uint16_t pending_arg;      /* its SecurityAccess level or DID (0x27, 0x2E) */
     uint32_t pending_since_ms; /* when 0x78 was last sent */
     uint32_t pending_addr;     /* answered 0x78: RequestUpload's address and size, or ... */
     uint32_t pending_size;     /* ... TransferData's block counter and length */

@@ -141,8 +141,8 @@ sec_nrc_t sec_request_seed(const sec_config_t *cfg, sec_state_t *st, uint32_t no
     return SEC_NRC_NONE;
 }
 
-sec_nrc_t sec_send_key(const sec_config_t *cfg, sec_state_t *st, uint32_t now_ms,
-                       const uint8_t *key, uint32_t key_len)
+sec_nrc_t sec_send_key_begin(const sec_config_t *cfg, sec_state_t *st, const uint8_t *key,
+                             uint32_t key_len)
 {
     if (cfg == NULL || st == NULL) {
         return SEC_NRC_CONDITIONS;
@@ -155,18 +155,36 @@ sec_nrc_t sec_send_key(const sec_config_t *cfg, sec_state_t *st, uint32_t now_ms
         sec_wipe(st->seed, SEC_SEED_LEN);
         return SEC_NRC_INCORRECT_LENGTH;
     }
-    uint8_t expect[SEC_KEY_LEN];
-    sec_compute_key(cfg, st->seed, expect);
-    const int ok = sec_ct_equal(expect, key, SEC_KEY_LEN);
-    sec_wipe(expect, sizeof expect);
+    const uint32_t klen = (cfg->secret_len > SEC_SECRET_MAX) ? SEC_SECRET_MAX : cfg->secret_len;
+    (void)sec_hmac_job_begin(&st->job, cfg->secret, klen, st->seed, SEC_SEED_LEN);
     sec_wipe(st->seed, SEC_SEED_LEN);
+    (void)memcpy(st->key, key, SEC_KEY_LEN);
+    st->checking = 1u;
+    if (st->failed < 0xFFu) {
+        st->failed++; /* counted as wrong until the check says otherwise: a reset meanwhile
+                         keeps it counted (the application stores the record now) */
+    }
+    return SEC_NRC_PENDING;
+}
+
+sec_nrc_t sec_send_key_run(const sec_config_t *cfg, sec_state_t *st, uint32_t now_ms,
+                           uint32_t rounds)
+{
+    if (cfg == NULL || st == NULL || st->checking == 0u) {
+        return SEC_NRC_SEQUENCE_ERROR;
+    }
+    uint8_t mac[SEC_SHA256_LEN];
+    if (!sec_hmac_job_run(&st->job, rounds, mac)) {
+        return SEC_NRC_PENDING;
+    }
+    st->checking = 0u;
+    const int ok = sec_ct_equal(mac, st->key, SEC_KEY_LEN);
+    sec_wipe(mac, sizeof mac);
+    sec_wipe(st->key, SEC_KEY_LEN);
     if (ok != 0) {
         st->unlocked = 1u;
         st->failed = 0u;
         return SEC_NRC_NONE;
-    }
-    if (st->failed < 0xFFu) {
-        st->failed++;
     }
     if (st->failed >= cfg->max_attempts) {
         st->locked_out = 1u;
@@ -175,6 +193,13 @@ sec_nrc_t sec_send_key(const sec_config_t *cfg, sec_state_t *st, uint32_t now_ms
     }
     start_wait(st, now_ms, cfg->delay_ms);
     return SEC_NRC_INVALID_KEY;
+}
+
+sec_nrc_t sec_send_key(const sec_config_t *cfg, sec_state_t *st, uint32_t now_ms,
+                       const uint8_t *key, uint32_t key_len)
+{
+    const sec_nrc_t nrc = sec_send_key_begin(cfg, st, key, key_len);
+    return nrc == SEC_NRC_PENDING ? sec_send_key_run(cfg, st, now_ms, UINT32_MAX) : nrc;
 }
 
 bool sec_is_unlocked(const sec_state_t *st)
@@ -188,5 +213,10 @@ void sec_lock(sec_state_t *st)
         st->unlocked = 0u;
         st->seed_valid = 0u;
         sec_wipe(st->seed, SEC_SEED_LEN);
+        if (st->checking != 0u) { /* a finished check wiped its own key material */
+            st->checking = 0u;
+            sec_wipe(st->key, SEC_KEY_LEN);
+            sec_wipe(&st->job, (uint32_t)sizeof st->job);
+        }
     }
 }

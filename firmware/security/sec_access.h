@@ -21,6 +21,7 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+#include "sec_sha256.h"
 #include "sec_status.h"
 
 #define SEC_SEED_LEN 16u
@@ -37,6 +38,7 @@ typedef enum {
     SEC_NRC_EXCEEDED_ATTEMPTS = 0x36, /* exceededNumberOfAttempts (lockout starts) */
     SEC_NRC_DELAY_NOT_EXPIRED = 0x37, /* requiredTimeDelayNotExpired */
     SEC_NRC_CONDITIONS = 0x22,        /* conditionsNotCorrect: random source failed */
+    SEC_NRC_PENDING = 0x78,           /* responsePending: the key's check goes on */
 } sec_nrc_t;
 
 /** Random source of the HAL: fill buf with len unpredictable bytes; 0 on success. */
@@ -61,8 +63,11 @@ typedef struct {
     uint8_t unlocked;
     uint8_t failed; /* wrong keys since the last success (or lockout end) */
     uint8_t locked_out;
-    uint32_t wait_until_ms; /* requestSeed refused (0x37) before this time */
-    uint8_t waiting;        /* wait_until_ms is in force */
+    uint32_t wait_until_ms;   /* requestSeed refused (0x37) before this time */
+    uint8_t waiting;          /* wait_until_ms is in force */
+    uint8_t checking;         /* a sendKey's check runs (sec_send_key_run) */
+    uint8_t key[SEC_KEY_LEN]; /* the key being checked */
+    sec_hmac_job_t job;       /* its expected value, HMAC-SHA256(secret, seed), in slices */
 } sec_state_t;
 
 /** Fill defaults (secret left empty: the caller copies the device secret in). */
@@ -95,10 +100,22 @@ sec_nrc_t sec_request_seed(const sec_config_t *cfg, sec_state_t *st, uint32_t no
 sec_nrc_t sec_send_key(const sec_config_t *cfg, sec_state_t *st, uint32_t now_ms,
                        const uint8_t *key, uint32_t key_len);
 
+/** sendKey in slices: the checks of sec_send_key that need no hash (0x24, 0x13), else the
+ *  seed is consumed, the attempt counted as a wrong key until the check ends, and
+ *  SEC_NRC_PENDING returned; sec_send_key_run finishes it. */
+sec_nrc_t sec_send_key_begin(const sec_config_t *cfg, sec_state_t *st, const uint8_t *key,
+                             uint32_t key_len);
+
+/** Up to rounds SHA-256 rounds of the check begun (4 x 64 in all): SEC_NRC_PENDING while it
+ *  runs, then sec_send_key's answer at now_ms. 0x24 if no check runs. */
+sec_nrc_t sec_send_key_run(const sec_config_t *cfg, sec_state_t *st, uint32_t now_ms,
+                           uint32_t rounds);
+
 /** True if writes are allowed (an unlocked session). */
 bool sec_is_unlocked(const sec_state_t *st);
 
-/** Relock (session change, ECUReset, S3 timeout); keeps the attempt counter and delays. */
+/** Relock (session change, ECUReset, S3 timeout); keeps the attempt counter and delays; a
+ *  check that runs is dropped (its seed is used up). */
 void sec_lock(sec_state_t *st);
 
 /** The key a tester computes for seed (for the tests and the host tools' reference). */

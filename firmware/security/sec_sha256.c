@@ -272,3 +272,69 @@ void sec_wipe(void *p, uint32_t len)
         v[i] = 0u;
     }
 }
+
+bool sec_hmac_job_begin(sec_hmac_job_t *j, const uint8_t *key, uint32_t key_len, const uint8_t *msg,
+                        uint32_t len)
+{
+    if (key_len > SEC_SHA256_BLOCK || len > SEC_HMAC_JOB_MSG_MAX) {
+        return false;
+    }
+    (void)memset(j, 0, sizeof *j);
+    (void)memcpy(j->ikey, key, key_len);
+    for (uint32_t i = 0u; i < SEC_SHA256_BLOCK; i++) {
+        j->okey[i] = (uint8_t)(j->ikey[i] ^ 0x5Cu);
+        j->ikey[i] ^= 0x36u;
+    }
+    (void)memcpy(j->msg, msg, len);
+    j->msg_len = len;
+    sec_sha256_init(&j->inner);
+    j->chunk = j->ikey;
+    j->chunk_len = SEC_SHA256_BLOCK;
+    return true;
+}
+
+static void job_chunk(sec_hmac_job_t *j, const uint8_t *p, uint32_t len)
+{
+    j->chunk = p;
+    j->chunk_len = len;
+    j->chunk_off = 0u;
+}
+
+/* The stages: key ^ ipad, message, padding (inner); key ^ opad, inner digest, padding (outer). */
+bool sec_hmac_job_run(sec_hmac_job_t *j, uint32_t rounds, uint8_t out[SEC_SHA256_LEN])
+{
+    for (;;) {
+        sec_sha256_t *h = j->stage < 3u ? &j->inner : &j->outer;
+        j->chunk_off += sec_sha256_feed(h, &j->job, j->chunk + j->chunk_off,
+                                        j->chunk_len - j->chunk_off, &rounds);
+        if (j->chunk_off < j->chunk_len || j->job.active != 0u) {
+            return false; /* the budget is spent */
+        }
+        switch (j->stage++) { /* each key pad wiped once fed, not all at the end: bounded ticks */
+        case 0u:
+            sec_wipe(j->ikey, SEC_SHA256_BLOCK);
+            job_chunk(j, j->msg, j->msg_len);
+            break;
+        case 1u: job_chunk(j, j->buf, sec_sha256_padding(&j->inner, j->buf)); break;
+        case 2u:
+            sec_sha256_digest(&j->inner,
+                              j->msg); /* the message is in: its buffer holds the digest */
+            sec_sha256_init(&j->outer);
+            job_chunk(j, j->okey, SEC_SHA256_BLOCK);
+            break;
+        case 3u:
+            sec_wipe(j->okey, SEC_SHA256_BLOCK);
+            job_chunk(j, j->msg, SEC_SHA256_LEN);
+            break;
+        case 4u: job_chunk(j, j->buf, sec_sha256_padding(&j->outer, j->buf)); break;
+        default:
+            sec_sha256_digest(&j->outer, out); /* wipes the outer state; the inner one is */
+            sec_wipe(j->msg, SEC_SHA256_LEN);  /* the inner digest */
+            sec_wipe(j->buf, SEC_SHA256_PAD_MAX);
+            j->chunk = NULL;
+            j->chunk_len = 0u;
+            j->chunk_off = 0u;
+            return true;
+        }
+    }
+}

@@ -4,6 +4,7 @@
 #ifndef SEC_SHA256_H
 #define SEC_SHA256_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #define SEC_SHA256_LEN 32u
@@ -72,6 +73,31 @@ void sec_hmac_final(sec_hmac_t *h, uint8_t out[SEC_SHA256_LEN]);
 /** One-shot HMAC-SHA256. */
 void sec_hmac_sha256(const uint8_t *key, uint32_t key_len, const uint8_t *msg, uint32_t msg_len,
                      uint8_t out[SEC_SHA256_LEN]);
+
+#define SEC_HMAC_JOB_MSG_MAX 64u /* the longest message of a sec_hmac_job_t */
+
+/** An HMAC-SHA256 of a short message (key and message up to 64 bytes each: four compressions)
+ *  spread over calls in bounded work (sec_hmac_job_run). */
+typedef struct {
+    sec_sha256_t inner, outer;
+    sec_sha256_job_t job;
+    uint8_t ikey[SEC_SHA256_BLOCK]; /* key XOR ipad */
+    uint8_t okey[SEC_SHA256_BLOCK]; /* key XOR opad */
+    uint8_t msg[SEC_HMAC_JOB_MSG_MAX];
+    uint8_t buf[SEC_SHA256_PAD_MAX]; /* the padding or the inner digest being fed */
+    const uint8_t *chunk;            /* what is being fed: chunk_len bytes, chunk_off of them in */
+    uint32_t msg_len, chunk_len, chunk_off;
+    uint32_t stage;
+} sec_hmac_job_t;
+
+/** Start the HMAC of msg (len <= SEC_HMAC_JOB_MSG_MAX, copied) under key (key_len <= 64 bytes):
+ *  no compression yet. False (nothing started) if a length is out of range. */
+bool sec_hmac_job_begin(sec_hmac_job_t *j, const uint8_t *key, uint32_t key_len, const uint8_t *msg,
+                        uint32_t len);
+
+/** Up to rounds more compression rounds (4 x 64 in all, ~75 instructions each on a Cortex-M4);
+ *  true once out[32] holds the MAC (key pads and digests wiped as they are used). */
+bool sec_hmac_job_run(sec_hmac_job_t *j, uint32_t rounds, uint8_t out[SEC_SHA256_LEN]);
 
 /** Constant-time comparison: 1 if the len bytes are equal, 0 otherwise; the time depends on
  *  len only. */

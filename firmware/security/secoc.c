@@ -16,29 +16,19 @@ void secoc_derive_key(const uint8_t *secret, uint32_t secret_len,
 {
     static const char label[] = SECOC_LABEL;
     sec_hmac_t h;
+    uint8_t out[SEC_SHA256_LEN];
     sec_hmac_init(&h, secret, secret_len);
     sec_hmac_update(&h, (const uint8_t *)label, (uint32_t)(sizeof label - 1u));
     sec_hmac_update(&h, dev_nonce, SECOC_NONCE_LEN);
     sec_hmac_update(&h, host_nonce, SECOC_NONCE_LEN);
-    sec_hmac_final(&h, key);
+    sec_hmac_final(&h, out);
+    memcpy(key, out, SECOC_KEY_LEN);
+    sec_wipe(out, sizeof out);
 }
 
-void secoc_set_key(secoc_t *s, const uint8_t *key, uint32_t key_len)
+void secoc_set_key(secoc_t *s, const uint8_t key[SECOC_KEY_LEN])
 {
-    uint8_t pad[SEC_SHA256_BLOCK];
-    memset(pad, 0, sizeof pad);
-    memcpy(pad, key, key_len > SEC_SHA256_BLOCK ? SEC_SHA256_BLOCK : key_len);
-    for (uint32_t i = 0; i < SEC_SHA256_BLOCK; i++) {
-        pad[i] ^= 0x36u;
-    }
-    sec_sha256_init(&s->inner);
-    sec_sha256_update(&s->inner, pad, SEC_SHA256_BLOCK);
-    for (uint32_t i = 0; i < SEC_SHA256_BLOCK; i++) {
-        pad[i] ^= (uint8_t)(0x36u ^ 0x5Cu);
-    }
-    sec_sha256_init(&s->outer);
-    sec_sha256_update(&s->outer, pad, SEC_SHA256_BLOCK);
-    sec_wipe(pad, sizeof pad);
+    sec_cmac_init(&s->cmac, key);
     s->fv[SECOC_CH_COMMAND] = 0u;
     s->fv[SECOC_CH_HEARTBEAT] = 0u;
     s->bad_in_row = 0u;
@@ -52,26 +42,14 @@ void secoc_start_session(secoc_t *s, const uint8_t *secret, uint32_t secret_len,
     uint8_t key[SECOC_KEY_LEN];
     secoc_derive_key(secret, secret_len, dev_nonce, host_nonce, key);
     secoc_init(s);
-    secoc_set_key(s, key, SECOC_KEY_LEN);
+    secoc_set_key(s, key);
     sec_wipe(key, sizeof key);
 }
 
 void secoc_forget(secoc_t *s)
 {
-    sec_wipe(&s->inner, (uint32_t)sizeof s->inner);
-    sec_wipe(&s->outer, (uint32_t)sizeof s->outer);
+    sec_wipe(&s->cmac, (uint32_t)sizeof s->cmac);
     s->keyed = false;
-}
-
-void secoc_hmac(const secoc_t *s, const uint8_t *msg, uint32_t len, uint8_t out[SEC_SHA256_LEN])
-{
-    sec_sha256_t h = s->inner;
-    uint8_t d[SEC_SHA256_LEN];
-    sec_sha256_update(&h, msg, len);
-    sec_sha256_final(&h, d);
-    h = s->outer;
-    sec_sha256_update(&h, d, SEC_SHA256_LEN);
-    sec_sha256_final(&h, out);
 }
 
 void secoc_mac(const secoc_t *s, const can_frame_t *f, uint32_t fv, uint8_t mac[SECOC_MAC_LEN])
@@ -84,8 +62,8 @@ void secoc_mac(const secoc_t *s, const can_frame_t *f, uint32_t fv, uint8_t mac[
     m[6] = (uint8_t)(fv >> 16);
     m[7] = (uint8_t)(fv >> 8);
     m[8] = (uint8_t)fv;
-    uint8_t out[SEC_SHA256_LEN];
-    secoc_hmac(s, m, SECOC_MSG_LEN, out);
+    uint8_t out[SEC_AES_BLOCK];
+    sec_cmac(&s->cmac, m, SECOC_MSG_LEN, out);
     memcpy(mac, out, SECOC_MAC_LEN);
 }
 
@@ -141,26 +119,4 @@ sec_status_t secoc_verify(secoc_t *s, const can_frame_t *f, secoc_channel_t ch)
         s->revoked++;
     }
     return SEC_ERR_MAC;
-}
-
-static void put_u32(uint8_t *b, uint32_t v)
-{
-    b[0] = (uint8_t)(v >> 24);
-    b[1] = (uint8_t)(v >> 16);
-    b[2] = (uint8_t)(v >> 8);
-    b[3] = (uint8_t)v;
-}
-
-void secoc_stats_encode(const secoc_t *s, uint8_t out[SECOC_STATS_LEN])
-{
-    put_u32(&out[0], s->accepted);
-    put_u32(&out[4], s->bad_mac);
-    put_u32(&out[8], s->replayed);
-    put_u32(&out[12], s->no_key);
-    put_u32(&out[16], s->revoked);
-    out[20] = (uint8_t)(s->last_refusal >> 8);
-    out[21] = (uint8_t)s->last_refusal;
-    out[22] = s->keyed ? 1u : 0u;
-    put_u32(&out[23], s->fv[SECOC_CH_COMMAND]);
-    put_u32(&out[27], s->fv[SECOC_CH_HEARTBEAT]);
 }

@@ -1,33 +1,35 @@
 /* Authenticated host frames, SecOC style (docs/protocol.md): a MAC truncated to 24 bits and a
  * 32-bit freshness value (FV) per frame channel, of which only the low 8 bits travel.
  *
- * Key: derived per host session, never sent: HMAC-SHA256(level-1 secret, SECOC_LABEL || device
- * nonce || host nonce). MAC = first 3 bytes of HMAC-SHA256(key, id low, id high, payload bytes
- * 0..2, FV big-endian). The frame carries the MAC in bytes 3..5 and FV bits 0..7 in byte 6 (its
- * low nibble is the E2E counter). The receiver rebuilds the FV as the smallest value above the
- * last accepted one with those low bits: up to 255 lost frames in a row are absorbed; more need
- * a new key (the host re-establishes it). A frame whose MAC matches an FV already used is a
- * replay. SECOC_MAX_BAD_MAC wrong MACs in a row discard the key (a brute force needs a new
- * SecurityAccess every SECOC_MAX_BAD_MAC guesses). No heap; constant-time tag comparison. */
+ * Key: derived per host session, never sent: the first 16 bytes of HMAC-SHA256(level-1 secret,
+ * SECOC_LABEL || device nonce || host nonce). MAC = first 3 bytes of AES-128-CMAC(key, id low,
+ * id high, payload bytes 0..2, FV big-endian): one AES block encryption per frame (sec_aes.h),
+ * within one tick of the Cortex-M images. The frame carries the MAC in bytes 3..5 and FV bits
+ * 0..7 in byte 6 (its low nibble is the E2E counter). The receiver rebuilds the FV as the
+ * smallest value above the last accepted one with those low bits: up to 255 lost frames in a row
+ * are absorbed; more need a new key (the host re-establishes it). A frame whose MAC matches an FV
+ * already used is a replay (a second encryption, only for a frame that fails). SECOC_MAX_BAD_MAC
+ * wrong MACs in a row discard the key (a brute force needs a new SecurityAccess every
+ * SECOC_MAX_BAD_MAC guesses). No heap; constant-time tag comparison. */
 #ifndef SECOC_H
 #define SECOC_H
 
 #include <stdbool.h>
 #include <stdint.h>
 #include "can_frame.h"
+#include "sec_aes.h"
 #include "sec_sha256.h"
 #include "sec_status.h"
 
-#define SECOC_KEY_LEN 32u
+#define SECOC_KEY_LEN 16u /* an AES-128 key */
 #define SECOC_NONCE_LEN 16u
 #define SECOC_MAC_LEN 3u /* 24 MAC bits in data bytes 3..5 */
 #define SECOC_MAC_OFFSET 3u
-#define SECOC_PAYLOAD_LEN 3u  /* data bytes 0..2 are the authenticated payload */
-#define SECOC_FV_BYTE 6u      /* FV bits 0..7 (bits 0..3 double as the E2E counter) */
-#define SECOC_FV_WINDOW 256u  /* 2^(FV bits in the frame) */
-#define SECOC_MAX_BAD_MAC 64u /* wrong MACs in a row that discard the key */
-#define SECOC_LABEL "forceskill secoc v1"
-#define SECOC_STATS_LEN 31u /* bytes of secoc_stats_encode */
+#define SECOC_PAYLOAD_LEN 3u              /* data bytes 0..2 are the authenticated payload */
+#define SECOC_FV_BYTE 6u                  /* FV bits 0..7 (bits 0..3 double as the E2E counter) */
+#define SECOC_FV_WINDOW 256u              /* 2^(FV bits in the frame) */
+#define SECOC_MAX_BAD_MAC 64u             /* wrong MACs in a row that discard the key */
+#define SECOC_LABEL "forceskill secoc v3" /* protocol version 3: AES-CMAC */
 
 /** The authenticated frame channels, each with its own freshness value. */
 typedef enum {
@@ -38,8 +40,7 @@ typedef enum {
 
 /** Receiver (device) or sender (host) state of one session key. */
 typedef struct {
-    sec_sha256_t inner;          /* SHA-256 state after key ^ ipad */
-    sec_sha256_t outer;          /* SHA-256 state after key ^ opad */
+    sec_cmac_t cmac;             /* the key's AES schedule and CMAC subkeys */
     uint32_t fv[SECOC_CHANNELS]; /* receiver: last accepted FV; sender: last sent FV */
     bool keyed;                  /* a key is established */
     uint8_t bad_in_row;          /* wrong MACs since the last accepted frame */
@@ -50,7 +51,9 @@ typedef struct {
 /** No key, every counter zero. */
 void secoc_init(secoc_t *s);
 
-/** The session key of a host session: HMAC-SHA256(secret, SECOC_LABEL || dev || host). */
+/** The session key of a host session: HMAC-SHA256(secret, SECOC_LABEL || dev || host), its
+ *  first SECOC_KEY_LEN bytes (four SHA-256 compressions: app.c spreads them over ticks with
+ *  sec_hmac_job, this is the one-shot reference). */
 void secoc_derive_key(const uint8_t *secret, uint32_t secret_len,
                       const uint8_t dev_nonce[SECOC_NONCE_LEN],
                       const uint8_t host_nonce[SECOC_NONCE_LEN], uint8_t key[SECOC_KEY_LEN]);
@@ -60,14 +63,11 @@ void secoc_start_session(secoc_t *s, const uint8_t *secret, uint32_t secret_len,
                          const uint8_t dev_nonce[SECOC_NONCE_LEN],
                          const uint8_t host_nonce[SECOC_NONCE_LEN]);
 
-/** Use key (1..64 bytes) from now on: both freshness values restart at 0; counters kept. */
-void secoc_set_key(secoc_t *s, const uint8_t *key, uint32_t key_len);
+/** Use key from now on: both freshness values restart at 0; counters kept. */
+void secoc_set_key(secoc_t *s, const uint8_t key[SECOC_KEY_LEN]);
 
 /** Discard the key (frames are refused with SEC_ERR_NO_KEY until a new one is set). */
 void secoc_forget(secoc_t *s);
-
-/** Full HMAC-SHA256 of msg under the key set (what the MAC truncates; the RFC 4231 tests). */
-void secoc_hmac(const secoc_t *s, const uint8_t *msg, uint32_t len, uint8_t out[SEC_SHA256_LEN]);
 
 /** The 24-bit MAC of a frame's id and payload (data bytes 0..2) at freshness value fv. */
 void secoc_mac(const secoc_t *s, const can_frame_t *f, uint32_t fv, uint8_t mac[SECOC_MAC_LEN]);
@@ -76,12 +76,9 @@ void secoc_mac(const secoc_t *s, const can_frame_t *f, uint32_t fv, uint8_t mac[
  *  the caller then adds the E2E CRC (its counter = the FV's low nibble). Returns the FV. */
 uint32_t secoc_protect(secoc_t *s, can_frame_t *f, secoc_channel_t ch);
 
-/** Receiver: check frame f of channel ch. SEC_OK accepts it (its FV becomes the last);
- *  SEC_ERR_NO_KEY, SEC_ERR_MAC, SEC_ERR_REPLAY, SEC_ERR_FRESHNESS refuse it, counted. */
+/** Receiver: check frame f of channel ch (one AES encryption, two for a frame that fails).
+ *  SEC_OK accepts it (its FV becomes the last); SEC_ERR_NO_KEY, SEC_ERR_MAC, SEC_ERR_REPLAY,
+ *  SEC_ERR_FRESHNESS refuse it, counted. */
 sec_status_t secoc_verify(secoc_t *s, const can_frame_t *f, secoc_channel_t ch);
-
-/** The counters as DID bytes (big-endian): accepted, wrong MAC, replayed, no key, keys
- *  discarded (u32 each), last refusal u16, keyed u8, FV command u32, FV heartbeat u32. */
-void secoc_stats_encode(const secoc_t *s, uint8_t out[SECOC_STATS_LEN]);
 
 #endif /* SECOC_H */

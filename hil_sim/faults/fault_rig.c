@@ -226,13 +226,18 @@ uint16_t rig_uds(rig_t *r, const uint8_t *req, uint16_t len, uint8_t *resp, uint
 
 int rig_uds_unlock(rig_t *r)
 {
+    return rig_uds_unlock_level(r, UDS_SEC_LEVEL_WRITE);
+}
+
+int rig_uds_unlock_level(rig_t *r, uint8_t level)
+{
     uint8_t resp[64];
     const uint8_t dsc[2] = {UDS_SID_DSC, UDS_SESSION_PROGRAMMING};
     if (rig_uds(r, dsc, 2u, resp, sizeof resp, 200u) < 2u || resp[0] != 0x50u) {
         return -1;
     }
     for (int attempt = 0; attempt < 40; attempt++) {
-        const uint8_t rs[2] = {UDS_SID_SECURITY, 0x01u};
+        const uint8_t rs[2] = {UDS_SID_SECURITY, level};
         const uint16_t n = rig_uds(r, rs, 2u, resp, sizeof resp, 200u);
         if (n == 3u && resp[0] == UDS_NEGATIVE_RESPONSE && resp[2] == UDS_NRC_DELAY_NOT_EXPIRED) {
             rig_run(r, 100u); /* power-up delay of SecurityAccess */
@@ -242,12 +247,12 @@ int rig_uds_unlock(rig_t *r)
             return -2;
         }
         uint8_t secret_len = 0u;
-        const uint8_t *secret = hal_device_secret(UDS_SEC_LEVEL_WRITE, &secret_len);
+        const uint8_t *secret = hal_device_secret(level, &secret_len);
         uint8_t mac[SEC_SHA256_LEN];
         sec_hmac_sha256(secret, secret_len, &resp[2], SEC_SEED_LEN, mac);
         uint8_t sk[2u + SEC_KEY_LEN];
         sk[0] = UDS_SID_SECURITY;
-        sk[1] = 0x02u;
+        sk[1] = (uint8_t)(level + 1u);
         memcpy(&sk[2], mac, SEC_KEY_LEN);
         const uint16_t k = rig_uds(r, sk, (uint16_t)sizeof sk, resp, sizeof resp, 200u);
         return (k >= 2u && resp[0] == 0x67u) ? 0 : -3;
@@ -257,15 +262,20 @@ int rig_uds_unlock(rig_t *r)
 
 uint8_t rig_uds_download(rig_t *r, uint8_t slot, const uint8_t *img, uint32_t len)
 {
+    return rig_uds_download_to(r, slot, img, len);
+}
+
+uint8_t rig_uds_download_to(rig_t *r, uint32_t addr, const uint8_t *img, uint32_t len)
+{
     static uint8_t buf[ISOTP_MAX_PAYLOAD];
     uint8_t resp[64];
     uint8_t rd[11] = {UDS_SID_REQ_DOWNLOAD,
                       0x00u,
                       0x44u,
-                      0u,
-                      0u,
-                      0u,
-                      slot,
+                      (uint8_t)(addr >> 24),
+                      (uint8_t)(addr >> 16),
+                      (uint8_t)(addr >> 8),
+                      (uint8_t)addr,
                       (uint8_t)(len >> 24),
                       (uint8_t)(len >> 16),
                       (uint8_t)(len >> 8),

@@ -99,8 +99,15 @@ void rig_command(rig_t *r, uint8_t mode, uint8_t slot, double goal_scale, double
 uint16_t rig_uds(rig_t *r, const uint8_t *req, uint16_t len, uint8_t *resp, uint16_t cap,
                  uint32_t timeout_ms);
 
-/** Programming session + SecurityAccess (waits out the boot delay). 0 ok. */
+/** Programming session + SecurityAccess level 1 (waits out the boot delay). 0 ok. */
 int rig_uds_unlock(rig_t *r);
+
+/** Programming session + SecurityAccess of level (1 or 3) with its secret. 0 ok. */
+int rig_uds_unlock_level(rig_t *r, uint8_t level);
+
+/** A download as rig_uds_download, to the memory address addr (a slot 1.., or
+ *  FWU_DOWNLOAD_ADDRESS for a firmware image). */
+uint8_t rig_uds_download_to(rig_t *r, uint32_t addr, const uint8_t *img, uint32_t len);
 
 /** RequestDownload/TransferData/RequestTransferExit of an image into slot (1-based); returns
  *  the final NRC (0 = positive response to RequestTransferExit, 0xFF = no answer). */

@@ -8,6 +8,7 @@
 #include "serve.h"
 #endif
 #ifdef HIL_SIM_HAVE_FAULTS
+#include "fault_powercut.h"
 #include "faults.h"
 #endif
 
@@ -28,6 +29,8 @@ static const sim_command_t COMMANDS[] = {
 #ifdef HIL_SIM_HAVE_FAULTS
     {"faults", faults_cmd,
      "inject every fault scenario into the device in lockstep, write the table"},
+    {"powercut", powercut_cmd,
+     "cut the power after every flash operation of a skill download and a firmware update"},
 #endif
 };
 

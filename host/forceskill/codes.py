@@ -159,6 +159,7 @@ SEC_ERR_REPLAY = 554
 SEC_ERR_NO_KEY = 555
 SEC_ERR_FRESHNESS = 556
 SEC_ERR_EXECUTE_OPTIONS = 557
+SEC_ERR_SESSION_OWNER = 558
 
 # Host: demonstrations, fitting, files, the CAN link (6xx)
 ERR_DEMO_FILE = 600  # file missing, unreadable, or no reader for its suffix
@@ -247,6 +248,8 @@ CAN_ID_TELEM_POS = 0x190  # device: telemetry, position part
 CAN_ID_TELEM_FORCE = 0x1A0  # device: telemetry, force part
 UDS_REQUEST_BASE = 0x600  # host -> device UDS request (ISO-TP)
 UDS_RESPONSE_BASE = 0x680  # device -> host UDS response (ISO-TP)
+UDS_REQUEST_2_BASE = 0x640  # second tester -> device UDS request (ISO-TP)
+UDS_RESPONSE_2_BASE = 0x6C0  # device -> second tester UDS response (ISO-TP)
 
 # UDS identifiers of the device
 DID_SW_VERSION = 0xF189  # software version, ASCII
@@ -428,6 +431,7 @@ __all__ = [
     'SEC_ERR_NO_KEY',
     'SEC_ERR_FRESHNESS',
     'SEC_ERR_EXECUTE_OPTIONS',
+    'SEC_ERR_SESSION_OWNER',
     'ERR_DEMO_FILE',
     'ERR_DEMO_FORMAT',
     'ERR_DEMO_COLUMN',
@@ -508,6 +512,8 @@ __all__ = [
     'CAN_ID_TELEM_FORCE',
     'UDS_REQUEST_BASE',
     'UDS_RESPONSE_BASE',
+    'UDS_REQUEST_2_BASE',
+    'UDS_RESPONSE_2_BASE',
     'DID_SW_VERSION',
     'DID_VERSIONS',
     'DID_GAINS_X',

@@ -45,6 +45,9 @@ def vectors() -> list[tuple[str, bytes, int]]:
         ("run_results", W.RunResults(3, 1, 0, 0)),
         ("self_test", W.SelfTest(1, 502)),
         ("erase_slot", W.EraseSlot(W.SLOT_COUNT)),
+        ("motion_key", W.MotionKey(0x00112233, 0x44556677, 0x8899AABB, 0xCCDDEEFF, 1)),
+        ("motion_key_write", W.MotionKeyWrite(0x01020304, 0x05060708, 0x090A0B0C, 0x0D0E0F10)),
+        ("auth_stats", W.AuthStats(1000, 64, 3, 2, 1, 558, 0, 300, 4096, 7)),
     ]
     out = [(name, rec.pack(), OK) for name, rec in good]  # type: ignore[attr-defined]
     f32 = struct.Struct(">f").pack
@@ -68,6 +71,11 @@ def vectors() -> list[tuple[str, bytes, int]]:
         ("comm", bytes([0, 0, 100]), RANGE),
         ("limits", f32(float("inf")) + bytes(20), RANGE),
         ("slot_dir", bytes([W.SLOT_COUNT]) + bytes(15), LENGTH),
+        ("motion_key", bytes(16), LENGTH),
+        ("motion_key", bytes(16) + bytes([2]), RANGE),
+        ("motion_key_write", bytes(17), LENGTH),
+        ("auth_stats", bytes(34), LENGTH),
+        ("auth_stats", bytes(22) + bytes([2]) + bytes(12), RANGE),
         ("slot_dir", bytes([W.SLOT_COUNT]) + bytes(16 * (W.SLOT_COUNT + 1)), LENGTH),
     ]
     return out

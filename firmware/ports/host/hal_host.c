@@ -36,6 +36,108 @@ static const uint8_t g_fw_key[32] = {
     0x40, 0x41, 0x42, 0x43, 0x44, 0x45, 0x46, 0x47, 0x48, 0x49, 0x4a, 0x4b, 0x4c, 0x4d, 0x4e, 0x4f,
     0x50, 0x51, 0x52, 0x53, 0x54, 0x55, 0x56, 0x57, 0x58, 0x59, 0x5a, 0x5b, 0x5c, 0x5d, 0x5e, 0x5f};
 
+/* Power-cut injection (hal_host_flash_cut_after): every region's erase and program go through
+ * these shims, counted in one sequence; the fls_ram device stays each region's ctx. */
+static fls_dev_t g_raw[HAL_HOST_FLASH_REGIONS]; /* fls_ram's own functions, per region */
+static struct {
+    uint32_t ops;  /* operations since hal_host_flash_erase */
+    uint32_t left; /* operations before the cut, while armed */
+    bool armed, cut;
+    hal_host_flash_op_t log[HAL_HOST_FLASH_LOG];
+} g_cut;
+
+static int region_of(const void *ctx)
+{
+    for (int k = 0; k < (int)HAL_HOST_FLASH_REGIONS; k++) {
+        if (g_raw[k].ctx == ctx) {
+            return k;
+        }
+    }
+    return -1;
+}
+
+/* True if the power is still on for one more operation (then counted and logged). */
+static bool op_allowed(int region, uint8_t kind, uint32_t addr, uint32_t len)
+{
+    if (region < 0 || g_cut.cut) {
+        return false;
+    }
+    if (g_cut.armed) {
+        if (g_cut.left == 0u) {
+            g_cut.cut = true; /* the power is gone: this and every later operation fail */
+            return false;
+        }
+        g_cut.left--;
+    }
+    if (g_cut.ops < HAL_HOST_FLASH_LOG) {
+        const hal_host_flash_op_t o = {(uint8_t)region, kind, addr, len};
+        g_cut.log[g_cut.ops] = o;
+    }
+    g_cut.ops++;
+    return true;
+}
+
+static int shim_erase(void *ctx, uint32_t sector)
+{
+    const int k = region_of(ctx);
+    if (!op_allowed(k, 0u, k < 0 ? 0u : sector * g_raw[k].sector_size, 0u)) {
+        return -1;
+    }
+    return g_raw[k].erase(ctx, sector);
+}
+
+static int shim_program(void *ctx, uint32_t addr, const uint8_t *data, uint32_t len)
+{
+    const int k = region_of(ctx);
+    if (!op_allowed(k, 1u, addr, len)) {
+        return -1;
+    }
+    return g_raw[k].program(ctx, addr, data, len);
+}
+
+static void shim(fls_dev_t *dev, unsigned region)
+{
+    g_raw[region] = *dev;
+    dev->erase = shim_erase;
+    dev->program = shim_program;
+}
+
+void hal_host_flash_cut_after(uint32_t n)
+{
+    g_cut.armed = true;
+    g_cut.left = n;
+    g_cut.cut = false;
+}
+
+bool hal_host_flash_cut(void)
+{
+    return g_cut.cut;
+}
+
+void hal_host_flash_power_on(void)
+{
+    g_cut.armed = false;
+    g_cut.cut = false;
+}
+
+uint32_t hal_host_flash_ops(void)
+{
+    return g_cut.ops;
+}
+
+const hal_host_flash_op_t *hal_host_flash_op(uint32_t i)
+{
+    return i < g_cut.ops && i < HAL_HOST_FLASH_LOG ? &g_cut.log[i] : NULL;
+}
+
+void hal_host_fw_flash_erase(void)
+{
+    memset(g_fw_mem, 0xFF, sizeof(g_fw_mem));
+    fls_ram_init(&g_fw_fls, &g_fw_dev, g_fw_mem, HAL_HOST_FW_SECTOR, HAL_HOST_FW_SECTORS, 4u);
+    shim(&g_fw_dev, HAL_HOST_REGION_FIRMWARE);
+    g_fw_ready = true;
+}
+
 void hal_host_init(void)
 {
     memset(&g, 0, sizeof(g));
@@ -52,9 +154,12 @@ void hal_host_flash_erase(void)
 {
     memset(g_flash_mem, 0xFF, sizeof(g_flash_mem));
     fls_ram_init(&g_fls, &g_dev, g_flash_mem, HAL_HOST_FLASH_SECTOR, HAL_HOST_FLASH_SECTORS, 4u);
+    shim(&g_dev, HAL_HOST_REGION_SLOTS);
     memset(g_sec_mem, 0xFF, sizeof(g_sec_mem));
     fls_ram_init(&g_sec_fls, &g_sec_dev, g_sec_mem, HAL_HOST_SEC_SECTOR, 2u, 4u);
+    shim(&g_sec_dev, HAL_HOST_REGION_SECURITY);
     g_flash_ready = true;
+    g_cut.ops = 0u;
 }
 
 void hal_host_set_time_us(uint64_t t_us)
@@ -131,9 +236,7 @@ const fls_dev_t *hal_flash(void)
 const fls_dev_t *hal_fw_flash(void)
 {
     if (!g_fw_ready) {
-        memset(g_fw_mem, 0xFF, sizeof(g_fw_mem));
-        fls_ram_init(&g_fw_fls, &g_fw_dev, g_fw_mem, HAL_HOST_FW_SECTOR, HAL_HOST_FW_SECTORS, 4u);
-        g_fw_ready = true;
+        hal_host_fw_flash_erase();
     }
     return &g_fw_dev;
 }

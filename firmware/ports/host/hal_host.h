@@ -45,6 +45,42 @@ bool hal_host_take_reset(uint8_t *type);
 /** Erase the whole RAM flash of the skill slots and the SecurityAccess record (a fresh device). */
 void hal_host_flash_erase(void);
 
+/** Erase the firmware update region (boot state and both image slots): a device never updated. */
+void hal_host_fw_flash_erase(void);
+
+/* Power-cut injection over every flash region (the power-cut runner, hil_sim/faults): the erase
+ * and program operations of the slots, the firmware region and the SecurityAccess record are
+ * counted in one sequence and logged. */
+#define HAL_HOST_FLASH_REGIONS 3u
+#define HAL_HOST_REGION_SLOTS 0u
+#define HAL_HOST_REGION_FIRMWARE 1u
+#define HAL_HOST_REGION_SECURITY 2u
+#define HAL_HOST_FLASH_LOG 4096u /* operations logged after hal_host_flash_erase */
+
+/** One logged flash operation: its region, kind (0 erase, 1 program), address and length. */
+typedef struct {
+    uint8_t region;
+    uint8_t kind;
+    uint32_t addr;
+    uint32_t len;
+} hal_host_flash_op_t;
+
+/** Cut the power just after n more erase/program operations (in any region): from then on every
+ *  one fails and changes nothing, until hal_host_flash_power_on. */
+void hal_host_flash_cut_after(uint32_t n);
+
+/** True once the cut armed by hal_host_flash_cut_after has happened. */
+bool hal_host_flash_cut(void);
+
+/** Power back on: no cut armed; the flash keeps its contents. */
+void hal_host_flash_power_on(void);
+
+/** Erase/program operations done since hal_host_flash_erase (the cut ones not counted). */
+uint32_t hal_host_flash_ops(void);
+
+/** The i-th operation since hal_host_flash_erase (NULL beyond the log). */
+const hal_host_flash_op_t *hal_host_flash_op(uint32_t i);
+
 /* ---- simulator CAN backend (hal_can_sim.c) ---- */
 
 #define HAL_SIM_TX_QUEUE 64u  /* driver transmit queue (frames) */

@@ -10,6 +10,7 @@
 #include "cm_slcan.h"
 #include "cm_uart.h"
 #include "hal.h"
+#include "sec_aes.h"
 #include "sec_sha256.h"
 #include "cm_semihost.h"
 
@@ -42,8 +43,9 @@ static uint64_t g_host_us0; /* host time then (0: no pacing) */
 static bool g_reset_requested;
 static boot_cm_flash_t g_skill_fl, g_fw_fl, g_sec_fl;
 static fls_dev_t g_skill_dev, g_fw_dev, g_sec_dev;
-static uint8_t g_pool[SEC_SHA256_LEN]; /* random: SHA-256 chain over the seed */
-static uint32_t g_pool_counter;
+/* random: AES-128 in counter mode (the shape of SP 800-90A's CTR_DRBG) keyed from the seed */
+static uint8_t g_pool[SEC_SHA256_LEN]; /* SHA-256 of the seed: key (16 bytes), counter (16) */
+static sec_aes128_t g_drbg;
 
 /* development key of the image tag (host/forceskill/model/fwimage.py DEV_KEY, docs/update.md) */
 static const uint8_t g_fw_key[32] = {
@@ -114,6 +116,7 @@ void cm_port_init(const uint8_t *seed, uint32_t seed_len)
                        CM_FLASH_FW_SECTORS);
     boot_cm_flash_init(&g_sec_fl, &g_sec_dev, CM_FLASH_SEC_ADDR, CM_FLASH_SEC_SECTOR, 2u);
     sec_sha256(seed, seed_len, g_pool);
+    sec_aes128_init(&g_drbg, g_pool);
 }
 
 void cm_port_start_ticks(bool pace)
@@ -286,20 +289,25 @@ uint64_t hal_time_us(void)
 
 int hal_random(uint8_t *buf, uint32_t len)
 {
-    /* the board has no entropy source: a SHA-256 chain over the seed `hil_sim pil` passes at
-     * start (from the host's getrandom) and the SysTick phase of each call */
+    /* the board has no entropy source: AES-128 of a 128-bit counter under the key drawn from the
+     * seed `hil_sim pil` passes at start (from the host's getrandom), the SysTick phase of each
+     * call mixed into the counter; ~700 instructions a 16-byte block (a SHA-256 chain cost
+     * ~10,000 a call, above the tick budget) */
+    uint8_t *ctr = &g_pool[SEC_AES128_KEY_LEN];
+    const uint32_t phase = CM_SYST_CVR;
+    for (uint32_t i = 0u; i < 4u; i++) {
+        ctr[i] ^= (uint8_t)(phase >> (8u * i));
+    }
     uint32_t done = 0u;
     while (done < len) {
-        uint8_t in[SEC_SHA256_LEN + 8u];
-        memcpy(in, g_pool, SEC_SHA256_LEN);
-        const uint32_t mix[2] = {g_pool_counter++, CM_SYST_CVR};
-        memcpy(&in[SEC_SHA256_LEN], mix, sizeof mix);
-        uint8_t out[SEC_SHA256_LEN];
-        sec_sha256(in, (uint32_t)sizeof in, out);
-        memcpy(g_pool, out, SEC_SHA256_LEN);
-        out[0] ^= 0x5Au; /* output differs from the next chain input */
-        sec_sha256(out, SEC_SHA256_LEN, out);
-        const uint32_t n = (len - done < SEC_SHA256_LEN) ? len - done : SEC_SHA256_LEN;
+        for (uint32_t i = SEC_AES_BLOCK; i-- > 4u;) { /* bytes 4..15: a counter, +1 a block */
+            if (++ctr[i] != 0u) {
+                break;
+            }
+        }
+        uint8_t out[SEC_AES_BLOCK];
+        sec_aes128_encrypt(&g_drbg, ctr, out);
+        const uint32_t n = (len - done < SEC_AES_BLOCK) ? len - done : SEC_AES_BLOCK;
         memcpy(&buf[done], out, n);
         done += n;
     }

@@ -707,3 +707,126 @@ uint16_t fs_wire_erase_slot_pack(const fs_wire_erase_slot_t *v, uint8_t *out, ui
     put_be(&out[0u], v->slot, 1u);
     return (uint16_t)n;
 }
+
+static int motion_key_in_range(const fs_wire_motion_key_t *v)
+{
+    return v->keyed <= 1u;
+}
+
+proto_status_t fs_wire_motion_key_unpack(fs_wire_motion_key_t *v, const uint8_t *d, uint16_t len)
+{
+    if (len != FS_WIRE_MOTION_KEY_LEN) {
+        return PROTO_ERR_WIRE_LENGTH;
+    }
+    fs_wire_motion_key_t t;
+    memset(&t, 0, sizeof(t));
+    t.nonce_0 = (uint32_t)get_be(&d[0u], 4u);
+    t.nonce_1 = (uint32_t)get_be(&d[4u], 4u);
+    t.nonce_2 = (uint32_t)get_be(&d[8u], 4u);
+    t.nonce_3 = (uint32_t)get_be(&d[12u], 4u);
+    t.keyed = (uint8_t)get_be(&d[16u], 1u);
+    if (!motion_key_in_range(&t)) {
+        return PROTO_ERR_WIRE_RANGE;
+    }
+    *v = t;
+    return PROTO_OK;
+}
+
+uint16_t fs_wire_motion_key_pack(const fs_wire_motion_key_t *v, uint8_t *out, uint16_t cap)
+{
+    const unsigned n = 17u;
+    if (!motion_key_in_range(v) || n > cap) {
+        return 0u;
+    }
+    put_be(&out[0u], v->nonce_0, 4u);
+    put_be(&out[4u], v->nonce_1, 4u);
+    put_be(&out[8u], v->nonce_2, 4u);
+    put_be(&out[12u], v->nonce_3, 4u);
+    put_be(&out[16u], v->keyed, 1u);
+    return (uint16_t)n;
+}
+
+static int motion_key_write_in_range(const fs_wire_motion_key_write_t *v)
+{
+    (void)v;
+    return 1;
+}
+
+proto_status_t fs_wire_motion_key_write_unpack(fs_wire_motion_key_write_t *v, const uint8_t *d, uint16_t len)
+{
+    if (len != FS_WIRE_MOTION_KEY_WRITE_LEN) {
+        return PROTO_ERR_WIRE_LENGTH;
+    }
+    fs_wire_motion_key_write_t t;
+    memset(&t, 0, sizeof(t));
+    t.nonce_0 = (uint32_t)get_be(&d[0u], 4u);
+    t.nonce_1 = (uint32_t)get_be(&d[4u], 4u);
+    t.nonce_2 = (uint32_t)get_be(&d[8u], 4u);
+    t.nonce_3 = (uint32_t)get_be(&d[12u], 4u);
+    if (!motion_key_write_in_range(&t)) {
+        return PROTO_ERR_WIRE_RANGE;
+    }
+    *v = t;
+    return PROTO_OK;
+}
+
+uint16_t fs_wire_motion_key_write_pack(const fs_wire_motion_key_write_t *v, uint8_t *out, uint16_t cap)
+{
+    const unsigned n = 16u;
+    if (!motion_key_write_in_range(v) || n > cap) {
+        return 0u;
+    }
+    put_be(&out[0u], v->nonce_0, 4u);
+    put_be(&out[4u], v->nonce_1, 4u);
+    put_be(&out[8u], v->nonce_2, 4u);
+    put_be(&out[12u], v->nonce_3, 4u);
+    return (uint16_t)n;
+}
+
+static int auth_stats_in_range(const fs_wire_auth_stats_t *v)
+{
+    return v->keyed <= 1u;
+}
+
+proto_status_t fs_wire_auth_stats_unpack(fs_wire_auth_stats_t *v, const uint8_t *d, uint16_t len)
+{
+    if (len != FS_WIRE_AUTH_STATS_LEN) {
+        return PROTO_ERR_WIRE_LENGTH;
+    }
+    fs_wire_auth_stats_t t;
+    memset(&t, 0, sizeof(t));
+    t.accepted = (uint32_t)get_be(&d[0u], 4u);
+    t.wrong_mac = (uint32_t)get_be(&d[4u], 4u);
+    t.replayed = (uint32_t)get_be(&d[8u], 4u);
+    t.no_key = (uint32_t)get_be(&d[12u], 4u);
+    t.discarded = (uint32_t)get_be(&d[16u], 4u);
+    t.last_refusal = (uint16_t)get_be(&d[20u], 2u);
+    t.keyed = (uint8_t)get_be(&d[22u], 1u);
+    t.fv_command = (uint32_t)get_be(&d[23u], 4u);
+    t.fv_heartbeat = (uint32_t)get_be(&d[27u], 4u);
+    t.foreign_writes = (uint32_t)get_be(&d[31u], 4u);
+    if (!auth_stats_in_range(&t)) {
+        return PROTO_ERR_WIRE_RANGE;
+    }
+    *v = t;
+    return PROTO_OK;
+}
+
+uint16_t fs_wire_auth_stats_pack(const fs_wire_auth_stats_t *v, uint8_t *out, uint16_t cap)
+{
+    const unsigned n = 35u;
+    if (!auth_stats_in_range(v) || n > cap) {
+        return 0u;
+    }
+    put_be(&out[0u], v->accepted, 4u);
+    put_be(&out[4u], v->wrong_mac, 4u);
+    put_be(&out[8u], v->replayed, 4u);
+    put_be(&out[12u], v->no_key, 4u);
+    put_be(&out[16u], v->discarded, 4u);
+    put_be(&out[20u], v->last_refusal, 2u);
+    put_be(&out[22u], v->keyed, 1u);
+    put_be(&out[23u], v->fv_command, 4u);
+    put_be(&out[27u], v->fv_heartbeat, 4u);
+    put_be(&out[31u], v->foreign_writes, 4u);
+    return (uint16_t)n;
+}

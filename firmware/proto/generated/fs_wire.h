@@ -14,7 +14,7 @@
 #define FS_WIRE_REAL(T, count) ((T)(count) * (T)FS_WIRE_SCALE)
 
 /* The records, for code that handles each the same way: X(name) per record. */
-#define FS_WIRE_RECORDS(X) X(versions) X(gains) X(limits) X(comm) X(object) X(stiffness_max) X(slot_entry) X(slot_dir) X(last_transfer) X(device_state) X(fault_causes) X(run_skill) X(run_step) X(run_sequence) X(run_results) X(self_test) X(erase_slot)
+#define FS_WIRE_RECORDS(X) X(versions) X(gains) X(limits) X(comm) X(object) X(stiffness_max) X(slot_entry) X(slot_dir) X(last_transfer) X(device_state) X(fault_causes) X(run_skill) X(run_step) X(run_sequence) X(run_results) X(self_test) X(erase_slot) X(motion_key) X(motion_key_write) X(auth_stats)
 
 #define FS_WIRE_VERSIONS_LEN 6u
 /** DID_VERSIONS: protocol and format versions. */
@@ -234,5 +234,51 @@ typedef struct {
 proto_status_t fs_wire_erase_slot_unpack(fs_wire_erase_slot_t *v, const uint8_t *d, uint16_t len);
 /** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */
 uint16_t fs_wire_erase_slot_pack(const fs_wire_erase_slot_t *v, uint8_t *out, uint16_t cap);
+
+#define FS_WIRE_MOTION_KEY_LEN 17u
+/** DID_MOTION_KEY read: the device nonce of the motion key in use (16 bytes as four big-endian words, zeros before any) and whether a key is established. */
+typedef struct {
+    uint32_t nonce_0;
+    uint32_t nonce_1;
+    uint32_t nonce_2;
+    uint32_t nonce_3;
+    uint8_t keyed;
+} fs_wire_motion_key_t;
+/** Unpack len bytes: PROTO_OK, PROTO_ERR_WIRE_LENGTH or PROTO_ERR_WIRE_RANGE (v unchanged). */
+proto_status_t fs_wire_motion_key_unpack(fs_wire_motion_key_t *v, const uint8_t *d, uint16_t len);
+/** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */
+uint16_t fs_wire_motion_key_pack(const fs_wire_motion_key_t *v, uint8_t *out, uint16_t cap);
+
+#define FS_WIRE_MOTION_KEY_WRITE_LEN 16u
+/** DID_MOTION_KEY write: the host nonce of a new host session (16 bytes as four big-endian words). */
+typedef struct {
+    uint32_t nonce_0;
+    uint32_t nonce_1;
+    uint32_t nonce_2;
+    uint32_t nonce_3;
+} fs_wire_motion_key_write_t;
+/** Unpack len bytes: PROTO_OK, PROTO_ERR_WIRE_LENGTH or PROTO_ERR_WIRE_RANGE (v unchanged). */
+proto_status_t fs_wire_motion_key_write_unpack(fs_wire_motion_key_write_t *v, const uint8_t *d, uint16_t len);
+/** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */
+uint16_t fs_wire_motion_key_write_pack(const fs_wire_motion_key_write_t *v, uint8_t *out, uint16_t cap);
+
+#define FS_WIRE_AUTH_STATS_LEN 35u
+/** DID_AUTH_STATS: authenticated host frames accepted and refused, the last refusal's code, the freshness values last accepted, UDS writes refused because the other tester owns the session. */
+typedef struct {
+    uint32_t accepted;
+    uint32_t wrong_mac;
+    uint32_t replayed;
+    uint32_t no_key;
+    uint32_t discarded;
+    uint16_t last_refusal;
+    uint8_t keyed;
+    uint32_t fv_command;
+    uint32_t fv_heartbeat;
+    uint32_t foreign_writes;
+} fs_wire_auth_stats_t;
+/** Unpack len bytes: PROTO_OK, PROTO_ERR_WIRE_LENGTH or PROTO_ERR_WIRE_RANGE (v unchanged). */
+proto_status_t fs_wire_auth_stats_unpack(fs_wire_auth_stats_t *v, const uint8_t *d, uint16_t len);
+/** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */
+uint16_t fs_wire_auth_stats_pack(const fs_wire_auth_stats_t *v, uint8_t *out, uint16_t cap);
 
 #endif /* FS_WIRE_H */

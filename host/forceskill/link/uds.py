@@ -105,12 +105,13 @@ DID_CODECS = {
     DID_DEVICE_STATE: Raw(W.DeviceState.SIZE),
     DID_FAULT_CAUSES: Raw(W.FaultCauses.SIZE),
     DID_STIFFNESS_MAX: Raw(W.StiffnessMax.SIZE),
-    DID_MOTION_KEY: Raw(17),  # device nonce (16) + keyed flag
-    DID_AUTH_STATS: Raw(31),
+    DID_MOTION_KEY: Raw(W.MotionKey.SIZE),  # the write: W.MotionKeyWrite.SIZE bytes, passed as they are
+    DID_AUTH_STATS: Raw(W.AuthStats.SIZE),
 }
 
-#: The protocol major version this host speaks (DID 0xF1A0 byte 0): 2 = authenticated motion.
-PROTO_MAJOR = 2
+#: The protocol major version this host speaks (DID 0xF1A0 byte 0): 3 = motion authenticated
+#: by AES-CMAC (2 was HMAC-SHA256).
+PROTO_MAJOR = 3
 SESSION_EXTENDED = 0x03
 
 
@@ -178,7 +179,8 @@ def open_client(
     SecurityAccess keys use secret, or the requested level's device_secret(level) when it is None; dids maps data identifiers
     to codecs (default: the application's); timeout_s bounds every request (server timing ignored:
     a 4 KiB request takes longer than the server's P2 to cross a slow or simulated bus), and
-    pending_timeout_s (default timeout_s) each wait after a "response pending" (NRC 0x78)."""
+    pending_timeout_s (default timeout_s) each wait after a "response pending" (NRC 0x78), and then
+    the whole request."""
     addr = isotp.Address(
         isotp.AddressingMode.Normal_11bits, txid=UDS_REQUEST_BASE + node, rxid=UDS_RESPONSE_BASE + node
     )
@@ -193,7 +195,7 @@ def open_client(
         {
             "security_algo": algo,
             "data_identifiers": DID_CODECS if dids is None else dids,
-            "request_timeout": timeout_s,
+            "request_timeout": timeout_s if pending_timeout_s is None else max(timeout_s, pending_timeout_s),
             "p2_timeout": timeout_s,
             "p2_star_timeout": timeout_s if pending_timeout_s is None else pending_timeout_s,
             "use_server_timing": False,
@@ -206,10 +208,15 @@ def open_client(
 
 
 @contextmanager
-def uds_client(dev: Device, request_timeout_s: float = 5.0) -> Iterator[Client]:
-    """A connected udsoncan Client for dev (whose Notifier must be running)."""
+def uds_client(
+    dev: Device, request_timeout_s: float = 5.0, pending_timeout_s: float | None = None
+) -> Iterator[Client]:
+    """A connected udsoncan Client for dev (whose Notifier must be running); timeouts as
+    open_client's."""
     assert dev.notifier is not None
-    with open_client(dev.bus, dev.notifier, dev.node, timeout_s=request_timeout_s) as client:
+    with open_client(
+        dev.bus, dev.notifier, dev.node, timeout_s=request_timeout_s, pending_timeout_s=pending_timeout_s
+    ) as client:
         yield client
 
 
@@ -305,22 +312,26 @@ def motion_session(client: Client, dev: Device, tries: int = 10) -> None:
     def establish(client: Client) -> None:
         _again(lambda: unlock(client, node, SESSION_EXTENDED, on_nrc=refused), tries)
         host_nonce = os.urandom(16)
+        payload = W.MotionKeyWrite(*struct.unpack(">4I", host_nonce)).pack()
         _again(
             lambda: call(
                 "write 0x0302",
-                lambda: client.write_data_by_identifier(DID_MOTION_KEY, host_nonce),
+                lambda: client.write_data_by_identifier(DID_MOTION_KEY, payload),
                 node,
                 on_nrc=refused,
             ),
             tries,
         )
-        r = _again(lambda: read_did(client, DID_MOTION_KEY, node), tries)
-        if r[16] != 1:
+        mk = W.MotionKey.unpack(_again(lambda: read_did(client, DID_MOTION_KEY, node), tries))
+        if mk.keyed != 1:
             raise FsError(ERR_LINK_AUTH, f"node {node} did not establish the motion key")
-        dev.set_session(derive_motion_key(device_secret(SEC_LEVEL_WRITE), r[:16], host_nonce))
+        dev_nonce = struct.pack(">4I", mk.nonce_0, mk.nonce_1, mk.nonce_2, mk.nonce_3)
+        dev.set_session(derive_motion_key(device_secret(SEC_LEVEL_WRITE), dev_nonce, host_nonce))
 
     def resync() -> None:
-        with uds_client(dev, request_timeout_s=2.0) as c:
+        # a lost request is sent again after 2 s; the key check and derivation answer 0x78 and
+        # take 32 device ticks each (longer than 2 s of a traced qemu image)
+        with uds_client(dev, request_timeout_s=2.0, pending_timeout_s=30.0) as c:
             establish(c)
 
     establish(client)

@@ -24,7 +24,7 @@ MODES = {"none": 0, "idle": 1, "teach": 2, "execute": 3, "clear_fault": 4, "run_
 #: The frames that carry a MAC and a freshness value, each its own channel (docs/protocol.md).
 AUTH_FRAMES = ("HostCommand", "HostHeartbeat")
 #: The label of the motion key's derivation (firmware/security/secoc.h SECOC_LABEL).
-SECOC_LABEL = b"forceskill secoc v1"
+SECOC_LABEL = b"forceskill secoc v3"
 MAC_LEN = 3
 END_POLICIES = {"skill": 0, "hold": 1, "release": 2}
 
@@ -85,21 +85,21 @@ def protect(frame_id: int, data: bytes, counter: int) -> bytes:
 
 
 def derive_motion_key(secret: bytes, dev_nonce: bytes, host_nonce: bytes) -> bytes:
-    """The session's motion key: HMAC-SHA256(level-1 secret, label || device || host nonce)."""
+    """The session's motion key (AES-128): the first 16 bytes of HMAC-SHA256(level-1 secret,
+    label || device nonce || host nonce)."""
     import hashlib
     import hmac
 
-    return hmac.new(secret, SECOC_LABEL + dev_nonce + host_nonce, hashlib.sha256).digest()
+    return hmac.new(secret, SECOC_LABEL + dev_nonce + host_nonce, hashlib.sha256).digest()[:16]
 
 
 def frame_mac(key: bytes, frame_id: int, data: bytes | bytearray, fv: int) -> bytes:
-    """The 24-bit MAC of an authenticated frame: HMAC-SHA256(key, id low, id high, data bytes
+    """The 24-bit MAC of an authenticated frame: AES-128-CMAC(key, id low, id high, data bytes
     0..2, freshness value u32 big-endian), first 3 bytes."""
-    import hashlib
-    import hmac
+    from .aes_cmac import cmac
 
     msg = bytes([frame_id & 0xFF, (frame_id >> 8) & 0x07]) + bytes(data[:3]) + fv.to_bytes(4, "big")
-    return hmac.new(key, msg, hashlib.sha256).digest()[:MAC_LEN]
+    return cmac(key, msg)[:MAC_LEN]
 
 
 def authenticate(frame_id: int, data: bytes, fv: int, key: bytes) -> bytes:

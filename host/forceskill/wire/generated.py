@@ -715,6 +715,137 @@ class EraseSlot:
         return v
 
 
+_MOTION_KEY = struct.Struct('>IIIIB')
+
+
+@dataclass(frozen=True)
+class MotionKey:
+    """DID_MOTION_KEY read: the device nonce of the motion key in use (16 bytes as four big-endian words, zeros before any) and whether a key is established."""
+
+    SIZE: ClassVar[int] = 17  # bytes of the fields always present
+    nonce_0: int
+    nonce_1: int
+    nonce_2: int
+    nonce_3: int
+    keyed: int
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('motion_key', 'nonce_0', 0 <= self.nonce_0 <= 4294967295, self.nonce_0)
+        _in_range('motion_key', 'nonce_1', 0 <= self.nonce_1 <= 4294967295, self.nonce_1)
+        _in_range('motion_key', 'nonce_2', 0 <= self.nonce_2 <= 4294967295, self.nonce_2)
+        _in_range('motion_key', 'nonce_3', 0 <= self.nonce_3 <= 4294967295, self.nonce_3)
+        _in_range('motion_key', 'keyed', 0 <= self.keyed <= 1, self.keyed)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _MOTION_KEY.pack(self.nonce_0, self.nonce_1, self.nonce_2, self.nonce_3, self.keyed)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> MotionKey:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _MOTION_KEY.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'motion_key: {len(data)} bytes, not {n}')
+        raw = _MOTION_KEY.unpack(data[:n])
+        v = cls(raw[0], raw[1], raw[2], raw[3], raw[4])
+        v.check()
+        return v
+
+
+_MOTION_KEY_WRITE = struct.Struct('>IIII')
+
+
+@dataclass(frozen=True)
+class MotionKeyWrite:
+    """DID_MOTION_KEY write: the host nonce of a new host session (16 bytes as four big-endian words)."""
+
+    SIZE: ClassVar[int] = 16  # bytes of the fields always present
+    nonce_0: int
+    nonce_1: int
+    nonce_2: int
+    nonce_3: int
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('motion_key_write', 'nonce_0', 0 <= self.nonce_0 <= 4294967295, self.nonce_0)
+        _in_range('motion_key_write', 'nonce_1', 0 <= self.nonce_1 <= 4294967295, self.nonce_1)
+        _in_range('motion_key_write', 'nonce_2', 0 <= self.nonce_2 <= 4294967295, self.nonce_2)
+        _in_range('motion_key_write', 'nonce_3', 0 <= self.nonce_3 <= 4294967295, self.nonce_3)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _MOTION_KEY_WRITE.pack(self.nonce_0, self.nonce_1, self.nonce_2, self.nonce_3)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> MotionKeyWrite:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _MOTION_KEY_WRITE.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'motion_key_write: {len(data)} bytes, not {n}')
+        raw = _MOTION_KEY_WRITE.unpack(data[:n])
+        v = cls(raw[0], raw[1], raw[2], raw[3])
+        v.check()
+        return v
+
+
+_AUTH_STATS = struct.Struct('>IIIIIHBIII')
+
+
+@dataclass(frozen=True)
+class AuthStats:
+    """DID_AUTH_STATS: authenticated host frames accepted and refused, the last refusal's code, the freshness values last accepted, UDS writes refused because the other tester owns the session."""
+
+    SIZE: ClassVar[int] = 35  # bytes of the fields always present
+    accepted: int
+    wrong_mac: int
+    replayed: int
+    no_key: int
+    discarded: int
+    last_refusal: int
+    keyed: int
+    fv_command: int
+    fv_heartbeat: int
+    foreign_writes: int
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('auth_stats', 'accepted', 0 <= self.accepted <= 4294967295, self.accepted)
+        _in_range('auth_stats', 'wrong_mac', 0 <= self.wrong_mac <= 4294967295, self.wrong_mac)
+        _in_range('auth_stats', 'replayed', 0 <= self.replayed <= 4294967295, self.replayed)
+        _in_range('auth_stats', 'no_key', 0 <= self.no_key <= 4294967295, self.no_key)
+        _in_range('auth_stats', 'discarded', 0 <= self.discarded <= 4294967295, self.discarded)
+        _in_range('auth_stats', 'last_refusal', 0 <= self.last_refusal <= 65535, self.last_refusal)
+        _in_range('auth_stats', 'keyed', 0 <= self.keyed <= 1, self.keyed)
+        _in_range('auth_stats', 'fv_command', 0 <= self.fv_command <= 4294967295, self.fv_command)
+        _in_range('auth_stats', 'fv_heartbeat', 0 <= self.fv_heartbeat <= 4294967295, self.fv_heartbeat)
+        _in_range('auth_stats', 'foreign_writes', 0 <= self.foreign_writes <= 4294967295, self.foreign_writes)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _AUTH_STATS.pack(self.accepted, self.wrong_mac, self.replayed, self.no_key, self.discarded, self.last_refusal, self.keyed, self.fv_command, self.fv_heartbeat, self.foreign_writes)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> AuthStats:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _AUTH_STATS.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'auth_stats: {len(data)} bytes, not {n}')
+        raw = _AUTH_STATS.unpack(data[:n])
+        v = cls(raw[0], raw[1], raw[2], raw[3], raw[4], raw[5], raw[6], raw[7], raw[8], raw[9])
+        v.check()
+        return v
+
+
 __all__ = [
     'SCALE',
     'SCALE_STEPS',
@@ -752,4 +883,7 @@ __all__ = [
     'RunResults',
     'SelfTest',
     'EraseSlot',
+    'MotionKey',
+    'MotionKeyWrite',
+    'AuthStats',
 ]

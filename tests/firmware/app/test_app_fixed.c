@@ -68,10 +68,10 @@ static void start_press(void)
     assert_int_equal(app.state, APP_IDLE);
     const uint32_t len = tv_read("press_n50_lwr_hold.skill", image, sizeof image);
     assert_true(len > 0u);
-    assert_int_equal(skill_parse(image, len, &app.slot_skill[0]), FS_OK);
-    app.slot_valid[0] = true;
-    app.slot_peak_N[0] = 4.84f;
-    app.slot_path_m[0] = 0.0f;
+    assert_int_equal(skill_parse(image, len, &app.slots.skill[0]), FS_OK);
+    app.slots.valid[0] = true;
+    app.slots.peak_N[0] = 4.84f;
+    app.slots.path_m[0] = 0.0f;
     app_run_request_t req;
     memset(&req, 0, sizeof req);
     req.source = APP_RUN_FROM_LOCAL;

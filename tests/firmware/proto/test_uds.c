@@ -22,6 +22,10 @@ typedef struct {
     uint16_t written_len;
     uint8_t routine_sub;
     uint16_t routine_rid;
+    unsigned resume_left; /* resume: calls still answered 0x78 */
+    uint8_t resume_nrc;   /* then this */
+    uint8_t resume_sid;
+    uint16_t resume_arg;
 } fake_t;
 
 static fake_t fk;
@@ -86,6 +90,17 @@ static uint8_t f_key(void *ctx, uint8_t level, const uint8_t *key, uint16_t len)
     }
     return UDS_NRC_OK;
 }
+static uint8_t f_resume(void *ctx, uint8_t sid, uint16_t arg)
+{
+    (void)ctx;
+    fk.resume_sid = sid;
+    fk.resume_arg = arg;
+    if (fk.resume_left > 0u) {
+        fk.resume_left--;
+        return UDS_NRC_RESPONSE_PENDING;
+    }
+    return fk.resume_nrc;
+}
 static uint8_t f_dl_begin(void *ctx, uint32_t addr, uint32_t size)
 {
     (void)ctx;
@@ -135,7 +150,7 @@ static int setup(void **state)
         .session_allowed = f_session, .ecu_reset = f_reset, .reset_now = f_reset_now,
         .security_seed = f_seed, .security_key = f_key, .download_begin = f_dl_begin,
         .download_data = f_dl_data, .download_end = f_dl_end, .transfer_abort = f_abort,
-        .upload_begin = f_ul_begin, .upload_data = f_ul_data};
+        .upload_begin = f_ul_begin, .upload_data = f_ul_data, .resume = f_resume};
     uds_server_init(&srv, &app);
     return 0;
 }
@@ -480,6 +495,55 @@ static void test_transfer_exit_pending(void **state)
     assert_int_equal(uds_server_resume(&srv, resp, (uint16_t)sizeof(resp), 20u), 0);
 }
 
+/* A sendKey or a DID write whose hook answers 0x78: 7F SID 78 at once, other requests 0x21
+ * meanwhile, the resume hook asked each call with the level or DID, then the final response
+ * (the level unlocked only then; a refusal's NRC as the final answer). */
+static void test_security_and_write_pending(void **state)
+{
+    (void)state;
+    uint16_t n;
+    REQ(0x10, 0x03);
+    REQ(0x27, 0x01);
+    uint8_t key[6] = {0x27, 0x02};
+    for (int i = 0; i < 4; i++) key[2 + i] = (uint8_t)(resp[2 + i] ^ 0xFFu);
+    fk.key_nrc = UDS_NRC_RESPONSE_PENDING;
+    fk.resume_left = 2u;
+    fk.resume_nrc = UDS_NRC_OK;
+    n = req(key, 6);
+    EXPECT_NRC(0x27, UDS_NRC_RESPONSE_PENDING);
+    assert_int_equal(srv.unlocked_level, 0);
+    REQ(0x22, 0x01, 0x00);
+    EXPECT_NRC(0x22, UDS_NRC_BUSY_REPEAT_REQUEST);
+    assert_int_equal(uds_server_resume(&srv, resp, (uint16_t)sizeof resp, 1), 0);
+    assert_int_equal(fk.resume_sid, 0x27);
+    assert_int_equal(fk.resume_arg, 1);
+    assert_int_equal(uds_server_resume(&srv, resp, (uint16_t)sizeof resp, 2), 0);
+    assert_int_equal(srv.unlocked_level, 0);
+    n = uds_server_resume(&srv, resp, (uint16_t)sizeof resp, 3);
+    assert_int_equal(n, 2);
+    assert_int_equal(resp[0], 0x67);
+    assert_int_equal(resp[1], 0x02);
+    assert_int_equal(srv.unlocked_level, 1);
+    assert_int_equal(srv.pending_sid, 0);
+    /* a DID write answered 0x78, refused at the end */
+    fk.did_nrc = UDS_NRC_RESPONSE_PENDING;
+    fk.resume_left = 0u;
+    fk.resume_nrc = UDS_NRC_CONDITIONS_NOT_CORRECT;
+    REQ(0x2E, 0x03, 0x02, 0xAA);
+    EXPECT_NRC(0x2E, UDS_NRC_RESPONSE_PENDING);
+    n = uds_server_resume(&srv, resp, (uint16_t)sizeof resp, 4);
+    EXPECT_NRC(0x2E, UDS_NRC_CONDITIONS_NOT_CORRECT);
+    assert_int_equal(fk.resume_arg, 0x0302);
+    /* accepted at the end: 6E DID */
+    fk.resume_nrc = UDS_NRC_OK;
+    REQ(0x2E, 0x03, 0x02, 0xAA);
+    n = uds_server_resume(&srv, resp, (uint16_t)sizeof resp, 5);
+    assert_int_equal(n, 3);
+    assert_int_equal(resp[0], 0x6E);
+    assert_int_equal(resp[1], 0x03);
+    assert_int_equal(resp[2], 0x02);
+}
+
 static void test_block_counter_wraps(void **state)
 {
     (void)state;
@@ -528,6 +592,7 @@ int main(void)
         cmocka_unit_test_setup(test_write_did, setup),
         cmocka_unit_test_setup(test_routine_control, setup),
         cmocka_unit_test_setup(test_download_upload, setup),
+        cmocka_unit_test_setup(test_security_and_write_pending, setup),
         cmocka_unit_test_setup(test_block_counter_wraps, setup),
         cmocka_unit_test_setup(test_tester_present, setup),
         cmocka_unit_test_setup(test_transfer_exit_pending, setup),

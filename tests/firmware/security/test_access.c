@@ -97,6 +97,49 @@ static void test_unlock_flow(void **state)
     assert_false(sec_is_unlocked(&st));
 }
 
+/* sendKey in slices (sec_send_key_begin/run, the device's 0x78 path): pending until the four
+ * compressions are done, then the same answers as sec_send_key; the attempt is counted as a
+ * wrong key from its begin until a correct key's check ends, and a relock drops the check. */
+static void test_sliced_send_key(void **state)
+{
+    (void)state;
+    sec_config_t cfg;
+    setup_cfg(&cfg);
+    sec_state_t st;
+    sec_init(&cfg, &st, 0);
+    uint8_t seed[SEC_SEED_LEN], key[SEC_KEY_LEN];
+    assert_int_equal(sec_request_seed(&cfg, &st, 1000, seed), SEC_NRC_NONE);
+    sec_compute_key(&cfg, seed, key);
+    assert_int_equal(sec_send_key_begin(&cfg, &st, key, SEC_KEY_LEN), SEC_NRC_PENDING);
+    assert_int_equal(st.failed, 1u);
+    unsigned calls = 1u;
+    while (sec_send_key_run(&cfg, &st, 1001, 8u) == SEC_NRC_PENDING) {
+        calls++;
+        assert_false(sec_is_unlocked(&st));
+    }
+    assert_true(sec_is_unlocked(&st));
+    assert_int_equal(st.failed, 0u);
+    assert_int_equal(calls, 32u); /* 4 x 64 rounds, 8 a call */
+    assert_int_equal(sec_send_key_run(&cfg, &st, 1002, 8u), SEC_NRC_SEQUENCE_ERROR);
+    /* a wrong key: counted at the begin, delay after the check */
+    sec_lock(&st);
+    assert_int_equal(sec_request_seed(&cfg, &st, 1003, seed), SEC_NRC_NONE);
+    key[0] ^= 1u;
+    assert_int_equal(sec_send_key_begin(&cfg, &st, key, SEC_KEY_LEN), SEC_NRC_PENDING);
+    assert_int_equal(sec_send_key_run(&cfg, &st, 1004, UINT32_MAX), SEC_NRC_INVALID_KEY);
+    assert_int_equal(st.failed, 1u);
+    assert_int_equal(sec_request_seed(&cfg, &st, 1005, seed), SEC_NRC_DELAY_NOT_EXPIRED);
+    /* a relock while the check runs: dropped, still counted */
+    assert_int_equal(sec_request_seed(&cfg, &st, 2004, seed), SEC_NRC_NONE);
+    sec_compute_key(&cfg, seed, key);
+    assert_int_equal(sec_send_key_begin(&cfg, &st, key, SEC_KEY_LEN), SEC_NRC_PENDING);
+    assert_int_equal(sec_send_key_run(&cfg, &st, 2005, 8u), SEC_NRC_PENDING);
+    sec_lock(&st);
+    assert_int_equal(sec_send_key_run(&cfg, &st, 2006, UINT32_MAX), SEC_NRC_SEQUENCE_ERROR);
+    assert_false(sec_is_unlocked(&st));
+    assert_int_equal(st.failed, 2u);
+}
+
 static void test_sequence_and_length(void **state)
 {
     (void)state;
@@ -243,6 +286,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_key_matches_independent_hmac),
         cmocka_unit_test(test_unlock_flow),
+        cmocka_unit_test(test_sliced_send_key),
         cmocka_unit_test(test_sequence_and_length),
         cmocka_unit_test(test_every_bit_flip_rejected),
         cmocka_unit_test(test_delay_and_lockout),

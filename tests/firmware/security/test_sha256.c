@@ -200,6 +200,36 @@ static void test_rfc4231_all_cases(void **state)
     }
 }
 
+/* The HMAC in slices (sec_hmac_job, the device's SecurityAccess check and motion key) equals the
+ * one-shot HMAC for keys of 0..64 bytes and messages of 0..64 bytes, at 1, 7, 64 and unbounded
+ * rounds a call. */
+static void test_hmac_job_equals_one_shot(void **state)
+{
+    (void)state;
+    static const uint32_t budgets[4] = {1u, 7u, 64u, UINT32_MAX};
+    uint8_t key[64], msg[64], want[SEC_SHA256_LEN], got[SEC_SHA256_LEN];
+    for (uint32_t i = 0; i < 64u; i++) {
+        key[i] = (uint8_t)(0x5Au ^ (i * 7u));
+        msg[i] = (uint8_t)(i * 13u + 1u);
+    }
+    static sec_hmac_job_t job;
+    for (uint32_t kl = 0; kl <= 64u; kl += 16u) {
+        for (uint32_t ml = 0; ml <= 64u; ml++) {
+            sec_hmac_sha256(key, kl, msg, ml, want);
+            for (unsigned b = 0; b < 4u; b++) {
+                assert_true(sec_hmac_job_begin(&job, key, kl, msg, ml));
+                unsigned calls = 0u;
+                while (!sec_hmac_job_run(&job, budgets[b], got)) {
+                    assert_true(++calls < 2000u);
+                }
+                assert_memory_equal(got, want, SEC_SHA256_LEN);
+            }
+        }
+    }
+    assert_false(sec_hmac_job_begin(&job, key, 65u, msg, 1u));
+    assert_false(sec_hmac_job_begin(&job, key, 16u, msg, 65u));
+}
+
 static void test_ct_equal(void **state)
 {
     (void)state;
@@ -228,6 +258,7 @@ int main(void)
         cmocka_unit_test(test_padding_boundaries),
         cmocka_unit_test(test_feed_in_slices_equals_one_shot),
         cmocka_unit_test(test_rfc4231_all_cases),
+        cmocka_unit_test(test_hmac_job_equals_one_shot),
         cmocka_unit_test(test_ct_equal),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

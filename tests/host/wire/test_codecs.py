@@ -32,6 +32,9 @@ CLASSES = {
     "run_results": W.RunResults,
     "self_test": W.SelfTest,
     "erase_slot": W.EraseSlot,
+    "motion_key": W.MotionKey,
+    "motion_key_write": W.MotionKeyWrite,
+    "auth_stats": W.AuthStats,
 }
 HOST_CODE = {418: ERR_WIRE_LENGTH, 419: ERR_WIRE_RANGE}
 

@@ -1,0 +1,16 @@
+/* `hil_sim powercut`: on the lockstep rig (fault_rig.h, the full device on the host port), one run
+ * per flash erase/program of (a) a skill download into slot 1 over UDS and (b) a firmware update
+ * (level 3, RequestDownload of the image into the inactive slot, mark-test, ECUReset, the test
+ * boot's self-test and confirmation): the power is cut just after operation i (every later
+ * operation fails, changing nothing: hal_host_flash_cut_after), then comes back and the device
+ * boots. Checked each time: the old or the new skill / firmware, complete (CRC and parse; hash and
+ * tag), the other slot and the regions not written untouched (hashes), the boot state confirmed
+ * with at most one test boot, the SecurityAccess record (wrong-key counter) as it was. Prints the
+ * count of cut points and the outcome table (docs/safety.md); exit 1 on any bad outcome. */
+#ifndef FAULT_POWERCUT_H
+#define FAULT_POWERCUT_H
+
+/** Entry point of the subcommand (argv without "hil_sim powercut"). */
+int powercut_cmd(int argc, char **argv);
+
+#endif /* FAULT_POWERCUT_H */
