@@ -27,16 +27,16 @@ static void check_one(const uint8_t *data, size_t size)
             abort();
         }
         for (uint16_t i = 0; i < n; i++) {
-            if (!fs_isfinite(sk.dmp.weight[i]) || !(sk.dmp.width[i] > 0) ||
-                sk.dmp.centre[i] < 0 || sk.dmp.centre[i] > 1) {
+            if (!fs_isfinite(sk.dmp.weight[i]) || !(sk.dmp.width[i] > 0) || sk.dmp.centre[i] < 0 ||
+                sk.dmp.centre[i] > 1) {
                 abort();
             }
         }
         if (!(sk.dmp.p.beta <= sk.dmp.p.alpha / 4 * (1 + 1e-6))) {
             abort();
         }
-    } else if (!((s >= 200 && s <= 211) || (s >= 100 && s <= 110))) {
-        abort();   /* every refusal is one of the documented codes */
+    } else if (!((s >= 200 && s < 300) || (s >= 100 && s <= 112))) {
+        abort(); /* every refusal is a documented code: 2xx image, 1xx parameters */
     }
 }
 

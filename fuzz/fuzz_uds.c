@@ -25,28 +25,52 @@ static uint8_t ok_read(void *c, uint16_t did, uint8_t *out, uint16_t cap, uint16
 }
 static uint8_t ok_write(void *c, uint16_t did, const uint8_t *d, uint16_t len)
 {
-    (void)c; (void)did; (void)d;
+    (void)c;
+    (void)did;
+    (void)d;
     return len > 8u ? UDS_NRC_INCORRECT_LENGTH : UDS_NRC_OK;
 }
 static uint8_t ok_routine(void *c, uint8_t sub, uint16_t rid, const uint8_t *d, uint16_t len,
                           uint8_t *out, uint16_t cap, uint16_t *out_len)
 {
-    (void)c; (void)sub; (void)d; (void)len;
+    (void)c;
+    (void)sub;
+    (void)d;
+    (void)len;
     *out_len = 0;
     if (rid == UDS_RID_SELF_TEST && cap >= 3u) {
-        out[0] = 0; out[1] = 0; out[2] = 0;
+        out[0] = 0;
+        out[1] = 0;
+        out[2] = 0;
         *out_len = 3;
     }
     return UDS_NRC_OK;
 }
-static uint8_t ok_session(void *c, uint8_t s) { (void)c; (void)s; return UDS_NRC_OK; }
-static uint8_t ok_reset(void *c, uint8_t t) { (void)c; (void)t; return UDS_NRC_OK; }
-static void do_reset(void *c, uint8_t t) { (void)c; (void)t; }
+static uint8_t ok_session(void *c, uint8_t s)
+{
+    (void)c;
+    (void)s;
+    return UDS_NRC_OK;
+}
+static uint8_t ok_reset(void *c, uint8_t t)
+{
+    (void)c;
+    (void)t;
+    return UDS_NRC_OK;
+}
+static void do_reset(void *c, uint8_t t)
+{
+    (void)c;
+    (void)t;
+}
 static uint8_t g_seed_ok;
 static uint8_t ok_seed(void *c, uint8_t level, uint8_t *seed, uint16_t cap, uint16_t *len)
 {
-    (void)c; (void)level;
-    if (cap < 16u) { return UDS_NRC_CONDITIONS_NOT_CORRECT; }
+    (void)c;
+    (void)level;
+    if (cap < 16u) {
+        return UDS_NRC_CONDITIONS_NOT_CORRECT;
+    }
     memset(seed, 0x5A, 16);
     *len = 16;
     g_seed_ok = 1;
@@ -54,37 +78,55 @@ static uint8_t ok_seed(void *c, uint8_t level, uint8_t *seed, uint16_t cap, uint
 }
 static uint8_t ok_key(void *c, uint8_t level, const uint8_t *key, uint16_t len)
 {
-    (void)c; (void)level;
+    (void)c;
+    (void)level;
     return (len == 16u && key[0] == 0x42u) ? UDS_NRC_OK : UDS_NRC_INVALID_KEY;
 }
 static uint32_t g_dl_size;
 static uint8_t ok_dl_begin(void *c, uint32_t addr, uint32_t size)
 {
     (void)c;
-    if (addr > 8u || size == 0u || size > 8192u) { return UDS_NRC_REQUEST_OUT_OF_RANGE; }
+    if (addr > 8u || size == 0u || size > 8192u) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
     g_dl_size = size;
     return UDS_NRC_OK;
 }
 static uint8_t ok_dl_data(void *c, uint32_t off, const uint8_t *d, uint16_t len)
 {
-    (void)c; (void)d;
-    if ((uint64_t)off + len > g_dl_size) { abort(); }   /* the server must bound transfers */
+    (void)c;
+    (void)d;
+    if ((uint64_t)off + len > g_dl_size) {
+        abort();
+    } /* the server must bound transfers */
     return UDS_NRC_OK;
 }
-static uint8_t ok_dl_end(void *c, uint32_t *crc) { (void)c; *crc = 0x12345678u; return UDS_NRC_OK; }
-static void ok_abort(void *c) { (void)c; }
+static uint8_t ok_dl_end(void *c, uint32_t *crc)
+{
+    (void)c;
+    *crc = 0x12345678u;
+    return UDS_NRC_OK;
+}
+static void ok_abort(void *c)
+{
+    (void)c;
+}
 static uint32_t g_ul_size;
 static uint8_t ok_ul_begin(void *c, uint32_t addr, uint32_t size)
 {
     (void)c;
-    if (addr > 8u || size == 0u || size > 8192u) { return UDS_NRC_REQUEST_OUT_OF_RANGE; }
+    if (addr > 8u || size == 0u || size > 8192u) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
     g_ul_size = size;
     return UDS_NRC_OK;
 }
 static uint8_t ok_ul_data(void *c, uint32_t off, uint8_t *out, uint16_t len)
 {
     (void)c;
-    if ((uint64_t)off + len > g_ul_size) { abort(); }
+    if ((uint64_t)off + len > g_ul_size) {
+        abort();
+    }
     memset(out, 0x33, len);
     return UDS_NRC_OK;
 }
@@ -93,15 +135,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     static uds_server_t srv;
     static uint8_t resp[4096];
-    const uds_app_t app = {NULL, ok_read, ok_write, ok_routine, ok_session, ok_reset, do_reset,
-                           ok_seed, ok_key, ok_dl_begin, ok_dl_data, ok_dl_end, ok_abort,
-                           ok_ul_begin, ok_ul_data};
+    const uds_app_t app = {NULL,      ok_read,  ok_write,    ok_routine, ok_session,  ok_reset,
+                           do_reset,  ok_seed,  ok_key,      NULL,       ok_dl_begin, ok_dl_data,
+                           ok_dl_end, ok_abort, ok_ul_begin, ok_ul_data};
     uds_server_init(&srv, &app);
     uint32_t now = 0;
     size_t i = 0;
     while (i < size) {
         uint16_t len = data[i++];
-        if (len & 0x80u) {   /* long request: 2-byte length */
+        if (len & 0x80u) { /* long request: 2-byte length */
             len = (uint16_t)(((len & 0x7Fu) << 8) | (i < size ? data[i++] : 0u));
         }
         if (len > size - i) {
