@@ -553,6 +553,8 @@ static void control(app_t *app)
     }
 }
 
+static uint32_t telemetry_period(app_t *app);
+
 void app_tick(app_t *app, bool overrun)
 {
     app->now_us = hal_time_us();
@@ -619,15 +621,32 @@ void app_tick(app_t *app, bool overrun)
     if (app->tick % APP_STATUS_PERIOD_MS == 0u) {
         send_status(app);
     }
-    /* the requested rate while the device acts and through a fault (its stop ramp and after:
-     * the host sees how the force came down); IDLE's slow rate otherwise */
-    uint32_t period = APP_IDLE_TELEMETRY_PERIOD_MS;
-    if (app->state == APP_TEACH || app->state == APP_EXECUTE || app->state == APP_FAULT) {
-        period = (app->host_period_ms != 0u) ? app->host_period_ms : app->cfg.telemetry_period_ms;
-    }
+    const uint32_t period = telemetry_period(app);
     if (period == 0u || app->tick % period == 0u) {
         send_telemetry(app);
     }
+}
+
+/* The telemetry's period this tick: the host's (or the configured one) while the device acts, and
+ * in FAULT through the stop ramp and while a host keeps sending (its frames extend it by the
+ * host-silence timeout); IDLE's slow period otherwise, so a device left in FAULT by a silent host
+ * does not keep the bus busy. */
+static uint32_t telemetry_period(app_t *app)
+{
+    bool fast = app->state == APP_TEACH || app->state == APP_EXECUTE;
+    if (app->state == APP_FAULT) {
+        if (app->host_frame) {
+            const uint32_t until = app->now_ms + (uint32_t)app->saf_cfg.wdg.timeout_ms;
+            if ((int32_t)(until - app->fault_fast_until_ms) > 0) {
+                app->fault_fast_until_ms = until;
+            }
+        }
+        fast = (int32_t)(app->fault_fast_until_ms - app->now_ms) > 0;
+    }
+    if (!fast) {
+        return APP_IDLE_TELEMETRY_PERIOD_MS;
+    }
+    return (app->host_period_ms != 0u) ? app->host_period_ms : app->cfg.telemetry_period_ms;
 }
 
 bool app_fw_self_test_and_confirm(app_t *app)

@@ -45,7 +45,7 @@ struct app_config {
     exec_render_cfg_t render;
     saf_config_t saf;
     fs_real_t vel_cutoff_Hz;
-    uint8_t telemetry_period_ms; /* in TEACH/EXECUTE/FAULT, 1..255 */
+    uint8_t telemetry_period_ms; /* in TEACH/EXECUTE and through a fault, 1..255 */
     fs_real_t stiffness_max_Npm; /* skills stiffer than this are refused (227), DID 0x0140 */
 };
 

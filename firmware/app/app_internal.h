@@ -45,6 +45,9 @@
 #define APP_RESET_TX_WAIT_MS 100u /* ECUReset: longest wait for the response to leave */
 #define APP_STATUS_PERIOD_MS 10u
 #define APP_IDLE_TELEMETRY_PERIOD_MS 100u
+/* in FAULT the telemetry keeps the host's rate for the stop ramp and this long after it (a
+ * host that records the ramp gets its end), then while host frames keep coming */
+#define APP_FAULT_TELEMETRY_TAIL_MS 20u
 #define APP_IMAGE_MAX SLOTS_IMAGE_MAX
 #define APP_SW_VERSION "forceskill-fw 0.1.0"
 #define APP_PROTO_VERSION_MAJOR 3u /* 3: the frames' MAC is AES-CMAC (docs/protocol.md) */
@@ -133,6 +136,7 @@ struct app {
     bool exec_done;
     bool exec_saturated;           /* this tick's exec_tick saturated (FS_ERR_FIXED_OVERFLOW) */
     uint32_t exec_saturated_ticks; /* ticks whose exec_tick saturated, since power-up */
+    uint32_t fault_fast_until_ms;  /* in FAULT: the telemetry at the host's rate until then */
     saf_config_t saf_cfg;
     saf_state_t saf;
     saf_output_t saf_out;

@@ -26,6 +26,9 @@ bool app_event(app_t *app, app_event_t ev)
         if (next == APP_IDLE) {
             app->seq_step = 0u;
             app->exec_done = false;
+        } else { /* the telemetry keeps its rate through the stop ramp and a little after */
+            app->fault_fast_until_ms = app->now_ms + (uint32_t)app->saf_cfg.wdg.ramp_ms +
+                                       APP_FAULT_TELEMETRY_TAIL_MS;
         }
         app->force_hat_N = FS_R(0.0);
         wdg_disarm(&app->saf.wdg); /* host silence matters only while the device acts */

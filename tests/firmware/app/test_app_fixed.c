@@ -1,4 +1,5 @@
-/* The application's fixed-point build (fs_app_fx: the Cortex-M3 image's) on the host port: a
+/* The application's fixed-point build (fs_app_fx: the Cortex-M3 image's) on the host port: the
+ * telemetry's integer scaling against the float64 reference, its rate through a fault; a
  * tick whose DMP step saturates (exec_tick's FS_ERR_FIXED_OVERFLOW) stops the run. The fault
  * "skill invalid" (512) is latched in that tick and the stop ramp starts, the run status holds
  * 300 and the saturated tick is counted; a run that does not saturate keeps executing. */
@@ -172,7 +173,10 @@ static void test_telemetry_counts_match_the_float64_reference(void **state)
         s.force_operator_N[0] = vec_value((i * 3u) % 2000u, 30.0f, &rng);
         hal_host_set_sensors(&s);
         const unsigned before = n_tel;
-        tick(); /* a fault latches on the first wild value: the telemetry stays at 1 kHz */
+        /* a fault latches on the first wild value: the telemetry kept at 1 kHz in FAULT, as
+         * while a host keeps sending */
+        app.fault_fast_until_ms = app.now_ms + 10u;
+        tick();
         if (n_tel == before) {
             continue;
         }
@@ -198,9 +202,37 @@ static void test_telemetry_counts_match_the_float64_reference(void **state)
     assert_true(differ * 100u <= n); /* ties are rare: at most 1 % of the samples */
 }
 
+/* Host silence during a run: FAULT 500, the telemetry at 1 kHz through the 40 ms stop ramp and
+ * 20 ms after it, then IDLE's 100 ms (no host asks for more). */
+static void test_telemetry_through_a_fault_then_slow(void **state)
+{
+    (void)state;
+    start_press();
+    unsigned guard = 0u;
+    while (app.state == APP_EXECUTE && guard++ < 1000u) {
+        tick();
+    }
+    assert_int_equal(app.state, APP_FAULT);
+    assert_int_equal(app.saf_out.fault_code, FLT_HOST_SILENCE);
+    unsigned fast = 0u;
+    for (unsigned i = 0; i < 59u; i++) { /* the latch tick was the first of the 60 */
+        const unsigned before = n_tel;
+        tick();
+        fast += (n_tel == before + 1u) ? 1u : 0u;
+    }
+    assert_int_equal(fast, 59u);
+    assert_false(app.saf_out.actuator_enable); /* the ramp ended inside the fast window */
+    const unsigned before = n_tel;
+    for (unsigned i = 0; i < 300u; i++) {
+        tick();
+    }
+    assert_true(n_tel - before >= 2u && n_tel - before <= 4u); /* every 100 ms */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_telemetry_through_a_fault_then_slow),
         cmocka_unit_test(test_telemetry_counts_match_the_float64_reference),
         cmocka_unit_test(test_a_run_that_fits_keeps_executing),
         cmocka_unit_test(test_a_saturated_dmp_step_faults_the_run),
