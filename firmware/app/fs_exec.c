@@ -182,6 +182,9 @@ fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_st
         if (s->skill == 0) {
             return FS_ERR_NULL_ARG;
         }
+        if (s->skill->dmp.periodic != 0u) { /* the executor runs discrete skills only */
+            return FS_ERR_SKILL_NO_PERIODIC;
+        }
         if (!fs_isfinite(s->goal_scale) || !fs_isfinite(s->time_scale) ||
             !fs_isfinite(s->duration_s) || s->time_scale <= FS_R(0.0) ||
             !fs_isfinite(s->path_scale) || s->path_scale < FS_R(0.0)) {
