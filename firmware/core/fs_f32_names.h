@@ -39,6 +39,7 @@
 #define skchk_skill skchk_skill_f32
 #define skchk_run_path skchk_run_path_f32
 #define skchk_run_scales skchk_run_scales_f32
+#define skchk_run_scales_periodic skchk_run_scales_periodic_f32
 #define skchk_stiffness skchk_stiffness_f32
 
 #endif /* FS_F32_NAMES_H */

@@ -154,7 +154,7 @@ static uint16_t uds(const uint8_t *req, uint16_t len, uint8_t *resp, uint16_t ca
         const uint8_t *r = NULL;
         const uint16_t n = isotp_rx_peek(&tester, &r);
         if (n != 0u) {
-            if (n >= 3u && r[0] == 0x7F && r[2] == 0x78) {   /* response pending: keep waiting */
+            if (n >= 3u && r[0] == 0x7F && r[2] == 0x78) { /* response pending: keep waiting */
                 isotp_rx_release(&tester);
                 continue;
             }
@@ -175,7 +175,7 @@ static uint8_t unlock_with(uint8_t session, uint8_t level, uint8_t key_level)
     uint8_t r[64];
     const uint8_t dsc[2] = {0x10, session};
     assert_int_equal(uds(dsc, 2, r, sizeof(r)), 6);
-    ticks(1100);                                       /* SecurityAccess boot delay (1 s) */
+    ticks(1100); /* SecurityAccess boot delay (1 s) */
     const uint8_t seed_req[2] = {0x27, level};
     assert_int_equal(uds(seed_req, 2, r, sizeof(r)), 2 + SEC_SEED_LEN);
     uint8_t key[2 + SEC_KEY_LEN] = {0x27, (uint8_t)(level + 1u)};
@@ -220,7 +220,7 @@ static uint8_t download(uint8_t slot, const uint8_t *img, uint32_t len, uint32_t
         return r[2];
     }
     if (stop_after < len) {
-        return 0xFF;                                   /* the tester goes away here */
+        return 0xFF; /* the tester goes away here */
     }
     const uint8_t exit_req[1] = {0x37};
     n = uds(exit_req, 1, r, sizeof(r));
@@ -238,7 +238,7 @@ static void test_boot_status_and_e2e(void **state)
     for (unsigned i = 0; i < n_out; i++) {
         n_status += out[i].id == PROTO_ID_STATUS(0);
     }
-    assert_int_equal(n_status, 2);                    /* every 10 ms */
+    assert_int_equal(n_status, 2); /* every 10 ms */
     /* a command with a bad CRC is ignored */
     struct fs_dbc_host_command_t c = {.mode = APP_CMD_TEACH};
     can_frame_t f = {.id = PROTO_ID_HOST_COMMAND(0), .len = 8};
@@ -268,7 +268,7 @@ static void test_host_silence_faults_and_ramps(void **state)
     for (unsigned i = 0; i < 200 && fault_tick == 0; i++) {
         tick();
         if (app.state == APP_FAULT) {
-            fault_tick = i + 1u + 10u;                 /* ms since the last heartbeat */
+            fault_tick = i + 1u + 10u; /* ms since the last heartbeat */
         }
     }
     assert_int_equal(app.saf_out.fault_code, FLT_HOST_SILENCE);
@@ -288,7 +288,7 @@ static void test_host_silence_faults_and_ramps(void **state)
     bool en = true;
     fs_real_t f[2];
     hal_host_get_actuator(&en, f);
-    assert_false(en);                                  /* ramped and disabled within 50 ms */
+    assert_false(en); /* ramped and disabled within 50 ms */
     /* stays in FAULT; a TEACH command is ignored; clearing (with the host back) goes to IDLE */
     send_command(APP_CMD_TEACH, 0);
     ticks(10);
@@ -336,7 +336,7 @@ static void test_bus_off_emergency_sent_after_recovery(void **state)
     for (unsigned i = 0; i < n_out; i++) {
         n_emcy += out[i].id == PROTO_ID_EMERGENCY(0) ? 1u : 0u;
     }
-    assert_int_equal(n_emcy, 1);                       /* once, not repeated */
+    assert_int_equal(n_emcy, 1); /* once, not repeated */
     ticks(20);
     for (unsigned i = before + 1u; i < n_out; i++) {
         assert_int_not_equal(out[i].id, PROTO_ID_EMERGENCY(0));
@@ -468,7 +468,7 @@ static uint16_t ecu_reset(uint8_t sub, uint8_t *resp, uint32_t *t_resp, uint32_t
         const uint8_t *r = NULL;
         const uint16_t m = isotp_rx_peek(&tester, &r);
         if (m != 0u) {
-            assert_int_equal(n, 0u);                  /* one response only */
+            assert_int_equal(n, 0u); /* one response only */
             n = m;
             memcpy(resp, r, m < 8u ? m : 8u);
             *t_resp = k;
@@ -539,9 +539,9 @@ static void test_security_levels_and_confirm(void **state)
     ticks(5);
     const uint8_t confirm[4] = {0x31, 0x01, 0x0F, 0x02};
     const uint8_t mark[5] = {0x31, 0x01, 0x0F, 0x01, 0x00};
-    assert_int_equal(nrc_of(confirm, 4), UDS_NRC_SECURITY_ACCESS_DENIED);   /* default session */
+    assert_int_equal(nrc_of(confirm, 4), UDS_NRC_SECURITY_ACCESS_DENIED); /* default session */
     unlock(UDS_SESSION_PROGRAMMING);
-    assert_int_equal(nrc_of(confirm, 4), UDS_NRC_SECURITY_ACCESS_DENIED);   /* level 1 only */
+    assert_int_equal(nrc_of(confirm, 4), UDS_NRC_SECURITY_ACCESS_DENIED); /* level 1 only */
     assert_int_equal(nrc_of(mark, 5), UDS_NRC_SECURITY_ACCESS_DENIED);
     /* level 3 with the level-1 secret: invalid key */
     assert_int_equal(unlock_with(UDS_SESSION_PROGRAMMING, 0x03, 0x01), UDS_NRC_INVALID_KEY);
@@ -549,7 +549,7 @@ static void test_security_levels_and_confirm(void **state)
                             app_sec_config(&app, 1)->secret_len);
     /* level 3 with its own secret: firmware routines allowed, settings and slots are not */
     assert_int_equal(unlock_with(UDS_SESSION_PROGRAMMING, 0x03, 0x03), 0);
-    assert_int_equal(nrc_of(confirm, 4), 0x00);        /* not on test: nothing to confirm, ok */
+    assert_int_equal(nrc_of(confirm, 4), 0x00); /* not on test: nothing to confirm, ok */
     const uint8_t wr[23] = {0x2E, 0x01, 0x00};
     assert_int_equal(nrc_of(wr, 23), UDS_NRC_SECURITY_ACCESS_DENIED);
     const uint8_t erase[5] = {0x31, 0x01, 0xFF, 0x00, 1};
@@ -571,8 +571,8 @@ static void test_security_levels_and_confirm(void **state)
 static void test_failing_test_image_serves_nothing(void **state)
 {
     (void)state;
-    app.boot.test_boot = 1u;          /* on test ... */
-    app.nvm_ok = false;               /* ... and its self-test fails (storage unreadable) */
+    app.boot.test_boot = 1u; /* on test ... */
+    app.nvm_ok = false;      /* ... and its self-test fails (storage unreadable) */
     uint8_t type = 0u;
     (void)hal_host_take_reset(&type);
     const uint8_t confirm[4] = {0x31, 0x01, 0x0F, 0x02};
@@ -585,7 +585,7 @@ static void test_failing_test_image_serves_nothing(void **state)
     for (unsigned i = before; i < n_out; i++) {
         assert_int_not_equal(out[i].id, PROTO_ID_UDS_RESPONSE(0));
     }
-    assert_int_equal(app.boot.test_boot, 1u);          /* not confirmed */
+    assert_int_equal(app.boot.test_boot, 1u); /* not confirmed */
 }
 
 static uint8_t wrong_key(void)
@@ -629,12 +629,12 @@ static void test_wrong_key_counter_survives_reset(void **state)
     uint32_t t_resp = 0u, t_reset = 0u;
     assert_int_equal(ecu_reset(0x01, r, &t_resp, &t_reset), 2);
     assert_int_equal(uds(prog, 2, r, sizeof(r)), 6);
-    ticks(1100);                                        /* delay after a wrong key, from power-up */
+    ticks(1100); /* delay after a wrong key, from power-up */
     assert_int_equal(wrong_key(), UDS_NRC_INVALID_KEY);
     assert_int_equal(ecu_reset(0x01, r, &t_resp, &t_reset), 2);
     assert_int_equal(uds(prog, 2, r, sizeof(r)), 6);
     ticks(1100);
-    assert_int_equal(wrong_key(), UDS_NRC_EXCEEDED_ATTEMPTS);   /* the third, across two resets */
+    assert_int_equal(wrong_key(), UDS_NRC_EXCEEDED_ATTEMPTS); /* the third, across two resets */
     /* power-up (flash kept): the lockout runs again from power-up */
     hal_sim_can_reset();
     app_init(&app, &cfg);
@@ -642,7 +642,7 @@ static void test_wrong_key_counter_survives_reset(void **state)
     ticks_present(9000);
     assert_int_equal(wrong_key(), UDS_NRC_DELAY_NOT_EXPIRED);
     ticks_present(1100);
-    assert_int_equal(wrong_key(), UDS_NRC_INVALID_KEY);          /* lockout over: counter 1 */
+    assert_int_equal(wrong_key(), UDS_NRC_INVALID_KEY); /* lockout over: counter 1 */
 
     /* a guesser that resets after every attempt, 12 s of simulated time */
     hal_host_flash_erase();
@@ -654,7 +654,7 @@ static void test_wrong_key_counter_survives_reset(void **state)
         assert_int_equal(uds(prog, 2, r, sizeof(r)), 6);
         uint8_t nrc = wrong_key();
         while (nrc == UDS_NRC_DELAY_NOT_EXPIRED && t_us < t_end) {
-            ticks(100);                                 /* asks again until the delay is over */
+            ticks(100); /* asks again until the delay is over */
             nrc = wrong_key();
         }
         guesses += (nrc == UDS_NRC_INVALID_KEY || nrc == UDS_NRC_EXCEEDED_ATTEMPTS) ? 1u : 0u;
@@ -712,23 +712,25 @@ static void test_skill_validated_before_commit_and_run(void **state)
     download_data_only(1, image_a, len_a);
     const uint32_t t0 = app.tick;
     const uint8_t exit_req[1] = {0x37};
-    assert_int_equal(uds(exit_req, 1, r, sizeof(r)), 5);          /* after 0x78, the CRC */
+    assert_int_equal(uds(exit_req, 1, r, sizeof(r)), 5); /* after 0x78, the CRC */
     print_message("commit of a 1.5 s skill (N = 50): %u ticks from RequestTransferExit to its "
-                  "answer\n", (unsigned)(app.tick - t0));
+                  "answer\n",
+                  (unsigned)(app.tick - t0));
     /* one stage after the other, each bounded per tick: the parse (v2, N = 50: CRC 42 units of
      * 32 bytes, finiteness 42 of 4 fields, widths, centres and values 50 each, 5 header stages,
      * the model's derivation 32 units of 8 (4 scalar checks and 5 passes of 50 kernels, the y
      * weights' one step): 271 units), the parameters (1 tick), the rollout (1,500 steps), the flash write (1,340
      * bytes, 6 pieces of 256: CRC 6, erase 1, program 1 + 6, read-back 1 + 6, commit 1, scan of
      * the new copy 1 + 6 and of the empty one 1: 30 units) */
-    const uint32_t parse_ticks = (271u + APP_COMMIT_UNITS_PER_TICK - 1u) / APP_COMMIT_UNITS_PER_TICK;
+    const uint32_t parse_ticks = (271u + APP_COMMIT_UNITS_PER_TICK - 1u) /
+                                 APP_COMMIT_UNITS_PER_TICK;
     const uint32_t check_ticks = (1500u + APP_CHECK_STEPS_PER_TICK - 1u) / APP_CHECK_STEPS_PER_TICK;
-    const uint32_t write_ticks =
-        (30u + APP_COMMIT_FLASH_UNITS_PER_TICK - 1u) / APP_COMMIT_FLASH_UNITS_PER_TICK;
+    const uint32_t write_ticks = (30u + APP_COMMIT_FLASH_UNITS_PER_TICK - 1u) /
+                                 APP_COMMIT_FLASH_UNITS_PER_TICK;
     assert_int_equal(len_a, 1340u);
     assert_int_equal(app.tick - t0, parse_ticks + 1u + check_ticks + write_ticks);
     const fs_real_t peak = app.slot_peak_N[0];
-    assert_true(peak > FS_R(4.8) && peak < FS_R(4.9));        /* the reference rollout: 4.842 N */
+    assert_true(peak > FS_R(4.8) && peak < FS_R(4.9)); /* the reference rollout: 4.842 N */
     /* weights x100, CRC recomputed: a well-formed image whose output exceeds the limit */
     memcpy(image_b, image_a, len_a);
     const uint16_t n = app.slot_skill[0].dmp.n_kernels;
@@ -760,7 +762,8 @@ static void test_skill_validated_before_commit_and_run(void **state)
     send_heartbeat();
     const uint16_t g_over = (uint16_t)(50.0 / (double)peak * 1000.0 * 1.005);
     const uint16_t g_under = (uint16_t)(50.0 / (double)peak * 1000.0 * 0.995);
-    uint8_t run[10] = {0x31, 0x01, 0x02, 0x01, 1, (uint8_t)(g_over >> 8), (uint8_t)g_over, 0x03, 0xE8, 0};
+    uint8_t run[10] = {0x31, 0x01, 0x02, 0x01, 1, (uint8_t)(g_over >> 8), (uint8_t)g_over,
+                       0x03, 0xE8, 0};
     assert_int_equal(uds(run, 10, r, sizeof(r)), 3);
     assert_int_equal(r[2], UDS_NRC_REQUEST_OUT_OF_RANGE);
     assert_int_equal(app.last_run_status, FS_ERR_SKCHK_GOAL_SCALE);
@@ -792,10 +795,10 @@ static void test_start_refused_during_commit(void **state)
     send_heartbeat();
     send_command(APP_CMD_EXECUTE, 1);
     ticks(2);
-    assert_int_equal(app.state, APP_IDLE);                  /* refused: the commit runs */
-    assert_int_equal(app.slot_skill[0].dmp.n_kernels, 10);  /* not yet replaced */
+    assert_int_equal(app.state, APP_IDLE);                 /* refused: the commit runs */
+    assert_int_equal(app.slot_skill[0].dmp.n_kernels, 10); /* not yet replaced */
     assert_true(app.checking);
-    for (unsigned k = 0; k < 2000u && app.checking; k++) {  /* the commit completes */
+    for (unsigned k = 0; k < 2000u && app.checking; k++) { /* the commit completes */
         tick();
     }
     assert_false(app.checking);
