@@ -368,6 +368,7 @@ void dmp_state_reset(dmp_state_t *s)
     s->z = FS_R(0.0);
     s->path_m = FS_R(0.0);
     s->path_z = FS_R(0.0);
+    s->u_comp = FS_R(0.0);
 }
 
 /* S(u) over all N kernels with psi_i = exp(-(e_i - e_min)) (the test reference: the shift keeps
@@ -514,7 +515,7 @@ fs_real_t dmp_periodic_blend_full(const dmp_model_t *m, fs_real_t x_turns)
 fs_real_t dmp_periodic_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
                             fs_real_t amplitude_scale, const dmp_coupling_t *coupling)
 {
-    const dmp_ptick_state_t st = {s->window, &s->u, &s->y_N, &s->z, &s->integral_y};
+    const dmp_ptick_state_t st = {s->window, &s->u, &s->u_comp, &s->y_N, &s->z, &s->integral_y};
     const fs_real_t s_blend = dmp_ptick_state_blend(m, &st);
     const dmp_tick_coef_t c = dmp_coef(m, run, coupling);
     const dmp_ptick_coef_t pc = {.k1 = c.k1,

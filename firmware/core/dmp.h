@@ -163,6 +163,7 @@ typedef struct {
     fs_real_t z;
     fs_real_t path_m; /* p: the y DMP's position above the path's start (0 without one) */
     fs_real_t path_z; /* z_p */
+    fs_real_t u_comp; /* the periodic phase sum's compensation (dmp_ptick.h) */
 } dmp_state_t;
 
 /** Run-time modulation: goal_scale multiplies g (and so f_hat), time_scale stretches tau. */

@@ -431,6 +431,7 @@ void dmpfx_state_reset(dmpfx_state_t *s)
     s->z_acc = 0;
     s->path_acc = 0;
     s->path_z_acc = 0;
+    s->u_comp_acc = 0;
     s->sat_events = 0u;
 }
 
@@ -609,7 +610,8 @@ int32_t dmpfx_periodic_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpf
                                  .amplitude = run->amplitude_q24,
                                  .out_scale = c.out_scale,
                                  .term_y = c.term_y};
-    const dmp_ptick_state_t st = {s->window, &s->u_acc, &s->y_acc, &s->z_acc, &s->integral_y_acc};
+    const dmp_ptick_state_t st = {s->window, &s->u_acc, &s->u_comp_acc,
+                                  &s->y_acc, &s->z_acc, &s->integral_y_acc};
     const int32_t s_blend = dmp_ptick_state_blend(m, &st);
     const int32_t f = dmp_ptick_step(m, &pc, &st, s_blend, &s->sat_events);
     return fx_add_sat(m->force0_q16, f);

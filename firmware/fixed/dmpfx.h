@@ -103,6 +103,7 @@ typedef struct {
     int64_t z_acc;
     int64_t path_acc;   /* p of the y DMP, m */
     int64_t path_z_acc; /* z_p */
+    int64_t u_comp_acc; /* the periodic phase sum's compensation: 0 (the sum is exact) */
     uint32_t sat_events;
 } dmpfx_state_t;
 
