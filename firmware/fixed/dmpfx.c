@@ -598,8 +598,10 @@ int32_t dmpfx_periodic_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpf
     const dmp_tick_coef_t c = dmpfx_coef(m, run, coupling, &k_ab_y);
     int64_t phase_inc = run->phase_inc;
     if (coupling != NULL && coupling->rate_q31 < FX_Q31_ONE_U) {
-        /* phase_inc < 2^59 (a/(2 pi) < 1/4): its top 43 bits times the rate fit int64 */
-        phase_inc = ((phase_inc >> 16) * (int64_t)coupling->rate_q31) >> 15;
+        /* inc * rate / 2^31 in two halves (inc < 2^59: hi < 2^28, each product < 2^62) */
+        const uint64_t inc = (uint64_t)phase_inc;
+        const uint64_t r = coupling->rate_q31;
+        phase_inc = (int64_t)((inc >> 31) * r + (((inc & 0x7FFFFFFFu) * r) >> 31));
     }
     const dmp_ptick_coef_t pc = {.k1 = c.k1,
                                  .k_alpha = c.k_alpha,

@@ -128,6 +128,10 @@ static const case_t k_cases[] = {
     {"wipe_n50_ridge_release.skill", 1.0, 1.0, 0.5, 0.0, 0u},
     /* phase stopping: the coupling's slow-down as the fixed-point rate */
     {"engrave_n100_lwr_release.skill", 1.0, 1.0, 1.0, 0.05, 0u},
+    /* a periodic skill: one cycle, then held; at 1.5x goal and 1.3x time with phase stopping */
+    {"periodic_n50_ridge.skill", 1.0, 1.0, 1.0, 0.0, 0u},
+    {"periodic_n50_ridge.skill", 1.5, 1.3, 1.0, 0.0, 0u},
+    {"periodic_n50_ridge.skill", 1.0, 1.0, 1.0, 0.05, 0u},
 };
 
 static void test_fixed_matches_float64(void **state)
