@@ -170,39 +170,53 @@ fs_status_t dmpfx_from_model_bound(const dmp_model_t *m, dmpfx_model_t *out)
     return FS_OK;
 }
 
-/* A periodic kernel's reach in turns at the fixed cutoff 16 (dmp.c's rule), widened by the
- * envelope margin, at most half a turn. */
-static double dmpfx_periodic_reach(double kappa)
+/* A periodic kernel's reach in turns at the fixed cutoff 16: asin(y)/pi, y = sqrt(16/(2 kappa)),
+ * bounded above by (y + (pi/2 - 1) y^3)/pi ((asin(y) - y)/y^3 rises from 1/6 to pi/2 - 1 on
+ * [0, 1]: 3 % wider than exact at the fit's kappa, no asin), widened by the envelope margin, at
+ * most half a turn. In the model's type: one software-float sqrt a kernel on the M3, no double
+ * (the executor converts when a step begins, within a tick). */
+static fs_real_t dmpfx_periodic_reach(fs_real_t kappa)
 {
-    const double q = 16.0 / (2.0 * kappa);
-    const double r = (q < 1.0) ? asin(sqrt(q)) / (0.5 * DMPFX_TWO_PI) * DMPFX_ENVELOPE_MARGIN : 0.5;
-    return (r < 0.5) ? r : 0.5;
+    const fs_real_t q = FS_R(16.0) / (FS_R(2.0) * kappa);
+    if (!(q < FS_R(1.0))) {
+        return FS_R(0.5);
+    }
+    const fs_real_t y = fs_sqrt(q);
+    const fs_real_t r = (y + FS_R(0.5707963267948966) * y * y * y) * FS_R(0.3183098861837907) *
+                        (fs_real_t)DMPFX_ENVELOPE_MARGIN;
+    return (r < FS_R(0.5)) ? r : FS_R(0.5);
 }
 
 /* A periodic model's kernels in fixed point: turns, 2 sqrt(kappa), the half-angle sine and
- * cosine, the envelopes in turns and the largest virtual window (at most DMPFX_MAX_WINDOW). */
+ * cosine (the model's, derived at load), the envelopes in turns and the largest virtual window
+ * (at most DMPFX_MAX_WINDOW). */
 static fs_status_t dmpfx_convert_periodic(const dmp_model_t *m, dmpfx_model_t *out)
 {
     const uint16_t n = m->n_kernels;
     const int32_t q24_lim = (int32_t)(DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE);
+    const fs_real_t inv_two_pi = FS_R(0.15915494309189535);
     for (uint16_t i = 0u; i < n; i++) {
-        const double c = (double)m->centre[i];
-        const double kappa = (double)m->width[i];
-        fs_status_t st = fx_from_double(c / DMPFX_TWO_PI, 30u, INT32_MAX, &out->centre[i]);
+        const fs_real_t x = m->centre[i] * inv_two_pi;
+        const fs_real_t kappa = m->width[i];
+        fs_status_t st = dmpfx_q(x, 30u, INT32_MAX, &out->centre[i]);
         if (st == FS_OK) {
-            st = fx_from_double(2.0 * sqrt(kappa), 19u, INT32_MAX, &out->kernel_scale[i]);
+            st = dmpfx_q(FS_R(2.0) * fs_sqrt(kappa), 19u, INT32_MAX, &out->kernel_scale[i]);
         }
         if (st == FS_OK) {
             st = dmpfx_q(m->weight[i], 24u, q24_lim, &out->weight[i]);
         }
+        if (st == FS_OK) {
+            st = dmpfx_q(m->half_sin[i], 30u, INT32_MAX, &out->half_sin[i]);
+        }
+        if (st == FS_OK) {
+            st = dmpfx_q(m->half_cos[i], 30u, INT32_MAX, &out->half_cos[i]);
+        }
         if (st != FS_OK) {
             return st;
         }
-        out->half_sin[i] = (int32_t)lround(ldexp(sin(0.5 * c), 30));
-        out->half_cos[i] = (int32_t)lround(ldexp(cos(0.5 * c), 30));
-        const double r = dmpfx_periodic_reach(kappa);
-        out->env_hi[i] = (int32_t)lround(ldexp(c / DMPFX_TWO_PI + r, 30));
-        out->env_lo[i] = (int32_t)lround(ldexp(c / DMPFX_TWO_PI - r, 30));
+        const fs_real_t r = dmpfx_periodic_reach(kappa);
+        out->env_hi[i] = dmpfx_env_clamp_q30(x + r);
+        out->env_lo[i] = dmpfx_env_clamp_q30(x - r);
     }
     for (uint16_t i = 1u; i < n; i++) {
         out->env_hi[i] = (out->env_hi[i] < out->env_hi[i - 1u]) ? out->env_hi[i - 1u]
