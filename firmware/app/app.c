@@ -194,6 +194,8 @@ static void run_from_command(const struct fs_dbc_host_command_t *c, uint16_t tim
     req->step[0].time_scale = FS_WIRE_REAL(fs_real_t, time_scale);
     req->step[0].duration_s = FS_R(0.0);
     req->step[0].path_scale = FS_R(1.0);
+    req->step[0].amplitude_scale = FS_R(1.0);
+    req->step[0].cycles = 1u;
 }
 
 static void handle_command(app_t *app, const can_frame_t *f)

@@ -71,6 +71,8 @@ typedef struct {
     fs_real_t time_scale;
     fs_real_t duration_s;
     fs_real_t path_scale;
+    fs_real_t amplitude_scale; /* a periodic skill's stroke scale */
+    uint16_t cycles; /* a periodic skill's periods when duration_s is 0 (0: until stopped) */
 } app_run_step_t;
 
 /** A request to start motion, decoded from any source (app_run.c). */

@@ -33,8 +33,12 @@ static uint8_t run_check_step(app_t *app, const app_run_step_t *rs, uint8_t end,
         app->last_run_status = (uint16_t)sc;
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
-    sc = skchk_run_scales(sk, app->slots.peak_N[s - 1u], rs->goal_scale, rs->time_scale, APP_TICK_S,
-                          app->cfg.saf.lim.axis[0].force_max_N);
+    sc = (sk->dmp.periodic != 0u)
+             ? skchk_run_scales_periodic(sk, app->slots.peak_N[s - 1u], rs->goal_scale,
+                                         rs->amplitude_scale, rs->time_scale, APP_TICK_S,
+                                         app->cfg.saf.lim.axis[0].force_max_N)
+             : skchk_run_scales(sk, app->slots.peak_N[s - 1u], rs->goal_scale, rs->time_scale,
+                                APP_TICK_S, app->cfg.saf.lim.axis[0].force_max_N);
     app->last_run_status = (uint16_t)sc;
     if (sc != FS_OK) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
@@ -51,6 +55,13 @@ static uint8_t run_check_step(app_t *app, const app_run_step_t *rs, uint8_t end,
     out->goal_scale = rs->goal_scale;
     out->time_scale = rs->time_scale;
     out->duration_s = rs->duration_s;
+    out->amplitude_scale = rs->amplitude_scale;
+    out->until_stopped = (sk->dmp.periodic != 0u && rs->duration_s <= FS_R(0.0) && rs->cycles == 0u)
+                             ? 1u
+                             : 0u;
+    if (sk->dmp.periodic != 0u && rs->duration_s <= FS_R(0.0) && rs->cycles > 1u) {
+        out->duration_s = (fs_real_t)rs->cycles * sk->dmp.duration_s * rs->time_scale;
+    }
     out->end_policy = (end == 0u) ? sk->end_policy
                                   : (end == 1u ? SKILL_END_HOLD : SKILL_END_RELEASE);
     return UDS_NRC_OK;

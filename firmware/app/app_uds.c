@@ -304,6 +304,22 @@ static uint8_t run_from_routine(uint16_t rid, const uint8_t *d, uint16_t len,
 {
     memset(req, 0, sizeof(*req));
     req->source = APP_RUN_FROM_ROUTINE;
+    if (rid == UDS_RID_RUN_SKILL && len == FS_WIRE_RUN_PERIODIC_LEN) {
+        fs_wire_run_periodic_t r;
+        const proto_status_t st = fs_wire_run_periodic_unpack(&r, d, len);
+        if (st != PROTO_OK) {
+            return wire_nrc(st);
+        }
+        req->n_steps = 1u;
+        req->end = r.end;
+        req->step[0].slot = r.slot;
+        req->step[0].goal_scale = FS_WIRE_REAL(fs_real_t, r.goal_scale);
+        req->step[0].time_scale = FS_WIRE_REAL(fs_real_t, r.time_scale);
+        req->step[0].path_scale = FS_WIRE_REAL(fs_real_t, r.path_scale);
+        req->step[0].cycles = r.cycles;
+        req->step[0].amplitude_scale = FS_WIRE_REAL(fs_real_t, r.amplitude_scale);
+        return UDS_NRC_OK;
+    }
     if (rid == UDS_RID_RUN_SKILL) {
         fs_wire_run_skill_t r;
         const proto_status_t st = fs_wire_run_skill_unpack(&r, d, len);
@@ -317,6 +333,8 @@ static uint8_t run_from_routine(uint16_t rid, const uint8_t *d, uint16_t len,
         req->step[0].time_scale = FS_WIRE_REAL(fs_real_t, r.time_scale);
         req->step[0].duration_s = FS_R(0.0);
         req->step[0].path_scale = FS_WIRE_REAL(fs_real_t, r.path_scale); /* absent: 1 */
+        req->step[0].cycles = 1u;
+        req->step[0].amplitude_scale = FS_R(1.0);
         return UDS_NRC_OK;
     }
     fs_wire_run_sequence_t r;
@@ -333,6 +351,8 @@ static uint8_t run_from_routine(uint16_t rid, const uint8_t *d, uint16_t len,
         s->time_scale = FS_WIRE_REAL(fs_real_t, r.steps[i].time_scale);
         s->duration_s = FS_WIRE_REAL(fs_real_t, r.steps[i].duration_s);
         s->path_scale = FS_R(1.0);
+        s->amplitude_scale = FS_R(1.0);
+        s->cycles = 1u; /* a periodic step: duration 0 is one cycle */
     }
     return UDS_NRC_OK;
 }

@@ -20,6 +20,9 @@ void exec_config_default(exec_config_t *cfg)
     cfg->surface_from_contact = 0u;
 }
 
+/* The most ticks of a step (46 days at 1 kHz): a periodic step run until stopped. */
+#define EXEC_TICKS_MAX 4000000000u
+
 static uint32_t exec_ticks(fs_real_t t_s, fs_real_t dt_s)
 {
     fs_real_t n = t_s / dt_s + FS_R(0.5);
@@ -27,9 +30,19 @@ static uint32_t exec_ticks(fs_real_t t_s, fs_real_t dt_s)
         return 0u;
     }
     if (n > FS_R(4.0e9)) {
-        return 4000000000u;
+        return EXEC_TICKS_MAX;
     }
     return (uint32_t)n;
+}
+
+/* The step's first force: f0, or a periodic step's f0 + goal_scale*g + amplitude_scale*e0. */
+static fs_real_t exec_step_start_force(const exec_step_t *s)
+{
+    const dmp_model_t *m = &s->skill->dmp;
+    if (m->periodic == 0u) {
+        return m->force0_N;
+    }
+    return m->force0_N + s->goal_scale * m->goal_N + s->amplitude_scale * m->cycle_e0_N;
 }
 
 static fs_real_t exec_step_duration(const exec_step_t *s)
@@ -45,10 +58,13 @@ static fs_real_t exec_step_duration(const exec_step_t *s)
 static fs_status_t exec_begin_step(exec_state_t *st, fs_real_t dt_s)
 {
     const exec_step_t *s = &st->steps[st->step];
-    st->step_ticks = exec_ticks(exec_step_duration(s), dt_s);
+    const uint8_t periodic = s->skill->dmp.periodic;
+    st->step_ticks = (periodic != 0u && s->until_stopped != 0u)
+                         ? EXEC_TICKS_MAX
+                         : exec_ticks(exec_step_duration(s), dt_s);
     st->t_step_s = FS_R(0.0);
     st->step_tick = 0u;
-    st->force_dmp_N = s->skill->dmp.force0_N;
+    st->force_dmp_N = exec_step_start_force(s);
 #ifdef FS_EXEC_FIXED
     dmpfx_state_reset(&st->dmp);
     st->dmp_saturated = 0u;
@@ -56,9 +72,19 @@ static fs_status_t exec_begin_step(exec_state_t *st, fs_real_t dt_s)
     if (rc == FS_OK) {
         rc = dmpfx_run_init(&st->dmp_model, (double)s->goal_scale, (double)s->time_scale, &st->run);
     }
+    if (rc == FS_OK) {
+        rc = dmpfx_run_periodic(&st->dmp_model, (double)s->amplitude_scale, &st->run);
+    }
+    if (rc == FS_OK && periodic != 0u) {
+        dmpfx_periodic_reset(&st->dmp_model, &st->run, &st->dmp);
+    }
     return (rc == FS_OK) ? dmpfx_run_path(&st->dmp_model, (double)s->path_scale, &st->run) : rc;
 #else
-    dmp_state_reset(&st->dmp);
+    if (periodic != 0u) {
+        dmp_periodic_reset(&s->skill->dmp, &st->dmp, s->amplitude_scale);
+    } else {
+        dmp_state_reset(&st->dmp);
+    }
     st->run.goal_scale = s->goal_scale;
     st->run.time_scale = s->time_scale;
     return FS_OK;
@@ -75,6 +101,15 @@ static fs_real_t exec_dmp_step(exec_state_t *st, const exec_step_t *s, const dmp
         c.rate_q31 = (uint32_t)fx_from_float(FS_R(1.0) / (FS_R(1.0) + cp->phase_slowdown), 31u);
     }
     const uint32_t ev = st->dmp.sat_events;
+    if (st->dmp_model.periodic != 0u) {
+        (void)dmpfx_periodic_step(&st->dmp_model, &st->run, &st->dmp, (cp != 0) ? &c : 0);
+        st->dmp_saturated = (st->dmp.sat_events != ev) ? 1u : 0u;
+        st->path_m = FS_R(0.0);
+        /* f0 + 2^s*(g_e + e): the goal in Q8.24 units, e from its accumulator */
+        return s->skill->dmp.force0_N +
+               fx_to_float(st->run.goal_q24, 24u) * fx_to_float(st->dmp_model.out_scale_q12, 12u) +
+               fx_acc_to_float(st->dmp.y_acc, st->dmp_model.value_shift - 55);
+    }
     (void)dmpfx_step_xy(&st->dmp_model, &st->run, &st->dmp, (cp != 0) ? &c : 0, 0);
     st->dmp_saturated = (st->dmp.sat_events != ev) ? 1u : 0u;
     /* y and p from their accumulators (value * 2^31 of Q8.24, y in units of 2^s N), not from
@@ -83,6 +118,10 @@ static fs_real_t exec_dmp_step(exec_state_t *st, const exec_step_t *s, const dmp
     st->path_m = fx_acc_to_float(st->dmp.path_acc, -55);
     return s->skill->dmp.force0_N + fx_acc_to_float(st->dmp.y_acc, st->dmp_model.value_shift - 55);
 #else
+    if (s->skill->dmp.periodic != 0u) {
+        st->path_m = FS_R(0.0);
+        return dmp_periodic_step(&s->skill->dmp, &st->dmp, &st->run, s->amplitude_scale, cp);
+    }
     return dmp_step_xy(&s->skill->dmp, &st->dmp, &st->run, cp, s->path_scale, &st->path_m);
 #endif
 }
@@ -183,6 +222,10 @@ fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_st
         if (s->skill == 0) {
             return FS_ERR_NULL_ARG;
         }
+        if (s->skill->dmp.periodic != 0u &&
+            (!fs_isfinite(s->amplitude_scale) || s->amplitude_scale < FS_R(0.0))) {
+            return FS_ERR_SCALE_INVALID;
+        }
         if (!fs_isfinite(s->goal_scale) || !fs_isfinite(s->time_scale) ||
             !fs_isfinite(s->duration_s) || s->time_scale <= FS_R(0.0) ||
             !fs_isfinite(s->path_scale) || s->path_scale < FS_R(0.0)) {
@@ -278,7 +321,7 @@ static fs_real_t exec_reference_force(const exec_config_t *cfg, exec_state_t *st
         /* start from the measured contact force: the difference to the skill's starting force
          * fades out like a carry between steps */
         st->start_pending = 0u;
-        st->force_carry_N = meas->force_contact_N - s->skill->dmp.force0_N;
+        st->force_carry_N = meas->force_contact_N - exec_step_start_force(s);
         const fs_real_t p0 = (cfg->use_model != 0u)
                                  ? exec_object_deformation(&cfg->object, meas->force_contact_N)
                                  : exec_spring_deformation(s->skill->stiffness_Npm,
@@ -307,7 +350,7 @@ static fs_real_t exec_reference_force(const exec_config_t *cfg, exec_state_t *st
             st->y_hold_m += st->path_m; /* the next step's path starts where this one ended */
             st->path_m = FS_R(0.0);
             st->step++;
-            st->force_carry_N = f - st->steps[st->step].skill->dmp.force0_N;
+            st->force_carry_N = f - exec_step_start_force(&st->steps[st->step]);
             (void)exec_begin_step(st, dt); /* converted by exec_start */
         } else {
             st->ending = 1u;

@@ -27,6 +27,9 @@
  * state (its force starts at its f0); f_carry = last f_hat of the previous step - f0 of the next
  * is added and faded out with a raised cosine over EXEC_BLEND_S. The force is therefore
  * continuous at the switch (jump = one DMP step of the new skill).
+ * A periodic step runs dmp_periodic_step (cycles from the stored cycle state, f_dmp = f0 +
+ * goal_scale*g + e) for its duration or until stopped; its starting force (the carry's
+ * reference) is its first value f0 + goal_scale*g + amplitude_scale*e0.
  * End of the sequence: hold keeps the last f_hat; release ramps it linearly to 0 in
  * SKILL_RELEASE_TIME_S, then the sequence is done (f_hat stays 0). */
 #ifndef FS_EXEC_H
@@ -82,6 +85,12 @@ typedef struct {
     fs_real_t duration_s;   /* how long the step runs; <= 0 means the skill's T*time_scale */
     skill_end_t end_policy; /* used after the last step: hold or release */
     fs_real_t path_scale;   /* the y path about its start (skills with a y DMP); >= 0 */
+    /* a periodic skill (docs/math.md section 5): duration_s <= 0 runs one cycle (its period
+     * times time_scale), until_stopped runs cycles until the run is stopped (the duration is
+     * then ignored); amplitude_scale (>= 0) multiplies the stroke about the mean force, which
+     * goal_scale scales */
+    fs_real_t amplitude_scale;
+    uint8_t until_stopped;
 } exec_step_t;
 
 /** Known object model for the position reference (docs/math.md): f = m_v*pdd + d_v*pd
@@ -167,7 +176,7 @@ void exec_config_default(exec_config_t *cfg);
 
 /** Load a sequence (1..EXEC_MAX_STEPS steps) and reset the state; y_hold_m is the y position the
  *  path starts from (held by skills without a y DMP). Validates skills (non-NULL), finite scales,
- *  time_scale > 0, path_scale >= 0 and the configuration; the fixed-point build also converts
+ *  time_scale > 0, path_scale >= 0 (a periodic step's amplitude_scale too) and the configuration; the fixed-point build also converts
  *  every step (3xx codes: a skill, scale or gain that does not fit its Q format). */
 fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
                        uint8_t n_steps, fs_real_t y_hold_m);

@@ -9,6 +9,9 @@
 #include "fs_num.h"
 #define DMP_TICK_MODEL dmp_model_t
 #include "dmp_tick.h"
+#include "dmp_ptick.h"
+
+#define DMP_TWO_PI FS_R(6.28318530717958647692)
 
 /* Kernel i is relevant at phase u iff |u - c_i| <= r_i, r_i = sqrt(2*cutoff)*sigma_i. The
  * envelopes use r_i widened by this factor, so the window found by binary search always contains
@@ -172,19 +175,25 @@ static fs_status_t dmp_init_once(const dmp_model_t *m, uint8_t stage)
         }
         return (!fs_isfinite(m->p.alpha) || !fs_isfinite(m->p.beta) || !fs_isfinite(m->p.gamma) ||
                 !fs_isfinite(m->dt_s) || !fs_isfinite(m->tau_s) || !fs_isfinite(m->goal_N) ||
-                !fs_isfinite(m->force0_N) || !fs_isfinite(m->duration_s))
+                !fs_isfinite(m->force0_N) || !fs_isfinite(m->duration_s) ||
+                (m->periodic != 0u &&
+                 (!fs_isfinite(m->amplitude_N) || !fs_isfinite(m->cycle_e0_N) ||
+                  !fs_isfinite(m->cycle_z0_N) || !fs_isfinite(m->cycle_i0_N))))
                    ? FS_ERR_SKILL_NOT_FINITE
                    : FS_OK;
     case MI_RANGE:
         return (!(m->dt_s > FS_R(0.0)) || m->dt_s > FS_R(0.1) || !(m->tau_s > FS_R(0.0)) ||
                 !(m->duration_s > FS_R(0.0)) || m->duration_s > FS_R(3600.0) ||
-                !(m->goal_N > FS_R(0.0)))
+                !(m->goal_N > FS_R(0.0)) || (m->periodic != 0u && !(m->amplitude_N > FS_R(0.0))))
                    ? FS_ERR_SKILL_RANGE
                    : FS_OK;
     case MI_GAINS:
         if (!(alpha > FS_R(0.0)) || !(m->p.beta > FS_R(0.0)) || m->p.gamma < FS_R(0.0) ||
             m->p.beta > mono) {
             return FS_ERR_SKILL_GAINS;
+        }
+        if (m->periodic != 0u && m->has_y != 0u) {
+            return FS_ERR_SKILL_UNSUPPORTED;
         }
         return (m->has_y != 0u && (!fs_isfinite(m->beta_y) || !fs_isfinite(m->goal_y_m) ||
                                    !fs_isfinite(m->y_start_m)))
@@ -198,6 +207,56 @@ static fs_status_t dmp_init_once(const dmp_model_t *m, uint8_t stage)
     }
 }
 
+/* A periodic kernel's reach in turns: the largest circular distance with kappa (1 - cos) <= the
+ * cutoff, asin(sqrt(cutoff/(2 kappa)))/pi (half a turn when every phase is within), widened by
+ * DMP_ENVELOPE_MARGIN. */
+static fs_real_t dmp_periodic_reach(fs_real_t kappa)
+{
+    const fs_real_t q = (fs_real_t)DMP_KERNEL_CUTOFF_EXP / (FS_R(2.0) * kappa);
+    if (!(q < FS_R(1.0))) {
+        return FS_R(0.5);
+    }
+    const fs_real_t r = fs_asin(fs_sqrt(q)) * (FS_R(2.0) / DMP_TWO_PI) * DMP_ENVELOPE_MARGIN;
+    return (r < FS_R(0.5)) ? r : FS_R(0.5);
+}
+
+/* One kernel of a periodic model's per-kernel passes (the checks of widths and centres on the
+ * circle, the derived arrays in turns). */
+static void dmp_init_kernel_periodic(dmp_model_t *m, dmp_init_t *it, uint16_t i)
+{
+    const fs_real_t kappa = m->width[i];
+    const fs_real_t x = m->centre[i] / DMP_TWO_PI;
+    switch (it->stage) {
+    case MI_WIDTHS:
+        if (!(kappa > FS_R(0.0)) || !fs_isfinite(FS_R(2.0) * kappa)) {
+            it->status = FS_ERR_SKILL_RANGE;
+        }
+        break;
+    case MI_CENTRES: {
+        const fs_real_t c = m->centre[i];
+        if (c < FS_R(0.0) || !(c < DMP_TWO_PI) || (i > 0u && !(c > m->centre[i - 1u]))) {
+            it->status = FS_ERR_SKILL_PHASES;
+        }
+        break;
+    }
+    case MI_FORWARD: {
+        m->kernel_scale[i] = FS_R(2.0) * kappa;
+        m->half_sin[i] = fs_sin(FS_R(0.5) * m->centre[i]);
+        m->half_cos[i] = fs_cos(FS_R(0.5) * m->centre[i]);
+        const fs_real_t hi = x + dmp_periodic_reach(kappa);
+        it->run = (i == 0u || hi > it->run) ? hi : it->run;
+        m->env_hi[i] = it->run;
+        break;
+    }
+    default: { /* MI_BACKWARD */
+        const fs_real_t lo = x - dmp_periodic_reach(kappa);
+        it->run = (i == m->n_kernels - 1u || lo < it->run) ? lo : it->run;
+        m->env_lo[i] = it->run;
+        break;
+    }
+    }
+}
+
 /* Kernel it->i of a per-kernel pass; true once the pass's last kernel is done. */
 static bool dmp_init_kernel(dmp_model_t *m, dmp_init_t *it)
 {
@@ -206,6 +265,11 @@ static bool dmp_init_kernel(dmp_model_t *m, dmp_init_t *it)
     const fs_real_t r_per_sigma = fs_sqrt(FS_R(2.0) * (fs_real_t)DMP_KERNEL_CUTOFF_EXP) *
                                   DMP_ENVELOPE_MARGIN;
     const fs_real_t s = m->width[i];
+    if (m->periodic != 0u && it->stage != MI_FINITE && it->stage != MI_Y_WEIGHTS) {
+        dmp_init_kernel_periodic(m, it, i);
+        it->i++;
+        return it->i >= n;
+    }
     switch (it->stage) {
     case MI_FINITE:
         if (!fs_isfinite(m->centre[i]) || !fs_isfinite(s) || !fs_isfinite(m->weight[i])) {
@@ -304,6 +368,7 @@ void dmp_state_reset(dmp_state_t *s)
     s->z = FS_R(0.0);
     s->path_m = FS_R(0.0);
     s->path_z = FS_R(0.0);
+    s->u_comp = FS_R(0.0);
 }
 
 /* S(u) over all N kernels with psi_i = exp(-(e_i - e_min)) (the test reference: the shift keeps
@@ -410,4 +475,57 @@ fs_real_t dmp_step_xy(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run
         *path_m = s->path_m;
     }
     return m->force0_N + dmp_tick_step(&c, &st, s_blend, NULL);
+}
+
+void dmp_periodic_reset(const dmp_model_t *m, dmp_state_t *s, fs_real_t amplitude_scale)
+{
+    dmp_state_reset(s);
+    s->y_N = amplitude_scale * m->cycle_e0_N;
+    s->z = amplitude_scale * m->cycle_z0_N;
+    s->integral_y = amplitude_scale * m->cycle_i0_N;
+    dmp_ptick_window_search(m, dmp_ptick_query(FS_R(0.0)), s->window);
+}
+
+fs_real_t dmp_periodic_blend(const dmp_model_t *m, fs_real_t x_turns, uint16_t *count)
+{
+    uint16_t win[2];
+    dmp_ptick_window_search(m, dmp_ptick_query(x_turns), win);
+    return dmp_ptick_blend(m, x_turns, win[0], win[1], count);
+}
+
+fs_real_t dmp_periodic_blend_full(const dmp_model_t *m, fs_real_t x_turns)
+{
+    const fs_real_t phi = DMP_TWO_PI * x_turns;
+    fs_real_t e_min = FS_REAL_INF;
+    for (uint16_t i = 0u; i < m->n_kernels; i++) {
+        const fs_real_t e = m->width[i] * (FS_R(1.0) - fs_cos(phi - m->centre[i]));
+        e_min = (e < e_min) ? e : e_min;
+    }
+    fs_real_t num = FS_R(0.0);
+    fs_real_t den = FS_R(0.0);
+    for (uint16_t i = 0u; i < m->n_kernels; i++) {
+        const fs_real_t e = m->width[i] * (FS_R(1.0) - fs_cos(phi - m->centre[i]));
+        const fs_real_t psi = fs_exp(-(e - e_min));
+        num += psi * m->weight[i];
+        den += psi;
+    }
+    return num / den;
+}
+
+fs_real_t dmp_periodic_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
+                            fs_real_t amplitude_scale, const dmp_coupling_t *coupling)
+{
+    const dmp_ptick_state_t st = {s->window, &s->u, &s->u_comp, &s->y_N, &s->z, &s->integral_y};
+    const fs_real_t s_blend = dmp_ptick_state_blend(m, &st);
+    const dmp_tick_coef_t c = dmp_coef(m, run, coupling);
+    const dmp_ptick_coef_t pc = {.k1 = c.k1,
+                                 .k_alpha = c.k_alpha,
+                                 .k_alphabeta = c.k_alphabeta,
+                                 .k_gamma = c.k_gamma,
+                                 .phase_inc = fs_num_turn_inc(c.k1 / DMP_TWO_PI),
+                                 .goal = c.goal,
+                                 .amplitude = amplitude_scale * m->amplitude_N,
+                                 .out_scale = FS_R(1.0),
+                                 .term_y = c.term_y};
+    return m->force0_N + dmp_ptick_step(m, &pc, &st, s_blend, NULL);
 }

@@ -110,14 +110,28 @@ typedef struct {
     fs_real_t goal_y_m;                  /* g_y: the DMP's goal, m above the path's start */
     fs_real_t y_start_m;                 /* where the demonstrated path started */
     fs_real_t y_weight[DMP_MAX_KERNELS]; /* m: h_y = v~*S_y */
+    /* the periodic DMP (periodic = 1, docs/math.md section 5, no y DMP): centre[] holds the
+     * angles c_i in [0, 2 pi), width[] the von Mises concentrations kappa_i, duration_s the
+     * period 2 pi tau; derived: kernel_scale[] = 2 kappa_i, env_lo/env_hi in turns (of the
+     * phase x = phi/(2 pi)), half_sin/half_cos = sin/cos(c_i/2) */
+    uint8_t periodic;
+    fs_real_t amplitude_N; /* r: h = s_a*r*S */
+    fs_real_t cycle_e0_N;  /* (e, z, I) of the orbit at phi = 0 */
+    fs_real_t cycle_z0_N;
+    fs_real_t cycle_i0_N;
+    fs_real_t half_sin[DMP_MAX_KERNELS];
+    fs_real_t half_cos[DMP_MAX_KERNELS];
 } dmp_model_t;
 
-/** Validate the model and fill the derived arrays (after centre/width/weight and scalars are set).
+/** Validate the model and fill the derived arrays (after centre/width/weight and scalars are set;
+ *  periodic = 0 for the discrete DMP).
  *  Checks in skill-image order: NULL (100); 1 <= N <= DMP_MAX_KERNELS (205); every value finite
  *  (206); 0 < dt <= 0.1, tau > 0, 0 < T <= 3600, g > 0, sigma_i > 0 and 1/(2 sigma_i^2)
  *  finite (207); centres strictly increasing in [0, 1] (208); alpha > 0, beta > 0, gamma >= 0,
  *  beta <= alpha/4*(1 + DMP_MONOTONE_REL_TOL_REAL) (209). With has_y: goal_y, y_start and
- *  y_weight[] finite (206), 0 < beta_y <= alpha/4*(1 + tol) (209). */
+ *  y_weight[] finite (206), 0 < beta_y <= alpha/4*(1 + tol) (209). A periodic model: its four
+ *  scalars finite (206), r > 0 and kappa_i > 0 with 2 kappa_i finite (207), centres strictly
+ *  increasing in [0, 2 pi) (208), and no y DMP (210). */
 fs_status_t dmp_model_init(dmp_model_t *m);
 
 /** dmp_model_init in slices (dmp_model_init_begin, then dmp_model_init_run until it returns
@@ -149,6 +163,7 @@ typedef struct {
     fs_real_t z;
     fs_real_t path_m; /* p: the y DMP's position above the path's start (0 without one) */
     fs_real_t path_z; /* z_p */
+    fs_real_t u_comp; /* the periodic phase sum's compensation (dmp_ptick.h) */
 } dmp_state_t;
 
 /** Run-time modulation: goal_scale multiplies g (and so f_hat), time_scale stretches tau. */
@@ -200,5 +215,25 @@ fs_real_t dmp_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
  *  0 without a y DMP). Returns f_hat as dmp_step. */
 fs_real_t dmp_step_xy(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
                       const dmp_coupling_t *coupling, fs_real_t path_scale, fs_real_t *path_m);
+
+/** A periodic model's start (docs/math.md section 5): the phase at 0 turns, (e, z, I) = s_a
+ *  times the stored cycle state, the kernel window found by search. s_a (the amplitude scale)
+ *  is the caller's to validate (finite). */
+void dmp_periodic_reset(const dmp_model_t *m, dmp_state_t *s, fs_real_t amplitude_scale);
+
+/** S(x) of a periodic model at phase x in turns, 0 <= x < 1: the tick's blend (window, cutoff,
+ *  nearest kernel); *count (may be NULL) the number of kernels summed. */
+fs_real_t dmp_periodic_blend(const dmp_model_t *m, fs_real_t x_turns, uint16_t *count);
+
+/** S(x) over all N kernels, psi_i = exp(-(e_i - e_min)) with e_i = kappa_i (1 - cos(2 pi x -
+ *  c_i)) (the test reference; not for the tick). */
+fs_real_t dmp_periodic_blend_full(const dmp_model_t *m, fs_real_t x_turns);
+
+/** One step of a periodic model (dmp_ptick.h, forward Euler, every right-hand side at the old
+ *  state): the phase advances dt/(2 pi tau_e) turns and wraps, tau_e = tau*time_scale*(1 +
+ *  phase_slowdown); run NULL means scales 1, coupling may be NULL. Returns
+ *  f_hat = f0 + goal_scale*g + e after the step. */
+fs_real_t dmp_periodic_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
+                            fs_real_t amplitude_scale, const dmp_coupling_t *coupling);
 
 #endif /* DMP_H */

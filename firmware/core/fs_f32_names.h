@@ -19,6 +19,10 @@
 #define dmp_phase_stop_factor dmp_phase_stop_factor_f32
 #define dmp_step dmp_step_f32
 #define dmp_step_xy dmp_step_xy_f32
+#define dmp_periodic_reset dmp_periodic_reset_f32
+#define dmp_periodic_blend dmp_periodic_blend_f32
+#define dmp_periodic_blend_full dmp_periodic_blend_full_f32
+#define dmp_periodic_step dmp_periodic_step_f32
 #define pfc_default_config pfc_default_config_f32
 #define pfc_config_validate pfc_config_validate_f32
 #define pfc_reset pfc_reset_f32
@@ -35,6 +39,7 @@
 #define skchk_skill skchk_skill_f32
 #define skchk_run_path skchk_run_path_f32
 #define skchk_run_scales skchk_run_scales_f32
+#define skchk_run_scales_periodic skchk_run_scales_periodic_f32
 #define skchk_stiffness skchk_stiffness_f32
 
 #endif /* FS_F32_NAMES_H */

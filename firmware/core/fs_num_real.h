@@ -180,4 +180,48 @@ static inline fs_real_t fs_num_clamp(fs_real_t v, fs_real_t lim)
     return v;
 }
 
+/* The periodic DMP's kernel distance (dmp_ptick.h): sin(pi x) and cos(pi x) of a phase x in
+ * turns, 0 <= x <= 1 (the half angle of phi = 2 pi x), and d_i = sin(pi (x - c_i)) from them and
+ * the kernel's half-angle sine and cosine. Double: the library's sin and cos; float: odd Taylor
+ * polynomials of sin(pi t), |t| <= 1/2, to t^11 (truncation 5.7e-8, near float's resolution),
+ * no library call. */
+#define FS_NUM_PI 3.14159265358979323846
+#ifdef FS_REAL_FLOAT
+static inline float fs_num_sinpi_half(float t)
+{
+    const float t2 = t * t;
+    float p = -7.37043094571435e-03f;
+    p = p * t2 + 8.21458866111282e-02f;
+    p = p * t2 - 5.99264529320792e-01f;
+    p = p * t2 + 2.55016403987734e+00f;
+    p = p * t2 - 5.16771278004997e+00f;
+    p = p * t2 + 3.14159265358979e+00f;
+    return p * t;
+}
+
+static inline void fs_num_sincos_pi(fs_phase_t x, fs_phase_t *s, fs_phase_t *c)
+{
+    *s = fs_num_sinpi_half((x <= 0.5f) ? x : 1.0f - x);
+    *c = fs_num_sinpi_half(0.5f - x);
+}
+#else
+static inline void fs_num_sincos_pi(fs_phase_t x, fs_phase_t *s, fs_phase_t *c)
+{
+    *s = sin(FS_NUM_PI * x);
+    *c = cos(FS_NUM_PI * x);
+}
+#endif
+
+static inline fs_phase_t fs_num_vm_dist(fs_phase_t sh, fs_phase_t ch, fs_phase_t hs, fs_phase_t hc)
+{
+    return sh * hc - ch * hs;
+}
+
+/* The periodic phase's accumulator: one turn, and the increment of a per-step rate in turns. */
+#define FS_NUM_TURN FS_R(1.0)
+static inline fs_acc_t fs_num_turn_inc(fs_real_t turns_per_step)
+{
+    return turns_per_step;
+}
+
 #endif /* FS_NUM_REAL_H */

@@ -22,6 +22,9 @@ typedef float fs_real_t;
 #define fs_exp expf
 #endif
 #define fs_sqrt sqrtf
+#define fs_sin sinf
+#define fs_cos cosf
+#define fs_asin asinf
 #define fs_fabs fabsf
 #define fs_isfinite(x) isfinite(x)
 #define FS_REAL_INF HUGE_VALF
@@ -32,6 +35,9 @@ typedef double fs_real_t;
 #define fs_exp exp
 #endif
 #define fs_sqrt sqrt
+#define fs_sin sin
+#define fs_cos cos
+#define fs_asin asin
 #define fs_fabs fabs
 #define fs_isfinite(x) isfinite(x)
 #define FS_REAL_INF HUGE_VAL

@@ -268,13 +268,24 @@ static fs_status_t check_kind(const uint8_t *buf, uint16_t version, uint8_t kind
 
 /* The header's values in the core's type (the y DMP's scalars too, zeros without one): 0 if a
  * value does not fit it. */
-static int fill_header(const uint8_t *buf, uint8_t has_y, skill_t *out)
+static int fill_header(const uint8_t *buf, uint8_t has_y, uint8_t kind, skill_t *out)
 {
     dmp_model_t *m = &out->dmp;
     m->has_y = has_y;
     m->beta_y = FS_R(0.0);
     m->goal_y_m = FS_R(0.0);
     m->y_start_m = FS_R(0.0);
+    m->periodic = (kind == SKILL_KIND_PERIODIC) ? 1u : 0u;
+    m->amplitude_N = FS_R(0.0);
+    m->cycle_e0_N = FS_R(0.0);
+    m->cycle_z0_N = FS_R(0.0);
+    m->cycle_i0_N = FS_R(0.0);
+    if (m->periodic != 0u && !(to_real(rd_f64(buf, OFF_AMPLITUDE), &m->amplitude_N) &&
+                               to_real(rd_f64(buf, OFF_AMPLITUDE + 8u), &m->cycle_e0_N) &&
+                               to_real(rd_f64(buf, OFF_AMPLITUDE + 16u), &m->cycle_z0_N) &&
+                               to_real(rd_f64(buf, OFF_AMPLITUDE + 24u), &m->cycle_i0_N))) {
+        return 0;
+    }
     int ok = to_real(rd_f64(buf, OFF_ALPHA), &m->p.alpha) &&
              to_real(rd_f64(buf, OFF_BETA), &m->p.beta) &&
              to_real(rd_f64(buf, OFF_GAMMA), &m->p.gamma) &&
@@ -410,7 +421,7 @@ static void parse_once(skill_parser_t *p)
         break;
     case SP_FILL:
         out->dmp.n_kernels = p->n;
-        if (!fill_header(buf, p->has_y, out)) {
+        if (!fill_header(buf, p->has_y, p->kind, out)) {
             p->status = FS_ERR_SKILL_RANGE;
         }
         break;

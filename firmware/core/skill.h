@@ -31,10 +31,11 @@
 #define SKILL_RELEASE_TIME_S 0.5
 #define SKILL_KIND_DISCRETE 0u
 #define SKILL_KIND_PERIODIC 1u /* v4: a rhythmic skill (docs/math.md section 5) */
-/* A build that runs periodic skills defines SKILL_PERIODIC_SUPPORTED 1; the others refuse a
- * valid periodic image with FS_ERR_SKILL_NO_PERIODIC after every check of the format. */
+/* The core runs periodic skills (dmp_periodic_step, in double, float32 and fixed point): a build
+ * that cannot (a port without the periodic executor) defines SKILL_PERIODIC_SUPPORTED 0 and
+ * refuses a valid periodic image with FS_ERR_SKILL_NO_PERIODIC after every check of the format. */
 #ifndef SKILL_PERIODIC_SUPPORTED
-#define SKILL_PERIODIC_SUPPORTED 0
+#define SKILL_PERIODIC_SUPPORTED 1
 #endif
 
 /** End policy after the skill's duration. */

@@ -44,9 +44,13 @@ fs_status_t skchk_params(const skill_t *s)
               within(g->k_i_per_s, FS_R(0.0), (fs_real_t)(SKCHK_GAIN_MAX)) &&
               within(s->surface_m, (fs_real_t)(-SKCHK_SURFACE_MAX_M),
                      (fs_real_t)(SKCHK_SURFACE_MAX_M));
+    const fs_real_t w_min = (m->periodic != 0u) ? (fs_real_t)(SKCHK_KAPPA_MIN)
+                                                : (fs_real_t)(SKCHK_WIDTH_MIN);
+    const fs_real_t w_max = (m->periodic != 0u) ? (fs_real_t)(SKCHK_KAPPA_MAX)
+                                                : (fs_real_t)(SKCHK_WIDTH_MAX);
     for (uint16_t i = 0u; ok && i < m->n_kernels && i < DMP_MAX_KERNELS; i++) {
         ok = within(m->weight[i], (fs_real_t)(-SKCHK_WEIGHT_MAX), (fs_real_t)(SKCHK_WEIGHT_MAX)) &&
-             within(m->width[i], (fs_real_t)(SKCHK_WIDTH_MIN), (fs_real_t)(SKCHK_WIDTH_MAX));
+             within(m->width[i], w_min, w_max);
     }
     if (!ok || m->n_kernels == 0u || m->n_kernels > DMP_MAX_KERNELS) {
         return FS_ERR_SKCHK_RANGE;
@@ -70,7 +74,11 @@ fs_status_t skchk_params(const skill_t *s)
 void skchk_begin(skchk_t *c, const skill_t *s, fs_real_t dt_s, fs_real_t force_max_N)
 {
     c->skill = s;
-    dmp_state_reset(&c->dmp);
+    if (s->dmp.periodic != 0u) {
+        dmp_periodic_reset(&s->dmp, &c->dmp, FS_R(1.0));
+    } else {
+        dmp_state_reset(&c->dmp);
+    }
     const fs_real_t n = s->dmp.duration_s / dt_s + FS_R(0.5);
     c->steps_total = (fs_isfinite(n) && n > FS_R(0.0) && n < FS_R(4.0e9)) ? (uint32_t)n : 0u;
     c->steps_done = 0u;
@@ -84,9 +92,16 @@ void skchk_begin(skchk_t *c, const skill_t *s, fs_real_t dt_s, fs_real_t force_m
 
 bool skchk_run(skchk_t *c, uint32_t max_steps)
 {
+    const dmp_model_t *m = &c->skill->dmp;
+    /* periodic: the bound |f0| + g + |e| (f = f0 + g + e at scales 1) */
+    const fs_real_t fg = fs_fabs(m->force0_N) + m->goal_N;
     for (uint32_t i = 0u; i < max_steps && !c->done; i++) {
         fs_real_t p = FS_R(0.0);
-        const fs_real_t f = dmp_step_xy(&c->skill->dmp, &c->dmp, NULL, NULL, FS_R(1.0), &p);
+        const fs_real_t f = (m->periodic != 0u)
+                                ? fg +
+                                      fs_fabs(dmp_periodic_step(m, &c->dmp, NULL, FS_R(1.0), NULL) -
+                                              m->force0_N - m->goal_N)
+                                : dmp_step_xy(m, &c->dmp, NULL, NULL, FS_R(1.0), &p);
         const fs_real_t a = fs_fabs(f);
         const fs_real_t ap = fs_fabs(p);
         if (ap > c->path_peak_m) {
@@ -160,6 +175,26 @@ fs_status_t skchk_run_scales(const skill_t *s, fs_real_t peak_N, fs_real_t goal_
      * (goal_scale*peak_N) for a skill starting from 0 N */
     const fs_real_t f0 = fs_fabs(s->dmp.force0_N);
     const fs_real_t peak = f0 + fs_fabs(goal_scale) * (peak_N + f0);
+    return (fs_isfinite(peak) && peak <= force_max_N) ? FS_OK : FS_ERR_SKCHK_GOAL_SCALE;
+}
+
+fs_status_t skchk_run_scales_periodic(const skill_t *s, fs_real_t peak_N, fs_real_t goal_scale,
+                                      fs_real_t amplitude_scale, fs_real_t time_scale,
+                                      fs_real_t dt_s, fs_real_t force_max_N)
+{
+    if (s == NULL) {
+        return FS_ERR_NULL_ARG;
+    }
+    if (!fs_isfinite(amplitude_scale) || amplitude_scale < FS_R(0.0) || !fs_isfinite(goal_scale) ||
+        !fs_isfinite(time_scale) || !(time_scale > FS_R(0.0))) {
+        return FS_ERR_SCALE_INVALID;
+    }
+    if (!step_ok(s, dt_s, time_scale)) {
+        return FS_ERR_SKCHK_STEP;
+    }
+    const fs_real_t g = fs_fabs(goal_scale);
+    const fs_real_t k = (amplitude_scale > g) ? amplitude_scale : g;
+    const fs_real_t peak = k * peak_N;
     return (fs_isfinite(peak) && peak <= force_max_N) ? FS_OK : FS_ERR_SKCHK_GOAL_SCALE;
 }
 

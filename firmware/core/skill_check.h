@@ -17,6 +17,10 @@
  *     extent max|p| from the start within path_max_m (the y workspace's width; default
  *     SKCHK_PATH_MAX_M), else 225; at run time path_scale*extent within it, else 226
  *     (skchk_run_path).
+ *  A periodic skill (docs/math.md section 5): its widths within the kappa range, the rollout is
+ *  one cycle from the stored cycle state (dmp_periodic_step), and peak_N is the bound
+ *  |f0| + g + max|e| of its force (the run-time check scales it by the larger of the goal and
+ *  amplitude scales: skchk_run_scales_periodic).
  *  5. skchk_stiffness: the skill's nominal stiffness within the device's limit (227), checked at
  *     commit and at start: on stiffer objects the device's force loop does not track (the limit
  *     is measured per device, docs/hil.md). */
@@ -40,6 +44,9 @@
 #define SKCHK_WEIGHT_MAX 1e4
 #define SKCHK_WIDTH_MIN 1e-5
 #define SKCHK_WIDTH_MAX 1.0
+/* A periodic skill's widths are von Mises concentrations kappa_i (the fit's N = 50: 150). */
+#define SKCHK_KAPPA_MIN 1e-3
+#define SKCHK_KAPPA_MAX 1e7
 #define SKCHK_DURATION_MAX_S 600.0
 #define SKCHK_ALPHA_MAX 1e3
 #define SKCHK_GAMMA_MAX 1e4
@@ -92,6 +99,13 @@ fs_status_t skchk_run_path(const skill_t *s, fs_real_t path_peak_m, fs_real_t pa
  *  and the step rule at time_scale (221). */
 fs_status_t skchk_run_scales(const skill_t *s, fs_real_t peak_N, fs_real_t goal_scale,
                              fs_real_t time_scale, fs_real_t dt_s, fs_real_t force_max_N);
+
+/** skchk_run_scales of a periodic skill (peak_N its bound |f0| + g + max|e|): the larger of
+ *  goal_scale and amplitude_scale times the bound (224), amplitude_scale finite and >= 0 (109),
+ *  the step rule at time_scale (221). */
+fs_status_t skchk_run_scales_periodic(const skill_t *s, fs_real_t peak_N, fs_real_t goal_scale,
+                                      fs_real_t amplitude_scale, fs_real_t time_scale,
+                                      fs_real_t dt_s, fs_real_t force_max_N);
 
 /** The skill's nominal stiffness at most stiffness_max_Npm (227; FS_ERR_NULL_ARG for NULL). */
 fs_status_t skchk_stiffness(const skill_t *s, fs_real_t stiffness_max_Npm);

@@ -10,6 +10,9 @@
 #include "fs_num.h"
 #define DMP_TICK_MODEL dmpfx_model_t
 #include "dmp_tick.h"
+#include "dmp_ptick.h"
+
+#define DMPFX_TWO_PI 6.283185307179586
 
 /* sqrt(2*16): kernel i can pass the cutoff only if |u - c_i| <= DMPFX_R_CUT * sigma_i. The
  * envelopes are widened by 1e-4 so rounding never drops a kernel; the e_i test decides. */
@@ -85,10 +88,17 @@ static double dmpfx_w_max(const fs_real_t *w, uint16_t n)
     return (double)w_max;
 }
 
-/* B = |g|*(1 + max|w_i|) in N: |h| <= 1.9*|g|*max|w_i|, and y, z, I follow g and h */
+/* B = |g|*(1 + max|w_i|) in N: |h| <= 1.9*|g|*max|w_i|, and y, z, I follow g and h. A periodic
+ * model: |g| + DMPFX_PERIODIC_BOUND*r*(1 + max|w_i|) (h = r*S, |S| <= max|w_i|; e, z, I follow
+ * h through the same stable filter, and the output is g + e). */
+#define DMPFX_PERIODIC_BOUND 4.0
 static double dmpfx_bound_N(const dmp_model_t *m)
 {
-    return fabs((double)m->goal_N) * (1.0 + dmpfx_w_max(m->weight, m->n_kernels));
+    const double w = dmpfx_w_max(m->weight, m->n_kernels);
+    if (m->periodic != 0u) {
+        return fabs((double)m->goal_N) + DMPFX_PERIODIC_BOUND * (double)m->amplitude_N * (1.0 + w);
+    }
+    return fabs((double)m->goal_N) * (1.0 + w);
 }
 
 static fs_status_t dmpfx_check_args(const dmp_model_t *m, const dmpfx_model_t *out)
@@ -148,8 +158,11 @@ fs_status_t dmpfx_from_model_bound(const dmp_model_t *m, dmpfx_model_t *out)
                                 24);
     }
     /* v~ of the phase system peaks at sqrt(alpha beta)/e when critically damped (beta =
-     * alpha/4), lower when overdamped; the Euler steps overshoot that by 0.2 % on the vectors */
-    out->peak_v_q30 = ldexp(sqrt(out->alpha * out->beta) * DMPFX_INV_E * 1.01, 30);
+     * alpha/4), lower when overdamped; the Euler steps overshoot that by 0.2 % on the vectors
+     * (a periodic model has no v~) */
+    out->peak_v_q30 = (m->periodic != 0u)
+                          ? 0.0
+                          : ldexp(sqrt(out->alpha * out->beta) * DMPFX_INV_E * 1.01, 30);
     if (out->peak_q24 > lim_q24 || out->peak_y_q24 > lim_q24 ||
         out->peak_v_q30 > DMPFX_V_MAX * (double)FX_Q30_ONE) {
         return FS_ERR_FIXED_OVERFLOW;
@@ -157,14 +170,123 @@ fs_status_t dmpfx_from_model_bound(const dmp_model_t *m, dmpfx_model_t *out)
     return FS_OK;
 }
 
-static fs_status_t dmpfx_convert(const dmp_model_t *m, int32_t shift, dmpfx_model_t *out)
+/* A periodic kernel's reach in turns at the fixed cutoff 16: asin(y)/pi, y = sqrt(16/(2 kappa)),
+ * bounded above by (y + (pi/2 - 1) y^3)/pi ((asin(y) - y)/y^3 rises from 1/6 to pi/2 - 1 on
+ * [0, 1]: 3 % wider than exact at the fit's kappa, no asin), widened by the envelope margin, at
+ * most half a turn. In the model's type: one software-float sqrt a kernel on the M3, no double
+ * (the executor converts when a step begins, within a tick). */
+static fs_real_t dmpfx_periodic_reach(fs_real_t kappa)
+{
+    const fs_real_t q = FS_R(16.0) / (FS_R(2.0) * kappa);
+    if (!(q < FS_R(1.0))) {
+        return FS_R(0.5);
+    }
+    const fs_real_t y = fs_sqrt(q);
+    const fs_real_t r = (y + FS_R(0.5707963267948966) * y * y * y) * FS_R(0.3183098861837907) *
+                        (fs_real_t)DMPFX_ENVELOPE_MARGIN;
+    return (r < FS_R(0.5)) ? r : FS_R(0.5);
+}
+
+/* A periodic model's kernels in fixed point: turns, 2 sqrt(kappa), the half-angle sine and
+ * cosine (the model's, derived at load), the envelopes in turns and the largest virtual window
+ * (at most DMPFX_MAX_WINDOW). */
+static fs_status_t dmpfx_convert_periodic(const dmp_model_t *m, dmpfx_model_t *out)
 {
     const uint16_t n = m->n_kernels;
+    const int32_t q24_lim = (int32_t)(DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE);
+    const fs_real_t inv_two_pi = FS_R(0.15915494309189535);
+    for (uint16_t i = 0u; i < n; i++) {
+        const fs_real_t x = m->centre[i] * inv_two_pi;
+        const fs_real_t kappa = m->width[i];
+        fs_status_t st = dmpfx_q(x, 30u, INT32_MAX, &out->centre[i]);
+        if (st == FS_OK) {
+            st = dmpfx_q(FS_R(2.0) * fs_sqrt(kappa), 19u, INT32_MAX, &out->kernel_scale[i]);
+        }
+        if (st == FS_OK) {
+            st = dmpfx_q(m->weight[i], 24u, q24_lim, &out->weight[i]);
+        }
+        if (st == FS_OK) {
+            st = dmpfx_q(m->half_sin[i], 30u, INT32_MAX, &out->half_sin[i]);
+        }
+        if (st == FS_OK) {
+            st = dmpfx_q(m->half_cos[i], 30u, INT32_MAX, &out->half_cos[i]);
+        }
+        if (st != FS_OK) {
+            return st;
+        }
+        const fs_real_t r = dmpfx_periodic_reach(kappa);
+        out->env_hi[i] = dmpfx_env_clamp_q30(x + r);
+        out->env_lo[i] = dmpfx_env_clamp_q30(x - r);
+    }
+    for (uint16_t i = 1u; i < n; i++) {
+        out->env_hi[i] = (out->env_hi[i] < out->env_hi[i - 1u]) ? out->env_hi[i - 1u]
+                                                                : out->env_hi[i];
+    }
+    for (uint16_t j = (uint16_t)(n - 1u); j > 0u; j--) {
+        out->env_lo[j - 1u] = (out->env_lo[j - 1u] > out->env_lo[j]) ? out->env_lo[j]
+                                                                     : out->env_lo[j - 1u];
+    }
+    /* the window's end grows only at the virtual lower envelopes: its largest size is at one of
+     * them (or at the query range's start) */
+    const int32_t q_lo = FX_Q30_ONE >> 1;
+    const int32_t q_hi = FX_Q30_ONE + q_lo - 1;
+    for (uint32_t j = 0u; j <= 2u * (uint32_t)n; j++) {
+        int32_t q = (j == 2u * (uint32_t)n) ? q_lo : dmp_ptick_lo(out, j);
+        q = (q < q_lo) ? q_lo : ((q > q_hi) ? q_hi : q);
+        uint16_t win[2];
+        dmp_ptick_window_search(out, q, win);
+        if (win[1] > win[0] && (uint32_t)(win[1] - win[0]) > DMPFX_MAX_WINDOW &&
+            n > DMPFX_MAX_WINDOW) {
+            return FS_ERR_FIXED_WINDOW;
+        }
+    }
+    return FS_OK;
+}
+
+static fs_status_t dmpfx_convert_kernels(const dmp_model_t *m, dmpfx_model_t *out);
+
+static fs_status_t dmpfx_convert(const dmp_model_t *m, int32_t shift, dmpfx_model_t *out)
+{
     if (shift > DMPFX_SHIFT_MAX) {
         return FS_ERR_FIXED_OVERFLOW;
     }
-    out->n_kernels = n;
+    out->n_kernels = m->n_kernels;
     out->value_shift = shift;
+    out->periodic = m->periodic;
+    out->amplitude_N = (double)m->amplitude_N;
+    out->cycle0_N[0] = (double)m->cycle_e0_N;
+    out->cycle0_N[1] = (double)m->cycle_z0_N;
+    out->cycle0_N[2] = (double)m->cycle_i0_N;
+    fs_status_t st = (m->periodic != 0u) ? dmpfx_convert_periodic(m, out)
+                                         : dmpfx_convert_kernels(m, out);
+    if (st == FS_OK) {
+        st = fx_from_double(ldexp(1.0, shift), 12u, INT32_MAX, &out->out_scale_q12);
+    }
+    if (st == FS_OK) {
+        st = fx_from_double((double)m->force0_N, 16u, INT32_MAX, &out->force0_q16);
+    }
+    if (st != FS_OK) {
+        return st;
+    }
+    out->dt_s = (double)m->dt_s;
+    out->tau_s = (double)m->tau_s;
+    out->alpha = (double)m->p.alpha;
+    out->beta = (double)m->p.beta;
+    out->gamma = (double)m->p.gamma;
+    out->goal_N = (double)m->goal_N;
+    out->has_y = m->has_y;
+    out->beta_y = (double)m->beta_y;
+    out->goal_y_m = (double)m->goal_y_m;
+    out->peak_y_q24 = 0.0;
+    out->peak_q24 = 0.0;
+    out->peak_v_q30 = 0.0;
+    return FS_OK;
+}
+
+/* A discrete model's kernels in fixed point, the envelopes and the largest window. */
+static fs_status_t dmpfx_convert_kernels(const dmp_model_t *m, dmpfx_model_t *out)
+{
+    const uint16_t n = m->n_kernels;
     const int32_t q24_lim = (int32_t)(DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE);
     /* in the model's own type: software float on a core without FPU, no double */
     const fs_real_t r_env = (fs_real_t)(DMPFX_R_CUT * DMPFX_ENVELOPE_MARGIN);
@@ -208,25 +330,6 @@ static fs_status_t dmpfx_convert(const dmp_model_t *m, int32_t shift, dmpfx_mode
             return FS_ERR_FIXED_WINDOW;
         }
     }
-    fs_status_t st = fx_from_double(ldexp(1.0, shift), 12u, INT32_MAX, &out->out_scale_q12);
-    if (st == FS_OK) {
-        st = fx_from_double((double)m->force0_N, 16u, INT32_MAX, &out->force0_q16);
-    }
-    if (st != FS_OK) {
-        return st;
-    }
-    out->dt_s = (double)m->dt_s;
-    out->tau_s = (double)m->tau_s;
-    out->alpha = (double)m->p.alpha;
-    out->beta = (double)m->p.beta;
-    out->gamma = (double)m->p.gamma;
-    out->goal_N = (double)m->goal_N;
-    out->has_y = m->has_y;
-    out->beta_y = (double)m->beta_y;
-    out->goal_y_m = (double)m->goal_y_m;
-    out->peak_y_q24 = 0.0;
-    out->peak_q24 = 0.0;
-    out->peak_v_q30 = 0.0;
     return FS_OK;
 }
 
@@ -268,8 +371,36 @@ fs_status_t dmpfx_run_init(const dmpfx_model_t *m, double goal_scale, double tim
     run->k_alphabeta_y_q31 = 0;
     run->goal_y_q24 = 0;
     run->path_scale_q24 = 0;
+    run->phase_inc = fs_num_turn_inc(k / DMPFX_TWO_PI);
+    run->amplitude_q24 = 0;
+    run->amplitude_scale = 1.0;
     st = fx_from_double(g, 24u, (int32_t)lim_q24, &run->goal_q24);
+    if (st == FS_OK) {
+        st = dmpfx_run_periodic(m, 1.0, run);
+    }
     return (st == FS_OK) ? dmpfx_run_path(m, 1.0, run) : st;
+}
+
+fs_status_t dmpfx_run_periodic(const dmpfx_model_t *m, double amplitude_scale, dmpfx_run_t *run)
+{
+    if (m == NULL || run == NULL) {
+        return FS_ERR_NULL_ARG;
+    }
+    if (!isfinite(amplitude_scale) || amplitude_scale < 0.0) {
+        return FS_ERR_SCALE_INVALID;
+    }
+    if (m->periodic == 0u) {
+        return FS_OK;
+    }
+    /* the nominal peaks are of goal 1 and amplitude 1: e, z, I, h scale with s_a, the output
+     * g + e with both (bounded by the sum of the two) */
+    const double lim_q24 = DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE;
+    if ((amplitude_scale + 1.0) * m->peak_q24 > lim_q24) {
+        return FS_ERR_FIXED_OVERFLOW;
+    }
+    run->amplitude_scale = amplitude_scale;
+    return fx_from_double(ldexp(m->amplitude_N * amplitude_scale, -m->value_shift), 24u,
+                          (int32_t)lim_q24, &run->amplitude_q24);
 }
 
 fs_status_t dmpfx_run_path(const dmpfx_model_t *m, double path_scale, dmpfx_run_t *run)
@@ -314,6 +445,7 @@ void dmpfx_state_reset(dmpfx_state_t *s)
     s->z_acc = 0;
     s->path_acc = 0;
     s->path_z_acc = 0;
+    s->u_comp_acc = 0;
     s->sat_events = 0u;
 }
 
@@ -404,8 +536,13 @@ static double dmpfx_absd(int32_t v)
  * units) into the model; any saturation, a peak above the headroom or |v~| > DMPFX_V_MAX -> 300.
  * The phase variable checks alpha, beta as the run will see them (v~ peaks at sqrt(alpha beta)/e
  * for the critically damped phase: 1.66 for the default gains). */
+static fs_status_t dmpfx_measure_peaks_periodic(dmpfx_model_t *m, double duration_s);
+
 static fs_status_t dmpfx_measure_peaks(dmpfx_model_t *m, double duration_s)
 {
+    if (m->periodic != 0u) {
+        return dmpfx_measure_peaks_periodic(m, duration_s);
+    }
     m->peak_q24 = 0.0;
     m->peak_v_q30 = 0.0;
     dmpfx_run_t run;
@@ -445,6 +582,84 @@ static fs_status_t dmpfx_measure_peaks(dmpfx_model_t *m, double duration_s)
     if (s.sat_events != 0u || m->peak_q24 > DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE ||
         m->peak_y_q24 > DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE ||
         peak_v > DMPFX_V_MAX * (double)FX_Q30_ONE) {
+        return FS_ERR_FIXED_OVERFLOW;
+    }
+    return FS_OK;
+}
+
+void dmpfx_periodic_reset(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s)
+{
+    dmpfx_state_reset(s);
+    /* s_a times the cycle state, in the accumulators' units (Q8.24 * 2^31, times 2^-s) */
+    const int exp2 = 55 - (int)m->value_shift;
+    s->y_acc = (int64_t)llround(ldexp(run->amplitude_scale * m->cycle0_N[0], exp2));
+    s->z_acc = (int64_t)llround(ldexp(run->amplitude_scale * m->cycle0_N[1], exp2));
+    s->integral_y_acc = (int64_t)llround(ldexp(run->amplitude_scale * m->cycle0_N[2], exp2));
+    dmp_ptick_window_search(m, dmp_ptick_query(0), s->window);
+}
+
+int32_t dmpfx_periodic_blend(const dmpfx_model_t *m, int32_t x_q30, uint16_t *count)
+{
+    uint16_t win[2];
+    dmp_ptick_window_search(m, dmp_ptick_query(x_q30), win);
+    return dmp_ptick_blend(m, x_q30, win[0], win[1], count);
+}
+
+int32_t dmpfx_periodic_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s,
+                            const dmpfx_coupling_t *coupling)
+{
+    int32_t k_ab_y;
+    const dmp_tick_coef_t c = dmpfx_coef(m, run, coupling, &k_ab_y);
+    int64_t phase_inc = run->phase_inc;
+    if (coupling != NULL && coupling->rate_q31 < FX_Q31_ONE_U) {
+        /* inc * rate / 2^31 in two halves (inc < 2^59: hi < 2^28, each product < 2^62) */
+        const uint64_t inc = (uint64_t)phase_inc;
+        const uint64_t r = coupling->rate_q31;
+        phase_inc = (int64_t)((inc >> 31) * r + (((inc & 0x7FFFFFFFu) * r) >> 31));
+    }
+    const dmp_ptick_coef_t pc = {.k1 = c.k1,
+                                 .k_alpha = c.k_alpha,
+                                 .k_alphabeta = c.k_alphabeta,
+                                 .k_gamma = c.k_gamma,
+                                 .phase_inc = phase_inc,
+                                 .goal = c.goal,
+                                 .amplitude = run->amplitude_q24,
+                                 .out_scale = c.out_scale,
+                                 .term_y = c.term_y};
+    const dmp_ptick_state_t st = {s->window, &s->u_acc, &s->u_comp_acc,
+                                  &s->y_acc, &s->z_acc, &s->integral_y_acc};
+    const int32_t s_blend = dmp_ptick_state_blend(m, &st);
+    const int32_t f = dmp_ptick_step(m, &pc, &st, s_blend, &s->sat_events);
+    return fx_add_sat(m->force0_q16, f);
+}
+
+/* The periodic nominal run (goal 1, amplitude 1, time 1): one cycle from the cycle state, the
+ * peaks of h, e, z, I and g + e (Q8.24 units); a saturation or a peak above the headroom -> 300. */
+static fs_status_t dmpfx_measure_peaks_periodic(dmpfx_model_t *m, double duration_s)
+{
+    m->peak_q24 = 0.0;
+    m->peak_v_q30 = 0.0;
+    m->peak_y_q24 = 0.0;
+    dmpfx_run_t run;
+    const fs_status_t st = dmpfx_run_init(m, 1.0, 1.0, &run);
+    if (st != FS_OK) {
+        return st;
+    }
+    dmpfx_state_t s;
+    dmpfx_periodic_reset(m, &run, &s);
+    const long rows = lround(duration_s / m->dt_s);
+    double peak = fmax(dmpfx_absd(run.goal_q24), dmpfx_absd(dmpfx_view(s.y_acc)));
+    for (long n = 0; n < rows; n++) {
+        const int32_t sw = dmpfx_periodic_blend(m, dmpfx_view(s.u_acc), NULL);
+        const double h = (double)run.amplitude_q24 * ldexp((double)sw, -24);
+        (void)dmpfx_periodic_step(m, &run, &s, NULL);
+        const int32_t e = dmpfx_view(s.y_acc);
+        peak = fmax(peak, fmax(fabs(h), fmax(dmpfx_absd(e), dmpfx_absd(run.goal_q24 + e))));
+        peak = fmax(
+            peak, fmax(dmpfx_absd(dmpfx_view(s.z_acc)), dmpfx_absd(dmpfx_view(s.integral_y_acc))));
+    }
+    m->peak_q24 = peak;
+    if (s.sat_events != 0u || m->peak_q24 > DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE) {
         return FS_ERR_FIXED_OVERFLOW;
     }
     return FS_OK;

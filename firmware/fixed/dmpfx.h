@@ -59,6 +59,14 @@ typedef struct {
     double beta_y;
     double goal_y_m;
     double peak_y_q24; /* max |h_y|, |p|, |z_p| of the nominal run (path scale 1) */
+    /* the periodic DMP (periodic = 1, dmp_ptick.h): env_lo/env_hi in turns (Q2.30), kernel_scale
+     * 2 sqrt(kappa_i) (Q13.19), sin/cos(c_i/2) in Q2.30; amplitude r and the cycle state
+     * (e0, z0, I0) in N kept in double for the run set-up; the nominal run is one cycle */
+    uint8_t periodic;
+    int32_t half_sin[DMP_MAX_KERNELS];
+    int32_t half_cos[DMP_MAX_KERNELS];
+    double amplitude_N;
+    double cycle0_N[3];
 } dmpfx_model_t;
 
 /** Per-run constants: dt/tau_e * {1, alpha, alpha*beta, gamma} in Q1.31 and g_e in Q8.24. */
@@ -72,6 +80,11 @@ typedef struct {
     int32_t k_alphabeta_y_q31;
     int32_t goal_y_q24;
     int32_t path_scale_q24;
+    /* the periodic DMP: the phase increment (turns * 2^61 a step), s_a*r in Q8.24 (units of 2^s
+     * N) and the amplitude scale s_a (dmpfx_run_periodic) */
+    int64_t phase_inc;
+    int32_t amplitude_q24;
+    double amplitude_scale;
 } dmpfx_run_t;
 
 /** Fixed-point DMP state. Each state is kept as the exact 64-bit sum of its Euler increments
@@ -90,6 +103,7 @@ typedef struct {
     int64_t z_acc;
     int64_t path_acc;   /* p of the y DMP, m */
     int64_t path_z_acc; /* z_p */
+    int64_t u_comp_acc; /* the periodic phase sum's compensation: 0 (the sum is exact) */
     uint32_t sat_events;
 } dmpfx_state_t;
 
@@ -157,5 +171,23 @@ int32_t dmpfx_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t
  *  the path's start (0 without a y DMP). Returns f_hat as dmpfx_step. */
 int32_t dmpfx_step_xy(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s,
                       const dmpfx_coupling_t *coupling, int32_t *path_q24);
+
+/** The periodic DMP's amplitude scale s_a in run (after dmpfx_run_init, which sets 1): finite
+ *  and >= 0 (FS_ERR_SCALE_INVALID), s_a times the nominal peaks within the Q8.24 headroom
+ *  (FS_ERR_FIXED_OVERFLOW). A discrete model: FS_OK, nothing to set. */
+fs_status_t dmpfx_run_periodic(const dmpfx_model_t *m, double amplitude_scale, dmpfx_run_t *run);
+
+/** A periodic model's start: phase 0, (e, z, I) = s_a times the cycle state (run's s_a), the
+ *  window found by search. */
+void dmpfx_periodic_reset(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s);
+
+/** S(x) of a periodic model at phase x in turns (Q2.30, [0, 1)), Q8.24; *count (may be NULL)
+ *  the number of kernels summed. */
+int32_t dmpfx_periodic_blend(const dmpfx_model_t *m, int32_t x_q30, uint16_t *count);
+
+/** One step of a periodic model (dmp_ptick_step over the fixed layer); coupling may be NULL.
+ *  Returns f_hat = f0 + 2^s*(g_e + e) after the step in Q16.16 N. */
+int32_t dmpfx_periodic_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s,
+                            const dmpfx_coupling_t *coupling);
 
 #endif /* DMPFX_H */

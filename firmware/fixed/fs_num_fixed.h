@@ -7,6 +7,7 @@
 #define FS_NUM_FIXED_H
 
 #include <stdint.h>
+#include <math.h>
 #include "fx.h"
 
 typedef int32_t fs_phase_t;  /* Q2.30 */
@@ -207,6 +208,44 @@ static inline int fs_num_is_nan(fs_wide_t w)
 static inline int32_t fs_num_clamp(int32_t v, int32_t lim)
 {
     return fx_clamp_sym(v, lim);
+}
+
+/* sin(pi t) in Q2.30 for t in Q2.30, |t| <= 1/2: t*P(4 t^2), P the Taylor series of sin(pi t)/t
+ * to t^12 with coefficients c_k/4^k in Q3.29, Horner with rounded 64-bit products (max error
+ * 3.1e-9 over [0, 1] for sin and cos, test_sincos_pi in tests/firmware/fixed/test_dmpfx.c). */
+static inline int32_t fs_num_sinpi_half(int32_t t)
+{
+    const int32_t q = (int32_t)(((int64_t)t * t + (1 << 27)) >> 28); /* 4 t^2 in Q2.30, <= 1 */
+    int32_t p = 61;
+    p = -3864 + (int32_t)(((int64_t)p * q + (1 << 29)) >> 30);
+    p = 172272 + (int32_t)(((int64_t)p * q + (1 << 29)) >> 30);
+    p = -5026995 + (int32_t)(((int64_t)p * q + (1 << 29)) >> 30);
+    p = 85569306 + (int32_t)(((int64_t)p * q + (1 << 29)) >> 30);
+    p = -693598668 + (int32_t)(((int64_t)p * q + (1 << 29)) >> 30);
+    p = 1686629713 + (int32_t)(((int64_t)p * q + (1 << 29)) >> 30);
+    return (int32_t)(((int64_t)p * t + (1 << 28)) >> 29);
+}
+
+/* sin(pi x), cos(pi x) in Q2.30 for a phase x in turns, Q2.30 in [0, 1] */
+static inline void fs_num_sincos_pi(fs_phase_t x, fs_phase_t *s, fs_phase_t *c)
+{
+    const int32_t half = FX_Q30_ONE >> 1;
+    *s = fs_num_sinpi_half((x <= half) ? x : FX_Q30_ONE - x);
+    *c = fs_num_sinpi_half(half - x);
+}
+
+/* d = sh*hc - ch*hs in Q2.30 (each factor |.| <= 1: the difference fits) */
+static inline fs_phase_t fs_num_vm_dist(fs_phase_t sh, fs_phase_t ch, fs_phase_t hs, fs_phase_t hc)
+{
+    return (int32_t)fx_rshift_round((int64_t)sh * hc - (int64_t)ch * hs, 30u);
+}
+
+/* The periodic phase's accumulator (value * 2^31, a Q2.30 view): one turn, and the exact
+ * increment of a rate in turns per step (rounded to 2^-61 turn: no drift over any run). */
+#define FS_NUM_TURN ((int64_t)FX_Q30_ONE << 31)
+static inline fs_acc_t fs_num_turn_inc(double turns_per_step)
+{
+    return (int64_t)llround(ldexp(turns_per_step, 61));
 }
 
 #endif /* FS_NUM_FIXED_H */

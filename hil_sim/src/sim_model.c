@@ -151,6 +151,21 @@ void sim_operator_init(sim_operator_t *op, const sim_operator_cfg_t *cfg, sim_rn
         }
         op->n_levels = i;
     }
+    /* wiping: the strokes' start times after the approach (their jitter drawn here, after the
+     * engraving schedule, so other tasks keep their draws) */
+    op->n_strokes = 0;
+    if (cfg->task == SIM_TASK_WIPING && cfg->stroke_period_s > 0.0) {
+        double t = cfg->ramp_s;
+        int i = 0;
+        while (i < SIM_MAX_STROKES && t < cfg->duration_s) {
+            op->stroke_t_s[i] = t;
+            t += cfg->stroke_period_s *
+                 (1.0 + sim_rng_range(rng, -cfg->stroke_jitter, cfg->stroke_jitter));
+            i++;
+        }
+        op->stroke_t_s[i] = t;
+        op->n_strokes = i;
+    }
     /* the path along y: drawn after everything else, so a scenario without one keeps its draws */
     op->n_path = 0;
     if (cfg->path_m > 0.0) {
@@ -237,6 +252,28 @@ static double pressing_profile(sim_operator_t *op, double t, double p_m, double 
     return f;
 }
 
+/* Wiping: the approach (smoothstep to the mean over ramp_s), then the strokes about it. */
+static double wiping_profile(const sim_operator_t *op, double t)
+{
+    const sim_operator_cfg_t *c = &op->cfg;
+    if (t < c->ramp_s || op->n_strokes == 0) {
+        return c->stroke_mean_N * sim_smoothstep(t / c->ramp_s);
+    }
+    int i = 0;
+    while (i + 1 < op->n_strokes && op->stroke_t_s[i + 1] <= t) {
+        i++;
+    }
+    const double len = op->stroke_t_s[i + 1] - op->stroke_t_s[i];
+    double s = (t - op->stroke_t_s[i]) / len;
+    s = (s > 1.0) ? 1.0 : s;
+    const double w = 6.283185307179586 * s;
+    /* the first stroke grows in over its first quarter: the approach joins it smoothly */
+    const double grow = (i == 0) ? sim_smoothstep(4.0 * s) : 1.0;
+    return c->stroke_mean_N +
+           grow * c->stroke_amp_N *
+               (0.8 * sin(w) + 0.35 * sin(2.0 * w + 0.6) + 0.15 * sin(3.0 * w + 1.9));
+}
+
 /* Both tasks release over the last release_s of the demonstration (0: no release). */
 static double release_factor(const sim_operator_cfg_t *c, double t)
 {
@@ -255,6 +292,8 @@ void sim_operator_force(sim_operator_t *op, double t_s, double p_m, double layer
         f = pressing_profile(op, t_s, p_m, layer_depth_m) * release_factor(&op->cfg, t_s);
     } else if (op->cfg.task == SIM_TASK_ENGRAVING) {
         f = engraving_profile(op, t_s) * release_factor(&op->cfg, t_s);
+    } else if (op->cfg.task == SIM_TASK_WIPING) {
+        f = wiping_profile(op, t_s) * release_factor(&op->cfg, t_s);
     }
     const double w = 6.283185307179586 * t_s;
     force_N[0] = f * (1.0 + op->cfg.tremor_frac * sin(w * op->tremor_hz[0] + op->tremor_phase[0]));

@@ -89,10 +89,12 @@ double sim_operator_handle_N(const sim_drive_t *d, const sim_axis_t *a);
 typedef enum {
     SIM_TASK_NONE = 0,
     SIM_TASK_PRESSING = 1,
-    SIM_TASK_ENGRAVING = 2
+    SIM_TASK_ENGRAVING = 2,
+    SIM_TASK_WIPING = 3 /* repeated strokes about a mean force (a periodic skill's demo) */
 } sim_task_t;
 
 #define SIM_MAX_LEVELS 64
+#define SIM_MAX_STROKES 512
 
 /** Operator parameters (from the scenario). */
 typedef struct {
@@ -117,6 +119,14 @@ typedef struct {
     double path_move_s;
     double path_dwell_min_s, path_dwell_max_s;
     double hand_stiffness_Npm;
+    /* wiping: after the ramp_s approach to stroke_mean_N, strokes of period stroke_period_s
+     * (each 1 +- stroke_jitter of it, seeded) whose force is stroke_mean_N + stroke_amp_N*
+     * (0.8 sin(2 pi s) + 0.35 sin(4 pi s + 0.6) + 0.15 sin(6 pi s + 1.9)), s the stroke's phase
+     * in [0, 1), until the release */
+    double stroke_mean_N;
+    double stroke_amp_N;
+    double stroke_period_s;
+    double stroke_jitter;
 } sim_operator_cfg_t;
 
 /** Operator state (seeded draws and the pressing phase). */
@@ -132,6 +142,8 @@ typedef struct {
     int n_path;
     double path_t_s[SIM_MAX_LEVELS]; /* start of each move */
     double path_y_m[SIM_MAX_LEVELS]; /* waypoint after the move, m from the start */
+    int n_strokes;
+    double stroke_t_s[SIM_MAX_STROKES + 1]; /* wiping: stroke i runs [stroke_t_s[i], [i+1]) */
 } sim_operator_t;
 
 /** Draw the seeded parameters (levels, reaction time, engraving schedule, tremor). */

@@ -215,6 +215,8 @@ static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_ima
             s->goal_scale = sc->goal_scale;
             s->time_scale = sc->time_scale;
             s->path_scale = sc->path_scale;
+            s->amplitude_scale = 1.0;
+            s->cycles = 1u; /* a periodic skill: its duration, or one cycle */
             s->duration_s = (sc->n_step_durations > 0) ? sc->step_duration_s[i] : 0.0;
             *total_s += (s->duration_s > 0.0) ? s->duration_s
                                               : (double)sk->dmp.duration_s * sc->time_scale;

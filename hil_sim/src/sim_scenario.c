@@ -61,7 +61,11 @@ void sim_scenario_defaults(sim_scenario_t *sc)
                                   .path_move_s = 0.6,
                                   .path_dwell_min_s = 0.2,
                                   .path_dwell_max_s = 1.0,
-                                  .hand_stiffness_Npm = 3000.0};
+                                  .hand_stiffness_Npm = 3000.0,
+                                  .stroke_mean_N = 5.0,
+                                  .stroke_amp_N = 1.5,
+                                  .stroke_period_s = 1.0,
+                                  .stroke_jitter = 0.0};
     sc->tip = (sim_force_sensor_t){.noise_N = 0.02, .bias_N = 0.0, .range_N = 100.0, .bits = 16u};
     sc->handle = sc->tip;
     sc->encoder_m = 1e-6;
@@ -132,6 +136,10 @@ static const num_key_t NUM_KEYS[] = {
     NK("operator", "path_dwell_min_s", op.path_dwell_min_s, 0.0, 100.0),
     NK("operator", "path_dwell_max_s", op.path_dwell_max_s, 0.0, 100.0),
     NK("operator", "hand_stiffness_Npm", op.hand_stiffness_Npm, 0.0, 1e6),
+    NK("operator", "stroke_mean_N", op.stroke_mean_N, 0.0, 1e3),
+    NK("operator", "stroke_amp_N", op.stroke_amp_N, 0.0, 1e3),
+    NK("operator", "stroke_period_s", op.stroke_period_s, 0.05, 60.0),
+    NK("operator", "stroke_jitter", op.stroke_jitter, 0.0, 0.2),
     NK("sensors", "force_noise_N", tip.noise_N, 0.0, 100.0),
     NK("sensors", "force_range_N", tip.range_N, 1e-3, 1e5),
     NK("sensors", "tip_bias_N", tip.bias_N, -100.0, 100.0),
@@ -232,13 +240,14 @@ static int apply_top(sim_scenario_t *sc, const ctx_t *c, const char *key, const 
 /* [operator] keys other than numbers. */
 static int apply_operator(sim_scenario_t *sc, const ctx_t *c, const char *key, const value_t *v)
 {
-    static const char *const TASKS[] = {"pressing", "engraving", "none"};
-    static const sim_task_t TASK_OF[] = {SIM_TASK_PRESSING, SIM_TASK_ENGRAVING, SIM_TASK_NONE};
+    static const char *const TASKS[] = {"pressing", "engraving", "wiping", "none"};
+    static const sim_task_t TASK_OF[] = {SIM_TASK_PRESSING, SIM_TASK_ENGRAVING, SIM_TASK_WIPING,
+                                         SIM_TASK_NONE};
     int i = 0;
     if (strcmp(key, "task") != 0) {
         return 0;
     }
-    if (sim_toml_choice(c, key, v, "task", TASKS, 3, &i) != 0) {
+    if (sim_toml_choice(c, key, v, "task", TASKS, 4, &i) != 0) {
         return -1;
     }
     sc->op.task = TASK_OF[i];
@@ -417,6 +426,14 @@ int sim_scenario_check(const sim_scenario_t *sc, char err[SIM_ERR_MAX])
             snprintf(err, SIM_ERR_MAX,
                      "%s: operator high_force_N %g (+jitter) exceeds force_max_N %g", f,
                      sc->op.high_N, sc->force_max_N);
+            return -1;
+        }
+        if (sc->op.task == SIM_TASK_WIPING &&
+            sc->op.stroke_mean_N + 1.3 * sc->op.stroke_amp_N > sc->force_max_N) {
+            snprintf(err, SIM_ERR_MAX,
+                     "%s: operator strokes (mean %g N, amplitude %g N) exceed "
+                     "force_max_N %g",
+                     f, sc->op.stroke_mean_N, sc->op.stroke_amp_N, sc->force_max_N);
             return -1;
         }
         if (sc->op.task == SIM_TASK_ENGRAVING && sc->op.level_max_N > sc->force_max_N) {

@@ -3,11 +3,15 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .model.fit import FitResult
 from .outputs import Outputs, save_figure
+
+if TYPE_CHECKING:
+    from .model.periodic_fit import PeriodicFit
 
 
 def fit_figure(res: FitResult, path: str | Path, title: str = "", outs: Outputs | None = None) -> None:
@@ -48,6 +52,13 @@ def fit_figure(res: FitResult, path: str | Path, title: str = "", outs: Outputs 
     ax[-1].set_xlabel("t [s]")
     for a in ax:
         a.grid(True, lw=0.3)
+    _save(fig, path, outs)
+
+
+def _save(fig: Any, path: str | Path, outs: Outputs | None) -> None:
+    """Lay the figure out and write it into ``outs`` (or on its own), closing it."""
+    import matplotlib.pyplot as plt
+
     fig.tight_layout()
     try:
         if outs is not None:
@@ -58,3 +69,39 @@ def fit_figure(res: FitResult, path: str | Path, title: str = "", outs: Outputs 
                 own.commit()
     finally:
         plt.close(fig)
+
+
+def periodic_figure(res: PeriodicFit, path: str | Path, outs: Outputs | None = None) -> None:
+    """Write a PNG of a periodic fit: over one period, every steady stroke of the demonstration
+    (thin grey), their mean (dashed black) and the learned cycle (green); below, the learned
+    cycle's error against the mean stroke (green) and against each stroke (grey), in % of max
+    force."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    p = res.mean_stroke_N.size
+    t = np.arange(p) * res.skill.dt_s
+    cycle = res.cycle_N[:p]
+    f_max = res.f_max_N
+    fig, ax = plt.subplots(2, 1, figsize=(7.0, 6.0), sharex=True)
+    for j, stroke in enumerate(res.strokes_N):
+        ax[0].plot(t, stroke, "-", color="0.65", lw=0.6, label="demonstrated strokes" if j == 0 else None)
+    ax[0].plot(t, res.mean_stroke_N, "k--", lw=1.2, label="mean stroke")
+    ax[0].plot(t, cycle, "g-", lw=1.1, label="learned cycle")
+    ax[0].set_ylabel("force [N]")
+    ax[0].legend(loc="best", fontsize=8)
+    ax[0].set_title(
+        f"periodic, {res.method}, N = {res.skill.n_kernels}: period {res.period_s:.4g} s, "
+        f"{res.strokes_N.shape[0]} strokes; vs mean stroke max {res.err_mean_max_pct:.2f} %",
+        fontsize=9,
+    )
+    for stroke in res.strokes_N:
+        ax[1].plot(t, 100.0 * (stroke - cycle) / f_max, "-", color="0.65", lw=0.5)
+    ax[1].plot(t, 100.0 * (res.mean_stroke_N - cycle) / f_max, "g-", lw=1.0)
+    ax[1].set_ylabel("error [% of max]")
+    ax[1].set_xlabel("t within the period [s]")
+    for a in ax:
+        a.grid(True, lw=0.3)
+    _save(fig, path, outs)

@@ -519,6 +519,48 @@ uint16_t fs_wire_run_skill_pack(const fs_wire_run_skill_t *v, uint8_t *out, uint
     return (uint16_t)n;
 }
 
+static int run_periodic_in_range(const fs_wire_run_periodic_t *v)
+{
+    return v->end <= 2u;
+}
+
+proto_status_t fs_wire_run_periodic_unpack(fs_wire_run_periodic_t *v, const uint8_t *d, uint16_t len)
+{
+    if (len != FS_WIRE_RUN_PERIODIC_LEN) {
+        return PROTO_ERR_WIRE_LENGTH;
+    }
+    fs_wire_run_periodic_t t;
+    memset(&t, 0, sizeof(t));
+    t.slot = (uint8_t)get_be(&d[0u], 1u);
+    t.goal_scale = (uint16_t)get_be(&d[1u], 2u);
+    t.time_scale = (uint16_t)get_be(&d[3u], 2u);
+    t.end = (uint8_t)get_be(&d[5u], 1u);
+    t.path_scale = (uint16_t)get_be(&d[6u], 2u);
+    t.cycles = (uint16_t)get_be(&d[8u], 2u);
+    t.amplitude_scale = (uint16_t)get_be(&d[10u], 2u);
+    if (!run_periodic_in_range(&t)) {
+        return PROTO_ERR_WIRE_RANGE;
+    }
+    *v = t;
+    return PROTO_OK;
+}
+
+uint16_t fs_wire_run_periodic_pack(const fs_wire_run_periodic_t *v, uint8_t *out, uint16_t cap)
+{
+    const unsigned n = 12u;
+    if (!run_periodic_in_range(v) || n > cap) {
+        return 0u;
+    }
+    put_be(&out[0u], v->slot, 1u);
+    put_be(&out[1u], v->goal_scale, 2u);
+    put_be(&out[3u], v->time_scale, 2u);
+    put_be(&out[5u], v->end, 1u);
+    put_be(&out[6u], v->path_scale, 2u);
+    put_be(&out[8u], v->cycles, 2u);
+    put_be(&out[10u], v->amplitude_scale, 2u);
+    return (uint16_t)n;
+}
+
 static int run_step_in_range(const fs_wire_run_step_t *v)
 {
     (void)v;

@@ -14,7 +14,7 @@
 #define FS_WIRE_REAL(T, count) ((T)(count) * (T)FS_WIRE_SCALE)
 
 /* The records, for code that handles each the same way: X(name) per record. */
-#define FS_WIRE_RECORDS(X) X(versions) X(gains) X(limits) X(comm) X(object) X(stiffness_max) X(slot_entry) X(slot_dir) X(last_transfer) X(device_state) X(fault_causes) X(run_skill) X(run_step) X(run_sequence) X(run_results) X(self_test) X(erase_slot) X(motion_key) X(motion_key_write) X(auth_stats)
+#define FS_WIRE_RECORDS(X) X(versions) X(gains) X(limits) X(comm) X(object) X(stiffness_max) X(slot_entry) X(slot_dir) X(last_transfer) X(device_state) X(fault_causes) X(run_skill) X(run_periodic) X(run_step) X(run_sequence) X(run_results) X(self_test) X(erase_slot) X(motion_key) X(motion_key_write) X(auth_stats)
 
 #define FS_WIRE_VERSIONS_LEN 6u
 /** DID_VERSIONS: protocol and format versions. */
@@ -174,6 +174,22 @@ typedef struct {
 proto_status_t fs_wire_run_skill_unpack(fs_wire_run_skill_t *v, const uint8_t *d, uint16_t len);
 /** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */
 uint16_t fs_wire_run_skill_pack(const fs_wire_run_skill_t *v, uint8_t *out, uint16_t cap);
+
+#define FS_WIRE_RUN_PERIODIC_LEN 12u
+/** RID_RUN_SKILL start of a periodic skill: run_skill's fields with the path scale, then the periods to run (0: until stopped) and the stroke's amplitude scale (the device tells the two starts by their length). */
+typedef struct {
+    uint8_t slot;
+    uint16_t goal_scale; /* count of FS_WIRE_SCALE */
+    uint16_t time_scale; /* count of FS_WIRE_SCALE */
+    uint8_t end;
+    uint16_t path_scale; /* count of FS_WIRE_SCALE */
+    uint16_t cycles;
+    uint16_t amplitude_scale; /* count of FS_WIRE_SCALE */
+} fs_wire_run_periodic_t;
+/** Unpack len bytes: PROTO_OK, PROTO_ERR_WIRE_LENGTH or PROTO_ERR_WIRE_RANGE (v unchanged). */
+proto_status_t fs_wire_run_periodic_unpack(fs_wire_run_periodic_t *v, const uint8_t *d, uint16_t len);
+/** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */
+uint16_t fs_wire_run_periodic_pack(const fs_wire_run_periodic_t *v, uint8_t *out, uint16_t cap);
 
 #define FS_WIRE_RUN_STEP_LEN 9u
 /** one step of a RUN_SEQUENCE start (duration 0: the skill's T times its time scale). */

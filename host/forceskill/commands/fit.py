@@ -161,9 +161,9 @@ def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path) -
     from ..model.periodic_fit import fit_periodic
     from ..outputs import Outputs
 
-    if args.y_column is not None or args.end != "hold" or args.plot:
+    if args.y_column is not None or args.end != "hold":
         raise FsError(
-            ERR_PERIODIC_ARGS, "--periodic learns the force alone: --y-column, --end and --plot do not apply"
+            ERR_PERIODIC_ARGS, "--periodic learns the force alone: --y-column and --end do not apply"
         )
 
     def fit_n(n: int) -> Any:
@@ -211,8 +211,12 @@ def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path) -
         )
     sk = res.skill
     check_skill_force(sk, str(out), force_limit_N=args.force_limit)
-    with Outputs(inputs=[args.demo]) as outs:
+    with Outputs(inputs=[args.demo]) as outs:  # skill, JSON twin and plot: all or nothing
         sk.write(out, outs=outs)
+        if args.plot:
+            from ..plot import periodic_figure
+
+            periodic_figure(res, args.plot, outs=outs)
         outs.commit()
     k = res.strokes_N.shape[0]
     print(
@@ -234,7 +238,10 @@ def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path) -
         "against each stroke (max, % of max force): "
         + ", ".join(f"{e:.3f}" for e in res.err_stroke_max_pct.tolist())
     )
-    print(f"wrote {out} ({out.stat().st_size} bytes) and {out}.json")
+    print(
+        f"wrote {out} ({out.stat().st_size} bytes) and {out}.json"
+        + (f", plot {args.plot}" if args.plot else "")
+    )
     return 0
 
 

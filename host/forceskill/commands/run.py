@@ -13,7 +13,7 @@ from typing import Any, TextIO
 import numpy as np
 
 from .. import wire as W
-from ..errors import ERR_RUN_FAULT, ERR_SKILL_PEAK, ERR_TELEMETRY_GAP, FsError, fault_text
+from ..errors import ERR_PERIODIC_ARGS, ERR_RUN_FAULT, ERR_SKILL_PEAK, ERR_TELEMETRY_GAP, FsError, fault_text
 from ..link import ERR_LINK_ARGS, ERR_LINK_STATE
 from ..link import uds as U
 from ..link.device import Device
@@ -23,11 +23,12 @@ from ..model.limits import (
     peak_problem,
     skill_peak_N,
 )
+from ..model.periodic import check_amplitude_scale
 from ..model.scales import check_path_scale, check_scales
 from ..model.skill import Skill
 from ..outputs import STDOUT, Outputs, format_rows
 from ..wire.dbc import END_POLICIES
-from ._args import add_force_limit, add_path_scale, add_scales
+from ._args import add_force_limit, add_path_scale, add_scales, float_arg
 from ._common import (
     Stream,
     add_common,
@@ -47,16 +48,30 @@ MAX_TELEMETRY_GAP_MS = 100
 #: and the zero after it. The device keeps the telemetry's rate in FAULT, so they are measured.
 FAULT_RAMP_TICKS = 50
 
-_STEP = re.compile(r"^\s*(\d+)\s*:\s*([0-9.]+)\s*(ms|s)?\s*$")
+_STEP = re.compile(r"^\s*(\d+)\s*:\s*([0-9.]+)\s*(ms|s|c)?\s*$")
+#: the most cycles one run of a periodic skill asks for (the wire's u16)
+CYCLES_MAX = 65535
 
 
 def parse_sequence(text: str) -> list[tuple[int, float]]:
-    """'1:8s,2:9s' -> [(1, 8.0), (2, 9.0)] (slot, duration in s; 'ms' allowed)."""
+    """'1:8s,2:9s' -> [(1, 8.0), (2, 9.0)] (slot, duration in s; 'ms' allowed); 'SLOT:Nc' is N
+    cycles of a periodic skill, returned as -N (resolve_cycles turns it into seconds)."""
     steps = []
     for part in text.split(","):
         m = _STEP.match(part)
         if not m:
-            raise FsError(ERR_LINK_ARGS, f"--sequence step {part.strip()!r} is not SLOT:DURATION (e.g. 1:8s)")
+            raise FsError(
+                ERR_LINK_ARGS, f"--sequence step {part.strip()!r} is not SLOT:DURATION (e.g. 1:8s or 2:20c)"
+            )
+        if m.group(3) == "c":
+            n = float(m.group(2))
+            if not (n == int(n) and 1 <= n <= CYCLES_MAX):
+                raise FsError(
+                    ERR_LINK_ARGS,
+                    f"--sequence cycles must be a whole number 1..{CYCLES_MAX}: {part.strip()!r}",
+                )
+            steps.append((int(m.group(1)), -n))
+            continue
         d = float(m.group(2)) * (1e-3 if m.group(3) == "ms" else 1.0)
         if not 0.0 < d <= 3600.0:
             raise FsError(ERR_LINK_ARGS, f"--sequence duration must be in (0, 3600] s: {part.strip()!r}")
@@ -64,6 +79,22 @@ def parse_sequence(text: str) -> list[tuple[int, float]]:
     if not 1 <= len(steps) <= 8:
         raise FsError(ERR_LINK_ARGS, f"--sequence takes 1..8 steps, got {len(steps)}")
     return steps
+
+
+def resolve_cycles(
+    steps: list[tuple[int, float]], directory: dict[int, dict[str, Any]], time_scale: float
+) -> list[tuple[int, float]]:
+    """A sequence's cycle counts (negative durations from parse_sequence) as seconds: N times the
+    slot's period (its duration) times the time scale, within (0, 3600] s."""
+    out = []
+    for slot, d in steps:
+        s = -d * float(directory[slot]["duration_s"]) * time_scale if d < 0.0 else d
+        if not 0.0 < s <= 3600.0:
+            raise FsError(
+                ERR_LINK_ARGS, f"--sequence: {s:g} s of cycles of slot {slot} is not in (0, 3600] s"
+            )
+        out.append((slot, s))
+    return out
 
 
 def _as_sent(v: float) -> float:
@@ -79,11 +110,12 @@ def check_slot_forces(
     goal_scale: float,
     time_scale: float,
     force_limit_N: float,
+    amplitude_scale: float = 1.0,
 ) -> dict[int, Skill]:
     """Read each slot's skill back (RequestUpload) and refuse, before anything moves, a skill
     stiffer than the device's stiffness limit (690), a goal scale that takes its rollout's peak
-    above the force limit, or a rollout that is not finite (662). Returns the skills read back by
-    slot."""
+    above the force limit, or a rollout that is not finite (662); a periodic skill's peak is that
+    of one cycle at the goal, amplitude and time scales. Returns the skills read back by slot."""
     skills: dict[int, Skill] = {}
 
     def call(what: str, fn: Any) -> Any:
@@ -97,8 +129,15 @@ def check_slot_forces(
             sk = Skill.from_bytes(image)
             skills[slot] = sk
             check_skill_stiffness(sk, f"slot {slot}", limit_Npm, dev.node, "nothing was started")
-            peak = skill_peak_N(sk, time_scale)
-            problem = peak_problem(peak, goal_scale, force_limit_N)
+            if sk.periodic:
+                from ..model.periodic import rollout as periodic_rollout
+
+                _, f = periodic_rollout(sk, 1.0, goal_scale, amplitude_scale, time_scale)
+                peak = float(np.max(np.abs(f))) if np.all(np.isfinite(f)) else math.inf
+                problem = peak_problem(peak, 1.0, force_limit_N)
+            else:
+                peak = skill_peak_N(sk, time_scale)
+                problem = peak_problem(peak, goal_scale, force_limit_N)
             if problem:
                 limit = (
                     f"; largest goal scale {force_limit_N / peak:.4g}" if 0.0 < peak < float("inf") else ""
@@ -191,6 +230,7 @@ def run_on_device(
             for slot, _ in steps:
                 if slot not in directory or not directory[slot]["valid"]:
                     raise FsError(ERR_LINK_ARGS, f"slot {slot} of node {dev.node} holds no skill")
+            steps = resolve_cycles(steps, directory, ts)
             data = W.RunSequence(end_code, tuple(W.RunStep(slot, g, ts, d) for slot, d in steps)).pack()
             rid, expected = U.RID_RUN_SEQUENCE, sum(d for _, d in steps)
             last_end = directory[steps[-1][0]]["end"]
@@ -201,12 +241,29 @@ def run_on_device(
             e = directory.get(args.slot)
             if e is None or not e["valid"]:
                 raise FsError(ERR_LINK_ARGS, f"slot {args.slot} of node {dev.node} holds no skill")
-            # the optional path scale (firmware reading skill format v3) only when it is not 1
-            data = W.RunSkill(args.slot, g, ts, end_code, ps if ps != 1.0 else None).pack()
-            rid, expected = U.RID_RUN_SKILL, float(e["duration_s"]) * args.time_scale
+            # the optional path scale (firmware reading skill format v3) only when it is not 1; a
+            # periodic run (--cycles, --amplitude-scale) is the 12-byte start
+            periodic = args.cycles is not None or args.amplitude_scale != 1.0
+            cycles = 1 if args.cycles is None else args.cycles
+            data = (
+                W.RunPeriodic(args.slot, g, ts, end_code, ps, cycles, _as_sent(args.amplitude_scale)).pack()
+                if periodic
+                else W.RunSkill(args.slot, g, ts, end_code, ps if ps != 1.0 else None).pack()
+            )
+            period = float(e["duration_s"]) * args.time_scale
+            rid, expected = U.RID_RUN_SKILL, (period * cycles if cycles > 0 else math.inf)
             last_end = e["end"]
             slots = [args.slot]
-        skills = check_slot_forces(client, dev, slots, directory, g, ts, args.force_limit)
+        skills = check_slot_forces(
+            client, dev, slots, directory, g, ts, args.force_limit, _as_sent(args.amplitude_scale)
+        )
+        periodic_args = args.cycles is not None or args.amplitude_scale != 1.0
+        if not args.sequence and periodic_args and not skills[args.slot].periodic:
+            raise FsError(
+                ERR_PERIODIC_ARGS,
+                f"slot {args.slot} of node {dev.node} holds a discrete skill: --cycles and "
+                "--amplitude-scale apply to periodic skills only; nothing was started",
+            )
         path_skill = skills.get(slots[0]) if not args.sequence else None
         if path_skill is not None and not path_skill.has_y:
             path_skill = None
@@ -240,6 +297,8 @@ def run_on_device(
                 st = dev.wait_state({"EXECUTE", "FAULT"}, 2.0 * args.timeout)
                 start_tick = st.tick
                 what = f"sequence {args.sequence}" if args.sequence else f"slot {args.slot}"
+                if not args.sequence and args.cycles is not None:
+                    what += f", {args.cycles} cycles" if args.cycles else ", cycles until Ctrl-C"
                 print(
                     f"node {dev.node}: executing {what}"
                     f", goal x{args.goal_scale:g}, time x{args.time_scale:g}, end {end_policy}: "
@@ -316,6 +375,14 @@ def _cmd(args: argparse.Namespace) -> int:
     check_path_scale(args.path_scale)
     if args.sequence and args.path_scale != 1.0:
         raise FsError(ERR_LINK_ARGS, "--path-scale applies to --slot only (a sequence runs every path at 1)")
+    if args.sequence and (args.cycles is not None or args.amplitude_scale != 1.0):
+        raise FsError(
+            ERR_LINK_ARGS,
+            "--cycles and --amplitude-scale apply to --slot only (a sequence step takes SLOT:Nc cycles)",
+        )
+    if args.cycles is not None and not 0 <= args.cycles <= CYCLES_MAX:
+        raise FsError(ERR_LINK_ARGS, f"--cycles must be in 0..{CYCLES_MAX} (0: until Ctrl-C): {args.cycles}")
+    check_amplitude_scale(args.amplitude_scale)
     check_force_limit(args.force_limit)
     if not (math.isfinite(args.hold_for) and 0.0 <= args.hold_for <= 3600.0):
         raise FsError(ERR_LINK_ARGS, f"--hold-for must be in [0, 3600] s: {args.hold_for:g}")
@@ -407,6 +474,22 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p.add_argument("--sequence", metavar="SLOT:DUR,...", help="skills in series, e.g. 1:8s,2:9s")
     add_scales(p, "refused if the skill's peak times S is above --force-limit")
     add_path_scale(p, "--slot")
+    p.add_argument(
+        "--cycles",
+        type=int,
+        default=None,
+        metavar="N",
+        help="a periodic skill (--slot): run N periods, 0 until Ctrl-C (default 1); in a "
+        "--sequence a step SLOT:Nc runs N cycles",
+    )
+    p.add_argument(
+        "--amplitude-scale",
+        type=float_arg,
+        default=1.0,
+        metavar="S",
+        help="a periodic skill (--slot): multiply the stroke's amplitude about its mean force by S "
+        "(--goal-scale sets the mean force, --time-scale the period)",
+    )
     p.add_argument(
         "--end",
         choices=("skill", "hold", "release"),

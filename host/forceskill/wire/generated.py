@@ -529,6 +529,51 @@ class RunSkill:
         return v
 
 
+_RUN_PERIODIC = struct.Struct('>BHHBHHH')
+
+
+@dataclass(frozen=True)
+class RunPeriodic:
+    """RID_RUN_SKILL start of a periodic skill: run_skill's fields with the path scale, then the periods to run (0: until stopped) and the stroke's amplitude scale (the device tells the two starts by their length)."""
+
+    SIZE: ClassVar[int] = 12  # bytes of the fields always present
+    slot: int
+    goal_scale: float
+    time_scale: float
+    end: int
+    path_scale: float
+    cycles: int
+    amplitude_scale: float
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('run_periodic', 'slot', 0 <= self.slot <= 255, self.slot)
+        _in_range('run_periodic', 'goal_scale', 0 <= to_steps(self.goal_scale) <= 65535, self.goal_scale)
+        _in_range('run_periodic', 'time_scale', 0 <= to_steps(self.time_scale) <= 65535, self.time_scale)
+        _in_range('run_periodic', 'end', 0 <= self.end <= 2, self.end)
+        _in_range('run_periodic', 'path_scale', 0 <= to_steps(self.path_scale) <= 65535, self.path_scale)
+        _in_range('run_periodic', 'cycles', 0 <= self.cycles <= 65535, self.cycles)
+        _in_range('run_periodic', 'amplitude_scale', 0 <= to_steps(self.amplitude_scale) <= 65535, self.amplitude_scale)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _RUN_PERIODIC.pack(self.slot, to_steps(self.goal_scale), to_steps(self.time_scale), self.end, to_steps(self.path_scale), self.cycles, to_steps(self.amplitude_scale))
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> RunPeriodic:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _RUN_PERIODIC.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'run_periodic: {len(data)} bytes, not {n}')
+        raw = _RUN_PERIODIC.unpack(data[:n])
+        v = cls(raw[0], from_steps(raw[1]), from_steps(raw[2]), raw[3], from_steps(raw[4]), raw[5], from_steps(raw[6]))
+        v.check()
+        return v
+
+
 _RUN_STEP = struct.Struct('>BHHI')
 
 
@@ -878,6 +923,7 @@ __all__ = [
     'DeviceState',
     'FaultCauses',
     'RunSkill',
+    'RunPeriodic',
     'RunStep',
     'RunSequence',
     'RunResults',

@@ -15,16 +15,11 @@ typedef struct {
 
 /* Every transition that changes the state; any other (state, event) pair keeps the state. */
 static const edge_t k_edges[] = {
-    {APP_BOOT, APP_EV_BOOTED, APP_IDLE},
-    {APP_BOOT, APP_EV_FAULT, APP_FAULT},
-    {APP_IDLE, APP_EV_TEACH, APP_TEACH},
-    {APP_IDLE, APP_EV_EXECUTE, APP_EXECUTE},
-    {APP_IDLE, APP_EV_FAULT, APP_FAULT},
-    {APP_TEACH, APP_EV_STOP, APP_IDLE},
-    {APP_TEACH, APP_EV_FAULT, APP_FAULT},
-    {APP_EXECUTE, APP_EV_STOP, APP_IDLE},
-    {APP_EXECUTE, APP_EV_FAULT, APP_FAULT},
-    {APP_FAULT, APP_EV_CLEARED, APP_IDLE},
+    {APP_BOOT, APP_EV_BOOTED, APP_IDLE},    {APP_BOOT, APP_EV_FAULT, APP_FAULT},
+    {APP_IDLE, APP_EV_TEACH, APP_TEACH},    {APP_IDLE, APP_EV_EXECUTE, APP_EXECUTE},
+    {APP_IDLE, APP_EV_FAULT, APP_FAULT},    {APP_TEACH, APP_EV_STOP, APP_IDLE},
+    {APP_TEACH, APP_EV_FAULT, APP_FAULT},   {APP_EXECUTE, APP_EV_STOP, APP_IDLE},
+    {APP_EXECUTE, APP_EV_FAULT, APP_FAULT}, {APP_FAULT, APP_EV_CLEARED, APP_IDLE},
 };
 
 static app_state_t chart(app_state_t s, app_event_t ev)

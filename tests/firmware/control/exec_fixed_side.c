@@ -26,9 +26,14 @@ int exec_side_fixed_replay(const exec_side_run_t *run, double y_hold_m,
     }
     exec_config_t cfg;
     side_config(run, &cfg);
-    const exec_step_t step = {&side_skill,          (fs_real_t)run->goal_scale,
-                              (fs_real_t)run->time_scale, FS_R(0.0),
-                              side_skill.end_policy, (fs_real_t)run->path_scale};
+    const exec_step_t step = {&side_skill,
+                              (fs_real_t)run->goal_scale,
+                              (fs_real_t)run->time_scale,
+                              FS_R(0.0),
+                              side_skill.end_policy,
+                              (fs_real_t)run->path_scale,
+                              FS_R(1.0),
+                              0u};
     st = exec_start(&cfg, &side_state, &step, 1u, (fs_real_t)y_hold_m);
     if (st != FS_OK) {
         return (int)st;

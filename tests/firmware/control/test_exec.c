@@ -23,6 +23,7 @@
 
 static skill_t g_press;   /* press_n50_ridge_release.skill */
 static skill_t g_engrave; /* engrave_n50_lwr_hold.skill */
+static skill_t g_wipe;    /* periodic_n50_ridge.skill (format v4, periodic) */
 
 static void load_skill(const char *name, skill_t *out)
 {
@@ -60,6 +61,7 @@ static int setup(void **state)
     (void)state;
     load_skill("press_n50_ridge_release.skill", &g_press);
     load_skill("engrave_n50_lwr_hold.skill", &g_engrave);
+    load_skill("periodic_n50_ridge.skill", &g_wipe);
     return 0;
 }
 
@@ -72,7 +74,7 @@ static exec_meas_t zero_meas(void)
 
 static exec_step_t step_of(const skill_t *s, double goal, double ts, double dur, skill_end_t end)
 {
-    exec_step_t st = {s, goal, ts, dur, end, 1.0};
+    exec_step_t st = {s, goal, ts, dur, end, 1.0, 1.0, 0u};
     return st;
 }
 
@@ -125,7 +127,7 @@ static void test_goal_scaling_is_exact(void **state)
     assert_int_equal(exec_start(&cfg, &b, &s2, 1, 0.0), FS_OK);
     exec_meas_t m = zero_meas();
     const double f0 = g_engrave.dmp.force0_N;
-    assert_true(f0 > 0.5);   /* the engraving vector starts in contact */
+    assert_true(f0 > 0.5); /* the engraving vector starts in contact */
     m.force_contact_N = f0;
     for (int n = 0; n < 6000; n++) {
         exec_out_t oa, ob;
@@ -256,8 +258,8 @@ static void test_sequence_continuity(void **state)
         f_switch = prev;
     }
     assert_int_equal(o.step, 1);
-    assert_true(f_switch > 1.0);                 /* a naive restart would drop by this much */
-    exec_tick(&cfg, &seq, &m, &o);               /* first tick of B */
+    assert_true(f_switch > 1.0);   /* a naive restart would drop by this much */
+    exec_tick(&cfg, &seq, &m, &o); /* first tick of B */
     exec_tick(&cfg, &solo, &m, &os);
     assert_true(fabs(o.force_hat_N - f_switch) <= 2.0 * max_step_a);
     assert_true(fabs(o.force_hat_N - f_switch) < 0.01 * f_switch);
@@ -288,7 +290,8 @@ static void test_model_reference_static_inverse(void **state)
     for (int n = 0; n < 30000; n++) {
         exec_tick(&cfg, &st, &m, &o);
         /* every tick: the object's equation holds for the reference it produced */
-        const double lhs = 10.0 * st.ref_pdd_mps2 + 50.0 * pd_prev + exec_object_force(&cfg.object, p_prev);
+        const double lhs = 10.0 * st.ref_pdd_mps2 + 50.0 * pd_prev +
+                           exec_object_force(&cfg.object, p_prev);
         if (st.ref_p_m > 0.0) {
             assert_true(fabs(lhs - o.force_hat_N) < 1e-9 * (1.0 + fabs(o.force_hat_N)));
         }
@@ -520,9 +523,119 @@ static void test_y_path_tracked(void **state)
     assert_true(fabs((double)out.y_ref_m - y_end) <= 1e-12);
 }
 
+/* A periodic step, open loop from its starting force: f_hat equals the Python rollout of the
+ * periodic vectors over their cycles (duration cycles*T*time_scale) at goal, amplitude and time
+ * scales. */
+static void run_golden_periodic(const char *csv, double goal, double amp, double ts, double cycles)
+{
+    static double ref[40000];
+    const size_t rows = load_rollout(csv, ref, 40000);
+    exec_config_t cfg;
+    exec_config_default(&cfg);
+    static exec_state_t st;
+    exec_step_t s = step_of(&g_wipe, goal, ts, cycles * g_wipe.dmp.duration_s * ts, SKILL_END_HOLD);
+    s.amplitude_scale = amp;
+    assert_int_equal(exec_start(&cfg, &st, &s, 1, 0.0), FS_OK);
+    exec_meas_t m = zero_meas();
+    m.force_contact_N = ref[0];
+    double worst = 0.0, f_max = 0.0;
+    exec_out_t o;
+    for (size_t n = 1; n < rows; n++) {
+        assert_int_equal(exec_tick(&cfg, &st, &m, &o), FS_OK);
+        worst = fmax(worst, fabs(o.force_hat_N - ref[n]));
+        f_max = fmax(f_max, fabs(ref[n]));
+        assert_int_equal(o.done, 0u);
+    }
+    /* the duration's end: hold the last value */
+    assert_int_equal(exec_tick(&cfg, &st, &m, &o), FS_OK);
+    assert_true(fabs(o.force_hat_N - ref[rows - 1u]) <= 1e-6 * f_max);
+    printf("periodic exec %s: max err %.3g of max|f|\n", csv, worst / f_max);
+    assert_true(worst <= 1e-6 * f_max);
+}
+
+static void test_periodic_matches_python_rollouts(void **state)
+{
+    (void)state;
+    run_golden_periodic("periodic_n50_ridge_g1_a1_t1_c2.csv", 1.0, 1.0, 1.0, 2.0);
+    run_golden_periodic("periodic_n50_ridge_g1p5_a0p5_t1_c1.csv", 1.5, 0.5, 1.0, 1.0);
+    run_golden_periodic("periodic_n50_ridge_g1_a1p5_t1p3_c1p5.csv", 1.0, 1.5, 1.3, 1.5);
+}
+
+/* Until stopped: a periodic step runs past any number of cycles and repeats its cycle (the
+ * 1x rollout returns to its start every period, 1e-9 of max force). */
+static void test_periodic_until_stopped(void **state)
+{
+    (void)state;
+    exec_config_t cfg;
+    exec_config_default(&cfg);
+    static exec_state_t st;
+    exec_step_t s = step_of(&g_wipe, 1.0, 1.0, 0.0, SKILL_END_HOLD);
+    s.until_stopped = 1u;
+    assert_int_equal(exec_start(&cfg, &st, &s, 1, 0.0), FS_OK);
+    const long p = lround(g_wipe.dmp.duration_s / g_wipe.dmp.dt_s);
+    exec_meas_t m = zero_meas();
+    m.force_contact_N = g_wipe.dmp.goal_N + g_wipe.dmp.cycle_e0_N;
+    static double first[2000];
+    assert_true(p < 2000);
+    double worst = 0.0;
+    for (long n = 0; n < 40 * p; n++) {
+        exec_out_t o;
+        assert_int_equal(exec_tick(&cfg, &st, &m, &o), FS_OK);
+        assert_int_equal(o.done, 0u);
+        if (n < p) {
+            first[n] = o.force_hat_N;
+        } else {
+            worst = fmax(worst, fabs(o.force_hat_N - first[n % p]));
+        }
+    }
+    printf("periodic exec until stopped: 40 cycles, max deviation from the first %.3g N\n", worst);
+    assert_true(worst <= 1e-6 * g_wipe.dmp.goal_N);
+    exec_step_t neg = s;
+    neg.amplitude_scale = -1.0;
+    assert_int_equal(exec_start(&cfg, &st, &neg, 1, 0.0), FS_ERR_SCALE_INVALID);
+}
+
+/* A sequence discrete approach -> periodic strokes -> discrete release: the force is continuous
+ * at both switches (a jump of at most one DMP step) and the periodic step runs its cycles. */
+static void test_periodic_in_sequence(void **state)
+{
+    (void)state;
+    exec_config_t cfg;
+    exec_config_default(&cfg);
+    static exec_state_t st;
+    const double period = g_wipe.dmp.duration_s;
+    exec_step_t steps[3] = {step_of(&g_press, 1.0, 1.0, 1.5, SKILL_END_HOLD),
+                            step_of(&g_wipe, 1.0, 1.0, 5.0 * period, SKILL_END_HOLD),
+                            step_of(&g_press, 1.0, 1.0, 1.0, SKILL_END_RELEASE)};
+    assert_int_equal(exec_start(&cfg, &st, steps, 3, 0.0), FS_OK);
+    exec_meas_t m = zero_meas();
+    m.force_contact_N = g_press.dmp.force0_N;
+    double prev = g_press.dmp.force0_N, worst_jump = 0.0;
+    uint8_t step = 0u;
+    long ticks_periodic = 0;
+    exec_out_t o;
+    for (int n = 0; n < 6000 && !st.done; n++) {
+        assert_int_equal(exec_tick(&cfg, &st, &m, &o), FS_OK);
+        if (o.step != step) {
+            worst_jump = fmax(worst_jump, fabs(o.force_hat_N - prev));
+            step = o.step;
+        }
+        ticks_periodic += (o.step == 1u) ? 1 : 0;
+        prev = o.force_hat_N;
+    }
+    printf("periodic in a sequence: jump at the switches %.3g N, %ld periodic ticks\n", worst_jump,
+           ticks_periodic);
+    assert_int_equal(step, 2u);
+    assert_true(labs(ticks_periodic - lround(5.0 * period / g_wipe.dmp.dt_s)) <= 1);
+    assert_true(worst_jump < 0.05);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_periodic_matches_python_rollouts),
+        cmocka_unit_test(test_periodic_until_stopped),
+        cmocka_unit_test(test_periodic_in_sequence),
         cmocka_unit_test(test_open_loop_matches_python_rollouts),
         cmocka_unit_test(test_goal_scaling_is_exact),
         cmocka_unit_test(test_starts_from_measured_force),

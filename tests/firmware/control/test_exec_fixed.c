@@ -51,8 +51,9 @@ static size_t run_float64(const exec_side_run_t *run)
     cfg.pfc.gains[1].m_d_kg = g_skill.gains.m_d_kg;
     cfg.use_model = run->use_model;
     cfg.phase_stop_gain_per_N2 = run->phase_stop_gain_per_N2;
-    const exec_step_t step = {&g_skill, run->goal_scale, run->time_scale, 0.0,
-                              g_skill.end_policy, run->path_scale};
+    const exec_step_t step = {
+        &g_skill, run->goal_scale, run->time_scale, 0.0, g_skill.end_policy, run->path_scale, 1.0,
+        0u};
     assert_int_equal(exec_start(&cfg, &g_state, &step, 1u, 0.0), FS_OK);
     const double k = g_skill.stiffness_Npm;
     const double m = g_skill.gains.m_d_kg;
@@ -66,8 +67,8 @@ static size_t run_float64(const exec_side_run_t *run)
         exec_out_t o;
         assert_int_equal(exec_tick(&cfg, &g_state, &me, &o), FS_OK);
         g_meas[i] = (exec_side_meas_t){{x[0], x[1]}, {v[0], v[1]}, f_c};
-        g_ref[i] = (exec_side_out_t){{o.force_cmd_N[0], o.force_cmd_N[1]},
-                                     o.force_hat_N, o.pos_ref_m, o.y_ref_m, 0};
+        g_ref[i] = (exec_side_out_t){
+            {o.force_cmd_N[0], o.force_cmd_N[1]}, o.force_hat_N, o.pos_ref_m, o.y_ref_m, 0};
         const double acc[2] = {(o.force_cmd_N[0] - f_c) / m, o.force_cmd_N[1] / m};
         for (unsigned a = 0; a < 2u; a++) {
             v[a] += acc[a] * DT;
@@ -100,9 +101,9 @@ static void compare(const char *name, double goal, double ts, double path, doubl
     }
     printf("%s goal %.2f time %.2f path %.2f stop %g model %u: f_hat %.5f %% of %.2f N, "
            "f_cmd %.5f %% of %.2f N, y %.5f %% of %.4f m (float64 tracking within %.2f N)\n",
-           name, goal, ts, path, stop_gain, (unsigned)use_model, 100.0 * hat_err / hat_max,
-           hat_max, 100.0 * cmd_err / cmd_max, cmd_max,
-           (y_max > 0.0) ? 100.0 * y_err / y_max : 0.0, y_max, f_c_err);
+           name, goal, ts, path, stop_gain, (unsigned)use_model, 100.0 * hat_err / hat_max, hat_max,
+           100.0 * cmd_err / cmd_max, cmd_max, (y_max > 0.0) ? 100.0 * y_err / y_max : 0.0, y_max,
+           f_c_err);
     assert_true(hat_max > 1.0);
     assert_true(hat_err <= HAT_REL_LIMIT * hat_max);
     assert_true(cmd_err <= CMD_REL_LIMIT * cmd_max + CMD_ABS_LIMIT_N);
@@ -127,6 +128,10 @@ static const case_t k_cases[] = {
     {"wipe_n50_ridge_release.skill", 1.0, 1.0, 0.5, 0.0, 0u},
     /* phase stopping: the coupling's slow-down as the fixed-point rate */
     {"engrave_n100_lwr_release.skill", 1.0, 1.0, 1.0, 0.05, 0u},
+    /* a periodic skill: one cycle, then held; at 1.5x goal and 1.3x time with phase stopping */
+    {"periodic_n50_ridge.skill", 1.0, 1.0, 1.0, 0.0, 0u},
+    {"periodic_n50_ridge.skill", 1.5, 1.3, 1.0, 0.0, 0u},
+    {"periodic_n50_ridge.skill", 1.0, 1.0, 1.0, 0.05, 0u},
 };
 
 static void test_fixed_matches_float64(void **state)

@@ -43,7 +43,7 @@ static double reference_peak(const char *name, double duration_s)
     FILE *f = fopen(path, "r");
     assert_non_null(f);
     char line[256];
-    assert_non_null(fgets(line, sizeof line, f));   /* header */
+    assert_non_null(fgets(line, sizeof line, f)); /* header */
     double peak = 0.0;
     while (fgets(line, sizeof line, f) != NULL) {
         double t = 0.0, v = 0.0;
@@ -89,7 +89,7 @@ static void test_hostile_skills_refused(void **state)
     skill.dmp.tau_s = FS_R(1e-9);
     assert_int_equal(skchk_params(&skill), FS_ERR_SKCHK_RANGE);
     skill = good;
-    skill.dmp.tau_s = FS_R(0.005);          /* in range, but dt*rate/tau = 2.5 */
+    skill.dmp.tau_s = FS_R(0.005); /* in range, but dt*rate/tau = 2.5 */
     assert_int_equal(skchk_params(&skill), FS_ERR_SKCHK_STEP);
     skill = good;
     skill.dmp.duration_s = FS_R(601.0);
@@ -122,7 +122,7 @@ static void test_incremental_equals_one_shot(void **state)
             calls++;
         }
         assert_int_equal(c.status, FS_OK);
-        assert_int_equal(c.steps_done, 2000u);      /* T = 2 s at 1 ms */
+        assert_int_equal(c.steps_done, 2000u); /* T = 2 s at 1 ms */
         assert_true(c.peak_N == one);
         assert_int_equal(calls + 1u, (2000u + budgets[b] - 1u) / budgets[b]);
     }
@@ -135,12 +135,14 @@ static void test_run_scales(void **state)
     fs_real_t peak = FS_R(0.0);
     assert_int_equal(skchk_skill(&skill, FS_R(0.001), FS_R(50.0), &peak), FS_OK);
     const fs_real_t g_max = FS_R(50.0) / peak;
-    assert_int_equal(skchk_run_scales(&skill, peak, g_max * FS_R(0.999), FS_R(1.0), FS_R(0.001),
-                                      FS_R(50.0)), FS_OK);
-    assert_int_equal(skchk_run_scales(&skill, peak, g_max * FS_R(1.001), FS_R(1.0), FS_R(0.001),
-                                      FS_R(50.0)), FS_ERR_SKCHK_GOAL_SCALE);
-    assert_int_equal(skchk_run_scales(&skill, peak, FS_R(50.0), FS_R(1.0), FS_R(0.001),
-                                      FS_R(50.0)), FS_ERR_SKCHK_GOAL_SCALE);
+    assert_int_equal(
+        skchk_run_scales(&skill, peak, g_max * FS_R(0.999), FS_R(1.0), FS_R(0.001), FS_R(50.0)),
+        FS_OK);
+    assert_int_equal(
+        skchk_run_scales(&skill, peak, g_max * FS_R(1.001), FS_R(1.0), FS_R(0.001), FS_R(50.0)),
+        FS_ERR_SKCHK_GOAL_SCALE);
+    assert_int_equal(skchk_run_scales(&skill, peak, FS_R(50.0), FS_R(1.0), FS_R(0.001), FS_R(50.0)),
+                     FS_ERR_SKCHK_GOAL_SCALE);
     /* the goal-scaled rollout really peaks at goal_scale * peak (f_hat linear in the goal) */
     dmp_state_t s;
     dmp_state_reset(&s);
@@ -152,10 +154,11 @@ static void test_run_scales(void **state)
     }
     assert_true(fabs((double)p15 - 1.5 * (double)peak) <= PEAK_REL_TOL * 10.0 * (double)p15);
     /* a time scale that makes the Euler step too coarse */
-    assert_int_equal(skchk_run_scales(&skill, peak, FS_R(1.0), FS_R(0.002), FS_R(0.001),
-                                      FS_R(50.0)), FS_ERR_SKCHK_STEP);
-    assert_int_equal(skchk_run_scales(&skill, peak, FS_R(1.0), FS_R(0.0), FS_R(0.001),
-                                      FS_R(50.0)), FS_ERR_SCALE_INVALID);
+    assert_int_equal(
+        skchk_run_scales(&skill, peak, FS_R(1.0), FS_R(0.002), FS_R(0.001), FS_R(50.0)),
+        FS_ERR_SKCHK_STEP);
+    assert_int_equal(skchk_run_scales(&skill, peak, FS_R(1.0), FS_R(0.0), FS_R(0.001), FS_R(50.0)),
+                     FS_ERR_SCALE_INVALID);
 }
 
 /* The y half: the path extent of the check equals max|y_hat - y_start| of the Python rollout
@@ -214,6 +217,49 @@ static void test_stiffness_limit(void **state)
     assert_int_equal(skchk_stiffness(NULL, k), FS_ERR_NULL_ARG);
 }
 
+/* A periodic skill: the check rolls one cycle out from the cycle state; its bound |f0| + g +
+ * max|e| is at or above the Python rollout's peak over a cycle and equals it exactly when the
+ * deviation's extreme is a maximum (|f0| + g + max e); the run-time check scales it by the
+ * larger of the goal and amplitude scales. */
+static void test_periodic_cycle(void **state)
+{
+    (void)state;
+    load_skill("periodic_n50_ridge");
+    assert_int_equal(skill.dmp.periodic, 1u);
+    fs_real_t peak = FS_R(0.0);
+    assert_int_equal(skchk_skill(&skill, FS_R(0.001), FS_R(50.0), &peak), FS_OK);
+    char path[512];
+    snprintf(path, sizeof path, "%s/periodic_n50_ridge_g1_a1_t1_c2.csv", FS_VECTORS_DIR);
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    char line[256];
+    assert_non_null(fgets(line, sizeof line, f));
+    double f_max = 0.0, e_max = 0.0;
+    const double g = (double)skill.dmp.goal_N;
+    while (fgets(line, sizeof line, f) != NULL) {
+        double t = 0.0, v = 0.0;
+        assert_int_equal(sscanf(line, "%lf,%lf", &t, &v), 2);
+        f_max = fmax(f_max, fabs(v));
+        e_max = fmax(e_max, fabs(v - g));
+    }
+    fclose(f);
+    print_message("periodic: bound %.6f N, rollout peak %.6f N, g + max|e| %.6f N\n", (double)peak,
+                  f_max, g + e_max);
+    assert_true((double)peak >= f_max * (1.0 - 1e-6));
+    assert_true(fabs((double)peak - (g + e_max)) <= 1e-4 * (g + e_max));
+    const fs_real_t lim = peak * FS_R(1.5);
+    assert_int_equal(
+        skchk_run_scales_periodic(&skill, peak, FS_R(1.4), FS_R(1.0), FS_R(1.0), FS_R(0.001), lim),
+        FS_OK);
+    assert_int_equal(
+        skchk_run_scales_periodic(&skill, peak, FS_R(1.0), FS_R(1.6), FS_R(1.0), FS_R(0.001), lim),
+        FS_ERR_SKCHK_GOAL_SCALE);
+    assert_int_equal(
+        skchk_run_scales_periodic(&skill, peak, FS_R(1.0), FS_R(-1.0), FS_R(1.0), FS_R(0.001), lim),
+        FS_ERR_SCALE_INVALID);
+    assert_int_equal(skchk_skill(&skill, FS_R(0.001), peak * FS_R(0.999), NULL), FS_ERR_SKCHK_PEAK);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -223,6 +269,7 @@ int main(void)
         cmocka_unit_test(test_run_scales),
         cmocka_unit_test(test_y_path),
         cmocka_unit_test(test_stiffness_limit),
+        cmocka_unit_test(test_periodic_cycle),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -7,6 +7,9 @@
  *                    the y DMP, rolled out by dmp_step_xy (one step of both DMPs), compared
  *                    with "t,f_hat,y_hat" within the same tolerances (y_hat = y_start + p, error
  *                    relative to max|p|, the path's extent from its start);
+ *  manifest_periodic.txt  lines "<skill> <goal_scale> <amplitude_scale> <time_scale> <cycles>
+ *                    <csv>": periodic skills (format v4), rolled out by dmp_periodic_step from
+ *                    dmp_periodic_reset (docs/math.md section 5), the same tolerances;
  *  bad/manifest.txt  lines "<file> <expected code>" (paths relative to tests/vectors/bad):
  *                    skill_parse must return exactly that code.
  * A missing manifest is a failure, not a skip. FS_VECTORS_DIR comes from CMake. */
@@ -165,7 +168,7 @@ static double for_each_manifest_line(const char *name, int n_fields,
     double worst = 0.0;
     *count = 0;
     while (fgets(line, sizeof(line), m) != NULL) {
-        char *fld[5];
+        char *fld[6];
         const int n = split(line, fld, n_fields);
         if (n == 0) {
             continue;
@@ -314,9 +317,76 @@ static void test_golden_bad_images(void **state)
     assert_true(count > 0);
 }
 
-/* The periodic golden skills (manifest_periodic.txt, format v4): every check of the format
- * passes and this build, without a periodic DMP, refuses them with FS_ERR_SKILL_NO_PERIODIC; a
- * discrete skill rewritten as v4 (kind 0, the periodic fields 0) parses as its v2 image. */
+/* One manifest_periodic line: the periodic rollout of the skill at its scales against the CSV;
+ * returns the relative error. */
+static double check_rollout_periodic(const char *dir, char *const *fld)
+{
+    char path[1024];
+    const double gs = strtod(fld[1], NULL);
+    const double as = strtod(fld[2], NULL);
+    const double ts = strtod(fld[3], NULL);
+    const double cycles = strtod(fld[4], NULL);
+    snprintf(path, sizeof(path), "%s/%s", dir, fld[0]);
+    const long len = read_file(path, image, MAX_IMAGE);
+    if (len < 0 || skill_parse(image, (uint32_t)len, &sk) != FS_OK ||
+        sk.kind != SKILL_KIND_PERIODIC || sk.dmp.periodic != 1u) {
+        fail_msg("%s: not a periodic skill this build parses (%s)", path, BUILD_NAME);
+    }
+    snprintf(path, sizeof(path), "%s/%s", dir, fld[5]);
+    FILE *f = fopen(path, "r");
+    if (f == NULL) {
+        fail_msg("cannot read rollout %s", path);
+    }
+    char line[256];
+    if (fgets(line, sizeof(line), f) == NULL || strncmp(line, "t,f_hat", 7) != 0) {
+        fclose(f);
+        fail_msg("%s: header is not 't,f_hat'", path);
+    }
+    const dmp_run_t run = {(fs_real_t)gs, (fs_real_t)ts};
+    const long n_steps = lround(cycles * (double)sk.dmp.duration_s * ts / (double)sk.dmp.dt_s);
+    dmp_state_t s;
+    dmp_periodic_reset(&sk.dmp, &s, (fs_real_t)as);
+    long row = 0;
+    double err = 0.0, f_max = 0.0;
+    while (fgets(line, sizeof(line), f) != NULL) {
+        char *end = NULL;
+        (void)strtod(line, &end);
+        const double f_ref = strtod(end + 1, NULL);
+        const double f_c = (row == 0)
+                               ? (double)(sk.dmp.force0_N + (fs_real_t)gs * sk.dmp.goal_N + s.y_N)
+                               : (double)dmp_periodic_step(&sk.dmp, &s, &run, (fs_real_t)as, NULL);
+        err = fmax(err, fabs(f_c - f_ref));
+        f_max = fmax(f_max, fabs(f_ref));
+        row++;
+    }
+    fclose(f);
+    if (row != n_steps + 1) {
+        fail_msg("%s: %ld rows, expected %ld", path, row, n_steps + 1);
+    }
+    assert_true(f_max > 0.0);
+    printf("[%s] %s gs=%g as=%g ts=%g cycles=%g: %ld rows, max err %.3g of max|f|\n", BUILD_NAME,
+           fld[0], gs, as, ts, cycles, row, err / f_max);
+    if (!(err / f_max <= REL_TOL)) {
+        fail_msg("%s (%s): max error %.3g of max|f| exceeds %.1g", fld[5], BUILD_NAME, err / f_max,
+                 REL_TOL);
+    }
+    return err / f_max;
+}
+
+static void test_golden_rollouts_periodic(void **state)
+{
+    (void)state;
+    int count = 0;
+    const double worst = for_each_manifest_line("manifest_periodic.txt", 6, check_rollout_periodic,
+                                                &count);
+    printf("[%s] %d golden periodic rollouts, worst error %.3g of max|f| (tolerance %.0g)\n",
+           BUILD_NAME, count, worst, REL_TOL);
+    assert_true(count > 0);
+}
+
+/* The periodic golden skills (manifest_periodic.txt, format v4) parse as periodic models with
+ * their stored fields; a discrete skill rewritten as v4 (kind 0, the periodic fields 0) parses
+ * as its v2 image. */
 static void test_periodic_images(void **state)
 {
     (void)state;
@@ -327,7 +397,10 @@ static void test_periodic_images(void **state)
         snprintf(path, sizeof(path), "%s/%s", FS_VECTORS_DIR, names[i]);
         const long len = read_file(path, image, MAX_IMAGE);
         assert_true(len > 0);
-        assert_int_equal(skill_parse(image, (uint32_t)len, &sk), FS_ERR_SKILL_NO_PERIODIC);
+        assert_int_equal(skill_parse(image, (uint32_t)len, &sk), FS_OK);
+        assert_int_equal(sk.kind, SKILL_KIND_PERIODIC);
+        assert_int_equal(sk.dmp.periodic, 1u);
+        assert_true(sk.dmp.amplitude_N > FS_R(0.0));
     }
     snprintf(path, sizeof(path), "%s/press_n10_ridge_release.skill", FS_VECTORS_DIR);
     const long len2 = read_file(path, image, MAX_IMAGE);
@@ -365,10 +438,9 @@ static void test_periodic_images(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_golden_rollouts),
-        cmocka_unit_test(test_golden_rollouts_y),
-        cmocka_unit_test(test_golden_bad_images),
-        cmocka_unit_test(test_periodic_images),
+        cmocka_unit_test(test_golden_rollouts),          cmocka_unit_test(test_golden_rollouts_y),
+        cmocka_unit_test(test_golden_bad_images),        cmocka_unit_test(test_periodic_images),
+        cmocka_unit_test(test_golden_rollouts_periodic),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

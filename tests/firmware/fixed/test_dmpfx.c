@@ -2,7 +2,9 @@
  * (pressing and engraving skills, N = 10/50/100, goal 1x and 1.5x, time 1x and 1.3x) and a long
  * 17 s skill; the kernel blend against the double blend; rejection of skills that do not fit
  * (3xx codes); coupling (phase slow-down, additive term) against the double core; the
- * executor's conversion without rollout (dmpfx_from_model_bound) on the same skills. */
+ * executor's conversion without rollout (dmpfx_from_model_bound) on the same skills; the
+ * periodic DMP (manifest_periodic.txt) against the float64 core and the Python rollout, its
+ * sine polynomial and its blend. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -16,6 +18,7 @@
 
 #include "core_test_util.h"
 #include "dmpfx.h"
+#include "fs_num_fixed.h"
 #include "skill.h"
 #include "vectors_io.h"
 
@@ -191,8 +194,9 @@ static void test_golden_vectors_y(void **state)
             p_max = fmax(p_max, fabs(y_ref[i] - y0));
         }
         const double e_f = rel_err(f_fx, f_ref, rows);
-        printf("fixed vs python  %-28s g=%-3g t=%-3g p=%-3g  force %.4f %%  path %.4f %% (%.3g um)\n",
-               sk, gs, ts, ps, 100.0 * e_f, 100.0 * e_y / p_max, 1e6 * e_y);
+        printf(
+            "fixed vs python  %-28s g=%-3g t=%-3g p=%-3g  force %.4f %%  path %.4f %% (%.3g um)\n",
+            sk, gs, ts, ps, 100.0 * e_f, 100.0 * e_y / p_max, 1e6 * e_y);
         assert_true(e_f <= FIXED_TOL_REL);
         assert_true(e_y / p_max <= FIXED_TOL_REL);
         lines++;
@@ -313,10 +317,11 @@ static void test_blend(void **state)
         most = (cnt > most) ? cnt : most;
     }
     printf("blend: max |S_fx - S_double| / max|w| = %.2e in [0, c_N], %.2e beyond; at most %u "
-           "kernels per tick\n", worst_in / wmax, worst_out / wmax, most);
+           "kernels per tick\n",
+           worst_in / wmax, worst_out / wmax, most);
     assert_true(worst_in <= 2e-6 * wmax);
     assert_true(worst_out <= 2e-4 * wmax); /* 7.9e-5: the last kernels sit closer together */
-    assert_true(most <= 10u);               /* 9: kernels denser where the force bends */
+    assert_true(most <= 10u);              /* 9: kernels denser where the force bends */
 }
 
 static void test_rejects(void **state)
@@ -447,13 +452,150 @@ static void test_saturation_never_wraps(void **state)
     }
 }
 
+/* Periodic rollout rows n = 0..rows in N, fixed point (by_bound: the executor's conversion) and
+ * the float64 core; returns the fixed run's saturation count. */
+static uint32_t rollout_periodic_fx(const dmpfx_model_t *m, const double sc[3], long rows,
+                                    double *out)
+{
+    dmpfx_run_t run;
+    assert_int_equal(dmpfx_run_init(m, sc[0], sc[2], &run), FS_OK);
+    assert_int_equal(dmpfx_run_periodic(m, sc[1], &run), FS_OK);
+    dmpfx_state_t s;
+    dmpfx_periodic_reset(m, &run, &s);
+    out[0] = fx_to_double(m->force0_q16, 16u) +
+             ldexp((double)run.goal_q24 + (double)dmpfx_view(s.y_acc), m->value_shift - 24);
+    for (long i = 1; i <= rows; i++) {
+        out[i] = fx_to_double(dmpfx_periodic_step(m, &run, &s, NULL), 16u);
+    }
+    return s.sat_events;
+}
+
+static void rollout_periodic_double(const dmp_model_t *m, const double sc[3], long rows,
+                                    double *out)
+{
+    const dmp_run_t run = {sc[0], sc[2]};
+    dmp_state_t s;
+    dmp_periodic_reset(m, &s, sc[1]);
+    out[0] = m->force0_N + sc[0] * m->goal_N + s.y_N;
+    for (long i = 1; i <= rows; i++) {
+        out[i] = dmp_periodic_step(m, &s, &run, sc[1], NULL);
+    }
+}
+
+static void test_golden_periodic(void **state)
+{
+    (void)state;
+    char mpath[512];
+    snprintf(mpath, sizeof(mpath), "%s/manifest_periodic.txt", FS_VECTORS_DIR);
+    FILE *mf = fopen(mpath, "r");
+    assert_non_null(mf);
+    char sk[256];
+    char csv[256];
+    double sc[3];
+    double cycles;
+    int lines = 0;
+    double worst = 0.0;
+    static dmpfx_model_t fxb;
+    while (fscanf(mf, "%255s %lf %lf %lf %lf %255s", sk, &sc[0], &sc[1], &sc[2], &cycles, csv) ==
+           6) {
+        load_fixed(sk);
+        assert_int_equal(fxm.periodic, 1u);
+        assert_int_equal(dmpfx_from_model_bound(&skill.dmp, &fxb), FS_OK);
+        const long rows = lround(cycles * skill.dmp.duration_s * sc[2] / skill.dmp.dt_s);
+        assert_true(rows <= MAX_ROWS);
+        rollout_periodic_double(&skill.dmp, sc, rows, f_ref);
+        assert_int_equal(rollout_periodic_fx(&fxm, sc, rows, f_fx), 0u);
+        const double e_core = rel_err(f_fx, f_ref, rows);
+        assert_int_equal(rollout_periodic_fx(&fxb, sc, rows, f_fx), 0u);
+        const double e_bound = rel_err(f_fx, f_ref, rows);
+        char cpath[512];
+        snprintf(cpath, sizeof(cpath), "%s/%s", FS_VECTORS_DIR, csv);
+        FILE *cf = fopen(cpath, "r");
+        assert_non_null(cf);
+        char line[128];
+        assert_non_null(fgets(line, sizeof(line), cf));
+        long n = 0;
+        double t;
+        double f;
+        while (fscanf(cf, "%lf,%lf", &t, &f) == 2) {
+            assert_true(n <= rows);
+            f_ref[n++] = f;
+        }
+        fclose(cf);
+        assert_int_equal(n, rows + 1);
+        (void)rollout_periodic_fx(&fxm, sc, rows, f_fx);
+        const double e_py = rel_err(f_fx, f_ref, rows);
+        printf("fixed vs float64 periodic %-26s g=%-3g a=%-3g t=%-3g c=%-3g core %.4f %% python "
+               "%.4f %% (bound conversion s=%d vs %d: %.4f %%, peak %.2f of the bound's)\n",
+               sk, sc[0], sc[1], sc[2], cycles, 100.0 * e_core, 100.0 * e_py, fxb.value_shift,
+               fxm.value_shift, 100.0 * e_bound,
+               ldexp(fxm.peak_q24, fxm.value_shift) / ldexp(fxb.peak_q24, fxb.value_shift));
+        assert_true(e_core <= FIXED_TOL_REL && e_py <= FIXED_TOL_REL && e_bound <= FIXED_TOL_REL);
+        assert_true(ldexp(fxm.peak_q24, fxm.value_shift) <= ldexp(fxb.peak_q24, fxb.value_shift));
+        worst = fmax(worst, fmax(e_core, fmax(e_py, e_bound)));
+        lines++;
+    }
+    fclose(mf);
+    assert_true(lines >= 5);
+    printf("fixed vs float64 periodic: worst over %d golden vectors %.4f %% of max force\n", lines,
+           100.0 * worst);
+}
+
+/* The fixed blend against the double one at 2000 phases of a cycle, every periodic skill. */
+static void test_periodic_blend(void **state)
+{
+    (void)state;
+    static const char *const names[] = {"periodic_n20_ridge.skill", "periodic_n50_lwr.skill",
+                                        "periodic_n50_ridge.skill"};
+    for (size_t k = 0u; k < sizeof(names) / sizeof(names[0]); k++) {
+        load_fixed(names[k]);
+        double e = 0.0;
+        double w = 0.0;
+        for (int i = 0; i < 2000; i++) {
+            const double x = (double)i / 2000.0;
+            const double s_d = dmp_periodic_blend_full(&skill.dmp, x);
+            const int32_t x_q = (int32_t)lround(ldexp(x, 30));
+            const double s_f = ldexp((double)dmpfx_periodic_blend(&fxm, x_q, NULL), -24);
+            e = fmax(e, fabs(s_f - dmp_periodic_blend_full(&skill.dmp, ldexp((double)x_q, -30))));
+            w = fmax(w, fabs(s_d));
+        }
+        printf("periodic blend %s: fixed vs full double %.3g of max|S|\n", names[k], e / w);
+        assert_true(e / w <= 1e-5);
+    }
+}
+
+/* The fixed layer's sin(pi x) and cos(pi x) over [0, 1] (10^5 + 1 phases) against libm. */
+static void test_sincos_pi(void **state)
+{
+    (void)state;
+    double e = 0.0;
+    for (int i = 0; i <= 100000; i++) {
+        const int32_t x = (int32_t)lround(ldexp((double)i / 100000.0, 30));
+        int32_t sq;
+        int32_t cq;
+        fs_num_sincos_pi(x, &sq, &cq);
+        const double xd = ldexp((double)x, -30);
+        e = fmax(e, fabs(ldexp((double)sq, -30) - sin(3.141592653589793 * xd)));
+        e = fmax(e, fabs(ldexp((double)cq, -30) - cos(3.141592653589793 * xd)));
+    }
+    printf("fixed sin/cos(pi x): max error %.3g\n", e);
+    assert_true(e <= 5e-9);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_golden_vectors), cmocka_unit_test(test_golden_vectors_y),
-        cmocka_unit_test(test_long_skill),     cmocka_unit_test(test_bound_conversion),
-        cmocka_unit_test(test_blend),          cmocka_unit_test(test_rejects),
-        cmocka_unit_test(test_coupling),       cmocka_unit_test(test_saturation_never_wraps),
+        cmocka_unit_test(test_golden_vectors),
+        cmocka_unit_test(test_golden_vectors_y),
+        cmocka_unit_test(test_golden_periodic),
+        cmocka_unit_test(test_periodic_blend),
+        cmocka_unit_test(test_sincos_pi),
+        cmocka_unit_test(test_long_skill),
+        cmocka_unit_test(test_bound_conversion),
+        cmocka_unit_test(test_blend),
+        cmocka_unit_test(test_rejects),
+        cmocka_unit_test(test_coupling),
+        cmocka_unit_test(test_saturation_never_wraps),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -227,3 +227,22 @@ def test_cli_fit_periodic_and_rollout_cycles(tmp_path: Path, capsys: pytest.Capt
         != 0
     )
     assert "683" in capsys.readouterr().err
+
+
+def test_cli_fit_periodic_plot(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """fit --periodic --plot writes the strokes-against-the-learned-cycle figure with the skill;
+    --y-column still does not apply (683)."""
+    from forceskill.cli import main
+
+    d = synthetic.wiping_strokes(seed=5, noise_N=0.02)
+    csv = tmp_path / "wipe.csv"
+    np.savetxt(
+        csv, np.column_stack((d.t_s, d.pos_m, d.force_N)), delimiter=",", header="t,x,f_contact", comments=""
+    )
+    png = tmp_path / "wipe.png"
+    args = ["fit", str(csv), "-k", "100", "--periodic", "-o", str(tmp_path / "wipe.skill")]
+    assert main([*args, "--plot", str(png)]) == 0
+    assert f"plot {png}" in capsys.readouterr().out
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 20000
+    assert main([*args, "--y-column", "x"]) != 0
+    assert "683" in capsys.readouterr().err

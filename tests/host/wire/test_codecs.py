@@ -27,6 +27,7 @@ CLASSES = {
     "device_state": W.DeviceState,
     "fault_causes": W.FaultCauses,
     "run_skill": W.RunSkill,
+    "run_periodic": W.RunPeriodic,
     "run_step": W.RunStep,
     "run_sequence": W.RunSequence,
     "run_results": W.RunResults,
