@@ -31,6 +31,7 @@ void app_config_default(app_config_t *cfg)
     cfg->vel_cutoff_Hz = FS_R(50.0);
     cfg->telemetry_period_ms = 1u;
     cfg->stiffness_max_Npm = app_stiffness_max_default_Npm(cfg->render_carriage);
+    cfg->uds_tx_dl = CAN_CLASSIC_MAX_LEN;
 }
 
 fs_real_t app_stiffness_max_default_Npm(uint8_t render_carriage)
@@ -473,6 +474,8 @@ void app_init(app_t *app, const app_config_t *cfg)
 
     isotp_config_t tpc;
     isotp_config_default(&tpc, PROTO_ID_UDS_RESPONSE(cfg->node), PROTO_ID_UDS_REQUEST(cfg->node));
+    tpc.tx_dl = cfg->uds_tx_dl; /* isotp_init takes anything but 64 as classic */
+    tpc.brs = cfg->uds_brs;
     isotp_init(&app->tp, &tpc, tp_send, app);
     uds_app_t hooks;
     app_uds_bind(app, &hooks);

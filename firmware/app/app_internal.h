@@ -102,6 +102,8 @@ struct app_config {
     fs_real_t vel_cutoff_Hz;
     uint8_t telemetry_period_ms; /* in TEACH/EXECUTE, 1..255 */
     fs_real_t stiffness_max_Npm; /* skills stiffer than this are refused (227), DID 0x0140 */
+    uint8_t uds_tx_dl;           /* UDS ISO-TP frames: 8 classic CAN (default), 64 CAN FD */
+    bool uds_brs;                /* CAN FD: bit-rate switch in the data phase */
 };
 
 /** The whole device. */

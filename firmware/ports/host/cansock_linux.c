@@ -131,9 +131,35 @@ static int linux_restart(const char *ifname)
     return r;
 }
 
-static ssize_t linux_write_frame(int fd, const struct can_frame *f)
+static ssize_t linux_write_frame(int fd, const void *frame, size_t size)
 {
-    return write(fd, f, sizeof(*f));
+    return write(fd, frame, size);
+}
+
+static int linux_enable_fd(int fd, const char *ifname, char *err, uint32_t err_len)
+{
+    struct ifreq ifr;
+    memset(&ifr, 0, sizeof(ifr));
+    memcpy(ifr.ifr_name, ifname, strnlen(ifname, IFNAMSIZ - 1u));
+    if (ioctl(fd, SIOCGIFMTU, &ifr) < 0) {
+        const int e = errno;
+        snprintf(err, err_len, "cannot read the MTU of '%s': %s", ifname, strerror(e));
+        return -e;
+    }
+    if (ifr.ifr_mtu != (int)CANFD_MTU) {
+        snprintf(err, err_len,
+                 "%s is not CAN FD capable (MTU %d; CAN FD needs %u: an FD controller, or "
+                 "ip link set %s mtu %u on vcan)",
+                 ifname, ifr.ifr_mtu, (unsigned)CANFD_MTU, ifname, (unsigned)CANFD_MTU);
+        return -EOPNOTSUPP;
+    }
+    const int on = 1;
+    if (setsockopt(fd, SOL_CAN_RAW, CAN_RAW_FD_FRAMES, &on, sizeof(on)) != 0) {
+        const int e = errno;
+        snprintf(err, err_len, "cannot enable CAN FD frames on '%s': %s", ifname, strerror(e));
+        return -e;
+    }
+    return 0;
 }
 
 const cansock_ops_t cansock_linux_ops = {
@@ -142,4 +168,5 @@ const cansock_ops_t cansock_linux_ops = {
     .set_bitrate = linux_set_bitrate,
     .restart = linux_restart,
     .write_frame = linux_write_frame,
+    .enable_fd = linux_enable_fd,
 };
