@@ -23,6 +23,10 @@ SPEED = float(os.environ.get("FORCESKILL_CAN_SPEED", "1"))
 # default on an idle machine.
 HOST_TIMEOUT_MS = int(os.environ.get("FORCESKILL_CAN_HOST_TIMEOUT_MS", "500"))
 JOURNEY_HOST_TIMEOUT_MS = int(os.environ.get("FORCESKILL_CAN_JOURNEY_HOST_TIMEOUT_MS", str(HOST_TIMEOUT_MS)))
+# The host tools' --timeout (seconds without the device's frames before a command gives up):
+# scripts/test_linux_can.sh raises it in its qemu guest, where a Python thread under TCG on a
+# loaded machine can stall for seconds.
+LINK_TIMEOUT_S = os.environ.get("FORCESKILL_CAN_TIMEOUT_S", "3")
 
 
 def socketcand_args(port: int) -> list[str]:
@@ -80,7 +84,7 @@ class Server:
     def bus_args(self, node: int | None = None) -> list[str]:
         """The CLI's bus options for this server (node: the server's unless given)."""
         node = self.node if node is None else node
-        return [*socketcand_args(self.port), "--node", str(node), "--timeout", "3"]
+        return [*socketcand_args(self.port), "--node", str(node), "--timeout", LINK_TIMEOUT_S]
 
     def namespace(self, node: int = 0) -> argparse.Namespace:
         """The parsed form of bus_args, for link functions that take the CLI's arguments."""
