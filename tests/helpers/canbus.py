@@ -27,6 +27,14 @@ JOURNEY_HOST_TIMEOUT_MS = int(os.environ.get("FORCESKILL_CAN_JOURNEY_HOST_TIMEOU
 # scripts/test_linux_can.sh raises it in its qemu guest, where a Python thread under TCG on a
 # loaded machine can stall for seconds.
 LINK_TIMEOUT_S = os.environ.get("FORCESKILL_CAN_TIMEOUT_S", "3")
+# The telemetry period record and run ask of the device on a SocketCAN interface
+# (--telemetry-period; default 1 ms, the product's): scripts/test_linux_can.sh asks 10 in its qemu
+# guest, where Python reads about 150 frames/s (bench figure in docs/hil.md), not the 2,100 of 1 kHz.
+TELEMETRY_PERIOD_MS = int(os.environ.get("FORCESKILL_CAN_TELEMETRY_PERIOD_MS", "1"))
+# How much longer than --duration a recording may come out: record stops TEACH when it reads the
+# device's status at the duration, so a reader behind the stream records on (about 0.5 s of device
+# time in the qemu guest, where scripts/test_linux_can.sh allows 1 s; 0 here).
+RECORD_OVERRUN_S = float(os.environ.get("FORCESKILL_CAN_RECORD_OVERRUN_S", "0"))
 
 
 def socketcand_args(port: int) -> list[str]:

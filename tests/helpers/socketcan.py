@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from helpers.canbus import HOST_TIMEOUT_MS, LINK_TIMEOUT_S, SPEED, Server, serve
+from helpers.canbus import HOST_TIMEOUT_MS, LINK_TIMEOUT_S, SPEED, TELEMETRY_PERIOD_MS, Server, serve
 
 VCAN = os.environ.get("FORCESKILL_VCAN", "vcan0")
 VCAN_HOWTO = (
@@ -79,4 +79,6 @@ class SocketCANServer(Server):
             str(self.node if node is None else node),
             "--timeout",
             LINK_TIMEOUT_S,
+            "--telemetry-period",
+            str(TELEMETRY_PERIOD_MS),
         ]

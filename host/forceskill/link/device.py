@@ -86,8 +86,12 @@ class MotionSession:
 class Device(can.Listener):
     """One node on a bus. Use as a context manager: starts a Notifier (shared with ISO-TP)."""
 
-    def __init__(self, bus: can.BusABC, node: int = 0, channel: str = "can0", timeout_s: float = 2.0):
+    def __init__(
+        self, bus: can.BusABC, node: int = 0, channel: str = "can0", timeout_s: float = 2.0, fd: bool = False
+    ):
         self.bus = bus
+        #: The bus was opened for CAN FD (``--fd``): UDS goes in 64-byte FD frames (link.uds).
+        self.fd = fd
         self.node = node
         self.channel = channel
         self.timeout_s = timeout_s
