@@ -88,6 +88,17 @@ echo "== Python, HIL and CAN tests"
 export FORCESKILL_HIL_SIM="$ROOT/build/hil_sim/hil_sim"
 .venv/bin/python -m pytest -q tests
 
+echo "== Linux CAN in a qemu guest (scripts/test_linux_can.sh: the SocketCAN journey on vcan0, the"
+echo "   emulated SJA1000 pair, can-utils, CAN FD)"
+rc=0
+scripts/test_linux_can.sh || rc=$?
+if [ "$rc" -eq 77 ]; then
+  echo "   (skipped: no qemu or guest kernel here; scripts/vm.sh --setup)"
+elif [ "$rc" -ne 0 ]; then
+  echo "Linux CAN tests in the VM failed (exit $rc)" >&2
+  exit "$rc"
+fi
+
 echo "== clang-format: firmware/ and hil_sim/ match .clang-format (generated code excluded)"
 tools/check_format.sh
 echo "== the host package at the lowest dependency versions pyproject.toml allows (.venv-min):"

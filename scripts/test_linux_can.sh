@@ -40,6 +40,10 @@ fi
 
 [ -x build/hil_sim/hil_sim ] || { echo "test_linux_can: no build/hil_sim/hil_sim (scripts/setup.sh builds it)" >&2; exit 1; }
 [ -x .venv/bin/python ] || { echo "test_linux_can: no .venv (scripts/setup.sh creates it)" >&2; exit 1; }
+# a fresh clone: the guest's kernel and initramfs first (77 with one line where apt cannot get them)
+if [ ! -s build/vm/kernel/.package ] || ! command -v qemu-system-x86_64 >/dev/null; then
+  scripts/vm.sh --setup || exit $?
+fi
 # byte-compile on the host: the guest's writes vanish, so it would compile at every start
 .venv/bin/python -m compileall -q host/forceskill tests >/dev/null
 set +e

@@ -92,13 +92,17 @@ static int linux_get_bitrate(const char *ifname, uint32_t *bitrate_bps)
     }
     struct can_bittiming bt;
     memset(&bt, 0, sizeof(bt));
+    struct can_bittiming_const btc;
+    memset(&btc, 0, sizeof(btc));
     const int q = quiet_begin();
     const int r = can_get_bittiming(ifname, &bt);
+    /* a controller whose rate was never set reports no bit timing but its limits (vcan: neither) */
+    const int c = r != 0 ? can_get_bittiming_const(ifname, &btc) : 0;
     quiet_end(q);
-    if (r != 0) {
-        return -EOPNOTSUPP; /* the interface exists but reports no CAN bit timing */
+    if (r != 0 && c != 0) {
+        return -EOPNOTSUPP; /* the interface exists but has no CAN bit timing */
     }
-    *bitrate_bps = bt.bitrate;
+    *bitrate_bps = r == 0 ? bt.bitrate : 0u;
     return 0;
 }
 

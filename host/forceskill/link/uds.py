@@ -214,9 +214,11 @@ def open_client(
 
 @contextmanager
 def uds_client(dev: Device, request_timeout_s: float = 5.0) -> Iterator[Client]:
-    """A connected udsoncan Client for dev (whose Notifier must be running)."""
+    """A connected udsoncan Client for dev (whose Notifier must be running); each request waits
+    request_timeout_s, or the device's timeout (``--timeout``) where that is longer."""
     assert dev.notifier is not None
-    with open_client(dev.bus, dev.notifier, dev.node, timeout_s=request_timeout_s, fd=dev.fd) as client:
+    timeout_s = max(request_timeout_s, dev.timeout_s)
+    with open_client(dev.bus, dev.notifier, dev.node, timeout_s=timeout_s, fd=dev.fd) as client:
         yield client
 
 
