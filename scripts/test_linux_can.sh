@@ -17,7 +17,7 @@
 # --telemetry-period) and the simulator runs at FORCESKILL_CAN_SPEED (default here 0.25: a quarter
 # of real time, the device's own timing unchanged): 75 frames/s in wall time;
 # the host tools wait FORCESKILL_CAN_TIMEOUT_S (default here 20 s) for the device's frames, a
-# recording may run FORCESKILL_CAN_RECORD_OVERRUN_S (1 s) past its --duration (the reader's lag),
+# recording may run FORCESKILL_CAN_RECORD_OVERRUN_S (3 s) past its --duration (the reader's lag),
 # python-can's import leaves out MF4 (FORCESKILL_TEST_NO_MF4=1: asammdf and pandas are most of its
 # import time; nothing here reads .mf4) and the guest's copy of the editable install's .pth is a
 # plain path (setuptools' import hook costs seconds under TCG at every interpreter start).
@@ -51,7 +51,7 @@ scripts/vm.sh --vcan --kvaser 2 --timeout "${FORCESKILL_VM_TIMEOUT:-900}" \
   --env FORCESKILL_TEST_NO_MF4=1 --env "FORCESKILL_CAN_SPEED=${FORCESKILL_CAN_SPEED:-0.25}" \
   --env "FORCESKILL_CAN_TIMEOUT_S=${FORCESKILL_CAN_TIMEOUT_S:-20}" \
   --env "FORCESKILL_CAN_TELEMETRY_PERIOD_MS=${FORCESKILL_CAN_TELEMETRY_PERIOD_MS:-10}" \
-  --env "FORCESKILL_CAN_RECORD_OVERRUN_S=${FORCESKILL_CAN_RECORD_OVERRUN_S:-1}" \
+  --env "FORCESKILL_CAN_RECORD_OVERRUN_S=${FORCESKILL_CAN_RECORD_OVERRUN_S:-3}" \
   --env "FORCESKILL_HIL_SIM=$ROOT/build/hil_sim/hil_sim" \
   -- scripts/test_linux_can.sh --guest "$@"
 rc=$?

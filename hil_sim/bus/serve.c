@@ -62,7 +62,7 @@ static const char SERVE_USAGE[] =
     "                   fault injection options do not apply\n"
     "  --fd             with --socketcan: CAN FD (the interface needs the FD MTU 72): the device\n"
     "                   answers UDS in 64-byte FD frames with bit-rate switching and takes FD\n"
-    "                   and classic frames; the cyclic frames stay classic\n";
+    "                   and classic frames; the cyclic frames stay classic 8-byte frames\n";
 
 static volatile sig_atomic_t g_stop;
 

@@ -32,6 +32,7 @@ from forceskill.wire.dbc import UDS_REQUEST_BASE, UDS_RESPONSE_BASE, load_db
 from helpers.canbus import (
     PRESS_K_NPM,
     PRESS_SURFACE_M,
+    RECORD_OVERRUN_S,
     REPO,
     SCENARIOS,
     TELEMETRY_PERIOD_MS,
@@ -44,7 +45,7 @@ SCENARIO = SCENARIOS / "pressing_task1_demo.toml"
 DB = load_db(0)
 ID = {m.name: m.frame_id for m in DB.messages}
 FAULT_BUS_OFF = 501
-CAN_ERR_FLAG, CAN_ERR_BUSOFF = 0x20000000, 0x00000040
+CAN_ERR_FLAG, CAN_ERR_BUSOFF, CAN_ERR_RESTARTED = 0x20000000, 0x00000040, 0x00000100
 
 
 def sys_net(iface: str) -> Path:
@@ -111,19 +112,22 @@ def test_sja1000_bitrate_set_by_hil_sim_and_status_on_can1(pair, sja_server, cap
     assert "IDLE" in out
 
 
-def inject_bus_off(iface: str) -> None:
-    """An error frame with CAN_ERR_BUSOFF as the controller's driver reports bus-off: written on
-    the device's interface, Linux's local echo hands it to the device's socket (qemu's SJA1000
-    model has no error states of its own: its controller never goes bus-off by itself)."""
+def inject_bus_off(iface: str, off_s: float) -> None:
+    """The error frames a controller's driver sends with restart-ms: CAN_ERR_BUSOFF, then
+    CAN_ERR_RESTARTED off_s later. Written on the device's interface, Linux's local echo hands
+    them to the device's socket (qemu's SJA1000 model has no error states of its own: its
+    controller never goes bus-off by itself)."""
     with socket.socket(socket.AF_CAN, socket.SOCK_RAW, socket.CAN_RAW) as s:
         s.bind((iface,))
         s.send(struct.pack("=IB3x8s", CAN_ERR_FLAG | CAN_ERR_BUSOFF, 8, bytes(8)))
+        time.sleep(off_s)
+        s.send(struct.pack("=IB3x8s", CAN_ERR_FLAG | CAN_ERR_RESTARTED, 8, bytes(8)))
 
 
 def test_sja1000_bus_off_row(pair, sja_server):
-    """The fault table's bus-off row through the real driver: 501 latched, silence while off,
-    the restart request answered by the sja1000 driver (EBUSY: the controller is not bus-off,
-    which ends it), then the emergency frame first, once, and the fault still latched."""
+    """The fault table's bus-off row on the real driver's error frames: 501 latched, silence
+    while off (the port's restart requests refused by the driver: its controller is not bus-off),
+    the "restarted" frame ends it, then the emergency frame first, once, the fault still latched."""
     dev_if, host_if = pair
     frames: list[can.Message] = []
     with can.Bus(interface="socketcan", channel=host_if) as bus:
@@ -134,13 +138,13 @@ def test_sja1000_bus_off_row(pair, sja_server):
                 frames.append(m)
         assert any(m.arbitration_id == ID["DeviceStatus"] for m in frames)
         t_inject = time.time()
-        inject_bus_off(dev_if)
+        inject_bus_off(dev_if, 1.0)
         after: list[can.Message] = []
         t_end = time.monotonic() + 15.0
         while time.monotonic() < t_end and sum(m.arbitration_id == ID["DeviceStatus"] for m in after) < 5:
             m = bus.recv(0.5)
-            if m is not None and m.timestamp > t_inject and m.arbitration_id != 0x040:
-                after.append(m)  # (0x040: the injected frame itself, sent on the bus as a data frame)
+            if m is not None and m.timestamp > t_inject and m.arbitration_id not in (0x040, 0x100):
+                after.append(m)  # (0x040, 0x100: the injected frames, on the bus as data frames)
     assert after, "nothing from the device after the bus-off"
     first = after[0]
     assert first.arbitration_id == ID["Emergency"], [hex(m.arbitration_id) for m in after[:5]]
@@ -156,7 +160,7 @@ def test_sja1000_bus_off_row(pair, sja_server):
     err = sja_server.stop()
     assert f"{dev_if} bus-off at" in err and f"{dev_if} back on the bus at" in err
     stop = err.strip().splitlines()[-1]
-    assert "1 bus-off" in stop and "1 error frames" in stop, stop
+    assert "1 bus-off" in stop and "2 error frames" in stop, stop
 
 
 # -- can-utils ---------------------------------------------------------------------------------
@@ -209,7 +213,8 @@ def test_candump_log_read_by_fit(vcan_server, tmp_path, capsys):
         "-o",
         str(tmp_path / "from_candump.skill"),
     )
-    assert f"{log.name}:f_contact" in out and "T = 3.0" in out
+    t_s = float(out.split(f"{log.name}:f_contact, T = ")[1].split()[0])
+    assert 2.9 <= t_s <= 3.1 + RECORD_OVERRUN_S, out
     a, b = load_demo(log), load_demo(tmp_path / "own.blf")
     n = min(a.t_s.size, b.t_s.size)
     assert n > 2900 // TELEMETRY_PERIOD_MS and np.array_equal(a.force_N[:n], b.force_N[:n])

@@ -32,8 +32,8 @@ LINK_TIMEOUT_S = os.environ.get("FORCESKILL_CAN_TIMEOUT_S", "3")
 # guest, where Python reads about 150 frames/s (bench figure in docs/hil.md), not the 2,100 of 1 kHz.
 TELEMETRY_PERIOD_MS = int(os.environ.get("FORCESKILL_CAN_TELEMETRY_PERIOD_MS", "1"))
 # How much longer than --duration a recording may come out: record stops TEACH when it reads the
-# device's status at the duration, so a reader behind the stream records on (about 0.5 s of device
-# time in the qemu guest, where scripts/test_linux_can.sh allows 1 s; 0 here).
+# device's status at the duration, so a reader behind the stream records on (0.5-2.2 s of device
+# time seen in the qemu guest, where scripts/test_linux_can.sh allows 3 s; 0 here).
 RECORD_OVERRUN_S = float(os.environ.get("FORCESKILL_CAN_RECORD_OVERRUN_S", "0"))
 
 

@@ -147,17 +147,20 @@ def security_key(seed: bytes, secret: bytes | None = None, level: int = SEC_LEVE
     return hmac.new(key, bytes(seed), hashlib.sha256).digest()[:16]
 
 
-def isotp_params(fd: bool = False) -> dict[str, Any]:
+def isotp_params(fd: bool = False, timeout_s: float = 2.0) -> dict[str, Any]:
     """can-isotp's parameters for the device's ISO-TP: classic 8-byte frames padded with 0xCC, or
     with fd (the bus opened with ``--fd``, the device served with ``--fd``) 64-byte CAN FD frames
-    with bit-rate switching, short frames padded to the next FD length."""
+    with bit-rate switching, short frames padded to the next FD length. The waits for a flow
+    control and for the next consecutive frame are ISO 15765-2's 1000 ms, or half of a longer
+    timeout_s (``--timeout``: a slow host, e.g. a qemu guest, whose threads stall for seconds)."""
+    wait_ms = int(max(1000.0, 500.0 * timeout_s))
     return {
         "tx_padding": 0xCC,
         "tx_data_min_length": 8,
         "stmin": 0,
         "blocksize": 0,
-        "rx_flowcontrol_timeout": 1000,
-        "rx_consecutive_frame_timeout": 1000,
+        "rx_flowcontrol_timeout": wait_ms,
+        "rx_consecutive_frame_timeout": wait_ms,
         "max_frame_size": 4095,
         "can_fd": fd,
         "tx_data_length": 64 if fd else 8,
@@ -189,7 +192,7 @@ def open_client(
     addr = isotp.Address(
         isotp.AddressingMode.Normal_11bits, txid=UDS_REQUEST_BASE + node, rxid=UDS_RESPONSE_BASE + node
     )
-    stack = isotp.NotifierBasedCanStack(bus, notifier, address=addr, params=isotp_params(fd))
+    stack = isotp.NotifierBasedCanStack(bus, notifier, address=addr, params=isotp_params(fd, timeout_s))
     conn = PythonIsoTpConnection(stack)
 
     def algo(level: int, seed: bytes, params: Any = None) -> bytes:
