@@ -12,8 +12,16 @@ RequestDownload to RequestTransferExit; firmware: the whole flash_image, session
 included). vcan has no bit rate: frames arrive at once, so there the measured time is the
 host's and the device's processing, printed beside the limits of the nominal/data rates asked.
 
+With --limits-only it runs nothing: the UDS exchanges' frames are built here by ISO-TP's rules
+(classic: SF up to 7 bytes, FF with 6 and CFs with 7; FD: SF up to 62 bytes with the escape
+byte, FF with 62 and CFs with 63, the last padded to the next FD length; flow controls 8 bytes)
+from the same requests the host sends (skill: RequestDownload, one TransferData, exit; firmware:
+sessions, SecurityAccess, RequestDownload, TransferData blocks of 4,093 bytes, exit) and timed
+as above.
+
 Usage: fd_upload.py [--iface vcan0] [--hil-sim PATH] [--repeat N] [--fw-bytes N]
-                    [--bitrate BPS] [--data-bitrate BPS]      (run in scripts/vm.sh --vcan)"""
+                    [--bitrate BPS] [--data-bitrate BPS]      (run in scripts/vm.sh --vcan)
+       fd_upload.py --limits-only [--fw-bytes N] [--bitrate BPS] [--data-bitrate BPS]"""
 
 from __future__ import annotations
 
@@ -185,6 +193,69 @@ def report(mode: str, what: str, n: int, counts, limits, walls, args, fd: bool) 
     )
 
 
+FD_LENGTHS = (8, 12, 16, 20, 24, 32, 48, 64)
+
+
+def _pad(data: bytes, fd: bool) -> bytes:
+    n = 8 if len(data) <= 8 or not fd else next(x for x in FD_LENGTHS if x >= len(data))
+    return data + b"\xcc" * (n - len(data))
+
+
+def isotp_frames(can_id: int, fc_id: int, payload: bytes, fd: bool) -> list[can.Message]:
+    """The frames of one ISO-TP message (and the receiver's one flow control, block size 0)."""
+    msg = lambda d, i=can_id: can.Message(arbitration_id=i, data=_pad(d, fd), is_fd=fd, bitrate_switch=fd)  # noqa: E731
+    n = len(payload)
+    if n <= 7:
+        return [msg(bytes([n]) + payload)]
+    if fd and n <= 62:
+        return [msg(bytes([0, n]) + payload)]
+    first = 62 if fd else 6
+    per_cf = 63 if fd else 7
+    out = [msg(bytes([0x10 | (n >> 8), n & 0xFF]) + payload[:first]), msg(b"\x30\x00\x00", fc_id)]
+    sn = 1
+    for off in range(first, n, per_cf):
+        out.append(msg(bytes([0x20 | sn]) + payload[off : off + per_cf]))
+        sn = (sn + 1) & 0x0F
+    return out
+
+
+def exchange(requests: list[tuple[bytes, bytes]], fd: bool) -> list[can.Message]:
+    req, resp = U.UDS_REQUEST_BASE, U.UDS_RESPONSE_BASE
+    frames: list[can.Message] = []
+    for q, a in requests:
+        frames += isotp_frames(req, resp, q, fd) + isotp_frames(resp, req, a, fd)
+    return frames
+
+
+def limits_only(args: argparse.Namespace, skill: bytes, image: bytes) -> None:
+    rng = __import__("random").Random(1)
+    blk = 4093
+    crc = bytes(4)
+    up = [(bytes([0x34, 0, 0x12, 1]) + len(skill).to_bytes(2, "big"), bytes([0x74, 0x20, 0x0F, 0xFF]))]
+    up += [(bytes([0x36, 1]) + skill, b"\x76\x01"), (b"\x37", b"\x77" + crc)]
+    fw_x = [(b"\x10\x01", b"\x50\x01" + bytes(4)), (b"\x10\x02", b"\x50\x02" + bytes(4))]
+    fw_x += [(b"\x27\x05", b"\x67\x05" + rng.randbytes(16)), (b"\x27\x06" + rng.randbytes(16), b"\x67\x06")]
+    fw_x += [
+        (bytes([0x34, 0, 0x44]) + bytes(4) + len(image).to_bytes(4, "big"), bytes([0x74, 0x20, 0x0F, 0xFF]))
+    ]
+    for k, off in enumerate(range(0, len(image), blk)):
+        fw_x.append((bytes([0x36, (k + 1) & 0xFF]) + image[off : off + blk], bytes([0x76, (k + 1) & 0xFF])))
+    fw_x.append((b"\x37", b"\x77" + crc))
+    for what, ex, n in (("skill", up, len(skill)), ("firmware", fw_x, len(image))):
+        for fd in (False, True):
+            fr = exchange(ex, fd)
+            t = wire_s(fr, args.bitrate, args.data_bitrate if fd else args.bitrate)
+            rate = (
+                f"{args.bitrate / 1e6:g}/{args.data_bitrate / 1e6:g} Mbit/s"
+                if fd
+                else f"{args.bitrate / 1e6:g} Mbit/s"
+            )
+            print(
+                f"fd_upload mode={'fd' if fd else 'classic'} what={what} bytes={n} uds_frames={len(fr)} "
+                f"bus_limit_ms={t * 1e3:.1f} (at {rate}, frames built by ISO-TP's rules)"
+            )
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--iface", default=os.environ.get("FORCESKILL_VCAN", "vcan0"))
@@ -196,9 +267,14 @@ def main() -> int:
         "--data-bitrate", type=float, default=5e6, help="CAN FD data bit rate of the limit (5 Mbit/s)"
     )
     ap.add_argument("--timeout", type=float, default=20.0, help="seconds per UDS request (20: a TCG guest)")
+    ap.add_argument("--limits-only", action="store_true", help="only the computed bus limits (no bus)")
     args = ap.parse_args()
     skill = Skill.read(SKILL).to_bytes()
-    image = fw.build_image(os.urandom(args.fw_bytes), "9.9.9", "host", fw.DEV_KEY, build_id="fd_upload")
+    payload = __import__("random").Random(2).randbytes(args.fw_bytes)
+    image = fw.build_image(payload, "9.9.9", "host", fw.DEV_KEY, build_id="fd_upload")
+    if args.limits_only:
+        limits_only(args, skill, image)
+        return 0
     lines = run_mode(args, False, skill, image) + run_mode(args, True, skill, image)
     for line in lines:
         print(line)

@@ -146,6 +146,13 @@ def test_sja1000_bus_off_row(pair, sja_server):
             if m is not None and m.timestamp > t_inject and m.arbitration_id not in (0x040, 0x100):
                 after.append(m)  # (0x040, 0x100: the injected frames, on the bus as data frames)
     assert after, "nothing from the device after the bus-off"
+    # the device's frames queued before it read the error frame come first; then the silence
+    # while bus-off (1 s), and the first frame after it is the emergency frame
+    gaps = [b.timestamp - a.timestamp for a, b in zip(after, after[1:], strict=False)]
+    k = next((i + 1 for i, g in enumerate(gaps) if g > 0.5), None)
+    assert k is not None, f"no silence while bus-off: {[hex(m.arbitration_id) for m in after[:20]]}"
+    assert all(m.arbitration_id != ID["Emergency"] for m in after[:k])
+    after = after[k:]
     first = after[0]
     assert first.arbitration_id == ID["Emergency"], [hex(m.arbitration_id) for m in after[:5]]
     emcy = DB.decode_message(first.arbitration_id, first.data, decode_choices=False)
