@@ -14,6 +14,7 @@ kvaser_pci controllers, no can-utils, vcan0 without the FD MTU) or configuring t
 
 from __future__ import annotations
 
+import itertools
 import os
 import shutil
 import signal
@@ -148,7 +149,7 @@ def test_sja1000_bus_off_row(pair, sja_server):
     assert after, "nothing from the device after the bus-off"
     # the device's frames queued before it read the error frame come first; then the silence
     # while bus-off (1 s), and the first frame after it is the emergency frame
-    gaps = [b.timestamp - a.timestamp for a, b in zip(after, after[1:], strict=False)]
+    gaps = [b.timestamp - a.timestamp for a, b in itertools.pairwise(after)]
     k = next((i + 1 for i, g in enumerate(gaps) if g > 0.5), None)
     assert k is not None, f"no silence while bus-off: {[hex(m.arbitration_id) for m in after[:20]]}"
     assert all(m.arbitration_id != ID["Emergency"] for m in after[:k])
