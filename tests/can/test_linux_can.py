@@ -149,8 +149,8 @@ def test_sja1000_bus_off_row(pair, sja_server):
     assert after, "nothing from the device after the bus-off"
     # the device's frames queued before it read the error frame come first; then the silence
     # while bus-off (1 s), and the first frame after it is the emergency frame
-    gaps = [b.timestamp - a.timestamp for a, b in itertools.pairwise(after)]
-    k = next((i + 1 for i, g in enumerate(gaps) if g > 0.5), None)
+    times = [t_inject] + [m.timestamp for m in after]
+    k = next((i for i, (a, b) in enumerate(itertools.pairwise(times)) if b - a > 0.5), None)
     assert k is not None, f"no silence while bus-off: {[hex(m.arbitration_id) for m in after[:20]]}"
     assert all(m.arbitration_id != ID["Emergency"] for m in after[:k])
     after = after[k:]
