@@ -91,6 +91,22 @@ echo "== Python, HIL and CAN tests"
 export FORCESKILL_HIL_SIM="$ROOT/build/hil_sim/hil_sim"
 .venv/bin/python -m pytest -q tests
 
+echo "== Linux CAN in a qemu guest (scripts/test_linux_can.sh: the SocketCAN journey on vcan0, the"
+echo "   emulated SJA1000 pair, can-utils, CAN FD)"
+# not yet passing under TCG on a loaded machine (docs/hil.md, "Where it stands"): run on request
+if [ "${FORCESKILL_LINUX_CAN:-0}" = 1 ]; then
+  rc=0
+  scripts/test_linux_can.sh || rc=$?
+  if [ "$rc" -eq 77 ]; then
+    echo "   (skipped: no qemu or guest kernel here; scripts/vm.sh --setup)"
+  elif [ "$rc" -ne 0 ]; then
+    echo "Linux CAN tests in the VM failed (exit $rc)" >&2
+    exit "$rc"
+  fi
+else
+  echo "   (not run: FORCESKILL_LINUX_CAN=1 scripts/test.sh runs it; about 10 min under TCG here)"
+fi
+
 echo "== clang-format: firmware/ and hil_sim/ match .clang-format (generated code excluded)"
 tools/check_format.sh
 echo "== the host package at the lowest dependency versions pyproject.toml allows (.venv-min):"

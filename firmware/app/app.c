@@ -34,6 +34,7 @@ void app_config_default(app_config_t *cfg)
     cfg->vel_cutoff_Hz = FS_R(50.0);
     cfg->telemetry_period_ms = 1u;
     cfg->stiffness_max_Npm = app_stiffness_max_default_Npm(cfg->render_carriage);
+    cfg->uds_tx_dl = CAN_CLASSIC_MAX_LEN;
 }
 
 fs_real_t app_stiffness_max_default_Npm(uint8_t render_carriage)
@@ -438,9 +439,13 @@ void app_init(app_t *app, const app_config_t *cfg)
 
     isotp_config_t tpc;
     isotp_config_default(&tpc, PROTO_ID_UDS_RESPONSE(cfg->node), PROTO_ID_UDS_REQUEST(cfg->node));
+    tpc.tx_dl = cfg->uds_tx_dl; /* isotp_init takes anything but 64 as classic */
+    tpc.brs = cfg->uds_brs;
     isotp_init(&app->tp[0], &tpc, tp_send, app);
     isotp_config_default(&tpc, PROTO_ID_UDS_RESPONSE_2(cfg->node),
                          PROTO_ID_UDS_REQUEST_2(cfg->node));
+    tpc.tx_dl = cfg->uds_tx_dl;
+    tpc.brs = cfg->uds_brs;
     isotp_init(&app->tp[1], &tpc, tp_send, app);
     uds_app_t hooks;
     app_uds_bind(app, &hooks);

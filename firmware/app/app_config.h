@@ -47,6 +47,8 @@ struct app_config {
     fs_real_t vel_cutoff_Hz;
     uint8_t telemetry_period_ms; /* in TEACH/EXECUTE and through a fault, 1..255 */
     fs_real_t stiffness_max_Npm; /* skills stiffer than this are refused (227), DID 0x0140 */
+    uint8_t uds_tx_dl;           /* UDS ISO-TP frames: 8 classic CAN (default), 64 CAN FD */
+    bool uds_brs;                /* CAN FD: bit-rate switch in the data phase */
 };
 
 /** The default skill stiffness limit (DID 0x0140, 227 above it) of a drive: the highest nominal

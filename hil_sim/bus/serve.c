@@ -32,6 +32,7 @@
 static const char SERVE_USAGE[] =
     "usage: hil_sim serve [--port PORT] [--host ADDR] [--speed S] [--scenario FILE]\n"
     "                     [--node N] [--channel NAME] [--bitrate BPS] [--duration S] [--verbose]\n"
+    "                     [--socketcan IFACE [--fd]]\n"
     "Run the device firmware against the simulated plant in real time (x S) and serve its CAN bus\n"
     "with the socketcand protocol: python-can connects with\n"
     "  can.Bus(interface=\"socketcand\", host=ADDR, port=PORT, channel=NAME)\n"
@@ -59,7 +60,10 @@ static const char SERVE_USAGE[] =
     "                   server and no bus model, hosts use python-can's socketcan interface;\n"
     "                   --bitrate then sets the interface's rate with libsocketcan (needs\n"
     "                   CAP_NET_ADMIN; default: as configured); --port, --host, --channel and the\n"
-    "                   fault injection options do not apply\n";
+    "                   fault injection options do not apply\n"
+    "  --fd             with --socketcan: CAN FD (the interface needs the FD MTU 72): the device\n"
+    "                   answers UDS in 64-byte FD frames with bit-rate switching and takes FD\n"
+    "                   and classic frames; the cyclic frames stay classic 8-byte frames\n";
 
 static volatile sig_atomic_t g_stop;
 
@@ -245,6 +249,7 @@ static void socketcan_tick(void *ctx)
 static int serve_run_socketcan(serve_t *s, const char *ifname, int argc, char **argv,
                                uint32_t bitrate, double duration, const char *scenario)
 {
+    const bool fd = s->app_cfg.uds_tx_dl == CAN_FD_MAX_LEN;
     signal(SIGINT, on_signal);
     signal(SIGTERM, on_signal);
     const serve_socketcan_cfg_t cfg = {
@@ -258,7 +263,8 @@ static int serve_run_socketcan(serve_t *s, const char *ifname, int argc, char **
         .tick = socketcan_tick,
         .ctx = NULL,
         .device_tx_dropped = app_tx_dropped(s->app),
-        .stop = &g_stop};
+        .stop = &g_stop,
+        .fd = fd};
     return serve_socketcan_run(&cfg);
 }
 #else
@@ -285,7 +291,7 @@ typedef struct {
     const char *host, *channel, *scenario, *socketcan;
     double port, speed, node, bitrate, duration, host_timeout;
     double drop, corrupt, drop_tel, bus_off_at, bus_off_for;
-    bool verbose;
+    bool verbose, fd;
 } serve_opts_t;
 
 /* argv into o; -1 to go on, else the exit status (0 after --help, 2 on a usage error). */
@@ -319,6 +325,10 @@ static int parse_serve_args(int argc, char **argv, serve_opts_t *o)
         }
         if (strcmp(a, "--verbose") == 0) {
             o->verbose = true;
+            continue;
+        }
+        if (strcmp(a, "--fd") == 0) {
+            o->fd = true;
             continue;
         }
         if (v == NULL) {
@@ -401,6 +411,10 @@ static int serve_setup(serve_t *s, const serve_opts_t *o)
     sim_couple_device_config(&s->sc, &s->app_cfg);
     s->app_cfg.node = s->node;
     s->app_cfg.saf.wdg.timeout_ms = (uint16_t)o->host_timeout;
+    if (o->fd) { /* UDS in 64-byte FD frames, bit-rate switched (the cyclic frames stay 8 bytes) */
+        s->app_cfg.uds_tx_dl = CAN_FD_MAX_LEN;
+        s->app_cfg.uds_brs = true;
+    }
     sim_rng_seed(&s->rng_faults, s->sc.seed ^ 0xFA17FA17FA17FA17ull);
     hal_host_init();
     sim_couple_start(&s->plant, &s->sc);
@@ -482,6 +496,11 @@ int bus_cmd_serve(int argc, char **argv)
     const int status = parse_serve_args(argc, argv, &o);
     if (status >= 0) {
         return status;
+    }
+    if (o.fd && o.socketcan == NULL) {
+        fprintf(stderr,
+                "hil_sim serve: --fd needs --socketcan (the simulated bus is classic CAN)\n");
+        return 2;
     }
     if (check_serve_opts(&o) != 0 ||
         (o.socketcan != NULL && serve_check_socketcan(o.socketcan, argc, argv) != 0)) {

@@ -128,6 +128,11 @@ int serve_socketcan_run(const serve_socketcan_cfg_t *cfg)
         fprintf(stderr, "hil_sim serve: %s\n", err);
         return 1;
     }
+    if (cfg->fd && cansock_enable_fd(&drv, err, sizeof(err)) != 0) {
+        fprintf(stderr, "hil_sim serve: --fd: %s\n", err);
+        cansock_close(&drv);
+        return 1;
+    }
     char rate[48] = "as configured";
     if (cfg->bitrate_bps > 0u) {
         if (cansock_set_bitrate(&drv, cfg->bitrate_bps, err, sizeof(err)) < 0) {
@@ -136,9 +141,9 @@ int serve_socketcan_run(const serve_socketcan_cfg_t *cfg)
             snprintf(rate, sizeof(rate), "%u", cfg->bitrate_bps);
         }
     }
-    printf("hil_sim serve: on SocketCAN %s node %u speed %g bitrate %s%s%s\n", drv.ifname,
-           (unsigned)cfg->node, cfg->speed, rate, cfg->scenario != NULL ? " scenario " : "",
-           cfg->scenario != NULL ? cfg->scenario : "");
+    printf("hil_sim serve: on SocketCAN %s%s node %u speed %g bitrate %s%s%s\n", drv.ifname,
+           drv.fd_mode ? " (CAN FD)" : "", (unsigned)cfg->node, cfg->speed, rate,
+           cfg->scenario != NULL ? " scenario " : "", cfg->scenario != NULL ? cfg->scenario : "");
     fflush(stdout);
 
     seen_t seen = {false, 0, 0};
@@ -165,13 +170,13 @@ int serve_socketcan_run(const serve_socketcan_cfg_t *cfg)
     const cansock_stats_t *st = &drv.st;
     fprintf(
         stderr,
-        "hil_sim serve: stopped at %.3f s simulated; SocketCAN %s: %u frames in, %u out, %u "
-        "refused "
+        "hil_sim serve: stopped at %.3f s simulated; SocketCAN %s: %u frames in (%u FD), %u out "
+        "(%u FD), %u refused "
         "(queue full), %u write errors, %u error frames, %u bus-off, %u restarts (%u failed), %u "
         "extended/remote ignored; %llu clock slips; device rx overflows %u, tx dropped %u\n",
-        (double)next_ns * 1e-9, drv.ifname, st->rx_frames, st->tx_frames, st->tx_full,
-        st->tx_errors, st->error_frames, st->bus_offs, st->restarts, st->restart_failures,
-        st->rx_foreign, (unsigned long long)slips, hal_sim_can_rx_overflows(),
+        (double)next_ns * 1e-9, drv.ifname, st->rx_frames, st->rx_fd_frames, st->tx_frames,
+        st->tx_fd_frames, st->tx_full, st->tx_errors, st->error_frames, st->bus_offs, st->restarts,
+        st->restart_failures, st->rx_foreign, (unsigned long long)slips, hal_sim_can_rx_overflows(),
         cfg->device_tx_dropped != NULL ? *cfg->device_tx_dropped : 0u);
     cansock_close(&drv);
     return 0;

@@ -32,10 +32,11 @@ typedef struct {
     void *ctx;
     const uint32_t *device_tx_dropped; /* the device's count of frames it could not queue */
     volatile sig_atomic_t *stop;       /* set by a signal handler */
+    bool fd;                           /* CAN FD frames (cansock_enable_fd) */
 } serve_socketcan_cfg_t;
 
 /** Open the interface and run until stopped; 0, or 1 with one line on stderr (no AF_CAN, no
- *  such interface). A refused bit rate is one line on stderr, and the run goes on. */
+ *  such interface, fd on an interface without the CAN FD MTU). A refused bit rate is one line on stderr, and the run goes on. */
 int serve_socketcan_run(const serve_socketcan_cfg_t *cfg);
 
 /** Check the command line of `serve --socketcan ifname`: 0, or -1 with one line on stderr (an

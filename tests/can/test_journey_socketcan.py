@@ -29,7 +29,8 @@ def server():
     )
     time.sleep(0.2)
     yield s
-    s.stop()
+    err = s.stop()
+    print(err.strip().splitlines()[-1] if err.strip() else "hil_sim serve: no stop line")  # shown by -s
 
 
 @pytest.fixture(scope="module")

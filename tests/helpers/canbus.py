@@ -23,6 +23,18 @@ SPEED = float(os.environ.get("FORCESKILL_CAN_SPEED", "1"))
 # default on an idle machine.
 HOST_TIMEOUT_MS = int(os.environ.get("FORCESKILL_CAN_HOST_TIMEOUT_MS", "500"))
 JOURNEY_HOST_TIMEOUT_MS = int(os.environ.get("FORCESKILL_CAN_JOURNEY_HOST_TIMEOUT_MS", str(HOST_TIMEOUT_MS)))
+# The host tools' --timeout (seconds without the device's frames before a command gives up):
+# scripts/test_linux_can.sh raises it in its qemu guest, where a Python thread under TCG on a
+# loaded machine can stall for seconds.
+LINK_TIMEOUT_S = os.environ.get("FORCESKILL_CAN_TIMEOUT_S", "3")
+# The telemetry period record and run ask of the device on a SocketCAN interface
+# (--telemetry-period; default 1 ms, the product's): scripts/test_linux_can.sh asks 10 in its qemu
+# guest, where Python reads about 150 frames/s (bench figure in docs/hil.md), not the 2,100 of 1 kHz.
+TELEMETRY_PERIOD_MS = int(os.environ.get("FORCESKILL_CAN_TELEMETRY_PERIOD_MS", "1"))
+# How much longer than --duration a recording may come out: record stops TEACH when it reads the
+# device's status at the duration, so a reader behind the stream records on (0.5-2.2 s of device
+# time seen in the qemu guest, where scripts/test_linux_can.sh allows 3 s; 0 here).
+RECORD_OVERRUN_S = float(os.environ.get("FORCESKILL_CAN_RECORD_OVERRUN_S", "0"))
 
 
 def socketcand_args(port: int) -> list[str]:
@@ -80,7 +92,7 @@ class Server:
     def bus_args(self, node: int | None = None) -> list[str]:
         """The CLI's bus options for this server (node: the server's unless given)."""
         node = self.node if node is None else node
-        return [*socketcand_args(self.port), "--node", str(node), "--timeout", "3"]
+        return [*socketcand_args(self.port), "--node", str(node), "--timeout", LINK_TIMEOUT_S]
 
     def namespace(self, node: int = 0) -> argparse.Namespace:
         """The parsed form of bus_args, for link functions that take the CLI's arguments."""

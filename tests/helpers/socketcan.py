@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from helpers.canbus import HOST_TIMEOUT_MS, SPEED, Server, serve
+from helpers.canbus import HOST_TIMEOUT_MS, LINK_TIMEOUT_S, SPEED, TELEMETRY_PERIOD_MS, Server, serve
 
 VCAN = os.environ.get("FORCESKILL_VCAN", "vcan0")
 VCAN_HOWTO = (
@@ -78,5 +78,7 @@ class SocketCANServer(Server):
             "--node",
             str(self.node if node is None else node),
             "--timeout",
-            "3",
+            LINK_TIMEOUT_S,
+            "--telemetry-period",
+            str(TELEMETRY_PERIOD_MS),
         ]

@@ -95,6 +95,23 @@ int cansock_set_bitrate(cansock_t *c, uint32_t bitrate_bps, char *err, uint32_t 
     return r;
 }
 
+int cansock_enable_fd(cansock_t *c, char *err, uint32_t err_len)
+{
+    if (c->fd < 0) {
+        snprintf(err, err_len, "CAN FD on a closed interface");
+        return -EBADF;
+    }
+    if (c->ops->enable_fd == NULL) {
+        snprintf(err, err_len, "%s: CAN FD not supported here", c->ifname);
+        return -EOPNOTSUPP;
+    }
+    const int r = c->ops->enable_fd(c->fd, c->ifname, err, err_len);
+    if (r == 0) {
+        c->fd_mode = true;
+    }
+    return r;
+}
+
 void cansock_close(cansock_t *c)
 {
     if (c->fd >= 0) {
@@ -115,6 +132,53 @@ bool cansock_to_linux(const can_frame_t *f, struct can_frame *out)
     return true;
 }
 
+size_t cansock_to_linux_fd(const can_frame_t *f, struct canfd_frame *out)
+{
+    if (f->id > CAN_SFF_MASK || !can_frame_len_ok(f)) {
+        return 0u;
+    }
+    if ((f->flags & CAN_FRAME_FD) == 0u) {
+        struct can_frame cf;
+        if (!cansock_to_linux(f, &cf)) {
+            return 0u;
+        }
+        memset(out, 0, sizeof(*out));
+        memcpy(out, &cf, sizeof(cf)); /* struct can_frame is the head of struct canfd_frame */
+        return CAN_MTU;
+    }
+    memset(out, 0, sizeof(*out));
+    out->can_id = f->id;
+    out->len = f->len;
+    out->flags = (uint8_t)(CANFD_FDF | ((f->flags & CAN_FRAME_BRS) != 0u ? CANFD_BRS : 0u));
+    memcpy(out->data, f->data, f->len);
+    return CANFD_MTU;
+}
+
+cansock_rx_kind_t cansock_from_linux_fd(const struct canfd_frame *in, size_t size, can_frame_t *out)
+{
+    if (size == CAN_MTU) {
+        struct can_frame cf;
+        memcpy(&cf, in, sizeof(cf));
+        return cansock_from_linux(&cf, out);
+    }
+    if (size != CANFD_MTU) {
+        return CANSOCK_RX_FOREIGN;
+    }
+    if ((in->can_id & CAN_ERR_FLAG) != 0u) {
+        return CANSOCK_RX_ERROR;
+    }
+    const can_frame_t probe = {.len = in->len, .flags = CAN_FRAME_FD};
+    if ((in->can_id & (CAN_EFF_FLAG | CAN_RTR_FLAG)) != 0u || !can_frame_len_ok(&probe)) {
+        return CANSOCK_RX_FOREIGN;
+    }
+    memset(out, 0, sizeof(*out));
+    out->id = in->can_id & CAN_SFF_MASK;
+    out->len = in->len;
+    out->flags = (uint8_t)(CAN_FRAME_FD | ((in->flags & CANFD_BRS) != 0u ? CAN_FRAME_BRS : 0u));
+    memcpy(out->data, in->data, in->len);
+    return CANSOCK_RX_DATA;
+}
+
 cansock_rx_kind_t cansock_from_linux(const struct can_frame *in, can_frame_t *out)
 {
     if ((in->can_id & CAN_ERR_FLAG) != 0u) {
@@ -132,17 +196,28 @@ cansock_rx_kind_t cansock_from_linux(const struct can_frame *in, can_frame_t *ou
 
 bool cansock_send(cansock_t *c, const can_frame_t *f)
 {
-    struct can_frame lf;
-    if (c->fd < 0 || !cansock_to_linux(f, &lf)) {
+    struct canfd_frame lf;
+    size_t size = 0u;
+    if (c->fd_mode) {
+        size = cansock_to_linux_fd(f, &lf);
+    } else {
+        struct can_frame cf;
+        if (cansock_to_linux(f, &cf)) {
+            memcpy(&lf, &cf, sizeof(cf));
+            size = CAN_MTU;
+        }
+    }
+    if (c->fd < 0 || size == 0u) {
         return false;
     }
     if (c->bus_off) {
         c->st.tx_bus_off++;
         return false;
     }
-    const ssize_t n = c->ops->write_frame(c->fd, &lf);
-    if (n == (ssize_t)sizeof(lf)) {
+    const ssize_t n = c->ops->write_frame(c->fd, &lf, size);
+    if (n == (ssize_t)size) {
         c->st.tx_frames++;
+        c->st.tx_fd_frames += size == CANFD_MTU ? 1u : 0u;
         return true;
     }
     const int e = n < 0 ? errno : EIO;
@@ -195,21 +270,29 @@ bool cansock_receive(cansock_t *c, can_frame_t *f, uint64_t now_us)
 {
     restart_if_due(c, now_us);
     for (uint32_t skipped = 0u; c->fd >= 0 && skipped <= CANSOCK_RX_SKIP_MAX; skipped++) {
-        struct can_frame lf;
-        const ssize_t n = read(c->fd, &lf, sizeof(lf));
+        struct canfd_frame lf;
+        const ssize_t n = read(c->fd, &lf, c->fd_mode ? CANFD_MTU : CAN_MTU);
         if (n <= 0) {
             if (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) {
                 c->st.rx_errors++; /* e.g. ENETDOWN once when the interface goes down */
             }
             return false; /* nothing (more) to read; 0: the peer closed */
         }
-        if (n != (ssize_t)sizeof(lf)) {
+        if (n != (ssize_t)CAN_MTU && (n != (ssize_t)CANFD_MTU || !c->fd_mode)) {
             c->st.rx_errors++;
             continue;
         }
-        switch (cansock_from_linux(&lf, f)) {
-        case CANSOCK_RX_DATA: c->st.rx_frames++; return true;
-        case CANSOCK_RX_ERROR: cansock_on_error_frame(c, &lf, now_us); break;
+        switch (cansock_from_linux_fd(&lf, (size_t)n, f)) {
+        case CANSOCK_RX_DATA:
+            c->st.rx_frames++;
+            c->st.rx_fd_frames += (f->flags & CAN_FRAME_FD) != 0u ? 1u : 0u;
+            return true;
+        case CANSOCK_RX_ERROR: {
+            struct can_frame ef;
+            memcpy(&ef, &lf, sizeof(ef));
+            cansock_on_error_frame(c, &ef, now_us);
+            break;
+        }
         case CANSOCK_RX_FOREIGN:
         default: c->st.rx_foreign++; break;
         }

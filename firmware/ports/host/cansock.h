@@ -4,7 +4,10 @@
  * CANSOCK_RESTART_MS after it and every CANSOCK_RESTART_MS while still off; the controller's
  * "restarted" error frame clears it), and transmits without blocking: a full queue (EAGAIN from
  * the socket buffer, ENOBUFS from the interface queue) refuses the frame, the caller retries.
- * While bus-off every transmit is refused, as the simulator's controller does.
+ * While bus-off every transmit is refused, as the simulator's controller does. CAN FD
+ * (cansock_enable_fd, CAN_RAW_FD_FRAMES on an interface with the FD MTU of 72): FD frames
+ * (struct canfd_frame, BRS kept) go both ways, classic frames still pass; without it the socket
+ * stays classic and FD frames are refused on the way out.
  *
  * The operating-system calls go through cansock_ops_t: cansock_linux_ops opens an AF_CAN raw
  * socket and uses libsocketcan for the bit rate and the restart; tests pass their own ops and
@@ -36,8 +39,12 @@ typedef struct cansock_ops {
     int (*set_bitrate)(const char *ifname, uint32_t bitrate_bps);
     /* restart a bus-off controller */
     int (*restart)(const char *ifname);
-    /* write one frame (write(2) semantics: bytes written or -1 with errno) */
-    ssize_t (*write_frame)(int fd, const struct can_frame *f);
+    /* write one frame of size bytes, CAN_MTU (struct can_frame) or CANFD_MTU (struct
+     * canfd_frame) (write(2) semantics: bytes written or -1 with errno) */
+    ssize_t (*write_frame)(int fd, const void *frame, size_t size);
+    /* accept CAN FD frames on the open socket (CAN_RAW_FD_FRAMES); -EOPNOTSUPP with one line in
+     * err if the interface is classic only (MTU 16); NULL: never */
+    int (*enable_fd)(int fd, const char *ifname, char *err, uint32_t err_len);
 } cansock_ops_t;
 
 /** AF_CAN raw socket + libsocketcan (libsocketcan's own stderr messages are suppressed). */
@@ -54,8 +61,10 @@ typedef enum {
 typedef struct {
     uint32_t rx_frames;
     uint32_t tx_frames;
-    uint32_t rx_foreign; /* extended/remote frames ignored */
-    uint32_t rx_errors;  /* failed or short reads */
+    uint32_t rx_foreign;   /* extended/remote frames ignored */
+    uint32_t rx_fd_frames; /* of rx_frames, CAN FD frames */
+    uint32_t tx_fd_frames; /* of tx_frames, CAN FD frames */
+    uint32_t rx_errors;    /* failed or short reads */
     uint32_t error_frames;
     uint32_t bus_offs; /* transitions into bus-off */
     uint32_t restarts; /* restart requests */
@@ -73,6 +82,7 @@ typedef struct cansock {
     char ifname[CANSOCK_IFNAME_MAX];
     const cansock_ops_t *ops;
     bool bus_off;
+    bool fd_mode;           /* CAN FD frames accepted (cansock_enable_fd) */
     uint64_t restart_at_us; /* next restart request while bus-off */
     int last_tx_errno;      /* of the last tx error (not queue full), 0 if none */
     int last_restart_errno; /* of the last failed restart, 0 if none */
@@ -95,6 +105,10 @@ int cansock_open(cansock_t *c, const cansock_ops_t *ops, const char *ifname, cha
  *  (-EPERM/-EACCES: needs CAP_NET_ADMIN, interface untouched; -EOPNOTSUPP: no bit timing). */
 int cansock_set_bitrate(cansock_t *c, uint32_t bitrate_bps, char *err, uint32_t err_len);
 
+/** Accept CAN FD frames from now on: 0, or -errno with one line in err (-EOPNOTSUPP: the
+ *  interface or the ops are classic only; the socket stays classic). */
+int cansock_enable_fd(cansock_t *c, char *err, uint32_t err_len);
+
 /** Close the socket (counters kept). */
 void cansock_close(cansock_t *c);
 
@@ -103,6 +117,16 @@ bool cansock_to_linux(const can_frame_t *f, struct can_frame *out);
 
 /** Classify a received frame; for a data frame fill out (data beyond dlc zeroed). */
 cansock_rx_kind_t cansock_from_linux(const struct can_frame *in, can_frame_t *out);
+
+/** struct canfd_frame of an 11-bit data frame, classic or FD: the bytes to write (CAN_MTU for a
+ *  classic frame, in struct can_frame's layout; CANFD_MTU for an FD frame, CANFD_BRS from
+ *  CAN_FRAME_BRS), 0 (out untouched) if id > 0x7FF or the length is not one its kind has. */
+size_t cansock_to_linux_fd(const can_frame_t *f, struct canfd_frame *out);
+
+/** Classify size bytes read from an FD socket (CAN_MTU: classic, CANFD_MTU: FD); for a data
+ *  frame fill out (flags CAN_FRAME_FD/BRS of an FD frame). Other sizes count as foreign. */
+cansock_rx_kind_t cansock_from_linux_fd(const struct canfd_frame *in, size_t size,
+                                        can_frame_t *out);
 
 /** Transmit without blocking; false if refused (queue full, bus-off, write error, bad frame). */
 bool cansock_send(cansock_t *c, const can_frame_t *f);

@@ -92,13 +92,17 @@ static int linux_get_bitrate(const char *ifname, uint32_t *bitrate_bps)
     }
     struct can_bittiming bt;
     memset(&bt, 0, sizeof(bt));
+    struct can_bittiming_const btc;
+    memset(&btc, 0, sizeof(btc));
     const int q = quiet_begin();
     const int r = can_get_bittiming(ifname, &bt);
+    /* a controller whose rate was never set reports no bit timing but its limits (vcan: neither) */
+    const int c = r != 0 ? can_get_bittiming_const(ifname, &btc) : 0;
     quiet_end(q);
-    if (r != 0) {
-        return -EOPNOTSUPP; /* the interface exists but reports no CAN bit timing */
+    if (r != 0 && c != 0) {
+        return -EOPNOTSUPP; /* the interface exists but has no CAN bit timing */
     }
-    *bitrate_bps = bt.bitrate;
+    *bitrate_bps = r == 0 ? bt.bitrate : 0u;
     return 0;
 }
 
@@ -131,9 +135,35 @@ static int linux_restart(const char *ifname)
     return r;
 }
 
-static ssize_t linux_write_frame(int fd, const struct can_frame *f)
+static ssize_t linux_write_frame(int fd, const void *frame, size_t size)
 {
-    return write(fd, f, sizeof(*f));
+    return write(fd, frame, size);
+}
+
+static int linux_enable_fd(int fd, const char *ifname, char *err, uint32_t err_len)
+{
+    struct ifreq ifr;
+    memset(&ifr, 0, sizeof(ifr));
+    memcpy(ifr.ifr_name, ifname, strnlen(ifname, IFNAMSIZ - 1u));
+    if (ioctl(fd, SIOCGIFMTU, &ifr) < 0) {
+        const int e = errno;
+        snprintf(err, err_len, "cannot read the MTU of '%s': %s", ifname, strerror(e));
+        return -e;
+    }
+    if (ifr.ifr_mtu != (int)CANFD_MTU) {
+        snprintf(err, err_len,
+                 "%s is not CAN FD capable (MTU %d; CAN FD needs %u: an FD controller, or "
+                 "ip link set %s mtu %u on vcan)",
+                 ifname, ifr.ifr_mtu, (unsigned)CANFD_MTU, ifname, (unsigned)CANFD_MTU);
+        return -EOPNOTSUPP;
+    }
+    const int on = 1;
+    if (setsockopt(fd, SOL_CAN_RAW, CAN_RAW_FD_FRAMES, &on, sizeof(on)) != 0) {
+        const int e = errno;
+        snprintf(err, err_len, "cannot enable CAN FD frames on '%s': %s", ifname, strerror(e));
+        return -e;
+    }
+    return 0;
 }
 
 const cansock_ops_t cansock_linux_ops = {
@@ -142,4 +172,5 @@ const cansock_ops_t cansock_linux_ops = {
     .set_bitrate = linux_set_bitrate,
     .restart = linux_restart,
     .write_frame = linux_write_frame,
+    .enable_fd = linux_enable_fd,
 };

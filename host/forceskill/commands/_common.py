@@ -31,7 +31,9 @@ def connect(args: argparse.Namespace) -> Iterator[Device]:
     """Open the bus, start listening, and wait for the node's status frame (presence)."""
     bus, cfg = open_bus(args)
     try:
-        with Device(bus, node=args.node, channel=describe(cfg), timeout_s=args.timeout) as dev:
+        with Device(
+            bus, node=args.node, channel=describe(cfg), timeout_s=args.timeout, fd=bool(cfg.get("fd"))
+        ) as dev:
             dev.wait_present()
             yield dev
     finally:

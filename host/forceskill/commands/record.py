@@ -67,7 +67,7 @@ def _record_session(
     dev.notifier.add_listener(writer)
     try:
         with sigint_flag() as stop:
-            dev.start_heartbeat(telemetry_period_ms=1)
+            dev.start_heartbeat(telemetry_period_ms=getattr(args, "telemetry_period", 1))
             try:
                 if args.teach:
                     st = dev.command_until("teach", {"TEACH"}, 2.0 * args.timeout)

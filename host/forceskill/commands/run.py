@@ -287,7 +287,7 @@ def run_on_device(
         U.motion_session(client, dev)  # authenticated heartbeats and commands; the run's start
         tel = dev.start_telemetry()
         n_emcy = len(dev.emergencies)
-        dev.start_heartbeat(telemetry_period_ms=1)
+        dev.start_heartbeat(telemetry_period_ms=getattr(args, "telemetry_period", 1))
         try:
             with link_errors(dev.node, dev.channel):
                 time.sleep(0.05)

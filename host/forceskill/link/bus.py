@@ -17,6 +17,9 @@ from ..errors import FsError
 from . import ERR_LINK_ARGS, ERR_LINK_BUS
 
 DEFAULT_TIMEOUT_S = 2.0
+#: The longest telemetry period --telemetry-period accepts: the gap a run's figures are measured
+#: across (commands.run's MAX_TELEMETRY_GAP_MS).
+MAX_TELEMETRY_PERIOD_MS = 100
 
 # python-can's socketcand reader warns whenever a TCP read ends inside a frame (normal streaming),
 # and logs a lost connection with its traceback: the commands report link failures as one line
@@ -47,6 +50,15 @@ def add_bus_args(parser: argparse.ArgumentParser) -> None:
         default=DEFAULT_TIMEOUT_S,
         metavar="S",
         help=f"seconds to wait for the device before giving up ({DEFAULT_TIMEOUT_S:g})",
+    )
+    g.add_argument(
+        "--telemetry-period",
+        type=int,
+        default=1,
+        metavar="MS",
+        help="telemetry period asked of the device in TEACH/EXECUTE by record and run, 1.."
+        f"{MAX_TELEMETRY_PERIOD_MS} ms (default 1: every tick; more for a host that cannot "
+        "follow 2,000 frames/s; the samples between are interpolated and counted as lost)",
     )
 
 
@@ -116,6 +128,9 @@ def open_bus(ns: argparse.Namespace) -> tuple[can.BusABC, dict[str, Any]]:
     node = getattr(ns, "node", 0)
     if not 0 <= node <= 15:
         raise FsError(ERR_LINK_ARGS, f"--node must be 0..15: {node}")
+    period = getattr(ns, "telemetry_period", 1)
+    if not 1 <= period <= MAX_TELEMETRY_PERIOD_MS:
+        raise FsError(ERR_LINK_ARGS, f"--telemetry-period must be 1..{MAX_TELEMETRY_PERIOD_MS} ms: {period}")
     cfg = bus_config(ns)
     iface = cfg["interface"]
     if iface not in can.VALID_INTERFACES:

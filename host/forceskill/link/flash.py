@@ -298,6 +298,7 @@ class Link:
             pending_timeout_s=PENDING_TIMEOUT_S,
             address_format=32,
             memorysize_format=32,
+            fd=bool(cfg.get("fd")),
         )
 
     def __enter__(self) -> Any:

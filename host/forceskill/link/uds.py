@@ -148,16 +148,24 @@ def security_key(seed: bytes, secret: bytes | None = None, level: int = SEC_LEVE
     return hmac.new(key, bytes(seed), hashlib.sha256).digest()[:16]
 
 
-def isotp_params() -> dict[str, Any]:
+def isotp_params(fd: bool = False, timeout_s: float = 2.0) -> dict[str, Any]:
+    """can-isotp's parameters for the device's ISO-TP: classic 8-byte frames padded with 0xCC, or
+    with fd (the bus opened with ``--fd``, the device served with ``--fd``) 64-byte CAN FD frames
+    with bit-rate switching, short frames padded to the next FD length. The waits for a flow
+    control and for the next consecutive frame are ISO 15765-2's 1000 ms, or half of a longer
+    timeout_s (``--timeout``: a slow host, e.g. a qemu guest, whose threads stall for seconds)."""
+    wait_ms = int(max(1000.0, 500.0 * timeout_s))
     return {
         "tx_padding": 0xCC,
         "tx_data_min_length": 8,
         "stmin": 0,
         "blocksize": 0,
-        "rx_flowcontrol_timeout": 1000,
-        "rx_consecutive_frame_timeout": 1000,
+        "rx_flowcontrol_timeout": wait_ms,
+        "rx_consecutive_frame_timeout": wait_ms,
         "max_frame_size": 4095,
-        "can_fd": False,
+        "can_fd": fd,
+        "tx_data_length": 64 if fd else 8,
+        "bitrate_switch": fd,
         "blocking_send": False,
         "wftmax": 0,
     }
@@ -174,17 +182,18 @@ def open_client(
     pending_timeout_s: float | None = None,
     address_format: int = 8,
     memorysize_format: int = 16,
+    fd: bool = False,
 ) -> Client:
     """A udsoncan Client (not yet opened) for node over can-isotp on bus, sharing notifier.
     SecurityAccess keys use secret, or the requested level's device_secret(level) when it is None; dids maps data identifiers
     to codecs (default: the application's); timeout_s bounds every request (server timing ignored:
     a 4 KiB request takes longer than the server's P2 to cross a slow or simulated bus), and
     pending_timeout_s (default timeout_s) each wait after a "response pending" (NRC 0x78), and then
-    the whole request."""
+    the whole request; fd: ISO-TP in CAN FD frames (isotp_params)."""
     addr = isotp.Address(
         isotp.AddressingMode.Normal_11bits, txid=UDS_REQUEST_BASE + node, rxid=UDS_RESPONSE_BASE + node
     )
-    stack = isotp.NotifierBasedCanStack(bus, notifier, address=addr, params=isotp_params())
+    stack = isotp.NotifierBasedCanStack(bus, notifier, address=addr, params=isotp_params(fd, timeout_s))
     conn = PythonIsoTpConnection(stack)
 
     def algo(level: int, seed: bytes, params: Any = None) -> bytes:
@@ -211,11 +220,18 @@ def open_client(
 def uds_client(
     dev: Device, request_timeout_s: float = 5.0, pending_timeout_s: float | None = None
 ) -> Iterator[Client]:
-    """A connected udsoncan Client for dev (whose Notifier must be running); timeouts as
-    open_client's."""
+    """A connected udsoncan Client for dev (whose Notifier must be running); each request waits
+    request_timeout_s, or the device's timeout (``--timeout``) where that is longer; pending_timeout_s
+    as open_client's."""
     assert dev.notifier is not None
+    timeout_s = max(request_timeout_s, dev.timeout_s)
     with open_client(
-        dev.bus, dev.notifier, dev.node, timeout_s=request_timeout_s, pending_timeout_s=pending_timeout_s
+        dev.bus,
+        dev.notifier,
+        dev.node,
+        timeout_s=timeout_s,
+        pending_timeout_s=pending_timeout_s,
+        fd=dev.fd,
     ) as client:
         yield client
 

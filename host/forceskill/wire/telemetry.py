@@ -68,18 +68,23 @@ class TelemetryPairer(Generic[T]):
 
 
 def fast_stretches(ticks: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Rows [starts[k], ends[k]) of increasing ``ticks`` streamed every tick (TEACH, EXECUTE):
-    split where the step reaches the idle period, an idle sample next to a stretch trimmed off,
-    stretches shorter than MIN_STRETCH left out. Lost samples inside a stretch stay in it."""
+    """Rows [starts[k], ends[k]) of increasing ``ticks`` streamed every tick, or every few ticks
+    where the host asked for a longer period (TEACH, EXECUTE): split where the step reaches the
+    idle period, an idle sample next to a stretch trimmed off (a step longer than the stretch's
+    own, its median), stretches shorter than MIN_STRETCH left out. Lost samples inside a stretch
+    stay in it."""
     step = np.diff(ticks)
     cut = np.flatnonzero(step >= IDLE_PERIOD_TICKS)
     starts = np.concatenate(([0], cut + 1))
     ends = np.concatenate((cut + 1, [ticks.size]))
-    # an idle sample within 100 ticks of the stream joins the stretch: trim edges not 1 tick apart
+    # an idle sample within 100 ticks of the stream joins the stretch: trim edges farther apart
+    # than the stream's period (1 tick unless the host asked for another)
     for k in range(starts.size):
-        while ends[k] - starts[k] >= 2 and step[starts[k]] > 1:
+        inner = step[starts[k] : max(starts[k], ends[k] - 1)]
+        period = max(1.0, float(np.median(inner))) if inner.size else 1.0
+        while ends[k] - starts[k] >= 2 and step[starts[k]] > period:
             starts[k] += 1
-        while ends[k] - starts[k] >= 2 and step[ends[k] - 2] > 1:
+        while ends[k] - starts[k] >= 2 and step[ends[k] - 2] > period:
             ends[k] -= 1
     keep = (ends - starts) >= MIN_STRETCH
     return starts[keep], ends[keep]

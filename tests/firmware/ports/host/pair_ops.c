@@ -66,14 +66,24 @@ static int pair_restart(const char *ifname)
     return pair_ctl.restart_result;
 }
 
-static ssize_t pair_write_frame(int fd, const struct can_frame *f)
+static ssize_t pair_write_frame(int fd, const void *frame, size_t size)
 {
     if (pair_ctl.write_fail_count > 0u) {
         pair_ctl.write_fail_count--;
         errno = pair_ctl.write_fail_errno;
         return -1;
     }
-    return write(fd, f, sizeof(*f));
+    return write(fd, frame, size);
+}
+
+static int pair_enable_fd(int fd, const char *ifname, char *err, uint32_t err_len)
+{
+    (void)fd;
+    if (!pair_ctl.fd_capable) {
+        snprintf(err, err_len, "%s is not CAN FD capable (MTU 16)", ifname);
+        return -EOPNOTSUPP;
+    }
+    return 0;
 }
 
 const cansock_ops_t pair_ops = {
@@ -82,6 +92,7 @@ const cansock_ops_t pair_ops = {
     .set_bitrate = pair_set_bitrate,
     .restart = pair_restart,
     .write_frame = pair_write_frame,
+    .enable_fd = pair_enable_fd,
 };
 
 void pair_put(uint32_t can_id, uint8_t len, const uint8_t *data)
@@ -101,4 +112,24 @@ void pair_put(uint32_t can_id, uint8_t len, const uint8_t *data)
 bool pair_take(struct can_frame *f)
 {
     return read(pair_ctl.bus_fd, f, sizeof(*f)) == (ssize_t)sizeof(*f);
+}
+
+void pair_put_fd(uint32_t can_id, uint8_t len, uint8_t flags, const uint8_t *data)
+{
+    struct canfd_frame f;
+    memset(&f, 0, sizeof(f));
+    f.can_id = can_id;
+    f.len = len;
+    f.flags = flags;
+    if (data != NULL) {
+        memcpy(f.data, data, len > CANFD_MAX_DLEN ? CANFD_MAX_DLEN : len);
+    }
+    if (write(pair_ctl.bus_fd, &f, sizeof(f)) != (ssize_t)sizeof(f)) {
+        abort();
+    }
+}
+
+ssize_t pair_take_any(struct canfd_frame *f)
+{
+    return read(pair_ctl.bus_fd, f, sizeof(*f));
 }

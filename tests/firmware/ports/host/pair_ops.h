@@ -8,6 +8,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include <sys/types.h>
+
 #include "cansock.h"
 
 /** Scripted behaviour and observations of the fake operating system. */
@@ -22,6 +24,7 @@ typedef struct {
     unsigned restart_calls;
     unsigned write_fail_count;   /* the next N writes fail with write_fail_errno */
     int write_fail_errno;
+    bool fd_capable;             /* enable_fd succeeds (an interface with the CAN FD MTU) */
 } pair_ctl_t;
 
 extern pair_ctl_t pair_ctl;
@@ -35,5 +38,12 @@ void pair_put(uint32_t can_id, uint8_t len, const uint8_t *data);
 
 /** Take the next frame the driver transmitted; false if none is waiting. */
 bool pair_take(struct can_frame *f);
+
+/** Put a raw struct canfd_frame (CANFD_MTU bytes) on the bus. */
+void pair_put_fd(uint32_t can_id, uint8_t len, uint8_t flags, const uint8_t *data);
+
+/** Take the next record the driver wrote, classic or FD: its size (CAN_MTU, CANFD_MTU), or <= 0
+ *  if none is waiting. */
+ssize_t pair_take_any(struct canfd_frame *f);
 
 #endif /* PAIR_OPS_H */

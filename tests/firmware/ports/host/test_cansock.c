@@ -305,6 +305,104 @@ static void test_linux_ops_fail_with_one_line(void **state)
     assert_int_equal(c.fd, -1);
 }
 
+/* struct canfd_frame as <linux/can.h> documents it: can_id at 0, len at 4, flags at 5 (CANFD_BRS
+ * 0x01, CANFD_FDF 0x04), two reserved bytes, data[64] at 8; 72 bytes (CANFD_MTU). */
+static void test_fd_conversion_matches_kernel_layout(void **state)
+{
+    (void)state;
+    assert_int_equal(sizeof(struct canfd_frame), 72);
+    can_frame_t f = {.id = 0x680, .len = 64, .flags = CAN_FRAME_FD | CAN_FRAME_BRS};
+    for (uint8_t i = 0; i < 64u; i++) {
+        f.data[i] = (uint8_t)(i + 1u);
+    }
+    struct canfd_frame lf;
+    memset(&lf, 0x55, sizeof(lf));
+    assert_int_equal(cansock_to_linux_fd(&f, &lf), CANFD_MTU);
+    uint8_t raw[72];
+    memcpy(raw, &lf, sizeof(raw));
+    uint32_t id;
+    memcpy(&id, raw, 4);
+    assert_int_equal(id, 0x680);
+    assert_int_equal(raw[4], 64);
+    assert_int_equal(raw[5], 0x01 | 0x04);
+    assert_int_equal(raw[6], 0);
+    assert_int_equal(raw[7], 0);
+    assert_memory_equal(raw + 8, f.data, 64);
+    /* a classic frame goes out in struct can_frame's 16 bytes */
+    const can_frame_t c8 = {.id = 0x190, .len = 8, .data = {1, 2, 3, 4, 5, 6, 7, 8}};
+    assert_int_equal(cansock_to_linux_fd(&c8, &lf), CAN_MTU);
+    /* refused: FD length 13 (not a DLC length), BRS on a classic frame, 29-bit id */
+    const can_frame_t bad_len = {.id = 0x680, .len = 13, .flags = CAN_FRAME_FD};
+    const can_frame_t brs_classic = {.id = 0x680, .len = 8, .flags = CAN_FRAME_BRS};
+    const can_frame_t big_id = {.id = 0x800, .len = 12, .flags = CAN_FRAME_FD};
+    assert_int_equal(cansock_to_linux_fd(&bad_len, &lf), 0);
+    assert_int_equal(cansock_to_linux_fd(&brs_classic, &lf), 0);
+    assert_int_equal(cansock_to_linux_fd(&big_id, &lf), 0);
+    /* back: flags from CANFD_BRS, 20 bytes; a bad FD length is foreign */
+    struct canfd_frame in;
+    memset(&in, 0, sizeof(in));
+    in.can_id = 0x600;
+    in.len = 20;
+    in.flags = CANFD_BRS | CANFD_FDF;
+    memset(in.data, 0xA5, 20);
+    can_frame_t out;
+    assert_int_equal(cansock_from_linux_fd(&in, CANFD_MTU, &out), CANSOCK_RX_DATA);
+    assert_int_equal(out.id, 0x600);
+    assert_int_equal(out.len, 20);
+    assert_int_equal(out.flags, CAN_FRAME_FD | CAN_FRAME_BRS);
+    in.len = 21;
+    assert_int_equal(cansock_from_linux_fd(&in, CANFD_MTU, &out), CANSOCK_RX_FOREIGN);
+    assert_int_equal(cansock_from_linux_fd(&in, 40u, &out), CANSOCK_RX_FOREIGN);
+}
+
+/* CAN FD over the pair: refused on a classic-only interface (the socket stays classic and FD
+ * frames are refused on the way out); enabled, 64-byte BRS frames both ways and classic frames
+ * still pass. */
+static void test_fd_mode(void **state)
+{
+    (void)state;
+    const can_frame_t fd64 = {.id = 0x680, .len = 64, .flags = CAN_FRAME_FD | CAN_FRAME_BRS,
+                              .data = {0x10, 0x40, 0xAB}};
+    const can_frame_t c8 = {.id = 0x180, .len = 8, .data = {1, 2, 3, 4, 5, 6, 7, 8}};
+    pair_ctl.fd_capable = false;
+    assert_int_equal(cansock_enable_fd(&drv, err, sizeof(err)), -EOPNOTSUPP);
+    assert_non_null(strstr(err, "not CAN FD capable"));
+    assert_false(drv.fd_mode);
+    assert_false(cansock_send(&drv, &fd64));
+
+    pair_ctl.fd_capable = true;
+    assert_int_equal(cansock_enable_fd(&drv, err, sizeof(err)), 0);
+    assert_true(drv.fd_mode);
+    assert_true(cansock_send(&drv, &fd64));
+    assert_true(cansock_send(&drv, &c8));
+    struct canfd_frame lf;
+    assert_int_equal(pair_take_any(&lf), CANFD_MTU);
+    assert_int_equal(lf.len, 64);
+    assert_int_equal(lf.flags, CANFD_BRS | CANFD_FDF);
+    assert_int_equal(lf.data[2], 0xAB);
+    assert_int_equal(pair_take_any(&lf), CAN_MTU);
+    assert_int_equal(lf.len, 8);
+    assert_int_equal(drv.st.tx_frames, 2);
+    assert_int_equal(drv.st.tx_fd_frames, 1);
+
+    const uint8_t d[48] = {0x30, 0x00, 0x00, 7};
+    pair_put_fd(0x600, 48, CANFD_BRS | CANFD_FDF, d);
+    pair_put(0x601, 2, d);
+    pair_put_fd(CAN_ERR_FLAG | CAN_ERR_BUSOFF, CAN_ERR_DLC, 0, NULL); /* an error frame, FD-sized */
+    can_frame_t f;
+    assert_true(cansock_receive(&drv, &f, 0));
+    assert_int_equal(f.id, 0x600);
+    assert_int_equal(f.len, 48);
+    assert_int_equal(f.flags, CAN_FRAME_FD | CAN_FRAME_BRS);
+    assert_int_equal(f.data[3], 7);
+    assert_true(cansock_receive(&drv, &f, 0));
+    assert_int_equal(f.id, 0x601);
+    assert_int_equal(f.flags, 0);
+    assert_false(cansock_receive(&drv, &f, 0));
+    assert_true(drv.bus_off);
+    assert_int_equal(drv.st.rx_fd_frames, 1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -316,6 +414,8 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_bus_off_and_recovery, setup, teardown),
         cmocka_unit_test_setup_teardown(test_bitrate_requests, setup, teardown),
         cmocka_unit_test(test_linux_ops_fail_with_one_line),
+        cmocka_unit_test(test_fd_conversion_matches_kernel_layout),
+        cmocka_unit_test_setup_teardown(test_fd_mode, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

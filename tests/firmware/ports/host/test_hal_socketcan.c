@@ -1,6 +1,6 @@
 /* The device application on the host port's SocketCAN backend (hal_can_socketcan.c), the bus a
- * socket pair carrying struct can_frame (pair_ops.h): status frames reach the bus, E2E host
- * frames reach the application, and the fault table's bus-off row holds as on the simulator's
+ * socket pair carrying struct can_frame (pair_ops.h): status frames reach the bus, authenticated
+ * host frames (motion session, MAC and freshness, E2E) reach the application, and the fault table's bus-off row holds as on the simulator's
  * bus: BUS_OFF (501) latches in the tick the driver reads the error frame, the actuator is ramped
  * off, nothing is transmitted while bus-off, the restart is requested, and the emergency frame is
  * the first frame on the bus after recovery, once, with the fault still latched. */
@@ -15,7 +15,7 @@
 
 #include <errno.h>
 
-#include "app_config.h"
+#include "app_internal.h"
 #include "cansock.h"
 #include "fs_dbc.h"
 #include "hal_host.h"
@@ -24,8 +24,17 @@
 static app_t *app; /* app_device() */
 static app_config_t cfg;
 static uint64_t t_us;
-static uint8_t hb_counter;
-static uint8_t cmd_counter;
+static secoc_t host; /* the test host's motion session (as tests/firmware/app/test_app.c) */
+
+/* The host session with the device (the DID 0x0302 write, then the host's derivation). */
+static void host_session(void)
+{
+    static const uint8_t nonce[SECOC_NONCE_LEN] = "test host nonce";
+    assert_int_equal(app_motion_key(app, nonce, SECOC_NONCE_LEN), 0);
+    uint8_t len = 0u;
+    const uint8_t *secret = hal_device_secret(UDS_SEC_LEVEL_WRITE, &len);
+    secoc_start_session(&host, secret, len, app_motion_nonce(app), nonce);
+}
 
 static int setup(void **state)
 {
@@ -36,8 +45,6 @@ static int setup(void **state)
     hal_host_init();
     hal_host_flash_erase();
     t_us = 0u;
-    hb_counter = 0u;
-    cmd_counter = 0u;
     hal_sensors_t s;
     memset(&s, 0, sizeof(s));
     s.pos_m[0] = 0.001;
@@ -48,6 +55,7 @@ static int setup(void **state)
     hal_host_set_time_us(0u);
     app = app_device();
     app_init(app, &cfg);
+    host_session();
     return 0;
 }
 
@@ -74,7 +82,8 @@ static void put_frame(const can_frame_t *f)
 static void heartbeat(void)
 {
     can_frame_t f = {.id = PROTO_ID_HOST_HEARTBEAT(0), .len = 8};
-    e2e_protect(&f, ++hb_counter);
+    const uint32_t fv = secoc_protect(&host, &f, SECOC_CH_HEARTBEAT);
+    e2e_protect(&f, (uint8_t)(fv & E2E_COUNTER_MASK));
     put_frame(&f);
 }
 
@@ -87,7 +96,8 @@ static void command(uint8_t mode)
     c.time_scale = 1000u;
     can_frame_t f = {.id = PROTO_ID_HOST_COMMAND(0), .len = 8};
     (void)fs_dbc_host_command_pack(f.data, &c, 8);
-    e2e_protect(&f, ++cmd_counter);
+    const uint32_t fv = secoc_protect(&host, &f, SECOC_CH_COMMAND);
+    e2e_protect(&f, (uint8_t)(fv & E2E_COUNTER_MASK));
     put_frame(&f);
 }
 
