@@ -135,9 +135,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     static uds_server_t srv;
     static uint8_t resp[4096];
-    const uds_app_t app = {NULL,      ok_read,  ok_write,    ok_routine, ok_session,  ok_reset,
-                           do_reset,  ok_seed,  ok_key,      NULL,       ok_dl_begin, ok_dl_data,
-                           ok_dl_end, ok_abort, ok_ul_begin, ok_ul_data};
+    const uds_app_t app = {NULL,        ok_read,
+                           ok_write,    ok_routine,
+                           ok_session,  ok_reset,
+                           do_reset,    ok_seed,
+                           ok_key,      NULL /* resume: no hook answers 0x78 here */,
+                           ok_dl_begin, ok_dl_data,
+                           ok_dl_end,   ok_abort,
+                           ok_ul_begin, ok_ul_data};
     uds_server_init(&srv, &app);
     uint32_t now = 0;
     size_t i = 0;

@@ -298,6 +298,11 @@ static void run_fault(const fscen_t *fs, const sim_scenario_t *sc, frow_t *row)
     }
     const uint32_t crc_before = rig_flash_crc();
     rig_command(r, APP_CMD_EXECUTE, 1u, fs->goal_scale, fs->time_scale, 0u);
+    /* one MAC a tick: RUN_OPTIONS, then EXECUTE (behind a heartbeat due then): times from its
+     * start */
+    for (unsigned k = 0; k < 5u && r->app.state != APP_EXECUTE; k++) {
+        rig_step(r);
+    }
     watch_t w = {.onset = UINT64_MAX, .det = UINT64_MAX, .zero = UINT64_MAX};
     w.monotone = true;
     w.hold_ok = true;

@@ -185,10 +185,12 @@ static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_ima
     hal_host_set_sensors(&rest);
     for (uint32_t k = 0; k < SIM_RUN_START_TICKS; k++) {
         hal_host_set_time_us((uint64_t)k * APP_TICK_US);
-        if (k == SIM_RUN_START_TICKS - 1u) {
+        if (k == SIM_RUN_START_TICKS - 2u) { /* one MAC a tick: the heartbeat, then TEACH */
             can_frame_t f;
             sim_couple_heartbeat_frame(&d->host, d->cfg.node, SIM_RUN_TELEMETRY_MS, &f);
             (void)hal_sim_can_deliver(&f);
+        }
+        if (k == SIM_RUN_START_TICKS - 1u) {
             if (sc->mode == SIM_MODE_TEACH) {
                 can_frame_t c[2];
                 (void)sim_couple_command_frames(&d->host, d->cfg.node, APP_CMD_TEACH, 0u, 0.0, 0.0,

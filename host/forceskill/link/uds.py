@@ -249,17 +249,28 @@ def _refusal(what: str, e: NegativeResponseException, node: int, on_nrc: NrcPoli
     return on_nrc(what, e) if on_nrc else FsError(ERR_LINK_NEGATIVE, f"{what}: node {node} {describe_nrc(e)}")
 
 
+#: How long a request answered 0x21 busyRepeatRequest is repeated (the device is finishing a
+#: request it answered 0x78, e.g. a sliced key check, 32 ticks) before it counts as refused.
+BUSY_RETRY_S = 10.0
+
+
 def call(what: str, fn: Callable[[], Any], node: int, on_nrc: NrcPolicy | None = None) -> Any:
     """Run a udsoncan call; negative responses and timeouts become one-line FsErrors (a refusal
-    through on_nrc when given, else ERR_LINK_NEGATIVE naming the response code)."""
-    try:
-        return fn()
-    except NegativeResponseException as e:
-        raise _refusal(what, e, node, on_nrc) from None
-    except TimeoutException:
-        raise FsError(ERR_LINK_TIMEOUT, f"{what}: no UDS response from node {node}") from None
-    except UnexpectedResponseException as e:
-        raise FsError(ERR_LINK_NEGATIVE, f"{what}: unexpected response from node {node}: {e}") from None
+    through on_nrc when given, else ERR_LINK_NEGATIVE naming the response code). A request
+    answered 0x21 busyRepeatRequest is repeated (ISO 14229-1) for up to BUSY_RETRY_S."""
+    end = time.monotonic() + BUSY_RETRY_S
+    while True:
+        try:
+            return fn()
+        except NegativeResponseException as e:
+            if e.response.code == 0x21 and time.monotonic() < end:
+                time.sleep(0.05)
+                continue
+            raise _refusal(what, e, node, on_nrc) from None
+        except TimeoutException:
+            raise FsError(ERR_LINK_TIMEOUT, f"{what}: no UDS response from node {node}") from None
+        except UnexpectedResponseException as e:
+            raise FsError(ERR_LINK_NEGATIVE, f"{what}: unexpected response from node {node}: {e}") from None
 
 
 def unlock(
@@ -281,8 +292,8 @@ def unlock(
             client.unlock_security_access(level)
             return
         except NegativeResponseException as e:
-            if e.response.code == 0x37 and time.monotonic() < end:
-                time.sleep(0.2)
+            if e.response.code in (0x21, 0x37) and time.monotonic() < end:
+                time.sleep(0.2)  # a delay running, or the device busy finishing a request
                 continue
             raise _refusal(what, e, node, on_nrc) from None
         except TimeoutException:

@@ -883,8 +883,34 @@ static void test_start_refused_during_commit(void **state)
     assert_int_equal(app.slots.skill[0].dmp.n_kernels, 50);
     send_heartbeat();
     send_command(APP_CMD_EXECUTE, 1);
-    ticks(2);
+    ticks(3); /* one MAC a tick: heartbeat, RUN_OPTIONS, EXECUTE */
     assert_int_equal(app.state, APP_EXECUTE);
+}
+
+/* At most APP_MAC_PER_TICK (1) MAC verifications a tick: three authentic heartbeats and a
+ * forged one in one tick are verified one a tick, in order (the next held, the rest queued); a
+ * stop between them is taken without a MAC once its turn comes. */
+static void test_one_mac_a_tick(void **state)
+{
+    (void)state;
+    ticks(5);
+    const uint32_t acc0 = app.secoc.accepted, bad0 = app.secoc.bad_mac;
+    for (int i = 0; i < 3; i++) {
+        send_heartbeat();
+    }
+    can_frame_t forged = {.id = PROTO_ID_HOST_HEARTBEAT(0), .len = 8};
+    memset(forged.data, 0, 8);
+    forged.data[SECOC_FV_BYTE] = (uint8_t)(host.fv[SECOC_CH_HEARTBEAT] + 1u);
+    e2e_protect(&forged, (uint8_t)(forged.data[SECOC_FV_BYTE] & E2E_COUNTER_MASK));
+    (void)hal_sim_can_deliver(&forged);
+    for (uint32_t t = 1; t <= 3; t++) {
+        tick();
+        assert_int_equal(app.secoc.accepted, acc0 + t);
+        assert_int_equal(app.secoc.bad_mac, bad0);
+    }
+    tick();
+    assert_int_equal(app.secoc.bad_mac, bad0 + 1u); /* the forged one, last */
+    assert_int_equal(app.held_ch, 0u);
 }
 
 static void test_scheduler_overrun(void **state)
@@ -916,6 +942,7 @@ int main(void)
         cmocka_unit_test_setup(test_download_corrupt_interrupted, setup),
         cmocka_unit_test_setup(test_execute_and_refusals, setup),
         cmocka_unit_test_setup(test_ecu_reset_responds_then_resets, setup),
+        cmocka_unit_test_setup(test_one_mac_a_tick, setup),
         cmocka_unit_test_setup(test_scheduler_overrun, setup),
         cmocka_unit_test_setup(test_security_levels_and_confirm, setup),
         cmocka_unit_test_setup(test_failing_test_image_serves_nothing, setup),
