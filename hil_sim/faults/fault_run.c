@@ -300,7 +300,7 @@ static void run_fault(const fscen_t *fs, const sim_scenario_t *sc, frow_t *row)
     rig_command(r, APP_CMD_EXECUTE, 1u, fs->goal_scale, fs->time_scale, 0u);
     /* one MAC a tick: RUN_OPTIONS, then EXECUTE (behind a heartbeat due then): times from its
      * start */
-    for (unsigned k = 0; k < 5u && r->app.state != APP_EXECUTE; k++) {
+    for (unsigned k = 0; k < 5u && app_state(r->app) != APP_EXECUTE; k++) {
         rig_step(r);
     }
     watch_t w = {.onset = UINT64_MAX, .det = UINT64_MAX, .zero = UINT64_MAX};
