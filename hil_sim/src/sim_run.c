@@ -158,8 +158,8 @@ static void dev_host(sim_dev_t *d, uint64_t n_tick)
  * boot with the handle at rest at the start, then start the TEACH or EXECUTE the scenario asks
  * for as the host would (a HostCommand frame; a sequence is a run request to app_run_start, the
  * device's one motion path). */
-static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_image_t *skills,
-                     double *total_s, char err[SIM_ERR_MAX])
+static int dev_flash_skills(const sim_scenario_t *sc, const sim_skill_image_t *skills,
+                            char err[SIM_ERR_MAX])
 {
     hal_host_init();
     hal_host_flash_erase();
@@ -174,6 +174,15 @@ static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_ima
             snprintf(err, SIM_ERR_MAX, "%s: skill %d does not fit a flash slot", sc->path, i + 1);
             return -1;
         }
+    }
+    return 0;
+}
+
+static int dev_start(sim_dev_t *d, const sim_scenario_t *sc, const sim_skill_image_t *skills,
+                     double *total_s, char err[SIM_ERR_MAX])
+{
+    if (dev_flash_skills(sc, skills, err) != 0) {
+        return -1;
     }
     memset(d, 0, sizeof(*d));
     d->app = app_device();
