@@ -114,8 +114,12 @@ static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf, uint16_
     }
     case DID_MOTION_KEY: {
         const uint8_t *n = app->secoc_dev_nonce;
-        const fs_wire_motion_key_t v = {be32(&n[0]), be32(&n[4]), be32(&n[8]), be32(&n[12]),
-                                        app->secoc.keyed ? 1u : 0u};
+        const fs_wire_motion_key_t v = {be32(&n[0]),
+                                        be32(&n[4]),
+                                        be32(&n[8]),
+                                        be32(&n[12]),
+                                        app->secoc.keyed ? 1u : 0u,
+                                        secoc_confirm(&app->secoc)};
         return fs_wire_motion_key_pack(&v, buf, cap);
     }
     case DID_AUTH_STATS: {

@@ -22,7 +22,8 @@
 #define DID_STIFFNESS_MAX 0x0140u
 /* latched mask u32, causes present mask u32 (bit n: fault 500+n) */
 #define DID_FAULT_CAUSES 0x0301u
-/* write: host nonce (16 bytes) establishes the motion key; read: device nonce (16), keyed u8 */
+/* write: host nonce (16 bytes) establishes the motion key; read: device nonce (16), keyed u8,
+ * key confirmation u32 */
 #define DID_MOTION_KEY 0x0302u
 /* authenticated host frames: accepted, wrong MAC, replay, no key, keys discarded u32; last
  * refusal u16; keyed u8; FV command, FV heartbeat u32 */

@@ -52,6 +52,18 @@ void secoc_forget(secoc_t *s)
     s->keyed = false;
 }
 
+uint32_t secoc_confirm(const secoc_t *s)
+{
+    static const char label[] = SECOC_CONFIRM_LABEL;
+    if (!s->keyed) {
+        return 0u;
+    }
+    uint8_t out[SEC_AES_BLOCK];
+    sec_cmac(&s->cmac, (const uint8_t *)label, (uint32_t)(sizeof label - 1u), out);
+    return ((uint32_t)out[0] << 24) | ((uint32_t)out[1] << 16) | ((uint32_t)out[2] << 8) |
+           (uint32_t)out[3];
+}
+
 void secoc_mac(const secoc_t *s, const can_frame_t *f, uint32_t fv, uint8_t mac[SECOC_MAC_LEN])
 {
     uint8_t m[SECOC_MSG_LEN];

@@ -30,6 +30,7 @@
 #define SECOC_FV_WINDOW 256u              /* 2^(FV bits in the frame) */
 #define SECOC_MAX_BAD_MAC 64u             /* wrong MACs in a row that discard the key */
 #define SECOC_LABEL "forceskill secoc v3" /* protocol version 3: AES-CMAC */
+#define SECOC_CONFIRM_LABEL "forceskill key confirm" /* secoc_confirm's message */
 
 /** The authenticated frame channels, each with its own freshness value. */
 typedef enum {
@@ -68,6 +69,10 @@ void secoc_set_key(secoc_t *s, const uint8_t key[SECOC_KEY_LEN]);
 
 /** Discard the key (frames are refused with SEC_ERR_NO_KEY until a new one is set). */
 void secoc_forget(secoc_t *s);
+
+/** The key's confirmation: the first 4 bytes of AES-CMAC(key, SECOC_CONFIRM_LABEL) as a
+ *  big-endian word, 0 without a key (a host compares it with its own key's). */
+uint32_t secoc_confirm(const secoc_t *s);
 
 /** The 24-bit MAC of a frame's id and payload (data bytes 0..2) at freshness value fv. */
 void secoc_mac(const secoc_t *s, const can_frame_t *f, uint32_t fv, uint8_t mac[SECOC_MAC_LEN]);

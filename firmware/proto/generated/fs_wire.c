@@ -767,6 +767,7 @@ proto_status_t fs_wire_motion_key_unpack(fs_wire_motion_key_t *v, const uint8_t 
     t.nonce_2 = (uint32_t)get_be(&d[8u], 4u);
     t.nonce_3 = (uint32_t)get_be(&d[12u], 4u);
     t.keyed = (uint8_t)get_be(&d[16u], 1u);
+    t.confirm = (uint32_t)get_be(&d[17u], 4u);
     if (!motion_key_in_range(&t)) {
         return PROTO_ERR_WIRE_RANGE;
     }
@@ -776,7 +777,7 @@ proto_status_t fs_wire_motion_key_unpack(fs_wire_motion_key_t *v, const uint8_t 
 
 uint16_t fs_wire_motion_key_pack(const fs_wire_motion_key_t *v, uint8_t *out, uint16_t cap)
 {
-    const unsigned n = 17u;
+    const unsigned n = 21u;
     if (!motion_key_in_range(v) || n > cap) {
         return 0u;
     }
@@ -785,6 +786,7 @@ uint16_t fs_wire_motion_key_pack(const fs_wire_motion_key_t *v, uint8_t *out, ui
     put_be(&out[8u], v->nonce_2, 4u);
     put_be(&out[12u], v->nonce_3, 4u);
     put_be(&out[16u], v->keyed, 1u);
+    put_be(&out[17u], v->confirm, 4u);
     return (uint16_t)n;
 }
 

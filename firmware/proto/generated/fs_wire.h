@@ -251,14 +251,15 @@ proto_status_t fs_wire_erase_slot_unpack(fs_wire_erase_slot_t *v, const uint8_t 
 /** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */
 uint16_t fs_wire_erase_slot_pack(const fs_wire_erase_slot_t *v, uint8_t *out, uint16_t cap);
 
-#define FS_WIRE_MOTION_KEY_LEN 17u
-/** DID_MOTION_KEY read: the device nonce of the motion key in use (16 bytes as four big-endian words, zeros before any) and whether a key is established. */
+#define FS_WIRE_MOTION_KEY_LEN 21u
+/** DID_MOTION_KEY read: the device nonce of the motion key in use (16 bytes as four big-endian words, zeros before any), whether a key is established, and the key's confirmation (the first 4 bytes of AES-CMAC(key, SECOC_CONFIRM_LABEL) big-endian, 0 without a key): a host whose own key gives another value re-establishes the session. */
 typedef struct {
     uint32_t nonce_0;
     uint32_t nonce_1;
     uint32_t nonce_2;
     uint32_t nonce_3;
     uint8_t keyed;
+    uint32_t confirm;
 } fs_wire_motion_key_t;
 /** Unpack len bytes: PROTO_OK, PROTO_ERR_WIRE_LENGTH or PROTO_ERR_WIRE_RANGE (v unchanged). */
 proto_status_t fs_wire_motion_key_unpack(fs_wire_motion_key_t *v, const uint8_t *d, uint16_t len);

@@ -280,9 +280,12 @@ def unlock(
     level: int = SEC_LEVEL_WRITE,
     on_nrc: NrcPolicy | None = None,
     wait_s: float = 15.0,
+    key_retries: int = 0,
 ) -> None:
     """Enter session (unless None) and unlock level; waits out the device's power-up/failed-key
-    delay (NRC 0x37) for up to wait_s."""
+    delay (NRC 0x37) for up to wait_s. A key refused (0x35) is tried again with a fresh seed up
+    to key_retries times (a seed or key altered on the bus: ISO-TP has no checksum); a wrong
+    secret is refused every time, each refusal counted by the device."""
     if session is not None:
         call("session change", lambda: client.change_session(session), node, on_nrc)
     what = "security access" if on_nrc is None else f"SecurityAccess(level {level})"
@@ -294,6 +297,9 @@ def unlock(
         except NegativeResponseException as e:
             if e.response.code in (0x21, 0x37) and time.monotonic() < end:
                 time.sleep(0.2)  # a delay running, or the device busy finishing a request
+                continue
+            if e.response.code == 0x35 and key_retries > 0:
+                key_retries -= 1
                 continue
             raise _refusal(what, e, node, on_nrc) from None
         except TimeoutException:
@@ -325,10 +331,11 @@ def _again(fn: Callable[[], Any], tries: int) -> Any:
 def motion_session(client: Client, dev: Device, tries: int = 10) -> None:
     """Establish the motion key with dev (docs/protocol.md): check the protocol version, unlock
     level 1 in the extended session, write a fresh host nonce to DID 0x0302, read the device's
-    nonce back, derive the key from the level-1 secret; commands and heartbeats are authenticated
+    nonce and the key's confirmation back, derive the key from the level-1 secret (a confirmation
+    that differs from the key's own: a new exchange); commands and heartbeats are authenticated
     from then on. Also installs it as dev.resync (the same exchange again). A request without an
     answer is sent again, up to tries times. FsError 693/694."""
-    from ..wire.dbc import derive_motion_key
+    from ..wire.dbc import derive_motion_key, key_confirmation
 
     node = dev.node
     _again(lambda: check_protocol(client, node), tries)
@@ -336,8 +343,8 @@ def motion_session(client: Client, dev: Device, tries: int = 10) -> None:
     def refused(what: str, e: NegativeResponseException) -> FsError:
         return FsError(ERR_LINK_AUTH, f"motion key with node {node}: {what}: {describe_nrc(e)}")
 
-    def establish(client: Client) -> None:
-        _again(lambda: unlock(client, node, SESSION_EXTENDED, on_nrc=refused), tries)
+    def exchange(client: Client) -> bytes | None:
+        _again(lambda: unlock(client, node, SESSION_EXTENDED, on_nrc=refused, key_retries=1), tries)
         host_nonce = os.urandom(16)
         payload = W.MotionKeyWrite(*struct.unpack(">4I", host_nonce)).pack()
         _again(
@@ -353,7 +360,18 @@ def motion_session(client: Client, dev: Device, tries: int = 10) -> None:
         if mk.keyed != 1:
             raise FsError(ERR_LINK_AUTH, f"node {node} did not establish the motion key")
         dev_nonce = struct.pack(">4I", mk.nonce_0, mk.nonce_1, mk.nonce_2, mk.nonce_3)
-        dev.set_session(derive_motion_key(device_secret(SEC_LEVEL_WRITE), dev_nonce, host_nonce))
+        key = derive_motion_key(device_secret(SEC_LEVEL_WRITE), dev_nonce, host_nonce)
+        return key if key_confirmation(key) == mk.confirm else None
+
+    def establish(client: Client) -> None:
+        # ISO-TP carries no checksum: a nonce altered on the bus gives the two sides different
+        # keys, which the confirmation shows; a new exchange then starts
+        for _ in range(tries):
+            key = exchange(client)
+            if key is not None:
+                dev.set_session(key)
+                return
+        raise FsError(ERR_LINK_AUTH, f"node {node}: the motion key's confirmation never matched")
 
     def resync() -> None:
         # a lost request is sent again after 2 s; the key check and derivation answer 0x78 and

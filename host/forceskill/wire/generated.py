@@ -760,19 +760,20 @@ class EraseSlot:
         return v
 
 
-_MOTION_KEY = struct.Struct('>IIIIB')
+_MOTION_KEY = struct.Struct('>IIIIBI')
 
 
 @dataclass(frozen=True)
 class MotionKey:
-    """DID_MOTION_KEY read: the device nonce of the motion key in use (16 bytes as four big-endian words, zeros before any) and whether a key is established."""
+    """DID_MOTION_KEY read: the device nonce of the motion key in use (16 bytes as four big-endian words, zeros before any), whether a key is established, and the key's confirmation (the first 4 bytes of AES-CMAC(key, SECOC_CONFIRM_LABEL) big-endian, 0 without a key): a host whose own key gives another value re-establishes the session."""
 
-    SIZE: ClassVar[int] = 17  # bytes of the fields always present
+    SIZE: ClassVar[int] = 21  # bytes of the fields always present
     nonce_0: int
     nonce_1: int
     nonce_2: int
     nonce_3: int
     keyed: int
+    confirm: int
 
     def check(self) -> None:
         """FsError ERR_WIRE_RANGE if a field is outside its range."""
@@ -781,11 +782,12 @@ class MotionKey:
         _in_range('motion_key', 'nonce_2', 0 <= self.nonce_2 <= 4294967295, self.nonce_2)
         _in_range('motion_key', 'nonce_3', 0 <= self.nonce_3 <= 4294967295, self.nonce_3)
         _in_range('motion_key', 'keyed', 0 <= self.keyed <= 1, self.keyed)
+        _in_range('motion_key', 'confirm', 0 <= self.confirm <= 4294967295, self.confirm)
 
     def pack(self) -> bytes:
         """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
         self.check()
-        out = _MOTION_KEY.pack(self.nonce_0, self.nonce_1, self.nonce_2, self.nonce_3, self.keyed)
+        out = _MOTION_KEY.pack(self.nonce_0, self.nonce_1, self.nonce_2, self.nonce_3, self.keyed, self.confirm)
         return out
 
     @classmethod
@@ -796,7 +798,7 @@ class MotionKey:
         if len(data) != n:
             raise FsError(ERR_WIRE_LENGTH, f'motion_key: {len(data)} bytes, not {n}')
         raw = _MOTION_KEY.unpack(data[:n])
-        v = cls(raw[0], raw[1], raw[2], raw[3], raw[4])
+        v = cls(raw[0], raw[1], raw[2], raw[3], raw[4], raw[5])
         v.check()
         return v
 

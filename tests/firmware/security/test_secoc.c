@@ -44,6 +44,22 @@ static void test_frame_mac_is_truncated_cmac_of_id_payload_fv(void **state)
     assert_memory_equal(mac, ref, SECOC_MAC_LEN);
 }
 
+/* The value from the host's reference (forceskill.wire.dbc.key_confirmation, AES-CMAC checked
+ * against SP 800-38B) for the key 00 01 .. 0F; 0 without a key. */
+static void test_key_confirmation_matches_the_host(void **state)
+{
+    (void)state;
+    uint8_t key[SECOC_KEY_LEN];
+    for (unsigned i = 0; i < SECOC_KEY_LEN; i++) {
+        key[i] = (uint8_t)i;
+    }
+    secoc_t s;
+    secoc_init(&s);
+    assert_int_equal(secoc_confirm(&s), 0u);
+    secoc_set_key(&s, key);
+    assert_int_equal(secoc_confirm(&s), 0x03329AEBu);
+}
+
 static void test_key_is_truncated_hmac_of_label_and_nonces(void **state)
 {
     (void)state;
@@ -140,6 +156,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_frame_mac_is_truncated_cmac_of_id_payload_fv),
         cmocka_unit_test(test_key_is_truncated_hmac_of_label_and_nonces),
+        cmocka_unit_test(test_key_confirmation_matches_the_host),
         cmocka_unit_test(test_freshness_window_replay_and_keys),
         cmocka_unit_test(test_key_discarded_after_64_wrong_macs),
     };
