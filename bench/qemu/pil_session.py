@@ -89,8 +89,8 @@ def main(argv: list[str]) -> int:
     # under the trace a consecutive frame can be seconds of wall time apart: ISO-TP's 1 s
     # receive timeouts of the host tools would drop the transfer
     base_params = U.isotp_params
-    U.isotp_params = lambda: {
-        **base_params(),
+    U.isotp_params = lambda fd=False, timeout_s=2.0: {
+        **base_params(fd, timeout_s),
         "rx_flowcontrol_timeout": int(args.timeout * 1000),
         "rx_consecutive_frame_timeout": int(args.timeout * 1000),
     }
