@@ -136,7 +136,9 @@ def test_fault_keeps_the_telemetry_then_the_handle_is_parked_and_cleared(capsys,
 
 
 def test_a_fault_keeps_the_telemetry_at_1khz_through_the_stop_ramp(loaded, capsys, tmp_path, monkeypatch):
-    """The host's heartbeat stops 1.5 s into a held press: the device latches host silence (500)
+    """The host's heartbeat stops 0.75 s into the 1.5 s press (while the command moves the carriage;
+    timed from the device's EXECUTE, after the run's sliced SecurityAccess): the device latches
+    host silence (500)
     and ramps the force down in 40 ticks (out_k = from x (40 - k)/40, k = 1..40, from = the
     previous tick's command). The CSV keeps every tick of the ramp: f_cmd measured at 1 kHz."""
     import threading
@@ -145,9 +147,16 @@ def test_a_fault_keeps_the_telemetry_at_1khz_through_the_stop_ramp(loaded, capsy
 
     start = Device.start_heartbeat
 
+    def go_silent_mid_press(dev: Device) -> None:
+        end = time.monotonic() + 30.0
+        while time.monotonic() < end and (dev.status is None or dev.status.state != "EXECUTE"):
+            time.sleep(0.005)
+        time.sleep(0.75)
+        dev.stop_heartbeat()
+
     def start_then_go_silent(self: Device, telemetry_period_ms: int = 0) -> None:
         start(self, telemetry_period_ms)
-        threading.Timer(1.5, self.stop_heartbeat).start()
+        threading.Thread(target=go_silent_mid_press, args=(self,), daemon=True).start()
 
     monkeypatch.setattr(Device, "start_heartbeat", start_then_go_silent)
     csv = tmp_path / "r.csv"

@@ -221,15 +221,14 @@ def uds_client(
     dev: Device, request_timeout_s: float = 5.0, pending_timeout_s: float | None = None
 ) -> Iterator[Client]:
     """A connected udsoncan Client for dev (whose Notifier must be running); each request waits
-    request_timeout_s, or the device's timeout (``--timeout``) where that is longer; pending_timeout_s
-    as open_client's."""
+    request_timeout_s (a lost request is sent again sooner than the device's 5 s session timeout:
+    the link's ``--timeout`` is not used here), pending_timeout_s as open_client's."""
     assert dev.notifier is not None
-    timeout_s = max(request_timeout_s, dev.timeout_s)
     with open_client(
         dev.bus,
         dev.notifier,
         dev.node,
-        timeout_s=timeout_s,
+        timeout_s=request_timeout_s,
         pending_timeout_s=pending_timeout_s,
         fd=dev.fd,
     ) as client:
@@ -341,7 +340,11 @@ def motion_session(client: Client, dev: Device, tries: int = 10) -> None:
     _again(lambda: check_protocol(client, node), tries)
 
     def refused(what: str, e: NegativeResponseException) -> FsError:
-        return FsError(ERR_LINK_AUTH, f"motion key with node {node}: {what}: {describe_nrc(e)}")
+        err = FsError(ERR_LINK_AUTH, f"motion key with node {node}: {what}: {describe_nrc(e)}")
+        # the session or its unlock ended between two requests (requests lost on the bus for
+        # longer than the device's S3 timeout): the exchange starts again from the unlock
+        err.session_lost = e.response.code in (0x33, 0x7E, 0x7F)  # type: ignore[attr-defined]
+        return err
 
     def exchange(client: Client) -> bytes | None:
         _again(lambda: unlock(client, node, SESSION_EXTENDED, on_nrc=refused, key_retries=1), tries)
@@ -365,9 +368,14 @@ def motion_session(client: Client, dev: Device, tries: int = 10) -> None:
 
     def establish(client: Client) -> None:
         # ISO-TP carries no checksum: a nonce altered on the bus gives the two sides different
-        # keys, which the confirmation shows; a new exchange then starts
-        for _ in range(tries):
-            key = exchange(client)
+        # keys, which the confirmation shows; a new exchange then starts, as after a lost session
+        for attempt in range(tries):
+            try:
+                key = exchange(client)
+            except FsError as e:
+                if not getattr(e, "session_lost", False) or attempt == tries - 1:
+                    raise
+                continue
             if key is not None:
                 dev.set_session(key)
                 return
