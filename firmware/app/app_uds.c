@@ -193,6 +193,17 @@ static uint8_t write_gains(app_t *app, uint16_t did, const uint8_t *d, uint16_t 
     return UDS_NRC_OK;
 }
 
+/* A changed safety configuration takes effect when it validates; refused, nothing changes. */
+static uint8_t apply_saf(app_t *app, const saf_config_t *sc)
+{
+    if (saf_config_validate(sc) != SAF_OK) {
+        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    }
+    app->saf_cfg = *sc;
+    app->cfg.saf = *sc;
+    return UDS_NRC_OK;
+}
+
 /* DID_LIMITS_X/Y: six float32 limits, accepted when the safety configuration validates. */
 static uint8_t write_limits(app_t *app, uint16_t did, const uint8_t *d, uint16_t len)
 {
@@ -209,12 +220,7 @@ static uint8_t write_limits(app_t *app, uint16_t did, const uint8_t *d, uint16_t
     l->pos_max_m = (fs_real_t)v.pos_max_m;
     l->vel_max_mps = (fs_real_t)v.vel_max_mps;
     l->contact_force_max_N = (fs_real_t)v.contact_force_max_N;
-    if (saf_config_validate(&sc) != SAF_OK) {
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;
-    }
-    app->saf_cfg = sc;
-    app->cfg.saf = sc;
-    return UDS_NRC_OK;
+    return apply_saf(app, &sc);
 }
 
 /* DID_COMM: telemetry period (ms, > 0) and host timeout (ms, the watchdog's range). */
@@ -227,13 +233,11 @@ static uint8_t write_comm(app_t *app, const uint8_t *d, uint16_t len)
     }
     saf_config_t sc = app->saf_cfg;
     sc.wdg.timeout_ms = v.host_timeout_ms;
-    if (saf_config_validate(&sc) != SAF_OK) {
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;
+    const uint8_t nrc = apply_saf(app, &sc);
+    if (nrc == UDS_NRC_OK) {
+        app->cfg.telemetry_period_ms = v.telemetry_period_ms;
     }
-    app->cfg.telemetry_period_ms = v.telemetry_period_ms;
-    app->saf_cfg = sc;
-    app->cfg.saf = sc;
-    return UDS_NRC_OK;
+    return nrc;
 }
 
 /* DID_STIFFNESS_MAX: the highest nominal skill stiffness accepted, finite in

@@ -196,14 +196,21 @@ void cm_port_end_tick(void)
     g_busy = 0u;
 }
 
+/* The millisecond count and SysTick's current value read as one pair (read again when the
+ * SysTick interrupt moved the count in between). */
+static void systick_sample(uint32_t *ms, uint32_t *cvr)
+{
+    do {
+        *ms = g_ms;
+        *cvr = CM_SYST_CVR;
+    } while (*ms != g_ms);
+}
+
 uint32_t cm_port_cycles(void)
 {
     uint32_t ms;
     uint32_t cvr;
-    do {
-        ms = g_ms;
-        cvr = CM_SYST_CVR;
-    } while (ms != g_ms);
+    systick_sample(&ms, &cvr);
     return ms * (CM_SYST_RVR + 1u) + (CM_SYST_RVR - cvr);
 }
 
@@ -276,10 +283,7 @@ uint64_t hal_time_us(void)
 {
     uint32_t ms;
     uint32_t cvr;
-    do {
-        ms = g_ms;
-        cvr = CM_SYST_CVR;
-    } while (ms != g_ms);
+    systick_sample(&ms, &cvr);
     const uint32_t per_us = CM_CORE_CLOCK_HZ / 1000000u;
     const uint32_t sub_us = (CM_SYST_RVR - cvr) / per_us;
     return (uint64_t)ms * 1000u + (uint64_t)(sub_us < 1000u ? sub_us : 999u);

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, TypedDict
 
 import numpy as np
 
@@ -31,7 +31,7 @@ from ..errors import ERR_FIT_ARGS, ERR_FIT_GOAL, ERR_FIT_NUMERIC, DemoError, FsE
 from ..wire import TICK_S
 from . import dmp
 from .demo import Demo, resample, validate
-from .params import Gains, check_inertia, check_stiffness, derive, goal
+from .params import DmpParams, Gains, check_inertia, check_stiffness, derive, goal
 from .skill import FLAG_END_RELEASE, MAX_KERNELS, Skill, derive_beta_y
 
 PHASE_AT_END = 0.99
@@ -260,6 +260,70 @@ def _regress(bands: dmp.KernelBands, s: np.ndarray, h_d: np.ndarray, lwr: bool, 
     return w
 
 
+class LawFields(TypedDict):
+    """The skill fields every kind takes from the law (``law_fields``)."""
+
+    dt_s: float
+    tau_s: float
+    alpha: float
+    beta: float
+    gamma: float
+    stiffness_Npm: float
+    m_d_kg: float
+    k_d_Nspm: float
+    k_p_Npm: float
+    kkf_Npm: float
+    kki_Npms: float
+    surface_m: float
+
+
+def prepare(
+    demo: Demo,
+    stiffness_Npm: float,
+    n_kernels: int,
+    method: str,
+    gains: Gains,
+    surface_m: float,
+    dt_s: float,
+    object_mass_kg: float | None,
+) -> tuple[DmpParams, Demo]:
+    """The checks every fit makes before it learns (method, kernels, surface, stiffness, gains,
+    the demonstration), then the law's derived parameters and the demonstration at dt_s."""
+    if method not in METHODS:
+        raise ParamError(ERR_FIT_ARGS, f"method must be one of {', '.join(METHODS)}: {method!r}")
+    if not (isinstance(n_kernels, (int, np.integer)) and 2 <= n_kernels <= MAX_KERNELS):
+        raise ParamError(ERR_FIT_ARGS, f"number of kernels must be in 2..{MAX_KERNELS}: {n_kernels}")
+    if not math.isfinite(surface_m):
+        raise ParamError(ERR_FIT_ARGS, f"surface position must be finite: {surface_m}")
+    check_stiffness(stiffness_Npm)
+    p = derive(gains)
+    if object_mass_kg is not None:
+        check_inertia(gains, stiffness_Npm, object_mass_kg)
+    validate(demo)
+    return p, resample(demo, dt_s)
+
+
+def law_fields(
+    p: DmpParams, gains: Gains, dt_s: float, tau_s: float, stiffness_Npm: float, surface_m: float
+) -> LawFields:
+    """The skill fields every kind takes from the law: its time base, DMP gains and the device's
+    control-law gains."""
+    return LawFields(
+        dt_s=dt_s,
+        tau_s=tau_s,
+        alpha=p.alpha,
+        beta=p.beta,
+        gamma=p.gamma,
+        stiffness_Npm=stiffness_Npm,
+        m_d_kg=gains.m_d_kg,
+        k_d_Nspm=gains.k_d_Nspm,
+        k_p_Npm=gains.k_p_Npm,
+        kkf_Npm=gains.kkf_Npm,
+        kki_Npms=gains.kki_Npms,
+        surface_m=surface_m,
+    )
+
+
 def fit(
     demo: Demo,
     stiffness_Npm: float,
@@ -278,23 +342,12 @@ def fit(
     ``force0_N``: the starting force (None: the demonstration's first resampled force).
     ``object_mass_kg``: when known, k_f*m_v/m_d < 1 is checked (code 112).
     """
-    if method not in METHODS:
-        raise ParamError(ERR_FIT_ARGS, f"method must be one of {', '.join(METHODS)}: {method!r}")
     if end_policy not in END_POLICIES:
         raise ParamError(ERR_FIT_ARGS, f"end policy must be one of {', '.join(END_POLICIES)}: {end_policy!r}")
-    if not (isinstance(n_kernels, (int, np.integer)) and 2 <= n_kernels <= MAX_KERNELS):
-        raise ParamError(ERR_FIT_ARGS, f"number of kernels must be in 2..{MAX_KERNELS}: {n_kernels}")
-    if not math.isfinite(surface_m):
-        raise ParamError(ERR_FIT_ARGS, f"surface position must be finite: {surface_m}")
     if force0_N is not None and not math.isfinite(force0_N):
         raise ParamError(ERR_FIT_ARGS, f"starting force must be finite: {force0_N}")
     lam_rel = RIDGE_LAMBDA_REL if ridge_lambda_rel is None else float(ridge_lambda_rel)
-    check_stiffness(stiffness_Npm)
-    p = derive(gains)
-    if object_mass_kg is not None:
-        check_inertia(gains, stiffness_Npm, object_mass_kg)
-    validate(demo)
-    d = resample(demo, dt_s)
+    p, d = prepare(demo, stiffness_Npm, n_kernels, method, gains, surface_m, dt_s, object_mass_kg)
     n_t = d.t_s.size - 1
     duration = n_t * dt_s
     f = d.force_N
@@ -350,20 +403,9 @@ def fit(
             )
         y_kw = {"y_start_m": float(d.y_m[0]), "goal_y_m": goal_y, "y_weights": y_weights}
     skill = Skill(
-        dt_s=dt_s,
-        tau_s=tau,
-        alpha=p.alpha,
-        beta=p.beta,
-        gamma=p.gamma,
-        stiffness_Npm=stiffness_Npm,
+        **law_fields(p, gains, dt_s, tau, stiffness_Npm, surface_m),
         goal_N=goal_N,
         duration_s=duration,
-        m_d_kg=gains.m_d_kg,
-        k_d_Nspm=gains.k_d_Nspm,
-        k_p_Npm=gains.k_p_Npm,
-        kkf_Npm=gains.kkf_Npm,
-        kki_Npms=gains.kki_Npms,
-        surface_m=surface_m,
         force0_N=f0,
         centres=centres,
         widths=widths,

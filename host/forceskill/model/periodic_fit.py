@@ -30,9 +30,10 @@ from ..errors import (
 )
 from ..wire import TICK_S
 from . import periodic
-from .demo import Demo, resample, validate
-from .params import Gains, check_inertia, check_stiffness, derive
-from .skill import KIND_PERIODIC, MAX_KERNELS, Skill
+from .demo import Demo
+from .fit import law_fields, prepare
+from .params import Gains
+from .skill import KIND_PERIODIC, Skill
 
 #: sigma_i = WIDTH_FACTOR * 2*pi/N as the equivalent Gaussian width: kappa_i = 1/sigma_i^2
 WIDTH_FACTOR = 0.65
@@ -45,7 +46,6 @@ MIN_STROKES = 2
 #: spread about the median (the sensor noise)
 STROKE_SHAPE_TOL = 0.03
 STROKE_NOISE_SIGMAS = 4.0
-METHODS = ("ridge", "lwr")
 
 
 @dataclass
@@ -207,18 +207,9 @@ def fit_periodic(
     object_mass_kg: float | None = None,
 ) -> PeriodicFit:
     """Learn a periodic skill from the steady strokes of ``demo``; raises ParamError/DemoError."""
-    if method not in METHODS:
-        raise ParamError(ERR_FIT_ARGS, f"method must be one of {', '.join(METHODS)}: {method!r}")
-    if not (isinstance(n_kernels, (int, np.integer)) and 2 <= n_kernels <= MAX_KERNELS):
-        raise ParamError(ERR_FIT_ARGS, f"number of kernels must be in 2..{MAX_KERNELS}: {n_kernels}")
     if period_s is not None and not (math.isfinite(period_s) and period_s >= PERIOD_MIN_S):
         raise ParamError(ERR_FIT_ARGS, f"--period must be a number >= {PERIOD_MIN_S:g} s: {period_s:g}")
-    check_stiffness(stiffness_Npm)
-    p = derive(gains)
-    if object_mass_kg is not None:
-        check_inertia(gains, stiffness_Npm, object_mass_kg)
-    validate(demo)
-    d = resample(demo, dt_s)
+    p, d = prepare(demo, stiffness_Npm, n_kernels, method, gains, surface_m, dt_s, object_mass_kg)
     f = d.force_N
     if period_s is None:
         n = f.size
@@ -270,20 +261,9 @@ def fit_periodic(
         float(x) for x in periodic.cycle_start((p.alpha, p.beta, p.gamma), a, amp * (kmat @ weights))
     )
     skill = Skill(
-        dt_s=dt_s,
-        tau_s=tau,
-        alpha=p.alpha,
-        beta=p.beta,
-        gamma=p.gamma,
-        stiffness_Npm=stiffness_Npm,
+        **law_fields(p, gains, dt_s, tau, stiffness_Npm, surface_m),
         goal_N=goal_N,
         duration_s=n_p * dt_s,
-        m_d_kg=gains.m_d_kg,
-        k_d_Nspm=gains.k_d_Nspm,
-        k_p_Npm=gains.k_p_Npm,
-        kkf_Npm=gains.kkf_Npm,
-        kki_Npms=gains.kki_Npms,
-        surface_m=surface_m,
         centres=centres,
         widths=kappa,
         weights=weights,
