@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any, TypedDict
+from typing import Any
 
 import numpy as np
 
@@ -260,23 +260,6 @@ def _regress(bands: dmp.KernelBands, s: np.ndarray, h_d: np.ndarray, lwr: bool, 
     return w
 
 
-class LawFields(TypedDict):
-    """The skill fields every kind takes from the law (``law_fields``)."""
-
-    dt_s: float
-    tau_s: float
-    alpha: float
-    beta: float
-    gamma: float
-    stiffness_Npm: float
-    m_d_kg: float
-    k_d_Nspm: float
-    k_p_Npm: float
-    kkf_Npm: float
-    kki_Npms: float
-    surface_m: float
-
-
 def prepare(
     demo: Demo,
     stiffness_Npm: float,
@@ -305,23 +288,23 @@ def prepare(
 
 def law_fields(
     p: DmpParams, gains: Gains, dt_s: float, tau_s: float, stiffness_Npm: float, surface_m: float
-) -> LawFields:
+) -> dict[str, Any]:
     """The skill fields every kind takes from the law: its time base, DMP gains and the device's
     control-law gains."""
-    return LawFields(
-        dt_s=dt_s,
-        tau_s=tau_s,
-        alpha=p.alpha,
-        beta=p.beta,
-        gamma=p.gamma,
-        stiffness_Npm=stiffness_Npm,
-        m_d_kg=gains.m_d_kg,
-        k_d_Nspm=gains.k_d_Nspm,
-        k_p_Npm=gains.k_p_Npm,
-        kkf_Npm=gains.kkf_Npm,
-        kki_Npms=gains.kki_Npms,
-        surface_m=surface_m,
-    )
+    return {
+        "dt_s": dt_s,
+        "tau_s": tau_s,
+        "alpha": p.alpha,
+        "beta": p.beta,
+        "gamma": p.gamma,
+        "stiffness_Npm": stiffness_Npm,
+        "m_d_kg": gains.m_d_kg,
+        "k_d_Nspm": gains.k_d_Nspm,
+        "k_p_Npm": gains.k_p_Npm,
+        "kkf_Npm": gains.kkf_Npm,
+        "kki_Npms": gains.kki_Npms,
+        "surface_m": surface_m,
+    }
 
 
 def fit(
