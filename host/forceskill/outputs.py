@@ -227,11 +227,21 @@ def save_figure(outs: Outputs, fig: Any, path: PathLike, dpi: int = 110) -> None
         raise FsError(ERR_IO, f"cannot write plot {os.fspath(path)!r}: {e}") from None
 
 
-def write_figure(fig: Any, path: PathLike, dpi: int = 110) -> None:
-    """One matplotlib figure written on its own (temporary file, rename on success)."""
-    with Outputs() as outs:
-        save_figure(outs, fig, path, dpi=dpi)
-        outs.commit()
+def write_figure(fig: Any, path: PathLike, dpi: int = 110, outs: Outputs | None = None) -> None:
+    """Lay a matplotlib figure out and write it into ``outs`` (or on its own: temporary file,
+    rename on success); the figure is closed either way."""
+    import matplotlib.pyplot as plt
+
+    fig.tight_layout()
+    try:
+        if outs is not None:
+            save_figure(outs, fig, path, dpi=dpi)
+        else:
+            with Outputs() as own:
+                save_figure(own, fig, path, dpi=dpi)
+                own.commit()
+    finally:
+        plt.close(fig)
 
 
 def format_rows(block: np.ndarray) -> str:

@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .model.fit import FitResult
-from .outputs import Outputs, save_figure
+from .outputs import Outputs, write_figure
 
 if TYPE_CHECKING:
     from .model.periodic_fit import PeriodicFit
@@ -52,23 +52,7 @@ def fit_figure(res: FitResult, path: str | Path, title: str = "", outs: Outputs 
     ax[-1].set_xlabel("t [s]")
     for a in ax:
         a.grid(True, lw=0.3)
-    _save(fig, path, outs)
-
-
-def _save(fig: Any, path: str | Path, outs: Outputs | None) -> None:
-    """Lay the figure out and write it into ``outs`` (or on its own), closing it."""
-    import matplotlib.pyplot as plt
-
-    fig.tight_layout()
-    try:
-        if outs is not None:
-            save_figure(outs, fig, path, dpi=110)
-        else:
-            with Outputs() as own:
-                save_figure(own, fig, path, dpi=110)
-                own.commit()
-    finally:
-        plt.close(fig)
+    write_figure(fig, path, outs=outs)
 
 
 def periodic_figure(res: PeriodicFit, path: str | Path, outs: Outputs | None = None) -> None:
@@ -104,4 +88,4 @@ def periodic_figure(res: PeriodicFit, path: str | Path, outs: Outputs | None = N
     ax[1].set_xlabel("t within the period [s]")
     for a in ax:
         a.grid(True, lw=0.3)
-    _save(fig, path, outs)
+    write_figure(fig, path, outs=outs)

@@ -139,11 +139,7 @@ def _cmd(args: argparse.Namespace) -> int:
     link = "hil_sim serve, socketcand" if args.target == "host" else f"{args.target} image, slcan"
     ax.set_title(f"execution over CAN ({link})")
     ax.legend(loc="upper left", fontsize=8)
-    fig.tight_layout()
-    try:
-        write_figure(fig, out / "can_tracking.png", dpi=120)
-    finally:
-        plt.close(fig)
+    write_figure(fig, out / "can_tracking.png", dpi=120)
     where = (
         f"`hil_sim serve` (speed {args.speed:g}), driven through python-can's socketcand interface"
         if args.target == "host"

@@ -367,11 +367,7 @@ def _learn_figure(
     ax[r].legend(fontsize=7, loc="best")
     for a in ax:
         a.grid(True, lw=0.3)
-    fig.tight_layout()
-    try:
-        write_figure(fig, path)
-    finally:
-        plt.close(fig)
+    write_figure(fig, path)
 
 
 def _reuse_figure(
@@ -408,11 +404,7 @@ def _reuse_figure(
     ax[2].legend(fontsize=7)
     for x in ax:
         x.grid(True, lw=0.3)
-    fig.tight_layout()
-    try:
-        write_figure(fig, path)
-    finally:
-        plt.close(fig)
+    write_figure(fig, path)
 
 
 # ---- report ------------------------------------------------------------------------------------
