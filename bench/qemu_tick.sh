@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Exact instruction counts of the shipped Cortex-M image's 1 kHz tick under qemu.
 #   bench/qemu_tick.sh TARGET [--build-dir DIR] [--exec-s S] [--fw-bytes N] [--skill FILE] [--profile]
+#                      [--focus REGEX]
 # TARGET: cortex-m4f (mps2-an386, hardware float) or cortex-m3 (mps2-an385: the DMP and the
 # control law in fixed point, the rest of the application in software float).
 # 1. builds the images (toolchain cmake/arm-none-eabi.cmake, Release; size, heap and stack report);
@@ -24,12 +25,14 @@
 #        __aeabi_d*/__aeabi_f*, __addsf3 & co. executed inside app_tick: none expected on the M4F)
 #      qemu_tick_duration target=T seconds=S
 #    --profile: then, per state, the top functions of its worst and of its smallest tick
-#    (bench/qemu/tick_profile.py over the QEMU_TICK_PROFILE files, below).
+#    (bench/qemu/tick_profile.py over the QEMU_TICK_PROFILE files, below); --focus REGEX (implies
+#    --profile): also, per state, the tick where the functions matching REGEX ran the most
+#    instructions and those functions (e.g. the skill store and storage: '^(slots_|nvm_|skill_)').
 # Exit status 1 if a check fails or the DMP + control-law part exceeds its budget (M4F 850,
 # M3 1,250).
 set -euo pipefail
 
-usage() { echo "usage: $0 cortex-m4f|cortex-m3 [--build-dir DIR] [--exec-s S] [--fw-bytes N] [--skill FILE] [--profile]" >&2; exit 2; }
+usage() { echo "usage: $0 cortex-m4f|cortex-m3 [--build-dir DIR] [--exec-s S] [--fw-bytes N] [--skill FILE] [--profile] [--focus REGEX]" >&2; exit 2; }
 [ $# -ge 1 ] || usage
 TARGET=$1; shift
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -45,6 +48,7 @@ while [ $# -gt 0 ]; do
     --fw-bytes) FW_BYTES=$2; shift 2 ;;   # the firmware download's payload (FWUPDATE)
     --skill) SKILL_ARG=$2; shift 2 ;;
     --profile) PROFILE=1; shift ;;   # per state, the top functions of its worst tick (tick_profile.py)
+    --focus) PROFILE=1; QEMU_TICK_FOCUS=$2; shift 2 ;;   # also the tick where REGEX's functions ran most
     --host-ref-float|--host-ref-fixed) shift 2 ;;   # accepted for older callers; unused
     *) usage ;;
   esac

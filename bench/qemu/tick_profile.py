@@ -6,6 +6,8 @@ counter writes with QEMU_TICK_PROFILE=PREFIX (what `bench/qemu_tick.sh TARGET --
   execute, upload, fwupdate, fault; the interrupts taken meanwhile included);
 - PREFIX.min.K: the same of the smallest tick of kind K (no bus traffic: the state's floor);
 - PREFIX: the mean instructions per function of an EXECUTE tick;
+- PREFIX.focus.K: with QEMU_TICK_FOCUS=REGEX (`qemu_tick.sh --focus REGEX`), the functions
+  matching REGEX in the tick of kind K where they ran the most instructions;
 - PREFIX.softfloat: per kind, the software-float helpers (libgcc `__aeabi_d*`, `__aeabi_f*`,
   `__addsf3` & co.) executed inside app_tick, their calls and instructions over the whole run.
 
@@ -39,15 +41,20 @@ def top_lines(counts: dict[str, float], total: float, n: int) -> list[str]:
     return [f"  {v:>9,.0f}  {100.0 * v / total:5.1f} %  {s}" for s, v in rows] if total > 0 else []
 
 
+LABELS = {"max": "worst", "min": "smallest", "focus": "focus"}
+
+
 def print_states(prefix: Path, target: str, n: int, which: str = "max") -> int:
-    """The worst (which="max") or smallest ("min") tick of every kind found; returns how many
-    kinds had a profile."""
+    """The worst (which="max") or smallest ("min") tick of every kind found, or the focus
+    functions' largest tick ("focus", only where the run wrote one); returns how many kinds had
+    a profile."""
     found = 0
-    label = "worst" if which == "max" else "smallest"
+    label = LABELS[which]
     for k in KINDS:
         p = Path(f"{prefix}.{which}.{k}")
         if not p.exists():
-            print(f"tick_profile target={target} state={k.upper()} {label}=- (no tick of this kind)")
+            if which != "focus":
+                print(f"tick_profile target={target} state={k.upper()} {label}=- (no tick of this kind)")
             continue
         found += 1
         counts = read_counts(p)
@@ -96,6 +103,7 @@ def main(argv: list[str]) -> int:
         print(f"tick_profile: no {args.prefix}.max.* file (run with QEMU_TICK_PROFILE)", file=sys.stderr)
         return 1
     print_states(args.prefix, args.target, args.top, "min")
+    print_states(args.prefix, args.target, args.top, "focus")
     print_mean_execute(args.prefix, args.target, args.top)
     print_softfloat(args.prefix, args.target)
     return 0
