@@ -11,13 +11,7 @@ PY=${PYTHON:-$ROOT/.venv/bin/python}
 TARGETS=("$@")
 [ ${#TARGETS[@]} -gt 0 ] || TARGETS=(cortex-m4f cortex-m3)
 OPS=(verify_ok verify_bad protect set_key hmac_oneshot)
-QV=$(qemu-system-arm --version | sed -n 's/.*version \([0-9]*\)\.\([0-9]*\).*/\1 \2/p')
-read -r QMAJ QMIN <<< "$QV"
-if [ "$QMAJ" -gt 8 ] || { [ "$QMAJ" -eq 8 ] && [ "$QMIN" -ge 1 ]; }; then
-  ONE_INSN=(-accel tcg,one-insn-per-tb=on)
-else
-  ONE_INSN=(-singlestep)
-fi
+source "$ROOT/bench/qemu/one_insn.sh"   # ONE_INSN: qemu-system-arm's one instruction per block
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/qemu_mac.XXXXXX")
 trap 'rm -rf "$WORK"' EXIT
 status=0

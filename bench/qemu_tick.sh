@@ -67,15 +67,7 @@ HIL_SIM=${FORCESKILL_HIL_SIM:-$ROOT/build/hil_sim/hil_sim}
 SKILL=${SKILL_ARG:-$ROOT/tests/vectors/engrave_n50_ridge_release.skill}
 KERNELS=$(od -An -tu2 -j12 -N2 "$SKILL" | tr -d ' ')
 
-# One instruction per translation block: -singlestep up to qemu 8.0, then
-# -accel tcg,one-insn-per-tb=on (8.1 renamed it; -singlestep was removed in 9.x).
-QV=$(qemu-system-arm --version | sed -n 's/.*version \([0-9]*\)\.\([0-9]*\).*/\1 \2/p')
-read -r QMAJ QMIN <<< "$QV"
-if [ "$QMAJ" -gt 8 ] || { [ "$QMAJ" -eq 8 ] && [ "$QMIN" -ge 1 ]; }; then
-  ONE_INSN=(-accel tcg,one-insn-per-tb=on)
-else
-  ONE_INSN=(-singlestep)
-fi
+source "$ROOT/bench/qemu/one_insn.sh"   # ONE_INSN: qemu-system-arm's one instruction per block
 
 echo "== building $TARGET images in $BUILD"
 cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/arm-none-eabi.cmake" \

@@ -56,25 +56,12 @@ def _classic_model():
     assert spec is not None and spec.loader is not None
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
-    return mod.frame_bits
+    return mod
 
 
-classic_bits = _classic_model()
-
-
-def stuffed(bits: list[int]) -> int:
-    """Dynamic stuff bits of a bit sequence (one after five equal bits)."""
-    stuff, run, last = 0, 1, bits[0]
-    for b in bits[1:]:
-        if b == last:
-            run += 1
-        else:
-            run, last = 1, b
-        if run == 5:
-            stuff += 1
-            last ^= 1
-            run = 1
-    return stuff
+_classic = _classic_model()
+classic_bits = _classic.frame_bits
+stuffed = _classic.stuffed
 
 
 def fd_bits(frame_id: int, data: bytes) -> tuple[float, float]:

@@ -45,14 +45,8 @@ def crc15(bits: list[int]) -> int:
     return crc
 
 
-def frame_bits(frame_id: int, data: bytes) -> int:
-    """Wire bits of a classic standard data frame, actual stuffing (SOF..CRC), plus 13 tail bits."""
-    bits = [0] + [(frame_id >> (10 - i)) & 1 for i in range(11)] + [0, 0, 0]
-    bits += [(len(data) >> (3 - i)) & 1 for i in range(4)]
-    for byte in data:
-        bits += [(byte >> (7 - i)) & 1 for i in range(8)]
-    c = crc15(bits)
-    bits += [(c >> (14 - i)) & 1 for i in range(15)]
+def stuffed(bits: list[int]) -> int:
+    """Dynamic stuff bits of a bit sequence (one after five equal bits)."""
     stuff, run, last = 0, 1, bits[0]
     for b in bits[1:]:
         if b == last:
@@ -63,7 +57,18 @@ def frame_bits(frame_id: int, data: bytes) -> int:
             stuff += 1
             last ^= 1
             run = 1
-    return len(bits) + stuff + 13
+    return stuff
+
+
+def frame_bits(frame_id: int, data: bytes) -> int:
+    """Wire bits of a classic standard data frame, actual stuffing (SOF..CRC), plus 13 tail bits."""
+    bits = [0] + [(frame_id >> (10 - i)) & 1 for i in range(11)] + [0, 0, 0]
+    bits += [(len(data) >> (3 - i)) & 1 for i in range(4)]
+    for byte in data:
+        bits += [(byte >> (7 - i)) & 1 for i in range(8)]
+    c = crc15(bits)
+    bits += [(c >> (14 - i)) & 1 for i in range(15)]
+    return len(bits) + stuffed(bits) + 13
 
 
 class Capture(can.Listener):

@@ -35,18 +35,6 @@ static pc_point_t g_pts[HAL_HOST_FLASH_LOG];
 static uint8_t g_clean_region[HAL_HOST_FLASH_LOG]; /* region of each operation, uncut run */
 static bool g_torn; /* --torn: operation i itself is torn (fls_ram), not completed */
 
-static int read_file(const char *path, uint8_t *buf, uint32_t cap, uint32_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    if (f == NULL) {
-        return -1;
-    }
-    const size_t n = fread(buf, 1, cap, f);
-    const int bad = ferror(f) || !feof(f);
-    fclose(f);
-    *len = (uint32_t)n;
-    return bad || n == 0u ? -1 : 0;
-}
 
 /* FNV-1a of a whole flash device. */
 static uint32_t dev_hash(const fls_dev_t *d, uint32_t from, uint32_t len)
@@ -329,17 +317,18 @@ static int load_inputs(FILE *err)
 {
     static const char *const fw_files[2] = {FS_POWERCUT_VECTORS "/powercut_fw_1.0.0.fwimg",
                                             FS_POWERCUT_VECTORS "/powercut_fw_1.1.0.fwimg"};
-    if (read_file(FS_POWERCUT_VECTORS "/press_n50_lwr_hold.skill", g_old, PC_IMG_MAX, &g_old_len) ||
-        read_file(FS_POWERCUT_VECTORS "/press_n10_ridge_release.skill", g_new, PC_IMG_MAX,
-                  &g_new_len) ||
-        read_file(FS_POWERCUT_VECTORS "/engrave_n50_ridge_release.skill", g_nb, PC_IMG_MAX,
-                  &g_nb_len)) {
+    if (rig_read_file(FS_POWERCUT_VECTORS "/press_n50_lwr_hold.skill", g_old, PC_IMG_MAX,
+                      &g_old_len) ||
+        rig_read_file(FS_POWERCUT_VECTORS "/press_n10_ridge_release.skill", g_new, PC_IMG_MAX,
+                      &g_new_len) ||
+        rig_read_file(FS_POWERCUT_VECTORS "/engrave_n50_ridge_release.skill", g_nb, PC_IMG_MAX,
+                      &g_nb_len)) {
         fprintf(err, "hil_sim powercut: cannot read the skill vectors in %s\n",
                 FS_POWERCUT_VECTORS);
         return -1;
     }
     for (unsigned i = 0; i < 2u; i++) {
-        if (read_file(fw_files[i], g_fw[i], sizeof g_fw[i], &g_fw_len[i]) != 0 ||
+        if (rig_read_file(fw_files[i], g_fw[i], sizeof g_fw[i], &g_fw_len[i]) != 0 ||
             g_fw_len[i] < BOOT_IMAGE_HEADER_SIZE ||
             boot_image_parse_header(g_fw[i], 0u, &g_fw_hdr[i]) != BOOT_OK) {
             fprintf(err,

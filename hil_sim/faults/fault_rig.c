@@ -5,6 +5,7 @@
 #include "fault_rig.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "e2e.h"
@@ -343,4 +344,17 @@ int rig_read_slot(uint16_t slot, uint8_t *buf, uint32_t cap, uint32_t *len)
         return 0;
     }
     return st == NVM_OK ? 0 : -1;
+}
+
+int rig_read_file(const char *path, uint8_t *buf, uint32_t cap, uint32_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (f == NULL) {
+        return -1;
+    }
+    const size_t n = fread(buf, 1, cap, f);
+    const int bad = ferror(f) || !feof(f);
+    fclose(f);
+    *len = (uint32_t)n;
+    return bad || n == 0u ? -1 : 0;
 }

@@ -119,4 +119,8 @@ uint32_t rig_flash_crc(void);
 /** Read slot (0-based) through a fresh storage scan; *len = 0 when empty. 0 ok. */
 int rig_read_slot(uint16_t slot, uint8_t *buf, uint32_t cap, uint32_t *len);
 
+/** Read a whole file of at most cap bytes into buf; -1 when it cannot be read, is longer or
+ *  empty, else 0 with *len its length. */
+int rig_read_file(const char *path, uint8_t *buf, uint32_t cap, uint32_t *len);
+
 #endif /* FAULT_RIG_H */

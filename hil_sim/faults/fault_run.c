@@ -15,18 +15,6 @@
 #define HOLD_MS FAULT_HOLD_MS
 #define ZERO_BOUND_MS FAULT_ZERO_BOUND_MS
 
-static int read_file(const char *path, uint8_t *buf, uint32_t cap, uint32_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    if (f == NULL) {
-        return -1;
-    }
-    const size_t n = fread(buf, 1, cap, f);
-    const int bad = ferror(f) || !feof(f);
-    fclose(f);
-    *len = (uint32_t)n;
-    return bad ? -1 : 0;
-}
 
 static rig_t g_rig;   /* large: static */
 static FILE *g_trace; /* --trace: one CSV line per tick of the fault runs */
@@ -443,7 +431,7 @@ int fault_run_one(const fscen_t *fs, uint64_t seed, bool seed_set, frow_t *row, 
             continue;
         }
         fscen_join(path, fs->dir, imgs[i].rel);
-        if (read_file(path, imgs[i].buf, IMG_MAX, imgs[i].len) != 0) {
+        if (rig_read_file(path, imgs[i].buf, IMG_MAX, imgs[i].len) != 0) {
             snprintf(err, errn, "%s: cannot read skill %s", fs->file, path);
             return -1;
         }
