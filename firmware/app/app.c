@@ -738,3 +738,8 @@ bool app_transfer_busy(const app_t *app)
 {
     return app->uds.xfer != UDS_XFER_NONE || app->uds.pending_sid != 0u;
 }
+
+bool app_transfer_is_firmware(const app_t *app)
+{
+    return app->fw_xfer;
+}

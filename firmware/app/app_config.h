@@ -124,4 +124,7 @@ const uint8_t *app_motion_nonce(const app_t *app);
 /** True while a UDS transfer or a request answered 0x78 (a commit) runs. */
 bool app_transfer_busy(const app_t *app);
 
+/** True when the active (or last) download is a firmware image, not a skill. */
+bool app_transfer_is_firmware(const app_t *app);
+
 #endif /* APP_CONFIG_H */

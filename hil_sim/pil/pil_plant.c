@@ -69,13 +69,13 @@ void cm_plant_load(cm_plant_params_t *p, app_config_t *cfg)
 
 void cm_plant_sense(const app_t *app)
 {
-    /* the tick about to run is app->tick + 1 */
-    sim_couple_sense(&g_plant, g_sc, app->state == APP_TEACH, app->tick, &g_sens);
+    /* the tick about to run is app_tick_count + 1 */
+    sim_couple_sense(&g_plant, g_sc, app_state(app) == APP_TEACH, app_tick_count(app), &g_sens);
 }
 
 void cm_plant_advance(const app_t *app)
 {
-    (void)sim_couple_step(&g_plant, g_sc, app->state, g_enable, g_force_N);
+    (void)sim_couple_step(&g_plant, g_sc, app_state(app), g_enable, g_force_N);
 }
 
 void hal_sensors_read(hal_sensors_t *out)
@@ -101,6 +101,6 @@ void hal_actuator_force(const fs_real_t force_N[HAL_AXES])
 
 bool cm_plant_transfer(const app_t *app, bool *firmware)
 {
-    *firmware = app->fw_xfer;
-    return app->uds.xfer != UDS_XFER_NONE || app->uds.pending_sid != 0u;
+    *firmware = app_transfer_is_firmware(app);
+    return app_transfer_busy(app);
 }

@@ -17,13 +17,6 @@
 #include "sim_model.h"
 #include "sim_rng.h"
 #include "sim_scenario.h"
-#if defined(__ARM_ARCH)
-/* The product image's main and plant (hil_sim/pil) still read app_t's fields (the UDS server's
- * transfer, the tick count) through this header; app_transfer_busy and app_tick_count
- * (app_config.h) are the API for them, and once they use it this include goes. The simulator's
- * host builds (hil_sim/src, faults, bus) see app_config.h only. */
-#include "app_internal.h"
-#endif
 
 #define SIM_PARK_TAU_S 0.05 /* idle: the drive brings the handle back to the start position */
 #define SIM_PARK_VMAX_MPS \
