@@ -16,6 +16,11 @@ from helpers.tools import load
 # support, asammdf with pandas, whenever asammdf is installed: 6-7 s of the 7 s of `import can` here,
 # 16-20 times that under qemu's TCG. Marked absent, python-can leaves MF4 out (the tests run there
 # read and write no .mf4).
+# The CLI the tests start as a process runs this checkout's package too (pytest.ini puts host/
+# first on this interpreter's path).
+_HOST = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "host")
+os.environ["PYTHONPATH"] = os.pathsep.join(p for p in (_HOST, os.environ.get("PYTHONPATH", "")) if p)
+
 if os.environ.get("FORCESKILL_TEST_NO_MF4") == "1":
     sys.modules.setdefault("asammdf", None)
 
