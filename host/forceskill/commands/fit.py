@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import FsError
+from ..wire import TICK_S
 from ._args import add_force_limit, float_arg, int_arg
 
 
@@ -442,7 +443,7 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         metavar="S",
         help="the stroke period in s (default: found by autocorrelation)",
     )
-    p.add_argument("--dt", type=float_arg, default=0.001, help=argparse.SUPPRESS)
+    p.add_argument("--dt", type=float_arg, default=TICK_S, help=argparse.SUPPRESS)
     p.add_argument("--plot", metavar="PNG", help="write demonstrated vs learned force, error, position")
     add_force_limit(p)
     p.set_defaults(func=_cmd_fit)

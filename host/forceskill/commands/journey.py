@@ -20,10 +20,10 @@ from typing import Any
 import numpy as np
 
 from ..errors import ERR_IO, FsError
+from ..model.synthetic import SURFACE_M  # the scenarios' object surface
 from ..outputs import write_figure, write_file
 
 K_NPM = 100.0
-SURFACE_M = 0.001
 OBJECT_MASS_KG = 10.0  # m_v_kg of the scenario: the default force gains are adapted to it
 
 

@@ -28,13 +28,13 @@ from typing import Any
 import numpy as np
 
 from ..errors import ERR_REPORT, FsError
+from ..model.synthetic import INNER_LAYER_M as LAYER_X_M
+from ..model.synthetic import SURFACE_M
 from ..outputs import write_figure, write_file
 
 #: Paper bounds on the LWR approximation error (% of max force): pressing <= 4, engraving <= 6.
 LWR_BOUND_PCT = {"pressing": 4.0, "engraving": 6.0}
 LWR_KERNELS = (50, 60, 70, 80, 90, 100)
-SURFACE_M = 0.001
-LAYER_X_M = 0.020
 #: mass of every object of the HIL scenarios (m_v_kg in hil_sim/scenarios/*.toml): the force gains
 #: are adapted to it (k_f*m_v/m_d <= 0.75)
 OBJECT_MASS_KG = 10.0
