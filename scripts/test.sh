@@ -85,9 +85,16 @@ for target in cortex-m4f cortex-m3; do
   tick_budgets "$target" "$log"
 done
 
-echo "== Python, HIL and CAN tests"
+# Two workers (pytest-xdist, one test file each at a time): most of the time of the CAN and HIL
+# tests is the simulator's real time, not CPU; FORCESKILL_TEST_WORKERS=1 runs them one by one.
+WORKERS=${FORCESKILL_TEST_WORKERS:-2}
+echo "== Python, HIL and CAN tests ($WORKERS workers)"
 export FORCESKILL_HIL_SIM="$ROOT/build/hil_sim/hil_sim"
-.venv/bin/python -m pytest -q tests
+if [ "$WORKERS" -gt 1 ]; then
+  .venv/bin/python -m pytest -q -n "$WORKERS" --dist loadfile tests
+else
+  .venv/bin/python -m pytest -q tests
+fi
 
 echo "== Linux CAN in a qemu guest (scripts/test_linux_can.sh: the SocketCAN journey on vcan0, the"
 echo "   emulated SJA1000 pair, can-utils, CAN FD)"
