@@ -63,7 +63,9 @@ void sec_restore(const sec_config_t *cfg, sec_state_t *st, uint32_t now_ms, uint
         return;
     }
     st->failed = failed;
-    st->locked_out = locked_out != 0u ? 1u : 0u;
+    /* a record that counts max_attempts wrong keys is a lockout: the power failed after the
+     * last wrong key was counted and before its lockout was recorded */
+    st->locked_out = (locked_out != 0u || failed >= cfg->max_attempts) ? 1u : 0u;
     uint32_t wait_ms = cfg->boot_delay_ms;
     if (st->locked_out != 0u) {
         wait_ms = cfg->lockout_ms;

@@ -80,7 +80,8 @@ sec_status_t sec_config_validate(const sec_config_t *cfg);
 void sec_init(const sec_config_t *cfg, sec_state_t *st, uint32_t now_ms);
 
 /** Power-up with the attempt record kept across resets: counter restored; requestSeed refused
- *  for lockout_ms after a lockout, else delay_ms after a wrong key, else boot_delay_ms. */
+ *  for lockout_ms after a lockout (or a count of max_attempts), else delay_ms after a wrong key,
+ *  else boot_delay_ms. */
 void sec_restore(const sec_config_t *cfg, sec_state_t *st, uint32_t now_ms, uint8_t failed,
                  uint8_t locked_out);
 

@@ -1,6 +1,7 @@
 /* `hil_sim powercut`: a power cut just after every flash operation of (a) a skill download into
- * slot 1 (RequestDownload to the commit's answer) and (b) a firmware update (RequestDownload to
- * the new image confirmed after its test boot), one run per operation; see fault_powercut.h. */
+ * slot 1 (RequestDownload to the commit's answer), (b) a firmware update (RequestDownload to
+ * the new image confirmed after its test boot) and (c) the wrong key that locks SecurityAccess
+ * out (its record's write), one run per operation; see fault_powercut.h. */
 #include "fault_powercut.h"
 
 #include <stdio.h>
@@ -11,11 +12,21 @@
 #include "fls_ram.h"
 #include "fs_uds_ids.h"
 #include "hal_host.h"
+#include "nvm.h"
+#include "sec_access.h"
 #include "skill.h"
 #include "uds.h"
 
 #define PC_IMG_MAX 65536u
 #define PC_SETTLE_MS 300u /* after the power comes back: boot, self-test, confirmation */
+
+/* The operation a run cuts. */
+typedef enum {
+    PC_SKILL,     /* a skill download into slot 1 */
+    PC_FW,        /* a firmware update 1.0.0 -> 1.1.0 */
+    PC_WRONG_KEY, /* the wrong key that locks SecurityAccess out (the third after two) */
+    PC_CASES
+} pc_case_t;
 
 static rig_t g_rig; /* large: static */
 static uint8_t g_old[PC_IMG_MAX], g_new[PC_IMG_MAX], g_nb[PC_IMG_MAX], g_rd[PC_IMG_MAX];
@@ -33,7 +44,10 @@ typedef struct {
 
 static pc_point_t g_pts[HAL_HOST_FLASH_LOG];
 static uint8_t g_clean_region[HAL_HOST_FLASH_LOG]; /* region of each operation, uncut run */
-static bool g_torn; /* --torn: operation i itself is torn (fls_ram), not completed */
+static bool g_torn;        /* --torn: operation i itself is torn (fls_ram), not completed */
+static uint32_t g_key_ops; /* uncut run: the flash operations done when the key was answered */
+static bool
+    g_key_answered; /* this run's cut came after the key's answer (sent before the power went) */
 
 
 /* FNV-1a of a whole flash device. */
@@ -104,6 +118,61 @@ typedef struct {
     uint32_t slots, fw, sec, old_slot; /* hashes */
     uint8_t old_index;                 /* the slot of firmware 1.0.0 */
 } pc_keep_t;
+
+/* The wrong-key record on the SecurityAccess flash, read through a fresh storage scan: 0 with
+ * failed/locked_out decoded, -1 when there is none or it does not decode. */
+static int sec_record_read(uint8_t *failed, uint8_t *locked_out)
+{
+    nvm_t n;
+    uint8_t rec[SEC_RECORD_LEN];
+    uint32_t len = 0u;
+    if (nvm_init(&n, hal_sec_flash()) != NVM_OK ||
+        nvm_read(&n, 0u, rec, (uint32_t)sizeof rec, &len) != NVM_OK) {
+        return -1;
+    }
+    return sec_record_decode(rec, len, failed, locked_out) ? 0 : -1;
+}
+
+/* A seed request then a wrong key at level 1, waiting out the delay of the key before; returns
+ * the key's answer (the NRC: 0x35 wrong, 0x36 the attempt that locks out), 0 if none. */
+static uint8_t wrong_key(rig_t *r)
+{
+    uint8_t resp[64];
+    for (int attempt = 0; attempt < 40; attempt++) {
+        const uint8_t rs[2] = {UDS_SID_SECURITY, UDS_SEC_LEVEL_WRITE};
+        const uint16_t n = rig_uds(r, rs, 2u, resp, sizeof resp, 200u);
+        if (n == 3u && resp[0] == UDS_NEGATIVE_RESPONSE && resp[2] == UDS_NRC_DELAY_NOT_EXPIRED) {
+            rig_run(r, 100u);
+            continue;
+        }
+        if (n != 2u + SEC_SEED_LEN || resp[0] != 0x67u) {
+            return 0u;
+        }
+        uint8_t sk[2u + SEC_KEY_LEN];
+        memset(sk, 0xA5, sizeof sk);
+        sk[0] = UDS_SID_SECURITY;
+        sk[1] = (uint8_t)(UDS_SEC_LEVEL_WRITE + 1u);
+        const uint16_t k = rig_uds(r, sk, (uint16_t)sizeof sk, resp, sizeof resp, 200u);
+        return (k == 3u && resp[0] == UDS_NEGATIVE_RESPONSE) ? resp[2] : 0u;
+    }
+    return 0u;
+}
+
+/* Two wrong keys (the record then says 2 failed), in the programming session. 0 ok. */
+static int two_wrong_keys(rig_t *r)
+{
+    uint8_t resp[16];
+    const uint8_t dsc[2] = {UDS_SID_DSC, UDS_SESSION_PROGRAMMING};
+    if (rig_uds(r, dsc, 2u, resp, sizeof resp, 200u) < 2u || resp[0] != 0x50u) {
+        return -1;
+    }
+    uint8_t failed = 0u, locked = 0u;
+    if (wrong_key(r) != UDS_NRC_INVALID_KEY || wrong_key(r) != UDS_NRC_INVALID_KEY ||
+        sec_record_read(&failed, &locked) != 0 || failed != 2u || locked != 0u) {
+        return -2;
+    }
+    return 0;
+}
 
 static void keep_take(const rig_t *r, pc_keep_t *k)
 {
@@ -187,6 +256,47 @@ static bool check_fw(rig_t *r, const pc_keep_t *k, pc_point_t *p)
     return true;
 }
 
+/* After a cut during the wrong key that locks out: the record holds the two wrong keys before
+ * (old, only where the key had not been answered yet) or the third counted or the lockout (new),
+ * never fewer, and the device acts on it: once the power-up delay
+ * is over, a seed request gets a seed (old) or 0x37 (new, the lockout restarted at power-up);
+ * skills and firmware as they were. */
+static bool check_wrong_key(rig_t *r, const pc_keep_t *k, pc_point_t *p)
+{
+    uint8_t failed = 0u, locked = 0u;
+    if (sec_record_read(&failed, &locked) != 0) {
+        return fail(p, "the wrong-key record does not read");
+    }
+    const bool is_old = failed == 2u && locked == 0u;
+    const bool is_new = locked != 0u || failed >= 3u; /* counted: before its lockout is written */
+    if (!is_old && !is_new) {
+        return fail(p, "the wrong-key record lost a wrong key");
+    }
+    if (is_old && g_key_answered) {
+        return fail(p, "the key was answered before it was counted");
+    }
+    uint8_t resp[64];
+    const uint8_t dsc[2] = {UDS_SID_DSC, UDS_SESSION_PROGRAMMING};
+    const uint8_t rs[2] = {UDS_SID_SECURITY, UDS_SEC_LEVEL_WRITE};
+    rig_run(r, 1200u); /* the power-up delay (1 s) over */
+    if (rig_uds(r, dsc, 2u, resp, sizeof resp, 200u) < 2u || resp[0] != 0x50u) {
+        return fail(p, "no programming session after the boot");
+    }
+    const uint16_t n = rig_uds(r, rs, 2u, resp, sizeof resp, 200u);
+    const bool seed = n == 2u + SEC_SEED_LEN && resp[0] == 0x67u;
+    const bool delayed = n == 3u && resp[0] == UDS_NEGATIVE_RESPONSE &&
+                         resp[2] == UDS_NRC_DELAY_NOT_EXPIRED;
+    if (is_old ? !seed : !delayed) {
+        return fail(p, is_old ? "no seed after the delay (old record)"
+                              : "a seed during the lockout (new record)");
+    }
+    if (whole(hal_flash()) != k->slots || whole(hal_fw_flash()) != k->fw) {
+        return fail(p, "skills or firmware changed");
+    }
+    p->result = is_new ? 1u : 0u;
+    return true;
+}
+
 /* The simulated flash of a region (the host port keeps it as the device's ctx). */
 static fls_ram_t *region_ram(uint8_t region)
 {
@@ -211,11 +321,17 @@ static void tear(uint32_t cut)
 /* One run: a fresh device, the operation (skill download or firmware update) with the power cut
  * just after `cut` flash operations of it (0: never), then the power back on and the device
  * booted again. The operation's flash operations are returned in *ops (uncut run). */
-static int run_once(const sim_scenario_t *sc, bool fw, uint32_t cut, uint32_t *ops, pc_point_t *p)
+static int run_once(const sim_scenario_t *sc, pc_case_t op, uint32_t cut, uint32_t *ops,
+                    pc_point_t *p)
 {
     rig_t *r = &g_rig;
-    if (setup(r, sc) != 0 ||
-        rig_uds_unlock_level(r, fw ? UDS_SEC_LEVEL_FIRMWARE : UDS_SEC_LEVEL_WRITE) != 0) {
+    const bool fw = op == PC_FW;
+    if (setup(r, sc) != 0) {
+        return -1;
+    }
+    if (op == PC_WRONG_KEY
+            ? two_wrong_keys(r) != 0
+            : rig_uds_unlock_level(r, fw ? UDS_SEC_LEVEL_FIRMWARE : UDS_SEC_LEVEL_WRITE) != 0) {
         return -1;
     }
     pc_keep_t k;
@@ -227,10 +343,19 @@ static int run_once(const sim_scenario_t *sc, bool fw, uint32_t cut, uint32_t *o
     if (cut != 0u && g_torn) {
         tear(cut);
     }
-    if (fw) {
+    if (op == PC_FW) {
         (void)fw_update(r, 1u);
-    } else {
+    } else if (op == PC_SKILL) {
         (void)rig_uds_download(r, 1u, g_new, g_new_len);
+        rig_run(r, 5u);
+    } else {
+        const uint8_t nrc = wrong_key(r);
+        if (cut == 0u) {
+            g_key_ops = nrc != 0u ? hal_host_flash_ops() - ops0 : UINT32_MAX;
+        }
+        /* after op `cut` (during it, torn) the power is gone: the answer went out before iff
+         * the uncut run had answered after at most that many operations */
+        g_key_answered = cut != 0u && (g_torn ? cut > g_key_ops : cut >= g_key_ops);
         rig_run(r, 5u);
     }
     *ops = hal_host_flash_ops() - ops0;
@@ -250,7 +375,10 @@ static int run_once(const sim_scenario_t *sc, bool fw, uint32_t cut, uint32_t *o
     rig_boot(r);
     r->heartbeat_on = true;
     rig_run(r, PC_SETTLE_MS);
-    return fw ? (check_fw(r, &k, p) ? 0 : 1) : (check_skill(r, &k, p) ? 0 : 1);
+    const bool ok = op == PC_FW      ? check_fw(r, &k, p)
+                    : op == PC_SKILL ? check_skill(r, &k, p)
+                                     : check_wrong_key(r, &k, p);
+    return ok ? 0 : 1;
 }
 
 static const char *region_name(uint8_t r)
@@ -261,15 +389,22 @@ static const char *region_name(uint8_t r)
 }
 
 /* Every cut point of one operation; prints its table, returns the bad outcomes (or -1). */
-static int run_case(FILE *out, const sim_scenario_t *sc, bool fw, bool verbose)
+static const char *const CASE_NAME[PC_CASES] = {"skill download", "firmware update", "wrong key"};
+static const char *const CASE_TITLE[PC_CASES] = {"skill download into slot 1",
+                                                 "firmware update 1.0.0 -> 1.1.0",
+                                                 "the third wrong key (SecurityAccess lockout)"};
+static const char *const CASE_END[PC_CASES] = {"RequestDownload to the commit's answer",
+                                               "RequestDownload to the new image confirmed",
+                                               "SecurityAccess sendKey to its answer"};
+
+static int run_case(FILE *out, const sim_scenario_t *sc, pc_case_t op, bool verbose)
 {
     uint32_t n = 0u;
     pc_point_t clean;
     memset(&clean, 0, sizeof clean);
-    if (run_once(sc, fw, 0u, &n, &clean) != 0 || clean.result != 1u || n == 0u ||
+    if (run_once(sc, op, 0u, &n, &clean) != 0 || clean.result != 1u || n == 0u ||
         n > HAL_HOST_FLASH_LOG) {
-        fprintf(out, "%s: the uncut run failed (%s)\n", fw ? "firmware update" : "skill download",
-                clean.why);
+        fprintf(out, "%s: the uncut run failed (%s)\n", CASE_NAME[op], clean.why);
         return -1;
     }
     uint32_t count[HAL_HOST_FLASH_REGIONS][2][3];
@@ -279,7 +414,7 @@ static int run_case(FILE *out, const sim_scenario_t *sc, bool fw, bool verbose)
         pc_point_t *p = &g_pts[i - 1u];
         memset(p, 0, sizeof *p);
         uint32_t ops = 0u;
-        if (run_once(sc, fw, i, &ops, p) < 0) {
+        if (run_once(sc, op, i, &ops, p) < 0) {
             p->result = 2u;
             snprintf(p->why, sizeof p->why, "set-up failed");
         }
@@ -293,10 +428,13 @@ static int run_case(FILE *out, const sim_scenario_t *sc, bool fw, bool verbose)
                     p->result == 0u ? "old" : (p->result == 1u ? "new" : "BAD"), p->why);
         }
     }
-    fprintf(out, "\n%s: %u cut points (%s every erase/program from RequestDownload to %s)\n\n",
-            fw ? "firmware update 1.0.0 -> 1.1.0" : "skill download into slot 1", (unsigned)n,
-            g_torn ? "during" : "just after",
-            fw ? "the new image confirmed" : "the commit's answer");
+    fprintf(out, "\n%s: %u cut points (%s every erase/program from %s)\n", CASE_TITLE[op],
+            (unsigned)n, g_torn ? "during" : "just after", CASE_END[op]);
+    if (op == PC_WRONG_KEY) {
+        fprintf(out, "(the key answered after operation %u: the wrong key counted before it)\n",
+                (unsigned)g_key_ops);
+    }
+    fprintf(out, "\n");
     fprintf(out, "| operation cut %s | cut points | runs old | runs new | bad |\n",
             g_torn ? "during" : "after");
     fprintf(out, "|---|---|---|---|---|\n");
@@ -352,8 +490,9 @@ int powercut_cmd(int argc, char **argv)
             const bool help = strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0;
             fprintf(help ? stdout : stderr,
                     "usage: hil_sim powercut [-v] [--torn]\n"
-                    "A power cut just after every flash erase/program of a skill download and of "
-                    "a firmware\nupdate, one run each, then a boot: prints the count of cut "
+                    "A power cut just after every flash erase/program of a skill download, of "
+                    "a firmware\nupdate and of the wrong key that locks SecurityAccess out, one "
+                    "run each, then a boot: prints the count of cut "
                     "points and the outcome\ntable; -v one line per cut point. Exit 1 on any bad "
                     "outcome.\n--torn: the power fails during operation i instead (half "
                     "of it written).\n");
@@ -365,8 +504,11 @@ int powercut_cmd(int argc, char **argv)
     }
     static sim_scenario_t sc;
     sim_scenario_defaults(&sc);
-    const int a = run_case(stdout, &sc, false, verbose);
-    const int b = run_case(stdout, &sc, true, verbose);
-    printf("\nbad outcomes: %d\n", (a < 0 ? 1 : a) + (b < 0 ? 1 : b));
-    return a == 0 && b == 0 ? 0 : 1;
+    int bad = 0;
+    for (int op = 0; op < (int)PC_CASES; op++) {
+        const int b = run_case(stdout, &sc, (pc_case_t)op, verbose);
+        bad += b < 0 ? 1 : b;
+    }
+    printf("\nbad outcomes: %d\n", bad);
+    return bad == 0 ? 0 : 1;
 }

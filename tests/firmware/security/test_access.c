@@ -15,7 +15,7 @@
 /* Deterministic test RNG (xorshift32), or a fixed seed, or failure. */
 typedef struct {
     uint32_t x;
-    int mode;   /* 0 xorshift, 1 fixed pattern, 2 fail, 3 all zeros */
+    int mode; /* 0 xorshift, 1 fixed pattern, 2 fail, 3 all zeros */
 } test_rng_t;
 
 static int rng_fill(void *ctx, uint8_t *buf, uint32_t len)
@@ -230,6 +230,34 @@ static void test_delay_and_lockout(void **state)
     assert_true(sec_is_unlocked(&st));
 }
 
+/* Power-up from the record kept across resets: a lockout, and a count of max_attempts wrong keys
+ * whose lockout was never recorded (the power failed between the two writes), both restart the
+ * lockout; fewer wrong keys the delay; none the boot delay. */
+static void test_restore_from_the_record(void **state)
+{
+    (void)state;
+    sec_config_t cfg;
+    setup_cfg(&cfg);
+    uint8_t seed[SEC_SEED_LEN];
+    static const struct {
+        uint8_t failed, locked_out;
+        uint32_t wait_ms;
+    } cases[] = {{0u, 0u, 1000u}, {2u, 0u, 1000u}, {3u, 0u, 10000u}, {0u, 1u, 10000u}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        sec_state_t st;
+        const uint32_t t = 5000u;
+        sec_restore(&cfg, &st, t, cases[i].failed, cases[i].locked_out);
+        assert_int_equal(sec_request_seed(&cfg, &st, t + cases[i].wait_ms - 1u, seed),
+                         SEC_NRC_DELAY_NOT_EXPIRED);
+        assert_int_equal(sec_request_seed(&cfg, &st, t + cases[i].wait_ms, seed), SEC_NRC_NONE);
+        uint8_t rec[SEC_RECORD_LEN], failed = 0xFFu, locked = 0xFFu;
+        sec_record_encode(&st, rec);
+        assert_true(sec_record_decode(rec, SEC_RECORD_LEN, &failed, &locked));
+        assert_int_equal(locked, 0u); /* the lockout served: the count starts again */
+        assert_int_equal(failed, cases[i].wait_ms == 10000u ? 0u : cases[i].failed);
+    }
+}
+
 static void test_configurable_attempts_and_wrap(void **state)
 {
     (void)state;
@@ -248,7 +276,7 @@ static void test_configurable_attempts_and_wrap(void **state)
         const sec_nrc_t r = sec_send_key(&cfg, &st, t, wrong, SEC_KEY_LEN);
         assert_int_equal(r, i < 5 ? SEC_NRC_INVALID_KEY : SEC_NRC_EXCEEDED_ATTEMPTS);
         assert_int_equal(sec_request_seed(&cfg, &st, t + 1, seed), SEC_NRC_DELAY_NOT_EXPIRED);
-        t += (i < 5) ? cfg.delay_ms : 0u;   /* crosses 2^32 here */
+        t += (i < 5) ? cfg.delay_ms : 0u; /* crosses 2^32 here */
     }
     assert_int_equal(sec_request_seed(&cfg, &st, t + cfg.lockout_ms - 1u, seed),
                      SEC_NRC_DELAY_NOT_EXPIRED);
@@ -290,6 +318,7 @@ int main(void)
         cmocka_unit_test(test_sequence_and_length),
         cmocka_unit_test(test_every_bit_flip_rejected),
         cmocka_unit_test(test_delay_and_lockout),
+        cmocka_unit_test(test_restore_from_the_record),
         cmocka_unit_test(test_configurable_attempts_and_wrap),
         cmocka_unit_test(test_rng_failures_and_config),
     };
