@@ -144,10 +144,14 @@ static bool commit_slice(slots_t *b, fs_status_t *st)
             return false;
         }
         *st = b->parser.status;
+        skchk_params_begin(&b->params, &b->staging);
         b->commit_stage = SLOTS_COMMIT_PARAMS;
         return *st != FS_OK;
     case SLOTS_COMMIT_PARAMS:
-        *st = skchk_params(&b->staging);
+        if (!skchk_params_run(&b->params, SLOTS_PARAMS_UNITS_PER_TICK)) {
+            return false;
+        }
+        *st = b->params.status;
         if (*st == FS_OK) {
             *st = skchk_stiffness(&b->staging, b->lim.stiffness_max_Npm);
         }

@@ -27,6 +27,9 @@
  * CMakeLists.txt: the M4F 3,000 instructions, the M3 8,000; the host build takes large slices):
  *   SLOTS_PARSE_UNITS_PER_TICK  units of the image's parse (skill_parse_run: one kernel's value,
  *                               32 bytes of the CRC; at most ~450 instructions on the M4F)
+ *   SLOTS_PARAMS_UNITS_PER_TICK  units of the parameter check (skchk_params_run: the scalars,
+ *                               SKCHK_PARAMS_KERNELS_PER_UNIT kernels; the host and the M4F
+ *                               check all in one tick)
  *   SLOTS_CONVERT_UNITS_PER_TICK  units of the skill's conversion to fixed point (the
  *                               fixed-point build: dmpfx_bound_run, one kernel or one window
  *                               check a unit)
@@ -41,6 +44,9 @@
 #endif
 #ifndef SLOTS_CHECK_STEPS_PER_TICK
 #define SLOTS_CHECK_STEPS_PER_TICK 100u
+#endif
+#ifndef SLOTS_PARAMS_UNITS_PER_TICK
+#define SLOTS_PARAMS_UNITS_PER_TICK UINT32_MAX
 #endif
 #ifndef SLOTS_CONVERT_UNITS_PER_TICK
 #define SLOTS_CONVERT_UNITS_PER_TICK 8u
@@ -58,7 +64,8 @@
 /** The stages of a download's commit (one slice a tick at least). */
 enum {
     SLOTS_COMMIT_PARSE = 0, /* skill_parse_run, SLOTS_PARSE_UNITS_PER_TICK units a slice */
-    SLOTS_COMMIT_PARAMS,    /* skchk_params, skchk_stiffness, skchk_begin */
+    SLOTS_COMMIT_PARAMS,    /* skchk_params_run, SLOTS_PARAMS_UNITS_PER_TICK units a slice,
+                               then skchk_stiffness, skchk_begin */
     SLOTS_COMMIT_CONVERT,   /* the fixed-point build: the skill in fixed point,
                                SLOTS_CONVERT_UNITS_PER_TICK units a slice, then dmpfx_check_begin */
     SLOTS_COMMIT_CHECK,     /* the rollout, SLOTS_CHECK_STEPS_PER_TICK steps a slice (the
@@ -91,6 +98,7 @@ typedef struct {
     uint16_t last_transfer_status; /* fs_status / nvm status of the last download */
     skill_t staging;               /* validation target of a download */
     skill_parser_t parser;         /* the parse of staging, spread over ticks */
+    skchk_params_t params;         /* parameter check of staging, spread over ticks */
     skchk_t check;                 /* output check of staging, spread over ticks */
     nvm_writer_t writer;           /* the slot's flash write, spread over ticks */
     bool checking;                 /* a download's commit runs: nothing starts meanwhile */
