@@ -232,16 +232,23 @@ static void check_bound(const dmp_model_t *m, const char *name, double gs, doubl
     assert_true(e <= FIXED_TOL_REL);
 }
 
+/* A manifest of tests/vectors, open for reading. */
+static FILE *open_manifest(const char *name)
+{
+    char mpath[512];
+    snprintf(mpath, sizeof(mpath), "%s/%s", FS_VECTORS_DIR, name);
+    FILE *mf = fopen(mpath, "r");
+    assert_non_null(mf);
+    return mf;
+}
+
 static void test_bound_conversion(void **state)
 {
     (void)state;
     const char *manifests[] = {"manifest.txt", "manifest_y.txt"};
     int lines = 0;
     for (size_t k = 0; k < 2u; k++) {
-        char mpath[512];
-        snprintf(mpath, sizeof(mpath), "%s/%s", FS_VECTORS_DIR, manifests[k]);
-        FILE *mf = fopen(mpath, "r");
-        assert_non_null(mf);
+        FILE *mf = open_manifest(manifests[k]);
         char line[600];
         while (fgets(line, sizeof(line), mf) != NULL) {
             char sk[256];
@@ -340,10 +347,7 @@ static void test_commit_path(void **state)
     int lines = 0;
     double worst = 0.0;
     for (size_t k = 0; k < 3u; k++) {
-        char mpath[512];
-        snprintf(mpath, sizeof(mpath), "%s/%s", FS_VECTORS_DIR, manifests[k]);
-        FILE *mf = fopen(mpath, "r");
-        assert_non_null(mf);
+        FILE *mf = open_manifest(manifests[k]);
         char line[600];
         char last[256] = "";
         while (fgets(line, sizeof(line), mf) != NULL) {
