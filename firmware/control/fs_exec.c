@@ -183,12 +183,13 @@ static fs_status_t exec_dmp_status(exec_state_t *st)
 #endif
 }
 
-/* The law's state from zero (the fixed-point build converts cfg->pfc: 303 if it does not fit). */
+/* The law's state from zero (the fixed-point build converts cfg->pfc, which exec_start
+ * validated: 303 if it does not fit). */
 static fs_status_t exec_law_reset(const exec_config_t *cfg, exec_state_t *st)
 {
 #ifdef FS_EXEC_FIXED
     pfcfx_reset(&st->pfc);
-    return pfcfx_from_config(&cfg->pfc, &st->pfc_cfg);
+    return pfcfx_from_valid_config(&cfg->pfc, &st->pfc_cfg); /* validated by exec_start */
 #else
     (void)cfg;
     pfc_reset(&st->pfc);

@@ -39,9 +39,11 @@ fs_status_t pfcfx_from_config(const pfc_config_t *cfg, pfcfx_config_t *out)
         return FS_ERR_NULL_ARG;
     }
     const fs_status_t v = pfc_config_validate(cfg);
-    if (v != FS_OK) {
-        return v;
-    }
+    return (v == FS_OK) ? pfcfx_from_valid_config(cfg, out) : v;
+}
+
+fs_status_t pfcfx_from_valid_config(const pfc_config_t *cfg, pfcfx_config_t *out)
+{
     for (uint32_t a = 0u; a < PFC_AXES; a++) {
         const pfc_axis_gains_t *g = &cfg->gains[a];
         const pfc_axis_limits_t *l = &cfg->limits[a];
