@@ -7,7 +7,28 @@
 #include "uds_nrc.h"
 
 /* A stored skill's check without limits: its peak force and path extent, for the run checks
- * (the limits may have changed since its commit). */
+ * (the limits may have changed since its commit); the fixed-point build converts it into *fx
+ * and checks the rollout the executor will run. */
+#ifdef FS_EXEC_FIXED
+static fs_status_t check_stored(const skill_t *sk, dmpfx_model_t *fx, fs_real_t dt_s,
+                                fs_real_t *peak_N, fs_real_t *path_m)
+{
+    fs_status_t st = skchk_params(sk);
+    if (st == FS_OK) {
+        st = dmpfx_from_model_bound(&sk->dmp, fx);
+    }
+    if (st != FS_OK) {
+        return st;
+    }
+    dmpfx_check_t c;
+    dmpfx_check_begin(&c, fx, sk->dmp.duration_s, dt_s, FS_R(1e30), FS_R(1e30));
+    while (!dmpfx_check_run(&c, UINT32_MAX)) {
+    }
+    *peak_N = dmpfx_check_peak_N(&c);
+    *path_m = dmpfx_check_path_m(&c);
+    return c.status;
+}
+#else
 static fs_status_t check_stored(const skill_t *sk, fs_real_t dt_s, fs_real_t *peak_N,
                                 fs_real_t *path_m)
 {
@@ -23,6 +44,17 @@ static fs_status_t check_stored(const skill_t *sk, fs_real_t dt_s, fs_real_t *pe
     *peak_N = c.peak_N;
     *path_m = c.path_peak_m;
     return c.status;
+}
+#endif
+
+/* check_stored on slot s's parsed skill (the fixed-point build into the slot's model). */
+static fs_status_t check_slot(slots_t *b, uint16_t s, fs_real_t *peak_N, fs_real_t *path_m)
+{
+#ifdef FS_EXEC_FIXED
+    return check_stored(&b->skill[s], &b->fx[s], (fs_real_t)FS_TICK_S, peak_N, path_m);
+#else
+    return check_stored(&b->skill[s], (fs_real_t)FS_TICK_S, peak_N, path_m);
+#endif
 }
 
 void slots_init(slots_t *b, const fls_dev_t *dev)
@@ -45,7 +77,7 @@ void slots_reload(slots_t *b)
         fs_real_t path = FS_R(0.0);
         if (nvm_read(&b->nvm, s, b->image, sizeof(b->image), &len) == NVM_OK &&
             skill_parse(b->image, len, &b->skill[s]) == FS_OK &&
-            check_stored(&b->skill[s], (fs_real_t)FS_TICK_S, &peak, &path) == FS_OK) {
+            check_slot(b, s, &peak, &path) == FS_OK) {
             b->valid[s] = true;
             b->peak_N[s] = peak;
             b->path_m[s] = path;
@@ -59,6 +91,13 @@ const skill_t *slots_skill(const slots_t *b, uint32_t slot)
 {
     return (slot >= 1u && slot <= SLOTS_N && b->valid[slot - 1u]) ? &b->skill[slot - 1u] : NULL;
 }
+
+#ifdef FS_EXEC_FIXED
+const dmpfx_model_t *slots_skill_fx(const slots_t *b, uint32_t slot)
+{
+    return (slot >= 1u && slot <= SLOTS_N && b->valid[slot - 1u]) ? &b->fx[slot - 1u] : NULL;
+}
+#endif
 
 bool slots_any(const slots_t *b)
 {
@@ -105,25 +144,52 @@ static bool commit_slice(slots_t *b, fs_status_t *st)
             return false;
         }
         *st = b->parser.status;
+        skchk_params_begin(&b->params, &b->staging);
         b->commit_stage = SLOTS_COMMIT_PARAMS;
         return *st != FS_OK;
     case SLOTS_COMMIT_PARAMS:
-        *st = skchk_params(&b->staging);
+        if (!skchk_params_run(&b->params, SLOTS_PARAMS_UNITS_PER_TICK)) {
+            return false;
+        }
+        *st = b->params.status;
         if (*st == FS_OK) {
             *st = skchk_stiffness(&b->staging, b->lim.stiffness_max_Npm);
         }
         if (*st != FS_OK) {
             return true;
         }
+#ifdef FS_EXEC_FIXED
+        dmpfx_bound_begin(&b->conv, &b->staging.dmp, &b->staging_fx);
+        b->commit_stage = SLOTS_COMMIT_CONVERT;
+        return false;
+    case SLOTS_COMMIT_CONVERT:
+        if (!dmpfx_bound_run(&b->conv, SLOTS_CONVERT_UNITS_PER_TICK)) {
+            return false;
+        }
+        *st = b->conv.status; /* 3xx: the skill does not fit the fixed-point executor */
+        if (*st != FS_OK) {
+            return true;
+        }
+        dmpfx_check_begin(&b->fx_check, &b->staging_fx, b->staging.dmp.duration_s, b->lim.dt_s,
+                          b->lim.force_max_N, b->lim.path_max_m);
+#else
         skchk_begin(&b->check, &b->staging, b->lim.dt_s, b->lim.force_max_N);
         b->check.path_max_m = b->lim.path_max_m;
+#endif
         b->commit_stage = SLOTS_COMMIT_CHECK;
         return false;
     case SLOTS_COMMIT_CHECK:
+#ifdef FS_EXEC_FIXED
+        if (!dmpfx_check_run(&b->fx_check, SLOTS_CHECK_STEPS_PER_TICK)) {
+            return false;
+        }
+        *st = b->fx_check.status; /* 223/225/300: slot unchanged */
+#else
         if (!skchk_run(&b->check, SLOTS_CHECK_STEPS_PER_TICK)) {
             return false;
         }
         *st = b->check.status; /* 222/223/225: slot unchanged */
+#endif
         if (*st != FS_OK) {
             return true;
         }
@@ -163,8 +229,14 @@ uint8_t slots_commit_step(slots_t *b, const slots_limits_t *lim, uint32_t *crc_o
     const uint32_t s = b->xfer_slot - 1u;
     b->skill[s] = b->staging;
     b->valid[s] = true;
+#ifdef FS_EXEC_FIXED
+    b->fx[s] = b->staging_fx;
+    b->peak_N[s] = dmpfx_check_peak_N(&b->fx_check);
+    b->path_m[s] = dmpfx_check_path_m(&b->fx_check);
+#else
     b->peak_N[s] = b->check.peak_N;
     b->path_m[s] = b->check.path_peak_m;
+#endif
     b->last_transfer_status = 0u;
     *crc_out = b->parser.crc; /* the image's CRC-32, checked by the parse */
     b->crc[s] = *crc_out;

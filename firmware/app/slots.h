@@ -15,6 +15,9 @@
 #include "nvm.h"
 #include "skill.h"
 #include "skill_check.h"
+#ifdef FS_EXEC_FIXED
+#include "dmpfx.h"
+#endif
 
 #define SLOTS_N NVM_MAX_SLOTS           /* slot numbers 1..SLOTS_N on the wire */
 #define SLOTS_IMAGE_MAX SKILL_IMAGE_MAX /* the longest image a slot holds */
@@ -24,8 +27,15 @@
  * CMakeLists.txt: the M4F 3,000 instructions, the M3 8,000; the host build takes large slices):
  *   SLOTS_PARSE_UNITS_PER_TICK  units of the image's parse (skill_parse_run: one kernel's value,
  *                               32 bytes of the CRC; at most ~450 instructions on the M4F)
+ *   SLOTS_PARAMS_UNITS_PER_TICK  units of the parameter check (skchk_params_run: the scalars,
+ *                               SKCHK_PARAMS_KERNELS_PER_UNIT kernels; the host and the M4F
+ *                               check all in one tick)
+ *   SLOTS_CONVERT_UNITS_PER_TICK  units of the skill's conversion to fixed point (the
+ *                               fixed-point build: dmpfx_bound_run, one kernel or one window
+ *                               check a unit)
  *   SLOTS_CHECK_STEPS_PER_TICK  DMP steps of the skill's own rollout (skill_check.h: ~480
- *                               instructions on the M4F, ~11,000 on the M3's software float)
+ *                               instructions on the M4F; the fixed-point build's rollout,
+ *                               dmpfx_check_run, on the M3)
  *   SLOTS_FLASH_UNITS_PER_TICK  units of the slot's flash write (nvm_write_run: the erase, the
  *                               commit word, NVM_SLICE_BYTES of the CRC or the final scan, or
  *                               NVM_CHUNK bytes programmed or read back) */
@@ -34,6 +44,12 @@
 #endif
 #ifndef SLOTS_CHECK_STEPS_PER_TICK
 #define SLOTS_CHECK_STEPS_PER_TICK 100u
+#endif
+#ifndef SLOTS_PARAMS_UNITS_PER_TICK
+#define SLOTS_PARAMS_UNITS_PER_TICK UINT32_MAX
+#endif
+#ifndef SLOTS_CONVERT_UNITS_PER_TICK
+#define SLOTS_CONVERT_UNITS_PER_TICK 8u
 #endif
 #ifndef SLOTS_FLASH_UNITS_PER_TICK
 #define SLOTS_FLASH_UNITS_PER_TICK 2u
@@ -48,8 +64,12 @@
 /** The stages of a download's commit (one slice a tick at least). */
 enum {
     SLOTS_COMMIT_PARSE = 0, /* skill_parse_run, SLOTS_PARSE_UNITS_PER_TICK units a slice */
-    SLOTS_COMMIT_PARAMS,    /* skchk_params, skchk_stiffness, skchk_begin */
-    SLOTS_COMMIT_CHECK,     /* the rollout, SLOTS_CHECK_STEPS_PER_TICK steps a slice */
+    SLOTS_COMMIT_PARAMS,    /* skchk_params_run, SLOTS_PARAMS_UNITS_PER_TICK units a slice,
+                               then skchk_stiffness, skchk_begin */
+    SLOTS_COMMIT_CONVERT,   /* the fixed-point build: the skill in fixed point,
+                               SLOTS_CONVERT_UNITS_PER_TICK units a slice, then dmpfx_check_begin */
+    SLOTS_COMMIT_CHECK,     /* the rollout, SLOTS_CHECK_STEPS_PER_TICK steps a slice (the
+                               fixed-point build: on the converted skill, dmpfx_check_run) */
     SLOTS_COMMIT_WRITE      /* the slot's flash record, SLOTS_FLASH_UNITS_PER_TICK units a
                                slice, then the slot cache */
 };
@@ -78,6 +98,7 @@ typedef struct {
     uint16_t last_transfer_status; /* fs_status / nvm status of the last download */
     skill_t staging;               /* validation target of a download */
     skill_parser_t parser;         /* the parse of staging, spread over ticks */
+    skchk_params_t params;         /* parameter check of staging, spread over ticks */
     skchk_t check;                 /* output check of staging, spread over ticks */
     nvm_writer_t writer;           /* the slot's flash write, spread over ticks */
     bool checking;                 /* a download's commit runs: nothing starts meanwhile */
@@ -85,6 +106,12 @@ typedef struct {
     slots_limits_t lim;            /* the commit's limits, taken at its first slice */
     nvm_reader_t reader;           /* a read-back's record read and CRC, spread over ticks */
     bool reading;                  /* a read-back's RequestUpload is answered 0x78 meanwhile */
+#ifdef FS_EXEC_FIXED
+    dmpfx_model_t fx[SLOTS_N]; /* each valid slot's skill in fixed point: what an execution runs */
+    dmpfx_model_t staging_fx;  /* staging in fixed point (the commit's conversion) */
+    dmpfx_conv_t conv;         /* the conversion of staging, spread over ticks */
+    dmpfx_check_t fx_check;    /* the output check of staging_fx, spread over ticks */
+#endif
 } slots_t;
 
 /** Open storage on dev (NULL: none) and fill the cache from it; no transfer. */
@@ -95,6 +122,12 @@ void slots_reload(slots_t *b);
 
 /** The cached skill of slot 1..SLOTS_N, NULL for an empty or out-of-range slot. */
 const skill_t *slots_skill(const slots_t *b, uint32_t slot);
+
+#ifdef FS_EXEC_FIXED
+/** The fixed-point model of slot 1..SLOTS_N (converted at its commit or load), NULL for an empty
+ *  or out-of-range slot. */
+const dmpfx_model_t *slots_skill_fx(const slots_t *b, uint32_t slot);
+#endif
 
 /** True if any slot holds a valid skill. */
 bool slots_any(const slots_t *b);

@@ -53,8 +53,8 @@ static fs_real_t exec_step_duration(const exec_step_t *s)
     return s->skill->dmp.duration_s * s->time_scale;
 }
 
-/* The running step's DMP from zero state and its length in ticks at dt_s; the fixed-point build converts its skill and scales
- * (3xx when one does not fit). */
+/* The running step's DMP from its starting state and its length in ticks at dt_s (the
+ * fixed-point build selects the state exec_start derived). */
 static fs_status_t exec_begin_step(exec_state_t *st, fs_real_t dt_s)
 {
     const exec_step_t *s = &st->steps[st->step];
@@ -66,19 +66,9 @@ static fs_status_t exec_begin_step(exec_state_t *st, fs_real_t dt_s)
     st->step_tick = 0u;
     st->force_dmp_N = exec_step_start_force(s);
 #ifdef FS_EXEC_FIXED
-    dmpfx_state_reset(&st->dmp);
+    st->dmp = st->dmp_start[st->step]; /* derived by exec_start */
     st->dmp_saturated = 0u;
-    fs_status_t rc = dmpfx_from_model_bound(&s->skill->dmp, &st->dmp_model);
-    if (rc == FS_OK) {
-        rc = dmpfx_run_init(&st->dmp_model, (double)s->goal_scale, (double)s->time_scale, &st->run);
-    }
-    if (rc == FS_OK) {
-        rc = dmpfx_run_periodic(&st->dmp_model, (double)s->amplitude_scale, &st->run);
-    }
-    if (rc == FS_OK && periodic != 0u) {
-        dmpfx_periodic_reset(&st->dmp_model, &st->run, &st->dmp);
-    }
-    return (rc == FS_OK) ? dmpfx_run_path(&st->dmp_model, (double)s->path_scale, &st->run) : rc;
+    return FS_OK;
 #else
     if (periodic != 0u) {
         dmp_periodic_reset(&s->skill->dmp, &st->dmp, s->amplitude_scale);
@@ -91,6 +81,29 @@ static fs_status_t exec_begin_step(exec_state_t *st, fs_real_t dt_s)
 #endif
 }
 
+#ifdef FS_EXEC_FIXED
+/* Step i's per-run constants and starting state from its fixed-point model (exec_start). */
+static fs_status_t exec_prepare_step(exec_state_t *st, uint8_t i)
+{
+    const exec_step_t *s = &st->steps[i];
+    const dmpfx_model_t *m = s->model_fx;
+    dmpfx_run_t *run = &st->run[i];
+    fs_status_t rc = dmpfx_run_init(m, (double)s->goal_scale, (double)s->time_scale, run);
+    if (rc == FS_OK) {
+        rc = dmpfx_run_periodic(m, (double)s->amplitude_scale, run);
+    }
+    if (rc == FS_OK) {
+        rc = dmpfx_run_path(m, (double)s->path_scale, run);
+    }
+    if (m->periodic != 0u) {
+        dmpfx_periodic_reset(m, run, &st->dmp_start[i]);
+    } else {
+        dmpfx_state_reset(&st->dmp_start[i]);
+    }
+    return rc;
+}
+#endif
+
 /* One DMP step of the running step s (coupling cp may be NULL): returns f_hat, p into path_m. */
 static fs_real_t exec_dmp_step(exec_state_t *st, const exec_step_t *s, const dmp_coupling_t *cp)
 {
@@ -101,22 +114,24 @@ static fs_real_t exec_dmp_step(exec_state_t *st, const exec_step_t *s, const dmp
         c.rate_q31 = (uint32_t)fx_from_float(FS_R(1.0) / (FS_R(1.0) + cp->phase_slowdown), 31u);
     }
     const uint32_t ev = st->dmp.sat_events;
-    if (st->dmp_model.periodic != 0u) {
-        (void)dmpfx_periodic_step(&st->dmp_model, &st->run, &st->dmp, (cp != 0) ? &c : 0);
+    const dmpfx_model_t *m = s->model_fx;
+    const dmpfx_run_t *run = &st->run[st->step];
+    if (m->periodic != 0u) {
+        (void)dmpfx_periodic_step(m, run, &st->dmp, (cp != 0) ? &c : 0);
         st->dmp_saturated = (st->dmp.sat_events != ev) ? 1u : 0u;
         st->path_m = FS_R(0.0);
         /* f0 + 2^s*(g_e + e): the goal in Q8.24 units, e from its accumulator */
         return s->skill->dmp.force0_N +
-               fx_to_float(st->run.goal_q24, 24u) * fx_to_float(st->dmp_model.out_scale_q12, 12u) +
-               fx_acc_to_float(st->dmp.y_acc, st->dmp_model.value_shift - 55);
+               fx_to_float(run->goal_q24, 24u) * fx_to_float(m->out_scale_q12, 12u) +
+               fx_acc_to_float(st->dmp.y_acc, m->value_shift - 55);
     }
-    (void)dmpfx_step_xy(&st->dmp_model, &st->run, &st->dmp, (cp != 0) ? &c : 0, 0);
+    (void)dmpfx_step_xy(m, run, &st->dmp, (cp != 0) ? &c : 0, 0);
     st->dmp_saturated = (st->dmp.sat_events != ev) ? 1u : 0u;
     /* y and p from their accumulators (value * 2^31 of Q8.24, y in units of 2^s N), not from
      * the Q8.24 views: the references' velocities and accelerations are their differences, and
      * a view's LSB (6e-8 m) differenced twice at 1 kHz would be 0.06 m/s^2 */
     st->path_m = fx_acc_to_float(st->dmp.path_acc, -55);
-    return s->skill->dmp.force0_N + fx_acc_to_float(st->dmp.y_acc, st->dmp_model.value_shift - 55);
+    return s->skill->dmp.force0_N + fx_acc_to_float(st->dmp.y_acc, m->value_shift - 55);
 #else
     if (s->skill->dmp.periodic != 0u) {
         st->path_m = FS_R(0.0);
@@ -168,17 +183,40 @@ static fs_status_t exec_dmp_status(exec_state_t *st)
 #endif
 }
 
-/* The law's state from zero (the fixed-point build converts cfg->pfc: 303 if it does not fit). */
+/* The law's state from zero (the fixed-point build converts cfg->pfc, which exec_start
+ * validated: 303 if it does not fit). */
 static fs_status_t exec_law_reset(const exec_config_t *cfg, exec_state_t *st)
 {
 #ifdef FS_EXEC_FIXED
     pfcfx_reset(&st->pfc);
-    return pfcfx_from_config(&cfg->pfc, &st->pfc_cfg);
+    return pfcfx_from_valid_config(&cfg->pfc, &st->pfc_cfg); /* validated by exec_start */
 #else
     (void)cfg;
     pfc_reset(&st->pfc);
     return FS_OK;
 #endif
+}
+
+/* A step's skill (and, the fixed-point build, its model) and its scales (exec_start). */
+static fs_status_t exec_check_step(const exec_step_t *s)
+{
+    if (s->skill == 0) {
+        return FS_ERR_NULL_ARG;
+    }
+#ifdef FS_EXEC_FIXED
+    if (s->model_fx == 0) {
+        return FS_ERR_NULL_ARG;
+    }
+#endif
+    if (s->skill->dmp.periodic != 0u &&
+        (!fs_isfinite(s->amplitude_scale) || s->amplitude_scale < FS_R(0.0))) {
+        return FS_ERR_SCALE_INVALID;
+    }
+    if (!fs_isfinite(s->goal_scale) || !fs_isfinite(s->time_scale) || !fs_isfinite(s->duration_s) ||
+        s->time_scale <= FS_R(0.0) || !fs_isfinite(s->path_scale) || s->path_scale < FS_R(0.0)) {
+        return FS_ERR_SCALE_INVALID;
+    }
+    return FS_OK;
 }
 
 fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
@@ -218,20 +256,11 @@ fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_st
         }
     }
     for (uint8_t i = 0u; i < n_steps; i++) {
-        const exec_step_t *s = &steps[i];
-        if (s->skill == 0) {
-            return FS_ERR_NULL_ARG;
+        rc = exec_check_step(&steps[i]);
+        if (rc != FS_OK) {
+            return rc;
         }
-        if (s->skill->dmp.periodic != 0u &&
-            (!fs_isfinite(s->amplitude_scale) || s->amplitude_scale < FS_R(0.0))) {
-            return FS_ERR_SCALE_INVALID;
-        }
-        if (!fs_isfinite(s->goal_scale) || !fs_isfinite(s->time_scale) ||
-            !fs_isfinite(s->duration_s) || s->time_scale <= FS_R(0.0) ||
-            !fs_isfinite(s->path_scale) || s->path_scale < FS_R(0.0)) {
-            return FS_ERR_SCALE_INVALID;
-        }
-        st->steps[i] = *s;
+        st->steps[i] = steps[i];
     }
     st->n_steps = n_steps;
     st->step = 0u;
@@ -252,12 +281,13 @@ fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_st
     st->y_ref_vel_mps = FS_R(0.0);
     st->start_pending = 1u;
     rc = exec_law_reset(cfg, st);
-    /* every step begins once here, the first last: a later switch cannot fail */
-    for (uint8_t i = n_steps; rc == FS_OK && i > 0u; i--) {
-        st->step = (uint8_t)(i - 1u);
-        rc = exec_begin_step(st, cfg->pfc.dt_s);
+#ifdef FS_EXEC_FIXED
+    /* every step's constants here: a later switch only selects them and cannot fail */
+    for (uint8_t i = 0u; rc == FS_OK && i < n_steps; i++) {
+        rc = exec_prepare_step(st, i);
     }
-    return rc;
+#endif
+    return (rc == FS_OK) ? exec_begin_step(st, cfg->pfc.dt_s) : rc;
 }
 
 fs_real_t exec_object_force(const exec_object_t *obj, fs_real_t p_m)
@@ -351,7 +381,7 @@ static fs_real_t exec_reference_force(const exec_config_t *cfg, exec_state_t *st
             st->path_m = FS_R(0.0);
             st->step++;
             st->force_carry_N = f - exec_step_start_force(&st->steps[st->step]);
-            (void)exec_begin_step(st, dt); /* converted by exec_start */
+            (void)exec_begin_step(st, dt); /* checked by exec_start */
         } else {
             st->ending = 1u;
             st->force_end_N = f;

@@ -48,10 +48,12 @@
  *                   the float32 executor (fs_app_exec_fx: the Cortex-M3 image). Per tick the
  *                   measurements and the references enter the law in Q formats and its
  *                   commands, the DMP's force and y path leave as fs_real_t; the rest of the
- *                   executor (reference model, blends, sequence) stays fs_real_t. A step's skill
- *                   is converted when the step begins (dmpfx_from_model_bound: O(N), no rollout),
- *                   the law's configuration at exec_start. Its symbols carry an _fx suffix, so
- *                   a test links it beside the real executor. */
+ *                   executor (reference model, blends, sequence) stays fs_real_t. A step names
+ *                   its skill's fixed-point model, converted beforehand (dmpfx_from_model_bound:
+ *                   the device does it at the skill's commit); exec_start derives every step's
+ *                   per-run constants and starting state and converts the law's configuration,
+ *                   so neither the start tick nor a switch between steps converts a skill. Its
+ *                   symbols carry an _fx suffix, so a test links it beside the real executor. */
 #ifdef FS_EXEC_FIXED
 #ifndef FS_REAL_FLOAT
 #error "FS_EXEC_FIXED is the float32 executor's fixed-point build (FS_REAL_FLOAT)"
@@ -91,6 +93,9 @@ typedef struct {
      * goal_scale scales */
     fs_real_t amplitude_scale;
     uint8_t until_stopped;
+#ifdef FS_EXEC_FIXED
+    const dmpfx_model_t *model_fx; /* the skill's DMP in fixed point (not owned, required) */
+#endif
 } exec_step_t;
 
 /** Known object model for the position reference (docs/math.md): f = m_v*pdd + d_v*pd
@@ -140,8 +145,8 @@ typedef struct {
     uint8_t ending; /* 1 after the last step's duration: end policy active */
     uint8_t done;
 #ifdef FS_EXEC_FIXED
-    dmpfx_model_t dmp_model; /* the running step's skill in fixed point */
-    dmpfx_run_t run;
+    dmpfx_run_t run[EXEC_MAX_STEPS];         /* each step's per-run constants */
+    dmpfx_state_t dmp_start[EXEC_MAX_STEPS]; /* each step's starting DMP state */
     dmpfx_state_t dmp;
     pfcfx_config_t pfc_cfg; /* cfg->pfc at exec_start */
     pfcfx_state_t pfc;
@@ -176,8 +181,9 @@ void exec_config_default(exec_config_t *cfg);
 
 /** Load a sequence (1..EXEC_MAX_STEPS steps) and reset the state; y_hold_m is the y position the
  *  path starts from (held by skills without a y DMP). Validates skills (non-NULL), finite scales,
- *  time_scale > 0, path_scale >= 0 (a periodic step's amplitude_scale too) and the configuration; the fixed-point build also converts
- *  every step (3xx codes: a skill, scale or gain that does not fit its Q format). */
+ *  time_scale > 0, path_scale >= 0 (a periodic step's amplitude_scale too) and the
+ *  configuration; the fixed-point build also needs every step's model_fx (FS_ERR_NULL_ARG) and
+ *  derives its constants (3xx codes: a scale or gain that does not fit its Q format). */
 fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
                        uint8_t n_steps, fs_real_t y_hold_m);
 

@@ -34,6 +34,8 @@
 #define skill_parse_run skill_parse_run_f32
 #define skill_parse skill_parse_f32
 #define skchk_params skchk_params_f32
+#define skchk_params_begin skchk_params_begin_f32
+#define skchk_params_run skchk_params_run_f32
 #define skchk_begin skchk_begin_f32
 #define skchk_run skchk_run_f32
 #define skchk_skill skchk_skill_f32

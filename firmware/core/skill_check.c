@@ -20,55 +20,123 @@ static bool step_ok(const skill_t *s, fs_real_t dt_s, fs_real_t time_scale)
     return fs_isfinite(h) && h <= (fs_real_t)(SKCHK_STEP_MAX);
 }
 
-fs_status_t skchk_params(const skill_t *s)
+/* The scalar ranges of skchk_params (its first check). */
+static bool params_scalars_ok(const skill_t *s)
 {
-    if (s == NULL) {
-        return FS_ERR_NULL_ARG;
-    }
     const dmp_model_t *m = &s->dmp;
     const pfc_axis_gains_t *g = &s->gains;
-    bool ok = within(m->tau_s, (fs_real_t)(SKCHK_TAU_MIN_S), (fs_real_t)(SKCHK_TAU_MAX_S)) &&
-              within(m->goal_N, FS_R(0.0), (fs_real_t)(SKCHK_GOAL_MAX_N)) &&
-              m->goal_N > FS_R(0.0) &&
-              within(m->force0_N, (fs_real_t)(-SKCHK_FORCE0_MAX_N),
-                     (fs_real_t)(SKCHK_FORCE0_MAX_N)) &&
-              within(s->stiffness_Npm, FS_R(0.0), (fs_real_t)(SKCHK_STIFFNESS_MAX_NPM)) &&
-              s->stiffness_Npm > FS_R(0.0) &&
-              within(m->duration_s, FS_R(0.0), (fs_real_t)(SKCHK_DURATION_MAX_S)) &&
-              within(m->p.alpha, FS_R(0.0), (fs_real_t)(SKCHK_ALPHA_MAX)) &&
-              within(m->p.gamma, FS_R(0.0), (fs_real_t)(SKCHK_GAMMA_MAX)) &&
-              within(g->m_d_kg, (fs_real_t)(SKCHK_MASS_MIN_KG), (fs_real_t)(SKCHK_MASS_MAX_KG)) &&
-              within(g->k_d_Nspm, FS_R(0.0), (fs_real_t)(SKCHK_GAIN_MAX)) &&
-              within(g->k_p_Npm, FS_R(0.0), (fs_real_t)(SKCHK_GAIN_MAX)) &&
-              within(g->k_f, FS_R(0.0), (fs_real_t)(SKCHK_GAIN_MAX)) &&
-              within(g->k_i_per_s, FS_R(0.0), (fs_real_t)(SKCHK_GAIN_MAX)) &&
-              within(s->surface_m, (fs_real_t)(-SKCHK_SURFACE_MAX_M),
-                     (fs_real_t)(SKCHK_SURFACE_MAX_M));
+    return within(m->tau_s, (fs_real_t)(SKCHK_TAU_MIN_S), (fs_real_t)(SKCHK_TAU_MAX_S)) &&
+           within(m->goal_N, FS_R(0.0), (fs_real_t)(SKCHK_GOAL_MAX_N)) && m->goal_N > FS_R(0.0) &&
+           within(m->force0_N, (fs_real_t)(-SKCHK_FORCE0_MAX_N), (fs_real_t)(SKCHK_FORCE0_MAX_N)) &&
+           within(s->stiffness_Npm, FS_R(0.0), (fs_real_t)(SKCHK_STIFFNESS_MAX_NPM)) &&
+           s->stiffness_Npm > FS_R(0.0) &&
+           within(m->duration_s, FS_R(0.0), (fs_real_t)(SKCHK_DURATION_MAX_S)) &&
+           within(m->p.alpha, FS_R(0.0), (fs_real_t)(SKCHK_ALPHA_MAX)) &&
+           within(m->p.gamma, FS_R(0.0), (fs_real_t)(SKCHK_GAMMA_MAX)) &&
+           within(g->m_d_kg, (fs_real_t)(SKCHK_MASS_MIN_KG), (fs_real_t)(SKCHK_MASS_MAX_KG)) &&
+           within(g->k_d_Nspm, FS_R(0.0), (fs_real_t)(SKCHK_GAIN_MAX)) &&
+           within(g->k_p_Npm, FS_R(0.0), (fs_real_t)(SKCHK_GAIN_MAX)) &&
+           within(g->k_f, FS_R(0.0), (fs_real_t)(SKCHK_GAIN_MAX)) &&
+           within(g->k_i_per_s, FS_R(0.0), (fs_real_t)(SKCHK_GAIN_MAX)) &&
+           within(s->surface_m, (fs_real_t)(-SKCHK_SURFACE_MAX_M),
+                  (fs_real_t)(SKCHK_SURFACE_MAX_M));
+}
+
+/* Kernel i's weight and width within range. */
+static bool params_kernel_ok(const dmp_model_t *m, uint16_t i)
+{
     const fs_real_t w_min = (m->periodic != 0u) ? (fs_real_t)(SKCHK_KAPPA_MIN)
                                                 : (fs_real_t)(SKCHK_WIDTH_MIN);
     const fs_real_t w_max = (m->periodic != 0u) ? (fs_real_t)(SKCHK_KAPPA_MAX)
                                                 : (fs_real_t)(SKCHK_WIDTH_MAX);
-    for (uint16_t i = 0u; ok && i < m->n_kernels && i < DMP_MAX_KERNELS; i++) {
-        ok = within(m->weight[i], (fs_real_t)(-SKCHK_WEIGHT_MAX), (fs_real_t)(SKCHK_WEIGHT_MAX)) &&
-             within(m->width[i], w_min, w_max);
-    }
-    if (!ok || m->n_kernels == 0u || m->n_kernels > DMP_MAX_KERNELS) {
-        return FS_ERR_SKCHK_RANGE;
-    }
-    if (m->has_y != 0u) {
-        bool y_ok = within(m->goal_y_m, (fs_real_t)(-SKCHK_SURFACE_MAX_M),
-                           (fs_real_t)(SKCHK_SURFACE_MAX_M)) &&
-                    within(m->y_start_m, (fs_real_t)(-SKCHK_SURFACE_MAX_M),
-                           (fs_real_t)(SKCHK_SURFACE_MAX_M));
-        for (uint16_t i = 0u; y_ok && i < m->n_kernels; i++) {
-            y_ok = within(m->y_weight[i], (fs_real_t)(-SKCHK_WEIGHT_MAX),
-                          (fs_real_t)(SKCHK_WEIGHT_MAX));
+    return within(m->weight[i], (fs_real_t)(-SKCHK_WEIGHT_MAX), (fs_real_t)(SKCHK_WEIGHT_MAX)) &&
+           within(m->width[i], w_min, w_max);
+}
+
+/* The y DMP's scalar ranges (a model with has_y). */
+static bool params_y_scalars_ok(const dmp_model_t *m)
+{
+    return within(m->goal_y_m, (fs_real_t)(-SKCHK_SURFACE_MAX_M),
+                  (fs_real_t)(SKCHK_SURFACE_MAX_M)) &&
+           within(m->y_start_m, (fs_real_t)(-SKCHK_SURFACE_MAX_M),
+                  (fs_real_t)(SKCHK_SURFACE_MAX_M));
+}
+
+/* The stages of the sliced parameter check (skchk_params_t.stage). */
+enum {
+    PARAMS_SCALARS = 0,
+    PARAMS_KERNELS,
+    PARAMS_Y,
+    PARAMS_Y_WEIGHTS,
+    PARAMS_STEP
+};
+
+void skchk_params_begin(skchk_params_t *c, const skill_t *s)
+{
+    c->skill = s;
+    c->pos = 0u;
+    c->stage = PARAMS_SCALARS;
+    c->status = (s == NULL) ? FS_ERR_NULL_ARG : FS_OK;
+    c->done = s == NULL;
+}
+
+/* One unit of the parameter check: its status (FS_OK while it goes on). */
+static fs_status_t params_unit(skchk_params_t *c)
+{
+    const skill_t *s = c->skill;
+    const dmp_model_t *m = &s->dmp;
+    switch (c->stage) {
+    case PARAMS_SCALARS:
+        c->stage = PARAMS_KERNELS;
+        return (params_scalars_ok(s) && m->n_kernels != 0u && m->n_kernels <= DMP_MAX_KERNELS)
+                   ? FS_OK
+                   : FS_ERR_SKCHK_RANGE;
+    case PARAMS_KERNELS:
+        for (uint32_t k = 0u; k < SKCHK_PARAMS_KERNELS_PER_UNIT && c->pos < m->n_kernels; k++) {
+            if (!params_kernel_ok(m, c->pos++)) {
+                return FS_ERR_SKCHK_RANGE;
+            }
         }
-        if (!y_ok) {
-            return FS_ERR_SKCHK_PATH;
+        if (c->pos >= m->n_kernels) {
+            c->pos = 0u;
+            c->stage = (m->has_y != 0u) ? PARAMS_Y : PARAMS_STEP;
         }
+        return FS_OK;
+    case PARAMS_Y:
+        c->stage = PARAMS_Y_WEIGHTS;
+        return params_y_scalars_ok(m) ? FS_OK : FS_ERR_SKCHK_PATH;
+    case PARAMS_Y_WEIGHTS:
+        for (uint32_t k = 0u; k < SKCHK_PARAMS_KERNELS_PER_UNIT && c->pos < m->n_kernels; k++) {
+            const uint16_t i = c->pos++;
+            if (!within(m->y_weight[i], (fs_real_t)(-SKCHK_WEIGHT_MAX),
+                        (fs_real_t)(SKCHK_WEIGHT_MAX))) {
+                return FS_ERR_SKCHK_PATH;
+            }
+        }
+        if (c->pos >= m->n_kernels) {
+            c->stage = PARAMS_STEP;
+        }
+        return FS_OK;
+    default: c->done = true; return step_ok(s, m->dt_s, FS_R(1.0)) ? FS_OK : FS_ERR_SKCHK_STEP;
     }
-    return step_ok(s, m->dt_s, FS_R(1.0)) ? FS_OK : FS_ERR_SKCHK_STEP;
+}
+
+bool skchk_params_run(skchk_params_t *c, uint32_t max_units)
+{
+    for (uint32_t u = 0u; u < max_units && !c->done; u++) {
+        c->status = params_unit(c);
+        c->done = c->done || c->status != FS_OK;
+    }
+    return c->done;
+}
+
+fs_status_t skchk_params(const skill_t *s)
+{
+    skchk_params_t c;
+    skchk_params_begin(&c, s);
+    while (!skchk_params_run(&c, UINT32_MAX)) {
+    }
+    return c.status;
 }
 
 void skchk_begin(skchk_t *c, const skill_t *s, fs_real_t dt_s, fs_real_t force_max_N)

@@ -79,6 +79,25 @@ typedef struct {
  *  for NULL). */
 fs_status_t skchk_params(const skill_t *s);
 
+/** skchk_params in slices (skchk_params_begin, then skchk_params_run until it returns true):
+ *  the same checks in the same order, a unit the scalar ranges, SKCHK_PARAMS_KERNELS_PER_UNIT
+ *  kernels' weights and widths (or y weights), the y scalars or the step rule; then c->status
+ *  is skchk_params's result. *s must stay in place until it is done. */
+typedef struct {
+    const skill_t *skill;
+    uint16_t pos;  /* the next kernel of the stage */
+    uint8_t stage; /* internal */
+    bool done;
+    fs_status_t status; /* FS_OK while running or once passed; the refusal once done */
+} skchk_params_t;
+#define SKCHK_PARAMS_KERNELS_PER_UNIT 4u
+
+/** Start a sliced parameter check of s (NULL: FS_ERR_NULL_ARG at once). */
+void skchk_params_begin(skchk_params_t *c, const skill_t *s);
+
+/** At most max_units units of the parameter check; true once done (then c->status). */
+bool skchk_params_run(skchk_params_t *c, uint32_t max_units);
+
 /** Start the output check of s (parameters already checked) for an executor stepping every
  *  dt_s against the force limit force_max_N. */
 void skchk_begin(skchk_t *c, const skill_t *s, fs_real_t dt_s, fs_real_t force_max_N);

@@ -139,35 +139,11 @@ fs_status_t dmpfx_from_model(const dmp_model_t *m, dmpfx_model_t *out)
 
 fs_status_t dmpfx_from_model_bound(const dmp_model_t *m, dmpfx_model_t *out)
 {
-    const fs_status_t sa = dmpfx_check_args(m, out);
-    if (sa != FS_OK) {
-        return sa;
+    dmpfx_conv_t c;
+    dmpfx_bound_begin(&c, m, out);
+    while (!dmpfx_bound_run(&c, UINT32_MAX)) {
     }
-    const double bound_N = dmpfx_bound_N(m);
-    const int32_t s = dmpfx_choose_shift(bound_N);
-    const fs_status_t st = dmpfx_convert(m, s, out);
-    if (st != FS_OK) {
-        return st;
-    }
-    const double lim_q24 = DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE;
-    out->peak_q24 = ldexp(bound_N, 24 - s);
-    out->peak_y_q24 = 0.0;
-    if (m->has_y != 0u) {
-        out->peak_y_q24 = ldexp(fabs((double)m->goal_y_m) +
-                                    DMPFX_V_PEAK_BOUND * dmpfx_w_max(m->y_weight, m->n_kernels),
-                                24);
-    }
-    /* v~ of the phase system peaks at sqrt(alpha beta)/e when critically damped (beta =
-     * alpha/4), lower when overdamped; the Euler steps overshoot that by 0.2 % on the vectors
-     * (a periodic model has no v~) */
-    out->peak_v_q30 = (m->periodic != 0u)
-                          ? 0.0
-                          : ldexp(sqrt(out->alpha * out->beta) * DMPFX_INV_E * 1.01, 30);
-    if (out->peak_q24 > lim_q24 || out->peak_y_q24 > lim_q24 ||
-        out->peak_v_q30 > DMPFX_V_MAX * (double)FX_Q30_ONE) {
-        return FS_ERR_FIXED_OVERFLOW;
-    }
-    return FS_OK;
+    return c.status;
 }
 
 /* A periodic kernel's reach in turns at the fixed cutoff 16: asin(y)/pi, y = sqrt(16/(2 kappa)),
@@ -187,65 +163,111 @@ static fs_real_t dmpfx_periodic_reach(fs_real_t kappa)
     return (r < FS_R(0.5)) ? r : FS_R(0.5);
 }
 
-/* A periodic model's kernels in fixed point: turns, 2 sqrt(kappa), the half-angle sine and
- * cosine (the model's, derived at load), the envelopes in turns and the largest virtual window
- * (at most DMPFX_MAX_WINDOW). */
-static fs_status_t dmpfx_convert_periodic(const dmp_model_t *m, dmpfx_model_t *out)
+/* Periodic kernel i in fixed point: its turn, 2 sqrt(kappa), the half-angle sine and cosine
+ * (the model's, derived at load) and its envelopes in turns (before the prefix/suffix passes). */
+static fs_status_t dmpfx_kernel_periodic(const dmp_model_t *m, uint16_t i, dmpfx_model_t *out)
 {
-    const uint16_t n = m->n_kernels;
     const int32_t q24_lim = (int32_t)(DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE);
-    const fs_real_t inv_two_pi = FS_R(0.15915494309189535);
-    for (uint16_t i = 0u; i < n; i++) {
-        const fs_real_t x = m->centre[i] * inv_two_pi;
-        const fs_real_t kappa = m->width[i];
-        fs_status_t st = dmpfx_q(x, 30u, INT32_MAX, &out->centre[i]);
-        if (st == FS_OK) {
-            st = dmpfx_q(FS_R(2.0) * fs_sqrt(kappa), 19u, INT32_MAX, &out->kernel_scale[i]);
-        }
-        if (st == FS_OK) {
-            st = dmpfx_q(m->weight[i], 24u, q24_lim, &out->weight[i]);
-        }
-        if (st == FS_OK) {
-            st = dmpfx_q(m->half_sin[i], 30u, INT32_MAX, &out->half_sin[i]);
-        }
-        if (st == FS_OK) {
-            st = dmpfx_q(m->half_cos[i], 30u, INT32_MAX, &out->half_cos[i]);
-        }
-        if (st != FS_OK) {
-            return st;
-        }
-        const fs_real_t r = dmpfx_periodic_reach(kappa);
-        out->env_hi[i] = dmpfx_env_clamp_q30(x + r);
-        out->env_lo[i] = dmpfx_env_clamp_q30(x - r);
+    const fs_real_t x = m->centre[i] * FS_R(0.15915494309189535); /* 1/(2 pi) */
+    const fs_real_t kappa = m->width[i];
+    fs_status_t st = dmpfx_q(x, 30u, INT32_MAX, &out->centre[i]);
+    if (st == FS_OK) {
+        st = dmpfx_q(FS_R(2.0) * fs_sqrt(kappa), 19u, INT32_MAX, &out->kernel_scale[i]);
     }
-    for (uint16_t i = 1u; i < n; i++) {
-        out->env_hi[i] = (out->env_hi[i] < out->env_hi[i - 1u]) ? out->env_hi[i - 1u]
-                                                                : out->env_hi[i];
+    if (st == FS_OK) {
+        st = dmpfx_q(m->weight[i], 24u, q24_lim, &out->weight[i]);
     }
-    for (uint16_t j = (uint16_t)(n - 1u); j > 0u; j--) {
-        out->env_lo[j - 1u] = (out->env_lo[j - 1u] > out->env_lo[j]) ? out->env_lo[j]
-                                                                     : out->env_lo[j - 1u];
+    if (st == FS_OK) {
+        st = dmpfx_q(m->half_sin[i], 30u, INT32_MAX, &out->half_sin[i]);
     }
-    /* the window's end grows only at the virtual lower envelopes: its largest size is at one of
-     * them (or at the query range's start) */
-    const int32_t q_lo = FX_Q30_ONE >> 1;
-    const int32_t q_hi = FX_Q30_ONE + q_lo - 1;
-    for (uint32_t j = 0u; j <= 2u * (uint32_t)n; j++) {
-        int32_t q = (j == 2u * (uint32_t)n) ? q_lo : dmp_ptick_lo(out, j);
-        q = (q < q_lo) ? q_lo : ((q > q_hi) ? q_hi : q);
-        uint16_t win[2];
-        dmp_ptick_window_search(out, q, win);
-        if (win[1] > win[0] && (uint32_t)(win[1] - win[0]) > DMPFX_MAX_WINDOW &&
-            n > DMPFX_MAX_WINDOW) {
-            return FS_ERR_FIXED_WINDOW;
-        }
+    if (st == FS_OK) {
+        st = dmpfx_q(m->half_cos[i], 30u, INT32_MAX, &out->half_cos[i]);
     }
+    if (st != FS_OK) {
+        return st;
+    }
+    const fs_real_t r = dmpfx_periodic_reach(kappa);
+    out->env_hi[i] = dmpfx_env_clamp_q30(x + r);
+    out->env_lo[i] = dmpfx_env_clamp_q30(x - r);
     return FS_OK;
 }
 
-static fs_status_t dmpfx_convert_kernels(const dmp_model_t *m, dmpfx_model_t *out);
+/* Discrete kernel i in fixed point: centre, 1/sigma, the weights and its envelopes c +- r sigma
+ * (before the prefix/suffix passes). In the model's own type: software float on a core without
+ * FPU, no double. */
+static fs_status_t dmpfx_kernel_discrete(const dmp_model_t *m, uint16_t i, dmpfx_model_t *out)
+{
+    const int32_t q24_lim = (int32_t)(DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE);
+    const fs_real_t r_env = (fs_real_t)(DMPFX_R_CUT * DMPFX_ENVELOPE_MARGIN);
+    const fs_real_t c = m->centre[i];
+    const fs_real_t s = m->width[i];
+    fs_status_t st = dmpfx_q(c, 30u, INT32_MAX, &out->centre[i]);
+    if (st == FS_OK) {
+        st = dmpfx_q(FS_R(1.0) / s, 19u, INT32_MAX, &out->kernel_scale[i]);
+    }
+    if (st == FS_OK) {
+        st = dmpfx_q(m->weight[i], 24u, q24_lim, &out->weight[i]);
+    }
+    if (st == FS_OK && m->has_y != 0u) {
+        st = dmpfx_q(m->y_weight[i], 24u, q24_lim, &out->y_weight[i]);
+    }
+    if (st != FS_OK) {
+        return st;
+    }
+    const fs_real_t r = r_env * s;
+    out->env_hi[i] = dmpfx_env_clamp_q30(c + r);
+    out->env_lo[i] = dmpfx_env_clamp_q30(c - r);
+    return FS_OK;
+}
 
-static fs_status_t dmpfx_convert(const dmp_model_t *m, int32_t shift, dmpfx_model_t *out)
+/* The envelopes made monotone: env_hi a prefix max, env_lo a suffix min (integers only). */
+static void dmpfx_envelopes(dmpfx_model_t *out)
+{
+    const uint16_t n = out->n_kernels;
+    for (uint16_t i = 1u; i < n; i++) {
+        if (out->env_hi[i] < out->env_hi[i - 1u]) {
+            out->env_hi[i] = out->env_hi[i - 1u];
+        }
+    }
+    for (uint16_t j = (uint16_t)(n - 1u); j > 0u; j--) {
+        if (out->env_lo[j - 1u] > out->env_lo[j]) {
+            out->env_lo[j - 1u] = out->env_lo[j];
+        }
+    }
+}
+
+/* The phases where the candidate window is checked: the window's end grows only at the (virtual,
+ * for a periodic model) lower envelopes, so its largest size is at one of them (a periodic
+ * model: or at the query range's start). */
+static uint32_t dmpfx_window_checks(const dmpfx_model_t *out)
+{
+    return (out->periodic != 0u) ? 2u * (uint32_t)out->n_kernels + 1u : out->n_kernels;
+}
+
+/* The window at check phase j within DMPFX_MAX_WINDOW kernels, else FS_ERR_FIXED_WINDOW. */
+static fs_status_t dmpfx_window_check(const dmpfx_model_t *out, uint32_t j)
+{
+    const uint32_t n = out->n_kernels;
+    if (out->periodic != 0u) {
+        const int32_t q_lo = FX_Q30_ONE >> 1;
+        const int32_t q_hi = FX_Q30_ONE + q_lo - 1;
+        int32_t q = (j == 2u * n) ? q_lo : dmp_ptick_lo(out, j);
+        q = (q < q_lo) ? q_lo : ((q > q_hi) ? q_hi : q);
+        uint16_t win[2];
+        dmp_ptick_window_search(out, q, win);
+        return (win[1] > win[0] && (uint32_t)(win[1] - win[0]) > DMPFX_MAX_WINDOW &&
+                n > DMPFX_MAX_WINDOW)
+                   ? FS_ERR_FIXED_WINDOW
+                   : FS_OK;
+    }
+    uint32_t lo;
+    uint32_t hi;
+    dmpfx_window(out, out->env_lo[j], &lo, &hi);
+    return (hi > lo && hi - lo > DMPFX_MAX_WINDOW) ? FS_ERR_FIXED_WINDOW : FS_OK;
+}
+
+/* The conversion's scalars before the kernels (FS_ERR_FIXED_OVERFLOW for a shift out of range). */
+static fs_status_t dmpfx_convert_head(const dmp_model_t *m, int32_t shift, dmpfx_model_t *out)
 {
     if (shift > DMPFX_SHIFT_MAX) {
         return FS_ERR_FIXED_OVERFLOW;
@@ -257,11 +279,15 @@ static fs_status_t dmpfx_convert(const dmp_model_t *m, int32_t shift, dmpfx_mode
     out->cycle0_N[0] = (double)m->cycle_e0_N;
     out->cycle0_N[1] = (double)m->cycle_z0_N;
     out->cycle0_N[2] = (double)m->cycle_i0_N;
-    fs_status_t st = (m->periodic != 0u) ? dmpfx_convert_periodic(m, out)
-                                         : dmpfx_convert_kernels(m, out);
-    if (st == FS_OK) {
-        st = fx_from_double(ldexp(1.0, shift), 12u, INT32_MAX, &out->out_scale_q12);
-    }
+    return FS_OK;
+}
+
+/* The conversion's scalars after the kernels: the value scale, f0 and the run set-up's doubles;
+ * the peaks cleared. */
+static fs_status_t dmpfx_convert_tail(const dmp_model_t *m, dmpfx_model_t *out)
+{
+    fs_status_t st = fx_from_double(ldexp(1.0, out->value_shift), 12u, INT32_MAX,
+                                    &out->out_scale_q12);
     if (st == FS_OK) {
         st = fx_from_double((double)m->force0_N, 16u, INT32_MAX, &out->force0_q16);
     }
@@ -283,54 +309,119 @@ static fs_status_t dmpfx_convert(const dmp_model_t *m, int32_t shift, dmpfx_mode
     return FS_OK;
 }
 
-/* A discrete model's kernels in fixed point, the envelopes and the largest window. */
-static fs_status_t dmpfx_convert_kernels(const dmp_model_t *m, dmpfx_model_t *out)
+/* The whole conversion at value shift s, in one call (dmpfx_from_model's passes). */
+static fs_status_t dmpfx_convert(const dmp_model_t *m, int32_t shift, dmpfx_model_t *out)
 {
-    const uint16_t n = m->n_kernels;
-    const int32_t q24_lim = (int32_t)(DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE);
-    /* in the model's own type: software float on a core without FPU, no double */
-    const fs_real_t r_env = (fs_real_t)(DMPFX_R_CUT * DMPFX_ENVELOPE_MARGIN);
-    for (uint16_t i = 0u; i < n; i++) {
-        const fs_real_t c = m->centre[i];
-        const fs_real_t s = m->width[i];
-        fs_status_t st = dmpfx_q(c, 30u, INT32_MAX, &out->centre[i]);
-        if (st == FS_OK) {
-            st = dmpfx_q(FS_R(1.0) / s, 19u, INT32_MAX, &out->kernel_scale[i]);
-        }
-        if (st == FS_OK) {
-            st = dmpfx_q(m->weight[i], 24u, q24_lim, &out->weight[i]);
-        }
-        if (st == FS_OK && m->has_y != 0u) {
-            st = dmpfx_q(m->y_weight[i], 24u, q24_lim, &out->y_weight[i]);
-        }
-        if (st != FS_OK) {
-            return st;
-        }
-        const fs_real_t r = r_env * s;
-        out->env_hi[i] = dmpfx_env_clamp_q30(c + r);
-        out->env_lo[i] = dmpfx_env_clamp_q30(c - r);
+    fs_status_t st = dmpfx_convert_head(m, shift, out);
+    for (uint16_t i = 0u; st == FS_OK && i < m->n_kernels; i++) {
+        st = (m->periodic != 0u) ? dmpfx_kernel_periodic(m, i, out)
+                                 : dmpfx_kernel_discrete(m, i, out);
     }
-    for (uint16_t i = 1u; i < n; i++) {
-        if (out->env_hi[i] < out->env_hi[i - 1u]) {
-            out->env_hi[i] = out->env_hi[i - 1u];
-        }
+    if (st != FS_OK) {
+        return st;
     }
-    for (uint16_t j = (uint16_t)(n - 1u); j > 0u; j--) {
-        if (out->env_lo[j - 1u] > out->env_lo[j]) {
-            out->env_lo[j - 1u] = out->env_lo[j];
-        }
+    dmpfx_envelopes(out);
+    const uint32_t checks = dmpfx_window_checks(out);
+    for (uint32_t j = 0u; st == FS_OK && j < checks; j++) {
+        st = dmpfx_window_check(out, j);
     }
-    /* Largest candidate window: hi(u) only grows at u = env_lo[j], so the maximum of
-     * hi(u) - lo(u) is attained at one of those phases. */
-    for (uint16_t j = 0u; j < n; j++) {
-        uint32_t lo;
-        uint32_t hi;
-        dmpfx_window(out, out->env_lo[j], &lo, &hi);
-        if (hi > lo && hi - lo > DMPFX_MAX_WINDOW) {
-            return FS_ERR_FIXED_WINDOW;
-        }
+    return (st == FS_OK) ? dmpfx_convert_tail(m, out) : st;
+}
+
+/* The estimated peaks of dmpfx_from_model_bound (see dmpfx.h) and their check. */
+static fs_status_t dmpfx_bound_peaks(const dmp_model_t *m, double bound_N, dmpfx_model_t *out)
+{
+    const double lim_q24 = DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE;
+    out->peak_q24 = ldexp(bound_N, 24 - out->value_shift);
+    out->peak_y_q24 = 0.0;
+    if (m->has_y != 0u) {
+        out->peak_y_q24 = ldexp(fabs((double)m->goal_y_m) +
+                                    DMPFX_V_PEAK_BOUND * dmpfx_w_max(m->y_weight, m->n_kernels),
+                                24);
+    }
+    /* v~ of the phase system peaks at sqrt(alpha beta)/e when critically damped (beta =
+     * alpha/4), lower when overdamped; the Euler steps overshoot that by 0.2 % on the vectors
+     * (a periodic model has no v~) */
+    out->peak_v_q30 = (m->periodic != 0u)
+                          ? 0.0
+                          : ldexp(sqrt(out->alpha * out->beta) * DMPFX_INV_E * 1.01, 30);
+    if (out->peak_q24 > lim_q24 || out->peak_y_q24 > lim_q24 ||
+        out->peak_v_q30 > DMPFX_V_MAX * (double)FX_Q30_ONE) {
+        return FS_ERR_FIXED_OVERFLOW;
     }
     return FS_OK;
+}
+
+/* The stages of the sliced conversion (dmpfx_conv_t.stage). */
+enum {
+    DMPFX_CONV_HEAD = 0,
+    DMPFX_CONV_KERNELS,
+    DMPFX_CONV_ENVELOPES,
+    DMPFX_CONV_WINDOWS,
+    DMPFX_CONV_TAIL
+};
+
+void dmpfx_bound_begin(dmpfx_conv_t *c, const dmp_model_t *m, dmpfx_model_t *out)
+{
+    c->m = m;
+    c->out = out;
+    c->bound_N = 0.0;
+    c->pos = 0u;
+    c->stage = DMPFX_CONV_HEAD;
+    c->status = dmpfx_check_args(m, out);
+    c->done = c->status != FS_OK;
+}
+
+/* One unit of the sliced conversion: its status (FS_OK while it goes on). */
+static fs_status_t dmpfx_bound_unit(dmpfx_conv_t *c)
+{
+    const dmp_model_t *m = c->m;
+    dmpfx_model_t *out = c->out;
+    fs_status_t st = FS_OK;
+    switch (c->stage) {
+    case DMPFX_CONV_HEAD:
+        c->bound_N = dmpfx_bound_N(m);
+        st = dmpfx_convert_head(m, dmpfx_choose_shift(c->bound_N), out);
+        c->stage = DMPFX_CONV_KERNELS;
+        break;
+    case DMPFX_CONV_KERNELS:
+        st = (m->periodic != 0u) ? dmpfx_kernel_periodic(m, (uint16_t)c->pos, out)
+                                 : dmpfx_kernel_discrete(m, (uint16_t)c->pos, out);
+        if (++c->pos >= m->n_kernels) {
+            c->stage = DMPFX_CONV_ENVELOPES;
+        }
+        break;
+    case DMPFX_CONV_ENVELOPES:
+        dmpfx_envelopes(out);
+        c->pos = 0u;
+        c->stage = DMPFX_CONV_WINDOWS;
+        break;
+    case DMPFX_CONV_WINDOWS:
+        st = dmpfx_window_check(out, c->pos);
+        if (++c->pos >= dmpfx_window_checks(out)) {
+            c->stage = DMPFX_CONV_TAIL;
+        }
+        break;
+    default:
+        st = dmpfx_convert_tail(m, out);
+        if (st == FS_OK) {
+            st = dmpfx_bound_peaks(m, c->bound_N, out);
+        }
+        c->done = true;
+        break;
+    }
+    return st;
+}
+
+bool dmpfx_bound_run(dmpfx_conv_t *c, uint32_t max_units)
+{
+    for (uint32_t u = 0u; u < max_units && !c->done; u++) {
+        c->status = dmpfx_bound_unit(c);
+        if (c->status != FS_OK) {
+            c->done = true;
+        }
+    }
+    return c->done;
 }
 
 fs_status_t dmpfx_run_init(const dmpfx_model_t *m, double goal_scale, double time_scale,
@@ -663,4 +754,85 @@ static fs_status_t dmpfx_measure_peaks_periodic(dmpfx_model_t *m, double duratio
         return FS_ERR_FIXED_OVERFLOW;
     }
     return FS_OK;
+}
+
+/* |v| of a Q value, saturated (|INT32_MIN| -> INT32_MAX) */
+static int32_t dmpfx_abs_sat(int32_t v)
+{
+    return (v < 0) ? ((v == INT32_MIN) ? INT32_MAX : -v) : v;
+}
+
+void dmpfx_check_begin(dmpfx_check_t *c, const dmpfx_model_t *m, float duration_s, float dt_s,
+                       float force_max_N, float path_max_m)
+{
+    c->m = m;
+    c->steps_done = 0u;
+    c->peak_q16 = 0;
+    c->path_peak_q24 = 0;
+    c->force_max_q16 = fx_from_float(force_max_N, 16u);
+    c->path_max_q24 = fx_from_float(path_max_m, 24u);
+    const float n = duration_s / dt_s + 0.5f;
+    c->steps_total = (n > 0.0f && n < 4.0e9f) ? (uint32_t)n : 0u;
+    c->status = dmpfx_run_init(m, 1.0, 1.0, &c->run);
+    if (c->status == FS_OK) {
+        c->status = dmpfx_run_periodic(m, 1.0, &c->run);
+    }
+    if (c->status == FS_OK) {
+        c->status = dmpfx_run_path(m, 1.0, &c->run);
+    }
+    /* g in Q16.16: the goal (Q8.24, units of 2^s N) times 2^s (Q20.12) */
+    c->goal_q16 = (int32_t)(((int64_t)c->run.goal_q24 * m->out_scale_q12) >> 20);
+    c->base_q16 = fx_add_sat(dmpfx_abs_sat(m->force0_q16), dmpfx_abs_sat(c->goal_q16));
+    if (m->periodic != 0u) {
+        dmpfx_periodic_reset(m, &c->run, &c->s);
+    } else {
+        dmpfx_state_reset(&c->s);
+    }
+    c->done = c->status != FS_OK || c->steps_total == 0u;
+}
+
+/* One step of the check: |f_hat| of this step (a periodic model: |f0| + g + |e|); *path_q24 |p|. */
+static int32_t dmpfx_check_step(dmpfx_check_t *c, int32_t *path_q24)
+{
+    const dmpfx_model_t *m = c->m;
+    if (m->periodic != 0u) {
+        const int32_t f = dmpfx_periodic_step(m, &c->run, &c->s, NULL);
+        const int32_t e = fx_sub_sat(fx_sub_sat(f, m->force0_q16), c->goal_q16);
+        *path_q24 = 0;
+        return fx_add_sat(c->base_q16, dmpfx_abs_sat(e));
+    }
+    int32_t p = 0;
+    const int32_t f = dmpfx_step_xy(m, &c->run, &c->s, NULL, &p);
+    *path_q24 = dmpfx_abs_sat(p);
+    return dmpfx_abs_sat(f);
+}
+
+bool dmpfx_check_run(dmpfx_check_t *c, uint32_t max_steps)
+{
+    for (uint32_t i = 0u; i < max_steps && !c->done; i++) {
+        int32_t p = 0;
+        const int32_t a = dmpfx_check_step(c, &p);
+        c->path_peak_q24 = (p > c->path_peak_q24) ? p : c->path_peak_q24;
+        c->peak_q16 = (a > c->peak_q16) ? a : c->peak_q16;
+        if (c->s.sat_events != 0u) {
+            c->status = FS_ERR_FIXED_OVERFLOW;
+        } else if (c->path_peak_q24 > c->path_max_q24) {
+            c->status = FS_ERR_SKCHK_PATH;
+        } else if (c->peak_q16 > c->force_max_q16) {
+            c->status = FS_ERR_SKCHK_PEAK;
+        }
+        c->steps_done++;
+        c->done = c->status != FS_OK || c->steps_done >= c->steps_total;
+    }
+    return c->done;
+}
+
+float dmpfx_check_peak_N(const dmpfx_check_t *c)
+{
+    return fx_to_float(c->peak_q16, 16u);
+}
+
+float dmpfx_check_path_m(const dmpfx_check_t *c)
+{
+    return fx_to_float(c->path_peak_q24, 24u);
 }

@@ -7,6 +7,7 @@
 #ifndef DMPFX_H
 #define DMPFX_H
 
+#include <stdbool.h>
 #include <stdint.h>
 #include "dmp.h"
 #include "fx.h"
@@ -55,7 +56,12 @@ typedef struct {
     /* the position DMP on y (has_y = 1): weights and values in m, Q8.24 without a scale (a
      * path of 0.1 m is 1.7e6 LSB) */
     uint8_t has_y;
-    int32_t y_weight[DMP_MAX_KERNELS]; /* Q8.24 m */
+    /* a model has a y DMP or is periodic, never both (dmp_model_init): one array holds the y
+     * weights or the half-angle sines */
+    union {
+        int32_t y_weight[DMP_MAX_KERNELS]; /* Q8.24 m */
+        int32_t half_sin[DMP_MAX_KERNELS]; /* periodic: sin(c_i/2), Q2.30 */
+    };
     double beta_y;
     double goal_y_m;
     double peak_y_q24; /* max |h_y|, |p|, |z_p| of the nominal run (path scale 1) */
@@ -63,8 +69,7 @@ typedef struct {
      * 2 sqrt(kappa_i) (Q13.19), sin/cos(c_i/2) in Q2.30; amplitude r and the cycle state
      * (e0, z0, I0) in N kept in double for the run set-up; the nominal run is one cycle */
     uint8_t periodic;
-    int32_t half_sin[DMP_MAX_KERNELS];
-    int32_t half_cos[DMP_MAX_KERNELS];
+    int32_t half_cos[DMP_MAX_KERNELS]; /* half_sin: in the union above */
     double amplitude_N;
     double cycle0_N[3];
 } dmpfx_model_t;
@@ -143,6 +148,26 @@ fs_status_t dmpfx_from_model(const dmp_model_t *m, dmpfx_model_t *out);
  *  checked where the measured peaks are. */
 fs_status_t dmpfx_from_model_bound(const dmp_model_t *m, dmpfx_model_t *out);
 
+/** dmpfx_from_model_bound in slices (dmpfx_bound_begin, then dmpfx_bound_run until it returns
+ *  true), so a device converts a skill over several control ticks: the same checks in the same
+ *  order and the same model. A unit is the scale's choice, one kernel, the envelope passes, one
+ *  window check, or the scalars and peaks. m and *out must stay in place until it is done. */
+typedef struct {
+    const dmp_model_t *m;
+    dmpfx_model_t *out;
+    double bound_N; /* B of dmpfx_from_model_bound */
+    uint32_t pos;   /* progress inside the stage */
+    uint8_t stage;  /* internal */
+    bool done;
+    fs_status_t status; /* FS_OK while running or once converted; the refusal once done */
+} dmpfx_conv_t;
+
+/** Start a sliced conversion of m into *out (a NULL or kernel-count error ends it at once). */
+void dmpfx_bound_begin(dmpfx_conv_t *c, const dmp_model_t *m, dmpfx_model_t *out);
+
+/** At most max_units units of the conversion; true once done (then c->status). */
+bool dmpfx_bound_run(dmpfx_conv_t *c, uint32_t max_units);
+
 /** Per-tick constants for a goal and time scale; FS_ERR_SCALE_INVALID for a bad scale,
  *  FS_ERR_FIXED_STEP (302) if dt/tau_e is below 2^-24 or a constant is >= 0.5,
  *  FS_ERR_FIXED_OVERFLOW if |goal_scale| times the nominal peaks leaves the Q8.24 headroom. */
@@ -189,5 +214,42 @@ int32_t dmpfx_periodic_blend(const dmpfx_model_t *m, int32_t x_q30, uint16_t *co
  *  Returns f_hat = f0 + 2^s*(g_e + e) after the step in Q16.16 N. */
 int32_t dmpfx_periodic_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s,
                             const dmpfx_coupling_t *coupling);
+
+/** A skill's own rollout in fixed point (the device's output check, skill_check.h's step 2 on
+ *  the model the fixed-point executor runs): goal, time, path and amplitude scale 1, no coupling,
+ *  the skill's duration at the executor's dt, each step's |f_hat| (a periodic model: the bound
+ *  |f0| + g + |e|) and |p| of the y DMP tracked in integers. A path above path_max_m (225) or a
+ *  peak above force_max_N (223) refuses, as skchk_run does, and so does a saturation (300: the
+ *  executor would saturate). Incremental: dmpfx_check_begin, then dmpfx_check_run with a step
+ *  budget per call. */
+typedef struct {
+    const dmpfx_model_t *m;
+    dmpfx_run_t run;
+    dmpfx_state_t s;
+    uint32_t steps_total;
+    uint32_t steps_done;
+    int32_t force_max_q16; /* force_max_N in Q16.16 (saturated) */
+    int32_t path_max_q24;  /* path_max_m in Q8.24 (saturated) */
+    int32_t base_q16;      /* a periodic model: |f0| + g in Q16.16 */
+    int32_t goal_q16;      /* a periodic model: g in Q16.16 */
+    int32_t peak_q16;      /* max |f_hat| so far */
+    int32_t path_peak_q24; /* max |p| so far (0 without a y DMP) */
+    fs_status_t status;    /* FS_OK while running or passed; 223/225/300 or a 3xx of the set-up */
+    bool done;
+} dmpfx_check_t;
+
+/** Start the rollout check of m (a converted model) over duration_s at dt_s against the force
+ *  limit force_max_N and the y range path_max_m. */
+void dmpfx_check_begin(dmpfx_check_t *c, const dmpfx_model_t *m, float duration_s, float dt_s,
+                       float force_max_N, float path_max_m);
+
+/** Advance by at most max_steps DMP steps; true once finished (then c->status). */
+bool dmpfx_check_run(dmpfx_check_t *c, uint32_t max_steps);
+
+/** The check's peak |f_hat| (N) so far. */
+float dmpfx_check_peak_N(const dmpfx_check_t *c);
+
+/** The check's path extent max |p| (m) so far. */
+float dmpfx_check_path_m(const dmpfx_check_t *c);
 
 #endif /* DMPFX_H */

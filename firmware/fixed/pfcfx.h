@@ -56,6 +56,10 @@ typedef struct {
  *  does not fit (gains and force_max < 32768, integral_max < 128, dt < 1 s). */
 fs_status_t pfcfx_from_config(const pfc_config_t *cfg, pfcfx_config_t *out);
 
+/** pfcfx_from_config of a configuration pfc_config_validate already passed (non-NULL
+ *  arguments): the conversion alone, for a caller that validated it (exec_start). */
+fs_status_t pfcfx_from_valid_config(const pfc_config_t *cfg, pfcfx_config_t *out);
+
 /** Zero the integral state. */
 void pfcfx_reset(pfcfx_state_t *st);
 

@@ -51,7 +51,8 @@ static void tick(void)
     }
 }
 
-/* Boot to IDLE with slot 1 holding a press skill (peak 4.84 N at goal 1), then start it. */
+/* Boot to IDLE with slot 1 holding a press skill (peak 4.84 N at goal 1) and its fixed-point
+ * model (the commit's conversion), then start it. */
 static void start_press(void)
 {
     hal_host_init();
@@ -70,6 +71,7 @@ static void start_press(void)
     const uint32_t len = tv_read("press_n50_lwr_hold.skill", image, sizeof image);
     assert_true(len > 0u);
     assert_int_equal(skill_parse(image, len, &app.slots.skill[0]), FS_OK);
+    assert_int_equal(dmpfx_from_model_bound(&app.slots.skill[0].dmp, &app.slots.fx[0]), FS_OK);
     app.slots.valid[0] = true;
     app.slots.peak_N[0] = 4.84f;
     app.slots.path_m[0] = 0.0f;

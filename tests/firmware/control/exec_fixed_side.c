@@ -4,6 +4,7 @@
 #include "fs_exec.h"
 
 static skill_t side_skill;
+static dmpfx_model_t side_model; /* the skill in fixed point, converted as the device does */
 static exec_state_t side_state;
 
 /* the application's start of a one-step run (app_start_sequence): x gains from the skill, y
@@ -24,6 +25,10 @@ int exec_side_fixed_replay(const exec_side_run_t *run, double y_hold_m,
     if (st != FS_OK) {
         return (int)st;
     }
+    st = dmpfx_from_model_bound(&side_skill.dmp, &side_model);
+    if (st != FS_OK) {
+        return (int)st;
+    }
     exec_config_t cfg;
     side_config(run, &cfg);
     const exec_step_t step = {&side_skill,
@@ -33,7 +38,8 @@ int exec_side_fixed_replay(const exec_side_run_t *run, double y_hold_m,
                               side_skill.end_policy,
                               (fs_real_t)run->path_scale,
                               FS_R(1.0),
-                              0u};
+                              0u,
+                              &side_model};
     st = exec_start(&cfg, &side_state, &step, 1u, (fs_real_t)y_hold_m);
     if (st != FS_OK) {
         return (int)st;

@@ -75,34 +75,57 @@ static void test_peak_matches_reference(void **state)
     }
 }
 
+/* skchk_params gives code, and so does its sliced form at one unit a call (the scalars, then
+ * SKCHK_PARAMS_KERNELS_PER_UNIT kernels a unit, the y part, the step rule). */
+static void expect_params(const skill_t *s, fs_status_t code)
+{
+    assert_int_equal(skchk_params(s), code);
+    skchk_params_t c;
+    skchk_params_begin(&c, s);
+    uint32_t units = 1u;
+    while (!skchk_params_run(&c, 1u)) {
+        units++;
+    }
+    assert_int_equal(c.status, code);
+    if (code == FS_OK) {
+        const uint32_t per = (s->dmp.n_kernels + SKCHK_PARAMS_KERNELS_PER_UNIT - 1u) /
+                             SKCHK_PARAMS_KERNELS_PER_UNIT;
+        assert_int_equal(units, 2u + per * ((s->dmp.has_y != 0u) ? 2u : 1u) +
+                                    ((s->dmp.has_y != 0u) ? 1u : 0u));
+    }
+}
+
 static void test_hostile_skills_refused(void **state)
 {
     (void)state;
     load_skill("press_n50_lwr_hold");
     const skill_t good = skill;
     skill.dmp.weight[3] *= FS_R(1e30);
-    assert_int_equal(skchk_params(&skill), FS_ERR_SKCHK_RANGE);
+    expect_params(&skill, FS_ERR_SKCHK_RANGE);
     skill = good;
     skill.dmp.goal_N = FS_R(1e30);
-    assert_int_equal(skchk_params(&skill), FS_ERR_SKCHK_RANGE);
+    expect_params(&skill, FS_ERR_SKCHK_RANGE);
     skill = good;
     skill.dmp.tau_s = FS_R(1e-9);
-    assert_int_equal(skchk_params(&skill), FS_ERR_SKCHK_RANGE);
+    expect_params(&skill, FS_ERR_SKCHK_RANGE);
     skill = good;
     skill.dmp.tau_s = FS_R(0.005); /* in range, but dt*rate/tau = 2.5 */
-    assert_int_equal(skchk_params(&skill), FS_ERR_SKCHK_STEP);
+    expect_params(&skill, FS_ERR_SKCHK_STEP);
     skill = good;
     skill.dmp.duration_s = FS_R(601.0);
-    assert_int_equal(skchk_params(&skill), FS_ERR_SKCHK_RANGE);
+    expect_params(&skill, FS_ERR_SKCHK_RANGE);
     skill = good;
     skill.dmp.width[0] = FS_R(1e-7);
-    assert_int_equal(skchk_params(&skill), FS_ERR_SKCHK_RANGE);
+    expect_params(&skill, FS_ERR_SKCHK_RANGE);
+    skill = good;
+    skill.dmp.width[skill.dmp.n_kernels - 1u] = FS_R(2.0); /* the last kernel's unit */
+    expect_params(&skill, FS_ERR_SKCHK_RANGE);
     /* in range, but weights x100: the rollout peaks far above 50 N */
     skill = good;
     for (uint16_t i = 0; i < skill.dmp.n_kernels; i++) {
         skill.dmp.weight[i] *= FS_R(100.0);
     }
-    assert_int_equal(skchk_params(&skill), FS_OK);
+    expect_params(&skill, FS_OK);
     assert_int_equal(skchk_skill(&skill, FS_R(0.001), FS_R(50.0), NULL), FS_ERR_SKCHK_PEAK);
     assert_int_equal(skchk_params(NULL), FS_ERR_NULL_ARG);
 }
@@ -184,7 +207,7 @@ static void test_y_path(void **state)
     }
     fclose(f);
     skchk_t c;
-    assert_int_equal(skchk_params(&skill), FS_OK);
+    expect_params(&skill, FS_OK);
     skchk_begin(&c, &skill, FS_R(0.001), FS_R(50.0));
     while (!skchk_run(&c, 100u)) {
     }
@@ -202,7 +225,7 @@ static void test_y_path(void **state)
                      FS_ERR_SKCHK_PATH_SCALE);
     assert_int_equal(skchk_run_path(&skill, pk, FS_R(-1.0), FS_R(1.0)), FS_ERR_SKCHK_PATH_SCALE);
     skill.dmp.y_weight[3] = (fs_real_t)(2.0 * SKCHK_WEIGHT_MAX);
-    assert_int_equal(skchk_params(&skill), FS_ERR_SKCHK_PATH);
+    expect_params(&skill, FS_ERR_SKCHK_PATH);
 }
 
 static void test_stiffness_limit(void **state)

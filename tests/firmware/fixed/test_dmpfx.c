@@ -4,7 +4,9 @@
  * (3xx codes); coupling (phase slow-down, additive term) against the double core; the
  * executor's conversion without rollout (dmpfx_from_model_bound) on the same skills; the
  * periodic DMP (manifest_periodic.txt) against the float64 core and the Python rollout, its
- * sine polynomial and its blend. */
+ * sine polynomial and its blend; the device's commit on those skills: the conversion in slices
+ * (one unit a call gives the one-call model byte for byte) and the output check's rollout in
+ * fixed point (dmpfx_check) against the float64 skill check (skchk_skill). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -20,6 +22,7 @@
 #include "dmpfx.h"
 #include "fs_num_fixed.h"
 #include "skill.h"
+#include "skill_check.h"
 #include "vectors_io.h"
 
 #ifndef FS_VECTORS_DIR
@@ -229,16 +232,23 @@ static void check_bound(const dmp_model_t *m, const char *name, double gs, doubl
     assert_true(e <= FIXED_TOL_REL);
 }
 
+/* A manifest of tests/vectors, open for reading. */
+static FILE *open_manifest(const char *name)
+{
+    char mpath[512];
+    snprintf(mpath, sizeof(mpath), "%s/%s", FS_VECTORS_DIR, name);
+    FILE *mf = fopen(mpath, "r");
+    assert_non_null(mf);
+    return mf;
+}
+
 static void test_bound_conversion(void **state)
 {
     (void)state;
     const char *manifests[] = {"manifest.txt", "manifest_y.txt"};
     int lines = 0;
     for (size_t k = 0; k < 2u; k++) {
-        char mpath[512];
-        snprintf(mpath, sizeof(mpath), "%s/%s", FS_VECTORS_DIR, manifests[k]);
-        FILE *mf = fopen(mpath, "r");
-        assert_non_null(mf);
+        FILE *mf = open_manifest(manifests[k]);
         char line[600];
         while (fgets(line, sizeof(line), mf) != NULL) {
             char sk[256];
@@ -262,6 +272,100 @@ static void test_bound_conversion(void **state)
 }
 
 /* A long (17 s) synthetic skill with the default fit's kernel layout, goal 1x and 1.5x. */
+/* One skill of the commit's path: the sliced conversion, one unit a call, equals
+ * dmpfx_from_model_bound byte for byte in N + checks + 3 units; the fixed-point output check's
+ * peak |f_hat| and path extent agree with the float64 check's within FIXED_TOL_REL of the peak
+ * (plus one LSB). Returns the peak's relative difference. */
+static double check_commit_path(const char *name)
+{
+    static dmpfx_model_t one;
+    static dmpfx_model_t sliced;
+    const uint32_t len = tv_read(name, image, sizeof(image));
+    assert_true(len > 0u);
+    assert_int_equal(skill_parse(image, len, &skill), FS_OK);
+    memset(&one, 0, sizeof one);
+    memset(&sliced, 0, sizeof sliced);
+    assert_int_equal(dmpfx_from_model_bound(&skill.dmp, &one), FS_OK);
+    dmpfx_conv_t c;
+    dmpfx_bound_begin(&c, &skill.dmp, &sliced);
+    uint32_t units = 0u;
+    while (!dmpfx_bound_run(&c, 1u)) {
+        units++;
+    }
+    units++;
+    assert_int_equal(c.status, FS_OK);
+    assert_memory_equal(&one, &sliced, sizeof one);
+    const uint32_t n = skill.dmp.n_kernels;
+    assert_int_equal(units, n + ((skill.dmp.periodic != 0u) ? 2u * n + 1u : n) + 3u);
+
+    fs_real_t peak_ref = 0.0;
+    assert_int_equal(skchk_skill(&skill, 0.001, 1e30, &peak_ref), FS_OK);
+    skchk_t ref;
+    skchk_begin(&ref, &skill, 0.001, 1e30);
+    ref.path_max_m = 1e30;
+    while (!skchk_run(&ref, UINT32_MAX)) {
+    }
+    dmpfx_check_t fc;
+    dmpfx_check_begin(&fc, &sliced, (float)skill.dmp.duration_s, 0.001f, 1e30f, 1e30f);
+    uint32_t calls = 0u;
+    while (!dmpfx_check_run(&fc, 3u)) {
+        calls++;
+    }
+    assert_int_equal(fc.status, FS_OK);
+    assert_int_equal(fc.steps_done, ref.steps_total);
+    const double peak = (double)dmpfx_check_peak_N(&fc);
+    const double path = (double)dmpfx_check_path_m(&fc);
+    const double e_peak = fabs(peak - (double)peak_ref) / (double)peak_ref;
+    printf("commit check  %-32s N=%3u units=%4u  peak %.5f N (float64 %.5f N, %.4f %%)  path "
+           "%.6f m (float64 %.6f m)\n",
+           name, (unsigned)n, (unsigned)units, peak, (double)peak_ref, 100.0 * e_peak, path,
+           (double)ref.path_peak_m);
+    assert_true(fabs(peak - (double)peak_ref) <= FIXED_TOL_REL * (double)peak_ref + 0x1p-16);
+    assert_true(fabs(path - (double)ref.path_peak_m) <=
+                FIXED_TOL_REL * (double)ref.path_peak_m + 0x1p-24);
+    /* the limits refuse as the float64 check does: a peak above the limit (223), a path above
+     * the y range (225) */
+    dmpfx_check_begin(&fc, &sliced, (float)skill.dmp.duration_s, 0.001f,
+                      (float)(0.9 * (double)peak_ref), 1e30f);
+    while (!dmpfx_check_run(&fc, UINT32_MAX)) {
+    }
+    assert_int_equal(fc.status, FS_ERR_SKCHK_PEAK);
+    if (ref.path_peak_m > 0.0) {
+        dmpfx_check_begin(&fc, &sliced, (float)skill.dmp.duration_s, 0.001f, 1e30f,
+                          (float)(0.9 * (double)ref.path_peak_m));
+        while (!dmpfx_check_run(&fc, UINT32_MAX)) {
+        }
+        assert_int_equal(fc.status, FS_ERR_SKCHK_PATH);
+    }
+    return e_peak;
+}
+
+static void test_commit_path(void **state)
+{
+    (void)state;
+    const char *manifests[] = {"manifest.txt", "manifest_y.txt", "manifest_periodic.txt"};
+    int lines = 0;
+    double worst = 0.0;
+    for (size_t k = 0; k < 3u; k++) {
+        FILE *mf = open_manifest(manifests[k]);
+        char line[600];
+        char last[256] = "";
+        while (fgets(line, sizeof(line), mf) != NULL) {
+            char sk[256];
+            if (sscanf(line, "%255s", sk) != 1 || strcmp(sk, last) == 0) {
+                continue;
+            }
+            snprintf(last, sizeof(last), "%s", sk);
+            worst = fmax(worst, check_commit_path(sk));
+            lines++;
+        }
+        fclose(mf);
+    }
+    printf("commit check: %d skills, worst peak difference %.4f %% (bound %.2f %%)\n", lines,
+           100.0 * worst, 100.0 * FIXED_TOL_REL);
+    assert_true(lines >= 10);
+}
+
 static void test_long_skill(void **state)
 {
     (void)state;
@@ -592,6 +696,7 @@ int main(void)
         cmocka_unit_test(test_sincos_pi),
         cmocka_unit_test(test_long_skill),
         cmocka_unit_test(test_bound_conversion),
+        cmocka_unit_test(test_commit_path),
         cmocka_unit_test(test_blend),
         cmocka_unit_test(test_rejects),
         cmocka_unit_test(test_coupling),

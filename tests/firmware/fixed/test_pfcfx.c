@@ -5,6 +5,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include <string.h>
 
 #include <math.h>
 #include <stdio.h>
@@ -26,6 +27,11 @@ static void test_against_double(void **state)
     pfc_default_config(&cfg);
     pfcfx_config_t fcfg;
     assert_int_equal(pfcfx_from_config(&cfg, &fcfg), FS_OK);
+    /* the conversion alone (a caller that validated the configuration) gives the same */
+    pfcfx_config_t vcfg;
+    memset(&vcfg, 0, sizeof vcfg);
+    assert_int_equal(pfcfx_from_valid_config(&cfg, &vcfg), FS_OK);
+    assert_memory_equal(&vcfg, &fcfg, sizeof vcfg);
     pfc_state_t sd;
     pfcfx_state_t sf;
     pfc_reset(&sd);
@@ -83,8 +89,8 @@ static void test_against_double(void **state)
         }
     }
     printf("pfcfx vs pfc_step (double), 200 s: max |cmd diff| = %.3g N, max |integral diff| = "
-           "%.3g N*s; %d saturated ticks, %d with the integral held\n", worst_cmd, worst_int,
-           saturated, held);
+           "%.3g N*s; %d saturated ticks, %d with the integral held\n",
+           worst_cmd, worst_int, saturated, held);
     assert_true(saturated > 1000);
     assert_true(held > 0);
     /* 50 N full scale: 1e-3 N = 0.002 % of full scale (a few Q16.16 LSB of rounding) */
