@@ -27,6 +27,9 @@ JOURNEY_HOST_TIMEOUT_MS = int(os.environ.get("FORCESKILL_CAN_JOURNEY_HOST_TIMEOU
 # scripts/test_linux_can.sh raises it in its qemu guest, where a Python thread under TCG on a
 # loaded machine can stall for seconds.
 LINK_TIMEOUT_S = os.environ.get("FORCESKILL_CAN_TIMEOUT_S", "3")
+# Each UDS request's wait (--request-timeout; unset: the commands' own 2-5 s): scripts/test_linux_can.sh
+# sets it in its qemu guest, where an answer on the bus can reach a stalled Python thread seconds late.
+REQUEST_TIMEOUT_S = os.environ.get("FORCESKILL_CAN_REQUEST_TIMEOUT_S", "")
 # The telemetry period record and run ask of the device on a SocketCAN interface
 # (--telemetry-period; default 1 ms, the product's): scripts/test_linux_can.sh asks 10 in its qemu
 # guest, where Python reads about 150 frames/s (bench figure in docs/hil.md), not the 2,100 of 1 kHz.
