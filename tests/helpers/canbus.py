@@ -34,9 +34,10 @@ REQUEST_TIMEOUT_S = os.environ.get("FORCESKILL_CAN_REQUEST_TIMEOUT_S", "")
 # (--telemetry-period; default 1 ms, the product's): scripts/test_linux_can.sh asks 10 in its qemu
 # guest, where Python reads about 150 frames/s (bench figure in docs/hil.md), not the 2,100 of 1 kHz.
 TELEMETRY_PERIOD_MS = int(os.environ.get("FORCESKILL_CAN_TELEMETRY_PERIOD_MS", "1"))
-# How much longer than --duration a recording may come out: record stops TEACH when it reads the
-# device's status at the duration, so a reader behind the stream records on (0.5-2.2 s of device
-# time seen in the qemu guest, where scripts/test_linux_can.sh allows 3 s; 0 here).
+# How much longer than record's --duration another logger's log of it may come out (candump):
+# record stops TEACH when its own loop reads the device's status at the duration, so a reader
+# behind the stream leaves TEACH on for longer (0.5-2.2 s of device time seen in the qemu guest,
+# where scripts/test_linux_can.sh allows 3 s; 0 here). record's own log ends at the duration.
 RECORD_OVERRUN_S = float(os.environ.get("FORCESKILL_CAN_RECORD_OVERRUN_S", "0"))
 
 
