@@ -14,10 +14,12 @@
 # Under qemu's TCG (no hardware virtualisation here) the guest runs 15-20x slower than the host:
 # Python there reads about 150 frames/s (not the device's 2,100 of 1 kHz telemetry), so record and
 # run ask for telemetry every FORCESKILL_CAN_TELEMETRY_PERIOD_MS (default here 10 ms:
-# --telemetry-period) and the simulator runs at FORCESKILL_CAN_SPEED (default here 0.25: a quarter
-# of real time, the device's own timing unchanged): 75 frames/s in wall time;
-# the host tools wait FORCESKILL_CAN_TIMEOUT_S (default here 20 s) for the device's frames, a
-# recording may run FORCESKILL_CAN_RECORD_OVERRUN_S (3 s) past its --duration (the reader's lag),
+# --telemetry-period) and the simulator runs at FORCESKILL_CAN_SPEED (default here 0.5: half of
+# real time, the device's own timing unchanged): 150 frames/s in wall time (0.25 took 1.6x as long);
+# the host tools wait FORCESKILL_CAN_TIMEOUT_S (default here 20 s) for the device's frames and
+# FORCESKILL_CAN_REQUEST_TIMEOUT_S (15 s: --request-timeout) for each UDS answer, the
+# candump's log of a recording may run FORCESKILL_CAN_RECORD_OVERRUN_S (3 s) past its --duration
+# (record stops TEACH when its loop reads the last status; record's own log ends there),
 # python-can's import leaves out MF4 (FORCESKILL_TEST_NO_MF4=1: asammdf and pandas are most of its
 # import time; nothing here reads .mf4) and the guest's copy of the editable install's .pth is a
 # plain path (setuptools' import hook costs seconds under TCG at every interpreter start).
@@ -48,8 +50,9 @@ fi
 .venv/bin/python -m compileall -q host/forceskill tests >/dev/null
 set +e
 scripts/vm.sh --vcan --kvaser 2 --timeout "${FORCESKILL_VM_TIMEOUT:-900}" \
-  --env FORCESKILL_TEST_NO_MF4=1 --env "FORCESKILL_CAN_SPEED=${FORCESKILL_CAN_SPEED:-0.25}" \
+  --env FORCESKILL_TEST_NO_MF4=1 --env "FORCESKILL_CAN_SPEED=${FORCESKILL_CAN_SPEED:-0.5}" \
   --env "FORCESKILL_CAN_TIMEOUT_S=${FORCESKILL_CAN_TIMEOUT_S:-20}" \
+  --env "FORCESKILL_CAN_REQUEST_TIMEOUT_S=${FORCESKILL_CAN_REQUEST_TIMEOUT_S:-15}" \
   --env "FORCESKILL_CAN_TELEMETRY_PERIOD_MS=${FORCESKILL_CAN_TELEMETRY_PERIOD_MS:-10}" \
   --env "FORCESKILL_CAN_RECORD_OVERRUN_S=${FORCESKILL_CAN_RECORD_OVERRUN_S:-3}" \
   --env "FORCESKILL_HIL_SIM=$ROOT/build/hil_sim/hil_sim" \

@@ -156,7 +156,7 @@ trap 'exit 130' INT TERM
 ARGS=(-M pc "${ACCEL_ARGS[@]}" -smp "$SMP" -m "$MEM" -nodefaults -no-user-config -display none
   -no-reboot -chardev stdio,id=con,signal=off -serial chardev:con
   -kernel "$KERNEL" -initrd "$VM/initramfs.cpio"
-  -append "console=ttyS0 quiet loglevel=1 panic=-1 tsc=reliable vm.fs=$FS vm.vcan=$VCAN_MTU vm.kvaser=$KVASER"
+  -append "console=ttyS0 quiet loglevel=1 panic=-1 tsc=reliable no_timer_check vm.fs=$FS vm.vcan=$VCAN_MTU vm.kvaser=$KVASER"
   -fsdev "local,id=io,path=$RUN,security_model=none" -device virtio-9p-pci,fsdev=io,mount_tag=vmio)
 if [ "$FS" = virtiofs ]; then
   VFSD=$(command -v virtiofsd || ls /usr/libexec/virtiofsd /usr/lib/qemu/virtiofsd 2>/dev/null | head -n 1 || true)

@@ -54,9 +54,13 @@ bool serve_socketcan_bitrate_given(int argc, char *const *argv)
 
 void serve_socketcan_rx(cansock_t *c, uint64_t now_us)
 {
+    /* No more than the device's FIFO takes: the rest waits in the socket's receive queue. A
+     * SocketCAN interface without a bit rate (vcan) hands over a host's burst at once (ISO-TP
+     * consecutive frames at STmin 0, a late cyclic task catching up) that a bus would spread
+     * over milliseconds; bus-off still reads (and drops) everything, error frames included. */
     can_frame_t f;
-    while (cansock_receive(c, &f, now_us)) {
-        (void)hal_sim_can_deliver(&f); /* a full receive FIFO drops it (counted) */
+    while ((c->bus_off || hal_sim_can_rx_free() > 0u) && cansock_receive(c, &f, now_us)) {
+        (void)hal_sim_can_deliver(&f); /* off the bus: dropped (counted) */
     }
     hal_sim_can_set_bus_off(c->bus_off); /* bus-off empties the device's transmit queue */
 }

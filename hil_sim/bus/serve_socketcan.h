@@ -46,8 +46,9 @@ int serve_socketcan_check(const char *ifname, int argc, char *const *argv);
 /** True if argv sets --bitrate (without it the interface keeps its rate). */
 bool serve_socketcan_bitrate_given(int argc, char *const *argv);
 
-/** Bridge, before the tick: frames from the interface into the device's receive queue, the
- *  driver's bus-off state to the device's controller (now_us: simulated time). */
+/** Bridge, before the tick: frames from the interface into the device's receive queue while it
+ *  has room (the rest stay queued in the socket), the driver's bus-off state to the device's
+ *  controller (now_us: simulated time). */
 void serve_socketcan_rx(cansock_t *c, uint64_t now_us);
 
 /** Bridge, after the tick: the device's queued frames to the interface while it takes them. */

@@ -24,7 +24,6 @@ from helpers.canbus import (
     JOURNEY_HOST_TIMEOUT_MS,
     PRESS_K_NPM,
     PRESS_SURFACE_M,
-    RECORD_OVERRUN_S,
     SCENARIOS,
     TELEMETRY_PERIOD_MS,
     Server,
@@ -55,9 +54,9 @@ def test_record_fit_upload_run(journey, capsys):
     out = forceskill(capsys, "record", "-o", str(d / "demo.blf"), "--duration", "6", *bus)
     assert "in TEACH" in out
     demo = load_demo(d / "demo.blf")
-    assert 5.9 <= demo.t_s[-1] <= 6.1 + RECORD_OVERRUN_S and np.allclose(
-        np.diff(demo.t_s), TELEMETRY_PERIOD_MS * 1e-3
-    )
+    # the log ends at the duration however far the command's own loop lags behind the stream
+    # (in the qemu guest TEACH runs on for seconds: helpers.canbus.RECORD_OVERRUN_S)
+    assert 5.9 <= demo.t_s[-1] <= 6.1 and np.allclose(np.diff(demo.t_s), TELEMETRY_PERIOD_MS * 1e-3)
     assert 3.5 < demo.force_N.max() < 6.0  # the seeded operator's high level (4.5 N +- 10 %)
     out = fit_press(capsys, d / "demo.blf", d / "press.skill")
     err_max = float(out.split("approximation error: max ")[1].split(" %")[0])

@@ -279,9 +279,10 @@ def test_fd_refused_on_a_classic_interface():
     assert "not CAN FD capable (MTU 16" in line
 
 
-def test_fd_upload_in_64_byte_frames(capsys):
+def test_fd_upload_in_64_byte_frames(capsys, figure):
     """A skill uploaded with --fd: verified by read-back, the device's UDS responses in 64-byte
-    FD frames with BRS, the host's requests too; status reads the slot."""
+    FD frames with BRS, the host's requests too; status reads the slot. Its time is printed
+    among pytest's figures."""
     iface = fd_vcan_or_skip()
     skill = REPO / "tests" / "vectors" / "press_n50_ridge_release.skill"  # the N = 50 skill
     s = SocketCANServer(SCENARIO, iface, extra=("--fd",))
@@ -314,3 +315,7 @@ def test_fd_upload_in_64_byte_frames(capsys):
     assert max(len(m.data) for m in req) == 64  # the skill's TransferData in 64-byte frames
     stop = err.strip().splitlines()[-1]
     assert "FD)" in stop
+    (line,) = [ln for ln in out.splitlines() if "verified by read-back" in ln]
+    figure(
+        f"CAN FD upload on {iface} (64-byte BRS frames, {len(req)} frames from the host, {len(resp)} from the device): {line}"
+    )

@@ -12,7 +12,7 @@ import time
 import can
 import pytest
 
-from helpers.canbus import SCENARIOS, hil_sim_path
+from helpers.canbus import LINK_TIMEOUT_S, SCENARIOS, hil_sim_path
 from helpers.socketcan import SocketCANServer, af_can_error, vcan_or_skip
 
 
@@ -75,7 +75,8 @@ def test_bitrate_on_vcan_refused_and_device_runs(vcan_server):
     """vcan has no bit timing: the request is one line on stderr, the device serves anyway."""
     assert "bitrate as configured" in vcan_server.first_line
     status: list[can.Message] = []
-    deadline = time.monotonic() + 5.0
+    # a status frame every 10 ms of device time; a guest under TCG may stall for seconds
+    deadline = time.monotonic() + max(5.0, float(LINK_TIMEOUT_S))
     with can.Bus(interface="socketcan", channel=vcan_server.iface) as bus:
         while len(status) < 5 and time.monotonic() < deadline:
             m = bus.recv(0.5)

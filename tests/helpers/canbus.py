@@ -27,13 +27,17 @@ JOURNEY_HOST_TIMEOUT_MS = int(os.environ.get("FORCESKILL_CAN_JOURNEY_HOST_TIMEOU
 # scripts/test_linux_can.sh raises it in its qemu guest, where a Python thread under TCG on a
 # loaded machine can stall for seconds.
 LINK_TIMEOUT_S = os.environ.get("FORCESKILL_CAN_TIMEOUT_S", "3")
+# Each UDS request's wait (--request-timeout; unset: the commands' own 2-5 s): scripts/test_linux_can.sh
+# sets it in its qemu guest, where an answer on the bus can reach a stalled Python thread seconds late.
+REQUEST_TIMEOUT_S = os.environ.get("FORCESKILL_CAN_REQUEST_TIMEOUT_S", "")
 # The telemetry period record and run ask of the device on a SocketCAN interface
 # (--telemetry-period; default 1 ms, the product's): scripts/test_linux_can.sh asks 10 in its qemu
 # guest, where Python reads about 150 frames/s (bench figure in docs/hil.md), not the 2,100 of 1 kHz.
 TELEMETRY_PERIOD_MS = int(os.environ.get("FORCESKILL_CAN_TELEMETRY_PERIOD_MS", "1"))
-# How much longer than --duration a recording may come out: record stops TEACH when it reads the
-# device's status at the duration, so a reader behind the stream records on (0.5-2.2 s of device
-# time seen in the qemu guest, where scripts/test_linux_can.sh allows 3 s; 0 here).
+# How much longer than record's --duration another logger's log of it may come out (candump):
+# record stops TEACH when its own loop reads the device's status at the duration, so a reader
+# behind the stream leaves TEACH on for longer (0.5-2.2 s of device time seen in the qemu guest,
+# where scripts/test_linux_can.sh allows 3 s; 0 here). record's own log ends at the duration.
 RECORD_OVERRUN_S = float(os.environ.get("FORCESKILL_CAN_RECORD_OVERRUN_S", "0"))
 
 

@@ -11,7 +11,15 @@ from pathlib import Path
 
 import pytest
 
-from helpers.canbus import HOST_TIMEOUT_MS, LINK_TIMEOUT_S, SPEED, TELEMETRY_PERIOD_MS, Server, serve
+from helpers.canbus import (
+    HOST_TIMEOUT_MS,
+    LINK_TIMEOUT_S,
+    REQUEST_TIMEOUT_S,
+    SPEED,
+    TELEMETRY_PERIOD_MS,
+    Server,
+    serve,
+)
 
 VCAN = os.environ.get("FORCESKILL_VCAN", "vcan0")
 VCAN_HOWTO = (
@@ -81,4 +89,5 @@ class SocketCANServer(Server):
             LINK_TIMEOUT_S,
             "--telemetry-period",
             str(TELEMETRY_PERIOD_MS),
+            *(["--request-timeout", REQUEST_TIMEOUT_S] if REQUEST_TIMEOUT_S else []),
         ]

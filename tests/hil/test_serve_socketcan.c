@@ -3,7 +3,8 @@
  * can_frame (tests/firmware/ports/host/pair_ops.h): a refused bit rate does not stop the run; a
  * full interface queue (ENOBUFS) loses no frame, they leave later in order; bus-off latches
  * fault 501 in the tick the error frame is read, nothing is sent while off, and after the restart
- * the emergency frame is the first frame on the bus. */
+ * the emergency frame is the first frame on the bus; a burst larger than the device's receive
+ * FIFO waits in the socket and is not lost. */
 #define _GNU_SOURCE
 #include <setjmp.h>
 #include <stdarg.h>
@@ -137,10 +138,62 @@ static void test_run_over_socket_pair(void **state)
     pair_reset();
 }
 
+#define BURST_FRAMES 270u /* above HAL_SIM_RX_QUEUE, below what the socket pair holds (278) */
+#define BURST_TICK 20u
+
+static void burst_tick(void *ctx)
+{
+    (void)ctx;
+    hal_host_set_time_us((uint64_t)k * 1000u);
+    app_tick(app, false);
+    struct can_frame lf;
+    while (pair_take(&lf)) {
+    }
+    if (k == BURST_TICK) { /* one write each, at once: what vcan hands over without a bit rate */
+        const uint8_t data[8] = {0x21u, 1u, 2u, 3u, 4u, 5u, 6u, 7u};
+        for (unsigned i = 0; i < BURST_FRAMES; i++) {
+            pair_put(0x123u, 8u, data); /* an identifier the device ignores */
+        }
+    }
+    k++;
+}
+
+static void test_burst_beyond_the_fifo_waits_in_the_socket(void **state)
+{
+    (void)state;
+    _Static_assert(BURST_FRAMES > HAL_SIM_RX_QUEUE, "the burst must not fit the FIFO");
+    pair_reset();
+    hal_host_init();
+    hal_host_flash_erase();
+    hal_sim_can_reset();
+    app_config_default(&cfg);
+    hal_host_set_time_us(0u);
+    k = 0u;
+    app = app_device();
+    app_init(app, &cfg);
+    volatile sig_atomic_t stop = 0;
+    const serve_socketcan_cfg_t sc = {.ifname = "can0",
+                                      .ops = &pair_ops,
+                                      .bitrate_bps = 0u,
+                                      .speed = 20.0,
+                                      .end_ns = 40ull * 1000000u,
+                                      .node = 0u,
+                                      .scenario = NULL,
+                                      .tick = burst_tick,
+                                      .ctx = NULL,
+                                      .device_tx_dropped = app_tx_dropped(app),
+                                      .stop = &stop};
+    assert_int_equal(serve_socketcan_run(&sc), 0);
+    assert_int_equal(hal_sim_can_rx_overflows(), 0u);
+    assert_int_equal(hal_sim_can_rx_free(), HAL_SIM_RX_QUEUE); /* all taken by the device */
+    pair_reset();
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_run_over_socket_pair),
+        cmocka_unit_test(test_burst_beyond_the_fifo_waits_in_the_socket),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -93,6 +93,11 @@ bool hal_sim_can_deliver(const can_frame_t *f)
     return true;
 }
 
+uint32_t hal_sim_can_rx_free(void)
+{
+    return HAL_SIM_RX_QUEUE - q.rx_len;
+}
+
 bool hal_sim_can_tx_peek(can_frame_t *f)
 {
     if (q.tx_len == 0u) {

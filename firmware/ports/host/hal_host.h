@@ -93,6 +93,9 @@ void hal_sim_can_reset(void);
  *  controller is bus-off (off the bus, it receives nothing). */
 bool hal_sim_can_deliver(const can_frame_t *f);
 
+/** Frames the rx FIFO can take now (a bridge that reads no more leaves the rest with the bus). */
+uint32_t hal_sim_can_rx_free(void);
+
 /** The most urgent frame the device queued for transmission (lowest identifier, the oldest among
  *  equal identifiers; not removed); false if none. */
 bool hal_sim_can_tx_peek(can_frame_t *f);

@@ -32,7 +32,12 @@ def connect(args: argparse.Namespace) -> Iterator[Device]:
     bus, cfg = open_bus(args)
     try:
         with Device(
-            bus, node=args.node, channel=describe(cfg), timeout_s=args.timeout, fd=bool(cfg.get("fd"))
+            bus,
+            node=args.node,
+            channel=describe(cfg),
+            timeout_s=args.timeout,
+            fd=bool(cfg.get("fd")),
+            request_timeout_s=getattr(args, "request_timeout", None),
         ) as dev:
             dev.wait_present()
             yield dev

@@ -59,19 +59,51 @@ def _record(args: argparse.Namespace, writer: can.Listener) -> FsError | None:
         return _record_session(args, dev, writer, st)
 
 
+class _LogUntil(can.Listener):
+    """The log writer's frames until a status frame of the device shows the recording's last tick:
+    every listener sees the frames in bus order, so the log holds --duration of device time (to
+    a status period) however far behind the stream the host's own loop reads the status. The
+    recording starts at the first status in start_state (TEACH), or at the first one (None)."""
+
+    def __init__(self, writer: can.Listener, duration_ticks: int, start_state: str | None) -> None:
+        self.writer = writer
+        self.duration_ticks = duration_ticks
+        self.start_state = start_state
+        self.start_tick: int | None = None
+        self.ended = False
+
+    def status(self, st: Status) -> None:
+        """Device.on_status: called before the listeners after the Device see that frame."""
+        start = self.start_tick
+        if start is None:
+            if self.start_state is None or st.state == self.start_state:
+                self.start_tick = st.tick
+        elif self.duration_ticks and ((st.tick - start) & 0xFFFFFF) >= self.duration_ticks:
+            self.ended = True
+
+    def on_message_received(self, msg: can.Message) -> None:
+        if not self.ended:
+            self.writer.on_message_received(msg)
+
+    def stop(self) -> None:
+        """Nothing: the writer is closed by the command (close_log)."""
+
+
 def _record_session(
     args: argparse.Namespace, dev: Device, writer: can.Listener, st: Status
 ) -> FsError | None:
     """The recording itself, with the motion session established."""
     assert dev.notifier is not None
-    dev.notifier.add_listener(writer)
+    log = _LogUntil(writer, int(round(args.duration * TICK_HZ)), "TEACH" if args.teach else None)
+    dev.on_status = log.status
+    dev.notifier.add_listener(log)
     try:
         with sigint_flag() as stop:
             dev.start_heartbeat(telemetry_period_ms=getattr(args, "telemetry_period", 1))
             try:
                 if args.teach:
                     st = dev.command_until("teach", {"TEACH"}, 2.0 * args.timeout)
-                start_tick = st.tick
+                start_tick = st.tick if log.start_tick is None else log.start_tick
                 print(
                     f"recording node {dev.node} on {dev.channel} to {args.output}"
                     f"{' in TEACH' if args.teach else ''}; "
@@ -119,7 +151,8 @@ def _record_session(
             finally:
                 dev.stop_heartbeat()
     finally:
-        dev.notifier.remove_listener(writer)
+        dev.notifier.remove_listener(log)
+        dev.on_status = None
     return None
 
 

@@ -52,6 +52,15 @@ def add_bus_args(parser: argparse.ArgumentParser) -> None:
         help=f"seconds to wait for the device before giving up ({DEFAULT_TIMEOUT_S:g})",
     )
     g.add_argument(
+        "--request-timeout",
+        type=float,
+        default=None,
+        metavar="S",
+        help="seconds each UDS request waits for its answer (default: the command's own, 2-5 s, "
+        "below the device's 5 s session timeout so that a lost request is sent again in time; "
+        "longer for a host whose threads stall for seconds, e.g. a qemu guest without KVM)",
+    )
+    g.add_argument(
         "--telemetry-period",
         type=int,
         default=1,
@@ -128,6 +137,9 @@ def open_bus(ns: argparse.Namespace) -> tuple[can.BusABC, dict[str, Any]]:
     node = getattr(ns, "node", 0)
     if not 0 <= node <= 15:
         raise FsError(ERR_LINK_ARGS, f"--node must be 0..15: {node}")
+    req = getattr(ns, "request_timeout", None)
+    if req is not None and not 0.0 < req <= 600.0:
+        raise FsError(ERR_LINK_ARGS, f"--request-timeout must be in (0, 600] s: {req:g}")
     period = getattr(ns, "telemetry_period", 1)
     if not 1 <= period <= MAX_TELEMETRY_PERIOD_MS:
         raise FsError(ERR_LINK_ARGS, f"--telemetry-period must be 1..{MAX_TELEMETRY_PERIOD_MS} ms: {period}")

@@ -87,9 +87,17 @@ class Device(can.Listener):
     """One node on a bus. Use as a context manager: starts a Notifier (shared with ISO-TP)."""
 
     def __init__(
-        self, bus: can.BusABC, node: int = 0, channel: str = "can0", timeout_s: float = 2.0, fd: bool = False
+        self,
+        bus: can.BusABC,
+        node: int = 0,
+        channel: str = "can0",
+        timeout_s: float = 2.0,
+        fd: bool = False,
+        request_timeout_s: float | None = None,
     ):
         self.bus = bus
+        #: Each UDS request's wait (``--request-timeout``) instead of the command's own (link.uds).
+        self.request_timeout_s = request_timeout_s
         #: The bus was opened for CAN FD (``--fd``): UDS goes in 64-byte FD frames (link.uds).
         self.fd = fd
         self.node = node
@@ -275,7 +283,10 @@ class Device(can.Listener):
     def start_heartbeat(self, telemetry_period_ms: int = 0) -> None:
         """Send the host heartbeat every HEARTBEAT_PERIOD_S with python-can's cyclic task
         (bus.send_periodic), each frame with its own counter and CRC (modifier_callback; with a
-        per-frame change python-can runs its timer thread, deadline-based, for every interface)."""
+        per-frame change python-can runs its timer thread, deadline-based, for every interface).
+        The first heartbeat is sent here, before the task's thread runs: a command sent next
+        (TEACH, EXECUTE) reaches the device after it, so the telemetry period is in effect from
+        the command's first tick (a thread slow to start would let it stream every tick first)."""
         self.telemetry_period_ms = telemetry_period_ms
         if self._hb_task is not None:
             return
@@ -285,6 +296,7 @@ class Device(can.Listener):
         self._saved_switch_s = sys.getswitchinterval()
         sys.setswitchinterval(min(self._saved_switch_s, HEARTBEAT_GIL_SWITCH_S))
         gc.freeze()
+        self.heartbeat()
         m = self._m["HostHeartbeat"]
         msg = can.Message(arbitration_id=m.frame_id, data=bytearray(8), is_extended_id=False)
         self._hb_task = self.bus.send_periodic(

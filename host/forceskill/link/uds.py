@@ -222,13 +222,14 @@ def uds_client(
 ) -> Iterator[Client]:
     """A connected udsoncan Client for dev (whose Notifier must be running); each request waits
     request_timeout_s (a lost request is sent again sooner than the device's 5 s session timeout:
-    the link's ``--timeout`` is not used here), pending_timeout_s as open_client's."""
+    the link's ``--timeout`` is not used here), or dev's own (``--request-timeout``) where given;
+    pending_timeout_s as open_client's."""
     assert dev.notifier is not None
     with open_client(
         dev.bus,
         dev.notifier,
         dev.node,
-        timeout_s=request_timeout_s,
+        timeout_s=request_timeout_s if dev.request_timeout_s is None else dev.request_timeout_s,
         pending_timeout_s=pending_timeout_s,
         fd=dev.fd,
     ) as client:
