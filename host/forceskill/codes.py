@@ -42,6 +42,7 @@ ERR_SKILL_PERIOD = 229  # periodic skill: its duration (the period) is not 2*pi*
 ERR_SKILL_AMPLITUDE = 230  # periodic skill: amplitude not > 0
 ERR_SKILL_PHASES = 231  # periodic skill: centres not strictly increasing in [0, 2*pi)
 ERR_SKILL_NO_PERIODIC = 232  # a periodic skill on a device build that cannot run one
+ERR_SKILL_CONTACT_WAIT = 233
 ERR_FIXED_OVERFLOW = 300  # a value does not fit its fixed-point format
 ERR_FIXED_WINDOW = 301  # more kernels overlap than the fixed build evaluates
 ERR_FIXED_STEP = 302  # dt/tau too small or too large for Q1.31
@@ -73,6 +74,7 @@ SKILL_STATUS_TEXT: dict[int, str] = {
     230: 'bad amplitude',
     231: 'bad phase centres',
     232: 'periodic skills not supported by this device',
+    233: 'bad contact-wait parameters',
 }
 
 # Protocol: E2E protection, ISO-TP (4xx)
@@ -368,6 +370,7 @@ __all__ = [
     'ERR_SKILL_AMPLITUDE',
     'ERR_SKILL_PHASES',
     'ERR_SKILL_NO_PERIODIC',
+    'ERR_SKILL_CONTACT_WAIT',
     'ERR_FIXED_OVERFLOW',
     'ERR_FIXED_WINDOW',
     'ERR_FIXED_STEP',

@@ -115,7 +115,7 @@ def golden_periodic(skills: dict[str, tuple[Skill, PeriodicScales]]) -> tuple[di
     return files, manifest
 
 
-_HDR4 = struct.Struct("<IHHIHH23dHHI")
+_HDR4 = struct.Struct("<IHHIHH23dHHHH")
 
 
 def bad_images_periodic(base: Skill, discrete: Skill) -> list[tuple[str, bytes, int]]:
@@ -137,8 +137,9 @@ def bad_images_periodic(base: Skill, discrete: Skill) -> list[tuple[str, bytes, 
             kw.get("flags", sk.flags),
             *(float(f[k]) for k in names),
             kw.get("kind", sk.kind),
-            0,
-            kw.get("reserved32", 0),
+            kw.get("contact_cN", sk.contact_cN),
+            kw.get("contact_tau_ms", sk.contact_tau_ms),
+            kw.get("reserved16", 0),
         )
         c = sk.centres if centres is None else centres
         body = head + np.concatenate([c, sk.widths, sk.weights]).astype("<f8").tobytes()
@@ -153,7 +154,9 @@ def bad_images_periodic(base: Skill, discrete: Skill) -> list[tuple[str, bytes, 
         ("version_5.skill", pack4(base, version=5), 202),
         ("p_header_size.skill", pack4(base, header_size=152), 211),
         ("p_kind_2.skill", pack4(base, kind=2), 228),
-        ("p_reserved.skill", pack4(base, reserved32=1), 228),
+        ("p_reserved.skill", pack4(base, reserved16=1), 228),
+        ("p_contact_tau_only.skill", pack4(base, contact_tau_ms=50), 233),
+        ("p_contact_tau_max.skill", pack4(base, contact_cN=200, contact_tau_ms=10001), 233),
         ("p_discrete_amplitude.skill", pack4(discrete, amplitude_N=1.0), 228),
         ("p_nan_amplitude.skill", pack4(base, amplitude_N=np.nan), 206),
         ("p_centre_2pi.skill", pack4(base, centres=c_hi), 231),
