@@ -28,13 +28,13 @@
 #define OFF_KKI 112u /* k*k_i, N/(m s) */
 #define OFF_SURFACE 120u
 #define OFF_FORCE0 128u
-#define OFF_Y_START 136u   /* v3 */
-#define OFF_GOAL_Y 144u    /* v3 */
-#define OFF_AMPLITUDE 152u /* v4: the periodic DMP's six f64 (amplitude, e0, z0, I0, y p0, y z0) */
-#define OFF_KIND 200u      /* v4: kind u16 */
-#define OFF_CONTACT_CN 202u  /* v4: contact-wait threshold u16, 0.01 N (0: off) */
-#define OFF_CONTACT_MS 204u  /* v4: contact-wait time constant u16, ms */
-#define OFF_RESERVED 206u    /* v4: reserved u16 (0) */
+#define OFF_Y_START 136u    /* v3 */
+#define OFF_GOAL_Y 144u     /* v3 */
+#define OFF_AMPLITUDE 152u  /* v4: the periodic DMP's six f64 (amplitude, e0, z0, I0, y p0, y z0) */
+#define OFF_KIND 200u       /* v4: kind u16 */
+#define OFF_CONTACT_CN 202u /* v4: contact-wait threshold u16, 0.01 N (0: off) */
+#define OFF_CONTACT_MS 204u /* v4: contact-wait time constant u16, ms */
+#define OFF_RESERVED 206u   /* v4: reserved u16 (0) */
 #define SKILL_N_HEADER_F64_V2 15u
 #define SKILL_N_HEADER_F64_V3 17u
 #define SKILL_N_HEADER_F64_V4 23u

@@ -30,7 +30,7 @@
 #define SKILL_FLAG_Y_AXIS 0x0002u      /* v3: the position DMP on y is present (v2: refused) */
 #define SKILL_RELEASE_TIME_S 0.5
 #define SKILL_KIND_DISCRETE 0u
-#define SKILL_KIND_PERIODIC 1u /* v4: a rhythmic skill (docs/math.md section 5) */
+#define SKILL_KIND_PERIODIC 1u          /* v4: a rhythmic skill (docs/math.md section 5) */
 #define SKILL_CONTACT_TAU_MS_MAX 10000u /* v4: the contact-wait time constant's largest value */
 /* The core runs periodic skills (dmp_periodic_step, in double, float32 and fixed point): a build
  * that cannot (a port without the periodic executor) defines SKILL_PERIODIC_SUPPORTED 0 and
