@@ -269,6 +269,7 @@ DID_STIFFNESS_MAX = 0x0140  # highest nominal skill stiffness the device accepts
 DID_FAULT_CAUSES = 0x0301  # latched mask u32, causes present mask u32 (bit n: fault 500+n)
 DID_MOTION_KEY = 0x0302
 DID_AUTH_STATS = 0x0303
+DID_CONTACT_WAIT = 0x0304
 DID_FWU_STATUS = 0xF1B0  # update status: FWU_STATUS_LEN bytes, see fwu_status()
 RID_RUN_SKILL = 0x0201  # start: slot u8, goal_scale u16 (1e-3), time_scale u16 (1e-3), end u8
 RID_RUN_SEQUENCE = 0x0202
@@ -532,6 +533,7 @@ __all__ = [
     'DID_FAULT_CAUSES',
     'DID_MOTION_KEY',
     'DID_AUTH_STATS',
+    'DID_CONTACT_WAIT',
     'DID_FWU_STATUS',
     'RID_RUN_SKILL',
     'RID_RUN_SEQUENCE',
