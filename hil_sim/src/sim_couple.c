@@ -191,8 +191,8 @@ double sim_couple_away_m(const sim_scenario_t *sc, double t_s)
     if (!(ramp > 0.0)) {
         return (t_s < t1) ? sc->away_m : 0.0;
     }
-    return sc->away_m * ((t_s < t1) ? smoothstep((t_s - t0) / ramp)
-                                    : 1.0 - smoothstep((t_s - t1) / ramp));
+    return sc->away_m *
+           ((t_s < t1) ? smoothstep((t_s - t0) / ramp) : 1.0 - smoothstep((t_s - t1) / ramp));
 }
 
 bool sim_couple_step(sim_couple_plant_t *p, const sim_scenario_t *sc, app_state_t state,
@@ -205,7 +205,8 @@ bool sim_couple_step(sim_couple_plant_t *p, const sim_scenario_t *sc, app_state_
     p->executing = (state == APP_EXECUTE);
     p->object = sc->object;
     if (p->executing) {
-        p->object.surface_m += sim_couple_away_m(sc, (double)(p->n_tick - p->exec_start) * sc->dt_s);
+        p->object.surface_m += sim_couple_away_m(sc,
+                                                 (double)(p->n_tick - p->exec_start) * sc->dt_s);
     }
     p->drv[0].object = &p->object;
     sim_drive_prepare(&p->drv[0]);

@@ -96,8 +96,8 @@ typedef struct {
     bool teaching;
     sim_sample_t ring[SIM_COUPLE_RING];
     uint64_t n_tick;
-    sim_object_t object;   /* the object now (its surface moved by the scenario's away_*) */
-    uint64_t exec_start;   /* the tick the running execution started */
+    sim_object_t object; /* the object now (its surface moved by the scenario's away_*) */
+    uint64_t exec_start; /* the tick the running execution started */
     bool executing;
 } sim_couple_plant_t;
 

@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 import argparse
+import math
 from pathlib import Path
 from typing import Any
 
 from ..errors import FsError
 from ._args import add_force_limit, float_arg, int_arg
-
 
 #: --contact-wait's time constant when only the threshold is given (s)
 CONTACT_TAU_DEFAULT_S = 0.05
@@ -24,8 +24,10 @@ def contact_wait_arg(text: str) -> tuple[int, int]:
         thr = float(parts[0])
         tau = float(parts[1]) if len(parts) == 2 else CONTACT_TAU_DEFAULT_S
     except ValueError:
-        thr = tau = float("nan")
-    cn, ms = round(thr * 100.0) if thr == thr else 0, round(tau * 1000.0) if tau == tau else -1
+        thr, tau = 0.0, -1.0
+    if not (math.isfinite(thr) and math.isfinite(tau)):
+        thr, tau = 0.0, -1.0
+    cn, ms = round(thr * 100.0), round(tau * 1000.0)
     if len(parts) > 2 or not (1 <= cn <= 0xFFFF) or not (0 <= ms <= CONTACT_TAU_MS_MAX):
         raise argparse.ArgumentTypeError(
             f"expected THRESHOLD_N[,TAU_S] with a threshold in (0, 655.35] N and a time constant "
