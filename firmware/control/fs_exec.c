@@ -181,6 +181,16 @@ static fs_status_t exec_law_reset(const exec_config_t *cfg, exec_state_t *st)
 #endif
 }
 
+/* The contact wait at an execution's start: rate 1, nothing held. */
+static void exec_contact_reset(exec_state_t *st)
+{
+    st->contact_rate = FS_R(1.0);
+    st->contact_hold_s = FS_R(0.0);
+    st->contact_defer = FS_R(0.0);
+    st->contact_losses = 0u;
+    st->contact_lost = 0u;
+}
+
 fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
                        uint8_t n_steps, fs_real_t y_hold_m)
 {
@@ -251,11 +261,7 @@ fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_st
     st->y_ref_m = y_hold_m;
     st->y_ref_vel_mps = FS_R(0.0);
     st->start_pending = 1u;
-    st->contact_rate = FS_R(1.0);
-    st->contact_hold_s = FS_R(0.0);
-    st->contact_defer = FS_R(0.0);
-    st->contact_losses = 0u;
-    st->contact_lost = 0u;
+    exec_contact_reset(st);
     rc = exec_law_reset(cfg, st);
     /* every step begins once here, the first last: a later switch cannot fail */
     for (uint8_t i = n_steps; rc == FS_OK && i > 0u; i--) {
