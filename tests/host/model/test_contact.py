@@ -77,3 +77,21 @@ def test_the_image_carries_the_contact_wait() -> None:
     with pytest.raises(SkillError) as e:
         sk2.to_bytes()
     assert e.value.code == 233
+
+
+def test_rollout_command_simulates_a_contact_loss(tmp_path, capsys) -> None:  # type: ignore[no-untyped-def]
+    from forceskill import cli
+
+    sk = Skill.from_bytes(Skill.read(PRESS).to_bytes())
+    sk.contact_cN, sk.contact_tau_ms, sk.format_version = 50, 20, 4
+    sk.write(tmp_path / "w.skill")
+    out_csv = tmp_path / "r.csv"
+    assert (
+        cli.main(["rollout", str(tmp_path / "w.skill"), "-o", str(out_csv), "--contact-loss", "0.6,0.9"]) == 0
+    )
+    out = capsys.readouterr().out
+    assert "the phase held 300.0 ms" in out
+    cols = np.genfromtxt(out_csv, delimiter=",", names=True)
+    _, f_hat, rate, _ = contact.loss_window(sk, cols["t"].size, (0.6, 0.9))
+    assert np.max(np.abs(cols["f_hat"] - f_hat)) <= 1e-6 * np.max(np.abs(f_hat))
+    assert np.max(np.abs(cols["rate"] - rate)) <= 1e-6
