@@ -30,6 +30,11 @@
  * A periodic step runs dmp_periodic_step (cycles from the stored cycle state, f_dmp = f0 +
  * goal_scale*g + e) for its duration or until stopped; its starting force (the carry's
  * reference) is its first value f0 + goal_scale*g + amplitude_scale*e0.
+ * Contact wait (a skill with skill_t.contact_threshold_N > 0, docs/math.md section 6): each
+ * tick the phase rate r follows dmp_contact_rate (to 0 while the last f_hat exceeds the
+ * measured contact force by more than the threshold, to 1 otherwise) and every DMP state runs
+ * at r (dmp_slowdown_at_rate beside phase stopping), so f_hat holds and resumes without a step;
+ * the step lasts one tick more per tick of phase held; the hold sum (1 - r)*dt is counted.
  * End of the sequence: hold keeps the last f_hat; release ramps it linearly to 0 in
  * SKILL_RELEASE_TIME_S, then the sequence is done (f_hat stays 0). */
 #ifndef FS_EXEC_H
