@@ -104,6 +104,13 @@ static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf, uint16_
                                           app->active_slot, app->seq_step, app->tick};
         return fs_wire_device_state_pack(&v, buf, cap);
     }
+    case DID_CONTACT_WAIT: {
+        const fs_real_t r = app->exec.contact_rate * FS_R(1000.0) + FS_R(0.5); /* 0.001 steps */
+        const fs_wire_contact_wait_t v = {exec_contact_hold_ms(&app->exec),
+                                          app->exec.contact_losses,
+                                          (r < FS_R(1000.0)) ? (uint16_t)r : (uint16_t)1000u};
+        return fs_wire_contact_wait_pack(&v, buf, cap);
+    }
     case DID_STIFFNESS_MAX: {
         const fs_wire_stiffness_max_t v = {(float)app->cfg.stiffness_max_Npm};
         return fs_wire_stiffness_max_pack(&v, buf, cap);

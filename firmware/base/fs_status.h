@@ -52,7 +52,7 @@ typedef enum {
     /* the skill's nominal stiffness is above the device's stiffness limit (commit and run
      * refused) */
     FS_ERR_SKCHK_STIFFNESS = 227,
-    /* format v4: a kind other than discrete (0) or periodic (1), reserved fields not 0, or a
+    /* format v4: a kind other than discrete (0) or periodic (1), the reserved field not 0, or a
      * discrete skill with periodic fields not 0 */
     FS_ERR_SKILL_KIND = 228,
     /* periodic skill: its duration (the period) is not 2*pi*tau */
@@ -61,6 +61,9 @@ typedef enum {
     /* periodic skill: centres not strictly increasing in [0, 2*pi) */
     FS_ERR_SKILL_PHASES = 231,
     FS_ERR_SKILL_NO_PERIODIC = 232,     /* a periodic skill on a device build that cannot run one */
+    /* format v4: the contact-wait fields out of range (a time constant above 10 s, or one
+     * without a threshold) */
+    FS_ERR_SKILL_CONTACT_WAIT = 233,
 
     /* 3xx: fixed-point conversion (firmware/fixed) */
     FS_ERR_FIXED_OVERFLOW = 300,        /* a value does not fit its fixed-point format */

@@ -28,6 +28,8 @@
 /* authenticated host frames: accepted, wrong MAC, replay, no key, keys discarded u32; last
  * refusal u16; keyed u8; FV command, FV heartbeat u32 */
 #define DID_AUTH_STATS 0x0303u
+/* contact wait of the running or last execution: hold ms u32, losses u16, phase rate u16 (1e-3) */
+#define DID_CONTACT_WAIT 0x0304u
 #define FWU_DID_STATUS 0xF1B0u         /* update status: FWU_STATUS_LEN bytes, see fwu_status() */
 
 /* start: slot u8, goal_scale u16 (1e-3), time_scale u16 (1e-3), end u8 */

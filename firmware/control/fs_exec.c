@@ -219,6 +219,16 @@ static fs_status_t exec_check_step(const exec_step_t *s)
     return FS_OK;
 }
 
+/* The contact wait at an execution's start: rate 1, nothing held. */
+static void exec_contact_reset(exec_state_t *st)
+{
+    st->contact_rate = FS_R(1.0);
+    st->contact_hold_s = FS_R(0.0);
+    st->contact_defer = FS_R(0.0);
+    st->contact_losses = 0u;
+    st->contact_lost = 0u;
+}
+
 fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
                        uint8_t n_steps, fs_real_t y_hold_m)
 {
@@ -280,6 +290,7 @@ fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_st
     st->y_ref_m = y_hold_m;
     st->y_ref_vel_mps = FS_R(0.0);
     st->start_pending = 1u;
+    exec_contact_reset(st);
     rc = exec_law_reset(cfg, st);
 #ifdef FS_EXEC_FIXED
     /* every step's constants here: a later switch only selects them and cannot fail */
@@ -329,6 +340,40 @@ static fs_real_t exec_blend(fs_real_t t_s)
     return FS_R(1.0) - r * r * (FS_R(3.0) - FS_R(2.0) * r);
 }
 
+/* The skill's contact wait for this tick: the phase rate from the last f_hat and the measured
+ * contact force, the hold and the losses counted; 0 (rate 1) for a skill without one. */
+static int exec_contact_wait(exec_state_t *st, const skill_t *sk, fs_real_t f_contact_N,
+                             fs_real_t dt)
+{
+    if (!(sk->contact_threshold_N > FS_R(0.0))) {
+        st->contact_rate = FS_R(1.0);
+        return 0;
+    }
+    const fs_real_t gain = dt / (sk->contact_tau_s + dt);
+    st->contact_rate = dmp_contact_rate(st->contact_rate, st->force_hat_N, f_contact_N,
+                                        sk->contact_threshold_N, gain);
+    const uint8_t lost = (uint8_t)((st->force_hat_N - f_contact_N <= sk->contact_threshold_N) ? 0u
+                                                                                              : 1u);
+    if (lost != 0u && st->contact_lost == 0u && st->contact_losses < UINT16_MAX) {
+        st->contact_losses++;
+    }
+    st->contact_lost = lost;
+    st->contact_hold_s += (FS_R(1.0) - st->contact_rate) * dt;
+    /* the step lasts as long in phase: one tick more for every tick the phase fell behind */
+    st->contact_defer += FS_R(1.0) - st->contact_rate;
+    if (st->contact_defer >= FS_R(1.0)) {
+        st->contact_defer -= FS_R(1.0);
+        st->step_ticks += (st->step_ticks < EXEC_TICKS_MAX) ? 1u : 0u;
+    }
+    return 1;
+}
+
+uint32_t exec_contact_hold_ms(const exec_state_t *st)
+{
+    const fs_real_t ms = st->contact_hold_s * FS_R(1000.0) + FS_R(0.5);
+    return (ms > FS_R(0.0)) ? (uint32_t)ms : 0u;
+}
+
 static fs_real_t exec_reference_force(const exec_config_t *cfg, exec_state_t *st,
                                       const exec_meas_t *meas)
 {
@@ -369,6 +414,10 @@ static fs_real_t exec_reference_force(const exec_config_t *cfg, exec_state_t *st
     if (cfg->phase_stop_gain_per_N2 > FS_R(0.0)) {
         coupling.phase_slowdown = dmp_phase_stop_factor(meas->force_contact_N - st->force_hat_N,
                                                         cfg->phase_stop_gain_per_N2);
+        cp = &coupling;
+    }
+    if (exec_contact_wait(st, s->skill, meas->force_contact_N, dt)) {
+        coupling.phase_slowdown = dmp_slowdown_at_rate(coupling.phase_slowdown, st->contact_rate);
         cp = &coupling;
     }
     st->force_dmp_N = exec_dmp_step(st, s, cp);

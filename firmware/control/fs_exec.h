@@ -30,6 +30,11 @@
  * A periodic step runs dmp_periodic_step (cycles from the stored cycle state, f_dmp = f0 +
  * goal_scale*g + e) for its duration or until stopped; its starting force (the carry's
  * reference) is its first value f0 + goal_scale*g + amplitude_scale*e0.
+ * Contact wait (a skill with skill_t.contact_threshold_N > 0, docs/math.md section 6): each
+ * tick the phase rate r follows dmp_contact_rate (to 0 while the last f_hat exceeds the
+ * measured contact force by more than the threshold, to 1 otherwise) and every DMP state runs
+ * at r (dmp_slowdown_at_rate beside phase stopping), so f_hat holds and resumes without a step;
+ * the step lasts one tick more per tick of phase held; the hold sum (1 - r)*dt is counted.
  * End of the sequence: hold keeps the last f_hat; release ramps it linearly to 0 in
  * SKILL_RELEASE_TIME_S, then the sequence is done (f_hat stays 0). */
 #ifndef FS_EXEC_H
@@ -65,6 +70,7 @@
 #define exec_object_force exec_object_force_fx
 #define exec_object_deformation exec_object_deformation_fx
 #define exec_tick exec_tick_fx
+#define exec_contact_hold_ms exec_contact_hold_ms_fx
 #define exec_vel_init exec_vel_init_fx
 #define exec_vel_update exec_vel_update_fx
 #define exec_render_default exec_render_default_fx
@@ -174,6 +180,12 @@ typedef struct {
     fs_real_t y_ref_vel_mps;  /* yd_d */
     uint8_t start_pending;    /* 1 until the first tick has measured the contact force */
     fs_real_t surface_m;      /* the surface the reference is built on */
+    /* the running skill's contact wait (skill_t.contact_threshold_N > 0) */
+    fs_real_t contact_rate;   /* the phase rate, 0..1 (1 without a contact wait) */
+    fs_real_t contact_hold_s; /* sum of (1 - rate)*dt: how long the phase held */
+    fs_real_t contact_defer;  /* ticks held not yet added to the running step's length */
+    uint16_t contact_losses;  /* losses of contact counted */
+    uint8_t contact_lost;     /* contact lost at the last tick */
 } exec_state_t;
 
 /** Default configuration: pfc_default_config, 50 N limit, no model, no phase stopping. */
@@ -199,6 +211,10 @@ fs_real_t exec_object_deformation(const exec_object_t *obj, fs_real_t force_N);
  *  commands are computed from the saturated values). */
 fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_meas_t *meas,
                       exec_out_t *out);
+
+/** How long the phase of the execution held for contact (the contact wait's sum of
+ *  (1 - rate)*dt), rounded to ms (0 without a contact wait). */
+uint32_t exec_contact_hold_ms(const exec_state_t *st);
 
 /* ---- Velocity estimation (encoder difference + first-order low-pass) ---- */
 

@@ -418,6 +418,25 @@ fs_real_t dmp_phase_stop_factor(fs_real_t force_err_N, fs_real_t gain_per_N2)
     return (r > FS_R(0.0)) ? r : FS_R(0.0);
 }
 
+fs_real_t dmp_contact_rate(fs_real_t rate, fs_real_t f_hat_N, fs_real_t f_contact_N,
+                           fs_real_t threshold_N, fs_real_t gain)
+{
+    const int in_contact = (f_hat_N - f_contact_N <= threshold_N);
+    const fs_real_t target = in_contact ? FS_R(1.0) : FS_R(0.0);
+    return rate + gain * (target - rate);
+}
+
+fs_real_t dmp_slowdown_at_rate(fs_real_t slowdown, fs_real_t rate)
+{
+    if (rate >= FS_R(1.0)) {
+        return slowdown;
+    }
+    if (!(rate > FS_R(0.0))) {
+        return FS_REAL_INF;
+    }
+    return (FS_R(1.0) + slowdown) / rate - FS_R(1.0);
+}
+
 /* The force DMP's per-tick constants for a run and a coupling (both may be NULL). */
 static dmp_tick_coef_t dmp_coef(const dmp_model_t *m, const dmp_run_t *run,
                                 const dmp_coupling_t *coupling)

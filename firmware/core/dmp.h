@@ -202,6 +202,17 @@ uint16_t dmp_active_kernels(const dmp_model_t *m, fs_real_t u);
  *  negative, +inf (phase frozen) if it is NaN. */
 fs_real_t dmp_phase_stop_factor(fs_real_t force_err_N, fs_real_t gain_per_N2);
 
+/** The contact wait's phase rate after one tick (docs/math.md, "A phase that waits for
+ *  contact"): contact is lost while f_hat_N - f_contact_N > threshold_N (f_hat the last tick's
+ *  reference), and the rate moves by gain = dt/(tau + dt) towards 0 while it is lost, towards 1
+ *  otherwise (a NaN force counts as lost). */
+fs_real_t dmp_contact_rate(fs_real_t rate, fs_real_t f_hat_N, fs_real_t f_contact_N,
+                           fs_real_t threshold_N, fs_real_t gain);
+
+/** The phase slow-down that also runs at rate (0..1) of the nominal: (1 + slowdown)/rate - 1,
+ *  slowdown itself at rate >= 1, +inf (every state frozen) at rate <= 0 or NaN. */
+fs_real_t dmp_slowdown_at_rate(fs_real_t slowdown, fs_real_t rate);
+
 /** Advance the state by one step of dt_s (forward Euler, all right-hand sides at the old
  *  state, docs/math.md section 2; the step is dmp_tick.h, shared with dmpfx_step). run NULL means scales 1; coupling may be NULL (none); a
  *  phase_slowdown that is negative or NaN counts as 0, +inf freezes every state.

@@ -17,6 +17,8 @@
 #define dmp_forcing_full dmp_forcing_full_f32
 #define dmp_active_kernels dmp_active_kernels_f32
 #define dmp_phase_stop_factor dmp_phase_stop_factor_f32
+#define dmp_contact_rate dmp_contact_rate_f32
+#define dmp_slowdown_at_rate dmp_slowdown_at_rate_f32
 #define dmp_step dmp_step_f32
 #define dmp_step_xy dmp_step_xy_f32
 #define dmp_periodic_reset dmp_periodic_reset_f32

@@ -28,10 +28,13 @@
 #define OFF_KKI 112u /* k*k_i, N/(m s) */
 #define OFF_SURFACE 120u
 #define OFF_FORCE0 128u
-#define OFF_Y_START 136u   /* v3 */
-#define OFF_GOAL_Y 144u    /* v3 */
-#define OFF_AMPLITUDE 152u /* v4: the periodic DMP's six f64 (amplitude, e0, z0, I0, y p0, y z0) */
-#define OFF_KIND 200u      /* v4: kind u16, reserved u16, reserved u32 */
+#define OFF_Y_START 136u    /* v3 */
+#define OFF_GOAL_Y 144u     /* v3 */
+#define OFF_AMPLITUDE 152u  /* v4: the periodic DMP's six f64 (amplitude, e0, z0, I0, y p0, y z0) */
+#define OFF_KIND 200u       /* v4: kind u16 */
+#define OFF_CONTACT_CN 202u /* v4: contact-wait threshold u16, 0.01 N (0: off) */
+#define OFF_CONTACT_MS 204u /* v4: contact-wait time constant u16, ms */
+#define OFF_RESERVED 206u   /* v4: reserved u16 (0) */
 #define SKILL_N_HEADER_F64_V2 15u
 #define SKILL_N_HEADER_F64_V3 17u
 #define SKILL_N_HEADER_F64_V4 23u
@@ -238,12 +241,17 @@ static fs_status_t check_gains_flags(const uint8_t *buf, uint16_t version, uint8
     return ((rd_u16(buf, OFF_FLAGS) & (uint16_t)~known) != 0u) ? FS_ERR_SKILL_UNSUPPORTED : FS_OK;
 }
 
-/* v4: a discrete skill's periodic fields 0 (228); a periodic skill without the y DMP (210),
- * amplitude > 0 (230), T = 2*pi*tau (229), and runnable by this build (232). */
+/* v4: the contact wait's time constant at most 10 s and 0 without a threshold (233); a discrete
+ * skill's periodic fields 0 (228); a periodic skill without the y DMP (210), amplitude > 0 (230),
+ * T = 2*pi*tau (229), and runnable by this build (232). */
 static fs_status_t check_kind(const uint8_t *buf, uint16_t version, uint8_t kind, uint8_t has_y)
 {
     if (version < 4u) {
         return FS_OK;
+    }
+    const uint16_t tau_ms = rd_u16(buf, OFF_CONTACT_MS);
+    if (tau_ms > SKILL_CONTACT_TAU_MS_MAX || (rd_u16(buf, OFF_CONTACT_CN) == 0u && tau_ms != 0u)) {
+        return FS_ERR_SKILL_CONTACT_WAIT;
     }
     if (kind == SKILL_KIND_DISCRETE) {
         for (uint32_t k = 0u; k < SKILL_N_PERIODIC_F64; k++) {
@@ -435,6 +443,12 @@ static void parse_once(skill_parser_t *p)
                               ? SKILL_END_RELEASE
                               : SKILL_END_HOLD;
         out->kind = p->kind;
+        out->contact_threshold_N = FS_R(0.0);
+        out->contact_tau_s = FS_R(0.0);
+        if (p->version >= 4u) {
+            out->contact_threshold_N = (fs_real_t)rd_u16(buf, OFF_CONTACT_CN) * FS_R(0.01);
+            out->contact_tau_s = (fs_real_t)rd_u16(buf, OFF_CONTACT_MS) * FS_R(0.001);
+        }
         dmp_model_init_begin(&p->init);
         break;
     default: break;
@@ -458,8 +472,7 @@ static bool parse_crc(skill_parser_t *p)
         p->status = FS_ERR_SKILL_KERNELS;
     } else if (p->version >= 4u) {
         const uint16_t kind = rd_u16(p->buf, OFF_KIND);
-        if (kind > SKILL_KIND_PERIODIC || rd_u16(p->buf, OFF_KIND + 2u) != 0u ||
-            rd_u32(p->buf, OFF_KIND + 4u) != 0u) {
+        if (kind > SKILL_KIND_PERIODIC || rd_u16(p->buf, OFF_RESERVED) != 0u) {
             p->status = FS_ERR_SKILL_KIND;
         }
         p->kind = (uint8_t)kind;

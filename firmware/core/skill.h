@@ -30,7 +30,8 @@
 #define SKILL_FLAG_Y_AXIS 0x0002u      /* v3: the position DMP on y is present (v2: refused) */
 #define SKILL_RELEASE_TIME_S 0.5
 #define SKILL_KIND_DISCRETE 0u
-#define SKILL_KIND_PERIODIC 1u /* v4: a rhythmic skill (docs/math.md section 5) */
+#define SKILL_KIND_PERIODIC 1u          /* v4: a rhythmic skill (docs/math.md section 5) */
+#define SKILL_CONTACT_TAU_MS_MAX 10000u /* v4: the contact-wait time constant's largest value */
 /* The core runs periodic skills (dmp_periodic_step, in double, float32 and fixed point): a build
  * that cannot (a port without the periodic executor) defines SKILL_PERIODIC_SUPPORTED 0 and
  * refuses a valid periodic image with FS_ERR_SKILL_NO_PERIODIC after every check of the format. */
@@ -53,6 +54,10 @@ typedef struct {
     fs_real_t surface_m;     /* object surface position during the demonstration */
     skill_end_t end_policy;
     uint8_t kind; /* SKILL_KIND_DISCRETE (v2, v3 and v4 kind 0) or SKILL_KIND_PERIODIC */
+    /* v4's contact wait (docs/math.md, "A phase that waits for contact"): contact is lost while
+     * f_hat - f_contact > contact_threshold_N; 0 = off (every other version) */
+    fs_real_t contact_threshold_N;
+    fs_real_t contact_tau_s; /* the phase rate's first-order time constant */
 } skill_t;
 
 /** Total image length in bytes for N kernels of a v2 image (force only): 136 + 24 N + 4. */
@@ -99,7 +104,8 @@ bool skill_parse_run(skill_parser_t *p, uint32_t max_units);
 
 /** Parse and validate an image of version 2, 3 or 4 (magic, version, sizes, CRC, kind, finite
  *  values, ranges, centres, gains consistent with alpha/beta/gamma, beta <= alpha/4, with the y
- *  DMP 0 < beta_y <= alpha/4, flags, a periodic skill's amplitude and period); on error *out is
+ *  DMP 0 < beta_y <= alpha/4, flags, v4's contact wait (233), a periodic skill's amplitude and
+ *  period); on error *out is
  *  unspecified. Another version is refused with 202; a valid periodic skill with 232 by a build
  *  without SKILL_PERIODIC_SUPPORTED. */
 fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out);

@@ -173,11 +173,45 @@ void sim_couple_sense(sim_couple_plant_t *p, const sim_scenario_t *sc, bool teac
     sim_couple_to_hal(sim_couple_delay(p->ring, p->n_tick, sc->delay_samples, &smp), hs);
 }
 
+/* 0 at r <= 0 rising smoothly to 1 at r >= 1. */
+static double smoothstep(double r)
+{
+    r = (r < 0.0) ? 0.0 : ((r > 1.0) ? 1.0 : r);
+    return r * r * (3.0 - 2.0 * r);
+}
+
+double sim_couple_away_m(const sim_scenario_t *sc, double t_s)
+{
+    const double t0 = sc->away_at_s;
+    const double t1 = sc->away_at_s + sc->away_for_s;
+    const double ramp = sc->away_ramp_s;
+    if (!(sc->away_for_s > 0.0) || t_s < t0 || t_s >= t1 + ramp) {
+        return 0.0;
+    }
+    if (!(ramp > 0.0)) {
+        return (t_s < t1) ? sc->away_m : 0.0;
+    }
+    return sc->away_m *
+           ((t_s < t1) ? smoothstep((t_s - t0) / ramp) : 1.0 - smoothstep((t_s - t1) / ramp));
+}
+
 bool sim_couple_step(sim_couple_plant_t *p, const sim_scenario_t *sc, app_state_t state,
                      bool enable, const fs_real_t force_N[2])
 {
     (void)sim_couple_drive(sc, state, enable, force_N, p->drv, NULL);
+    if (state == APP_EXECUTE && !p->executing) {
+        p->exec_start = p->n_tick;
+    }
+    p->executing = (state == APP_EXECUTE);
+    p->object = sc->object;
+    if (p->executing) {
+        p->object.surface_m += sim_couple_away_m(sc,
+                                                 (double)(p->n_tick - p->exec_start) * sc->dt_s);
+    }
+    p->drv[0].object = &p->object;
+    sim_drive_prepare(&p->drv[0]);
     sim_couple_advance(sc, p->ax, p->drv, sim_couple_parked(state, enable));
+    p->drv[0].object = &sc->object;
     p->n_tick++;
     return enable;
 }

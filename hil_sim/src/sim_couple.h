@@ -89,7 +89,14 @@ typedef struct {
     bool teaching;
     sim_sample_t ring[SIM_COUPLE_RING];
     uint64_t n_tick;
+    sim_object_t object; /* the object now (its surface moved by the scenario's away_*) */
+    uint64_t exec_start; /* the tick the running execution started */
+    bool executing;
 } sim_couple_plant_t;
+
+/** How far the object's surface has moved away t_s into an execution (the scenario's away_*:
+ *  smoothstep ramps of away_ramp_s, a step without). */
+double sim_couple_away_m(const sim_scenario_t *sc, double t_s);
 
 /** The plant at the scenario's start (sim_couple_plant_init), sensor noise seeded from sc. */
 void sim_couple_start(sim_couple_plant_t *p, const sim_scenario_t *sc);

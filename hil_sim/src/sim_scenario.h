@@ -51,6 +51,10 @@ typedef struct {
     double
         stiffness_max_Npm; /* the device's skill stiffness limit (0: its default for the plant) */
     sim_object_t object;
+    /* [object] away_*: during an execution the object's surface moves away by away_m from
+     * away_at_s for away_for_s (the surface ends under the tool, or the operator lifts the part),
+     * over away_ramp_s each way (0: a step), then comes back */
+    double away_at_s, away_for_s, away_m, away_ramp_s;
     sim_carriage_t carriage;
     sim_operator_cfg_t op;
     sim_force_sensor_t tip, handle;

@@ -42,6 +42,7 @@ ERR_SKILL_PERIOD = 229  # periodic skill: its duration (the period) is not 2*pi*
 ERR_SKILL_AMPLITUDE = 230  # periodic skill: amplitude not > 0
 ERR_SKILL_PHASES = 231  # periodic skill: centres not strictly increasing in [0, 2*pi)
 ERR_SKILL_NO_PERIODIC = 232  # a periodic skill on a device build that cannot run one
+ERR_SKILL_CONTACT_WAIT = 233
 ERR_FIXED_OVERFLOW = 300  # a value does not fit its fixed-point format
 ERR_FIXED_WINDOW = 301  # more kernels overlap than the fixed build evaluates
 ERR_FIXED_STEP = 302  # dt/tau too small or too large for Q1.31
@@ -73,6 +74,7 @@ SKILL_STATUS_TEXT: dict[int, str] = {
     230: 'bad amplitude',
     231: 'bad phase centres',
     232: 'periodic skills not supported by this device',
+    233: 'bad contact-wait parameters',
 }
 
 # Protocol: E2E protection, ISO-TP (4xx)
@@ -267,6 +269,7 @@ DID_STIFFNESS_MAX = 0x0140  # highest nominal skill stiffness the device accepts
 DID_FAULT_CAUSES = 0x0301  # latched mask u32, causes present mask u32 (bit n: fault 500+n)
 DID_MOTION_KEY = 0x0302
 DID_AUTH_STATS = 0x0303
+DID_CONTACT_WAIT = 0x0304
 DID_FWU_STATUS = 0xF1B0  # update status: FWU_STATUS_LEN bytes, see fwu_status()
 RID_RUN_SKILL = 0x0201  # start: slot u8, goal_scale u16 (1e-3), time_scale u16 (1e-3), end u8
 RID_RUN_SEQUENCE = 0x0202
@@ -368,6 +371,7 @@ __all__ = [
     'ERR_SKILL_AMPLITUDE',
     'ERR_SKILL_PHASES',
     'ERR_SKILL_NO_PERIODIC',
+    'ERR_SKILL_CONTACT_WAIT',
     'ERR_FIXED_OVERFLOW',
     'ERR_FIXED_WINDOW',
     'ERR_FIXED_STEP',
@@ -529,6 +533,7 @@ __all__ = [
     'DID_FAULT_CAUSES',
     'DID_MOTION_KEY',
     'DID_AUTH_STATS',
+    'DID_CONTACT_WAIT',
     'DID_FWU_STATUS',
     'RID_RUN_SKILL',
     'RID_RUN_SEQUENCE',

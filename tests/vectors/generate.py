@@ -19,10 +19,17 @@ Writes, next to this script:
                                     wiping demonstration: header ``t,f_hat`` (periodic.rollout
                                     over C cycles), ``<skill> <goal> <amplitude> <time> <cycles>
                                     <csv>`` per line
+  contact_*.csv, manifest_contact.txt
+                                    the contact wait (forceskill.model.contact.loss_window) of
+                                    a discrete and a periodic skill above, the contact lost for a
+                                    window: header ``t,f_contact,rate,f_hat`` (the measured force
+                                    is an input), ``<skill> <goal> <amplitude> <time> <threshold_N>
+                                    <tau_s> <hold_s> <csv>`` per line
   bad/*.skill, bad/manifest.txt     corrupt images, one per rejection of docs/skill_format.md:
                                     ``<file> <expected code>``; images that must fail after the CRC
                                     check carry a correct CRC.
-Run: .venv/bin/python tests/vectors/generate.py   (tests/host/model/test_vectors.py checks the files are current)
+Run: .venv/bin/python tests/vectors/generate.py   (tests/host/model/test_vectors.py checks the files are current;
+     --contact: only the contact-wait files, from the skill images on disk)
 """
 
 from __future__ import annotations
@@ -35,7 +42,7 @@ from typing import Any
 
 import numpy as np
 
-from forceskill.model import dmp, periodic, synthetic
+from forceskill.model import contact, dmp, periodic, synthetic
 from forceskill.model.demo import Demo
 from forceskill.model.fit import fit
 from forceskill.model.params import Gains, gains_for_object
@@ -115,7 +122,7 @@ def golden_periodic(skills: dict[str, tuple[Skill, PeriodicScales]]) -> tuple[di
     return files, manifest
 
 
-_HDR4 = struct.Struct("<IHHIHH23dHHI")
+_HDR4 = struct.Struct("<IHHIHH23dHHHH")
 
 
 def bad_images_periodic(base: Skill, discrete: Skill) -> list[tuple[str, bytes, int]]:
@@ -137,8 +144,9 @@ def bad_images_periodic(base: Skill, discrete: Skill) -> list[tuple[str, bytes, 
             kw.get("flags", sk.flags),
             *(float(f[k]) for k in names),
             kw.get("kind", sk.kind),
-            0,
-            kw.get("reserved32", 0),
+            kw.get("contact_cN", sk.contact_cN),
+            kw.get("contact_tau_ms", sk.contact_tau_ms),
+            kw.get("reserved16", 0),
         )
         c = sk.centres if centres is None else centres
         body = head + np.concatenate([c, sk.widths, sk.weights]).astype("<f8").tobytes()
@@ -153,7 +161,9 @@ def bad_images_periodic(base: Skill, discrete: Skill) -> list[tuple[str, bytes, 
         ("version_5.skill", pack4(base, version=5), 202),
         ("p_header_size.skill", pack4(base, header_size=152), 211),
         ("p_kind_2.skill", pack4(base, kind=2), 228),
-        ("p_reserved.skill", pack4(base, reserved32=1), 228),
+        ("p_reserved.skill", pack4(base, reserved16=1), 228),
+        ("p_contact_tau_only.skill", pack4(base, contact_tau_ms=50), 233),
+        ("p_contact_tau_max.skill", pack4(base, contact_cN=200, contact_tau_ms=10001), 233),
         ("p_discrete_amplitude.skill", pack4(discrete, amplitude_N=1.0), 228),
         ("p_nan_amplitude.skill", pack4(base, amplitude_N=np.nan), 206),
         ("p_centre_2pi.skill", pack4(base, centres=c_hi), 231),
@@ -447,7 +457,45 @@ def bad_images_y(base: Skill) -> list[tuple[str, bytes, int]]:
     return out
 
 
+#: the contact-wait vectors: (name, skill, goal, amplitude, time scale, threshold N, tau s, the
+#: window without contact [s), ticks)
+CONTACT_VECTORS = (
+    ("contact_press_n50_lwr_hold", "press_n50_lwr_hold", 1.0, 1.0, 1.0, 0.5, 0.02, (0.6, 0.9), 2000),
+    ("contact_press_n50_lwr_hold_tau0", "press_n50_lwr_hold", 1.5, 1.0, 1.3, 0.5, 0.0, (0.6, 0.9), 2000),
+    ("contact_periodic_n50_ridge", "periodic_n50_ridge", 1.0, 1.0, 1.0, 1.0, 0.05, (0.3, 0.5), 1200),
+    ("contact_periodic_n50_ridge_a1p5", "periodic_n50_ridge", 1.2, 1.5, 1.3, 1.0, 0.2, (0.4, 1.0), 2000),
+)
+
+
+def golden_contact(images: dict[str, bytes]) -> tuple[dict[str, bytes], list[str]]:
+    """The contact-wait CSVs and manifest lines of CONTACT_VECTORS, from the given images."""
+    files: dict[str, bytes] = {}
+    manifest: list[str] = []
+    for name, skill, gs, amp, ts, thr, tau, window, n in CONTACT_VECTORS:
+        sk = Skill.from_bytes(images[skill + ".skill"])
+        fc, f_hat, rate, hold = contact.loss_window(sk, n, window, thr, tau, gs, ts, amp)
+        rows = ["t,f_contact,rate,f_hat"]
+        cols = zip(fc.tolist(), rate.tolist(), f_hat.tolist(), strict=True)
+        rows += [f"{j * sk.dt_s:.17g},{a:.17g},{b:.17g},{c:.17g}" for j, (a, b, c) in enumerate(cols)]
+        files[name + ".csv"] = ("\n".join(rows) + "\n").encode()
+        manifest.append(f"{skill}.skill {gs:g} {amp:g} {ts:g} {thr:g} {tau:g} {hold!r} {name}.csv")
+    return files, manifest
+
+
+def write_contact(images: dict[str, bytes]) -> int:
+    """Write the contact-wait files (golden_contact) next to this script; their count."""
+    files, manifest = golden_contact(images)
+    for name, data in files.items():
+        (HERE / name).write_bytes(data)
+    (HERE / "manifest_contact.txt").write_text("\n".join(manifest) + "\n")
+    return len(files)
+
+
 def main() -> int:
+    if "--contact" in sys.argv[1:]:
+        images = {p.name: p.read_bytes() for p in HERE.glob("*.skill")}
+        print(f"wrote {write_contact(images)} contact-wait rollouts")
+        return 0
     skills = fitted_skills()
     files, manifest = golden(skills)
     y_skills = fitted_y_skills()
@@ -465,6 +513,7 @@ def main() -> int:
     (HERE / "manifest.txt").write_text("\n".join(manifest) + "\n")
     (HERE / "manifest_y.txt").write_text("\n".join(manifest_y) + "\n")
     (HERE / "manifest_periodic.txt").write_text("\n".join(manifest_p) + "\n")
+    write_contact({k: v for k, v in files.items() if k.endswith(".skill")})
     bad_dir = HERE / "bad"
     bad_dir.mkdir(exist_ok=True)
     for old in bad_dir.glob("*.skill"):

@@ -37,6 +37,7 @@ def vectors() -> list[tuple[str, bytes, int]]:
         ("last_transfer", W.LastTransfer(W.TRANSFER_INTERRUPTED)),
         ("device_state", W.DeviceState(3, 507, 1, 2, 123456)),
         ("fault_causes", W.FaultCauses(0x80, 0x81)),
+        ("contact_wait", W.ContactWait(512, 2, 0.25)),
         ("run_skill", W.RunSkill(1, 1.5, 1.0, 0)),
         ("run_skill", W.RunSkill(8, 65.535, 0.001, 2, 0.5)),
         ("run_periodic", W.RunPeriodic(2, 1.0, 1.5, 1, 1.0, 20, 0.8)),

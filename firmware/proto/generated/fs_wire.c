@@ -443,6 +443,40 @@ uint16_t fs_wire_device_state_pack(const fs_wire_device_state_t *v, uint8_t *out
     return (uint16_t)n;
 }
 
+static int contact_wait_in_range(const fs_wire_contact_wait_t *v)
+{
+    return v->rate <= 1000u;
+}
+
+proto_status_t fs_wire_contact_wait_unpack(fs_wire_contact_wait_t *v, const uint8_t *d, uint16_t len)
+{
+    if (len != FS_WIRE_CONTACT_WAIT_LEN) {
+        return PROTO_ERR_WIRE_LENGTH;
+    }
+    fs_wire_contact_wait_t t;
+    memset(&t, 0, sizeof(t));
+    t.hold_ms = (uint32_t)get_be(&d[0u], 4u);
+    t.losses = (uint16_t)get_be(&d[4u], 2u);
+    t.rate = (uint16_t)get_be(&d[6u], 2u);
+    if (!contact_wait_in_range(&t)) {
+        return PROTO_ERR_WIRE_RANGE;
+    }
+    *v = t;
+    return PROTO_OK;
+}
+
+uint16_t fs_wire_contact_wait_pack(const fs_wire_contact_wait_t *v, uint8_t *out, uint16_t cap)
+{
+    const unsigned n = 8u;
+    if (!contact_wait_in_range(v) || n > cap) {
+        return 0u;
+    }
+    put_be(&out[0u], v->hold_ms, 4u);
+    put_be(&out[4u], v->losses, 2u);
+    put_be(&out[6u], v->rate, 2u);
+    return (uint16_t)n;
+}
+
 static int fault_causes_in_range(const fs_wire_fault_causes_t *v)
 {
     (void)v;

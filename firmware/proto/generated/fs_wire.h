@@ -14,7 +14,7 @@
 #define FS_WIRE_REAL(T, count) ((T)(count) * (T)FS_WIRE_SCALE)
 
 /* The records, for code that handles each the same way: X(name) per record. */
-#define FS_WIRE_RECORDS(X) X(versions) X(gains) X(limits) X(comm) X(object) X(stiffness_max) X(slot_entry) X(slot_dir) X(last_transfer) X(device_state) X(fault_causes) X(run_skill) X(run_periodic) X(run_step) X(run_sequence) X(run_results) X(self_test) X(erase_slot) X(motion_key) X(motion_key_write) X(auth_stats)
+#define FS_WIRE_RECORDS(X) X(versions) X(gains) X(limits) X(comm) X(object) X(stiffness_max) X(slot_entry) X(slot_dir) X(last_transfer) X(device_state) X(contact_wait) X(fault_causes) X(run_skill) X(run_periodic) X(run_step) X(run_sequence) X(run_results) X(self_test) X(erase_slot) X(motion_key) X(motion_key_write) X(auth_stats)
 
 #define FS_WIRE_VERSIONS_LEN 6u
 /** DID_VERSIONS: protocol and format versions. */
@@ -147,6 +147,18 @@ typedef struct {
 proto_status_t fs_wire_device_state_unpack(fs_wire_device_state_t *v, const uint8_t *d, uint16_t len);
 /** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */
 uint16_t fs_wire_device_state_pack(const fs_wire_device_state_t *v, uint8_t *out, uint16_t cap);
+
+#define FS_WIRE_CONTACT_WAIT_LEN 8u
+/** DID_CONTACT_WAIT: the contact wait of the running or last execution. */
+typedef struct {
+    uint32_t hold_ms; /* ms */
+    uint16_t losses;
+    uint16_t rate; /* count of FS_WIRE_SCALE */
+} fs_wire_contact_wait_t;
+/** Unpack len bytes: PROTO_OK, PROTO_ERR_WIRE_LENGTH or PROTO_ERR_WIRE_RANGE (v unchanged). */
+proto_status_t fs_wire_contact_wait_unpack(fs_wire_contact_wait_t *v, const uint8_t *d, uint16_t len);
+/** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */
+uint16_t fs_wire_contact_wait_pack(const fs_wire_contact_wait_t *v, uint8_t *out, uint16_t cap);
 
 #define FS_WIRE_FAULT_CAUSES_LEN 8u
 /** DID_FAULT_CAUSES: latched faults and the causes present at the last tick (bit n: fault 500 + n). */

@@ -3,12 +3,55 @@
 from __future__ import annotations
 
 import argparse
+import math
 from pathlib import Path
 from typing import Any
 
 from ..errors import FsError
 from ..wire import TICK_S
 from ._args import add_force_limit, float_arg, int_arg
+
+#: --contact-wait's time constant when only the threshold is given (s)
+CONTACT_TAU_DEFAULT_S = 0.05
+
+
+def contact_wait_arg(text: str) -> tuple[int, int]:
+    """--contact-wait THRESHOLD_N[,TAU_S] as the image's (threshold in 0.01 N, tau in ms):
+    threshold in (0, 655.35] N, tau in [0, 10] s (default CONTACT_TAU_DEFAULT_S)."""
+    from ..model.skill import CONTACT_TAU_MS_MAX
+
+    parts = text.split(",")
+    try:
+        thr = float(parts[0])
+        tau = float(parts[1]) if len(parts) == 2 else CONTACT_TAU_DEFAULT_S
+    except ValueError:
+        thr, tau = 0.0, -1.0
+    if not (math.isfinite(thr) and math.isfinite(tau)):
+        thr, tau = 0.0, -1.0
+    cn, ms = round(thr * 100.0), round(tau * 1000.0)
+    if len(parts) > 2 or not (1 <= cn <= 0xFFFF) or not (0 <= ms <= CONTACT_TAU_MS_MAX):
+        raise argparse.ArgumentTypeError(
+            f"expected THRESHOLD_N[,TAU_S] with a threshold in (0, 655.35] N and a time constant "
+            f"in [0, {CONTACT_TAU_MS_MAX // 1000}] s: {text!r}"
+        )
+    return int(cn), int(ms)
+
+
+def _apply_contact_wait(sk: Any, args: argparse.Namespace) -> None:
+    """--contact-wait into the skill (then written as format v4)."""
+    if args.contact_wait is not None:
+        sk.contact_cN, sk.contact_tau_ms = args.contact_wait
+        sk.format_version = 4
+
+
+def _contact_line(sk: Any) -> str:
+    """What fit prints of the skill's contact wait."""
+    if not sk.contact_wait:
+        return "contact wait: off"
+    return (
+        f"contact wait: the phase waits while f_hat - f_contact > {sk.contact_threshold_N:g} N, "
+        f"rate time constant {sk.contact_tau_s:g} s (format v4)"
+    )
 
 
 def _cmd_fit(args: argparse.Namespace) -> int:
@@ -114,6 +157,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
             f"({len(tried)} fits: " + ", ".join(f"{n} -> {e:.3g} %" for n, e in sorted(tried)) + ")"
         )
     sk = res.skill
+    _apply_contact_wait(sk, args)
     check_skill_force(sk, str(out), force_limit_N=args.force_limit)
     with Outputs(inputs=[args.demo]) as outs:  # skill, JSON twin and plot: all or nothing
         sk.write(out, outs=outs)
@@ -142,6 +186,8 @@ def _cmd_fit(args: argparse.Namespace) -> int:
         f"approximation error: max {err.max_pct:.3f} %, RMS {err.rms_pct:.3f} % of max force "
         f"(at the {demo.t_s.size} recorded samples)"
     )
+    if sk.contact_wait:
+        print(_contact_line(sk))
     if sk.y_weights is not None:
         print(
             f"y path ({args.y_column}): start {sk.y_start_m:.6g} m, goal g_y {sk.goal_y_m:.6g} m, "
@@ -211,6 +257,7 @@ def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path) -
             + ")"
         )
     sk = res.skill
+    _apply_contact_wait(sk, args)
     check_skill_force(sk, str(out), force_limit_N=args.force_limit)
     with Outputs(inputs=[args.demo]) as outs:  # skill, JSON twin and plot: all or nothing
         sk.write(out, outs=outs)
@@ -239,6 +286,8 @@ def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path) -
         "against each stroke (max, % of max force): "
         + ", ".join(f"{e:.3f}" for e in res.err_stroke_max_pct.tolist())
     )
+    if sk.contact_wait:
+        print(_contact_line(sk))
     print(
         f"wrote {out} ({out.stat().st_size} bytes) and {out}.json"
         + (f", plot {args.plot}" if args.plot else "")
@@ -442,6 +491,15 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         default=None,
         metavar="S",
         help="the stroke period in s (default: found by autocorrelation)",
+    )
+    p.add_argument(
+        "--contact-wait",
+        type=contact_wait_arg,
+        default=None,
+        metavar="THRESHOLD_N[,TAU_S]",
+        help="a phase that waits for contact: while the contact force is more than THRESHOLD_N "
+        "below the reference the skill's phase slows to a stop (first order, time constant TAU_S, "
+        f"default {CONTACT_TAU_DEFAULT_S:g} s) and resumes when contact returns (format v4)",
     )
     p.add_argument("--dt", type=float_arg, default=TICK_S, help=argparse.SUPPRESS)
     p.add_argument("--plot", metavar="PNG", help="write demonstrated vs learned force, error, position")

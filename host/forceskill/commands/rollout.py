@@ -22,6 +22,8 @@ def _cmd_rollout(args: argparse.Namespace) -> int:
         check_target(args.output, [args.skill])
     check_path_scale(args.path_scale)
     sk = Skill.read(args.skill)
+    if args.contact_loss is not None:
+        return _rollout_contact_loss(sk, args)
     if sk.periodic or args.cycles is not None or args.amplitude_scale != 1.0:
         return _rollout_periodic(sk, args)
     stats = {"peak": -np.inf, "t_end": 0.0}
@@ -90,6 +92,67 @@ def _rollout_periodic(sk: object, args: argparse.Namespace) -> int:
     return 0
 
 
+def contact_loss_arg(text: str) -> tuple[float, float]:
+    """--contact-loss FROM_S,TO_S: 0 <= from < to, both finite."""
+    import math
+
+    try:
+        a, b = (float(x) for x in text.split(","))
+    except ValueError:
+        a = b = math.nan
+    if not (math.isfinite(a) and math.isfinite(b) and 0.0 <= a < b):
+        raise argparse.ArgumentTypeError(f"expected FROM_S,TO_S with 0 <= FROM_S < TO_S: {text!r}")
+    return a, b
+
+
+def _rollout_contact_loss(sk: object, args: argparse.Namespace) -> int:
+    """The skill against a contact that follows its reference but is lost in the window
+    --contact-loss (forceskill.model.contact.loss_window): t, f_hat, f_contact, rate, the hold."""
+    import numpy as np
+
+    from ..errors import ERR_PERIODIC_ARGS, FsError
+    from ..model import contact
+    from ..model.scales import check_steps
+    from ..model.skill import Skill
+    from ..outputs import STDOUT, write_csv
+
+    assert isinstance(sk, Skill)
+    if args.path_scale != 1.0:
+        raise FsError(
+            ERR_PERIODIC_ARGS, "--contact-loss evaluates the force alone: --path-scale does not apply"
+        )
+    a, b = args.contact_loss
+    cycles = 1.0 if args.cycles is None else args.cycles
+    nominal_s = sk.duration_s * args.time_scale * (cycles if sk.periodic else 1.0)
+    n = args.steps if args.steps is not None else int(round((nominal_s + (b - a)) / sk.dt_s))
+    check_steps(n)
+    fc, f_hat, rate, hold = contact.loss_window(
+        sk,
+        n,
+        (a, b),
+        goal_scale=args.goal_scale,
+        time_scale=args.time_scale,
+        amplitude_scale=args.amplitude_scale,
+    )
+    t = np.arange(n) * sk.dt_s
+    rows = write_csv(
+        args.output,
+        ["t", "f_hat", "f_contact", "rate"],
+        iter([np.column_stack((t, f_hat, fc, rate))]),
+        inputs=[args.skill],
+    )
+    wait = (
+        f"contact wait {sk.contact_threshold_N:g} N, {sk.contact_tau_s:g} s: the phase held {hold * 1e3:.1f} ms"
+        if sk.contact_wait
+        else "no contact wait: the phase ran on"
+    )
+    print(
+        f"wrote {args.output}: {rows} rows, contact lost {a:g}..{b:g} s; {wait}",
+        file=sys.stderr if args.output == STDOUT else sys.stdout,
+    )
+    return 0
+
+
 def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     """Add ``forceskill rollout``."""
     p = sub.add_parser(
@@ -125,5 +188,13 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         metavar="S",
         help="periodic skills: multiply the stroke's amplitude by S (--goal-scale sets the mean force, "
         "--time-scale the period)",
+    )
+    p.add_argument(
+        "--contact-loss",
+        type=contact_loss_arg,
+        default=None,
+        metavar="FROM_S,TO_S",
+        help="simulate a contact that follows the reference but is lost from FROM_S to TO_S: the "
+        "skill's contact wait holds its phase (columns t, f_hat, f_contact, rate; the hold printed)",
     )
     p.set_defaults(func=_cmd_rollout)

@@ -206,6 +206,14 @@ def _wait_ticks(dev: Device, tick0: int, n: int, timeout_s: float) -> None:
         dev.check_link()
 
 
+def _contact_hold_s(client: Any, dev: Device, waits: bool) -> float:
+    """How long the running execution's phase has held for contact (DID_CONTACT_WAIT), s; 0
+    without a contact wait."""
+    if not waits:
+        return 0.0
+    return W.ContactWait.unpack(U.read_did(client, U.DID_CONTACT_WAIT, dev.node)).hold_ms / 1000.0
+
+
 def run_on_device(
     dev: Device, args: argparse.Namespace, writer: Any = None, info: TextIO = sys.stdout
 ) -> dict[str, Any]:
@@ -264,6 +272,7 @@ def run_on_device(
                 f"slot {args.slot} of node {dev.node} holds a discrete skill: --cycles and "
                 "--amplitude-scale apply to periodic skills only; nothing was started",
             )
+        waits = any(sk.contact_wait for sk in skills.values())
         path_skill = skills.get(slots[0]) if not args.sequence else None
         if path_skill is not None and not path_skill.has_y:
             path_skill = None
@@ -322,6 +331,11 @@ def run_on_device(
                     if st.state != "EXECUTE":
                         break
                     if ((st.tick - start_tick) & 0xFFFFFF) >= total * W.TICK_HZ:
+                        # a contact wait lengthens the run by the time its phase held
+                        held = _contact_hold_s(client, dev, waits)
+                        if expected + held + tail > total:
+                            total = expected + held + tail
+                            continue
                         dev.command_until("idle", {"IDLE", "FAULT"}, 2.0 * args.timeout)
                         break
                     time.sleep(0.02)
@@ -334,6 +348,7 @@ def run_on_device(
             dev.stop_heartbeat()
             if writer is not None:
                 notifier.remove_listener(writer)
+        contact = W.ContactWait.unpack(U.read_did(client, U.DID_CONTACT_WAIT, dev.node)) if waits else None
     samples = dev.telemetry_samples(tel)
     grid, stream = columns(samples)  # lost frames interpolated on the tick grid, and counted
     first_tick = stream.first_tick
@@ -364,6 +379,7 @@ def run_on_device(
         "interrupted": interrupted,
         "started": True,
         "stream": stream,
+        "contact": contact,
     }
 
 
@@ -428,6 +444,13 @@ def _cmd(args: argparse.Namespace) -> int:
         f"force tracking: max {fig['tracking_max_pct']:.2f} %, RMS {fig['tracking_rms_pct']:.2f} % of max reference",
         file=info,
     )
+    cw = r.get("contact")
+    if cw is not None:
+        print(
+            f"contact wait: the phase held {cw.hold_ms} ms over {cw.losses} "
+            f"loss{'es' if cw.losses != 1 else ''} of contact (rate at the end {cw.rate:g})",
+            file=info,
+        )
     pf = r.get("path")
     if pf is not None:
         print(

@@ -35,6 +35,13 @@ def _cmd_show(args: argparse.Namespace) -> int:
     print(f"  goal g         {sk.goal_N:.6g} N, starting force f0 {sk.force0_N:.6g} N")
     print(f"  stiffness k    {sk.stiffness_Npm:g} N/m, surface {sk.surface_m:g} m")
     print(f"  alpha/beta/gamma {sk.alpha:g} / {sk.beta:g} / {sk.gamma:g}")
+    if sk.contact_wait:
+        print(
+            f"  contact wait   the phase waits while f_hat - f_contact > {sk.contact_threshold_N:g} N "
+            f"(rate to 0, back to 1 on contact, time constant {sk.contact_tau_s:g} s)"
+        )
+    else:
+        print("  contact wait   off (the phase runs on without contact)")
     k_f, k_i = sk.gains.force_gains(sk.stiffness_Npm)
     print(
         f"  gains          m_d {sk.m_d_kg:g} kg, k_d {sk.k_d_Nspm:g} Ns/m, k_p {sk.k_p_Npm:g} N/m, "

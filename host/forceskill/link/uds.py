@@ -28,6 +28,7 @@ from .. import wire as W
 from ..codes import (  # noqa: F401
     DID_AUTH_STATS,
     DID_COMM,
+    DID_CONTACT_WAIT,
     DID_DEVICE_STATE,
     DID_FAULT_CAUSES,
     DID_GAINS_X,
@@ -107,6 +108,7 @@ DID_CODECS = {
     DID_STIFFNESS_MAX: Raw(W.StiffnessMax.SIZE),
     DID_MOTION_KEY: Raw(W.MotionKey.SIZE),  # the write: W.MotionKeyWrite.SIZE bytes, passed as they are
     DID_AUTH_STATS: Raw(W.AuthStats.SIZE),
+    DID_CONTACT_WAIT: Raw(W.ContactWait.SIZE),
 }
 
 #: The protocol major version this host speaks (DID 0xF1A0 byte 0): 3 = motion authenticated

@@ -3,7 +3,9 @@
 Version 3 adds the optional position DMP on y (start, goal and one weight per kernel, sharing the
 force DMP's phase and kernels); a skill without it is written as version 2, readable by every
 device that reads force-only skills. Version 4 adds the kind (discrete or periodic) and the
-periodic DMP's amplitude and state on the cycle; only periodic skills are written as version 4.
+periodic DMP's amplitude and state on the cycle, and the optional contact wait (a phase that
+waits while the contact force is lost); only periodic skills and skills with a contact wait are
+written as version 4.
 
 A skill is plain data (dmpbbo style): fitting produces it, the firmware parses and evaluates it.
 Validation runs the same checks, in the same order, with the same codes as ``skill_parse`` in
@@ -27,6 +29,7 @@ from ..errors import (
     ERR_IO,
     ERR_SKILL_AMPLITUDE,
     ERR_SKILL_CENTRES,
+    ERR_SKILL_CONTACT_WAIT,
     ERR_SKILL_CRC,
     ERR_SKILL_GAINS,
     ERR_SKILL_HEADER_SIZE,
@@ -55,7 +58,7 @@ FORMAT_VERSION = 4
 FORMAT_VERSION_MIN = 2
 HEADER_SIZE_V2 = 136
 HEADER_SIZE = 152  # version 3: the v2 header, then y_start_m and goal_y_m
-HEADER_SIZE_V4 = 208  # version 4: the v3 header, six f64 of the periodic DMP, kind, two reserved
+HEADER_SIZE_V4 = 208  # version 4: the v3 header, six f64 of the periodic DMP, kind, contact wait
 CRC_SIZE = 4
 MAX_KERNELS = 1024  # DMP_MAX_KERNELS
 FLAG_END_RELEASE = 0x0001
@@ -64,6 +67,9 @@ KNOWN_FLAGS = {2: FLAG_END_RELEASE, 3: FLAG_END_RELEASE | FLAG_Y_AXIS, 4: FLAG_E
 KIND_DISCRETE = 0
 KIND_PERIODIC = 1
 KINDS = {KIND_DISCRETE: "discrete", KIND_PERIODIC: "periodic"}
+#: v4's contact wait: threshold in steps of 0.01 N (u16), time constant in ms (u16) up to this
+CONTACT_THRESHOLD_STEP_N = 0.01
+CONTACT_TAU_MS_MAX = 10000
 #: a periodic skill's duration is its period: |T - 2*pi*tau| within this of T
 PERIOD_REL_TOL = 1e-9
 RELEASE_TIME_S = 0.5
@@ -76,8 +82,8 @@ DURATION_MAX_S = 3600.0
 _HEADER_V2 = struct.Struct("<IHHIHH15d")
 _HEADER_V3 = struct.Struct("<IHHIHH17d")
 # v4: the v3 fields, 6 f64 more (amplitude_N, e0_N, z0_N, i0_N, y_p0_m, y_z0_m), kind u16,
-# reserved u16 and u32 (0)
-_HEADER_V4 = struct.Struct("<IHHIHH23dHHI")
+# contact-wait threshold u16 (0.01 N), its time constant u16 (ms), reserved u16 (0)
+_HEADER_V4 = struct.Struct("<IHHIHH23dHHHH")
 _HEADERS = {2: _HEADER_V2, 3: _HEADER_V3, 4: _HEADER_V4}
 #: the fixed part every version shares (magic, version): enough to name an old image's version
 _PREFIX = struct.Struct("<IH")
@@ -181,6 +187,11 @@ class Skill:
     i0_N: float = 0.0
     y_p0_m: float = 0.0
     y_z0_m: float = 0.0
+    #: version 4, any kind: the contact wait (docs/math.md, "A phase that waits for contact"):
+    #: contact is lost while f_hat - f_contact > contact_cN/100 N, and the phase rate goes to 0
+    #: (back to 1 when contact returns) with the time constant contact_tau_ms; 0: off
+    contact_cN: int = 0
+    contact_tau_ms: int = 0
 
     def __post_init__(self) -> None:
         self.centres = np.ascontiguousarray(self.centres, dtype=np.float64).reshape(-1)
@@ -189,8 +200,9 @@ class Skill:
         if self.y_weights is not None:
             self.y_weights = np.ascontiguousarray(self.y_weights, dtype=np.float64).reshape(-1)
             self.flags |= FLAG_Y_AXIS
-        if self.format_version == 0:  # written as v2 unless it needs v3 (y) or v4 (periodic)
-            self.format_version = 4 if self.kind != KIND_DISCRETE else 3 if self.y_weights is not None else 2
+        if self.format_version == 0:  # v2 unless it needs v3 (y) or v4 (periodic, contact wait)
+            v4 = self.kind != KIND_DISCRETE or self.contact_cN != 0 or self.contact_tau_ms != 0
+            self.format_version = 4 if v4 else 3 if self.y_weights is not None else 2
 
     # -- derived views ---------------------------------------------------------------------
     @property
@@ -206,6 +218,21 @@ class Skill:
     def periodic(self) -> bool:
         """True for a periodic (rhythmic) skill (format v4, kind 1)."""
         return self.kind == KIND_PERIODIC
+
+    @property
+    def contact_wait(self) -> bool:
+        """True if the phase waits for contact (format v4, a threshold above 0)."""
+        return self.contact_cN > 0
+
+    @property
+    def contact_threshold_N(self) -> float:
+        """The contact-wait threshold: contact is lost while f_hat - f_contact exceeds it."""
+        return self.contact_cN * CONTACT_THRESHOLD_STEP_N
+
+    @property
+    def contact_tau_s(self) -> float:
+        """The contact wait's time constant of the phase rate (s)."""
+        return self.contact_tau_ms / 1000.0
 
     @property
     def has_y(self) -> bool:
@@ -248,7 +275,7 @@ class Skill:
             n,
             self.flags,
             *(float(getattr(self, k)) for k in _f64_names(hv)),
-            *((self.kind, 0, 0) if hv >= 4 else ()),
+            *((self.kind, self.contact_cN, self.contact_tau_ms, 0) if hv >= 4 else ()),
         )
         body = (
             head
@@ -296,7 +323,11 @@ class Skill:
         _, _, header_size, total_length, n, flags = fields[:6]
         names = _f64_names(version)
         f64 = dict(zip(names, fields[6 : 6 + len(names)], strict=True))
-        kind, reserved = (int(fields[-3]), fields[-2] | fields[-1]) if version >= 4 else (KIND_DISCRETE, 0)
+        kind, contact_cn, contact_ms, reserved = (
+            (int(fields[-4]), int(fields[-3]), int(fields[-2]), int(fields[-1]))
+            if version >= 4
+            else (KIND_DISCRETE, 0, 0, 0)
+        )
         if header_size != header.size:
             raise SkillError(
                 ERR_SKILL_HEADER_SIZE, f"skill header_size is {header_size}, expected {header.size}"
@@ -321,7 +352,8 @@ class Skill:
         if kind not in KINDS or reserved != 0:
             raise SkillError(
                 ERR_SKILL_KIND,
-                f"skill kind {kind} (reserved 0x{reserved:X}) is not 0 (discrete) or 1 (periodic)",
+                f"skill kind {kind} (reserved 0x{reserved:X}) is not 0 (discrete) or 1 (periodic), "
+                "or the reserved field not 0",
             )
         n_arr = 4 if has_y else 3
         arrays = np.frombuffer(buf, dtype="<f8", count=n_arr * n, offset=header.size).astype(np.float64)
@@ -348,6 +380,8 @@ class Skill:
             format_version=version,
             y_weights=y_weights,
             kind=kind,
+            contact_cN=contact_cn,
+            contact_tau_ms=contact_ms,
             **kw,
         )
         skill._validate_values()
@@ -421,9 +455,17 @@ class Skill:
             self._validate_kind()
 
     def _validate_kind(self) -> None:
-        """v4 (the kind itself is checked with the kernel count): a discrete skill with its
+        """v4 (the kind itself is checked with the kernel count): the contact wait's time
+        constant at most 10 s and 0 without a threshold (233); a discrete skill with its
         periodic fields 0 (228); a periodic one without the y DMP yet (210), amplitude > 0 (230),
         T = 2*pi*tau (229)."""
+        if self.contact_tau_ms > CONTACT_TAU_MS_MAX or (self.contact_cN == 0 and self.contact_tau_ms != 0):
+            raise SkillError(
+                ERR_SKILL_CONTACT_WAIT,
+                f"contact wait: time constant {self.contact_tau_ms} ms with threshold "
+                f"{self.contact_cN} x 0.01 N (the time constant must be <= {CONTACT_TAU_MS_MAX} ms, "
+                "and 0 without a threshold)",
+            )
         if self.kind == KIND_DISCRETE:
             nonzero = [k for k in _F64_NAMES_P if getattr(self, k) != 0.0]
             if nonzero:
@@ -469,6 +511,8 @@ class Skill:
             d["kind"] = KINDS.get(self.kind, str(self.kind))
             for k in _F64_NAMES_P:
                 d[k] = float(getattr(self, k))
+            d["contact_cN"] = self.contact_cN
+            d["contact_tau_ms"] = self.contact_tau_ms
         if self.y_weights is not None:
             d["y_weights"] = [float(x) for x in self.y_weights]
         image = self.to_bytes(validate=False)
@@ -487,6 +531,7 @@ class Skill:
         kinds = {v: k for k, v in KINDS.items()}
         if "kind" in d:
             kw["kind"] = kinds.get(d["kind"], -1)
+        kw.update({k: int(d[k]) for k in ("contact_cN", "contact_tau_ms") if k in d})
         yw = d.get("y_weights")
         s = Skill(
             centres=np.array(d["centres"], dtype=float),

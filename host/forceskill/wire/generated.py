@@ -450,6 +450,43 @@ class DeviceState:
         return v
 
 
+_CONTACT_WAIT = struct.Struct('>IHH')
+
+
+@dataclass(frozen=True)
+class ContactWait:
+    """DID_CONTACT_WAIT: the contact wait of the running or last execution."""
+
+    SIZE: ClassVar[int] = 8  # bytes of the fields always present
+    hold_ms: int  # ms
+    losses: int
+    rate: float
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('contact_wait', 'hold_ms', 0 <= self.hold_ms <= 4294967295, self.hold_ms)
+        _in_range('contact_wait', 'losses', 0 <= self.losses <= 65535, self.losses)
+        _in_range('contact_wait', 'rate', 0 <= to_steps(self.rate) <= 1000, self.rate)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _CONTACT_WAIT.pack(self.hold_ms, self.losses, to_steps(self.rate))
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> ContactWait:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _CONTACT_WAIT.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'contact_wait: {len(data)} bytes, not {n}')
+        raw = _CONTACT_WAIT.unpack(data[:n])
+        v = cls(raw[0], raw[1], from_steps(raw[2]))
+        v.check()
+        return v
+
+
 _FAULT_CAUSES = struct.Struct('>II')
 
 
@@ -923,6 +960,7 @@ __all__ = [
     'SlotDir',
     'LastTransfer',
     'DeviceState',
+    'ContactWait',
     'FaultCauses',
     'RunSkill',
     'RunPeriodic',

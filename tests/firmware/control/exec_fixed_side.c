@@ -25,6 +25,10 @@ int exec_side_fixed_replay(const exec_side_run_t *run, double y_hold_m,
     if (st != FS_OK) {
         return (int)st;
     }
+    if (run->contact_threshold_N > 0.0) {
+        side_skill.contact_threshold_N = (fs_real_t)run->contact_threshold_N;
+        side_skill.contact_tau_s = (fs_real_t)run->contact_tau_s;
+    }
     st = dmpfx_from_model_bound(&side_skill.dmp, &side_model);
     if (st != FS_OK) {
         return (int)st;

@@ -17,6 +17,9 @@ typedef struct {
     double path_scale;
     double phase_stop_gain_per_N2;
     uint8_t use_model;
+    double contact_threshold_N; /* the skill's contact wait set to this (0: the image's) */
+    double contact_tau_s;
+    double lost_from_s, lost_to_s; /* the float64 run's contact lost in [from, to) */
 } exec_side_run_t;
 
 /** One tick's measurements (x, y) and the executor's outputs. */

@@ -62,7 +62,10 @@ static size_t run_float64(const exec_side_run_t *run)
     const size_t n = (size_t)((g_skill.dmp.duration_s * run->time_scale + 2.0) / DT);
     assert_true(n <= MAX_TICKS);
     for (size_t i = 0; i < n; i++) {
-        const double f_c = (x[0] > 0.0) ? k * x[0] : 0.0;
+        /* the contact lost in [lost_from_s, lost_to_s) (the surface gone) */
+        const double t = (double)i * DT;
+        const int lost = t >= run->lost_from_s && t < run->lost_to_s;
+        const double f_c = (x[0] > 0.0 && !lost) ? k * x[0] : 0.0;
         exec_meas_t me = {{x[0], x[1]}, {v[0], v[1]}, f_c};
         exec_out_t o;
         assert_int_equal(exec_tick(&cfg, &g_state, &me, &o), FS_OK);
@@ -79,11 +82,22 @@ static size_t run_float64(const exec_side_run_t *run)
 }
 
 static void compare(const char *name, double goal, double ts, double path, double stop_gain,
-                    uint8_t use_model)
+                    uint8_t use_model, const double wait[4])
 {
     const uint32_t len = load_image(name);
-    const exec_side_run_t run = {g_image, len, goal, ts, path, stop_gain, use_model};
+    const exec_side_run_t run = {g_image,   len,     goal,    ts,      path,   stop_gain,
+                                 use_model, wait[0], wait[1], wait[2], wait[3]};
+    if (wait[0] > 0.0) {
+        g_skill.contact_threshold_N = wait[0];
+        g_skill.contact_tau_s = wait[1];
+    }
     const size_t n = run_float64(&run);
+    if (wait[0] > 0.0) { /* the phase held for about the loss */
+        printf("%s: the float64 run's phase held %u ms for a %.0f ms loss\n", name,
+               (unsigned)exec_contact_hold_ms(&g_state), 1e3 * (wait[3] - wait[2]));
+        assert_true(fabs((double)g_state.contact_hold_s - (wait[3] - wait[2])) <
+                    0.2 * (wait[3] - wait[2]));
+    }
     assert_int_equal(exec_side_fixed_replay(&run, 0.0, g_meas, g_fx, n), 0);
     double hat_max = 0.0, cmd_max = 0.0, y_max = 0.0, f_c_err = 0.0;
     double hat_err = 0.0, cmd_err = 0.0, y_err = 0.0;
@@ -99,11 +113,11 @@ static void compare(const char *name, double goal, double ts, double path, doubl
             cmd_err = fmax(cmd_err, fabs(g_fx[i].force_cmd_N[a] - g_ref[i].force_cmd_N[a]));
         }
     }
-    printf("%s goal %.2f time %.2f path %.2f stop %g model %u: f_hat %.5f %% of %.2f N, "
+    printf("%s goal %.2f time %.2f path %.2f stop %g model %u wait %g N: f_hat %.5f %% of %.2f N, "
            "f_cmd %.5f %% of %.2f N, y %.5f %% of %.4f m (float64 tracking within %.2f N)\n",
-           name, goal, ts, path, stop_gain, (unsigned)use_model, 100.0 * hat_err / hat_max, hat_max,
-           100.0 * cmd_err / cmd_max, cmd_max, (y_max > 0.0) ? 100.0 * y_err / y_max : 0.0, y_max,
-           f_c_err);
+           name, goal, ts, path, stop_gain, (unsigned)use_model, wait[0], 100.0 * hat_err / hat_max,
+           hat_max, 100.0 * cmd_err / cmd_max, cmd_max, (y_max > 0.0) ? 100.0 * y_err / y_max : 0.0,
+           y_max, f_c_err);
     assert_true(hat_max > 1.0);
     assert_true(hat_err <= HAT_REL_LIMIT * hat_max);
     assert_true(cmd_err <= CMD_REL_LIMIT * cmd_max + CMD_ABS_LIMIT_N);
@@ -115,23 +129,27 @@ typedef struct {
     const char *skill;
     double goal, time, path, stop_gain;
     uint8_t use_model;
+    double wait[4]; /* contact wait: threshold N, tau s; the contact lost from, to (s) */
 } case_t;
 
 static const case_t k_cases[] = {
     /* the skill bench/qemu_tick.sh counts on the M3 image, 1x and 1.5x goal at 1.3x time */
-    {"engrave_n50_ridge_release.skill", 1.0, 1.0, 1.0, 0.0, 0u},
-    {"engrave_n50_ridge_release.skill", 1.5, 1.3, 1.0, 0.0, 0u},
+    {"engrave_n50_ridge_release.skill", 1.0, 1.0, 1.0, 0.0, 0u, {0.0, 0.0, 0.0, 0.0}},
+    {"engrave_n50_ridge_release.skill", 1.5, 1.3, 1.0, 0.0, 0u, {0.0, 0.0, 0.0, 0.0}},
     /* the object model's reference (use_model) and a held end */
-    {"press_n50_lwr_hold.skill", 1.0, 1.0, 1.0, 0.0, 1u},
+    {"press_n50_lwr_hold.skill", 1.0, 1.0, 1.0, 0.0, 1u, {0.0, 0.0, 0.0, 0.0}},
     /* a y DMP: the path in fixed point too, at path scale 1 and 0.5 */
-    {"wipe_n50_ridge_release.skill", 1.0, 1.0, 1.0, 0.0, 0u},
-    {"wipe_n50_ridge_release.skill", 1.0, 1.0, 0.5, 0.0, 0u},
+    {"wipe_n50_ridge_release.skill", 1.0, 1.0, 1.0, 0.0, 0u, {0.0, 0.0, 0.0, 0.0}},
+    {"wipe_n50_ridge_release.skill", 1.0, 1.0, 0.5, 0.0, 0u, {0.0, 0.0, 0.0, 0.0}},
     /* phase stopping: the coupling's slow-down as the fixed-point rate */
-    {"engrave_n100_lwr_release.skill", 1.0, 1.0, 1.0, 0.05, 0u},
+    {"engrave_n100_lwr_release.skill", 1.0, 1.0, 1.0, 0.05, 0u, {0.0, 0.0, 0.0, 0.0}},
     /* a periodic skill: one cycle, then held; at 1.5x goal and 1.3x time with phase stopping */
-    {"periodic_n50_ridge.skill", 1.0, 1.0, 1.0, 0.0, 0u},
-    {"periodic_n50_ridge.skill", 1.5, 1.3, 1.0, 0.0, 0u},
-    {"periodic_n50_ridge.skill", 1.0, 1.0, 1.0, 0.05, 0u},
+    {"periodic_n50_ridge.skill", 1.0, 1.0, 1.0, 0.0, 0u, {0.0, 0.0, 0.0, 0.0}},
+    {"periodic_n50_ridge.skill", 1.5, 1.3, 1.0, 0.0, 0u, {0.0, 0.0, 0.0, 0.0}},
+    {"periodic_n50_ridge.skill", 1.0, 1.0, 1.0, 0.05, 0u, {0.0, 0.0, 0.0, 0.0}},
+    /* the contact wait (the rate as the fixed point's Q1.31 rate), the contact lost 0.3 s */
+    {"press_n50_lwr_hold.skill", 1.0, 1.0, 1.0, 0.0, 0u, {0.5, 0.02, 0.6, 0.9}},
+    {"periodic_n50_ridge.skill", 1.5, 1.3, 1.0, 0.0, 0u, {1.0, 0.05, 0.3, 0.6}},
 };
 
 static void test_fixed_matches_float64(void **state)
@@ -139,7 +157,7 @@ static void test_fixed_matches_float64(void **state)
     (void)state;
     for (size_t i = 0; i < sizeof k_cases / sizeof k_cases[0]; i++) {
         const case_t *c = &k_cases[i];
-        compare(c->skill, c->goal, c->time, c->path, c->stop_gain, c->use_model);
+        compare(c->skill, c->goal, c->time, c->path, c->stop_gain, c->use_model, c->wait);
     }
 }
 

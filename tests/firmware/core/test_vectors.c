@@ -10,6 +10,10 @@
  *  manifest_periodic.txt  lines "<skill> <goal_scale> <amplitude_scale> <time_scale> <cycles>
  *                    <csv>": periodic skills (format v4), rolled out by dmp_periodic_step from
  *                    dmp_periodic_reset (docs/math.md section 5), the same tolerances;
+ *  manifest_contact.txt  lines "<skill> <goal> <amplitude> <time> <threshold_N> <tau_s> <hold_s>
+ *                    <csv>": the contact wait (dmp_contact_rate) driving either DMP from the
+ *                    CSV's measured force ("t,f_contact,rate,f_hat"), the same tolerances on
+ *                    f_hat, on the rate and (relative) on the hold;
  *  bad/manifest.txt  lines "<file> <expected code>" (paths relative to tests/vectors/bad):
  *                    skill_parse must return exactly that code.
  * A missing manifest is a failure, not a skip. FS_VECTORS_DIR comes from CMake. */
@@ -168,7 +172,7 @@ static double for_each_manifest_line(const char *name, int n_fields,
     double worst = 0.0;
     *count = 0;
     while (fgets(line, sizeof(line), m) != NULL) {
-        char *fld[6];
+        char *fld[8];
         const int n = split(line, fld, n_fields);
         if (n == 0) {
             continue;
@@ -384,6 +388,82 @@ static void test_golden_rollouts_periodic(void **state)
     assert_true(count > 0);
 }
 
+/* One manifest_contact line: the contact wait's loop over the core (dmp_contact_rate, then the
+ * DMP step slowed by dmp_slowdown_at_rate) driven by the CSV's measured force, against its rate
+ * and f_hat and the line's hold; returns the relative error of f_hat. */
+static double check_contact(const char *dir, char *const *fld)
+{
+    char path[1024];
+    const double gs = strtod(fld[1], NULL);
+    const double as = strtod(fld[2], NULL);
+    const double ts = strtod(fld[3], NULL);
+    const fs_real_t thr = (fs_real_t)strtod(fld[4], NULL);
+    const fs_real_t tau_c = (fs_real_t)strtod(fld[5], NULL);
+    const double hold_ref = strtod(fld[6], NULL);
+    snprintf(path, sizeof(path), "%s/%s", dir, fld[0]);
+    const long len = read_file(path, image, MAX_IMAGE);
+    if (len < 0 || skill_parse(image, (uint32_t)len, &sk) != FS_OK) {
+        fail_msg("%s: not a skill this build parses (%s)", path, BUILD_NAME);
+    }
+    snprintf(path, sizeof(path), "%s/%s", dir, fld[7]);
+    FILE *f = fopen(path, "r");
+    char line[256];
+    if (f == NULL || fgets(line, sizeof(line), f) == NULL ||
+        strncmp(line, "t,f_contact,rate,f_hat", 22) != 0) {
+        fail_msg("%s: missing or its header is not 't,f_contact,rate,f_hat'", path);
+    }
+    const dmp_run_t run = {(fs_real_t)gs, (fs_real_t)ts};
+    const fs_real_t gain = sk.dmp.dt_s / (tau_c + sk.dmp.dt_s);
+    dmp_state_t s;
+    if (sk.dmp.periodic != 0u) {
+        dmp_periodic_reset(&sk.dmp, &s, (fs_real_t)as);
+    } else {
+        dmp_state_reset(&s);
+    }
+    fs_real_t rate = FS_R(1.0), f_prev = FS_R(0.0);
+    double err = 0.0, err_rate = 0.0, f_max = 0.0, hold = 0.0;
+    long row = 0;
+    while (fgets(line, sizeof(line), f) != NULL) {
+        char *end = NULL;
+        (void)strtod(line, &end);
+        const double f_c = strtod(end + 1, &end);
+        const double rate_ref = strtod(end + 1, &end);
+        const double f_ref = strtod(end + 1, NULL);
+        rate = dmp_contact_rate(rate, f_prev, (fs_real_t)f_c, thr, gain);
+        const dmp_coupling_t cp = {FS_R(0.0), dmp_slowdown_at_rate(FS_R(0.0), rate)};
+        f_prev = (sk.dmp.periodic != 0u) ? dmp_periodic_step(&sk.dmp, &s, &run, (fs_real_t)as, &cp)
+                                         : dmp_step(&sk.dmp, &s, &run, &cp);
+        hold += (1.0 - (double)rate) * (double)sk.dmp.dt_s;
+        err = fmax(err, fabs((double)f_prev - f_ref));
+        err_rate = fmax(err_rate, fabs((double)rate - rate_ref));
+        f_max = fmax(f_max, fabs(f_ref));
+        row++;
+    }
+    fclose(f);
+    assert_true(row > 0 && f_max > 0.0);
+    printf("[%s] %s gs=%g as=%g ts=%g threshold %g N tau %g s: %ld rows, max err %.3g of max|f|, "
+           "rate %.3g, hold %.6f s (reference %.6f)\n",
+           BUILD_NAME, fld[0], gs, as, ts, (double)thr, (double)tau_c, row, err / f_max, err_rate,
+           hold, hold_ref);
+    if (!(err / f_max <= REL_TOL) || !(err_rate <= REL_TOL) ||
+        !(fabs(hold - hold_ref) <= REL_TOL * hold_ref)) {
+        fail_msg(
+            "%s (%s): f_hat error %.3g of max|f|, rate error %.3g, hold %.9g vs %.9g (tol %.1g)",
+            fld[7], BUILD_NAME, err / f_max, err_rate, hold, hold_ref, REL_TOL);
+    }
+    return err / f_max;
+}
+
+static void test_golden_contact_wait(void **state)
+{
+    (void)state;
+    int count = 0;
+    const double worst = for_each_manifest_line("manifest_contact.txt", 8, check_contact, &count);
+    printf("[%s] %d golden contact-wait rollouts, worst error %.3g of max|f| (tolerance %.0g)\n",
+           BUILD_NAME, count, worst, REL_TOL);
+    assert_true(count > 0);
+}
+
 /* The periodic golden skills (manifest_periodic.txt, format v4) parse as periodic models with
  * their stored fields; a discrete skill rewritten as v4 (kind 0, the periodic fields 0) parses
  * as its v2 image. */
@@ -440,7 +520,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_golden_rollouts),          cmocka_unit_test(test_golden_rollouts_y),
         cmocka_unit_test(test_golden_bad_images),        cmocka_unit_test(test_periodic_images),
-        cmocka_unit_test(test_golden_rollouts_periodic),
+        cmocka_unit_test(test_golden_rollouts_periodic), cmocka_unit_test(test_golden_contact_wait),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

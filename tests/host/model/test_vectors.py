@@ -36,7 +36,7 @@ def test_manifest_covers_the_brief() -> None:
     assert {s.end_policy for s in skills} == {"hold", "release"}
     assert {(g, t) for _, g, t, _ in m} == {(1.0, 1.0), (1.5, 1.0), (1.0, 1.3), (1.5, 1.3)}
     total = sum(p.stat().st_size for p in VECTORS.rglob("*") if p.is_file())
-    assert total < 2_300_000
+    assert total < 2_800_000  # the contact-wait rollouts (manifest_contact.txt) add 0.44 MB
 
 
 @pytest.mark.parametrize("skill,gs,ts,csv", manifest())

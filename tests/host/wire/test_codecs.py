@@ -26,6 +26,7 @@ CLASSES = {
     "last_transfer": W.LastTransfer,
     "device_state": W.DeviceState,
     "fault_causes": W.FaultCauses,
+    "contact_wait": W.ContactWait,
     "run_skill": W.RunSkill,
     "run_periodic": W.RunPeriodic,
     "run_step": W.RunStep,
