@@ -588,6 +588,7 @@ void app_tick(app_t *app, bool overrun)
     }
     can_receive(app);
     uds_service(app);
+    app_sec_persist_step(app);
     control(app);
 
     saf_input_t in; /* every field set: no memset in the tick */

@@ -69,6 +69,11 @@
 #ifndef APP_MAC_PER_TICK
 #define APP_MAC_PER_TICK 1u
 #endif
+/* Units of the SecurityAccess record's flash write a tick (nvm_write_run: the erase's start or a
+ * poll, a piece programmed or read back, NVM_SLICE_BYTES of the CRC or the scan). */
+#ifndef APP_SEC_FLASH_UNITS_PER_TICK
+#define APP_SEC_FLASH_UNITS_PER_TICK 1u
+#endif
 /** The whole device. */
 struct app {
     app_config_t cfg;
@@ -110,7 +115,13 @@ struct app {
     sec_state_t sec;             /* one attempt counter for both levels */
     nvm_t sec_nvm;               /* attempt record (hal_sec_flash), kept across resets */
     bool sec_nvm_ok;
-    uint8_t sec_saved[SEC_RECORD_LEN]; /* the record as last stored */
+    uint8_t sec_saved[SEC_RECORD_LEN];  /* the record as last stored */
+    uint8_t sec_wr_rec[SEC_RECORD_LEN]; /* the record being written (sec_writer's payload) */
+    nvm_writer_t sec_writer;            /* its write, APP_SEC_FLASH_UNITS_PER_TICK units a tick */
+    bool sec_writing;                   /* sec_writer runs */
+    bool sec_dirty;                     /* the record may differ from sec_saved */
+    bool sec_key_held;                  /* a sendKey's result waits for the record: */
+    uint8_t sec_key_nrc;                /* that result */
     /* the skill store: slot cache, transfer buffer, a download's commit (slots.h) */
     slots_t slots;
     uint16_t last_run_status; /* fs_status of the last start request's scale check */
@@ -180,8 +191,17 @@ uint8_t app_motion_key_begin(app_t *app, const uint8_t *host_nonce, uint16_t len
  *  then 0 with the key in use. */
 uint8_t app_motion_key_run(app_t *app, uint32_t rounds);
 
-/** Store the SecurityAccess attempt record if it changed (after every seed/key request). */
+/** Note that the SecurityAccess attempt record may have changed (after every seed/key request):
+ *  app_sec_persist_step stores it in the ticks that follow. */
 void app_sec_persist(app_t *app);
+
+/** A tick's share of storing the attempt record: a write in progress goes on, or one starts
+ *  when the record differs from the one stored (none while nothing changed). */
+void app_sec_persist_step(app_t *app);
+
+/** True once nothing is left to store: the record as the state is now is stored, or its write
+ *  failed (as before: tried again after the next request), or there is no record storage. */
+bool app_sec_persisted(const app_t *app);
 
 /** One secret per level from the HAL; the attempt counter from the record kept across resets
  *  (none or unreadable: the lockout delay runs at power-up, the safe side). At app_init. */

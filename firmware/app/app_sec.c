@@ -20,14 +20,40 @@ const sec_config_t *app_sec_config(const app_t *app, uint8_t level)
 
 void app_sec_persist(app_t *app)
 {
-    uint8_t rec[SEC_RECORD_LEN];
-    sec_record_encode(&app->sec, rec);
-    if (!app->sec_nvm_ok || memcmp(rec, app->sec_saved, sizeof rec) == 0) {
+    app->sec_dirty = app->sec_nvm_ok;
+}
+
+void app_sec_persist_step(app_t *app)
+{
+    if (app->sec_writing) {
+        if (nvm_write_run(&app->sec_writer, APP_SEC_FLASH_UNITS_PER_TICK)) {
+            app->sec_writing = false;
+            if (app->sec_writer.status == NVM_OK) {
+                memcpy(app->sec_saved, app->sec_wr_rec, sizeof app->sec_saved);
+            } else {
+                app->sec_dirty = false; /* not stored: tried again after the next request */
+            }
+        }
         return;
     }
-    if (nvm_write(&app->sec_nvm, 0u, rec, (uint32_t)sizeof rec) == NVM_OK) {
-        memcpy(app->sec_saved, rec, sizeof rec);
+    if (!app->sec_dirty) {
+        return;
     }
+    sec_record_encode(&app->sec, app->sec_wr_rec);
+    if (memcmp(app->sec_wr_rec, app->sec_saved, sizeof app->sec_saved) == 0) {
+        app->sec_dirty = false;
+        return;
+    }
+    app->sec_writing = nvm_write_begin(&app->sec_writer, &app->sec_nvm, 0u, app->sec_wr_rec,
+                                       (uint32_t)sizeof app->sec_wr_rec) == NVM_OK;
+    if (!app->sec_writing) {
+        app->sec_dirty = false; /* the write cannot start: as a failed one */
+    }
+}
+
+bool app_sec_persisted(const app_t *app)
+{
+    return !app->sec_writing && !app->sec_dirty;
 }
 
 /* One secret per level from the HAL; the attempt counter from the record kept across resets
