@@ -96,6 +96,8 @@ struct app {
     uint8_t secoc_dev_nonce[SECOC_NONCE_LEN]; /* the device nonce of the key in use */
     sec_hmac_job_t motion_job;                /* the derivation of the next key, in slices */
     bool motion_keying;                       /* motion_job runs (DID 0x0302 answered 0x78) */
+    bool motion_confirm_due;                  /* the key is set, its confirmation next call */
+    uint32_t motion_confirm;                  /* secoc_confirm of the key in use (0: none) */
     can_frame_t held;                         /* an authenticated frame beyond APP_MAC_PER_TICK */
     uint8_t held_ch;                          /* its channel + 1, 0: none */
     uint32_t run_opts_fv;                     /* freshness value of the last RUN_OPTIONS ... */
@@ -187,8 +189,9 @@ const sec_config_t *app_sec_config(const app_t *app, uint8_t level);
  *  UDS_NRC_RESPONSE_PENDING (app_motion_key_run finishes it) or a refusal's NRC. */
 uint8_t app_motion_key_begin(app_t *app, const uint8_t *host_nonce, uint16_t len);
 
-/** Up to rounds SHA-256 rounds of the derivation begun: UDS_NRC_RESPONSE_PENDING while it runs,
- *  then 0 with the key in use. */
+/** Up to rounds SHA-256 rounds of the derivation begun: UDS_NRC_RESPONSE_PENDING while it runs
+ *  (the call that sets the key included: the key's confirmation, one more AES block, is
+ *  computed by the next call, not in the same tick), then 0 with the key in use. */
 uint8_t app_motion_key_run(app_t *app, uint32_t rounds);
 
 /** Note that the SecurityAccess attempt record may have changed (after every seed/key request):

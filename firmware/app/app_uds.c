@@ -119,7 +119,7 @@ static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf, uint16_
                                         be32(&n[8]),
                                         be32(&n[12]),
                                         app->secoc.keyed ? 1u : 0u,
-                                        secoc_confirm(&app->secoc)};
+                                        app->secoc.keyed ? app->motion_confirm : 0u};
         return fs_wire_motion_key_pack(&v, buf, cap);
     }
     case DID_AUTH_STATS: {
