@@ -44,14 +44,21 @@
 #ifndef SLOTS_READ_UNITS_PER_TICK
 #define SLOTS_READ_UNITS_PER_TICK 1u
 #endif
+/* Bytes of the checked skill copied into the slot's cache per tick once its record is written
+ * (a whole skill_t is ~10 KB: 5,096 instructions of memcpy in one tick on the M4F). */
+#ifndef SLOTS_SWAP_BYTES_PER_TICK
+#define SLOTS_SWAP_BYTES_PER_TICK 1024u
+#endif
 
 /** The stages of a download's commit (one slice a tick at least). */
 enum {
     SLOTS_COMMIT_PARSE = 0, /* skill_parse_run, SLOTS_PARSE_UNITS_PER_TICK units a slice */
     SLOTS_COMMIT_PARAMS,    /* skchk_params, skchk_stiffness, skchk_begin */
     SLOTS_COMMIT_CHECK,     /* the rollout, SLOTS_CHECK_STEPS_PER_TICK steps a slice */
-    SLOTS_COMMIT_WRITE      /* the slot's flash record, SLOTS_FLASH_UNITS_PER_TICK units a
-                               slice, then the slot cache */
+    SLOTS_COMMIT_WRITE,     /* the slot's flash record, SLOTS_FLASH_UNITS_PER_TICK units a
+                               slice */
+    SLOTS_COMMIT_SWAP       /* the checked skill into the slot's cache, SLOTS_SWAP_BYTES_PER_TICK
+                               bytes a slice (the slot invalid meanwhile) */
 };
 
 /** What a commit checks a download against (the device's configuration when it starts). */
@@ -82,6 +89,7 @@ typedef struct {
     nvm_writer_t writer;           /* the slot's flash write, spread over ticks */
     bool checking;                 /* a download's commit runs: nothing starts meanwhile */
     uint8_t commit_stage;          /* SLOTS_COMMIT_*: the commit's stage while checking */
+    uint32_t swap_pos;             /* SLOTS_COMMIT_SWAP: bytes of staging copied */
     slots_limits_t lim;            /* the commit's limits, taken at its first slice */
     nvm_reader_t reader;           /* a read-back's record read and CRC, spread over ticks */
     bool reading;                  /* a read-back's RequestUpload is answered 0x78 meanwhile */
