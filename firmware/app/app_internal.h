@@ -42,6 +42,11 @@
  * queued only while more than this many are free, so a backlog of them (bus flooded by frames
  * of higher priority) never keeps a safety frame out of the queue. */
 #define APP_TX_RESERVE 8u
+/* ISO-TP frames (both links) queued per tick: a long response's consecutive frames leave at the
+ * bus's pace (the MPS2 port sends 9 a tick), not 32 encoded and queued in one tick. */
+#ifndef APP_TP_FRAMES_PER_TICK
+#define APP_TP_FRAMES_PER_TICK 9u
+#endif
 #define APP_RESET_TX_WAIT_MS 100u /* ECUReset: longest wait for the response to leave */
 #define APP_STATUS_PERIOD_MS 10u
 #define APP_IDLE_TELEMETRY_PERIOD_MS 100u
@@ -92,7 +97,8 @@ struct app {
     bool host_frame;        /* a valid host frame this tick */
     uint32_t e2e_errors;
     uint32_t tx_dropped;
-    secoc_t secoc;                            /* authenticated host frames (motion key) */
+    uint32_t tp_frames; /* ISO-TP frames queued this tick (APP_TP_FRAMES_PER_TICK) */
+    secoc_t secoc;      /* authenticated host frames (motion key) */
     uint8_t secoc_dev_nonce[SECOC_NONCE_LEN]; /* the device nonce of the key in use */
     sec_hmac_job_t motion_job;                /* the derivation of the next key, in slices */
     bool motion_keying;                       /* motion_job runs (DID 0x0302 answered 0x78) */
