@@ -45,7 +45,7 @@
 #define SLOTS_READ_UNITS_PER_TICK 1u
 #endif
 /* Bytes of the checked skill copied into the slot's cache per tick once its record is written
- * (a whole skill_t is ~10 KB: 5,096 instructions of memcpy in one tick on the M4F). */
+ * (the whole skill_t in one tick was 5,096 instructions of memcpy on the M4F). */
 #ifndef SLOTS_SWAP_BYTES_PER_TICK
 #define SLOTS_SWAP_BYTES_PER_TICK 1024u
 #endif
