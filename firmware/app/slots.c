@@ -172,7 +172,8 @@ static bool commit_slice(slots_t *b, fs_status_t *st)
         if (b->writer.status != NVM_OK) {
             return true;
         }
-        b->valid[b->xfer_slot - 1u] = false; /* its cache changes from the next slice on */
+        /* the cache changes from the next slice on: nothing reads it meanwhile (a run does not
+         * start while the commit runs, the UDS server answers others busy) */
         b->swap_pos = 0u;
         b->commit_stage = SLOTS_COMMIT_SWAP;
         return false;

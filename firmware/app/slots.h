@@ -58,7 +58,7 @@ enum {
     SLOTS_COMMIT_WRITE,     /* the slot's flash record, SLOTS_FLASH_UNITS_PER_TICK units a
                                slice */
     SLOTS_COMMIT_SWAP       /* the checked skill into the slot's cache, SLOTS_SWAP_BYTES_PER_TICK
-                               bytes a slice (the slot invalid meanwhile) */
+                               bytes a slice (no run starts while the commit runs) */
 };
 
 /** What a commit checks a download against (the device's configuration when it starts). */
