@@ -57,8 +57,13 @@ static bool app_send(app_t *app, const can_frame_t *f, bool bulk)
 
 static bool tp_send(void *ctx, const can_frame_t *f)
 {
-    (void)ctx;
-    return hal_can_tx_free() > APP_TX_RESERVE && hal_can_send(f); /* refused: ISO-TP retries */
+    app_t *app = ctx;
+    if (app->tp_frames >= APP_TP_FRAMES_PER_TICK || hal_can_tx_free() <= APP_TX_RESERVE ||
+        !hal_can_send(f)) {
+        return false; /* refused: ISO-TP retries */
+    }
+    app->tp_frames++;
+    return true;
 }
 
 #ifdef FS_EXEC_FIXED
@@ -568,6 +573,7 @@ void app_tick(app_t *app, bool overrun)
     app->now_ms = app_now_ms(app, app->now_us);
     app->tick++;
     app->host_frame = false;
+    app->tp_frames = 0u;
     app->overrun = overrun;
 
     /* sensors first: commands that start a motion start from this sample */
@@ -588,6 +594,7 @@ void app_tick(app_t *app, bool overrun)
     }
     can_receive(app);
     uds_service(app);
+    app_sec_persist_step(app);
     control(app);
 
     saf_input_t in; /* every field set: no memset in the tick */

@@ -42,6 +42,11 @@
  * queued only while more than this many are free, so a backlog of them (bus flooded by frames
  * of higher priority) never keeps a safety frame out of the queue. */
 #define APP_TX_RESERVE 8u
+/* ISO-TP frames (both links) queued per tick: a long response's consecutive frames leave at the
+ * bus's pace (the MPS2 port sends 9 a tick), not 32 encoded and queued in one tick. */
+#ifndef APP_TP_FRAMES_PER_TICK
+#define APP_TP_FRAMES_PER_TICK 9u
+#endif
 #define APP_RESET_TX_WAIT_MS 100u /* ECUReset: longest wait for the response to leave */
 #define APP_STATUS_PERIOD_MS 10u
 #define APP_IDLE_TELEMETRY_PERIOD_MS 100u
@@ -69,6 +74,11 @@
 #ifndef APP_MAC_PER_TICK
 #define APP_MAC_PER_TICK 1u
 #endif
+/* Units of the SecurityAccess record's flash write a tick (nvm_write_run: the erase's start or a
+ * poll, a piece programmed or read back, NVM_SLICE_BYTES of the CRC or the scan). */
+#ifndef APP_SEC_FLASH_UNITS_PER_TICK
+#define APP_SEC_FLASH_UNITS_PER_TICK 1u
+#endif
 /** The whole device. */
 struct app {
     app_config_t cfg;
@@ -87,10 +97,13 @@ struct app {
     bool host_frame;        /* a valid host frame this tick */
     uint32_t e2e_errors;
     uint32_t tx_dropped;
-    secoc_t secoc;                            /* authenticated host frames (motion key) */
+    uint32_t tp_frames; /* ISO-TP frames queued this tick (APP_TP_FRAMES_PER_TICK) */
+    secoc_t secoc;      /* authenticated host frames (motion key) */
     uint8_t secoc_dev_nonce[SECOC_NONCE_LEN]; /* the device nonce of the key in use */
     sec_hmac_job_t motion_job;                /* the derivation of the next key, in slices */
     bool motion_keying;                       /* motion_job runs (DID 0x0302 answered 0x78) */
+    bool motion_confirm_due;                  /* the key is set, its confirmation next call */
+    uint32_t motion_confirm;                  /* secoc_confirm of the key in use (0: none) */
     can_frame_t held;                         /* an authenticated frame beyond APP_MAC_PER_TICK */
     uint8_t held_ch;                          /* its channel + 1, 0: none */
     uint32_t run_opts_fv;                     /* freshness value of the last RUN_OPTIONS ... */
@@ -110,7 +123,13 @@ struct app {
     sec_state_t sec;             /* one attempt counter for both levels */
     nvm_t sec_nvm;               /* attempt record (hal_sec_flash), kept across resets */
     bool sec_nvm_ok;
-    uint8_t sec_saved[SEC_RECORD_LEN]; /* the record as last stored */
+    uint8_t sec_saved[SEC_RECORD_LEN];  /* the record as last stored */
+    uint8_t sec_wr_rec[SEC_RECORD_LEN]; /* the record being written (sec_writer's payload) */
+    nvm_writer_t sec_writer;            /* its write, APP_SEC_FLASH_UNITS_PER_TICK units a tick */
+    bool sec_writing;                   /* sec_writer runs */
+    bool sec_dirty;                     /* the record may differ from sec_saved */
+    bool sec_key_held;                  /* a sendKey's result waits for the record: */
+    uint8_t sec_key_nrc;                /* that result */
     /* the skill store: slot cache, transfer buffer, a download's commit (slots.h) */
     slots_t slots;
     uint16_t last_run_status; /* fs_status of the last start request's scale check */
@@ -176,12 +195,22 @@ const sec_config_t *app_sec_config(const app_t *app, uint8_t level);
  *  UDS_NRC_RESPONSE_PENDING (app_motion_key_run finishes it) or a refusal's NRC. */
 uint8_t app_motion_key_begin(app_t *app, const uint8_t *host_nonce, uint16_t len);
 
-/** Up to rounds SHA-256 rounds of the derivation begun: UDS_NRC_RESPONSE_PENDING while it runs,
- *  then 0 with the key in use. */
+/** Up to rounds SHA-256 rounds of the derivation begun: UDS_NRC_RESPONSE_PENDING while it runs
+ *  (the call that sets the key included: the key's confirmation, one more AES block, is
+ *  computed by the next call, not in the same tick), then 0 with the key in use. */
 uint8_t app_motion_key_run(app_t *app, uint32_t rounds);
 
-/** Store the SecurityAccess attempt record if it changed (after every seed/key request). */
+/** Note that the SecurityAccess attempt record may have changed (after every seed/key request):
+ *  app_sec_persist_step stores it in the ticks that follow. */
 void app_sec_persist(app_t *app);
+
+/** A tick's share of storing the attempt record: a write in progress goes on, or one starts
+ *  when the record differs from the one stored (none while nothing changed). */
+void app_sec_persist_step(app_t *app);
+
+/** True once nothing is left to store: the record as the state is now is stored, or its write
+ *  failed (as before: tried again after the next request), or there is no record storage. */
+bool app_sec_persisted(const app_t *app);
 
 /** One secret per level from the HAL; the attempt counter from the record kept across resets
  *  (none or unreadable: the lockout delay runs at power-up, the safe side). At app_init. */

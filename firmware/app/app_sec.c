@@ -20,14 +20,40 @@ const sec_config_t *app_sec_config(const app_t *app, uint8_t level)
 
 void app_sec_persist(app_t *app)
 {
-    uint8_t rec[SEC_RECORD_LEN];
-    sec_record_encode(&app->sec, rec);
-    if (!app->sec_nvm_ok || memcmp(rec, app->sec_saved, sizeof rec) == 0) {
+    app->sec_dirty = app->sec_nvm_ok;
+}
+
+void app_sec_persist_step(app_t *app)
+{
+    if (app->sec_writing) {
+        if (nvm_write_run(&app->sec_writer, APP_SEC_FLASH_UNITS_PER_TICK)) {
+            app->sec_writing = false;
+            if (app->sec_writer.status == NVM_OK) {
+                memcpy(app->sec_saved, app->sec_wr_rec, sizeof app->sec_saved);
+            } else {
+                app->sec_dirty = false; /* not stored: tried again after the next request */
+            }
+        }
         return;
     }
-    if (nvm_write(&app->sec_nvm, 0u, rec, (uint32_t)sizeof rec) == NVM_OK) {
-        memcpy(app->sec_saved, rec, sizeof rec);
+    if (!app->sec_dirty) {
+        return;
     }
+    sec_record_encode(&app->sec, app->sec_wr_rec);
+    if (memcmp(app->sec_wr_rec, app->sec_saved, sizeof app->sec_saved) == 0) {
+        app->sec_dirty = false;
+        return;
+    }
+    app->sec_writing = nvm_write_begin(&app->sec_writer, &app->sec_nvm, 0u, app->sec_wr_rec,
+                                       (uint32_t)sizeof app->sec_wr_rec) == NVM_OK;
+    if (!app->sec_writing) {
+        app->sec_dirty = false; /* the write cannot start: as a failed one */
+    }
+}
+
+bool app_sec_persisted(const app_t *app)
+{
+    return !app->sec_writing && !app->sec_dirty;
 }
 
 /* One secret per level from the HAL; the attempt counter from the record kept across resets
@@ -85,6 +111,8 @@ uint8_t app_motion_key_begin(app_t *app, const uint8_t *host_nonce, uint16_t len
     const sec_config_t *c = &app->sec_cfg[0];
     (void)sec_hmac_job_begin(&app->motion_job, c->secret, c->secret_len, msg, (uint32_t)sizeof msg);
     secoc_forget(&app->secoc); /* the old session ends now */
+    app->motion_confirm = 0u;
+    app->motion_confirm_due = false;
     memcpy(app->secoc_dev_nonce, dev_nonce, SECOC_NONCE_LEN);
     app->run_opts_fv = 0u;
     app->held_ch = 0u;
@@ -97,18 +125,27 @@ uint8_t app_motion_key_run(app_t *app, uint32_t rounds)
     if (!app->motion_keying) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT;
     }
+    if (app->motion_confirm_due) {
+        app->motion_confirm_due = false;
+        app->motion_keying = false;
+        app->motion_confirm = secoc_confirm(&app->secoc); /* kept: DID 0x0302 reads it */
+        return UDS_NRC_OK;
+    }
     uint8_t out[SEC_SHA256_LEN];
     if (!sec_hmac_job_run(&app->motion_job, rounds, out)) {
         return UDS_NRC_RESPONSE_PENDING;
     }
-    app->motion_keying = false;
     secoc_set_key(&app->secoc, out); /* the first SECOC_KEY_LEN bytes (secoc_derive_key) */
     sec_wipe(out, sizeof out);
-    return UDS_NRC_OK;
+    app->motion_confirm_due = true;
+    return UDS_NRC_RESPONSE_PENDING;
 }
 
 uint8_t app_motion_key(app_t *app, const uint8_t *host_nonce, uint16_t len)
 {
-    const uint8_t nrc = app_motion_key_begin(app, host_nonce, len);
-    return nrc == UDS_NRC_RESPONSE_PENDING ? app_motion_key_run(app, UINT32_MAX) : nrc;
+    uint8_t nrc = app_motion_key_begin(app, host_nonce, len);
+    while (nrc == UDS_NRC_RESPONSE_PENDING) {
+        nrc = app_motion_key_run(app, UINT32_MAX);
+    }
+    return nrc;
 }

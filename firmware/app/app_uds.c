@@ -126,7 +126,7 @@ static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf, uint16_
                                         be32(&n[8]),
                                         be32(&n[12]),
                                         app->secoc.keyed ? 1u : 0u,
-                                        secoc_confirm(&app->secoc)};
+                                        app->secoc.keyed ? app->motion_confirm : 0u};
         return fs_wire_motion_key_pack(&v, buf, cap);
     }
     case DID_AUTH_STATS: {
@@ -540,6 +540,8 @@ static uint8_t security_key(void *ctx, uint8_t level, const uint8_t *key, uint16
      * until then, stored now: the wrong-key counter survives reset and power-up */
     const uint8_t nrc = (uint8_t)sec_send_key_begin(cfg, &app->sec, key, len);
     app_sec_persist(app);
+    app->sec_key_held =
+        false; /* a result held for an earlier, abandoned request is not this one's */
     return nrc;
 }
 
@@ -554,12 +556,21 @@ static uint8_t resume(void *ctx, uint8_t sid, uint16_t arg)
     if (sid != UDS_SID_SECURITY || cfg == NULL) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT;
     }
-    const uint8_t nrc = (uint8_t)sec_send_key_run(cfg, &app->sec, app->now_ms,
-                                                  APP_SEC_ROUNDS_PER_TICK);
-    if (nrc != UDS_NRC_RESPONSE_PENDING) {
+    if (!app->sec_key_held) {
+        const uint8_t nrc = (uint8_t)sec_send_key_run(cfg, &app->sec, app->now_ms,
+                                                      APP_SEC_ROUNDS_PER_TICK);
+        if (nrc == UDS_NRC_RESPONSE_PENDING) {
+            return nrc;
+        }
         app_sec_persist(app);
+        app->sec_key_held = true; /* answered once the record is stored (app_sec_persist_step) */
+        app->sec_key_nrc = nrc;
     }
-    return nrc;
+    if (!app_sec_persisted(app)) {
+        return UDS_NRC_RESPONSE_PENDING;
+    }
+    app->sec_key_held = false;
+    return app->sec_key_nrc;
 }
 
 /* ---------------------------------------------------------------- transfers */

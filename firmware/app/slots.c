@@ -132,6 +132,66 @@ uint8_t slots_download_data(slots_t *b, uint32_t offset, const uint8_t *d, uint1
     return UDS_NRC_OK;
 }
 
+/* Up to max_bytes more of staging (the skill, then in the fixed-point build its model) into the
+ * slot's cache; true once it is all there. */
+static bool swap_slice(slots_t *b, uint32_t max_bytes)
+{
+    const uint32_t s = b->xfer_slot - 1u;
+    struct {
+        uint8_t *dst;
+        const uint8_t *src;
+        uint32_t len;
+    } const part[] = {
+        {(uint8_t *)&b->skill[s], (const uint8_t *)&b->staging, (uint32_t)sizeof(skill_t)},
+#ifdef FS_EXEC_FIXED
+        {(uint8_t *)&b->fx[s], (const uint8_t *)&b->staging_fx, (uint32_t)sizeof(dmpfx_model_t)},
+#endif
+    };
+    uint32_t base = 0u;
+    for (size_t i = 0; i < sizeof part / sizeof part[0]; i++) {
+        if (b->swap_pos < base + part[i].len) {
+            const uint32_t at = b->swap_pos - base;
+            const uint32_t rest = part[i].len - at;
+            const uint32_t n = rest < max_bytes ? rest : max_bytes;
+            memcpy(&part[i].dst[at], &part[i].src[at], n);
+            b->swap_pos += n;
+            max_bytes -= n;
+            if (max_bytes == 0u) {
+                return false; /* the next slice goes on (or finds it all there) */
+            }
+        }
+        base += part[i].len;
+    }
+    return true;
+}
+
+/* The slot's cache once the new skill is in it: valid, its figures, the transfer's status. */
+static void commit_done(slots_t *b)
+{
+    const uint32_t s = b->xfer_slot - 1u;
+    b->valid[s] = true;
+#ifdef FS_EXEC_FIXED
+    b->peak_N[s] = dmpfx_check_peak_N(&b->fx_check);
+    b->path_m[s] = dmpfx_check_path_m(&b->fx_check);
+#else
+    b->peak_N[s] = b->check.peak_N;
+    b->path_m[s] = b->check.path_peak_m;
+#endif
+    b->last_transfer_status = 0u;
+    b->crc[s] = b->parser.crc; /* the image's CRC-32, checked by the parse */
+    b->len[s] = b->xfer_size;
+}
+
+/* A commit that ends before its answer: once its record is written (the swap), the cache is
+ * finished now, so the slot holds what storage holds. */
+static void commit_cut(slots_t *b)
+{
+    if (b->checking && b->commit_stage == SLOTS_COMMIT_SWAP) {
+        (void)swap_slice(b, UINT32_MAX);
+        commit_done(b);
+    }
+}
+
 /* One slice of the commit (b->commit_stage): false while it goes on; true once done, *st FS_OK
  * when the skill passed every check and the flash write is done (its result in b->writer.status),
  * or the refusal. */
@@ -197,7 +257,19 @@ static bool commit_slice(slots_t *b, fs_status_t *st)
                               b->xfer_size); /* its argument errors end the write at once */
         b->commit_stage = SLOTS_COMMIT_WRITE;
         return false;
-    default: return nvm_write_run(&b->writer, SLOTS_FLASH_UNITS_PER_TICK);
+    case SLOTS_COMMIT_WRITE:
+        if (!nvm_write_run(&b->writer, SLOTS_FLASH_UNITS_PER_TICK)) {
+            return false;
+        }
+        if (b->writer.status != NVM_OK) {
+            return true;
+        }
+        /* the cache changes from the next slice on: nothing reads it meanwhile (a run does not
+         * start while the commit runs, the UDS server answers others busy) */
+        b->swap_pos = 0u;
+        b->commit_stage = SLOTS_COMMIT_SWAP;
+        return false;
+    default: return swap_slice(b, SLOTS_SWAP_BYTES_PER_TICK);
     }
 }
 
@@ -225,27 +297,16 @@ uint8_t slots_commit_step(slots_t *b, const slots_limits_t *lim, uint32_t *crc_o
         slots_reload(b); /* whatever storage holds now */
         return UDS_NRC_PROGRAMMING_FAILURE;
     }
-    /* swap into the cache: UDS runs at the start of a tick and downloads only in IDLE */
-    const uint32_t s = b->xfer_slot - 1u;
-    b->skill[s] = b->staging;
-    b->valid[s] = true;
-#ifdef FS_EXEC_FIXED
-    b->fx[s] = b->staging_fx;
-    b->peak_N[s] = dmpfx_check_peak_N(&b->fx_check);
-    b->path_m[s] = dmpfx_check_path_m(&b->fx_check);
-#else
-    b->peak_N[s] = b->check.peak_N;
-    b->path_m[s] = b->check.path_peak_m;
-#endif
-    b->last_transfer_status = 0u;
-    *crc_out = b->parser.crc; /* the image's CRC-32, checked by the parse */
-    b->crc[s] = *crc_out;
-    b->len[s] = b->xfer_size;
+    /* the cache swapped in slices (SLOTS_COMMIT_SWAP): UDS runs at the start of a tick and
+     * downloads only in IDLE */
+    commit_done(b);
+    *crc_out = b->parser.crc;
     return UDS_NRC_OK;
 }
 
 void slots_abort(slots_t *b)
 {
+    commit_cut(b);
     if (b->last_transfer_status == FS_TRANSFER_IN_PROGRESS) {
         b->last_transfer_status = FS_TRANSFER_INTERRUPTED; /* interrupted: nothing was written */
     }
@@ -256,6 +317,11 @@ void slots_abort(slots_t *b)
 
 void slots_refuse_commit(slots_t *b)
 {
+    if (b->checking && b->commit_stage == SLOTS_COMMIT_SWAP) {
+        commit_cut(b); /* its record is written: the slot holds the new skill */
+        b->checking = false;
+        return;
+    }
     b->checking = false;
     b->last_transfer_status = FS_TRANSFER_INTERRUPTED;
 }

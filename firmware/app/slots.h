@@ -60,6 +60,11 @@
 #ifndef SLOTS_READ_UNITS_PER_TICK
 #define SLOTS_READ_UNITS_PER_TICK 1u
 #endif
+/* Bytes of the checked skill copied into the slot's cache per tick once its record is written
+ * (the whole skill_t in one tick was 5,096 instructions of memcpy on the M4F). */
+#ifndef SLOTS_SWAP_BYTES_PER_TICK
+#define SLOTS_SWAP_BYTES_PER_TICK 1024u
+#endif
 
 /** The stages of a download's commit (one slice a tick at least). */
 enum {
@@ -70,8 +75,11 @@ enum {
                                SLOTS_CONVERT_UNITS_PER_TICK units a slice, then dmpfx_check_begin */
     SLOTS_COMMIT_CHECK,     /* the rollout, SLOTS_CHECK_STEPS_PER_TICK steps a slice (the
                                fixed-point build: on the converted skill, dmpfx_check_run) */
-    SLOTS_COMMIT_WRITE      /* the slot's flash record, SLOTS_FLASH_UNITS_PER_TICK units a
-                               slice, then the slot cache */
+    SLOTS_COMMIT_WRITE,     /* the slot's flash record, SLOTS_FLASH_UNITS_PER_TICK units a
+                               slice */
+    SLOTS_COMMIT_SWAP       /* the checked skill (and its fixed-point model) into the slot's
+                               cache, SLOTS_SWAP_BYTES_PER_TICK bytes a slice (no run starts
+                               while the commit runs) */
 };
 
 /** What a commit checks a download against (the device's configuration when it starts). */
@@ -103,6 +111,7 @@ typedef struct {
     nvm_writer_t writer;           /* the slot's flash write, spread over ticks */
     bool checking;                 /* a download's commit runs: nothing starts meanwhile */
     uint8_t commit_stage;          /* SLOTS_COMMIT_*: the commit's stage while checking */
+    uint32_t swap_pos;             /* SLOTS_COMMIT_SWAP: bytes of staging copied */
     slots_limits_t lim;            /* the commit's limits, taken at its first slice */
     nvm_reader_t reader;           /* a read-back's record read and CRC, spread over ticks */
     bool reading;                  /* a read-back's RequestUpload is answered 0x78 meanwhile */

@@ -19,6 +19,12 @@ static int win_erase(void *ctx, uint32_t sector)
     return w->parent->erase(w->parent->ctx, w->first_sector + sector);
 }
 
+static int win_busy(void *ctx)
+{
+    const boot_fls_window_t *w = (const boot_fls_window_t *)ctx;
+    return w->parent->busy(w->parent->ctx);
+}
+
 static int win_program(void *ctx, uint32_t addr, const uint8_t *data, uint32_t len)
 {
     const boot_fls_window_t *w = (const boot_fls_window_t *)ctx;
@@ -55,6 +61,7 @@ int boot_fls_window_init(boot_fls_window_t *w, fls_dev_t *dev, const fls_dev_t *
     dev->erase = win_erase;
     dev->program = win_program;
     dev->read = win_read;
+    dev->busy = (parent->busy != NULL) ? win_busy : NULL;
     dev->ctx = w;
     return 0;
 }

@@ -28,7 +28,8 @@ static boot_status_t program(fwu_t *f, uint32_t off, const uint8_t *p, uint32_t 
     const fls_dev_t *dev = cfg->app_dev;
     const uint32_t base = cfg->slot_addr[f->slot];
     while (off + n > f->erased) {
-        if (dev->erase(dev->ctx, (base + f->erased) / dev->sector_size) != 0) {
+        if (dev->erase(dev->ctx, (base + f->erased) / dev->sector_size) != 0 ||
+            fls_wait(dev) != 0) {
             return BOOT_ERR_FLASH;
         }
         f->erased += dev->sector_size;
@@ -171,6 +172,47 @@ boot_status_t fwu_data(fwu_t *f, bool authorised, uint32_t offset, const uint8_t
     return BOOT_OK;
 }
 
+/* True once the image's header is in and valid counting the next k bytes of the block (its
+ * bytes copied as fwu_data copies them): nothing is erased for a header that fwu_data refuses. */
+static bool header_ok_ahead(fwu_t *f, uint32_t k)
+{
+    if (f->received >= BOOT_IMAGE_HEADER_SIZE) {
+        return true;
+    }
+    const uint32_t n = BOOT_IMAGE_HEADER_SIZE - f->received;
+    if (k < n) {
+        return false; /* not whole in this piece: program() erases when it gets there */
+    }
+    memcpy(&f->hdr[f->received], &f->block[f->block_pos], n);
+    return check_header(f) == BOOT_OK;
+}
+
+/* A device with a background erase (fls.h busy): one call of a step polls the erase in
+ * progress, or starts the erase of the sector that the next k bytes of the block reach first;
+ * *done false then (the piece waits for the next call). Otherwise *done true. */
+static boot_status_t erase_ahead(fwu_t *f, uint32_t k, bool *done)
+{
+    const fls_dev_t *dev = f->boot->cfg->app_dev;
+    *done = true;
+    if (dev->busy == NULL) {
+        return BOOT_OK;
+    }
+    const int b = dev->busy(dev->ctx);
+    if (b != 0) {
+        *done = false;
+        return b < 0 ? BOOT_ERR_FLASH : BOOT_OK;
+    }
+    if (f->programmed + f->tail_len + k > f->erased && header_ok_ahead(f, k)) {
+        const uint32_t base = f->boot->cfg->slot_addr[f->slot];
+        if (dev->erase(dev->ctx, (base + f->erased) / dev->sector_size) != 0) {
+            return BOOT_ERR_FLASH;
+        }
+        f->erased += dev->sector_size;
+        *done = false;
+    }
+    return BOOT_OK;
+}
+
 boot_status_t fwu_data_step(fwu_t *f, bool authorised, uint32_t offset, const uint8_t *data,
                             uint32_t len, uint32_t max_bytes, bool *done)
 {
@@ -202,6 +244,14 @@ boot_status_t fwu_data_step(fwu_t *f, bool authorised, uint32_t offset, const ui
     }
     const uint32_t rest = f->block_len - f->block_pos;
     const uint32_t k = rest < max_bytes ? rest : max_bytes;
+    /* fwu_data's first checks before anything is erased (its refusals come from it) */
+    const boot_status_t es = (authorised && f->phase == FWU_RECEIVING) ? erase_ahead(f, k, done)
+                                                                       : BOOT_OK;
+    if (es != BOOT_OK || !*done) {
+        f->block_busy = es == BOOT_OK;
+        *done = es != BOOT_OK;
+        return es == BOOT_OK ? BOOT_OK : refuse(f, es);
+    }
     const boot_status_t st = fwu_data(f, authorised, f->block_off + f->block_pos,
                                       &f->block[f->block_pos], k);
     f->block_pos += k;

@@ -107,6 +107,7 @@ void fls_ram_init(fls_ram_t *f, fls_dev_t *dev, uint8_t *mem, uint32_t sector_si
     dev->erase = ram_erase;
     dev->program = ram_program;
     dev->read = ram_read;
+    dev->busy = NULL; /* a synchronous erase */
     dev->ctx = f;
 }
 

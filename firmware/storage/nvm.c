@@ -503,8 +503,19 @@ bool nvm_write_run(nvm_writer_t *w, uint32_t max_units)
             break;
         }
         case NW_ERASE:
-            if (d->erase(d->ctx, (uint32_t)w->slot * 2u + w->target) != 0) {
-                w->status = NVM_ERR_FLASH;
+            /* started, then (a device with a background erase) one busy() poll a unit */
+            if (w->pos == 0u) {
+                if (d->erase(d->ctx, (uint32_t)w->slot * 2u + w->target) != 0) {
+                    w->status = NVM_ERR_FLASH;
+                }
+                w->pos = 1u;
+                next = d->busy == NULL;
+            } else {
+                const int b = d->busy(d->ctx);
+                if (b < 0) {
+                    w->status = NVM_ERR_FLASH;
+                }
+                next = b <= 0;
             }
             break;
         case NW_PROG: next = write_piece(w, false); break;
@@ -647,8 +658,8 @@ nvm_status_t nvm_erase_slot(nvm_t *n, uint16_t slot)
     /* Older copy first: an interrupted erase leaves the newest record readable. */
     const uint8_t first = (e->valid != 0u) ? (uint8_t)(1u - e->copy) : 0u;
     nvm_status_t s = NVM_OK;
-    if (d->erase(d->ctx, (uint32_t)slot * 2u + first) != 0 ||
-        d->erase(d->ctx, (uint32_t)slot * 2u + (uint8_t)(1u - first)) != 0) {
+    if (d->erase(d->ctx, (uint32_t)slot * 2u + first) != 0 || fls_wait(d) != 0 ||
+        d->erase(d->ctx, (uint32_t)slot * 2u + (uint8_t)(1u - first)) != 0 || fls_wait(d) != 0) {
         s = NVM_ERR_FLASH;
     }
     rescan_slot(n, slot);

@@ -95,8 +95,9 @@ nvm_status_t nvm_write(nvm_t *n, uint16_t slot, const uint8_t *payload, uint32_t
 #define NVM_SLICE_BYTES 64u
 
 /** nvm_write in slices (nvm_write_begin, then nvm_write_run until it returns true): the same
- *  steps, flash contents and result, a unit of work per step (the erase, the commit word,
- *  NVM_SLICE_BYTES of the CRC or the final scan, or up to 256 bytes programmed or read back). The payload and *n must
+ *  steps, flash contents and result, a unit of work per step (the erase's start or one poll of
+ *  a background erase (fls.h busy), the commit word, NVM_SLICE_BYTES of the CRC or the final
+ *  scan, or up to 256 bytes programmed or read back). The payload and *n must
  *  stay in place and unused by other writes until it is done; the newest record stays readable
  *  throughout (the new one becomes valid with the commit word). */
 typedef struct {

@@ -131,6 +131,7 @@ void cm_port_start_ticks(bool pace)
     CM_SYST_RVR = CM_CORE_CLOCK_HZ / CM_PORT_TICK_HZ - 1u;
     CM_SYST_CVR = 0u;
     CM_SYST_CSR = CM_SYST_CSR_ENABLE_TICKINT_CLK;
+    cm_uart_rx_budget(CM_PORT_RX_BYTES_PER_TICK); /* the first period's (cm_port_end_tick) */
 }
 
 bool cm_port_wait_tick(void)
@@ -159,7 +160,6 @@ bool cm_port_wait_tick(void)
     const bool missed = g_missed != 0u;
     g_missed = 0u;
     __asm__ volatile("cpsie i" ::: "memory");
-    cm_uart_rx_budget(CM_PORT_RX_BYTES_PER_TICK);
     g_rx_taken = 0u;
     if (missed) {
         g_overruns = g_overruns + 1u;
@@ -183,6 +183,9 @@ static void can_tx_drain(uint32_t budget)
 void cm_port_end_tick(void)
 {
     can_tx_drain(CM_PORT_TX_FRAMES_PER_TICK);
+    /* the next period's receive budget from now, after the tick: bytes that waited for it are
+     * taken in the slack before the next tick, not in bulk inside it */
+    cm_uart_rx_budget(CM_PORT_RX_BYTES_PER_TICK);
     CM_WDG_LOCK = CM_WDG_UNLOCK_KEY;
     CM_WDG_INTCLR = 1u; /* reload the watchdog */
     CM_WDG_LOCK = 0u;

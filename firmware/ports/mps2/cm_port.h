@@ -15,7 +15,9 @@
  * ~8 us of the board's time (4 instructions each at 250 MIPS) */
 #define CM_PORT_PACE_SPIN 500u
 /* Bytes of SLCAN text the UART takes per tick: 192 = 8.7 frames of 8 bytes per ms, the frame rate
- * of a 1 Mbit/s CAN bus (~7.4 frames per ms) with a margin. The RX interrupt parses them into
+ * of a 1 Mbit/s CAN bus (~7.4 frames per ms) with a margin; the budget is given anew at the end
+ * of each tick (cm_port_end_tick), so the bytes that waited for it arrive in the slack after the
+ * tick rather than in bulk inside the next one. The RX interrupt parses them into
  * whole frames; hal_can_receive hands the tick at most CM_PORT_RX_FRAMES_PER_TICK of them (16:
  * the budget's bytes as the shortest frames the product receives, 12 characters), the rest wait
  * in the port's 256-frame queue. */

@@ -335,6 +335,121 @@ static void test_data_in_slices_same_as_whole_blocks(void **state)
     assert_int_equal(fwu_data_step(&D.fwu, true, 0u, NULL, 301u, 128u, &done), FWU_ERR_SEQUENCE);
 }
 
+/* A flash whose erase runs in the background (fls.h busy), over the device's RAM flash: erase()
+ * notes the sector, the third busy() poll erases it; a program or read while an erase is
+ * pending fails the test. */
+static fls_dev_t g_bg_raw;
+static int g_bg_pending = -1, g_bg_polls;
+static uint32_t g_bg_erases;
+
+static int bg_erase(void *ctx, uint32_t sector)
+{
+    (void)ctx;
+    assert_int_equal(g_bg_pending, -1);
+    g_bg_pending = (int)sector;
+    g_bg_polls = 0;
+    g_bg_erases++;
+    return 0;
+}
+
+static int bg_busy(void *ctx)
+{
+    (void)ctx;
+    if (g_bg_pending < 0) {
+        return 0;
+    }
+    if (++g_bg_polls < 3) {
+        return 1;
+    }
+    const int r = g_bg_raw.erase(g_bg_raw.ctx, (uint32_t)g_bg_pending);
+    g_bg_pending = -1;
+    return r != 0 ? -1 : 0;
+}
+
+static int bg_program(void *ctx, uint32_t addr, const uint8_t *d, uint32_t len)
+{
+    (void)ctx;
+    assert_int_equal(g_bg_pending, -1);
+    return g_bg_raw.program(g_bg_raw.ctx, addr, d, len);
+}
+
+static int bg_read(void *ctx, uint32_t addr, uint8_t *d, uint32_t len)
+{
+    (void)ctx;
+    assert_int_equal(g_bg_pending, -1);
+    return g_bg_raw.read(g_bg_raw.ctx, addr, d, len);
+}
+
+/* The device's flash with a background erase (the windows forward busy()). */
+static void background_erase(dev_t_ *d)
+{
+    g_bg_raw = d->flash;
+    g_bg_pending = -1;
+    g_bg_erases = 0u;
+    d->flash.erase = bg_erase;
+    d->flash.busy = bg_busy;
+    d->flash.program = bg_program;
+    d->flash.read = bg_read;
+    attach(d);
+}
+
+/* TransferData in slices on a flash with a background erase: each sector's erase is started by
+ * a call of its own and polled a call at a time (3 polls) once the header is in, the slot's contents and CRC-32 are
+ * those of the synchronous flash; a block whose header is refused erases nothing. */
+static void test_data_in_slices_background_erase(void **state)
+{
+    (void)state;
+    device_with_factory_image(&D);
+    const uint32_t len = make_image(
+        &(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 6000u, 1, 1, 1, 1, DEV_KEY}, IMG);
+    assert_int_equal(download(&D, IMG, len, len), BOOT_OK);
+    const uint8_t slot = D.fwu.slot;
+    const uint32_t crc_whole = D.fwu.crc32;
+    static uint8_t whole[IMG_MAX], sliced[IMG_MAX];
+    assert_int_equal(D.app_dev.read(D.app_dev.ctx, D.cfg.slot_addr[slot], whole, len), 0);
+    fwu_abort(&D.fwu);
+    background_erase(&D);
+    assert_int_equal(fwu_begin(&D.fwu, true, len), BOOT_OK);
+    static const uint32_t blocks[] = {100u, 1021u, 7u, 4093u, 333u};
+    uint32_t off = 0u, k = 0u, calls = 0u;
+    while (off < len) {
+        uint32_t n = blocks[k++ % 5u];
+        n = n > len - off ? len - off : n;
+        bool done = false;
+        assert_int_equal(fwu_data_step(&D.fwu, true, off, IMG + off, n, 128u, &done), BOOT_OK);
+        while (!done) {
+            assert_int_equal(fwu_data_step(&D.fwu, true, off, NULL, n, 128u, &done), BOOT_OK);
+            calls++;
+        }
+        calls -= (n + 127u) / 128u;
+        off += n;
+    }
+    const uint32_t sectors = (len + SECTOR - 1u) / SECTOR;
+    assert_int_equal(g_bg_erases, sectors);
+    /* per sector, its start and 2 polls still busy; but the first: the first block (100 bytes)
+     * leaves the header incomplete, so its bytes' program() erases the sector and waits */
+    assert_int_equal(calls, (sectors - 1u) * 3u);
+    assert_int_equal(fwu_end(&D.fwu, true, NULL), BOOT_OK);
+    assert_int_equal(D.fwu.crc32, crc_whole);
+    assert_int_equal(D.app_dev.read(D.app_dev.ctx, D.cfg.slot_addr[slot], sliced, len), 0);
+    assert_memory_equal(sliced, whole, len);
+    /* a refused header (another target): the slot's first sector keeps its bytes */
+    fwu_abort(&D.fwu);
+    const uint32_t len2 = make_image(
+        &(img_spec_t){BOOT_VERSION(1, 2, 0), BOOT_TARGET_HOST + 1u, 600u, 1, 1, 1, 1, DEV_KEY},
+        IMG2);
+    assert_int_equal(fwu_begin(&D.fwu, true, len2), BOOT_OK);
+    const uint32_t erases = g_bg_erases;
+    bool done = false;
+    assert_int_equal(fwu_data_step(&D.fwu, true, 0u, IMG2, 300u, 128u, &done), BOOT_OK);
+    assert_int_equal(fwu_data_step(&D.fwu, true, 0u, NULL, 300u, 128u, &done), BOOT_ERR_TARGET);
+    assert_true(done);
+    assert_int_equal(g_bg_erases, erases);
+    assert_int_equal(D.app_dev.read(D.app_dev.ctx, D.cfg.slot_addr[D.fwu.slot], sliced, SECTOR),
+                     0);
+    assert_memory_equal(sliced, whole, SECTOR);
+}
+
 static void test_header_refusals(void **state)
 {
     (void)state;
@@ -841,6 +956,7 @@ int main(void)
         cmocka_unit_test(test_golden_image_from_python),
         cmocka_unit_test(test_golden_image_verified_in_slices),
         cmocka_unit_test(test_data_in_slices_same_as_whole_blocks),
+        cmocka_unit_test(test_data_in_slices_background_erase),
         cmocka_unit_test(test_header_refusals),
         cmocka_unit_test(test_state_record_round_trip),
         cmocka_unit_test(test_full_update_and_confirm),

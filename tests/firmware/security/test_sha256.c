@@ -250,6 +250,27 @@ static void test_ct_equal(void **state)
     assert_int_equal(sec_ct_equal(NULL, b, 16), 0);
 }
 
+/* Every start alignment and length up to 3 words past a 16-byte step: exactly [off, off+len)
+ * zeroed, the bytes around it untouched. */
+static void test_wipe_exact_range(void **state)
+{
+    (void)state;
+    uint8_t buf[96];
+    for (uint32_t off = 0u; off < 8u; off++) {
+        for (uint32_t len = 0u; len <= 60u; len++) {
+            for (uint32_t i = 0u; i < sizeof buf; i++) {
+                buf[i] = (uint8_t)(0xA5u ^ i);
+            }
+            sec_wipe(&buf[off], len);
+            for (uint32_t i = 0u; i < sizeof buf; i++) {
+                const bool inside = i >= off && i < off + len;
+                assert_int_equal(buf[i], inside ? 0u : (uint8_t)(0xA5u ^ i));
+            }
+        }
+    }
+    sec_wipe(NULL, 16u); /* nothing to wipe: no access */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -260,6 +281,7 @@ int main(void)
         cmocka_unit_test(test_rfc4231_all_cases),
         cmocka_unit_test(test_hmac_job_equals_one_shot),
         cmocka_unit_test(test_ct_equal),
+        cmocka_unit_test(test_wipe_exact_range),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -209,6 +209,124 @@ static void test_sliced_write_same_as_whole(void **state)
     assert_int_equal(nvm_write_begin(&w, &n2, 0, a, nvm_payload_max(&dev2) + 1u), NVM_ERR_TOO_LARGE);
 }
 
+/* A device whose erase runs in the background (fls.h busy): erase() only notes the sector,
+ * the ASYNC_POLLS-th busy() poll erases it on the RAM flash below; a program or read while an
+ * erase is pending fails the test (the storage polls it to its end first). */
+#define ASYNC_POLLS 4
+typedef struct {
+    fls_dev_t ram;   /* fls_ram's device */
+    int pending;     /* the sector being erased, -1: none */
+    int polls;       /* busy() calls of the pending erase */
+    uint32_t erases; /* erases started */
+} async_dev_t;
+
+static int async_erase(void *ctx, uint32_t sector)
+{
+    async_dev_t *a = ctx;
+    assert_int_equal(a->pending, -1);
+    if (sector >= a->ram.sector_count) {
+        return -1;
+    }
+    a->pending = (int)sector;
+    a->polls = 0;
+    a->erases++;
+    return 0;
+}
+
+static int async_busy(void *ctx)
+{
+    async_dev_t *a = ctx;
+    if (a->pending < 0) {
+        return 0;
+    }
+    if (++a->polls < ASYNC_POLLS) {
+        return 1;
+    }
+    const int r = a->ram.erase(a->ram.ctx, (uint32_t)a->pending);
+    a->pending = -1;
+    return r != 0 ? -1 : 0;
+}
+
+static int async_program(void *ctx, uint32_t addr, const uint8_t *d, uint32_t len)
+{
+    async_dev_t *a = ctx;
+    assert_int_equal(a->pending, -1);
+    return a->ram.program(a->ram.ctx, addr, d, len);
+}
+
+static int async_read(void *ctx, uint32_t addr, uint8_t *d, uint32_t len)
+{
+    async_dev_t *a = ctx;
+    assert_int_equal(a->pending, -1);
+    return a->ram.read(a->ram.ctx, addr, d, len);
+}
+
+static void async_init(async_dev_t *a, fls_dev_t *dev)
+{
+    *dev = a->ram;
+    a->pending = -1;
+    a->polls = 0;
+    a->erases = 0u;
+    dev->erase = async_erase;
+    dev->busy = async_busy;
+    dev->program = async_program;
+    dev->read = async_read;
+    dev->ctx = a;
+}
+
+/* On a device with a background erase, the sliced write polls the erase one unit at a time
+ * (ASYNC_POLLS units more than on a synchronous device) and leaves the flash and directory byte
+ * for byte those of nvm_write on a synchronous one; nvm_write and nvm_erase_slot wait for it. */
+static void test_background_erase(void **state)
+{
+    (void)state;
+    fls_ram_t ram, ram2;
+    fls_dev_t dev, dev2;
+    async_dev_t ad;
+    fls_ram_init(&ram, &dev, g_mem, SECTOR, SECTORS, 4);
+    fls_ram_init(&ram2, &ad.ram, g_mem2, SECTOR, SECTORS, 4);
+    async_init(&ad, &dev2);
+    nvm_t n, n2;
+    assert_int_equal(nvm_init(&n, &dev), NVM_OK);
+    assert_int_equal(nvm_init(&n2, &dev2), NVM_OK);
+    uint8_t a[2048], b[4096], out[8192];
+    const uint32_t la = tv_read("engrave_n50_lwr_hold.skill", a, sizeof a);
+    const uint32_t lb = tv_read("press_n100_lwr_release.skill", b, sizeof b);
+    assert_true(la > 0u && lb > 0u);
+    for (unsigned round = 0; round < 3; round++) {
+        const uint8_t *p = (round % 2u == 0u) ? b : a;
+        const uint32_t lp = (round % 2u == 0u) ? lb : la;
+        nvm_writer_t w;
+        assert_int_equal(nvm_write_begin(&w, &n, 1, p, lp), NVM_OK);
+        uint32_t sync_calls = 1u;
+        while (!nvm_write_run(&w, 1u)) {
+            sync_calls++;
+        }
+        assert_int_equal(nvm_write_begin(&w, &n2, 1, p, lp), NVM_OK);
+        uint32_t calls = 1u;
+        while (!nvm_write_run(&w, 1u)) {
+            calls++;
+        }
+        assert_int_equal(w.status, NVM_OK);
+        assert_int_equal(calls, sync_calls + ASYNC_POLLS);
+        assert_memory_equal(g_mem, g_mem2, sizeof g_mem);
+        assert_memory_equal(&n.dir[1], &n2.dir[1], sizeof n.dir[1]);
+    }
+    assert_int_equal(ad.erases, 3u);
+    assert_int_equal(nvm_write(&n, 2, a, la), NVM_OK);
+    assert_int_equal(nvm_write(&n2, 2, a, la), NVM_OK);
+    assert_memory_equal(g_mem, g_mem2, sizeof g_mem);
+    uint32_t len = 0u;
+    assert_int_equal(nvm_read(&n2, 2, out, sizeof out, &len), NVM_OK);
+    assert_int_equal(len, la);
+    assert_memory_equal(out, a, la);
+    assert_int_equal(nvm_erase_slot(&n, 1), NVM_OK);
+    assert_int_equal(nvm_erase_slot(&n2, 1), NVM_OK);
+    assert_int_equal(ad.pending, -1);
+    assert_memory_equal(g_mem, g_mem2, sizeof g_mem);
+    assert_int_equal(nvm_read(&n2, 1, out, sizeof out, &len), NVM_ERR_EMPTY);
+}
+
 static void test_corruption_falls_back(void **state)
 {
     (void)state;
@@ -418,6 +536,7 @@ int main(void)
         cmocka_unit_test(test_record_roundtrip_and_rejections),
         cmocka_unit_test(test_write_read_alternate),
         cmocka_unit_test(test_sliced_write_same_as_whole),
+        cmocka_unit_test(test_background_erase),
         cmocka_unit_test(test_corruption_falls_back),
         cmocka_unit_test(test_power_loss_every_write),
         cmocka_unit_test(test_verify_failure_and_geometry),

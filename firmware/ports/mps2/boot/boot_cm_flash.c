@@ -3,19 +3,45 @@
 
 #include <string.h>
 
+/* One slice of the erase in progress: its next bytes set to 0xFF; 1 while bytes are left. */
+static int cm_busy(void *ctx)
+{
+    boot_cm_flash_t *f = (boot_cm_flash_t *)ctx;
+    if (f->erase_left == 0u) {
+        return 0;
+    }
+    const uint32_t n = (f->erase_left < BOOT_CM_FLASH_ERASE_SLICE_BYTES)
+                           ? f->erase_left
+                           : BOOT_CM_FLASH_ERASE_SLICE_BYTES;
+    const uint32_t off = f->sector_size - f->erase_left;
+    memset((void *)(f->base + f->erase_sector * f->sector_size + off), 0xFF, n);
+    f->erase_left -= n;
+    return f->erase_left != 0u ? 1 : 0;
+}
+
+/* The erase in progress to its end (before any other access). */
+static void cm_finish(boot_cm_flash_t *f)
+{
+    while (cm_busy(f) != 0) {
+    }
+}
+
 static int cm_erase(void *ctx, uint32_t sector)
 {
-    const boot_cm_flash_t *f = (const boot_cm_flash_t *)ctx;
+    boot_cm_flash_t *f = (boot_cm_flash_t *)ctx;
+    cm_finish(f);
     if (sector >= f->sector_count) {
         return -1;
     }
-    memset((void *)(f->base + sector * f->sector_size), 0xFF, f->sector_size);
+    f->erase_sector = sector; /* started: cm_busy erases it slice by slice */
+    f->erase_left = f->sector_size;
     return 0;
 }
 
 static int cm_read(void *ctx, uint32_t addr, uint8_t *data, uint32_t len)
 {
-    const boot_cm_flash_t *f = (const boot_cm_flash_t *)ctx;
+    boot_cm_flash_t *f = (boot_cm_flash_t *)ctx;
+    cm_finish(f);
     if ((uint64_t)addr + len > (uint64_t)f->sector_size * f->sector_count) {
         return -1;
     }
@@ -25,7 +51,8 @@ static int cm_read(void *ctx, uint32_t addr, uint8_t *data, uint32_t len)
 
 static int cm_program(void *ctx, uint32_t addr, const uint8_t *data, uint32_t len)
 {
-    const boot_cm_flash_t *f = (const boot_cm_flash_t *)ctx;
+    boot_cm_flash_t *f = (boot_cm_flash_t *)ctx;
+    cm_finish(f);
     if ((uint64_t)addr + len > (uint64_t)f->sector_size * f->sector_count) {
         return -1;
     }
@@ -52,11 +79,14 @@ void boot_cm_flash_init(boot_cm_flash_t *f, fls_dev_t *dev, uintptr_t base, uint
     f->base = base;
     f->sector_size = sector_size;
     f->sector_count = sector_count;
+    f->erase_sector = 0u;
+    f->erase_left = 0u;
     dev->sector_size = sector_size;
     dev->sector_count = sector_count;
     dev->write_unit = 4u;
     dev->erase = cm_erase;
     dev->program = cm_program;
     dev->read = cm_read;
+    dev->busy = cm_busy;
     dev->ctx = f;
 }
