@@ -203,7 +203,7 @@ def test_candump_log_read_by_fit(vcan_server, tmp_path, capsys):
     try:
         time.sleep(1.0)
         forceskill(
-            capsys, "record", "-o", str(tmp_path / "own.blf"), "--duration", "3", *vcan_server.bus_args()
+            capsys, "record", "-o", str(tmp_path / "own.blf"), "--duration", "5", *vcan_server.bus_args()
         )
         time.sleep(1.0)
     finally:
@@ -222,10 +222,12 @@ def test_candump_log_read_by_fit(vcan_server, tmp_path, capsys):
         str(tmp_path / "from_candump.skill"),
     )
     t_s = float(out.split(f"{log.name}:f_contact, T = ")[1].split()[0])
-    assert 2.9 <= t_s <= 3.1 + RECORD_OVERRUN_S, out
+    # 5 s: the operator holds the high force by then (at 3 s it is still ramping up to it, an end
+    # the default fit does not reach within 10 %: 13.1 % at t = 3 s in the guest)
+    assert 4.9 <= t_s <= 5.1 + RECORD_OVERRUN_S, out
     a, b = load_demo(log), load_demo(tmp_path / "own.blf")
     n = min(a.t_s.size, b.t_s.size)
-    assert n > 2900 // TELEMETRY_PERIOD_MS and np.array_equal(a.force_N[:n], b.force_N[:n])
+    assert n > 4900 // TELEMETRY_PERIOD_MS and np.array_equal(a.force_N[:n], b.force_N[:n])
 
 
 def test_cansniffer_sees_the_device(vcan_server):
