@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import signal
+import threading
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -107,13 +108,37 @@ def tracking(cols: dict[str, np.ndarray]) -> dict[str, float]:
     }
 
 
+class ClosableLog(can.Listener):
+    """A log writer that a frame still being handed out by the notifier's thread cannot reach
+    once it is stopped: python-can's remove_listener does not wait for a dispatch under way, and
+    a write after the writer's file closed raised "I/O operation on closed file"."""
+
+    def __init__(self, writer: Any) -> None:
+        self._writer = writer
+        self._lock = threading.Lock()
+        self._stopped = False
+
+    def on_message_received(self, msg: can.Message) -> None:
+        with self._lock:
+            if not self._stopped:
+                self._writer.on_message_received(msg)
+
+    def stop(self) -> None:
+        with self._lock:
+            self._stopped = True
+            self._writer.stop()
+
+    def __getattr__(self, name: str) -> Any:  # the writer's own attributes (e.g. buffer)
+        return getattr(self._writer, name)
+
+
 def open_log(outs: Outputs, path: str) -> Any:
     """A python-can log writer on the temporary file of ``path`` (committed with ``outs``); a
     suffix python-can cannot write (or whose writer is not installed, e.g. .mf4 without asammdf)
     is refused with 664 before anything is connected."""
     tmp = outs.add(path)
     try:
-        return can.Logger(str(tmp))
+        return ClosableLog(can.Logger(str(tmp)))
     except Exception as e:  # python-can raises ValueError, NotImplementedError, ImportError
         suffix = "".join(Path(path).suffixes[-2:]) if path.lower().endswith(".gz") else Path(path).suffix
         first = (str(e).splitlines() or [type(e).__name__])[0]
