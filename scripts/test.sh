@@ -66,7 +66,7 @@ tick_budgets() { # TARGET LOG: fail on a tick over budget in a state not listed 
     function check(key, v, b) {
       if (v == "-") { printf "tick budget FAILED: %s not measured\n", key; bad = 1; return }
       if (index(over, " " key " ")) {
-        printf "tick budget (not enforced yet): %s %d %s %d\n", key, v, (v + 0 > b ? ">" : "<= (now within: enforce it)"), b
+        printf "tick budget (not enforced yet): %s %d %s %d\n", key, v, (v + 0 > b ? ">" : "<= (within in this run)"), b
       } else if (v + 0 > b) { printf "tick budget FAILED: %s %d > %d\n", key, v, b; bad = 1 }
       else printf "tick budget ok: %s %d <= %d\n", key, v, b }
     $1 == "app_tick_instructions" && $2 == "target=" t {
