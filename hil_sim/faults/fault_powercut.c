@@ -138,24 +138,16 @@ static int sec_record_read(uint8_t *failed, uint8_t *locked_out)
 static uint8_t wrong_key(rig_t *r)
 {
     uint8_t resp[64];
-    for (int attempt = 0; attempt < 40; attempt++) {
-        const uint8_t rs[2] = {UDS_SID_SECURITY, UDS_SEC_LEVEL_WRITE};
-        const uint16_t n = rig_uds(r, rs, 2u, resp, sizeof resp, 200u);
-        if (n == 3u && resp[0] == UDS_NEGATIVE_RESPONSE && resp[2] == UDS_NRC_DELAY_NOT_EXPIRED) {
-            rig_run(r, 100u);
-            continue;
-        }
-        if (n != 2u + SEC_SEED_LEN || resp[0] != 0x67u) {
-            return 0u;
-        }
-        uint8_t sk[2u + SEC_KEY_LEN];
-        memset(sk, 0xA5, sizeof sk);
-        sk[0] = UDS_SID_SECURITY;
-        sk[1] = (uint8_t)(UDS_SEC_LEVEL_WRITE + 1u);
-        const uint16_t k = rig_uds(r, sk, (uint16_t)sizeof sk, resp, sizeof resp, 200u);
-        return (k == 3u && resp[0] == UDS_NEGATIVE_RESPONSE) ? resp[2] : 0u;
+    const uint16_t n = rig_uds_seed(r, UDS_SEC_LEVEL_WRITE, resp, sizeof resp);
+    if (n != 2u + SEC_SEED_LEN || resp[0] != 0x67u) {
+        return 0u;
     }
-    return 0u;
+    uint8_t sk[2u + SEC_KEY_LEN];
+    memset(sk, 0xA5, sizeof sk);
+    sk[0] = UDS_SID_SECURITY;
+    sk[1] = (uint8_t)(UDS_SEC_LEVEL_WRITE + 1u);
+    const uint16_t k = rig_uds(r, sk, (uint16_t)sizeof sk, resp, sizeof resp, 200u);
+    return (k == 3u && resp[0] == UDS_NEGATIVE_RESPONSE) ? resp[2] : 0u;
 }
 
 /* Two wrong keys (the record then says 2 failed), in the programming session. 0 ok. */

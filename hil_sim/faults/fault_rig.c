@@ -230,6 +230,21 @@ int rig_uds_unlock(rig_t *r)
     return rig_uds_unlock_level(r, UDS_SEC_LEVEL_WRITE);
 }
 
+uint16_t rig_uds_seed(rig_t *r, uint8_t level, uint8_t *resp, uint16_t cap)
+{
+    const uint8_t rs[2] = {UDS_SID_SECURITY, level};
+    uint16_t n = 0u;
+    for (int attempt = 0; attempt < 40; attempt++) {
+        n = rig_uds(r, rs, 2u, resp, cap, 200u);
+        if (!(n == 3u && resp[0] == UDS_NEGATIVE_RESPONSE &&
+              resp[2] == UDS_NRC_DELAY_NOT_EXPIRED)) {
+            break;
+        }
+        rig_run(r, 100u); /* SecurityAccess's power-up or wrong-key delay */
+    }
+    return n;
+}
+
 int rig_uds_unlock_level(rig_t *r, uint8_t level)
 {
     uint8_t resp[64];
@@ -237,28 +252,20 @@ int rig_uds_unlock_level(rig_t *r, uint8_t level)
     if (rig_uds(r, dsc, 2u, resp, sizeof resp, 200u) < 2u || resp[0] != 0x50u) {
         return -1;
     }
-    for (int attempt = 0; attempt < 40; attempt++) {
-        const uint8_t rs[2] = {UDS_SID_SECURITY, level};
-        const uint16_t n = rig_uds(r, rs, 2u, resp, sizeof resp, 200u);
-        if (n == 3u && resp[0] == UDS_NEGATIVE_RESPONSE && resp[2] == UDS_NRC_DELAY_NOT_EXPIRED) {
-            rig_run(r, 100u); /* power-up delay of SecurityAccess */
-            continue;
-        }
-        if (n != 2u + SEC_SEED_LEN || resp[0] != 0x67u) {
-            return -2;
-        }
-        uint8_t secret_len = 0u;
-        const uint8_t *secret = hal_device_secret(level, &secret_len);
-        uint8_t mac[SEC_SHA256_LEN];
-        sec_hmac_sha256(secret, secret_len, &resp[2], SEC_SEED_LEN, mac);
-        uint8_t sk[2u + SEC_KEY_LEN];
-        sk[0] = UDS_SID_SECURITY;
-        sk[1] = (uint8_t)(level + 1u);
-        memcpy(&sk[2], mac, SEC_KEY_LEN);
-        const uint16_t k = rig_uds(r, sk, (uint16_t)sizeof sk, resp, sizeof resp, 200u);
-        return (k >= 2u && resp[0] == 0x67u) ? 0 : -3;
+    const uint16_t n = rig_uds_seed(r, level, resp, sizeof resp);
+    if (n != 2u + SEC_SEED_LEN || resp[0] != 0x67u) {
+        return -2;
     }
-    return -4;
+    uint8_t secret_len = 0u;
+    const uint8_t *secret = hal_device_secret(level, &secret_len);
+    uint8_t mac[SEC_SHA256_LEN];
+    sec_hmac_sha256(secret, secret_len, &resp[2], SEC_SEED_LEN, mac);
+    uint8_t sk[2u + SEC_KEY_LEN];
+    sk[0] = UDS_SID_SECURITY;
+    sk[1] = (uint8_t)(level + 1u);
+    memcpy(&sk[2], mac, SEC_KEY_LEN);
+    const uint16_t k = rig_uds(r, sk, (uint16_t)sizeof sk, resp, sizeof resp, 200u);
+    return (k >= 2u && resp[0] == 0x67u) ? 0 : -3;
 }
 
 uint8_t rig_uds_download(rig_t *r, uint8_t slot, const uint8_t *img, uint32_t len)

@@ -119,6 +119,10 @@ uint32_t rig_flash_crc(void);
 /** Read slot (0-based) through a fresh storage scan; *len = 0 when empty. 0 ok. */
 int rig_read_slot(uint16_t slot, uint8_t *buf, uint32_t cap, uint32_t *len);
 
+/** requestSeed at level, waited out (100 ms at a time, 4 s at most) while it answers 0x37; the
+ *  last answer into resp, its length returned. */
+uint16_t rig_uds_seed(rig_t *r, uint8_t level, uint8_t *resp, uint16_t cap);
+
 /** Read a whole file of at most cap bytes into buf; -1 when it cannot be read, is longer or
  *  empty, else 0 with *len its length. */
 int rig_read_file(const char *path, uint8_t *buf, uint32_t cap, uint32_t *len);

@@ -290,21 +290,31 @@ static void test_golden_image_verified_in_slices(void **state)
     assert_int_equal(verify_sliced(16u, &calls), BOOT_ERR_HASH);
 }
 
+/* The reference of the sliced-transfer tests: a 6,000-byte image downloaded in whole blocks on a
+ * factory device, its slot's bytes into whole, its slot and CRC-32; the download then aborted. */
+static uint32_t whole_download(uint8_t whole[IMG_MAX], uint8_t *slot, uint32_t *crc_whole)
+{
+    device_with_factory_image(&D);
+    const uint32_t len = make_image(
+        &(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 6000u, 1, 1, 1, 1, DEV_KEY}, IMG);
+    assert_int_equal(download(&D, IMG, len, len), BOOT_OK);
+    *slot = D.fwu.slot;
+    *crc_whole = D.fwu.crc32;
+    assert_int_equal(D.app_dev.read(D.app_dev.ctx, D.cfg.slot_addr[*slot], whole, len), 0);
+    fwu_abort(&D.fwu);
+    return len;
+}
+
 /* TransferData in slices (fwu_data_step, 128 bytes a call): the same slot contents, CRC-32 and
  * verdict as the whole blocks of fwu_data, a block taken in ceil(len / 128) calls after the one
  * that keeps it; a refusal (a block past the announced size) before anything is kept. */
 static void test_data_in_slices_same_as_whole_blocks(void **state)
 {
     (void)state;
-    device_with_factory_image(&D);
-    const uint32_t len = make_image(
-        &(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 6000u, 1, 1, 1, 1, DEV_KEY}, IMG);
-    assert_int_equal(download(&D, IMG, len, len), BOOT_OK);
-    const uint8_t slot = D.fwu.slot;
-    const uint32_t crc_whole = D.fwu.crc32;
     static uint8_t whole[IMG_MAX], sliced[IMG_MAX];
-    assert_int_equal(D.app_dev.read(D.app_dev.ctx, D.cfg.slot_addr[slot], whole, len), 0);
-    fwu_abort(&D.fwu);
+    uint8_t slot = 0u;
+    uint32_t crc_whole = 0u;
+    const uint32_t len = whole_download(whole, &slot, &crc_whole);
     assert_int_equal(fwu_begin(&D.fwu, true, len), BOOT_OK);
     static const uint32_t blocks[] = {100u, 1021u, 7u, 4093u, 333u};
     uint32_t off = 0u, k = 0u;
@@ -399,15 +409,10 @@ static void background_erase(dev_t_ *d)
 static void test_data_in_slices_background_erase(void **state)
 {
     (void)state;
-    device_with_factory_image(&D);
-    const uint32_t len = make_image(
-        &(img_spec_t){BOOT_VERSION(1, 1, 0), BOOT_TARGET_HOST, 6000u, 1, 1, 1, 1, DEV_KEY}, IMG);
-    assert_int_equal(download(&D, IMG, len, len), BOOT_OK);
-    const uint8_t slot = D.fwu.slot;
-    const uint32_t crc_whole = D.fwu.crc32;
     static uint8_t whole[IMG_MAX], sliced[IMG_MAX];
-    assert_int_equal(D.app_dev.read(D.app_dev.ctx, D.cfg.slot_addr[slot], whole, len), 0);
-    fwu_abort(&D.fwu);
+    uint8_t slot = 0u;
+    uint32_t crc_whole = 0u;
+    const uint32_t len = whole_download(whole, &slot, &crc_whole);
     background_erase(&D);
     assert_int_equal(fwu_begin(&D.fwu, true, len), BOOT_OK);
     static const uint32_t blocks[] = {100u, 1021u, 7u, 4093u, 333u};
@@ -445,8 +450,7 @@ static void test_data_in_slices_background_erase(void **state)
     assert_int_equal(fwu_data_step(&D.fwu, true, 0u, NULL, 300u, 128u, &done), BOOT_ERR_TARGET);
     assert_true(done);
     assert_int_equal(g_bg_erases, erases);
-    assert_int_equal(D.app_dev.read(D.app_dev.ctx, D.cfg.slot_addr[D.fwu.slot], sliced, SECTOR),
-                     0);
+    assert_int_equal(D.app_dev.read(D.app_dev.ctx, D.cfg.slot_addr[D.fwu.slot], sliced, SECTOR), 0);
     assert_memory_equal(sliced, whole, SECTOR);
 }
 

@@ -42,7 +42,8 @@ static void test_crc32(void **state)
     for (uint32_t n = 0; n < sizeof b; n += 37) {
         assert_int_equal(nvm_crc32(0, b, n), skill_crc32(0, b, n));
         /* continuation */
-        assert_int_equal(nvm_crc32(nvm_crc32(0, b, n / 2), b + n / 2, n - n / 2), nvm_crc32(0, b, n));
+        assert_int_equal(nvm_crc32(nvm_crc32(0, b, n / 2), b + n / 2, n - n / 2),
+                         nvm_crc32(0, b, n));
     }
 }
 
@@ -65,31 +66,35 @@ static void test_record_roundtrip_and_rejections(void **state)
 
     uint8_t bad[512];
     /* 536 magic */
-    memcpy(bad, rec, rlen); bad[0] ^= 1u;
+    memcpy(bad, rec, rlen);
+    bad[0] ^= 1u;
     assert_int_equal(nvm_record_parse(bad, rlen, 2, &info), NVM_ERR_REC_MAGIC);
     /* erased flash reads as a wrong magic */
     memset(bad, 0xFF, sizeof bad);
     assert_int_equal(nvm_record_parse(bad, sizeof bad, 2, &info), NVM_ERR_REC_MAGIC);
     /* 537 version */
-    memcpy(bad, rec, rlen); bad[4] = 2u;
+    memcpy(bad, rec, rlen);
+    bad[4] = 2u;
     assert_int_equal(nvm_record_parse(bad, rlen, 2, &info), NVM_ERR_REC_VERSION);
     /* 531 a record of another slot */
     assert_int_equal(nvm_record_parse(rec, rlen, 3, &info), NVM_ERR_SLOT);
     /* 538 length beyond the buffer (field and buffer) */
-    memcpy(bad, rec, rlen); bad[13] = 0x10u;
+    memcpy(bad, rec, rlen);
+    bad[13] = 0x10u;
     assert_int_equal(nvm_record_parse(bad, rlen, 2, &info), NVM_ERR_REC_LENGTH);
     assert_int_equal(nvm_record_parse(rec, rlen - 1, 2, &info), NVM_ERR_REC_LENGTH);
     assert_int_equal(nvm_record_parse(rec, 31, 2, &info), NVM_ERR_REC_LENGTH);
     /* 540 commit word missing (interrupted write) */
-    memcpy(bad, rec, rlen); memset(bad + NVM_HEADER_SIZE + 300, 0xFF, 4);
+    memcpy(bad, rec, rlen);
+    memset(bad + NVM_HEADER_SIZE + 300, 0xFF, 4);
     assert_int_equal(nvm_record_parse(bad, rlen, 2, &info), NVM_ERR_REC_UNCOMMITTED);
     /* 539 CRC: any single bit of header fields or payload */
     for (uint32_t byte = 8; byte < NVM_HEADER_SIZE + 300; byte++) {
         if (byte >= 12 && byte < 16) {
-            continue;   /* length: reported as length/commit */
+            continue; /* length: reported as length/commit */
         }
         if (byte >= 20 && byte < NVM_HEADER_SIZE) {
-            continue;   /* reserved bytes are not covered */
+            continue; /* reserved bytes are not covered */
         }
         memcpy(bad, rec, rlen);
         bad[byte] ^= 0x10u;
@@ -144,7 +149,7 @@ static void test_write_read_alternate(void **state)
     assert_int_equal(nvm_read(&n2, 1, out, sizeof out, &len), NVM_OK);
     assert_memory_equal(out, a, la);
     /* checksum of the stored skill still the image's own CRC (skill_parse accepts it) */
-    skill_t *sk = malloc(sizeof *sk);   /* test code only; the firmware has no heap */
+    skill_t *sk = malloc(sizeof *sk); /* test code only; the firmware has no heap */
     assert_non_null(sk);
     assert_int_equal(skill_parse(out, len, sk), FS_OK);
     free(sk);
@@ -166,6 +171,14 @@ static void test_write_read_alternate(void **state)
  * then the flash and the directory are byte for byte those of nvm_write; errors as nvm_write's. */
 static uint8_t g_mem2[SECTOR * SECTORS];
 
+/* The two skills the write tests copy: A (at most 2,048 bytes) and B (at most 4,096). */
+static void two_skills(uint8_t a[2048], uint32_t *la, uint8_t b[4096], uint32_t *lb)
+{
+    *la = tv_read("engrave_n50_lwr_hold.skill", a, 2048u);
+    *lb = tv_read("press_n100_lwr_release.skill", b, 4096u);
+    assert_true(*la > 0u && *lb > 0u);
+}
+
 static void test_sliced_write_same_as_whole(void **state)
 {
     (void)state;
@@ -177,9 +190,8 @@ static void test_sliced_write_same_as_whole(void **state)
     assert_int_equal(nvm_init(&n, &dev), NVM_OK);
     assert_int_equal(nvm_init(&n2, &dev2), NVM_OK);
     uint8_t a[2048], b[4096], out[8192];
-    const uint32_t la = tv_read("engrave_n50_lwr_hold.skill", a, sizeof a);
-    const uint32_t lb = tv_read("press_n100_lwr_release.skill", b, sizeof b);
-    assert_true(la > 0u && lb > 0u);
+    uint32_t la = 0u, lb = 0u;
+    two_skills(a, &la, b, &lb);
     for (unsigned round = 0; round < 3; round++) { /* copies A, B, A */
         const uint8_t *p = (round % 2u == 0u) ? b : a;
         const uint32_t lp = (round % 2u == 0u) ? lb : la;
@@ -206,7 +218,8 @@ static void test_sliced_write_same_as_whole(void **state)
     nvm_writer_t w;
     assert_int_equal(nvm_write_begin(&w, &n2, 4, a, la), NVM_ERR_SLOT);
     assert_true(nvm_write_run(&w, 1u));
-    assert_int_equal(nvm_write_begin(&w, &n2, 0, a, nvm_payload_max(&dev2) + 1u), NVM_ERR_TOO_LARGE);
+    assert_int_equal(nvm_write_begin(&w, &n2, 0, a, nvm_payload_max(&dev2) + 1u),
+                     NVM_ERR_TOO_LARGE);
 }
 
 /* A device whose erase runs in the background (fls.h busy): erase() only notes the sector,
@@ -290,9 +303,8 @@ static void test_background_erase(void **state)
     assert_int_equal(nvm_init(&n, &dev), NVM_OK);
     assert_int_equal(nvm_init(&n2, &dev2), NVM_OK);
     uint8_t a[2048], b[4096], out[8192];
-    const uint32_t la = tv_read("engrave_n50_lwr_hold.skill", a, sizeof a);
-    const uint32_t lb = tv_read("press_n100_lwr_release.skill", b, sizeof b);
-    assert_true(la > 0u && lb > 0u);
+    uint32_t la = 0u, lb = 0u;
+    two_skills(a, &la, b, &lb);
     for (unsigned round = 0; round < 3; round++) {
         const uint8_t *p = (round % 2u == 0u) ? b : a;
         const uint32_t lp = (round % 2u == 0u) ? lb : la;
@@ -358,7 +370,8 @@ static void test_corruption_falls_back(void **state)
     uint32_t rl = 0;
     static uint8_t rec[SECTOR];
     fls_ram_init(&ram, &dev, g_mem, SECTOR, SECTORS, 4);
-    assert_int_equal(nvm_record_build(0, 0xFFFFFFFFu, a, sizeof a, 4, rec, sizeof rec, &rl), NVM_OK);
+    assert_int_equal(nvm_record_build(0, 0xFFFFFFFFu, a, sizeof a, 4, rec, sizeof rec, &rl),
+                     NVM_OK);
     memcpy(g_mem, rec, rl);
     assert_int_equal(nvm_record_build(0, 0u, b, sizeof b, 4, rec, sizeof rec, &rl), NVM_OK);
     memcpy(g_mem + SECTOR, rec, rl);
@@ -463,7 +476,7 @@ static void test_power_loss_every_write(void **state)
             total += ops;
         }
         uint32_t ops, n_old, n_new;
-        sweep(wus[w], a, 0, 0, b, lb, &ops, &n_old, &n_new);   /* first upload into an empty slot */
+        sweep(wus[w], a, 0, 0, b, lb, &ops, &n_old, &n_new); /* first upload into an empty slot */
         total += ops;
     }
     printf("power-loss points tested: %u, each left the old or the complete new record\n",
@@ -482,7 +495,7 @@ static int bad_program(void *ctx, uint32_t addr, const uint8_t *data, uint32_t l
     static uint8_t tmp[256];
     if (len <= sizeof tmp && g_bad_addr >= addr && g_bad_addr < addr + len) {
         memcpy(tmp, data, len);
-        tmp[g_bad_addr - addr] |= 0x01u;   /* this bit does not program */
+        tmp[g_bad_addr - addr] |= 0x01u; /* this bit does not program */
         data = tmp;
     }
     return g_ram_program(ctx, addr, data, len);
@@ -499,7 +512,7 @@ static void test_verify_failure_and_geometry(void **state)
     nvm_t n;
     assert_int_equal(nvm_init(&n, &dev), NVM_OK);
     uint8_t a[300], b[300], out[400];
-    memset(a, 0x00, sizeof a);   /* all bits programmed, so a stuck-at-1 bit shows */
+    memset(a, 0x00, sizeof a); /* all bits programmed, so a stuck-at-1 bit shows */
     memset(b, 0x00, sizeof b);
     b[0] = 1u;
     assert_int_equal(nvm_write(&n, 0, a, sizeof a), NVM_OK);
@@ -509,9 +522,9 @@ static void test_verify_failure_and_geometry(void **state)
     uint32_t len = 0;
     assert_int_equal(nvm_read(&n, 0, out, sizeof out, &len), NVM_OK);
     assert_int_equal(len, sizeof a);
-    assert_memory_equal(out, a, sizeof a);          /* the old record still wins */
+    assert_memory_equal(out, a, sizeof a); /* the old record still wins */
     nvm_t n2;
-    assert_int_equal(nvm_init(&n2, &dev), NVM_OK);   /* and after a reboot */
+    assert_int_equal(nvm_init(&n2, &dev), NVM_OK); /* and after a reboot */
     assert_int_equal(nvm_dir(&n2, 0)->copy, 0);
     /* geometry */
     fls_ram_t ram;
