@@ -108,7 +108,9 @@ def test_the_phase_waits_for_contact_and_resumes_where_it_was(
         assert np.ptp(held) <= 0.1  # the reference stood still while the contact was lost
         assert e_before <= 0.01 and e_after <= 0.02  # one/two telemetry steps of 0.01 N
         assert np.max(after_contact) <= FORCE_LIMIT_N
-        assert np.max(np.abs(np.diff(f_hat))) <= 2.0 * np.max(np.abs(np.diff(ref)))  # no step of f_hat
+        # no step of f_hat from the loss on (the start's blend from the measured force, noise
+        # included, is the start's own)
+        assert np.max(np.abs(np.diff(f_hat[a:]))) <= 2.0 * np.max(np.abs(np.diff(ref)))
         # without the wait the reference runs on through its phase, on time
         out_p, f_hat_p, _, lag_p = res["plain"]
         assert lag_p <= 2, lag_p  # the telemetry's first row: the execution's first tick or next to it
