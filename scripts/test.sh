@@ -10,35 +10,37 @@ set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$ROOT/scripts/setup.sh"
 cd "$ROOT"
+# each step's header carries the suite's elapsed time, so a slow step shows in the log
+step() { printf '== [%dm%02ds] %s\n' $((SECONDS / 60)) $((SECONDS % 60)) "$1"; }
 
-echo "== generated files agree with their sources (codes.toml -> headers, codes.py, docs/codes.md and"
+step "generated files agree with their sources (codes.toml -> headers, codes.py, docs/codes.md and"
 echo "   the marked tables of docs/protocol.md, safety.md, update.md;"
 echo "   public headers -> the _f32 rename headers)"
 .venv/bin/python tools/gen_codes.py --check
 .venv/bin/python tools/gen_f32_names.py --check
-echo "== comments and docs cite no SPEC or issue numbers"
+step "comments and docs cite no SPEC or issue numbers"
 tools/check_no_tracker_refs.sh
-echo "== one implementation of the control tick (scripts/check_one_tick.sh)"
+step "one implementation of the control tick (scripts/check_one_tick.sh)"
 scripts/check_one_tick.sh
-echo "== layers: no upward or sideways include or host import, no cycle (tools/check_layers.py)"
+step "layers: no upward or sideways include or host import, no cycle (tools/check_layers.py)"
 .venv/bin/python tools/check_layers.py
-echo "== no C function over 80 lines in firmware/ and hil_sim/ without a /* long: reason */ (tools/check_fn_length.py)"
+step "no C function over 80 lines in firmware/ and hil_sim/ without a /* long: reason */ (tools/check_fn_length.py)"
 .venv/bin/python tools/check_fn_length.py
-echo "== Python: ruff (lint, format) on host/forceskill, tests/, tools/ and bench/, mypy (strict) on"
+step "Python: ruff (lint, format) on host/forceskill, tests/, tools/ and bench/, mypy (strict) on"
 echo "   host/forceskill (configuration: host/pyproject.toml)"
 .venv/bin/ruff check --config host/pyproject.toml host/forceskill tests tools bench
 .venv/bin/ruff format --config host/pyproject.toml --check host/forceskill tests tools bench
 (cd host && ../.venv/bin/mypy)
 
-echo "== C tests (Debug: ASan + UBSan; preset host-debug, build/host-debug)"
+step "C tests (Debug: ASan + UBSan; preset host-debug, build/host-debug)"
 cmake --preset host-debug >/dev/null
 cmake --build --preset host-debug -j "$(nproc)"
 ctest --preset host-debug -j "$(nproc)"
 
-echo "== the firmware libraries as a consumer sees them: cmake --install, find_package, add_subdirectory, pkg-config"
+step "the firmware libraries as a consumer sees them: cmake --install, find_package, add_subdirectory, pkg-config"
 tests/consumer/run.sh build/consumer
 
-echo "== static checks (cppcheck; MISRA addon findings counted, not fatal)"
+step "static checks (cppcheck; MISRA addon findings counted, not fatal)"
 tools/static_check.sh build/host-debug/static
 
 # The hard real-time budgets of app_tick (instructions, every tick of bench/qemu_tick.sh's journey):
@@ -77,7 +79,7 @@ tick_budgets() { # TARGET LOG: fail on a tick over budget in a state not listed 
           exit bad }' "$log"
 }
 
-echo "== Cortex-M images under qemu (M4F, M3): the product image's app_tick counted per state,"
+step "Cortex-M images under qemu (M4F, M3): the product image's app_tick counted per state,"
 echo "   DMP + control law within budget, no heap, no recursion, size, worst stack per entry point"
 # a 4 KiB firmware download: its verification runs in the same slices as the bench's 16 KiB one
 # (the same worst tick), in a quarter of the ticks under the trace; 0.5 s of each execution (the
@@ -95,7 +97,7 @@ done
 # Two workers (pytest-xdist, one test file each at a time): most of the time of the CAN and HIL
 # tests is the simulator's real time, not CPU; FORCESKILL_TEST_WORKERS=1 runs them one by one.
 WORKERS=${FORCESKILL_TEST_WORKERS:-2}
-echo "== Python, HIL and CAN tests ($WORKERS workers)"
+step "Python, HIL and CAN tests ($WORKERS workers)"
 export FORCESKILL_HIL_SIM="$ROOT/build/hil_sim/hil_sim"
 if [ "$WORKERS" -gt 1 ]; then
   .venv/bin/python -m pytest -q -n "$WORKERS" --dist loadfile tests
@@ -103,7 +105,7 @@ else
   .venv/bin/python -m pytest -q tests
 fi
 
-echo "== Linux CAN in a qemu guest (scripts/test_linux_can.sh: the SocketCAN journey on vcan0, the"
+step "Linux CAN in a qemu guest (scripts/test_linux_can.sh: the SocketCAN journey on vcan0, the"
 echo "   emulated SJA1000 pair, can-utils, CAN FD; one boot under TCG, within 5 min here: docs/hil.md)"
 # by default where qemu-system-x86_64 is installed (a fresh clone fetches the guest's kernel first);
 # FORCESKILL_LINUX_CAN=0 leaves it out, =1 also installs qemu (scripts/vm.sh --setup)
@@ -121,8 +123,9 @@ else
   fi
 fi
 
-echo "== clang-format: firmware/ and hil_sim/ match .clang-format (generated code excluded)"
+step "clang-format: firmware/ and hil_sim/ match .clang-format (generated code excluded)"
 tools/check_format.sh
-echo "== the host package at the lowest dependency versions pyproject.toml allows (.venv-min):"
+step "the host package at the lowest dependency versions pyproject.toml allows (.venv-min):"
 echo "   host CLI tests and the CAN journey"
 scripts/min_venv.sh
+printf "suite: every step passed in %dm%02ds\n" $((SECONDS / 60)) $((SECONDS % 60))
