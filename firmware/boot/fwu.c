@@ -183,7 +183,7 @@ static bool header_ok_ahead(fwu_t *f, uint32_t k)
     if (k < n) {
         return false; /* not whole in this piece: program() erases when it gets there */
     }
-    memcpy(&f->hdr[f->received], &f->block[f->block_pos], n);
+    memcpy(&f->hdr[f->received], &f->block_src[f->block_pos], n);
     return check_header(f) == BOOT_OK;
 }
 
@@ -228,7 +228,7 @@ boot_status_t fwu_data_step(fwu_t *f, bool authorised, uint32_t offset, const ui
         if (len > f->size - f->received || len > FWU_BLOCK_MAX) {
             return refuse(f, FWU_ERR_OVERRUN);
         }
-        memcpy(f->block, data, len);
+        f->block_src = data; /* the caller keeps it until the block is done: no copy */
         f->block_off = offset;
         f->block_len = len;
         f->block_pos = 0u;
@@ -253,7 +253,7 @@ boot_status_t fwu_data_step(fwu_t *f, bool authorised, uint32_t offset, const ui
         return es == BOOT_OK ? BOOT_OK : refuse(f, es);
     }
     const boot_status_t st = fwu_data(f, authorised, f->block_off + f->block_pos,
-                                      &f->block[f->block_pos], k);
+                                      &f->block_src[f->block_pos], k);
     f->block_pos += k;
     *done = st != BOOT_OK || f->block_pos >= f->block_len;
     if (*done) {
