@@ -410,9 +410,10 @@ static bool any_tx_busy(const app_t *app)
 }
 
 /* The server's work of this tick: a pending request's next slice, or one new request from
- * either tester in turn. */
-static void uds_work(app_t *app)
+ * either tester in turn; true if it did any. */
+static bool uds_work(app_t *app)
 {
+    bool worked = false;
     isotp_link_t *own = &app->tp[app->uds_from];
     if (app->uds.pending_sid != 0u && !isotp_tx_busy(own)) {
         const uint16_t n = uds_server_resume(&app->uds, app->uds_resp,
@@ -420,6 +421,7 @@ static void uds_work(app_t *app)
         if (n != 0u) {
             (void)isotp_send(own, app->uds_resp, n, app->now_us);
         }
+        worked = true;
     }
     for (unsigned k = 0; k < APP_TESTERS; k++) {
         const uint8_t t = (uint8_t)((app->uds_next + k) % APP_TESTERS);
@@ -428,9 +430,11 @@ static void uds_work(app_t *app)
         if (len != 0u && !isotp_tx_busy(&app->tp[t]) && app->tp_held != t + 1u) {
             uds_serve(app, t, req, len);
             app->uds_next = (uint8_t)((t + 1u) % APP_TESTERS);
+            worked = true;
             break;
         }
     }
+    return worked;
 }
 
 /* One UDS request a tick, from either tester in turn; the session belongs to the tester that
@@ -451,12 +455,11 @@ static void uds_service(app_t *app)
         }
         return;
     }
-    if (app->mac_ran) {
-        /* this tick verified a frame's MAC: the server's work waits for the next tick, ISO-TP
-         * queues at most APP_TP_FRAMES_MAC_TICK frames */
-        app->tp_frames = APP_TP_FRAMES_PER_TICK - APP_TP_FRAMES_MAC_TICK;
-    } else {
-        uds_work(app);
+    /* a tick that verified a frame's MAC leaves the server's work to the next tick; one with
+     * either queues at most APP_TP_FRAMES_BUSY_TICK ISO-TP frames */
+    if ((app->mac_ran || uds_work(app)) &&
+        app->tp_frames < APP_TP_FRAMES_PER_TICK - APP_TP_FRAMES_BUSY_TICK) {
+        app->tp_frames = APP_TP_FRAMES_PER_TICK - APP_TP_FRAMES_BUSY_TICK;
     }
     uds_server_poll(&app->uds, app->now_ms);
     uds_release_held(app);
@@ -617,7 +620,9 @@ void app_tick(app_t *app, bool overrun)
     app->now_ms = app_now_ms(app, app->now_us);
     app->tick++;
     app->host_frame = false;
-    app->tp_frames = 0u;
+    /* while a skill runs ISO-TP queues at most APP_TP_FRAMES_EXEC_TICK frames a tick */
+    app->tp_frames = app->state == APP_EXECUTE ? APP_TP_FRAMES_PER_TICK - APP_TP_FRAMES_EXEC_TICK
+                                               : 0u;
     app->overrun = overrun;
 
     /* sensors first: commands that start a motion start from this sample */

@@ -47,10 +47,17 @@
 #ifndef APP_TP_FRAMES_PER_TICK
 #define APP_TP_FRAMES_PER_TICK 9u
 #endif
-/* ISO-TP frames queued in a tick that verified a frame's MAC (~850 instructions on the M4F, ~130
- * a frame's encode and queue): the two together within the tick's budget. */
-#ifndef APP_TP_FRAMES_MAC_TICK
-#define APP_TP_FRAMES_MAC_TICK 3u
+/* ISO-TP frames queued in a tick that verified a frame's MAC (~850 instructions on the M4F) or
+ * did the UDS server's work (a request served, a sliced job's step: a read-back block's copy,
+ * ~600), at ~130 instructions a frame's encode and queue: the two together within the tick's
+ * budget. */
+#ifndef APP_TP_FRAMES_BUSY_TICK
+#define APP_TP_FRAMES_BUSY_TICK 3u
+#endif
+/* ISO-TP frames queued in an EXECUTE tick (a read-back during a run): the control path takes
+ * ~2,000 instructions of the M4F's 3,000, a frame ~150. */
+#ifndef APP_TP_FRAMES_EXEC_TICK
+#define APP_TP_FRAMES_EXEC_TICK 5u
 #endif
 #define APP_RESET_TX_WAIT_MS 100u /* ECUReset: longest wait for the response to leave */
 #define APP_STATUS_PERIOD_MS 10u
