@@ -736,8 +736,7 @@ static void test_skill_validated_before_commit_and_run(void **state)
                                 SLOTS_SWAP_BYTES_PER_TICK;
     /* and the set-up of each of the five stages (parse, parameters, rollout, write, cache) a
      * tick of its own */
-    assert_int_equal(app.tick - t0,
-                     5u + parse_ticks + 1u + check_ticks + write_ticks + swap_ticks);
+    assert_int_equal(app.tick - t0, 5u + parse_ticks + 1u + check_ticks + write_ticks + swap_ticks);
     const fs_real_t peak = app.slots.peak_N[0];
     assert_true(peak > FS_R(4.8) && peak < FS_R(4.9)); /* the reference rollout: 4.842 N */
     /* weights x100, CRC recomputed: a well-formed image whose output exceeds the limit */
