@@ -278,17 +278,30 @@ static bool needs_mac(const can_frame_t *f, secoc_channel_t ch)
     return !(ch == SECOC_CH_COMMAND && (f->data[0] & 0x0Fu) == (uint8_t)APP_CMD_IDLE);
 }
 
+/* True if the UDS server has sliced work or a complete request waiting (uds_service's share). */
+static bool uds_work_waiting(const app_t *app)
+{
+    const uint8_t *req = NULL;
+    return app->uds.pending_sid != 0u || isotp_rx_peek(&app->tp[0], &req) != 0u ||
+           isotp_rx_peek(&app->tp[1], &req) != 0u;
+}
+
 /* The CAN frames of this tick, bounded: APP_RX_FRAMES_PER_TICK frames, APP_MAC_PER_TICK MAC
- * verifications (the frame beyond them is held for the next tick, the rest stays queued). */
+ * verifications (the frame beyond them is held for the next tick, the rest stays queued). A MAC
+ * and the UDS server's work never share a tick: a frame held from the last tick is verified
+ * first (uds_service then waits a tick), a new one waits a tick while the server has work. */
 static void can_receive(app_t *app)
 {
     unsigned macs = 0u;
+    app->mac_ran = false;
     if (app->held_ch != 0u) {
         const secoc_channel_t ch = (secoc_channel_t)(app->held_ch - 1u);
         app->held_ch = 0u;
         host_frame(app, &app->held, ch);
         macs++;
+        app->mac_ran = true;
     }
+    const bool uds_first = !app->mac_ran && uds_work_waiting(app);
     can_frame_t f;
     for (unsigned i = 0; i < APP_RX_FRAMES_PER_TICK && hal_can_receive(&f); i++) {
         const uint32_t node = app->cfg.node;
@@ -312,10 +325,13 @@ static void can_receive(app_t *app)
             app->e2e_errors++;
             continue;
         }
-        if (needs_mac(&f, ch) && macs++ >= APP_MAC_PER_TICK) {
-            app->held = f;
-            app->held_ch = (uint8_t)(ch + 1u);
-            break;
+        if (needs_mac(&f, ch)) {
+            if (uds_first || macs++ >= APP_MAC_PER_TICK) {
+                app->held = f;
+                app->held_ch = (uint8_t)(ch + 1u);
+                break;
+            }
+            app->mac_ran = true;
         }
         host_frame(app, &f, ch);
     }
@@ -364,9 +380,22 @@ static void uds_serve(app_t *app, uint8_t t, const uint8_t *req, uint16_t len)
                               app->now_ms);
         app->reset_since_ms = app->now_ms; /* used only if this was an accepted ECUReset */
     }
-    isotp_rx_release(tp);
+    if (app->uds.pending_sid == UDS_SID_TRANSFER_DATA && app->tp_held == 0u) {
+        app->tp_held = (uint8_t)(t + 1u); /* the block is taken in slices from the link's buffer */
+    } else {
+        isotp_rx_release(tp);
+    }
     if (n != 0u) {
         (void)isotp_send(tp, app->uds_resp, n, app->now_us);
+    }
+}
+
+/* The link buffer held for a TransferData block given back once its slices are done. */
+static void uds_release_held(app_t *app)
+{
+    if (app->tp_held != 0u && app->uds.pending_sid != UDS_SID_TRANSFER_DATA) {
+        isotp_rx_release(&app->tp[app->tp_held - 1u]);
+        app->tp_held = 0u;
     }
 }
 
@@ -380,10 +409,39 @@ static bool any_tx_busy(const app_t *app)
     return false;
 }
 
+/* The server's work of this tick: a pending request's next slice, or one new request from
+ * either tester in turn; true if it did any. */
+static bool uds_work(app_t *app)
+{
+    bool worked = false;
+    isotp_link_t *own = &app->tp[app->uds_from];
+    if (app->uds.pending_sid != 0u && !isotp_tx_busy(own)) {
+        const uint16_t n = uds_server_resume(&app->uds, app->uds_resp,
+                                             (uint16_t)sizeof(app->uds_resp), app->now_ms);
+        if (n != 0u) {
+            (void)isotp_send(own, app->uds_resp, n, app->now_us);
+        }
+        worked = true;
+    }
+    for (unsigned k = 0; k < APP_TESTERS; k++) {
+        const uint8_t t = (uint8_t)((app->uds_next + k) % APP_TESTERS);
+        const uint8_t *req = NULL;
+        const uint16_t len = isotp_rx_peek(&app->tp[t], &req);
+        if (len != 0u && !isotp_tx_busy(&app->tp[t]) && app->tp_held != t + 1u) {
+            uds_serve(app, t, req, len);
+            app->uds_next = (uint8_t)((t + 1u) % APP_TESTERS);
+            worked = true;
+            break;
+        }
+    }
+    return worked;
+}
+
 /* One UDS request a tick, from either tester in turn; the session belongs to the tester that
  * unlocked it (uds_owner) until it locks again. */
 static void uds_service(app_t *app)
 {
+    uds_release_held(app);
     if (app->uds.pending_reset != 0u) {
         /* ECUReset accepted (ISO 14229-1): its positive response leaves the bus first, then the
          * reset (at the first tick that finds the transport and the CAN queue empty; bounded by
@@ -397,25 +455,14 @@ static void uds_service(app_t *app)
         }
         return;
     }
-    isotp_link_t *own = &app->tp[app->uds_from];
-    if (app->uds.pending_sid != 0u && !isotp_tx_busy(own)) {
-        const uint16_t n = uds_server_resume(&app->uds, app->uds_resp,
-                                             (uint16_t)sizeof(app->uds_resp), app->now_ms);
-        if (n != 0u) {
-            (void)isotp_send(own, app->uds_resp, n, app->now_us);
-        }
-    }
-    for (unsigned k = 0; k < APP_TESTERS; k++) {
-        const uint8_t t = (uint8_t)((app->uds_next + k) % APP_TESTERS);
-        const uint8_t *req = NULL;
-        const uint16_t len = isotp_rx_peek(&app->tp[t], &req);
-        if (len != 0u && !isotp_tx_busy(&app->tp[t])) {
-            uds_serve(app, t, req, len);
-            app->uds_next = (uint8_t)((t + 1u) % APP_TESTERS);
-            break;
-        }
+    /* a tick that verified a frame's MAC leaves the server's work to the next tick; one with
+     * either queues at most APP_TP_FRAMES_BUSY_TICK ISO-TP frames */
+    if ((app->mac_ran || uds_work(app)) &&
+        app->tp_frames < APP_TP_FRAMES_PER_TICK - APP_TP_FRAMES_BUSY_TICK) {
+        app->tp_frames = APP_TP_FRAMES_PER_TICK - APP_TP_FRAMES_BUSY_TICK;
     }
     uds_server_poll(&app->uds, app->now_ms);
+    uds_release_held(app);
     if (app->uds.unlocked_level == 0u) {
         app->uds_owner = 0u;
         if (sec_is_unlocked(&app->sec)) {
@@ -573,7 +620,9 @@ void app_tick(app_t *app, bool overrun)
     app->now_ms = app_now_ms(app, app->now_us);
     app->tick++;
     app->host_frame = false;
-    app->tp_frames = 0u;
+    /* while a skill runs ISO-TP queues at most APP_TP_FRAMES_EXEC_TICK frames a tick */
+    app->tp_frames = app->state == APP_EXECUTE ? APP_TP_FRAMES_PER_TICK - APP_TP_FRAMES_EXEC_TICK
+                                               : 0u;
     app->overrun = overrun;
 
     /* sensors first: commands that start a motion start from this sample */

@@ -47,6 +47,18 @@
 #ifndef APP_TP_FRAMES_PER_TICK
 #define APP_TP_FRAMES_PER_TICK 9u
 #endif
+/* ISO-TP frames queued in a tick that verified a frame's MAC (~850 instructions on the M4F) or
+ * did the UDS server's work (a request served, a sliced job's step: a read-back block's copy,
+ * ~600), at ~130 instructions a frame's encode and queue: the two together within the tick's
+ * budget. */
+#ifndef APP_TP_FRAMES_BUSY_TICK
+#define APP_TP_FRAMES_BUSY_TICK 3u
+#endif
+/* ISO-TP frames queued in an EXECUTE tick (a read-back during a run): the control path takes
+ * ~2,000 instructions of the M4F's 3,000, a frame ~150. */
+#ifndef APP_TP_FRAMES_EXEC_TICK
+#define APP_TP_FRAMES_EXEC_TICK 5u
+#endif
 #define APP_RESET_TX_WAIT_MS 100u /* ECUReset: longest wait for the response to leave */
 #define APP_STATUS_PERIOD_MS 10u
 #define APP_IDLE_TELEMETRY_PERIOD_MS 100u
@@ -106,8 +118,11 @@ struct app {
     uint32_t motion_confirm;                  /* secoc_confirm of the key in use (0: none) */
     can_frame_t held;                         /* an authenticated frame beyond APP_MAC_PER_TICK */
     uint8_t held_ch;                          /* its channel + 1, 0: none */
-    uint32_t run_opts_fv;                     /* freshness value of the last RUN_OPTIONS ... */
-    uint16_t run_opts_time;                   /* ... its time scale (1/1000) and end policy */
+    bool mac_ran;                             /* this tick verified a frame's MAC */
+    uint8_t
+        tp_held; /* tester + 1 whose request buffer a TransferData block's slices read, 0: none */
+    uint32_t run_opts_fv;   /* freshness value of the last RUN_OPTIONS ... */
+    uint16_t run_opts_time; /* ... its time scale (1/1000) and end policy */
     uint8_t run_opts_end;
     /* UDS on ISO-TP, one link per tester id (UDS_REQUEST, UDS_REQUEST_2) */
     isotp_link_t tp[APP_TESTERS];

@@ -192,52 +192,82 @@ static void commit_cut(slots_t *b)
     }
 }
 
+/* After a stage's last slice: true (the commit ends) on a refusal, else the next stage, whose
+ * set-up waits for the next slice. */
+static bool commit_next(slots_t *b, uint8_t stage, fs_status_t st)
+{
+    if (st != FS_OK) {
+        return true;
+    }
+    b->commit_stage = stage;
+    b->stage_begun = false;
+    return false;
+}
+
+/* The set-up of the commit's stage (its slice): true (the commit ends) on a refusal. */
+static bool commit_stage_begin(slots_t *b, fs_status_t *st)
+{
+    switch (b->commit_stage) {
+    case SLOTS_COMMIT_PARSE:
+        skill_parse_begin(&b->parser, b->image, b->xfer_size, &b->staging);
+        break;
+    case SLOTS_COMMIT_PARAMS: skchk_params_begin(&b->params, &b->staging); break;
+#ifdef FS_EXEC_FIXED
+    case SLOTS_COMMIT_CONVERT:
+        *st = skchk_stiffness(&b->staging, b->lim.stiffness_max_Npm);
+        dmpfx_bound_begin(&b->conv, &b->staging.dmp, &b->staging_fx);
+        break;
+    case SLOTS_COMMIT_CHECK:
+        dmpfx_check_begin(&b->fx_check, &b->staging_fx, b->staging.dmp.duration_s, b->lim.dt_s,
+                          b->lim.force_max_N, b->lim.path_max_m);
+        break;
+#else
+    case SLOTS_COMMIT_CHECK:
+        *st = skchk_stiffness(&b->staging, b->lim.stiffness_max_Npm);
+        skchk_begin(&b->check, &b->staging, b->lim.dt_s, b->lim.force_max_N);
+        b->check.path_max_m = b->lim.path_max_m;
+        break;
+#endif
+    case SLOTS_COMMIT_WRITE:
+        (void)nvm_write_begin(&b->writer, &b->nvm, (uint16_t)(b->xfer_slot - 1u), b->image,
+                              b->xfer_size); /* its argument errors end the write at once */
+        break;
+    default: b->swap_pos = 0u; break;
+    }
+    return *st != FS_OK;
+}
+
 /* One slice of the commit (b->commit_stage): false while it goes on; true once done, *st FS_OK
  * when the skill passed every check and the flash write is done (its result in b->writer.status),
  * or the refusal. */
 static bool commit_slice(slots_t *b, fs_status_t *st)
 {
     *st = FS_OK;
+    if (!b->stage_begun) {
+        b->stage_begun = true;
+        return commit_stage_begin(b, st); /* a stage's set-up is its own slice */
+    }
     switch (b->commit_stage) {
     case SLOTS_COMMIT_PARSE:
         if (!skill_parse_run(&b->parser, SLOTS_PARSE_UNITS_PER_TICK)) {
             return false;
         }
         *st = b->parser.status;
-        skchk_params_begin(&b->params, &b->staging);
-        b->commit_stage = SLOTS_COMMIT_PARAMS;
-        return *st != FS_OK;
+        return commit_next(b, SLOTS_COMMIT_PARAMS, *st);
     case SLOTS_COMMIT_PARAMS:
         if (!skchk_params_run(&b->params, SLOTS_PARAMS_UNITS_PER_TICK)) {
             return false;
         }
         *st = b->params.status;
-        if (*st == FS_OK) {
-            *st = skchk_stiffness(&b->staging, b->lim.stiffness_max_Npm);
-        }
-        if (*st != FS_OK) {
-            return true;
-        }
 #ifdef FS_EXEC_FIXED
-        dmpfx_bound_begin(&b->conv, &b->staging.dmp, &b->staging_fx);
-        b->commit_stage = SLOTS_COMMIT_CONVERT;
-        return false;
+        return commit_next(b, SLOTS_COMMIT_CONVERT, *st);
     case SLOTS_COMMIT_CONVERT:
         if (!dmpfx_bound_run(&b->conv, SLOTS_CONVERT_UNITS_PER_TICK)) {
             return false;
         }
         *st = b->conv.status; /* 3xx: the skill does not fit the fixed-point executor */
-        if (*st != FS_OK) {
-            return true;
-        }
-        dmpfx_check_begin(&b->fx_check, &b->staging_fx, b->staging.dmp.duration_s, b->lim.dt_s,
-                          b->lim.force_max_N, b->lim.path_max_m);
-#else
-        skchk_begin(&b->check, &b->staging, b->lim.dt_s, b->lim.force_max_N);
-        b->check.path_max_m = b->lim.path_max_m;
 #endif
-        b->commit_stage = SLOTS_COMMIT_CHECK;
-        return false;
+        return commit_next(b, SLOTS_COMMIT_CHECK, *st);
     case SLOTS_COMMIT_CHECK:
 #ifdef FS_EXEC_FIXED
         if (!dmpfx_check_run(&b->fx_check, SLOTS_CHECK_STEPS_PER_TICK)) {
@@ -250,13 +280,7 @@ static bool commit_slice(slots_t *b, fs_status_t *st)
         }
         *st = b->check.status; /* 222/223/225: slot unchanged */
 #endif
-        if (*st != FS_OK) {
-            return true;
-        }
-        (void)nvm_write_begin(&b->writer, &b->nvm, (uint16_t)(b->xfer_slot - 1u), b->image,
-                              b->xfer_size); /* its argument errors end the write at once */
-        b->commit_stage = SLOTS_COMMIT_WRITE;
-        return false;
+        return commit_next(b, SLOTS_COMMIT_WRITE, *st);
     case SLOTS_COMMIT_WRITE:
         if (!nvm_write_run(&b->writer, SLOTS_FLASH_UNITS_PER_TICK)) {
             return false;
@@ -266,9 +290,7 @@ static bool commit_slice(slots_t *b, fs_status_t *st)
         }
         /* the cache changes from the next slice on: nothing reads it meanwhile (a run does not
          * start while the commit runs, the UDS server answers others busy) */
-        b->swap_pos = 0u;
-        b->commit_stage = SLOTS_COMMIT_SWAP;
-        return false;
+        return commit_next(b, SLOTS_COMMIT_SWAP, FS_OK);
     default: return swap_slice(b, SLOTS_SWAP_BYTES_PER_TICK);
     }
 }
@@ -276,11 +298,12 @@ static bool commit_slice(slots_t *b, fs_status_t *st)
 uint8_t slots_commit_step(slots_t *b, const slots_limits_t *lim, uint32_t *crc_out)
 {
     if (!b->checking) {
-        /* the commit, a bounded slice a tick (0x78 meanwhile): parse, parameters, rollout, write */
-        skill_parse_begin(&b->parser, b->image, b->xfer_size, &b->staging);
+        /* the commit, a bounded slice a tick (0x78 meanwhile): parse, parameters, rollout, write,
+         * each stage's set-up a slice of its own */
         b->lim = *lim;
         b->checking = true;
         b->commit_stage = SLOTS_COMMIT_PARSE;
+        b->stage_begun = false;
     }
     fs_status_t st = FS_OK;
     if (!commit_slice(b, &st)) {

@@ -111,6 +111,7 @@ typedef struct {
     nvm_writer_t writer;           /* the slot's flash write, spread over ticks */
     bool checking;                 /* a download's commit runs: nothing starts meanwhile */
     uint8_t commit_stage;          /* SLOTS_COMMIT_*: the commit's stage while checking */
+    bool stage_begun;              /* its set-up done (a slice of its own) */
     uint32_t swap_pos;             /* SLOTS_COMMIT_SWAP: bytes of staging copied */
     slots_limits_t lim;            /* the commit's limits, taken at its first slice */
     nvm_reader_t reader;           /* a read-back's record read and CRC, spread over ticks */

@@ -183,7 +183,7 @@ static bool header_ok_ahead(fwu_t *f, uint32_t k)
     if (k < n) {
         return false; /* not whole in this piece: program() erases when it gets there */
     }
-    memcpy(&f->hdr[f->received], &f->block[f->block_pos], n);
+    memcpy(&f->hdr[f->received], &f->block_src[f->block_pos], n);
     return check_header(f) == BOOT_OK;
 }
 
@@ -228,7 +228,7 @@ boot_status_t fwu_data_step(fwu_t *f, bool authorised, uint32_t offset, const ui
         if (len > f->size - f->received || len > FWU_BLOCK_MAX) {
             return refuse(f, FWU_ERR_OVERRUN);
         }
-        memcpy(f->block, data, len);
+        f->block_src = data; /* the caller keeps it until the block is done: no copy */
         f->block_off = offset;
         f->block_len = len;
         f->block_pos = 0u;
@@ -253,7 +253,7 @@ boot_status_t fwu_data_step(fwu_t *f, bool authorised, uint32_t offset, const ui
         return es == BOOT_OK ? BOOT_OK : refuse(f, es);
     }
     const boot_status_t st = fwu_data(f, authorised, f->block_off + f->block_pos,
-                                      &f->block[f->block_pos], k);
+                                      &f->block_src[f->block_pos], k);
     f->block_pos += k;
     *done = st != BOOT_OK || f->block_pos >= f->block_len;
     if (*done) {
@@ -299,12 +299,17 @@ boot_status_t fwu_end_step(fwu_t *f, bool authorised, uint32_t *crc32_out, uint3
         boot_verify_begin(&f->verify, cfg->app_dev, cfg->slot_addr[f->slot], cfg->slot_size,
                           cfg->target_id, cfg->key, cfg->key_len);
         f->verifying = true;
-    }
-    if (!boot_verify_run(&f->verify, rounds)) {
+        f->verified = false;
         *done = false;
-        return BOOT_OK; /* more slices to go: the slot is not usable yet */
+        return BOOT_OK; /* the header read and the key set up are this call's slice */
+    }
+    if (!f->verified) {
+        f->verified = boot_verify_run(&f->verify, rounds);
+        *done = false;
+        return BOOT_OK; /* more slices to go, then the wipe's: the slot is not usable yet */
     }
     f->verifying = false;
+    f->verified = false;
     const boot_status_t st = f->verify.status;
     boot_verify_wipe(&f->verify);
     if (st != BOOT_OK) {
@@ -320,7 +325,11 @@ boot_status_t fwu_end_step(fwu_t *f, bool authorised, uint32_t *crc32_out, uint3
 boot_status_t fwu_end(fwu_t *f, bool authorised, uint32_t *crc32_out)
 {
     bool done = false;
-    return fwu_end_step(f, authorised, crc32_out, UINT32_MAX, &done);
+    boot_status_t st;
+    do {
+        st = fwu_end_step(f, authorised, crc32_out, UINT32_MAX, &done);
+    } while (!done);
+    return st;
 }
 
 void fwu_abort(fwu_t *f)

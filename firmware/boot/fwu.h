@@ -20,7 +20,7 @@
 #include "fs_uds_ids.h" /* FWU_DOWNLOAD_ADDRESS, FWU_RID_*, FWU_DID_STATUS */
 
 #define FWU_STATUS_LEN 17u
-#define FWU_BLOCK_MAX 4096u /* the longest TransferData block fwu_data_step keeps */
+#define FWU_BLOCK_MAX 4096u /* the longest TransferData block fwu_data_step takes */
 #define FWU_OPT_ALLOW_DOWNGRADE BOOT_FLAG_ALLOW_DOWNGRADE
 
 typedef enum {
@@ -46,12 +46,13 @@ typedef struct {
     uint32_t image_version; /* fw_version of the received image, 0 before its header */
     boot_status_t last;     /* last refusal, 0 if none */
     bool verifying;         /* fwu_end_step: the image's verification runs in slices */
+    bool verified;          /* its rounds done: the state's wipe and the verdict next */
     boot_verify_t verify;
     bool block_busy;    /* fwu_data_step: a TransferData block is taken in slices */
     uint32_t block_off; /* its offset in the image, its length and the bytes taken */
     uint32_t block_len;
     uint32_t block_pos;
-    uint8_t block[FWU_BLOCK_MAX];
+    const uint8_t *block_src; /* the block, the caller's until it is done */
 } fwu_t;
 
 /** Attach to a booted device (boot_select already run). */
@@ -69,9 +70,10 @@ boot_status_t fwu_data(fwu_t *f, bool authorised, uint32_t offset, const uint8_t
                        uint32_t len);
 
 /** TransferData in slices: the first call (data not NULL) checks what fwu_data checks first
- *  (720, 722, 724) and keeps the block (len <= FWU_BLOCK_MAX); each later call (data NULL) takes
- *  at most max_bytes of it through fwu_data; *done false while it goes on, then fwu_data's
- *  result (any refusal ends the download). */
+ *  (720, 722, 724) and takes the block (len <= FWU_BLOCK_MAX; data must stay valid and unchanged
+ *  until *done, nothing is copied); each later call (data NULL) takes at most max_bytes of it
+ *  through fwu_data; *done false while it goes on, then fwu_data's result (any refusal ends the
+ *  download). */
 boot_status_t fwu_data_step(fwu_t *f, bool authorised, uint32_t offset, const uint8_t *data,
                             uint32_t len, uint32_t max_bytes, bool *done);
 
@@ -79,8 +81,9 @@ boot_status_t fwu_data_step(fwu_t *f, bool authorised, uint32_t offset, const ui
  *  on the bytes read back from flash. *crc32_out (may be NULL) = CRC-32 of the image. */
 boot_status_t fwu_end(fwu_t *f, bool authorised, uint32_t *crc32_out);
 
-/** RequestTransferExit in slices: the first call flushes and starts the verification, each call
- *  runs at most rounds SHA-256 compression rounds of it; *done false while it goes on (the
+/** RequestTransferExit in slices: the first call flushes and starts the verification (no round
+ *  yet), each later call runs at most rounds SHA-256 compression rounds of it, the last one its
+ *  state's wipe and the verdict; *done false while it goes on (the
  *  image is neither received nor markable meanwhile), then fwu_end's result. */
 boot_status_t fwu_end_step(fwu_t *f, bool authorised, uint32_t *crc32_out, uint32_t rounds,
                            bool *done);

@@ -276,9 +276,11 @@ static uint16_t transfer_answer(uds_server_t *srv, uint8_t sid, uint8_t nrc, uin
     srv->xfer_counter = 1u;
     srv->xfer_last_len = 0u;
     resp[0] = (uint8_t)(sid + 0x40u);
+    const uint32_t block = sid == UDS_SID_REQ_DOWNLOAD ? UDS_MAX_BLOCK_LENGTH
+                                                       : UDS_UPLOAD_BLOCK_LENGTH;
     resp[1] = 0x20u; /* lengthFormatIdentifier: 2-byte maxNumberOfBlockLength */
-    resp[2] = (uint8_t)(UDS_MAX_BLOCK_LENGTH >> 8);
-    resp[3] = (uint8_t)(UDS_MAX_BLOCK_LENGTH & 0xFFu);
+    resp[2] = (uint8_t)(block >> 8);
+    resp[3] = (uint8_t)(block & 0xFFu);
     return 4u;
 }
 
@@ -392,8 +394,8 @@ static uint16_t svc_transfer_data(uds_server_t *srv, const uint8_t *req, uint16_
         return negative(resp, req[0], UDS_NRC_REQUEST_SEQUENCE_ERROR); /* all data sent */
     }
     uint32_t n = srv->xfer_size - offset;
-    if (n > UDS_MAX_BLOCK_LENGTH - 2u) {
-        n = UDS_MAX_BLOCK_LENGTH - 2u;
+    if (n > UDS_UPLOAD_BLOCK_LENGTH - 2u) {
+        n = UDS_UPLOAD_BLOCK_LENGTH - 2u;
     }
     if (n > (uint32_t)cap - 2u) {
         n = (uint32_t)cap - 2u;

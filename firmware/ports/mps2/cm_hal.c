@@ -16,19 +16,18 @@
 
 #define CM_CAN_RX_QUEUE 256u /* received frames (power of two); overflow drops the newest */
 
-/* The SLCAN text of the host is parsed in the UART's RX interrupt (can_rx_byte): a complete
- * frame command lands in g_rx (single producer: the interrupt; single consumer: the tick), its
- * reply goes straight to the transmit ring. The tick only takes whole frames. */
-#define CM_BARRIER() __asm__ volatile("" ::: "memory")
-
+/* The SLCAN text of the host waits in the UART's receive ring (cm_uart.c: the RX interrupt only
+ * stores bytes). The port's loop parses it after the tick (cm_port_end_tick: the emulated CAN
+ * controller's work, which a board with a CAN peripheral does in hardware), complete frames into
+ * g_rx, each command's reply (z, or BEL) to the UART; hal_can_receive only copies a frame out of
+ * g_rx, at most CM_PORT_RX_FRAMES_PER_TICK a tick. */
 void SysTick_Handler(void);
 void NMI_Handler(void);
 
 static slcan_t g_slcan;
 static can_frame_t g_rx[CM_CAN_RX_QUEUE];
-static volatile uint32_t g_rx_head; /* written by the RX interrupt */
-static volatile uint32_t g_rx_tail; /* written by the tick */
-static volatile uint32_t g_rx_dropped;
+static uint32_t g_rx_head, g_rx_tail; /* both written outside interrupts */
+static uint32_t g_rx_dropped;
 static uint32_t g_rx_taken; /* frames hal_can_receive returned this tick */
 static can_frame_t g_tx[CM_PORT_TX_QUEUE];
 static uint32_t g_tx_head, g_tx_tail;
@@ -72,35 +71,36 @@ void NMI_Handler(void)
     }
 }
 
-/* The byte that ends (or overflows) a line of the host's SLCAN text (RX interrupt): a frame for
- * the device into g_rx, the reply of the complete command to the UART. */
-__attribute__((noinline)) static void can_rx_line_end(uint8_t byte)
+/* The SLCAN text received so far: complete frame commands into g_rx, each command's reply to
+ * the UART (port loop, after the tick). */
+static void can_rx_parse(void)
 {
-    char reply[SLCAN_REPLY_MAX];
-    uint32_t reply_len;
-    can_frame_t f;
-    if (slcan_feed(&g_slcan, byte, &f, reply, &reply_len)) {
-        const uint32_t h = g_rx_head;
-        if (h - g_rx_tail < CM_CAN_RX_QUEUE) {
-            g_rx[h % CM_CAN_RX_QUEUE] = f;
-            CM_BARRIER(); /* the frame before the index that publishes it */
-            g_rx_head = h + 1u;
-        } else {
-            g_rx_dropped = g_rx_dropped + 1u; /* as a CAN controller's receive overrun */
+    uint8_t buf[CM_PORT_RX_CHUNK];
+    uint32_t n;
+    /* a chunk holds at most CM_PORT_RX_CHUNK commands: read one only with that much room, so a
+     * backlog waits in the ring (and then in the UART and the host's socket), none is dropped */
+    while (CM_CAN_RX_QUEUE - (g_rx_head - g_rx_tail) >= CM_PORT_RX_CHUNK &&
+           (n = cm_uart_read(buf, CM_PORT_RX_CHUNK)) != 0u) {
+        for (uint32_t i = 0u; i < n; i++) {
+            if (slcan_take(&g_slcan, buf[i])) {
+                continue; /* a character of the line: all but the line's end */
+            }
+            char reply[SLCAN_REPLY_MAX];
+            uint32_t reply_len;
+            can_frame_t f;
+            if (slcan_feed(&g_slcan, buf[i], &f, reply, &reply_len)) {
+                if (g_rx_head - g_rx_tail < CM_CAN_RX_QUEUE) {
+                    g_rx[g_rx_head % CM_CAN_RX_QUEUE] = f;
+                    g_rx_head++;
+                } else {
+                    g_rx_dropped++; /* as a CAN controller's receive overrun */
+                }
+            }
+            if (reply_len > 0u) {
+                (void)cm_uart_write(reply, reply_len);
+            }
         }
     }
-    if (reply_len > 0u) {
-        (void)cm_uart_write_isr(reply, reply_len);
-    }
-}
-
-/* One byte of the host's SLCAN text (RX interrupt). */
-static void can_rx_byte(uint8_t byte)
-{
-    if (slcan_take(&g_slcan, byte)) {
-        return; /* a character of the line: all but the line's end */
-    }
-    can_rx_line_end(byte);
 }
 
 void cm_port_init(const uint8_t *seed, uint32_t seed_len)
@@ -109,7 +109,7 @@ void cm_port_init(const uint8_t *seed, uint32_t seed_len)
     g_rx_head = g_rx_tail = 0u;
     g_rx_dropped = 0u;
     g_tx_head = g_tx_tail = 0u;
-    cm_uart_init(can_rx_byte);
+    cm_uart_init();
     boot_cm_flash_init(&g_skill_fl, &g_skill_dev, CM_FLASH_SKILL_ADDR, CM_FLASH_SKILL_SECTOR,
                        CM_FLASH_SKILL_SECTORS);
     boot_cm_flash_init(&g_fw_fl, &g_fw_dev, CM_FLASH_FW_ADDR, CM_FLASH_FW_SECTOR,
@@ -160,6 +160,7 @@ bool cm_port_wait_tick(void)
     const bool missed = g_missed != 0u;
     g_missed = 0u;
     __asm__ volatile("cpsie i" ::: "memory");
+    cm_uart_rx_cap(CM_PORT_RX_BYTES_IN_TICK); /* the baud rate's bytes while the tick runs */
     g_rx_taken = 0u;
     if (missed) {
         g_overruns = g_overruns + 1u;
@@ -183,6 +184,7 @@ static void can_tx_drain(uint32_t budget)
 void cm_port_end_tick(void)
 {
     can_tx_drain(CM_PORT_TX_FRAMES_PER_TICK);
+    can_rx_parse();
     /* the next period's receive budget from now, after the tick: bytes that waited for it are
      * taken in the slack before the next tick, not in bulk inside it */
     cm_uart_rx_budget(CM_PORT_RX_BYTES_PER_TICK);
@@ -257,9 +259,7 @@ bool hal_can_receive(can_frame_t *frame)
     if (t == g_rx_head || g_rx_taken >= CM_PORT_RX_FRAMES_PER_TICK) {
         return false; /* none, or this tick's share taken: the rest wait for the next tick */
     }
-    CM_BARRIER(); /* the index before the frame it published */
     *frame = g_rx[t % CM_CAN_RX_QUEUE];
-    CM_BARRIER();
     g_rx_tail = t + 1u;
     g_rx_taken++;
     return true;

@@ -15,14 +15,26 @@
  * ~8 us of the board's time (4 instructions each at 250 MIPS) */
 #define CM_PORT_PACE_SPIN 500u
 /* Bytes of SLCAN text the UART takes per tick: 192 = 8.7 frames of 8 bytes per ms, the frame rate
- * of a 1 Mbit/s CAN bus (~7.4 frames per ms) with a margin; the budget is given anew at the end
- * of each tick (cm_port_end_tick), so the bytes that waited for it arrive in the slack after the
- * tick rather than in bulk inside the next one. The RX interrupt parses them into
- * whole frames; hal_can_receive hands the tick at most CM_PORT_RX_FRAMES_PER_TICK of them (16:
- * the budget's bytes as the shortest frames the product receives, 12 characters), the rest wait
- * in the port's 256-frame queue. */
+ * of a 1 Mbit/s CAN bus (~7.4 frames per ms) with a margin, i.e. a 1.92 Mbaud UART; the budget is
+ * given anew at the end of each tick (cm_port_end_tick), so the bytes that waited for it arrive in
+ * the slack after the tick rather than in bulk inside the next one. The emulated UART has no baud
+ * rate: while a tick runs, the port lets it take at most CM_PORT_RX_BYTES_IN_TICK bytes, what a
+ * 1.92 Mbaud line delivers during the longest tick the budget allows (bench/qemu_tick.sh: 3,000
+ * instructions at 168 MHz on the M4F = 17.9 us -> 3.4 bytes; 8,000 at 72 MHz on the M3 = 111 us
+ * -> 21.3 bytes), rounded up, plus the byte already waiting in the data register: 5 and 23. The
+ * RX interrupt only stores bytes in the UART's ring (cm_uart.c, a few instructions a byte). The
+ * port's loop parses the text after the tick (cm_port_end_tick, CM_PORT_RX_CHUNK bytes at a time,
+ * while the 256-frame queue has room for a chunk's commands: a backlog waits in the ring, then in
+ * the UART and the host's socket, no frame is dropped): the emulated CAN controller's work,
+ * outside app_tick as a CAN peripheral's is. hal_can_receive hands the tick at most
+ * CM_PORT_RX_FRAMES_PER_TICK frames (9: the budget's 8.7 frames of 8 bytes a millisecond, so the
+ * queue does not grow at the link's full rate). */
 #define CM_PORT_RX_BYTES_PER_TICK 192u
-#define CM_PORT_RX_FRAMES_PER_TICK 16u
+#ifndef CM_PORT_RX_BYTES_IN_TICK
+#define CM_PORT_RX_BYTES_IN_TICK 5u
+#endif
+#define CM_PORT_RX_FRAMES_PER_TICK 9u
+#define CM_PORT_RX_CHUNK 32u
 /* The transmit side likewise: a queue of CM_PORT_TX_QUEUE frames (hal_can_send refuses when it is
  * full, as a CAN controller's mailboxes do), of which up to CM_PORT_TX_FRAMES_PER_TICK leave per
  * tick. */
@@ -67,9 +79,9 @@ void cm_port_end_tick(void);
 
 /** Ticks that started late (a SysTick arrived while a tick was still running). */
 uint32_t cm_port_overruns(void);
-
-/** Received frames lost because the port's receive queue was full. */
+/** Received frames lost because the port's receive queue was full (none: the parse waits). */
 uint32_t cm_port_rx_dropped(void);
+
 
 /** Empty functions around the application tick, which bench/qemu_tick.sh finds in the exec trace
  *  to count the instructions of each tick (no other effect). */

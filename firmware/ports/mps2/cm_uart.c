@@ -1,13 +1,15 @@
-/* UART0 byte link (see cm_uart.h). The transmit ring has one consumer (the TX interrupt, and the
- * pump kicked with interrupts masked) and two producers that never overlap: thread context with
- * interrupts masked, and the RX interrupt's receiver (the TX interrupt has its priority, so it
- * cannot run meanwhile). */
+/* UART0 byte link (see cm_uart.h). The receive ring has one producer (the RX interrupt) and one
+ * consumer (cm_uart_read, thread context). The transmit ring has one consumer (the TX interrupt,
+ * and the pump kicked with interrupts masked) and one producer (thread context with interrupts
+ * masked). */
 #include "cm_uart.h"
 
 #include "cm_board.h"
 
-static cm_uart_rx_fn rx_fn;
-static volatile uint32_t rx_allowed; /* bytes the RX interrupt may still take this tick */
+static volatile uint32_t rx_allowed; /* bytes the RX interrupt may still take */
+static volatile uint8_t rx_ring[CM_UART_RX_RING];
+static volatile uint32_t rx_head; /* written by the RX interrupt */
+static volatile uint32_t rx_tail; /* written by cm_uart_read */
 static volatile uint8_t tx_ring[CM_UART_TX_RING];
 static volatile uint32_t tx_head; /* written by the producers */
 static volatile uint32_t tx_tail; /* written by the pump */
@@ -15,15 +17,10 @@ static volatile uint32_t tx_tail; /* written by the pump */
 void UART0RX_Handler(void);
 void UART0TX_Handler(void);
 
-static void rx_ignore(uint8_t byte)
+void cm_uart_init(void)
 {
-    (void)byte;
-}
-
-void cm_uart_init(cm_uart_rx_fn rx)
-{
-    rx_fn = rx != 0 ? rx : rx_ignore;
     rx_allowed = 0u;
+    rx_head = rx_tail = 0u;
     tx_head = tx_tail = 0u;
     CM_UART_BAUDDIV = 16u;
     CM_UART_CTRL = CM_UART_CTRL_TX_EN | CM_UART_CTRL_RX_EN | CM_UART_CTRL_TX_INT |
@@ -33,18 +30,25 @@ void cm_uart_init(cm_uart_rx_fn rx)
     CM_NVIC_ISER0 = (1u << CM_UART0_RX_IRQ) | (1u << CM_UART0_TX_IRQ);
 }
 
+/* Each received byte into the ring, O(1) a byte: no parsing here. With the budget spent or the
+ * ring full the interrupt is masked (the byte waits in the UART, the rest in the host's socket)
+ * until cm_uart_rx_budget gives more. */
 void UART0RX_Handler(void)
 {
     CM_UART_INTSTATUS = CM_UART_INT_RX;
+    uint32_t h = rx_head;
+    uint32_t allowed = rx_allowed;
     while ((CM_UART_STATE & CM_UART_STATE_RXFULL) != 0u) {
-        const uint32_t allowed = rx_allowed;
-        if (allowed == 0u) {
-            CM_UART_CTRL &= ~CM_UART_CTRL_RX_INT; /* budget spent: resume at the next tick */
-            return;
+        if (allowed == 0u || h - rx_tail >= CM_UART_RX_RING) {
+            CM_UART_CTRL &= ~CM_UART_CTRL_RX_INT;
+            break;
         }
-        rx_allowed = allowed - 1u;
-        rx_fn((uint8_t)CM_UART_DATA);
+        rx_ring[h % CM_UART_RX_RING] = (uint8_t)CM_UART_DATA;
+        h++;
+        allowed--;
     }
+    rx_head = h;
+    rx_allowed = allowed;
 }
 
 /* Move bytes from the ring to the UART while it takes them (called with the TX IRQ masked or
@@ -77,6 +81,29 @@ void cm_uart_rx_budget(uint32_t bytes)
     }
 }
 
+void cm_uart_rx_cap(uint32_t bytes)
+{
+    __asm__ volatile("cpsid i" ::: "memory");
+    if (rx_allowed > bytes) {
+        rx_allowed = bytes;
+    }
+    __asm__ volatile("cpsie i" ::: "memory");
+}
+
+uint32_t cm_uart_read(uint8_t *out, uint32_t max)
+{
+    uint32_t t = rx_tail;
+    const uint32_t h = rx_head;
+    uint32_t n = 0u;
+    while (n < max && t != h) {
+        out[n++] = rx_ring[t % CM_UART_RX_RING];
+        t++;
+    }
+    __asm__ volatile("" ::: "memory"); /* the bytes read before the room is given back */
+    rx_tail = t;
+    return n;
+}
+
 uint32_t cm_uart_tx_room(void)
 {
     return CM_UART_TX_RING - (tx_head - tx_tail);
@@ -104,11 +131,6 @@ bool cm_uart_write(const char *data, uint32_t len)
     const bool ok = tx_push(data, len);
     __asm__ volatile("cpsie i" ::: "memory");
     return ok;
-}
-
-bool cm_uart_write_isr(const char *data, uint32_t len)
-{
-    return tx_push(data, len);
 }
 
 bool cm_uart_tx_empty(void)
