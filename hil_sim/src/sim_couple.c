@@ -195,23 +195,33 @@ double sim_couple_away_m(const sim_scenario_t *sc, double t_s)
            ((t_s < t1) ? smoothstep((t_s - t0) / ramp) : 1.0 - smoothstep((t_s - t1) / ramp));
 }
 
+void sim_couple_away_begin(sim_couple_away_t *a, const sim_scenario_t *sc, app_state_t state,
+                           uint64_t n_tick, sim_drive_t *drv)
+{
+    if (state == APP_EXECUTE && !a->executing) {
+        a->exec_start = n_tick;
+    }
+    a->executing = (state == APP_EXECUTE);
+    a->object = sc->object;
+    if (a->executing) {
+        a->object.surface_m += sim_couple_away_m(sc, (double)(n_tick - a->exec_start) * sc->dt_s);
+    }
+    drv->object = &a->object;
+    sim_drive_prepare(drv);
+}
+
+void sim_couple_away_end(const sim_scenario_t *sc, sim_drive_t *drv)
+{
+    drv->object = &sc->object;
+}
+
 bool sim_couple_step(sim_couple_plant_t *p, const sim_scenario_t *sc, app_state_t state,
                      bool enable, const fs_real_t force_N[2])
 {
     (void)sim_couple_drive(sc, state, enable, force_N, p->drv, NULL);
-    if (state == APP_EXECUTE && !p->executing) {
-        p->exec_start = p->n_tick;
-    }
-    p->executing = (state == APP_EXECUTE);
-    p->object = sc->object;
-    if (p->executing) {
-        p->object.surface_m += sim_couple_away_m(sc,
-                                                 (double)(p->n_tick - p->exec_start) * sc->dt_s);
-    }
-    p->drv[0].object = &p->object;
-    sim_drive_prepare(&p->drv[0]);
+    sim_couple_away_begin(&p->away, sc, state, p->n_tick, &p->drv[0]);
     sim_couple_advance(sc, p->ax, p->drv, sim_couple_parked(state, enable));
-    p->drv[0].object = &sc->object;
+    sim_couple_away_end(sc, &p->drv[0]);
     p->n_tick++;
     return enable;
 }

@@ -77,6 +77,22 @@ bool sim_couple_actuate(const sim_scenario_t *sc, const app_t *app, sim_drive_t 
  *  off (a free handle would drift out of the sensor range and no fault could be cleared). */
 bool sim_couple_parked(app_state_t state, bool enable);
 
+/** The object a run's plant meets: the scenario's, its surface moved by away_* during an
+ *  execution (the same for the lockstep run and the bus-driven plants). */
+typedef struct {
+    sim_object_t object; /* the object now (its surface moved by the scenario's away_*) */
+    uint64_t exec_start; /* the tick the running execution started */
+    bool executing;
+} sim_couple_away_t;
+
+/** Points drv at the object of tick n_tick in state (an execution's start noted) for the tick's
+ *  plant step; sim_couple_away_end puts the scenario's object back after it. */
+void sim_couple_away_begin(sim_couple_away_t *a, const sim_scenario_t *sc, app_state_t state,
+                           uint64_t n_tick, sim_drive_t *drv);
+
+/** The scenario's own object back in drv after the tick's plant step. */
+void sim_couple_away_end(const sim_scenario_t *sc, sim_drive_t *drv);
+
 /** Plant, operator and sensor pipeline of a device run one tick at a time against a bus
  *  (hil_sim serve, the processor-in-the-loop Cortex-M image of hil_sim pil). */
 typedef struct {
@@ -89,9 +105,7 @@ typedef struct {
     bool teaching;
     sim_sample_t ring[SIM_COUPLE_RING];
     uint64_t n_tick;
-    sim_object_t object; /* the object now (its surface moved by the scenario's away_*) */
-    uint64_t exec_start; /* the tick the running execution started */
-    bool executing;
+    sim_couple_away_t away;
 } sim_couple_plant_t;
 
 /** How far the object's surface has moved away t_s into an execution (the scenario's away_*:

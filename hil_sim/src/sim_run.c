@@ -268,6 +268,7 @@ typedef struct {
     sim_operator_t op;
     sim_axis_t ax[2];
     sim_drive_t drv[2];
+    sim_couple_away_t away; /* the object the plant meets (the scenario's away_*) */
     sim_sample_t ring[SIM_COUPLE_RING];
     double stuck_fc;
     int stuck_set;
@@ -497,8 +498,11 @@ int sim_run(const sim_scenario_t *sc, const sim_skill_image_t *skills, FILE *log
         if (n == n_ticks) {
             break;
         }
-        /* plant over the tick, the command held; parked while the device is idle or stopped */
+        /* plant over the tick, the command held; parked while the device is idle or stopped;
+         * the object's surface moved by the scenario's away_* while executing */
+        sim_couple_away_begin(&r.away, sc, app_state(r.dev.app), n, &r.drv[0]);
         sim_couple_advance(sc, r.ax, r.drv, parked);
+        sim_couple_away_end(sc, &r.drv[0]);
     }
     log_flush(&r.lb);
     if (log != NULL && ferror(log)) {

@@ -214,3 +214,28 @@ def test_device_stiffness_limit_per_plant(hil_sim: Path, scenarios: Path, tmp_pa
     lifted.write_text(scen.read_text().replace("seed = 1\n", "seed = 1\nstiffness_max_Npm = 1e8\n", 1))
     s = ok(hil_sim, lifted, "--skill", skill, "--plant", "realistic", "-o", tmp_path / "l.csv")
     assert s["fault_code"] == 0 and s["exec_ticks"] > 1000
+
+
+def test_lockstep_run_moves_the_surface_away_as_the_scenario_says(
+    hil_sim: Path, scenarios: Path, tmp_path: Path
+) -> None:
+    """A scenario's away_* in a lockstep run: 0.5 s into the execution the surface steps 20 mm
+    away for 0.3 s; the contact force is the run's without it before, none while the surface is
+    away (until the law, pushing on, has brought the handle the 20 mm: 0.7 s here), and contact
+    again after."""
+    press = VECTORS / "press_n50_ridge_release.skill"
+    text = (scenarios / "pressing_task1_exec.toml").read_text()
+    away = tmp_path / "away.toml"
+    away.write_text(
+        text.replace("m_v_kg = 10.0", "m_v_kg = 10.0\naway_at_s = 0.5\naway_for_s = 0.3\naway_m = 0.02", 1)
+    )
+    assert "away_at_s" in away.read_text()
+    logs = {}
+    for name, sc in (("plain", scenarios / "pressing_task1_exec.toml"), ("away", away)):
+        ok(hil_sim, sc, "--skill", press, "-o", tmp_path / f"{name}.csv")
+        logs[name] = np.genfromtxt(tmp_path / f"{name}.csv", delimiter=",", names=True)
+    t, f_away, f_plain = logs["away"]["t"], logs["away"]["f_contact"], logs["plain"]["f_contact"]
+    before, lost, back = t < 0.49, (t > 0.52) & (t < 0.7), (t > 0.9) & (t < 1.4)
+    assert np.array_equal(f_away[before], f_plain[before])
+    assert np.max(np.abs(f_away[lost])) < 0.1 and np.min(f_plain[lost]) > 1.0
+    assert np.min(f_away[back]) > 1.0
