@@ -38,7 +38,8 @@ typedef struct {
 void boot_verify_begin(boot_verify_t *v, const fls_dev_t *dev, uint32_t addr, uint32_t cap,
                        uint32_t want_target, const uint8_t *key, uint32_t key_len);
 
-/** At most rounds compression rounds more (and a flash read of at most 64 bytes per block);
+/** At most rounds compression rounds more, or one stage's end (a digest, a comparison, a flash
+ *  read of at most 64 bytes) in a call that compressed nothing (rounds UINT32_MAX: all of it);
  *  true once done (v->status: BOOT_OK or 705/706/flash error; v->hdr the parsed header). */
 bool boot_verify_run(boot_verify_t *v, uint32_t rounds);
 

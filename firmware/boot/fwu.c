@@ -112,6 +112,8 @@ boot_status_t fwu_begin(fwu_t *f, bool authorised, uint32_t size)
     f->received = 0u;
     f->programmed = 0u;
     f->erased = 0u;
+    f->erasing = false;
+    f->header_ok = false;
     f->tail_len = 0u;
     f->crc32 = 0u;
     f->image_version = 0u;
@@ -134,6 +136,7 @@ static boot_status_t check_header(fwu_t *f)
         return BOOT_ERR_FORMAT; /* trailing bytes after the tag */
     }
     f->image_version = h.fw_version;
+    f->header_ok = true;
     return BOOT_OK;
 }
 
@@ -156,7 +159,7 @@ boot_status_t fwu_data(fwu_t *f, bool authorised, uint32_t offset, const uint8_t
             n = len;
         }
         memcpy(&f->hdr[f->received], data, n);
-        if (f->received + n == BOOT_IMAGE_HEADER_SIZE) {
+        if (f->received + n == BOOT_IMAGE_HEADER_SIZE && !f->header_ok) {
             boot_status_t st = check_header(f);
             if (st != BOOT_OK) {
                 return refuse(f, st);
@@ -183,13 +186,17 @@ static bool header_ok_ahead(fwu_t *f, uint32_t k)
     if (k < n) {
         return false; /* not whole in this piece: program() erases when it gets there */
     }
-    memcpy(&f->hdr[f->received], &f->block_src[f->block_pos], n);
-    return check_header(f) == BOOT_OK;
+    if (!f->header_ok) {
+        memcpy(&f->hdr[f->received], &f->block_src[f->block_pos], n);
+        (void)check_header(f); /* a refusal comes from fwu_data, which checks it again */
+    }
+    return f->header_ok;
 }
 
 /* A device with a background erase (fls.h busy): one call of a step polls the erase in
- * progress, or starts the erase of the sector that the next k bytes of the block reach first;
- * *done false then (the piece waits for the next call). Otherwise *done true. */
+ * progress (the poll that sees it end is its own call too: a device that erases in slices does
+ * the last one in it), or starts the erase of the sector that the next k bytes of the block reach
+ * first; *done false then (the piece waits for the next call). Otherwise *done true. */
 static boot_status_t erase_ahead(fwu_t *f, uint32_t k, bool *done)
 {
     const fls_dev_t *dev = f->boot->cfg->app_dev;
@@ -198,7 +205,8 @@ static boot_status_t erase_ahead(fwu_t *f, uint32_t k, bool *done)
         return BOOT_OK;
     }
     const int b = dev->busy(dev->ctx);
-    if (b != 0) {
+    if (b != 0 || f->erasing) {
+        f->erasing = b > 0;
         *done = false;
         return b < 0 ? BOOT_ERR_FLASH : BOOT_OK;
     }
@@ -208,6 +216,7 @@ static boot_status_t erase_ahead(fwu_t *f, uint32_t k, bool *done)
             return BOOT_ERR_FLASH;
         }
         f->erased += dev->sector_size;
+        f->erasing = true;
         *done = false;
     }
     return BOOT_OK;

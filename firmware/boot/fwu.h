@@ -39,6 +39,8 @@ typedef struct {
     uint32_t received;   /* bytes accepted so far */
     uint32_t programmed; /* bytes programmed (received minus the staged tail) */
     uint32_t erased;     /* bytes of the slot erased so far, from its start */
+    bool erasing;        /* fwu_data_step: a background erase was started and not yet seen done */
+    bool header_ok;      /* the header was checked (image_version set) */
     uint8_t hdr[BOOT_IMAGE_HEADER_SIZE];
     uint8_t tail[16]; /* bytes waiting for a full write unit */
     uint32_t tail_len;

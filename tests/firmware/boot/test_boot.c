@@ -273,13 +273,15 @@ static void test_golden_image_verified_in_slices(void **state)
     dev_fresh(&D);
     factory_program(&D, 1u, IMG, len);
     /* 1,000 bytes of payload: the hash 16 blocks with its padding, the MAC's inner hash 19 (key,
-     * header, payload, padding) and its outer 2: 37 blocks of 64 rounds */
+     * header, payload, padding) and its outer 2: 37 blocks of 64 rounds; each of the ~40 stage
+     * ends (a digest, a comparison, a read) is a call of its own, after the call that compressed
+     * the stage's last rounds */
     const uint32_t budgets[] = {1u, 16u, 37u, 64u};
     for (size_t i = 0; i < sizeof budgets / sizeof budgets[0]; i++) {
         uint32_t calls = 0u;
         assert_int_equal(verify_sliced(budgets[i], &calls), BOOT_OK);
         assert_true(calls >= (37u * 64u) / budgets[i]);
-        assert_true(calls <= (37u * 64u) / budgets[i] + 40u);
+        assert_true(calls <= (37u * 64u) / budgets[i] + 80u);
     }
     uint32_t calls = 0u;
     D.cfg.key = OTHER_KEY;
@@ -404,7 +406,8 @@ static void background_erase(dev_t_ *d)
 }
 
 /* TransferData in slices on a flash with a background erase: each sector's erase is started by
- * a call of its own and polled a call at a time (3 polls) once the header is in, the slot's contents and CRC-32 are
+ * a call of its own and polled a call at a time (3 polls, the one that sees it done a call of
+ * its own too) once the header is in, the slot's contents and CRC-32 are
  * those of the synchronous flash; a block whose header is refused erases nothing. */
 static void test_data_in_slices_background_erase(void **state)
 {
@@ -431,9 +434,10 @@ static void test_data_in_slices_background_erase(void **state)
     }
     const uint32_t sectors = (len + SECTOR - 1u) / SECTOR;
     assert_int_equal(g_bg_erases, sectors);
-    /* per sector, its start and 2 polls still busy; but the first: the first block (100 bytes)
-     * leaves the header incomplete, so its bytes' program() erases the sector and waits */
-    assert_int_equal(calls, (sectors - 1u) * 3u);
+    /* per sector, its start, 2 polls still busy and the poll that sees it done; but the first:
+     * the first block (100 bytes) leaves the header incomplete, so its bytes' program() erases
+     * the sector and waits */
+    assert_int_equal(calls, (sectors - 1u) * 4u);
     assert_int_equal(fwu_end(&D.fwu, true, NULL), BOOT_OK);
     assert_int_equal(D.fwu.crc32, crc_whole);
     assert_int_equal(D.app_dev.read(D.app_dev.ctx, D.cfg.slot_addr[slot], sliced, len), 0);
