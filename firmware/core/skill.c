@@ -192,28 +192,44 @@ static fs_status_t check_frame(skill_parser_t *p)
     return FS_OK;
 }
 
-/* The gains of a framed image: the stored alpha/beta/gamma those the fit gains derive (and
- * monotone); with a y DMP, its beta (the law with k_f = k_i = 0 on alpha) monotone too. */
-static fs_status_t check_gains(const uint8_t *buf, uint8_t has_y)
+/* The five gains of a framed image. */
+static void read_gains(const uint8_t *buf, double gain[5])
 {
-    const double gain[5] = {rd_f64(buf, OFF_M_D), rd_f64(buf, OFF_K_D), rd_f64(buf, OFF_K_P),
-                            rd_f64(buf, OFF_KKF), rd_f64(buf, OFF_KKI)};
+    gain[0] = rd_f64(buf, OFF_M_D);
+    gain[1] = rd_f64(buf, OFF_K_D);
+    gain[2] = rd_f64(buf, OFF_K_P);
+    gain[3] = rd_f64(buf, OFF_KKF);
+    gain[4] = rd_f64(buf, OFF_KKI);
+}
+
+/* The alpha/beta/gamma the fit gains derive, into the parser (their own unit: four double
+ * divisions and the derivation's checks, in software on a core without a double FPU). */
+static fs_status_t derive_gains(skill_parser_t *p)
+{
+    double gain[5];
+    read_gains(p->buf, gain);
+    return dmp_derive_f64(gain, p->derived) == FS_OK ? FS_OK : FS_ERR_SKILL_GAINS;
+}
+
+/* The gains of a framed image: the stored alpha/beta/gamma those derived (and monotone); with a
+ * y DMP, its beta (the law with k_f = k_i = 0 on alpha) monotone too. */
+static fs_status_t check_gains(const uint8_t *buf, const double derived[3], uint8_t has_y)
+{
     const double stored[3] = {rd_f64(buf, OFF_ALPHA), rd_f64(buf, OFF_BETA),
                               rd_f64(buf, OFF_GAMMA)};
-    double derived[3];
-    if (dmp_derive_f64(gain, derived) != FS_OK ||
-        !rel_close(stored[0], derived[0], SKILL_GAINS_REL_TOL) ||
+    if (!rel_close(stored[0], derived[0], SKILL_GAINS_REL_TOL) ||
         !rel_close(stored[1], derived[1], SKILL_GAINS_REL_TOL) ||
         !rel_close(stored[2], derived[2], SKILL_GAINS_REL_TOL) ||
         stored[1] > stored[0] / 4.0 * (1.0 + DMP_MONOTONE_REL_TOL)) {
         return FS_ERR_SKILL_GAINS;
     }
-    const double beta_y = gain[2] / (gain[0] * stored[0]) - 1.0;
-    if (has_y != 0u &&
-        (!(beta_y > 0.0) || beta_y > stored[0] / 4.0 * (1.0 + DMP_MONOTONE_REL_TOL))) {
-        return FS_ERR_SKILL_GAINS;
+    if (has_y == 0u) {
+        return FS_OK;
     }
-    return FS_OK;
+    const double beta_y = rd_f64(buf, OFF_K_P) / (rd_f64(buf, OFF_M_D) * stored[0]) - 1.0;
+    return (!(beta_y > 0.0) || beta_y > stored[0] / 4.0 * (1.0 + DMP_MONOTONE_REL_TOL))
+               ? FS_ERR_SKILL_GAINS
+               : FS_OK;
 }
 
 /* The header's values in range: the timing, stiffness and goal. */
@@ -230,9 +246,10 @@ static fs_status_t check_header_range(const uint8_t *buf)
 }
 
 /* The gains (check_gains) and no unknown flag. */
-static fs_status_t check_gains_flags(const uint8_t *buf, uint16_t version, uint8_t has_y)
+static fs_status_t check_gains_flags(const uint8_t *buf, const double derived[3], uint16_t version,
+                                     uint8_t has_y)
 {
-    const fs_status_t st = check_gains(buf, has_y);
+    const fs_status_t st = check_gains(buf, derived, has_y);
     if (st != FS_OK) {
         return st;
     }
@@ -339,7 +356,9 @@ enum {
     SP_RANGE,   /* the header's ranges */
     SP_WIDTHS,  /* every width > 0, one a unit */
     SP_CENTRES, /* the centres increasing in [0, 1], one a unit */
-    SP_GAINS,   /* the gains and the flags */
+    SP_DERIVE,  /* alpha, beta, gamma from the fit gains */
+    SP_GAINS,   /* the stored ones against them, and the flags */
+    SP_KIND,    /* the kind's fields (v4) */
     SP_FILL,    /* the header's values in the core's type */
     SP_KERNELS, /* each kernel's values in the core's type, one a unit */
     SP_FINISH,  /* the x-axis gains and the end policy */
@@ -413,7 +432,7 @@ static bool parse_item(skill_parser_t *p)
     }
 }
 
-/* The stages done in one unit each (frame, ranges, gains, fill, finish). */
+/* The stages done in one unit each (frame, ranges, derive, gains, kind, fill, finish). */
 static void parse_once(skill_parser_t *p)
 {
     const uint8_t *buf = p->buf;
@@ -421,12 +440,9 @@ static void parse_once(skill_parser_t *p)
     switch (p->stage) {
     case SP_FRAME: p->status = check_frame(p); break;
     case SP_RANGE: p->status = check_header_range(buf); break;
-    case SP_GAINS:
-        p->status = check_gains_flags(buf, p->version, p->has_y);
-        if (p->status == FS_OK) {
-            p->status = check_kind(buf, p->version, p->kind, p->has_y);
-        }
-        break;
+    case SP_DERIVE: p->status = derive_gains(p); break;
+    case SP_GAINS: p->status = check_gains_flags(buf, p->derived, p->version, p->has_y); break;
+    case SP_KIND: p->status = check_kind(buf, p->version, p->kind, p->has_y); break;
     case SP_FILL:
         out->dmp.n_kernels = p->n;
         if (!fill_header(buf, p->has_y, p->kind, out)) {

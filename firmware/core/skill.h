@@ -88,6 +88,7 @@ typedef struct {
     uint8_t has_y;      /* the y DMP is present */
     uint8_t kind;       /* SKILL_KIND_* (v4: read with the kernel count) */
     uint8_t stage;      /* internal */
+    double derived[3];  /* alpha, beta, gamma of the stored gains (checked in the next unit) */
     dmp_init_t init;    /* the model's derivation (dmp_model_init in slices) */
     fs_status_t status; /* FS_OK while running or once valid; the refusal once done */
 } skill_parser_t;
