@@ -456,10 +456,12 @@ static void uds_service(app_t *app)
         return;
     }
     /* a tick that verified a frame's MAC leaves the server's work to the next tick; one with
-     * either queues at most APP_TP_FRAMES_BUSY_TICK ISO-TP frames */
-    if ((app->mac_ran || uds_work(app)) &&
-        app->tp_frames < APP_TP_FRAMES_PER_TICK - APP_TP_FRAMES_BUSY_TICK) {
-        app->tp_frames = APP_TP_FRAMES_PER_TICK - APP_TP_FRAMES_BUSY_TICK;
+     * either queues at most APP_TP_FRAMES_BUSY_TICK ISO-TP frames (APP_TP_FRAMES_EXEC_BUSY_TICK
+     * while a skill runs) */
+    const uint32_t busy_frames = (app->state == APP_EXECUTE) ? APP_TP_FRAMES_EXEC_BUSY_TICK
+                                                             : APP_TP_FRAMES_BUSY_TICK;
+    if ((app->mac_ran || uds_work(app)) && app->tp_frames < APP_TP_FRAMES_PER_TICK - busy_frames) {
+        app->tp_frames = APP_TP_FRAMES_PER_TICK - busy_frames;
     }
     uds_server_poll(&app->uds, app->now_ms);
     uds_release_held(app);
@@ -573,6 +575,10 @@ static void control(app_t *app)
                                                    app->sens.pos_m[1], app->vel_mps[1], dt);
         }
         /* ideal (dynamics-compensated) drive: the device is m_d with zero command */
+    } else if (app->state == APP_EXECUTE && app->exec_starting) {
+        /* the tick that started the run did its checks and per-run constants: the run's first
+         * step starts from the next tick's sample (a zero request here, as in IDLE) */
+        app->exec_starting = false;
     } else if (app->state == APP_EXECUTE) {
         exec_meas_t m;
         m.pos_m[0] = app->sens.pos_m[0];

@@ -59,6 +59,11 @@
 #ifndef APP_TP_FRAMES_EXEC_TICK
 #define APP_TP_FRAMES_EXEC_TICK 5u
 #endif
+/* ... and in an EXECUTE tick that verified a MAC or did the server's work: none (the control
+ * path and either one take the budget; the frames leave in the next tick). */
+#ifndef APP_TP_FRAMES_EXEC_BUSY_TICK
+#define APP_TP_FRAMES_EXEC_BUSY_TICK 0u
+#endif
 #define APP_RESET_TX_WAIT_MS 100u /* ECUReset: longest wait for the response to leave */
 #define APP_STATUS_PERIOD_MS 10u
 #define APP_IDLE_TELEMETRY_PERIOD_MS 100u
@@ -170,7 +175,8 @@ struct app {
     uint8_t active_slot;
     uint8_t seq_step;
     bool exec_done;
-    bool exec_saturated;           /* this tick's exec_tick saturated (FS_ERR_FIXED_OVERFLOW) */
+    bool exec_starting;  /* the run was started in this tick: its first step is the next tick's */
+    bool exec_saturated; /* this tick's exec_tick saturated (FS_ERR_FIXED_OVERFLOW) */
     uint32_t exec_saturated_ticks; /* ticks whose exec_tick saturated, since power-up */
     uint32_t fault_fast_until_ms;  /* in FAULT: the telemetry at the host's rate until then */
     saf_config_t saf_cfg;

@@ -105,6 +105,7 @@ uint8_t app_run_start(app_t *app, const app_run_request_t *req)
     app->active_slot = req->step[0].slot;
     app->seq_step = 0u;
     app->exec_done = false;
+    app->exec_starting = true;
     (void)app_event(app, APP_EV_EXECUTE);
     return UDS_NRC_OK;
 }
