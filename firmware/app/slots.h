@@ -55,8 +55,8 @@
 #define SLOTS_FLASH_UNITS_PER_TICK 2u
 #endif
 /* Units of a read-back's record read (nvm_read_run: its header, or NVM_READ_CHUNK bytes read
- * and added to the record's CRC, ~1,000 instructions on the M4F) per tick while RequestUpload
- * waits. */
+ * and added to the record's CRC, ~10 instructions a byte on the M4F) per tick while
+ * RequestUpload waits. */
 #ifndef SLOTS_READ_UNITS_PER_TICK
 #define SLOTS_READ_UNITS_PER_TICK 1u
 #endif

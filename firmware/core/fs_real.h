@@ -26,7 +26,21 @@ typedef float fs_real_t;
 #define fs_cos cosf
 #define fs_asin asinf
 #define fs_fabs fabsf
+#if defined(__arm__) && !defined(__ARM_FP)
+/* A core without an FPU (the Cortex-M3): isfinite would be two software compares; the test of
+ * the exponent field is the same and takes three instructions. */
+#include <stdint.h>
+#include <string.h>
+static inline int fs_isfinite_f32_bits(float x)
+{
+    uint32_t b;
+    memcpy(&b, &x, sizeof b);
+    return (b & 0x7F800000u) != 0x7F800000u;
+}
+#define fs_isfinite(x) fs_isfinite_f32_bits(x)
+#else
 #define fs_isfinite(x) isfinite(x)
+#endif
 #define FS_REAL_INF HUGE_VALF
 #else
 typedef double fs_real_t;

@@ -94,7 +94,9 @@ typedef struct {
 } skill_parser_t;
 #define SKILL_PARSE_CRC_BYTES 32u
 #define SKILL_PARSE_F64_PER_UNIT 4u
+#ifndef SKILL_PARSE_INIT_KERNELS
 #define SKILL_PARSE_INIT_KERNELS 8u /* kernels of a dmp_model_init pass a unit */
+#endif
 
 /** Start a parse of buf[0..len) into *out (FS_ERR_NULL_ARG at once for NULL). */
 void skill_parse_begin(skill_parser_t *p, const uint8_t *buf, uint32_t len, skill_t *out);

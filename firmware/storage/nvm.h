@@ -131,7 +131,9 @@ bool nvm_write_run(nvm_writer_t *w, uint32_t max_units);
  *  The CRC is re-checked on the data read. */
 nvm_status_t nvm_read(const nvm_t *n, uint16_t slot, uint8_t *buf, uint32_t cap, uint32_t *len);
 
+#ifndef NVM_READ_CHUNK
 #define NVM_READ_CHUNK 128u /* payload bytes a unit of nvm_read_run reads and checks */
+#endif
 
 /** nvm_read in slices (nvm_read_begin, then nvm_read_run until it returns true): the same checks
  *  and result, a unit of work per step (the header, or NVM_READ_CHUNK bytes of the payload read
