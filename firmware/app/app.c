@@ -575,10 +575,9 @@ static void control(app_t *app)
                                                    app->sens.pos_m[1], app->vel_mps[1], dt);
         }
         /* ideal (dynamics-compensated) drive: the device is m_d with zero command */
-    } else if (app->state == APP_EXECUTE && app->exec_starting) {
-        /* the tick that started the run did its checks and per-run constants: the run's first
-         * step starts from the next tick's sample (a zero request here, as in IDLE) */
-        app->exec_starting = false;
+    } else if (app->state == APP_EXECUTE && app_run_start_step(app)) {
+        /* the run's start, a slice a tick (its checks in the tick that took the request): no
+         * force yet, as in IDLE; the first step starts from the sample after the last slice */
     } else if (app->state == APP_EXECUTE) {
         exec_meas_t m;
         m.pos_m[0] = app->sens.pos_m[0];

@@ -175,8 +175,11 @@ struct app {
     uint8_t active_slot;
     uint8_t seq_step;
     bool exec_done;
-    bool exec_starting;  /* the run was started in this tick: its first step is the next tick's */
-    bool exec_saturated; /* this tick's exec_tick saturated (FS_ERR_FIXED_OVERFLOW) */
+    bool exec_starting; /* a run's start in slices (exec_start_run, a slice a tick, no force) */
+    uint32_t exec_start_tick; /* the tick that accepted it (its checks: no slice in it) */
+    uint8_t
+        run_start_nrc; /* its outcome for a pending RUN_SKILL/RUN_SEQUENCE start (0x78 meanwhile) */
+    bool exec_saturated;           /* this tick's exec_tick saturated (FS_ERR_FIXED_OVERFLOW) */
     uint32_t exec_saturated_ticks; /* ticks whose exec_tick saturated, since power-up */
     uint32_t fault_fast_until_ms;  /* in FAULT: the telemetry at the host's rate until then */
     saf_config_t saf_cfg;
@@ -196,6 +199,10 @@ bool app_fw_self_test_and_confirm(app_t *app);
  *  one place a MAC and freshness check of the request sits. Today every request passes (a run
  *  needs no SecurityAccess level, docs/protocol.md). Returns a UDS NRC (0 authorised). */
 uint8_t app_run_authorize(const app_t *app, const app_run_request_t *req);
+
+/** One slice of an accepted run's start (exec_start_run) while it runs: true if there was one
+ *  (the tick's control commands no force); a refusal ends the run (last_run_status). */
+bool app_run_start_step(app_t *app);
 
 /** Handle the UDS hooks (app_uds.c): fills an uds_app_t bound to app. */
 void app_uds_bind(app_t *app, uds_app_t *out);

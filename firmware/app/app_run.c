@@ -98,14 +98,42 @@ uint8_t app_run_start(app_t *app, const app_run_request_t *req)
         app->exec_run_cfg.pfc.limits[a].force_max_N = app->cfg.saf.lim.axis[a].force_max_N;
     }
     app->exec_run_cfg.pfc.dt_s = APP_TICK_S;
-    if (exec_start(&app->exec_run_cfg, &app->exec, steps, req->n_steps, app->sens.pos_m[1]) !=
-        FS_OK) {
+    const fs_status_t rc = exec_start_begin(&app->exec_run_cfg, &app->exec, steps, req->n_steps,
+                                            app->sens.pos_m[1]);
+    if (rc != FS_OK) {
+        app->last_run_status = (uint16_t)rc;
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
     app->active_slot = req->step[0].slot;
     app->seq_step = 0u;
     app->exec_done = false;
+    /* the steps' constants and the first step's start follow a slice a tick (app_run_start_step) */
     app->exec_starting = true;
+    app->exec_start_tick =
+        app->tick; /* this tick's work was the checks: the slices from the next */
+    app->run_start_nrc = UDS_NRC_RESPONSE_PENDING;
     (void)app_event(app, APP_EV_EXECUTE);
     return UDS_NRC_OK;
+}
+
+bool app_run_start_step(app_t *app)
+{
+    if (!app->exec_starting) {
+        return false;
+    }
+    if (app->tick == app->exec_start_tick) {
+        return true;
+    }
+    bool done = false;
+    const fs_status_t rc = exec_start_run(&app->exec_run_cfg, &app->exec, &done);
+    if (rc != FS_OK) { /* a scale beyond the fixed-point formats (3xx): the run does not start */
+        app->last_run_status = (uint16_t)rc;
+        app->exec_starting = false;
+        app->run_start_nrc = UDS_NRC_REQUEST_OUT_OF_RANGE;
+        (void)app_event(app, APP_EV_STOP);
+    } else if (done) {
+        app->exec_starting = false;
+        app->run_start_nrc = UDS_NRC_OK;
+    }
+    return true;
 }

@@ -23,6 +23,10 @@ bool app_event(app_t *app, app_event_t ev)
         break;
     case APP_IDLE:
     case APP_FAULT:
+        if (app->exec_starting) { /* stopped or faulted before its first step */
+            app->exec_starting = false;
+            app->run_start_nrc = UDS_NRC_CONDITIONS_NOT_CORRECT;
+        }
         if (next == APP_IDLE) {
             app->seq_step = 0u;
             app->exec_done = false;

@@ -379,7 +379,9 @@ static uint8_t routine_run(app_t *app, uint8_t sub, uint16_t rid, const uint8_t 
     if (sub == UDS_ROUTINE_START) {
         app_run_request_t req;
         const uint8_t nrc = run_from_routine(rid, d, len, &req);
-        return nrc != UDS_NRC_OK ? nrc : app_run_start(app, &req);
+        const uint8_t started = (nrc != UDS_NRC_OK) ? nrc : app_run_start(app, &req);
+        /* answered once the start's slices are done (resume): its 3xx refusal comes then */
+        return (started == UDS_NRC_OK && app->exec_starting) ? UDS_NRC_RESPONSE_PENDING : started;
     }
     if (sub == UDS_ROUTINE_STOP) {
         if (app->state != APP_EXECUTE) {
@@ -545,10 +547,16 @@ static uint8_t security_key(void *ctx, uint8_t level, const uint8_t *key, uint16
     return nrc;
 }
 
-/* A sendKey's check or the motion key's derivation, APP_SEC_ROUNDS_PER_TICK rounds a tick. */
+/* A run's start (its slices run in the control tick), a sendKey's check or the motion key's
+ * derivation (APP_SEC_ROUNDS_PER_TICK rounds a tick). */
 static uint8_t resume(void *ctx, uint8_t sid, uint16_t arg)
 {
     app_t *app = ctx;
+    if (sid == UDS_SID_ROUTINE) {
+        return (arg == UDS_RID_RUN_SKILL || arg == UDS_RID_RUN_SEQUENCE)
+                   ? app->run_start_nrc
+                   : UDS_NRC_CONDITIONS_NOT_CORRECT;
+    }
     if (sid == UDS_SID_WDBI && arg == DID_MOTION_KEY) {
         return app_motion_key_run(app, APP_SEC_ROUNDS_PER_TICK);
     }

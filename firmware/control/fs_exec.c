@@ -82,16 +82,18 @@ static fs_status_t exec_begin_step(exec_state_t *st, fs_real_t dt_s)
 }
 
 #ifdef FS_EXEC_FIXED
-/* Step i's per-run constants and starting state from its fixed-point model (exec_start). */
-static fs_status_t exec_prepare_step(exec_state_t *st, uint8_t i)
+/* Part part (0, 1) of step i's per-run constants and starting state from its fixed-point model
+ * (exec_start_run: a part a call, each a bounded piece of software double on the M3): the force
+ * DMP's, then the periodic and y DMPs' and the starting state. */
+static fs_status_t exec_prepare_step(exec_state_t *st, uint8_t i, uint8_t part)
 {
     const exec_step_t *s = &st->steps[i];
     const dmpfx_model_t *m = s->model_fx;
     dmpfx_run_t *run = &st->run[i];
-    fs_status_t rc = dmpfx_run_init(m, (double)s->goal_scale, (double)s->time_scale, run);
-    if (rc == FS_OK) {
-        rc = dmpfx_run_periodic(m, (double)s->amplitude_scale, run);
+    if (part == 0u) {
+        return dmpfx_run_force(m, (double)s->goal_scale, (double)s->time_scale, run);
     }
+    fs_status_t rc = dmpfx_run_periodic(m, (double)s->amplitude_scale, run);
     if (rc == FS_OK) {
         rc = dmpfx_run_path(m, (double)s->path_scale, run);
     }
@@ -229,8 +231,8 @@ static void exec_contact_reset(exec_state_t *st)
     st->contact_lost = 0u;
 }
 
-fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
-                       uint8_t n_steps, fs_real_t y_hold_m)
+fs_status_t exec_start_begin(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
+                             uint8_t n_steps, fs_real_t y_hold_m)
 {
     if (cfg == 0 || st == 0 || steps == 0) {
         return FS_ERR_NULL_ARG;
@@ -290,15 +292,34 @@ fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_st
     st->y_ref_m = y_hold_m;
     st->y_ref_vel_mps = FS_R(0.0);
     st->start_pending = 1u;
+    st->prepared = 0u;
     exec_contact_reset(st);
-    rc = exec_law_reset(cfg, st);
+    return exec_law_reset(cfg, st);
+}
+
+fs_status_t exec_start_run(const exec_config_t *cfg, exec_state_t *st, bool *done)
+{
+    *done = false;
 #ifdef FS_EXEC_FIXED
-    /* every step's constants here: a later switch only selects them and cannot fail */
-    for (uint8_t i = 0u; rc == FS_OK && i < n_steps; i++) {
-        rc = exec_prepare_step(st, i);
+    /* every step's constants before the run: a later switch only selects them, cannot fail */
+    if (st->prepared < 2u * st->n_steps) {
+        const uint8_t p = st->prepared++;
+        return exec_prepare_step(st, (uint8_t)(p / 2u), (uint8_t)(p % 2u));
     }
 #endif
-    return (rc == FS_OK) ? exec_begin_step(st, cfg->pfc.dt_s) : rc;
+    *done = true;
+    return exec_begin_step(st, cfg->pfc.dt_s);
+}
+
+fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
+                       uint8_t n_steps, fs_real_t y_hold_m)
+{
+    fs_status_t rc = exec_start_begin(cfg, st, steps, n_steps, y_hold_m);
+    bool done = false;
+    while (rc == FS_OK && !done) {
+        rc = exec_start_run(cfg, st, &done);
+    }
+    return rc;
 }
 
 fs_real_t exec_object_force(const exec_object_t *obj, fs_real_t p_m)

@@ -40,6 +40,7 @@
 #ifndef FS_EXEC_H
 #define FS_EXEC_H
 
+#include <stdbool.h>
 #include <stdint.h>
 #include "dmp.h"
 #include "fs_real.h"
@@ -67,6 +68,8 @@
 #include "pfcfx.h"
 #define exec_config_default exec_config_default_fx
 #define exec_start exec_start_fx
+#define exec_start_begin exec_start_begin_fx
+#define exec_start_run exec_start_run_fx
 #define exec_object_force exec_object_force_fx
 #define exec_object_deformation exec_object_deformation_fx
 #define exec_tick exec_tick_fx
@@ -179,6 +182,7 @@ typedef struct {
     fs_real_t y_ref_m;        /* y_d = y_base + p */
     fs_real_t y_ref_vel_mps;  /* yd_d */
     uint8_t start_pending;    /* 1 until the first tick has measured the contact force */
+    uint8_t prepared;         /* parts of the steps' constants exec_start_run derived (2 a step) */
     fs_real_t surface_m;      /* the surface the reference is built on */
     /* the running skill's contact wait (skill_t.contact_threshold_N > 0) */
     fs_real_t contact_rate;   /* the phase rate, 0..1 (1 without a contact wait) */
@@ -198,6 +202,14 @@ void exec_config_default(exec_config_t *cfg);
  *  derives its constants (3xx codes: a scale or gain that does not fit its Q format). */
 fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
                        uint8_t n_steps, fs_real_t y_hold_m);
+
+/** exec_start in slices, for a caller that bounds its work a tick: the checks, the sequence
+ *  loaded and the law's configuration (exec_start_begin, the same codes), then each
+ *  exec_start_run derives one of the two parts of a step's constants (the fixed-point build; 3xx
+ *  codes) or, once all are, starts the first step and sets *done. Nothing runs before *done. */
+fs_status_t exec_start_begin(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
+                             uint8_t n_steps, fs_real_t y_hold_m);
+fs_status_t exec_start_run(const exec_config_t *cfg, exec_state_t *st, bool *done);
 
 /** Force of the object model at deformation p (0 for p <= 0). */
 fs_real_t exec_object_force(const exec_object_t *obj, fs_real_t p_m);

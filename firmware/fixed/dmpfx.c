@@ -427,6 +427,16 @@ bool dmpfx_bound_run(dmpfx_conv_t *c, uint32_t max_units)
 fs_status_t dmpfx_run_init(const dmpfx_model_t *m, double goal_scale, double time_scale,
                            dmpfx_run_t *run)
 {
+    fs_status_t st = dmpfx_run_force(m, goal_scale, time_scale, run);
+    if (st == FS_OK) {
+        st = dmpfx_run_periodic(m, 1.0, run);
+    }
+    return (st == FS_OK) ? dmpfx_run_path(m, 1.0, run) : st;
+}
+
+fs_status_t dmpfx_run_force(const dmpfx_model_t *m, double goal_scale, double time_scale,
+                            dmpfx_run_t *run)
+{
     if (m == NULL || run == NULL) {
         return FS_ERR_NULL_ARG;
     }
@@ -465,11 +475,7 @@ fs_status_t dmpfx_run_init(const dmpfx_model_t *m, double goal_scale, double tim
     run->phase_inc = fs_num_turn_inc(k / DMPFX_TWO_PI);
     run->amplitude_q24 = 0;
     run->amplitude_scale = 1.0;
-    st = fx_from_double(g, 24u, (int32_t)lim_q24, &run->goal_q24);
-    if (st == FS_OK) {
-        st = dmpfx_run_periodic(m, 1.0, run);
-    }
-    return (st == FS_OK) ? dmpfx_run_path(m, 1.0, run) : st;
+    return fx_from_double(g, 24u, (int32_t)lim_q24, &run->goal_q24);
 }
 
 fs_status_t dmpfx_run_periodic(const dmpfx_model_t *m, double amplitude_scale, dmpfx_run_t *run)

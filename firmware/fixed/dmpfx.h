@@ -174,6 +174,12 @@ bool dmpfx_bound_run(dmpfx_conv_t *c, uint32_t max_units);
 fs_status_t dmpfx_run_init(const dmpfx_model_t *m, double goal_scale, double time_scale,
                            dmpfx_run_t *run);
 
+/** The force DMP's part of dmpfx_run_init (its checks and codes), leaving the periodic and y
+ *  constants to dmpfx_run_periodic and dmpfx_run_path: a caller that sets those itself, each in
+ *  its own slice. */
+fs_status_t dmpfx_run_force(const dmpfx_model_t *m, double goal_scale, double time_scale,
+                            dmpfx_run_t *run);
+
 /** The y DMP's constants in run (after dmpfx_run_init, which sets path scale 1): path scale
  *  finite and >= 0 (FS_ERR_SCALE_INVALID), |path_scale| times the nominal peaks within the
  *  Q8.24 headroom (FS_ERR_FIXED_OVERFLOW). A model without a y DMP: FS_OK, nothing to set. */

@@ -249,6 +249,9 @@ static uint16_t svc_routine(uds_server_t *srv, const uint8_t *req, uint16_t len,
     uint16_t n = 0u;
     const uint8_t nrc = srv->app.routine(srv->app.ctx, sub, rid, &req[4], (uint16_t)(len - 4u),
                                          &resp[4], (uint16_t)(cap - 4u), &n);
+    if (nrc == UDS_NRC_RESPONSE_PENDING && sub == UDS_ROUTINE_START) {
+        pend(srv, req[0], rid); /* the final response (no status record) from the resume hook */
+    }
     if (nrc != UDS_NRC_OK) {
         return negative(resp, req[0], nrc);
     }
@@ -511,7 +514,8 @@ void uds_server_after_response(uds_server_t *srv)
     }
 }
 
-/* The final response of a pending sendKey or DID write (nrc from the resume hook). */
+/* The final response of a pending sendKey, DID write or routine start (nrc from the resume
+ * hook). */
 static uint16_t resumed_answer(uds_server_t *srv, uint8_t sid, uint8_t nrc, uint8_t *resp)
 {
     if (nrc != UDS_NRC_OK) {
@@ -523,9 +527,13 @@ static uint16_t resumed_answer(uds_server_t *srv, uint8_t sid, uint8_t nrc, uint
         resp[1] = (uint8_t)(srv->pending_arg + 1u); /* the sendKey subfunction */
         return 2u;
     }
-    resp[1] = (uint8_t)(srv->pending_arg >> 8);
-    resp[2] = (uint8_t)srv->pending_arg;
-    return 3u;
+    uint16_t n = 1u;
+    if (sid == UDS_SID_ROUTINE) {
+        resp[n++] = UDS_ROUTINE_START;
+    }
+    resp[n++] = (uint8_t)(srv->pending_arg >> 8); /* the DID or the routine's id */
+    resp[n++] = (uint8_t)srv->pending_arg;
+    return n;
 }
 
 uint16_t uds_server_resume(uds_server_t *srv, uint8_t *resp, uint16_t resp_cap, uint32_t now_ms)
@@ -533,7 +541,8 @@ uint16_t uds_server_resume(uds_server_t *srv, uint8_t *resp, uint16_t resp_cap, 
     const uint8_t sid = srv->pending_sid;
     const bool hook = sid == UDS_SID_TRANSFER_EXIT || sid == UDS_SID_REQ_UPLOAD ||
                       sid == UDS_SID_TRANSFER_DATA ||
-                      ((sid == UDS_SID_SECURITY || sid == UDS_SID_WDBI) && srv->app.resume != NULL);
+                      ((sid == UDS_SID_SECURITY || sid == UDS_SID_WDBI || sid == UDS_SID_ROUTINE) &&
+                       srv->app.resume != NULL);
     if (!hook || resp_cap < 8u) {
         srv->pending_sid = 0u;
         return 0u;

@@ -83,9 +83,10 @@ typedef struct {
      *  and delays; it answers 0x35, 0x36 or 0x37). */
     uint8_t (*security_seed)(void *ctx, uint8_t level, uint8_t *seed, uint16_t cap, uint16_t *len);
     uint8_t (*security_key)(void *ctx, uint8_t level, const uint8_t *key, uint16_t len);
-    /** A sendKey (security_key) or a DID write (write_did) answered UDS_NRC_RESPONSE_PENDING
-     *  goes on: sid with its level or DID. The server answers 7F SID 78 first, calls this from
-     *  uds_server_resume until it returns anything else, then gives the final response. */
+    /** A sendKey (security_key), a DID write (write_did) or a routine start (routine)
+     *  answered UDS_NRC_RESPONSE_PENDING goes on: sid with its level, DID or routine id. The
+     *  server answers 7F SID 78 first, calls this from uds_server_resume until it returns
+     *  anything else, then gives the final response (a routine's without a status record). */
     uint8_t (*resume)(void *ctx, uint8_t sid, uint16_t arg);
     /** Download of size bytes into memory/slot address addr (0x34): accept or refuse. */
     uint8_t (*download_begin)(void *ctx, uint32_t addr, uint32_t size);

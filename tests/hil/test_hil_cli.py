@@ -152,7 +152,8 @@ def test_fault_force_stuck(hil_sim: Path, tmp_path: Path) -> None:
     assert np.all(seg == seg[0])
     assert np.std(d["f_contact"][300:600]) > 0.0
     # 300 ms is shorter than the device's stuck window (500 ticks): no fault, the skill runs out
-    assert s["fault_code"] == 0 and s["exec_ticks"] == 2000
+    # (its 2,000 steps after the tick that starts its first step)
+    assert s["fault_code"] == 0 and s["exec_ticks"] == 2001
 
 
 def test_fault_encoder_jump(hil_sim: Path, tmp_path: Path) -> None:

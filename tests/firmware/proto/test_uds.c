@@ -544,6 +544,40 @@ static void test_security_and_write_pending(void **state)
     assert_int_equal(resp[2], 0x02);
 }
 
+/* A routine start answered 0x78: the final response 71 01 RID from the resume hook (no status
+ * record), or its refusal; stop and results are never pending. */
+static void test_routine_start_pending(void **state)
+{
+    (void)state;
+    uint16_t n;
+    fk.routine_nrc = UDS_NRC_RESPONSE_PENDING;
+    fk.resume_left = 1u;
+    fk.resume_nrc = UDS_NRC_OK;
+    REQ(0x31, 0x01, 0x02, 0x01, 0x01);
+    EXPECT_NRC(0x31, UDS_NRC_RESPONSE_PENDING);
+    assert_int_equal(srv.pending_sid, 0x31);
+    assert_int_equal(uds_server_resume(&srv, resp, (uint16_t)sizeof resp, 1), 0);
+    assert_int_equal(fk.resume_sid, 0x31);
+    assert_int_equal(fk.resume_arg, 0x0201);
+    n = uds_server_resume(&srv, resp, (uint16_t)sizeof resp, 2);
+    assert_int_equal(n, 4);
+    assert_int_equal(resp[0], 0x71);
+    assert_int_equal(resp[1], 0x01);
+    assert_int_equal(resp[2], 0x02);
+    assert_int_equal(resp[3], 0x01);
+    assert_int_equal(srv.pending_sid, 0);
+    /* refused at the end with its NRC */
+    fk.resume_nrc = UDS_NRC_REQUEST_OUT_OF_RANGE;
+    REQ(0x31, 0x01, 0x02, 0x01, 0x01);
+    EXPECT_NRC(0x31, UDS_NRC_RESPONSE_PENDING);
+    n = uds_server_resume(&srv, resp, (uint16_t)sizeof resp, 3);
+    EXPECT_NRC(0x31, UDS_NRC_REQUEST_OUT_OF_RANGE);
+    /* a stop answered 0x78 is not kept pending */
+    REQ(0x31, 0x02, 0x02, 0x01);
+    EXPECT_NRC(0x31, UDS_NRC_RESPONSE_PENDING);
+    assert_int_equal(srv.pending_sid, 0);
+}
+
 static void test_block_counter_wraps(void **state)
 {
     (void)state;
@@ -593,6 +627,7 @@ int main(void)
         cmocka_unit_test_setup(test_routine_control, setup),
         cmocka_unit_test_setup(test_download_upload, setup),
         cmocka_unit_test_setup(test_security_and_write_pending, setup),
+        cmocka_unit_test_setup(test_routine_start_pending, setup),
         cmocka_unit_test_setup(test_block_counter_wraps, setup),
         cmocka_unit_test_setup(test_tester_present, setup),
         cmocka_unit_test_setup(test_transfer_exit_pending, setup),
