@@ -21,8 +21,9 @@
  * cm_port_mark_begin and cm_port_mark_end (the counter check's calibration).
  * log=FILE also writes every executed instruction there ("pc symbol", the exactness check's
  * stream: bench/qemu_tick.sh compares it with the one-instruction trace's).
- * Arguments (key=value): out=FILE, mode=ticks|count, log=FILE, dmp=ERE, law=NAME, commit=ERE,
- * softf=ERE, chk=ERE (POSIX extended regular expressions, searched in the symbol name as awk's
+ * limit=N stops counting after N instructions (out then ends with "limit N").
+ * Arguments (key=value): out=FILE, mode=ticks|count, log=FILE, limit=N, dmp=ERE, law=NAME,
+ * commit=ERE, softf=ERE, chk=ERE (POSIX extended regular expressions, searched in the symbol name as awk's
  * `s ~ RE`; an absent one matches nothing). */
 #define _POSIX_C_SOURCE 200809L /* strdup */
 #include "qemu_plugin_api.h"
@@ -60,17 +61,26 @@ typedef struct {
     int kind; /* cm_port_mark_KIND: its index, else -1 */
 } sym_t;
 
+enum {
+    I_OTHER,
+    I_CALL,
+    I_RET
+}; /* an instruction's control transfer, as the ISR tracking needs */
+
 typedef struct {
     uint64_t addr;
     int32_t sym;
-    int used;
+    uint8_t size; /* bytes */
+    uint8_t xfer; /* I_CALL (bl, blx), I_RET (bx lr, pop/ldm/ldr of pc from the stack) or I_OTHER */
+    uint8_t used;
 } insn_t;
 
 static sym_t g_syms[MAX_SYMS];
 static uint32_t g_n_syms;
 static insn_t *g_insns; /* INSN_HASH entries */
 static FILE *g_out;
-static FILE *g_log; /* log=FILE: every executed instruction, "pc symbol" */
+static FILE *g_log;                    /* log=FILE: every executed instruction, "pc symbol" */
+static uint64_t g_limit, g_n_executed; /* limit=N: stop after N instructions (0: never) */
 static int g_count_mode;
 typedef struct {
     regex_t re;
@@ -84,14 +94,21 @@ typedef struct {
     int inb, done, inboot, ininit, inpart, indmp, inisr, inchk, dmp, cmt;
     uint64_t c, part, dpart, bc, ba, lc, lp, ld, ldp, lcm;
     uint64_t chk_total, chk_tick, chk_ticks, chk_max;
-    int32_t prev, last, bprev, initcaller, isrret, caller, dcaller, chkcaller;
+    int32_t prev, last, bprev, initcaller, caller, dcaller, chkcaller;
 } acct_t;
+
+/* The interrupts taken inside a tick: the calls made by their code (return addresses) and, per
+ * nested exception, how many of them were open when it was taken. */
+#define ISR_DEPTH 64
+static uint64_t g_isr_calls[ISR_DEPTH];
+static uint32_t g_n_isr_calls;
+static uint32_t g_isr_base[ISR_DEPTH], g_n_isr;
+static const insn_t *g_prev_insn; /* the instruction executed before the current one */
 
 static acct_t g_a = {.prev = -1,
                      .last = -1,
                      .bprev = -1,
                      .initcaller = -1,
-                     .isrret = -1,
                      .caller = -1,
                      .dcaller = -1,
                      .chkcaller = -1};
@@ -152,6 +169,27 @@ static int32_t sym_id(const char *name)
     return (int32_t)g_n_syms++;
 }
 
+/* Thumb-2: bl, blx Rm -> I_CALL; bx lr, pop {..pc}, pop.w {..pc}, ldr pc, [sp], #4 -> I_RET (an
+ * exception return is one of them, reached with no call of the handler's code open). */
+static uint8_t insn_xfer(const uint8_t *d, size_t n)
+{
+    const unsigned h1 = (unsigned)d[0] | ((unsigned)d[1] << 8);
+    if (n == 2u) {
+        if ((h1 & 0xFF87u) == 0x4780u) {
+            return I_CALL;
+        }
+        return (h1 == 0x4770u || (h1 & 0xFF00u) == 0xBD00u) ? (uint8_t)I_RET : (uint8_t)I_OTHER;
+    }
+    const unsigned h2 = n == 4u ? (unsigned)d[2] | ((unsigned)d[3] << 8) : 0u;
+    if (n == 4u && (h1 & 0xF800u) == 0xF000u && (h2 & 0xD000u) == 0xD000u) {
+        return I_CALL;
+    }
+    if (n == 4u && ((h1 == 0xE8BDu && (h2 & 0x8000u)) || (h1 == 0xF85Du && h2 == 0xFB04u))) {
+        return I_RET;
+    }
+    return I_OTHER;
+}
+
 /* The record of the instruction at addr (its symbol looked up at its first translation). */
 static insn_t *insn_at(uint64_t addr, const struct qemu_plugin_insn *insn)
 {
@@ -167,8 +205,11 @@ static insn_t *insn_at(uint64_t addr, const struct qemu_plugin_insn *insn)
             snprintf(unnamed, sizeof unnamed, "[%08llx]", (unsigned long long)addr);
             name = unnamed;
         }
+        const size_t n = qemu_plugin_insn_size(insn);
         r->used = 1;
         r->addr = addr;
+        r->size = (uint8_t)n;
+        r->xfer = n <= 4u ? insn_xfer(qemu_plugin_insn_data(insn), n) : (uint8_t)I_OTHER;
         r->sym = sym_id(name);
     }
     return r;
@@ -184,6 +225,7 @@ static void on_begin(acct_t *a)
     a->inb = 1;
     a->c = a->part = a->dpart = 0;
     a->inpart = a->dmp = a->indmp = a->inisr = a->cmt = 0;
+    g_n_isr = g_n_isr_calls = 0;
 }
 
 /* cm_port_mark_end: the tick's counts are kept until its kind's mark; a skill check ends at the
@@ -262,8 +304,36 @@ static void boot_insn(acct_t *a, int32_t s, uint32_t f)
     }
 }
 
+
+/* The interrupts inside a tick, exactly: one is taken when its *_Handler runs from elsewhere than
+ * its own code or a return into it; it ends at its exception return (a return with none of its
+ * calls open), whatever instruction of the interrupted code comes next. 1 while in one. */
+static int isr_track(acct_t *a, const insn_t *cur, uint32_t f)
+{
+    const insn_t *p = g_prev_insn;
+    int resumed = 0;
+    if (g_n_isr > 0 && p != NULL && p->xfer == I_CALL && g_n_isr_calls < ISR_DEPTH) {
+        g_isr_calls[g_n_isr_calls++] = p->addr + p->size;
+    } else if (g_n_isr > 0 && p != NULL && p->xfer == I_RET && cur->addr != p->addr + p->size) {
+        if (g_n_isr_calls > g_isr_base[g_n_isr - 1u]) {
+            if (cur->addr == g_isr_calls[g_n_isr_calls - 1u]) {
+                g_n_isr_calls--;
+                resumed = 1;
+            }
+        } else {
+            g_n_isr--; /* the exception return */
+            resumed = g_n_isr > 0;
+        }
+    }
+    if ((f & F_HANDLER) && !resumed && (p == NULL || p->sym != cur->sym) && g_n_isr < ISR_DEPTH) {
+        g_isr_base[g_n_isr++] = g_n_isr_calls;
+    }
+    a->inisr = g_n_isr > 0;
+    return a->inisr;
+}
+
 /* An instruction inside a counted tick. */
-static void tick_insn(acct_t *a, int32_t s, uint32_t f)
+static void tick_insn(acct_t *a, const insn_t *cur, int32_t s, uint32_t f)
 {
     a->c++;
     if (f & F_SOFTF) {
@@ -276,10 +346,8 @@ static void tick_insn(acct_t *a, int32_t s, uint32_t f)
     a->last = s;
     a->cmt |= (f & F_COMMIT) != 0;
     /* an interrupt taken inside the tick counts in the tick, not in a part it interrupts */
-    enter_leave(&a->inisr, &a->isrret, (f & F_HANDLER) != 0, s, a->prev);
-    if (a->inisr) {
-        a->prev = s;
-        return;
+    if (isr_track(a, cur, f)) {
+        return; /* prev stays the interrupted code's: a part's caller is never a handler */
     }
     const int was_in = a->inpart;
     enter_leave(&a->inpart, &a->caller, (f & (F_DMP | F_LAW)) != 0, s, a->prev);
@@ -313,10 +381,15 @@ static void count_insn(acct_t *a, uint32_t f)
     }
 }
 
+static void finish(void);
+
 static void on_insn(unsigned int vcpu, void *udata)
 {
     (void)vcpu;
     const int32_t s = ((const insn_t *)udata)->sym;
+    if (g_out == NULL) {
+        return;
+    }
     if (g_log != NULL) {
         fprintf(g_log, "%08llx %s\n", (unsigned long long)((const insn_t *)udata)->addr,
                 g_syms[s].name);
@@ -334,8 +407,12 @@ static void on_insn(unsigned int vcpu, void *udata)
     } else {
         boot_insn(a, s, y->flags);
         if (a->inb) {
-            tick_insn(a, s, y->flags);
+            tick_insn(a, (const insn_t *)udata, s, y->flags);
         }
+    }
+    g_prev_insn = (const insn_t *)udata;
+    if (g_limit != 0u && ++g_n_executed == g_limit) {
+        finish(); /* limit=N: the lines of the first N instructions, then "limit N" */
     }
 }
 
@@ -350,10 +427,12 @@ static void on_tb_trans(qemu_plugin_id_t id, struct qemu_plugin_tb *tb)
     }
 }
 
-static void on_qemu_exit(qemu_plugin_id_t id, void *udata)
+/* The soft-float lines, then the files closed (at qemu's exit or at limit=N). */
+static void finish(void)
 {
-    (void)id;
-    (void)udata;
+    if (g_out == NULL) {
+        return;
+    }
     if (!g_count_mode) {
         for (int k = 0; k < N_KINDS; k++) {
             for (uint32_t s = 0; s < g_n_syms; s++) {
@@ -364,12 +443,22 @@ static void on_qemu_exit(qemu_plugin_id_t id, void *udata)
             }
         }
     }
+    if (g_limit != 0u && g_n_executed == g_limit) {
+        fprintf(g_out, "limit %llu\n", (unsigned long long)g_limit);
+    }
     fclose(g_out);
     g_out = NULL;
     if (g_log != NULL) {
         fclose(g_log);
         g_log = NULL;
     }
+}
+
+static void on_qemu_exit(qemu_plugin_id_t id, void *udata)
+{
+    (void)id;
+    (void)udata;
+    finish();
 }
 
 /* Compile ere (if given) into re: 0, else -1 with a message. */
@@ -409,6 +498,8 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_
             commit = v;
         } else if (KEY("softf")) {
             softf = v;
+        } else if (KEY("limit")) {
+            g_limit = strtoull(v, NULL, 10);
         } else if (KEY("log")) {
             if ((g_log = fopen(v, "w")) == NULL) {
                 fprintf(stderr, "tick_plugin: cannot write %s\n", v);
