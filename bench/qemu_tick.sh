@@ -6,13 +6,23 @@
 # control law in fixed point, the rest of the application in software float).
 # 1. builds the images (toolchain cmake/arm-none-eabi.cmake, Release; size, heap and stack report);
 # 2. checks that a program calling malloc cannot link with the images' flags;
-# 3. checks the counter on cm_count_check (must count exactly 103 per marked region);
+# 3. checks the counter on cm_count_check (must count exactly 103 per marked region), and compares
+#    the two counters (below: the plugin and the one-instruction trace) on it and on the first
+#    1,000,000 instructions of fs_pil (its boot and IDLE ticks without a host: the same under
+#    -icount each run): the same instructions, the same lines;
 # 4. runs the product image fs_pil (`hil_sim pil`, the application's app_tick on the port of
-#    hal.h, with the plant linked in) with one instruction per translation block and the exec
-#    trace streamed through a fifo into awk (never stored), while bench/qemu/pil_session.py drives
-#    it over python-can's slcan interface: IDLE, a skill download, TEACH, an execution of
+#    hal.h, with the plant linked in) under qemu with the counter, while
+#    bench/qemu/pil_session.py drives it over python-can's slcan interface: IDLE, a skill
+#    download, TEACH, an execution of
 #    tests/vectors/engrave_n50_ridge_release.skill with a read-back (UDS upload) during it, a
-#    second one ended by host silence (FAULT), a firmware download through its transfer exit;
+#    second one ended by host silence (FAULT), a firmware download through its transfer exit.
+#    The counter: bench/qemu/tick_plugin.c, a qemu TCG plugin built here with the host's cc (qemu
+#    with normal chaining, the plugin called before every executed instruction, running the
+#    accounting of COUNT_AWK below itself: 12-14 s a target), or, with --profile / --focus (the
+#    per-function and per-address profiles are COUNT_AWK's), QEMU_TICK_COUNTER=trace, or a qemu
+#    that cannot load the plugin (one line to stderr), the one-instruction trace: one instruction
+#    per translation block and the exec log streamed through a fifo into awk (never stored;
+#    ~3 min a target);
 # 5. counts, per app_tick (between cm_port_mark_begin and cm_port_mark_end), all its
 #    instructions (with the interrupts taken meanwhile) and those of the DMP and control-law part
 #    (without them) (dmp_step and pfc_step with their
@@ -24,15 +34,15 @@
 #      softfloat_in_app_tick target=T state=S helpers=N calls= instructions=[: names]  (libgcc's
 #        __aeabi_d*/__aeabi_f*, __addsf3 & co. executed inside app_tick: none expected on the M4F)
 #      qemu_tick_duration target=T seconds=S
-#    --profile: then, per state, the top functions of its worst and of its smallest tick
-#    (bench/qemu/tick_profile.py over the QEMU_TICK_PROFILE files, below); --focus REGEX (implies
+#    --profile (the trace counter): then, per state, the top functions of its worst and of its
+#    smallest tick (bench/qemu/tick_profile.py over the QEMU_TICK_PROFILE files, below); --focus REGEX (implies
 #    --profile): also, per state, the tick where the functions matching REGEX ran the most
 #    instructions and those functions (e.g. the skill store and storage: '^(slots_|nvm_|skill_)').
 # Exit status 1 if a check fails or the DMP + control-law part exceeds its budget (M4F 850,
 # M3 1,250).
 set -euo pipefail
 
-usage() { echo "usage: $0 cortex-m4f|cortex-m3 [--build-dir DIR] [--exec-s S] [--fw-bytes N] [--skill FILE] [--profile] [--focus REGEX]" >&2; exit 2; }
+usage() { echo "usage: $0 cortex-m4f|cortex-m3 [--build-dir DIR] [--exec-s S] [--fw-bytes N] [--skill FILE] [--profile] [--focus REGEX]  (--profile, --focus: counted with the one-instruction trace)" >&2; exit 2; }
 [ $# -ge 1 ] || usage
 TARGET=$1; shift
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -67,7 +77,7 @@ HIL_SIM=${FORCESKILL_HIL_SIM:-$ROOT/build/hil_sim/hil_sim}
 SKILL=${SKILL_ARG:-$ROOT/tests/vectors/engrave_n50_ridge_release.skill}
 KERNELS=$(od -An -tu2 -j12 -N2 "$SKILL" | tr -d ' ')
 
-source "$ROOT/bench/qemu/one_insn.sh"   # ONE_INSN: qemu-system-arm's one instruction per block
+source "$ROOT/bench/qemu/one_insn.sh"   # ONE_INSN, TRACE_FILTER, plugin_build: the two counters
 
 echo "== building $TARGET images in $BUILD"
 cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/arm-none-eabi.cmake" \
@@ -98,25 +108,11 @@ else
   echo "heap poison check FAILED: link failed for another reason:"; cat "$WORK/heap.err"; exit 1
 fi
 
-# The counters (both exact, same lines):
-# - the plugin (default): bench/qemu/tick_plugin.c, a qemu TCG plugin built here with the host's cc;
-#   qemu runs with normal chaining (blocks of many instructions) and calls the plugin before each
-#   executed instruction, which runs COUNT_AWK's accounting below itself and writes ticks.txt;
+# The counters (both exact, same lines; bench/qemu/one_insn.sh):
+# - the plugin (default): bench/qemu/tick_plugin.c (qemu with normal chaining, the plugin called
+#   before each executed instruction; it runs COUNT_AWK's accounting below itself, writes ticks.txt);
 # - the one-instruction trace (--profile, QEMU_TICK_COUNTER=trace, or a qemu that cannot load the
-#   plugin): one instruction per translation block (ONE_INSN) and qemu's exec log (-d exec,nochain)
-#   streamed through a fifo into TRACE_FILTER then COUNT_AWK (never stored). TRACE_FILTER drops
-#   what the log holds besides executed instructions: under -icount an I/O instruction is logged,
-#   rewound ("cpu_io_recompile: rewound execution of TB") and logged again, and a block entered
-#   only to leave it for an interrupt is logged before "Stopped execution of TB chain": such a
-#   logged line is not an executed instruction. With stream=FILE it also writes "pc symbol" per
-#   instruction (the plugin's log=FILE format), with limit=N it stops after N instructions.
-TRACE_FILTER='function emit() { print held; n++
-                  if (stream != "") { split(held, f, " "); split(f[4], pc, "/")
-                                      print pc[2], (f[5] != "" ? f[5] : "[" pc[2] "]") > stream }
-                  if (limit && n >= limit) { have = 0; exit } }
-  /^Trace / { if (have) emit(); held = $0; have = 1; next }
-  /^cpu_io_recompile: rewound execution of TB/ || /^Stopped execution of TB chain/ { have = 0 }
-  END { if (have) emit() }'
+#   plugin): qemu's exec log through TRACE_FILTER then COUNT_AWK.
 COUNTER=${QEMU_TICK_COUNTER:-plugin}
 [ "$PROFILE" = 0 ] && [ -z "${QEMU_TICK_PROFILE:-}" ] || COUNTER=trace   # profiles: the trace
 PLUGIN=$WORK/tick_plugin.so
@@ -124,16 +120,13 @@ QEMU_CC=(qemu-system-arm -M $MACHINE -cpu $CPU -nographic -monitor none -serial 
          -semihosting-config enable=on,target=native -kernel "$IMG/cm_count_check.elf")
 cc_trace() { # FILE: the counter check's counts with the one-instruction trace
   rm -f "$WORK/cc.fifo"; mkfifo "$WORK/cc.fifo"
-  awk "$TRACE_FILTER" < "$WORK/cc.fifo" |
-    awk '/ cm_port_mark_begin$/ { inb = 1; c = 0; next }
-         / cm_port_mark_end$/   { if (inb) print c; inb = 0; next }
-         { if (inb) c++ }' > "$1" &
+  awk "$TRACE_FILTER" < "$WORK/cc.fifo" | awk "$REGION_AWK" > "$1" &
   local pid=$!
   "${QEMU_CC[@]}" "${ONE_INSN[@]}" -d exec,nochain -D "$WORK/cc.fifo" > "$WORK/cc.out" 2>&1
   wait $pid
 }
 if [ "$COUNTER" = plugin ]; then
-  if ! cc -std=c11 -O2 -fPIC -shared -fvisibility=hidden -o "$PLUGIN" "$ROOT/bench/qemu/tick_plugin.c"          2> "$WORK/plugin.err"; then
+  if ! plugin_build "$PLUGIN" 2> "$WORK/plugin.err"; then
     echo "qemu_tick: cannot build bench/qemu/tick_plugin.c ($(head -1 "$WORK/plugin.err")): counting with the one-instruction trace" >&2
     COUNTER=trace
   elif ! "${QEMU_CC[@]}" -plugin "$PLUGIN,mode=count,out=$WORK/cc.counts" > "$WORK/cc.out" 2>&1; then
@@ -157,9 +150,11 @@ fi
 
 echo "== the product image: $(basename "$SKILL") (N = $KERNELS), IDLE / download / EXECUTE / EXECUTE + read-back"
 # Per counted tick: kind, all instructions of app_tick, those inside dmp_step(_xy)/pfc_step (entered
-# from their caller, left when the caller's code runs again; an interrupt handler taken meanwhile,
-# from its *_Handler entry until the interrupted function runs again, is the CAN link's cost: in
-# the tick's total, not in the part), 1 if the DMP stepped (not after the
+# from their caller, left when the caller's code runs again; an interrupt handler taken meanwhile
+# is the CAN link's cost: in the tick's total, not in the part. The plugin follows each interrupt
+# from its *_Handler entry to its exception return, the return with none of the handler's calls
+# open; COUNT_AWK, with symbols only, until the interrupted function runs again: the same but
+# when the interrupt comes right after a call or a return, rare with one instruction per block), 1 if the DMP stepped (not after the
 # skill's end, when the end policy runs the law alone), those inside dmp_step(_xy) alone, 1 if the
 # tick worked on a download's commit (the application's download_end, which runs the parse, the
 # checks and the slot's write in slices, or skill_parse_run / skchk_* inlined into it).
