@@ -61,11 +61,12 @@ typedef struct {
     int kind; /* cm_port_mark_KIND: its index, else -1 */
 } sym_t;
 
+/* An instruction's control transfer, as the interrupt tracking needs it. */
 enum {
     I_OTHER,
     I_CALL,
     I_RET
-}; /* an instruction's control transfer, as the ISR tracking needs */
+};
 
 typedef struct {
     uint64_t addr;
