@@ -17,6 +17,8 @@
  *   boot total app_init                     per boot (Reset_Handler to the first counted tick)
  *   check total ticks max_per_tick          per skill check (skchk_*)
  *   softfloat KIND helper calls instructions  at exit, per kind and soft-float helper
+ *   isr_lost N                              at exit, if N ticks ended inside an interrupt (its
+ *                                           return missed: never expected)
  * mode=count instead writes, per region of cm_count_check, the instructions between
  * cm_port_mark_begin and cm_port_mark_end (the counter check's calibration).
  * log=FILE also writes every executed instruction there ("pc symbol", the exactness check's
@@ -105,6 +107,7 @@ static uint64_t g_isr_calls[ISR_DEPTH];
 static uint32_t g_n_isr_calls;
 static uint32_t g_isr_base[ISR_DEPTH], g_n_isr;
 static const insn_t *g_prev_insn; /* the instruction executed before the current one */
+static uint64_t g_isr_lost;       /* ticks ended inside an interrupt, stacks overflowed: 0 */
 
 static acct_t g_a = {.prev = -1,
                      .last = -1,
@@ -233,6 +236,9 @@ static void on_begin(acct_t *a)
  * first tick that ran none of it. */
 static void on_end(acct_t *a)
 {
+    if (a->inb && g_n_isr > 0) {
+        g_isr_lost++; /* the loop's code ends a tick: an interrupt still open was missed */
+    }
     if (a->inb) {
         a->done = 1;
         a->lc = a->c;
@@ -313,8 +319,12 @@ static int isr_track(acct_t *a, const insn_t *cur, uint32_t f)
 {
     const insn_t *p = g_prev_insn;
     int resumed = 0;
-    if (g_n_isr > 0 && p != NULL && p->xfer == I_CALL && g_n_isr_calls < ISR_DEPTH) {
-        g_isr_calls[g_n_isr_calls++] = p->addr + p->size;
+    if (g_n_isr > 0 && p != NULL && p->xfer == I_CALL) {
+        if (g_n_isr_calls < ISR_DEPTH) {
+            g_isr_calls[g_n_isr_calls++] = p->addr + p->size;
+        } else {
+            g_isr_lost++;
+        }
     } else if (g_n_isr > 0 && p != NULL && p->xfer == I_RET && cur->addr != p->addr + p->size) {
         if (g_n_isr_calls > g_isr_base[g_n_isr - 1u]) {
             if (cur->addr == g_isr_calls[g_n_isr_calls - 1u]) {
@@ -326,8 +336,12 @@ static int isr_track(acct_t *a, const insn_t *cur, uint32_t f)
             resumed = g_n_isr > 0;
         }
     }
-    if ((f & F_HANDLER) && !resumed && (p == NULL || p->sym != cur->sym) && g_n_isr < ISR_DEPTH) {
-        g_isr_base[g_n_isr++] = g_n_isr_calls;
+    if ((f & F_HANDLER) && !resumed && (p == NULL || p->sym != cur->sym)) {
+        if (g_n_isr < ISR_DEPTH) {
+            g_isr_base[g_n_isr++] = g_n_isr_calls;
+        } else {
+            g_isr_lost++;
+        }
     }
     a->inisr = g_n_isr > 0;
     return a->inisr;
@@ -402,6 +416,9 @@ static void on_insn(unsigned int vcpu, void *udata)
     } else if (y->flags & F_BEGIN) {
         on_begin(a);
     } else if (y->flags & F_END) {
+        if (a->inb) {
+            (void)isr_track(a, (const insn_t *)udata, y->flags); /* one taken right before it */
+        }
         on_end(a);
     } else if (y->kind >= 0) {
         on_kind(a, y->kind);
@@ -443,6 +460,9 @@ static void finish(void)
                 }
             }
         }
+    }
+    if (g_isr_lost > 0) {
+        fprintf(g_out, "isr_lost %llu\n", (unsigned long long)g_isr_lost);
     }
     if (g_limit != 0u && g_n_executed == g_limit) {
         fprintf(g_out, "limit %llu\n", (unsigned long long)g_limit);
