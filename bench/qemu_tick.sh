@@ -18,11 +18,10 @@
 #    second one ended by host silence (FAULT), a firmware download through its transfer exit.
 #    The counter: bench/qemu/tick_plugin.c, a qemu TCG plugin built here with the host's cc (qemu
 #    with normal chaining, the plugin called before every executed instruction, running the
-#    accounting of COUNT_AWK below itself: 12-14 s a target), or, with --profile / --focus (the
-#    per-function and per-address profiles are COUNT_AWK's), QEMU_TICK_COUNTER=trace, or a qemu
-#    that cannot load the plugin (one line to stderr), the one-instruction trace: one instruction
-#    per translation block and the exec log streamed through a fifo into awk (never stored;
-#    ~3 min a target);
+#    accounting of COUNT_AWK below itself, profiles included: 12-17 s a target), or, with
+#    QEMU_TICK_COUNTER=trace or a qemu that cannot load the plugin (one line to stderr), the
+#    one-instruction trace: one instruction per translation block and the exec log streamed
+#    through a fifo into awk (never stored; 3-4.5 min a target);
 # 5. counts, per app_tick (between cm_port_mark_begin and cm_port_mark_end), all its
 #    instructions (with the interrupts taken meanwhile) and those of the DMP and control-law part
 #    (without them) (dmp_step and pfc_step with their
@@ -34,15 +33,15 @@
 #      softfloat_in_app_tick target=T state=S helpers=N calls= instructions=[: names]  (libgcc's
 #        __aeabi_d*/__aeabi_f*, __addsf3 & co. executed inside app_tick: none expected on the M4F)
 #      qemu_tick_duration target=T seconds=S
-#    --profile (the trace counter): then, per state, the top functions of its worst and of its
-#    smallest tick (bench/qemu/tick_profile.py over the QEMU_TICK_PROFILE files, below); --focus REGEX (implies
+#    --profile: then, per state, the top functions of its worst and of its smallest tick
+#    (bench/qemu/tick_profile.py over the QEMU_TICK_PROFILE files, below); --focus REGEX (implies
 #    --profile): also, per state, the tick where the functions matching REGEX ran the most
 #    instructions and those functions (e.g. the skill store and storage: '^(slots_|nvm_|skill_)').
 # Exit status 1 if a check fails or the DMP + control-law part exceeds its budget (M4F 850,
 # M3 1,250).
 set -euo pipefail
 
-usage() { echo "usage: $0 cortex-m4f|cortex-m3 [--build-dir DIR] [--exec-s S] [--fw-bytes N] [--skill FILE] [--profile] [--focus REGEX]  (--profile, --focus: counted with the one-instruction trace)" >&2; exit 2; }
+usage() { echo "usage: $0 cortex-m4f|cortex-m3 [--build-dir DIR] [--exec-s S] [--fw-bytes N] [--skill FILE] [--profile] [--focus REGEX]" >&2; exit 2; }
 [ $# -ge 1 ] || usage
 TARGET=$1; shift
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -111,10 +110,9 @@ fi
 # The counters (both exact, same lines; bench/qemu/one_insn.sh):
 # - the plugin (default): bench/qemu/tick_plugin.c (qemu with normal chaining, the plugin called
 #   before each executed instruction; it runs COUNT_AWK's accounting below itself, writes ticks.txt);
-# - the one-instruction trace (--profile, QEMU_TICK_COUNTER=trace, or a qemu that cannot load the
-#   plugin): qemu's exec log through TRACE_FILTER then COUNT_AWK.
+# - the one-instruction trace (QEMU_TICK_COUNTER=trace, or a qemu that cannot load the plugin):
+#   qemu's exec log through TRACE_FILTER then COUNT_AWK.
 COUNTER=${QEMU_TICK_COUNTER:-plugin}
-[ "$PROFILE" = 0 ] && [ -z "${QEMU_TICK_PROFILE:-}" ] || COUNTER=trace   # profiles: the trace
 PLUGIN=$WORK/tick_plugin.so
 QEMU_CC=(qemu-system-arm -M $MACHINE -cpu $CPU -nographic -monitor none -serial null
          -semihosting-config enable=on,target=native -kernel "$IMG/cm_count_check.elf")
@@ -226,8 +224,7 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                if (inchk) { chk_total++; chk_tick++ }
                prev = s } }'
 if [ "$PROFILE" = 1 ] && [ -z "${QEMU_TICK_PROFILE:-}" ]; then QEMU_TICK_PROFILE=$WORK/prof; fi
-# QEMU_TICK_PROFILE=FILE (the trace counter only): also write the mean instructions per function of
-# an EXECUTE tick there,
+# QEMU_TICK_PROFILE=FILE: also write the mean instructions per function of an EXECUTE tick there,
 # per instruction address (hex, with its function) in FILE.pc, per function of the EXECUTE tick
 # with the largest DMP part in FILE.maxdmp, per function of the largest tick of each kind K in
 # FILE.max.K and of its smallest (a tick without bus traffic: the state's floor) in FILE.min.K,
@@ -240,15 +237,15 @@ CHK_RE='^skchk_(params|begin|run)_f32$'   # COUNT_AWK's skill check functions
 popt() { printf '%s' "${1//,/,,}"; }      # a value in qemu's -plugin option (commas doubled)
 start_pil() { # COUNTER TICKS [LIMIT STREAM]: hil_sim pil in the background (PIL_PID), its ticks.txt
   # lines into TICKS by COUNTER (plugin|trace; the trace's awk: CNT_PID); LIMIT: only the first
-  # LIMIT instructions, their "pc symbol" lines into STREAM
+  # LIMIT instructions, their "pc symbol" lines into STREAM; PROF, FOCUS_RE: the profiles
   local limit=${3:-0} stream=${4:-} qa=()
   CNT_PID=""
   if [ "$1" = plugin ]; then
-    qa=(--qemu-arg -plugin --qemu-arg "$(popt "$PLUGIN"),out=$(popt "$2"),limit=$limit${stream:+,log=$(popt "$stream")},dmp=$(popt "$DMP_RE"),law=$LAW,commit=$(popt "$COMMIT_RE"),softf=$(popt "$SOFTF_RE"),chk=$(popt "$CHK_RE")")
+    qa=(--qemu-arg -plugin --qemu-arg "$(popt "$PLUGIN"),out=$(popt "$2"),limit=$limit${stream:+,log=$(popt "$stream")},dmp=$(popt "$DMP_RE"),law=$LAW,commit=$(popt "$COMMIT_RE"),softf=$(popt "$SOFTF_RE"),chk=$(popt "$CHK_RE")${PROF:+,prof=$(popt "$PROF")}${FOCUS_RE:+,focus=$(popt "$FOCUS_RE")}")
   else
     rm -f "$WORK/trace.fifo"; mkfifo "$WORK/trace.fifo"
     awk -v limit="$limit" -v stream="$stream" "$TRACE_FILTER" < "$WORK/trace.fifo" |
-      awk -v prof="${QEMU_TICK_PROFILE:-}" -v FOCUS="${QEMU_TICK_FOCUS:-}" -v DMP="$DMP_RE" -v LAW="$LAW" \
+      awk -v prof="$PROF" -v FOCUS="$FOCUS_RE" -v DMP="$DMP_RE" -v LAW="$LAW" \
           -v COMMIT="$COMMIT_RE" -v SOFTF="$SOFTF_RE" -v CHK="$CHK_RE" "$COUNT_AWK" > "$2" &
     CNT_PID=$!
     qa=(--qemu-arg "${ONE_INSN[0]}" ${ONE_INSN[1]:+--qemu-arg "${ONE_INSN[1]}"}
@@ -260,6 +257,7 @@ start_pil() { # COUNTER TICKS [LIMIT STREAM]: hil_sim pil in the background (PIL
 }
 stop_pil() { kill -TERM "$PIL_PID" 2>/dev/null || true; wait "$PIL_PID" || true; PIL_PID=""; }
 status=0
+PROF=""; FOCUS_RE=""
 if [ "$COUNTER" = plugin ]; then
   # the plugin against the one-instruction trace on the product image: its first EXACT_N
   # instructions (the boot with an empty flash, then IDLE ticks; no host connected, -icount: the
@@ -280,6 +278,7 @@ if [ "$COUNTER" = plugin ]; then
   read -r _ BT BA < <(grep -m1 '^boot' "$WORK/exact.plugin")
   echo "counter comparison ok: fs_pil's first $EXACT_N instructions, the same with the plugin and the trace (boot total=$BT app_init=$BA, then $(grep -c '^idle' "$WORK/exact.plugin") IDLE ticks)"
 fi
+PROF=${QEMU_TICK_PROFILE:-}; FOCUS_RE=${QEMU_TICK_FOCUS:-}
 start_pil "$COUNTER" "$WORK/ticks.txt"
 for _ in $(seq 600); do grep -q "listening on" "$WORK/pil.out" && break; sleep 0.1; done
 PORT=$(sed -n 's/.*127.0.0.1:\([0-9]*\).*/\1/p' "$WORK/pil.out")

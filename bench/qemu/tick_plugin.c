@@ -24,8 +24,10 @@
  * log=FILE also writes every executed instruction there ("pc symbol", the exactness check's
  * stream: bench/qemu_tick.sh compares it with the one-instruction trace's).
  * limit=N stops counting after N instructions (out then ends with "limit N").
- * Arguments (key=value): out=FILE, mode=ticks|count, log=FILE, limit=N, dmp=ERE, law=NAME,
- * commit=ERE, softf=ERE, chk=ERE (POSIX extended regular expressions, searched in the symbol name as awk's
+ * prof=PREFIX (focus=ERE) also writes the profiles of bench/qemu_tick.sh's QEMU_TICK_PROFILE=PREFIX
+ * (QEMU_TICK_FOCUS=ERE) at exit, the files COUNT_AWK writes.
+ * Arguments (key=value): out=FILE, mode=ticks|count, log=FILE, limit=N, prof=PREFIX, focus=ERE,
+ * dmp=ERE, law=NAME, commit=ERE, softf=ERE, chk=ERE (POSIX extended regular expressions, searched in the symbol name as awk's
  * `s ~ RE`; an absent one matches nothing). */
 #define _POSIX_C_SOURCE 200809L /* strdup */
 #include "qemu_plugin_api.h"
@@ -72,6 +74,7 @@ enum {
 
 typedef struct {
     uint64_t addr;
+    uint64_t hp, tp; /* prof=: its executions in the current tick, summed over EXECUTE ticks */
     int32_t sym;
     uint8_t size; /* bytes */
     uint8_t xfer; /* I_CALL (bl, blx), I_RET (bx lr, pop/ldm/ldr of pc from the stack) or I_OTHER */
@@ -219,6 +222,152 @@ static insn_t *insn_at(uint64_t addr, const struct qemu_plugin_insn *insn)
     return r;
 }
 
+/* prof=PREFIX: the profiles of COUNT_AWK's QEMU_TICK_PROFILE=PREFIX (the same files, the same
+ * rules): per function, the instructions of the current tick (h; cleared with the soft-float
+ * counts at a kind's mark), their sums over EXECUTE ticks, and the copies of h kept for the tick
+ * of each kind with the most / the fewest instructions, for the EXECUTE tick with the largest
+ * DMP part and, with focus=ERE, for the tick of each kind whose matching functions ran most. */
+typedef struct {
+    uint32_t n;
+    uint32_t sym[MAX_SYMS];
+    uint64_t cnt[MAX_SYMS];
+} snap_t;
+static const char *g_prof;
+static ere_t g_re_focus;
+static uint64_t g_h[MAX_SYMS], g_tot[MAX_SYMS], g_nexec;
+static uint32_t g_h_touched[MAX_SYMS], g_n_h;
+static insn_t **g_hp_touched; /* INSN_HASH entries, with prof= */
+static uint32_t g_n_hp;
+static snap_t g_hm, g_hk[N_KINDS], g_hf[N_KINDS], g_hn[N_KINDS];
+static uint64_t g_maxdp, g_kmax[N_KINDS], g_fmax[N_KINDS], g_kmin[N_KINDS];
+static int g_kmin_set[N_KINDS];
+
+/* One instruction of a counted tick into h and hp. */
+static void prof_insn(insn_t *cur)
+{
+    const uint32_t s = (uint32_t)cur->sym;
+    if (g_h[s]++ == 0u) {
+        g_h_touched[g_n_h++] = s;
+    }
+    if (cur->hp++ == 0u && g_n_hp < INSN_HASH) {
+        g_hp_touched[g_n_hp++] = cur;
+    }
+}
+
+/* h (only the functions matching focus= if only_focus) into snap. */
+static void prof_snap(snap_t *snap, int only_focus)
+{
+    snap->n = 0;
+    for (uint32_t i = 0; i < g_n_h; i++) {
+        const uint32_t s = g_h_touched[i];
+        if (!only_focus || re_match(&g_re_focus, g_syms[s].name)) {
+            snap->sym[snap->n] = s;
+            snap->cnt[snap->n++] = g_h[s];
+        }
+    }
+}
+
+/* The tick of kind k just ended (lc instructions, ld: it stepped the DMP, ldp: its DMP part). */
+static void prof_tick(int k, uint64_t lc, uint64_t ld, uint64_t ldp)
+{
+    if (strcmp(KIND_NAMES[k], "execute") == 0) {
+        for (uint32_t i = 0; i < g_n_h; i++) {
+            g_tot[g_h_touched[i]] += g_h[g_h_touched[i]];
+        }
+        g_nexec++;
+        for (uint32_t i = 0; i < g_n_hp; i++) {
+            g_hp_touched[i]->tp += g_hp_touched[i]->hp;
+        }
+        if (ld && ldp > g_maxdp) {
+            g_maxdp = ldp;
+            prof_snap(&g_hm, 0);
+        }
+    }
+    if (lc > g_kmax[k]) {
+        g_kmax[k] = lc;
+        prof_snap(&g_hk[k], 0);
+    }
+    if (g_re_focus.set) {
+        uint64_t fc = 0;
+        for (uint32_t i = 0; i < g_n_h; i++) {
+            fc += re_match(&g_re_focus, g_syms[g_h_touched[i]].name) ? g_h[g_h_touched[i]] : 0u;
+        }
+        if (fc > g_fmax[k]) {
+            g_fmax[k] = fc;
+            prof_snap(&g_hf[k], 1);
+        }
+    }
+    if (!g_kmin_set[k] || lc < g_kmin[k]) {
+        g_kmin_set[k] = 1;
+        g_kmin[k] = lc;
+        prof_snap(&g_hn[k], 0);
+    }
+}
+
+/* h and hp cleared (at every kind's mark, as COUNT_AWK's delete h; delete hp). */
+static void prof_clear(void)
+{
+    for (uint32_t i = 0; i < g_n_h; i++) {
+        g_h[g_h_touched[i]] = 0;
+    }
+    g_n_h = 0;
+    for (uint32_t i = 0; i < g_n_hp; i++) {
+        g_hp_touched[i]->hp = 0;
+    }
+    g_n_hp = 0;
+}
+
+/* snap as "count symbol" lines into PREFIX SUFFIX (no file for a snapshot never taken). */
+static void prof_write_snap(const snap_t *snap, const char *suffix, int taken)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s%s", g_prof, suffix);
+    FILE *f = taken ? fopen(path, "w") : NULL;
+    if (f == NULL) {
+        return;
+    }
+    for (uint32_t i = 0; i < snap->n; i++) {
+        fprintf(f, "%llu %s\n", (unsigned long long)snap->cnt[i], g_syms[snap->sym[i]].name);
+    }
+    fclose(f);
+}
+
+/* The profile files, at exit. */
+static void prof_write(void)
+{
+    char path[4096];
+    FILE *f = g_nexec > 0 ? fopen(g_prof, "w") : NULL;
+    for (uint32_t s = 0; f != NULL && s < g_n_syms; s++) {
+        if (g_tot[s] > 0) {
+            fprintf(f, "%llu %s\n", (unsigned long long)(g_tot[s] / g_nexec), g_syms[s].name);
+        }
+    }
+    if (f != NULL) {
+        fclose(f);
+    }
+    snprintf(path, sizeof path, "%s.pc", g_prof);
+    f = g_nexec > 0 ? fopen(path, "w") : NULL;
+    for (uint32_t h = 0; f != NULL && h < INSN_HASH; h++) {
+        if (g_insns[h].used && g_insns[h].tp > 0) {
+            fprintf(f, "%.2f %08llx %s\n", (double)g_insns[h].tp / (double)g_nexec,
+                    (unsigned long long)g_insns[h].addr, g_syms[g_insns[h].sym].name);
+        }
+    }
+    if (f != NULL) {
+        fclose(f);
+    }
+    prof_write_snap(&g_hm, ".maxdmp", g_maxdp > 0);
+    for (int k = 0; k < N_KINDS; k++) {
+        char suffix[32];
+        snprintf(suffix, sizeof suffix, ".max.%s", KIND_NAMES[k]);
+        prof_write_snap(&g_hk[k], suffix, g_kmax[k] > 0);
+        snprintf(suffix, sizeof suffix, ".focus.%s", KIND_NAMES[k]);
+        prof_write_snap(&g_hf[k], suffix, g_fmax[k] > 0);
+        snprintf(suffix, sizeof suffix, ".min.%s", KIND_NAMES[k]);
+        prof_write_snap(&g_hn[k], suffix, g_kmin_set[k]);
+    }
+}
+
 /* cm_port_mark_begin: a counted tick starts (and the boot, if one runs, ends). */
 static void on_begin(acct_t *a)
 {
@@ -270,6 +419,9 @@ static void on_kind(acct_t *a, int k)
                 (unsigned long long)a->lp, (unsigned long long)a->ld, (unsigned long long)a->ldp,
                 (unsigned long long)a->lcm);
         a->done = 0;
+        if (g_prof != NULL) {
+            prof_tick(k, a->lc, a->ld, a->ldp);
+        }
         for (uint32_t i = 0; i < g_n_sf_touched; i++) {
             const uint32_t s = g_sf_touched[i];
             g_SFI[k][s] += g_sfi[s];
@@ -281,6 +433,9 @@ static void on_kind(acct_t *a, int k)
         g_sfc[g_sf_touched[i]] = 0;
     }
     g_n_sf_touched = 0;
+    if (g_prof != NULL) {
+        prof_clear();
+    }
 }
 
 /* Entered from its caller's code, left when the caller's code runs again. */
@@ -313,12 +468,13 @@ static void boot_insn(acct_t *a, int32_t s, uint32_t f)
 
 
 /* The interrupts inside a tick, exactly: one is taken when its *_Handler runs from elsewhere than
- * its own code or a return into it; it ends at its exception return (a return with none of its
- * calls open), whatever instruction of the interrupted code comes next. 1 while in one. */
+ * its own code or a return into it, or right after an exception return (tail-chained); it ends
+ * at its exception return (a return with none of its calls open), whatever instruction of the
+ * interrupted code comes next. 1 while in one. */
 static int isr_track(acct_t *a, const insn_t *cur, uint32_t f)
 {
     const insn_t *p = g_prev_insn;
-    int resumed = 0;
+    int resumed = 0, returned = 0;
     if (g_n_isr > 0 && p != NULL && p->xfer == I_CALL) {
         if (g_n_isr_calls < ISR_DEPTH) {
             g_isr_calls[g_n_isr_calls++] = p->addr + p->size;
@@ -334,9 +490,11 @@ static int isr_track(acct_t *a, const insn_t *cur, uint32_t f)
         } else {
             g_n_isr--; /* the exception return */
             resumed = g_n_isr > 0;
+            returned = 1;
         }
     }
-    if ((f & F_HANDLER) && !resumed && (p == NULL || p->sym != cur->sym)) {
+    /* a handler entered again right at its exception return: tail-chained, the same interrupt */
+    if ((f & F_HANDLER) && !resumed && (p == NULL || p->sym != cur->sym || returned)) {
         if (g_n_isr < ISR_DEPTH) {
             g_isr_base[g_n_isr++] = g_n_isr_calls;
         } else {
@@ -426,6 +584,9 @@ static void on_insn(unsigned int vcpu, void *udata)
         boot_insn(a, s, y->flags);
         if (a->inb) {
             tick_insn(a, (const insn_t *)udata, s, y->flags);
+            if (g_prof != NULL) {
+                prof_insn((insn_t *)udata);
+            }
         }
     }
     g_prev_insn = (const insn_t *)udata;
@@ -460,6 +621,9 @@ static void finish(void)
                 }
             }
         }
+    }
+    if (!g_count_mode && g_prof != NULL) {
+        prof_write();
     }
     if (g_isr_lost > 0) {
         fprintf(g_out, "isr_lost %llu\n", (unsigned long long)g_isr_lost);
@@ -500,7 +664,7 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_
                                            char **argv)
 {
     const char *out = NULL;
-    const char *dmp = NULL, *commit = NULL, *softf = NULL, *chk = NULL;
+    const char *dmp = NULL, *commit = NULL, *softf = NULL, *chk = NULL, *focus = NULL;
     (void)info;
     for (int i = 0; i < argc; i++) {
         const char *v = strchr(argv[i], '=');
@@ -526,6 +690,10 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_
                 fprintf(stderr, "tick_plugin: cannot write %s\n", v);
                 return -1;
             }
+        } else if (KEY("prof")) {
+            g_prof = v;
+        } else if (KEY("focus")) {
+            focus = v;
         } else if (KEY("chk")) {
             chk = v;
         } else {
@@ -539,11 +707,12 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_
         return -1;
     }
     if (re_set(&g_re_dmp, dmp) || re_set(&g_re_commit, commit) || re_set(&g_re_softf, softf) ||
-        re_set(&g_re_chk, chk)) {
+        re_set(&g_re_chk, chk) || re_set(&g_re_focus, focus)) {
         return -1;
     }
     g_insns = calloc(INSN_HASH, sizeof *g_insns);
-    if (g_insns == NULL) {
+    g_hp_touched = g_prof != NULL ? calloc(INSN_HASH, sizeof *g_hp_touched) : NULL;
+    if (g_insns == NULL || (g_prof != NULL && g_hp_touched == NULL)) {
         return -1;
     }
     qemu_plugin_register_vcpu_tb_trans_cb(id, on_tb_trans);
