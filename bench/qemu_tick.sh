@@ -289,7 +289,7 @@ stop_pil
 [ -z "$CNT_PID" ] || wait "$CNT_PID"
 grep '^fs_pil' "$WORK/pil.err" || true
 if grep -q '^isr_lost' "$WORK/ticks.txt"; then   # the plugin's interrupt tracking lost one
-  echo "counter FAILED: $(grep '^isr_lost' "$WORK/ticks.txt") ticks ended inside an interrupt"; status=1
+  echo "counter FAILED: $(grep '^isr_lost' "$WORK/ticks.txt") (an interrupt's entry or return missed)"; status=1
 fi
 # QEMU_TICK_KEEP=FILE: also keep the per-tick counts there (kind, app_tick, DMP + law, stepped,
 # DMP alone; one line per tick in order)

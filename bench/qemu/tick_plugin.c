@@ -17,8 +17,8 @@
  *   boot total app_init                     per boot (Reset_Handler to the first counted tick)
  *   check total ticks max_per_tick          per skill check (skchk_*)
  *   softfloat KIND helper calls instructions  at exit, per kind and soft-float helper
- *   isr_lost N                              at exit, if N ticks ended inside an interrupt (its
- *                                           return missed: never expected)
+ *   isr_lost N                              at exit, if the interrupt tracking missed N entries
+ *                                           or returns (never expected)
  * mode=count instead writes, per region of cm_count_check, the instructions between
  * cm_port_mark_begin and cm_port_mark_end (the counter check's calibration).
  * log=FILE also writes every executed instruction there ("pc symbol", the exactness check's
@@ -110,7 +110,8 @@ static uint64_t g_isr_calls[ISR_DEPTH];
 static uint32_t g_n_isr_calls;
 static uint32_t g_isr_base[ISR_DEPTH], g_n_isr;
 static const insn_t *g_prev_insn; /* the instruction executed before the current one */
-static uint64_t g_isr_lost;       /* ticks ended inside an interrupt, stacks overflowed: 0 */
+static uint64_t g_isr_lost; /* interrupts missed (open at a tick's end, a handler's code outside
+                               one) or stacks overflowed: 0 */
 
 static acct_t g_a = {.prev = -1,
                      .last = -1,
@@ -521,6 +522,9 @@ static void tick_insn(acct_t *a, const insn_t *cur, int32_t s, uint32_t f)
     /* an interrupt taken inside the tick counts in the tick, not in a part it interrupts */
     if (isr_track(a, cur, f)) {
         return; /* prev stays the interrupted code's: a part's caller is never a handler */
+    }
+    if (f & F_HANDLER) {
+        g_isr_lost++; /* a handler's code outside an interrupt: its entry was missed */
     }
     const int was_in = a->inpart;
     enter_leave(&a->inpart, &a->caller, (f & (F_DMP | F_LAW)) != 0, s, a->prev);
