@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Exact instruction counts of the authenticated frames' operations on the Cortex-M images under
-# qemu (one instruction per translation block, the counter of bench/qemu_tick.sh):
+# qemu (the counters of bench/qemu_tick.sh, bench/qemu/one_insn.sh: the plugin, or the
+# one-instruction trace when qemu cannot load it, with one line to stderr):
 #   bench/qemu_mac_cost.sh [cortex-m4f] [cortex-m3]     (default: both; images in build/TARGET)
-# builds cm_mac_cost (firmware/ports/cortex-m/mac_cost.c) and prints one line per operation:
+# builds cm_mac_cost (firmware/ports/mps2/mac_cost.c) and prints one line per operation:
 #   mac_cost target=T op=verify_ok|verify_bad|protect|set_key|hmac_oneshot instructions=N
 #   mac_cost target=T op=hmac_slice_max instructions=N slices=K   (8 SHA-256 rounds a call)
 set -euo pipefail
@@ -11,9 +12,14 @@ PY=${PYTHON:-$ROOT/.venv/bin/python}
 TARGETS=("$@")
 [ ${#TARGETS[@]} -gt 0 ] || TARGETS=(cortex-m4f cortex-m3)
 OPS=(verify_ok verify_bad protect set_key hmac_oneshot)
-source "$ROOT/bench/qemu/one_insn.sh"   # ONE_INSN: qemu-system-arm's one instruction per block
+source "$ROOT/bench/qemu/one_insn.sh"   # ONE_INSN, TRACE_FILTER, REGION_AWK, plugin_build
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/qemu_mac.XXXXXX")
 trap 'rm -rf "$WORK"' EXIT
+PLUGIN=$WORK/tick_plugin.so
+USE_PLUGIN=1   # QEMU_TICK_COUNTER=trace: the trace
+[ "${QEMU_TICK_COUNTER:-plugin}" = plugin ] || USE_PLUGIN=0
+[ $USE_PLUGIN = 0 ] || plugin_build "$PLUGIN" 2> "$WORK/plugin.err" ||
+  { echo "qemu_mac_cost: cannot build the plugin: counting with the one-instruction trace" >&2; USE_PLUGIN=0; }
 status=0
 for t in "${TARGETS[@]}"; do
   case $t in
@@ -25,15 +31,20 @@ for t in "${TARGETS[@]}"; do
   cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/arm-none-eabi.cmake" \
         -DFS_CORTEX_TARGET="$t" -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE="$PY" >/dev/null
   cmake --build "$BUILD" --target cm_mac_cost -j 2 >/dev/null
-  rm -f "$WORK/fifo"; mkfifo "$WORK/fifo"
-  awk '/ cm_port_mark_begin$/ { inb = 1; c = 0; next }
-       / cm_port_mark_end$/   { if (inb) print c; inb = 0; next }
-       { if (inb) c++ }' < "$WORK/fifo" > "$WORK/counts" &
-  AWK_PID=$!
-  qemu-system-arm -M $MACHINE -cpu $CPU -nographic -monitor none -serial null \
-    -semihosting-config enable=on,target=native -kernel "$BUILD/firmware/ports/cortex-m/cm_mac_cost.elf" \
-    "${ONE_INSN[@]}" -d exec,nochain -D "$WORK/fifo" > "$WORK/out" 2>&1
-  wait $AWK_PID
+  QEMU=(qemu-system-arm -M $MACHINE -cpu $CPU -nographic -monitor none -serial null
+        -semihosting-config enable=on,target=native -kernel "$BUILD/firmware/ports/mps2/cm_mac_cost.elf")
+  if [ $USE_PLUGIN = 1 ] && ! "${QEMU[@]}" -plugin "$PLUGIN,mode=count,out=$WORK/counts" > "$WORK/out" 2>&1 &&
+     grep -qi "plugin" "$WORK/out"; then
+    echo "qemu_mac_cost: qemu cannot load the plugin: counting with the one-instruction trace" >&2
+    USE_PLUGIN=0
+  fi
+  if [ $USE_PLUGIN = 0 ]; then
+    rm -f "$WORK/fifo"; mkfifo "$WORK/fifo"
+    awk "$TRACE_FILTER" < "$WORK/fifo" | awk "$REGION_AWK" > "$WORK/counts" &
+    AWK_PID=$!
+    "${QEMU[@]}" "${ONE_INSN[@]}" -d exec,nochain -D "$WORK/fifo" > "$WORK/out" 2>&1
+    wait $AWK_PID
+  fi
   grep -q "mac_cost done" "$WORK/out" || { echo "cm_mac_cost FAILED on $t:"; cat "$WORK/out"; status=1; }
   # the counter counts the call of the end marker too (bench/qemu_tick.sh's calibration: +1)
   i=0

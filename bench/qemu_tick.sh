@@ -6,13 +6,22 @@
 # control law in fixed point, the rest of the application in software float).
 # 1. builds the images (toolchain cmake/arm-none-eabi.cmake, Release; size, heap and stack report);
 # 2. checks that a program calling malloc cannot link with the images' flags;
-# 3. checks the counter on cm_count_check (must count exactly 103 per marked region);
+# 3. checks the counter on cm_count_check (must count exactly 103 per marked region), and compares
+#    the two counters (below: the plugin and the one-instruction trace) on it and on the first
+#    1,000,000 instructions of fs_pil (its boot and IDLE ticks without a host: the same under
+#    -icount each run): the same instructions, the same lines;
 # 4. runs the product image fs_pil (`hil_sim pil`, the application's app_tick on the port of
-#    hal.h, with the plant linked in) with one instruction per translation block and the exec
-#    trace streamed through a fifo into awk (never stored), while bench/qemu/pil_session.py drives
-#    it over python-can's slcan interface: IDLE, a skill download, TEACH, an execution of
+#    hal.h, with the plant linked in) under qemu with the counter, while
+#    bench/qemu/pil_session.py drives it over python-can's slcan interface: IDLE, a skill
+#    download, TEACH, an execution of
 #    tests/vectors/engrave_n50_ridge_release.skill with a read-back (UDS upload) during it, a
-#    second one ended by host silence (FAULT), a firmware download through its transfer exit;
+#    second one ended by host silence (FAULT), a firmware download through its transfer exit.
+#    The counter: bench/qemu/tick_plugin.c, a qemu TCG plugin built here with the host's cc (qemu
+#    with normal chaining, the plugin called before every executed instruction, running the
+#    accounting of COUNT_AWK below itself, profiles included: 12-17 s a target), or, with
+#    QEMU_TICK_COUNTER=trace or a qemu that cannot load the plugin (one line to stderr), the
+#    one-instruction trace: one instruction per translation block and the exec log streamed
+#    through a fifo into awk (never stored; 3-4.5 min a target);
 # 5. counts, per app_tick (between cm_port_mark_begin and cm_port_mark_end), all its
 #    instructions (with the interrupts taken meanwhile) and those of the DMP and control-law part
 #    (without them) (dmp_step and pfc_step with their
@@ -67,7 +76,7 @@ HIL_SIM=${FORCESKILL_HIL_SIM:-$ROOT/build/hil_sim/hil_sim}
 SKILL=${SKILL_ARG:-$ROOT/tests/vectors/engrave_n50_ridge_release.skill}
 KERNELS=$(od -An -tu2 -j12 -N2 "$SKILL" | tr -d ' ')
 
-source "$ROOT/bench/qemu/one_insn.sh"   # ONE_INSN: qemu-system-arm's one instruction per block
+source "$ROOT/bench/qemu/one_insn.sh"   # ONE_INSN, TRACE_FILTER, plugin_build: the two counters
 
 echo "== building $TARGET images in $BUILD"
 cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/arm-none-eabi.cmake" \
@@ -98,27 +107,52 @@ else
   echo "heap poison check FAILED: link failed for another reason:"; cat "$WORK/heap.err"; exit 1
 fi
 
-echo "== counter check ($MACHINE, ${ONE_INSN[*]})"
-mkfifo "$WORK/cc.fifo"
-awk '/ cm_port_mark_begin$/ { inb = 1; c = 0; next }
-     / cm_port_mark_end$/   { if (inb) print c; inb = 0; next }
-     { if (inb) c++ }' < "$WORK/cc.fifo" > "$WORK/cc.counts" &
-AWK_PID=$!
-qemu-system-arm -M $MACHINE -cpu $CPU -nographic -monitor none -serial null \
-  -semihosting-config enable=on,target=native -kernel "$IMG/cm_count_check.elf" "${ONE_INSN[@]}" \
-  -d exec,nochain -D "$WORK/cc.fifo" > "$WORK/cc.out" 2>&1
-wait $AWK_PID
+# The counters (both exact, same lines; bench/qemu/one_insn.sh):
+# - the plugin (default): bench/qemu/tick_plugin.c (qemu with normal chaining, the plugin called
+#   before each executed instruction; it runs COUNT_AWK's accounting below itself, writes ticks.txt);
+# - the one-instruction trace (QEMU_TICK_COUNTER=trace, or a qemu that cannot load the plugin):
+#   qemu's exec log through TRACE_FILTER then COUNT_AWK.
+COUNTER=${QEMU_TICK_COUNTER:-plugin}
+PLUGIN=$WORK/tick_plugin.so
+QEMU_CC=(qemu-system-arm -M $MACHINE -cpu $CPU -nographic -monitor none -serial null
+         -semihosting-config enable=on,target=native -kernel "$IMG/cm_count_check.elf")
+cc_trace() { # FILE: the counter check's counts with the one-instruction trace
+  rm -f "$WORK/cc.fifo"; mkfifo "$WORK/cc.fifo"
+  awk "$TRACE_FILTER" < "$WORK/cc.fifo" | awk "$REGION_AWK" > "$1" &
+  local pid=$!
+  "${QEMU_CC[@]}" "${ONE_INSN[@]}" -d exec,nochain -D "$WORK/cc.fifo" > "$WORK/cc.out" 2>&1
+  wait $pid
+}
+if [ "$COUNTER" = plugin ]; then
+  if ! plugin_build "$PLUGIN" 2> "$WORK/plugin.err"; then
+    echo "qemu_tick: cannot build bench/qemu/tick_plugin.c ($(head -1 "$WORK/plugin.err")): counting with the one-instruction trace" >&2
+    COUNTER=trace
+  elif ! "${QEMU_CC[@]}" -plugin "$PLUGIN,mode=count,out=$WORK/cc.counts" > "$WORK/cc.out" 2>&1; then
+    echo "qemu_tick: $(qemu-system-arm --version | head -1) cannot load the plugin ($(grep -m1 -i plugin "$WORK/cc.out")): counting with the one-instruction trace" >&2
+    COUNTER=trace
+  fi
+fi
+echo "== counter check ($MACHINE, counter: $COUNTER)"
+[ "$COUNTER" = plugin ] || cc_trace "$WORK/cc.counts"
 CC=$(tr '\n' ' ' < "$WORK/cc.counts")
 if [ "$CC" != "103 103 103 " ]; then
   echo "counter check FAILED: expected '103 103 103', got '$CC'"; exit 1
 fi
 echo "counter check ok: 100 nops + call/return/call counted as $CC"
+if [ "$COUNTER" = plugin ]; then
+  cc_trace "$WORK/cc.trace"
+  CT=$(tr '\n' ' ' < "$WORK/cc.trace")
+  [ "$CT" = "$CC" ] || { echo "counter comparison FAILED: the trace (${ONE_INSN[*]}) counted '$CT'"; exit 1; }
+  echo "counter comparison ok: the one-instruction trace (${ONE_INSN[*]}) counts the same $CT"
+fi
 
 echo "== the product image: $(basename "$SKILL") (N = $KERNELS), IDLE / download / EXECUTE / EXECUTE + read-back"
 # Per counted tick: kind, all instructions of app_tick, those inside dmp_step(_xy)/pfc_step (entered
-# from their caller, left when the caller's code runs again; an interrupt handler taken meanwhile,
-# from its *_Handler entry until the interrupted function runs again, is the CAN link's cost: in
-# the tick's total, not in the part), 1 if the DMP stepped (not after the
+# from their caller, left when the caller's code runs again; an interrupt handler taken meanwhile
+# is the CAN link's cost: in the tick's total, not in the part. The plugin follows each interrupt
+# from its *_Handler entry to its exception return, the return with none of the handler's calls
+# open; COUNT_AWK, with symbols only, until the interrupted function runs again: the same but
+# when the interrupt comes right after a call or a return, rare with one instruction per block), 1 if the DMP stepped (not after the
 # skill's end, when the end policy runs the law alone), those inside dmp_step(_xy) alone, 1 if the
 # tick worked on a download's commit (the application's download_end, which runs the parse, the
 # checks and the slot's write in slices, or skill_parse_run / skchk_* inlined into it).
@@ -185,11 +219,10 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                if (!indmp && s ~ DMP) { indmp = 1; dcaller = prev }
                else if (indmp && s == dcaller) { indmp = 0 }
                if (indmp) dpart++
-               if (!inchk && s ~ /^skchk_(params|begin|run)_f32$/) { inchk = 1; chkcaller = prev }
+               if (!inchk && s ~ CHK) { inchk = 1; chkcaller = prev }
                else if (inchk && s == chkcaller) { inchk = 0 }
                if (inchk) { chk_total++; chk_tick++ }
                prev = s } }'
-mkfifo "$WORK/trace.fifo"
 if [ "$PROFILE" = 1 ] && [ -z "${QEMU_TICK_PROFILE:-}" ]; then QEMU_TICK_PROFILE=$WORK/prof; fi
 # QEMU_TICK_PROFILE=FILE: also write the mean instructions per function of an EXECUTE tick there,
 # per instruction address (hex, with its function) in FILE.pc, per function of the EXECUTE tick
@@ -198,24 +231,66 @@ if [ "$PROFILE" = 1 ] && [ -z "${QEMU_TICK_PROFILE:-}" ]; then QEMU_TICK_PROFILE
 # the soft-float helpers per kind in FILE.softfloat (--profile: a temporary FILE, printed by
 # bench/qemu/tick_profile.py); with QEMU_TICK_FOCUS=REGEX also, per kind K, the functions matching
 # REGEX of the tick where they ran the most instructions, in FILE.focus.K
-awk -v prof="${QEMU_TICK_PROFILE:-}" -v FOCUS="${QEMU_TICK_FOCUS:-}" -v DMP="$DMP_RE" -v LAW="$LAW" \
-    -v COMMIT="^(download_end|skill_parse_run_f32|skchk_(params|begin|run)_f32)$" \
-    -v SOFTF='^__aeabi_(d|f|u?i2[df]|u?l2[df])|^__[a-z]+[sd]f[a-z0-9]*$' "$COUNT_AWK" < "$WORK/trace.fifo" > "$WORK/ticks.txt" &
-AWK_PID=$!
-"$HIL_SIM" pil --target "$TARGET" --image "$IMG/fs_pil.elf" --port 0 --host-timeout 500 \
-  --qemu-arg "${ONE_INSN[0]}" ${ONE_INSN[1]:+--qemu-arg "${ONE_INSN[1]}"} \
-  --qemu-arg -d --qemu-arg exec,nochain --qemu-arg -D --qemu-arg "$WORK/trace.fifo" \
-  > "$WORK/pil.out" 2> "$WORK/pil.err" &
-PIL_PID=$!
+COMMIT_RE='^(download_end|skill_parse_run_f32|skchk_(params|begin|run)_f32)$'
+SOFTF_RE='^__aeabi_(d|f|u?i2[df]|u?l2[df])|^__[a-z]+[sd]f[a-z0-9]*$'
+CHK_RE='^skchk_(params|begin|run)_f32$'   # COUNT_AWK's skill check functions
+popt() { printf '%s' "${1//,/,,}"; }      # a value in qemu's -plugin option (commas doubled)
+start_pil() { # COUNTER TICKS [LIMIT STREAM]: hil_sim pil in the background (PIL_PID), its ticks.txt
+  # lines into TICKS by COUNTER (plugin|trace; the trace's awk: CNT_PID); LIMIT: only the first
+  # LIMIT instructions, their "pc symbol" lines into STREAM; PROF, FOCUS_RE: the profiles
+  local limit=${3:-0} stream=${4:-} qa=()
+  CNT_PID=""
+  if [ "$1" = plugin ]; then
+    qa=(--qemu-arg -plugin --qemu-arg "$(popt "$PLUGIN"),out=$(popt "$2"),limit=$limit${stream:+,log=$(popt "$stream")},dmp=$(popt "$DMP_RE"),law=$LAW,commit=$(popt "$COMMIT_RE"),softf=$(popt "$SOFTF_RE"),chk=$(popt "$CHK_RE")${PROF:+,prof=$(popt "$PROF")}${FOCUS_RE:+,focus=$(popt "$FOCUS_RE")}")
+  else
+    rm -f "$WORK/trace.fifo"; mkfifo "$WORK/trace.fifo"
+    awk -v limit="$limit" -v stream="$stream" "$TRACE_FILTER" < "$WORK/trace.fifo" |
+      awk -v prof="$PROF" -v FOCUS="$FOCUS_RE" -v DMP="$DMP_RE" -v LAW="$LAW" \
+          -v COMMIT="$COMMIT_RE" -v SOFTF="$SOFTF_RE" -v CHK="$CHK_RE" "$COUNT_AWK" > "$2" &
+    CNT_PID=$!
+    qa=(--qemu-arg "${ONE_INSN[0]}" ${ONE_INSN[1]:+--qemu-arg "${ONE_INSN[1]}"}
+        --qemu-arg -d --qemu-arg exec,nochain --qemu-arg -D --qemu-arg "$WORK/trace.fifo")
+  fi
+  "$HIL_SIM" pil --target "$TARGET" --image "$IMG/fs_pil.elf" --port 0 --host-timeout 500 "${qa[@]}" \
+    > "$WORK/pil.out" 2> "$WORK/pil.err" &
+  PIL_PID=$!
+}
+stop_pil() { kill -TERM "$PIL_PID" 2>/dev/null || true; wait "$PIL_PID" || true; PIL_PID=""; }
+status=0
+PROF=""; FOCUS_RE=""
+if [ "$COUNTER" = plugin ]; then
+  # the plugin against the one-instruction trace on the product image: its first EXACT_N
+  # instructions (the boot with an empty flash, then IDLE ticks; no host connected, -icount: the
+  # same instructions each run) must be the same stream and give the same lines
+  EXACT_N=${QEMU_TICK_EXACT_N:-1000000}
+  start_pil plugin "$WORK/exact.plugin" "$EXACT_N" "$WORK/exact.plugin.pcs"
+  for _ in $(seq 1200); do grep -q '^limit' "$WORK/exact.plugin" 2>/dev/null && break; sleep 0.1; done
+  stop_pil
+  start_pil trace "$WORK/exact.trace" "$EXACT_N" "$WORK/exact.trace.pcs"
+  wait "$CNT_PID"; stop_pil
+  if ! grep -q "^limit $EXACT_N$" "$WORK/exact.plugin" || ! grep -q '^boot' "$WORK/exact.plugin" ||
+     ! cmp -s "$WORK/exact.plugin.pcs" "$WORK/exact.trace.pcs" ||
+     ! diff <(grep -v '^limit' "$WORK/exact.plugin" | sort) <(sort "$WORK/exact.trace") > "$WORK/exact.diff" ||
+     ! diff <(grep -v '^limit\|^softfloat' "$WORK/exact.plugin") <(grep -v '^softfloat' "$WORK/exact.trace") >> "$WORK/exact.diff"; then
+    echo "counter comparison FAILED on fs_pil's first $EXACT_N instructions:"
+    cmp "$WORK/exact.plugin.pcs" "$WORK/exact.trace.pcs" || true; head -20 "$WORK/exact.diff"; exit 1
+  fi
+  read -r _ BT BA < <(grep -m1 '^boot' "$WORK/exact.plugin")
+  echo "counter comparison ok: fs_pil's first $EXACT_N instructions, the same with the plugin and the trace (boot total=$BT app_init=$BA, then $(grep -c '^idle' "$WORK/exact.plugin") IDLE ticks)"
+fi
+PROF=${QEMU_TICK_PROFILE:-}; FOCUS_RE=${QEMU_TICK_FOCUS:-}
+start_pil "$COUNTER" "$WORK/ticks.txt"
 for _ in $(seq 600); do grep -q "listening on" "$WORK/pil.out" && break; sleep 0.1; done
 PORT=$(sed -n 's/.*127.0.0.1:\([0-9]*\).*/\1/p' "$WORK/pil.out")
 [ -n "$PORT" ] || { echo "hil_sim pil did not start:"; cat "$WORK/pil.err"; exit 1; }
-status=0
 "$PY" "$ROOT/bench/qemu/pil_session.py" "$PORT" "$SKILL" --target "$TARGET" --exec-s "$EXEC_S" \
   --fw-bytes "$FW_BYTES" || status=1
-kill -TERM "$PIL_PID"; wait "$PIL_PID" || true; PIL_PID=""
-wait $AWK_PID
+stop_pil
+[ -z "$CNT_PID" ] || wait "$CNT_PID"
 grep '^fs_pil' "$WORK/pil.err" || true
+if grep -q '^isr_lost' "$WORK/ticks.txt"; then   # the plugin's interrupt tracking lost one
+  echo "counter FAILED: $(grep '^isr_lost' "$WORK/ticks.txt") (an interrupt's entry or return missed)"; status=1
+fi
 # QEMU_TICK_KEEP=FILE: also keep the per-tick counts there (kind, app_tick, DMP + law, stepped,
 # DMP alone; one line per tick in order)
 [ -z "${QEMU_TICK_KEEP:-}" ] || cp "$WORK/ticks.txt" "$QEMU_TICK_KEEP"

@@ -89,7 +89,7 @@ for target in cortex-m4f cortex-m3; do
   if ! bench/qemu_tick.sh "$target" --fw-bytes 4096 --exec-s 0.5 >"$log" 2>&1; then
     cat "$log"; echo "qemu benchmark failed for $target (log: $log)" >&2; exit 1
   fi
-  grep -E '^(size|heap|stack|tick_instructions|app_tick_instructions|softfloat_in_app_tick|budget|counter check|qemu_tick_duration)' "$log" || true
+  grep -E '^(size|heap|stack|tick_instructions|app_tick_instructions|softfloat_in_app_tick|budget|counter (check|comparison)|qemu_tick_duration)' "$log" || true
   tick_budgets "$target" "$log"
 done
 

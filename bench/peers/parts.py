@@ -325,7 +325,8 @@ def qemu_tick(root: Path, bld: Any, cfg: dict[str, Any]) -> Result:
     body += (
         "\n\nbench/qemu_tick.sh TARGET (the Cortex-M part's program): the DMP and control-law part "
         "(dmp_step + pfc_step with their callees) of the product image's app_tick, counted instruction by "
-        "instruction in qemu's exec trace over every EXECUTE tick of the run (min/median/max; the script "
+        "instruction under qemu (a TCG plugin, bench/qemu/tick_plugin.c) over every EXECUTE tick of the "
+        "run (min/median/max; the script "
         "also prints the whole app_tick per state, docs/cortex-m.md). The share "
         "of the tick assumes one cycle per instruction: an approximation (loads, taken branches, divides "
         "and flash wait states take more), so the true cycle share is somewhat higher."

@@ -7,9 +7,11 @@ safe-stop ramp, FAULT until cleared), a firmware download into the inactive slot
 transfer exit (the image's verification; not marked for a test boot), then a board reset
 (ECUReset: the second boot finds the skill stored). The image marks each tick's kind
 (cm_port_mark_*).
-Under the exec trace the image runs 20-50 times slower than real time, so the host heartbeat
-goes every --heartbeat-s of wall time (0.5 s: about every 10-25 ms of device time, as a host
-against a device in real time) instead of the host tools' 10 ms.
+The image runs at qemu's speed, not in real time: 20-50 times slower than real time under the
+one-instruction trace, about real time under bench/qemu_tick.sh's plugin counter. So the host
+heartbeat goes every --heartbeat-ticks ticks of device time (20 ms: as a host against a device
+in real time, well inside the 500 ms host timeout), its wall-time period measured from the
+device's tick rate during the first 1,200 ticks (or --heartbeat-s of wall time if given).
   pil_session.py PORT SKILL --target TARGET [--exec-s S] [--fw-bytes N]"""
 
 from __future__ import annotations
@@ -77,7 +79,8 @@ def main(argv: list[str]) -> int:
     ap.add_argument("port", type=int)
     ap.add_argument("skill", type=Path)
     ap.add_argument("--exec-s", type=float, default=1.0, help="execution length (s of device time)")
-    ap.add_argument("--heartbeat-s", type=float, default=0.5, help="host heartbeat period (s of wall time)")
+    ap.add_argument("--heartbeat-s", type=float, default=None, help="host heartbeat period (s of wall time)")
+    ap.add_argument("--heartbeat-ticks", type=float, default=20.0, help="host heartbeat period (device ticks)")
     ap.add_argument("--timeout", type=float, default=600.0, help="wall-clock limit of each phase (s)")
     ap.add_argument("--target", default="cortex-m4f", help="the image's firmware target")
     ap.add_argument("--fw-bytes", type=int, default=16384, help="payload of the firmware download")
@@ -99,7 +102,12 @@ def main(argv: list[str]) -> int:
     try:
         with Device(bus, node=0, channel="slcan", timeout_s=args.timeout) as dev:
             dev.wait_present()
+            t0, tick0 = time.monotonic(), dev.status.tick
             wait_ticks(dev, 1200, args.timeout)  # past the 1 s SecurityAccess delay
+            rate = ((dev.status.tick - tick0) & 0xFFFFFF) / max(time.monotonic() - t0, 1e-3)
+            if args.heartbeat_s is None:
+                args.heartbeat_s = min(max(args.heartbeat_ticks / rate, 0.005), 0.5)
+            print(f"pil_session: device at {rate:.0f} ticks/s, heartbeat every {args.heartbeat_s:.3f} s", flush=True)
             with U.uds_client(dev, request_timeout_s=args.timeout) as client:
                 U.unlock(client, 0, 0x02)
                 U.download(client, 0, 1, image)
