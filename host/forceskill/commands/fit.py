@@ -208,9 +208,9 @@ def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path) -
     from ..model.periodic_fit import fit_periodic
     from ..outputs import Outputs
 
-    if args.y_column is not None or args.end != "hold":
+    if args.end != "hold":
         raise FsError(
-            ERR_PERIODIC_ARGS, "--periodic learns the force alone: --y-column and --end do not apply"
+            ERR_PERIODIC_ARGS, "--periodic runs until stopped or for --cycles: --end does not apply"
         )
 
     def fit_n(n: int) -> Any:
@@ -286,6 +286,12 @@ def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path) -
         "against each stroke (max, % of max force): "
         + ", ".join(f"{e:.3f}" for e in res.err_stroke_max_pct.tolist())
     )
+    if sk.y_weights is not None:
+        print(
+            f"y path ({args.y_column}): start {sk.y_start_m:.6g} m, mean g_y {sk.goal_y_m:.6g} m, "
+            f"beta_y {sk.beta_y:g}; against the mean y stroke max {res.y_err_max_mm:.4f} mm, "
+            f"RMS {res.y_err_rms_mm:.4f} mm"
+        )
     if sk.contact_wait:
         print(_contact_line(sk))
     print(

@@ -457,7 +457,7 @@ class Skill:
     def _validate_kind(self) -> None:
         """v4 (the kind itself is checked with the kernel count): the contact wait's time
         constant at most 10 s and 0 without a threshold (233); a discrete skill with its
-        periodic fields 0 (228); a periodic one without the y DMP yet (210), amplitude > 0 (230),
+        periodic fields 0 (228); a periodic one with amplitude > 0 (230),
         T = 2*pi*tau (229)."""
         if self.contact_tau_ms > CONTACT_TAU_MS_MAX or (self.contact_cN == 0 and self.contact_tau_ms != 0):
             raise SkillError(
@@ -473,11 +473,6 @@ class Skill:
                     ERR_SKILL_KIND, f"discrete skill carries periodic fields: {', '.join(nonzero)} not 0"
                 )
             return
-        if self.has_y:
-            raise SkillError(
-                ERR_SKILL_UNSUPPORTED,
-                "skill flags carry the y DMP (bit 1), which a periodic skill does not support yet",
-            )
         if not self.amplitude_N > 0.0:
             raise SkillError(
                 ERR_SKILL_AMPLITUDE, f"periodic skill amplitude_N = {self.amplitude_N!r} must be > 0"
