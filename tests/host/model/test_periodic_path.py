@@ -129,3 +129,45 @@ def test_cli_fit_periodic_with_y_rollout_and_show(tmp_path: Path, capsys: pytest
     capsys.readouterr()
     assert main(["show", str(out)]) == 0
     assert "periodic position DMP on y" in capsys.readouterr().out
+
+
+VECTORS = Path(__file__).resolve().parents[2] / "vectors"
+
+
+def _manifest_y() -> list[tuple[str, float, float, float, float, float, str]]:
+    out = []
+    for ln in (VECTORS / "manifest_periodic_y.txt").read_text().split("\n"):
+        if ln.strip():
+            s, g, a, t, c, p, csv = ln.split()
+            out.append((s, float(g), float(a), float(t), float(c), float(p), csv))
+    return out
+
+
+@pytest.mark.parametrize("skill,gs,amp,ts,cyc,ps,csv", _manifest_y())
+def test_golden_periodic_y_rollouts(
+    skill: str, gs: float, amp: float, ts: float, cyc: float, ps: float, csv: str
+) -> None:
+    sk = Skill.read(VECTORS / skill)
+    t, f = periodic.rollout(sk, cycles=cyc, goal_scale=gs, amplitude_scale=amp, time_scale=ts)
+    _, y = periodic.rollout_path(sk, cycles=cyc, path_scale=ps, time_scale=ts)
+    ref = np.loadtxt(VECTORS / csv, delimiter=",", skiprows=1)
+    np.testing.assert_array_equal(ref[:, 0], t)
+    assert np.max(np.abs(ref[:, 1] - f)) <= 1e-12 * np.max(np.abs(f))
+    assert np.max(np.abs(ref[:, 2] - y)) <= 1e-12 * np.max(np.abs(y - sk.y_start_m))
+
+
+def test_periodic_y_vectors_regenerate() -> None:
+    import sys
+
+    sys.path.insert(0, str(VECTORS))
+    import generate
+
+    files, lines = generate.golden_periodic_y()
+    assert lines == (VECTORS / "manifest_periodic_y.txt").read_text().split("\n")[:-1]
+    for name, data in files.items():
+        if name.endswith(".csv"):
+            new = np.loadtxt(data.decode().split("\n")[1:-1], delimiter=",")
+            old = np.loadtxt(VECTORS / name, delimiter=",", skiprows=1)
+            assert new.shape == old.shape
+            for col in (1, 2):
+                assert np.max(np.abs(new[:, col] - old[:, col])) <= 1e-7 * np.max(np.abs(old[:, col]))
