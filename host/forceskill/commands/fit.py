@@ -397,7 +397,8 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         "--y-column",
         default=None,
         metavar="NAME",
-        help="the path along y (m) to learn as the skill's position DMP (format v3); "
+        help="the path along y (m) to learn as the skill's position DMP (format v3; with --periodic the "
+        "periodic y path, v4); "
         "a ROS 2 bag's pose axis is pose_x, pose_y or pose_z (with --pose-topic)",
     )
     g = p.add_argument_group("reading the recording")

@@ -178,8 +178,8 @@ class Skill:
     #: version 4: KIND_DISCRETE or KIND_PERIODIC. A periodic skill (docs/math.md section 5):
     #: centres are phases in [0, 2*pi), widths the von Mises concentrations kappa_i, duration_s
     #: the period 2*pi*tau, goal_N the mean force, amplitude_N the stroke's amplitude r (h =
-    #: r*S(phi)), (e0, z0, i0) the state on the cycle at phi = 0 (N); y_p0_m, y_z0_m reserved
-    #: for a periodic y path (0)
+    #: r*S(phi)), (e0, z0, i0) the state on the cycle at phi = 0 (N); with the y path (flags
+    #: bit 1) y_p0_m, y_z0_m its (q, z_q) on the cycle at phi = 0 (m; 0 without one)
     kind: int = KIND_DISCRETE
     amplitude_N: float = 0.0
     e0_N: float = 0.0
