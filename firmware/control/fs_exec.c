@@ -71,7 +71,7 @@ static fs_status_t exec_begin_step(exec_state_t *st, fs_real_t dt_s)
     return FS_OK;
 #else
     if (periodic != 0u) {
-        dmp_periodic_reset(&s->skill->dmp, &st->dmp, s->amplitude_scale);
+        dmp_periodic_reset_xy(&s->skill->dmp, &st->dmp, s->amplitude_scale, s->path_scale);
     } else {
         dmp_state_reset(&st->dmp);
     }
@@ -119,9 +119,12 @@ static fs_real_t exec_dmp_step(exec_state_t *st, const exec_step_t *s, const dmp
     const dmpfx_model_t *m = s->model_fx;
     const dmpfx_run_t *run = &st->run[st->step];
     if (m->periodic != 0u) {
-        (void)dmpfx_periodic_step(m, run, &st->dmp, (cp != 0) ? &c : 0);
+        (void)dmpfx_periodic_step_xy(m, run, &st->dmp, (cp != 0) ? &c : 0, 0);
         st->dmp_saturated = (st->dmp.sat_events != ev) ? 1u : 0u;
-        st->path_m = FS_R(0.0);
+        /* p = s_p*g_y + q, q from its accumulator (as the discrete path's) */
+        st->path_m = (m->has_y != 0u) ? fx_to_float(run->goal_y_q24, 24u) +
+                                            fx_acc_to_float(st->dmp.path_acc, -55)
+                                      : FS_R(0.0);
         /* f0 + 2^s*(g_e + e): the goal in Q8.24 units, e from its accumulator */
         return s->skill->dmp.force0_N +
                fx_to_float(run->goal_q24, 24u) * fx_to_float(m->out_scale_q12, 12u) +
@@ -136,8 +139,8 @@ static fs_real_t exec_dmp_step(exec_state_t *st, const exec_step_t *s, const dmp
     return s->skill->dmp.force0_N + fx_acc_to_float(st->dmp.y_acc, m->value_shift - 55);
 #else
     if (s->skill->dmp.periodic != 0u) {
-        st->path_m = FS_R(0.0);
-        return dmp_periodic_step(&s->skill->dmp, &st->dmp, &st->run, s->amplitude_scale, cp);
+        return dmp_periodic_step_xy(&s->skill->dmp, &st->dmp, &st->run, s->amplitude_scale, cp,
+                                    s->path_scale, &st->path_m);
     }
     return dmp_step_xy(&s->skill->dmp, &st->dmp, &st->run, cp, s->path_scale, &st->path_m);
 #endif

@@ -192,11 +192,10 @@ static fs_status_t dmp_init_once(const dmp_model_t *m, uint8_t stage)
             m->p.beta > mono) {
             return FS_ERR_SKILL_GAINS;
         }
-        if (m->periodic != 0u && m->has_y != 0u) {
-            return FS_ERR_SKILL_UNSUPPORTED;
-        }
         return (m->has_y != 0u && (!fs_isfinite(m->beta_y) || !fs_isfinite(m->goal_y_m) ||
-                                   !fs_isfinite(m->y_start_m)))
+                                   !fs_isfinite(m->y_start_m) ||
+                                   (m->periodic != 0u &&
+                                    (!fs_isfinite(m->cycle_q0_m) || !fs_isfinite(m->cycle_zq0_m)))))
                    ? FS_ERR_SKILL_NOT_FINITE
                    : FS_OK;
     case MI_Y_GAINS:
@@ -505,6 +504,16 @@ void dmp_periodic_reset(const dmp_model_t *m, dmp_state_t *s, fs_real_t amplitud
     dmp_ptick_window_search(m, dmp_ptick_query(FS_R(0.0)), s->window);
 }
 
+void dmp_periodic_reset_xy(const dmp_model_t *m, dmp_state_t *s, fs_real_t amplitude_scale,
+                           fs_real_t path_scale)
+{
+    dmp_periodic_reset(m, s, amplitude_scale);
+    if (m->has_y != 0u) {
+        s->path_m = path_scale * m->cycle_q0_m;
+        s->path_z = path_scale * m->cycle_zq0_m;
+    }
+}
+
 fs_real_t dmp_periodic_blend(const dmp_model_t *m, fs_real_t x_turns, uint16_t *count)
 {
     uint16_t win[2];
@@ -546,5 +555,40 @@ fs_real_t dmp_periodic_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_
                                  .amplitude = amplitude_scale * m->amplitude_N,
                                  .out_scale = FS_R(1.0),
                                  .term_y = c.term_y};
+    return m->force0_N + dmp_ptick_step(m, &pc, &st, s_blend, NULL);
+}
+
+fs_real_t dmp_periodic_step_xy(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
+                               fs_real_t amplitude_scale, const dmp_coupling_t *coupling,
+                               fs_real_t path_scale, fs_real_t *path_m)
+{
+    if (m->has_y == 0u) { /* a force-only skill: dmp_periodic_step's code */
+        if (path_m != NULL) {
+            *path_m = FS_R(0.0);
+        }
+        return dmp_periodic_step(m, s, run, amplitude_scale, coupling);
+    }
+    const dmp_ptick_state_t st = {s->window, &s->u, &s->u_comp, &s->y_N, &s->z, &s->integral_y};
+    fs_real_t s_y = FS_R(0.0);
+    const fs_real_t s_blend = dmp_ptick_state_blend2(m, &st, m->y_weight, &s_y);
+    const dmp_tick_coef_t c = dmp_coef(m, run, coupling);
+    const dmp_ptick_coef_t pc = {.k1 = c.k1,
+                                 .k_alpha = c.k_alpha,
+                                 .k_alphabeta = c.k_alphabeta,
+                                 .k_gamma = c.k_gamma,
+                                 .phase_inc = fs_num_turn_inc(c.k1 / DMP_TWO_PI),
+                                 .goal = c.goal,
+                                 .amplitude = amplitude_scale * m->amplitude_N,
+                                 .out_scale = FS_R(1.0),
+                                 .term_y = c.term_y};
+    const dmp_tick_path_coef_t cp = {.k1 = c.k1,
+                                     .k_alpha = c.k_alpha,
+                                     .k_alphabeta = c.k_alpha * m->beta_y,
+                                     .goal = FS_R(0.0),
+                                     .scale = path_scale};
+    const fs_real_t q = dmp_ptick_path_step(&cp, &s->path_m, &s->path_z, s_y, NULL);
+    if (path_m != NULL) {
+        *path_m = path_scale * m->goal_y_m + q;
+    }
     return m->force0_N + dmp_ptick_step(m, &pc, &st, s_blend, NULL);
 }

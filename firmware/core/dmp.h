@@ -110,7 +110,8 @@ typedef struct {
     fs_real_t goal_y_m;                  /* g_y: the DMP's goal, m above the path's start */
     fs_real_t y_start_m;                 /* where the demonstrated path started */
     fs_real_t y_weight[DMP_MAX_KERNELS]; /* m: h_y = v~*S_y */
-    /* the periodic DMP (periodic = 1, docs/math.md section 5, no y DMP): centre[] holds the
+    /* the periodic DMP (periodic = 1, docs/math.md section 5; with has_y the y path about its
+     * mean goal_y_m, the same y_weight[] and beta_y, from its cycle state): centre[] holds the
      * angles c_i in [0, 2 pi), width[] the von Mises concentrations kappa_i, duration_s the
      * period 2 pi tau; derived: kernel_scale[] = 2 kappa_i, env_lo/env_hi in turns (of the
      * phase x = phi/(2 pi)), half_sin/half_cos = sin/cos(c_i/2) */
@@ -119,6 +120,8 @@ typedef struct {
     fs_real_t cycle_e0_N;  /* (e, z, I) of the orbit at phi = 0 */
     fs_real_t cycle_z0_N;
     fs_real_t cycle_i0_N;
+    fs_real_t cycle_q0_m; /* the y path's (q, z_q) at phi = 0 (q = p - g_y) */
+    fs_real_t cycle_zq0_m;
     fs_real_t half_sin[DMP_MAX_KERNELS];
     fs_real_t half_cos[DMP_MAX_KERNELS];
 } dmp_model_t;
@@ -246,5 +249,19 @@ fs_real_t dmp_periodic_blend_full(const dmp_model_t *m, fs_real_t x_turns);
  *  f_hat = f0 + goal_scale*g + e after the step. */
 fs_real_t dmp_periodic_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
                             fs_real_t amplitude_scale, const dmp_coupling_t *coupling);
+
+/** dmp_periodic_step and, for a model with has_y, the periodic y path's step on the same phase
+ *  (each activation once for both), path scale path_scale (finite, >= 0: the caller's); the
+ *  path starts from path_scale times its cycle state (dmp_periodic_reset_xy). *path_m (may be
+ *  NULL) receives p = path_scale*g_y + q after the step (m above the path at phi = 0; 0
+ *  without a y path). Returns f_hat as dmp_periodic_step. */
+fs_real_t dmp_periodic_step_xy(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
+                               fs_real_t amplitude_scale, const dmp_coupling_t *coupling,
+                               fs_real_t path_scale, fs_real_t *path_m);
+
+/** dmp_periodic_reset and the y path's state at path_scale times its cycle state (0 without
+ *  a y path). */
+void dmp_periodic_reset_xy(const dmp_model_t *m, dmp_state_t *s, fs_real_t amplitude_scale,
+                           fs_real_t path_scale);
 
 #endif /* DMP_H */

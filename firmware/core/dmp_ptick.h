@@ -160,10 +160,12 @@ static inline uint32_t dmp_ptick_nearest(const DMP_TICK_MODEL *m, fs_phase_t sh,
 
 /** S(x) over the virtual window [lo, hi) (at most min(N, FS_NUM_MAX_WINDOW) kernels from lo),
  *  the kernels with e_i <= FS_NUM_CUTOFF, psi_i as DMP_TICK_BLEND_SHIFT says; *count (may be
- *  NULL) the number summed (1 in the nearest-kernel fallback). */
+ *  NULL) the number summed (1 in the nearest-kernel fallback). With w_y non-NULL, *s_y
+ *  receives the same blend of w_y (the y path's weights) from the same activations. */
 /* long: the counted hot path, one inline body without calls (docs/cortex-m.md) */
-static inline fs_val_t dmp_ptick_blend(const DMP_TICK_MODEL *m, fs_phase_t x, uint32_t lo,
-                                       uint32_t hi, uint16_t *count)
+static inline fs_val_t dmp_ptick_blend2(const DMP_TICK_MODEL *m, fs_phase_t x, uint32_t lo,
+                                        uint32_t hi, uint16_t *count, const fs_val_t *w_y,
+                                        fs_val_t *s_y)
 {
     const uint32_t n_k = m->n_kernels;
     const uint32_t cap = (n_k < FS_NUM_MAX_WINDOW) ? n_k : FS_NUM_MAX_WINDOW;
@@ -172,6 +174,7 @@ static inline fs_val_t dmp_ptick_blend(const DMP_TICK_MODEL *m, fs_phase_t x, ui
     fs_phase_t ch;
     fs_num_sincos_pi(x, &sh, &ch);
     fs_bnum_t num = 0;
+    fs_bnum_t num_y = 0;
     fs_bden_t den = 0;
     uint32_t n = 0u;
 #if DMP_TICK_BLEND_SHIFT
@@ -187,11 +190,21 @@ static inline fs_val_t dmp_ptick_blend(const DMP_TICK_MODEL *m, fs_phase_t x, ui
             e_min = (ei < e_min) ? ei : e_min;
         }
     }
-    if (n != 0u) {
+    /* one loop per case: no test of w_y per kernel */
+    if (n != 0u && w_y == NULL) {
         for (uint32_t j = lo; j < end; j++) {
             if (e[j - lo] <= FS_NUM_CUTOFF) {
                 const uint32_t i = (j < n_k) ? j : j - n_k;
                 fs_num_blend_acc(&num, &den, fs_num_exp_neg(e[j - lo] - e_min), m->weight[i]);
+            }
+        }
+    } else if (n != 0u) {
+        for (uint32_t j = lo; j < end; j++) {
+            if (e[j - lo] <= FS_NUM_CUTOFF) {
+                const uint32_t i = (j < n_k) ? j : j - n_k;
+                const fs_act_t psi = fs_num_exp_neg(e[j - lo] - e_min);
+                fs_num_blend_acc(&num, &den, psi, m->weight[i]);
+                fs_num_blend_acc_num(&num_y, psi, w_y[i]);
             }
         }
     }
@@ -202,7 +215,11 @@ static inline fs_val_t dmp_ptick_blend(const DMP_TICK_MODEL *m, fs_phase_t x, ui
                                                 m->kernel_scale[i]);
         if (ei <= FS_NUM_CUTOFF) {
             n++;
-            fs_num_blend_acc(&num, &den, fs_num_exp_neg(ei), m->weight[i]);
+            const fs_act_t psi = fs_num_exp_neg(ei);
+            fs_num_blend_acc(&num, &den, psi, m->weight[i]);
+            if (w_y != NULL) {
+                fs_num_blend_acc_num(&num_y, psi, w_y[i]);
+            }
         }
     }
 #endif
@@ -210,9 +227,23 @@ static inline fs_val_t dmp_ptick_blend(const DMP_TICK_MODEL *m, fs_phase_t x, ui
         *count = (uint16_t)((n == 0u) ? 1u : n);
     }
     if (n == 0u) {
-        return m->weight[dmp_ptick_nearest(m, sh, ch)];
+        const uint32_t best = dmp_ptick_nearest(m, sh, ch);
+        if (w_y != NULL) {
+            *s_y = w_y[best];
+        }
+        return m->weight[best];
+    }
+    if (w_y != NULL) {
+        *s_y = fs_num_blend_div(num_y, den);
     }
     return fs_num_blend_div(num, den);
+}
+
+/** dmp_ptick_blend2 of the force weights alone. */
+static inline fs_val_t dmp_ptick_blend(const DMP_TICK_MODEL *m, fs_phase_t x, uint32_t lo,
+                                       uint32_t hi, uint16_t *count)
+{
+    return dmp_ptick_blend2(m, x, lo, hi, count, NULL, NULL);
 }
 
 /** The blend at the state's phase, the state's window walked there first. */
@@ -221,6 +252,33 @@ static inline fs_val_t dmp_ptick_state_blend(const DMP_TICK_MODEL *m, const dmp_
     const fs_phase_t x = fs_num_view(*s->x);
     dmp_ptick_window_walk(m, dmp_ptick_query(x), s->window);
     return dmp_ptick_blend(m, x, s->window[0], s->window[1], NULL);
+}
+
+/** The blend pair (S, S_y) at the state's phase, the state's window walked there first; *s_y
+ *  the blend of w_y (the y path's weights) over the same activations. */
+static inline fs_val_t dmp_ptick_state_blend2(const DMP_TICK_MODEL *m, const dmp_ptick_state_t *s,
+                                              const fs_val_t *w_y, fs_val_t *s_y)
+{
+    const fs_phase_t x = fs_num_view(*s->x);
+    dmp_ptick_window_walk(m, dmp_ptick_query(x), s->window);
+    return dmp_ptick_blend2(m, x, s->window[0], s->window[1], NULL, w_y, s_y);
+}
+
+/** One step of the periodic y path about its mean (the law with gamma = 0, every right-hand side
+ *  at the old state; c: dmp_tick_path_coef_t with goal unused, scale the path scale s_p):
+ *    h = scale*S_y     q += k1*(z_q - q + h)     z_q += k_ab*(0 - q) - k_a*z_q
+ *  Returns q after the step (m from the path's mean). */
+static inline fs_val_t dmp_ptick_path_step(const dmp_tick_path_coef_t *c, fs_acc_t *q,
+                                           fs_acc_t *z_q, fs_val_t s_y, uint32_t *ev)
+{
+    const fs_val_t qv = fs_num_view(*q);
+    const fs_val_t zv = fs_num_view(*z_q);
+    const fs_val_t h = fs_num_mul_vv(c->scale, s_y, ev);
+    const fs_val_t sq = fs_num_add_ev(fs_num_sub_ev(zv, qv, ev), h, ev);
+    *q = fs_num_acc_mac1(*q, c->k1, sq, ev);
+    *z_q = fs_num_acc_mac2(*z_q, c->k_alphabeta, fs_num_sub_ev(FS_NUM_ZERO, qv, ev), c->k_alpha, zv,
+                           ev);
+    return fs_num_view(*q);
 }
 
 /** One forward-Euler step with constants c and s_blend = dmp_ptick_state_blend of the same

@@ -25,6 +25,8 @@
 #define dmp_periodic_blend dmp_periodic_blend_f32
 #define dmp_periodic_blend_full dmp_periodic_blend_full_f32
 #define dmp_periodic_step dmp_periodic_step_f32
+#define dmp_periodic_step_xy dmp_periodic_step_xy_f32
+#define dmp_periodic_reset_xy dmp_periodic_reset_xy_f32
 #define pfc_default_config pfc_default_config_f32
 #define pfc_config_validate pfc_config_validate_f32
 #define pfc_reset pfc_reset_f32

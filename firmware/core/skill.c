@@ -259,9 +259,9 @@ static fs_status_t check_gains_flags(const uint8_t *buf, const double derived[3]
 }
 
 /* v4: the contact wait's time constant at most 10 s and 0 without a threshold (233); a discrete
- * skill's periodic fields 0 (228); a periodic skill without the y DMP (210), amplitude > 0 (230),
+ * skill's periodic fields 0 (228); a periodic skill's amplitude > 0 (230),
  * T = 2*pi*tau (229), and runnable by this build (232). */
-static fs_status_t check_kind(const uint8_t *buf, uint16_t version, uint8_t kind, uint8_t has_y)
+static fs_status_t check_kind(const uint8_t *buf, uint16_t version, uint8_t kind)
 {
     if (version < 4u) {
         return FS_OK;
@@ -277,9 +277,6 @@ static fs_status_t check_kind(const uint8_t *buf, uint16_t version, uint8_t kind
             }
         }
         return FS_OK;
-    }
-    if (has_y != 0u) {
-        return FS_ERR_SKILL_UNSUPPORTED;
     }
     if (!(rd_f64(buf, OFF_AMPLITUDE) > 0.0)) {
         return FS_ERR_SKILL_AMPLITUDE;
@@ -305,6 +302,13 @@ static int fill_header(const uint8_t *buf, uint8_t has_y, uint8_t kind, skill_t 
     m->cycle_e0_N = FS_R(0.0);
     m->cycle_z0_N = FS_R(0.0);
     m->cycle_i0_N = FS_R(0.0);
+    m->cycle_q0_m = FS_R(0.0);
+    m->cycle_zq0_m = FS_R(0.0);
+    if (m->periodic != 0u && has_y != 0u &&
+        !(to_real(rd_f64(buf, OFF_AMPLITUDE + 32u), &m->cycle_q0_m) &&
+          to_real(rd_f64(buf, OFF_AMPLITUDE + 40u), &m->cycle_zq0_m))) {
+        return 0;
+    }
     if (m->periodic != 0u && !(to_real(rd_f64(buf, OFF_AMPLITUDE), &m->amplitude_N) &&
                                to_real(rd_f64(buf, OFF_AMPLITUDE + 8u), &m->cycle_e0_N) &&
                                to_real(rd_f64(buf, OFF_AMPLITUDE + 16u), &m->cycle_z0_N) &&
@@ -442,7 +446,7 @@ static void parse_once(skill_parser_t *p)
     case SP_RANGE: p->status = check_header_range(buf); break;
     case SP_DERIVE: p->status = derive_gains(p); break;
     case SP_GAINS: p->status = check_gains_flags(buf, p->derived, p->version, p->has_y); break;
-    case SP_KIND: p->status = check_kind(buf, p->version, p->kind, p->has_y); break;
+    case SP_KIND: p->status = check_kind(buf, p->version, p->kind); break;
     case SP_FILL:
         out->dmp.n_kernels = p->n;
         if (!fill_header(buf, p->has_y, p->kind, out)) {

@@ -143,7 +143,7 @@ void skchk_begin(skchk_t *c, const skill_t *s, fs_real_t dt_s, fs_real_t force_m
 {
     c->skill = s;
     if (s->dmp.periodic != 0u) {
-        dmp_periodic_reset(&s->dmp, &c->dmp, FS_R(1.0));
+        dmp_periodic_reset_xy(&s->dmp, &c->dmp, FS_R(1.0), FS_R(1.0));
     } else {
         dmp_state_reset(&c->dmp);
     }
@@ -166,9 +166,9 @@ bool skchk_run(skchk_t *c, uint32_t max_steps)
     for (uint32_t i = 0u; i < max_steps && !c->done; i++) {
         fs_real_t p = FS_R(0.0);
         const fs_real_t f = (m->periodic != 0u)
-                                ? fg +
-                                      fs_fabs(dmp_periodic_step(m, &c->dmp, NULL, FS_R(1.0), NULL) -
-                                              m->force0_N - m->goal_N)
+                                ? fg + fs_fabs(dmp_periodic_step_xy(m, &c->dmp, NULL, FS_R(1.0),
+                                                                    NULL, FS_R(1.0), &p) -
+                                               m->force0_N - m->goal_N)
                                 : dmp_step_xy(m, &c->dmp, NULL, NULL, FS_R(1.0), &p);
         const fs_real_t a = fs_fabs(f);
         const fs_real_t ap = fs_fabs(p);

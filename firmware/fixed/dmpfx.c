@@ -177,6 +177,9 @@ static fs_status_t dmpfx_kernel_periodic(const dmp_model_t *m, uint16_t i, dmpfx
     if (st == FS_OK) {
         st = dmpfx_q(m->weight[i], 24u, q24_lim, &out->weight[i]);
     }
+    if (st == FS_OK && m->has_y != 0u) {
+        st = dmpfx_q(m->y_weight[i], 24u, q24_lim, &out->y_weight[i]);
+    }
     if (st == FS_OK) {
         st = dmpfx_q(m->half_sin[i], 30u, INT32_MAX, &out->half_sin[i]);
     }
@@ -279,6 +282,8 @@ static fs_status_t dmpfx_convert_head(const dmp_model_t *m, int32_t shift, dmpfx
     out->cycle0_N[0] = (double)m->cycle_e0_N;
     out->cycle0_N[1] = (double)m->cycle_z0_N;
     out->cycle0_N[2] = (double)m->cycle_i0_N;
+    out->cycle_y0_m[0] = (double)m->cycle_q0_m;
+    out->cycle_y0_m[1] = (double)m->cycle_zq0_m;
     return FS_OK;
 }
 
@@ -692,6 +697,11 @@ void dmpfx_periodic_reset(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_
     s->y_acc = (int64_t)llround(ldexp(run->amplitude_scale * m->cycle0_N[0], exp2));
     s->z_acc = (int64_t)llround(ldexp(run->amplitude_scale * m->cycle0_N[1], exp2));
     s->integral_y_acc = (int64_t)llround(ldexp(run->amplitude_scale * m->cycle0_N[2], exp2));
+    if (m->has_y != 0u) { /* s_p times the path's cycle state, Q8.24 m * 2^31 */
+        const double s_p = ldexp((double)run->path_scale_q24, -24);
+        s->path_acc = (int64_t)llround(ldexp(s_p * m->cycle_y0_m[0], 55));
+        s->path_z_acc = (int64_t)llround(ldexp(s_p * m->cycle_y0_m[1], 55));
+    }
     dmp_ptick_window_search(m, dmp_ptick_query(0), s->window);
 }
 
@@ -702,11 +712,12 @@ int32_t dmpfx_periodic_blend(const dmpfx_model_t *m, int32_t x_q30, uint16_t *co
     return dmp_ptick_blend(m, x_q30, win[0], win[1], count);
 }
 
-int32_t dmpfx_periodic_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s,
-                            const dmpfx_coupling_t *coupling)
+/* The periodic step's constants: the force DMP's of the run (slowed by the coupling's rate,
+ * the phase increment too) and k*alpha*beta_y of the y path in *k_ab_y. */
+static dmp_ptick_coef_t dmpfx_pcoef(const dmpfx_model_t *m, const dmpfx_run_t *run,
+                                    const dmpfx_coupling_t *coupling, int32_t *k_ab_y)
 {
-    int32_t k_ab_y;
-    const dmp_tick_coef_t c = dmpfx_coef(m, run, coupling, &k_ab_y);
+    const dmp_tick_coef_t c = dmpfx_coef(m, run, coupling, k_ab_y);
     int64_t phase_inc = run->phase_inc;
     if (coupling != NULL && coupling->rate_q31 < FX_Q31_ONE_U) {
         /* inc * rate / 2^31 in two halves (inc < 2^59: hi < 2^28, each product < 2^62) */
@@ -723,9 +734,45 @@ int32_t dmpfx_periodic_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpf
                                  .amplitude = run->amplitude_q24,
                                  .out_scale = c.out_scale,
                                  .term_y = c.term_y};
+    return pc;
+}
+
+int32_t dmpfx_periodic_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s,
+                            const dmpfx_coupling_t *coupling)
+{
+    int32_t k_ab_y;
+    const dmp_ptick_coef_t pc = dmpfx_pcoef(m, run, coupling, &k_ab_y);
     const dmp_ptick_state_t st = {s->window, &s->u_acc, &s->u_comp_acc,
                                   &s->y_acc, &s->z_acc, &s->integral_y_acc};
     const int32_t s_blend = dmp_ptick_state_blend(m, &st);
+    const int32_t f = dmp_ptick_step(m, &pc, &st, s_blend, &s->sat_events);
+    return fx_add_sat(m->force0_q16, f);
+}
+
+int32_t dmpfx_periodic_step_xy(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s,
+                               const dmpfx_coupling_t *coupling, int32_t *path_q24)
+{
+    if (m->has_y == 0u) { /* a force-only skill: dmpfx_periodic_step's code */
+        if (path_q24 != NULL) {
+            *path_q24 = 0;
+        }
+        return dmpfx_periodic_step(m, run, s, coupling);
+    }
+    int32_t k_ab_y;
+    const dmp_ptick_coef_t pc = dmpfx_pcoef(m, run, coupling, &k_ab_y);
+    const dmp_ptick_state_t st = {s->window, &s->u_acc, &s->u_comp_acc,
+                                  &s->y_acc, &s->z_acc, &s->integral_y_acc};
+    int32_t s_y = 0;
+    const int32_t s_blend = dmp_ptick_state_blend2(m, &st, m->y_weight, &s_y);
+    const dmp_tick_path_coef_t cp = {.k1 = pc.k1,
+                                     .k_alpha = pc.k_alpha,
+                                     .k_alphabeta = k_ab_y,
+                                     .goal = 0,
+                                     .scale = run->path_scale_q24};
+    const int32_t q = dmp_ptick_path_step(&cp, &s->path_acc, &s->path_z_acc, s_y, &s->sat_events);
+    if (path_q24 != NULL) {
+        *path_q24 = fx_add_sat(run->goal_y_q24, q);
+    }
     const int32_t f = dmp_ptick_step(m, &pc, &st, s_blend, &s->sat_events);
     return fx_add_sat(m->force0_q16, f);
 }
@@ -746,17 +793,23 @@ static fs_status_t dmpfx_measure_peaks_periodic(dmpfx_model_t *m, double duratio
     dmpfx_periodic_reset(m, &run, &s);
     const long rows = lround(duration_s / m->dt_s);
     double peak = fmax(dmpfx_absd(run.goal_q24), dmpfx_absd(dmpfx_view(s.y_acc)));
+    double peak_y = dmpfx_absd(run.goal_y_q24);
     for (long n = 0; n < rows; n++) {
         const int32_t sw = dmpfx_periodic_blend(m, dmpfx_view(s.u_acc), NULL);
         const double h = (double)run.amplitude_q24 * ldexp((double)sw, -24);
-        (void)dmpfx_periodic_step(m, &run, &s, NULL);
+        int32_t p = 0;
+        (void)dmpfx_periodic_step_xy(m, &run, &s, NULL, &p);
+        peak_y = fmax(peak_y, fmax(dmpfx_absd(p), fmax(dmpfx_absd(dmpfx_view(s.path_acc)),
+                                                       dmpfx_absd(dmpfx_view(s.path_z_acc)))));
         const int32_t e = dmpfx_view(s.y_acc);
         peak = fmax(peak, fmax(fabs(h), fmax(dmpfx_absd(e), dmpfx_absd(run.goal_q24 + e))));
         peak = fmax(
             peak, fmax(dmpfx_absd(dmpfx_view(s.z_acc)), dmpfx_absd(dmpfx_view(s.integral_y_acc))));
     }
     m->peak_q24 = peak;
-    if (s.sat_events != 0u || m->peak_q24 > DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE) {
+    m->peak_y_q24 = peak_y;
+    if (s.sat_events != 0u || m->peak_q24 > DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE ||
+        m->peak_y_q24 > DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE) {
         return FS_ERR_FIXED_OVERFLOW;
     }
     return FS_OK;

@@ -56,12 +56,7 @@ typedef struct {
     /* the position DMP on y (has_y = 1): weights and values in m, Q8.24 without a scale (a
      * path of 0.1 m is 1.7e6 LSB) */
     uint8_t has_y;
-    /* a model has a y DMP or is periodic, never both (dmp_model_init): one array holds the y
-     * weights or the half-angle sines */
-    union {
-        int32_t y_weight[DMP_MAX_KERNELS]; /* Q8.24 m */
-        int32_t half_sin[DMP_MAX_KERNELS]; /* periodic: sin(c_i/2), Q2.30 */
-    };
+    int32_t y_weight[DMP_MAX_KERNELS]; /* Q8.24 m */
     double beta_y;
     double goal_y_m;
     double peak_y_q24; /* max |h_y|, |p|, |z_p| of the nominal run (path scale 1) */
@@ -69,9 +64,11 @@ typedef struct {
      * 2 sqrt(kappa_i) (Q13.19), sin/cos(c_i/2) in Q2.30; amplitude r and the cycle state
      * (e0, z0, I0) in N kept in double for the run set-up; the nominal run is one cycle */
     uint8_t periodic;
-    int32_t half_cos[DMP_MAX_KERNELS]; /* half_sin: in the union above */
+    int32_t half_sin[DMP_MAX_KERNELS]; /* sin(c_i/2), Q2.30 */
+    int32_t half_cos[DMP_MAX_KERNELS];
     double amplitude_N;
     double cycle0_N[3];
+    double cycle_y0_m[2]; /* the y path's (q, z_q) at phi = 0 (has_y) */
 } dmpfx_model_t;
 
 /** Per-run constants: dt/tau_e * {1, alpha, alpha*beta, gamma} in Q1.31 and g_e in Q8.24. */
@@ -209,7 +206,8 @@ int32_t dmpfx_step_xy(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_stat
 fs_status_t dmpfx_run_periodic(const dmpfx_model_t *m, double amplitude_scale, dmpfx_run_t *run);
 
 /** A periodic model's start: phase 0, (e, z, I) = s_a times the cycle state (run's s_a), the
- *  window found by search. */
+ *  window found by search; with a y path (q, z_q) = s_p times its cycle state (the run's path
+ *  scale: dmpfx_run_path before this). */
 void dmpfx_periodic_reset(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s);
 
 /** S(x) of a periodic model at phase x in turns (Q2.30, [0, 1)), Q8.24; *count (may be NULL)
@@ -220,6 +218,12 @@ int32_t dmpfx_periodic_blend(const dmpfx_model_t *m, int32_t x_q30, uint16_t *co
  *  Returns f_hat = f0 + 2^s*(g_e + e) after the step in Q16.16 N. */
 int32_t dmpfx_periodic_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s,
                             const dmpfx_coupling_t *coupling);
+
+/** dmpfx_periodic_step and, for a model with has_y, the periodic y path's step on the same
+ *  phase (each activation once for both; the run's path scale). *path_q24 (may be NULL)
+ *  receives p = s_p*g_y + q after the step in Q8.24 m (0 without a y path). */
+int32_t dmpfx_periodic_step_xy(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s,
+                               const dmpfx_coupling_t *coupling, int32_t *path_q24);
 
 /** A skill's own rollout in fixed point (the device's output check, skill_check.h's step 2 on
  *  the model the fixed-point executor runs): goal, time, path and amplitude scale 1, no coupling,

@@ -19,6 +19,12 @@ Writes, next to this script:
                                     wiping demonstration: header ``t,f_hat`` (periodic.rollout
                                     over C cycles), ``<skill> <goal> <amplitude> <time> <cycles>
                                     <csv>`` per line
+  periodic_y_*.skill, periodic_y_*_g<G>_a<A>_t<T>_c<C>_p<P>.csv, manifest_periodic_y.txt
+                                    periodic skills with the y path (format v4, flags bit 1)
+                                    fitted from the wiping strokes with a path along y: header
+                                    ``t,f_hat,y_hat`` (periodic.rollout, periodic.rollout_path),
+                                    ``<skill> <goal> <amplitude> <time> <cycles> <path> <csv>``
+                                    per line (``--periodic-y`` writes only these)
   contact_*.csv, manifest_contact.txt
                                     the contact wait (forceskill.model.contact.loss_window) of
                                     a discrete and a periodic skill above, the contact lost for a
@@ -89,6 +95,17 @@ PERIODIC_SKILLS = (
     ("periodic_n50_ridge", 50, "ridge", ((1.0, 1.0, 1.0, 2.0), (1.5, 0.5, 1.0, 1.0), (1.0, 1.5, 1.3, 1.5))),
 )
 PeriodicScales = tuple[tuple[float, float, float, float], ...]
+#: the periodic skills with the y path: (name, N, method) and (goal, amplitude, time, cycles, path)
+STROKES_Y_DEMO = (
+    lambda: synthetic.wiping_strokes(
+        seed=14, n_strokes=6, period_s=0.5, approach_s=0.6, release_s=0.5, path_m=0.03
+    ),
+    280.0,
+)
+PERIODIC_Y_SKILLS = (
+    ("periodic_y_n20_ridge", 20, "ridge", ((1.0, 1.0, 1.0, 1.0, 1.0),)),
+    ("periodic_y_n50_ridge", 50, "ridge", ((1.0, 1.0, 1.0, 2.0, 1.0), (1.2, 1.5, 1.3, 1.5, 1.5))),
+)
 
 
 def _num(x: float) -> str:
@@ -120,6 +137,38 @@ def golden_periodic(skills: dict[str, tuple[Skill, PeriodicScales]]) -> tuple[di
             files[csv] = ("\n".join(lines) + "\n").encode()
             manifest.append(f"{name}.skill {gs:g} {amp:g} {ts:g} {cyc:g} {csv}")
     return files, manifest
+
+
+def golden_periodic_y() -> tuple[dict[str, bytes], list[str]]:
+    """Image, JSON twin and the t,f_hat,y_hat rollout CSV of every periodic skill with the y
+    path at its scales, fitted afresh."""
+    make, k = STROKES_Y_DEMO
+    demo = make()
+    gains = gains_for_object(k, OBJECT_MASS_KG)
+    files: dict[str, bytes] = {}
+    manifest: list[str] = []
+    for name, n, method, scales in PERIODIC_Y_SKILLS:
+        sk = fit_periodic(demo, k, n_kernels=n, method=method, gains=gains).skill
+        files[f"{name}.skill"] = sk.to_bytes()
+        files[f"{name}.skill.json"] = sk.to_json().encode()
+        for gs, amp, ts, cyc, ps in scales:
+            t, f = periodic.rollout(sk, cycles=cyc, goal_scale=gs, amplitude_scale=amp, time_scale=ts)
+            _, y = periodic.rollout_path(sk, cycles=cyc, path_scale=ps, time_scale=ts)
+            csv = f"{name}_g{_num(gs)}_a{_num(amp)}_t{_num(ts)}_c{_num(cyc)}_p{_num(ps)}.csv"
+            rows = zip(t.tolist(), f.tolist(), y.tolist(), strict=True)
+            lines = ["t,f_hat,y_hat"] + [f"{a:.17g},{b:.17g},{c:.17g}" for a, b, c in rows]
+            files[csv] = ("\n".join(lines) + "\n").encode()
+            manifest.append(f"{name}.skill {gs:g} {amp:g} {ts:g} {cyc:g} {ps:g} {csv}")
+    return files, manifest
+
+
+def write_periodic_y() -> int:
+    """Write the periodic y-path files (golden_periodic_y) next to this script; their count."""
+    files, manifest = golden_periodic_y()
+    for name, data in files.items():
+        (HERE / name).write_bytes(data)
+    (HERE / "manifest_periodic_y.txt").write_text("\n".join(manifest) + "\n")
+    return len(files)
 
 
 _HDR4 = struct.Struct("<IHHIHH23dHHHH")
@@ -492,6 +541,9 @@ def write_contact(images: dict[str, bytes]) -> int:
 
 
 def main() -> int:
+    if "--periodic-y" in sys.argv[1:]:
+        print(f"wrote {write_periodic_y()} periodic y-path files")
+        return 0
     if "--contact" in sys.argv[1:]:
         images = {p.name: p.read_bytes() for p in HERE.glob("*.skill")}
         print(f"wrote {write_contact(images)} contact-wait rollouts")
@@ -514,6 +566,7 @@ def main() -> int:
     (HERE / "manifest_y.txt").write_text("\n".join(manifest_y) + "\n")
     (HERE / "manifest_periodic.txt").write_text("\n".join(manifest_p) + "\n")
     write_contact({k: v for k, v in files.items() if k.endswith(".skill")})
+    write_periodic_y()
     bad_dir = HERE / "bad"
     bad_dir.mkdir(exist_ok=True)
     for old in bad_dir.glob("*.skill"):

@@ -208,9 +208,9 @@ def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path) -
     from ..model.periodic_fit import fit_periodic
     from ..outputs import Outputs
 
-    if args.y_column is not None or args.end != "hold":
+    if args.end != "hold":
         raise FsError(
-            ERR_PERIODIC_ARGS, "--periodic learns the force alone: --y-column and --end do not apply"
+            ERR_PERIODIC_ARGS, "--periodic runs until stopped or for --cycles: --end does not apply"
         )
 
     def fit_n(n: int) -> Any:
@@ -286,6 +286,12 @@ def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path) -
         "against each stroke (max, % of max force): "
         + ", ".join(f"{e:.3f}" for e in res.err_stroke_max_pct.tolist())
     )
+    if sk.y_weights is not None:
+        print(
+            f"y path ({args.y_column}): start {sk.y_start_m:.6g} m, mean g_y {sk.goal_y_m:.6g} m, "
+            f"beta_y {sk.beta_y:g}; against the mean y stroke max {res.y_err_max_mm:.4f} mm, "
+            f"RMS {res.y_err_rms_mm:.4f} mm"
+        )
     if sk.contact_wait:
         print(_contact_line(sk))
     print(
@@ -391,7 +397,8 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         "--y-column",
         default=None,
         metavar="NAME",
-        help="the path along y (m) to learn as the skill's position DMP (format v3); "
+        help="the path along y (m) to learn as the skill's position DMP (format v3; with --periodic the "
+        "periodic y path, v4); "
         "a ROS 2 bag's pose axis is pose_x, pose_y or pose_z (with --pose-topic)",
     )
     g = p.add_argument_group("reading the recording")

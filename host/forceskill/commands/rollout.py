@@ -69,8 +69,8 @@ def _rollout_periodic(sk: object, args: argparse.Namespace) -> int:
     assert isinstance(sk, Skill)
     if not sk.periodic:
         raise FsError(ERR_PERIODIC_ARGS, "--cycles and --amplitude-scale apply to periodic skills only")
-    if args.path_scale != 1.0:
-        raise FsError(ERR_PERIODIC_ARGS, "a periodic skill has no y path: --path-scale does not apply")
+    if args.path_scale != 1.0 and not sk.has_y:
+        raise FsError(ERR_PERIODIC_ARGS, "this periodic skill has no y path: --path-scale does not apply")
     cycles = 1.0 if args.cycles is None else args.cycles
     if not (np.isfinite(cycles) and cycles > 0.0):
         raise FsError(ERR_PERIODIC_ARGS, f"--cycles must be a number > 0: {cycles:g}")
@@ -82,11 +82,18 @@ def _rollout_periodic(sk: object, args: argparse.Namespace) -> int:
         time_scale=args.time_scale,
         n_steps=args.steps,
     )
-    n = write_csv(args.output, ["t", "f_hat"], iter([np.column_stack((t, f))]), inputs=[args.skill])
+    cols, names, y_msg = [t, f], ["t", "f_hat"], ""
+    if sk.has_y:
+        _, y = periodic.rollout_path(
+            sk, cycles=cycles, path_scale=args.path_scale, time_scale=args.time_scale, n_steps=args.steps
+        )
+        cols, names = [t, f, y], [*names, "y_hat"]
+        y_msg = f", y_hat {float(np.min(y)):.6g}..{float(np.max(y)):.6g} m"
+    n = write_csv(args.output, names, iter([np.column_stack(cols)]), inputs=[args.skill])
     print(
         f"wrote {args.output}: {n} rows, t = 0..{float(t[-1]):.6g} s ({cycles:g} cycles of "
         f"{sk.duration_s * args.time_scale:.6g} s), f_hat {float(np.min(f)):.6g}..{float(np.max(f)):.6g} N, "
-        f"mean {float(np.mean(f[:-1])):.6g} N",
+        f"mean {float(np.mean(f[:-1])):.6g} N" + y_msg,
         file=sys.stderr if args.output == STDOUT else sys.stdout,
     )
     return 0

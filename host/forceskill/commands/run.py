@@ -361,9 +361,14 @@ def run_on_device(
     measured = {k: v[: i_fault + 1] for k, v in cols.items()}
     path_fig = None
     if path_skill is not None and grid["t"].size:
+        from ..model import periodic as per
         from ..model.dmp import rollout_path
 
-        _, y_hat = rollout_path(path_skill, time_scale=ts, path_scale=ps)
+        if path_skill.periodic:  # the run's cycles (until stopped: as long as the telemetry)
+            n_cyc = cycles if cycles > 0 else total / (path_skill.duration_s * ts)
+            _, y_hat = per.rollout_path(path_skill, cycles=n_cyc, time_scale=ts, path_scale=ps)
+        else:
+            _, y_hat = rollout_path(path_skill, time_scale=ts, path_scale=ps)
         tick16 = (first_tick + np.arange(measured["t"].size)) & 0xFFFF
         path_fig = path_tracking(measured, tick16, y_hat - path_skill.y_start_m, idle_tick, start_tick)
     cols["fault"] = np.zeros(cols["t"].size)

@@ -49,7 +49,16 @@ def _cmd_show(args: argparse.Namespace) -> int:
         f"k_i {k_i:.4g} 1/s at k)"
     )
     print(f"  rollout        peak |f_hat| {peak:.6g} N, final {float(f[-1]):.6g} N")
-    if sk.has_y:
+    if sk.has_y and sk.periodic:
+        from ..model.periodic import rollout_path as periodic_path
+
+        _, y = periodic_path(sk)
+        print(
+            f"  y path         periodic position DMP on y: start {sk.y_start_m:.6g} m, mean g_y "
+            f"{sk.goal_y_m:.6g} m above it, beta_y {sk.beta_y:g}, cycle state q0 {sk.y_p0_m:.6g} m, "
+            f"z0 {sk.y_z0_m:.6g} m; one cycle {float(np.min(y)):.6g}..{float(np.max(y)):.6g} m"
+        )
+    elif sk.has_y:
         from ..model.dmp import rollout_path
 
         _, y = rollout_path(sk)

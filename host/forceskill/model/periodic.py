@@ -16,6 +16,18 @@ tau_e = tau*time_scale:
 from the stored state on the cycle, scaled by the amplitude scale: (e, z, I)_0 = s_a*(e0, z0, I0).
 r is the stroke's amplitude (N), s_g the goal scale (mean force), s_a the amplitude scale: e is
 linear in (h, state_0), so f_hat - f0 - s_g*g scales exactly by s_a.
+
+A periodic skill with the y path (flags bit 1) adds the position DMP on y on the same phase and
+kernels (the law with k_f = k_i = 0: gamma = 0, beta_y = k_p/(m_d*alpha) - 1), written about the
+path's mean g_y (m above the path at phi = 0), q = p - g_y its deviation, weights in m:
+
+    h_y  = s_p * S_y(phi)           S_y = sum psi_i w_y_i / sum psi_i (the same psi_i)
+    q'   = q + a*(z_q - q + h_y)
+    z_q' = z_q + a*alpha*(-beta_y*q - z_q)
+    y_hat = y_start + s_p*g_y + q'
+
+from (q, z_q)_0 = s_p*(y_p0, y_z0), the path's own state on the cycle: the path scale s_p scales
+the whole path (mean and stroke) about its position at phi = 0 exactly.
 """
 
 from __future__ import annotations
@@ -126,6 +138,68 @@ def rollout(
     with np.errstate(all="ignore"):
         f = skill.force0_N + goal_scale * skill.goal_N + np.asarray(el)
     return np.arange(n + 1) * skill.dt_s, f
+
+
+def rollout_path(
+    skill: Skill,
+    cycles: float = 1.0,
+    path_scale: float = 1.0,
+    time_scale: float = 1.0,
+    n_steps: int | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """t_n = n*dt and y_hat_n for n = 0..n_steps of a periodic skill's y path (the module
+    docstring's literal loop from the stored state on the cycle); a skill without the y path
+    gives y_start."""
+    from .scales import check_path_scale
+
+    check_scales(1.0, time_scale)
+    check_path_scale(path_scale)
+    n = cycle_steps(skill, cycles, time_scale) if n_steps is None else int(n_steps)
+    check_steps(n)
+    t = np.arange(n + 1) * skill.dt_s
+    if skill.y_weights is None:
+        return t, np.full(n + 1, skill.y_start_m)
+    a = skill.dt_s / (skill.tau_s * time_scale)
+    phi = phases(a, n)
+    with np.errstate(all="ignore"):
+        hl = (path_scale * (normalised_kernels(phi, skill.centres, skill.widths) @ skill.y_weights)).tolist()
+    alpha, beta_y = skill.alpha, skill.beta_y
+    qq, zz = path_scale * skill.y_p0_m, path_scale * skill.y_z0_m
+    ql = [0.0] * (n + 1)
+    for j in range(n + 1):
+        ql[j] = qq
+        qq, zz = qq + a * (zz - qq + hl[j]), zz + a * alpha * (-beta_y * qq - zz)
+    with np.errstate(all="ignore"):
+        y = skill.y_start_m + path_scale * skill.goal_y_m + np.asarray(ql)
+    return t, y
+
+
+def path_matrix(alpha: float, beta_y: float, a: float) -> np.ndarray:
+    """The step of the y path's (q, z_q) without forcing: s' = A s + (a*h_y, 0)."""
+    return np.array([[1.0 - a, a], [-a * alpha * beta_y, 1.0 - a * alpha]])
+
+
+def path_cycle_start(alpha: float, beta_y: float, a: float, h_y: np.ndarray) -> np.ndarray:
+    """The y path's (q, z_q) at phi = 0 of the periodic orbit driven by one period h_y_0..h_y_{P-1}
+    (``cycle_start``'s (1 - A^P)^-1 s_P(from rest) with the 2x2 step)."""
+    m = path_matrix(alpha, beta_y, a)
+    b = np.zeros((h_y.size, 2))
+    b[:, 0] = a * h_y
+    free = linear_scan(m, b)[-1]
+    s0: np.ndarray = np.linalg.solve(np.eye(2) - np.linalg.matrix_power(m, h_y.size), free)
+    return s0
+
+
+def rollout_path_scan(skill: Skill, n_steps: int) -> np.ndarray:
+    """y_hat_n, n = 0..n_steps, at scales 1: ``rollout_path`` by the blocked linear scan."""
+    assert skill.y_weights is not None
+    a = skill.dt_s / skill.tau_s
+    phi = phases(a, n_steps)
+    b = np.zeros((n_steps, 2))
+    b[:, 0] = a * (normalised_kernels(phi[:-1], skill.centres, skill.widths) @ skill.y_weights)
+    s = linear_scan(path_matrix(skill.alpha, skill.beta_y, a), b, np.array([skill.y_p0_m, skill.y_z0_m]))
+    out: np.ndarray = skill.y_start_m + skill.goal_y_m + s[:, 0]
+    return out
 
 
 def rollout_scan(skill: Skill, n_steps: int) -> np.ndarray:

@@ -14,7 +14,8 @@ fit learns the mean stroke.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -33,7 +34,7 @@ from . import periodic
 from .demo import Demo
 from .fit import law_fields, prepare
 from .params import Gains
-from .skill import KIND_PERIODIC, Skill
+from .skill import KIND_PERIODIC, Skill, derive_beta_y
 
 #: sigma_i = WIDTH_FACTOR * 2*pi/N as the equivalent Gaussian width: kappa_i = 1/sigma_i^2
 WIDTH_FACTOR = 0.65
@@ -63,6 +64,13 @@ class PeriodicFit:
     err_stroke_max_pct: np.ndarray  # (K,)
     f_max_N: float
     method: str = "ridge"
+    #: the y path (a recording with a y column): the mean y stroke (P,) and the learned path's
+    #: cycle (P + 1,) in m, the cycle's max and RMS error against the mean stroke in mm; empty /
+    #: nan without one
+    y_mean_stroke_m: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    y_cycle_m: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    y_err_max_mm: float = math.nan
+    y_err_rms_mm: float = math.nan
 
 
 def autocorr_period(f: np.ndarray, dt_s: float, period_min_s: float = PERIOD_MIN_S) -> float:
@@ -195,6 +203,43 @@ def desired_forcing(e_star: np.ndarray, alpha: float, beta: float, gamma: float,
     return h
 
 
+def _regress(kmat: np.ndarray, raw_e: np.ndarray, scale: float, h_d: np.ndarray, method: str) -> np.ndarray:
+    """Weights w of h_d ~ scale*kmat@w: ridge (relative Tikhonov) or the paper's per-kernel LWR
+    weighted by the raw kernels exp(-raw_e)."""
+    if method == "ridge":
+        phi_m = scale * kmat
+        gram = phi_m.T @ phi_m
+        lam = RIDGE_LAMBDA_REL * float(np.trace(gram)) / gram.shape[0]
+        w: np.ndarray = np.linalg.solve(gram + lam * np.eye(gram.shape[0]), phi_m.T @ h_d)
+    else:
+        psi = np.exp(-raw_e)
+        w = (psi.T @ h_d) / (scale * psi.sum(axis=0))
+    if not np.all(np.isfinite(w)):
+        raise FsError(ERR_FIT_NUMERIC, f"regression gave a non-finite weight ({method}, N = {w.size})")
+    return w
+
+
+def _path_fields(
+    y_m: np.ndarray, start: float, k: int, period: float, dt_s: float, fit: tuple[Any, ...]
+) -> tuple[dict[str, Any], np.ndarray]:
+    """The y path's skill fields (y_start_m, goal_y_m, y_weights, y_p0_m, y_z0_m) from the k
+    steady strokes of y from start and the mean y stroke; fit = (gains, alpha, a, kmat, raw_e,
+    method)."""
+    gains, alpha, a, kmat, raw_e, method = fit
+    n_p = kmat.shape[0]
+    strokes = np.stack([_window(y_m, dt_s, start + j * period, period, n_p) for j in range(k)])
+    mean_y = strokes.mean(axis=0)
+    p_star = mean_y - float(mean_y[0])
+    goal_y = float(np.mean(p_star))
+    q_star = p_star - goal_y
+    beta_y = derive_beta_y(gains)
+    h_d = desired_forcing(q_star, alpha, beta_y, 0.0, a)
+    w_y = _regress(kmat, raw_e, 1.0, h_d, method)
+    q0, zq0 = (float(x) for x in periodic.path_cycle_start(alpha, beta_y, a, kmat @ w_y))
+    kw = {"y_start_m": float(mean_y[0]), "goal_y_m": goal_y, "y_weights": w_y, "y_p0_m": q0, "y_z0_m": zq0}
+    return kw, mean_y
+
+
 def fit_periodic(
     demo: Demo,
     stiffness_Npm: float,
@@ -247,16 +292,12 @@ def fit_periodic(
     phi = periodic.phases(a, n_p - 1)
     centres, kappa = kernel_layout(int(n_kernels))
     kmat = periodic.normalised_kernels(phi, centres, kappa)
-    if method == "ridge":
-        phi_m = amp * kmat
-        gram = phi_m.T @ phi_m
-        lam = RIDGE_LAMBDA_REL * float(np.trace(gram)) / gram.shape[0]
-        weights = np.linalg.solve(gram + lam * np.eye(gram.shape[0]), phi_m.T @ h_d)
-    else:  # the paper's LWR: per kernel, weighted by the raw kernel psi_i
-        psi = np.exp(-periodic.kernel_exponents(phi, centres, kappa))
-        weights = (psi.T @ h_d) / (amp * psi.sum(axis=0))
-    if not np.all(np.isfinite(weights)):
-        raise FsError(ERR_FIT_NUMERIC, f"regression gave a non-finite weight ({method}, N = {n_kernels})")
+    raw_e = periodic.kernel_exponents(phi, centres, kappa) if method != "ridge" else kmat
+    weights = _regress(kmat, raw_e, amp, h_d, method)
+    y_kw: dict[str, Any] = {}
+    mean_y = np.zeros(0)
+    if d.y_m is not None:
+        y_kw, mean_y = _path_fields(d.y_m, start, k, period, dt_s, (gains, p.alpha, a, kmat, raw_e, method))
     e0, z0, i0 = (
         float(x) for x in periodic.cycle_start((p.alpha, p.beta, p.gamma), a, amp * (kmat @ weights))
     )
@@ -272,11 +313,22 @@ def fit_periodic(
         e0_N=e0,
         z0_N=z0,
         i0_N=i0,
+        **y_kw,
     )
     skill.to_bytes()  # validates as the firmware will
     cycles = periodic.rollout_scan(skill, k * n_p)
     err = strokes - cycles[:-1].reshape(k, n_p)
     e_mean = mean_stroke - cycles[:n_p]
+    y_res: dict[str, Any] = {}
+    if mean_y.size:
+        y_cycle = periodic.rollout_path_scan(skill, n_p)
+        e_y = mean_y - y_cycle[:n_p]
+        y_res = {
+            "y_mean_stroke_m": mean_y,
+            "y_cycle_m": y_cycle,
+            "y_err_max_mm": 1e3 * float(np.max(np.abs(e_y))),
+            "y_err_rms_mm": 1e3 * float(np.sqrt(np.mean(e_y * e_y))),
+        }
     return PeriodicFit(
         skill=skill,
         period_s=period,
@@ -289,4 +341,5 @@ def fit_periodic(
         err_stroke_max_pct=100.0 * np.max(np.abs(err), axis=1) / f_max,
         f_max_N=f_max,
         method=method,
+        **y_res,
     )

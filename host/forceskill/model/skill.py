@@ -178,8 +178,8 @@ class Skill:
     #: version 4: KIND_DISCRETE or KIND_PERIODIC. A periodic skill (docs/math.md section 5):
     #: centres are phases in [0, 2*pi), widths the von Mises concentrations kappa_i, duration_s
     #: the period 2*pi*tau, goal_N the mean force, amplitude_N the stroke's amplitude r (h =
-    #: r*S(phi)), (e0, z0, i0) the state on the cycle at phi = 0 (N); y_p0_m, y_z0_m reserved
-    #: for a periodic y path (0)
+    #: r*S(phi)), (e0, z0, i0) the state on the cycle at phi = 0 (N); with the y path (flags
+    #: bit 1) y_p0_m, y_z0_m its (q, z_q) on the cycle at phi = 0 (m; 0 without one)
     kind: int = KIND_DISCRETE
     amplitude_N: float = 0.0
     e0_N: float = 0.0
@@ -457,7 +457,7 @@ class Skill:
     def _validate_kind(self) -> None:
         """v4 (the kind itself is checked with the kernel count): the contact wait's time
         constant at most 10 s and 0 without a threshold (233); a discrete skill with its
-        periodic fields 0 (228); a periodic one without the y DMP yet (210), amplitude > 0 (230),
+        periodic fields 0 (228); a periodic one with amplitude > 0 (230),
         T = 2*pi*tau (229)."""
         if self.contact_tau_ms > CONTACT_TAU_MS_MAX or (self.contact_cN == 0 and self.contact_tau_ms != 0):
             raise SkillError(
@@ -473,11 +473,6 @@ class Skill:
                     ERR_SKILL_KIND, f"discrete skill carries periodic fields: {', '.join(nonzero)} not 0"
                 )
             return
-        if self.has_y:
-            raise SkillError(
-                ERR_SKILL_UNSUPPORTED,
-                "skill flags carry the y DMP (bit 1), which a periodic skill does not support yet",
-            )
         if not self.amplitude_N > 0.0:
             raise SkillError(
                 ERR_SKILL_AMPLITUDE, f"periodic skill amplitude_N = {self.amplitude_N!r} must be > 0"

@@ -144,12 +144,15 @@ def wiping_strokes(
     k_v: float = 100.0,
     dt_s: float = TICK_S,
     noise_N: float = 0.0,
+    path_m: float = 0.0,
 ) -> Demo:
     """A multi-stroke wiping demonstration: the operator presses up to the stroke's force over
     ``approach_s`` (raised cosine from 0), repeats the stroke (``stroke``) ``n_strokes`` times
     with period ``period_s``, then releases over ``release_s``. The strokes start at t =
     approach_s (phase 0); the force ramps are multiplied onto the stroke, so the approach and the
-    release are not strokes. Positions from a one-layer static spring; optional white sensor noise."""
+    release are not strokes. Positions from a one-layer static spring; optional white sensor noise.
+    path_m > 0: a path along y (Demo.y_m) with the stroke's period, 20 mm + path_m*(sin(phi) +
+    0.3*cos(2 phi + 0.5)) under the same ramps."""
     rng = np.random.default_rng(seed)
     duration = approach_s + n_strokes * period_s + release_s
     t = np.arange(int(round(duration / dt_s)) + 1) * dt_s
@@ -161,4 +164,8 @@ def wiping_strokes(
     if noise_N > 0.0:
         f = f + rng.normal(0.0, noise_N, f.size)
     src = f"synthetic wiping strokes seed={seed} n={n_strokes} period={period_s:g} s k_v={k_v:g}"
-    return Demo(t, x, f, src)
+    y = None
+    if path_m > 0.0:
+        y = 0.02 + env * path_m * (np.sin(phase) + 0.3 * np.cos(2.0 * phase + 0.5))
+        src += f" path={path_m:g} m"
+    return Demo(t, x, f, src, y_m=y)

@@ -10,6 +10,10 @@
  *  manifest_periodic.txt  lines "<skill> <goal_scale> <amplitude_scale> <time_scale> <cycles>
  *                    <csv>": periodic skills (format v4), rolled out by dmp_periodic_step from
  *                    dmp_periodic_reset (docs/math.md section 5), the same tolerances;
+ *  manifest_periodic_y.txt  lines "<skill> <goal> <amplitude> <time> <cycles> <path_scale>
+ *                    <csv>": periodic skills with the y path, rolled out by
+ *                    dmp_periodic_step_xy from dmp_periodic_reset_xy against "t,f_hat,y_hat",
+ *                    the same tolerances (the path's error relative to max|p|, p = y - y_start);
  *  manifest_contact.txt  lines "<skill> <goal> <amplitude> <time> <threshold_N> <tau_s> <hold_s>
  *                    <csv>": the contact wait (dmp_contact_rate) driving either DMP from the
  *                    CSV's measured force ("t,f_contact,rate,f_hat"), the same tolerances on
@@ -388,6 +392,77 @@ static void test_golden_rollouts_periodic(void **state)
     assert_true(count > 0);
 }
 
+/* One manifest_periodic_y line: the force and the y path of dmp_periodic_step_xy against the
+ * CSV; returns the worst of the two relative errors. */
+static double check_rollout_periodic_xy(const char *dir, char *const *fld)
+{
+    char path[1024];
+    const double gs = strtod(fld[1], NULL), as = strtod(fld[2], NULL);
+    const double ts = strtod(fld[3], NULL), cycles = strtod(fld[4], NULL);
+    const fs_real_t ps = (fs_real_t)strtod(fld[5], NULL);
+    snprintf(path, sizeof(path), "%s/%s", dir, fld[0]);
+    const long len = read_file(path, image, MAX_IMAGE);
+    if (len < 0 || skill_parse(image, (uint32_t)len, &sk) != FS_OK || sk.dmp.periodic != 1u ||
+        sk.dmp.has_y != 1u) {
+        fail_msg("%s: not a periodic skill with a y path this build parses (%s)", path, BUILD_NAME);
+    }
+    snprintf(path, sizeof(path), "%s/%s", dir, fld[6]);
+    FILE *f = fopen(path, "r");
+    char line[256];
+    if (f == NULL || fgets(line, sizeof(line), f) == NULL ||
+        strncmp(line, "t,f_hat,y_hat", 13) != 0) {
+        fail_msg("%s: missing or its header is not 't,f_hat,y_hat'", path);
+    }
+    const dmp_run_t run = {(fs_real_t)gs, (fs_real_t)ts};
+    const long n_steps = lround(cycles * (double)sk.dmp.duration_s * ts / (double)sk.dmp.dt_s);
+    dmp_state_t s;
+    dmp_periodic_reset_xy(&sk.dmp, &s, (fs_real_t)as, ps);
+    long row = 0;
+    double ef = 0.0, fm = 0.0, ey = 0.0, pm = 0.0;
+    const double y0 = (double)sk.dmp.y_start_m;
+    while (fgets(line, sizeof(line), f) != NULL) {
+        char *end = NULL;
+        (void)strtod(line, &end);
+        char *end2 = NULL;
+        const double f_ref = strtod(end + 1, &end2);
+        const double y_ref = strtod(end2 + 1, NULL);
+        double f_c = (double)(sk.dmp.force0_N + (fs_real_t)gs * sk.dmp.goal_N + s.y_N);
+        fs_real_t p = ps * sk.dmp.goal_y_m + s.path_m;
+        if (row > 0) {
+            f_c = (double)dmp_periodic_step_xy(&sk.dmp, &s, &run, (fs_real_t)as, NULL, ps, &p);
+        }
+        ef = fmax(ef, fabs(f_c - f_ref));
+        fm = fmax(fm, fabs(f_ref));
+        ey = fmax(ey, fabs((y0 + (double)p) - y_ref));
+        pm = fmax(pm, fabs(y_ref - y0));
+        row++;
+    }
+    fclose(f);
+    if (row != n_steps + 1) {
+        fail_msg("%s: %ld rows, expected %ld", path, row, n_steps + 1);
+    }
+    assert_true(fm > 0.0 && pm > 0.0);
+    printf("[%s] %s gs=%g as=%g ts=%g cycles=%g ps=%g: max err force %.3g of max|f|, path %.3g "
+           "of max|p| (%.3g um)\n",
+           BUILD_NAME, fld[0], gs, as, ts, cycles, (double)ps, ef / fm, ey / pm, ey * 1e6);
+    if (!(ef / fm <= REL_TOL) || !(ey / pm <= REL_TOL)) {
+        fail_msg("%s (%s): force %.3g, path %.3g exceed %.1g", fld[6], BUILD_NAME, ef / fm, ey / pm,
+                 REL_TOL);
+    }
+    return fmax(ef / fm, ey / pm);
+}
+
+static void test_golden_rollouts_periodic_y(void **state)
+{
+    (void)state;
+    int count = 0;
+    const double worst = for_each_manifest_line("manifest_periodic_y.txt", 7,
+                                                check_rollout_periodic_xy, &count);
+    printf("[%s] %d golden periodic rollouts with the y path, worst error %.3g (tolerance %.0g)\n",
+           BUILD_NAME, count, worst, REL_TOL);
+    assert_true(count > 0);
+}
+
 /* One manifest_contact line: the contact wait's loop over the core (dmp_contact_rate, then the
  * DMP step slowed by dmp_slowdown_at_rate) driven by the CSV's measured force, against its rate
  * and f_hat and the line's hold; returns the relative error of f_hat. */
@@ -518,9 +593,13 @@ static void test_periodic_images(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_golden_rollouts),          cmocka_unit_test(test_golden_rollouts_y),
-        cmocka_unit_test(test_golden_bad_images),        cmocka_unit_test(test_periodic_images),
-        cmocka_unit_test(test_golden_rollouts_periodic), cmocka_unit_test(test_golden_contact_wait),
+        cmocka_unit_test(test_golden_rollouts),
+        cmocka_unit_test(test_golden_rollouts_y),
+        cmocka_unit_test(test_golden_bad_images),
+        cmocka_unit_test(test_periodic_images),
+        cmocka_unit_test(test_golden_rollouts_periodic),
+        cmocka_unit_test(test_golden_contact_wait),
+        cmocka_unit_test(test_golden_rollouts_periodic_y),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

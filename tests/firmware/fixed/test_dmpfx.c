@@ -645,6 +645,114 @@ static void test_golden_periodic(void **state)
            100.0 * worst);
 }
 
+/* One periodic rollout with the y path (scales goal, amplitude, time, path in sc) in fixed
+ * point: f_hat into f, y_hat = y_start + p into y; returns the saturation count. */
+static uint32_t rollout_periodic_y_fx(const dmpfx_model_t *m, const double sc[4], long rows,
+                                      double *f, double *y)
+{
+    dmpfx_run_t run;
+    assert_int_equal(dmpfx_run_init(m, sc[0], sc[2], &run), FS_OK);
+    assert_int_equal(dmpfx_run_periodic(m, sc[1], &run), FS_OK);
+    assert_int_equal(dmpfx_run_path(m, sc[3], &run), FS_OK);
+    dmpfx_state_t s;
+    dmpfx_periodic_reset(m, &run, &s);
+    const double y0 = (double)skill.dmp.y_start_m;
+    f[0] = fx_to_double(m->force0_q16, 16u) +
+           ldexp((double)run.goal_q24 + (double)dmpfx_view(s.y_acc), m->value_shift - 24);
+    y[0] = y0 + ldexp((double)run.goal_y_q24 + (double)dmpfx_view(s.path_acc), -24);
+    for (long i = 1; i <= rows; i++) {
+        int32_t p = 0;
+        f[i] = fx_to_double(dmpfx_periodic_step_xy(m, &run, &s, NULL, &p), 16u);
+        y[i] = y0 + fx_to_double(p, 24u);
+    }
+    return s.sat_events;
+}
+
+/* The same rollout in the float64 core (dmp_periodic_step_xy). */
+static void rollout_periodic_y_double(const dmp_model_t *m, const double sc[4], long rows,
+                                      double *f, double *y)
+{
+    const dmp_run_t run = {sc[0], sc[2]};
+    dmp_state_t s;
+    dmp_periodic_reset_xy(m, &s, sc[1], sc[3]);
+    f[0] = m->force0_N + sc[0] * m->goal_N + s.y_N;
+    y[0] = m->y_start_m + sc[3] * m->goal_y_m + s.path_m;
+    for (long i = 1; i <= rows; i++) {
+        double p = 0.0;
+        f[i] = dmp_periodic_step_xy(m, &s, &run, sc[1], NULL, sc[3], &p);
+        y[i] = m->y_start_m + p;
+    }
+}
+
+/* max |a - b| over rows 0..rows relative to max |b - y0| (the path's extent). */
+static double path_err(const double *a, const double *b, long rows, double y0)
+{
+    double e = 0.0;
+    double p_max = 0.0;
+    for (long i = 0; i <= rows; i++) {
+        e = fmax(e, fabs(a[i] - b[i]));
+        p_max = fmax(p_max, fabs(b[i] - y0));
+    }
+    return e / p_max;
+}
+
+static double f_py[MAX_ROWS + 1];
+static double y_py[MAX_ROWS + 1];
+
+/* The periodic skills with the y path (manifest_periodic_y.txt): dmpfx_periodic_step_xy against
+ * the float64 core and the Python rollout, force and path, the discrete y path's tolerance. */
+static void test_golden_periodic_y(void **state)
+{
+    (void)state;
+    FILE *mf = open_manifest("manifest_periodic_y.txt");
+    char sk[256];
+    char csv[256];
+    double sc[4];
+    double cycles;
+    int lines = 0;
+    while (fscanf(mf, "%255s %lf %lf %lf %lf %lf %255s", sk, &sc[0], &sc[1], &sc[2], &cycles,
+                  &sc[3], csv) == 7) {
+        load_fixed(sk);
+        assert_int_equal(fxm.periodic, 1u);
+        assert_int_equal(fxm.has_y, 1u);
+        const long rows = lround(cycles * skill.dmp.duration_s * sc[2] / skill.dmp.dt_s);
+        assert_true(rows <= MAX_ROWS);
+        rollout_periodic_y_double(&skill.dmp, sc, rows, f_ref, y_ref);
+        assert_int_equal(rollout_periodic_y_fx(&fxm, sc, rows, f_fx, y_fx), 0u);
+        const double y0 = (double)skill.dmp.y_start_m;
+        const double ef_core = rel_err(f_fx, f_ref, rows);
+        const double ey_core = path_err(y_fx, y_ref, rows, y0);
+        char cpath[512];
+        snprintf(cpath, sizeof(cpath), "%s/%s", FS_VECTORS_DIR, csv);
+        FILE *cf = fopen(cpath, "r");
+        assert_non_null(cf);
+        char line[128];
+        assert_non_null(fgets(line, sizeof(line), cf)); /* t,f_hat,y_hat */
+        long n = 0;
+        double t;
+        double f;
+        double y;
+        while (fscanf(cf, "%lf,%lf,%lf", &t, &f, &y) == 3) {
+            assert_true(n <= rows);
+            f_py[n] = f;
+            y_py[n++] = y;
+        }
+        fclose(cf);
+        assert_int_equal(n, rows + 1);
+        const double ef_py = rel_err(f_fx, f_py, rows);
+        const double ey_py = path_err(y_fx, y_py, rows, y0);
+        printf("fixed periodic y %-24s g=%-3g a=%-3g t=%-3g c=%-3g p=%-3g vs float64 force %.5f %% "
+               "path %.5f %%, vs python force %.5f %% path %.5f %%\n",
+               sk, sc[0], sc[1], sc[2], cycles, sc[3], 100.0 * ef_core, 100.0 * ey_core,
+               100.0 * ef_py, 100.0 * ey_py);
+        assert_true(ef_core <= FIXED_TOL_REL && ey_core <= FIXED_TOL_REL);
+        assert_true(ef_py <= FIXED_TOL_REL && ey_py <= FIXED_TOL_REL);
+        lines++;
+    }
+    fclose(mf);
+    assert_true(lines >= 3);
+}
+
 /* The fixed blend against the double one at 2000 phases of a cycle, every periodic skill. */
 static void test_periodic_blend(void **state)
 {
@@ -692,6 +800,7 @@ int main(void)
         cmocka_unit_test(test_golden_vectors),
         cmocka_unit_test(test_golden_vectors_y),
         cmocka_unit_test(test_golden_periodic),
+        cmocka_unit_test(test_golden_periodic_y),
         cmocka_unit_test(test_periodic_blend),
         cmocka_unit_test(test_sincos_pi),
         cmocka_unit_test(test_long_skill),

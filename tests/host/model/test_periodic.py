@@ -231,7 +231,7 @@ def test_cli_fit_periodic_and_rollout_cycles(tmp_path: Path, capsys: pytest.Capt
 
 def test_cli_fit_periodic_plot(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """fit --periodic --plot writes the strokes-against-the-learned-cycle figure with the skill;
-    --y-column still does not apply (683)."""
+    --end does not apply (683)."""
     from forceskill.cli import main
 
     d = synthetic.wiping_strokes(seed=5, noise_N=0.02)
@@ -244,5 +244,5 @@ def test_cli_fit_periodic_plot(tmp_path: Path, capsys: pytest.CaptureFixture[str
     assert main([*args, "--plot", str(png)]) == 0
     assert f"plot {png}" in capsys.readouterr().out
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 20000
-    assert main([*args, "--y-column", "x"]) != 0
+    assert main([*args, "--end", "release"]) != 0
     assert "683" in capsys.readouterr().err

@@ -36,7 +36,8 @@ def test_manifest_covers_the_brief() -> None:
     assert {s.end_policy for s in skills} == {"hold", "release"}
     assert {(g, t) for _, g, t, _ in m} == {(1.0, 1.0), (1.5, 1.0), (1.0, 1.3), (1.5, 1.3)}
     total = sum(p.stat().st_size for p in VECTORS.rglob("*") if p.is_file())
-    assert total < 2_800_000  # the contact-wait rollouts (manifest_contact.txt) add 0.44 MB
+    # the contact-wait rollouts (manifest_contact.txt) add 0.44 MB, the periodic y path 0.15 MB
+    assert total < 2_950_000
 
 
 @pytest.mark.parametrize("skill,gs,ts,csv", manifest())
