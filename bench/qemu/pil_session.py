@@ -40,15 +40,11 @@ def wait_ticks(dev: Device, n: int, timeout_s: float) -> None:
     end = time.monotonic() + timeout_s
     while ((dev.status.tick - t0) & 0xFFFFFF) < n:
         if time.monotonic() > end:
-            raise SystemExit(
-                f"pil_session: the device did not advance {n} ticks in {timeout_s} s"
-            )
+            raise SystemExit(f"pil_session: the device did not advance {n} ticks in {timeout_s} s")
         time.sleep(0.05)
 
 
-def heartbeat(
-    bus: can.BusABC, dev: Device, period_s: float
-) -> can.broadcastmanager.CyclicSendTaskABC:
+def heartbeat(bus: can.BusABC, dev: Device, period_s: float) -> can.broadcastmanager.CyclicSendTaskABC:
     """The host heartbeat every period_s of wall time (freshness, MAC, E2E counter and CRC of the
     motion session)."""
     m = dev._m["HostHeartbeat"]
@@ -63,14 +59,10 @@ def heartbeat(
 def fw_payload(args: argparse.Namespace) -> bytes:
     """A firmware image for the image's target, signed with the development key."""
     payload = bytes((i * 7 + 3) & 0xFF for i in range(args.fw_bytes))
-    return fw.build_image(
-        payload, "9.0.0", args.target, fw.DEV_KEY, build_id="qemu_tick"
-    )
+    return fw.build_image(payload, "9.0.0", args.target, fw.DEV_KEY, build_id="qemu_tick")
 
 
-def fault_on_silence(
-    dev: Device, client: object, hb: object, start: bytes, args: argparse.Namespace
-) -> None:
+def fault_on_silence(dev: Device, client: object, hb: object, start: bytes, args: argparse.Namespace) -> None:
     """Start the skill, silence the host's heartbeat until the device latches host silence (500)
     during EXECUTE, stay in FAULT through the ramp for --fault-ticks, then clear it."""
     U.call("start", lambda: client.start_routine(U.RID_RUN_SKILL, start), 0)  # type: ignore[attr-defined]
@@ -86,9 +78,7 @@ def main(argv: list[str]) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("port", type=int)
     ap.add_argument("skill", type=Path)
-    ap.add_argument(
-        "--exec-s", type=float, default=1.0, help="execution length (s of device time)"
-    )
+    ap.add_argument("--exec-s", type=float, default=1.0, help="execution length (s of device time)")
     ap.add_argument(
         "--heartbeat-s",
         type=float,
@@ -107,18 +97,12 @@ def main(argv: list[str]) -> int:
         default=600.0,
         help="wall-clock limit of each phase (s)",
     )
-    ap.add_argument(
-        "--target", default="cortex-m4f", help="the image's firmware target"
-    )
-    ap.add_argument(
-        "--fw-bytes", type=int, default=16384, help="payload of the firmware download"
-    )
+    ap.add_argument("--target", default="cortex-m4f", help="the image's firmware target")
+    ap.add_argument("--fw-bytes", type=int, default=16384, help="payload of the firmware download")
     # TEACH and FAULT ticks are alike (min = median in both: nothing but the bus varies them):
     # 150 of each cover the stop ramp (40 ticks) and the host's frames several times over
     ap.add_argument("--teach-ticks", type=int, default=150, help="TEACH ticks")
-    ap.add_argument(
-        "--fault-ticks", type=int, default=150, help="FAULT ticks after the latch"
-    )
+    ap.add_argument("--fault-ticks", type=int, default=150, help="FAULT ticks after the latch")
     args = ap.parse_args(argv)
     # under the trace a consecutive frame can be seconds of wall time apart: ISO-TP's 1 s
     # receive timeouts of the host tools would drop the transfer
@@ -139,9 +123,7 @@ def main(argv: list[str]) -> int:
             dev.wait_present()
             t0, tick0 = time.monotonic(), dev.status.tick
             wait_ticks(dev, 1200, args.timeout)  # past the 1 s SecurityAccess delay
-            rate = ((dev.status.tick - tick0) & 0xFFFFFF) / max(
-                time.monotonic() - t0, 1e-3
-            )
+            rate = ((dev.status.tick - tick0) & 0xFFFFFF) / max(time.monotonic() - t0, 1e-3)
             if args.heartbeat_s is None:
                 args.heartbeat_s = min(max(args.heartbeat_ticks / rate, 0.005), 0.5)
             print(
@@ -151,9 +133,7 @@ def main(argv: list[str]) -> int:
             with U.uds_client(dev, request_timeout_s=args.timeout) as client:
                 U.unlock(client, 0, 0x02)
                 U.download(client, 0, 1, image)
-                U.motion_session(
-                    client, dev
-                )  # authenticated heartbeats and commands from here
+                U.motion_session(client, dev)  # authenticated heartbeats and commands from here
             wait_ticks(dev, 200, args.timeout)
             dev.telemetry_period_ms = 1
             hb = heartbeat(bus, dev, args.heartbeat_s)
@@ -167,9 +147,7 @@ def main(argv: list[str]) -> int:
                     U.call("session change", lambda: client.change_session(2), 0)
                     U.unlock(client, 0, 0x02)  # a run routine's start needs level 1
                     data = struct.pack(">BHHB", 1, 1000, 1000, 2)
-                    U.call(
-                        "start", lambda: client.start_routine(U.RID_RUN_SKILL, data), 0
-                    )
+                    U.call("start", lambda: client.start_routine(U.RID_RUN_SKILL, data), 0)
                     dev.wait_state({"EXECUTE"}, args.timeout)
                     wait_ticks(dev, int(args.exec_s * 500), args.timeout)
                     U.upload(client, 0, 1, len(image))  # read-back while executing
@@ -190,9 +168,7 @@ def main(argv: list[str]) -> int:
             finally:
                 hb.stop()
             st = dev.status
-            print(
-                f"pil_session: done, device {st.state}, fault {st.fault_code}, tick {st.tick}"
-            )
+            print(f"pil_session: done, device {st.state}, fault {st.fault_code}, tick {st.tick}")
             # a board reset: the second boot finds the skill in its flash (bench/qemu_tick.sh
             # counts both boots)
             tick0 = st.tick
@@ -201,9 +177,7 @@ def main(argv: list[str]) -> int:
             end = time.monotonic() + args.timeout
             while dev.status.tick >= tick0 or dev.status.tick < 50:
                 if time.monotonic() > end:
-                    raise SystemExit(
-                        "pil_session: the device did not restart after ECUReset"
-                    )
+                    raise SystemExit("pil_session: the device did not restart after ECUReset")
                 time.sleep(0.05)
             print(f"pil_session: restarted, device {dev.status.state}", flush=True)
             return 0 if st.fault_code == 0 else 1
