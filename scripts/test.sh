@@ -26,6 +26,12 @@ step "layers: no upward or sideways include or host import, no cycle (tools/chec
 .venv/bin/python tools/check_layers.py
 step "no C function over 80 lines in firmware/ and hil_sim/ without a /* long: reason */ (tools/check_fn_length.py)"
 .venv/bin/python tools/check_fn_length.py
+step "test modules: every tests/**/test_*.py basename is unique (pytest imports them by basename)"
+dup_tests="$(find tests -name 'test_*.py' -printf '%f\n' | sort | uniq -d)"
+if [ -n "$dup_tests" ]; then
+  echo "error: test module basenames used twice: $dup_tests" >&2
+  exit 1
+fi
 step "Python: ruff (lint, format) on host/forceskill, tests/, tools/ and bench/, mypy (strict) on"
 echo "   host/forceskill (configuration: host/pyproject.toml)"
 .venv/bin/ruff check --config host/pyproject.toml host/forceskill tests tools bench
