@@ -119,7 +119,9 @@ struct app {
     uint8_t secoc_dev_nonce[SECOC_NONCE_LEN]; /* the device nonce of the key in use */
     sec_hmac_job_t motion_job;                /* the derivation of the next key, in slices */
     bool motion_keying;                       /* motion_job runs (DID 0x0302 answered 0x78) */
+    bool motion_key_due;                      /* the key is derived, installed next call */
     bool motion_confirm_due;                  /* the key is set, its confirmation next call */
+    uint8_t motion_key[SECOC_KEY_LEN];        /* the derived key until it is installed */
     uint32_t motion_confirm;                  /* secoc_confirm of the key in use (0: none) */
     can_frame_t held;                         /* an authenticated frame beyond APP_MAC_PER_TICK */
     uint8_t held_ch;                          /* its channel + 1, 0: none */

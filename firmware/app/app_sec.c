@@ -112,6 +112,7 @@ uint8_t app_motion_key_begin(app_t *app, const uint8_t *host_nonce, uint16_t len
     (void)sec_hmac_job_begin(&app->motion_job, c->secret, c->secret_len, msg, (uint32_t)sizeof msg);
     secoc_forget(&app->secoc); /* the old session ends now */
     app->motion_confirm = 0u;
+    app->motion_key_due = false;
     app->motion_confirm_due = false;
     memcpy(app->secoc_dev_nonce, dev_nonce, SECOC_NONCE_LEN);
     app->run_opts_fv = 0u;
@@ -131,13 +132,22 @@ uint8_t app_motion_key_run(app_t *app, uint32_t rounds)
         app->motion_confirm = secoc_confirm(&app->secoc); /* kept: DID 0x0302 reads it */
         return UDS_NRC_OK;
     }
+    /* the derivation's end, the key's schedule and subkeys, and the confirmation each take a
+     * call of their own: each is about one to two block encryptions */
+    if (app->motion_key_due) {
+        app->motion_key_due = false;
+        secoc_set_key(&app->secoc, app->motion_key);
+        sec_wipe(app->motion_key, sizeof app->motion_key);
+        app->motion_confirm_due = true;
+        return UDS_NRC_RESPONSE_PENDING;
+    }
     uint8_t out[SEC_SHA256_LEN];
     if (!sec_hmac_job_run(&app->motion_job, rounds, out)) {
         return UDS_NRC_RESPONSE_PENDING;
     }
-    secoc_set_key(&app->secoc, out); /* the first SECOC_KEY_LEN bytes (secoc_derive_key) */
+    memcpy(app->motion_key, out, SECOC_KEY_LEN); /* the first bytes (secoc_derive_key) */
     sec_wipe(out, sizeof out);
-    app->motion_confirm_due = true;
+    app->motion_key_due = true;
     return UDS_NRC_RESPONSE_PENDING;
 }
 

@@ -28,8 +28,8 @@
  *   SLOTS_PARSE_UNITS_PER_TICK  units of the image's parse (skill_parse_run: one kernel's value,
  *                               32 bytes of the CRC; at most ~450 instructions on the M4F)
  *   SLOTS_PARAMS_UNITS_PER_TICK  units of the parameter check (skchk_params_run: the scalars,
- *                               SKCHK_PARAMS_KERNELS_PER_UNIT kernels; the host and the M4F
- *                               check all in one tick)
+ *                               SKCHK_PARAMS_KERNELS_PER_UNIT kernels; ~180 instructions on
+ *                               the M4F; the host checks all in one tick)
  *   SLOTS_CONVERT_UNITS_PER_TICK  units of the skill's conversion to fixed point (the
  *                               fixed-point build: dmpfx_bound_run, one kernel or one window
  *                               check a unit)

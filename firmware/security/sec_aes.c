@@ -151,14 +151,19 @@ void sec_aes128_encrypt(const sec_aes128_t *a, const uint8_t in[SEC_AES_BLOCK],
     put_be32(&out[12], last_col(s3, s0, s1, s2, rk[3]));
 }
 
-/* out = in << 1 in GF(2^128), reduced by R128 = 0x87 (SP 800-38B 6.1), without a branch. */
+/* out = in << 1 in GF(2^128), reduced by R128 = 0x87 (SP 800-38B 6.1), without a branch: the
+ * block as four big-endian words. */
 static void dbl(const uint8_t in[SEC_AES_BLOCK], uint8_t out[SEC_AES_BLOCK])
 {
-    const uint8_t msb = (uint8_t)(in[0] >> 7);
-    for (uint32_t i = 0u; i < SEC_AES_BLOCK - 1u; i++) {
-        out[i] = (uint8_t)((in[i] << 1) | (in[i + 1u] >> 7));
+    uint32_t w[4];
+    for (uint32_t i = 0u; i < 4u; i++) {
+        w[i] = get_be32(&in[4u * i]);
     }
-    out[SEC_AES_BLOCK - 1u] = (uint8_t)((in[SEC_AES_BLOCK - 1u] << 1) ^ (0x87u & (0u - msb)));
+    const uint32_t msb = w[0] >> 31;
+    for (uint32_t i = 0u; i < 3u; i++) {
+        put_be32(&out[4u * i], (w[i] << 1) | (w[i + 1u] >> 31));
+    }
+    put_be32(&out[12], (w[3] << 1) ^ (0x87u & (0u - msb)));
 }
 
 void sec_cmac_init(sec_cmac_t *c, const uint8_t key[SEC_AES128_KEY_LEN])
@@ -172,29 +177,41 @@ void sec_cmac_init(sec_cmac_t *c, const uint8_t key[SEC_AES128_KEY_LEN])
     sec_wipe(l, sizeof l);
 }
 
+/* dst ^= a ^ b over one block, a word at a time (memcpy: any alignment, no aliasing). */
+static void xor3_block(uint8_t dst[SEC_AES_BLOCK], const uint8_t a[SEC_AES_BLOCK],
+                       const uint8_t b[SEC_AES_BLOCK])
+{
+    uint32_t d[4], x[4], y[4];
+    memcpy(d, dst, sizeof d);
+    memcpy(x, a, sizeof x);
+    memcpy(y, b, sizeof y);
+    for (uint32_t i = 0u; i < 4u; i++) {
+        d[i] ^= x[i] ^ y[i];
+    }
+    memcpy(dst, d, sizeof d);
+}
+
 void sec_cmac(const sec_cmac_t *c, const uint8_t *msg, uint32_t len, uint8_t out[SEC_AES_BLOCK])
 {
+    static const uint8_t zero[SEC_AES_BLOCK] = {0u};
     uint8_t x[SEC_AES_BLOCK];
     memset(x, 0, sizeof x);
     uint32_t pos = 0u;
     while (len - pos > SEC_AES_BLOCK) { /* every block but the last */
-        for (uint32_t i = 0u; i < SEC_AES_BLOCK; i++) {
-            x[i] ^= msg[pos + i];
-        }
+        xor3_block(x, &msg[pos], zero);
         sec_aes128_encrypt(&c->aes, x, x);
         pos += SEC_AES_BLOCK;
     }
     const uint32_t rest = len - pos; /* 0..16 */
-    const uint8_t *k = (rest == SEC_AES_BLOCK) ? c->k1 : c->k2;
-    for (uint32_t i = 0u; i < SEC_AES_BLOCK; i++) {
-        uint8_t m = 0u;
-        if (i < rest) {
-            m = msg[pos + i];
-        } else if (i == rest) {
-            m = 0x80u; /* padding 10*: only an incomplete last block */
-        }
-        x[i] ^= (uint8_t)(m ^ k[i]);
+    uint8_t last[SEC_AES_BLOCK];
+    memset(last, 0, sizeof last);
+    if (rest != 0u) {
+        memcpy(last, &msg[pos], rest);
     }
+    if (rest < SEC_AES_BLOCK) {
+        last[rest] = 0x80u; /* padding 10*: only an incomplete last block */
+    }
+    xor3_block(x, last, (rest == SEC_AES_BLOCK) ? c->k1 : c->k2);
     sec_aes128_encrypt(&c->aes, x, out);
     sec_wipe(x, sizeof x);
 }
