@@ -248,22 +248,10 @@ static void handle_heartbeat(app_t *app, const can_frame_t *f)
     }
 }
 
-/* An E2E-valid host frame is acted on only if authentic and fresh (secoc_verify); a stop
- * (HostCommand IDLE) is the one exception, taken without a MAC. */
-static bool host_frame_accepted(app_t *app, const can_frame_t *f, secoc_channel_t ch)
+/* A host frame that passed its E2E check and its MAC verification (or a stop, taken without
+ * a MAC): acted on. */
+static void host_frame_act(app_t *app, const can_frame_t *f, secoc_channel_t ch)
 {
-    if (ch == SECOC_CH_COMMAND && (f->data[0] & 0x0Fu) == (uint8_t)APP_CMD_IDLE) {
-        return true;
-    }
-    return secoc_verify(&app->secoc, f, ch) == SEC_OK;
-}
-
-/* A host frame that passed its E2E check: verified (or a stop), then acted on. */
-static void host_frame(app_t *app, const can_frame_t *f, secoc_channel_t ch)
-{
-    if (!host_frame_accepted(app, f, ch)) {
-        return;
-    }
     app->host_frame = true;
     if (ch == SECOC_CH_COMMAND) {
         handle_command(app, f);
@@ -278,6 +266,26 @@ static bool needs_mac(const can_frame_t *f, secoc_channel_t ch)
     return !(ch == SECOC_CH_COMMAND && (f->data[0] & 0x0Fu) == (uint8_t)APP_CMD_IDLE);
 }
 
+/* The verification in flight with this tick's AES rounds; its frame acted on once accepted. */
+static void mac_job_step(app_t *app, uint32_t *rounds)
+{
+    app->mac_ran = true;
+    if (!secoc_verify_run(&app->secoc, &app->mac_job, rounds)) {
+        return;
+    }
+    app->mac_busy = false;
+    if (app->mac_job.status == SEC_OK) {
+        host_frame_act(app, &app->mac_job.f, (secoc_channel_t)app->mac_job.ch);
+    }
+}
+
+static void mac_job_start(app_t *app, const can_frame_t *f, secoc_channel_t ch, uint32_t *rounds)
+{
+    secoc_verify_begin(&app->secoc, &app->mac_job, f, ch);
+    app->mac_busy = true;
+    mac_job_step(app, rounds);
+}
+
 /* True if the UDS server has sliced work or a complete request waiting (uds_service's share). */
 static bool uds_work_waiting(const app_t *app)
 {
@@ -286,20 +294,26 @@ static bool uds_work_waiting(const app_t *app)
            isotp_rx_peek(&app->tp[1], &req) != 0u;
 }
 
-/* The CAN frames of this tick, bounded: APP_RX_FRAMES_PER_TICK frames, APP_MAC_PER_TICK MAC
- * verifications (the frame beyond them is held for the next tick, the rest stays queued). A MAC
- * and the UDS server's work never share a tick: a frame held from the last tick is verified
+/* The CAN frames of this tick, bounded: APP_RX_FRAMES_PER_TICK frames, APP_MAC_ROUNDS_PER_TICK
+ * AES rounds of MAC verification and one verification started. An authenticated frame that
+ * cannot start is held for the next tick (app_t.held); while one is held the rest stays queued.
+ * A MAC and the UDS server's work never share a tick: a verification in flight or held goes
  * first (uds_service then waits a tick), a new one waits a tick while the server has work. */
 static void can_receive(app_t *app)
 {
-    unsigned macs = 0u;
+    uint32_t rounds = APP_MAC_ROUNDS_PER_TICK;
+    bool started = false;
     app->mac_ran = false;
-    if (app->held_ch != 0u) {
+    if (app->mac_busy) {
+        mac_job_step(app, &rounds);
+    } else if (app->held_ch != 0u) {
         const secoc_channel_t ch = (secoc_channel_t)(app->held_ch - 1u);
         app->held_ch = 0u;
-        host_frame(app, &app->held, ch);
-        macs++;
-        app->mac_ran = true;
+        mac_job_start(app, &app->held, ch, &rounds);
+        started = true;
+    }
+    if (app->held_ch != 0u) {
+        return; /* a frame still waits for the verification in flight */
     }
     const bool uds_first = !app->mac_ran && uds_work_waiting(app);
     can_frame_t f;
@@ -325,15 +339,17 @@ static void can_receive(app_t *app)
             app->e2e_errors++;
             continue;
         }
-        if (needs_mac(&f, ch)) {
-            if (uds_first || macs++ >= APP_MAC_PER_TICK) {
-                app->held = f;
-                app->held_ch = (uint8_t)(ch + 1u);
-                break;
-            }
-            app->mac_ran = true;
+        if (!needs_mac(&f, ch)) {
+            host_frame_act(app, &f, ch); /* a stop */
+            continue;
         }
-        host_frame(app, &f, ch);
+        if (uds_first || started || app->mac_busy) {
+            app->held = f;
+            app->held_ch = (uint8_t)(ch + 1u);
+            break;
+        }
+        mac_job_start(app, &f, ch, &rounds);
+        started = true;
     }
 }
 

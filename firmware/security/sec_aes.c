@@ -125,16 +125,13 @@ static uint32_t last_col(uint32_t a, uint32_t b, uint32_t c, uint32_t d, uint32_
            k;
 }
 
-void sec_aes128_encrypt(const sec_aes128_t *a, const uint8_t in[SEC_AES_BLOCK],
-                        uint8_t out[SEC_AES_BLOCK])
+/* Rounds from+1 .. to (1..10) of the cipher on state st; round 10 has no MixColumns. */
+static void aes_rounds(const uint32_t rk_all[44], uint32_t st[4], uint32_t from, uint32_t to)
 {
-    const uint32_t *rk = a->rk;
-    uint32_t s0 = get_be32(&in[0]) ^ rk[0];
-    uint32_t s1 = get_be32(&in[4]) ^ rk[1];
-    uint32_t s2 = get_be32(&in[8]) ^ rk[2];
-    uint32_t s3 = get_be32(&in[12]) ^ rk[3];
-    for (uint32_t r = 1u; r < 10u; r++) {
-        rk += 4;
+    uint32_t s0 = st[0], s1 = st[1], s2 = st[2], s3 = st[3];
+    const uint32_t middle_end = (to < 10u) ? to : 9u;
+    for (uint32_t r = from + 1u; r <= middle_end; r++) {
+        const uint32_t *rk = &rk_all[4u * r];
         const uint32_t t0 = round_col(s0, s1, s2, s3, rk[0]);
         const uint32_t t1 = round_col(s1, s2, s3, s0, rk[1]);
         const uint32_t t2 = round_col(s2, s3, s0, s1, rk[2]);
@@ -144,11 +141,56 @@ void sec_aes128_encrypt(const sec_aes128_t *a, const uint8_t in[SEC_AES_BLOCK],
         s2 = t2;
         s3 = t3;
     }
-    rk += 4;
-    put_be32(&out[0], last_col(s0, s1, s2, s3, rk[0]));
-    put_be32(&out[4], last_col(s1, s2, s3, s0, rk[1]));
-    put_be32(&out[8], last_col(s2, s3, s0, s1, rk[2]));
-    put_be32(&out[12], last_col(s3, s0, s1, s2, rk[3]));
+    if (to == 10u) {
+        const uint32_t *rk = &rk_all[40];
+        const uint32_t t0 = last_col(s0, s1, s2, s3, rk[0]);
+        const uint32_t t1 = last_col(s1, s2, s3, s0, rk[1]);
+        const uint32_t t2 = last_col(s2, s3, s0, s1, rk[2]);
+        const uint32_t t3 = last_col(s3, s0, s1, s2, rk[3]);
+        s0 = t0;
+        s1 = t1;
+        s2 = t2;
+        s3 = t3;
+    }
+    st[0] = s0;
+    st[1] = s1;
+    st[2] = s2;
+    st[3] = s3;
+}
+
+void sec_aes128_job_begin(sec_aes128_job_t *j, const sec_aes128_t *a,
+                          const uint8_t in[SEC_AES_BLOCK])
+{
+    for (uint32_t i = 0u; i < 4u; i++) {
+        j->s[i] = get_be32(&in[4u * i]) ^ a->rk[i];
+    }
+    j->round = 0u;
+}
+
+bool sec_aes128_job_run(sec_aes128_job_t *j, const sec_aes128_t *a, uint32_t *rounds,
+                        uint8_t out[SEC_AES_BLOCK])
+{
+    const uint32_t left = 10u - j->round;
+    const uint32_t n = (*rounds < left) ? *rounds : left;
+    aes_rounds(a->rk, j->s, j->round, j->round + n);
+    j->round += n;
+    *rounds -= n;
+    if (j->round < 10u) {
+        return false;
+    }
+    for (uint32_t i = 0u; i < 4u; i++) {
+        put_be32(&out[4u * i], j->s[i]);
+    }
+    return true;
+}
+
+void sec_aes128_encrypt(const sec_aes128_t *a, const uint8_t in[SEC_AES_BLOCK],
+                        uint8_t out[SEC_AES_BLOCK])
+{
+    sec_aes128_job_t j;
+    uint32_t rounds = 10u;
+    sec_aes128_job_begin(&j, a, in);
+    (void)sec_aes128_job_run(&j, a, &rounds, out);
 }
 
 /* out = in << 1 in GF(2^128), reduced by R128 = 0x87 (SP 800-38B 6.1), without a branch: the
@@ -177,41 +219,45 @@ void sec_cmac_init(sec_cmac_t *c, const uint8_t key[SEC_AES128_KEY_LEN])
     sec_wipe(l, sizeof l);
 }
 
-/* dst ^= a ^ b over one block, a word at a time (memcpy: any alignment, no aliasing). */
-static void xor3_block(uint8_t dst[SEC_AES_BLOCK], const uint8_t a[SEC_AES_BLOCK],
-                       const uint8_t b[SEC_AES_BLOCK])
+/* dst ^= a over one block, a word at a time (memcpy: any alignment, no aliasing). */
+static void xor_block(uint8_t dst[SEC_AES_BLOCK], const uint8_t a[SEC_AES_BLOCK])
 {
-    uint32_t d[4], x[4], y[4];
+    uint32_t d[4], x[4];
     memcpy(d, dst, sizeof d);
     memcpy(x, a, sizeof x);
-    memcpy(y, b, sizeof y);
     for (uint32_t i = 0u; i < 4u; i++) {
-        d[i] ^= x[i] ^ y[i];
+        d[i] ^= x[i];
     }
     memcpy(dst, d, sizeof d);
 }
 
+void sec_cmac_one_block(const sec_cmac_t *c, const uint8_t *msg, uint32_t len,
+                        uint8_t block[SEC_AES_BLOCK])
+{
+    memset(block, 0, SEC_AES_BLOCK);
+    const uint32_t n = (len < SEC_AES_BLOCK) ? len : SEC_AES_BLOCK;
+    if (n != 0u) {
+        memcpy(block, msg, n);
+    }
+    if (n < SEC_AES_BLOCK) {
+        block[n] = 0x80u; /* padding 10*: only an incomplete last block */
+    }
+    xor_block(block, (n == SEC_AES_BLOCK) ? c->k1 : c->k2);
+}
+
 void sec_cmac(const sec_cmac_t *c, const uint8_t *msg, uint32_t len, uint8_t out[SEC_AES_BLOCK])
 {
-    static const uint8_t zero[SEC_AES_BLOCK] = {0u};
     uint8_t x[SEC_AES_BLOCK];
     memset(x, 0, sizeof x);
     uint32_t pos = 0u;
     while (len - pos > SEC_AES_BLOCK) { /* every block but the last */
-        xor3_block(x, &msg[pos], zero);
+        xor_block(x, &msg[pos]);
         sec_aes128_encrypt(&c->aes, x, x);
         pos += SEC_AES_BLOCK;
     }
-    const uint32_t rest = len - pos; /* 0..16 */
     uint8_t last[SEC_AES_BLOCK];
-    memset(last, 0, sizeof last);
-    if (rest != 0u) {
-        memcpy(last, &msg[pos], rest);
-    }
-    if (rest < SEC_AES_BLOCK) {
-        last[rest] = 0x80u; /* padding 10*: only an incomplete last block */
-    }
-    xor3_block(x, last, (rest == SEC_AES_BLOCK) ? c->k1 : c->k2);
+    sec_cmac_one_block(c, &msg[pos], len - pos, last);
+    xor_block(x, last);
     sec_aes128_encrypt(&c->aes, x, out);
     sec_wipe(x, sizeof x);
 }

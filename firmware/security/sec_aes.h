@@ -6,6 +6,7 @@
 #ifndef SEC_AES_H
 #define SEC_AES_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #define SEC_AES_BLOCK 16u
@@ -23,6 +24,13 @@ typedef struct {
     uint8_t k2[SEC_AES_BLOCK];
 } sec_cmac_t;
 
+/** A block encryption in slices (sec_aes128_job_begin, then _run): the state after `round` of
+ *  the cipher's 10 rounds. */
+typedef struct {
+    uint32_t s[4];
+    uint32_t round;
+} sec_aes128_job_t;
+
 /** Expand key into the round keys. */
 void sec_aes128_init(sec_aes128_t *a, const uint8_t key[SEC_AES128_KEY_LEN]);
 
@@ -30,11 +38,25 @@ void sec_aes128_init(sec_aes128_t *a, const uint8_t key[SEC_AES128_KEY_LEN]);
 void sec_aes128_encrypt(const sec_aes128_t *a, const uint8_t in[SEC_AES_BLOCK],
                         uint8_t out[SEC_AES_BLOCK]);
 
+/** Starts encrypting in (the initial round key; no round run yet). */
+void sec_aes128_job_begin(sec_aes128_job_t *j, const sec_aes128_t *a,
+                          const uint8_t in[SEC_AES_BLOCK]);
+
+/** Runs at most *rounds of the job's remaining rounds (*rounds decreases by those run); true
+ *  once the tenth has run, out then holds the ciphertext (sec_aes128_encrypt's). */
+bool sec_aes128_job_run(sec_aes128_job_t *j, const sec_aes128_t *a, uint32_t *rounds,
+                        uint8_t out[SEC_AES_BLOCK]);
+
 /** The CMAC key of key: its schedule and subkeys (one block encryption). */
 void sec_cmac_init(sec_cmac_t *c, const uint8_t key[SEC_AES128_KEY_LEN]);
 
 /** AES-CMAC of len bytes (any length, 0 too) into out[16]; ceil(len / 16) encryptions, one for
  *  len <= 16. */
+/** The block a CMAC of a message of len <= SEC_AES_BLOCK bytes encrypts last (msg padded,
+ *  xor K1 or K2): its MAC is sec_aes128_encrypt(&c->aes, block). */
+void sec_cmac_one_block(const sec_cmac_t *c, const uint8_t *msg, uint32_t len,
+                        uint8_t block[SEC_AES_BLOCK]);
+
 void sec_cmac(const sec_cmac_t *c, const uint8_t *msg, uint32_t len, uint8_t out[SEC_AES_BLOCK]);
 
 #endif /* SEC_AES_H */

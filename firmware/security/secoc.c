@@ -64,7 +64,10 @@ uint32_t secoc_confirm(const secoc_t *s)
            (uint32_t)out[3];
 }
 
-void secoc_mac(const secoc_t *s, const can_frame_t *f, uint32_t fv, uint8_t mac[SECOC_MAC_LEN])
+/* The block the MAC of frame f at freshness value fv encrypts (the CMAC of its one-block
+ * message: id low, id high, payload, FV big-endian). */
+static void mac_block(const secoc_t *s, const can_frame_t *f, uint32_t fv,
+                      uint8_t block[SEC_AES_BLOCK])
 {
     uint8_t m[SECOC_MSG_LEN];
     m[0] = (uint8_t)(f->id & 0xFFu);
@@ -74,9 +77,15 @@ void secoc_mac(const secoc_t *s, const can_frame_t *f, uint32_t fv, uint8_t mac[
     m[6] = (uint8_t)(fv >> 16);
     m[7] = (uint8_t)(fv >> 8);
     m[8] = (uint8_t)fv;
-    uint8_t out[SEC_AES_BLOCK];
-    sec_cmac(&s->cmac, m, SECOC_MSG_LEN, out);
-    memcpy(mac, out, SECOC_MAC_LEN);
+    sec_cmac_one_block(&s->cmac, m, SECOC_MSG_LEN, block);
+}
+
+void secoc_mac(const secoc_t *s, const can_frame_t *f, uint32_t fv, uint8_t mac[SECOC_MAC_LEN])
+{
+    uint8_t block[SEC_AES_BLOCK];
+    mac_block(s, f, fv, block);
+    sec_aes128_encrypt(&s->cmac.aes, block, block);
+    memcpy(mac, block, SECOC_MAC_LEN);
 }
 
 uint32_t secoc_protect(secoc_t *s, can_frame_t *f, secoc_channel_t ch)
@@ -94,18 +103,29 @@ static sec_status_t refuse(secoc_t *s, sec_status_t why, uint32_t *count)
     return why;
 }
 
-/* True if the frame's MAC is the one for freshness value fv. */
-static bool mac_matches(const secoc_t *s, const can_frame_t *f, uint32_t fv)
+/* Starts the encryption of the MAC of the job's frame at freshness value fv. */
+static void job_mac_begin(const secoc_t *s, secoc_job_t *j, uint32_t fv, uint8_t phase)
 {
-    uint8_t mac[SECOC_MAC_LEN];
-    secoc_mac(s, f, fv, mac);
-    return sec_ct_equal(mac, &f->data[SECOC_MAC_OFFSET], SECOC_MAC_LEN) == 1;
+    uint8_t block[SEC_AES_BLOCK];
+    mac_block(s, &j->f, fv, block);
+    sec_aes128_job_begin(&j->aes, &s->cmac.aes, block);
+    j->phase = phase;
 }
 
-sec_status_t secoc_verify(secoc_t *s, const can_frame_t *f, secoc_channel_t ch)
+static void job_end(secoc_job_t *j, sec_status_t status)
 {
+    j->status = status;
+    j->phase = 0u;
+}
+
+void secoc_verify_begin(secoc_t *s, secoc_job_t *j, const can_frame_t *f, secoc_channel_t ch)
+{
+    j->f = *f;
+    j->ch = (uint8_t)ch;
+    j->status = SEC_OK;
     if (!s->keyed) {
-        return refuse(s, SEC_ERR_NO_KEY, &s->no_key);
+        job_end(j, refuse(s, SEC_ERR_NO_KEY, &s->no_key));
+        return;
     }
     const uint32_t last = s->fv[ch];
     const uint32_t low = f->data[SECOC_FV_BYTE];
@@ -113,22 +133,47 @@ sec_status_t secoc_verify(secoc_t *s, const can_frame_t *f, secoc_channel_t ch)
     if (fv <= last) {
         fv += SECOC_FV_WINDOW;
         if (fv < last) { /* the 32-bit counter is used up: a new key restarts it */
-            return refuse(s, SEC_ERR_FRESHNESS, &s->no_key);
+            job_end(j, refuse(s, SEC_ERR_FRESHNESS, &s->no_key));
+            return;
         }
     }
-    if (mac_matches(s, f, fv)) {
-        s->fv[ch] = fv;
-        s->bad_in_row = 0u;
-        s->accepted++;
-        return SEC_OK;
+    j->fv = fv;
+    job_mac_begin(s, j, fv, 1u);
+}
+
+bool secoc_verify_run(secoc_t *s, secoc_job_t *j, uint32_t *rounds)
+{
+    while (j->phase != 0u) {
+        uint8_t out[SEC_AES_BLOCK];
+        if (!sec_aes128_job_run(&j->aes, &s->cmac.aes, rounds, out)) {
+            return false;
+        }
+        const bool match = sec_ct_equal(out, &j->f.data[SECOC_MAC_OFFSET], SECOC_MAC_LEN) == 1;
+        if (j->phase == 1u && match) {
+            s->fv[j->ch] = j->fv;
+            s->bad_in_row = 0u;
+            s->accepted++;
+            job_end(j, SEC_OK);
+        } else if (j->phase == 1u && j->fv >= SECOC_FV_WINDOW) {
+            job_mac_begin(s, j, j->fv - SECOC_FV_WINDOW, 2u); /* a genuine frame already used? */
+        } else if (match) {
+            job_end(j, refuse(s, SEC_ERR_REPLAY, &s->replayed));
+        } else {
+            job_end(j, refuse(s, SEC_ERR_MAC, &s->bad_mac));
+            if (++s->bad_in_row >= SECOC_MAX_BAD_MAC) {
+                secoc_forget(s);
+                s->revoked++;
+            }
+        }
     }
-    if (fv >= SECOC_FV_WINDOW && mac_matches(s, f, fv - SECOC_FV_WINDOW)) {
-        return refuse(s, SEC_ERR_REPLAY, &s->replayed); /* a genuine frame already used */
-    }
-    (void)refuse(s, SEC_ERR_MAC, &s->bad_mac);
-    if (++s->bad_in_row >= SECOC_MAX_BAD_MAC) {
-        secoc_forget(s);
-        s->revoked++;
-    }
-    return SEC_ERR_MAC;
+    return true;
+}
+
+sec_status_t secoc_verify(secoc_t *s, const can_frame_t *f, secoc_channel_t ch)
+{
+    secoc_job_t j;
+    uint32_t rounds = UINT32_MAX;
+    secoc_verify_begin(s, &j, f, ch);
+    (void)secoc_verify_run(s, &j, &rounds);
+    return j.status;
 }

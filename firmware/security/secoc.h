@@ -49,6 +49,17 @@ typedef struct {
     uint16_t last_refusal; /* SEC_ERR_* of the last refused frame, 0 if none */
 } secoc_t;
 
+/** A frame's verification in slices (secoc_verify_begin, then secoc_verify_run): the frame, the
+ *  freshness value its MAC is checked at, the encryption in flight. */
+typedef struct {
+    can_frame_t f;
+    uint32_t fv;
+    uint8_t ch;
+    uint8_t phase; /* 1: the MAC at fv; 2: at fv - SECOC_FV_WINDOW (is it a replay); 0: done */
+    sec_status_t status; /* the result once done */
+    sec_aes128_job_t aes;
+} secoc_job_t;
+
 /** No key, every counter zero. */
 void secoc_init(secoc_t *s);
 
@@ -85,5 +96,13 @@ uint32_t secoc_protect(secoc_t *s, can_frame_t *f, secoc_channel_t ch);
  *  SEC_OK accepts it (its FV becomes the last); SEC_ERR_NO_KEY, SEC_ERR_MAC, SEC_ERR_REPLAY,
  *  SEC_ERR_FRESHNESS refuse it, counted. */
 sec_status_t secoc_verify(secoc_t *s, const can_frame_t *f, secoc_channel_t ch);
+
+/** secoc_verify in slices: starts checking frame f of channel ch (a refusal that needs no
+ *  encryption, no key or freshness used up, ends the job at once). */
+void secoc_verify_begin(secoc_t *s, secoc_job_t *j, const can_frame_t *f, secoc_channel_t ch);
+
+/** Runs at most *rounds AES rounds of the job (*rounds decreases by those run; an encryption
+ *  is 10); true once done, j->status then holds secoc_verify's result, counted as it counts. */
+bool secoc_verify_run(secoc_t *s, secoc_job_t *j, uint32_t *rounds);
 
 #endif /* SECOC_H */

@@ -892,7 +892,7 @@ static void test_start_refused_during_commit(void **state)
     assert_int_equal(app.state, APP_EXECUTE);
 }
 
-/* At most APP_MAC_PER_TICK (1) MAC verifications a tick: three authentic heartbeats and a
+/* One MAC verification a tick (APP_MAC_ROUNDS_PER_TICK 20 on the host: a whole one): three authentic heartbeats and a
  * forged one in one tick are verified one a tick, in order (the next held, the rest queued); a
  * stop between them is taken without a MAC once its turn comes. */
 static void test_one_mac_a_tick(void **state)

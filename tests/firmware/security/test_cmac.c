@@ -4,6 +4,7 @@
  * against the one the blocks' encryptions give by the definition (SP 800-38B 6.2). */
 #include <setjmp.h>
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
@@ -81,6 +82,43 @@ static void test_cmac_sp800_38b_examples_1_to_4(void **state)
 
 /* The definition: M_1..M_n blocks, the last XOR K1 if complete, else padded 10* XOR K2; C_i =
  * E(C_{i-1} XOR M_i). */
+/* The encryption in slices of 1..11 rounds a call: the FIPS 197 ciphertext, each call runs
+ * what its budget allows, and the job ends after exactly 10 rounds. */
+static void test_aes128_job_in_slices(void **state)
+{
+    (void)state;
+    uint8_t key[16], pt[16], ct[16], out[16];
+    hex("000102030405060708090a0b0c0d0e0f", key, 16);
+    hex("00112233445566778899aabbccddeeff", pt, 16);
+    hex("69c4e0d86a7b0430d8cdb78070b4c55a", ct, 16);
+    sec_aes128_t a;
+    sec_aes128_init(&a, key);
+    for (uint32_t k = 1u; k <= 11u; k++) {
+        sec_aes128_job_t j;
+        sec_aes128_job_begin(&j, &a, pt);
+        memset(out, 0, sizeof out);
+        uint32_t calls = 0u, used = 0u;
+        bool done = false;
+        while (!done) {
+            uint32_t budget = k;
+            done = sec_aes128_job_run(&j, &a, &budget, out);
+            used += k - budget;
+            calls++;
+            assert_true(calls <= 10u);
+            assert_true(done || budget == 0u); /* a call stops early only at the end */
+        }
+        assert_int_equal(used, 10u);
+        assert_int_equal(calls, (10u + k - 1u) / k);
+        assert_memory_equal(out, ct, 16);
+    }
+    /* a call with no budget runs nothing */
+    sec_aes128_job_t j;
+    sec_aes128_job_begin(&j, &a, pt);
+    uint32_t none = 0u;
+    assert_false(sec_aes128_job_run(&j, &a, &none, out));
+    assert_int_equal(j.round, 0u);
+}
+
 static void cmac_by_definition(const sec_cmac_t *c, const uint8_t *m, uint32_t len, uint8_t *out)
 {
     const uint32_t n = len == 0u ? 1u : (len + 15u) / 16u;
@@ -118,6 +156,12 @@ static void test_cmac_every_length_to_64(void **state)
         sec_cmac(&c, msg, len, a);
         cmac_by_definition(&c, msg, len, b);
         assert_memory_equal(a, b, 16);
+        if (len <= 16u) { /* the one-block form: its block encrypted is the CMAC */
+            uint8_t blk[16];
+            sec_cmac_one_block(&c, msg, len, blk);
+            sec_aes128_encrypt(&c.aes, blk, blk);
+            assert_memory_equal(blk, b, 16);
+        }
     }
 }
 
@@ -125,6 +169,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_aes128_fips197_c1),
+        cmocka_unit_test(test_aes128_job_in_slices),
         cmocka_unit_test(test_cmac_sp800_38b_subkeys),
         cmocka_unit_test(test_cmac_sp800_38b_examples_1_to_4),
         cmocka_unit_test(test_cmac_every_length_to_64),

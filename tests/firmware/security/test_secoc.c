@@ -2,9 +2,11 @@
  * input (sec_cmac, itself checked against SP 800-38B in test_cmac.c), the key derivation against
  * a one-shot HMAC-SHA256 (RFC 4231 vectors in test_sha256.c), the freshness window (lost
  * frames absorbed up to 255, more refused), replays, a frame
- * without a key, a MAC from another key, and the key discarded after 64 wrong MACs in a row. */
+ * without a key, a MAC from another key, the key discarded after 64 wrong MACs in a row, and the
+ * verification in slices of any size against secoc_verify. */
 #include <setjmp.h>
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
@@ -151,6 +153,76 @@ static void test_key_discarded_after_64_wrong_macs(void **state)
     assert_int_equal(rx.last_refusal, SEC_ERR_NO_KEY);
 }
 
+/* One frame through secoc_verify on a and through the sliced job at k rounds a call on b: the
+ * same status, the same receiver state after it, and the calls the rounds need (10 an
+ * encryption: one for an accepted frame, two for one that fails after its freshness window). */
+static sec_status_t verify_both(secoc_t *a, secoc_t *b, const can_frame_t *f, secoc_channel_t ch,
+                                uint32_t k, uint32_t *calls)
+{
+    const sec_status_t whole = secoc_verify(a, f, ch);
+    secoc_job_t j;
+    secoc_verify_begin(b, &j, f, ch);
+    *calls = 0u;
+    for (;;) {
+        uint32_t budget = k;
+        const bool done = secoc_verify_run(b, &j, &budget);
+        if (budget != k || !done) {
+            (*calls)++;
+        }
+        if (done) {
+            break;
+        }
+        assert_true(*calls < 100u);
+    }
+    assert_int_equal(j.status, whole);
+    assert_memory_equal(a->fv, b->fv, sizeof a->fv);
+    assert_int_equal(a->keyed, b->keyed);
+    assert_int_equal(a->bad_in_row, b->bad_in_row);
+    assert_int_equal(a->accepted, b->accepted);
+    assert_int_equal(a->bad_mac, b->bad_mac);
+    assert_int_equal(a->replayed, b->replayed);
+    assert_int_equal(a->no_key, b->no_key);
+    assert_int_equal(a->revoked, b->revoked);
+    assert_int_equal(a->last_refusal, b->last_refusal);
+    return whole;
+}
+
+static void test_sliced_verification_is_secoc_verify(void **state)
+{
+    (void)state;
+    for (uint32_t k = 1u; k <= 12u; k++) {
+        secoc_t tx, a, b;
+        secoc_init(&a);
+        secoc_init(&b);
+        uint32_t calls = 0u;
+        can_frame_t f = frame(0x100u, 2u);
+        assert_int_equal(verify_both(&a, &b, &f, SECOC_CH_COMMAND, k, &calls), SEC_ERR_NO_KEY);
+        assert_int_equal(calls, 0u); /* refused without an encryption */
+        secoc_init(&tx);
+        secoc_set_key(&tx, KEY);
+        secoc_set_key(&a, KEY);
+        secoc_set_key(&b, KEY);
+        const uint32_t one = (10u + k - 1u) / k, two = (20u + k - 1u) / k;
+        for (int i = 0; i < 300; i++) { /* past the first window: replays are recognised */
+            (void)secoc_protect(&tx, &f, SECOC_CH_HEARTBEAT);
+            assert_int_equal(verify_both(&a, &b, &f, SECOC_CH_HEARTBEAT, k, &calls), SEC_OK);
+            assert_int_equal(calls, one);
+        }
+        assert_int_equal(verify_both(&a, &b, &f, SECOC_CH_HEARTBEAT, k, &calls), SEC_ERR_REPLAY);
+        assert_int_equal(calls, two);
+        can_frame_t forged = f;
+        forged.data[SECOC_FV_BYTE] = (uint8_t)(forged.data[SECOC_FV_BYTE] + 1u);
+        forged.data[3] ^= 0x5Au;
+        assert_int_equal(verify_both(&a, &b, &forged, SECOC_CH_HEARTBEAT, k, &calls), SEC_ERR_MAC);
+        assert_int_equal(calls, two);
+        for (unsigned i = 0; i < SECOC_MAX_BAD_MAC; i++) { /* until the key is discarded */
+            (void)verify_both(&a, &b, &forged, SECOC_CH_HEARTBEAT, k, &calls);
+        }
+        assert_false(b.keyed);
+        assert_int_equal(b.revoked, 1u);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -159,6 +231,7 @@ int main(void)
         cmocka_unit_test(test_key_confirmation_matches_the_host),
         cmocka_unit_test(test_freshness_window_replay_and_keys),
         cmocka_unit_test(test_key_discarded_after_64_wrong_macs),
+        cmocka_unit_test(test_sliced_verification_is_secoc_verify),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
