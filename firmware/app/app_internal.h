@@ -118,18 +118,20 @@ struct app {
     uint32_t tx_dropped;
     uint32_t tp_frames; /* ISO-TP frames queued this tick (APP_TP_FRAMES_PER_TICK) */
     secoc_t secoc;      /* authenticated host frames (motion key) */
-    uint8_t secoc_dev_nonce[SECOC_NONCE_LEN]; /* the device nonce of the key in use */
-    sec_hmac_job_t motion_job;                /* the derivation of the next key, in slices */
-    bool motion_keying;                       /* motion_job runs (DID 0x0302 answered 0x78) */
-    bool motion_key_due;                      /* the key is derived, installed next call */
-    bool motion_confirm_due;                  /* the key is set, its confirmation next call */
-    uint8_t motion_key[SECOC_KEY_LEN];        /* the derived key until it is installed */
-    uint32_t motion_confirm;                  /* secoc_confirm of the key in use (0: none) */
-    secoc_job_t mac_job;                      /* the MAC verification in flight */
-    bool mac_busy;                            /* mac_job runs */
-    can_frame_t held;                         /* an authenticated frame waiting for mac_job */
-    uint8_t held_ch;                          /* its channel + 1, 0: none */
-    bool mac_ran;                             /* this tick verified a frame's MAC */
+    uint8_t secoc_dev_nonce[SECOC_NONCE_LEN];   /* the device nonce of the key in use */
+    sec_hmac_job_t motion_job;                  /* the derivation of the next key, in slices */
+    bool motion_keying;                         /* motion_job runs (DID 0x0302 answered 0x78) */
+    bool motion_job_due;                        /* motion_job starts at the next call */
+    uint8_t motion_host_nonce[SECOC_NONCE_LEN]; /* the host nonce of the key being derived */
+    bool motion_key_due;                        /* the key is derived, installed next call */
+    bool motion_confirm_due;                    /* the key is set, its confirmation next call */
+    uint8_t motion_key[SECOC_KEY_LEN];          /* the derived key until it is installed */
+    uint32_t motion_confirm;                    /* secoc_confirm of the key in use (0: none) */
+    secoc_job_t mac_job;                        /* the MAC verification in flight */
+    bool mac_busy;                              /* mac_job runs */
+    can_frame_t held;                           /* an authenticated frame waiting for mac_job */
+    uint8_t held_ch;                            /* its channel + 1, 0: none */
+    bool mac_ran;                               /* this tick verified a frame's MAC */
     uint8_t
         tp_held; /* tester + 1 whose request buffer a TransferData block's slices read, 0: none */
     uint32_t run_opts_fv;   /* freshness value of the last RUN_OPTIONS ... */

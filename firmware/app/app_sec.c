@@ -93,7 +93,6 @@ void app_sec_setup(app_t *app)
 
 uint8_t app_motion_key_begin(app_t *app, const uint8_t *host_nonce, uint16_t len)
 {
-    static const char label[] = SECOC_LABEL;
     if (len != SECOC_NONCE_LEN) {
         return UDS_NRC_INCORRECT_LENGTH;
     }
@@ -104,13 +103,9 @@ uint8_t app_motion_key_begin(app_t *app, const uint8_t *host_nonce, uint16_t len
     if (hal_random(dev_nonce, SECOC_NONCE_LEN) != 0) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT;
     }
-    uint8_t msg[sizeof label - 1u + 2u * SECOC_NONCE_LEN];
-    memcpy(msg, label, sizeof label - 1u);
-    memcpy(&msg[sizeof label - 1u], dev_nonce, SECOC_NONCE_LEN);
-    memcpy(&msg[sizeof label - 1u + SECOC_NONCE_LEN], host_nonce, SECOC_NONCE_LEN);
-    const sec_config_t *c = &app->sec_cfg[0];
-    (void)sec_hmac_job_begin(&app->motion_job, c->secret, c->secret_len, msg, (uint32_t)sizeof msg);
-    secoc_forget(&app->secoc); /* the old session ends now */
+    memcpy(app->motion_host_nonce, host_nonce, SECOC_NONCE_LEN);
+    app->motion_job_due = true; /* the derivation starts at the next call */
+    secoc_forget(&app->secoc);  /* the old session ends now */
     app->motion_confirm = 0u;
     app->motion_key_due = false;
     app->motion_confirm_due = false;
@@ -133,8 +128,21 @@ uint8_t app_motion_key_run(app_t *app, uint32_t rounds)
         app->motion_confirm = secoc_confirm(&app->secoc); /* kept: DID 0x0302 reads it */
         return UDS_NRC_OK;
     }
-    /* the derivation's end, the key's schedule and subkeys, and the confirmation each take a
-     * call of their own: each is about one to two block encryptions */
+    /* the device nonce (a block encryption of the port's generator), the derivation's start,
+     * its end, the key's schedule and subkeys, and the confirmation each take a call of their
+     * own: each is about one to two block encryptions */
+    if (app->motion_job_due) {
+        static const char label[] = SECOC_LABEL;
+        uint8_t msg[sizeof label - 1u + 2u * SECOC_NONCE_LEN];
+        memcpy(msg, label, sizeof label - 1u);
+        memcpy(&msg[sizeof label - 1u], app->secoc_dev_nonce, SECOC_NONCE_LEN);
+        memcpy(&msg[sizeof label - 1u + SECOC_NONCE_LEN], app->motion_host_nonce, SECOC_NONCE_LEN);
+        const sec_config_t *c = &app->sec_cfg[0];
+        (void)sec_hmac_job_begin(&app->motion_job, c->secret, c->secret_len, msg,
+                                 (uint32_t)sizeof msg);
+        app->motion_job_due = false;
+        return UDS_NRC_RESPONSE_PENDING;
+    }
     if (app->motion_key_due) {
         app->motion_key_due = false;
         secoc_set_key(&app->secoc, app->motion_key);
