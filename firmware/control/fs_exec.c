@@ -545,6 +545,14 @@ void exec_vel_init(exec_vel_t *v, fs_real_t cutoff_Hz, fs_real_t dt_s)
     v->vel_mps = FS_R(0.0);
     v->alpha = dt_s / (dt_s + FS_R(1.0) / (FS_R(2.0) * EXEC_PI * cutoff_Hz));
     v->primed = 0u;
+#ifdef FS_EXEC_FIXED
+    v->prev_q24 = 0;
+    v->vel_q24 = 0;
+    v->not_finite = 0u;
+    const fs_real_t a = (v->alpha > FS_R(0.0) && v->alpha < FS_R(1.0)) ? v->alpha : FS_R(1.0);
+    v->alpha_q30 = fx_from_float(a, 30u);
+    v->inv_dt_q16 = (dt_s > FS_R(0.0)) ? fx_from_float(FS_R(1.0) / dt_s, 16u) : 0;
+#endif
 }
 
 fs_real_t exec_vel_update(exec_vel_t *v, fs_real_t pos_m, fs_real_t dt_s)
@@ -559,6 +567,32 @@ fs_real_t exec_vel_update(exec_vel_t *v, fs_real_t pos_m, fs_real_t dt_s)
     v->vel_mps += v->alpha * (raw - v->vel_mps);
     return v->vel_mps;
 }
+
+#ifdef FS_EXEC_FIXED
+static int32_t sat_q(int64_t x)
+{
+    return (x > INT32_MAX) ? INT32_MAX : ((x <= INT32_MIN) ? INT32_MIN + 1 : (int32_t)x);
+}
+
+int32_t exec_vel_update_q(exec_vel_t *v, int32_t pos_q24)
+{
+    if (pos_q24 == INT32_MIN || v->not_finite != 0u) {
+        v->not_finite = 1u;
+        return INT32_MIN;
+    }
+    if (v->primed == 0u) {
+        v->prev_q24 = pos_q24;
+        v->primed = 1u;
+        return v->vel_q24;
+    }
+    /* (pos - prev)/dt: a Q8.24 difference times 1/dt in Q16.16, rounded half up */
+    const int64_t raw = sat_q((((int64_t)pos_q24 - v->prev_q24) * v->inv_dt_q16 + 0x8000) >> 16);
+    v->prev_q24 = pos_q24;
+    const int64_t e = raw - v->vel_q24; /* within +-2^32: times alpha (<= 2^30) fits int64 */
+    v->vel_q24 = sat_q(v->vel_q24 + ((e * v->alpha_q30 + 0x20000000) >> 30));
+    return v->vel_q24;
+}
+#endif
 
 void exec_render_default(exec_render_cfg_t *cfg)
 {

@@ -76,6 +76,7 @@
 #define exec_contact_hold_ms exec_contact_hold_ms_fx
 #define exec_vel_init exec_vel_init_fx
 #define exec_vel_update exec_vel_update_fx
+#define exec_vel_update_q exec_vel_update_q_fx
 #define exec_render_default exec_render_default_fx
 #define exec_render_reset exec_render_reset_fx
 #define exec_render_step exec_render_step_fx
@@ -236,6 +237,13 @@ typedef struct {
     fs_real_t vel_mps;
     fs_real_t alpha; /* low-pass coefficient dt/(dt + 1/(2 pi fc)) */
     uint8_t primed;
+#ifdef FS_EXEC_FIXED
+    int32_t prev_q24;   /* exec_vel_update_q: the last position, m in Q8.24 */
+    int32_t vel_q24;    /* the filtered velocity, m/s in Q8.24 */
+    int32_t alpha_q30;  /* alpha in Q2.30 */
+    int32_t inv_dt_q16; /* 1/dt in Q16.16 (1/s) */
+    uint8_t not_finite; /* a non-finite sample was fed: the velocity is not finite from then */
+#endif
 } exec_vel_t;
 
 /** Initialise with a cut-off frequency (Hz) and the tick dt. */
@@ -243,6 +251,13 @@ void exec_vel_init(exec_vel_t *v, fs_real_t cutoff_Hz, fs_real_t dt_s);
 
 /** Feed one encoder sample; returns the filtered velocity. */
 fs_real_t exec_vel_update(exec_vel_t *v, fs_real_t pos_m, fs_real_t dt_s);
+
+#ifdef FS_EXEC_FIXED
+/** exec_vel_update in integers, at the dt given to exec_vel_init: position and velocity in
+ *  Q8.24 (m, m/s), INT32_MIN for a value that is not finite (a sample that was not finite
+ *  makes every later velocity not finite, as NaN does in exec_vel_update). */
+int32_t exec_vel_update_q(exec_vel_t *v, int32_t pos_q24);
+#endif
 
 /* ---- Rendering on a real carriage (admittance control) ---- */
 
