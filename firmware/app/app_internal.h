@@ -125,6 +125,7 @@ struct app {
     uint8_t motion_host_nonce[SECOC_NONCE_LEN]; /* the host nonce of the key being derived */
     bool motion_key_due;                        /* the key is derived, installed next call */
     bool motion_confirm_due;                    /* the key is set, its confirmation next call */
+    bool motion_confirm_half;                   /* its first block is in motion_key */
     uint8_t motion_key[SECOC_KEY_LEN];          /* the derived key until it is installed */
     uint32_t motion_confirm;                    /* secoc_confirm of the key in use (0: none) */
     secoc_job_t mac_job;                        /* the MAC verification in flight */

@@ -109,6 +109,7 @@ uint8_t app_motion_key_begin(app_t *app, const uint8_t *host_nonce, uint16_t len
     app->motion_confirm = 0u;
     app->motion_key_due = false;
     app->motion_confirm_due = false;
+    app->motion_confirm_half = false;
     memcpy(app->secoc_dev_nonce, dev_nonce, SECOC_NONCE_LEN);
     app->run_opts_fv = 0u;
     app->held_ch = 0u;
@@ -122,10 +123,18 @@ uint8_t app_motion_key_run(app_t *app, uint32_t rounds)
     if (!app->motion_keying) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT;
     }
+    if (app->motion_confirm_due && !app->motion_confirm_half) {
+        secoc_confirm_first(&app->secoc, app->motion_key); /* the key's buffer, wiped: free */
+        app->motion_confirm_half = true;
+        return UDS_NRC_RESPONSE_PENDING;
+    }
     if (app->motion_confirm_due) {
         app->motion_confirm_due = false;
+        app->motion_confirm_half = false;
         app->motion_keying = false;
-        app->motion_confirm = secoc_confirm(&app->secoc); /* kept: DID 0x0302 reads it */
+        /* kept: DID 0x0302 reads it */
+        app->motion_confirm = secoc_confirm_finish(&app->secoc, app->motion_key);
+        sec_wipe(app->motion_key, sizeof app->motion_key);
         return UDS_NRC_OK;
     }
     /* the device nonce (a block encryption of the port's generator), the derivation's start,

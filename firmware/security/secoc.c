@@ -52,16 +52,37 @@ void secoc_forget(secoc_t *s)
     s->keyed = false;
 }
 
-uint32_t secoc_confirm(const secoc_t *s)
+static const char confirm_label[] = SECOC_CONFIRM_LABEL;
+_Static_assert(sizeof confirm_label - 1u > SEC_AES_BLOCK &&
+                   sizeof confirm_label - 1u <= 2u * SEC_AES_BLOCK,
+               "the confirmation's message is two CMAC blocks");
+
+void secoc_confirm_first(const secoc_t *s, uint8_t x[SEC_AES_BLOCK])
 {
-    static const char label[] = SECOC_CONFIRM_LABEL;
+    sec_aes128_encrypt(&s->cmac.aes, (const uint8_t *)confirm_label, x);
+}
+
+uint32_t secoc_confirm_finish(const secoc_t *s, const uint8_t x[SEC_AES_BLOCK])
+{
     if (!s->keyed) {
         return 0u;
     }
-    uint8_t out[SEC_AES_BLOCK];
-    sec_cmac(&s->cmac, (const uint8_t *)label, (uint32_t)(sizeof label - 1u), out);
-    return ((uint32_t)out[0] << 24) | ((uint32_t)out[1] << 16) | ((uint32_t)out[2] << 8) |
-           (uint32_t)out[3];
+    uint8_t last[SEC_AES_BLOCK];
+    sec_cmac_one_block(&s->cmac, (const uint8_t *)&confirm_label[SEC_AES_BLOCK],
+                       (uint32_t)(sizeof confirm_label - 1u - SEC_AES_BLOCK), last);
+    for (uint32_t i = 0u; i < SEC_AES_BLOCK; i++) {
+        last[i] ^= x[i];
+    }
+    sec_aes128_encrypt(&s->cmac.aes, last, last);
+    return ((uint32_t)last[0] << 24) | ((uint32_t)last[1] << 16) | ((uint32_t)last[2] << 8) |
+           (uint32_t)last[3];
+}
+
+uint32_t secoc_confirm(const secoc_t *s)
+{
+    uint8_t x[SEC_AES_BLOCK];
+    secoc_confirm_first(s, x);
+    return secoc_confirm_finish(s, x);
 }
 
 /* The block the MAC of frame f at freshness value fv encrypts (the CMAC of its one-block

@@ -85,6 +85,11 @@ void secoc_forget(secoc_t *s);
  *  big-endian word, 0 without a key (a host compares it with its own key's). */
 uint32_t secoc_confirm(const secoc_t *s);
 
+/** secoc_confirm in two calls of one block encryption each: the first block's into x, then the
+ *  confirmation from it (0 without a key). */
+void secoc_confirm_first(const secoc_t *s, uint8_t x[SEC_AES_BLOCK]);
+uint32_t secoc_confirm_finish(const secoc_t *s, const uint8_t x[SEC_AES_BLOCK]);
+
 /** The 24-bit MAC of a frame's id and payload (data bytes 0..2) at freshness value fv. */
 void secoc_mac(const secoc_t *s, const can_frame_t *f, uint32_t fv, uint8_t mac[SECOC_MAC_LEN]);
 
