@@ -25,54 +25,90 @@ static void dmp_params_zero(dmp_params_t *out)
     out->gamma = FS_R(0.0);
 }
 
-/* The derivation with the beta <= alpha/4 tolerance as a parameter (double: DMP_MONOTONE_REL_TOL,
- * the float core: DMP_MONOTONE_REL_TOL_REAL). */
-static fs_status_t dmp_derive(const double gain[5], double monotone_rel_tol, double abg[3])
+/* Part part (DMP_DERIVE_PARTS in order, one double division each) of the derivation with the
+ * beta <= alpha/4 tolerance as a parameter (double: DMP_MONOTONE_REL_TOL, the float core:
+ * DMP_MONOTONE_REL_TOL_REAL) into w = {alpha, beta, gamma}: 0 the checks of the gains and
+ * alpha, 1 gamma, 2 kki/alpha (kept in w[1]), 3 beta and its checks. */
+static fs_status_t dmp_derive_part(const double gain[5], double monotone_rel_tol, double w[3],
+                                   uint32_t part)
 {
     const double m_d = gain[0];
     const double k_d = gain[1];
     const double k_p = gain[2];
     const double kkf = gain[3];
     const double kki = gain[4];
-    for (uint32_t i = 0u; i < 5u; i++) {
-        if (!isfinite(gain[i])) {
+    switch (part) {
+    case 0u: {
+        for (uint32_t i = 0u; i < 5u; i++) {
+            if (!isfinite(gain[i])) {
+                return FS_ERR_NOT_FINITE;
+            }
+        }
+        if (!(m_d > 0.0)) {
+            return FS_ERR_MASS_NONPOSITIVE;
+        }
+        if (k_d < 0.0 || k_p < 0.0 || kkf < 0.0 || kki < 0.0) {
+            return FS_ERR_GAIN_NEGATIVE;
+        }
+        if (!(k_d > m_d)) {
+            return FS_ERR_KD_LE_MD;
+        }
+        const double alpha = k_d / m_d - 1.0;
+        /* alpha can round to 0 when k_d exceeds m_d by less than an ulp: that is k_d <= m_d too. */
+        if (!(alpha > 0.0)) {
+            return FS_ERR_KD_LE_MD;
+        }
+        if (!isfinite(alpha)) {
             return FS_ERR_NOT_FINITE;
         }
+        w[0] = alpha;
+        return FS_OK;
     }
-    if (!(m_d > 0.0)) {
-        return FS_ERR_MASS_NONPOSITIVE;
+    case 1u: w[2] = kki / (m_d * w[0]); return FS_OK;
+    case 2u: w[1] = kki / w[0]; return FS_OK;
+    default: {
+        const double alpha = w[0];
+        const double gamma = w[2];
+        /* m_d*gamma = kki/alpha: written this way the kkf and kki terms cancel exactly for the
+         * default gains (kkf = kki/alpha), so beta = alpha/4 holds in floating point. */
+        const double beta = (k_p + (kkf - w[1])) / (m_d * alpha) - 1.0;
+        if (!isfinite(gamma) || !isfinite(beta)) {
+            return FS_ERR_NOT_FINITE;
+        }
+        if (!(beta > 0.0)) {
+            return FS_ERR_BETA_NONPOSITIVE;
+        }
+        if (beta > alpha / 4.0 * (1.0 + monotone_rel_tol)) {
+            return FS_ERR_PHASE_NOT_MONOTONE;
+        }
+        w[1] = beta;
+        return FS_OK;
     }
-    if (k_d < 0.0 || k_p < 0.0 || kkf < 0.0 || kki < 0.0) {
-        return FS_ERR_GAIN_NEGATIVE;
     }
-    if (!(k_d > m_d)) {
-        return FS_ERR_KD_LE_MD;
+}
+
+/* The whole derivation: abg written only on success. */
+static fs_status_t dmp_derive(const double gain[5], double monotone_rel_tol, double abg[3])
+{
+    double w[3] = {0.0, 0.0, 0.0};
+    for (uint32_t part = 0u; part < DMP_DERIVE_PARTS; part++) {
+        const fs_status_t st = dmp_derive_part(gain, monotone_rel_tol, w, part);
+        if (st != FS_OK) {
+            return st;
+        }
     }
-    const double alpha = k_d / m_d - 1.0;
-    /* alpha can round to 0 when k_d exceeds m_d by less than an ulp: that is k_d <= m_d too. */
-    if (!(alpha > 0.0)) {
-        return FS_ERR_KD_LE_MD;
-    }
-    if (!isfinite(alpha)) {
-        return FS_ERR_NOT_FINITE;
-    }
-    const double gamma = kki / (m_d * alpha);
-    /* m_d*gamma = kki/alpha: written this way the kkf and kki terms cancel exactly for the default
-     * gains (kkf = kki/alpha), so beta = alpha/4 holds in floating point. */
-    const double beta = (k_p + (kkf - kki / alpha)) / (m_d * alpha) - 1.0;
-    if (!isfinite(gamma) || !isfinite(beta)) {
-        return FS_ERR_NOT_FINITE;
-    }
-    if (!(beta > 0.0)) {
-        return FS_ERR_BETA_NONPOSITIVE;
-    }
-    if (beta > alpha / 4.0 * (1.0 + monotone_rel_tol)) {
-        return FS_ERR_PHASE_NOT_MONOTONE;
-    }
-    abg[0] = alpha;
-    abg[1] = beta;
-    abg[2] = gamma;
+    abg[0] = w[0];
+    abg[1] = w[1];
+    abg[2] = w[2];
     return FS_OK;
+}
+
+fs_status_t dmp_derive_f64_part(const double gain[5], double work[3], uint32_t part)
+{
+    if (gain == NULL || work == NULL || part >= DMP_DERIVE_PARTS) {
+        return FS_ERR_NULL_ARG;
+    }
+    return dmp_derive_part(gain, DMP_MONOTONE_REL_TOL, work, part);
 }
 
 fs_status_t dmp_derive_f64(const double gain[5], double abg[3])

@@ -73,6 +73,15 @@ typedef struct {
  *  abg[] is written only on success. */
 fs_status_t dmp_derive_f64(const double gain[5], double abg[3]);
 
+/** The parts of dmp_derive_f64 (one double division each: a bounded slice on a core without a
+ *  double FPU). */
+#define DMP_DERIVE_PARTS 4u
+
+/** Part part (0 .. DMP_DERIVE_PARTS - 1, called in order) of dmp_derive_f64 into work, which
+ *  holds alpha, beta, gamma after the last part succeeds; dmp_derive_f64's codes (100 also for
+ *  a part out of range). */
+fs_status_t dmp_derive_f64_part(const double gain[5], double work[3], uint32_t part);
+
 /** dmp_derive_f64 in the core's type: NULL (100), then its checks, with the float build's
  *  tolerance DMP_MONOTONE_REL_TOL_REAL for beta <= alpha/4. On error *out is zeroed. */
 fs_status_t dmp_params_from_gains(const dmp_gains_t *gains, dmp_params_t *out);

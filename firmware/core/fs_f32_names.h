@@ -5,6 +5,7 @@
 #define FS_F32_NAMES_H
 
 #define dmp_derive_f64 dmp_derive_f64_f32
+#define dmp_derive_f64_part dmp_derive_f64_part_f32
 #define dmp_params_from_gains dmp_params_from_gains_f32
 #define dmp_gains_at_stiffness dmp_gains_at_stiffness_f32
 #define dmp_goal dmp_goal_f32

@@ -202,13 +202,13 @@ static void read_gains(const uint8_t *buf, double gain[5])
     gain[4] = rd_f64(buf, OFF_KKI);
 }
 
-/* The alpha/beta/gamma the fit gains derive, into the parser (their own unit: four double
- * divisions and the derivation's checks, in software on a core without a double FPU). */
-static fs_status_t derive_gains(skill_parser_t *p)
+/* Part i of the alpha/beta/gamma the fit gains derive, into the parser (a unit each: one double
+ * division and the derivation's checks, in software on a core without a double FPU). */
+static fs_status_t derive_gains(skill_parser_t *p, uint32_t i)
 {
     double gain[5];
     read_gains(p->buf, gain);
-    return dmp_derive_f64(gain, p->derived) == FS_OK ? FS_OK : FS_ERR_SKILL_GAINS;
+    return dmp_derive_f64_part(gain, p->derived, i) == FS_OK ? FS_OK : FS_ERR_SKILL_GAINS;
 }
 
 /* The gains of a framed image: the stored alpha/beta/gamma those derived (and monotone); with a
@@ -360,7 +360,7 @@ enum {
     SP_RANGE,   /* the header's ranges */
     SP_WIDTHS,  /* every width > 0, one a unit */
     SP_CENTRES, /* the centres increasing in [0, 1], one a unit */
-    SP_DERIVE,  /* alpha, beta, gamma from the fit gains */
+    SP_DERIVE,  /* alpha, beta, gamma from the fit gains, DMP_DERIVE_PARTS units */
     SP_GAINS,   /* the stored ones against them, and the flags */
     SP_KIND,    /* the kind's fields (v4) */
     SP_FILL,    /* the header's values in the core's type */
@@ -427,6 +427,7 @@ static bool parse_item(skill_parser_t *p)
         }
         return i + 1u >= n;
     }
+    case SP_DERIVE: p->status = derive_gains(p, i); return i + 1u >= DMP_DERIVE_PARTS;
     case SP_KERNELS:
         if (!fill_kernel(p, i)) {
             p->status = FS_ERR_SKILL_RANGE; /* valid in double, beyond the core's type */
@@ -436,7 +437,7 @@ static bool parse_item(skill_parser_t *p)
     }
 }
 
-/* The stages done in one unit each (frame, ranges, derive, gains, kind, fill, finish). */
+/* The stages done in one unit each (frame, ranges, gains, kind, fill, finish). */
 static void parse_once(skill_parser_t *p)
 {
     const uint8_t *buf = p->buf;
@@ -444,7 +445,6 @@ static void parse_once(skill_parser_t *p)
     switch (p->stage) {
     case SP_FRAME: p->status = check_frame(p); break;
     case SP_RANGE: p->status = check_header_range(buf); break;
-    case SP_DERIVE: p->status = derive_gains(p); break;
     case SP_GAINS: p->status = check_gains_flags(buf, p->derived, p->version, p->has_y); break;
     case SP_KIND: p->status = check_kind(buf, p->version, p->kind); break;
     case SP_FILL:
@@ -510,7 +510,7 @@ bool skill_parse_run(skill_parser_t *p, uint32_t max_units)
             stage_done = dmp_model_init_run(&p->out->dmp, &p->init, SKILL_PARSE_INIT_KERNELS);
             p->status = stage_done ? p->init.status : FS_OK;
         } else if (p->stage == SP_FINITE || p->stage == SP_WIDTHS || p->stage == SP_CENTRES ||
-                   p->stage == SP_KERNELS) {
+                   p->stage == SP_DERIVE || p->stage == SP_KERNELS) {
             stage_done = parse_item(p);
         } else {
             parse_once(p);
