@@ -359,11 +359,13 @@ static fs_status_t dmpfx_bound_peaks(const dmp_model_t *m, double bound_N, dmpfx
 
 /* The stages of the sliced conversion (dmpfx_conv_t.stage). */
 enum {
-    DMPFX_CONV_HEAD = 0,
+    DMPFX_CONV_BOUND = 0, /* the force bound (software double on the M3: a unit of its own) */
+    DMPFX_CONV_HEAD,
     DMPFX_CONV_KERNELS,
     DMPFX_CONV_ENVELOPES,
     DMPFX_CONV_WINDOWS,
-    DMPFX_CONV_TAIL
+    DMPFX_CONV_TAIL,
+    DMPFX_CONV_PEAKS
 };
 
 void dmpfx_bound_begin(dmpfx_conv_t *c, const dmp_model_t *m, dmpfx_model_t *out)
@@ -372,7 +374,7 @@ void dmpfx_bound_begin(dmpfx_conv_t *c, const dmp_model_t *m, dmpfx_model_t *out
     c->out = out;
     c->bound_N = 0.0;
     c->pos = 0u;
-    c->stage = DMPFX_CONV_HEAD;
+    c->stage = DMPFX_CONV_BOUND;
     c->status = dmpfx_check_args(m, out);
     c->done = c->status != FS_OK;
 }
@@ -384,8 +386,11 @@ static fs_status_t dmpfx_bound_unit(dmpfx_conv_t *c)
     dmpfx_model_t *out = c->out;
     fs_status_t st = FS_OK;
     switch (c->stage) {
-    case DMPFX_CONV_HEAD:
+    case DMPFX_CONV_BOUND:
         c->bound_N = dmpfx_bound_N(m);
+        c->stage = DMPFX_CONV_HEAD;
+        break;
+    case DMPFX_CONV_HEAD:
         st = dmpfx_convert_head(m, dmpfx_choose_shift(c->bound_N), out);
         c->stage = DMPFX_CONV_KERNELS;
         break;
@@ -407,11 +412,12 @@ static fs_status_t dmpfx_bound_unit(dmpfx_conv_t *c)
             c->stage = DMPFX_CONV_TAIL;
         }
         break;
-    default:
+    case DMPFX_CONV_TAIL:
         st = dmpfx_convert_tail(m, out);
-        if (st == FS_OK) {
-            st = dmpfx_bound_peaks(m, c->bound_N, out);
-        }
+        c->stage = DMPFX_CONV_PEAKS;
+        break;
+    default:
+        st = dmpfx_bound_peaks(m, c->bound_N, out);
         c->done = true;
         break;
     }

@@ -147,8 +147,8 @@ fs_status_t dmpfx_from_model_bound(const dmp_model_t *m, dmpfx_model_t *out);
 
 /** dmpfx_from_model_bound in slices (dmpfx_bound_begin, then dmpfx_bound_run until it returns
  *  true), so a device converts a skill over several control ticks: the same checks in the same
- *  order and the same model. A unit is the scale's choice, one kernel, the envelope passes, one
- *  window check, or the scalars and peaks. m and *out must stay in place until it is done. */
+ *  order and the same model. A unit is the force bound, the scale's choice, one kernel, the
+ *  envelope passes, one window check, the scalars, or the peaks. m and *out must stay in place until it is done. */
 typedef struct {
     const dmp_model_t *m;
     dmpfx_model_t *out;

@@ -296,7 +296,7 @@ static double check_commit_path(const char *name)
     assert_int_equal(c.status, FS_OK);
     assert_memory_equal(&one, &sliced, sizeof one);
     const uint32_t n = skill.dmp.n_kernels;
-    assert_int_equal(units, n + ((skill.dmp.periodic != 0u) ? 2u * n + 1u : n) + 3u);
+    assert_int_equal(units, n + ((skill.dmp.periodic != 0u) ? 2u * n + 1u : n) + 5u);
 
     fs_real_t peak_ref = 0.0;
     assert_int_equal(skchk_skill(&skill, 0.001, 1e30, &peak_ref), FS_OK);
