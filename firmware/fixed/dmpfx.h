@@ -245,6 +245,7 @@ typedef struct {
     int32_t peak_q16;      /* max |f_hat| so far */
     int32_t path_peak_q24; /* max |p| so far (0 without a y DMP) */
     fs_status_t status;    /* FS_OK while running or passed; 223/225/300 or a 3xx of the set-up */
+    bool set_up;           /* the periodic and path constants are derived (the first run call) */
     bool done;
 } dmpfx_check_t;
 
@@ -253,7 +254,8 @@ typedef struct {
 void dmpfx_check_begin(dmpfx_check_t *c, const dmpfx_model_t *m, float duration_s, float dt_s,
                        float force_max_N, float path_max_m);
 
-/** Advance by at most max_steps DMP steps; true once finished (then c->status). */
+/** Advance by at most max_steps DMP steps (the first call: the rest of the set-up, no step);
+ *  true once finished (then c->status). */
 bool dmpfx_check_run(dmpfx_check_t *c, uint32_t max_steps);
 
 /** The check's peak |f_hat| (N) so far. */
