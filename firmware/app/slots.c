@@ -360,6 +360,7 @@ uint8_t slots_upload_begin(slots_t *b, uint32_t slot, uint32_t size)
             return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED; /* empty slot */
         }
         b->reading = true;
+        return UDS_NRC_RESPONSE_PENDING; /* the request's own tick reads nothing more */
     }
     /* the read-back's record CRC, a bounded slice a tick (0x78 meanwhile) */
     if (!nvm_read_run(&b->reader, SLOTS_READ_UNITS_PER_TICK)) {
