@@ -31,7 +31,15 @@ OUTPUTS = {
         "firmware/safety/wdg.h",
         "firmware/safety/saf.h",
     ],
+    "firmware/safety/saf_fx_names.h": [
+        "firmware/safety/lim.h",
+        "firmware/safety/sen.h",
+        "firmware/safety/wdg.h",
+        "firmware/safety/saf.h",
+    ],
 }
+# the suffix each output gives (the safety layer's integer build: SAF_FIXED, _fx)
+SUFFIX = {"firmware/safety/saf_fx_names.h": "_fx"}
 COMMENT = re.compile(r"/\*.*?\*/", re.S)
 # a declaration at column 0: return type words and stars, then the name and "(";
 # static (inline) functions, typedefs and preprocessor lines are not external symbols
@@ -44,9 +52,12 @@ def functions(text: str) -> list[str]:
 
 def render(out: str, headers: list[str], root: Path) -> str:
     guard = re.sub(r"[^A-Z0-9]", "_", Path(out).name.upper())
+    suffix = SUFFIX.get(out, "_f32")
+    build = "integer build" if suffix == "_fx" else "float32 build"
+    flag = "SAF_FIXED" if suffix == "_fx" else "FS_REAL_FLOAT"
     lines = [
-        f"/* The _f32 names of the float32 build of {', '.join(Path(h).name for h in headers)}",
-        " * (FS_REAL_FLOAT): generated from their declarations by tools/gen_f32_names.py;",
+        f"/* The {suffix} names of the {build} of {', '.join(Path(h).name for h in headers)}",
+        f" * ({flag}): generated from their declarations by tools/gen_f32_names.py;",
         " * do not edit. */",
         f"#ifndef {guard}",
         f"#define {guard}",
@@ -54,7 +65,7 @@ def render(out: str, headers: list[str], root: Path) -> str:
     ]
     for h in headers:
         for name in functions((root / h).read_text()):
-            lines.append(f"#define {name} {name}_f32")
+            lines.append(f"#define {name} {name}{suffix}")
     lines += ["", f"#endif /* {guard} */", ""]
     return "\n".join(lines)
 

@@ -553,6 +553,7 @@ void app_init(app_t *app, const app_config_t *cfg)
 
     app->saf_cfg = cfg->saf;
     saf_init(&app->saf);
+    saf_prepare(&app->saf_cfg, &app->saf);
     for (unsigned a = 0; a < PFC_AXES; a++) {
         exec_vel_init(&app->vel[a], cfg->vel_cutoff_Hz, APP_TICK_S);
     }

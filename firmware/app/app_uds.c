@@ -208,6 +208,7 @@ static uint8_t apply_saf(app_t *app, const saf_config_t *sc)
     }
     app->saf_cfg = *sc;
     app->cfg.saf = *sc;
+    saf_prepare(&app->saf_cfg, &app->saf); /* the tick's bounds follow from this tick on */
     return UDS_NRC_OK;
 }
 

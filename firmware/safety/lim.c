@@ -56,7 +56,7 @@ void lim_reset(lim_state_t *st)
         return;
     }
     for (uint32_t i = 0u; i < LIM_AXES; i++) {
-        st->out_N[i] = FS_R(0.0);
+        st->out_N[i] = SAF_FORCE_C(0.0);
         st->slew_run[i] = 0u;
     }
 }
@@ -68,7 +68,24 @@ static fs_real_t safe_bound(fs_real_t b)
     return (fs_isfinite(b) && b > FS_R(0.0)) ? b : FS_R(0.0);
 }
 
-static fs_real_t clamp_sym(fs_real_t x, fs_real_t b)
+void lim_prepare(const lim_config_t *cfg, lim_state_t *st)
+{
+    if (cfg == NULL || st == NULL) {
+        return;
+    }
+    for (uint32_t i = 0u; i < LIM_AXES; i++) {
+        const lim_axis_t *a = &cfg->axis[i];
+        lim_bounds_t *b = &st->b[i];
+        b->force_max_N = SAF_FORCE_OF(safe_bound(a->force_max_N));
+        b->slew_max_N = SAF_FORCE_OF(safe_bound(a->slew_max_N));
+        b->pos_min_m = SAF_POS_OF(a->pos_min_m);
+        b->pos_max_m = SAF_POS_OF(a->pos_max_m);
+        b->vel_max_mps = SAF_POS_OF(a->vel_max_mps);
+        b->contact_force_max_N = SAF_FORCE_OF(a->contact_force_max_N);
+    }
+}
+
+static saf_force_t clamp_sym(saf_force_t x, saf_force_t b)
 {
     if (x > b) {
         return b;
@@ -81,30 +98,30 @@ static fs_real_t clamp_sym(fs_real_t x, fs_real_t b)
 
 /* The measurement gates of one axis: outside the workspace or above the velocity limit, a
  * request pushing further out is zeroed; the contact force is checked. Returns the target. */
-static fs_real_t gate_by_measurement(const lim_axis_t *a, const saf_meas_t *m, fs_real_t target,
-                                     lim_result_t *r)
+static saf_force_t gate_by_measurement(const lim_bounds_t *a, const saf_meas_t *m,
+                                       saf_force_t target, lim_result_t *r)
 {
-    const fs_real_t pos = m->pos_m;
-    const fs_real_t vel = m->vel_mps;
-    const fs_real_t f = m->force_N;
-    /* Comparisons with NaN are false: a NaN reading never gates here (sen_check
-     * latches FLT_SENSOR_NAN and the stop ramp takes over). */
-    if (pos > a->pos_max_m || pos < a->pos_min_m) {
+    const saf_pos_t pos = m->pos_m;
+    const saf_vel_t vel = m->vel_mps;
+    const saf_force_t f = m->force_N;
+    const saf_force_t zero = SAF_FORCE_C(0.0);
+    /* A non-finite reading never gates here (sen_check latches FLT_SENSOR_NAN and the stop
+     * ramp takes over): in floating point its comparisons are false, in integers it is tested */
+    if (saf_comparable(pos) && (pos > a->pos_max_m || pos < a->pos_min_m)) {
         r->cause_mask |= FLT_BIT(FLT_WORKSPACE);
-        if ((pos > a->pos_max_m && target > FS_R(0.0)) ||
-            (pos < a->pos_min_m && target < FS_R(0.0))) {
+        if ((pos > a->pos_max_m && target > zero) || (pos < a->pos_min_m && target < zero)) {
             r->flags |= LIM_F_WORKSPACE;
-            target = FS_R(0.0);
+            target = zero;
         }
     }
-    if (fs_fabs(vel) > a->vel_max_mps) { /* NaN: false, as the two compares it stands for */
+    if (saf_comparable(vel) && saf_abs(vel) > a->vel_max_mps) {
         r->cause_mask |= FLT_BIT(FLT_VELOCITY);
-        if ((vel > FS_R(0.0) && target > FS_R(0.0)) || (vel < FS_R(0.0) && target < FS_R(0.0))) {
+        if ((vel > (saf_vel_t)0 && target > zero) || (vel < (saf_vel_t)0 && target < zero)) {
             r->flags |= LIM_F_VELOCITY;
-            target = FS_R(0.0);
+            target = zero;
         }
     }
-    if (fs_fabs(f) > a->contact_force_max_N) {
+    if (saf_comparable(f) && saf_abs(f) > a->contact_force_max_N) {
         r->cause_mask |= FLT_BIT(FLT_FORCE_LIMIT);
     }
     return target;
@@ -112,23 +129,24 @@ static fs_real_t gate_by_measurement(const lim_axis_t *a, const saf_meas_t *m, f
 
 /* The slew limit of axis i toward target, its leaky bucket and the force clamp; returns the
  * output (also kept as the axis's last output). */
-static fs_real_t slew_step(const lim_config_t *cfg, lim_state_t *st, uint32_t i, fs_real_t target,
-                           fs_real_t fmax, fs_real_t slew, lim_result_t *r)
+static saf_force_t slew_step(const lim_config_t *cfg, lim_state_t *st, uint32_t i,
+                             saf_force_t target, saf_force_t fmax, saf_force_t slew,
+                             lim_result_t *r)
 {
     /* Slew relative to the last output (sanitised: it is this module's own state, but a
      * corrupted value must not propagate). */
-    fs_real_t prev = st->out_N[i];
-    if (!fs_isfinite(prev)) {
-        prev = FS_R(0.0);
+    saf_force_t prev = st->out_N[i];
+    if (!saf_finite(prev)) {
+        prev = SAF_FORCE_C(0.0);
     }
     prev = clamp_sym(prev, fmax);
-    fs_real_t out = target;
-    const fs_real_t step = target - prev;
+    saf_force_t out = target;
+    const saf_force_t step = saf_sub(target, prev);
     bool binds = true;
     if (step > slew) {
-        out = prev + slew;
+        out = saf_add(prev, slew);
     } else if (step < -slew) {
-        out = prev - slew;
+        out = saf_sub(prev, slew);
     } else {
         binds = false;
     }
@@ -153,8 +171,8 @@ static fs_real_t slew_step(const lim_config_t *cfg, lim_state_t *st, uint32_t i,
     return out;
 }
 
-lim_result_t lim_apply(const lim_config_t *cfg, lim_state_t *st, const fs_real_t req_N[LIM_AXES],
-                       const saf_meas_t meas[LIM_AXES], fs_real_t out_N[LIM_AXES])
+lim_result_t lim_apply(const lim_config_t *cfg, lim_state_t *st, const saf_force_t req_N[LIM_AXES],
+                       const saf_meas_t meas[LIM_AXES], saf_force_t out_N[LIM_AXES])
 {
     lim_result_t r = {0u, 0u};
     if (out_N == NULL) {
@@ -162,28 +180,27 @@ lim_result_t lim_apply(const lim_config_t *cfg, lim_state_t *st, const fs_real_t
     }
     if (cfg == NULL || st == NULL || req_N == NULL) {
         for (uint32_t i = 0u; i < LIM_AXES; i++) {
-            out_N[i] = FS_R(0.0);
+            out_N[i] = SAF_FORCE_C(0.0);
         }
         return r;
     }
     for (uint32_t i = 0u; i < LIM_AXES; i++) {
-        const lim_axis_t *a = &cfg->axis[i];
-        const fs_real_t fmax = safe_bound(a->force_max_N);
-        const fs_real_t slew = safe_bound(a->slew_max_N);
-        fs_real_t target = req_N[i];
-        if (!fs_isfinite(target)) {
+        const lim_bounds_t *a = &st->b[i];
+        const saf_force_t fmax = a->force_max_N;
+        saf_force_t target = req_N[i];
+        if (!saf_finite(target)) {
             r.flags |= LIM_F_NOT_FINITE;
             r.cause_mask |= FLT_BIT(FLT_CMD_NOT_FINITE);
-            target = FS_R(0.0);
+            target = SAF_FORCE_C(0.0);
         }
-        if (fs_fabs(target) > fmax) { /* target is finite here */
+        if (saf_abs(target) > fmax) { /* target is finite here */
             r.flags |= LIM_F_FORCE;
             target = clamp_sym(target, fmax);
         }
         if (meas != NULL) {
             target = gate_by_measurement(a, &meas[i], target, &r);
         }
-        out_N[i] = slew_step(cfg, st, i, target, fmax, slew, &r);
+        out_N[i] = slew_step(cfg, st, i, target, fmax, a->slew_max_N, &r);
     }
     return r;
 }

@@ -34,10 +34,23 @@ typedef struct {
                                        of continuous binding (default 50; 0 = never) */
 } lim_config_t;
 
-/** State: the last output (the slew reference) and the slew-binding leaky bucket. */
+/** One axis's limits in the tick's units (lim_prepare): the force and slew bounds sanitised
+ *  (NaN, inf or <= 0 give 0, so a corrupted configuration can only make the output smaller). */
 typedef struct {
-    fs_real_t out_N[LIM_AXES];
+    saf_force_t force_max_N;
+    saf_force_t slew_max_N;
+    saf_pos_t pos_min_m;
+    saf_pos_t pos_max_m;
+    saf_vel_t vel_max_mps;
+    saf_force_t contact_force_max_N;
+} lim_bounds_t;
+
+/** State: the last output (the slew reference), the slew-binding leaky bucket and the bounds
+ *  of the configuration last prepared. */
+typedef struct {
+    saf_force_t out_N[LIM_AXES];
     uint16_t slew_run[LIM_AXES];
+    lim_bounds_t b[LIM_AXES];
 } lim_state_t;
 
 /* Flags of what lim_apply did this tick (lim_result_t.flags). */
@@ -60,12 +73,16 @@ void lim_default_config(lim_config_t *cfg);
 /** Validate: finite, positive, min < max, force_max <= LIM_FORCE_CEILING_N. */
 saf_status_t lim_config_validate(const lim_config_t *cfg);
 
-/** Zero the slew reference (actuator output assumed 0). */
+/** Zero the slew reference (actuator output assumed 0); the bounds are kept. */
 void lim_reset(lim_state_t *st);
 
-/** Limit req_N into out_N (may alias). meas may be NULL (no workspace/velocity/contact check;
- *  non-finite measurements never gate the force here, sen_check reports them). */
-lim_result_t lim_apply(const lim_config_t *cfg, lim_state_t *st, const fs_real_t req_N[LIM_AXES],
-                       const saf_meas_t meas[LIM_AXES], fs_real_t out_N[LIM_AXES]);
+/** The bounds lim_apply uses, from cfg: call it once cfg is set and whenever it changes. */
+void lim_prepare(const lim_config_t *cfg, lim_state_t *st);
+
+/** Limit req_N into out_N (may alias) with st's prepared bounds (cfg: slew_fault_ticks). meas
+ *  may be NULL (no workspace/velocity/contact check; non-finite measurements never gate the
+ *  force here, sen_check reports them). */
+lim_result_t lim_apply(const lim_config_t *cfg, lim_state_t *st, const saf_force_t req_N[LIM_AXES],
+                       const saf_meas_t meas[LIM_AXES], saf_force_t out_N[LIM_AXES]);
 
 #endif /* LIM_H */

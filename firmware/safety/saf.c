@@ -2,6 +2,7 @@
 #include "saf.h"
 
 #include <stddef.h>
+#include <string.h>
 
 void saf_default_config(saf_config_t *cfg)
 {
@@ -51,18 +52,29 @@ void saf_init(saf_state_t *st)
     flt_init(&st->flt);
     lim_reset(&st->lim);
     sen_reset(&st->sen);
+    memset(st->lim.b, 0, sizeof st->lim.b);
+    memset(st->sen.b, 0, sizeof st->sen.b);
     wdg_init(&st->wdg);
     st->ramp.active = 0u;
     st->ramp.k = 0u;
     st->ramp.n_ticks = 1u;
     for (uint32_t i = 0u; i < SAF_AXES; i++) {
-        st->ramp.from_N[i] = FS_R(0.0);
-        st->ramp.out_N[i] = FS_R(0.0);
-        st->last_cmd_N[i] = FS_R(0.0);
+        st->ramp.from_N[i] = SAF_FORCE_C(0.0);
+        st->ramp.out_N[i] = SAF_FORCE_C(0.0);
+        st->last_cmd_N[i] = SAF_FORCE_C(0.0);
     }
     st->cause_mask = 0u;
     st->actuator_enabled = true;
     st->hold_zero = false;
+}
+
+void saf_prepare(const saf_config_t *cfg, saf_state_t *st)
+{
+    if (cfg == NULL || st == NULL) {
+        return;
+    }
+    lim_prepare(&cfg->lim, &st->lim);
+    sen_prepare(&cfg->sen, &st->sen);
 }
 
 /* Every cause bit, lowest first (the order of the codes); a tick without a cause costs one test. */
@@ -80,7 +92,7 @@ static void latch_causes(flt_state_t *flt, uint32_t cause, uint32_t tick)
 static void fail_safe(saf_output_t *out)
 {
     for (uint32_t i = 0u; i < SAF_AXES; i++) {
-        out->force_cmd_N[i] = FS_R(0.0);
+        out->force_cmd_N[i] = SAF_FORCE_C(0.0);
     }
     out->actuator_enable = false;
     out->stopping = true;
@@ -118,14 +130,14 @@ static uint32_t input_causes(const saf_config_t *cfg, saf_state_t *st, const saf
 /* The request the limiter sees: zero while stopping, and after a clear until the request has
  * come back to (near) zero once (hold_zero). */
 static void gate_request(saf_state_t *st, const saf_input_t *in, bool stopping,
-                         fs_real_t req[SAF_AXES])
+                         saf_force_t req[SAF_AXES])
 {
     bool pass = !stopping;
     if (st->hold_zero) { /* the request's magnitude matters only while holding zero */
         bool req_zero = true;
         for (uint32_t i = 0u; i < SAF_AXES; i++) {
-            const fs_real_t r = in->force_req_N[i];
-            if (!(r <= (fs_real_t)SAF_REARM_N && r >= -(fs_real_t)SAF_REARM_N)) {
+            const saf_force_t r = in->force_req_N[i];
+            if (!(r <= SAF_FORCE_C(SAF_REARM_N) && r >= -SAF_FORCE_C(SAF_REARM_N))) {
                 req_zero = false;
             }
         }
@@ -136,13 +148,13 @@ static void gate_request(saf_state_t *st, const saf_input_t *in, bool stopping,
         }
     }
     for (uint32_t i = 0u; i < SAF_AXES; i++) {
-        req[i] = pass ? in->force_req_N[i] : FS_R(0.0);
+        req[i] = pass ? in->force_req_N[i] : SAF_FORCE_C(0.0);
     }
 }
 
 /* A latched fault: the ramp to zero from the last command, then the actuator off; the
  * limiter's slew reference follows what the actuator really got. */
-static void stop_command(const saf_config_t *cfg, saf_state_t *st, fs_real_t cmd[SAF_AXES])
+static void stop_command(const saf_config_t *cfg, saf_state_t *st, saf_force_t cmd[SAF_AXES])
 {
     if (st->actuator_enabled) {
         if (st->ramp.active == 0u) {
@@ -153,7 +165,7 @@ static void stop_command(const saf_config_t *cfg, saf_state_t *st, fs_real_t cmd
         }
     } else {
         for (uint32_t i = 0u; i < SAF_AXES; i++) {
-            cmd[i] = FS_R(0.0);
+            cmd[i] = SAF_FORCE_C(0.0);
         }
     }
     for (uint32_t i = 0u; i < SAF_AXES; i++) {
@@ -175,9 +187,9 @@ void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, s
      * limiter still runs for its measurement checks (workspace, velocity, contact force), but
      * sees a zero request, and its slew-binding bucket is not charged by the ramp. */
     const bool stopping = flt_active(&st->flt) || cause != 0u;
-    fs_real_t req[SAF_AXES];
+    saf_force_t req[SAF_AXES];
     gate_request(st, in, stopping, req);
-    fs_real_t lim_out[SAF_AXES];
+    saf_force_t lim_out[SAF_AXES];
     const lim_result_t lr = lim_apply(&cfg->lim, &st->lim, req, in->meas, lim_out);
     if (stopping) {
         for (uint32_t i = 0u; i < LIM_AXES; i++) {
@@ -190,7 +202,7 @@ void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, s
     st->cause_mask = cause;
     latch_causes(&st->flt, cause, in->tick);
 
-    fs_real_t cmd[SAF_AXES];
+    saf_force_t cmd[SAF_AXES];
     if (flt_active(&st->flt)) {
         stop_command(cfg, st, cmd);
     } else {

@@ -5,6 +5,7 @@
  * saf_clear_request succeeds the output is zero until the application sends new requests.
  *
  * Per tick (1 kHz):
+ *   at start and whenever cfg changes: saf_prepare(&cfg, &st);
  *   saf_input_t in = {tick, now_ms, host_frame, bus_off, tick_overrun, ..., meas, force_req_N};
  *   saf_step(&cfg, &st, &in, &out);
  *   actuator_write(out.force_cmd_N, out.actuator_enable);   status frame: out.fault_code
@@ -29,25 +30,25 @@ typedef struct {
 
 /** Inputs of one tick. Event flags are levels for this tick ("present now"). */
 typedef struct {
-    uint32_t tick;                   /* control tick counter */
-    uint32_t now_ms;                 /* time of this tick, ms */
-    bool host_frame;                 /* a host command/heartbeat arrived since last tick */
-    bool bus_off;                    /* CAN controller is bus-off */
-    bool tick_overrun;               /* the previous tick overran its period */
-    bool skill_invalid;              /* the active skill is invalid / failed to load */
-    bool storage_error;              /* a flash operation failed */
-    saf_meas_t meas[SAF_AXES];       /* raw measurements of this tick */
-    fs_real_t force_req_N[SAF_AXES]; /* the control law's request (any value) */
+    uint32_t tick;                     /* control tick counter */
+    uint32_t now_ms;                   /* time of this tick, ms */
+    bool host_frame;                   /* a host command/heartbeat arrived since last tick */
+    bool bus_off;                      /* CAN controller is bus-off */
+    bool tick_overrun;                 /* the previous tick overran its period */
+    bool skill_invalid;                /* the active skill is invalid / failed to load */
+    bool storage_error;                /* a flash operation failed */
+    saf_meas_t meas[SAF_AXES];         /* raw measurements of this tick */
+    saf_force_t force_req_N[SAF_AXES]; /* the control law's request (any value) */
 } saf_input_t;
 
 /** Outputs of one tick. */
 typedef struct {
-    fs_real_t force_cmd_N[SAF_AXES]; /* to the actuator: always finite and within the limits */
-    bool actuator_enable;            /* false once the stop ramp has reached zero */
-    bool stopping;                   /* a fault is latched (ramping or disabled) */
-    uint16_t fault_code;             /* status frame: first latched fault, 0 if none */
-    uint32_t cause_mask;             /* FLT_BIT of every cause present this tick */
-    uint32_t lim_flags;              /* LIM_F_* of this tick */
+    saf_force_t force_cmd_N[SAF_AXES]; /* to the actuator: always finite, within the limits */
+    bool actuator_enable;              /* false once the stop ramp has reached zero */
+    bool stopping;                     /* a fault is latched (ramping or disabled) */
+    uint16_t fault_code;               /* status frame: first latched fault, 0 if none */
+    uint32_t cause_mask;               /* FLT_BIT of every cause present this tick */
+    uint32_t lim_flags;                /* LIM_F_* of this tick */
 } saf_output_t;
 
 /** Supervisor state. */
@@ -58,7 +59,7 @@ typedef struct {
     wdg_state_t wdg;
     wdg_ramp_t ramp;
     uint32_t cause_mask; /* causes seen at the last saf_step (for clearing) */
-    fs_real_t last_cmd_N[SAF_AXES];
+    saf_force_t last_cmd_N[SAF_AXES];
     bool actuator_enabled;
     bool hold_zero; /* after a clear: output 0 until a zero request is seen */
 } saf_state_t;
@@ -72,8 +73,13 @@ void saf_default_config(saf_config_t *cfg);
  *  force_max_N within ramp_ms (slew_max_N * ramp ticks >= force_max_N). */
 saf_status_t saf_config_validate(const saf_config_t *cfg);
 
-/** Power-up state: no faults, actuator enabled with zero force, watchdog disarmed. */
+/** Power-up state: no faults, actuator enabled with zero force, watchdog disarmed; no bounds
+ *  prepared (every limit 0: zero force until saf_prepare). */
 void saf_init(saf_state_t *st);
+
+/** The limits' and sensor checks' bounds of cfg in the tick's units (lim_prepare,
+ *  sen_prepare): call it after saf_init and whenever cfg changes. */
+void saf_prepare(const saf_config_t *cfg, saf_state_t *st);
 
 /** One control tick (see the file comment). cfg must have passed saf_config_validate. */
 void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, saf_output_t *out);

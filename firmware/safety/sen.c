@@ -54,31 +54,45 @@ void sen_reset(sen_state_t *st)
         return;
     }
     for (uint32_t i = 0u; i < SAF_AXES; i++) {
-        st->prev[i].pos_m = FS_R(0.0);
-        st->prev[i].vel_mps = FS_R(0.0);
-        st->prev[i].force_N = FS_R(0.0);
+        st->prev[i].pos_m = (saf_pos_t)0;
+        st->prev[i].vel_mps = (saf_vel_t)0;
+        st->prev[i].force_N = SAF_FORCE_C(0.0);
         st->same_count[i] = 0u;
     }
     st->have_prev = 0u;
 }
 
-/* Two readings with the same bit pattern (a word compare: -0.0/+0.0 differ, NaN equals itself). */
-static bool same_bits(const fs_real_t *a, const fs_real_t *b)
+void sen_prepare(const sen_config_t *cfg, sen_state_t *st)
 {
-#ifdef FS_REAL_FLOAT
+    if (cfg == NULL || st == NULL) {
+        return;
+    }
+    for (uint32_t i = 0u; i < SAF_AXES; i++) {
+        const sen_axis_t *a = &cfg->axis[i];
+        sen_bounds_t *b = &st->b[i];
+        b->force_range_N = SAF_FORCE_OF(a->force_range_N);
+        b->pos_min_m = SAF_POS_OF(a->pos_min_m);
+        b->pos_max_m = SAF_POS_OF(a->pos_max_m);
+        b->vel_range_mps = SAF_POS_OF(a->vel_range_mps);
+        b->spike_N = SAF_FORCE_OF(a->spike_N);
+        b->jump_m = SAF_POS_OF(a->jump_m);
+        b->stuck_min_N = SAF_FORCE_OF(a->stuck_min_N);
+    }
+}
+
+/* Two readings with the same bit pattern (a word compare: -0.0/+0.0 differ, NaN equals itself;
+ * in integers the converted values, which a reading frozen at the ADC freezes too). */
+static bool same_bits(const saf_force_t *a, const saf_force_t *b)
+{
+#if defined(FS_REAL_FLOAT) || defined(SAF_FIXED)
     uint32_t x, y;
 #else
     uint64_t x, y;
 #endif
-    _Static_assert(sizeof x == sizeof *a, "fs_real_t is 4 or 8 bytes");
+    _Static_assert(sizeof x == sizeof *a, "saf_force_t is 4 or 8 bytes");
     memcpy(&x, a, sizeof x);
     memcpy(&y, b, sizeof y);
     return x == y;
-}
-
-static fs_real_t absr(fs_real_t x)
-{
-    return (x < FS_R(0.0)) ? -x : x;
 }
 
 uint32_t sen_check(const sen_config_t *cfg, sen_state_t *st, const saf_meas_t meas[SAF_AXES])
@@ -89,28 +103,29 @@ uint32_t sen_check(const sen_config_t *cfg, sen_state_t *st, const saf_meas_t me
     uint32_t cause = 0u;
     bool all_finite = true;
     for (uint32_t i = 0u; i < SAF_AXES; i++) {
-        const sen_axis_t *a = &cfg->axis[i];
+        const sen_axis_t *c = &cfg->axis[i];
+        const sen_bounds_t *a = &st->b[i];
         const saf_meas_t *m = &meas[i];
-        if (!fs_isfinite(m->pos_m) || !fs_isfinite(m->vel_mps) || !fs_isfinite(m->force_N)) {
+        if (!saf_finite(m->pos_m) || !saf_finite(m->vel_mps) || !saf_finite(m->force_N)) {
             cause |= FLT_BIT(FLT_SENSOR_NAN);
             all_finite = false;
             continue;
         }
-        if (absr(m->force_N) > a->force_range_N || m->pos_m < a->pos_min_m ||
-            m->pos_m > a->pos_max_m || absr(m->vel_mps) > a->vel_range_mps) {
+        if (saf_abs(m->force_N) > a->force_range_N || m->pos_m < a->pos_min_m ||
+            m->pos_m > a->pos_max_m || saf_abs(m->vel_mps) > a->vel_range_mps) {
             cause |= FLT_BIT(FLT_SENSOR_RANGE);
         }
         if (st->have_prev != 0u) {
             const saf_meas_t *p = &st->prev[i];
-            if (absr(m->force_N - p->force_N) > a->spike_N) {
+            if (saf_absdiff(m->force_N, p->force_N) > a->spike_N) {
                 cause |= FLT_BIT(FLT_SENSOR_SPIKE);
             }
-            if (absr(m->pos_m - p->pos_m) > a->jump_m) {
+            if (saf_absdiff(m->pos_m, p->pos_m) > a->jump_m) {
                 cause |= FLT_BIT(FLT_ENCODER_JUMP);
             }
             /* Stuck: bit-identical non-zero force. Compare the bytes, so -0.0/+0.0 and
              * rounding cannot hide a frozen ADC word. */
-            if (a->stuck_ticks != 0u && absr(m->force_N) > a->stuck_min_N &&
+            if (c->stuck_ticks != 0u && saf_abs(m->force_N) > a->stuck_min_N &&
                 same_bits(&m->force_N, &p->force_N)) {
                 if (st->same_count[i] < UINT16_MAX) {
                     st->same_count[i]++;
@@ -119,7 +134,7 @@ uint32_t sen_check(const sen_config_t *cfg, sen_state_t *st, const saf_meas_t me
                 st->same_count[i] = 0u;
             }
             /* same_count counts repeats: stuck_ticks identical readings = stuck_ticks - 1 */
-            if (a->stuck_ticks != 0u && (uint32_t)st->same_count[i] + 1u >= a->stuck_ticks) {
+            if (c->stuck_ticks != 0u && (uint32_t)st->same_count[i] + 1u >= c->stuck_ticks) {
                 cause |= FLT_BIT(FLT_SENSOR_STUCK);
             }
         }

@@ -26,11 +26,24 @@ typedef struct {
     sen_axis_t axis[SAF_AXES];
 } sen_config_t;
 
-/** Previous accepted reading and stuck counters. */
+/** One axis's bounds in the tick's units (sen_prepare). */
+typedef struct {
+    saf_force_t force_range_N;
+    saf_pos_t pos_min_m;
+    saf_pos_t pos_max_m;
+    saf_vel_t vel_range_mps;
+    saf_force_t spike_N;
+    saf_pos_t jump_m;
+    saf_force_t stuck_min_N;
+} sen_bounds_t;
+
+/** Previous accepted reading, stuck counters and the bounds of the configuration last
+ *  prepared. */
 typedef struct {
     saf_meas_t prev[SAF_AXES];
     uint16_t same_count[SAF_AXES];
     uint8_t have_prev;
+    sen_bounds_t b[SAF_AXES];
 } sen_state_t;
 
 /** Defaults listed in sen_axis_t's comments. */
@@ -39,11 +52,14 @@ void sen_default_config(sen_config_t *cfg);
 /** Validate: finite, positive, min < max. */
 saf_status_t sen_config_validate(const sen_config_t *cfg);
 
-/** Forget the previous reading (after power-up or a sensor re-init). */
+/** Forget the previous reading (after power-up or a sensor re-init); the bounds are kept. */
 void sen_reset(sen_state_t *st);
 
-/** Check one tick's readings; returns the FLT_BIT mask of causes present. Non-finite readings
- *  are not stored as the previous reading. */
+/** The bounds sen_check uses, from cfg: call it once cfg is set and whenever it changes. */
+void sen_prepare(const sen_config_t *cfg, sen_state_t *st);
+
+/** Check one tick's readings against st's prepared bounds (cfg: stuck_ticks); returns the
+ *  FLT_BIT mask of causes present. Non-finite readings are not stored as the previous one. */
 uint32_t sen_check(const sen_config_t *cfg, sen_state_t *st, const saf_meas_t meas[SAF_AXES]);
 
 #endif /* SEN_H */

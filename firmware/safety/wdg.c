@@ -78,7 +78,7 @@ uint16_t wdg_ramp_ticks(const wdg_config_t *cfg)
     return (uint16_t)n;
 }
 
-void wdg_ramp_start(wdg_ramp_t *r, const wdg_config_t *cfg, const fs_real_t from_N[SAF_AXES])
+void wdg_ramp_start(wdg_ramp_t *r, const wdg_config_t *cfg, const saf_force_t from_N[SAF_AXES])
 {
     if (r == NULL) {
         return;
@@ -87,21 +87,21 @@ void wdg_ramp_start(wdg_ramp_t *r, const wdg_config_t *cfg, const fs_real_t from
     r->k = 0u;
     r->active = 1u;
     for (uint32_t i = 0u; i < SAF_AXES; i++) {
-        const fs_real_t f = (from_N != NULL) ? from_N[i] : FS_R(0.0);
-        r->from_N[i] = fs_isfinite(f) ? f : FS_R(0.0);
+        const saf_force_t f = (from_N != NULL) ? from_N[i] : SAF_FORCE_C(0.0);
+        r->from_N[i] = saf_finite(f) ? f : SAF_FORCE_C(0.0);
         r->out_N[i] = r->from_N[i];
     }
 }
 
-bool wdg_ramp_step(wdg_ramp_t *r, fs_real_t out_N[SAF_AXES])
+bool wdg_ramp_step(wdg_ramp_t *r, saf_force_t out_N[SAF_AXES])
 {
     if (r == NULL || r->active == 0u || r->k >= r->n_ticks) {
         for (uint32_t i = 0u; i < SAF_AXES; i++) {
             if (r != NULL) {
-                r->out_N[i] = FS_R(0.0);
+                r->out_N[i] = SAF_FORCE_C(0.0);
             }
             if (out_N != NULL) {
-                out_N[i] = FS_R(0.0);
+                out_N[i] = SAF_FORCE_C(0.0);
             }
         }
         return true;
@@ -110,9 +110,14 @@ bool wdg_ramp_step(wdg_ramp_t *r, fs_real_t out_N[SAF_AXES])
     const uint16_t left = (uint16_t)(r->n_ticks - r->k);
     for (uint32_t i = 0u; i < SAF_AXES; i++) {
         /* from * (n-k) / n: exactly linear, exactly 0 at k = n, and non-increasing in magnitude
-         * because each rounded operation is monotone in k. */
-        const fs_real_t f = (left == 0u) ? FS_R(0.0)
-                                         : r->from_N[i] * (fs_real_t)left / (fs_real_t)r->n_ticks;
+         * because each rounded operation is monotone in k (integers: truncated toward 0). */
+#ifdef SAF_FIXED
+        const saf_force_t f = (saf_force_t)(((int64_t)r->from_N[i] * (int64_t)left) /
+                                            (int64_t)r->n_ticks);
+#else
+        const saf_force_t f = (left == 0u) ? FS_R(0.0)
+                                           : r->from_N[i] * (fs_real_t)left / (fs_real_t)r->n_ticks;
+#endif
         r->out_N[i] = f;
         if (out_N != NULL) {
             out_N[i] = f;

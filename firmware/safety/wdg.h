@@ -35,8 +35,8 @@ typedef struct {
 
 /** Safe-stop ramp state. */
 typedef struct {
-    fs_real_t from_N[SAF_AXES];
-    fs_real_t out_N[SAF_AXES];
+    saf_force_t from_N[SAF_AXES];
+    saf_force_t out_N[SAF_AXES];
     uint16_t n_ticks; /* ramp length in ticks */
     uint16_t k;       /* ticks done */
     uint8_t active;
@@ -64,10 +64,10 @@ bool wdg_expired(const wdg_config_t *cfg, const wdg_state_t *st, uint32_t now_ms
 uint16_t wdg_ramp_ticks(const wdg_config_t *cfg);
 
 /** Start a ramp from from_N (non-finite values start from 0). */
-void wdg_ramp_start(wdg_ramp_t *r, const wdg_config_t *cfg, const fs_real_t from_N[SAF_AXES]);
+void wdg_ramp_start(wdg_ramp_t *r, const wdg_config_t *cfg, const saf_force_t from_N[SAF_AXES]);
 
 /** One tick of the ramp into out_N; returns true once the output is exactly zero (the actuator
  *  may then be disabled). Calling it on an inactive ramp outputs zero. */
-bool wdg_ramp_step(wdg_ramp_t *r, fs_real_t out_N[SAF_AXES]);
+bool wdg_ramp_step(wdg_ramp_t *r, saf_force_t out_N[SAF_AXES]);
 
 #endif /* WDG_H */

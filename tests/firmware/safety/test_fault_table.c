@@ -16,8 +16,8 @@
 
 #include "saf.h"
 
-#define K_ONSET 1000u      /* earliest onset tick (device pressing steadily by then) */
-#define K_REMOVE 2500u     /* the cause is removed here */
+#define K_ONSET 1000u  /* earliest onset tick (device pressing steadily by then) */
+#define K_REMOVE 2500u /* the cause is removed here */
 #define K_END 3000u
 
 static uint64_t g_rng = 0x6A09E667F3BCC909ull;
@@ -33,10 +33,10 @@ static double noise(void)
 
 typedef struct {
     flt_code_t code;
-    const char *injection;       /* what the scenario does */
-    double bound_ms;             /* detection bound from onset */
+    const char *injection; /* what the scenario does */
+    double bound_ms;       /* detection bound from onset */
     const char *bound_text;
-    bool persistent;             /* the cause lasts until K_REMOVE (else one tick) */
+    bool persistent; /* the cause lasts until K_REMOVE (else one tick) */
 } scenario_t;
 
 /* Builds the inputs of tick k for scenario s. Returns true if the cause is present at k
@@ -66,15 +66,30 @@ static bool inject(const scenario_t *s, const saf_config_t *cfg, uint32_t k, saf
         if (k > K_ONSET && k < K_REMOVE) {
             in->host_frame = false;
         }
-        cause = k >= K_ONSET && k < K_REMOVE;   /* onset: the last frame, at K_ONSET */
+        cause = k >= K_ONSET && k < K_REMOVE; /* onset: the last frame, at K_ONSET */
         (void)cfg;
         break;
-    case FLT_BUS_OFF: in->bus_off = active; cause = active; break;
-    case FLT_TICK_OVERRUN: in->tick_overrun = active; cause = active; break;
-    case FLT_SKILL_INVALID: in->skill_invalid = active; cause = active; break;
-    case FLT_STORAGE: in->storage_error = active; cause = active; break;
+    case FLT_BUS_OFF:
+        in->bus_off = active;
+        cause = active;
+        break;
+    case FLT_TICK_OVERRUN:
+        in->tick_overrun = active;
+        cause = active;
+        break;
+    case FLT_SKILL_INVALID:
+        in->skill_invalid = active;
+        cause = active;
+        break;
+    case FLT_STORAGE:
+        in->storage_error = active;
+        cause = active;
+        break;
     case FLT_SENSOR_NAN:
-        if (active) { in->meas[0].force_N = (fs_real_t)NAN; cause = true; }
+        if (active) {
+            in->meas[0].force_N = (fs_real_t)NAN;
+            cause = true;
+        }
         break;
     case FLT_SENSOR_RANGE:
         /* a broken wire: the reading jumps to 250 N, beyond the 200 N range (the same tick
@@ -85,13 +100,22 @@ static bool inject(const scenario_t *s, const saf_config_t *cfg, uint32_t k, saf
         }
         break;
     case FLT_SENSOR_STUCK:
-        if (after) { in->meas[0].force_N = FS_R(19.987); cause = true; }
+        if (after) {
+            in->meas[0].force_N = FS_R(19.987);
+            cause = true;
+        }
         break;
     case FLT_SENSOR_SPIKE:
-        if (active) { in->meas[0].force_N = (fs_real_t)((double)in->meas[0].force_N + 30.0); cause = true; }
+        if (active) {
+            in->meas[0].force_N = (fs_real_t)((double)in->meas[0].force_N + 30.0);
+            cause = true;
+        }
         break;
     case FLT_ENCODER_JUMP:
-        if (active) { in->meas[0].pos_m = (fs_real_t)((double)in->meas[0].pos_m + 0.010); cause = true; }
+        if (active) {
+            in->meas[0].pos_m = (fs_real_t)((double)in->meas[0].pos_m + 0.010);
+            cause = true;
+        }
         break;
     case FLT_FORCE_LIMIT:
         /* contact force climbs 1 N per tick past the 60 N contact limit */
@@ -104,7 +128,7 @@ static bool inject(const scenario_t *s, const saf_config_t *cfg, uint32_t k, saf
     case FLT_SLEW_LIMIT:
         if (active) {
             in->force_req_N[0] = (k & 1u) ? FS_R(50.0) : FS_R(-50.0);
-            cause = true;   /* onset of the oscillation; detection by the leaky bucket */
+            cause = true; /* onset of the oscillation; detection by the leaky bucket */
         }
         break;
     case FLT_WORKSPACE:
@@ -124,10 +148,12 @@ static bool inject(const scenario_t *s, const saf_config_t *cfg, uint32_t k, saf
         }
         break;
     case FLT_CMD_NOT_FINITE:
-        if (active) { in->force_req_N[0] = (fs_real_t)NAN; cause = true; }
+        if (active) {
+            in->force_req_N[0] = (fs_real_t)NAN;
+            cause = true;
+        }
         break;
-    default:
-        break;
+    default: break;
     }
     return cause;
 }
@@ -143,6 +169,7 @@ static result_t run_scenario(const scenario_t *s)
     saf_default_config(&cfg);
     saf_state_t st;
     saf_init(&st);
+    saf_prepare(&cfg, &st);
     saf_input_t in;
     saf_output_t out;
     fs_real_t prev[2] = {FS_R(0.0), FS_R(0.0)};
@@ -160,7 +187,7 @@ static result_t run_scenario(const scenario_t *s)
         saf_step(&cfg, &st, &in, &out);
         if (k_det == 0u && out.fault_code != 0u) {
             k_det = k;
-            assert_int_equal(out.fault_code, s->code);   /* the right code, first */
+            assert_int_equal(out.fault_code, s->code); /* the right code, first */
         }
         if (k_onset != 0u) {
             for (int i = 0; i < 2; i++) {
@@ -176,7 +203,8 @@ static result_t run_scenario(const scenario_t *s)
                     r.monotone = false;
                 }
             }
-            if (k_zero == 0u && out.force_cmd_N[0] == FS_R(0.0) && out.force_cmd_N[1] == FS_R(0.0)) {
+            if (k_zero == 0u && out.force_cmd_N[0] == FS_R(0.0) &&
+                out.force_cmd_N[1] == FS_R(0.0)) {
                 k_zero = k;
                 assert_false(out.actuator_enable);
             }
@@ -190,7 +218,8 @@ static result_t run_scenario(const scenario_t *s)
         prev[1] = out.force_cmd_N[1];
     }
     if (!s->persistent || s->code == FLT_HOST_SILENCE) {
-        refused = true;   /* a one-tick cause (or silence, ended by the request) has nothing to refuse */
+        refused =
+            true; /* a one-tick cause (or silence, ended by the request) has nothing to refuse */
     }
     r.refused_while_present = refused;
     r.latched_after_removal = out.fault_code == s->code && !out.actuator_enable &&
@@ -229,11 +258,11 @@ static void test_fault_table(void **state)
     assert_int_equal(n, FLT_COUNT);
     FILE *f = fopen(FS_SAFETY_OUT "/safety_table.md", "w");
     char line[512];
-    const char *hdr =
-        "| code | fault | injection | detection (ms) | bound | time to zero force (ms) | "
-        "force at onset (N) | worst force (N) | monotone | refused while present | "
-        "latched after cause gone | pass |\n"
-        "|---:|---|---|---:|---|---:|---:|---:|---|---|---|---|\n";
+    const char
+        *hdr = "| code | fault | injection | detection (ms) | bound | time to zero force (ms) | "
+               "force at onset (N) | worst force (N) | monotone | refused while present | "
+               "latched after cause gone | pass |\n"
+               "|---:|---|---|---:|---|---:|---:|---:|---|---|---|---|\n";
     fputs(hdr, stdout);
     if (f != NULL) {
         fputs(hdr, f);
@@ -241,7 +270,8 @@ static void test_fault_table(void **state)
     uint32_t passed = 0;
     for (size_t i = 0; i < n; i++) {
         const result_t r = run_scenario(&sc[i]);
-        snprintf(line, sizeof line, "| %u | %s | %s | %.0f | %s | %.0f | %.1f | %.1f | %s | %s | %s | %s |\n",
+        snprintf(line, sizeof line,
+                 "| %u | %s | %s | %.0f | %s | %.0f | %.1f | %.1f | %s | %s | %s | %s |\n",
                  (unsigned)sc[i].code, flt_name((uint16_t)sc[i].code), sc[i].injection, r.det_ms,
                  sc[i].bound_text, r.zero_ms, r.force_at_onset_N, r.worst_N,
                  r.monotone ? "yes" : "NO", r.refused_while_present ? "yes" : "NO",
@@ -254,8 +284,10 @@ static void test_fault_table(void **state)
             passed++;
         }
     }
-    snprintf(line, sizeof line, "\n%u/%u faults pass (defaults: F_max 50 N, slew 2 N/tick, "
-             "timeout 100 ms, ramp 40 ms, 1 kHz).\n", (unsigned)passed, (unsigned)n);
+    snprintf(line, sizeof line,
+             "\n%u/%u faults pass (defaults: F_max 50 N, slew 2 N/tick, "
+             "timeout 100 ms, ramp 40 ms, 1 kHz).\n",
+             (unsigned)passed, (unsigned)n);
     fputs(line, stdout);
     if (f != NULL) {
         fputs(line, f);

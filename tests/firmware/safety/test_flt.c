@@ -21,18 +21,18 @@ static void test_latch_and_first_fault(void **state)
     assert_false(flt_active(&f));
     assert_int_equal(flt_active_code(&f), 0);
     assert_true(flt_raise(&f, FLT_SENSOR_SPIKE, 10));
-    assert_false(flt_raise(&f, FLT_SENSOR_SPIKE, 11));   /* already latched: no new frame */
+    assert_false(flt_raise(&f, FLT_SENSOR_SPIKE, 11)); /* already latched: no new frame */
     assert_true(flt_raise(&f, FLT_BUS_OFF, 12));
     assert_false(flt_raise(&f, FLT_NONE, 13));
     assert_false(flt_raise(&f, (flt_code_t)499, 13));
     assert_false(flt_raise(&f, (flt_code_t)(FLT_CODE_FIRST + FLT_COUNT), 13));
     assert_true(flt_active(&f));
-    assert_int_equal(flt_active_code(&f), FLT_SENSOR_SPIKE);   /* the first one */
+    assert_int_equal(flt_active_code(&f), FLT_SENSOR_SPIKE); /* the first one */
     assert_true(flt_is_latched(&f, FLT_BUS_OFF));
     assert_false(flt_is_latched(&f, FLT_HOST_SILENCE));
     /* emergency frames: one per newly latched fault, in order */
     flt_emcy_t e;
-    assert_true(flt_emcy_peek(&f, &e));                         /* peek keeps it queued */
+    assert_true(flt_emcy_peek(&f, &e)); /* peek keeps it queued */
     assert_int_equal(e.code, FLT_SENSOR_SPIKE);
     assert_true(flt_emcy_peek(&f, &e));
     assert_int_equal(e.code, FLT_SENSOR_SPIKE);
@@ -87,6 +87,7 @@ static void test_sensor_checks(void **state)
     assert_int_equal(sen_config_validate(&cfg), SAF_OK);
     sen_state_t st;
     sen_reset(&st);
+    sen_prepare(&cfg, &st);
     saf_meas_t m[2];
     for (uint32_t k = 0; k < 1000; k++) {
         meas_ok(m, k);
@@ -99,23 +100,26 @@ static void test_sensor_checks(void **state)
     m[1].vel_mps = (fs_real_t)INFINITY;
     assert_int_equal(sen_check(&cfg, &st, m), FLT_BIT(FLT_SENSOR_NAN));
     meas_ok(m, 2);
-    assert_int_equal(sen_check(&cfg, &st, m), 0);   /* previous good reading kept */
+    assert_int_equal(sen_check(&cfg, &st, m), 0); /* previous good reading kept */
     meas_ok(m, 3);
     m[0].vel_mps = FS_R(11.0);
     assert_int_equal(sen_check(&cfg, &st, m), FLT_BIT(FLT_SENSOR_RANGE));
     meas_ok(m, 4);
-    m[1].pos_m = FS_R(1.5);   /* also a jump of 1.5 m */
-    assert_int_equal(sen_check(&cfg, &st, m), FLT_BIT(FLT_SENSOR_RANGE) | FLT_BIT(FLT_ENCODER_JUMP));
+    m[1].pos_m = FS_R(1.5); /* also a jump of 1.5 m */
+    assert_int_equal(sen_check(&cfg, &st, m),
+                     FLT_BIT(FLT_SENSOR_RANGE) | FLT_BIT(FLT_ENCODER_JUMP));
     sen_reset(&st);
+    sen_prepare(&cfg, &st);
     meas_ok(m, 5);
     assert_int_equal(sen_check(&cfg, &st, m), 0);
     meas_ok(m, 6);
     m[0].force_N += FS_R(20.5);
     assert_int_equal(sen_check(&cfg, &st, m), FLT_BIT(FLT_SENSOR_SPIKE));
     meas_ok(m, 7);
-    m[0].force_N += FS_R(20.5);   /* the same offset: no change relative to the last reading */
+    m[0].force_N += FS_R(20.5); /* the same offset: no change relative to the last reading */
     assert_int_equal(sen_check(&cfg, &st, m), 0);
     sen_reset(&st);
+    sen_prepare(&cfg, &st);
     meas_ok(m, 8);
     assert_int_equal(sen_check(&cfg, &st, m), 0);
     meas_ok(m, 9);
@@ -123,6 +127,7 @@ static void test_sensor_checks(void **state)
     assert_int_equal(sen_check(&cfg, &st, m), FLT_BIT(FLT_ENCODER_JUMP));
     /* stuck: a bit-identical non-zero force for stuck_ticks readings */
     sen_reset(&st);
+    sen_prepare(&cfg, &st);
     uint32_t first = 0;
     for (uint32_t k = 1; k <= 1000 && first == 0; k++) {
         meas_ok(m, 0);
@@ -134,6 +139,7 @@ static void test_sensor_checks(void **state)
     assert_int_equal(first, cfg.axis[0].stuck_ticks);
     /* a constant zero force (no contact) is not "stuck" */
     sen_reset(&st);
+    sen_prepare(&cfg, &st);
     for (uint32_t k = 0; k < 2000; k++) {
         meas_ok(m, 0);
         m[0].force_N = FS_R(0.0);
@@ -181,7 +187,7 @@ static void test_ramp(void **state)
     saf_config_t sc;
     saf_default_config(&sc);
     assert_int_equal(saf_config_validate(&sc), SAF_OK);
-    sc.lim.axis[0].slew_max_N = FS_R(1.0);   /* 1 N/tick * 40 ticks < 50 N */
+    sc.lim.axis[0].slew_max_N = FS_R(1.0); /* 1 N/tick * 40 ticks < 50 N */
     assert_int_equal(saf_config_validate(&sc), SAF_ERR_RAMP);
 }
 
@@ -204,6 +210,7 @@ static void test_supervisor_clear_and_no_resume(void **state)
     saf_default_config(&cfg);
     saf_state_t st;
     saf_init(&st);
+    saf_prepare(&cfg, &st);
     saf_input_t in;
     memset(&in, 0, sizeof in);
     saf_output_t out;
@@ -240,7 +247,7 @@ static void test_supervisor_clear_and_no_resume(void **state)
     /* only after a zero request (the application went to IDLE) does a new command act */
     tick(&cfg, &st, &in, &out, k++, true, FS_R(0.0));
     tick(&cfg, &st, &in, &out, k++, true, FS_R(30.0));
-    assert_true(fabs((double)out.force_cmd_N[0] - 2.0) < 1e-9);   /* and slew-limited */
+    assert_true(fabs((double)out.force_cmd_N[0] - 2.0) < 1e-9); /* and slew-limited */
     /* host silence: the clear request is itself a host frame, so it is accepted */
     for (uint32_t j = 0; j < 200; j++, k++) {
         tick(&cfg, &st, &in, &out, k, false, FS_R(30.0));

@@ -106,6 +106,7 @@ static void test_random_hostile_requests(void **state)
         assert_int_equal(lim_config_validate(&cfg), SAF_OK);
         lim_state_t st;
         lim_reset(&st);
+        lim_prepare(&cfg, &st);
         for (uint32_t k = 0; k < 1000u; k++) {
             fs_real_t req[LIM_AXES], out[LIM_AXES], prev[LIM_AXES];
             saf_meas_t meas[LIM_AXES];
@@ -120,8 +121,9 @@ static void test_random_hostile_requests(void **state)
             check_out(&cfg, prev, out, &s);
         }
     }
-    printf("lim property: %llu cases, worst |out| / F_max ok, worst |slew| %.6g N, non-finite %llu\n",
-           (unsigned long long)s.n, s.worst_slew_N, (unsigned long long)s.nonfinite);
+    printf(
+        "lim property: %llu cases, worst |out| / F_max ok, worst |slew| %.6g N, non-finite %llu\n",
+        (unsigned long long)s.n, s.worst_slew_N, (unsigned long long)s.nonfinite);
     assert_int_equal(s.n, 1000000u);
 }
 
@@ -172,12 +174,14 @@ static void test_hostile_skills_and_goal_scales(void **state)
         pfc_reset(&ps);
         lim_state_t ls;
         lim_reset(&ls);
+        lim_prepare(&lcfg, &ls);
         fs_real_t plant_x = FS_R(0.0), plant_v = FS_R(0.0);
         const fs_real_t k_env = (fs_real_t)uniform(100.0, 5000.0);
         for (uint32_t k = 0; k < 2000u && s.n < 1000000u; k++) {
             const fs_real_t f_hat = dmp_step(m, &ds, &run, NULL);
-            pfc_axis_ref_t ref[SAF_AXES] = {{ds.y_N / base->stiffness_Npm, FS_R(0.0), FS_R(0.0), f_hat},
-                                            {FS_R(0.0), FS_R(0.0), FS_R(0.0), FS_R(0.0)}};
+            pfc_axis_ref_t ref[SAF_AXES] = {
+                {ds.y_N / base->stiffness_Npm, FS_R(0.0), FS_R(0.0), f_hat},
+                {FS_R(0.0), FS_R(0.0), FS_R(0.0), FS_R(0.0)}};
             saf_meas_t meas[SAF_AXES] = {{plant_x, plant_v, k_env * plant_x},
                                          {FS_R(0.0), FS_R(0.0), FS_R(0.0)}};
             pfc_axis_meas_t pfc_meas[SAF_AXES] = {{plant_x, plant_v, k_env * plant_x},
@@ -208,10 +212,11 @@ static void test_workspace_velocity_contact(void **state)
     (void)state;
     lim_config_t cfg;
     lim_default_config(&cfg);
-    cfg.axis[0].slew_max_N = FS_R(100.0);   /* no slew effect in this test */
+    cfg.axis[0].slew_max_N = FS_R(100.0); /* no slew effect in this test */
     cfg.axis[1].slew_max_N = FS_R(100.0);
     lim_state_t st;
     lim_reset(&st);
+    lim_prepare(&cfg, &st);
     fs_real_t req[2] = {FS_R(30.0), FS_R(-30.0)}, out[2];
     saf_meas_t in_ws[2] = {{FS_R(0.1), FS_R(0.0), FS_R(5.0)}, {FS_R(0.0), FS_R(0.0), FS_R(0.0)}};
     lim_result_t r = lim_apply(&cfg, &st, req, in_ws, out);
@@ -252,6 +257,7 @@ static void test_slew_and_slew_fault(void **state)
     lim_default_config(&cfg);
     lim_state_t st;
     lim_reset(&st);
+    lim_prepare(&cfg, &st);
     fs_real_t req[2] = {FS_R(50.0), FS_R(0.0)}, out[2];
     /* a step of 50 N is reached in 25 ticks of 2 N */
     for (uint32_t k = 1; k <= 25; k++) {
@@ -266,6 +272,7 @@ static void test_slew_and_slew_fault(void **state)
     }
     /* continuous binding: a slow slew limit and a far request trip after slew_fault_ticks */
     cfg.axis[0].slew_max_N = FS_R(0.1);
+    lim_prepare(&cfg, &st);
     req[0] = FS_R(-50.0);
     uint32_t first = 0;
     for (uint32_t k = 1; k <= 200 && first == 0; k++) {
@@ -278,6 +285,7 @@ static void test_slew_and_slew_fault(void **state)
     /* an unstable controller oscillating +-50 N every tick trips within 4*slew_fault_ticks */
     lim_default_config(&cfg);
     lim_reset(&st);
+    lim_prepare(&cfg, &st);
     first = 0;
     for (uint32_t k = 1; k <= 1000 && first == 0; k++) {
         req[0] = (k & 1u) ? FS_R(-50.0) : FS_R(50.0);
@@ -316,6 +324,7 @@ static void test_config_validation(void **state)
     c.axis[1].slew_max_N = (fs_real_t)-INFINITY;
     lim_state_t st;
     lim_reset(&st);
+    lim_prepare(&c, &st);
     fs_real_t req[2] = {FS_R(10.0), FS_R(10.0)}, out[2];
     (void)lim_apply(&c, &st, req, NULL, out);
     assert_true(out[0] == FS_R(0.0) && out[1] == FS_R(0.0));

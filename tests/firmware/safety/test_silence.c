@@ -73,10 +73,11 @@ static void test_host_silence_trials(void **state)
         assert_int_equal(saf_config_validate(&cfg), SAF_OK);
         saf_state_t st;
         saf_init(&st);
+        saf_prepare(&cfg, &st);
         profile_t p = {uniform(0.0, 40.0), uniform(-20.0, 20.0), uniform(0.1, 3.0),
                        uniform(0.0, 30.0)};
         if (trial % 10u == 3u) {
-            p.amp = 200.0;   /* a request far beyond the limit */
+            p.amp = 200.0; /* a request far beyond the limit */
         }
         const double run_ms = uniform(200.0, 2000.0);
         const double gap_max = (timeout - 2u < 50u) ? (double)(timeout - 2u) : 50.0;
@@ -121,7 +122,7 @@ static void test_host_silence_trials(void **state)
                 assert_int_equal(out.fault_code, FLT_HOST_SILENCE);
                 assert_int_equal(out.cause_mask, FLT_BIT(FLT_HOST_SILENCE));
                 last_before_silence = last_frame;
-                const double lat = (double)k - last_frame;   /* since the last frame arrived */
+                const double lat = (double)k - last_frame; /* since the last frame arrived */
                 assert_true(lat >= (double)timeout);
                 assert_true(lat <= (double)timeout + 1.0);
                 if (lat - timeout > worst_det_over_ms) {
@@ -198,7 +199,7 @@ static void test_host_silence_trials(void **state)
              trials, best_det_over_ms, worst_det_over_ms, worst_ramp_ms, worst_total_default_ms,
              n_default, worst_force_N, trials, trials);
     fputs(line, stdout);
-    #ifdef FS_REAL_FLOAT
+#ifdef FS_REAL_FLOAT
     FILE *f = fopen(FS_SAFETY_OUT "/host_silence_f32.txt", "w");
 #else
     FILE *f = fopen(FS_SAFETY_OUT "/host_silence.txt", "w");
