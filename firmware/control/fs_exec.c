@@ -218,7 +218,10 @@ fs_status_t exec_start_begin(const exec_config_t *cfg, exec_state_t *st, const e
 #ifdef FS_EXEC_FIXED
 static fs_status_t exec_prepare_step(const exec_config_t *cfg, exec_state_t *st, uint8_t i,
                                      uint8_t part);
-static fs_status_t exec_prepare_cfg_q(const exec_config_t *cfg, exec_state_t *st);
+static fs_status_t exec_prepare_cfg_q(const exec_config_t *cfg, exec_state_t *st, uint8_t part);
+/* Parts of the start a step (exec_prepare_step) and of the configuration (exec_prepare_cfg_q). */
+#define EXEC_STEP_PARTS 3u
+#define EXEC_CFG_PARTS 4u
 static void exec_begin_step_q(exec_state_t *st);
 #endif
 
@@ -227,11 +230,12 @@ fs_status_t exec_start_run(const exec_config_t *cfg, exec_state_t *st, bool *don
     *done = false;
 #ifdef FS_EXEC_FIXED
     /* every step's constants before the run: a later switch only selects them, cannot fail */
-    if (st->prepared < 2u * st->n_steps + 1u) {
+    const uint8_t steps = (uint8_t)(EXEC_STEP_PARTS * st->n_steps);
+    if (st->prepared < steps + EXEC_CFG_PARTS) {
         const uint8_t p = st->prepared++;
-        return (p < 2u * st->n_steps)
-                   ? exec_prepare_step(cfg, st, (uint8_t)(p / 2u), (uint8_t)(p % 2u))
-                   : exec_prepare_cfg_q(cfg, st);
+        return (p < steps) ? exec_prepare_step(cfg, st, (uint8_t)(p / EXEC_STEP_PARTS),
+                                               (uint8_t)(p % EXEC_STEP_PARTS))
+                           : exec_prepare_cfg_q(cfg, st, (uint8_t)(p - steps));
     }
     *done = true;
     exec_begin_step_q(st);
@@ -537,39 +541,50 @@ static fs_status_t exec_prepare_step_q(exec_state_t *st, uint8_t i, fs_real_t dt
     return rc;
 }
 
-/* The run's integer constants from the configuration and its starting state (the last part of
- * exec_start_run, before the first step starts). */
-static fs_status_t exec_prepare_cfg_q(const exec_config_t *cfg, exec_state_t *st)
+/* Part part (0..EXEC_CFG_PARTS - 1) of the run's integer constants (the last parts of
+ * exec_start_run, each a few software-double conversions): the tick's time constants, the object
+ * model's gains, its reciprocals, then the phase stop's and the starting state. */
+static fs_status_t exec_prepare_cfg_q(const exec_config_t *cfg, exec_state_t *st, uint8_t part)
 {
     exec_cfg_q_t *c = &st->q.c;
     const double dt = (double)cfg->pfc.dt_s;
     fs_status_t rc = FS_OK;
-    c->inv_dt_x = exec_scale(1.0 / dt, 48, 48, &rc);
-    c->inv_dt_y = exec_scale(1.0 / dt, 55, 48, &rc);
-    c->inv_dt_yd = exec_scale(1.0 / dt, 48, 40, &rc);
-    c->dt = exec_scale(dt, 48, 48, &rc);
-    c->use_model = cfg->use_model;
+    if (part == 0u) {
+        const double inv_dt = 1.0 / dt;
+        c->inv_dt_x = exec_scale(inv_dt, 48, 48, &rc);
+        c->inv_dt_y = exec_scale(inv_dt, 55, 48, &rc);
+        c->inv_dt_yd = exec_scale(inv_dt, 48, 40, &rc);
+        c->dt = exec_scale(dt, 48, 48, &rc);
+        c->blend_inc_q32 = exec_inc_q32(dt / EXEC_BLEND_S);
+        c->release_inc_q32 = exec_inc_q32(dt / SKILL_RELEASE_TIME_S);
+        return rc;
+    }
+    const exec_object_t *o = &cfg->object;
+    const int model = (cfg->use_model != 0u);
+    if (part == 1u) {
+        c->use_model = cfg->use_model;
+        c->d_v = exec_scale(model ? (double)o->d_v_Nspm : 0.0, 48, 32, &rc);
+        c->k1 = exec_scale(model ? (double)o->k1_Npm : 0.0, 48, 32, &rc);
+        c->k2 = exec_scale(model ? (double)o->k2_Npm : 0.0, 48, 32, &rc);
+        return rc;
+    }
+    if (part == 2u) { /* the model's three divisions */
+        c->inv_m = exec_scale(model ? 1.0 / (double)o->m_v_kg : 0.0, 32, 48, &rc);
+        c->inv_k1 = exec_scale(model ? 1.0 / (double)o->k1_Npm : 0.0, 32, 48, &rc);
+        c->inv_k2 = exec_scale(model ? 1.0 / (double)o->k2_Npm : 0.0, 32, 48, &rc);
+        return rc;
+    }
     c->surface_from_contact = cfg->surface_from_contact;
     c->phase_stop = (cfg->phase_stop_gain_per_N2 > FS_R(0.0)) ? 1u : 0u;
     c->stop_gain = exec_scale((double)cfg->phase_stop_gain_per_N2, 32, 24, &rc);
-    const exec_object_t *o = &cfg->object;
-    const int model = (cfg->use_model != 0u);
-    c->d_v = exec_scale(model ? (double)o->d_v_Nspm : 0.0, 48, 32, &rc);
-    c->k1 = exec_scale(model ? (double)o->k1_Npm : 0.0, 48, 32, &rc);
-    c->k2 = exec_scale(model ? (double)o->k2_Npm : 0.0, 48, 32, &rc);
-    c->inv_m = exec_scale(model ? 1.0 / (double)o->m_v_kg : 0.0, 32, 48, &rc);
-    c->inv_k1 = exec_scale(model ? 1.0 / (double)o->k1_Npm : 0.0, 32, 48, &rc);
-    c->inv_k2 = exec_scale(model ? 1.0 / (double)o->k2_Npm : 0.0, 32, 48, &rc);
     const double layer = model ? (double)o->layer_depth_m : 0.0;
+    exec_q_t *q = &st->q;
     fs_status_t r2 = exec_to_q(layer, 48, &c->layer_q48);
     if (r2 == FS_OK) {
         r2 = exec_to_q(model ? (double)o->k1_Npm * layer : 0.0, 32, &c->f_layer_q32);
     }
-    c->blend_inc_q32 = exec_inc_q32(dt / EXEC_BLEND_S);
-    c->release_inc_q32 = exec_inc_q32(dt / SKILL_RELEASE_TIME_S);
-    exec_q_t *q = &st->q;
     if (r2 == FS_OK) {
-        r2 = exec_to_q((double)cfg->object.surface_m, 48, &q->surface_q48);
+        r2 = exec_to_q((double)o->surface_m, 48, &q->surface_q48);
     }
     if (r2 == FS_OK) {
         r2 = exec_to_q((double)st->y_hold_m, 55, &q->y_hold_q55);
@@ -590,9 +605,9 @@ static fs_status_t exec_prepare_cfg_q(const exec_config_t *cfg, exec_state_t *st
     return (rc != FS_OK) ? rc : r2;
 }
 
-/* Part part (0, 1) of step i's per-run constants and starting state from its fixed-point model
+/* Part part (0..2) of step i's per-run constants and starting state from its fixed-point model
  * (exec_start_run: a part a call, each a bounded piece of software double on the M3): the force
- * DMP's, then the periodic and y DMPs', the starting state and the integer tick's constants. */
+ * DMP's, then the periodic and y DMPs' and the starting state, then the integer tick's. */
 static fs_status_t exec_prepare_step(const exec_config_t *cfg, exec_state_t *st, uint8_t i,
                                      uint8_t part)
 {
@@ -602,6 +617,9 @@ static fs_status_t exec_prepare_step(const exec_config_t *cfg, exec_state_t *st,
     if (part == 0u) {
         return dmpfx_run_force(m, (double)s->goal_scale, (double)s->time_scale, run);
     }
+    if (part == 2u) {
+        return exec_prepare_step_q(st, i, cfg->pfc.dt_s);
+    }
     fs_status_t rc = dmpfx_run_periodic(m, (double)s->amplitude_scale, run);
     if (rc == FS_OK) {
         rc = dmpfx_run_path(m, (double)s->path_scale, run);
@@ -610,9 +628,6 @@ static fs_status_t exec_prepare_step(const exec_config_t *cfg, exec_state_t *st,
         dmpfx_periodic_reset(m, run, &st->dmp_start[i]);
     } else {
         dmpfx_state_reset(&st->dmp_start[i]);
-    }
-    if (rc == FS_OK) {
-        rc = exec_prepare_step_q(st, i, cfg->pfc.dt_s);
     }
     return rc;
 }

@@ -50,15 +50,16 @@
 
 /* Numeric layer of the DMP and the control law, chosen by the build like the core's:
  *   default         the core's dmp_step_xy/pfc_step in fs_real_t (fs_app_exec, fs_app_exec_f32)
- *   FS_EXEC_FIXED   their fixed-point build (firmware/fixed: dmpfx_step_xy, pfcfx_step) inside
- *                   the float32 executor (fs_app_exec_fx: the Cortex-M3 image). Per tick the
- *                   measurements and the references enter the law in Q formats and its
- *                   commands, the DMP's force and y path leave as fs_real_t; the rest of the
- *                   executor (reference model, blends, sequence) stays fs_real_t. A step names
- *                   its skill's fixed-point model, converted beforehand (dmpfx_from_model_bound:
- *                   the device does it at the skill's commit); exec_start derives every step's
- *                   per-run constants and starting state and converts the law's configuration,
- *                   so neither the start tick nor a switch between steps converts a skill. Its
+ *   FS_EXEC_FIXED   their fixed-point build (firmware/fixed: dmpfx_step_xy, pfcfx_step) and an
+ *                   integer tick around them (fs_app_exec_fx: the Cortex-M3 image, no FPU):
+ *                   exec_tick_q runs the whole tick (references, blends, sequence, contact
+ *                   wait, phase stopping, the law) without a floating-point operation on the
+ *                   units of exec_q_t; exec_tick is its float32 boundary (measurements in,
+ *                   commands and references out). A step names its skill's fixed-point model,
+ *                   converted beforehand (dmpfx_from_model_bound: the device does it at the
+ *                   skill's commit); exec_start derives every step's per-run constants, its
+ *                   integer constants and starting state and converts the law's configuration,
+ *                   so neither the start tick nor a switch between steps converts anything. Its
  *                   symbols carry an _fx suffix, so a test links it beside the real executor. */
 #ifdef FS_EXEC_FIXED
 #ifndef FS_REAL_FLOAT
@@ -221,7 +222,9 @@ typedef struct {
     pfcfx_config_t pfc_cfg; /* cfg->pfc at exec_start */
     pfcfx_state_t pfc;
     uint8_t dmp_saturated; /* this tick's DMP step saturated */
-    exec_q_t q;            /* the integer tick's constants and state (exec_tick_q) */
+    exec_q_t q;            /* the integer tick's constants and state (exec_tick_q); of the fs_real_t
+                 * fields below this build keeps y_hold_m (the start's) and, written by
+                 * exec_tick, force_hat_N and contact_rate (the integer state's float view) */
 #else
     dmp_state_t dmp;
     dmp_run_t run;
@@ -244,7 +247,7 @@ typedef struct {
     fs_real_t y_ref_m;        /* y_d = y_base + p */
     fs_real_t y_ref_vel_mps;  /* yd_d */
     uint8_t start_pending;    /* 1 until the first tick has measured the contact force */
-    uint8_t prepared;         /* parts of the steps' constants exec_start_run derived (2 a step) */
+    uint8_t prepared;         /* parts exec_start_run derived (fixed build: 3 a step, 4 more) */
     fs_real_t surface_m;      /* the surface the reference is built on */
     /* the running skill's contact wait (skill_t.contact_threshold_N > 0) */
     fs_real_t contact_rate;   /* the phase rate, 0..1 (1 without a contact wait) */
@@ -267,7 +270,8 @@ fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_st
 
 /** exec_start in slices, for a caller that bounds its work a tick: the checks, the sequence
  *  loaded and the law's configuration (exec_start_begin, the same codes), then each
- *  exec_start_run derives one of the two parts of a step's constants (the fixed-point build; 3xx
+ *  exec_start_run derives one of the three parts of a step's constants or, after them, one of
+ *  the four of the integer tick's constants of the configuration (the fixed-point build; 3xx
  *  codes) or, once all are, starts the first step and sets *done. Nothing runs before *done. */
 fs_status_t exec_start_begin(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
                              uint8_t n_steps, fs_real_t y_hold_m);
