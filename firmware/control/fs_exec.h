@@ -306,9 +306,10 @@ typedef struct {
     uint8_t step, done;
 } exec_out_q_t;
 
-/** exec_tick in integers only (no floating-point operation: every constant derived by
- *  exec_start), the same codes. exec_tick of this build converts its measurements in, calls it,
- *  converts the outputs out and mirrors the contact wait's rate into contact_rate. */
+/** exec_tick in integers only (no floating-point operation: every constant, cfg's included,
+ *  derived by exec_start, so cfg changed after it has no effect), the same codes. exec_tick of
+ *  this build converts its measurements in, calls it, converts the outputs out and mirrors
+ *  f_hat and the contact wait's rate into force_hat_N and contact_rate. */
 fs_status_t exec_tick_q(const exec_config_t *cfg, exec_state_t *st, const exec_meas_q_t *meas,
                         exec_out_q_t *out);
 #endif
