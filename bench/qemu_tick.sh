@@ -5,6 +5,7 @@
 # TARGET: cortex-m4f (mps2-an386, hardware float) or cortex-m3 (mps2-an385: the DMP and the
 # control law in fixed point, the rest of the application in software float).
 # 1. builds the images (toolchain cmake/arm-none-eabi.cmake, Release; size, heap and stack report);
+#    on the M3, tools/check_float_free.py: no software float reachable from exec_tick_q_fx;
 # 2. checks that a program calling malloc cannot link with the images' flags;
 # 3. checks the counter on cm_count_check (must count exactly 103 per marked region), and compares
 #    the two counters (below: the plugin and the one-instruction trace) on it and on the first
@@ -83,6 +84,14 @@ cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/arm-no
       -DFS_CORTEX_TARGET=$TARGET -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE="$PY" >/dev/null
 cmake --build "$BUILD" --target fs_pil cm_count_check -j 2 | grep -E '^(size|heap|stack)' || true
 IMG=$BUILD/firmware/ports/mps2
+if [ "$TARGET" = cortex-m3 ]; then
+  # the executor's tick on the M3 must reach no software float (objdump call graph)
+  echo "== float-free check of exec_tick_q_fx"
+  if ! ff=$("$PY" "$ROOT/tools/check_float_free.py" --build-dir "$BUILD" --no-build); then
+    echo "$ff"; exit 1
+  fi
+  echo "$ff" | grep -E '^(control|float-free check)'
+fi
 
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/qemu_tick.XXXXXX")
 PIL_PID=""

@@ -1,6 +1,10 @@
 /* Skill execution: see fs_exec.h for the algorithm and the continuity/end-policy decisions. */
 #include "fs_exec.h"
 
+#ifdef FS_EXEC_FIXED
+#include <math.h>
+#endif
+
 #define EXEC_PI FS_R(3.14159265358979323846)
 /* Coulomb compensation uses v/(|v| + this): smooth through zero so encoder noise at rest does
  * not chatter the motor between +-coulomb_N. */
@@ -53,8 +57,8 @@ static fs_real_t exec_step_duration(const exec_step_t *s)
     return s->skill->dmp.duration_s * s->time_scale;
 }
 
-/* The running step's DMP from its starting state and its length in ticks at dt_s (the
- * fixed-point build selects the state exec_start derived). */
+#ifndef FS_EXEC_FIXED
+/* The running step's DMP from its starting state and its length in ticks at dt_s. */
 static fs_status_t exec_begin_step(exec_state_t *st, fs_real_t dt_s)
 {
     const exec_step_t *s = &st->steps[st->step];
@@ -65,11 +69,6 @@ static fs_status_t exec_begin_step(exec_state_t *st, fs_real_t dt_s)
     st->t_step_s = FS_R(0.0);
     st->step_tick = 0u;
     st->force_dmp_N = exec_step_start_force(s);
-#ifdef FS_EXEC_FIXED
-    st->dmp = st->dmp_start[st->step]; /* derived by exec_start */
-    st->dmp_saturated = 0u;
-    return FS_OK;
-#else
     if (periodic != 0u) {
         dmp_periodic_reset_xy(&s->skill->dmp, &st->dmp, s->amplitude_scale, s->path_scale);
     } else {
@@ -78,102 +77,18 @@ static fs_status_t exec_begin_step(exec_state_t *st, fs_real_t dt_s)
     st->run.goal_scale = s->goal_scale;
     st->run.time_scale = s->time_scale;
     return FS_OK;
-#endif
 }
-
-#ifdef FS_EXEC_FIXED
-/* Part part (0, 1) of step i's per-run constants and starting state from its fixed-point model
- * (exec_start_run: a part a call, each a bounded piece of software double on the M3): the force
- * DMP's, then the periodic and y DMPs' and the starting state. */
-static fs_status_t exec_prepare_step(exec_state_t *st, uint8_t i, uint8_t part)
-{
-    const exec_step_t *s = &st->steps[i];
-    const dmpfx_model_t *m = s->model_fx;
-    dmpfx_run_t *run = &st->run[i];
-    if (part == 0u) {
-        return dmpfx_run_force(m, (double)s->goal_scale, (double)s->time_scale, run);
-    }
-    fs_status_t rc = dmpfx_run_periodic(m, (double)s->amplitude_scale, run);
-    if (rc == FS_OK) {
-        rc = dmpfx_run_path(m, (double)s->path_scale, run);
-    }
-    if (m->periodic != 0u) {
-        dmpfx_periodic_reset(m, run, &st->dmp_start[i]);
-    } else {
-        dmpfx_state_reset(&st->dmp_start[i]);
-    }
-    return rc;
-}
-#endif
 
 /* One DMP step of the running step s (coupling cp may be NULL): returns f_hat, p into path_m. */
 static fs_real_t exec_dmp_step(exec_state_t *st, const exec_step_t *s, const dmp_coupling_t *cp)
 {
-#ifdef FS_EXEC_FIXED
-    /* the tick's slow-down as the rate 1/(1 + slowdown) (NaN or <= 0: 1; +inf: 0) */
-    dmpfx_coupling_t c = {0, FX_Q31_ONE_U};
-    if (cp != 0 && cp->phase_slowdown > FS_R(0.0)) {
-        c.rate_q31 = (uint32_t)fx_from_float(FS_R(1.0) / (FS_R(1.0) + cp->phase_slowdown), 31u);
-    }
-    const uint32_t ev = st->dmp.sat_events;
-    const dmpfx_model_t *m = s->model_fx;
-    const dmpfx_run_t *run = &st->run[st->step];
-    if (m->periodic != 0u) {
-        (void)dmpfx_periodic_step_xy(m, run, &st->dmp, (cp != 0) ? &c : 0, 0);
-        st->dmp_saturated = (st->dmp.sat_events != ev) ? 1u : 0u;
-        /* p = s_p*g_y + q, q from its accumulator (as the discrete path's) */
-        st->path_m = (m->has_y != 0u) ? fx_to_float(run->goal_y_q24, 24u) +
-                                            fx_acc_to_float(st->dmp.path_acc, -55)
-                                      : FS_R(0.0);
-        /* f0 + 2^s*(g_e + e): the goal in Q8.24 units, e from its accumulator */
-        return s->skill->dmp.force0_N +
-               fx_to_float(run->goal_q24, 24u) * fx_to_float(m->out_scale_q12, 12u) +
-               fx_acc_to_float(st->dmp.y_acc, m->value_shift - 55);
-    }
-    (void)dmpfx_step_xy(m, run, &st->dmp, (cp != 0) ? &c : 0, 0);
-    st->dmp_saturated = (st->dmp.sat_events != ev) ? 1u : 0u;
-    /* y and p from their accumulators (value * 2^31 of Q8.24, y in units of 2^s N), not from
-     * the Q8.24 views: the references' velocities and accelerations are their differences, and
-     * a view's LSB (6e-8 m) differenced twice at 1 kHz would be 0.06 m/s^2 */
-    st->path_m = fx_acc_to_float(st->dmp.path_acc, -55);
-    return s->skill->dmp.force0_N + fx_acc_to_float(st->dmp.y_acc, m->value_shift - 55);
-#else
     if (s->skill->dmp.periodic != 0u) {
         return dmp_periodic_step_xy(&s->skill->dmp, &st->dmp, &st->run, s->amplitude_scale, cp,
                                     s->path_scale, &st->path_m);
     }
     return dmp_step_xy(&s->skill->dmp, &st->dmp, &st->run, cp, s->path_scale, &st->path_m);
-#endif
 }
-
-/* The control law of one tick (the fixed-point build: references and measurements converted in,
- * commands out). */
-static void exec_law_step(const exec_config_t *cfg, exec_state_t *st,
-                          const pfc_axis_ref_t ref[PFC_AXES], const pfc_axis_meas_t m[PFC_AXES],
-                          fs_real_t force_cmd_N[PFC_AXES])
-{
-#ifdef FS_EXEC_FIXED
-    (void)cfg;
-    pfcfx_ref_t rq[PFC_AXES];
-    pfcfx_meas_t mq[PFC_AXES];
-    int32_t cmd_q16[PFC_AXES];
-    for (uint32_t a = 0u; a < PFC_AXES; a++) {
-        rq[a].pos_m = fx_from_float(ref[a].pos_m, 24u);
-        rq[a].vel_mps = fx_from_float(ref[a].vel_mps, 24u);
-        rq[a].acc_mps2 = fx_from_float(ref[a].acc_mps2, 24u);
-        rq[a].force_N = fx_from_float(ref[a].force_N, 16u);
-        mq[a].pos_m = fx_from_float(m[a].pos_m, 24u);
-        mq[a].vel_mps = fx_from_float(m[a].vel_mps, 24u);
-        mq[a].force_N = fx_from_float(m[a].force_N, 16u);
-    }
-    pfcfx_step(&st->pfc_cfg, &st->pfc, rq, mq, cmd_q16);
-    for (uint32_t a = 0u; a < PFC_AXES; a++) {
-        force_cmd_N[a] = fx_to_float(cmd_q16[a], 16u);
-    }
-#else
-    pfc_step(&cfg->pfc, &st->pfc, ref, m, force_cmd_N);
 #endif
-}
 
 /* FS_OK, or (the fixed-point build) FS_ERR_FIXED_OVERFLOW when this tick's DMP step saturated. */
 static fs_status_t exec_dmp_status(exec_state_t *st)
@@ -300,18 +215,35 @@ fs_status_t exec_start_begin(const exec_config_t *cfg, exec_state_t *st, const e
     return exec_law_reset(cfg, st);
 }
 
+#ifdef FS_EXEC_FIXED
+static fs_status_t exec_prepare_step(const exec_config_t *cfg, exec_state_t *st, uint8_t i,
+                                     uint8_t part);
+static fs_status_t exec_prepare_cfg_q(const exec_config_t *cfg, exec_state_t *st, uint8_t part);
+/* Parts of the start a step (exec_prepare_step) and of the configuration (exec_prepare_cfg_q). */
+#define EXEC_STEP_PARTS 3u
+#define EXEC_CFG_PARTS 4u
+static void exec_begin_step_q(exec_state_t *st);
+#endif
+
 fs_status_t exec_start_run(const exec_config_t *cfg, exec_state_t *st, bool *done)
 {
     *done = false;
 #ifdef FS_EXEC_FIXED
     /* every step's constants before the run: a later switch only selects them, cannot fail */
-    if (st->prepared < 2u * st->n_steps) {
+    const uint8_t steps = (uint8_t)(EXEC_STEP_PARTS * st->n_steps);
+    if (st->prepared < steps + EXEC_CFG_PARTS) {
         const uint8_t p = st->prepared++;
-        return exec_prepare_step(st, (uint8_t)(p / 2u), (uint8_t)(p % 2u));
+        return (p < steps) ? exec_prepare_step(cfg, st, (uint8_t)(p / EXEC_STEP_PARTS),
+                                               (uint8_t)(p % EXEC_STEP_PARTS))
+                           : exec_prepare_cfg_q(cfg, st, (uint8_t)(p - steps));
     }
-#endif
+    *done = true;
+    exec_begin_step_q(st);
+    return FS_OK;
+#else
     *done = true;
     return exec_begin_step(st, cfg->pfc.dt_s);
+#endif
 }
 
 fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
@@ -336,12 +268,6 @@ fs_real_t exec_object_force(const exec_object_t *obj, fs_real_t p_m)
     return obj->k1_Npm * obj->layer_depth_m + obj->k2_Npm * (p_m - obj->layer_depth_m);
 }
 
-/* f/k, 0 for f <= 0 (the unilateral spring-only reference). */
-static fs_real_t exec_spring_deformation(fs_real_t stiffness_Npm, fs_real_t force_N)
-{
-    return (force_N > FS_R(0.0)) ? force_N / stiffness_Npm : FS_R(0.0);
-}
-
 fs_real_t exec_object_deformation(const exec_object_t *obj, fs_real_t force_N)
 {
     if (!(force_N > FS_R(0.0))) {
@@ -352,6 +278,13 @@ fs_real_t exec_object_deformation(const exec_object_t *obj, fs_real_t force_N)
         return force_N / obj->k1_Npm;
     }
     return obj->layer_depth_m + (force_N - f_layer) / obj->k2_Npm;
+}
+
+#ifndef FS_EXEC_FIXED
+/* f/k, 0 for f <= 0 (the unilateral spring-only reference). */
+static fs_real_t exec_spring_deformation(fs_real_t stiffness_Npm, fs_real_t force_N)
+{
+    return (force_N > FS_R(0.0)) ? force_N / stiffness_Npm : FS_R(0.0);
 }
 
 /* 1 at t = 0 falling smoothly (smoothstep) to 0 at EXEC_BLEND_S. */
@@ -529,7 +462,7 @@ fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_mea
     m[1].pos_m = meas->pos_m[1];
     m[1].vel_mps = meas->vel_mps[1];
     m[1].force_N = FS_R(0.0);
-    exec_law_step(cfg, st, ref, m, out->force_cmd_N);
+    pfc_step(&cfg->pfc, &st->pfc, ref, m, out->force_cmd_N);
 
     out->force_hat_N = f_hat;
     out->pos_ref_m = ref[0].pos_m;
@@ -538,6 +471,481 @@ fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_mea
     out->done = st->done;
     return exec_dmp_status(st);
 }
+#else
+/* The integer executor (exec_tick_q): every constant below is derived at the run's start, in
+ * exec_start_run's slices (software double on the M3), so the tick and a switch between steps
+ * are integer only. Units: exec_q_t in fs_exec.h. */
+#define EXEC_Q31_ONE ((int64_t)1 << 31)
+#define EXEC_Q32_ONE ((uint64_t)1 << 32)
+
+/* round(v * 2^frac) within +-FX_S61_MAX; FS_ERR_FIXED_CONFIG if v is not finite or beyond. */
+static fs_status_t exec_to_q(double v, int frac, int64_t *out)
+{
+    const double x = floor(ldexp(v, frac) + 0.5);
+    if (!(x <= (double)FX_S61_MAX && x >= -(double)FX_S61_MAX)) {
+        *out = 0;
+        return FS_ERR_FIXED_CONFIG;
+    }
+    *out = (int64_t)x;
+    return FS_OK;
+}
+
+/* ceil(v * 2^32) for 0 <= v < 1 (a per-tick increment of a ramp that ends at 2^32). */
+static uint32_t exec_inc_q32(double v)
+{
+    const double x = ceil(ldexp(v, 32));
+    return (x >= 4294967295.0) ? UINT32_MAX : ((x > 0.0) ? (uint32_t)x : 0u);
+}
+
+/* A constant factor between formats; its status folded into *rc (the first failure kept). */
+static fx_scale_t exec_scale(double v, int32_t in_frac, int32_t out_frac, fs_status_t *rc)
+{
+    fx_scale_t k;
+    const fs_status_t r = fx_scale_from_double(v, in_frac, out_frac, &k);
+    if (r != FS_OK && *rc == FS_OK) {
+        *rc = FS_ERR_FIXED_CONFIG;
+    }
+    return k;
+}
+
+/* The integer constants of step i (its run derived): forces, path base, 1/k, length, contact
+ * wait. */
+static fs_status_t exec_prepare_step_q(exec_state_t *st, uint8_t i, fs_real_t dt_s)
+{
+    const exec_step_t *s = &st->steps[i];
+    const dmpfx_model_t *m = s->model_fx;
+    const dmpfx_run_t *run = &st->run[i];
+    exec_step_q_t *q = &st->q.step[i];
+    const double dt = (double)dt_s;
+    fs_status_t rc = exec_to_q((double)s->skill->dmp.force0_N, 32, &q->force0_q32);
+    if (rc == FS_OK) {
+        rc = exec_to_q((double)exec_step_start_force(s), 32, &q->start_force_q32);
+    }
+    if (rc == FS_OK) {
+        rc = exec_to_q((double)s->skill->contact_threshold_N, 32, &q->contact_threshold_q32);
+    }
+    q->path0_q55 = 0;
+    if (m->periodic != 0u) { /* + 2^s*g_e: Q8.24 * Q20.12 = N Q.36 */
+        q->force0_q32 += fx_rshift_round((int64_t)run->goal_q24 * m->out_scale_q12, 4u);
+        q->path0_q55 = (m->has_y != 0u) ? (int64_t)run->goal_y_q24 * EXEC_Q31_ONE : 0;
+    }
+    q->y_shift = (uint8_t)(23 - m->value_shift); /* s in [-12, 18]: 5..35 */
+    q->inv_k = exec_scale(1.0 / (double)s->skill->stiffness_Npm, 32, 48, &rc);
+    q->ticks = (s->skill->dmp.periodic != 0u && s->until_stopped != 0u)
+                   ? EXEC_TICKS_MAX
+                   : exec_ticks(exec_step_duration(s), dt_s);
+    q->contact_wait = (s->skill->contact_threshold_N > FS_R(0.0)) ? 1u : 0u;
+    const double gain = dt / ((double)s->skill->contact_tau_s + dt);
+    q->contact_gain_q31 = (gain >= 0.0 && gain <= 1.0) ? (uint32_t)floor(ldexp(gain, 31) + 0.5)
+                                                       : (uint32_t)EXEC_Q31_ONE;
+    return rc;
+}
+
+/* Part part (0..EXEC_CFG_PARTS - 1) of the run's integer constants (the last parts of
+ * exec_start_run, each a few software-double conversions): the tick's time constants, the object
+ * model's gains, its reciprocals, then the phase stop's and the starting state. */
+static fs_status_t exec_prepare_cfg_q(const exec_config_t *cfg, exec_state_t *st, uint8_t part)
+{
+    exec_cfg_q_t *c = &st->q.c;
+    const double dt = (double)cfg->pfc.dt_s;
+    fs_status_t rc = FS_OK;
+    if (part == 0u) {
+        const double inv_dt = 1.0 / dt;
+        c->inv_dt_x = exec_scale(inv_dt, 48, 48, &rc);
+        c->inv_dt_y = exec_scale(inv_dt, 55, 48, &rc);
+        c->inv_dt_yd = exec_scale(inv_dt, 48, 40, &rc);
+        c->dt = exec_scale(dt, 48, 48, &rc);
+        c->blend_inc_q32 = exec_inc_q32(dt / EXEC_BLEND_S);
+        c->release_inc_q32 = exec_inc_q32(dt / SKILL_RELEASE_TIME_S);
+        return rc;
+    }
+    const exec_object_t *o = &cfg->object;
+    const int model = (cfg->use_model != 0u);
+    if (part == 1u) {
+        c->use_model = cfg->use_model;
+        c->d_v = exec_scale(model ? (double)o->d_v_Nspm : 0.0, 48, 32, &rc);
+        c->k1 = exec_scale(model ? (double)o->k1_Npm : 0.0, 48, 32, &rc);
+        c->k2 = exec_scale(model ? (double)o->k2_Npm : 0.0, 48, 32, &rc);
+        return rc;
+    }
+    if (part == 2u) { /* the model's three divisions */
+        c->inv_m = exec_scale(model ? 1.0 / (double)o->m_v_kg : 0.0, 32, 48, &rc);
+        c->inv_k1 = exec_scale(model ? 1.0 / (double)o->k1_Npm : 0.0, 32, 48, &rc);
+        c->inv_k2 = exec_scale(model ? 1.0 / (double)o->k2_Npm : 0.0, 32, 48, &rc);
+        return rc;
+    }
+    c->surface_from_contact = cfg->surface_from_contact;
+    c->phase_stop = (cfg->phase_stop_gain_per_N2 > FS_R(0.0)) ? 1u : 0u;
+    c->stop_gain = exec_scale((double)cfg->phase_stop_gain_per_N2, 32, 24, &rc);
+    const double layer = model ? (double)o->layer_depth_m : 0.0;
+    exec_q_t *q = &st->q;
+    fs_status_t r2 = exec_to_q(layer, 48, &c->layer_q48);
+    if (r2 == FS_OK) {
+        r2 = exec_to_q(model ? (double)o->k1_Npm * layer : 0.0, 32, &c->f_layer_q32);
+    }
+    if (r2 == FS_OK) {
+        r2 = exec_to_q((double)o->surface_m, 48, &q->surface_q48);
+    }
+    if (r2 == FS_OK) {
+        r2 = exec_to_q((double)st->y_hold_m, 55, &q->y_hold_q55);
+    }
+    q->prev_x_q48 = q->surface_q48;
+    q->y_ref_q55 = q->y_hold_q55;
+    q->y_ref_vel_q48 = 0;
+    q->f_hat_q32 = 0;
+    q->f_carry_q32 = 0;
+    q->f_end_q32 = 0;
+    q->p_q48 = 0;
+    q->pd_q48 = 0;
+    q->path_q55 = 0;
+    q->hold_q31 = 0u;
+    q->defer_q31 = 0u;
+    q->end_tick = 0u;
+    q->contact_rate_q31 = (uint32_t)EXEC_Q31_ONE;
+    return (rc != FS_OK) ? rc : r2;
+}
+
+/* Part part (0..2) of step i's per-run constants and starting state from its fixed-point model
+ * (exec_start_run: a part a call, each a bounded piece of software double on the M3): the force
+ * DMP's, then the periodic and y DMPs' and the starting state, then the integer tick's. */
+static fs_status_t exec_prepare_step(const exec_config_t *cfg, exec_state_t *st, uint8_t i,
+                                     uint8_t part)
+{
+    const exec_step_t *s = &st->steps[i];
+    const dmpfx_model_t *m = s->model_fx;
+    dmpfx_run_t *run = &st->run[i];
+    if (part == 0u) {
+        return dmpfx_run_force(m, (double)s->goal_scale, (double)s->time_scale, run);
+    }
+    if (part == 2u) {
+        return exec_prepare_step_q(st, i, cfg->pfc.dt_s);
+    }
+    fs_status_t rc = dmpfx_run_periodic(m, (double)s->amplitude_scale, run);
+    if (rc == FS_OK) {
+        rc = dmpfx_run_path(m, (double)s->path_scale, run);
+    }
+    if (m->periodic != 0u) {
+        dmpfx_periodic_reset(m, run, &st->dmp_start[i]);
+    } else {
+        dmpfx_state_reset(&st->dmp_start[i]);
+    }
+    return rc;
+}
+
+/* The running step's DMP from its starting state and its length (integers: a switch in the
+ * tick selects what exec_start derived). */
+static void exec_begin_step_q(exec_state_t *st)
+{
+    st->step_ticks = st->q.step[st->step].ticks;
+    st->step_tick = 0u;
+    st->dmp = st->dmp_start[st->step];
+    st->dmp_saturated = 0u;
+}
+
+/* N Q.32 -> Q16.16, saturated. */
+static int32_t exec_q16(int64_t f_q32)
+{
+    return fx_sat32(fx_rshift_round(fx_clamp61(f_q32), 16u));
+}
+
+/* Q.(24 + sh) -> Q8.24, saturated. */
+static int32_t exec_q24(int64_t v, unsigned sh)
+{
+    return fx_sat32(fx_rshift_round(fx_clamp61(v), sh));
+}
+
+/* 1/(1 + x) in Q1.31 for x >= 0 in Q.24: one 64/32 division of 32-bit divides. */
+static uint32_t exec_rate_q31(uint64_t x_q24)
+{
+    const uint64_t den = x_q24 + ((uint64_t)1 << 24);
+    if (den < EXEC_Q32_ONE) {
+        return fx_udiv64_32_round((uint64_t)1 << 55, (uint32_t)den);
+    }
+    const uint64_t den8 = (den >> 16 < EXEC_Q32_ONE) ? den >> 16 : EXEC_Q32_ONE - 1u;
+    return fx_udiv64_32_round((uint64_t)1 << 39, (uint32_t)den8);
+}
+
+/* The phase-stop rate 1/(1 + g*(f_c - f_hat)^2) (Q1.31; 1 without phase stopping). */
+static uint32_t exec_phase_stop_rate(const exec_state_t *st, int64_t f_c_q32)
+{
+    if (st->q.c.phase_stop == 0u) {
+        return (uint32_t)EXEC_Q31_ONE;
+    }
+    const int64_t e = exec_q16(f_c_q32 - st->q.f_hat_q32);
+    const int64_t x = fx_scale_apply(e * e, st->q.c.stop_gain); /* e^2 N^2 Q.32 -> Q.24 */
+    return exec_rate_q31((uint64_t)((x > 0) ? x : 0));
+}
+
+/* The skill's contact wait for this tick in integers (exec_contact_wait's): the rate follows 1
+ * in contact, 0 once f_hat exceeds f_c by more than the threshold; the hold and losses counted,
+ * the step one tick longer for each tick of phase held. */
+static void exec_contact_wait_q(exec_state_t *st, const exec_step_q_t *sq, int64_t f_c_q32)
+{
+    exec_q_t *q = &st->q;
+    if (sq->contact_wait == 0u) {
+        q->contact_rate_q31 = (uint32_t)EXEC_Q31_ONE;
+        return;
+    }
+    const uint8_t lost = (uint8_t)((q->f_hat_q32 - f_c_q32 <= sq->contact_threshold_q32) ? 0u : 1u);
+    const int64_t target = (lost != 0u) ? 0 : EXEC_Q31_ONE;
+    const int64_t r = (int64_t)q->contact_rate_q31;
+    const int64_t nr = r + fx_rshift_round((target - r) * (int64_t)sq->contact_gain_q31, 31u);
+    q->contact_rate_q31 = (uint32_t)((nr < 0) ? 0 : ((nr > EXEC_Q31_ONE) ? EXEC_Q31_ONE : nr));
+    if (lost != 0u && st->contact_lost == 0u && st->contact_losses < UINT16_MAX) {
+        st->contact_losses++;
+    }
+    st->contact_lost = lost;
+    const uint64_t held = (uint64_t)EXEC_Q31_ONE - q->contact_rate_q31;
+    q->hold_q31 += held;
+    q->defer_q31 += held;
+    if (q->defer_q31 >= (uint64_t)EXEC_Q31_ONE) {
+        q->defer_q31 -= (uint64_t)EXEC_Q31_ONE;
+        st->step_ticks += (st->step_ticks < EXEC_TICKS_MAX) ? 1u : 0u;
+    }
+}
+
+/* One DMP step of the running step at the phase rate rate_q31: f_dmp in N Q.32, p into path_q55
+ * (both from the accumulators: the references' derivatives are their differences). */
+static int64_t exec_dmp_step_q(exec_state_t *st, uint32_t rate_q31)
+{
+    const exec_step_t *s = &st->steps[st->step];
+    const exec_step_q_t *sq = &st->q.step[st->step];
+    const dmpfx_model_t *m = s->model_fx;
+    const dmpfx_run_t *run = &st->run[st->step];
+    const dmpfx_coupling_t c = {0, rate_q31};
+    const uint32_t ev = st->dmp.sat_events;
+    if (m->periodic != 0u) {
+        (void)dmpfx_periodic_step_xy(m, run, &st->dmp, &c, 0);
+        st->q.path_q55 = (m->has_y != 0u) ? sq->path0_q55 + st->dmp.path_acc : 0;
+    } else {
+        (void)dmpfx_step_xy(m, run, &st->dmp, &c, 0);
+        st->q.path_q55 = st->dmp.path_acc;
+    }
+    st->dmp_saturated = (st->dmp.sat_events != ev) ? 1u : 0u;
+    return sq->force0_q32 + fx_rshift_round(st->dmp.y_acc, sq->y_shift);
+}
+
+/* 1 at t = 0 falling smoothly (smoothstep) to 0 at EXEC_BLEND_S, Q1.31, t = ticks*dt. */
+static int64_t exec_blend_q31(const exec_state_t *st, uint32_t ticks)
+{
+    const uint64_t r32 = (uint64_t)ticks * st->q.c.blend_inc_q32;
+    if (r32 >= EXEC_Q32_ONE) {
+        return 0;
+    }
+    const int64_t r = (int64_t)(r32 >> 2); /* Q.30 */
+    const int64_t r2 = fx_rshift_round(r * r, 30u);
+    const int64_t s = fx_rshift_round(r2 * (((int64_t)3 << 30) - 2 * r), 30u);
+    return (((int64_t)1 << 30) - s) * 2;
+}
+
+/* The end policy's f_hat: hold the last one, or ramp it to 0 over SKILL_RELEASE_TIME_S. */
+static int64_t exec_end_force_q(exec_state_t *st)
+{
+    const exec_step_t *last = &st->steps[st->n_steps - 1u];
+    if (last->end_policy == SKILL_END_HOLD) {
+        return st->q.f_end_q32;
+    }
+    st->q.end_tick += (st->q.end_tick < EXEC_TICKS_MAX) ? 1u : 0u;
+    const uint64_t t = (uint64_t)st->q.end_tick * st->q.c.release_inc_q32;
+    if (t >= EXEC_Q32_ONE) {
+        st->done = 1u;
+        return 0;
+    }
+    return fx_mul64_u32(st->q.f_end_q32, (uint32_t)((EXEC_Q32_ONE - t) >> 1), 31u);
+}
+
+/* The first tick: the carry from the measured contact force, the surface from the contact. */
+static void exec_first_tick_q(exec_state_t *st, const exec_meas_q_t *meas, int64_t f_c_q32)
+{
+    exec_q_t *q = &st->q;
+    const exec_cfg_q_t *c = &q->c;
+    st->start_pending = 0u;
+    q->f_carry_q32 = f_c_q32 - q->step[st->step].start_force_q32;
+    int64_t p0 = 0;
+    if (f_c_q32 > 0 && c->use_model != 0u) {
+        p0 = (f_c_q32 <= c->f_layer_q32)
+                 ? fx_scale_apply(f_c_q32, c->inv_k1)
+                 : c->layer_q48 + fx_scale_apply(f_c_q32 - c->f_layer_q32, c->inv_k2);
+    } else if (f_c_q32 > 0) {
+        p0 = fx_scale_apply(f_c_q32, q->step[st->step].inv_k);
+    }
+    if (c->use_model != 0u) {
+        q->p_q48 = p0;
+    }
+    if (c->surface_from_contact != 0u) {
+        const int64_t x = (int64_t)meas->pos_q24[0] * ((int64_t)1 << 24);
+        q->surface_q48 = x - p0;
+        q->prev_x_q48 = x;
+    }
+}
+
+/* The reference force of this tick (exec_reference_force's in integers), N Q.32. */
+static int64_t exec_reference_force_q(exec_state_t *st, const exec_meas_q_t *meas)
+{
+    if (st->ending != 0u) {
+        return exec_end_force_q(st);
+    }
+    exec_q_t *q = &st->q;
+    const int64_t f_c = (int64_t)meas->force_contact_q16 * ((int64_t)1 << 16);
+    if (st->start_pending != 0u) {
+        exec_first_tick_q(st, meas, f_c);
+    }
+    const uint32_t stop_rate = exec_phase_stop_rate(st, f_c);
+    exec_contact_wait_q(st, &q->step[st->step], f_c);
+    const uint32_t rate = (uint32_t)fx_rshift_round((int64_t)stop_rate * q->contact_rate_q31, 31u);
+    const int64_t f_dmp = exec_dmp_step_q(st, rate);
+    const int64_t f = f_dmp + fx_mul64_u32(fx_clamp61(q->f_carry_q32),
+                                           (uint32_t)exec_blend_q31(st, st->step_tick + 1u), 31u);
+    if (++st->step_tick >= st->step_ticks) {
+        if ((uint8_t)(st->step + 1u) < st->n_steps) {
+            q->y_hold_q55 += q->path_q55; /* the next step's path starts where this one ended */
+            q->path_q55 = 0;
+            st->step++;
+            q->f_carry_q32 = f - q->step[st->step].start_force_q32;
+            exec_begin_step_q(st);
+        } else {
+            st->ending = 1u;
+            q->f_end_q32 = f;
+            q->end_tick = 0u;
+        }
+    }
+    return f;
+}
+
+/* The x reference of this tick from f_hat into rq: the object model integrated forward
+ * (unilateral), or x_d = surface + f_hat/k with xd_d by difference. */
+static void exec_x_reference_q(exec_state_t *st, int64_t f_hat, pfcfx_ref_t *rq)
+{
+    exec_q_t *q = &st->q;
+    const exec_cfg_q_t *c = &q->c;
+    int64_t x_d;
+    if (c->use_model != 0u) {
+        const int64_t p_old = q->p_q48;
+        const int64_t spring = (p_old <= 0) ? 0
+                               : (p_old <= c->layer_q48)
+                                   ? fx_scale_apply(p_old, c->k1)
+                                   : c->f_layer_q32 + fx_scale_apply(p_old - c->layer_q48, c->k2);
+        int64_t pdd = fx_scale_apply(f_hat - fx_scale_apply(q->pd_q48, c->d_v) - spring, c->inv_m);
+        int64_t pd = fx_clamp61(q->pd_q48 + fx_scale_apply(pdd, c->dt));
+        int64_t p = fx_clamp61(p_old + fx_scale_apply(pd, c->dt));
+        if (p < 0) { /* unilateral: the reference cannot pull the surface out */
+            p = 0;
+            pd = 0;
+            pdd = 0;
+        }
+        q->p_q48 = p;
+        q->pd_q48 = pd;
+        x_d = fx_clamp61(q->surface_q48 + p);
+        rq->vel_mps = exec_q24(pd, 24u);
+        rq->acc_mps2 = exec_q24(pdd, 24u);
+    } else {
+        const int64_t p = (f_hat > 0) ? fx_scale_apply(f_hat, q->step[st->step].inv_k) : 0;
+        x_d = fx_clamp61(q->surface_q48 + p);
+        q->p_q48 = p;
+        rq->vel_mps = exec_q24(fx_scale_apply(x_d - q->prev_x_q48, c->inv_dt_x), 24u);
+        rq->acc_mps2 = 0;
+        q->prev_x_q48 = x_d;
+    }
+    rq->pos_m = exec_q24(x_d, 24u);
+    rq->force_N = exec_q16(f_hat);
+}
+
+/* The y reference: the path (p = 0 without a y DMP: y holds), derivatives by differences of the
+ * Q.55 path (the accumulators' resolution, not the Q8.24 view). */
+static void exec_y_reference_q(exec_state_t *st, pfcfx_ref_t *rq)
+{
+    exec_q_t *q = &st->q;
+    const int64_t y_d = fx_clamp61(q->y_hold_q55 + q->path_q55);
+    const int64_t yd = fx_scale_apply(y_d - q->y_ref_q55, q->c.inv_dt_y);
+    const int64_t ydd = fx_scale_apply(yd - q->y_ref_vel_q48, q->c.inv_dt_yd);
+    rq->pos_m = exec_q24(y_d, 31u);
+    rq->vel_mps = exec_q24(yd, 24u);
+    rq->acc_mps2 = exec_q24(ydd, 16u);
+    rq->force_N = 0;
+    q->y_ref_q55 = y_d;
+    q->y_ref_vel_q48 = yd;
+}
+
+/* 1 if any measurement is INT32_MIN (not finite). */
+static int exec_meas_q_invalid(const exec_meas_q_t *m)
+{
+    return m->pos_q24[0] == INT32_MIN || m->pos_q24[1] == INT32_MIN || m->vel_q24[0] == INT32_MIN ||
+           m->vel_q24[1] == INT32_MIN || m->force_contact_q16 == INT32_MIN;
+}
+
+fs_status_t exec_tick_q(const exec_config_t *cfg, exec_state_t *st, const exec_meas_q_t *meas,
+                        exec_out_q_t *out)
+{
+    (void)cfg; /* its constants were derived by exec_start */
+    exec_q_t *q = &st->q;
+    out->step = st->step;
+    out->done = st->done;
+    if (exec_meas_q_invalid(meas)) {
+        out->force_cmd_q16[0] = 0;
+        out->force_cmd_q16[1] = 0;
+        out->force_hat_q16 = exec_q16(q->f_hat_q32);
+        out->pos_ref_q24 = exec_q24(q->surface_q48 + q->p_q48, 24u);
+        out->y_ref_q24 = exec_q24(q->y_ref_q55, 31u);
+        return FS_ERR_NOT_FINITE;
+    }
+    const int64_t f_hat = fx_clamp61(exec_reference_force_q(st, meas));
+    q->f_hat_q32 = f_hat;
+    pfcfx_ref_t rq[PFC_AXES];
+    exec_x_reference_q(st, f_hat, &rq[0]);
+    exec_y_reference_q(st, &rq[1]);
+    pfcfx_meas_t mq[PFC_AXES];
+    for (uint32_t a = 0u; a < PFC_AXES; a++) {
+        mq[a].pos_m = meas->pos_q24[a];
+        mq[a].vel_mps = meas->vel_q24[a];
+    }
+    mq[0].force_N = meas->force_contact_q16;
+    mq[1].force_N = 0;
+    pfcfx_step(&st->pfc_cfg, &st->pfc, rq, mq, out->force_cmd_q16);
+    out->force_hat_q16 = rq[0].force_N;
+    out->pos_ref_q24 = rq[0].pos_m;
+    out->y_ref_q24 = rq[1].pos_m;
+    out->step = st->step;
+    out->done = st->done;
+    return exec_dmp_status(st);
+}
+
+/* A float32 measurement in Q format, INT32_MIN if not finite. */
+static int32_t exec_meas_to_q(fs_real_t v, unsigned frac_bits)
+{
+    return fs_isfinite(v) ? fx_from_float(v, frac_bits) : INT32_MIN;
+}
+
+fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_meas_t *meas,
+                      exec_out_t *out)
+{
+    exec_meas_q_t mq;
+    for (uint32_t a = 0u; a < PFC_AXES; a++) {
+        mq.pos_q24[a] = exec_meas_to_q(meas->pos_m[a], 24u);
+        mq.vel_q24[a] = exec_meas_to_q(meas->vel_mps[a], 24u);
+    }
+    mq.force_contact_q16 = exec_meas_to_q(meas->force_contact_N, 16u);
+    exec_out_q_t oq;
+    const fs_status_t rc = exec_tick_q(cfg, st, &mq, &oq);
+    out->force_cmd_N[0] = fx_to_float(oq.force_cmd_q16[0], 16u);
+    out->force_cmd_N[1] = fx_to_float(oq.force_cmd_q16[1], 16u);
+    out->force_hat_N = fx_to_float(oq.force_hat_q16, 16u);
+    out->pos_ref_m = fx_to_float(oq.pos_ref_q24, 24u);
+    out->y_ref_m = fx_to_float(oq.y_ref_q24, 24u);
+    out->step = oq.step;
+    out->done = oq.done;
+    st->force_hat_N = out->force_hat_N; /* the float view of the integer state */
+    st->contact_rate = fx_to_float((int32_t)(st->q.contact_rate_q31 >> 1), 30u);
+    return rc;
+}
+
+uint32_t exec_contact_hold_ms(const exec_state_t *st)
+{
+    const double ms = ldexp((double)st->q.hold_q31, -31) * ldexp((double)st->pfc_cfg.dt_s, -31) *
+                          1000.0 +
+                      0.5;
+    return (ms > 0.0 && ms < 4294967295.0) ? (uint32_t)ms : 0u;
+}
+#endif
 
 void exec_vel_init(exec_vel_t *v, fs_real_t cutoff_Hz, fs_real_t dt_s)
 {

@@ -50,15 +50,16 @@
 
 /* Numeric layer of the DMP and the control law, chosen by the build like the core's:
  *   default         the core's dmp_step_xy/pfc_step in fs_real_t (fs_app_exec, fs_app_exec_f32)
- *   FS_EXEC_FIXED   their fixed-point build (firmware/fixed: dmpfx_step_xy, pfcfx_step) inside
- *                   the float32 executor (fs_app_exec_fx: the Cortex-M3 image). Per tick the
- *                   measurements and the references enter the law in Q formats and its
- *                   commands, the DMP's force and y path leave as fs_real_t; the rest of the
- *                   executor (reference model, blends, sequence) stays fs_real_t. A step names
- *                   its skill's fixed-point model, converted beforehand (dmpfx_from_model_bound:
- *                   the device does it at the skill's commit); exec_start derives every step's
- *                   per-run constants and starting state and converts the law's configuration,
- *                   so neither the start tick nor a switch between steps converts a skill. Its
+ *   FS_EXEC_FIXED   their fixed-point build (firmware/fixed: dmpfx_step_xy, pfcfx_step) and an
+ *                   integer tick around them (fs_app_exec_fx: the Cortex-M3 image, no FPU):
+ *                   exec_tick_q runs the whole tick (references, blends, sequence, contact
+ *                   wait, phase stopping, the law) without a floating-point operation on the
+ *                   units of exec_q_t; exec_tick is its float32 boundary (measurements in,
+ *                   commands and references out). A step names its skill's fixed-point model,
+ *                   converted beforehand (dmpfx_from_model_bound: the device does it at the
+ *                   skill's commit); exec_start derives every step's per-run constants, its
+ *                   integer constants and starting state and converts the law's configuration,
+ *                   so neither the start tick nor a switch between steps converts anything. Its
  *                   symbols carry an _fx suffix, so a test links it beside the real executor. */
 #ifdef FS_EXEC_FIXED
 #ifndef FS_REAL_FLOAT
@@ -73,6 +74,7 @@
 #define exec_object_force exec_object_force_fx
 #define exec_object_deformation exec_object_deformation_fx
 #define exec_tick exec_tick_fx
+#define exec_tick_q exec_tick_q_fx
 #define exec_contact_hold_ms exec_contact_hold_ms_fx
 #define exec_vel_init exec_vel_init_fx
 #define exec_vel_update exec_vel_update_fx
@@ -147,6 +149,66 @@ typedef struct {
     uint8_t done;                    /* 1 once the sequence (and any release) has ended */
 } exec_out_t;
 
+#ifdef FS_EXEC_FIXED
+/* The integer executor's units (exec_tick_q): forces N Q.32 (int64), x positions and their
+ * derivatives m, m/s, m/s^2 Q.48, the y path m Q.55 (the DMP accumulators' own resolution), its
+ * velocity Q.48 and acceleration Q.40, rates and blends Q1.31. */
+
+/** One step's constants, derived by exec_start_run from the step's skill and run. */
+typedef struct {
+    int64_t force0_q32;      /* f_dmp without the DMP's y: f0 (+ a periodic step's 2^s*g_e) */
+    int64_t start_force_q32; /* the step's first force (the carry's reference) */
+    int64_t path0_q55;       /* a periodic y path's s_p*g_y (0 otherwise) */
+    int64_t contact_threshold_q32;
+    fx_scale_t inv_k;          /* 1/k of the skill: N Q.32 -> m Q.48 */
+    uint32_t ticks;            /* the step's length at dt (EXEC_TICKS_MAX: until stopped) */
+    uint32_t contact_gain_q31; /* dt/(contact_tau_s + dt) */
+    uint8_t y_shift;           /* 23 - s: y_acc (Q.55 in units of 2^s N) -> N Q.32 */
+    uint8_t contact_wait;      /* the skill's contact_threshold_N > 0 */
+} exec_step_q_t;
+
+/** The run's constants from the configuration (exec_start_begin). */
+typedef struct {
+    fx_scale_t inv_dt_x;       /* m Q.48 -> m/s Q.48 */
+    fx_scale_t inv_dt_y;       /* m Q.55 -> m/s Q.48 */
+    fx_scale_t inv_dt_yd;      /* m/s Q.48 -> m/s^2 Q.40 */
+    fx_scale_t dt;             /* Q.48 -> Q.48 times dt */
+    fx_scale_t d_v;            /* m/s Q.48 -> N Q.32 */
+    fx_scale_t k1, k2;         /* m Q.48 -> N Q.32 */
+    fx_scale_t inv_m;          /* N Q.32 -> m/s^2 Q.48 */
+    fx_scale_t inv_k1, inv_k2; /* N Q.32 -> m Q.48 */
+    fx_scale_t stop_gain;      /* N^2 Q.32 -> Q.24 */
+    int64_t layer_q48;
+    int64_t f_layer_q32;      /* k1 * layer depth */
+    uint32_t blend_inc_q32;   /* dt/EXEC_BLEND_S, rounded up */
+    uint32_t release_inc_q32; /* dt/SKILL_RELEASE_TIME_S, rounded up */
+    uint8_t use_model;
+    uint8_t surface_from_contact;
+    uint8_t phase_stop;
+} exec_cfg_q_t;
+
+/** The integer executor's state (the fixed-point build's exec_state_t.q). */
+typedef struct {
+    exec_step_q_t step[EXEC_MAX_STEPS];
+    exec_cfg_q_t c;
+    int64_t f_hat_q32;
+    int64_t f_carry_q32;
+    int64_t f_end_q32;
+    int64_t p_q48; /* reference deformation p_d and its rate (the object model) */
+    int64_t pd_q48;
+    int64_t prev_x_q48; /* model-free reference: the previous x_d */
+    int64_t surface_q48;
+    int64_t y_hold_q55;
+    int64_t path_q55;
+    int64_t y_ref_q55;
+    int64_t y_ref_vel_q48;
+    uint64_t hold_q31;  /* the contact wait's sum of (1 - rate), ticks Q.31 */
+    uint64_t defer_q31; /* ticks held not yet added to the step's length, Q.31 */
+    uint32_t end_tick;  /* ticks of the end policy */
+    uint32_t contact_rate_q31;
+} exec_q_t;
+#endif
+
 /** Execution state (sequence, DMP, reference model, controller integral). */
 typedef struct {
     exec_step_t steps[EXEC_MAX_STEPS];
@@ -161,6 +223,9 @@ typedef struct {
     pfcfx_config_t pfc_cfg; /* cfg->pfc at exec_start */
     pfcfx_state_t pfc;
     uint8_t dmp_saturated; /* this tick's DMP step saturated */
+    exec_q_t q;            /* the integer tick's constants and state (exec_tick_q); of the fs_real_t
+                 * fields below this build keeps y_hold_m (the start's) and, written by
+                 * exec_tick, force_hat_N and contact_rate (the integer state's float view) */
 #else
     dmp_state_t dmp;
     dmp_run_t run;
@@ -183,7 +248,7 @@ typedef struct {
     fs_real_t y_ref_m;        /* y_d = y_base + p */
     fs_real_t y_ref_vel_mps;  /* yd_d */
     uint8_t start_pending;    /* 1 until the first tick has measured the contact force */
-    uint8_t prepared;         /* parts of the steps' constants exec_start_run derived (2 a step) */
+    uint8_t prepared;         /* parts exec_start_run derived (fixed build: 3 a step, 4 more) */
     fs_real_t surface_m;      /* the surface the reference is built on */
     /* the running skill's contact wait (skill_t.contact_threshold_N > 0) */
     fs_real_t contact_rate;   /* the phase rate, 0..1 (1 without a contact wait) */
@@ -206,7 +271,8 @@ fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_st
 
 /** exec_start in slices, for a caller that bounds its work a tick: the checks, the sequence
  *  loaded and the law's configuration (exec_start_begin, the same codes), then each
- *  exec_start_run derives one of the two parts of a step's constants (the fixed-point build; 3xx
+ *  exec_start_run derives one of the three parts of a step's constants or, after them, one of
+ *  the four of the integer tick's constants of the configuration (the fixed-point build; 3xx
  *  codes) or, once all are, starts the first step and sets *done. Nothing runs before *done. */
 fs_status_t exec_start_begin(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
                              uint8_t n_steps, fs_real_t y_hold_m);
@@ -224,6 +290,30 @@ fs_real_t exec_object_deformation(const exec_object_t *obj, fs_real_t force_N);
  *  commands are computed from the saturated values). */
 fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_meas_t *meas,
                       exec_out_t *out);
+
+#ifdef FS_EXEC_FIXED
+/** Measurements of one tick in the fixed-point build's units (INT32_MIN: not finite). */
+typedef struct {
+    int32_t pos_q24[PFC_AXES]; /* m, Q8.24 */
+    int32_t vel_q24[PFC_AXES]; /* m/s, Q8.24 */
+    int32_t force_contact_q16; /* N, Q16.16 */
+} exec_meas_q_t;
+
+/** Output of one integer tick (exec_out_t's fields in Q formats). */
+typedef struct {
+    int32_t force_cmd_q16[PFC_AXES]; /* N, Q16.16 */
+    int32_t force_hat_q16;           /* f_hat, N, Q16.16 */
+    int32_t pos_ref_q24, y_ref_q24;  /* m, Q8.24 */
+    uint8_t step, done;
+} exec_out_q_t;
+
+/** exec_tick in integers only (no floating-point operation: every constant, cfg's included,
+ *  derived by exec_start, so cfg changed after it has no effect), the same codes. exec_tick of
+ *  this build converts its measurements in, calls it, converts the outputs out and mirrors
+ *  f_hat and the contact wait's rate into force_hat_N and contact_rate. */
+fs_status_t exec_tick_q(const exec_config_t *cfg, exec_state_t *st, const exec_meas_q_t *meas,
+                        exec_out_q_t *out);
+#endif
 
 /** How long the phase of the execution held for contact (the contact wait's sum of
  *  (1 - rate)*dt), rounded to ms (0 without a contact wait). */

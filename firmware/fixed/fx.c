@@ -191,3 +191,44 @@ float fx_acc_to_float(int64_t acc, int32_t exp2)
     const uint64_t mag = (acc < 0) ? 0u - (uint64_t)acc : (uint64_t)acc;
     return fx_float_of((acc < 0) ? 0x80000000u : 0u, mag, exp2);
 }
+
+fs_status_t fx_scale_from_double(double v, int32_t in_frac, int32_t out_frac, fx_scale_t *out)
+{
+    out->mant = 0u;
+    out->shift = 31u;
+    out->post = 0u;
+    if (!(v >= 0.0) || !isfinite(v)) {
+        return FS_ERR_FIXED_OVERFLOW;
+    }
+    const double c = ldexp(v, (int)(out_frac - in_frac));
+    if (c == 0.0) {
+        return FS_OK;
+    }
+    int ex = 0;
+    (void)frexp(c, &ex); /* c = f * 2^ex, f in [0.5, 1): mant = c * 2^(32 - ex) in [2^31, 2^32) */
+    if (ex > 61) {
+        return FS_ERR_FIXED_OVERFLOW;
+    }
+    int shift = 32 - ex;
+    int post = 0;
+    if (shift < 31) {
+        post = 31 - shift;
+        shift = 31;
+    }
+    if (shift > 93) {
+        shift = 93;
+    }
+    double m = floor(ldexp(c, shift - post) + 0.5);
+    if (m >= 4294967296.0) { /* rounded up to 2^32 */
+        if (shift > 31) {
+            shift--;
+        } else {
+            post++;
+        }
+        m = floor(ldexp(c, shift - post) + 0.5);
+    }
+    out->mant = (uint32_t)m;
+    out->shift = (uint8_t)shift;
+    out->post = (uint8_t)post;
+    return FS_OK;
+}

@@ -129,6 +129,50 @@ static inline int64_t fx_acc_add(int64_t acc, int64_t inc, uint32_t *events)
     return r;
 }
 
+/* Bound of the 64-bit values fx_scale_apply takes and returns: |v| <= FX_S61_MAX. */
+#define FX_S61_MAX (((int64_t)1 << 61) - 1)
+
+/** v clamped to +-FX_S61_MAX. */
+static inline int64_t fx_clamp61(int64_t v)
+{
+    return (v > FX_S61_MAX) ? FX_S61_MAX : ((v < -FX_S61_MAX) ? -FX_S61_MAX : v);
+}
+
+/** a*m / 2^s for |a| <= FX_S61_MAX, 31 <= s <= 93: the 96-bit product from 32x32 parts, floored
+ *  to 2^-31 and then rounded half up (error < 1 LSB + 2^-31 of it); |result| < 2^62. */
+static inline int64_t fx_mul64_u32(int64_t a, uint32_t m, unsigned s)
+{
+    const int64_t hi = (a >> 32) * (int64_t)m;               /* |a >> 32| < 2^29: < 2^61 */
+    const uint64_t lo = (uint64_t)(uint32_t)(uint64_t)a * m; /* < 2^64 */
+    const int64_t t = hi * 2 + (int64_t)(lo >> 31);          /* floor(a*m / 2^31) */
+    return (s == 31u) ? t : fx_rshift_round(t, s - 31u);
+}
+
+/** A non-negative constant factor c ~ mant * 2^(post - shift) between two fixed-point formats
+ *  (fx_scale_from_double), applied per tick by fx_scale_apply in integers. */
+typedef struct {
+    uint32_t mant;
+    uint8_t shift; /* 31..93 */
+    uint8_t post;  /* left shift after the product (c >= 2^32 with shift 31) */
+} fx_scale_t;
+
+/** round(a*c) in the output format, |a| clamped to FX_S61_MAX first, the result held within
+ *  +-FX_S61_MAX (saturated). */
+static inline int64_t fx_scale_apply(int64_t a, fx_scale_t c)
+{
+    const int64_t r = fx_mul64_u32(fx_clamp61(a), c.mant, c.shift);
+    if (c.post == 0u) {
+        return fx_clamp61(r);
+    }
+    const int64_t lim = FX_S61_MAX >> c.post;
+    return (r > lim) ? FX_S61_MAX : ((r < -lim) ? -FX_S61_MAX : r * ((int64_t)1 << c.post));
+}
+
+/** The factor v * 2^(out_frac - in_frac) (v finite, >= 0) as an fx_scale_t with a 32-bit
+ *  mantissa; FS_ERR_FIXED_OVERFLOW if v is negative, not finite or the factor >= 2^61. Set-up
+ *  code (double), not the tick. */
+fs_status_t fx_scale_from_double(double v, int32_t in_frac, int32_t out_frac, fx_scale_t *out);
+
 /** 2^(-k/2^FX_EXP_TABLE_BITS) in Q1.31 (unsigned), k = 0..2^FX_EXP_TABLE_BITS (fx.c). */
 extern const uint32_t fx_exp2_table[(1u << FX_EXP_TABLE_BITS) + 1u];
 

@@ -35,7 +35,57 @@ typedef struct {
     double pos_ref_m;
     double y_ref_m;
     int status;
+    uint8_t step, done;
 } exec_side_out_t;
+
+/** One step of a sequence (exec_step_t's fields) with its skill image; contact_threshold_N > 0
+ *  sets the skill's contact wait. */
+typedef struct {
+    const uint8_t *image;
+    uint32_t image_len;
+    double goal_scale, time_scale, duration_s, path_scale, amplitude_scale;
+    uint8_t end_policy, until_stopped;
+    double contact_threshold_N, contact_tau_s;
+} exec_side_step_t;
+
+#define EXEC_SIDE_MAX_STEPS 4u
+
+/** A sequence run: its steps, the configuration's switches (the default object model when
+ *  use_model), the y start, and a mutation of the integer executor's constants for the test's
+ *  check of its own power (0: none). */
+typedef struct {
+    exec_side_step_t step[EXEC_SIDE_MAX_STEPS];
+    uint8_t n_steps;
+    uint8_t use_model;
+    uint8_t surface_from_contact;
+    double surface_m;
+    double phase_stop_gain_per_N2;
+    double y_hold_m;
+    uint32_t saturate_at; /* > 0: the DMP's accumulators forced beyond range before this tick */
+    int mutation;
+    uint8_t via_wrapper; /* 1: run exec_tick (the float32 boundary over exec_tick_q) instead */
+} exec_side_seq_t;
+
+/** The mutations exec_side_q_replay applies after exec_start (one wrong constant each). */
+enum {
+    EXEC_SIDE_MUT_NONE = 0,
+    EXEC_SIDE_MUT_BLEND,   /* the blend's increment 1 % high */
+    EXEC_SIDE_MUT_RELEASE, /* the release ramp's increment 1 % high */
+    EXEC_SIDE_MUT_INV_K,   /* 1/k of step 0 1 % high */
+    EXEC_SIDE_MUT_INV_M,   /* the object model's 1/m_v 1 % high */
+    EXEC_SIDE_MUT_STOP,    /* the phase-stop gain 10 % high */
+    EXEC_SIDE_MUT_CONTACT, /* the contact wait's gain of step 0 10 % high */
+    EXEC_SIDE_MUT_CARRY,   /* step 1's starting force 10 mN high */
+};
+
+/** Start the fixed-point executor on seq (skills parsed in float32, converted as the device
+ *  does) and run exec_tick_q over n ticks of meas (rounded to Q8.24 / Q16.16, NaN as INT32_MIN)
+ *  into out; returns the status of the first failing set-up call (FS_OK = 0). */
+int exec_side_q_replay(const exec_side_seq_t *seq, const exec_side_meas_t *meas,
+                       exec_side_out_t *out, size_t n);
+
+/** exec_contact_hold_ms of the last exec_side_q_replay's run. */
+uint32_t exec_side_q_hold_ms(void);
 
 /** Parse the image in float32, start the fixed-point executor (y held at y_hold_m) and run it
  *  over n ticks of meas into out; returns the status of the first failing call (FS_OK = 0). */

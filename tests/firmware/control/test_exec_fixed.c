@@ -70,8 +70,13 @@ static size_t run_float64(const exec_side_run_t *run)
         exec_out_t o;
         assert_int_equal(exec_tick(&cfg, &g_state, &me, &o), FS_OK);
         g_meas[i] = (exec_side_meas_t){{x[0], x[1]}, {v[0], v[1]}, f_c};
-        g_ref[i] = (exec_side_out_t){
-            {o.force_cmd_N[0], o.force_cmd_N[1]}, o.force_hat_N, o.pos_ref_m, o.y_ref_m, 0};
+        g_ref[i] = (exec_side_out_t){{o.force_cmd_N[0], o.force_cmd_N[1]},
+                                     o.force_hat_N,
+                                     o.pos_ref_m,
+                                     o.y_ref_m,
+                                     0,
+                                     o.step,
+                                     o.done};
         const double acc[2] = {(o.force_cmd_N[0] - f_c) / m, o.force_cmd_N[1] / m};
         for (unsigned a = 0; a < 2u; a++) {
             v[a] += acc[a] * DT;

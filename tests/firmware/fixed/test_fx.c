@@ -154,6 +154,57 @@ static void test_udiv(void **state)
     }
 }
 
+/* fx_mul64_u32 against the exact 128-bit product rounded half up: within 1 LSB (it floors the
+ * low 31 bits before rounding); fx_scale_apply of factors from 1e-9 to 1e9 between formats
+ * against long double: within 1 LSB of the output (2^post when it shifts left). */
+static void test_mul64_scale(void **state)
+{
+    (void)state;
+    for (int k = 0; k < 200000; k++) {
+        const int64_t a = (int64_t)(rng_next() >> 3) * ((rng_next() & 1u) ? 1 : -1);
+        const uint32_t m = (uint32_t)rng_next();
+        const unsigned sh = 31u + (unsigned)(rng_next() % 63u);
+        const __int128 p = (__int128)a * m;
+        const __int128 ref = (p + ((__int128)1 << (sh - 1u))) >> sh;
+        const __int128 d = (__int128)fx_mul64_u32(a, m, sh) - ref;
+        assert_true(d >= -1 && d <= 1);
+    }
+    const double vs[] = {1e-9, 3.7e-6, 0.001, 0.05, 1.0, 3.0, 280.0, 1000.0, 1e4, 7.3e6, 1e9};
+    const int32_t fmt[][2] = {{32, 48}, {48, 32}, {55, 48}, {48, 40}, {48, 48}, {32, 24}};
+    for (size_t i = 0; i < sizeof vs / sizeof vs[0]; i++) {
+        for (size_t j = 0; j < sizeof fmt / sizeof fmt[0]; j++) {
+            fx_scale_t c;
+            const fs_status_t rc = fx_scale_from_double(vs[i], fmt[j][0], fmt[j][1], &c);
+            const long double f = ldexpl((long double)vs[i], fmt[j][1] - fmt[j][0]);
+            if (f >= ldexpl(1.0L, 61)) {
+                assert_int_equal(rc, FS_ERR_FIXED_OVERFLOW);
+                continue;
+            }
+            assert_int_equal(rc, FS_OK);
+            for (int k = 0; k < 2000; k++) {
+                const int64_t a = (int64_t)(rng_next() >> (3u + rng_next() % 58u)) *
+                                  ((rng_next() & 1u) ? 1 : -1);
+                const long double exact = (long double)a * f;
+                if (fabsl(exact) >= ldexpl(1.0L, 60)) {
+                    continue;
+                }
+                const long double err = fabsl((long double)fx_scale_apply(a, c) - exact);
+                /* the mantissa's rounding (2^-32 relative) + 1 LSB of the output */
+                assert_true(err <= fabsl(exact) * ldexpl(1.0L, -31) + ldexpl(1.0L, c.post) + 1.0L);
+            }
+        }
+    }
+    fx_scale_t c;
+    assert_int_equal(fx_scale_from_double(-1.0, 0, 0, &c), FS_ERR_FIXED_OVERFLOW);
+    assert_int_equal(fx_scale_from_double(NAN, 0, 0, &c), FS_ERR_FIXED_OVERFLOW);
+    assert_int_equal(fx_scale_from_double(0.0, 0, 0, &c), FS_OK);
+    assert_true(fx_scale_apply(123456789, c) == 0);
+    /* saturation at +-FX_S61_MAX, never wrap */
+    assert_int_equal(fx_scale_from_double(1e6, 0, 0, &c), FS_OK);
+    assert_true(fx_scale_apply(INT64_MAX, c) == FX_S61_MAX);
+    assert_true(fx_scale_apply(INT64_MIN, c) == -FX_S61_MAX);
+}
+
 static void test_from_double(void **state)
 {
     (void)state;
@@ -217,6 +268,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_sat_add_sub), cmocka_unit_test(test_mul_round_exact),
         cmocka_unit_test(test_exp_table),   cmocka_unit_test(test_udiv),
+        cmocka_unit_test(test_mul64_scale),
         cmocka_unit_test(test_from_double), cmocka_unit_test(test_float_conversions),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
