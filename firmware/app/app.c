@@ -573,6 +573,88 @@ bool app_poll(app_t *app)
     return true;
 }
 
+#ifdef FS_EXEC_FIXED
+/* A float sensor value in Q(frac), integer operations only: NaN or infinite -> INT32_MIN (not
+ * finite for the executor and the safety layer), finite values saturated to +-INT32_MAX. */
+static int32_t q_of_float(fs_real_t v, unsigned frac)
+{
+    uint32_t b;
+    memcpy(&b, &v, sizeof b);
+    if ((b & 0x7F800000u) == 0x7F800000u) {
+        return INT32_MIN;
+    }
+    const int32_t q = fx_from_float(v, frac);
+    return (q == INT32_MIN) ? INT32_MIN + 1 : q;
+}
+
+/* This tick's sensors in the integer tick's formats, and the velocity estimate. */
+static void sense_q(app_t *app)
+{
+    for (unsigned a = 0; a < PFC_AXES; a++) {
+        app->meas_q.pos_q24[a] = q_of_float(app->sens.pos_m[a], 24u);
+        app->meas_q.vel_q24[a] = exec_vel_update_q(&app->vel[a], app->meas_q.pos_q24[a]);
+        if (app->cfg.render_carriage != 0u) { /* the rendered drive computes in float */
+            app->vel_mps[a] = fx_to_float(app->meas_q.vel_q24[a], 24u);
+        }
+    }
+    app->meas_q.force_contact_q16 = q_of_float(app->sens.force_contact_N[0], 16u);
+    app->force_y_q16 = q_of_float(app->sens.force_contact_N[1], 16u);
+    app->req_q = false;
+}
+#endif
+
+/* One executor tick: its commands into force_req (the integer build: force_req_q16 unless the
+ * drive is rendered), its status as the app keeps it; returns 1 once the run has ended. */
+static uint8_t control_execute(app_t *app, fs_real_t dt)
+{
+    /* non-finite measurement: 0 N, the sensor checks latch the fault. A saturated DMP step
+     * (the fixed-point build: the skill at this scale left its Q formats, 300) stops the run:
+     * counted, kept as the run status, and latched as skill invalid in this tick */
+    fs_real_t cmd[PFC_AXES];
+#ifdef FS_EXEC_FIXED
+    exec_out_q_t out;
+    const fs_status_t rc = exec_tick_q(&app->exec_run_cfg, &app->exec, &app->meas_q, &out);
+    app->force_hat_N = fx_to_float(out.force_hat_q16, 16u);
+    if (app->cfg.render_carriage == 0u) {
+        app->force_req_q16[0] = out.force_cmd_q16[0];
+        app->force_req_q16[1] = out.force_cmd_q16[1];
+        app->req_q = true;
+    }
+    cmd[0] = fx_to_float(out.force_cmd_q16[0], 16u);
+    cmd[1] = fx_to_float(out.force_cmd_q16[1], 16u);
+#else
+    exec_meas_t m;
+    m.pos_m[0] = app->sens.pos_m[0];
+    m.pos_m[1] = app->sens.pos_m[1];
+    m.vel_mps[0] = app->vel_mps[0];
+    m.vel_mps[1] = app->vel_mps[1];
+    m.force_contact_N = app->sens.force_contact_N[0];
+    exec_out_t out;
+    const fs_status_t rc = exec_tick(&app->exec_run_cfg, &app->exec, &m, &out);
+    app->force_hat_N = out.force_hat_N;
+    cmd[0] = out.force_cmd_N[0];
+    cmd[1] = out.force_cmd_N[1];
+#endif
+    if (rc == FS_ERR_FIXED_OVERFLOW) {
+        app->exec_saturated_ticks++;
+        app->last_run_status = (uint16_t)FS_ERR_FIXED_OVERFLOW;
+        app->exec_saturated = true;
+    }
+    app->seq_step = out.step;
+    if (app->cfg.render_carriage != 0u) {
+        const fs_real_t m_d = app->exec_run_cfg.pfc.gains[0].m_d_kg;
+        app->force_req_N[0] = exec_render_step(&app->cfg.render, &app->rend[0], cmd[0], m_d,
+                                               -app->sens.force_contact_N[0], app->sens.pos_m[0],
+                                               app->vel_mps[0], dt);
+        app->force_req_N[1] = exec_render_step(&app->cfg.render, &app->rend[1], cmd[1], m_d,
+                                               FS_R(0.0), app->sens.pos_m[1], app->vel_mps[1], dt);
+    } else {
+        app->force_req_N[0] = cmd[0];
+        app->force_req_N[1] = cmd[1];
+    }
+    return out.done;
+}
+
 static void control(app_t *app)
 {
     app->force_req_N[0] = FS_R(0.0);
@@ -596,40 +678,15 @@ static void control(app_t *app)
         /* the run's start, a slice a tick (its checks in the tick that took the request): no
          * force yet, as in IDLE; the first step starts from the sample after the last slice */
     } else if (app->state == APP_EXECUTE) {
-        exec_meas_t m;
-        m.pos_m[0] = app->sens.pos_m[0];
-        m.pos_m[1] = app->sens.pos_m[1];
-        m.vel_mps[0] = app->vel_mps[0];
-        m.vel_mps[1] = app->vel_mps[1];
-        m.force_contact_N = app->sens.force_contact_N[0];
-        exec_out_t out;
-        /* non-finite measurement: 0 N, the sensor checks latch the fault. A saturated DMP step
-         * (the fixed-point build: the skill at this scale left its Q formats, 300) stops the run:
-         * counted, kept as the run status, and latched as skill invalid in this tick */
-        if (exec_tick(&app->exec_run_cfg, &app->exec, &m, &out) == FS_ERR_FIXED_OVERFLOW) {
-            app->exec_saturated_ticks++;
-            app->last_run_status = (uint16_t)FS_ERR_FIXED_OVERFLOW;
-            app->exec_saturated = true;
-        }
-        app->force_hat_N = out.force_hat_N;
-        app->seq_step = out.step;
-        if (app->cfg.render_carriage != 0u) {
-            const fs_real_t m_d = app->exec_run_cfg.pfc.gains[0].m_d_kg;
-            app->force_req_N[0] = exec_render_step(
-                &app->cfg.render, &app->rend[0], out.force_cmd_N[0], m_d,
-                -app->sens.force_contact_N[0], app->sens.pos_m[0], app->vel_mps[0], dt);
-            app->force_req_N[1] = exec_render_step(&app->cfg.render, &app->rend[1],
-                                                   out.force_cmd_N[1], m_d, FS_R(0.0),
-                                                   app->sens.pos_m[1], app->vel_mps[1], dt);
-        } else {
-            app->force_req_N[0] = out.force_cmd_N[0];
-            app->force_req_N[1] = out.force_cmd_N[1];
-        }
-        if (out.done != 0u) {
+        const uint8_t done = control_execute(app, dt);
+        if (done != 0u) {
             app->exec_done = true;
             (void)app_event(app, APP_EV_STOP); /* release finished: back to IDLE */
             app->force_req_N[0] = FS_R(0.0);
             app->force_req_N[1] = FS_R(0.0);
+#ifdef FS_EXEC_FIXED
+            app->req_q = false;
+#endif
         }
     }
 }
@@ -649,9 +706,13 @@ void app_tick(app_t *app, bool overrun)
 
     /* sensors first: commands that start a motion start from this sample */
     hal_sensors_read(&app->sens);
+#ifdef FS_EXEC_FIXED
+    sense_q(app);
+#else
     for (unsigned a = 0; a < PFC_AXES; a++) {
         app->vel_mps[a] = exec_vel_update(&app->vel[a], app->sens.pos_m[a], APP_TICK_S);
     }
+#endif
     if (app->state == APP_BOOT) {
         app->fw_self_test_ok = app_fw_self_test_and_confirm(app);
         if (!app->fw_self_test_ok) {
@@ -677,18 +738,36 @@ void app_tick(app_t *app, bool overrun)
     in.skill_invalid = app->exec_saturated;
     app->exec_saturated = false;
     in.storage_error = false;
+#ifdef FS_EXEC_FIXED
+    for (unsigned a = 0; a < PFC_AXES; a++) {
+        in.meas[a].pos_m = app->meas_q.pos_q24[a];
+        in.meas[a].vel_mps = app->meas_q.vel_q24[a];
+        in.force_req_N[a] = app->req_q ? app->force_req_q16[a]
+                            : (app->force_req_N[a] == FS_R(0.0))
+                                ? 0
+                                : q_of_float(app->force_req_N[a], 16u);
+    }
+    in.meas[0].force_N = app->meas_q.force_contact_q16;
+    in.meas[1].force_N = app->force_y_q16;
+#else
     for (unsigned a = 0; a < PFC_AXES; a++) {
         in.meas[a].pos_m = app->sens.pos_m[a];
         in.meas[a].vel_mps = app->vel_mps[a];
         in.meas[a].force_N = app->sens.force_contact_N[a];
         in.force_req_N[a] = app->force_req_N[a];
     }
+#endif
     saf_step(&app->saf_cfg, &app->saf, &in, &app->saf_out);
     if (app->saf_out.stopping) {
         (void)app_event(app, APP_EV_FAULT); /* latched; a skill never resumes by itself */
     }
+#ifdef FS_EXEC_FIXED
+    app->force_out_N[0] = fx_to_float(app->saf_out.force_cmd_N[0], 16u);
+    app->force_out_N[1] = fx_to_float(app->saf_out.force_cmd_N[1], 16u);
+#else
     app->force_out_N[0] = app->saf_out.force_cmd_N[0];
     app->force_out_N[1] = app->saf_out.force_cmd_N[1];
+#endif
     const bool enable = app->saf_out.actuator_enable && app->state != APP_BOOT;
     if (enable != app->actuator_enabled) {
         hal_actuator_enable(enable);

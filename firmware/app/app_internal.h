@@ -181,6 +181,14 @@ struct app {
     fs_real_t force_req_N[PFC_AXES];
     fs_real_t force_out_N[PFC_AXES];
     fs_real_t force_hat_N;
+#ifdef FS_EXEC_FIXED
+    /* the fixed-point build's tick in integers: the sensors converted once a tick (INT32_MIN:
+     * not finite), the request in Q16.16 (force_req_N is used only by the rendered drive) */
+    exec_meas_q_t meas_q;
+    saf_force_t force_y_q16; /* the y axis's measured force */
+    saf_force_t force_req_q16[PFC_AXES];
+    bool req_q;              /* force_req_q16 holds this tick's request (else force_req_N) */
+#endif
     uint8_t active_slot;
     uint8_t seq_step;
     bool exec_done;
