@@ -11,11 +11,11 @@
  * format). One bound is new: a run with a periodic y path allows 0.2 % of max |f_cmd| (+ 1 mN)
  * on the commands. Its y command is m_d*ydd_d + ..., ydd_d the second difference of the
  * fixed-point periodic y DMP's path, which differs from float64's by the DMP's own accuracy: on
- * periodic_y_n50_ridge (goal 1.2, one cycle, test_exec_fixed.c's run) the float32-boundary
- * executor this tick replaced measured 0.514 % there, the integer tick 0.110 % (the same
- * fixed-point DMP, its path differenced at the accumulators' resolution). Each feature's run,
- * and a mutation of one constant of the integer tick per feature that must break the
- * agreement. */
+ * periodic_y_n50_ridge (goal 1.2, one cycle, test_exec_fixed.c's case) the float32-boundary
+ * executor this tick replaced (commit 722affd) measured 0.514 % there, the integer tick
+ * 0.110 % (the same fixed-point DMP, its path differenced at the accumulators' resolution).
+ * Each feature's run, and a mutation of one constant of the integer tick per feature that must
+ * break the agreement. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
