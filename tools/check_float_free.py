@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
 """Float-free check of the Cortex-M3 image's executor tick: builds the cortex-m3 preset's fs_pil
 (unless --no-build), disassembles the ELF (arm-none-eabi-objdump -d) and walks the call graph
-from each root (default exec_tick_q_fx, the integer tick) over its bl/blx/b targets, tail calls
-included. Fails (exit 1) if a software floating-point helper (__aeabi_f*, __aeabi_d*, __*sf*,
-__*df*, __aeabi_[il]2[fd], __aeabi_ul2[fd]) or a libm function is reachable, or if a root makes
-an indirect call (blx/bx to a register other than lr: its target is unknown). As a control, it
-also walks the executor's start (exec_start_run_fx), which must reach software double: otherwise
-the walk is not seeing calls and the check fails too.
+from each root (default exec_tick_q_fx, the integer tick, and exec_contact_hold_ms_fx) over its
+bl/blx/b targets, tail calls included. Fails (exit 1) if a software floating-point helper
+(__aeabi_f*, __aeabi_d*, __*sf*, __*df*, __aeabi_[il]2[fd], __aeabi_ul2[fd]) or a libm function
+is reachable, or if a root makes an indirect call (blx/bx to a register other than lr: its
+target is unknown). As a control, it also walks the executor's start (exec_start_run_fx), which
+must reach software double: otherwise the walk is not seeing calls and the check fails too.
 
 usage: tools/check_float_free.py [--build-dir build/cortex-m3] [--no-build] [--root NAME ...]
 """
@@ -106,7 +106,7 @@ def main() -> int:
     elf = build / "firmware" / "ports" / "mps2" / "fs_pil.elf"
     edges, indirect = disassemble(a.objdump, elf)
     ok = True
-    for root in a.root or ["exec_tick_q_fx"]:
+    for root in a.root or ["exec_tick_q_fx", "exec_contact_hold_ms_fx"]:
         if root not in edges:
             print(f"float-free {elf.name}: {root} not in the image")
             return 1

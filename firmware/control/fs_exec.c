@@ -555,6 +555,7 @@ static fs_status_t exec_prepare_cfg_q(const exec_config_t *cfg, exec_state_t *st
         c->inv_dt_y = exec_scale(inv_dt, 55, 48, &rc);
         c->inv_dt_yd = exec_scale(inv_dt, 48, 40, &rc);
         c->dt = exec_scale(dt, 48, 48, &rc);
+        c->hold_ms = exec_scale(dt * 1000.0, 31, 0, &rc);
         c->blend_inc_q32 = exec_inc_q32(dt / EXEC_BLEND_S);
         c->release_inc_q32 = exec_inc_q32(dt / SKILL_RELEASE_TIME_S);
         return rc;
@@ -940,10 +941,10 @@ fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_mea
 
 uint32_t exec_contact_hold_ms(const exec_state_t *st)
 {
-    const double ms = ldexp((double)st->q.hold_q31, -31) * ldexp((double)st->pfc_cfg.dt_s, -31) *
-                          1000.0 +
-                      0.5;
-    return (ms > 0.0 && ms < 4294967295.0) ? (uint32_t)ms : 0u;
+    const uint64_t held = st->q.hold_q31;
+    const int64_t ms = fx_scale_apply((held > (uint64_t)FX_S61_MAX) ? FX_S61_MAX : (int64_t)held,
+                                      st->q.c.hold_ms);
+    return (ms < (int64_t)UINT32_MAX) ? (uint32_t)ms : UINT32_MAX;
 }
 #endif
 

@@ -178,6 +178,7 @@ typedef struct {
     fx_scale_t inv_m;          /* N Q.32 -> m/s^2 Q.48 */
     fx_scale_t inv_k1, inv_k2; /* N Q.32 -> m Q.48 */
     fx_scale_t stop_gain;      /* N^2 Q.32 -> Q.24 */
+    fx_scale_t hold_ms;        /* held ticks Q.31 -> ms (exec_contact_hold_ms) */
     int64_t layer_q48;
     int64_t f_layer_q32;      /* k1 * layer depth */
     uint32_t blend_inc_q32;   /* dt/EXEC_BLEND_S, rounded up */

@@ -23,6 +23,11 @@
 #define MAX_TICKS 12000u
 #define HAT_REL_LIMIT 1e-4
 #define CMD_REL_LIMIT 1e-3
+/* A periodic y path's commands are bounded at 0.2 % instead (its case below): its y command is
+ * m_d*ydd_d + ..., ydd_d the second difference of the fixed-point periodic y DMP's path, which
+ * differs from float64's by the DMP's own accuracy (the integer tick differences the path at the
+ * accumulators' resolution); the float32-boundary executor of commit 722affd measured 0.514 %
+ * on this run. */
 #define CMD_ABS_LIMIT_N 1e-3
 
 static uint8_t g_image[SKILL_IMAGE_MAX];
@@ -87,7 +92,7 @@ static size_t run_float64(const exec_side_run_t *run)
 }
 
 static void compare(const char *name, double goal, double ts, double path, double stop_gain,
-                    uint8_t use_model, const double wait[4])
+                    uint8_t use_model, const double wait[4], double cmd_rel)
 {
     const uint32_t len = load_image(name);
     const exec_side_run_t run = {g_image,   len,     goal,    ts,      path,   stop_gain,
@@ -125,7 +130,7 @@ static void compare(const char *name, double goal, double ts, double path, doubl
            y_max, f_c_err);
     assert_true(hat_max > 1.0);
     assert_true(hat_err <= HAT_REL_LIMIT * hat_max);
-    assert_true(cmd_err <= CMD_REL_LIMIT * cmd_max + CMD_ABS_LIMIT_N);
+    assert_true(cmd_err <= cmd_rel * cmd_max + CMD_ABS_LIMIT_N);
     assert_true(y_err <= HAT_REL_LIMIT * hat_max / g_skill.stiffness_Npm + HAT_REL_LIMIT * y_max);
 }
 
@@ -135,26 +140,29 @@ typedef struct {
     double goal, time, path, stop_gain;
     uint8_t use_model;
     double wait[4]; /* contact wait: threshold N, tau s; the contact lost from, to (s) */
+    double cmd_rel; /* the commands' relative bound (0: CMD_REL_LIMIT) */
 } case_t;
 
 static const case_t k_cases[] = {
     /* the skill bench/qemu_tick.sh counts on the M3 image, 1x and 1.5x goal at 1.3x time */
-    {"engrave_n50_ridge_release.skill", 1.0, 1.0, 1.0, 0.0, 0u, {0.0, 0.0, 0.0, 0.0}},
-    {"engrave_n50_ridge_release.skill", 1.5, 1.3, 1.0, 0.0, 0u, {0.0, 0.0, 0.0, 0.0}},
+    {"engrave_n50_ridge_release.skill", 1.0, 1.0, 1.0, 0.0, 0u, {0.0, 0.0, 0.0, 0.0}, 0.0},
+    {"engrave_n50_ridge_release.skill", 1.5, 1.3, 1.0, 0.0, 0u, {0.0, 0.0, 0.0, 0.0}, 0.0},
     /* the object model's reference (use_model) and a held end */
-    {"press_n50_lwr_hold.skill", 1.0, 1.0, 1.0, 0.0, 1u, {0.0, 0.0, 0.0, 0.0}},
+    {"press_n50_lwr_hold.skill", 1.0, 1.0, 1.0, 0.0, 1u, {0.0, 0.0, 0.0, 0.0}, 0.0},
     /* a y DMP: the path in fixed point too, at path scale 1 and 0.5 */
-    {"wipe_n50_ridge_release.skill", 1.0, 1.0, 1.0, 0.0, 0u, {0.0, 0.0, 0.0, 0.0}},
-    {"wipe_n50_ridge_release.skill", 1.0, 1.0, 0.5, 0.0, 0u, {0.0, 0.0, 0.0, 0.0}},
+    {"wipe_n50_ridge_release.skill", 1.0, 1.0, 1.0, 0.0, 0u, {0.0, 0.0, 0.0, 0.0}, 0.0},
+    {"wipe_n50_ridge_release.skill", 1.0, 1.0, 0.5, 0.0, 0u, {0.0, 0.0, 0.0, 0.0}, 0.0},
     /* phase stopping: the coupling's slow-down as the fixed-point rate */
-    {"engrave_n100_lwr_release.skill", 1.0, 1.0, 1.0, 0.05, 0u, {0.0, 0.0, 0.0, 0.0}},
+    {"engrave_n100_lwr_release.skill", 1.0, 1.0, 1.0, 0.05, 0u, {0.0, 0.0, 0.0, 0.0}, 0.0},
     /* a periodic skill: one cycle, then held; at 1.5x goal and 1.3x time with phase stopping */
-    {"periodic_n50_ridge.skill", 1.0, 1.0, 1.0, 0.0, 0u, {0.0, 0.0, 0.0, 0.0}},
-    {"periodic_n50_ridge.skill", 1.5, 1.3, 1.0, 0.0, 0u, {0.0, 0.0, 0.0, 0.0}},
-    {"periodic_n50_ridge.skill", 1.0, 1.0, 1.0, 0.05, 0u, {0.0, 0.0, 0.0, 0.0}},
+    {"periodic_n50_ridge.skill", 1.0, 1.0, 1.0, 0.0, 0u, {0.0, 0.0, 0.0, 0.0}, 0.0},
+    {"periodic_n50_ridge.skill", 1.5, 1.3, 1.0, 0.0, 0u, {0.0, 0.0, 0.0, 0.0}, 0.0},
+    {"periodic_n50_ridge.skill", 1.0, 1.0, 1.0, 0.05, 0u, {0.0, 0.0, 0.0, 0.0}, 0.0},
     /* the contact wait (the rate as the fixed point's Q1.31 rate), the contact lost 0.3 s */
-    {"press_n50_lwr_hold.skill", 1.0, 1.0, 1.0, 0.0, 0u, {0.5, 0.02, 0.6, 0.9}},
-    {"periodic_n50_ridge.skill", 1.5, 1.3, 1.0, 0.0, 0u, {1.0, 0.05, 0.3, 0.6}},
+    {"press_n50_lwr_hold.skill", 1.0, 1.0, 1.0, 0.0, 0u, {0.5, 0.02, 0.6, 0.9}, 0.0},
+    {"periodic_n50_ridge.skill", 1.5, 1.3, 1.0, 0.0, 0u, {1.0, 0.05, 0.3, 0.6}, 0.0},
+    /* a periodic y path: its commands within 0.2 % (above) */
+    {"periodic_y_n50_ridge.skill", 1.2, 1.0, 1.0, 0.0, 0u, {0.0, 0.0, 0.0, 0.0}, 2e-3},
 };
 
 static void test_fixed_matches_float64(void **state)
@@ -162,7 +170,8 @@ static void test_fixed_matches_float64(void **state)
     (void)state;
     for (size_t i = 0; i < sizeof k_cases / sizeof k_cases[0]; i++) {
         const case_t *c = &k_cases[i];
-        compare(c->skill, c->goal, c->time, c->path, c->stop_gain, c->use_model, c->wait);
+        compare(c->skill, c->goal, c->time, c->path, c->stop_gain, c->use_model, c->wait,
+                (c->cmd_rel > 0.0) ? c->cmd_rel : CMD_REL_LIMIT);
     }
 }
 

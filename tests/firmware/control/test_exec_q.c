@@ -11,11 +11,11 @@
  * format). One bound is new: a run with a periodic y path allows 0.2 % of max |f_cmd| (+ 1 mN)
  * on the commands. Its y command is m_d*ydd_d + ..., ydd_d the second difference of the
  * fixed-point periodic y DMP's path, which differs from float64's by the DMP's own accuracy: on
- * periodic_y_n50_ridge (goal 1.2, one cycle, test_exec_fixed.c's run) the float32-boundary
- * executor this tick replaced measured 0.514 % there, the integer tick 0.110 % (the same
- * fixed-point DMP, its path differenced at the accumulators' resolution). Each feature's run,
- * and a mutation of one constant of the integer tick per feature that must break the
- * agreement. */
+ * periodic_y_n50_ridge (goal 1.2, one cycle, test_exec_fixed.c's case) the float32-boundary
+ * executor this tick replaced (commit 722affd) measured 0.514 % there, the integer tick
+ * 0.110 % (the same fixed-point DMP, its path differenced at the accumulators' resolution).
+ * Each feature's run, and a mutation of one constant of the integer tick per feature that must
+ * break the agreement. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -456,12 +456,26 @@ static void test_saturation_status(void **state)
     printf("saturation at tick %u: status %d\n", (unsigned)at, g_q[at].status);
 }
 
+/* A start whose configuration leaves the integer tick's formats is refused (303, the fixed build's
+ * 3xx codes): y beyond the Q.55 path's +-64 m. */
+static void test_start_refuses_out_of_range(void **state)
+{
+    (void)state;
+    exec_side_seq_t seq;
+    load(&k_cases[0], &seq);
+    seq.y_hold_m = 100.0;
+    assert_int_equal(exec_side_q_replay(&seq, g_meas, g_q, 0u), FS_ERR_FIXED_CONFIG);
+    seq.y_hold_m = 63.0;
+    assert_int_equal(exec_side_q_replay(&seq, g_meas, g_q, 0u), FS_OK);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_q_matches_float64),
         cmocka_unit_test(test_mutations_fail),
         cmocka_unit_test(test_saturation_status),
+        cmocka_unit_test(test_start_refuses_out_of_range),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
