@@ -67,9 +67,21 @@ static bool tp_send(void *ctx, const can_frame_t *f)
 }
 
 #ifdef FS_EXEC_FIXED
-/* The fixed-point build (no FPU): v in counts of 1/per_unit, clamped to lo..hi, from its value in
- * Q(frac) (fx_from_float reads the float's bits) times per_unit, rounded half away from zero as
- * the float path rounds; NaN or infinite -> 0 as there. Integer operations only. */
+/* The fixed-point build (no FPU): q in Q(frac) in counts of 1/per_unit, clamped to lo..hi,
+ * rounded half away from zero as the float path rounds; INT32_MIN (not finite) -> 0 as NaN
+ * there. Integer operations only. */
+static int32_t q_counts(int32_t q, unsigned frac, int64_t per_unit, int32_t lo, int32_t hi)
+{
+    if (q == INT32_MIN) {
+        return 0;
+    }
+    const int64_t mag = (q < 0) ? -(int64_t)q : (int64_t)q;
+    int64_t c = (mag * per_unit + ((int64_t)1 << (frac - 1u))) >> frac;
+    c = (q < 0) ? -c : c;
+    return (c > (int64_t)hi) ? hi : ((c < (int64_t)lo) ? lo : (int32_t)c);
+}
+
+/* The same of a float (fx_from_float reads its bits). */
 static int32_t wire_counts(fs_real_t v, unsigned frac, int64_t per_unit, int32_t lo, int32_t hi)
 {
     uint32_t b;
@@ -78,14 +90,14 @@ static int32_t wire_counts(fs_real_t v, unsigned frac, int64_t per_unit, int32_t
         return 0;
     }
     const int32_t q = fx_from_float(v, frac);
-    const int64_t mag = (q < 0) ? -(int64_t)q : (int64_t)q;
-    int64_t c = (mag * per_unit + ((int64_t)1 << (frac - 1u))) >> frac;
-    c = (q < 0) ? -c : c;
-    return (c > (int64_t)hi) ? hi : ((c < (int64_t)lo) ? lo : (int32_t)c);
+    return q_counts((q == INT32_MIN) ? INT32_MIN + 1 : q, frac, per_unit, lo, hi);
 }
 /* position in um (Q8.24: +-128 m before the clamp), force in 0.01 N (Q16.16: +-32768 N) */
 #define APP_POS_COUNTS(v) wire_counts((v), 24u, 1000000, -8388608, 8388607)
 #define APP_FORCE_COUNTS(v) (int16_t) wire_counts((v), 16u, 100, -32768, 32767)
+/* the same from the tick's integers (Q8.24 positions, Q16.16 forces) */
+#define APP_POS_COUNTS_Q(q) q_counts((q), 24u, 1000000, -8388608, 8388607)
+#define APP_FORCE_COUNTS_Q(q) (int16_t) q_counts((q), 16u, 100, -32768, 32767)
 #else
 static int32_t clamp_i32(fs_real_t v, fs_real_t scale, int32_t lo, int32_t hi)
 {
@@ -147,8 +159,13 @@ static bool send_emergency(app_t *app, const flt_emcy_t *e)
 static void send_telemetry(app_t *app)
 {
     struct fs_dbc_telemetry_position_t p;
+#ifdef FS_EXEC_FIXED
+    p.pos_x = APP_POS_COUNTS_Q(app->meas_q.pos_q24[0]);
+    p.pos_y = APP_POS_COUNTS_Q(app->meas_q.pos_q24[1]);
+#else
     p.pos_x = APP_POS_COUNTS(app->sens.pos_m[0]);
     p.pos_y = APP_POS_COUNTS(app->sens.pos_m[1]);
+#endif
     p.tick = (uint16_t)(app->tick & 0xFFFFu);
     can_frame_t f; /* id, length and flags; the pack functions write every data byte */
     f.id = PROTO_ID_TELEM_POS(app->cfg.node);
@@ -158,9 +175,14 @@ static void send_telemetry(app_t *app)
     (void)app_send(app, &f, true);
 
     struct fs_dbc_telemetry_force_t q;
+#ifdef FS_EXEC_FIXED
+    q.force_contact = APP_FORCE_COUNTS_Q(app->meas_q.force_contact_q16);
+    q.force_cmd = APP_FORCE_COUNTS_Q(app->saf_out.force_cmd_N[0]);
+#else
     q.force_contact = APP_FORCE_COUNTS(app->sens.force_contact_N[0]);
-    q.force_operator = APP_FORCE_COUNTS(app->sens.force_operator_N[0]);
     q.force_cmd = APP_FORCE_COUNTS(app->force_out_N[0]);
+#endif
+    q.force_operator = APP_FORCE_COUNTS(app->sens.force_operator_N[0]);
     q.force_ref = APP_FORCE_COUNTS(app->force_hat_N);
     f.id = PROTO_ID_TELEM_FORCE(app->cfg.node);
     f.len = FS_DBC_TELEMETRY_FORCE_LENGTH;
@@ -620,8 +642,13 @@ static uint8_t control_execute(app_t *app, fs_real_t dt)
         app->force_req_q16[1] = out.force_cmd_q16[1];
         app->req_q = true;
     }
-    cmd[0] = fx_to_float(out.force_cmd_q16[0], 16u);
-    cmd[1] = fx_to_float(out.force_cmd_q16[1], 16u);
+    if (app->cfg.render_carriage != 0u) {
+        cmd[0] = fx_to_float(out.force_cmd_q16[0], 16u);
+        cmd[1] = fx_to_float(out.force_cmd_q16[1], 16u);
+    } else {
+        cmd[0] = FS_R(0.0); /* force_req_N unused: the request is force_req_q16 */
+        cmd[1] = FS_R(0.0);
+    }
 #else
     exec_meas_t m;
     m.pos_m[0] = app->sens.pos_m[0];
@@ -691,44 +718,10 @@ static void control(app_t *app)
     }
 }
 
-static uint32_t telemetry_period(app_t *app);
-
-void app_tick(app_t *app, bool overrun)
+/* The safety layer's step over this tick's measurement and request; a stop latches the fault
+ * and the command it leaves is what the actuator gets. */
+static void supervise(app_t *app, bool overrun)
 {
-    app->now_us = hal_time_us();
-    app->now_ms = app_now_ms(app, app->now_us);
-    app->tick++;
-    app->host_frame = false;
-    /* while a skill runs ISO-TP queues at most APP_TP_FRAMES_EXEC_TICK frames a tick */
-    app->tp_frames = app->state == APP_EXECUTE ? APP_TP_FRAMES_PER_TICK - APP_TP_FRAMES_EXEC_TICK
-                                               : 0u;
-    app->overrun = overrun;
-
-    /* sensors first: commands that start a motion start from this sample */
-    hal_sensors_read(&app->sens);
-#ifdef FS_EXEC_FIXED
-    sense_q(app);
-#else
-    for (unsigned a = 0; a < PFC_AXES; a++) {
-        app->vel_mps[a] = exec_vel_update(&app->vel[a], app->sens.pos_m[a], APP_TICK_S);
-    }
-#endif
-    if (app->state == APP_BOOT) {
-        app->fw_self_test_ok = app_fw_self_test_and_confirm(app);
-        if (!app->fw_self_test_ok) {
-            /* unconfirmed: the port resets after this tick and the bootloader reverts. Nothing
-             * from the bus is served meanwhile (no node can confirm this image for it). */
-            hal_request_reset(1u);
-            hal_actuator_enable(false);
-            return;
-        }
-        (void)app_event(app, APP_EV_BOOTED);
-    }
-    can_receive(app);
-    uds_service(app);
-    app_sec_persist_step(app);
-    control(app);
-
     saf_input_t in; /* every field set: no memset in the tick */
     in.tick = app->tick;
     in.now_ms = app->now_ms;
@@ -768,13 +761,13 @@ void app_tick(app_t *app, bool overrun)
     app->force_out_N[0] = app->saf_out.force_cmd_N[0];
     app->force_out_N[1] = app->saf_out.force_cmd_N[1];
 #endif
-    const bool enable = app->saf_out.actuator_enable && app->state != APP_BOOT;
-    if (enable != app->actuator_enabled) {
-        hal_actuator_enable(enable);
-        app->actuator_enabled = enable;
-    }
-    hal_actuator_force(app->force_out_N);
+}
 
+static uint32_t telemetry_period(app_t *app);
+
+/* The tick's cyclic frames: pending emergencies, then status and telemetry on their periods. */
+static void transmit(app_t *app)
+{
     /* Emergency frames leave in the tick that latched the fault; one that cannot leave (bus-off,
      * transmit queue full) stays queued and goes out once the controller takes frames again, so
      * the host learns every fault code from its own frame. */
@@ -789,6 +782,53 @@ void app_tick(app_t *app, bool overrun)
     if (period == 0u || app->tick % period == 0u) {
         send_telemetry(app);
     }
+}
+
+void app_tick(app_t *app, bool overrun)
+{
+    app->now_us = hal_time_us();
+    app->now_ms = app_now_ms(app, app->now_us);
+    app->tick++;
+    app->host_frame = false;
+    /* while a skill runs ISO-TP queues at most APP_TP_FRAMES_EXEC_TICK frames a tick */
+    app->tp_frames = app->state == APP_EXECUTE ? APP_TP_FRAMES_PER_TICK - APP_TP_FRAMES_EXEC_TICK
+                                               : 0u;
+    app->overrun = overrun;
+
+    /* sensors first: commands that start a motion start from this sample */
+    hal_sensors_read(&app->sens);
+#ifdef FS_EXEC_FIXED
+    sense_q(app);
+#else
+    for (unsigned a = 0; a < PFC_AXES; a++) {
+        app->vel_mps[a] = exec_vel_update(&app->vel[a], app->sens.pos_m[a], APP_TICK_S);
+    }
+#endif
+    if (app->state == APP_BOOT) {
+        app->fw_self_test_ok = app_fw_self_test_and_confirm(app);
+        if (!app->fw_self_test_ok) {
+            /* unconfirmed: the port resets after this tick and the bootloader reverts. Nothing
+             * from the bus is served meanwhile (no node can confirm this image for it). */
+            hal_request_reset(1u);
+            hal_actuator_enable(false);
+            return;
+        }
+        (void)app_event(app, APP_EV_BOOTED);
+    }
+    can_receive(app);
+    uds_service(app);
+    app_sec_persist_step(app);
+    control(app);
+
+    supervise(app, overrun);
+    const bool enable = app->saf_out.actuator_enable && app->state != APP_BOOT;
+    if (enable != app->actuator_enabled) {
+        hal_actuator_enable(enable);
+        app->actuator_enabled = enable;
+    }
+    hal_actuator_force(app->force_out_N);
+
+    transmit(app);
 }
 
 /* The telemetry's period this tick: the host's (or the configured one) while the device acts, and

@@ -187,7 +187,7 @@ struct app {
     exec_meas_q_t meas_q;
     saf_force_t force_y_q16; /* the y axis's measured force */
     saf_force_t force_req_q16[PFC_AXES];
-    bool req_q;              /* force_req_q16 holds this tick's request (else force_req_N) */
+    bool req_q; /* force_req_q16 holds this tick's request (else force_req_N) */
 #endif
     uint8_t active_slot;
     uint8_t seq_step;
