@@ -32,13 +32,9 @@ CALL_RE = re.compile(
 INDIRECT_RE = re.compile(r"\t(blx|bx)\s+(r\d+|ip|sl|fp)\b")
 
 
-def disassemble(
-    objdump: str, elf: Path
-) -> tuple[dict[str, set[str]], dict[str, list[str]]]:
+def disassemble(objdump: str, elf: Path) -> tuple[dict[str, set[str]], dict[str, list[str]]]:
     """Each function's call/tail-call targets and its indirect branches, from the disassembly."""
-    out = subprocess.run(
-        [objdump, "-d", str(elf)], check=True, capture_output=True, text=True
-    )
+    out = subprocess.run([objdump, "-d", str(elf)], check=True, capture_output=True, text=True)
     edges: dict[str, set[str]] = {}
     indirect: dict[str, list[str]] = {}
     fn = ""
@@ -60,9 +56,7 @@ def disassemble(
     return edges, indirect
 
 
-def reachable(
-    edges: dict[str, set[str]], root: str
-) -> tuple[dict[str, str | None], set[str]]:
+def reachable(edges: dict[str, set[str]], root: str) -> tuple[dict[str, str | None], set[str]]:
     """The functions reachable from root (each with the caller it was first reached from)."""
     parent: dict[str, str | None] = {root: None}
     queue = deque([root])
@@ -87,12 +81,8 @@ def main() -> int:
     ap.add_argument("--build-dir", default=str(ROOT / "build" / "cortex-m3"))
     ap.add_argument("--no-build", action="store_true", help="check the ELF as it is")
     ap.add_argument("--objdump", default="arm-none-eabi-objdump")
-    ap.add_argument(
-        "--root", action="append", help="function(s) to check (exec_tick_q_fx)"
-    )
-    ap.add_argument(
-        "--control", default="exec_start_run_fx", help="must reach software float"
-    )
+    ap.add_argument("--root", action="append", help="function(s) to check (exec_tick_q_fx)")
+    ap.add_argument("--control", default="exec_start_run_fx", help="must reach software float")
     a = ap.parse_args()
     build = Path(a.build_dir)
     if not a.no_build:
@@ -113,10 +103,7 @@ def main() -> int:
         parent, fns = reachable(edges, root)
         bad = sorted(f for f in fns if FLOAT_HELPER.match(f))
         ind = [(f, x) for f in sorted(fns) for x in indirect.get(f, [])]
-        print(
-            f"float-free {elf.name} {root}: {len(fns)} functions reachable: "
-            + " ".join(sorted(fns))
-        )
+        print(f"float-free {elf.name} {root}: {len(fns)} functions reachable: " + " ".join(sorted(fns)))
         for f in bad:
             print(f"  software float reachable: {path_to(parent, f)}")
         for f, x in ind:
@@ -124,13 +111,9 @@ def main() -> int:
         ok = ok and not bad and not ind
     parent, fns = reachable(edges, a.control)
     ctl = sorted(f for f in fns if FLOAT_HELPER.match(f))
-    print(
-        f"control {a.control}: {len(ctl)} software float functions reachable ({' '.join(ctl[:6])} ...)"
-    )
+    print(f"control {a.control}: {len(ctl)} software float functions reachable ({' '.join(ctl[:6])} ...)")
     if not ctl:
-        print(
-            "  the walk found no software float in the control: the call graph is not seen"
-        )
+        print("  the walk found no software float in the control: the call graph is not seen")
         ok = False
     print("float-free check: " + ("PASS" if ok else "FAIL"))
     return 0 if ok else 1
