@@ -158,6 +158,17 @@ static inline uint32_t dmp_ptick_nearest(const DMP_TICK_MODEL *m, fs_phase_t sh,
     return best;
 }
 
+/** The virtual window [lo, end) (end <= lo + N) as two runs of real kernel indices in j order,
+ *  [run[0], run[1]) then [run[2], run[3]) (either may be empty): no index test per kernel. */
+static inline void dmp_ptick_runs(uint32_t n_k, uint32_t lo, uint32_t end, uint32_t run[4])
+{
+    const uint32_t b1 = (end < n_k) ? end : n_k;
+    run[0] = (lo < b1) ? lo : b1;
+    run[1] = b1;
+    run[2] = ((lo > n_k) ? lo : n_k) - n_k;
+    run[3] = (end > n_k) ? end - n_k : 0u;
+}
+
 /** S(x) over the virtual window [lo, hi) (at most min(N, FS_NUM_MAX_WINDOW) kernels from lo),
  *  the kernels with e_i <= FS_NUM_CUTOFF, psi_i as DMP_TICK_BLEND_SHIFT says; *count (may be
  *  NULL) the number summed (1 in the nearest-kernel fallback). With w_y non-NULL, *s_y
@@ -170,6 +181,8 @@ static inline fs_val_t dmp_ptick_blend2(const DMP_TICK_MODEL *m, fs_phase_t x, u
     const uint32_t n_k = m->n_kernels;
     const uint32_t cap = (n_k < FS_NUM_MAX_WINDOW) ? n_k : FS_NUM_MAX_WINDOW;
     const uint32_t end = (hi > lo + cap) ? lo + cap : hi;
+    uint32_t run[4];
+    dmp_ptick_runs(n_k, lo, end, run);
     fs_phase_t sh;
     fs_phase_t ch;
     fs_num_sincos_pi(x, &sh, &ch);
@@ -180,45 +193,63 @@ static inline fs_val_t dmp_ptick_blend2(const DMP_TICK_MODEL *m, fs_phase_t x, u
 #if DMP_TICK_BLEND_SHIFT
     fs_expo_t e[FS_NUM_MAX_WINDOW];
     fs_expo_t e_min = FS_NUM_EXPO_INF;
-    for (uint32_t j = lo; j < end; j++) {
-        const uint32_t i = (j < n_k) ? j : j - n_k;
-        const fs_expo_t ei = fs_num_kernel_expo(dmp_ptick_dist(m, i, sh, ch), 0,
-                                                m->kernel_scale[i]);
-        e[j - lo] = ei;
-        if (ei <= FS_NUM_CUTOFF) {
-            n++;
-            e_min = (ei < e_min) ? ei : e_min;
+    uint32_t k = 0u;
+    for (uint32_t r = 0u; r < 4u; r += 2u) {
+        for (uint32_t i = run[r]; i < run[r + 1u]; i++) {
+            const fs_expo_t ei = fs_num_kernel_expo(dmp_ptick_dist(m, i, sh, ch), 0,
+                                                    m->kernel_scale[i]);
+            e[k++] = ei;
+            if (ei <= FS_NUM_CUTOFF) {
+                n++;
+                e_min = (ei < e_min) ? ei : e_min;
+            }
         }
     }
     /* one loop per case: no test of w_y per kernel */
+    k = 0u;
     if (n != 0u && w_y == NULL) {
-        for (uint32_t j = lo; j < end; j++) {
-            if (e[j - lo] <= FS_NUM_CUTOFF) {
-                const uint32_t i = (j < n_k) ? j : j - n_k;
-                fs_num_blend_acc(&num, &den, fs_num_exp_neg(e[j - lo] - e_min), m->weight[i]);
+        for (uint32_t r = 0u; r < 4u; r += 2u) {
+            for (uint32_t i = run[r]; i < run[r + 1u]; i++, k++) {
+                if (e[k] <= FS_NUM_CUTOFF) {
+                    fs_num_blend_acc(&num, &den, fs_num_exp_neg(e[k] - e_min), m->weight[i]);
+                }
             }
         }
     } else if (n != 0u) {
-        for (uint32_t j = lo; j < end; j++) {
-            if (e[j - lo] <= FS_NUM_CUTOFF) {
-                const uint32_t i = (j < n_k) ? j : j - n_k;
-                const fs_act_t psi = fs_num_exp_neg(e[j - lo] - e_min);
-                fs_num_blend_acc(&num, &den, psi, m->weight[i]);
-                fs_num_blend_acc_num(&num_y, psi, w_y[i]);
+        for (uint32_t r = 0u; r < 4u; r += 2u) {
+            for (uint32_t i = run[r]; i < run[r + 1u]; i++, k++) {
+                if (e[k] <= FS_NUM_CUTOFF) {
+                    const fs_act_t psi = fs_num_exp_neg(e[k] - e_min);
+                    fs_num_blend_acc(&num, &den, psi, m->weight[i]);
+                    fs_num_blend_acc_num(&num_y, psi, w_y[i]);
+                }
             }
         }
     }
 #else
-    for (uint32_t j = lo; j < end; j++) {
-        const uint32_t i = (j < n_k) ? j : j - n_k;
-        const fs_expo_t ei = fs_num_kernel_expo(dmp_ptick_dist(m, i, sh, ch), 0,
-                                                m->kernel_scale[i]);
-        if (ei <= FS_NUM_CUTOFF) {
-            n++;
-            const fs_act_t psi = fs_num_exp_neg(ei);
-            fs_num_blend_acc(&num, &den, psi, m->weight[i]);
-            if (w_y != NULL) {
-                fs_num_blend_acc_num(&num_y, psi, w_y[i]);
+    /* one loop per case: no test of w_y per kernel */
+    if (w_y == NULL) {
+        for (uint32_t r = 0u; r < 4u; r += 2u) {
+            for (uint32_t i = run[r]; i < run[r + 1u]; i++) {
+                const fs_expo_t ei = fs_num_kernel_expo(dmp_ptick_dist(m, i, sh, ch), 0,
+                                                        m->kernel_scale[i]);
+                if (ei <= FS_NUM_CUTOFF) {
+                    n++;
+                    fs_num_blend_acc(&num, &den, fs_num_exp_neg(ei), m->weight[i]);
+                }
+            }
+        }
+    } else {
+        for (uint32_t r = 0u; r < 4u; r += 2u) {
+            for (uint32_t i = run[r]; i < run[r + 1u]; i++) {
+                const fs_expo_t ei = fs_num_kernel_expo(dmp_ptick_dist(m, i, sh, ch), 0,
+                                                        m->kernel_scale[i]);
+                if (ei <= FS_NUM_CUTOFF) {
+                    n++;
+                    const fs_act_t psi = fs_num_exp_neg(ei);
+                    fs_num_blend_acc(&num, &den, psi, m->weight[i]);
+                    fs_num_blend_acc_num(&num_y, psi, w_y[i]);
+                }
             }
         }
     }
