@@ -31,6 +31,10 @@
 /** Clamp a 64-bit value into int32 (saturation, never wrap). */
 static inline int32_t fx_sat32(int64_t v)
 {
+    /* in range iff the high word is the low word's sign extension: one 32-bit compare */
+    if ((int32_t)((uint64_t)v >> 32) == ((int32_t)(uint32_t)v >> 31)) {
+        return (int32_t)v;
+    }
     if (v > (int64_t)INT32_MAX) {
         return INT32_MAX;
     }
@@ -135,6 +139,10 @@ static inline int64_t fx_acc_add(int64_t acc, int64_t inc, uint32_t *events)
 /** v clamped to +-FX_S61_MAX. */
 static inline int64_t fx_clamp61(int64_t v)
 {
+    /* the common case by the high word alone: |high word| < 2^29 is within +-FX_S61_MAX */
+    if ((uint32_t)((uint64_t)v >> 32) + 0x1FFFFFFFu <= 0x3FFFFFFEu) {
+        return v;
+    }
     return (v > FX_S61_MAX) ? FX_S61_MAX : ((v < -FX_S61_MAX) ? -FX_S61_MAX : v);
 }
 

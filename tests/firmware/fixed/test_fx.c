@@ -68,6 +68,33 @@ static void test_sat_add_sub(void **state)
     assert_int_equal(fx_clamp_sym(INT32_MIN, INT32_MAX), -INT32_MAX);
 }
 
+/* fx_sat32 and fx_clamp61 (a fast path on the high word, then the compares) against the plain
+ * compares: every value within a few LSB of each bound and of 2^k, and 200,000 random words. */
+static void test_sat_fast_paths(void **state)
+{
+    (void)state;
+    const int64_t s61 = ((int64_t)1 << 61) - 1;
+    int64_t probe[1024];
+    size_t n = 0;
+    for (int k = 0; k <= 62; k++) {
+        for (int64_t d = -3; d <= 3; d++) {
+            const int64_t p = ((int64_t)1 << k) + d;
+            probe[n++] = p;
+            probe[n++] = -p;
+        }
+    }
+    probe[n++] = INT64_MAX;
+    probe[n++] = INT64_MIN;
+    probe[n++] = INT64_MIN + 1;
+    for (size_t r = 0; r < 200000u + n; r++) {
+        const int64_t v = (r < n) ? probe[r] : (int64_t)rng_next() >> (rng_next() % 40u);
+        const int32_t sat = (v > INT32_MAX) ? INT32_MAX : (v < INT32_MIN) ? INT32_MIN : (int32_t)v;
+        const int64_t c61 = (v > s61) ? s61 : (v < -s61) ? -s61 : v;
+        assert_int_equal(fx_sat32(v), sat);
+        assert_true(fx_clamp61(v) == c61);
+    }
+}
+
 static void test_mul_round_exact(void **state)
 {
     (void)state;
@@ -132,12 +159,12 @@ static void test_exp_table(void **state)
 static void test_udiv(void **state)
 {
     (void)state;
-    const uint32_t ds[] = {1u, 2u, 3u, 0xFFFFu, 0x10000u, 0x10001u, 0x7FFFFFFFu, 0x80000000u,
-                           0x80000001u, 0xFFFFFFFEu, 0xFFFFFFFFu};
+    const uint32_t ds[] = {1u,          2u,          3u,          0xFFFFu,     0x10000u,   0x10001u,
+                           0x7FFFFFFFu, 0x80000000u, 0x80000001u, 0xFFFFFFFEu, 0xFFFFFFFFu};
     for (size_t i = 0; i < sizeof(ds) / sizeof(ds[0]); i++) {
         const uint32_t d = ds[i];
         /* largest n with the quotient in 32 bits after rounding: d*2^32 - d/2 - 1 */
-        const uint64_t nmax = (uint64_t)d * 0xFFFFFFFFull + (uint64_t)(d - 1u) - (d >> 1) ;
+        const uint64_t nmax = (uint64_t)d * 0xFFFFFFFFull + (uint64_t)(d - 1u) - (d >> 1);
         const uint64_t ns[] = {0u, 1u, d, (uint64_t)d * 2u + 1u, nmax / 2u, nmax};
         for (size_t j = 0; j < sizeof(ns) / sizeof(ns[0]); j++) {
             const uint64_t n = ns[j];
@@ -245,7 +272,8 @@ static void test_float_conversions(void **state)
     assert_true(fx_acc_to_float(0, -55) == 0.0f);
     for (int i = 0; i < 200000; i++) {
         const unsigned q = (unsigned)(rng_next() % 32u);
-        const double mag = ldexp((double)(rng_next() % 1000000u) / 1e6, (int)(rng_next() % 40u) - 32);
+        const double mag = ldexp((double)(rng_next() % 1000000u) / 1e6,
+                                 (int)(rng_next() % 40u) - 32);
         const float v = (float)((rng_next() & 1u) ? -mag : mag);
         const double scaled = ldexp((double)v, (int)q);
         if (fabs(scaled) < 2147483647.0) {
@@ -257,7 +285,8 @@ static void test_float_conversions(void **state)
         assert_true(fx_to_float(x, q) == (float)ldexp((double)x, -(int)q) ||
                     fabs((double)fx_to_float(x, q) - ldexp((double)x, -(int)q)) <=
                         0.5 * ldexp(fabs((double)x), -(int)q) * 0x1p-23);
-        const int64_t acc = (int64_t)(((uint64_t)rng_next() << 32) | rng_next()) >> (rng_next() % 40u);
+        const int64_t acc = (int64_t)(((uint64_t)rng_next() << 32) | rng_next()) >>
+                            (rng_next() % 40u);
         const double a_ref = ldexp((double)acc, -55);
         assert_true(fabs((double)fx_acc_to_float(acc, -55) - a_ref) <= fabs(a_ref) * 0x1p-24);
     }
@@ -266,10 +295,14 @@ static void test_float_conversions(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_sat_add_sub), cmocka_unit_test(test_mul_round_exact),
-        cmocka_unit_test(test_exp_table),   cmocka_unit_test(test_udiv),
+        cmocka_unit_test(test_sat_add_sub),
+        cmocka_unit_test(test_sat_fast_paths),
+        cmocka_unit_test(test_mul_round_exact),
+        cmocka_unit_test(test_exp_table),
+        cmocka_unit_test(test_udiv),
         cmocka_unit_test(test_mul64_scale),
-        cmocka_unit_test(test_from_double), cmocka_unit_test(test_float_conversions),
+        cmocka_unit_test(test_from_double),
+        cmocka_unit_test(test_float_conversions),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
