@@ -447,20 +447,19 @@ static bool any_tx_busy(const app_t *app)
     return false;
 }
 
-/* The server's work of this tick: a pending request's next slice, or one new request from
- * either tester in turn; true if it did any. */
-static bool uds_work(app_t *app)
+/* The pending request's next slice, its response queued once it completes. */
+static void uds_resume_step(app_t *app, isotp_link_t *own)
 {
-    bool worked = false;
-    isotp_link_t *own = &app->tp[app->uds_from];
-    if (app->uds.pending_sid != 0u && !isotp_tx_busy(own)) {
-        const uint16_t n = uds_server_resume(&app->uds, app->uds_resp,
-                                             (uint16_t)sizeof(app->uds_resp), app->now_ms);
-        if (n != 0u) {
-            (void)isotp_send(own, app->uds_resp, n, app->now_us);
-        }
-        worked = true;
+    const uint16_t n = uds_server_resume(&app->uds, app->uds_resp, (uint16_t)sizeof(app->uds_resp),
+                                         app->now_ms);
+    if (n != 0u) {
+        (void)isotp_send(own, app->uds_resp, n, app->now_us);
     }
+}
+
+/* One new request from either tester in turn; true if one was served. */
+static bool uds_serve_next(app_t *app)
+{
     for (unsigned k = 0; k < APP_TESTERS; k++) {
         const uint8_t t = (uint8_t)((app->uds_next + k) % APP_TESTERS);
         const uint8_t *req = NULL;
@@ -468,11 +467,33 @@ static bool uds_work(app_t *app)
         if (len != 0u && !isotp_tx_busy(&app->tp[t]) && app->tp_held != t + 1u) {
             uds_serve(app, t, req, len);
             app->uds_next = (uint8_t)((t + 1u) % APP_TESTERS);
-            worked = true;
-            break;
+            return true;
         }
     }
-    return worked;
+    return false;
+}
+
+/* The server's work of this tick: a pending request's next slice or one new request, never both
+ * (each is a tick's share of work); while both wait they take turns. True if it did any. */
+static bool uds_work(app_t *app)
+{
+    isotp_link_t *own = &app->tp[app->uds_from];
+    const bool resume = app->uds.pending_sid != 0u && !isotp_tx_busy(own);
+    if (resume && !app->uds_request_turn) {
+        uds_resume_step(app, own);
+        app->uds_request_turn = true; /* a request waiting meanwhile goes next tick */
+        return true;
+    }
+    app->uds_request_turn = false;
+    if (uds_serve_next(app)) {
+        return true;
+    }
+    if (resume) { /* no request waited: the slice runs in this tick after all */
+        uds_resume_step(app, own);
+        app->uds_request_turn = true;
+        return true;
+    }
+    return false;
 }
 
 /* One UDS request a tick, from either tester in turn; the session belongs to the tester that

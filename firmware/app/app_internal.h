@@ -140,10 +140,11 @@ struct app {
     uint8_t run_opts_end;
     /* UDS on ISO-TP, one link per tester id (UDS_REQUEST, UDS_REQUEST_2) */
     isotp_link_t tp[APP_TESTERS];
-    uint8_t uds_from;     /* the tester of the request served last or pending */
-    uint8_t uds_next;     /* the tester asked first next tick (the two take turns) */
-    uint8_t uds_owner;    /* tester + 1 that unlocked the session, 0 while locked */
-    uint32_t uds_foreign; /* writes refused because another tester owns the session (558) */
+    uint8_t uds_from;      /* the tester of the request served last or pending */
+    uint8_t uds_next;      /* the tester asked first next tick (the two take turns) */
+    bool uds_request_turn; /* a new request before the pending one's slice next tick */
+    uint8_t uds_owner;     /* tester + 1 that unlocked the session, 0 while locked */
+    uint32_t uds_foreign;  /* writes refused because another tester owns the session (558) */
     uds_server_t uds;
     uint8_t uds_resp[ISOTP_MAX_PAYLOAD];
     uint32_t reset_since_ms; /* ECUReset accepted at (its response leaves first) */
