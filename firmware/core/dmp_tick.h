@@ -30,7 +30,7 @@
 #endif
 
 /* 1: psi_i = exp(-(e_i - e_min)), the exponents stored for a second pass (fixed point, where
- * exp(-16) would be 120 LSB of Q1.30); 0: psi_i = exp(-e_i) in one pass (float and double, where
+ * exp(-12) would be 6,600 LSB of Q1.30); 0: psi_i = exp(-e_i) in one pass (float and double, where
  * exp(-cutoff) is a normal number and the shift only changes round-off). */
 #ifndef DMP_TICK_BLEND_SHIFT
 #ifdef FS_NUMERIC_FIXED

@@ -14,9 +14,9 @@
 
 #define DMPFX_TWO_PI 6.283185307179586
 
-/* sqrt(2*16): kernel i can pass the cutoff only if |u - c_i| <= DMPFX_R_CUT * sigma_i. The
+/* sqrt(2 * FS_NUM_CUTOFF_E): kernel i can pass the cutoff only if |u - c_i| <= DMPFX_R_CUT * sigma_i. The
  * envelopes are widened by 1e-4 so rounding never drops a kernel; the e_i test decides. */
-#define DMPFX_R_CUT 5.656854249492381
+#define DMPFX_R_CUT 4.898979485566356
 #define DMPFX_ENVELOPE_MARGIN 1.0001
 /* 1/e, and the bound on |v~| the estimate of the y DMP's forcing uses (|h_y| = |v~ S_y|) */
 #define DMPFX_INV_E 0.36787944117144233
@@ -146,14 +146,14 @@ fs_status_t dmpfx_from_model_bound(const dmp_model_t *m, dmpfx_model_t *out)
     return c.status;
 }
 
-/* A periodic kernel's reach in turns at the fixed cutoff 16: asin(y)/pi, y = sqrt(16/(2 kappa)),
+/* A periodic kernel's reach in turns at the fixed cutoff 12: asin(y)/pi, y = sqrt(12/(2 kappa)),
  * bounded above by (y + (pi/2 - 1) y^3)/pi ((asin(y) - y)/y^3 rises from 1/6 to pi/2 - 1 on
  * [0, 1]: 3 % wider than exact at the fit's kappa, no asin), widened by the envelope margin, at
  * most half a turn. In the model's type: one software-float sqrt a kernel on the M3, no double
  * (the executor converts when a step begins, within a tick). */
 static fs_real_t dmpfx_periodic_reach(fs_real_t kappa)
 {
-    const fs_real_t q = FS_R(16.0) / (FS_R(2.0) * kappa);
+    const fs_real_t q = FS_R(12.0) / (FS_R(2.0) * kappa);
     if (!(q < FS_R(1.0))) {
         return FS_R(0.5);
     }

@@ -185,7 +185,7 @@ fs_status_t dmpfx_run_path(const dmpfx_model_t *m, double path_scale, dmpfx_run_
 /** Zero initial conditions. */
 void dmpfx_state_reset(dmpfx_state_t *s);
 
-/** S(u) = sum psi_i w_i / sum psi_i in Q8.24 at phase u (Q2.30), window + cutoff 16 + e_min
+/** S(u) = sum psi_i w_i / sum psi_i in Q8.24 at phase u (Q2.30), window + cutoff 12 + e_min
  *  shift (dmp_tick_blend); *count (may be NULL) receives the number of kernels summed. */
 int32_t dmpfx_blend(const dmpfx_model_t *m, int32_t u_q30, uint16_t *count);
 

@@ -27,15 +27,18 @@ typedef int64_t fs_wide_t;   /* Q.32 N */
 
 #define FS_NUM_ZERO 0
 #define FS_NUM_PHASE_ONE FX_Q30_ONE
-/* Kernels with e_i above 16 are skipped: exp(-16) = 1.1e-7 of the largest activation, below
- * Q8.24 resolution of S (the real layer uses DMP_KERNEL_CUTOFF_EXP, 23). */
-#define FS_NUM_CUTOFF FX_EXP_ARG_MAX_Q27
+/* Kernels with e_i above 12 are skipped: exp(-12) = 6.1e-6 of the largest activation (the blend
+ * within 8e-7 of max|w| of the double one on the golden skills, tests/firmware/fixed; the real
+ * layer uses DMP_KERNEL_CUTOFF_EXP, 23 or the port's 16). 16 would sum two more kernels a tick at
+ * N = 50 on the M3 for a blend within 3e-8. */
+#define FS_NUM_CUTOFF_E 12u
+#define FS_NUM_CUTOFF ((uint32_t)FS_NUM_CUTOFF_E << 27)
 #define FS_NUM_EXPO_INF UINT32_MAX
 /* Most kernels one blend looks at: DMPFX_MAX_WINDOW (dmpfx.h, checked at conversion). */
 #define FS_NUM_MAX_WINDOW DMPFX_MAX_WINDOW
-/* |u - c_i|/sigma_i >= 6 (e_i >= 18 > 16) is skipped before squaring: in Q.49 that is a high
- * word >= 6 << 17, and below it r^2/2 fits uint32 in Q5.27. */
-#define FS_NUM_R_SKIP_HI ((uint32_t)6u << 17)
+/* |u - c_i|/sigma_i > sqrt(2 * 12) (e_i > 12) is skipped before squaring: in Q.49 a high word
+ * >= 642,120 (sqrt(24) * 2^17 = 642,119.04), and below it r^2/2 fits uint32 in Q5.27. */
+#define FS_NUM_R_SKIP_HI 642120u
 
 static inline fs_val_t fs_num_view(fs_acc_t acc)
 {

@@ -54,9 +54,9 @@ DENSITY_BIN_S = 0.05
 DENSITY_SMOOTH_S = 0.6
 #: curvature above this multiple of its mean counts as this multiple (bounds the narrowest gap)
 DENSITY_CLIP = 2.0
-#: The denser layout is used only while at most this many kernels are within the Cortex-M and
-#: fixed-point cutoff (DEVICE_CUTOFF_EXP) at any phase; otherwise the gain is halved, then the
-#: layout is uniform in time (the M4F tick budget, docs/math.md section 3).
+#: The denser layout is used only while at most this many kernels are within the Cortex-M float
+#: images' cutoff (DEVICE_CUTOFF_EXP; the fixed point's 12 sums fewer) at any phase; otherwise the
+#: gain is halved, then the layout is uniform in time (the M4F tick budget, docs/math.md section 3).
 KERNELS_PER_TICK_MAX = 12
 DEVICE_CUTOFF_EXP = 16.0
 METHODS = ("ridge", "lwr")

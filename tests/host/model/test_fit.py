@@ -261,7 +261,7 @@ def test_default_fit_follows_a_17_s_engraving_with_many_level_changes(seed: int)
         uniform.skill.centres, np.interp(t_uniform / 0.001, np.arange(u.size), u), atol=1e-12
     )
     assert uniform.err_max_pct > 1.5
-    # what the device pays for it: kernels per tick at the Cortex-M / fixed-point cutoff 16 (8 with
+    # what the device pays for it: kernels per tick at the Cortex-M float cutoff 16 (8 with
     # the uniform layout) and the narrowest kernel against the fixed-point limit 1/sigma <= 4096
     sk = res.skill
     u, _ = dmp.phase_loop(sk.alpha, sk.beta, sk.dt_s / sk.tau_s, dmp.default_steps(sk))
@@ -329,7 +329,7 @@ def test_y_gains_that_overshoot_are_refused() -> None:
 
 @pytest.mark.parametrize("n", [10, 20, 50, 100])
 def test_the_layout_keeps_the_device_kernel_count(n: int) -> None:
-    """At most KERNELS_PER_TICK_MAX kernels within the Cortex-M / fixed-point cutoff 16 at any
+    """At most KERNELS_PER_TICK_MAX kernels within the Cortex-M float cutoff 16 at any
     phase, for any N (the denser layout falls back when it would need more), checked by
     counting at every interval start (where the largest overlap of closed intervals begins)."""
     from forceskill.model.fit import KERNELS_PER_TICK_MAX, kernels_per_tick
