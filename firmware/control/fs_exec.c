@@ -655,6 +655,12 @@ static int32_t exec_q24(int64_t v, unsigned sh)
     return fx_sat32(fx_rshift_round(fx_clamp61(v), sh));
 }
 
+/* exec_q24 of a value already within +-FX_S61_MAX (clamped or scaled): the same, no clamp. */
+static int32_t exec_q24_bounded(int64_t v, unsigned sh)
+{
+    return fx_sat32(fx_rshift_round(v, sh));
+}
+
 /* 1/(1 + x) in Q1.31 for x >= 0 in Q.24: one 64/32 division of 32-bit divides. */
 static uint32_t exec_rate_q31(uint64_t x_q24)
 {
@@ -837,18 +843,18 @@ static void exec_x_reference_q(exec_state_t *st, int64_t f_hat, pfcfx_ref_t *rq)
         q->p_q48 = p;
         q->pd_q48 = pd;
         x_d = fx_clamp61(q->surface_q48 + p);
-        rq->vel_mps = exec_q24(pd, 24u);
-        rq->acc_mps2 = exec_q24(pdd, 24u);
+        rq->vel_mps = exec_q24_bounded(pd, 24u);
+        rq->acc_mps2 = exec_q24_bounded(pdd, 24u);
     } else {
         const int64_t p = (f_hat > 0) ? fx_scale_apply(f_hat, q->step[st->step].inv_k) : 0;
         x_d = fx_clamp61(q->surface_q48 + p);
         q->p_q48 = p;
-        rq->vel_mps = exec_q24(fx_scale_apply(x_d - q->prev_x_q48, c->inv_dt_x), 24u);
+        rq->vel_mps = exec_q24_bounded(fx_scale_apply(x_d - q->prev_x_q48, c->inv_dt_x), 24u);
         rq->acc_mps2 = 0;
         q->prev_x_q48 = x_d;
     }
-    rq->pos_m = exec_q24(x_d, 24u);
-    rq->force_N = exec_q16(f_hat);
+    rq->pos_m = exec_q24_bounded(x_d, 24u);
+    rq->force_N = exec_q24_bounded(f_hat, 16u);
 }
 
 /* The y reference: the path (p = 0 without a y DMP: y holds), derivatives by differences of the
@@ -857,11 +863,16 @@ static void exec_y_reference_q(exec_state_t *st, pfcfx_ref_t *rq)
 {
     exec_q_t *q = &st->q;
     const int64_t y_d = fx_clamp61(q->y_hold_q55 + q->path_q55);
-    const int64_t yd = fx_scale_apply(y_d - q->y_ref_q55, q->c.inv_dt_y);
-    const int64_t ydd = fx_scale_apply(yd - q->y_ref_vel_q48, q->c.inv_dt_yd);
-    rq->pos_m = exec_q24(y_d, 31u);
-    rq->vel_mps = exec_q24(yd, 24u);
-    rq->acc_mps2 = exec_q24(ydd, 16u);
+    int64_t yd = 0;
+    int64_t ydd = 0;
+    /* a y that holds (no y DMP, or a path at rest) has no derivatives: two scalings skipped */
+    if (y_d != q->y_ref_q55 || q->y_ref_vel_q48 != 0) {
+        yd = fx_scale_apply(y_d - q->y_ref_q55, q->c.inv_dt_y);
+        ydd = fx_scale_apply(yd - q->y_ref_vel_q48, q->c.inv_dt_yd);
+    }
+    rq->pos_m = exec_q24_bounded(y_d, 31u);
+    rq->vel_mps = exec_q24_bounded(yd, 24u);
+    rq->acc_mps2 = exec_q24_bounded(ydd, 16u);
     rq->force_N = 0;
     q->y_ref_q55 = y_d;
     q->y_ref_vel_q48 = yd;

@@ -146,6 +146,28 @@ static inline int64_t fx_clamp61(int64_t v)
     return (v > FX_S61_MAX) ? FX_S61_MAX : ((v < -FX_S61_MAX) ? -FX_S61_MAX : v);
 }
 
+/** fx_rshift_round(t, k) for a shift known only at run time, 0 <= k <= 62, |t| < 2^62: in 32-bit
+ *  words, the rounding bit added to the word it falls in (a generic 64-bit shift by a variable
+ *  costs twice as many instructions on a 32-bit core). */
+static inline int64_t fx_rshift_round_var(int64_t t, unsigned k)
+{
+    if (k == 0u) {
+        return t;
+    }
+    const uint32_t tl = (uint32_t)(uint64_t)t;
+    int32_t th = (int32_t)((uint64_t)t >> 32);
+    if (k > 32u) { /* 2^(k-1) is in the high word, which alone holds the result */
+        return (int64_t)((th + (int32_t)(1u << (k - 33u))) >> (k - 32u));
+    }
+    const uint32_t nl = tl + (1u << (k - 1u));
+    th += (nl < tl) ? 1 : 0;
+    if (k == 32u) {
+        return (int64_t)th;
+    }
+    const uint32_t lo = (nl >> k) | ((uint32_t)th << (32u - k));
+    return (int64_t)(((uint64_t)(uint32_t)(th >> k) << 32) | lo);
+}
+
 /** a*m / 2^s for |a| <= FX_S61_MAX, 31 <= s <= 93: the 96-bit product from 32x32 parts, floored
  *  to 2^-31 and then rounded half up (error < 1 LSB + 2^-31 of it); |result| < 2^62. */
 static inline int64_t fx_mul64_u32(int64_t a, uint32_t m, unsigned s)
@@ -153,7 +175,7 @@ static inline int64_t fx_mul64_u32(int64_t a, uint32_t m, unsigned s)
     const int64_t hi = (a >> 32) * (int64_t)m;               /* |a >> 32| < 2^29: < 2^61 */
     const uint64_t lo = (uint64_t)(uint32_t)(uint64_t)a * m; /* < 2^64 */
     const int64_t t = hi * 2 + (int64_t)(lo >> 31);          /* floor(a*m / 2^31) */
-    return (s == 31u) ? t : fx_rshift_round(t, s - 31u);
+    return fx_rshift_round_var(t, s - 31u);
 }
 
 /** A non-negative constant factor c ~ mant * 2^(post - shift) between two fixed-point formats
@@ -171,6 +193,13 @@ static inline int64_t fx_scale_apply(int64_t a, fx_scale_t c)
     const int64_t r = fx_mul64_u32(fx_clamp61(a), c.mant, c.shift);
     if (c.post == 0u) {
         return fx_clamp61(r);
+    }
+    const unsigned p = c.post;
+    if (p <= 29u) { /* the common case by the high word alone: |high word| < 2^(29 - p) */
+        const uint32_t h = 1u << (29u - p);
+        if ((uint32_t)((uint64_t)r >> 32) + (h - 1u) <= 2u * h - 2u) {
+            return (int64_t)((uint64_t)r << p);
+        }
     }
     const int64_t lim = FX_S61_MAX >> c.post;
     return (r > lim) ? FX_S61_MAX : ((r < -lim) ? -FX_S61_MAX : r * ((int64_t)1 << c.post));

@@ -95,6 +95,26 @@ static void test_sat_fast_paths(void **state)
     }
 }
 
+/* fx_rshift_round_var (in 32-bit words) against fx_rshift_round: every shift 0..62, values near
+ * 0, near each 2^j and half-way points, and 200,000 random ones below 2^62. */
+static void test_rshift_round_var(void **state)
+{
+    (void)state;
+    for (unsigned k = 0u; k <= 62u; k++) {
+        for (int r = 0; r < 4000; r++) {
+            int64_t t;
+            if (r < 64 && k <= 59u) { /* |t| < 2^62 */
+                const int64_t p = (k > 0u) ? ((int64_t)1 << (k - 1u)) : 0;
+                t = p * (r / 8 - 4) + (r % 8 - 4);
+            } else {
+                t = (int64_t)(rng_next() >> (2u + rng_next() % 62u)) * ((rng_next() & 1u) ? 1 : -1);
+            }
+            const int64_t ref = (k == 0u) ? t : fx_rshift_round(t, k);
+            assert_true(fx_rshift_round_var(t, k) == ref);
+        }
+    }
+}
+
 static void test_mul_round_exact(void **state)
 {
     (void)state;
@@ -297,6 +317,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_sat_add_sub),
         cmocka_unit_test(test_sat_fast_paths),
+        cmocka_unit_test(test_rshift_round_var),
         cmocka_unit_test(test_mul_round_exact),
         cmocka_unit_test(test_exp_table),
         cmocka_unit_test(test_udiv),
