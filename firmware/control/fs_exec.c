@@ -729,7 +729,7 @@ static int64_t exec_dmp_step_q(exec_state_t *st, uint32_t rate_q31)
         st->q.path_q55 = st->dmp.path_acc;
     }
     st->dmp_saturated = (st->dmp.sat_events != ev) ? 1u : 0u;
-    return sq->force0_q32 + fx_rshift_round(st->dmp.y_acc, sq->y_shift);
+    return sq->force0_q32 + fx_rshift_round_var(st->dmp.y_acc, sq->y_shift);
 }
 
 /* 1 at t = 0 falling smoothly (smoothstep) to 0 at EXEC_BLEND_S, Q1.31, t = ticks*dt. */
