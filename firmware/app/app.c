@@ -338,9 +338,13 @@ static void can_receive(app_t *app)
     if (app->held_ch != 0u) {
         return; /* a frame still waits for the verification in flight */
     }
-    const bool uds_first = !app->mac_ran && uds_work_waiting(app);
+    /* asked once a frame came (before it is taken): a tick without frames does not ask */
+    bool uds_first = false;
     can_frame_t f;
     for (unsigned i = 0; i < APP_RX_FRAMES_PER_TICK && hal_can_receive(&f); i++) {
+        if (i == 0u) {
+            uds_first = !app->mac_ran && uds_work_waiting(app);
+        }
         const uint32_t node = app->cfg.node;
         secoc_channel_t ch;
         e2e_rx_t *rx;
@@ -868,7 +872,9 @@ void app_tick(app_t *app, bool overrun)
     }
     can_receive(app);
     uds_service(app);
-    app_sec_persist_step(app);
+    if (app->sec_writing || app->sec_dirty) { /* app_sec_persist_step's share, if any */
+        app_sec_persist_step(app);
+    }
     control(app);
 
     supervise(app, overrun);
