@@ -99,11 +99,10 @@ static int32_t wire_counts(fs_real_t v, unsigned frac, int64_t per_unit, int32_t
 #define APP_POS_COUNTS_Q(q) q_counts((q), 24u, 1000000, -8388608, 8388607)
 #define APP_FORCE_COUNTS_Q(q) (int16_t) q_counts((q), 16u, 100, -32768, 32767)
 #else
-/* v / scale in counts, clamped to lo..hi (lo = -hi - 1), rounded half away from zero; NaN and
- * inf 0. */
-static int32_t clamp_i32(fs_real_t v, fs_real_t scale, int32_t lo, int32_t hi)
+/* clamp_i32 of r = v / scale with |r| >= hi or NaN: clamped, or NaN and inf 0, or rounded
+ * (lo < r <= -hi). */
+static int32_t clamp_i32_edge(fs_real_t v, fs_real_t r, int32_t lo, int32_t hi)
 {
-    const fs_real_t r = v / scale;
     if (!(r > (fs_real_t)lo && r < (fs_real_t)hi)) { /* out of range, or NaN/inf (v or r) */
         if (!fs_isfinite(v)) {
             return 0;
@@ -112,6 +111,20 @@ static int32_t clamp_i32(fs_real_t v, fs_real_t scale, int32_t lo, int32_t hi)
     }
     /* round half away from zero, as cantools --use-round (roundf) does */
     return (int32_t)(r < FS_R(0.0) ? r - FS_R(0.5) : r + FS_R(0.5));
+}
+
+/* v / scale in counts, clamped to lo..hi (lo = -hi - 1), rounded half away from zero; NaN and
+ * inf 0. Inline: its constants fold into the tick's six conversions. */
+static inline int32_t clamp_i32(fs_real_t v, fs_real_t scale, int32_t lo, int32_t hi)
+{
+    const fs_real_t r = v / scale;
+    const fs_real_t a = fs_fabs(r);
+    if (a < (fs_real_t)hi) { /* |r| < hi: in range (NaN fails), the usual value */
+        /* |r| + 0.5 truncated, the sign put back: r -+ 0.5 truncated (rounding is symmetric) */
+        const int32_t n = (int32_t)(a + FS_R(0.5));
+        return (r < FS_R(0.0)) ? -n : n;
+    }
+    return clamp_i32_edge(v, r, lo, hi);
 }
 #define APP_POS_COUNTS(v) clamp_i32((v), FS_R(1e-6), -8388608, 8388607)
 #define APP_FORCE_COUNTS(v) (int16_t) clamp_i32((v), FS_R(0.01), -32768, 32767)
