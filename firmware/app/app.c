@@ -99,9 +99,10 @@ static int32_t wire_counts(fs_real_t v, unsigned frac, int64_t per_unit, int32_t
 #define APP_POS_COUNTS_Q(q) q_counts((q), 24u, 1000000, -8388608, 8388607)
 #define APP_FORCE_COUNTS_Q(q) (int16_t) q_counts((q), 16u, 100, -32768, 32767)
 #else
-static int32_t clamp_i32(fs_real_t v, fs_real_t scale, int32_t lo, int32_t hi)
+/* clamp_i32 of r = v / scale with |r| >= hi or NaN: clamped, or NaN and inf 0, or rounded
+ * (lo < r <= -hi). */
+static int32_t clamp_i32_edge(fs_real_t v, fs_real_t r, int32_t lo, int32_t hi)
 {
-    const fs_real_t r = v / scale;
     if (!(r > (fs_real_t)lo && r < (fs_real_t)hi)) { /* out of range, or NaN/inf (v or r) */
         if (!fs_isfinite(v)) {
             return 0;
@@ -110,6 +111,20 @@ static int32_t clamp_i32(fs_real_t v, fs_real_t scale, int32_t lo, int32_t hi)
     }
     /* round half away from zero, as cantools --use-round (roundf) does */
     return (int32_t)(r < FS_R(0.0) ? r - FS_R(0.5) : r + FS_R(0.5));
+}
+
+/* v / scale in counts, clamped to lo..hi (lo = -hi - 1), rounded half away from zero; NaN and
+ * inf 0. Inline: its constants fold into the tick's six conversions. */
+static inline int32_t clamp_i32(fs_real_t v, fs_real_t scale, int32_t lo, int32_t hi)
+{
+    const fs_real_t r = v / scale;
+    const fs_real_t a = fs_fabs(r);
+    if (a < (fs_real_t)hi) { /* |r| < hi: in range (NaN fails), the usual value */
+        /* |r| + 0.5 truncated, the sign put back: r -+ 0.5 truncated (rounding is symmetric) */
+        const int32_t n = (int32_t)(a + FS_R(0.5));
+        return (r < FS_R(0.0)) ? -n : n;
+    }
+    return clamp_i32_edge(v, r, lo, hi);
 }
 #define APP_POS_COUNTS(v) clamp_i32((v), FS_R(1e-6), -8388608, 8388607)
 #define APP_FORCE_COUNTS(v) (int16_t) clamp_i32((v), FS_R(0.01), -32768, 32767)
@@ -311,9 +326,8 @@ static void mac_job_start(app_t *app, const can_frame_t *f, secoc_channel_t ch, 
 /* True if the UDS server has sliced work or a complete request waiting (uds_service's share). */
 static bool uds_work_waiting(const app_t *app)
 {
-    const uint8_t *req = NULL;
-    return app->uds.pending_sid != 0u || isotp_rx_peek(&app->tp[0], &req) != 0u ||
-           isotp_rx_peek(&app->tp[1], &req) != 0u;
+    _Static_assert(APP_TESTERS == 2u, "two testers");
+    return app->uds.pending_sid != 0u || isotp_rx_ready(&app->tp[0]) || isotp_rx_ready(&app->tp[1]);
 }
 
 /* The CAN frames of this tick, bounded: APP_RX_FRAMES_PER_TICK frames, APP_MAC_ROUNDS_PER_TICK
@@ -337,9 +351,13 @@ static void can_receive(app_t *app)
     if (app->held_ch != 0u) {
         return; /* a frame still waits for the verification in flight */
     }
-    const bool uds_first = !app->mac_ran && uds_work_waiting(app);
+    /* asked once a frame came (before it is taken): a tick without frames does not ask */
+    bool uds_first = false;
     can_frame_t f;
     for (unsigned i = 0; i < APP_RX_FRAMES_PER_TICK && hal_can_receive(&f); i++) {
+        if (i == 0u) {
+            uds_first = !app->mac_ran && uds_work_waiting(app);
+        }
         const uint32_t node = app->cfg.node;
         secoc_channel_t ch;
         e2e_rx_t *rx;
@@ -496,10 +514,58 @@ static bool uds_work(app_t *app)
     return false;
 }
 
+/* True if both links are idle and the server has no request pending, held or resetting: the
+ * tick's request scan and the links' polls have nothing to do (the usual tick, one test). */
+static bool uds_all_idle(const app_t *app)
+{
+    _Static_assert(APP_TESTERS == 2u, "two testers");
+    const isotp_link_t *a = &app->tp[0];
+    const isotp_link_t *b = &app->tp[1];
+    const uint32_t links = (uint32_t)a->rx_state | (uint32_t)a->tx_state | (uint32_t)b->rx_state |
+                           (uint32_t)b->tx_state;
+    return (links | app->uds.pending_sid | app->uds.pending_reset | app->tp_held) == 0u;
+}
+
+/* The end of the server's tick: the ISO-TP frame share of a tick that worked, the session
+ * timeout and its owner, then (poll) the links' timers and transmissions. */
+static void uds_service_end(app_t *app, bool worked, bool poll)
+{
+    /* a tick that verified a frame's MAC leaves the server's work to the next tick; one with
+     * either queues at most APP_TP_FRAMES_BUSY_TICK ISO-TP frames (APP_TP_FRAMES_EXEC_BUSY_TICK
+     * while a skill runs) */
+    const uint32_t busy_frames = (app->state == APP_EXECUTE) ? APP_TP_FRAMES_EXEC_BUSY_TICK
+                                                             : APP_TP_FRAMES_BUSY_TICK;
+    if (worked && app->tp_frames < APP_TP_FRAMES_PER_TICK - busy_frames) {
+        app->tp_frames = APP_TP_FRAMES_PER_TICK - busy_frames;
+    }
+    uds_server_poll(&app->uds, app->now_ms);
+    uds_release_held(app);
+    if (app->uds.unlocked_level == 0u) {
+        app->uds_owner = 0u;
+        if (sec_is_unlocked(&app->sec)) {
+            sec_lock(&app->sec); /* the server locked (session change, S3 timeout, reset) */
+        }
+    } else if (app->uds_owner == 0u) {
+        app->uds_owner = (uint8_t)(app->uds_from + 1u); /* the tester whose sendKey unlocked */
+    }
+    if (poll) {
+        for (unsigned t = 0; t < APP_TESTERS; t++) {
+            isotp_poll(&app->tp[t], app->now_us);
+        }
+    }
+}
+
 /* One UDS request a tick, from either tester in turn; the session belongs to the tester that
  * unlocked it (uds_owner) until it locks again. */
 static void uds_service(app_t *app)
 {
+    if (uds_all_idle(app)) {
+        if (!app->mac_ran) {
+            app->uds_request_turn = false; /* as uds_work when nothing waits */
+        }
+        uds_service_end(app, app->mac_ran, false);
+        return;
+    }
     uds_release_held(app);
     if (app->uds.pending_reset != 0u) {
         /* ECUReset accepted (ISO 14229-1): its positive response leaves the bus first, then the
@@ -514,27 +580,8 @@ static void uds_service(app_t *app)
         }
         return;
     }
-    /* a tick that verified a frame's MAC leaves the server's work to the next tick; one with
-     * either queues at most APP_TP_FRAMES_BUSY_TICK ISO-TP frames (APP_TP_FRAMES_EXEC_BUSY_TICK
-     * while a skill runs) */
-    const uint32_t busy_frames = (app->state == APP_EXECUTE) ? APP_TP_FRAMES_EXEC_BUSY_TICK
-                                                             : APP_TP_FRAMES_BUSY_TICK;
-    if ((app->mac_ran || uds_work(app)) && app->tp_frames < APP_TP_FRAMES_PER_TICK - busy_frames) {
-        app->tp_frames = APP_TP_FRAMES_PER_TICK - busy_frames;
-    }
-    uds_server_poll(&app->uds, app->now_ms);
-    uds_release_held(app);
-    if (app->uds.unlocked_level == 0u) {
-        app->uds_owner = 0u;
-        if (sec_is_unlocked(&app->sec)) {
-            sec_lock(&app->sec); /* the server locked (session change, S3 timeout, reset) */
-        }
-    } else if (app->uds_owner == 0u) {
-        app->uds_owner = (uint8_t)(app->uds_from + 1u); /* the tester whose sendKey unlocked */
-    }
-    for (unsigned t = 0; t < APP_TESTERS; t++) {
-        isotp_poll(&app->tp[t], app->now_us);
-    }
+    const bool worked = app->mac_ran || uds_work(app);
+    uds_service_end(app, worked, true);
 }
 
 /* ---------------------------------------------------------------- init and tick */
@@ -838,7 +885,9 @@ void app_tick(app_t *app, bool overrun)
     }
     can_receive(app);
     uds_service(app);
-    app_sec_persist_step(app);
+    if (app->sec_writing || app->sec_dirty) { /* app_sec_persist_step's share, if any */
+        app_sec_persist_step(app);
+    }
     control(app);
 
     supervise(app, overrun);

@@ -107,6 +107,12 @@ struct app {
     uint32_t now_ms;
     uint64_t ms_base_us; /* app_now_ms: a whole millisecond (a multiple of 1,000 us) ... */
     uint32_t ms_base_ms; /* ... and its count, so the tick divides 32 bits, not 64 */
+    /* the tick's values first: within a load's immediate offset of the start */
+    hal_sensors_t sens;
+    fs_real_t vel_mps[PFC_AXES];
+    fs_real_t force_req_N[PFC_AXES];
+    fs_real_t force_out_N[PFC_AXES];
+    fs_real_t force_hat_N;
     /* CAN */
     e2e_rx_t rx_command;
     e2e_rx_t rx_heartbeat;
@@ -177,11 +183,6 @@ struct app {
     exec_config_t exec_run_cfg;
     exec_render_t rend[PFC_AXES];
     exec_vel_t vel[PFC_AXES];
-    hal_sensors_t sens;
-    fs_real_t vel_mps[PFC_AXES];
-    fs_real_t force_req_N[PFC_AXES];
-    fs_real_t force_out_N[PFC_AXES];
-    fs_real_t force_hat_N;
 #ifdef FS_EXEC_FIXED
     /* the fixed-point build's tick in integers: the sensors converted once a tick (INT32_MIN:
      * not finite), the request in Q16.16 (force_req_N is used only by the rendered drive) */

@@ -397,14 +397,23 @@ static fs_real_t exec_reference_force(const exec_config_t *cfg, exec_state_t *st
     return f;
 }
 
+/* True if every value of meas is finite: x - x is +0 for a finite x, NaN for inf and NaN, so
+ * the sum of those is 0 exactly when all are finite (one compare for five values). */
+static bool exec_meas_finite(const exec_meas_t *meas)
+{
+    const fs_real_t z = (meas->pos_m[0] - meas->pos_m[0]) + (meas->pos_m[1] - meas->pos_m[1]) +
+                        (meas->vel_mps[0] - meas->vel_mps[0]) +
+                        (meas->vel_mps[1] - meas->vel_mps[1]) +
+                        (meas->force_contact_N - meas->force_contact_N);
+    return z == FS_R(0.0);
+}
+
 fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_meas_t *meas,
                       exec_out_t *out)
 {
     out->step = st->step;
     out->done = st->done;
-    if (!fs_isfinite(meas->pos_m[0]) || !fs_isfinite(meas->pos_m[1]) ||
-        !fs_isfinite(meas->vel_mps[0]) || !fs_isfinite(meas->vel_mps[1]) ||
-        !fs_isfinite(meas->force_contact_N)) {
+    if (!exec_meas_finite(meas)) {
         out->force_cmd_N[0] = FS_R(0.0);
         out->force_cmd_N[1] = FS_R(0.0);
         out->force_hat_N = st->force_hat_N;

@@ -109,6 +109,19 @@ bool isotp_tx_busy(const isotp_link_t *link);
  *  isotp_rx_release); 0 otherwise. */
 uint16_t isotp_rx_peek(const isotp_link_t *link, const uint8_t **data);
 
+/** True if a complete message waits (isotp_rx_peek would return it). Inline: asked every tick. */
+static inline bool isotp_rx_ready(const isotp_link_t *link)
+{
+    return link->rx_state == ISOTP_RX_DONE;
+}
+
+/** True if nothing is in flight or waiting in either direction (isotp_poll has nothing to do).
+ *  Inline: asked every tick. */
+static inline bool isotp_idle(const isotp_link_t *link)
+{
+    return ((uint32_t)link->rx_state | (uint32_t)link->tx_state) == 0u;
+}
+
 /** Release the received message so the next one can be received. */
 void isotp_rx_release(isotp_link_t *link);
 

@@ -136,10 +136,12 @@ static saf_force_t slew_step(const lim_config_t *cfg, lim_state_t *st, uint32_t 
     /* Slew relative to the last output (sanitised: it is this module's own state, but a
      * corrupted value must not propagate). */
     saf_force_t prev = st->out_N[i];
-    if (!saf_finite(prev)) {
-        prev = SAF_FORCE_C(0.0);
+    if (!saf_within(prev, fmax)) { /* fmax is finite: the usual value costs one test */
+        if (!saf_finite(prev)) {
+            prev = SAF_FORCE_C(0.0);
+        }
+        prev = clamp_sym(prev, fmax);
     }
-    prev = clamp_sym(prev, fmax);
     saf_force_t out = target;
     const saf_force_t step = saf_sub(target, prev);
     bool binds = true;
@@ -152,6 +154,7 @@ static saf_force_t slew_step(const lim_config_t *cfg, lim_state_t *st, uint32_t 
     }
     if (binds) {
         r->flags |= LIM_F_SLEW;
+        out = clamp_sym(out, fmax); /* else out is the target, within fmax already */
     }
     /* Leaky bucket: +2 when the slew limit binds on this axis, -1 otherwise. Binding every tick
      * trips after slew_fault_ticks; an oscillation binding every other tick after about
@@ -166,9 +169,23 @@ static saf_force_t slew_step(const lim_config_t *cfg, lim_state_t *st, uint32_t 
         (uint32_t)st->slew_run[i] >= 2u * (uint32_t)cfg->slew_fault_ticks) {
         r->cause_mask |= FLT_BIT(FLT_SLEW_LIMIT);
     }
-    out = clamp_sym(out, fmax);
     st->out_N[i] = out;
     return out;
+}
+
+/* A request that is not finite (0) or beyond fmax (clamped), its flags and cause. */
+static saf_force_t limit_request(saf_force_t target, saf_force_t fmax, lim_result_t *r)
+{
+    if (!saf_finite(target)) {
+        r->flags |= LIM_F_NOT_FINITE;
+        r->cause_mask |= FLT_BIT(FLT_CMD_NOT_FINITE);
+        return SAF_FORCE_C(0.0);
+    }
+    if (saf_abs(target) > fmax) {
+        r->flags |= LIM_F_FORCE;
+        return clamp_sym(target, fmax);
+    }
+    return target;
 }
 
 lim_result_t lim_apply(const lim_config_t *cfg, lim_state_t *st, const saf_force_t req_N[LIM_AXES],
@@ -188,14 +205,8 @@ lim_result_t lim_apply(const lim_config_t *cfg, lim_state_t *st, const saf_force
         const lim_bounds_t *a = &st->b[i];
         const saf_force_t fmax = a->force_max_N;
         saf_force_t target = req_N[i];
-        if (!saf_finite(target)) {
-            r.flags |= LIM_F_NOT_FINITE;
-            r.cause_mask |= FLT_BIT(FLT_CMD_NOT_FINITE);
-            target = SAF_FORCE_C(0.0);
-        }
-        if (saf_abs(target) > fmax) { /* target is finite here */
-            r.flags |= LIM_F_FORCE;
-            target = clamp_sym(target, fmax);
+        if (!saf_within(target, fmax)) { /* fmax is finite: the usual request costs one test */
+            target = limit_request(target, fmax, &r);
         }
         if (meas != NULL) {
             target = gate_by_measurement(a, &meas[i], target, &r);

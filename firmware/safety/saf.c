@@ -54,6 +54,7 @@ void saf_init(saf_state_t *st)
     sen_reset(&st->sen);
     memset(st->lim.b, 0, sizeof st->lim.b);
     memset(st->sen.b, 0, sizeof st->sen.b);
+    st->sen.bounds_finite = 0u;
     wdg_init(&st->wdg);
     st->ramp.active = 0u;
     st->ramp.k = 0u;

@@ -55,6 +55,18 @@ static inline bool saf_comparable(int32_t x)
     return x != SAF_NOT_FINITE;
 }
 
+/** True if x is finite and |x| <= b. */
+static inline bool saf_within(int32_t x, int32_t b)
+{
+    return x != SAF_NOT_FINITE && ((x < 0) ? -x : x) <= b;
+}
+
+/** True if x is finite and lo <= x <= hi. */
+static inline bool saf_inside(int32_t x, int32_t lo, int32_t hi)
+{
+    return x != SAF_NOT_FINITE && x >= lo && x <= hi;
+}
+
 static inline int32_t saf_sat(int64_t x)
 {
     return (x > INT32_MAX) ? INT32_MAX : ((x <= INT32_MIN) ? INT32_MIN + 1 : (int32_t)x);
@@ -117,6 +129,18 @@ static inline bool saf_comparable(fs_real_t x)
 {
     (void)x;
     return true;
+}
+
+/** True if x is finite and |x| <= b (b finite: one compare, NaN and inf fail it). */
+static inline bool saf_within(fs_real_t x, fs_real_t b)
+{
+    return fs_fabs(x) <= b;
+}
+
+/** True if x is finite and lo <= x <= hi (lo, hi finite). */
+static inline bool saf_inside(fs_real_t x, fs_real_t lo, fs_real_t hi)
+{
+    return x >= lo && x <= hi;
 }
 
 static inline fs_real_t saf_abs(fs_real_t x)

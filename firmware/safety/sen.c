@@ -67,8 +67,11 @@ void sen_prepare(const sen_config_t *cfg, sen_state_t *st)
     if (cfg == NULL || st == NULL) {
         return;
     }
+    bool finite = true;
     for (uint32_t i = 0u; i < SAF_AXES; i++) {
         const sen_axis_t *a = &cfg->axis[i];
+        finite = finite && fs_isfinite(a->force_range_N) && fs_isfinite(a->vel_range_mps) &&
+                 fs_isfinite(a->pos_min_m) && fs_isfinite(a->pos_max_m);
         sen_bounds_t *b = &st->b[i];
         b->force_range_N = SAF_FORCE_OF(a->force_range_N);
         b->pos_min_m = SAF_POS_OF(a->pos_min_m);
@@ -78,6 +81,15 @@ void sen_prepare(const sen_config_t *cfg, sen_state_t *st)
         b->jump_m = SAF_POS_OF(a->jump_m);
         b->stuck_min_N = SAF_FORCE_OF(a->stuck_min_N);
     }
+    st->bounds_finite = finite ? 1u : 0u;
+}
+
+/* A reading finite and within its range bounds (finite bounds): its finite and range checks
+ * find nothing, in one pass of four compares. */
+static bool usual_reading(const sen_bounds_t *a, const saf_meas_t *m)
+{
+    return saf_within(m->force_N, a->force_range_N) && saf_within(m->vel_mps, a->vel_range_mps) &&
+           saf_inside(m->pos_m, a->pos_min_m, a->pos_max_m);
 }
 
 /* Two readings with the same bit pattern (a word compare: -0.0/+0.0 differ, NaN equals itself;
@@ -102,17 +114,19 @@ uint32_t sen_check(const sen_config_t *cfg, sen_state_t *st, const saf_meas_t me
     }
     uint32_t cause = 0u;
     bool all_finite = true;
+    const bool bounds_finite = st->bounds_finite != 0u;
     for (uint32_t i = 0u; i < SAF_AXES; i++) {
         const sen_axis_t *c = &cfg->axis[i];
         const sen_bounds_t *a = &st->b[i];
         const saf_meas_t *m = &meas[i];
-        if (!saf_finite(m->pos_m) || !saf_finite(m->vel_mps) || !saf_finite(m->force_N)) {
+        if (bounds_finite && usual_reading(a, m)) {
+            /* finite and in range */
+        } else if (!saf_finite(m->pos_m) || !saf_finite(m->vel_mps) || !saf_finite(m->force_N)) {
             cause |= FLT_BIT(FLT_SENSOR_NAN);
             all_finite = false;
             continue;
-        }
-        if (saf_abs(m->force_N) > a->force_range_N || m->pos_m < a->pos_min_m ||
-            m->pos_m > a->pos_max_m || saf_abs(m->vel_mps) > a->vel_range_mps) {
+        } else if (saf_abs(m->force_N) > a->force_range_N || m->pos_m < a->pos_min_m ||
+                   m->pos_m > a->pos_max_m || saf_abs(m->vel_mps) > a->vel_range_mps) {
             cause |= FLT_BIT(FLT_SENSOR_RANGE);
         }
         if (st->have_prev != 0u) {

@@ -43,6 +43,7 @@ typedef struct {
     saf_meas_t prev[SAF_AXES];
     uint16_t same_count[SAF_AXES];
     uint8_t have_prev;
+    uint8_t bounds_finite; /* every bound finite (sen_prepare): one test finds a reading usual */
     sen_bounds_t b[SAF_AXES];
 } sen_state_t;
 
