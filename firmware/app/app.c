@@ -193,12 +193,13 @@ static void send_telemetry(app_t *app)
 #ifdef FS_EXEC_FIXED
     q.force_contact = APP_FORCE_COUNTS_Q(app->meas_q.force_contact_q16);
     q.force_cmd = APP_FORCE_COUNTS_Q(app->saf_out.force_cmd_N[0]);
+    q.force_ref = APP_FORCE_COUNTS_Q(app->force_hat_q16);
 #else
     q.force_contact = APP_FORCE_COUNTS(app->sens.force_contact_N[0]);
     q.force_cmd = APP_FORCE_COUNTS(app->force_out_N[0]);
+    q.force_ref = APP_FORCE_COUNTS(app->force_hat_N);
 #endif
     q.force_operator = APP_FORCE_COUNTS(app->sens.force_operator_N[0]);
-    q.force_ref = APP_FORCE_COUNTS(app->force_hat_N);
     f.id = PROTO_ID_TELEM_FORCE(app->cfg.node);
     f.len = FS_DBC_TELEMETRY_FORCE_LENGTH;
     (void)fs_dbc_telemetry_force_pack(f.data, &q, sizeof(f.data));
@@ -704,7 +705,7 @@ static uint8_t control_execute(app_t *app, fs_real_t dt)
 #ifdef FS_EXEC_FIXED
     exec_out_q_t out;
     const fs_status_t rc = exec_tick_q(&app->exec_run_cfg, &app->exec, &app->meas_q, &out);
-    app->force_hat_N = fx_to_float(out.force_hat_q16, 16u);
+    app->force_hat_q16 = out.force_hat_q16;
     if (app->cfg.render_carriage == 0u) {
         app->force_req_q16[0] = out.force_cmd_q16[0];
         app->force_req_q16[1] = out.force_cmd_q16[1];
@@ -963,7 +964,11 @@ uint32_t app_tick_count(const app_t *app)
 
 fs_real_t app_force_ref_N(const app_t *app)
 {
+#ifdef FS_EXEC_FIXED
+    return fx_to_float(app->force_hat_q16, 16u);
+#else
     return app->force_hat_N;
+#endif
 }
 
 const skill_t *app_slot_skill(const app_t *app, uint8_t slot)

@@ -112,7 +112,11 @@ struct app {
     fs_real_t vel_mps[PFC_AXES];
     fs_real_t force_req_N[PFC_AXES];
     fs_real_t force_out_N[PFC_AXES];
+#ifdef FS_EXEC_FIXED
+    int32_t force_hat_q16; /* the executor's f_hat, Q16.16: a float only where it is read */
+#else
     fs_real_t force_hat_N;
+#endif
     /* CAN */
     e2e_rx_t rx_command;
     e2e_rx_t rx_heartbeat;

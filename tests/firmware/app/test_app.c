@@ -777,7 +777,7 @@ static void test_skill_validated_before_commit_and_run(void **state)
     assert_int_equal(r[2], UDS_NRC_REQUEST_OUT_OF_RANGE);
     assert_int_equal(app.last_run_status, FS_ERR_SKCHK_GOAL_SCALE);
     assert_int_equal(app.state, APP_IDLE);
-    assert_true(app.force_out_N[0] == FS_R(0.0) && app.force_hat_N == FS_R(0.0));
+    assert_true(app.force_out_N[0] == FS_R(0.0) && app_force_ref_N(&app) == FS_R(0.0));
     send_heartbeat();
     run[5] = (uint8_t)(g_under >> 8);
     run[6] = (uint8_t)g_under;
