@@ -33,6 +33,7 @@
  *   fs_num_kernel_dist(u, c, s)       a key monotone in e_i (nearest-kernel fallback)
  *   fs_num_exp_neg(e)                 exp(-e) for e >= 0 -> activation
  *   fs_num_blend_acc(&num, &den, psi, w)  fs_num_blend_div(num, den) -> S = num/den (val)
+ *   fs_num_blend_div2(num, num_y, den, &s_y)  fixed only: both quotients by one reciprocal
  *   fs_num_gain_val(g, v), fs_num_gain_force(g, f) -> wide   fs_num_wide_force(w) -> force
  *   fs_num_dt_force(dt, f) -> val     fs_num_clamp(a, lim)  fs_num_is_nan(w)
  * Constants: FS_NUM_ZERO, FS_NUM_PHASE_ONE, FS_NUM_CUTOFF (kernel exponent cutoff),
