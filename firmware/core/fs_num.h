@@ -10,8 +10,8 @@
  *   fs_kscale_t kernel scale s_i: real 1/(2 sigma_i^2), fixed 1/sigma_i  Q13.19
  *   fs_expo_t   kernel exponent e_i = (u - c_i)^2/(2 sigma_i^2)  Q5.27 unsigned (far: > cutoff)
  *   fs_kdist_t  nearest-kernel key, monotone in e_i        Q.49 unsigned |u - c_i| s_i
- *   fs_act_t    kernel activation psi_i = exp(-e)          Q1.30 (psi_Q31 / 2)
- *   fs_bnum_t, fs_bden_t  blend sums sum psi w, sum psi   int64 Q.51, uint64 Q.30
+ *   fs_act_t    kernel activation psi_i = exp(-e)          Q.27 (below 2^27)
+ *   fs_bnum_t, fs_bden_t  blend sums sum psi w, sum psi   int64 Q.51, uint32 Q.27
  *   fs_val_t    DMP y, z, I, h, g, term_y (force units, times 2^-s in fixed point), w_i,
  *               positions, velocities, accelerations, force integral        Q8.24
  *   fs_coef_t   Euler coefficients dt/tau_e*{1, alpha, alpha*beta, gamma}, control dt  Q1.31

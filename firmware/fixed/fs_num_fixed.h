@@ -14,9 +14,9 @@ typedef int32_t fs_phase_t;  /* Q2.30 */
 typedef int32_t fs_kscale_t; /* Q13.19 1/sigma */
 typedef uint32_t fs_expo_t;  /* Q5.27 unsigned */
 typedef uint64_t fs_kdist_t; /* Q.49 unsigned */
-typedef int32_t fs_act_t;    /* Q1.30, in [0, 2^30] */
+typedef int32_t fs_act_t;    /* Q.27, in [0, 2^27) */
 typedef int64_t fs_bnum_t;   /* Q.51 */
-typedef uint64_t fs_bden_t;  /* Q.30 */
+typedef uint32_t fs_bden_t;  /* Q.27 */
 typedef int32_t fs_val_t;    /* Q8.24 */
 typedef int32_t fs_coef_t;   /* Q1.31, in [0, 0.5) for the DMP */
 typedef int64_t fs_acc_t;    /* value * 2^31 */
@@ -126,35 +126,40 @@ static inline fs_kdist_t fs_num_kernel_dist(fs_phase_t u, fs_phase_t c, fs_kscal
     return (uint64_t)ad * (uint32_t)s;
 }
 
-/* e = r^2/2 in Q5.27 (r truncated to Q.27 first); FS_NUM_EXPO_INF when r >= 6. */
+/* e = r^2/2 in Q5.27 (floor; r truncated to Q3.29 first: the square's high word is e);
+ * FS_NUM_EXPO_INF when r >= sqrt(24). */
 static inline fs_expo_t fs_num_kernel_expo(fs_phase_t u, fs_phase_t c, fs_kscale_t s)
 {
     const uint64_t r = fs_num_kernel_dist(u, c, s);
     if ((uint32_t)(r >> 32) >= FS_NUM_R_SKIP_HI) {
         return FS_NUM_EXPO_INF;
     }
-    const uint32_t r27 = (uint32_t)(r >> 22);
-    return (uint32_t)(((uint64_t)r27 * r27) >> 28);
+    const uint32_t r29 = (uint32_t)(r >> 20);
+    return (uint32_t)(((uint64_t)r29 * r29) >> 32);
 }
 
-/* exp(-e) in Q1.30: the Q1.31 table exp halved, so psi*w is one signed 32x32 product. The
- * blend calls it with e - e_min of a kernel within the cutoff, <= FS_NUM_CUTOFF: the table
- * exp's own clip at 16 is not repeated. */
+/* exp(-e) in Q.27 for 0 <= e <= 16 (Q5.27): 2^-(e log2 e), the exponent's high word in Q.26
+ * (floor: < 1.1e-8 relative), its fraction interpolated in fx_exp2_pairs by the high word of one
+ * product, the integer part by a plain shift (error within the table's 9.2e-7 relative). The
+ * blend calls it with e - e_min of a kernel within the cutoff. Below 2^27 (t_0's clip): 32
+ * activations sum within uint32. */
 static inline fs_act_t fs_num_exp_neg(fs_expo_t e)
 {
-    return (int32_t)(fx_exp_neg_q27_le16(e) >> 1);
+    const uint32_t y = (uint32_t)(((uint64_t)e * FX_LOG2E_Q31) >> 32); /* Q.26, < 23.1 * 2^26 */
+    const uint32_t *t = &fx_exp2_pairs[2u * ((y >> 18) & 0xFFu)];
+    const uint32_t m = t[0] - (uint32_t)(((uint64_t)t[1] * (y << 14)) >> 32);
+    return (int32_t)(m >> ((y >> 26) + 4u));
 }
 
 /* The numerator part of fs_num_blend_acc, for either weight set (the force DMP's, and the y
- * DMP's over the same activations): num += w * (psi / 2^3) in Q.51 (< 32 * 2^57 over a window),
- * psi shifted first so the product accumulates in one multiply-accumulate (psi keeps 27
- * fraction bits: 7e-9 relative). */
+ * DMP's over the same activations): num += w * psi in Q.51 (< 32 * 2^58 over a window), one
+ * multiply-accumulate. */
 static inline void fs_num_blend_acc_num(fs_bnum_t *num, fs_act_t psi, fs_val_t w)
 {
-    *num += (int64_t)w * (psi >> 3);
+    *num += (int64_t)w * psi;
 }
 
-/* num as fs_num_blend_acc_num, den += psi (Q.30). */
+/* num as fs_num_blend_acc_num, den += psi (Q.27, < 2^32 over a window of 32). */
 static inline void fs_num_blend_acc(fs_bnum_t *num, fs_bden_t *den, fs_act_t psi, fs_val_t w)
 {
     fs_num_blend_acc_num(num, psi, w);
@@ -180,28 +185,22 @@ static inline int32_t fs_num_mul_recip(int64_t num, int32_t r, unsigned sh)
     return (int32_t)(((uint32_t)(uint64_t)t >> sh) | ((uint32_t)((uint64_t)t >> 32) << (32u - sh)));
 }
 
-/* den brought to [2^31, 2^32) (den >= 2^30, < 2^35) as d; *sh the shift of fs_num_mul_recip that
- * turns a Q.51 num times d's reciprocal into num * 2^3 / den in Q8.24. */
+/* den (Q.27, >= 2^27 - 1) brought to [2^31, 2^32) as d; *sh the shift of fs_num_mul_recip that
+ * turns a Q.51 num times d's reciprocal into num / den in Q8.24. */
 static inline uint32_t fs_num_blend_norm(fs_bden_t den, unsigned *sh)
 {
-    const uint32_t hi = (uint32_t)(den >> 32);
-    if (hi == 0u) {
-        const unsigned c = (unsigned)__builtin_clz((uint32_t)den); /* 0 or 1 */
-        *sh = 27u - c;
-        return (uint32_t)den << c;
-    }
-    const unsigned c = 32u - (unsigned)__builtin_clz(hi); /* 1..3 */
-    *sh = 27u + c;
-    return (uint32_t)(den >> c);
+    const unsigned c = (unsigned)__builtin_clz(den); /* 0..5 */
+    *sh = 30u - c;
+    return den << c;
 }
 
-/* S = num * 2^3 / den in Q8.24 rounded half up, den >= 2^30 (the e_min kernel has psi = 1):
- * |S| <= max |w_i|, so the quotient fits. By den's reciprocal (error < 2^-28 of |S|). */
+/* S = num / den in Q8.24 rounded half up, den >= 2^27 - 1 (the e_min kernel's psi): |S| <= max
+ * |w_i|, so the quotient fits. By den's reciprocal (error < 2^-28 of |S|). */
 static inline fs_val_t fs_num_blend_div(fs_bnum_t num, fs_bden_t den)
 {
     unsigned sh;
     const int32_t r = fs_num_recip_q62(fs_num_blend_norm(den, &sh));
-    return fs_num_mul_recip(num + (int64_t)(den >> 4), r, sh);
+    return fs_num_mul_recip(num + (int64_t)(den >> 1), r, sh);
 }
 
 /* S = num/den as fs_num_blend_div, and *s_y = num_y/den: one reciprocal for both. */
@@ -210,7 +209,7 @@ static inline fs_val_t fs_num_blend_div2(fs_bnum_t num, fs_bnum_t num_y, fs_bden
 {
     unsigned sh;
     const int32_t r = fs_num_recip_q62(fs_num_blend_norm(den, &sh));
-    const int64_t half = (int64_t)(den >> 4);
+    const int64_t half = (int64_t)(den >> 1);
     *s_y = fs_num_mul_recip(num_y + half, r, sh);
     return fs_num_mul_recip(num + half, r, sh);
 }

@@ -184,6 +184,10 @@ fs_status_t fx_scale_from_double(double v, int32_t in_frac, int32_t out_frac, fx
 /** 2^(-k/2^FX_EXP_TABLE_BITS) in Q1.31 (unsigned), k = 0..2^FX_EXP_TABLE_BITS (fx.c). */
 extern const uint32_t fx_exp2_table[(1u << FX_EXP_TABLE_BITS) + 1u];
 
+/** The table of fx_exp2_table as pairs {t_k, t_k - t_(k+1)}, k = 0..255, t_0 = 2^31 - 16 (fx.c):
+ *  one 64-bit load a lookup. */
+extern const uint32_t fx_exp2_pairs[2u << FX_EXP_TABLE_BITS];
+
 /* log2(e) in Q1.31 (unsigned): round(1.4426950408889634 * 2^31). */
 #define FX_LOG2E_Q31 3098164009u
 
