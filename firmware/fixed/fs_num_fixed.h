@@ -148,7 +148,9 @@ static inline fs_act_t fs_num_exp_neg(fs_expo_t e)
     const uint32_t y = (uint32_t)(((uint64_t)e * FX_LOG2E_Q31) >> 32); /* Q.26, < 23.1 * 2^26 */
     const uint32_t *t = &fx_exp2_pairs[2u * ((y >> 18) & 0xFFu)];
     const uint32_t m = t[0] - (uint32_t)(((uint64_t)t[1] * (y << 14)) >> 32);
-    return (int32_t)(m >> ((y >> 26) + 4u));
+    /* m < 2^31: an arithmetic shift of it as int32, so the products psi*w are signed
+     * multiply-accumulates (smlal; a shift known to clear the sign gives umull + mla) */
+    return (int32_t)m >> ((y >> 26) + 4u);
 }
 
 /* The numerator part of fs_num_blend_acc, for either weight set (the force DMP's, and the y
