@@ -246,23 +246,36 @@ static inline int32_t fs_num_clamp(int32_t v, int32_t lim)
     return fx_clamp_sym(v, lim);
 }
 
-/* sin(pi t) in Q2.30 for t in Q2.30, |t| <= 1/2: t*P(4 t^2), P the Taylor series of sin(pi t)/t
- * to t^12 with coefficients c_k/4^k in Q3.29, Horner with rounded 64-bit products (max error
- * 3.1e-9 over [0, 1] for sin and cos, test_sincos_pi in tests/firmware/fixed/test_dmpfx.c). */
-static inline int32_t fs_num_sinpi_half(int32_t t)
+/* The high word of a * b (unsigned): free on a 32-bit core. */
+static inline uint32_t fs_num_umulhi(uint32_t a, uint32_t b)
 {
-    const int32_t q = (int32_t)(((int64_t)t * t + (1 << 27)) >> 28); /* 4 t^2 in Q2.30, <= 1 */
-    int32_t p = 61;
-    p = -3864 + (int32_t)(((int64_t)p * q + (1 << 29)) >> 30);
-    p = 172272 + (int32_t)(((int64_t)p * q + (1 << 29)) >> 30);
-    p = -5026995 + (int32_t)(((int64_t)p * q + (1 << 29)) >> 30);
-    p = 85569306 + (int32_t)(((int64_t)p * q + (1 << 29)) >> 30);
-    p = -693598668 + (int32_t)(((int64_t)p * q + (1 << 29)) >> 30);
-    p = 1686629713 + (int32_t)(((int64_t)p * q + (1 << 29)) >> 30);
-    return (int32_t)(((int64_t)p * t + (1 << 28)) >> 29);
+    return (uint32_t)(((uint64_t)a * b) >> 32);
 }
 
-/* sin(pi x), cos(pi x) in Q2.30 for a phase x in turns, Q2.30 in [0, 1] */
+/* sin(pi t) in Q1.31 (saturated to +-INT32_MAX) for t in Q2.30, |t| <= 1/2: |t| P(4 t^2),
+ * P(v) = c0 - v (c1 - v (c2 - v (c3 - v (c4 - v c5)))) a degree-5 minimax fit (weighted least
+ * squares to equal ripple) with every c_k > 0 and every partial sum positive, so each Horner
+ * step is one unsigned high-word product and a subtraction: v = 4 t^2 in Q.32 (|t| held below
+ * 1/2 by 2^-30 so v < 2^32), c0 in Q2.30, c1..c5 in Q1.31 (max error 9.1e-10 over [0, 1] for
+ * sin and cos, test_sincos_pi in tests/firmware/fixed/test_dmpfx.c). */
+static inline int32_t fs_num_sinpi_half(int32_t t)
+{
+    const uint32_t sgn = (uint32_t)(t >> 31);
+    uint32_t a = ((uint32_t)t ^ sgn) - sgn;
+    a = (a < (1u << 29)) ? a : (1u << 29) - 1u;
+    const uint32_t v = (uint32_t)(((uint64_t)a * a) >> 26);
+    uint32_t q = 688128u - fs_num_umulhi(14681u, v);
+    q = 20107406u - fs_num_umulhi(q, v);
+    q = 342277056u - fs_num_umulhi(q, v);
+    q = 2774394652u - fs_num_umulhi(q, v);
+    const uint32_t p = 3373259426u - (fs_num_umulhi(q, v) >> 1);
+    uint32_t r = fs_num_umulhi(a << 3, p); /* |t| in Q.33 times P in Q2.30: Q1.31 */
+    r = (r < FX_Q31_ONE_U) ? r : (uint32_t)INT32_MAX;
+    return (int32_t)((r ^ sgn) - sgn);
+}
+
+/* sin(pi x), cos(pi x) in Q1.31 (fs_num_vm_dist's operands) for a phase x in turns, Q2.30 in
+ * [0, 1] */
 static inline void fs_num_sincos_pi(fs_phase_t x, fs_phase_t *s, fs_phase_t *c)
 {
     const int32_t half = FX_Q30_ONE >> 1;
@@ -270,10 +283,11 @@ static inline void fs_num_sincos_pi(fs_phase_t x, fs_phase_t *s, fs_phase_t *c)
     *c = fs_num_sinpi_half(half - x);
 }
 
-/* d = sh*hc - ch*hs in Q2.30 (each factor |.| <= 1: the difference fits) */
+/* d = sh*hc - ch*hs in Q2.30 (floor) from Q1.31 operands (each |.| <= 1 - 2^-31: the difference
+ * fits): the high word of one multiply and one multiply-accumulate (-ch is loop-invariant). */
 static inline fs_phase_t fs_num_vm_dist(fs_phase_t sh, fs_phase_t ch, fs_phase_t hs, fs_phase_t hc)
 {
-    return (int32_t)fx_rshift_round((int64_t)sh * hc - (int64_t)ch * hs, 30u);
+    return (int32_t)(((int64_t)sh * hc + (int64_t)(-ch) * hs) >> 32);
 }
 
 /* The periodic phase's accumulator (value * 2^31, a Q2.30 view): one turn, and the exact
