@@ -45,15 +45,28 @@ static inline fs_val_t fs_num_view(fs_acc_t acc)
     return fx_acc_view(acc);
 }
 
+/* A saturated operand (fs_num_add_ev & co.) as an opaque 32-bit register value: GCC otherwise
+ * widens it on each path of the saturation and the product k*a becomes a 64x64 multiply (mul,
+ * mla, umull) instead of one smlal. */
+static inline int32_t fs_num_opaque(int32_t a)
+{
+#if defined(__GNUC__) && defined(__arm__)
+    __asm__("" : "+r"(a));
+#endif
+    return a;
+}
+
 static inline fs_acc_t fs_num_acc_mac1(fs_acc_t acc, fs_coef_t k, fs_val_t a, uint32_t *ev)
 {
-    return fx_acc_add(acc, (int64_t)k * a, ev);
+    return fx_acc_add(acc, (int64_t)k * fs_num_opaque(a), ev);
 }
 
 static inline fs_acc_t fs_num_acc_mac2(fs_acc_t acc, fs_coef_t ka, fs_val_t a, fs_coef_t kb,
                                        fs_val_t b, uint32_t *ev)
 {
-    return fx_acc_add(acc, (int64_t)ka * a - (int64_t)kb * b, ev);
+    /* two multiply-accumulates (kb < 2^31: -kb fits); |acc| < 2^62 and each product < 2^61 */
+    return fx_acc_hold(acc + (int64_t)ka * fs_num_opaque(a) + (int64_t)(-kb) * fs_num_opaque(b),
+                       ev);
 }
 
 /* The result of a 32-bit add/sub whose overflow flag is ovf: r, or saturated toward a's sign

@@ -116,21 +116,23 @@ static inline int32_t fx_acc_view(int64_t acc)
     return (int32_t)fx_rshift_round(acc, 31u);
 }
 
+/** r held within +-FX_ACC_HI_MAX*2^32, counting a saturation in *events: the in-range case by
+ *  one unsigned compare of the high word. */
+static inline int64_t fx_acc_hold(int64_t r, uint32_t *events)
+{
+    const int32_t hi = (int32_t)(r >> 32);
+    if ((uint32_t)hi + (uint32_t)FX_ACC_HI_MAX < 2u * (uint32_t)FX_ACC_HI_MAX) {
+        return r;
+    }
+    (*events)++;
+    return (hi >= 0) ? (int64_t)FX_ACC_HI_MAX * 4294967296 : -(int64_t)FX_ACC_HI_MAX * 4294967296;
+}
+
 /** acc + inc held within +-FX_ACC_HI_MAX*2^32, counting a saturation in *events; needs
  *  |acc|, |inc| < 2^62 (Euler constants < 0.5), so the sum cannot overflow int64. */
 static inline int64_t fx_acc_add(int64_t acc, int64_t inc, uint32_t *events)
 {
-    const int64_t r = acc + inc;
-    const int32_t hi = (int32_t)(r >> 32);
-    if (hi >= FX_ACC_HI_MAX) {
-        (*events)++;
-        return (int64_t)FX_ACC_HI_MAX * 4294967296;
-    }
-    if (hi < -FX_ACC_HI_MAX) {
-        (*events)++;
-        return -(int64_t)FX_ACC_HI_MAX * 4294967296;
-    }
-    return r;
+    return fx_acc_hold(acc + inc, events);
 }
 
 /* Bound of the 64-bit values fx_scale_apply takes and returns: |v| <= FX_S61_MAX. */
