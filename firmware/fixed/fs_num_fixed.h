@@ -116,19 +116,19 @@ static inline int32_t fs_num_sat_ev(int64_t v, uint32_t *ev)
 /* Q8.24 * Q2.30 -> Q8.24 */
 static inline fs_val_t fs_num_mul_vp(fs_val_t a, fs_phase_t p, uint32_t *ev)
 {
-    return fs_num_sat_ev(fx_rshift_round((int64_t)a * p, 30u), ev);
+    return fs_num_sat_ev(fx_rshift_round((int64_t)a * fs_num_opaque(p), 30u), ev);
 }
 
 /* Q8.24 * Q8.24 -> Q8.24 */
 static inline fs_val_t fs_num_mul_vv(fs_val_t a, fs_val_t b, uint32_t *ev)
 {
-    return fs_num_sat_ev(fx_rshift_round((int64_t)a * b, 24u), ev);
+    return fs_num_sat_ev(fx_rshift_round((int64_t)fs_num_opaque(a) * fs_num_opaque(b), 24u), ev);
 }
 
 /* Q20.12 scale * Q8.24 y -> Q16.16 N */
 static inline fs_force_t fs_num_force(fs_stiff_t k, fs_val_t x, uint32_t *ev)
 {
-    return fs_num_sat_ev(fx_rshift_round((int64_t)k * x, 20u), ev);
+    return fs_num_sat_ev(fx_rshift_round((int64_t)k * fs_num_opaque(x), 20u), ev);
 }
 
 /* r = |u - c| s in Q.49 (s = 1/sigma): |u - c| exactly in uint32 (< 2^32 for any int32 pair),
@@ -232,12 +232,12 @@ static inline fs_val_t fs_num_blend_div2(fs_bnum_t num, fs_bnum_t num_y, fs_bden
 /* Q16.16 gain * Q8.24 -> Q.32 (N); < 2^54 for int32 operands. */
 static inline fs_wide_t fs_num_gain_val(fs_gain_t g, fs_val_t v)
 {
-    return ((int64_t)g * v) >> 8;
+    return ((int64_t)g * fs_num_opaque(v)) >> 8;
 }
 /* Q16.16 gain * Q16.16 N -> Q.32 (N); < 2^62. */
 static inline fs_wide_t fs_num_gain_force(fs_gain_t g, fs_force_t f)
 {
-    return (int64_t)g * f;
+    return (int64_t)g * fs_num_opaque(f);
 }
 /* Q.32 -> Q16.16 N, rounded, saturated. */
 static inline fs_force_t fs_num_wide_force(fs_wide_t w)
@@ -247,7 +247,7 @@ static inline fs_force_t fs_num_wide_force(fs_wide_t w)
 /* Q1.31 s * Q16.16 N -> Q8.24 N*s */
 static inline fs_val_t fs_num_dt_force(fs_coef_t dt, fs_force_t f)
 {
-    return fx_sat32(fx_rshift_round((int64_t)dt * f, 23u));
+    return fx_sat32(fx_rshift_round((int64_t)dt * fs_num_opaque(f), 23u));
 }
 static inline int fs_num_is_nan(fs_wide_t w)
 {
