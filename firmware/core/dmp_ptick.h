@@ -264,9 +264,16 @@ static inline fs_val_t dmp_ptick_blend2(const DMP_TICK_MODEL *m, fs_phase_t x, u
         }
         return m->weight[best];
     }
+#ifdef FS_NUMERIC_FIXED
+    /* one reciprocal of den for both quotients */
+    if (w_y != NULL) {
+        return fs_num_blend_div2(num, num_y, den, s_y);
+    }
+#else
     if (w_y != NULL) {
         *s_y = fs_num_blend_div(num_y, den);
     }
+#endif
     return fs_num_blend_div(num, den);
 }
 

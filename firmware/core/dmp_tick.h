@@ -7,7 +7,7 @@
  *   kernel blend    S = sum psi_i w_i / sum psi_i over the kernels with e_i = (u - c_i)^2/(2 sigma_i^2)
  *                   <= cutoff; real layer: one pass, psi_i = exp(-e_i) (>= exp(-cutoff), a normal
  *                   number); fixed layer: e_i stored in one pass, then psi_i = exp(-(e_i - e_min))
- *                   (the shift keeps sum psi >= 1.0 in Q1.30: full resolution);
+ *                   (the shift keeps sum psi >= 1.0 in Q.27: full resolution);
  *                   no kernel within the cutoff -> the nearest kernel's weight
  *   Euler step      all right-hand sides at the old state, in coefficient form
  *                   y += k1*(z - y + h + term_y) - k_gamma*I     z += k_ab*(g - y) - k_a*z
@@ -30,7 +30,7 @@
 #endif
 
 /* 1: psi_i = exp(-(e_i - e_min)), the exponents stored for a second pass (fixed point, where
- * exp(-12) would be 6,600 LSB of Q1.30); 0: psi_i = exp(-e_i) in one pass (float and double, where
+ * exp(-12) would be 824 LSB of Q.27); 0: psi_i = exp(-e_i) in one pass (float and double, where
  * exp(-cutoff) is a normal number and the shift only changes round-off). */
 #ifndef DMP_TICK_BLEND_SHIFT
 #ifdef FS_NUMERIC_FIXED
@@ -219,9 +219,16 @@ static inline fs_val_t dmp_tick_blend2(const DMP_TICK_MODEL *m, fs_phase_t u, ui
         }
         return m->weight[best];
     }
+#ifdef FS_NUMERIC_FIXED
+    /* one reciprocal of den for both quotients */
+    if (w_y != NULL) {
+        return fs_num_blend_div2(num, num_y, den, s_y);
+    }
+#else
     if (w_y != NULL) {
         *s_y = fs_num_blend_div(num_y, den);
     }
+#endif
     return fs_num_blend_div(num, den);
 }
 

@@ -10,8 +10,8 @@
  *   fs_kscale_t kernel scale s_i: real 1/(2 sigma_i^2), fixed 1/sigma_i  Q13.19
  *   fs_expo_t   kernel exponent e_i = (u - c_i)^2/(2 sigma_i^2)  Q5.27 unsigned (far: > cutoff)
  *   fs_kdist_t  nearest-kernel key, monotone in e_i        Q.49 unsigned |u - c_i| s_i
- *   fs_act_t    kernel activation psi_i = exp(-e)          Q1.30 (psi_Q31 / 2)
- *   fs_bnum_t, fs_bden_t  blend sums sum psi w, sum psi   int64 Q.51, uint64 Q.30
+ *   fs_act_t    kernel activation psi_i = exp(-e)          Q.27 (below 2^27)
+ *   fs_bnum_t, fs_bden_t  blend sums sum psi w, sum psi   int64 Q.51, uint32 Q.27
  *   fs_val_t    DMP y, z, I, h, g, term_y (force units, times 2^-s in fixed point), w_i,
  *               positions, velocities, accelerations, force integral        Q8.24
  *   fs_coef_t   Euler coefficients dt/tau_e*{1, alpha, alpha*beta, gamma}, control dt  Q1.31
@@ -33,6 +33,7 @@
  *   fs_num_kernel_dist(u, c, s)       a key monotone in e_i (nearest-kernel fallback)
  *   fs_num_exp_neg(e)                 exp(-e) for e >= 0 -> activation
  *   fs_num_blend_acc(&num, &den, psi, w)  fs_num_blend_div(num, den) -> S = num/den (val)
+ *   fs_num_blend_div2(num, num_y, den, &s_y)  fixed only: both quotients by one reciprocal
  *   fs_num_gain_val(g, v), fs_num_gain_force(g, f) -> wide   fs_num_wide_force(w) -> force
  *   fs_num_dt_force(dt, f) -> val     fs_num_clamp(a, lim)  fs_num_is_nan(w)
  * Constants: FS_NUM_ZERO, FS_NUM_PHASE_ONE, FS_NUM_CUTOFF (kernel exponent cutoff),

@@ -163,6 +163,18 @@ static fs_real_t dmpfx_periodic_reach(fs_real_t kappa)
     return (r < FS_R(0.5)) ? r : FS_R(0.5);
 }
 
+/* A value in [-1, 1] from Q2.30 to Q1.31, +-1 held at +-(1 - 2^-31) (fs_num_vm_dist's format). */
+static int32_t dmpfx_q31_unit(int32_t q30)
+{
+    if (q30 >= FX_Q30_ONE) {
+        return INT32_MAX;
+    }
+    if (q30 <= -FX_Q30_ONE) {
+        return -INT32_MAX;
+    }
+    return q30 * 2;
+}
+
 /* Periodic kernel i in fixed point: its turn, 2 sqrt(kappa), the half-angle sine and cosine
  * (the model's, derived at load) and its envelopes in turns (before the prefix/suffix passes). */
 static fs_status_t dmpfx_kernel_periodic(const dmp_model_t *m, uint16_t i, dmpfx_model_t *out)
@@ -186,6 +198,8 @@ static fs_status_t dmpfx_kernel_periodic(const dmp_model_t *m, uint16_t i, dmpfx
     if (st == FS_OK) {
         st = dmpfx_q(m->half_cos[i], 30u, INT32_MAX, &out->half_cos[i]);
     }
+    out->half_sin[i] = dmpfx_q31_unit(out->half_sin[i]);
+    out->half_cos[i] = dmpfx_q31_unit(out->half_cos[i]);
     if (st != FS_OK) {
         return st;
     }

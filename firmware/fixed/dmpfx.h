@@ -61,10 +61,10 @@ typedef struct {
     double goal_y_m;
     double peak_y_q24; /* max |h_y|, |p|, |z_p| of the nominal run (path scale 1) */
     /* the periodic DMP (periodic = 1, dmp_ptick.h): env_lo/env_hi in turns (Q2.30), kernel_scale
-     * 2 sqrt(kappa_i) (Q13.19), sin/cos(c_i/2) in Q2.30; amplitude r and the cycle state
+     * 2 sqrt(kappa_i) (Q13.19), sin/cos(c_i/2) in Q1.31 (+-1 held at +-INT32_MAX); amplitude r and the cycle state
      * (e0, z0, I0) in N kept in double for the run set-up; the nominal run is one cycle */
     uint8_t periodic;
-    int32_t half_sin[DMP_MAX_KERNELS]; /* sin(c_i/2), Q2.30 */
+    int32_t half_sin[DMP_MAX_KERNELS]; /* sin(c_i/2), Q1.31 */
     int32_t half_cos[DMP_MAX_KERNELS];
     double amplitude_N;
     double cycle0_N[3];

@@ -14,9 +14,9 @@ typedef int32_t fs_phase_t;  /* Q2.30 */
 typedef int32_t fs_kscale_t; /* Q13.19 1/sigma */
 typedef uint32_t fs_expo_t;  /* Q5.27 unsigned */
 typedef uint64_t fs_kdist_t; /* Q.49 unsigned */
-typedef int32_t fs_act_t;    /* Q1.30, in [0, 2^30] */
+typedef int32_t fs_act_t;    /* Q.27, in [0, 2^27) */
 typedef int64_t fs_bnum_t;   /* Q.51 */
-typedef uint64_t fs_bden_t;  /* Q.30 */
+typedef uint32_t fs_bden_t;  /* Q.27 */
 typedef int32_t fs_val_t;    /* Q8.24 */
 typedef int32_t fs_coef_t;   /* Q1.31, in [0, 0.5) for the DMP */
 typedef int64_t fs_acc_t;    /* value * 2^31 */
@@ -45,15 +45,28 @@ static inline fs_val_t fs_num_view(fs_acc_t acc)
     return fx_acc_view(acc);
 }
 
+/* A saturated operand (fs_num_add_ev & co.) as an opaque 32-bit register value: GCC otherwise
+ * widens it on each path of the saturation and the product k*a becomes a 64x64 multiply (mul,
+ * mla, umull) instead of one smlal. */
+static inline int32_t fs_num_opaque(int32_t a)
+{
+#if defined(__GNUC__) && defined(__arm__)
+    __asm__("" : "+r"(a));
+#endif
+    return a;
+}
+
 static inline fs_acc_t fs_num_acc_mac1(fs_acc_t acc, fs_coef_t k, fs_val_t a, uint32_t *ev)
 {
-    return fx_acc_add(acc, (int64_t)k * a, ev);
+    return fx_acc_add(acc, (int64_t)k * fs_num_opaque(a), ev);
 }
 
 static inline fs_acc_t fs_num_acc_mac2(fs_acc_t acc, fs_coef_t ka, fs_val_t a, fs_coef_t kb,
                                        fs_val_t b, uint32_t *ev)
 {
-    return fx_acc_add(acc, (int64_t)ka * a - (int64_t)kb * b, ev);
+    /* two multiply-accumulates (kb < 2^31: -kb fits); |acc| < 2^62 and each product < 2^61 */
+    return fx_acc_hold(acc + (int64_t)ka * fs_num_opaque(a) + (int64_t)(-kb) * fs_num_opaque(b),
+                       ev);
 }
 
 /* The result of a 32-bit add/sub whose overflow flag is ovf: r, or saturated toward a's sign
@@ -103,19 +116,19 @@ static inline int32_t fs_num_sat_ev(int64_t v, uint32_t *ev)
 /* Q8.24 * Q2.30 -> Q8.24 */
 static inline fs_val_t fs_num_mul_vp(fs_val_t a, fs_phase_t p, uint32_t *ev)
 {
-    return fs_num_sat_ev(fx_rshift_round((int64_t)a * p, 30u), ev);
+    return fs_num_sat_ev(fx_rshift_round((int64_t)a * fs_num_opaque(p), 30u), ev);
 }
 
 /* Q8.24 * Q8.24 -> Q8.24 */
 static inline fs_val_t fs_num_mul_vv(fs_val_t a, fs_val_t b, uint32_t *ev)
 {
-    return fs_num_sat_ev(fx_rshift_round((int64_t)a * b, 24u), ev);
+    return fs_num_sat_ev(fx_rshift_round((int64_t)fs_num_opaque(a) * fs_num_opaque(b), 24u), ev);
 }
 
 /* Q20.12 scale * Q8.24 y -> Q16.16 N */
 static inline fs_force_t fs_num_force(fs_stiff_t k, fs_val_t x, uint32_t *ev)
 {
-    return fs_num_sat_ev(fx_rshift_round((int64_t)k * x, 20u), ev);
+    return fs_num_sat_ev(fx_rshift_round((int64_t)k * fs_num_opaque(x), 20u), ev);
 }
 
 /* r = |u - c| s in Q.49 (s = 1/sigma): |u - c| exactly in uint32 (< 2^32 for any int32 pair),
@@ -126,72 +139,105 @@ static inline fs_kdist_t fs_num_kernel_dist(fs_phase_t u, fs_phase_t c, fs_kscal
     return (uint64_t)ad * (uint32_t)s;
 }
 
-/* e = r^2/2 in Q5.27 (r truncated to Q.27 first); FS_NUM_EXPO_INF when r >= 6. */
+/* e = r^2/2 in Q5.27 (floor; r truncated to Q3.29 first: the square's high word is e);
+ * FS_NUM_EXPO_INF when r >= sqrt(24). */
 static inline fs_expo_t fs_num_kernel_expo(fs_phase_t u, fs_phase_t c, fs_kscale_t s)
 {
     const uint64_t r = fs_num_kernel_dist(u, c, s);
     if ((uint32_t)(r >> 32) >= FS_NUM_R_SKIP_HI) {
         return FS_NUM_EXPO_INF;
     }
-    const uint32_t r27 = (uint32_t)(r >> 22);
-    return (uint32_t)(((uint64_t)r27 * r27) >> 28);
+    const uint32_t r29 = (uint32_t)(r >> 20);
+    return (uint32_t)(((uint64_t)r29 * r29) >> 32);
 }
 
-/* exp(-e) in Q1.30: the Q1.31 table exp halved, so psi*w is one signed 32x32 product. The
- * blend calls it with e - e_min of a kernel within the cutoff, <= FS_NUM_CUTOFF: the table
- * exp's own clip at 16 is not repeated. */
+/* exp(-e) in Q.27 for 0 <= e <= 16 (Q5.27): 2^-(e log2 e), the exponent's high word in Q.26
+ * (floor: < 1.1e-8 relative), its fraction interpolated in fx_exp2_pairs by the high word of one
+ * product, the integer part by a plain shift (error within the table's 9.2e-7 relative). The
+ * blend calls it with e - e_min of a kernel within the cutoff. Below 2^27 (t_0's clip): 32
+ * activations sum within uint32. */
 static inline fs_act_t fs_num_exp_neg(fs_expo_t e)
 {
-    return (int32_t)(fx_exp_neg_q27_le16(e) >> 1);
+    const uint32_t y = (uint32_t)(((uint64_t)e * FX_LOG2E_Q31) >> 32); /* Q.26, < 23.1 * 2^26 */
+    const uint32_t *t = &fx_exp2_pairs[2u * ((y >> 18) & 0xFFu)];
+    const uint32_t m = t[0] - (uint32_t)(((uint64_t)t[1] * (y << 14)) >> 32);
+    /* m < 2^31: an arithmetic shift of it as int32, so the products psi*w are signed
+     * multiply-accumulates (smlal; a shift known to clear the sign gives umull + mla) */
+    return (int32_t)m >> ((y >> 26) + 4u);
 }
 
 /* The numerator part of fs_num_blend_acc, for either weight set (the force DMP's, and the y
- * DMP's over the same activations): num += w * (psi / 2^3) in Q.51 (< 32 * 2^57 over a window),
- * psi shifted first so the product accumulates in one multiply-accumulate (psi keeps 27
- * fraction bits: 7e-9 relative). */
+ * DMP's over the same activations): num += w * psi in Q.51 (< 32 * 2^58 over a window), one
+ * multiply-accumulate. */
 static inline void fs_num_blend_acc_num(fs_bnum_t *num, fs_act_t psi, fs_val_t w)
 {
-    *num += (int64_t)w * (psi >> 3);
+    *num += (int64_t)w * psi;
 }
 
-/* num as fs_num_blend_acc_num, den += psi (Q.30). */
+/* num as fs_num_blend_acc_num, den += psi (Q.27, < 2^32 over a window of 32). */
 static inline void fs_num_blend_acc(fs_bnum_t *num, fs_bden_t *den, fs_act_t psi, fs_val_t w)
 {
     fs_num_blend_acc_num(num, psi, w);
     *den += (uint32_t)psi;
 }
 
-/* S = num * 2^3 / den in Q8.24, den >= 2^30 (the e_min kernel has psi = 1). |S| <= max |w_i|,
- * so the quotient fits; den is brought to 32 bits (keeping >= 30 significant bits) and num
- * shifted to match. */
+/* ~2^62/d for d in [2^31, 2^32), in (2^30, 2^31): a 16-bit estimate by one 32-bit divide (by
+ * d's 16 leading bits plus one: low, never 2^31) and one Newton step (relative error within
+ * 1.8e-9): a quotient by two multiplies instead of a 64/32 division. */
+static inline int32_t fs_num_recip_q62(uint32_t d)
+{
+    const uint32_t r0 = (0xFFFFFFFFu / ((d >> 16) + 1u)) << 14;
+    const int32_t eps = (int32_t)((1u << 30) - (uint32_t)(((uint64_t)d * r0) >> 32));
+    return (int32_t)r0 + (int32_t)(((int64_t)(int32_t)r0 * (eps * 4)) >> 32);
+}
 
+/* num * r / 2^(32 + sh) for a reciprocal r of fs_num_recip_q62, 0 < sh < 32, the result
+ * fitting int32 (floor): the high words of the 96-bit product, one 32-bit funnel shift. */
+static inline int32_t fs_num_mul_recip(int64_t num, int32_t r, unsigned sh)
+{
+    const int64_t t = (int64_t)(int32_t)((uint64_t)num >> 32) * r +
+                      (int64_t)(((uint64_t)(uint32_t)(uint64_t)num * (uint32_t)r) >> 32);
+    return (int32_t)(((uint32_t)(uint64_t)t >> sh) | ((uint32_t)((uint64_t)t >> 32) << (32u - sh)));
+}
+
+/* den (Q.27, >= 2^27 - 1) brought to [2^31, 2^32) as d; *sh the shift of fs_num_mul_recip that
+ * turns a Q.51 num times d's reciprocal into num / den in Q8.24. */
+static inline uint32_t fs_num_blend_norm(fs_bden_t den, unsigned *sh)
+{
+    const unsigned c = (unsigned)__builtin_clz(den); /* 0..5 */
+    *sh = 30u - c;
+    return den << c;
+}
+
+/* S = num / den in Q8.24 rounded half up, den >= 2^27 - 1 (the e_min kernel's psi): |S| <= max
+ * |w_i|, so the quotient fits. By den's reciprocal (error < 2^-28 of |S|). */
 static inline fs_val_t fs_num_blend_div(fs_bnum_t num, fs_bden_t den)
 {
-    const int neg = num < 0;
-    const uint64_t mag = (uint64_t)(neg ? -num : num);
-    uint64_t nn;
-    uint32_t dd;
-    if ((den >> 32) == 0u) {
-        nn = mag << 3;
-        dd = (uint32_t)den;
-    } else {
-        const unsigned sh = 32u - (unsigned)__builtin_clz((uint32_t)(den >> 32)); /* 1..3 */
-        dd = (uint32_t)(den >> sh);
-        nn = mag << (3u - sh);
-    }
-    const uint32_t q = fx_udiv64_32_round(nn, dd);
-    return neg ? -(int32_t)q : (int32_t)q;
+    unsigned sh;
+    const int32_t r = fs_num_recip_q62(fs_num_blend_norm(den, &sh));
+    return fs_num_mul_recip(num + (int64_t)(den >> 1), r, sh);
+}
+
+/* S = num/den as fs_num_blend_div, and *s_y = num_y/den: one reciprocal for both. */
+static inline fs_val_t fs_num_blend_div2(fs_bnum_t num, fs_bnum_t num_y, fs_bden_t den,
+                                         fs_val_t *s_y)
+{
+    unsigned sh;
+    const int32_t r = fs_num_recip_q62(fs_num_blend_norm(den, &sh));
+    const int64_t half = (int64_t)(den >> 1);
+    *s_y = fs_num_mul_recip(num_y + half, r, sh);
+    return fs_num_mul_recip(num + half, r, sh);
 }
 
 /* Q16.16 gain * Q8.24 -> Q.32 (N); < 2^54 for int32 operands. */
 static inline fs_wide_t fs_num_gain_val(fs_gain_t g, fs_val_t v)
 {
-    return ((int64_t)g * v) >> 8;
+    return ((int64_t)g * fs_num_opaque(v)) >> 8;
 }
 /* Q16.16 gain * Q16.16 N -> Q.32 (N); < 2^62. */
 static inline fs_wide_t fs_num_gain_force(fs_gain_t g, fs_force_t f)
 {
-    return (int64_t)g * f;
+    return (int64_t)g * fs_num_opaque(f);
 }
 /* Q.32 -> Q16.16 N, rounded, saturated. */
 static inline fs_force_t fs_num_wide_force(fs_wide_t w)
@@ -201,7 +247,7 @@ static inline fs_force_t fs_num_wide_force(fs_wide_t w)
 /* Q1.31 s * Q16.16 N -> Q8.24 N*s */
 static inline fs_val_t fs_num_dt_force(fs_coef_t dt, fs_force_t f)
 {
-    return fx_sat32(fx_rshift_round((int64_t)dt * f, 23u));
+    return fx_sat32(fx_rshift_round((int64_t)dt * fs_num_opaque(f), 23u));
 }
 static inline int fs_num_is_nan(fs_wide_t w)
 {
@@ -213,23 +259,36 @@ static inline int32_t fs_num_clamp(int32_t v, int32_t lim)
     return fx_clamp_sym(v, lim);
 }
 
-/* sin(pi t) in Q2.30 for t in Q2.30, |t| <= 1/2: t*P(4 t^2), P the Taylor series of sin(pi t)/t
- * to t^12 with coefficients c_k/4^k in Q3.29, Horner with rounded 64-bit products (max error
- * 3.1e-9 over [0, 1] for sin and cos, test_sincos_pi in tests/firmware/fixed/test_dmpfx.c). */
-static inline int32_t fs_num_sinpi_half(int32_t t)
+/* The high word of a * b (unsigned): free on a 32-bit core. */
+static inline uint32_t fs_num_umulhi(uint32_t a, uint32_t b)
 {
-    const int32_t q = (int32_t)(((int64_t)t * t + (1 << 27)) >> 28); /* 4 t^2 in Q2.30, <= 1 */
-    int32_t p = 61;
-    p = -3864 + (int32_t)(((int64_t)p * q + (1 << 29)) >> 30);
-    p = 172272 + (int32_t)(((int64_t)p * q + (1 << 29)) >> 30);
-    p = -5026995 + (int32_t)(((int64_t)p * q + (1 << 29)) >> 30);
-    p = 85569306 + (int32_t)(((int64_t)p * q + (1 << 29)) >> 30);
-    p = -693598668 + (int32_t)(((int64_t)p * q + (1 << 29)) >> 30);
-    p = 1686629713 + (int32_t)(((int64_t)p * q + (1 << 29)) >> 30);
-    return (int32_t)(((int64_t)p * t + (1 << 28)) >> 29);
+    return (uint32_t)(((uint64_t)a * b) >> 32);
 }
 
-/* sin(pi x), cos(pi x) in Q2.30 for a phase x in turns, Q2.30 in [0, 1] */
+/* sin(pi t) in Q1.31 (saturated to +-INT32_MAX) for t in Q2.30, |t| <= 1/2: |t| P(4 t^2),
+ * P(v) = c0 - v (c1 - v (c2 - v (c3 - v (c4 - v c5)))) a degree-5 minimax fit (weighted least
+ * squares to equal ripple) with every c_k > 0 and every partial sum positive, so each Horner
+ * step is one unsigned high-word product and a subtraction: v = 4 t^2 in Q.32 (|t| held below
+ * 1/2 by 2^-30 so v < 2^32), c0 in Q2.30, c1..c5 in Q1.31 (max error 9.1e-10 over [0, 1] for
+ * sin and cos, test_sincos_pi in tests/firmware/fixed/test_dmpfx.c). */
+static inline int32_t fs_num_sinpi_half(int32_t t)
+{
+    const uint32_t sgn = (uint32_t)(t >> 31);
+    uint32_t a = ((uint32_t)t ^ sgn) - sgn;
+    a = (a < (1u << 29)) ? a : (1u << 29) - 1u;
+    const uint32_t v = (uint32_t)(((uint64_t)a * a) >> 26);
+    uint32_t q = 688128u - fs_num_umulhi(14681u, v);
+    q = 20107406u - fs_num_umulhi(q, v);
+    q = 342277056u - fs_num_umulhi(q, v);
+    q = 2774394652u - fs_num_umulhi(q, v);
+    const uint32_t p = 3373259426u - (fs_num_umulhi(q, v) >> 1);
+    uint32_t r = fs_num_umulhi(a << 3, p); /* |t| in Q.33 times P in Q2.30: Q1.31 */
+    r = (r < FX_Q31_ONE_U) ? r : (uint32_t)INT32_MAX;
+    return (int32_t)((r ^ sgn) - sgn);
+}
+
+/* sin(pi x), cos(pi x) in Q1.31 (fs_num_vm_dist's operands) for a phase x in turns, Q2.30 in
+ * [0, 1] */
 static inline void fs_num_sincos_pi(fs_phase_t x, fs_phase_t *s, fs_phase_t *c)
 {
     const int32_t half = FX_Q30_ONE >> 1;
@@ -237,10 +296,11 @@ static inline void fs_num_sincos_pi(fs_phase_t x, fs_phase_t *s, fs_phase_t *c)
     *c = fs_num_sinpi_half(half - x);
 }
 
-/* d = sh*hc - ch*hs in Q2.30 (each factor |.| <= 1: the difference fits) */
+/* d = sh*hc - ch*hs in Q2.30 (floor) from Q1.31 operands (each |.| <= 1 - 2^-31: the difference
+ * fits): the high word of one multiply and one multiply-accumulate (-ch is loop-invariant). */
 static inline fs_phase_t fs_num_vm_dist(fs_phase_t sh, fs_phase_t ch, fs_phase_t hs, fs_phase_t hc)
 {
-    return (int32_t)fx_rshift_round((int64_t)sh * hc - (int64_t)ch * hs, 30u);
+    return (int32_t)(((int64_t)sh * hc + (int64_t)(-ch) * hs) >> 32);
 }
 
 /* The periodic phase's accumulator (value * 2^31, a Q2.30 view): one turn, and the exact

@@ -116,21 +116,23 @@ static inline int32_t fx_acc_view(int64_t acc)
     return (int32_t)fx_rshift_round(acc, 31u);
 }
 
+/** r held within +-FX_ACC_HI_MAX*2^32, counting a saturation in *events: the in-range case by
+ *  one unsigned compare of the high word. */
+static inline int64_t fx_acc_hold(int64_t r, uint32_t *events)
+{
+    const int32_t hi = (int32_t)(r >> 32);
+    if ((uint32_t)hi + (uint32_t)FX_ACC_HI_MAX < 2u * (uint32_t)FX_ACC_HI_MAX) {
+        return r;
+    }
+    (*events)++;
+    return (hi >= 0) ? (int64_t)FX_ACC_HI_MAX * 4294967296 : -(int64_t)FX_ACC_HI_MAX * 4294967296;
+}
+
 /** acc + inc held within +-FX_ACC_HI_MAX*2^32, counting a saturation in *events; needs
  *  |acc|, |inc| < 2^62 (Euler constants < 0.5), so the sum cannot overflow int64. */
 static inline int64_t fx_acc_add(int64_t acc, int64_t inc, uint32_t *events)
 {
-    const int64_t r = acc + inc;
-    const int32_t hi = (int32_t)(r >> 32);
-    if (hi >= FX_ACC_HI_MAX) {
-        (*events)++;
-        return (int64_t)FX_ACC_HI_MAX * 4294967296;
-    }
-    if (hi < -FX_ACC_HI_MAX) {
-        (*events)++;
-        return -(int64_t)FX_ACC_HI_MAX * 4294967296;
-    }
-    return r;
+    return fx_acc_hold(acc + inc, events);
 }
 
 /* Bound of the 64-bit values fx_scale_apply takes and returns: |v| <= FX_S61_MAX. */
@@ -212,6 +214,10 @@ fs_status_t fx_scale_from_double(double v, int32_t in_frac, int32_t out_frac, fx
 
 /** 2^(-k/2^FX_EXP_TABLE_BITS) in Q1.31 (unsigned), k = 0..2^FX_EXP_TABLE_BITS (fx.c). */
 extern const uint32_t fx_exp2_table[(1u << FX_EXP_TABLE_BITS) + 1u];
+
+/** The table of fx_exp2_table as pairs {t_k, t_k - t_(k+1)}, k = 0..255, t_0 = 2^31 - 16 (fx.c):
+ *  one 64-bit load a lookup. */
+extern const uint32_t fx_exp2_pairs[2u << FX_EXP_TABLE_BITS];
 
 /* log2(e) in Q1.31 (unsigned): round(1.4426950408889634 * 2^31). */
 #define FX_LOG2E_Q31 3098164009u
