@@ -32,8 +32,11 @@ typedef int64_t fs_wide_t;   /* Q.32 N */
  * layer uses DMP_KERNEL_CUTOFF_EXP, 23 or the port's 16). 16 would sum two more kernels a tick at
  * N = 50 on the M3 for a blend within 3e-8. */
 #define FS_NUM_CUTOFF_E 12u
-/* in base 2, as the exponents: 12 log2(e) in Q6.26 (12 * 1.4426950408889634 * 2^26) */
-#define FS_NUM_CUTOFF 1161811504u
+/* in base 2, as the exponents: 17.375 in Q6.26, just above 12 log2(e) = 17.312 (an immediate
+ * operand, 0x8B << 23: no register or literal load in the blend's loops). The cutoff itself is
+ * FS_NUM_R_SKIP_HI's (r < sqrt(24), e < 12): this bound only tells a summed kernel from
+ * FS_NUM_EXPO_INF. */
+#define FS_NUM_CUTOFF 0x45800000u
 #define FS_NUM_EXPO_INF UINT32_MAX
 /* Most kernels one blend looks at: DMPFX_MAX_WINDOW (dmpfx.h, checked at conversion). */
 #define FS_NUM_MAX_WINDOW DMPFX_MAX_WINDOW
