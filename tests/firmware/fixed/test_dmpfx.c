@@ -777,8 +777,8 @@ static void test_periodic_blend(void **state)
 }
 
 /* The blend's quotient by a reciprocal (fs_num_blend_div, fs_num_blend_div2) against the exact
- * num/den over dens across [2^27 - 1, 2^32) and quotients up to +-2^30 (|w| <= 64): within 2e-9 of |S| + 1
- * LSB; and the activation table's pairs against fx_exp2_table. */
+ * num/den over dens across [2^27 - 1, 2^32) and quotients up to +-2^30 (|w| <= 64): within
+ * 2e-9 of |S| + 1 LSB; and the activation table's pairs against fx_exp2_table. */
 static void test_blend_div(void **state)
 {
     (void)state;
