@@ -8,7 +8,8 @@
  * Types, one per quantity (real layer: all fs_real_t; fixed layer: the format given):
  *   fs_phase_t  phase u~, v~, centres c_i, envelopes      Q2.30
  *   fs_kscale_t kernel scale s_i: real 1/(2 sigma_i^2), fixed 1/sigma_i  Q13.19
- *   fs_expo_t   kernel exponent e_i = (u - c_i)^2/(2 sigma_i^2)  Q5.27 unsigned (far: > cutoff)
+ *   fs_expo_t   kernel exponent e_i = (u - c_i)^2/(2 sigma_i^2)  fixed: in base 2, e_i log2(e),
+ *               Q6.26 unsigned (far: > cutoff)
  *   fs_kdist_t  nearest-kernel key, monotone in e_i        Q.49 unsigned |u - c_i| s_i
  *   fs_act_t    kernel activation psi_i = exp(-e)          Q.27 (below 2^27)
  *   fs_bnum_t, fs_bden_t  blend sums sum psi w, sum psi   int64 Q.51, uint32 Q.27

@@ -12,7 +12,7 @@
 
 typedef int32_t fs_phase_t;  /* Q2.30 */
 typedef int32_t fs_kscale_t; /* Q13.19 1/sigma */
-typedef uint32_t fs_expo_t;  /* Q5.27 unsigned */
+typedef uint32_t fs_expo_t;  /* base 2: e*log2(e) in Q6.26 unsigned */
 typedef uint64_t fs_kdist_t; /* Q.49 unsigned */
 typedef int32_t fs_act_t;    /* Q.27, in [0, 2^27) */
 typedef int64_t fs_bnum_t;   /* Q.51 */
@@ -32,12 +32,16 @@ typedef int64_t fs_wide_t;   /* Q.32 N */
  * layer uses DMP_KERNEL_CUTOFF_EXP, 23 or the port's 16). 16 would sum two more kernels a tick at
  * N = 50 on the M3 for a blend within 3e-8. */
 #define FS_NUM_CUTOFF_E 12u
-#define FS_NUM_CUTOFF ((uint32_t)FS_NUM_CUTOFF_E << 27)
+/* in base 2, as the exponents: 17.375 in Q6.26, just above 12 log2(e) = 17.312 (an immediate
+ * operand, 0x8B << 23: no register or literal load in the blend's loops). The cutoff itself is
+ * FS_NUM_R_SKIP_HI's (r < sqrt(24), e < 12): this bound only tells a summed kernel from
+ * FS_NUM_EXPO_INF. */
+#define FS_NUM_CUTOFF 0x45800000u
 #define FS_NUM_EXPO_INF UINT32_MAX
 /* Most kernels one blend looks at: DMPFX_MAX_WINDOW (dmpfx.h, checked at conversion). */
 #define FS_NUM_MAX_WINDOW DMPFX_MAX_WINDOW
 /* |u - c_i|/sigma_i > sqrt(2 * 12) (e_i > 12) is skipped before squaring: in Q.49 a high word
- * >= 642,120 (sqrt(24) * 2^17 = 642,119.04), and below it r^2/2 fits uint32 in Q5.27. */
+ * >= 642,120 (sqrt(24) * 2^17 = 642,119.04), and below it r fits uint32 in Q3.29. */
 #define FS_NUM_R_SKIP_HI 642120u
 
 static inline fs_val_t fs_num_view(fs_acc_t acc)
@@ -139,8 +143,9 @@ static inline fs_kdist_t fs_num_kernel_dist(fs_phase_t u, fs_phase_t c, fs_kscal
     return (uint64_t)ad * (uint32_t)s;
 }
 
-/* e = r^2/2 in Q5.27 (floor; r truncated to Q3.29 first: the square's high word is e);
- * FS_NUM_EXPO_INF when r >= sqrt(24). */
+/* The exponent in base 2, e log2(e) = r^2 log2(e)/2, in Q6.26 (floor; r truncated to Q3.29
+ * first): the high word of r times the high word of r log2(e), so the activation needs no
+ * multiply by log2(e); FS_NUM_EXPO_INF when r >= sqrt(24). */
 static inline fs_expo_t fs_num_kernel_expo(fs_phase_t u, fs_phase_t c, fs_kscale_t s)
 {
     const uint64_t r = fs_num_kernel_dist(u, c, s);
@@ -148,17 +153,16 @@ static inline fs_expo_t fs_num_kernel_expo(fs_phase_t u, fs_phase_t c, fs_kscale
         return FS_NUM_EXPO_INF;
     }
     const uint32_t r29 = (uint32_t)(r >> 20);
-    return (uint32_t)(((uint64_t)r29 * r29) >> 32);
+    const uint32_t r_l = (uint32_t)(((uint64_t)r29 * FX_LOG2E_Q31) >> 32); /* r log2(e)/2, Q.29 */
+    return (uint32_t)(((uint64_t)r29 * r_l) >> 32);
 }
 
-/* exp(-e) in Q.27 for 0 <= e <= 16 (Q5.27): 2^-(e log2 e), the exponent's high word in Q.26
- * (floor: < 1.1e-8 relative), its fraction interpolated in fx_exp2_pairs by the high word of one
- * product, the integer part by a plain shift (error within the table's 9.2e-7 relative). The
- * blend calls it with e - e_min of a kernel within the cutoff. Below 2^27 (t_0's clip): 32
- * activations sum within uint32. */
-static inline fs_act_t fs_num_exp_neg(fs_expo_t e)
+/* exp(-e) = 2^-y in Q.27 for a base-2 exponent y (fs_num_kernel_expo's, Q6.26) below 32: its
+ * fraction interpolated in fx_exp2_pairs by the high word of one product, the integer part by
+ * a plain shift (error within the table's 9.2e-7 relative). The blend calls it with y - y_min of
+ * a kernel within the cutoff. Below 2^27 (t_0's clip): 32 activations sum within uint32. */
+static inline fs_act_t fs_num_exp_neg(fs_expo_t y)
 {
-    const uint32_t y = (uint32_t)(((uint64_t)e * FX_LOG2E_Q31) >> 32); /* Q.26, < 23.1 * 2^26 */
     const uint32_t *t = &fx_exp2_pairs[2u * ((y >> 18) & 0xFFu)];
     const uint32_t m = t[0] - (uint32_t)(((uint64_t)t[1] * (y << 14)) >> 32);
     /* m < 2^31: an arithmetic shift of it as int32, so the products psi*w are signed

@@ -776,6 +776,38 @@ static void test_periodic_blend(void **state)
     }
 }
 
+/* The blend's quotient by a reciprocal (fs_num_blend_div, fs_num_blend_div2) against the exact
+ * num/den over dens across [2^27 - 1, 2^32) and quotients up to +-2^30 (|w| <= 64): within
+ * 2e-9 of |S| + 1 LSB; and the activation table's pairs against fx_exp2_table. */
+static void test_blend_div(void **state)
+{
+    (void)state;
+    double worst = 0.0;
+    uint64_t lcg = 12345u;
+    for (int i = 0; i < 200000; i++) {
+        lcg = lcg * 6364136223846793005u + 1442695040888963407u;
+        const uint32_t den = (uint32_t)((1u << 27) - 1u) +
+                             (uint32_t)((lcg >> 16) % (0xFFFFFFFFu - ((1u << 27) - 1u)));
+        lcg = lcg * 6364136223846793005u + 1442695040888963407u;
+        const double s = ((double)(lcg >> 11) / 9007199254740992.0 * 2.0 - 1.0) * 1073741823.0;
+        const int64_t num = (int64_t)llround(s * (double)den);
+        const double exact = (double)num / (double)den;
+        fs_val_t s_y;
+        const fs_val_t q = fs_num_blend_div2(num, -num, den, &s_y);
+        assert_int_equal(q, fs_num_blend_div(num, den));
+        assert_int_equal(s_y, fs_num_blend_div(-num, den));
+        worst = fmax(worst, (fabs((double)q - exact) - 1.0) / fmax(fabs(exact), 1.0));
+    }
+    printf("blend quotient by reciprocal: worst %.3g of |S| beyond 1 LSB\n", worst);
+    assert_true(worst <= 2e-9);
+    for (uint32_t k = 1u; k < (1u << FX_EXP_TABLE_BITS); k++) {
+        assert_int_equal(fx_exp2_pairs[2u * k], fx_exp2_table[k]);
+        assert_int_equal(fx_exp2_pairs[2u * k + 1u], fx_exp2_table[k] - fx_exp2_table[k + 1u]);
+    }
+    assert_int_equal(fx_exp2_pairs[0], fx_exp2_table[0] - 16u);
+    assert_int_equal(fx_exp2_pairs[1], fx_exp2_table[0] - fx_exp2_table[1]);
+}
+
 /* The fixed layer's sin(pi x) and cos(pi x) (Q1.31) over [0, 1] (10^5 + 1 phases) against libm. */
 static void test_sincos_pi(void **state)
 {
@@ -803,6 +835,7 @@ int main(void)
         cmocka_unit_test(test_golden_periodic_y),
         cmocka_unit_test(test_periodic_blend),
         cmocka_unit_test(test_sincos_pi),
+        cmocka_unit_test(test_blend_div),
         cmocka_unit_test(test_long_skill),
         cmocka_unit_test(test_bound_conversion),
         cmocka_unit_test(test_commit_path),
