@@ -520,11 +520,8 @@ static bool uds_work(app_t *app)
 static bool uds_all_idle(const app_t *app)
 {
     _Static_assert(APP_TESTERS == 2u, "two testers");
-    const isotp_link_t *a = &app->tp[0];
-    const isotp_link_t *b = &app->tp[1];
-    const uint32_t links = (uint32_t)a->rx_state | (uint32_t)a->tx_state | (uint32_t)b->rx_state |
-                           (uint32_t)b->tx_state;
-    return (links | app->uds.pending_sid | app->uds.pending_reset | app->tp_held) == 0u;
+    return (app->uds.pending_sid | app->uds.pending_reset | app->tp_held) == 0u &&
+           isotp_idle(&app->tp[0]) && isotp_idle(&app->tp[1]);
 }
 
 /* The end of the server's tick: the ISO-TP frame share of a tick that worked, the session
@@ -886,7 +883,7 @@ void app_tick(app_t *app, bool overrun)
     }
     can_receive(app);
     uds_service(app);
-    if (app->sec_writing || app->sec_dirty) { /* app_sec_persist_step's share, if any */
+    if (app_sec_persist_pending(app)) {
         app_sec_persist_step(app);
     }
     control(app);

@@ -259,6 +259,13 @@ void app_sec_persist(app_t *app);
  *  when the record differs from the one stored (none while nothing changed). */
 void app_sec_persist_step(app_t *app);
 
+/** True if app_sec_persist_step has work (a record being written or waiting): the tick calls it
+ *  only then. */
+static inline bool app_sec_persist_pending(const app_t *app)
+{
+    return app->sec_writing || app->sec_dirty;
+}
+
 /** True once nothing is left to store: the record as the state is now is stored, or its write
  *  failed (as before: tried again after the next request), or there is no record storage. */
 bool app_sec_persisted(const app_t *app);
