@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Exact instruction counts of the shipped Cortex-M image's 1 kHz tick under qemu.
-#   bench/qemu_tick.sh TARGET [--build-dir DIR] [--exec-s S] [--fw-bytes N] [--skill FILE] [--profile]
-#                      [--focus REGEX]
+#   bench/qemu_tick.sh TARGET [--build-dir DIR] [--exec-s S] [--fw-bytes N] [--skill FILE]
+#                      [--path-scale S] [--profile] [--focus REGEX]
 # TARGET: cortex-m4f (mps2-an386, hardware float) or cortex-m3 (mps2-an385: the DMP and the
 # control law in fixed point, the rest of the application in software float).
 # 1. builds the images (toolchain cmake/arm-none-eabi.cmake, Release; size, heap and stack report);
@@ -42,13 +42,14 @@
 # M3 1,250).
 set -euo pipefail
 
-usage() { echo "usage: $0 cortex-m4f|cortex-m3 [--build-dir DIR] [--exec-s S] [--fw-bytes N] [--skill FILE] [--profile] [--focus REGEX]" >&2; exit 2; }
+usage() { echo "usage: $0 cortex-m4f|cortex-m3 [--build-dir DIR] [--exec-s S] [--fw-bytes N] [--skill FILE] [--path-scale S] [--profile] [--focus REGEX]" >&2; exit 2; }
 [ $# -ge 1 ] || usage
 TARGET=$1; shift
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 BUILD=$ROOT/build/$TARGET
 EXEC_S=1.0
 FW_BYTES=16384
+PATH_SCALE=1
 PROFILE=0
 T_START=$SECONDS
 while [ $# -gt 0 ]; do
@@ -57,6 +58,7 @@ while [ $# -gt 0 ]; do
     --exec-s) EXEC_S=$2; shift 2 ;;
     --fw-bytes) FW_BYTES=$2; shift 2 ;;   # the firmware download's payload (FWUPDATE)
     --skill) SKILL_ARG=$2; shift 2 ;;
+    --path-scale) PATH_SCALE=$2; shift 2 ;;   # the run's: a y path the axis can follow (the cost is the same)
     --profile) PROFILE=1; shift ;;   # per state, the top functions of its worst tick (tick_profile.py)
     --focus) PROFILE=1; QEMU_TICK_FOCUS=$2; shift 2 ;;   # also the tick where REGEX's functions ran most
     --host-ref-float|--host-ref-fixed) shift 2 ;;   # accepted for older callers; unused
@@ -293,7 +295,7 @@ for _ in $(seq 600); do grep -q "listening on" "$WORK/pil.out" && break; sleep 0
 PORT=$(sed -n 's/.*127.0.0.1:\([0-9]*\).*/\1/p' "$WORK/pil.out")
 [ -n "$PORT" ] || { echo "hil_sim pil did not start:"; cat "$WORK/pil.err"; exit 1; }
 "$PY" "$ROOT/bench/qemu/pil_session.py" "$PORT" "$SKILL" --target "$TARGET" --exec-s "$EXEC_S" \
-  --fw-bytes "$FW_BYTES" || status=1
+  --fw-bytes "$FW_BYTES" --path-scale "$PATH_SCALE" || status=1
 stop_pil
 [ -z "$CNT_PID" ] || wait "$CNT_PID"
 grep '^fs_pil' "$WORK/pil.err" || true

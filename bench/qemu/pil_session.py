@@ -12,18 +12,18 @@ one-instruction trace, about real time under bench/qemu_tick.sh's plugin counter
 heartbeat goes every --heartbeat-ticks ticks of device time (20 ms: as a host against a device
 in real time, well inside the 500 ms host timeout), its wall-time period measured from the
 device's tick rate during the first 1,200 ticks (or --heartbeat-s of wall time if given).
-  pil_session.py PORT SKILL --target TARGET [--exec-s S] [--fw-bytes N]"""
+  pil_session.py PORT SKILL --target TARGET [--exec-s S] [--fw-bytes N] [--path-scale S]"""
 
 from __future__ import annotations
 
 import argparse
-import struct
 import sys
 import time
 from pathlib import Path
 
 import can
 
+from forceskill import wire as W
 from forceskill.link import uds as U
 from forceskill.link.device import Device
 from forceskill.link.flash import flash_image
@@ -99,6 +99,13 @@ def main(argv: list[str]) -> int:
     )
     ap.add_argument("--target", default="cortex-m4f", help="the image's firmware target")
     ap.add_argument("--fw-bytes", type=int, default=16384, help="payload of the firmware download")
+    ap.add_argument(
+        "--path-scale",
+        type=float,
+        default=1.0,
+        help="the run's path scale (a y path whose acceleration the axis cannot follow latches "
+        "FLT_SLEW_LIMIT; the DMP's cost does not depend on it)",
+    )
     # TEACH and FAULT ticks are alike (min = median in both: nothing but the bus varies them):
     # 150 of each cover the stop ramp (40 ticks) and the host's frames several times over
     ap.add_argument("--teach-ticks", type=int, default=150, help="TEACH ticks")
@@ -146,7 +153,8 @@ def main(argv: list[str]) -> int:
                     U.call("session change", lambda: client.change_session(1), 0)
                     U.call("session change", lambda: client.change_session(2), 0)
                     U.unlock(client, 0, 0x02)  # a run routine's start needs level 1
-                    data = struct.pack(">BHHB", 1, 1000, 1000, 2)
+                    ps = args.path_scale
+                    data = W.RunSkill(1, 1.0, 1.0, 2, ps if ps != 1.0 else None).pack()
                     U.call("start", lambda: client.start_routine(U.RID_RUN_SKILL, data), 0)
                     dev.wait_state({"EXECUTE"}, args.timeout)
                     wait_ticks(dev, int(args.exec_s * 500), args.timeout)

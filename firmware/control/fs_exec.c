@@ -74,17 +74,34 @@ static fs_status_t exec_begin_step(exec_state_t *st, fs_real_t dt_s)
     } else {
         dmp_state_reset(&st->dmp);
     }
+    st->path_ramp = (periodic != 0u && s->skill->dmp.has_y != 0u) ? 1u : 0u;
     st->run.goal_scale = s->goal_scale;
     st->run.time_scale = s->time_scale;
     return FS_OK;
+}
+
+/* The periodic path's ramp-in factor at phase x (turns, [0, 1)): smoothstep, 0 -> 1 over the
+ * first turn, its slope 0 at both ends. */
+static fs_real_t exec_path_ramp(fs_real_t x)
+{
+    return x * x * (FS_R(3.0) - FS_R(2.0) * x);
 }
 
 /* One DMP step of the running step s (coupling cp may be NULL): returns f_hat, p into path_m. */
 static fs_real_t exec_dmp_step(exec_state_t *st, const exec_step_t *s, const dmp_coupling_t *cp)
 {
     if (s->skill->dmp.periodic != 0u) {
-        return dmp_periodic_step_xy(&s->skill->dmp, &st->dmp, &st->run, s->amplitude_scale, cp,
-                                    s->path_scale, &st->path_m);
+        const fs_real_t x0 = st->dmp.u;
+        const fs_real_t f = dmp_periodic_step_xy(
+            &s->skill->dmp, &st->dmp, &st->run, s->amplitude_scale, cp, s->path_scale, &st->path_m);
+        if (st->path_ramp != 0u) {
+            if (st->dmp.u < x0) { /* the phase wrapped: the first turn is over */
+                st->path_ramp = 0u;
+            } else {
+                st->path_m *= exec_path_ramp(st->dmp.u);
+            }
+        }
+        return f;
     }
     return dmp_step_xy(&s->skill->dmp, &st->dmp, &st->run, cp, s->path_scale, &st->path_m);
 }
@@ -210,6 +227,7 @@ fs_status_t exec_start_begin(const exec_config_t *cfg, exec_state_t *st, const e
     st->y_ref_m = y_hold_m;
     st->y_ref_vel_mps = FS_R(0.0);
     st->start_pending = 1u;
+    st->path_ramp = 0u;
     st->prepared = 0u;
     exec_contact_reset(st);
     return exec_law_reset(cfg, st);
@@ -646,10 +664,12 @@ static fs_status_t exec_prepare_step(const exec_config_t *cfg, exec_state_t *st,
  * tick selects what exec_start derived). */
 static void exec_begin_step_q(exec_state_t *st)
 {
+    const dmpfx_model_t *m = st->steps[st->step].model_fx;
     st->step_ticks = st->q.step[st->step].ticks;
     st->step_tick = 0u;
     st->dmp = st->dmp_start[st->step];
     st->dmp_saturated = 0u;
+    st->path_ramp = (m->periodic != 0u && m->has_y != 0u) ? 1u : 0u;
 }
 
 /* N Q.32 -> Q16.16, saturated. */
@@ -720,6 +740,15 @@ static void exec_contact_wait_q(exec_state_t *st, const exec_step_q_t *sq, int64
     }
 }
 
+/* exec_path_ramp in integers: smoothstep of the phase (u_acc: turns Q.61, [0, 1)), Q1.31. */
+static uint32_t exec_path_ramp_q31(int64_t u_acc)
+{
+    const int64_t x = u_acc >> 31; /* Q.30 */
+    const int64_t x2 = fx_rshift_round(x * x, 30u);
+    const int64_t s = fx_rshift_round(x2 * (((int64_t)3 << 30) - 2 * x), 30u);
+    return (uint32_t)(s * 2);
+}
+
 /* One DMP step of the running step at the phase rate rate_q31: f_dmp in N Q.32, p into path_q55
  * (both from the accumulators: the references' derivatives are their differences). */
 static int64_t exec_dmp_step_q(exec_state_t *st, uint32_t rate_q31)
@@ -731,8 +760,17 @@ static int64_t exec_dmp_step_q(exec_state_t *st, uint32_t rate_q31)
     const dmpfx_coupling_t c = {0, rate_q31};
     const uint32_t ev = st->dmp.sat_events;
     if (m->periodic != 0u) {
+        const int64_t x0 = st->dmp.u_acc;
         (void)dmpfx_periodic_step_xy(m, run, &st->dmp, &c, 0);
         st->q.path_q55 = (m->has_y != 0u) ? sq->path0_q55 + st->dmp.path_acc : 0;
+        if (st->path_ramp != 0u) {
+            if (st->dmp.u_acc < x0) { /* the phase wrapped: the first turn is over */
+                st->path_ramp = 0u;
+            } else {
+                st->q.path_q55 = fx_mul64_u32(fx_clamp61(st->q.path_q55),
+                                              exec_path_ramp_q31(st->dmp.u_acc), 31u);
+            }
+        }
     } else {
         (void)dmpfx_step_xy(m, run, &st->dmp, &c, 0);
         st->q.path_q55 = st->dmp.path_acc;

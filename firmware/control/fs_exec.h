@@ -249,6 +249,7 @@ typedef struct {
     fs_real_t y_ref_m;        /* y_d = y_base + p */
     fs_real_t y_ref_vel_mps;  /* yd_d */
     uint8_t start_pending;    /* 1 until the first tick has measured the contact force */
+    uint8_t path_ramp;        /* 1 while a periodic y path ramps in (its first turn) */
     uint8_t prepared;         /* parts exec_start_run derived (fixed build: 3 a step, 4 more) */
     fs_real_t surface_m;      /* the surface the reference is built on */
     /* the running skill's contact wait (skill_t.contact_threshold_N > 0) */

@@ -1,5 +1,5 @@
 """`run` on the simulator when things go wrong: a goal scale that takes the skill above the force
-limit is refused before anything moves; Ctrl-C commands IDLE, keeps the telemetry and exits 130; a
+limit, or a y path whose acceleration asks more than it, is refused before anything moves; Ctrl-C commands IDLE, keeps the telemetry and exits 130; a
 fault keeps the telemetry through its stop ramp (at 1 kHz) and names the fault; after a fault the simulated
 drive parks the handle so that `status --clear` succeeds; a refused clear names its cause."""
 
@@ -55,6 +55,23 @@ def test_goal_scale_above_the_force_limit_is_refused_before_anything_moves(loade
         capsys, "run", "--slot", "1", "--goal-scale", "2", "--force-limit", "9", *loaded.bus_args()
     )
     assert rc == 2 and "[662]" in err and "largest goal scale 1.8" in err
+
+
+def test_a_y_path_the_axis_cannot_follow_is_refused_before_anything_moves(loaded, capsys):
+    """A periodic skill whose y path asks m_d*|y''| = 418 N of the law (a 64 mm stroke at 2 Hz):
+    refused with the largest path scale within the limit; nothing moves."""
+    wipe_y = REPO / "tests" / "vectors" / "periodic_y_n20_ridge.skill"
+    assert cli.main(["upload", str(wipe_y), "--slot", "3", "-q", *loaded.bus_args()]) == 0
+    capsys.readouterr()
+    rc, out, err = run(capsys, "run", "--slot", "3", "--cycles", "2", *loaded.bus_args())
+    assert rc == 2 and "[662]" in err and "its y path asks 417.9 N" in err
+    assert "largest path scale 0.1197" in err and "nothing was started" in err
+    rc, out, err = run(
+        capsys, "run", "--slot", "3", "--cycles", "2", "--path-scale", "0.5", *loaded.bus_args()
+    )
+    assert rc == 2 and "at path scale 0.5" in err and "largest path scale 0.1197" in err
+    rc, out, err = run(capsys, "status", *loaded.bus_args())
+    assert rc == 0 and "IDLE, fault none" in out
 
 
 def test_ctrl_c_commands_idle_and_writes_the_telemetry(loaded, tmp_path):

@@ -20,6 +20,8 @@ from ..link.device import Device
 from ..model.limits import (
     check_force_limit,
     check_skill_stiffness,
+    path_peak_N,
+    path_problem,
     peak_problem,
     skill_peak_N,
 )
@@ -111,11 +113,13 @@ def check_slot_forces(
     time_scale: float,
     force_limit_N: float,
     amplitude_scale: float = 1.0,
+    path_scale: float = 1.0,
 ) -> dict[int, Skill]:
     """Read each slot's skill back (RequestUpload) and refuse, before anything moves, a skill
     stiffer than the device's stiffness limit (690), a goal scale that takes its rollout's peak
-    above the force limit, or a rollout that is not finite (662); a periodic skill's peak is that
-    of one cycle at the goal, amplitude and time scales. Returns the skills read back by slot."""
+    above the force limit, a y path whose acceleration asks more than it (``path_peak_N``), or a
+    rollout that is not finite (662); a periodic skill's peak is that of one cycle at the goal,
+    amplitude and time scales. Returns the skills read back by slot."""
     skills: dict[int, Skill] = {}
 
     def call(what: str, fn: Any) -> Any:
@@ -144,6 +148,11 @@ def check_slot_forces(
                 )
                 raise FsError(
                     ERR_SKILL_PEAK, f"slot {slot} of node {dev.node}: {problem}{limit}; nothing was started"
+                )
+            problem = path_problem(path_peak_N(sk, path_scale, time_scale), path_scale, force_limit_N)
+            if problem:
+                raise FsError(
+                    ERR_SKILL_PEAK, f"slot {slot} of node {dev.node}: {problem}; nothing was started"
                 )
     finally:
         try:
@@ -263,7 +272,7 @@ def run_on_device(
             last_end = e["end"]
             slots = [args.slot]
         skills = check_slot_forces(
-            client, dev, slots, directory, g, ts, args.force_limit, _as_sent(args.amplitude_scale)
+            client, dev, slots, directory, g, ts, args.force_limit, _as_sent(args.amplitude_scale), ps
         )
         periodic_args = args.cycles is not None or args.amplitude_scale != 1.0
         if not args.sequence and periodic_args and not skills[args.slot].periodic:
@@ -366,7 +375,7 @@ def run_on_device(
 
         if path_skill.periodic:  # the run's cycles (until stopped: as long as the telemetry)
             n_cyc = cycles if cycles > 0 else total / (path_skill.duration_s * ts)
-            _, y_hat = per.rollout_path(path_skill, cycles=n_cyc, time_scale=ts, path_scale=ps)
+            _, y_hat = per.rollout_path(path_skill, cycles=n_cyc, time_scale=ts, path_scale=ps, ramp_in=True)
         else:
             _, y_hat = rollout_path(path_skill, time_scale=ts, path_scale=ps)
         tick16 = (first_tick + np.arange(measured["t"].size)) & 0xFFFF

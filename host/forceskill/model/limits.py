@@ -8,6 +8,9 @@ command (fit, show, rollout, upload, run) before anything is written or sent.
 - Force: a skill's rollout must be finite and its peak |f_hat| at most the force limit (50 N by
   default, the device's default ``force_max_N``); a goal scale multiplies the force exactly, so a
   run at goal scale S needs S * peak <= limit (662).
+- Path: the force a y path asks of the law in perfect tracking, m_d*|y_d''| (the law's
+  feed-forward; periodic: ramped in as the executor runs it), at most the force limit: a path
+  the axis cannot follow saturates the command and latches FLT_SLEW_LIMIT (662).
 - Stiffness: a skill's nominal stiffness at most the device's stiffness limit (read from the
   device, DID 0x0140), above which its force loop does not track (690); ``fit`` accepts any.
 """
@@ -106,3 +109,39 @@ def check_skill_stiffness(
             f"{name}: nominal stiffness {skill.stiffness_Npm:.4g} N/m is above the stiffness limit "
             f"{limit_Npm:.4g} N/m of node {node} (its force loop does not track stiffer objects); {outcome}",
         )
+
+
+def path_peak_N(skill: Skill, path_scale: float = 1.0, time_scale: float = 1.0) -> float:
+    """m_d * max |y_d''| of the skill's y path at the path and time scales (0 without one, inf when
+    not finite): the force its acceleration alone asks of the law; a periodic path over two
+    cycles as the device runs it (ramped in over the first)."""
+    if skill.y_weights is None or path_scale == 0.0:
+        return 0.0
+    import numpy as np
+
+    if skill.periodic:
+        from .periodic import rollout_path as periodic_path
+
+        _, y = periodic_path(skill, cycles=2.0, path_scale=path_scale, time_scale=time_scale, ramp_in=True)
+    else:
+        from .dmp import rollout_path
+
+        _, y = rollout_path(skill, time_scale=time_scale, path_scale=path_scale)
+    if not np.all(np.isfinite(y)):
+        return math.inf
+    acc = np.diff(y, 2) / (skill.dt_s * skill.dt_s)
+    return skill.m_d_kg * float(np.max(np.abs(acc))) if acc.size else 0.0
+
+
+def path_problem(peak_N: float, path_scale: float, force_limit_N: float) -> str:
+    """'' when the y path's demand peak_N (path_peak_N at path_scale) is within the limit, else
+    what is wrong and the largest path scale that is (one phrase)."""
+    if not math.isfinite(peak_N):
+        return "its y path's rollout is not finite"
+    if peak_N <= force_limit_N:
+        return ""
+    at = f" at path scale {path_scale:g}" if path_scale != 1.0 else ""
+    return (
+        f"its y path asks {peak_N:.4g} N (m_d*|y''|){at}, above the force limit {force_limit_N:g} N; "
+        f"largest path scale {path_scale * force_limit_N / peak_N:.4g}"
+    )

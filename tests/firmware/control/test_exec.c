@@ -630,6 +630,74 @@ static void test_periodic_in_sequence(void **state)
     assert_true(worst_jump < 0.05);
 }
 
+/* A periodic skill with the y path ramps its path in over the first turn: the y reference is
+ * y(start) + r_n*p_n, r = smoothstep of the phase x_n = n*dt/(2 pi tau) (1 from the first
+ * wrap), p_n the Python rollout of the path (periodic_y_n50_ridge_g1_a1_t1_c2_p1.csv, 2 cycles).
+ * Without the ramp the path starts at its stroke speed (0.46 m/s here); with it y starts at rest
+ * and its largest acceleration over the first turn is no more than on the later ones. */
+static void test_periodic_path_ramped_in(void **state)
+{
+    (void)state;
+    static skill_t sk;
+    load_skill("periodic_y_n50_ridge.skill", &sk);
+    assert_int_equal(sk.dmp.periodic, 1u);
+    assert_int_equal(sk.dmp.has_y, 1u);
+    char path[512];
+    snprintf(path, sizeof path, "%s/periodic_y_n50_ridge_g1_a1_t1_c2_p1.csv", FS_VECTORS_DIR);
+    FILE *fp = fopen(path, "r");
+    assert_non_null(fp);
+    static double y_hat[4000];
+    char line[256];
+    size_t rows = 0;
+    assert_non_null(fgets(line, sizeof line, fp));
+    while (fgets(line, sizeof line, fp) != NULL && rows < 4000u) {
+        double t = 0.0, f = 0.0;
+        assert_int_equal(sscanf(line, "%lf,%lf,%lf", &t, &f, &y_hat[rows]), 3);
+        rows++;
+    }
+    fclose(fp);
+    exec_config_t cfg;
+    exec_config_default(&cfg);
+    cfg.pfc.gains[0] = sk.gains;
+    static exec_state_t st;
+    const exec_step_t s = step_of(&sk, 1.0, 1.0, 2.0 * sk.dmp.duration_s, SKILL_END_HOLD);
+    const double y_start = -0.02;
+    assert_int_equal(exec_start(&cfg, &st, &s, 1, y_start), FS_OK);
+    exec_meas_t m = zero_meas();
+    m.pos_m[1] = y_start;
+    m.force_contact_N = sk.dmp.goal_N + sk.dmp.cycle_e0_N;
+    const double turn_ticks = 2.0 * 3.14159265358979323846 * (double)sk.dmp.tau_s / DT;
+    const size_t n1 = (size_t)ceil(turn_ticks);
+    double e_ref = 0.0, ext = 0.0, acc_first = 0.0, acc_later = 0.0;
+    double y_prev = y_start, v_prev = 0.0, v_first = 0.0;
+    exec_out_t o;
+    for (size_t n = 1; n < rows; n++) {
+        assert_int_equal(exec_tick(&cfg, &st, &m, &o), FS_OK);
+        const double x = (double)n / turn_ticks;
+        const double r = (x < 1.0) ? x * x * (3.0 - 2.0 * x) : 1.0;
+        const double p = y_hat[n] - (double)sk.dmp.y_start_m;
+        e_ref = fmax(e_ref, fabs((double)o.y_ref_m - (y_start + r * p)));
+        ext = fmax(ext, fabs(p));
+        const double v = ((double)o.y_ref_m - y_prev) / DT;
+        if (n == 1u) {
+            v_first = v;
+        } else if (n < n1) {
+            acc_first = fmax(acc_first, fabs(v - v_prev) / DT);
+        } else {
+            acc_later = fmax(acc_later, fabs(v - v_prev) / DT);
+        }
+        y_prev = (double)o.y_ref_m;
+        v_prev = v;
+    }
+    printf("periodic path ramped in: reference vs python %.3g m (extent %.4f m), first tick "
+           "%.3g m/s, max acceleration first turn %.3g, later %.3g m/s^2\n",
+           e_ref, ext, v_first, acc_first, acc_later);
+    assert_true(ext > 0.02);
+    assert_true(e_ref <= 1e-9 + 1e-6 * ext);
+    assert_true(fabs(v_first) < 1e-4); /* at rest (the path alone: 0.46 m/s) */
+    assert_true(acc_first <= acc_later);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -651,6 +719,7 @@ int main(void)
         cmocka_unit_test(test_velocity_filter),
         cmocka_unit_test(test_render),
         cmocka_unit_test(test_y_path_tracked),
+        cmocka_unit_test(test_periodic_path_ramped_in),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

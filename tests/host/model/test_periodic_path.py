@@ -171,3 +171,35 @@ def test_periodic_y_vectors_regenerate() -> None:
             assert new.shape == old.shape
             for col in (1, 2):
                 assert np.max(np.abs(new[:, col] - old[:, col])) <= 1e-7 * np.max(np.abs(old[:, col]))
+
+
+def test_the_ramp_in_starts_the_path_at_rest_and_leaves_it_after_one_turn(wipe_y_fit):
+    """``path_ramp``: 0 at the start, smoothstep 3x^2 - 2x^3 of the turns n*a/(2 pi), 1 from the
+    first wrap on; the ramped path starts at rest, equals the DMP's from the second cycle on, and
+    asks no more of the axis in its first cycle than later (m_d*|y''|, ``path_peak_N``)."""
+    from forceskill.model.limits import path_peak_N, path_problem
+
+    sk = wipe_y_fit.skill
+    a = sk.dt_s / sk.tau_s
+    n = periodic.cycle_steps(sk, 2.0)
+    r = periodic.path_ramp(a, n)
+    x = np.arange(n + 1) * a / (2.0 * math.pi)
+    want = np.where(x < 1.0, 3.0 * x**2 - 2.0 * x**3, 1.0)
+    n1 = int(np.ceil(2.0 * math.pi / a))
+    assert r[0] == 0.0 and np.all(r[n1 + 1 :] == 1.0)
+    assert np.max(np.abs(r - want)) < 1e-9
+    _, y = periodic.rollout_path(sk, cycles=2.0)
+    _, yr = periodic.rollout_path(sk, cycles=2.0, ramp_in=True)
+    assert np.array_equal(yr[n1 + 1 :], y[n1 + 1 :])
+    v, vr = np.diff(y) / sk.dt_s, np.diff(yr) / sk.dt_s
+    assert abs(vr[0]) < 1e-3 * np.max(np.abs(v)) < abs(v[0])  # the DMP's own path starts moving
+    acc = np.abs(np.diff(yr, 2))
+    assert np.max(acc[:n1]) <= np.max(acc[n1:])
+    # the demand is linear in the path scale, and the refusal names the largest scale within
+    peak = path_peak_N(sk)
+    assert peak == pytest.approx(sk.m_d_kg * np.max(acc) / sk.dt_s**2, rel=1e-12)
+    assert path_peak_N(sk, path_scale=2.0) == pytest.approx(2.0 * peak, rel=1e-9)
+    limit = 0.5 * peak
+    assert path_problem(peak, 1.0, peak) == ""
+    msg = path_problem(peak, 1.0, limit)
+    assert "above the force limit" in msg and "largest path scale 0.5" in msg
