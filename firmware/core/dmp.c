@@ -186,6 +186,7 @@ enum {
     MI_GAINS,     /* alpha, beta, gamma; with the y DMP its scalars finite */
     MI_Y_WEIGHTS, /* the y weights finite */
     MI_Y_GAINS,   /* beta_y in range */
+    MI_TRIG,      /* a periodic model's half-angle sines and cosines (none in a discrete one) */
     MI_FORWARD,   /* kernel_scale and env_hi (prefix max) */
     MI_BACKWARD,  /* env_lo (suffix min), from the last kernel */
     MI_DONE
@@ -274,17 +275,22 @@ static void dmp_init_kernel_periodic(dmp_model_t *m, dmp_init_t *it, uint16_t i)
         }
         break;
     }
-    case MI_FORWARD: {
-        m->kernel_scale[i] = FS_R(2.0) * kappa;
+    case MI_TRIG: /* its own pass: in software float a sine and a cosine cost as much as the
+                   * reach's square root and arcsine */
         m->half_sin[i] = fs_sin(FS_R(0.5) * m->centre[i]);
         m->half_cos[i] = fs_cos(FS_R(0.5) * m->centre[i]);
-        const fs_real_t hi = x + dmp_periodic_reach(kappa);
+        break;
+    case MI_FORWARD: {
+        m->kernel_scale[i] = FS_R(2.0) * kappa;
+        const fs_real_t reach = dmp_periodic_reach(kappa);
+        const fs_real_t hi = x + reach;
         it->run = (i == 0u || hi > it->run) ? hi : it->run;
         m->env_hi[i] = it->run;
+        m->env_lo[i] = x - reach; /* the kernel's own low end, for the backward pass */
         break;
     }
     default: { /* MI_BACKWARD */
-        const fs_real_t lo = x - dmp_periodic_reach(kappa);
+        const fs_real_t lo = m->env_lo[i];
         it->run = (i == m->n_kernels - 1u || lo < it->run) ? lo : it->run;
         m->env_lo[i] = it->run;
         break;
@@ -297,14 +303,14 @@ static bool dmp_init_kernel(dmp_model_t *m, dmp_init_t *it)
 {
     const uint16_t n = m->n_kernels;
     const uint16_t i = (it->stage == MI_BACKWARD) ? (uint16_t)(n - 1u - it->i) : it->i;
-    const fs_real_t r_per_sigma = fs_sqrt(FS_R(2.0) * (fs_real_t)DMP_KERNEL_CUTOFF_EXP) *
-                                  DMP_ENVELOPE_MARGIN;
-    const fs_real_t s = m->width[i];
     if (m->periodic != 0u && it->stage != MI_FINITE && it->stage != MI_Y_WEIGHTS) {
         dmp_init_kernel_periodic(m, it, i);
         it->i++;
         return it->i >= n;
     }
+    const fs_real_t r_per_sigma = fs_sqrt(FS_R(2.0) * (fs_real_t)DMP_KERNEL_CUTOFF_EXP) *
+                                  DMP_ENVELOPE_MARGIN;
+    const fs_real_t s = m->width[i];
     switch (it->stage) {
     case MI_FINITE:
         if (!fs_isfinite(m->centre[i]) || !fs_isfinite(s) || !fs_isfinite(m->weight[i])) {
@@ -323,6 +329,7 @@ static bool dmp_init_kernel(dmp_model_t *m, dmp_init_t *it)
         }
         break;
     }
+    case MI_TRIG: return true;
     case MI_Y_WEIGHTS:
         if (m->has_y == 0u) {
             return true;

@@ -507,7 +507,10 @@ bool skill_parse_run(skill_parser_t *p, uint32_t max_units)
         if (p->stage == SP_CRC) {
             stage_done = parse_crc(p);
         } else if (p->stage == SP_MODEL) {
-            stage_done = dmp_model_init_run(&p->out->dmp, &p->init, SKILL_PARSE_INIT_KERNELS);
+            stage_done = dmp_model_init_run(&p->out->dmp, &p->init,
+                                            (p->kind == SKILL_KIND_PERIODIC)
+                                                ? SKILL_PARSE_INIT_PERIODIC_KERNELS
+                                                : SKILL_PARSE_INIT_KERNELS);
             p->status = stage_done ? p->init.status : FS_OK;
         } else if (p->stage == SP_FINITE || p->stage == SP_WIDTHS || p->stage == SP_CENTRES ||
                    p->stage == SP_DERIVE || p->stage == SP_KERNELS) {

@@ -97,6 +97,11 @@ typedef struct {
 #ifndef SKILL_PARSE_INIT_KERNELS
 #define SKILL_PARSE_INIT_KERNELS 8u /* kernels of a dmp_model_init pass a unit */
 #endif
+#ifndef SKILL_PARSE_INIT_PERIODIC_KERNELS
+/* a periodic model's: its forward pass takes a sine, a cosine, a square root and an arcsine a
+ * kernel */
+#define SKILL_PARSE_INIT_PERIODIC_KERNELS 2u
+#endif
 
 /** Start a parse of buf[0..len) into *out (FS_ERR_NULL_ARG at once for NULL). */
 void skill_parse_begin(skill_parser_t *p, const uint8_t *buf, uint32_t len, skill_t *out);
