@@ -75,13 +75,15 @@ static fs_status_t exec_begin_step(exec_state_t *st, fs_real_t dt_s)
         dmp_state_reset(&st->dmp);
     }
     st->path_ramp = (periodic != 0u && s->skill->dmp.has_y != 0u) ? 1u : 0u;
+    st->path_ramp_out = (st->path_ramp != 0u && s->until_stopped == 0u) ? 1u : 0u;
+    st->path_ramp_inv = dt_s / (s->skill->dmp.duration_s * s->time_scale); /* a turn: 1/ticks */
     st->run.goal_scale = s->goal_scale;
     st->run.time_scale = s->time_scale;
     return FS_OK;
 }
 
-/* The periodic path's ramp-in factor at phase x (turns, [0, 1)): smoothstep, 0 -> 1 over the
- * first turn, its slope 0 at both ends. */
+/* The periodic path's ramp factor at x in [0, 1) (in: the phase in turns over the first turn;
+ * out: the ticks left over a turn's ticks): smoothstep, its slope 0 at both ends. */
 static fs_real_t exec_path_ramp(fs_real_t x)
 {
     return x * x * (FS_R(3.0) - FS_R(2.0) * x);
@@ -99,6 +101,13 @@ static fs_real_t exec_dmp_step(exec_state_t *st, const exec_step_t *s, const dmp
                 st->path_ramp = 0u;
             } else {
                 st->path_m *= exec_path_ramp(st->dmp.u);
+            }
+        }
+        if (st->path_ramp_out != 0u) { /* out over the step's last turn of ticks, to rest */
+            const fs_real_t u = (fs_real_t)(st->step_ticks - st->step_tick - 1u) *
+                                st->path_ramp_inv;
+            if (u < FS_R(1.0)) {
+                st->path_m *= exec_path_ramp(u);
             }
         }
         return f;
@@ -228,6 +237,8 @@ fs_status_t exec_start_begin(const exec_config_t *cfg, exec_state_t *st, const e
     st->y_ref_vel_mps = FS_R(0.0);
     st->start_pending = 1u;
     st->path_ramp = 0u;
+    st->path_ramp_out = 0u;
+    st->path_ramp_inv = FS_R(0.0);
     st->prepared = 0u;
     exec_contact_reset(st);
     return exec_law_reset(cfg, st);
@@ -561,6 +572,8 @@ static fs_status_t exec_prepare_step_q(exec_state_t *st, uint8_t i, fs_real_t dt
     q->ticks = (s->skill->dmp.periodic != 0u && s->until_stopped != 0u)
                    ? EXEC_TICKS_MAX
                    : exec_ticks(exec_step_duration(s), dt_s);
+    q->ramp_inc_q32 = exec_inc_q32((double)dt_s /
+                                   ((double)s->skill->dmp.duration_s * (double)s->time_scale));
     q->contact_wait = (s->skill->contact_threshold_N > FS_R(0.0)) ? 1u : 0u;
     const double gain = dt / ((double)s->skill->contact_tau_s + dt);
     q->contact_gain_q31 = (gain >= 0.0 && gain <= 1.0) ? (uint32_t)floor(ldexp(gain, 31) + 0.5)
@@ -670,6 +683,7 @@ static void exec_begin_step_q(exec_state_t *st)
     st->dmp = st->dmp_start[st->step];
     st->dmp_saturated = 0u;
     st->path_ramp = (m->periodic != 0u && m->has_y != 0u) ? 1u : 0u;
+    st->path_ramp_out = (st->path_ramp != 0u && st->steps[st->step].until_stopped == 0u) ? 1u : 0u;
 }
 
 /* N Q.32 -> Q16.16, saturated. */
@@ -740,12 +754,11 @@ static void exec_contact_wait_q(exec_state_t *st, const exec_step_q_t *sq, int64
     }
 }
 
-/* exec_path_ramp in integers: smoothstep of the phase (u_acc: turns Q.61, [0, 1)), Q1.31. */
-static uint32_t exec_path_ramp_q31(int64_t u_acc)
+/* exec_path_ramp in integers: smoothstep of x in [0, 1) Q.30, Q1.31. */
+static uint32_t exec_path_ramp_q31(int64_t x_q30)
 {
-    const int64_t x = u_acc >> 31; /* Q.30 */
-    const int64_t x2 = fx_rshift_round(x * x, 30u);
-    const int64_t s = fx_rshift_round(x2 * (((int64_t)3 << 30) - 2 * x), 30u);
+    const int64_t x2 = fx_rshift_round(x_q30 * x_q30, 30u);
+    const int64_t s = fx_rshift_round(x2 * (((int64_t)3 << 30) - 2 * x_q30), 30u);
     return (uint32_t)(s * 2);
 }
 
@@ -766,9 +779,16 @@ static int64_t exec_dmp_step_q(exec_state_t *st, uint32_t rate_q31)
         if (st->path_ramp != 0u) {
             if (st->dmp.u_acc < x0) { /* the phase wrapped: the first turn is over */
                 st->path_ramp = 0u;
-            } else {
+            } else { /* the phase: turns Q.61 */
                 st->q.path_q55 = fx_mul64_u32(fx_clamp61(st->q.path_q55),
-                                              exec_path_ramp_q31(st->dmp.u_acc), 31u);
+                                              exec_path_ramp_q31(st->dmp.u_acc >> 31), 31u);
+            }
+        }
+        if (st->path_ramp_out != 0u) { /* out over the step's last turn of ticks, to rest */
+            const uint64_t u = (uint64_t)(st->step_ticks - st->step_tick - 1u) * sq->ramp_inc_q32;
+            if (u < EXEC_Q32_ONE) {
+                st->q.path_q55 = fx_mul64_u32(fx_clamp61(st->q.path_q55),
+                                              exec_path_ramp_q31((int64_t)(u >> 2)), 31u);
             }
         }
     } else {

@@ -162,6 +162,7 @@ typedef struct {
     int64_t contact_threshold_q32;
     fx_scale_t inv_k;          /* 1/k of the skill: N Q.32 -> m Q.48 */
     uint32_t ticks;            /* the step's length at dt (EXEC_TICKS_MAX: until stopped) */
+    uint32_t ramp_inc_q32;     /* dt over a turn's time, rounded up (a y path's ramp-out) */
     uint32_t contact_gain_q31; /* dt/(contact_tau_s + dt) */
     uint8_t y_shift;           /* 23 - s: y_acc (Q.55 in units of 2^s N) -> N Q.32 */
     uint8_t contact_wait;      /* the skill's contact_threshold_N > 0 */
@@ -250,6 +251,8 @@ typedef struct {
     fs_real_t y_ref_vel_mps;  /* yd_d */
     uint8_t start_pending;    /* 1 until the first tick has measured the contact force */
     uint8_t path_ramp;        /* 1 while a periodic y path ramps in (its first turn) */
+    uint8_t path_ramp_out;    /* 1: it ramps out over the step's last turn (a known length) */
+    fs_real_t path_ramp_inv;  /* dt over a turn's time (the float executors' ramp-out) */
     uint8_t prepared;         /* parts exec_start_run derived (fixed build: 3 a step, 4 more) */
     fs_real_t surface_m;      /* the surface the reference is built on */
     /* the running skill's contact wait (skill_t.contact_threshold_N > 0) */

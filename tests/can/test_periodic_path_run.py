@@ -5,7 +5,8 @@ strokes about 5 N, a 5 mm two-harmonic path) is fitted with ``fit --periodic --y
 once its operator has let go: the surface at k = 2000 N/m) and run for 6 cycles at path scale 1 and 1.5 (``run --cycles 6
 --path-scale S``). The device's f_hat (telemetry) is checked against the skill's force rollout
 (``periodic.rollout``) and the measured y against the path rollout as the device ramps it in
-over the first cycle (``periodic.rollout_path(ramp_in=True)``), both the Python reference, and
+over the first cycle and out over the last (``periodic.rollout_path(ramp_in=True,
+ramp_out=True)``), both the Python reference, and
 run's own path tracking figure over every cycle."""
 
 from __future__ import annotations
@@ -95,7 +96,7 @@ def test_periodic_skill_with_y_path_runs_and_follows_its_rollout(server, tmp_pat
         y_max_mm, y_rms_mm = _figure(out, "path tracking:")
         cols = np.genfromtxt(run_csv, delimiter=",", names=True)
         _, f_roll = periodic.rollout(sk, cycles=CYCLES)
-        _, y_roll = periodic.rollout_path(sk, cycles=CYCLES, path_scale=ps, ramp_in=True)
+        _, y_roll = periodic.rollout_path(sk, cycles=CYCLES, path_scale=ps, ramp_in=True, ramp_out=True)
         skip = int(BLEND_S / sk.dt_s)
         e_f, i_f = _aligned(np.asarray(cols["f_hat"]), f_roll[1:], skip, relative=False)
         p_ref = y_roll[1:] - sk.y_start_m

@@ -375,7 +375,9 @@ def run_on_device(
 
         if path_skill.periodic:  # the run's cycles (until stopped: as long as the telemetry)
             n_cyc = cycles if cycles > 0 else total / (path_skill.duration_s * ts)
-            _, y_hat = per.rollout_path(path_skill, cycles=n_cyc, time_scale=ts, path_scale=ps, ramp_in=True)
+            _, y_hat = per.rollout_path(
+                path_skill, cycles=n_cyc, time_scale=ts, path_scale=ps, ramp_in=True, ramp_out=cycles > 0
+            )
         else:
             _, y_hat = rollout_path(path_skill, time_scale=ts, path_scale=ps)
         tick16 = (first_tick + np.arange(measured["t"].size)) & 0xFFFF

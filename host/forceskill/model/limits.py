@@ -9,7 +9,7 @@ command (fit, show, rollout, upload, run) before anything is written or sent.
   default, the device's default ``force_max_N``); a goal scale multiplies the force exactly, so a
   run at goal scale S needs S * peak <= limit (662).
 - Path: the force a y path asks of the law in perfect tracking, m_d*|y_d''| (the law's
-  feed-forward; periodic: ramped in as the executor runs it), at most the force limit: a path
+  feed-forward; periodic: ramped in and out as the executor runs it), at most the force limit: a path
   the axis cannot follow saturates the command and latches FLT_SLEW_LIMIT (662).
 - Stiffness: a skill's nominal stiffness at most the device's stiffness limit (read from the
   device, DID 0x0140), above which its force loop does not track (690); ``fit`` accepts any.
@@ -113,8 +113,8 @@ def check_skill_stiffness(
 
 def path_peak_N(skill: Skill, path_scale: float = 1.0, time_scale: float = 1.0) -> float:
     """m_d * max |y_d''| of the skill's y path at the path and time scales (0 without one, inf when
-    not finite): the force its acceleration alone asks of the law; a periodic path over two
-    cycles as the device runs it (ramped in over the first)."""
+    not finite): the force its acceleration alone asks of the law; a periodic path over three
+    cycles as the device runs it (ramped in over the first, out over the last)."""
     if skill.y_weights is None or path_scale == 0.0:
         return 0.0
     import numpy as np
@@ -122,7 +122,9 @@ def path_peak_N(skill: Skill, path_scale: float = 1.0, time_scale: float = 1.0) 
     if skill.periodic:
         from .periodic import rollout_path as periodic_path
 
-        _, y = periodic_path(skill, cycles=2.0, path_scale=path_scale, time_scale=time_scale, ramp_in=True)
+        _, y = periodic_path(
+            skill, cycles=3.0, path_scale=path_scale, time_scale=time_scale, ramp_in=True, ramp_out=True
+        )
     else:
         from .dmp import rollout_path
 

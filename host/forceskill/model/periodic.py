@@ -140,15 +140,20 @@ def rollout(
     return np.arange(n + 1) * skill.dt_s, f
 
 
-def path_ramp(a: float, n_steps: int) -> np.ndarray:
-    """The executor's ramp-in of a periodic path, r_n for n = 0..n_steps: smoothstep of the phase
-    in turns, x_n = n*a/(2*pi), over the first turn (r = 3x^2 - 2x^3: the path starts at rest
-    where y is), 1 from the first wrap on. The device's y reference is y(start) + r_n*p_n."""
+def path_ramp(a: float, n_steps: int, ramp_out: bool = False) -> np.ndarray:
+    """The executor's ramps of a periodic path, r_n for n = 0..n_steps (the device's y reference
+    is y(start) + r_n*p_n): in, smoothstep of the phase in turns, x_n = n*a/(2*pi), over the
+    first turn (r = 3x^2 - 2x^3: the path starts at rest where y is), 1 from the first wrap on;
+    ramp_out (a run of n_steps ticks, not until stopped), times the smoothstep of the ticks left
+    over a turn's, (n_steps - n)*a/(2*pi), over the last turn: it ends at rest at its start."""
     x = phases(a, n_steps) / TWO_PI
     r: np.ndarray = x * x * (3.0 - 2.0 * x)
     wrapped = np.flatnonzero(np.diff(x) < 0.0)
     if wrapped.size:
         r[wrapped[0] + 1 :] = 1.0
+    if ramp_out:
+        u = np.minimum((n_steps - np.arange(n_steps + 1)) * a / TWO_PI, 1.0)
+        r *= u * u * (3.0 - 2.0 * u)
     return r
 
 
@@ -159,11 +164,12 @@ def rollout_path(
     time_scale: float = 1.0,
     n_steps: int | None = None,
     ramp_in: bool = False,
+    ramp_out: bool = False,
 ) -> tuple[np.ndarray, np.ndarray]:
     """t_n = n*dt and y_hat_n for n = 0..n_steps of a periodic skill's y path (the module
     docstring's literal loop from the stored state on the cycle); a skill without the y path
-    gives y_start. ramp_in: the path as the device runs it, y_start + r_n*(y_hat_n - y_start)
-    (``path_ramp``)."""
+    gives y_start. ramp_in (and ramp_out: a run of these n_steps ticks): the path as the device
+    runs it, y_start + r_n*(y_hat_n - y_start) (``path_ramp``)."""
     from .scales import check_path_scale
 
     check_scales(1.0, time_scale)
@@ -186,7 +192,7 @@ def rollout_path(
     with np.errstate(all="ignore"):
         p = path_scale * skill.goal_y_m + np.asarray(ql)
         if ramp_in:
-            p = p * path_ramp(a, n)
+            p = p * path_ramp(a, n, ramp_out)
         y = skill.y_start_m + p
     return t, y
 

@@ -630,12 +630,14 @@ static void test_periodic_in_sequence(void **state)
     assert_true(worst_jump < 0.05);
 }
 
-/* A periodic skill with the y path ramps its path in over the first turn: the y reference is
- * y(start) + r_n*p_n, r = smoothstep of the phase x_n = n*dt/(2 pi tau) (1 from the first
- * wrap), p_n the Python rollout of the path (periodic_y_n50_ridge_g1_a1_t1_c2_p1.csv, 2 cycles).
- * Without the ramp the path starts at its stroke speed (0.46 m/s here); with it y starts at rest
- * and its largest acceleration over the first turn is no more than on the later ones. */
-static void test_periodic_path_ramped_in(void **state)
+/* A periodic skill with the y path ramps its path in over the first turn and, a step of known
+ * length, out over its last: the y reference is y(start) + r_n*p_n, r the product of the
+ * smoothsteps of the phase x_n = n*dt/(2 pi tau) (1 from the first wrap) and of the ticks left
+ * (N - n)*dt/(2 pi tau) (1 until the last turn), p_n the Python rollout of the path
+ * (periodic_y_n50_ridge_g1_a1_t1_c2_p1.csv, 2 cycles). Without the ramps the path starts at its
+ * stroke speed (0.46 m/s here) and stops from it; with them y starts and ends at rest, at its
+ * start, and its acceleration is nowhere larger than the path's own. */
+static void test_periodic_path_ramped_in_and_out(void **state)
 {
     (void)state;
     static skill_t sk;
@@ -656,6 +658,10 @@ static void test_periodic_path_ramped_in(void **state)
         rows++;
     }
     fclose(fp);
+    double acc_path = 0.0; /* the path's own largest acceleration */
+    for (size_t n = 2; n < rows; n++) {
+        acc_path = fmax(acc_path, fabs(y_hat[n] - 2.0 * y_hat[n - 1u] + y_hat[n - 2u]) / (DT * DT));
+    }
     exec_config_t cfg;
     exec_config_default(&cfg);
     cfg.pfc.gains[0] = sk.gains;
@@ -667,35 +673,39 @@ static void test_periodic_path_ramped_in(void **state)
     m.pos_m[1] = y_start;
     m.force_contact_N = sk.dmp.goal_N + sk.dmp.cycle_e0_N;
     const double turn_ticks = 2.0 * 3.14159265358979323846 * (double)sk.dmp.tau_s / DT;
-    const size_t n1 = (size_t)ceil(turn_ticks);
-    double e_ref = 0.0, ext = 0.0, acc_first = 0.0, acc_later = 0.0;
-    double y_prev = y_start, v_prev = 0.0, v_first = 0.0;
+    const size_t n_end = rows - 1u; /* the step's ticks: 2 cycles */
+    double e_ref = 0.0, ext = 0.0, acc = 0.0;
+    double y_prev = y_start, v_prev = 0.0, v_first = 0.0, v_last = 0.0;
     exec_out_t o;
-    for (size_t n = 1; n < rows; n++) {
+    for (size_t n = 1; n <= n_end; n++) {
         assert_int_equal(exec_tick(&cfg, &st, &m, &o), FS_OK);
         const double x = (double)n / turn_ticks;
-        const double r = (x < 1.0) ? x * x * (3.0 - 2.0 * x) : 1.0;
+        const double u = (double)(n_end - n) / turn_ticks;
+        const double r_in = (x < 1.0) ? x * x * (3.0 - 2.0 * x) : 1.0;
+        const double r_out = (u < 1.0) ? u * u * (3.0 - 2.0 * u) : 1.0;
         const double p = y_hat[n] - (double)sk.dmp.y_start_m;
-        e_ref = fmax(e_ref, fabs((double)o.y_ref_m - (y_start + r * p)));
+        e_ref = fmax(e_ref, fabs((double)o.y_ref_m - (y_start + r_in * r_out * p)));
         ext = fmax(ext, fabs(p));
         const double v = ((double)o.y_ref_m - y_prev) / DT;
-        if (n == 1u) {
-            v_first = v;
-        } else if (n < n1) {
-            acc_first = fmax(acc_first, fabs(v - v_prev) / DT);
-        } else {
-            acc_later = fmax(acc_later, fabs(v - v_prev) / DT);
-        }
+        v_first = (n == 1u) ? v : v_first;
+        v_last = v;
+        acc = (n > 1u) ? fmax(acc, fabs(v - v_prev) / DT) : acc;
         y_prev = (double)o.y_ref_m;
         v_prev = v;
     }
-    printf("periodic path ramped in: reference vs python %.3g m (extent %.4f m), first tick "
-           "%.3g m/s, max acceleration first turn %.3g, later %.3g m/s^2\n",
-           e_ref, ext, v_first, acc_first, acc_later);
+    printf("periodic path ramped in and out: reference vs python %.3g m (extent %.4f m), first / "
+           "last tick %.3g / %.3g m/s, end %.3g m from the start, max acceleration %.3g m/s^2 "
+           "(the path's own %.3g)\n",
+           e_ref, ext, v_first, v_last, (double)o.y_ref_m - y_start, acc, acc_path);
     assert_true(ext > 0.02);
     assert_true(e_ref <= 1e-9 + 1e-6 * ext);
-    assert_true(fabs(v_first) < 1e-4); /* at rest (the path alone: 0.46 m/s) */
-    assert_true(acc_first <= acc_later);
+    assert_true(fabs(v_first) < 1e-4 && fabs(v_last) < 1e-4); /* at rest (the path: 0.46 m/s) */
+    assert_true(fabs((double)o.y_ref_m - y_start) <= 1e-12);
+    assert_true(acc <= acc_path);
+    for (int k = 0; k < 100; k++) { /* the end holds it */
+        assert_int_equal(exec_tick(&cfg, &st, &m, &o), FS_OK);
+        assert_true(fabs((double)o.y_ref_m - y_start) <= 1e-12);
+    }
 }
 
 int main(void)
@@ -719,7 +729,7 @@ int main(void)
         cmocka_unit_test(test_velocity_filter),
         cmocka_unit_test(test_render),
         cmocka_unit_test(test_y_path_tracked),
-        cmocka_unit_test(test_periodic_path_ramped_in),
+        cmocka_unit_test(test_periodic_path_ramped_in_and_out),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

@@ -173,10 +173,11 @@ def test_periodic_y_vectors_regenerate() -> None:
                 assert np.max(np.abs(new[:, col] - old[:, col])) <= 1e-7 * np.max(np.abs(old[:, col]))
 
 
-def test_the_ramp_in_starts_the_path_at_rest_and_leaves_it_after_one_turn(wipe_y_fit):
+def test_the_ramps_start_and_end_the_path_at_rest(wipe_y_fit):
     """``path_ramp``: 0 at the start, smoothstep 3x^2 - 2x^3 of the turns n*a/(2 pi), 1 from the
     first wrap on; the ramped path starts at rest, equals the DMP's from the second cycle on, and
-    asks no more of the axis in its first cycle than later (m_d*|y''|, ``path_peak_N``)."""
+    asks no more of the axis in its first cycle than later (m_d*|y''|, ``path_peak_N``); the
+    ramp-out is its mirror over the last turn."""
     from forceskill.model.limits import path_peak_N, path_problem
 
     sk = wipe_y_fit.skill
@@ -195,6 +196,11 @@ def test_the_ramp_in_starts_the_path_at_rest_and_leaves_it_after_one_turn(wipe_y
     assert abs(vr[0]) < 1e-3 * np.max(np.abs(v)) < abs(v[0])  # the DMP's own path starts moving
     acc = np.abs(np.diff(yr, 2))
     assert np.max(acc[:n1]) <= np.max(acc[n1:])
+    # out over the last turn of a run of n ticks: the mirror image, to rest at its start
+    ro = periodic.path_ramp(a, n, ramp_out=True)
+    u = np.minimum((n - np.arange(n + 1)) * a / (2.0 * math.pi), 1.0)
+    assert np.max(np.abs(ro - r * (3.0 * u**2 - 2.0 * u**3))) < 1e-12
+    assert ro[-1] == 0.0 and np.max(np.abs(ro[::-1][1 : n1 - 1] - r[1 : n1 - 1])) < 1e-6
     # the demand is linear in the path scale, and the refusal names the largest scale within
     peak = path_peak_N(sk)
     assert peak == pytest.approx(sk.m_d_kg * np.max(acc) / sk.dt_s**2, rel=1e-12)
