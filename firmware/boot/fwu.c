@@ -301,14 +301,21 @@ boot_status_t fwu_end_step(fwu_t *f, bool authorised, uint32_t *crc32_out, uint3
     }
     const boot_config_t *cfg = f->boot->cfg;
     if (!f->verifying) {
+        f->verifying = true;
+        f->verify_begun = false;
+        f->verified = false;
+        *done = false;
+        return BOOT_OK; /* the request's call: its tick also took and answered the request */
+    }
+    if (!f->verify_begun) {
         boot_status_t st = flush_tail(f);
         if (st != BOOT_OK) {
+            f->verifying = false;
             return refuse(f, st);
         }
         boot_verify_begin(&f->verify, cfg->app_dev, cfg->slot_addr[f->slot], cfg->slot_size,
                           cfg->target_id, cfg->key, cfg->key_len);
-        f->verifying = true;
-        f->verified = false;
+        f->verify_begun = true;
         *done = false;
         return BOOT_OK; /* the header read and the key set up are this call's slice */
     }
@@ -318,6 +325,7 @@ boot_status_t fwu_end_step(fwu_t *f, bool authorised, uint32_t *crc32_out, uint3
         return BOOT_OK; /* more slices to go, then the wipe's: the slot is not usable yet */
     }
     f->verifying = false;
+    f->verify_begun = false;
     f->verified = false;
     const boot_status_t st = f->verify.status;
     boot_verify_wipe(&f->verify);
@@ -347,6 +355,7 @@ void fwu_abort(fwu_t *f)
     if (f->verifying) {
         boot_verify_wipe(&f->verify);
         f->verifying = false;
+        f->verify_begun = false;
     }
     if (f->phase == FWU_RECEIVING) {
         f->phase = FWU_IDLE;
