@@ -252,7 +252,13 @@ boot_status_t fwu_data_step(fwu_t *f, bool authorised, uint32_t offset, const ui
         return refuse(f, FWU_ERR_SEQUENCE);
     }
     const uint32_t rest = f->block_len - f->block_pos;
-    const uint32_t k = rest < max_bytes ? rest : max_bytes;
+    uint32_t k = rest < max_bytes ? rest : max_bytes;
+    if (!f->header_ok && f->received < BOOT_IMAGE_HEADER_SIZE) {
+        /* a header not yet found good is taken whole (pieces may be shorter): the erase starts
+         * only for a good one, and fwu_data refuses a bad one before anything is programmed */
+        const uint32_t hk = BOOT_IMAGE_HEADER_SIZE - f->received;
+        k = hk <= k ? k : (hk < rest ? hk : rest);
+    }
     /* fwu_data's first checks before anything is erased (its refusals come from it) */
     const boot_status_t es = (authorised && f->phase == FWU_RECEIVING) ? erase_ahead(f, k, done)
                                                                        : BOOT_OK;

@@ -16,8 +16,9 @@ bool fwu_uds_authorised(const uds_server_t *srv);
 uint8_t fwu_uds_download_begin(fwu_t *f, const uds_server_t *srv, uint32_t size);
 
 /* Bytes of a TransferData block programmed and added to the image's CRC-32 per call of
- * fwu_uds_download_data (one call a tick while the block is answered 0x78): 128 bytes, ~1,300
- * instructions on the Cortex-M4F. A port may define another. */
+ * fwu_uds_download_data (one call a tick while the block is answered 0x78): 128 bytes, ~1,100
+ * instructions on the Cortex-M4F (the image's header is taken whole whatever the size). A port
+ * may define another. */
 #ifndef FWU_DATA_BYTES_PER_CALL
 #define FWU_DATA_BYTES_PER_CALL 128u
 #endif
