@@ -148,7 +148,8 @@ struct app {
     uint32_t run_opts_fv;   /* freshness value of the last RUN_OPTIONS ... */
     uint16_t run_opts_time; /* ... its time scale (1/1000) and end policy */
     uint8_t run_opts_end;
-    /* UDS on ISO-TP, one link per tester id (UDS_REQUEST, UDS_REQUEST_2) */
+    /* UDS on ISO-TP, one link per tester id (UDS_REQUEST, UDS_REQUEST_2); the server's answers
+     * are built in the tester's link (isotp_tx_buffer) */
     isotp_link_t tp[APP_TESTERS];
     uint8_t uds_from;      /* the tester of the request served last or pending */
     uint8_t uds_next;      /* the tester asked first next tick (the two take turns) */
@@ -156,7 +157,6 @@ struct app {
     uint8_t uds_owner;     /* tester + 1 that unlocked the session, 0 while locked */
     uint32_t uds_foreign;  /* writes refused because another tester owns the session (558) */
     uds_server_t uds;
-    uint8_t uds_resp[ISOTP_MAX_PAYLOAD];
     uint32_t reset_since_ms; /* ECUReset accepted at (its response leaves first) */
     sec_config_t
         sec_cfg[APP_SEC_LEVELS]; /* [0] level 1 (skills, settings), [1] level 3 (firmware) */

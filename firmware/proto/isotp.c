@@ -357,16 +357,26 @@ void isotp_poll(isotp_link_t *link, uint64_t now_us)
 
 proto_status_t isotp_send(isotp_link_t *link, const uint8_t *data, uint16_t len, uint64_t now_us)
 {
+    const proto_status_t st = isotp_queue(link, data, len);
+    if (st == PROTO_OK) {
+        tx_run(link, now_us);
+    }
+    return st;
+}
+
+proto_status_t isotp_queue(isotp_link_t *link, const uint8_t *data, uint16_t len)
+{
     if (link->tx_state != ISOTP_TX_IDLE) {
         return PROTO_ERR_ISOTP_BUSY;
     }
     if (len == 0u || len > ISOTP_MAX_PAYLOAD) {
         return PROTO_ERR_ISOTP_OVERFLOW;
     }
-    memcpy(link->tx_buf, data, len);
+    if (data != link->tx_buf) {
+        memcpy(link->tx_buf, data, len);
+    }
     link->tx_len = len;
     link->tx_state = ISOTP_TX_SEND_FIRST;
-    tx_run(link, now_us);
     return PROTO_OK;
 }
 
