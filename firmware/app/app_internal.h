@@ -168,6 +168,7 @@ struct app {
     nvm_writer_t sec_writer;            /* its write, APP_SEC_FLASH_UNITS_PER_TICK units a tick */
     bool sec_writing;                   /* sec_writer runs */
     bool sec_dirty;                     /* the record may differ from sec_saved */
+    uint32_t sec_hold_tick;             /* the tick of the last app_sec_persist: no step in it */
     bool sec_key_held;                  /* a sendKey's result waits for the record: */
     uint8_t sec_key_nrc;                /* that result */
     /* the skill store: slot cache, transfer buffer, a download's commit (slots.h) */
@@ -252,18 +253,19 @@ uint8_t app_motion_key_begin(app_t *app, const uint8_t *host_nonce, uint16_t len
 uint8_t app_motion_key_run(app_t *app, uint32_t rounds);
 
 /** Note that the SecurityAccess attempt record may have changed (after every seed/key request):
- *  app_sec_persist_step stores it in the ticks that follow. */
+ *  app_sec_persist_step stores it in the ticks that follow (not this one: the request's or the
+ *  key check's work has it). */
 void app_sec_persist(app_t *app);
 
 /** A tick's share of storing the attempt record: a write in progress goes on, or one starts
  *  when the record differs from the one stored (none while nothing changed). */
 void app_sec_persist_step(app_t *app);
 
-/** True if app_sec_persist_step has work (a record being written or waiting): the tick calls it
- *  only then. */
+/** True if app_sec_persist_step has work (a record being written or waiting) and the tick is not
+ *  one that noted a change: the tick calls it only then. */
 static inline bool app_sec_persist_pending(const app_t *app)
 {
-    return app->sec_writing || app->sec_dirty;
+    return (app->sec_writing || app->sec_dirty) && app->sec_hold_tick != app->tick;
 }
 
 /** True once nothing is left to store: the record as the state is now is stored, or its write

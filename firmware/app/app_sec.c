@@ -21,6 +21,7 @@ const sec_config_t *app_sec_config(const app_t *app, uint8_t level)
 void app_sec_persist(app_t *app)
 {
     app->sec_dirty = app->sec_nvm_ok;
+    app->sec_hold_tick = app->tick; /* one heavy job a tick: the write's first unit next tick */
 }
 
 void app_sec_persist_step(app_t *app)
