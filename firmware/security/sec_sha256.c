@@ -394,12 +394,18 @@ static void job_chunk(sec_hmac_job_t *j, const uint8_t *p, uint32_t len)
 /* The stages: key ^ ipad, message, padding (inner); key ^ opad, inner digest, padding (outer). */
 bool sec_hmac_job_run(sec_hmac_job_t *j, uint32_t rounds, uint8_t out[SEC_SHA256_LEN])
 {
+    const bool sliced = rounds != UINT32_MAX;
+    const uint32_t budget = rounds;
     for (;;) {
         sec_sha256_t *h = j->stage < 3u ? &j->inner : &j->outer;
         j->chunk_off += sec_sha256_feed(h, &j->job, j->chunk + j->chunk_off,
                                         j->chunk_len - j->chunk_off, &rounds);
         if (j->chunk_off < j->chunk_len || j->job.active != 0u) {
             return false; /* the budget is spent */
+        }
+        if (sliced && rounds != budget) {
+            return false; /* a call that compressed leaves the stage's end (a padding, a digest,
+                             the wipes) to the next one */
         }
         switch (j->stage++) { /* each key pad wiped once fed, not all at the end: bounded ticks */
         case 0u:
