@@ -134,6 +134,7 @@ struct app {
     bool motion_job_due;                        /* motion_job starts at the next call */
     uint8_t motion_host_nonce[SECOC_NONCE_LEN]; /* the host nonce of the key being derived */
     bool motion_key_due;                        /* the key is derived, installed next call */
+    bool motion_subkeys_due;                    /* its schedule is set, its subkeys next call */
     bool motion_confirm_due;                    /* the key is set, its confirmation next call */
     bool motion_confirm_half;                   /* its first block is in motion_key */
     uint8_t motion_key[SECOC_KEY_LEN];          /* the derived key until it is installed */

@@ -28,7 +28,19 @@ void secoc_derive_key(const uint8_t *secret, uint32_t secret_len,
 
 void secoc_set_key(secoc_t *s, const uint8_t key[SECOC_KEY_LEN])
 {
-    sec_cmac_init(&s->cmac, key);
+    secoc_set_key_begin(s, key);
+    secoc_set_key_finish(s);
+}
+
+void secoc_set_key_begin(secoc_t *s, const uint8_t key[SECOC_KEY_LEN])
+{
+    s->keyed = false;
+    sec_cmac_init_schedule(&s->cmac, key);
+}
+
+void secoc_set_key_finish(secoc_t *s)
+{
+    sec_cmac_init_subkeys(&s->cmac);
     s->fv[SECOC_CH_COMMAND] = 0u;
     s->fv[SECOC_CH_HEARTBEAT] = 0u;
     s->bad_in_row = 0u;
