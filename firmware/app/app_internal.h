@@ -89,7 +89,8 @@
  * next tick (app_t.held). The host build verifies a frame within the tick that takes it (20);
  * the Cortex-M images take 4 (firmware/ports/mps2/CMakeLists.txt), so a tick with a frame stays
  * within the M4F's 3,000 instructions beside EXECUTE's work (bench/qemu_tick.sh): a genuine frame
- * is acted on in the third tick from its arrival, a forged one refused in the fifth. */
+ * is acted on in the third tick from its arrival, a forged one refused in the sixth (its second
+ * block from the tick after the first's end). */
 #ifndef APP_MAC_ROUNDS_PER_TICK
 #define APP_MAC_ROUNDS_PER_TICK 20u
 #endif

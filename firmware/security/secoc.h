@@ -114,7 +114,8 @@ sec_status_t secoc_verify(secoc_t *s, const can_frame_t *f, secoc_channel_t ch);
 void secoc_verify_begin(secoc_t *s, secoc_job_t *j, const can_frame_t *f, secoc_channel_t ch);
 
 /** Runs at most *rounds AES rounds of the job (*rounds decreases by those run; an encryption
- *  is 10); true once done, j->status then holds secoc_verify's result, counted as it counts. */
+ *  is 10; a budget left short of the replay check's second block runs it from the next call);
+ *  true once done, j->status then holds secoc_verify's result, counted as it counts. */
 bool secoc_verify_run(secoc_t *s, secoc_job_t *j, uint32_t *rounds);
 
 #endif /* SECOC_H */
