@@ -49,8 +49,8 @@
 #endif
 /* ISO-TP frames queued in a tick that verified a frame's MAC (~850 instructions on the M4F) or
  * did the UDS server's work (a request served, a sliced job's step: a read-back block's copy,
- * ~600), at ~130 instructions a frame's encode and queue: the two together within the tick's
- * budget. */
+ * ~250), at ~90 instructions a consecutive frame's encode and queue: the two together within the
+ * tick's budget. The answer's own first frame counts in this share. */
 #ifndef APP_TP_FRAMES_BUSY_TICK
 #define APP_TP_FRAMES_BUSY_TICK 3u
 #endif
@@ -77,8 +77,8 @@
 #define APP_SEC_LEVELS 2u /* SecurityAccess levels 1 and 3, one secret each */
 #define APP_TESTERS 2u    /* UDS tester ids: UDS_REQUEST(_2) -> UDS_RESPONSE(_2) */
 /* SHA-256 rounds per tick of a SecurityAccess key check or a motion key derivation (four
- * compressions of 64 rounds, answered 0x78 first): ~80 instructions a round on both images
- * plus the wipes of a stage change, at most 1,775 a tick with 8 (bench/qemu_mac_cost.sh); 32
+ * compressions of 64 rounds, answered 0x78 first): ~40-65 instructions a round on the M4F, a
+ * stage's end (padding, digest, wipes) in a call of its own after a call that compressed; 33
  * ticks in all. */
 #ifndef APP_SEC_ROUNDS_PER_TICK
 #define APP_SEC_ROUNDS_PER_TICK 8u
