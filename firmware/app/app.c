@@ -416,16 +416,41 @@ static bool foreign_write(const app_t *app, uint8_t t, uint8_t sid)
     }
 }
 
+/* The ISO-TP frame share of a tick that verified a frame's MAC or did the server's work: at most
+ * APP_TP_FRAMES_BUSY_TICK frames (APP_TP_FRAMES_EXEC_BUSY_TICK while a skill runs), the answer's
+ * first frame included (set before it is queued). */
+static void tp_busy_share(app_t *app)
+{
+    const uint32_t busy_frames = (app->state == APP_EXECUTE) ? APP_TP_FRAMES_EXEC_BUSY_TICK
+                                                             : APP_TP_FRAMES_BUSY_TICK;
+    if (app->tp_frames < APP_TP_FRAMES_PER_TICK - busy_frames) {
+        app->tp_frames = APP_TP_FRAMES_PER_TICK - busy_frames;
+    }
+}
+
+/* An answer of n bytes built in link tp's buffer: sent within the tick's busy frame share, or
+ * queued for the next tick's poll when none is left (no frame built only to be refused). */
+static void tp_answer(app_t *app, isotp_link_t *tp, const uint8_t *resp, uint16_t n)
+{
+    tp_busy_share(app);
+    if (app->tp_frames >= APP_TP_FRAMES_PER_TICK) {
+        (void)isotp_queue(tp, resp, n);
+    } else {
+        (void)isotp_send(tp, resp, n, app->now_us);
+    }
+}
+
 /* Serve one request of tester t (its link has one and is free to answer); a foreign write is
  * refused here (0x33, code 558 as the last refusal, counted), the rest goes to the server. */
 static void uds_serve(app_t *app, uint8_t t, const uint8_t *req, uint16_t len)
 {
     isotp_link_t *tp = &app->tp[t];
+    uint8_t *resp = isotp_tx_buffer(tp); /* the link is free: the answer is built in place */
     uint16_t n;
     if (foreign_write(app, t, req[0])) {
-        app->uds_resp[0] = UDS_NEGATIVE_RESPONSE;
-        app->uds_resp[1] = req[0];
-        app->uds_resp[2] = UDS_NRC_SECURITY_ACCESS_DENIED;
+        resp[0] = UDS_NEGATIVE_RESPONSE;
+        resp[1] = req[0];
+        resp[2] = UDS_NRC_SECURITY_ACCESS_DENIED;
         n = 3u;
         app->uds_foreign++;
         app->secoc.last_refusal = (uint16_t)SEC_ERR_SESSION_OWNER;
@@ -433,8 +458,7 @@ static void uds_serve(app_t *app, uint8_t t, const uint8_t *req, uint16_t len)
         if (app->uds.pending_sid == 0u) {
             app->uds_from = t; /* the answer to a pending request goes to its own tester */
         }
-        n = uds_server_handle(&app->uds, req, len, app->uds_resp, (uint16_t)sizeof(app->uds_resp),
-                              app->now_ms);
+        n = uds_server_handle(&app->uds, req, len, resp, ISOTP_MAX_PAYLOAD, app->now_ms);
         app->reset_since_ms = app->now_ms; /* used only if this was an accepted ECUReset */
     }
     if (app->uds.pending_sid == UDS_SID_TRANSFER_DATA && app->tp_held == 0u) {
@@ -443,7 +467,7 @@ static void uds_serve(app_t *app, uint8_t t, const uint8_t *req, uint16_t len)
         isotp_rx_release(tp);
     }
     if (n != 0u) {
-        (void)isotp_send(tp, app->uds_resp, n, app->now_us);
+        tp_answer(app, tp, resp, n);
     }
 }
 
@@ -469,10 +493,10 @@ static bool any_tx_busy(const app_t *app)
 /* The pending request's next slice, its response queued once it completes. */
 static void uds_resume_step(app_t *app, isotp_link_t *own)
 {
-    const uint16_t n = uds_server_resume(&app->uds, app->uds_resp, (uint16_t)sizeof(app->uds_resp),
-                                         app->now_ms);
+    uint8_t *resp = isotp_tx_buffer(own); /* the link is free: the answer is built in place */
+    const uint16_t n = uds_server_resume(&app->uds, resp, ISOTP_MAX_PAYLOAD, app->now_ms);
     if (n != 0u) {
-        (void)isotp_send(own, app->uds_resp, n, app->now_us);
+        tp_answer(app, own, resp, n);
     }
 }
 
@@ -529,12 +553,9 @@ static bool uds_all_idle(const app_t *app)
 static void uds_service_end(app_t *app, bool worked, bool poll)
 {
     /* a tick that verified a frame's MAC leaves the server's work to the next tick; one with
-     * either queues at most APP_TP_FRAMES_BUSY_TICK ISO-TP frames (APP_TP_FRAMES_EXEC_BUSY_TICK
-     * while a skill runs) */
-    const uint32_t busy_frames = (app->state == APP_EXECUTE) ? APP_TP_FRAMES_EXEC_BUSY_TICK
-                                                             : APP_TP_FRAMES_BUSY_TICK;
-    if (worked && app->tp_frames < APP_TP_FRAMES_PER_TICK - busy_frames) {
-        app->tp_frames = APP_TP_FRAMES_PER_TICK - busy_frames;
+     * either queues a busy tick's ISO-TP frames */
+    if (worked) {
+        tp_busy_share(app);
     }
     uds_server_poll(&app->uds, app->now_ms);
     uds_release_held(app);
@@ -546,7 +567,9 @@ static void uds_service_end(app_t *app, bool worked, bool poll)
     } else if (app->uds_owner == 0u) {
         app->uds_owner = (uint8_t)(app->uds_from + 1u); /* the tester whose sendKey unlocked */
     }
-    if (poll) {
+    if (poll && app->tp_frames < APP_TP_FRAMES_PER_TICK) {
+        /* a tick without a frame share left polls nothing: its frames would be built to be
+         * refused (the links' timeouts are checked a tick later) */
         for (unsigned t = 0; t < APP_TESTERS; t++) {
             isotp_poll(&app->tp[t], app->now_us);
         }

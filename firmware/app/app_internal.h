@@ -49,8 +49,8 @@
 #endif
 /* ISO-TP frames queued in a tick that verified a frame's MAC (~850 instructions on the M4F) or
  * did the UDS server's work (a request served, a sliced job's step: a read-back block's copy,
- * ~600), at ~130 instructions a frame's encode and queue: the two together within the tick's
- * budget. */
+ * ~250), at ~90 instructions a consecutive frame's encode and queue: the two together within the
+ * tick's budget. The answer's own first frame counts in this share. */
 #ifndef APP_TP_FRAMES_BUSY_TICK
 #define APP_TP_FRAMES_BUSY_TICK 3u
 #endif
@@ -77,8 +77,8 @@
 #define APP_SEC_LEVELS 2u /* SecurityAccess levels 1 and 3, one secret each */
 #define APP_TESTERS 2u    /* UDS tester ids: UDS_REQUEST(_2) -> UDS_RESPONSE(_2) */
 /* SHA-256 rounds per tick of a SecurityAccess key check or a motion key derivation (four
- * compressions of 64 rounds, answered 0x78 first): ~80 instructions a round on both images
- * plus the wipes of a stage change, at most 1,775 a tick with 8 (bench/qemu_mac_cost.sh); 32
+ * compressions of 64 rounds, answered 0x78 first): ~40-65 instructions a round on the M4F, a
+ * stage's end (padding, digest, wipes) in a call of its own after a call that compressed; 33
  * ticks in all. */
 #ifndef APP_SEC_ROUNDS_PER_TICK
 #define APP_SEC_ROUNDS_PER_TICK 8u
@@ -89,7 +89,8 @@
  * next tick (app_t.held). The host build verifies a frame within the tick that takes it (20);
  * the Cortex-M images take 4 (firmware/ports/mps2/CMakeLists.txt), so a tick with a frame stays
  * within the M4F's 3,000 instructions beside EXECUTE's work (bench/qemu_tick.sh): a genuine frame
- * is acted on in the third tick from its arrival, a forged one refused in the fifth. */
+ * is acted on in the third tick from its arrival, a forged one refused in the sixth (its second
+ * block from the tick after the first's end). */
 #ifndef APP_MAC_ROUNDS_PER_TICK
 #define APP_MAC_ROUNDS_PER_TICK 20u
 #endif
@@ -134,6 +135,7 @@ struct app {
     bool motion_job_due;                        /* motion_job starts at the next call */
     uint8_t motion_host_nonce[SECOC_NONCE_LEN]; /* the host nonce of the key being derived */
     bool motion_key_due;                        /* the key is derived, installed next call */
+    bool motion_subkeys_due;                    /* its schedule is set, its subkeys next call */
     bool motion_confirm_due;                    /* the key is set, its confirmation next call */
     bool motion_confirm_half;                   /* its first block is in motion_key */
     uint8_t motion_key[SECOC_KEY_LEN];          /* the derived key until it is installed */
@@ -148,7 +150,8 @@ struct app {
     uint32_t run_opts_fv;   /* freshness value of the last RUN_OPTIONS ... */
     uint16_t run_opts_time; /* ... its time scale (1/1000) and end policy */
     uint8_t run_opts_end;
-    /* UDS on ISO-TP, one link per tester id (UDS_REQUEST, UDS_REQUEST_2) */
+    /* UDS on ISO-TP, one link per tester id (UDS_REQUEST, UDS_REQUEST_2); the server's answers
+     * are built in the tester's link (isotp_tx_buffer) */
     isotp_link_t tp[APP_TESTERS];
     uint8_t uds_from;      /* the tester of the request served last or pending */
     uint8_t uds_next;      /* the tester asked first next tick (the two take turns) */
@@ -156,7 +159,6 @@ struct app {
     uint8_t uds_owner;     /* tester + 1 that unlocked the session, 0 while locked */
     uint32_t uds_foreign;  /* writes refused because another tester owns the session (558) */
     uds_server_t uds;
-    uint8_t uds_resp[ISOTP_MAX_PAYLOAD];
     uint32_t reset_since_ms; /* ECUReset accepted at (its response leaves first) */
     sec_config_t
         sec_cfg[APP_SEC_LEVELS]; /* [0] level 1 (skills, settings), [1] level 3 (firmware) */
@@ -168,6 +170,7 @@ struct app {
     nvm_writer_t sec_writer;            /* its write, APP_SEC_FLASH_UNITS_PER_TICK units a tick */
     bool sec_writing;                   /* sec_writer runs */
     bool sec_dirty;                     /* the record may differ from sec_saved */
+    uint32_t sec_hold_tick;             /* the tick of the last app_sec_persist: no step in it */
     bool sec_key_held;                  /* a sendKey's result waits for the record: */
     uint8_t sec_key_nrc;                /* that result */
     /* the skill store: slot cache, transfer buffer, a download's commit (slots.h) */
@@ -252,18 +255,19 @@ uint8_t app_motion_key_begin(app_t *app, const uint8_t *host_nonce, uint16_t len
 uint8_t app_motion_key_run(app_t *app, uint32_t rounds);
 
 /** Note that the SecurityAccess attempt record may have changed (after every seed/key request):
- *  app_sec_persist_step stores it in the ticks that follow. */
+ *  app_sec_persist_step stores it in the ticks that follow (not this one: the request's or the
+ *  key check's work has it). */
 void app_sec_persist(app_t *app);
 
 /** A tick's share of storing the attempt record: a write in progress goes on, or one starts
  *  when the record differs from the one stored (none while nothing changed). */
 void app_sec_persist_step(app_t *app);
 
-/** True if app_sec_persist_step has work (a record being written or waiting): the tick calls it
- *  only then. */
+/** True if app_sec_persist_step has work (a record being written or waiting) and the tick is not
+ *  one that noted a change: the tick calls it only then. */
 static inline bool app_sec_persist_pending(const app_t *app)
 {
-    return app->sec_writing || app->sec_dirty;
+    return (app->sec_writing || app->sec_dirty) && app->sec_hold_tick != app->tick;
 }
 
 /** True once nothing is left to store: the record as the state is now is stored, or its write

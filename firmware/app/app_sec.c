@@ -21,6 +21,7 @@ const sec_config_t *app_sec_config(const app_t *app, uint8_t level)
 void app_sec_persist(app_t *app)
 {
     app->sec_dirty = app->sec_nvm_ok;
+    app->sec_hold_tick = app->tick; /* one heavy job a tick: the write's first unit next tick */
 }
 
 void app_sec_persist_step(app_t *app)
@@ -108,6 +109,7 @@ uint8_t app_motion_key_begin(app_t *app, const uint8_t *host_nonce, uint16_t len
     secoc_forget(&app->secoc);  /* the old session ends now */
     app->motion_confirm = 0u;
     app->motion_key_due = false;
+    app->motion_subkeys_due = false;
     app->motion_confirm_due = false;
     app->motion_confirm_half = false;
     memcpy(app->secoc_dev_nonce, dev_nonce, SECOC_NONCE_LEN);
@@ -154,8 +156,14 @@ uint8_t app_motion_key_run(app_t *app, uint32_t rounds)
     }
     if (app->motion_key_due) {
         app->motion_key_due = false;
-        secoc_set_key(&app->secoc, app->motion_key);
+        secoc_set_key_begin(&app->secoc, app->motion_key);
         sec_wipe(app->motion_key, sizeof app->motion_key);
+        app->motion_subkeys_due = true;
+        return UDS_NRC_RESPONSE_PENDING;
+    }
+    if (app->motion_subkeys_due) {
+        app->motion_subkeys_due = false;
+        secoc_set_key_finish(&app->secoc);
         app->motion_confirm_due = true;
         return UDS_NRC_RESPONSE_PENDING;
     }

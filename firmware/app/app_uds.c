@@ -540,7 +540,8 @@ static uint8_t security_key(void *ctx, uint8_t level, const uint8_t *key, uint16
         return UDS_NRC_SUBFUNCTION_NOT_SUPPORTED;
     }
     /* answered 0x78, the key's HMAC checked in slices (resume); the attempt counts as wrong
-     * until then, stored now: the wrong-key counter survives reset and power-up */
+     * until then, stored before the check runs: the wrong-key counter survives reset and
+     * power-up */
     const uint8_t nrc = (uint8_t)sec_send_key_begin(cfg, &app->sec, key, len);
     app_sec_persist(app);
     app->sec_key_held =
@@ -566,6 +567,10 @@ static uint8_t resume(void *ctx, uint8_t sid, uint16_t arg)
         return UDS_NRC_CONDITIONS_NOT_CORRECT;
     }
     if (!app->sec_key_held) {
+        if (!app_sec_persisted(app)) {
+            return UDS_NRC_RESPONSE_PENDING; /* the attempt stored first, then its check: the
+                                                record's write and the HMAC never share a tick */
+        }
         const uint8_t nrc = (uint8_t)sec_send_key_run(cfg, &app->sec, app->now_ms,
                                                       APP_SEC_ROUNDS_PER_TICK);
         if (nrc == UDS_NRC_RESPONSE_PENDING) {

@@ -252,7 +252,13 @@ boot_status_t fwu_data_step(fwu_t *f, bool authorised, uint32_t offset, const ui
         return refuse(f, FWU_ERR_SEQUENCE);
     }
     const uint32_t rest = f->block_len - f->block_pos;
-    const uint32_t k = rest < max_bytes ? rest : max_bytes;
+    uint32_t k = rest < max_bytes ? rest : max_bytes;
+    if (!f->header_ok && f->received < BOOT_IMAGE_HEADER_SIZE) {
+        /* a header not yet found good is taken whole (pieces may be shorter): the erase starts
+         * only for a good one, and fwu_data refuses a bad one before anything is programmed */
+        const uint32_t hk = BOOT_IMAGE_HEADER_SIZE - f->received;
+        k = hk <= k ? k : (hk < rest ? hk : rest);
+    }
     /* fwu_data's first checks before anything is erased (its refusals come from it) */
     const boot_status_t es = (authorised && f->phase == FWU_RECEIVING) ? erase_ahead(f, k, done)
                                                                        : BOOT_OK;
@@ -301,14 +307,21 @@ boot_status_t fwu_end_step(fwu_t *f, bool authorised, uint32_t *crc32_out, uint3
     }
     const boot_config_t *cfg = f->boot->cfg;
     if (!f->verifying) {
+        f->verifying = true;
+        f->verify_begun = false;
+        f->verified = false;
+        *done = false;
+        return BOOT_OK; /* the request's call: its tick also took and answered the request */
+    }
+    if (!f->verify_begun) {
         boot_status_t st = flush_tail(f);
         if (st != BOOT_OK) {
+            f->verifying = false;
             return refuse(f, st);
         }
         boot_verify_begin(&f->verify, cfg->app_dev, cfg->slot_addr[f->slot], cfg->slot_size,
                           cfg->target_id, cfg->key, cfg->key_len);
-        f->verifying = true;
-        f->verified = false;
+        f->verify_begun = true;
         *done = false;
         return BOOT_OK; /* the header read and the key set up are this call's slice */
     }
@@ -318,6 +331,7 @@ boot_status_t fwu_end_step(fwu_t *f, bool authorised, uint32_t *crc32_out, uint3
         return BOOT_OK; /* more slices to go, then the wipe's: the slot is not usable yet */
     }
     f->verifying = false;
+    f->verify_begun = false;
     f->verified = false;
     const boot_status_t st = f->verify.status;
     boot_verify_wipe(&f->verify);
@@ -347,6 +361,7 @@ void fwu_abort(fwu_t *f)
     if (f->verifying) {
         boot_verify_wipe(&f->verify);
         f->verifying = false;
+        f->verify_begun = false;
     }
     if (f->phase == FWU_RECEIVING) {
         f->phase = FWU_IDLE;

@@ -48,6 +48,7 @@ typedef struct {
     uint32_t image_version; /* fw_version of the received image, 0 before its header */
     boot_status_t last;     /* last refusal, 0 if none */
     bool verifying;         /* fwu_end_step: the image's verification runs in slices */
+    bool verify_begun;      /* its flush and set-up done (a call after the request's own) */
     bool verified;          /* its rounds done: the state's wipe and the verdict next */
     boot_verify_t verify;
     bool block_busy;    /* fwu_data_step: a TransferData block is taken in slices */
@@ -83,10 +84,11 @@ boot_status_t fwu_data_step(fwu_t *f, bool authorised, uint32_t offset, const ui
  *  on the bytes read back from flash. *crc32_out (may be NULL) = CRC-32 of the image. */
 boot_status_t fwu_end(fwu_t *f, bool authorised, uint32_t *crc32_out);
 
-/** RequestTransferExit in slices: the first call flushes and starts the verification (no round
- *  yet), each later call runs at most rounds SHA-256 compression rounds of it, the last one its
- *  state's wipe and the verdict; *done false while it goes on (the
- *  image is neither received nor markable meanwhile), then fwu_end's result. */
+/** RequestTransferExit in slices: the first call only checks (the request's own), the second
+ *  flushes and starts the verification (the header read and checked, no round yet), each later
+ *  call runs at most rounds SHA-256 compression rounds of it, the last one its state's wipe and
+ *  the verdict; *done false while it goes on (the image is neither received nor markable
+ *  meanwhile), then fwu_end's result. */
 boot_status_t fwu_end_step(fwu_t *f, bool authorised, uint32_t *crc32_out, uint32_t rounds,
                            bool *done);
 

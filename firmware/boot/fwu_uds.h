@@ -16,8 +16,9 @@ bool fwu_uds_authorised(const uds_server_t *srv);
 uint8_t fwu_uds_download_begin(fwu_t *f, const uds_server_t *srv, uint32_t size);
 
 /* Bytes of a TransferData block programmed and added to the image's CRC-32 per call of
- * fwu_uds_download_data (one call a tick while the block is answered 0x78): 128 bytes, ~1,300
- * instructions on the Cortex-M4F. A port may define another. */
+ * fwu_uds_download_data (one call a tick while the block is answered 0x78): 128 bytes, ~1,100
+ * instructions on the Cortex-M4F (the image's header is taken whole whatever the size). A port
+ * may define another. */
 #ifndef FWU_DATA_BYTES_PER_CALL
 #define FWU_DATA_BYTES_PER_CALL 128u
 #endif
@@ -28,8 +29,8 @@ uint8_t fwu_uds_download_data(fwu_t *f, const uds_server_t *srv, uint32_t offset
                               const uint8_t *data, uint16_t len);
 
 /* SHA-256 compression rounds of the image's verification per call of fwu_uds_download_end (one
- * call a tick while the transfer exit is answered 0x78): 16 rounds, a quarter block, ~1,000
- * instructions on the Cortex-M images (docs/cortex-m.md). A port may define more. */
+ * call a tick while the transfer exit is answered 0x78): 16 rounds, a quarter block, at most ~870
+ * instructions on the Cortex-M4F (docs/cortex-m.md). A port may define more. */
 #ifndef FWU_VERIFY_ROUNDS_PER_CALL
 #define FWU_VERIFY_ROUNDS_PER_CALL 16u
 #endif

@@ -99,8 +99,20 @@ void isotp_on_frame(isotp_link_t *link, const can_frame_t *frame, uint64_t now_u
 /** Advance timers and transmit what is due (CFs after STmin, pending FC). Call every tick. */
 void isotp_poll(isotp_link_t *link, uint64_t now_us);
 
-/** Start sending len (1..ISOTP_MAX_PAYLOAD) bytes; PROTO_ERR_ISOTP_BUSY while one is in flight. */
+/** Start sending len (1..ISOTP_MAX_PAYLOAD) bytes (copied, unless data is isotp_tx_buffer's);
+ *  PROTO_ERR_ISOTP_BUSY while one is in flight. */
 proto_status_t isotp_send(isotp_link_t *link, const uint8_t *data, uint16_t len, uint64_t now_us);
+
+/** As isotp_send, but nothing leaves now: the first frame goes at the next isotp_poll (a caller
+ *  whose frame share of this moment is used up, so no frame is built to be refused). */
+proto_status_t isotp_queue(isotp_link_t *link, const uint8_t *data, uint16_t len);
+
+/** The link's transmit buffer (ISOTP_MAX_PAYLOAD bytes): a message may be built in it while no
+ *  transmission is in progress, and isotp_send of it then copies nothing. */
+static inline uint8_t *isotp_tx_buffer(isotp_link_t *link)
+{
+    return link->tx_buf;
+}
 
 /** True while a transmission is in progress. */
 bool isotp_tx_busy(const isotp_link_t *link);

@@ -210,8 +210,18 @@ static void dbl(const uint8_t in[SEC_AES_BLOCK], uint8_t out[SEC_AES_BLOCK])
 
 void sec_cmac_init(sec_cmac_t *c, const uint8_t key[SEC_AES128_KEY_LEN])
 {
-    uint8_t l[SEC_AES_BLOCK];
+    sec_cmac_init_schedule(c, key);
+    sec_cmac_init_subkeys(c);
+}
+
+void sec_cmac_init_schedule(sec_cmac_t *c, const uint8_t key[SEC_AES128_KEY_LEN])
+{
     sec_aes128_init(&c->aes, key);
+}
+
+void sec_cmac_init_subkeys(sec_cmac_t *c)
+{
+    uint8_t l[SEC_AES_BLOCK];
     memset(l, 0, sizeof l);
     sec_aes128_encrypt(&c->aes, l, l);
     dbl(l, c->k1);

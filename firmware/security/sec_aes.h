@@ -50,6 +50,13 @@ bool sec_aes128_job_run(sec_aes128_job_t *j, const sec_aes128_t *a, uint32_t *ro
 /** The CMAC key of key: its schedule and subkeys (one block encryption). */
 void sec_cmac_init(sec_cmac_t *c, const uint8_t key[SEC_AES128_KEY_LEN]);
 
+/** sec_cmac_init's first half: the key's schedule only (about one block encryption's work). */
+void sec_cmac_init_schedule(sec_cmac_t *c, const uint8_t key[SEC_AES128_KEY_LEN]);
+
+/** sec_cmac_init's second half, after sec_cmac_init_schedule: the subkeys K1, K2 (one block
+ *  encryption). */
+void sec_cmac_init_subkeys(sec_cmac_t *c);
+
 /** AES-CMAC of len bytes (any length, 0 too) into out[16]; ceil(len / 16) encryptions, one for
  *  len <= 16. */
 /** The block a CMAC of a message of len <= SEC_AES_BLOCK bytes encrypts last (msg padded,

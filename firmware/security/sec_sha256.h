@@ -95,7 +95,7 @@ typedef struct {
 bool sec_hmac_job_begin(sec_hmac_job_t *j, const uint8_t *key, uint32_t key_len, const uint8_t *msg,
                         uint32_t len);
 
-/** Up to rounds more compression rounds (4 x 64 in all, ~75 instructions each on a Cortex-M4);
+/** Up to rounds more compression rounds (4 x 64 in all, ~40-55 instructions each on a Cortex-M4);
  *  true once out[32] holds the MAC (key pads and digests wiped as they are used). */
 bool sec_hmac_job_run(sec_hmac_job_t *j, uint32_t rounds, uint8_t out[SEC_SHA256_LEN]);
 

@@ -28,7 +28,19 @@ void secoc_derive_key(const uint8_t *secret, uint32_t secret_len,
 
 void secoc_set_key(secoc_t *s, const uint8_t key[SECOC_KEY_LEN])
 {
-    sec_cmac_init(&s->cmac, key);
+    secoc_set_key_begin(s, key);
+    secoc_set_key_finish(s);
+}
+
+void secoc_set_key_begin(secoc_t *s, const uint8_t key[SECOC_KEY_LEN])
+{
+    s->keyed = false;
+    sec_cmac_init_schedule(&s->cmac, key);
+}
+
+void secoc_set_key_finish(secoc_t *s)
+{
+    sec_cmac_init_subkeys(&s->cmac);
     s->fv[SECOC_CH_COMMAND] = 0u;
     s->fv[SECOC_CH_HEARTBEAT] = 0u;
     s->bad_in_row = 0u;
@@ -177,6 +189,10 @@ bool secoc_verify_run(secoc_t *s, secoc_job_t *j, uint32_t *rounds)
             job_end(j, SEC_OK);
         } else if (j->phase == 1u && j->fv >= SECOC_FV_WINDOW) {
             job_mac_begin(s, j, j->fv - SECOC_FV_WINDOW, 2u); /* a genuine frame already used? */
+            if (*rounds < 10u) {
+                return false; /* a budget short of the block: its rounds from the next call (a
+                                 block's end, a comparison and a block's start are this one's) */
+            }
         } else if (match) {
             job_end(j, refuse(s, SEC_ERR_REPLAY, &s->replayed));
         } else {

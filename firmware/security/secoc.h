@@ -78,6 +78,13 @@ void secoc_start_session(secoc_t *s, const uint8_t *secret, uint32_t secret_len,
 /** Use key from now on: both freshness values restart at 0; counters kept. */
 void secoc_set_key(secoc_t *s, const uint8_t key[SECOC_KEY_LEN]);
 
+/** secoc_set_key in two calls, each about one block encryption's work: the key's schedule (no
+ *  key in use until the second call) ... */
+void secoc_set_key_begin(secoc_t *s, const uint8_t key[SECOC_KEY_LEN]);
+
+/** ... then its subkeys, the freshness values' restart, and the key in use. */
+void secoc_set_key_finish(secoc_t *s);
+
 /** Discard the key (frames are refused with SEC_ERR_NO_KEY until a new one is set). */
 void secoc_forget(secoc_t *s);
 
@@ -107,7 +114,8 @@ sec_status_t secoc_verify(secoc_t *s, const can_frame_t *f, secoc_channel_t ch);
 void secoc_verify_begin(secoc_t *s, secoc_job_t *j, const can_frame_t *f, secoc_channel_t ch);
 
 /** Runs at most *rounds AES rounds of the job (*rounds decreases by those run; an encryption
- *  is 10); true once done, j->status then holds secoc_verify's result, counted as it counts. */
+ *  is 10; a budget left short of the replay check's second block runs it from the next call);
+ *  true once done, j->status then holds secoc_verify's result, counted as it counts. */
 bool secoc_verify_run(secoc_t *s, secoc_job_t *j, uint32_t *rounds);
 
 #endif /* SECOC_H */

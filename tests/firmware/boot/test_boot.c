@@ -353,9 +353,11 @@ static void test_data_in_slices_same_as_whole_blocks(void **state)
 static fls_dev_t g_bg_raw;
 static int g_bg_pending = -1, g_bg_polls;
 static uint32_t g_bg_erases;
+static uint32_t g_bg_call, g_bg_started_in, g_bg_sync; /* erases begun and ended in one call */
 
 static int bg_erase(void *ctx, uint32_t sector)
 {
+    g_bg_started_in = g_bg_call;
     (void)ctx;
     assert_int_equal(g_bg_pending, -1);
     g_bg_pending = (int)sector;
@@ -375,6 +377,7 @@ static int bg_busy(void *ctx)
     }
     const int r = g_bg_raw.erase(g_bg_raw.ctx, (uint32_t)g_bg_pending);
     g_bg_pending = -1;
+    g_bg_sync += g_bg_started_in == g_bg_call ? 1u : 0u;
     return r != 0 ? -1 : 0;
 }
 
@@ -452,6 +455,55 @@ static void test_data_in_slices_background_erase(void **state)
     bool done = false;
     assert_int_equal(fwu_data_step(&D.fwu, true, 0u, IMG2, 300u, 128u, &done), BOOT_OK);
     assert_int_equal(fwu_data_step(&D.fwu, true, 0u, NULL, 300u, 128u, &done), BOOT_ERR_TARGET);
+    assert_true(done);
+    assert_int_equal(g_bg_erases, erases);
+    assert_int_equal(D.app_dev.read(D.app_dev.ctx, D.cfg.slot_addr[D.fwu.slot], sliced, SECTOR), 0);
+    assert_memory_equal(sliced, whole, SECTOR);
+}
+
+/* Pieces shorter than the image's header (fwu_uds.h FWU_DATA_BYTES_PER_CALL on a port): the
+ * header is taken whole, so with a first block that holds it no erase starts and ends inside one
+ * call (none waits for a sector), the slot and CRC-32 are those of whole blocks, and a refused
+ * header erases nothing. */
+static void test_data_in_short_pieces(void **state)
+{
+    (void)state;
+    static uint8_t whole[IMG_MAX], sliced[IMG_MAX];
+    uint8_t slot = 0u;
+    uint32_t crc_whole = 0u;
+    const uint32_t len = whole_download(whole, &slot, &crc_whole);
+    background_erase(&D);
+    g_bg_sync = 0u;
+    assert_int_equal(fwu_begin(&D.fwu, true, len), BOOT_OK);
+    static const uint32_t blocks[] = {300u, 1021u, 7u, 4093u, 333u};
+    uint32_t off = 0u, k = 0u;
+    while (off < len) {
+        uint32_t n = blocks[k++ % 5u];
+        n = n > len - off ? len - off : n;
+        bool done = false;
+        g_bg_call++;
+        assert_int_equal(fwu_data_step(&D.fwu, true, off, IMG + off, n, 48u, &done), BOOT_OK);
+        while (!done) {
+            g_bg_call++;
+            assert_int_equal(fwu_data_step(&D.fwu, true, off, NULL, n, 48u, &done), BOOT_OK);
+        }
+        off += n;
+    }
+    assert_int_equal(g_bg_erases, (len + SECTOR - 1u) / SECTOR);
+    assert_int_equal(g_bg_sync, 0u);
+    assert_int_equal(fwu_end(&D.fwu, true, NULL), BOOT_OK);
+    assert_int_equal(D.fwu.crc32, crc_whole);
+    assert_int_equal(D.app_dev.read(D.app_dev.ctx, D.cfg.slot_addr[slot], sliced, len), 0);
+    assert_memory_equal(sliced, whole, len);
+    fwu_abort(&D.fwu);
+    const uint32_t len2 = make_image(
+        &(img_spec_t){BOOT_VERSION(1, 2, 0), BOOT_TARGET_HOST + 1u, 600u, 1, 1, 1, 1, DEV_KEY},
+        IMG2);
+    assert_int_equal(fwu_begin(&D.fwu, true, len2), BOOT_OK);
+    const uint32_t erases = g_bg_erases;
+    bool done = false;
+    assert_int_equal(fwu_data_step(&D.fwu, true, 0u, IMG2, 300u, 48u, &done), BOOT_OK);
+    assert_int_equal(fwu_data_step(&D.fwu, true, 0u, NULL, 300u, 48u, &done), BOOT_ERR_TARGET);
     assert_true(done);
     assert_int_equal(g_bg_erases, erases);
     assert_int_equal(D.app_dev.read(D.app_dev.ctx, D.cfg.slot_addr[D.fwu.slot], sliced, SECTOR), 0);
@@ -965,6 +1017,7 @@ int main(void)
         cmocka_unit_test(test_golden_image_verified_in_slices),
         cmocka_unit_test(test_data_in_slices_same_as_whole_blocks),
         cmocka_unit_test(test_data_in_slices_background_erase),
+        cmocka_unit_test(test_data_in_short_pieces),
         cmocka_unit_test(test_header_refusals),
         cmocka_unit_test(test_state_record_round_trip),
         cmocka_unit_test(test_full_update_and_confirm),

@@ -155,7 +155,8 @@ static void test_key_discarded_after_64_wrong_macs(void **state)
 
 /* One frame through secoc_verify on a and through the sliced job at k rounds a call on b: the
  * same status, the same receiver state after it, and the calls the rounds need (10 an
- * encryption: one for an accepted frame, two for one that fails after its freshness window). */
+ * encryption: one for an accepted frame, two for one that fails after its freshness window, the
+ * second from the call after the first's end when the budget left is short of it). */
 static sec_status_t verify_both(secoc_t *a, secoc_t *b, const can_frame_t *f, secoc_channel_t ch,
                                 uint32_t k, uint32_t *calls)
 {
@@ -202,7 +203,8 @@ static void test_sliced_verification_is_secoc_verify(void **state)
         secoc_set_key(&tx, KEY);
         secoc_set_key(&a, KEY);
         secoc_set_key(&b, KEY);
-        const uint32_t one = (10u + k - 1u) / k, two = (20u + k - 1u) / k;
+        /* the second block from a call of its own, the budget being short of it */
+        const uint32_t one = (10u + k - 1u) / k, two = 2u * one;
         for (int i = 0; i < 300; i++) { /* past the first window: replays are recognised */
             (void)secoc_protect(&tx, &f, SECOC_CH_HEARTBEAT);
             assert_int_equal(verify_both(&a, &b, &f, SECOC_CH_HEARTBEAT, k, &calls), SEC_OK);
