@@ -524,20 +524,23 @@ static bool uds_all_idle(const app_t *app)
            isotp_idle(&app->tp[0]) && isotp_idle(&app->tp[1]);
 }
 
-/* The end of the server's tick: the ISO-TP frame share of a tick that worked, the session
- * timeout and its owner, then (poll) the links' timers and transmissions. */
-static void uds_service_end(app_t *app, bool worked, bool poll)
+/* A tick that worked (a MAC verified, a request served or a slice) queues at most
+ * APP_TP_FRAMES_BUSY_TICK ISO-TP frames (APP_TP_FRAMES_EXEC_BUSY_TICK while a skill runs). */
+static void uds_busy_frames(app_t *app)
 {
-    /* a tick that verified a frame's MAC leaves the server's work to the next tick; one with
-     * either queues at most APP_TP_FRAMES_BUSY_TICK ISO-TP frames (APP_TP_FRAMES_EXEC_BUSY_TICK
-     * while a skill runs) */
     const uint32_t busy_frames = (app->state == APP_EXECUTE) ? APP_TP_FRAMES_EXEC_BUSY_TICK
                                                              : APP_TP_FRAMES_BUSY_TICK;
-    if (worked && app->tp_frames < APP_TP_FRAMES_PER_TICK - busy_frames) {
+    if (app->tp_frames < APP_TP_FRAMES_PER_TICK - busy_frames) {
         app->tp_frames = APP_TP_FRAMES_PER_TICK - busy_frames;
     }
-    uds_server_poll(&app->uds, app->now_ms);
-    uds_release_held(app);
+}
+
+/* The session's share of every tick: its timeout, then its owner (the server may have locked). */
+static inline void uds_session_step(app_t *app)
+{
+    if (uds_server_poll_due(&app->uds, app->now_ms)) {
+        uds_server_poll(&app->uds, app->now_ms);
+    }
     if (app->uds.unlocked_level == 0u) {
         app->uds_owner = 0u;
         if (sec_is_unlocked(&app->sec)) {
@@ -546,11 +549,6 @@ static void uds_service_end(app_t *app, bool worked, bool poll)
     } else if (app->uds_owner == 0u) {
         app->uds_owner = (uint8_t)(app->uds_from + 1u); /* the tester whose sendKey unlocked */
     }
-    if (poll) {
-        for (unsigned t = 0; t < APP_TESTERS; t++) {
-            isotp_poll(&app->tp[t], app->now_us);
-        }
-    }
 }
 
 /* One UDS request a tick, from either tester in turn; the session belongs to the tester that
@@ -558,10 +556,13 @@ static void uds_service_end(app_t *app, bool worked, bool poll)
 static void uds_service(app_t *app)
 {
     if (uds_all_idle(app)) {
-        if (!app->mac_ran) {
+        /* nothing held to release, no link to poll: the frame share and the session alone */
+        if (app->mac_ran) {
+            uds_busy_frames(app);
+        } else {
             app->uds_request_turn = false; /* as uds_work when nothing waits */
         }
-        uds_service_end(app, app->mac_ran, false);
+        uds_session_step(app);
         return;
     }
     uds_release_held(app);
@@ -578,8 +579,15 @@ static void uds_service(app_t *app)
         }
         return;
     }
-    const bool worked = app->mac_ran || uds_work(app);
-    uds_service_end(app, worked, true);
+    if (app->mac_ran || uds_work(app)) {
+        uds_busy_frames(app);
+    }
+    /* the session, the held buffer given back, then the links' timers and frames */
+    uds_session_step(app);
+    uds_release_held(app);
+    for (unsigned t = 0; t < APP_TESTERS; t++) {
+        isotp_poll(&app->tp[t], app->now_us);
+    }
 }
 
 /* ---------------------------------------------------------------- init and tick */
