@@ -48,7 +48,7 @@ fs_real_t app_stiffness_max_default_Npm(uint8_t render_carriage)
 /* Queue a frame; bulk frames (telemetry, UDS) leave APP_TX_RESERVE places for safety frames. */
 static bool app_send(app_t *app, const can_frame_t *f, bool bulk)
 {
-    if ((bulk && hal_can_tx_free() <= APP_TX_RESERVE) || !hal_can_send(f)) {
+    if (!(bulk ? hal_can_send_bulk(f, APP_TX_RESERVE) : hal_can_send(f))) {
         app->tx_dropped++;
         return false;
     }
@@ -58,8 +58,7 @@ static bool app_send(app_t *app, const can_frame_t *f, bool bulk)
 static bool tp_send(void *ctx, const can_frame_t *f)
 {
     app_t *app = ctx;
-    if (app->tp_frames >= APP_TP_FRAMES_PER_TICK || hal_can_tx_free() <= APP_TX_RESERVE ||
-        !hal_can_send(f)) {
+    if (app->tp_frames >= APP_TP_FRAMES_PER_TICK || !hal_can_send_bulk(f, APP_TX_RESERVE)) {
         return false; /* refused: ISO-TP retries */
     }
     app->tp_frames++;

@@ -34,6 +34,10 @@ bool hal_can_send(const can_frame_t *frame);
  *  UINT32_MAX if the port cannot tell. */
 uint32_t hal_can_tx_free(void);
 
+/** hal_can_send of a bulk frame: queued only while more than keep places are free (the rest
+ *  stay for urgent frames); false if not queued. One call for both tests. */
+bool hal_can_send_bulk(const can_frame_t *frame, uint32_t keep);
+
 /** Take the next received frame; false if none. Frames arrive in bus order. */
 bool hal_can_receive(can_frame_t *frame);
 

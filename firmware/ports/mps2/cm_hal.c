@@ -231,7 +231,8 @@ uint32_t cm_port_skipped(void)
 
 /* ---- CAN over SLCAN ---- */
 
-bool hal_can_send(const can_frame_t *frame)
+/* hal_can_send with at most limit frames already queued (hal_can_send: CM_PORT_TX_QUEUE - 1). */
+static inline bool can_send_within(const can_frame_t *frame, uint32_t limit)
 {
     if (frame->id > CAN_STD_ID_MASK || frame->len > CAN_CLASSIC_MAX_LEN ||
         (frame->flags & CAN_FRAME_FD) != 0u) {
@@ -240,17 +241,31 @@ bool hal_can_send(const can_frame_t *frame)
     if (!g_slcan.open) {
         return true; /* no adapter listening: the frame is lost */
     }
-    if (g_tx_head - g_tx_tail >= CM_PORT_TX_QUEUE) {
+    const uint32_t head = g_tx_head;
+    if (head - g_tx_tail > limit) {
         return false;
     }
-    g_tx[g_tx_head % CM_PORT_TX_QUEUE] = *frame;
-    g_tx_head++;
+    g_tx[head % CM_PORT_TX_QUEUE] = *frame;
+    g_tx_head = head + 1u;
     return true;
+}
+
+bool hal_can_send(const can_frame_t *frame)
+{
+    return can_send_within(frame, CM_PORT_TX_QUEUE - 1u);
 }
 
 uint32_t hal_can_tx_free(void)
 {
     return CM_PORT_TX_QUEUE - (g_tx_head - g_tx_tail);
+}
+
+bool hal_can_send_bulk(const can_frame_t *frame, uint32_t keep)
+{
+    if (hal_can_tx_free() <= keep) {
+        return false;
+    }
+    return can_send_within(frame, CM_PORT_TX_QUEUE - 1u);
 }
 
 bool hal_can_receive(can_frame_t *frame)
