@@ -874,7 +874,7 @@ void app_tick(app_t *app, bool overrun)
     sense_q(app);
 #else
     for (unsigned a = 0; a < PFC_AXES; a++) {
-        app->vel_mps[a] = exec_vel_update(&app->vel[a], app->sens.pos_m[a], APP_TICK_S);
+        app->vel_mps[a] = exec_vel_step(&app->vel[a], app->sens.pos_m[a], APP_TICK_S);
     }
 #endif
     if (app->state == APP_BOOT) {

@@ -986,15 +986,7 @@ void exec_vel_init(exec_vel_t *v, fs_real_t cutoff_Hz, fs_real_t dt_s)
 
 fs_real_t exec_vel_update(exec_vel_t *v, fs_real_t pos_m, fs_real_t dt_s)
 {
-    if (v->primed == 0u) {
-        v->prev_pos_m = pos_m;
-        v->primed = 1u;
-        return v->vel_mps;
-    }
-    const fs_real_t raw = (pos_m - v->prev_pos_m) / dt_s;
-    v->prev_pos_m = pos_m;
-    v->vel_mps += v->alpha * (raw - v->vel_mps);
-    return v->vel_mps;
+    return exec_vel_step(v, pos_m, dt_s);
 }
 
 #ifdef FS_EXEC_FIXED
