@@ -172,14 +172,23 @@ static bool send_emergency(app_t *app, const flt_emcy_t *e)
 
 static void send_telemetry(app_t *app)
 {
+    /* every count before the first call: the conversions' constants stay in registers */
     struct fs_dbc_telemetry_position_t p;
+    struct fs_dbc_telemetry_force_t q;
 #ifdef FS_EXEC_FIXED
     p.pos_x = APP_POS_COUNTS_Q(app->meas_q.pos_q24[0]);
     p.pos_y = APP_POS_COUNTS_Q(app->meas_q.pos_q24[1]);
+    q.force_contact = APP_FORCE_COUNTS_Q(app->meas_q.force_contact_q16);
+    q.force_cmd = APP_FORCE_COUNTS_Q(app->saf_out.force_cmd_N[0]);
+    q.force_ref = APP_FORCE_COUNTS_Q(app->force_hat_q16);
 #else
     p.pos_x = APP_POS_COUNTS(app->sens.pos_m[0]);
     p.pos_y = APP_POS_COUNTS(app->sens.pos_m[1]);
+    q.force_contact = APP_FORCE_COUNTS(app->sens.force_contact_N[0]);
+    q.force_cmd = APP_FORCE_COUNTS(app->force_out_N[0]);
+    q.force_ref = APP_FORCE_COUNTS(app->force_hat_N);
 #endif
+    q.force_operator = APP_FORCE_COUNTS(app->sens.force_operator_N[0]);
     p.tick = (uint16_t)(app->tick & 0xFFFFu);
     can_frame_t f; /* id, length and flags; the pack functions write every data byte */
     f.id = PROTO_ID_TELEM_POS(app->cfg.node);
@@ -187,18 +196,6 @@ static void send_telemetry(app_t *app)
     f.flags = 0u;
     (void)fs_dbc_telemetry_position_pack(f.data, &p, sizeof(f.data));
     (void)app_send(app, &f, true);
-
-    struct fs_dbc_telemetry_force_t q;
-#ifdef FS_EXEC_FIXED
-    q.force_contact = APP_FORCE_COUNTS_Q(app->meas_q.force_contact_q16);
-    q.force_cmd = APP_FORCE_COUNTS_Q(app->saf_out.force_cmd_N[0]);
-    q.force_ref = APP_FORCE_COUNTS_Q(app->force_hat_q16);
-#else
-    q.force_contact = APP_FORCE_COUNTS(app->sens.force_contact_N[0]);
-    q.force_cmd = APP_FORCE_COUNTS(app->force_out_N[0]);
-    q.force_ref = APP_FORCE_COUNTS(app->force_hat_N);
-#endif
-    q.force_operator = APP_FORCE_COUNTS(app->sens.force_operator_N[0]);
     f.id = PROTO_ID_TELEM_FORCE(app->cfg.node);
     f.len = FS_DBC_TELEMETRY_FORCE_LENGTH;
     (void)fs_dbc_telemetry_force_pack(f.data, &q, sizeof(f.data));
@@ -774,7 +771,7 @@ static void control(app_t *app)
                                                    app->sens.pos_m[1], app->vel_mps[1], dt);
         }
         /* ideal (dynamics-compensated) drive: the device is m_d with zero command */
-    } else if (app->state == APP_EXECUTE && app_run_start_step(app)) {
+    } else if (app->state == APP_EXECUTE && app->exec_starting && app_run_start_step(app)) {
         /* the run's start, a slice a tick (its checks in the tick that took the request): no
          * force yet, as in IDLE; the first step starts from the sample after the last slice */
     } else if (app->state == APP_EXECUTE) {
@@ -844,15 +841,17 @@ static void transmit(app_t *app)
     /* Emergency frames leave in the tick that latched the fault; one that cannot leave (bus-off,
      * transmit queue full) stays queued and goes out once the controller takes frames again, so
      * the host learns every fault code from its own frame. */
-    flt_emcy_t e;
-    while (!hal_can_bus_off() && flt_emcy_peek(&app->saf.flt, &e) && send_emergency(app, &e)) {
-        (void)flt_emcy_pop(&app->saf.flt, &e);
+    if (flt_emcy_pending(&app->saf.flt)) {
+        flt_emcy_t e;
+        while (!hal_can_bus_off() && flt_emcy_peek(&app->saf.flt, &e) && send_emergency(app, &e)) {
+            (void)flt_emcy_pop(&app->saf.flt, &e);
+        }
     }
     if (app->tick % APP_STATUS_PERIOD_MS == 0u) {
         send_status(app);
     }
     const uint32_t period = telemetry_period(app);
-    if (period == 0u || app->tick % period == 0u) {
+    if (period <= 1u || app->tick % period == 0u) { /* 1 ms, the usual period: no division */
         send_telemetry(app);
     }
 }
