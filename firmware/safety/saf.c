@@ -4,6 +4,8 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "saf_tick.h"
+
 void saf_default_config(saf_config_t *cfg)
 {
     if (cfg == NULL) {
@@ -110,7 +112,7 @@ static uint32_t input_causes(const saf_config_t *cfg, saf_state_t *st, const saf
     if (in->host_frame) {
         wdg_kick(&st->wdg, in->now_ms);
     }
-    if (wdg_expired(&cfg->wdg, &st->wdg, in->now_ms)) {
+    if (wdg_expired_tick(&cfg->wdg, &st->wdg, in->now_ms)) {
         cause |= FLT_BIT(FLT_HOST_SILENCE);
     }
     if (in->bus_off) {
@@ -125,7 +127,7 @@ static uint32_t input_causes(const saf_config_t *cfg, saf_state_t *st, const saf
     if (in->storage_error) {
         cause |= FLT_BIT(FLT_STORAGE);
     }
-    return cause | sen_check(&cfg->sen, &st->sen, in->meas);
+    return cause | sen_check_tick(&cfg->sen, &st->sen, in->meas);
 }
 
 /* The request the limiter sees: zero while stopping, and after a clear until the request has
@@ -190,8 +192,11 @@ void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, s
     const bool stopping = flt_active(&st->flt) || cause != 0u;
     saf_force_t req[SAF_AXES];
     gate_request(st, in, stopping, req);
-    saf_force_t lim_out[SAF_AXES];
-    const lim_result_t lr = lim_apply(&cfg->lim, &st->lim, req, in->meas, lim_out);
+    /* lim_apply's two axes, into the command a latched fault replaces */
+    lim_result_t lr = {0u, 0u};
+    saf_force_t cmd[SAF_AXES];
+    cmd[0] = lim_apply_axis(&cfg->lim, &st->lim, 0u, req[0], &in->meas[0], &lr);
+    cmd[1] = lim_apply_axis(&cfg->lim, &st->lim, 1u, req[1], &in->meas[1], &lr);
     if (stopping) {
         for (uint32_t i = 0u; i < LIM_AXES; i++) {
             st->lim.slew_run[i] = 0u;
@@ -203,13 +208,8 @@ void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, s
     st->cause_mask = cause;
     latch_causes(&st->flt, cause, in->tick);
 
-    saf_force_t cmd[SAF_AXES];
     if (flt_active(&st->flt)) {
         stop_command(cfg, st, cmd);
-    } else {
-        for (uint32_t i = 0u; i < SAF_AXES; i++) {
-            cmd[i] = lim_out[i];
-        }
     }
     for (uint32_t i = 0u; i < SAF_AXES; i++) {
         st->last_cmd_N[i] = cmd[i];
