@@ -112,21 +112,49 @@ static int32_t clamp_i32_edge(fs_real_t v, fs_real_t r, int32_t lo, int32_t hi)
     return (int32_t)(r < FS_R(0.0) ? r - FS_R(0.5) : r + FS_R(0.5));
 }
 
-/* v / scale in counts, clamped to lo..hi (lo = -hi - 1), rounded half away from zero; NaN and
- * inf 0. Inline: its constants fold into the tick's six conversions. */
-static inline int32_t clamp_i32(fs_real_t v, fs_real_t scale, int32_t lo, int32_t hi)
+/* A constant as an opaque register value on the M4F: GCC otherwise loads the conversions'
+ * scales and bounds from the literal pool at each of the tick's six. */
+static inline fs_real_t app_reg(fs_real_t k)
+{
+#if defined(__GNUC__) && defined(__arm__) && defined(__ARM_FP) && defined(FS_REAL_FLOAT)
+    __asm__("" : "+t"(k));
+#endif
+    return k;
+}
+
+/* The telemetry's scales, their bounds hi (as reals) and 0.5, each once in a register. */
+typedef struct {
+    fs_real_t pos_scale, pos_hi, force_scale, force_hi, half;
+} app_counts_k_t;
+
+static inline app_counts_k_t app_counts_k(void)
+{
+    app_counts_k_t k;
+    k.pos_scale = app_reg(FS_R(1e-6));
+    k.pos_hi = app_reg((fs_real_t)8388607);
+    k.force_scale = app_reg(FS_R(0.01));
+    k.force_hi = app_reg((fs_real_t)32767);
+    k.half = app_reg(FS_R(0.5));
+    return k;
+}
+
+/* v / scale in counts, clamped to lo..hi (lo = -hi - 1, hi_r = hi), rounded half away from zero;
+ * NaN and inf 0. Inline: the tick's six conversions share their constants. */
+static inline int32_t clamp_i32(fs_real_t v, fs_real_t scale, fs_real_t hi_r, fs_real_t half,
+                                int32_t lo, int32_t hi)
 {
     const fs_real_t r = v / scale;
     const fs_real_t a = fs_fabs(r);
-    if (a < (fs_real_t)hi) { /* |r| < hi: in range (NaN fails), the usual value */
+    if (a < hi_r) { /* |r| < hi: in range (NaN fails), the usual value */
         /* |r| + 0.5 truncated, the sign put back: r -+ 0.5 truncated (rounding is symmetric) */
-        const int32_t n = (int32_t)(a + FS_R(0.5));
+        const int32_t n = (int32_t)(a + half);
         return (r < FS_R(0.0)) ? -n : n;
     }
     return clamp_i32_edge(v, r, lo, hi);
 }
-#define APP_POS_COUNTS(v) clamp_i32((v), FS_R(1e-6), -8388608, 8388607)
-#define APP_FORCE_COUNTS(v) (int16_t) clamp_i32((v), FS_R(0.01), -32768, 32767)
+#define APP_POS_COUNTS(k, v) clamp_i32((v), (k).pos_scale, (k).pos_hi, (k).half, -8388608, 8388607)
+#define APP_FORCE_COUNTS(k, v) \
+    (int16_t) clamp_i32((v), (k).force_scale, (k).force_hi, (k).half, -32768, 32767)
 #endif
 
 static void send_status(app_t *app)
@@ -181,14 +209,16 @@ static void send_telemetry(app_t *app)
     q.force_contact = APP_FORCE_COUNTS_Q(app->meas_q.force_contact_q16);
     q.force_cmd = APP_FORCE_COUNTS_Q(app->saf_out.force_cmd_N[0]);
     q.force_ref = APP_FORCE_COUNTS_Q(app->force_hat_q16);
-#else
-    p.pos_x = APP_POS_COUNTS(app->sens.pos_m[0]);
-    p.pos_y = APP_POS_COUNTS(app->sens.pos_m[1]);
-    q.force_contact = APP_FORCE_COUNTS(app->sens.force_contact_N[0]);
-    q.force_cmd = APP_FORCE_COUNTS(app->force_out_N[0]);
-    q.force_ref = APP_FORCE_COUNTS(app->force_hat_N);
-#endif
     q.force_operator = APP_FORCE_COUNTS(app->sens.force_operator_N[0]);
+#else
+    const app_counts_k_t k = app_counts_k();
+    p.pos_x = APP_POS_COUNTS(k, app->sens.pos_m[0]);
+    p.pos_y = APP_POS_COUNTS(k, app->sens.pos_m[1]);
+    q.force_contact = APP_FORCE_COUNTS(k, app->sens.force_contact_N[0]);
+    q.force_cmd = APP_FORCE_COUNTS(k, app->force_out_N[0]);
+    q.force_ref = APP_FORCE_COUNTS(k, app->force_hat_N);
+    q.force_operator = APP_FORCE_COUNTS(k, app->sens.force_operator_N[0]);
+#endif
     p.tick = (uint16_t)(app->tick & 0xFFFFu);
     can_frame_t f; /* id, length and flags; the pack functions write every data byte */
     f.id = PROTO_ID_TELEM_POS(app->cfg.node);
