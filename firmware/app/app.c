@@ -232,24 +232,6 @@ static void send_telemetry(app_t *app)
     (void)app_send(app, &f, true);
 }
 
-/* now_us / 1000 truncated to 32 bits, as (uint32_t)(now_us / 1000u), continued from the last
- * call's whole millisecond: a 32-bit division while less than ~71 minutes pass between calls (every
- * tick), the 64-bit one otherwise (the first call, a clock that went back). */
-static uint32_t app_now_ms(app_t *app, uint64_t now_us)
-{
-    const uint64_t d = now_us - app->ms_base_us;
-    if (now_us >= app->ms_base_us && d <= (uint64_t)UINT32_MAX) {
-        const uint32_t q = (uint32_t)d / 1000u;
-        app->ms_base_us += (uint64_t)q * 1000u;
-        app->ms_base_ms += q;
-    } else {
-        const uint64_t ms = now_us / 1000u;
-        app->ms_base_us = ms * 1000u;
-        app->ms_base_ms = (uint32_t)ms;
-    }
-    return app->ms_base_ms;
-}
-
 /* A HostCommand EXECUTE as a run request: one step, its slot, goal and time scale (counts of the
  * DBC's factor, FS_WIRE_SCALE), the skill's own duration, path scale 1. */
 static void run_from_command(const struct fs_dbc_host_command_t *c, uint16_t time_scale,
@@ -623,8 +605,7 @@ void app_init(app_t *app, const app_config_t *cfg)
     memset(app, 0, sizeof(*app));
     app->cfg = *cfg;
     app->state = APP_BOOT;
-    app->now_us = hal_time_us();
-    app->now_ms = app_now_ms(app, app->now_us);
+    app->now_us = hal_time_us_ms(&app->now_ms);
     e2e_rx_reset(&app->rx_command);
     e2e_rx_reset(&app->rx_heartbeat);
     secoc_init(&app->secoc); /* no motion key until a host session establishes one */
@@ -888,8 +869,7 @@ static void transmit(app_t *app)
 
 void app_tick(app_t *app, bool overrun)
 {
-    app->now_us = hal_time_us();
-    app->now_ms = app_now_ms(app, app->now_us);
+    app->now_us = hal_time_us_ms(&app->now_ms);
     app->tick++;
     app->host_frame = false;
     /* while a skill runs ISO-TP queues at most APP_TP_FRAMES_EXEC_TICK frames a tick */

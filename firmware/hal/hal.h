@@ -53,6 +53,10 @@ bool hal_can_tx_idle(void);
 /** Monotonic time in microseconds since power-up (wraps after 584,000 years). */
 uint64_t hal_time_us(void);
 
+/** hal_time_us, and the same instant in whole milliseconds in *now_ms (now_us / 1000 truncated
+ *  to 32 bits): one sample for both, no 64-bit division in the tick. */
+uint64_t hal_time_us_ms(uint32_t *now_ms);
+
 /* ---- sensors and actuator ---- */
 
 /** Read all sensors (the latest samples). */

@@ -297,14 +297,21 @@ bool hal_can_tx_idle(void)
 
 /* ---- time ---- */
 
-uint64_t hal_time_us(void)
+uint64_t hal_time_us_ms(uint32_t *now_ms)
 {
     uint32_t ms;
     uint32_t cvr;
     systick_sample(&ms, &cvr);
     const uint32_t per_us = CM_CORE_CLOCK_HZ / 1000000u;
     const uint32_t sub_us = (CM_SYST_RVR - cvr) / per_us;
+    *now_ms = ms; /* the SysTick count: below it less than 1,000 us */
     return (uint64_t)ms * 1000u + (uint64_t)(sub_us < 1000u ? sub_us : 999u);
+}
+
+uint64_t hal_time_us(void)
+{
+    uint32_t ms;
+    return hal_time_us_ms(&ms);
 }
 
 /* ---- platform ---- */
