@@ -100,7 +100,8 @@ lim_result_t lim_apply(const lim_config_t *cfg, lim_state_t *st, const saf_force
         return r;
     }
     for (uint32_t i = 0u; i < LIM_AXES; i++) {
-        out_N[i] = lim_apply_axis(cfg, st, i, req_N[i], (meas != NULL) ? &meas[i] : NULL, &r);
+        out_N[i] = lim_apply_axis(cfg, st, i, req_N[i], (meas != NULL) ? &meas[i] : NULL, false,
+                                  &r);
     }
     return r;
 }

@@ -47,14 +47,16 @@ static inline bool sen_same_bits(const saf_force_t *a, const saf_force_t *b)
 }
 
 /* Axis i of sen_check: its causes; *finite cleared if a reading is not finite (then neither
- * the checks against the previous reading nor its storing run). */
+ * the checks against the previous reading nor its storing run). usual: the reading is known
+ * finite and within its range bounds (the supervisor's test, lim_reading_inside). */
 SAF_TICK_INLINE uint32_t sen_check_axis(const sen_config_t *cfg, sen_state_t *st, uint32_t i,
-                                        const saf_meas_t *m, bool bounds_finite, bool *finite)
+                                        const saf_meas_t *m, bool bounds_finite, bool usual,
+                                        bool *finite)
 {
     const sen_axis_t *c = &cfg->axis[i];
     const sen_bounds_t *a = &st->b[i];
     uint32_t cause = 0u;
-    if (bounds_finite && sen_usual_reading(a, m)) {
+    if (usual || (bounds_finite && sen_usual_reading(a, m))) {
         /* finite and in range */
     } else if (!saf_finite(m->pos_m) || !saf_finite(m->vel_mps) || !saf_finite(m->force_N)) {
         *finite = false;
@@ -89,14 +91,14 @@ SAF_TICK_INLINE uint32_t sen_check_axis(const sen_config_t *cfg, sen_state_t *st
     return cause;
 }
 
-/* sen_check with its arguments valid. */
+/* sen_check with its arguments valid; usual0/1: as sen_check_axis's usual for each axis. */
 SAF_TICK_INLINE uint32_t sen_check_tick(const sen_config_t *cfg, sen_state_t *st,
-                                        const saf_meas_t meas[SAF_AXES])
+                                        const saf_meas_t meas[SAF_AXES], bool usual0, bool usual1)
 {
     bool finite = true;
     const bool bounds_finite = st->bounds_finite != 0u;
-    uint32_t cause = sen_check_axis(cfg, st, 0u, &meas[0], bounds_finite, &finite);
-    cause |= sen_check_axis(cfg, st, 1u, &meas[1], bounds_finite, &finite);
+    uint32_t cause = sen_check_axis(cfg, st, 0u, &meas[0], bounds_finite, usual0, &finite);
+    cause |= sen_check_axis(cfg, st, 1u, &meas[1], bounds_finite, usual1, &finite);
     if (finite) {
         st->prev[0] = meas[0];
         st->prev[1] = meas[1];
@@ -210,9 +212,19 @@ static inline saf_force_t lim_limit_request(saf_force_t target, saf_force_t fmax
     return target;
 }
 
-/* Axis i of lim_apply (meas may be NULL): the limited request. */
+/* A reading inside the axis's workspace, velocity and contact force bounds (finite): the
+ * measurement gates find nothing. */
+static inline bool lim_reading_inside(const lim_bounds_t *a, const saf_meas_t *m)
+{
+    return saf_inside(m->pos_m, a->pos_min_m, a->pos_max_m) &&
+           saf_within(m->vel_mps, a->vel_max_mps) && saf_within(m->force_N, a->contact_force_max_N);
+}
+
+/* Axis i of lim_apply (meas may be NULL): the limited request. inside: the reading is known
+ * inside the axis's bounds (lim_reading_inside): no gate to run. */
 SAF_TICK_INLINE saf_force_t lim_apply_axis(const lim_config_t *cfg, lim_state_t *st, uint32_t i,
-                                           saf_force_t req, const saf_meas_t *meas, lim_result_t *r)
+                                           saf_force_t req, const saf_meas_t *meas, bool inside,
+                                           lim_result_t *r)
 {
     const lim_bounds_t *a = &st->b[i];
     const saf_force_t fmax = a->force_max_N;
@@ -220,7 +232,7 @@ SAF_TICK_INLINE saf_force_t lim_apply_axis(const lim_config_t *cfg, lim_state_t 
     if (!saf_within(target, fmax)) { /* fmax is finite: the usual request costs one test */
         target = lim_limit_request(target, fmax, r);
     }
-    if (meas != NULL) {
+    if (meas != NULL && !inside) {
         target = lim_gate_by_measurement(a, meas, target, r);
     }
     return lim_slew_step(cfg, st, i, target, fmax, a->slew_max_N, r);

@@ -91,5 +91,5 @@ uint32_t sen_check(const sen_config_t *cfg, sen_state_t *st, const saf_meas_t me
     if (cfg == NULL || st == NULL || meas == NULL) {
         return FLT_BIT(FLT_SENSOR_NAN);
     }
-    return sen_check_tick(cfg, st, meas);
+    return sen_check_tick(cfg, st, meas, false, false);
 }
