@@ -339,6 +339,46 @@ static bool uds_work_waiting(const app_t *app)
     return app->uds.pending_sid != 0u || isotp_rx_ready(&app->tp[0]) || isotp_rx_ready(&app->tp[1]);
 }
 
+/* One frame of can_receive: to its ISO-TP link, refused, acted on (a stop), verified or held;
+ * false once it is held (the rest stays queued). */
+static bool can_take(app_t *app, const can_frame_t *f, bool uds_first, bool *started,
+                     uint32_t *rounds)
+{
+    const uint32_t node = app->cfg.node;
+    secoc_channel_t ch;
+    e2e_rx_t *rx;
+    if (f->id == PROTO_ID_HOST_COMMAND(node)) {
+        ch = SECOC_CH_COMMAND;
+        rx = &app->rx_command;
+    } else if (f->id == PROTO_ID_HOST_HEARTBEAT(node)) {
+        ch = SECOC_CH_HEARTBEAT;
+        rx = &app->rx_heartbeat;
+    } else {
+        if (f->id == PROTO_ID_UDS_REQUEST(node)) {
+            isotp_on_frame(&app->tp[0], f, app->now_us);
+        } else if (f->id == PROTO_ID_UDS_REQUEST_2(node)) {
+            isotp_on_frame(&app->tp[1], f, app->now_us);
+        }
+        return true;
+    }
+    if (e2e_check(rx, f) != PROTO_OK) { /* the cheap refusal first */
+        app->e2e_errors++;
+        return true;
+    }
+    if (!needs_mac(f, ch)) {
+        host_frame_act(app, f, ch); /* a stop */
+        return true;
+    }
+    if (uds_first || *started || app->mac_busy) {
+        app->held = *f;
+        app->held_ch = (uint8_t)(ch + 1u);
+        return false;
+    }
+    mac_job_start(app, f, ch, rounds);
+    *started = true;
+    return true;
+}
+
 /* The CAN frames of this tick, bounded: APP_RX_FRAMES_PER_TICK frames, APP_MAC_ROUNDS_PER_TICK
  * AES rounds of MAC verification and one verification started. An authenticated frame that
  * cannot start is held for the next tick (app_t.held); while one is held the rest stays queued.
@@ -360,45 +400,15 @@ static void can_receive(app_t *app)
     if (app->held_ch != 0u) {
         return; /* a frame still waits for the verification in flight */
     }
-    /* asked once a frame came (before it is taken): a tick without frames does not ask */
-    bool uds_first = false;
     can_frame_t f;
-    for (unsigned i = 0; i < APP_RX_FRAMES_PER_TICK && hal_can_receive(&f); i++) {
-        if (i == 0u) {
-            uds_first = !app->mac_ran && uds_work_waiting(app);
-        }
-        const uint32_t node = app->cfg.node;
-        secoc_channel_t ch;
-        e2e_rx_t *rx;
-        if (f.id == PROTO_ID_HOST_COMMAND(node)) {
-            ch = SECOC_CH_COMMAND;
-            rx = &app->rx_command;
-        } else if (f.id == PROTO_ID_HOST_HEARTBEAT(node)) {
-            ch = SECOC_CH_HEARTBEAT;
-            rx = &app->rx_heartbeat;
-        } else {
-            if (f.id == PROTO_ID_UDS_REQUEST(node)) {
-                isotp_on_frame(&app->tp[0], &f, app->now_us);
-            } else if (f.id == PROTO_ID_UDS_REQUEST_2(node)) {
-                isotp_on_frame(&app->tp[1], &f, app->now_us);
-            }
-            continue;
-        }
-        if (e2e_check(rx, &f) != PROTO_OK) { /* the cheap refusal first */
-            app->e2e_errors++;
-            continue;
-        }
-        if (!needs_mac(&f, ch)) {
-            host_frame_act(app, &f, ch); /* a stop */
-            continue;
-        }
-        if (uds_first || started || app->mac_busy) {
-            app->held = f;
-            app->held_ch = (uint8_t)(ch + 1u);
-            break;
-        }
-        mac_job_start(app, &f, ch, &rounds);
-        started = true;
+    if (!hal_can_receive(&f)) {
+        return; /* the usual tick: no frame, nothing set up for one */
+    }
+    /* asked once a frame came (before it is taken): a tick without frames does not ask */
+    const bool uds_first = !app->mac_ran && uds_work_waiting(app);
+    for (unsigned i = 1u; can_take(app, &f, uds_first, &started, &rounds) &&
+                          i < APP_RX_FRAMES_PER_TICK && hal_can_receive(&f);
+         i++) {
     }
 }
 
