@@ -16,6 +16,7 @@
 
 _Static_assert(SAF_AXES == PFC_AXES && SAF_AXES == HAL_AXES,
                "safety, control law and HAL axes differ");
+_Static_assert(PFC_AXES == 2u, "the tick writes its two axes out");
 
 /* ---------------------------------------------------------------- configuration */
 
@@ -892,9 +893,9 @@ void app_tick(app_t *app, bool overrun)
 #ifdef FS_EXEC_FIXED
     sense_q(app);
 #else
-    for (unsigned a = 0; a < PFC_AXES; a++) {
-        app->vel_mps[a] = exec_vel_step(&app->vel[a], app->sens.pos_m[a], APP_TICK_S);
-    }
+    /* both axes written out: no loop in the tick */
+    app->vel_mps[0] = exec_vel_step(&app->vel[0], app->sens.pos_m[0], APP_TICK_S);
+    app->vel_mps[1] = exec_vel_step(&app->vel[1], app->sens.pos_m[1], APP_TICK_S);
 #endif
     if (app->state == APP_BOOT) {
         app->fw_self_test_ok = app_fw_self_test_and_confirm(app);
