@@ -100,8 +100,13 @@ static int32_t wire_counts(fs_real_t v, unsigned frac, int64_t per_unit, int32_t
 #define APP_FORCE_COUNTS_Q(q) (int16_t) q_counts((q), 16u, 100, -32768, 32767)
 #else
 /* clamp_i32 of r = v / scale with |r| >= hi or NaN: clamped, or NaN and inf 0, or rounded
- * (lo < r <= -hi). */
-static int32_t clamp_i32_edge(fs_real_t v, fs_real_t r, int32_t lo, int32_t hi)
+ * (lo < r <= -hi). Cold: the usual value falls through each conversion. */
+#if defined(__GNUC__)
+#define APP_COLD __attribute__((cold))
+#else
+#define APP_COLD
+#endif
+APP_COLD static int32_t clamp_i32_edge(fs_real_t v, fs_real_t r, int32_t lo, int32_t hi)
 {
     if (!(r > (fs_real_t)lo && r < (fs_real_t)hi)) { /* out of range, or NaN/inf (v or r) */
         if (!fs_isfinite(v)) {
