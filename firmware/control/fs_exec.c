@@ -411,9 +411,9 @@ static bool exec_meas_finite(const exec_meas_t *meas)
 fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_meas_t *meas,
                       exec_out_t *out)
 {
-    out->step = st->step;
-    out->done = st->done;
     if (!exec_meas_finite(meas)) {
+        out->step = st->step;
+        out->done = st->done;
         out->force_cmd_N[0] = FS_R(0.0);
         out->force_cmd_N[1] = FS_R(0.0);
         out->force_hat_N = st->force_hat_N;
@@ -899,9 +899,9 @@ fs_status_t exec_tick_q(const exec_config_t *cfg, exec_state_t *st, const exec_m
 {
     (void)cfg; /* its constants were derived by exec_start */
     exec_q_t *q = &st->q;
-    out->step = st->step;
-    out->done = st->done;
     if (exec_meas_q_invalid(meas)) {
+        out->step = st->step;
+        out->done = st->done;
         out->force_cmd_q16[0] = 0;
         out->force_cmd_q16[1] = 0;
         out->force_hat_q16 = exec_q16(q->f_hat_q32);
