@@ -224,7 +224,8 @@ void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, s
     st->cause_mask = cause;
     latch_causes(&st->flt, cause, in->tick);
 
-    if (flt_active(&st->flt)) {
+    const bool latched = flt_active(&st->flt); /* the stop command latches nothing */
+    if (latched) {
         stop_command(cfg, st, cmd);
     }
     for (uint32_t i = 0u; i < SAF_AXES; i++) {
@@ -232,7 +233,7 @@ void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, s
         out->force_cmd_N[i] = cmd[i];
     }
     out->actuator_enable = st->actuator_enabled;
-    out->stopping = flt_active(&st->flt);
+    out->stopping = latched;
     out->fault_code = flt_active_code(&st->flt);
     out->cause_mask = cause;
     out->lim_flags = lr.flags;

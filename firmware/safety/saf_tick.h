@@ -183,15 +183,17 @@ SAF_TICK_INLINE saf_force_t lim_slew_step(const lim_config_t *cfg, lim_state_t *
     /* Leaky bucket: +2 when the slew limit binds on this axis, -1 otherwise. Binding every tick
      * trips after slew_fault_ticks; an oscillation binding every other tick after about
      * 4*slew_fault_ticks; a single large step (e.g. 0 -> 50 N, 25 ticks) never. */
-    if (binds) {
-        st->slew_run[i] = (uint16_t)((st->slew_run[i] <= UINT16_MAX - 2u) ? st->slew_run[i] + 2u
-                                                                          : UINT16_MAX);
-    } else if (st->slew_run[i] > 0u) {
-        st->slew_run[i]--;
-    }
-    if (cfg->slew_fault_ticks != 0u &&
-        (uint32_t)st->slew_run[i] >= 2u * (uint32_t)cfg->slew_fault_ticks) {
-        r->cause_mask |= FLT_BIT(FLT_SLEW_LIMIT);
+    if (binds || st->slew_run[i] > 0u) { /* an empty bucket that stays empty cannot trip */
+        if (binds) {
+            st->slew_run[i] = (uint16_t)((st->slew_run[i] <= UINT16_MAX - 2u) ? st->slew_run[i] + 2u
+                                                                              : UINT16_MAX);
+        } else {
+            st->slew_run[i]--;
+        }
+        if (cfg->slew_fault_ticks != 0u &&
+            (uint32_t)st->slew_run[i] >= 2u * (uint32_t)cfg->slew_fault_ticks) {
+            r->cause_mask |= FLT_BIT(FLT_SLEW_LIMIT);
+        }
     }
     st->out_N[i] = out;
     return out;
