@@ -213,7 +213,7 @@ void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, s
     saf_force_t cmd[SAF_AXES];
     cmd[0] = lim_apply_axis(&cfg->lim, &st->lim, 0u, req[0], &in->meas[0], inside0, &lr);
     cmd[1] = lim_apply_axis(&cfg->lim, &st->lim, 1u, req[1], &in->meas[1], inside1, &lr);
-    if (stopping) {
+    if (SAF_USUAL(stopping, 0)) {
         for (uint32_t i = 0u; i < LIM_AXES; i++) {
             st->lim.slew_run[i] = 0u;
         }
@@ -225,7 +225,7 @@ void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, s
     latch_causes(&st->flt, cause, in->tick);
 
     const bool latched = flt_active(&st->flt); /* the stop command latches nothing */
-    if (latched) {
+    if (SAF_USUAL(latched, 0)) {
         stop_command(cfg, st, cmd);
     }
     for (uint32_t i = 0u; i < SAF_AXES; i++) {

@@ -14,11 +14,14 @@
 
 _Static_assert(SAF_AXES == 2u, "the tick's checks are written out for two axes");
 
-/* inline whatever the compiler's size estimate: each runs once or twice a tick */
+/* inline whatever the compiler's size estimate: each runs once or twice a tick; the usual
+ * outcome of a test laid out as the straight path (SAF_USUAL: a hint, no other effect) */
 #if defined(__GNUC__)
 #define SAF_TICK_INLINE static inline __attribute__((always_inline))
+#define SAF_USUAL(x, v) __builtin_expect((x), (v))
 #else
 #define SAF_TICK_INLINE static inline
+#define SAF_USUAL(x, v) (x)
 #endif
 
 /* ---------------------------------------------------------------- sensor plausibility */
@@ -65,7 +68,7 @@ SAF_TICK_INLINE uint32_t sen_check_axis(const sen_config_t *cfg, sen_state_t *st
                m->pos_m > a->pos_max_m || saf_abs(m->vel_mps) > a->vel_range_mps) {
         cause |= FLT_BIT(FLT_SENSOR_RANGE);
     }
-    if (st->have_prev != 0u) {
+    if (SAF_USUAL(st->have_prev != 0u, 1)) {
         const saf_meas_t *p = &st->prev[i];
         if (saf_absdiff(m->force_N, p->force_N) > a->spike_N) {
             cause |= FLT_BIT(FLT_SENSOR_SPIKE);
@@ -99,7 +102,7 @@ SAF_TICK_INLINE uint32_t sen_check_tick(const sen_config_t *cfg, sen_state_t *st
     const bool bounds_finite = st->bounds_finite != 0u;
     uint32_t cause = sen_check_axis(cfg, st, 0u, &meas[0], bounds_finite, usual0, &finite);
     cause |= sen_check_axis(cfg, st, 1u, &meas[1], bounds_finite, usual1, &finite);
-    if (finite) {
+    if (SAF_USUAL(finite, 1)) {
         st->prev[0] = meas[0];
         st->prev[1] = meas[1];
         st->have_prev = 1u;
@@ -160,7 +163,7 @@ SAF_TICK_INLINE saf_force_t lim_slew_step(const lim_config_t *cfg, lim_state_t *
     /* Slew relative to the last output (sanitised: it is this module's own state, but a
      * corrupted value must not propagate). */
     saf_force_t prev = st->out_N[i];
-    if (!saf_within(prev, fmax)) { /* fmax is finite: the usual value costs one test */
+    if (SAF_USUAL(!saf_within(prev, fmax), 0)) { /* fmax finite: the usual value, one test */
         if (!saf_finite(prev)) {
             prev = SAF_FORCE_C(0.0);
         }
@@ -183,7 +186,8 @@ SAF_TICK_INLINE saf_force_t lim_slew_step(const lim_config_t *cfg, lim_state_t *
     /* Leaky bucket: +2 when the slew limit binds on this axis, -1 otherwise. Binding every tick
      * trips after slew_fault_ticks; an oscillation binding every other tick after about
      * 4*slew_fault_ticks; a single large step (e.g. 0 -> 50 N, 25 ticks) never. */
-    if (binds || st->slew_run[i] > 0u) { /* an empty bucket that stays empty cannot trip */
+    /* an empty bucket that stays empty cannot trip */
+    if (SAF_USUAL(binds || st->slew_run[i] > 0u, 0)) {
         if (binds) {
             st->slew_run[i] = (uint16_t)((st->slew_run[i] <= UINT16_MAX - 2u) ? st->slew_run[i] + 2u
                                                                               : UINT16_MAX);
@@ -231,10 +235,10 @@ SAF_TICK_INLINE saf_force_t lim_apply_axis(const lim_config_t *cfg, lim_state_t 
     const lim_bounds_t *a = &st->b[i];
     const saf_force_t fmax = a->force_max_N;
     saf_force_t target = req;
-    if (!saf_within(target, fmax)) { /* fmax is finite: the usual request costs one test */
+    if (SAF_USUAL(!saf_within(target, fmax), 0)) { /* fmax finite: the usual request, one test */
         target = lim_limit_request(target, fmax, r);
     }
-    if (meas != NULL && !inside) {
+    if (SAF_USUAL(meas != NULL && !inside, 0)) {
         target = lim_gate_by_measurement(a, meas, target, r);
     }
     return lim_slew_step(cfg, st, i, target, fmax, a->slew_max_N, r);
