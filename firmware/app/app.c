@@ -781,9 +781,24 @@ static uint8_t control_execute(app_t *app, fs_real_t dt)
 
 static void control(app_t *app)
 {
+    const fs_real_t dt = APP_TICK_S;
+    /* a run's start goes a slice a tick (its checks in the tick that took the request): no
+     * force yet, as in IDLE; the first step starts from the sample after the last slice */
+    if (app->state == APP_EXECUTE && !(app->exec_starting && app_run_start_step(app))) {
+        const uint8_t done = control_execute(app, dt); /* sets force_req_N */
+        if (done != 0u) {
+            app->exec_done = true;
+            (void)app_event(app, APP_EV_STOP); /* release finished: back to IDLE */
+            app->force_req_N[0] = FS_R(0.0);
+            app->force_req_N[1] = FS_R(0.0);
+#ifdef FS_EXEC_FIXED
+            app->req_q = false;
+#endif
+        }
+        return;
+    }
     app->force_req_N[0] = FS_R(0.0);
     app->force_req_N[1] = FS_R(0.0);
-    const fs_real_t dt = APP_TICK_S;
     if (app->state == APP_TEACH) {
         app->teach_ticks++;
         if (app->cfg.render_carriage != 0u) {
@@ -798,20 +813,6 @@ static void control(app_t *app)
                                                    app->sens.pos_m[1], app->vel_mps[1], dt);
         }
         /* ideal (dynamics-compensated) drive: the device is m_d with zero command */
-    } else if (app->state == APP_EXECUTE && app->exec_starting && app_run_start_step(app)) {
-        /* the run's start, a slice a tick (its checks in the tick that took the request): no
-         * force yet, as in IDLE; the first step starts from the sample after the last slice */
-    } else if (app->state == APP_EXECUTE) {
-        const uint8_t done = control_execute(app, dt);
-        if (done != 0u) {
-            app->exec_done = true;
-            (void)app_event(app, APP_EV_STOP); /* release finished: back to IDLE */
-            app->force_req_N[0] = FS_R(0.0);
-            app->force_req_N[1] = FS_R(0.0);
-#ifdef FS_EXEC_FIXED
-            app->req_q = false;
-#endif
-        }
     }
 }
 
