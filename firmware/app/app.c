@@ -16,6 +16,7 @@
 
 _Static_assert(SAF_AXES == PFC_AXES && SAF_AXES == HAL_AXES,
                "safety, control law and HAL axes differ");
+_Static_assert(PFC_AXES == 2u, "the tick writes its two axes out");
 
 /* ---------------------------------------------------------------- configuration */
 
@@ -48,7 +49,7 @@ fs_real_t app_stiffness_max_default_Npm(uint8_t render_carriage)
 /* Queue a frame; bulk frames (telemetry, UDS) leave APP_TX_RESERVE places for safety frames. */
 static bool app_send(app_t *app, const can_frame_t *f, bool bulk)
 {
-    if ((bulk && hal_can_tx_free() <= APP_TX_RESERVE) || !hal_can_send(f)) {
+    if (!(bulk ? hal_can_send_bulk(f, APP_TX_RESERVE) : hal_can_send(f))) {
         app->tx_dropped++;
         return false;
     }
@@ -58,8 +59,7 @@ static bool app_send(app_t *app, const can_frame_t *f, bool bulk)
 static bool tp_send(void *ctx, const can_frame_t *f)
 {
     app_t *app = ctx;
-    if (app->tp_frames >= APP_TP_FRAMES_PER_TICK || hal_can_tx_free() <= APP_TX_RESERVE ||
-        !hal_can_send(f)) {
+    if (app->tp_frames >= APP_TP_FRAMES_PER_TICK || !hal_can_send_bulk(f, APP_TX_RESERVE)) {
         return false; /* refused: ISO-TP retries */
     }
     app->tp_frames++;
@@ -100,8 +100,13 @@ static int32_t wire_counts(fs_real_t v, unsigned frac, int64_t per_unit, int32_t
 #define APP_FORCE_COUNTS_Q(q) (int16_t) q_counts((q), 16u, 100, -32768, 32767)
 #else
 /* clamp_i32 of r = v / scale with |r| >= hi or NaN: clamped, or NaN and inf 0, or rounded
- * (lo < r <= -hi). */
-static int32_t clamp_i32_edge(fs_real_t v, fs_real_t r, int32_t lo, int32_t hi)
+ * (lo < r <= -hi). Cold: the usual value falls through each conversion. */
+#if defined(__GNUC__)
+#define APP_COLD __attribute__((cold))
+#else
+#define APP_COLD
+#endif
+APP_COLD static int32_t clamp_i32_edge(fs_real_t v, fs_real_t r, int32_t lo, int32_t hi)
 {
     if (!(r > (fs_real_t)lo && r < (fs_real_t)hi)) { /* out of range, or NaN/inf (v or r) */
         if (!fs_isfinite(v)) {
@@ -113,21 +118,49 @@ static int32_t clamp_i32_edge(fs_real_t v, fs_real_t r, int32_t lo, int32_t hi)
     return (int32_t)(r < FS_R(0.0) ? r - FS_R(0.5) : r + FS_R(0.5));
 }
 
-/* v / scale in counts, clamped to lo..hi (lo = -hi - 1), rounded half away from zero; NaN and
- * inf 0. Inline: its constants fold into the tick's six conversions. */
-static inline int32_t clamp_i32(fs_real_t v, fs_real_t scale, int32_t lo, int32_t hi)
+/* A constant as an opaque register value on the M4F: GCC otherwise loads the conversions'
+ * scales and bounds from the literal pool at each of the tick's six. */
+static inline fs_real_t app_reg(fs_real_t k)
+{
+#if defined(__GNUC__) && defined(__arm__) && defined(__ARM_FP) && defined(FS_REAL_FLOAT)
+    __asm__("" : "+t"(k));
+#endif
+    return k;
+}
+
+/* The telemetry's scales, their bounds hi (as reals) and 0.5, each once in a register. */
+typedef struct {
+    fs_real_t pos_scale, pos_hi, force_scale, force_hi, half;
+} app_counts_k_t;
+
+static inline app_counts_k_t app_counts_k(void)
+{
+    app_counts_k_t k;
+    k.pos_scale = app_reg(FS_R(1e-6));
+    k.pos_hi = app_reg((fs_real_t)8388607);
+    k.force_scale = app_reg(FS_R(0.01));
+    k.force_hi = app_reg((fs_real_t)32767);
+    k.half = app_reg(FS_R(0.5));
+    return k;
+}
+
+/* v / scale in counts, clamped to lo..hi (lo = -hi - 1, hi_r = hi), rounded half away from zero;
+ * NaN and inf 0. Inline: the tick's six conversions share their constants. */
+static inline int32_t clamp_i32(fs_real_t v, fs_real_t scale, fs_real_t hi_r, fs_real_t half,
+                                int32_t lo, int32_t hi)
 {
     const fs_real_t r = v / scale;
     const fs_real_t a = fs_fabs(r);
-    if (a < (fs_real_t)hi) { /* |r| < hi: in range (NaN fails), the usual value */
+    if (a < hi_r) { /* |r| < hi: in range (NaN fails), the usual value */
         /* |r| + 0.5 truncated, the sign put back: r -+ 0.5 truncated (rounding is symmetric) */
-        const int32_t n = (int32_t)(a + FS_R(0.5));
+        const int32_t n = (int32_t)(a + half);
         return (r < FS_R(0.0)) ? -n : n;
     }
     return clamp_i32_edge(v, r, lo, hi);
 }
-#define APP_POS_COUNTS(v) clamp_i32((v), FS_R(1e-6), -8388608, 8388607)
-#define APP_FORCE_COUNTS(v) (int16_t) clamp_i32((v), FS_R(0.01), -32768, 32767)
+#define APP_POS_COUNTS(k, v) clamp_i32((v), (k).pos_scale, (k).pos_hi, (k).half, -8388608, 8388607)
+#define APP_FORCE_COUNTS(k, v) \
+    (int16_t) clamp_i32((v), (k).force_scale, (k).force_hi, (k).half, -32768, 32767)
 #endif
 
 static void send_status(app_t *app)
@@ -173,13 +206,24 @@ static bool send_emergency(app_t *app, const flt_emcy_t *e)
 
 static void send_telemetry(app_t *app)
 {
+    /* every count before the first call: the conversions' constants stay in registers */
     struct fs_dbc_telemetry_position_t p;
+    struct fs_dbc_telemetry_force_t q;
 #ifdef FS_EXEC_FIXED
     p.pos_x = APP_POS_COUNTS_Q(app->meas_q.pos_q24[0]);
     p.pos_y = APP_POS_COUNTS_Q(app->meas_q.pos_q24[1]);
+    q.force_contact = APP_FORCE_COUNTS_Q(app->meas_q.force_contact_q16);
+    q.force_cmd = APP_FORCE_COUNTS_Q(app->saf_out.force_cmd_N[0]);
+    q.force_ref = APP_FORCE_COUNTS_Q(app->force_hat_q16);
+    q.force_operator = APP_FORCE_COUNTS(app->sens.force_operator_N[0]);
 #else
-    p.pos_x = APP_POS_COUNTS(app->sens.pos_m[0]);
-    p.pos_y = APP_POS_COUNTS(app->sens.pos_m[1]);
+    const app_counts_k_t k = app_counts_k();
+    p.pos_x = APP_POS_COUNTS(k, app->sens.pos_m[0]);
+    p.pos_y = APP_POS_COUNTS(k, app->sens.pos_m[1]);
+    q.force_contact = APP_FORCE_COUNTS(k, app->sens.force_contact_N[0]);
+    q.force_cmd = APP_FORCE_COUNTS(k, app->force_out_N[0]);
+    q.force_ref = APP_FORCE_COUNTS(k, app->force_hat_N);
+    q.force_operator = APP_FORCE_COUNTS(k, app->sens.force_operator_N[0]);
 #endif
     p.tick = (uint16_t)(app->tick & 0xFFFFu);
     can_frame_t f; /* id, length and flags; the pack functions write every data byte */
@@ -188,40 +232,10 @@ static void send_telemetry(app_t *app)
     f.flags = 0u;
     (void)fs_dbc_telemetry_position_pack(f.data, &p, sizeof(f.data));
     (void)app_send(app, &f, true);
-
-    struct fs_dbc_telemetry_force_t q;
-#ifdef FS_EXEC_FIXED
-    q.force_contact = APP_FORCE_COUNTS_Q(app->meas_q.force_contact_q16);
-    q.force_cmd = APP_FORCE_COUNTS_Q(app->saf_out.force_cmd_N[0]);
-    q.force_ref = APP_FORCE_COUNTS_Q(app->force_hat_q16);
-#else
-    q.force_contact = APP_FORCE_COUNTS(app->sens.force_contact_N[0]);
-    q.force_cmd = APP_FORCE_COUNTS(app->force_out_N[0]);
-    q.force_ref = APP_FORCE_COUNTS(app->force_hat_N);
-#endif
-    q.force_operator = APP_FORCE_COUNTS(app->sens.force_operator_N[0]);
     f.id = PROTO_ID_TELEM_FORCE(app->cfg.node);
     f.len = FS_DBC_TELEMETRY_FORCE_LENGTH;
     (void)fs_dbc_telemetry_force_pack(f.data, &q, sizeof(f.data));
     (void)app_send(app, &f, true);
-}
-
-/* now_us / 1000 truncated to 32 bits, as (uint32_t)(now_us / 1000u), continued from the last
- * call's whole millisecond: a 32-bit division while less than ~71 minutes pass between calls (every
- * tick), the 64-bit one otherwise (the first call, a clock that went back). */
-static uint32_t app_now_ms(app_t *app, uint64_t now_us)
-{
-    const uint64_t d = now_us - app->ms_base_us;
-    if (now_us >= app->ms_base_us && d <= (uint64_t)UINT32_MAX) {
-        const uint32_t q = (uint32_t)d / 1000u;
-        app->ms_base_us += (uint64_t)q * 1000u;
-        app->ms_base_ms += q;
-    } else {
-        const uint64_t ms = now_us / 1000u;
-        app->ms_base_us = ms * 1000u;
-        app->ms_base_ms = (uint32_t)ms;
-    }
-    return app->ms_base_ms;
 }
 
 /* A HostCommand EXECUTE as a run request: one step, its slot, goal and time scale (counts of the
@@ -331,6 +345,46 @@ static bool uds_work_waiting(const app_t *app)
     return app->uds.pending_sid != 0u || isotp_rx_ready(&app->tp[0]) || isotp_rx_ready(&app->tp[1]);
 }
 
+/* One frame of can_receive: to its ISO-TP link, refused, acted on (a stop), verified or held;
+ * false once it is held (the rest stays queued). */
+static bool can_take(app_t *app, const can_frame_t *f, bool uds_first, bool *started,
+                     uint32_t *rounds)
+{
+    const uint32_t node = app->cfg.node;
+    secoc_channel_t ch;
+    e2e_rx_t *rx;
+    if (f->id == PROTO_ID_HOST_COMMAND(node)) {
+        ch = SECOC_CH_COMMAND;
+        rx = &app->rx_command;
+    } else if (f->id == PROTO_ID_HOST_HEARTBEAT(node)) {
+        ch = SECOC_CH_HEARTBEAT;
+        rx = &app->rx_heartbeat;
+    } else {
+        if (f->id == PROTO_ID_UDS_REQUEST(node)) {
+            isotp_on_frame(&app->tp[0], f, app->now_us);
+        } else if (f->id == PROTO_ID_UDS_REQUEST_2(node)) {
+            isotp_on_frame(&app->tp[1], f, app->now_us);
+        }
+        return true;
+    }
+    if (e2e_check(rx, f) != PROTO_OK) { /* the cheap refusal first */
+        app->e2e_errors++;
+        return true;
+    }
+    if (!needs_mac(f, ch)) {
+        host_frame_act(app, f, ch); /* a stop */
+        return true;
+    }
+    if (uds_first || *started || app->mac_busy) {
+        app->held = *f;
+        app->held_ch = (uint8_t)(ch + 1u);
+        return false;
+    }
+    mac_job_start(app, f, ch, rounds);
+    *started = true;
+    return true;
+}
+
 /* The CAN frames of this tick, bounded: APP_RX_FRAMES_PER_TICK frames, APP_MAC_ROUNDS_PER_TICK
  * AES rounds of MAC verification and one verification started. An authenticated frame that
  * cannot start is held for the next tick (app_t.held); while one is held the rest stays queued.
@@ -352,45 +406,15 @@ static void can_receive(app_t *app)
     if (app->held_ch != 0u) {
         return; /* a frame still waits for the verification in flight */
     }
-    /* asked once a frame came (before it is taken): a tick without frames does not ask */
-    bool uds_first = false;
     can_frame_t f;
-    for (unsigned i = 0; i < APP_RX_FRAMES_PER_TICK && hal_can_receive(&f); i++) {
-        if (i == 0u) {
-            uds_first = !app->mac_ran && uds_work_waiting(app);
-        }
-        const uint32_t node = app->cfg.node;
-        secoc_channel_t ch;
-        e2e_rx_t *rx;
-        if (f.id == PROTO_ID_HOST_COMMAND(node)) {
-            ch = SECOC_CH_COMMAND;
-            rx = &app->rx_command;
-        } else if (f.id == PROTO_ID_HOST_HEARTBEAT(node)) {
-            ch = SECOC_CH_HEARTBEAT;
-            rx = &app->rx_heartbeat;
-        } else {
-            if (f.id == PROTO_ID_UDS_REQUEST(node)) {
-                isotp_on_frame(&app->tp[0], &f, app->now_us);
-            } else if (f.id == PROTO_ID_UDS_REQUEST_2(node)) {
-                isotp_on_frame(&app->tp[1], &f, app->now_us);
-            }
-            continue;
-        }
-        if (e2e_check(rx, &f) != PROTO_OK) { /* the cheap refusal first */
-            app->e2e_errors++;
-            continue;
-        }
-        if (!needs_mac(&f, ch)) {
-            host_frame_act(app, &f, ch); /* a stop */
-            continue;
-        }
-        if (uds_first || started || app->mac_busy) {
-            app->held = f;
-            app->held_ch = (uint8_t)(ch + 1u);
-            break;
-        }
-        mac_job_start(app, &f, ch, &rounds);
-        started = true;
+    if (!hal_can_receive(&f)) {
+        return; /* the usual tick: no frame, nothing set up for one */
+    }
+    /* asked once a frame came (before it is taken): a tick without frames does not ask */
+    const bool uds_first = !app->mac_ran && uds_work_waiting(app);
+    for (unsigned i = 1u; can_take(app, &f, uds_first, &started, &rounds) &&
+                          i < APP_RX_FRAMES_PER_TICK && hal_can_receive(&f);
+         i++) {
     }
 }
 
@@ -548,17 +572,12 @@ static bool uds_all_idle(const app_t *app)
            isotp_idle(&app->tp[0]) && isotp_idle(&app->tp[1]);
 }
 
-/* The end of the server's tick: the ISO-TP frame share of a tick that worked, the session
- * timeout and its owner, then (poll) the links' timers and transmissions. */
-static void uds_service_end(app_t *app, bool worked, bool poll)
+/* The session's share of every tick: its timeout, then its owner (the server may have locked). */
+static inline void uds_session_step(app_t *app)
 {
-    /* a tick that verified a frame's MAC leaves the server's work to the next tick; one with
-     * either queues a busy tick's ISO-TP frames */
-    if (worked) {
-        tp_busy_share(app);
+    if (uds_server_poll_due(&app->uds, app->now_ms)) {
+        uds_server_poll(&app->uds, app->now_ms);
     }
-    uds_server_poll(&app->uds, app->now_ms);
-    uds_release_held(app);
     if (app->uds.unlocked_level == 0u) {
         app->uds_owner = 0u;
         if (sec_is_unlocked(&app->sec)) {
@@ -567,13 +586,6 @@ static void uds_service_end(app_t *app, bool worked, bool poll)
     } else if (app->uds_owner == 0u) {
         app->uds_owner = (uint8_t)(app->uds_from + 1u); /* the tester whose sendKey unlocked */
     }
-    if (poll && app->tp_frames < APP_TP_FRAMES_PER_TICK) {
-        /* a tick without a frame share left polls nothing: its frames would be built to be
-         * refused (the links' timeouts are checked a tick later) */
-        for (unsigned t = 0; t < APP_TESTERS; t++) {
-            isotp_poll(&app->tp[t], app->now_us);
-        }
-    }
 }
 
 /* One UDS request a tick, from either tester in turn; the session belongs to the tester that
@@ -581,10 +593,13 @@ static void uds_service_end(app_t *app, bool worked, bool poll)
 static void uds_service(app_t *app)
 {
     if (uds_all_idle(app)) {
-        if (!app->mac_ran) {
+        /* nothing held to release, no link to poll: the frame share and the session alone */
+        if (app->mac_ran) {
+            tp_busy_share(app);
+        } else {
             app->uds_request_turn = false; /* as uds_work when nothing waits */
         }
-        uds_service_end(app, app->mac_ran, false);
+        uds_session_step(app);
         return;
     }
     uds_release_held(app);
@@ -601,8 +616,21 @@ static void uds_service(app_t *app)
         }
         return;
     }
-    const bool worked = app->mac_ran || uds_work(app);
-    uds_service_end(app, worked, true);
+    /* a tick that verified a frame's MAC leaves the server's work to the next tick; one with
+     * either queues a busy tick's ISO-TP frames */
+    if (app->mac_ran || uds_work(app)) {
+        tp_busy_share(app);
+    }
+    /* the session, the held buffer given back, then the links' timers and frames */
+    uds_session_step(app);
+    uds_release_held(app);
+    if (app->tp_frames < APP_TP_FRAMES_PER_TICK) {
+        /* a tick without a frame share left polls nothing: its frames would be built to be
+         * refused (the links' timeouts are checked a tick later) */
+        for (unsigned t = 0; t < APP_TESTERS; t++) {
+            isotp_poll(&app->tp[t], app->now_us);
+        }
+    }
 }
 
 /* ---------------------------------------------------------------- init and tick */
@@ -612,8 +640,7 @@ void app_init(app_t *app, const app_config_t *cfg)
     memset(app, 0, sizeof(*app));
     app->cfg = *cfg;
     app->state = APP_BOOT;
-    app->now_us = hal_time_us();
-    app->now_ms = app_now_ms(app, app->now_us);
+    app->now_us = hal_time_us_ms(&app->now_ms);
     e2e_rx_reset(&app->rx_command);
     e2e_rx_reset(&app->rx_heartbeat);
     secoc_init(&app->secoc); /* no motion key until a host session establishes one */
@@ -773,9 +800,24 @@ static uint8_t control_execute(app_t *app, fs_real_t dt)
 
 static void control(app_t *app)
 {
+    const fs_real_t dt = APP_TICK_S;
+    /* a run's start goes a slice a tick (its checks in the tick that took the request): no
+     * force yet, as in IDLE; the first step starts from the sample after the last slice */
+    if (app->state == APP_EXECUTE && !(app->exec_starting && app_run_start_step(app))) {
+        const uint8_t done = control_execute(app, dt); /* sets force_req_N */
+        if (done != 0u) {
+            app->exec_done = true;
+            (void)app_event(app, APP_EV_STOP); /* release finished: back to IDLE */
+            app->force_req_N[0] = FS_R(0.0);
+            app->force_req_N[1] = FS_R(0.0);
+#ifdef FS_EXEC_FIXED
+            app->req_q = false;
+#endif
+        }
+        return;
+    }
     app->force_req_N[0] = FS_R(0.0);
     app->force_req_N[1] = FS_R(0.0);
-    const fs_real_t dt = APP_TICK_S;
     if (app->state == APP_TEACH) {
         app->teach_ticks++;
         if (app->cfg.render_carriage != 0u) {
@@ -790,20 +832,6 @@ static void control(app_t *app)
                                                    app->sens.pos_m[1], app->vel_mps[1], dt);
         }
         /* ideal (dynamics-compensated) drive: the device is m_d with zero command */
-    } else if (app->state == APP_EXECUTE && app_run_start_step(app)) {
-        /* the run's start, a slice a tick (its checks in the tick that took the request): no
-         * force yet, as in IDLE; the first step starts from the sample after the last slice */
-    } else if (app->state == APP_EXECUTE) {
-        const uint8_t done = control_execute(app, dt);
-        if (done != 0u) {
-            app->exec_done = true;
-            (void)app_event(app, APP_EV_STOP); /* release finished: back to IDLE */
-            app->force_req_N[0] = FS_R(0.0);
-            app->force_req_N[1] = FS_R(0.0);
-#ifdef FS_EXEC_FIXED
-            app->req_q = false;
-#endif
-        }
     }
 }
 
@@ -860,23 +888,24 @@ static void transmit(app_t *app)
     /* Emergency frames leave in the tick that latched the fault; one that cannot leave (bus-off,
      * transmit queue full) stays queued and goes out once the controller takes frames again, so
      * the host learns every fault code from its own frame. */
-    flt_emcy_t e;
-    while (!hal_can_bus_off() && flt_emcy_peek(&app->saf.flt, &e) && send_emergency(app, &e)) {
-        (void)flt_emcy_pop(&app->saf.flt, &e);
+    if (flt_emcy_pending(&app->saf.flt)) {
+        flt_emcy_t e;
+        while (!hal_can_bus_off() && flt_emcy_peek(&app->saf.flt, &e) && send_emergency(app, &e)) {
+            (void)flt_emcy_pop(&app->saf.flt, &e);
+        }
     }
     if (app->tick % APP_STATUS_PERIOD_MS == 0u) {
         send_status(app);
     }
     const uint32_t period = telemetry_period(app);
-    if (period == 0u || app->tick % period == 0u) {
+    if (period <= 1u || app->tick % period == 0u) { /* 1 ms, the usual period: no division */
         send_telemetry(app);
     }
 }
 
 void app_tick(app_t *app, bool overrun)
 {
-    app->now_us = hal_time_us();
-    app->now_ms = app_now_ms(app, app->now_us);
+    app->now_us = hal_time_us_ms(&app->now_ms);
     app->tick++;
     app->host_frame = false;
     /* while a skill runs ISO-TP queues at most APP_TP_FRAMES_EXEC_TICK frames a tick */
@@ -889,9 +918,9 @@ void app_tick(app_t *app, bool overrun)
 #ifdef FS_EXEC_FIXED
     sense_q(app);
 #else
-    for (unsigned a = 0; a < PFC_AXES; a++) {
-        app->vel_mps[a] = exec_vel_update(&app->vel[a], app->sens.pos_m[a], APP_TICK_S);
-    }
+    /* both axes written out: no loop in the tick */
+    app->vel_mps[0] = exec_vel_step(&app->vel[0], app->sens.pos_m[0], APP_TICK_S);
+    app->vel_mps[1] = exec_vel_step(&app->vel[1], app->sens.pos_m[1], APP_TICK_S);
 #endif
     if (app->state == APP_BOOT) {
         app->fw_self_test_ok = app_fw_self_test_and_confirm(app);

@@ -106,8 +106,6 @@ struct app {
     uint32_t tick;
     uint64_t now_us;
     uint32_t now_ms;
-    uint64_t ms_base_us; /* app_now_ms: a whole millisecond (a multiple of 1,000 us) ... */
-    uint32_t ms_base_ms; /* ... and its count, so the tick divides 32 bits, not 64 */
     /* the tick's values first: within a load's immediate offset of the start */
     hal_sensors_t sens;
     fs_real_t vel_mps[PFC_AXES];

@@ -440,9 +440,9 @@ static bool exec_meas_finite(const exec_meas_t *meas)
 fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_meas_t *meas,
                       exec_out_t *out)
 {
-    out->step = st->step;
-    out->done = st->done;
     if (!exec_meas_finite(meas)) {
+        out->step = st->step;
+        out->done = st->done;
         out->force_cmd_N[0] = FS_R(0.0);
         out->force_cmd_N[1] = FS_R(0.0);
         out->force_hat_N = st->force_hat_N;
@@ -957,9 +957,9 @@ fs_status_t exec_tick_q(const exec_config_t *cfg, exec_state_t *st, const exec_m
 {
     (void)cfg; /* its constants were derived by exec_start */
     exec_q_t *q = &st->q;
-    out->step = st->step;
-    out->done = st->done;
     if (exec_meas_q_invalid(meas)) {
+        out->step = st->step;
+        out->done = st->done;
         out->force_cmd_q16[0] = 0;
         out->force_cmd_q16[1] = 0;
         out->force_hat_q16 = exec_q16(q->f_hat_q32);
@@ -1044,15 +1044,7 @@ void exec_vel_init(exec_vel_t *v, fs_real_t cutoff_Hz, fs_real_t dt_s)
 
 fs_real_t exec_vel_update(exec_vel_t *v, fs_real_t pos_m, fs_real_t dt_s)
 {
-    if (v->primed == 0u) {
-        v->prev_pos_m = pos_m;
-        v->primed = 1u;
-        return v->vel_mps;
-    }
-    const fs_real_t raw = (pos_m - v->prev_pos_m) / dt_s;
-    v->prev_pos_m = pos_m;
-    v->vel_mps += v->alpha * (raw - v->vel_mps);
-    return v->vel_mps;
+    return exec_vel_step(v, pos_m, dt_s);
 }
 
 #ifdef FS_EXEC_FIXED

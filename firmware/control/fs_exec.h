@@ -347,6 +347,20 @@ void exec_vel_init(exec_vel_t *v, fs_real_t cutoff_Hz, fs_real_t dt_s);
 /** Feed one encoder sample; returns the filtered velocity. */
 fs_real_t exec_vel_update(exec_vel_t *v, fs_real_t pos_m, fs_real_t dt_s);
 
+/** exec_vel_update inline (the same operations): the application's tick calls it per axis. */
+static inline fs_real_t exec_vel_step(exec_vel_t *v, fs_real_t pos_m, fs_real_t dt_s)
+{
+    if (v->primed == 0u) {
+        v->prev_pos_m = pos_m;
+        v->primed = 1u;
+        return v->vel_mps;
+    }
+    const fs_real_t raw = (pos_m - v->prev_pos_m) / dt_s;
+    v->prev_pos_m = pos_m;
+    v->vel_mps += v->alpha * (raw - v->vel_mps);
+    return v->vel_mps;
+}
+
 #ifdef FS_EXEC_FIXED
 /** exec_vel_update in integers, at the dt given to exec_vel_init: position and velocity in
  *  Q8.24 (m, m/s), INT32_MIN for a value that is not finite (a sample that was not finite

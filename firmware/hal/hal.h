@@ -34,6 +34,10 @@ bool hal_can_send(const can_frame_t *frame);
  *  UINT32_MAX if the port cannot tell. */
 uint32_t hal_can_tx_free(void);
 
+/** hal_can_send of a bulk frame: queued only while more than keep places are free (the rest
+ *  stay for urgent frames); false if not queued. One call for both tests. */
+bool hal_can_send_bulk(const can_frame_t *frame, uint32_t keep);
+
 /** Take the next received frame; false if none. Frames arrive in bus order. */
 bool hal_can_receive(can_frame_t *frame);
 
@@ -48,6 +52,10 @@ bool hal_can_tx_idle(void);
 
 /** Monotonic time in microseconds since power-up (wraps after 584,000 years). */
 uint64_t hal_time_us(void);
+
+/** hal_time_us, and the same instant in whole milliseconds in *now_ms (now_us / 1000 truncated
+ *  to 32 bits): one sample for both, no 64-bit division in the tick. */
+uint64_t hal_time_us_ms(uint32_t *now_ms);
 
 /* ---- sensors and actuator ---- */
 

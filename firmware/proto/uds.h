@@ -152,7 +152,16 @@ void uds_server_after_response(uds_server_t *srv);
  *  transport is free. Meanwhile other requests are answered 0x21 busyRepeatRequest. */
 uint16_t uds_server_resume(uds_server_t *srv, uint8_t *resp, uint16_t resp_cap, uint32_t now_ms);
 
-/** Session timeout (S3): back to default, locked, transfer aborted. Call every tick. */
+/** Session timeout (S3): back to default, locked, transfer aborted. Call every tick (or when
+ *  uds_server_poll_due). */
 void uds_server_poll(uds_server_t *srv, uint32_t now_ms);
+
+/** True if uds_server_poll has work at now_ms (a non-default session past S3). Inline: asked
+ *  every tick. */
+static inline bool uds_server_poll_due(const uds_server_t *srv, uint32_t now_ms)
+{
+    return srv->session != UDS_SESSION_DEFAULT &&
+           (uint32_t)(now_ms - srv->last_request_ms) > UDS_S3_MS;
+}
 
 #endif /* UDS_H */

@@ -57,6 +57,12 @@ bool flt_is_latched(const flt_state_t *st, flt_code_t code);
  *  latched fault's cause persists; otherwise clears all and returns FLT_NONE. */
 flt_code_t flt_clear_request(flt_state_t *st, uint32_t cause_present_mask);
 
+/** True if an emergency frame is queued. Inline: the application asks every tick. */
+static inline bool flt_emcy_pending(const flt_state_t *st)
+{
+    return st->emcy_len != 0u;
+}
+
 /** Copy the next queued emergency frame into *out without removing it; false if none. */
 bool flt_emcy_peek(const flt_state_t *st, flt_emcy_t *out);
 

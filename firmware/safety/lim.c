@@ -5,6 +5,7 @@
 #include <stddef.h>
 
 #include "fs_wire_const.h"
+#include "saf_tick.h"
 
 void lim_default_config(lim_config_t *cfg)
 {
@@ -85,109 +86,6 @@ void lim_prepare(const lim_config_t *cfg, lim_state_t *st)
     }
 }
 
-static saf_force_t clamp_sym(saf_force_t x, saf_force_t b)
-{
-    if (x > b) {
-        return b;
-    }
-    if (x < -b) {
-        return -b;
-    }
-    return x;
-}
-
-/* The measurement gates of one axis: outside the workspace or above the velocity limit, a
- * request pushing further out is zeroed; the contact force is checked. Returns the target. */
-static saf_force_t gate_by_measurement(const lim_bounds_t *a, const saf_meas_t *m,
-                                       saf_force_t target, lim_result_t *r)
-{
-    const saf_pos_t pos = m->pos_m;
-    const saf_vel_t vel = m->vel_mps;
-    const saf_force_t f = m->force_N;
-    const saf_force_t zero = SAF_FORCE_C(0.0);
-    /* A non-finite reading never gates here (sen_check latches FLT_SENSOR_NAN and the stop
-     * ramp takes over): in floating point its comparisons are false, in integers it is tested */
-    if (saf_comparable(pos) && (pos > a->pos_max_m || pos < a->pos_min_m)) {
-        r->cause_mask |= FLT_BIT(FLT_WORKSPACE);
-        if ((pos > a->pos_max_m && target > zero) || (pos < a->pos_min_m && target < zero)) {
-            r->flags |= LIM_F_WORKSPACE;
-            target = zero;
-        }
-    }
-    if (saf_comparable(vel) && saf_abs(vel) > a->vel_max_mps) {
-        r->cause_mask |= FLT_BIT(FLT_VELOCITY);
-        if ((vel > (saf_vel_t)0 && target > zero) || (vel < (saf_vel_t)0 && target < zero)) {
-            r->flags |= LIM_F_VELOCITY;
-            target = zero;
-        }
-    }
-    if (saf_comparable(f) && saf_abs(f) > a->contact_force_max_N) {
-        r->cause_mask |= FLT_BIT(FLT_FORCE_LIMIT);
-    }
-    return target;
-}
-
-/* The slew limit of axis i toward target, its leaky bucket and the force clamp; returns the
- * output (also kept as the axis's last output). */
-static saf_force_t slew_step(const lim_config_t *cfg, lim_state_t *st, uint32_t i,
-                             saf_force_t target, saf_force_t fmax, saf_force_t slew,
-                             lim_result_t *r)
-{
-    /* Slew relative to the last output (sanitised: it is this module's own state, but a
-     * corrupted value must not propagate). */
-    saf_force_t prev = st->out_N[i];
-    if (!saf_within(prev, fmax)) { /* fmax is finite: the usual value costs one test */
-        if (!saf_finite(prev)) {
-            prev = SAF_FORCE_C(0.0);
-        }
-        prev = clamp_sym(prev, fmax);
-    }
-    saf_force_t out = target;
-    const saf_force_t step = saf_sub(target, prev);
-    bool binds = true;
-    if (step > slew) {
-        out = saf_add(prev, slew);
-    } else if (step < -slew) {
-        out = saf_sub(prev, slew);
-    } else {
-        binds = false;
-    }
-    if (binds) {
-        r->flags |= LIM_F_SLEW;
-        out = clamp_sym(out, fmax); /* else out is the target, within fmax already */
-    }
-    /* Leaky bucket: +2 when the slew limit binds on this axis, -1 otherwise. Binding every tick
-     * trips after slew_fault_ticks; an oscillation binding every other tick after about
-     * 4*slew_fault_ticks; a single large step (e.g. 0 -> 50 N, 25 ticks) never. */
-    if (binds) {
-        st->slew_run[i] = (uint16_t)((st->slew_run[i] <= UINT16_MAX - 2u) ? st->slew_run[i] + 2u
-                                                                          : UINT16_MAX);
-    } else if (st->slew_run[i] > 0u) {
-        st->slew_run[i]--;
-    }
-    if (cfg->slew_fault_ticks != 0u &&
-        (uint32_t)st->slew_run[i] >= 2u * (uint32_t)cfg->slew_fault_ticks) {
-        r->cause_mask |= FLT_BIT(FLT_SLEW_LIMIT);
-    }
-    st->out_N[i] = out;
-    return out;
-}
-
-/* A request that is not finite (0) or beyond fmax (clamped), its flags and cause. */
-static saf_force_t limit_request(saf_force_t target, saf_force_t fmax, lim_result_t *r)
-{
-    if (!saf_finite(target)) {
-        r->flags |= LIM_F_NOT_FINITE;
-        r->cause_mask |= FLT_BIT(FLT_CMD_NOT_FINITE);
-        return SAF_FORCE_C(0.0);
-    }
-    if (saf_abs(target) > fmax) {
-        r->flags |= LIM_F_FORCE;
-        return clamp_sym(target, fmax);
-    }
-    return target;
-}
-
 lim_result_t lim_apply(const lim_config_t *cfg, lim_state_t *st, const saf_force_t req_N[LIM_AXES],
                        const saf_meas_t meas[LIM_AXES], saf_force_t out_N[LIM_AXES])
 {
@@ -202,16 +100,8 @@ lim_result_t lim_apply(const lim_config_t *cfg, lim_state_t *st, const saf_force
         return r;
     }
     for (uint32_t i = 0u; i < LIM_AXES; i++) {
-        const lim_bounds_t *a = &st->b[i];
-        const saf_force_t fmax = a->force_max_N;
-        saf_force_t target = req_N[i];
-        if (!saf_within(target, fmax)) { /* fmax is finite: the usual request costs one test */
-            target = limit_request(target, fmax, &r);
-        }
-        if (meas != NULL) {
-            target = gate_by_measurement(a, &meas[i], target, &r);
-        }
-        out_N[i] = slew_step(cfg, st, i, target, fmax, a->slew_max_N, &r);
+        out_N[i] = lim_apply_axis(cfg, st, i, req_N[i], (meas != NULL) ? &meas[i] : NULL, false,
+                                  &r);
     }
     return r;
 }

@@ -4,6 +4,8 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "saf_tick.h"
+
 void saf_default_config(saf_config_t *cfg)
 {
     if (cfg == NULL) {
@@ -67,6 +69,7 @@ void saf_init(saf_state_t *st)
     st->cause_mask = 0u;
     st->actuator_enabled = true;
     st->hold_zero = false;
+    st->bounds_nested = false;
 }
 
 void saf_prepare(const saf_config_t *cfg, saf_state_t *st)
@@ -76,6 +79,15 @@ void saf_prepare(const saf_config_t *cfg, saf_state_t *st)
     }
     lim_prepare(&cfg->lim, &st->lim);
     sen_prepare(&cfg->sen, &st->sen);
+    /* every limiter bound within the sensor checks' finite ranges (a NaN bound fails) */
+    bool nested = st->sen.bounds_finite != 0u;
+    for (uint32_t i = 0u; i < SAF_AXES; i++) {
+        const lim_bounds_t *l = &st->lim.b[i];
+        const sen_bounds_t *s = &st->sen.b[i];
+        nested = nested && s->pos_min_m <= l->pos_min_m && l->pos_max_m <= s->pos_max_m &&
+                 l->vel_max_mps <= s->vel_range_mps && l->contact_force_max_N <= s->force_range_N;
+    }
+    st->bounds_nested = nested;
 }
 
 /* Every cause bit, lowest first (the order of the codes); a tick without a cause costs one test. */
@@ -103,14 +115,16 @@ static void fail_safe(saf_output_t *out)
 }
 
 /* The causes seen in this tick's inputs: host watchdog, bus-off, overrun, skill, storage and
- * the sensor checks (the limiter's causes come later). */
-static uint32_t input_causes(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in)
+ * the sensor checks (the limiter's causes come later); inside0/1: axis 0/1's reading inside the
+ * limiter's bounds, nested in the sensor ranges (its range tests are passed). */
+static uint32_t input_causes(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in,
+                             bool inside0, bool inside1)
 {
     uint32_t cause = 0u;
     if (in->host_frame) {
         wdg_kick(&st->wdg, in->now_ms);
     }
-    if (wdg_expired(&cfg->wdg, &st->wdg, in->now_ms)) {
+    if (wdg_expired_tick(&cfg->wdg, &st->wdg, in->now_ms)) {
         cause |= FLT_BIT(FLT_HOST_SILENCE);
     }
     if (in->bus_off) {
@@ -125,7 +139,7 @@ static uint32_t input_causes(const saf_config_t *cfg, saf_state_t *st, const saf
     if (in->storage_error) {
         cause |= FLT_BIT(FLT_STORAGE);
     }
-    return cause | sen_check(&cfg->sen, &st->sen, in->meas);
+    return cause | sen_check_tick(&cfg->sen, &st->sen, in->meas, inside0, inside1);
 }
 
 /* The request the limiter sees: zero while stopping, and after a clear until the request has
@@ -183,16 +197,23 @@ void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, s
         fail_safe(out);
         return;
     }
-    uint32_t cause = input_causes(cfg, st, in);
+    /* a reading inside the limiter's bounds, when these lie within the sensor checks' ranges
+     * (saf_prepare), passes both modules' range tests by one test of its own */
+    const bool inside0 = st->bounds_nested && lim_reading_inside(&st->lim.b[0], &in->meas[0]);
+    const bool inside1 = st->bounds_nested && lim_reading_inside(&st->lim.b[1], &in->meas[1]);
+    uint32_t cause = input_causes(cfg, st, in, inside0, inside1);
     /* While stopping (a fault latched or a cause seen this tick) the request is ignored: the
      * limiter still runs for its measurement checks (workspace, velocity, contact force), but
      * sees a zero request, and its slew-binding bucket is not charged by the ramp. */
     const bool stopping = flt_active(&st->flt) || cause != 0u;
     saf_force_t req[SAF_AXES];
     gate_request(st, in, stopping, req);
-    saf_force_t lim_out[SAF_AXES];
-    const lim_result_t lr = lim_apply(&cfg->lim, &st->lim, req, in->meas, lim_out);
-    if (stopping) {
+    /* lim_apply's two axes, into the command a latched fault replaces */
+    lim_result_t lr = {0u, 0u};
+    saf_force_t cmd[SAF_AXES];
+    cmd[0] = lim_apply_axis(&cfg->lim, &st->lim, 0u, req[0], &in->meas[0], inside0, &lr);
+    cmd[1] = lim_apply_axis(&cfg->lim, &st->lim, 1u, req[1], &in->meas[1], inside1, &lr);
+    if (SAF_USUAL(stopping, 0)) {
         for (uint32_t i = 0u; i < LIM_AXES; i++) {
             st->lim.slew_run[i] = 0u;
         }
@@ -203,20 +224,16 @@ void saf_step(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in, s
     st->cause_mask = cause;
     latch_causes(&st->flt, cause, in->tick);
 
-    saf_force_t cmd[SAF_AXES];
-    if (flt_active(&st->flt)) {
+    const bool latched = flt_active(&st->flt); /* the stop command latches nothing */
+    if (SAF_USUAL(latched, 0)) {
         stop_command(cfg, st, cmd);
-    } else {
-        for (uint32_t i = 0u; i < SAF_AXES; i++) {
-            cmd[i] = lim_out[i];
-        }
     }
     for (uint32_t i = 0u; i < SAF_AXES; i++) {
         st->last_cmd_N[i] = cmd[i];
         out->force_cmd_N[i] = cmd[i];
     }
     out->actuator_enable = st->actuator_enabled;
-    out->stopping = flt_active(&st->flt);
+    out->stopping = latched;
     out->fault_code = flt_active_code(&st->flt);
     out->cause_mask = cause;
     out->lim_flags = lr.flags;

@@ -61,7 +61,9 @@ typedef struct {
     uint32_t cause_mask; /* causes seen at the last saf_step (for clearing) */
     saf_force_t last_cmd_N[SAF_AXES];
     bool actuator_enabled;
-    bool hold_zero; /* after a clear: output 0 until a zero request is seen */
+    bool hold_zero;     /* after a clear: output 0 until a zero request is seen */
+    bool bounds_nested; /* saf_prepare: every limiter bound within the sensor checks' finite
+                           ranges, so a reading inside the first passes the second */
 } saf_state_t;
 
 #define SAF_REARM_N 0.01 /* |request| at or below this re-arms the output after a clear */

@@ -5,6 +5,8 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "saf_tick.h"
+
 void sen_default_config(sen_config_t *cfg)
 {
     if (cfg == NULL) {
@@ -84,80 +86,10 @@ void sen_prepare(const sen_config_t *cfg, sen_state_t *st)
     st->bounds_finite = finite ? 1u : 0u;
 }
 
-/* A reading finite and within its range bounds (finite bounds): its finite and range checks
- * find nothing, in one pass of four compares. */
-static bool usual_reading(const sen_bounds_t *a, const saf_meas_t *m)
-{
-    return saf_within(m->force_N, a->force_range_N) && saf_within(m->vel_mps, a->vel_range_mps) &&
-           saf_inside(m->pos_m, a->pos_min_m, a->pos_max_m);
-}
-
-/* Two readings with the same bit pattern (a word compare: -0.0/+0.0 differ, NaN equals itself;
- * in integers the converted values, which a reading frozen at the ADC freezes too). */
-static bool same_bits(const saf_force_t *a, const saf_force_t *b)
-{
-#if defined(FS_REAL_FLOAT) || defined(SAF_FIXED)
-    uint32_t x, y;
-#else
-    uint64_t x, y;
-#endif
-    _Static_assert(sizeof x == sizeof *a, "saf_force_t is 4 or 8 bytes");
-    memcpy(&x, a, sizeof x);
-    memcpy(&y, b, sizeof y);
-    return x == y;
-}
-
 uint32_t sen_check(const sen_config_t *cfg, sen_state_t *st, const saf_meas_t meas[SAF_AXES])
 {
     if (cfg == NULL || st == NULL || meas == NULL) {
         return FLT_BIT(FLT_SENSOR_NAN);
     }
-    uint32_t cause = 0u;
-    bool all_finite = true;
-    const bool bounds_finite = st->bounds_finite != 0u;
-    for (uint32_t i = 0u; i < SAF_AXES; i++) {
-        const sen_axis_t *c = &cfg->axis[i];
-        const sen_bounds_t *a = &st->b[i];
-        const saf_meas_t *m = &meas[i];
-        if (bounds_finite && usual_reading(a, m)) {
-            /* finite and in range */
-        } else if (!saf_finite(m->pos_m) || !saf_finite(m->vel_mps) || !saf_finite(m->force_N)) {
-            cause |= FLT_BIT(FLT_SENSOR_NAN);
-            all_finite = false;
-            continue;
-        } else if (saf_abs(m->force_N) > a->force_range_N || m->pos_m < a->pos_min_m ||
-                   m->pos_m > a->pos_max_m || saf_abs(m->vel_mps) > a->vel_range_mps) {
-            cause |= FLT_BIT(FLT_SENSOR_RANGE);
-        }
-        if (st->have_prev != 0u) {
-            const saf_meas_t *p = &st->prev[i];
-            if (saf_absdiff(m->force_N, p->force_N) > a->spike_N) {
-                cause |= FLT_BIT(FLT_SENSOR_SPIKE);
-            }
-            if (saf_absdiff(m->pos_m, p->pos_m) > a->jump_m) {
-                cause |= FLT_BIT(FLT_ENCODER_JUMP);
-            }
-            /* Stuck: bit-identical non-zero force. Compare the bytes, so -0.0/+0.0 and
-             * rounding cannot hide a frozen ADC word. */
-            if (c->stuck_ticks != 0u && saf_abs(m->force_N) > a->stuck_min_N &&
-                same_bits(&m->force_N, &p->force_N)) {
-                if (st->same_count[i] < UINT16_MAX) {
-                    st->same_count[i]++;
-                }
-            } else {
-                st->same_count[i] = 0u;
-            }
-            /* same_count counts repeats: stuck_ticks identical readings = stuck_ticks - 1 */
-            if (c->stuck_ticks != 0u && (uint32_t)st->same_count[i] + 1u >= c->stuck_ticks) {
-                cause |= FLT_BIT(FLT_SENSOR_STUCK);
-            }
-        }
-    }
-    if (all_finite) {
-        for (uint32_t i = 0u; i < SAF_AXES; i++) {
-            st->prev[i] = meas[i];
-        }
-        st->have_prev = 1u;
-    }
-    return cause;
+    return sen_check_tick(cfg, st, meas, false, false);
 }

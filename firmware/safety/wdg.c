@@ -3,6 +3,8 @@
 
 #include <stddef.h>
 
+#include "saf_tick.h"
+
 void wdg_default_config(wdg_config_t *cfg)
 {
     if (cfg == NULL) {
@@ -57,10 +59,10 @@ void wdg_disarm(wdg_state_t *st)
 
 bool wdg_expired(const wdg_config_t *cfg, const wdg_state_t *st, uint32_t now_ms)
 {
-    if (cfg == NULL || st == NULL || st->armed == 0u) {
+    if (cfg == NULL || st == NULL) {
         return false;
     }
-    return (uint32_t)(now_ms - st->last_host_ms) >= (uint32_t)cfg->timeout_ms;
+    return wdg_expired_tick(cfg, st, now_ms);
 }
 
 uint16_t wdg_ramp_ticks(const wdg_config_t *cfg)

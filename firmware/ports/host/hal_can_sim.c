@@ -53,6 +53,11 @@ uint32_t hal_can_tx_free(void)
     return HAL_SIM_TX_QUEUE - q.tx_len;
 }
 
+bool hal_can_send_bulk(const can_frame_t *frame, uint32_t keep)
+{
+    return hal_can_tx_free() > keep && hal_can_send(frame);
+}
+
 bool hal_sim_can_tx_requeue(const can_frame_t *f)
 {
     return tx_insert(f, false);

@@ -60,6 +60,11 @@ uint32_t hal_can_tx_free(void)
     return UINT32_MAX; /* the kernel queues (its qdisc, not this process, orders the frames) */
 }
 
+bool hal_can_send_bulk(const can_frame_t *frame, uint32_t keep)
+{
+    return hal_can_tx_free() > keep && hal_can_send(frame);
+}
+
 bool hal_can_tx_idle(void)
 {
     return cansock_tx_idle(&g_can);

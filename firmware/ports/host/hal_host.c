@@ -178,6 +178,13 @@ uint64_t hal_time_us(void)
     return (uint64_t)ts.tv_sec * 1000000u + (uint64_t)ts.tv_nsec / 1000u;
 }
 
+uint64_t hal_time_us_ms(uint32_t *now_ms)
+{
+    const uint64_t us = hal_time_us();
+    *now_ms = (uint32_t)(us / 1000u);
+    return us;
+}
+
 void hal_host_set_sensors(const hal_sensors_t *s)
 {
     g.sens = *s;

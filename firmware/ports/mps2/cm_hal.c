@@ -29,8 +29,11 @@ static can_frame_t g_rx[CM_CAN_RX_QUEUE];
 static uint32_t g_rx_head, g_rx_tail; /* both written outside interrupts */
 static uint32_t g_rx_dropped;
 static uint32_t g_rx_taken; /* frames hal_can_receive returned this tick */
-static can_frame_t g_tx[CM_PORT_TX_QUEUE];
-static uint32_t g_tx_head, g_tx_tail;
+/* the transmit queue, its indices beside each other: one address for both in hal_can_send */
+static struct {
+    uint32_t head, tail;
+    can_frame_t q[CM_PORT_TX_QUEUE];
+} g_tx;
 static volatile uint32_t g_ms; /* SysTick count since power-up */
 static volatile uint32_t g_pending;
 static volatile uint32_t g_busy;
@@ -108,7 +111,7 @@ void cm_port_init(const uint8_t *seed, uint32_t seed_len)
     slcan_init(&g_slcan);
     g_rx_head = g_rx_tail = 0u;
     g_rx_dropped = 0u;
-    g_tx_head = g_tx_tail = 0u;
+    g_tx.head = g_tx.tail = 0u;
     cm_uart_init();
     boot_cm_flash_init(&g_skill_fl, &g_skill_dev, CM_FLASH_SKILL_ADDR, CM_FLASH_SKILL_SECTOR,
                        CM_FLASH_SKILL_SECTORS);
@@ -171,13 +174,13 @@ bool cm_port_wait_tick(void)
 /* Frames of the transmit queue to the UART as SLCAN text: at most budget frames. */
 static void can_tx_drain(uint32_t budget)
 {
-    for (uint32_t n = 0u; n < budget && g_tx_tail != g_tx_head; n++) {
+    for (uint32_t n = 0u; n < budget && g_tx.tail != g_tx.head; n++) {
         char text[SLCAN_FRAME_TEXT_MAX];
-        const uint32_t len = slcan_encode(&g_tx[g_tx_tail % CM_PORT_TX_QUEUE], text);
+        const uint32_t len = slcan_encode(&g_tx.q[g_tx.tail % CM_PORT_TX_QUEUE], text);
         if (g_slcan.open && !cm_uart_write(text, len)) {
             return; /* the host does not read: retry next tick */
         }
-        g_tx_tail++;
+        g_tx.tail++;
     }
 }
 
@@ -231,7 +234,8 @@ uint32_t cm_port_skipped(void)
 
 /* ---- CAN over SLCAN ---- */
 
-bool hal_can_send(const can_frame_t *frame)
+/* hal_can_send with at most limit frames already queued (hal_can_send: CM_PORT_TX_QUEUE - 1). */
+static inline bool can_send_within(const can_frame_t *frame, uint32_t limit)
 {
     if (frame->id > CAN_STD_ID_MASK || frame->len > CAN_CLASSIC_MAX_LEN ||
         (frame->flags & CAN_FRAME_FD) != 0u) {
@@ -240,17 +244,31 @@ bool hal_can_send(const can_frame_t *frame)
     if (!g_slcan.open) {
         return true; /* no adapter listening: the frame is lost */
     }
-    if (g_tx_head - g_tx_tail >= CM_PORT_TX_QUEUE) {
+    const uint32_t head = g_tx.head;
+    if (head - g_tx.tail > limit) {
         return false;
     }
-    g_tx[g_tx_head % CM_PORT_TX_QUEUE] = *frame;
-    g_tx_head++;
+    g_tx.q[head % CM_PORT_TX_QUEUE] = *frame;
+    g_tx.head = head + 1u;
     return true;
+}
+
+bool hal_can_send(const can_frame_t *frame)
+{
+    return can_send_within(frame, CM_PORT_TX_QUEUE - 1u);
 }
 
 uint32_t hal_can_tx_free(void)
 {
-    return CM_PORT_TX_QUEUE - (g_tx_head - g_tx_tail);
+    return CM_PORT_TX_QUEUE - (g_tx.head - g_tx.tail);
+}
+
+bool hal_can_send_bulk(const can_frame_t *frame, uint32_t keep)
+{
+    if (hal_can_tx_free() <= keep) {
+        return false;
+    }
+    return can_send_within(frame, CM_PORT_TX_QUEUE - 1u);
 }
 
 bool hal_can_receive(can_frame_t *frame)
@@ -277,19 +295,26 @@ bool hal_can_bus_off(void)
 
 bool hal_can_tx_idle(void)
 {
-    return g_tx_tail == g_tx_head && cm_uart_tx_empty();
+    return g_tx.tail == g_tx.head && cm_uart_tx_empty();
 }
 
 /* ---- time ---- */
 
-uint64_t hal_time_us(void)
+uint64_t hal_time_us_ms(uint32_t *now_ms)
 {
     uint32_t ms;
     uint32_t cvr;
     systick_sample(&ms, &cvr);
     const uint32_t per_us = CM_CORE_CLOCK_HZ / 1000000u;
     const uint32_t sub_us = (CM_SYST_RVR - cvr) / per_us;
+    *now_ms = ms; /* the SysTick count: below it less than 1,000 us */
     return (uint64_t)ms * 1000u + (uint64_t)(sub_us < 1000u ? sub_us : 999u);
+}
+
+uint64_t hal_time_us(void)
+{
+    uint32_t ms;
+    return hal_time_us_ms(&ms);
 }
 
 /* ---- platform ---- */
