@@ -408,6 +408,26 @@ static void background_erase(dev_t_ *d)
     attach(d);
 }
 
+/* After a download of the image whole: a header for another target, in pieces of piece bytes,
+ * is refused (BOOT_ERR_TARGET) without an erase, the slot's first sector keeping whole's bytes. */
+static void refused_header_erases_nothing(const uint8_t *whole, uint32_t piece)
+{
+    static uint8_t sector[SECTOR];
+    fwu_abort(&D.fwu);
+    const uint32_t len2 = make_image(
+        &(img_spec_t){BOOT_VERSION(1, 2, 0), BOOT_TARGET_HOST + 1u, 600u, 1, 1, 1, 1, DEV_KEY},
+        IMG2);
+    assert_int_equal(fwu_begin(&D.fwu, true, len2), BOOT_OK);
+    const uint32_t erases = g_bg_erases;
+    bool done = false;
+    assert_int_equal(fwu_data_step(&D.fwu, true, 0u, IMG2, 300u, piece, &done), BOOT_OK);
+    assert_int_equal(fwu_data_step(&D.fwu, true, 0u, NULL, 300u, piece, &done), BOOT_ERR_TARGET);
+    assert_true(done);
+    assert_int_equal(g_bg_erases, erases);
+    assert_int_equal(D.app_dev.read(D.app_dev.ctx, D.cfg.slot_addr[D.fwu.slot], sector, SECTOR), 0);
+    assert_memory_equal(sector, whole, SECTOR);
+}
+
 /* TransferData in slices on a flash with a background erase: each sector's erase is started by
  * a call of its own and polled a call at a time (3 polls, the one that sees it done a call of
  * its own too) once the header is in, the slot's contents and CRC-32 are
@@ -446,19 +466,7 @@ static void test_data_in_slices_background_erase(void **state)
     assert_int_equal(D.app_dev.read(D.app_dev.ctx, D.cfg.slot_addr[slot], sliced, len), 0);
     assert_memory_equal(sliced, whole, len);
     /* a refused header (another target): the slot's first sector keeps its bytes */
-    fwu_abort(&D.fwu);
-    const uint32_t len2 = make_image(
-        &(img_spec_t){BOOT_VERSION(1, 2, 0), BOOT_TARGET_HOST + 1u, 600u, 1, 1, 1, 1, DEV_KEY},
-        IMG2);
-    assert_int_equal(fwu_begin(&D.fwu, true, len2), BOOT_OK);
-    const uint32_t erases = g_bg_erases;
-    bool done = false;
-    assert_int_equal(fwu_data_step(&D.fwu, true, 0u, IMG2, 300u, 128u, &done), BOOT_OK);
-    assert_int_equal(fwu_data_step(&D.fwu, true, 0u, NULL, 300u, 128u, &done), BOOT_ERR_TARGET);
-    assert_true(done);
-    assert_int_equal(g_bg_erases, erases);
-    assert_int_equal(D.app_dev.read(D.app_dev.ctx, D.cfg.slot_addr[D.fwu.slot], sliced, SECTOR), 0);
-    assert_memory_equal(sliced, whole, SECTOR);
+    refused_header_erases_nothing(whole, 128u);
 }
 
 /* Pieces shorter than the image's header (fwu_uds.h FWU_DATA_BYTES_PER_CALL on a port): the
@@ -495,19 +503,7 @@ static void test_data_in_short_pieces(void **state)
     assert_int_equal(D.fwu.crc32, crc_whole);
     assert_int_equal(D.app_dev.read(D.app_dev.ctx, D.cfg.slot_addr[slot], sliced, len), 0);
     assert_memory_equal(sliced, whole, len);
-    fwu_abort(&D.fwu);
-    const uint32_t len2 = make_image(
-        &(img_spec_t){BOOT_VERSION(1, 2, 0), BOOT_TARGET_HOST + 1u, 600u, 1, 1, 1, 1, DEV_KEY},
-        IMG2);
-    assert_int_equal(fwu_begin(&D.fwu, true, len2), BOOT_OK);
-    const uint32_t erases = g_bg_erases;
-    bool done = false;
-    assert_int_equal(fwu_data_step(&D.fwu, true, 0u, IMG2, 300u, 48u, &done), BOOT_OK);
-    assert_int_equal(fwu_data_step(&D.fwu, true, 0u, NULL, 300u, 48u, &done), BOOT_ERR_TARGET);
-    assert_true(done);
-    assert_int_equal(g_bg_erases, erases);
-    assert_int_equal(D.app_dev.read(D.app_dev.ctx, D.cfg.slot_addr[D.fwu.slot], sliced, SECTOR), 0);
-    assert_memory_equal(sliced, whole, SECTOR);
+    refused_header_erases_nothing(whole, 48u);
 }
 
 static void test_header_refusals(void **state)

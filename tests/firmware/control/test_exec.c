@@ -56,6 +56,25 @@ static size_t load_rollout(const char *name, double *f, size_t cap)
     return n;
 }
 
+/* the golden rollout t,f_hat,y_hat of a skill with a y path into f and y; returns rows */
+static size_t load_rollout_xy(const char *name, double *f, double *y, size_t cap)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", FS_VECTORS_DIR, name);
+    FILE *fp = fopen(path, "r");
+    assert_non_null(fp);
+    char line[256];
+    size_t n = 0;
+    assert_non_null(fgets(line, sizeof line, fp)); /* header */
+    while (fgets(line, sizeof line, fp) != NULL && n < cap) {
+        double t = 0.0;
+        assert_int_equal(sscanf(line, "%lf,%lf,%lf", &t, &f[n], &y[n]), 3);
+        n++;
+    }
+    fclose(fp);
+    return n;
+}
+
 static int setup(void **state)
 {
     (void)state;
@@ -466,21 +485,10 @@ static void test_y_path_tracked(void **state)
     static skill_t sk;
     load_skill("wipe_n50_ridge_release.skill", &sk);
     assert_int_equal(sk.dmp.has_y, 1u);
-    char path[512];
-    snprintf(path, sizeof path, "%s/wipe_n50_ridge_release_g1p5_t1p3_p1p5.csv", FS_VECTORS_DIR);
-    FILE *fp = fopen(path, "r");
-    assert_non_null(fp);
     static double f_ref[4000];
     static double y_ref[4000];
-    char line[256];
-    size_t rows = 0;
-    assert_non_null(fgets(line, sizeof line, fp));
-    while (fgets(line, sizeof line, fp) != NULL && rows < 4000u) {
-        double t = 0.0;
-        assert_int_equal(sscanf(line, "%lf,%lf,%lf", &t, &f_ref[rows], &y_ref[rows]), 3);
-        rows++;
-    }
-    fclose(fp);
+    const size_t rows = load_rollout_xy("wipe_n50_ridge_release_g1p5_t1p3_p1p5.csv", f_ref, y_ref,
+                                        4000u);
     exec_config_t cfg;
     exec_config_default(&cfg);
     cfg.pfc.gains[0] = sk.gains;
@@ -644,20 +652,10 @@ static void test_periodic_path_ramped_in_and_out(void **state)
     load_skill("periodic_y_n50_ridge.skill", &sk);
     assert_int_equal(sk.dmp.periodic, 1u);
     assert_int_equal(sk.dmp.has_y, 1u);
-    char path[512];
-    snprintf(path, sizeof path, "%s/periodic_y_n50_ridge_g1_a1_t1_c2_p1.csv", FS_VECTORS_DIR);
-    FILE *fp = fopen(path, "r");
-    assert_non_null(fp);
+    static double f_hat[4000];
     static double y_hat[4000];
-    char line[256];
-    size_t rows = 0;
-    assert_non_null(fgets(line, sizeof line, fp));
-    while (fgets(line, sizeof line, fp) != NULL && rows < 4000u) {
-        double t = 0.0, f = 0.0;
-        assert_int_equal(sscanf(line, "%lf,%lf,%lf", &t, &f, &y_hat[rows]), 3);
-        rows++;
-    }
-    fclose(fp);
+    const size_t rows = load_rollout_xy("periodic_y_n50_ridge_g1_a1_t1_c2_p1.csv", f_hat, y_hat,
+                                        4000u);
     double acc_path = 0.0; /* the path's own largest acceleration */
     for (size_t n = 2; n < rows; n++) {
         acc_path = fmax(acc_path, fabs(y_hat[n] - 2.0 * y_hat[n - 1u] + y_hat[n - 2u]) / (DT * DT));
