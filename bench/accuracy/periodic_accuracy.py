@@ -4,8 +4,8 @@ the true (noise-free) stroke in % of max force, and the period error in %.
 
 Synthetic wiping strokes (forceskill.model.synthetic.wiping_strokes: 12 strokes after a 1 s
 approach, release 0.8 s), periods 0.6-1.6 s, 0.02 and 0.05 N of white sensor noise, seeds 0-5,
-the default fit (ridge, N = 50). Fixed point against float64 is not measured: the periodic DMP
-has no C implementation yet.
+the default fit (ridge, N = 50). Fixed point and float32 against float64, over 60 s of cycles
+(drift of phase included), are bench/periodic_drift's (bench_periodic_drift SKILL).
 Run: .venv/bin/python bench/accuracy/periodic_accuracy.py
 """
 
