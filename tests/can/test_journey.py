@@ -127,7 +127,11 @@ def test_tracking_figures_1x_and_1_5x(journey):
         assert rms <= 3.0, f"goal x{g}: tracking RMS {rms:.2f} %"
         # max: 2.7 % (1x) and 1.7 % (1.5x) measured; 6 % catches a run that starts before the
         # handle is parked (a too slow simulated park gave 6.9 % at 1.5x, the start transient)
-        assert mx <= 6.0, f"goal x{g}: tracking max {mx:.2f} %"
+        i = int(np.argmax(np.abs(cols["f_contact"] - cols["f_hat"])))
+        assert mx <= 6.0, (
+            f"goal x{g}: tracking max {mx:.2f} % at row {i} of {cols['t'].size} (t {cols['t'][i]:.3f} s: "
+            f"f_contact {cols['f_contact'][i]:.3f} N, f_hat {cols['f_hat'][i]:.3f} N, f_cmd {cols['f_cmd'][i]:.3f} N)"
+        )
         assert np.all(np.abs(cols["f_cmd"]) <= 50.0 + 1e-9)  # F_max at the last stage
     # goal scaling scales the force by 1.5 (reference exactly, measured within 3 %)
     r_ref = res["1.5"]["f_hat"].max() / res["1"]["f_hat"].max()
