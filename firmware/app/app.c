@@ -898,7 +898,7 @@ static void transmit(app_t *app)
         send_status(app);
     }
     const uint32_t period = telemetry_period(app);
-    if (period <= 1u || (app->tick - app->telemetry_phase) % period == 0u) { /* 1 ms: no division */
+    if (period <= 1u || app->tick % period == 0u) { /* 1 ms, the usual period: no division */
         send_telemetry(app);
     }
 }

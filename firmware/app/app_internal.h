@@ -206,7 +206,6 @@ struct app {
     bool exec_saturated;           /* this tick's exec_tick saturated (FS_ERR_FIXED_OVERFLOW) */
     uint32_t exec_saturated_ticks; /* ticks whose exec_tick saturated, since power-up */
     uint32_t fault_fast_until_ms;  /* in FAULT: the telemetry at the host's rate until then */
-    uint32_t telemetry_phase; /* the tick TEACH/EXECUTE began: the fast telemetry's first sample */
     saf_config_t saf_cfg;
     saf_state_t saf;
     saf_output_t saf_out;

@@ -17,9 +17,6 @@ bool app_event(app_t *app, app_event_t ev)
         }
         /* the host must keep its heartbeat from now on: silence in TEACH/EXECUTE stops safely */
         wdg_kick(&app->saf.wdg, app->now_ms);
-        /* a telemetry period of several ticks starts at this one, so the state's first tick
-         * has its sample (a recording or a run's log begins with it, whatever the period) */
-        app->telemetry_phase = app->tick;
         for (unsigned a = 0; a < PFC_AXES; a++) {
             exec_render_reset(&app->rend[a], app->sens.pos_m[a]);
         }

@@ -103,8 +103,8 @@ def test_record_fit_upload_run(journey, capsys):
 
 
 #: How far a run's CSV may end from the motion's duration: 10 ms at 1 kHz telemetry; with a
-#: longer --telemetry-period the last sample sits up to a period less one tick inside the motion
-#: (the device's samples start at the state's first tick), and the CSV spans first to last.
+#: longer --telemetry-period the first and the last sample each sit up to a period less one tick
+#: inside the motion (the device sends on its tick grid), and the CSV spans first to last.
 SPAN_TOL_S = 0.01 + 2 * (TELEMETRY_PERIOD_MS - 1) * 1e-3
 
 

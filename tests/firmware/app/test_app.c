@@ -938,48 +938,11 @@ static void test_scheduler_overrun(void **state)
     assert_int_equal(app.saf_out.fault_code, FLT_TICK_OVERRUN);
 }
 
-/* A telemetry period of several ticks starts at the tick TEACH (or EXECUTE) began: that tick
- * has its sample and every period-th after it, whatever the tick count, so a recording or a run's
- * log begins with the state's first tick (not up to a period into it, nor a period past its end). */
-static void test_telemetry_grid_starts_with_the_state(void **state)
-{
-    (void)state;
-    app.cfg.telemetry_period_ms = 10u;
-    ticks(7); /* the state will begin at a tick that is no multiple of the period */
-    send_heartbeat();
-    send_command(APP_CMD_TEACH, 0);
-    for (unsigned i = 0; i < 10 && app.state != APP_TEACH; i++) {
-        n_out = 0u; /* the frames of the tick that began TEACH, and of those after it */
-        tick();
-    }
-    assert_int_equal(app.state, APP_TEACH);
-    const uint32_t begin = app.tick;
-    assert_true(begin % 10u != 0u);
-    for (unsigned i = 0; i < 40; i++) {
-        if (i % 10u == 9u) {
-            send_heartbeat();
-        }
-        tick();
-    }
-    unsigned n_pos = 0u;
-    for (unsigned i = 0; i < n_out; i++) {
-        if (out[i].id == PROTO_ID_TELEM_POS(0)) {
-            struct fs_dbc_telemetry_position_t p;
-            assert_int_equal(fs_dbc_telemetry_position_unpack(&p, out[i].data, 8), 0);
-            assert_int_equal((uint16_t)(p.tick - (uint16_t)begin) % 10u, 0u);
-            assert_int_equal(p.tick, (uint16_t)(begin + 10u * n_pos));
-            n_pos++;
-        }
-    }
-    assert_int_equal(n_pos, 5u); /* the first tick and every tenth of the 40 after it */
-}
-
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(test_boot_status_and_e2e, setup),
         cmocka_unit_test_setup(test_host_silence_faults_and_ramps, setup),
-        cmocka_unit_test_setup(test_telemetry_grid_starts_with_the_state, setup),
         cmocka_unit_test_setup(test_bus_off_emergency_sent_after_recovery, setup),
         cmocka_unit_test_setup(test_download_corrupt_interrupted, setup),
         cmocka_unit_test_setup(test_execute_and_refusals, setup),
