@@ -408,6 +408,17 @@ static void background_erase(dev_t_ *d)
     attach(d);
 }
 
+/* The image downloaded whole into whole (its slot and CRC-32), then the same download begun
+ * again on the flash with the background erase (no synchronous wait counted); returns its length. */
+static uint32_t background_download_begin(uint8_t whole[IMG_MAX], uint8_t *slot, uint32_t *crc)
+{
+    const uint32_t len = whole_download(whole, slot, crc);
+    background_erase(&D);
+    g_bg_sync = 0u;
+    assert_int_equal(fwu_begin(&D.fwu, true, len), BOOT_OK);
+    return len;
+}
+
 /* After a download of the image whole: a header for another target, in pieces of piece bytes,
  * is refused (BOOT_ERR_TARGET) without an erase, the slot's first sector keeping whole's bytes. */
 static void refused_header_erases_nothing(const uint8_t *whole, uint32_t piece)
@@ -438,9 +449,7 @@ static void test_data_in_slices_background_erase(void **state)
     static uint8_t whole[IMG_MAX], sliced[IMG_MAX];
     uint8_t slot = 0u;
     uint32_t crc_whole = 0u;
-    const uint32_t len = whole_download(whole, &slot, &crc_whole);
-    background_erase(&D);
-    assert_int_equal(fwu_begin(&D.fwu, true, len), BOOT_OK);
+    const uint32_t len = background_download_begin(whole, &slot, &crc_whole);
     static const uint32_t blocks[] = {100u, 1021u, 7u, 4093u, 333u};
     uint32_t off = 0u, k = 0u, calls = 0u;
     while (off < len) {
@@ -479,10 +488,7 @@ static void test_data_in_short_pieces(void **state)
     static uint8_t whole[IMG_MAX], sliced[IMG_MAX];
     uint8_t slot = 0u;
     uint32_t crc_whole = 0u;
-    const uint32_t len = whole_download(whole, &slot, &crc_whole);
-    background_erase(&D);
-    g_bg_sync = 0u;
-    assert_int_equal(fwu_begin(&D.fwu, true, len), BOOT_OK);
+    const uint32_t len = background_download_begin(whole, &slot, &crc_whole);
     static const uint32_t blocks[] = {300u, 1021u, 7u, 4093u, 333u};
     uint32_t off = 0u, k = 0u;
     while (off < len) {
