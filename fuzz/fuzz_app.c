@@ -22,7 +22,10 @@
  *   5. motion starts (IDLE -> TEACH | EXECUTE) only within two ticks of an authentic fresh
  *      HostCommand (a frame beyond the tick's MAC budget is verified the tick after) or during a
  *      UDS request (the run routines); the device accepts no more authenticated frames than the
- *      harness sent authentic ones (no forged or replayed frame is ever accepted).
+ *      harness sent authentic ones (no forged or replayed frame is ever accepted);
+ *   6. a host IDLE stops within one tick, whatever else is on the bus: any frames before and
+ *      after it in that tick (forged, authentic, replayed), its own counter, freshness and MAC
+ *      any bytes.
  * A violated invariant aborts (libFuzzer reports it as a crash). */
 #include <math.h>
 #include <stdbool.h>
@@ -401,7 +404,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         const uint8_t op = data[i++];
         const size_t left = size - i;
         const uint8_t *p = &data[i];
-        switch (op % 17u) {
+        switch (op % 18u) {
         case 0: { /* time passes */
             const unsigned n = left > 0u ? 1u + p[0] : 1u;
             i += left > 0u ? 1u : 0u;
@@ -570,11 +573,41 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         case 15: { /* authentic heartbeat */
             uint8_t payload[8] = {0};
             payload[0] = left > 0u ? p[0] : 0u;
+            payload[1] = (uint8_t)fz_host.fv[SECOC_CH_COMMAND]; /* the last command sent */
             i += left > 0u ? 1u : 0u;
             if (fz_keyed) {
                 send_authentic(PROTO_ID_HOST_HEARTBEAT(0), SECOC_CH_HEARTBEAT, payload);
             }
             tick();
+            break;
+        }
+        case 17: { /* a stop among other frames: IDLE with any MAC, counter and freshness */
+            if (left < 4u) {
+                i = size;
+                break;
+            }
+            const unsigned before = p[0] % 4u, after = p[1] % 4u;
+            for (unsigned k = 0; k < before + after + 1u; k++) {
+                can_frame_t f = {.id = PROTO_ID_HOST_COMMAND(0), .len = 8u};
+                memset(f.data, 0, 8u);
+                if (k == before) { /* the stop */
+                    f.data[0] = APP_CMD_IDLE;
+                    f.data[SECOC_MAC_OFFSET] = p[2];
+                    f.data[SECOC_FV_BYTE] = p[3];
+                    e2e_protect(&f, p[3]);
+                    (void)hal_sim_can_deliver(&f);
+                } else if ((k & 1u) != 0u && fz_have_last) {
+                    (void)hal_sim_can_deliver(&fz_last); /* a replay */
+                } else {
+                    f.data[0] = (uint8_t)((p[2] + k) % 6u); /* any mode, forged */
+                    f.data[SECOC_FV_BYTE] = (uint8_t)(p[3] + k);
+                    e2e_protect(&f, (uint8_t)(p[3] + k));
+                    (void)hal_sim_can_deliver(&f);
+                }
+            }
+            i += 4u;
+            tick();
+            CHECK(app.state != APP_TEACH && app.state != APP_EXECUTE);
             break;
         }
         case 16: /* replay of the last authentic frame */

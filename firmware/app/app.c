@@ -256,19 +256,15 @@ static void run_from_command(const struct fs_dbc_host_command_t *c, uint16_t tim
     req->step[0].cycles = 1u;
 }
 
-static void handle_command(app_t *app, const can_frame_t *f)
+/* An authenticated command acted on (its MAC, freshness and arrival checked). */
+static void handle_command(app_t *app, const struct fs_dbc_host_command_t *c)
 {
-    struct fs_dbc_host_command_t c;
-    if (fs_dbc_host_command_unpack(&c, f->data, f->len) != 0) {
-        return;
-    }
-    switch ((app_cmd_mode_t)c.mode) {
-    case APP_CMD_IDLE: (void)app_event(app, APP_EV_STOP); break;
+    switch ((app_cmd_mode_t)c->mode) {
     case APP_CMD_TEACH: (void)app_event(app, APP_EV_TEACH); break;
     case APP_CMD_RUN_OPTIONS:
         app->run_opts_fv = app->secoc.fv[SECOC_CH_COMMAND];
-        app->run_opts_time = c.time_scale;
-        app->run_opts_end = c.end_policy;
+        app->run_opts_time = c->time_scale;
+        app->run_opts_end = c->end_policy;
         break;
     case APP_CMD_EXECUTE: {
         /* its options are the RUN_OPTIONS frame of the freshness value just before */
@@ -277,7 +273,7 @@ static void handle_command(app_t *app, const can_frame_t *f)
             break;
         }
         app_run_request_t req;
-        run_from_command(&c, app->run_opts_time, app->run_opts_end, &req);
+        run_from_command(c, app->run_opts_time, app->run_opts_end, &req);
         (void)app_run_start(app,
                             &req); /* a refused command is ignored: the status frame shows it */
         break;
@@ -287,35 +283,53 @@ static void handle_command(app_t *app, const can_frame_t *f)
             (void)app_clear_faults(app);
         }
         break;
+    case APP_CMD_IDLE: /* acted on at receipt (host_frame_take) */
     case APP_CMD_NONE:
     default: break;
     }
 }
 
+/* An authenticated heartbeat: the telemetry period, and the command freshness it carries voids
+ * every command the host sent before it that has not arrived yet. */
 static void handle_heartbeat(app_t *app, const can_frame_t *f)
 {
     struct fs_dbc_host_heartbeat_t h;
-    if (fs_dbc_host_heartbeat_unpack(&h, f->data, f->len) == 0 && h.telemetry_period != 0u) {
+    if (fs_dbc_host_heartbeat_unpack(&h, f->data, f->len) != 0) {
+        return;
+    }
+    if (h.telemetry_period != 0u) {
         app->host_period_ms = h.telemetry_period;
     }
+    secoc_raise_floor(&app->secoc, SECOC_CH_COMMAND, h.command_freshness);
 }
 
-/* A host frame that passed its E2E check and its MAC verification (or a stop, taken without
- * a MAC): acted on. */
-static void host_frame_act(app_t *app, const can_frame_t *f, secoc_channel_t ch)
+/* A host frame whose MAC and freshness were verified, arrived at arrival_ms: a heartbeat always
+ * counts (the silence watchdog measures from its arrival); a command only if it arrived within
+ * APP_CMD_FRESH_MS of the previous frame acted on (a withheld frame never acts late). */
+static void host_frame_accepted(app_t *app, const can_frame_t *f, secoc_channel_t ch,
+                                uint32_t arrival_ms)
 {
-    app->host_frame = true;
     if (ch == SECOC_CH_COMMAND) {
-        handle_command(app, f);
-    } else {
-        handle_heartbeat(app, f);
+        struct fs_dbc_host_command_t c;
+        if (fs_dbc_host_command_unpack(&c, f->data, f->len) != 0) {
+            return;
+        }
+        if (!app->host_seen || (uint32_t)(arrival_ms - app->host_seen_ms) > APP_CMD_FRESH_MS) {
+            app->stale_commands++;
+            app->secoc.last_refusal = (uint16_t)SEC_ERR_STALE;
+            return;
+        }
+        app->host_seen_ms = arrival_ms;
+        app->host_frame = true;
+        app->host_frame_ms = arrival_ms;
+        handle_command(app, &c);
+        return;
     }
-}
-
-/* True if frame f of channel ch needs a MAC verification (all but a stop). */
-static bool needs_mac(const can_frame_t *f, secoc_channel_t ch)
-{
-    return !(ch == SECOC_CH_COMMAND && (f->data[0] & 0x0Fu) == (uint8_t)APP_CMD_IDLE);
+    app->host_seen = true;
+    app->host_seen_ms = arrival_ms;
+    app->host_frame = true;
+    app->host_frame_ms = arrival_ms;
+    handle_heartbeat(app, f);
 }
 
 /* The verification in flight with this tick's AES rounds; its frame acted on once accepted. */
@@ -327,15 +341,53 @@ static void mac_job_step(app_t *app, uint32_t *rounds)
     }
     app->mac_busy = false;
     if (app->mac_job.status == SEC_OK) {
-        host_frame_act(app, &app->mac_job.f, (secoc_channel_t)app->mac_job.ch);
+        host_frame_accepted(app, &app->mac_job.f, (secoc_channel_t)app->mac_job.ch,
+                            app->mac_job_arrival_ms);
     }
 }
 
-static void mac_job_start(app_t *app, const can_frame_t *f, secoc_channel_t ch, uint32_t *rounds)
+/* The oldest waiting frame that is not stale into the verification (stale ones dropped,
+ * counted); false if none waits. */
+static bool mac_job_next(app_t *app)
 {
-    secoc_verify_begin(&app->secoc, &app->mac_job, f, ch);
-    app->mac_busy = true;
-    mac_job_step(app, rounds);
+    app_mac_queue_t *q = &app->macq;
+    while (q->count != 0u) {
+        const uint8_t i = q->head;
+        q->head = (uint8_t)((q->head + 1u) % APP_MAC_QUEUE_LEN);
+        q->count--;
+        if ((uint32_t)(app->now_ms - q->arrival_ms[i]) > APP_MAC_STALE_MS) {
+            app->mac_dropped++;
+            continue;
+        }
+        const secoc_channel_t ch = (secoc_channel_t)q->ch[i];
+        can_frame_t f;
+        f.id = (ch == SECOC_CH_COMMAND) ? PROTO_ID_HOST_COMMAND(app->cfg.node)
+                                        : PROTO_ID_HOST_HEARTBEAT(app->cfg.node);
+        f.len = E2E_FRAME_LEN;
+        f.flags = 0u;
+        memcpy(f.data, q->data[i], E2E_FRAME_LEN);
+        secoc_verify_begin(&app->secoc, &app->mac_job, &f, ch);
+        app->mac_job_arrival_ms = q->arrival_ms[i];
+        app->mac_busy = true;
+        return true;
+    }
+    return false;
+}
+
+/* A host frame to verify, queued with its arrival time; a full queue drops its oldest. */
+static void mac_queue_push(app_t *app, const can_frame_t *f, secoc_channel_t ch)
+{
+    app_mac_queue_t *q = &app->macq;
+    if (q->count == APP_MAC_QUEUE_LEN) {
+        q->head = (uint8_t)((q->head + 1u) % APP_MAC_QUEUE_LEN);
+        q->count--;
+        app->mac_dropped++;
+    }
+    const uint8_t i = (uint8_t)((q->head + q->count) % APP_MAC_QUEUE_LEN);
+    memcpy(q->data[i], f->data, E2E_FRAME_LEN);
+    q->arrival_ms[i] = app->now_ms;
+    q->ch[i] = (uint8_t)ch;
+    q->count++;
 }
 
 /* True if the UDS server has sliced work or a complete request waiting (uds_service's share). */
@@ -345,76 +397,63 @@ static bool uds_work_waiting(const app_t *app)
     return app->uds.pending_sid != 0u || isotp_rx_ready(&app->tp[0]) || isotp_rx_ready(&app->tp[1]);
 }
 
-/* One frame of can_receive: to its ISO-TP link, refused, acted on (a stop), verified or held;
- * false once it is held (the rest stays queued). */
-static bool can_take(app_t *app, const can_frame_t *f, bool uds_first, bool *started,
-                     uint32_t *rounds)
+/* One received frame: to its ISO-TP link, or a host frame: a wrong length or CRC refused, a stop
+ * acted on at once (from any node: the safe direction is never blocked by what came before it),
+ * anything else queued for its MAC check. Nothing about a host frame is recorded before its MAC
+ * is verified. */
+static void can_take(app_t *app, const can_frame_t *f)
 {
     const uint32_t node = app->cfg.node;
     secoc_channel_t ch;
-    e2e_rx_t *rx;
     if (f->id == PROTO_ID_HOST_COMMAND(node)) {
         ch = SECOC_CH_COMMAND;
-        rx = &app->rx_command;
     } else if (f->id == PROTO_ID_HOST_HEARTBEAT(node)) {
         ch = SECOC_CH_HEARTBEAT;
-        rx = &app->rx_heartbeat;
     } else {
         if (f->id == PROTO_ID_UDS_REQUEST(node)) {
             isotp_on_frame(&app->tp[0], f, app->now_us);
         } else if (f->id == PROTO_ID_UDS_REQUEST_2(node)) {
             isotp_on_frame(&app->tp[1], f, app->now_us);
         }
-        return true;
+        return;
     }
-    if (e2e_check(rx, f) != PROTO_OK) { /* the cheap refusal first */
+    if (!e2e_frame_ok(f)) {
         app->e2e_errors++;
-        return true;
+        return;
     }
-    if (!needs_mac(f, ch)) {
-        host_frame_act(app, f, ch); /* a stop */
-        return true;
+    if (ch == SECOC_CH_COMMAND && (f->data[0] & 0x0Fu) == (uint8_t)APP_CMD_IDLE) {
+        (void)app_event(app, APP_EV_STOP);
+        app_commands_void(app);
+        return;
     }
-    if (uds_first || *started || app->mac_busy) {
-        app->held = *f;
-        app->held_ch = (uint8_t)(ch + 1u);
-        return false;
-    }
-    mac_job_start(app, f, ch, rounds);
-    *started = true;
-    return true;
+    mac_queue_push(app, f, ch);
 }
 
-/* The CAN frames of this tick, bounded: APP_RX_FRAMES_PER_TICK frames, APP_MAC_ROUNDS_PER_TICK
- * AES rounds of MAC verification and one verification started. An authenticated frame that
- * cannot start is held for the next tick (app_t.held); while one is held the rest stays queued.
- * A MAC and the UDS server's work never share a tick: a verification in flight or held goes
- * first (uds_service then waits a tick), a new one waits a tick while the server has work. */
+/* The CAN frames of this tick: every frame received (up to APP_RX_FRAMES_PER_TICK, more than the
+ * bus carries in a tick), stamped with this tick's time; then the MAC checks, oldest first, within
+ * APP_MAC_ROUNDS_PER_TICK AES rounds and APP_MAC_FRAMES_PER_TICK starts. A new verification and
+ * the UDS server's work never share a tick: one in flight goes on, a new one waits a tick while
+ * the server has work (uds_service then leaves its share to the next tick). */
 static void can_receive(app_t *app)
 {
-    uint32_t rounds = APP_MAC_ROUNDS_PER_TICK;
-    bool started = false;
     app->mac_ran = false;
+    can_frame_t f;
+    for (unsigned i = 0u; i < APP_RX_FRAMES_PER_TICK && hal_can_receive(&f); i++) {
+        can_take(app, &f);
+    }
+    if (!app->mac_busy && app->macq.count == 0u) {
+        return; /* the usual tick: nothing to verify */
+    }
+    uint32_t rounds = APP_MAC_ROUNDS_PER_TICK;
     if (app->mac_busy) {
         mac_job_step(app, &rounds);
-    } else if (app->held_ch != 0u) {
-        const secoc_channel_t ch = (secoc_channel_t)(app->held_ch - 1u);
-        app->held_ch = 0u;
-        mac_job_start(app, &app->held, ch, &rounds);
-        started = true;
+    } else if (uds_work_waiting(app)) {
+        return;
     }
-    if (app->held_ch != 0u) {
-        return; /* a frame still waits for the verification in flight */
-    }
-    can_frame_t f;
-    if (!hal_can_receive(&f)) {
-        return; /* the usual tick: no frame, nothing set up for one */
-    }
-    /* asked once a frame came (before it is taken): a tick without frames does not ask */
-    const bool uds_first = !app->mac_ran && uds_work_waiting(app);
-    for (unsigned i = 1u; can_take(app, &f, uds_first, &started, &rounds) &&
-                          i < APP_RX_FRAMES_PER_TICK && hal_can_receive(&f);
-         i++) {
+    for (unsigned started = 0u;
+         started < APP_MAC_FRAMES_PER_TICK && rounds != 0u && !app->mac_busy && mac_job_next(app);
+         started++) {
+        mac_job_step(app, &rounds);
     }
 }
 
@@ -464,26 +503,52 @@ static void tp_answer(app_t *app, isotp_link_t *tp, const uint8_t *resp, uint16_
     }
 }
 
+/* True if a request is a SecurityAccess sendKey of tester t whose reception began before that
+ * tester was last sent a seed (a key can only answer a seed it has seen). */
+static bool key_before_seed(const app_t *app, uint8_t t, const uint8_t *req, uint16_t len)
+{
+    if (req[0] != UDS_SID_SECURITY || len < 2u) {
+        return false;
+    }
+    const uint8_t sub = (uint8_t)(req[1] & 0x7Fu);
+    return sub != 0u && (sub & 1u) == 0u && app->tp[t].rx_start_us <= app->seed_sent_us[t];
+}
+
+/* A negative answer built by the device itself, the server untouched. */
+static uint16_t refuse_request(app_t *app, const uint8_t *req, uint8_t *resp, uint8_t nrc,
+                               sec_status_t why)
+{
+    resp[0] = UDS_NEGATIVE_RESPONSE;
+    resp[1] = req[0];
+    resp[2] = nrc;
+    app->secoc.last_refusal = (uint16_t)why;
+    return 3u;
+}
+
 /* Serve one request of tester t (its link has one and is free to answer); a foreign write is
- * refused here (0x33, code 558 as the last refusal, counted), the rest goes to the server. */
+ * refused here (0x33, code 558 as the last refusal, counted), and a key whose reception began
+ * before its tester's seed was sent (0x24, 560); the rest goes to the server, which keeps each
+ * tester's seed apart (uds_server_t.tester). */
 static void uds_serve(app_t *app, uint8_t t, const uint8_t *req, uint16_t len)
 {
     isotp_link_t *tp = &app->tp[t];
     uint8_t *resp = isotp_tx_buffer(tp); /* the link is free: the answer is built in place */
     uint16_t n;
     if (foreign_write(app, t, req[0])) {
-        resp[0] = UDS_NEGATIVE_RESPONSE;
-        resp[1] = req[0];
-        resp[2] = UDS_NRC_SECURITY_ACCESS_DENIED;
-        n = 3u;
+        n = refuse_request(app, req, resp, UDS_NRC_SECURITY_ACCESS_DENIED, SEC_ERR_SESSION_OWNER);
         app->uds_foreign++;
-        app->secoc.last_refusal = (uint16_t)SEC_ERR_SESSION_OWNER;
+    } else if (key_before_seed(app, t, req, len)) {
+        n = refuse_request(app, req, resp, UDS_NRC_REQUEST_SEQUENCE_ERROR, SEC_ERR_KEY_SEQUENCE);
     } else {
         if (app->uds.pending_sid == 0u) {
             app->uds_from = t; /* the answer to a pending request goes to its own tester */
         }
+        app->uds.tester = t;
         n = uds_server_handle(&app->uds, req, len, resp, ISOTP_MAX_PAYLOAD, app->now_ms);
         app->reset_since_ms = app->now_ms; /* used only if this was an accepted ECUReset */
+        if (req[0] == UDS_SID_SECURITY && n > 2u && resp[0] == UDS_SID_SECURITY + 0x40u) {
+            app->seed_sent_us[t] = app->now_us; /* a seed (a key's answer is 2 bytes) */
+        }
     }
     if (app->uds.pending_sid == UDS_SID_TRANSFER_DATA && app->tp_held == 0u) {
         app->tp_held = (uint8_t)(t + 1u); /* the block is taken in slices from the link's buffer */
@@ -641,8 +706,6 @@ void app_init(app_t *app, const app_config_t *cfg)
     app->cfg = *cfg;
     app->state = APP_BOOT;
     app->now_us = hal_time_us_ms(&app->now_ms);
-    e2e_rx_reset(&app->rx_command);
-    e2e_rx_reset(&app->rx_heartbeat);
     secoc_init(&app->secoc); /* no motion key until a host session establishes one */
 
     isotp_config_t tpc;
@@ -843,6 +906,7 @@ static void supervise(app_t *app, bool overrun)
     in.tick = app->tick;
     in.now_ms = app->now_ms;
     in.host_frame = app->host_frame && (app->state == APP_TEACH || app->state == APP_EXECUTE);
+    in.host_frame_age_ms = app->now_ms - app->host_frame_ms;
     in.bus_off = hal_can_bus_off();
     in.tick_overrun = overrun;
     in.skill_invalid = app->exec_saturated;

@@ -72,10 +72,10 @@
 #define APP_FAULT_TELEMETRY_TAIL_MS 20u
 #define APP_IMAGE_MAX SLOTS_IMAGE_MAX
 #define APP_SW_VERSION "forceskill-fw 0.1.0"
-#define APP_PROTO_VERSION_MAJOR 3u /* 3: the frames' MAC is AES-CMAC (docs/protocol.md) */
+#define APP_PROTO_VERSION_MAJOR 4u /* 4: commands fresh in time (docs/protocol.md) */
 #define APP_PROTO_VERSION_MINOR 0u
-#define APP_SEC_LEVELS 2u /* SecurityAccess levels 1 and 3, one secret each */
-#define APP_TESTERS 2u    /* UDS tester ids: UDS_REQUEST(_2) -> UDS_RESPONSE(_2) */
+#define APP_SEC_LEVELS 2u       /* SecurityAccess levels 1 and 3, one secret each */
+#define APP_TESTERS UDS_TESTERS /* UDS tester ids: UDS_REQUEST(_2) -> UDS_RESPONSE(_2) */
 /* SHA-256 rounds per tick of a SecurityAccess key check or a motion key derivation (four
  * compressions of 64 rounds, answered 0x78 first): ~40-65 instructions a round on the M4F, a
  * stage's end (padding, digest, wipes) in a call of its own after a call that compressed; 33
@@ -84,21 +84,42 @@
 #define APP_SEC_ROUNDS_PER_TICK 8u
 #endif
 /* AES rounds of MAC verification a tick (secoc_verify_run: an AES-128 block is 10 rounds, ~620
- * instructions on the M4F; a frame that fails takes a second block, its replay check), and at
- * most one frame's verification starts a tick: the authenticated frame beyond it waits for the
- * next tick (app_t.held). The host build verifies a frame within the tick that takes it (20);
- * the Cortex-M images take 4 (firmware/ports/mps2/CMakeLists.txt), so a tick with a frame stays
- * within the M4F's 3,000 instructions beside EXECUTE's work (bench/qemu_tick.sh): a genuine frame
- * is acted on in the third tick from its arrival, a forged one refused in the sixth (its second
- * block from the tick after the first's end). */
+ * instructions on the M4F; a frame that fails takes a second block, its replay check) and the
+ * verifications started a tick. The host build verifies every frame the bus can carry in a tick
+ * within that tick (8 frames of two blocks); the Cortex-M images take 4 rounds and start one a
+ * tick (firmware/ports/mps2/CMakeLists.txt), so a tick with a frame stays within the M4F's 3,000
+ * instructions beside EXECUTE's work (bench/qemu_tick.sh). */
 #ifndef APP_MAC_ROUNDS_PER_TICK
-#define APP_MAC_ROUNDS_PER_TICK 20u
+#define APP_MAC_ROUNDS_PER_TICK 160u
 #endif
+#ifndef APP_MAC_FRAMES_PER_TICK
+#define APP_MAC_FRAMES_PER_TICK 8u
+#endif
+/* Authenticated host frames waiting for their MAC check, in arrival order (a full queue drops its
+ * oldest), and how long one may wait: a frame still unverified this long after its arrival is
+ * dropped unverified (counted), the newer ones go first. */
+#define APP_MAC_QUEUE_LEN 8u
+#define APP_MAC_STALE_MS 40u
+/* A command (TEACH, RUN_OPTIONS, EXECUTE, CLEAR_FAULT) is acted on only if it arrived within this
+ * long of the previous authenticated host frame the device accepted (the host's heartbeat comes
+ * every 10 ms), and never after a later heartbeat that carries a newer command freshness. A stop
+ * (IDLE, from any node), a UDS fault clear or run stop and a new motion key end the reference:
+ * the next command needs a heartbeat after them. docs/protocol.md "Freshness in time". */
+#define APP_CMD_FRESH_MS 50u
 /* Units of the SecurityAccess record's flash write a tick (nvm_write_run: the erase's start or a
  * poll, a piece programmed or read back, NVM_SLICE_BYTES of the CRC or the scan). */
 #ifndef APP_SEC_FLASH_UNITS_PER_TICK
 #define APP_SEC_FLASH_UNITS_PER_TICK 1u
 #endif
+/** Authenticated host frames waiting for their MAC check (a ring, oldest at head). */
+typedef struct {
+    uint8_t data[APP_MAC_QUEUE_LEN][E2E_FRAME_LEN];
+    uint32_t arrival_ms[APP_MAC_QUEUE_LEN];
+    uint8_t ch[APP_MAC_QUEUE_LEN];
+    uint8_t head;
+    uint8_t count;
+} app_mac_queue_t;
+
 /** The whole device. */
 struct app {
     app_config_t cfg;
@@ -117,13 +138,15 @@ struct app {
     fs_real_t force_hat_N;
 #endif
     /* CAN */
-    e2e_rx_t rx_command;
-    e2e_rx_t rx_heartbeat;
     uint8_t tx_counter_status;
     uint8_t tx_counter_emcy;
     uint8_t host_period_ms; /* telemetry period requested by the host heartbeat */
-    bool host_frame;        /* a valid host frame this tick */
+    bool host_frame;        /* an authenticated host frame was accepted this tick ... */
+    uint32_t host_frame_ms; /* ... and the newest one's arrival time (the silence watchdog's) */
+    uint32_t host_seen_ms;  /* arrival of the last host frame acted on: commands' reference */
+    bool host_seen;         /* host_seen_ms holds (APP_CMD_FRESH_MS) */
     uint32_t e2e_errors;
+    uint32_t stale_commands; /* authenticated commands refused as late (APP_CMD_FRESH_MS) */
     uint32_t tx_dropped;
     uint32_t tp_frames; /* ISO-TP frames queued this tick (APP_TP_FRAMES_PER_TICK) */
     secoc_t secoc;      /* authenticated host frames (motion key) */
@@ -139,10 +162,12 @@ struct app {
     uint8_t motion_key[SECOC_KEY_LEN];          /* the derived key until it is installed */
     uint32_t motion_confirm;                    /* secoc_confirm of the key in use (0: none) */
     secoc_job_t mac_job;                        /* the MAC verification in flight */
+    uint32_t mac_job_arrival_ms;                /* its frame's arrival */
     bool mac_busy;                              /* mac_job runs */
-    can_frame_t held;                           /* an authenticated frame waiting for mac_job */
-    uint8_t held_ch;                            /* its channel + 1, 0: none */
+    app_mac_queue_t macq;                       /* frames waiting for it, oldest first */
+    uint32_t mac_dropped;                       /* frames dropped unverified (full or stale) */
     bool mac_ran;                               /* this tick verified a frame's MAC */
+    uint64_t seed_sent_us[APP_TESTERS];         /* when each tester was last sent a seed */
     uint8_t
         tp_held; /* tester + 1 whose request buffer a TransferData block's slices read, 0: none */
     uint32_t run_opts_fv;   /* freshness value of the last RUN_OPTIONS ... */
@@ -227,6 +252,10 @@ uint8_t app_run_authorize(const app_t *app, const app_run_request_t *req);
 /** One slice of an accepted run's start (exec_start_run) while it runs: true if there was one
  *  (the tick's control commands no force); a refusal ends the run (last_run_status). */
 bool app_run_start_step(app_t *app);
+
+/** End every command sent before now (a stop, a UDS fault clear or run stop, a new motion key):
+ *  the next HostCommand is acted on only after an authenticated heartbeat arrived after this. */
+void app_commands_void(app_t *app);
 
 /** Handle the UDS hooks (app_uds.c): fills an uds_app_t bound to app. */
 void app_uds_bind(app_t *app, uds_app_t *out);

@@ -114,8 +114,7 @@ uint8_t app_motion_key_begin(app_t *app, const uint8_t *host_nonce, uint16_t len
     app->motion_confirm_half = false;
     memcpy(app->secoc_dev_nonce, dev_nonce, SECOC_NONCE_LEN);
     app->run_opts_fv = 0u;
-    app->held_ch = 0u;
-    app->mac_busy = false; /* a frame of the old session is not verified with the new key */
+    app_commands_void(app); /* a frame of the old session is not verified with the new key */
     app->motion_keying = true;
     return UDS_NRC_RESPONSE_PENDING;
 }

@@ -59,3 +59,12 @@ flt_code_t app_clear_faults(app_t *app)
     }
     return r;
 }
+
+/* The end of every command sent before now: what waits for its MAC check is dropped and the next
+ * command needs a heartbeat after this (a stop, a UDS fault clear or run stop, a new key). */
+void app_commands_void(app_t *app)
+{
+    app->host_seen = false;
+    app->macq.count = 0u; /* what waits for its check arrived before: it never acts */
+    app->mac_busy = false;
+}

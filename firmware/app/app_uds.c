@@ -389,6 +389,7 @@ static uint8_t routine_run(app_t *app, uint8_t sub, uint16_t rid, const uint8_t 
             return UDS_NRC_REQUEST_SEQUENCE_ERROR;
         }
         (void)app_event(app, APP_EV_STOP);
+        app_commands_void(app); /* a command withheld before the stop never acts after it */
         return UDS_NRC_OK;
     }
     const fs_wire_run_results_t v = {(uint8_t)app->state, app->seq_step, app->exec_done ? 1u : 0u,
@@ -433,6 +434,7 @@ static uint8_t routine_clear_faults(app_t *app, uint8_t sub)
     if (app->state != APP_FAULT) {
         return UDS_NRC_REQUEST_SEQUENCE_ERROR;
     }
+    app_commands_void(app); /* a command withheld before the fault never acts after the clear */
     if (app_clear_faults(app) != FLT_NONE) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT; /* a cause persists */
     }
@@ -519,11 +521,12 @@ static uint8_t security_seed(void *ctx, uint8_t level, uint8_t *seed, uint16_t c
     if (cap < SEC_SEED_LEN) {
         return UDS_NRC_RESPONSE_TOO_LONG;
     }
-    /* the state is shared by the levels: a seed of another level is never "already unlocked" */
-    if (app->uds.unlocked_level != level) {
+    /* the state is shared by the levels: a seed of another level is never "already unlocked"
+     * (a locked state is left as it is: other testers' seeds stay theirs) */
+    if (app->uds.unlocked_level != level && sec_is_unlocked(&app->sec)) {
         sec_lock(&app->sec);
     }
-    const sec_nrc_t nrc = sec_request_seed(cfg, &app->sec, app->now_ms, seed);
+    const sec_nrc_t nrc = sec_request_seed(cfg, &app->sec, app->uds.tester, app->now_ms, seed);
     app_sec_persist(app); /* a lockout that ended clears the stored counter */
     if (nrc != SEC_NRC_NONE) {
         return (uint8_t)nrc;
@@ -542,7 +545,7 @@ static uint8_t security_key(void *ctx, uint8_t level, const uint8_t *key, uint16
     /* answered 0x78, the key's HMAC checked in slices (resume); the attempt counts as wrong
      * until then, stored before the check runs: the wrong-key counter survives reset and
      * power-up */
-    const uint8_t nrc = (uint8_t)sec_send_key_begin(cfg, &app->sec, key, len);
+    const uint8_t nrc = (uint8_t)sec_send_key_begin(cfg, &app->sec, app->uds.tester, key, len);
     app_sec_persist(app);
     app->sec_key_held =
         false; /* a result held for an earlier, abandoned request is not this one's */

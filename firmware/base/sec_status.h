@@ -24,6 +24,13 @@ typedef enum {
     /* UDS write refused (0x33): the unlocked session belongs to the other tester id, the one
      * whose SecurityAccess unlocked it */
     SEC_ERR_SESSION_OWNER = 558,
+    /* authenticated HostCommand refused as late: it arrived more than 50 ms after the previous
+     * host frame the device accepted, or after a stop, a UDS fault clear or run stop, or a new
+     * motion key, with no heartbeat between (a withheld command never acts late) */
+    SEC_ERR_STALE = 559,
+    /* SecurityAccess sendKey refused (0x24): no seed of this tester id, or its reception began
+     * before that seed was sent */
+    SEC_ERR_KEY_SEQUENCE = 560,
 } sec_status_t;
 
 #endif /* SEC_STATUS_H */

@@ -63,6 +63,11 @@ void e2e_rx_reset(e2e_rx_t *rx)
     rx->seen = false;
 }
 
+bool e2e_frame_ok(const can_frame_t *f)
+{
+    return f->len >= E2E_FRAME_LEN && e2e_frame_crc(f) == f->data[7];
+}
+
 proto_status_t e2e_check(e2e_rx_t *rx, const can_frame_t *f)
 {
     if (f->len < E2E_FRAME_LEN) {

@@ -26,6 +26,9 @@ uint8_t e2e_frame_crc(const can_frame_t *f);
 /** Write counter (low 4 bits) into data bits 48..51 and the CRC into data[7]; sets len 8. */
 void e2e_protect(can_frame_t *f, uint8_t counter);
 
+/** True if f is a safety frame with a valid CRC (len at least 8); nothing recorded. */
+bool e2e_frame_ok(const can_frame_t *f);
+
 /** Receiver state of one protected frame id: the last accepted counter. */
 typedef struct {
     uint8_t last_counter;

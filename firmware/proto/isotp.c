@@ -109,7 +109,7 @@ static bool send_fc(isotp_link_t *link, uint8_t status)
 
 /* ---- reception ---- */
 
-static void rx_single(isotp_link_t *link, const can_frame_t *f)
+static void rx_single(isotp_link_t *link, const can_frame_t *f, uint64_t now_us)
 {
     uint8_t len = (uint8_t)(f->data[0] & 0x0Fu);
     uint8_t off = 1u;
@@ -130,6 +130,7 @@ static void rx_single(isotp_link_t *link, const can_frame_t *f)
     memcpy(link->rx_buf, &f->data[off], len);
     link->rx_len = len;
     link->rx_pos = len;
+    link->rx_start_us = now_us;
     link->rx_state = ISOTP_RX_DONE;
 }
 
@@ -168,6 +169,7 @@ static void rx_first(isotp_link_t *link, const can_frame_t *f, uint64_t now_us)
     link->rx_sn = 1u;
     link->rx_bs_left = link->cfg.block_size;
     link->rx_state = ISOTP_RX_RECEIVING;
+    link->rx_start_us = now_us;
     link->rx_deadline_us = now_us + link->cfg.n_cr_us;
     link->rx_fc_status = FC_CTS;
     link->rx_fc_pending = !send_fc(link, FC_CTS);
@@ -258,7 +260,7 @@ void isotp_on_frame(isotp_link_t *link, const can_frame_t *frame, uint64_t now_u
         if (link->rx_state == ISOTP_RX_DONE) {
             fail(link, PROTO_ERR_ISOTP_UNEXPECTED); /* previous message not consumed yet */
         } else {
-            rx_single(link, frame);
+            rx_single(link, frame, now_us);
         }
         break;
     case PCI_FF:

@@ -67,6 +67,7 @@ typedef struct {
     uint8_t rx_dl;           /* length of the first frame: every CF but the last has it */
     uint8_t rx_bs_left;      /* CFs until we must send the next FC (0 with BS 0) */
     uint64_t rx_deadline_us; /* N_Cr */
+    uint64_t rx_start_us;    /* when the message's SF or FF arrived (the frame's receive time) */
     bool rx_fc_pending;      /* FC to send (driver was busy) */
     uint8_t rx_fc_status;
     /* transmission */

@@ -26,7 +26,7 @@ static void enter_session(uds_server_t *srv, uint8_t session)
     }
     srv->session = session;
     srv->unlocked_level = 0u; /* every session change locks (ISO 14229-1 9.4) */
-    srv->seed_level = 0u;
+    (void)memset(srv->seed_level, 0, sizeof srv->seed_level);
 }
 
 void uds_server_init(uds_server_t *srv, const uds_app_t *app)
@@ -122,6 +122,7 @@ static uint16_t svc_security(uds_server_t *srv, const uint8_t *req, uint16_t len
         return negative(resp, req[0], UDS_NRC_INCORRECT_LENGTH);
     }
     const uint8_t sub = (uint8_t)(req[1] & 0x7Fu);
+    const uint8_t t = (srv->tester < UDS_TESTERS) ? srv->tester : 0u; /* each its own seed */
     const bool is_seed = (sub & 1u) != 0u;
     const uint8_t level = is_seed ? sub : (uint8_t)(sub - 1u);
     if (level != UDS_SEC_LEVEL_WRITE && level != UDS_SEC_LEVEL_FIRMWARE) {
@@ -151,19 +152,19 @@ static uint16_t svc_security(uds_server_t *srv, const uint8_t *req, uint16_t len
         const uint8_t nrc = srv->app.security_seed(srv->app.ctx, level, &resp[2],
                                                    (uint16_t)(cap - 2u), &seed_len);
         if (nrc != UDS_NRC_OK) {
-            srv->seed_level = 0u;
+            srv->seed_level[t] = 0u;
             return negative(resp, req[0], nrc);
         }
-        srv->seed_level = level;
+        srv->seed_level[t] = level;
         return (uint16_t)(2u + seed_len);
     }
     if (len < 3u) {
         return negative(resp, req[0], UDS_NRC_INCORRECT_LENGTH);
     }
-    if (srv->seed_level != level) {
+    if (srv->seed_level[t] != level) {
         return negative(resp, req[0], UDS_NRC_REQUEST_SEQUENCE_ERROR);
     }
-    srv->seed_level = 0u; /* one key per seed */
+    srv->seed_level[t] = 0u; /* one key per seed */
     const uint8_t nrc = srv->app.security_key(srv->app.ctx, level, &req[2], (uint16_t)(len - 2u));
     if (nrc == UDS_NRC_RESPONSE_PENDING) {
         pend(srv, req[0], level);

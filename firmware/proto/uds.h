@@ -107,6 +107,8 @@ typedef struct {
     uint8_t (*upload_data)(void *ctx, uint32_t offset, uint8_t *out, uint16_t len);
 } uds_app_t;
 
+#define UDS_TESTERS 2u /* request ids served (the application's tester index: srv->tester) */
+
 typedef enum {
     UDS_XFER_NONE = 0,
     UDS_XFER_DOWNLOAD = 1,
@@ -118,7 +120,8 @@ typedef struct {
     uds_app_t app;
     uint8_t session;
     uint8_t unlocked_level; /* 0: locked, else the level unlocked */
-    uint8_t seed_level;     /* level whose seed was sent and awaits a key, 0 if none */
+    uint8_t tester;         /* the tester (request id index) of the request being handled */
+    uint8_t seed_level[UDS_TESTERS]; /* per tester: the level whose seed awaits a key, 0: none */
     uint32_t last_request_ms;
     uds_xfer_t xfer;
     uint32_t xfer_size;

@@ -121,8 +121,8 @@ static uint32_t input_causes(const saf_config_t *cfg, saf_state_t *st, const saf
                              bool inside0, bool inside1)
 {
     uint32_t cause = 0u;
-    if (in->host_frame) {
-        wdg_kick(&st->wdg, in->now_ms);
+    if (in->host_frame) { /* silence measured from the frame's arrival, not its check */
+        wdg_kick(&st->wdg, in->now_ms - in->host_frame_age_ms);
     }
     if (wdg_expired_tick(&cfg->wdg, &st->wdg, in->now_ms)) {
         cause |= FLT_BIT(FLT_HOST_SILENCE);

@@ -32,7 +32,8 @@ typedef struct {
 typedef struct {
     uint32_t tick;                     /* control tick counter */
     uint32_t now_ms;                   /* time of this tick, ms */
-    bool host_frame;                   /* a host command/heartbeat arrived since last tick */
+    bool host_frame;                   /* a host command/heartbeat was accepted since last tick */
+    uint32_t host_frame_age_ms;        /* ms since the newest of them arrived (0: this tick) */
     bool bus_off;                      /* CAN controller is bus-off */
     bool tick_overrun;                 /* the previous tick overran its period */
     bool skill_invalid;                /* the active skill is invalid / failed to load */

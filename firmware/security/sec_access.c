@@ -107,10 +107,11 @@ void sec_compute_key(const sec_config_t *cfg, const uint8_t seed[SEC_SEED_LEN],
     sec_wipe(mac, sizeof mac);
 }
 
-sec_nrc_t sec_request_seed(const sec_config_t *cfg, sec_state_t *st, uint32_t now_ms,
-                           uint8_t seed_out[SEC_SEED_LEN])
+sec_nrc_t sec_request_seed(const sec_config_t *cfg, sec_state_t *st, uint8_t tester,
+                           uint32_t now_ms, uint8_t seed_out[SEC_SEED_LEN])
 {
-    if (cfg == NULL || st == NULL || seed_out == NULL || cfg->rng == NULL) {
+    if (cfg == NULL || st == NULL || seed_out == NULL || cfg->rng == NULL ||
+        tester >= SEC_TESTERS) {
         return SEC_NRC_CONDITIONS;
     }
     if (st->unlocked != 0u) {
@@ -127,39 +128,45 @@ sec_nrc_t sec_request_seed(const sec_config_t *cfg, sec_state_t *st, uint32_t no
             st->failed = 0u;
         }
     }
-    st->seed_valid = 0u;
-    if (cfg->rng(cfg->rng_ctx, st->seed, SEC_SEED_LEN) != 0) {
+    uint8_t *seed = st->seed[tester];
+    st->seed_valid[tester] = 0u;
+    if (cfg->rng(cfg->rng_ctx, seed, SEC_SEED_LEN) != 0) {
         return SEC_NRC_CONDITIONS;
     }
     uint8_t any = 0u;
     for (uint32_t i = 0u; i < SEC_SEED_LEN; i++) {
-        any = (uint8_t)(any | st->seed[i]);
+        any = (uint8_t)(any | seed[i]);
     }
     if (any == 0u) { /* the zero seed means "unlocked"; a source that gives it is broken */
         return SEC_NRC_CONDITIONS;
     }
-    st->seed_valid = 1u;
-    (void)memcpy(seed_out, st->seed, SEC_SEED_LEN);
+    st->seed_valid[tester] = 1u;
+    (void)memcpy(seed_out, seed, SEC_SEED_LEN);
     return SEC_NRC_NONE;
 }
 
-sec_nrc_t sec_send_key_begin(const sec_config_t *cfg, sec_state_t *st, const uint8_t *key,
-                             uint32_t key_len)
+sec_nrc_t sec_send_key_begin(const sec_config_t *cfg, sec_state_t *st, uint8_t tester,
+                             const uint8_t *key, uint32_t key_len)
 {
-    if (cfg == NULL || st == NULL) {
+    if (cfg == NULL || st == NULL || tester >= SEC_TESTERS) {
         return SEC_NRC_CONDITIONS;
     }
-    if (st->seed_valid == 0u) {
+    if (st->seed_valid[tester] == 0u) {
         return SEC_NRC_SEQUENCE_ERROR;
     }
-    st->seed_valid = 0u; /* one answer per seed, right or wrong */
+    uint8_t *seed = st->seed[tester];
+    st->seed_valid[tester] = 0u; /* one answer per seed, right or wrong */
     if (key == NULL || key_len != SEC_KEY_LEN) {
-        sec_wipe(st->seed, SEC_SEED_LEN);
+        sec_wipe(seed, SEC_SEED_LEN);
         return SEC_NRC_INCORRECT_LENGTH;
     }
+    if (st->checking != 0u) { /* another tester's key is being checked: this seed stays used */
+        sec_wipe(seed, SEC_SEED_LEN);
+        return SEC_NRC_CONDITIONS;
+    }
     const uint32_t klen = (cfg->secret_len > SEC_SECRET_MAX) ? SEC_SECRET_MAX : cfg->secret_len;
-    (void)sec_hmac_job_begin(&st->job, cfg->secret, klen, st->seed, SEC_SEED_LEN);
-    sec_wipe(st->seed, SEC_SEED_LEN);
+    (void)sec_hmac_job_begin(&st->job, cfg->secret, klen, seed, SEC_SEED_LEN);
+    sec_wipe(seed, SEC_SEED_LEN);
     (void)memcpy(st->key, key, SEC_KEY_LEN);
     st->checking = 1u;
     if (st->failed < 0xFFu) {
@@ -197,10 +204,10 @@ sec_nrc_t sec_send_key_run(const sec_config_t *cfg, sec_state_t *st, uint32_t no
     return SEC_NRC_INVALID_KEY;
 }
 
-sec_nrc_t sec_send_key(const sec_config_t *cfg, sec_state_t *st, uint32_t now_ms,
+sec_nrc_t sec_send_key(const sec_config_t *cfg, sec_state_t *st, uint8_t tester, uint32_t now_ms,
                        const uint8_t *key, uint32_t key_len)
 {
-    const sec_nrc_t nrc = sec_send_key_begin(cfg, st, key, key_len);
+    const sec_nrc_t nrc = sec_send_key_begin(cfg, st, tester, key, key_len);
     return nrc == SEC_NRC_PENDING ? sec_send_key_run(cfg, st, now_ms, UINT32_MAX) : nrc;
 }
 
@@ -213,8 +220,8 @@ void sec_lock(sec_state_t *st)
 {
     if (st != NULL) {
         st->unlocked = 0u;
-        st->seed_valid = 0u;
-        sec_wipe(st->seed, SEC_SEED_LEN);
+        (void)memset(st->seed_valid, 0, sizeof st->seed_valid);
+        sec_wipe(st->seed, (uint32_t)sizeof st->seed);
         if (st->checking != 0u) { /* a finished check wiped its own key material */
             st->checking = 0u;
             sec_wipe(st->key, SEC_KEY_LEN);

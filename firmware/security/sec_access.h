@@ -15,7 +15,10 @@
  * an application that keeps the counter in non-volatile memory (sec_record_*) restores it with
  * sec_restore, which restarts the lockout at power-up after a lockout (ISO 14229-1: the delay
  * timer is active on power-up). One state serves every level; each level has its own config
- * (its own secret). */
+ * (its own secret). Each tester (a UDS request id, 0..SEC_TESTERS-1) has its own seed: a key is
+ * checked against the seed its own tester was sent, so another tester's seed request voids
+ * nothing and a key read off the bus is worthless on another id. The attempt counter is shared:
+ * wrong keys from any tester start the delay and the lockout for every tester. */
 #ifndef SEC_ACCESS_H
 #define SEC_ACCESS_H
 
@@ -27,6 +30,7 @@
 #define SEC_SEED_LEN 16u
 #define SEC_KEY_LEN 16u
 #define SEC_SECRET_MAX 64u
+#define SEC_TESTERS 2u    /* testers with a seed of their own */
 #define SEC_RECORD_LEN 4u /* attempt record: magic 'S', failed, locked_out, ~failed */
 
 /** Result of a SecurityAccess step: 0 = positive response, else the UDS NRC to send. */
@@ -58,8 +62,8 @@ typedef struct {
 
 /** Session state. */
 typedef struct {
-    uint8_t seed[SEC_SEED_LEN];
-    uint8_t seed_valid; /* a seed was issued and not yet answered */
+    uint8_t seed[SEC_TESTERS][SEC_SEED_LEN];
+    uint8_t seed_valid[SEC_TESTERS]; /* a seed was issued to the tester and not yet answered */
     uint8_t unlocked;
     uint8_t failed; /* wrong keys since the last success (or lockout end) */
     uint8_t locked_out;
@@ -91,21 +95,23 @@ void sec_record_encode(const sec_state_t *st, uint8_t rec[SEC_RECORD_LEN]);
 /** Decode a stored record; false (nothing written) if len or its check bytes are wrong. */
 bool sec_record_decode(const uint8_t *rec, uint32_t len, uint8_t *failed, uint8_t *locked_out);
 
-/** requestSeed at now_ms: seed_out[SEC_SEED_LEN] gets a fresh seed, or all zeros if already
- *  unlocked (ISO 14229-1). Returns 0x37 during a delay/lockout, 0x22 if the RNG fails. */
-sec_nrc_t sec_request_seed(const sec_config_t *cfg, sec_state_t *st, uint32_t now_ms,
-                           uint8_t seed_out[SEC_SEED_LEN]);
+/** requestSeed of tester (0..SEC_TESTERS-1) at now_ms: seed_out[SEC_SEED_LEN] gets a fresh seed
+ *  (the tester's previous one void, the other testers' kept), or all zeros if already unlocked
+ *  (ISO 14229-1). Returns 0x37 during a delay/lockout, 0x22 if the RNG fails or tester is bad. */
+sec_nrc_t sec_request_seed(const sec_config_t *cfg, sec_state_t *st, uint8_t tester,
+                           uint32_t now_ms, uint8_t seed_out[SEC_SEED_LEN]);
 
-/** sendKey at now_ms: 0 unlocks; 0x24 without an outstanding seed, 0x13 on a wrong length,
- *  0x35 wrong key, 0x36 wrong key that reaches max_attempts; the seed is consumed. */
-sec_nrc_t sec_send_key(const sec_config_t *cfg, sec_state_t *st, uint32_t now_ms,
+/** sendKey of tester at now_ms: 0 unlocks; 0x24 without an outstanding seed of that tester, 0x13
+ *  on a wrong length, 0x35 wrong key, 0x36 wrong key that reaches max_attempts; the seed is
+ *  consumed. */
+sec_nrc_t sec_send_key(const sec_config_t *cfg, sec_state_t *st, uint8_t tester, uint32_t now_ms,
                        const uint8_t *key, uint32_t key_len);
 
 /** sendKey in slices: the checks of sec_send_key that need no hash (0x24, 0x13), else the
  *  seed is consumed, the attempt counted as a wrong key until the check ends, and
  *  SEC_NRC_PENDING returned; sec_send_key_run finishes it. */
-sec_nrc_t sec_send_key_begin(const sec_config_t *cfg, sec_state_t *st, const uint8_t *key,
-                             uint32_t key_len);
+sec_nrc_t sec_send_key_begin(const sec_config_t *cfg, sec_state_t *st, uint8_t tester,
+                             const uint8_t *key, uint32_t key_len);
 
 /** Up to rounds SHA-256 rounds of the check begun (4 x 64 in all): SEC_NRC_PENDING while it
  *  runs, then sec_send_key's answer at now_ms. 0x24 if no check runs. */

@@ -129,6 +129,17 @@ uint32_t secoc_protect(secoc_t *s, can_frame_t *f, secoc_channel_t ch)
     return fv;
 }
 
+void secoc_raise_floor(secoc_t *s, secoc_channel_t ch, uint8_t low8)
+{
+    /* ahead of the last accepted value by less than half the window: the sender's newer frames;
+     * else an older value (a heartbeat built before a command it reached the device after) */
+    const uint32_t last = s->fv[ch];
+    const uint32_t ahead = (uint32_t)(uint8_t)(low8 - (uint8_t)last);
+    if (ahead < SECOC_FV_WINDOW / 2u && last + ahead >= last) {
+        s->fv[ch] = last + ahead;
+    }
+}
+
 static sec_status_t refuse(secoc_t *s, sec_status_t why, uint32_t *count)
 {
     (*count)++;

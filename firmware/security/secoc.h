@@ -109,6 +109,13 @@ uint32_t secoc_protect(secoc_t *s, can_frame_t *f, secoc_channel_t ch);
  *  SEC_ERR_FRESHNESS refuse it, counted. */
 sec_status_t secoc_verify(secoc_t *s, const can_frame_t *f, secoc_channel_t ch);
 
+/** Receiver: the sender has sent channel ch's frames up to a freshness value whose low 8 bits are
+ *  low8 (told on another, authenticated channel): every frame at or below it not yet accepted is
+ *  refused from now on. The value is the last accepted one plus (low8 - its low 8 bits) mod 256
+ *  when that is below 128; a value behind it (told before a frame that arrived first) changes
+ *  nothing. */
+void secoc_raise_floor(secoc_t *s, secoc_channel_t ch, uint8_t low8);
+
 /** secoc_verify in slices: starts checking frame f of channel ch (a refusal that needs no
  *  encryption, no key or freshness used up, ends the job at once). */
 void secoc_verify_begin(secoc_t *s, secoc_job_t *j, const can_frame_t *f, secoc_channel_t ch);

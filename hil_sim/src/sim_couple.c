@@ -252,6 +252,7 @@ void sim_couple_heartbeat_frame(secoc_t *host, uint8_t node, uint8_t telemetry_p
     struct fs_dbc_host_heartbeat_t h;
     memset(&h, 0, sizeof(h));
     h.telemetry_period = telemetry_period_ms;
+    h.command_freshness = (uint8_t)host->fv[SECOC_CH_COMMAND]; /* the last command sent */
     memset(f, 0, sizeof(*f));
     f->id = PROTO_ID_HOST_HEARTBEAT(node);
     f->len = FS_DBC_HOST_HEARTBEAT_LENGTH;

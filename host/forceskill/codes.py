@@ -162,6 +162,8 @@ SEC_ERR_NO_KEY = 555
 SEC_ERR_FRESHNESS = 556
 SEC_ERR_EXECUTE_OPTIONS = 557
 SEC_ERR_SESSION_OWNER = 558
+SEC_ERR_STALE = 559
+SEC_ERR_KEY_SEQUENCE = 560
 
 # Host: demonstrations, fitting, files, the CAN link (6xx)
 ERR_DEMO_FILE = 600  # file missing, unreadable, or no reader for its suffix
@@ -436,6 +438,8 @@ __all__ = [
     'SEC_ERR_FRESHNESS',
     'SEC_ERR_EXECUTE_OPTIONS',
     'SEC_ERR_SESSION_OWNER',
+    'SEC_ERR_STALE',
+    'SEC_ERR_KEY_SEQUENCE',
     'ERR_DEMO_FILE',
     'ERR_DEMO_FORMAT',
     'ERR_DEMO_COLUMN',

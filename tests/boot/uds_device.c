@@ -107,7 +107,7 @@ static uint8_t h_security_seed(void *ctx, uint8_t level, uint8_t *seed, uint16_t
     if (cap < SEC_SEED_LEN) {
         return UDS_NRC_RESPONSE_TOO_LONG;
     }
-    const sec_nrc_t nrc = sec_request_seed(&D.sec_cfg, &D.sec, D.now_ms, seed);
+    const sec_nrc_t nrc = sec_request_seed(&D.sec_cfg, &D.sec, 0u, D.now_ms, seed);
     *len = SEC_SEED_LEN;
     return (uint8_t)nrc;
 }
@@ -116,7 +116,7 @@ static uint8_t h_security_key(void *ctx, uint8_t level, const uint8_t *key, uint
 {
     (void)ctx;
     (void)level;
-    return (uint8_t)sec_send_key(&D.sec_cfg, &D.sec, D.now_ms, key, len);
+    return (uint8_t)sec_send_key(&D.sec_cfg, &D.sec, 0u, D.now_ms, key, len);
 }
 
 static uint8_t h_download_begin(void *ctx, uint32_t addr, uint32_t size)

@@ -81,6 +81,10 @@ class MotionSession:
 
     key: bytes
     fv: dict[str, int] = field(default_factory=lambda: dict.fromkeys(AUTH_FRAMES, 0))
+    #: The freshness value of the last HostCommand whose send returned: every heartbeat built
+    #: after it carries its low byte (CommandFreshness), so a command withheld from the bus is
+    #: refused by the device once the next heartbeat is in.
+    command_sent: int = 0
 
 
 class Device(can.Listener):
@@ -243,25 +247,33 @@ class Device(can.Listener):
         )
 
     # -- sending --------------------------------------------------------------------------------
-    def _frame(self, name: str, signals: dict[str, Any]) -> bytes:
+    def _frame(self, name: str, signals: dict[str, Any]) -> tuple[bytes, int]:
         """Encode a host frame (of a multiplexed frame only the signals of its mode) and protect it:
-        freshness value, MAC and CRC with a session, else the E2E counter and CRC only."""
+        freshness value, MAC and CRC with a session (a heartbeat also carries the last command's
+        freshness), else the E2E counter and CRC only. Returns the frame and its freshness value
+        (0 without a session)."""
         m = self._m[name]
         mode = signals.get("Mode")
         full = {s.name: 0 for s in m.signals if s.multiplexer_ids is None or mode in s.multiplexer_ids}
         full.update({k: v for k, v in signals.items() if k in full})
-        data = m.encode(full, strict=True)
         with self._lock:
             s = self.session
             if s is not None:
+                if name == "HostHeartbeat":
+                    full["CommandFreshness"] = s.command_sent & 0xFF
                 s.fv[name] += 1
-                return authenticate(m.frame_id, data, s.fv[name], s.key)
+                fv = s.fv[name]
+                return authenticate(m.frame_id, m.encode(full, strict=True), fv, s.key), fv
             c = self._counter[name] = (self._counter[name] + 1) & 0x0F
-        return protect(m.frame_id, data, c)
+        return protect(m.frame_id, m.encode(full, strict=True), c), 0
 
     def _send_safety(self, name: str, signals: dict[str, Any]) -> None:
-        data = self._frame(name, signals)
+        data, fv = self._frame(name, signals)
         self.bus.send(can.Message(arbitration_id=self._m[name].frame_id, data=data, is_extended_id=False))
+        s = self.session
+        if name == "HostCommand" and s is not None and fv > s.command_sent:
+            with self._lock:
+                s.command_sent = fv  # only now: a heartbeat never voids a command not yet sent
 
     def set_session(self, key: bytes) -> None:
         """Use a newly established motion key: both freshness values restart at 0 (as the
@@ -275,7 +287,7 @@ class Device(can.Listener):
     def _heartbeat_update(self, msg: can.Message) -> None:
         """Cyclic task callback: the next heartbeat's content (telemetry period, freshness, MAC,
         CRC)."""
-        msg.data[:] = self._frame("HostHeartbeat", {"TelemetryPeriod": self.telemetry_period_ms})
+        msg.data[:] = self._frame("HostHeartbeat", {"TelemetryPeriod": self.telemetry_period_ms})[0]
         self.heartbeat_sent.append(time.monotonic())
         if len(self.heartbeat_sent) > 100000:
             del self.heartbeat_sent[:50000]

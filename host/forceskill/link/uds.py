@@ -111,9 +111,10 @@ DID_CODECS = {
     DID_CONTACT_WAIT: Raw(W.ContactWait.SIZE),
 }
 
-#: The protocol major version this host speaks (DID 0xF1A0 byte 0): 3 = motion authenticated
-#: by AES-CMAC (2 was HMAC-SHA256).
-PROTO_MAJOR = 3
+#: The protocol major version this host speaks (DID 0xF1A0 byte 0): 4 = the heartbeat carries the
+#: last command's freshness and commands are fresh in time (3: AES-CMAC without them; 2:
+#: HMAC-SHA256).
+PROTO_MAJOR = 4
 SESSION_EXTENDED = 0x03
 
 

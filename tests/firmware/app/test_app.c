@@ -86,10 +86,13 @@ static void send_command(uint8_t mode, uint8_t slot)
     deliver_authentic(&f, SECOC_CH_COMMAND);
 }
 
+/* A heartbeat as the host sends it: the low byte of its last command's freshness value in it. */
 static void send_heartbeat(void)
 {
     can_frame_t f = {.id = PROTO_ID_HOST_HEARTBEAT(0), .len = 8};
-    memset(f.data, 0, 8);
+    struct fs_dbc_host_heartbeat_t h = {0};
+    h.command_freshness = (uint8_t)host.fv[SECOC_CH_COMMAND];
+    (void)fs_dbc_host_heartbeat_pack(f.data, &h, 8);
     deliver_authentic(&f, SECOC_CH_HEARTBEAT);
 }
 
@@ -255,6 +258,7 @@ static void test_host_silence_faults_and_ramps(void **state)
 {
     (void)state;
     ticks(5);
+    send_heartbeat();
     send_command(APP_CMD_TEACH, 0);
     for (unsigned i = 0; i < 50; i++) {
         if (i % 10 == 0) {
@@ -892,10 +896,21 @@ static void test_start_refused_during_commit(void **state)
     assert_int_equal(app.state, APP_EXECUTE);
 }
 
-/* One MAC verification a tick (APP_MAC_ROUNDS_PER_TICK 20 on the host: a whole one): three authentic heartbeats and a
- * forged one in one tick are verified one a tick, in order (the next held, the rest queued); a
- * stop between them is taken without a MAC once its turn comes. */
-static void test_one_mac_a_tick(void **state)
+/* A forged frame on the host's id, its CRC valid and its MAC not (what any node can send). */
+static void deliver_forged(uint32_t id, uint8_t mode, uint32_t fv)
+{
+    can_frame_t f = {.id = id, .len = 8};
+    memset(f.data, 0, 8);
+    f.data[0] = mode;
+    f.data[SECOC_MAC_OFFSET] = 0x5Au;
+    f.data[SECOC_FV_BYTE] = (uint8_t)fv;
+    e2e_protect(&f, (uint8_t)(fv & E2E_COUNTER_MASK));
+    (void)hal_sim_can_deliver(&f);
+}
+
+/* The host build verifies every frame of a tick in that tick, oldest first: three authentic
+ * heartbeats and a forged one are all judged in the tick they arrived. */
+static void test_every_mac_in_its_tick(void **state)
 {
     (void)state;
     ticks(5);
@@ -903,19 +918,104 @@ static void test_one_mac_a_tick(void **state)
     for (int i = 0; i < 3; i++) {
         send_heartbeat();
     }
-    can_frame_t forged = {.id = PROTO_ID_HOST_HEARTBEAT(0), .len = 8};
-    memset(forged.data, 0, 8);
-    forged.data[SECOC_FV_BYTE] = (uint8_t)(host.fv[SECOC_CH_HEARTBEAT] + 1u);
-    e2e_protect(&forged, (uint8_t)(forged.data[SECOC_FV_BYTE] & E2E_COUNTER_MASK));
-    (void)hal_sim_can_deliver(&forged);
-    for (uint32_t t = 1; t <= 3; t++) {
-        tick();
-        assert_int_equal(app.secoc.accepted, acc0 + t);
-        assert_int_equal(app.secoc.bad_mac, bad0);
-    }
+    deliver_forged(PROTO_ID_HOST_HEARTBEAT(0), 0u, host.fv[SECOC_CH_HEARTBEAT] + 1u);
     tick();
-    assert_int_equal(app.secoc.bad_mac, bad0 + 1u); /* the forged one, last */
-    assert_int_equal(app.held_ch, 0u);
+    assert_int_equal(app.secoc.accepted, acc0 + 3u);
+    assert_int_equal(app.secoc.bad_mac, bad0 + 1u);
+    assert_int_equal(app.macq.count, 0u);
+}
+
+/* A stop is never blocked: a forged command carrying the counter the host's stop will carry
+ * (which once moved the E2E counter before its MAC was checked) changes nothing, and the host's
+ * IDLE stops the run in the tick it arrives. Positive control: the same path with no forged frame
+ * in between runs and stops alike. */
+static void test_forged_counter_never_blocks_a_stop(void **state)
+{
+    (void)state;
+    for (int forge = 0; forge < 2; forge++) {
+        send_heartbeat();
+        send_command(APP_CMD_TEACH, 0);
+        tick();
+        assert_int_equal(app.state, APP_TEACH);
+        const uint32_t next = host.fv[SECOC_CH_COMMAND] + 1u;
+        if (forge != 0) {
+            deliver_forged(PROTO_ID_HOST_COMMAND(0), APP_CMD_NONE, next);
+            tick();
+            assert_int_equal(app.state, APP_TEACH); /* refused: nothing recorded */
+        }
+        send_command(APP_CMD_IDLE, 0);
+        tick();
+        assert_int_equal(app.state, APP_IDLE);
+        send_heartbeat();
+        tick();
+    }
+    /* any node's IDLE, its MAC and counter anything, stops too */
+    send_command(APP_CMD_TEACH, 0);
+    tick();
+    assert_int_equal(app.state, APP_TEACH);
+    deliver_forged(PROTO_ID_HOST_COMMAND(0), APP_CMD_IDLE, 0u);
+    tick();
+    assert_int_equal(app.state, APP_IDLE);
+}
+
+/* A command withheld from the bus never acts late: after a heartbeat that carries a newer command
+ * freshness (it is refused as a replay), or more than APP_CMD_FRESH_MS after the host's previous
+ * frame, or after a UDS run stop or fault clear with no heartbeat between (refused as stale).
+ * Positive control: the same frames delivered on time run the skill. */
+static void test_withheld_command_never_acts_late(void **state)
+{
+    (void)state;
+    len_a = load("press_n10_ridge_release.skill", image_a);
+    unlock(UDS_SESSION_PROGRAMMING);
+    assert_int_equal(download(1, image_a, len_a, UINT32_MAX), 0x00);
+    send_heartbeat();
+    tick();
+    /* the pair on time: runs (positive control) */
+    send_command(APP_CMD_EXECUTE, 1);
+    tick();
+    assert_int_equal(app.state, APP_EXECUTE);
+    send_command(APP_CMD_IDLE, 0);
+    send_heartbeat();
+    tick();
+    assert_int_equal(app.state, APP_IDLE);
+    /* the pair withheld, a heartbeat after it: refused when delivered */
+    can_frame_t held[2];
+    const uint32_t hb_before = host.fv[SECOC_CH_HEARTBEAT];
+    for (int i = 0; i < 2; i++) {
+        struct fs_dbc_host_command_t c = {0};
+        c.mode = i == 0 ? APP_CMD_RUN_OPTIONS : APP_CMD_EXECUTE;
+        c.slot = 1u;
+        c.goal_scale = 1000u;
+        c.time_scale = 1000u;
+        held[i] = (can_frame_t){.id = PROTO_ID_HOST_COMMAND(0), .len = 8};
+        (void)fs_dbc_host_command_pack(held[i].data, &c, 8);
+        const uint32_t fv = secoc_protect(&host, &held[i], SECOC_CH_COMMAND);
+        e2e_protect(&held[i], (uint8_t)(fv & E2E_COUNTER_MASK));
+    }
+    send_heartbeat();
+    tick();
+    assert_int_equal(host.fv[SECOC_CH_HEARTBEAT], hb_before + 1u);
+    const uint32_t replayed0 = app.secoc.replayed;
+    (void)hal_sim_can_deliver(&held[0]);
+    (void)hal_sim_can_deliver(&held[1]);
+    tick();
+    assert_int_equal(app.state, APP_IDLE);
+    assert_int_equal(app.secoc.replayed, replayed0 + 2u);
+    /* a fresh pair, the host silent for longer than the bound: stale */
+    ticks(APP_CMD_FRESH_MS + 1u);
+    const uint32_t stale0 = app.stale_commands;
+    send_command(APP_CMD_EXECUTE, 1);
+    tick();
+    assert_int_equal(app.state, APP_IDLE);
+    assert_int_equal(app.stale_commands, stale0 + 2u);
+    /* a heartbeat, then a pair: runs again (the same path acts when it should) */
+    send_heartbeat();
+    send_command(APP_CMD_EXECUTE, 1);
+    tick();
+    assert_int_equal(app.state, APP_EXECUTE);
+    send_command(APP_CMD_IDLE, 0);
+    tick();
+    assert_int_equal(app.state, APP_IDLE);
 }
 
 static void test_scheduler_overrun(void **state)
@@ -947,7 +1047,9 @@ int main(void)
         cmocka_unit_test_setup(test_download_corrupt_interrupted, setup),
         cmocka_unit_test_setup(test_execute_and_refusals, setup),
         cmocka_unit_test_setup(test_ecu_reset_responds_then_resets, setup),
-        cmocka_unit_test_setup(test_one_mac_a_tick, setup),
+        cmocka_unit_test_setup(test_every_mac_in_its_tick, setup),
+        cmocka_unit_test_setup(test_forged_counter_never_blocks_a_stop, setup),
+        cmocka_unit_test_setup(test_withheld_command_never_acts_late, setup),
         cmocka_unit_test_setup(test_scheduler_overrun, setup),
         cmocka_unit_test_setup(test_security_levels_and_confirm, setup),
         cmocka_unit_test_setup(test_failing_test_image_serves_nothing, setup),

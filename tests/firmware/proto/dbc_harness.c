@@ -21,7 +21,8 @@
       F(end_policy, "EndPolicy") F(mac, "Mac") F(counter, "Counter") F(freshness, "Freshness") \
       F(crc, "Crc")) \
     X(host_heartbeat, HOST_HEARTBEAT, "HostHeartbeat", \
-      F(telemetry_period, "TelemetryPeriod") F(mac, "Mac") F(counter, "Counter") \
+      F(telemetry_period, "TelemetryPeriod") F(command_freshness, "CommandFreshness") \
+      F(mac, "Mac") F(counter, "Counter") \
       F(freshness, "Freshness") F(crc, "Crc")) \
     X(device_status, DEVICE_STATUS, "DeviceStatus", \
       F(state, "State") F(slot, "Slot") F(fault_code, "FaultCode") F(tick, "Tick") \
@@ -98,7 +99,7 @@ static int cmd_unpack(const char *name, const char *hex)
 #define PHYS_host_command G(host_command, mode) G(host_command, slot) G(host_command, goal_scale) \
     G(host_command, time_scale) G(host_command, end_policy) G(host_command, mac) \
     G(host_command, counter) G(host_command, freshness) G(host_command, crc)
-#define PHYS_host_heartbeat G(host_heartbeat, telemetry_period) G(host_heartbeat, mac) \
+#define PHYS_host_heartbeat G(host_heartbeat, telemetry_period) G(host_heartbeat, command_freshness) G(host_heartbeat, mac) \
     G(host_heartbeat, counter) G(host_heartbeat, freshness) G(host_heartbeat, crc)
 #define PHYS_device_status G(device_status, state) G(device_status, slot) G(device_status, fault_code) \
     G(device_status, tick) G(device_status, counter) G(device_status, actuator_enabled) \

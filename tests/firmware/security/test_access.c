@@ -78,22 +78,22 @@ static void test_unlock_flow(void **state)
     sec_init(&cfg, &st, 0);
     uint8_t seed[SEC_SEED_LEN], key[SEC_KEY_LEN];
     /* boot delay */
-    assert_int_equal(sec_request_seed(&cfg, &st, 999, seed), SEC_NRC_DELAY_NOT_EXPIRED);
-    assert_int_equal(sec_request_seed(&cfg, &st, 1000, seed), SEC_NRC_NONE);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, 999, seed), SEC_NRC_DELAY_NOT_EXPIRED);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, 1000, seed), SEC_NRC_NONE);
     assert_false(sec_is_unlocked(&st));
     sec_compute_key(&cfg, seed, key);
-    assert_int_equal(sec_send_key(&cfg, &st, 1001, key, SEC_KEY_LEN), SEC_NRC_NONE);
+    assert_int_equal(sec_send_key(&cfg, &st, 0u, 1001, key, SEC_KEY_LEN), SEC_NRC_NONE);
     assert_true(sec_is_unlocked(&st));
     /* already unlocked: zero seed; a key now is out of sequence */
     uint8_t zero[SEC_SEED_LEN] = {0};
-    assert_int_equal(sec_request_seed(&cfg, &st, 1002, seed), SEC_NRC_NONE);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, 1002, seed), SEC_NRC_NONE);
     assert_memory_equal(seed, zero, SEC_SEED_LEN);
-    assert_int_equal(sec_send_key(&cfg, &st, 1003, key, SEC_KEY_LEN), SEC_NRC_SEQUENCE_ERROR);
+    assert_int_equal(sec_send_key(&cfg, &st, 0u, 1003, key, SEC_KEY_LEN), SEC_NRC_SEQUENCE_ERROR);
     /* relock: the old key does not work for a new seed */
     sec_lock(&st);
     assert_false(sec_is_unlocked(&st));
-    assert_int_equal(sec_request_seed(&cfg, &st, 1004, seed), SEC_NRC_NONE);
-    assert_int_equal(sec_send_key(&cfg, &st, 1005, key, SEC_KEY_LEN), SEC_NRC_INVALID_KEY);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, 1004, seed), SEC_NRC_NONE);
+    assert_int_equal(sec_send_key(&cfg, &st, 0u, 1005, key, SEC_KEY_LEN), SEC_NRC_INVALID_KEY);
     assert_false(sec_is_unlocked(&st));
 }
 
@@ -108,9 +108,9 @@ static void test_sliced_send_key(void **state)
     sec_state_t st;
     sec_init(&cfg, &st, 0);
     uint8_t seed[SEC_SEED_LEN], key[SEC_KEY_LEN];
-    assert_int_equal(sec_request_seed(&cfg, &st, 1000, seed), SEC_NRC_NONE);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, 1000, seed), SEC_NRC_NONE);
     sec_compute_key(&cfg, seed, key);
-    assert_int_equal(sec_send_key_begin(&cfg, &st, key, SEC_KEY_LEN), SEC_NRC_PENDING);
+    assert_int_equal(sec_send_key_begin(&cfg, &st, 0u, key, SEC_KEY_LEN), SEC_NRC_PENDING);
     assert_int_equal(st.failed, 1u);
     unsigned calls = 1u;
     while (sec_send_key_run(&cfg, &st, 1001, 8u) == SEC_NRC_PENDING) {
@@ -123,16 +123,16 @@ static void test_sliced_send_key(void **state)
     assert_int_equal(sec_send_key_run(&cfg, &st, 1002, 8u), SEC_NRC_SEQUENCE_ERROR);
     /* a wrong key: counted at the begin, delay after the check */
     sec_lock(&st);
-    assert_int_equal(sec_request_seed(&cfg, &st, 1003, seed), SEC_NRC_NONE);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, 1003, seed), SEC_NRC_NONE);
     key[0] ^= 1u;
-    assert_int_equal(sec_send_key_begin(&cfg, &st, key, SEC_KEY_LEN), SEC_NRC_PENDING);
+    assert_int_equal(sec_send_key_begin(&cfg, &st, 0u, key, SEC_KEY_LEN), SEC_NRC_PENDING);
     assert_int_equal(sec_send_key_run(&cfg, &st, 1004, UINT32_MAX), SEC_NRC_INVALID_KEY);
     assert_int_equal(st.failed, 1u);
-    assert_int_equal(sec_request_seed(&cfg, &st, 1005, seed), SEC_NRC_DELAY_NOT_EXPIRED);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, 1005, seed), SEC_NRC_DELAY_NOT_EXPIRED);
     /* a relock while the check runs: dropped, still counted */
-    assert_int_equal(sec_request_seed(&cfg, &st, 2004, seed), SEC_NRC_NONE);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, 2004, seed), SEC_NRC_NONE);
     sec_compute_key(&cfg, seed, key);
-    assert_int_equal(sec_send_key_begin(&cfg, &st, key, SEC_KEY_LEN), SEC_NRC_PENDING);
+    assert_int_equal(sec_send_key_begin(&cfg, &st, 0u, key, SEC_KEY_LEN), SEC_NRC_PENDING);
     assert_int_equal(sec_send_key_run(&cfg, &st, 2005, 8u), SEC_NRC_PENDING);
     sec_lock(&st);
     assert_int_equal(sec_send_key_run(&cfg, &st, 2006, UINT32_MAX), SEC_NRC_SEQUENCE_ERROR);
@@ -149,21 +149,21 @@ static void test_sequence_and_length(void **state)
     sec_state_t st;
     sec_init(&cfg, &st, 0);
     uint8_t seed[SEC_SEED_LEN], key[SEC_KEY_LEN];
-    assert_int_equal(sec_send_key(&cfg, &st, 0, key, SEC_KEY_LEN), SEC_NRC_SEQUENCE_ERROR);
-    assert_int_equal(sec_request_seed(&cfg, &st, 0, seed), SEC_NRC_NONE);
+    assert_int_equal(sec_send_key(&cfg, &st, 0u, 0, key, SEC_KEY_LEN), SEC_NRC_SEQUENCE_ERROR);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, 0, seed), SEC_NRC_NONE);
     sec_compute_key(&cfg, seed, key);
-    assert_int_equal(sec_send_key(&cfg, &st, 0, key, SEC_KEY_LEN - 1), SEC_NRC_INCORRECT_LENGTH);
+    assert_int_equal(sec_send_key(&cfg, &st, 0u, 0, key, SEC_KEY_LEN - 1), SEC_NRC_INCORRECT_LENGTH);
     /* the seed was consumed by that answer: the right key is now out of sequence */
-    assert_int_equal(sec_send_key(&cfg, &st, 0, key, SEC_KEY_LEN), SEC_NRC_SEQUENCE_ERROR);
+    assert_int_equal(sec_send_key(&cfg, &st, 0u, 0, key, SEC_KEY_LEN), SEC_NRC_SEQUENCE_ERROR);
     assert_false(sec_is_unlocked(&st));
     /* every seed is fresh */
     uint8_t s2[SEC_SEED_LEN];
-    assert_int_equal(sec_request_seed(&cfg, &st, 0, seed), SEC_NRC_NONE);
-    assert_int_equal(sec_request_seed(&cfg, &st, 0, s2), SEC_NRC_NONE);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, 0, seed), SEC_NRC_NONE);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, 0, s2), SEC_NRC_NONE);
     assert_memory_not_equal(seed, s2, SEC_SEED_LEN);
     /* only the latest seed's key is accepted */
     sec_compute_key(&cfg, seed, key);
-    assert_int_equal(sec_send_key(&cfg, &st, 0, key, SEC_KEY_LEN), SEC_NRC_INVALID_KEY);
+    assert_int_equal(sec_send_key(&cfg, &st, 0u, 0, key, SEC_KEY_LEN), SEC_NRC_INVALID_KEY);
 }
 
 static void test_every_bit_flip_rejected(void **state)
@@ -178,10 +178,10 @@ static void test_every_bit_flip_rejected(void **state)
     sec_init(&cfg, &st, 0);
     uint8_t seed[SEC_SEED_LEN], key[SEC_KEY_LEN];
     for (uint32_t bit = 0; bit < 8u * SEC_KEY_LEN; bit++) {
-        assert_int_equal(sec_request_seed(&cfg, &st, 0, seed), SEC_NRC_NONE);
+        assert_int_equal(sec_request_seed(&cfg, &st, 0u, 0, seed), SEC_NRC_NONE);
         sec_compute_key(&cfg, seed, key);
         key[bit / 8u] ^= (uint8_t)(1u << (bit % 8u));
-        const sec_nrc_t r = sec_send_key(&cfg, &st, 0, key, SEC_KEY_LEN);
+        const sec_nrc_t r = sec_send_key(&cfg, &st, 0u, 0, key, SEC_KEY_LEN);
         assert_true(r == SEC_NRC_INVALID_KEY || r == SEC_NRC_EXCEEDED_ATTEMPTS);
         assert_false(sec_is_unlocked(&st));
         if (r == SEC_NRC_EXCEEDED_ATTEMPTS) {
@@ -203,30 +203,30 @@ static void test_delay_and_lockout(void **state)
     memset(wrong, 0x55, sizeof wrong);
     uint32_t t = 100;
     /* attempt 1: invalid key, then the delay */
-    assert_int_equal(sec_request_seed(&cfg, &st, t, seed), SEC_NRC_NONE);
-    assert_int_equal(sec_send_key(&cfg, &st, t, wrong, SEC_KEY_LEN), SEC_NRC_INVALID_KEY);
-    assert_int_equal(sec_request_seed(&cfg, &st, t + 999, seed), SEC_NRC_DELAY_NOT_EXPIRED);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, t, seed), SEC_NRC_NONE);
+    assert_int_equal(sec_send_key(&cfg, &st, 0u, t, wrong, SEC_KEY_LEN), SEC_NRC_INVALID_KEY);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, t + 999, seed), SEC_NRC_DELAY_NOT_EXPIRED);
     t += 1000;
     /* attempt 2 */
-    assert_int_equal(sec_request_seed(&cfg, &st, t, seed), SEC_NRC_NONE);
-    assert_int_equal(sec_send_key(&cfg, &st, t, wrong, SEC_KEY_LEN), SEC_NRC_INVALID_KEY);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, t, seed), SEC_NRC_NONE);
+    assert_int_equal(sec_send_key(&cfg, &st, 0u, t, wrong, SEC_KEY_LEN), SEC_NRC_INVALID_KEY);
     t += 1000;
     /* attempt 3 reaches max_attempts: 0x36 and the lockout */
-    assert_int_equal(sec_request_seed(&cfg, &st, t, seed), SEC_NRC_NONE);
-    assert_int_equal(sec_send_key(&cfg, &st, t, wrong, SEC_KEY_LEN), SEC_NRC_EXCEEDED_ATTEMPTS);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, t, seed), SEC_NRC_NONE);
+    assert_int_equal(sec_send_key(&cfg, &st, 0u, t, wrong, SEC_KEY_LEN), SEC_NRC_EXCEEDED_ATTEMPTS);
     assert_true(st.locked_out != 0u);
-    assert_int_equal(sec_send_key(&cfg, &st, t, wrong, SEC_KEY_LEN), SEC_NRC_SEQUENCE_ERROR);
-    assert_int_equal(sec_request_seed(&cfg, &st, t + 1000, seed), SEC_NRC_DELAY_NOT_EXPIRED);
-    assert_int_equal(sec_request_seed(&cfg, &st, t + 9999, seed), SEC_NRC_DELAY_NOT_EXPIRED);
+    assert_int_equal(sec_send_key(&cfg, &st, 0u, t, wrong, SEC_KEY_LEN), SEC_NRC_SEQUENCE_ERROR);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, t + 1000, seed), SEC_NRC_DELAY_NOT_EXPIRED);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, t + 9999, seed), SEC_NRC_DELAY_NOT_EXPIRED);
     /* relock (session change) does not reset the lockout */
     sec_lock(&st);
-    assert_int_equal(sec_request_seed(&cfg, &st, t + 9999, seed), SEC_NRC_DELAY_NOT_EXPIRED);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, t + 9999, seed), SEC_NRC_DELAY_NOT_EXPIRED);
     /* lockout over: counter reset, the right key unlocks */
     t += 10000;
-    assert_int_equal(sec_request_seed(&cfg, &st, t, seed), SEC_NRC_NONE);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, t, seed), SEC_NRC_NONE);
     assert_int_equal(st.failed, 0);
     sec_compute_key(&cfg, seed, key);
-    assert_int_equal(sec_send_key(&cfg, &st, t, key, SEC_KEY_LEN), SEC_NRC_NONE);
+    assert_int_equal(sec_send_key(&cfg, &st, 0u, t, key, SEC_KEY_LEN), SEC_NRC_NONE);
     assert_true(sec_is_unlocked(&st));
 }
 
@@ -247,9 +247,9 @@ static void test_restore_from_the_record(void **state)
         sec_state_t st;
         const uint32_t t = 5000u;
         sec_restore(&cfg, &st, t, cases[i].failed, cases[i].locked_out);
-        assert_int_equal(sec_request_seed(&cfg, &st, t + cases[i].wait_ms - 1u, seed),
+        assert_int_equal(sec_request_seed(&cfg, &st, 0u, t + cases[i].wait_ms - 1u, seed),
                          SEC_NRC_DELAY_NOT_EXPIRED);
-        assert_int_equal(sec_request_seed(&cfg, &st, t + cases[i].wait_ms, seed), SEC_NRC_NONE);
+        assert_int_equal(sec_request_seed(&cfg, &st, 0u, t + cases[i].wait_ms, seed), SEC_NRC_NONE);
         uint8_t rec[SEC_RECORD_LEN], failed = 0xFFu, locked = 0xFFu;
         sec_record_encode(&st, rec);
         assert_true(sec_record_decode(rec, SEC_RECORD_LEN, &failed, &locked));
@@ -272,15 +272,15 @@ static void test_configurable_attempts_and_wrap(void **state)
     uint8_t seed[SEC_SEED_LEN], wrong[SEC_KEY_LEN];
     memset(wrong, 0, sizeof wrong);
     for (int i = 1; i <= 5; i++) {
-        assert_int_equal(sec_request_seed(&cfg, &st, t, seed), SEC_NRC_NONE);
-        const sec_nrc_t r = sec_send_key(&cfg, &st, t, wrong, SEC_KEY_LEN);
+        assert_int_equal(sec_request_seed(&cfg, &st, 0u, t, seed), SEC_NRC_NONE);
+        const sec_nrc_t r = sec_send_key(&cfg, &st, 0u, t, wrong, SEC_KEY_LEN);
         assert_int_equal(r, i < 5 ? SEC_NRC_INVALID_KEY : SEC_NRC_EXCEEDED_ATTEMPTS);
-        assert_int_equal(sec_request_seed(&cfg, &st, t + 1, seed), SEC_NRC_DELAY_NOT_EXPIRED);
+        assert_int_equal(sec_request_seed(&cfg, &st, 0u, t + 1, seed), SEC_NRC_DELAY_NOT_EXPIRED);
         t += (i < 5) ? cfg.delay_ms : 0u; /* crosses 2^32 here */
     }
-    assert_int_equal(sec_request_seed(&cfg, &st, t + cfg.lockout_ms - 1u, seed),
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, t + cfg.lockout_ms - 1u, seed),
                      SEC_NRC_DELAY_NOT_EXPIRED);
-    assert_int_equal(sec_request_seed(&cfg, &st, t + cfg.lockout_ms, seed), SEC_NRC_NONE);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, t + cfg.lockout_ms, seed), SEC_NRC_NONE);
 }
 
 static void test_rng_failures_and_config(void **state)
@@ -293,10 +293,10 @@ static void test_rng_failures_and_config(void **state)
     sec_init(&cfg, &st, 0);
     uint8_t seed[SEC_SEED_LEN], key[SEC_KEY_LEN];
     g_rng.mode = 2;
-    assert_int_equal(sec_request_seed(&cfg, &st, 0, seed), SEC_NRC_CONDITIONS);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, 0, seed), SEC_NRC_CONDITIONS);
     g_rng.mode = 3;
-    assert_int_equal(sec_request_seed(&cfg, &st, 0, seed), SEC_NRC_CONDITIONS);
-    assert_int_equal(sec_send_key(&cfg, &st, 0, key, SEC_KEY_LEN), SEC_NRC_SEQUENCE_ERROR);
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, 0, seed), SEC_NRC_CONDITIONS);
+    assert_int_equal(sec_send_key(&cfg, &st, 0u, 0, key, SEC_KEY_LEN), SEC_NRC_SEQUENCE_ERROR);
     g_rng.mode = 0;
     sec_config_t bad = cfg;
     bad.secret_len = 8;

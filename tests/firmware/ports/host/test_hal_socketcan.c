@@ -82,6 +82,7 @@ static void put_frame(const can_frame_t *f)
 static void heartbeat(void)
 {
     can_frame_t f = {.id = PROTO_ID_HOST_HEARTBEAT(0), .len = 8};
+    f.data[1] = (uint8_t)host.fv[SECOC_CH_COMMAND]; /* CommandFreshness: the last command sent */
     const uint32_t fv = secoc_protect(&host, &f, SECOC_CH_HEARTBEAT);
     e2e_protect(&f, (uint8_t)(fv & E2E_COUNTER_MASK));
     put_frame(&f);
@@ -134,8 +135,8 @@ static void test_status_out_commands_in(void **state)
     }
     assert_int_equal(n_status, 2); /* every 10 ms */
     assert_int_equal(app_state(app), APP_IDLE);
+    heartbeat(); /* a command needs a heartbeat before it (APP_CMD_FRESH_MS) */
     command(APP_CMD_TEACH);
-    heartbeat();
     for (unsigned i = 0; i < 5; i++) {
         tick();
     }
@@ -150,6 +151,7 @@ static void test_bus_off_row(void **state)
     for (unsigned i = 0; i < 5; i++) {
         tick();
     }
+    heartbeat();
     command(APP_CMD_TEACH);
     for (unsigned i = 0; i < 60; i++) {
         if (i % 10 == 0) {
