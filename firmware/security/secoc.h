@@ -28,7 +28,11 @@
 #define SECOC_PAYLOAD_LEN 3u              /* data bytes 0..2 are the authenticated payload */
 #define SECOC_FV_BYTE 6u                  /* FV bits 0..7 (bits 0..3 double as the E2E counter) */
 #define SECOC_FV_WINDOW 256u              /* 2^(FV bits in the frame) */
-#define SECOC_MAX_BAD_MAC 64u             /* wrong MACs in a row that discard the key */
+/* wrong MACs in a row (no accepted frame between) that discard the key: a key nobody uses is
+ * guessed at most this often before a new SecurityAccess; the host's heartbeat (every 10 ms)
+ * resets the count, so a flood of 3,000 forged frames a second (30 between two heartbeats, 85 ms
+ * to reach it) leaves a working session alone */
+#define SECOC_MAX_BAD_MAC 256u
 #define SECOC_LABEL "forceskill secoc v3" /* protocol version 3: AES-CMAC */
 #define SECOC_CONFIRM_LABEL "forceskill key confirm" /* secoc_confirm's message */
 
@@ -44,7 +48,7 @@ typedef struct {
     sec_cmac_t cmac;             /* the key's AES schedule and CMAC subkeys */
     uint32_t fv[SECOC_CHANNELS]; /* receiver: last accepted FV; sender: last sent FV */
     bool keyed;                  /* a key is established */
-    uint8_t bad_in_row;          /* wrong MACs since the last accepted frame */
+    uint16_t bad_in_row;         /* wrong MACs since the last accepted frame */
     uint32_t accepted, bad_mac, replayed, no_key, revoked; /* frames and discarded keys */
     uint16_t last_refusal; /* SEC_ERR_* of the last refused frame, 0 if none */
 } secoc_t;
