@@ -25,15 +25,15 @@
 #define SECOC_NONCE_LEN 16u
 #define SECOC_MAC_LEN 3u /* 24 MAC bits in data bytes 3..5 */
 #define SECOC_MAC_OFFSET 3u
-#define SECOC_PAYLOAD_LEN 3u              /* data bytes 0..2 are the authenticated payload */
-#define SECOC_FV_BYTE 6u                  /* FV bits 0..7 (bits 0..3 double as the E2E counter) */
-#define SECOC_FV_WINDOW 256u              /* 2^(FV bits in the frame) */
+#define SECOC_PAYLOAD_LEN 3u /* data bytes 0..2 are the authenticated payload */
+#define SECOC_FV_BYTE 6u     /* FV bits 0..7 (bits 0..3 double as the E2E counter) */
+#define SECOC_FV_WINDOW 256u /* 2^(FV bits in the frame) */
 /* wrong MACs in a row (no accepted frame between) that discard the key: a key nobody uses is
  * guessed at most this often before a new SecurityAccess; the host's heartbeat (every 10 ms)
  * resets the count, so a flood of 3,000 forged frames a second (30 between two heartbeats, 85 ms
  * to reach it) leaves a working session alone */
 #define SECOC_MAX_BAD_MAC 256u
-#define SECOC_LABEL "forceskill secoc v3" /* protocol version 3: AES-CMAC */
+#define SECOC_LABEL "forceskill secoc v3"            /* protocol version 3: AES-CMAC */
 #define SECOC_CONFIRM_LABEL "forceskill key confirm" /* secoc_confirm's message */
 
 /** The authenticated frame channels, each with its own freshness value. */
