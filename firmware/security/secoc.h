@@ -59,7 +59,8 @@ typedef struct {
     can_frame_t f;
     uint32_t fv;
     uint8_t ch;
-    uint8_t phase; /* 1: the MAC at fv; 2: at fv - SECOC_FV_WINDOW (is it a replay); 0: done */
+    uint8_t phase;     /* 1: the MAC at fv; 2: at fv - SECOC_FV_WINDOW (is it a replay); 0: done */
+    bool replay_check; /* a frame that fails takes phase 2 (secoc_verify_begin sets it) */
     sec_status_t status; /* the result once done */
     sec_aes128_job_t aes;
 } secoc_job_t;
@@ -123,6 +124,10 @@ void secoc_raise_floor(secoc_t *s, secoc_channel_t ch, uint8_t low8);
 /** secoc_verify in slices: starts checking frame f of channel ch (a refusal that needs no
  *  encryption, no key or freshness used up, ends the job at once). */
 void secoc_verify_begin(secoc_t *s, secoc_job_t *j, const can_frame_t *f, secoc_channel_t ch);
+
+/** secoc_verify_begin without the replay check: a frame that fails is refused as a wrong MAC after
+ *  one encryption (a receiver under a flood of forged frames halves their cost). */
+void secoc_verify_begin_fast(secoc_t *s, secoc_job_t *j, const can_frame_t *f, secoc_channel_t ch);
 
 /** Runs at most *rounds AES rounds of the job (*rounds decreases by those run; an encryption
  *  is 10; a budget left short of the replay check's second block runs it from the next call);
