@@ -69,6 +69,30 @@ static void test_key_matches_independent_hmac(void **state)
     assert_memory_equal(key, want, 16);
 }
 
+/* Each tester its own seed: another tester's request voids nothing, a key answers only its own
+ * tester's seed (the other tester, with no seed of its own, gets 0x24), and the shared attempt
+ * counter counts wrong keys from either. */
+static void test_seeds_per_tester(void **state)
+{
+    (void)state;
+    sec_config_t cfg;
+    setup_cfg(&cfg);
+    sec_state_t st;
+    sec_init(&cfg, &st, 0);
+    uint8_t seed0[SEC_SEED_LEN], seed1[SEC_SEED_LEN], key0[SEC_KEY_LEN];
+    assert_int_equal(sec_request_seed(&cfg, &st, 0u, 1000, seed0), SEC_NRC_NONE);
+    sec_compute_key(&cfg, seed0, key0);
+    assert_int_equal(sec_send_key(&cfg, &st, 1u, 1001, key0, SEC_KEY_LEN), SEC_NRC_SEQUENCE_ERROR);
+    assert_int_equal(sec_request_seed(&cfg, &st, 1u, 1002, seed1), SEC_NRC_NONE);
+    assert_memory_not_equal(seed0, seed1, SEC_SEED_LEN);
+    assert_int_equal(sec_send_key(&cfg, &st, 1u, 1003, key0, SEC_KEY_LEN), SEC_NRC_INVALID_KEY);
+    assert_int_equal(st.failed, 1u);
+    /* positive control: tester 0's seed survived both; its key unlocks once the delay is over */
+    assert_int_equal(sec_send_key(&cfg, &st, 0u, 2004, key0, SEC_KEY_LEN), SEC_NRC_NONE);
+    assert_true(sec_is_unlocked(&st));
+    assert_int_equal(sec_request_seed(&cfg, &st, 2u, 2005, seed1), SEC_NRC_CONDITIONS);
+}
+
 static void test_unlock_flow(void **state)
 {
     (void)state;
@@ -314,6 +338,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_key_matches_independent_hmac),
         cmocka_unit_test(test_unlock_flow),
+        cmocka_unit_test(test_seeds_per_tester),
         cmocka_unit_test(test_sliced_send_key),
         cmocka_unit_test(test_sequence_and_length),
         cmocka_unit_test(test_every_bit_flip_rejected),
