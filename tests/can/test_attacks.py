@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import hashlib
 import hmac
-import multiprocessing
+import re
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -19,7 +19,18 @@ import can
 import pytest
 
 from forceskill import cli
-from helpers.attacker import CMD, EXECUTE, HB, SKILL, STATE_NAMES, Attacker, e2e_valid, flood
+from helpers.attacker import (
+    CMD,
+    EXECUTE,
+    HB,
+    SKILL,
+    STATE_NAMES,
+    Attacker,
+    e2e_valid,
+    flood_node,
+    refused,
+    wait_flood,
+)
 from helpers.canbus import SCENARIOS, SPEED, Server
 
 IDLE_S, EXECUTE_S, FAULT_S = 1, 3, 4
@@ -258,13 +269,11 @@ def test_a_flood_neither_stops_a_run_nor_delays_the_silence_stop(loaded):
     102 ms of the host's last heartbeat on the bus (the bus's timestamps: the simulator's
     clock)."""
     a = Attacker(loaded.port)
-    node = multiprocessing.get_context("spawn").Process(target=flood, args=(loaded.port, 3000.0, 8.0))
+    node = None
     try:
         with genuine_host(loaded.port) as dev:
-            before = a.stats()
-            node.start()
-            while a.stats()["wrong_mac"] < before["wrong_mac"] + 300:  # the flood has begun
-                time.sleep(0.05)
+            node = flood_node(loaded.port, 3000.0, 8.0)
+            wait_flood(a, node)
             dev.command("execute", slot=1, goal_scale=1.0)
             assert wait_state(a, EXECUTE_S, 2.0), STATE_NAMES.get(a.state)
             mark = len(a.seen)
@@ -286,7 +295,38 @@ def test_a_flood_neither_stops_a_run_nor_delays_the_silence_stop(loaded):
         latency_ms = (emcy.timestamp - last_hb.timestamp) * 1000.0
         assert latency_ms <= 102.0, latency_ms
     finally:
-        node.join(8.0)
-        if node.is_alive():
+        if node is not None:
             node.kill()
+            node.wait()
         a.close()
+
+
+@pytest.mark.skipif(SPEED != 1.0, reason="the flood's rate is wall-clock: the simulator at real time")
+def test_a_genuine_run_completes_under_a_flood_with_its_accuracy(loaded, capsys, tmp_path):
+    """`forceskill run` of the slot's skill to its end, once on a quiet bus and once beside 3,000
+    forged frames a second from another node: both complete (exit 0) and the flood's run tracks
+    the reference as well (max error within 1 point of the quiet run's)."""
+
+    def run() -> float:
+        capsys.readouterr()
+        rc = cli.main(["run", "--slot", "1", "--end", "release", *loaded.bus_args()])
+        out = capsys.readouterr().out
+        assert rc == 0, out
+        m = re.search(r"max ([0-9.]+) %", out)
+        assert m, out
+        return float(m.group(1))
+
+    assert cli.main(["status", "--clear", *loaded.bus_args()]) in (0, 2)  # the test before faulted
+    quiet = run()
+    a = Attacker(loaded.port)
+    node = flood_node(loaded.port, 3000.0, 30.0)
+    try:
+        before = a.stats()
+        wait_flood(a, node)
+        flooded = run()
+        assert refused(a.stats()) - refused(before) > 6000  # it went on through the run
+    finally:
+        node.kill()
+        node.wait()
+        a.close()
+    assert flooded <= quiet + 1.0, (quiet, flooded)

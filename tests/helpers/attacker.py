@@ -5,7 +5,10 @@ of forceskill's frame code. It sniffs every frame and sends whatever it builds."
 from __future__ import annotations
 
 import struct
+import subprocess
+import sys
 import time
+from pathlib import Path
 
 import can
 import udsoncan
@@ -136,3 +139,27 @@ def flood(port: int, rate_hz: float, seconds: float) -> None:
             time.sleep(max(0.0, nxt - time.monotonic()))
     finally:
         bus.shutdown()
+
+
+def refused(stats: dict[str, int]) -> int:
+    """Host frames the device refused for their MAC: wrong, replayed, or without a key."""
+    return stats["wrong_mac"] + stats["replay"] + stats["no_key"]
+
+
+def flood_node(port: int, rate_hz: float, seconds: float) -> subprocess.Popen[bytes]:
+    """flood() in a process of its own (its own interpreter: the host under test keeps its GIL)."""
+    tests = str(Path(__file__).resolve().parents[1])
+    code = f"import sys; sys.path.insert(0, {tests!r}); from helpers.attacker import flood; flood({port}, {rate_hz}, {seconds})"
+    return subprocess.Popen([sys.executable, "-c", code])
+
+
+def wait_flood(
+    a: Attacker, node: subprocess.Popen[bytes], frames: int = 300, timeout_s: float = 20.0
+) -> None:
+    """Until the device has refused `frames` more forged frames than before (the flood began)."""
+    start = refused(a.stats())
+    end = time.monotonic() + timeout_s
+    while refused(a.stats()) < start + frames:
+        assert node.poll() is None, f"the flooding node ended ({node.returncode})"
+        assert time.monotonic() < end, "the flood never reached the device"
+        time.sleep(0.05)
