@@ -7,7 +7,7 @@ point to the same module or to a lower layer, and no header may include itself t
 
 Modules of one layer do not include each other. Some lower modules are open only in part (safety
 and hal use only the core's fs_real.h), and a module's private header (app_internal.h) is open
-only to its own files (and to sim_couple.h, which hands it to hil_sim/pil's image). Inside a
+only to its own files. Inside a
 firmware folder the .c files call each other without a circle (a file that calls another's
 function sits above it), so each file's concern has one direction. The host package
 host/forceskill is checked the same way on its imports (those inside functions too):
@@ -60,9 +60,8 @@ RANK = {
 # (from, to): the only headers of `to` that `from` may include
 ONLY = {("safety", "core"): {"fs_real.h"}, ("hal", "core"): {"fs_real.h"}}
 # a module's private headers: only these other modules or files may include them (the simulator
-# configures the application through app_config.h, ports use app.h; sim_couple.h passes the
-# internals on to hil_sim/pil's Cortex-M build alone)
-PRIVATE = {"app_internal.h": {"hil_sim/src/sim_couple.h"}}
+# configures the application through app_config.h, ports use app.h)
+PRIVATE: dict[str, set[str]] = {"app_internal.h": set()}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 # a function defined at file level with external linkage: its name (a definition's line starts
 # with its return type, not with `static`)
