@@ -53,6 +53,8 @@ def vectors() -> list[tuple[str, bytes, int]]:
         ("auth_stats", W.AuthStats(1000, 64, 3, 2, 1, 558, 0, 300, 4096, 7)),
         ("fwu_status", W.FwuStatus(0x00010203, 1, 1, 0, 1, 2, W.TARGET_CORTEX_M4F, 707, 0x00010300, 2)),
         ("transfer_exit", W.TransferExit(0xCBF43926)),
+        ("mark_test", W.MarkTest(1)),
+        ("mark_test", W.MarkTest(0)),
     ]
     out = [(name, rec.pack(), OK) for name, rec in good]  # type: ignore[attr-defined]
     f32 = struct.Struct(">f").pack
@@ -87,6 +89,8 @@ def vectors() -> list[tuple[str, bytes, int]]:
         ("fwu_status", bytes(16), LENGTH),
         ("fwu_status", bytes(5) + bytes([2]) + bytes(11), RANGE),
         ("transfer_exit", bytes(3), LENGTH),
+        ("mark_test", bytes([2]), RANGE),
+        ("mark_test", bytes(2), LENGTH),
     ]
     return out
 

@@ -975,3 +975,38 @@ uint16_t fs_wire_transfer_exit_pack(const fs_wire_transfer_exit_t *v, uint8_t *o
     put_be(&out[0u], v->crc32, 4u);
     return (uint16_t)n;
 }
+
+static int mark_test_in_range(const fs_wire_mark_test_t *v)
+{
+    return v->options <= 1u;
+}
+
+proto_status_t fs_wire_mark_test_unpack(fs_wire_mark_test_t *v, const uint8_t *d, uint16_t len)
+{
+    if (len != FS_WIRE_MARK_TEST_LEN_MIN && len != FS_WIRE_MARK_TEST_LEN_MAX) {
+        return PROTO_ERR_WIRE_LENGTH;
+    }
+    fs_wire_mark_test_t t;
+    memset(&t, 0, sizeof(t));
+    if (len == FS_WIRE_MARK_TEST_LEN_MAX) {
+        t.has_options = 1u;
+        t.options = (uint8_t)get_be(&d[0u], 1u);
+    } else {
+        t.options = 0u;
+    }
+    if (!mark_test_in_range(&t)) {
+        return PROTO_ERR_WIRE_RANGE;
+    }
+    *v = t;
+    return PROTO_OK;
+}
+
+uint16_t fs_wire_mark_test_pack(const fs_wire_mark_test_t *v, uint8_t *out, uint16_t cap)
+{
+    const unsigned n = 0u + (v->has_options != 0u ? 1u : 0u);
+    if (!mark_test_in_range(v) || n > cap) {
+        return 0u;
+    }
+    if (v->has_options != 0u) { put_be(&out[0u], v->options, 1u); }
+    return (uint16_t)n;
+}

@@ -14,7 +14,7 @@
 #define FS_WIRE_REAL(T, count) ((T)(count) * (T)FS_WIRE_SCALE)
 
 /* The records, for code that handles each the same way: X(name) per record. */
-#define FS_WIRE_RECORDS(X) X(versions) X(gains) X(limits) X(comm) X(object) X(stiffness_max) X(slot_entry) X(slot_dir) X(last_transfer) X(device_state) X(contact_wait) X(fault_causes) X(run_skill) X(run_periodic) X(run_step) X(run_sequence) X(run_results) X(self_test) X(erase_slot) X(motion_key) X(motion_key_write) X(auth_stats) X(fwu_status) X(transfer_exit)
+#define FS_WIRE_RECORDS(X) X(versions) X(gains) X(limits) X(comm) X(object) X(stiffness_max) X(slot_entry) X(slot_dir) X(last_transfer) X(device_state) X(contact_wait) X(fault_causes) X(run_skill) X(run_periodic) X(run_step) X(run_sequence) X(run_results) X(self_test) X(erase_slot) X(motion_key) X(motion_key_write) X(auth_stats) X(fwu_status) X(transfer_exit) X(mark_test)
 
 #define FS_WIRE_VERSIONS_LEN 6u
 /** DID_VERSIONS: protocol and format versions. */
@@ -354,5 +354,17 @@ typedef struct {
 proto_status_t fs_wire_transfer_exit_unpack(fs_wire_transfer_exit_t *v, const uint8_t *d, uint16_t len);
 /** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */
 uint16_t fs_wire_transfer_exit_pack(const fs_wire_transfer_exit_t *v, uint8_t *out, uint16_t cap);
+
+#define FS_WIRE_MARK_TEST_LEN_MIN 0u
+#define FS_WIRE_MARK_TEST_LEN_MAX 1u
+/** FWU_RID_MARK_TEST start: the options (bit 0: allow a downgrade, FWU_OPT_ALLOW_DOWNGRADE); absent: none. */
+typedef struct {
+    uint8_t options;
+    uint8_t has_options; /* 0: absent (unpack: the default 0) */
+} fs_wire_mark_test_t;
+/** Unpack len bytes: PROTO_OK, PROTO_ERR_WIRE_LENGTH or PROTO_ERR_WIRE_RANGE (v unchanged). */
+proto_status_t fs_wire_mark_test_unpack(fs_wire_mark_test_t *v, const uint8_t *d, uint16_t len);
+/** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */
+uint16_t fs_wire_mark_test_pack(const fs_wire_mark_test_t *v, uint8_t *out, uint16_t cap);
 
 #endif /* FS_WIRE_H */

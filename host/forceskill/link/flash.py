@@ -35,6 +35,7 @@ from ..model import fwimage as fw
 
 STATUS_LEN = W.FwuStatus.SIZE
 SESSION_PROGRAMMING = 0x02
+FWU_OPT_ALLOW_DOWNGRADE = 0x01  # the mark-test option (firmware/boot/fwu.h)
 PENDING_TIMEOUT_S = 5.0  # after "response pending" (NRC 0x78): erasing a slot takes a while
 
 PATHS = {
@@ -252,7 +253,7 @@ def flash_image(
         "RoutineControl(mark test)",
         client.start_routine,
         RID_MARK_TEST,
-        bytes([1 if allow_downgrade else 0]),
+        W.MarkTest(FWU_OPT_ALLOW_DOWNGRADE if allow_downgrade else 0).pack(),
         node=node,
     )
     return n_blocks

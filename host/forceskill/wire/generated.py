@@ -1002,6 +1002,42 @@ class TransferExit:
         return v
 
 
+_MARK_TEST = struct.Struct('>')
+
+
+@dataclass(frozen=True)
+class MarkTest:
+    """FWU_RID_MARK_TEST start: the options (bit 0: allow a downgrade, FWU_OPT_ALLOW_DOWNGRADE); absent: none."""
+
+    SIZE: ClassVar[int] = 0  # bytes of the fields always present
+    options: int | None = None
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        if self.options is not None:
+            _in_range('mark_test', 'options', 0 <= self.options <= 1, self.options)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _MARK_TEST.pack()
+        if self.options is not None:
+            out += struct.pack('>B', self.options)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> MarkTest:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _MARK_TEST.size
+        if len(data) not in (n, n + 1):
+            raise FsError(ERR_WIRE_LENGTH, f'mark_test: {len(data)} bytes, not {n} or {n + 1}')
+        raw = _MARK_TEST.unpack(data[:n])
+        v = cls(struct.unpack_from('>B', data, n)[0] if len(data) > n else None)
+        v.check()
+        return v
+
+
 __all__ = [
     'SCALE',
     'SCALE_STEPS',
@@ -1046,4 +1082,5 @@ __all__ = [
     'AuthStats',
     'FwuStatus',
     'TransferExit',
+    'MarkTest',
 ]

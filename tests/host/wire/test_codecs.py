@@ -39,6 +39,7 @@ CLASSES = {
     "auth_stats": W.AuthStats,
     "fwu_status": W.FwuStatus,
     "transfer_exit": W.TransferExit,
+    "mark_test": W.MarkTest,
 }
 HOST_CODE = {418: ERR_WIRE_LENGTH, 419: ERR_WIRE_RANGE}
 
@@ -94,6 +95,7 @@ def test_the_values_are_the_documented_layouts() -> None:
     nonce = bytes(range(16))
     assert W.MotionKey(nonce, 1, 7).pack() == nonce + bytes([1]) + struct.pack(">I", 7)
     assert W.TransferExit(0xCBF43926).pack() == bytes.fromhex("cbf43926")
+    assert W.MarkTest.unpack(b"") == W.MarkTest() and W.MarkTest().pack() == b""  # no options
 
 
 def test_a_byte_string_field_takes_its_length_only() -> None:
