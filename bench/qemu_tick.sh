@@ -262,7 +262,7 @@ start_pil() { # COUNTER TICKS [LIMIT STREAM]: hil_sim pil in the background (PIL
     qa=(--qemu-arg "${ONE_INSN[0]}" ${ONE_INSN[1]:+--qemu-arg "${ONE_INSN[1]}"}
         --qemu-arg -d --qemu-arg exec,nochain --qemu-arg -D --qemu-arg "$WORK/trace.fifo")
   fi
-  "$HIL_SIM" pil --target "$TARGET" --image "$IMG/fs_pil.elf" --port 0 --host-timeout 500 "${qa[@]}" \
+  "$HIL_SIM" pil --target "$TARGET" --image "$BUILD/hil_sim/pil/fs_pil.elf" --port 0 --host-timeout 500 "${qa[@]}" \
     > "$WORK/pil.out" 2> "$WORK/pil.err" &
   PIL_PID=$!
 }

@@ -23,7 +23,7 @@ sources_for() {
         skill_parse) echo "-I$FW/base -I$FW/core $FW/core/skill.c $FW/core/dmp.c $FW/core/pfc.c" ;;
         nvm_record)  echo "-I$FW/base -I$FW/storage $FW/storage/nvm.c $FW/storage/fls_ram.c" ;;
         isotp)       echo "-I$FW/base -I$FW/proto -I$FW/proto/generated $FW/proto/isotp.c" ;;
-        uds)         echo "-I$FW/base -I$FW/proto -I$FW/proto/generated $FW/proto/uds.c" ;;
+        uds)         echo "-I$FW/base -I$FW/proto -I$FW/proto/generated $FW/proto/uds.c $FW/proto/generated/fs_wire.c" ;;
         frames)      echo "-I$FW/base -I$FW/proto -I$FW/proto/generated $FW/proto/generated/fs_dbc.c $FW/proto/e2e.c" ;;
         app)         local d
                      for d in base app control proto proto/generated safety storage security boot core hal ports/host; do

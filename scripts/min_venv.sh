@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The host package against the lowest dependency versions host/pyproject.toml allows: a second venv
 # (.venv-min) with every ">=X" bound installed as "==X" (scripts/min_versions.py), then the host
-# CLI tests and one CAN journey test run there. Idempotent: the venv is rebuilt only when
-# pyproject.toml changes. Used by scripts/test.sh.
+# CLI tests, the CMAC and firmware-crypto comparisons and one CAN journey test run there.
+# Idempotent: the venv is rebuilt only when pyproject.toml changes. Used by scripts/test.sh.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
@@ -33,4 +33,5 @@ sys.exit(f"not the lowest versions: {bad}" if bad else 0)
 PY
 export FORCESKILL_HIL_SIM="$ROOT/build/hil_sim/hil_sim"
 "$VENV/bin/python" -m pytest -q tests/host/commands/test_cli.py tests/host/test_outputs.py \
+  tests/host/wire/test_aes_cmac.py tests/host/wire/test_firmware_crypto.py \
   "tests/can/test_journey.py::test_record_fit_upload_run" "tests/can/test_journey.py::test_tracking_figures_1x_and_1_5x"

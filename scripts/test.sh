@@ -103,6 +103,8 @@ for target in cortex-m4f cortex-m3; do
   grep -E '^(tick_instructions|commit_tick_instructions|app_tick_instructions|budget)' "$log" | sed 's/^/periodic_y_n20: /' || true
   tick_budgets "$target" "$log" 1
 done
+# the images' objects: no firmware object uses a symbol only the simulator defines
+.venv/bin/python tools/check_layers.py --objects build/cortex-m4f --objects build/cortex-m3
 
 # Two workers (pytest-xdist, one test file each at a time): most of the time of the CAN and HIL
 # tests is the simulator's real time, not CPU; FORCESKILL_TEST_WORKERS=1 runs them one by one.

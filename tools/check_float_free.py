@@ -93,7 +93,7 @@ def main() -> int:
             cwd=ROOT,
             check=True,
         )
-    elf = build / "firmware" / "ports" / "mps2" / "fs_pil.elf"
+    elf = build / "hil_sim" / "pil" / "fs_pil.elf"
     edges, indirect = disassemble(a.objdump, elf)
     ok = True
     for root in a.root or ["exec_tick_q_fx", "exec_contact_hold_ms_fx"]:

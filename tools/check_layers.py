@@ -7,7 +7,7 @@ point to the same module or to a lower layer, and no header may include itself t
 
 Modules of one layer do not include each other. Some lower modules are open only in part (safety
 and hal use only the core's fs_real.h), and a module's private header (app_internal.h) is open
-only to its own files (and to sim_couple.h, which hands it to hil_sim/pil's image). Inside a
+only to its own files. Inside a
 firmware folder the .c files call each other without a circle (a file that calls another's
 function sits above it), so each file's concern has one direction. The host package
 host/forceskill is checked the same way on its imports (those inside functions too):
@@ -16,10 +16,18 @@ host/forceskill is checked the same way on its imports (those inside functions t
 
 (wire: the constants and payload codecs generated from wire.toml, the DBC and the telemetry
 pairing, which the CAN-log reader and the link both use), with no exception, and no module
-imports itself through others. Prints the module graph; exit 1 on an upward or sideways include or import,
-a cycle (of includes, or of calls between the files of a folder), or an include that names an
-ambiguous header.
-usage: tools/check_layers.py [--graph]
+imports itself through others.
+
+No firmware file depends on the simulator at link time either: a firmware source that names a
+function or variable hil_sim defines (with external linkage) and no firmware file defines is an
+upward link edge (the port declares what it needs, e.g. cm_plant.h, and hil_sim implements it).
+`--objects BUILD_DIR` checks the same on a build's object files (nm): an undefined symbol of an
+object built from firmware/ that only an object built from hil_sim/ defines.
+
+Prints the module graph; exit 1 on an upward or sideways include, import or link edge, a cycle
+(of includes, or of calls between the files of a folder), or an include that names an ambiguous
+header.
+usage: tools/check_layers.py [--graph] [--objects BUILD_DIR]...
 """
 
 from __future__ import annotations
@@ -27,6 +35,8 @@ from __future__ import annotations
 import argparse
 import ast
 import re
+import shutil
+import subprocess
 import sys
 from collections import defaultdict
 from pathlib import Path
@@ -50,14 +60,19 @@ RANK = {
 # (from, to): the only headers of `to` that `from` may include
 ONLY = {("safety", "core"): {"fs_real.h"}, ("hal", "core"): {"fs_real.h"}}
 # a module's private headers: only these other modules or files may include them (the simulator
-# configures the application through app_config.h, ports use app.h; sim_couple.h passes the
-# internals on to hil_sim/pil's Cortex-M build alone)
-PRIVATE = {"app_internal.h": {"hil_sim/src/sim_couple.h"}}
+# configures the application through app_config.h, ports use app.h)
+PRIVATE: dict[str, set[str]] = {"app_internal.h": set()}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 # a function defined at file level with external linkage: its name (a definition's line starts
 # with its return type, not with `static`)
 DEFINITION = re.compile(r"^(?!static\b)[A-Za-z_][\w \t*]*?\b([A-Za-z_]\w*)\s*\([^;{}]*\)\s*\{", re.M)
 COMMENT = re.compile(r"/\*.*?\*/|//[^\n]*|\"(?:\\.|[^\"\\])*\"", re.S)
+# a variable defined at file level with external linkage (`T name = ...;`, `T name[N];`)
+DATA = re.compile(
+    r"^(?!static\b|extern\b|typedef\b|return\b)(?:const\s+)?[A-Za-z_]\w*[\s*]+(?:const\s+)?([A-Za-z_]\w*)"
+    r"\s*(?:\[[^\]]*\])?\s*(?:=|;)",
+    re.M,
+)
 
 
 def module(rel: Path) -> str:
@@ -137,6 +152,70 @@ def call_edges(files: list[Path], root: Path) -> dict[Path, set[Path]]:
     return edges
 
 
+def defined_names(text: str) -> set[str]:
+    """Functions and variables a C file (comments and strings removed) defines with external linkage."""
+    names = {m.group(1) for m in DEFINITION.finditer(text)} | {m.group(1) for m in DATA.finditer(text)}
+    return names - {"main"}
+
+
+def link_edges(files: list[Path], root: Path) -> list[str]:
+    """Firmware files that name a function or variable defined (with external linkage) only in
+    hil_sim: firmware -> hil_sim at link time, one line each."""
+    text = {f: COMMENT.sub(" ", (root / f).read_text(errors="replace")) for f in files}
+    sim: dict[str, Path] = {}
+    fw: set[str] = set()
+    for f in files:
+        if f.suffix != ".c":
+            continue
+        for name in defined_names(text[f]):
+            if f.parts[0] == "hil_sim":
+                sim.setdefault(name, f)
+            else:
+                fw.add(name)
+    upward = {n: f for n, f in sim.items() if n not in fw}
+    out = []
+    for f in files:
+        if f.parts[0] != "firmware":
+            continue
+        for name in sorted(set(re.findall(r"\b[A-Za-z_]\w*\b", text[f])) & set(upward)):
+            out.append(f"{f}: upward link edge: {name} is defined in {upward[name]} (firmware -> hil_sim)")
+    return out
+
+
+def object_symbols(build: Path, nm: str = "nm") -> dict[str, tuple[set[str], set[str]]]:
+    """{"firmware" | "hil_sim": (defined, undefined)}: the global symbols of a build's objects, by
+    the source folder their build folder mirrors (build/<preset>/firmware/..., .../hil_sim/...)."""
+    out: dict[str, tuple[set[str], set[str]]] = {"firmware": (set(), set()), "hil_sim": (set(), set())}
+    nested = {c.parent for c in build.rglob("CMakeCache.txt") if c.parent != build}  # other builds
+    objs = [p for p in sorted(build.rglob("*")) if p.suffix in (".o", ".obj") and p.is_file()]
+    for obj in objs:
+        if any(d in obj.parents for d in nested):
+            continue
+        rel = obj.relative_to(build).parts
+        side = "hil_sim" if "hil_sim" in rel else "firmware" if "firmware" in rel else None
+        if side is None:
+            continue
+        res = subprocess.run([nm, "-g", str(obj)], capture_output=True, text=True)
+        for line in res.stdout.splitlines():
+            parts = line.split()
+            if len(parts) == 2 and parts[0] == "U":
+                out[side][1].add(parts[1])
+            elif len(parts) == 3 and parts[1] not in ("U", "w", "v"):
+                out[side][0].add(parts[2])
+    return out
+
+
+def check_objects(build: Path, nm: str = "nm") -> list[str]:
+    """Undefined symbols of objects built from firmware/ that only objects from hil_sim/ define."""
+    syms = object_symbols(build, nm)
+    fw_def, fw_undef = syms["firmware"]
+    sim_def = syms["hil_sim"][0]
+    return [
+        f"{build}: upward link edge: firmware objects use {s}, defined only in hil_sim (firmware -> hil_sim)"
+        for s in sorted((fw_undef & sim_def) - fw_def - {"main"})
+    ]
+
+
 def check(root: Path = ROOT) -> tuple[list[str], dict[tuple[str, str], set[str]]]:
     """Violations (one line each) and the module graph {(from, to): headers}."""
     files = sources(root)
@@ -175,6 +254,7 @@ def check(root: Path = ROOT) -> tuple[list[str], dict[tuple[str, str], set[str]]
         problems.append("include cycle: " + " -> ".join(map(str, c)))
     for c in cycles(call_edges(files, root)):
         problems.append("call cycle between the files of a module: " + " -> ".join(map(str, c)))
+    problems += link_edges(files, root)
     return problems, graph
 
 
@@ -263,8 +343,27 @@ def check_host(root: Path = ROOT) -> tuple[list[str], dict[tuple[str, str], set[
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--graph", action="store_true", help="print every module edge and header")
+    ap.add_argument(
+        "--objects",
+        action="append",
+        default=[],
+        metavar="BUILD_DIR",
+        help="also check a build's object files (nm) for firmware -> hil_sim symbols",
+    )
+    ap.add_argument(
+        "--nm", default=None, help="nm program (default: arm-none-eabi-nm for a cross build, else nm)"
+    )
     args = ap.parse_args(argv)
     problems, graph = check()
+    for b in args.objects:
+        build = Path(b)
+        cross = (
+            "arm-none-eabi" in (build / "CMakeCache.txt").read_text()
+            if (build / "CMakeCache.txt").is_file()
+            else False
+        )
+        nm = args.nm or ("arm-none-eabi-nm" if cross and shutil.which("arm-none-eabi-nm") else "nm")
+        problems += check_objects(build, nm)
     host_problems, host_graph = check_host()
     if args.graph:
         for (a, b), names in sorted(graph.items(), key=lambda kv: (RANK.get(kv[0][0], 99), kv[0])):
@@ -273,7 +372,10 @@ def main(argv: list[str] | None = None) -> int:
             print(f"  host {a:8} -> {b:8} {' '.join(sorted(names))}")
     for p in problems + host_problems:
         print(p, file=sys.stderr)
-    print(f"layers: {len(graph)} module edges, {len(problems)} violations (upward/sideways includes, cycles)")
+    print(
+        f"layers: {len(graph)} module edges, {len(problems)} violations "
+        "(upward/sideways includes, firmware -> hil_sim link edges, cycles)"
+    )
     print(
         f"host layers: {len(host_graph)} layer edges, {len(host_problems)} violations "
         "(upward/sideways imports, cycles)"

@@ -31,6 +31,20 @@ UMAX = {"u8": 0xFF, "u16": 0xFFFF, "u32": 0xFFFFFFFF, "u16s": 0xFFFF, "u32s": 0x
 PYFMT = {"u8": "B", "u16": "H", "u32": "I", "f32": "f", "u16s": "H", "u32s": "I"}
 
 
+def _is_bytes(f: Field) -> bool:
+    """A byte-array field (`type = "bytes"`, `size = N` in the table; type bN here)."""
+    return f.type.startswith("b") and f.type[1:].isdigit()
+
+
+def _bytes_type(n: int) -> str:
+    """The type name of an n-byte array field, registered in the size and format tables."""
+    name = f"b{n}"
+    SIZE[name] = n
+    CTYPE[name] = "uint8_t"
+    PYFMT[name] = f"{n}s"
+    return name
+
+
 class WireError(Exception):
     """The wire table contradicts itself (unknown type or constant, bad range, bad scale)."""
 
@@ -107,6 +121,13 @@ def load(root: Path) -> Wire:
         for fd in r["fields"]:
             where = f"{r['name']}.{fd['name']}"
             ty = fd["type"]
+            if ty == "bytes":
+                n = int(fd.get("size", 0))
+                if not 1 <= n <= 64 or int(r.get("optional", 0)):
+                    raise WireError(
+                        f"{TABLE}: {where}: bytes need 1 <= size <= 64, in a record without optional fields"
+                    )
+                ty = _bytes_type(n)
             if ty not in SIZE and ty not in records:
                 raise WireError(f"{TABLE}: {where}: unknown type {ty}")
             fl = Field(
@@ -209,7 +230,9 @@ def _c_checks(f: Field, w: Wire, var: str, finite: bool) -> list[str]:
 def _c_struct(r: Record, w: Wire) -> list[str]:
     lines = [f"/** {r.what}. */", "typedef struct {"]
     for f in r.fields:
-        if f.type in SIZE:
+        if _is_bytes(f):
+            lines.append(f"    uint8_t {f.name}[{SIZE[f.type]}];" + (f" /* {f.unit} */" if f.unit else ""))
+        elif f.type in SIZE:
             note = f.unit
             if f.type.endswith("s"):
                 note = f"count of FS_WIRE_SCALE{' ' + f.unit if f.unit else ''}"
@@ -238,6 +261,27 @@ def _len_macros(r: Record) -> list[str]:
     return [f"#define FS_WIRE_{up}_LEN {fixed}u"]
 
 
+def _count_macros(r: Record, w: Wire) -> list[str]:
+    """FS_WIRE_<RECORD>_<FIELD>_COUNT(T, v) of each scaled field: the count of a value v of the real
+    type T, rounded to the nearest step and held within the field's range (NaN: its lowest)."""
+    out = []
+    for f in r.fields:
+        if f.type not in ("u16s", "u32s"):
+            continue
+        lo = _steps(w, f.lo) if f.lo is not None else 0
+        hi = _steps(w, f.hi) if f.hi is not None else UMAX[f.type]
+        lo_v = f"(T){lo / w.steps!r}"
+        hi_v = f"(T){hi / w.steps!r}"
+        ct = CTYPE[f.type]
+        out += [
+            f"/** The count of {r.name}.{f.name} for a value v of the real type T (nearest step, {lo}..{hi}). */",
+            f"#define FS_WIRE_{r.name.upper()}_{f.name.upper()}_COUNT(T, v)"
+            f" (({ct})(!((v) > {lo_v}) ? {lo}u : ((v) >= {hi_v}) ? {hi}u"
+            f" : (uint32_t)((v) * (T)FS_WIRE_SCALE_STEPS + (T)0.5)))",
+        ]
+    return out
+
+
 def c_header(w: Wire) -> str:
     g = "FS_WIRE_H"
     lines = [
@@ -262,6 +306,7 @@ def c_header(w: Wire) -> str:
     ]
     for r in w.records.values():
         lines += _len_macros(r)
+        lines += _count_macros(r, w)
         lines += _c_struct(r, w)
         lines += [
             "/** Unpack len bytes: PROTO_OK, PROTO_ERR_WIRE_LENGTH or PROTO_ERR_WIRE_RANGE (v unchanged). */",
@@ -309,12 +354,16 @@ static void put_f32(uint8_t *p, float f)
 
 
 def _c_get(f: Field, at: str) -> str:
+    if _is_bytes(f):
+        raise AssertionError("a byte array is copied, not read (_c_fields_get)")
     if f.type == "f32":
         return f"get_f32(&d[{at}])"
     return f"({CTYPE[f.type]})get_be(&d[{at}], {SIZE[f.type]}u)"
 
 
 def _c_put(f: Field, var: str, at: str) -> str:
+    if _is_bytes(f):
+        return f"memcpy(&out[{at}], {var}, {SIZE[f.type]}u);"
     if f.type == "f32":
         return f"put_f32(&out[{at}], {var});"
     return f"put_be(&out[{at}], {var}, {SIZE[f.type]}u);"
@@ -352,7 +401,10 @@ def _c_fields_get(r: Record, base: str, tgt: str, first: int) -> tuple[list[str]
     for f in r.fields:
         if f.type in SIZE:
             off = f"{base} + {at}u" if base else f"{at}u"
-            lines.append(f"    {tgt}{f.name} = {_c_get(f, off)};")
+            if _is_bytes(f):
+                lines.append(f"    memcpy({tgt}{f.name}, &d[{off}], {SIZE[f.type]}u);")
+            else:
+                lines.append(f"    {tgt}{f.name} = {_c_get(f, off)};")
             at += SIZE[f.type]
     return lines, at
 
@@ -489,6 +541,8 @@ def _py_num(v: int | float) -> str:
 def _py_checks(f: Field, w: Wire, var: str, finite: bool) -> list[str]:
     """Python conditions true when the field is inside its range (on counts for scaled fields)."""
     out: list[str] = []
+    if _is_bytes(f):
+        return [f"isinstance({var}, bytes) and len({var}) == {SIZE[f.type]}"]
     if f.type in UMAX:
         lo = 0
         hi = UMAX[f.type]
@@ -512,6 +566,8 @@ def _py_checks(f: Field, w: Wire, var: str, finite: bool) -> list[str]:
 def _py_type(f: Field, optional: bool) -> str:
     if f.type not in SIZE:
         return f"tuple[{_camel(f.type)}, ...]"
+    if _is_bytes(f):
+        return "bytes"
     t = "float" if f.type == "f32" or f.type.endswith("s") else "int"
     return f"{t} | None" if optional else t
 

@@ -9,8 +9,9 @@
  *     for (;;) { (void)app_poll(app); }
  *
  * The device state app_t and its configuration app_config_t are opaque here: their fields, and
- * the functions the application's modules share, are in app_internal.h (firmware/app and
- * white-box users: the simulator, tests, fuzzers). */
+ * the functions the application's modules share, are in app_internal.h (firmware/app and its
+ * white-box tests and fuzzers); the simulator configures and reads the device through
+ * app_config.h. */
 #ifndef APP_H
 #define APP_H
 

@@ -29,11 +29,6 @@ static uint16_t did_identity(uint16_t did, uint8_t *buf, uint16_t cap)
     }
 }
 
-static uint32_t be32(const uint8_t *p)
-{
-    return ((uint32_t)p[0] << 24) | ((uint32_t)p[1] << 16) | ((uint32_t)p[2] << 8) | p[3];
-}
-
 /* The configuration DIDs (gains, limits, communication, object). */
 static uint16_t did_config(const app_t *app, uint16_t did, uint8_t *buf, uint16_t cap)
 {
@@ -105,10 +100,9 @@ static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf, uint16_
         return fs_wire_device_state_pack(&v, buf, cap);
     }
     case DID_CONTACT_WAIT: {
-        const fs_real_t r = app->exec.contact_rate * FS_R(1000.0) + FS_R(0.5); /* 0.001 steps */
-        const fs_wire_contact_wait_t v = {exec_contact_hold_ms(&app->exec),
-                                          app->exec.contact_losses,
-                                          (r < FS_R(1000.0)) ? (uint16_t)r : (uint16_t)1000u};
+        const fs_wire_contact_wait_t v = {
+            exec_contact_hold_ms(&app->exec), app->exec.contact_losses,
+            FS_WIRE_CONTACT_WAIT_RATE_COUNT(fs_real_t, app->exec.contact_rate)};
         return fs_wire_contact_wait_pack(&v, buf, cap);
     }
     case DID_STIFFNESS_MAX: {
@@ -120,13 +114,9 @@ static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf, uint16_
         return fs_wire_fault_causes_pack(&v, buf, cap);
     }
     case DID_MOTION_KEY: {
-        const uint8_t *n = app->secoc_dev_nonce;
-        const fs_wire_motion_key_t v = {be32(&n[0]),
-                                        be32(&n[4]),
-                                        be32(&n[8]),
-                                        be32(&n[12]),
-                                        app->secoc.keyed ? 1u : 0u,
-                                        app->secoc.keyed ? app->motion_confirm : 0u};
+        fs_wire_motion_key_t v = {
+            {0u}, app->secoc.keyed ? 1u : 0u, app->secoc.keyed ? app->motion_confirm : 0u};
+        memcpy(v.nonce, app->secoc_dev_nonce, sizeof(v.nonce));
         return fs_wire_motion_key_pack(&v, buf, cap);
     }
     case DID_AUTH_STATS: {

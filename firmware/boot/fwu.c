@@ -390,34 +390,26 @@ boot_status_t fwu_confirm(fwu_t *f)
     return st == BOOT_OK ? BOOT_OK : refuse(f, st);
 }
 
-static void be32(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)(v >> 24);
-    p[1] = (uint8_t)(v >> 16);
-    p[2] = (uint8_t)(v >> 8);
-    p[3] = (uint8_t)v;
-}
-
 uint16_t fwu_status(const fwu_t *f, uint8_t *out, uint16_t cap)
 {
-    if (out == NULL || cap < FWU_STATUS_LEN) {
+    if (out == NULL) {
         return 0u;
     }
     const boot_t *b = f->boot;
     const bool running = b->running_slot < BOOT_SLOT_COUNT;
-    be32(&out[0], running ? b->running.fw_version : 0u);
-    out[4] = b->running_slot;
-    out[5] = b->test_boot;
-    out[6] = b->state.active_slot;
-    out[7] = b->state.test_slot;
-    out[8] = (uint8_t)b->path;
-    out[9] = (uint8_t)b->cfg->target_id;
-    const uint16_t last = (uint16_t)(f->last != BOOT_OK ? f->last : b->refusal);
-    out[10] = (uint8_t)(last >> 8);
-    out[11] = (uint8_t)last;
-    be32(&out[12], f->image_version);
-    out[16] = (uint8_t)f->phase;
-    return FWU_STATUS_LEN;
+    const fs_wire_fwu_status_t v = {
+        .running_version = running ? b->running.fw_version : 0u,
+        .running_slot = b->running_slot,
+        .on_test = b->test_boot != 0u ? 1u : 0u,
+        .active_slot = b->state.active_slot,
+        .test_slot = b->state.test_slot,
+        .path = (uint8_t)b->path,
+        .target = (uint8_t)b->cfg->target_id,
+        .last_refusal = (uint16_t)(f->last != BOOT_OK ? f->last : b->refusal),
+        .received_version = f->image_version,
+        .phase = (uint8_t)f->phase,
+    };
+    return fs_wire_fwu_status_pack(&v, out, cap);
 }
 
 uint8_t fwu_nrc(boot_status_t st)

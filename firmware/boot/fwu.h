@@ -18,8 +18,9 @@
 #include "boot.h"
 #include "boot_verify.h"
 #include "fs_uds_ids.h" /* FWU_DOWNLOAD_ADDRESS, FWU_RID_*, FWU_DID_STATUS */
+#include "fs_wire.h"    /* fs_wire_fwu_status_t: FWU_DID_STATUS's record (wire.toml) */
 
-#define FWU_STATUS_LEN 17u
+#define FWU_STATUS_LEN FS_WIRE_FWU_STATUS_LEN
 #define FWU_BLOCK_MAX 4096u /* the longest TransferData block fwu_data_step takes */
 #define FWU_OPT_ALLOW_DOWNGRADE BOOT_FLAG_ALLOW_DOWNGRADE
 
@@ -103,9 +104,10 @@ boot_status_t fwu_mark_test(fwu_t *f, bool authorised, uint8_t options);
 /** RoutineControl FWU_RID_CONFIRM (or the application's own call after its self-test). */
 boot_status_t fwu_confirm(fwu_t *f);
 
-/** FWU_DID_STATUS record, big-endian: running version u32, running slot u8, on-test u8,
- *  active slot u8, pending test slot u8, boot path u8, target u8, last refusal u16,
- *  received image version u32, update phase u8. Returns the bytes written (0 if cap is short). */
+/** FWU_DID_STATUS record (fs_wire_fwu_status_t of wire.toml, packed by its generated codec):
+ *  running version, running slot, on-test, active slot, pending test slot, boot path, target,
+ *  last refusal, received image version, update phase. Returns the bytes written (0 if cap is
+ *  short). */
 uint16_t fwu_status(const fwu_t *f, uint8_t *out, uint16_t cap);
 
 /** UDS negative response code for a status (0x00 for BOOT_OK). */

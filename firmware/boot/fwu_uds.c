@@ -47,14 +47,13 @@ uint8_t fwu_uds_routine(fwu_t *f, const uds_server_t *srv, uint8_t sub, uint16_t
         return UDS_NRC_SUBFUNCTION_NOT_SUPPORTED;
     }
     if (rid == FWU_RID_MARK_TEST) {
-        if (len > 1u) {
-            return UDS_NRC_INCORRECT_LENGTH;
+        fs_wire_mark_test_t m;
+        const proto_status_t ps = fs_wire_mark_test_unpack(&m, data, len);
+        if (ps != PROTO_OK) {
+            return ps == PROTO_ERR_WIRE_LENGTH ? UDS_NRC_INCORRECT_LENGTH
+                                               : UDS_NRC_REQUEST_OUT_OF_RANGE;
         }
-        const uint8_t opt = len == 1u ? data[0] : 0u;
-        if ((opt & (uint8_t)~FWU_OPT_ALLOW_DOWNGRADE) != 0u) {
-            return UDS_NRC_REQUEST_OUT_OF_RANGE;
-        }
-        return fwu_nrc(fwu_mark_test(f, fwu_uds_authorised(srv), opt));
+        return fwu_nrc(fwu_mark_test(f, fwu_uds_authorised(srv), m.options));
     }
     if (rid == FWU_RID_CONFIRM) {
         if (!fwu_uds_authorised(srv)) {

@@ -3,6 +3,8 @@
 
 #include <string.h>
 
+#include "fs_wire.h"
+
 static uint16_t negative(uint8_t *resp, uint8_t sid, uint8_t nrc)
 {
     resp[0] = UDS_NEGATIVE_RESPONSE;
@@ -426,11 +428,8 @@ static uint16_t exit_answer(uint8_t *resp, uint8_t nrc, uint32_t crc)
         return negative(resp, UDS_SID_TRANSFER_EXIT, nrc);
     }
     resp[0] = (uint8_t)(UDS_SID_TRANSFER_EXIT + 0x40u);
-    resp[1] = (uint8_t)(crc >> 24);
-    resp[2] = (uint8_t)(crc >> 16);
-    resp[3] = (uint8_t)(crc >> 8);
-    resp[4] = (uint8_t)crc;
-    return 5u;
+    const fs_wire_transfer_exit_t v = {crc};
+    return (uint16_t)(1u + fs_wire_transfer_exit_pack(&v, &resp[1], FS_WIRE_TRANSFER_EXIT_LEN));
 }
 
 static uint16_t svc_transfer_exit(uds_server_t *srv, const uint8_t *req, uint8_t *resp)

@@ -1,14 +1,15 @@
-/* Processor-in-the-loop plant of the MPS2 images (cm_plant.h): the simulator's plant, operator
- * and sensor models (hil_sim/src: sim_couple, sim_model, sim_rng) behind the sensor/actuator part
- * of hal.h. Its scenario comes from the parameter block that `hil_sim pil` loads at
- * CM_PARAMS_ADDR (hil_sim/src/sim_params.h). The plant runs in the same 1 kHz loop as the
- * application, before (sensors) and after (actuator) each app_tick. */
+/* Processor-in-the-loop plant of the MPS2 images (pil_plant.h; the interface is the port's
+ * cm_plant.h): the simulator's plant, operator and sensor models (hil_sim/src: sim_couple,
+ * sim_model, sim_rng) behind the board's sensors and actuator. Its scenario comes from the
+ * parameter block that `hil_sim pil` loads at CM_PARAMS_ADDR (hil_sim/src/sim_params.h). The
+ * port's main loop (cm_main) runs it in the same 1 kHz loop as the application, before (sensors)
+ * and after (actuator) each app_tick. */
+#include "pil_plant.h"
+
 #include <string.h>
 
 #include "cm_board.h"
-#include "cm_plant.h"
 #include "fs_wire_const.h"
-#include "hal.h"
 #include "sim_couple.h"
 #include "sim_params.h"
 
@@ -16,9 +17,6 @@ static sim_scenario_t g_sc_store;
 static const sim_scenario_t *g_sc = &g_sc_store;
 static sim_params_dev_t g_dev;
 static sim_couple_plant_t g_plant;
-static hal_sensors_t g_sens;
-static bool g_enable;
-static fs_real_t g_force_N[HAL_AXES];
 
 /* Read the parameter block; false if there is none (the scenario then is a plant at rest
  * without operator, node 0, host timeout 100 ms, a fixed seed). */
@@ -52,13 +50,10 @@ static bool plant_params(sim_scenario_t *sc, sim_params_dev_t *dev)
     return false;
 }
 
-void cm_plant_load(cm_plant_params_t *p, app_config_t *cfg)
+static void plant_load(cm_plant_params_t *p, app_config_t *cfg)
 {
     p->loaded = plant_params(&g_sc_store, &g_dev);
     sim_couple_start(&g_plant, g_sc);
-    memset(&g_sens, 0, sizeof(g_sens));
-    g_enable = false;
-    g_force_N[0] = g_force_N[1] = FS_R(0.0);
     sim_couple_device_config(g_sc, cfg);
     cfg->node = (uint8_t)g_dev.node;
     cfg->saf.wdg.timeout_ms = (uint16_t)g_dev.host_timeout_ms;
@@ -67,40 +62,21 @@ void cm_plant_load(cm_plant_params_t *p, app_config_t *cfg)
     p->seed_len = SIM_PARAMS_SEED_LEN;
 }
 
-void cm_plant_sense(const app_t *app)
+static void plant_sense(const app_t *app, hal_sensors_t *out)
 {
     /* the tick about to run is app_tick_count + 1 */
-    sim_couple_sense(&g_plant, g_sc, app_state(app) == APP_TEACH, app_tick_count(app), &g_sens);
+    sim_couple_sense(&g_plant, g_sc, app_state(app) == APP_TEACH, app_tick_count(app), out);
 }
 
-void cm_plant_advance(const app_t *app)
+static void plant_advance(const app_t *app, const cm_actuator_t *act)
 {
-    (void)sim_couple_step(&g_plant, g_sc, app_state(app), g_enable, g_force_N);
+    (void)sim_couple_step(&g_plant, g_sc, app_state(app), act->enabled, act->force_N);
 }
 
-void hal_sensors_read(hal_sensors_t *out)
-{
-    *out = g_sens;
-}
-
-void hal_actuator_enable(bool enable)
-{
-    g_enable = enable;
-    if (!enable) {
-        g_force_N[0] = g_force_N[1] = FS_R(0.0);
-    }
-}
-
-void hal_actuator_force(const fs_real_t force_N[HAL_AXES])
-{
-    if (g_enable) {
-        g_force_N[0] = force_N[0];
-        g_force_N[1] = force_N[1];
-    }
-}
-
-bool cm_plant_transfer(const app_t *app, bool *firmware)
+static bool plant_transfer(const app_t *app, bool *firmware)
 {
     *firmware = app_transfer_is_firmware(app);
     return app_transfer_busy(app);
 }
+
+const cm_plant_t pil_plant = {plant_load, plant_sense, plant_advance, plant_transfer};

@@ -37,13 +37,13 @@ static const char PIL_USAGE[] =
     "usage: hil_sim pil --target cortex-m4f|cortex-m3 [--port PORT] [--host ADDR] [--image ELF]\n"
     "                   [--scenario FILE] [--flash FILE] [--node N] [--host-timeout MS]\n"
     "                   [--icount-shift K] [--qemu EXE] [--qemu-arg ARG]...\n"
-    "Run the product's Cortex-M image (firmware/ports/mps2 fs_pil.elf) under qemu with the\n"
+    "Run the product's Cortex-M image (hil_sim/pil fs_pil.elf) under qemu with the\n"
     "simulator's plant linked in; its UART0 carries the CAN bus in SLCAN on a TCP port:\n"
     "  forceskill status -i slcan -c socket://ADDR:PORT\n"
     "  --target T       cortex-m4f (mps2-an386) or cortex-m3 (mps2-an385)\n"
     "  --port PORT      TCP port of the board's serial port (default 29537; 0 = any free port)\n"
     "  --host ADDR      listen address (default 127.0.0.1)\n"
-    "  --image ELF      the image (default: build/<target>/firmware/ports/mps2/fs_pil.elf)\n"
+    "  --image ELF      the image (default: build/<target>/hil_sim/pil/fs_pil.elf)\n"
     "  --scenario FILE  plant, object, operator and sensors (hil_sim/scenarios/*.toml)\n"
     "  --flash FILE     the board's flash (created erased if missing; default: a fresh one,\n"
     "                   removed at exit)\n"
@@ -346,7 +346,7 @@ static int pil_board(pil_opts_t *o, const char **machine, const char **cpu, char
         return 2;
     }
     if (o->image == NULL) {
-        snprintf(image_buf, image_cap, "%s/build/%s/firmware/ports/mps2/fs_pil.elf", FS_SOURCE_DIR,
+        snprintf(image_buf, image_cap, "%s/build/%s/hil_sim/pil/fs_pil.elf", FS_SOURCE_DIR,
                  o->target);
         o->image = image_buf;
     }

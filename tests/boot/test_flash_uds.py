@@ -31,6 +31,7 @@ FW = ROOT / "firmware"
 SECRET = bytes(range(0xA0, 0xC0))
 SOURCES = [
     "proto/uds.c",
+    "proto/generated/fs_wire.c",
     "boot/fwu_uds.c",
     "boot/fwu.c",
     "boot/boot.c",
@@ -48,7 +49,7 @@ _channels = itertools.count()
 @pytest.fixture(scope="module")
 def lib(tmp_path_factory) -> ctypes.CDLL:
     out = tmp_path_factory.mktemp("fsdev") / "libfsdev.so"
-    inc = [f"-I{FW / d}" for d in ("base", "boot", "proto", "security", "storage")]
+    inc = [f"-I{FW / d}" for d in ("base", "boot", "proto", "proto/generated", "security", "storage")]
     subprocess.run(
         [
             "cc",

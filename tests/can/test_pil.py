@@ -46,7 +46,7 @@ class Pil:
     """A running `hil_sim pil --target TARGET` (terminated by the fixture)."""
 
     def __init__(self, flash: Path, target: str = "cortex-m4f") -> None:
-        image = REPO / "build" / target / "firmware" / "ports" / "mps2" / "fs_pil.elf"
+        image = REPO / "build" / target / "hil_sim" / "pil" / "fs_pil.elf"
         assert image.is_file(), (
             f"{target} image not built at {image}: run `cmake --preset {target} "
             f"&& cmake --build build/{target} --target fs_pil`"

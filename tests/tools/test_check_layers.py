@@ -1,12 +1,16 @@
 """tools/check_layers.py: the tree and the host package pass, and an upward include or import, a sideways include, a narrow
-layer used beyond its opening and an include cycle are each reported."""
+layer used beyond its opening, an include cycle and a firmware -> hil_sim link edge (in the sources or a
+build's objects) are each reported."""
 
 from __future__ import annotations
 
 import shutil
+import subprocess
 from collections.abc import Callable
 from pathlib import Path
 from types import ModuleType
+
+import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -94,3 +98,42 @@ def test_host_violations_are_reported(tmp_path: Path, tool: Callable[[str], Modu
     assert "forceskill.extra: module has no layer" in text
     assert not any(p.startswith("forceskill.model.tolerance:") for p in problems)
     assert not any("forceskill.wire.dbc" in p for p in problems)
+
+
+def test_a_firmware_call_into_the_simulator_is_reported(
+    tmp_path: Path, tool: Callable[[str], ModuleType]
+) -> None:
+    mod = tool("check_layers")
+    root = _copy(tmp_path)
+    main = root / "firmware/ports/mps2/mps2_main.c"
+    main.write_text(
+        main.read_text() + "\nvoid cm_extra(void);\nvoid cm_extra(void)\n{\n    sim_rng_seed(0);\n}\n"
+    )
+    problems, _ = mod.check(root)
+    assert problems == [
+        "firmware/ports/mps2/mps2_main.c: upward link edge: sim_rng_seed is defined in "
+        "hil_sim/src/sim_rng.c (firmware -> hil_sim)"
+    ]
+
+
+def test_a_firmware_object_using_a_simulator_symbol_is_reported(
+    tmp_path: Path, tool: Callable[[str], ModuleType]
+) -> None:
+    mod = tool("check_layers")
+    cc, nm = shutil.which("cc"), shutil.which("nm")
+    if cc is None or nm is None:
+        pytest.skip("no cc/nm")
+    sources = {
+        "firmware/ports/b/CMakeFiles/img.dir/loop.c": "void plant_step(void);\nvoid loop(void) { plant_step(); }\n",
+        "firmware/ports/b/CMakeFiles/img.dir/hal.c": "int hal_x(void) { return 1; }\n",
+        "hil_sim/pil/CMakeFiles/plant.dir/plant.c": "int hal_x(void);\nvoid plant_step(void) { (void)hal_x(); }\n",
+    }
+    for rel, text in sources.items():
+        src = tmp_path / rel
+        src.parent.mkdir(parents=True, exist_ok=True)
+        src.write_text(text)
+        subprocess.run([cc, "-c", str(src), "-o", str(src.with_suffix(".c.o"))], check=True)
+    assert mod.check_objects(tmp_path, nm) == [
+        f"{tmp_path}: upward link edge: firmware objects use plant_step, defined only in hil_sim "
+        "(firmware -> hil_sim)"
+    ]

@@ -48,9 +48,13 @@ def vectors() -> list[tuple[str, bytes, int]]:
         ("run_results", W.RunResults(3, 1, 0, 0)),
         ("self_test", W.SelfTest(1, 502)),
         ("erase_slot", W.EraseSlot(W.SLOT_COUNT)),
-        ("motion_key", W.MotionKey(0x00112233, 0x44556677, 0x8899AABB, 0xCCDDEEFF, 1, 0x5A5AA5A5)),
-        ("motion_key_write", W.MotionKeyWrite(0x01020304, 0x05060708, 0x090A0B0C, 0x0D0E0F10)),
+        ("motion_key", W.MotionKey(bytes.fromhex("00112233445566778899aabbccddeeff"), 1, 0x5A5AA5A5)),
+        ("motion_key_write", W.MotionKeyWrite(bytes(range(1, 17)))),
         ("auth_stats", W.AuthStats(1000, 64, 3, 2, 1, 558, 0, 300, 4096, 7)),
+        ("fwu_status", W.FwuStatus(0x00010203, 1, 1, 0, 1, 2, W.TARGET_CORTEX_M4F, 707, 0x00010300, 2)),
+        ("transfer_exit", W.TransferExit(0xCBF43926)),
+        ("mark_test", W.MarkTest(1)),
+        ("mark_test", W.MarkTest(0)),
     ]
     out = [(name, rec.pack(), OK) for name, rec in good]  # type: ignore[attr-defined]
     f32 = struct.Struct(">f").pack
@@ -82,6 +86,11 @@ def vectors() -> list[tuple[str, bytes, int]]:
         ("auth_stats", bytes(34), LENGTH),
         ("auth_stats", bytes(22) + bytes([2]) + bytes(12), RANGE),
         ("slot_dir", bytes([W.SLOT_COUNT]) + bytes(16 * (W.SLOT_COUNT + 1)), LENGTH),
+        ("fwu_status", bytes(16), LENGTH),
+        ("fwu_status", bytes(5) + bytes([2]) + bytes(11), RANGE),
+        ("transfer_exit", bytes(3), LENGTH),
+        ("mark_test", bytes([2]), RANGE),
+        ("mark_test", bytes(2), LENGTH),
     ]
     return out
 

@@ -1,6 +1,6 @@
 /* hal.h on qemu's MPS2 boards: CAN over SLCAN, time, flash, random, keys, reset, watchdog
- * (see cm_port.h). Sensors and actuator: the image that links the port provides them
- * (hil_sim/pil/pil_plant.c). */
+ * (see cm_port.h). Sensors and actuator: the sample and the command the main loop exchanges
+ * with the board's plant (cm_plant.h, cm_port_sensors, cm_port_actuator). */
 #include <string.h>
 
 #include "boot_cm_flash.h"
@@ -399,4 +399,47 @@ void hal_request_reset(uint8_t type)
 {
     (void)type;
     g_reset_requested = true;
+}
+
+/* ---- sensors and actuator: what the main loop exchanges with the plant ---- */
+
+static hal_sensors_t g_sens;
+static bool g_act_enable;
+static fs_real_t g_act_force_N[HAL_AXES];
+
+hal_sensors_t *cm_port_sensors(void)
+{
+    return &g_sens;
+}
+
+bool cm_port_actuator(fs_real_t force_N[HAL_AXES])
+{
+    for (uint32_t i = 0u; i < HAL_AXES; i++) {
+        force_N[i] = g_act_force_N[i];
+    }
+    return g_act_enable;
+}
+
+void hal_sensors_read(hal_sensors_t *out)
+{
+    *out = g_sens;
+}
+
+void hal_actuator_enable(bool enable)
+{
+    g_act_enable = enable;
+    if (!enable) {
+        for (uint32_t i = 0u; i < HAL_AXES; i++) {
+            g_act_force_N[i] = FS_R(0.0);
+        }
+    }
+}
+
+void hal_actuator_force(const fs_real_t force_N[HAL_AXES])
+{
+    if (g_act_enable) {
+        for (uint32_t i = 0u; i < HAL_AXES; i++) {
+            g_act_force_N[i] = force_N[i];
+        }
+    }
 }

@@ -8,6 +8,7 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+#include "hal.h"
 
 #define CM_PORT_TICK_HZ 1000u
 #define CM_PORT_WDG_TIMEOUT_MS 200u
@@ -81,6 +82,13 @@ void cm_port_end_tick(void);
 uint32_t cm_port_overruns(void);
 /** Received frames lost because the port's receive queue was full (none: the parse waits). */
 uint32_t cm_port_rx_dropped(void);
+
+/** The sample hal_sensors_read returns during the coming tick (the plant's sense fills it). */
+hal_sensors_t *cm_port_sensors(void);
+
+/** The actuator's command as the last tick left it (hal_actuator_enable, hal_actuator_force):
+ *  each axis' force into force_N (0 while disabled); true while the power stage is enabled. */
+bool cm_port_actuator(fs_real_t force_N[HAL_AXES]);
 
 
 /** Empty functions around the application tick, which bench/qemu_tick.sh finds in the exec trace

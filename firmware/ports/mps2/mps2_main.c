@@ -1,8 +1,8 @@
-/* The product image on qemu's MPS2 boards: the application (firmware/app, app_tick) on the
- * Cortex-M port of hal.h, run by the 1 kHz SysTick, with the board's sensor/actuator side
- * (cm_plant.h: the processor-in-the-loop plant) around each tick (docs/cortex-m.md). Runs until
- * the board is reset or powered off; every 10 s of device time it reports its load on the
- * semihosting console (`hil_sim pil` shows it). */
+/* The main loop of the product image on qemu's MPS2 boards (cm_main, cm_plant.h): the
+ * application (firmware/app, app_tick) on the Cortex-M port of hal.h, run by the 1 kHz SysTick,
+ * with the plant the image's `main` passes (the board's sensor/actuator side) around each tick
+ * (docs/cortex-m.md). Runs until the board is reset or powered off; every 10 s of device time it
+ * reports its load on the semihosting console (`hil_sim pil` shows it). */
 #include <stdint.h>
 
 #include "app.h"
@@ -54,11 +54,11 @@ static void mark_kind(const app_t *app, bool xfer, bool fw)
     }
 }
 
-int main(void)
+int cm_main(const cm_plant_t *plant)
 {
     app_t *app = app_device();
     cm_plant_params_t p;
-    cm_plant_load(&p, app_device_config());
+    plant->load(&p, app_device_config());
     cm_port_init(p.seed, p.seed_len);
     app_init(app, app_device_config());
     sh_puts(p.loaded ? "fs_pil: started (scenario from hil_sim pil)\n"
@@ -71,17 +71,19 @@ int main(void)
     for (;;) {
         const bool overrun = cm_port_wait_tick();
         const uint32_t c0 = cm_port_cycles();
-        cm_plant_sense(app);
+        plant->sense(app, cm_port_sensors());
         const uint32_t c1 = cm_port_cycles();
         cm_port_mark_begin();
         app_tick(app, overrun);
         cm_port_mark_end();
         bool fw = false;
-        const bool xfer_after = cm_plant_transfer(app, &fw);
+        const bool xfer_after = plant->transfer(app, &fw);
         mark_kind(app, xfer_before || xfer_after, fw);
         xfer_before = xfer_after;
         const uint32_t c2 = cm_port_cycles();
-        cm_plant_advance(app);
+        cm_actuator_t act;
+        act.enabled = cm_port_actuator(act.force_N);
+        plant->advance(app, &act);
         const uint32_t c3 = cm_port_cycles();
         tick_max = (c2 - c1 > tick_max) ? c2 - c1 : tick_max;
         loop_max = (c3 - c0 > loop_max) ? c3 - c0 : loop_max;

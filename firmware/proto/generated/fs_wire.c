@@ -796,10 +796,7 @@ proto_status_t fs_wire_motion_key_unpack(fs_wire_motion_key_t *v, const uint8_t 
     }
     fs_wire_motion_key_t t;
     memset(&t, 0, sizeof(t));
-    t.nonce_0 = (uint32_t)get_be(&d[0u], 4u);
-    t.nonce_1 = (uint32_t)get_be(&d[4u], 4u);
-    t.nonce_2 = (uint32_t)get_be(&d[8u], 4u);
-    t.nonce_3 = (uint32_t)get_be(&d[12u], 4u);
+    memcpy(t.nonce, &d[0u], 16u);
     t.keyed = (uint8_t)get_be(&d[16u], 1u);
     t.confirm = (uint32_t)get_be(&d[17u], 4u);
     if (!motion_key_in_range(&t)) {
@@ -815,10 +812,7 @@ uint16_t fs_wire_motion_key_pack(const fs_wire_motion_key_t *v, uint8_t *out, ui
     if (!motion_key_in_range(v) || n > cap) {
         return 0u;
     }
-    put_be(&out[0u], v->nonce_0, 4u);
-    put_be(&out[4u], v->nonce_1, 4u);
-    put_be(&out[8u], v->nonce_2, 4u);
-    put_be(&out[12u], v->nonce_3, 4u);
+    memcpy(&out[0u], v->nonce, 16u);
     put_be(&out[16u], v->keyed, 1u);
     put_be(&out[17u], v->confirm, 4u);
     return (uint16_t)n;
@@ -837,10 +831,7 @@ proto_status_t fs_wire_motion_key_write_unpack(fs_wire_motion_key_write_t *v, co
     }
     fs_wire_motion_key_write_t t;
     memset(&t, 0, sizeof(t));
-    t.nonce_0 = (uint32_t)get_be(&d[0u], 4u);
-    t.nonce_1 = (uint32_t)get_be(&d[4u], 4u);
-    t.nonce_2 = (uint32_t)get_be(&d[8u], 4u);
-    t.nonce_3 = (uint32_t)get_be(&d[12u], 4u);
+    memcpy(t.nonce, &d[0u], 16u);
     if (!motion_key_write_in_range(&t)) {
         return PROTO_ERR_WIRE_RANGE;
     }
@@ -854,10 +845,7 @@ uint16_t fs_wire_motion_key_write_pack(const fs_wire_motion_key_write_t *v, uint
     if (!motion_key_write_in_range(v) || n > cap) {
         return 0u;
     }
-    put_be(&out[0u], v->nonce_0, 4u);
-    put_be(&out[4u], v->nonce_1, 4u);
-    put_be(&out[8u], v->nonce_2, 4u);
-    put_be(&out[12u], v->nonce_3, 4u);
+    memcpy(&out[0u], v->nonce, 16u);
     return (uint16_t)n;
 }
 
@@ -906,5 +894,119 @@ uint16_t fs_wire_auth_stats_pack(const fs_wire_auth_stats_t *v, uint8_t *out, ui
     put_be(&out[23u], v->fv_command, 4u);
     put_be(&out[27u], v->fv_heartbeat, 4u);
     put_be(&out[31u], v->foreign_writes, 4u);
+    return (uint16_t)n;
+}
+
+static int fwu_status_in_range(const fs_wire_fwu_status_t *v)
+{
+    return v->on_test <= 1u;
+}
+
+proto_status_t fs_wire_fwu_status_unpack(fs_wire_fwu_status_t *v, const uint8_t *d, uint16_t len)
+{
+    if (len != FS_WIRE_FWU_STATUS_LEN) {
+        return PROTO_ERR_WIRE_LENGTH;
+    }
+    fs_wire_fwu_status_t t;
+    memset(&t, 0, sizeof(t));
+    t.running_version = (uint32_t)get_be(&d[0u], 4u);
+    t.running_slot = (uint8_t)get_be(&d[4u], 1u);
+    t.on_test = (uint8_t)get_be(&d[5u], 1u);
+    t.active_slot = (uint8_t)get_be(&d[6u], 1u);
+    t.test_slot = (uint8_t)get_be(&d[7u], 1u);
+    t.path = (uint8_t)get_be(&d[8u], 1u);
+    t.target = (uint8_t)get_be(&d[9u], 1u);
+    t.last_refusal = (uint16_t)get_be(&d[10u], 2u);
+    t.received_version = (uint32_t)get_be(&d[12u], 4u);
+    t.phase = (uint8_t)get_be(&d[16u], 1u);
+    if (!fwu_status_in_range(&t)) {
+        return PROTO_ERR_WIRE_RANGE;
+    }
+    *v = t;
+    return PROTO_OK;
+}
+
+uint16_t fs_wire_fwu_status_pack(const fs_wire_fwu_status_t *v, uint8_t *out, uint16_t cap)
+{
+    const unsigned n = 17u;
+    if (!fwu_status_in_range(v) || n > cap) {
+        return 0u;
+    }
+    put_be(&out[0u], v->running_version, 4u);
+    put_be(&out[4u], v->running_slot, 1u);
+    put_be(&out[5u], v->on_test, 1u);
+    put_be(&out[6u], v->active_slot, 1u);
+    put_be(&out[7u], v->test_slot, 1u);
+    put_be(&out[8u], v->path, 1u);
+    put_be(&out[9u], v->target, 1u);
+    put_be(&out[10u], v->last_refusal, 2u);
+    put_be(&out[12u], v->received_version, 4u);
+    put_be(&out[16u], v->phase, 1u);
+    return (uint16_t)n;
+}
+
+static int transfer_exit_in_range(const fs_wire_transfer_exit_t *v)
+{
+    (void)v;
+    return 1;
+}
+
+proto_status_t fs_wire_transfer_exit_unpack(fs_wire_transfer_exit_t *v, const uint8_t *d, uint16_t len)
+{
+    if (len != FS_WIRE_TRANSFER_EXIT_LEN) {
+        return PROTO_ERR_WIRE_LENGTH;
+    }
+    fs_wire_transfer_exit_t t;
+    memset(&t, 0, sizeof(t));
+    t.crc32 = (uint32_t)get_be(&d[0u], 4u);
+    if (!transfer_exit_in_range(&t)) {
+        return PROTO_ERR_WIRE_RANGE;
+    }
+    *v = t;
+    return PROTO_OK;
+}
+
+uint16_t fs_wire_transfer_exit_pack(const fs_wire_transfer_exit_t *v, uint8_t *out, uint16_t cap)
+{
+    const unsigned n = 4u;
+    if (!transfer_exit_in_range(v) || n > cap) {
+        return 0u;
+    }
+    put_be(&out[0u], v->crc32, 4u);
+    return (uint16_t)n;
+}
+
+static int mark_test_in_range(const fs_wire_mark_test_t *v)
+{
+    return v->options <= 1u;
+}
+
+proto_status_t fs_wire_mark_test_unpack(fs_wire_mark_test_t *v, const uint8_t *d, uint16_t len)
+{
+    if (len != FS_WIRE_MARK_TEST_LEN_MIN && len != FS_WIRE_MARK_TEST_LEN_MAX) {
+        return PROTO_ERR_WIRE_LENGTH;
+    }
+    fs_wire_mark_test_t t;
+    memset(&t, 0, sizeof(t));
+    if (len == FS_WIRE_MARK_TEST_LEN_MAX) {
+        t.has_options = 1u;
+        t.options = (uint8_t)get_be(&d[0u], 1u);
+    } else {
+        t.options = 0u;
+    }
+    if (!mark_test_in_range(&t)) {
+        return PROTO_ERR_WIRE_RANGE;
+    }
+    *v = t;
+    return PROTO_OK;
+}
+
+uint16_t fs_wire_mark_test_pack(const fs_wire_mark_test_t *v, uint8_t *out, uint16_t cap)
+{
+    const unsigned n = 0u + (v->has_options != 0u ? 1u : 0u);
+    if (!mark_test_in_range(v) || n > cap) {
+        return 0u;
+    }
+    if (v->has_options != 0u) { put_be(&out[0u], v->options, 1u); }
     return (uint16_t)n;
 }

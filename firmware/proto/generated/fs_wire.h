@@ -14,7 +14,7 @@
 #define FS_WIRE_REAL(T, count) ((T)(count) * (T)FS_WIRE_SCALE)
 
 /* The records, for code that handles each the same way: X(name) per record. */
-#define FS_WIRE_RECORDS(X) X(versions) X(gains) X(limits) X(comm) X(object) X(stiffness_max) X(slot_entry) X(slot_dir) X(last_transfer) X(device_state) X(contact_wait) X(fault_causes) X(run_skill) X(run_periodic) X(run_step) X(run_sequence) X(run_results) X(self_test) X(erase_slot) X(motion_key) X(motion_key_write) X(auth_stats)
+#define FS_WIRE_RECORDS(X) X(versions) X(gains) X(limits) X(comm) X(object) X(stiffness_max) X(slot_entry) X(slot_dir) X(last_transfer) X(device_state) X(contact_wait) X(fault_causes) X(run_skill) X(run_periodic) X(run_step) X(run_sequence) X(run_results) X(self_test) X(erase_slot) X(motion_key) X(motion_key_write) X(auth_stats) X(fwu_status) X(transfer_exit) X(mark_test)
 
 #define FS_WIRE_VERSIONS_LEN 6u
 /** DID_VERSIONS: protocol and format versions. */
@@ -149,6 +149,8 @@ proto_status_t fs_wire_device_state_unpack(fs_wire_device_state_t *v, const uint
 uint16_t fs_wire_device_state_pack(const fs_wire_device_state_t *v, uint8_t *out, uint16_t cap);
 
 #define FS_WIRE_CONTACT_WAIT_LEN 8u
+/** The count of contact_wait.rate for a value v of the real type T (nearest step, 0..1000). */
+#define FS_WIRE_CONTACT_WAIT_RATE_COUNT(T, v) ((uint16_t)(!((v) > (T)0.0) ? 0u : ((v) >= (T)1.0) ? 1000u : (uint32_t)((v) * (T)FS_WIRE_SCALE_STEPS + (T)0.5)))
 /** DID_CONTACT_WAIT: the contact wait of the running or last execution. */
 typedef struct {
     uint32_t hold_ms; /* ms */
@@ -173,6 +175,12 @@ uint16_t fs_wire_fault_causes_pack(const fs_wire_fault_causes_t *v, uint8_t *out
 
 #define FS_WIRE_RUN_SKILL_LEN_MIN 6u
 #define FS_WIRE_RUN_SKILL_LEN_MAX 8u
+/** The count of run_skill.goal_scale for a value v of the real type T (nearest step, 0..65535). */
+#define FS_WIRE_RUN_SKILL_GOAL_SCALE_COUNT(T, v) ((uint16_t)(!((v) > (T)0.0) ? 0u : ((v) >= (T)65.535) ? 65535u : (uint32_t)((v) * (T)FS_WIRE_SCALE_STEPS + (T)0.5)))
+/** The count of run_skill.time_scale for a value v of the real type T (nearest step, 0..65535). */
+#define FS_WIRE_RUN_SKILL_TIME_SCALE_COUNT(T, v) ((uint16_t)(!((v) > (T)0.0) ? 0u : ((v) >= (T)65.535) ? 65535u : (uint32_t)((v) * (T)FS_WIRE_SCALE_STEPS + (T)0.5)))
+/** The count of run_skill.path_scale for a value v of the real type T (nearest step, 0..65535). */
+#define FS_WIRE_RUN_SKILL_PATH_SCALE_COUNT(T, v) ((uint16_t)(!((v) > (T)0.0) ? 0u : ((v) >= (T)65.535) ? 65535u : (uint32_t)((v) * (T)FS_WIRE_SCALE_STEPS + (T)0.5)))
 /** RID_RUN_SKILL start: one skill (end 0 the skill's own, 1 hold, 2 release). */
 typedef struct {
     uint8_t slot;
@@ -188,6 +196,14 @@ proto_status_t fs_wire_run_skill_unpack(fs_wire_run_skill_t *v, const uint8_t *d
 uint16_t fs_wire_run_skill_pack(const fs_wire_run_skill_t *v, uint8_t *out, uint16_t cap);
 
 #define FS_WIRE_RUN_PERIODIC_LEN 12u
+/** The count of run_periodic.goal_scale for a value v of the real type T (nearest step, 0..65535). */
+#define FS_WIRE_RUN_PERIODIC_GOAL_SCALE_COUNT(T, v) ((uint16_t)(!((v) > (T)0.0) ? 0u : ((v) >= (T)65.535) ? 65535u : (uint32_t)((v) * (T)FS_WIRE_SCALE_STEPS + (T)0.5)))
+/** The count of run_periodic.time_scale for a value v of the real type T (nearest step, 0..65535). */
+#define FS_WIRE_RUN_PERIODIC_TIME_SCALE_COUNT(T, v) ((uint16_t)(!((v) > (T)0.0) ? 0u : ((v) >= (T)65.535) ? 65535u : (uint32_t)((v) * (T)FS_WIRE_SCALE_STEPS + (T)0.5)))
+/** The count of run_periodic.path_scale for a value v of the real type T (nearest step, 0..65535). */
+#define FS_WIRE_RUN_PERIODIC_PATH_SCALE_COUNT(T, v) ((uint16_t)(!((v) > (T)0.0) ? 0u : ((v) >= (T)65.535) ? 65535u : (uint32_t)((v) * (T)FS_WIRE_SCALE_STEPS + (T)0.5)))
+/** The count of run_periodic.amplitude_scale for a value v of the real type T (nearest step, 0..65535). */
+#define FS_WIRE_RUN_PERIODIC_AMPLITUDE_SCALE_COUNT(T, v) ((uint16_t)(!((v) > (T)0.0) ? 0u : ((v) >= (T)65.535) ? 65535u : (uint32_t)((v) * (T)FS_WIRE_SCALE_STEPS + (T)0.5)))
 /** RID_RUN_SKILL start of a periodic skill: run_skill's fields with the path scale, then the periods to run (0: until stopped) and the stroke's amplitude scale (the device tells the two starts by their length). */
 typedef struct {
     uint8_t slot;
@@ -204,6 +220,12 @@ proto_status_t fs_wire_run_periodic_unpack(fs_wire_run_periodic_t *v, const uint
 uint16_t fs_wire_run_periodic_pack(const fs_wire_run_periodic_t *v, uint8_t *out, uint16_t cap);
 
 #define FS_WIRE_RUN_STEP_LEN 9u
+/** The count of run_step.goal_scale for a value v of the real type T (nearest step, 0..65535). */
+#define FS_WIRE_RUN_STEP_GOAL_SCALE_COUNT(T, v) ((uint16_t)(!((v) > (T)0.0) ? 0u : ((v) >= (T)65.535) ? 65535u : (uint32_t)((v) * (T)FS_WIRE_SCALE_STEPS + (T)0.5)))
+/** The count of run_step.time_scale for a value v of the real type T (nearest step, 0..65535). */
+#define FS_WIRE_RUN_STEP_TIME_SCALE_COUNT(T, v) ((uint16_t)(!((v) > (T)0.0) ? 0u : ((v) >= (T)65.535) ? 65535u : (uint32_t)((v) * (T)FS_WIRE_SCALE_STEPS + (T)0.5)))
+/** The count of run_step.duration_s for a value v of the real type T (nearest step, 0..4294967295). */
+#define FS_WIRE_RUN_STEP_DURATION_S_COUNT(T, v) ((uint32_t)(!((v) > (T)0.0) ? 0u : ((v) >= (T)4294967.295) ? 4294967295u : (uint32_t)((v) * (T)FS_WIRE_SCALE_STEPS + (T)0.5)))
 /** one step of a RUN_SEQUENCE start (duration 0: the skill's T times its time scale). */
 typedef struct {
     uint8_t slot;
@@ -264,12 +286,9 @@ proto_status_t fs_wire_erase_slot_unpack(fs_wire_erase_slot_t *v, const uint8_t 
 uint16_t fs_wire_erase_slot_pack(const fs_wire_erase_slot_t *v, uint8_t *out, uint16_t cap);
 
 #define FS_WIRE_MOTION_KEY_LEN 21u
-/** DID_MOTION_KEY read: the device nonce of the motion key in use (16 bytes as four big-endian words, zeros before any), whether a key is established, and the key's confirmation (the first 4 bytes of AES-CMAC(key, SECOC_CONFIRM_LABEL) big-endian, 0 without a key): a host whose own key gives another value re-establishes the session. */
+/** DID_MOTION_KEY read: the device nonce of the motion key in use (zeros before any), whether a key is established, and the key's confirmation (the first 4 bytes of AES-CMAC(key, SECOC_CONFIRM_LABEL) big-endian, 0 without a key): a host whose own key gives another value re-establishes the session. */
 typedef struct {
-    uint32_t nonce_0;
-    uint32_t nonce_1;
-    uint32_t nonce_2;
-    uint32_t nonce_3;
+    uint8_t nonce[16];
     uint8_t keyed;
     uint32_t confirm;
 } fs_wire_motion_key_t;
@@ -279,12 +298,9 @@ proto_status_t fs_wire_motion_key_unpack(fs_wire_motion_key_t *v, const uint8_t 
 uint16_t fs_wire_motion_key_pack(const fs_wire_motion_key_t *v, uint8_t *out, uint16_t cap);
 
 #define FS_WIRE_MOTION_KEY_WRITE_LEN 16u
-/** DID_MOTION_KEY write: the host nonce of a new host session (16 bytes as four big-endian words). */
+/** DID_MOTION_KEY write: the host nonce of a new host session. */
 typedef struct {
-    uint32_t nonce_0;
-    uint32_t nonce_1;
-    uint32_t nonce_2;
-    uint32_t nonce_3;
+    uint8_t nonce[16];
 } fs_wire_motion_key_write_t;
 /** Unpack len bytes: PROTO_OK, PROTO_ERR_WIRE_LENGTH or PROTO_ERR_WIRE_RANGE (v unchanged). */
 proto_status_t fs_wire_motion_key_write_unpack(fs_wire_motion_key_write_t *v, const uint8_t *d, uint16_t len);
@@ -309,5 +325,46 @@ typedef struct {
 proto_status_t fs_wire_auth_stats_unpack(fs_wire_auth_stats_t *v, const uint8_t *d, uint16_t len);
 /** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */
 uint16_t fs_wire_auth_stats_pack(const fs_wire_auth_stats_t *v, uint8_t *out, uint16_t cap);
+
+#define FS_WIRE_FWU_STATUS_LEN 17u
+/** DID_FWU_STATUS: the update status (fwu_status): the running image's version (0 when none runs), its slot, whether it runs on test (not confirmed yet), the active slot, the slot marked for a test boot, the boot path, the device's target id, the last refusal's code, the received image's version, the update phase. */
+typedef struct {
+    uint32_t running_version;
+    uint8_t running_slot;
+    uint8_t on_test;
+    uint8_t active_slot;
+    uint8_t test_slot;
+    uint8_t path;
+    uint8_t target;
+    uint16_t last_refusal;
+    uint32_t received_version;
+    uint8_t phase;
+} fs_wire_fwu_status_t;
+/** Unpack len bytes: PROTO_OK, PROTO_ERR_WIRE_LENGTH or PROTO_ERR_WIRE_RANGE (v unchanged). */
+proto_status_t fs_wire_fwu_status_unpack(fs_wire_fwu_status_t *v, const uint8_t *d, uint16_t len);
+/** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */
+uint16_t fs_wire_fwu_status_pack(const fs_wire_fwu_status_t *v, uint8_t *out, uint16_t cap);
+
+#define FS_WIRE_TRANSFER_EXIT_LEN 4u
+/** RequestTransferExit's positive answer after a download: the CRC-32 of the received image (the host compares its own). */
+typedef struct {
+    uint32_t crc32;
+} fs_wire_transfer_exit_t;
+/** Unpack len bytes: PROTO_OK, PROTO_ERR_WIRE_LENGTH or PROTO_ERR_WIRE_RANGE (v unchanged). */
+proto_status_t fs_wire_transfer_exit_unpack(fs_wire_transfer_exit_t *v, const uint8_t *d, uint16_t len);
+/** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */
+uint16_t fs_wire_transfer_exit_pack(const fs_wire_transfer_exit_t *v, uint8_t *out, uint16_t cap);
+
+#define FS_WIRE_MARK_TEST_LEN_MIN 0u
+#define FS_WIRE_MARK_TEST_LEN_MAX 1u
+/** FWU_RID_MARK_TEST start: the options (bit 0: allow a downgrade, FWU_OPT_ALLOW_DOWNGRADE); absent: none. */
+typedef struct {
+    uint8_t options;
+    uint8_t has_options; /* 0: absent (unpack: the default 0) */
+} fs_wire_mark_test_t;
+/** Unpack len bytes: PROTO_OK, PROTO_ERR_WIRE_LENGTH or PROTO_ERR_WIRE_RANGE (v unchanged). */
+proto_status_t fs_wire_mark_test_unpack(fs_wire_mark_test_t *v, const uint8_t *d, uint16_t len);
+/** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */
+uint16_t fs_wire_mark_test_pack(const fs_wire_mark_test_t *v, uint8_t *out, uint16_t cap);
 
 #endif /* FS_WIRE_H */

@@ -15,7 +15,7 @@ from ..link import ERR_LINK_ARGS, ERR_LINK_STATE
 from ..link import uds as U
 from ..link.device import Device
 from ..model.limits import check_skill_force, check_skill_stiffness
-from ..model.skill import Skill
+from ..model.skill import Skill, image_crc32
 from ._args import add_force_limit
 from ._common import add_common, connect
 
@@ -68,7 +68,7 @@ def _cmd(args: argparse.Namespace) -> int:
     image = Path(args.skill).read_bytes()
     with connect(args) as dev:
         r = upload_skill(dev, image, args.slot, progress=not args.quiet, verify=not args.no_verify)
-    expect = int.from_bytes(image[-4:], "little")
+    expect = image_crc32(image)
     if r["crc32"] != expect:
         raise FsError(633, f"device reports CRC-32 0x{r['crc32']:08X}, file has 0x{expect:08X}")
     print(

@@ -12,7 +12,6 @@ new image has confirmed itself (or the device reports it reverted).
 from __future__ import annotations
 
 import argparse
-import struct
 import time
 import zlib
 from collections.abc import Callable
@@ -20,6 +19,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from .. import wire as W
 from ..codes import DID_FWU_STATUS as DID_STATUS
 from ..codes import (  # noqa: F401
     DOWNLOAD_ADDRESS,
@@ -33,8 +33,9 @@ from ..errors import ERR_FLASH_NOT_CONFIRMED as ERR_NOT_CONFIRMED
 from ..errors import ERR_IO, ERR_LINK_BUS, ERR_LINK_NEGATIVE, ERR_LINK_NO_RESPONSE, ERR_LINK_TIMEOUT, FsError  # noqa: F401
 from ..model import fwimage as fw
 
-STATUS_LEN = 17
+STATUS_LEN = W.FwuStatus.SIZE
 SESSION_PROGRAMMING = 0x02
+FWU_OPT_ALLOW_DOWNGRADE = 0x01  # the mark-test option (firmware/boot/fwu.h)
 PENDING_TIMEOUT_S = 5.0  # after "response pending" (NRC 0x78): erasing a slot takes a while
 
 PATHS = {
@@ -66,10 +67,20 @@ class DeviceStatus:
 
     @classmethod
     def decode(cls, b: bytes) -> DeviceStatus:
-        if len(b) < STATUS_LEN:
-            raise FsError(ERR_LINK_NEGATIVE, f"update status record is {len(b)} bytes, expected {STATUS_LEN}")
-        rv, rs, ot, a, t, p, tg, lr, recv, ph = struct.unpack(">IBBBBBBHIB", b[:STATUS_LEN])
-        return cls(rv, rs, bool(ot), a, t, p, tg, lr, recv, ph)
+        """From the DID's record (wire.toml fwu_status); FsError 668/669 for a malformed one."""
+        s = W.FwuStatus.unpack(b)
+        return cls(
+            s.running_version,
+            s.running_slot,
+            bool(s.on_test),
+            s.active_slot,
+            s.test_slot,
+            s.path,
+            s.target,
+            s.last_refusal,
+            s.received_version,
+            s.phase,
+        )
 
     @property
     def version(self) -> str:
@@ -229,8 +240,8 @@ def flash_image(
     finally:
         client.set_config("request_timeout", overall)
     rec = bytes(resp.service_data.parameter_records or b"")
-    if len(rec) >= 4:
-        crc = int.from_bytes(rec[:4], "big")
+    if rec:
+        crc = W.TransferExit.unpack(rec).crc32
         if crc != zlib.crc32(image):
             raise FsError(
                 ERR_LINK_NEGATIVE,
@@ -242,7 +253,7 @@ def flash_image(
         "RoutineControl(mark test)",
         client.start_routine,
         RID_MARK_TEST,
-        bytes([1 if allow_downgrade else 0]),
+        W.MarkTest(FWU_OPT_ALLOW_DOWNGRADE if allow_downgrade else 0).pack(),
         node=node,
     )
     return n_blocks

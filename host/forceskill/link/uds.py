@@ -11,7 +11,6 @@ import hashlib
 import hmac
 import logging
 import os
-import struct
 import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -353,7 +352,7 @@ def motion_session(client: Client, dev: Device, tries: int = 10) -> None:
     def exchange(client: Client) -> bytes | None:
         _again(lambda: unlock(client, node, SESSION_EXTENDED, on_nrc=refused, key_retries=1), tries)
         host_nonce = os.urandom(16)
-        payload = W.MotionKeyWrite(*struct.unpack(">4I", host_nonce)).pack()
+        payload = W.MotionKeyWrite(host_nonce).pack()
         _again(
             lambda: call(
                 "write 0x0302",
@@ -366,8 +365,7 @@ def motion_session(client: Client, dev: Device, tries: int = 10) -> None:
         mk = W.MotionKey.unpack(_again(lambda: read_did(client, DID_MOTION_KEY, node), tries))
         if mk.keyed != 1:
             raise FsError(ERR_LINK_AUTH, f"node {node} did not establish the motion key")
-        dev_nonce = struct.pack(">4I", mk.nonce_0, mk.nonce_1, mk.nonce_2, mk.nonce_3)
-        key = derive_motion_key(device_secret(SEC_LEVEL_WRITE), dev_nonce, host_nonce)
+        key = derive_motion_key(device_secret(SEC_LEVEL_WRITE), mk.nonce, host_nonce)
         return key if key_confirmation(key) == mk.confirm else None
 
     def establish(client: Client) -> None:
@@ -453,7 +451,7 @@ def download(
     except TimeoutException:
         raise FsError(ERR_LINK_TIMEOUT, f"transfer exit: no UDS response from node {node}") from None
     params = bytes(r.service_data.parameter_records or b"")
-    return struct.unpack(">I", params[:4])[0] if len(params) >= 4 else -1
+    return W.TransferExit.unpack(params).crc32 if params else -1
 
 
 def upload(client: Client, node: int, slot: int, size: int) -> bytes:

@@ -146,6 +146,11 @@ def derive_beta_y(gains: Gains) -> float:
     return beta_y
 
 
+def image_crc32(image: bytes) -> int:
+    """The CRC-32 a skill image stores in its last 4 bytes (little-endian, over the body before it)."""
+    return int(struct.unpack_from("<I", image, len(image) - 4)[0])
+
+
 @dataclass
 class Skill:
     """One learned force skill; fields as docs/skill_format.md (flags bit 0 = end policy release)."""
@@ -512,7 +517,7 @@ class Skill:
             d["y_weights"] = [float(x) for x in self.y_weights]
         image = self.to_bytes(validate=False)
         d["image_bytes"] = len(image)
-        d["crc32"] = f"0x{struct.unpack_from('<I', image, len(image) - 4)[0]:08X}"
+        d["crc32"] = f"0x{image_crc32(image):08X}"
         return d
 
     def to_json(self) -> str:

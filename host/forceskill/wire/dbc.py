@@ -93,6 +93,17 @@ def derive_motion_key(secret: bytes, dev_nonce: bytes, host_nonce: bytes) -> byt
     return hmac.new(secret, SECOC_LABEL + dev_nonce + host_nonce, hashlib.sha256).digest()[:16]
 
 
+def cmac(key: bytes, msg: bytes) -> bytes:
+    """AES-128-CMAC (NIST SP 800-38B) of msg under the 16-byte key: the 16-byte tag
+    (the `cryptography` package's CMAC)."""
+    from cryptography.hazmat.primitives.ciphers.algorithms import AES
+    from cryptography.hazmat.primitives.cmac import CMAC
+
+    c = CMAC(AES(key))
+    c.update(msg)
+    return c.finalize()
+
+
 #: The message of the motion key's confirmation (firmware/security/secoc.h SECOC_CONFIRM_LABEL).
 SECOC_CONFIRM_LABEL = b"forceskill key confirm"
 
@@ -100,16 +111,12 @@ SECOC_CONFIRM_LABEL = b"forceskill key confirm"
 def key_confirmation(key: bytes) -> int:
     """The motion key's confirmation the device reads out with its nonce (DID 0x0302): the first 4
     bytes of AES-128-CMAC(key, SECOC_CONFIRM_LABEL), big-endian."""
-    from .aes_cmac import cmac
-
     return int.from_bytes(cmac(key, SECOC_CONFIRM_LABEL)[:4], "big")
 
 
 def frame_mac(key: bytes, frame_id: int, data: bytes | bytearray, fv: int) -> bytes:
     """The 24-bit MAC of an authenticated frame: AES-128-CMAC(key, id low, id high, data bytes
     0..2, freshness value u32 big-endian), first 3 bytes."""
-    from .aes_cmac import cmac
-
     msg = bytes([frame_id & 0xFF, (frame_id >> 8) & 0x07]) + bytes(data[:3]) + fv.to_bytes(4, "big")
     return cmac(key, msg)[:MAC_LEN]
 

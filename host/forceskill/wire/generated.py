@@ -797,34 +797,28 @@ class EraseSlot:
         return v
 
 
-_MOTION_KEY = struct.Struct('>IIIIBI')
+_MOTION_KEY = struct.Struct('>16sBI')
 
 
 @dataclass(frozen=True)
 class MotionKey:
-    """DID_MOTION_KEY read: the device nonce of the motion key in use (16 bytes as four big-endian words, zeros before any), whether a key is established, and the key's confirmation (the first 4 bytes of AES-CMAC(key, SECOC_CONFIRM_LABEL) big-endian, 0 without a key): a host whose own key gives another value re-establishes the session."""
+    """DID_MOTION_KEY read: the device nonce of the motion key in use (zeros before any), whether a key is established, and the key's confirmation (the first 4 bytes of AES-CMAC(key, SECOC_CONFIRM_LABEL) big-endian, 0 without a key): a host whose own key gives another value re-establishes the session."""
 
     SIZE: ClassVar[int] = 21  # bytes of the fields always present
-    nonce_0: int
-    nonce_1: int
-    nonce_2: int
-    nonce_3: int
+    nonce: bytes
     keyed: int
     confirm: int
 
     def check(self) -> None:
         """FsError ERR_WIRE_RANGE if a field is outside its range."""
-        _in_range('motion_key', 'nonce_0', 0 <= self.nonce_0 <= 4294967295, self.nonce_0)
-        _in_range('motion_key', 'nonce_1', 0 <= self.nonce_1 <= 4294967295, self.nonce_1)
-        _in_range('motion_key', 'nonce_2', 0 <= self.nonce_2 <= 4294967295, self.nonce_2)
-        _in_range('motion_key', 'nonce_3', 0 <= self.nonce_3 <= 4294967295, self.nonce_3)
+        _in_range('motion_key', 'nonce', isinstance(self.nonce, bytes) and len(self.nonce) == 16, self.nonce)
         _in_range('motion_key', 'keyed', 0 <= self.keyed <= 1, self.keyed)
         _in_range('motion_key', 'confirm', 0 <= self.confirm <= 4294967295, self.confirm)
 
     def pack(self) -> bytes:
         """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
         self.check()
-        out = _MOTION_KEY.pack(self.nonce_0, self.nonce_1, self.nonce_2, self.nonce_3, self.keyed, self.confirm)
+        out = _MOTION_KEY.pack(self.nonce, self.keyed, self.confirm)
         return out
 
     @classmethod
@@ -835,35 +829,29 @@ class MotionKey:
         if len(data) != n:
             raise FsError(ERR_WIRE_LENGTH, f'motion_key: {len(data)} bytes, not {n}')
         raw = _MOTION_KEY.unpack(data[:n])
-        v = cls(raw[0], raw[1], raw[2], raw[3], raw[4], raw[5])
+        v = cls(raw[0], raw[1], raw[2])
         v.check()
         return v
 
 
-_MOTION_KEY_WRITE = struct.Struct('>IIII')
+_MOTION_KEY_WRITE = struct.Struct('>16s')
 
 
 @dataclass(frozen=True)
 class MotionKeyWrite:
-    """DID_MOTION_KEY write: the host nonce of a new host session (16 bytes as four big-endian words)."""
+    """DID_MOTION_KEY write: the host nonce of a new host session."""
 
     SIZE: ClassVar[int] = 16  # bytes of the fields always present
-    nonce_0: int
-    nonce_1: int
-    nonce_2: int
-    nonce_3: int
+    nonce: bytes
 
     def check(self) -> None:
         """FsError ERR_WIRE_RANGE if a field is outside its range."""
-        _in_range('motion_key_write', 'nonce_0', 0 <= self.nonce_0 <= 4294967295, self.nonce_0)
-        _in_range('motion_key_write', 'nonce_1', 0 <= self.nonce_1 <= 4294967295, self.nonce_1)
-        _in_range('motion_key_write', 'nonce_2', 0 <= self.nonce_2 <= 4294967295, self.nonce_2)
-        _in_range('motion_key_write', 'nonce_3', 0 <= self.nonce_3 <= 4294967295, self.nonce_3)
+        _in_range('motion_key_write', 'nonce', isinstance(self.nonce, bytes) and len(self.nonce) == 16, self.nonce)
 
     def pack(self) -> bytes:
         """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
         self.check()
-        out = _MOTION_KEY_WRITE.pack(self.nonce_0, self.nonce_1, self.nonce_2, self.nonce_3)
+        out = _MOTION_KEY_WRITE.pack(self.nonce)
         return out
 
     @classmethod
@@ -874,7 +862,7 @@ class MotionKeyWrite:
         if len(data) != n:
             raise FsError(ERR_WIRE_LENGTH, f'motion_key_write: {len(data)} bytes, not {n}')
         raw = _MOTION_KEY_WRITE.unpack(data[:n])
-        v = cls(raw[0], raw[1], raw[2], raw[3])
+        v = cls(raw[0])
         v.check()
         return v
 
@@ -930,6 +918,126 @@ class AuthStats:
         return v
 
 
+_FWU_STATUS = struct.Struct('>IBBBBBBHIB')
+
+
+@dataclass(frozen=True)
+class FwuStatus:
+    """DID_FWU_STATUS: the update status (fwu_status): the running image's version (0 when none runs), its slot, whether it runs on test (not confirmed yet), the active slot, the slot marked for a test boot, the boot path, the device's target id, the last refusal's code, the received image's version, the update phase."""
+
+    SIZE: ClassVar[int] = 17  # bytes of the fields always present
+    running_version: int
+    running_slot: int
+    on_test: int
+    active_slot: int
+    test_slot: int
+    path: int
+    target: int
+    last_refusal: int
+    received_version: int
+    phase: int
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('fwu_status', 'running_version', 0 <= self.running_version <= 4294967295, self.running_version)
+        _in_range('fwu_status', 'running_slot', 0 <= self.running_slot <= 255, self.running_slot)
+        _in_range('fwu_status', 'on_test', 0 <= self.on_test <= 1, self.on_test)
+        _in_range('fwu_status', 'active_slot', 0 <= self.active_slot <= 255, self.active_slot)
+        _in_range('fwu_status', 'test_slot', 0 <= self.test_slot <= 255, self.test_slot)
+        _in_range('fwu_status', 'path', 0 <= self.path <= 255, self.path)
+        _in_range('fwu_status', 'target', 0 <= self.target <= 255, self.target)
+        _in_range('fwu_status', 'last_refusal', 0 <= self.last_refusal <= 65535, self.last_refusal)
+        _in_range('fwu_status', 'received_version', 0 <= self.received_version <= 4294967295, self.received_version)
+        _in_range('fwu_status', 'phase', 0 <= self.phase <= 255, self.phase)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _FWU_STATUS.pack(self.running_version, self.running_slot, self.on_test, self.active_slot, self.test_slot, self.path, self.target, self.last_refusal, self.received_version, self.phase)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> FwuStatus:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _FWU_STATUS.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'fwu_status: {len(data)} bytes, not {n}')
+        raw = _FWU_STATUS.unpack(data[:n])
+        v = cls(raw[0], raw[1], raw[2], raw[3], raw[4], raw[5], raw[6], raw[7], raw[8], raw[9])
+        v.check()
+        return v
+
+
+_TRANSFER_EXIT = struct.Struct('>I')
+
+
+@dataclass(frozen=True)
+class TransferExit:
+    """RequestTransferExit's positive answer after a download: the CRC-32 of the received image (the host compares its own)."""
+
+    SIZE: ClassVar[int] = 4  # bytes of the fields always present
+    crc32: int
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('transfer_exit', 'crc32', 0 <= self.crc32 <= 4294967295, self.crc32)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _TRANSFER_EXIT.pack(self.crc32)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> TransferExit:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _TRANSFER_EXIT.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'transfer_exit: {len(data)} bytes, not {n}')
+        raw = _TRANSFER_EXIT.unpack(data[:n])
+        v = cls(raw[0])
+        v.check()
+        return v
+
+
+_MARK_TEST = struct.Struct('>')
+
+
+@dataclass(frozen=True)
+class MarkTest:
+    """FWU_RID_MARK_TEST start: the options (bit 0: allow a downgrade, FWU_OPT_ALLOW_DOWNGRADE); absent: none."""
+
+    SIZE: ClassVar[int] = 0  # bytes of the fields always present
+    options: int | None = None
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        if self.options is not None:
+            _in_range('mark_test', 'options', 0 <= self.options <= 1, self.options)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _MARK_TEST.pack()
+        if self.options is not None:
+            out += struct.pack('>B', self.options)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> MarkTest:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _MARK_TEST.size
+        if len(data) not in (n, n + 1):
+            raise FsError(ERR_WIRE_LENGTH, f'mark_test: {len(data)} bytes, not {n} or {n + 1}')
+        raw = _MARK_TEST.unpack(data[:n])
+        v = cls(struct.unpack_from('>B', data, n)[0] if len(data) > n else None)
+        v.check()
+        return v
+
+
 __all__ = [
     'SCALE',
     'SCALE_STEPS',
@@ -972,4 +1080,7 @@ __all__ = [
     'MotionKey',
     'MotionKeyWrite',
     'AuthStats',
+    'FwuStatus',
+    'TransferExit',
+    'MarkTest',
 ]

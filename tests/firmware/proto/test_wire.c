@@ -105,6 +105,10 @@ static void test_every_golden_vector(void **state)
 static void test_values_of_the_documented_layouts(void **state)
 {
     (void)state;
+    fs_wire_mark_test_t m;
+    assert_int_equal(fs_wire_mark_test_unpack(&m, NULL, 0u), PROTO_OK); /* no options: none */
+    assert_int_equal(m.has_options, 0u);
+    assert_int_equal(m.options, 0u);
     const uint8_t run[] = {1u, 0x05u, 0xDCu, 0x03u, 0xE8u, 2u};
     fs_wire_run_skill_t r;
     assert_int_equal(fs_wire_run_skill_unpack(&r, run, sizeof run), PROTO_OK);

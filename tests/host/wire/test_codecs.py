@@ -37,6 +37,9 @@ CLASSES = {
     "motion_key": W.MotionKey,
     "motion_key_write": W.MotionKeyWrite,
     "auth_stats": W.AuthStats,
+    "fwu_status": W.FwuStatus,
+    "transfer_exit": W.TransferExit,
+    "mark_test": W.MarkTest,
 }
 HOST_CODE = {418: ERR_WIRE_LENGTH, 419: ERR_WIRE_RANGE}
 
@@ -87,6 +90,19 @@ def test_the_values_are_the_documented_layouts() -> None:
     assert d.count == 8 and d.entries[0] == W.SlotEntry(1, 1234, 0xDEADBEEF, 50, 8.25, 1)
     assert W.StiffnessMax.unpack(struct.pack(">f", 3e4)).stiffness_max_Npm == 3e4
     assert W.FaultCauses.unpack(struct.pack(">II", 1, 2)) == W.FaultCauses(1, 2)
+    st = W.FwuStatus.unpack(struct.pack(">IBBBBBBHIB", 0x010203, 1, 0, 1, 0, 6, 3, 707, 0x010300, 3))
+    assert (st.running_version, st.on_test, st.path, st.last_refusal, st.phase) == (0x010203, 0, 6, 707, 3)
+    nonce = bytes(range(16))
+    assert W.MotionKey(nonce, 1, 7).pack() == nonce + bytes([1]) + struct.pack(">I", 7)
+    assert W.TransferExit(0xCBF43926).pack() == bytes.fromhex("cbf43926")
+    assert W.MarkTest.unpack(b"") == W.MarkTest() and W.MarkTest().pack() == b""  # no options
+
+
+def test_a_byte_string_field_takes_its_length_only() -> None:
+    for bad in (bytes(15), bytes(17)):
+        with pytest.raises(FsError) as e:
+            W.MotionKeyWrite(bad).pack()
+        assert e.value.code == ERR_WIRE_RANGE
 
 
 def test_pack_refuses_a_value_outside_its_range_with_669() -> None:

@@ -1,16 +1,13 @@
-/* hil_sim: the HIL simulator command line. Subcommands are a table: add one line to add one. */
+/* hil_sim: the HIL simulator command line, on top of its folders: src/ (run, pil), bus/ (serve),
+ * faults/ (faults, powercut). Subcommands are a table: add one line to add one. */
 #include <stdio.h>
 #include <string.h>
 
-#include "sim_cli.h"
-#include "sim_pil.h"
-#ifdef HIL_SIM_HAVE_SERVE
-#include "serve.h"
-#endif
-#ifdef HIL_SIM_HAVE_FAULTS
 #include "fault_powercut.h"
 #include "faults.h"
-#endif
+#include "serve.h"
+#include "sim_cli.h"
+#include "sim_pil.h"
 
 typedef struct {
     const char *name;
@@ -20,18 +17,14 @@ typedef struct {
 
 static const sim_command_t COMMANDS[] = {
     {"run", sim_cmd_run, "run a scenario in lockstep, write a CSV log and a JSON summary"},
-#ifdef HIL_SIM_HAVE_SERVE
     {"serve", bus_cmd_serve,
      "run the device firmware in real time, serve its CAN bus (socketcand)"},
-#endif
     {"pil", sim_cmd_pil,
      "run the product's Cortex-M image under qemu, its UART as a CAN bus (SLCAN)"},
-#ifdef HIL_SIM_HAVE_FAULTS
     {"faults", faults_cmd,
      "inject every fault scenario into the device in lockstep, write the table"},
     {"powercut", powercut_cmd,
      "cut the power after every flash operation of a skill download and a firmware update"},
-#endif
 };
 
 static void usage(FILE *f)
