@@ -15,7 +15,7 @@ from typing import Any
 import can
 import numpy as np
 
-from ..errors import ERR_LINK_TIMEOUT, ERR_LOG_FORMAT, FsError
+from ..errors import ERR_LINK_TIMEOUT, ERR_LOG_FORMAT, FsError, stdout_closed
 from ..link.bus import add_bus_args, describe, error_summary, open_bus
 from ..link.device import Device, Sample
 from ..outputs import Outputs
@@ -181,6 +181,8 @@ def link_errors(node: int, channel: str) -> Iterator[None]:
     try:
         yield
     except (OSError, can.CanError) as e:
+        if isinstance(e, BrokenPipeError) and stdout_closed():
+            raise  # the reader of our output went away, not the bus: the CLI ends quietly
         raise FsError(
             ERR_LINK_TIMEOUT, f"link to node {node} on {channel} lost: {error_summary(e)}"
         ) from None

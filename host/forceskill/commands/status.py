@@ -9,7 +9,6 @@ from udsoncan.exceptions import NegativeResponseException
 
 from .. import wire as W
 from ..errors import ERR_CLEAR_BLOCKED, FsError, fault_text
-from ..link import ERR_LINK_STATE
 from ..link import uds as U
 from ._common import add_common, connect
 
@@ -18,16 +17,17 @@ def _names(codes: list[int]) -> str:
     return ", ".join(fault_text(c) for c in codes) or "none"
 
 
-def clear_faults(client: Any, node: int, state: str) -> None:
-    """RoutineControl clear faults; a refusal names the condition that blocks it (666), read from
-    the device's fault-cause identifier."""
+def clear_faults(client: Any, node: int, state: str) -> bool:
+    """RoutineControl clear faults: True when cleared, False when the device had no fault to clear
+    (not an error: the wanted state holds); a refusal names the condition that blocks it (666),
+    read from the device's fault-cause identifier."""
     try:
         client.start_routine(U.RID_CLEAR_FAULTS)
-        return
+        return True
     except NegativeResponseException as e:
         code = e.response.code
         if code == 0x24:
-            raise FsError(ERR_LINK_STATE, f"node {node} has no fault to clear (state {state})") from None
+            return False
         if code != 0x22:
             raise FsError(632, f"clear faults: node {node} {U.describe_nrc(e)}") from None
     try:
@@ -62,8 +62,10 @@ def _cmd(args: argparse.Namespace) -> int:
                 except FsError:
                     pass
             if args.clear:
-                clear_faults(client, dev.node, st.state)
-                print("faults cleared")
+                if clear_faults(client, dev.node, st.state):
+                    print("faults cleared")
+                else:
+                    print(f"no fault to clear (state {st.state})")
             ver = U.read_did(client, U.DID_SW_VERSION, dev.node).decode("ascii", "replace")
             v = W.Versions.unpack(U.read_did(client, U.DID_VERSIONS, dev.node))
             print(
