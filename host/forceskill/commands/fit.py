@@ -402,12 +402,17 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         "a ROS 2 bag's pose axis is pose_x, pose_y or pose_z (with --pose-topic)",
     )
     g = p.add_argument_group("reading the recording")
-    g.add_argument("--time-column", default="t", metavar="NAME", help="CSV time column (t)")
+    g.add_argument(
+        "--time-column",
+        default=None,
+        metavar="NAME",
+        help="CSV time column (default t, else time; also t_ms, time [ms], ...)",
+    )
     g.add_argument(
         "--time-unit",
         choices=("s", "ms", "us", "ns"),
         default=None,
-        help="CSV time unit (default: the unit in the header, 't [ms]', else s)",
+        help="CSV time unit (default: the unit in the header, 't [ms]' or 'time_ms', else s)",
     )
     g.add_argument(
         "--rate",
