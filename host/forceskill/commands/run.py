@@ -358,10 +358,14 @@ def run_on_device(
             if writer is not None:
                 notifier.remove_listener(writer)
         contact = W.ContactWait.unpack(U.read_did(client, U.DID_CONTACT_WAIT, dev.node)) if waits else None
-    samples = dev.telemetry_samples(tel)
-    grid, stream = columns(samples)  # lost frames interpolated on the tick grid, and counted
-    first_tick = stream.first_tick
+    samples, states = dev.telemetry_samples(tel), dev.telemetry_states(tel)
+    period_ms = getattr(args, "telemetry_period", 1)
+    # the samples of the execution (by the device's states) within the run's window, the ticks
+    # between them interpolated on the tick grid, the samples due at the period that never
+    # arrived counted
     n_keep = int(round(total * W.TICK_HZ)) + 1
+    grid, stream = columns(samples, period_ms, states, n_keep)
+    first_tick = stream.first_tick
     i_fault = n_keep  # the figures end at the fault's row; the columns go on through its ramp
     if fault and grid["t"].size:
         i_fault = _fault_index(first_tick & 0xFFFF, grid["t"].size, fault_tick)
@@ -451,8 +455,14 @@ def _cmd(args: argparse.Namespace) -> int:
             "interpolated from their neighbours",
             file=info,
         )
+    period = getattr(args, "telemetry_period", 1)
+    received = (
+        f"{stream.received} samples every {period} ms, {n} rows on the 1 ms grid"
+        if period > 1
+        else f"{n} samples"
+    )
     print(
-        f"telemetry: {n} samples over {cols['t'][-1] if n else 0:.3f} s; "
+        f"telemetry: {received} over {cols['t'][-1] if n else 0:.3f} s; "
         f"max contact force {fig['max_force_N']:.3f} N, max reference {fig['max_ref_N']:.3f} N",
         file=info,
     )

@@ -67,7 +67,7 @@ def add_bus_args(parser: argparse.ArgumentParser) -> None:
         metavar="MS",
         help="telemetry period asked of the device in TEACH/EXECUTE by record and run, 1.."
         f"{MAX_TELEMETRY_PERIOD_MS} ms (default 1: every tick; more for a host that cannot "
-        "follow 2,000 frames/s; the samples between are interpolated and counted as lost)",
+        "follow 2,000 frames/s; run interpolates the ticks between, counting as lost only samples due)",
     )
 
 
