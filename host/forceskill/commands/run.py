@@ -13,7 +13,15 @@ from typing import Any, TextIO
 import numpy as np
 
 from .. import wire as W
-from ..errors import ERR_PERIODIC_ARGS, ERR_RUN_FAULT, ERR_SKILL_PEAK, ERR_TELEMETRY_GAP, FsError, fault_text
+from ..errors import (
+    ERR_FORCE_GAIN_INERTIA,
+    ERR_PERIODIC_ARGS,
+    ERR_RUN_FAULT,
+    ERR_SKILL_PEAK,
+    ERR_TELEMETRY_GAP,
+    FsError,
+    fault_text,
+)
 from ..link import ERR_LINK_ARGS, ERR_LINK_STATE
 from ..link import uds as U
 from ..link.device import Device
@@ -128,11 +136,14 @@ def check_slot_forces(
     call("session change", lambda: client.change_session(0x02))
     try:
         limit_Npm = U.stiffness_limit(client, dev.node)
+        obj = W.Object.unpack(U.read_did(client, U.DID_OBJECT, dev.node))
         for slot in dict.fromkeys(slots):
             image = U.upload(client, dev.node, slot, int(directory[slot]["length"]))
             sk = Skill.from_bytes(image)
             skills[slot] = sk
             check_skill_stiffness(sk, f"slot {slot}", limit_Npm, dev.node, "nothing was started")
+            if obj.use_model:
+                check_object_inertia(sk, f"slot {slot} of node {dev.node}", obj.m_v_kg)
             if sk.periodic:
                 from ..model.periodic import rollout as periodic_rollout
 
@@ -160,6 +171,24 @@ def check_slot_forces(
         except Exception:
             pass
     return skills
+
+
+def check_object_inertia(sk: Skill, what: str, object_mass_kg: float) -> None:
+    """Refuse (112) a skill whose force gains feed back more than the object's inertia on the
+    device's object (k_f*m_v/m_d >= 1, k_f = kkf/k): its force loop would oscillate into the
+    slew limit (fault 508) within a second of contact. The remedy is named."""
+    if not object_mass_kg > 0.0:
+        return
+    k_f = sk.kkf_Npm / sk.stiffness_Npm
+    ratio = k_f * object_mass_kg / sk.m_d_kg
+    if ratio >= 1.0:
+        raise FsError(
+            ERR_FORCE_GAIN_INERTIA,
+            f"{what}: its force gains are unstable on the device's {object_mass_kg:g} kg object "
+            f"(k_f*m_v/m_d = {ratio:.3g} >= 1, k_f = kkf/k = {k_f:.4g}, m_d = {sk.m_d_kg:g} kg: the "
+            f"force loop feeds back the object's inertia, fault 508 within a second of contact); fit "
+            f"it again with --object-mass {object_mass_kg:g}; nothing was started",
+        )
 
 
 def path_tracking(

@@ -40,6 +40,7 @@ from ..errors import (
 from ..readers import (
     MAX_GAP_S,
     NOTES_KEY,
+    OBJECT_MASS_KEY,
     SECONDS_ASSUMED_KEY,
     Columns,
     ReadOptions,
@@ -80,6 +81,9 @@ class Demo:
     notes: list[str] = field(default_factory=list)
     #: the path along the unconstrained axis y (m), learned by the position DMP; None: none
     y_m: np.ndarray | None = None
+    #: the object's mass (kg) the recording names (the device's object model in a CAN log of
+    #: ``forceskill record``); None: unknown
+    object_mass_kg: float | None = None
 
 
 def read_csv_columns(path: str | Path) -> Columns:
@@ -131,6 +135,7 @@ def load_demo(
     cols = read_columns(p, opts)
     notes = [str(n) for n in cols.pop(NOTES_KEY, [])]
     seconds_assumed = cols.pop(SECONDS_ASSUMED_KEY, None) is not None
+    mass = cols.pop(OBJECT_MASS_KEY, None)
     for name in (
         ("t", fcol) + ((position_column,) if position_column else ()) + ((y_column,) if y_column else ())
     ):
@@ -161,6 +166,7 @@ def load_demo(
         )
     y = None if not y_column else np.asarray(cols[y_column], float)
     demo = Demo(t_s=t, pos_m=x, force_N=f, source=f"{p.name}:{fcol}", max_gap_s=max_gap_s, notes=notes, y_m=y)
+    demo.object_mass_kg = float(mass[0]) if mass is not None and len(mass) else None
     try:
         validate(demo)
     except DemoError as e:

@@ -39,6 +39,9 @@ NOTES_KEY = "__notes__"
 #: Present in a reader's columns when nothing named the time column's unit and it was read as
 #: seconds (a refusal of the times then hints at --time-unit).
 SECONDS_ASSUMED_KEY = "__seconds_assumed__"
+#: The object's mass (kg) a reader found in the recording (a CAN log of ``forceskill record``
+#: holds the device's answer with its object model, DID 0x0130), as a one-element array.
+OBJECT_MASS_KEY = "__object_mass_kg__"
 
 #: The built-in readers, as declared in host/pyproject.toml.
 _BUILTIN = {
