@@ -46,6 +46,22 @@ def clear_faults(client: Any, node: int, state: str) -> bool:
     )
 
 
+def running_image(client: Any, node: int, build: str) -> str:
+    """The firmware's version as it runs: the version in the header of the image the device
+    booted from its update slots (after ``forceskill flash``), with the build's own name; the
+    build's name alone when it runs no image from a slot (or does not know DID 0xF1B0)."""
+    from ..link.flash import DeviceStatus
+
+    try:
+        st = DeviceStatus.decode(U.read_did(client, U.DID_FWU_STATUS, node))
+    except FsError:
+        return build
+    if st.running_slot > 1:
+        return build
+    state = "on test" if st.on_test else "confirmed"
+    return f"{st.version} (image in slot {'AB'[st.running_slot]}, {state}; build {build})"
+
+
 def _cmd(args: argparse.Namespace) -> int:
     with connect(args) as dev:
         st = dev.status
@@ -67,6 +83,7 @@ def _cmd(args: argparse.Namespace) -> int:
                 else:
                     print(f"no fault to clear (state {st.state})")
             ver = U.read_did(client, U.DID_SW_VERSION, dev.node).decode("ascii", "replace")
+            ver = running_image(client, dev.node, ver)
             v = W.Versions.unpack(U.read_did(client, U.DID_VERSIONS, dev.node))
             print(
                 f"firmware {ver}; protocol {v.proto_major}.{v.proto_minor}, skill format "
