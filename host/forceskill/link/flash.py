@@ -183,10 +183,10 @@ def stored_skill_formats(client: Any) -> tuple[int, int] | None:
     """The skill formats the device's bootloader checks an image against: the product's range
     (fwimage.SKILL_FORMAT_OLDEST .. SKILL_FORMAT) while any slot holds a skill (the firmware
     declares that range for its stored skills), None with every slot empty or no skill store."""
+    from udsoncan.exceptions import NegativeResponseException
+
     from .. import wire as W
     from .uds import DID_SLOT_DIR
-
-    from udsoncan.exceptions import NegativeResponseException
 
     try:
         r = client.read_data_by_identifier(DID_SLOT_DIR)
