@@ -18,7 +18,7 @@ import sys
 from collections.abc import Sequence
 from typing import NoReturn
 
-from .errors import ERR_IO, ERR_UNEXPECTED, FsError
+from .errors import ERR_IO, ERR_UNEXPECTED, FsError, stdout_closed
 
 #: Sub-command modules, one per command (``image`` shares the flash module): a module added here
 #: (e.g. a plugin's "package.module") exposes ``register(subparsers)``.
@@ -112,6 +112,24 @@ def build_parser(argv: Sequence[str] | None = None) -> tuple[argparse.ArgumentPa
     return parser, missing
 
 
+#: Exit status after the reader of standard output went away: a process ended by SIGPIPE's.
+EXIT_PIPE_CLOSED = 128 + 13
+
+
+def _pipe_closed() -> int:
+    """End quietly when the reader of standard output has gone (``forceskill status | head -1``):
+    what is left unprinted goes to /dev/null instead of an error at the interpreter's exit."""
+    import os
+
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError):
+        pass
+    return EXIT_PIPE_CLOSED
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     parser, missing = build_parser(argv)
@@ -122,7 +140,14 @@ def main(argv: Sequence[str] | None = None) -> int:
             sys.stderr.write("forceskill: unavailable commands: " + "; ".join(missing) + "\n")
         return EXIT_BAD_INPUT
     try:
-        return int(args.func(args) or 0)
+        rc = int(args.func(args) or 0)
+        sys.stdout.flush()  # a closed pipe is found here, not in the interpreter's exit
+        return rc
+    except BrokenPipeError as e:
+        if stdout_closed():
+            return _pipe_closed()
+        sys.stderr.write(f"forceskill: error: {e.strerror or e} [{ERR_IO}]\n")
+        return EXIT_BAD_INPUT
     except FsError as e:
         sys.stderr.write(f"forceskill: error: {e.message} [{e.code}]\n")
         return EXIT_BAD_INPUT

@@ -7,6 +7,8 @@ never sees a demonstration.
 
 from __future__ import annotations
 
+import sys
+
 # Every numbered code (1xx-3xx as the firmware's fs_status.h, 5xx faults, 6xx host only, ...) is
 # generated from firmware/base/codes.toml into forceskill.codes and re-exported here, so
 # `errors.ERR_SKILL_CRC` is the firmware's FS_ERR_SKILL_CRC; docs/codes.md lists them all.
@@ -43,3 +45,19 @@ class SkillError(FsError):
 
 class DemoError(FsError):
     """A demonstration that cannot be learned from (60x, 611)."""
+
+
+def stdout_closed() -> bool:
+    """True when standard output is a pipe whose reader has gone (``forceskill status | head -1``
+    after head's first line): the pipe then reports an error condition to poll()."""
+    try:
+        fd = sys.stdout.fileno()
+    except (AttributeError, ValueError, OSError):  # replaced or closed (a test's capture)
+        return False
+    import select
+
+    if not hasattr(select, "poll"):
+        return False
+    p = select.poll()
+    p.register(fd, 0)  # POLLERR and POLLHUP are reported whatever the mask
+    return any(ev & select.POLLERR for _, ev in p.poll(0))

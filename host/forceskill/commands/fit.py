@@ -113,6 +113,19 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     )
     for note in demo.notes:
         print(note)
+    if object_mass_kg is None and demo.object_mass_kg is not None:
+        # a recording of the device that names its object (record's CAN log): the gains are
+        # made for it as with --object-mass, given gains are checked against it
+        object_mass_kg = args.fit_object_mass_kg = demo.object_mass_kg
+        scaled = gains if args.gains else gains_for_object(args.stiffness, object_mass_kg)
+        note = f"object mass {object_mass_kg:g} kg from the recording (the device's object model)"
+        if scaled != gains:
+            gains = args.fit_gains = scaled
+            note += (
+                f": force gains scaled to it: kkf = {gains.kkf_Npm:.4g} N/m, kki = {gains.kki_Npms:.4g} "
+                "N/(m s) (k_f*m_v/m_d = 0.75)"
+            )
+        print(note)
     # the fit works on the dt grid; the recording's own time and force stay for the error at its
     # samples, its position is not needed any more (memory on long recordings)
     grid_demo = resample(demo, args.dt)
@@ -402,12 +415,17 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         "a ROS 2 bag's pose axis is pose_x, pose_y or pose_z (with --pose-topic)",
     )
     g = p.add_argument_group("reading the recording")
-    g.add_argument("--time-column", default="t", metavar="NAME", help="CSV time column (t)")
+    g.add_argument(
+        "--time-column",
+        default=None,
+        metavar="NAME",
+        help="CSV time column (default t, else time; also t_ms, time [ms], ...)",
+    )
     g.add_argument(
         "--time-unit",
         choices=("s", "ms", "us", "ns"),
         default=None,
-        help="CSV time unit (default: the unit in the header, 't [ms]', else s)",
+        help="CSV time unit (default: the unit in the header, 't [ms]' or 'time_ms', else s)",
     )
     g.add_argument(
         "--rate",

@@ -18,6 +18,7 @@ from ..link.flash import (
     nrc_error,
     read_status,
     request,
+    stored_skill_formats,
     wait_confirmed,
 )
 from ..model import fwimage as fw
@@ -67,7 +68,7 @@ def _cmd_flash(args: argparse.Namespace) -> int:
                     "firmware has no update support (docs/update.md, Integration)",
                 ) from None
             raise nrc_error(int(e.response.code or 0), "ReadDataByIdentifier(0xF1B0)") from None
-        for line in check_plan(img, dev, args.allow_downgrade):
+        for line in check_plan(img, dev, args.allow_downgrade, stored_skill_formats(client)):
             print(line)
         if args.dry_run:
             slot = "BA"[dev.running_slot] if dev.running_slot < 2 else "A"
@@ -184,14 +185,21 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
 
     img.set_defaults(func=_usage)
     b = isub.add_parser("build", help="wrap a firmware binary into a signed image")
-    b.add_argument("binary", help="raw payload (objcopy -O binary output, or a host build)")
+    b.add_argument(
+        "binary",
+        help="the firmware binary: build/cortex-m4f/... objcopy output for Cortex-M (docs/cortex-m.md); "
+        "for --target host the simulator's build/hil_sim/hil_sim (scripts/setup.sh builds it)",
+    )
     b.add_argument("-o", "--output", required=True, help="image file to write")
     b.add_argument("--version", required=True, help="firmware version MAJOR.MINOR.PATCH")
     b.add_argument("--target", required=True, choices=sorted(fw.TARGETS), help="device target")
     b.add_argument("--key", help="device key, hex file (or $FORCESKILL_FW_KEY; default: the development key)")
     b.add_argument("--build-id", default="", help="free text, <= 31 ASCII bytes (e.g. git describe)")
     b.add_argument(
-        "--skill-format", default=str(fw.SKILL_FORMAT), help="N or N:OLDEST skill format read/migrated"
+        "--skill-format",
+        default=f"{fw.SKILL_FORMAT}:{fw.SKILL_FORMAT_OLDEST}",
+        help=f"N or N:OLDEST skill formats read/migrated (default {fw.SKILL_FORMAT}:{fw.SKILL_FORMAT_OLDEST}: "
+        "every format fit writes)",
     )
     b.add_argument(
         "--config-format", default=str(fw.CONFIG_FORMAT), help="N or N:OLDEST configuration format"

@@ -59,6 +59,16 @@ def _record(args: argparse.Namespace, writer: can.Listener) -> FsError | None:
         return _record_session(args, dev, writer, st)
 
 
+def log_object_model(dev: Device) -> None:
+    """Ask the device for its object model (DID 0x0130) while the log listens: its answer is in
+    the log, where ``fit`` finds the object's mass (a device without the identifier: nothing)."""
+    try:
+        with U.uds_client(dev, request_timeout_s=2.0) as client:
+            U.read_did(client, U.DID_OBJECT, dev.node)
+    except FsError:
+        pass
+
+
 class _LogUntil(can.Listener):
     """The log writer's frames until a status frame of the device shows the recording's last tick:
     every listener sees the frames in bus order, so the log holds --duration of device time (to
@@ -97,6 +107,7 @@ def _record_session(
     log = _LogUntil(writer, int(round(args.duration * TICK_HZ)), "TEACH" if args.teach else None)
     dev.on_status = log.status
     dev.notifier.add_listener(log)
+    log_object_model(dev)
     try:
         with sigint_flag() as stop:
             dev.start_heartbeat(telemetry_period_ms=getattr(args, "telemetry_period", 1))

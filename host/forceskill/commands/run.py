@@ -13,7 +13,15 @@ from typing import Any, TextIO
 import numpy as np
 
 from .. import wire as W
-from ..errors import ERR_PERIODIC_ARGS, ERR_RUN_FAULT, ERR_SKILL_PEAK, ERR_TELEMETRY_GAP, FsError, fault_text
+from ..errors import (
+    ERR_FORCE_GAIN_INERTIA,
+    ERR_PERIODIC_ARGS,
+    ERR_RUN_FAULT,
+    ERR_SKILL_PEAK,
+    ERR_TELEMETRY_GAP,
+    FsError,
+    fault_text,
+)
 from ..link import ERR_LINK_ARGS, ERR_LINK_STATE
 from ..link import uds as U
 from ..link.device import Device
@@ -128,11 +136,14 @@ def check_slot_forces(
     call("session change", lambda: client.change_session(0x02))
     try:
         limit_Npm = U.stiffness_limit(client, dev.node)
+        obj = W.Object.unpack(U.read_did(client, U.DID_OBJECT, dev.node))
         for slot in dict.fromkeys(slots):
             image = U.upload(client, dev.node, slot, int(directory[slot]["length"]))
             sk = Skill.from_bytes(image)
             skills[slot] = sk
             check_skill_stiffness(sk, f"slot {slot}", limit_Npm, dev.node, "nothing was started")
+            if obj.use_model:
+                check_object_inertia(sk, f"slot {slot} of node {dev.node}", obj.m_v_kg)
             if sk.periodic:
                 from ..model.periodic import rollout as periodic_rollout
 
@@ -160,6 +171,24 @@ def check_slot_forces(
         except Exception:
             pass
     return skills
+
+
+def check_object_inertia(sk: Skill, what: str, object_mass_kg: float) -> None:
+    """Refuse (112) a skill whose force gains feed back more than the object's inertia on the
+    device's object (k_f*m_v/m_d >= 1, k_f = kkf/k): its force loop would oscillate into the
+    slew limit (fault 508) within a second of contact. The remedy is named."""
+    if not object_mass_kg > 0.0:
+        return
+    k_f = sk.kkf_Npm / sk.stiffness_Npm
+    ratio = k_f * object_mass_kg / sk.m_d_kg
+    if ratio >= 1.0:
+        raise FsError(
+            ERR_FORCE_GAIN_INERTIA,
+            f"{what}: its force gains are unstable on the device's {object_mass_kg:g} kg object "
+            f"(k_f*m_v/m_d = {ratio:.3g} >= 1, k_f = kkf/k = {k_f:.4g}, m_d = {sk.m_d_kg:g} kg: the "
+            f"force loop feeds back the object's inertia, fault 508 within a second of contact); fit "
+            f"it again with --object-mass {object_mass_kg:g}; nothing was started",
+        )
 
 
 def path_tracking(
@@ -358,10 +387,14 @@ def run_on_device(
             if writer is not None:
                 notifier.remove_listener(writer)
         contact = W.ContactWait.unpack(U.read_did(client, U.DID_CONTACT_WAIT, dev.node)) if waits else None
-    samples = dev.telemetry_samples(tel)
-    grid, stream = columns(samples)  # lost frames interpolated on the tick grid, and counted
-    first_tick = stream.first_tick
+    samples, states = dev.telemetry_samples(tel), dev.telemetry_states(tel)
+    period_ms = getattr(args, "telemetry_period", 1)
+    # the samples of the execution (by the device's states) within the run's window, the ticks
+    # between them interpolated on the tick grid, the samples due at the period that never
+    # arrived counted
     n_keep = int(round(total * W.TICK_HZ)) + 1
+    grid, stream = columns(samples, period_ms, states, n_keep)
+    first_tick = stream.first_tick
     i_fault = n_keep  # the figures end at the fault's row; the columns go on through its ramp
     if fault and grid["t"].size:
         i_fault = _fault_index(first_tick & 0xFFFF, grid["t"].size, fault_tick)
@@ -451,8 +484,14 @@ def _cmd(args: argparse.Namespace) -> int:
             "interpolated from their neighbours",
             file=info,
         )
+    period = getattr(args, "telemetry_period", 1)
+    received = (
+        f"{stream.received} samples every {period} ms, {n} rows on the 1 ms grid"
+        if period > 1
+        else f"{n} samples"
+    )
     print(
-        f"telemetry: {n} samples over {cols['t'][-1] if n else 0:.3f} s; "
+        f"telemetry: {received} over {cols['t'][-1] if n else 0:.3f} s; "
         f"max contact force {fig['max_force_N']:.3f} N, max reference {fig['max_ref_N']:.3f} N",
         file=info,
     )

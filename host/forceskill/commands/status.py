@@ -9,7 +9,6 @@ from udsoncan.exceptions import NegativeResponseException
 
 from .. import wire as W
 from ..errors import ERR_CLEAR_BLOCKED, FsError, fault_text
-from ..link import ERR_LINK_STATE
 from ..link import uds as U
 from ._common import add_common, connect
 
@@ -18,16 +17,17 @@ def _names(codes: list[int]) -> str:
     return ", ".join(fault_text(c) for c in codes) or "none"
 
 
-def clear_faults(client: Any, node: int, state: str) -> None:
-    """RoutineControl clear faults; a refusal names the condition that blocks it (666), read from
-    the device's fault-cause identifier."""
+def clear_faults(client: Any, node: int, state: str) -> bool:
+    """RoutineControl clear faults: True when cleared, False when the device had no fault to clear
+    (not an error: the wanted state holds); a refusal names the condition that blocks it (666),
+    read from the device's fault-cause identifier."""
     try:
         client.start_routine(U.RID_CLEAR_FAULTS)
-        return
+        return True
     except NegativeResponseException as e:
         code = e.response.code
         if code == 0x24:
-            raise FsError(ERR_LINK_STATE, f"node {node} has no fault to clear (state {state})") from None
+            return False
         if code != 0x22:
             raise FsError(632, f"clear faults: node {node} {U.describe_nrc(e)}") from None
     try:
@@ -46,6 +46,22 @@ def clear_faults(client: Any, node: int, state: str) -> None:
     )
 
 
+def running_image(client: Any, node: int, build: str) -> str:
+    """The firmware's version as it runs: the version in the header of the image the device
+    booted from its update slots (after ``forceskill flash``), with the build's own name; the
+    build's name alone when it runs no image from a slot (or does not know DID 0xF1B0)."""
+    from ..link.flash import DeviceStatus
+
+    try:
+        st = DeviceStatus.decode(U.read_did(client, U.DID_FWU_STATUS, node))
+    except FsError:
+        return build
+    if st.running_slot > 1:
+        return build
+    state = "on test" if st.on_test else "confirmed"
+    return f"{st.version} (image in slot {'AB'[st.running_slot]}, {state}; build {build})"
+
+
 def _cmd(args: argparse.Namespace) -> int:
     with connect(args) as dev:
         st = dev.status
@@ -62,9 +78,12 @@ def _cmd(args: argparse.Namespace) -> int:
                 except FsError:
                     pass
             if args.clear:
-                clear_faults(client, dev.node, st.state)
-                print("faults cleared")
+                if clear_faults(client, dev.node, st.state):
+                    print("faults cleared")
+                else:
+                    print(f"no fault to clear (state {st.state})")
             ver = U.read_did(client, U.DID_SW_VERSION, dev.node).decode("ascii", "replace")
+            ver = running_image(client, dev.node, ver)
             v = W.Versions.unpack(U.read_did(client, U.DID_VERSIONS, dev.node))
             print(
                 f"firmware {ver}; protocol {v.proto_major}.{v.proto_minor}, skill format "

@@ -67,7 +67,7 @@ def add_bus_args(parser: argparse.ArgumentParser) -> None:
         metavar="MS",
         help="telemetry period asked of the device in TEACH/EXECUTE by record and run, 1.."
         f"{MAX_TELEMETRY_PERIOD_MS} ms (default 1: every tick; more for a host that cannot "
-        "follow 2,000 frames/s; the samples between are interpolated and counted as lost)",
+        "follow 2,000 frames/s; run interpolates the ticks between, counting as lost only samples due)",
     )
 
 
@@ -75,21 +75,40 @@ def bus_config(ns: argparse.Namespace) -> dict[str, Any]:
     """The keyword arguments for can.Bus: command line over python-can's config files/env."""
     given: dict[str, Any] = {}
     for key in ("interface", "channel", "bitrate", "fd", "data_bitrate", "timing"):
-        if key in ns:
+        if getattr(ns, key, None) is not None:  # an option not given leaves python-can's value
             given[key] = getattr(ns, key)
     given.update(getattr(ns, "bus_kwargs", {}) or {})
     try:
         cfg = can.util.load_config(config=dict(given))
-    except Exception as e:  # load_config raises on an unknown interface from the config file
-        raise FsError(ERR_LINK_BUS, f"CAN configuration unusable: {e}") from None
+    except can.CanInterfaceNotImplementedError:
+        if "interface" not in given and not _configured_interface():
+            raise FsError(ERR_LINK_BUS, NO_INTERFACE) from None
+        raise FsError(ERR_LINK_BUS, f"unknown CAN interface {_configured_interface()!r}") from None
+    except Exception as e:  # load_config raises on an unusable config file
+        raise FsError(ERR_LINK_BUS, f"CAN configuration unusable: {error_summary(e)}") from None
     cfg.update(given)
     if not cfg.get("interface"):
-        raise FsError(
-            ERR_LINK_BUS,
-            "no CAN interface given: use -i/--interface (or set one in "
-            "python-can's configuration file ~/.canrc or $CAN_INTERFACE)",
-        )
+        raise FsError(ERR_LINK_BUS, NO_INTERFACE)
     return cfg
+
+
+#: The refusal of a command that talks to a device when nothing names the CAN interface.
+NO_INTERFACE = (
+    "no CAN interface: set one in python-can's configuration (~/.canrc or $CAN_INTERFACE and "
+    "$CAN_CHANNEL) or give -i/--interface NAME -c/--channel CH (e.g. -i socketcand -c can0 "
+    "--bus-kwargs host=127.0.0.1 port=29536 for hil_sim serve)"
+)
+
+
+def _configured_interface() -> str | None:
+    """The interface python-can's environment or configuration files name, if any."""
+    try:
+        found = can.util.load_environment_config().get("interface") or can.util.load_file_config().get(
+            "interface"
+        )
+    except Exception:  # an unreadable file is reported by load_config's own error
+        return None
+    return str(found) if found else None
 
 
 def describe(cfg: dict[str, Any]) -> str:

@@ -61,17 +61,23 @@ class Sample:
 
 @dataclass
 class Telemetry:
-    """Telemetry samples in arrival order; tick is the device's 1 kHz tick, unwrapped."""
+    """Telemetry samples in arrival order and the device's states from its status frames over the
+    same time (``states``: (tick, state) in arrival order); ticks are the device's 1 kHz tick,
+    unwrapped from their 16 bits (a frame a little behind the latest one, as the two telemetry
+    frames and the status pass each other on the bus, keeps its place)."""
 
     samples: list[Sample] = field(default_factory=list)
-    _last_raw: int = -1
-    _wraps: int = 0
+    states: list[tuple[int, str]] = field(default_factory=list)
+    _latest: int = -1
 
     def unwrap(self, tick16: int) -> int:
-        if self._last_raw >= 0 and tick16 < self._last_raw - 32768:
-            self._wraps += 1
-        self._last_raw = tick16
-        return tick16 + 65536 * self._wraps
+        """The unwrapped tick nearest the latest one seen with these low 16 bits."""
+        if self._latest < 0:
+            self._latest = tick16
+            return tick16
+        full = self._latest + ((tick16 - self._latest + 32768) & 0xFFFF) - 32768
+        self._latest = max(self._latest, full)
+        return full
 
 
 @dataclass
@@ -173,6 +179,10 @@ class Device(can.Listener):
                 float(msg.timestamp),
             )
             self.status = st
+            tel = self.telemetry
+            if tel is not None:
+                with self._lock:
+                    tel.states.append((tel.unwrap(st.tick & 0xFFFF), st.state))
             self.status_event.set()
             if self.on_status is not None:
                 self.on_status(st)
@@ -367,6 +377,11 @@ class Device(can.Listener):
         """A copy of the samples ``tel`` holds so far, taken while the receiving thread waits."""
         with self._lock:
             return list(tel.samples)
+
+    def telemetry_states(self, tel: Telemetry) -> list[tuple[int, str]]:
+        """A copy of the (tick, state) of the status frames received while ``tel`` collected."""
+        with self._lock:
+            return list(tel.states)
 
     def start_telemetry(self) -> Telemetry:
         self.telemetry = Telemetry()

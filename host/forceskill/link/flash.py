@@ -127,8 +127,15 @@ def load_secret(path: str | None) -> bytes:
     return secret
 
 
-def check_plan(img: fw.FwImage, dev: DeviceStatus | None, allow_downgrade: bool) -> list[str]:
-    """Lines shown before writing; raises FsError for what the device would refuse anyway."""
+def check_plan(
+    img: fw.FwImage,
+    dev: DeviceStatus | None,
+    allow_downgrade: bool,
+    stored_skills: tuple[int, int] | None = None,
+) -> list[str]:
+    """Lines shown before writing; raises FsError for what the device would refuse anyway:
+    another target, a downgrade, an image on test, and skill formats ``stored_skills`` (the
+    range the device declares for its stored skills) outside the image's [oldest, native]."""
     lines = [
         f"image:  firmware {img.version} for {img.target}, build '{img.build_id or '-'}', "
         f"{len(img.to_bytes())} bytes"
@@ -152,6 +159,16 @@ def check_plan(img: fw.FwImage, dev: DeviceStatus | None, allow_downgrade: bool)
                 f"{dev.version}: refused (use --allow-downgrade)",
             )
         lines.append(f"downgrade {dev.version} -> {img.version} allowed by --allow-downgrade")
+    if stored_skills is not None:
+        lo, hi = stored_skills
+        if not (img.skill_format_oldest <= lo and hi <= img.skill_format):
+            raise FsError(
+                fw.ERR_SKILL_FORMAT,
+                f"image {img.version} reads skill formats {img.skill_format_oldest}..{img.skill_format} "
+                f"but the device stores skills of formats {lo}..{hi} (it would refuse the image, 708): "
+                f"build it with --skill-format {max(hi, img.skill_format)}:{min(lo, img.skill_format_oldest)}; "
+                "nothing written",
+            )
     return lines
 
 
@@ -168,7 +185,28 @@ def status_codecs() -> dict[int, Any]:
         def __len__(self) -> int:
             return STATUS_LEN
 
-    return {DID_STATUS: StatusCodec()}
+    from .uds import DID_CODECS, DID_SLOT_DIR
+
+    return {DID_STATUS: StatusCodec(), DID_SLOT_DIR: DID_CODECS[DID_SLOT_DIR]}
+
+
+def stored_skill_formats(client: Any) -> tuple[int, int] | None:
+    """The skill formats the device's bootloader checks an image against: the product's range
+    (fwimage.SKILL_FORMAT_OLDEST .. SKILL_FORMAT) while any slot holds a skill (the firmware
+    declares that range for its stored skills), None with every slot empty or no skill store."""
+    from udsoncan.exceptions import NegativeResponseException
+
+    from .. import wire as W
+    from .uds import DID_SLOT_DIR
+
+    try:
+        r = client.read_data_by_identifier(DID_SLOT_DIR)
+    except NegativeResponseException:  # a device without a skill store (a boot-only image)
+        return None
+    d = W.SlotDir.unpack(bytes(r.service_data.values[DID_SLOT_DIR]))
+    if not any(e.valid for e in d.entries):
+        return None
+    return fw.SKILL_FORMAT_OLDEST, fw.SKILL_FORMAT
 
 
 def read_status(client: Any) -> DeviceStatus:

@@ -30,6 +30,7 @@ from ..codes import (  # noqa: F401
     DID_CONTACT_WAIT,
     DID_DEVICE_STATE,
     DID_FAULT_CAUSES,
+    DID_FWU_STATUS,
     DID_GAINS_X,
     DID_GAINS_Y,
     DID_LAST_TRANSFER,
@@ -93,6 +94,7 @@ class Raw(udsoncan.DidCodec):
 
 DID_CODECS = {
     DID_SW_VERSION: Raw(19),
+    DID_FWU_STATUS: Raw(17),  # docs/update.md: the update status record
     DID_VERSIONS: Raw(W.Versions.SIZE),
     DID_GAINS_X: Raw(W.Gains.SIZE),
     DID_GAINS_Y: Raw(W.Gains.SIZE),

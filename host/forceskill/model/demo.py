@@ -37,7 +37,16 @@ from ..errors import (
     FsError,
     ParamError,
 )
-from ..readers import MAX_GAP_S, NOTES_KEY, Columns, ReadOptions, read_columns
+from ..readers import (
+    MAX_GAP_S,
+    NOTES_KEY,
+    OBJECT_MASS_KEY,
+    SECONDS_ASSUMED_KEY,
+    Columns,
+    ReadOptions,
+    read_columns,
+    time_unit_hint,
+)
 
 MIN_SAMPLES = 100
 MIN_DURATION_S = 0.5
@@ -72,6 +81,9 @@ class Demo:
     notes: list[str] = field(default_factory=list)
     #: the path along the unconstrained axis y (m), learned by the position DMP; None: none
     y_m: np.ndarray | None = None
+    #: the object's mass (kg) the recording names (the device's object model in a CAN log of
+    #: ``forceskill record``); None: unknown
+    object_mass_kg: float | None = None
 
 
 def read_csv_columns(path: str | Path) -> Columns:
@@ -122,6 +134,8 @@ def load_demo(
     )
     cols = read_columns(p, opts)
     notes = [str(n) for n in cols.pop(NOTES_KEY, [])]
+    seconds_assumed = cols.pop(SECONDS_ASSUMED_KEY, None) is not None
+    mass = cols.pop(OBJECT_MASS_KEY, None)
     for name in (
         ("t", fcol) + ((position_column,) if position_column else ()) + ((y_column,) if y_column else ())
     ):
@@ -152,7 +166,16 @@ def load_demo(
         )
     y = None if not y_column else np.asarray(cols[y_column], float)
     demo = Demo(t_s=t, pos_m=x, force_N=f, source=f"{p.name}:{fcol}", max_gap_s=max_gap_s, notes=notes, y_m=y)
-    validate(demo)
+    demo.object_mass_kg = float(mass[0]) if mass is not None and len(mass) else None
+    try:
+        validate(demo)
+    except DemoError as e:
+        hint = ""
+        if e.code == ERR_DEMO_GAP and seconds_assumed and t.size > 1:
+            hint = time_unit_hint(float(np.median(np.diff(t[: 1 << 16]))))
+        if not hint:
+            raise
+        raise DemoError(e.code, e.message + hint) from None
     return demo
 
 

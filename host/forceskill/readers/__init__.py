@@ -19,6 +19,7 @@ Reader modules import their heavy dependencies (python-can, cantools, mcap) only
 from __future__ import annotations
 
 import importlib
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -35,6 +36,12 @@ AXES = ("x", "y", "z")
 MAX_GAP_S = 0.1
 #: A reader may return notes for the user (printed on stdout) under this key, as an object array.
 NOTES_KEY = "__notes__"
+#: Present in a reader's columns when nothing named the time column's unit and it was read as
+#: seconds (a refusal of the times then hints at --time-unit).
+SECONDS_ASSUMED_KEY = "__seconds_assumed__"
+#: The object's mass (kg) a reader found in the recording (a CAN log of ``forceskill record``
+#: holds the device's answer with its object model, DID 0x0130), as a one-element array.
+OBJECT_MASS_KEY = "__object_mass_kg__"
 
 #: The built-in readers, as declared in host/pyproject.toml.
 _BUILTIN = {
@@ -56,15 +63,16 @@ class ReadOptions:
     """What a reader needs besides the path; readers ignore the options that are not theirs.
 
     ``columns`` are the columns the caller needs (a CSV reader parses only those and the time),
-    ``optional`` those it uses when present. ``time_unit`` None: the unit in the time column's
-    header (``t [ms]``), else seconds. ``rate_hz``: no time column, sample n at n/rate.
+    ``optional`` those it uses when present. ``time_column`` None: ``t``, else ``time`` (also with
+    a unit: ``t_ms``, ``time [ms]``). ``time_unit`` None: the unit in the time column's header
+    (``t [ms]``, ``time_ms``), else seconds. ``rate_hz``: no time column, sample n at n/rate.
     ``topic``/``pose_topic``/``axis``: ROS 2 bags. ``max_duration_s`` is checked as soon as the
     time span is known, before the rest of the file is parsed.
     """
 
     columns: tuple[str, ...] = ()
     optional: tuple[str, ...] = ()
-    time_column: str = "t"
+    time_column: str | None = None
     time_unit: str | None = None
     rate_hz: float | None = None
     topic: str | None = None
@@ -186,11 +194,38 @@ def read_columns(path: Path, opts: ReadOptions | None = None) -> Columns:
     return reader(path, opts)
 
 
-def check_duration(duration_s: float, limit_s: float, source: str) -> None:
-    """Refuse a recording longer than ``limit_s`` (ERR_DEMO_DURATION), before it is parsed further."""
+def check_duration(duration_s: float, limit_s: float, source: str, step_s: float | None = None) -> None:
+    """Refuse a recording longer than ``limit_s`` (ERR_DEMO_DURATION), before it is parsed further;
+    ``step_s``: its median sample step as read, for the hint of a time column in another unit."""
     if duration_s > limit_s:
+        hint = time_unit_hint(step_s, duration_s, limit_s) if step_s is not None else ""
         raise DemoError(
             ERR_DEMO_DURATION,
             f"{source} lasts {duration_s:.6g} s, longer than the "
-            f"{limit_s:g} s a skill can last: split it into a sequence of recordings",
+            f"{limit_s:g} s a skill can last"
+            + (f"{hint}" if hint else ": split it into a sequence of recordings"),
         )
+
+
+#: The sample steps a force recording has (10 us..100 ms, 100 kHz..10 Hz): a median step read
+#: outside them in seconds names the unit that brings it inside.
+PLAUSIBLE_STEP_S = (1e-5, 0.1)
+
+
+def time_unit_hint(step_s: float, duration_s: float | None = None, limit_s: float | None = None) -> str:
+    """'; the median sample step reads 1 s: a time column in milliseconds needs --time-unit ms' when
+    a median step (read as seconds) of 0.5 s or more is a plausible step in a smaller unit (and
+    the duration then within ``limit_s``); '' otherwise."""
+    if not (math.isfinite(step_s) and step_s >= 0.5):
+        return ""
+    for unit, name in (("ms", "milliseconds"), ("us", "microseconds"), ("ns", "nanoseconds")):
+        scale = TIME_UNITS_S[unit]
+        lo, hi = PLAUSIBLE_STEP_S
+        if lo <= step_s * scale <= hi and (
+            duration_s is None or limit_s is None or duration_s * scale <= limit_s
+        ):
+            return (
+                f"; the median sample step reads {step_s:.6g} s: a time column in {name} "
+                f"needs --time-unit {unit}"
+            )
+    return ""

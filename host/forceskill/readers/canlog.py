@@ -22,10 +22,10 @@ from typing import Any
 
 import numpy as np
 
-from ..codes import CAN_ID_STATUS, CAN_ID_TELEM_FORCE, CAN_ID_TELEM_POS
+from ..codes import CAN_ID_STATUS, CAN_ID_TELEM_FORCE, CAN_ID_TELEM_POS, DID_OBJECT, UDS_RESPONSE_BASE
 from ..errors import ERR_LINK_LOG, ERR_READER_MISSING, DemoError
 from ..wire import TICK_S
-from . import NOTES_KEY, Columns, ReadOptions, progress_bar
+from . import NOTES_KEY, OBJECT_MASS_KEY, Columns, ReadOptions, progress_bar
 
 POS_BASE = CAN_ID_TELEM_POS
 FORCE_BASE = CAN_ID_TELEM_FORCE
@@ -93,6 +93,7 @@ def read(path: Path, opts: ReadOptions | None = None, node: int | None = None) -
     mforce = db.get_message_by_name("TelemetryForce")
     mstat = db.get_message_by_name("DeviceStatus")
     rows = []
+    uds: list[bytes] = []  # the device's UDS response frames (its object model among them)
     leave_teach = []  # message index of status frames with the device not in TEACH
     pairs: TelemetryPairer[tuple[int, float, float, int]] = TelemetryPairer()
     wraps, last = 0, -1
@@ -122,6 +123,8 @@ def read(path: Path, opts: ReadOptions | None = None, node: int | None = None) -
                     pending[3],
                 )
             )
+        elif fid == UDS_RESPONSE_BASE + node:
+            uds.append(bytes(m.data))
         elif fid == mstat.frame_id and len(m.data) == 8:
             try:
                 st: Any = mstat.decode(bytes(m.data), decode_choices=False)
@@ -146,9 +149,56 @@ def read(path: Path, opts: ReadOptions | None = None, node: int | None = None) -
         "f_hat": a[:, 6],
         "tick": a[:, 0],
     }
+    mass = object_mass(uds)
+    if mass is not None:
+        cols[OBJECT_MASS_KEY] = np.array([mass])
     if notes:
         cols[NOTES_KEY] = np.array(notes, dtype=object)
     return cols
+
+
+def isotp_messages(frames: list[bytes]) -> list[bytes]:
+    """The ISO-TP messages of one identifier's frames in bus order (single frames, classic or
+    FD, and first + consecutive frames; flow control and broken sequences skipped)."""
+    out: list[bytes] = []
+    buf: bytearray | None = None
+    need = 0
+    for d in frames:
+        if not d:
+            continue
+        pci = d[0] >> 4
+        if pci == 0:
+            n = d[0] & 0x0F
+            if n == 0 and len(d) > 8:  # CAN FD single frame: the length in the second byte
+                out.append(d[2 : 2 + d[1]])
+            else:
+                out.append(d[1 : 1 + n])
+            buf = None
+        elif pci == 1 and len(d) >= 2:
+            need = ((d[0] & 0x0F) << 8) | d[1]
+            buf = bytearray(d[2:])
+        elif pci == 2 and buf is not None:
+            buf += d[1:]
+            if len(buf) >= need:
+                out.append(bytes(buf[:need]))
+                buf = None
+    return out
+
+
+def object_mass(uds_frames: list[bytes]) -> float | None:
+    """The object's mass (kg) in the device's last answer with its object model (DID 0x0130)
+    among its UDS response frames, when the device uses the model; None otherwise."""
+    from ..wire import Object
+
+    head = bytes([0x62, DID_OBJECT >> 8, DID_OBJECT & 0xFF])
+    for msg in reversed(isotp_messages(uds_frames)):
+        if msg[:3] == head:
+            try:
+                obj = Object.unpack(msg[3:])
+            except Exception:  # a malformed answer: no mass known
+                return None
+            return float(obj.m_v_kg) if obj.use_model and obj.m_v_kg > 0.0 else None
+    return None
 
 
 def _demonstration(a: np.ndarray, leave_idx: np.ndarray, name: str) -> tuple[int, int, list[str]]:

@@ -25,7 +25,7 @@ from typing import IO
 import numpy as np
 
 from ..errors import ERR_DEMO_COLUMN, ERR_DEMO_FILE, ERR_DEMO_FORMAT, ERR_READ_ARGS, DemoError, FsError
-from . import TIME_UNITS_S, Columns, ReadOptions, check_duration, progress_bar
+from . import SECONDS_ASSUMED_KEY, TIME_UNITS_S, Columns, ReadOptions, check_duration, progress_bar
 
 BLOCK_BYTES = 8 << 20
 _TAIL_BYTES = 1 << 16
@@ -46,6 +46,37 @@ def split_name(name: str) -> tuple[str, str]:
     """('t', 's') for 't [s]' or 't (s)'; (name, '') without a unit suffix."""
     m = _UNIT.match(name)
     return (m.group(1), m.group(2)) if m and m.group(1) else (name, "")
+
+
+def time_unit_of(name: str) -> str | None:
+    """The time unit a column's name gives: 'ms' for 't [ms]', 'time (ms)', 'time_ms' or
+    't_ms'; None when it names none."""
+    bare, unit = split_name(name)
+    if unit:
+        return _TIME_UNIT_ALIASES.get(unit)
+    stem, sep, suffix = bare.rpartition("_")
+    return _TIME_UNIT_ALIASES.get(suffix.lower()) if sep and stem else None
+
+
+#: The time column without --time-column: the first of these names (as find_column matches them,
+#: and with a unit suffix such as time_ms) found in the header.
+DEFAULT_TIME_COLUMNS = ("t", "time")
+
+
+def find_time_column(names: list[str], wanted: str | None) -> int | None:
+    """Index of the time column: ``wanted`` as find_column matches it; without it ``t``, else
+    ``time``, also as ``t_ms``/``time_ms`` (a unit after an underscore)."""
+    if wanted is not None:
+        return find_column(names, wanted)
+    for cand in DEFAULT_TIME_COLUMNS:
+        j = find_column(names, cand)
+        if j is not None:
+            return j
+        for j, n in enumerate(names):
+            stem = split_name(n)[0].rpartition("_")[0]
+            if stem.lower() == cand and time_unit_of(n):
+                return j
+    return None
 
 
 def find_column(names: list[str], wanted: str) -> int | None:
@@ -213,18 +244,23 @@ def _read(path: Path, fh: IO[bytes], size: int, head: bytes, opts: ReadOptions) 
     # the columns to keep: time (unless --rate) and the requested ones
     keep: dict[str, int] = {}
     t_unit = opts.time_unit
+    unit_told = True
     if opts.rate_hz is None:
-        j = find_column(lay.names, opts.time_column)
+        j = find_time_column(lay.names, opts.time_column)
         if j is None:
+            wanted = opts.time_column or " or ".join(repr(c) for c in DEFAULT_TIME_COLUMNS)
             raise DemoError(
                 ERR_DEMO_COLUMN,
-                f"time column {opts.time_column!r} not in {path.name} (available: "
-                f"{', '.join(lay.names)}): name it with --time-column, or give --rate HZ",
+                f"time column {wanted if opts.time_column is None else repr(wanted)} not in {path.name} "
+                f"(available: {', '.join(lay.names)}): name it with --time-column, or give --rate HZ",
             )
         keep["t"] = j
         if t_unit is None:
-            unit = split_name(lay.names[j])[1]
-            t_unit = _TIME_UNIT_ALIASES.get(unit, "s")
+            t_unit = time_unit_of(lay.names[j])
+            unit_told = t_unit is not None
+            t_unit = t_unit or "s"
+        else:
+            unit_told = True
     for name in opts.columns:
         j = find_column(lay.names, name)
         if j is None:
@@ -250,7 +286,8 @@ def _read(path: Path, fh: IO[bytes], size: int, head: bytes, opts: ReadOptions) 
             span = (lay.parse(last, 0)[0, keep["t"]] - lay.parse(rows[0], 0)[0, keep["t"]]) * scale
         except (DemoError, IndexError):
             span = 0.0  # the full parse names the bad line
-        check_duration(float(span), opts.max_duration_s, path.name)
+        step = None if unit_told else _first_step(lay, rows, keep["t"], scale)
+        check_duration(float(span), opts.max_duration_s, path.name, step)
     if size <= BLOCK_BYTES:
         body = head[body0:] if len(head) == size else head[body0:] + fh.read()
         data = lay.parse(body, first_line)
@@ -261,13 +298,25 @@ def _read(path: Path, fh: IO[bytes], size: int, head: bytes, opts: ReadOptions) 
     if "t" in cols:
         cols["t"] *= scale
         if n:  # again, for a file whose first or last row did not parse on its own
-            check_duration(float(cols["t"][-1] - cols["t"][0]), opts.max_duration_s, path.name)
+            step = float(np.median(np.diff(cols["t"][: 1 << 16]))) if n > 1 and not unit_told else None
+            check_duration(float(cols["t"][-1] - cols["t"][0]), opts.max_duration_s, path.name, step)
+        if not unit_told:
+            cols[SECONDS_ASSUMED_KEY] = np.ones(1)
     else:
         cols["t"] = np.arange(n, dtype=float) / float(opts.rate_hz or 1.0)
         check_duration(float(cols["t"][-1]) if n else 0.0, opts.max_duration_s, path.name)
     if n == 0:
         raise DemoError(ERR_DEMO_FORMAT, f"demonstration {str(path)!r} has a header but no rows")
     return cols
+
+
+def _first_step(lay: _Layout, rows: list[bytes], j: int, scale: float) -> float | None:
+    """The median time step (s) of the first rows, None when they do not parse."""
+    try:
+        t = lay.parse(b"\n".join(rows[:64]), 0)[:, j] * scale
+    except DemoError:
+        return None
+    return float(np.median(np.diff(t))) if t.size > 1 else None
 
 
 def _blocks(fh: IO[bytes], start: int, size: int) -> list[tuple[int, int, int]]:

@@ -4,9 +4,10 @@ their neighbours and counted, never a reason to drop the rest of the run."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from forceskill.commands._common import TELEMETRY_COLUMNS, columns
-from forceskill.link.device import Sample
+from forceskill.link.device import Sample, Telemetry
 
 
 def samples_at(ticks: list[int]) -> list[Sample]:
@@ -48,3 +49,43 @@ def test_no_samples_gives_empty_columns():
     cols, stream = columns([])
     assert set(cols) == {"t", *TELEMETRY_COLUMNS} and all(v.size == 0 for v in cols.values())
     assert stream.lost_samples == 0
+
+
+def states_of(idle_until: int, active_until: int, end: int, state: str = "EXECUTE") -> list[tuple[int, str]]:
+    """Status frames every 10 ticks: IDLE up to idle_until, then state up to active_until, IDLE after."""
+    return [(t, "IDLE" if t <= idle_until or t > active_until else state) for t in range(0, end + 1, 10)]
+
+
+@pytest.mark.parametrize("period", [10, 100, 7])
+def test_a_longer_period_counts_only_the_samples_it_was_due(period: int) -> None:
+    """The execution at ticks 1000..3000 sends every `period` ticks (multiples of it), the idle
+    device every 100 ticks around it: the run's samples are told from the idle ones by the
+    device's states, whatever the period; the ticks between are interpolated but never lost."""
+    execution = [t for t in range(1000, 3001) if t % period == 0]
+    lost = execution[5:8] if period < 100 else execution[5:6]
+    ticks = list(range(0, 1000, 100)) + [t for t in execution if t not in lost] + list(range(3100, 4001, 100))
+    cols, stream = columns(samples_at(ticks), period, states_of(999, 3000, 4000))
+    assert stream.first_tick == execution[0] and stream.lost_samples == len(lost)
+    assert stream.received == len(execution) - len(lost)
+    assert stream.longest_gap_ms == len(lost) * period
+    grid = np.arange(execution[0], execution[-1] + 1)
+    assert cols["t"].size == grid.size and np.allclose(cols["f_hat"], 5.0 * grid)
+
+
+def test_without_states_a_period_of_the_idle_telemetrys_length_finds_nothing_but_states_find_it() -> None:
+    ticks = list(range(0, 4001, 100))
+    assert columns(samples_at(ticks), 100)[0]["t"].size == 0
+    cols, stream = columns(samples_at(ticks), 100, states_of(995, 3005, 4000))
+    assert cols["t"].size == 2001 and stream.first_tick == 1000 and stream.lost_samples == 0
+
+
+def test_samples_past_the_runs_window_are_neither_kept_nor_counted() -> None:
+    execution = [t for t in range(1000, 5001, 10) if t != 4500]  # one lost after the window
+    cols, stream = columns(samples_at(execution), 10, states_of(995, 5005, 6000), max_rows=2001)
+    assert cols["t"].size == 2001 and stream.lost_samples == 0 and stream.received == 201
+
+
+def test_ticks_unwrap_across_the_16_bit_wrap_also_a_little_out_of_order() -> None:
+    tel = Telemetry()
+    raw = [65530, 65534, 2, 65535, 5, 1, 9]  # a status or position frame behind the latest one
+    assert [tel.unwrap(t) for t in raw] == [65530, 65534, 65538, 65535, 65541, 65537, 65545]
