@@ -59,8 +59,9 @@ def _cmd_fit(args: argparse.Namespace) -> int:
 
     from ..errors import ERR_FIT_ARGS, ERR_FIT_INACCURATE, ERR_FIT_TOLERANCE
     from ..model import tolerance as tol
-    from ..model.demo import load_demo, resample
+    from ..model.demo import resample
     from ..model.limits import check_skill_force
+    from ..model.multi import mean_profile
     from ..model.params import Gains, gains_for_object, load_gains
     from ..model.skill import DURATION_MAX_S, MAX_KERNELS
     from ..outputs import Outputs, check_target
@@ -69,7 +70,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     out = Path(args.output)
     targets = [args.output, args.output + ".json"] + ([args.plot] if args.plot else [])
     for i, t in enumerate(targets):  # refuse bad outputs before the work
-        real = check_target(t, [args.demo])
+        real = check_target(t, list(args.demo))
         if real in (check_target(u, ()) for u in targets[:i]):
             raise FsError(660, f"output {t!r} is given twice")
     if args.max_error is not None:
@@ -97,26 +98,27 @@ def _cmd_fit(args: argparse.Namespace) -> int:
         axis=args.axis,
         max_duration_s=DURATION_MAX_S,
     )
-    demo = load_demo(
-        args.demo,
-        position_column=args.position_column,
-        force_column=args.force_column,
-        learn=args.learn,
-        read=ropts,
-        force_sign=float(args.force_sign),
-        force_scale=args.force_scale,
-        tare=args.tare,
-        max_gap_s=args.max_gap,
-        stiffness_Npm=args.stiffness,
-        surface_m=args.surface_m,
-        y_column=args.y_column,
-    )
-    for note in demo.notes:
-        print(note)
-    # the fit works on the dt grid; the recording's own time and force stay for the error at its
-    # samples, its position is not needed any more (memory on long recordings)
-    grid_demo = resample(demo, args.dt)
-    demo.pos_m = np.zeros(0)
+    demos = [_load(path, args, ropts) for path in args.demo]
+    multi = None
+    if len(demos) == 1:
+        demo = demos[0]
+        for note in demo.notes:
+            print(note)
+        # the fit works on the dt grid; the recording's own time and force stay for the error at
+        # its samples, its position is not needed any more (memory on long recordings)
+        grid_demo = resample(demo, args.dt)
+        demo.pos_m = np.zeros(0)
+    else:
+        for d in demos:
+            for note in d.notes:
+                print(f"{d.source}: {note}")
+        grids = [resample(d, args.dt) for d in demos]
+        del demos
+        if args.periodic:
+            return _fit_periodic_multi(grids, args, out)
+        multi = mean_profile(grids, args.dt, keep_outliers=args.keep_outliers)
+        _print_alignment(multi, args.keep_outliers)
+        demo = grid_demo = multi.demo
     if args.periodic:
         return _fit_periodic(grid_demo, demo.source, args, out)
 
@@ -159,7 +161,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     sk = res.skill
     _apply_contact_wait(sk, args)
     check_skill_force(sk, str(out), force_limit_N=args.force_limit)
-    with Outputs(inputs=[args.demo]) as outs:  # skill, JSON twin and plot: all or nothing
+    with Outputs(inputs=list(args.demo)) as outs:  # skill, JSON twin and plot: all or nothing
         sk.write(out, outs=outs)
         if args.plot:
             from ..plot import fit_figure
@@ -201,7 +203,127 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     return 0
 
 
-def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path) -> int:
+def _load(path: str, args: argparse.Namespace, ropts: Any) -> Any:
+    """One recording read with the command's reading options."""
+    from ..model.demo import load_demo
+
+    return load_demo(
+        path,
+        position_column=args.position_column,
+        force_column=args.force_column,
+        learn=args.learn,
+        read=ropts,
+        force_sign=float(args.force_sign),
+        force_scale=args.force_scale,
+        tare=args.tare,
+        max_gap_s=args.max_gap,
+        stiffness_Npm=args.stiffness,
+        surface_m=args.surface_m,
+        y_column=args.y_column,
+    )
+
+
+def _print_alignment(multi: Any, keep_outliers: bool) -> None:
+    """Each recording's alignment on the common time and its deviation from the others' mean;
+    the outliers named."""
+    import numpy as np
+
+    print(f"{len(multi.alignments)} recordings aligned (affine time registration on the mean timing):")
+    for a in multi.alignments:
+        mark = ""
+        if a.outlier:
+            mark = (
+                "  OUTLIER (kept: --keep-outliers)"
+                if a.used
+                else "  OUTLIER: left out (--keep-outliers keeps it)"
+            )
+        print(
+            f"  {a.source}: idle lead {a.lead_s:.3f} s trimmed, stretch {a.stretch:.4f}, lag "
+            f"{a.lag_s * 1e3:+.1f} ms, deviation from the others' mean RMS {a.dev_rms_pct:.2f} %, "
+            f"max {a.dev_max_pct:.2f} % of max force{mark}"
+        )
+    used = [a for a in multi.alignments if a.used]
+    sig = multi.sigma_N
+    f_max = float(np.max(np.abs(multi.demo.force_N))) if multi.demo.force_N.size else 1.0
+    print(
+        f"mean profile of {len(used)} recordings: T = {multi.demo.t_s[-1]:.3f} s, max force {f_max:.4g} N, "
+        f"spread (1 sigma) mean {float(np.mean(sig)):.3g} N, largest {float(np.max(sig)):.3g} N, "
+        f"sensor noise {multi.noise_N:.3g} N"
+    )
+
+
+def _fit_periodic_multi(demos: list[Any], args: argparse.Namespace, out: Path) -> int:
+    """fit --periodic with several recordings: the mean of the steady strokes of every recording."""
+    from ..errors import ERR_FIT_ARGS
+    from ..model.fit import prepare
+    from ..model.multi import pooled_strokes
+    from ..model.periodic_fit import fit_strokes
+
+    if args.y_column is not None:
+        raise FsError(ERR_FIT_ARGS, "--y-column with --periodic learns from one recording: give one")
+    n0 = 50 if args.kernels is None else args.kernels
+    prep = [
+        prepare(
+            d,
+            args.stiffness,
+            n0,
+            args.method,
+            args.fit_gains,
+            args.surface_m,
+            args.dt,
+            args.fit_object_mass_kg,
+        )
+        for d in demos
+    ]
+    strokes, period, aligns, origin = pooled_strokes(
+        [d for _, d in prep], args.dt, args.period, keep_outliers=args.keep_outliers
+    )
+    print(f"{len(aligns)} recordings, strokes aligned in phase on the common period {period:.6g} s:")
+    for a in aligns:
+        mark = ""
+        if a.outlier:
+            mark = (
+                "  OUTLIER (kept: --keep-outliers)"
+                if a.used
+                else "  OUTLIER: left out (--keep-outliers keeps it)"
+            )
+        print(
+            f"  {a.source}: {int((origin == aligns.index(a)).sum())} steady strokes from t = {a.lead_s:.3f} s, "
+            f"period stretch {a.stretch:.4f}, phase lag {a.lag_s * 1e3:+.1f} ms, mean stroke's deviation "
+            f"from the others' RMS {a.dev_rms_pct:.2f} %, max {a.dev_max_pct:.2f} % of max force{mark}"
+        )
+    i0 = int(origin[0])
+    d0 = prep[i0][1]
+    d0.y_m = None
+
+    def fit_n(n: int) -> Any:
+        p, _ = prepare(
+            demos[i0],
+            args.stiffness,
+            n,
+            args.method,
+            args.fit_gains,
+            args.surface_m,
+            args.dt,
+            args.fit_object_mass_kg,
+        )
+        return fit_strokes(
+            d0,
+            strokes,
+            (period, 0.0),
+            args.stiffness,
+            n,
+            args.method,
+            args.fit_gains,
+            args.surface_m,
+            p,
+            args.dt,
+        )
+
+    return _fit_periodic(d0, f"{len(aligns)} recordings", args, out, fit_n)
+
+
+def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path, fit_n: Any = None) -> int:
     """fit --periodic: the mean stroke of the steady strokes as a periodic skill (format v4)."""
     from ..errors import ERR_FIT_TOLERANCE, ERR_PERIODIC_ARGS
     from ..model.limits import check_skill_force
@@ -213,7 +335,7 @@ def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path) -
             ERR_PERIODIC_ARGS, "--periodic runs until stopped or for --cycles: --end does not apply"
         )
 
-    def fit_n(n: int) -> Any:
+    def fit_one(n: int) -> Any:
         return fit_periodic(
             demo,
             args.stiffness,
@@ -225,6 +347,8 @@ def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path) -
             period_s=args.period,
             object_mass_kg=args.fit_object_mass_kg,
         )
+
+    fit_n = fit_one if fit_n is None else fit_n
 
     if args.max_error is None:
         res = fit_n(50 if args.kernels is None else args.kernels)
@@ -259,7 +383,7 @@ def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path) -
     sk = res.skill
     _apply_contact_wait(sk, args)
     check_skill_force(sk, str(out), force_limit_N=args.force_limit)
-    with Outputs(inputs=[args.demo]) as outs:  # skill, JSON twin and plot: all or nothing
+    with Outputs(inputs=list(args.demo)) as outs:  # skill, JSON twin and plot: all or nothing
         sk.write(out, outs=outs)
         if args.plot:
             from ..plot import periodic_figure
@@ -338,8 +462,9 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     """Add ``forceskill fit``."""
     p = sub.add_parser(
         "fit",
-        help="learn a force skill from one demonstration",
-        description="Learn a force skill from one demonstration (CSV with a header row, a "
+        help="learn a force skill from one demonstration or the mean of several",
+        description="Learn a force skill from one demonstration, or from the aligned mean of several "
+        "recordings of one task (CSV with a header row, a "
         "CAN log or a ROS 2 bag). Prints the approximation error in % of the maximum "
         "demonstrated force at the recorded samples; writes SKILL and SKILL.json. Refuses "
         "(nothing written) when the error is above 10 % or above --max-error.",
@@ -347,8 +472,15 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p.add_argument(
         "demo",
         metavar="DEMO",
+        nargs="+",
         help="demonstration file (.csv, .blf/.asc/.log/.trc[.gz], .mcap, "
-        "or a format added by a forceskill.readers plugin)",
+        "or a format added by a forceskill.readers plugin); several recordings of one task are "
+        "aligned in time and their mean is learned",
+    )
+    p.add_argument(
+        "--keep-outliers",
+        action="store_true",
+        help="several recordings: keep a recording named an outlier in the mean (default: left out)",
     )
     p.add_argument(
         "--stiffness",
