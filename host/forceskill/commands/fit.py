@@ -11,6 +11,10 @@ from ..errors import FsError
 from ..wire import TICK_S
 from ._args import add_force_limit, float_arg, int_arg
 
+#: the band's defaults (forceskill.model.multi: BAND_K, BAND_FLOOR_REL, BAND_POINTS)
+BAND_K = 3.0
+BAND_FLOOR_REL = 0.05
+BAND_POINTS = 100
 #: --contact-wait's time constant when only the threshold is given (s)
 CONTACT_TAU_DEFAULT_S = 0.05
 
@@ -41,7 +45,7 @@ def _apply_contact_wait(sk: Any, args: argparse.Namespace) -> None:
     """--contact-wait into the skill (then written as format v4)."""
     if args.contact_wait is not None:
         sk.contact_cN, sk.contact_tau_ms = args.contact_wait
-        sk.format_version = 4
+        sk.format_version = max(sk.format_version, 4)
 
 
 def _contact_line(sk: Any) -> str:
@@ -160,19 +164,23 @@ def _cmd_fit(args: argparse.Namespace) -> int:
         )
     sk = res.skill
     _apply_contact_wait(sk, args)
+    band = None
+    if multi is not None:
+        band = _attach_band(sk, multi.demo.force_N, multi.sigma_N, multi.noise_N, args)
     check_skill_force(sk, str(out), force_limit_N=args.force_limit)
     with Outputs(inputs=list(args.demo)) as outs:  # skill, JSON twin and plot: all or nothing
         sk.write(out, outs=outs)
         if args.plot:
-            from ..plot import fit_figure
+            from ..plot import fit_figure, multi_figure
 
-            fit_figure(
-                res,
-                args.plot,
-                title=f"{demo.source}: {args.method}, N = {sk.n_kernels}, "
-                f"max {err.max_pct:.2f} %, RMS {err.rms_pct:.2f} %",
-                outs=outs,
+            title = (
+                f"{demo.source}: {args.method}, N = {sk.n_kernels}, "
+                f"max {err.max_pct:.2f} %, RMS {err.rms_pct:.2f} %"
             )
+            if multi is None:
+                fit_figure(res, args.plot, title=title, outs=outs)
+            else:
+                multi_figure(res, multi, band, args.plot, title=title, outs=outs)
         outs.commit()
     f_max = float(np.max(np.abs(demo.force_N)))
     print(
@@ -190,6 +198,8 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     )
     if sk.contact_wait:
         print(_contact_line(sk))
+    if sk.has_band:
+        print(_band_line(sk, args))
     if sk.y_weights is not None:
         print(
             f"y path ({args.y_column}): start {sk.y_start_m:.6g} m, goal g_y {sk.goal_y_m:.6g} m, "
@@ -220,6 +230,29 @@ def _load(path: str, args: argparse.Namespace, ropts: Any) -> Any:
         stiffness_Npm=args.stiffness,
         surface_m=args.surface_m,
         y_column=args.y_column,
+    )
+
+
+def _attach_band(sk: Any, mean_N: Any, sigma_N: Any, noise_N: float, args: argparse.Namespace) -> Any:
+    """The band mean +- max(k*sigma, floor) into the skill (format v5); returns the per-sample
+    (lo, hi) for the plot."""
+    from ..model.multi import band_from_spread, band_points
+
+    lo, hi = band_from_spread(mean_N, sigma_N, noise_N, k=args.band_k, floor_rel=args.band_floor / 100.0)
+    sk.band_lo_N, sk.band_hi_N = band_points(lo, hi, args.band_points)
+    sk.format_version = 5
+    return lo, hi
+
+
+def _band_line(sk: Any, args: argparse.Namespace) -> str:
+    """What fit prints of the skill's band."""
+    import numpy as np
+
+    w = sk.band_hi_N - sk.band_lo_N
+    return (
+        f"band: mean +- max({args.band_k:g} sigma, floor {args.band_floor:g} % of max force or "
+        f"{args.band_k:g} noise deviations) at {sk.band_points} points over the skill's time, width "
+        f"{float(np.min(w)):.3g}..{float(np.max(w)):.3g} N (format v5)"
     )
 
 
@@ -254,9 +287,11 @@ def _print_alignment(multi: Any, keep_outliers: bool) -> None:
 
 def _fit_periodic_multi(demos: list[Any], args: argparse.Namespace, out: Path) -> int:
     """fit --periodic with several recordings: the mean of the steady strokes of every recording."""
+    import numpy as np
+
     from ..errors import ERR_FIT_ARGS
     from ..model.fit import prepare
-    from ..model.multi import pooled_strokes
+    from ..model.multi import noise_sigma, pooled_strokes
     from ..model.periodic_fit import fit_strokes
 
     if args.y_column is not None:
@@ -295,6 +330,8 @@ def _fit_periodic_multi(demos: list[Any], args: argparse.Namespace, out: Path) -
     i0 = int(origin[0])
     d0 = prep[i0][1]
     d0.y_m = None
+
+    args.multi_noise_N = float(np.median([noise_sigma(d.force_N) for _, d in prep]))
 
     def fit_n(n: int) -> Any:
         p, _ = prepare(
@@ -382,13 +419,17 @@ def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path, f
         )
     sk = res.skill
     _apply_contact_wait(sk, args)
+    band = None
+    if len(args.demo) > 1:
+        sigma = res.strokes_N.std(axis=0, ddof=1)
+        band = _attach_band(sk, res.mean_stroke_N, sigma, args.multi_noise_N, args)
     check_skill_force(sk, str(out), force_limit_N=args.force_limit)
     with Outputs(inputs=list(args.demo)) as outs:  # skill, JSON twin and plot: all or nothing
         sk.write(out, outs=outs)
         if args.plot:
             from ..plot import periodic_figure
 
-            periodic_figure(res, args.plot, outs=outs)
+            periodic_figure(res, args.plot, outs=outs, band=band)
         outs.commit()
     k = res.strokes_N.shape[0]
     print(
@@ -418,6 +459,8 @@ def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path, f
         )
     if sk.contact_wait:
         print(_contact_line(sk))
+    if sk.has_band:
+        print(_band_line(sk, args))
     print(
         f"wrote {out} ({out.stat().st_size} bytes) and {out}.json"
         + (f", plot {args.plot}" if args.plot else "")
@@ -477,10 +520,33 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         "or a format added by a forceskill.readers plugin); several recordings of one task are "
         "aligned in time and their mean is learned",
     )
-    p.add_argument(
+    mg = p.add_argument_group("several recordings: the mean and the demonstrated band (format v5)")
+    mg.add_argument(
         "--keep-outliers",
         action="store_true",
-        help="several recordings: keep a recording named an outlier in the mean (default: left out)",
+        help="keep a recording named an outlier in the mean and the band (default: left out)",
+    )
+    mg.add_argument(
+        "--band-k",
+        type=float_arg,
+        default=BAND_K,
+        metavar="K",
+        help=f"band half-width in standard deviations of the recordings about their mean ({BAND_K:g})",
+    )
+    mg.add_argument(
+        "--band-floor",
+        type=float_arg,
+        default=100.0 * BAND_FLOOR_REL,
+        metavar="PCT",
+        help="the band's smallest half-width in %% of the mean's max force (at least K sensor noise "
+        f"deviations; {100.0 * BAND_FLOOR_REL:g})",
+    )
+    mg.add_argument(
+        "--band-points",
+        type=int_arg,
+        default=BAND_POINTS,
+        metavar="M",
+        help=f"points of the stored band over the skill's time, 2..128 ({BAND_POINTS})",
     )
     p.add_argument(
         "--stiffness",

@@ -9,8 +9,8 @@ affine map of the phase, recording time ``t = stretch*tau + lag`` on the common 
 the reference after the best gain, then a finer grid around the best); the reference is first
 the recording of median duration, then the mean of the aligned recordings (ALIGN_ITERATIONS
 times); the maps are finally expressed on the mean timing (mean stretch 1, mean lag 0). The mean
-profile and its spread (standard deviation across recordings) are taken per sample of the
-common time. A recording whose RMS deviation from the mean of the others exceeds
+profile and its spread (standard deviation across recordings, a moving RMS over SIGMA_SMOOTH_S)
+are taken per sample of the common time. A recording whose RMS deviation from the mean of the others exceeds
 OUTLIER_FACTOR times the median deviation (and OUTLIER_MIN_PCT of the maximum force; both
 against the per-sample median of all recordings) is named an
 outlier and, unless kept, left out of the mean and the band.
@@ -55,7 +55,9 @@ OUTLIER_MIN_PCT = 15.0
 BAND_K = 3.0
 BAND_FLOOR_REL = 0.05
 BAND_POINTS = 100
-BAND_POINTS_MAX = 256  # the skill format's cap (skill.BAND_MAX_POINTS)
+#: the spread per sample is smoothed (moving RMS) over this window
+SIGMA_SMOOTH_S = 0.05
+BAND_POINTS_MAX = 128  # the skill format's cap (skill.BAND_MAX_POINTS)
 
 
 @dataclass
@@ -204,6 +206,7 @@ def mean_profile(demos: list[Demo], dt_s: float, keep_outliers: bool = False) ->
     rows = _warp_each(trimmed, grid, stretch, lag, "force_N")
     mean_f = rows[used].mean(axis=0)
     sigma = rows[used].std(axis=0, ddof=1) if np.count_nonzero(used) > 1 else np.zeros(n)
+    sigma = _smooth_rms(sigma, max(1, int(round(SIGMA_SMOOTH_S / dt_s))))
     f_max = float(np.max(np.abs(mean_f))) or 1.0
     all_used = np.ones(len(demos), dtype=bool)
     rms, mx = _dev(rows, used if np.count_nonzero(used) > 1 else all_used, f_max)
@@ -221,6 +224,16 @@ def mean_profile(demos: list[Demo], dt_s: float, keep_outliers: bool = False) ->
     mean_demo = Demo(grid, pos, mean_f, src, max(d.max_gap_s for d in demos), [], y)
     noise = float(np.median([noise_sigma(d.force_N) for d in demos]))
     return MeanProfile(mean_demo, sigma, rows, aligns, noise)
+
+
+def _smooth_rms(sigma: np.ndarray, width: int) -> np.ndarray:
+    """sqrt of the moving mean of sigma^2 over ``width`` samples (the ends held): the spread
+    without the sample-to-sample scatter of its estimate."""
+    if width < 2 or sigma.size < width:
+        return sigma
+    v = np.pad(sigma * sigma, (width // 2, width - 1 - width // 2), mode="edge")
+    out: np.ndarray = np.sqrt(np.convolve(v, np.full(width, 1.0 / width), mode="valid"))
+    return out
 
 
 def _outliers(rows: np.ndarray) -> np.ndarray:

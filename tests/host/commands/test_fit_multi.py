@@ -5,6 +5,7 @@ from __future__ import annotations
 import gzip
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from forceskill import cli
@@ -73,3 +74,43 @@ def test_fit_periodic_several_recordings(tmp_path: Path, capsys: pytest.CaptureF
     text = capsys.readouterr().out
     assert "3 recordings, strokes aligned in phase" in text
     assert Skill.read(out).periodic
+
+
+def test_the_band_is_stored_rolled_out_shown_and_plotted(
+    recordings: list[Path], tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out, png, csv = tmp_path / "m.skill", tmp_path / "m.png", tmp_path / "r.csv"
+    args = ["fit", *map(str, recordings), "-k", "100", "-o", str(out), "--plot", str(png)]
+    assert cli.main([*args, "--band-k", "2.5", "--band-floor", "4", "--band-points", "40"]) == 0
+    assert "band: mean +- max(2.5 sigma, floor 4 % of max force" in capsys.readouterr().out
+    sk = Skill.read(out)
+    assert sk.format_version == 5 and sk.band_points == 40 and png.stat().st_size > 10_000
+    assert sk.band_lo_N is not None and sk.band_hi_N is not None
+    assert np.all(sk.band_hi_N - sk.band_lo_N >= 2 * 0.04 * 0.99 * np.max(sk.band_hi_N) / 1.1)
+    assert cli.main(["rollout", str(out), "-o", str(csv), "--goal-scale", "1.5"]) == 0
+    assert csv.read_text().split("\n", 1)[0] == "t,f_hat,f_band_lo,f_band_hi"
+    r = np.loadtxt(csv, delimiter=",", skiprows=1)
+    assert np.all(r[:, 2] <= r[:, 1] + 1e-9) and np.all(r[:, 1] <= r[:, 3] + 1e-9)
+    capsys.readouterr()
+    assert cli.main(["show", str(out)]) == 0
+    assert "demonstrated band at 40 points" in capsys.readouterr().out
+
+
+def test_one_recording_writes_no_band(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    _, demos = synthetic.pressing_set(seed=4, n=1)
+    out = tmp_path / "one.skill"
+    assert cli.main(["fit", str(_write(tmp_path / "d.csv", demos[0])), "-k", "100", "-o", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "band" not in text and "aligned" not in text
+    assert Skill.read(out).format_version == 2
+
+
+def test_the_command_defaults_are_the_models() -> None:
+    from forceskill.commands import fit
+    from forceskill.model import multi
+
+    assert (fit.BAND_K, fit.BAND_FLOOR_REL, fit.BAND_POINTS) == (
+        multi.BAND_K,
+        multi.BAND_FLOOR_REL,
+        multi.BAND_POINTS,
+    )
