@@ -261,7 +261,10 @@ def _print_alignment(multi: Any, keep_outliers: bool) -> None:
     the outliers named."""
     import numpy as np
 
-    print(f"{len(multi.alignments)} recordings aligned (affine time registration on the mean timing):")
+    print(
+        f"{len(multi.alignments)} recordings aligned on the mean timing (affine registration, then a "
+        "piecewise-linear time warp):"
+    )
     for a in multi.alignments:
         mark = ""
         if a.outlier:
@@ -272,7 +275,7 @@ def _print_alignment(multi: Any, keep_outliers: bool) -> None:
             )
         print(
             f"  {a.source}: idle lead {a.lead_s:.3f} s trimmed, stretch {a.stretch:.4f}, lag "
-            f"{a.lag_s * 1e3:+.1f} ms, deviation from the others' mean RMS {a.dev_rms_pct:.2f} %, "
+            f"{a.lag_s * 1e3:+.1f} ms, warp +-{a.warp_s * 1e3:.0f} ms, deviation from the others' mean RMS {a.dev_rms_pct:.2f} %, "
             f"max {a.dev_max_pct:.2f} % of max force{mark}"
         )
     used = [a for a in multi.alignments if a.used]

@@ -7,8 +7,11 @@ deviations; LEAD_KEEP_S of the quiet lead is kept); the recordings are registere
 affine map of the phase, recording time ``t = stretch*tau + lag`` on the common time ``tau``
 (``register``: a vectorised grid search over stretch and lag minimising the squared distance to
 the reference after the best gain, then a finer grid around the best); the reference is first
-the recording of median duration, then the mean of the aligned recordings (ALIGN_ITERATIONS
-times); the maps are finally expressed on the mean timing (mean stretch 1, mean lag 0). The mean
+the recording closest to the others, then the mean of the aligned recordings (ALIGN_ITERATIONS
+times); in the last pass a piecewise-linear time offset over WARP_KNOTS knots refines each affine
+map (``refine_warp``: the operator's speed varies within a stroke); the maps are finally
+expressed on the mean timing (the mean of the maps is the common time: mean stretch 1, mean lag 0,
+mean offset 0). The mean
 profile and its spread (standard deviation across recordings, a moving RMS over SIGMA_SMOOTH_S)
 are taken per sample of the common time. A recording whose RMS deviation from the mean of the others exceeds
 OUTLIER_FACTOR times the median deviation (and OUTLIER_MIN_PCT of the maximum force; both
@@ -47,6 +50,13 @@ GRID_STRETCH = 61
 GRID_LAG = 61
 ALIGN_SAMPLES = 600
 ALIGN_ITERATIONS = 3
+#: the non-linear refinement: WARP_KNOTS interior knots of a piecewise-linear time offset added
+#: to the affine map, each searched within +-WARP_MAX_REL of the duration (WARP_GRID values,
+#: WARP_SWEEPS coordinate sweeps), the knots kept in order
+WARP_KNOTS = 10
+WARP_MAX_REL = 0.06
+WARP_GRID = 25
+WARP_SWEEPS = 3
 #: an outlier: RMS deviation from the others' mean above OUTLIER_FACTOR x the median deviation
 #: and above OUTLIER_MIN_PCT % of max force (three recordings or more)
 OUTLIER_FACTOR = 4.0
@@ -71,6 +81,8 @@ class Alignment:
     duration_s: float
     stretch: float = 1.0
     lag_s: float = 0.0
+    #: the largest |time offset| of the non-linear refinement on top of the affine map (s)
+    warp_s: float = 0.0
     gain: float = 1.0
     dev_rms_pct: float = 0.0
     dev_max_pct: float = 0.0
@@ -158,6 +170,37 @@ def register(
     return math.exp(centre_ls), centre_lag, gain
 
 
+def refine_warp(
+    t: np.ndarray,
+    f: np.ndarray,
+    tau: np.ndarray,
+    ref: np.ndarray,
+    affine: tuple[float, float],
+    knots: np.ndarray,
+) -> np.ndarray:
+    """Time offsets at ``knots`` (the ends 0) of the piecewise-linear warp t = stretch*tau + lag +
+    offset(tau) that best matches ref after a gain: coordinate search, knot by knot, on a grid
+    (vectorised over the grid), the warp kept increasing."""
+    stretch, lag = affine
+    span = float(knots[-1] - knots[0])
+    off = np.zeros(knots.size)
+    grid = np.linspace(-WARP_MAX_REL * span, WARP_MAX_REL * span, WARP_GRID)
+    base = stretch * tau + lag
+    for _ in range(WARP_SWEEPS):
+        for k in range(1, knots.size - 1):
+            cand = np.repeat(off[None, :], grid.size, axis=0)
+            cand[:, k] = grid
+            w = stretch * knots + cand  # warp at the knots (lag cancels in the order test)
+            ok = np.all(np.diff(w, axis=1) > 0.0, axis=1)
+            q = base[None, :] + np.stack([np.interp(tau, knots, c) for c in cand])
+            x = np.interp(q.ravel(), t, f).reshape(q.shape)
+            xx = np.einsum("ij,ij->i", x, x)
+            xr = x @ ref
+            resid = np.where(ok & (xx > 0.0), -(xr * xr) / np.where(xx > 0.0, xx, 1.0), np.inf)
+            off[k] = grid[int(np.argmin(resid))]
+    return off
+
+
 def _dev(aligned: np.ndarray, used: np.ndarray, f_max: float) -> tuple[np.ndarray, np.ndarray]:
     """Each row's RMS and max deviation from the mean of the other used rows, % of f_max."""
     k = aligned.shape[0]
@@ -189,21 +232,35 @@ def mean_profile(demos: list[Demo], dt_s: float, keep_outliers: bool = False) ->
     ref = np.interp(tau, trimmed[i_ref].t_s, trimmed[i_ref].force_N)
     used = np.ones(len(demos), dtype=bool)
     maps = np.zeros((len(demos), 3))
-    for _ in range(ALIGN_ITERATIONS):
+    knots = np.linspace(0.0, t_ref, WARP_KNOTS + 2)
+    offs = np.zeros((len(demos), knots.size))
+    for it in range(ALIGN_ITERATIONS):
         maps = np.array([register(d.t_s, d.force_N, tau, ref, t_ref) for d in trimmed])
-        rows = _warp_each(trimmed, tau, maps[:, 0], maps[:, 1], "force_N")
+        if it == ALIGN_ITERATIONS - 1:  # the non-linear refinement against the affine mean
+            offs = np.stack(
+                [
+                    refine_warp(d.t_s, d.force_N, tau, ref, (m[0], m[1]), knots)
+                    for d, m in zip(trimmed, maps, strict=True)
+                ]
+            )
+        rows = _warp_rows(trimmed, tau, maps, knots, offs)
         if len(demos) >= 3 and not keep_outliers:
             used = ~_outliers(rows)
         ref = rows[used].mean(axis=0)
-    # the common time on the mean timing of the used recordings: mean stretch 1, mean lag 0
+    # the common time on the mean timing of the used recordings: the mean warp W(tau) (affine and
+    # offsets averaged) is the common time, each recording's map is W_i(W^-1(common time))
     s_bar = float(np.mean(maps[used, 0]))
     l_bar = float(np.mean(maps[used, 1]))
-    stretch = maps[:, 0] / s_bar
-    lag = maps[:, 1] - stretch * l_bar
+    o_bar = offs[used].mean(axis=0)
     t_end = s_bar * t_ref + l_bar
     n = int(round(t_end / dt_s)) + 1
     grid = np.arange(n) * dt_s
-    rows = _warp_each(trimmed, grid, stretch, lag, "force_N")
+    fine = np.linspace(-0.5 * t_ref, 1.5 * t_ref, 8 * n_s)
+    w_bar = s_bar * fine + l_bar + np.interp(fine, knots, o_bar, left=0.0, right=0.0)
+    tau_of_grid = np.interp(grid, w_bar, fine)
+    rows = _warp_rows(trimmed, tau_of_grid, maps, knots, offs)
+    stretch = maps[:, 0] / s_bar
+    lag = maps[:, 1] - stretch * l_bar
     mean_f = rows[used].mean(axis=0)
     sigma = rows[used].std(axis=0, ddof=1) if np.count_nonzero(used) > 1 else np.zeros(n)
     sigma = _smooth_rms(sigma, max(1, int(round(SIGMA_SMOOTH_S / dt_s))))
@@ -213,13 +270,14 @@ def mean_profile(demos: list[Demo], dt_s: float, keep_outliers: bool = False) ->
     flagged = _outliers(rows) if len(demos) >= 3 else np.zeros(len(demos), dtype=bool)
     for i, a in enumerate(aligns):
         a.stretch, a.lag_s, a.gain = float(stretch[i]), float(lag[i]), float(maps[i, 2])
+        a.warp_s = float(np.max(np.abs(offs[i] - o_bar)))
         a.dev_rms_pct, a.dev_max_pct = float(rms[i]), float(mx[i])
         a.outlier = bool(flagged[i])
         a.used = bool(used[i])
-    pos = _warp_each(trimmed, grid, stretch, lag, "pos_m")[used].mean(axis=0)
+    pos = _warp_rows(trimmed, tau_of_grid, maps, knots, offs, "pos_m")[used].mean(axis=0)
     y = None
     if all(d.y_m is not None for d in trimmed):
-        y = _warp_each(trimmed, grid, stretch, lag, "y_m")[used].mean(axis=0)
+        y = _warp_rows(trimmed, tau_of_grid, maps, knots, offs, "y_m")[used].mean(axis=0)
     src = f"mean of {int(np.count_nonzero(used))} recordings"
     mean_demo = Demo(grid, pos, mean_f, src, max(d.max_gap_s for d in demos), [], y)
     noise = float(np.median([noise_sigma(d.force_N) for d in demos]))
@@ -266,13 +324,20 @@ def _medoid(demos: list[Demo], durations: np.ndarray, dt_s: float) -> int:
     return int(np.argmin(cost))
 
 
-def _warp_each(
-    demos: list[Demo], grid: np.ndarray, stretch: np.ndarray, lag: np.ndarray, attr: str
+def _warp_rows(
+    demos: list[Demo],
+    tau: np.ndarray,
+    maps: np.ndarray,
+    knots: np.ndarray,
+    offs: np.ndarray,
+    attr: str = "force_N",
 ) -> np.ndarray:
-    """Each recording's column ``attr`` sampled at t = stretch_i*grid + lag_i: (recordings, grid)."""
-    out = np.empty((len(demos), grid.size))
+    """Each recording's column ``attr`` at t = stretch_i*tau + lag_i + offset_i(tau) (the offsets
+    0 outside the knots): (recordings, tau)."""
+    out = np.empty((len(demos), tau.size))
     for i, d in enumerate(demos):
-        out[i] = np.interp(stretch[i] * grid + lag[i], d.t_s, getattr(d, attr))
+        q = maps[i, 0] * tau + maps[i, 1] + np.interp(tau, knots, offs[i], left=0.0, right=0.0)
+        out[i] = np.interp(q, d.t_s, getattr(d, attr))
     return out
 
 

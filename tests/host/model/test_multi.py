@@ -49,7 +49,7 @@ def test_mean_profile_is_closer_to_the_truth_than_each_recording() -> None:
 
 
 def test_an_outlier_is_named_and_left_out_unless_kept() -> None:
-    _, demos = synthetic.pressing_set(seed=3, n=5)
+    _, demos = synthetic.pressing_set(seed=1, n=5)
     odd = synthetic.engraving(seed=4, duration_s=6.5, k_v=100.0, f_max_N=4.5, noise_N=0.03)
     demos.insert(2, Demo(odd.t_s, odd.pos_m, odd.force_N, "odd"))
     mp = multi.mean_profile(demos, 0.001)
