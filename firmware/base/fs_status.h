@@ -64,6 +64,9 @@ typedef enum {
     /* format v4: the contact-wait fields out of range (a time constant above 10 s, or one
      * without a threshold) */
     FS_ERR_SKILL_CONTACT_WAIT = 233,
+    /* format v5: the band's point count outside 2..128, its reserved fields not 0, or a lower
+     * bound above the upper one */
+    FS_ERR_SKILL_BAND = 234,
 
     /* 3xx: fixed-point conversion (firmware/fixed) */
     FS_ERR_FIXED_OVERFLOW = 300,        /* a value does not fit its fixed-point format */

@@ -34,7 +34,9 @@
 #define pfc_step pfc_step_f32
 #define skill_image_size skill_image_size_f32
 #define skill_image_size_v skill_image_size_v_f32
+#define skill_image_size_band skill_image_size_band_f32
 #define skill_crc32 skill_crc32_f32
+#define skill_band_at skill_band_at_f32
 #define skill_parse_begin skill_parse_begin_f32
 #define skill_parse_run skill_parse_run_f32
 #define skill_parse skill_parse_f32

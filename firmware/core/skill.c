@@ -1,4 +1,4 @@
-/* Skill image v2/v3/v4 parser (docs/skill_format.md). Every check runs on the stored float64 values in
+/* Skill image v2..v5 parser (docs/skill_format.md). Every check runs on the stored float64 values in
  * double, in the documented order, so the double and float builds accept and reject the same
  * images as the Python reader; the float build then rounds the values to float. */
 #include "skill.h"
@@ -35,6 +35,7 @@
 #define OFF_CONTACT_CN 202u /* v4: contact-wait threshold u16, 0.01 N (0: off) */
 #define OFF_CONTACT_MS 204u /* v4: contact-wait time constant u16, ms */
 #define OFF_RESERVED 206u   /* v4: reserved u16 (0) */
+#define OFF_BAND_N 208u     /* v5: the band's point count u16, then three reserved u16 (0) */
 #define SKILL_N_HEADER_F64_V2 15u
 #define SKILL_N_HEADER_F64_V3 17u
 #define SKILL_N_HEADER_F64_V4 23u
@@ -53,12 +54,21 @@ uint32_t skill_image_size(uint16_t n_kernels)
 
 uint32_t skill_image_size_v(uint16_t version, uint16_t n_kernels, uint8_t has_y)
 {
+    return skill_image_size_band(version, n_kernels, has_y, 0u);
+}
+
+uint32_t skill_image_size_band(uint16_t version, uint16_t n_kernels, uint8_t has_y, uint16_t band_n)
+{
     if (version == 2u) {
         return SKILL_HEADER_SIZE_V2 + SKILL_KERNEL_BYTES * (uint32_t)n_kernels + SKILL_CRC_SIZE;
     }
-    return ((version >= 4u) ? SKILL_HEADER_SIZE_V4 : SKILL_HEADER_SIZE) +
+    const uint32_t header = (version >= 5u)   ? SKILL_HEADER_SIZE_V5
+                            : (version >= 4u) ? SKILL_HEADER_SIZE_V4
+                                              : SKILL_HEADER_SIZE;
+    const uint32_t band = (version >= 5u) ? 16u * (uint32_t)band_n : 0u;
+    return header +
            ((has_y != 0u) ? SKILL_KERNEL_BYTES_Y : SKILL_KERNEL_BYTES) * (uint32_t)n_kernels +
-           SKILL_CRC_SIZE;
+           band + SKILL_CRC_SIZE;
 }
 
 /* Reflected polynomial 0xEDB88320 (zlib), processed a nibble at a time: 16-entry table. */
@@ -171,7 +181,8 @@ static fs_status_t check_frame(skill_parser_t *p)
     }
     const uint32_t header = (version == 2u)   ? SKILL_HEADER_SIZE_V2
                             : (version == 3u) ? SKILL_HEADER_SIZE
-                                              : SKILL_HEADER_SIZE_V4;
+                            : (version == 4u) ? SKILL_HEADER_SIZE_V4
+                                              : SKILL_HEADER_SIZE_V5;
     if (len < header) {
         return FS_ERR_SKILL_TOO_SHORT;
     }
@@ -182,9 +193,11 @@ static fs_status_t check_frame(skill_parser_t *p)
     const uint32_t total = rd_u32(buf, OFF_TOTAL_LENGTH);
     const uint8_t has_y = (uint8_t)(version >= 3u &&
                                     (rd_u16(buf, OFF_FLAGS) & SKILL_FLAG_Y_AXIS) != 0u);
-    if (total != len || total != skill_image_size_v(version, n, has_y)) {
+    const uint16_t band_n = (version >= 5u) ? rd_u16(buf, OFF_BAND_N) : 0u;
+    if (total != len || total != skill_image_size_band(version, n, has_y, band_n)) {
         return FS_ERR_SKILL_LENGTH;
     }
+    p->band_n = band_n;
     p->version = version;
     p->n = n;
     p->header = header;
@@ -363,6 +376,7 @@ enum {
     SP_DERIVE,  /* alpha, beta, gamma from the fit gains, DMP_DERIVE_PARTS units */
     SP_GAINS,   /* the stored ones against them, and the flags */
     SP_KIND,    /* the kind's fields (v4) */
+    SP_BAND,    /* v5: each band point's lower <= upper, in the core's type, one a unit */
     SP_FILL,    /* the header's values in the core's type */
     SP_KERNELS, /* each kernel's values in the core's type, one a unit */
     SP_FINISH,  /* the x-axis gains and the end policy */
@@ -382,11 +396,30 @@ void skill_parse_begin(skill_parser_t *p, const uint8_t *buf, uint32_t len, skil
     p->n = 0u;
     p->has_y = 0u;
     p->kind = SKILL_KIND_DISCRETE;
+    p->band_n = 0u;
     p->stage = SP_FRAME;
     p->status = (buf == NULL || out == NULL) ? FS_ERR_NULL_ARG : FS_OK;
     if (p->status != FS_OK) {
         p->stage = SP_DONE;
     }
+}
+
+/* v5: band point i's lower bound at most its upper one (234), both in the core's type; true once
+ * the last point is done (at once without a band). */
+static bool parse_band(skill_parser_t *p, uint32_t i)
+{
+    if (p->band_n == 0u) {
+        return true;
+    }
+    const uint32_t off = p->header + 8u * ((p->has_y != 0u) ? 4u : 3u) * (uint32_t)p->n + 8u * i;
+    const double lo = rd_f64(p->buf, off);
+    const double hi = rd_f64(p->buf, off + 8u * (uint32_t)p->band_n);
+    if (!(lo <= hi)) {
+        p->status = FS_ERR_SKILL_BAND;
+    } else if (!(to_real(lo, &p->out->band_lo_N[i]) && to_real(hi, &p->out->band_hi_N[i]))) {
+        p->status = FS_ERR_SKILL_RANGE; /* valid in double, beyond the core's type */
+    }
+    return i + 1u >= p->band_n;
 }
 
 /* One unit of the per-item stages: true once the stage's last item is done. */
@@ -402,7 +435,7 @@ static bool parse_item(skill_parser_t *p)
         const uint32_t n_hdr = (p->version == 2u)   ? SKILL_N_HEADER_F64_V2
                                : (p->version == 3u) ? SKILL_N_HEADER_F64_V3
                                                     : SKILL_N_HEADER_F64_V4;
-        const uint32_t n_f64 = n_hdr + ((p->has_y != 0u) ? 4u : 3u) * n;
+        const uint32_t n_f64 = n_hdr + ((p->has_y != 0u) ? 4u : 3u) * n + 2u * p->band_n;
         const uint32_t first = i * SKILL_PARSE_F64_PER_UNIT;
         for (uint32_t k = first; k < n_f64 && k < first + SKILL_PARSE_F64_PER_UNIT; k++) {
             const uint32_t off = (k < n_hdr) ? OFF_DT + 8u * k : p->header + 8u * (k - n_hdr);
@@ -428,6 +461,7 @@ static bool parse_item(skill_parser_t *p)
         return i + 1u >= n;
     }
     case SP_DERIVE: p->status = derive_gains(p, i); return i + 1u >= DMP_DERIVE_PARTS;
+    case SP_BAND: return parse_band(p, i);
     case SP_KERNELS:
         if (!fill_kernel(p, i)) {
             p->status = FS_ERR_SKILL_RANGE; /* valid in double, beyond the core's type */
@@ -463,6 +497,7 @@ static void parse_once(skill_parser_t *p)
                               ? SKILL_END_RELEASE
                               : SKILL_END_HOLD;
         out->kind = p->kind;
+        out->band_n = p->band_n;
         out->contact_threshold_N = FS_R(0.0);
         out->contact_tau_s = FS_R(0.0);
         if (p->version >= 4u) {
@@ -494,6 +529,12 @@ static bool parse_crc(skill_parser_t *p)
         const uint16_t kind = rd_u16(p->buf, OFF_KIND);
         if (kind > SKILL_KIND_PERIODIC || rd_u16(p->buf, OFF_RESERVED) != 0u) {
             p->status = FS_ERR_SKILL_KIND;
+        } else if (p->version >= 5u &&
+                   (p->band_n < SKILL_BAND_MIN_POINTS || p->band_n > SKILL_BAND_MAX_POINTS ||
+                    rd_u16(p->buf, OFF_BAND_N + 2u) != 0u ||
+                    rd_u16(p->buf, OFF_BAND_N + 4u) != 0u ||
+                    rd_u16(p->buf, OFF_BAND_N + 6u) != 0u)) {
+            p->status = FS_ERR_SKILL_BAND;
         }
         p->kind = (uint8_t)kind;
     }
@@ -513,7 +554,7 @@ bool skill_parse_run(skill_parser_t *p, uint32_t max_units)
                                                 : SKILL_PARSE_INIT_KERNELS);
             p->status = stage_done ? p->init.status : FS_OK;
         } else if (p->stage == SP_FINITE || p->stage == SP_WIDTHS || p->stage == SP_CENTRES ||
-                   p->stage == SP_DERIVE || p->stage == SP_KERNELS) {
+                   p->stage == SP_DERIVE || p->stage == SP_BAND || p->stage == SP_KERNELS) {
             stage_done = parse_item(p);
         } else {
             parse_once(p);
@@ -535,4 +576,39 @@ fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out)
     while (!skill_parse_run(&p, UINT32_MAX)) {
     }
     return p.status;
+}
+
+fs_status_t skill_band_at(const skill_t *sk, fs_real_t s, fs_real_t goal_scale,
+                          fs_real_t amplitude_scale, fs_real_t *lo_N, fs_real_t *hi_N)
+{
+    if (sk == NULL || lo_N == NULL || hi_N == NULL) {
+        return FS_ERR_NULL_ARG;
+    }
+    if (sk->band_n < SKILL_BAND_MIN_POINTS) {
+        return FS_ERR_SKILL_BAND;
+    }
+    const int periodic = (sk->kind == SKILL_KIND_PERIODIC);
+    fs_real_t x = (s > FS_R(0.0)) ? s : FS_R(0.0); /* also NaN -> 0 */
+    if (periodic && x < FS_R(4.0e9)) {
+        x = x - (fs_real_t)(uint32_t)x; /* the fraction of the period */
+    }
+    x = (x > FS_R(1.0)) ? FS_R(1.0) : x;
+    const fs_real_t pos = x * (fs_real_t)(sk->band_n - 1u);
+    uint32_t i = (uint32_t)pos;
+    if (i > (uint32_t)sk->band_n - 2u) {
+        i = (uint32_t)sk->band_n - 2u;
+    }
+    const fs_real_t frac = pos - (fs_real_t)i;
+    const fs_real_t lo = sk->band_lo_N[i] + frac * (sk->band_lo_N[i + 1u] - sk->band_lo_N[i]);
+    const fs_real_t hi = sk->band_hi_N[i] + frac * (sk->band_hi_N[i + 1u] - sk->band_hi_N[i]);
+    if (periodic) {
+        const fs_real_t g = sk->dmp.goal_N;
+        *lo_N = goal_scale * g + amplitude_scale * (lo - g);
+        *hi_N = goal_scale * g + amplitude_scale * (hi - g);
+    } else {
+        const fs_real_t f0 = sk->dmp.force0_N;
+        *lo_N = f0 + goal_scale * (lo - f0);
+        *hi_N = f0 + goal_scale * (hi - f0);
+    }
+    return FS_OK;
 }

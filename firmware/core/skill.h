@@ -1,6 +1,7 @@
-/* Skill image v2/v3/v4 (docs/skill_format.md): little-endian, versioned header, arrays of
+/* Skill image v2..v5 (docs/skill_format.md): little-endian, versioned header, arrays of
  * centres, widths and weights (v3/v4 with the y DMP: and the y weights), CRC-32 (zlib) over
- * everything before it; v4 adds the kind (discrete or periodic) and the periodic DMP's fields.
+ * everything before it; v4 adds the kind (discrete or periodic) and the periodic DMP's fields,
+ * v5 the demonstrated band (lower and upper force bounds over the skill's normalised time).
  * Python writes it (host/forceskill/model/skill.py); this parses and validates it into a ready
  * dmp_model_t. */
 #ifndef SKILL_H
@@ -13,18 +14,22 @@
 #include "pfc.h"
 
 #define SKILL_MAGIC 0x4C4B5346u     /* bytes "FSKL" */
-#define SKILL_FORMAT_VERSION 4u     /* native: the kind, the force DMP and an optional y DMP */
+#define SKILL_FORMAT_VERSION 5u     /* native: the kind, the DMPs and an optional band */
 #define SKILL_FORMAT_VERSION_MIN 2u /* oldest read: force only (v1 is refused) */
 #define SKILL_HEADER_SIZE_V2 136u
 #define SKILL_HEADER_SIZE 152u    /* v3: the v2 header, then y_start_m and goal_y_m */
 #define SKILL_HEADER_SIZE_V4 208u /* v4: the v3 header, 6 periodic f64, kind u16, reserved */
+#define SKILL_HEADER_SIZE_V5 216u /* v5: the v4 header, the band's point count u16, 3 reserved */
+#define SKILL_BAND_MIN_POINTS 2u
+#define SKILL_BAND_MAX_POINTS 128u /* v5: the band's points, lower and upper (f64 each) */
 #define SKILL_CRC_SIZE 4u
 #define SKILL_KERNEL_BYTES 24u   /* per kernel: centre, width, weight (f64 each) */
 #define SKILL_KERNEL_BYTES_Y 32u /* ... and the y weight (v3 with the y DMP) */
-/** Bytes of a v4 image with n kernels and the y DMP, and of the largest image this firmware
- *  accepts. */
-#define SKILL_IMAGE_SIZE(n) \
-    (SKILL_HEADER_SIZE_V4 + SKILL_KERNEL_BYTES_Y * (uint32_t)(n) + SKILL_CRC_SIZE)
+/** Bytes of a v5 image with n kernels, the y DMP and the largest band, and of the largest image
+ *  this firmware accepts. */
+#define SKILL_IMAGE_SIZE(n)                                                                      \
+    (SKILL_HEADER_SIZE_V5 + SKILL_KERNEL_BYTES_Y * (uint32_t)(n) + 16u * SKILL_BAND_MAX_POINTS + \
+     SKILL_CRC_SIZE)
 #define SKILL_IMAGE_MAX SKILL_IMAGE_SIZE(DMP_MAX_KERNELS)
 #define SKILL_FLAG_END_RELEASE 0x0001u /* end policy: 0 hold, 1 release (ramp to 0 in 0.5 s) */
 #define SKILL_FLAG_Y_AXIS 0x0002u      /* v3: the position DMP on y is present (v2: refused) */
@@ -58,6 +63,11 @@ typedef struct {
      * f_hat - f_contact > contact_threshold_N; 0 = off (every other version) */
     fs_real_t contact_threshold_N;
     fs_real_t contact_tau_s; /* the phase rate's first-order time constant */
+    /* v5's demonstrated band: band_n points uniform over the normalised time t/T in [0, 1] (a
+     * periodic skill: over one period), lower and upper force bounds in N; 0 points: none */
+    uint16_t band_n;
+    fs_real_t band_lo_N[SKILL_BAND_MAX_POINTS];
+    fs_real_t band_hi_N[SKILL_BAND_MAX_POINTS];
 } skill_t;
 
 /** Total image length in bytes for N kernels of a v2 image (force only): 136 + 24 N + 4. */
@@ -66,6 +76,11 @@ uint32_t skill_image_size(uint16_t n_kernels);
 /** Total image length in bytes for N kernels of an image of format version (2, 3 or 4) with or
  *  without the y DMP (v3 and v4 only): v3 152 + 24 N (+ 8 N) + 4, v4 the same after 208. */
 uint32_t skill_image_size_v(uint16_t version, uint16_t n_kernels, uint8_t has_y);
+
+/** skill_image_size_v for any version up to 5: v5 the v4 arrays after a 216-byte header, then
+ *  the band's band_n lower and band_n upper bounds (+ 16 band_n). */
+uint32_t skill_image_size_band(uint16_t version, uint16_t n_kernels, uint8_t has_y,
+                               uint16_t band_n);
 
 /** zlib-compatible CRC-32, continuing from crc (start with 0). */
 uint32_t skill_crc32(uint32_t crc, const uint8_t *data, uint32_t len);
@@ -87,6 +102,7 @@ typedef struct {
     uint16_t n;         /* kernels */
     uint8_t has_y;      /* the y DMP is present */
     uint8_t kind;       /* SKILL_KIND_* (v4: read with the kernel count) */
+    uint16_t band_n;    /* v5: the band's points (read with the kernel count) */
     uint8_t stage;      /* internal */
     double derived[3];  /* alpha, beta, gamma of the stored gains (checked in the next unit) */
     dmp_init_t init;    /* the model's derivation (dmp_model_init in slices) */
@@ -103,6 +119,14 @@ typedef struct {
 #define SKILL_PARSE_INIT_PERIODIC_KERNELS 2u
 #endif
 
+/** The band of a parsed skill with one (band_n > 0) at the normalised time s = t/(T*time_scale)
+ *  (a discrete skill: clamped to [0, 1]; a periodic one: its fraction, the band repeats every
+ *  period), linear between points and scaled as f_hat is: discrete f0 + goal_scale*(b - f0),
+ *  periodic goal_scale*g + amplitude_scale*(b - g), g the mean force. FS_ERR_NULL_ARG for NULL,
+ *  FS_ERR_SKILL_BAND for a skill without a band (*lo, *hi untouched). */
+fs_status_t skill_band_at(const skill_t *sk, fs_real_t s, fs_real_t goal_scale,
+                          fs_real_t amplitude_scale, fs_real_t *lo_N, fs_real_t *hi_N);
+
 /** Start a parse of buf[0..len) into *out (FS_ERR_NULL_ARG at once for NULL). */
 void skill_parse_begin(skill_parser_t *p, const uint8_t *buf, uint32_t len, skill_t *out);
 
@@ -110,10 +134,11 @@ void skill_parse_begin(skill_parser_t *p, const uint8_t *buf, uint32_t len, skil
  *  p->crc the image's CRC-32; or skill_parse's error). */
 bool skill_parse_run(skill_parser_t *p, uint32_t max_units);
 
-/** Parse and validate an image of version 2, 3 or 4 (magic, version, sizes, CRC, kind, finite
+/** Parse and validate an image of version 2 to 5 (magic, version, sizes, CRC, kind, finite
  *  values, ranges, centres, gains consistent with alpha/beta/gamma, beta <= alpha/4, with the y
  *  DMP 0 < beta_y <= alpha/4, flags, v4's contact wait (233), a periodic skill's amplitude and
- *  period); on error *out is
+ *  period, v5's band: 2..SKILL_BAND_MAX_POINTS points, reserved 0, lower <= upper (234)); on
+ *  error *out is
  *  unspecified. Another version is refused with 202; a valid periodic skill with 232 by a build
  *  without SKILL_PERIODIC_SUPPORTED. */
 fs_status_t skill_parse(const uint8_t *buf, uint32_t len, skill_t *out);

@@ -39,7 +39,7 @@ COMMAND_MODULES: list[str] = [
 #: only its module; ``forceskill --help`` lists them without importing any (numpy, python-can,
 #: cantools, udsoncan and matplotlib stay unloaded). A module not in this table is imported for the help.
 LAZY_COMMANDS: dict[str, tuple[str, str]] = {
-    "fit": ("forceskill.commands.fit", "learn a force skill from one demonstration"),
+    "fit": ("forceskill.commands.fit", "learn a force skill from one demonstration or the mean of several"),
     "rollout": ("forceskill.commands.rollout", "evaluate a skill offline (the firmware's DMP in numpy)"),
     "show": ("forceskill.commands.show", "summarise a skill image"),
     "report": ("forceskill.commands.report", "run every paper experiment on the HIL simulator"),

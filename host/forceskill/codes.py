@@ -43,6 +43,7 @@ ERR_SKILL_AMPLITUDE = 230  # periodic skill: amplitude not > 0
 ERR_SKILL_PHASES = 231  # periodic skill: centres not strictly increasing in [0, 2*pi)
 ERR_SKILL_NO_PERIODIC = 232  # a periodic skill on a device build that cannot run one
 ERR_SKILL_CONTACT_WAIT = 233
+ERR_SKILL_BAND = 234
 ERR_FIXED_OVERFLOW = 300  # a value does not fit its fixed-point format
 ERR_FIXED_WINDOW = 301  # more kernels overlap than the fixed build evaluates
 ERR_FIXED_STEP = 302  # dt/tau too small or too large for Q1.31
@@ -75,6 +76,7 @@ SKILL_STATUS_TEXT: dict[int, str] = {
     231: 'bad phase centres',
     232: 'periodic skills not supported by this device',
     233: 'bad contact-wait parameters',
+    234: 'bad demonstrated band',
 }
 
 # Protocol: E2E protection, ISO-TP (4xx)
@@ -374,6 +376,7 @@ __all__ = [
     'ERR_SKILL_PHASES',
     'ERR_SKILL_NO_PERIODIC',
     'ERR_SKILL_CONTACT_WAIT',
+    'ERR_SKILL_BAND',
     'ERR_FIXED_OVERFLOW',
     'ERR_FIXED_WINDOW',
     'ERR_FIXED_STEP',

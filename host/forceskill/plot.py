@@ -11,6 +11,7 @@ from .model.fit import FitResult
 from .outputs import Outputs, write_figure
 
 if TYPE_CHECKING:
+    from .model.multi import MeanProfile
     from .model.periodic_fit import PeriodicFit
 
 
@@ -55,9 +56,70 @@ def fit_figure(res: FitResult, path: str | Path, title: str = "", outs: Outputs 
     write_figure(fig, path, outs=outs)
 
 
-def periodic_figure(res: PeriodicFit, path: str | Path, outs: Outputs | None = None) -> None:
+def multi_figure(
+    res: FitResult,
+    multi: MeanProfile,
+    band: tuple[np.ndarray, np.ndarray] | None,
+    path: str | Path,
+    title: str = "",
+    outs: Outputs | None = None,
+) -> None:
+    """Write a PNG of a fit from several recordings: every recording on the common time (thin
+    grey; an outlier left out dotted red), their mean (dashed black), the demonstrated band
+    (shaded, with the stored points' envelope as thin green lines) and the learned force (green);
+    below, the spread (1 sigma) and the band's half-width, then the learned force's error
+    against the mean in % of max force."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    t = multi.demo.t_s
+    mean = multi.demo.force_N
+    f_max = float(np.max(np.abs(mean))) or 1.0
+    fig, ax = plt.subplots(3, 1, figsize=(7.5, 8.0), sharex=True, gridspec_kw={"height_ratios": [3, 1, 1]})
+    first = True
+    for a, row in zip(multi.alignments, multi.aligned_N, strict=True):
+        if a.used:
+            ax[0].plot(t, row, "-", color="0.6", lw=0.6, label="recordings (aligned)" if first else None)
+            first = False
+        else:
+            ax[0].plot(t, row, ":", color="r", lw=0.8, label=f"outlier left out: {a.source}")
+    if band is not None:
+        ax[0].fill_between(t, band[0], band[1], color="tab:green", alpha=0.18, lw=0, label="band")
+        sk = res.skill
+        if sk.band_lo_N is not None and sk.band_hi_N is not None:
+            tp = np.linspace(0.0, sk.duration_s, sk.band_lo_N.size)
+            ax[0].plot(tp, sk.band_lo_N, "-", color="tab:green", lw=0.5)
+            ax[0].plot(tp, sk.band_hi_N, "-", color="tab:green", lw=0.5)
+    ax[0].plot(t, mean, "k--", lw=1.2, label="mean")
+    ax[0].plot(res.t_s, res.f_hat_N, "g-", lw=1.0, label="learned")
+    ax[0].set_ylabel("force [N]")
+    ax[0].legend(loc="best", fontsize=7)
+    ax[0].set_title(title, fontsize=9)
+    ax[1].plot(t, multi.sigma_N, "b-", lw=0.8, label="spread (1 sigma)")
+    if band is not None:
+        ax[1].plot(t, 0.5 * (band[1] - band[0]), "g-", lw=0.8, label="band half-width")
+    ax[1].set_ylabel("N")
+    ax[1].legend(loc="best", fontsize=7)
+    n = min(res.f_hat_N.size, mean.size)
+    ax[2].plot(t[:n], 100.0 * (mean[:n] - res.f_hat_N[:n]) / f_max, "r-", lw=0.8)
+    ax[2].set_ylabel("error vs mean [% of max]")
+    ax[2].set_xlabel("t [s] (common time)")
+    for a2 in ax:
+        a2.grid(True, lw=0.3)
+    write_figure(fig, path, outs=outs)
+
+
+def periodic_figure(
+    res: PeriodicFit,
+    path: str | Path,
+    outs: Outputs | None = None,
+    band: tuple[np.ndarray, np.ndarray] | None = None,
+) -> None:
     """Write a PNG of a periodic fit: over one period, every steady stroke of the demonstration
-    (thin grey), their mean (dashed black) and the learned cycle (green); below, the learned
+    (thin grey), their mean (dashed black), the band when given (shaded) and the learned cycle
+    (green); below, the learned
     cycle's error against the mean stroke (green) and against each stroke (grey), in % of max
     force."""
     import matplotlib
@@ -72,6 +134,8 @@ def periodic_figure(res: PeriodicFit, path: str | Path, outs: Outputs | None = N
     fig, ax = plt.subplots(2, 1, figsize=(7.0, 6.0), sharex=True)
     for j, stroke in enumerate(res.strokes_N):
         ax[0].plot(t, stroke, "-", color="0.65", lw=0.6, label="demonstrated strokes" if j == 0 else None)
+    if band is not None:
+        ax[0].fill_between(t, band[0], band[1], color="tab:green", alpha=0.18, lw=0, label="band")
     ax[0].plot(t, res.mean_stroke_N, "k--", lw=1.2, label="mean stroke")
     ax[0].plot(t, cycle, "g-", lw=1.1, label="learned cycle")
     ax[0].set_ylabel("force [N]")

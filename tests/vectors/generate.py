@@ -25,6 +25,13 @@ Writes, next to this script:
                                     ``t,f_hat,y_hat`` (periodic.rollout, periodic.rollout_path),
                                     ``<skill> <goal> <amplitude> <time> <cycles> <path> <csv>``
                                     per line (``--periodic-y`` writes only these)
+  band_*.skill, band_*_points.csv, band_*_g<G>_t<T>.csv, manifest_band.txt
+                                    skills with the demonstrated band (format v5), fitted from
+                                    the mean of several recordings (forceskill.model.multi): the
+                                    band's points ``f_band_lo,f_band_hi`` and the rollout with the
+                                    band at run time ``t,f_hat,f_band_lo,f_band_hi``
+                                    (Skill.band_at), ``<skill> <goal_scale> <time_scale> <points
+                                    csv> <rollout csv>`` per line (``--band`` writes only these)
   contact_*.csv, manifest_contact.txt
                                     the contact wait (forceskill.model.contact.loss_window) of
                                     a discrete and a periodic skill above, the contact lost for a
@@ -171,6 +178,100 @@ def write_periodic_y() -> int:
     return len(files)
 
 
+#: the band vectors: (name, recordings seed, N, band points, scales (goal, time))
+BAND_SKILLS = (
+    ("band_press_n50_ridge", 21, 50, 100, ((1.5, 1.3),)),
+    ("band_press_n20_ridge", 22, 20, 16, ((1.0, 1.0),)),
+)
+
+
+def fitted_band_skills() -> dict[str, tuple[Skill, tuple[tuple[float, float], ...]]]:
+    """The band skills: the mean of four short pressing recordings at 100 N/m (HIL object mass),
+    with the band mean +- max(3 sigma, 5 % of max)."""
+    from forceskill.model import multi
+    from forceskill.model.demo import resample
+
+    out = {}
+    for name, seed, n, m, scales in BAND_SKILLS:
+        _, demos = synthetic.pressing_set(seed=seed, n=4, duration_s=1.5)
+        mp = multi.mean_profile([resample(d, 0.001) for d in demos], 0.001)
+        sk = fit(mp.demo, 100.0, n_kernels=n, gains=gains_for_object(100.0, OBJECT_MASS_KG)).skill
+        lo, hi = multi.band_from_spread(mp.demo.force_N, mp.sigma_N, mp.noise_N)
+        sk.band_lo_N, sk.band_hi_N = multi.band_points(lo, hi, m)
+        sk.format_version = 5
+        out[name] = (Skill.from_bytes(sk.to_bytes()), scales)
+    return out
+
+
+def golden_band() -> tuple[dict[str, bytes], list[str]]:
+    """Image, JSON twin, the band's points and the rollouts with the band of every band skill."""
+    files: dict[str, bytes] = {}
+    manifest: list[str] = []
+    for name, (sk, scales) in fitted_band_skills().items():
+        assert sk.band_lo_N is not None and sk.band_hi_N is not None
+        files[f"{name}.skill"] = sk.to_bytes()
+        files[f"{name}.skill.json"] = sk.to_json().encode()
+        pts = ["f_band_lo,f_band_hi"] + [
+            f"{a:.17g},{b:.17g}" for a, b in zip(sk.band_lo_N.tolist(), sk.band_hi_N.tolist(), strict=True)
+        ]
+        files[f"{name}_points.csv"] = ("\n".join(pts) + "\n").encode()
+        for gs, ts in scales:
+            t, f = dmp.rollout(sk, goal_scale=gs, time_scale=ts)
+            lo, hi = sk.band_at(t, gs, ts)
+            csv = f"{name}_g{_num(gs)}_t{_num(ts)}.csv"
+            rows = zip(t.tolist(), f.tolist(), lo.tolist(), hi.tolist(), strict=True)
+            lines = ["t,f_hat,f_band_lo,f_band_hi"] + [
+                f"{a:.17g},{b:.17g},{c:.17g},{d:.17g}" for a, b, c, d in rows
+            ]
+            files[csv] = ("\n".join(lines) + "\n").encode()
+            manifest.append(f"{name}.skill {gs:g} {ts:g} {name}_points.csv {csv}")
+    return files, manifest
+
+
+def write_band() -> int:
+    """Write the band files (golden_band) next to this script; their count."""
+    files, manifest = golden_band()
+    for name, data in files.items():
+        (HERE / name).write_bytes(data)
+    (HERE / "manifest_band.txt").write_text("\n".join(manifest) + "\n")
+    return len(files)
+
+
+def bad_images_band(base: Skill) -> list[tuple[str, bytes, int]]:
+    """Version-5 rejections from a valid band skill."""
+    good = base.to_bytes()
+    assert base.band_lo_N is not None
+    m = base.band_points
+    arrays_end = len(good) - 4 - 16 * m
+
+    def patch(data: bytes, off: int, fmt: str, value: Any, fix_len: bool = False) -> bytes:
+        b = bytearray(data)
+        struct.pack_into(fmt, b, off, value)
+        if fix_len:
+            struct.pack_into("<I", b, 8, len(b))
+        body = bytes(b[:-4])
+        return body + struct.pack("<I", zlib.crc32(body) & 0xFFFFFFFF)
+
+    def band_count(k: int) -> bytes:  # k points, arrays resized to match (a consistent length)
+        lo = np.resize(base.band_lo_N, k) if k else np.zeros(0)
+        body = bytearray(good[:arrays_end]) + np.concatenate([lo, lo + 1.0]).astype("<f8").tobytes()
+        struct.pack_into("<H", body, 208, k)
+        struct.pack_into("<I", body, 8, len(body) + 4)
+        return bytes(body) + struct.pack("<I", zlib.crc32(bytes(body)) & 0xFFFFFFFF)
+
+    crossed = patch(good, arrays_end + 8 * 3, "<d", float(base.band_hi_N[3]) + 0.1)  # type: ignore[index]
+    return [
+        ("b_header_size.skill", patch(good, 6, "<H", 208), 211),
+        ("b_count_1.skill", band_count(1), 234),
+        ("b_count_0.skill", band_count(0), 234),
+        ("b_count_129.skill", band_count(129), 234),
+        ("b_count_field.skill", patch(good, 208, "<H", m - 1), 203),
+        ("b_reserved.skill", patch(good, 212, "<H", 1), 234),
+        ("b_nan.skill", patch(good, arrays_end + 8 * m + 16, "<d", float("nan")), 206),
+        ("b_crossed.skill", crossed, 234),
+    ]
+
+
 _HDR4 = struct.Struct("<IHHIHH23dHHHH")
 
 
@@ -207,7 +308,7 @@ def bad_images_periodic(base: Skill, discrete: Skill) -> list[tuple[str, bytes, 
     c_eq = base.centres.copy()
     c_eq[3] = c_eq[2]
     return [
-        ("version_5.skill", pack4(base, version=5), 202),
+        ("version_6.skill", pack4(base, version=6), 202),
         ("p_header_size.skill", pack4(base, header_size=152), 211),
         ("p_kind_2.skill", pack4(base, kind=2), 228),
         ("p_reserved.skill", pack4(base, reserved16=1), 228),
@@ -544,6 +645,9 @@ def main() -> int:
     if "--periodic-y" in sys.argv[1:]:
         print(f"wrote {write_periodic_y()} periodic y-path files")
         return 0
+    if "--band" in sys.argv[1:]:
+        print(f"wrote {write_band()} band files")
+        return 0
     if "--contact" in sys.argv[1:]:
         images = {p.name: p.read_bytes() for p in HERE.glob("*.skill")}
         print(f"wrote {write_contact(images)} contact-wait rollouts")
@@ -567,6 +671,7 @@ def main() -> int:
     (HERE / "manifest_periodic.txt").write_text("\n".join(manifest_p) + "\n")
     write_contact({k: v for k, v in files.items() if k.endswith(".skill")})
     write_periodic_y()
+    write_band()
     bad_dir = HERE / "bad"
     bad_dir.mkdir(exist_ok=True)
     for old in bad_dir.glob("*.skill"):
@@ -575,7 +680,8 @@ def main() -> int:
     lines = []
     base_y = y_skills["wipe_n10_ridge_hold"][0]
     bad_p = bad_images_periodic(p_skills["periodic_n20_ridge"][0], discrete_as_v4(base))
-    for name, data, code in bad_images(base) + bad_images_y(base_y) + bad_p:
+    bad_b = bad_images_band(next(iter(fitted_band_skills().values()))[0])
+    for name, data, code in bad_images(base) + bad_images_y(base_y) + bad_p + bad_b:
         (bad_dir / name).write_bytes(data)
         lines.append(f"{name} {code}")
     (bad_dir / "manifest.txt").write_text("\n".join(lines) + "\n")

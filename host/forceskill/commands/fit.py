@@ -11,6 +11,10 @@ from ..errors import FsError
 from ..wire import TICK_S
 from ._args import add_force_limit, float_arg, int_arg
 
+#: the band's defaults (forceskill.model.multi: BAND_K, BAND_FLOOR_REL, BAND_POINTS)
+BAND_K = 3.0
+BAND_FLOOR_REL = 0.05
+BAND_POINTS = 100
 #: --contact-wait's time constant when only the threshold is given (s)
 CONTACT_TAU_DEFAULT_S = 0.05
 
@@ -41,7 +45,7 @@ def _apply_contact_wait(sk: Any, args: argparse.Namespace) -> None:
     """--contact-wait into the skill (then written as format v4)."""
     if args.contact_wait is not None:
         sk.contact_cN, sk.contact_tau_ms = args.contact_wait
-        sk.format_version = 4
+        sk.format_version = max(sk.format_version, 4)
 
 
 def _contact_line(sk: Any) -> str:
@@ -59,8 +63,9 @@ def _cmd_fit(args: argparse.Namespace) -> int:
 
     from ..errors import ERR_FIT_ARGS, ERR_FIT_INACCURATE, ERR_FIT_TOLERANCE
     from ..model import tolerance as tol
-    from ..model.demo import load_demo, resample
+    from ..model.demo import resample
     from ..model.limits import check_skill_force
+    from ..model.multi import mean_profile
     from ..model.params import Gains, gains_for_object, load_gains
     from ..model.skill import DURATION_MAX_S, MAX_KERNELS
     from ..outputs import Outputs, check_target
@@ -69,7 +74,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     out = Path(args.output)
     targets = [args.output, args.output + ".json"] + ([args.plot] if args.plot else [])
     for i, t in enumerate(targets):  # refuse bad outputs before the work
-        real = check_target(t, [args.demo])
+        real = check_target(t, list(args.demo))
         if real in (check_target(u, ()) for u in targets[:i]):
             raise FsError(660, f"output {t!r} is given twice")
     if args.max_error is not None:
@@ -97,26 +102,12 @@ def _cmd_fit(args: argparse.Namespace) -> int:
         axis=args.axis,
         max_duration_s=DURATION_MAX_S,
     )
-    demo = load_demo(
-        args.demo,
-        position_column=args.position_column,
-        force_column=args.force_column,
-        learn=args.learn,
-        read=ropts,
-        force_sign=float(args.force_sign),
-        force_scale=args.force_scale,
-        tare=args.tare,
-        max_gap_s=args.max_gap,
-        stiffness_Npm=args.stiffness,
-        surface_m=args.surface_m,
-        y_column=args.y_column,
-    )
-    for note in demo.notes:
-        print(note)
-    if object_mass_kg is None and demo.object_mass_kg is not None:
+    demos = [_load(path, args, ropts) for path in args.demo]
+    recorded_mass = next((d.object_mass_kg for d in demos if d.object_mass_kg is not None), None)
+    if object_mass_kg is None and recorded_mass is not None:
         # a recording of the device that names its object (record's CAN log): the gains are
         # made for it as with --object-mass, given gains are checked against it
-        object_mass_kg = args.fit_object_mass_kg = demo.object_mass_kg
+        object_mass_kg = args.fit_object_mass_kg = recorded_mass
         scaled = gains if args.gains else gains_for_object(args.stiffness, object_mass_kg)
         note = f"object mass {object_mass_kg:g} kg from the recording (the device's object model)"
         if scaled != gains:
@@ -126,10 +117,26 @@ def _cmd_fit(args: argparse.Namespace) -> int:
                 "N/(m s) (k_f*m_v/m_d = 0.75)"
             )
         print(note)
-    # the fit works on the dt grid; the recording's own time and force stay for the error at its
-    # samples, its position is not needed any more (memory on long recordings)
-    grid_demo = resample(demo, args.dt)
-    demo.pos_m = np.zeros(0)
+    multi = None
+    if len(demos) == 1:
+        demo = demos[0]
+        for note in demo.notes:
+            print(note)
+        # the fit works on the dt grid; the recording's own time and force stay for the error at
+        # its samples, its position is not needed any more (memory on long recordings)
+        grid_demo = resample(demo, args.dt)
+        demo.pos_m = np.zeros(0)
+    else:
+        for d in demos:
+            for note in d.notes:
+                print(f"{d.source}: {note}")
+        grids = [resample(d, args.dt) for d in demos]
+        del demos
+        if args.periodic:
+            return _fit_periodic_multi(grids, args, out)
+        multi = mean_profile(grids, args.dt, keep_outliers=args.keep_outliers)
+        _print_alignment(multi, args.keep_outliers)
+        demo = grid_demo = multi.demo
     if args.periodic:
         return _fit_periodic(grid_demo, demo.source, args, out)
 
@@ -171,19 +178,23 @@ def _cmd_fit(args: argparse.Namespace) -> int:
         )
     sk = res.skill
     _apply_contact_wait(sk, args)
+    band = None
+    if multi is not None:
+        band = _attach_band(sk, multi.demo.force_N, multi.sigma_N, multi.noise_N, args)
     check_skill_force(sk, str(out), force_limit_N=args.force_limit)
-    with Outputs(inputs=[args.demo]) as outs:  # skill, JSON twin and plot: all or nothing
+    with Outputs(inputs=list(args.demo)) as outs:  # skill, JSON twin and plot: all or nothing
         sk.write(out, outs=outs)
         if args.plot:
-            from ..plot import fit_figure
+            from ..plot import fit_figure, multi_figure
 
-            fit_figure(
-                res,
-                args.plot,
-                title=f"{demo.source}: {args.method}, N = {sk.n_kernels}, "
-                f"max {err.max_pct:.2f} %, RMS {err.rms_pct:.2f} %",
-                outs=outs,
+            title = (
+                f"{demo.source}: {args.method}, N = {sk.n_kernels}, "
+                f"max {err.max_pct:.2f} %, RMS {err.rms_pct:.2f} %"
             )
+            if multi is None:
+                fit_figure(res, args.plot, title=title, outs=outs)
+            else:
+                multi_figure(res, multi, band, args.plot, title=title, outs=outs)
         outs.commit()
     f_max = float(np.max(np.abs(demo.force_N)))
     print(
@@ -201,6 +212,8 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     )
     if sk.contact_wait:
         print(_contact_line(sk))
+    if sk.has_band:
+        print(_band_line(sk, args))
     if sk.y_weights is not None:
         print(
             f"y path ({args.y_column}): start {sk.y_start_m:.6g} m, goal g_y {sk.goal_y_m:.6g} m, "
@@ -214,7 +227,157 @@ def _cmd_fit(args: argparse.Namespace) -> int:
     return 0
 
 
-def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path) -> int:
+def _load(path: str, args: argparse.Namespace, ropts: Any) -> Any:
+    """One recording read with the command's reading options."""
+    from ..model.demo import load_demo
+
+    return load_demo(
+        path,
+        position_column=args.position_column,
+        force_column=args.force_column,
+        learn=args.learn,
+        read=ropts,
+        force_sign=float(args.force_sign),
+        force_scale=args.force_scale,
+        tare=args.tare,
+        max_gap_s=args.max_gap,
+        stiffness_Npm=args.stiffness,
+        surface_m=args.surface_m,
+        y_column=args.y_column,
+    )
+
+
+def _attach_band(sk: Any, mean_N: Any, sigma_N: Any, noise_N: float, args: argparse.Namespace) -> Any:
+    """The band mean +- max(k*sigma, floor) into the skill (format v5); returns the per-sample
+    (lo, hi) for the plot."""
+    from ..model.multi import band_from_spread, band_points
+
+    lo, hi = band_from_spread(mean_N, sigma_N, noise_N, k=args.band_k, floor_rel=args.band_floor / 100.0)
+    sk.band_lo_N, sk.band_hi_N = band_points(lo, hi, args.band_points)
+    sk.format_version = 5
+    return lo, hi
+
+
+def _band_line(sk: Any, args: argparse.Namespace) -> str:
+    """What fit prints of the skill's band."""
+    import numpy as np
+
+    w = sk.band_hi_N - sk.band_lo_N
+    return (
+        f"band: mean +- max({args.band_k:g} sigma, floor {args.band_floor:g} % of max force or "
+        f"{args.band_k:g} noise deviations) at {sk.band_points} points over the skill's time, width "
+        f"{float(np.min(w)):.3g}..{float(np.max(w)):.3g} N (format v5)"
+    )
+
+
+def _print_alignment(multi: Any, keep_outliers: bool) -> None:
+    """Each recording's alignment on the common time and its deviation from the others' mean;
+    the outliers named."""
+    import numpy as np
+
+    print(
+        f"{len(multi.alignments)} recordings aligned on the mean timing (affine registration, then a "
+        "piecewise-linear time warp):"
+    )
+    for a in multi.alignments:
+        mark = ""
+        if a.outlier:
+            mark = (
+                "  OUTLIER (kept: --keep-outliers)"
+                if a.used
+                else "  OUTLIER: left out (--keep-outliers keeps it)"
+            )
+        print(
+            f"  {a.source}: idle lead {a.lead_s:.3f} s trimmed, stretch {a.stretch:.4f}, lag "
+            f"{a.lag_s * 1e3:+.1f} ms, warp +-{a.warp_s * 1e3:.0f} ms, deviation from the others' mean RMS {a.dev_rms_pct:.2f} %, "
+            f"max {a.dev_max_pct:.2f} % of max force{mark}"
+        )
+    used = [a for a in multi.alignments if a.used]
+    sig = multi.sigma_N
+    f_max = float(np.max(np.abs(multi.demo.force_N))) if multi.demo.force_N.size else 1.0
+    print(
+        f"mean profile of {len(used)} recordings: T = {multi.demo.t_s[-1]:.3f} s, max force {f_max:.4g} N, "
+        f"spread (1 sigma) mean {float(np.mean(sig)):.3g} N, largest {float(np.max(sig)):.3g} N, "
+        f"sensor noise {multi.noise_N:.3g} N"
+    )
+
+
+def _fit_periodic_multi(demos: list[Any], args: argparse.Namespace, out: Path) -> int:
+    """fit --periodic with several recordings: the mean of the steady strokes of every recording."""
+    import numpy as np
+
+    from ..errors import ERR_FIT_ARGS
+    from ..model.fit import prepare
+    from ..model.multi import noise_sigma, pooled_strokes
+    from ..model.periodic_fit import fit_strokes
+
+    if args.y_column is not None:
+        raise FsError(ERR_FIT_ARGS, "--y-column with --periodic learns from one recording: give one")
+    n0 = 50 if args.kernels is None else args.kernels
+    prep = [
+        prepare(
+            d,
+            args.stiffness,
+            n0,
+            args.method,
+            args.fit_gains,
+            args.surface_m,
+            args.dt,
+            args.fit_object_mass_kg,
+        )
+        for d in demos
+    ]
+    strokes, period, aligns, origin = pooled_strokes(
+        [d for _, d in prep], args.dt, args.period, keep_outliers=args.keep_outliers
+    )
+    print(f"{len(aligns)} recordings, strokes aligned in phase on the common period {period:.6g} s:")
+    for a in aligns:
+        mark = ""
+        if a.outlier:
+            mark = (
+                "  OUTLIER (kept: --keep-outliers)"
+                if a.used
+                else "  OUTLIER: left out (--keep-outliers keeps it)"
+            )
+        print(
+            f"  {a.source}: {int((origin == aligns.index(a)).sum())} steady strokes from t = {a.lead_s:.3f} s, "
+            f"period stretch {a.stretch:.4f}, phase lag {a.lag_s * 1e3:+.1f} ms, mean stroke's deviation "
+            f"from the others' RMS {a.dev_rms_pct:.2f} %, max {a.dev_max_pct:.2f} % of max force{mark}"
+        )
+    i0 = int(origin[0])
+    d0 = prep[i0][1]
+    d0.y_m = None
+
+    args.multi_noise_N = float(np.median([noise_sigma(d.force_N) for _, d in prep]))
+
+    def fit_n(n: int) -> Any:
+        p, _ = prepare(
+            demos[i0],
+            args.stiffness,
+            n,
+            args.method,
+            args.fit_gains,
+            args.surface_m,
+            args.dt,
+            args.fit_object_mass_kg,
+        )
+        return fit_strokes(
+            d0,
+            strokes,
+            (period, 0.0),
+            args.stiffness,
+            n,
+            args.method,
+            args.fit_gains,
+            args.surface_m,
+            p,
+            args.dt,
+        )
+
+    return _fit_periodic(d0, f"{len(aligns)} recordings", args, out, fit_n)
+
+
+def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path, fit_n: Any = None) -> int:
     """fit --periodic: the mean stroke of the steady strokes as a periodic skill (format v4)."""
     from ..errors import ERR_FIT_TOLERANCE, ERR_PERIODIC_ARGS
     from ..model.limits import check_skill_force
@@ -226,7 +389,7 @@ def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path) -
             ERR_PERIODIC_ARGS, "--periodic runs until stopped or for --cycles: --end does not apply"
         )
 
-    def fit_n(n: int) -> Any:
+    def fit_one(n: int) -> Any:
         return fit_periodic(
             demo,
             args.stiffness,
@@ -238,6 +401,8 @@ def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path) -
             period_s=args.period,
             object_mass_kg=args.fit_object_mass_kg,
         )
+
+    fit_n = fit_one if fit_n is None else fit_n
 
     if args.max_error is None:
         res = fit_n(50 if args.kernels is None else args.kernels)
@@ -271,13 +436,17 @@ def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path) -
         )
     sk = res.skill
     _apply_contact_wait(sk, args)
+    band = None
+    if len(args.demo) > 1:
+        sigma = res.strokes_N.std(axis=0, ddof=1)
+        band = _attach_band(sk, res.mean_stroke_N, sigma, args.multi_noise_N, args)
     check_skill_force(sk, str(out), force_limit_N=args.force_limit)
-    with Outputs(inputs=[args.demo]) as outs:  # skill, JSON twin and plot: all or nothing
+    with Outputs(inputs=list(args.demo)) as outs:  # skill, JSON twin and plot: all or nothing
         sk.write(out, outs=outs)
         if args.plot:
             from ..plot import periodic_figure
 
-            periodic_figure(res, args.plot, outs=outs)
+            periodic_figure(res, args.plot, outs=outs, band=band)
         outs.commit()
     k = res.strokes_N.shape[0]
     print(
@@ -307,6 +476,8 @@ def _fit_periodic(demo: Any, source: str, args: argparse.Namespace, out: Path) -
         )
     if sk.contact_wait:
         print(_contact_line(sk))
+    if sk.has_band:
+        print(_band_line(sk, args))
     print(
         f"wrote {out} ({out.stat().st_size} bytes) and {out}.json"
         + (f", plot {args.plot}" if args.plot else "")
@@ -351,8 +522,9 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     """Add ``forceskill fit``."""
     p = sub.add_parser(
         "fit",
-        help="learn a force skill from one demonstration",
-        description="Learn a force skill from one demonstration (CSV with a header row, a "
+        help="learn a force skill from one demonstration or the mean of several",
+        description="Learn a force skill from one demonstration, or from the aligned mean of several "
+        "recordings of one task (CSV with a header row, a "
         "CAN log or a ROS 2 bag). Prints the approximation error in % of the maximum "
         "demonstrated force at the recorded samples; writes SKILL and SKILL.json. Refuses "
         "(nothing written) when the error is above 10 % or above --max-error.",
@@ -360,8 +532,38 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     p.add_argument(
         "demo",
         metavar="DEMO",
+        nargs="+",
         help="demonstration file (.csv, .blf/.asc/.log/.trc[.gz], .mcap, "
-        "or a format added by a forceskill.readers plugin)",
+        "or a format added by a forceskill.readers plugin); several recordings of one task are "
+        "aligned in time and their mean is learned",
+    )
+    mg = p.add_argument_group("several recordings: the mean and the demonstrated band (format v5)")
+    mg.add_argument(
+        "--keep-outliers",
+        action="store_true",
+        help="keep a recording named an outlier in the mean and the band (default: left out)",
+    )
+    mg.add_argument(
+        "--band-k",
+        type=float_arg,
+        default=BAND_K,
+        metavar="K",
+        help=f"band half-width in standard deviations of the recordings about their mean ({BAND_K:g})",
+    )
+    mg.add_argument(
+        "--band-floor",
+        type=float_arg,
+        default=100.0 * BAND_FLOOR_REL,
+        metavar="PCT",
+        help="the band's smallest half-width in %% of the mean's max force (at least K sensor noise "
+        f"deviations; {100.0 * BAND_FLOOR_REL:g})",
+    )
+    mg.add_argument(
+        "--band-points",
+        type=int_arg,
+        default=BAND_POINTS,
+        metavar="M",
+        help=f"points of the stored band over the skill's time, 2..128 ({BAND_POINTS})",
     )
     p.add_argument(
         "--stiffness",

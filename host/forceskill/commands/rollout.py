@@ -41,13 +41,16 @@ def _cmd_rollout(args: argparse.Namespace) -> int:
             if f.size:
                 stats["peak"] = max(stats["peak"], float(np.max(f)))
                 stats["t_end"] = float(t[-1])
-            if y_all is None:
-                yield np.column_stack((t, f))
-            else:
-                yield np.column_stack((t, f, y_all[row : row + t.size]))
+            cols = [t, f]
+            if sk.has_band:
+                cols += list(sk.band_at(t, args.goal_scale, args.time_scale))
+            if y_all is not None:
+                cols.append(y_all[row : row + t.size])
+            yield np.column_stack(cols)
             row += t.size
 
-    names = ["t", "f_hat"] + (["y_hat"] if y_all is not None else [])
+    names = ["t", "f_hat"] + (["f_band_lo", "f_band_hi"] if sk.has_band else [])
+    names += ["y_hat"] if y_all is not None else []
     n = write_csv(args.output, names, blocks(), inputs=[args.skill])
     msg = f"wrote {args.output}: {n} rows, t = 0..{stats['t_end']:.6g} s, peak f_hat {stats['peak']:.6g} N"
     if y_all is not None and y_all.size:
@@ -83,6 +86,9 @@ def _rollout_periodic(sk: object, args: argparse.Namespace) -> int:
         n_steps=args.steps,
     )
     cols, names, y_msg = [t, f], ["t", "f_hat"], ""
+    if sk.has_band:
+        cols += list(sk.band_at(t, args.goal_scale, args.time_scale, args.amplitude_scale))
+        names += ["f_band_lo", "f_band_hi"]
     if sk.has_y:
         _, y = periodic.rollout_path(
             sk, cycles=cycles, path_scale=args.path_scale, time_scale=args.time_scale, n_steps=args.steps

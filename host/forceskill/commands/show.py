@@ -42,6 +42,16 @@ def _cmd_show(args: argparse.Namespace) -> int:
         )
     else:
         print("  contact wait   off (the phase runs on without contact)")
+    if sk.band_lo_N is not None and sk.band_hi_N is not None:
+        w = sk.band_hi_N - sk.band_lo_N
+        print(
+            f"  band           demonstrated band at {sk.band_points} points over the skill's time: lower "
+            f"{float(np.min(sk.band_lo_N)):.4g}..{float(np.max(sk.band_lo_N)):.4g} N, upper "
+            f"{float(np.min(sk.band_hi_N)):.4g}..{float(np.max(sk.band_hi_N)):.4g} N, width "
+            f"{float(np.min(w)):.4g}..{float(np.max(w)):.4g} N"
+        )
+    else:
+        print("  band           none (a skill from one recording)")
     k_f, k_i = sk.gains.force_gains(sk.stiffness_Npm)
     print(
         f"  gains          m_d {sk.m_d_kg:g} kg, k_d {sk.k_d_Nspm:g} Ns/m, k_p {sk.k_p_Npm:g} N/m, "

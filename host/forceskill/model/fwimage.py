@@ -52,7 +52,7 @@ TARGET_NAMES = {v: k for k, v in TARGETS.items()}
 
 # Data formats this product writes today (docs/skill_format.md v3, reading v2 too; configuration
 # record v1).
-SKILL_FORMAT = 4
+SKILL_FORMAT = 5
 SKILL_FORMAT_OLDEST = 2
 CONFIG_FORMAT = 1
 

@@ -266,6 +266,29 @@ def fit_periodic(
     else:
         period = float(period_s)
     start, k, strokes = steady_strokes(f, dt_s, period)
+    return fit_strokes(
+        d, strokes, (period, start), stiffness_Npm, n_kernels, method, gains, surface_m, p, dt_s
+    )
+
+
+def fit_strokes(
+    d: Demo,
+    strokes: np.ndarray,
+    timing: tuple[float, float],
+    stiffness_Npm: float,
+    n_kernels: int,
+    method: str,
+    gains: Gains,
+    surface_m: float,
+    p: Any,
+    dt_s: float = TICK_S,
+) -> PeriodicFit:
+    """The periodic skill of the mean of ``strokes`` (K, P) (the steady strokes of ``d``, or the
+    aligned strokes of several recordings); ``timing`` the period and the first stroke's start
+    (s); ``d`` gives the maximum force and, with its y path, the y strokes from the same start."""
+    f = d.force_N
+    period, start = timing
+    k = strokes.shape[0]
     n_p = strokes.shape[1]
     if n_p < 2 * n_kernels:
         raise ParamError(

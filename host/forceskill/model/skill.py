@@ -5,7 +5,9 @@ force DMP's phase and kernels); a skill without it is written as version 2, read
 device that reads force-only skills. Version 4 adds the kind (discrete or periodic) and the
 periodic DMP's amplitude and state on the cycle, and the optional contact wait (a phase that
 waits while the contact force is lost); only periodic skills and skills with a contact wait are
-written as version 4.
+written as version 4. Version 5 adds the demonstrated band: a lower and an upper force bound at
+points uniform over the skill's normalised time (``fit`` of several recordings); only skills
+with a band are written as version 5.
 
 A skill is plain data (dmpbbo style): fitting produces it, the firmware parses and evaluates it.
 Validation runs the same checks, in the same order, with the same codes as ``skill_parse`` in
@@ -28,6 +30,7 @@ import numpy as np
 from ..errors import (
     ERR_IO,
     ERR_SKILL_AMPLITUDE,
+    ERR_SKILL_BAND,
     ERR_SKILL_CENTRES,
     ERR_SKILL_CONTACT_WAIT,
     ERR_SKILL_CRC,
@@ -53,17 +56,26 @@ if TYPE_CHECKING:
     from ..outputs import Outputs
 
 MAGIC = 0x4C4B5346  # bytes "FSKL"
-FORMAT_VERSION = 4
+FORMAT_VERSION = 5
 #: the oldest version this reads (v1 stored metres and stiffness-dependent gains)
 FORMAT_VERSION_MIN = 2
 HEADER_SIZE_V2 = 136
 HEADER_SIZE = 152  # version 3: the v2 header, then y_start_m and goal_y_m
 HEADER_SIZE_V4 = 208  # version 4: the v3 header, six f64 of the periodic DMP, kind, contact wait
+HEADER_SIZE_V5 = 216  # version 5: the v4 header, the band's point count and three reserved u16
+#: the band's points (version 5): at least two, at most this many
+BAND_MIN_POINTS = 2
+BAND_MAX_POINTS = 128
 CRC_SIZE = 4
 MAX_KERNELS = 1024  # DMP_MAX_KERNELS
 FLAG_END_RELEASE = 0x0001
 FLAG_Y_AXIS = 0x0002  # version 3: the position DMP on y is present (refused in version 2)
-KNOWN_FLAGS = {2: FLAG_END_RELEASE, 3: FLAG_END_RELEASE | FLAG_Y_AXIS, 4: FLAG_END_RELEASE | FLAG_Y_AXIS}
+KNOWN_FLAGS = {
+    2: FLAG_END_RELEASE,
+    3: FLAG_END_RELEASE | FLAG_Y_AXIS,
+    4: FLAG_END_RELEASE | FLAG_Y_AXIS,
+    5: FLAG_END_RELEASE | FLAG_Y_AXIS,
+}
 KIND_DISCRETE = 0
 KIND_PERIODIC = 1
 KINDS = {KIND_DISCRETE: "discrete", KIND_PERIODIC: "periodic"}
@@ -84,11 +96,13 @@ _HEADER_V3 = struct.Struct("<IHHIHH17d")
 # v4: the v3 fields, 6 f64 more (amplitude_N, e0_N, z0_N, i0_N, y_p0_m, y_z0_m), kind u16,
 # contact-wait threshold u16 (0.01 N), its time constant u16 (ms), reserved u16 (0)
 _HEADER_V4 = struct.Struct("<IHHIHH23dHHHH")
-_HEADERS = {2: _HEADER_V2, 3: _HEADER_V3, 4: _HEADER_V4}
+# v5: the v4 fields, the band's point count M u16 and three reserved u16 (0)
+_HEADER_V5 = struct.Struct("<IHHIHH23dHHHHHHHH")
+_HEADERS = {2: _HEADER_V2, 3: _HEADER_V3, 4: _HEADER_V4, 5: _HEADER_V5}
 #: the fixed part every version shares (magic, version): enough to name an old image's version
 _PREFIX = struct.Struct("<IH")
 assert _HEADER_V2.size == HEADER_SIZE_V2 and _HEADER_V3.size == HEADER_SIZE
-assert _HEADER_V4.size == HEADER_SIZE_V4
+assert _HEADER_V4.size == HEADER_SIZE_V4 and _HEADER_V5.size == HEADER_SIZE_V5
 _F64_NAMES = (
     "dt_s",
     "tau_s",
@@ -120,13 +134,15 @@ def _f64_names(version: int) -> tuple[str, ...]:
 PathLike = str | Path
 
 
-def image_size(n_kernels: int, version: int = 2, has_y: bool = False) -> int:
+def image_size(n_kernels: int, version: int = 2, has_y: bool = False, band_points: int = 0) -> int:
     """Total image length in bytes for N kernels: v2 136 + 24 N + 4; v3 152 + 24 N (+ 8 N with
-    the y DMP) + 4; v4 the same arrays after a 208-byte header."""
+    the y DMP) + 4; v4 the same arrays after a 208-byte header; v5 after a 216-byte header, then
+    the band's M lower and M upper bounds (+ 16 M)."""
     if version == 2:
         return HEADER_SIZE_V2 + 24 * n_kernels + CRC_SIZE
-    header = HEADER_SIZE_V4 if version >= 4 else HEADER_SIZE
-    return header + (32 if has_y else 24) * n_kernels + CRC_SIZE
+    header = HEADER_SIZE_V5 if version >= 5 else HEADER_SIZE_V4 if version >= 4 else HEADER_SIZE
+    band = 16 * band_points if version >= 5 else 0
+    return header + (32 if has_y else 24) * n_kernels + band + CRC_SIZE
 
 
 def derive_beta_y(gains: Gains) -> float:
@@ -197,6 +213,10 @@ class Skill:
     #: (back to 1 when contact returns) with the time constant contact_tau_ms; 0: off
     contact_cN: int = 0
     contact_tau_ms: int = 0
+    #: version 5: the demonstrated band, lower and upper force bounds (N) at M points uniform over
+    #: the normalised time t/T in [0, 1] (a periodic skill: over one period); None: no band
+    band_lo_N: np.ndarray | None = None
+    band_hi_N: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         self.centres = np.ascontiguousarray(self.centres, dtype=np.float64).reshape(-1)
@@ -205,9 +225,13 @@ class Skill:
         if self.y_weights is not None:
             self.y_weights = np.ascontiguousarray(self.y_weights, dtype=np.float64).reshape(-1)
             self.flags |= FLAG_Y_AXIS
-        if self.format_version == 0:  # v2 unless it needs v3 (y) or v4 (periodic, contact wait)
+        if self.band_lo_N is not None or self.band_hi_N is not None:
+            self.band_lo_N = np.ascontiguousarray(self.band_lo_N, dtype=np.float64).reshape(-1)
+            self.band_hi_N = np.ascontiguousarray(self.band_hi_N, dtype=np.float64).reshape(-1)
+        if self.format_version == 0:  # v2 unless it needs v3 (y), v4 (periodic, contact wait), v5 (band)
             v4 = self.kind != KIND_DISCRETE or self.contact_cN != 0 or self.contact_tau_ms != 0
-            self.format_version = 4 if v4 else 3 if self.y_weights is not None else 2
+            v = 4 if v4 else 3 if self.y_weights is not None else 2
+            self.format_version = 5 if self.band_lo_N is not None else v
 
     # -- derived views ---------------------------------------------------------------------
     @property
@@ -238,6 +262,38 @@ class Skill:
     def contact_tau_s(self) -> float:
         """The contact wait's time constant of the phase rate (s)."""
         return self.contact_tau_ms / 1000.0
+
+    @property
+    def has_band(self) -> bool:
+        """True if the skill carries the demonstrated band (format v5)."""
+        return self.band_lo_N is not None
+
+    @property
+    def band_points(self) -> int:
+        """The band's point count M (0 without a band)."""
+        return 0 if self.band_lo_N is None else int(self.band_lo_N.size)
+
+    def band_at(
+        self, t_s: np.ndarray, goal_scale: float = 1.0, time_scale: float = 1.0, amplitude_scale: float = 1.0
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """The band's bounds at run times t_s (linear between points, the end points held), scaled
+        as f_hat is: a discrete skill's about the starting force, f0 + goal_scale*(b - f0); a
+        periodic one's (repeating every period) goal_scale*g + amplitude_scale*(b - g), g its
+        mean force."""
+        if self.band_lo_N is None or self.band_hi_N is None:
+            raise ValueError("skill has no band")
+        period = self.duration_s * time_scale
+        s = np.asarray(t_s, dtype=float) / period
+        if self.periodic:
+            s = s - np.floor(s)
+        x = np.linspace(0.0, 1.0, self.band_lo_N.size)
+        lo = np.interp(np.clip(s, 0.0, 1.0), x, self.band_lo_N)
+        hi = np.interp(np.clip(s, 0.0, 1.0), x, self.band_hi_N)
+        if self.periodic:
+            g = self.goal_N
+            return goal_scale * g + amplitude_scale * (lo - g), goal_scale * g + amplitude_scale * (hi - g)
+        f0 = self.force0_N
+        return f0 + goal_scale * (lo - f0), f0 + goal_scale * (hi - f0)
 
     @property
     def has_y(self) -> bool:
@@ -272,15 +328,20 @@ class Skill:
         version = self.format_version
         header = _HEADERS.get(version, _HEADER_V3)
         hv = next(v for v, h in _HEADERS.items() if h is header)
+        lo, hi = self.band_lo_N, self.band_hi_N
+        m = 0 if lo is None or hi is None or hv < 5 else lo.size
+        if m and (hi is None or hi.size != m):
+            raise SkillError(ERR_SKILL_BAND, "band lower and upper bounds differ in length")
         head = header.pack(
             MAGIC,
             version,
             header.size,
-            image_size(n, hv, yw is not None),
+            image_size(n, hv, yw is not None, m),
             n,
             self.flags,
             *(float(getattr(self, k)) for k in _f64_names(hv)),
             *((self.kind, self.contact_cN, self.contact_tau_ms, 0) if hv >= 4 else ()),
+            *((m, 0, 0, 0) if hv >= 5 else ()),
         )
         body = (
             head
@@ -288,6 +349,11 @@ class Skill:
             + self.widths.astype("<f8").tobytes()
             + self.weights.astype("<f8").tobytes()
             + (b"" if yw is None else yw.astype("<f8").tobytes())
+            + (
+                b""
+                if not m or lo is None or hi is None
+                else lo.astype("<f8").tobytes() + hi.astype("<f8").tobytes()
+            )
         )
         image = body + struct.pack("<I", zlib.crc32(body) & 0xFFFFFFFF)
         if validate:
@@ -328,17 +394,15 @@ class Skill:
         _, _, header_size, total_length, n, flags = fields[:6]
         names = _f64_names(version)
         f64 = dict(zip(names, fields[6 : 6 + len(names)], strict=True))
-        kind, contact_cn, contact_ms, reserved = (
-            (int(fields[-4]), int(fields[-3]), int(fields[-2]), int(fields[-1]))
-            if version >= 4
-            else (KIND_DISCRETE, 0, 0, 0)
-        )
+        tail = [int(x) for x in fields[6 + len(names) :]]
+        kind, contact_cn, contact_ms, reserved = tail[:4] if version >= 4 else (KIND_DISCRETE, 0, 0, 0)
+        band_m, band_reserved = (tail[4], tail[5:]) if version >= 5 else (0, [0])
         if header_size != header.size:
             raise SkillError(
                 ERR_SKILL_HEADER_SIZE, f"skill header_size is {header_size}, expected {header.size}"
             )
         has_y = version >= 3 and bool(flags & FLAG_Y_AXIS)
-        size = image_size(n, version, has_y)
+        size = image_size(n, version, has_y, band_m)
         if total_length != len(buf) or total_length != size:
             raise SkillError(
                 ERR_SKILL_LENGTH,
@@ -360,16 +424,28 @@ class Skill:
                 f"skill kind {kind} (reserved 0x{reserved:X}) is not 0 (discrete) or 1 (periodic), "
                 "or the reserved field not 0",
             )
+        if version >= 5 and (not BAND_MIN_POINTS <= band_m <= BAND_MAX_POINTS or any(band_reserved)):
+            raise SkillError(
+                ERR_SKILL_BAND,
+                f"skill band of {band_m} points (reserved {band_reserved}): the count must be in "
+                f"{BAND_MIN_POINTS}..{BAND_MAX_POINTS} and the reserved fields 0",
+            )
         n_arr = 4 if has_y else 3
-        arrays = np.frombuffer(buf, dtype="<f8", count=n_arr * n, offset=header.size).astype(np.float64)
+        arrays = np.frombuffer(buf, dtype="<f8", count=n_arr * n + 2 * band_m, offset=header.size).astype(
+            np.float64
+        )
         centres, widths, weights = arrays[:n].copy(), arrays[n : 2 * n].copy(), arrays[2 * n : 3 * n].copy()
-        y_weights = arrays[3 * n :].copy() if has_y else None
+        y_weights = arrays[3 * n : n_arr * n].copy() if has_y else None
+        band_lo = arrays[n_arr * n : n_arr * n + band_m].copy() if band_m else None
+        band_hi = arrays[n_arr * n + band_m :].copy() if band_m else None
         for name, val in f64.items():
             if not math.isfinite(val):
                 raise SkillError(ERR_SKILL_NOT_FINITE, f"skill field {name} is not finite: {val}")
         named = [("centres", centres), ("widths", widths), ("weights", weights)]
         if y_weights is not None:
             named.append(("y_weights", y_weights))
+        if band_lo is not None and band_hi is not None:
+            named += [("band_lo_N", band_lo), ("band_hi_N", band_hi)]
         for name, arr in named:
             bad = np.flatnonzero(~np.isfinite(arr))
             if bad.size:
@@ -387,6 +463,8 @@ class Skill:
             kind=kind,
             contact_cN=contact_cn,
             contact_tau_ms=contact_ms,
+            band_lo_N=band_lo,
+            band_hi_N=band_hi,
             **kw,
         )
         skill._validate_values()
@@ -458,6 +536,15 @@ class Skill:
             )
         if self.format_version >= 4:
             self._validate_kind()
+        if self.band_lo_N is not None and self.band_hi_N is not None:
+            bad = np.flatnonzero(~(self.band_lo_N <= self.band_hi_N))
+            if bad.size:
+                j = int(bad[0])
+                raise SkillError(
+                    ERR_SKILL_BAND,
+                    f"skill band point {j}: lower bound {float(self.band_lo_N[j])!r} N above the upper "
+                    f"{float(self.band_hi_N[j])!r} N",
+                )
 
     def _validate_kind(self) -> None:
         """v4 (the kind itself is checked with the kernel count): the contact wait's time
@@ -515,6 +602,9 @@ class Skill:
             d["contact_tau_ms"] = self.contact_tau_ms
         if self.y_weights is not None:
             d["y_weights"] = [float(x) for x in self.y_weights]
+        if self.format_version >= 5 and self.band_lo_N is not None and self.band_hi_N is not None:
+            d["band_lo_N"] = [float(x) for x in self.band_lo_N]
+            d["band_hi_N"] = [float(x) for x in self.band_hi_N]
         image = self.to_bytes(validate=False)
         d["image_bytes"] = len(image)
         d["crc32"] = f"0x{image_crc32(image):08X}"
@@ -533,6 +623,9 @@ class Skill:
             kw["kind"] = kinds.get(d["kind"], -1)
         kw.update({k: int(d[k]) for k in ("contact_cN", "contact_tau_ms") if k in d})
         yw = d.get("y_weights")
+        for k in ("band_lo_N", "band_hi_N"):
+            if k in d:
+                kw[k] = np.array(d[k], dtype=float)
         s = Skill(
             centres=np.array(d["centres"], dtype=float),
             widths=np.array(d["widths"], dtype=float),

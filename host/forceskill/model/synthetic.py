@@ -169,3 +169,44 @@ def wiping_strokes(
         y = 0.02 + env * path_m * (np.sin(phase) + 0.3 * np.cos(2.0 * phase + 0.5))
         src += f" path={path_m:g} m"
     return Demo(t, x, f, src, y_m=y)
+
+
+def pressing_set(
+    seed: int = 0,
+    n: int = 6,
+    duration_s: float = 6.0,
+    amplitude_rel: float = 0.05,
+    timing_rel: float = 0.12,
+    warp_s: float = 0.5,
+    bias_N: float = 0.05,
+    noise_N: float = 0.03,
+    dt_s: float = TICK_S,
+) -> tuple[Demo, list[Demo]]:
+    """Several demonstrations of one pressing task through the two-layer object, with a known
+    truth: the intended profile (``pressing``, noise-free) and ``n`` recordings of it, each with
+    its own idle lead (0.2-0.8 s), speed (an overall stretch within +-timing_rel and a smooth
+    non-linear warp: two half-sine bends of up to warp_s and warp_s/2), amplitude (uniform within +-amplitude_rel), bias
+    (normal, bias_N) and
+    white sensor noise (noise_N). Returns (truth, recordings)."""
+    truth = pressing(seed=seed, duration_s=duration_s)
+    rng = np.random.default_rng(seed + 7000)
+    demos = []
+    for i in range(n):
+        lead = rng.uniform(0.2, 0.8)
+        stretch = 1.0 + rng.uniform(-timing_rel, timing_rel)
+        gain = 1.0 + rng.uniform(-amplitude_rel, amplitude_rel)
+        bias = rng.normal(0.0, bias_N)
+        bend = rng.uniform(-1.0, 1.0, 2) * warp_s
+        t = np.arange(int(round((duration_s * stretch + lead + 0.3) / dt_s)) + 1) * dt_s
+        tau = np.clip((t - lead) / stretch, 0.0, duration_s)
+        # the operator's own speed profile: monotone while (|b1| + 2|b2|)*pi/T < 1
+        tau = (
+            tau
+            + bend[0] * np.sin(np.pi * tau / duration_s)
+            + 0.5 * bend[1] * np.sin(2.0 * np.pi * tau / duration_s)
+        )
+        f = gain * np.interp(tau, truth.t_s, truth.force_N) * (t >= lead)
+        x = np.interp(tau, truth.t_s, truth.pos_m)
+        f = f + bias + rng.normal(0.0, noise_N, t.size)
+        demos.append(Demo(t, x, f, f"synthetic pressing set seed={seed} #{i}"))
+    return truth, demos

@@ -181,9 +181,9 @@ static void test_reject_structure(void **state)
     tu_fix_crc(img, len);
     expect("version 1 (metres, k-dependent gains)", len, FS_ERR_SKILL_VERSION);
     expect("version 1, a v1-sized buffer", H - 8u, FS_ERR_SKILL_VERSION);
-    tu_put_u16(img, 4, 5);
+    tu_put_u16(img, 4, 6);
     tu_fix_crc(img, len);
-    expect("version 5", len, FS_ERR_SKILL_VERSION);
+    expect("version 6", len, FS_ERR_SKILL_VERSION);
     tu_put_u16(img, 4, 3);
     tu_fix_crc(img, len);
     expect("version 3 with the v2 header size", len, FS_ERR_SKILL_HEADER_SIZE);

@@ -197,6 +197,84 @@ static double check_rollout_line(const char *dir, char *const *fld)
     return check_rollout(dir, fld[0], strtod(fld[1], NULL), strtod(fld[2], NULL), fld[3]);
 }
 
+/* One manifest_band line: the parsed band's points against the points CSV, then skill_band_at
+ * at every row of the rollout CSV (t,f_hat,f_band_lo,f_band_hi) against its bounds; returns the
+ * worst difference in N relative to the largest |bound|. */
+static double check_band(const char *dir, char *const *fld)
+{
+    char path[1024];
+    snprintf(path, sizeof(path), "%s/%s", dir, fld[0]);
+    const long len = read_file(path, image, MAX_IMAGE);
+    assert_true(len > 0);
+    assert_int_equal(skill_parse(image, (uint32_t)len, &sk), FS_OK);
+    assert_true(sk.band_n >= SKILL_BAND_MIN_POINTS);
+    const double gs = strtod(fld[1], NULL);
+    const double ts = strtod(fld[2], NULL);
+    char line[512];
+    double worst = 0.0, b_max = 0.0;
+    snprintf(path, sizeof(path), "%s/%s", dir, fld[3]);
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    assert_non_null(fgets(line, sizeof(line), f));
+    uint32_t j = 0u;
+    while (fgets(line, sizeof(line), f) != NULL) {
+        char *end = NULL;
+        const double lo = strtod(line, &end);
+        const double hi = strtod(end + 1, NULL);
+        assert_true(j < sk.band_n);
+        worst = fmax(worst,
+                     fmax(fabs(lo - (double)sk.band_lo_N[j]), fabs(hi - (double)sk.band_hi_N[j])));
+        b_max = fmax(b_max, fmax(fabs(lo), fabs(hi)));
+        j++;
+    }
+    fclose(f);
+    assert_int_equal(j, sk.band_n);
+    snprintf(path, sizeof(path), "%s/%s", dir, fld[4]);
+    f = fopen(path, "r");
+    assert_non_null(f);
+    assert_non_null(fgets(line, sizeof(line), f));
+    assert_int_equal(strncmp(line, "t,f_hat,f_band_lo,f_band_hi", 27), 0);
+    const double period = (double)sk.dmp.duration_s * ts;
+    long rows = 0;
+    while (fgets(line, sizeof(line), f) != NULL) {
+        char *end = NULL;
+        const double t = strtod(line, &end);
+        (void)strtod(end + 1, &end);
+        const double lo = strtod(end + 1, &end);
+        const double hi = strtod(end + 1, NULL);
+        fs_real_t lo_c = FS_R(0.0), hi_c = FS_R(0.0);
+        assert_int_equal(
+            skill_band_at(&sk, (fs_real_t)(t / period), (fs_real_t)gs, FS_R(1.0), &lo_c, &hi_c),
+            FS_OK);
+        worst = fmax(worst, fmax(fabs(lo - (double)lo_c), fabs(hi - (double)hi_c)));
+        rows++;
+    }
+    fclose(f);
+    assert_true(rows > 100 && b_max > 0.0);
+    const double rel = worst / b_max;
+    printf("[%s] %s band of %u points, %ld rows at gs=%g ts=%g: max err %.3g of max|bound|\n",
+           BUILD_NAME, fld[0], (unsigned)sk.band_n, rows, gs, ts, rel);
+    if (!(rel <= REL_TOL)) {
+        fail_msg("%s (%s): band error %.3g exceeds %.1g", fld[0], BUILD_NAME, rel, REL_TOL);
+    }
+    return rel;
+}
+
+static void test_golden_band(void **state)
+{
+    (void)state;
+    int count = 0;
+    const double worst = for_each_manifest_line("manifest_band.txt", 5, check_band, &count);
+    assert_true(count >= 2);
+    printf("[%s] %d band vectors, worst %.3g\n", BUILD_NAME, count, worst);
+    fs_real_t lo = FS_R(0.0), hi = FS_R(0.0);
+    assert_int_equal(skill_band_at(NULL, FS_R(0.5), FS_R(1.0), FS_R(1.0), &lo, &hi),
+                     FS_ERR_NULL_ARG);
+    sk.band_n = 0u;
+    assert_int_equal(skill_band_at(&sk, FS_R(0.5), FS_R(1.0), FS_R(1.0), &lo, &hi),
+                     FS_ERR_SKILL_BAND);
+}
+
 static void test_golden_rollouts(void **state)
 {
     (void)state;
@@ -594,6 +672,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_golden_rollouts),
+        cmocka_unit_test(test_golden_band),
         cmocka_unit_test(test_golden_rollouts_y),
         cmocka_unit_test(test_golden_bad_images),
         cmocka_unit_test(test_periodic_images),

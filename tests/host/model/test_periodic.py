@@ -194,7 +194,7 @@ def test_periodic_vectors_regenerate() -> None:
 
 def test_bad_v4_images_are_refused_with_their_codes() -> None:
     for ln in (VECTORS / "bad" / "manifest.txt").read_text().split("\n"):
-        if ln.startswith(("p_", "version_5")):
+        if ln.startswith(("p_", "version_6")):
             name, code = ln.split()
             with pytest.raises(SkillError) as e:
                 Skill.from_bytes((VECTORS / "bad" / name).read_bytes())

@@ -53,7 +53,7 @@ def test_a_version_1_image_is_refused_naming_both_versions() -> None:
     with pytest.raises(SkillError) as e:
         Skill.from_bytes(data)
     assert e.value.code == 202
-    assert "version 1 is not supported" in str(e.value) and "reads versions 2 to 4" in str(e.value)
+    assert "version 1 is not supported" in str(e.value) and "reads versions 2 to 5" in str(e.value)
     assert "fit the demonstration again" in str(e.value)
 
 
@@ -92,7 +92,7 @@ def bad_manifest() -> list[tuple[str, int]]:
 
 def test_bad_manifest_covers_every_code() -> None:
     codes = {c for _, c in bad_manifest()}
-    assert codes == set(range(200, 212)) | set(range(228, 232)) | {233}
+    assert codes == set(range(200, 212)) | set(range(228, 232)) | {233, 234}
 
 
 @pytest.mark.parametrize("name,code", bad_manifest())

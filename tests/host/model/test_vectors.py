@@ -36,8 +36,9 @@ def test_manifest_covers_the_brief() -> None:
     assert {s.end_policy for s in skills} == {"hold", "release"}
     assert {(g, t) for _, g, t, _ in m} == {(1.0, 1.0), (1.5, 1.0), (1.0, 1.3), (1.5, 1.3)}
     total = sum(p.stat().st_size for p in VECTORS.rglob("*") if p.is_file())
-    # the contact-wait rollouts (manifest_contact.txt) add 0.44 MB, the periodic y path 0.15 MB
-    assert total < 2_950_000
+    # the contact-wait rollouts (manifest_contact.txt) add 0.44 MB, the periodic y path 0.15 MB,
+    # the band skills (manifest_band.txt) 0.3 MB
+    assert total < 3_250_000
 
 
 @pytest.mark.parametrize("skill,gs,ts,csv", manifest())
@@ -100,6 +101,7 @@ def test_regenerated_bad_images_match_the_manifest() -> None:
         generate.bad_images(base)
         + generate.bad_images_y(base_y)
         + generate.bad_images_periodic(base_p, generate.discrete_as_v4(base))
+        + generate.bad_images_band(Skill.read(VECTORS / "band_press_n50_ridge.skill"))
     )
     lines = [f"{n} {c}" for n, _, c in bad]
     assert lines == (VECTORS / "bad" / "manifest.txt").read_text().split("\n")[:-1]
@@ -169,3 +171,40 @@ def test_path_scale_scales_the_path_about_its_start_and_goal_scale_leaves_it() -
     _, y13 = dmp.rollout_path(sk, time_scale=1.3)
     assert y13.size == round(sk.duration_s * 1.3 / sk.dt_s) + 1
     assert abs(y13[-1] - y1[-1]) < 2e-3 * np.ptp(y1)
+
+
+def band_manifest() -> list[tuple[str, float, float, str, str]]:
+    out = []
+    for ln in (VECTORS / "manifest_band.txt").read_text().split("\n"):
+        if ln.strip():
+            s, g, t, pts, csv = ln.split()
+            out.append((s, float(g), float(t), pts, csv))
+    return out
+
+
+@pytest.mark.parametrize("skill,gs,ts,pts,csv", band_manifest())
+def test_band_images_reproduce_their_points_and_rollouts(
+    skill: str, gs: float, ts: float, pts: str, csv: str
+) -> None:
+    sk = Skill.read(VECTORS / skill)
+    assert sk.format_version == 5 and sk.band_lo_N is not None and sk.band_hi_N is not None
+    p = np.loadtxt(VECTORS / pts, delimiter=",", skiprows=1)
+    np.testing.assert_array_equal(p[:, 0], sk.band_lo_N)
+    np.testing.assert_array_equal(p[:, 1], sk.band_hi_N)
+    ref = np.loadtxt(VECTORS / csv, delimiter=",", skiprows=1)
+    assert (VECTORS / csv).read_text().split("\n", 1)[0] == "t,f_hat,f_band_lo,f_band_hi"
+    t, f = dmp.rollout(sk, goal_scale=gs, time_scale=ts)
+    lo, hi = sk.band_at(t, gs, ts)
+    np.testing.assert_array_equal(ref[:, 0], t)
+    assert np.max(np.abs(ref[:, 1] - f)) <= 1e-12 * np.max(np.abs(f))
+    np.testing.assert_allclose(ref[:, 2], lo, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(ref[:, 3], hi, rtol=0, atol=1e-12)
+    assert np.all(lo <= f + 1e-9) and np.all(f <= hi + 1e-9)  # the mean skill lies inside its band
+
+
+def test_regenerated_band_skills_match_the_files() -> None:
+    for name, (sk, _) in generate.fitted_band_skills().items():
+        disk = Skill.read(VECTORS / (name + ".skill"))
+        assert disk.n_kernels == sk.n_kernels and disk.band_points == sk.band_points
+        np.testing.assert_allclose(disk.band_lo_N, sk.band_lo_N, rtol=1e-9, atol=1e-9)
+        np.testing.assert_allclose(disk.band_hi_N, sk.band_hi_N, rtol=1e-9, atol=1e-9)
