@@ -21,7 +21,11 @@
 #define SKILL_HEADER_SIZE_V4 208u /* v4: the v3 header, 6 periodic f64, kind u16, reserved */
 #define SKILL_HEADER_SIZE_V5 216u /* v5: the v4 header, the band's point count u16, 3 reserved */
 #define SKILL_BAND_MIN_POINTS 2u
-#define SKILL_BAND_MAX_POINTS 128u /* v5: the band's points, lower and upper (f64 each) */
+/* v5: the band's points, lower and upper (f64 each in the image); a build may take fewer (the
+ * Cortex-M3 image: 64, firmware/ports/mps2/CMakeLists.txt) and refuses a band with more (234) */
+#ifndef SKILL_BAND_MAX_POINTS
+#define SKILL_BAND_MAX_POINTS 128u
+#endif
 #define SKILL_CRC_SIZE 4u
 #define SKILL_KERNEL_BYTES 24u   /* per kernel: centre, width, weight (f64 each) */
 #define SKILL_KERNEL_BYTES_Y 32u /* ... and the y weight (v3 with the y DMP) */

@@ -14,7 +14,7 @@ from ._args import add_force_limit, float_arg, int_arg
 #: the band's defaults (forceskill.model.multi: BAND_K, BAND_FLOOR_REL, BAND_POINTS)
 BAND_K = 3.0
 BAND_FLOOR_REL = 0.05
-BAND_POINTS = 100
+BAND_POINTS = 64  # every image holds it (the Cortex-M3 at most 64: SKILL_BAND_MAX_POINTS)
 #: --contact-wait's time constant when only the threshold is given (s)
 CONTACT_TAU_DEFAULT_S = 0.05
 

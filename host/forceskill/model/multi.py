@@ -64,7 +64,7 @@ OUTLIER_MIN_PCT = 15.0
 #: the band: mean +- max(BAND_K*sigma, floor), floor = max(BAND_K*noise, BAND_FLOOR_REL*max|mean|)
 BAND_K = 3.0
 BAND_FLOOR_REL = 0.05
-BAND_POINTS = 100
+BAND_POINTS = 64  # every image holds it (the Cortex-M3 at most 64: SKILL_BAND_MAX_POINTS)
 #: the spread per sample is smoothed (moving RMS) over this window
 SIGMA_SMOOTH_S = 0.05
 BAND_POINTS_MAX = 128  # the skill format's cap (skill.BAND_MAX_POINTS)
