@@ -183,10 +183,11 @@ def write_can_log(
     drop_ticks: Sequence[int] = (),
     sessions: int = 1,
     busy_every: int = 0,
+    period: int = 1,
 ) -> Path:
     """A python-can log (any suffix it writes, .gz too) of the device's telemetry at 1 kHz in
-    TEACH, status frames every 10 ms, idle telemetry every 100 ms before and after; ``r`` must be
-    sampled at 1 kHz. ``drop_ticks``: telemetry frames lost on the bus. ``sessions`` > 1 repeats
+    TEACH (every ``period`` ticks: ``record --telemetry-period``), status frames every 10 ms, idle
+    telemetry every 100 ms before and after; ``r`` must be sampled at 1 kHz. ``drop_ticks``: telemetry frames lost on the bus. ``sessions`` > 1 repeats
     the demonstration with IDLE in between. ``busy_every`` > 0: the bus is busy for 8 ticks in
     every ``busy_every``, so the positions of those ticks pass their force frames (a controller
     with several mailboxes sends the lowest identifier first)."""
@@ -227,7 +228,7 @@ def write_can_log(
                 msgs.append(
                     can.Message(timestamp=ts, arbitration_id=mstat.frame_id, data=data, is_extended_id=False)
                 )
-            if rows is None and tk % 100:
+            if tk % (100 if rows is None else period):
                 continue
             if rows is not None and (tk - ticks.start) in dropped:
                 continue

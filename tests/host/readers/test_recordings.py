@@ -408,6 +408,26 @@ def test_can_log_gap_and_sessions(tmp_path: Path, capsys: pytest.CaptureFixture[
     assert "holds 2 demonstrations" in out and "T = 6.00" in out
 
 
+@pytest.mark.parametrize("period", [10, 100])
+def test_can_log_at_a_telemetry_period_is_told_from_idle_by_the_status_frames(
+    period: int, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """`record --telemetry-period P`: TEACH's samples every P ticks (at 100 as often as the idle
+    telemetry around them) are the demonstration by the device's status frames (state TEACH and
+    their tick): none of the idle samples, all of TEACH's, and `fit` learns it (12 s at 100 ms:
+    the 100 samples a demonstration needs)."""
+    rec = R.with_noise(R.press(duration_s=12.0, rate_hz=1000, peak_N=8.0), 0.02)
+    p = R.write_can_log(tmp_path / f"p{period}.blf", rec, period=period)
+    d = load_demo(p)
+    assert d.t_s[0] == 0.0 and d.t_s[-1] == pytest.approx(12.0)
+    every = np.arange(0, rec.t.size, period)
+    np.testing.assert_allclose(d.t_s, rec.t[every], atol=1e-12)
+    np.testing.assert_allclose(d.force_N, np.round(rec.f[every], 2), atol=1e-9)
+    out, _ = fit_ok(p, capsys)
+    assert "T = 12.000 s" in out and f"(recorded: {every.size})" in out
+    assert printed_error(out) <= PRESS_TOL_PCT
+
+
 # ---- ROS 2 bags --------------------------------------------------------------------------------
 
 
