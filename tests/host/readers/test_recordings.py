@@ -329,6 +329,32 @@ def test_bad_rows_are_named_in_large_files(tmp_path: Path, monkeypatch: pytest.M
     assert "line 5001 has 2 fields, header has 3" in e.value.message
 
 
+@pytest.mark.parametrize("dialect", ["comma_crlf_comments", "spaces", "semicolon_decimal_comma"])
+def test_large_files_read_at_once_give_what_the_blocks_give(
+    dialect: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A file above one block is parsed at once by numpy's parser (only the kept columns), and
+    one it refuses (decimal commas) block by block: either way the numbers of the small-file path."""
+    from forceskill.readers import csv as csv_reader
+
+    rec = R.with_noise(R.press(rate_hz=1000), 0.05)
+    kw: dict[str, object] = {
+        "comma_crlf_comments": {"comments": ["a comment"], "line_end": "\r\n", "bom": True},
+        "spaces": {"delimiter": " "},
+        "semicolon_decimal_comma": {"delimiter": ";", "decimal_comma": True},
+    }[dialect]
+    p = R.write_csv(tmp_path / "big.csv", rec, **kw)  # type: ignore[arg-type]
+    small = load_demo(p)
+    monkeypatch.setattr(csv_reader, "BLOCK_BYTES", 4096)
+    calls: list[bool] = []
+    orig = csv_reader._parse_whole
+    monkeypatch.setattr(csv_reader, "_parse_whole", lambda *a: calls.append(True) or orig(*a))
+    large = load_demo(p, read=ReadOptions(progress=False))
+    assert calls
+    for a, b in ((small.t_s, large.t_s), (small.force_N, large.force_N), (small.pos_m, large.pos_m)):
+        assert np.array_equal(a, b)
+
+
 # ---- CAN logs ----------------------------------------------------------------------------------
 
 
