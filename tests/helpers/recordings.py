@@ -344,10 +344,24 @@ def write_bag(
     return path
 
 
+def _write_wiping(path: Path, path_m: float) -> Path:
+    """synthetic.wiping_strokes(seed=5, noise_N=0.02[, path_m]): t,x,f_contact[,y]."""
+    from forceskill.model import synthetic
+
+    d = synthetic.wiping_strokes(seed=5, noise_N=0.02, path_m=path_m)
+    cols, names = [d.t_s, d.pos_m, d.force_N], "t,x,f_contact"
+    if d.y_m is not None:
+        cols, names = [*cols, d.y_m], names + ",y"
+    np.savetxt(path, np.column_stack(cols), delimiter=",", header=names, comments="", fmt="%.9g")
+    return path
+
+
 def write_examples(folder: Path) -> list[Path]:
-    """The recordings docs/cli.md's examples use: press100.csv (100 Hz), fz_bias.csv (push reads
-    negative, -0.8 N bias, ms time column, ';' and decimal commas), step20hz.csv, strokes.csv
-    (73 s, 13 strokes), wrench.mcap (ROS 2 bag)."""
+    """The recordings README.md's and docs/cli.md's examples use: press100.csv (100 Hz),
+    fz_bias.csv (push reads negative, -0.8 N bias, ms time column, ';' and decimal commas),
+    step20hz.csv, strokes.csv (73 s, 13 strokes), wrench.mcap (ROS 2 bag), wipe.csv and
+    wipe_y.csv (12 wiping strokes of 1.2 s, the second with a y path), wipe.mcap (13 strokes in a
+    ROS 2 bag, the push reading negative with a +0.8 N bias)."""
     folder.mkdir(parents=True, exist_ok=True)
     out = [
         write_csv(folder / "press100.csv", with_noise(press(rate_hz=100), 0.05)),
@@ -362,9 +376,12 @@ def write_examples(folder: Path) -> list[Path]:
         ),
         write_csv(folder / "step20hz.csv", with_step(press(rate_hz=20), 4.0, 8.0)),
         write_csv(folder / "strokes.csv", strokes()),
+        _write_wiping(folder / "wipe.csv", 0.0),
+        _write_wiping(folder / "wipe_y.csv", 0.03),
     ]
     try:
         out.append(write_bag(folder / "wrench.mcap", with_noise(press(rate_hz=100), 0.05)))
+        out.append(write_bag(folder / "wipe.mcap", with_sign(with_bias(with_noise(strokes(), 0.05), 0.8))))
     except ImportError:
         pass
     return out
