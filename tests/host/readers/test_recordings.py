@@ -148,14 +148,17 @@ def test_printed_error_is_what_the_user_computes_from_the_rollout(
 def test_max_error_picks_the_smallest_kernel_count(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    """73 s, 13 strokes: N = 50 is refused (above 10 %); --max-error 5 prints the N it chose, that N
-    reaches 5 % at the recorded samples and N - 1 does not (checked with the library's fit)."""
+    """73 s, 13 strokes: --kernels 50 is refused (above 10 %), the default N (following the
+    length) says the N within 10 % it took; --max-error 5 prints the N it chose, that N reaches 5 %
+    at the recorded samples and N - 1 does not (checked with the library's fit)."""
     from forceskill.model.fit import fit
 
     rec = R.strokes()
     p = R.write_csv(tmp_path / "strokes.csv", rec)
-    err = fit_refused(p)
+    err = fit_refused(p, "--kernels", "50")
     assert f"[{ERR_FIT_INACCURATE}]" in err and "above 10 %" in err and f"N up to {MAX_KERNELS}" in err
+    out, _ = fit_ok(p, capsys)
+    assert "the smallest within 10 % (the default N = 50 gives" in out
     out, skill = fit_ok(p, capsys, "--max-error", "5")
     n = int(re.search(r"kernels: N = (\d+)", out).group(1))  # type: ignore[union-attr]
     assert Skill.read(skill).n_kernels == n and 2 < n <= MAX_KERNELS
