@@ -183,10 +183,11 @@ def write_can_log(
     drop_ticks: Sequence[int] = (),
     sessions: int = 1,
     busy_every: int = 0,
+    period: int = 1,
 ) -> Path:
     """A python-can log (any suffix it writes, .gz too) of the device's telemetry at 1 kHz in
-    TEACH, status frames every 10 ms, idle telemetry every 100 ms before and after; ``r`` must be
-    sampled at 1 kHz. ``drop_ticks``: telemetry frames lost on the bus. ``sessions`` > 1 repeats
+    TEACH (every ``period`` ticks: ``record --telemetry-period``), status frames every 10 ms, idle
+    telemetry every 100 ms before and after; ``r`` must be sampled at 1 kHz. ``drop_ticks``: telemetry frames lost on the bus. ``sessions`` > 1 repeats
     the demonstration with IDLE in between. ``busy_every`` > 0: the bus is busy for 8 ticks in
     every ``busy_every``, so the positions of those ticks pass their force frames (a controller
     with several mailboxes sends the lowest identifier first)."""
@@ -227,7 +228,7 @@ def write_can_log(
                 msgs.append(
                     can.Message(timestamp=ts, arbitration_id=mstat.frame_id, data=data, is_extended_id=False)
                 )
-            if rows is None and tk % 100:
+            if tk % (100 if rows is None else period):
                 continue
             if rows is not None and (tk - ticks.start) in dropped:
                 continue
@@ -343,10 +344,24 @@ def write_bag(
     return path
 
 
+def _write_wiping(path: Path, path_m: float) -> Path:
+    """synthetic.wiping_strokes(seed=5, noise_N=0.02[, path_m]): t,x,f_contact[,y]."""
+    from forceskill.model import synthetic
+
+    d = synthetic.wiping_strokes(seed=5, noise_N=0.02, path_m=path_m)
+    cols, names = [d.t_s, d.pos_m, d.force_N], "t,x,f_contact"
+    if d.y_m is not None:
+        cols, names = [*cols, d.y_m], names + ",y"
+    np.savetxt(path, np.column_stack(cols), delimiter=",", header=names, comments="", fmt="%.9g")
+    return path
+
+
 def write_examples(folder: Path) -> list[Path]:
-    """The recordings docs/cli.md's examples use: press100.csv (100 Hz), fz_bias.csv (push reads
-    negative, -0.8 N bias, ms time column, ';' and decimal commas), step20hz.csv, strokes.csv
-    (73 s, 13 strokes), wrench.mcap (ROS 2 bag)."""
+    """The recordings README.md's and docs/cli.md's examples use: press100.csv (100 Hz),
+    fz_bias.csv (push reads negative, -0.8 N bias, ms time column, ';' and decimal commas),
+    step20hz.csv, strokes.csv (73 s, 13 strokes), wrench.mcap (ROS 2 bag), wipe.csv and
+    wipe_y.csv (12 wiping strokes of 1.2 s, the second with a y path), wipe.mcap (13 strokes in a
+    ROS 2 bag, the push reading negative with a +0.8 N bias)."""
     folder.mkdir(parents=True, exist_ok=True)
     out = [
         write_csv(folder / "press100.csv", with_noise(press(rate_hz=100), 0.05)),
@@ -361,9 +376,12 @@ def write_examples(folder: Path) -> list[Path]:
         ),
         write_csv(folder / "step20hz.csv", with_step(press(rate_hz=20), 4.0, 8.0)),
         write_csv(folder / "strokes.csv", strokes()),
+        _write_wiping(folder / "wipe.csv", 0.0),
+        _write_wiping(folder / "wipe_y.csv", 0.03),
     ]
     try:
         out.append(write_bag(folder / "wrench.mcap", with_noise(press(rate_hz=100), 0.05)))
+        out.append(write_bag(folder / "wipe.mcap", with_sign(with_bias(with_noise(strokes(), 0.05), 0.8))))
     except ImportError:
         pass
     return out

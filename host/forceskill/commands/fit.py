@@ -19,6 +19,10 @@ BAND_POINTS = 64  # every image holds it (the Cortex-M3 at most 64: SKILL_BAND_M
 CONTACT_TAU_DEFAULT_S = 0.05
 
 
+#: The recording's length the default N = 50 covers; a longer one may take proportionally more.
+DEFAULT_N_SPAN_S = 10.0
+
+
 def contact_wait_arg(text: str) -> tuple[int, int]:
     """--contact-wait THRESHOLD_N[,TAU_S] as the image's (threshold in 0.01 N, tau in ms):
     threshold in (0, 655.35] N, tau in [0, 10] s (default CONTACT_TAU_DEFAULT_S)."""
@@ -148,6 +152,29 @@ def _cmd_fit(args: argparse.Namespace) -> int:
         n_k = 50 if args.kernels is None else args.kernels
         res, grid, f_hat = fit_n(n_k)
         err = tol.sample_error(demo, grid, f_hat)
+        searched = False
+        # the default count follows the recording's length: 50 kernels per 10 s (a long smooth
+        # recording); a recording with a defect (a step, a spike, a stuck sensor) is refused
+        # with its cause rather than fitted with kernels spent on the defect
+        n_cap = min(MAX_KERNELS, int(np.ceil(n_k * (float(demo.t_s[-1] - demo.t_s[0]) / DEFAULT_N_SPAN_S))))
+        if (
+            err.max_pct > tol.DEFAULT_MAX_ERROR_PCT
+            and args.kernels is None
+            and n_cap > n_k
+            and not tol.diagnose(demo)
+        ):
+            # the smallest N above the default within the default error, as --max-error 10 would
+            # search it, up to the length's count
+            n2, res2, err2, tried = tol.fit_to_tolerance(
+                fit_n, demo, tol.DEFAULT_MAX_ERROR_PCT, n_cap, n_min=n_k + 1
+            )
+            searched = True
+            if n2:
+                print(
+                    f"kernels: N = {n2}, the smallest within {tol.DEFAULT_MAX_ERROR_PCT:g} % (the default "
+                    f"N = {n_k} gives {err.max_pct:.3g} %; --kernels N sets it)"
+                )
+                n_k, res, err = n2, res2, err2
         if err.max_pct > tol.DEFAULT_MAX_ERROR_PCT:
             cause = tol.diagnose(demo)
             raise FsError(
@@ -155,7 +182,14 @@ def _cmd_fit(args: argparse.Namespace) -> int:
                 f"approximation error {err.max_pct:.3g} % of max force at N = {n_k} "
                 f"(largest at t = {err.t_at_max_s:.4g} s) is above {tol.DEFAULT_MAX_ERROR_PCT:g} %: "
                 + (f"{cause}; " if cause else "")
-                + f"--max-error PCT searches N up to {MAX_KERNELS}; nothing written",
+                + (
+                    f"no N up to {n_cap} (50 per 10 s of recording) reaches it; --max-error PCT searches N up to "
+                    f"{MAX_KERNELS}, or split the demonstration into a sequence of "
+                    "shorter skills (run --sequence)"
+                    if searched
+                    else f"--max-error PCT searches N up to {MAX_KERNELS}"
+                )
+                + "; nothing written",
             )
     else:
         n_k, res_any, err, tried = tol.fit_to_tolerance(fit_n, demo, args.max_error, MAX_KERNELS)

@@ -272,7 +272,7 @@ def validate(demo: Demo) -> None:
         raise DemoError(
             ERR_DEMO_TOO_SHORT, f"demonstration too short: {duration:g} s (need >= {MIN_DURATION_S:g} s)"
         )
-    gaps = np.flatnonzero(dt > demo.max_gap_s)
+    gaps = np.flatnonzero(dt > demo.max_gap_s + 1e-9)  # a step of --max-gap itself (in float) passes
     if gaps.size:
         i = int(gaps[0])
         raise DemoError(

@@ -106,22 +106,43 @@ class _NoBar:
         pass
 
 
+class _LateBar:
+    """A tqdm bar made (tqdm imported) only once PROGRESS_DELAY_S have passed: a quick read pays
+    neither the import nor the bar."""
+
+    def __init__(self, desc: str, total: float | None, unit: str) -> None:
+        import time
+
+        self._clock = time.monotonic
+        self._t0 = self._clock()
+        self._args = (desc, total, unit)
+        self._n = 0.0
+        self._bar: Any = None
+
+    def update(self, n: float = 1) -> None:
+        if self._bar is not None:
+            self._bar.update(n)
+            return
+        self._n += n
+        if self._clock() - self._t0 >= PROGRESS_DELAY_S:
+            from tqdm import tqdm  # type: ignore[import-untyped,unused-ignore]
+
+            desc, total, unit = self._args
+            self._bar = tqdm(total=total, initial=self._n, unit=unit, unit_scale=True, desc=desc, leave=False)
+            self._bar.refresh()
+
+    def close(self) -> None:
+        if self._bar is not None:
+            self._bar.close()
+
+
 def progress_bar(path: Path, opts: ReadOptions, total: float | None = None, unit: str = "B") -> Any:
     """The reading progress bar of every reader: tqdm on stderr, shown only when reading takes
     more than PROGRESS_DELAY_S (``total`` bytes, or a count of ``unit`` without a total); a bar
     that does nothing when ``opts.progress`` is off. Call ``update(n)`` and ``close()``."""
     if not opts.progress:
         return _NoBar()
-    from tqdm import tqdm  # type: ignore[import-untyped,unused-ignore]
-
-    return tqdm(
-        total=total,
-        unit=unit,
-        unit_scale=True,
-        desc=f"reading {path.name}",
-        delay=PROGRESS_DELAY_S,
-        leave=False,
-    )
+    return _LateBar(f"reading {path.name}", total, unit)
 
 
 _registered: dict[str, Reader] = {}

@@ -3,12 +3,15 @@
 through the DBC into the HIL log columns ``t,x,y,f_contact,f_operator,f_cmd,f_hat``.
 
 ``t`` comes from the device's tick counter (1 ms per tick), not from host timestamps. The device
-streams telemetry every tick in TEACH and every 100 ms otherwise: the demonstration is the
-telemetry streamed every tick. Lost frames stay lost here (the samples around them are kept with
-their ticks; ``demo.validate`` refuses a gap above --max-gap, ``resample`` interpolates shorter
-ones). Two 1 kHz stretches are one demonstration with a gap unless a status frame between them
-says the device left TEACH; when the log holds several demonstrations the longest is used and a
-note says so.
+streams telemetry at the host's period in TEACH (every tick by default, up to 100 ms with
+``record --telemetry-period``) and every 100 ms otherwise: the demonstration is told from the
+idle telemetry by the device's status frames (state TEACH and their tick, every 10 ms), as
+``run`` tells its execution: the samples after the last status before a stretch of TEACH
+statuses and before the first status after it. Lost frames stay lost here (the samples around
+them are kept with their ticks; ``demo.validate`` refuses a gap above --max-gap, ``resample``
+interpolates shorter ones). When the log holds several TEACH stretches the longest is used and a
+note says so. A log without TEACH status frames (another logger's, filtered) falls back to the
+samples' spacing: the stretches streamed faster than the idle telemetry.
 
 python-can writes one format it cannot read back: ``.txt`` (``can.Printer``); ``forceskill.readers.txt``
 refuses such a log by name.
@@ -95,6 +98,7 @@ def read(path: Path, opts: ReadOptions | None = None, node: int | None = None) -
     rows = []
     uds: list[bytes] = []  # the device's UDS response frames (its object model among them)
     leave_teach = []  # message index of status frames with the device not in TEACH
+    status: list[tuple[int, int, bool]] = []  # (message index, 24-bit tick, in TEACH) of each status
     pairs: TelemetryPairer[tuple[int, float, float, int]] = TelemetryPairer()
     wraps, last = 0, -1
     for i, m in enumerate(msgs):
@@ -130,13 +134,18 @@ def read(path: Path, opts: ReadOptions | None = None, node: int | None = None) -
                 st: Any = mstat.decode(bytes(m.data), decode_choices=False)
             except Exception:
                 continue
-            if int(st["State"]) != STATE_TEACH:
+            teach = int(st["State"]) == STATE_TEACH
+            status.append((i, int(st["Tick"]), teach))
+            if not teach:
                 leave_teach.append(i)
     if len(rows) < 2:
         raise DemoError(ERR_LINK_LOG, f"no telemetry of node {node} in {path.name}")
     a = np.array(rows, dtype=float)
     a = a[np.concatenate(([True], np.diff(a[:, 0]) > 0.0))]  # a repeated tick: keep the first
-    start, end, notes = _demonstration(a, np.array(leave_teach, dtype=float), path.name)
+    found = _teach_by_status(a, np.array(status, dtype=np.int64).reshape(-1, 3), path.name)
+    if found is None:
+        found = _demonstration(a, np.array(leave_teach, dtype=float), path.name)
+    start, end, notes = found
     a = a[start:end]
     t = (a[:, 0] - a[0, 0]) * TICK_S
     cols = {
@@ -217,6 +226,58 @@ def _demonstration(a: np.ndarray, leave_idx: np.ndarray, name: str) -> tuple[int
             groups.append([int(s), int(e)])
         else:
             groups[-1][1] = int(e)
+    notes = []
+    if len(groups) > 1:
+        lengths = [(a[e - 1, 0] - a[s, 0]) * TICK_S for s, e in groups]
+        k = int(np.argmax(lengths))
+        spans = ", ".join(
+            f"{(a[s, 0] - a[0, 0]) * TICK_S:.3f}-{(a[e - 1, 0] - a[0, 0]) * TICK_S:.3f} s" for s, e in groups
+        )
+        notes.append(
+            f"{name} holds {len(groups)} demonstrations (log time {spans}): using the longest, "
+            f"number {k + 1} ({lengths[k]:.3f} s)"
+        )
+        return groups[k][0], groups[k][1], notes
+    return groups[0][0], groups[0][1], notes
+
+
+def _teach_by_status(a: np.ndarray, status: np.ndarray, name: str) -> tuple[int, int, list[str]] | None:
+    """Rows [start, end) of the demonstration in telemetry rows ``a`` (unwrapped tick, ...,
+    message index) by the device's status frames ``status`` (message index, 24-bit tick, TEACH):
+    for each stretch of consecutive TEACH statuses, the samples whose tick lies after the
+    preceding status's tick and before the following one's (the status tick unwrapped against
+    the telemetry received just before it), idle samples at its edges trimmed (a step longer than
+    the stretch's period on the idle grid). The longest stretch when there are several (noted).
+    None when no status says TEACH."""
+    from ..wire.telemetry import IDLE_PERIOD_TICKS
+
+    if status.size == 0 or not status[:, 2].any():
+        return None
+    # each status's tick on the telemetry's unwrapped axis
+    j = np.clip(np.searchsorted(a[:, 7], status[:, 0]) - 1, 0, a.shape[0] - 1)
+    ref = a[j, 0].astype(np.int64)
+    d = (status[:, 1] - ref) & 0xFFFF
+    tick = ref + np.where(d >= 32768, d - 65536, d)
+    teach = status[:, 2].astype(bool)
+    edges = np.flatnonzero(np.diff(np.concatenate(([0], teach.astype(np.int8), [0]))))
+    ticks = a[:, 0]
+    groups: list[tuple[int, int]] = []
+    for p, q in zip(edges[::2], edges[1::2], strict=True):  # statuses [p, q) in TEACH
+        lo = tick[p - 1] if p > 0 else -np.inf
+        hi = tick[q] if q < tick.size else np.inf
+        s, e = int(np.searchsorted(ticks, lo, side="right")), int(np.searchsorted(ticks, hi, side="left"))
+        if e - s >= 2:
+            period = max(1.0, float(np.median(np.diff(ticks[s:e]))))
+            while e - s >= 2 and ticks[s + 1] - ticks[s] > period and ticks[s] % IDLE_PERIOD_TICKS == 0:
+                s += 1
+            while (
+                e - s >= 2 and ticks[e - 1] - ticks[e - 2] > period and ticks[e - 1] % IDLE_PERIOD_TICKS == 0
+            ):
+                e -= 1
+        if e - s >= 2:
+            groups.append((s, e))
+    if not groups:
+        raise DemoError(ERR_LINK_LOG, f"no telemetry while the device was in TEACH in {name}")
     notes = []
     if len(groups) > 1:
         lengths = [(a[e - 1, 0] - a[s, 0]) * TICK_S for s, e in groups]

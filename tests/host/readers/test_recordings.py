@@ -148,14 +148,17 @@ def test_printed_error_is_what_the_user_computes_from_the_rollout(
 def test_max_error_picks_the_smallest_kernel_count(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    """73 s, 13 strokes: N = 50 is refused (above 10 %); --max-error 5 prints the N it chose, that N
-    reaches 5 % at the recorded samples and N - 1 does not (checked with the library's fit)."""
+    """73 s, 13 strokes: --kernels 50 is refused (above 10 %), the default N (following the
+    length) says the N within 10 % it took; --max-error 5 prints the N it chose, that N reaches 5 %
+    at the recorded samples and N - 1 does not (checked with the library's fit)."""
     from forceskill.model.fit import fit
 
     rec = R.strokes()
     p = R.write_csv(tmp_path / "strokes.csv", rec)
-    err = fit_refused(p)
+    err = fit_refused(p, "--kernels", "50")
     assert f"[{ERR_FIT_INACCURATE}]" in err and "above 10 %" in err and f"N up to {MAX_KERNELS}" in err
+    out, _ = fit_ok(p, capsys)
+    assert "the smallest within 10 % (the default N = 50 gives" in out
     out, skill = fit_ok(p, capsys, "--max-error", "5")
     n = int(re.search(r"kernels: N = (\d+)", out).group(1))  # type: ignore[union-attr]
     assert Skill.read(skill).n_kernels == n and 2 < n <= MAX_KERNELS
@@ -329,6 +332,32 @@ def test_bad_rows_are_named_in_large_files(tmp_path: Path, monkeypatch: pytest.M
     assert "line 5001 has 2 fields, header has 3" in e.value.message
 
 
+@pytest.mark.parametrize("dialect", ["comma_crlf_comments", "spaces", "semicolon_decimal_comma"])
+def test_large_files_read_at_once_give_what_the_blocks_give(
+    dialect: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A file above one block is parsed at once by numpy's parser (only the kept columns), and
+    one it refuses (decimal commas) block by block: either way the numbers of the small-file path."""
+    from forceskill.readers import csv as csv_reader
+
+    rec = R.with_noise(R.press(rate_hz=1000), 0.05)
+    kw: dict[str, object] = {
+        "comma_crlf_comments": {"comments": ["a comment"], "line_end": "\r\n", "bom": True},
+        "spaces": {"delimiter": " "},
+        "semicolon_decimal_comma": {"delimiter": ";", "decimal_comma": True},
+    }[dialect]
+    p = R.write_csv(tmp_path / "big.csv", rec, **kw)  # type: ignore[arg-type]
+    small = load_demo(p)
+    monkeypatch.setattr(csv_reader, "BLOCK_BYTES", 4096)
+    calls: list[bool] = []
+    orig = csv_reader._parse_whole
+    monkeypatch.setattr(csv_reader, "_parse_whole", lambda *a: calls.append(True) or orig(*a))
+    large = load_demo(p, read=ReadOptions(progress=False))
+    assert calls
+    for a, b in ((small.t_s, large.t_s), (small.force_N, large.force_N), (small.pos_m, large.pos_m)):
+        assert np.array_equal(a, b)
+
+
 # ---- CAN logs ----------------------------------------------------------------------------------
 
 
@@ -406,6 +435,26 @@ def test_can_log_gap_and_sessions(tmp_path: Path, capsys: pytest.CaptureFixture[
     assert f"[{ERR_DEMO_GAP}]" in err and "gap of 151 ms at t = 1.999 s" in err
     out, _ = fit_ok(R.write_can_log(tmp_path / "two.asc", rec, sessions=2), capsys)
     assert "holds 2 demonstrations" in out and "T = 6.00" in out
+
+
+@pytest.mark.parametrize("period", [10, 100])
+def test_can_log_at_a_telemetry_period_is_told_from_idle_by_the_status_frames(
+    period: int, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """`record --telemetry-period P`: TEACH's samples every P ticks (at 100 as often as the idle
+    telemetry around them) are the demonstration by the device's status frames (state TEACH and
+    their tick): none of the idle samples, all of TEACH's, and `fit` learns it (12 s at 100 ms:
+    the 100 samples a demonstration needs)."""
+    rec = R.with_noise(R.press(duration_s=12.0, rate_hz=1000, peak_N=8.0), 0.02)
+    p = R.write_can_log(tmp_path / f"p{period}.blf", rec, period=period)
+    d = load_demo(p)
+    assert d.t_s[0] == 0.0 and d.t_s[-1] == pytest.approx(12.0)
+    every = np.arange(0, rec.t.size, period)
+    np.testing.assert_allclose(d.t_s, rec.t[every], atol=1e-12)
+    np.testing.assert_allclose(d.force_N, np.round(rec.f[every], 2), atol=1e-9)
+    out, _ = fit_ok(p, capsys)
+    assert "T = 12.000 s" in out and f"(recorded: {every.size})" in out
+    assert printed_error(out) <= PRESS_TOL_PCT
 
 
 # ---- ROS 2 bags --------------------------------------------------------------------------------
