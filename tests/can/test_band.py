@@ -9,11 +9,9 @@ from __future__ import annotations
 
 import subprocess
 import time
-from pathlib import Path
 
 import numpy as np
 import pytest
-
 from forceskill import cli
 from helpers.canbus import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS, Server, forceskill
 from helpers.paths import hil_sim_path
