@@ -225,6 +225,9 @@ static void send_telemetry(app_t *app)
     q.force_ref = APP_FORCE_COUNTS(k, app->force_hat_N);
     q.force_operator = APP_FORCE_COUNTS(k, app->sens.force_operator_N[0]);
 #endif
+    /* y in 23 bits (+-4.19 m, beyond the sensor's range), bit 47 the band's check */
+    p.pos_y = (p.pos_y > 4194303) ? 4194303 : ((p.pos_y < -4194304) ? -4194304 : p.pos_y);
+    p.band_outside = (app->state == APP_EXECUTE) ? app->exec.band_outside : 0u;
     p.tick = (uint16_t)(app->tick & 0xFFFFu);
     can_frame_t f; /* id, length and flags; the pack functions write every data byte */
     f.id = PROTO_ID_TELEM_POS(app->cfg.node);
@@ -851,6 +854,8 @@ static uint8_t control_execute(app_t *app, fs_real_t dt)
         app->exec_saturated = true;
     }
     app->seq_step = out.step;
+    /* the band's stop: outside it for the run's band stop time (1 ms a tick) */
+    app->band_stop = app->band_stop_ms != 0u && app->exec.band_streak_ticks >= app->band_stop_ms;
     if (app->cfg.render_carriage != 0u) {
         const fs_real_t m_d = app->exec_run_cfg.pfc.gains[0].m_d_kg;
         app->force_req_N[0] = exec_render_step(&app->cfg.render, &app->rend[0], cmd[0], m_d,
@@ -916,6 +921,8 @@ static void supervise(app_t *app, bool overrun)
     in.skill_invalid = app->exec_saturated;
     app->exec_saturated = false;
     in.storage_error = false;
+    in.band_stop = app->band_stop;
+    app->band_stop = false;
 #ifdef FS_EXEC_FIXED
     for (unsigned a = 0; a < PFC_AXES; a++) {
         in.meas[a].pos_m = app->meas_q.pos_q24[a];

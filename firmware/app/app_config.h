@@ -82,6 +82,9 @@ typedef struct {
     app_run_source_t source;
     uint8_t n_steps; /* 1..EXEC_MAX_STEPS */
     uint8_t end;     /* 0 each skill's own end policy, 1 hold, 2 release */
+    /* ms outside the demonstrated band (consecutive) that stop the run with FLT_BAND; 0: the
+     * check only reports (DID_BAND, the telemetry's BandOutside) */
+    uint16_t band_stop_ms;
     app_run_step_t step[EXEC_MAX_STEPS];
 } app_run_request_t;
 

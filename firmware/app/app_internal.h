@@ -230,7 +230,9 @@ struct app {
     uint32_t exec_start_tick; /* the tick that accepted it (its checks: no slice in it) */
     uint8_t
         run_start_nrc; /* its outcome for a pending RUN_SKILL/RUN_SEQUENCE start (0x78 meanwhile) */
-    bool exec_saturated;           /* this tick's exec_tick saturated (FS_ERR_FIXED_OVERFLOW) */
+    uint16_t band_stop_ms; /* the run's band stop time (app_run_request_t), 0: report only */
+    bool band_stop;        /* this tick: outside the band for band_stop_ms (FLT_BAND) */
+    bool exec_saturated;   /* this tick's exec_tick saturated (FS_ERR_FIXED_OVERFLOW) */
     uint32_t exec_saturated_ticks; /* ticks whose exec_tick saturated, since power-up */
     uint32_t fault_fast_until_ms;  /* in FAULT: the telemetry at the host's rate until then */
     saf_config_t saf_cfg;

@@ -105,6 +105,7 @@ uint8_t app_run_start(app_t *app, const app_run_request_t *req)
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
     app->active_slot = req->step[0].slot;
+    app->band_stop_ms = req->band_stop_ms;
     app->seq_step = 0u;
     app->exec_done = false;
     /* the steps' constants and the first step's start follow a slice a tick (app_run_start_step) */

@@ -105,6 +105,13 @@ static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf, uint16_
             FS_WIRE_CONTACT_WAIT_RATE_COUNT(fs_real_t, app->exec.contact_rate)};
         return fs_wire_contact_wait_pack(&v, buf, cap);
     }
+    case DID_BAND: {
+        const exec_state_t *e = &app->exec;
+        const fs_wire_band_t v = {e->band_checked_ticks,  e->band_out_ticks,  e->band_longest_ticks,
+                                  exec_band_max_milli(e), e->band_first_tick, e->band_outside,
+                                  app->band_stop_ms};
+        return fs_wire_band_pack(&v, buf, cap);
+    }
     case DID_STIFFNESS_MAX: {
         const fs_wire_stiffness_max_t v = {(float)app->cfg.stiffness_max_Npm};
         return fs_wire_stiffness_max_pack(&v, buf, cap);
@@ -305,12 +312,26 @@ static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len
 /* A RUN_SKILL start (slot, goal and time scale, end policy [, path scale]) or a RUN_SEQUENCE start
  * (end policy, then per step: slot, goal and time scale, duration) as a run request; a UDS NRC
  * (0x13 length, 0x31 a field's range). */
+/* One discrete step of a RUN_SKILL start: its slot and scales (counts of FS_WIRE_SCALE), the
+ * skill's own duration, one cycle, amplitude scale 1. */
+static void run_single_step(app_run_step_t *s, uint8_t slot, uint16_t goal, uint16_t time,
+                            uint16_t path)
+{
+    s->slot = slot;
+    s->goal_scale = FS_WIRE_REAL(fs_real_t, goal);
+    s->time_scale = FS_WIRE_REAL(fs_real_t, time);
+    s->duration_s = FS_R(0.0);
+    s->path_scale = FS_WIRE_REAL(fs_real_t, path);
+    s->cycles = 1u;
+    s->amplitude_scale = FS_R(1.0);
+}
+
 static uint8_t run_from_routine(uint16_t rid, const uint8_t *d, uint16_t len,
                                 app_run_request_t *req)
 {
     memset(req, 0, sizeof(*req));
     req->source = APP_RUN_FROM_ROUTINE;
-    if (rid == UDS_RID_RUN_SKILL && len == FS_WIRE_RUN_PERIODIC_LEN) {
+    if (rid == UDS_RID_RUN_SKILL && len >= FS_WIRE_RUN_PERIODIC_LEN_MIN) {
         fs_wire_run_periodic_t r;
         const proto_status_t st = fs_wire_run_periodic_unpack(&r, d, len);
         if (st != PROTO_OK) {
@@ -324,6 +345,19 @@ static uint8_t run_from_routine(uint16_t rid, const uint8_t *d, uint16_t len,
         req->step[0].path_scale = FS_WIRE_REAL(fs_real_t, r.path_scale);
         req->step[0].cycles = r.cycles;
         req->step[0].amplitude_scale = FS_WIRE_REAL(fs_real_t, r.amplitude_scale);
+        req->band_stop_ms = r.band_stop_ms;
+        return UDS_NRC_OK;
+    }
+    if (rid == UDS_RID_RUN_SKILL && len == FS_WIRE_RUN_SKILL_BAND_LEN) {
+        fs_wire_run_skill_band_t r;
+        const proto_status_t st = fs_wire_run_skill_band_unpack(&r, d, len);
+        if (st != PROTO_OK) {
+            return wire_nrc(st);
+        }
+        req->n_steps = 1u;
+        req->end = r.end;
+        req->band_stop_ms = r.band_stop_ms;
+        run_single_step(&req->step[0], r.slot, r.goal_scale, r.time_scale, r.path_scale);
         return UDS_NRC_OK;
     }
     if (rid == UDS_RID_RUN_SKILL) {
@@ -334,13 +368,8 @@ static uint8_t run_from_routine(uint16_t rid, const uint8_t *d, uint16_t len,
         }
         req->n_steps = 1u;
         req->end = r.end;
-        req->step[0].slot = r.slot;
-        req->step[0].goal_scale = FS_WIRE_REAL(fs_real_t, r.goal_scale);
-        req->step[0].time_scale = FS_WIRE_REAL(fs_real_t, r.time_scale);
-        req->step[0].duration_s = FS_R(0.0);
-        req->step[0].path_scale = FS_WIRE_REAL(fs_real_t, r.path_scale); /* absent: 1 */
-        req->step[0].cycles = 1u;
-        req->step[0].amplitude_scale = FS_R(1.0);
+        run_single_step(&req->step[0], r.slot, r.goal_scale, r.time_scale,
+                        r.path_scale); /* absent: 1 */
         return UDS_NRC_OK;
     }
     fs_wire_run_sequence_t r;

@@ -23,15 +23,19 @@ typedef enum {
     FLT_SKILL_INVALID = 512,  /* the active skill failed validation or could not be loaded */
     FLT_CMD_NOT_FINITE = 513, /* the control law produced a NaN or infinite force request */
     FLT_STORAGE = 514,        /* flash error while the device was running (erase/program/read) */
+    /* the contact force stayed outside the skill's demonstrated band for the run's band stop
+     * time */
+    FLT_BAND = 515,
 } flt_code_t;
 
 #define FLT_CODE_FIRST 500u
-#define FLT_COUNT 15u /* codes FLT_CODE_FIRST .. FLT_CODE_FIRST + FLT_COUNT - 1 */
+#define FLT_COUNT 16u /* codes FLT_CODE_FIRST .. FLT_CODE_FIRST + FLT_COUNT - 1 */
 
 /** Bit of a code in a cause/latched mask (0 for FLT_NONE or an unknown code). */
-#define FLT_BIT(code) \
+#define FLT_BIT(code)                                                                      \
     (((uint32_t)(code) >= FLT_CODE_FIRST && (uint32_t)(code) < FLT_CODE_FIRST + FLT_COUNT) \
-         ? (1u << ((uint32_t)(code) - FLT_CODE_FIRST)) : 0u)
+         ? (1u << ((uint32_t)(code)-FLT_CODE_FIRST))                                       \
+         : 0u)
 
 /** Safety configuration (520-529: saf_config_validate and the modules' *_config_validate). */
 typedef enum {
@@ -44,7 +48,7 @@ typedef enum {
     /* ramp longer than 50 ms, shorter than one tick, or the slew limit cannot reach zero from
      * force_max within the ramp */
     SAF_ERR_RAMP = 525,
-    SAF_ERR_FORCE_MAX = 526,   /* force_max above the hardware ceiling LIM_FORCE_CEILING_N */
+    SAF_ERR_FORCE_MAX = 526, /* force_max above the hardware ceiling LIM_FORCE_CEILING_N */
 } saf_status_t;
 
 #endif /* FLT_CODES_H */

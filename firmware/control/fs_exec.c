@@ -57,6 +57,8 @@ static fs_real_t exec_step_duration(const exec_step_t *s)
     return s->skill->dmp.duration_s * s->time_scale;
 }
 
+static void exec_band_tally(exec_state_t *st, uint8_t outside);
+
 #ifndef FS_EXEC_FIXED
 /* The running step's DMP from its starting state and its length in ticks at dt_s. */
 static fs_status_t exec_begin_step(exec_state_t *st, fs_real_t dt_s)
@@ -79,7 +81,47 @@ static fs_status_t exec_begin_step(exec_state_t *st, fs_real_t dt_s)
     st->path_ramp_inv = dt_s / (s->skill->dmp.duration_s * s->time_scale); /* a turn: 1/ticks */
     st->run.goal_scale = s->goal_scale;
     st->run.time_scale = s->time_scale;
+    st->band_s = FS_R(0.0); /* the band scaled as f_hat is (skill_band_at) */
+    const dmp_model_t *m = &s->skill->dmp;
+    st->band_k = (periodic != 0u) ? s->amplitude_scale : s->goal_scale;
+    st->band_c0_N = (periodic != 0u) ? (s->goal_scale - s->amplitude_scale) * m->goal_N
+                                     : (FS_R(1.0) - s->goal_scale) * m->force0_N;
     return FS_OK;
+}
+
+/* The band's check of this tick (before the DMP step): the contact force less the carry's
+ * share of the last f_hat against the band at the step's normalised time, which then advances
+ * at the contact wait's phase rate. */
+static void exec_band_check(exec_state_t *st, fs_real_t f_c_N)
+{
+    st->band_run_ticks++;
+    const skill_t *sk = st->steps[st->step].skill;
+    if (sk->band_n < SKILL_BAND_MIN_POINTS || st->ending != 0u || st->start_pending != 0u) {
+        st->band_outside = 0u;
+        return;
+    }
+    const fs_real_t x = (st->band_s < FS_R(1.0)) ? st->band_s : FS_R(1.0);
+    const fs_real_t pos = x * (fs_real_t)(sk->band_n - 1u);
+    uint32_t i = (uint32_t)pos;
+    i = (i > (uint32_t)sk->band_n - 2u) ? (uint32_t)sk->band_n - 2u : i;
+    const fs_real_t fr = pos - (fs_real_t)i;
+    const fs_real_t lo_b = sk->band_lo_N[i] + fr * (sk->band_lo_N[i + 1u] - sk->band_lo_N[i]);
+    const fs_real_t hi_b = sk->band_hi_N[i] + fr * (sk->band_hi_N[i + 1u] - sk->band_hi_N[i]);
+    const fs_real_t f = f_c_N - (st->force_hat_N - st->force_dmp_N);
+    const fs_real_t lo = st->band_c0_N + st->band_k * lo_b;
+    const fs_real_t hi = st->band_c0_N + st->band_k * hi_b;
+    const fs_real_t d = (f > hi) ? f - hi : ((f < lo) ? lo - f : FS_R(0.0));
+    exec_band_tally(st, (d > FS_R(0.0)) ? 1u : 0u);
+    if (d > FS_R(0.0)) { /* a new largest excursion: one division */
+        const fs_real_t w = hi - lo;
+        if (d > st->band_max_widths * w) {
+            st->band_max_widths = (w > FS_R(0.0)) ? d / w : FS_R(65536.0);
+        }
+    }
+    st->band_s += st->path_ramp_inv * st->contact_rate;
+    if (sk->kind == SKILL_KIND_PERIODIC && st->band_s >= FS_R(1.0)) {
+        st->band_s -= FS_R(1.0);
+    }
 }
 
 /* The periodic path's ramp factor at x in [0, 1) (in: the phase in turns over the first turn;
@@ -175,6 +217,42 @@ static void exec_contact_reset(exec_state_t *st)
     st->contact_lost = 0u;
 }
 
+/* The band's check at an execution's start: nothing counted. */
+static void exec_band_reset(exec_state_t *st)
+{
+    st->band_s = FS_R(0.0);
+    st->band_c0_N = FS_R(0.0);
+    st->band_k = FS_R(1.0);
+    st->band_run_ticks = 0u;
+    st->band_checked_ticks = 0u;
+    st->band_out_ticks = 0u;
+    st->band_streak_ticks = 0u;
+    st->band_longest_ticks = 0u;
+    st->band_first_tick = 0u;
+    st->band_max_q16 = 0u;
+    st->band_max_widths = FS_R(0.0);
+    st->band_outside = 0u;
+}
+
+/* One checked tick counted, inside or outside the band. */
+static void exec_band_tally(exec_state_t *st, uint8_t outside)
+{
+    st->band_checked_ticks++;
+    st->band_outside = outside;
+    if (outside == 0u) {
+        st->band_streak_ticks = 0u;
+        return;
+    }
+    st->band_out_ticks++;
+    st->band_streak_ticks++;
+    if (st->band_streak_ticks > st->band_longest_ticks) {
+        st->band_longest_ticks = st->band_streak_ticks;
+    }
+    if (st->band_first_tick == 0u) {
+        st->band_first_tick = st->band_run_ticks;
+    }
+}
+
 fs_status_t exec_start_begin(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
                              uint8_t n_steps, fs_real_t y_hold_m)
 {
@@ -241,6 +319,7 @@ fs_status_t exec_start_begin(const exec_config_t *cfg, exec_state_t *st, const e
     st->path_ramp_inv = FS_R(0.0);
     st->prepared = 0u;
     exec_contact_reset(st);
+    exec_band_reset(st);
     return exec_law_reset(cfg, st);
 }
 
@@ -354,6 +433,12 @@ static int exec_contact_wait(exec_state_t *st, const skill_t *sk, fs_real_t f_co
     return 1;
 }
 
+uint16_t exec_band_max_milli(const exec_state_t *st)
+{
+    const fs_real_t m = st->band_max_widths * FS_R(1000.0) + FS_R(0.5);
+    return (m < FS_R(65535.0)) ? (uint16_t)m : 65535u;
+}
+
 uint32_t exec_contact_hold_ms(const exec_state_t *st)
 {
     const fs_real_t ms = st->contact_hold_s * FS_R(1000.0) + FS_R(0.5);
@@ -451,6 +536,7 @@ fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_mea
         return FS_ERR_NOT_FINITE;
     }
     const fs_real_t dt = cfg->pfc.dt_s;
+    exec_band_check(st, meas->force_contact_N);
     const fs_real_t f_hat = exec_reference_force(cfg, st, meas);
     st->force_hat_N = f_hat;
 
@@ -578,6 +664,20 @@ static fs_status_t exec_prepare_step_q(exec_state_t *st, uint8_t i, fs_real_t dt
     const double gain = dt / ((double)s->skill->contact_tau_s + dt);
     q->contact_gain_q31 = (gain >= 0.0 && gain <= 1.0) ? (uint32_t)floor(ldexp(gain, 31) + 0.5)
                                                        : (uint32_t)EXEC_Q31_ONE;
+    /* the band scaled as f_hat is (skill_band_at): c0 + k*b */
+    const int periodic = (s->skill->dmp.periodic != 0u);
+    const double gs = (double)s->goal_scale;
+    const double k = periodic ? (double)s->amplitude_scale : gs;
+    const double c0 = periodic ? (gs - k) * (double)s->skill->dmp.goal_N
+                               : (1.0 - gs) * (double)s->skill->dmp.force0_N;
+    if (rc == FS_OK) {
+        rc = exec_to_q(c0, 32, &q->band_c0_q32);
+    }
+    int64_t k_q16 = 0;
+    if (rc == FS_OK) {
+        rc = exec_to_q(k, 16, &k_q16);
+    }
+    q->band_k_q16 = (k_q16 <= INT32_MAX) ? (int32_t)k_q16 : INT32_MAX;
     return rc;
 }
 
@@ -643,6 +743,8 @@ static fs_status_t exec_prepare_cfg_q(const exec_config_t *cfg, exec_state_t *st
     q->defer_q31 = 0u;
     q->end_tick = 0u;
     q->contact_rate_q31 = (uint32_t)EXEC_Q31_ONE;
+    q->band_off_q32 = 0;
+    q->band_s_q32 = 0u;
     return (rc != FS_OK) ? rc : r2;
 }
 
@@ -684,6 +786,7 @@ static void exec_begin_step_q(exec_state_t *st)
     st->dmp_saturated = 0u;
     st->path_ramp = (m->periodic != 0u && m->has_y != 0u) ? 1u : 0u;
     st->path_ramp_out = (st->path_ramp != 0u && st->steps[st->step].until_stopped == 0u) ? 1u : 0u;
+    st->q.band_s_q32 = 0u;
 }
 
 /* N Q.32 -> Q16.16, saturated. */
@@ -853,6 +956,55 @@ static void exec_first_tick_q(exec_state_t *st, const exec_meas_q_t *meas, int64
     }
 }
 
+/* Band point i's lower (hi = 0) or upper (hi = 1) bound at fraction fr (Q.16) towards
+ * point i + 1, N Q16.16 (the skill's float bounds read as integers). */
+static int64_t exec_band_point_q16(const skill_t *sk, uint32_t i, int64_t fr_q16, int hi)
+{
+    const fs_real_t *b = (hi != 0) ? sk->band_hi_N : sk->band_lo_N;
+    const int64_t a = fx_from_float(b[i], 16u);
+    const int64_t c = fx_from_float(b[i + 1u], 16u);
+    return a + (((c - a) * fr_q16) >> 16);
+}
+
+/* exec_band_check in integers: the contact force (N Q.32) less the carry's share of the last
+ * f_hat against the band at the step's normalised time (Q.32 turns, advanced at the contact
+ * wait's rate; a periodic skill's wraps every period). */
+static void exec_band_check_q(exec_state_t *st, int64_t f_c_q32)
+{
+    st->band_run_ticks++;
+    const skill_t *sk = st->steps[st->step].skill;
+    if (sk->band_n < SKILL_BAND_MIN_POINTS || st->ending != 0u || st->start_pending != 0u) {
+        st->band_outside = 0u;
+        return;
+    }
+    exec_q_t *q = &st->q;
+    const exec_step_q_t *sq = &q->step[st->step];
+    const int periodic = (sk->kind == SKILL_KIND_PERIODIC);
+    uint64_t x = q->band_s_q32;
+    x = periodic ? (x & 0xFFFFFFFFu) : ((x > EXEC_Q32_ONE) ? EXEC_Q32_ONE : x);
+    const uint64_t pos = x * (uint64_t)(sk->band_n - 1u);
+    uint32_t i = (uint32_t)(pos >> 32);
+    i = (i > (uint32_t)sk->band_n - 2u) ? (uint32_t)sk->band_n - 2u : i;
+    const int64_t fr = (int64_t)((pos - ((uint64_t)i << 32)) >> 16);
+    const int64_t lo_b = exec_band_point_q16(sk, i, fr, 0);
+    const int64_t hi_b = exec_band_point_q16(sk, i, fr, 1);
+    const int64_t lo = sq->band_c0_q32 + lo_b * sq->band_k_q16;
+    const int64_t hi = sq->band_c0_q32 + hi_b * sq->band_k_q16;
+    const int64_t f = f_c_q32 - q->band_off_q32;
+    const int64_t d = (f > hi) ? f - hi : ((f < lo) ? lo - f : 0);
+    exec_band_tally(st, (d > 0) ? 1u : 0u);
+    if (d > 0) { /* a new largest excursion: one division (N Q16.16 over N Q16.16) */
+        const uint64_t w16 = (uint64_t)((hi - lo) >> 16);
+        const uint64_t d16 = (uint64_t)(d >> 16);
+        if (d16 > ((w16 * st->band_max_q16) >> 16)) {
+            const uint64_t e = (w16 > 0u && d16 < ((uint64_t)1 << 47)) ? (d16 << 16) / w16
+                                                                       : UINT32_MAX;
+            st->band_max_q16 = (e < UINT32_MAX) ? (uint32_t)e : UINT32_MAX;
+        }
+    }
+    q->band_s_q32 += ((uint64_t)sq->ramp_inc_q32 * q->contact_rate_q31) >> 31;
+}
+
 /* The reference force of this tick (exec_reference_force's in integers), N Q.32. */
 static int64_t exec_reference_force_q(exec_state_t *st, const exec_meas_q_t *meas)
 {
@@ -870,6 +1022,7 @@ static int64_t exec_reference_force_q(exec_state_t *st, const exec_meas_q_t *mea
     const int64_t f_dmp = exec_dmp_step_q(st, rate);
     const int64_t f = f_dmp + fx_mul64_u32(fx_clamp61(q->f_carry_q32),
                                            (uint32_t)exec_blend_q31(st, st->step_tick + 1u), 31u);
+    q->band_off_q32 = f - f_dmp;
     if (++st->step_tick >= st->step_ticks) {
         if ((uint8_t)(st->step + 1u) < st->n_steps) {
             q->y_hold_q55 += q->path_q55; /* the next step's path starts where this one ended */
@@ -967,6 +1120,7 @@ fs_status_t exec_tick_q(const exec_config_t *cfg, exec_state_t *st, const exec_m
         out->y_ref_q24 = exec_q24(q->y_ref_q55, 31u);
         return FS_ERR_NOT_FINITE;
     }
+    exec_band_check_q(st, (int64_t)meas->force_contact_q16 * ((int64_t)1 << 16));
     const int64_t f_hat = fx_clamp61(exec_reference_force_q(st, meas));
     q->f_hat_q32 = f_hat;
     pfcfx_ref_t rq[PFC_AXES];
@@ -1015,6 +1169,12 @@ fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_mea
     st->force_hat_N = out->force_hat_N; /* the float view of the integer state */
     st->contact_rate = fx_to_float((int32_t)(st->q.contact_rate_q31 >> 1), 30u);
     return rc;
+}
+
+uint16_t exec_band_max_milli(const exec_state_t *st)
+{
+    const uint64_t m = ((uint64_t)st->band_max_q16 * 1000u + 32768u) >> 16;
+    return (m < 65535u) ? (uint16_t)m : 65535u;
 }
 
 uint32_t exec_contact_hold_ms(const exec_state_t *st)

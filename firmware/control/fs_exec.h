@@ -76,6 +76,7 @@
 #define exec_tick exec_tick_fx
 #define exec_tick_q exec_tick_q_fx
 #define exec_contact_hold_ms exec_contact_hold_ms_fx
+#define exec_band_max_milli exec_band_max_milli_fx
 #define exec_vel_init exec_vel_init_fx
 #define exec_vel_update exec_vel_update_fx
 #define exec_vel_update_q exec_vel_update_q_fx
@@ -166,6 +167,8 @@ typedef struct {
     uint32_t contact_gain_q31; /* dt/(contact_tau_s + dt) */
     uint8_t y_shift;           /* 23 - s: y_acc (Q.55 in units of 2^s N) -> N Q.32 */
     uint8_t contact_wait;      /* the skill's contact_threshold_N > 0 */
+    int64_t band_c0_q32;       /* the band scaled as f_hat: c0 + k*b (exec_state_t's band) */
+    int32_t band_k_q16;        /* k, Q16.16 */
 } exec_step_q_t;
 
 /** The run's constants from the configuration (exec_start_begin). */
@@ -208,6 +211,8 @@ typedef struct {
     uint64_t defer_q31; /* ticks held not yet added to the step's length, Q.31 */
     uint32_t end_tick;  /* ticks of the end policy */
     uint32_t contact_rate_q31;
+    int64_t band_off_q32; /* the last tick's f_hat - f_dmp (the carry's share) */
+    uint64_t band_s_q32;  /* the band's normalised time t/T, Q.32 */
 } exec_q_t;
 #endif
 
@@ -261,6 +266,23 @@ typedef struct {
     fs_real_t contact_defer;  /* ticks held not yet added to the running step's length */
     uint16_t contact_losses;  /* losses of contact counted */
     uint8_t contact_lost;     /* contact lost at the last tick */
+    /* the demonstrated band's check (a step whose skill has one, skill_t.band_n > 0): each tick
+     * of the step before its end policy, the measured contact force less the carry's share of
+     * f_hat against the band at the step's normalised time (advanced at the contact wait's
+     * phase rate), scaled as f_hat (skill_band_at); counts in ticks since exec_start */
+    fs_real_t band_s;            /* the float executors' normalised time t/T of the step */
+    fs_real_t band_c0_N;         /* the running step's band scale: c0 + band_k*b */
+    fs_real_t band_k;            /* goal_scale (discrete) or amplitude_scale (periodic) */
+    uint32_t band_run_ticks;     /* ticks since exec_start */
+    uint32_t band_checked_ticks; /* ticks checked against a band */
+    uint32_t band_out_ticks;     /* ticks outside it */
+    uint32_t band_streak_ticks;  /* consecutive ticks outside up to the last */
+    uint32_t band_longest_ticks; /* the longest such run */
+    uint32_t band_first_tick;    /* band_run_ticks at the first tick outside (0: none) */
+    uint32_t band_max_q16;       /* the fixed-point build's largest excursion beyond the band,
+                                  * band widths Q16.16 */
+    fs_real_t band_max_widths;   /* the float executors' (band widths) */
+    uint8_t band_outside;        /* outside at the last tick */
 } exec_state_t;
 
 /** Default configuration: pfc_default_config, 50 N limit, no model, no phase stopping. */
@@ -319,6 +341,10 @@ typedef struct {
 fs_status_t exec_tick_q(const exec_config_t *cfg, exec_state_t *st, const exec_meas_q_t *meas,
                         exec_out_q_t *out);
 #endif
+
+/** The largest excursion beyond the band so far, in thousandths of a band width (0 without
+ *  one; saturated at 65535). */
+uint16_t exec_band_max_milli(const exec_state_t *st);
 
 /** How long the phase of the execution held for contact (the contact wait's sum of
  *  (1 - rate)*dt), rounded to ms (0 without a contact wait). */

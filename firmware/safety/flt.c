@@ -108,9 +108,10 @@ bool flt_emcy_pop(flt_state_t *st, flt_emcy_t *out)
 const char *flt_name(uint16_t code)
 {
     static const char *const names[FLT_COUNT] = {
-        "HOST_SILENCE", "BUS_OFF",      "SENSOR_NAN",    "SENSOR_RANGE",   "SENSOR_STUCK",
-        "SENSOR_SPIKE", "ENCODER_JUMP", "FORCE_LIMIT",   "SLEW_LIMIT",     "WORKSPACE",
-        "VELOCITY",     "TICK_OVERRUN", "SKILL_INVALID", "CMD_NOT_FINITE", "STORAGE",
+        "HOST_SILENCE",  "BUS_OFF",        "SENSOR_NAN",   "SENSOR_RANGE",
+        "SENSOR_STUCK",  "SENSOR_SPIKE",   "ENCODER_JUMP", "FORCE_LIMIT",
+        "SLEW_LIMIT",    "WORKSPACE",      "VELOCITY",     "TICK_OVERRUN",
+        "SKILL_INVALID", "CMD_NOT_FINITE", "STORAGE",      "BAND",
     };
     if (code == 0u) {
         return "NONE";

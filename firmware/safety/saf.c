@@ -139,6 +139,9 @@ static uint32_t input_causes(const saf_config_t *cfg, saf_state_t *st, const saf
     if (in->storage_error) {
         cause |= FLT_BIT(FLT_STORAGE);
     }
+    if (in->band_stop) {
+        cause |= FLT_BIT(FLT_BAND);
+    }
     return cause | sen_check_tick(&cfg->sen, &st->sen, in->meas, inside0, inside1);
 }
 

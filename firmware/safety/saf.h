@@ -38,6 +38,7 @@ typedef struct {
     bool tick_overrun;                 /* the previous tick overran its period */
     bool skill_invalid;                /* the active skill is invalid / failed to load */
     bool storage_error;                /* a flash operation failed */
+    bool band_stop;                    /* outside the skill's band for the run's stop time */
     saf_meas_t meas[SAF_AXES];         /* raw measurements of this tick */
     saf_force_t force_req_N[SAF_AXES]; /* the control law's request (any value) */
 } saf_input_t;

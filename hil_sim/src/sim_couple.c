@@ -204,7 +204,11 @@ void sim_couple_away_begin(sim_couple_away_t *a, const sim_scenario_t *sc, app_s
     a->executing = (state == APP_EXECUTE);
     a->object = sc->object;
     if (a->executing) {
-        a->object.surface_m += sim_couple_away_m(sc, (double)(n_tick - a->exec_start) * sc->dt_s);
+        const double t_s = (double)(n_tick - a->exec_start) * sc->dt_s;
+        a->object.surface_m += sim_couple_away_m(sc, t_s);
+        if (sc->gives_k2_Npm > 0.0 && t_s >= sc->gives_at_s) { /* the inner layer gave way */
+            a->object.k2_Npm = sc->gives_k2_Npm;
+        }
     }
     drv->object = &a->object;
     sim_drive_prepare(drv);

@@ -115,6 +115,8 @@ static const num_key_t NUM_KEYS[] = {
     NK("object", "away_for_s", away_for_s, 0.0, 3600.0),
     NK("object", "away_m", away_m, -1.0, 1.0),
     NK("object", "away_ramp_s", away_ramp_s, 0.0, 10.0),
+    NK("object", "gives_at_s", gives_at_s, 0.0, 3600.0),
+    NK("object", "gives_k2_Npm", gives_k2_Npm, 0.0, 1e7),
     NK("carriage", "mass_kg", carriage.carriage_kg, 1e-3, 1e3),
     NK("carriage", "act_max_N", carriage.act_max_N, 0.0, 1e5),
     NK("carriage", "act_lag_s", carriage.act_lag_s, 1e-6, 1.0),

@@ -55,6 +55,9 @@ typedef struct {
      * away_at_s for away_for_s (the surface ends under the tool, or the operator lifts the part),
      * over away_ramp_s each way (0: a step), then comes back */
     double away_at_s, away_for_s, away_m, away_ramp_s;
+    /* [object] gives_*: during an execution the inner layer gives way at gives_at_s, its
+     * stiffness k2 becoming gives_k2_Npm (0: it never does) */
+    double gives_at_s, gives_k2_Npm;
     sim_carriage_t carriage;
     sim_operator_cfg_t op;
     sim_force_sensor_t tip, handle;

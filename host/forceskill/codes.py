@@ -110,6 +110,7 @@ FLT_TICK_OVERRUN = 511  # a control tick did not finish before the next one was 
 FLT_SKILL_INVALID = 512  # the active skill failed validation or could not be loaded
 FLT_CMD_NOT_FINITE = 513  # the control law produced a NaN or infinite force request
 FLT_STORAGE = 514  # flash error while the device was running (erase/program/read)
+FLT_BAND = 515
 
 DEVICE_FAULTS: dict[int, str] = {
     500: 'host silence',
@@ -127,6 +128,7 @@ DEVICE_FAULTS: dict[int, str] = {
     512: 'skill invalid',
     513: 'force command not finite',
     514: 'storage error',
+    515: 'outside the demonstrated band',
 }
 
 # Safety configuration (520-529: saf_config_validate and the modules' *_config_validate)
@@ -274,6 +276,7 @@ DID_FAULT_CAUSES = 0x0301  # latched mask u32, causes present mask u32 (bit n: f
 DID_MOTION_KEY = 0x0302
 DID_AUTH_STATS = 0x0303
 DID_CONTACT_WAIT = 0x0304
+DID_BAND = 0x0305
 DID_FWU_STATUS = 0xF1B0  # update status: FWU_STATUS_LEN bytes, see fwu_status()
 RID_RUN_SKILL = 0x0201  # start: slot u8, goal_scale u16 (1e-3), time_scale u16 (1e-3), end u8
 RID_RUN_SEQUENCE = 0x0202
@@ -410,6 +413,7 @@ __all__ = [
     'FLT_SKILL_INVALID',
     'FLT_CMD_NOT_FINITE',
     'FLT_STORAGE',
+    'FLT_BAND',
     'DEVICE_FAULTS',
     'SAF_ERR_NULL_ARG',
     'SAF_ERR_NOT_FINITE',
@@ -541,6 +545,7 @@ __all__ = [
     'DID_MOTION_KEY',
     'DID_AUTH_STATS',
     'DID_CONTACT_WAIT',
+    'DID_BAND',
     'DID_FWU_STATUS',
     'RID_RUN_SKILL',
     'RID_RUN_SEQUENCE',

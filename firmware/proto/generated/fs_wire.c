@@ -244,6 +244,48 @@ uint16_t fs_wire_object_pack(const fs_wire_object_t *v, uint8_t *out, uint16_t c
     return (uint16_t)n;
 }
 
+static int band_in_range(const fs_wire_band_t *v)
+{
+    return v->outside <= 1u;
+}
+
+proto_status_t fs_wire_band_unpack(fs_wire_band_t *v, const uint8_t *d, uint16_t len)
+{
+    if (len != FS_WIRE_BAND_LEN) {
+        return PROTO_ERR_WIRE_LENGTH;
+    }
+    fs_wire_band_t t;
+    memset(&t, 0, sizeof(t));
+    t.checked_ms = (uint32_t)get_be(&d[0u], 4u);
+    t.outside_ms = (uint32_t)get_be(&d[4u], 4u);
+    t.longest_ms = (uint32_t)get_be(&d[8u], 4u);
+    t.max_widths = (uint16_t)get_be(&d[12u], 2u);
+    t.first_ms = (uint32_t)get_be(&d[14u], 4u);
+    t.outside = (uint8_t)get_be(&d[18u], 1u);
+    t.stop_ms = (uint16_t)get_be(&d[19u], 2u);
+    if (!band_in_range(&t)) {
+        return PROTO_ERR_WIRE_RANGE;
+    }
+    *v = t;
+    return PROTO_OK;
+}
+
+uint16_t fs_wire_band_pack(const fs_wire_band_t *v, uint8_t *out, uint16_t cap)
+{
+    const unsigned n = 21u;
+    if (!band_in_range(v) || n > cap) {
+        return 0u;
+    }
+    put_be(&out[0u], v->checked_ms, 4u);
+    put_be(&out[4u], v->outside_ms, 4u);
+    put_be(&out[8u], v->longest_ms, 4u);
+    put_be(&out[12u], v->max_widths, 2u);
+    put_be(&out[14u], v->first_ms, 4u);
+    put_be(&out[18u], v->outside, 1u);
+    put_be(&out[19u], v->stop_ms, 2u);
+    return (uint16_t)n;
+}
+
 static int stiffness_max_in_range(const fs_wire_stiffness_max_t *v)
 {
     return isfinite(v->stiffness_max_Npm) &&
@@ -553,6 +595,46 @@ uint16_t fs_wire_run_skill_pack(const fs_wire_run_skill_t *v, uint8_t *out, uint
     return (uint16_t)n;
 }
 
+static int run_skill_band_in_range(const fs_wire_run_skill_band_t *v)
+{
+    return v->end <= 2u;
+}
+
+proto_status_t fs_wire_run_skill_band_unpack(fs_wire_run_skill_band_t *v, const uint8_t *d, uint16_t len)
+{
+    if (len != FS_WIRE_RUN_SKILL_BAND_LEN) {
+        return PROTO_ERR_WIRE_LENGTH;
+    }
+    fs_wire_run_skill_band_t t;
+    memset(&t, 0, sizeof(t));
+    t.slot = (uint8_t)get_be(&d[0u], 1u);
+    t.goal_scale = (uint16_t)get_be(&d[1u], 2u);
+    t.time_scale = (uint16_t)get_be(&d[3u], 2u);
+    t.end = (uint8_t)get_be(&d[5u], 1u);
+    t.path_scale = (uint16_t)get_be(&d[6u], 2u);
+    t.band_stop_ms = (uint16_t)get_be(&d[8u], 2u);
+    if (!run_skill_band_in_range(&t)) {
+        return PROTO_ERR_WIRE_RANGE;
+    }
+    *v = t;
+    return PROTO_OK;
+}
+
+uint16_t fs_wire_run_skill_band_pack(const fs_wire_run_skill_band_t *v, uint8_t *out, uint16_t cap)
+{
+    const unsigned n = 10u;
+    if (!run_skill_band_in_range(v) || n > cap) {
+        return 0u;
+    }
+    put_be(&out[0u], v->slot, 1u);
+    put_be(&out[1u], v->goal_scale, 2u);
+    put_be(&out[3u], v->time_scale, 2u);
+    put_be(&out[5u], v->end, 1u);
+    put_be(&out[6u], v->path_scale, 2u);
+    put_be(&out[8u], v->band_stop_ms, 2u);
+    return (uint16_t)n;
+}
+
 static int run_periodic_in_range(const fs_wire_run_periodic_t *v)
 {
     return v->end <= 2u;
@@ -560,7 +642,7 @@ static int run_periodic_in_range(const fs_wire_run_periodic_t *v)
 
 proto_status_t fs_wire_run_periodic_unpack(fs_wire_run_periodic_t *v, const uint8_t *d, uint16_t len)
 {
-    if (len != FS_WIRE_RUN_PERIODIC_LEN) {
+    if (len != FS_WIRE_RUN_PERIODIC_LEN_MIN && len != FS_WIRE_RUN_PERIODIC_LEN_MAX) {
         return PROTO_ERR_WIRE_LENGTH;
     }
     fs_wire_run_periodic_t t;
@@ -572,6 +654,12 @@ proto_status_t fs_wire_run_periodic_unpack(fs_wire_run_periodic_t *v, const uint
     t.path_scale = (uint16_t)get_be(&d[6u], 2u);
     t.cycles = (uint16_t)get_be(&d[8u], 2u);
     t.amplitude_scale = (uint16_t)get_be(&d[10u], 2u);
+    if (len == FS_WIRE_RUN_PERIODIC_LEN_MAX) {
+        t.has_band_stop_ms = 1u;
+        t.band_stop_ms = (uint16_t)get_be(&d[12u], 2u);
+    } else {
+        t.band_stop_ms = 0u;
+    }
     if (!run_periodic_in_range(&t)) {
         return PROTO_ERR_WIRE_RANGE;
     }
@@ -581,7 +669,7 @@ proto_status_t fs_wire_run_periodic_unpack(fs_wire_run_periodic_t *v, const uint
 
 uint16_t fs_wire_run_periodic_pack(const fs_wire_run_periodic_t *v, uint8_t *out, uint16_t cap)
 {
-    const unsigned n = 12u;
+    const unsigned n = 12u + (v->has_band_stop_ms != 0u ? 2u : 0u);
     if (!run_periodic_in_range(v) || n > cap) {
         return 0u;
     }
@@ -592,6 +680,7 @@ uint16_t fs_wire_run_periodic_pack(const fs_wire_run_periodic_t *v, uint8_t *out
     put_be(&out[6u], v->path_scale, 2u);
     put_be(&out[8u], v->cycles, 2u);
     put_be(&out[10u], v->amplitude_scale, 2u);
+    if (v->has_band_stop_ms != 0u) { put_be(&out[12u], v->band_stop_ms, 2u); }
     return (uint16_t)n;
 }
 

@@ -14,7 +14,7 @@
 #define FS_WIRE_REAL(T, count) ((T)(count) * (T)FS_WIRE_SCALE)
 
 /* The records, for code that handles each the same way: X(name) per record. */
-#define FS_WIRE_RECORDS(X) X(versions) X(gains) X(limits) X(comm) X(object) X(stiffness_max) X(slot_entry) X(slot_dir) X(last_transfer) X(device_state) X(contact_wait) X(fault_causes) X(run_skill) X(run_periodic) X(run_step) X(run_sequence) X(run_results) X(self_test) X(erase_slot) X(motion_key) X(motion_key_write) X(auth_stats) X(fwu_status) X(transfer_exit) X(mark_test)
+#define FS_WIRE_RECORDS(X) X(versions) X(gains) X(limits) X(comm) X(object) X(band) X(stiffness_max) X(slot_entry) X(slot_dir) X(last_transfer) X(device_state) X(contact_wait) X(fault_causes) X(run_skill) X(run_skill_band) X(run_periodic) X(run_step) X(run_sequence) X(run_results) X(self_test) X(erase_slot) X(motion_key) X(motion_key_write) X(auth_stats) X(fwu_status) X(transfer_exit) X(mark_test)
 
 #define FS_WIRE_VERSIONS_LEN 6u
 /** DID_VERSIONS: protocol and format versions. */
@@ -85,6 +85,24 @@ typedef struct {
 proto_status_t fs_wire_object_unpack(fs_wire_object_t *v, const uint8_t *d, uint16_t len);
 /** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */
 uint16_t fs_wire_object_pack(const fs_wire_object_t *v, uint8_t *out, uint16_t cap);
+
+#define FS_WIRE_BAND_LEN 21u
+/** The count of band.max_widths for a value v of the real type T (nearest step, 0..65535). */
+#define FS_WIRE_BAND_MAX_WIDTHS_COUNT(T, v) ((uint16_t)(!((v) > (T)0.0) ? 0u : ((v) >= (T)65.535) ? 65535u : (uint32_t)((v) * (T)FS_WIRE_SCALE_STEPS + (T)0.5)))
+/** DID_BAND: the demonstrated band's check of the running or last execution. */
+typedef struct {
+    uint32_t checked_ms; /* ms */
+    uint32_t outside_ms; /* ms */
+    uint32_t longest_ms; /* ms */
+    uint16_t max_widths; /* count of FS_WIRE_SCALE */
+    uint32_t first_ms; /* ms */
+    uint8_t outside;
+    uint16_t stop_ms; /* ms */
+} fs_wire_band_t;
+/** Unpack len bytes: PROTO_OK, PROTO_ERR_WIRE_LENGTH or PROTO_ERR_WIRE_RANGE (v unchanged). */
+proto_status_t fs_wire_band_unpack(fs_wire_band_t *v, const uint8_t *d, uint16_t len);
+/** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */
+uint16_t fs_wire_band_pack(const fs_wire_band_t *v, uint8_t *out, uint16_t cap);
 
 #define FS_WIRE_STIFFNESS_MAX_LEN 4u
 /** DID_STIFFNESS_MAX: the highest nominal skill stiffness the device accepts. */
@@ -195,7 +213,29 @@ proto_status_t fs_wire_run_skill_unpack(fs_wire_run_skill_t *v, const uint8_t *d
 /** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */
 uint16_t fs_wire_run_skill_pack(const fs_wire_run_skill_t *v, uint8_t *out, uint16_t cap);
 
-#define FS_WIRE_RUN_PERIODIC_LEN 12u
+#define FS_WIRE_RUN_SKILL_BAND_LEN 10u
+/** The count of run_skill_band.goal_scale for a value v of the real type T (nearest step, 0..65535). */
+#define FS_WIRE_RUN_SKILL_BAND_GOAL_SCALE_COUNT(T, v) ((uint16_t)(!((v) > (T)0.0) ? 0u : ((v) >= (T)65.535) ? 65535u : (uint32_t)((v) * (T)FS_WIRE_SCALE_STEPS + (T)0.5)))
+/** The count of run_skill_band.time_scale for a value v of the real type T (nearest step, 0..65535). */
+#define FS_WIRE_RUN_SKILL_BAND_TIME_SCALE_COUNT(T, v) ((uint16_t)(!((v) > (T)0.0) ? 0u : ((v) >= (T)65.535) ? 65535u : (uint32_t)((v) * (T)FS_WIRE_SCALE_STEPS + (T)0.5)))
+/** The count of run_skill_band.path_scale for a value v of the real type T (nearest step, 0..65535). */
+#define FS_WIRE_RUN_SKILL_BAND_PATH_SCALE_COUNT(T, v) ((uint16_t)(!((v) > (T)0.0) ? 0u : ((v) >= (T)65.535) ? 65535u : (uint32_t)((v) * (T)FS_WIRE_SCALE_STEPS + (T)0.5)))
+/** RID_RUN_SKILL start with a band stop time: run_skill's fields with the path scale, then the ms outside the demonstrated band (consecutive) that stop the run with FLT_BAND (0: report only; the device tells the starts by their length). */
+typedef struct {
+    uint8_t slot;
+    uint16_t goal_scale; /* count of FS_WIRE_SCALE */
+    uint16_t time_scale; /* count of FS_WIRE_SCALE */
+    uint8_t end;
+    uint16_t path_scale; /* count of FS_WIRE_SCALE */
+    uint16_t band_stop_ms; /* ms */
+} fs_wire_run_skill_band_t;
+/** Unpack len bytes: PROTO_OK, PROTO_ERR_WIRE_LENGTH or PROTO_ERR_WIRE_RANGE (v unchanged). */
+proto_status_t fs_wire_run_skill_band_unpack(fs_wire_run_skill_band_t *v, const uint8_t *d, uint16_t len);
+/** Pack into out (cap bytes): the length, 0 if it does not fit or a field is out of range. */
+uint16_t fs_wire_run_skill_band_pack(const fs_wire_run_skill_band_t *v, uint8_t *out, uint16_t cap);
+
+#define FS_WIRE_RUN_PERIODIC_LEN_MIN 12u
+#define FS_WIRE_RUN_PERIODIC_LEN_MAX 14u
 /** The count of run_periodic.goal_scale for a value v of the real type T (nearest step, 0..65535). */
 #define FS_WIRE_RUN_PERIODIC_GOAL_SCALE_COUNT(T, v) ((uint16_t)(!((v) > (T)0.0) ? 0u : ((v) >= (T)65.535) ? 65535u : (uint32_t)((v) * (T)FS_WIRE_SCALE_STEPS + (T)0.5)))
 /** The count of run_periodic.time_scale for a value v of the real type T (nearest step, 0..65535). */
@@ -204,7 +244,7 @@ uint16_t fs_wire_run_skill_pack(const fs_wire_run_skill_t *v, uint8_t *out, uint
 #define FS_WIRE_RUN_PERIODIC_PATH_SCALE_COUNT(T, v) ((uint16_t)(!((v) > (T)0.0) ? 0u : ((v) >= (T)65.535) ? 65535u : (uint32_t)((v) * (T)FS_WIRE_SCALE_STEPS + (T)0.5)))
 /** The count of run_periodic.amplitude_scale for a value v of the real type T (nearest step, 0..65535). */
 #define FS_WIRE_RUN_PERIODIC_AMPLITUDE_SCALE_COUNT(T, v) ((uint16_t)(!((v) > (T)0.0) ? 0u : ((v) >= (T)65.535) ? 65535u : (uint32_t)((v) * (T)FS_WIRE_SCALE_STEPS + (T)0.5)))
-/** RID_RUN_SKILL start of a periodic skill: run_skill's fields with the path scale, then the periods to run (0: until stopped) and the stroke's amplitude scale (the device tells the two starts by their length). */
+/** RID_RUN_SKILL start of a periodic skill: run_skill's fields with the path scale, then the periods to run (0: until stopped) and the stroke's amplitude scale, optionally the band stop time (the device tells the two starts by their length). */
 typedef struct {
     uint8_t slot;
     uint16_t goal_scale; /* count of FS_WIRE_SCALE */
@@ -213,6 +253,8 @@ typedef struct {
     uint16_t path_scale; /* count of FS_WIRE_SCALE */
     uint16_t cycles;
     uint16_t amplitude_scale; /* count of FS_WIRE_SCALE */
+    uint16_t band_stop_ms; /* ms */
+    uint8_t has_band_stop_ms; /* 0: absent (unpack: the default 0) */
 } fs_wire_run_periodic_t;
 /** Unpack len bytes: PROTO_OK, PROTO_ERR_WIRE_LENGTH or PROTO_ERR_WIRE_RANGE (v unchanged). */
 proto_status_t fs_wire_run_periodic_unpack(fs_wire_run_periodic_t *v, const uint8_t *d, uint16_t len);

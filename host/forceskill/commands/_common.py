@@ -118,12 +118,13 @@ def columns(
     arrived are counted (``lost_on_bus``); a repeated tick keeps its first sample. ``max_rows``:
     the window's length in ticks from its first sample (the samples after it are left out and
     not counted)."""
-    empty = {k: np.zeros(0) for k in ("t", *TELEMETRY_COLUMNS)}
+    empty = {k: np.zeros(0) for k in ("t", *TELEMETRY_COLUMNS, "band_out")}
     if not samples:
         return empty, Stream()
     tick = np.array([s.tick for s in samples], np.int64)
     values = np.array(
-        [(s.x_m, s.y_m, s.f_contact_N, s.f_operator_N, s.f_cmd_N, s.f_ref_N) for s in samples], float
+        [(s.x_m, s.y_m, s.f_contact_N, s.f_operator_N, s.f_cmd_N, s.f_ref_N, s.band_out) for s in samples],
+        float,
     )
     order = np.argsort(tick, kind="stable")
     got, first = np.unique(tick[order], return_index=True)
@@ -151,6 +152,8 @@ def columns(
     cols = {"t": (grid - grid[0]) * TICK_S}
     for j, name in enumerate(TELEMETRY_COLUMNS):
         cols[name] = np.interp(grid, got, values[:, j])
+    # the band's bit of the nearest sample (a tick between two samples: the earlier one's)
+    cols["band_out"] = values[np.searchsorted(got, grid, side="right") - 1, len(TELEMETRY_COLUMNS)]
     lost, longest = lost_on_bus(got, period)
     return cols, Stream(int(got[0]), lost, longest, int(got.size))
 

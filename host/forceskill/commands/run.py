@@ -291,9 +291,15 @@ def run_on_device(
             # periodic run (--cycles, --amplitude-scale) is the 12-byte start
             periodic = args.cycles is not None or args.amplitude_scale != 1.0
             cycles = 1 if args.cycles is None else args.cycles
+            # --band-action stop: the start with the band stop time (periodic: 14 bytes)
+            stop_ms = band_stop_ms(args)
             data = (
-                W.RunPeriodic(args.slot, g, ts, end_code, ps, cycles, _as_sent(args.amplitude_scale)).pack()
+                W.RunPeriodic(
+                    args.slot, g, ts, end_code, ps, cycles, _as_sent(args.amplitude_scale), stop_ms or None
+                ).pack()
                 if periodic
+                else W.RunSkillBand(args.slot, g, ts, end_code, ps, stop_ms).pack()
+                if stop_ms
                 else W.RunSkill(args.slot, g, ts, end_code, ps if ps != 1.0 else None).pack()
             )
             period = float(e["duration_s"]) * args.time_scale
@@ -311,6 +317,7 @@ def run_on_device(
                 "--amplitude-scale apply to periodic skills only; nothing was started",
             )
         waits = any(sk.contact_wait for sk in skills.values())
+        banded = any(sk.band_lo_N is not None for sk in skills.values())
         path_skill = skills.get(slots[0]) if not args.sequence else None
         if path_skill is not None and not path_skill.has_y:
             path_skill = None
@@ -326,6 +333,7 @@ def run_on_device(
                 "fault": 0,
                 "interrupted": True,
                 "started": False,
+                "band": None,
             }
         notifier = dev.notifier
         assert notifier is not None
@@ -387,6 +395,7 @@ def run_on_device(
             if writer is not None:
                 notifier.remove_listener(writer)
         contact = W.ContactWait.unpack(U.read_did(client, U.DID_CONTACT_WAIT, dev.node)) if waits else None
+        band = W.Band.unpack(U.read_did(client, U.DID_BAND, dev.node)) if banded else None
     samples, states = dev.telemetry_samples(tel), dev.telemetry_states(tel)
     period_ms = getattr(args, "telemetry_period", 1)
     # the samples of the execution (by the device's states) within the run's window, the ticks
@@ -429,10 +438,33 @@ def run_on_device(
         "started": True,
         "stream": stream,
         "contact": contact,
+        "band": band,
     }
 
 
 CSV_COLUMNS = ("t", "x", "y", "f_contact", "f_operator", "f_cmd", "f_hat", "fault")
+#: a skill with a band (format v5): the telemetry's BandOutside after the fault column
+CSV_BAND_COLUMN = "band_out"
+#: --band-ms's default: 50 ms outside the band in one piece
+BAND_MS_DEFAULT = 50
+
+
+def band_stop_ms(args: argparse.Namespace) -> int:
+    """The run's band stop time in ms: 0 with --band-action report, else --band-ms."""
+    if getattr(args, "band_action", "report") != "stop":
+        return 0
+    return int(getattr(args, "band_ms", BAND_MS_DEFAULT))
+
+
+def band_summary(band: Any) -> str:
+    """The band check's line: time outside in % of the time checked, the longest piece, the
+    largest excursion in band widths, the first excursion's time."""
+    pct = 100.0 * band.outside_ms / band.checked_ms if band.checked_ms else 0.0
+    first = f", first at {band.first_ms / 1000.0:.3f} s" if band.outside_ms else ""
+    return (
+        f"outside the demonstrated band: {pct:.1f} % of the run, longest {band.longest_ms} ms, "
+        f"largest {band.max_widths:.3f} band widths{first}"
+    )
 
 
 def _cmd(args: argparse.Namespace) -> int:
@@ -445,6 +477,12 @@ def _cmd(args: argparse.Namespace) -> int:
             ERR_LINK_ARGS,
             "--cycles and --amplitude-scale apply to --slot only (a sequence step takes SLOT:Nc cycles)",
         )
+    if args.sequence and args.band_action == "stop":
+        raise FsError(
+            ERR_LINK_ARGS, "--band-action stop applies to --slot only (a sequence reports its band)"
+        )
+    if not 1 <= args.band_ms <= 65535:
+        raise FsError(ERR_LINK_ARGS, f"--band-ms must be in 1..65535: {args.band_ms}")
     if args.cycles is not None and not 0 <= args.cycles <= CYCLES_MAX:
         raise FsError(ERR_LINK_ARGS, f"--cycles must be in 0..{CYCLES_MAX} (0: until Ctrl-C): {args.cycles}")
     check_amplitude_scale(args.amplitude_scale)
@@ -468,12 +506,13 @@ def _cmd(args: argparse.Namespace) -> int:
         if not r["started"]:
             print("forceskill: interrupted before the start: nothing was sent", file=sys.stderr)
             return 130
-        block = np.column_stack([cols[k] for k in CSV_COLUMNS])
+        names = CSV_COLUMNS + ((CSV_BAND_COLUMN,) if r.get("band") is not None else ())
+        block = np.column_stack([cols[k] for k in names])
         if csv_tmp is not None:
             with open(csv_tmp, "w", encoding="ascii", newline="\n") as f:
-                f.write(",".join(CSV_COLUMNS) + "\n" + format_rows(block))
+                f.write(",".join(names) + "\n" + format_rows(block))
         elif to_stdout:
-            sys.stdout.write(",".join(CSV_COLUMNS) + "\n" + format_rows(block))
+            sys.stdout.write(",".join(names) + "\n" + format_rows(block))
             sys.stdout.flush()
         outs.commit()  # the telemetry and the bus log are kept on a fault or Ctrl-C too
     n, stream = cols["t"].size, r.get("stream", Stream())
@@ -506,6 +545,9 @@ def _cmd(args: argparse.Namespace) -> int:
             f"loss{'es' if cw.losses != 1 else ''} of contact (rate at the end {cw.rate:g})",
             file=info,
         )
+    band = r.get("band")
+    if band is not None:
+        print(band_summary(band), file=info)
     pf = r.get("path")
     if pf is not None:
         print(
@@ -581,11 +623,26 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         metavar="S",
         help="with hold: seconds to hold the last force before stopping (0.5)",
     )
+    p.add_argument(
+        "--band-action",
+        choices=("report", "stop"),
+        default="report",
+        help="a skill with a band (fit from several recordings): report the time outside it "
+        "(default), or stop the run with fault 515 after --band-ms outside it in one piece",
+    )
+    p.add_argument(
+        "--band-ms",
+        type=int,
+        default=BAND_MS_DEFAULT,
+        metavar="N",
+        help=f"with --band-action stop: ms outside the band in one piece that stop the run ({BAND_MS_DEFAULT})",
+    )
     p.add_argument("-o", "--output", metavar="LOG", help="also log the bus (.blf .asc .log .trc .csv)")
     p.add_argument(
         "--csv",
         metavar="CSV",
-        help="write the telemetry as t,x,y,f_contact,f_operator,f_cmd,f_hat,fault "
+        help="write the telemetry as t,x,y,f_contact,f_operator,f_cmd,f_hat,fault (a skill with a "
+        "band: and band_out, 1 while the contact force was outside it) "
         "('-': standard output); also on a fault (ending with the fault row) and on Ctrl-C",
     )
     add_force_limit(p)

@@ -57,6 +57,7 @@ class Sample:
     f_operator_N: float
     f_cmd_N: float
     f_ref_N: float
+    band_out: float = 0.0  # TelemetryPosition.BandOutside: outside the demonstrated band
 
 
 @dataclass
@@ -122,7 +123,7 @@ class Device(can.Listener):
         self.telemetry: Telemetry | None = None
         self.frames_seen = 0
         self.bad_crc = 0
-        self._pairs: TelemetryPairer[tuple[int, float, float]] = TelemetryPairer()
+        self._pairs: TelemetryPairer[tuple[int, float, float, float]] = TelemetryPairer()
         self._lock = threading.Lock()
         self._counter = {"HostCommand": 0, "HostHeartbeat": 0}
         #: The motion key and freshness values (``link.uds.motion_session``); without one only a
@@ -189,7 +190,9 @@ class Device(can.Listener):
         elif m.name == "Emergency":
             self.emergencies.append((float(msg.timestamp), dict(sig)))
         elif m.name == "TelemetryPosition":
-            self._pairs.position((int(sig["Tick"]), float(sig["PosX"]), float(sig["PosY"])))
+            self._pairs.position(
+                (int(sig["Tick"]), float(sig["PosX"]), float(sig["PosY"]), float(sig.get("BandOutside", 0)))
+            )
         elif m.name == "TelemetryForce":
             pos = self._pairs.force()
             tel = self.telemetry
@@ -204,6 +207,7 @@ class Device(can.Listener):
                             float(sig["ForceOperator"]),
                             float(sig["ForceCmd"]),
                             float(sig["ForceRef"]),
+                            pos[3],
                         )
                     )
 

@@ -26,6 +26,7 @@ from udsoncan.exceptions import NegativeResponseException, TimeoutException, Une
 from .. import wire as W
 from ..codes import (  # noqa: F401
     DID_AUTH_STATS,
+    DID_BAND,
     DID_COMM,
     DID_CONTACT_WAIT,
     DID_DEVICE_STATE,
@@ -110,6 +111,7 @@ DID_CODECS = {
     DID_MOTION_KEY: Raw(W.MotionKey.SIZE),  # the write: W.MotionKeyWrite.SIZE bytes, passed as they are
     DID_AUTH_STATS: Raw(W.AuthStats.SIZE),
     DID_CONTACT_WAIT: Raw(W.ContactWait.SIZE),
+    DID_BAND: Raw(W.Band.SIZE),
 }
 
 #: The protocol major version this host speaks (DID 0xF1A0 byte 0): 4 = the heartbeat carries the

@@ -261,6 +261,51 @@ class Object:
         return v
 
 
+_BAND = struct.Struct('>IIIHIBH')
+
+
+@dataclass(frozen=True)
+class Band:
+    """DID_BAND: the demonstrated band's check of the running or last execution."""
+
+    SIZE: ClassVar[int] = 21  # bytes of the fields always present
+    checked_ms: int  # ms
+    outside_ms: int  # ms
+    longest_ms: int  # ms
+    max_widths: float
+    first_ms: int  # ms
+    outside: int
+    stop_ms: int  # ms
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('band', 'checked_ms', 0 <= self.checked_ms <= 4294967295, self.checked_ms)
+        _in_range('band', 'outside_ms', 0 <= self.outside_ms <= 4294967295, self.outside_ms)
+        _in_range('band', 'longest_ms', 0 <= self.longest_ms <= 4294967295, self.longest_ms)
+        _in_range('band', 'max_widths', 0 <= to_steps(self.max_widths) <= 65535, self.max_widths)
+        _in_range('band', 'first_ms', 0 <= self.first_ms <= 4294967295, self.first_ms)
+        _in_range('band', 'outside', 0 <= self.outside <= 1, self.outside)
+        _in_range('band', 'stop_ms', 0 <= self.stop_ms <= 65535, self.stop_ms)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _BAND.pack(self.checked_ms, self.outside_ms, self.longest_ms, to_steps(self.max_widths), self.first_ms, self.outside, self.stop_ms)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> Band:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _BAND.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'band: {len(data)} bytes, not {n}')
+        raw = _BAND.unpack(data[:n])
+        v = cls(raw[0], raw[1], raw[2], from_steps(raw[3]), raw[4], raw[5], raw[6])
+        v.check()
+        return v
+
+
 _STIFFNESS_MAX = struct.Struct('>f')
 
 
@@ -566,12 +611,55 @@ class RunSkill:
         return v
 
 
+_RUN_SKILL_BAND = struct.Struct('>BHHBHH')
+
+
+@dataclass(frozen=True)
+class RunSkillBand:
+    """RID_RUN_SKILL start with a band stop time: run_skill's fields with the path scale, then the ms outside the demonstrated band (consecutive) that stop the run with FLT_BAND (0: report only; the device tells the starts by their length)."""
+
+    SIZE: ClassVar[int] = 10  # bytes of the fields always present
+    slot: int
+    goal_scale: float
+    time_scale: float
+    end: int
+    path_scale: float
+    band_stop_ms: int  # ms
+
+    def check(self) -> None:
+        """FsError ERR_WIRE_RANGE if a field is outside its range."""
+        _in_range('run_skill_band', 'slot', 0 <= self.slot <= 255, self.slot)
+        _in_range('run_skill_band', 'goal_scale', 0 <= to_steps(self.goal_scale) <= 65535, self.goal_scale)
+        _in_range('run_skill_band', 'time_scale', 0 <= to_steps(self.time_scale) <= 65535, self.time_scale)
+        _in_range('run_skill_band', 'end', 0 <= self.end <= 2, self.end)
+        _in_range('run_skill_band', 'path_scale', 0 <= to_steps(self.path_scale) <= 65535, self.path_scale)
+        _in_range('run_skill_band', 'band_stop_ms', 0 <= self.band_stop_ms <= 65535, self.band_stop_ms)
+
+    def pack(self) -> bytes:
+        """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
+        self.check()
+        out = _RUN_SKILL_BAND.pack(self.slot, to_steps(self.goal_scale), to_steps(self.time_scale), self.end, to_steps(self.path_scale), self.band_stop_ms)
+        return out
+
+    @classmethod
+    def unpack(cls, data: bytes) -> RunSkillBand:
+        """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
+        data = bytes(data)
+        n = _RUN_SKILL_BAND.size
+        if len(data) != n:
+            raise FsError(ERR_WIRE_LENGTH, f'run_skill_band: {len(data)} bytes, not {n}')
+        raw = _RUN_SKILL_BAND.unpack(data[:n])
+        v = cls(raw[0], from_steps(raw[1]), from_steps(raw[2]), raw[3], from_steps(raw[4]), raw[5])
+        v.check()
+        return v
+
+
 _RUN_PERIODIC = struct.Struct('>BHHBHHH')
 
 
 @dataclass(frozen=True)
 class RunPeriodic:
-    """RID_RUN_SKILL start of a periodic skill: run_skill's fields with the path scale, then the periods to run (0: until stopped) and the stroke's amplitude scale (the device tells the two starts by their length)."""
+    """RID_RUN_SKILL start of a periodic skill: run_skill's fields with the path scale, then the periods to run (0: until stopped) and the stroke's amplitude scale, optionally the band stop time (the device tells the two starts by their length)."""
 
     SIZE: ClassVar[int] = 12  # bytes of the fields always present
     slot: int
@@ -581,6 +669,7 @@ class RunPeriodic:
     path_scale: float
     cycles: int
     amplitude_scale: float
+    band_stop_ms: int | None = None  # ms
 
     def check(self) -> None:
         """FsError ERR_WIRE_RANGE if a field is outside its range."""
@@ -591,11 +680,15 @@ class RunPeriodic:
         _in_range('run_periodic', 'path_scale', 0 <= to_steps(self.path_scale) <= 65535, self.path_scale)
         _in_range('run_periodic', 'cycles', 0 <= self.cycles <= 65535, self.cycles)
         _in_range('run_periodic', 'amplitude_scale', 0 <= to_steps(self.amplitude_scale) <= 65535, self.amplitude_scale)
+        if self.band_stop_ms is not None:
+            _in_range('run_periodic', 'band_stop_ms', 0 <= self.band_stop_ms <= 65535, self.band_stop_ms)
 
     def pack(self) -> bytes:
         """The payload; FsError ERR_WIRE_RANGE if a field is outside its range."""
         self.check()
         out = _RUN_PERIODIC.pack(self.slot, to_steps(self.goal_scale), to_steps(self.time_scale), self.end, to_steps(self.path_scale), self.cycles, to_steps(self.amplitude_scale))
+        if self.band_stop_ms is not None:
+            out += struct.pack('>H', self.band_stop_ms)
         return out
 
     @classmethod
@@ -603,10 +696,10 @@ class RunPeriodic:
         """Decode a payload; FsError ERR_WIRE_LENGTH or ERR_WIRE_RANGE."""
         data = bytes(data)
         n = _RUN_PERIODIC.size
-        if len(data) != n:
-            raise FsError(ERR_WIRE_LENGTH, f'run_periodic: {len(data)} bytes, not {n}')
+        if len(data) not in (n, n + 2):
+            raise FsError(ERR_WIRE_LENGTH, f'run_periodic: {len(data)} bytes, not {n} or {n + 2}')
         raw = _RUN_PERIODIC.unpack(data[:n])
-        v = cls(raw[0], from_steps(raw[1]), from_steps(raw[2]), raw[3], from_steps(raw[4]), raw[5], from_steps(raw[6]))
+        v = cls(raw[0], from_steps(raw[1]), from_steps(raw[2]), raw[3], from_steps(raw[4]), raw[5], from_steps(raw[6]), struct.unpack_from('>H', data, n)[0] if len(data) > n else None)
         v.check()
         return v
 
@@ -1063,6 +1156,7 @@ __all__ = [
     'Limits',
     'Comm',
     'Object',
+    'Band',
     'StiffnessMax',
     'SlotEntry',
     'SlotDir',
@@ -1071,6 +1165,7 @@ __all__ = [
     'ContactWait',
     'FaultCauses',
     'RunSkill',
+    'RunSkillBand',
     'RunPeriodic',
     'RunStep',
     'RunSequence',

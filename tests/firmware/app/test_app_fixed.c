@@ -184,7 +184,7 @@ static void test_telemetry_counts_match_the_float64_reference(void **state)
         }
         const long d[4] = {
             labs((long)tel_pos.pos_x - ref_counts(s.pos_m[0], 1e-6, -8388608, 8388607)),
-            labs((long)tel_pos.pos_y - ref_counts(s.pos_m[1], 1e-6, -8388608, 8388607)),
+            labs((long)tel_pos.pos_y - ref_counts(s.pos_m[1], 1e-6, -4194304, 4194303)),
             labs((long)tel_force.force_contact -
                  ref_counts(s.force_contact_N[0], 0.01, -32768, 32767)),
             labs((long)tel_force.force_operator -

@@ -217,3 +217,12 @@ uint32_t exec_side_q_hold_ms(void)
 {
     return exec_contact_hold_ms(&side_state);
 }
+
+void exec_side_band(uint32_t out[5])
+{
+    out[0] = side_state.band_checked_ticks;
+    out[1] = side_state.band_out_ticks;
+    out[2] = side_state.band_longest_ticks;
+    out[3] = side_state.band_first_tick;
+    out[4] = exec_band_max_milli(&side_state);
+}

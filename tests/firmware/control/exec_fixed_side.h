@@ -50,6 +50,10 @@ typedef struct {
 
 #define EXEC_SIDE_MAX_STEPS 4u
 
+/** The band's check of the last exec_side_fixed_replay: ticks checked, ticks outside, the
+ *  longest run outside, the first tick outside, the largest excursion (0.001 band widths). */
+void exec_side_band(uint32_t out[5]);
+
 /** A sequence run: its steps, the configuration's switches (the default object model when
  *  use_model), the y start, and a mutation of the integer executor's constants for the test's
  *  check of its own power (0: none). */

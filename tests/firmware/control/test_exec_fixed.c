@@ -175,10 +175,57 @@ static void test_fixed_matches_float64(void **state)
     }
 }
 
+/* The band's check: a band skill closed loop stays inside its band; its measurements with the
+ * contact force 3 N low for 0.3 s from 0.8 s replayed into the float64 and the fixed-point
+ * executors: both count the excursion (within a tick at its edges, the largest within 1 %). */
+static void test_band_check_agrees(void **state)
+{
+    (void)state;
+    const uint32_t len = load_image("band_press_n50_ridge.skill");
+    assert_true(g_skill.band_n > 0u);
+    const exec_side_run_t run = {g_image, len, 1.0, 1.0, 1.0, 0.0, 0u, 0.0, 0.0, 0.0, 0.0};
+    const size_t n = run_float64(&run);
+    const uint32_t base_out = g_state.band_out_ticks; /* the closed loop's own (its start) */
+    printf("band check, closed loop on the spring: %u of %u ticks outside\n", base_out,
+           g_state.band_checked_ticks);
+    assert_true(g_state.band_checked_ticks + 2u >= (uint32_t)(g_skill.dmp.duration_s / DT));
+    for (size_t i = 800u; i < 1100u; i++) {
+        g_meas[i].force_contact_N -= 3.0;
+    }
+    exec_config_t cfg;
+    exec_config_default(&cfg);
+    cfg.pfc.gains[0] = g_skill.gains;
+    cfg.pfc.gains[1].m_d_kg = g_skill.gains.m_d_kg;
+    const exec_step_t step = {&g_skill, 1.0, 1.0, 0.0, g_skill.end_policy, 1.0, 1.0, 0u};
+    assert_int_equal(exec_start(&cfg, &g_state, &step, 1u, 0.0), FS_OK);
+    for (size_t i = 0; i < n; i++) {
+        const exec_meas_t me = {{g_meas[i].pos_m[0], g_meas[i].pos_m[1]},
+                                {g_meas[i].vel_mps[0], g_meas[i].vel_mps[1]},
+                                g_meas[i].force_contact_N};
+        exec_out_t o;
+        (void)exec_tick(&cfg, &g_state, &me, &o);
+    }
+    assert_int_equal(exec_side_fixed_replay(&run, 0.0, g_meas, g_fx, n), 0);
+    uint32_t fx[5];
+    exec_side_band(fx);
+    const uint32_t ref[5] = {g_state.band_checked_ticks, g_state.band_out_ticks,
+                             g_state.band_longest_ticks, g_state.band_first_tick,
+                             exec_band_max_milli(&g_state)};
+    printf("band check float64 vs fixed: checked %u/%u, outside %u/%u, longest %u/%u, first %u/%u, "
+           "largest %u/%u milli-widths\n",
+           ref[0], fx[0], ref[1], fx[1], ref[2], fx[2], ref[3], fx[3], ref[4], fx[4]);
+    assert_true(ref[1] >= base_out + 100u && ref[2] >= 300u);
+    for (unsigned j = 0; j < 4u; j++) {
+        assert_true(ref[j] + 1u >= fx[j] && fx[j] + 1u >= ref[j]);
+    }
+    assert_true(fabs((double)ref[4] - (double)fx[4]) <= 0.01 * (double)ref[4] + 1.0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_fixed_matches_float64),
+        cmocka_unit_test(test_band_check_agrees),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -12,27 +12,26 @@
 
 #include "fs_dbc.h"
 
-#define MESSAGES(X) \
-    X(emergency, EMERGENCY, "Emergency", \
-      F(fault_code, "FaultCode") F(state, "State") F(n_latched, "NLatched") F(tick, "Tick") \
-      F(counter, "Counter") F(crc, "Crc")) \
-    X(host_command, HOST_COMMAND, "HostCommand", \
-      F(mode, "Mode") F(slot, "Slot") F(goal_scale, "GoalScale") F(time_scale, "TimeScale") \
-      F(end_policy, "EndPolicy") F(mac, "Mac") F(counter, "Counter") F(freshness, "Freshness") \
-      F(crc, "Crc")) \
-    X(host_heartbeat, HOST_HEARTBEAT, "HostHeartbeat", \
-      F(telemetry_period, "TelemetryPeriod") F(command_freshness, "CommandFreshness") \
-      F(mac, "Mac") F(counter, "Counter") \
-      F(freshness, "Freshness") F(crc, "Crc")) \
-    X(device_status, DEVICE_STATUS, "DeviceStatus", \
-      F(state, "State") F(slot, "Slot") F(fault_code, "FaultCode") F(tick, "Tick") \
-      F(counter, "Counter") F(actuator_enabled, "ActuatorEnabled") F(host_alive, "HostAlive") \
-      F(sequence_step, "SequenceStep") F(crc, "Crc")) \
-    X(telemetry_position, TELEMETRY_POSITION, "TelemetryPosition", \
-      F(pos_x, "PosX") F(pos_y, "PosY") F(tick, "Tick")) \
-    X(telemetry_force, TELEMETRY_FORCE, "TelemetryForce", \
+#define MESSAGES(X)                                                                                \
+    X(emergency, EMERGENCY, "Emergency",                                                           \
+      F(fault_code, "FaultCode") F(state, "State") F(n_latched, "NLatched") F(tick, "Tick")        \
+          F(counter, "Counter") F(crc, "Crc"))                                                     \
+    X(host_command, HOST_COMMAND, "HostCommand",                                                   \
+      F(mode, "Mode") F(slot, "Slot") F(goal_scale, "GoalScale") F(time_scale, "TimeScale")        \
+          F(end_policy, "EndPolicy") F(mac, "Mac") F(counter, "Counter") F(freshness, "Freshness") \
+              F(crc, "Crc"))                                                                       \
+    X(host_heartbeat, HOST_HEARTBEAT, "HostHeartbeat",                                             \
+      F(telemetry_period, "TelemetryPeriod") F(command_freshness, "CommandFreshness")              \
+          F(mac, "Mac") F(counter, "Counter") F(freshness, "Freshness") F(crc, "Crc"))             \
+    X(device_status, DEVICE_STATUS, "DeviceStatus",                                                \
+      F(state, "State") F(slot, "Slot") F(fault_code, "FaultCode") F(tick, "Tick")                 \
+          F(counter, "Counter") F(actuator_enabled, "ActuatorEnabled") F(host_alive, "HostAlive")  \
+              F(sequence_step, "SequenceStep") F(crc, "Crc"))                                      \
+    X(telemetry_position, TELEMETRY_POSITION, "TelemetryPosition",                                 \
+      F(pos_x, "PosX") F(pos_y, "PosY") F(band_outside, "BandOutside") F(tick, "Tick"))            \
+    X(telemetry_force, TELEMETRY_FORCE, "TelemetryForce",                                          \
       F(force_contact, "ForceContact") F(force_operator, "ForceOperator") F(force_cmd, "ForceCmd") \
-      F(force_ref, "ForceRef"))
+          F(force_ref, "ForceRef"))
 
 static int parse_hex(const char *s, uint8_t *out, size_t n)
 {
@@ -58,8 +57,13 @@ static void print_hex(const uint8_t *b, size_t n)
 }
 
 #define F(field, sname) printf(" %s", sname);
-#define X(lc, uc, name, fields) printf("%s %u", name, (unsigned)FS_DBC_##uc##_FRAME_ID); fields printf("\n");
-static void cmd_list(void) { MESSAGES(X) }
+#define X(lc, uc, name, fields)                              \
+    printf("%s %u", name, (unsigned)FS_DBC_##uc##_FRAME_ID); \
+    fields printf("\n");
+static void cmd_list(void)
+{
+    MESSAGES(X)
+}
 #undef X
 #undef F
 
@@ -68,13 +72,22 @@ static int cmd_pack(const char *name, char *rest)
     uint8_t buf[8];
     char *save = NULL;
     char *tok = NULL;
-#define F(field, sname) tok = strtok_r(rest, " \t\n", &save); rest = NULL; if (tok == NULL) return -1; \
+#define F(field, sname)                   \
+    tok = strtok_r(rest, " \t\n", &save); \
+    rest = NULL;                          \
+    if (tok == NULL)                      \
+        return -1;                        \
     msg.field = (__typeof__(msg.field))strtoll(tok, NULL, 10);
-#define X(lc, uc, mname, fields) \
-    if (strcmp(name, mname) == 0) { \
-        struct fs_dbc_##lc##_t msg; memset(&msg, 0, sizeof(msg)); fields \
-        int n = fs_dbc_##lc##_pack(buf, &msg, sizeof(buf)); if (n < 0) return -1; \
-        print_hex(buf, (size_t)n); return 0; }
+#define X(lc, uc, mname, fields)                                   \
+    if (strcmp(name, mname) == 0) {                                \
+        struct fs_dbc_##lc##_t msg;                                \
+        memset(&msg, 0, sizeof(msg));                              \
+        fields int n = fs_dbc_##lc##_pack(buf, &msg, sizeof(buf)); \
+        if (n < 0)                                                 \
+            return -1;                                             \
+        print_hex(buf, (size_t)n);                                 \
+        return 0;                                                  \
+    }
     MESSAGES(X)
 #undef X
 #undef F
@@ -89,25 +102,40 @@ static int cmd_unpack(const char *name, const char *hex)
     }
 #define F(field, sname) printf("%" PRId64 " ", (int64_t)msg.field);
 #define G(lc, field) printf(" %.9g", (double)fs_dbc_##lc##_##field##_decode(msg.field));
-#define X(lc, uc, mname, fields) \
-    if (strcmp(name, mname) == 0) { \
-        struct fs_dbc_##lc##_t msg; memset(&msg, 0, sizeof(msg)); \
-        if (fs_dbc_##lc##_unpack(&msg, buf, sizeof(buf)) != 0) return -1; \
-        fields printf("|"); PHYS_##lc printf("\n"); return 0; }
-#define PHYS_emergency G(emergency, fault_code) G(emergency, state) G(emergency, n_latched) \
-    G(emergency, tick) G(emergency, counter) G(emergency, crc)
-#define PHYS_host_command G(host_command, mode) G(host_command, slot) G(host_command, goal_scale) \
-    G(host_command, time_scale) G(host_command, end_policy) G(host_command, mac) \
-    G(host_command, counter) G(host_command, freshness) G(host_command, crc)
-#define PHYS_host_heartbeat G(host_heartbeat, telemetry_period) G(host_heartbeat, command_freshness) G(host_heartbeat, mac) \
-    G(host_heartbeat, counter) G(host_heartbeat, freshness) G(host_heartbeat, crc)
-#define PHYS_device_status G(device_status, state) G(device_status, slot) G(device_status, fault_code) \
-    G(device_status, tick) G(device_status, counter) G(device_status, actuator_enabled) \
-    G(device_status, host_alive) G(device_status, sequence_step) G(device_status, crc)
-#define PHYS_telemetry_position G(telemetry_position, pos_x) G(telemetry_position, pos_y) \
-    G(telemetry_position, tick)
-#define PHYS_telemetry_force G(telemetry_force, force_contact) G(telemetry_force, force_operator) \
-    G(telemetry_force, force_cmd) G(telemetry_force, force_ref)
+#define X(lc, uc, mname, fields)                               \
+    if (strcmp(name, mname) == 0) {                            \
+        struct fs_dbc_##lc##_t msg;                            \
+        memset(&msg, 0, sizeof(msg));                          \
+        if (fs_dbc_##lc##_unpack(&msg, buf, sizeof(buf)) != 0) \
+            return -1;                                         \
+        fields printf("|");                                    \
+        PHYS_##lc printf("\n");                                \
+        return 0;                                              \
+    }
+#define PHYS_emergency                                                                   \
+    G(emergency, fault_code)                                                             \
+    G(emergency, state) G(emergency, n_latched) G(emergency, tick) G(emergency, counter) \
+        G(emergency, crc)
+#define PHYS_host_command                                                         \
+    G(host_command, mode)                                                         \
+    G(host_command, slot) G(host_command, goal_scale) G(host_command, time_scale) \
+        G(host_command, end_policy) G(host_command, mac) G(host_command, counter) \
+            G(host_command, freshness) G(host_command, crc)
+#define PHYS_host_heartbeat                                                                \
+    G(host_heartbeat, telemetry_period)                                                    \
+    G(host_heartbeat, command_freshness) G(host_heartbeat, mac) G(host_heartbeat, counter) \
+        G(host_heartbeat, freshness) G(host_heartbeat, crc)
+#define PHYS_device_status                                                                        \
+    G(device_status, state)                                                                       \
+    G(device_status, slot) G(device_status, fault_code) G(device_status, tick)                    \
+        G(device_status, counter) G(device_status, actuator_enabled) G(device_status, host_alive) \
+            G(device_status, sequence_step) G(device_status, crc)
+#define PHYS_telemetry_position  \
+    G(telemetry_position, pos_x) \
+    G(telemetry_position, pos_y) G(telemetry_position, band_outside) G(telemetry_position, tick)
+#define PHYS_telemetry_force          \
+    G(telemetry_force, force_contact) \
+    G(telemetry_force, force_operator) G(telemetry_force, force_cmd) G(telemetry_force, force_ref)
     MESSAGES(X)
 #undef X
 #undef F

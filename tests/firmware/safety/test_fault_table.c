@@ -85,6 +85,10 @@ static bool inject(const scenario_t *s, const saf_config_t *cfg, uint32_t k, saf
         in->storage_error = active;
         cause = active;
         break;
+    case FLT_BAND:
+        in->band_stop = active;
+        cause = active;
+        break;
     case FLT_SENSOR_NAN:
         if (active) {
             in->meas[0].force_N = (fs_real_t)NAN;
@@ -253,6 +257,7 @@ static void test_fault_table(void **state)
         {FLT_SKILL_INVALID, "active skill reported invalid", 0.0, "same tick", true},
         {FLT_CMD_NOT_FINITE, "control law outputs NaN once", 0.0, "same tick", false},
         {FLT_STORAGE, "flash error reported", 0.0, "same tick", true},
+        {FLT_BAND, "outside the band for the run's stop time", 0.0, "same tick", true},
     };
     const size_t n = sizeof sc / sizeof sc[0];
     assert_int_equal(n, FLT_COUNT);

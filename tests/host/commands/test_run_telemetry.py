@@ -47,7 +47,7 @@ def test_out_of_order_and_repeated_ticks_keep_the_first_sample():
 
 def test_no_samples_gives_empty_columns():
     cols, stream = columns([])
-    assert set(cols) == {"t", *TELEMETRY_COLUMNS} and all(v.size == 0 for v in cols.values())
+    assert set(cols) == {"t", *TELEMETRY_COLUMNS, "band_out"} and all(v.size == 0 for v in cols.values())
     assert stream.lost_samples == 0
 
 

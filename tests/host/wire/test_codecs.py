@@ -27,6 +27,8 @@ CLASSES = {
     "device_state": W.DeviceState,
     "fault_causes": W.FaultCauses,
     "contact_wait": W.ContactWait,
+    "band": W.Band,
+    "run_skill_band": W.RunSkillBand,
     "run_skill": W.RunSkill,
     "run_periodic": W.RunPeriodic,
     "run_step": W.RunStep,
