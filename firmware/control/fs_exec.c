@@ -232,6 +232,12 @@ static void exec_band_reset(exec_state_t *st)
     st->band_max_q16 = 0u;
     st->band_max_widths = FS_R(0.0);
     st->band_outside = 0u;
+    st->band_any = 0u; /* a run without a band skips the check: one test a tick */
+    for (uint8_t i = 0u; i < st->n_steps; i++) {
+        if (st->steps[i].skill->band_n >= SKILL_BAND_MIN_POINTS) {
+            st->band_any = 1u;
+        }
+    }
 }
 
 /* One checked tick counted, inside or outside the band. */
@@ -536,7 +542,9 @@ fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_mea
         return FS_ERR_NOT_FINITE;
     }
     const fs_real_t dt = cfg->pfc.dt_s;
-    exec_band_check(st, meas->force_contact_N);
+    if (st->band_any != 0u) {
+        exec_band_check(st, meas->force_contact_N);
+    }
     const fs_real_t f_hat = exec_reference_force(cfg, st, meas);
     st->force_hat_N = f_hat;
 
@@ -1120,7 +1128,9 @@ fs_status_t exec_tick_q(const exec_config_t *cfg, exec_state_t *st, const exec_m
         out->y_ref_q24 = exec_q24(q->y_ref_q55, 31u);
         return FS_ERR_NOT_FINITE;
     }
-    exec_band_check_q(st, (int64_t)meas->force_contact_q16 * ((int64_t)1 << 16));
+    if (st->band_any != 0u) {
+        exec_band_check_q(st, (int64_t)meas->force_contact_q16 * ((int64_t)1 << 16));
+    }
     const int64_t f_hat = fx_clamp61(exec_reference_force_q(st, meas));
     q->f_hat_q32 = f_hat;
     pfcfx_ref_t rq[PFC_AXES];

@@ -283,6 +283,7 @@ typedef struct {
                                   * band widths Q16.16 */
     fs_real_t band_max_widths;   /* the float executors' (band widths) */
     uint8_t band_outside;        /* outside at the last tick */
+    uint8_t band_any;            /* a step of the run has a band (else no check runs) */
 } exec_state_t;
 
 /** Default configuration: pfc_default_config, 50 N limit, no model, no phase stopping. */
