@@ -32,10 +32,9 @@ typedef enum {
 #define FLT_COUNT 16u /* codes FLT_CODE_FIRST .. FLT_CODE_FIRST + FLT_COUNT - 1 */
 
 /** Bit of a code in a cause/latched mask (0 for FLT_NONE or an unknown code). */
-#define FLT_BIT(code)                                                                      \
+#define FLT_BIT(code) \
     (((uint32_t)(code) >= FLT_CODE_FIRST && (uint32_t)(code) < FLT_CODE_FIRST + FLT_COUNT) \
-         ? (1u << ((uint32_t)(code)-FLT_CODE_FIRST))                                       \
-         : 0u)
+         ? (1u << ((uint32_t)(code) - FLT_CODE_FIRST)) : 0u)
 
 /** Safety configuration (520-529: saf_config_validate and the modules' *_config_validate). */
 typedef enum {
@@ -48,7 +47,7 @@ typedef enum {
     /* ramp longer than 50 ms, shorter than one tick, or the slew limit cannot reach zero from
      * force_max within the ramp */
     SAF_ERR_RAMP = 525,
-    SAF_ERR_FORCE_MAX = 526, /* force_max above the hardware ceiling LIM_FORCE_CEILING_N */
+    SAF_ERR_FORCE_MAX = 526,   /* force_max above the hardware ceiling LIM_FORCE_CEILING_N */
 } saf_status_t;
 
 #endif /* FLT_CODES_H */
