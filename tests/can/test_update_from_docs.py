@@ -53,7 +53,7 @@ def test_the_documented_update_runs_and_status_shows_it(
         capsys, "image", "build", str(binary), "-o", str(image), "--version", "1.1.0", "--target", "host"
     )
     assert rc == 0, err
-    assert "skill format      4 (migrates from 2)" in out  # the default covers every format fit writes
+    assert "skill format      5 (migrates from 2)" in out  # the default covers every format fit writes
     rc, out, err = run(capsys, "flash", str(image), "-q", *bus)
     assert rc == 0, err
     assert "after reset: device: firmware 1.1.0 on host" in out and "new image confirmed" in out
@@ -78,7 +78,7 @@ def test_an_image_that_cannot_read_the_stored_skills_is_refused_before_writing(
     assert rc == 2 and "written" not in out
     assert err == (
         "forceskill: error: image 1.2.0 reads skill formats 4..4 but the device stores skills of formats "
-        "2..4 (it would refuse the image, 708): build it with --skill-format 4:2; nothing written [708]\n"
+        "2..5 (it would refuse the image, 708): build it with --skill-format 5:2; nothing written [708]\n"
     )
     # nothing was received: the update phase is idle, the device still runs its own build
     import can
