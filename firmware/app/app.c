@@ -647,13 +647,13 @@ static bool uds_all_idle(const app_t *app)
 /* The session's share of every tick: its timeout, then its owner (the server may have locked). */
 static inline void uds_session_step(app_t *app)
 {
-    if (uds_server_poll_due(&app->uds, app->now_ms)) {
+    if (uds_server_session_expired(&app->uds, app->now_ms)) {
         uds_server_poll(&app->uds, app->now_ms);
     }
     if (app->uds.unlocked_level == 0u) {
         app->uds_owner = 0u;
-        if (sec_is_unlocked(&app->sec)) {
-            sec_lock(&app->sec); /* the server locked (session change, S3 timeout, reset) */
+        if (sec_is_unlocked(&app->sec.access)) {
+            sec_lock(&app->sec.access); /* the server locked (session change, S3 timeout, reset) */
         }
     } else if (app->uds_owner == 0u) {
         app->uds_owner = (uint8_t)(app->uds_from + 1u); /* the tester whose sendKey unlocked */
@@ -1010,8 +1010,8 @@ void app_tick(app_t *app, bool overrun)
     }
     can_receive(app);
     uds_service(app);
-    if (app_sec_persist_pending(app)) {
-        app_sec_persist_step(app);
+    if (app_sec_store_pending(app)) {
+        app_sec_store_step(app);
     }
     control(app);
 
@@ -1127,7 +1127,7 @@ const uint32_t *app_tx_dropped(const app_t *app)
 
 const uint8_t *app_motion_nonce(const app_t *app)
 {
-    return app->secoc_dev_nonce;
+    return app->sec.motion.dev_nonce;
 }
 
 bool app_transfer_busy(const app_t *app)

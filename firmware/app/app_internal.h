@@ -19,6 +19,7 @@
 #include <stdint.h>
 #include "app.h"
 #include "app_config.h"
+#include "app_sec.h"
 #include "app_sm.h"
 #include "e2e.h"
 #include "fs_exec.h"
@@ -76,7 +77,6 @@
 #define APP_SW_VERSION "forceskill-fw 0.1.0"
 #define APP_PROTO_VERSION_MAJOR 4u /* 4: commands fresh in time (docs/protocol.md) */
 #define APP_PROTO_VERSION_MINOR 0u
-#define APP_SEC_LEVELS 2u       /* SecurityAccess levels 1 and 3, one secret each */
 #define APP_TESTERS UDS_TESTERS /* UDS tester ids: UDS_REQUEST(_2) -> UDS_RESPONSE(_2) */
 /* SHA-256 rounds per tick of a SecurityAccess key check or a motion key derivation (four
  * compressions of 64 rounds, answered 0x78 first): ~40-65 instructions a round on the M4F, a
@@ -150,26 +150,15 @@ struct app {
     uint32_t e2e_errors;
     uint32_t stale_commands; /* authenticated commands refused as late (APP_CMD_FRESH_MS) */
     uint32_t tx_dropped;
-    uint32_t tp_frames; /* ISO-TP frames queued this tick (APP_TP_FRAMES_PER_TICK) */
-    secoc_t secoc;      /* authenticated host frames (motion key) */
-    uint8_t secoc_dev_nonce[SECOC_NONCE_LEN];   /* the device nonce of the key in use */
-    sec_hmac_job_t motion_job;                  /* the derivation of the next key, in slices */
-    bool motion_keying;                         /* motion_job runs (DID 0x0302 answered 0x78) */
-    bool motion_job_due;                        /* motion_job starts at the next call */
-    uint8_t motion_host_nonce[SECOC_NONCE_LEN]; /* the host nonce of the key being derived */
-    bool motion_key_due;                        /* the key is derived, installed next call */
-    bool motion_subkeys_due;                    /* its schedule is set, its subkeys next call */
-    bool motion_confirm_due;                    /* the key is set, its confirmation next call */
-    bool motion_confirm_half;                   /* its first block is in motion_key */
-    uint8_t motion_key[SECOC_KEY_LEN];          /* the derived key until it is installed */
-    uint32_t motion_confirm;                    /* secoc_confirm of the key in use (0: none) */
-    secoc_job_t mac_job;                        /* the MAC verification in flight */
-    uint32_t mac_job_arrival_ms;                /* its frame's arrival */
-    bool mac_busy;                              /* mac_job runs */
-    app_mac_queue_t macq;                       /* frames waiting for it, oldest first */
-    uint32_t mac_dropped;                       /* frames dropped unverified (full or stale) */
-    bool mac_ran;                               /* this tick verified a frame's MAC */
-    uint64_t seed_sent_us[APP_TESTERS];         /* when each tester was last sent a seed */
+    uint32_t tp_frames;          /* ISO-TP frames queued this tick (APP_TP_FRAMES_PER_TICK) */
+    secoc_t secoc;               /* authenticated host frames (motion key) */
+    secoc_job_t mac_job;         /* the MAC verification in flight */
+    uint32_t mac_job_arrival_ms; /* its frame's arrival */
+    bool mac_busy;               /* mac_job runs */
+    app_mac_queue_t macq;        /* frames waiting for it, oldest first */
+    uint32_t mac_dropped;        /* frames dropped unverified (full or stale) */
+    bool mac_ran;                /* this tick verified a frame's MAC */
+    uint64_t seed_sent_us[APP_TESTERS]; /* when each tester was last sent a seed */
     uint8_t
         tp_held; /* tester + 1 whose request buffer a TransferData block's slices read, 0: none */
     uint32_t run_opts_fv;   /* freshness value of the last RUN_OPTIONS ... */
@@ -185,19 +174,7 @@ struct app {
     uint32_t uds_foreign;  /* writes refused because another tester owns the session (558) */
     uds_server_t uds;
     uint32_t reset_since_ms; /* ECUReset accepted at (its response leaves first) */
-    sec_config_t
-        sec_cfg[APP_SEC_LEVELS]; /* [0] level 1 (skills, settings), [1] level 3 (firmware) */
-    sec_state_t sec;             /* one attempt counter for both levels */
-    nvm_t sec_nvm;               /* attempt record (hal_sec_flash), kept across resets */
-    bool sec_nvm_ok;
-    uint8_t sec_saved[SEC_RECORD_LEN];  /* the record as last stored */
-    uint8_t sec_wr_rec[SEC_RECORD_LEN]; /* the record being written (sec_writer's payload) */
-    nvm_writer_t sec_writer;            /* its write, APP_SEC_FLASH_UNITS_PER_TICK units a tick */
-    bool sec_writing;                   /* sec_writer runs */
-    bool sec_dirty;                     /* the record may differ from sec_saved */
-    uint32_t sec_hold_tick;             /* the tick of the last app_sec_persist: no step in it */
-    bool sec_key_held;                  /* a sendKey's result waits for the record: */
-    uint8_t sec_key_nrc;                /* that result */
+    app_sec_t sec;           /* SecurityAccess, its record, the motion key (app_sec.h) */
     /* the skill store: slot cache, transfer buffer, a download's commit (slots.h) */
     slots_t slots;
     uint16_t last_run_status; /* fs_status of the last start request's scale check */
@@ -271,42 +248,5 @@ bool app_event(app_t *app, app_event_t ev);
 /** Clear the latched faults (host command or RoutineControl): FLT_NONE and IDLE when cleared,
  *  else the first fault whose cause persists (the device stays in FAULT). */
 flt_code_t app_clear_faults(app_t *app);
-
-/** SecurityAccess config of a level (1 or 3); NULL for any other level. */
-const sec_config_t *app_sec_config(const app_t *app, uint8_t level);
-
-/** Begin the motion key of a host session from its nonce (DID 0x0302 write): forgets the key
- *  in use, draws the device nonce, starts the derivation from the level-1 secret. Returns
- *  UDS_NRC_RESPONSE_PENDING (app_motion_key_run finishes it) or a refusal's NRC. */
-uint8_t app_motion_key_begin(app_t *app, const uint8_t *host_nonce, uint16_t len);
-
-/** Up to rounds SHA-256 rounds of the derivation begun: UDS_NRC_RESPONSE_PENDING while it runs
- *  (the call that sets the key included: the key's confirmation, one more AES block, is
- *  computed by the next call, not in the same tick), then 0 with the key in use. */
-uint8_t app_motion_key_run(app_t *app, uint32_t rounds);
-
-/** Note that the SecurityAccess attempt record may have changed (after every seed/key request):
- *  app_sec_persist_step stores it in the ticks that follow (not this one: the request's or the
- *  key check's work has it). */
-void app_sec_persist(app_t *app);
-
-/** A tick's share of storing the attempt record: a write in progress goes on, or one starts
- *  when the record differs from the one stored (none while nothing changed). */
-void app_sec_persist_step(app_t *app);
-
-/** True if app_sec_persist_step has work (a record being written or waiting) and the tick is not
- *  one that noted a change: the tick calls it only then. */
-static inline bool app_sec_persist_pending(const app_t *app)
-{
-    return (app->sec_writing || app->sec_dirty) && app->sec_hold_tick != app->tick;
-}
-
-/** True once nothing is left to store: the record as the state is now is stored, or its write
- *  failed (as before: tried again after the next request), or there is no record storage. */
-bool app_sec_persisted(const app_t *app);
-
-/** One secret per level from the HAL; the attempt counter from the record kept across resets
- *  (none or unreadable: the lockout delay runs at power-up, the safe side). At app_init. */
-void app_sec_setup(app_t *app);
 
 #endif /* APP_INTERNAL_H */

@@ -156,12 +156,12 @@ void uds_server_after_response(uds_server_t *srv);
 uint16_t uds_server_resume(uds_server_t *srv, uint8_t *resp, uint16_t resp_cap, uint32_t now_ms);
 
 /** Session timeout (S3): back to default, locked, transfer aborted. Call every tick (or when
- *  uds_server_poll_due). */
+ *  uds_server_session_expired). */
 void uds_server_poll(uds_server_t *srv, uint32_t now_ms);
 
-/** True if uds_server_poll has work at now_ms (a non-default session past S3). Inline: asked
+/** True if the session expired at now_ms (a non-default session past S3: uds_server_poll has work). Inline: asked
  *  every tick. */
-static inline bool uds_server_poll_due(const uds_server_t *srv, uint32_t now_ms)
+static inline bool uds_server_session_expired(const uds_server_t *srv, uint32_t now_ms)
 {
     return srv->session != UDS_SESSION_DEFAULT &&
            (uint32_t)(now_ms - srv->last_request_ms) > UDS_S3_MS;
