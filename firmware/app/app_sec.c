@@ -24,12 +24,6 @@ void app_sec_persist(app_t *app)
     app->sec.store.noted_tick = app->tick; /* one heavy job a tick: the record's next tick */
 }
 
-bool app_sec_store_pending(const app_t *app)
-{
-    const app_sec_store_t *r = &app->sec.store;
-    return (fs_job_running(&r->job) || r->dirty) && r->noted_tick != app->tick;
-}
-
 /* A round stores the state as it is at its start: a change during the write (dirty again) takes
  * another round. A write that fails or cannot start is tried again after the next change. */
 static fs_job_status_t store_job(app_t *app)

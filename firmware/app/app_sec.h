@@ -62,9 +62,8 @@ void app_sec_setup(app_t *app);
  *  stored by app_sec_store_step in the ticks that follow (not this one: the request has it). */
 void app_sec_persist(app_t *app);
 
-/** True if app_sec_store_step has work and the tick is not one that noted a change: the tick
- *  calls it only then. */
-bool app_sec_store_pending(const app_t *app);
+/* app_sec_store_pending (app_internal.h, inline: asked every tick): app_sec_store_step has work
+ * and the tick is not one that noted a change. */
 
 /** A slice of storing the attempt record (a job): a write in progress goes on, or one starts when
  *  the record differs from the one stored. */

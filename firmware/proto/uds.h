@@ -16,6 +16,7 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+#include "fs_budget.h"
 #include "fs_uds_ids.h"
 #include "uds_nrc.h"
 
@@ -56,12 +57,9 @@
 /* Transfer block size announced in 0x74/0x75 responses: bytes per 0x36 request incl. SID and
  * counter; fits one ISO-TP message. */
 #define UDS_MAX_BLOCK_LENGTH 4095u
-/* The same for an upload (0x75's answer, each 0x36 response at most this long): a smaller block
- * bounds the copies of one TransferData answer (the data into the response, the response into
- * the ISO-TP link), which the Cortex-M images serve inside a 1 ms tick. */
-#ifndef UDS_UPLOAD_BLOCK_LENGTH
-#define UDS_UPLOAD_BLOCK_LENGTH UDS_MAX_BLOCK_LENGTH
-#endif
+/* The same for an upload, UDS_UPLOAD_BLOCK_LENGTH (fs_budget.h; 0x75's answer, each 0x36
+ * response at most this long): a smaller block bounds the copies of one TransferData answer,
+ * which the Cortex-M images serve inside a 1 ms tick. */
 
 /** Device hooks. Each returns UDS_NRC_OK or a negative response code. Output buffers have the
  *  capacity given; *out_len receives the bytes written. */
