@@ -549,7 +549,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             if (app_motion_key(&app, nonce, SECOC_NONCE_LEN) == 0u) {
                 uint8_t len = 0u;
                 const uint8_t *secret = hal_device_secret(UDS_SEC_LEVEL_WRITE, &len);
-                secoc_start_session(&fz_host, secret, len, app.secoc_dev_nonce, nonce);
+                secoc_start_session(&fz_host, secret, len, app.sec.motion.dev_nonce, nonce);
                 fz_keyed = true;
             }
             tick();

@@ -55,7 +55,7 @@ tools/static_check.sh build/host-debug/static
 # reported with its figure, not enforced; every other state over its budget fails the suite.
 # Measured with bench/qemu_tick.sh TARGET --fw-bytes 4096 --exec-s 0.5 (the plugin's count), over
 # several runs of each image: every state's max is within its budget and both EXECUTE medians too
-# (M4F 1,486, M3 2,558); the M4F's UPLOAD max is enforced since a read-back's block is copied
+# (M4F 1,482, M3 2,545); the M4F's UPLOAD max is enforced since a read-back's block is copied
 # once and its frames built in place, and each 0x78 job's slice (key checks, the attempt record's
 # write, the motion key's set-up) takes a tick of its own (docs/cortex-m.md "Worst tick per state").
 TICK_OVER=""

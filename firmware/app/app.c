@@ -97,6 +97,7 @@ static int32_t wire_counts(fs_real_t v, unsigned frac, int64_t per_unit, int32_t
 #define APP_FORCE_COUNTS(v) (int16_t) wire_counts((v), 16u, 100, -32768, 32767)
 /* the same from the tick's integers (Q8.24 positions, Q16.16 forces) */
 #define APP_POS_COUNTS_Q(q) q_counts((q), 24u, 1000000, -8388608, 8388607)
+#define APP_POS_Y_COUNTS_Q(q) q_counts((q), 24u, 1000000, -4194304, 4194303) /* y: 23 bits */
 #define APP_FORCE_COUNTS_Q(q) (int16_t) q_counts((q), 16u, 100, -32768, 32767)
 #else
 /* clamp_i32 of r = v / scale with |r| >= hi or NaN: clamped, or NaN and inf 0, or rounded
@@ -130,7 +131,7 @@ static inline fs_real_t app_reg(fs_real_t k)
 
 /* The telemetry's scales, their bounds hi (as reals) and 0.5, each once in a register. */
 typedef struct {
-    fs_real_t pos_scale, pos_hi, force_scale, force_hi, half;
+    fs_real_t pos_scale, pos_hi, pos_y_hi, force_scale, force_hi, half;
 } app_counts_k_t;
 
 static inline app_counts_k_t app_counts_k(void)
@@ -138,6 +139,7 @@ static inline app_counts_k_t app_counts_k(void)
     app_counts_k_t k;
     k.pos_scale = app_reg(FS_R(1e-6));
     k.pos_hi = app_reg((fs_real_t)8388607);
+    k.pos_y_hi = app_reg((fs_real_t)4194303);
     k.force_scale = app_reg(FS_R(0.01));
     k.force_hi = app_reg((fs_real_t)32767);
     k.half = app_reg(FS_R(0.5));
@@ -159,6 +161,9 @@ static inline int32_t clamp_i32(fs_real_t v, fs_real_t scale, fs_real_t hi_r, fs
     return clamp_i32_edge(v, r, lo, hi);
 }
 #define APP_POS_COUNTS(k, v) clamp_i32((v), (k).pos_scale, (k).pos_hi, (k).half, -8388608, 8388607)
+/* y in 23 bits (+-4.19 m, beyond the sensor's range) */
+#define APP_POS_Y_COUNTS(k, v) \
+    clamp_i32((v), (k).pos_scale, (k).pos_y_hi, (k).half, -4194304, 4194303)
 #define APP_FORCE_COUNTS(k, v) \
     (int16_t) clamp_i32((v), (k).force_scale, (k).force_hi, (k).half, -32768, 32767)
 #endif
@@ -211,7 +216,7 @@ static void send_telemetry(app_t *app)
     struct fs_dbc_telemetry_force_t q;
 #ifdef FS_EXEC_FIXED
     p.pos_x = APP_POS_COUNTS_Q(app->meas_q.pos_q24[0]);
-    p.pos_y = APP_POS_COUNTS_Q(app->meas_q.pos_q24[1]);
+    p.pos_y = APP_POS_Y_COUNTS_Q(app->meas_q.pos_q24[1]);
     q.force_contact = APP_FORCE_COUNTS_Q(app->meas_q.force_contact_q16);
     q.force_cmd = APP_FORCE_COUNTS_Q(app->saf_out.force_cmd_N[0]);
     q.force_ref = APP_FORCE_COUNTS_Q(app->force_hat_q16);
@@ -219,14 +224,13 @@ static void send_telemetry(app_t *app)
 #else
     const app_counts_k_t k = app_counts_k();
     p.pos_x = APP_POS_COUNTS(k, app->sens.pos_m[0]);
-    p.pos_y = APP_POS_COUNTS(k, app->sens.pos_m[1]);
+    p.pos_y = APP_POS_Y_COUNTS(k, app->sens.pos_m[1]);
     q.force_contact = APP_FORCE_COUNTS(k, app->sens.force_contact_N[0]);
     q.force_cmd = APP_FORCE_COUNTS(k, app->force_out_N[0]);
     q.force_ref = APP_FORCE_COUNTS(k, app->force_hat_N);
     q.force_operator = APP_FORCE_COUNTS(k, app->sens.force_operator_N[0]);
 #endif
-    /* y in 23 bits (+-4.19 m, beyond the sensor's range), bit 47 the band's check */
-    p.pos_y = (p.pos_y > 4194303) ? 4194303 : ((p.pos_y < -4194304) ? -4194304 : p.pos_y);
+    /* bit 47: the band's check */
     p.band_outside = (app->state == APP_EXECUTE) ? app->exec.band_outside : 0u;
     p.tick = (uint16_t)(app->tick & 0xFFFFu);
     can_frame_t f; /* id, length and flags; the pack functions write every data byte */
@@ -647,13 +651,13 @@ static bool uds_all_idle(const app_t *app)
 /* The session's share of every tick: its timeout, then its owner (the server may have locked). */
 static inline void uds_session_step(app_t *app)
 {
-    if (uds_server_poll_due(&app->uds, app->now_ms)) {
+    if (uds_server_session_expired(&app->uds, app->now_ms)) {
         uds_server_poll(&app->uds, app->now_ms);
     }
     if (app->uds.unlocked_level == 0u) {
         app->uds_owner = 0u;
-        if (sec_is_unlocked(&app->sec)) {
-            sec_lock(&app->sec); /* the server locked (session change, S3 timeout, reset) */
+        if (sec_is_unlocked(&app->sec.access)) {
+            sec_lock(&app->sec.access); /* the server locked (session change, S3 timeout, reset) */
         }
     } else if (app->uds_owner == 0u) {
         app->uds_owner = (uint8_t)(app->uds_from + 1u); /* the tester whose sendKey unlocked */
@@ -851,11 +855,13 @@ static uint8_t control_execute(app_t *app, fs_real_t dt)
     if (rc == FS_ERR_FIXED_OVERFLOW) {
         app->exec_saturated_ticks++;
         app->last_run_status = (uint16_t)FS_ERR_FIXED_OVERFLOW;
-        app->exec_saturated = true;
+        app->causes |= FLT_BIT(FLT_SKILL_INVALID); /* latched in this tick */
     }
     app->seq_step = out.step;
     /* the band's stop: outside it for the run's band stop time (1 ms a tick) */
-    app->band_stop = app->band_stop_ms != 0u && app->exec.band_streak_ticks >= app->band_stop_ms;
+    if (app->band_stop_ms != 0u && app->exec.band_streak_ticks >= app->band_stop_ms) {
+        app->causes |= FLT_BIT(FLT_BAND);
+    }
     if (app->cfg.render_carriage != 0u) {
         const fs_real_t m_d = app->exec_run_cfg.pfc.gains[0].m_d_kg;
         app->force_req_N[0] = exec_render_step(&app->cfg.render, &app->rend[0], cmd[0], m_d,
@@ -916,13 +922,10 @@ static void supervise(app_t *app, bool overrun)
     in.now_ms = app->now_ms;
     in.host_frame = app->host_frame && (app->state == APP_TEACH || app->state == APP_EXECUTE);
     in.host_frame_age_ms = app->now_ms - app->host_frame_ms;
-    in.bus_off = hal_can_bus_off();
-    in.tick_overrun = overrun;
-    in.skill_invalid = app->exec_saturated;
-    app->exec_saturated = false;
-    in.storage_error = false;
-    in.band_stop = app->band_stop;
-    app->band_stop = false;
+    /* the tick's own causes (a saturated step, the band's stop: control_execute) and the bus's */
+    in.causes = app->causes | (hal_can_bus_off() ? FLT_BIT(FLT_BUS_OFF) : 0u) |
+                (overrun ? FLT_BIT(FLT_TICK_OVERRUN) : 0u);
+    app->causes = 0u;
 #ifdef FS_EXEC_FIXED
     for (unsigned a = 0; a < PFC_AXES; a++) {
         in.meas[a].pos_m = app->meas_q.pos_q24[a];
@@ -1010,8 +1013,8 @@ void app_tick(app_t *app, bool overrun)
     }
     can_receive(app);
     uds_service(app);
-    if (app_sec_persist_pending(app)) {
-        app_sec_persist_step(app);
+    if (app_sec_store_pending(app)) {
+        app_sec_store_step(app);
     }
     control(app);
 
@@ -1127,7 +1130,7 @@ const uint32_t *app_tx_dropped(const app_t *app)
 
 const uint8_t *app_motion_nonce(const app_t *app)
 {
-    return app->secoc_dev_nonce;
+    return app->sec.motion.dev_nonce;
 }
 
 bool app_transfer_busy(const app_t *app)

@@ -19,8 +19,10 @@
 #include <stdint.h>
 #include "app.h"
 #include "app_config.h"
+#include "app_sec.h"
 #include "app_sm.h"
 #include "e2e.h"
+#include "fs_budget.h" /* the per-tick budgets (APP_*_PER_TICK, SLOTS_*) */
 #include "fs_exec.h"
 #include "fs_wire.h"
 #include "hal.h"
@@ -36,36 +38,11 @@
 #include "slots.h"
 #include "uds.h"
 
-#define APP_N_SLOTS SLOTS_N        /* UDS/CAN slot numbers 1..APP_N_SLOTS */
-#define APP_RX_FRAMES_PER_TICK 64u /* bounded CAN drain per tick */
+#define APP_N_SLOTS SLOTS_N /* UDS/CAN slot numbers 1..APP_N_SLOTS */
 /* Transmit places kept for emergency and status frames: telemetry and ISO-TP (UDS) frames are
  * queued only while more than this many are free, so a backlog of them (bus flooded by frames
  * of higher priority) never keeps a safety frame out of the queue. */
 #define APP_TX_RESERVE 8u
-/* ISO-TP frames (both links) queued per tick: a long response's consecutive frames leave at the
- * bus's pace (the MPS2 port sends 9 a tick), not 32 encoded and queued in one tick. */
-#ifndef APP_TP_FRAMES_PER_TICK
-#define APP_TP_FRAMES_PER_TICK 9u
-#endif
-/* ISO-TP frames queued in a tick that verified a frame's MAC (~850 instructions on the M4F) or
- * did the UDS server's work (a request served, a sliced job's step: a read-back block's copy,
- * ~250), at ~90 instructions a consecutive frame's encode and queue: the two together within the
- * tick's budget. The answer's own first frame counts in this share. */
-#ifndef APP_TP_FRAMES_BUSY_TICK
-#define APP_TP_FRAMES_BUSY_TICK 3u
-#endif
-/* ISO-TP frames queued in an EXECUTE tick (a read-back during a run): the control path takes
- * ~2,000 instructions of the M4F's 3,000, a frame ~150. */
-#ifndef APP_TP_FRAMES_EXEC_TICK
-#define APP_TP_FRAMES_EXEC_TICK 5u
-#endif
-/* ... and in an EXECUTE tick that verified a MAC or did the server's work: 3 on the host build;
- * none on the Cortex-M images (the control path and either one take the budget; the frames leave
- * in the next tick without such work, so a bus flooded with frames to verify holds a read-back
- * during a run there: firmware/ports/mps2/CMakeLists.txt). */
-#ifndef APP_TP_FRAMES_EXEC_BUSY_TICK
-#define APP_TP_FRAMES_EXEC_BUSY_TICK 3u
-#endif
 #define APP_RESET_TX_WAIT_MS 100u /* ECUReset: longest wait for the response to leave */
 #define APP_STATUS_PERIOD_MS 10u
 #define APP_IDLE_TELEMETRY_PERIOD_MS 100u
@@ -76,27 +53,7 @@
 #define APP_SW_VERSION "forceskill-fw 0.1.0"
 #define APP_PROTO_VERSION_MAJOR 4u /* 4: commands fresh in time (docs/protocol.md) */
 #define APP_PROTO_VERSION_MINOR 0u
-#define APP_SEC_LEVELS 2u       /* SecurityAccess levels 1 and 3, one secret each */
 #define APP_TESTERS UDS_TESTERS /* UDS tester ids: UDS_REQUEST(_2) -> UDS_RESPONSE(_2) */
-/* SHA-256 rounds per tick of a SecurityAccess key check or a motion key derivation (four
- * compressions of 64 rounds, answered 0x78 first): ~40-65 instructions a round on the M4F, a
- * stage's end (padding, digest, wipes) in a call of its own after a call that compressed; 33
- * ticks in all. */
-#ifndef APP_SEC_ROUNDS_PER_TICK
-#define APP_SEC_ROUNDS_PER_TICK 8u
-#endif
-/* AES rounds of MAC verification a tick (secoc_verify_run: an AES-128 block is 10 rounds, ~620
- * instructions on the M4F; a frame that fails takes a second block, its replay check) and the
- * verifications started a tick. The host build verifies every frame the bus can carry in a tick
- * within that tick (8 frames of two blocks); the Cortex-M images take 4 rounds and start one a
- * tick (firmware/ports/mps2/CMakeLists.txt), so a tick with a frame stays within the M4F's 3,000
- * instructions beside EXECUTE's work (bench/qemu_tick.sh). */
-#ifndef APP_MAC_ROUNDS_PER_TICK
-#define APP_MAC_ROUNDS_PER_TICK 160u
-#endif
-#ifndef APP_MAC_FRAMES_PER_TICK
-#define APP_MAC_FRAMES_PER_TICK 8u
-#endif
 /* Authenticated host frames waiting for their MAC check, in arrival order (a full queue drops its
  * oldest), and how long one may wait: a frame still unverified this long after its arrival is
  * dropped unverified (counted), the newer ones go first. */
@@ -108,11 +65,6 @@
  * (IDLE, from any node), a UDS fault clear or run stop and a new motion key end the reference:
  * the next command needs a heartbeat after them. docs/protocol.md "Freshness in time". */
 #define APP_CMD_FRESH_MS 50u
-/* Units of the SecurityAccess record's flash write a tick (nvm_write_run: the erase's start or a
- * poll, a piece programmed or read back, NVM_SLICE_BYTES of the CRC or the scan). */
-#ifndef APP_SEC_FLASH_UNITS_PER_TICK
-#define APP_SEC_FLASH_UNITS_PER_TICK 1u
-#endif
 /** Authenticated host frames waiting for their MAC check (a ring, oldest at head). */
 typedef struct {
     uint8_t data[APP_MAC_QUEUE_LEN][E2E_FRAME_LEN];
@@ -151,66 +103,12 @@ struct app {
     uint32_t stale_commands; /* authenticated commands refused as late (APP_CMD_FRESH_MS) */
     uint32_t tx_dropped;
     uint32_t tp_frames; /* ISO-TP frames queued this tick (APP_TP_FRAMES_PER_TICK) */
-    secoc_t secoc;      /* authenticated host frames (motion key) */
-    uint8_t secoc_dev_nonce[SECOC_NONCE_LEN];   /* the device nonce of the key in use */
-    sec_hmac_job_t motion_job;                  /* the derivation of the next key, in slices */
-    bool motion_keying;                         /* motion_job runs (DID 0x0302 answered 0x78) */
-    bool motion_job_due;                        /* motion_job starts at the next call */
-    uint8_t motion_host_nonce[SECOC_NONCE_LEN]; /* the host nonce of the key being derived */
-    bool motion_key_due;                        /* the key is derived, installed next call */
-    bool motion_subkeys_due;                    /* its schedule is set, its subkeys next call */
-    bool motion_confirm_due;                    /* the key is set, its confirmation next call */
-    bool motion_confirm_half;                   /* its first block is in motion_key */
-    uint8_t motion_key[SECOC_KEY_LEN];          /* the derived key until it is installed */
-    uint32_t motion_confirm;                    /* secoc_confirm of the key in use (0: none) */
-    secoc_job_t mac_job;                        /* the MAC verification in flight */
-    uint32_t mac_job_arrival_ms;                /* its frame's arrival */
-    bool mac_busy;                              /* mac_job runs */
-    app_mac_queue_t macq;                       /* frames waiting for it, oldest first */
-    uint32_t mac_dropped;                       /* frames dropped unverified (full or stale) */
-    bool mac_ran;                               /* this tick verified a frame's MAC */
-    uint64_t seed_sent_us[APP_TESTERS];         /* when each tester was last sent a seed */
-    uint8_t
-        tp_held; /* tester + 1 whose request buffer a TransferData block's slices read, 0: none */
-    uint32_t run_opts_fv;   /* freshness value of the last RUN_OPTIONS ... */
-    uint16_t run_opts_time; /* ... its time scale (1/1000) and end policy */
-    uint8_t run_opts_end;
-    /* UDS on ISO-TP, one link per tester id (UDS_REQUEST, UDS_REQUEST_2); the server's answers
-     * are built in the tester's link (isotp_tx_buffer) */
-    isotp_link_t tp[APP_TESTERS];
-    uint8_t uds_from;      /* the tester of the request served last or pending */
-    uint8_t uds_next;      /* the tester asked first next tick (the two take turns) */
-    bool uds_request_turn; /* a new request before the pending one's slice next tick */
-    uint8_t uds_owner;     /* tester + 1 that unlocked the session, 0 while locked */
-    uint32_t uds_foreign;  /* writes refused because another tester owns the session (558) */
-    uds_server_t uds;
-    uint32_t reset_since_ms; /* ECUReset accepted at (its response leaves first) */
-    sec_config_t
-        sec_cfg[APP_SEC_LEVELS]; /* [0] level 1 (skills, settings), [1] level 3 (firmware) */
-    sec_state_t sec;             /* one attempt counter for both levels */
-    nvm_t sec_nvm;               /* attempt record (hal_sec_flash), kept across resets */
-    bool sec_nvm_ok;
-    uint8_t sec_saved[SEC_RECORD_LEN];  /* the record as last stored */
-    uint8_t sec_wr_rec[SEC_RECORD_LEN]; /* the record being written (sec_writer's payload) */
-    nvm_writer_t sec_writer;            /* its write, APP_SEC_FLASH_UNITS_PER_TICK units a tick */
-    bool sec_writing;                   /* sec_writer runs */
-    bool sec_dirty;                     /* the record may differ from sec_saved */
-    uint32_t sec_hold_tick;             /* the tick of the last app_sec_persist: no step in it */
-    bool sec_key_held;                  /* a sendKey's result waits for the record: */
-    uint8_t sec_key_nrc;                /* that result */
-    /* the skill store: slot cache, transfer buffer, a download's commit (slots.h) */
-    slots_t slots;
-    uint16_t last_run_status; /* fs_status of the last start request's scale check */
-    /* firmware update (firmware/boot, docs/update.md) */
-    boot_fls_window_t fw_w_state, fw_w_slots;
-    fls_dev_t fw_state_dev, fw_slots_dev;
-    nvm_t fw_state_nvm;
-    boot_config_t boot_cfg;
-    boot_t boot;
-    fwu_t fwu;
-    bool fw_xfer;         /* the active download is a firmware image */
-    bool fw_self_test_ok; /* the running image passed its self-test (boot tick) */
-    /* control */
+    /* control: the safety layer's output, the executor and the safety layer (their floats within a
+     * load's reach of the struct's start) */
+    saf_output_t saf_out;
+    bool actuator_enabled;
+    bool overrun;
+    uint32_t teach_ticks; /* ticks since TEACH started */
     exec_state_t exec;
     exec_config_t exec_run_cfg;
     exec_render_t rend[PFC_AXES];
@@ -231,16 +129,51 @@ struct app {
     uint8_t
         run_start_nrc; /* its outcome for a pending RUN_SKILL/RUN_SEQUENCE start (0x78 meanwhile) */
     uint16_t band_stop_ms; /* the run's band stop time (app_run_request_t), 0: report only */
-    bool band_stop;        /* this tick: outside the band for band_stop_ms (FLT_BAND) */
-    bool exec_saturated;   /* this tick's exec_tick saturated (FS_ERR_FIXED_OVERFLOW) */
+    uint32_t causes;       /* this tick's fault causes for the safety layer: FLT_SKILL_INVALID (a
+                      * saturated exec_tick, FS_ERR_FIXED_OVERFLOW), FLT_BAND */
     uint32_t exec_saturated_ticks; /* ticks whose exec_tick saturated, since power-up */
     uint32_t fault_fast_until_ms;  /* in FAULT: the telemetry at the host's rate until then */
     saf_config_t saf_cfg;
     saf_state_t saf;
-    saf_output_t saf_out;
-    bool actuator_enabled;
-    bool overrun;
-    uint32_t teach_ticks;  /* ticks since TEACH started */
+    /* authenticated host frames */
+    secoc_t secoc;                      /* their MACs under the motion key */
+    secoc_job_t mac_job;                /* the MAC verification in flight */
+    uint32_t mac_job_arrival_ms;        /* its frame's arrival */
+    bool mac_busy;                      /* mac_job runs */
+    app_mac_queue_t macq;               /* frames waiting for it, oldest first */
+    uint32_t mac_dropped;               /* frames dropped unverified (full or stale) */
+    bool mac_ran;                       /* this tick verified a frame's MAC */
+    uint64_t seed_sent_us[APP_TESTERS]; /* when each tester was last sent a seed */
+    uint8_t
+        tp_held; /* tester + 1 whose request buffer a TransferData block's slices read, 0: none */
+    uint32_t run_opts_fv;   /* freshness value of the last RUN_OPTIONS ... */
+    uint16_t run_opts_time; /* ... its time scale (1/1000) and end policy */
+    uint8_t run_opts_end;
+    /* the large and cold parts last: the tick's fields above stay within a load's immediate
+     * offset of the struct's start */
+    /* UDS on ISO-TP, one link per tester id (UDS_REQUEST, UDS_REQUEST_2); the server's answers
+     * are built in the tester's link (isotp_tx_buffer) */
+    isotp_link_t tp[APP_TESTERS];
+    uint8_t uds_from;      /* the tester of the request served last or pending */
+    uint8_t uds_next;      /* the tester asked first next tick (the two take turns) */
+    bool uds_request_turn; /* a new request before the pending one's slice next tick */
+    uint8_t uds_owner;     /* tester + 1 that unlocked the session, 0 while locked */
+    uint32_t uds_foreign;  /* writes refused because another tester owns the session (558) */
+    uds_server_t uds;
+    uint32_t reset_since_ms; /* ECUReset accepted at (its response leaves first) */
+    app_sec_t sec;           /* SecurityAccess, its record, the motion key (app_sec.h) */
+    /* the skill store: slot cache, transfer buffer, a download's commit (slots.h) */
+    slots_t slots;
+    uint16_t last_run_status; /* fs_status of the last start request's scale check */
+    /* firmware update (firmware/boot, docs/update.md) */
+    boot_fls_window_t fw_w_state, fw_w_slots;
+    fls_dev_t fw_state_dev, fw_slots_dev;
+    nvm_t fw_state_nvm;
+    boot_config_t boot_cfg;
+    boot_t boot;
+    fwu_t fwu;
+    bool fw_xfer;          /* the active download is a firmware image */
+    bool fw_self_test_ok;  /* the running image passed its self-test (boot tick) */
     uint64_t next_tick_us; /* app_poll: when the next tick is due */
 };
 
@@ -261,6 +194,14 @@ bool app_run_start_step(app_t *app);
  *  the next HostCommand is acted on only after an authenticated heartbeat arrived after this. */
 void app_commands_void(app_t *app);
 
+/** True if app_sec_store_step has work (a record being written or waiting) and the tick is not
+ *  one that noted a change: the tick calls it only then. Inline: asked every tick. */
+static inline bool app_sec_store_pending(const app_t *app)
+{
+    const app_sec_store_t *r = &app->sec.store;
+    return (fs_job_running(&r->job) || r->dirty) && r->noted_tick != app->tick;
+}
+
 /** Handle the UDS hooks (app_uds.c): fills an uds_app_t bound to app. */
 void app_uds_bind(app_t *app, uds_app_t *out);
 
@@ -271,42 +212,5 @@ bool app_event(app_t *app, app_event_t ev);
 /** Clear the latched faults (host command or RoutineControl): FLT_NONE and IDLE when cleared,
  *  else the first fault whose cause persists (the device stays in FAULT). */
 flt_code_t app_clear_faults(app_t *app);
-
-/** SecurityAccess config of a level (1 or 3); NULL for any other level. */
-const sec_config_t *app_sec_config(const app_t *app, uint8_t level);
-
-/** Begin the motion key of a host session from its nonce (DID 0x0302 write): forgets the key
- *  in use, draws the device nonce, starts the derivation from the level-1 secret. Returns
- *  UDS_NRC_RESPONSE_PENDING (app_motion_key_run finishes it) or a refusal's NRC. */
-uint8_t app_motion_key_begin(app_t *app, const uint8_t *host_nonce, uint16_t len);
-
-/** Up to rounds SHA-256 rounds of the derivation begun: UDS_NRC_RESPONSE_PENDING while it runs
- *  (the call that sets the key included: the key's confirmation, one more AES block, is
- *  computed by the next call, not in the same tick), then 0 with the key in use. */
-uint8_t app_motion_key_run(app_t *app, uint32_t rounds);
-
-/** Note that the SecurityAccess attempt record may have changed (after every seed/key request):
- *  app_sec_persist_step stores it in the ticks that follow (not this one: the request's or the
- *  key check's work has it). */
-void app_sec_persist(app_t *app);
-
-/** A tick's share of storing the attempt record: a write in progress goes on, or one starts
- *  when the record differs from the one stored (none while nothing changed). */
-void app_sec_persist_step(app_t *app);
-
-/** True if app_sec_persist_step has work (a record being written or waiting) and the tick is not
- *  one that noted a change: the tick calls it only then. */
-static inline bool app_sec_persist_pending(const app_t *app)
-{
-    return (app->sec_writing || app->sec_dirty) && app->sec_hold_tick != app->tick;
-}
-
-/** True once nothing is left to store: the record as the state is now is stored, or its write
- *  failed (as before: tried again after the next request), or there is no record storage. */
-bool app_sec_persisted(const app_t *app);
-
-/** One secret per level from the HAL; the attempt counter from the record kept across resets
- *  (none or unreadable: the lockout delay runs at power-up, the safe side). At app_init. */
-void app_sec_setup(app_t *app);
 
 #endif /* APP_INTERNAL_H */

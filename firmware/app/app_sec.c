@@ -1,5 +1,5 @@
-/* Security of the device (see app_internal.h): the SecurityAccess configuration per level, the
- * wrong-key record kept across resets, and the motion key of a host session. */
+/* Security of the device (app_sec.h): the SecurityAccess configuration per level, the wrong-key
+ * record kept across resets, a sendKey's check and the motion key of a host session. */
 #include "app_internal.h"
 
 #include <string.h>
@@ -13,48 +13,45 @@ static int rng_adapter(void *ctx, uint8_t *buf, uint32_t len)
 const sec_config_t *app_sec_config(const app_t *app, uint8_t level)
 {
     if (level == UDS_SEC_LEVEL_WRITE) {
-        return &app->sec_cfg[0];
+        return &app->sec.cfg[0];
     }
-    return level == UDS_SEC_LEVEL_FIRMWARE ? &app->sec_cfg[1] : NULL;
+    return level == UDS_SEC_LEVEL_FIRMWARE ? &app->sec.cfg[1] : NULL;
 }
 
 void app_sec_persist(app_t *app)
 {
-    app->sec_dirty = app->sec_nvm_ok;
-    app->sec_hold_tick = app->tick; /* one heavy job a tick: the write's first unit next tick */
+    app->sec.store.dirty = app->sec.store.ok;
+    app->sec.store.noted_tick = app->tick; /* one heavy job a tick: the record's next tick */
 }
 
-void app_sec_persist_step(app_t *app)
+/* A round stores the state as it is at its start: a change during the write (dirty again) takes
+ * another round. A write that fails or cannot start is tried again after the next change. */
+static fs_job_status_t store_job(app_t *app)
 {
-    if (app->sec_writing) {
-        if (nvm_write_run(&app->sec_writer, APP_SEC_FLASH_UNITS_PER_TICK)) {
-            app->sec_writing = false;
-            if (app->sec_writer.status == NVM_OK) {
-                memcpy(app->sec_saved, app->sec_wr_rec, sizeof app->sec_saved);
-            } else {
-                app->sec_dirty = false; /* not stored: tried again after the next request */
-            }
+    app_sec_store_t *r = &app->sec.store;
+    FS_JOB_BEGIN(&r->job);
+    r->dirty = false;
+    sec_record_encode(&app->sec.access, r->rec);
+    if (memcmp(r->rec, r->saved, sizeof r->saved) != 0 &&
+        nvm_write_begin(&r->writer, &r->nvm, 0u, r->rec, (uint32_t)sizeof r->rec) == NVM_OK) {
+        do {
+            FS_JOB_YIELD(&r->job);
+        } while (!nvm_write_run(&r->writer, APP_SEC_FLASH_UNITS_PER_TICK));
+        if (r->writer.status == NVM_OK) {
+            memcpy(r->saved, r->rec, sizeof r->saved);
         }
-        return;
     }
-    if (!app->sec_dirty) {
-        return;
-    }
-    sec_record_encode(&app->sec, app->sec_wr_rec);
-    if (memcmp(app->sec_wr_rec, app->sec_saved, sizeof app->sec_saved) == 0) {
-        app->sec_dirty = false;
-        return;
-    }
-    app->sec_writing = nvm_write_begin(&app->sec_writer, &app->sec_nvm, 0u, app->sec_wr_rec,
-                                       (uint32_t)sizeof app->sec_wr_rec) == NVM_OK;
-    if (!app->sec_writing) {
-        app->sec_dirty = false; /* the write cannot start: as a failed one */
-    }
+    FS_JOB_END(&r->job);
+}
+
+void app_sec_store_step(app_t *app)
+{
+    (void)store_job(app);
 }
 
 bool app_sec_persisted(const app_t *app)
 {
-    return !app->sec_writing && !app->sec_dirty;
+    return !fs_job_running(&app->sec.store.job) && !app->sec.store.dirty;
 }
 
 /* One secret per level from the HAL; the attempt counter from the record kept across resets
@@ -63,7 +60,7 @@ void app_sec_setup(app_t *app)
 {
     static const uint8_t levels[APP_SEC_LEVELS] = {UDS_SEC_LEVEL_WRITE, UDS_SEC_LEVEL_FIRMWARE};
     for (unsigned i = 0; i < APP_SEC_LEVELS; i++) {
-        sec_config_t *c = &app->sec_cfg[i];
+        sec_config_t *c = &app->sec.cfg[i];
         sec_default_config(c);
         uint8_t secret_len = 0u;
         const uint8_t *secret = hal_device_secret(levels[i], &secret_len);
@@ -76,20 +73,62 @@ void app_sec_setup(app_t *app)
         c->rng_ctx = app;
     }
     uint8_t failed = 0u, locked_out = 1u;
+    app_sec_store_t *r = &app->sec.store;
     const fls_dev_t *dev = hal_sec_flash();
-    app->sec_nvm_ok = dev != NULL && nvm_init(&app->sec_nvm, dev) == NVM_OK;
-    if (app->sec_nvm_ok) {
+    r->ok = dev != NULL && nvm_init(&r->nvm, dev) == NVM_OK;
+    if (r->ok) {
         uint8_t rec[SEC_RECORD_LEN];
         uint32_t len = 0u;
-        const nvm_status_t st = nvm_read(&app->sec_nvm, 0u, rec, (uint32_t)sizeof rec, &len);
+        const nvm_status_t st = nvm_read(&r->nvm, 0u, rec, (uint32_t)sizeof rec, &len);
         if (st == NVM_OK && sec_record_decode(rec, len, &failed, &locked_out)) {
-            memcpy(app->sec_saved, rec, sizeof rec);
-        } else if (nvm_dir(&app->sec_nvm, 0u) != NULL && nvm_dir(&app->sec_nvm, 0u)->valid == 0u) {
+            memcpy(r->saved, rec, sizeof rec);
+        } else if (nvm_dir(&r->nvm, 0u) != NULL && nvm_dir(&r->nvm, 0u)->valid == 0u) {
             failed = 0u; /* a fresh device: no record yet */
             locked_out = 0u;
         }
     }
-    sec_restore(&app->sec_cfg[0], &app->sec, app->now_ms, failed, locked_out);
+    sec_restore(&app->sec.cfg[0], &app->sec.access, app->now_ms, failed, locked_out);
+}
+
+uint8_t app_sec_key_check_begin(app_t *app, uint8_t level, const uint8_t *key, uint16_t len)
+{
+    const sec_config_t *cfg = app_sec_config(app, level);
+    if (cfg == NULL) {
+        return UDS_NRC_SUBFUNCTION_NOT_SUPPORTED;
+    }
+    /* the attempt counts as wrong until checked, and is stored before the check runs: the
+     * wrong-key counter survives reset and power-up */
+    const uint8_t nrc = (uint8_t)sec_send_key_begin(cfg, &app->sec.access, app->uds.tester, key,
+                                                    len);
+    app_sec_persist(app);
+    fs_job_reset(&app->sec.key_check); /* an earlier, abandoned check's result is not this one's */
+    return nrc;
+}
+
+/* The attempt stored first, then its check: the record's write and the HMAC never share a tick;
+ * answered once the result is stored too. */
+static fs_job_status_t key_check_job(app_t *app, const sec_config_t *cfg)
+{
+    fs_job_t *j = &app->sec.key_check;
+    FS_JOB_BEGIN(j);
+    FS_JOB_WAIT_UNTIL(j, app_sec_persisted(app));
+    while ((app->sec.key_nrc = (uint8_t)sec_send_key_run(cfg, &app->sec.access, app->now_ms,
+                                                         APP_SEC_ROUNDS_PER_TICK)) ==
+           UDS_NRC_RESPONSE_PENDING) {
+        FS_JOB_YIELD(j);
+    }
+    app_sec_persist(app);
+    FS_JOB_WAIT_UNTIL(j, app_sec_persisted(app));
+    FS_JOB_END(j);
+}
+
+uint8_t app_sec_key_check_run(app_t *app, uint8_t level)
+{
+    const sec_config_t *cfg = app_sec_config(app, level);
+    if (cfg == NULL) {
+        return UDS_NRC_CONDITIONS_NOT_CORRECT;
+    }
+    return key_check_job(app, cfg) == FS_JOB_DONE ? app->sec.key_nrc : UDS_NRC_RESPONSE_PENDING;
 }
 
 uint8_t app_motion_key_begin(app_t *app, const uint8_t *host_nonce, uint16_t len)
@@ -100,80 +139,64 @@ uint8_t app_motion_key_begin(app_t *app, const uint8_t *host_nonce, uint16_t len
     if (app->state == APP_TEACH || app->state == APP_EXECUTE) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT; /* never re-keyed while a motion runs */
     }
+    app_motion_key_t *m = &app->sec.motion;
     uint8_t dev_nonce[SECOC_NONCE_LEN];
     if (hal_random(dev_nonce, SECOC_NONCE_LEN) != 0) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT;
     }
-    memcpy(app->motion_host_nonce, host_nonce, SECOC_NONCE_LEN);
-    app->motion_job_due = true; /* the derivation starts at the next call */
-    secoc_forget(&app->secoc);  /* the old session ends now */
-    app->motion_confirm = 0u;
-    app->motion_key_due = false;
-    app->motion_subkeys_due = false;
-    app->motion_confirm_due = false;
-    app->motion_confirm_half = false;
-    memcpy(app->secoc_dev_nonce, dev_nonce, SECOC_NONCE_LEN);
+    memcpy(m->host_nonce, host_nonce, SECOC_NONCE_LEN);
+    memcpy(m->dev_nonce, dev_nonce, SECOC_NONCE_LEN);
+    secoc_forget(&app->secoc); /* the old session ends now */
+    m->confirm = 0u;
+    fs_job_reset(&m->job); /* the derivation starts at the next call */
+    m->requested = true;
     app->run_opts_fv = 0u;
     app_commands_void(app); /* a frame of the old session is not verified with the new key */
-    app->motion_keying = true;
     return UDS_NRC_RESPONSE_PENDING;
+}
+
+/* The derivation's start, its end, the key's schedule and subkeys, and the confirmation each
+ * take a call of their own: each is about one to two block encryptions. */
+static fs_job_status_t motion_key_job(app_t *app, uint32_t rounds)
+{
+    app_motion_key_t *m = &app->sec.motion;
+    static const char label[] = SECOC_LABEL;
+    uint8_t buf[sizeof label - 1u + 2u * SECOC_NONCE_LEN]; /* the message, then the digest */
+    FS_JOB_BEGIN(&m->job);
+    memcpy(buf, label, sizeof label - 1u);
+    memcpy(&buf[sizeof label - 1u], m->dev_nonce, SECOC_NONCE_LEN);
+    memcpy(&buf[sizeof label - 1u + SECOC_NONCE_LEN], m->host_nonce, SECOC_NONCE_LEN);
+    (void)sec_hmac_job_begin(&m->hmac, app->sec.cfg[0].secret, app->sec.cfg[0].secret_len, buf,
+                             (uint32_t)sizeof buf);
+    FS_JOB_YIELD(&m->job);
+    while (!sec_hmac_job_run(&m->hmac, rounds, buf)) {
+        FS_JOB_YIELD(&m->job);
+    }
+    memcpy(m->key, buf, SECOC_KEY_LEN); /* the first bytes (secoc_derive_key) */
+    sec_wipe(buf, sizeof buf);
+    FS_JOB_YIELD(&m->job);
+    secoc_set_key_begin(&app->secoc, m->key);
+    sec_wipe(m->key, sizeof m->key);
+    FS_JOB_YIELD(&m->job);
+    secoc_set_key_finish(&app->secoc);
+    FS_JOB_YIELD(&m->job);
+    secoc_confirm_first(&app->secoc, m->key); /* the key's buffer, wiped: free */
+    FS_JOB_YIELD(&m->job);
+    m->confirm = secoc_confirm_finish(&app->secoc, m->key); /* kept: DID 0x0302 reads it */
+    sec_wipe(m->key, sizeof m->key);
+    FS_JOB_END(&m->job);
 }
 
 uint8_t app_motion_key_run(app_t *app, uint32_t rounds)
 {
-    if (!app->motion_keying) {
+    if (!app->sec.motion.requested) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT;
     }
-    if (app->motion_confirm_due && !app->motion_confirm_half) {
-        secoc_confirm_first(&app->secoc, app->motion_key); /* the key's buffer, wiped: free */
-        app->motion_confirm_half = true;
+    if (motion_key_job(app, rounds) == FS_JOB_PENDING) {
         return UDS_NRC_RESPONSE_PENDING;
     }
-    if (app->motion_confirm_due) {
-        app->motion_confirm_due = false;
-        app->motion_confirm_half = false;
-        app->motion_keying = false;
-        /* kept: DID 0x0302 reads it */
-        app->motion_confirm = secoc_confirm_finish(&app->secoc, app->motion_key);
-        sec_wipe(app->motion_key, sizeof app->motion_key);
-        return UDS_NRC_OK;
-    }
-    /* the device nonce (a block encryption of the port's generator), the derivation's start,
-     * its end, the key's schedule and subkeys, and the confirmation each take a call of their
-     * own: each is about one to two block encryptions */
-    if (app->motion_job_due) {
-        static const char label[] = SECOC_LABEL;
-        uint8_t msg[sizeof label - 1u + 2u * SECOC_NONCE_LEN];
-        memcpy(msg, label, sizeof label - 1u);
-        memcpy(&msg[sizeof label - 1u], app->secoc_dev_nonce, SECOC_NONCE_LEN);
-        memcpy(&msg[sizeof label - 1u + SECOC_NONCE_LEN], app->motion_host_nonce, SECOC_NONCE_LEN);
-        const sec_config_t *c = &app->sec_cfg[0];
-        (void)sec_hmac_job_begin(&app->motion_job, c->secret, c->secret_len, msg,
-                                 (uint32_t)sizeof msg);
-        app->motion_job_due = false;
-        return UDS_NRC_RESPONSE_PENDING;
-    }
-    if (app->motion_key_due) {
-        app->motion_key_due = false;
-        secoc_set_key_begin(&app->secoc, app->motion_key);
-        sec_wipe(app->motion_key, sizeof app->motion_key);
-        app->motion_subkeys_due = true;
-        return UDS_NRC_RESPONSE_PENDING;
-    }
-    if (app->motion_subkeys_due) {
-        app->motion_subkeys_due = false;
-        secoc_set_key_finish(&app->secoc);
-        app->motion_confirm_due = true;
-        return UDS_NRC_RESPONSE_PENDING;
-    }
-    uint8_t out[SEC_SHA256_LEN];
-    if (!sec_hmac_job_run(&app->motion_job, rounds, out)) {
-        return UDS_NRC_RESPONSE_PENDING;
-    }
-    memcpy(app->motion_key, out, SECOC_KEY_LEN); /* the first bytes (secoc_derive_key) */
-    sec_wipe(out, sizeof out);
-    app->motion_key_due = true;
-    return UDS_NRC_RESPONSE_PENDING;
+    app->sec.motion.requested = false;
+    return UDS_NRC_OK;
 }
 
 uint8_t app_motion_key(app_t *app, const uint8_t *host_nonce, uint16_t len)

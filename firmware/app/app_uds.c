@@ -122,8 +122,8 @@ static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf, uint16_
     }
     case DID_MOTION_KEY: {
         fs_wire_motion_key_t v = {
-            {0u}, app->secoc.keyed ? 1u : 0u, app->secoc.keyed ? app->motion_confirm : 0u};
-        memcpy(v.nonce, app->secoc_dev_nonce, sizeof(v.nonce));
+            {0u}, app->secoc.keyed ? 1u : 0u, app->secoc.keyed ? app->sec.motion.confirm : 0u};
+        memcpy(v.nonce, app->sec.motion.dev_nonce, sizeof(v.nonce));
         return fs_wire_motion_key_pack(&v, buf, cap);
     }
     case DID_AUTH_STATS: {
@@ -542,10 +542,11 @@ static uint8_t security_seed(void *ctx, uint8_t level, uint8_t *seed, uint16_t c
     }
     /* the state is shared by the levels: a seed of another level is never "already unlocked"
      * (a locked state is left as it is: other testers' seeds stay theirs) */
-    if (app->uds.unlocked_level != level && sec_is_unlocked(&app->sec)) {
-        sec_lock(&app->sec);
+    if (app->uds.unlocked_level != level && sec_is_unlocked(&app->sec.access)) {
+        sec_lock(&app->sec.access);
     }
-    const sec_nrc_t nrc = sec_request_seed(cfg, &app->sec, app->uds.tester, app->now_ms, seed);
+    const sec_nrc_t nrc = sec_request_seed(cfg, &app->sec.access, app->uds.tester, app->now_ms,
+                                           seed);
     app_sec_persist(app); /* a lockout that ended clears the stored counter */
     if (nrc != SEC_NRC_NONE) {
         return (uint8_t)nrc;
@@ -556,23 +557,11 @@ static uint8_t security_seed(void *ctx, uint8_t level, uint8_t *seed, uint16_t c
 
 static uint8_t security_key(void *ctx, uint8_t level, const uint8_t *key, uint16_t len)
 {
-    app_t *app = ctx;
-    const sec_config_t *cfg = app_sec_config(app, level);
-    if (cfg == NULL) {
-        return UDS_NRC_SUBFUNCTION_NOT_SUPPORTED;
-    }
-    /* answered 0x78, the key's HMAC checked in slices (resume); the attempt counts as wrong
-     * until then, stored before the check runs: the wrong-key counter survives reset and
-     * power-up */
-    const uint8_t nrc = (uint8_t)sec_send_key_begin(cfg, &app->sec, app->uds.tester, key, len);
-    app_sec_persist(app);
-    app->sec_key_held =
-        false; /* a result held for an earlier, abandoned request is not this one's */
-    return nrc;
+    return app_sec_key_check_begin(ctx, level, key, len); /* answered 0x78, checked in slices */
 }
 
-/* A run's start (its slices run in the control tick), a sendKey's check or the motion key's
- * derivation (APP_SEC_ROUNDS_PER_TICK rounds a tick). */
+/* The long work a request answered 0x78 began, a slice a call: a run's start (its slices run in
+ * the control tick), a sendKey's check or the motion key's derivation. */
 static uint8_t resume(void *ctx, uint8_t sid, uint16_t arg)
 {
     app_t *app = ctx;
@@ -584,29 +573,10 @@ static uint8_t resume(void *ctx, uint8_t sid, uint16_t arg)
     if (sid == UDS_SID_WDBI && arg == DID_MOTION_KEY) {
         return app_motion_key_run(app, APP_SEC_ROUNDS_PER_TICK);
     }
-    const sec_config_t *cfg = app_sec_config(app, (uint8_t)arg);
-    if (sid != UDS_SID_SECURITY || cfg == NULL) {
-        return UDS_NRC_CONDITIONS_NOT_CORRECT;
+    if (sid == UDS_SID_SECURITY && arg <= UINT8_MAX) {
+        return app_sec_key_check_run(app, (uint8_t)arg);
     }
-    if (!app->sec_key_held) {
-        if (!app_sec_persisted(app)) {
-            return UDS_NRC_RESPONSE_PENDING; /* the attempt stored first, then its check: the
-                                                record's write and the HMAC never share a tick */
-        }
-        const uint8_t nrc = (uint8_t)sec_send_key_run(cfg, &app->sec, app->now_ms,
-                                                      APP_SEC_ROUNDS_PER_TICK);
-        if (nrc == UDS_NRC_RESPONSE_PENDING) {
-            return nrc;
-        }
-        app_sec_persist(app);
-        app->sec_key_held = true; /* answered once the record is stored (app_sec_persist_step) */
-        app->sec_key_nrc = nrc;
-    }
-    if (!app_sec_persisted(app)) {
-        return UDS_NRC_RESPONSE_PENDING;
-    }
-    app->sec_key_held = false;
-    return app->sec_key_nrc;
+    return UDS_NRC_CONDITIONS_NOT_CORRECT;
 }
 
 /* ---------------------------------------------------------------- transfers */

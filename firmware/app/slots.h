@@ -10,6 +10,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include "fs_budget.h"
 #include "fls.h"
 #include "fs_real.h"
 #include "nvm.h"
@@ -22,49 +23,7 @@
 #define SLOTS_N NVM_MAX_SLOTS           /* slot numbers 1..SLOTS_N on the wire */
 #define SLOTS_IMAGE_MAX SKILL_IMAGE_MAX /* the longest image a slot holds */
 
-/* The slices of a download's commit and of a read-back, per tick while the host waits (0x78).
- * Each image sets them so a tick with a slice stays within its budget (firmware/app/
- * CMakeLists.txt: the M4F 3,000 instructions, the M3 8,000; the host build takes large slices):
- *   SLOTS_PARSE_UNITS_PER_TICK  units of the image's parse (skill_parse_run: one kernel's value,
- *                               32 bytes of the CRC; at most ~450 instructions on the M4F)
- *   SLOTS_PARAMS_UNITS_PER_TICK  units of the parameter check (skchk_params_run: the scalars,
- *                               SKCHK_PARAMS_KERNELS_PER_UNIT kernels; ~180 instructions on
- *                               the M4F; the host checks all in one tick)
- *   SLOTS_CONVERT_UNITS_PER_TICK  units of the skill's conversion to fixed point (the
- *                               fixed-point build: dmpfx_bound_run, one kernel or one window
- *                               check a unit)
- *   SLOTS_CHECK_STEPS_PER_TICK  DMP steps of the skill's own rollout (skill_check.h: ~480
- *                               instructions on the M4F; the fixed-point build's rollout,
- *                               dmpfx_check_run, on the M3)
- *   SLOTS_FLASH_UNITS_PER_TICK  units of the slot's flash write (nvm_write_run: the erase, the
- *                               commit word, NVM_SLICE_BYTES of the CRC or the final scan, or
- *                               NVM_CHUNK bytes programmed or read back) */
-#ifndef SLOTS_PARSE_UNITS_PER_TICK
-#define SLOTS_PARSE_UNITS_PER_TICK 12u
-#endif
-#ifndef SLOTS_CHECK_STEPS_PER_TICK
-#define SLOTS_CHECK_STEPS_PER_TICK 100u
-#endif
-#ifndef SLOTS_PARAMS_UNITS_PER_TICK
-#define SLOTS_PARAMS_UNITS_PER_TICK UINT32_MAX
-#endif
-#ifndef SLOTS_CONVERT_UNITS_PER_TICK
-#define SLOTS_CONVERT_UNITS_PER_TICK 8u
-#endif
-#ifndef SLOTS_FLASH_UNITS_PER_TICK
-#define SLOTS_FLASH_UNITS_PER_TICK 2u
-#endif
-/* Units of a read-back's record read (nvm_read_run: its header, or NVM_READ_CHUNK bytes read
- * and added to the record's CRC, ~10 instructions a byte on the M4F) per tick while
- * RequestUpload waits. */
-#ifndef SLOTS_READ_UNITS_PER_TICK
-#define SLOTS_READ_UNITS_PER_TICK 1u
-#endif
-/* Bytes of the checked skill copied into the slot's cache per tick once its record is written
- * (the whole skill_t in one tick was 5,096 instructions of memcpy on the M4F). */
-#ifndef SLOTS_SWAP_BYTES_PER_TICK
-#define SLOTS_SWAP_BYTES_PER_TICK 1024u
-#endif
+/* The slices of a download's commit and of a read-back a tick: SLOTS_*_PER_TICK, fs_budget.h. */
 
 /** The stages of a download's commit (one slice a tick at least). */
 enum {

@@ -15,25 +15,12 @@ bool fwu_uds_authorised(const uds_server_t *srv);
 /** download_begin for addr == FWU_DOWNLOAD_ADDRESS (the caller routes by address). */
 uint8_t fwu_uds_download_begin(fwu_t *f, const uds_server_t *srv, uint32_t size);
 
-/* Bytes of a TransferData block programmed and added to the image's CRC-32 per call of
- * fwu_uds_download_data (one call a tick while the block is answered 0x78): 128 bytes, ~1,100
- * instructions on the Cortex-M4F (the image's header is taken whole whatever the size). A port
- * may define another. */
-#ifndef FWU_DATA_BYTES_PER_CALL
-#define FWU_DATA_BYTES_PER_CALL 128u
-#endif
 
 /** download_data while a firmware download is active: the block kept at the first call (data
  *  not NULL), then programmed a slice a call (data NULL), UDS_NRC_RESPONSE_PENDING until done. */
 uint8_t fwu_uds_download_data(fwu_t *f, const uds_server_t *srv, uint32_t offset,
                               const uint8_t *data, uint16_t len);
 
-/* SHA-256 compression rounds of the image's verification per call of fwu_uds_download_end (one
- * call a tick while the transfer exit is answered 0x78): 16 rounds, a quarter block, at most ~870
- * instructions on the Cortex-M4F (docs/cortex-m.md). A port may define more. */
-#ifndef FWU_VERIFY_ROUNDS_PER_CALL
-#define FWU_VERIFY_ROUNDS_PER_CALL 16u
-#endif
 
 /** download_end while a firmware download is active (*crc32_out: CRC-32 of the image): the
  *  verification a slice a call, UDS_NRC_RESPONSE_PENDING until it ends. */

@@ -9,6 +9,7 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+#include "fs_budget.h"
 #include "dmp.h"
 #include "fs_status.h"
 #include "pfc.h"
@@ -114,14 +115,6 @@ typedef struct {
 } skill_parser_t;
 #define SKILL_PARSE_CRC_BYTES 32u
 #define SKILL_PARSE_F64_PER_UNIT 4u
-#ifndef SKILL_PARSE_INIT_KERNELS
-#define SKILL_PARSE_INIT_KERNELS 8u /* kernels of a dmp_model_init pass a unit */
-#endif
-#ifndef SKILL_PARSE_INIT_PERIODIC_KERNELS
-/* a periodic model's: its forward pass takes a sine, a cosine, a square root and an arcsine a
- * kernel */
-#define SKILL_PARSE_INIT_PERIODIC_KERNELS 2u
-#endif
 
 /** The band of a parsed skill with one (band_n > 0) at the normalised time s = t/(T*time_scale)
  *  (a discrete skill: clamped to [0, 1]; a periodic one: its fraction, the band repeats every

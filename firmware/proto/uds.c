@@ -582,7 +582,7 @@ uint16_t uds_server_resume(uds_server_t *srv, uint8_t *resp, uint16_t resp_cap, 
 
 void uds_server_poll(uds_server_t *srv, uint32_t now_ms)
 {
-    if (uds_server_poll_due(srv, now_ms)) {
+    if (uds_server_session_expired(srv, now_ms)) {
         xfer_abort(srv);
         enter_session(srv, UDS_SESSION_DEFAULT);
     }

@@ -16,6 +16,7 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+#include "fs_budget.h"
 #include "fs_uds_ids.h"
 #include "uds_nrc.h"
 
@@ -56,12 +57,9 @@
 /* Transfer block size announced in 0x74/0x75 responses: bytes per 0x36 request incl. SID and
  * counter; fits one ISO-TP message. */
 #define UDS_MAX_BLOCK_LENGTH 4095u
-/* The same for an upload (0x75's answer, each 0x36 response at most this long): a smaller block
- * bounds the copies of one TransferData answer (the data into the response, the response into
- * the ISO-TP link), which the Cortex-M images serve inside a 1 ms tick. */
-#ifndef UDS_UPLOAD_BLOCK_LENGTH
-#define UDS_UPLOAD_BLOCK_LENGTH UDS_MAX_BLOCK_LENGTH
-#endif
+/* The same for an upload, UDS_UPLOAD_BLOCK_LENGTH (fs_budget.h; 0x75's answer, each 0x36
+ * response at most this long): a smaller block bounds the copies of one TransferData answer,
+ * which the Cortex-M images serve inside a 1 ms tick. */
 
 /** Device hooks. Each returns UDS_NRC_OK or a negative response code. Output buffers have the
  *  capacity given; *out_len receives the bytes written. */
@@ -156,12 +154,12 @@ void uds_server_after_response(uds_server_t *srv);
 uint16_t uds_server_resume(uds_server_t *srv, uint8_t *resp, uint16_t resp_cap, uint32_t now_ms);
 
 /** Session timeout (S3): back to default, locked, transfer aborted. Call every tick (or when
- *  uds_server_poll_due). */
+ *  uds_server_session_expired). */
 void uds_server_poll(uds_server_t *srv, uint32_t now_ms);
 
-/** True if uds_server_poll has work at now_ms (a non-default session past S3). Inline: asked
+/** True if the session expired at now_ms (a non-default session past S3: uds_server_poll has work). Inline: asked
  *  every tick. */
-static inline bool uds_server_poll_due(const uds_server_t *srv, uint32_t now_ms)
+static inline bool uds_server_session_expired(const uds_server_t *srv, uint32_t now_ms)
 {
     return srv->session != UDS_SESSION_DEFAULT &&
            (uint32_t)(now_ms - srv->last_request_ms) > UDS_S3_MS;

@@ -114,9 +114,10 @@ static void fail_safe(saf_output_t *out)
     out->lim_flags = 0u;
 }
 
-/* The causes seen in this tick's inputs: host watchdog, bus-off, overrun, skill, storage and
- * the sensor checks (the limiter's causes come later); inside0/1: axis 0/1's reading inside the
- * limiter's bounds, nested in the sensor ranges (its range tests are passed). */
+/* The causes seen in this tick's inputs: host watchdog, the application's (bus-off, overrun,
+ * skill, storage, band) and the sensor checks (the limiter's causes come later); inside0/1: axis
+ * 0/1's reading inside the limiter's bounds, nested in the sensor ranges (its range tests are
+ * passed). */
 static uint32_t input_causes(const saf_config_t *cfg, saf_state_t *st, const saf_input_t *in,
                              bool inside0, bool inside1)
 {
@@ -127,21 +128,7 @@ static uint32_t input_causes(const saf_config_t *cfg, saf_state_t *st, const saf
     if (wdg_expired_tick(&cfg->wdg, &st->wdg, in->now_ms)) {
         cause |= FLT_BIT(FLT_HOST_SILENCE);
     }
-    if (in->bus_off) {
-        cause |= FLT_BIT(FLT_BUS_OFF);
-    }
-    if (in->tick_overrun) {
-        cause |= FLT_BIT(FLT_TICK_OVERRUN);
-    }
-    if (in->skill_invalid) {
-        cause |= FLT_BIT(FLT_SKILL_INVALID);
-    }
-    if (in->storage_error) {
-        cause |= FLT_BIT(FLT_STORAGE);
-    }
-    if (in->band_stop) {
-        cause |= FLT_BIT(FLT_BAND);
-    }
+    cause |= in->causes & SAF_INPUT_CAUSES; /* bus-off, overrun, skill, storage, band */
     return cause | sen_check_tick(&cfg->sen, &st->sen, in->meas, inside0, inside1);
 }
 

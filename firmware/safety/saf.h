@@ -6,7 +6,7 @@
  *
  * Per tick (1 kHz):
  *   at start and whenever cfg changes: saf_prepare(&cfg, &st);
- *   saf_input_t in = {tick, now_ms, host_frame, bus_off, tick_overrun, ..., meas, force_req_N};
+ *   saf_input_t in = {tick, now_ms, host_frame, age, causes, meas, force_req_N};
  *   saf_step(&cfg, &st, &in, &out);
  *   actuator_write(out.force_cmd_N, out.actuator_enable);   status frame: out.fault_code
  *   while (flt_emcy_peek(&st.flt, &e) && the emergency frame with e was sent)
@@ -28,17 +28,22 @@ typedef struct {
     wdg_config_t wdg;
 } saf_config_t;
 
+/** The causes an application reports in saf_input_t.causes. */
+#define SAF_INPUT_CAUSES                                                             \
+    (FLT_BIT(FLT_BUS_OFF) | FLT_BIT(FLT_TICK_OVERRUN) | FLT_BIT(FLT_SKILL_INVALID) | \
+     FLT_BIT(FLT_STORAGE) | FLT_BIT(FLT_BAND))
+
 /** Inputs of one tick. Event flags are levels for this tick ("present now"). */
 typedef struct {
-    uint32_t tick;                     /* control tick counter */
-    uint32_t now_ms;                   /* time of this tick, ms */
-    bool host_frame;                   /* a host command/heartbeat was accepted since last tick */
-    uint32_t host_frame_age_ms;        /* ms since the newest of them arrived (0: this tick) */
-    bool bus_off;                      /* CAN controller is bus-off */
-    bool tick_overrun;                 /* the previous tick overran its period */
-    bool skill_invalid;                /* the active skill is invalid / failed to load */
-    bool storage_error;                /* a flash operation failed */
-    bool band_stop;                    /* outside the skill's band for the run's stop time */
+    uint32_t tick;              /* control tick counter */
+    uint32_t now_ms;            /* time of this tick, ms */
+    bool host_frame;            /* a host command/heartbeat was accepted since last tick */
+    uint32_t host_frame_age_ms; /* ms since the newest of them arrived (0: this tick) */
+    /* the causes the application sees this tick, FLT_BIT of each (SAF_INPUT_CAUSES, others
+     * ignored): FLT_BUS_OFF the CAN controller is bus-off, FLT_TICK_OVERRUN the previous tick
+     * overran its period, FLT_SKILL_INVALID the active skill is invalid, FLT_STORAGE a flash
+     * operation failed, FLT_BAND outside the skill's band for the run's stop time */
+    uint32_t causes;
     saf_meas_t meas[SAF_AXES];         /* raw measurements of this tick */
     saf_force_t force_req_N[SAF_AXES]; /* the control law's request (any value) */
 } saf_input_t;

@@ -25,6 +25,7 @@
 
 #include <stdbool.h>
 #include <stdint.h>
+#include "fs_budget.h"
 #include "nvm_status.h"
 #include "fls.h"
 #include "fs_wire_const.h"
@@ -131,9 +132,7 @@ bool nvm_write_run(nvm_writer_t *w, uint32_t max_units);
  *  The CRC is re-checked on the data read. */
 nvm_status_t nvm_read(const nvm_t *n, uint16_t slot, uint8_t *buf, uint32_t cap, uint32_t *len);
 
-#ifndef NVM_READ_CHUNK
-#define NVM_READ_CHUNK 128u /* payload bytes a unit of nvm_read_run reads and checks */
-#endif
+/* NVM_READ_CHUNK: payload bytes a unit of nvm_read_run reads and checks (fs_budget.h) */
 
 /** nvm_read in slices (nvm_read_begin, then nvm_read_run until it returns true): the same checks
  *  and result, a unit of work per step (the header, or NVM_READ_CHUNK bytes of the payload read

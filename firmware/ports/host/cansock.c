@@ -250,7 +250,7 @@ void cansock_on_error_frame(cansock_t *c, const struct can_frame *f, uint64_t no
 /* While bus-off: ask for a restart every CANSOCK_RESTART_MS. It fails without CAP_NET_ADMIN or
  * when the interface restarts itself (ip link ... restart-ms); the "restarted" frame clears, and
  * so does EBUSY (Linux's answer when the controller is not bus-off any more). */
-static void restart_if_due(cansock_t *c, uint64_t now_us)
+static void restart_when_timed_out(cansock_t *c, uint64_t now_us)
 {
     if (!c->bus_off || now_us < c->restart_at_us) {
         return;
@@ -268,7 +268,7 @@ static void restart_if_due(cansock_t *c, uint64_t now_us)
 
 bool cansock_receive(cansock_t *c, can_frame_t *f, uint64_t now_us)
 {
-    restart_if_due(c, now_us);
+    restart_when_timed_out(c, now_us);
     for (uint32_t skipped = 0u; c->fd >= 0 && skipped <= CANSOCK_RX_SKIP_MAX; skipped++) {
         struct canfd_frame lf;
         const ssize_t n = read(c->fd, &lf, c->fd_mode ? CANFD_MTU : CAN_MTU);

@@ -265,10 +265,9 @@ uint32_t hal_can_tx_free(void)
 
 bool hal_can_send_bulk(const can_frame_t *frame, uint32_t keep)
 {
-    if (hal_can_tx_free() <= keep) {
-        return false;
-    }
-    return can_send_within(frame, CM_PORT_TX_QUEUE - 1u);
+    /* more than keep places free after it: at most CM_PORT_TX_QUEUE - 1 - keep frames queued
+     * (one test of the queue's fill, the telemetry's two frames a tick pass here) */
+    return keep < CM_PORT_TX_QUEUE && can_send_within(frame, CM_PORT_TX_QUEUE - 1u - keep);
 }
 
 bool hal_can_receive(can_frame_t *frame)

@@ -29,7 +29,7 @@ static void host_session(void)
     assert_int_equal(app_motion_key(&app, nonce, SECOC_NONCE_LEN), 0);
     uint8_t len = 0u;
     const uint8_t *secret = hal_device_secret(UDS_SEC_LEVEL_WRITE, &len);
-    secoc_start_session(&host, secret, len, app.secoc_dev_nonce, nonce);
+    secoc_start_session(&host, secret, len, app.sec.motion.dev_nonce, nonce);
 }
 
 /* MAC, freshness and E2E of a packed host frame, sent to the device (lost while it is bus-off:

@@ -70,23 +70,23 @@ static bool inject(const scenario_t *s, const saf_config_t *cfg, uint32_t k, saf
         (void)cfg;
         break;
     case FLT_BUS_OFF:
-        in->bus_off = active;
+        in->causes = active ? FLT_BIT(FLT_BUS_OFF) : 0u;
         cause = active;
         break;
     case FLT_TICK_OVERRUN:
-        in->tick_overrun = active;
+        in->causes = active ? FLT_BIT(FLT_TICK_OVERRUN) : 0u;
         cause = active;
         break;
     case FLT_SKILL_INVALID:
-        in->skill_invalid = active;
+        in->causes = active ? FLT_BIT(FLT_SKILL_INVALID) : 0u;
         cause = active;
         break;
     case FLT_STORAGE:
-        in->storage_error = active;
+        in->causes = active ? FLT_BIT(FLT_STORAGE) : 0u;
         cause = active;
         break;
     case FLT_BAND:
-        in->band_stop = active;
+        in->causes = active ? FLT_BIT(FLT_BAND) : 0u;
         cause = active;
         break;
     case FLT_SENSOR_NAN:

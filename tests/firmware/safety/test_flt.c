@@ -221,13 +221,13 @@ static void test_supervisor_clear_and_no_resume(void **state)
     assert_true(fabs((double)out.force_cmd_N[0] - 30.0) < 1e-9);
     /* bus-off for 5 ticks: latched, ramp, actuator off */
     for (uint32_t j = 0; j < 5; j++, k++) {
-        in.bus_off = true;
+        in.causes = FLT_BIT(FLT_BUS_OFF);
         tick(&cfg, &st, &in, &out, k, true, FS_R(30.0));
     }
     assert_int_equal(out.fault_code, FLT_BUS_OFF);
     /* a clear while the bus is still off is refused */
     assert_int_equal(saf_clear_request(&cfg, &st, k), FLT_BUS_OFF);
-    in.bus_off = false;
+    in.causes = 0u;
     for (uint32_t j = 0; j < 100; j++, k++) {
         tick(&cfg, &st, &in, &out, k, true, FS_R(30.0));
     }
