@@ -13,6 +13,13 @@
 
 /** The phase coupling of a tick: the phase rate, Q1.31 (1 uncoupled). */
 typedef uint32_t exec_ncoupling_t;
+/** The tick's dt as the layer's operations take it: none (the constants hold it). */
+typedef uint8_t exec_ndt_t;
+static inline exec_ndt_t exec_num_dt(const exec_config_t *cfg)
+{
+    (void)cfg;
+    return 0u;
+}
 /** A DMP's phase: its accumulator, turns Q.61. */
 typedef int64_t exec_nphase_t;
 
@@ -276,9 +283,9 @@ static inline void exec_num_ramp_out(exec_state_t *st, uint32_t left)
 }
 
 /** A clock one tick on. */
-static inline exec_nclock_t exec_num_clock_tick(const exec_config_t *cfg, exec_nclock_t t)
+static inline exec_nclock_t exec_num_clock_tick(exec_ndt_t dt, exec_nclock_t t)
 {
-    (void)cfg;
+    (void)dt;
     return t + 1u;
 }
 
@@ -370,6 +377,12 @@ static inline exec_nx_t exec_num_integrate(const exec_config_t *cfg, const exec_
     return fx_clamp61(v + fx_scale_apply(a, st->n.c.dt));
 }
 
+/** True if y holds (no y DMP, or a path at rest): its two scalings skipped. */
+static inline bool exec_num_y_holds(const exec_state_t *st, exec_ny_t y_d)
+{
+    return y_d == st->y_ref && st->y_ref_vel == 0;
+}
+
 /** Sums of positions, clamped. */
 static inline exec_nx_t exec_num_x_add(exec_nx_t a, exec_nx_t b)
 {
@@ -382,22 +395,19 @@ static inline exec_ny_t exec_num_y_add(exec_ny_t a, exec_ny_t b)
 
 /** A difference over one tick: of x (Q.48 -> Q.48), of y (Q.55 -> Q.48), of y's velocity
  *  (Q.48 -> Q.40). */
-static inline exec_nx_t exec_num_x_rate(const exec_config_t *cfg, const exec_state_t *st,
-                                        exec_nx_t dx)
+static inline exec_nx_t exec_num_x_rate(exec_ndt_t dt, const exec_state_t *st, exec_nx_t dx)
 {
-    (void)cfg;
+    (void)dt;
     return fx_scale_apply(dx, st->n.c.inv_dt_x);
 }
-static inline exec_nx_t exec_num_y_rate(const exec_config_t *cfg, const exec_state_t *st,
-                                        exec_ny_t dy)
+static inline exec_nx_t exec_num_y_rate(exec_ndt_t dt, const exec_state_t *st, exec_ny_t dy)
 {
-    (void)cfg;
+    (void)dt;
     return fx_scale_apply(dy, st->n.c.inv_dt_y);
 }
-static inline exec_nx_t exec_num_yd_rate(const exec_config_t *cfg, const exec_state_t *st,
-                                         exec_nx_t dv)
+static inline exec_nx_t exec_num_yd_rate(exec_ndt_t dt, const exec_state_t *st, exec_nx_t dv)
 {
-    (void)cfg;
+    (void)dt;
     return fx_scale_apply(dv, st->n.c.inv_dt_yd);
 }
 
@@ -476,6 +486,12 @@ static inline fs_real_t exec_num_f_real(exec_nf_t f)
 }
 
 /* ---- the native API of the application's tick (the layer's units) ---- */
+
+/** A native force (a command, f_hat; N Q16.16) as fs_real_t (software float on the M3). */
+static inline fs_real_t exec_force_real(exec_nmeas_force_t f)
+{
+    return fx_to_float(f, 16u);
+}
 
 /** A sensor's position or velocity (m, m/s) in Q8.24, integer operations only: NaN or
  *  infinite -> INT32_MIN (not finite), finite values saturated to +-INT32_MAX. */

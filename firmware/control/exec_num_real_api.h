@@ -13,6 +13,12 @@ typedef struct {
     dmp_coupling_t c;
     uint8_t on;
 } exec_ncoupling_t;
+/** The tick's dt as the layer's operations take it (read once a tick). */
+typedef fs_real_t exec_ndt_t;
+static inline exec_ndt_t exec_num_dt(const exec_config_t *cfg)
+{
+    return cfg->pfc.dt_s;
+}
 /** A DMP's phase (monotone within a turn). */
 typedef fs_real_t exec_nphase_t;
 
@@ -226,9 +232,9 @@ static inline void exec_num_ramp_out(exec_state_t *st, uint32_t left)
 }
 
 /** A clock one tick on. */
-static inline exec_nclock_t exec_num_clock_tick(const exec_config_t *cfg, exec_nclock_t t)
+static inline exec_nclock_t exec_num_clock_tick(exec_ndt_t dt, exec_nclock_t t)
 {
-    return t + cfg->pfc.dt_s;
+    return t + dt;
 }
 
 /** The carry's share of f_hat: f_carry faded out (smoothstep) over EXEC_BLEND_S of the step. */
@@ -306,6 +312,14 @@ static inline exec_nx_t exec_num_integrate(const exec_config_t *cfg, const exec_
     return v + a * cfg->pfc.dt_s;
 }
 
+/** True if y holds (no difference to take): never tested here, the divisions cost less. */
+static inline bool exec_num_y_holds(const exec_state_t *st, exec_ny_t y_d)
+{
+    (void)st;
+    (void)y_d;
+    return false;
+}
+
 /** Sums of positions. */
 static inline exec_nx_t exec_num_x_add(exec_nx_t a, exec_nx_t b)
 {
@@ -317,23 +331,20 @@ static inline exec_ny_t exec_num_y_add(exec_ny_t a, exec_ny_t b)
 }
 
 /** A difference over one tick: of x, of y, of y's velocity. */
-static inline exec_nx_t exec_num_x_rate(const exec_config_t *cfg, const exec_state_t *st,
-                                        exec_nx_t dx)
+static inline exec_nx_t exec_num_x_rate(exec_ndt_t dt, const exec_state_t *st, exec_nx_t dx)
 {
     (void)st;
-    return dx / cfg->pfc.dt_s;
+    return dx / dt;
 }
-static inline exec_nx_t exec_num_y_rate(const exec_config_t *cfg, const exec_state_t *st,
-                                        exec_ny_t dy)
+static inline exec_nx_t exec_num_y_rate(exec_ndt_t dt, const exec_state_t *st, exec_ny_t dy)
 {
     (void)st;
-    return dy / cfg->pfc.dt_s;
+    return dy / dt;
 }
-static inline exec_nx_t exec_num_yd_rate(const exec_config_t *cfg, const exec_state_t *st,
-                                         exec_nx_t dv)
+static inline exec_nx_t exec_num_yd_rate(exec_ndt_t dt, const exec_state_t *st, exec_nx_t dv)
 {
     (void)st;
-    return dv / cfg->pfc.dt_s;
+    return dv / dt;
 }
 
 /** Values as the law takes them (the same here). */
@@ -415,6 +426,12 @@ static inline void exec_num_vel_init(exec_vel_t *v, fs_real_t dt_s)
 }
 
 /* ---- the native API of the application's tick (the layer's units) ---- */
+
+/** A native force (a command, f_hat) as fs_real_t. */
+static inline fs_real_t exec_force_real(exec_nmeas_force_t f)
+{
+    return f;
+}
 
 /** A sensor's position or velocity (m, m/s) in the layer's units (here the same). */
 static inline exec_nmeas_pos_t exec_meas_pos_n(fs_real_t v)

@@ -350,7 +350,7 @@ static exec_nf_t exec_reference_force(const exec_config_t *cfg, exec_state_t *st
         c = exec_num_at_rate(c, st->contact_rate);
     }
     st->f_dmp = exec_dmp_step(st, s, &c);
-    st->t_step = exec_num_clock_tick(cfg, st->t_step);
+    st->t_step = exec_num_clock_tick(exec_num_dt(cfg), st->t_step);
     const exec_nf_t f = st->f_dmp + exec_num_carry(st);
 
     if (++st->step_tick >= st->step_ticks) { /* counted: no division in the tick */
@@ -394,7 +394,8 @@ static void exec_x_reference(const exec_config_t *cfg, exec_state_t *st, exec_nf
         const exec_nx_t p = exec_num_spring(st, f_hat);
         x_d = exec_num_x_add(st->surface, p);
         st->ref_p = p;
-        ref->vel_mps = exec_num_law_x(exec_num_x_rate(cfg, st, x_d - st->ref_prev_pos));
+        ref->vel_mps = exec_num_law_x(
+            exec_num_x_rate(exec_num_dt(cfg), st, x_d - st->ref_prev_pos));
         ref->acc_mps2 = 0;
         st->ref_prev_pos = x_d;
     }
@@ -402,16 +403,16 @@ static void exec_x_reference(const exec_config_t *cfg, exec_state_t *st, exec_nf
     ref->force_N = exec_num_law_f(f_hat);
 }
 
-/* The y reference: the path (p = 0 without a y DMP: y holds), derivatives by differences (a y
- * that holds, without a y DMP or at rest, has none: their two differences skipped). */
-static void exec_y_reference(const exec_config_t *cfg, exec_state_t *st, exec_nref_t *ref)
+/* The y reference: the path (p = 0 without a y DMP: y holds), derivatives by differences (the
+ * fixed layer skips them for a y that holds). */
+static void exec_y_reference(exec_ndt_t dt, exec_state_t *st, exec_nref_t *ref)
 {
     const exec_ny_t y_d = exec_num_y_add(st->y_hold, st->path);
     exec_nx_t yd = 0;
     exec_nx_t ydd = 0;
-    if (y_d != st->y_ref || st->y_ref_vel != 0) {
-        yd = exec_num_y_rate(cfg, st, y_d - st->y_ref);
-        ydd = exec_num_yd_rate(cfg, st, yd - st->y_ref_vel);
+    if (!exec_num_y_holds(st, y_d)) {
+        yd = exec_num_y_rate(dt, st, y_d - st->y_ref);
+        ydd = exec_num_yd_rate(dt, st, yd - st->y_ref_vel);
     }
     ref->pos_m = exec_num_law_y(y_d);
     ref->vel_mps = exec_num_law_x(yd);
@@ -435,7 +436,7 @@ fs_status_t exec_tick_n(const exec_config_t *cfg, exec_state_t *st, const exec_m
     st->f_hat = f_hat;
     exec_nref_t ref[PFC_AXES];
     exec_x_reference(cfg, st, f_hat, &ref[0]);
-    exec_y_reference(cfg, st, &ref[1]);
+    exec_y_reference(exec_num_dt(cfg), st, &ref[1]);
     exec_num_law(cfg, st, ref, meas, out);
     out->step = st->step;
     out->done = st->done;
