@@ -435,8 +435,15 @@ static inline exec_nf_t exec_num_f_bound(exec_nf_t f)
     return fx_clamp61(f);
 }
 
-/** The law on the references and this tick's measurements, its commands and f_hat, x_d, y_d
- *  into out. */
+/** The references' f_hat, x_d and y_d into out. */
+static inline void exec_num_out_refs(const exec_nref_t ref[PFC_AXES], exec_out_n_t *out)
+{
+    out->force_hat_q16 = ref[0].force_N;
+    out->pos_ref_q24 = ref[0].pos_m;
+    out->y_ref_q24 = ref[1].pos_m;
+}
+
+/** The law on the references and this tick's measurements: its commands into out. */
 static inline void exec_num_law(const exec_config_t *cfg, exec_state_t *st,
                                 const exec_nref_t ref[PFC_AXES], const exec_meas_n_t *meas,
                                 exec_out_n_t *out)
@@ -450,9 +457,6 @@ static inline void exec_num_law(const exec_config_t *cfg, exec_state_t *st,
     mq[0].force_N = meas->force_contact_q16;
     mq[1].force_N = 0;
     pfcfx_step(&st->n.pfc_cfg, &st->n.pfc, ref, mq, out->force_cmd_q16);
-    out->force_hat_q16 = ref[0].force_N;
-    out->pos_ref_q24 = ref[0].pos_m;
-    out->y_ref_q24 = ref[1].pos_m;
 }
 
 /** A tick without finite measurements: 0 N, the last f_hat and references. */

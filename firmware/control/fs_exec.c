@@ -349,9 +349,10 @@ static exec_nf_t exec_reference_force(const exec_config_t *cfg, exec_state_t *st
     if (exec_contact_wait(cfg, st, s->skill, f_c)) {
         c = exec_num_at_rate(c, st->contact_rate);
     }
-    st->f_dmp = exec_dmp_step(st, s, &c);
+    const exec_nf_t f_dmp = exec_dmp_step(st, s, &c);
+    st->f_dmp = f_dmp;
     st->t_step = exec_num_clock_tick(exec_num_dt(cfg), st->t_step);
-    const exec_nf_t f = st->f_dmp + exec_num_carry(st);
+    const exec_nf_t f = f_dmp + exec_num_carry(st);
 
     if (++st->step_tick >= st->step_ticks) { /* counted: no division in the tick */
         if ((uint8_t)(st->step + 1u) < st->n_steps) {
@@ -371,8 +372,8 @@ static exec_nf_t exec_reference_force(const exec_config_t *cfg, exec_state_t *st
 
 /* The x reference of this tick from f_hat into ref: the object model integrated forward
  * (semi-implicit Euler, unilateral), or x_d = surface + f_hat/k with xd_d by difference. */
-static void exec_x_reference(const exec_config_t *cfg, exec_state_t *st, exec_nf_t f_hat,
-                             exec_nref_t *ref)
+static void exec_x_reference(const exec_config_t *cfg, exec_ndt_t dt, exec_state_t *st,
+                             exec_nf_t f_hat, exec_nref_t *ref)
 {
     exec_nx_t x_d;
     if (cfg->use_model != 0u) {
@@ -394,8 +395,7 @@ static void exec_x_reference(const exec_config_t *cfg, exec_state_t *st, exec_nf
         const exec_nx_t p = exec_num_spring(st, f_hat);
         x_d = exec_num_x_add(st->surface, p);
         st->ref_p = p;
-        ref->vel_mps = exec_num_law_x(
-            exec_num_x_rate(exec_num_dt(cfg), st, x_d - st->ref_prev_pos));
+        ref->vel_mps = exec_num_law_x(exec_num_x_rate(dt, st, x_d - st->ref_prev_pos));
         ref->acc_mps2 = 0;
         st->ref_prev_pos = x_d;
     }
@@ -434,9 +434,11 @@ fs_status_t exec_tick_n(const exec_config_t *cfg, exec_state_t *st, const exec_m
     }
     const exec_nf_t f_hat = exec_num_f_bound(exec_reference_force(cfg, st, meas));
     st->f_hat = f_hat;
+    const exec_ndt_t dt = exec_num_dt(cfg);
     exec_nref_t ref[PFC_AXES];
-    exec_x_reference(cfg, st, f_hat, &ref[0]);
-    exec_y_reference(exec_num_dt(cfg), st, &ref[1]);
+    exec_x_reference(cfg, dt, st, f_hat, &ref[0]);
+    exec_y_reference(dt, st, &ref[1]);
+    exec_num_out_refs(ref, out);
     exec_num_law(cfg, st, ref, meas, out);
     out->step = st->step;
     out->done = st->done;
