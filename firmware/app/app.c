@@ -219,7 +219,7 @@ static void send_telemetry(app_t *app)
     p.pos_y = APP_POS_Y_COUNTS_Q(app->meas_q.pos_q24[1]);
     q.force_contact = APP_FORCE_COUNTS_Q(app->meas_q.force_contact_q16);
     q.force_cmd = APP_FORCE_COUNTS_Q(app->saf_out.force_cmd_N[0]);
-    q.force_ref = APP_FORCE_COUNTS_Q(app->force_hat_q16);
+    q.force_ref = APP_FORCE_COUNTS_Q(app->force_hat);
     q.force_operator = APP_FORCE_COUNTS(app->sens.force_operator_N[0]);
 #else
     const app_counts_k_t k = app_counts_k();
@@ -227,7 +227,7 @@ static void send_telemetry(app_t *app)
     p.pos_y = APP_POS_Y_COUNTS(k, app->sens.pos_m[1]);
     q.force_contact = APP_FORCE_COUNTS(k, app->sens.force_contact_N[0]);
     q.force_cmd = APP_FORCE_COUNTS(k, app->force_out_N[0]);
-    q.force_ref = APP_FORCE_COUNTS(k, app->force_hat_N);
+    q.force_ref = APP_FORCE_COUNTS(k, app->force_hat);
     q.force_operator = APP_FORCE_COUNTS(k, app->sens.force_operator_N[0]);
 #endif
     /* bit 47: the band's check */
@@ -826,7 +826,7 @@ static uint8_t control_execute(app_t *app, fs_real_t dt)
 #ifdef FS_EXEC_FIXED
     exec_out_q_t out;
     const fs_status_t rc = exec_tick_q(&app->exec_run_cfg, &app->exec, &app->meas_q, &out);
-    app->force_hat_q16 = out.force_hat_q16;
+    app->force_hat = out.force_hat_q16;
     if (app->cfg.render_carriage == 0u) {
         app->force_req_q16[0] = out.force_cmd_q16[0];
         app->force_req_q16[1] = out.force_cmd_q16[1];
@@ -848,7 +848,7 @@ static uint8_t control_execute(app_t *app, fs_real_t dt)
     m.force_contact_N = app->sens.force_contact_N[0];
     exec_out_t out;
     const fs_status_t rc = exec_tick(&app->exec_run_cfg, &app->exec, &m, &out);
-    app->force_hat_N = out.force_hat_N;
+    app->force_hat = out.force_hat_N;
     cmd[0] = out.force_cmd_N[0];
     cmd[1] = out.force_cmd_N[1];
 #endif
@@ -1091,11 +1091,7 @@ uint32_t app_tick_count(const app_t *app)
 
 fs_real_t app_force_ref_N(const app_t *app)
 {
-#ifdef FS_EXEC_FIXED
-    return fx_to_float(app->force_hat_q16, 16u);
-#else
-    return app->force_hat_N;
-#endif
+    return exec_force_real(app->force_hat);
 }
 
 const skill_t *app_slot_skill(const app_t *app, uint8_t slot)

@@ -86,11 +86,8 @@ struct app {
     fs_real_t vel_mps[PFC_AXES];
     fs_real_t force_req_N[PFC_AXES];
     fs_real_t force_out_N[PFC_AXES];
-#ifdef FS_EXEC_FIXED
-    int32_t force_hat_q16; /* the executor's f_hat, Q16.16: a float only where it is read */
-#else
-    fs_real_t force_hat_N;
-#endif
+    exec_nmeas_force_t force_hat; /* the executor's f_hat in the layer's units (Q16.16 in the
+                                   * fixed-point build: a float only where it is read) */
     /* CAN */
     uint8_t tx_counter_status;
     uint8_t tx_counter_emcy;

@@ -52,9 +52,7 @@ static uint8_t run_check_step(app_t *app, const app_run_step_t *rs, uint8_t end,
     }
     out->path_scale = rs->path_scale;
     out->skill = sk;
-#ifdef FS_EXEC_FIXED
-    out->model_fx = slots_skill_fx(&app->slots, s); /* converted at the slot's commit */
-#endif
+    out->model_fx = slots_model(&app->slots, s); /* the fixed-point one: converted at the commit */
     out->goal_scale = rs->goal_scale;
     out->time_scale = rs->time_scale;
     out->duration_s = rs->duration_s;

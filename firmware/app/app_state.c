@@ -34,11 +34,7 @@ bool app_event(app_t *app, app_event_t ev)
             app->fault_fast_until_ms = app->now_ms + (uint32_t)app->saf_cfg.wdg.ramp_ms +
                                        APP_FAULT_TELEMETRY_TAIL_MS;
         }
-#ifdef FS_EXEC_FIXED
-        app->force_hat_q16 = 0;
-#else
-        app->force_hat_N = FS_R(0.0);
-#endif
+        app->force_hat = 0;
         wdg_disarm(&app->saf.wdg); /* host silence matters only while the device acts */
         break;
     case APP_BOOT:

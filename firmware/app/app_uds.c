@@ -102,7 +102,7 @@ static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf, uint16_
     case DID_CONTACT_WAIT: {
         const fs_wire_contact_wait_t v = {
             exec_contact_hold_ms(&app->exec), app->exec.contact_losses,
-            FS_WIRE_CONTACT_WAIT_RATE_COUNT(fs_real_t, app->exec.contact_rate)};
+            FS_WIRE_CONTACT_WAIT_RATE_COUNT(fs_real_t, exec_contact_rate(&app->exec))};
         return fs_wire_contact_wait_pack(&v, buf, cap);
     }
     case DID_BAND: {

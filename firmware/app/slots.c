@@ -92,12 +92,17 @@ const skill_t *slots_skill(const slots_t *b, uint32_t slot)
     return (slot >= 1u && slot <= SLOTS_N && b->valid[slot - 1u]) ? &b->skill[slot - 1u] : NULL;
 }
 
-#ifdef FS_EXEC_FIXED
-const dmpfx_model_t *slots_skill_fx(const slots_t *b, uint32_t slot)
+const exec_model_t *slots_model(const slots_t *b, uint32_t slot)
 {
-    return (slot >= 1u && slot <= SLOTS_N && b->valid[slot - 1u]) ? &b->fx[slot - 1u] : NULL;
-}
+    if (slot < 1u || slot > SLOTS_N || !b->valid[slot - 1u]) {
+        return NULL;
+    }
+#ifdef FS_EXEC_FIXED
+    return &b->fx[slot - 1u];
+#else
+    return &b->skill[slot - 1u].dmp;
 #endif
+}
 
 bool slots_any(const slots_t *b)
 {

@@ -16,9 +16,7 @@
 #include "nvm.h"
 #include "skill.h"
 #include "skill_check.h"
-#ifdef FS_EXEC_FIXED
-#include "dmpfx.h"
-#endif
+#include "fs_exec.h"
 
 #define SLOTS_N NVM_MAX_SLOTS           /* slot numbers 1..SLOTS_N on the wire */
 #define SLOTS_IMAGE_MAX SKILL_IMAGE_MAX /* the longest image a slot holds */
@@ -92,11 +90,10 @@ void slots_reload(slots_t *b);
 /** The cached skill of slot 1..SLOTS_N, NULL for an empty or out-of-range slot. */
 const skill_t *slots_skill(const slots_t *b, uint32_t slot);
 
-#ifdef FS_EXEC_FIXED
-/** The fixed-point model of slot 1..SLOTS_N (converted at its commit or load), NULL for an empty
- *  or out-of-range slot. */
-const dmpfx_model_t *slots_skill_fx(const slots_t *b, uint32_t slot);
-#endif
+/** The executor's model of slot 1..SLOTS_N (exec_step_t.model_fx: the fixed-point build's,
+ *  converted at its commit or load; the real builds' the skill's own), NULL for an empty or
+ *  out-of-range slot. */
+const exec_model_t *slots_model(const slots_t *b, uint32_t slot);
 
 /** True if any slot holds a valid skill. */
 bool slots_any(const slots_t *b);

@@ -48,44 +48,19 @@
 #include "pfc.h"
 #include "skill.h"
 
-/* Numeric layer of the DMP and the control law, chosen by the build like the core's:
- *   default         the core's dmp_step_xy/pfc_step in fs_real_t (fs_app_exec, fs_app_exec_f32)
- *   FS_EXEC_FIXED   their fixed-point build (firmware/fixed: dmpfx_step_xy, pfcfx_step) and an
- *                   integer tick around them (fs_app_exec_fx: the Cortex-M3 image, no FPU):
- *                   exec_tick_q runs the whole tick (references, blends, sequence, contact
- *                   wait, phase stopping, the law) without a floating-point operation on the
- *                   units of exec_q_t; exec_tick is its float32 boundary (measurements in,
- *                   commands and references out). A step names its skill's fixed-point model,
- *                   converted beforehand (dmpfx_from_model_bound: the device does it at the
- *                   skill's commit); exec_start derives every step's per-run constants, its
- *                   integer constants and starting state and converts the law's configuration,
- *                   so neither the start tick nor a switch between steps converts anything. Its
- *                   symbols carry an _fx suffix, so a test links it beside the real executor. */
-#ifdef FS_EXEC_FIXED
-#ifndef FS_REAL_FLOAT
-#error "FS_EXEC_FIXED is the float32 executor's fixed-point build (FS_REAL_FLOAT)"
-#endif
-#include "dmpfx.h"
-#include "pfcfx.h"
-#define exec_config_default exec_config_default_fx
-#define exec_start exec_start_fx
-#define exec_start_begin exec_start_begin_fx
-#define exec_start_run exec_start_run_fx
-#define exec_object_force exec_object_force_fx
-#define exec_object_deformation exec_object_deformation_fx
-#define exec_tick exec_tick_fx
-#define exec_tick_q exec_tick_q_fx
-#define exec_contact_hold_ms exec_contact_hold_ms_fx
-#define exec_band_max_milli exec_band_max_milli_fx
-#define exec_vel_init exec_vel_init_fx
-#define exec_vel_update exec_vel_update_fx
-#define exec_vel_update_q exec_vel_update_q_fx
-#define exec_render_default exec_render_default_fx
-#define exec_render_reset exec_render_reset_fx
-#define exec_render_step exec_render_step_fx
-#endif
-
 #define EXEC_MAX_STEPS 8u
+
+/* The executor's numeric layer, chosen by the build like the core's (fs_num.h): FS_EXEC_NUM
+ * names its header (fs_control_exec_fx: "exec_num_fixed.h", the DMP and the law in fixed point
+ * with an integer tick), otherwise exec_num_real.h (fs_real_t: the core's DMP and law). It gives
+ * the per-tick state's types (exec_nf_t forces, exec_nx_t x positions, exec_ny_t the y path, ...),
+ * exec_num_t (its DMP run, law and constants), exec_model_t (a step's model) and, at the end of
+ * this header, its operations; the tick itself (fs_exec.c) is written once over them. */
+#ifdef FS_EXEC_NUM
+#include FS_EXEC_NUM
+#else
+#include "exec_num_real.h"
+#endif
 /* Fade-out time of the previous step's force at a switch. 1 s spans a demonstration's ramp-up,
  * so the sum neither dips nor jumps; measured on the reuse experiment (8 seeds, deformation
  * difference 300 N/m @1.5x vs 200 N/m @1x): 0.5 s 8.9-11.8 %, 1.0 s 6.6-10.0 %, 1.5 s 5.9-10.0 %
@@ -106,9 +81,9 @@ typedef struct {
      * goal_scale scales */
     fs_real_t amplitude_scale;
     uint8_t until_stopped;
-#ifdef FS_EXEC_FIXED
-    const dmpfx_model_t *model_fx; /* the skill's DMP in fixed point (not owned, required) */
-#endif
+    /* the fixed-point build's model of the skill (not owned, required there: exec_model_t,
+     * converted beforehand); the real executors run skill->dmp and ignore it */
+    const exec_model_t *model_fx;
 } exec_step_t;
 
 /** Known object model for the position reference (docs/math.md): f = m_v*pdd + d_v*pd
@@ -150,138 +125,56 @@ typedef struct {
     uint8_t done;                    /* 1 once the sequence (and any release) has ended */
 } exec_out_t;
 
-#ifdef FS_EXEC_FIXED
-/* The integer executor's units (exec_tick_q): forces N Q.32 (int64), x positions and their
- * derivatives m, m/s, m/s^2 Q.48, the y path m Q.55 (the DMP accumulators' own resolution), its
- * velocity Q.48 and acceleration Q.40, rates and blends Q1.31. */
 
-/** One step's constants, derived by exec_start_run from the step's skill and run. */
-typedef struct {
-    int64_t force0_q32;      /* f_dmp without the DMP's y: f0 (+ a periodic step's 2^s*g_e) */
-    int64_t start_force_q32; /* the step's first force (the carry's reference) */
-    int64_t path0_q55;       /* a periodic y path's s_p*g_y (0 otherwise) */
-    int64_t contact_threshold_q32;
-    fx_scale_t inv_k;          /* 1/k of the skill: N Q.32 -> m Q.48 */
-    uint32_t ticks;            /* the step's length at dt (EXEC_TICKS_MAX: until stopped) */
-    uint32_t ramp_inc_q32;     /* dt over a turn's time, rounded up (a y path's ramp-out) */
-    uint32_t contact_gain_q31; /* dt/(contact_tau_s + dt) */
-    uint8_t y_shift;           /* 23 - s: y_acc (Q.55 in units of 2^s N) -> N Q.32 */
-    uint8_t contact_wait;      /* the skill's contact_threshold_N > 0 */
-    int64_t band_c0_q32;       /* the band scaled as f_hat: c0 + k*b (exec_state_t's band) */
-    int32_t band_k_q16;        /* k, Q16.16 */
-} exec_step_q_t;
-
-/** The run's constants from the configuration (exec_start_begin). */
-typedef struct {
-    fx_scale_t inv_dt_x;       /* m Q.48 -> m/s Q.48 */
-    fx_scale_t inv_dt_y;       /* m Q.55 -> m/s Q.48 */
-    fx_scale_t inv_dt_yd;      /* m/s Q.48 -> m/s^2 Q.40 */
-    fx_scale_t dt;             /* Q.48 -> Q.48 times dt */
-    fx_scale_t d_v;            /* m/s Q.48 -> N Q.32 */
-    fx_scale_t k1, k2;         /* m Q.48 -> N Q.32 */
-    fx_scale_t inv_m;          /* N Q.32 -> m/s^2 Q.48 */
-    fx_scale_t inv_k1, inv_k2; /* N Q.32 -> m Q.48 */
-    fx_scale_t stop_gain;      /* N^2 Q.32 -> Q.24 */
-    fx_scale_t hold_ms;        /* held ticks Q.31 -> ms (exec_contact_hold_ms) */
-    int64_t layer_q48;
-    int64_t f_layer_q32;      /* k1 * layer depth */
-    uint32_t blend_inc_q32;   /* dt/EXEC_BLEND_S, rounded up */
-    uint32_t release_inc_q32; /* dt/SKILL_RELEASE_TIME_S, rounded up */
-    uint8_t use_model;
-    uint8_t surface_from_contact;
-    uint8_t phase_stop;
-} exec_cfg_q_t;
-
-/** The integer executor's state (the fixed-point build's exec_state_t.q). */
-typedef struct {
-    exec_step_q_t step[EXEC_MAX_STEPS];
-    exec_cfg_q_t c;
-    int64_t f_hat_q32;
-    int64_t f_carry_q32;
-    int64_t f_end_q32;
-    int64_t p_q48; /* reference deformation p_d and its rate (the object model) */
-    int64_t pd_q48;
-    int64_t prev_x_q48; /* model-free reference: the previous x_d */
-    int64_t surface_q48;
-    int64_t y_hold_q55;
-    int64_t path_q55;
-    int64_t y_ref_q55;
-    int64_t y_ref_vel_q48;
-    uint64_t hold_q31;  /* the contact wait's sum of (1 - rate), ticks Q.31 */
-    uint64_t defer_q31; /* ticks held not yet added to the step's length, Q.31 */
-    uint32_t end_tick;  /* ticks of the end policy */
-    uint32_t contact_rate_q31;
-    int64_t band_off_q32; /* the last tick's f_hat - f_dmp (the carry's share) */
-    uint64_t band_s_q32;  /* the band's normalised time t/T, Q.32 */
-} exec_q_t;
-#endif
-
-/** Execution state (sequence, DMP, reference model, controller integral). */
+/** Execution state (sequence, DMP, reference model, controller integral), in the layer's types. */
 typedef struct {
     exec_step_t steps[EXEC_MAX_STEPS];
     uint8_t n_steps;
     uint8_t step;
     uint8_t ending; /* 1 after the last step's duration: end policy active */
     uint8_t done;
-#ifdef FS_EXEC_FIXED
-    dmpfx_run_t run[EXEC_MAX_STEPS];         /* each step's per-run constants */
-    dmpfx_state_t dmp_start[EXEC_MAX_STEPS]; /* each step's starting DMP state */
-    dmpfx_state_t dmp;
-    pfcfx_config_t pfc_cfg; /* cfg->pfc at exec_start */
-    pfcfx_state_t pfc;
-    uint8_t dmp_saturated; /* this tick's DMP step saturated */
-    exec_q_t q;            /* the integer tick's constants and state (exec_tick_q); of the fs_real_t
-                 * fields below this build keeps y_hold_m (the start's) and, written by
-                 * exec_tick, force_hat_N and contact_rate (the integer state's float view) */
-#else
-    dmp_state_t dmp;
-    dmp_run_t run;
-    pfc_state_t pfc;
-#endif
-    fs_real_t t_step_s;      /* time since the running step started */
-    uint32_t step_ticks;     /* ticks of the running step (its duration at dt, set at its start) */
-    uint32_t step_tick;      /* ticks of the running step done */
-    fs_real_t t_end_s;       /* time since the end policy started */
-    fs_real_t force_dmp_N;   /* last DMP output of the running step */
-    fs_real_t force_hat_N;   /* last f_hat */
-    fs_real_t force_carry_N; /* previous step's last f_hat, faded out over EXEC_BLEND_S */
-    fs_real_t force_end_N;   /* f_hat when the end policy started */
-    fs_real_t ref_p_m;       /* reference deformation p_d */
-    fs_real_t ref_pd_mps;
-    fs_real_t ref_pdd_mps2;
-    fs_real_t ref_prev_pos_m; /* model-free reference: previous x_d (for xd_d) */
-    fs_real_t y_hold_m;       /* y_base: the running step's path starts here */
-    fs_real_t path_m;         /* p of the running step's y DMP */
-    fs_real_t y_ref_m;        /* y_d = y_base + p */
-    fs_real_t y_ref_vel_mps;  /* yd_d */
-    uint8_t start_pending;    /* 1 until the first tick has measured the contact force */
-    uint8_t path_ramp;        /* 1 while a periodic y path ramps in (its first turn) */
-    uint8_t path_ramp_out;    /* 1: it ramps out over the step's last turn (a known length) */
-    fs_real_t path_ramp_inv;  /* dt over a turn's time (the float executors' ramp-out) */
-    uint8_t prepared;         /* parts exec_start_run derived (fixed build: 3 a step, 4 more) */
-    fs_real_t surface_m;      /* the surface the reference is built on */
+    exec_ndmp_t dmp;      /* the running step's DMP state */
+    exec_num_t n;         /* the layer's run, law and constants */
+    uint32_t step_ticks;  /* ticks of the running step (its duration at dt, set at its start) */
+    uint32_t step_tick;   /* ticks of the running step done */
+    exec_nclock_t t_step; /* time (ticks) since the running step started */
+    exec_nclock_t t_end;  /* time (ticks) since the end policy started */
+    exec_nf_t f_dmp;      /* last DMP output of the running step (its start force at a switch) */
+    exec_nf_t f_hat;      /* last f_hat */
+    exec_nf_t f_carry;    /* previous step's last f_hat, faded out over EXEC_BLEND_S */
+    exec_nf_t f_end;      /* f_hat when the end policy started */
+    exec_nx_t ref_p;      /* reference deformation p_d, its rate and acceleration */
+    exec_nx_t ref_pd;
+    exec_nx_t ref_pdd;
+    exec_nx_t ref_prev_pos; /* model-free reference: previous x_d (for xd_d) */
+    exec_nx_t surface;      /* the surface the reference is built on */
+    exec_ny_t y_hold;       /* y_base: the running step's path starts here */
+    exec_ny_t path;         /* p of the running step's y DMP */
+    exec_ny_t y_ref;        /* y_d = y_base + p */
+    exec_nx_t y_ref_vel;    /* yd_d */
+    fs_real_t y_start_m;    /* the y position exec_start was given */
+    uint8_t start_pending;  /* 1 until the first tick has measured the contact force */
+    uint8_t path_ramp;      /* 1 while a periodic y path ramps in (its first turn) */
+    uint8_t path_ramp_out;  /* 1: it ramps out over the step's last turn (a known length) */
+    uint8_t prepared;       /* parts of exec_start_run done (exec_prep_parts) */
     /* the running skill's contact wait (skill_t.contact_threshold_N > 0) */
-    fs_real_t contact_rate;   /* the phase rate, 0..1 (1 without a contact wait) */
-    fs_real_t contact_hold_s; /* sum of (1 - rate)*dt: how long the phase held */
-    fs_real_t contact_defer;  /* ticks held not yet added to the running step's length */
-    uint16_t contact_losses;  /* losses of contact counted */
-    uint8_t contact_lost;     /* contact lost at the last tick */
+    exec_nrate_t contact_rate; /* the phase rate, 0..1 (1 without a contact wait) */
+    exec_nsum_t contact_hold;  /* sum of (1 - rate) (times dt in the real layer) */
+    exec_nsum_t contact_defer; /* ticks held not yet added to the running step's length */
+    uint16_t contact_losses;   /* losses of contact counted */
+    uint8_t contact_lost;      /* contact lost at the last tick */
     /* the demonstrated band's check (a step whose skill has one, skill_t.band_n > 0): each tick
      * of the step before its end policy, the measured contact force less the carry's share of
      * f_hat against the band at the step's normalised time (advanced at the contact wait's
      * phase rate), scaled as f_hat (skill_band_at); counts in ticks since exec_start */
-    fs_real_t band_s;            /* the float executors' normalised time t/T of the step */
-    fs_real_t band_c0_N;         /* the running step's band scale: c0 + band_k*b */
-    fs_real_t band_k;            /* goal_scale (discrete) or amplitude_scale (periodic) */
+    exec_nturn_t band_s;         /* normalised time t/T of the step */
+    exec_nwidth_t band_max;      /* the largest excursion beyond the band (band widths) */
     uint32_t band_run_ticks;     /* ticks since exec_start */
     uint32_t band_checked_ticks; /* ticks checked against a band */
     uint32_t band_out_ticks;     /* ticks outside it */
     uint32_t band_streak_ticks;  /* consecutive ticks outside up to the last */
     uint32_t band_longest_ticks; /* the longest such run */
     uint32_t band_first_tick;    /* band_run_ticks at the first tick outside (0: none) */
-    uint32_t band_max_q16;       /* the fixed-point build's largest excursion beyond the band,
-                                  * band widths Q16.16 */
-    fs_real_t band_max_widths;   /* the float executors' (band widths) */
     uint8_t band_outside;        /* outside at the last tick */
     uint8_t band_any;            /* a step of the run has a band (else no check runs) */
 } exec_state_t;
@@ -319,29 +212,16 @@ fs_real_t exec_object_deformation(const exec_object_t *obj, fs_real_t force_N);
 fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_meas_t *meas,
                       exec_out_t *out);
 
-#ifdef FS_EXEC_FIXED
-/** Measurements of one tick in the fixed-point build's units (INT32_MIN: not finite). */
-typedef struct {
-    int32_t pos_q24[PFC_AXES]; /* m, Q8.24 */
-    int32_t vel_q24[PFC_AXES]; /* m/s, Q8.24 */
-    int32_t force_contact_q16; /* N, Q16.16 */
-} exec_meas_q_t;
+/** The layer's native measurements and outputs (exec_tick's in the real layer; Q formats,
+ *  exec_meas_q_t and exec_out_q_t, in the fixed-point one). */
+typedef EXEC_NUM_MEAS_N exec_meas_n_t;
+typedef EXEC_NUM_OUT_N exec_out_n_t;
 
-/** Output of one integer tick (exec_out_t's fields in Q formats). */
-typedef struct {
-    int32_t force_cmd_q16[PFC_AXES]; /* N, Q16.16 */
-    int32_t force_hat_q16;           /* f_hat, N, Q16.16 */
-    int32_t pos_ref_q24, y_ref_q24;  /* m, Q8.24 */
-    uint8_t step, done;
-} exec_out_q_t;
-
-/** exec_tick in integers only (no floating-point operation: every constant, cfg's included,
- *  derived by exec_start, so cfg changed after it has no effect), the same codes. exec_tick of
- *  this build converts its measurements in, calls it, converts the outputs out and mirrors
- *  f_hat and the contact wait's rate into force_hat_N and contact_rate. */
-fs_status_t exec_tick_q(const exec_config_t *cfg, exec_state_t *st, const exec_meas_q_t *meas,
-                        exec_out_q_t *out);
-#endif
+/** exec_tick on the layer's native measurements and outputs (the real layer: exec_tick itself;
+ *  the fixed-point one: in integers only, every constant derived by exec_start), the same codes.
+ *  The fixed-point build's exec_tick converts its measurements in and calls it. */
+fs_status_t exec_tick_n(const exec_config_t *cfg, exec_state_t *st, const exec_meas_n_t *meas,
+                        exec_out_n_t *out);
 
 /** The largest excursion beyond the band so far, in thousandths of a band width (0 without
  *  one; saturated at 65535). */
@@ -351,6 +231,12 @@ uint16_t exec_band_max_milli(const exec_state_t *st);
  *  (1 - rate)*dt), rounded to ms (0 without a contact wait). */
 uint32_t exec_contact_hold_ms(const exec_state_t *st);
 
+/** The contact wait's phase rate at the last tick, 0..1 (1 without a contact wait). */
+fs_real_t exec_contact_rate(const exec_state_t *st);
+
+/** The reference force f_hat of the last tick, N. */
+fs_real_t exec_force_hat_N(const exec_state_t *st);
+
 /* ---- Velocity estimation (encoder difference + first-order low-pass) ---- */
 
 /** Velocity estimator state of one axis. */
@@ -359,13 +245,7 @@ typedef struct {
     fs_real_t vel_mps;
     fs_real_t alpha; /* low-pass coefficient dt/(dt + 1/(2 pi fc)) */
     uint8_t primed;
-#ifdef FS_EXEC_FIXED
-    int32_t prev_q24;   /* exec_vel_update_q: the last position, m in Q8.24 */
-    int32_t vel_q24;    /* the filtered velocity, m/s in Q8.24 */
-    int32_t alpha_q30;  /* alpha in Q2.30 */
-    int32_t inv_dt_q16; /* 1/dt in Q16.16 (1/s) */
-    uint8_t not_finite; /* a non-finite sample was fed: the velocity is not finite from then */
-#endif
+    exec_vel_n_t n; /* the layer's estimator (the fixed-point build's integer one) */
 } exec_vel_t;
 
 /** Initialise with a cut-off frequency (Hz) and the tick dt. */
@@ -388,12 +268,6 @@ static inline fs_real_t exec_vel_step(exec_vel_t *v, fs_real_t pos_m, fs_real_t 
     return v->vel_mps;
 }
 
-#ifdef FS_EXEC_FIXED
-/** exec_vel_update in integers, at the dt given to exec_vel_init: position and velocity in
- *  Q8.24 (m, m/s), INT32_MIN for a value that is not finite (a sample that was not finite
- *  makes every later velocity not finite, as NaN does in exec_vel_update). */
-int32_t exec_vel_update_q(exec_vel_t *v, int32_t pos_q24);
-#endif
 
 /* ---- Rendering on a real carriage (admittance control) ---- */
 
@@ -429,5 +303,53 @@ void exec_render_reset(exec_render_t *r, fs_real_t pos_m);
 fs_real_t exec_render_step(const exec_render_cfg_t *cfg, exec_render_t *r, fs_real_t force_total_N,
                            fs_real_t m_d_kg, fs_real_t force_ext_meas_N, fs_real_t pos_m,
                            fs_real_t vel_mps, fs_real_t dt_s);
+
+/* ---- Helpers of the executor and its layers' preparation ---- */
+
+/* The most ticks of a step (46 days at 1 kHz): a periodic step run until stopped. */
+#define EXEC_TICKS_MAX 4000000000u
+
+/** t_s in ticks of dt_s, rounded (0 for t <= 0, EXEC_TICKS_MAX beyond 4e9). */
+static inline uint32_t exec_ticks(fs_real_t t_s, fs_real_t dt_s)
+{
+    fs_real_t n = t_s / dt_s + FS_R(0.5);
+    if (!(n > FS_R(0.0))) {
+        return 0u;
+    }
+    if (n > FS_R(4.0e9)) {
+        return EXEC_TICKS_MAX;
+    }
+    return (uint32_t)n;
+}
+
+/** The step's first force: f0, or a periodic step's f0 + goal_scale*g + amplitude_scale*e0. */
+static inline fs_real_t exec_step_start_force(const exec_step_t *s)
+{
+    const dmp_model_t *m = &s->skill->dmp;
+    if (m->periodic == 0u) {
+        return m->force0_N;
+    }
+    return m->force0_N + s->goal_scale * m->goal_N + s->amplitude_scale * m->cycle_e0_N;
+}
+
+/** The step's length: duration_s, or (<= 0) the skill's T times time_scale. */
+static inline fs_real_t exec_step_duration(const exec_step_t *s)
+{
+    if (s->duration_s > FS_R(0.0)) {
+        return s->duration_s;
+    }
+    return s->skill->dmp.duration_s * s->time_scale;
+}
+
+/** The step's length in ticks of dt_s (EXEC_TICKS_MAX: a periodic step until stopped). */
+static inline uint32_t exec_step_ticks(const exec_step_t *s, fs_real_t dt_s)
+{
+    return (s->skill->dmp.periodic != 0u && s->until_stopped != 0u)
+               ? EXEC_TICKS_MAX
+               : exec_ticks(exec_step_duration(s), dt_s);
+}
+
+/* the layer's operations (fs_exec.c's tick is written over them) and its native API */
+#include EXEC_NUM_API
 
 #endif /* FS_EXEC_H */

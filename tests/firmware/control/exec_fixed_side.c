@@ -94,7 +94,7 @@ static uint32_t side_bump(uint32_t v, double rel)
 
 static void side_mutate(exec_state_t *st, int mutation)
 {
-    exec_q_t *q = &st->q;
+    exec_num_t *q = &st->n;
     switch (mutation) {
     case EXEC_SIDE_MUT_BLEND: q->c.blend_inc_q32 = side_bump(q->c.blend_inc_q32, 0.01); break;
     case EXEC_SIDE_MUT_RELEASE: q->c.release_inc_q32 = side_bump(q->c.release_inc_q32, 0.01); break;

@@ -272,7 +272,8 @@ static size_t run_float64(const case_t *c, const exec_side_seq_t *seq)
                                  (skill_end_t)s->end_policy,
                                  s->path_scale,
                                  s->amplitude_scale,
-                                 s->until_stopped};
+                                 s->until_stopped,
+                                 0};
     }
     assert_int_equal(exec_start(&cfg, &g_state, steps, seq->n_steps, seq->y_hold_m), FS_OK);
     const double k = g_skill[0].stiffness_Npm;

@@ -1,0 +1,452 @@
+/* The operations of the executor's real numeric layer (exec_num_real.h), over fs_exec.h's
+ * types: the plain fs_real_t arithmetic, inline, so the tick written over the layer (fs_exec.c)
+ * costs nothing over writing it in fs_real_t directly. The fixed layer's counterparts
+ * (exec_num_fixed_api.h) have the same names and meanings. Included at the end of fs_exec.h. */
+#ifndef EXEC_NUM_REAL_API_H
+#define EXEC_NUM_REAL_API_H
+
+#define EXEC_NUM_RATE_ONE FS_R(1.0)
+#define EXEC_NUM_SUM_ONE FS_R(1.0)
+
+/** The phase coupling of a tick: the DMP's slow-down, on (the DMP is coupled) or not. */
+typedef struct {
+    dmp_coupling_t c;
+    uint8_t on;
+} exec_ncoupling_t;
+/** The tick's dt as the layer's operations take it (read once a tick). */
+typedef fs_real_t exec_ndt_t;
+static inline exec_ndt_t exec_num_dt(const exec_config_t *cfg)
+{
+    return cfg->pfc.dt_s;
+}
+/** A DMP's phase (monotone within a turn). */
+typedef fs_real_t exec_nphase_t;
+
+/** Parts of exec_start_run's preparation of a run: none (the real tick derives as it goes). */
+static inline uint32_t exec_prep_parts(uint8_t n_steps)
+{
+    (void)n_steps;
+    return 0u;
+}
+
+/** Part part of the preparation (none here). */
+static inline fs_status_t exec_prep_run(const exec_config_t *cfg, exec_state_t *st, uint32_t part)
+{
+    (void)cfg;
+    (void)st;
+    (void)part;
+    return FS_OK;
+}
+
+/** FS_OK: a step needs nothing beyond its skill. */
+static inline fs_status_t exec_num_check_step(const exec_step_t *s)
+{
+    (void)s;
+    return FS_OK;
+}
+
+/** The law's state from zero. */
+static inline fs_status_t exec_num_law_reset(const exec_config_t *cfg, exec_state_t *st)
+{
+    (void)cfg;
+    pfc_reset(&st->n.pfc);
+    return FS_OK;
+}
+
+/** The positions a run starts from: the configured surface, y_base = y_d = y_hold_m. */
+static inline void exec_num_start_positions(const exec_config_t *cfg, exec_state_t *st,
+                                            fs_real_t y_hold_m)
+{
+    st->ref_prev_pos = cfg->object.surface_m;
+    st->surface = cfg->object.surface_m;
+    st->y_hold = y_hold_m;
+    st->y_ref = y_hold_m;
+}
+
+/** The running step's DMP from its starting state, its run and constants; its length in ticks. */
+static inline uint32_t exec_num_begin_step(const exec_config_t *cfg, exec_state_t *st)
+{
+    const exec_step_t *s = &st->steps[st->step];
+    const dmp_model_t *m = &s->skill->dmp;
+    const fs_real_t dt_s = cfg->pfc.dt_s;
+    if (m->periodic != 0u) {
+        dmp_periodic_reset_xy(m, &st->dmp, s->amplitude_scale, s->path_scale);
+    } else {
+        dmp_state_reset(&st->dmp);
+    }
+    st->n.path_ramp_inv = dt_s / (m->duration_s * s->time_scale); /* a turn: 1/ticks */
+    st->n.run.goal_scale = s->goal_scale;
+    st->n.run.time_scale = s->time_scale;
+    st->n.band_k = (m->periodic != 0u) ? s->amplitude_scale : s->goal_scale;
+    st->n.band_c0_N = (m->periodic != 0u) ? (s->goal_scale - s->amplitude_scale) * m->goal_N
+                                          : (FS_R(1.0) - s->goal_scale) * m->force0_N;
+    return exec_step_ticks(s, dt_s);
+}
+
+/** Step i's first force (the carry's reference). */
+static inline exec_nf_t exec_num_start_force(const exec_state_t *st, uint8_t i)
+{
+    return exec_step_start_force(&st->steps[i]);
+}
+
+/** The band's bounds at the step's normalised time, scaled as f_hat (c0 + k*b). */
+static inline void exec_num_band_bounds(const exec_state_t *st, const skill_t *sk, int periodic,
+                                        exec_nf_t *lo, exec_nf_t *hi)
+{
+    (void)periodic; /* band_s wraps as it advances */
+    const fs_real_t x = (st->band_s < FS_R(1.0)) ? st->band_s : FS_R(1.0);
+    const fs_real_t pos = x * (fs_real_t)(sk->band_n - 1u);
+    uint32_t i = (uint32_t)pos;
+    i = (i > (uint32_t)sk->band_n - 2u) ? (uint32_t)sk->band_n - 2u : i;
+    const fs_real_t fr = pos - (fs_real_t)i;
+    const fs_real_t lo_b = sk->band_lo_N[i] + fr * (sk->band_lo_N[i + 1u] - sk->band_lo_N[i]);
+    const fs_real_t hi_b = sk->band_hi_N[i] + fr * (sk->band_hi_N[i + 1u] - sk->band_hi_N[i]);
+    *lo = st->n.band_c0_N + st->n.band_k * lo_b;
+    *hi = st->n.band_c0_N + st->n.band_k * hi_b;
+}
+
+/** An excursion d > 0 beyond a band of width w: the largest in widths kept. */
+static inline void exec_num_band_excursion(exec_state_t *st, exec_nf_t d, exec_nf_t w)
+{
+    if (d > st->band_max * w) {
+        st->band_max = (w > FS_R(0.0)) ? d / w : FS_R(65536.0);
+    }
+}
+
+/** The band's normalised time one tick on, at the contact wait's rate (a periodic one wraps). */
+static inline exec_nturn_t exec_num_band_advance(const exec_state_t *st, int periodic)
+{
+    fs_real_t s = st->band_s + st->n.path_ramp_inv * st->contact_rate;
+    if (periodic && s >= FS_R(1.0)) {
+        s -= FS_R(1.0);
+    }
+    return s;
+}
+
+/** The largest excursion in thousandths of a band width, saturated at 65535. */
+static inline uint16_t exec_num_band_milli(exec_nwidth_t w)
+{
+    const fs_real_t m = w * FS_R(1000.0) + FS_R(0.5);
+    return (m < FS_R(65535.0)) ? (uint16_t)m : 65535u;
+}
+
+/** True if the running skill waits for contact. */
+static inline int exec_num_contact_on(const exec_state_t *st, const skill_t *sk)
+{
+    (void)st;
+    return sk->contact_threshold_N > FS_R(0.0);
+}
+
+/** The running skill's contact threshold. */
+static inline exec_nf_t exec_num_contact_threshold(const exec_state_t *st, const skill_t *sk)
+{
+    (void)st;
+    return sk->contact_threshold_N;
+}
+
+/** The contact wait's next rate (dmp_contact_rate at gain dt/(tau + dt)). */
+static inline exec_nrate_t exec_num_contact_rate(const exec_config_t *cfg, const exec_state_t *st,
+                                                 const skill_t *sk, uint8_t lost, exec_nf_t f_c)
+{
+    (void)lost;
+    const fs_real_t dt = cfg->pfc.dt_s;
+    const fs_real_t gain = dt / (sk->contact_tau_s + dt);
+    return dmp_contact_rate(st->contact_rate, st->f_hat, f_c, sk->contact_threshold_N, gain);
+}
+
+/** The hold's sum plus a tick's held share (1 - rate), times dt: seconds. */
+static inline exec_nsum_t exec_num_hold_add(const exec_config_t *cfg, exec_nsum_t hold,
+                                            exec_nsum_t held)
+{
+    return hold + held * cfg->pfc.dt_s;
+}
+
+/** The hold in ms, rounded. */
+static inline uint32_t exec_num_hold_ms(const exec_state_t *st)
+{
+    const fs_real_t ms = st->contact_hold * FS_R(1000.0) + FS_R(0.5);
+    return (ms > FS_R(0.0)) ? (uint32_t)ms : 0u;
+}
+
+/** The phase-stop coupling of this tick (off without phase stopping). */
+static inline exec_ncoupling_t exec_num_phase_stop(const exec_config_t *cfg, const exec_state_t *st,
+                                                   exec_nf_t f_c)
+{
+    exec_ncoupling_t c = {{FS_R(0.0), FS_R(0.0)}, 0u};
+    if (cfg->phase_stop_gain_per_N2 > FS_R(0.0)) {
+        c.c.phase_slowdown = dmp_phase_stop_factor(f_c - st->f_hat, cfg->phase_stop_gain_per_N2);
+        c.on = 1u;
+    }
+    return c;
+}
+
+/** The coupling c with the phase also at the contact wait's rate. */
+static inline exec_ncoupling_t exec_num_at_rate(exec_ncoupling_t c, exec_nrate_t rate)
+{
+    c.c.phase_slowdown = dmp_slowdown_at_rate(c.c.phase_slowdown, rate);
+    c.on = 1u;
+    return c;
+}
+
+/** The DMP's phase. */
+static inline exec_nphase_t exec_num_phase(const exec_state_t *st)
+{
+    return st->dmp.u;
+}
+
+/** A discrete step's DMP step: f_dmp, p into path. */
+static inline exec_nf_t exec_num_dmp_discrete(exec_state_t *st, const exec_step_t *s,
+                                              const exec_ncoupling_t *c)
+{
+    return dmp_step_xy(&s->skill->dmp, &st->dmp, &st->n.run, (c->on != 0u) ? &c->c : 0,
+                       s->path_scale, &st->path);
+}
+
+/** A periodic step's DMP step: f_dmp, p into path. */
+static inline exec_nf_t exec_num_dmp_periodic(exec_state_t *st, const exec_step_t *s,
+                                              const exec_ncoupling_t *c)
+{
+    return dmp_periodic_step_xy(&s->skill->dmp, &st->dmp, &st->n.run, s->amplitude_scale,
+                                (c->on != 0u) ? &c->c : 0, s->path_scale, &st->path);
+}
+
+/* The periodic path's ramp factor at x in [0, 1): smoothstep, its slope 0 at both ends. */
+static inline fs_real_t exec_num_path_ramp(fs_real_t x)
+{
+    return x * x * (FS_R(3.0) - FS_R(2.0) * x);
+}
+
+/** The path ramped in at the phase (turns) of the first turn. */
+static inline void exec_num_ramp_in(exec_state_t *st)
+{
+    st->path *= exec_num_path_ramp(st->dmp.u);
+}
+
+/** The path ramped out when the step's ticks left are within its last turn. */
+static inline void exec_num_ramp_out(exec_state_t *st, uint32_t left)
+{
+    const fs_real_t u = (fs_real_t)left * st->n.path_ramp_inv;
+    if (u < FS_R(1.0)) {
+        st->path *= exec_num_path_ramp(u);
+    }
+}
+
+/** A clock one tick on. */
+static inline exec_nclock_t exec_num_clock_tick(exec_ndt_t dt, exec_nclock_t t)
+{
+    return t + dt;
+}
+
+/** The carry's share of f_hat: f_carry faded out (smoothstep) over EXEC_BLEND_S of the step. */
+static inline exec_nf_t exec_num_carry(const exec_state_t *st)
+{
+    fs_real_t r = st->t_step / ((fs_real_t)EXEC_BLEND_S);
+    if (r >= FS_R(1.0)) {
+        return st->f_carry * FS_R(0.0);
+    }
+    return st->f_carry * (FS_R(1.0) - r * r * (FS_R(3.0) - FS_R(2.0) * r));
+}
+
+/** The release's f_hat: f_end ramped to 0 over SKILL_RELEASE_TIME_S (done at 0). */
+static inline exec_nf_t exec_num_release(const exec_config_t *cfg, exec_state_t *st)
+{
+    st->t_end += cfg->pfc.dt_s;
+    fs_real_t r = FS_R(1.0) - st->t_end / ((fs_real_t)SKILL_RELEASE_TIME_S);
+    if (r <= FS_R(0.0)) {
+        st->done = 1u;
+        return FS_R(0.0);
+    }
+    return st->f_end * r;
+}
+
+/** The measured contact force and x position. */
+static inline exec_nf_t exec_num_meas_force(const exec_meas_n_t *m)
+{
+    return m->force_contact_N;
+}
+static inline exec_nx_t exec_num_meas_x(const exec_meas_n_t *m)
+{
+    return m->pos_m[0];
+}
+
+/** True if a measurement is not finite: x - x is +0 for a finite x, NaN for inf and NaN, so
+ *  the sum of those is 0 exactly when all are finite (one compare for five values). */
+static inline bool exec_num_meas_bad(const exec_meas_n_t *meas)
+{
+    const fs_real_t z = (meas->pos_m[0] - meas->pos_m[0]) + (meas->pos_m[1] - meas->pos_m[1]) +
+                        (meas->vel_mps[0] - meas->vel_mps[0]) +
+                        (meas->vel_mps[1] - meas->vel_mps[1]) +
+                        (meas->force_contact_N - meas->force_contact_N);
+    return !(z == FS_R(0.0));
+}
+
+/** The static deformation under the first tick's contact force (object model, or f/k). */
+static inline exec_nx_t exec_num_deformation(const exec_config_t *cfg, const exec_state_t *st,
+                                             exec_nf_t f_c)
+{
+    if (cfg->use_model != 0u) {
+        return exec_object_deformation(&cfg->object, f_c);
+    }
+    return (f_c > FS_R(0.0)) ? f_c / st->steps[st->step].skill->stiffness_Npm : FS_R(0.0);
+}
+
+/** The model-free reference's deformation f/k, 0 for f <= 0. */
+static inline exec_nx_t exec_num_spring(const exec_state_t *st, exec_nf_t f)
+{
+    return (f > FS_R(0.0)) ? f / st->steps[st->step].skill->stiffness_Npm : FS_R(0.0);
+}
+
+/** The object model's acceleration pdd = (f_hat - d_v*pd - F(p))/m_v at the reference's state. */
+static inline exec_nx_t exec_num_model_acc(const exec_config_t *cfg, const exec_state_t *st,
+                                           exec_nf_t f_hat)
+{
+    const exec_object_t *o = &cfg->object;
+    return (f_hat - o->d_v_Nspm * st->ref_pd - exec_object_force(o, st->ref_p)) / o->m_v_kg;
+}
+
+/** v + a*dt. */
+static inline exec_nx_t exec_num_integrate(const exec_config_t *cfg, const exec_state_t *st,
+                                           exec_nx_t v, exec_nx_t a)
+{
+    (void)st;
+    return v + a * cfg->pfc.dt_s;
+}
+
+/** True if y holds (no difference to take): never tested here, the divisions cost less. */
+static inline bool exec_num_y_holds(const exec_state_t *st, exec_ny_t y_d)
+{
+    (void)st;
+    (void)y_d;
+    return false;
+}
+
+/** Sums of positions. */
+static inline exec_nx_t exec_num_x_add(exec_nx_t a, exec_nx_t b)
+{
+    return a + b;
+}
+static inline exec_ny_t exec_num_y_add(exec_ny_t a, exec_ny_t b)
+{
+    return a + b;
+}
+
+/** A difference over one tick: of x, of y, of y's velocity. */
+static inline exec_nx_t exec_num_x_rate(exec_ndt_t dt, const exec_state_t *st, exec_nx_t dx)
+{
+    (void)st;
+    return dx / dt;
+}
+static inline exec_nx_t exec_num_y_rate(exec_ndt_t dt, const exec_state_t *st, exec_ny_t dy)
+{
+    (void)st;
+    return dy / dt;
+}
+static inline exec_nx_t exec_num_yd_rate(exec_ndt_t dt, const exec_state_t *st, exec_nx_t dv)
+{
+    (void)st;
+    return dv / dt;
+}
+
+/** Values as the law takes them (the same here). */
+static inline fs_real_t exec_num_law_x(exec_nx_t v)
+{
+    return v;
+}
+static inline fs_real_t exec_num_law_y(exec_ny_t v)
+{
+    return v;
+}
+static inline fs_real_t exec_num_law_ydd(exec_nx_t v)
+{
+    return v;
+}
+static inline fs_real_t exec_num_law_f(exec_nf_t f)
+{
+    return f;
+}
+/** f_hat within the layer's range (any here). */
+static inline exec_nf_t exec_num_f_bound(exec_nf_t f)
+{
+    return f;
+}
+
+/** The references' f_hat, x_d and y_d into out. */
+static inline void exec_num_out_refs(const exec_nref_t ref[PFC_AXES], exec_out_n_t *out)
+{
+    out->force_hat_N = ref[0].force_N;
+    out->pos_ref_m = ref[0].pos_m;
+    out->y_ref_m = ref[1].pos_m;
+}
+
+/** The law on the references and this tick's measurements: its commands into out. */
+static inline void exec_num_law(const exec_config_t *cfg, exec_state_t *st,
+                                const exec_nref_t ref[PFC_AXES], const exec_meas_n_t *meas,
+                                exec_out_n_t *out)
+{
+    pfc_axis_meas_t m[PFC_AXES];
+    m[0].pos_m = meas->pos_m[0];
+    m[0].vel_mps = meas->vel_mps[0];
+    m[0].force_N = meas->force_contact_N;
+    m[1].pos_m = meas->pos_m[1];
+    m[1].vel_mps = meas->vel_mps[1];
+    m[1].force_N = FS_R(0.0);
+    pfc_step(&cfg->pfc, &st->n.pfc, ref, m, out->force_cmd_N);
+}
+
+/** A tick without finite measurements: 0 N, the last f_hat and references. */
+static inline void exec_num_out_held(const exec_state_t *st, exec_out_n_t *out)
+{
+    out->step = st->step;
+    out->done = st->done;
+    out->force_cmd_N[0] = FS_R(0.0);
+    out->force_cmd_N[1] = FS_R(0.0);
+    out->force_hat_N = st->f_hat;
+    out->pos_ref_m = st->surface + st->ref_p;
+    out->y_ref_m = st->y_ref;
+}
+
+/** FS_OK: real arithmetic does not saturate. */
+static inline fs_status_t exec_num_status(exec_state_t *st)
+{
+    (void)st;
+    return FS_OK;
+}
+
+/** A rate, a force of the state as fs_real_t. */
+static inline fs_real_t exec_num_rate_real(exec_nrate_t r)
+{
+    return r;
+}
+static inline fs_real_t exec_num_f_real(exec_nf_t f)
+{
+    return f;
+}
+
+/** The estimator's layer part (none). */
+static inline void exec_num_vel_init(exec_vel_t *v, fs_real_t dt_s)
+{
+    (void)dt_s;
+    v->n.unused = 0u;
+}
+
+/* ---- the native API of the application's tick (the layer's units) ---- */
+
+/** A native force (a command, f_hat) as fs_real_t. */
+static inline fs_real_t exec_force_real(exec_nmeas_force_t f)
+{
+    return f;
+}
+
+/** A sensor's position or velocity (m, m/s) in the layer's units (here the same). */
+static inline exec_nmeas_pos_t exec_meas_pos_n(fs_real_t v)
+{
+    return v;
+}
+
+/** The estimator on a native position: exec_vel_step at dt_s. */
+static inline exec_nmeas_pos_t exec_vel_step_n(exec_vel_t *v, exec_nmeas_pos_t pos, fs_real_t dt_s)
+{
+    return exec_vel_step(v, pos, dt_s);
+}
+
+#endif /* EXEC_NUM_REAL_API_H */
