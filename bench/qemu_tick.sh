@@ -31,6 +31,8 @@
 #      tick_instructions target=T kernels=N min= median= max=          (DMP + control law, EXECUTE)
 #      commit_tick_instructions target=T min= median= max= ticks=  (a download's commit)
 #      app_tick_instructions target=T state=IDLE|TEACH|EXECUTE|UPLOAD|FWUPDATE|FAULT min= median= max=
+#      actuator_latency_instructions target=T state=S min= median= max=   (the tick's start to its
+#        actuator write, hal_actuator_force)
 #      softfloat_in_app_tick target=T state=S helpers=N calls= instructions=[: names]  (libgcc's
 #        __aeabi_d*/__aeabi_f*, __addsf3 & co. executed inside app_tick: none expected on the M4F)
 #      qemu_tick_duration target=T seconds=S
@@ -173,14 +175,14 @@ echo "== the product image: $(basename "$SKILL") (N = $KERNELS), IDLE / download
 # it is spread across).
 COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot = 0 }
                                     inb = 1; c = 0; part = 0; inpart = 0; dmp = 0; dpart = 0; indmp = 0; inisr = 0
-                                    cmt = 0; next }
-  / cm_port_mark_end$/ { if (inb) { done = 1; lc = c; lp = part; ld = dmp; ldp = dpart; lcm = cmt }
+                                    cmt = 0; act = 0; next }
+  / cm_port_mark_end$/ { if (inb) { done = 1; lc = c; lp = part; ld = dmp; ldp = dpart; lcm = cmt; la = act }
                          if (chk_tick > 0) { chk_ticks++; if (chk_tick > chk_max) chk_max = chk_tick }
                          if (chk_tick == 0 && chk_ticks > 0) { print "check", chk_total, chk_ticks, chk_max
                                                                chk_total = 0; chk_ticks = 0; chk_max = 0 }
                          chk_tick = 0; inb = 0; next }
   / cm_port_mark_(idle|teach|execute|upload|fwupdate|fault|other)$/ {
-      if (done) { k = $NF; sub(/^cm_port_mark_/, "", k); print k, lc, lp, ld, ldp, lcm; done = 0
+      if (done) { k = $NF; sub(/^cm_port_mark_/, "", k); print k, lc, lp, ld, ldp, lcm, la; done = 0
                   if (prof != "" && k == "execute") { for (f in h) tot[f] += h[f]; nexec++
                                                       for (a in hp) tp[a] += hp[a]
                                                       if (ld && ldp > maxdp) { maxdp = ldp; delete hm
@@ -212,6 +214,7 @@ COUNT_AWK='/ cm_port_mark_begin$/ { if (inboot) { print "boot", bc, ba; inboot =
                   if (ininit) ba++
                   bprev = s }
     if (inb) { c++; h[s]++
+               if (s == "hal_actuator_force" && !act) act = c
                if (s ~ SOFTF) { sfi[s]++; if (s != last) sfc[s]++ }
                last = s
                if (s ~ COMMIT) cmt = 1
@@ -303,7 +306,7 @@ if grep -q '^isr_lost' "$WORK/ticks.txt"; then   # the plugin's interrupt tracki
   echo "counter FAILED: $(grep '^isr_lost' "$WORK/ticks.txt") (an interrupt's entry or return missed)"; status=1
 fi
 # QEMU_TICK_KEEP=FILE: also keep the per-tick counts there (kind, app_tick, DMP + law, stepped,
-# DMP alone; one line per tick in order)
+# DMP alone, commit, instructions to the actuator write; one line per tick in order)
 [ -z "${QEMU_TICK_KEEP:-}" ] || cp "$WORK/ticks.txt" "$QEMU_TICK_KEEP"
 
 stats() { # lines of numbers on stdin -> "min median max count"
@@ -331,6 +334,12 @@ for st in idle teach execute upload fwupdate fault; do
   read -r A B C N < <(awk -v k=$st '$1 == k { print $2 }' "$WORK/ticks.txt" | stats)
   echo "app_tick_instructions target=$TARGET state=$(echo $st | tr a-z A-Z) min=$A median=$B max=$C ticks=$N"
   [ "$N" -gt 0 ] || { echo "FAILED: no $st tick counted"; status=1; }
+done
+# the sensor-to-actuator latency: the instructions from the tick's start (the sensors are read
+# first) to its actuator write, per state (ticks that wrote the actuator)
+for st in idle teach execute upload fwupdate fault; do
+  read -r A B C N < <(awk -v k=$st '$1 == k && $7 > 0 { print $7 }' "$WORK/ticks.txt" | stats)
+  echo "actuator_latency_instructions target=$TARGET state=$(echo $st | tr a-z A-Z) min=$A median=$B max=$C ticks=$N"
 done
 # the software-float helpers (libgcc) executed inside app_tick, per state: calls and instructions
 for st in idle teach execute upload fwupdate fault; do

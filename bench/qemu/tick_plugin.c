@@ -12,8 +12,9 @@
  *
  * On this stream of symbols the plugin runs the accounting of bench/qemu_tick.sh's trace counter
  * (COUNT_AWK there, the same rules line for line) and writes the same lines to out=FILE:
- *   KIND app_tick part stepped dmp commit   per counted tick (cm_port_mark_begin .. _end, then
- *                                           cm_port_mark_KIND)
+ *   KIND app_tick part stepped dmp commit act  per counted tick (cm_port_mark_begin .. _end, then
+ *                                           cm_port_mark_KIND; act: the instructions up to
+ *                                           hal_actuator_force's first, 0 without one)
  *   boot total app_init                     per boot (Reset_Handler to the first counted tick)
  *   check total ticks max_per_tick          per skill check (skchk_*)
  *   softfloat KIND helper calls instructions  at exit, per kind and soft-float helper
@@ -54,6 +55,7 @@ enum {
     F_COMMIT = 1u << 7,
     F_SOFTF = 1u << 8,
     F_CHK = 1u << 9,
+    F_ACT = 1u << 10, /* hal_actuator_force: the tick's actuator write */
 };
 
 static const char *const KIND_NAMES[N_KINDS] = {"idle",     "teach", "execute", "upload",
@@ -98,7 +100,7 @@ static const char *g_law = "";
 /* The accounting's state: the variables of COUNT_AWK (-1: the empty symbol). */
 typedef struct {
     int inb, done, inboot, ininit, inpart, indmp, inisr, inchk, dmp, cmt;
-    uint64_t c, part, dpart, bc, ba, lc, lp, ld, ldp, lcm;
+    uint64_t c, part, dpart, bc, ba, lc, lp, ld, ldp, lcm, act, la;
     uint64_t chk_total, chk_tick, chk_ticks, chk_max;
     int32_t prev, last, bprev, initcaller, caller, dcaller, chkcaller;
 } acct_t;
@@ -157,6 +159,7 @@ static uint32_t sym_flags(const char *name, int *kind)
     f |= re_match(&g_re_commit, name) ? F_COMMIT : 0u;
     f |= re_match(&g_re_softf, name) ? F_SOFTF : 0u;
     f |= re_match(&g_re_chk, name) ? F_CHK : 0u;
+    f |= strcmp(name, "hal_actuator_force") == 0 ? F_ACT : 0u;
     return f;
 }
 
@@ -377,7 +380,7 @@ static void on_begin(acct_t *a)
         a->inboot = 0;
     }
     a->inb = 1;
-    a->c = a->part = a->dpart = 0;
+    a->c = a->part = a->dpart = a->act = 0;
     a->inpart = a->dmp = a->indmp = a->inisr = a->cmt = 0;
     g_n_isr = g_n_isr_calls = 0;
 }
@@ -396,6 +399,7 @@ static void on_end(acct_t *a)
         a->ld = (uint64_t)a->dmp;
         a->ldp = a->dpart;
         a->lcm = (uint64_t)a->cmt;
+        a->la = a->act;
     }
     if (a->chk_tick > 0) {
         a->chk_ticks++;
@@ -416,9 +420,9 @@ static void on_end(acct_t *a)
 static void on_kind(acct_t *a, int k)
 {
     if (a->done) {
-        fprintf(g_out, "%s %llu %llu %llu %llu %llu\n", KIND_NAMES[k], (unsigned long long)a->lc,
-                (unsigned long long)a->lp, (unsigned long long)a->ld, (unsigned long long)a->ldp,
-                (unsigned long long)a->lcm);
+        fprintf(g_out, "%s %llu %llu %llu %llu %llu %llu\n", KIND_NAMES[k],
+                (unsigned long long)a->lc, (unsigned long long)a->lp, (unsigned long long)a->ld,
+                (unsigned long long)a->ldp, (unsigned long long)a->lcm, (unsigned long long)a->la);
         a->done = 0;
         if (g_prof != NULL) {
             prof_tick(k, a->lc, a->ld, a->ldp);
@@ -510,6 +514,9 @@ static int isr_track(acct_t *a, const insn_t *cur, uint32_t f)
 static void tick_insn(acct_t *a, const insn_t *cur, int32_t s, uint32_t f)
 {
     a->c++;
+    if ((f & F_ACT) && a->act == 0u) {
+        a->act = a->c; /* the instructions from the tick's start to its actuator write */
+    }
     if (f & F_SOFTF) {
         if (g_sfi[s] == 0 && g_sfc[s] == 0) {
             g_sf_touched[g_n_sf_touched++] = (uint32_t)s;
