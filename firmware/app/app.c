@@ -879,9 +879,9 @@ static uint8_t control_execute(app_t *app, fs_real_t dt)
 static void control(app_t *app)
 {
     const fs_real_t dt = APP_TICK_S;
-    /* a run's start goes a slice a tick (its checks in the tick that took the request): no
-     * force yet, as in IDLE; the first step starts from the sample after the last slice */
-    if (app->state == APP_EXECUTE && !(app->exec_starting && app_run_start_step(app))) {
+    /* a run's start goes a slice a tick after the actuator's write (app_tick): no force yet, as
+     * in IDLE; the first step starts from the sample after the last slice */
+    if (app->state == APP_EXECUTE && !app->exec_starting) {
         const uint8_t done = control_execute(app, dt); /* sets force_req_N */
         if (done != 0u) {
             app->exec_done = true;
@@ -985,13 +985,12 @@ void app_tick(app_t *app, bool overrun)
 {
     app->now_us = hal_time_us_ms(&app->now_ms);
     app->tick++;
-    app->host_frame = false;
-    /* while a skill runs ISO-TP queues at most APP_TP_FRAMES_EXEC_TICK frames a tick */
-    app->tp_frames = app->state == APP_EXECUTE ? APP_TP_FRAMES_PER_TICK - APP_TP_FRAMES_EXEC_TICK
-                                               : 0u;
     app->overrun = overrun;
 
-    /* sensors first: commands that start a motion start from this sample */
+    /* The control path first: sensors, control, the safety layer and the actuator's write, so
+     * the force loop's delay is the same whatever the bus carries. What arrived meanwhile
+     * (commands, UDS requests, keys) is taken after the write and acts from the next tick's
+     * sample: a stop reaches the actuator at most two periods after its arrival. */
     hal_sensors_read(&app->sens);
 #ifdef FS_EXEC_FIXED
     sense_q(app);
@@ -1011,14 +1010,8 @@ void app_tick(app_t *app, bool overrun)
         }
         (void)app_event(app, APP_EV_BOOTED);
     }
-    can_receive(app);
-    uds_service(app);
-    if (app_sec_store_pending(app)) {
-        app_sec_store_step(app);
-    }
     control(app);
-
-    supervise(app, overrun);
+    supervise(app, overrun); /* the host frames of the last tick's receive kick the watchdog */
     const bool enable = app->saf_out.actuator_enable && app->state != APP_BOOT;
     if (enable != app->actuator_enabled) {
         hal_actuator_enable(enable);
@@ -1026,6 +1019,20 @@ void app_tick(app_t *app, bool overrun)
     }
     hal_actuator_force(app->force_out_N);
 
+    /* then a run's start slice, the bus (the frames that arrived, the UDS server) and the long
+     * work's slices */
+    if (app->exec_starting) {
+        (void)app_run_start_step(app);
+    }
+    app->host_frame = false;
+    /* while a skill runs ISO-TP queues at most APP_TP_FRAMES_EXEC_TICK frames a tick */
+    app->tp_frames = app->state == APP_EXECUTE ? APP_TP_FRAMES_PER_TICK - APP_TP_FRAMES_EXEC_TICK
+                                               : 0u;
+    can_receive(app);
+    uds_service(app);
+    if (app_sec_store_pending(app)) {
+        app_sec_store_step(app);
+    }
     transmit(app);
 }
 

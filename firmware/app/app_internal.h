@@ -9,9 +9,10 @@
  * (app_uds.c: data identifiers, routines, skill download/upload into slots).
  * Hardware only through hal.h. No heap; everything lives in app_t (one static instance).
  *
- * Per tick (app_tick): CAN rx (bounded) -> UDS -> sensors -> commands/state -> control
- * (TEACH: render m_d; EXECUTE: fs_exec sequence) -> safety supervisor (limits, faults, safe
- * stop) -> actuator -> emergency/status/telemetry frames. */
+ * Per tick (app_tick), the control path first: sensors -> control (TEACH: render m_d; EXECUTE:
+ * fs_exec sequence) -> safety supervisor (limits, faults, safe stop) -> actuator -> a run's
+ * start slice -> CAN rx (bounded; commands act from the next tick) -> UDS and the jobs' slices
+ * -> emergency/status/telemetry frames. */
 #ifndef APP_INTERNAL_H
 #define APP_INTERNAL_H
 
@@ -183,8 +184,9 @@ bool app_fw_self_test_and_confirm(app_t *app);
  *  needs no SecurityAccess level, docs/protocol.md). Returns a UDS NRC (0 authorised). */
 uint8_t app_run_authorize(const app_t *app, const app_run_request_t *req);
 
-/** One slice of an accepted run's start (exec_start_run) while it runs: true if there was one
- *  (the tick's control commands no force); a refusal ends the run (last_run_status). */
+/** One slice of an accepted run's start (exec_start_run), after the tick's actuator write (the
+ *  control commands no force meanwhile): true if there was one; a refusal ends the run
+ *  (last_run_status). */
 bool app_run_start_step(app_t *app);
 
 /** End every command sent before now (a stop, a UDS fault clear or run stop, a new motion key):

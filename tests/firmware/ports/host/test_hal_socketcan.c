@@ -167,13 +167,16 @@ static void test_bus_off_row(void **state)
     can_frame_t out[256];
     (void)drain(out, 256);
 
-    /* bus-off, read in this tick: 501 latched in the same tick */
+    /* bus-off, read in this tick's receive (after the actuator's write): 501 latched by the next
+     * tick's safety step, before its actuator write */
     pair_put(CAN_ERR_FLAG | CAN_ERR_BUSOFF, CAN_ERR_DLC, NULL);
     tick();
     assert_true(hal_can_bus_off());
+    const uint64_t off_us = t_us;
+    assert_int_equal(app_state(app), APP_TEACH);
+    tick();
     assert_int_equal(app_state(app), APP_FAULT);
     assert_int_equal(app_fault_code(app), FLT_BUS_OFF);
-    const uint64_t off_us = t_us;
     pair_ctl.restart_result = -EPERM; /* first restart refused, the second works */
     bool restarted = false;
     for (unsigned i = 0; i < 200 && !restarted; i++) {
