@@ -12,7 +12,9 @@ import time
 
 import numpy as np
 import pytest
+
 from forceskill import cli
+from forceskill.plot import outside_spans
 from helpers.canbus import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS, Server, forceskill
 from helpers.paths import hil_sim_path
 
@@ -35,52 +37,47 @@ def band_skill(tmp_path_factory: pytest.TempPathFactory) -> str:
                 str(SCENARIOS / "pressing_task1_demo.toml"),
                 "--seed",
                 str(seed),
-            ]
-            + ["-o", str(demo)],
+                "-o",
+                str(demo),
+            ],
             check=True,
             capture_output=True,
         )
         demos.append(str(demo))
     out = d / "press.skill"
-    assert (
-        cli.main(
-            ["fit", *demos, "-k", str(K_NPM), "--object-mass", "10", "-o", str(out)]
-        )
-        == 0
-    )
+    assert cli.main(["fit", *demos, "-k", str(K_NPM), "--object-mass", "10", "-o", str(out)]) == 0
     return str(out)
 
 
 def _band_line(out: str) -> tuple[float, int, float]:
     """The run's band line: % outside, the longest piece (ms), the largest excursion (widths)."""
-    line = next(
-        ln for ln in out.splitlines() if ln.startswith("outside the demonstrated band")
-    )
+    line = next(ln for ln in out.splitlines() if ln.startswith("outside the demonstrated band"))
     pct = float(line.split(": ")[1].split(" %")[0])
     longest = int(line.split("longest ")[1].split(" ms")[0])
     widths = float(line.split("largest ")[1].split(" band")[0])
     return pct, longest, widths
 
 
-def test_a_layer_that_gives_way_is_detected_and_stopped_within_100_ms(
-    band_skill, tmp_path, capsys
-) -> None:  # type: ignore[no-untyped-def]
-    server = Server(
-        SCENARIOS / "pressing_layer_gives.toml", host_timeout_ms=JOURNEY_HOST_TIMEOUT_MS
-    )
+def test_a_layer_that_gives_way_is_detected_and_stopped_within_100_ms(band_skill, tmp_path, capsys) -> None:  # type: ignore[no-untyped-def]
+    server = Server(SCENARIOS / "pressing_layer_gives.toml", host_timeout_ms=JOURNEY_HOST_TIMEOUT_MS)
     try:
         time.sleep(0.2)
         bus = server.bus_args()
-        assert "verified by read-back" in forceskill(
-            capsys, "upload", band_skill, "--slot", "1", "-q", *bus
-        )
-        csv = tmp_path / "report.csv"
+        assert "verified by read-back" in forceskill(capsys, "upload", band_skill, "--slot", "1", "-q", *bus)
+        csv, png = tmp_path / "report.csv", tmp_path / "report.png"
         out = forceskill(
-            capsys, "run", "--slot", "1", "--end", "release", "--csv", str(csv), *bus
+            capsys, "run", "--slot", "1", "--end", "release", "--csv", str(csv), "--plot", str(png), *bus
         )
         pct, longest, widths = _band_line(out)
+        # the CSV marks every row the device reported outside: band_out, 0/1, after the fault column
+        assert csv.read_text().split("\n", 1)[0] == "t,x,y,f_contact,f_operator,f_cmd,f_hat,fault,band_out"
+        assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
         cols = np.genfromtxt(csv, delimiter=",", names=True)
         band_out = np.asarray(cols["band_out"])
+        assert set(np.unique(band_out)) == {0.0, 1.0}
+        # its longest piece is the device's own (DID_BAND), to within a tick the bus lost
+        spans = outside_spans(np.asarray(cols["t"]), band_out)
+        assert abs(1e3 * float(np.max(spans[:, 1] - spans[:, 0])) - longest) <= 2.0, (spans, longest)
         first = float(cols["t"][np.argmax(band_out > 0.5)])
         print(f"report: {out.splitlines()[-2]}; first sample outside at {first:.3f} s")
         assert pct > 5.0 and longest > 500 and widths > 0.5, out
@@ -114,18 +111,12 @@ def test_a_layer_that_gives_way_is_detected_and_stopped_within_100_ms(
         server.stop()
 
 
-def test_the_normal_object_raises_no_alarm_at_1x_and_1_5x(
-    band_skill, tmp_path, capsys
-) -> None:  # type: ignore[no-untyped-def]
-    server = Server(
-        SCENARIOS / "pressing_task1_demo.toml", host_timeout_ms=JOURNEY_HOST_TIMEOUT_MS
-    )
+def test_the_normal_object_raises_no_alarm_at_1x_and_1_5x(band_skill, tmp_path, capsys) -> None:  # type: ignore[no-untyped-def]
+    server = Server(SCENARIOS / "pressing_task1_demo.toml", host_timeout_ms=JOURNEY_HOST_TIMEOUT_MS)
     try:
         time.sleep(0.2)
         bus = server.bus_args()
-        assert "verified by read-back" in forceskill(
-            capsys, "upload", band_skill, "--slot", "1", "-q", *bus
-        )
+        assert "verified by read-back" in forceskill(capsys, "upload", band_skill, "--slot", "1", "-q", *bus)
         worst = []
         for i in range(10):
             g = "1.5" if i % 2 else "1"
