@@ -238,7 +238,7 @@ def write_can_log(
                     timestamp=ts,
                     arbitration_id=mpos.frame_id,
                     is_extended_id=False,
-                    data=mpos.encode({"PosX": x, "PosY": 0.0, "Tick": tk & 0xFFFF}),
+                    data=mpos.encode({"PosX": x, "PosY": 0.0, "BandOutside": 0, "Tick": tk & 0xFFFF}),
                 )
             )
             (held if busy else msgs).append(
