@@ -330,12 +330,11 @@ def mean_profile(demos: list[Demo], dt_s: float, keep_outliers: bool = False) ->
     tau = np.linspace(0.0, t_ref, n_s)
     ref = np.interp(tau, trimmed[i_ref].t_s, trimmed[i_ref].force_N)
     used = np.ones(len(demos), dtype=bool)
-    maps = np.zeros((len(demos), 3))
+    # the affine map once, against the first reference; every pass refines the warps from there
+    maps = np.array([register(d.t_s, d.force_N, tau, ref, t_ref) for d in trimmed])
     knots = np.linspace(0.0, t_ref, WARP_KNOTS + 2)
     offs = np.zeros((len(demos), knots.size))
-    for it in range(ALIGN_ITERATIONS):
-        if it == 0:  # the affine map once, from the first reference; then its refinement
-            maps = np.array([register(d.t_s, d.force_N, tau, ref, t_ref) for d in trimmed])
+    for _ in range(ALIGN_ITERATIONS):
         offs = np.stack(
             [
                 refine_warp(d.t_s, d.force_N, tau, ref, (m[0], m[1]), knots, o)
@@ -346,20 +345,17 @@ def mean_profile(demos: list[Demo], dt_s: float, keep_outliers: bool = False) ->
         if len(demos) >= 3 and not keep_outliers:
             used = ~_outliers(rows)
         ref = rows[used].mean(axis=0)
-    # the common time on the mean timing of the used recordings: the mean warp W(tau) (affine and
-    # offsets averaged) is the common time, each recording's map is W_i(W^-1(common time))
-    s_bar = float(np.mean(maps[used, 0]))
-    l_bar = float(np.mean(maps[used, 1]))
-    o_bar = offs[used].mean(axis=0)
+    # the common time on the mean timing of the used recordings: the mean warp W(tau) is the
+    # common time, each recording's map is w_i(W^-1(common time)) (every warp increases: so does W)
     w_knots = maps[:, 0:1] * knots[None, :] + maps[:, 1:2] + offs  # each warp at the knots
     fine = np.linspace(-0.5 * t_ref, 1.5 * t_ref, 8 * n_s)
-    w_bar = s_bar * fine + l_bar + np.interp(fine, knots, o_bar)
-    # the common time starts where the earliest used recording starts (its kept quiet lead
-    # included: the mean, as one recording, begins before the contact), ends at the reference's end
     w_fine = maps[:, 0:1] * fine[None, :] + maps[:, 1:2] + np.stack([np.interp(fine, knots, o) for o in offs])
+    w_bar = w_fine[used].mean(axis=0)
+    # it starts where the earliest used recording starts (its kept quiet lead included: the mean,
+    # as one recording, begins before the contact) and ends at the reference's end
     starts = np.array([np.interp(np.interp(0.0, w, fine), fine, w_bar) for w in w_fine])
     c0 = float(np.min(starts[used]))
-    t_end = s_bar * t_ref + l_bar + float(o_bar[-1])
+    t_end = float(np.interp(t_ref, fine, w_bar))
     n = int(round((t_end - c0) / dt_s)) + 1
     grid = np.arange(n) * dt_s
     tau_of_grid = np.interp(grid + c0, w_bar, fine)
