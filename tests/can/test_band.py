@@ -3,10 +3,13 @@ from six HIL demonstrations of pressing_task1_demo.toml (seeds 1..6, each its ow
 levels) carries the band; run on hil_sim/scenarios/pressing_layer_gives.toml, whose inner layer
 gives way 3 s into the execution, the contact force leaves the band and ``run --band-action
 stop`` stops the run with fault 515 within 100 ms of the layer failing (``report``: the run goes
-on, the time outside reported); on the normal object at 1x and 1.5x ten runs raise no alarm."""
+on, the time outside reported; its CSV marks the ticks outside in ``band_out`` and ``--plot`` draws
+them); on the normal object at 1x and 1.5x ten runs raise no alarm; ``forceskill journey`` ends
+with the same stop."""
 
 from __future__ import annotations
 
+import json
 import subprocess
 import time
 
@@ -134,3 +137,16 @@ def test_the_normal_object_raises_no_alarm_at_1x_and_1_5x(band_skill, tmp_path, 
         assert all(longest < BAND_MS for _, _, longest, _ in worst)
     finally:
         server.stop()
+
+
+def test_the_journey_ends_with_the_band_stopping_the_layer_that_gives_way(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """forceskill journey's band step: six simulator demonstrations, fit, run with --band-action
+    stop on pressing_layer_gives.toml; its summary and report say where it stopped."""
+    out = tmp_path / "journey"
+    assert cli.main(["journey", "-o", str(out), "--hil-sim", str(hil_sim_path())]) == 0
+    band = json.loads((out / "can_summary.json").read_text())["band"]
+    print(f"journey: {band}")
+    assert band["fault"] == FLT_BAND and band["gives_at_s"] == GIVES_AT_S
+    assert GIVES_AT_S < band["stopped_at_s"] <= GIVES_AT_S + 0.1
+    assert "## The demonstrated band" in (out / "can_report.md").read_text()
+    assert (out / "can_band.png").is_file() and (out / "can_band_fit.png").is_file()
