@@ -153,3 +153,73 @@ def periodic_figure(
     for a in ax:
         a.grid(True, lw=0.3)
     write_figure(fig, path, outs=outs)
+
+
+def outside_spans(t: np.ndarray, outside: np.ndarray) -> np.ndarray:
+    """The pieces of a run outside the band: (pieces, 2) start and end times, each piece from
+    its first row outside to one row past its last (a row stands for its tick)."""
+    if t.size == 0:
+        return np.zeros((0, 2))
+    dt = float(t[1] - t[0]) if t.size > 1 else 1e-3
+    edges = np.diff(np.concatenate([[0], (np.asarray(outside) > 0.5).astype(np.int8), [0]]))
+    first, past = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
+    return np.column_stack([t[first], t[past - 1] + dt])
+
+
+def run_figure(
+    cols: dict[str, np.ndarray],
+    path: str | Path,
+    title: str = "",
+    band: tuple[np.ndarray, np.ndarray] | None = None,
+    fault_t: float | None = None,
+    outs: Outputs | None = None,
+) -> None:
+    """Write a PNG of a run's telemetry: the contact force (blue) and the reference f_hat (dashed
+    black), the band when given (shaded green, on the run's rows), every piece the device reported
+    outside it (the CSV's band_out, shaded red over the whole height) and the fault's time (a red
+    line); below, the position x."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    t = cols["t"]
+    fig, ax = plt.subplots(2, 1, figsize=(8.0, 6.0), sharex=True, gridspec_kw={"height_ratios": [3, 1]})
+    if band is not None:
+        ax[0].fill_between(t, band[0], band[1], color="tab:green", alpha=0.18, lw=0, label="band")
+    if "band_out" in cols:
+        spans = outside_spans(t, cols["band_out"])
+        if spans.size:
+            # one collection for every piece: a chattering excursion is thousands of them
+            ax[0].broken_barh(
+                list(zip(spans[:, 0], spans[:, 1] - spans[:, 0], strict=True)),
+                (0.0, 1.0),
+                transform=ax[0].get_xaxis_transform(),
+                color="tab:red",
+                alpha=0.2,
+                lw=0,
+                label="outside the band",
+            )
+    ax[0].plot(t, cols["f_contact"], "-", color="tab:blue", lw=1.0, label="contact force")
+    ax[0].plot(t, cols["f_hat"], "k--", lw=0.9, label="reference f_hat")
+    if fault_t is not None:
+        for a in ax:
+            a.axvline(fault_t, color="tab:red", lw=1.0)
+        ax[0].text(
+            fault_t,
+            0.98,
+            " fault",
+            color="tab:red",
+            fontsize=8,
+            va="top",
+            transform=ax[0].get_xaxis_transform(),
+        )
+    ax[0].set_ylabel("force [N]")
+    ax[0].legend(loc="best", fontsize=8)
+    ax[0].set_title(title, fontsize=9)
+    ax[1].plot(t, 1e3 * cols["x"], "b-", lw=0.8)
+    ax[1].set_ylabel("x [mm]")
+    ax[1].set_xlabel("t [s] (from the start of the execution)")
+    for a in ax:
+        a.grid(True, lw=0.3)
+    write_figure(fig, path, outs=outs)

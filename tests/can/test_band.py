@@ -3,10 +3,13 @@ from six HIL demonstrations of pressing_task1_demo.toml (seeds 1..6, each its ow
 levels) carries the band; run on hil_sim/scenarios/pressing_layer_gives.toml, whose inner layer
 gives way 3 s into the execution, the contact force leaves the band and ``run --band-action
 stop`` stops the run with fault 515 within 100 ms of the layer failing (``report``: the run goes
-on, the time outside reported); on the normal object at 1x and 1.5x ten runs raise no alarm."""
+on, the time outside reported; its CSV marks the ticks outside in ``band_out`` and ``--plot`` draws
+them); on the normal object at 1x and 1.5x ten runs raise no alarm; ``forceskill journey`` ends
+with the same stop."""
 
 from __future__ import annotations
 
+import json
 import subprocess
 import time
 
@@ -14,6 +17,7 @@ import numpy as np
 import pytest
 
 from forceskill import cli
+from forceskill.plot import outside_spans
 from helpers.canbus import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS, Server, forceskill
 from helpers.paths import hil_sim_path
 
@@ -63,11 +67,20 @@ def test_a_layer_that_gives_way_is_detected_and_stopped_within_100_ms(band_skill
         time.sleep(0.2)
         bus = server.bus_args()
         assert "verified by read-back" in forceskill(capsys, "upload", band_skill, "--slot", "1", "-q", *bus)
-        csv = tmp_path / "report.csv"
-        out = forceskill(capsys, "run", "--slot", "1", "--end", "release", "--csv", str(csv), *bus)
+        csv, png = tmp_path / "report.csv", tmp_path / "report.png"
+        out = forceskill(
+            capsys, "run", "--slot", "1", "--end", "release", "--csv", str(csv), "--plot", str(png), *bus
+        )
         pct, longest, widths = _band_line(out)
+        # the CSV marks every row the device reported outside: band_out, 0/1, after the fault column
+        assert csv.read_text().split("\n", 1)[0] == "t,x,y,f_contact,f_operator,f_cmd,f_hat,fault,band_out"
+        assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
         cols = np.genfromtxt(csv, delimiter=",", names=True)
         band_out = np.asarray(cols["band_out"])
+        assert set(np.unique(band_out)) == {0.0, 1.0}
+        # its longest piece is the device's own (DID_BAND), to within a tick the bus lost
+        spans = outside_spans(np.asarray(cols["t"]), band_out)
+        assert abs(1e3 * float(np.max(spans[:, 1] - spans[:, 0])) - longest) <= 2.0, (spans, longest)
         first = float(cols["t"][np.argmax(band_out > 0.5)])
         print(f"report: {out.splitlines()[-2]}; first sample outside at {first:.3f} s")
         assert pct > 5.0 and longest > 500 and widths > 0.5, out
@@ -124,3 +137,16 @@ def test_the_normal_object_raises_no_alarm_at_1x_and_1_5x(band_skill, tmp_path, 
         assert all(longest < BAND_MS for _, _, longest, _ in worst)
     finally:
         server.stop()
+
+
+def test_the_journey_ends_with_the_band_stopping_the_layer_that_gives_way(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """forceskill journey's band step: six simulator demonstrations, fit, run with --band-action
+    stop on pressing_layer_gives.toml; its summary and report say where it stopped."""
+    out = tmp_path / "journey"
+    assert cli.main(["journey", "-o", str(out), "--hil-sim", str(hil_sim_path())]) == 0
+    band = json.loads((out / "can_summary.json").read_text())["band"]
+    print(f"journey: {band}")
+    assert band["fault"] == FLT_BAND and band["gives_at_s"] == GIVES_AT_S
+    assert GIVES_AT_S < band["stopped_at_s"] <= GIVES_AT_S + 0.1
+    assert "## The demonstrated band" in (out / "can_report.md").read_text()
+    assert (out / "can_band.png").is_file() and (out / "can_band_fit.png").is_file()

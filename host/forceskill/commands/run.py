@@ -15,6 +15,7 @@ import numpy as np
 from .. import wire as W
 from ..errors import (
     ERR_FORCE_GAIN_INERTIA,
+    ERR_OUTPUT_IS_INPUT,
     ERR_PERIODIC_ARGS,
     ERR_RUN_FAULT,
     ERR_SKILL_PEAK,
@@ -36,7 +37,7 @@ from ..model.limits import (
 from ..model.periodic import check_amplitude_scale
 from ..model.scales import check_path_scale, check_scales
 from ..model.skill import Skill
-from ..outputs import STDOUT, Outputs, format_rows
+from ..outputs import STDOUT, Outputs, check_target, format_rows
 from ..wire.dbc import END_POLICIES
 from ._args import add_force_limit, add_path_scale, add_scales, float_arg
 from ._common import (
@@ -334,6 +335,7 @@ def run_on_device(
                 "interrupted": True,
                 "started": False,
                 "band": None,
+                "skill": None,
             }
         notifier = dev.notifier
         assert notifier is not None
@@ -439,6 +441,7 @@ def run_on_device(
         "stream": stream,
         "contact": contact,
         "band": band,
+        "skill": None if args.sequence else skills.get(args.slot),
     }
 
 
@@ -447,6 +450,13 @@ CSV_COLUMNS = ("t", "x", "y", "f_contact", "f_operator", "f_cmd", "f_hat", "faul
 CSV_BAND_COLUMN = "band_out"
 #: --band-ms's default: 50 ms outside the band in one piece
 BAND_MS_DEFAULT = 50
+
+
+def run_table(cols: dict[str, np.ndarray], banded: bool) -> tuple[tuple[str, ...], np.ndarray]:
+    """The CSV's column names and rows: CSV_COLUMNS, and with a band CSV_BAND_COLUMN (0/1 per
+    row) after them."""
+    names = CSV_COLUMNS + ((CSV_BAND_COLUMN,) if banded else ())
+    return names, np.column_stack([cols[k] for k in names])
 
 
 def band_stop_ms(args: argparse.Namespace) -> int:
@@ -465,6 +475,25 @@ def band_summary(band: Any) -> str:
         f"outside the demonstrated band: {pct:.1f} % of the run, longest {band.longest_ms} ms, "
         f"largest {band.max_widths:.3f} band widths{first}"
     )
+
+
+def write_run_plot(args: argparse.Namespace, r: dict[str, Any], outs: Outputs) -> None:
+    """The run's --plot: the telemetry, the pieces outside the band and, for a --slot run of a
+    skill with a band, the band on the run's time (scaled as f_hat, the skill's nominal phase:
+    a contact wait's held phase is not followed)."""
+    from ..plot import run_figure
+
+    cols = r["columns"]
+    sk = r.get("skill")
+    band = None
+    if sk is not None and sk.band_lo_N is not None:
+        band = sk.band_at(cols["t"], args.goal_scale, args.time_scale, args.amplitude_scale)
+    what = f"sequence {args.sequence}" if args.sequence else f"slot {args.slot}"
+    title = f"node {args.node}: {what}, goal x{args.goal_scale:g}, time x{args.time_scale:g}"
+    if r.get("band") is not None:
+        title += "\n" + band_summary(r["band"])
+    fault_t = float(cols["t"][r["fault_row"]]) if r["fault"] and cols["t"].size else None
+    run_figure(cols, args.plot, title=title, band=band, fault_t=fault_t, outs=outs)
 
 
 def _cmd(args: argparse.Namespace) -> int:
@@ -492,6 +521,10 @@ def _cmd(args: argparse.Namespace) -> int:
     if args.sequence:
         parse_sequence(args.sequence)
     to_stdout = args.csv == STDOUT
+    if args.plot:  # refused before connecting
+        real = check_target(args.plot)
+        if args.csv and not to_stdout and check_target(args.csv) == real:
+            raise FsError(ERR_OUTPUT_IS_INPUT, f"output {args.plot!r} is given twice (--csv and --plot)")
     info = sys.stderr if to_stdout else sys.stdout
     with Outputs() as outs:
         csv_tmp = outs.add(args.csv) if args.csv and not to_stdout else None
@@ -506,15 +539,16 @@ def _cmd(args: argparse.Namespace) -> int:
         if not r["started"]:
             print("forceskill: interrupted before the start: nothing was sent", file=sys.stderr)
             return 130
-        names = CSV_COLUMNS + ((CSV_BAND_COLUMN,) if r.get("band") is not None else ())
-        block = np.column_stack([cols[k] for k in names])
+        names, block = run_table(cols, r.get("band") is not None)
         if csv_tmp is not None:
             with open(csv_tmp, "w", encoding="ascii", newline="\n") as f:
                 f.write(",".join(names) + "\n" + format_rows(block))
         elif to_stdout:
             sys.stdout.write(",".join(names) + "\n" + format_rows(block))
             sys.stdout.flush()
-        outs.commit()  # the telemetry and the bus log are kept on a fault or Ctrl-C too
+        if args.plot:
+            write_run_plot(args, r, outs)
+        outs.commit()  # the telemetry, the plot and the bus log are kept on a fault or Ctrl-C too
     n, stream = cols["t"].size, r.get("stream", Stream())
     if stream.lost_samples:
         print(
@@ -638,6 +672,12 @@ def register(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
         help=f"with --band-action stop: ms outside the band in one piece that stop the run ({BAND_MS_DEFAULT})",
     )
     p.add_argument("-o", "--output", metavar="LOG", help="also log the bus (.blf .asc .log .trc .csv)")
+    p.add_argument(
+        "--plot",
+        metavar="PNG",
+        help="write the contact force and f_hat over the run; a skill with a band: the band "
+        "(--slot) and the pieces outside it shaded",
+    )
     p.add_argument(
         "--csv",
         metavar="CSV",

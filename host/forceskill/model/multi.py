@@ -3,20 +3,23 @@ section 7).
 
 Steps, on the fit grid (dt): each recording's idle lead is trimmed (``trim_lead``: the force
 leaves its first 50 ms' level by more than LEAD_REL of its range or LEAD_NOISE_SIGMAS noise
-deviations; LEAD_KEEP_S of the quiet lead is kept); the recordings are registered in time by an
-affine map of the phase, recording time ``t = stretch*tau + lag`` on the common time ``tau``
-(``register``: a vectorised grid search over stretch and lag minimising the squared distance to
-the reference after the best gain, then a finer grid around the best); the reference is first
-the recording closest to the others, then the mean of the aligned recordings (ALIGN_ITERATIONS
-times); in the last pass a piecewise-linear time offset over WARP_KNOTS knots refines each affine
-map (``refine_warp``: the operator's speed varies within a stroke); the maps are finally
-expressed on the mean timing (the mean of the maps is the common time: mean stretch 1, mean lag 0,
-mean offset 0). The mean
-profile and its spread (standard deviation across recordings, a moving RMS over SIGMA_SMOOTH_S)
-are taken per sample of the common time. A recording whose RMS deviation from the mean of the others exceeds
-OUTLIER_FACTOR times the median deviation (and OUTLIER_MIN_PCT of the maximum force; both
-against the per-sample median of all recordings) is named an
-outlier and, unless kept, left out of the mean and the band.
+deviations; from there back to where the rise began; LEAD_KEEP_S of the quiet lead before it is
+kept); the recordings are registered in time, recording time ``t = stretch*tau + lag +
+offset(tau)`` on the reference's time ``tau``: the affine part first (``register``: a vectorised
+grid search over stretch and lag minimising the squared distance to the reference after the best
+gain, then finer grids around the best), then a piecewise-linear offset over WARP_KNOTS knots
+(``refine_warp``: Gauss-Newton with the gain and bias free, the warp's curvature penalised,
+coarse to fine; the operator's speed varies within a stroke). The reference is first the
+recording closest to the others, then the mean of the aligned recordings (ALIGN_ITERATIONS
+passes, each refining the last pass's warps). The mean of the used recordings' warps is the
+common time (the mean timing, not the reference's: mean stretch 1, mean lag 0), from where the
+earliest recording starts to the reference's end; each recording's map is reported against it
+as a line (stretch, lag) and the largest departure from that line (warp). The mean profile and
+its spread (standard deviation across recordings, a moving RMS over SIGMA_SMOOTH_S) are taken
+per sample of the common time. A recording whose RMS deviation from the mean of the others
+exceeds OUTLIER_FACTOR times the median deviation (and OUTLIER_MIN_PCT of the maximum force; both
+against the per-sample median of all recordings) is named an outlier and, unless kept, left out
+of the mean and the band.
 
 The band (``band_from_spread``): ``mean +- max(k*sigma, floor)`` with ``floor = max(k*noise,
 floor_rel*max|mean|)``, noise the sensor noise (robust deviation of the recordings' sample
@@ -42,6 +45,10 @@ LEAD_HEAD_S = 0.05
 LEAD_REL = 0.05
 LEAD_NOISE_SIGMAS = 6.0
 LEAD_KEEP_S = 0.1
+#: the rise's start: the force, a moving mean over LEAD_SMOOTH_S, last within LEAD_BACK_SIGMAS
+#: noise deviations of the quiet level before it crossed the threshold above
+LEAD_SMOOTH_S = 0.02
+LEAD_BACK_SIGMAS = 2.0
 #: registration: stretch in [1/STRETCH_MAX, STRETCH_MAX], lag within LAG_MAX_REL of the duration;
 #: coarse grid of GRID_STRETCH x GRID_LAG candidates, signals at most ALIGN_SAMPLES samples
 STRETCH_MAX = 1.6
@@ -50,13 +57,15 @@ GRID_STRETCH = 61
 GRID_LAG = 61
 ALIGN_SAMPLES = 600
 ALIGN_ITERATIONS = 3
-#: the non-linear refinement: WARP_KNOTS interior knots of a piecewise-linear time offset added
-#: to the affine map, each searched within +-WARP_MAX_REL of the duration (WARP_GRID values,
-#: WARP_SWEEPS coordinate sweeps), the knots kept in order
-WARP_KNOTS = 10
-WARP_MAX_REL = 0.06
-WARP_GRID = 25
-WARP_SWEEPS = 3
+#: the non-linear refinement: a piecewise-linear time offset over WARP_KNOTS interior knots added
+#: to the affine map, within +-WARP_MAX_REL of the duration of it, by Gauss-Newton (at most
+#: WARP_ITERATIONS steps per scale) on the signals smoothed over each of WARP_SCALES_S in turn,
+#: the curvature penalised by WARP_SMOOTH of the data term's scale
+WARP_KNOTS = 20
+WARP_MAX_REL = 0.15
+WARP_SCALES_S = (0.2, 0.08, 0.03)
+WARP_ITERATIONS = 12
+WARP_SMOOTH = 0.01
 #: an outlier: RMS deviation from the others' mean above OUTLIER_FACTOR x the median deviation
 #: and above OUTLIER_MIN_PCT % of max force (three recordings or more)
 OUTLIER_FACTOR = 4.0
@@ -72,8 +81,8 @@ BAND_POINTS_MAX = 128  # the skill format's cap (skill.BAND_MAX_POINTS)
 
 @dataclass
 class Alignment:
-    """How one recording sits on the common time: recording time ``t = stretch*tau + lag_s``
-    (after its idle lead ``lead_s`` is trimmed), its deviation from the mean of the others (RMS
+    """How one recording sits on the common time ``tau``: recording time ``t = stretch*tau +
+    lag_s`` (the line closest to its warp; after its idle lead ``lead_s`` is trimmed), its deviation from the mean of the others (RMS
     and max, % of the mean's max |force|) and whether it is an outlier / used."""
 
     source: str
@@ -81,7 +90,7 @@ class Alignment:
     duration_s: float
     stretch: float = 1.0
     lag_s: float = 0.0
-    #: the largest |time offset| of the non-linear refinement on top of the affine map (s)
+    #: the largest |time offset| of the warp from that line (s): the non-linear part
     warp_s: float = 0.0
     gain: float = 1.0
     dev_rms_pct: float = 0.0
@@ -121,6 +130,13 @@ def trim_lead(demo: Demo, dt_s: float) -> tuple[Demo, float]:
     thr = max(LEAD_REL * float(np.max(f) - np.min(f)), LEAD_NOISE_SIGMAS * noise_sigma(f))
     moved = np.flatnonzero(np.abs(f - level) > thr)
     onset = int(moved[0]) if moved.size else 0
+    # back from that crossing to where the rise began (the force, averaged over LEAD_SMOOTH_S,
+    # last within LEAD_BACK_SIGMAS noise deviations of the level): a slow rise crosses the
+    # threshold well after the contact began, and the mean must keep its whole rise
+    width = max(1, int(round(LEAD_SMOOTH_S / dt_s)))
+    sm = np.convolve(f[: onset + 1], np.full(width, 1.0 / width), mode="same")
+    quiet = np.flatnonzero(np.abs(sm[: onset + 1] - level) <= LEAD_BACK_SIGMAS * noise_sigma(f))
+    onset = int(quiet[-1]) if quiet.size else onset
     start = max(0, onset - int(round(LEAD_KEEP_S / dt_s)))
     if start == 0:
         return demo, 0.0
@@ -170,6 +186,30 @@ def register(
     return math.exp(centre_ls), centre_lag, gain
 
 
+def _hat_basis(tau: np.ndarray, knots: np.ndarray) -> np.ndarray:
+    """The piecewise-linear hat functions over ``knots`` sampled at tau (held beyond the ends):
+    (tau, knots), so a warp with values w at the knots is ``basis @ w``."""
+    idx = np.clip(np.searchsorted(knots, tau, side="right") - 1, 0, knots.size - 2)
+    frac = np.clip((tau - knots[idx]) / (knots[idx + 1] - knots[idx]), 0.0, 1.0)
+    out = np.zeros((tau.size, knots.size))
+    rows = np.arange(tau.size)
+    out[rows, idx] = 1.0 - frac
+    out[rows, idx + 1] += frac
+    return out
+
+
+def _gauss_smooth(x: np.ndarray, sigma_samples: float) -> np.ndarray:
+    """x smoothed by a Gaussian of sigma_samples (the ends held): the coarse scales of the
+    registration see only the large features, whose basin of attraction is wide."""
+    if sigma_samples < 0.5:
+        return x
+    half = int(math.ceil(3.0 * sigma_samples))
+    k = np.exp(-0.5 * (np.arange(-half, half + 1) / sigma_samples) ** 2)
+    k /= k.sum()
+    out: np.ndarray = np.convolve(np.pad(x, half, mode="edge"), k, mode="valid")
+    return out
+
+
 def refine_warp(
     t: np.ndarray,
     f: np.ndarray,
@@ -177,28 +217,87 @@ def refine_warp(
     ref: np.ndarray,
     affine: tuple[float, float],
     knots: np.ndarray,
+    start: np.ndarray | None = None,
 ) -> np.ndarray:
-    """Time offsets at ``knots`` (the ends 0) of the piecewise-linear warp t = stretch*tau + lag +
-    offset(tau) that best matches ref after a gain: coordinate search, knot by knot, on a grid
-    (vectorised over the grid), the warp kept increasing."""
+    """Time offsets at ``knots`` of the piecewise-linear warp t = stretch*tau + lag + offset(tau)
+    (held beyond the end knots) that best matches ref after a gain and a bias, so neither the
+    operator's amplitude nor the sensor's offset pulls the timing. Gauss-Newton on the squared
+    distance plus WARP_SMOOTH times a penalty on the warp's curvature (second differences at the
+    knots: a knot on a plateau, where the force says nothing of the timing, follows its
+    neighbours; an affine warp costs nothing), coarse to fine over WARP_SCALES_S (both signals
+    Gaussian-smoothed: the coarse scales see the large features, whose basin is wide), each step
+    halved until the warp increases, stays within WARP_MAX_REL of the duration of the affine map
+    and lowers the cost. ``start``: the offsets to start from (default 0, the affine map)."""
     stretch, lag = affine
-    span = float(knots[-1] - knots[0])
-    off = np.zeros(knots.size)
-    grid = np.linspace(-WARP_MAX_REL * span, WARP_MAX_REL * span, WARP_GRID)
-    base = stretch * tau + lag
-    for _ in range(WARP_SWEEPS):
-        for k in range(1, knots.size - 1):
-            cand = np.repeat(off[None, :], grid.size, axis=0)
-            cand[:, k] = grid
-            w = stretch * knots + cand  # warp at the knots (lag cancels in the order test)
-            ok = np.all(np.diff(w, axis=1) > 0.0, axis=1)
-            q = base[None, :] + np.stack([np.interp(tau, knots, c) for c in cand])
-            x = np.interp(q.ravel(), t, f).reshape(q.shape)
-            xx = np.einsum("ij,ij->i", x, x)
-            xr = x @ ref
-            resid = np.where(ok & (xx > 0.0), -(xr * xr) / np.where(xx > 0.0, xx, 1.0), np.inf)
-            off[k] = grid[int(np.argmin(resid))]
-    return off
+    w0 = stretch * knots + lag
+    w = w0 + (0.0 if start is None else start)
+    basis = _hat_basis(tau, knots)
+    n_k = knots.size
+    d2 = np.diff(np.eye(n_k), 2, axis=0)
+    curv = np.zeros((n_k + 2, n_k + 2))  # the warp's values, then the gain and the bias
+    curv[:n_k, :n_k] = d2.T @ d2
+    dt_rec = float(np.median(np.diff(t))) if t.size > 1 else 1.0
+    dt_tau = float(tau[1] - tau[0]) if tau.size > 1 else 1.0
+    off_max = WARP_MAX_REL * float(knots[-1] - knots[0])
+    slope_lo, slope_hi = 1.0 / STRETCH_MAX**2, STRETCH_MAX**2
+
+    for scale in WARP_SCALES_S:
+        fs = _gauss_smooth(f, scale / dt_rec)
+        rs = _gauss_smooth(ref, scale / dt_tau)
+        dfs = np.gradient(fs, t)
+        a, c = _gain_bias(np.interp(basis @ w, t, fs), rs)
+        p = np.concatenate([w, [a, c]])
+        lam = -1.0
+        for _ in range(WARP_ITERATIONS):
+            q = basis @ p[:n_k]
+            x = np.interp(q, t, fs)
+            jac = np.hstack(
+                [(p[n_k] * np.interp(q, t, dfs))[:, None] * basis, x[:, None], np.ones((q.size, 1))]
+            )
+            jtj = jac.T @ jac
+            if lam < 0.0:  # the penalty's weight against the data term's scale, fixed per scale
+                lam = WARP_SMOOTH * float(np.trace(jtj[:n_k, :n_k])) / n_k + 1e-12
+            r = p[n_k] * x + p[n_k + 1] - rs
+            # a trace of damping: a flat recording's warp has no gradient, the system no inverse
+            hess = jtj + lam * curv + 1e-9 * np.diag(np.diag(jtj) + 1.0)
+            step = np.linalg.solve(hess, -(jac.T @ r + lam * curv @ p))
+            c0, moved = _warp_cost(p, basis, t, fs, rs, lam * curv), False
+            for _ in range(8):
+                cand = p + step
+                slopes = np.diff(cand[:n_k]) / np.diff(knots)
+                ok = bool(np.all((slopes > slope_lo) & (slopes < slope_hi)))
+                if (
+                    ok
+                    and float(np.max(np.abs(cand[:n_k] - w0))) < off_max
+                    and _warp_cost(cand, basis, t, fs, rs, lam * curv) < c0
+                ):
+                    p, moved = cand, True
+                    break
+                step = 0.5 * step
+            if not moved or float(np.max(np.abs(step[:n_k]))) < 1e-4 * dt_tau:
+                break
+        w = p[:n_k]
+    out: np.ndarray = w - w0
+    return out
+
+
+def _warp_cost(
+    p: np.ndarray, basis: np.ndarray, t: np.ndarray, f: np.ndarray, ref: np.ndarray, pen: np.ndarray
+) -> float:
+    """The registration's cost at p (the warp at the knots, the gain, the bias): the squared
+    distance of the warped, scaled and offset recording to ref plus the quadratic penalty p'Pp."""
+    n_k = basis.shape[1]
+    e = p[n_k] * np.interp(basis @ p[:n_k], t, f) + p[n_k + 1] - ref
+    return float(e @ e) + float(p @ pen @ p)
+
+
+def _gain_bias(x: np.ndarray, ref: np.ndarray) -> tuple[float, float]:
+    """The gain and bias a, c minimising |a*x + c - ref|^2 (gain 1 for a flat x)."""
+    xm, rm = float(np.mean(x)), float(np.mean(ref))
+    xc = x - xm
+    vx = float(xc @ xc)
+    a = float(xc @ (ref - rm)) / vx if vx > 0.0 else 1.0
+    return a, rm - a * xm
 
 
 def _dev(aligned: np.ndarray, used: np.ndarray, f_max: float) -> tuple[np.ndarray, np.ndarray]:
@@ -231,36 +330,42 @@ def mean_profile(demos: list[Demo], dt_s: float, keep_outliers: bool = False) ->
     tau = np.linspace(0.0, t_ref, n_s)
     ref = np.interp(tau, trimmed[i_ref].t_s, trimmed[i_ref].force_N)
     used = np.ones(len(demos), dtype=bool)
-    maps = np.zeros((len(demos), 3))
+    # the affine map once, against the first reference; every pass refines the warps from there
+    maps = np.array([register(d.t_s, d.force_N, tau, ref, t_ref) for d in trimmed])
     knots = np.linspace(0.0, t_ref, WARP_KNOTS + 2)
     offs = np.zeros((len(demos), knots.size))
-    for it in range(ALIGN_ITERATIONS):
-        maps = np.array([register(d.t_s, d.force_N, tau, ref, t_ref) for d in trimmed])
-        if it == ALIGN_ITERATIONS - 1:  # the non-linear refinement against the affine mean
-            offs = np.stack(
-                [
-                    refine_warp(d.t_s, d.force_N, tau, ref, (m[0], m[1]), knots)
-                    for d, m in zip(trimmed, maps, strict=True)
-                ]
-            )
+    for _ in range(ALIGN_ITERATIONS):
+        offs = np.stack(
+            [
+                refine_warp(d.t_s, d.force_N, tau, ref, (m[0], m[1]), knots, o)
+                for d, m, o in zip(trimmed, maps, offs, strict=True)
+            ]
+        )
         rows = _warp_rows(trimmed, tau, maps, knots, offs)
         if len(demos) >= 3 and not keep_outliers:
             used = ~_outliers(rows)
         ref = rows[used].mean(axis=0)
-    # the common time on the mean timing of the used recordings: the mean warp W(tau) (affine and
-    # offsets averaged) is the common time, each recording's map is W_i(W^-1(common time))
-    s_bar = float(np.mean(maps[used, 0]))
-    l_bar = float(np.mean(maps[used, 1]))
-    o_bar = offs[used].mean(axis=0)
-    t_end = s_bar * t_ref + l_bar
-    n = int(round(t_end / dt_s)) + 1
-    grid = np.arange(n) * dt_s
+    # the common time on the mean timing of the used recordings: the mean warp W(tau) is the
+    # common time, each recording's map is w_i(W^-1(common time)) (every warp increases: so does W)
+    w_knots = maps[:, 0:1] * knots[None, :] + maps[:, 1:2] + offs  # each warp at the knots
     fine = np.linspace(-0.5 * t_ref, 1.5 * t_ref, 8 * n_s)
-    w_bar = s_bar * fine + l_bar + np.interp(fine, knots, o_bar, left=0.0, right=0.0)
-    tau_of_grid = np.interp(grid, w_bar, fine)
+    w_fine = maps[:, 0:1] * fine[None, :] + maps[:, 1:2] + np.stack([np.interp(fine, knots, o) for o in offs])
+    w_bar = w_fine[used].mean(axis=0)
+    # it starts where the earliest used recording starts (its kept quiet lead included: the mean,
+    # as one recording, begins before the contact) and ends at the reference's end
+    starts = np.array([np.interp(np.interp(0.0, w, fine), fine, w_bar) for w in w_fine])
+    c0 = float(np.min(starts[used]))
+    t_end = float(np.interp(t_ref, fine, w_bar))
+    n = int(round((t_end - c0) / dt_s)) + 1
+    grid = np.arange(n) * dt_s
+    tau_of_grid = np.interp(grid + c0, w_bar, fine)
     rows = _warp_rows(trimmed, tau_of_grid, maps, knots, offs)
-    stretch = maps[:, 0] / s_bar
-    lag = maps[:, 1] - stretch * l_bar
+    # each recording's map against the common time, as a line and what is left of it: the mean
+    # of the used maps is the common time itself (mean stretch 1, mean lag 0)
+    c_knots = w_knots[used].mean(axis=0)
+    coef = np.polyfit(c_knots, w_knots.T, 1)
+    stretch, lag = coef[0], coef[1]
+    resid = w_knots - (stretch[:, None] * c_knots[None, :] + lag[:, None])
     mean_f = rows[used].mean(axis=0)
     sigma = rows[used].std(axis=0, ddof=1) if np.count_nonzero(used) > 1 else np.zeros(n)
     sigma = _smooth_rms(sigma, max(1, int(round(SIGMA_SMOOTH_S / dt_s))))
@@ -270,7 +375,7 @@ def mean_profile(demos: list[Demo], dt_s: float, keep_outliers: bool = False) ->
     flagged = _outliers(rows) if len(demos) >= 3 else np.zeros(len(demos), dtype=bool)
     for i, a in enumerate(aligns):
         a.stretch, a.lag_s, a.gain = float(stretch[i]), float(lag[i]), float(maps[i, 2])
-        a.warp_s = float(np.max(np.abs(offs[i] - o_bar)))
+        a.warp_s = float(np.max(np.abs(resid[i])))
         a.dev_rms_pct, a.dev_max_pct = float(rms[i]), float(mx[i])
         a.outlier = bool(flagged[i])
         a.used = bool(used[i])
@@ -336,7 +441,7 @@ def _warp_rows(
     0 outside the knots): (recordings, tau)."""
     out = np.empty((len(demos), tau.size))
     for i, d in enumerate(demos):
-        q = maps[i, 0] * tau + maps[i, 1] + np.interp(tau, knots, offs[i], left=0.0, right=0.0)
+        q = maps[i, 0] * tau + maps[i, 1] + np.interp(tau, knots, offs[i])
         out[i] = np.interp(q, d.t_s, getattr(d, attr))
     return out
 

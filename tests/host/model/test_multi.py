@@ -8,12 +8,15 @@ from forceskill.model import multi, synthetic
 from forceskill.model.demo import Demo
 
 
-def test_trim_lead_keeps_a_short_quiet_lead() -> None:
+def test_trim_lead_keeps_the_whole_rise_and_a_short_quiet_lead() -> None:
     _, demos = synthetic.pressing_set(seed=1, n=1)
     d = demos[0]
     trimmed, lead = multi.trim_lead(d, 0.001)
-    onset = float(d.t_s[np.flatnonzero(np.abs(d.force_N - d.force_N[0]) > 0.3)[0]])
-    assert onset - 0.2 < lead < onset - multi.LEAD_KEEP_S + 0.05
+    level = float(np.median(d.force_N[:50]))
+    onset = float(d.t_s[np.flatnonzero(np.abs(d.force_N - level) > 0.3)[0]])
+    # the slow rise crosses 0.3 N well after it began: the trim goes back to its start
+    assert onset - 0.6 < lead < onset - multi.LEAD_KEEP_S - 0.1
+    assert abs(float(np.mean(trimmed.force_N[:50])) - level) < 0.02
     assert trimmed.t_s[0] == 0.0 and trimmed.force_N.size == d.force_N.size - round(lead / 0.001)
 
 
