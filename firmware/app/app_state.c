@@ -47,6 +47,10 @@ flt_code_t app_clear_faults(app_t *app)
 {
     const flt_code_t r = saf_clear_request(&app->saf_cfg, &app->saf, app->now_ms);
     if (r == FLT_NONE) {
+        /* the tick's safety output (its status frame, DIDs) says so at once: the clear comes
+         * after the tick's safety step */
+        app->saf_out.fault_code = 0u;
+        app->saf_out.stopping = false;
         (void)app_event(app, APP_EV_CLEARED);
     } else {
         /* the request counts as a host frame (it arms the watchdog); in FAULT silence does not
