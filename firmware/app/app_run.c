@@ -77,7 +77,7 @@ uint8_t app_run_start(app_t *app, const app_run_request_t *req)
     if (req->n_steps == 0u || req->n_steps > EXEC_MAX_STEPS || req->end > 2u) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
-    if (app->state != APP_IDLE || app->slots.checking) {
+    if (app->state != APP_IDLE || slots_committing(&app->slots)) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT; /* a download's commit runs: its end decides */
     }
     exec_step_t steps[EXEC_MAX_STEPS];
