@@ -1019,8 +1019,8 @@ void app_tick(app_t *app, bool overrun)
     }
     hal_actuator_force(app->force_out_N);
 
-    /* then a run's start slice, the bus (the frames that arrived, the UDS server) and the long
-     * work's slices */
+    /* then a run's start slice (a start this tick's bus accepts has its first in the next), the
+     * bus (the frames that arrived, the UDS server) and the long work's slices */
     if (app->exec_starting) {
         (void)app_run_start_step(app);
     }

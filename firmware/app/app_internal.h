@@ -123,7 +123,6 @@ struct app {
     uint8_t seq_step;
     bool exec_done;
     bool exec_starting; /* a run's start in slices (exec_start_run, a slice a tick, no force) */
-    uint32_t exec_start_tick; /* the tick that accepted it (its checks: no slice in it) */
     uint8_t
         run_start_nrc; /* its outcome for a pending RUN_SKILL/RUN_SEQUENCE start (0x78 meanwhile) */
     uint16_t band_stop_ms; /* the run's band stop time (app_run_request_t), 0: report only */

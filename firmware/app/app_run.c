@@ -77,7 +77,7 @@ uint8_t app_run_start(app_t *app, const app_run_request_t *req)
     if (req->n_steps == 0u || req->n_steps > EXEC_MAX_STEPS || req->end > 2u) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
-    if (app->state != APP_IDLE || app->slots.checking) {
+    if (app->state != APP_IDLE || slots_committing(&app->slots)) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT; /* a download's commit runs: its end decides */
     }
     exec_step_t steps[EXEC_MAX_STEPS];
@@ -107,9 +107,7 @@ uint8_t app_run_start(app_t *app, const app_run_request_t *req)
     app->seq_step = 0u;
     app->exec_done = false;
     /* the steps' constants and the first step's start follow a slice a tick (app_run_start_step) */
-    app->exec_starting = true;
-    app->exec_start_tick =
-        app->tick; /* this tick's work was the checks: the slices from the next */
+    app->exec_starting = true; /* the slices from the next tick: they come before the bus's */
     app->run_start_nrc = UDS_NRC_RESPONSE_PENDING;
     (void)app_event(app, APP_EV_EXECUTE);
     return UDS_NRC_OK;
@@ -119,9 +117,6 @@ bool app_run_start_step(app_t *app)
 {
     if (!app->exec_starting) {
         return false;
-    }
-    if (app->tick == app->exec_start_tick) {
-        return true;
     }
     bool done = false;
     const fs_status_t rc = exec_start_run(&app->exec_run_cfg, &app->exec, &done);

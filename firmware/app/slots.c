@@ -191,132 +191,116 @@ static void commit_done(slots_t *b)
  * finished now, so the slot holds what storage holds. */
 static void commit_cut(slots_t *b)
 {
-    if (b->checking && b->commit_stage == SLOTS_COMMIT_SWAP) {
+    if (fs_job_running(&b->commit) && b->commit_stage == SLOTS_COMMIT_SWAP) {
         (void)swap_slice(b, UINT32_MAX);
         commit_done(b);
     }
 }
 
-/* After a stage's last slice: true (the commit ends) on a refusal, else the next stage, whose
- * set-up waits for the next slice. */
-static bool commit_next(slots_t *b, uint8_t stage, fs_status_t st)
+/* A download's commit, a slice a call (a job): each stage's set-up a slice of its own, then its
+ * slices (parse, parameters, the fixed-point conversion, the rollout, the slot's flash write, the
+ * cache's swap). Ends with b->commit_status the refusal, or FS_OK with the write's result in
+ * b->writer.status (the swap only after a write that worked). */
+/* long: one straight line through the commit's stages, a yield between slices */
+static fs_job_status_t commit_job(slots_t *b)
 {
-    if (st != FS_OK) {
-        return true;
+    fs_job_t *j = &b->commit;
+    FS_JOB_BEGIN(j);
+    b->commit_stage = SLOTS_COMMIT_PARSE;
+    skill_parse_begin(&b->parser, b->image, b->xfer_size, &b->staging);
+    FS_JOB_YIELD(j);
+    while (!skill_parse_run(&b->parser, SLOTS_PARSE_UNITS_PER_TICK)) {
+        FS_JOB_YIELD(j);
     }
-    b->commit_stage = stage;
-    b->stage_begun = false;
-    return false;
-}
-
-/* The set-up of the commit's stage (its slice): true (the commit ends) on a refusal. */
-static bool commit_stage_begin(slots_t *b, fs_status_t *st)
-{
-    switch (b->commit_stage) {
-    case SLOTS_COMMIT_PARSE:
-        skill_parse_begin(&b->parser, b->image, b->xfer_size, &b->staging);
-        break;
-    case SLOTS_COMMIT_PARAMS: skchk_params_begin(&b->params, &b->staging); break;
+    if ((b->commit_status = b->parser.status) != FS_OK) {
+        FS_JOB_EXIT(j); /* e.g. 204 CRC: the old skill stays */
+    }
+    FS_JOB_YIELD(j);
+    b->commit_stage = SLOTS_COMMIT_PARAMS;
+    skchk_params_begin(&b->params, &b->staging);
+    FS_JOB_YIELD(j);
+    while (!skchk_params_run(&b->params, SLOTS_PARAMS_UNITS_PER_TICK)) {
+        FS_JOB_YIELD(j);
+    }
+    if ((b->commit_status = b->params.status) != FS_OK) {
+        FS_JOB_EXIT(j);
+    }
+    FS_JOB_YIELD(j);
 #ifdef FS_EXEC_FIXED
-    case SLOTS_COMMIT_CONVERT:
-        *st = skchk_stiffness(&b->staging, b->lim.stiffness_max_Npm);
-        dmpfx_bound_begin(&b->conv, &b->staging.dmp, &b->staging_fx);
-        break;
-    case SLOTS_COMMIT_CHECK:
-        dmpfx_check_begin(&b->fx_check, &b->staging_fx, b->staging.dmp.duration_s, b->lim.dt_s,
-                          b->lim.force_max_N, b->lim.path_max_m);
-        break;
+    b->commit_stage = SLOTS_COMMIT_CONVERT;
+    b->commit_status = skchk_stiffness(&b->staging, b->lim.stiffness_max_Npm);
+    dmpfx_bound_begin(&b->conv, &b->staging.dmp, &b->staging_fx);
+    if (b->commit_status != FS_OK) {
+        FS_JOB_EXIT(j);
+    }
+    FS_JOB_YIELD(j);
+    while (!dmpfx_bound_run(&b->conv, SLOTS_CONVERT_UNITS_PER_TICK)) {
+        FS_JOB_YIELD(j);
+    }
+    if ((b->commit_status = b->conv.status) != FS_OK) {
+        FS_JOB_EXIT(j); /* 3xx: the skill does not fit the fixed-point executor */
+    }
+    FS_JOB_YIELD(j);
+    b->commit_stage = SLOTS_COMMIT_CHECK;
+    dmpfx_check_begin(&b->fx_check, &b->staging_fx, b->staging.dmp.duration_s, b->lim.dt_s,
+                      b->lim.force_max_N, b->lim.path_max_m);
+    FS_JOB_YIELD(j);
+    while (!dmpfx_check_run(&b->fx_check, SLOTS_CHECK_STEPS_PER_TICK)) {
+        FS_JOB_YIELD(j);
+    }
+    b->commit_status = b->fx_check.status; /* 223/225/300: slot unchanged */
 #else
-    case SLOTS_COMMIT_CHECK:
-        *st = skchk_stiffness(&b->staging, b->lim.stiffness_max_Npm);
-        skchk_begin(&b->check, &b->staging, b->lim.dt_s, b->lim.force_max_N);
-        b->check.path_max_m = b->lim.path_max_m;
-        break;
-#endif
-    case SLOTS_COMMIT_WRITE:
-        (void)nvm_write_begin(&b->writer, &b->nvm, (uint16_t)(b->xfer_slot - 1u), b->image,
-                              b->xfer_size); /* its argument errors end the write at once */
-        break;
-    default: b->swap_pos = 0u; break;
+    b->commit_stage = SLOTS_COMMIT_CHECK;
+    b->commit_status = skchk_stiffness(&b->staging, b->lim.stiffness_max_Npm);
+    skchk_begin(&b->check, &b->staging, b->lim.dt_s, b->lim.force_max_N);
+    b->check.path_max_m = b->lim.path_max_m;
+    if (b->commit_status != FS_OK) {
+        FS_JOB_EXIT(j);
     }
-    return *st != FS_OK;
-}
-
-/* One slice of the commit (b->commit_stage): false while it goes on; true once done, *st FS_OK
- * when the skill passed every check and the flash write is done (its result in b->writer.status),
- * or the refusal. */
-static bool commit_slice(slots_t *b, fs_status_t *st)
-{
-    *st = FS_OK;
-    if (!b->stage_begun) {
-        b->stage_begun = true;
-        return commit_stage_begin(b, st); /* a stage's set-up is its own slice */
+    FS_JOB_YIELD(j);
+    while (!skchk_run(&b->check, SLOTS_CHECK_STEPS_PER_TICK)) {
+        FS_JOB_YIELD(j);
     }
-    switch (b->commit_stage) {
-    case SLOTS_COMMIT_PARSE:
-        if (!skill_parse_run(&b->parser, SLOTS_PARSE_UNITS_PER_TICK)) {
-            return false;
-        }
-        *st = b->parser.status;
-        return commit_next(b, SLOTS_COMMIT_PARAMS, *st);
-    case SLOTS_COMMIT_PARAMS:
-        if (!skchk_params_run(&b->params, SLOTS_PARAMS_UNITS_PER_TICK)) {
-            return false;
-        }
-        *st = b->params.status;
-#ifdef FS_EXEC_FIXED
-        return commit_next(b, SLOTS_COMMIT_CONVERT, *st);
-    case SLOTS_COMMIT_CONVERT:
-        if (!dmpfx_bound_run(&b->conv, SLOTS_CONVERT_UNITS_PER_TICK)) {
-            return false;
-        }
-        *st = b->conv.status; /* 3xx: the skill does not fit the fixed-point executor */
+    b->commit_status = b->check.status; /* 222/223/225: slot unchanged */
 #endif
-        return commit_next(b, SLOTS_COMMIT_CHECK, *st);
-    case SLOTS_COMMIT_CHECK:
-#ifdef FS_EXEC_FIXED
-        if (!dmpfx_check_run(&b->fx_check, SLOTS_CHECK_STEPS_PER_TICK)) {
-            return false;
-        }
-        *st = b->fx_check.status; /* 223/225/300: slot unchanged */
-#else
-        if (!skchk_run(&b->check, SLOTS_CHECK_STEPS_PER_TICK)) {
-            return false;
-        }
-        *st = b->check.status; /* 222/223/225: slot unchanged */
-#endif
-        return commit_next(b, SLOTS_COMMIT_WRITE, *st);
-    case SLOTS_COMMIT_WRITE:
-        if (!nvm_write_run(&b->writer, SLOTS_FLASH_UNITS_PER_TICK)) {
-            return false;
-        }
-        if (b->writer.status != NVM_OK) {
-            return true;
-        }
-        /* the cache changes from the next slice on: nothing reads it meanwhile (a run does not
-         * start while the commit runs, the UDS server answers others busy) */
-        return commit_next(b, SLOTS_COMMIT_SWAP, FS_OK);
-    default: return swap_slice(b, SLOTS_SWAP_BYTES_PER_TICK);
+    if (b->commit_status != FS_OK) {
+        FS_JOB_EXIT(j);
     }
+    FS_JOB_YIELD(j);
+    b->commit_stage = SLOTS_COMMIT_WRITE;
+    (void)nvm_write_begin(&b->writer, &b->nvm, (uint16_t)(b->xfer_slot - 1u), b->image,
+                          b->xfer_size); /* its argument errors end the write at once */
+    FS_JOB_YIELD(j);
+    while (!nvm_write_run(&b->writer, SLOTS_FLASH_UNITS_PER_TICK)) {
+        FS_JOB_YIELD(j);
+    }
+    if (b->writer.status != NVM_OK) {
+        FS_JOB_EXIT(j);
+    }
+    /* the cache changes from the next slice on: nothing reads it meanwhile (a run does not
+     * start while the commit runs, the UDS server answers others busy) */
+    FS_JOB_YIELD(j);
+    b->commit_stage = SLOTS_COMMIT_SWAP;
+    b->swap_pos = 0u;
+    FS_JOB_YIELD(j);
+    while (!swap_slice(b, SLOTS_SWAP_BYTES_PER_TICK)) {
+        FS_JOB_YIELD(j);
+    }
+    FS_JOB_END(j);
 }
 
 uint8_t slots_commit_step(slots_t *b, const slots_limits_t *lim, uint32_t *crc_out)
 {
-    if (!b->checking) {
-        /* the commit, a bounded slice a tick (0x78 meanwhile): parse, parameters, rollout, write,
-         * each stage's set-up a slice of its own */
+    if (!fs_job_running(&b->commit)) {
+        /* the commit, a bounded slice a tick (0x78 meanwhile) */
         b->lim = *lim;
-        b->checking = true;
-        b->commit_stage = SLOTS_COMMIT_PARSE;
-        b->stage_begun = false;
+        b->commit_status = FS_OK;
     }
-    fs_status_t st = FS_OK;
-    if (!commit_slice(b, &st)) {
+    if (commit_job(b) == FS_JOB_PENDING) {
         return UDS_NRC_RESPONSE_PENDING;
     }
-    b->checking = false;
-    if (st != FS_OK) {
-        b->last_transfer_status = (uint16_t)st; /* e.g. 204 CRC, 223 peak: the old skill stays */
+    if (b->commit_status != FS_OK) {
+        b->last_transfer_status = (uint16_t)b->commit_status; /* the old skill stays */
         return UDS_NRC_PROGRAMMING_FAILURE;
     }
     const nvm_status_t ns = b->writer.status;
@@ -338,19 +322,19 @@ void slots_abort(slots_t *b)
     if (b->last_transfer_status == FS_TRANSFER_IN_PROGRESS) {
         b->last_transfer_status = FS_TRANSFER_INTERRUPTED; /* interrupted: nothing was written */
     }
-    b->checking = false; /* a commit in progress ends with the transfer */
+    fs_job_reset(&b->commit); /* a commit in progress ends with the transfer */
     b->reading = false;
     b->xfer_size = 0u;
 }
 
 void slots_refuse_commit(slots_t *b)
 {
-    if (b->checking && b->commit_stage == SLOTS_COMMIT_SWAP) {
+    if (fs_job_running(&b->commit) && b->commit_stage == SLOTS_COMMIT_SWAP) {
         commit_cut(b); /* its record is written: the slot holds the new skill */
-        b->checking = false;
+        fs_job_reset(&b->commit);
         return;
     }
-    b->checking = false;
+    fs_job_reset(&b->commit);
     b->last_transfer_status = FS_TRANSFER_INTERRUPTED;
 }
 

@@ -11,6 +11,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include "fs_budget.h"
+#include "fs_job.h"
 #include "fls.h"
 #include "fs_real.h"
 #include "nvm.h"
@@ -66,9 +67,9 @@ typedef struct {
     skchk_params_t params;         /* parameter check of staging, spread over ticks */
     skchk_t check;                 /* output check of staging, spread over ticks */
     nvm_writer_t writer;           /* the slot's flash write, spread over ticks */
-    bool checking;                 /* a download's commit runs: nothing starts meanwhile */
-    uint8_t commit_stage;          /* SLOTS_COMMIT_*: the commit's stage while checking */
-    bool stage_begun;              /* its set-up done (a slice of its own) */
+    fs_job_t commit;               /* a download's commit (slots_committing): a slice a call */
+    uint8_t commit_stage;          /* SLOTS_COMMIT_*: the commit's stage while it runs */
+    fs_status_t commit_status;     /* its refusal, FS_OK while it runs or once it passed */
     uint32_t swap_pos;             /* SLOTS_COMMIT_SWAP: bytes of staging copied */
     slots_limits_t lim;            /* the commit's limits, taken at its first slice */
     nvm_reader_t reader;           /* a read-back's record read and CRC, spread over ticks */
@@ -104,6 +105,12 @@ uint8_t slots_download_begin(slots_t *b, uint32_t slot, uint32_t size);
 
 /** Store a block of the download at offset: a UDS NRC (0x71 beyond the announced size). */
 uint8_t slots_download_data(slots_t *b, uint32_t offset, const uint8_t *d, uint16_t len);
+
+/** True while a download's commit runs (nothing starts meanwhile). */
+static inline bool slots_committing(const slots_t *b)
+{
+    return fs_job_running(&b->commit);
+}
 
 /** One slice of the download's commit (the first call starts it with lim): 0x78 while it goes
  *  on; 0 once the slot holds the new skill (*crc_out its CRC-32); 0x72 on a refusal (the last

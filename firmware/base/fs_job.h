@@ -72,6 +72,13 @@ static inline bool fs_job_running(const fs_job_t *j)
         FS_JOB_YIELD(j);           \
     }
 
+/** End the job now, from anywhere in it (e.g. a refusal): FS_JOB_DONE, the next call starts over. */
+#define FS_JOB_EXIT(j)      \
+    do {                    \
+        (j)->at = 0u;       \
+        return FS_JOB_DONE; \
+    } while (0)
+
 /** The job's last statement: returns FS_JOB_DONE, and the next call starts over. */
 #define FS_JOB_END(j) \
     }                 \

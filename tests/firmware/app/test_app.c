@@ -877,17 +877,18 @@ static void test_start_refused_during_commit(void **state)
     assert_int_equal(isotp_send(&tester, exit_req, 1, t_us), PROTO_OK);
     isotp_poll(&tester, t_us);
     ticks(5);
-    assert_true(app.slots.checking);
+    assert_true(slots_committing(&app.slots));
     send_heartbeat();
     send_command(APP_CMD_EXECUTE, 1);
     ticks(2);
     assert_int_equal(app.state, APP_IDLE);                  /* refused: the commit runs */
     assert_int_equal(app.slots.skill[0].dmp.n_kernels, 10); /* not yet replaced */
-    assert_true(app.slots.checking);
-    for (unsigned k = 0; k < 2000u && app.slots.checking; k++) { /* the commit completes */
+    assert_true(slots_committing(&app.slots));
+    for (unsigned k = 0; k < 2000u && slots_committing(&app.slots);
+         k++) { /* the commit completes */
         tick();
     }
-    assert_false(app.slots.checking);
+    assert_false(slots_committing(&app.slots));
     assert_int_equal(app.slots.last_transfer_status, 0u);
     assert_int_equal(app.slots.skill[0].dmp.n_kernels, 50);
     send_heartbeat();
