@@ -100,7 +100,7 @@ static void snapshot(void)
         prev_len[s] = app.slots.len[s];
     }
     prev_state = app.state;
-    prev_test_boot = app.boot.test_boot;
+    prev_test_boot = app.fw.boot.test_boot;
 }
 
 /* One transition of the state machine (docs/safety.md). */
@@ -187,8 +187,8 @@ static void check_invariants(void)
     }
     CHECK(app.secoc.accepted <= fz_authentic);
     seen_states |= 1u << app.state;
-    if (prev_test_boot != 0u && app.boot.test_boot == 0u) {
-        CHECK(app.fw_self_test_ok);
+    if (prev_test_boot != 0u && app.fw.boot.test_boot == 0u) {
+        CHECK(app.fw.self_test_ok);
     }
 }
 
@@ -633,8 +633,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 "fuzz_app: %u ticks, states seen 0x%02X (bit = state), %u slot changes, "
                 "last transfer %u, last run %u, firmware %08X on test %u, reverted %u\n",
                 n_ticks, seen_states, commits, app.slots.last_transfer_status, app.last_run_status,
-                (unsigned)app.boot.running.fw_version, app.boot.test_boot,
-                app.boot.path == BOOT_PATH_REVERTED ? 1u : 0u);
+                (unsigned)app.fw.boot.running.fw_version, app.fw.boot.test_boot,
+                app.fw.boot.path == BOOT_PATH_REVERTED ? 1u : 0u);
     }
     return 0;
 }

@@ -737,31 +737,7 @@ void app_init(app_t *app, const app_config_t *cfg)
 
     slots_init(&app->slots, hal_flash());
 
-    /* firmware update: the bootloader's decision runs here on the host port (flash kept across
-     * ECUReset); the image confirms itself once its self-test has passed (first tick) */
-    const fls_dev_t *fw = hal_fw_flash();
-    const uint32_t slot_sectors = hal_fw_slot_sectors();
-    (void)boot_fls_window_init(&app->fw_w_state, &app->fw_state_dev, fw, 0u, 2u);
-    (void)boot_fls_window_init(&app->fw_w_slots, &app->fw_slots_dev, fw, 2u, 2u * slot_sectors);
-    (void)nvm_init(&app->fw_state_nvm, &app->fw_state_dev);
-    boot_config_t *bc = &app->boot_cfg;
-    bc->app_dev = &app->fw_slots_dev;
-    bc->slot_addr[0] = 0u;
-    bc->slot_addr[1] = slot_sectors * fw->sector_size;
-    bc->slot_size = slot_sectors * fw->sector_size;
-    bc->state_nvm = &app->fw_state_nvm;
-    bc->state_slot = 0u;
-    bc->target_id = APP_FW_TARGET_ID;
-    uint8_t key_len = 0u;
-    bc->key = hal_fw_key(&key_len);
-    bc->key_len = key_len;
-    const bool any_skill = slots_any(&app->slots);
-    bc->skill_min = any_skill ? (uint16_t)SKILL_FORMAT_VERSION_MIN : 0u;
-    bc->skill_max = any_skill ? (uint16_t)SKILL_FORMAT_VERSION : 0u;
-    bc->config_min = 0u; /* gains/limits are not persisted yet */
-    bc->config_max = 0u;
-    (void)boot_select(&app->boot, bc);
-    fwu_init(&app->fwu, &app->boot);
+    app_fw_init(&app->fw, APP_FW_TARGET_ID, slots_any(&app->slots)); /* firmware update */
 
     app->saf_cfg = cfg->saf;
     saf_init(&app->saf);
@@ -1000,8 +976,8 @@ void app_tick(app_t *app, bool overrun)
     app->vel_mps[1] = exec_vel_step(&app->vel[1], app->sens.pos_m[1], APP_TICK_S);
 #endif
     if (app->state == APP_BOOT) {
-        app->fw_self_test_ok = app_fw_self_test_and_confirm(app);
-        if (!app->fw_self_test_ok) {
+        app->fw.self_test_ok = app_fw_self_test_and_confirm(app);
+        if (!app->fw.self_test_ok) {
             /* unconfirmed: the port resets after this tick and the bootloader reverts. Nothing
              * from the bus is served meanwhile (no node can confirm this image for it). */
             hal_request_reset(1u);
@@ -1060,25 +1036,9 @@ static uint32_t telemetry_period(app_t *app)
 
 bool app_fw_self_test_and_confirm(app_t *app)
 {
-    if (!app->boot.test_boot) {
-        return true;
-    }
-    /* self-test of a new image: configuration valid and storage readable */
-    if (saf_config_validate(&app->saf_cfg) != SAF_OK || !app->slots.nvm_ok) {
-        return false;
-    }
-    /* simulator only: a host-target payload starting with this marker stands for a build whose
-     * self-test fails (HIL test of the revert path, docs/update.md) */
-    static const char fail_marker[] = "FSHOST-SELFTEST-FAIL";
-    uint8_t head[sizeof fail_marker - 1u];
-    const boot_config_t *bc = &app->boot_cfg;
-    if (bc->app_dev->read(bc->app_dev->ctx,
-                          bc->slot_addr[app->boot.running_slot] + BOOT_IMAGE_HEADER_SIZE, head,
-                          (uint32_t)sizeof head) == 0 &&
-        memcmp(head, fail_marker, sizeof head) == 0) {
-        return false;
-    }
-    return boot_confirm(&app->boot) == BOOT_OK;
+    /* a new image's self-test: its safety configuration valid and its storage readable */
+    return app_fw_self_test(&app->fw, saf_config_validate(&app->saf_cfg) == SAF_OK,
+                            app->slots.nvm_ok);
 }
 
 app_state_t app_state(const app_t *app)
@@ -1113,12 +1073,12 @@ uint32_t app_slot_crc(const app_t *app, uint8_t slot)
 
 const boot_t *app_boot(const app_t *app)
 {
-    return &app->boot;
+    return &app->fw.boot;
 }
 
 const boot_config_t *app_boot_config(const app_t *app)
 {
-    return &app->boot_cfg;
+    return &app->fw.boot_cfg;
 }
 
 uint16_t app_last_run_status(const app_t *app)
@@ -1143,5 +1103,5 @@ bool app_transfer_busy(const app_t *app)
 
 bool app_transfer_is_firmware(const app_t *app)
 {
-    return app->fw_xfer;
+    return app->fw.xfer;
 }

@@ -20,6 +20,7 @@
 #include <stdint.h>
 #include "app.h"
 #include "app_config.h"
+#include "app_fw.h"
 #include "app_sec.h"
 #include "app_sm.h"
 #include "e2e.h"
@@ -162,16 +163,8 @@ struct app {
     /* the skill store: slot cache, transfer buffer, a download's commit (slots.h) */
     slots_t slots;
     uint16_t last_run_status; /* fs_status of the last start request's scale check */
-    /* firmware update (firmware/boot, docs/update.md) */
-    boot_fls_window_t fw_w_state, fw_w_slots;
-    fls_dev_t fw_state_dev, fw_slots_dev;
-    nvm_t fw_state_nvm;
-    boot_config_t boot_cfg;
-    boot_t boot;
-    fwu_t fwu;
-    bool fw_xfer;          /* the active download is a firmware image */
-    bool fw_self_test_ok;  /* the running image passed its self-test (boot tick) */
-    uint64_t next_tick_us; /* app_poll: when the next tick is due */
+    app_fw_t fw;              /* firmware update (app_fw.h, docs/update.md) */
+    uint64_t next_tick_us;    /* app_poll: when the next tick is due */
 };
 
 /** A new firmware image on its test boot: run the self-test and confirm it (boot_confirm);

@@ -155,7 +155,7 @@ static uint8_t read_did(void *ctx, uint16_t did, uint8_t *out, uint16_t cap, uin
     app_t *app = ctx;
     uint8_t buf[FS_WIRE_SLOT_DIR_LEN_MAX]; /* the longest DID */
     if (did == FWU_DID_STATUS) {
-        return fwu_uds_read_did(&app->fwu, out, cap, len);
+        return fwu_uds_read_did(&app->fw.fwu, out, cap, len);
     }
     const uint16_t bc = (uint16_t)sizeof(buf);
     uint16_t n = did_identity(did, buf, bc);
@@ -485,11 +485,11 @@ static uint8_t routine(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *d, u
 {
     app_t *app = ctx;
     if (fwu_uds_owns_rid(rid)) {
-        if (rid == FWU_RID_CONFIRM && fwu_uds_authorised(&app->uds) && !app->fw_self_test_ok) {
+        if (rid == FWU_RID_CONFIRM && fwu_uds_authorised(&app->uds) && !app->fw.self_test_ok) {
             *out_len = 0u;
             return UDS_NRC_CONDITIONS_NOT_CORRECT; /* only an image that passed its self-test */
         }
-        return fwu_uds_routine(&app->fwu, &app->uds, sub, rid, d, len, out, cap, out_len);
+        return fwu_uds_routine(&app->fw.fwu, &app->uds, sub, rid, d, len, out, cap, out_len);
     }
     *out_len = 0u;
     if (cap < 8u) {
@@ -584,12 +584,12 @@ static uint8_t resume(void *ctx, uint8_t sid, uint16_t arg)
 static uint8_t download_begin(void *ctx, uint32_t addr, uint32_t size)
 {
     app_t *app = ctx;
-    app->fw_xfer = addr == FWU_DOWNLOAD_ADDRESS;
-    if (app->fw_xfer) {
+    app->fw.xfer = addr == FWU_DOWNLOAD_ADDRESS;
+    if (app->fw.xfer) {
         if (!fwu_uds_authorised(&app->uds)) {
             return UDS_NRC_SECURITY_ACCESS_DENIED; /* firmware: level 3 only */
         }
-        return app->state == APP_IDLE ? fwu_uds_download_begin(&app->fwu, &app->uds, size)
+        return app->state == APP_IDLE ? fwu_uds_download_begin(&app->fw.fwu, &app->uds, size)
                                       : UDS_NRC_CONDITIONS_NOT_CORRECT;
     }
     if (addr < 1u || addr > APP_N_SLOTS || size < SKILL_HEADER_SIZE_V2 + SKILL_CRC_SIZE ||
@@ -608,8 +608,8 @@ static uint8_t download_begin(void *ctx, uint32_t addr, uint32_t size)
 static uint8_t download_data(void *ctx, uint32_t offset, const uint8_t *d, uint16_t len)
 {
     app_t *app = ctx;
-    if (app->fw_xfer) {
-        return fwu_uds_download_data(&app->fwu, &app->uds, offset, d, len);
+    if (app->fw.xfer) {
+        return fwu_uds_download_data(&app->fw.fwu, &app->uds, offset, d, len);
     }
     return slots_download_data(&app->slots, offset, d, len);
 }
@@ -617,8 +617,8 @@ static uint8_t download_data(void *ctx, uint32_t offset, const uint8_t *d, uint1
 static uint8_t download_end(void *ctx, uint32_t *crc_out)
 {
     app_t *app = ctx;
-    if (app->fw_xfer) {
-        return fwu_uds_download_end(&app->fwu, &app->uds, crc_out);
+    if (app->fw.xfer) {
+        return fwu_uds_download_end(&app->fw.fwu, &app->uds, crc_out);
     }
     if (app->state != APP_IDLE || app->uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
         /* a skill started (or security dropped) since RequestDownload: commit refused, the slot
@@ -637,8 +637,8 @@ static uint8_t download_end(void *ctx, uint32_t *crc_out)
 static void transfer_abort(void *ctx)
 {
     app_t *app = ctx;
-    if (app->fw_xfer) {
-        fwu_abort(&app->fwu);
+    if (app->fw.xfer) {
+        fwu_abort(&app->fw.fwu);
     }
     slots_abort(&app->slots);
 }

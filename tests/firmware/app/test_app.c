@@ -575,7 +575,7 @@ static void test_security_levels_and_confirm(void **state)
 static void test_failing_test_image_serves_nothing(void **state)
 {
     (void)state;
-    app.boot.test_boot = 1u;  /* on test ... */
+    app.fw.boot.test_boot = 1u;  /* on test ... */
     app.slots.nvm_ok = false; /* ... and its self-test fails (storage unreadable) */
     uint8_t type = 0u;
     (void)hal_host_take_reset(&type);
@@ -589,7 +589,7 @@ static void test_failing_test_image_serves_nothing(void **state)
     for (unsigned i = before; i < n_out; i++) {
         assert_int_not_equal(out[i].id, PROTO_ID_UDS_RESPONSE(0));
     }
-    assert_int_equal(app.boot.test_boot, 1u); /* not confirmed */
+    assert_int_equal(app.fw.boot.test_boot, 1u); /* not confirmed */
 }
 
 static uint8_t wrong_key(void)
