@@ -100,7 +100,7 @@ static void snapshot(void)
         prev_len[s] = app.slots.len[s];
     }
     prev_state = app.state;
-    prev_test_boot = app.boot.test_boot;
+    prev_test_boot = app.fw.boot.test_boot;
 }
 
 /* One transition of the state machine (docs/safety.md). */
@@ -151,8 +151,8 @@ static void check_invariants(void)
         CHECK(app.saf_out.fault_code == 0u); /* left FAULT only by clearing it */
     }
     if (app.state == APP_EXECUTE && prev_state != APP_EXECUTE) {
-        for (unsigned i = 0; i < app.exec.n_steps; i++) {
-            const exec_step_t *st = &app.exec.steps[i];
+        for (unsigned i = 0; i < app.ctl.exec.n_steps; i++) {
+            const exec_step_t *st = &app.ctl.exec.steps[i];
             const long s = st->skill - app.slots.skill;
             CHECK(s >= 0 && s < (long)APP_N_SLOTS && app.slots.valid[s]);
             CHECK(st->goal_scale * app.slots.peak_N[s] <= fmax[0] * (1.0 + 1e-9));
@@ -166,7 +166,7 @@ static void check_invariants(void)
             continue;
         }
         CHECK(prev_state == APP_IDLE);
-        CHECK(app.uds.unlocked_level == UDS_SEC_LEVEL_WRITE);
+        CHECK(app.diag.uds.unlocked_level == UDS_SEC_LEVEL_WRITE);
         uint32_t len = 0u;
         const nvm_status_t ns = nvm_read(&app.slots.nvm, (uint16_t)s, img, sizeof img, &len);
         if (!app.slots.valid[s]) {
@@ -185,10 +185,10 @@ static void check_invariants(void)
     if (prev_state == APP_IDLE && (app.state == APP_TEACH || app.state == APP_EXECUTE)) {
         CHECK(fz_start_ticks > 0u || fz_in_uds);
     }
-    CHECK(app.secoc.accepted <= fz_authentic);
+    CHECK(app.auth.secoc.accepted <= fz_authentic);
     seen_states |= 1u << app.state;
-    if (prev_test_boot != 0u && app.boot.test_boot == 0u) {
-        CHECK(app.fw_self_test_ok);
+    if (prev_test_boot != 0u && app.fw.boot.test_boot == 0u) {
+        CHECK(app.fw.self_test_ok);
     }
 }
 
@@ -524,7 +524,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             }
             for (unsigned k = 0; k < 15u && n_ticks < MAX_TICKS; k++) {
                 unlock(UDS_SESSION_PROGRAMMING, UDS_SEC_LEVEL_FIRMWARE, true);
-                if (app.uds.unlocked_level == UDS_SEC_LEVEL_FIRMWARE) {
+                if (app.diag.uds.unlocked_level == UDS_SEC_LEVEL_FIRMWARE) {
                     break;
                 }
                 for (unsigned w = 0; w < 100u && n_ticks < MAX_TICKS; w++) {
@@ -632,9 +632,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         fprintf(stderr,
                 "fuzz_app: %u ticks, states seen 0x%02X (bit = state), %u slot changes, "
                 "last transfer %u, last run %u, firmware %08X on test %u, reverted %u\n",
-                n_ticks, seen_states, commits, app.slots.last_transfer_status, app.last_run_status,
-                (unsigned)app.boot.running.fw_version, app.boot.test_boot,
-                app.boot.path == BOOT_PATH_REVERTED ? 1u : 0u);
+                n_ticks, seen_states, commits, app.slots.last_transfer_status,
+                app.ctl.last_run_status, (unsigned)app.fw.boot.running.fw_version,
+                app.fw.boot.test_boot, app.fw.boot.path == BOOT_PATH_REVERTED ? 1u : 0u);
     }
     return 0;
 }

@@ -31,7 +31,7 @@ sources_for() {
                      done
                      echo "-DFS_FUZZ_GOLDEN=\"$ROOT/tests/vectors/press_n10_ridge_release.skill\"" \
                           "-DFS_FUZZ_GOLDEN_FW=\"$ROOT/tests/firmware/boot/vectors/golden_host_1.2.3.fwimg\"" \
-                          "$FW/app/app.c $FW/app/app_run.c $FW/app/app_sm.c $FW/app/app_uds.c $FW/app/app_state.c $FW/app/app_sec.c $FW/app/slots.c $FW/control/fs_exec.c" \
+                          "$FW/app/app.c $FW/app/app_run.c $FW/app/app_sm.c $FW/app/app_uds.c $FW/app/app_state.c $FW/app/app_sec.c $FW/app/app_fw.c $FW/app/slots.c $FW/control/fs_exec.c" \
                           "$FW/proto/generated/fs_dbc.c $FW/proto/generated/fs_wire.c $FW/proto/e2e.c $FW/proto/isotp.c $FW/proto/uds.c" \
                           "$FW/safety/flt.c $FW/safety/lim.c $FW/safety/saf.c $FW/safety/sen.c $FW/safety/wdg.c" \
                           "$FW/storage/nvm.c $FW/storage/fls_ram.c" \

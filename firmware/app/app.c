@@ -50,7 +50,7 @@ fs_real_t app_stiffness_max_default_Npm(uint8_t render_carriage)
 static bool app_send(app_t *app, const can_frame_t *f, bool bulk)
 {
     if (!(bulk ? hal_can_send_bulk(f, APP_TX_RESERVE) : hal_can_send(f))) {
-        app->tx_dropped++;
+        app->bus.tx_dropped++;
         return false;
     }
     return true;
@@ -59,10 +59,10 @@ static bool app_send(app_t *app, const can_frame_t *f, bool bulk)
 static bool tp_send(void *ctx, const can_frame_t *f)
 {
     app_t *app = ctx;
-    if (app->tp_frames >= APP_TP_FRAMES_PER_TICK || !hal_can_send_bulk(f, APP_TX_RESERVE)) {
+    if (app->diag.tp_frames >= APP_TP_FRAMES_PER_TICK || !hal_can_send_bulk(f, APP_TX_RESERVE)) {
         return false; /* refused: ISO-TP retries */
     }
-    app->tp_frames++;
+    app->diag.tp_frames++;
     return true;
 }
 
@@ -173,17 +173,17 @@ static void send_status(app_t *app)
     struct fs_dbc_device_status_t s;
     memset(&s, 0, sizeof(s));
     s.state = (uint8_t)app->state;
-    s.slot = (uint8_t)(app->state == APP_EXECUTE ? app->active_slot : 0u);
+    s.slot = (uint8_t)(app->state == APP_EXECUTE ? app->ctl.active_slot : 0u);
     s.fault_code = app->saf_out.fault_code;
     s.tick = app->tick & 0xFFFFFFu;
     s.actuator_enabled = app->actuator_enabled ? 1u : 0u;
     s.host_alive = (app->saf.wdg.armed != 0u) ? 1u : 0u;
-    s.sequence_step = (uint8_t)(app->seq_step & 0x3u);
+    s.sequence_step = (uint8_t)(app->ctl.seq_step & 0x3u);
     can_frame_t f;
     memset(&f, 0, sizeof(f));
     f.id = PROTO_ID_STATUS(app->cfg.node);
     (void)fs_dbc_device_status_pack(f.data, &s, sizeof(f.data));
-    e2e_protect(&f, app->tx_counter_status++);
+    e2e_protect(&f, app->bus.tx_counter_status++);
     (void)app_send(app, &f, false);
 }
 
@@ -201,11 +201,11 @@ static bool send_emergency(app_t *app, const flt_emcy_t *e)
     memset(&f, 0, sizeof(f));
     f.id = PROTO_ID_EMERGENCY(app->cfg.node);
     (void)fs_dbc_emergency_pack(f.data, &m, sizeof(f.data));
-    e2e_protect(&f, app->tx_counter_emcy);
+    e2e_protect(&f, app->bus.tx_counter_emcy);
     if (!hal_can_send(&f)) {
         return false;
     }
-    app->tx_counter_emcy++;
+    app->bus.tx_counter_emcy++;
     return true;
 }
 
@@ -215,9 +215,9 @@ static void send_telemetry(app_t *app)
     struct fs_dbc_telemetry_position_t p;
     struct fs_dbc_telemetry_force_t q;
 #ifdef FS_EXEC_FIXED
-    p.pos_x = APP_POS_COUNTS_Q(app->meas_q.pos_q24[0]);
-    p.pos_y = APP_POS_Y_COUNTS_Q(app->meas_q.pos_q24[1]);
-    q.force_contact = APP_FORCE_COUNTS_Q(app->meas_q.force_contact_q16);
+    p.pos_x = APP_POS_COUNTS_Q(app->ctl.meas_q.pos_q24[0]);
+    p.pos_y = APP_POS_Y_COUNTS_Q(app->ctl.meas_q.pos_q24[1]);
+    q.force_contact = APP_FORCE_COUNTS_Q(app->ctl.meas_q.force_contact_q16);
     q.force_cmd = APP_FORCE_COUNTS_Q(app->saf_out.force_cmd_N[0]);
     q.force_ref = APP_FORCE_COUNTS_Q(app->force_hat);
     q.force_operator = APP_FORCE_COUNTS(app->sens.force_operator_N[0]);
@@ -231,7 +231,7 @@ static void send_telemetry(app_t *app)
     q.force_operator = APP_FORCE_COUNTS(k, app->sens.force_operator_N[0]);
 #endif
     /* bit 47: the band's check */
-    p.band_outside = (app->state == APP_EXECUTE) ? app->exec.band_outside : 0u;
+    p.band_outside = (app->state == APP_EXECUTE) ? app->ctl.exec.band_outside : 0u;
     p.tick = (uint16_t)(app->tick & 0xFFFFu);
     can_frame_t f; /* id, length and flags; the pack functions write every data byte */
     f.id = PROTO_ID_TELEM_POS(app->cfg.node);
@@ -269,18 +269,19 @@ static void handle_command(app_t *app, const struct fs_dbc_host_command_t *c)
     switch ((app_cmd_mode_t)c->mode) {
     case APP_CMD_TEACH: (void)app_event(app, APP_EV_TEACH); break;
     case APP_CMD_RUN_OPTIONS:
-        app->run_opts_fv = app->secoc.fv[SECOC_CH_COMMAND];
-        app->run_opts_time = c->time_scale;
-        app->run_opts_end = c->end_policy;
+        app->auth.run_opts_fv = app->auth.secoc.fv[SECOC_CH_COMMAND];
+        app->auth.run_opts_time = c->time_scale;
+        app->auth.run_opts_end = c->end_policy;
         break;
     case APP_CMD_EXECUTE: {
         /* its options are the RUN_OPTIONS frame of the freshness value just before */
-        if (app->run_opts_fv == 0u || app->run_opts_fv + 1u != app->secoc.fv[SECOC_CH_COMMAND]) {
-            app->secoc.last_refusal = (uint16_t)SEC_ERR_EXECUTE_OPTIONS;
+        if (app->auth.run_opts_fv == 0u ||
+            app->auth.run_opts_fv + 1u != app->auth.secoc.fv[SECOC_CH_COMMAND]) {
+            app->auth.secoc.last_refusal = (uint16_t)SEC_ERR_EXECUTE_OPTIONS;
             break;
         }
         app_run_request_t req;
-        run_from_command(c, app->run_opts_time, app->run_opts_end, &req);
+        run_from_command(c, app->auth.run_opts_time, app->auth.run_opts_end, &req);
         (void)app_run_start(app,
                             &req); /* a refused command is ignored: the status frame shows it */
         break;
@@ -305,9 +306,9 @@ static void handle_heartbeat(app_t *app, const can_frame_t *f)
         return;
     }
     if (h.telemetry_period != 0u) {
-        app->host_period_ms = h.telemetry_period;
+        app->bus.host_period_ms = h.telemetry_period;
     }
-    secoc_raise_floor(&app->secoc, SECOC_CH_COMMAND, h.command_freshness);
+    secoc_raise_floor(&app->auth.secoc, SECOC_CH_COMMAND, h.command_freshness);
 }
 
 /* A host frame whose MAC and freshness were verified, arrived at arrival_ms: a heartbeat always
@@ -321,35 +322,36 @@ static void host_frame_accepted(app_t *app, const can_frame_t *f, secoc_channel_
         if (fs_dbc_host_command_unpack(&c, f->data, f->len) != 0) {
             return;
         }
-        if (!app->host_seen || (uint32_t)(arrival_ms - app->host_seen_ms) > APP_CMD_FRESH_MS) {
-            app->stale_commands++;
-            app->secoc.last_refusal = (uint16_t)SEC_ERR_STALE;
+        if (!app->bus.host_seen ||
+            (uint32_t)(arrival_ms - app->bus.host_seen_ms) > APP_CMD_FRESH_MS) {
+            app->bus.stale_commands++;
+            app->auth.secoc.last_refusal = (uint16_t)SEC_ERR_STALE;
             return;
         }
-        app->host_seen_ms = arrival_ms;
-        app->host_frame = true;
-        app->host_frame_ms = arrival_ms;
+        app->bus.host_seen_ms = arrival_ms;
+        app->bus.host_frame = true;
+        app->bus.host_frame_ms = arrival_ms;
         handle_command(app, &c);
         return;
     }
-    app->host_seen = true;
-    app->host_seen_ms = arrival_ms;
-    app->host_frame = true;
-    app->host_frame_ms = arrival_ms;
+    app->bus.host_seen = true;
+    app->bus.host_seen_ms = arrival_ms;
+    app->bus.host_frame = true;
+    app->bus.host_frame_ms = arrival_ms;
     handle_heartbeat(app, f);
 }
 
 /* The verification in flight with this tick's AES rounds; its frame acted on once accepted. */
 static void mac_job_step(app_t *app, uint32_t *rounds)
 {
-    app->mac_ran = true;
-    if (!secoc_verify_run(&app->secoc, &app->mac_job, rounds)) {
+    app->auth.mac_ran = true;
+    if (!secoc_verify_run(&app->auth.secoc, &app->auth.mac_job, rounds)) {
         return;
     }
-    app->mac_busy = false;
-    if (app->mac_job.status == SEC_OK) {
-        host_frame_accepted(app, &app->mac_job.f, (secoc_channel_t)app->mac_job.ch,
-                            app->mac_job_arrival_ms);
+    app->auth.mac_busy = false;
+    if (app->auth.mac_job.status == SEC_OK) {
+        host_frame_accepted(app, &app->auth.mac_job.f, (secoc_channel_t)app->auth.mac_job.ch,
+                            app->auth.mac_job_arrival_ms);
     }
 }
 
@@ -357,13 +359,13 @@ static void mac_job_step(app_t *app, uint32_t *rounds)
  * counted); false if none waits. */
 static bool mac_job_next(app_t *app)
 {
-    app_mac_queue_t *q = &app->macq;
+    app_mac_queue_t *q = &app->auth.macq;
     while (q->count != 0u) {
         const uint8_t i = q->head;
         q->head = (uint8_t)((q->head + 1u) % APP_MAC_QUEUE_LEN);
         q->count--;
         if ((uint32_t)(app->now_ms - q->arrival_ms[i]) > APP_MAC_STALE_MS) {
-            app->mac_dropped++;
+            app->auth.mac_dropped++;
             continue;
         }
         const secoc_channel_t ch = (secoc_channel_t)q->ch[i];
@@ -374,12 +376,12 @@ static bool mac_job_next(app_t *app)
         f.flags = 0u;
         memcpy(f.data, q->data[i], E2E_FRAME_LEN);
         if (q->count == 0u) {
-            secoc_verify_begin(&app->secoc, &app->mac_job, &f, ch);
+            secoc_verify_begin(&app->auth.secoc, &app->auth.mac_job, &f, ch);
         } else { /* more frames wait: a forged one costs one encryption, not two */
-            secoc_verify_begin_fast(&app->secoc, &app->mac_job, &f, ch);
+            secoc_verify_begin_fast(&app->auth.secoc, &app->auth.mac_job, &f, ch);
         }
-        app->mac_job_arrival_ms = q->arrival_ms[i];
-        app->mac_busy = true;
+        app->auth.mac_job_arrival_ms = q->arrival_ms[i];
+        app->auth.mac_busy = true;
         return true;
     }
     return false;
@@ -388,11 +390,11 @@ static bool mac_job_next(app_t *app)
 /* A host frame to verify, queued with its arrival time; a full queue drops its oldest. */
 static void mac_queue_push(app_t *app, const can_frame_t *f, secoc_channel_t ch)
 {
-    app_mac_queue_t *q = &app->macq;
+    app_mac_queue_t *q = &app->auth.macq;
     if (q->count == APP_MAC_QUEUE_LEN) {
         q->head = (uint8_t)((q->head + 1u) % APP_MAC_QUEUE_LEN);
         q->count--;
-        app->mac_dropped++;
+        app->auth.mac_dropped++;
     }
     const uint8_t i = (uint8_t)((q->head + q->count) % APP_MAC_QUEUE_LEN);
     memcpy(q->data[i], f->data, E2E_FRAME_LEN);
@@ -405,7 +407,8 @@ static void mac_queue_push(app_t *app, const can_frame_t *f, secoc_channel_t ch)
 static bool uds_work_waiting(const app_t *app)
 {
     _Static_assert(APP_TESTERS == 2u, "two testers");
-    return app->uds.pending_sid != 0u || isotp_rx_ready(&app->tp[0]) || isotp_rx_ready(&app->tp[1]);
+    return app->diag.uds.pending_sid != 0u || isotp_rx_ready(&app->diag.tp[0]) ||
+           isotp_rx_ready(&app->diag.tp[1]);
 }
 
 /* One received frame: to its ISO-TP link, or a host frame: a wrong length or CRC refused, a stop
@@ -422,14 +425,14 @@ static void can_take(app_t *app, const can_frame_t *f)
         ch = SECOC_CH_HEARTBEAT;
     } else {
         if (f->id == PROTO_ID_UDS_REQUEST(node)) {
-            isotp_on_frame(&app->tp[0], f, app->now_us);
+            isotp_on_frame(&app->diag.tp[0], f, app->now_us);
         } else if (f->id == PROTO_ID_UDS_REQUEST_2(node)) {
-            isotp_on_frame(&app->tp[1], f, app->now_us);
+            isotp_on_frame(&app->diag.tp[1], f, app->now_us);
         }
         return;
     }
     if (!e2e_frame_ok(f)) {
-        app->e2e_errors++;
+        app->bus.e2e_errors++;
         return;
     }
     if (ch == SECOC_CH_COMMAND && (f->data[0] & 0x0Fu) == (uint8_t)APP_CMD_IDLE) {
@@ -447,22 +450,22 @@ static void can_take(app_t *app, const can_frame_t *f)
  * the server has work (uds_service then leaves its share to the next tick). */
 static void can_receive(app_t *app)
 {
-    app->mac_ran = false;
+    app->auth.mac_ran = false;
     can_frame_t f;
     for (unsigned i = 0u; i < APP_RX_FRAMES_PER_TICK && hal_can_receive(&f); i++) {
         can_take(app, &f);
     }
-    if (!app->mac_busy && app->macq.count == 0u) {
+    if (!app->auth.mac_busy && app->auth.macq.count == 0u) {
         return; /* the usual tick: nothing to verify */
     }
     uint32_t rounds = APP_MAC_ROUNDS_PER_TICK;
-    if (app->mac_busy) {
+    if (app->auth.mac_busy) {
         mac_job_step(app, &rounds);
     } else if (uds_work_waiting(app)) {
         return;
     }
-    for (unsigned started = 0u;
-         started < APP_MAC_FRAMES_PER_TICK && rounds != 0u && !app->mac_busy && mac_job_next(app);
+    for (unsigned started = 0u; started < APP_MAC_FRAMES_PER_TICK && rounds != 0u &&
+                                !app->auth.mac_busy && mac_job_next(app);
          started++) {
         mac_job_step(app, &rounds);
     }
@@ -473,7 +476,7 @@ static void can_receive(app_t *app)
  * TesterPresent stay open). */
 static bool foreign_write(const app_t *app, uint8_t t, uint8_t sid)
 {
-    if (app->uds_owner == 0u || app->uds_owner == t + 1u) {
+    if (app->diag.uds_owner == 0u || app->diag.uds_owner == t + 1u) {
         return false;
     }
     switch (sid) {
@@ -497,8 +500,8 @@ static void tp_busy_share(app_t *app)
 {
     const uint32_t busy_frames = (app->state == APP_EXECUTE) ? APP_TP_FRAMES_EXEC_BUSY_TICK
                                                              : APP_TP_FRAMES_BUSY_TICK;
-    if (app->tp_frames < APP_TP_FRAMES_PER_TICK - busy_frames) {
-        app->tp_frames = APP_TP_FRAMES_PER_TICK - busy_frames;
+    if (app->diag.tp_frames < APP_TP_FRAMES_PER_TICK - busy_frames) {
+        app->diag.tp_frames = APP_TP_FRAMES_PER_TICK - busy_frames;
     }
 }
 
@@ -507,7 +510,7 @@ static void tp_busy_share(app_t *app)
 static void tp_answer(app_t *app, isotp_link_t *tp, const uint8_t *resp, uint16_t n)
 {
     tp_busy_share(app);
-    if (app->tp_frames >= APP_TP_FRAMES_PER_TICK) {
+    if (app->diag.tp_frames >= APP_TP_FRAMES_PER_TICK) {
         (void)isotp_queue(tp, resp, n);
     } else {
         (void)isotp_send(tp, resp, n, app->now_us);
@@ -522,7 +525,8 @@ static bool key_before_seed(const app_t *app, uint8_t t, const uint8_t *req, uin
         return false;
     }
     const uint8_t sub = (uint8_t)(req[1] & 0x7Fu);
-    return sub != 0u && (sub & 1u) == 0u && app->tp[t].rx_start_us <= app->seed_sent_us[t];
+    return sub != 0u && (sub & 1u) == 0u &&
+           app->diag.tp[t].rx_start_us <= app->diag.seed_sent_us[t];
 }
 
 /* A negative answer built by the device itself, the server untouched. */
@@ -532,7 +536,7 @@ static uint16_t refuse_request(app_t *app, const uint8_t *req, uint8_t *resp, ui
     resp[0] = UDS_NEGATIVE_RESPONSE;
     resp[1] = req[0];
     resp[2] = nrc;
-    app->secoc.last_refusal = (uint16_t)why;
+    app->auth.secoc.last_refusal = (uint16_t)why;
     return 3u;
 }
 
@@ -542,27 +546,28 @@ static uint16_t refuse_request(app_t *app, const uint8_t *req, uint8_t *resp, ui
  * tester's seed apart (uds_server_t.tester). */
 static void uds_serve(app_t *app, uint8_t t, const uint8_t *req, uint16_t len)
 {
-    isotp_link_t *tp = &app->tp[t];
+    isotp_link_t *tp = &app->diag.tp[t];
     uint8_t *resp = isotp_tx_buffer(tp); /* the link is free: the answer is built in place */
     uint16_t n;
     if (foreign_write(app, t, req[0])) {
         n = refuse_request(app, req, resp, UDS_NRC_SECURITY_ACCESS_DENIED, SEC_ERR_SESSION_OWNER);
-        app->uds_foreign++;
+        app->diag.uds_foreign++;
     } else if (key_before_seed(app, t, req, len)) {
         n = refuse_request(app, req, resp, UDS_NRC_REQUEST_SEQUENCE_ERROR, SEC_ERR_KEY_SEQUENCE);
     } else {
-        if (app->uds.pending_sid == 0u) {
-            app->uds_from = t; /* the answer to a pending request goes to its own tester */
+        if (app->diag.uds.pending_sid == 0u) {
+            app->diag.uds_from = t; /* the answer to a pending request goes to its own tester */
         }
-        app->uds.tester = t;
-        n = uds_server_handle(&app->uds, req, len, resp, ISOTP_MAX_PAYLOAD, app->now_ms);
-        app->reset_since_ms = app->now_ms; /* used only if this was an accepted ECUReset */
+        app->diag.uds.tester = t;
+        n = uds_server_handle(&app->diag.uds, req, len, resp, ISOTP_MAX_PAYLOAD, app->now_ms);
+        app->diag.reset_since_ms = app->now_ms; /* used only if this was an accepted ECUReset */
         if (req[0] == UDS_SID_SECURITY && n > 2u && resp[0] == UDS_SID_SECURITY + 0x40u) {
-            app->seed_sent_us[t] = app->now_us; /* a seed (a key's answer is 2 bytes) */
+            app->diag.seed_sent_us[t] = app->now_us; /* a seed (a key's answer is 2 bytes) */
         }
     }
-    if (app->uds.pending_sid == UDS_SID_TRANSFER_DATA && app->tp_held == 0u) {
-        app->tp_held = (uint8_t)(t + 1u); /* the block is taken in slices from the link's buffer */
+    if (app->diag.uds.pending_sid == UDS_SID_TRANSFER_DATA && app->diag.tp_held == 0u) {
+        app->diag.tp_held = (uint8_t)(t +
+                                      1u); /* the block is taken in slices from the link's buffer */
     } else {
         isotp_rx_release(tp);
     }
@@ -574,16 +579,16 @@ static void uds_serve(app_t *app, uint8_t t, const uint8_t *req, uint16_t len)
 /* The link buffer held for a TransferData block given back once its slices are done. */
 static void uds_release_held(app_t *app)
 {
-    if (app->tp_held != 0u && app->uds.pending_sid != UDS_SID_TRANSFER_DATA) {
-        isotp_rx_release(&app->tp[app->tp_held - 1u]);
-        app->tp_held = 0u;
+    if (app->diag.tp_held != 0u && app->diag.uds.pending_sid != UDS_SID_TRANSFER_DATA) {
+        isotp_rx_release(&app->diag.tp[app->diag.tp_held - 1u]);
+        app->diag.tp_held = 0u;
     }
 }
 
 static bool any_tx_busy(const app_t *app)
 {
     for (unsigned t = 0; t < APP_TESTERS; t++) {
-        if (isotp_tx_busy(&app->tp[t])) {
+        if (isotp_tx_busy(&app->diag.tp[t])) {
             return true;
         }
     }
@@ -594,7 +599,7 @@ static bool any_tx_busy(const app_t *app)
 static void uds_resume_step(app_t *app, isotp_link_t *own)
 {
     uint8_t *resp = isotp_tx_buffer(own); /* the link is free: the answer is built in place */
-    const uint16_t n = uds_server_resume(&app->uds, resp, ISOTP_MAX_PAYLOAD, app->now_ms);
+    const uint16_t n = uds_server_resume(&app->diag.uds, resp, ISOTP_MAX_PAYLOAD, app->now_ms);
     if (n != 0u) {
         tp_answer(app, own, resp, n);
     }
@@ -604,12 +609,12 @@ static void uds_resume_step(app_t *app, isotp_link_t *own)
 static bool uds_serve_next(app_t *app)
 {
     for (unsigned k = 0; k < APP_TESTERS; k++) {
-        const uint8_t t = (uint8_t)((app->uds_next + k) % APP_TESTERS);
+        const uint8_t t = (uint8_t)((app->diag.uds_next + k) % APP_TESTERS);
         const uint8_t *req = NULL;
-        const uint16_t len = isotp_rx_peek(&app->tp[t], &req);
-        if (len != 0u && !isotp_tx_busy(&app->tp[t]) && app->tp_held != t + 1u) {
+        const uint16_t len = isotp_rx_peek(&app->diag.tp[t], &req);
+        if (len != 0u && !isotp_tx_busy(&app->diag.tp[t]) && app->diag.tp_held != t + 1u) {
             uds_serve(app, t, req, len);
-            app->uds_next = (uint8_t)((t + 1u) % APP_TESTERS);
+            app->diag.uds_next = (uint8_t)((t + 1u) % APP_TESTERS);
             return true;
         }
     }
@@ -620,20 +625,20 @@ static bool uds_serve_next(app_t *app)
  * (each is a tick's share of work); while both wait they take turns. True if it did any. */
 static bool uds_work(app_t *app)
 {
-    isotp_link_t *own = &app->tp[app->uds_from];
-    const bool resume = app->uds.pending_sid != 0u && !isotp_tx_busy(own);
-    if (resume && !app->uds_request_turn) {
+    isotp_link_t *own = &app->diag.tp[app->diag.uds_from];
+    const bool resume = app->diag.uds.pending_sid != 0u && !isotp_tx_busy(own);
+    if (resume && !app->diag.uds_request_turn) {
         uds_resume_step(app, own);
-        app->uds_request_turn = true; /* a request waiting meanwhile goes next tick */
+        app->diag.uds_request_turn = true; /* a request waiting meanwhile goes next tick */
         return true;
     }
-    app->uds_request_turn = false;
+    app->diag.uds_request_turn = false;
     if (uds_serve_next(app)) {
         return true;
     }
     if (resume) { /* no request waited: the slice runs in this tick after all */
         uds_resume_step(app, own);
-        app->uds_request_turn = true;
+        app->diag.uds_request_turn = true;
         return true;
     }
     return false;
@@ -644,23 +649,24 @@ static bool uds_work(app_t *app)
 static bool uds_all_idle(const app_t *app)
 {
     _Static_assert(APP_TESTERS == 2u, "two testers");
-    return (app->uds.pending_sid | app->uds.pending_reset | app->tp_held) == 0u &&
-           isotp_idle(&app->tp[0]) && isotp_idle(&app->tp[1]);
+    return (app->diag.uds.pending_sid | app->diag.uds.pending_reset | app->diag.tp_held) == 0u &&
+           isotp_idle(&app->diag.tp[0]) && isotp_idle(&app->diag.tp[1]);
 }
 
 /* The session's share of every tick: its timeout, then its owner (the server may have locked). */
 static inline void uds_session_step(app_t *app)
 {
-    if (uds_server_session_expired(&app->uds, app->now_ms)) {
-        uds_server_poll(&app->uds, app->now_ms);
+    if (uds_server_session_expired(&app->diag.uds, app->now_ms)) {
+        uds_server_poll(&app->diag.uds, app->now_ms);
     }
-    if (app->uds.unlocked_level == 0u) {
-        app->uds_owner = 0u;
+    if (app->diag.uds.unlocked_level == 0u) {
+        app->diag.uds_owner = 0u;
         if (sec_is_unlocked(&app->sec.access)) {
             sec_lock(&app->sec.access); /* the server locked (session change, S3 timeout, reset) */
         }
-    } else if (app->uds_owner == 0u) {
-        app->uds_owner = (uint8_t)(app->uds_from + 1u); /* the tester whose sendKey unlocked */
+    } else if (app->diag.uds_owner == 0u) {
+        app->diag.uds_owner = (uint8_t)(app->diag.uds_from +
+                                        1u); /* the tester whose sendKey unlocked */
     }
 }
 
@@ -670,41 +676,41 @@ static void uds_service(app_t *app)
 {
     if (uds_all_idle(app)) {
         /* nothing held to release, no link to poll: the frame share and the session alone */
-        if (app->mac_ran) {
+        if (app->auth.mac_ran) {
             tp_busy_share(app);
         } else {
-            app->uds_request_turn = false; /* as uds_work when nothing waits */
+            app->diag.uds_request_turn = false; /* as uds_work when nothing waits */
         }
         uds_session_step(app);
         return;
     }
     uds_release_held(app);
-    if (app->uds.pending_reset != 0u) {
+    if (app->diag.uds.pending_reset != 0u) {
         /* ECUReset accepted (ISO 14229-1): its positive response leaves the bus first, then the
          * reset (at the first tick that finds the transport and the CAN queue empty; bounded by
          * APP_RESET_TX_WAIT_MS, e.g. bus-off). No request is served meanwhile. */
         if ((!any_tx_busy(app) && hal_can_tx_idle()) ||
-            (uint32_t)(app->now_ms - app->reset_since_ms) >= APP_RESET_TX_WAIT_MS) {
-            uds_server_after_response(&app->uds);
+            (uint32_t)(app->now_ms - app->diag.reset_since_ms) >= APP_RESET_TX_WAIT_MS) {
+            uds_server_after_response(&app->diag.uds);
         }
         for (unsigned t = 0; t < APP_TESTERS; t++) {
-            isotp_poll(&app->tp[t], app->now_us);
+            isotp_poll(&app->diag.tp[t], app->now_us);
         }
         return;
     }
     /* a tick that verified a frame's MAC leaves the server's work to the next tick; one with
      * either queues a busy tick's ISO-TP frames */
-    if (app->mac_ran || uds_work(app)) {
+    if (app->auth.mac_ran || uds_work(app)) {
         tp_busy_share(app);
     }
     /* the session, the held buffer given back, then the links' timers and frames */
     uds_session_step(app);
     uds_release_held(app);
-    if (app->tp_frames < APP_TP_FRAMES_PER_TICK) {
+    if (app->diag.tp_frames < APP_TP_FRAMES_PER_TICK) {
         /* a tick without a frame share left polls nothing: its frames would be built to be
          * refused (the links' timeouts are checked a tick later) */
         for (unsigned t = 0; t < APP_TESTERS; t++) {
-            isotp_poll(&app->tp[t], app->now_us);
+            isotp_poll(&app->diag.tp[t], app->now_us);
         }
     }
 }
@@ -717,57 +723,33 @@ void app_init(app_t *app, const app_config_t *cfg)
     app->cfg = *cfg;
     app->state = APP_BOOT;
     app->now_us = hal_time_us_ms(&app->now_ms);
-    secoc_init(&app->secoc); /* no motion key until a host session establishes one */
+    secoc_init(&app->auth.secoc); /* no motion key until a host session establishes one */
 
     isotp_config_t tpc;
     isotp_config_default(&tpc, PROTO_ID_UDS_RESPONSE(cfg->node), PROTO_ID_UDS_REQUEST(cfg->node));
     tpc.tx_dl = cfg->uds_tx_dl; /* isotp_init takes anything but 64 as classic */
     tpc.brs = cfg->uds_brs;
-    isotp_init(&app->tp[0], &tpc, tp_send, app);
+    isotp_init(&app->diag.tp[0], &tpc, tp_send, app);
     isotp_config_default(&tpc, PROTO_ID_UDS_RESPONSE_2(cfg->node),
                          PROTO_ID_UDS_REQUEST_2(cfg->node));
     tpc.tx_dl = cfg->uds_tx_dl;
     tpc.brs = cfg->uds_brs;
-    isotp_init(&app->tp[1], &tpc, tp_send, app);
+    isotp_init(&app->diag.tp[1], &tpc, tp_send, app);
     uds_app_t hooks;
     app_uds_bind(app, &hooks);
-    uds_server_init(&app->uds, &hooks);
+    uds_server_init(&app->diag.uds, &hooks);
 
     app_sec_setup(app);
 
     slots_init(&app->slots, hal_flash());
 
-    /* firmware update: the bootloader's decision runs here on the host port (flash kept across
-     * ECUReset); the image confirms itself once its self-test has passed (first tick) */
-    const fls_dev_t *fw = hal_fw_flash();
-    const uint32_t slot_sectors = hal_fw_slot_sectors();
-    (void)boot_fls_window_init(&app->fw_w_state, &app->fw_state_dev, fw, 0u, 2u);
-    (void)boot_fls_window_init(&app->fw_w_slots, &app->fw_slots_dev, fw, 2u, 2u * slot_sectors);
-    (void)nvm_init(&app->fw_state_nvm, &app->fw_state_dev);
-    boot_config_t *bc = &app->boot_cfg;
-    bc->app_dev = &app->fw_slots_dev;
-    bc->slot_addr[0] = 0u;
-    bc->slot_addr[1] = slot_sectors * fw->sector_size;
-    bc->slot_size = slot_sectors * fw->sector_size;
-    bc->state_nvm = &app->fw_state_nvm;
-    bc->state_slot = 0u;
-    bc->target_id = APP_FW_TARGET_ID;
-    uint8_t key_len = 0u;
-    bc->key = hal_fw_key(&key_len);
-    bc->key_len = key_len;
-    const bool any_skill = slots_any(&app->slots);
-    bc->skill_min = any_skill ? (uint16_t)SKILL_FORMAT_VERSION_MIN : 0u;
-    bc->skill_max = any_skill ? (uint16_t)SKILL_FORMAT_VERSION : 0u;
-    bc->config_min = 0u; /* gains/limits are not persisted yet */
-    bc->config_max = 0u;
-    (void)boot_select(&app->boot, bc);
-    fwu_init(&app->fwu, &app->boot);
+    app_fw_init(&app->fw, APP_FW_TARGET_ID, slots_any(&app->slots)); /* firmware update */
 
     app->saf_cfg = cfg->saf;
     saf_init(&app->saf);
     saf_prepare(&app->saf_cfg, &app->saf);
     for (unsigned a = 0; a < PFC_AXES; a++) {
-        exec_vel_init(&app->vel[a], cfg->vel_cutoff_Hz, APP_TICK_S);
+        exec_vel_init(&app->ctl.vel[a], cfg->vel_cutoff_Hz, APP_TICK_S);
     }
     hal_actuator_enable(false);
     app->next_tick_us = app->now_us + APP_TICK_US;
@@ -803,15 +785,16 @@ static int32_t q_of_float(fs_real_t v, unsigned frac)
 static void sense_q(app_t *app)
 {
     for (unsigned a = 0; a < PFC_AXES; a++) {
-        app->meas_q.pos_q24[a] = q_of_float(app->sens.pos_m[a], 24u);
-        app->meas_q.vel_q24[a] = exec_vel_update_q(&app->vel[a], app->meas_q.pos_q24[a]);
+        app->ctl.meas_q.pos_q24[a] = q_of_float(app->sens.pos_m[a], 24u);
+        app->ctl.meas_q.vel_q24[a] = exec_vel_update_q(&app->ctl.vel[a],
+                                                       app->ctl.meas_q.pos_q24[a]);
         if (app->cfg.render_carriage != 0u) { /* the rendered drive computes in float */
-            app->vel_mps[a] = fx_to_float(app->meas_q.vel_q24[a], 24u);
+            app->vel_mps[a] = fx_to_float(app->ctl.meas_q.vel_q24[a], 24u);
         }
     }
-    app->meas_q.force_contact_q16 = q_of_float(app->sens.force_contact_N[0], 16u);
-    app->force_y_q16 = q_of_float(app->sens.force_contact_N[1], 16u);
-    app->req_q = false;
+    app->ctl.meas_q.force_contact_q16 = q_of_float(app->sens.force_contact_N[0], 16u);
+    app->ctl.force_y_q16 = q_of_float(app->sens.force_contact_N[1], 16u);
+    app->ctl.req_q = false;
 }
 #endif
 
@@ -825,12 +808,13 @@ static uint8_t control_execute(app_t *app, fs_real_t dt)
     fs_real_t cmd[PFC_AXES];
 #ifdef FS_EXEC_FIXED
     exec_out_q_t out;
-    const fs_status_t rc = exec_tick_q(&app->exec_run_cfg, &app->exec, &app->meas_q, &out);
+    const fs_status_t rc = exec_tick_q(&app->ctl.exec_run_cfg, &app->ctl.exec, &app->ctl.meas_q,
+                                       &out);
     app->force_hat = out.force_hat_q16;
     if (app->cfg.render_carriage == 0u) {
-        app->force_req_q16[0] = out.force_cmd_q16[0];
-        app->force_req_q16[1] = out.force_cmd_q16[1];
-        app->req_q = true;
+        app->ctl.force_req_q16[0] = out.force_cmd_q16[0];
+        app->ctl.force_req_q16[1] = out.force_cmd_q16[1];
+        app->ctl.req_q = true;
     }
     if (app->cfg.render_carriage != 0u) {
         cmd[0] = fx_to_float(out.force_cmd_q16[0], 16u);
@@ -847,27 +831,27 @@ static uint8_t control_execute(app_t *app, fs_real_t dt)
     m.vel_mps[1] = app->vel_mps[1];
     m.force_contact_N = app->sens.force_contact_N[0];
     exec_out_t out;
-    const fs_status_t rc = exec_tick(&app->exec_run_cfg, &app->exec, &m, &out);
+    const fs_status_t rc = exec_tick(&app->ctl.exec_run_cfg, &app->ctl.exec, &m, &out);
     app->force_hat = out.force_hat_N;
     cmd[0] = out.force_cmd_N[0];
     cmd[1] = out.force_cmd_N[1];
 #endif
     if (rc == FS_ERR_FIXED_OVERFLOW) {
-        app->exec_saturated_ticks++;
-        app->last_run_status = (uint16_t)FS_ERR_FIXED_OVERFLOW;
-        app->causes |= FLT_BIT(FLT_SKILL_INVALID); /* latched in this tick */
+        app->ctl.exec_saturated_ticks++;
+        app->ctl.last_run_status = (uint16_t)FS_ERR_FIXED_OVERFLOW;
+        app->ctl.causes |= FLT_BIT(FLT_SKILL_INVALID); /* latched in this tick */
     }
-    app->seq_step = out.step;
+    app->ctl.seq_step = out.step;
     /* the band's stop: outside it for the run's band stop time (1 ms a tick) */
-    if (app->band_stop_ms != 0u && app->exec.band_streak_ticks >= app->band_stop_ms) {
-        app->causes |= FLT_BIT(FLT_BAND);
+    if (app->ctl.band_stop_ms != 0u && app->ctl.exec.band_streak_ticks >= app->ctl.band_stop_ms) {
+        app->ctl.causes |= FLT_BIT(FLT_BAND);
     }
     if (app->cfg.render_carriage != 0u) {
-        const fs_real_t m_d = app->exec_run_cfg.pfc.gains[0].m_d_kg;
-        app->force_req_N[0] = exec_render_step(&app->cfg.render, &app->rend[0], cmd[0], m_d,
+        const fs_real_t m_d = app->ctl.exec_run_cfg.pfc.gains[0].m_d_kg;
+        app->force_req_N[0] = exec_render_step(&app->cfg.render, &app->ctl.rend[0], cmd[0], m_d,
                                                -app->sens.force_contact_N[0], app->sens.pos_m[0],
                                                app->vel_mps[0], dt);
-        app->force_req_N[1] = exec_render_step(&app->cfg.render, &app->rend[1], cmd[1], m_d,
+        app->force_req_N[1] = exec_render_step(&app->cfg.render, &app->ctl.rend[1], cmd[1], m_d,
                                                FS_R(0.0), app->sens.pos_m[1], app->vel_mps[1], dt);
     } else {
         app->force_req_N[0] = cmd[0];
@@ -881,15 +865,15 @@ static void control(app_t *app)
     const fs_real_t dt = APP_TICK_S;
     /* a run's start goes a slice a tick after the actuator's write (app_tick): no force yet, as
      * in IDLE; the first step starts from the sample after the last slice */
-    if (app->state == APP_EXECUTE && !app->exec_starting) {
+    if (app->state == APP_EXECUTE && !app->ctl.exec_starting) {
         const uint8_t done = control_execute(app, dt); /* sets force_req_N */
         if (done != 0u) {
-            app->exec_done = true;
+            app->ctl.exec_done = true;
             (void)app_event(app, APP_EV_STOP); /* release finished: back to IDLE */
             app->force_req_N[0] = FS_R(0.0);
             app->force_req_N[1] = FS_R(0.0);
 #ifdef FS_EXEC_FIXED
-            app->req_q = false;
+            app->ctl.req_q = false;
 #endif
         }
         return;
@@ -897,15 +881,15 @@ static void control(app_t *app)
     app->force_req_N[0] = FS_R(0.0);
     app->force_req_N[1] = FS_R(0.0);
     if (app->state == APP_TEACH) {
-        app->teach_ticks++;
+        app->ctl.teach_ticks++;
         if (app->cfg.render_carriage != 0u) {
             /* render the handle m_d: the carriage follows (operator - contact)/m_d */
             const fs_real_t tot_x = app->sens.force_operator_N[0] - app->sens.force_contact_N[0];
             const fs_real_t tot_y = app->sens.force_operator_N[1];
-            app->force_req_N[0] = exec_render_step(&app->cfg.render, &app->rend[0], tot_x,
+            app->force_req_N[0] = exec_render_step(&app->cfg.render, &app->ctl.rend[0], tot_x,
                                                    app->cfg.gains[0].m_d_kg, tot_x,
                                                    app->sens.pos_m[0], app->vel_mps[0], dt);
-            app->force_req_N[1] = exec_render_step(&app->cfg.render, &app->rend[1], tot_y,
+            app->force_req_N[1] = exec_render_step(&app->cfg.render, &app->ctl.rend[1], tot_y,
                                                    app->cfg.gains[1].m_d_kg, tot_y,
                                                    app->sens.pos_m[1], app->vel_mps[1], dt);
         }
@@ -920,23 +904,23 @@ static void supervise(app_t *app, bool overrun)
     saf_input_t in; /* every field set: no memset in the tick */
     in.tick = app->tick;
     in.now_ms = app->now_ms;
-    in.host_frame = app->host_frame && (app->state == APP_TEACH || app->state == APP_EXECUTE);
-    in.host_frame_age_ms = app->now_ms - app->host_frame_ms;
+    in.host_frame = app->bus.host_frame && (app->state == APP_TEACH || app->state == APP_EXECUTE);
+    in.host_frame_age_ms = app->now_ms - app->bus.host_frame_ms;
     /* the tick's own causes (a saturated step, the band's stop: control_execute) and the bus's */
-    in.causes = app->causes | (hal_can_bus_off() ? FLT_BIT(FLT_BUS_OFF) : 0u) |
+    in.causes = app->ctl.causes | (hal_can_bus_off() ? FLT_BIT(FLT_BUS_OFF) : 0u) |
                 (overrun ? FLT_BIT(FLT_TICK_OVERRUN) : 0u);
-    app->causes = 0u;
+    app->ctl.causes = 0u;
 #ifdef FS_EXEC_FIXED
     for (unsigned a = 0; a < PFC_AXES; a++) {
-        in.meas[a].pos_m = app->meas_q.pos_q24[a];
-        in.meas[a].vel_mps = app->meas_q.vel_q24[a];
-        in.force_req_N[a] = app->req_q ? app->force_req_q16[a]
+        in.meas[a].pos_m = app->ctl.meas_q.pos_q24[a];
+        in.meas[a].vel_mps = app->ctl.meas_q.vel_q24[a];
+        in.force_req_N[a] = app->ctl.req_q ? app->ctl.force_req_q16[a]
                             : (app->force_req_N[a] == FS_R(0.0))
                                 ? 0
                                 : q_of_float(app->force_req_N[a], 16u);
     }
-    in.meas[0].force_N = app->meas_q.force_contact_q16;
-    in.meas[1].force_N = app->force_y_q16;
+    in.meas[0].force_N = app->ctl.meas_q.force_contact_q16;
+    in.meas[1].force_N = app->ctl.force_y_q16;
 #else
     for (unsigned a = 0; a < PFC_AXES; a++) {
         in.meas[a].pos_m = app->sens.pos_m[a];
@@ -996,12 +980,12 @@ void app_tick(app_t *app, bool overrun)
     sense_q(app);
 #else
     /* both axes written out: no loop in the tick */
-    app->vel_mps[0] = exec_vel_step(&app->vel[0], app->sens.pos_m[0], APP_TICK_S);
-    app->vel_mps[1] = exec_vel_step(&app->vel[1], app->sens.pos_m[1], APP_TICK_S);
+    app->vel_mps[0] = exec_vel_step(&app->ctl.vel[0], app->sens.pos_m[0], APP_TICK_S);
+    app->vel_mps[1] = exec_vel_step(&app->ctl.vel[1], app->sens.pos_m[1], APP_TICK_S);
 #endif
     if (app->state == APP_BOOT) {
-        app->fw_self_test_ok = app_fw_self_test_and_confirm(app);
-        if (!app->fw_self_test_ok) {
+        app->fw.self_test_ok = app_fw_self_test_and_confirm(app);
+        if (!app->fw.self_test_ok) {
             /* unconfirmed: the port resets after this tick and the bootloader reverts. Nothing
              * from the bus is served meanwhile (no node can confirm this image for it). */
             hal_request_reset(1u);
@@ -1021,13 +1005,14 @@ void app_tick(app_t *app, bool overrun)
 
     /* then a run's start slice (a start this tick's bus accepts has its first in the next), the
      * bus (the frames that arrived, the UDS server) and the long work's slices */
-    if (app->exec_starting) {
+    if (app->ctl.exec_starting) {
         (void)app_run_start_step(app);
     }
-    app->host_frame = false;
+    app->bus.host_frame = false;
     /* while a skill runs ISO-TP queues at most APP_TP_FRAMES_EXEC_TICK frames a tick */
-    app->tp_frames = app->state == APP_EXECUTE ? APP_TP_FRAMES_PER_TICK - APP_TP_FRAMES_EXEC_TICK
-                                               : 0u;
+    app->diag.tp_frames = app->state == APP_EXECUTE
+                              ? APP_TP_FRAMES_PER_TICK - APP_TP_FRAMES_EXEC_TICK
+                              : 0u;
     can_receive(app);
     uds_service(app);
     if (app_sec_store_pending(app)) {
@@ -1044,7 +1029,7 @@ static uint32_t telemetry_period(app_t *app)
 {
     bool fast = app->state == APP_TEACH || app->state == APP_EXECUTE;
     if (app->state == APP_FAULT) {
-        if (app->host_frame) {
+        if (app->bus.host_frame) {
             const uint32_t until = app->now_ms + (uint32_t)app->saf_cfg.wdg.timeout_ms;
             if ((int32_t)(until - app->fault_fast_until_ms) > 0) {
                 app->fault_fast_until_ms = until;
@@ -1055,30 +1040,14 @@ static uint32_t telemetry_period(app_t *app)
     if (!fast) {
         return APP_IDLE_TELEMETRY_PERIOD_MS;
     }
-    return (app->host_period_ms != 0u) ? app->host_period_ms : app->cfg.telemetry_period_ms;
+    return (app->bus.host_period_ms != 0u) ? app->bus.host_period_ms : app->cfg.telemetry_period_ms;
 }
 
 bool app_fw_self_test_and_confirm(app_t *app)
 {
-    if (!app->boot.test_boot) {
-        return true;
-    }
-    /* self-test of a new image: configuration valid and storage readable */
-    if (saf_config_validate(&app->saf_cfg) != SAF_OK || !app->slots.nvm_ok) {
-        return false;
-    }
-    /* simulator only: a host-target payload starting with this marker stands for a build whose
-     * self-test fails (HIL test of the revert path, docs/update.md) */
-    static const char fail_marker[] = "FSHOST-SELFTEST-FAIL";
-    uint8_t head[sizeof fail_marker - 1u];
-    const boot_config_t *bc = &app->boot_cfg;
-    if (bc->app_dev->read(bc->app_dev->ctx,
-                          bc->slot_addr[app->boot.running_slot] + BOOT_IMAGE_HEADER_SIZE, head,
-                          (uint32_t)sizeof head) == 0 &&
-        memcmp(head, fail_marker, sizeof head) == 0) {
-        return false;
-    }
-    return boot_confirm(&app->boot) == BOOT_OK;
+    /* a new image's self-test: its safety configuration valid and its storage readable */
+    return app_fw_self_test(&app->fw, saf_config_validate(&app->saf_cfg) == SAF_OK,
+                            app->slots.nvm_ok);
 }
 
 app_state_t app_state(const app_t *app)
@@ -1113,22 +1082,22 @@ uint32_t app_slot_crc(const app_t *app, uint8_t slot)
 
 const boot_t *app_boot(const app_t *app)
 {
-    return &app->boot;
+    return &app->fw.boot;
 }
 
 const boot_config_t *app_boot_config(const app_t *app)
 {
-    return &app->boot_cfg;
+    return &app->fw.boot_cfg;
 }
 
 uint16_t app_last_run_status(const app_t *app)
 {
-    return app->last_run_status;
+    return app->ctl.last_run_status;
 }
 
 const uint32_t *app_tx_dropped(const app_t *app)
 {
-    return &app->tx_dropped;
+    return &app->bus.tx_dropped;
 }
 
 const uint8_t *app_motion_nonce(const app_t *app)
@@ -1138,10 +1107,10 @@ const uint8_t *app_motion_nonce(const app_t *app)
 
 bool app_transfer_busy(const app_t *app)
 {
-    return app->uds.xfer != UDS_XFER_NONE || app->uds.pending_sid != 0u;
+    return app->diag.uds.xfer != UDS_XFER_NONE || app->diag.uds.pending_sid != 0u;
 }
 
 bool app_transfer_is_firmware(const app_t *app)
 {
-    return app->fw_xfer;
+    return app->fw.xfer;
 }

@@ -20,6 +20,7 @@
 #include <stdint.h>
 #include "app.h"
 #include "app_config.h"
+#include "app_fw.h"
 #include "app_sec.h"
 #include "app_sm.h"
 #include "e2e.h"
@@ -76,20 +77,8 @@ typedef struct {
 } app_mac_queue_t;
 
 /** The whole device. */
-struct app {
-    app_config_t cfg;
-    app_state_t state;
-    uint32_t tick;
-    uint64_t now_us;
-    uint32_t now_ms;
-    /* the tick's values first: within a load's immediate offset of the start */
-    hal_sensors_t sens;
-    fs_real_t vel_mps[PFC_AXES];
-    fs_real_t force_req_N[PFC_AXES];
-    fs_real_t force_out_N[PFC_AXES];
-    exec_nmeas_force_t force_hat; /* the executor's f_hat in the layer's units (Q16.16 in the
-                                   * fixed-point build: a float only where it is read) */
-    /* CAN */
+/** The cyclic frames' counters and what the host's authenticated frames left (app.c). */
+typedef struct {
     uint8_t tx_counter_status;
     uint8_t tx_counter_emcy;
     uint8_t host_period_ms; /* telemetry period requested by the host heartbeat */
@@ -100,12 +89,10 @@ struct app {
     uint32_t e2e_errors;
     uint32_t stale_commands; /* authenticated commands refused as late (APP_CMD_FRESH_MS) */
     uint32_t tx_dropped;
-    uint32_t tp_frames; /* ISO-TP frames queued this tick (APP_TP_FRAMES_PER_TICK) */
-    /* control: the safety layer's output, the executor and the safety layer (their floats within a
-     * load's reach of the struct's start) */
-    saf_output_t saf_out;
-    bool actuator_enabled;
-    bool overrun;
+} app_bus_t;
+
+/** Control and execution: the executor, the rendered drive, the run in progress (app_run.c). */
+typedef struct {
     uint32_t teach_ticks; /* ticks since TEACH started */
     exec_state_t exec;
     exec_config_t exec_run_cfg;
@@ -122,55 +109,72 @@ struct app {
     uint8_t active_slot;
     uint8_t seq_step;
     bool exec_done;
-    bool exec_starting; /* a run's start in slices (exec_start_run, a slice a tick, no force) */
-    uint8_t
-        run_start_nrc; /* its outcome for a pending RUN_SKILL/RUN_SEQUENCE start (0x78 meanwhile) */
+    bool exec_starting;    /* a run's start in slices (exec_start_run, a slice a tick, no force) */
+    uint8_t run_start_nrc; /* its outcome for a pending RUN_SKILL/RUN_SEQUENCE start (0x78) */
     uint16_t band_stop_ms; /* the run's band stop time (app_run_request_t), 0: report only */
     uint32_t causes;       /* this tick's fault causes for the safety layer: FLT_SKILL_INVALID (a
                       * saturated exec_tick, FS_ERR_FIXED_OVERFLOW), FLT_BAND */
     uint32_t exec_saturated_ticks; /* ticks whose exec_tick saturated, since power-up */
-    uint32_t fault_fast_until_ms;  /* in FAULT: the telemetry at the host's rate until then */
+    uint16_t last_run_status;      /* fs_status of the last start request's scale check */
+} app_ctl_t;
+
+/** Authenticated host frames: their MAC checks and what the accepted ones left (app.c). */
+typedef struct {
+    secoc_t secoc;               /* the MACs under the motion key */
+    secoc_job_t mac_job;         /* the MAC verification in flight */
+    uint32_t mac_job_arrival_ms; /* its frame's arrival */
+    bool mac_busy;               /* mac_job runs */
+    app_mac_queue_t macq;        /* frames waiting for it, oldest first */
+    uint32_t mac_dropped;        /* frames dropped unverified (full or stale) */
+    bool mac_ran;                /* this tick verified a frame's MAC */
+    uint32_t run_opts_fv;        /* freshness value of the last RUN_OPTIONS ... */
+    uint16_t run_opts_time;      /* ... its time scale (1/1000) and end policy */
+    uint8_t run_opts_end;
+} app_auth_t;
+
+/** UDS on ISO-TP, one link per tester id (UDS_REQUEST, UDS_REQUEST_2), and the server (app.c's
+ *  service, app_uds.c's hooks); the server's answers are built in the tester's link. */
+typedef struct {
+    uint8_t uds_from;        /* the tester of the request served last or pending */
+    uint8_t uds_next;        /* the tester asked first next tick (the two take turns) */
+    bool uds_request_turn;   /* a new request before the pending one's slice next tick */
+    uint8_t uds_owner;       /* tester + 1 that unlocked the session, 0 while locked */
+    uint32_t uds_foreign;    /* writes refused because another tester owns the session (558) */
+    uint32_t reset_since_ms; /* ECUReset accepted at (its response leaves first) */
+    uint8_t tp_held; /* tester + 1 whose request buffer a TransferData block's slices read */
+    uint64_t seed_sent_us[APP_TESTERS]; /* when each tester was last sent a seed */
+    uint32_t tp_frames;                 /* ISO-TP frames queued this tick (budget a tick) */
+    uds_server_t uds;
+    isotp_link_t tp[APP_TESTERS]; /* last: their buffers are large */
+} app_diag_t;
+
+/** The whole device: the tick's values first (within a load's immediate offset of the start),
+ *  then the modules, the large and cold ones last. */
+struct app {
+    app_config_t cfg;
+    app_state_t state;
+    uint32_t tick;
+    uint64_t now_us;
+    uint32_t now_ms;
+    hal_sensors_t sens;
+    fs_real_t vel_mps[PFC_AXES];
+    fs_real_t force_req_N[PFC_AXES];
+    fs_real_t force_out_N[PFC_AXES];
+    exec_nmeas_force_t force_hat; /* the executor's f_hat in the layer's units (Q16.16 in the
+                                   * fixed-point build: a float only where it is read) */
+    app_bus_t bus;
+    saf_output_t saf_out;
+    bool actuator_enabled;
+    bool overrun;
+    app_ctl_t ctl;
+    uint32_t fault_fast_until_ms; /* in FAULT: the telemetry at the host's rate until then */
     saf_config_t saf_cfg;
     saf_state_t saf;
-    /* authenticated host frames */
-    secoc_t secoc;                      /* their MACs under the motion key */
-    secoc_job_t mac_job;                /* the MAC verification in flight */
-    uint32_t mac_job_arrival_ms;        /* its frame's arrival */
-    bool mac_busy;                      /* mac_job runs */
-    app_mac_queue_t macq;               /* frames waiting for it, oldest first */
-    uint32_t mac_dropped;               /* frames dropped unverified (full or stale) */
-    bool mac_ran;                       /* this tick verified a frame's MAC */
-    uint64_t seed_sent_us[APP_TESTERS]; /* when each tester was last sent a seed */
-    uint8_t
-        tp_held; /* tester + 1 whose request buffer a TransferData block's slices read, 0: none */
-    uint32_t run_opts_fv;   /* freshness value of the last RUN_OPTIONS ... */
-    uint16_t run_opts_time; /* ... its time scale (1/1000) and end policy */
-    uint8_t run_opts_end;
-    /* the large and cold parts last: the tick's fields above stay within a load's immediate
-     * offset of the struct's start */
-    /* UDS on ISO-TP, one link per tester id (UDS_REQUEST, UDS_REQUEST_2); the server's answers
-     * are built in the tester's link (isotp_tx_buffer) */
-    isotp_link_t tp[APP_TESTERS];
-    uint8_t uds_from;      /* the tester of the request served last or pending */
-    uint8_t uds_next;      /* the tester asked first next tick (the two take turns) */
-    bool uds_request_turn; /* a new request before the pending one's slice next tick */
-    uint8_t uds_owner;     /* tester + 1 that unlocked the session, 0 while locked */
-    uint32_t uds_foreign;  /* writes refused because another tester owns the session (558) */
-    uds_server_t uds;
-    uint32_t reset_since_ms; /* ECUReset accepted at (its response leaves first) */
-    app_sec_t sec;           /* SecurityAccess, its record, the motion key (app_sec.h) */
-    /* the skill store: slot cache, transfer buffer, a download's commit (slots.h) */
-    slots_t slots;
-    uint16_t last_run_status; /* fs_status of the last start request's scale check */
-    /* firmware update (firmware/boot, docs/update.md) */
-    boot_fls_window_t fw_w_state, fw_w_slots;
-    fls_dev_t fw_state_dev, fw_slots_dev;
-    nvm_t fw_state_nvm;
-    boot_config_t boot_cfg;
-    boot_t boot;
-    fwu_t fwu;
-    bool fw_xfer;          /* the active download is a firmware image */
-    bool fw_self_test_ok;  /* the running image passed its self-test (boot tick) */
+    app_auth_t auth;
+    app_diag_t diag;
+    app_sec_t sec;         /* SecurityAccess, its record, the motion key (app_sec.h) */
+    slots_t slots;         /* the skill store: slot cache, transfer buffer, a download's commit */
+    app_fw_t fw;           /* firmware update (app_fw.h, docs/update.md) */
     uint64_t next_tick_us; /* app_poll: when the next tick is due */
 };
 

@@ -8,7 +8,8 @@ uint8_t app_run_authorize(const app_t *app, const app_run_request_t *req)
     /* A HostCommand reached here only after its MAC and freshness were verified on receipt
      * (host_frame_accepted, secoc.h). A routine start needs the unlocked host session: level 1,
      * the level that also keys the motion MAC. */
-    if (req->source == APP_RUN_FROM_ROUTINE && app->uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
+    if (req->source == APP_RUN_FROM_ROUTINE &&
+        app->diag.uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
         return UDS_NRC_SECURITY_ACCESS_DENIED;
     }
     return UDS_NRC_OK;
@@ -30,7 +31,7 @@ static uint8_t run_check_step(app_t *app, const app_run_step_t *rs, uint8_t end,
     }
     fs_status_t sc = skchk_stiffness(sk, app->cfg.stiffness_max_Npm);
     if (sc != FS_OK) {
-        app->last_run_status = (uint16_t)sc;
+        app->ctl.last_run_status = (uint16_t)sc;
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
     sc = (sk->dmp.periodic != 0u)
@@ -39,14 +40,14 @@ static uint8_t run_check_step(app_t *app, const app_run_step_t *rs, uint8_t end,
                                          app->cfg.saf.lim.axis[0].force_max_N)
              : skchk_run_scales(sk, app->slots.peak_N[s - 1u], rs->goal_scale, rs->time_scale,
                                 APP_TICK_S, app->cfg.saf.lim.axis[0].force_max_N);
-    app->last_run_status = (uint16_t)sc;
+    app->ctl.last_run_status = (uint16_t)sc;
     if (sc != FS_OK) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
     const lim_axis_t *ya = &app->cfg.saf.lim.axis[1];
     sc = skchk_run_path(sk, app->slots.path_m[s - 1u], rs->path_scale,
                         ya->pos_max_m - ya->pos_min_m);
-    app->last_run_status = (uint16_t)sc;
+    app->ctl.last_run_status = (uint16_t)sc;
     if (sc != FS_OK) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
@@ -88,46 +89,46 @@ uint8_t app_run_start(app_t *app, const app_run_request_t *req)
         }
     }
     /* execution uses the gains the (first) skill was fitted with; the y axis keeps the device's */
-    app->exec_run_cfg = app->cfg.exec;
-    app->exec_run_cfg.pfc.gains[0] = steps[0].skill->gains;
-    app->exec_run_cfg.pfc.gains[1] = app->cfg.gains[1];
-    app->exec_run_cfg.pfc.gains[1].m_d_kg = steps[0].skill->gains.m_d_kg;
+    app->ctl.exec_run_cfg = app->cfg.exec;
+    app->ctl.exec_run_cfg.pfc.gains[0] = steps[0].skill->gains;
+    app->ctl.exec_run_cfg.pfc.gains[1] = app->cfg.gains[1];
+    app->ctl.exec_run_cfg.pfc.gains[1].m_d_kg = steps[0].skill->gains.m_d_kg;
     for (unsigned a = 0; a < PFC_AXES; a++) {
-        app->exec_run_cfg.pfc.limits[a].force_max_N = app->cfg.saf.lim.axis[a].force_max_N;
+        app->ctl.exec_run_cfg.pfc.limits[a].force_max_N = app->cfg.saf.lim.axis[a].force_max_N;
     }
-    app->exec_run_cfg.pfc.dt_s = APP_TICK_S;
-    const fs_status_t rc = exec_start_begin(&app->exec_run_cfg, &app->exec, steps, req->n_steps,
-                                            app->sens.pos_m[1]);
+    app->ctl.exec_run_cfg.pfc.dt_s = APP_TICK_S;
+    const fs_status_t rc = exec_start_begin(&app->ctl.exec_run_cfg, &app->ctl.exec, steps,
+                                            req->n_steps, app->sens.pos_m[1]);
     if (rc != FS_OK) {
-        app->last_run_status = (uint16_t)rc;
+        app->ctl.last_run_status = (uint16_t)rc;
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
-    app->active_slot = req->step[0].slot;
-    app->band_stop_ms = req->band_stop_ms;
-    app->seq_step = 0u;
-    app->exec_done = false;
+    app->ctl.active_slot = req->step[0].slot;
+    app->ctl.band_stop_ms = req->band_stop_ms;
+    app->ctl.seq_step = 0u;
+    app->ctl.exec_done = false;
     /* the steps' constants and the first step's start follow a slice a tick (app_run_start_step) */
-    app->exec_starting = true; /* the slices from the next tick: they come before the bus's */
-    app->run_start_nrc = UDS_NRC_RESPONSE_PENDING;
+    app->ctl.exec_starting = true; /* the slices from the next tick: they come before the bus's */
+    app->ctl.run_start_nrc = UDS_NRC_RESPONSE_PENDING;
     (void)app_event(app, APP_EV_EXECUTE);
     return UDS_NRC_OK;
 }
 
 bool app_run_start_step(app_t *app)
 {
-    if (!app->exec_starting) {
+    if (!app->ctl.exec_starting) {
         return false;
     }
     bool done = false;
-    const fs_status_t rc = exec_start_run(&app->exec_run_cfg, &app->exec, &done);
+    const fs_status_t rc = exec_start_run(&app->ctl.exec_run_cfg, &app->ctl.exec, &done);
     if (rc != FS_OK) { /* a scale beyond the fixed-point formats (3xx): the run does not start */
-        app->last_run_status = (uint16_t)rc;
-        app->exec_starting = false;
-        app->run_start_nrc = UDS_NRC_REQUEST_OUT_OF_RANGE;
+        app->ctl.last_run_status = (uint16_t)rc;
+        app->ctl.exec_starting = false;
+        app->ctl.run_start_nrc = UDS_NRC_REQUEST_OUT_OF_RANGE;
         (void)app_event(app, APP_EV_STOP);
     } else if (done) {
-        app->exec_starting = false;
-        app->run_start_nrc = UDS_NRC_OK;
+        app->ctl.exec_starting = false;
+        app->ctl.run_start_nrc = UDS_NRC_OK;
     }
     return true;
 }

@@ -98,8 +98,8 @@ uint8_t app_sec_key_check_begin(app_t *app, uint8_t level, const uint8_t *key, u
     }
     /* the attempt counts as wrong until checked, and is stored before the check runs: the
      * wrong-key counter survives reset and power-up */
-    const uint8_t nrc = (uint8_t)sec_send_key_begin(cfg, &app->sec.access, app->uds.tester, key,
-                                                    len);
+    const uint8_t nrc = (uint8_t)sec_send_key_begin(cfg, &app->sec.access, app->diag.uds.tester,
+                                                    key, len);
     app_sec_persist(app);
     fs_job_reset(&app->sec.key_check); /* an earlier, abandoned check's result is not this one's */
     return nrc;
@@ -146,11 +146,11 @@ uint8_t app_motion_key_begin(app_t *app, const uint8_t *host_nonce, uint16_t len
     }
     memcpy(m->host_nonce, host_nonce, SECOC_NONCE_LEN);
     memcpy(m->dev_nonce, dev_nonce, SECOC_NONCE_LEN);
-    secoc_forget(&app->secoc); /* the old session ends now */
+    secoc_forget(&app->auth.secoc); /* the old session ends now */
     m->confirm = 0u;
     fs_job_reset(&m->job); /* the derivation starts at the next call */
     m->requested = true;
-    app->run_opts_fv = 0u;
+    app->auth.run_opts_fv = 0u;
     app_commands_void(app); /* a frame of the old session is not verified with the new key */
     return UDS_NRC_RESPONSE_PENDING;
 }
@@ -175,14 +175,14 @@ static fs_job_status_t motion_key_job(app_t *app, uint32_t rounds)
     memcpy(m->key, buf, SECOC_KEY_LEN); /* the first bytes (secoc_derive_key) */
     sec_wipe(buf, sizeof buf);
     FS_JOB_YIELD(&m->job);
-    secoc_set_key_begin(&app->secoc, m->key);
+    secoc_set_key_begin(&app->auth.secoc, m->key);
     sec_wipe(m->key, sizeof m->key);
     FS_JOB_YIELD(&m->job);
-    secoc_set_key_finish(&app->secoc);
+    secoc_set_key_finish(&app->auth.secoc);
     FS_JOB_YIELD(&m->job);
-    secoc_confirm_first(&app->secoc, m->key); /* the key's buffer, wiped: free */
+    secoc_confirm_first(&app->auth.secoc, m->key); /* the key's buffer, wiped: free */
     FS_JOB_YIELD(&m->job);
-    m->confirm = secoc_confirm_finish(&app->secoc, m->key); /* kept: DID 0x0302 reads it */
+    m->confirm = secoc_confirm_finish(&app->auth.secoc, m->key); /* kept: DID 0x0302 reads it */
     sec_wipe(m->key, sizeof m->key);
     FS_JOB_END(&m->job);
 }

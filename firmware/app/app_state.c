@@ -13,23 +13,23 @@ bool app_event(app_t *app, app_event_t ev)
     case APP_TEACH:
     case APP_EXECUTE:
         if (next == APP_TEACH) {
-            app->teach_ticks = 0u;
+            app->ctl.teach_ticks = 0u;
         }
         /* the host must keep its heartbeat from now on: silence in TEACH/EXECUTE stops safely */
         wdg_kick(&app->saf.wdg, app->now_ms);
         for (unsigned a = 0; a < PFC_AXES; a++) {
-            exec_render_reset(&app->rend[a], app->sens.pos_m[a]);
+            exec_render_reset(&app->ctl.rend[a], app->sens.pos_m[a]);
         }
         break;
     case APP_IDLE:
     case APP_FAULT:
-        if (app->exec_starting) { /* stopped or faulted before its first step */
-            app->exec_starting = false;
-            app->run_start_nrc = UDS_NRC_CONDITIONS_NOT_CORRECT;
+        if (app->ctl.exec_starting) { /* stopped or faulted before its first step */
+            app->ctl.exec_starting = false;
+            app->ctl.run_start_nrc = UDS_NRC_CONDITIONS_NOT_CORRECT;
         }
         if (next == APP_IDLE) {
-            app->seq_step = 0u;
-            app->exec_done = false;
+            app->ctl.seq_step = 0u;
+            app->ctl.exec_done = false;
         } else { /* the telemetry keeps its rate through the stop ramp and a little after */
             app->fault_fast_until_ms = app->now_ms + (uint32_t)app->saf_cfg.wdg.ramp_ms +
                                        APP_FAULT_TELEMETRY_TAIL_MS;
@@ -64,7 +64,7 @@ flt_code_t app_clear_faults(app_t *app)
  * command needs a heartbeat after this (a stop, a UDS fault clear or run stop, a new key). */
 void app_commands_void(app_t *app)
 {
-    app->host_seen = false;
-    app->macq.count = 0u; /* what waits for its check arrived before: it never acts */
-    app->mac_busy = false;
+    app->bus.host_seen = false;
+    app->auth.macq.count = 0u; /* what waits for its check arrived before: it never acts */
+    app->auth.mac_busy = false;
 }

@@ -96,20 +96,20 @@ static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf, uint16_
     }
     case DID_DEVICE_STATE: {
         const fs_wire_device_state_t v = {(uint8_t)app->state, app->saf_out.fault_code,
-                                          app->active_slot, app->seq_step, app->tick};
+                                          app->ctl.active_slot, app->ctl.seq_step, app->tick};
         return fs_wire_device_state_pack(&v, buf, cap);
     }
     case DID_CONTACT_WAIT: {
         const fs_wire_contact_wait_t v = {
-            exec_contact_hold_ms(&app->exec), app->exec.contact_losses,
-            FS_WIRE_CONTACT_WAIT_RATE_COUNT(fs_real_t, exec_contact_rate(&app->exec))};
+            exec_contact_hold_ms(&app->ctl.exec), app->ctl.exec.contact_losses,
+            FS_WIRE_CONTACT_WAIT_RATE_COUNT(fs_real_t, exec_contact_rate(&app->ctl.exec))};
         return fs_wire_contact_wait_pack(&v, buf, cap);
     }
     case DID_BAND: {
-        const exec_state_t *e = &app->exec;
+        const exec_state_t *e = &app->ctl.exec;
         const fs_wire_band_t v = {e->band_checked_ticks,  e->band_out_ticks,  e->band_longest_ticks,
                                   exec_band_max_milli(e), e->band_first_tick, e->band_outside,
-                                  app->band_stop_ms};
+                                  app->ctl.band_stop_ms};
         return fs_wire_band_pack(&v, buf, cap);
     }
     case DID_STIFFNESS_MAX: {
@@ -121,13 +121,14 @@ static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf, uint16_
         return fs_wire_fault_causes_pack(&v, buf, cap);
     }
     case DID_MOTION_KEY: {
-        fs_wire_motion_key_t v = {
-            {0u}, app->secoc.keyed ? 1u : 0u, app->secoc.keyed ? app->sec.motion.confirm : 0u};
+        fs_wire_motion_key_t v = {{0u},
+                                  app->auth.secoc.keyed ? 1u : 0u,
+                                  app->auth.secoc.keyed ? app->sec.motion.confirm : 0u};
         memcpy(v.nonce, app->sec.motion.dev_nonce, sizeof(v.nonce));
         return fs_wire_motion_key_pack(&v, buf, cap);
     }
     case DID_AUTH_STATS: {
-        const secoc_t *a = &app->secoc;
+        const secoc_t *a = &app->auth.secoc;
         const fs_wire_auth_stats_t v = {a->accepted,
                                         a->bad_mac,
                                         a->replayed,
@@ -137,7 +138,7 @@ static uint16_t did_status(const app_t *app, uint16_t did, uint8_t *buf, uint16_
                                         a->keyed ? 1u : 0u,
                                         a->fv[SECOC_CH_COMMAND],
                                         a->fv[SECOC_CH_HEARTBEAT],
-                                        app->uds_foreign};
+                                        app->diag.uds_foreign};
         return fs_wire_auth_stats_pack(&v, buf, cap);
     }
     default: return 0u;
@@ -155,7 +156,7 @@ static uint8_t read_did(void *ctx, uint16_t did, uint8_t *out, uint16_t cap, uin
     app_t *app = ctx;
     uint8_t buf[FS_WIRE_SLOT_DIR_LEN_MAX]; /* the longest DID */
     if (did == FWU_DID_STATUS) {
-        return fwu_uds_read_did(&app->fwu, out, cap, len);
+        return fwu_uds_read_did(&app->fw.fwu, out, cap, len);
     }
     const uint16_t bc = (uint16_t)sizeof(buf);
     uint16_t n = did_identity(did, buf, bc);
@@ -281,7 +282,7 @@ static uint8_t write_object(app_t *app, const uint8_t *d, uint16_t len)
 static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len)
 {
     app_t *app = ctx;
-    if (app->uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
+    if (app->diag.uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
         return UDS_NRC_SECURITY_ACCESS_DENIED; /* settings: level 1 (not the firmware level) */
     }
     if (did == DID_MOTION_KEY) {
@@ -401,7 +402,8 @@ static uint8_t routine_run(app_t *app, uint8_t sub, uint16_t rid, const uint8_t 
         const uint8_t nrc = run_from_routine(rid, d, len, &req);
         const uint8_t started = (nrc != UDS_NRC_OK) ? nrc : app_run_start(app, &req);
         /* answered once the start's slices are done (resume): its 3xx refusal comes then */
-        return (started == UDS_NRC_OK && app->exec_starting) ? UDS_NRC_RESPONSE_PENDING : started;
+        return (started == UDS_NRC_OK && app->ctl.exec_starting) ? UDS_NRC_RESPONSE_PENDING
+                                                                 : started;
     }
     if (sub == UDS_ROUTINE_STOP) {
         if (app->state != APP_EXECUTE) {
@@ -411,8 +413,8 @@ static uint8_t routine_run(app_t *app, uint8_t sub, uint16_t rid, const uint8_t 
         app_commands_void(app); /* a command withheld before the stop never acts after it */
         return UDS_NRC_OK;
     }
-    const fs_wire_run_results_t v = {(uint8_t)app->state, app->seq_step, app->exec_done ? 1u : 0u,
-                                     app->saf_out.fault_code};
+    const fs_wire_run_results_t v = {(uint8_t)app->state, app->ctl.seq_step,
+                                     app->ctl.exec_done ? 1u : 0u, app->saf_out.fault_code};
     *out_len = fs_wire_run_results_pack(&v, out, cap);
     return *out_len != 0u ? UDS_NRC_OK : UDS_NRC_RESPONSE_TOO_LONG;
 }
@@ -471,7 +473,7 @@ static uint8_t routine_erase_slot(app_t *app, uint8_t sub, const uint8_t *d, uin
     if (st != PROTO_OK) {
         return wire_nrc(st);
     }
-    if (app->uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
+    if (app->diag.uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
         return UDS_NRC_SECURITY_ACCESS_DENIED;
     }
     if (app->state != APP_IDLE) {
@@ -485,11 +487,11 @@ static uint8_t routine(void *ctx, uint8_t sub, uint16_t rid, const uint8_t *d, u
 {
     app_t *app = ctx;
     if (fwu_uds_owns_rid(rid)) {
-        if (rid == FWU_RID_CONFIRM && fwu_uds_authorised(&app->uds) && !app->fw_self_test_ok) {
+        if (rid == FWU_RID_CONFIRM && fwu_uds_authorised(&app->diag.uds) && !app->fw.self_test_ok) {
             *out_len = 0u;
             return UDS_NRC_CONDITIONS_NOT_CORRECT; /* only an image that passed its self-test */
         }
-        return fwu_uds_routine(&app->fwu, &app->uds, sub, rid, d, len, out, cap, out_len);
+        return fwu_uds_routine(&app->fw.fwu, &app->diag.uds, sub, rid, d, len, out, cap, out_len);
     }
     *out_len = 0u;
     if (cap < 8u) {
@@ -542,10 +544,10 @@ static uint8_t security_seed(void *ctx, uint8_t level, uint8_t *seed, uint16_t c
     }
     /* the state is shared by the levels: a seed of another level is never "already unlocked"
      * (a locked state is left as it is: other testers' seeds stay theirs) */
-    if (app->uds.unlocked_level != level && sec_is_unlocked(&app->sec.access)) {
+    if (app->diag.uds.unlocked_level != level && sec_is_unlocked(&app->sec.access)) {
         sec_lock(&app->sec.access);
     }
-    const sec_nrc_t nrc = sec_request_seed(cfg, &app->sec.access, app->uds.tester, app->now_ms,
+    const sec_nrc_t nrc = sec_request_seed(cfg, &app->sec.access, app->diag.uds.tester, app->now_ms,
                                            seed);
     app_sec_persist(app); /* a lockout that ended clears the stored counter */
     if (nrc != SEC_NRC_NONE) {
@@ -567,7 +569,7 @@ static uint8_t resume(void *ctx, uint8_t sid, uint16_t arg)
     app_t *app = ctx;
     if (sid == UDS_SID_ROUTINE) {
         return (arg == UDS_RID_RUN_SKILL || arg == UDS_RID_RUN_SEQUENCE)
-                   ? app->run_start_nrc
+                   ? app->ctl.run_start_nrc
                    : UDS_NRC_CONDITIONS_NOT_CORRECT;
     }
     if (sid == UDS_SID_WDBI && arg == DID_MOTION_KEY) {
@@ -584,19 +586,19 @@ static uint8_t resume(void *ctx, uint8_t sid, uint16_t arg)
 static uint8_t download_begin(void *ctx, uint32_t addr, uint32_t size)
 {
     app_t *app = ctx;
-    app->fw_xfer = addr == FWU_DOWNLOAD_ADDRESS;
-    if (app->fw_xfer) {
-        if (!fwu_uds_authorised(&app->uds)) {
+    app->fw.xfer = addr == FWU_DOWNLOAD_ADDRESS;
+    if (app->fw.xfer) {
+        if (!fwu_uds_authorised(&app->diag.uds)) {
             return UDS_NRC_SECURITY_ACCESS_DENIED; /* firmware: level 3 only */
         }
-        return app->state == APP_IDLE ? fwu_uds_download_begin(&app->fwu, &app->uds, size)
+        return app->state == APP_IDLE ? fwu_uds_download_begin(&app->fw.fwu, &app->diag.uds, size)
                                       : UDS_NRC_CONDITIONS_NOT_CORRECT;
     }
     if (addr < 1u || addr > APP_N_SLOTS || size < SKILL_HEADER_SIZE_V2 + SKILL_CRC_SIZE ||
         size > APP_IMAGE_MAX) {
         return UDS_NRC_REQUEST_OUT_OF_RANGE;
     }
-    if (app->uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
+    if (app->diag.uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
         return UDS_NRC_SECURITY_ACCESS_DENIED;
     }
     if (app->state != APP_IDLE) {
@@ -608,8 +610,8 @@ static uint8_t download_begin(void *ctx, uint32_t addr, uint32_t size)
 static uint8_t download_data(void *ctx, uint32_t offset, const uint8_t *d, uint16_t len)
 {
     app_t *app = ctx;
-    if (app->fw_xfer) {
-        return fwu_uds_download_data(&app->fwu, &app->uds, offset, d, len);
+    if (app->fw.xfer) {
+        return fwu_uds_download_data(&app->fw.fwu, &app->diag.uds, offset, d, len);
     }
     return slots_download_data(&app->slots, offset, d, len);
 }
@@ -617,10 +619,10 @@ static uint8_t download_data(void *ctx, uint32_t offset, const uint8_t *d, uint1
 static uint8_t download_end(void *ctx, uint32_t *crc_out)
 {
     app_t *app = ctx;
-    if (app->fw_xfer) {
-        return fwu_uds_download_end(&app->fwu, &app->uds, crc_out);
+    if (app->fw.xfer) {
+        return fwu_uds_download_end(&app->fw.fwu, &app->diag.uds, crc_out);
     }
-    if (app->state != APP_IDLE || app->uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
+    if (app->state != APP_IDLE || app->diag.uds.unlocked_level != UDS_SEC_LEVEL_WRITE) {
         /* a skill started (or security dropped) since RequestDownload: commit refused, the slot
          * keeps what it holds; nothing changes while a skill runs */
         slots_refuse_commit(&app->slots);
@@ -637,8 +639,8 @@ static uint8_t download_end(void *ctx, uint32_t *crc_out)
 static void transfer_abort(void *ctx)
 {
     app_t *app = ctx;
-    if (app->fw_xfer) {
-        fwu_abort(&app->fwu);
+    if (app->fw.xfer) {
+        fwu_abort(&app->fw.fwu);
     }
     slots_abort(&app->slots);
 }

@@ -251,7 +251,7 @@ static void test_boot_status_and_e2e(void **state)
     assert_true(hal_sim_can_deliver(&f));
     ticks(20);
     assert_int_equal(last_status().state, APP_IDLE);
-    assert_int_equal(app.e2e_errors, 1);
+    assert_int_equal(app.bus.e2e_errors, 1);
 }
 
 static void test_host_silence_faults_and_ramps(void **state)
@@ -326,7 +326,7 @@ static void test_bus_off_emergency_sent_after_recovery(void **state)
     hal_sim_can_set_bus_off(false);
     tick();
     /* the heartbeats lost meanwhile are within the freshness window: the next one is taken */
-    const uint32_t accepted = app.secoc.accepted;
+    const uint32_t accepted = app.auth.secoc.accepted;
     send_heartbeat();
     assert_true(n_out > before);
     assert_int_equal(out[before].id, PROTO_ID_EMERGENCY(0));
@@ -345,7 +345,7 @@ static void test_bus_off_emergency_sent_after_recovery(void **state)
     for (unsigned i = before + 1u; i < n_out; i++) {
         assert_int_not_equal(out[i].id, PROTO_ID_EMERGENCY(0));
     }
-    assert_int_equal(app.secoc.accepted, accepted + 1u);
+    assert_int_equal(app.auth.secoc.accepted, accepted + 1u);
 }
 
 /* RequestDownload and one TransferData of img into slot, no RequestTransferExit yet. */
@@ -380,7 +380,7 @@ static void test_download_corrupt_interrupted(void **state)
     /* interrupted: half of the data, then the tester leaves (S3 timeout) */
     assert_int_equal(download(1, image_b, len_b, len_b / 2u), 0xFF);
     ticks(UDS_S3_MS + 10u);
-    assert_int_equal(app.uds.session, UDS_SESSION_DEFAULT);
+    assert_int_equal(app.diag.uds.session, UDS_SESSION_DEFAULT);
     assert_int_equal(app.slots.last_transfer_status, 0xFFFEu);
     /* after a reboot (flash kept) slot 1 still holds the N = 50 skill */
     app_init(&app, &cfg);
@@ -498,12 +498,12 @@ static void test_ecu_reset_responds_then_resets(void **state)
     assert_int_not_equal(t_reset, UINT32_MAX);
     assert_true(t_resp < t_reset);
     assert_true(t_reset - t_resp <= 2u);
-    assert_int_equal(app.uds.session, UDS_SESSION_DEFAULT);
+    assert_int_equal(app.diag.uds.session, UDS_SESSION_DEFAULT);
     assert_true(app.slots.valid[0]);
     assert_int_equal(app.slots.len[0], len_a);
     ticks(2);
     assert_int_equal(app.state, APP_IDLE);
-    assert_false(app.secoc.keyed); /* the motion key does not survive a reset */
+    assert_false(app.auth.secoc.keyed); /* the motion key does not survive a reset */
     /* soft reset with the positive response suppressed (bit 7): no answer, reset all the same */
     assert_int_equal(ecu_reset(0x83, r, &t_resp, &t_reset), 0);
     assert_int_not_equal(t_reset, UINT32_MAX);
@@ -575,8 +575,8 @@ static void test_security_levels_and_confirm(void **state)
 static void test_failing_test_image_serves_nothing(void **state)
 {
     (void)state;
-    app.boot.test_boot = 1u;  /* on test ... */
-    app.slots.nvm_ok = false; /* ... and its self-test fails (storage unreadable) */
+    app.fw.boot.test_boot = 1u; /* on test ... */
+    app.slots.nvm_ok = false;   /* ... and its self-test fails (storage unreadable) */
     uint8_t type = 0u;
     (void)hal_host_take_reset(&type);
     const uint8_t confirm[4] = {0x31, 0x01, 0x0F, 0x02};
@@ -589,7 +589,7 @@ static void test_failing_test_image_serves_nothing(void **state)
     for (unsigned i = before; i < n_out; i++) {
         assert_int_not_equal(out[i].id, PROTO_ID_UDS_RESPONSE(0));
     }
-    assert_int_equal(app.boot.test_boot, 1u); /* not confirmed */
+    assert_int_equal(app.fw.boot.test_boot, 1u); /* not confirmed */
 }
 
 static uint8_t wrong_key(void)
@@ -779,7 +779,7 @@ static void test_skill_validated_before_commit_and_run(void **state)
                        0x03, 0xE8, 0};
     assert_int_equal(uds(run, 10, r, sizeof(r)), 3);
     assert_int_equal(r[2], UDS_NRC_REQUEST_OUT_OF_RANGE);
-    assert_int_equal(app.last_run_status, FS_ERR_SKCHK_GOAL_SCALE);
+    assert_int_equal(app.ctl.last_run_status, FS_ERR_SKCHK_GOAL_SCALE);
     assert_int_equal(app.state, APP_IDLE);
     assert_true(app.force_out_N[0] == FS_R(0.0) && app_force_ref_N(&app) == FS_R(0.0));
     send_heartbeat();
@@ -915,15 +915,15 @@ static void test_every_mac_in_its_tick(void **state)
 {
     (void)state;
     ticks(5);
-    const uint32_t acc0 = app.secoc.accepted, bad0 = app.secoc.bad_mac;
+    const uint32_t acc0 = app.auth.secoc.accepted, bad0 = app.auth.secoc.bad_mac;
     for (int i = 0; i < 3; i++) {
         send_heartbeat();
     }
     deliver_forged(PROTO_ID_HOST_HEARTBEAT(0), 0u, host.fv[SECOC_CH_HEARTBEAT] + 1u);
     tick();
-    assert_int_equal(app.secoc.accepted, acc0 + 3u);
-    assert_int_equal(app.secoc.bad_mac, bad0 + 1u);
-    assert_int_equal(app.macq.count, 0u);
+    assert_int_equal(app.auth.secoc.accepted, acc0 + 3u);
+    assert_int_equal(app.auth.secoc.bad_mac, bad0 + 1u);
+    assert_int_equal(app.auth.macq.count, 0u);
 }
 
 /* A stop is never blocked: a forged command carrying the counter the host's stop will carry
@@ -996,20 +996,20 @@ static void test_withheld_command_never_acts_late(void **state)
     send_heartbeat();
     tick();
     assert_int_equal(host.fv[SECOC_CH_HEARTBEAT], hb_before + 1u);
-    const uint32_t replayed0 = app.secoc.replayed;
+    const uint32_t replayed0 = app.auth.secoc.replayed;
     for (int i = 0; i < 2; i++) { /* one a tick: each alone takes the replay check */
         (void)hal_sim_can_deliver(&held[i]);
         tick();
     }
     assert_int_equal(app.state, APP_IDLE);
-    assert_int_equal(app.secoc.replayed, replayed0 + 2u);
+    assert_int_equal(app.auth.secoc.replayed, replayed0 + 2u);
     /* a fresh pair, the host silent for longer than the bound: stale */
     ticks(APP_CMD_FRESH_MS + 1u);
-    const uint32_t stale0 = app.stale_commands;
+    const uint32_t stale0 = app.bus.stale_commands;
     send_command(APP_CMD_EXECUTE, 1);
     tick();
     assert_int_equal(app.state, APP_IDLE);
-    assert_int_equal(app.stale_commands, stale0 + 2u);
+    assert_int_equal(app.bus.stale_commands, stale0 + 2u);
     /* a heartbeat, then a pair: runs again (the same path acts when it should) */
     send_heartbeat();
     send_command(APP_CMD_EXECUTE, 1);

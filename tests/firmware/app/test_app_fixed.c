@@ -96,8 +96,8 @@ static void test_a_run_that_fits_keeps_executing(void **state)
     }
     assert_int_equal(app.state, APP_EXECUTE);
     assert_int_equal(app.saf_out.fault_code, 0u);
-    assert_int_equal(app.exec_saturated_ticks, 0u);
-    assert_int_equal(app.exec.dmp.sat_events, 0u);
+    assert_int_equal(app.ctl.exec_saturated_ticks, 0u);
+    assert_int_equal(app.ctl.exec.dmp.sat_events, 0u);
 }
 
 static void test_a_saturated_dmp_step_faults_the_run(void **state)
@@ -107,14 +107,14 @@ static void test_a_saturated_dmp_step_faults_the_run(void **state)
     for (unsigned i = 0; i < 50u; i++) {
         tick();
     }
-    const uint16_t run_status = app.last_run_status;
+    const uint16_t run_status = app.ctl.last_run_status;
     assert_int_equal(run_status, FS_OK);
     /* the DMP's force states at the two ends of their range: this tick's z - y leaves Q8.24 */
-    app.exec.dmp.y_acc = -(int64_t)FX_ACC_HI_MAX * ((int64_t)1 << 32);
-    app.exec.dmp.z_acc = (int64_t)FX_ACC_HI_MAX * ((int64_t)1 << 32);
+    app.ctl.exec.dmp.y_acc = -(int64_t)FX_ACC_HI_MAX * ((int64_t)1 << 32);
+    app.ctl.exec.dmp.z_acc = (int64_t)FX_ACC_HI_MAX * ((int64_t)1 << 32);
     tick();
-    assert_int_equal(app.exec_saturated_ticks, 1u);
-    assert_int_equal(app.last_run_status, FS_ERR_FIXED_OVERFLOW);
+    assert_int_equal(app.ctl.exec_saturated_ticks, 1u);
+    assert_int_equal(app.ctl.last_run_status, FS_ERR_FIXED_OVERFLOW);
     assert_int_equal(app.state, APP_FAULT);
     assert_int_equal(app.saf_out.fault_code, FLT_SKILL_INVALID);
     /* the stop ramp: finite, within the force limit, actuator still on for its 40 ticks */
@@ -127,7 +127,7 @@ static void test_a_saturated_dmp_step_faults_the_run(void **state)
         tick();
     }
     assert_false(app.saf_out.actuator_enable);
-    assert_int_equal(app.exec_saturated_ticks, 1u); /* FAULT runs no DMP */
+    assert_int_equal(app.ctl.exec_saturated_ticks, 1u); /* FAULT runs no DMP */
 }
 
 /* The float64 reference of a telemetry value: v / unit rounded half away from zero, clamped;
