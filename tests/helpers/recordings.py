@@ -356,12 +356,35 @@ def _write_wiping(path: Path, path_m: float) -> Path:
     return path
 
 
+def _write_pressing_set(folder: Path) -> list[Path]:
+    """synthetic.pressing_set(seed=1)'s six recordings as d0.csv .. d5.csv (d1 gzip-compressed:
+    d1.csv.gz) and an engraving that is no such press as odd.csv: t,x,f_contact."""
+    import gzip
+
+    from forceskill.model import synthetic
+    from forceskill.model.demo import Demo, write_csv
+
+    _, demos = synthetic.pressing_set(seed=1)
+    odd = synthetic.engraving(seed=4, duration_s=6.5, k_v=100.0, f_max_N=4.5, noise_N=0.03)
+
+    def csv(path: Path, d: Demo) -> Path:
+        write_csv(path, {"t": d.t_s, "x": d.pos_m, "f_contact": d.force_N})
+        return path
+
+    out = [csv(folder / f"d{i}.csv", d) for i, d in enumerate(demos)]
+    out[1] = folder / "d1.csv.gz"
+    out[1].write_bytes(gzip.compress((folder / "d1.csv").read_bytes()))
+    (folder / "d1.csv").unlink()
+    return [*out, csv(folder / "odd.csv", odd)]
+
+
 def write_examples(folder: Path) -> list[Path]:
     """The recordings README.md's and docs/cli.md's examples use: press100.csv (100 Hz),
     fz_bias.csv (push reads negative, -0.8 N bias, ms time column, ';' and decimal commas),
     step20hz.csv, strokes.csv (73 s, 13 strokes), wrench.mcap (ROS 2 bag), wipe.csv and
     wipe_y.csv (12 wiping strokes of 1.2 s, the second with a y path), wipe.mcap (13 strokes in a
-    ROS 2 bag, the push reading negative with a +0.8 N bias)."""
+    ROS 2 bag, the push reading negative with a +0.8 N bias), and six presses of one task with an
+    outlier (d0.csv, d1.csv.gz, d2.csv .. d5.csv, odd.csv: the several-recordings fit)."""
     folder.mkdir(parents=True, exist_ok=True)
     out = [
         write_csv(folder / "press100.csv", with_noise(press(rate_hz=100), 0.05)),
@@ -378,6 +401,7 @@ def write_examples(folder: Path) -> list[Path]:
         write_csv(folder / "strokes.csv", strokes()),
         _write_wiping(folder / "wipe.csv", 0.0),
         _write_wiping(folder / "wipe_y.csv", 0.03),
+        *_write_pressing_set(folder),
     ]
     try:
         out.append(write_bag(folder / "wrench.mcap", with_noise(press(rate_hz=100), 0.05)))
