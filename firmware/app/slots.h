@@ -65,7 +65,9 @@ typedef struct {
     skill_t staging;               /* validation target of a download */
     skill_parser_t parser;         /* the parse of staging, spread over ticks */
     skchk_params_t params;         /* parameter check of staging, spread over ticks */
-    skchk_t check;                 /* output check of staging, spread over ticks */
+    exec_store_prep_t prep;        /* staging prepared for the executor (its rollout checked),
+                                    * spread over ticks */
+    uint8_t prep_stage;            /* the preparation's stage (exec_store_stages) */
     nvm_writer_t writer;           /* the slot's flash write, spread over ticks */
     fs_job_t commit;               /* a download's commit (slots_committing): a slice a call */
     uint8_t commit_stage;          /* SLOTS_COMMIT_*: the commit's stage while it runs */
@@ -74,12 +76,9 @@ typedef struct {
     slots_limits_t lim;            /* the commit's limits, taken at its first slice */
     nvm_reader_t reader;           /* a read-back's record read and CRC, spread over ticks */
     bool reading;                  /* a read-back's RequestUpload is answered 0x78 meanwhile */
-#ifdef FS_EXEC_FIXED
-    dmpfx_model_t fx[SLOTS_N]; /* each valid slot's skill in fixed point: what an execution runs */
-    dmpfx_model_t staging_fx;  /* staging in fixed point (the commit's conversion) */
-    dmpfx_conv_t conv;         /* the conversion of staging, spread over ticks */
-    dmpfx_check_t fx_check;    /* the output check of staging_fx, spread over ticks */
-#endif
+    exec_store_t store[SLOTS_N];   /* each valid slot's skill prepared for the executor (the
+                                  * fixed-point build: its model, what an execution runs) */
+    exec_store_t staging_store;    /* staging prepared (the commit's) */
 } slots_t;
 
 /** Open storage on dev (NULL: none) and fill the cache from it; no transfer. */

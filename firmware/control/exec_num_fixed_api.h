@@ -698,4 +698,93 @@ static inline int16_t exec_force_counts_real(exec_counts_k_t k, fs_real_t v)
     return exec_force_counts(k, (q == INT32_MIN) ? INT32_MIN + 1 : q);
 }
 
+/* ---- a skill prepared for the executor (the skill store's commit and load) ---- */
+
+/** What the executor needs of a stored skill beyond the skill itself: its model in fixed
+ *  point. */
+typedef dmpfx_model_t exec_store_t;
+
+/** Bytes of an exec_store_t a store copies with its skill. */
+static inline uint32_t exec_store_size(void)
+{
+    return (uint32_t)sizeof(exec_store_t);
+}
+
+/** The executor's model of a stored skill (exec_step_t.model_fx): the converted one. */
+static inline const exec_model_t *exec_store_model(const exec_store_t *store, const skill_t *sk)
+{
+    (void)sk;
+    return store;
+}
+
+/** A preparation in slices (a download's commit): the conversion, then the converted model's
+ *  rollout (the one the executor will run). */
+typedef struct {
+    dmpfx_conv_t conv;
+    dmpfx_check_t check;
+} exec_store_prep_t;
+
+/** Stages of the preparation, each begun and run in slices: the conversion, the rollout. */
+static inline uint32_t exec_store_stages(void)
+{
+    return 2u;
+}
+
+/** Begin stage k of preparing sk into store under the limits (dt, the x force's and the y path's
+ *  extent); the outcome is exec_store_status's once exec_store_run returned true. */
+static inline void exec_store_begin(exec_store_prep_t *p, uint32_t k, const skill_t *sk,
+                                    exec_store_t *store, fs_real_t dt_s, fs_real_t force_max_N,
+                                    fs_real_t path_max_m)
+{
+    if (k == 0u) {
+        dmpfx_bound_begin(&p->conv, &sk->dmp, store);
+    } else {
+        dmpfx_check_begin(&p->check, store, sk->dmp.duration_s, dt_s, force_max_N, path_max_m);
+    }
+}
+
+/** Up to units more of stage k (conversion units, rollout steps); true once it ended. */
+static inline bool exec_store_run(exec_store_prep_t *p, uint32_t k, uint32_t units)
+{
+    return (k == 0u) ? dmpfx_bound_run(&p->conv, units) : dmpfx_check_run(&p->check, units);
+}
+
+/** Stage k's outcome (3xx: the skill does not fit the fixed-point executor; 223/225/300: the
+ *  rollout leaves the limits or saturates). */
+static inline fs_status_t exec_store_status(const exec_store_prep_t *p, uint32_t k)
+{
+    return (k == 0u) ? p->conv.status : p->check.status;
+}
+
+/** The prepared skill's peak |f_hat| (N) and its y path's extent (m) at goal scale 1. */
+static inline fs_real_t exec_store_peak_N(const exec_store_prep_t *p)
+{
+    return dmpfx_check_peak_N(&p->check);
+}
+static inline fs_real_t exec_store_path_m(const exec_store_prep_t *p)
+{
+    return dmpfx_check_path_m(&p->check);
+}
+
+/** Prepare sk into store at once without limits (a store's load): its parameters, the
+ *  conversion and the converted model's rollout, *peak_N and *path_m its figures. */
+static inline fs_status_t exec_store_check(const skill_t *sk, exec_store_t *store, fs_real_t dt_s,
+                                           fs_real_t *peak_N, fs_real_t *path_m)
+{
+    fs_status_t st = skchk_params(sk);
+    if (st == FS_OK) {
+        st = dmpfx_from_model_bound(&sk->dmp, store);
+    }
+    if (st != FS_OK) {
+        return st;
+    }
+    dmpfx_check_t c;
+    dmpfx_check_begin(&c, store, sk->dmp.duration_s, dt_s, FS_R(1e30), FS_R(1e30));
+    while (!dmpfx_check_run(&c, UINT32_MAX)) {
+    }
+    *peak_N = dmpfx_check_peak_N(&c);
+    *path_m = dmpfx_check_path_m(&c);
+    return c.status;
+}
+
 #endif /* EXEC_NUM_FIXED_API_H */

@@ -624,4 +624,91 @@ static inline int16_t exec_force_counts_real(exec_counts_k_t k, fs_real_t v)
     return exec_force_counts(k, v);
 }
 
+/* ---- a skill prepared for the executor (the skill store's commit and load) ---- */
+
+/** What the executor needs of a stored skill beyond the skill itself: nothing. */
+typedef struct {
+    uint8_t unused;
+} exec_store_t;
+
+/** Bytes of an exec_store_t a store copies with its skill: none. */
+static inline uint32_t exec_store_size(void)
+{
+    return 0u;
+}
+
+/** The executor's model of a stored skill sk (exec_step_t.model_fx): the skill's own. */
+static inline const exec_model_t *exec_store_model(const exec_store_t *store, const skill_t *sk)
+{
+    (void)store;
+    return &sk->dmp;
+}
+
+/** A preparation in slices (a download's commit): the skill's own rollout (skchk_run). */
+typedef struct {
+    skchk_t check;
+} exec_store_prep_t;
+
+/** Stages of the preparation, each begun and run in slices: the rollout. */
+static inline uint32_t exec_store_stages(void)
+{
+    return 1u;
+}
+
+/** Begin stage k of preparing sk into store under the limits (dt, the x force's and the y path's
+ *  extent); the outcome is exec_store_status's once exec_store_run returned true. */
+static inline void exec_store_begin(exec_store_prep_t *p, uint32_t k, const skill_t *sk,
+                                    exec_store_t *store, fs_real_t dt_s, fs_real_t force_max_N,
+                                    fs_real_t path_max_m)
+{
+    (void)k;
+    (void)store;
+    skchk_begin(&p->check, sk, dt_s, force_max_N);
+    p->check.path_max_m = path_max_m;
+}
+
+/** Up to units more of stage k (rollout steps); true once it ended. */
+static inline bool exec_store_run(exec_store_prep_t *p, uint32_t k, uint32_t units)
+{
+    (void)k;
+    return skchk_run(&p->check, units);
+}
+
+/** Stage k's outcome (222/223/225: the rollout leaves the limits). */
+static inline fs_status_t exec_store_status(const exec_store_prep_t *p, uint32_t k)
+{
+    (void)k;
+    return p->check.status;
+}
+
+/** The prepared skill's peak |f_hat| (N) and its y path's extent (m) at goal scale 1. */
+static inline fs_real_t exec_store_peak_N(const exec_store_prep_t *p)
+{
+    return p->check.peak_N;
+}
+static inline fs_real_t exec_store_path_m(const exec_store_prep_t *p)
+{
+    return p->check.path_peak_m;
+}
+
+/** Prepare sk into store at once without limits (a store's load): its parameters and rollout,
+ *  *peak_N and *path_m its figures. */
+static inline fs_status_t exec_store_check(const skill_t *sk, exec_store_t *store, fs_real_t dt_s,
+                                           fs_real_t *peak_N, fs_real_t *path_m)
+{
+    (void)store;
+    const fs_status_t st = skchk_params(sk);
+    if (st != FS_OK) {
+        return st;
+    }
+    skchk_t c;
+    skchk_begin(&c, sk, dt_s, FS_R(1e30));
+    c.path_max_m = FS_R(1e30);
+    while (!skchk_run(&c, UINT32_MAX)) {
+    }
+    *peak_N = c.peak_N;
+    *path_m = c.path_peak_m;
+    return c.status;
+}
+
 #endif /* EXEC_NUM_REAL_API_H */

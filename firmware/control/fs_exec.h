@@ -48,6 +48,7 @@
 #include "hal.h"
 #include "pfc.h"
 #include "skill.h"
+#include "skill_check.h"
 
 #define EXEC_MAX_STEPS 8u
 

@@ -71,7 +71,7 @@ static void start_press(void)
     const uint32_t len = tv_read("press_n50_lwr_hold.skill", image, sizeof image);
     assert_true(len > 0u);
     assert_int_equal(skill_parse(image, len, &app.slots.skill[0]), FS_OK);
-    assert_int_equal(dmpfx_from_model_bound(&app.slots.skill[0].dmp, &app.slots.fx[0]), FS_OK);
+    assert_int_equal(dmpfx_from_model_bound(&app.slots.skill[0].dmp, &app.slots.store[0]), FS_OK);
     app.slots.valid[0] = true;
     app.slots.peak_N[0] = 4.84f;
     app.slots.path_m[0] = 0.0f;
