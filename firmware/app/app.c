@@ -654,8 +654,9 @@ bool app_poll(app_t *app)
     return true;
 }
 
-/* One executor tick: its commands into force_req (the integer build: force_req_q16 unless the
- * drive is rendered), its status as the app keeps it; returns 1 once the run has ended. */
+/* One executor tick: its commands into force_req (the integer build: the tick sample's request
+ * unless the drive is rendered), its status as the app keeps it; returns 1 once the run has
+ * ended. */
 static uint8_t control_execute(app_t *app, fs_real_t dt)
 {
     /* non-finite measurement: 0 N, the sensor checks latch the fault. A saturated DMP step

@@ -30,9 +30,11 @@ enum {
     SLOTS_COMMIT_PARAMS,    /* skchk_params_run, SLOTS_PARAMS_UNITS_PER_TICK units a slice,
                                then skchk_stiffness, skchk_begin */
     SLOTS_COMMIT_CONVERT,   /* the fixed-point build: the skill in fixed point,
-                               SLOTS_CONVERT_UNITS_PER_TICK units a slice, then dmpfx_check_begin */
-    SLOTS_COMMIT_CHECK,     /* the rollout, SLOTS_CHECK_STEPS_PER_TICK steps a slice (the
-                               fixed-point build: on the converted skill, dmpfx_check_run) */
+                               SLOTS_CONVERT_UNITS_PER_TICK units a slice (exec_store_run's
+                               first stage), then the rollout's begin */
+    SLOTS_COMMIT_CHECK,     /* the rollout, SLOTS_CHECK_STEPS_PER_TICK steps a slice
+                               (exec_store_run's last stage; the fixed-point build: on the
+                               converted skill) */
     SLOTS_COMMIT_WRITE,     /* the slot's flash record, SLOTS_FLASH_UNITS_PER_TICK units a
                                slice */
     SLOTS_COMMIT_SWAP       /* the checked skill (and its fixed-point model) into the slot's

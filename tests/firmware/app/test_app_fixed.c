@@ -131,7 +131,7 @@ static void test_a_saturated_dmp_step_faults_the_run(void **state)
 }
 
 /* The float64 reference of a telemetry value: v / unit rounded half away from zero, clamped;
- * NaN or infinite -> 0 (the float builds' clamp_i32, in double). */
+ * NaN or infinite -> 0 (the float builds' exec_num_counts, in double). */
 static long ref_counts(float v, double unit, long lo, long hi)
 {
     if (!isfinite(v)) {
