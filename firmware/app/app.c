@@ -5,9 +5,6 @@
 
 #include "fs_dbc.h"
 #include "proto_ids.h"
-#ifdef FS_EXEC_FIXED
-#include "fx.h"
-#endif
 
 #ifndef APP_FW_TARGET_ID
 /* the firmware images this device accepts (BOOT_TARGET_*): a port's build defines its own */
@@ -66,108 +63,6 @@ static bool tp_send(void *ctx, const can_frame_t *f)
     return true;
 }
 
-#ifdef FS_EXEC_FIXED
-/* The fixed-point build (no FPU): q in Q(frac) in counts of 1/per_unit, clamped to lo..hi,
- * rounded half away from zero as the float path rounds; INT32_MIN (not finite) -> 0 as NaN
- * there. Integer operations only. */
-static int32_t q_counts(int32_t q, unsigned frac, int64_t per_unit, int32_t lo, int32_t hi)
-{
-    if (q == INT32_MIN) {
-        return 0;
-    }
-    const int64_t mag = (q < 0) ? -(int64_t)q : (int64_t)q;
-    int64_t c = (mag * per_unit + ((int64_t)1 << (frac - 1u))) >> frac;
-    c = (q < 0) ? -c : c;
-    return (c > (int64_t)hi) ? hi : ((c < (int64_t)lo) ? lo : (int32_t)c);
-}
-
-/* The same of a float (fx_from_float reads its bits). */
-static int32_t wire_counts(fs_real_t v, unsigned frac, int64_t per_unit, int32_t lo, int32_t hi)
-{
-    uint32_t b;
-    memcpy(&b, &v, sizeof b);
-    if ((b & 0x7F800000u) == 0x7F800000u) {
-        return 0;
-    }
-    const int32_t q = fx_from_float(v, frac);
-    return q_counts((q == INT32_MIN) ? INT32_MIN + 1 : q, frac, per_unit, lo, hi);
-}
-/* position in um (Q8.24: +-128 m before the clamp), force in 0.01 N (Q16.16: +-32768 N) */
-#define APP_POS_COUNTS(v) wire_counts((v), 24u, 1000000, -8388608, 8388607)
-#define APP_FORCE_COUNTS(v) (int16_t) wire_counts((v), 16u, 100, -32768, 32767)
-/* the same from the tick's integers (Q8.24 positions, Q16.16 forces) */
-#define APP_POS_COUNTS_Q(q) q_counts((q), 24u, 1000000, -8388608, 8388607)
-#define APP_POS_Y_COUNTS_Q(q) q_counts((q), 24u, 1000000, -4194304, 4194303) /* y: 23 bits */
-#define APP_FORCE_COUNTS_Q(q) (int16_t) q_counts((q), 16u, 100, -32768, 32767)
-#else
-/* clamp_i32 of r = v / scale with |r| >= hi or NaN: clamped, or NaN and inf 0, or rounded
- * (lo < r <= -hi). Cold: the usual value falls through each conversion. */
-#if defined(__GNUC__)
-#define APP_COLD __attribute__((cold))
-#else
-#define APP_COLD
-#endif
-APP_COLD static int32_t clamp_i32_edge(fs_real_t v, fs_real_t r, int32_t lo, int32_t hi)
-{
-    if (!(r > (fs_real_t)lo && r < (fs_real_t)hi)) { /* out of range, or NaN/inf (v or r) */
-        if (!fs_isfinite(v)) {
-            return 0;
-        }
-        return (r >= (fs_real_t)hi) ? hi : lo;
-    }
-    /* round half away from zero, as cantools --use-round (roundf) does */
-    return (int32_t)(r < FS_R(0.0) ? r - FS_R(0.5) : r + FS_R(0.5));
-}
-
-/* A constant as an opaque register value on the M4F: GCC otherwise loads the conversions'
- * scales and bounds from the literal pool at each of the tick's six. */
-static inline fs_real_t app_reg(fs_real_t k)
-{
-#if defined(__GNUC__) && defined(__arm__) && defined(__ARM_FP) && defined(FS_REAL_FLOAT)
-    __asm__("" : "+t"(k));
-#endif
-    return k;
-}
-
-/* The telemetry's scales, their bounds hi (as reals) and 0.5, each once in a register. */
-typedef struct {
-    fs_real_t pos_scale, pos_hi, pos_y_hi, force_scale, force_hi, half;
-} app_counts_k_t;
-
-static inline app_counts_k_t app_counts_k(void)
-{
-    app_counts_k_t k;
-    k.pos_scale = app_reg(FS_R(1e-6));
-    k.pos_hi = app_reg((fs_real_t)8388607);
-    k.pos_y_hi = app_reg((fs_real_t)4194303);
-    k.force_scale = app_reg(FS_R(0.01));
-    k.force_hi = app_reg((fs_real_t)32767);
-    k.half = app_reg(FS_R(0.5));
-    return k;
-}
-
-/* v / scale in counts, clamped to lo..hi (lo = -hi - 1, hi_r = hi), rounded half away from zero;
- * NaN and inf 0. Inline: the tick's six conversions share their constants. */
-static inline int32_t clamp_i32(fs_real_t v, fs_real_t scale, fs_real_t hi_r, fs_real_t half,
-                                int32_t lo, int32_t hi)
-{
-    const fs_real_t r = v / scale;
-    const fs_real_t a = fs_fabs(r);
-    if (a < hi_r) { /* |r| < hi: in range (NaN fails), the usual value */
-        /* |r| + 0.5 truncated, the sign put back: r -+ 0.5 truncated (rounding is symmetric) */
-        const int32_t n = (int32_t)(a + half);
-        return (r < FS_R(0.0)) ? -n : n;
-    }
-    return clamp_i32_edge(v, r, lo, hi);
-}
-#define APP_POS_COUNTS(k, v) clamp_i32((v), (k).pos_scale, (k).pos_hi, (k).half, -8388608, 8388607)
-/* y in 23 bits (+-4.19 m, beyond the sensor's range) */
-#define APP_POS_Y_COUNTS(k, v) \
-    clamp_i32((v), (k).pos_scale, (k).pos_y_hi, (k).half, -4194304, 4194303)
-#define APP_FORCE_COUNTS(k, v) \
-    (int16_t) clamp_i32((v), (k).force_scale, (k).force_hi, (k).half, -32768, 32767)
-#endif
-
 static void send_status(app_t *app)
 {
     struct fs_dbc_device_status_t s;
@@ -214,22 +109,14 @@ static void send_telemetry(app_t *app)
     /* every count before the first call: the conversions' constants stay in registers */
     struct fs_dbc_telemetry_position_t p;
     struct fs_dbc_telemetry_force_t q;
-#ifdef FS_EXEC_FIXED
-    p.pos_x = APP_POS_COUNTS_Q(app->ctl.meas_q.pos_q24[0]);
-    p.pos_y = APP_POS_Y_COUNTS_Q(app->ctl.meas_q.pos_q24[1]);
-    q.force_contact = APP_FORCE_COUNTS_Q(app->ctl.meas_q.force_contact_q16);
-    q.force_cmd = APP_FORCE_COUNTS_Q(app->saf_out.force_cmd_N[0]);
-    q.force_ref = APP_FORCE_COUNTS_Q(app->force_hat);
-    q.force_operator = APP_FORCE_COUNTS(app->sens.force_operator_N[0]);
-#else
-    const app_counts_k_t k = app_counts_k();
-    p.pos_x = APP_POS_COUNTS(k, app->sens.pos_m[0]);
-    p.pos_y = APP_POS_Y_COUNTS(k, app->sens.pos_m[1]);
-    q.force_contact = APP_FORCE_COUNTS(k, app->sens.force_contact_N[0]);
-    q.force_cmd = APP_FORCE_COUNTS(k, app->force_out_N[0]);
-    q.force_ref = APP_FORCE_COUNTS(k, app->force_hat);
-    q.force_operator = APP_FORCE_COUNTS(k, app->sens.force_operator_N[0]);
-#endif
+    const exec_counts_k_t k = exec_counts_k();
+    const exec_sample_t *sa = &app->ctl.sample;
+    p.pos_x = exec_pos_counts(k, exec_sample_pos(sa, &app->sens, 0u));
+    p.pos_y = exec_pos_y_counts(k, exec_sample_pos(sa, &app->sens, 1u));
+    q.force_contact = exec_force_counts(k, exec_sample_force(sa, &app->sens, 0u));
+    q.force_cmd = exec_force_counts(k, app->saf_out.force_cmd_N[0]);
+    q.force_ref = exec_force_counts(k, app->force_hat);
+    q.force_operator = exec_force_counts_real(k, app->sens.force_operator_N[0]);
     /* bit 47: the band's check */
     p.band_outside = (app->state == APP_EXECUTE) ? app->ctl.exec.band_outside : 0u;
     p.tick = (uint16_t)(app->tick & 0xFFFFu);
@@ -767,75 +654,21 @@ bool app_poll(app_t *app)
     return true;
 }
 
-#ifdef FS_EXEC_FIXED
-/* A float sensor value in Q(frac), integer operations only: NaN or infinite -> INT32_MIN (not
- * finite for the executor and the safety layer), finite values saturated to +-INT32_MAX. */
-static int32_t q_of_float(fs_real_t v, unsigned frac)
-{
-    uint32_t b;
-    memcpy(&b, &v, sizeof b);
-    if ((b & 0x7F800000u) == 0x7F800000u) {
-        return INT32_MIN;
-    }
-    const int32_t q = fx_from_float(v, frac);
-    return (q == INT32_MIN) ? INT32_MIN + 1 : q;
-}
-
-/* This tick's sensors in the integer tick's formats, and the velocity estimate. */
-static void sense_q(app_t *app)
-{
-    for (unsigned a = 0; a < PFC_AXES; a++) {
-        app->ctl.meas_q.pos_q24[a] = q_of_float(app->sens.pos_m[a], 24u);
-        app->ctl.meas_q.vel_q24[a] = exec_vel_update_q(&app->ctl.vel[a],
-                                                       app->ctl.meas_q.pos_q24[a]);
-        if (app->cfg.render_carriage != 0u) { /* the rendered drive computes in float */
-            app->vel_mps[a] = fx_to_float(app->ctl.meas_q.vel_q24[a], 24u);
-        }
-    }
-    app->ctl.meas_q.force_contact_q16 = q_of_float(app->sens.force_contact_N[0], 16u);
-    app->ctl.force_y_q16 = q_of_float(app->sens.force_contact_N[1], 16u);
-    app->ctl.req_q = false;
-}
-#endif
-
-/* One executor tick: its commands into force_req (the integer build: force_req_q16 unless the
- * drive is rendered), its status as the app keeps it; returns 1 once the run has ended. */
+/* One executor tick: its commands into force_req (the integer build: the tick sample's request
+ * unless the drive is rendered), its status as the app keeps it; returns 1 once the run has
+ * ended. */
 static uint8_t control_execute(app_t *app, fs_real_t dt)
 {
     /* non-finite measurement: 0 N, the sensor checks latch the fault. A saturated DMP step
      * (the fixed-point build: the skill at this scale left its Q formats, 300) stops the run:
      * counted, kept as the run status, and latched as skill invalid in this tick */
-    fs_real_t cmd[PFC_AXES];
-#ifdef FS_EXEC_FIXED
-    exec_out_q_t out;
-    const fs_status_t rc = exec_tick_q(&app->ctl.exec_run_cfg, &app->ctl.exec, &app->ctl.meas_q,
-                                       &out);
-    app->force_hat = out.force_hat_q16;
+    exec_out_n_t out;
+    const fs_status_t rc = exec_tick_sample(&app->ctl.exec_run_cfg, &app->ctl.exec,
+                                            &app->ctl.sample, &app->sens, app->vel_mps, &out);
+    app->force_hat = exec_out_force_hat(&out);
     if (app->cfg.render_carriage == 0u) {
-        app->ctl.force_req_q16[0] = out.force_cmd_q16[0];
-        app->ctl.force_req_q16[1] = out.force_cmd_q16[1];
-        app->ctl.req_q = true;
+        exec_sample_request(&app->ctl.sample, &out); /* the integer build's request */
     }
-    if (app->cfg.render_carriage != 0u) {
-        cmd[0] = fx_to_float(out.force_cmd_q16[0], 16u);
-        cmd[1] = fx_to_float(out.force_cmd_q16[1], 16u);
-    } else {
-        cmd[0] = FS_R(0.0); /* force_req_N unused: the request is force_req_q16 */
-        cmd[1] = FS_R(0.0);
-    }
-#else
-    exec_meas_t m;
-    m.pos_m[0] = app->sens.pos_m[0];
-    m.pos_m[1] = app->sens.pos_m[1];
-    m.vel_mps[0] = app->vel_mps[0];
-    m.vel_mps[1] = app->vel_mps[1];
-    m.force_contact_N = app->sens.force_contact_N[0];
-    exec_out_t out;
-    const fs_status_t rc = exec_tick(&app->ctl.exec_run_cfg, &app->ctl.exec, &m, &out);
-    app->force_hat = out.force_hat_N;
-    cmd[0] = out.force_cmd_N[0];
-    cmd[1] = out.force_cmd_N[1];
-#endif
     if (rc == FS_ERR_FIXED_OVERFLOW) {
         app->ctl.exec_saturated_ticks++;
         app->ctl.last_run_status = (uint16_t)FS_ERR_FIXED_OVERFLOW;
@@ -848,14 +681,15 @@ static uint8_t control_execute(app_t *app, fs_real_t dt)
     }
     if (app->cfg.render_carriage != 0u) {
         const fs_real_t m_d = app->ctl.exec_run_cfg.pfc.gains[0].m_d_kg;
-        app->force_req_N[0] = exec_render_step(&app->cfg.render, &app->ctl.rend[0], cmd[0], m_d,
-                                               -app->sens.force_contact_N[0], app->sens.pos_m[0],
-                                               app->vel_mps[0], dt);
-        app->force_req_N[1] = exec_render_step(&app->cfg.render, &app->ctl.rend[1], cmd[1], m_d,
-                                               FS_R(0.0), app->sens.pos_m[1], app->vel_mps[1], dt);
+        app->force_req_N[0] = exec_render_step(
+            &app->cfg.render, &app->ctl.rend[0], exec_out_cmd_real(&out, 0u), m_d,
+            -app->sens.force_contact_N[0], app->sens.pos_m[0], app->vel_mps[0], dt);
+        app->force_req_N[1] = exec_render_step(&app->cfg.render, &app->ctl.rend[1],
+                                               exec_out_cmd_real(&out, 1u), m_d, FS_R(0.0),
+                                               app->sens.pos_m[1], app->vel_mps[1], dt);
     } else {
-        app->force_req_N[0] = cmd[0];
-        app->force_req_N[1] = cmd[1];
+        app->force_req_N[0] = exec_out_cmd_req(&out, 0u);
+        app->force_req_N[1] = exec_out_cmd_req(&out, 1u);
     }
     return out.done;
 }
@@ -872,9 +706,7 @@ static void control(app_t *app)
             (void)app_event(app, APP_EV_STOP); /* release finished: back to IDLE */
             app->force_req_N[0] = FS_R(0.0);
             app->force_req_N[1] = FS_R(0.0);
-#ifdef FS_EXEC_FIXED
-            app->ctl.req_q = false;
-#endif
+            exec_sample_request_clear(&app->ctl.sample);
         }
         return;
     }
@@ -910,36 +742,19 @@ static void supervise(app_t *app, bool overrun)
     in.causes = app->ctl.causes | (hal_can_bus_off() ? FLT_BIT(FLT_BUS_OFF) : 0u) |
                 (overrun ? FLT_BIT(FLT_TICK_OVERRUN) : 0u);
     app->ctl.causes = 0u;
-#ifdef FS_EXEC_FIXED
+    const exec_sample_t *sa = &app->ctl.sample;
     for (unsigned a = 0; a < PFC_AXES; a++) {
-        in.meas[a].pos_m = app->ctl.meas_q.pos_q24[a];
-        in.meas[a].vel_mps = app->ctl.meas_q.vel_q24[a];
-        in.force_req_N[a] = app->ctl.req_q ? app->ctl.force_req_q16[a]
-                            : (app->force_req_N[a] == FS_R(0.0))
-                                ? 0
-                                : q_of_float(app->force_req_N[a], 16u);
+        in.meas[a].pos_m = exec_sample_pos(sa, &app->sens, a);
+        in.meas[a].vel_mps = exec_sample_vel(sa, app->vel_mps, a);
+        in.meas[a].force_N = exec_sample_force(sa, &app->sens, a);
+        in.force_req_N[a] = exec_sample_req(sa, app->force_req_N[a], a);
     }
-    in.meas[0].force_N = app->ctl.meas_q.force_contact_q16;
-    in.meas[1].force_N = app->ctl.force_y_q16;
-#else
-    for (unsigned a = 0; a < PFC_AXES; a++) {
-        in.meas[a].pos_m = app->sens.pos_m[a];
-        in.meas[a].vel_mps = app->vel_mps[a];
-        in.meas[a].force_N = app->sens.force_contact_N[a];
-        in.force_req_N[a] = app->force_req_N[a];
-    }
-#endif
     saf_step(&app->saf_cfg, &app->saf, &in, &app->saf_out);
     if (app->saf_out.stopping) {
         (void)app_event(app, APP_EV_FAULT); /* latched; a skill never resumes by itself */
     }
-#ifdef FS_EXEC_FIXED
-    app->force_out_N[0] = fx_to_float(app->saf_out.force_cmd_N[0], 16u);
-    app->force_out_N[1] = fx_to_float(app->saf_out.force_cmd_N[1], 16u);
-#else
-    app->force_out_N[0] = app->saf_out.force_cmd_N[0];
-    app->force_out_N[1] = app->saf_out.force_cmd_N[1];
-#endif
+    app->force_out_N[0] = exec_force_real(app->saf_out.force_cmd_N[0]);
+    app->force_out_N[1] = exec_force_real(app->saf_out.force_cmd_N[1]);
 }
 
 static uint32_t telemetry_period(app_t *app);
@@ -976,13 +791,8 @@ void app_tick(app_t *app, bool overrun)
      * (commands, UDS requests, keys) is taken after the write and acts from the next tick's
      * sample: a stop reaches the actuator at most two periods after its arrival. */
     hal_sensors_read(&app->sens);
-#ifdef FS_EXEC_FIXED
-    sense_q(app);
-#else
-    /* both axes written out: no loop in the tick */
-    app->vel_mps[0] = exec_vel_step(&app->ctl.vel[0], app->sens.pos_m[0], APP_TICK_S);
-    app->vel_mps[1] = exec_vel_step(&app->ctl.vel[1], app->sens.pos_m[1], APP_TICK_S);
-#endif
+    exec_sample_read(&app->ctl.sample, &app->sens, app->ctl.vel, app->vel_mps,
+                     app->cfg.render_carriage != 0u, APP_TICK_S);
     if (app->state == APP_BOOT) {
         app->fw.self_test_ok = app_fw_self_test_and_confirm(app);
         if (!app->fw.self_test_ok) {

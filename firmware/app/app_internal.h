@@ -98,14 +98,9 @@ typedef struct {
     exec_config_t exec_run_cfg;
     exec_render_t rend[PFC_AXES];
     exec_vel_t vel[PFC_AXES];
-#ifdef FS_EXEC_FIXED
-    /* the fixed-point build's tick in integers: the sensors converted once a tick (INT32_MIN:
-     * not finite), the request in Q16.16 (force_req_N is used only by the rendered drive) */
-    exec_meas_q_t meas_q;
-    saf_force_t force_y_q16; /* the y axis's measured force */
-    saf_force_t force_req_q16[PFC_AXES];
-    bool req_q; /* force_req_q16 holds this tick's request (else force_req_N) */
-#endif
+    /* the tick's sensors in the executor's and the safety layer's units, converted once a
+     * tick (the fixed-point build's integers), and its request there */
+    exec_sample_t sample;
     uint8_t active_slot;
     uint8_t seq_step;
     bool exec_done;

@@ -6,55 +6,12 @@
 #include "fs_wire_const.h"
 #include "uds_nrc.h"
 
-/* A stored skill's check without limits: its peak force and path extent, for the run checks
- * (the limits may have changed since its commit); the fixed-point build converts it into *fx
- * and checks the rollout the executor will run. */
-#ifdef FS_EXEC_FIXED
-static fs_status_t check_stored(const skill_t *sk, dmpfx_model_t *fx, fs_real_t dt_s,
-                                fs_real_t *peak_N, fs_real_t *path_m)
-{
-    fs_status_t st = skchk_params(sk);
-    if (st == FS_OK) {
-        st = dmpfx_from_model_bound(&sk->dmp, fx);
-    }
-    if (st != FS_OK) {
-        return st;
-    }
-    dmpfx_check_t c;
-    dmpfx_check_begin(&c, fx, sk->dmp.duration_s, dt_s, FS_R(1e30), FS_R(1e30));
-    while (!dmpfx_check_run(&c, UINT32_MAX)) {
-    }
-    *peak_N = dmpfx_check_peak_N(&c);
-    *path_m = dmpfx_check_path_m(&c);
-    return c.status;
-}
-#else
-static fs_status_t check_stored(const skill_t *sk, fs_real_t dt_s, fs_real_t *peak_N,
-                                fs_real_t *path_m)
-{
-    const fs_status_t st = skchk_params(sk);
-    if (st != FS_OK) {
-        return st;
-    }
-    skchk_t c;
-    skchk_begin(&c, sk, dt_s, FS_R(1e30));
-    c.path_max_m = FS_R(1e30);
-    while (!skchk_run(&c, UINT32_MAX)) {
-    }
-    *peak_N = c.peak_N;
-    *path_m = c.path_peak_m;
-    return c.status;
-}
-#endif
-
-/* check_stored on slot s's parsed skill (the fixed-point build into the slot's model). */
+/* A stored skill's check without limits on slot s's parsed skill: its peak force and path
+ * extent, for the run checks (the limits may have changed since its commit); the skill is
+ * prepared into the slot's store (the fixed-point build: its model, the rollout it runs). */
 static fs_status_t check_slot(slots_t *b, uint16_t s, fs_real_t *peak_N, fs_real_t *path_m)
 {
-#ifdef FS_EXEC_FIXED
-    return check_stored(&b->skill[s], &b->fx[s], (fs_real_t)FS_TICK_S, peak_N, path_m);
-#else
-    return check_stored(&b->skill[s], (fs_real_t)FS_TICK_S, peak_N, path_m);
-#endif
+    return exec_store_check(&b->skill[s], &b->store[s], (fs_real_t)FS_TICK_S, peak_N, path_m);
 }
 
 void slots_init(slots_t *b, const fls_dev_t *dev)
@@ -97,11 +54,7 @@ const exec_model_t *slots_model(const slots_t *b, uint32_t slot)
     if (slot < 1u || slot > SLOTS_N || !b->valid[slot - 1u]) {
         return NULL;
     }
-#ifdef FS_EXEC_FIXED
-    return &b->fx[slot - 1u];
-#else
-    return &b->skill[slot - 1u].dmp;
-#endif
+    return exec_store_model(&b->store[slot - 1u], &b->skill[slot - 1u]);
 }
 
 bool slots_any(const slots_t *b)
@@ -148,9 +101,7 @@ static bool swap_slice(slots_t *b, uint32_t max_bytes)
         uint32_t len;
     } const part[] = {
         {(uint8_t *)&b->skill[s], (const uint8_t *)&b->staging, (uint32_t)sizeof(skill_t)},
-#ifdef FS_EXEC_FIXED
-        {(uint8_t *)&b->fx[s], (const uint8_t *)&b->staging_fx, (uint32_t)sizeof(dmpfx_model_t)},
-#endif
+        {(uint8_t *)&b->store[s], (const uint8_t *)&b->staging_store, exec_store_size()},
     };
     uint32_t base = 0u;
     for (size_t i = 0; i < sizeof part / sizeof part[0]; i++) {
@@ -175,13 +126,8 @@ static void commit_done(slots_t *b)
 {
     const uint32_t s = b->xfer_slot - 1u;
     b->valid[s] = true;
-#ifdef FS_EXEC_FIXED
-    b->peak_N[s] = dmpfx_check_peak_N(&b->fx_check);
-    b->path_m[s] = dmpfx_check_path_m(&b->fx_check);
-#else
-    b->peak_N[s] = b->check.peak_N;
-    b->path_m[s] = b->check.path_peak_m;
-#endif
+    b->peak_N[s] = exec_store_peak_N(&b->prep);
+    b->path_m[s] = exec_store_path_m(&b->prep);
     b->last_transfer_status = 0u;
     b->crc[s] = b->parser.crc; /* the image's CRC-32, checked by the parse */
     b->len[s] = b->xfer_size;
@@ -226,47 +172,33 @@ static fs_job_status_t commit_job(slots_t *b)
         FS_JOB_EXIT(j);
     }
     FS_JOB_YIELD(j);
-#ifdef FS_EXEC_FIXED
-    b->commit_stage = SLOTS_COMMIT_CONVERT;
-    b->commit_status = skchk_stiffness(&b->staging, b->lim.stiffness_max_Npm);
-    dmpfx_bound_begin(&b->conv, &b->staging.dmp, &b->staging_fx);
-    if (b->commit_status != FS_OK) {
-        FS_JOB_EXIT(j);
-    }
-    FS_JOB_YIELD(j);
-    while (!dmpfx_bound_run(&b->conv, SLOTS_CONVERT_UNITS_PER_TICK)) {
+    /* the skill prepared for the executor, its stages (the fixed-point build: the conversion,
+     * SLOTS_COMMIT_CONVERT, before the rollout) ending with the rollout, SLOTS_COMMIT_CHECK */
+    b->prep_stage = 0u;
+    while (b->prep_stage < exec_store_stages()) {
+        b->commit_stage = (uint8_t)(SLOTS_COMMIT_CHECK + 1u + b->prep_stage - exec_store_stages());
+        b->commit_status = (b->prep_stage == 0u)
+                               ? skchk_stiffness(&b->staging, b->lim.stiffness_max_Npm)
+                               : FS_OK;
+        exec_store_begin(&b->prep, b->prep_stage, &b->staging, &b->staging_store, b->lim.dt_s,
+                         b->lim.force_max_N, b->lim.path_max_m);
+        if (b->commit_status != FS_OK) {
+            FS_JOB_EXIT(j);
+        }
         FS_JOB_YIELD(j);
-    }
-    if ((b->commit_status = b->conv.status) != FS_OK) {
-        FS_JOB_EXIT(j); /* 3xx: the skill does not fit the fixed-point executor */
-    }
-    FS_JOB_YIELD(j);
-    b->commit_stage = SLOTS_COMMIT_CHECK;
-    dmpfx_check_begin(&b->fx_check, &b->staging_fx, b->staging.dmp.duration_s, b->lim.dt_s,
-                      b->lim.force_max_N, b->lim.path_max_m);
-    FS_JOB_YIELD(j);
-    while (!dmpfx_check_run(&b->fx_check, SLOTS_CHECK_STEPS_PER_TICK)) {
+        while (!exec_store_run(&b->prep, b->prep_stage,
+                               b->commit_stage == SLOTS_COMMIT_CHECK
+                                   ? SLOTS_CHECK_STEPS_PER_TICK
+                                   : SLOTS_CONVERT_UNITS_PER_TICK)) {
+            FS_JOB_YIELD(j);
+        }
+        /* 3xx: the skill does not fit the fixed-point executor; 222/223/225/300: the rollout */
+        if ((b->commit_status = exec_store_status(&b->prep, b->prep_stage)) != FS_OK) {
+            FS_JOB_EXIT(j); /* slot unchanged */
+        }
         FS_JOB_YIELD(j);
+        b->prep_stage++;
     }
-    b->commit_status = b->fx_check.status; /* 223/225/300: slot unchanged */
-#else
-    b->commit_stage = SLOTS_COMMIT_CHECK;
-    b->commit_status = skchk_stiffness(&b->staging, b->lim.stiffness_max_Npm);
-    skchk_begin(&b->check, &b->staging, b->lim.dt_s, b->lim.force_max_N);
-    b->check.path_max_m = b->lim.path_max_m;
-    if (b->commit_status != FS_OK) {
-        FS_JOB_EXIT(j);
-    }
-    FS_JOB_YIELD(j);
-    while (!skchk_run(&b->check, SLOTS_CHECK_STEPS_PER_TICK)) {
-        FS_JOB_YIELD(j);
-    }
-    b->commit_status = b->check.status; /* 222/223/225: slot unchanged */
-#endif
-    if (b->commit_status != FS_OK) {
-        FS_JOB_EXIT(j);
-    }
-    FS_JOB_YIELD(j);
     b->commit_stage = SLOTS_COMMIT_WRITE;
     (void)nvm_write_begin(&b->writer, &b->nvm, (uint16_t)(b->xfer_slot - 1u), b->image,
                           b->xfer_size); /* its argument errors end the write at once */

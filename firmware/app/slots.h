@@ -30,9 +30,11 @@ enum {
     SLOTS_COMMIT_PARAMS,    /* skchk_params_run, SLOTS_PARAMS_UNITS_PER_TICK units a slice,
                                then skchk_stiffness, skchk_begin */
     SLOTS_COMMIT_CONVERT,   /* the fixed-point build: the skill in fixed point,
-                               SLOTS_CONVERT_UNITS_PER_TICK units a slice, then dmpfx_check_begin */
-    SLOTS_COMMIT_CHECK,     /* the rollout, SLOTS_CHECK_STEPS_PER_TICK steps a slice (the
-                               fixed-point build: on the converted skill, dmpfx_check_run) */
+                               SLOTS_CONVERT_UNITS_PER_TICK units a slice (exec_store_run's
+                               first stage), then the rollout's begin */
+    SLOTS_COMMIT_CHECK,     /* the rollout, SLOTS_CHECK_STEPS_PER_TICK steps a slice
+                               (exec_store_run's last stage; the fixed-point build: on the
+                               converted skill) */
     SLOTS_COMMIT_WRITE,     /* the slot's flash record, SLOTS_FLASH_UNITS_PER_TICK units a
                                slice */
     SLOTS_COMMIT_SWAP       /* the checked skill (and its fixed-point model) into the slot's
@@ -65,7 +67,9 @@ typedef struct {
     skill_t staging;               /* validation target of a download */
     skill_parser_t parser;         /* the parse of staging, spread over ticks */
     skchk_params_t params;         /* parameter check of staging, spread over ticks */
-    skchk_t check;                 /* output check of staging, spread over ticks */
+    exec_store_prep_t prep;        /* staging prepared for the executor (its rollout checked),
+                                    * spread over ticks */
+    uint8_t prep_stage;            /* the preparation's stage (exec_store_stages) */
     nvm_writer_t writer;           /* the slot's flash write, spread over ticks */
     fs_job_t commit;               /* a download's commit (slots_committing): a slice a call */
     uint8_t commit_stage;          /* SLOTS_COMMIT_*: the commit's stage while it runs */
@@ -74,12 +78,9 @@ typedef struct {
     slots_limits_t lim;            /* the commit's limits, taken at its first slice */
     nvm_reader_t reader;           /* a read-back's record read and CRC, spread over ticks */
     bool reading;                  /* a read-back's RequestUpload is answered 0x78 meanwhile */
-#ifdef FS_EXEC_FIXED
-    dmpfx_model_t fx[SLOTS_N]; /* each valid slot's skill in fixed point: what an execution runs */
-    dmpfx_model_t staging_fx;  /* staging in fixed point (the commit's conversion) */
-    dmpfx_conv_t conv;         /* the conversion of staging, spread over ticks */
-    dmpfx_check_t fx_check;    /* the output check of staging_fx, spread over ticks */
-#endif
+    exec_store_t store[SLOTS_N];   /* each valid slot's skill prepared for the executor (the
+                                  * fixed-point build: its model, what an execution runs) */
+    exec_store_t staging_store;    /* staging prepared (the commit's) */
 } slots_t;
 
 /** Open storage on dev (NULL: none) and fill the cache from it; no transfer. */

@@ -42,6 +42,7 @@
 #define exec_render_step exec_render_step_fx
 #define exec_prep_parts exec_prep_parts_fx
 #define exec_prep_run exec_prep_run_fx
+#define exec_counts_edge exec_counts_edge_fx
 
 /* the operations of this layer (fs_exec.h includes them at its end) */
 #define EXEC_NUM_API "exec_num_fixed_api.h"

@@ -497,17 +497,29 @@ static inline fs_real_t exec_force_real(exec_nmeas_force_t f)
     return fx_to_float(f, 16u);
 }
 
-/** A sensor's position or velocity (m, m/s) in Q8.24, integer operations only: NaN or
- *  infinite -> INT32_MIN (not finite), finite values saturated to +-INT32_MAX. */
-static inline exec_nmeas_pos_t exec_meas_pos_n(fs_real_t v)
+/** A sensor value in Q(frac), integer operations only: NaN or infinite -> INT32_MIN (not
+ *  finite for the executor and the safety layer), finite values saturated to +-INT32_MAX. */
+static inline int32_t exec_num_q_of_real(fs_real_t v, unsigned frac)
 {
     uint32_t b;
     memcpy(&b, &v, sizeof b);
     if ((b & 0x7F800000u) == 0x7F800000u) {
         return INT32_MIN;
     }
-    const int32_t q = fx_from_float(v, 24u);
+    const int32_t q = fx_from_float(v, frac);
     return (q == INT32_MIN) ? INT32_MIN + 1 : q;
+}
+
+/** A sensor's position or velocity (m, m/s) in Q8.24 (exec_num_q_of_real). */
+static inline exec_nmeas_pos_t exec_meas_pos_n(fs_real_t v)
+{
+    return exec_num_q_of_real(v, 24u);
+}
+
+/** A sensor's force (N) in Q16.16 (exec_num_q_of_real). */
+static inline exec_nmeas_force_t exec_meas_force_n(fs_real_t v)
+{
+    return exec_num_q_of_real(v, 16u);
 }
 
 /** The estimator on a native position: exec_vel_update_q (dt as given to exec_vel_init). */
@@ -515,6 +527,264 @@ static inline exec_nmeas_pos_t exec_vel_step_n(exec_vel_t *v, exec_nmeas_pos_t p
 {
     (void)dt_s;
     return exec_vel_update_q(v, pos);
+}
+
+/* ---- the application's tick sample: the executor's and the safety layer's units ---- */
+
+/** The tick's sensors in the integer tick's formats (INT32_MIN: not finite), converted once a
+ *  tick, and this tick's request in Q16.16 (else the caller's float request is converted). */
+typedef struct {
+    exec_meas_q_t meas;               /* the executor's measurements */
+    exec_nmeas_force_t force_y;       /* the y axis's measured force */
+    exec_nmeas_force_t req[PFC_AXES]; /* the executor's command, when req_set */
+    uint8_t req_set;                  /* req holds this tick's request */
+} exec_sample_t;
+
+/** Read the tick's sample from the sensors and run the velocity estimate (integers); vel_mps
+ *  gets it as fs_real_t only if vel_real (the rendered drive computes in float). */
+static inline void exec_sample_read(exec_sample_t *s, const hal_sensors_t *sens,
+                                    exec_vel_t vel[PFC_AXES], fs_real_t vel_mps[PFC_AXES],
+                                    bool vel_real, fs_real_t dt_s)
+{
+    (void)dt_s;
+    for (unsigned a = 0; a < PFC_AXES; a++) {
+        s->meas.pos_q24[a] = exec_meas_pos_n(sens->pos_m[a]);
+        s->meas.vel_q24[a] = exec_vel_update_q(&vel[a], s->meas.pos_q24[a]);
+        if (vel_real) {
+            vel_mps[a] = fx_to_float(s->meas.vel_q24[a], 24u);
+        }
+    }
+    s->meas.force_contact_q16 = exec_meas_force_n(sens->force_contact_N[0]);
+    s->force_y = exec_meas_force_n(sens->force_contact_N[1]);
+    s->req_set = 0u;
+}
+
+/** Axis a's measured position of the sample (m, Q8.24). */
+static inline exec_nmeas_pos_t exec_sample_pos(const exec_sample_t *s, const hal_sensors_t *sens,
+                                               unsigned a)
+{
+    (void)sens;
+    return s->meas.pos_q24[a];
+}
+
+/** Axis a's velocity estimate of the sample (m/s, Q8.24). */
+static inline exec_nmeas_pos_t exec_sample_vel(const exec_sample_t *s,
+                                               const fs_real_t vel_mps[PFC_AXES], unsigned a)
+{
+    (void)vel_mps;
+    return s->meas.vel_q24[a];
+}
+
+/** Axis a's measured contact force of the sample (N, Q16.16). */
+static inline exec_nmeas_force_t exec_sample_force(const exec_sample_t *s,
+                                                   const hal_sensors_t *sens, unsigned a)
+{
+    (void)sens;
+    return (a == 0u) ? s->meas.force_contact_q16 : s->force_y;
+}
+
+/** Keep the executor's commands as this tick's request (no conversion). */
+static inline void exec_sample_request(exec_sample_t *s, const exec_out_n_t *out)
+{
+    s->req[0] = out->force_cmd_q16[0];
+    s->req[1] = out->force_cmd_q16[1];
+    s->req_set = 1u;
+}
+
+/** Forget this tick's request: req_N (the caller's) is the request again. */
+static inline void exec_sample_request_clear(exec_sample_t *s)
+{
+    s->req_set = 0u;
+}
+
+/** Axis a's request in the safety layer's units: the kept one, else req_N (0 stays 0). */
+static inline exec_nmeas_force_t exec_sample_req(const exec_sample_t *s, fs_real_t req_N,
+                                                 unsigned a)
+{
+    return (s->req_set != 0u) ? s->req[a] : (req_N == FS_R(0.0)) ? 0 : exec_meas_force_n(req_N);
+}
+
+/** exec_tick_n on the sample (integers only). */
+static inline fs_status_t exec_tick_sample(const exec_config_t *cfg, exec_state_t *st,
+                                           const exec_sample_t *s, const hal_sensors_t *sens,
+                                           const fs_real_t vel_mps[PFC_AXES], exec_out_n_t *out)
+{
+    (void)sens;
+    (void)vel_mps;
+    return exec_tick_q(cfg, st, &s->meas, out);
+}
+
+/** The output's f_hat in the layer's units (N, Q16.16). */
+static inline exec_nmeas_force_t exec_out_force_hat(const exec_out_n_t *out)
+{
+    return out->force_hat_q16;
+}
+
+/** Axis a's command as fs_real_t, for the rendered drive (software float on the M3). */
+static inline fs_real_t exec_out_cmd_real(const exec_out_n_t *out, unsigned a)
+{
+    return fx_to_float(out->force_cmd_q16[a], 16u);
+}
+
+/** Axis a's command as the caller's float request: 0 (the request is the sample's,
+ *  exec_sample_request). */
+static inline fs_real_t exec_out_cmd_req(const exec_out_n_t *out, unsigned a)
+{
+    (void)out;
+    (void)a;
+    return FS_R(0.0);
+}
+
+/* ---- telemetry counts from the layer's units ---- */
+
+/** The counts' constants: none (integer operations). */
+typedef struct {
+    uint8_t unused;
+} exec_counts_k_t;
+
+/** The counts' constants (exec_*_counts). */
+static inline exec_counts_k_t exec_counts_k(void)
+{
+    exec_counts_k_t k;
+    k.unused = 0u;
+    return k;
+}
+
+/** q in Q(frac) in counts of 1/per_unit, clamped to lo..hi, rounded half away from zero as the
+ *  float path rounds; INT32_MIN (not finite) -> 0 as NaN there. Integer operations only. */
+static inline int32_t exec_num_q_counts(int32_t q, unsigned frac, int64_t per_unit, int32_t lo,
+                                        int32_t hi)
+{
+    if (q == INT32_MIN) {
+        return 0;
+    }
+    const int64_t mag = (q < 0) ? -(int64_t)q : (int64_t)q;
+    int64_t c = (mag * per_unit + ((int64_t)1 << (frac - 1u))) >> frac;
+    c = (q < 0) ? -c : c;
+    return (c > (int64_t)hi) ? hi : ((c < (int64_t)lo) ? lo : (int32_t)c);
+}
+
+/** A position (Q8.24) in um, 24 bits. */
+static inline int32_t exec_pos_counts(exec_counts_k_t k, exec_nmeas_pos_t v)
+{
+    (void)k;
+    return exec_num_q_counts(v, 24u, 1000000, -8388608, 8388607);
+}
+
+/** A y position (Q8.24) in um, 23 bits. */
+static inline int32_t exec_pos_y_counts(exec_counts_k_t k, exec_nmeas_pos_t v)
+{
+    (void)k;
+    return exec_num_q_counts(v, 24u, 1000000, -4194304, 4194303);
+}
+
+/** A force (Q16.16) in 0.01 N, 16 bits. */
+static inline int16_t exec_force_counts(exec_counts_k_t k, exec_nmeas_force_t v)
+{
+    (void)k;
+    return (int16_t)exec_num_q_counts(v, 16u, 100, -32768, 32767);
+}
+
+/** A force given as fs_real_t in 0.01 N, 16 bits (its bits read: no float operation; NaN and
+ *  inf 0). */
+static inline int16_t exec_force_counts_real(exec_counts_k_t k, fs_real_t v)
+{
+    uint32_t b;
+    memcpy(&b, &v, sizeof b);
+    if ((b & 0x7F800000u) == 0x7F800000u) {
+        return 0;
+    }
+    const int32_t q = fx_from_float(v, 16u);
+    return exec_force_counts(k, (q == INT32_MIN) ? INT32_MIN + 1 : q);
+}
+
+/* ---- a skill prepared for the executor (the skill store's commit and load) ---- */
+
+/** What the executor needs of a stored skill beyond the skill itself: its model in fixed
+ *  point. */
+typedef dmpfx_model_t exec_store_t;
+
+/** Bytes of an exec_store_t a store copies with its skill. */
+static inline uint32_t exec_store_size(void)
+{
+    return (uint32_t)sizeof(exec_store_t);
+}
+
+/** The executor's model of a stored skill (exec_step_t.model_fx): the converted one. */
+static inline const exec_model_t *exec_store_model(const exec_store_t *store, const skill_t *sk)
+{
+    (void)sk;
+    return store;
+}
+
+/** A preparation in slices (a download's commit): the conversion, then the converted model's
+ *  rollout (the one the executor will run). */
+typedef struct {
+    dmpfx_conv_t conv;
+    dmpfx_check_t check;
+} exec_store_prep_t;
+
+/** Stages of the preparation, each begun and run in slices: the conversion, the rollout. */
+static inline uint32_t exec_store_stages(void)
+{
+    return 2u;
+}
+
+/** Begin stage k of preparing sk into store under the limits (dt, the x force's and the y path's
+ *  extent); the outcome is exec_store_status's once exec_store_run returned true. */
+static inline void exec_store_begin(exec_store_prep_t *p, uint32_t k, const skill_t *sk,
+                                    exec_store_t *store, fs_real_t dt_s, fs_real_t force_max_N,
+                                    fs_real_t path_max_m)
+{
+    if (k == 0u) {
+        dmpfx_bound_begin(&p->conv, &sk->dmp, store);
+    } else {
+        dmpfx_check_begin(&p->check, store, sk->dmp.duration_s, dt_s, force_max_N, path_max_m);
+    }
+}
+
+/** Up to units more of stage k (conversion units, rollout steps); true once it ended. */
+static inline bool exec_store_run(exec_store_prep_t *p, uint32_t k, uint32_t units)
+{
+    return (k == 0u) ? dmpfx_bound_run(&p->conv, units) : dmpfx_check_run(&p->check, units);
+}
+
+/** Stage k's outcome (3xx: the skill does not fit the fixed-point executor; 223/225/300: the
+ *  rollout leaves the limits or saturates). */
+static inline fs_status_t exec_store_status(const exec_store_prep_t *p, uint32_t k)
+{
+    return (k == 0u) ? p->conv.status : p->check.status;
+}
+
+/** The prepared skill's peak |f_hat| (N) and its y path's extent (m) at goal scale 1. */
+static inline fs_real_t exec_store_peak_N(const exec_store_prep_t *p)
+{
+    return dmpfx_check_peak_N(&p->check);
+}
+static inline fs_real_t exec_store_path_m(const exec_store_prep_t *p)
+{
+    return dmpfx_check_path_m(&p->check);
+}
+
+/** Prepare sk into store at once without limits (a store's load): its parameters, the
+ *  conversion and the converted model's rollout, *peak_N and *path_m its figures. */
+static inline fs_status_t exec_store_check(const skill_t *sk, exec_store_t *store, fs_real_t dt_s,
+                                           fs_real_t *peak_N, fs_real_t *path_m)
+{
+    fs_status_t st = skchk_params(sk);
+    if (st == FS_OK) {
+        st = dmpfx_from_model_bound(&sk->dmp, store);
+    }
+    if (st != FS_OK) {
+        return st;
+    }
+    dmpfx_check_t c;
+    dmpfx_check_begin(&c, store, sk->dmp.duration_s, dt_s, FS_R(1e30), FS_R(1e30));
+    while (!dmpfx_check_run(&c, UINT32_MAX)) {
+    }
+    *peak_N = dmpfx_check_peak_N(&c);
+    *path_m = dmpfx_check_path_m(&c);
+    return c.status;
 }
 
 #endif /* EXEC_NUM_FIXED_API_H */

@@ -449,4 +449,266 @@ static inline exec_nmeas_pos_t exec_vel_step_n(exec_vel_t *v, exec_nmeas_pos_t p
     return exec_vel_step(v, pos, dt_s);
 }
 
+/** A sensor's force (N) in the layer's units (here the same). */
+static inline exec_nmeas_force_t exec_meas_force_n(fs_real_t v)
+{
+    return v;
+}
+
+/* ---- the application's tick sample: the executor's and the safety layer's units ---- */
+
+/** The tick's sample beyond the sensors (hal_sensors_t) and the velocity estimate: none, the
+ *  real units are theirs. */
+typedef struct {
+    uint8_t unused;
+} exec_sample_t;
+
+/** Read the tick's sample: each axis's velocity estimate (exec_vel_step at dt_s) into vel_mps. */
+static inline void exec_sample_read(exec_sample_t *s, const hal_sensors_t *sens,
+                                    exec_vel_t vel[PFC_AXES], fs_real_t vel_mps[PFC_AXES],
+                                    bool vel_real, fs_real_t dt_s)
+{
+    (void)s;
+    (void)vel_real;
+    /* both axes written out: no loop in the tick */
+    vel_mps[0] = exec_vel_step(&vel[0], sens->pos_m[0], dt_s);
+    vel_mps[1] = exec_vel_step(&vel[1], sens->pos_m[1], dt_s);
+}
+
+/** Axis a's measured position of the sample (m). */
+static inline exec_nmeas_pos_t exec_sample_pos(const exec_sample_t *s, const hal_sensors_t *sens,
+                                               unsigned a)
+{
+    (void)s;
+    return sens->pos_m[a];
+}
+
+/** Axis a's velocity estimate of the sample (m/s). */
+static inline exec_nmeas_pos_t exec_sample_vel(const exec_sample_t *s,
+                                               const fs_real_t vel_mps[PFC_AXES], unsigned a)
+{
+    (void)s;
+    return vel_mps[a];
+}
+
+/** Axis a's measured contact force of the sample (N). */
+static inline exec_nmeas_force_t exec_sample_force(const exec_sample_t *s,
+                                                   const hal_sensors_t *sens, unsigned a)
+{
+    (void)s;
+    return sens->force_contact_N[a];
+}
+
+/** Keep the executor's commands as this tick's request: nothing (the caller's float request
+ *  is it, exec_out_cmd_req). */
+static inline void exec_sample_request(exec_sample_t *s, const exec_out_n_t *out)
+{
+    (void)s;
+    (void)out;
+}
+
+/** Forget this tick's request: nothing kept. */
+static inline void exec_sample_request_clear(exec_sample_t *s)
+{
+    (void)s;
+}
+
+/** Axis a's request in the safety layer's units: req_N. */
+static inline exec_nmeas_force_t exec_sample_req(const exec_sample_t *s, fs_real_t req_N,
+                                                 unsigned a)
+{
+    (void)s;
+    (void)a;
+    return req_N;
+}
+
+/** exec_tick on the sample: the sensors and the velocity estimate. */
+static inline fs_status_t exec_tick_sample(const exec_config_t *cfg, exec_state_t *st,
+                                           const exec_sample_t *s, const hal_sensors_t *sens,
+                                           const fs_real_t vel_mps[PFC_AXES], exec_out_n_t *out)
+{
+    (void)s;
+    exec_meas_t m;
+    m.pos_m[0] = sens->pos_m[0];
+    m.pos_m[1] = sens->pos_m[1];
+    m.vel_mps[0] = vel_mps[0];
+    m.vel_mps[1] = vel_mps[1];
+    m.force_contact_N = sens->force_contact_N[0];
+    return exec_tick(cfg, st, &m, out);
+}
+
+/** The output's f_hat in the layer's units (N). */
+static inline exec_nmeas_force_t exec_out_force_hat(const exec_out_n_t *out)
+{
+    return out->force_hat_N;
+}
+
+/** Axis a's command as fs_real_t (the rendered drive's). */
+static inline fs_real_t exec_out_cmd_real(const exec_out_n_t *out, unsigned a)
+{
+    return out->force_cmd_N[a];
+}
+
+/** Axis a's command as the caller's float request. */
+static inline fs_real_t exec_out_cmd_req(const exec_out_n_t *out, unsigned a)
+{
+    return out->force_cmd_N[a];
+}
+
+/* ---- telemetry counts from the layer's units ---- */
+
+/** A constant as an opaque register value on the M4F: GCC otherwise loads the conversions'
+ *  scales and bounds from the literal pool at each of the tick's six. */
+static inline fs_real_t exec_num_reg(fs_real_t k)
+{
+#if defined(__GNUC__) && defined(__arm__) && defined(__ARM_FP) && defined(FS_REAL_FLOAT)
+    __asm__("" : "+t"(k));
+#endif
+    return k;
+}
+
+/** The counts' scales, their bounds hi (as reals) and 0.5, each once in a register. */
+typedef struct {
+    fs_real_t pos_scale, pos_hi, pos_y_hi, force_scale, force_hi, half;
+} exec_counts_k_t;
+
+/** The counts' constants (exec_*_counts): taken once before a frame's conversions. */
+static inline exec_counts_k_t exec_counts_k(void)
+{
+    exec_counts_k_t k;
+    k.pos_scale = exec_num_reg(FS_R(1e-6));
+    k.pos_hi = exec_num_reg((fs_real_t)8388607);
+    k.pos_y_hi = exec_num_reg((fs_real_t)4194303);
+    k.force_scale = exec_num_reg(FS_R(0.01));
+    k.force_hi = exec_num_reg((fs_real_t)32767);
+    k.half = exec_num_reg(FS_R(0.5));
+    return k;
+}
+
+/** v / scale in counts, clamped to lo..hi (lo = -hi - 1, hi_r = hi), rounded half away from
+ *  zero; NaN and inf 0. Inline: a frame's conversions share their constants. */
+static inline int32_t exec_num_counts(fs_real_t v, fs_real_t scale, fs_real_t hi_r, fs_real_t half,
+                                      int32_t lo, int32_t hi)
+{
+    const fs_real_t r = v / scale;
+    const fs_real_t a = fs_fabs(r);
+    if (a < hi_r) { /* |r| < hi: in range (NaN fails), the usual value */
+        /* |r| + 0.5 truncated, the sign put back: r -+ 0.5 truncated (rounding is symmetric) */
+        const int32_t n = (int32_t)(a + half);
+        return (r < FS_R(0.0)) ? -n : n;
+    }
+    return exec_counts_edge(v, r, lo, hi);
+}
+
+/** A position (m) in um, 24 bits. */
+static inline int32_t exec_pos_counts(exec_counts_k_t k, exec_nmeas_pos_t v)
+{
+    return exec_num_counts(v, k.pos_scale, k.pos_hi, k.half, -8388608, 8388607);
+}
+
+/** A y position (m) in um, 23 bits (+-4.19 m, beyond the sensor's range). */
+static inline int32_t exec_pos_y_counts(exec_counts_k_t k, exec_nmeas_pos_t v)
+{
+    return exec_num_counts(v, k.pos_scale, k.pos_y_hi, k.half, -4194304, 4194303);
+}
+
+/** A force (N) in 0.01 N, 16 bits. */
+static inline int16_t exec_force_counts(exec_counts_k_t k, exec_nmeas_force_t v)
+{
+    return (int16_t)exec_num_counts(v, k.force_scale, k.force_hi, k.half, -32768, 32767);
+}
+
+/** A force given as fs_real_t in 0.01 N, 16 bits (exec_force_counts). */
+static inline int16_t exec_force_counts_real(exec_counts_k_t k, fs_real_t v)
+{
+    return exec_force_counts(k, v);
+}
+
+/* ---- a skill prepared for the executor (the skill store's commit and load) ---- */
+
+/** What the executor needs of a stored skill beyond the skill itself: nothing. */
+typedef struct {
+    uint8_t unused;
+} exec_store_t;
+
+/** Bytes of an exec_store_t a store copies with its skill: none. */
+static inline uint32_t exec_store_size(void)
+{
+    return 0u;
+}
+
+/** The executor's model of a stored skill sk (exec_step_t.model_fx): the skill's own. */
+static inline const exec_model_t *exec_store_model(const exec_store_t *store, const skill_t *sk)
+{
+    (void)store;
+    return &sk->dmp;
+}
+
+/** A preparation in slices (a download's commit): the skill's own rollout (skchk_run). */
+typedef struct {
+    skchk_t check;
+} exec_store_prep_t;
+
+/** Stages of the preparation, each begun and run in slices: the rollout. */
+static inline uint32_t exec_store_stages(void)
+{
+    return 1u;
+}
+
+/** Begin stage k of preparing sk into store under the limits (dt, the x force's and the y path's
+ *  extent); the outcome is exec_store_status's once exec_store_run returned true. */
+static inline void exec_store_begin(exec_store_prep_t *p, uint32_t k, const skill_t *sk,
+                                    exec_store_t *store, fs_real_t dt_s, fs_real_t force_max_N,
+                                    fs_real_t path_max_m)
+{
+    (void)k;
+    (void)store;
+    skchk_begin(&p->check, sk, dt_s, force_max_N);
+    p->check.path_max_m = path_max_m;
+}
+
+/** Up to units more of stage k (rollout steps); true once it ended. */
+static inline bool exec_store_run(exec_store_prep_t *p, uint32_t k, uint32_t units)
+{
+    (void)k;
+    return skchk_run(&p->check, units);
+}
+
+/** Stage k's outcome (222/223/225: the rollout leaves the limits). */
+static inline fs_status_t exec_store_status(const exec_store_prep_t *p, uint32_t k)
+{
+    (void)k;
+    return p->check.status;
+}
+
+/** The prepared skill's peak |f_hat| (N) and its y path's extent (m) at goal scale 1. */
+static inline fs_real_t exec_store_peak_N(const exec_store_prep_t *p)
+{
+    return p->check.peak_N;
+}
+static inline fs_real_t exec_store_path_m(const exec_store_prep_t *p)
+{
+    return p->check.path_peak_m;
+}
+
+/** Prepare sk into store at once without limits (a store's load): its parameters and rollout,
+ *  *peak_N and *path_m its figures. */
+static inline fs_status_t exec_store_check(const skill_t *sk, exec_store_t *store, fs_real_t dt_s,
+                                           fs_real_t *peak_N, fs_real_t *path_m)
+{
+    (void)store;
+    const fs_status_t st = skchk_params(sk);
+    if (st != FS_OK) {
+        return st;
+    }
+    skchk_t c;
+    skchk_begin(&c, sk, dt_s, FS_R(1e30));
+    c.path_max_m = FS_R(1e30);
+    while (!skchk_run(&c, UINT32_MAX)) {
+    }
+    *peak_N = c.peak_N;
+    *path_m = c.path_peak_m;
+    return c.status;
+}
+
 #endif /* EXEC_NUM_REAL_API_H */

@@ -519,3 +519,15 @@ fs_real_t exec_render_step(const exec_render_cfg_t *cfg, exec_render_t *r, fs_re
     }
     return f;
 }
+
+EXEC_COLD int32_t exec_counts_edge(fs_real_t v, fs_real_t r, int32_t lo, int32_t hi)
+{
+    if (!(r > (fs_real_t)lo && r < (fs_real_t)hi)) { /* out of range, or NaN/inf (v or r) */
+        if (!fs_isfinite(v)) {
+            return 0;
+        }
+        return (r >= (fs_real_t)hi) ? hi : lo;
+    }
+    /* round half away from zero, as cantools --use-round (roundf) does */
+    return (int32_t)(r < FS_R(0.0) ? r - FS_R(0.5) : r + FS_R(0.5));
+}

@@ -45,8 +45,10 @@
 #include "dmp.h"
 #include "fs_real.h"
 #include "fs_status.h"
+#include "hal.h"
 #include "pfc.h"
 #include "skill.h"
+#include "skill_check.h"
 
 #define EXEC_MAX_STEPS 8u
 
@@ -348,6 +350,17 @@ static inline uint32_t exec_step_ticks(const exec_step_t *s, fs_real_t dt_s)
                ? EXEC_TICKS_MAX
                : exec_ticks(exec_step_duration(s), dt_s);
 }
+
+/* A path a caller rarely takes (a telemetry count's edge case): out of its hot code. */
+#if defined(__GNUC__)
+#define EXEC_COLD __attribute__((cold))
+#else
+#define EXEC_COLD
+#endif
+
+/** A telemetry count's edge (the real layer's exec_*_counts): r = v / scale with |r| >= hi or
+ *  NaN: clamped to lo..hi, NaN and inf 0, or rounded half away from zero (lo < r <= -hi). */
+EXEC_COLD int32_t exec_counts_edge(fs_real_t v, fs_real_t r, int32_t lo, int32_t hi);
 
 /* the layer's operations (fs_exec.c's tick is written over them) and its native API */
 #include EXEC_NUM_API

@@ -71,7 +71,7 @@ static void start_press(void)
     const uint32_t len = tv_read("press_n50_lwr_hold.skill", image, sizeof image);
     assert_true(len > 0u);
     assert_int_equal(skill_parse(image, len, &app.slots.skill[0]), FS_OK);
-    assert_int_equal(dmpfx_from_model_bound(&app.slots.skill[0].dmp, &app.slots.fx[0]), FS_OK);
+    assert_int_equal(dmpfx_from_model_bound(&app.slots.skill[0].dmp, &app.slots.store[0]), FS_OK);
     app.slots.valid[0] = true;
     app.slots.peak_N[0] = 4.84f;
     app.slots.path_m[0] = 0.0f;
@@ -131,7 +131,7 @@ static void test_a_saturated_dmp_step_faults_the_run(void **state)
 }
 
 /* The float64 reference of a telemetry value: v / unit rounded half away from zero, clamped;
- * NaN or infinite -> 0 (the float builds' clamp_i32, in double). */
+ * NaN or infinite -> 0 (the float builds' exec_num_counts, in double). */
 static long ref_counts(float v, double unit, long lo, long hi)
 {
     if (!isfinite(v)) {
