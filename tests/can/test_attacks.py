@@ -310,16 +310,17 @@ def test_a_flood_neither_stops_a_run_nor_delays_the_silence_stop(loaded):
 def test_a_genuine_run_completes_under_a_flood_with_its_accuracy(loaded, capsys, tmp_path):
     """`forceskill run` of the slot's skill to its end, once on a quiet bus and once beside 3,000
     forged frames a second from another node: both complete (exit 0) and the flood's run tracks
-    the reference as well (max error within 1 point of the quiet run's)."""
+    the reference as well: RMS error within 0.5 point of the quiet run's, max within 1.5 (the max
+    is one sample of the telemetry, which shares the flooded bus: one late frame moves it)."""
 
-    def run() -> float:
+    def run() -> tuple[float, float]:
         capsys.readouterr()
         rc = cli.main(["run", "--slot", "1", "--end", "release", *loaded.bus_args()])
         out = capsys.readouterr().out
         assert rc == 0, out
-        m = re.search(r"max ([0-9.]+) %", out)
+        m = re.search(r"force tracking: max ([0-9.]+) %, RMS ([0-9.]+) %", out)
         assert m, out
-        return float(m.group(1))
+        return float(m.group(1)), float(m.group(2))
 
     assert cli.main(["status", "--clear", *loaded.bus_args()]) in (0, 2)  # the test before faulted
     quiet = run()
@@ -334,5 +335,8 @@ def test_a_genuine_run_completes_under_a_flood_with_its_accuracy(loaded, capsys,
         node.kill()
         node.wait()
         a.close()
-    print(f"force tracking max: {quiet:.2f} % quiet, {flooded:.2f} % beside the flood")
-    assert flooded <= quiet + 1.0, (quiet, flooded)
+    print(
+        f"force tracking max / RMS: {quiet[0]:.2f} / {quiet[1]:.2f} % quiet, "
+        f"{flooded[0]:.2f} / {flooded[1]:.2f} % beside the flood"
+    )
+    assert flooded[1] <= quiet[1] + 0.5 and flooded[0] <= quiet[0] + 1.5, (quiet, flooded)
