@@ -282,18 +282,8 @@ static void unlock(uint8_t session, uint8_t level, bool right_key)
 /* RequestDownload to addr, TransferData in blocks of blk, RequestTransferExit unless cut. */
 static void download(uint32_t addr, const uint8_t *d, uint32_t len, uint32_t blk, bool cut)
 {
-    uint8_t rd[11] = {0x34u,
-                      0x00u,
-                      0x44u,
-                      (uint8_t)(addr >> 24),
-                      (uint8_t)(addr >> 16),
-                      (uint8_t)(addr >> 8),
-                      (uint8_t)addr,
-                      (uint8_t)(len >> 24),
-                      (uint8_t)(len >> 16),
-                      (uint8_t)(len >> 8),
-                      (uint8_t)len};
-    if (!uds(rd, 11u) || resp[0] != 0x74u) {
+    uint8_t rd[UDS_REQ_DOWNLOAD_LEN];
+    if (!uds(rd, uds_request_download(rd, addr, len)) || resp[0] != 0x74u) {
         return;
     }
     static uint8_t td[UDS_MAX_BLOCK_LENGTH];

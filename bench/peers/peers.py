@@ -44,31 +44,20 @@ def mp_step_ns(dmp: Any, n_steps: int, step_function: str) -> float:
     y = np.copy(dmp.start_y)
     yd = np.zeros_like(y)
     step = dmp.step
-    gc_was = gc.isenabled()
-    gc.disable()
-    try:
-        t0 = time.perf_counter_ns()
+
+    def loop() -> None:
+        nonlocal y, yd
         for _ in range(n_steps):
             y, yd = step(y, yd, step_function=step_function)
-        t1 = time.perf_counter_ns()
-    finally:
-        if gc_was:
-            gc.enable()
-    return (t1 - t0) / n_steps
+
+    return gc_off_ns(loop) / n_steps
 
 
 def mp_open_loop_ns(dmp: Any, step_function: str, run_t: float | None = None) -> float:
     """ns per step of DMP.open_loop(step_function) (the call movement_primitives' benchmarks time)."""
-    gc_was = gc.isenabled()
-    gc.disable()
-    try:
-        t0 = time.perf_counter_ns()
-        t, _ = dmp.open_loop(run_t=run_t, step_function=step_function)
-        t1 = time.perf_counter_ns()
-    finally:
-        if gc_was:
-            gc.enable()
-    return (t1 - t0) / (len(t) - 1)
+    steps = []
+    ns = gc_off_ns(lambda: steps.append(len(dmp.open_loop(run_t=run_t, step_function=step_function)[0]) - 1))
+    return ns / steps[0]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -87,17 +76,12 @@ def pydmps_step_ns(dmp: Any, n_steps: int) -> float:
     """ns per DMPs.step() over n_steps ticks from the start."""
     dmp.reset_state()
     step = dmp.step
-    gc_was = gc.isenabled()
-    gc.disable()
-    try:
-        t0 = time.perf_counter_ns()
+
+    def loop() -> None:
         for _ in range(n_steps):
             step()
-        t1 = time.perf_counter_ns()
-    finally:
-        if gc_was:
-            gc.enable()
-    return (t1 - t0) / n_steps
+
+    return gc_off_ns(loop) / n_steps
 
 
 # ---------------------------------------------------------------------------------------------
@@ -105,16 +89,20 @@ def pydmps_step_ns(dmp: Any, n_steps: int) -> float:
 def time_ms(fn: Callable[[], Any]) -> float:
     """Wall time of one call in ms (garbage collector off during the call)."""
     gc.collect()
+    return gc_off_ns(fn) / 1e6
+
+
+def gc_off_ns(fn: Callable[[], Any]) -> int:
+    """Wall time of one call in ns with the garbage collector off during it (as timeit does)."""
     gc_was = gc.isenabled()
     gc.disable()
     try:
         t0 = time.perf_counter_ns()
         fn()
-        t1 = time.perf_counter_ns()
+        return time.perf_counter_ns() - t0
     finally:
         if gc_was:
             gc.enable()
-    return (t1 - t0) / 1e6
 
 
 def peak_kib(fn: Callable[[], Any]) -> float:

@@ -583,21 +583,29 @@ fs_real_t dmp_periodic_blend_full(const dmp_model_t *m, fs_real_t x_turns)
     return num / den;
 }
 
+/* A periodic step's coefficients: the law's, its phase increment and the scaled amplitude. */
+static inline dmp_ptick_coef_t dmp_pcoef(const dmp_model_t *m, const dmp_tick_coef_t *c,
+                                         fs_real_t amplitude_scale)
+{
+    const dmp_ptick_coef_t pc = {.k1 = c->k1,
+                                 .k_alpha = c->k_alpha,
+                                 .k_alphabeta = c->k_alphabeta,
+                                 .k_gamma = c->k_gamma,
+                                 .phase_inc = fs_num_turn_inc(c->k1 / DMP_TWO_PI),
+                                 .goal = c->goal,
+                                 .amplitude = amplitude_scale * m->amplitude_N,
+                                 .out_scale = FS_R(1.0),
+                                 .term_y = c->term_y};
+    return pc;
+}
+
 fs_real_t dmp_periodic_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
                             fs_real_t amplitude_scale, const dmp_coupling_t *coupling)
 {
     const dmp_ptick_state_t st = {s->window, &s->u, &s->u_comp, &s->y_N, &s->z, &s->integral_y};
     const fs_real_t s_blend = dmp_ptick_state_blend(m, &st);
     const dmp_tick_coef_t c = dmp_coef(m, run, coupling);
-    const dmp_ptick_coef_t pc = {.k1 = c.k1,
-                                 .k_alpha = c.k_alpha,
-                                 .k_alphabeta = c.k_alphabeta,
-                                 .k_gamma = c.k_gamma,
-                                 .phase_inc = fs_num_turn_inc(c.k1 / DMP_TWO_PI),
-                                 .goal = c.goal,
-                                 .amplitude = amplitude_scale * m->amplitude_N,
-                                 .out_scale = FS_R(1.0),
-                                 .term_y = c.term_y};
+    const dmp_ptick_coef_t pc = dmp_pcoef(m, &c, amplitude_scale);
     return m->force0_N + dmp_ptick_step(m, &pc, &st, s_blend, NULL);
 }
 
@@ -615,15 +623,7 @@ fs_real_t dmp_periodic_step_xy(const dmp_model_t *m, dmp_state_t *s, const dmp_r
     fs_real_t s_y = FS_R(0.0);
     const fs_real_t s_blend = dmp_ptick_state_blend2(m, &st, m->y_weight, &s_y);
     const dmp_tick_coef_t c = dmp_coef(m, run, coupling);
-    const dmp_ptick_coef_t pc = {.k1 = c.k1,
-                                 .k_alpha = c.k_alpha,
-                                 .k_alphabeta = c.k_alphabeta,
-                                 .k_gamma = c.k_gamma,
-                                 .phase_inc = fs_num_turn_inc(c.k1 / DMP_TWO_PI),
-                                 .goal = c.goal,
-                                 .amplitude = amplitude_scale * m->amplitude_N,
-                                 .out_scale = FS_R(1.0),
-                                 .term_y = c.term_y};
+    const dmp_ptick_coef_t pc = dmp_pcoef(m, &c, amplitude_scale);
     const dmp_tick_path_coef_t cp = {.k1 = c.k1,
                                      .k_alpha = c.k_alpha,
                                      .k_alphabeta = c.k_alpha * m->beta_y,

@@ -165,4 +165,19 @@ static inline bool uds_server_session_expired(const uds_server_t *srv, uint32_t 
            (uint32_t)(now_ms - srv->last_request_ms) > UDS_S3_MS;
 }
 
+/** A tester's RequestDownload of size bytes to addr (no compression or encryption, a 4-byte
+ *  address and size) into out; returns its length, UDS_REQ_DOWNLOAD_LEN. */
+#define UDS_REQ_DOWNLOAD_LEN 11u
+static inline uint16_t uds_request_download(uint8_t out[UDS_REQ_DOWNLOAD_LEN], uint32_t addr, uint32_t size)
+{
+    out[0] = UDS_SID_REQ_DOWNLOAD;
+    out[1] = 0x00u;
+    out[2] = 0x44u;
+    for (uint32_t i = 0u; i < 4u; i++) {
+        out[3u + i] = (uint8_t)(addr >> (24u - 8u * i));
+        out[7u + i] = (uint8_t)(size >> (24u - 8u * i));
+    }
+    return (uint16_t)UDS_REQ_DOWNLOAD_LEN;
+}
+
 #endif /* UDS_H */

@@ -277,18 +277,8 @@ uint8_t rig_uds_download_to(rig_t *r, uint32_t addr, const uint8_t *img, uint32_
 {
     static uint8_t buf[ISOTP_MAX_PAYLOAD];
     uint8_t resp[64];
-    uint8_t rd[11] = {UDS_SID_REQ_DOWNLOAD,
-                      0x00u,
-                      0x44u,
-                      (uint8_t)(addr >> 24),
-                      (uint8_t)(addr >> 16),
-                      (uint8_t)(addr >> 8),
-                      (uint8_t)addr,
-                      (uint8_t)(len >> 24),
-                      (uint8_t)(len >> 16),
-                      (uint8_t)(len >> 8),
-                      (uint8_t)len};
-    uint16_t n = rig_uds(r, rd, (uint16_t)sizeof rd, resp, sizeof resp, 500u);
+    uint8_t rd[UDS_REQ_DOWNLOAD_LEN];
+    uint16_t n = rig_uds(r, rd, uds_request_download(rd, addr, len), resp, sizeof resp, 500u);
     if (n == 0u) {
         return 0xFFu;
     }

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
@@ -116,20 +117,14 @@ def rollout(
 
 
 def loss_window(
-    skill: Skill,
-    n_steps: int,
-    t_lost_s: tuple[float, float],
-    threshold_N: float | None = None,
-    tau_s: float | None = None,
-    goal_scale: float = 1.0,
-    time_scale: float = 1.0,
-    amplitude_scale: float = 1.0,
+    skill: Skill, n_steps: int, t_lost_s: tuple[float, float], *options: Any, **named: Any
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
     """``rollout`` against a contact that tracks the reference (f_contact = the previous tick's
-    f_hat) but for the window t_lost_s = [start, end) where it is 0 (the surface gone)."""
+    f_hat) but for the window t_lost_s = [start, end) where it is 0 (the surface gone); the
+    contact wait and the scales (threshold_N, tau_s, goal_scale, ...) as ``rollout`` takes them."""
     dt = skill.dt_s
 
     def measure(j: int, f_prev: float) -> float:
         return 0.0 if t_lost_s[0] <= j * dt < t_lost_s[1] else f_prev
 
-    return rollout(skill, measure, n_steps, threshold_N, tau_s, goal_scale, time_scale, amplitude_scale)
+    return rollout(skill, measure, n_steps, *options, **named)

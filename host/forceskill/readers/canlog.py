@@ -20,6 +20,7 @@ refuses such a log by name.
 from __future__ import annotations
 
 import gzip
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -226,19 +227,24 @@ def _demonstration(a: np.ndarray, leave_idx: np.ndarray, name: str) -> tuple[int
             groups.append([int(s), int(e)])
         else:
             groups[-1][1] = int(e)
-    notes = []
-    if len(groups) > 1:
-        lengths = [(a[e - 1, 0] - a[s, 0]) * TICK_S for s, e in groups]
-        k = int(np.argmax(lengths))
-        spans = ", ".join(
-            f"{(a[s, 0] - a[0, 0]) * TICK_S:.3f}-{(a[e - 1, 0] - a[0, 0]) * TICK_S:.3f} s" for s, e in groups
-        )
-        notes.append(
-            f"{name} holds {len(groups)} demonstrations (log time {spans}): using the longest, "
-            f"number {k + 1} ({lengths[k]:.3f} s)"
-        )
-        return groups[k][0], groups[k][1], notes
-    return groups[0][0], groups[0][1], notes
+    return _longest(a, groups, name)
+
+
+def _longest(a: np.ndarray, groups: Sequence[Sequence[int]], name: str) -> tuple[int, int, list[str]]:
+    """The longest of the demonstrations' row ranges ``groups`` in telemetry rows ``a`` (unwrapped
+    tick first), with a note naming them all when there are several."""
+    if len(groups) == 1:
+        return int(groups[0][0]), int(groups[0][1]), []
+    lengths = [(a[e - 1, 0] - a[s, 0]) * TICK_S for s, e in groups]
+    k = int(np.argmax(lengths))
+    spans = ", ".join(
+        f"{(a[s, 0] - a[0, 0]) * TICK_S:.3f}-{(a[e - 1, 0] - a[0, 0]) * TICK_S:.3f} s" for s, e in groups
+    )
+    note = (
+        f"{name} holds {len(groups)} demonstrations (log time {spans}): using the longest, "
+        f"number {k + 1} ({lengths[k]:.3f} s)"
+    )
+    return int(groups[k][0]), int(groups[k][1]), [note]
 
 
 def _teach_by_status(a: np.ndarray, status: np.ndarray, name: str) -> tuple[int, int, list[str]] | None:
@@ -278,16 +284,4 @@ def _teach_by_status(a: np.ndarray, status: np.ndarray, name: str) -> tuple[int,
             groups.append((s, e))
     if not groups:
         raise DemoError(ERR_LINK_LOG, f"no telemetry while the device was in TEACH in {name}")
-    notes = []
-    if len(groups) > 1:
-        lengths = [(a[e - 1, 0] - a[s, 0]) * TICK_S for s, e in groups]
-        k = int(np.argmax(lengths))
-        spans = ", ".join(
-            f"{(a[s, 0] - a[0, 0]) * TICK_S:.3f}-{(a[e - 1, 0] - a[0, 0]) * TICK_S:.3f} s" for s, e in groups
-        )
-        notes.append(
-            f"{name} holds {len(groups)} demonstrations (log time {spans}): using the longest, "
-            f"number {k + 1} ({lengths[k]:.3f} s)"
-        )
-        return groups[k][0], groups[k][1], notes
-    return groups[0][0], groups[0][1], notes
+    return _longest(a, groups, name)
