@@ -240,3 +240,31 @@ def test_lockstep_run_moves_the_surface_away_as_the_scenario_says(
     assert np.array_equal(f_away[before], f_plain[before])
     assert np.max(np.abs(f_away[lost])) < 0.1 and np.min(f_plain[lost]) > 1.0
     assert np.min(f_away[back]) > 1.0
+
+
+def test_a_skill_unstable_on_the_object_is_warned_before_it_runs(
+    hil_sim: Path, scenarios: Path, tmp_path: Path
+) -> None:
+    """The pressing task's 10 kg object: a skill fitted with the default force gains feeds back its
+    inertia (warned, then fault 508 within a second of contact, as the warning says); fitted with
+    --object-mass 10 it runs without a warning or a fault."""
+    from forceskill import cli
+
+    demo = tmp_path / "demo.csv"
+    ok(hil_sim, scenarios / "pressing_task1_demo.toml", "-o", demo)
+    for mass in (None, "10"):
+        skill = tmp_path / f"press_{mass}.skill"
+        extra = [] if mass is None else ["--object-mass", mass]
+        fit = ["fit", str(demo), "--stiffness", "100", "--surface-m", "0.001", "--end", "release"]
+        assert cli.main([*fit, *extra, "-o", str(skill)]) == 0
+        log = tmp_path / f"exec_{mass}.csv"
+        r = run(hil_sim, "run", scenarios / "pressing_task1_exec.toml", "--skill", skill, "-o", log)
+        assert r.returncode == 0, r.stderr
+        s = json.loads(log.with_suffix(".summary.json").read_text())
+        if mass is None:
+            assert "unstable on this scenario's 10 kg object" in r.stderr, r.stderr
+            assert "--object-mass 10" in r.stderr
+            assert s["fault_code"] == 508 and s["fault_s"] < 1.0
+        else:
+            assert "warning" not in r.stderr, r.stderr
+            assert s["fault_code"] == 0 and s["tracking_max_pct"] < 5.0
