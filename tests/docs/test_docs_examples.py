@@ -9,7 +9,8 @@ to the checkout's (so the documented first steps, ``.venv/bin/python tests/helpe
 .`` and ``hil_sim run hil_sim/scenarios/...``, make the inputs there) and ``forceskill`` and
 ``hil_sim`` are on PATH. ``-i socketcan -c can0`` stands for the reader's bus: it is replaced by
 the options of a simulator this test starts for the document (``hil_sim serve`` on the pressing
-scenario, socketcand), one for all its examples.
+scenario, socketcand), one for all its examples; a block preceded by ``<!-- bus: SCENARIO.toml -->``
+talks to one on that scenario of ``hil_sim/scenarios`` (one simulator per scenario and document).
 
 A shell example that is not a transcript (a block tagged ``sh``, ``bash`` or ``shell``, or an
 untagged one holding a command) must say why on the line just above its fence:
@@ -46,6 +47,9 @@ NOT_RUN = ("synopsis", "hardware", "vm", "long", "setup")
 SHELL_TAGS = ("sh", "bash", "shell", "console")
 DOCS = ["README.md", *sorted(str(p.relative_to(REPO)) for p in (REPO / "docs").glob("*.md"))]
 _NOT_RUN_RE = re.compile(r"<!-- not run: (\w+)(?::[^>]*)? -->")
+_BUS_RE = re.compile(r"<!-- bus: ([\w.-]+\.toml) -->")
+#: The simulator's scenario behind a transcript's bus unless its block names another.
+BUS_SCENARIO = "pressing_task1_demo.toml"
 # An untagged block holds a command when a line starts with a prompt, a program the docs use, a
 # path to one, or a variable assignment before one.
 _COMMAND_RE = re.compile(
@@ -105,6 +109,7 @@ class Step:
     cmd: str
     expected: list[str]
     where: str
+    scenario: str = BUS_SCENARIO  # of the simulator behind BUS
 
 
 def transcript(text: str, name: str) -> list[Step]:
@@ -114,9 +119,11 @@ def transcript(text: str, name: str) -> list[Step]:
         if b.tag != "console":
             continue
         first = len(steps)
+        bus = _BUS_RE.fullmatch(b.above)
+        scenario = bus.group(1) if bus else BUS_SCENARIO
         for i, body in enumerate(b.body):
             if body.startswith("$ "):
-                steps.append(Step(body[2:], [], f"{name}:{b.line + 1 + i}"))
+                steps.append(Step(body[2:], [], f"{name}:{b.line + 1 + i}", scenario))
             elif len(steps) > first:
                 steps[-1].expected.append(body)
     return steps
@@ -143,6 +150,8 @@ def test_matching_conventions() -> None:
     assert matches([], "")
     steps = transcript("```sh\n$ no\n```\n```console\n$ one\nout\n...\n$ two\n```\n", "t")
     assert [(s.cmd, s.expected) for s in steps] == [("one", ["out", "..."]), ("two", [])]
+    steps = transcript("```console\n$ a\n```\n<!-- bus: other.toml -->\n```console\n$ b\n```\n", "t")
+    assert [(s.cmd, s.scenario) for s in steps] == [("a", BUS_SCENARIO), ("b", "other.toml")]
     text = "a\n<!-- not run: vm -->\n```sh\nsudo ip link\n```\n```\nf = k*x\n```\n```\nninja -C build\n```\n"
     bs = blocks(text)
     assert [(b.tag, is_shell(b), not_run_reason(b)) for b in bs] == [
@@ -165,14 +174,14 @@ def _run(steps: list[Step], ws: Path) -> list[str]:
     env["PYTHONUNBUFFERED"] = "1"  # stdout and stderr in the order printed
     env["FORCESKILL_HIL_SIM"] = str(hil_sim_path())
     failures = []
-    server: Server | None = None  # one simulator for the document, started by its first bus example
+    servers: dict[str, Server] = {}  # a simulator per scenario, started by its first bus example
     try:
         for st in steps:
             cmd = st.cmd
             if BUS in cmd:
-                if server is None:
-                    server = Server(SCENARIOS / "pressing_task1_demo.toml")
-                cmd = cmd.replace(BUS, " ".join(server.bus_args()))
+                if st.scenario not in servers:
+                    servers[st.scenario] = Server(SCENARIOS / st.scenario)
+                cmd = cmd.replace(BUS, " ".join(servers[st.scenario].bus_args()))
             try:
                 r = subprocess.run(
                     ["bash", "-c", cmd],
@@ -196,7 +205,7 @@ def _run(steps: list[Step], ws: Path) -> list[str]:
                     + "".join(f"    {ln}\n" for ln in r.stdout.splitlines())
                 )
     finally:
-        if server is not None:
+        for server in servers.values():
             server.stop()
     return failures
 
