@@ -35,6 +35,10 @@
 #        actuator write, hal_actuator_force)
 #      softfloat_in_app_tick target=T state=S helpers=N calls= instructions=[: names]  (libgcc's
 #        __aeabi_d*/__aeabi_f*, __addsf3 & co. executed inside app_tick: none expected on the M4F)
+#      uds_answer_ms target=T request=NAME n= median= max=   (bench/qemu/pil_session.py: each UDS
+#        request that starts long work, sent to final response, ms of device time: security_key,
+#        skill_transfer_exit (the commit), read_back_block, firmware_request_download (the erase),
+#        firmware_block, firmware_transfer_exit (the verification), routine_start_RRRR)
 #      qemu_tick_duration target=T seconds=S
 #    --profile: then, per state, the top functions of its worst and of its smallest tick
 #    (bench/qemu/tick_profile.py over the QEMU_TICK_PROFILE files, below); --focus REGEX (implies

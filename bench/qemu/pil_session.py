@@ -35,6 +35,57 @@ from forceskill.model import fwimage as fw
 RETRY_S = 3.0
 
 
+#: The transfer requests by service id, named after the download they belong to.
+TRANSFER_REQUESTS = {0x34: "request_download", 0x35: "request_upload", 0x36: "block", 0x37: "transfer_exit"}
+
+
+class AnswerTimes:
+    """The answer time of every UDS request that starts long work on the device (request sent to
+    final response, the device's pending answers included), in ms of device time (its ticks: the
+    latest status frame's tick after the answer less the latest before the request, +-1 status
+    period, whatever qemu's speed), by request: the key check, a skill's commit, the read-back's
+    blocks, the firmware download's erase, blocks and verification, a run's start."""
+
+    def __init__(self, dev: Device) -> None:
+        self.dev = dev
+        self.job = "skill"  # whose download the transfer requests belong to: skill, read_back, firmware
+        self.ms: dict[str, list[float]] = {}
+
+    def watch(self, client: object) -> None:
+        """Time every request client sends (udsoncan's Client.send_request)."""
+        send = client.send_request  # type: ignore[attr-defined]
+
+        def timed(request: object, *a: object, **kw: object) -> object:
+            t0 = self.dev.status.tick
+            try:
+                return send(request, *a, **kw)
+            finally:
+                name = self.name(request.get_payload())  # type: ignore[attr-defined]
+                if name:
+                    self.ms.setdefault(name, []).append(float((self.dev.status.tick - t0) & 0xFFFFFF))
+
+        client.send_request = timed  # type: ignore[attr-defined]
+
+    def name(self, p: bytes) -> str | None:
+        """The request's name in the report (None: not timed)."""
+        sid = p[0]
+        if sid == 0x27 and len(p) > 1 and p[1] % 2 == 0:
+            return "security_key"
+        if sid == 0x31 and len(p) > 3 and p[1] == 0x01:
+            return f"routine_start_{p[2]:02X}{p[3]:02X}"
+        transfer = TRANSFER_REQUESTS.get(sid)
+        return f"{self.job}_{transfer}" if transfer else None
+
+    def report(self, target: str) -> None:
+        for name, ms in sorted(self.ms.items()):
+            ms.sort()
+            print(
+                f"uds_answer_ms target={target} request={name} n={len(ms)} median={ms[len(ms) // 2]:.0f} "
+                f"max={ms[-1]:.0f}",
+                flush=True,
+            )
+
+
 def wait_ticks(dev: Device, n: int, timeout_s: float) -> None:
     t0 = dev.status.tick
     end = time.monotonic() + timeout_s
@@ -137,7 +188,9 @@ def main(argv: list[str]) -> int:
                 f"pil_session: device at {rate:.0f} ticks/s, heartbeat every {args.heartbeat_s:.3f} s",
                 flush=True,
             )
+            answers = AnswerTimes(dev)
             with U.uds_client(dev, request_timeout_s=args.timeout) as client:
+                answers.watch(client)
                 U.unlock(client, 0, 0x02)
                 U.download(client, 0, 1, image)
                 U.motion_session(client, dev)  # authenticated heartbeats and commands from here
@@ -149,6 +202,7 @@ def main(argv: list[str]) -> int:
                 wait_ticks(dev, args.teach_ticks, args.timeout)
                 dev.command_until("idle", {"IDLE"}, args.timeout, RETRY_S)
                 with U.uds_client(dev, request_timeout_s=args.timeout) as client:
+                    answers.watch(client)
                     # RequestUpload needs the programming session, entered while IDLE
                     U.call("session change", lambda: client.change_session(1), 0)
                     U.call("session change", lambda: client.change_session(2), 0)
@@ -158,6 +212,7 @@ def main(argv: list[str]) -> int:
                     U.call("start", lambda: client.start_routine(U.RID_RUN_SKILL, data), 0)
                     dev.wait_state({"EXECUTE"}, args.timeout)
                     wait_ticks(dev, int(args.exec_s * 500), args.timeout)
+                    answers.job = "read_back"
                     U.upload(client, 0, 1, len(image))  # read-back while executing
                     print(
                         f"pil_session: read-back done at tick {dev.status.tick}",
@@ -168,6 +223,7 @@ def main(argv: list[str]) -> int:
                     fault_on_silence(dev, client, hb, data, args)
                     hb = heartbeat(bus, dev, args.heartbeat_s)
                     dev.command_until("clear_fault", {"IDLE"}, args.timeout, RETRY_S)
+                    answers.job = "firmware"
                     flash_image(client, fw_payload(args), mark_test=False)
                     print(
                         f"pil_session: firmware download done at tick {dev.status.tick}",
@@ -177,6 +233,7 @@ def main(argv: list[str]) -> int:
                 hb.stop()
             st = dev.status
             print(f"pil_session: done, device {st.state}, fault {st.fault_code}, tick {st.tick}")
+            answers.report(args.target)
             # a board reset: the second boot finds the skill in its flash (bench/qemu_tick.sh
             # counts both boots)
             tick0 = st.tick
