@@ -293,50 +293,58 @@ static boot_status_t flush_tail(fwu_t *f)
     return st;
 }
 
+/* The received image's verification, a job: the request's own call only yields (its tick also
+ * took and answered the request), the next flushes the tail and sets the verification up (the
+ * header read and the key), then rounds SHA-256 rounds a call, then the state's wipe and the
+ * verdict (f->verify_status) in a call of their own. */
+static fs_job_status_t verify_job(fwu_t *f, uint32_t rounds)
+{
+    const boot_config_t *cfg = f->boot->cfg;
+    FS_JOB_BEGIN(&f->verify_job);
+    FS_JOB_YIELD(&f->verify_job);
+    f->verify_status = flush_tail(f);
+    if (f->verify_status != BOOT_OK) {
+        FS_JOB_EXIT(&f->verify_job);
+    }
+    boot_verify_begin(&f->verify, cfg->app_dev, cfg->slot_addr[f->slot], cfg->slot_size,
+                      cfg->target_id, cfg->key, cfg->key_len);
+    FS_JOB_YIELD(&f->verify_job);
+    while (!boot_verify_run(&f->verify, rounds)) {
+        FS_JOB_YIELD(&f->verify_job);
+    }
+    FS_JOB_YIELD(&f->verify_job); /* the slot is not usable until the verdict */
+    f->verify_status = f->verify.status;
+    boot_verify_wipe(&f->verify);
+    FS_JOB_END(&f->verify_job);
+}
+
+/* A verification abandoned: its state wiped, the next transfer exit starts it over. */
+static void verify_abandon(fwu_t *f)
+{
+    if (fs_job_running(&f->verify_job)) {
+        boot_verify_wipe(&f->verify);
+        fs_job_reset(&f->verify_job);
+    }
+}
+
 boot_status_t fwu_end_step(fwu_t *f, bool authorised, uint32_t *crc32_out, uint32_t rounds,
                            bool *done)
 {
     *done = true;
     if (!authorised) {
-        f->verifying = false;
+        verify_abandon(f);
         return refuse(f, FWU_ERR_LOCKED);
     }
     if (f->phase != FWU_RECEIVING || f->received != f->size) {
-        f->verifying = false;
+        verify_abandon(f);
         return refuse(f, FWU_ERR_SEQUENCE);
     }
-    const boot_config_t *cfg = f->boot->cfg;
-    if (!f->verifying) {
-        f->verifying = true;
-        f->verify_begun = false;
-        f->verified = false;
+    if (verify_job(f, rounds) == FS_JOB_PENDING) {
         *done = false;
-        return BOOT_OK; /* the request's call: its tick also took and answered the request */
+        return BOOT_OK;
     }
-    if (!f->verify_begun) {
-        boot_status_t st = flush_tail(f);
-        if (st != BOOT_OK) {
-            f->verifying = false;
-            return refuse(f, st);
-        }
-        boot_verify_begin(&f->verify, cfg->app_dev, cfg->slot_addr[f->slot], cfg->slot_size,
-                          cfg->target_id, cfg->key, cfg->key_len);
-        f->verify_begun = true;
-        *done = false;
-        return BOOT_OK; /* the header read and the key set up are this call's slice */
-    }
-    if (!f->verified) {
-        f->verified = boot_verify_run(&f->verify, rounds);
-        *done = false;
-        return BOOT_OK; /* more slices to go, then the wipe's: the slot is not usable yet */
-    }
-    f->verifying = false;
-    f->verify_begun = false;
-    f->verified = false;
-    const boot_status_t st = f->verify.status;
-    boot_verify_wipe(&f->verify);
-    if (st != BOOT_OK) {
-        return refuse(f, st);
+    if (f->verify_status != BOOT_OK) {
+        return refuse(f, f->verify_status);
     }
     if (crc32_out != NULL) {
         *crc32_out = f->crc32;
@@ -358,11 +366,7 @@ boot_status_t fwu_end(fwu_t *f, bool authorised, uint32_t *crc32_out)
 void fwu_abort(fwu_t *f)
 {
     f->block_busy = false;
-    if (f->verifying) {
-        boot_verify_wipe(&f->verify);
-        f->verifying = false;
-        f->verify_begun = false;
-    }
+    verify_abandon(f);
     if (f->phase == FWU_RECEIVING) {
         f->phase = FWU_IDLE;
     }

@@ -17,6 +17,7 @@
 #include <stdint.h>
 #include "boot.h"
 #include "boot_verify.h"
+#include "fs_job.h"
 #include "fs_uds_ids.h" /* FWU_DOWNLOAD_ADDRESS, FWU_RID_*, FWU_DID_STATUS */
 #include "fs_wire.h"    /* fs_wire_fwu_status_t: FWU_DID_STATUS's record (wire.toml) */
 
@@ -48,9 +49,8 @@ typedef struct {
     uint32_t crc32;         /* zlib CRC-32 of the received bytes (RequestTransferExit reply) */
     uint32_t image_version; /* fw_version of the received image, 0 before its header */
     boot_status_t last;     /* last refusal, 0 if none */
-    bool verifying;         /* fwu_end_step: the image's verification runs in slices */
-    bool verify_begun;      /* its flush and set-up done (a call after the request's own) */
-    bool verified;          /* its rounds done: the state's wipe and the verdict next */
+    fs_job_t verify_job;    /* fwu_end_step: the image's verification, a job (fs_job.h) */
+    boot_status_t verify_status; /* its verdict, when it ends */
     boot_verify_t verify;
     bool block_busy;    /* fwu_data_step: a TransferData block is taken in slices */
     uint32_t block_off; /* its offset in the image, its length and the bytes taken */
