@@ -222,35 +222,11 @@ static boot_status_t erase_ahead(fwu_t *f, uint32_t k, bool *done)
     return BOOT_OK;
 }
 
-boot_status_t fwu_data_step(fwu_t *f, bool authorised, uint32_t offset, const uint8_t *data,
-                            uint32_t len, uint32_t max_bytes, bool *done)
+/* One call's piece of the block in progress: the erase ahead (a call of its own while a
+ * background erase runs), else at most max_bytes of the block programmed through fwu_data. True
+ * once the block ended, f->block_status its verdict. */
+static bool block_piece(fwu_t *f, bool authorised, uint32_t max_bytes)
 {
-    *done = true;
-    if (data != NULL) {
-        f->block_busy = false;
-        if (!authorised) {
-            return refuse(f, FWU_ERR_LOCKED);
-        }
-        if (f->phase != FWU_RECEIVING || offset != f->received) {
-            return refuse(f, FWU_ERR_SEQUENCE);
-        }
-        if (len > f->size - f->received || len > FWU_BLOCK_MAX) {
-            return refuse(f, FWU_ERR_OVERRUN);
-        }
-        f->block_src = data; /* the caller keeps it until the block is done: no copy */
-        f->block_off = offset;
-        f->block_len = len;
-        f->block_pos = 0u;
-        f->block_busy = true;
-        *done = len == 0u;
-        if (*done) {
-            f->block_busy = false;
-        }
-        return BOOT_OK; /* its pieces from the next call on */
-    }
-    if (!f->block_busy) {
-        return refuse(f, FWU_ERR_SEQUENCE);
-    }
     const uint32_t rest = f->block_len - f->block_pos;
     uint32_t k = rest < max_bytes ? rest : max_bytes;
     if (!f->header_ok && f->received < BOOT_IMAGE_HEADER_SIZE) {
@@ -260,21 +236,68 @@ boot_status_t fwu_data_step(fwu_t *f, bool authorised, uint32_t offset, const ui
         k = hk <= k ? k : (hk < rest ? hk : rest);
     }
     /* fwu_data's first checks before anything is erased (its refusals come from it) */
-    const boot_status_t es = (authorised && f->phase == FWU_RECEIVING) ? erase_ahead(f, k, done)
+    bool erased = true;
+    const boot_status_t es = (authorised && f->phase == FWU_RECEIVING) ? erase_ahead(f, k, &erased)
                                                                        : BOOT_OK;
-    if (es != BOOT_OK || !*done) {
-        f->block_busy = es == BOOT_OK;
-        *done = es != BOOT_OK;
-        return es == BOOT_OK ? BOOT_OK : refuse(f, es);
+    if (es != BOOT_OK) {
+        f->block_status = refuse(f, es);
+        return true;
     }
-    const boot_status_t st = fwu_data(f, authorised, f->block_off + f->block_pos,
-                                      &f->block_src[f->block_pos], k);
+    if (!erased) {
+        return false;
+    }
+    f->block_status = fwu_data(f, authorised, f->block_off + f->block_pos,
+                               &f->block_src[f->block_pos], k);
     f->block_pos += k;
-    *done = st != BOOT_OK || f->block_pos >= f->block_len;
-    if (*done) {
-        f->block_busy = false;
+    return f->block_status != BOOT_OK || f->block_pos >= f->block_len;
+}
+
+/* A TransferData block in pieces, a job: the request's own call only takes the block, each later
+ * call one piece (block_piece). */
+static fs_job_status_t block_job(fwu_t *f, bool authorised, uint32_t max_bytes)
+{
+    FS_JOB_BEGIN(&f->block_job);
+    FS_JOB_YIELD(&f->block_job);
+    while (!block_piece(f, authorised, max_bytes)) {
+        FS_JOB_YIELD(&f->block_job);
     }
-    return st;
+    FS_JOB_END(&f->block_job);
+}
+
+boot_status_t fwu_data_step(fwu_t *f, bool authorised, uint32_t offset, const uint8_t *data,
+                            uint32_t len, uint32_t max_bytes, bool *done)
+{
+    *done = true;
+    if (data != NULL) {
+        fs_job_reset(&f->block_job);
+        if (!authorised) {
+            return refuse(f, FWU_ERR_LOCKED);
+        }
+        if (f->phase != FWU_RECEIVING || offset != f->received) {
+            return refuse(f, FWU_ERR_SEQUENCE);
+        }
+        if (len > f->size - f->received || len > FWU_BLOCK_MAX) {
+            return refuse(f, FWU_ERR_OVERRUN);
+        }
+        if (len == 0u) {
+            return BOOT_OK;
+        }
+        f->block_src = data; /* the caller keeps it until the block is done: no copy */
+        f->block_off = offset;
+        f->block_len = len;
+        f->block_pos = 0u;
+        (void)block_job(f, authorised, max_bytes); /* its first call: the block taken */
+        *done = false;
+        return BOOT_OK;
+    }
+    if (!fs_job_running(&f->block_job)) {
+        return refuse(f, FWU_ERR_SEQUENCE);
+    }
+    if (block_job(f, authorised, max_bytes) == FS_JOB_PENDING) {
+        *done = false;
+        return BOOT_OK;
+    }
+    return f->block_status;
 }
 
 /* The staged tail to flash (padded with 0xFF to a write unit). */
@@ -365,7 +388,7 @@ boot_status_t fwu_end(fwu_t *f, bool authorised, uint32_t *crc32_out)
 
 void fwu_abort(fwu_t *f)
 {
-    f->block_busy = false;
+    fs_job_reset(&f->block_job);
     verify_abandon(f);
     if (f->phase == FWU_RECEIVING) {
         f->phase = FWU_IDLE;

@@ -52,8 +52,9 @@ typedef struct {
     fs_job_t verify_job;    /* fwu_end_step: the image's verification, a job (fs_job.h) */
     boot_status_t verify_status; /* its verdict, when it ends */
     boot_verify_t verify;
-    bool block_busy;    /* fwu_data_step: a TransferData block is taken in slices */
-    uint32_t block_off; /* its offset in the image, its length and the bytes taken */
+    fs_job_t block_job;         /* fwu_data_step: a TransferData block in pieces, a job */
+    boot_status_t block_status; /* its verdict, when it ends */
+    uint32_t block_off;         /* its offset in the image, its length and the bytes taken */
     uint32_t block_len;
     uint32_t block_pos;
     const uint8_t *block_src; /* the block, the caller's until it is done */
