@@ -133,6 +133,9 @@ typedef struct {
     uint8_t uds_from;        /* the tester of the request served last or pending */
     uint8_t uds_next;        /* the tester asked first next tick (the two take turns) */
     bool uds_request_turn;   /* a new request before the pending one's slice next tick */
+    /* the long work a request answered 0x78 began: its next slice and, once done, the answer
+     * (set by the hook that began it; the UDS server's resume calls it) */
+    uint8_t (*pending)(app_t *app);
     uint8_t uds_owner;       /* tester + 1 that unlocked the session, 0 while locked */
     uint32_t uds_foreign;    /* writes refused because another tester owns the session (558) */
     uint32_t reset_since_ms; /* ECUReset accepted at (its response leaves first) */

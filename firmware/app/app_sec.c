@@ -100,6 +100,7 @@ uint8_t app_sec_key_check_begin(app_t *app, uint8_t level, const uint8_t *key, u
      * wrong-key counter survives reset and power-up */
     const uint8_t nrc = (uint8_t)sec_send_key_begin(cfg, &app->sec.access, app->diag.uds.tester,
                                                     key, len);
+    app->sec.key_level = level;
     app_sec_persist(app);
     fs_job_reset(&app->sec.key_check); /* an earlier, abandoned check's result is not this one's */
     return nrc;
@@ -122,9 +123,9 @@ static fs_job_status_t key_check_job(app_t *app, const sec_config_t *cfg)
     FS_JOB_END(j);
 }
 
-uint8_t app_sec_key_check_run(app_t *app, uint8_t level)
+uint8_t app_sec_key_check_run(app_t *app)
 {
-    const sec_config_t *cfg = app_sec_config(app, level);
+    const sec_config_t *cfg = app_sec_config(app, app->sec.key_level);
     if (cfg == NULL) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT;
     }

@@ -48,6 +48,7 @@ typedef struct {
     app_sec_store_t store; /* the attempt record */
     fs_job_t key_check;    /* a sendKey's check: the attempt stored, checked, the result stored */
     uint8_t key_nrc;       /* its result */
+    uint8_t key_level;     /* the level its key was sent for */
     app_motion_key_t motion;
 } app_sec_t;
 
@@ -80,7 +81,7 @@ uint8_t app_sec_key_check_begin(app_t *app, uint8_t level, const uint8_t *key, u
 /** A slice of the sendKey check begun (a job: the attempt stored first, the key's HMAC in
  *  APP_SEC_ROUNDS_PER_TICK rounds a call, the result stored): UDS_NRC_RESPONSE_PENDING until the
  *  answer, then the answer. */
-uint8_t app_sec_key_check_run(app_t *app, uint8_t level);
+uint8_t app_sec_key_check_run(app_t *app);
 
 /** Begin the motion key of a host session from its nonce (DID 0x0302 write): forgets the key
  *  in use, draws the device nonce; the derivation starts at the next app_motion_key_run.

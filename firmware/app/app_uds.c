@@ -7,6 +7,25 @@
 #include "app_internal.h"
 #include "fwu_uds.h"
 
+/* A hook's answer nrc; answered 0x78, the long work it began goes on through next (resume). */
+static uint8_t pend(app_t *app, uint8_t nrc, uint8_t (*next)(app_t *app))
+{
+    app->diag.pending = (nrc == UDS_NRC_RESPONSE_PENDING) ? next : NULL;
+    return nrc;
+}
+
+/* The motion key's derivation, a slice a call. */
+static uint8_t motion_key_slice(app_t *app)
+{
+    return app_motion_key_run(app, APP_SEC_ROUNDS_PER_TICK);
+}
+
+/* A run's start: its slices run in the control tick (app_run.c); the answer once they are done. */
+static uint8_t run_start_answer(app_t *app)
+{
+    return app->ctl.run_start_nrc;
+}
+
 /* Data identifiers (DID_*, fs_uds_ids.h) and routine records: the generated codecs of
  * wire.toml (fs_wire.h). Each DID function packs into buf (cap bytes) and returns the length,
  * 0 for another DID. */
@@ -291,7 +310,7 @@ static uint8_t write_did(void *ctx, uint16_t did, const uint8_t *d, uint16_t len
         if (fs_wire_motion_key_write_unpack(&w, d, len) != PROTO_OK) {
             return UDS_NRC_INCORRECT_LENGTH;
         }
-        return app_motion_key_begin(app, d, len);
+        return pend(app, app_motion_key_begin(app, d, len), motion_key_slice);
     }
     if (app->state != APP_IDLE) {
         return UDS_NRC_CONDITIONS_NOT_CORRECT; /* configuration changes only while idle */
@@ -402,8 +421,9 @@ static uint8_t routine_run(app_t *app, uint8_t sub, uint16_t rid, const uint8_t 
         const uint8_t nrc = run_from_routine(rid, d, len, &req);
         const uint8_t started = (nrc != UDS_NRC_OK) ? nrc : app_run_start(app, &req);
         /* answered once the start's slices are done (resume): its 3xx refusal comes then */
-        return (started == UDS_NRC_OK && app->ctl.exec_starting) ? UDS_NRC_RESPONSE_PENDING
-                                                                 : started;
+        return (started == UDS_NRC_OK && app->ctl.exec_starting)
+                   ? pend(app, UDS_NRC_RESPONSE_PENDING, run_start_answer)
+                   : started;
     }
     if (sub == UDS_ROUTINE_STOP) {
         if (app->state != APP_EXECUTE) {
@@ -559,26 +579,18 @@ static uint8_t security_seed(void *ctx, uint8_t level, uint8_t *seed, uint16_t c
 
 static uint8_t security_key(void *ctx, uint8_t level, const uint8_t *key, uint16_t len)
 {
-    return app_sec_key_check_begin(ctx, level, key, len); /* answered 0x78, checked in slices */
+    app_t *app = ctx; /* answered 0x78, checked in slices */
+    return pend(app, app_sec_key_check_begin(app, level, key, len), app_sec_key_check_run);
 }
 
-/* The long work a request answered 0x78 began, a slice a call: a run's start (its slices run in
- * the control tick), a sendKey's check or the motion key's derivation. */
+/* The long work a request answered 0x78 began, a slice a call: the continuation its hook left
+ * (pend); the server knows the request, the application which work it began. */
 static uint8_t resume(void *ctx, uint8_t sid, uint16_t arg)
 {
+    (void)sid;
+    (void)arg;
     app_t *app = ctx;
-    if (sid == UDS_SID_ROUTINE) {
-        return (arg == UDS_RID_RUN_SKILL || arg == UDS_RID_RUN_SEQUENCE)
-                   ? app->ctl.run_start_nrc
-                   : UDS_NRC_CONDITIONS_NOT_CORRECT;
-    }
-    if (sid == UDS_SID_WDBI && arg == DID_MOTION_KEY) {
-        return app_motion_key_run(app, APP_SEC_ROUNDS_PER_TICK);
-    }
-    if (sid == UDS_SID_SECURITY && arg <= UINT8_MAX) {
-        return app_sec_key_check_run(app, (uint8_t)arg);
-    }
-    return UDS_NRC_CONDITIONS_NOT_CORRECT;
+    return app->diag.pending != NULL ? app->diag.pending(app) : UDS_NRC_CONDITIONS_NOT_CORRECT;
 }
 
 /* ---------------------------------------------------------------- transfers */
