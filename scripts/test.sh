@@ -82,9 +82,12 @@ tick_budgets() { # TARGET LOG [MAX_ONLY]: fail on a tick over budget in a state 
 # 1,200 and M3 2,500 in every state. Listed in LATENCY_OVER (target:STATE): not yet within,
 # reported with its figure, not enforced. The M4F's EXECUTE ticks run the DMP and the law before
 # the write (max 1,244-1,254 over three runs), and so do the ticks that end a run (IDLE, FAULT) or
-# serve a read-back beside it (UPLOAD) (max 1,152-1,400; IDLE within in some runs); on the M3 a
-# run's EXECUTE ticks reached 2,237-2,793 and its tick that latches a fault 2,496-2,540.
-LATENCY_OVER="cortex-m4f:IDLE cortex-m4f:EXECUTE cortex-m4f:UPLOAD cortex-m4f:FAULT cortex-m3:EXECUTE cortex-m3:FAULT"
+# serve a read-back beside it (UPLOAD) (max 1,152-1,400; IDLE within in some runs), the UART's
+# receive interrupts taken before the write adding up to ~116. The M3 is within in every state
+# since its DMP's blend for the next tick is computed after the write (exec_prepare_next): EXECUTE
+# max 2,018, FAULT 2,152, UPLOAD 2,152 (with ~340 of receive interrupts); before, its EXECUTE
+# ticks reached 2,237-2,793 and its tick that latches a fault 2,496-2,540.
+LATENCY_OVER="cortex-m4f:IDLE cortex-m4f:EXECUTE cortex-m4f:UPLOAD cortex-m4f:FAULT"
 latency_budgets() { # TARGET LOG
   local target=$1 log=$2 b
   case $target in cortex-m4f) b=1200 ;; *) b=2500 ;; esac

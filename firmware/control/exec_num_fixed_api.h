@@ -248,6 +248,12 @@ static inline exec_nf_t exec_num_dmp_discrete(exec_state_t *st, const exec_step_
     return exec_num_dmp_force(st, ev);
 }
 
+/** The next discrete DMP step's blend computed now (dmpfx_prepare). */
+static inline void exec_num_dmp_prepare(exec_state_t *st, const exec_step_t *s)
+{
+    dmpfx_prepare(s->model_fx, &st->dmp);
+}
+
 /** A periodic step's DMP step: f_dmp (N Q.32), p into path (its base s_p*g_y added). */
 static inline exec_nf_t exec_num_dmp_periodic(exec_state_t *st, const exec_step_t *s,
                                               const exec_ncoupling_t *c)

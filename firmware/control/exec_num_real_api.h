@@ -202,6 +202,13 @@ static inline exec_nf_t exec_num_dmp_discrete(exec_state_t *st, const exec_step_
                        s->path_scale, &st->path);
 }
 
+/** The next discrete DMP step's blend ahead: none in the real layer (EXEC_NUM_PREPARE 0). */
+static inline void exec_num_dmp_prepare(exec_state_t *st, const exec_step_t *s)
+{
+    (void)st;
+    (void)s;
+}
+
 /** A periodic step's DMP step: f_dmp, p into path. */
 static inline exec_nf_t exec_num_dmp_periodic(exec_state_t *st, const exec_step_t *s,
                                               const exec_ncoupling_t *c)

@@ -445,6 +445,19 @@ fs_status_t exec_tick_n(const exec_config_t *cfg, exec_state_t *st, const exec_m
     return exec_num_status(st);
 }
 
+void exec_prepare_next(exec_state_t *st)
+{
+    /* the state the next tick steps: the running step's (exec_reference_force), unless the
+     * sequence is over or its end policy runs (no DMP step) */
+    if (st->done != 0u || st->ending != 0u || st->step >= st->n_steps) {
+        return;
+    }
+    const exec_step_t *s = &st->steps[st->step];
+    if (s->skill != 0 && s->skill->dmp.periodic == 0u) {
+        exec_num_dmp_prepare(st, s);
+    }
+}
+
 uint16_t exec_band_max_milli(const exec_state_t *st)
 {
     return exec_num_band_milli(st->band_max);

@@ -214,6 +214,12 @@ fs_real_t exec_object_deformation(const exec_object_t *obj, fs_real_t force_N);
 fs_status_t exec_tick(const exec_config_t *cfg, exec_state_t *st, const exec_meas_t *meas,
                       exec_out_t *out);
 
+/** The next exec_tick's DMP kernel blend computed now (dmpfx_prepare) while a discrete step
+ *  runs, nothing otherwise: called after a tick's output, the next tick gives the same result
+ *  with that work already done. Only the layers with EXEC_NUM_PREPARE 1 (the fixed-point one)
+ *  do anything; the caller may skip the call where it is 0. */
+void exec_prepare_next(exec_state_t *st);
+
 /** The layer's native measurements and outputs (exec_tick's in the real layer; Q formats,
  *  exec_meas_q_t and exec_out_q_t, in the fixed-point one). */
 typedef EXEC_NUM_MEAS_N exec_meas_n_t;
