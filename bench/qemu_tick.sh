@@ -71,7 +71,7 @@ done
 
 case $TARGET in
   cortex-m4f) MACHINE=mps2-an386; CPU=cortex-m4; BUDGET=850
-              DMP_RE='^dmp_(periodic_)?step(_xy)?_f32$'; LAW=pfc_step_f32 ;;
+              DMP_RE='^dmp_((periodic_)?step(_xy)?|prepare)_f32$'; LAW=pfc_step_f32 ;;
   cortex-m3)  MACHINE=mps2-an385; CPU=cortex-m3; BUDGET=1250
               DMP_RE='^dmpfx_((periodic_)?step(_xy)?|prepare)$'; LAW=pfcfx_step ;;
   *) usage ;;

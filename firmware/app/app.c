@@ -831,7 +831,7 @@ void app_tick(app_t *app, bool overrun)
     transmit(app);
     /* the next step's kernel blend, after the write (off the sensor-to-actuator path) and after
      * the bus (a run it stopped prepares nothing; one it started steps from a fresh state) */
-    if (EXEC_NUM_PREPARE && app->state == APP_EXECUTE && !app->ctl.exec_starting) {
+    if (app->state == APP_EXECUTE && !app->ctl.exec_starting) {
         exec_prepare_next(&app->ctl.exec);
     }
 }

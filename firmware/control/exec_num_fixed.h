@@ -28,7 +28,6 @@
 #define exec_object_force exec_object_force_fx
 #define exec_object_deformation exec_object_deformation_fx
 #define exec_tick exec_tick_fx
-#define exec_prepare_next exec_prepare_next_fx
 #define exec_tick_n exec_tick_q_fx
 #define exec_tick_q exec_tick_q_fx
 #define exec_contact_hold_ms exec_contact_hold_ms_fx
@@ -44,9 +43,6 @@
 #define exec_prep_parts exec_prep_parts_fx
 #define exec_prep_run exec_prep_run_fx
 #define exec_counts_edge exec_counts_edge_fx
-
-/* the DMP's two-pass blend computed after a tick's write for the next (exec_prepare_next) */
-#define EXEC_NUM_PREPARE 1
 
 /* the operations of this layer (fs_exec.h includes them at its end) */
 #define EXEC_NUM_API "exec_num_fixed_api.h"

@@ -16,9 +16,6 @@
 #define EXEC_NUM_MEAS_N exec_meas_t
 #define EXEC_NUM_OUT_N exec_out_t
 #define exec_tick_n exec_tick
-/* no blend ahead (exec_prepare_next): the one-pass blend is cheap enough before the M4F's write,
- * and the call chain moving it would cost (~60 instructions) its EXECUTE median has no room for */
-#define EXEC_NUM_PREPARE 0
 
 typedef fs_real_t exec_nf_t;     /* force, N */
 typedef fs_real_t exec_nx_t;     /* x position, velocity, acceleration; y velocity */

@@ -428,10 +428,10 @@ static void test_blend(void **state)
     assert_true(most <= 10u);              /* 9: kernels denser where the force bends */
 }
 
-/* dmpfx_prepare between steps (the blend computed after a tick's write for the next) leaves
- * every step's output and state bit for bit as without it, with and without a y DMP and with a
- * coupling that slows the phase; a prepared blend is taken once, and not by a step at another
- * phase. */
+/* dmpfx_prepare and dmp_prepare between steps (the blend computed after a tick's write for the
+ * next) leave every step's output and state bit for bit as without them, with and without a y
+ * DMP and with a coupling that slows the phase; a prepared blend is taken once, and not by a
+ * step at another phase. */
 static void test_prepare_same(void **state)
 {
     (void)state;
@@ -462,6 +462,34 @@ static void test_prepare_same(void **state)
                         a.path_acc == b.path_acc && a.path_z_acc == b.path_z_acc);
             assert_int_equal(a.sat_events, b.sat_events);
             assert_null(b.prep_model); /* taken */
+        }
+    }
+    /* the real core's dmp_prepare (the float64 build here, the M4F's float32 the same code) */
+    for (unsigned k = 0u; k < sizeof names / sizeof names[0]; k++) {
+        load_fixed(names[k]);
+        const dmp_run_t run = {FS_R(1.2), FS_R(1.1)};
+        const dmp_coupling_t cpl = {FS_R(0.0), FS_R(0.25)};
+        dmp_state_t a;
+        dmp_state_t b;
+        dmp_state_reset(&a);
+        dmp_state_reset(&b);
+        const long rows = lround(skill.dmp.duration_s / skill.dmp.dt_s);
+        for (long i = 0; i < rows; i++) {
+            const dmp_coupling_t *c = (i % 7 == 3) ? &cpl : NULL;
+            fs_real_t pa = FS_R(0.0);
+            fs_real_t pb = FS_R(0.0);
+            const fs_real_t fa = dmp_step_xy(&skill.dmp, &a, &run, c, FS_R(1.0), &pa);
+            dmp_prepare(&skill.dmp, &b);
+            const fs_real_t fb = (skill.dmp.has_y == 0u)
+                                     ? dmp_step(&skill.dmp, &b, &run, c)
+                                     : dmp_step_xy(&skill.dmp, &b, &run, c, FS_R(1.0), &pb);
+            assert_memory_equal(&fa, &fb, sizeof fa);
+            if (skill.dmp.has_y != 0u) {
+                assert_memory_equal(&pa, &pb, sizeof pa);
+            }
+            assert_true(a.u == b.u && a.v == b.v && a.y_N == b.y_N && a.z == b.z &&
+                        a.integral_y == b.integral_y && a.path_m == b.path_m);
+            assert_null(b.prep_model);
         }
     }
     /* prepared at one phase, stepped at another: the step computes its own blend */
