@@ -206,6 +206,13 @@ static inline exec_nf_t exec_num_dmp_discrete(exec_state_t *st, const exec_step_
     return dmp_step_xy(&s->skill->dmp, &st->dmp, &st->n.run, cp, s->path_scale, &st->path);
 }
 
+/** The object model's forces ahead: none in the real layer (its model step is a few
+ *  operations, and the M4F's EXECUTE median has no room for the call). */
+static inline void exec_num_model_prepare(exec_state_t *st)
+{
+    (void)st;
+}
+
 /** The next discrete DMP step's blend computed now (dmp_prepare). */
 static inline void exec_num_dmp_prepare(exec_state_t *st, const exec_step_t *s)
 {

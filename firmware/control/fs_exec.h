@@ -367,14 +367,17 @@ EXEC_COLD int32_t exec_counts_edge(fs_real_t v, fs_real_t r, int32_t lo, int32_t
 /* the layer's operations (fs_exec.c's tick is written over them) and its native API */
 #include EXEC_NUM_API
 
-/** The next exec_tick's DMP kernel blend computed now (dmp_prepare, dmpfx_prepare) while a
- *  discrete step runs, nothing otherwise: called after a tick's output, the next tick gives the
- *  same result with that work already done. Inline: the application's tick calls it once. */
+/** The next exec_tick's DMP kernel blend computed now (dmp_prepare, dmpfx_prepare; in the
+ *  fixed-point layer also the object model's forces) while a discrete step runs, nothing
+ *  otherwise: called after a tick's output, the next tick gives the same result with that work
+ *  already done. Inline: the application's tick calls it once. */
 static inline void exec_prepare_next(exec_state_t *st)
 {
-    /* the state the next tick steps: the running step's (exec_reference_force) */
+    /* the state the next tick steps: the running step's (exec_reference_force); the fixed-point
+     * layer also the object model's forces of the reference's present state */
     if (st->prep_next != 0u) {
         exec_num_dmp_prepare(st, &st->steps[st->step]);
+        exec_num_model_prepare(st);
     }
 }
 
