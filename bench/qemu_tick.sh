@@ -26,7 +26,8 @@
 # 5. counts, per app_tick (between cm_port_mark_begin and cm_port_mark_end), all its
 #    instructions (with the interrupts taken meanwhile) and those of the DMP and control-law part
 #    (without them) (dmp_step and pfc_step with their
-#    callees; on the M3 their fixed-point builds dmpfx_step and pfcfx_step), and the kind of the
+#    callees; on the M3 their fixed-point builds dmpfx_step and pfcfx_step, and dmpfx_prepare: the
+#    next step's blend, computed after the actuator's write), and the kind of the
 #    tick (cm_port_mark_idle/execute/upload after it); prints
 #      tick_instructions target=T kernels=N min= median= max=          (DMP + control law, EXECUTE)
 #      commit_tick_instructions target=T min= median= max= ticks=  (a download's commit)
@@ -74,9 +75,9 @@ done
 
 case $TARGET in
   cortex-m4f) MACHINE=mps2-an386; CPU=cortex-m4; BUDGET=850
-              DMP_RE='^dmp_(periodic_)?step(_xy)?_f32$'; LAW=pfc_step_f32 ;;
+              DMP_RE='^dmp_((periodic_)?step(_xy)?|prepare)_f32$'; LAW=pfc_step_f32 ;;
   cortex-m3)  MACHINE=mps2-an385; CPU=cortex-m3; BUDGET=1250
-              DMP_RE='^dmpfx_(periodic_)?step(_xy)?$'; LAW=pfcfx_step ;;
+              DMP_RE='^dmpfx_((periodic_)?step(_xy)?|prepare)$'; LAW=pfcfx_step ;;
   *) usage ;;
 esac
 PY=${PYTHON:-$ROOT/.venv/bin/python}

@@ -80,11 +80,14 @@ tick_budgets() { # TARGET LOG [MAX_ONLY]: fail on a tick over budget in a state 
 
 # The sensor-to-actuator latency (instructions from the tick's start to its actuator write): M4F
 # 1,200 and M3 2,500 in every state. Listed in LATENCY_OVER (target:STATE): not yet within,
-# reported with its figure, not enforced. The M4F's EXECUTE ticks run the DMP and the law before
-# the write (max 1,244-1,254 over three runs), and so do the ticks that end a run (IDLE, FAULT) or
-# serve a read-back beside it (UPLOAD) (max 1,152-1,400; IDLE within in some runs); on the M3 a
-# run's EXECUTE ticks reached 2,237-2,793 and its tick that latches a fault 2,496-2,540.
-LATENCY_OVER="cortex-m4f:IDLE cortex-m4f:EXECUTE cortex-m4f:UPLOAD cortex-m4f:FAULT cortex-m3:EXECUTE cortex-m3:FAULT"
+# reported with its figure, not enforced. Every state is within on both images since the DMP's
+# kernel blend for the next tick is computed after the write (exec_prepare_next; on the M3 also
+# the object model's forces): M4F max IDLE 818-839, EXECUTE 889-936, UPLOAD 868-960, FAULT 1,050;
+# M3 max EXECUTE 1,916, UPLOAD 2,071, FAULT 2,065 (the UART's receive interrupts taken before the
+# write add up to ~115 on the M4F and ~700 on the M3 at their per-tick byte caps). Before, the M4F's EXECUTE ticks reached
+# 1,244-1,308, its tick that latches a fault 1,386-1,423; the M3's EXECUTE 2,237-2,793 and FAULT
+# 2,496-2,540.
+LATENCY_OVER=""
 latency_budgets() { # TARGET LOG
   local target=$1 log=$2 b
   case $target in cortex-m4f) b=1200 ;; *) b=2500 ;; esac

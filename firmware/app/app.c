@@ -829,6 +829,11 @@ void app_tick(app_t *app, bool overrun)
         app_sec_store_step(app);
     }
     transmit(app);
+    /* the next step's kernel blend, after the write (off the sensor-to-actuator path) and after
+     * the bus (a run it stopped prepares nothing; one it started steps from a fresh state) */
+    if (app->state == APP_EXECUTE && !app->ctl.exec_starting) {
+        exec_prepare_next(&app->ctl.exec);
+    }
 }
 
 /* The telemetry's period this tick: the host's (or the configured one) while the device acts, and

@@ -95,6 +95,7 @@ typedef struct {
     uint32_t blend_inc_q32;   /* dt/EXEC_BLEND_S, rounded up */
     uint32_t release_inc_q32; /* dt/SKILL_RELEASE_TIME_S, rounded up */
     uint8_t phase_stop;
+    uint8_t use_model; /* cfg->use_model: the reference integrates the object model */
 } exec_cfg_q_t;
 
 /** The layer's part of exec_state_t: each step's DMP run and starting state and the integer
@@ -107,6 +108,11 @@ typedef struct {
     pfcfx_config_t pfc_cfg;                  /* cfg->pfc at exec_start */
     pfcfx_state_t pfc;
     uint8_t dmp_saturated; /* this tick's DMP step saturated */
+    /* the object model's damping and spring forces at ref_pd = pre_pd, ref_p = pre_p (N Q.32),
+     * computed after a tick's write for the next tick's reference (pre_ok: made this run) */
+    uint8_t pre_ok;
+    int64_t pre_p, pre_pd;
+    int64_t pre_damp, pre_spring;
 } exec_num_t;
 
 /** A step's fixed-point model (exec_step_t.model_fx), converted beforehand

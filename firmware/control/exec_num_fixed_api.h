@@ -248,6 +248,12 @@ static inline exec_nf_t exec_num_dmp_discrete(exec_state_t *st, const exec_step_
     return exec_num_dmp_force(st, ev);
 }
 
+/** The next discrete DMP step's blend computed now (dmpfx_prepare). */
+static inline void exec_num_dmp_prepare(exec_state_t *st, const exec_step_t *s)
+{
+    dmpfx_prepare(s->model_fx, &st->dmp);
+}
+
 /** A periodic step's DMP step: f_dmp (N Q.32), p into path (its base s_p*g_y added). */
 static inline exec_nf_t exec_num_dmp_periodic(exec_state_t *st, const exec_step_t *s,
                                               const exec_ncoupling_t *c)
@@ -356,17 +362,42 @@ static inline exec_nx_t exec_num_spring(const exec_state_t *st, exec_nf_t f)
 }
 
 /** The object model's acceleration pdd = (f_hat - d_v*pd - F(p))/m_v at the reference's state. */
+/* The object model's spring force at deformation p (N Q.32): two layers, none when p <= 0. */
+static inline int64_t exec_num_spring_q(const exec_cfg_q_t *c, int64_t p)
+{
+    return (p <= 0)              ? 0
+           : (p <= c->layer_q48) ? fx_scale_apply(p, c->k1)
+                                 : c->f_layer_q32 + fx_scale_apply(p - c->layer_q48, c->k2);
+}
+
 static inline exec_nx_t exec_num_model_acc(const exec_config_t *cfg, const exec_state_t *st,
                                            exec_nf_t f_hat)
 {
     (void)cfg;
-    const exec_cfg_q_t *c = &st->n.c;
+    const exec_num_t *n = &st->n;
     const int64_t p = st->ref_p;
-    const int64_t spring = (p <= 0) ? 0
-                           : (p <= c->layer_q48)
-                               ? fx_scale_apply(p, c->k1)
-                               : c->f_layer_q32 + fx_scale_apply(p - c->layer_q48, c->k2);
-    return fx_scale_apply(f_hat - fx_scale_apply(st->ref_pd, c->d_v) - spring, c->inv_m);
+    const int64_t pd = st->ref_pd;
+    /* the forces of the last tick's p and pd, if exec_num_model_prepare computed them after
+     * its write (the same values) */
+    const bool pre = n->pre_ok != 0u && n->pre_p == p && n->pre_pd == pd;
+    const int64_t damp = pre ? n->pre_damp : fx_scale_apply(pd, n->c.d_v);
+    const int64_t spring = pre ? n->pre_spring : exec_num_spring_q(&n->c, p);
+    return fx_scale_apply(f_hat - damp - spring, n->c.inv_m);
+}
+
+/** The object model's damping and spring forces at the reference's present p and pd, for the
+ *  next tick's exec_num_model_acc (after a tick's write: off the path to the actuator). */
+static inline void exec_num_model_prepare(exec_state_t *st)
+{
+    exec_num_t *n = &st->n;
+    if (n->c.use_model == 0u) {
+        return;
+    }
+    n->pre_p = st->ref_p;
+    n->pre_pd = st->ref_pd;
+    n->pre_damp = fx_scale_apply(st->ref_pd, n->c.d_v);
+    n->pre_spring = exec_num_spring_q(&n->c, st->ref_p);
+    n->pre_ok = 1u;
 }
 
 /** v + a*dt, clamped. */

@@ -198,8 +198,25 @@ static inline exec_nphase_t exec_num_phase(const exec_state_t *st)
 static inline exec_nf_t exec_num_dmp_discrete(exec_state_t *st, const exec_step_t *s,
                                               const exec_ncoupling_t *c)
 {
-    return dmp_step_xy(&s->skill->dmp, &st->dmp, &st->n.run, (c->on != 0u) ? &c->c : 0,
-                       s->path_scale, &st->path);
+    const dmp_coupling_t *cp = (c->on != 0u) ? &c->c : 0;
+    if (s->skill->dmp.has_y == 0u) { /* dmp_step_xy's own path for it, without its call */
+        st->path = FS_R(0.0);
+        return dmp_step(&s->skill->dmp, &st->dmp, &st->n.run, cp);
+    }
+    return dmp_step_xy(&s->skill->dmp, &st->dmp, &st->n.run, cp, s->path_scale, &st->path);
+}
+
+/** The object model's forces ahead: none in the real layer (its model step is a few
+ *  operations, and the M4F's EXECUTE median has no room for the call). */
+static inline void exec_num_model_prepare(exec_state_t *st)
+{
+    (void)st;
+}
+
+/** The next discrete DMP step's blend computed now (dmp_prepare). */
+static inline void exec_num_dmp_prepare(exec_state_t *st, const exec_step_t *s)
+{
+    dmp_prepare(&s->skill->dmp, &st->dmp);
 }
 
 /** A periodic step's DMP step: f_dmp, p into path. */

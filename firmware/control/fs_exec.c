@@ -35,6 +35,8 @@ static void exec_begin_step(const exec_config_t *cfg, exec_state_t *st)
     st->path_ramp = (m->periodic != 0u && m->has_y != 0u) ? 1u : 0u;
     st->path_ramp_out = (st->path_ramp != 0u && s->until_stopped == 0u) ? 1u : 0u;
     st->band_s = 0u; /* the band scaled as f_hat is (skill_band_at) */
+    /* a discrete DMP steps every tick until the end policy (exec_prepare_next) */
+    st->prep_next = (m->periodic == 0u) ? 1u : 0u;
 }
 
 static void exec_band_tally(exec_state_t *st, uint8_t outside);
@@ -211,6 +213,7 @@ fs_status_t exec_start_begin(const exec_config_t *cfg, exec_state_t *st, const e
     st->step = 0u;
     st->ending = 0u;
     st->done = 0u;
+    st->prep_next = 0u; /* until the first step begins */
     st->t_end = 0u;
     st->f_hat = 0;
     st->f_dmp = 0;
@@ -363,6 +366,7 @@ static exec_nf_t exec_reference_force(const exec_config_t *cfg, exec_state_t *st
             exec_begin_step(cfg, st); /* derived by exec_start */
         } else {
             st->ending = 1u;
+            st->prep_next = 0u; /* no DMP step from now */
             st->f_end = f;
             st->t_end = 0u;
         }

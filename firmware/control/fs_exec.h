@@ -159,6 +159,8 @@ typedef struct {
     uint8_t path_ramp;      /* 1 while a periodic y path ramps in (its first turn) */
     uint8_t path_ramp_out;  /* 1: it ramps out over the step's last turn (a known length) */
     uint8_t prepared;       /* parts of exec_start_run done (exec_prep_parts) */
+    uint8_t prep_next;      /* 1 while a discrete step runs before its end policy: the next
+                               tick steps its DMP (exec_prepare_next computes the blend) */
     /* the running skill's contact wait (skill_t.contact_threshold_N > 0) */
     exec_nrate_t contact_rate; /* the phase rate, 0..1 (1 without a contact wait) */
     exec_nsum_t contact_hold;  /* sum of (1 - rate) (times dt in the real layer) */
@@ -364,5 +366,19 @@ EXEC_COLD int32_t exec_counts_edge(fs_real_t v, fs_real_t r, int32_t lo, int32_t
 
 /* the layer's operations (fs_exec.c's tick is written over them) and its native API */
 #include EXEC_NUM_API
+
+/** The next exec_tick's DMP kernel blend computed now (dmp_prepare, dmpfx_prepare; in the
+ *  fixed-point layer also the object model's forces) while a discrete step runs, nothing
+ *  otherwise: called after a tick's output, the next tick gives the same result with that work
+ *  already done. Inline: the application's tick calls it once. */
+static inline void exec_prepare_next(exec_state_t *st)
+{
+    /* the state the next tick steps: the running step's (exec_reference_force); the fixed-point
+     * layer also the object model's forces of the reference's present state */
+    if (st->prep_next != 0u) {
+        exec_num_dmp_prepare(st, &st->steps[st->step]);
+        exec_num_model_prepare(st);
+    }
+}
 
 #endif /* FS_EXEC_H */

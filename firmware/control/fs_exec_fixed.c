@@ -122,6 +122,8 @@ static fs_status_t exec_prepare_cfg_q(const exec_config_t *cfg, exec_state_t *st
         return rc;
     }
     c->phase_stop = (cfg->phase_stop_gain_per_N2 > FS_R(0.0)) ? 1u : 0u;
+    c->use_model = (uint8_t)model;
+    st->n.pre_ok = 0u; /* no model forces of another run's constants (exec_num_model_prepare) */
     c->stop_gain = exec_scale((double)cfg->phase_stop_gain_per_N2, 32, 24, &rc);
     const double layer = model ? (double)o->layer_depth_m : 0.0;
     fs_status_t r2 = exec_to_q(layer, 48, &c->layer_q48);

@@ -411,6 +411,7 @@ void dmp_state_reset(dmp_state_t *s)
     s->path_m = FS_R(0.0);
     s->path_z = FS_R(0.0);
     s->u_comp = FS_R(0.0);
+    s->prep_model = NULL;
 }
 
 /* S(u) over all N kernels with psi_i = exp(-(e_i - e_min)) (the test reference: the shift keeps
@@ -479,9 +480,13 @@ fs_real_t dmp_slowdown_at_rate(fs_real_t slowdown, fs_real_t rate)
     return (FS_R(1.0) + slowdown) / rate - FS_R(1.0);
 }
 
-/* The force DMP's per-tick constants for a run and a coupling (both may be NULL). */
-static dmp_tick_coef_t dmp_coef(const dmp_model_t *m, const dmp_run_t *run,
-                                const dmp_coupling_t *coupling)
+/* The force DMP's per-tick constants for a run and a coupling (both may be NULL); inline into
+ * the steps: the constants stay in registers rather than going through a struct in memory. */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline dmp_tick_coef_t
+dmp_coef(const dmp_model_t *m, const dmp_run_t *run, const dmp_coupling_t *coupling)
 {
     const fs_real_t goal_scale = (run != NULL) ? run->goal_scale : FS_R(1.0);
     const fs_real_t time_scale = (run != NULL) ? run->time_scale : FS_R(1.0);
@@ -504,11 +509,33 @@ static dmp_tick_coef_t dmp_coef(const dmp_model_t *m, const dmp_run_t *run,
     return c;
 }
 
+/* The prepared blend pair if dmp_prepare made it for m at the state's phase (taken once). */
+static inline bool dmp_take_prepared(const dmp_model_t *m, dmp_state_t *s)
+{
+    const bool hit = s->prep_model == (const void *)m && s->prep_u == s->u;
+    s->prep_model = NULL;
+    return hit;
+}
+
+void dmp_prepare(const dmp_model_t *m, dmp_state_t *s)
+{
+    const dmp_tick_state_t st = {s->window, &s->u, &s->v, &s->integral_y, &s->y_N, &s->z};
+    /* the blend dmp_step (force only) or dmp_step_xy (with y) computes */
+    if (m->has_y == 0u) {
+        s->prep_s = dmp_tick_state_blend(m, &st);
+    } else {
+        s->prep_s = dmp_tick_state_blend2(m, &st, m->y_weight, &s->prep_sy);
+    }
+    s->prep_u = s->u;
+    s->prep_model = m;
+}
+
 fs_real_t dmp_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
                    const dmp_coupling_t *coupling)
 {
     const dmp_tick_state_t st = {s->window, &s->u, &s->v, &s->integral_y, &s->y_N, &s->z};
-    const fs_real_t s_blend = dmp_tick_state_blend(m, &st);
+    /* a blend prepared with y weights (dmp_tick_blend2) has the same S: the same operations */
+    const fs_real_t s_blend = dmp_take_prepared(m, s) ? s->prep_s : dmp_tick_state_blend(m, &st);
     const dmp_tick_coef_t c = dmp_coef(m, run, coupling);
     return m->force0_N + dmp_tick_step(&c, &st, s_blend, NULL);
 }
@@ -523,8 +550,10 @@ fs_real_t dmp_step_xy(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run
         return dmp_step(m, s, run, coupling);
     }
     const dmp_tick_state_t st = {s->window, &s->u, &s->v, &s->integral_y, &s->y_N, &s->z};
-    fs_real_t s_y = FS_R(0.0);
-    const fs_real_t s_blend = dmp_tick_state_blend2(m, &st, m->y_weight, &s_y);
+    fs_real_t s_y = s->prep_sy;
+    const fs_real_t s_blend = dmp_take_prepared(m, s)
+                                  ? s->prep_s
+                                  : dmp_tick_state_blend2(m, &st, m->y_weight, &s_y);
     const dmp_tick_coef_t c = dmp_coef(m, run, coupling);
     const dmp_tick_path_coef_t cp = {.k1 = c.k1,
                                      .k_alpha = c.k_alpha,

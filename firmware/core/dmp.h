@@ -176,6 +176,12 @@ typedef struct {
     fs_real_t path_m; /* p: the y DMP's position above the path's start (0 without one) */
     fs_real_t path_z; /* z_p */
     fs_real_t u_comp; /* the periodic phase sum's compensation (dmp_ptick.h) */
+    /* the kernel blend dmp_prepare computed ahead for the next step, at phase prep_u of model
+     * prep_model (NULL: none); the step takes it once */
+    const void *prep_model;
+    fs_real_t prep_u;
+    fs_real_t prep_s;  /* S(u) of the force weights */
+    fs_real_t prep_sy; /* S_y(u) of the y weights (has_y) */
 } dmp_state_t;
 
 /** Run-time modulation: goal_scale multiplies g (and so f_hat), time_scale stretches tau. */
@@ -238,6 +244,12 @@ fs_real_t dmp_step(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
  *  0 without a y DMP). Returns f_hat as dmp_step. */
 fs_real_t dmp_step_xy(const dmp_model_t *m, dmp_state_t *s, const dmp_run_t *run,
                       const dmp_coupling_t *coupling, fs_real_t path_scale, fs_real_t *path_m);
+
+/** The kernel blend of the next dmp_step / dmp_step_xy of m at the state's present phase,
+ *  computed now (the state's window walked there): that step then takes it instead of
+ *  computing it, with the same result. For work done after a tick's output rather than before
+ *  it; a step at another phase or of another model computes its own. A discrete model only. */
+void dmp_prepare(const dmp_model_t *m, dmp_state_t *s);
 
 /** A periodic model's start (docs/math.md section 5): the phase at 0 turns, (e, z, I) = s_a
  *  times the stored cycle state, the kernel window found by search. s_a (the amplitude scale)

@@ -22,6 +22,7 @@
 #define dmp_slowdown_at_rate dmp_slowdown_at_rate_f32
 #define dmp_step dmp_step_f32
 #define dmp_step_xy dmp_step_xy_f32
+#define dmp_prepare dmp_prepare_f32
 #define dmp_periodic_reset dmp_periodic_reset_f32
 #define dmp_periodic_blend dmp_periodic_blend_f32
 #define dmp_periodic_blend_full dmp_periodic_blend_full_f32

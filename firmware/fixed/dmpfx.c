@@ -569,6 +569,7 @@ void dmpfx_state_reset(dmpfx_state_t *s)
     s->path_z_acc = 0;
     s->u_comp_acc = 0;
     s->sat_events = 0u;
+    s->prep_model = NULL;
 }
 
 int32_t dmpfx_blend(const dmpfx_model_t *m, int32_t u_q30, uint16_t *count)
@@ -609,6 +610,28 @@ static dmp_tick_coef_t dmpfx_coef(const dmpfx_model_t *m, const dmpfx_run_t *run
     return c;
 }
 
+/* The prepared blend pair if dmpfx_prepare made it for m at the state's phase (taken once). */
+static inline bool dmpfx_take_prepared(const dmpfx_model_t *m, dmpfx_state_t *s)
+{
+    const bool hit = s->prep_model == (const void *)m && s->prep_u == dmpfx_view(s->u_acc);
+    s->prep_model = NULL;
+    return hit;
+}
+
+void dmpfx_prepare(const dmpfx_model_t *m, dmpfx_state_t *s)
+{
+    const dmp_tick_state_t st = {s->window,          &s->u_acc, &s->v_acc,
+                                 &s->integral_y_acc, &s->y_acc, &s->z_acc};
+    /* the blend dmpfx_step (force only) or dmpfx_step_xy (with y) computes */
+    if (m->has_y == 0u) {
+        s->prep_s = dmp_tick_state_blend(m, &st);
+    } else {
+        s->prep_s = dmp_tick_state_blend2(m, &st, m->y_weight, &s->prep_sy);
+    }
+    s->prep_u = dmpfx_view(s->u_acc);
+    s->prep_model = m;
+}
+
 int32_t dmpfx_step_xy(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s,
                       const dmpfx_coupling_t *coupling, int32_t *path_q24)
 {
@@ -622,8 +645,10 @@ int32_t dmpfx_step_xy(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_stat
     const dmp_tick_coef_t c = dmpfx_coef(m, run, coupling, &k_ab_y);
     const dmp_tick_state_t st = {s->window,          &s->u_acc, &s->v_acc,
                                  &s->integral_y_acc, &s->y_acc, &s->z_acc};
-    int32_t s_y = 0;
-    const int32_t s_x = dmp_tick_state_blend2(m, &st, m->y_weight, &s_y);
+    int32_t s_y = s->prep_sy;
+    const int32_t s_x = dmpfx_take_prepared(m, s)
+                            ? s->prep_s
+                            : dmp_tick_state_blend2(m, &st, m->y_weight, &s_y);
     const dmp_tick_path_coef_t cp = {.k1 = c.k1,
                                      .k_alpha = c.k_alpha,
                                      .k_alphabeta = k_ab_y,
@@ -645,7 +670,10 @@ int32_t dmpfx_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t
     const dmp_tick_coef_t c = dmpfx_coef(m, run, coupling, &k_ab_y);
     const dmp_tick_state_t st = {s->window,          &s->u_acc, &s->v_acc,
                                  &s->integral_y_acc, &s->y_acc, &s->z_acc};
-    const int32_t f = dmp_tick_step(&c, &st, dmp_tick_state_blend(m, &st), &s->sat_events);
+    const int32_t s_x = (dmpfx_take_prepared(m, s) && m->has_y == 0u)
+                            ? s->prep_s
+                            : dmp_tick_state_blend(m, &st);
+    const int32_t f = dmp_tick_step(&c, &st, s_x, &s->sat_events);
     return fx_add_sat(m->force0_q16, f);
 }
 

@@ -107,6 +107,12 @@ typedef struct {
     int64_t path_z_acc; /* z_p */
     int64_t u_comp_acc; /* the periodic phase sum's compensation: 0 (the sum is exact) */
     uint32_t sat_events;
+    /* the kernel blend dmpfx_prepare computed ahead for the next step, at the phase view prep_u
+     * (Q2.30) of model prep_model (NULL: none); the step takes it once */
+    const void *prep_model;
+    int32_t prep_u;
+    int32_t prep_s;  /* S(u), Q8.24 */
+    int32_t prep_sy; /* S_y(u), Q8.24 (has_y) */
 } dmpfx_state_t;
 
 /** A state's value in its working format (Q2.30 for u~, v~; Q8.24 for I, x, z). */
@@ -193,6 +199,12 @@ int32_t dmpfx_blend(const dmpfx_model_t *m, int32_t u_q30, uint16_t *count);
  *  be NULL. Returns f_hat = f0 + 2^s*y after the step in Q16.16 N. */
 int32_t dmpfx_step(const dmpfx_model_t *m, const dmpfx_run_t *run, dmpfx_state_t *s,
                    const dmpfx_coupling_t *coupling);
+
+/** The kernel blend of the next dmpfx_step / dmpfx_step_xy of m at the state's present phase,
+ *  computed now (the state's window walked there): that step then takes it instead of
+ *  computing it, with the same result. For work done after a tick's output rather than before
+ *  it; a step at another phase or of another model computes its own. A discrete model only. */
+void dmpfx_prepare(const dmpfx_model_t *m, dmpfx_state_t *s);
 
 /** dmpfx_step and, with has_y, the y DMP's step on the same phase (each kernel activation
  *  computed once for both); *path_q24 (may be NULL) receives p after the step, Q8.24 m above

@@ -204,11 +204,13 @@ int exec_side_q_replay(const exec_side_seq_t *seq, const exec_side_meas_t *meas,
         exec_out_q_t o;
         if (seq->via_wrapper != 0u) {
             out[i].status = side_wrapper_tick(&cfg, &meas[i], &o);
-            side_outputs(&out[i], &o);
-            continue;
+        } else {
+            out[i].status = (int)exec_tick_q(&cfg, &side_state, &m, &o);
         }
-        out[i].status = (int)exec_tick_q(&cfg, &side_state, &m, &o);
         side_outputs(&out[i], &o);
+        if (seq->prepare != 0u) {
+            exec_prepare_next(&side_state);
+        }
     }
     return 0;
 }

@@ -68,6 +68,7 @@ typedef struct {
     uint32_t saturate_at; /* > 0: the DMP's accumulators forced beyond range before this tick */
     int mutation;
     uint8_t via_wrapper; /* 1: run exec_tick (the float32 boundary over exec_tick_q) instead */
+    uint8_t prepare;     /* 1: exec_prepare_next after each tick, as the application does */
 } exec_side_seq_t;
 
 /** The mutations exec_side_q_replay applies after exec_start (one wrong constant each). */

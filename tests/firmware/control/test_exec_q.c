@@ -45,6 +45,7 @@ static exec_state_t g_state;
 static exec_side_meas_t g_meas[MAX_TICKS];
 static exec_side_out_t g_ref[MAX_TICKS];
 static exec_side_out_t g_q[MAX_TICKS];
+static exec_side_out_t g_q_prepared[MAX_TICKS];
 
 /* One run: the sequence (skill names and step fields), the configuration's switches, how long
  * it runs, the contact lost in [lost_from_s, lost_to_s), a NaN position at nan_tick (0: none). */
@@ -235,6 +236,7 @@ static void load(const case_t *c, exec_side_seq_t *seq)
     seq->y_hold_m = c->y_hold_m;
     seq->saturate_at = 0u;
     seq->via_wrapper = 0u;
+    seq->prepare = 0u;
     seq->mutation = EXEC_SIDE_MUT_NONE;
     for (uint8_t i = 0u; i < c->n_steps; i++) {
         seq->step[i] = c->step[i];
@@ -417,6 +419,26 @@ static void test_q_matches_float64(void **state)
 }
 
 /* One wrong constant of the integer tick breaks the agreement on the run that uses it. */
+/* exec_prepare_next after every tick (the application's, after the actuator's write: the DMP's
+ * blend and the object model's forces of the next tick computed ahead) leaves every output of
+ * every case bit for bit as without it, through the float32 boundary too. */
+static void test_prepare_same(void **state)
+{
+    (void)state;
+    for (size_t i = 0; i < sizeof k_cases / sizeof k_cases[0]; i++) {
+        for (uint8_t wrapper = 0u; wrapper <= 1u; wrapper++) {
+            exec_side_seq_t seq;
+            load(&k_cases[i], &seq);
+            const size_t n = run_float64(&k_cases[i], &seq);
+            seq.via_wrapper = wrapper;
+            assert_int_equal(exec_side_q_replay(&seq, g_meas, g_q, n), 0);
+            seq.prepare = 1u;
+            assert_int_equal(exec_side_q_replay(&seq, g_meas, g_q_prepared, n), 0);
+            assert_memory_equal(g_q, g_q_prepared, n * sizeof g_q[0]);
+        }
+    }
+}
+
 static void test_mutations_fail(void **state)
 {
     (void)state;
@@ -474,6 +496,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_q_matches_float64),
+        cmocka_unit_test(test_prepare_same),
         cmocka_unit_test(test_mutations_fail),
         cmocka_unit_test(test_saturation_status),
         cmocka_unit_test(test_start_refuses_out_of_range),

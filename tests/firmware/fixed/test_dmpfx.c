@@ -428,6 +428,91 @@ static void test_blend(void **state)
     assert_true(most <= 10u);              /* 9: kernels denser where the force bends */
 }
 
+/* dmpfx_prepare and dmp_prepare between steps (the blend computed after a tick's write for the
+ * next) leave every step's output and state bit for bit as without them, with and without a y
+ * DMP and with a coupling that slows the phase; a prepared blend is taken once, and not by a
+ * step at another phase. */
+static void test_prepare_same(void **state)
+{
+    (void)state;
+    static const char *const names[] = {"engrave_n50_ridge_release.skill",
+                                        "wipe_n50_ridge_release.skill"};
+    for (unsigned k = 0u; k < sizeof names / sizeof names[0]; k++) {
+        load_fixed(names[k]);
+        dmpfx_run_t run;
+        assert_int_equal(dmpfx_run_init(&fxm, 1.2, 1.1, &run), FS_OK);
+        assert_int_equal(dmpfx_run_path(&fxm, 1.0, &run), FS_OK);
+        dmpfx_state_t a;
+        dmpfx_state_t b;
+        dmpfx_state_reset(&a);
+        dmpfx_state_reset(&b);
+        const long rows = lround(skill.dmp.duration_s / skill.dmp.dt_s);
+        for (long i = 0; i < rows; i++) {
+            /* a slowed phase over some ticks: the coupling changes the step, not the blend */
+            const dmpfx_coupling_t c = {0, (i % 7 == 3) ? 0x40000000u : FX_Q31_ONE_U};
+            int32_t pa = 0;
+            int32_t pb = 0;
+            const int32_t fa = dmpfx_step_xy(&fxm, &run, &a, &c, &pa);
+            dmpfx_prepare(&fxm, &b);
+            const int32_t fb = dmpfx_step_xy(&fxm, &run, &b, &c, &pb);
+            assert_int_equal(fa, fb);
+            assert_int_equal(pa, pb);
+            assert_true(a.u_acc == b.u_acc && a.v_acc == b.v_acc && a.y_acc == b.y_acc &&
+                        a.z_acc == b.z_acc && a.integral_y_acc == b.integral_y_acc &&
+                        a.path_acc == b.path_acc && a.path_z_acc == b.path_z_acc);
+            assert_int_equal(a.sat_events, b.sat_events);
+            assert_null(b.prep_model); /* taken */
+        }
+    }
+    /* the real core's dmp_prepare (the float64 build here, the M4F's float32 the same code) */
+    for (unsigned k = 0u; k < sizeof names / sizeof names[0]; k++) {
+        load_fixed(names[k]);
+        const dmp_run_t run = {FS_R(1.2), FS_R(1.1)};
+        const dmp_coupling_t cpl = {FS_R(0.0), FS_R(0.25)};
+        dmp_state_t a;
+        dmp_state_t b;
+        dmp_state_reset(&a);
+        dmp_state_reset(&b);
+        const long rows = lround(skill.dmp.duration_s / skill.dmp.dt_s);
+        for (long i = 0; i < rows; i++) {
+            const dmp_coupling_t *c = (i % 7 == 3) ? &cpl : NULL;
+            fs_real_t pa = FS_R(0.0);
+            fs_real_t pb = FS_R(0.0);
+            const fs_real_t fa = dmp_step_xy(&skill.dmp, &a, &run, c, FS_R(1.0), &pa);
+            dmp_prepare(&skill.dmp, &b);
+            const fs_real_t fb = (skill.dmp.has_y == 0u)
+                                     ? dmp_step(&skill.dmp, &b, &run, c)
+                                     : dmp_step_xy(&skill.dmp, &b, &run, c, FS_R(1.0), &pb);
+            assert_memory_equal(&fa, &fb, sizeof fa);
+            if (skill.dmp.has_y != 0u) {
+                assert_memory_equal(&pa, &pb, sizeof pa);
+            }
+            assert_true(a.u == b.u && a.v == b.v && a.y_N == b.y_N && a.z == b.z &&
+                        a.integral_y == b.integral_y && a.path_m == b.path_m);
+            assert_null(b.prep_model);
+        }
+    }
+    /* prepared at one phase, stepped at another: the step computes its own blend */
+    load_fixed("engrave_n50_ridge_release.skill");
+    dmpfx_run_t run;
+    assert_int_equal(dmpfx_run_init(&fxm, 1.0, 1.0, &run), FS_OK);
+    dmpfx_state_t a;
+    dmpfx_state_t b;
+    dmpfx_state_reset(&a);
+    for (int i = 0; i < 400; i++) {
+        (void)dmpfx_step(&fxm, &run, &a, NULL);
+    }
+    b = a;
+    dmpfx_prepare(&fxm, &b); /* at the phase before the next step */
+    (void)dmpfx_step(&fxm, &run, &a, NULL);
+    assert_true(dmpfx_view(a.u_acc) != b.prep_u);
+    dmpfx_state_t c = a;
+    c.prep_model = b.prep_model;
+    c.prep_u = b.prep_u;
+    c.prep_s = b.prep_s + 12345; /* a blend of another phase, never to be taken */
+    assert_int_equal(dmpfx_step(&fxm, &run, &c, NULL), dmpfx_step(&fxm, &run, &a, NULL));
+}
+
 static void test_rejects(void **state)
 {
     (void)state;
@@ -840,6 +925,7 @@ int main(void)
         cmocka_unit_test(test_bound_conversion),
         cmocka_unit_test(test_commit_path),
         cmocka_unit_test(test_blend),
+        cmocka_unit_test(test_prepare_same),
         cmocka_unit_test(test_rejects),
         cmocka_unit_test(test_coupling),
         cmocka_unit_test(test_saturation_never_wraps),
