@@ -41,6 +41,9 @@ _HEAD_BYTES = 1 << 16
 _TAIL_BYTES = 1 << 16
 #: the first rows after the header: the span check and the median step of its hint
 _FIRST_BYTES = 4096
+#: what numpy's parser is handed a read at least (it asks 16 KiB: a quarter of the Python calls;
+#: far larger pieces parse slower)
+_FEED_BYTES = 1 << 16
 #: the row count numpy's parser preallocates: the rows the shortest mean line of the first and
 #: last bytes gives, with this margin (fewer rows: the file is counted and parsed again)
 _ROWS_MARGIN = 1.05
@@ -459,7 +462,7 @@ class _Feed:
         self._bar = bar
 
     def read(self, n: int = -1) -> bytes:
-        data = self._fh.read(n)
+        data = self._fh.read(max(n, _FEED_BYTES) if n >= 0 else n)
         self._bar.update(len(data))
         return data
 
