@@ -263,7 +263,7 @@ def _powers(a_mat: np.ndarray, count: int) -> np.ndarray:
     return p
 
 
-@functools.lru_cache(maxsize=32)
+@functools.lru_cache(maxsize=16)
 def _scan_plan(a_bytes: bytes, d: int, L: int) -> tuple[np.ndarray, np.ndarray]:
     """``linear_scan``'s powers A^0..A^L and its block-Toeplitz matrix for one A, kept: a long
     recording is scanned block by block with the same few matrices."""
@@ -330,11 +330,10 @@ def phase_blocks(
     alpha: float, beta: float, a: float, n_steps: int, block: int | None = None
 ) -> Iterator[tuple[int, np.ndarray, np.ndarray]]:
     """(i0, u, v): u~_n, v~_n for n = i0..i0 + len(u) - 1, consecutive blocks of ``block`` steps
-    (FIT_BLOCK unless given)
-    sharing their end sample (the next block starts at the last n of this one, so a block holds
-    n and n+1 of every step in it) through n = n_steps: ``phase_scan`` in blocks, the state
-    carried (round-off level differences), memory bounded by the block. The same arguments give
-    the same numbers each time (the fit passes over them twice)."""
+    (FIT_BLOCK unless given) sharing their end sample (the next block starts at the last n of
+    this one, so a block holds n and n+1 of every step in it) through n = n_steps:
+    ``phase_scan`` in blocks, the state carried (round-off level differences), memory bounded by
+    the block. The same arguments give the same numbers each time (the fit passes twice)."""
     block = block or FIT_BLOCK
     a_mat = np.array([[1.0, a], [-a * alpha * beta, 1.0 - a * alpha]])
     b = np.tile([0.0, a * alpha * beta], (max(1, min(block, n_steps)), 1))
