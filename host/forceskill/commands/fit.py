@@ -127,8 +127,9 @@ def _cmd_fit(args: argparse.Namespace) -> int:
         for note in demo.notes:
             print(note)
         # the fit works on the dt grid; the recording's own time and force stay for the error at
-        # its samples, its position is not needed any more (memory on long recordings)
-        grid_demo = resample(demo, args.dt)
+        # its samples, its position is not needed any more (memory on long recordings: a
+        # recording on the grid lends the fit its arrays)
+        grid_demo = resample(demo, args.dt, copy=False)
         demo.pos_m = np.zeros(0)
     else:
         for d in demos:
@@ -152,11 +153,14 @@ def _cmd_fit(args: argparse.Namespace) -> int:
         n_k = 50 if args.kernels is None else args.kernels
         res, grid, f_hat = fit_n(n_k)
         err = tol.sample_error(demo, grid, f_hat)
+        del grid, f_hat
         searched = False
         # the default count follows the recording's length: 50 kernels per 10 s (a long smooth
         # recording); a recording with a defect (a step, a spike, a stuck sensor) is refused
         # with its cause rather than fitted with kernels spent on the defect
         n_cap = min(MAX_KERNELS, int(np.ceil(n_k * (float(demo.t_s[-1] - demo.t_s[0]) / DEFAULT_N_SPAN_S))))
+        if err.max_pct > tol.DEFAULT_MAX_ERROR_PCT:
+            res = None  # refused or replaced below: its grid-sized arrays go before the search
         if (
             err.max_pct > tol.DEFAULT_MAX_ERROR_PCT
             and args.kernels is None
@@ -175,6 +179,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
                     f"N = {n_k} gives {err.max_pct:.3g} %; --kernels N sets it)"
                 )
                 n_k, res, err = n2, res2, err2
+            del res2  # else the best N's: the refusal needs its error only
         if err.max_pct > tol.DEFAULT_MAX_ERROR_PCT:
             cause = tol.diagnose(demo)
             raise FsError(
@@ -230,7 +235,7 @@ def _cmd_fit(args: argparse.Namespace) -> int:
             else:
                 multi_figure(res, multi, band, args.plot, title=title, outs=outs)
         outs.commit()
-    f_max = float(np.max(np.abs(demo.force_N)))
+    f_max = max(float(np.max(demo.force_N)), -float(np.min(demo.force_N)))
     print(
         f"demonstration: {demo.source}, T = {sk.duration_s:.3f} s, {res.t_s.size} samples at "
         f"{sk.dt_s * 1e3:g} ms (recorded: {demo.t_s.size}), max force {f_max:.4g} N"

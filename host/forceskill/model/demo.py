@@ -53,7 +53,7 @@ MIN_DURATION_S = 0.5
 #: A log whose samples sit within this fraction of dt of the grid t0 + n*dt is used as is.
 GRID_TOL = 0.01
 LEARN_COLUMNS = {"contact": "f_contact", "operator": "f_operator"}
-_CHUNK = 1 << 20
+_CHUNK = 1 << 16
 DEFAULT_POSITION = "x"
 #: --tare auto: the quiet stretch before contact ends where the force leaves the first 50 ms'
 #: median by more than TARE_CONTACT_REL of the force range (or 6 noise deviations if larger);
@@ -251,6 +251,9 @@ def validate(demo: Demo) -> None:
         raise DemoError(
             ERR_DEMO_TOO_SHORT, f"demonstration too short: {t.size} samples (need >= {MIN_SAMPLES})"
         )
+    if _sound(demo):  # then only the duration can be refused
+        _check_duration(t)
+        return
     for name, arr in (("t", t), ("position", x), ("force", f), ("y", y)):
         bad = np.flatnonzero(~np.isfinite(arr))
         if bad.size:
@@ -267,11 +270,7 @@ def validate(demo: Demo) -> None:
             f"demonstration time not strictly increasing at sample {i + 1}: "
             f"t = {t[i]:.9g} s then {t[i + 1]:.9g} s",
         )
-    duration = float(t[-1] - t[0])
-    if duration < MIN_DURATION_S:
-        raise DemoError(
-            ERR_DEMO_TOO_SHORT, f"demonstration too short: {duration:g} s (need >= {MIN_DURATION_S:g} s)"
-        )
+    _check_duration(t)
     gaps = np.flatnonzero(dt > demo.max_gap_s + 1e-9)  # a step of --max-gap itself (in float) passes
     if gaps.size:
         i = int(gaps[0])
@@ -287,6 +286,38 @@ def validate(demo: Demo) -> None:
         )
 
 
+def _check_duration(t: np.ndarray) -> None:
+    duration = float(t[-1] - t[0])
+    if duration < MIN_DURATION_S:
+        raise DemoError(
+            ERR_DEMO_TOO_SHORT, f"demonstration too short: {duration:g} s (need >= {MIN_DURATION_S:g} s)"
+        )
+
+
+def _sound(demo: Demo) -> bool:
+    """True when every value is finite, time strictly increases by steps of at most max_gap_s and
+    the force is not all zero: one pass in blocks of _CHUNK samples, no full-size temporaries
+    (``validate`` then names the first problem the usual way)."""
+    t, f = demo.t_s, demo.force_N
+    n = t.size
+    # t needs no sum: a non-finite time makes a step that fails the step check
+    arrays = [a for a in (demo.pos_m, f, demo.y_m) if a is not None]
+    step = np.empty(min(_CHUNK, n))
+    push = False
+    for i0 in range(0, n, _CHUNK):
+        i1 = min(n, i0 + _CHUNK)
+        # a sum is finite only when every term is (a finite sum that overflows is looked at again)
+        if not all(math.isfinite(float(np.sum(a[i0:i1]))) for a in arrays):
+            return False
+        j1 = min(i1, n - 1)  # the steps t[k+1] - t[k] for k in i0..j1-1
+        if j1 > i0:
+            d = np.subtract(t[i0 + 1 : j1 + 1], t[i0:j1], out=step[: j1 - i0])
+            if not (float(np.min(d)) > 0.0 and float(np.max(d)) <= demo.max_gap_s + 1e-9):
+                return False
+        push = push or bool(np.any(f[i0:i1]))
+    return push
+
+
 def on_grid(t_s: np.ndarray, dt_s: float) -> bool:
     """True when every sample is within GRID_TOL*dt of t0 + n*dt (checked in chunks: no
     full-size temporaries on long recordings)."""
@@ -300,25 +331,49 @@ def on_grid(t_s: np.ndarray, dt_s: float) -> bool:
     return True
 
 
-def resample(demo: Demo, dt_s: float) -> Demo:
+def _grid(n: int, dt_s: float) -> np.ndarray:
+    """n*dt for n = 0..n-1, as np.arange(n)*dt gives it (no integer array on the way)."""
+    g = np.arange(n, dtype=float)
+    g *= dt_s
+    return g
+
+
+def _is_grid(t_s: np.ndarray, dt_s: float) -> bool:
+    """True when t_s is exactly ``_grid(t_s.size, dt_s)`` (checked in chunks)."""
+    for i0 in range(0, t_s.size, _CHUNK):
+        chunk = t_s[i0 : i0 + _CHUNK]
+        g = np.arange(i0, i0 + chunk.size, dtype=float)
+        g *= dt_s
+        if not np.array_equal(chunk, g):
+            return False
+    return True
+
+
+def resample(demo: Demo, dt_s: float, copy: bool = True) -> Demo:
     """The demonstration on the grid n*dt from its first sample (time shifted to start at 0).
 
-    Already on the grid (1 kHz log at dt = 1 ms): samples kept as they are. Otherwise position and
-    force are linearly interpolated at t0 + n*dt for n = 0..floor((t_end - t0)/dt).
+    Already on the grid (1 kHz log at dt = 1 ms): samples kept as they are (copies; ``copy``
+    False: the same arrays, and the same time array when it is the grid n*dt itself). Otherwise
+    position and force are linearly interpolated at t0 + n*dt for n = 0..floor((t_end - t0)/dt).
     """
     if not (math.isfinite(dt_s) and dt_s > 0.0):
         raise ParamError(ERR_FIT_ARGS, f"dt must be finite and > 0: {dt_s}")
     t0 = float(demo.t_s[0])
     if on_grid(demo.t_s, dt_s):
         n = demo.t_s.size
+        same = not copy and _is_grid(demo.t_s, dt_s)
+
+        def keep(a: np.ndarray) -> np.ndarray:
+            return a.copy() if copy else a
+
         return Demo(
-            np.arange(n) * dt_s,
-            demo.pos_m.copy(),
-            demo.force_N.copy(),
+            demo.t_s if same else _grid(n, dt_s),
+            keep(demo.pos_m),
+            keep(demo.force_N),
             demo.source,
             demo.max_gap_s,
             list(demo.notes),
-            None if demo.y_m is None else demo.y_m.copy(),
+            None if demo.y_m is None else keep(demo.y_m),
         )
     n_last = int(math.floor((float(demo.t_s[-1]) - t0) / dt_s + 1e-9))
     tn = t0 + np.arange(n_last + 1) * dt_s

@@ -23,8 +23,9 @@ used by the fit for speed and checked against the loop in tests/host/model/test_
 
 from __future__ import annotations
 
+import functools
 import math
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 
 import numpy as np
 
@@ -34,6 +35,10 @@ from .skill import Skill
 #: Kernels with (u - c_i)^2/(2 sigma_i^2) above this are skipped (DMP_KERNEL_CUTOFF_EXP, dmp.h).
 KERNEL_CUTOFF_EXP = 23.0
 _ROW_CHUNK = 4096
+#: Values (rows x kernels) per block of ``kernel_blocks``.
+KERNEL_BLOCK_VALUES = 1 << 17
+#: Steps per block of ``phase_blocks`` (the fit's passes over a recording).
+FIT_BLOCK = 1 << 15
 
 
 def kernel_exponents(u: np.ndarray, centres: np.ndarray, widths: np.ndarray) -> np.ndarray:
@@ -105,10 +110,98 @@ def _normalised_kernels_banded(u: np.ndarray, centres: np.ndarray, widths: np.nd
     return psi_t
 
 
+def kernel_blocks(
+    u: np.ndarray, centres: np.ndarray, widths: np.ndarray, budget: int = KERNEL_BLOCK_VALUES
+) -> Iterator[tuple[int, int, np.ndarray]]:
+    """(r0, k0, psi) for consecutive rows r0:r0+psi.shape[1] of a non-decreasing ``u``: psi[j, n]
+    = exp(-e) of kernel k0 + j at u[r0 + n] where e <= KERNEL_CUTOFF_EXP, else 0, every kernel
+    within the cutoff of those rows among them; about ``budget`` values a block at most (the
+    kernels are never all evaluated on every row: a long recording has up to 1024 of them).
+    psi is kernel-major (a row of it is one kernel) and lives in a buffer the next block reuses.
+    No e_min shift: e <= 23 cannot underflow and the normalised weights do not depend on it."""
+    u = np.asarray(u, dtype=float).reshape(-1)
+    half_inv_var = 1.0 / (2.0 * widths * widths)
+    radius = np.sqrt(KERNEL_CUTOFF_EXP / half_inv_var) * (1.0 + 1e-6)
+    lo = np.searchsorted(u, centres - radius, side="left")  # the rows each kernel reaches
+    hi = np.searchsorted(u, centres + radius, side="right")
+    most = max(64, budget // 16)
+    values = np.empty(max(budget, 64 * centres.size))
+    inside = np.empty(values.size, dtype=bool)
+    rows = most
+    r0 = 0
+    while r0 < u.size:
+        r1 = min(u.size, r0 + rows)
+        reach = np.flatnonzero((lo < r1) & (hi > r0))
+        k0, k1 = (int(reach[0]), int(reach[-1]) + 1) if reach.size else (0, 0)
+        if (r1 - r0) * (k1 - k0) > budget and r1 - r0 > 64:
+            rows = max(64, (r1 - r0) // 2)  # many narrow kernels here: fewer rows
+            continue
+        shape = (k1 - k0, r1 - r0)
+        e = values[: shape[0] * shape[1]].reshape(shape)
+        ok = inside[: e.size].reshape(shape)
+        np.subtract(u[None, r0:r1], centres[k0:k1, None], out=e)
+        np.multiply(e, e, out=e)
+        e *= half_inv_var[k0:k1, None]
+        np.less_equal(e, KERNEL_CUTOFF_EXP, out=ok)
+        np.minimum(e, KERNEL_CUTOFF_EXP + 1.0, out=e)
+        np.negative(e, out=e)
+        psi = np.exp(e, out=e)
+        psi *= ok
+        yield r0, k0, psi
+        r0 = r1
+        rows = min(most, 2 * rows)
+
+
+def normalise_rows(psi: np.ndarray) -> np.ndarray:
+    """Kernel-major psi (``kernel_blocks``) divided in place by each row's sum over its kernels
+    (rows without a kernel stay 0); returns the mask of the rows with one."""
+    rowsum = psi.sum(axis=0)
+    covered: np.ndarray = rowsum > 0.0
+    psi *= np.reciprocal(np.where(covered, rowsum, 1.0))
+    return covered
+
+
+def kernel_mix(
+    u: np.ndarray, centres: np.ndarray, widths: np.ndarray, weights: Sequence[np.ndarray]
+) -> list[np.ndarray]:
+    """S(u) = sum_i w_i psi_i(u) / sum_i psi_i(u) for each weight vector at a non-decreasing u, by
+    ``kernel_blocks``; a row no kernel reaches takes the nearest kernel's weight (the smallest
+    e_i, the first on a tie), as ``normalised_kernels`` gives it."""
+    u = np.asarray(u, dtype=float).reshape(-1)
+    out = [np.empty(u.size) for _ in weights]
+    term = np.empty(0)
+    for r0, k0, psi in kernel_blocks(u, centres, widths):
+        covered = normalise_rows(psi)
+        r1 = r0 + psi.shape[1]
+        term = np.empty(psi.shape[1]) if term.size < psi.shape[1] else term[: psi.shape[1]]
+        for s, w in zip(out, weights, strict=True):
+            # kernel by kernel in their order: a row's sum does not depend on which kernels share
+            # its block (a matrix product's would), so any blocks give the same numbers
+            acc = s[r0:r1]
+            acc.fill(0.0)
+            for j, w_j in enumerate(w[k0 : k0 + psi.shape[0]].tolist()):
+                acc += np.multiply(psi[j], w_j, out=term)
+        if not covered.all():
+            rows = r0 + np.flatnonzero(~covered)
+            nearest = np.argmin(kernel_exponents(u[rows], centres, widths), axis=1)
+            for s, w in zip(out, weights, strict=True):
+                s[rows] = w[nearest]
+    return out
+
+
+def _mixes(u: np.ndarray, skill: Skill, weights: list[np.ndarray]) -> list[np.ndarray]:
+    """``kernel_mix`` for a non-decreasing u (every rollout: no (rows, N) matrix), else the
+    normalised kernels' matrix times each weight vector."""
+    u = np.asarray(u, dtype=float).reshape(-1)
+    if u.size > 1 and bool(np.all(u[1:] >= u[:-1])):
+        return kernel_mix(u, skill.centres, skill.widths, weights)
+    k = normalised_kernels(u, skill.centres, skill.widths)
+    return [k @ w for w in weights]
+
+
 def forcing_scale(u: np.ndarray, skill: Skill) -> np.ndarray:
     """S(u) = sum psi_i w_i / sum psi_i for every u (the kernel part of h = g*v*S(u))."""
-    s: np.ndarray = normalised_kernels(u, skill.centres, skill.widths) @ skill.weights
-    return s
+    return _mixes(u, skill, [skill.weights])[0]
 
 
 def phase_loop(alpha: float, beta: float, a: float, n_steps: int) -> tuple[np.ndarray, np.ndarray]:
@@ -170,6 +263,22 @@ def _powers(a_mat: np.ndarray, count: int) -> np.ndarray:
     return p
 
 
+@functools.lru_cache(maxsize=16)
+def _scan_plan(a_bytes: bytes, d: int, L: int) -> tuple[np.ndarray, np.ndarray]:
+    """``linear_scan``'s powers A^0..A^L and its block-Toeplitz matrix for one A, kept: a long
+    recording is scanned block by block with the same few matrices."""
+    p = _powers(np.frombuffer(a_bytes).reshape(d, d), L)
+    # Toeplitz: y_k = sum_{j<k} A^(k-1-j) b_j for k = 1..L  ->  Y[(k-1)*d + r] = T[...] @ bflat
+    kk = np.arange(L)[:, None]  # row block k-1
+    jj = np.arange(L)[None, :]  # column block j
+    lag = kk - jj  # power k-1-j, valid for j <= k-1
+    t4 = np.where((lag >= 0)[:, :, None, None], p[np.clip(lag, 0, L)], 0.0)  # (L, L, d, d)
+    t = np.ascontiguousarray(t4.transpose(0, 2, 1, 3).reshape(L * d, L * d))
+    p.setflags(write=False)
+    t.setflags(write=False)
+    return p, t
+
+
 def linear_scan(
     a_mat: np.ndarray, b: np.ndarray, s0: np.ndarray | None = None, block: int = 64
 ) -> np.ndarray:
@@ -190,13 +299,7 @@ def linear_scan(
         return out
     L = max(1, min(block, m))
     nb = -(-m // L)
-    p = _powers(a_mat, L)
-    # Toeplitz: y_k = sum_{j<k} A^(k-1-j) b_j for k = 1..L  ->  Y[(k-1)*d + r] = T[...] @ bflat
-    kk = np.arange(L)[:, None]  # row block k-1
-    jj = np.arange(L)[None, :]  # column block j
-    lag = kk - jj  # power k-1-j, valid for j <= k-1
-    t4 = np.where((lag >= 0)[:, :, None, None], p[np.clip(lag, 0, L)], 0.0)  # (L, L, d, d)
-    t = t4.transpose(0, 2, 1, 3).reshape(L * d, L * d)
+    p, t = _scan_plan(a_mat.tobytes(), d, L)
     bp = np.zeros((nb * L, d))
     bp[:m] = b
     y = (bp.reshape(nb, L * d) @ t.T).reshape(nb, L, d)  # y[mb, k-1] = local state at k
@@ -215,70 +318,6 @@ def linear_scan(
     return out
 
 
-class KernelBands:
-    """Kernels over a non-decreasing phase sequence, stored per kernel as the band of rows where
-    e_i <= 23 (the fit's fast path; a few kernels per row instead of all N).
-
-    psi[i] = exp(-e_i) on rows lo[i]:hi[i] (no e_min shift: e_i <= 23 cannot underflow, and the
-    normalised weights are shift-invariant, so they equal ``normalised_kernels`` to round-off).
-    """
-
-    def __init__(self, u: np.ndarray, centres: np.ndarray, widths: np.ndarray, keep_raw: bool = True) -> None:
-        """``keep_raw`` False: only the normalised kernels are kept (normalised in place: half the
-        memory; ``project(normalised=False)`` is then unavailable)."""
-        self.n_rows = u.size
-        half_inv_var = 1.0 / (2.0 * widths * widths)
-        radius = np.sqrt(KERNEL_CUTOFF_EXP / half_inv_var) * (1.0 + 1e-6)
-        self.lo = np.searchsorted(u, centres - radius, side="left")
-        self.hi = np.searchsorted(u, centres + radius, side="right")
-        psi: list[np.ndarray] = []
-        rowsum = np.zeros(u.size)
-        for i in range(centres.size):
-            d = u[self.lo[i] : self.hi[i]] - centres[i]
-            e = d * d * half_inv_var[i]
-            p = np.where(e <= KERNEL_CUTOFF_EXP, np.exp(-np.minimum(e, KERNEL_CUTOFF_EXP + 1.0)), 0.0)
-            psi.append(p)
-            rowsum[self.lo[i] : self.hi[i]] += p
-        self.complete = bool(np.all(rowsum > 0.0))  # False: a row needs the nearest-kernel fallback
-        inv = np.reciprocal(np.where(rowsum > 0.0, rowsum, 1.0), out=rowsum)
-        if keep_raw:
-            self.psi = psi
-            self.norm = [p * inv[self.lo[i] : self.hi[i]] for i, p in enumerate(psi)]
-        else:
-            self.psi = []
-            self.norm = [np.multiply(p, inv[self.lo[i] : self.hi[i]], out=p) for i, p in enumerate(psi)]
-
-    def sum_weighted(self, w: np.ndarray) -> np.ndarray:
-        """S_n = sum_i w_i psi_i/sum psi (the normalised mixture) for every row."""
-        out = np.zeros(self.n_rows)
-        for i, k in enumerate(self.norm):
-            out[self.lo[i] : self.hi[i]] += w[i] * k
-        return out
-
-    def gram(self, s2: np.ndarray) -> np.ndarray:
-        """G_ij = sum_n K_in K_jn s2_n for the normalised kernels (banded, symmetric)."""
-        n_k = len(self.norm)
-        g = np.zeros((n_k, n_k))
-        for i in range(n_k):
-            ki = self.norm[i] * s2[self.lo[i] : self.hi[i]]
-            for j in range(i, n_k):
-                if self.lo[j] >= self.hi[i]:
-                    break
-                a, b = max(self.lo[i], self.lo[j]), min(self.hi[i], self.hi[j])
-                if b > a:
-                    g[i, j] = g[j, i] = float(
-                        ki[a - self.lo[i] : b - self.lo[i]] @ self.norm[j][a - self.lo[j] : b - self.lo[j]]
-                    )
-        return g
-
-    def project(self, y: np.ndarray, normalised: bool = True) -> np.ndarray:
-        """sum_n K_in y_n for every kernel (normalised or raw psi)."""
-        if not normalised and not self.psi:
-            raise ValueError("raw kernels not kept (KernelBands(keep_raw=False))")
-        ks = self.norm if normalised else self.psi
-        return np.array([float(k @ y[self.lo[i] : self.hi[i]]) for i, k in enumerate(ks)])
-
-
 def phase_scan(alpha: float, beta: float, a: float, n_steps: int) -> tuple[np.ndarray, np.ndarray]:
     """Same as ``phase_loop`` via ``linear_scan`` (fast; round-off level differences)."""
     a_mat = np.array([[1.0, a], [-a * alpha * beta, 1.0 - a * alpha]])
@@ -287,22 +326,48 @@ def phase_scan(alpha: float, beta: float, a: float, n_steps: int) -> tuple[np.nd
     return s[:, 0], s[:, 1]
 
 
+def phase_blocks(
+    alpha: float, beta: float, a: float, n_steps: int, block: int | None = None
+) -> Iterator[tuple[int, np.ndarray, np.ndarray]]:
+    """(i0, u, v): u~_n, v~_n for n = i0..i0 + len(u) - 1, consecutive blocks of ``block`` steps
+    (FIT_BLOCK unless given) sharing their end sample (the next block starts at the last n of
+    this one, so a block holds n and n+1 of every step in it) through n = n_steps:
+    ``phase_scan`` in blocks, the state carried (round-off level differences), memory bounded by
+    the block. The same arguments give the same numbers each time (the fit passes twice)."""
+    block = block or FIT_BLOCK
+    a_mat = np.array([[1.0, a], [-a * alpha * beta, 1.0 - a * alpha]])
+    b = np.tile([0.0, a * alpha * beta], (max(1, min(block, n_steps)), 1))
+    s0 = np.zeros(2)
+    for i0 in range(0, max(n_steps, 1), block):
+        s = linear_scan(a_mat, b[: min(block, n_steps - i0)], s0)
+        yield i0, s[:, 0], s[:, 1]
+        s0 = s[-1]
+
+
 def transform_scan(
     alpha: float, beta: float, gamma: float, a: float, goal: float, h: np.ndarray, chunk: int = 1 << 16
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Same as ``transform_loop`` (constant goal) via ``linear_scan``, ``chunk`` steps at a time
     (the state carried from one chunk to the next), so its temporaries do not grow with len(h)."""
-    a_mat = np.array([[1.0 - a, a, -a * gamma], [-a * alpha * beta, 1.0 - a * alpha, 0.0], [a, 0.0, 1.0]])
     h = np.asarray(h, dtype=float).reshape(-1)
     out = np.empty((h.size + 1, 3))
     out[0] = 0.0
     for i0 in range(0, max(h.size, 1), chunk):
         hb = h[i0 : i0 + chunk]
-        b = np.zeros((hb.size, 3))
-        b[:, 0] = a * hb
-        b[:, 1] = a * alpha * beta * goal
-        out[i0 : i0 + hb.size + 1] = linear_scan(a_mat, b, out[i0])
+        out[i0 : i0 + hb.size + 1] = transform_block(alpha, beta, gamma, a, goal, hb, out[i0])
     return out[:, 0], out[:, 1], out[:, 2]
+
+
+def transform_block(
+    alpha: float, beta: float, gamma: float, a: float, goal: float, h: np.ndarray, state: np.ndarray
+) -> np.ndarray:
+    """The states (x, z, I) before and after each step of forcing ``h`` from ``state``: shape
+    (len(h) + 1, 3), ``transform_scan``'s recursion for one block."""
+    a_mat = np.array([[1.0 - a, a, -a * gamma], [-a * alpha * beta, 1.0 - a * alpha, 0.0], [a, 0.0, 1.0]])
+    b = np.zeros((h.size, 3))
+    b[:, 0] = a * h
+    b[:, 1] = a * alpha * beta * goal
+    return linear_scan(a_mat, b, state)
 
 
 def default_steps(skill: Skill, time_scale: float = 1.0) -> int:
@@ -385,9 +450,9 @@ def rollout_peak(skill: Skill, goal_scale: float = 1.0, time_scale: float = 1.0)
 def forcing_scales(u: np.ndarray, skill: Skill) -> tuple[np.ndarray, np.ndarray | None]:
     """S(u) of the force DMP and S_y(u) of the y DMP (None for a force-only skill) from one
     evaluation of the normalised kernels: both DMPs share the phase and the kernels."""
-    k = normalised_kernels(u, skill.centres, skill.widths)
-    s_y: np.ndarray | None = None if skill.y_weights is None else k @ skill.y_weights
-    s_x: np.ndarray = k @ skill.weights
+    if skill.y_weights is None:
+        return forcing_scale(u, skill), None
+    s_x, s_y = _mixes(u, skill, [skill.weights, skill.y_weights])
     return s_x, s_y
 
 
@@ -417,7 +482,7 @@ def rollout_path(
     a = skill.dt_s / (skill.tau_s * time_scale)
     u, v = phase_loop(skill.alpha, skill.beta, a, n)
     with np.errstate(all="ignore"):
-        h = path_scale * v[:-1] * (normalised_kernels(u[:-1], skill.centres, skill.widths) @ skill.y_weights)
+        h = path_scale * v[:-1] * _mixes(u[:-1], skill, [skill.y_weights])[0]
     p, _, _ = transform_loop(skill.alpha, skill.beta_y, 0.0, a, path_scale * skill.goal_y_m, h)
     with np.errstate(all="ignore"):
         y = skill.y_start_m + p

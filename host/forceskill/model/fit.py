@@ -17,6 +17,12 @@ same phase, tau and kernels: target p* = y - y(0) in m, goal g_y = k_p*p*(T)/(m_
 (the DMP's rest point is p*(T)), h_d from the same recursion with gamma = 0, and the regression of
 h_d on v~*S_y(u~) (no goal factor: a wiping path may end where it started, g_y = 0) with the
 force's method and kernels. The weights are in m.
+
+Memory: after the goal and the kernel times, the recording is gone through in blocks of steps
+(``dmp.phase_blocks``, the recursions' states carried from block to block): once for h_d and the
+regression's sums (the kernels of each block evaluated only where they reach, ``dmp.kernel_blocks``),
+once for the rollout. Grid-sized arrays: y* until the passes, then the learned force (and y path);
+the numbers are those of whole-array passes to round-off.
 """
 
 from __future__ import annotations
@@ -75,13 +81,20 @@ class FitResult:
     err_rms_pct: float
     pos_m: np.ndarray = field(default_factory=lambda: np.zeros(0))
     method: str = "ridge"
-    h_d: np.ndarray = field(default_factory=lambda: np.zeros(0))
     #: the y half (a demonstration with a path along y): demonstrated and learned path (m) and the
     #: learned path's error in mm; empty / nan without one
     y_target_m: np.ndarray = field(default_factory=lambda: np.zeros(0))
     y_hat_m: np.ndarray = field(default_factory=lambda: np.zeros(0))
     y_err_max_mm: float = math.nan
     y_err_rms_mm: float = math.nan
+
+    @property
+    def h_d(self) -> np.ndarray:
+        """The desired forcing of the target (``desired_forcing``), made when asked for: a
+        grid-sized array the fit itself only forms block by block."""
+        sk = self.skill
+        y_star = self.target_N - sk.force0_N
+        return desired_forcing(y_star, sk.alpha, sk.beta, sk.gamma, sk.dt_s / sk.tau_s, sk.goal_N)
 
 
 def _phase_end(alpha: float, beta: float, a: float, n: int) -> float:
@@ -178,7 +191,7 @@ def kernel_times(
         qs = _curvature(sig, hb, nb, ks)
         qs_mean = float(np.mean(qs))
         # round-off of a straight line is no bend: curvature below 1e-9 of the signal counts as none
-        if qs_mean > 1e-9 * float(np.max(np.abs(sig))) and math.isfinite(qs_mean):
+        if qs_mean > 1e-9 * _max_abs(sig) and math.isfinite(qs_mean):
             q += qs / qs_mean
     q_mean = float(np.mean(q))
     if not q_mean > 0.0:
@@ -203,28 +216,32 @@ def kernels_per_tick(centres: np.ndarray, widths: np.ndarray, cutoff: float = DE
 
 
 def kernel_layout(
-    u: np.ndarray,
-    dt_s: float,
-    duration_s: float,
-    n_kernels: int,
-    width_factor: float = WIDTH_FACTOR,
-    t_i: np.ndarray | None = None,
+    u_i: np.ndarray, width_factor: float = WIDTH_FACTOR, uniform: bool = True
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Centres c_i = u~(t_i) (linear interpolation of the discrete phase), t_i = linspace(0, T, N)
-    unless given (``kernel_times``). Widths: t_i uniform (the ``lwr`` layout),
-    sigma_i = width_factor*(c_{i+1} - c_i), sigma_N = sigma_{N-1}; t_i given,
+    """Centres c_i = u_i, the discrete phase at the kernel times t_i (``phase_at`` of t_i/dt;
+    t_i = linspace(0, T, N) for the uniform layout, else ``kernel_times``). Widths: uniform (the
+    ``lwr`` layout), sigma_i = width_factor*(c_{i+1} - c_i), sigma_N = sigma_{N-1}; otherwise
     sigma_i = width_factor*(c_{i+1} - c_{i-1})/2 (the mean of the two gaps; one gap at either end),
     so neighbours of unequal gaps get comparable widths."""
-    uniform = t_i is None
-    if t_i is None:
-        t_i = np.linspace(0.0, duration_s, n_kernels)
-    centres = np.interp(t_i / dt_s, np.arange(u.size, dtype=float), u)
+    centres = np.asarray(u_i, dtype=float)
     gaps = np.diff(centres)
     if uniform:
         widths = width_factor * np.append(gaps, gaps[-1])
     else:
         widths = width_factor * 0.5 * (np.append(gaps[:1], gaps) + np.append(gaps, gaps[-1:]))
     return centres, widths
+
+
+def phase_at(alpha: float, beta: float, a: float, n_steps: int, x: np.ndarray) -> np.ndarray:
+    """The discrete phase u~ at fractional steps ``x`` (linear interpolation over n = 0..n_steps,
+    as ``np.interp`` of the whole phase gives it), from one pass of ``dmp.phase_blocks``."""
+    x = np.asarray(x, dtype=float)
+    out = np.empty(x.size)
+    for i0, u, _ in dmp.phase_blocks(alpha, beta, a, n_steps):
+        i1 = i0 + u.size - 1
+        sel = ((x >= i0) | (i0 == 0)) & ((x < i1) | (i1 >= n_steps))
+        out[sel] = np.interp(x[sel], np.arange(i0, i1 + 1, dtype=float), u)
+    return out
 
 
 def desired_forcing(
@@ -244,20 +261,57 @@ def desired_forcing(
     return f_target
 
 
-def _regress(bands: dmp.KernelBands, s: np.ndarray, h_d: np.ndarray, lwr: bool, lam_rel: float) -> np.ndarray:
-    """Weights w with h_d ~ s*S(u): ridge (joint, Tikhonov relative to the mean diagonal) or the
-    paper's per-kernel LWR."""
-    if not lwr:
-        gram = bands.gram(s * s)
-        lam = lam_rel * float(np.trace(gram)) / gram.shape[0]
-        w: np.ndarray = np.linalg.solve(gram + lam * np.eye(gram.shape[0]), bands.project(s * h_d))
+def _forcing_block(
+    ys: np.ndarray, alpha: float, beta: float, gamma: float, a: float, goal_N: float, state: np.ndarray
+) -> np.ndarray:
+    """``desired_forcing`` of one block of steps: ``ys`` holds y* of its steps and of the step
+    after the last; ``state`` = (z, I) at its first step, updated to the next block's."""
+    q = 1.0 - a * alpha
+    b = a * alpha * (beta * (goal_N - ys[:-1]))
+    z = dmp.linear_scan(np.array([[q]]), b[:, None], state[:1])[:, 0]
+    # I by the same running sum as a cumsum over the whole target
+    big_i = np.cumsum(np.concatenate((state[1:], a * ys[:-1])))
+    state[0], state[1] = z[-1], big_i[-1]
+    h_d: np.ndarray = (ys[1:] - ys[:-1]) / a - (z[:-1] - ys[:-1] - gamma * big_i[:-1])
+    return h_d
+
+
+class _Normal:
+    """The regression's sums over the rows, added block by block: ridge's normal equations
+    K^T diag(s^2) K and K^T (s h_d) of the normalised kernels K, or LWR's per-kernel sums of the
+    raw psi."""
+
+    def __init__(self, n_kernels: int, lwr: bool) -> None:
+        self.lwr = lwr
+        self.lhs = np.zeros(n_kernels) if lwr else np.zeros((n_kernels, n_kernels))
+        self.rhs = np.zeros(n_kernels)
+
+    def add(self, k0: int, psi: np.ndarray, s: np.ndarray, h_d: np.ndarray) -> None:
+        """The rows of one kernel block (``dmp.kernel_blocks``, kernel-major): psi raw for LWR,
+        normalised for ridge; s and h_d of the same rows."""
+        k1 = k0 + psi.shape[0]
+        self.rhs[k0:k1] += psi @ (s * h_d)
+        if self.lwr:
+            self.lhs[k0:k1] += psi @ (s * s)
+        else:
+            self.lhs[k0:k1, k0:k1] += (psi * (s * s)) @ psi.T
+
+    def solve(self, lam_rel: float) -> np.ndarray:
+        """Weights w with h_d ~ s*S(u): ridge (joint, Tikhonov relative to the mean diagonal) or
+        the paper's per-kernel LWR (w_i = sum psi_i s h_d / sum psi_i s^2)."""
+        if not self.lwr:
+            lam = lam_rel * float(np.trace(self.lhs)) / self.lhs.shape[0]
+            self.lhs[np.diag_indices_from(self.lhs)] += lam  # in place: N x N is 8 MiB at N = 1024
+            w: np.ndarray = np.linalg.solve(self.lhs, self.rhs)
+            return w
+        den = self.lhs
+        w = np.where(den > 0.0, self.rhs / np.where(den > 0.0, den, 1.0), 0.0)
         return w
-    # the paper's LWR: per-kernel weighted LS with the raw local weights psi_i (cut at e_i > 23,
-    # below 1e-10 of the peak); w_i = sum psi_i s h_d / sum psi_i s^2
-    num = bands.project(s * h_d, normalised=False)
-    den = bands.project(s * s, normalised=False)
-    w = np.where(den > 0.0, num / np.where(den > 0.0, den, 1.0), 0.0)
-    return w
+
+
+def _max_abs(x: np.ndarray) -> float:
+    """max |x| without a full-size |x|."""
+    return max(float(np.max(x)), -float(np.min(x))) if x.size else 0.0
 
 
 def prepare(
@@ -269,9 +323,11 @@ def prepare(
     surface_m: float,
     dt_s: float,
     object_mass_kg: float | None,
+    copy: bool = True,
 ) -> tuple[DmpParams, Demo]:
     """The checks every fit makes before it learns (method, kernels, surface, stiffness, gains,
-    the demonstration), then the law's derived parameters and the demonstration at dt_s."""
+    the demonstration), then the law's derived parameters and the demonstration at dt_s
+    (``resample``; ``copy`` False: a demonstration already on the grid keeps its arrays)."""
     if method not in METHODS:
         raise ParamError(ERR_FIT_ARGS, f"method must be one of {', '.join(METHODS)}: {method!r}")
     if not (isinstance(n_kernels, (int, np.integer)) and 2 <= n_kernels <= MAX_KERNELS):
@@ -283,7 +339,7 @@ def prepare(
     if object_mass_kg is not None:
         check_inertia(gains, stiffness_Npm, object_mass_kg)
     validate(demo)
-    return p, resample(demo, dt_s)
+    return p, resample(demo, dt_s, copy=copy)
 
 
 def law_fields(
@@ -330,17 +386,19 @@ def fit(
     if force0_N is not None and not math.isfinite(force0_N):
         raise ParamError(ERR_FIT_ARGS, f"starting force must be finite: {force0_N}")
     lam_rel = RIDGE_LAMBDA_REL if ridge_lambda_rel is None else float(ridge_lambda_rel)
-    p, d = prepare(demo, stiffness_Npm, n_kernels, method, gains, surface_m, dt_s, object_mass_kg)
+    p, d = prepare(demo, stiffness_Npm, n_kernels, method, gains, surface_m, dt_s, object_mass_kg, copy=False)
     n_t = d.t_s.size - 1
     duration = n_t * dt_s
     f = d.force_N
     f0 = float(f[0]) if force0_N is None else float(force0_N)
+    # y* = f - f0 whole only for the goal, its scale and the kernel times; the passes below make
+    # it block by block (a long recording's fit holds few grid-sized arrays)
     y_star = f - f0
     # goal: g = k*g'(T) with k*x_d(T) = f(T) (the executor's reference), int f by the left rectangle
     # rule (what the integrator of the law accumulates); all of it above the starting force
     f_int = dt_s * float(np.sum(y_star[:-1]))
     goal_N = goal(p, gains, float(y_star[-1]), float(y_star[-1]), f_int)
-    y_scale = float(np.max(np.abs(y_star)))
+    y_scale = _max_abs(y_star)
     if not (goal_N > GOAL_MIN_REL * y_scale):
         raise DemoError(
             ERR_FIT_GOAL,
@@ -351,13 +409,16 @@ def fit(
     lwr = method == "lwr"
     tau = solve_tau(p.alpha, p.beta, dt_s, n_t, LWR_PHASE_AT_END if lwr else PHASE_AT_END)
     a = dt_s / tau
-    u, v = dmp.phase_scan(p.alpha, p.beta, a, n_t)
-    centres, widths = kernel_layout(
-        u, dt_s, duration, int(n_kernels), LWR_WIDTH_FACTOR if lwr else WIDTH_FACTOR
-    )  # uniform in time: lwr, and the fallback of the denser layout
-    for gain in () if lwr or DENSITY_GAIN <= 0.0 else (DENSITY_GAIN, 0.5 * DENSITY_GAIN):
-        t_i = kernel_times(y_star, dt_s, int(n_kernels), gain, d.y_m)
-        c_g, w_g = kernel_layout(u, dt_s, duration, int(n_kernels), WIDTH_FACTOR, t_i)
+    # kernel times: uniform (lwr, and the fallback of the denser layout), then the denser ones
+    n_k = int(n_kernels)
+    times = [np.linspace(0.0, duration, n_k)]
+    gains_tried = () if lwr or DENSITY_GAIN <= 0.0 else (DENSITY_GAIN, 0.5 * DENSITY_GAIN)
+    times += [kernel_times(y_star, dt_s, n_k, gain, d.y_m) for gain in gains_tried]
+    del y_star
+    u_i = phase_at(p.alpha, p.beta, a, n_t, np.concatenate(times) / dt_s).reshape(len(times), n_k)
+    centres, widths = kernel_layout(u_i[0], LWR_WIDTH_FACTOR if lwr else WIDTH_FACTOR)
+    for u_g in u_i[1:]:
+        c_g, w_g = kernel_layout(u_g, WIDTH_FACTOR, uniform=False)
         if kernels_per_tick(c_g, w_g) <= KERNELS_PER_TICK_MAX:
             centres, widths = c_g, w_g
             break
@@ -367,24 +428,42 @@ def fit(
             f"{n_kernels} kernels do not fit a {duration:g} s demonstration "
             f"at dt = {dt_s:g} s (centres collide)",
         )
-    h_d = desired_forcing(y_star, p.alpha, p.beta, p.gamma, a, goal_N)
-    s = goal_N * v[:-1]  # h = s_n * S(u_n)
-    bands = dmp.KernelBands(u[:-1], centres, widths, keep_raw=lwr)
-    weights = _regress(bands, s, h_d, lwr, lam_rel)
+    # the regression: h_d and the kernels block by block, the normal equations summed
+    y_path = d.y_m
+    beta_y = goal_y = y0 = 0.0
+    if y_path is not None:
+        beta_y = derive_beta_y(gains)
+        y0 = float(y_path[0])
+        goal_y = gains.k_p_Npm * (float(y_path[-1]) - y0) / (gains.m_d_kg * p.alpha * beta_y)
+    normal, normal_y = _Normal(n_k, lwr), None if y_path is None else _Normal(n_k, lwr)
+    state, state_y = np.zeros(2), np.zeros(2)
+    for i0, u, v in dmp.phase_blocks(p.alpha, p.beta, a, n_t):
+        i1 = i0 + u.size - 1
+        h_d = _forcing_block(f[i0 : i1 + 1] - f0, p.alpha, p.beta, p.gamma, a, goal_N, state)
+        s = goal_N * v[:-1]  # h = s_n * S(u_n)
+        h_d_y = None
+        if y_path is not None:
+            h_d_y = _forcing_block(y_path[i0 : i1 + 1] - y0, p.alpha, beta_y, 0.0, a, goal_y, state_y)
+        for r0, k0, psi in dmp.kernel_blocks(u[:-1], centres, widths):
+            rows = slice(r0, r0 + psi.shape[1])
+            if not lwr:
+                dmp.normalise_rows(psi)
+            normal.add(k0, psi, s[rows], h_d[rows])
+            if normal_y is not None and h_d_y is not None:
+                normal_y.add(k0, psi, v[:-1][rows], h_d_y[rows])
+    weights = normal.solve(lam_rel)
+    del normal
     if not np.all(np.isfinite(weights)):
         raise FsError(ERR_FIT_NUMERIC, f"regression gave a non-finite weight ({method}, N = {n_kernels})")
     y_kw: dict[str, Any] = {}
-    if d.y_m is not None:
-        beta_y = derive_beta_y(gains)
-        p_star = d.y_m - float(d.y_m[0])
-        goal_y = gains.k_p_Npm * float(p_star[-1]) / (gains.m_d_kg * p.alpha * beta_y)
-        h_d_y = desired_forcing(p_star, p.alpha, beta_y, 0.0, a, goal_y)
-        y_weights = _regress(bands, v[:-1], h_d_y, lwr, lam_rel)
+    if normal_y is not None:
+        y_weights = normal_y.solve(lam_rel)
+        del normal_y
         if not np.all(np.isfinite(y_weights)):
             raise FsError(
                 ERR_FIT_NUMERIC, f"y regression gave a non-finite weight ({method}, N = {n_kernels})"
             )
-        y_kw = {"y_start_m": float(d.y_m[0]), "goal_y_m": goal_y, "y_weights": y_weights}
+        y_kw = {"y_start_m": y0, "goal_y_m": goal_y, "y_weights": y_weights}
     skill = Skill(
         **law_fields(p, gains, dt_s, tau, stiffness_Npm, surface_m),
         goal_N=goal_N,
@@ -397,40 +476,49 @@ def fit(
         **y_kw,
     )
     skill.to_bytes()  # validates exactly as the firmware will
-    if bands.complete:
-        h = s * bands.sum_weighted(weights)
-        h_y_scale = bands.sum_weighted(skill.y_weights) if skill.y_weights is not None else None
-    else:
-        h = s * dmp.forcing_scale(u[:-1], skill)
-        h_y_scale = dmp.forcing_scales(u[:-1], skill)[1] if skill.y_weights is not None else None
-    del bands  # the kernels are the largest arrays of a long fit: freed before the rollout
-    y, _, _ = dmp.transform_scan(p.alpha, p.beta, p.gamma, a, goal_N, h)
-    f_hat = f0 + y
-    f_max = float(np.max(np.abs(f)))
-    err = f - f_hat
+    # the rollout on the same blocks: the learned force (and y path) and their errors
+    f_hat = np.empty(n_t + 1)
+    f_hat[0] = f0
+    y_hat = None if y_path is None else np.empty(n_t + 1)
+    mix = [weights] if skill.y_weights is None else [weights, skill.y_weights]
+    tstate, pstate = np.zeros(3), np.zeros(3)
+    err_max = abs(float(f[0]) - f0)
+    err_sq = err_max * err_max
+    e_y_max = e_y_sq = 0.0
+    for i0, u, v in dmp.phase_blocks(p.alpha, p.beta, a, n_t):
+        i1 = i0 + u.size - 1
+        scales = dmp.kernel_mix(u[:-1], centres, widths, mix)
+        out = dmp.transform_block(p.alpha, p.beta, p.gamma, a, goal_N, goal_N * v[:-1] * scales[0], tstate)
+        tstate = out[-1]
+        f_hat[i0 + 1 : i1 + 1] = f0 + out[1:, 0]
+        err = f[i0 + 1 : i1 + 1] - f_hat[i0 + 1 : i1 + 1]
+        err_max = max(err_max, _max_abs(err))
+        err_sq += float(err @ err)
+        if y_hat is not None and y_path is not None:
+            out = dmp.transform_block(p.alpha, beta_y, 0.0, a, goal_y, v[:-1] * scales[1], pstate)
+            pstate = out[-1]
+            y_hat[i0 + 1 : i1 + 1] = y0 + out[1:, 0]
+            e_y = y_path[i0 + 1 : i1 + 1] - y_hat[i0 + 1 : i1 + 1]
+            e_y_max = max(e_y_max, _max_abs(e_y))
+            e_y_sq += float(e_y @ e_y)
+    f_max = _max_abs(f)
     y_res: dict[str, Any] = {}
-    if skill.y_weights is not None and d.y_m is not None:
-        s_y = v[:-1]
-        assert h_y_scale is not None
-        h_y = s_y * h_y_scale
-        p_hat, _, _ = dmp.transform_scan(p.alpha, skill.beta_y, 0.0, a, skill.goal_y_m, h_y)
-        y_hat = skill.y_start_m + p_hat
-        e_y = d.y_m - y_hat
+    if y_hat is not None:
+        y_hat[0] = y0
         y_res = {
-            "y_target_m": d.y_m,
+            "y_target_m": y_path,
             "y_hat_m": y_hat,
-            "y_err_max_mm": 1e3 * float(np.max(np.abs(e_y))),
-            "y_err_rms_mm": 1e3 * float(np.sqrt(np.mean(e_y * e_y))),
+            "y_err_max_mm": 1e3 * e_y_max,
+            "y_err_rms_mm": 1e3 * math.sqrt(e_y_sq / (n_t + 1)),
         }
     return FitResult(
         skill=skill,
         t_s=d.t_s,
         target_N=f,
         f_hat_N=f_hat,
-        err_max_pct=100.0 * float(np.max(np.abs(err))) / f_max,
-        err_rms_pct=100.0 * float(np.sqrt(np.mean(err * err))) / f_max,
+        err_max_pct=100.0 * err_max / f_max,
+        err_rms_pct=100.0 * math.sqrt(err_sq / (n_t + 1)) / f_max,
         pos_m=d.pos_m,
         method=method,
-        h_d=h_d,
         **y_res,
     )

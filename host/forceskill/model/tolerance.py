@@ -29,7 +29,7 @@ STUCK_MIN_S = 0.2
 STUCK_MIN_SAMPLES = 10
 #: ... provided at most this fraction of the other sample-to-sample changes are exactly zero.
 STUCK_REST_REL = 0.05
-CHUNK = 1 << 20
+CHUNK = 1 << 16
 
 
 @dataclass
@@ -46,7 +46,7 @@ def sample_error(demo: Demo, grid_t_s: np.ndarray, f_hat_N: np.ndarray) -> Sampl
 
     Evaluated in chunks of CHUNK samples, so a 10^7-sample recording needs no full-size temporaries."""
     t0 = float(demo.t_s[0])
-    f_max = float(np.max(np.abs(demo.force_N)))
+    f_max = max(float(np.max(demo.force_N)), -float(np.min(demo.force_N)))
     worst, i_worst, sq = -1.0, 0, 0.0
     for i0 in range(0, demo.t_s.size, CHUNK):
         t = demo.t_s[i0 : i0 + CHUNK] - t0
@@ -88,14 +88,15 @@ def fit_to_tolerance(
                 return cache[n]
             cache[n] = (res, sample_error(demo, t, f_hat))
             tried.append((n, cache[n][1].max_pct))
-            _forget(n)
+            _forget()
         return cache[n]
 
-    def _forget(n: int) -> None:
-        """Drop the results (grid-sized arrays) no answer can be: only the best N so far and the
-        smallest N that passes keep theirs (memory flat over the search)."""
+    def _forget() -> None:
+        """Drop the results (grid-sized arrays) no answer can be: only the smallest N that passes
+        keeps its own, or while none passes the best N so far (memory flat over the search: one
+        result besides the fit being made)."""
         ok = [k for k in cache if cache[k][1].max_pct <= max_error_pct]
-        keep = {min(cache, key=lambda k: cache[k][1].max_pct), n, *([min(ok)] if ok else [])}
+        keep = {min(ok)} if ok else {min(cache, key=lambda k: cache[k][1].max_pct)}
         for k in cache:
             if k not in keep and cache[k][0] is not None:
                 cache[k] = (None, cache[k][1])
@@ -131,7 +132,7 @@ def diagnose(demo: Demo) -> str | None:
     def t(i: int) -> float:
         return float(demo.t_s[i]) - t0
 
-    f_max = float(np.max(np.abs(f)))
+    f_max = max(float(np.max(f)), -float(np.min(f))) if f.size else 0.0
     if f.size < 3 or f_max <= 0.0:
         return None
     thresh = STEP_REL * f_max

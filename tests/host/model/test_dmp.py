@@ -47,7 +47,12 @@ def law_closed_loop(gains: Gains, k: float, dt: float, x_d: np.ndarray, f_d: np.
 
 
 def zero_weight_skill(
-    gains: Gains, k: float, goal_N: float, tau: float, duration: float, force0_N: float = 0.0
+    gains: Gains,
+    k: float,
+    goal_N: float,
+    tau: float,
+    duration: float,
+    force0_N: float = 0.0,
 ) -> Skill:
     p = derive(gains)
     c = np.linspace(0.0, 0.99, 10)
@@ -228,9 +233,12 @@ def test_rollout_rows_and_start(press_fit: FitResult) -> None:
     assert sk.surface_m == synthetic.SURFACE_M
 
 
-def test_chunked_transform_scan_and_in_place_bands_give_the_same_numbers():
-    """The long-fit memory savings change no number: transform_scan in chunks (state carried)
-    equals the sequential loop, and KernelBands normalised in place equals the kept-raw copy."""
+def test_chunked_transform_scan_and_block_passes_give_the_same_numbers(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """The long-fit memory savings change no number beyond round-off: transform_scan in chunks
+    (state carried) equals the sequential loop, the phase in blocks equals phase_scan, the kernels
+    block by block are the dense ones, and a fit in small blocks is the fit in large ones."""
     from forceskill.model import dmp as D
 
     rng = np.random.default_rng(3)
@@ -245,13 +253,49 @@ def test_chunked_transform_scan_and_in_place_bands_give_the_same_numbers():
     a = 1e-3 / 3.0
     y_loop[0] = 0.0
     for n, hn in enumerate(h):  # the forward-Euler recursion written out (docs/math.md)
-        y, z, i = y + a * (z - y - 40.0 * i + hn), z + a * 25.0 * (6.25 * (12.0 - y) - z), i + a * y
+        y, z, i = (
+            y + a * (z - y - 40.0 * i + hn),
+            z + a * 25.0 * (6.25 * (12.0 - y) - z),
+            i + a * y,
+        )
         y_loop[n + 1] = y
     np.testing.assert_allclose(ref[0], y_loop, rtol=1e-9, atol=1e-9 * np.max(np.abs(y_loop)))
-    u = np.sort(rng.uniform(0.0, 1.0, 3000))
-    c = np.linspace(0.0, 1.0, 20)
-    w = np.full(20, 0.65 * (c[1] - c[0]))
-    raw, lean = D.KernelBands(u, c, w), D.KernelBands(u, c, w, keep_raw=False)
-    assert all(np.array_equal(p, q) for p, q in zip(raw.norm, lean.norm, strict=False)) and lean.psi == []
-    with pytest.raises(ValueError):
-        lean.project(u, normalised=False)
+    # the phase in blocks sharing their end sample
+    u_ref, v_ref = D.phase_scan(25.0, 6.25, a, 5000)
+    for block in (1, 63, 640, 5000, 1 << 15):
+        parts = list(D.phase_blocks(25.0, 6.25, a, 5000, block))
+        assert [i0 for i0, _, _ in parts] == list(range(0, 5000, block))
+        u = np.concatenate([pu[:-1] for _, pu, _ in parts] + [parts[-1][1][-1:]])
+        v = np.concatenate([pv[:-1] for _, _, pv in parts] + [parts[-1][2][-1:]])
+        assert np.max(np.abs(u - u_ref)) <= 1e-12 and np.max(np.abs(v - v_ref)) <= 1e-12 * np.max(v_ref)
+    # kernels block by block: the dense values, whatever the blocks; rows out of reach -> nearest
+    u = np.concatenate((np.sort(rng.uniform(0.0, 1.0, 3000)), [1.3, 1.4]))
+    c = np.sort(rng.uniform(0.0, 1.0, 40))
+    w = 0.65 * np.append(np.diff(c), 0.01)
+    e = D.kernel_exponents(u, c, w)
+    dense = np.where(e <= D.KERNEL_CUTOFF_EXP, np.exp(-np.minimum(e, D.KERNEL_CUTOFF_EXP + 1.0)), 0.0)
+    for budget in (1, 500, 1 << 17):
+        got = np.zeros_like(dense)
+        for r0, k0, psi in D.kernel_blocks(u, c, w, budget):
+            got[r0 : r0 + psi.shape[1], k0 : k0 + psi.shape[0]] = psi.T
+        np.testing.assert_array_equal(got, dense)
+    weights = rng.normal(0.0, 1.0, 40)
+    mixed = D.kernel_mix(u, c, w, [weights])[0]
+    np.testing.assert_allclose(mixed, D._normalised_kernels_dense(u, c, w) @ weights, rtol=0, atol=1e-13)
+    assert mixed[-1] == weights[np.argmin(e[-1])]  # no kernel within the cutoff
+    # a fit in blocks of 700 steps is the fit in one block
+    from forceskill.model.fit import fit
+
+    demo = synthetic.wiping(seed=3)
+    whole = fit(demo, 100.0, n_kernels=50, surface_m=synthetic.SURFACE_M)
+    monkeypatch.setattr(D, "FIT_BLOCK", 700)
+    parts_fit = fit(demo, 100.0, n_kernels=50, surface_m=synthetic.SURFACE_M)
+    for got_w, ref_w in (
+        (parts_fit.skill.weights, whole.skill.weights),
+        (parts_fit.skill.y_weights, whole.skill.y_weights),
+    ):
+        assert got_w is not None and ref_w is not None
+        assert np.max(np.abs(got_w - ref_w)) <= 1e-9 * np.max(np.abs(ref_w))
+    assert np.max(np.abs(parts_fit.f_hat_N - whole.f_hat_N)) <= 1e-9 * np.max(np.abs(whole.f_hat_N))
+    assert parts_fit.err_max_pct == pytest.approx(whole.err_max_pct, rel=1e-9)
+    assert parts_fit.y_err_max_mm == pytest.approx(whole.y_err_max_mm, rel=1e-9)
