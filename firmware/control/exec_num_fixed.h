@@ -113,6 +113,11 @@ typedef struct {
     uint8_t pre_ok;
     int64_t pre_p, pre_pd;
     int64_t pre_damp, pre_spring;
+    /* the band's segment in use (band_seg: (step << 8) + point + 1, 0 none) and its two points'
+     * bounds lo[i], lo[i+1], hi[i], hi[i+1] (N Q16.16): converted from the skill's floats only
+     * when the run enters another segment (64 points over a skill: every ~100 ticks) */
+    uint32_t band_seg;
+    int32_t band_q[4];
 } exec_num_t;
 
 /** A step's fixed-point model (exec_step_t.model_fx), converted beforehand

@@ -79,18 +79,21 @@ static inline exec_nf_t exec_num_start_force(const exec_state_t *st, uint8_t i)
     return st->n.step[i].start_force_q32;
 }
 
-/* Band point i's bound b (the skill's float bounds read as integers) at fraction fr (Q.16)
- * towards point i + 1, N Q16.16. */
-static inline int64_t exec_num_band_point(const fs_real_t *b, uint32_t i, int64_t fr_q16)
+/* The bound q[0] at point i, q[1] at i + 1 (N Q16.16) at fraction fr (Q.16) towards i + 1. */
+static inline int64_t exec_num_band_point(const int32_t q[2], int64_t fr_q16)
 {
-    const int64_t a = fx_from_float(b[i], 16u);
-    const int64_t c = fx_from_float(b[i + 1u], 16u);
-    return a + (((c - a) * fr_q16) >> 16);
+    return q[0] + ((((int64_t)q[1] - q[0]) * fr_q16) >> 16);
+}
+
+/** The band's segment cache forgotten (a run's start). */
+static inline void exec_num_band_reset(exec_state_t *st)
+{
+    st->n.band_seg = 0u;
 }
 
 /** The band's bounds at the step's normalised time (Q.32; a periodic skill's wraps every
  *  period), scaled as f_hat (c0 + k*b), N Q.32. */
-static inline void exec_num_band_bounds(const exec_state_t *st, const skill_t *sk, int periodic,
+static inline void exec_num_band_bounds(exec_state_t *st, const skill_t *sk, int periodic,
                                         exec_nf_t *lo, exec_nf_t *hi)
 {
     const exec_step_q_t *sq = &st->n.step[st->step];
@@ -100,8 +103,17 @@ static inline void exec_num_band_bounds(const exec_state_t *st, const skill_t *s
     uint32_t i = (uint32_t)(pos >> 32);
     i = (i > (uint32_t)sk->band_n - 2u) ? (uint32_t)sk->band_n - 2u : i;
     const int64_t fr = (int64_t)((pos - ((uint64_t)i << 32)) >> 16);
-    *lo = sq->band_c0_q32 + exec_num_band_point(sk->band_lo_N, i, fr) * sq->band_k_q16;
-    *hi = sq->band_c0_q32 + exec_num_band_point(sk->band_hi_N, i, fr) * sq->band_k_q16;
+    const uint32_t seg = ((uint32_t)st->step << 8) + i + 1u;
+    int32_t *q = st->n.band_q;
+    if (st->n.band_seg != seg) {
+        st->n.band_seg = seg;
+        q[0] = fx_from_float(sk->band_lo_N[i], 16u);
+        q[1] = fx_from_float(sk->band_lo_N[i + 1u], 16u);
+        q[2] = fx_from_float(sk->band_hi_N[i], 16u);
+        q[3] = fx_from_float(sk->band_hi_N[i + 1u], 16u);
+    }
+    *lo = sq->band_c0_q32 + exec_num_band_point(&q[0], fr) * sq->band_k_q16;
+    *hi = sq->band_c0_q32 + exec_num_band_point(&q[2], fr) * sq->band_k_q16;
 }
 
 /** An excursion d > 0 beyond a band of width w: the largest in widths (Q16.16) kept, one

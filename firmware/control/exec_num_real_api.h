@@ -89,8 +89,14 @@ static inline exec_nf_t exec_num_start_force(const exec_state_t *st, uint8_t i)
     return exec_step_start_force(&st->steps[i]);
 }
 
+/** Nothing to forget at a run's start: the float layer reads the bounds as they are. */
+static inline void exec_num_band_reset(exec_state_t *st)
+{
+    (void)st;
+}
+
 /** The band's bounds at the step's normalised time, scaled as f_hat (c0 + k*b). */
-static inline void exec_num_band_bounds(const exec_state_t *st, const skill_t *sk, int periodic,
+static inline void exec_num_band_bounds(exec_state_t *st, const skill_t *sk, int periodic,
                                         exec_nf_t *lo, exec_nf_t *hi)
 {
     (void)periodic; /* band_s wraps as it advances */

@@ -130,6 +130,7 @@ static void exec_band_reset(exec_state_t *st)
     st->band_max = 0u;
     st->band_outside = 0u;
     st->band_any = 0u; /* a run without a band skips the check: one test a tick */
+    exec_num_band_reset(st);
     for (uint8_t i = 0u; i < st->n_steps; i++) {
         if (st->steps[i].skill->band_n >= SKILL_BAND_MIN_POINTS) {
             st->band_any = 1u;
