@@ -51,7 +51,8 @@ mount -t devtmpfs devtmpfs $R/dev
 mkdir -p $R/dev/pts $R/dev/shm
 mount -t devpts devpts $R/dev/pts
 mount -t tmpfs -o mode=1777 shm $R/dev/shm
-mount -t tmpfs -o mode=1777 tmp $R/tmp
+# /tmp stays the overlay's (the host's, writes kept in the guest): a checkout under /tmp, e.g. a
+# CI's fresh clone, is where the guest runs its commands
 mount -t tmpfs -o mode=0755 run $R/run
 mkdir -p $R/run/vmio
 mount --bind /vmio $R/run/vmio
