@@ -130,9 +130,9 @@ typedef struct {
 /** UDS on ISO-TP, one link per tester id (UDS_REQUEST, UDS_REQUEST_2), and the server (app.c's
  *  service, app_uds.c's hooks); the server's answers are built in the tester's link. */
 typedef struct {
-    uint8_t uds_from;        /* the tester of the request served last or pending */
-    uint8_t uds_next;        /* the tester asked first next tick (the two take turns) */
-    bool uds_request_turn;   /* a new request before the pending one's slice next tick */
+    uint8_t uds_from;      /* the tester of the request served last or pending */
+    uint8_t uds_next;      /* the tester asked first next tick (the two take turns) */
+    bool uds_request_turn; /* a new request before the pending one's slice next tick */
     /* the long work a request answered 0x78 began: its next slice and, once done, the answer
      * (set by the hook that began it; the UDS server's resume calls it) */
     uint8_t (*pending)(app_t *app);

@@ -46,10 +46,10 @@ typedef struct {
     uint8_t hdr[BOOT_IMAGE_HEADER_SIZE];
     uint8_t tail[16]; /* bytes waiting for a full write unit */
     uint32_t tail_len;
-    uint32_t crc32;         /* zlib CRC-32 of the received bytes (RequestTransferExit reply) */
-    uint32_t image_version; /* fw_version of the received image, 0 before its header */
-    boot_status_t last;     /* last refusal, 0 if none */
-    fs_job_t verify_job;    /* fwu_end_step: the image's verification, a job (fs_job.h) */
+    uint32_t crc32;              /* zlib CRC-32 of the received bytes (RequestTransferExit reply) */
+    uint32_t image_version;      /* fw_version of the received image, 0 before its header */
+    boot_status_t last;          /* last refusal, 0 if none */
+    fs_job_t verify_job;         /* fwu_end_step: the image's verification, a job (fs_job.h) */
     boot_status_t verify_status; /* its verdict, when it ends */
     boot_verify_t verify;
     fs_job_t block_job;         /* fwu_data_step: a TransferData block in pieces, a job */

@@ -168,7 +168,8 @@ static inline bool uds_server_session_expired(const uds_server_t *srv, uint32_t 
 /** A tester's RequestDownload of size bytes to addr (no compression or encryption, a 4-byte
  *  address and size) into out; returns its length, UDS_REQ_DOWNLOAD_LEN. */
 #define UDS_REQ_DOWNLOAD_LEN 11u
-static inline uint16_t uds_request_download(uint8_t out[UDS_REQ_DOWNLOAD_LEN], uint32_t addr, uint32_t size)
+static inline uint16_t uds_request_download(uint8_t out[UDS_REQ_DOWNLOAD_LEN], uint32_t addr,
+                                            uint32_t size)
 {
     out[0] = UDS_SID_REQ_DOWNLOAD;
     out[1] = 0x00u;

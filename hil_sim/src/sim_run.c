@@ -48,11 +48,13 @@ int sim_load_skills(const sim_scenario_t *sc, sim_skill_image_t *images, char er
         const double k_f = (double)check.fit_gains.kkf_Npm / (double)check.stiffness_Npm;
         const double ratio = k_f * sc->object.m_v_kg / (double)check.fit_gains.m_d_kg;
         if (ratio >= 1.0) {
-            fprintf(stderr,
-                    "hil_sim: warning: %s: its force gains are unstable on this scenario's %g kg object "
-                    "(k_f*m_v/m_d = %.3g >= 1): expect fault 508 within a second of contact; fit it "
-                    "with --object-mass %g\n",
-                    path, sc->object.m_v_kg, ratio, sc->object.m_v_kg);
+            fprintf(
+                stderr,
+                "hil_sim: warning: %s: its force gains are unstable on this scenario's %g kg "
+                "object "
+                "(k_f*m_v/m_d = %.3g >= 1): expect fault 508 within a second of contact; fit it "
+                "with --object-mass %g\n",
+                path, sc->object.m_v_kg, ratio, sc->object.m_v_kg);
         }
     }
     return 0;
