@@ -23,8 +23,8 @@ static inline exec_ndt_t exec_num_dt(const exec_config_t *cfg)
 /** A DMP's phase: its accumulator, turns Q.61. */
 typedef int64_t exec_nphase_t;
 
-/** Parts of exec_start_run's preparation of a run of n_steps: each step's (3) and the
- *  configuration's (4), a few software-double conversions each. */
+/** Parts of exec_start_run's preparation of a run of n_steps: each step's (5) and the
+ *  configuration's (6), a few software-double conversions each. */
 uint32_t exec_prep_parts(uint8_t n_steps);
 
 /** Part part of the preparation (3xx codes: a scale or gain that does not fit its Q format). */

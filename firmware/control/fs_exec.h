@@ -196,9 +196,9 @@ fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_st
 
 /** exec_start in slices, for a caller that bounds its work a tick: the checks, the sequence
  *  loaded and the law's configuration (exec_start_begin, the same codes), then each
- *  exec_start_run derives one of the three parts of a step's constants or, after them, one of
- *  the four of the integer tick's constants of the configuration (the fixed-point build; 3xx
- *  codes) or, once all are, starts the first step and sets *done. Nothing runs before *done. */
+ *  exec_start_run derives one part of the steps' or the configuration's integer constants
+ *  (exec_prep_parts of them: the fixed-point build; 3xx codes) or, once all are, starts the
+ *  first step and sets *done. Nothing runs before *done. */
 fs_status_t exec_start_begin(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
                              uint8_t n_steps, fs_real_t y_hold_m);
 fs_status_t exec_start_run(const exec_config_t *cfg, exec_state_t *st, bool *done);

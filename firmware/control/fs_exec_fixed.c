@@ -8,8 +8,8 @@
 #include "fs_exec.h"
 
 /* Parts of the start a step (exec_prepare_step) and of the configuration (exec_prepare_cfg_q). */
-#define EXEC_STEP_PARTS 3u
-#define EXEC_CFG_PARTS 4u
+#define EXEC_STEP_PARTS 5u
+#define EXEC_CFG_PARTS 6u
 
 /* round(v * 2^frac) within +-FX_S61_MAX; FS_ERR_FIXED_CONFIG if v is not finite or beyond. */
 static fs_status_t exec_to_q(double v, int frac, int64_t *out)
@@ -41,15 +41,13 @@ static fx_scale_t exec_scale(double v, int32_t in_frac, int32_t out_frac, fs_sta
     return k;
 }
 
-/* The integer constants of step i (its run derived): forces, path base, 1/k, length, contact
- * wait. */
-static fs_status_t exec_prepare_step_q(exec_state_t *st, uint8_t i, fs_real_t dt_s)
+/* The integer constants of step i (its run derived), first half: forces, path base, 1/k. */
+static fs_status_t exec_prepare_step_q(exec_state_t *st, uint8_t i)
 {
     const exec_step_t *s = &st->steps[i];
     const dmpfx_model_t *m = s->model_fx;
     const dmpfx_run_t *run = &st->n.run[i];
     exec_step_q_t *q = &st->n.step[i];
-    const double dt = (double)dt_s;
     fs_status_t rc = exec_to_q((double)s->skill->dmp.force0_N, 32, &q->force0_q32);
     if (rc == FS_OK) {
         rc = exec_to_q((double)exec_step_start_force(s), 32, &q->start_force_q32);
@@ -64,6 +62,15 @@ static fs_status_t exec_prepare_step_q(exec_state_t *st, uint8_t i, fs_real_t dt
     }
     q->y_shift = (uint8_t)(23 - m->value_shift); /* s in [-12, 18]: 5..35 */
     q->inv_k = exec_scale(1.0 / (double)s->skill->stiffness_Npm, 32, 48, &rc);
+    return rc;
+}
+
+/* The integer constants of step i, second half: length, ramp, contact wait, the band. */
+static fs_status_t exec_prepare_step_band_q(exec_state_t *st, uint8_t i, fs_real_t dt_s)
+{
+    const exec_step_t *s = &st->steps[i];
+    exec_step_q_t *q = &st->n.step[i];
+    const double dt = (double)dt_s;
     q->ticks = exec_step_ticks(s, dt_s);
     q->ramp_inc_q32 = exec_inc_q32((double)dt_s /
                                    ((double)s->skill->dmp.duration_s * (double)s->time_scale));
@@ -77,9 +84,7 @@ static fs_status_t exec_prepare_step_q(exec_state_t *st, uint8_t i, fs_real_t dt
     const double k = periodic ? (double)s->amplitude_scale : gs;
     const double c0 = periodic ? (gs - k) * (double)s->skill->dmp.goal_N
                                : (1.0 - gs) * (double)s->skill->dmp.force0_N;
-    if (rc == FS_OK) {
-        rc = exec_to_q(c0, 32, &q->band_c0_q32);
-    }
+    fs_status_t rc = exec_to_q(c0, 32, &q->band_c0_q32);
     int64_t k_q16 = 0;
     if (rc == FS_OK) {
         rc = exec_to_q(k, 16, &k_q16);
@@ -101,6 +106,9 @@ static fs_status_t exec_prepare_cfg_q(const exec_config_t *cfg, exec_state_t *st
         c->inv_dt_x = exec_scale(inv_dt, 48, 48, &rc);
         c->inv_dt_y = exec_scale(inv_dt, 55, 48, &rc);
         c->inv_dt_yd = exec_scale(inv_dt, 48, 40, &rc);
+        return rc;
+    }
+    if (part == 1u) {
         c->dt = exec_scale(dt, 48, 48, &rc);
         c->hold_ms = exec_scale(dt * 1000.0, 31, 0, &rc);
         c->blend_inc_q32 = exec_inc_q32(dt / EXEC_BLEND_S);
@@ -109,14 +117,17 @@ static fs_status_t exec_prepare_cfg_q(const exec_config_t *cfg, exec_state_t *st
     }
     const exec_object_t *o = &cfg->object;
     const int model = (cfg->use_model != 0u);
-    if (part == 1u) {
+    if (part == 2u) {
         c->d_v = exec_scale(model ? (double)o->d_v_Nspm : 0.0, 48, 32, &rc);
         c->k1 = exec_scale(model ? (double)o->k1_Npm : 0.0, 48, 32, &rc);
         c->k2 = exec_scale(model ? (double)o->k2_Npm : 0.0, 48, 32, &rc);
         return rc;
     }
-    if (part == 2u) { /* the model's three divisions */
+    if (part == 3u) { /* the model's three divisions, one ... */
         c->inv_m = exec_scale(model ? 1.0 / (double)o->m_v_kg : 0.0, 32, 48, &rc);
+        return rc;
+    }
+    if (part == 4u) { /* ... and two */
         c->inv_k1 = exec_scale(model ? 1.0 / (double)o->k1_Npm : 0.0, 32, 48, &rc);
         c->inv_k2 = exec_scale(model ? 1.0 / (double)o->k2_Npm : 0.0, 32, 48, &rc);
         return rc;
@@ -141,20 +152,22 @@ static fs_status_t exec_prepare_cfg_q(const exec_config_t *cfg, exec_state_t *st
     return (rc != FS_OK) ? rc : r2;
 }
 
-/* Part part (0..2) of step i's per-run constants and starting state from its fixed-point model
+/* Part part (0..4) of step i's per-run constants and starting state from its fixed-point model
  * (exec_start_run: a part a call, each a bounded piece of software double on the M3): the force
- * DMP's, then the periodic and y DMPs' and the starting state, then the integer tick's. */
+ * DMP's rates and goal, the periodic and y DMPs' and the starting state, then the integer tick's
+ * in two. */
 static fs_status_t exec_prepare_step(const exec_config_t *cfg, exec_state_t *st, uint8_t i,
                                      uint8_t part)
 {
     const exec_step_t *s = &st->steps[i];
     const dmpfx_model_t *m = s->model_fx;
     dmpfx_run_t *run = &st->n.run[i];
-    if (part == 0u) {
-        return dmpfx_run_force(m, (double)s->goal_scale, (double)s->time_scale, run);
-    }
-    if (part == 2u) {
-        return exec_prepare_step_q(st, i, cfg->pfc.dt_s);
+    switch (part) {
+    case 0u: return dmpfx_run_rates(m, (double)s->goal_scale, (double)s->time_scale, run);
+    case 1u: return dmpfx_run_goal(m, (double)s->goal_scale, (double)s->time_scale, run);
+    case 3u: return exec_prepare_step_q(st, i);
+    case 4u: return exec_prepare_step_band_q(st, i, cfg->pfc.dt_s);
+    default: break;
     }
     fs_status_t rc = dmpfx_run_periodic(m, (double)s->amplitude_scale, run);
     if (rc == FS_OK) {

@@ -462,6 +462,13 @@ fs_status_t dmpfx_run_init(const dmpfx_model_t *m, double goal_scale, double tim
 fs_status_t dmpfx_run_force(const dmpfx_model_t *m, double goal_scale, double time_scale,
                             dmpfx_run_t *run)
 {
+    const fs_status_t st = dmpfx_run_rates(m, goal_scale, time_scale, run);
+    return (st == FS_OK) ? dmpfx_run_goal(m, goal_scale, time_scale, run) : st;
+}
+
+fs_status_t dmpfx_run_rates(const dmpfx_model_t *m, double goal_scale, double time_scale,
+                            dmpfx_run_t *run)
+{
     if (m == NULL || run == NULL) {
         return FS_ERR_NULL_ARG;
     }
@@ -489,17 +496,29 @@ fs_status_t dmpfx_run_force(const dmpfx_model_t *m, double goal_scale, double ti
     if (st != FS_OK) {
         return FS_ERR_FIXED_STEP;
     }
+    return FS_OK;
+}
+
+fs_status_t dmpfx_run_goal(const dmpfx_model_t *m, double goal_scale, double time_scale,
+                           dmpfx_run_t *run)
+{
+    if (m == NULL || run == NULL) {
+        return FS_ERR_NULL_ARG;
+    }
+    if (!isfinite(goal_scale) || !isfinite(time_scale) || !(time_scale > 0.0)) {
+        return FS_ERR_SCALE_INVALID;
+    }
+    run->k_alphabeta_y_q31 = 0;
+    run->goal_y_q24 = 0;
+    run->path_scale_q24 = 0;
+    run->phase_inc = fs_num_turn_inc(m->dt_s / (m->tau_s * time_scale) / DMPFX_TWO_PI);
+    run->amplitude_q24 = 0;
+    run->amplitude_scale = 1.0;
     const double g = ldexp(m->goal_N * goal_scale, -m->value_shift);
     const double lim_q24 = DMPFX_Q24_HEADROOM * (double)FX_Q24_ONE;
     if (fabs(goal_scale) * m->peak_q24 > lim_q24) {
         return FS_ERR_FIXED_OVERFLOW;
     }
-    run->k_alphabeta_y_q31 = 0;
-    run->goal_y_q24 = 0;
-    run->path_scale_q24 = 0;
-    run->phase_inc = fs_num_turn_inc(k / DMPFX_TWO_PI);
-    run->amplitude_q24 = 0;
-    run->amplitude_scale = 1.0;
     return fx_from_double(g, 24u, (int32_t)lim_q24, &run->goal_q24);
 }
 
@@ -880,16 +899,21 @@ void dmpfx_check_begin(dmpfx_check_t *c, const dmpfx_model_t *m, float duration_
     c->path_max_q24 = fx_from_float(path_max_m, 24u);
     const float n = duration_s / dt_s + 0.5f;
     c->steps_total = (n > 0.0f && n < 4.0e9f) ? (uint32_t)n : 0u;
-    c->status = dmpfx_run_force(m, 1.0, 1.0, &c->run);
-    c->set_up = false; /* the periodic and path constants: the first call of dmpfx_check_run */
+    c->status = dmpfx_run_rates(m, 1.0, 1.0, &c->run);
+    c->set_up = 0u; /* the goal, the periodic and path constants: dmpfx_check_run's first calls */
     c->done = c->status != FS_OK || c->steps_total == 0u;
 }
 
-/* The rest of the check's set-up (dmpfx_check_run's first call: bounded software double on the
- * M3, in a call of its own). */
+/* The rest of the check's set-up (dmpfx_check_run's first two calls: bounded software double on
+ * the M3, each in a call of its own): the goal, then the periodic and path constants. */
 static void dmpfx_check_set_up(dmpfx_check_t *c)
 {
     const dmpfx_model_t *m = c->m;
+    if (c->set_up++ == 0u) {
+        c->status = dmpfx_run_goal(m, 1.0, 1.0, &c->run);
+        c->done = c->status != FS_OK;
+        return;
+    }
     c->status = dmpfx_run_periodic(m, 1.0, &c->run);
     if (c->status == FS_OK) {
         c->status = dmpfx_run_path(m, 1.0, &c->run);
@@ -902,7 +926,6 @@ static void dmpfx_check_set_up(dmpfx_check_t *c)
     } else {
         dmpfx_state_reset(&c->s);
     }
-    c->set_up = true;
     c->done = c->status != FS_OK;
 }
 
@@ -924,7 +947,7 @@ static int32_t dmpfx_check_step(dmpfx_check_t *c, int32_t *path_q24)
 
 bool dmpfx_check_run(dmpfx_check_t *c, uint32_t max_steps)
 {
-    if (!c->done && !c->set_up) {
+    if (!c->done && c->set_up < DMPFX_CHECK_SET_UP_CALLS) {
         dmpfx_check_set_up(c);
         return c->done;
     }

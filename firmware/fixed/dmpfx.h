@@ -183,6 +183,15 @@ fs_status_t dmpfx_run_init(const dmpfx_model_t *m, double goal_scale, double tim
 fs_status_t dmpfx_run_force(const dmpfx_model_t *m, double goal_scale, double time_scale,
                             dmpfx_run_t *run);
 
+/** dmpfx_run_force in two slices (each a bounded piece of software double on the M3): the
+ *  scales' checks and the step's rates, ... */
+fs_status_t dmpfx_run_rates(const dmpfx_model_t *m, double goal_scale, double time_scale,
+                            dmpfx_run_t *run);
+
+/** ... then the phase's increment and the goal (FS_ERR_FIXED_OVERFLOW beyond the headroom). */
+fs_status_t dmpfx_run_goal(const dmpfx_model_t *m, double goal_scale, double time_scale,
+                           dmpfx_run_t *run);
+
 /** The y DMP's constants in run (after dmpfx_run_init, which sets path scale 1): path scale
  *  finite and >= 0 (FS_ERR_SCALE_INVALID), |path_scale| times the nominal peaks within the
  *  Q8.24 headroom (FS_ERR_FIXED_OVERFLOW). A model without a y DMP: FS_OK, nothing to set. */
@@ -257,7 +266,7 @@ typedef struct {
     int32_t peak_q16;      /* max |f_hat| so far */
     int32_t path_peak_q24; /* max |p| so far (0 without a y DMP) */
     fs_status_t status;    /* FS_OK while running or passed; 223/225/300 or a 3xx of the set-up */
-    bool set_up;           /* the periodic and path constants are derived (the first run call) */
+    uint8_t set_up;        /* set-up calls made (of DMPFX_CHECK_SET_UP_CALLS, the first runs) */
     bool done;
 } dmpfx_check_t;
 
@@ -266,8 +275,12 @@ typedef struct {
 void dmpfx_check_begin(dmpfx_check_t *c, const dmpfx_model_t *m, float duration_s, float dt_s,
                        float force_max_N, float path_max_m);
 
-/** Advance by at most max_steps DMP steps (the first call: the rest of the set-up, no step);
- *  true once finished (then c->status). */
+/** dmpfx_check_run's first calls, the rest of the set-up (the goal; the periodic and path
+ *  constants), each without a step. */
+#define DMPFX_CHECK_SET_UP_CALLS 2u
+
+/** Advance by at most max_steps DMP steps (the first DMPFX_CHECK_SET_UP_CALLS calls: the rest of
+ *  the set-up, no step); true once finished (then c->status). */
 bool dmpfx_check_run(dmpfx_check_t *c, uint32_t max_steps);
 
 /** The check's peak |f_hat| (N) so far. */
