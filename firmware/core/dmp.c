@@ -186,7 +186,9 @@ enum {
     MI_GAINS,     /* alpha, beta, gamma; with the y DMP its scalars finite */
     MI_Y_WEIGHTS, /* the y weights finite */
     MI_Y_GAINS,   /* beta_y in range */
-    MI_TRIG,      /* a periodic model's half-angle sines and cosines (none in a discrete one) */
+    MI_SINES,     /* a periodic model's half-angle sines (none in a discrete one) */
+    MI_COSINES,   /* and cosines (none in a discrete one) */
+    MI_ROOTS,     /* a periodic model's reach's square roots, kept in env_hi (none in a discrete) */
     MI_FORWARD,   /* kernel_scale and env_hi (prefix max) */
     MI_BACKWARD,  /* env_lo (suffix min), from the last kernel */
     MI_DONE
@@ -245,14 +247,21 @@ static fs_status_t dmp_init_once(const dmp_model_t *m, uint8_t stage)
 
 /* A periodic kernel's reach in turns: the largest circular distance with kappa (1 - cos) <= the
  * cutoff, asin(sqrt(cutoff/(2 kappa)))/pi (half a turn when every phase is within), widened by
- * DMP_ENVELOPE_MARGIN. */
-static fs_real_t dmp_periodic_reach(fs_real_t kappa)
+ * DMP_ENVELOPE_MARGIN; in two passes (in software float a square root costs as much as the
+ * arcsine): the root (1 when every phase is within) ... */
+static fs_real_t dmp_periodic_root(fs_real_t kappa)
 {
     const fs_real_t q = (fs_real_t)DMP_KERNEL_CUTOFF_EXP / (FS_R(2.0) * kappa);
-    if (!(q < FS_R(1.0))) {
+    return (q < FS_R(1.0)) ? fs_sqrt(q) : FS_R(1.0);
+}
+
+/* ... then the reach from it. */
+static fs_real_t dmp_periodic_reach(fs_real_t root)
+{
+    if (!(root < FS_R(1.0))) {
         return FS_R(0.5);
     }
-    const fs_real_t r = fs_asin(fs_sqrt(q)) * (FS_R(2.0) / DMP_TWO_PI) * DMP_ENVELOPE_MARGIN;
+    const fs_real_t r = fs_asin(root) * (FS_R(2.0) / DMP_TWO_PI) * DMP_ENVELOPE_MARGIN;
     return (r < FS_R(0.5)) ? r : FS_R(0.5);
 }
 
@@ -275,14 +284,14 @@ static void dmp_init_kernel_periodic(dmp_model_t *m, dmp_init_t *it, uint16_t i)
         }
         break;
     }
-    case MI_TRIG: /* its own pass: in software float a sine and a cosine cost as much as the
-                   * reach's square root and arcsine */
+    case MI_SINES: /* a pass each: in software float a sine costs as much as a square root */
         m->half_sin[i] = fs_sin(FS_R(0.5) * m->centre[i]);
-        m->half_cos[i] = fs_cos(FS_R(0.5) * m->centre[i]);
         break;
+    case MI_COSINES: m->half_cos[i] = fs_cos(FS_R(0.5) * m->centre[i]); break;
+    case MI_ROOTS: m->env_hi[i] = dmp_periodic_root(kappa); break;
     case MI_FORWARD: {
         m->kernel_scale[i] = FS_R(2.0) * kappa;
-        const fs_real_t reach = dmp_periodic_reach(kappa);
+        const fs_real_t reach = dmp_periodic_reach(m->env_hi[i]);
         const fs_real_t hi = x + reach;
         it->run = (i == 0u || hi > it->run) ? hi : it->run;
         m->env_hi[i] = it->run;
@@ -329,7 +338,9 @@ static bool dmp_init_kernel(dmp_model_t *m, dmp_init_t *it)
         }
         break;
     }
-    case MI_TRIG: return true;
+    case MI_SINES:
+    case MI_COSINES:
+    case MI_ROOTS: return true;
     case MI_Y_WEIGHTS:
         if (m->has_y == 0u) {
             return true;

@@ -48,6 +48,11 @@ static fls_dev_t g_skill_dev, g_fw_dev, g_sec_dev;
 /* random: AES-128 in counter mode (the shape of SP 800-90A's CTR_DRBG) keyed from the seed */
 static uint8_t g_pool[SEC_SHA256_LEN]; /* SHA-256 of the seed: key (16 bytes), counter (16) */
 static sec_aes128_t g_drbg;
+/* The emulated TRNG's FIFO (hal_random): two blocks drawn ahead, refilled after the tick. */
+#define CM_RNG_FIFO_LEN (2u * SEC_AES_BLOCK)
+static uint8_t g_rng_fifo[CM_RNG_FIFO_LEN];
+static uint32_t g_rng_count;
+static void rng_refill(void);
 
 /* development key of the image tag (host/forceskill/model/fwimage.py DEV_KEY, docs/update.md) */
 static const uint8_t g_fw_key[32] = {
@@ -120,6 +125,9 @@ void cm_port_init(const uint8_t *seed, uint32_t seed_len)
     boot_cm_flash_init(&g_sec_fl, &g_sec_dev, CM_FLASH_SEC_ADDR, CM_FLASH_SEC_SECTOR, 2u);
     sec_sha256(seed, seed_len, g_pool);
     sec_aes128_init(&g_drbg, g_pool);
+    g_rng_count = 0u;
+    rng_refill();
+    rng_refill();
 }
 
 void cm_port_start_ticks(bool pace)
@@ -191,6 +199,7 @@ void cm_port_end_tick(void)
     /* the next period's receive budget from now, after the tick: bytes that waited for it are
      * taken in the slack before the next tick, not in bulk inside it */
     cm_uart_rx_budget(CM_PORT_RX_BYTES_PER_TICK);
+    rng_refill();
     CM_WDG_LOCK = CM_WDG_UNLOCK_KEY;
     CM_WDG_INTCLR = 1u; /* reload the watchdog */
     CM_WDG_LOCK = 0u;
@@ -318,28 +327,47 @@ uint64_t hal_time_us(void)
 
 /* ---- platform ---- */
 
-int hal_random(uint8_t *buf, uint32_t len)
+/* One block of the board's random stream: the board has no entropy source, so AES-128 of a
+ * 128-bit counter under the key drawn from the seed `hil_sim pil` passes at start (from the
+ * host's getrandom), the SysTick phase of each call mixed into the counter; ~700 instructions (a
+ * SHA-256 chain cost ~10,000 a call). */
+static void rng_block(uint8_t out[SEC_AES_BLOCK])
 {
-    /* the board has no entropy source: AES-128 of a 128-bit counter under the key drawn from the
-     * seed `hil_sim pil` passes at start (from the host's getrandom), the SysTick phase of each
-     * call mixed into the counter; ~700 instructions a 16-byte block (a SHA-256 chain cost
-     * ~10,000 a call, above the tick budget) */
     uint8_t *ctr = &g_pool[SEC_AES128_KEY_LEN];
     const uint32_t phase = CM_SYST_CVR;
     for (uint32_t i = 0u; i < 4u; i++) {
         ctr[i] ^= (uint8_t)(phase >> (8u * i));
     }
+    for (uint32_t i = SEC_AES_BLOCK; i-- > 4u;) { /* bytes 4..15: a counter, +1 a block */
+        if (++ctr[i] != 0u) {
+            break;
+        }
+    }
+    sec_aes128_encrypt(&g_drbg, ctr, out);
+}
+
+/* A block into the FIFO if it has room for one: after the tick, as a TRNG peripheral fills its
+ * FIFO beside the core, so a seed drawn in a tick costs a copy, not an encryption. */
+static void rng_refill(void)
+{
+    if (g_rng_count + SEC_AES_BLOCK <= CM_RNG_FIFO_LEN) {
+        rng_block(&g_rng_fifo[g_rng_count]);
+        g_rng_count += SEC_AES_BLOCK;
+    }
+}
+
+int hal_random(uint8_t *buf, uint32_t len)
+{
     uint32_t done = 0u;
     while (done < len) {
-        for (uint32_t i = SEC_AES_BLOCK; i-- > 4u;) { /* bytes 4..15: a counter, +1 a block */
-            if (++ctr[i] != 0u) {
-                break;
-            }
+        if (g_rng_count == 0u) { /* drawn faster than refilled: a block now */
+            rng_refill();
         }
-        uint8_t out[SEC_AES_BLOCK];
-        sec_aes128_encrypt(&g_drbg, ctr, out);
-        const uint32_t n = (len - done < SEC_AES_BLOCK) ? len - done : SEC_AES_BLOCK;
-        memcpy(&buf[done], out, n);
+        const uint32_t n = (len - done < g_rng_count) ? len - done : g_rng_count;
+        const uint32_t from = g_rng_count - n; /* the FIFO's newest bytes first */
+        memcpy(&buf[done], &g_rng_fifo[from], n);
+        memset(&g_rng_fifo[from], 0, n); /* a byte is given once */
+        g_rng_count = from;
         done += n;
     }
     return 0;
