@@ -59,21 +59,36 @@ tools/static_check.sh build/host-debug/static
 # once and its frames built in place, and each 0x78 job's slice (key checks, the attempt record's
 # write, the motion key's set-up) takes a tick of its own (docs/cortex-m.md "Worst tick per state").
 TICK_OVER=""
-tick_budgets() { # TARGET LOG [MAX_ONLY]: fail on a tick over budget in a state not listed in
-  # TICK_OVER (MAX_ONLY=1: the maxima only, for a journey whose skill is not the medians' reference)
-  local target=$1 log=$2 max_only=${3:-0} max_b med_b
-  case $target in cortex-m4f) max_b=3000; med_b=1500 ;; *) max_b=8000; med_b=3000 ;; esac
-  awk -v t="$target" -v mb="$max_b" -v eb="$med_b" -v mo="$max_only" -v over=" $(echo $TICK_OVER) " '
-    function check(key, v, b) {
-      if (v == "-") { printf "tick budget FAILED: %s not measured\n", key; bad = 1; return }
-      if (index(over, " " key " ")) {
-        printf "tick budget (not enforced yet): %s %d %s %d\n", key, v, (v + 0 > b ? ">" : "<= (within in this run)"), b
-      } else if (v + 0 > b) { printf "tick budget FAILED: %s %d > %d\n", key, v, b; bad = 1 }
-      else printf "tick budget ok: %s %d <= %d\n", key, v, b }
+# The whole tick's target, tighter than its budget: M4F 2,000 and M3 5,000 in every state. Listed
+# in TICK_TARGET_OVER (target:STATE, or target:STATE@periodic_y for the periodic y journey): not
+# yet within, reported with its figure, not enforced. Measured (same command, several runs): M4F
+# IDLE 1,447-1,740 since a seed's random bytes come from the port's FIFO, TEACH 1,642-1,724, FAULT
+# 1,498-1,885; over: EXECUTE 2,409-2,451 and UPLOAD 2,373-2,472 (a MAC's AES slice beside the
+# control path), FWUPDATE 2,026-2,207 (a firmware block's or the verification's slice). M3: every
+# state of the main journey within (UPLOAD 4,702 since a run's start and a commit's check derive
+# their constants in smaller slices), the periodic y journey's UPLOAD 6,350 (a periodic kernel's
+# reach, an arcsine in software float, two a tick).
+TICK_TARGET_OVER="cortex-m4f:EXECUTE cortex-m4f:UPLOAD cortex-m4f:FWUPDATE
+  cortex-m4f:EXECUTE@periodic_y cortex-m4f:UPLOAD@periodic_y cortex-m4f:FWUPDATE@periodic_y
+  cortex-m3:UPLOAD@periodic_y"
+tick_budgets() { # TARGET LOG [MAX_ONLY [JOURNEY]]: fail on a tick over budget in a state not listed
+  # in TICK_OVER, or over target in a state not listed in TICK_TARGET_OVER (MAX_ONLY=1: the maxima
+  # only, for a journey whose skill is not the medians' reference, named JOURNEY in the keys)
+  local target=$1 log=$2 max_only=${3:-0} journey=${4:-} max_b med_b tgt_b
+  case $target in cortex-m4f) max_b=3000; med_b=1500; tgt_b=2000 ;; *) max_b=8000; med_b=3000; tgt_b=5000 ;; esac
+  awk -v t="$target" -v mb="$max_b" -v eb="$med_b" -v tb="$tgt_b" -v mo="$max_only" \
+      -v j="${journey:+@$journey}" -v over=" $(echo $TICK_OVER) " -v tover=" $(echo $TICK_TARGET_OVER) " '
+    function check(what, lst, key, v, b) {
+      if (v == "-") { printf "tick %s FAILED: %s not measured\n", what, key; bad = 1; return }
+      if (index(lst, " " key " ")) {
+        printf "tick %s (not enforced yet): %s %d %s %d\n", what, key, v, (v + 0 > b ? ">" : "<= (within in this run)"), b
+      } else if (v + 0 > b) { printf "tick %s FAILED: %s %d > %d\n", what, key, v, b; bad = 1 }
+      else printf "tick %s ok: %s %d <= %d\n", what, key, v, b }
     $1 == "app_tick_instructions" && $2 == "target=" t {
       for (i = 3; i <= NF; i++) { split($i, kv, "="); f[kv[1]] = kv[2] }
-      n++; check(t ":" f["state"], f["max"], mb)
-      if (f["state"] == "EXECUTE" && mo != 1) check(t ":EXECUTE-median", f["median"], eb) }
+      n++; check("budget", over, t ":" f["state"] j, f["max"], mb)
+      check("target", tover, t ":" f["state"] j, f["max"], tb)
+      if (f["state"] == "EXECUTE" && mo != 1) check("budget", over, t ":EXECUTE-median", f["median"], eb) }
     END { if (n < 6) { printf "tick budget FAILED: %d states counted for %s, 6 expected\n", n, t; bad = 1 }
           exit bad }' "$log"
 }
@@ -128,7 +143,7 @@ for target in cortex-m4f cortex-m3; do
     cat "$log"; echo "qemu benchmark (periodic y skill) failed for $target (log: $log)" >&2; exit 1
   fi
   grep -E '^(tick_instructions|commit_tick_instructions|app_tick_instructions|actuator_latency_instructions|budget)' "$log" | sed 's/^/periodic_y_n20: /' || true
-  tick_budgets "$target" "$log" 1
+  tick_budgets "$target" "$log" 1 periodic_y
 done
 # the images' objects: no firmware object uses a symbol only the simulator defines
 .venv/bin/python tools/check_layers.py --objects build/cortex-m4f --objects build/cortex-m3

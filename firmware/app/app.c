@@ -235,7 +235,6 @@ static void mac_job_step(app_t *app, uint32_t *rounds)
     if (!secoc_verify_run(&app->auth.secoc, &app->auth.mac_job, rounds)) {
         return;
     }
-    app->auth.mac_busy = false;
     if (app->auth.mac_job.status == SEC_OK) {
         host_frame_accepted(app, &app->auth.mac_job.f, (secoc_channel_t)app->auth.mac_job.ch,
                             app->auth.mac_job_arrival_ms);
@@ -268,7 +267,6 @@ static bool mac_job_next(app_t *app)
             secoc_verify_begin_fast(&app->auth.secoc, &app->auth.mac_job, &f, ch);
         }
         app->auth.mac_job_arrival_ms = q->arrival_ms[i];
-        app->auth.mac_busy = true;
         return true;
     }
     return false;
@@ -342,17 +340,17 @@ static void can_receive(app_t *app)
     for (unsigned i = 0u; i < APP_RX_FRAMES_PER_TICK && hal_can_receive(&f); i++) {
         can_take(app, &f);
     }
-    if (!app->auth.mac_busy && app->auth.macq.count == 0u) {
+    if (!secoc_verify_busy(&app->auth.mac_job) && app->auth.macq.count == 0u) {
         return; /* the usual tick: nothing to verify */
     }
     uint32_t rounds = APP_MAC_ROUNDS_PER_TICK;
-    if (app->auth.mac_busy) {
+    if (secoc_verify_busy(&app->auth.mac_job)) {
         mac_job_step(app, &rounds);
     } else if (uds_work_waiting(app)) {
         return;
     }
     for (unsigned started = 0u; started < APP_MAC_FRAMES_PER_TICK && rounds != 0u &&
-                                !app->auth.mac_busy && mac_job_next(app);
+                                !secoc_verify_busy(&app->auth.mac_job) && mac_job_next(app);
          started++) {
         mac_job_step(app, &rounds);
     }

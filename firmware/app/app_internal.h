@@ -118,7 +118,6 @@ typedef struct {
     secoc_t secoc;               /* the MACs under the motion key */
     secoc_job_t mac_job;         /* the MAC verification in flight */
     uint32_t mac_job_arrival_ms; /* its frame's arrival */
-    bool mac_busy;               /* mac_job runs */
     app_mac_queue_t macq;        /* frames waiting for it, oldest first */
     uint32_t mac_dropped;        /* frames dropped unverified (full or stale) */
     bool mac_ran;                /* this tick verified a frame's MAC */

@@ -66,5 +66,5 @@ void app_commands_void(app_t *app)
 {
     app->bus.host_seen = false;
     app->auth.macq.count = 0u; /* what waits for its check arrived before: it never acts */
-    app->auth.mac_busy = false;
+    secoc_verify_abandon(&app->auth.mac_job);
 }

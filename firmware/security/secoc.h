@@ -134,4 +134,16 @@ void secoc_verify_begin_fast(secoc_t *s, secoc_job_t *j, const can_frame_t *f, s
  *  true once done, j->status then holds secoc_verify's result, counted as it counts. */
 bool secoc_verify_run(secoc_t *s, secoc_job_t *j, uint32_t *rounds);
 
+/** True while a verification begun has not ended (it ends in secoc_verify_run, or abandoned). */
+static inline bool secoc_verify_busy(const secoc_job_t *j)
+{
+    return j->phase != 0u;
+}
+
+/** Abandon the verification in flight, if any: its frame is never acted on. */
+static inline void secoc_verify_abandon(secoc_job_t *j)
+{
+    j->phase = 0u;
+}
+
 #endif /* SECOC_H */

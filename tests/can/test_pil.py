@@ -42,6 +42,11 @@ SKILL = REPO / "tests" / "vectors" / "engrave_n10_lwr_hold.skill"
 PIL_TIMEOUT_S = 10
 
 
+#: A run's start slices on each image (s): the fixed-point one derives its integer constants in
+#: exec_prep_parts ticks (fs_exec_fixed.c: 5 a step, 6 of the configuration), the float one none.
+START_S = {"cortex-m4f": 0.001, "cortex-m3": 0.012}
+
+
 class Pil:
     """A running `hil_sim pil --target TARGET` (terminated by the fixture)."""
 
@@ -75,6 +80,7 @@ class Pil:
             f"hil_sim pil did not start: {line!r} {self.proc.stderr.read()}"
         )
         self.port = int(line.split("127.0.0.1:")[1].split()[0])
+        self.target = target
 
     def bus_args(self) -> list[str]:
         return ["-i", "slcan", "-c", f"socket://127.0.0.1:{self.port}", "--timeout", str(PIL_TIMEOUT_S)]
@@ -213,7 +219,12 @@ def test_journey_on_the_image_matches_the_host_build(pil, tmp_path, capsys):
         assert min(mx_h) - 0.5 <= mx_i <= max(mx_h) + 0.5, (g, mx_i, mx_h)
         assert min(rms_h) - 0.5 <= rms_i <= max(rms_h) + 0.5, (g, rms_i, rms_h)
         assert np.all(np.abs(image[g]["f_cmd"]) <= 50.0 + 1e-6)
-        assert abs(image[g]["t"][-1] - (sk.duration_s + 0.5)) < 0.01
+        # the stream ends within a tick of the release's end; it starts at the run's acceptance,
+        # before the start's slices (no force): on the M3 its integer constants derived a part a
+        # tick (exec_prep_parts: 11 for one step, and the start's own tick), none on the M4F
+        late_s = image[g]["t"][-1] - (sk.duration_s + 0.5)
+        print(f"goal x{g}: the stream ends {late_s * 1e3:.1f} ms after the release's end")
+        assert -0.0015 <= late_s <= START_S[pil.target] + 0.002, (g, late_s)
     r = image["1.5"]["f_contact"].max() / image["1"]["f_contact"].max()
     assert abs(r - 1.5) < 0.045
 
