@@ -112,7 +112,7 @@ def test_update_revert_refusals_and_skills_kept(sim, tmp_path, capsys):
     assert slot1(capsys, sim) == before
 
 
-def test_keyless_confirm_across_reset_cannot_keep_failing_image(sim, tmp_path):
+def test_keyless_confirm_across_reset_cannot_keep_failing_image(sim, tmp_path, capsys):
     """Another node without a key repeats RoutineControl 0x0F02 (confirm firmware) every 2 ms
     from just before the ECUReset until well after it: the failing test image still reverts."""
     import threading
@@ -123,6 +123,8 @@ def test_keyless_confirm_across_reset_cannot_keep_failing_image(sim, tmp_path):
     from forceskill.link.uds import device_secret
 
     port = int(sim[6].split("=")[1])
+    # an active image to revert to (the test above leaves 1.1.0; run alone, the device has none,
+    # and the bootloader then adopts the only image that verifies: the reverted one, "recovered")
     ns = argparse.Namespace(
         interface="socketcand",
         channel="can0",
@@ -130,6 +132,11 @@ def test_keyless_confirm_across_reset_cannot_keep_failing_image(sim, tmp_path):
         node=0,
         timeout=3.0,
     )
+    with fl.Link(ns, device_secret(3)) as client:
+        has_active = fl.read_status(client).running_slot != 0xFF
+    if not has_active:
+        rc, _, err = flash(capsys, image(tmp_path, "good", "1.0.0", os.urandom(20000)), sim)
+        assert rc == 0, err
     payload = os.urandom(30000)
     with fl.Link(ns, device_secret(3)) as client:
         running = fl.read_status(client)
