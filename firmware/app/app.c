@@ -697,7 +697,7 @@ static void control(app_t *app)
     const fs_real_t dt = APP_TICK_S;
     /* a run's start goes a slice a tick after the actuator's write (app_tick): no force yet, as
      * in IDLE; the first step starts from the sample after the last slice */
-    if (app->state == APP_EXECUTE && !app->ctl.exec_starting) {
+    if (app->state == APP_EXECUTE && !app_run_starting(app)) {
         const uint8_t done = control_execute(app, dt); /* sets force_req_N */
         if (done != 0u) {
             app->ctl.exec_done = true;
@@ -813,8 +813,8 @@ void app_tick(app_t *app, bool overrun)
 
     /* then a run's start slice (a start this tick's bus accepts has its first in the next), the
      * bus (the frames that arrived, the UDS server) and the long work's slices */
-    if (app->ctl.exec_starting) {
-        (void)app_run_start_step(app);
+    if (app_run_starting(app)) {
+        app_run_start_step(app);
     }
     app->bus.host_frame = false;
     /* while a skill runs ISO-TP queues at most APP_TP_FRAMES_EXEC_TICK frames a tick */
@@ -829,7 +829,7 @@ void app_tick(app_t *app, bool overrun)
     transmit(app);
     /* the next step's kernel blend, after the write (off the sensor-to-actuator path) and after
      * the bus (a run it stopped prepares nothing; one it started steps from a fresh state) */
-    if (app->state == APP_EXECUTE && !app->ctl.exec_starting) {
+    if (app->state == APP_EXECUTE && !app_run_starting(app)) {
         exec_prepare_next(&app->ctl.exec);
     }
 }

@@ -26,6 +26,7 @@
 #include "e2e.h"
 #include "fs_budget.h" /* the per-tick budgets (APP_*_PER_TICK, SLOTS_*) */
 #include "fs_exec.h"
+#include "fs_job.h"
 #include "fs_wire.h"
 #include "hal.h"
 #include "isotp.h"
@@ -104,7 +105,7 @@ typedef struct {
     uint8_t active_slot;
     uint8_t seq_step;
     bool exec_done;
-    bool exec_starting;    /* a run's start in slices (exec_start_run, a slice a tick, no force) */
+    fs_job_t start;        /* a run's start (exec_start_run, a slice a tick, no force) */
     uint8_t run_start_nrc; /* its outcome for a pending RUN_SKILL/RUN_SEQUENCE start (0x78) */
     uint16_t band_stop_ms; /* the run's band stop time (app_run_request_t), 0: report only */
     uint32_t causes;       /* this tick's fault causes for the safety layer: FLT_SKILL_INVALID (a
@@ -184,10 +185,15 @@ bool app_fw_self_test_and_confirm(app_t *app);
  *  needs no SecurityAccess level, docs/protocol.md). Returns a UDS NRC (0 authorised). */
 uint8_t app_run_authorize(const app_t *app, const app_run_request_t *req);
 
+/** True from a run's acceptance until its start's slices are done (app_run_start_step). */
+static inline bool app_run_starting(const app_t *app)
+{
+    return fs_job_running(&app->ctl.start);
+}
+
 /** One slice of an accepted run's start (exec_start_run), after the tick's actuator write (the
- *  control commands no force meanwhile): true if there was one; a refusal ends the run
- *  (last_run_status). */
-bool app_run_start_step(app_t *app);
+ *  control commands no force meanwhile); a refusal ends the run (last_run_status). */
+void app_run_start_step(app_t *app);
 
 /** End every command sent before now (a stop, a UDS fault clear or run stop, a new motion key):
  *  the next HostCommand is acted on only after an authenticated heartbeat arrived after this. */

@@ -69,6 +69,31 @@ static uint8_t run_check_step(app_t *app, const app_run_step_t *rs, uint8_t end,
     return UDS_NRC_OK;
 }
 
+/* A run's start: the steps' integer constants a part a call (exec_start_run: the fixed-point
+ * build's, none in the float one), then the first step's start; run_start_nrc its answer (3xx in
+ * last_run_status: a scale beyond the fixed-point formats). */
+static fs_job_status_t start_job(app_t *app)
+{
+    fs_job_t *j = &app->ctl.start;
+    FS_JOB_BEGIN(j);
+    FS_JOB_YIELD(j); /* accepted in this tick: the slices from the next, before the bus's */
+    for (;;) {
+        bool done = false;
+        const fs_status_t rc = exec_start_run(&app->ctl.exec_run_cfg, &app->ctl.exec, &done);
+        if (rc != FS_OK) {
+            app->ctl.last_run_status = (uint16_t)rc;
+            app->ctl.run_start_nrc = UDS_NRC_REQUEST_OUT_OF_RANGE;
+            FS_JOB_EXIT(j);
+        }
+        if (done) {
+            break;
+        }
+        FS_JOB_YIELD(j);
+    }
+    app->ctl.run_start_nrc = UDS_NRC_OK;
+    FS_JOB_END(j);
+}
+
 uint8_t app_run_start(app_t *app, const app_run_request_t *req)
 {
     const uint8_t auth = app_run_authorize(app, req);
@@ -108,27 +133,16 @@ uint8_t app_run_start(app_t *app, const app_run_request_t *req)
     app->ctl.seq_step = 0u;
     app->ctl.exec_done = false;
     /* the steps' constants and the first step's start follow a slice a tick (app_run_start_step) */
-    app->ctl.exec_starting = true; /* the slices from the next tick: they come before the bus's */
     app->ctl.run_start_nrc = UDS_NRC_RESPONSE_PENDING;
+    fs_job_reset(&app->ctl.start);
+    (void)start_job(app);
     (void)app_event(app, APP_EV_EXECUTE);
     return UDS_NRC_OK;
 }
 
-bool app_run_start_step(app_t *app)
+void app_run_start_step(app_t *app)
 {
-    if (!app->ctl.exec_starting) {
-        return false;
+    if (start_job(app) == FS_JOB_DONE && app->ctl.run_start_nrc != UDS_NRC_OK) {
+        (void)app_event(app, APP_EV_STOP); /* a scale beyond the fixed-point formats: no run */
     }
-    bool done = false;
-    const fs_status_t rc = exec_start_run(&app->ctl.exec_run_cfg, &app->ctl.exec, &done);
-    if (rc != FS_OK) { /* a scale beyond the fixed-point formats (3xx): the run does not start */
-        app->ctl.last_run_status = (uint16_t)rc;
-        app->ctl.exec_starting = false;
-        app->ctl.run_start_nrc = UDS_NRC_REQUEST_OUT_OF_RANGE;
-        (void)app_event(app, APP_EV_STOP);
-    } else if (done) {
-        app->ctl.exec_starting = false;
-        app->ctl.run_start_nrc = UDS_NRC_OK;
-    }
-    return true;
 }

@@ -23,8 +23,8 @@ bool app_event(app_t *app, app_event_t ev)
         break;
     case APP_IDLE:
     case APP_FAULT:
-        if (app->ctl.exec_starting) { /* stopped or faulted before its first step */
-            app->ctl.exec_starting = false;
+        if (app_run_starting(app)) { /* stopped or faulted before its first step */
+            fs_job_reset(&app->ctl.start);
             app->ctl.run_start_nrc = UDS_NRC_CONDITIONS_NOT_CORRECT;
         }
         if (next == APP_IDLE) {

@@ -421,7 +421,7 @@ static uint8_t routine_run(app_t *app, uint8_t sub, uint16_t rid, const uint8_t 
         const uint8_t nrc = run_from_routine(rid, d, len, &req);
         const uint8_t started = (nrc != UDS_NRC_OK) ? nrc : app_run_start(app, &req);
         /* answered once the start's slices are done (resume): its 3xx refusal comes then */
-        return (started == UDS_NRC_OK && app->ctl.exec_starting)
+        return (started == UDS_NRC_OK && app_run_starting(app))
                    ? pend(app, UDS_NRC_RESPONSE_PENDING, run_start_answer)
                    : started;
     }

@@ -255,7 +255,7 @@ void slots_abort(slots_t *b)
         b->last_transfer_status = FS_TRANSFER_INTERRUPTED; /* interrupted: nothing was written */
     }
     fs_job_reset(&b->commit); /* a commit in progress ends with the transfer */
-    b->reading = false;
+    fs_job_reset(&b->read);
     b->xfer_size = 0u;
 }
 
@@ -270,32 +270,34 @@ void slots_refuse_commit(slots_t *b)
     b->last_transfer_status = FS_TRANSFER_INTERRUPTED;
 }
 
+/* The read-back of slot's record, its CRC checked a slice a call; b->read_nrc its answer. */
+static fs_job_status_t read_job(slots_t *b, uint32_t slot, uint32_t size)
+{
+    fs_job_t *j = &b->read;
+    FS_JOB_BEGIN(j);
+    b->read_nrc = UDS_NRC_REQUEST_OUT_OF_RANGE;
+    if (slot < 1u || slot > SLOTS_N || !b->nvm_ok) {
+        FS_JOB_EXIT(j);
+    }
+    b->read_nrc = UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED; /* an empty or unreadable slot */
+    if (nvm_read_begin(&b->reader, &b->nvm, (uint16_t)(slot - 1u), b->image, sizeof(b->image)) !=
+        NVM_OK) {
+        FS_JOB_EXIT(j);
+    }
+    FS_JOB_YIELD(j); /* the request's own tick reads nothing more */
+    while (!nvm_read_run(&b->reader, SLOTS_READ_UNITS_PER_TICK)) {
+        FS_JOB_YIELD(j);
+    }
+    if (b->reader.status == NVM_OK) {
+        b->read_nrc = (size == b->reader.len) ? UDS_NRC_OK : UDS_NRC_REQUEST_OUT_OF_RANGE;
+        b->xfer_size = (size == b->reader.len) ? b->reader.len : b->xfer_size;
+    }
+    FS_JOB_END(j);
+}
+
 uint8_t slots_upload_begin(slots_t *b, uint32_t slot, uint32_t size)
 {
-    if (!b->reading) {
-        if (slot < 1u || slot > SLOTS_N || !b->nvm_ok) {
-            return UDS_NRC_REQUEST_OUT_OF_RANGE;
-        }
-        if (nvm_read_begin(&b->reader, &b->nvm, (uint16_t)(slot - 1u), b->image,
-                           sizeof(b->image)) != NVM_OK) {
-            return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED; /* empty slot */
-        }
-        b->reading = true;
-        return UDS_NRC_RESPONSE_PENDING; /* the request's own tick reads nothing more */
-    }
-    /* the read-back's record CRC, a bounded slice a tick (0x78 meanwhile) */
-    if (!nvm_read_run(&b->reader, SLOTS_READ_UNITS_PER_TICK)) {
-        return UDS_NRC_RESPONSE_PENDING;
-    }
-    b->reading = false;
-    if (b->reader.status != NVM_OK) {
-        return UDS_NRC_UPLOAD_DOWNLOAD_NOT_ACCEPTED;
-    }
-    if (size != b->reader.len) {
-        return UDS_NRC_REQUEST_OUT_OF_RANGE;
-    }
-    b->xfer_size = b->reader.len;
-    return UDS_NRC_OK;
+    return (read_job(b, slot, size) == FS_JOB_DONE) ? b->read_nrc : UDS_NRC_RESPONSE_PENDING;
 }
 
 uint8_t slots_upload_data(const slots_t *b, uint32_t offset, uint8_t *out, uint16_t len)

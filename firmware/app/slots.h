@@ -77,7 +77,8 @@ typedef struct {
     uint32_t swap_pos;             /* SLOTS_COMMIT_SWAP: bytes of staging copied */
     slots_limits_t lim;            /* the commit's limits, taken at its first slice */
     nvm_reader_t reader;           /* a read-back's record read and CRC, spread over ticks */
-    bool reading;                  /* a read-back's RequestUpload is answered 0x78 meanwhile */
+    fs_job_t read;                 /* a read-back (slots_upload_begin): 0x78 while it runs */
+    uint8_t read_nrc;              /* its answer once it ended */
     exec_store_t store[SLOTS_N];   /* each valid slot's skill prepared for the executor (the
                                   * fixed-point build: its model, what an execution runs) */
     exec_store_t staging_store;    /* staging prepared (the commit's) */

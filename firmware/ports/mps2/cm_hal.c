@@ -338,10 +338,12 @@ static void rng_block(uint8_t out[SEC_AES_BLOCK])
     for (uint32_t i = 0u; i < 4u; i++) {
         ctr[i] ^= (uint8_t)(phase >> (8u * i));
     }
-    for (uint32_t i = SEC_AES_BLOCK; i-- > 4u;) { /* bytes 4..15: a counter, +1 a block */
-        if (++ctr[i] != 0u) {
-            break;
-        }
+    uint32_t carry = 1u; /* bytes 4..15: a counter, +1 a block, the same instructions whatever
+                            its value (the boot's instructions do not depend on the seed) */
+    for (uint32_t i = SEC_AES_BLOCK; i-- > 4u;) {
+        const uint32_t v = ctr[i] + carry;
+        ctr[i] = (uint8_t)v;
+        carry = v >> 8;
     }
     sec_aes128_encrypt(&g_drbg, ctr, out);
 }
