@@ -190,20 +190,41 @@ def wait_caught_up(log: Path, timeout_s: float = 30.0) -> None:
         time.sleep(1.0)
 
 
+def stop_logger(p: subprocess.Popen[bytes], err: Path) -> None:
+    """Stop python-can's logger as its user does (Ctrl-C: it closes the log). Once, on a fresh
+    clone's loaded machine, it was still running 20 s after SIGINT: a second SIGINT follows, and
+    if that does not end it either, its threads' stacks (faulthandler, SIGABRT) go into the
+    failure, so the cause can be read."""
+    for wait_s in (15.0, 10.0):
+        p.send_signal(signal.SIGINT)
+        try:
+            p.wait(timeout=wait_s)
+            return
+        except subprocess.TimeoutExpired:
+            continue
+    p.send_signal(signal.SIGABRT)
+    p.wait(timeout=10)
+    pytest.fail(f"can.logger still ran 25 s after SIGINT; its stderr:\n{err.read_text()[-4000:]}")
+
+
 def test_can_logger_log_accepted_by_fit(server, tmp_path, capsys):
     log = tmp_path / "logger.asc"
-    p = subprocess.Popen(
-        [
-            sys.executable,
-            "-m",
-            "can.logger",
-            *socketcand_args(server.port),
-            "-f",
-            str(log),
-        ],
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.DEVNULL,
-    )
+    err = tmp_path / "logger.stderr"
+    with err.open("wb") as err_f:
+        p = subprocess.Popen(
+            [
+                sys.executable,
+                "-X",
+                "faulthandler",
+                "-m",
+                "can.logger",
+                *socketcand_args(server.port),
+                "-f",
+                str(log),
+            ],
+            stdout=subprocess.DEVNULL,
+            stderr=err_f,
+        )
     try:
         time.sleep(1.5)
         forceskill(
@@ -211,8 +232,7 @@ def test_can_logger_log_accepted_by_fit(server, tmp_path, capsys):
         )
         wait_caught_up(log)
     finally:
-        p.send_signal(signal.SIGINT)
-        p.wait(timeout=20)
+        stop_logger(p, err)
     out = forceskill(
         capsys,
         "fit",
