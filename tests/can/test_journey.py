@@ -190,6 +190,16 @@ def wait_caught_up(log: Path, timeout_s: float = 30.0) -> None:
         time.sleep(1.0)
 
 
+#: python-can's logger (`python -m can.logger ARGS`) with Ctrl-C's default: a child inherits an
+#: ignored or blocked SIGINT across exec, and Python then keeps it so (the logger ran on after
+#: SIGINT, waiting in its receive loop, when the test's process had it so).
+LOGGER_MAIN = (
+    "import runpy, signal; signal.signal(signal.SIGINT, signal.default_int_handler); "
+    "signal.pthread_sigmask(signal.SIG_UNBLOCK, [signal.SIGINT]); "
+    "runpy.run_module('can.logger', run_name='__main__', alter_sys=True)"
+)
+
+
 def stop_logger(p: subprocess.Popen[bytes], err: Path) -> None:
     """Stop python-can's logger as its user does (Ctrl-C: it closes the log). Once, on a fresh
     clone's loaded machine, it was still running 20 s after SIGINT: a second SIGINT follows, and
@@ -204,7 +214,11 @@ def stop_logger(p: subprocess.Popen[bytes], err: Path) -> None:
             continue
     p.send_signal(signal.SIGABRT)
     p.wait(timeout=10)
-    pytest.fail(f"can.logger still ran 25 s after SIGINT; its stderr:\n{err.read_text()[-4000:]}")
+    here = (signal.getsignal(signal.SIGINT), signal.pthread_sigmask(signal.SIG_BLOCK, []))
+    pytest.fail(
+        f"can.logger still ran 25 s after SIGINT (this process: SIGINT handler, blocked {here}); "
+        f"its stderr:\n{err.read_text()[-4000:]}"
+    )
 
 
 def test_can_logger_log_accepted_by_fit(server, tmp_path, capsys):
@@ -216,8 +230,8 @@ def test_can_logger_log_accepted_by_fit(server, tmp_path, capsys):
                 sys.executable,
                 "-X",
                 "faulthandler",
-                "-m",
-                "can.logger",
+                "-c",
+                LOGGER_MAIN,
                 *socketcand_args(server.port),
                 "-f",
                 str(log),

@@ -42,6 +42,9 @@ SKILL = REPO / "tests" / "vectors" / "engrave_n10_lwr_hold.skill"
 PIL_TIMEOUT_S = 10
 
 
+#: flash's wait for the new image's confirmation on the qemu board (its default: 15 s).
+FLASH_CONFIRM_TIMEOUT_S = 60
+
 #: A run's start slices on each image (s): the fixed-point one derives its integer constants in
 #: exec_prep_parts ticks (fs_exec_fixed.c: 5 a step, 6 of the configuration), the float one none.
 START_S = {"cortex-m4f": 0.001, "cortex-m3": 0.012}
@@ -289,15 +292,18 @@ def test_firmware_update_on_the_image(pil_fw, tmp_path, capsys):
     before = slot1(capsys, bus)
     assert "empty" not in before
     payload = os.urandom(40000)
+    # a reset under qemu (TCG) boots through the images' SHA-256 in emulation, and a failing
+    # image boots twice before its revert: on a loaded machine that took more than flash's 15 s
+    confirm = ("--confirm-timeout", str(FLASH_CONFIRM_TIMEOUT_S))
 
-    out = forceskill(capsys, "flash", fw_image(tmp_path, "v1", "1.0.0", payload), *bus, "-q")
+    out = forceskill(capsys, "flash", fw_image(tmp_path, "v1", "1.0.0", payload), *bus, "-q", *confirm)
     assert "after reset: device: firmware 1.0.0 on cortex-m4f, slot A" in out, out
-    out = forceskill(capsys, "flash", fw_image(tmp_path, "v11", "1.1.0", payload[::-1]), *bus, "-q")
+    out = forceskill(capsys, "flash", fw_image(tmp_path, "v11", "1.1.0", payload[::-1]), *bus, "-q", *confirm)
     assert "after reset: device: firmware 1.1.0 on cortex-m4f, slot B" in out, out
     assert slot1(capsys, bus) == before
 
     bad = b"FSHOST-SELFTEST-FAIL" + payload[:20000]
-    rc = cli.main(["flash", fw_image(tmp_path, "bad", "1.2.0", bad), *bus, "-q"])
+    rc = cli.main(["flash", fw_image(tmp_path, "bad", "1.2.0", bad), *bus, "-q", *confirm])
     err = capsys.readouterr().err
     assert rc == 2 and "device reverted to 1.1.0" in err and "[638]" in err, err
 
