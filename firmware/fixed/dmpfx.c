@@ -466,14 +466,25 @@ fs_status_t dmpfx_run_force(const dmpfx_model_t *m, double goal_scale, double ti
     return (st == FS_OK) ? dmpfx_run_goal(m, goal_scale, time_scale, run) : st;
 }
 
-fs_status_t dmpfx_run_rates(const dmpfx_model_t *m, double goal_scale, double time_scale,
-                            dmpfx_run_t *run)
+/* The arguments of dmpfx_run_rates and dmpfx_run_goal: present, finite, time scale > 0. */
+static fs_status_t dmpfx_run_args(const dmpfx_model_t *m, double goal_scale, double time_scale,
+                                  const dmpfx_run_t *run)
 {
     if (m == NULL || run == NULL) {
         return FS_ERR_NULL_ARG;
     }
     if (!isfinite(goal_scale) || !isfinite(time_scale) || !(time_scale > 0.0)) {
         return FS_ERR_SCALE_INVALID;
+    }
+    return FS_OK;
+}
+
+fs_status_t dmpfx_run_rates(const dmpfx_model_t *m, double goal_scale, double time_scale,
+                            dmpfx_run_t *run)
+{
+    const fs_status_t args = dmpfx_run_args(m, goal_scale, time_scale, run);
+    if (args != FS_OK) {
+        return args;
     }
     const double k = m->dt_s / (m->tau_s * time_scale);
     /* Below 2^-24 the phase increments lose more than 7 bits of Q1.31. Each constant < 0.5
@@ -502,11 +513,9 @@ fs_status_t dmpfx_run_rates(const dmpfx_model_t *m, double goal_scale, double ti
 fs_status_t dmpfx_run_goal(const dmpfx_model_t *m, double goal_scale, double time_scale,
                            dmpfx_run_t *run)
 {
-    if (m == NULL || run == NULL) {
-        return FS_ERR_NULL_ARG;
-    }
-    if (!isfinite(goal_scale) || !isfinite(time_scale) || !(time_scale > 0.0)) {
-        return FS_ERR_SCALE_INVALID;
+    const fs_status_t args = dmpfx_run_args(m, goal_scale, time_scale, run);
+    if (args != FS_OK) {
+        return args;
     }
     run->k_alphabeta_y_q31 = 0;
     run->goal_y_q24 = 0;
