@@ -19,12 +19,15 @@ import pytest
 from forceskill import cli
 from forceskill.plot import outside_spans
 from helpers.canbus import JOURNEY_HOST_TIMEOUT_MS, SCENARIOS, Server, forceskill
+from helpers.doc_examples import documented_step, run, workspace
 from helpers.paths import hil_sim_path
 
 K_NPM = 100.0
 GIVES_AT_S = 3.0  # pressing_layer_gives.toml's gives_at_s
 BAND_MS = 30  # ms outside the band in one piece that stop a run
 FLT_BAND = 515
+#: The journey's whole run (about 40 s on a quiet 2-core machine; minutes beside busy loops).
+JOURNEY_TIMEOUT_S = 600
 
 
 @pytest.fixture(scope="module")
@@ -140,10 +143,14 @@ def test_the_normal_object_raises_no_alarm_at_1x_and_1_5x(band_skill, tmp_path, 
 
 
 def test_the_journey_ends_with_the_band_stopping_the_layer_that_gives_way(tmp_path) -> None:  # type: ignore[no-untyped-def]
-    """forceskill journey's band step: six simulator demonstrations, fit, run with --band-action
-    stop on pressing_layer_gives.toml; its summary and report say where it stopped."""
-    out = tmp_path / "journey"
-    assert cli.main(["journey", "-o", str(out), "--hil-sim", str(hil_sim_path())]) == 0
+    """forceskill journey as docs/cli.md shows it, what it prints compared with the document; its
+    band step (six simulator demonstrations, fit, run with --band-action stop on
+    pressing_layer_gives.toml): its summary and report say where it stopped."""
+    step = documented_step("docs/cli.md", "forceskill journey", "tests/can/test_band.py")
+    ws = workspace(tmp_path)
+    failures = run([step], ws, timeout_s=JOURNEY_TIMEOUT_S)
+    assert not failures, "\n".join(failures)
+    out = ws / "can_journey"
     band = json.loads((out / "can_summary.json").read_text())["band"]
     print(f"journey: {band}")
     assert band["fault"] == FLT_BAND and band["gives_at_s"] == GIVES_AT_S

@@ -11,10 +11,13 @@ to the checkout's (so the documented first steps, ``.venv/bin/python tests/helpe
 the options of a simulator this test starts for the document (``hil_sim serve`` on the pressing
 scenario, socketcand), one for all its examples; a block preceded by ``<!-- bus: SCENARIO.toml -->``
 talks to one on that scenario of ``hil_sim/scenarios`` (one simulator per scenario and document).
+A transcript preceded by ``<!-- run by: tests/PATH.py -->`` is run and compared by that test, one
+that runs the command anyway with checks of its own (``forceskill journey``: tests/can/test_band.py);
+``test_a_transcript_run_by_another_test_is_asked_for_there`` checks that the file asks for it.
 
 A shell example that is not a transcript (a block tagged ``sh``, ``bash`` or ``shell``, or an
 untagged one holding a command) must say why on the line just above its fence:
-``<!-- not run: REASON -->``, REASON one of ``NOT_RUN`` (below), optionally followed by ``:`` and
+``<!-- not run: REASON -->``, REASON one of ``NOT_RUN`` (helpers.doc_examples), optionally followed by ``:`` and
 a detail. ``test_every_shell_example_runs_or_says_why`` fails on any other and prints the skipped
 ones, so the set is auditable. Blocks that are no commands (formulas, printed output, diagrams)
 are tagged ``text`` or left untagged.
@@ -25,120 +28,26 @@ Also: docs/safety.md's HIL fault table is what ``hil_sim faults --seed 1`` print
 from __future__ import annotations
 
 import importlib.util
-import os
-import re
 import subprocess
-import sys
-from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
 
-from helpers.canbus import Server
-from helpers.paths import REPO, SCENARIOS, hil_sim_path
-
-BUS = "-i socketcan -c can0"
-#: What one command may take (a fit with a search on a long recording, a CAN run).
-STEP_TIMEOUT_S = 120
-#: Why a shell example is not run: a usage line with placeholders (FILE, N), a real CAN adapter or
-#: board, the qemu guest (scripts/test_linux_can.sh runs it), more than STEP_TIMEOUT_S, or a
-#: set-up step (installs packages or builds).
-NOT_RUN = ("synopsis", "hardware", "vm", "long", "setup")
-SHELL_TAGS = ("sh", "bash", "shell", "console")
-DOCS = ["README.md", *sorted(str(p.relative_to(REPO)) for p in (REPO / "docs").glob("*.md"))]
-_NOT_RUN_RE = re.compile(r"<!-- not run: (\w+)(?::[^>]*)? -->")
-_BUS_RE = re.compile(r"<!-- bus: ([\w.-]+\.toml) -->")
-#: The simulator's scenario behind a transcript's bus unless its block names another.
-BUS_SCENARIO = "pressing_task1_demo.toml"
-# An untagged block holds a command when a line starts with a prompt, a program the docs use, a
-# path to one, or a variable assignment before one.
-_COMMAND_RE = re.compile(
-    r"^(\$ |(sudo|forceskill|hil_sim|cmake|ninja|make|python3?|pip|git|ip|candump|cansend|cangen|"
-    r"qemu-system-\w+|for|export|cd|pkg-config)( |$)|\.{0,2}/|(\.venv|build|scripts|tools|bench|"
-    r"tests|hil_sim)/\S|[A-Z_]+=\S+ )"
+from helpers.doc_examples import (
+    BUS_SCENARIO,
+    NOT_RUN,
+    blocks,
+    is_shell,
+    matches,
+    not_run_reason,
+    run,
+    run_by,
+    transcript,
+    workspace,
 )
+from helpers.paths import REPO, hil_sim_path
 
-
-@dataclass
-class Block:
-    """A fenced block: its tag, first line (the fence's), lines (from its fence's indentation on:
-    a block inside a list item) and the line above its fence."""
-
-    tag: str
-    line: int
-    body: list[str]
-    above: str
-
-
-def blocks(text: str) -> list[Block]:
-    out: list[Block] = []
-    lines = text.splitlines()
-    cur: Block | None = None
-    fence = ""
-    for no, line in enumerate(lines, 1):
-        stripped = line.strip()
-        if cur is None:
-            if stripped.startswith("```"):
-                fence = line[: len(line) - len(line.lstrip())]
-                above = lines[no - 2].strip() if no > 1 else ""
-                cur = Block(stripped[3:].strip(), no, [], above)
-            continue
-        if stripped.startswith("```"):
-            out.append(cur)
-            cur = None
-            continue
-        cur.body.append((line[len(fence) :] if line.startswith(fence) else line.lstrip()).rstrip())
-    return out
-
-
-def is_shell(b: Block) -> bool:
-    """A shell example: tagged as one, or untagged with a command in it."""
-    if b.tag in SHELL_TAGS:
-        return True
-    return b.tag == "" and any(_COMMAND_RE.match(ln.lstrip()) for ln in b.body)
-
-
-def not_run_reason(b: Block) -> str | None:
-    """The reason given above a block that is not run, or None."""
-    m = _NOT_RUN_RE.fullmatch(b.above)
-    return m.group(1) if m else None
-
-
-@dataclass
-class Step:
-    cmd: str
-    expected: list[str]
-    where: str
-    scenario: str = BUS_SCENARIO  # of the simulator behind BUS
-
-
-def transcript(text: str, name: str) -> list[Step]:
-    """The ``console`` blocks' commands and their printed lines, in document order."""
-    steps: list[Step] = []
-    for b in blocks(text):
-        if b.tag != "console":
-            continue
-        first = len(steps)
-        bus = _BUS_RE.fullmatch(b.above)
-        scenario = bus.group(1) if bus else BUS_SCENARIO
-        for i, body in enumerate(b.body):
-            if body.startswith("$ "):
-                steps.append(Step(body[2:], [], f"{name}:{b.line + 1 + i}", scenario))
-            elif len(steps) > first:
-                steps[-1].expected.append(body)
-    return steps
-
-
-def matches(expected: list[str], actual: str) -> bool:
-    """``actual`` printed as ``expected`` shows it (``...`` lines and ``...`` in a line as wildcards)."""
-    pat = ""
-    for line in expected:
-        if line == "...":
-            pat += r"(?:[^\n]*\n)*?"
-        else:
-            pat += ".*".join(re.escape(p) for p in line.split("...")) + r"[ \t]*\n"
-    got = "\n".join(ln.rstrip() for ln in actual.rstrip("\n").splitlines())
-    return re.fullmatch(pat, got + "\n" if got else "") is not None
+DOCS = ["README.md", *sorted(str(p.relative_to(REPO)) for p in (REPO / "docs").glob("*.md"))]
 
 
 def test_matching_conventions() -> None:
@@ -152,6 +61,9 @@ def test_matching_conventions() -> None:
     assert [(s.cmd, s.expected) for s in steps] == [("one", ["out", "..."]), ("two", [])]
     steps = transcript("```console\n$ a\n```\n<!-- bus: other.toml -->\n```console\n$ b\n```\n", "t")
     assert [(s.cmd, s.scenario) for s in steps] == [("a", BUS_SCENARIO), ("b", "other.toml")]
+    text = "```console\n$ a\n```\n<!-- run by: tests/x/test_y.py -->\n```console\n$ b\nout\n```\n"
+    assert [s.cmd for s in transcript(text, "t")] == ["a"]
+    assert [(s.cmd, s.expected) for s in transcript(text, "t", "tests/x/test_y.py")] == [("b", ["out"])]
     text = "a\n<!-- not run: vm -->\n```sh\nsudo ip link\n```\n```\nf = k*x\n```\n```\nninja -C build\n```\n"
     bs = blocks(text)
     assert [(b.tag, is_shell(b), not_run_reason(b)) for b in bs] == [
@@ -159,55 +71,6 @@ def test_matching_conventions() -> None:
         ("", False, None),
         ("", True, None),
     ]
-
-
-def _workspace(tmp: Path) -> Path:
-    for name in (".venv", "build", "tests", "hil_sim"):
-        (tmp / name).symlink_to(REPO / name)
-    (tmp / "docs" / "hil").mkdir(parents=True)  # plots the examples write stay here
-    return tmp
-
-
-def _run(steps: list[Step], ws: Path) -> list[str]:
-    env = dict(os.environ)
-    env["PATH"] = os.pathsep.join([str(Path(sys.executable).parent), str(hil_sim_path().parent), env["PATH"]])
-    env["PYTHONUNBUFFERED"] = "1"  # stdout and stderr in the order printed
-    env["FORCESKILL_HIL_SIM"] = str(hil_sim_path())
-    failures = []
-    servers: dict[str, Server] = {}  # a simulator per scenario, started by its first bus example
-    try:
-        for st in steps:
-            cmd = st.cmd
-            if BUS in cmd:
-                if st.scenario not in servers:
-                    servers[st.scenario] = Server(SCENARIOS / st.scenario)
-                cmd = cmd.replace(BUS, " ".join(servers[st.scenario].bus_args()))
-            try:
-                r = subprocess.run(
-                    ["bash", "-c", cmd],
-                    cwd=ws,
-                    env=env,
-                    stdout=subprocess.PIPE,
-                    stderr=subprocess.STDOUT,
-                    text=True,
-                    timeout=STEP_TIMEOUT_S,
-                )
-            except subprocess.TimeoutExpired:
-                failures.append(f"{st.where}: $ {st.cmd}\n  took more than {STEP_TIMEOUT_S} s")
-                continue
-            refused = any("error:" in ln and ln.rstrip().endswith("]") for ln in st.expected)
-            ok_status = (r.returncode != 0) if refused else (r.returncode == 0)
-            if not (ok_status and matches(st.expected, r.stdout)):
-                failures.append(
-                    f"{st.where}: $ {st.cmd}\n  exit status {r.returncode}\n  documented:\n"
-                    + "".join(f"    {ln}\n" for ln in st.expected)
-                    + "  printed:\n"
-                    + "".join(f"    {ln}\n" for ln in r.stdout.splitlines())
-                )
-    finally:
-        for server in servers.values():
-            server.stop()
-    return failures
 
 
 #: The documents with transcripts (the others' shell blocks each say why they are not run:
@@ -218,8 +81,26 @@ DOCS_WITH_TRANSCRIPTS = [d for d in DOCS if transcript((REPO / d).read_text(), d
 @pytest.mark.parametrize("doc", DOCS_WITH_TRANSCRIPTS)
 def test_the_examples_print_what_the_docs_show(doc: str, tmp_path: Path) -> None:
     steps = transcript((REPO / doc).read_text(), doc)
-    failures = _run(steps, _workspace(tmp_path))
+    failures = run(steps, workspace(tmp_path))
     assert not failures, "\n".join(failures)
+
+
+def test_a_transcript_run_by_another_test_is_asked_for_there() -> None:
+    """Each ``<!-- run by: FILE -->`` transcript's command is asked for in FILE by
+    ``documented_step(DOC, ...)`` (helpers.doc_examples), which fails unless it finds it."""
+    named = 0
+    for doc in DOCS:
+        for b in blocks((REPO / doc).read_text()):
+            by = run_by(b)
+            if b.tag != "console" or by is None:
+                continue
+            named += 1
+            test = REPO / by
+            assert test.is_file(), f"{doc}:{b.line}: {b.above} names no file"
+            assert f'documented_step("{doc}"' in test.read_text(), (
+                f"{doc}:{b.line}: {by} does not ask for this transcript (documented_step)"
+            )
+    assert named >= 1  # the journey's
 
 
 def test_every_shell_example_runs_or_says_why() -> None:
