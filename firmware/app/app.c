@@ -232,7 +232,8 @@ static void host_frame_accepted(app_t *app, const can_frame_t *f, secoc_channel_
 static void mac_job_step(app_t *app, uint32_t *rounds)
 {
     app->auth.mac_ran = true;
-    if (!secoc_verify_run(&app->auth.secoc, &app->auth.mac_job, rounds)) {
+    if ((*rounds == 0u && secoc_verify_busy(&app->auth.mac_job)) || /* a start took the share */
+        !secoc_verify_run(&app->auth.secoc, &app->auth.mac_job, rounds)) {
         return;
     }
     if (app->auth.mac_job.status == SEC_OK) {
@@ -330,7 +331,8 @@ static void can_take(app_t *app, const can_frame_t *f)
 
 /* The CAN frames of this tick: every frame received (up to APP_RX_FRAMES_PER_TICK, more than the
  * bus carries in a tick), stamped with this tick's time; then the MAC checks, oldest first, within
- * APP_MAC_ROUNDS_PER_TICK AES rounds and APP_MAC_FRAMES_PER_TICK starts. A new verification and
+ * APP_MAC_ROUNDS_PER_TICK AES rounds (a start counting APP_MAC_BEGIN_ROUNDS) and
+ * APP_MAC_FRAMES_PER_TICK starts. A new verification and
  * the UDS server's work never share a tick: one in flight goes on, a new one waits a tick while
  * the server has work (uds_service then leaves its share to the next tick). */
 static void can_receive(app_t *app)
@@ -349,9 +351,11 @@ static void can_receive(app_t *app)
     } else if (uds_work_waiting(app)) {
         return;
     }
-    for (unsigned started = 0u; started < APP_MAC_FRAMES_PER_TICK && rounds != 0u &&
-                                !secoc_verify_busy(&app->auth.mac_job) && mac_job_next(app);
+    for (unsigned started = 0u;
+         started < APP_MAC_FRAMES_PER_TICK && rounds >= APP_MAC_BEGIN_ROUNDS &&
+         !secoc_verify_busy(&app->auth.mac_job) && mac_job_next(app);
          started++) {
+        rounds -= APP_MAC_BEGIN_ROUNDS;
         mac_job_step(app, &rounds);
     }
 }

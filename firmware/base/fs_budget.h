@@ -29,10 +29,10 @@
  * tick's budget. The answer's own first frame counts in this share. */
 #define APP_TP_FRAMES_BUSY_TICK 3u
 #ifdef FS_BUDGET_MCU
-/* ISO-TP frames queued in an EXECUTE tick (a read-back during a run): the control path takes
- * ~2,000 instructions of the M4F's 3,000, a frame ~150 (5 with a block's copy put the M4F's
- * worst such tick at 3,346) ... */
-#define APP_TP_FRAMES_EXEC_TICK 3u
+/* ISO-TP frames queued in an EXECUTE tick (a read-back during a run): the control path and a
+ * run's frames take ~1,500-1,650 instructions on the M4F, a frame ~150 (3 put the M4F's worst
+ * such tick at 2,313, 5 with a block's copy at 3,346) ... */
+#define APP_TP_FRAMES_EXEC_TICK 2u
 /* ... and none in an EXECUTE tick that verified a MAC or did the server's work (the control path
  * and either one take the budget; the frames leave in the next tick without such work, so a bus
  * flooded with frames to verify holds a read-back during a run). */
@@ -42,16 +42,20 @@
 #define APP_TP_FRAMES_EXEC_BUSY_TICK 3u
 #endif
 /* AES rounds of MAC verification a tick (secoc_verify_run: an AES-128 block is 10 rounds, ~620
- * instructions on the M4F; a frame that fails takes a second block, its replay check) and the
+ * instructions on the M4F; a frame that fails takes a second block, its replay check), the
+ * rounds a verification's start counts for (the frame's copy, the freshness value, the CMAC's
+ * subkey and first block: ~220 instructions on the M4F, three rounds' and their call) and the
  * verifications started a tick. The host build verifies every frame the bus can carry in a tick
- * within that tick (8 frames of two blocks); the Cortex-M images take 4 rounds and start one a
- * tick (a whole block beside EXECUTE's work put the M4F's worst tick at 3,230). */
+ * within that tick (8 frames of a start and two blocks); on the Cortex-M images a start is a
+ * tick's whole share, the rounds 4 a tick, one start a tick (a start and 4 rounds in one tick put
+ * the M4F's worst EXECUTE tick at 2,191, a whole block beside EXECUTE's work at 3,230). */
+#define APP_MAC_BEGIN_ROUNDS 4u
 #ifdef FS_BUDGET_MCU
 #define APP_MAC_ROUNDS_PER_TICK 4u
 #define APP_MAC_FRAMES_PER_TICK 1u
 #else
-#define APP_MAC_ROUNDS_PER_TICK 160u
 #define APP_MAC_FRAMES_PER_TICK 8u
+#define APP_MAC_ROUNDS_PER_TICK (APP_MAC_FRAMES_PER_TICK * (APP_MAC_BEGIN_ROUNDS + 20u))
 #endif
 /* Bytes of a read-back's TransferData answer (0x75's block length, SID and counter included):
  * the block's copies (~0.9 instructions a byte on the M4F) fit a tick beside EXECUTE's work. */
@@ -76,10 +80,11 @@
 
 /* Bytes of a TransferData block programmed and added to the image's CRC-32 per call of
  * fwu_uds_download_data (one call a tick while the block is answered 0x78; the image's header is
- * taken whole whatever the size): ~850 instructions for 96 bytes on the M4F, beside a tick's
- * status and telemetry frames, the UART's bytes and a heartbeat's arrival. */
+ * taken whole whatever the size): ~600 instructions for 64 bytes on the M4F (the CRC ~5 a byte,
+ * the programming ~4), beside a tick's status and telemetry frames, the UART's bytes and a
+ * heartbeat's arrival (96 bytes put the M4F's worst FWUPDATE tick at 2,200). */
 #ifdef FS_BUDGET_MCU
-#define FWU_DATA_BYTES_PER_CALL 96u
+#define FWU_DATA_BYTES_PER_CALL 64u
 #else
 #define FWU_DATA_BYTES_PER_CALL 128u
 #endif
