@@ -48,7 +48,8 @@
  * verifications started a tick. The host build verifies every frame the bus can carry in a tick
  * within that tick (8 frames of a start and two blocks); on the Cortex-M images a start is a
  * tick's whole share, the rounds 4 a tick, one start a tick (a start and 4 rounds in one tick put
- * the M4F's worst EXECUTE tick at 2,191, a whole block beside EXECUTE's work at 3,230). */
+ * the M4F's worst EXECUTE tick at 2,191, a whole block beside EXECUTE's work at 3,230; 3 rounds a
+ * tick, a frame acting a tick later, 2,037 rather than 2,063). */
 #define APP_MAC_BEGIN_ROUNDS 4u
 #ifdef FS_BUDGET_MCU
 #define APP_MAC_ROUNDS_PER_TICK 4u
@@ -115,6 +116,10 @@
 #define SKILL_PARSE_INIT_KERNELS 8u
 #define SKILL_PARSE_INIT_PERIODIC_KERNELS 2u
 #endif
+/* The parse units a unit of a periodic model's reach pass counts for (an arcsine and a square
+ * root a kernel: ~2,500 instructions in software float, the M3's two units a tick of them 6,349):
+ * one reach unit a tick where a tick takes two units. */
+#define SKILL_PARSE_REACH_UNITS 2u
 /* The slices of a download's commit and of a read-back, per tick while the host waits (0x78):
  *   SLOTS_PARSE_UNITS_PER_TICK    units of the image's parse (skill_parse_run: one kernel's
  *                                 value, 32 bytes of the CRC; at most ~450 instructions, M4F)

@@ -8,7 +8,7 @@
 #include "fs_exec.h"
 
 /* Parts of the start a step (exec_prepare_step) and of the configuration (exec_prepare_cfg_q). */
-#define EXEC_STEP_PARTS 5u
+#define EXEC_STEP_PARTS 7u
 #define EXEC_CFG_PARTS 6u
 
 /* round(v * 2^frac) within +-FX_S61_MAX; FS_ERR_FIXED_CONFIG if v is not finite or beyond. */
@@ -152,10 +152,11 @@ static fs_status_t exec_prepare_cfg_q(const exec_config_t *cfg, exec_state_t *st
     return (rc != FS_OK) ? rc : r2;
 }
 
-/* Part part (0..4) of step i's per-run constants and starting state from its fixed-point model
+/* Part part (0..6) of step i's per-run constants and starting state from its fixed-point model
  * (exec_start_run: a part a call, each a bounded piece of software double on the M3): the force
- * DMP's rates and goal, the periodic and y DMPs' and the starting state, then the integer tick's
- * in two. */
+ * DMP's rates and goal, the periodic DMP's, the y DMP's, the starting state, then the integer
+ * tick's in two (the periodic, path and state parts in one call put the M3's worst tick at
+ * 5,373). */
 static fs_status_t exec_prepare_step(const exec_config_t *cfg, exec_state_t *st, uint8_t i,
                                      uint8_t part)
 {
@@ -165,20 +166,18 @@ static fs_status_t exec_prepare_step(const exec_config_t *cfg, exec_state_t *st,
     switch (part) {
     case 0u: return dmpfx_run_rates(m, (double)s->goal_scale, (double)s->time_scale, run);
     case 1u: return dmpfx_run_goal(m, (double)s->goal_scale, (double)s->time_scale, run);
-    case 3u: return exec_prepare_step_q(st, i);
-    case 4u: return exec_prepare_step_band_q(st, i, cfg->pfc.dt_s);
+    case 2u: return dmpfx_run_periodic(m, (double)s->amplitude_scale, run);
+    case 3u: return dmpfx_run_path(m, (double)s->path_scale, run);
+    case 5u: return exec_prepare_step_q(st, i);
+    case 6u: return exec_prepare_step_band_q(st, i, cfg->pfc.dt_s);
     default: break;
     }
-    fs_status_t rc = dmpfx_run_periodic(m, (double)s->amplitude_scale, run);
-    if (rc == FS_OK) {
-        rc = dmpfx_run_path(m, (double)s->path_scale, run);
-    }
-    if (m->periodic != 0u) {
+    if (m->periodic != 0u) { /* the starting state, from the run's constants */
         dmpfx_periodic_reset(m, run, &st->n.dmp_start[i]);
     } else {
         dmpfx_state_reset(&st->n.dmp_start[i]);
     }
-    return rc;
+    return FS_OK;
 }
 
 uint32_t exec_prep_parts(uint8_t n_steps)

@@ -389,6 +389,11 @@ bool dmp_model_init_run(dmp_model_t *m, dmp_init_t *it, uint32_t max_kernels)
     return it->stage == MI_DONE;
 }
 
+bool dmp_model_init_next_is_reach(const dmp_model_t *m, const dmp_init_t *it)
+{
+    return m != NULL && it != NULL && m->periodic != 0u && it->stage == MI_FORWARD;
+}
+
 fs_status_t dmp_model_init(dmp_model_t *m)
 {
     dmp_init_t it;

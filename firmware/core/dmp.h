@@ -163,6 +163,10 @@ void dmp_model_init_begin(dmp_init_t *it);
 /** At most max_kernels units of dmp_model_init of m; true once done (it->status). */
 bool dmp_model_init_run(dmp_model_t *m, dmp_init_t *it, uint32_t max_kernels);
 
+/** True if the next unit of dmp_model_init_run is a periodic kernel's reach (an arcsine and a
+ *  square root: the derivation's dearest unit, ~2,500 instructions in software float). */
+bool dmp_model_init_next_is_reach(const dmp_model_t *m, const dmp_init_t *it);
+
 /** DMP state, DMP time: normalised phase u~, v~, the integral I of y, y = f_hat - f0 (N), z;
  *  window is the last step's kernel window [start, end) (a hint for the next: the result never
  *  depends on it). */

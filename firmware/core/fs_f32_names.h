@@ -12,6 +12,7 @@
 #define dmp_model_init dmp_model_init_f32
 #define dmp_model_init_begin dmp_model_init_begin_f32
 #define dmp_model_init_run dmp_model_init_run_f32
+#define dmp_model_init_next_is_reach dmp_model_init_next_is_reach_f32
 #define dmp_run_validate dmp_run_validate_f32
 #define dmp_state_reset dmp_state_reset_f32
 #define dmp_forcing dmp_forcing_f32

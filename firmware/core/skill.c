@@ -548,6 +548,12 @@ bool skill_parse_run(skill_parser_t *p, uint32_t max_units)
         if (p->stage == SP_CRC) {
             stage_done = parse_crc(p);
         } else if (p->stage == SP_MODEL) {
+            if (dmp_model_init_next_is_reach(&p->out->dmp, &p->init)) {
+                if (u != 0u && u + SKILL_PARSE_REACH_UNITS > max_units) {
+                    break; /* a reach that does not fit this call's units: the next call's */
+                }
+                u += SKILL_PARSE_REACH_UNITS - 1u;
+            }
             stage_done = dmp_model_init_run(&p->out->dmp, &p->init,
                                             (p->kind == SKILL_KIND_PERIODIC)
                                                 ? SKILL_PARSE_INIT_PERIODIC_KERNELS

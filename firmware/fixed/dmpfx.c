@@ -7,6 +7,7 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "fs_job.h"
 #include "fs_num.h"
 #define DMP_TICK_MODEL dmpfx_model_t
 #include "dmp_tick.h"
@@ -486,23 +487,27 @@ fs_status_t dmpfx_run_rates(const dmpfx_model_t *m, double goal_scale, double ti
     if (args != FS_OK) {
         return args;
     }
+    /* each product once: software double on the M3 (the run start's dearest part) */
     const double k = m->dt_s / (m->tau_s * time_scale);
+    const double k_alpha = k * m->alpha;
+    const double k_alphabeta = k_alpha * m->beta;
+    const double k_gamma = k * m->gamma;
     /* Below 2^-24 the phase increments lose more than 7 bits of Q1.31. Each constant < 0.5
      * keeps every 64-bit accumulator below 2^63 for any int32 state (and k*alpha >= 1 would
      * not be a stable Euler step anyway). */
-    if (!(k >= ldexp(1.0, -24)) || !(k < 0.5) || !(k * m->alpha < 0.5) ||
-        !(k * m->alpha * m->beta < 0.5) || !(k * m->gamma < 0.5)) {
+    if (!(k >= 0x1p-24) || !(k < 0.5) || !(k_alpha < 0.5) || !(k_alphabeta < 0.5) ||
+        !(k_gamma < 0.5)) {
         return FS_ERR_FIXED_STEP;
     }
     fs_status_t st = fx_from_double(k, 31u, INT32_MAX, &run->k1_q31);
     if (st == FS_OK) {
-        st = fx_from_double(k * m->alpha, 31u, INT32_MAX, &run->k_alpha_q31);
+        st = fx_from_double(k_alpha, 31u, INT32_MAX, &run->k_alpha_q31);
     }
     if (st == FS_OK) {
-        st = fx_from_double(k * m->alpha * m->beta, 31u, INT32_MAX, &run->k_alphabeta_q31);
+        st = fx_from_double(k_alphabeta, 31u, INT32_MAX, &run->k_alphabeta_q31);
     }
     if (st == FS_OK) {
-        st = fx_from_double(k * m->gamma, 31u, INT32_MAX, &run->k_gamma_q31);
+        st = fx_from_double(k_gamma, 31u, INT32_MAX, &run->k_gamma_q31);
     }
     if (st != FS_OK) {
         return FS_ERR_FIXED_STEP;
@@ -909,33 +914,8 @@ void dmpfx_check_begin(dmpfx_check_t *c, const dmpfx_model_t *m, float duration_
     const float n = duration_s / dt_s + 0.5f;
     c->steps_total = (n > 0.0f && n < 4.0e9f) ? (uint32_t)n : 0u;
     c->status = dmpfx_run_rates(m, 1.0, 1.0, &c->run);
-    c->set_up = 0u; /* the goal, the periodic and path constants: dmpfx_check_run's first calls */
+    fs_job_reset(&c->job); /* the rest of the set-up: dmpfx_check_run's first calls */
     c->done = c->status != FS_OK || c->steps_total == 0u;
-}
-
-/* The rest of the check's set-up (dmpfx_check_run's first two calls: bounded software double on
- * the M3, each in a call of its own): the goal, then the periodic and path constants. */
-static void dmpfx_check_set_up(dmpfx_check_t *c)
-{
-    const dmpfx_model_t *m = c->m;
-    if (c->set_up++ == 0u) {
-        c->status = dmpfx_run_goal(m, 1.0, 1.0, &c->run);
-        c->done = c->status != FS_OK;
-        return;
-    }
-    c->status = dmpfx_run_periodic(m, 1.0, &c->run);
-    if (c->status == FS_OK) {
-        c->status = dmpfx_run_path(m, 1.0, &c->run);
-    }
-    /* g in Q16.16: the goal (Q8.24, units of 2^s N) times 2^s (Q20.12) */
-    c->goal_q16 = (int32_t)(((int64_t)c->run.goal_q24 * m->out_scale_q12) >> 20);
-    c->base_q16 = fx_add_sat(dmpfx_abs_sat(m->force0_q16), dmpfx_abs_sat(c->goal_q16));
-    if (m->periodic != 0u) {
-        dmpfx_periodic_reset(m, &c->run, &c->s);
-    } else {
-        dmpfx_state_reset(&c->s);
-    }
-    c->done = c->status != FS_OK;
 }
 
 /* One step of the check: |f_hat| of this step (a periodic model: |f0| + g + |e|); *path_q24 |p|. */
@@ -954,13 +934,11 @@ static int32_t dmpfx_check_step(dmpfx_check_t *c, int32_t *path_q24)
     return dmpfx_abs_sat(f);
 }
 
-bool dmpfx_check_run(dmpfx_check_t *c, uint32_t max_steps)
+/* max_steps steps of the check, its peaks and verdict. */
+static void dmpfx_check_steps(dmpfx_check_t *c, uint32_t max_steps)
 {
-    if (!c->done && c->set_up < DMPFX_CHECK_SET_UP_CALLS) {
-        dmpfx_check_set_up(c);
-        return c->done;
-    }
-    for (uint32_t i = 0u; i < max_steps && !c->done; i++) {
+    for (uint32_t i = 0u; i < max_steps && c->status == FS_OK && c->steps_done < c->steps_total;
+         i++) {
         int32_t p = 0;
         const int32_t a = dmpfx_check_step(c, &p);
         c->path_peak_q24 = (p > c->path_peak_q24) ? p : c->path_peak_q24;
@@ -973,7 +951,49 @@ bool dmpfx_check_run(dmpfx_check_t *c, uint32_t max_steps)
             c->status = FS_ERR_SKCHK_PEAK;
         }
         c->steps_done++;
-        c->done = c->status != FS_OK || c->steps_done >= c->steps_total;
+    }
+}
+
+/* The check as a job (fs_job.h): the rest of the set-up a call each (bounded software double on
+ * the M3: the goal, the periodic constants, the path's, the starting state), then max_steps DMP
+ * steps a call. */
+static fs_job_status_t dmpfx_check_job(dmpfx_check_t *c, uint32_t max_steps)
+{
+    fs_job_t *j = &c->job;
+    const dmpfx_model_t *m = c->m;
+    FS_JOB_BEGIN(j);
+    c->status = dmpfx_run_goal(m, 1.0, 1.0, &c->run);
+    FS_JOB_YIELD(j);
+    if (c->status == FS_OK) {
+        c->status = dmpfx_run_periodic(m, 1.0, &c->run);
+    }
+    FS_JOB_YIELD(j);
+    if (c->status == FS_OK) {
+        c->status = dmpfx_run_path(m, 1.0, &c->run);
+    }
+    FS_JOB_YIELD(j);
+    if (c->status != FS_OK) {
+        FS_JOB_EXIT(j);
+    }
+    /* g in Q16.16: the goal (Q8.24, units of 2^s N) times 2^s (Q20.12) */
+    c->goal_q16 = (int32_t)(((int64_t)c->run.goal_q24 * m->out_scale_q12) >> 20);
+    c->base_q16 = fx_add_sat(dmpfx_abs_sat(m->force0_q16), dmpfx_abs_sat(c->goal_q16));
+    if (m->periodic != 0u) {
+        dmpfx_periodic_reset(m, &c->run, &c->s);
+    } else {
+        dmpfx_state_reset(&c->s);
+    }
+    while (c->status == FS_OK && c->steps_done < c->steps_total) {
+        FS_JOB_YIELD(j);
+        dmpfx_check_steps(c, max_steps);
+    }
+    FS_JOB_END(j);
+}
+
+bool dmpfx_check_run(dmpfx_check_t *c, uint32_t max_steps)
+{
+    if (!c->done) {
+        c->done = dmpfx_check_job(c, max_steps) == FS_JOB_DONE;
     }
     return c->done;
 }

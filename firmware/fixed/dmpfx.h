@@ -10,6 +10,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 #include "dmp.h"
+#include "fs_job.h"
 #include "fx.h"
 
 /* Most kernels that may be evaluated in one tick (the candidate window): bounded at conversion
@@ -266,7 +267,7 @@ typedef struct {
     int32_t peak_q16;      /* max |f_hat| so far */
     int32_t path_peak_q24; /* max |p| so far (0 without a y DMP) */
     fs_status_t status;    /* FS_OK while running or passed; 223/225/300 or a 3xx of the set-up */
-    uint8_t set_up;        /* set-up calls made (of DMPFX_CHECK_SET_UP_CALLS, the first runs) */
+    fs_job_t job;          /* the rest of the set-up, then the steps (dmpfx_check_run) */
     bool done;
 } dmpfx_check_t;
 
@@ -275,9 +276,9 @@ typedef struct {
 void dmpfx_check_begin(dmpfx_check_t *c, const dmpfx_model_t *m, float duration_s, float dt_s,
                        float force_max_N, float path_max_m);
 
-/** dmpfx_check_run's first calls, the rest of the set-up (the goal; the periodic and path
- *  constants), each without a step. */
-#define DMPFX_CHECK_SET_UP_CALLS 2u
+/** dmpfx_check_run's first calls, the rest of the set-up (the goal; the periodic constants; the
+ *  path's; the starting state), each without a step. */
+#define DMPFX_CHECK_SET_UP_CALLS 4u
 
 /** Advance by at most max_steps DMP steps (the first DMPFX_CHECK_SET_UP_CALLS calls: the rest of
  *  the set-up, no step); true once finished (then c->status). */
