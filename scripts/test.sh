@@ -62,14 +62,15 @@ TICK_OVER=""
 # The whole tick's target, tighter than its budget: M4F 2,000 and M3 5,000 in every state. Listed
 # in TICK_TARGET_OVER (target:STATE, or target:STATE@periodic_y for the periodic y journey): not
 # yet within, reported with its figure, not enforced. Measured (same command, several runs): M4F
-# IDLE 1,447-1,740 since a seed's random bytes come from the port's FIFO, TEACH 1,296-1,724, FAULT
+# IDLE 1,405-1,740 since a seed's random bytes come from the port's FIFO, TEACH 1,295-1,724, FAULT
 # 1,498-1,885; over: EXECUTE 2,063-2,075 (a MAC check's start or its rounds beside the control
-# path and a status frame), UPLOAD 2,294-2,386 (a run routine's request with the run's checks),
-# FWUPDATE 2,027-2,093 (the verification's 16 rounds beside a tick's frames); the periodic y
-# journey's EXECUTE 2,377 and UPLOAD 2,674-2,684 (its heavier control path; two rollout steps of
-# a commit's check a tick). M3: every state of both journeys within (UPLOAD 4,504-4,647, the
-# periodic y journey's 4,492, since a periodic kernel's reach counts two parse units and a run's
-# start and a commit's check derive the periodic, path and state constants each in a call).
+# path and a status frame), UPLOAD 2,232 (a run routine's request with the run's checks; 2,294-
+# 2,386 with the executor's reset in that tick too), FWUPDATE 2,027-2,420 (the verification's 16
+# rounds beside a tick's frames; a tick of 9 host frames' arrival); the periodic y journey's
+# EXECUTE 2,366-2,377 and UPLOAD 2,644-2,684 (its heavier control path; two rollout steps of a
+# commit's check a tick). M3: every state of both journeys within (UPLOAD 4,224-4,647, the periodic
+# y journey's 4,332-4,501, since a periodic kernel's reach counts two parse units and a run's start
+# and a commit's check derive the periodic, path and state constants each in a call).
 TICK_TARGET_OVER="cortex-m4f:EXECUTE cortex-m4f:UPLOAD cortex-m4f:FWUPDATE
   cortex-m4f:EXECUTE@periodic_y cortex-m4f:UPLOAD@periodic_y cortex-m4f:FWUPDATE@periodic_y"
 tick_budgets() { # TARGET LOG [MAX_ONLY [JOURNEY]]: fail on a tick over budget in a state not listed

@@ -69,14 +69,24 @@ static uint8_t run_check_step(app_t *app, const app_run_step_t *rs, uint8_t end,
     return UDS_NRC_OK;
 }
 
-/* A run's start: the steps' integer constants a part a call (exec_start_run: the fixed-point
- * build's, none in the float one), then the first step's start; run_start_nrc its answer (3xx in
- * last_run_status: a scale beyond the fixed-point formats). */
+/* A run's start: the configuration's checks and the executor's reset (exec_start_reset), the
+ * steps' integer constants a part a call (exec_start_run: the fixed-point build's, none in the
+ * float one), then the first step's start; run_start_nrc its answer (the code in
+ * last_run_status: a configuration refused, a scale beyond the fixed-point formats). */
 static fs_job_status_t start_job(app_t *app)
 {
     fs_job_t *j = &app->ctl.start;
     FS_JOB_BEGIN(j);
     FS_JOB_YIELD(j); /* accepted in this tick: the slices from the next, before the bus's */
+    const fs_status_t begun = exec_start_reset(&app->ctl.exec_run_cfg, &app->ctl.exec);
+    if (begun != FS_OK) {
+        app->ctl.last_run_status = (uint16_t)begun;
+        app->ctl.run_start_nrc = UDS_NRC_REQUEST_OUT_OF_RANGE;
+        FS_JOB_EXIT(j);
+    }
+    if (exec_prep_parts(app->ctl.exec.n_steps) != 0u) {
+        FS_JOB_YIELD(j); /* the constants' parts (the fixed-point build) from the next tick */
+    }
     for (;;) {
         bool done = false;
         const fs_status_t rc = exec_start_run(&app->ctl.exec_run_cfg, &app->ctl.exec, &done);
@@ -122,8 +132,8 @@ uint8_t app_run_start(app_t *app, const app_run_request_t *req)
         app->ctl.exec_run_cfg.pfc.limits[a].force_max_N = app->cfg.saf.lim.axis[a].force_max_N;
     }
     app->ctl.exec_run_cfg.pfc.dt_s = APP_TICK_S;
-    const fs_status_t rc = exec_start_begin(&app->ctl.exec_run_cfg, &app->ctl.exec, steps,
-                                            req->n_steps, app->sens.pos_m[1]);
+    /* the steps held; the configuration's checks and the state's reset are the start job's */
+    const fs_status_t rc = exec_start_load(&app->ctl.exec, steps, req->n_steps, app->sens.pos_m[1]);
     if (rc != FS_OK) {
         app->ctl.last_run_status = (uint16_t)rc;
         return UDS_NRC_REQUEST_OUT_OF_RANGE;

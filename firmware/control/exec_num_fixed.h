@@ -24,6 +24,8 @@
 #define exec_config_default exec_config_default_fx
 #define exec_start exec_start_fx
 #define exec_start_begin exec_start_begin_fx
+#define exec_start_load exec_start_load_fx
+#define exec_start_reset exec_start_reset_fx
 #define exec_start_run exec_start_run_fx
 #define exec_object_force exec_object_force_fx
 #define exec_object_deformation exec_object_deformation_fx

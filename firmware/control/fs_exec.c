@@ -190,27 +190,39 @@ static fs_status_t exec_check_config(const exec_config_t *cfg, fs_real_t y_hold_
     return FS_OK;
 }
 
-fs_status_t exec_start_begin(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
-                             uint8_t n_steps, fs_real_t y_hold_m)
+fs_status_t exec_start_load(exec_state_t *st, const exec_step_t *steps, uint8_t n_steps,
+                            fs_real_t y_hold_m)
 {
-    if (cfg == 0 || st == 0 || steps == 0) {
+    if (st == 0 || steps == 0) {
         return FS_ERR_NULL_ARG;
     }
     if (n_steps == 0u || n_steps > EXEC_MAX_STEPS) {
         return FS_ERR_SCALE_INVALID;
     }
-    fs_status_t rc = exec_check_config(cfg, y_hold_m);
-    if (rc != FS_OK) {
-        return rc;
-    }
     for (uint8_t i = 0u; i < n_steps; i++) {
-        rc = exec_check_step(&steps[i]);
+        const fs_status_t rc = exec_check_step(&steps[i]);
         if (rc != FS_OK) {
             return rc;
         }
+    }
+    for (uint8_t i = 0u; i < n_steps; i++) {
         st->steps[i] = steps[i];
     }
     st->n_steps = n_steps;
+    st->y_start_m = y_hold_m;
+    return FS_OK;
+}
+
+fs_status_t exec_start_reset(const exec_config_t *cfg, exec_state_t *st)
+{
+    if (cfg == 0 || st == 0) {
+        return FS_ERR_NULL_ARG;
+    }
+    const fs_real_t y_hold_m = st->y_start_m;
+    const fs_status_t rc = exec_check_config(cfg, y_hold_m);
+    if (rc != FS_OK) {
+        return rc;
+    }
     st->step = 0u;
     st->ending = 0u;
     st->done = 0u;
@@ -225,7 +237,6 @@ fs_status_t exec_start_begin(const exec_config_t *cfg, exec_state_t *st, const e
     st->ref_pdd = 0;
     st->path = 0;
     st->y_ref_vel = 0;
-    st->y_start_m = y_hold_m;
     exec_num_start_positions(cfg, st, y_hold_m); /* surface, previous x_d, y_base and y_d */
     st->start_pending = 1u;
     st->path_ramp = 0u;
@@ -234,6 +245,16 @@ fs_status_t exec_start_begin(const exec_config_t *cfg, exec_state_t *st, const e
     exec_contact_reset(st);
     exec_band_reset(st);
     return exec_num_law_reset(cfg, st);
+}
+
+fs_status_t exec_start_begin(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
+                             uint8_t n_steps, fs_real_t y_hold_m)
+{
+    if (cfg == 0) {
+        return FS_ERR_NULL_ARG;
+    }
+    const fs_status_t rc = exec_start_load(st, steps, n_steps, y_hold_m);
+    return (rc != FS_OK) ? rc : exec_start_reset(cfg, st);
 }
 
 fs_status_t exec_start_run(const exec_config_t *cfg, exec_state_t *st, bool *done)

@@ -195,12 +195,19 @@ fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_st
                        uint8_t n_steps, fs_real_t y_hold_m);
 
 /** exec_start in slices, for a caller that bounds its work a tick: the checks, the sequence
- *  loaded and the law's configuration (exec_start_begin, the same codes), then each
+ *  loaded and the law's configuration (exec_start_begin, the same codes; or its two halves in
+ *  calls of their own: exec_start_load, the steps' checks and the sequence held, then
+ *  exec_start_reset, the configuration's checks and the state's reset), then each
  *  exec_start_run derives one part of the steps' or the configuration's integer constants
  *  (exec_prep_parts of them: the fixed-point build; 3xx codes) or, once all are, starts the
  *  first step and sets *done. Nothing runs before *done. */
 fs_status_t exec_start_begin(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
                              uint8_t n_steps, fs_real_t y_hold_m);
+/** exec_start_begin's first half: the steps checked and held with y_hold_m. */
+fs_status_t exec_start_load(exec_state_t *st, const exec_step_t *steps, uint8_t n_steps,
+                            fs_real_t y_hold_m);
+/** exec_start_begin's second half: cfg checked, the state reset for the held sequence. */
+fs_status_t exec_start_reset(const exec_config_t *cfg, exec_state_t *st);
 fs_status_t exec_start_run(const exec_config_t *cfg, exec_state_t *st, bool *done);
 
 /** Force of the object model at deformation p (0 for p <= 0). */

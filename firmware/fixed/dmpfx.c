@@ -480,6 +480,14 @@ static fs_status_t dmpfx_run_args(const dmpfx_model_t *m, double goal_scale, dou
     return FS_OK;
 }
 
+/* A rate in [0, 0.5) in Q1.31, rounded half up: fx_from_double(v, 31, ...)'s value without its
+ * checks (the range is the caller's). v * 2^32 is exact and below 2^31; floor(x / 2 + 1/2) of
+ * x = v * 2^32 is (floor(x) + 1) >> 1. In software double a product and a conversion. */
+static int32_t dmpfx_q31_rate(double v)
+{
+    return (int32_t)(((uint32_t)(v * 4294967296.0) + 1u) >> 1);
+}
+
 fs_status_t dmpfx_run_rates(const dmpfx_model_t *m, double goal_scale, double time_scale,
                             dmpfx_run_t *run)
 {
@@ -494,24 +502,15 @@ fs_status_t dmpfx_run_rates(const dmpfx_model_t *m, double goal_scale, double ti
     const double k_gamma = k * m->gamma;
     /* Below 2^-24 the phase increments lose more than 7 bits of Q1.31. Each constant < 0.5
      * keeps every 64-bit accumulator below 2^63 for any int32 state (and k*alpha >= 1 would
-     * not be a stable Euler step anyway). */
-    if (!(k >= 0x1p-24) || !(k < 0.5) || !(k_alpha < 0.5) || !(k_alphabeta < 0.5) ||
-        !(k_gamma < 0.5)) {
+     * not be a stable Euler step anyway); none negative (dmpfx_q31_rate's range). */
+    if (!(k >= 0x1p-24) || !(k < 0.5) || !(k_alpha >= 0.0 && k_alpha < 0.5) ||
+        !(k_alphabeta >= 0.0 && k_alphabeta < 0.5) || !(k_gamma >= 0.0 && k_gamma < 0.5)) {
         return FS_ERR_FIXED_STEP;
     }
-    fs_status_t st = fx_from_double(k, 31u, INT32_MAX, &run->k1_q31);
-    if (st == FS_OK) {
-        st = fx_from_double(k_alpha, 31u, INT32_MAX, &run->k_alpha_q31);
-    }
-    if (st == FS_OK) {
-        st = fx_from_double(k_alphabeta, 31u, INT32_MAX, &run->k_alphabeta_q31);
-    }
-    if (st == FS_OK) {
-        st = fx_from_double(k_gamma, 31u, INT32_MAX, &run->k_gamma_q31);
-    }
-    if (st != FS_OK) {
-        return FS_ERR_FIXED_STEP;
-    }
+    run->k1_q31 = dmpfx_q31_rate(k);
+    run->k_alpha_q31 = dmpfx_q31_rate(k_alpha);
+    run->k_alphabeta_q31 = dmpfx_q31_rate(k_alphabeta);
+    run->k_gamma_q31 = dmpfx_q31_rate(k_gamma);
     return FS_OK;
 }
 
