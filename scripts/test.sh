@@ -103,15 +103,19 @@ tick_budgets() { # TARGET LOG [MAX_ONLY [JOURNEY]]: fail on a tick over budget i
 # M3 max EXECUTE 1,916, UPLOAD 2,071, FAULT 2,065 (the UART's receive interrupts taken before the
 # write add up to ~115 on the M4F and ~700 on the M3 at their per-tick byte caps). Before, the M4F's EXECUTE ticks reached
 # 1,244-1,308, its tick that latches a fault 1,386-1,423; the M3's EXECUTE 2,237-2,793 and FAULT
-# 2,496-2,540.
-LATENCY_OVER=""
-latency_budgets() { # TARGET LOG
-  local target=$1 log=$2 b
+# 2,496-2,540. The periodic y journey (target:STATE@periodic_y): its DMP's blend is computed before
+# the write (a periodic model has no prepared blend: that cost ~26 instructions of its DMP + law
+# count, over its 850 budget), so EXECUTE and a read-back during its run (UPLOAD) are over: M4F
+# 1,500-1,609, M3 2,892-3,577; its other states are enforced.
+LATENCY_OVER="cortex-m4f:EXECUTE@periodic_y cortex-m4f:UPLOAD@periodic_y
+  cortex-m3:EXECUTE@periodic_y cortex-m3:UPLOAD@periodic_y"
+latency_budgets() { # TARGET LOG [JOURNEY]
+  local target=$1 log=$2 journey=${3:-} b
   case $target in cortex-m4f) b=1200 ;; *) b=2500 ;; esac
-  awk -v t="$target" -v b="$b" -v over=" $(echo $LATENCY_OVER) " '
+  awk -v t="$target" -v b="$b" -v j="${journey:+@$journey}" -v over=" $(echo $LATENCY_OVER) " '
     $1 == "actuator_latency_instructions" && $2 == "target=" t {
       for (i = 3; i <= NF; i++) { split($i, kv, "="); f[kv[1]] = kv[2] }
-      n++; key = t ":" f["state"]
+      n++; key = t ":" f["state"] j
       if (f["max"] == "-") { printf "latency budget FAILED: %s not measured\n", key; bad = 1 }
       else if (index(over, " " key " ")) {
         printf "latency budget (not enforced yet): %s %d %s %d\n", key, f["max"], (f["max"] + 0 > b ? ">" : "<= (within in this run)"), b }
@@ -146,6 +150,7 @@ for target in cortex-m4f cortex-m3; do
   fi
   grep -E '^(tick_instructions|commit_tick_instructions|app_tick_instructions|actuator_latency_instructions|budget)' "$log" | sed 's/^/periodic_y_n20: /' || true
   tick_budgets "$target" "$log" 1 periodic_y
+  latency_budgets "$target" "$log" periodic_y
 done
 # the images' objects: no firmware object uses a symbol only the simulator defines
 .venv/bin/python tools/check_layers.py --objects build/cortex-m4f --objects build/cortex-m3
