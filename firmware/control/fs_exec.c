@@ -199,6 +199,9 @@ fs_status_t exec_start_load(exec_state_t *st, const exec_step_t *steps, uint8_t 
     if (n_steps == 0u || n_steps > EXEC_MAX_STEPS) {
         return FS_ERR_SCALE_INVALID;
     }
+    if (!fs_isfinite(y_hold_m)) { /* exec_check_config's too: a refusal here changes nothing */
+        return FS_ERR_NOT_FINITE;
+    }
     for (uint8_t i = 0u; i < n_steps; i++) {
         const fs_status_t rc = exec_check_step(&steps[i]);
         if (rc != FS_OK) {
@@ -250,10 +253,14 @@ fs_status_t exec_start_reset(const exec_config_t *cfg, exec_state_t *st)
 fs_status_t exec_start_begin(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
                              uint8_t n_steps, fs_real_t y_hold_m)
 {
-    if (cfg == 0) {
+    if (cfg == 0 || st == 0 || steps == 0) {
         return FS_ERR_NULL_ARG;
     }
-    const fs_status_t rc = exec_start_load(st, steps, n_steps, y_hold_m);
+    /* the configuration first, as before the halves: a refusal changes nothing in st */
+    fs_status_t rc = exec_check_config(cfg, y_hold_m);
+    if (rc == FS_OK) {
+        rc = exec_start_load(st, steps, n_steps, y_hold_m);
+    }
     return (rc != FS_OK) ? rc : exec_start_reset(cfg, st);
 }
 

@@ -203,10 +203,12 @@ fs_status_t exec_start(const exec_config_t *cfg, exec_state_t *st, const exec_st
  *  first step and sets *done. Nothing runs before *done. */
 fs_status_t exec_start_begin(const exec_config_t *cfg, exec_state_t *st, const exec_step_t *steps,
                              uint8_t n_steps, fs_real_t y_hold_m);
-/** exec_start_begin's first half: the steps checked and held with y_hold_m. */
+/** exec_start_begin's first half: the steps and y_hold_m checked and held (nothing changed on a
+ *  refusal). */
 fs_status_t exec_start_load(exec_state_t *st, const exec_step_t *steps, uint8_t n_steps,
                             fs_real_t y_hold_m);
-/** exec_start_begin's second half: cfg checked, the state reset for the held sequence. */
+/** exec_start_begin's second half: cfg checked (a refusal leaves the held sequence unstarted),
+ *  the state reset for the held sequence. */
 fs_status_t exec_start_reset(const exec_config_t *cfg, exec_state_t *st);
 fs_status_t exec_start_run(const exec_config_t *cfg, exec_state_t *st, bool *done);
 

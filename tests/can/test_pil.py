@@ -166,10 +166,11 @@ def run_both(capsys, d: Path, bus: list[str], tag: str) -> dict[str, dict[str, n
 def test_journey_on_the_image_matches_the_host_build(pil, tmp_path, capsys):
     d = tmp_path
     bus = pil.bus_args()
-    out = forceskill(capsys, "record", "-o", str(d / "demo.blf"), "--duration", "6", *bus)
-    assert "in TEACH" in out
+    rec = forceskill(capsys, "record", "-o", str(d / "demo.blf"), "--duration", "6", *bus)
+    assert "in TEACH" in rec
     out = fit_press(capsys, d / "demo.blf", d / "press.skill")
-    assert float(out.split("approximation error: max ")[1].split(" %")[0]) <= 2.5
+    # 1.5-1.7 % here, beside two busy loops too; the recording's and the fit's lines if not
+    assert float(out.split("approximation error: max ")[1].split(" %")[0]) <= 2.5, rec + out
     out = forceskill(capsys, "upload", str(d / "press.skill"), "--slot", "1", "-q", *bus)
     assert "verified by read-back" in out
     sk = Skill.read(d / "press.skill")
