@@ -95,7 +95,8 @@ uint32_t skill_crc32(uint32_t crc, const uint8_t *data, uint32_t len);
  *  device checks a download over several control ticks. A unit of work is one kernel's value in
  *  one pass, SKILL_PARSE_F64_PER_UNIT float64 fields in the finiteness pass, SKILL_PARSE_CRC_BYTES
  *  bytes of the CRC, SKILL_PARSE_INIT_KERNELS kernels of a pass of dmp_model_init (a periodic
- *  model's reach pass counting SKILL_PARSE_REACH_UNITS), or one of the header's stages. The image and *out must stay in place until the parse is done. */
+ *  model's reach pass counting SKILL_PARSE_REACH_UNITS), or one of the header's stages. The
+ *  image and *out must stay in place until the parse is done. */
 typedef struct {
     const uint8_t *buf;
     uint32_t len;

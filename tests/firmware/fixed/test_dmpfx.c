@@ -513,6 +513,32 @@ static void test_prepare_same(void **state)
     assert_int_equal(dmpfx_step(&fxm, &run, &c, NULL), dmpfx_step(&fxm, &run, &a, NULL));
 }
 
+/* A periodic model's reach pass (an arcsine and a square root a kernel) counts
+ * SKILL_PARSE_REACH_UNITS (2) parse units: parsed two units a call, each call that starts in it does
+ * one unit's kernels (two units would do twice as many), and the result is skill_parse's. */
+static void test_parse_reach_units(void **state)
+{
+    (void)state;
+    static skill_t sliced;
+    const uint32_t len = tv_read("periodic_n20_ridge.skill", image, sizeof(image));
+    assert_true(len > 0u);
+    memset(&skill, 0, sizeof skill);
+    assert_int_equal(skill_parse(image, len, &skill), FS_OK);
+    memset(&sliced, 0, sizeof sliced);
+    skill_parser_t p;
+    skill_parse_begin(&p, image, len, &sliced);
+    uint32_t reach_calls = 0u;
+    bool done = false;
+    while (!done) {
+        reach_calls += dmp_model_init_next_is_reach(&sliced.dmp, &p.init) ? 1u : 0u;
+        done = skill_parse_run(&p, 2u);
+    }
+    assert_int_equal(p.status, FS_OK);
+    assert_memory_equal(&skill, &sliced, sizeof skill);
+    const uint32_t k = SKILL_PARSE_INIT_PERIODIC_KERNELS;
+    assert_int_equal(reach_calls, (skill.dmp.n_kernels + k - 1u) / k);
+}
+
 static void test_rejects(void **state)
 {
     (void)state;
@@ -926,6 +952,7 @@ int main(void)
         cmocka_unit_test(test_commit_path),
         cmocka_unit_test(test_blend),
         cmocka_unit_test(test_prepare_same),
+        cmocka_unit_test(test_parse_reach_units),
         cmocka_unit_test(test_rejects),
         cmocka_unit_test(test_coupling),
         cmocka_unit_test(test_saturation_never_wraps),
